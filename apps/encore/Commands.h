@@ -1,0 +1,35 @@
+#pragma once
+
+// The encore subcommands. main.cpp parses the command line; each command runs here and returns
+// the process exit code. Only apps/ prints.
+
+#include <CLI/CLI.hpp>
+
+#include <string>
+
+#include "encore/core/Result.h"
+
+namespace encore::app {
+
+// Exit codes, documented in `encore --help` and the README.
+enum ExitCode : int {
+    kExitOk = 0,
+    kExitFailure = 1,     // Bad input, I/O errors.
+    kExitUsage = 2,       // Command-line errors.
+    kExitNoAdapter = 3,   // No usable (Vulkan) GPU adapter.
+    kExitGpuError = 4,    // WebGPU validation error or device loss.
+};
+
+struct GlobalOptions {
+    bool verbose = false;
+    bool allowNullBackend = false;
+};
+
+// Prints "error: <message>" and returns the exit code for the error's code.
+int reportError(const Error& error);
+
+void addRenderCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
+void addInfoCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
+void addGenCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
+
+}  // namespace encore::app

@@ -1,0 +1,48 @@
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include "Commands.h"
+#include "encore/core/FileIO.h"
+#include "encore/scene/SceneGenerator.h"
+
+namespace encore::app {
+
+namespace {
+struct GenOptions {
+    scene::GeneratorOptions generator;
+    std::string output = "scene.glb";
+};
+}  // namespace
+
+void addGenCommand(CLI::App& app, const GlobalOptions&, int& exitCode) {
+    auto options = std::make_shared<GenOptions>();
+    auto* command = app.add_subcommand(
+        "gen", "Generate a glTF scene (.glb): distinct meshes, shared materials, many objects.");
+    command->add_option("--objects", options->generator.objectCount, "Number of objects (nodes)")
+        ->capture_default_str();
+    command->add_option("--meshes", options->generator.meshCount, "Number of distinct meshes")
+        ->capture_default_str();
+    command->add_option("--materials", options->generator.materialCount,
+                        "Number of shared materials")
+        ->capture_default_str();
+    command->add_option("--seed", options->generator.seed, "Random seed for object placement")
+        ->capture_default_str();
+    command->add_option("-o,--output", options->output, "The .glb file to write")
+        ->capture_default_str();
+    command->callback([options, &exitCode] {
+        auto glb = scene::generateSceneGlb(options->generator);
+        if (!glb) {
+            exitCode = reportError(glb.error());
+            return;
+        }
+        if (auto written = writeFile(options->output, *glb); !written) {
+            exitCode = reportError(written.error());
+            return;
+        }
+        std::printf("%s\n", options->output.c_str());
+        exitCode = kExitOk;
+    });
+}
+
+}  // namespace encore::app

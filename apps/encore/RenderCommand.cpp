@@ -1,0 +1,108 @@
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "Commands.h"
+#include "encore/gpu/Context.h"
+#include "encore/render/Renderer.h"
+#include "encore/scene/SceneData.h"
+
+namespace encore::app {
+
+namespace {
+
+struct RenderOptions {
+    std::string model;
+    std::string output = "encore.png";
+    std::string strategy = "naive";
+    std::uint32_t width = 1280;
+    std::uint32_t height = 720;
+    std::uint32_t samples = 4;
+    float yawDegrees = 0.0f;
+    bool strict = false;
+};
+
+int runRender(const RenderOptions& options, const GlobalOptions& global) {
+    const auto kind = render::strategyFromName(options.strategy);
+    if (!kind) {
+        return reportError(makeError(ErrorCode::InvalidArgument,
+                                     "Unknown strategy '" + options.strategy + "'."));
+    }
+    scene::LoadOptions loadOptions;
+    loadOptions.strict = options.strict;
+    auto scene = scene::loadScene(options.model, loadOptions);
+    if (!scene) {
+        return reportError(scene.error());
+    }
+    for (const auto& warning : scene->warnings) {
+        std::fprintf(stderr, "warning: %s\n", warning.c_str());
+    }
+
+    gpu::ContextOptions contextOptions;
+    contextOptions.allowNullBackend = global.allowNullBackend;
+    auto context = gpu::Context::create(contextOptions);
+    if (!context) {
+        return reportError(context.error());
+    }
+    if (global.verbose) {
+        std::fprintf(stderr, "adapter: %s\n", context->adapterDescription().summary().c_str());
+    }
+
+    render::RendererOptions rendererOptions;
+    rendererOptions.target = {options.width, options.height, options.samples};
+    auto renderer = render::Renderer::create(*context, rendererOptions);
+    if (!renderer) {
+        return reportError(renderer.error());
+    }
+    if (auto prepared = renderer->prepare(*scene, *kind); !prepared) {
+        return reportError(prepared.error());
+    }
+    const auto camera = render::Camera::framing(scene->bounds, renderer->target().aspect(),
+                                                options.yawDegrees * float(M_PI) / 180.0f);
+    const auto frame = renderer->renderFrame(camera);
+    auto image = renderer->readImage();
+    if (!image) {
+        return reportError(image.error());
+    }
+    if (auto written = image::writePng(options.output, *image); !written) {
+        return reportError(written.error());
+    }
+    if (global.verbose) {
+        std::fprintf(stderr, "strategy %s: %llu draws, %llu triangles, encode %.3f ms\n",
+                     options.strategy.c_str(),
+                     static_cast<unsigned long long>(frame.counters.drawCalls()),
+                     static_cast<unsigned long long>(frame.counters.triangles),
+                     frame.encodeMilliseconds);
+    }
+    std::printf("%s\n", options.output.c_str());
+    return kExitOk;
+}
+
+}  // namespace
+
+void addRenderCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) {
+    auto options = std::make_shared<RenderOptions>();
+    auto* command = app.add_subcommand(
+        "render", "Render a glTF 2.0 model (.gltf or .glb) headless into a PNG image.");
+    command->add_option("model", options->model, "The .gltf or .glb file")->required();
+    command->add_option("-o,--output", options->output, "The PNG to write")
+        ->capture_default_str();
+    command->add_option("-s,--strategy", options->strategy, "Rendering strategy")
+        ->capture_default_str();
+    command->add_option("--width", options->width, "Image width in pixels")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 8192));
+    command->add_option("--height", options->height, "Image height in pixels")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 8192));
+    command->add_option("--samples", options->samples, "Multisampling: 1 or 4")
+        ->capture_default_str()
+        ->check(CLI::IsMember({1, 4}));
+    command->add_option("--yaw", options->yawDegrees,
+                        "Turn the framing viewpoint around the model (degrees)");
+    command->add_flag("--strict", options->strict,
+                      "Treat warnings (missing images, unsupported optional features) as errors");
+    command->callback([options, &global, &exitCode] { exitCode = runRender(*options, global); });
+}
+
+}  // namespace encore::app

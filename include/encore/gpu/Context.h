@@ -1,0 +1,84 @@
+#pragma once
+
+// gpu::Context owns the WebGPU instance, adapter, device and queue of a headless Dawn setup.
+//
+// Creation refuses Dawn's Null backend (which Dawn falls back to, silently, when no usable Vulkan
+// driver exists, and which renders nothing) unless ContextOptions::allowNullBackend asks for a
+// validation-only run. Every uncaptured WebGPU error (validation, out-of-memory, internal) is
+// reported through encore::log and recorded, so tests and tools can fail on any of them.
+
+#include <webgpu/webgpu_cpp.h>
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "encore/core/Result.h"
+
+namespace encore::gpu {
+
+struct ContextOptions {
+    bool allowNullBackend = false;
+    // Requests TimestampQuery when the adapter has it and disables Dawn's timestamp
+    // quantization (~65 us granularity otherwise), for benchmarks.
+    bool timestamps = false;
+    // Features requested only when the adapter supports them (e.g. IndirectFirstInstance).
+    std::vector<wgpu::FeatureName> optionalFeatures;
+};
+
+struct AdapterDescription {
+    std::string name;          // e.g. "llvmpipe (LLVM 19.1.7, 256 bits)"
+    std::string vendor;
+    std::string architecture;
+    std::string driver;        // The driver description Dawn reports.
+    wgpu::BackendType backend = wgpu::BackendType::Undefined;
+    wgpu::AdapterType adapterType = wgpu::AdapterType::Unknown;
+
+    // "llvmpipe (LLVM 19.1.7, 256 bits), Vulkan, CPU, driver Mesa 25.0.7"
+    std::string summary() const;
+};
+
+std::string backendName(wgpu::BackendType backend);
+
+class Context {
+  public:
+    static Result<Context> create(const ContextOptions& options = {});
+
+    Context(Context&&) noexcept;
+    Context& operator=(Context&&) noexcept;
+    ~Context();
+
+    const wgpu::Instance& instance() const { return mInstance; }
+    const wgpu::Adapter& adapter() const { return mAdapter; }
+    const wgpu::Device& device() const { return mDevice; }
+    const wgpu::Queue& queue() const { return mQueue; }
+    const AdapterDescription& adapterDescription() const { return mAdapterDescription; }
+    bool hasFeature(wgpu::FeatureName feature) const;
+
+    // Blocks until the future completes. Returns false on timeout.
+    bool wait(const wgpu::Future& future, std::uint64_t timeoutNs = UINT64_MAX) const;
+    // Blocks until all submitted work has completed on the GPU.
+    void waitForIdle() const;
+
+    // Errors reported by the device since creation (or since the last takeErrors()).
+    std::size_t errorCount() const;
+    std::vector<std::string> takeErrors();
+    bool deviceLost() const;
+
+    // Returns a ValidationError naming the first recorded error, or success when none occurred.
+    Result<void> checkNoErrors(const std::string& what);
+
+  private:
+    struct ErrorLog;
+    Context() = default;
+
+    wgpu::Instance mInstance;
+    wgpu::Adapter mAdapter;
+    wgpu::Device mDevice;
+    wgpu::Queue mQueue;
+    AdapterDescription mAdapterDescription;
+    std::shared_ptr<ErrorLog> mErrors;
+};
+
+}  // namespace encore::gpu

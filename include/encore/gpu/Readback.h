@@ -1,0 +1,29 @@
+#pragma once
+
+// Copies GPU data back to the CPU, blocking until it is available. Used for headless output and
+// for tests; not meant for per-frame use.
+
+#include <webgpu/webgpu_cpp.h>
+
+#include <cstdint>
+#include <vector>
+
+#include "encore/core/Result.h"
+#include "encore/gpu/Context.h"
+#include "encore/image/ImageCodec.h"
+
+namespace encore::gpu {
+
+// Reads mip level 0 of a 2D texture with CopySrc usage. Supported formats: RGBA8Unorm(Srgb) and
+// BGRA8Unorm(Srgb); the result is RGBA either way (bytes as stored, no colour conversion).
+Result<image::ImageRgba8> readTexture(Context& context, const wgpu::Texture& texture);
+
+// Same for one mip level (its size is the level-0 size halved `level` times, at least 1).
+Result<image::ImageRgba8> readTextureLevel(Context& context, const wgpu::Texture& texture,
+                                           std::uint32_t level);
+
+// Reads `size` bytes at `offset` of a buffer with CopySrc usage (offset and size multiples of 4).
+Result<std::vector<std::uint8_t>> readBuffer(Context& context, const wgpu::Buffer& buffer,
+                                             std::uint64_t offset, std::uint64_t size);
+
+}  // namespace encore::gpu

@@ -1,0 +1,36 @@
+#pragma once
+
+// PNG and JPEG decoding and PNG encoding. This is the only place an image library appears.
+
+#include <cstdint>
+#include <filesystem>
+#include <span>
+#include <vector>
+
+#include "encore/core/Result.h"
+
+namespace encore::image {
+
+// Images larger than this on either side are refused before decoding (WebGPU's default
+// maxTextureDimension2D is 8192; this guards against absurd headers).
+inline constexpr std::uint32_t kMaxImageDimension = 16384;
+
+struct ImageRgba8 {
+    std::uint32_t width = 0;
+    std::uint32_t height = 0;
+    std::vector<std::uint8_t> pixels;  // width * height * 4 bytes, rows top to bottom.
+
+    std::uint8_t* pixel(std::uint32_t x, std::uint32_t y) { return &pixels[(y * width + x) * 4]; }
+    const std::uint8_t* pixel(std::uint32_t x, std::uint32_t y) const {
+        return &pixels[(y * width + x) * 4];
+    }
+};
+
+// Decodes PNG or JPEG bytes into RGBA8.
+Result<ImageRgba8> decodeImage(std::span<const std::uint8_t> encoded);
+
+Result<std::vector<std::uint8_t>> encodePng(const ImageRgba8& image);
+Result<void> writePng(const std::filesystem::path& path, const ImageRgba8& image);
+Result<ImageRgba8> readImage(const std::filesystem::path& path);
+
+}  // namespace encore::image

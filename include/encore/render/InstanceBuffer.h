@@ -1,0 +1,60 @@
+#pragma once
+
+// The case study's Part 4: every instance transform (world + normal matrix) in one storage
+// buffer, bound once as group 1 and indexed in the vertex shader by instance_index, which
+// starts at the draw's firstInstance. Instances are ordered so that each mesh's instances are
+// adjacent — first those with a regular transform, then mirrored ones (negative determinant,
+// which flip the winding) — so one draw covers a mesh's primitive for all its instances.
+
+#include <webgpu/webgpu_cpp.h>
+
+#include <cstdint>
+#include <vector>
+
+#include "encore/render/BindGroupLayouts.h"
+#include "encore/scene/SceneData.h"
+
+namespace encore::render {
+
+struct InstanceRange {
+    std::uint32_t first = 0;
+    std::uint32_t count = 0;
+};
+
+class InstanceBuffer {
+  public:
+    InstanceBuffer() = default;
+    InstanceBuffer(const wgpu::Device& device, const BindGroupLayouts& layouts,
+                   const scene::SceneData& scene);
+
+    const wgpu::BindGroup& bindGroup() const { return mBindGroup; }
+    const wgpu::Buffer& buffer() const { return mBuffer; }
+
+    // All instances of a mesh, regular then mirrored.
+    InstanceRange meshRange(scene::MeshId mesh) const;
+    // Only the regular (mirrored = false) or only the mirrored instances of a mesh.
+    InstanceRange meshRange(scene::MeshId mesh, bool mirrored) const;
+
+    // The buffer slot of scene.instances[index].
+    std::uint32_t slotOf(std::size_t sceneInstance) const { return mSlots[sceneInstance]; }
+    // The scene instance stored in a slot.
+    std::size_t instanceAt(std::uint32_t slot) const { return mInstances[slot]; }
+    std::uint32_t size() const { return static_cast<std::uint32_t>(mInstances.size()); }
+
+    // Rewrites one instance's transforms (animation, edits) without touching bind groups.
+    void update(const wgpu::Queue& queue, std::size_t sceneInstance,
+                const scene::Instance& instance) const;
+
+  private:
+    wgpu::Buffer mBuffer;
+    wgpu::BindGroup mBindGroup;
+    std::vector<std::uint32_t> mSlots;        // Scene instance -> slot.
+    std::vector<std::size_t> mInstances;      // Slot -> scene instance.
+    std::vector<InstanceRange> mRegular;      // Per mesh.
+    std::vector<InstanceRange> mMirrored;     // Per mesh.
+};
+
+// Whether a transform mirrors geometry (negative determinant of its 3x3 part).
+bool isMirrored(const glm::mat4& world);
+
+}  // namespace encore::render

@@ -1,0 +1,32 @@
+#pragma once
+
+// The case study's Parts 1-3 per-node transforms: one uniform buffer and one bind group (group
+// 1) per mesh node, in scene.instances order.
+
+#include <webgpu/webgpu_cpp.h>
+
+#include <vector>
+
+#include "encore/render/BindGroupLayouts.h"
+#include "encore/scene/SceneData.h"
+
+namespace encore::render {
+
+class NodeUniforms {
+  public:
+    NodeUniforms() = default;
+    NodeUniforms(const wgpu::Device& device, const BindGroupLayouts& layouts,
+                 const scene::SceneData& scene);
+
+    const wgpu::BindGroup& bindGroup(std::size_t sceneInstance) const {
+        return mBindGroups[sceneInstance];
+    }
+    void update(const wgpu::Queue& queue, std::size_t sceneInstance,
+                const scene::Instance& instance) const;
+
+  private:
+    std::vector<wgpu::Buffer> mBuffers;
+    std::vector<wgpu::BindGroup> mBindGroups;
+};
+
+}  // namespace encore::render

@@ -1,0 +1,53 @@
+#pragma once
+
+// The one interface strategies record through. It forwards to a render pass encoder or a render
+// bundle encoder — the same recording code serves both, as in the WebGPU samples — and counts
+// every call in DrawCounters.
+
+#include <webgpu/webgpu_cpp.h>
+
+#include <cstdint>
+
+#include "encore/render/DrawCounters.h"
+#include "encore/scene/SceneData.h"
+
+namespace encore::render {
+
+class RenderEncoder {
+  public:
+    RenderEncoder(const wgpu::RenderPassEncoder& pass, DrawCounters& counters)
+        : mPass(pass), mCounters(counters) {}
+    RenderEncoder(const wgpu::RenderBundleEncoder& bundle, DrawCounters& counters)
+        : mBundle(bundle), mCounters(counters) {}
+
+    bool recordsBundle() const { return bool(mBundle); }
+
+    void setPipeline(const wgpu::RenderPipeline& pipeline);
+    void setBindGroup(std::uint32_t index, const wgpu::BindGroup& group,
+                      std::uint32_t dynamicOffset);
+    void setBindGroup(std::uint32_t index, const wgpu::BindGroup& group);
+    void setVertexBuffer(std::uint32_t slot, const wgpu::Buffer& buffer, std::uint64_t offset = 0,
+                         std::uint64_t size = wgpu::kWholeSize);
+    void setIndexBuffer(const wgpu::Buffer& buffer, wgpu::IndexFormat format,
+                        std::uint64_t offset = 0, std::uint64_t size = wgpu::kWholeSize);
+    // `topology` only feeds the triangle counter.
+    void draw(std::uint32_t vertexCount, std::uint32_t instanceCount, std::uint32_t firstVertex,
+              std::uint32_t firstInstance, scene::Topology topology);
+    void drawIndexed(std::uint32_t indexCount, std::uint32_t instanceCount,
+                     std::uint32_t firstIndex, std::int32_t baseVertex,
+                     std::uint32_t firstInstance, scene::Topology topology);
+    void drawIndirect(const wgpu::Buffer& buffer, std::uint64_t offset);
+    void drawIndexedIndirect(const wgpu::Buffer& buffer, std::uint64_t offset);
+
+    DrawCounters& counters() { return mCounters; }
+
+  private:
+    wgpu::RenderPassEncoder mPass;
+    wgpu::RenderBundleEncoder mBundle;
+    DrawCounters& mCounters;
+};
+
+// Triangles drawn by `count` vertices or indices of a topology (0 for points and lines).
+std::uint64_t triangleCount(scene::Topology topology, std::uint64_t count);
+
+}  // namespace encore::render

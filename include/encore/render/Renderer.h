@@ -1,0 +1,66 @@
+#pragma once
+
+// Renderer draws a SceneData with one strategy into an offscreen RenderTarget. It owns what all
+// strategies share (shader library, bind group layouts, frame uniforms) and the strategy itself.
+
+#include <memory>
+
+#include "encore/core/Result.h"
+#include "encore/gpu/Context.h"
+#include "encore/image/ImageCodec.h"
+#include "encore/render/Camera.h"
+#include "encore/render/DrawCounters.h"
+#include "encore/render/RenderTarget.h"
+#include "encore/render/Strategy.h"
+
+namespace encore::render {
+
+struct RendererOptions {
+    RenderTargetOptions target;
+    wgpu::Color clearColor{0.05, 0.05, 0.06, 1.0};
+};
+
+struct FrameResult {
+    DrawCounters counters;
+    double encodeMilliseconds = 0.0;  // CPU: recording the pass and finishing the encoder.
+    double submitMilliseconds = 0.0;  // CPU: Queue::Submit (Dawn records Vulkan commands here).
+};
+
+class Renderer {
+  public:
+    // The context must outlive the renderer.
+    static Result<Renderer> create(gpu::Context& context, const RendererOptions& options);
+
+    Renderer(Renderer&&) noexcept;
+    Renderer& operator=(Renderer&&) noexcept;
+    ~Renderer();
+
+    // Prepares `scene` (which must outlive the renderer) for drawing with `kind`, replacing any
+    // previous scene or strategy. Fails on any WebGPU error raised while preparing.
+    Result<void> prepare(const scene::SceneData& scene, StrategyKind kind);
+
+    // Updates the frame uniforms, records and submits one frame.
+    FrameResult renderFrame(const Camera& camera, float timeSeconds = 0.0f);
+
+    // Waits for the GPU and reads the final image back.
+    Result<image::ImageRgba8> readImage();
+
+    const RenderTarget& target() const { return mTarget; }
+    const RenderSetup& setup() const { return *mSetup; }
+    const Strategy* strategy() const { return mStrategy.get(); }
+    gpu::Context& context() { return *mContext; }
+
+  private:
+    Renderer() = default;
+
+    gpu::Context* mContext = nullptr;
+    RendererOptions mOptions;
+    RenderTarget mTarget;
+    std::unique_ptr<shaders::ShaderLibrary> mShaders;
+    std::unique_ptr<BindGroupLayouts> mLayouts;
+    std::unique_ptr<FrameUniforms> mFrame;
+    std::unique_ptr<RenderSetup> mSetup;  // Stable address: strategies keep pointers to it.
+    std::unique_ptr<Strategy> mStrategy;
+};
+
+}  // namespace encore::render

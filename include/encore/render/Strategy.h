@@ -1,0 +1,75 @@
+#pragma once
+
+// A strategy is one step of the case study's path from a naive glTF renderer to an efficient one.
+// Each prepares its own GPU resources from SceneData and records a frame's draws through a
+// RenderEncoder, so every step can be selected, counted and compared in one binary.
+
+#include <webgpu/webgpu_cpp.h>
+
+#include <memory>
+#include <optional>
+#include <span>
+#include <string_view>
+
+#include "encore/core/Result.h"
+#include "encore/render/BindGroupLayouts.h"
+#include "encore/render/Camera.h"
+#include "encore/render/FrameUniforms.h"
+#include "encore/render/RenderEncoder.h"
+#include "encore/scene/SceneData.h"
+#include "encore/shaders/ShaderLibrary.h"
+
+namespace encore::render {
+
+enum class StrategyKind {
+    // One pipeline per primitive; one uniform buffer + bind group per node; each attribute
+    // copied into its own tightly packed vertex buffer and bound to its own slot.
+    Naive,
+    // Vertex data bound in place: one buffer per bufferView, offsets in setVertexBuffer,
+    // interleaved attributes bound once. Still one pipeline per primitive.
+    Layouts,
+    // Pipelines cached by every pipeline argument; loop pipeline -> primitive -> node.
+    PipelineCache,
+    // All transforms in one storage buffer; one draw per primitive for all its instances.
+    Instancing,
+};
+
+std::string_view strategyName(StrategyKind kind);
+std::optional<StrategyKind> strategyFromName(std::string_view name);
+std::span<const StrategyKind> allStrategies();
+
+// What a strategy's pipelines and bind groups must be compatible with.
+struct RenderSetup {
+    wgpu::Device device;
+    wgpu::Queue queue;
+    shaders::ShaderLibrary* shaders = nullptr;
+    const BindGroupLayouts* layouts = nullptr;
+    const FrameUniforms* frame = nullptr;
+    wgpu::TextureFormat colorFormat = wgpu::TextureFormat::RGBA8UnormSrgb;
+    wgpu::TextureFormat depthFormat = wgpu::TextureFormat::Depth32Float;
+    std::uint32_t sampleCount = 1;
+};
+
+// What a frame's recording may depend on. Only strategies that sort by distance (blended
+// geometry) read the camera while recording; all others take it from the frame uniforms.
+struct FrameState {
+    Camera camera;
+    float timeSeconds = 0.0f;
+};
+
+class Strategy {
+  public:
+    virtual ~Strategy() = default;
+    virtual StrategyKind kind() const = 0;
+
+    // Creates the GPU resources for `scene`, which must outlive the strategy.
+    virtual Result<void> prepare(const RenderSetup& setup, const scene::SceneData& scene) = 0;
+
+    // Records one frame's draws. Sets every piece of state it uses (group 0 included), so the
+    // same code can record into a render bundle.
+    virtual void encode(RenderEncoder& encoder, const FrameState& frame) const = 0;
+};
+
+std::unique_ptr<Strategy> createStrategy(StrategyKind kind);
+
+}  // namespace encore::render

@@ -1,0 +1,95 @@
+#pragma once
+
+// The case study's Part 2 ("buffer layouts"), shared by every strategy after `naive`:
+//  - one GPU buffer per glTF bufferView, uploaded once, its size rounded up to 4 bytes;
+//  - a primitive's attributes grouped per bufferView: attributes whose offsets lie within one
+//    stride of each other are interleaved and bound once, as one vertex buffer slot; attributes
+//    further apart (non-interleaved data sharing a view) get slots of their own;
+//  - each slot's smallest attribute offset moves into the setVertexBuffer offset, so layouts
+//    carry small offsets (models with accessor offsets past the stride or 2048 draw fine);
+//  - attributes sorted by shader location and slots by their first location, so equal layouts
+//    compare equal (what lets the pipeline cache share pipelines).
+// Attributes that cannot be bound in place (an unaligned offset, a stride that is not a multiple
+// of 4) are copied into a private, padded buffer instead.
+
+#include <webgpu/webgpu_cpp.h>
+
+#include <cstdint>
+#include <map>
+#include <span>
+#include <vector>
+
+#include "encore/core/Result.h"
+#include "encore/render/PipelineKey.h"
+#include "encore/scene/SceneData.h"
+
+namespace encore::render {
+
+struct VertexBufferBinding {
+    wgpu::Buffer buffer;
+    std::uint64_t offset = 0;
+};
+
+struct IndexBufferBinding {
+    wgpu::Buffer buffer;
+    wgpu::IndexFormat format = wgpu::IndexFormat::Undefined;
+    std::uint64_t offset = 0;
+    std::uint32_t count = 0;
+};
+
+// How to bind one primitive: slots in order, the layout part of its pipeline key, the draw.
+struct PrimitiveBindings {
+    std::vector<VertexBufferBinding> vertexBuffers;  // Slot i.
+    PipelineKey layout;  // bufferCount/buffers filled; other fields left default.
+    std::optional<IndexBufferBinding> indices;
+    std::uint32_t vertexCount = 0;
+    scene::Topology topology = scene::Topology::TriangleList;
+};
+
+// Owns the per-bufferView GPU buffers of one scene and computes primitive bindings over them.
+class GeometryBuffers {
+  public:
+    GeometryBuffers(wgpu::Device device, const scene::SceneData& scene)
+        : mDevice(std::move(device)), mScene(&scene) {}
+
+    // Bindings of `primitive` for the attributes with these semantics (those the shader
+    // variant consumes; absent ones are skipped).
+    Result<PrimitiveBindings> bind(const scene::Primitive& primitive,
+                                   std::span<const scene::Semantic> semantics);
+
+    std::size_t bufferCount() const { return mViewBuffers.size() + mPrivateBuffers.size(); }
+
+  private:
+    wgpu::Buffer viewBuffer(scene::BufferViewId view);
+
+    wgpu::Device mDevice;
+    const scene::SceneData* mScene;
+    std::map<scene::BufferViewId, wgpu::Buffer> mViewBuffers;
+    std::map<scene::AccessorId, std::pair<wgpu::Buffer, std::uint32_t>> mPrivateBuffers;
+};
+
+// The accessor's elements copied with a stride rounded up to a multiple of 4 (WebGPU requires
+// it); `stride` receives that stride.
+std::vector<std::uint8_t> paddedVertexElements(const scene::SceneData& scene,
+                                               scene::AccessorId accessor, std::uint32_t& stride);
+
+}  // namespace encore::render
+
+namespace encore::render {
+
+class RenderEncoder;
+struct RenderSetup;
+
+// The pipeline key for drawing `bindings` with a shader variant into the setup's target:
+// the bindings' vertex layouts plus topology, strip index format and attachment formats.
+PipelineKey meshPipelineKey(const RenderSetup& setup, const PrimitiveBindings& bindings,
+                            const shaders::ShaderVariantKey& shader);
+
+// Sets the primitive's vertex buffers (with their offsets) and index buffer.
+void bindGeometry(RenderEncoder& encoder, const PrimitiveBindings& bindings);
+
+// Draws the bound primitive: drawIndexed or draw, for `instanceCount` instances.
+void drawGeometry(RenderEncoder& encoder, const PrimitiveBindings& bindings,
+                  std::uint32_t instanceCount, std::uint32_t firstInstance);
+
+}  // namespace encore::render

@@ -1,0 +1,32 @@
+#pragma once
+
+// Generates glTF 2.0 scenes for demos and benchmarks: `meshCount` distinct procedural meshes
+// (boxes, spheres, cylinders, cones, tori at varying tessellation), `materialCount` shared
+// materials, and `objectCount` nodes instancing them in a grid. The output is a self-contained
+// .glb that any glTF viewer opens, so benchmarks exercise the same loading path as real assets.
+
+#include <cstdint>
+#include <vector>
+
+#include "encore/core/Result.h"
+
+namespace encore::scene {
+
+struct GeneratorOptions {
+    std::uint32_t objectCount = 1000;
+    std::uint32_t meshCount = 8;
+    std::uint32_t materialCount = 4;
+    std::uint32_t seed = 1;
+    // Distance between neighbouring objects, in object radii (>= 2 keeps objects apart).
+    float spacing = 3.0f;
+};
+
+// Limits that keep a typo from generating gigabytes.
+inline constexpr std::uint32_t kMaxGeneratedObjects = 1'000'000;
+inline constexpr std::uint32_t kMaxGeneratedMeshes = 4096;
+inline constexpr std::uint32_t kMaxGeneratedMaterials = 4096;
+
+// The scene as .glb bytes.
+Result<std::vector<std::uint8_t>> generateSceneGlb(const GeneratorOptions& options);
+
+}  // namespace encore::scene

@@ -1,0 +1,61 @@
+#pragma once
+
+// Shader variants and their compiled modules. A variant is derived from the primitive and
+// material in one place (render/ShaderVariants) into a ShaderVariantKey; the library composes
+// mesh.wgsl with the key's flags and caches one wgpu::ShaderModule per distinct key.
+
+#include <webgpu/webgpu_cpp.h>
+
+#include <cstdint>
+#include <set>
+#include <string>
+#include <unordered_map>
+
+#include "encore/core/Result.h"
+
+namespace encore::shaders {
+
+// Where the vertex shader finds an instance's transform.
+enum class InstanceSource : std::uint8_t {
+    NodeUniform,      // One uniform buffer and bind group per node (naive .. pipeline-cache).
+    InstanceStorage,  // One storage buffer of all transforms, indexed by instance_index.
+};
+
+// Small, padded, hashable: used as a cache key and as part of PipelineKey.
+struct ShaderVariantKey {
+    InstanceSource instanceSource = InstanceSource::NodeUniform;
+    bool materials = false;
+    bool hasTexcoord = false;
+    bool hasColor = false;
+    bool alphaMask = false;
+    std::uint8_t padding[3] = {};
+
+    bool operator==(const ShaderVariantKey&) const = default;
+    std::set<std::string, std::less<>> flags() const;
+    std::string describe() const;  // e.g. "INSTANCE_STORAGE MATERIALS HAS_TEXCOORD"
+};
+
+struct ShaderVariantKeyHash {
+    std::size_t operator()(const ShaderVariantKey& key) const noexcept;
+};
+
+class ShaderLibrary {
+  public:
+    explicit ShaderLibrary(wgpu::Device device) : mDevice(std::move(device)) {}
+
+    // The module of mesh.wgsl for this variant, compiled on first use.
+    Result<wgpu::ShaderModule> meshModule(const ShaderVariantKey& key);
+
+    // Any embedded .wgsl file composed with the given flags (compute shaders and helpers).
+    Result<wgpu::ShaderModule> module(const std::string& fileName,
+                                      const std::set<std::string, std::less<>>& flags = {});
+
+    std::size_t moduleCount() const { return mMeshModules.size() + mOtherModules.size(); }
+
+  private:
+    wgpu::Device mDevice;
+    std::unordered_map<ShaderVariantKey, wgpu::ShaderModule, ShaderVariantKeyHash> mMeshModules;
+    std::unordered_map<std::string, wgpu::ShaderModule> mOtherModules;
+};
+
+}  // namespace encore::shaders

@@ -1,0 +1,14 @@
+#pragma once
+
+#include <cstdint>
+
+namespace encore::shaders {
+
+// Shader locations of the vertex attributes, shared by the C++ pipeline layouts and mesh.wgsl
+// (tests/unit/shaders checks that the WGSL declares the same numbers).
+inline constexpr std::uint32_t kPositionLocation = 0;
+inline constexpr std::uint32_t kNormalLocation = 1;
+inline constexpr std::uint32_t kTexcoord0Location = 2;
+inline constexpr std::uint32_t kColor0Location = 3;
+
+}  // namespace encore::shaders

@@ -1,0 +1,76 @@
+#include "encore/core/FileIO.h"
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <string>
+
+namespace encore {
+namespace {
+
+struct FileCloser {
+    void operator()(std::FILE* file) const { std::fclose(file); }
+};
+using FileHandle = std::unique_ptr<std::FILE, FileCloser>;
+
+std::string quoted(const std::filesystem::path& path) {
+    return "'" + path.string() + "'";
+}
+
+}  // namespace
+
+Result<std::vector<std::uint8_t>> readFile(const std::filesystem::path& path) {
+    std::error_code ec;
+    const auto status = std::filesystem::status(path, ec);
+    if (ec || !std::filesystem::exists(status)) {
+        return makeError(ErrorCode::FileNotFound, "File " + quoted(path) + " does not exist.");
+    }
+    if (std::filesystem::is_directory(status)) {
+        return makeError(ErrorCode::FileUnreadable,
+                         "File " + quoted(path) + " is a directory, not a file.");
+    }
+    FileHandle file(std::fopen(path.c_str(), "rb"));
+    if (!file) {
+        return makeError(ErrorCode::FileUnreadable, "File " + quoted(path) +
+                                                        " cannot be opened (" +
+                                                        std::strerror(errno) + ").");
+    }
+    if (std::fseek(file.get(), 0, SEEK_END) != 0) {
+        return makeError(ErrorCode::FileUnreadable, "File " + quoted(path) + " is not seekable.");
+    }
+    const long size = std::ftell(file.get());
+    if (size < 0) {
+        return makeError(ErrorCode::FileUnreadable,
+                         "File " + quoted(path) + " has no readable size.");
+    }
+    if (static_cast<std::uint64_t>(size) > kMaxFileBytes) {
+        return makeError(ErrorCode::LimitExceeded,
+                         "File " + quoted(path) + " is too large (" + std::to_string(size) +
+                             " bytes, limit " + std::to_string(kMaxFileBytes) + ").");
+    }
+    std::rewind(file.get());
+    std::vector<std::uint8_t> bytes(static_cast<std::size_t>(size));
+    if (!bytes.empty() && std::fread(bytes.data(), 1, bytes.size(), file.get()) != bytes.size()) {
+        return makeError(ErrorCode::FileUnreadable,
+                         "File " + quoted(path) + " could not be read completely.");
+    }
+    return bytes;
+}
+
+Result<void> writeFile(const std::filesystem::path& path, std::span<const std::uint8_t> bytes) {
+    FileHandle file(std::fopen(path.c_str(), "wb"));
+    if (!file) {
+        return makeError(ErrorCode::IoError, "Cannot create " + quoted(path) + " (" +
+                                                 std::strerror(errno) + ").");
+    }
+    if (!bytes.empty() && std::fwrite(bytes.data(), 1, bytes.size(), file.get()) != bytes.size()) {
+        return makeError(ErrorCode::IoError, "Writing " + quoted(path) + " failed.");
+    }
+    if (std::fclose(file.release()) != 0) {
+        return makeError(ErrorCode::IoError, "Closing " + quoted(path) + " failed.");
+    }
+    return {};
+}
+
+}  // namespace encore

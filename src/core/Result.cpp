@@ -1,0 +1,38 @@
+#include "encore/core/Result.h"
+
+namespace encore {
+
+std::string_view errorCodeName(ErrorCode code) {
+    switch (code) {
+        case ErrorCode::InvalidArgument:
+            return "invalid argument";
+        case ErrorCode::FileNotFound:
+            return "file not found";
+        case ErrorCode::FileUnreadable:
+            return "file unreadable";
+        case ErrorCode::InvalidFormat:
+            return "invalid format";
+        case ErrorCode::Unsupported:
+            return "unsupported";
+        case ErrorCode::LimitExceeded:
+            return "limit exceeded";
+        case ErrorCode::NoAdapter:
+            return "no adapter";
+        case ErrorCode::DeviceError:
+            return "device error";
+        case ErrorCode::ValidationError:
+            return "validation error";
+        case ErrorCode::IoError:
+            return "I/O error";
+    }
+    return "unknown error";
+}
+
+Error Error::withContext(std::string_view context) const {
+    std::string combined(context);
+    combined += ": ";
+    combined += message;
+    return Error{code, std::move(combined)};
+}
+
+}  // namespace encore

@@ -1,0 +1,257 @@
+#include "encore/gpu/Context.h"
+
+#include <array>
+#include <mutex>
+#include <string_view>
+
+#include "encore/core/Log.h"
+
+namespace encore::gpu {
+
+struct Context::ErrorLog {
+    std::mutex mutex;
+    std::vector<std::string> errors;
+    std::size_t total = 0;
+    bool lost = false;
+
+    void record(std::string message) {
+        logError(message);
+        std::lock_guard lock(mutex);
+        ++total;
+        errors.push_back(std::move(message));
+    }
+    static void logError(const std::string& message) { log(LogLevel::Error, message); }
+};
+
+namespace {
+
+std::string toString(wgpu::StringView view) {
+    return std::string(std::string_view(view));
+}
+
+std::string errorTypeName(wgpu::ErrorType type) {
+    switch (type) {
+        case wgpu::ErrorType::Validation:
+            return "validation error";
+        case wgpu::ErrorType::OutOfMemory:
+            return "out-of-memory error";
+        case wgpu::ErrorType::Internal:
+            return "internal error";
+        default:
+            return "error";
+    }
+}
+
+std::string adapterTypeName(wgpu::AdapterType type) {
+    switch (type) {
+        case wgpu::AdapterType::DiscreteGPU:
+            return "discrete GPU";
+        case wgpu::AdapterType::IntegratedGPU:
+            return "integrated GPU";
+        case wgpu::AdapterType::CPU:
+            return "CPU";
+        default:
+            return "unknown type";
+    }
+}
+
+}  // namespace
+
+std::string backendName(wgpu::BackendType backend) {
+    switch (backend) {
+        case wgpu::BackendType::Null:
+            return "Null";
+        case wgpu::BackendType::WebGPU:
+            return "WebGPU";
+        case wgpu::BackendType::D3D11:
+            return "D3D11";
+        case wgpu::BackendType::D3D12:
+            return "D3D12";
+        case wgpu::BackendType::Metal:
+            return "Metal";
+        case wgpu::BackendType::Vulkan:
+            return "Vulkan";
+        case wgpu::BackendType::OpenGL:
+            return "OpenGL";
+        case wgpu::BackendType::OpenGLES:
+            return "OpenGLES";
+        default:
+            return "Undefined";
+    }
+}
+
+std::string AdapterDescription::summary() const {
+    std::string text = name + ", " + backendName(backend) + ", " + adapterTypeName(adapterType);
+    if (!driver.empty()) {
+        text += ", driver " + driver;
+    }
+    return text;
+}
+
+Context::Context(Context&&) noexcept = default;
+Context& Context::operator=(Context&&) noexcept = default;
+
+Context::~Context() {
+    if (mDevice) {
+        // Destroying explicitly resolves the device-lost callback now, while the error log it
+        // points to is still alive.
+        mDevice.Destroy();
+    }
+}
+
+Result<Context> Context::create(const ContextOptions& options) {
+    Context context;
+    context.mErrors = std::make_shared<ErrorLog>();
+
+    static constexpr auto kTimedWaitAny = wgpu::InstanceFeatureName::TimedWaitAny;
+    wgpu::InstanceDescriptor instanceDescriptor{};
+    instanceDescriptor.requiredFeatureCount = 1;
+    instanceDescriptor.requiredFeatures = &kTimedWaitAny;
+    context.mInstance = wgpu::CreateInstance(&instanceDescriptor);
+    if (!context.mInstance) {
+        return makeError(ErrorCode::NoAdapter, "Dawn could not create a WebGPU instance.");
+    }
+
+    wgpu::RequestAdapterOptions adapterOptions{};
+    adapterOptions.powerPreference = wgpu::PowerPreference::HighPerformance;
+    std::string adapterMessage;
+    context.mInstance.WaitAny(
+        context.mInstance.RequestAdapter(
+            &adapterOptions, wgpu::CallbackMode::WaitAnyOnly,
+            [&](wgpu::RequestAdapterStatus status, wgpu::Adapter adapter,
+                wgpu::StringView message) {
+                if (status == wgpu::RequestAdapterStatus::Success) {
+                    context.mAdapter = std::move(adapter);
+                } else {
+                    adapterMessage = toString(message);
+                }
+            }),
+        UINT64_MAX);
+    if (!context.mAdapter) {
+        return makeError(ErrorCode::NoAdapter,
+                         "no Vulkan adapter found (Dawn found no adapter at all: " +
+                             adapterMessage + ").");
+    }
+
+    wgpu::AdapterInfo info;
+    context.mAdapter.GetInfo(&info);
+    auto& description = context.mAdapterDescription;
+    description.name = toString(info.device);
+    description.vendor = toString(info.vendor);
+    description.architecture = toString(info.architecture);
+    description.driver = toString(info.description);
+    description.backend = info.backendType;
+    description.adapterType = info.adapterType;
+    if (description.backend == wgpu::BackendType::Null && !options.allowNullBackend) {
+        return makeError(
+            ErrorCode::NoAdapter,
+            "no Vulkan adapter found (Dawn offered only its Null backend, which renders "
+            "nothing; install a Vulkan driver such as Mesa >= 25 lavapipe, or pass "
+            "--allow-null-backend for a validation-only run).");
+    }
+
+    std::vector<wgpu::FeatureName> features;
+    std::vector<const char*> disabledToggles;
+    if (options.timestamps && context.mAdapter.HasFeature(wgpu::FeatureName::TimestampQuery)) {
+        features.push_back(wgpu::FeatureName::TimestampQuery);
+        disabledToggles.push_back("timestamp_quantization");
+    }
+    for (auto feature : options.optionalFeatures) {
+        if (context.mAdapter.HasFeature(feature)) {
+            features.push_back(feature);
+        }
+    }
+
+    wgpu::DawnTogglesDescriptor toggles;
+    toggles.disabledToggleCount = disabledToggles.size();
+    toggles.disabledToggles = disabledToggles.data();
+
+    wgpu::DeviceDescriptor deviceDescriptor{};
+    deviceDescriptor.nextInChain = &toggles;
+    deviceDescriptor.label = "encore device";
+    deviceDescriptor.requiredFeatureCount = features.size();
+    deviceDescriptor.requiredFeatures = features.data();
+    ErrorLog* errorLog = context.mErrors.get();
+    deviceDescriptor.SetUncapturedErrorCallback(
+        [](const wgpu::Device&, wgpu::ErrorType type, wgpu::StringView message, ErrorLog* log) {
+            log->record("WebGPU " + errorTypeName(type) + ": " + toString(message));
+        },
+        errorLog);
+    deviceDescriptor.SetDeviceLostCallback(
+        wgpu::CallbackMode::AllowSpontaneous,
+        [](const wgpu::Device&, wgpu::DeviceLostReason reason, wgpu::StringView message,
+           ErrorLog* log) {
+            if (reason == wgpu::DeviceLostReason::Destroyed ||
+                reason == wgpu::DeviceLostReason::CallbackCancelled) {
+                return;  // Our own shutdown.
+            }
+            {
+                std::lock_guard lock(log->mutex);
+                log->lost = true;
+            }
+            log->record("WebGPU device lost: " + toString(message));
+        },
+        errorLog);
+
+    std::string deviceMessage;
+    context.mInstance.WaitAny(
+        context.mAdapter.RequestDevice(
+            &deviceDescriptor, wgpu::CallbackMode::WaitAnyOnly,
+            [&](wgpu::RequestDeviceStatus status, wgpu::Device device, wgpu::StringView message) {
+                if (status == wgpu::RequestDeviceStatus::Success) {
+                    context.mDevice = std::move(device);
+                } else {
+                    deviceMessage = toString(message);
+                }
+            }),
+        UINT64_MAX);
+    if (!context.mDevice) {
+        return makeError(ErrorCode::DeviceError, "Creating a WebGPU device on '" +
+                                                     description.name + "' failed (" +
+                                                     deviceMessage + ").");
+    }
+    context.mQueue = context.mDevice.GetQueue();
+    return context;
+}
+
+bool Context::hasFeature(wgpu::FeatureName feature) const {
+    return mDevice.HasFeature(feature);
+}
+
+bool Context::wait(const wgpu::Future& future, std::uint64_t timeoutNs) const {
+    return mInstance.WaitAny(future, timeoutNs) == wgpu::WaitStatus::Success;
+}
+
+void Context::waitForIdle() const {
+    wait(mQueue.OnSubmittedWorkDone(wgpu::CallbackMode::WaitAnyOnly,
+                                    [](wgpu::QueueWorkDoneStatus, wgpu::StringView) {}));
+}
+
+std::size_t Context::errorCount() const {
+    std::lock_guard lock(mErrors->mutex);
+    return mErrors->errors.size();
+}
+
+std::vector<std::string> Context::takeErrors() {
+    std::lock_guard lock(mErrors->mutex);
+    return std::exchange(mErrors->errors, {});
+}
+
+bool Context::deviceLost() const {
+    std::lock_guard lock(mErrors->mutex);
+    return mErrors->lost;
+}
+
+Result<void> Context::checkNoErrors(const std::string& what) {
+    // Errors may be delivered from Dawn's event processing; let pending ones arrive first.
+    mInstance.ProcessEvents();
+    auto errors = takeErrors();
+    if (errors.empty()) {
+        return {};
+    }
+    std::string message = what + " raised " + std::to_string(errors.size()) + " WebGPU error" +
+                          (errors.size() == 1 ? "" : "s") + "; the first: " + errors.front();
+    return makeError(ErrorCode::ValidationError, std::move(message));
+}
+
+}  // namespace encore::gpu

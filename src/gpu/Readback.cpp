@@ -1,0 +1,125 @@
+#include "encore/gpu/Readback.h"
+
+#include <algorithm>
+#include <cstring>
+#include <string>
+
+namespace encore::gpu {
+namespace {
+
+bool isBgra(wgpu::TextureFormat format) {
+    return format == wgpu::TextureFormat::BGRA8Unorm ||
+           format == wgpu::TextureFormat::BGRA8UnormSrgb;
+}
+
+bool isReadableColor(wgpu::TextureFormat format) {
+    return isBgra(format) || format == wgpu::TextureFormat::RGBA8Unorm ||
+           format == wgpu::TextureFormat::RGBA8UnormSrgb;
+}
+
+// Maps a MapRead buffer and copies its contents out.
+Result<std::vector<std::uint8_t>> mapAndCopy(Context& context, const wgpu::Buffer& staging,
+                                             std::uint64_t size) {
+    bool mapped = false;
+    std::string mapMessage;
+    context.wait(staging.MapAsync(wgpu::MapMode::Read, 0, size, wgpu::CallbackMode::WaitAnyOnly,
+                                  [&](wgpu::MapAsyncStatus status, wgpu::StringView message) {
+                                      mapped = status == wgpu::MapAsyncStatus::Success;
+                                      mapMessage = std::string(std::string_view(message));
+                                  }));
+    if (!mapped) {
+        return makeError(ErrorCode::DeviceError,
+                         "Mapping a readback buffer failed (" + mapMessage + ").");
+    }
+    const auto* data = static_cast<const std::uint8_t*>(staging.GetConstMappedRange(0, size));
+    std::vector<std::uint8_t> bytes(data, data + size);
+    staging.Unmap();
+    return bytes;
+}
+
+}  // namespace
+
+Result<image::ImageRgba8> readTexture(Context& context, const wgpu::Texture& texture) {
+    return readTextureLevel(context, texture, 0);
+}
+
+Result<image::ImageRgba8> readTextureLevel(Context& context, const wgpu::Texture& texture,
+                                           std::uint32_t level) {
+    const auto format = texture.GetFormat();
+    if (!isReadableColor(format)) {
+        return makeError(ErrorCode::InvalidArgument,
+                         "readTexture supports only RGBA8 and BGRA8 textures.");
+    }
+    if (level >= texture.GetMipLevelCount()) {
+        return makeError(ErrorCode::InvalidArgument,
+                         "Mip level " + std::to_string(level) +
+                             " does not exist (the texture has " +
+                             std::to_string(texture.GetMipLevelCount()) + " levels).");
+    }
+    const std::uint32_t width = std::max(texture.GetWidth() >> level, 1u);
+    const std::uint32_t height = std::max(texture.GetHeight() >> level, 1u);
+    // Buffer copies need rows aligned to 256 bytes.
+    const std::uint32_t rowBytes = width * 4;
+    const std::uint32_t paddedRowBytes = (rowBytes + 255) / 256 * 256;
+    const std::uint64_t size = std::uint64_t(paddedRowBytes) * height;
+
+    wgpu::BufferDescriptor stagingDescriptor{};
+    stagingDescriptor.label = "texture readback";
+    stagingDescriptor.size = size;
+    stagingDescriptor.usage = wgpu::BufferUsage::CopyDst | wgpu::BufferUsage::MapRead;
+    wgpu::Buffer staging = context.device().CreateBuffer(&stagingDescriptor);
+
+    wgpu::TexelCopyTextureInfo source{};
+    source.texture = texture;
+    source.mipLevel = level;
+    wgpu::TexelCopyBufferInfo destination{};
+    destination.buffer = staging;
+    destination.layout.bytesPerRow = paddedRowBytes;
+    destination.layout.rowsPerImage = height;
+    wgpu::Extent3D extent{width, height, 1};
+    wgpu::CommandEncoder encoder = context.device().CreateCommandEncoder();
+    encoder.CopyTextureToBuffer(&source, &destination, &extent);
+    wgpu::CommandBuffer commands = encoder.Finish();
+    context.queue().Submit(1, &commands);
+
+    auto bytes = mapAndCopy(context, staging, size);
+    if (!bytes) {
+        return bytes.error();
+    }
+    image::ImageRgba8 image;
+    image.width = width;
+    image.height = height;
+    image.pixels.resize(std::size_t(rowBytes) * height);
+    for (std::uint32_t y = 0; y < height; ++y) {
+        std::memcpy(&image.pixels[std::size_t(y) * rowBytes],
+                    bytes->data() + std::size_t(y) * paddedRowBytes, rowBytes);
+    }
+    if (isBgra(format)) {
+        for (std::size_t i = 0; i < image.pixels.size(); i += 4) {
+            std::swap(image.pixels[i], image.pixels[i + 2]);
+        }
+    }
+    return image;
+}
+
+Result<std::vector<std::uint8_t>> readBuffer(Context& context, const wgpu::Buffer& buffer,
+                                             std::uint64_t offset, std::uint64_t size) {
+    if (size == 0 || size % 4 != 0 || offset % 4 != 0 || offset + size > buffer.GetSize()) {
+        return makeError(ErrorCode::InvalidArgument,
+                         "readBuffer range is empty, unaligned or out of bounds (offset " +
+                             std::to_string(offset) + ", size " + std::to_string(size) +
+                             ", buffer size " + std::to_string(buffer.GetSize()) + ").");
+    }
+    wgpu::BufferDescriptor stagingDescriptor{};
+    stagingDescriptor.label = "buffer readback";
+    stagingDescriptor.size = size;
+    stagingDescriptor.usage = wgpu::BufferUsage::CopyDst | wgpu::BufferUsage::MapRead;
+    wgpu::Buffer staging = context.device().CreateBuffer(&stagingDescriptor);
+    wgpu::CommandEncoder encoder = context.device().CreateCommandEncoder();
+    encoder.CopyBufferToBuffer(buffer, offset, staging, 0, size);
+    wgpu::CommandBuffer commands = encoder.Finish();
+    context.queue().Submit(1, &commands);
+    return mapAndCopy(context, staging, size);
+}
+
+}  // namespace encore::gpu

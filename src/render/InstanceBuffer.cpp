@@ -1,0 +1,79 @@
+#include "encore/render/InstanceBuffer.h"
+
+#include <algorithm>
+
+#include "encore/gpu/Upload.h"
+#include "encore/render/TransformData.h"
+
+namespace encore::render {
+
+bool isMirrored(const glm::mat4& world) {
+    return glm::determinant(glm::mat3(world)) < 0.0f;
+}
+
+InstanceBuffer::InstanceBuffer(const wgpu::Device& device, const BindGroupLayouts& layouts,
+                               const scene::SceneData& scene) {
+    const std::size_t meshCount = scene.meshes.size();
+    // Counting sort by (mesh, mirrored): stable, linear in the instance count.
+    std::vector<std::uint32_t> counts(meshCount * 2, 0);
+    std::vector<std::uint8_t> mirrored(scene.instances.size());
+    for (std::size_t i = 0; i < scene.instances.size(); ++i) {
+        mirrored[i] = isMirrored(scene.instances[i].world);
+        ++counts[scene.instances[i].mesh.index() * 2 + mirrored[i]];
+    }
+    mRegular.resize(meshCount);
+    mMirrored.resize(meshCount);
+    std::uint32_t next = 0;
+    for (std::size_t mesh = 0; mesh < meshCount; ++mesh) {
+        mRegular[mesh] = {next, counts[mesh * 2]};
+        next += counts[mesh * 2];
+        mMirrored[mesh] = {next, counts[mesh * 2 + 1]};
+        next += counts[mesh * 2 + 1];
+    }
+    std::vector<std::uint32_t> cursor(meshCount * 2);
+    for (std::size_t mesh = 0; mesh < meshCount; ++mesh) {
+        cursor[mesh * 2] = mRegular[mesh].first;
+        cursor[mesh * 2 + 1] = mMirrored[mesh].first;
+    }
+    mSlots.resize(scene.instances.size());
+    mInstances.resize(scene.instances.size());
+    std::vector<TransformUniform> transforms(std::max<std::size_t>(scene.instances.size(), 1));
+    for (std::size_t i = 0; i < scene.instances.size(); ++i) {
+        const std::uint32_t slot = cursor[scene.instances[i].mesh.index() * 2 + mirrored[i]]++;
+        mSlots[i] = slot;
+        mInstances[slot] = i;
+        transforms[slot] = makeTransformUniform(scene.instances[i]);
+    }
+    mBuffer = gpu::createBufferFrom<TransformUniform>(
+        device, wgpu::BufferUsage::Storage | wgpu::BufferUsage::CopyDst, transforms,
+        "instance transforms");
+
+    wgpu::BindGroupEntry entry{};
+    entry.binding = 0;
+    entry.buffer = mBuffer;
+    entry.size = mBuffer.GetSize();
+    wgpu::BindGroupDescriptor descriptor{};
+    descriptor.label = "instance transforms";
+    descriptor.layout = layouts.instanceStorage;
+    descriptor.entryCount = 1;
+    descriptor.entries = &entry;
+    mBindGroup = device.CreateBindGroup(&descriptor);
+}
+
+InstanceRange InstanceBuffer::meshRange(scene::MeshId mesh) const {
+    const InstanceRange& regular = mRegular[mesh.index()];
+    return {regular.first, regular.count + mMirrored[mesh.index()].count};
+}
+
+InstanceRange InstanceBuffer::meshRange(scene::MeshId mesh, bool mirrored) const {
+    return mirrored ? mMirrored[mesh.index()] : mRegular[mesh.index()];
+}
+
+void InstanceBuffer::update(const wgpu::Queue& queue, std::size_t sceneInstance,
+                            const scene::Instance& instance) const {
+    const TransformUniform transform = makeTransformUniform(instance);
+    queue.WriteBuffer(mBuffer, std::uint64_t(mSlots[sceneInstance]) * sizeof(TransformUniform),
+                      &transform, sizeof(transform));
+}
+
+}  // namespace encore::render

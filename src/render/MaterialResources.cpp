@@ -1,0 +1,342 @@
+#include "encore/render/MaterialResources.h"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <cstring>
+#include <optional>
+#include <string>
+#include <utility>
+
+#include "MipmapGenerator.h"
+#include "encore/gpu/Upload.h"
+#include "encore/render/GltfToWebGpu.h"
+
+namespace encore::render {
+
+namespace {
+
+constexpr std::uint64_t kUniformSize = sizeof(MaterialUniform);
+constexpr wgpu::TextureUsage kTextureUsage = wgpu::TextureUsage::TextureBinding |
+                                             wgpu::TextureUsage::CopyDst |
+                                             wgpu::TextureUsage::RenderAttachment;
+
+std::string describeImage(scene::ImageId id, const scene::Image& image) {
+    return "Image " + std::to_string(id.value) + " ('" + image.name + "')";
+}
+
+std::string describeMaterial(scene::MaterialId id, const scene::Material& material) {
+    return "Material " + std::to_string(id.value) + " ('" + material.name + "')";
+}
+
+wgpu::SamplerDescriptor samplerDescriptor(const scene::Sampler& sampler) {
+    wgpu::SamplerDescriptor descriptor{};
+    descriptor.addressModeU = addressMode(sampler.wrapS);
+    descriptor.addressModeV = addressMode(sampler.wrapT);
+    descriptor.addressModeW = wgpu::AddressMode::Repeat;
+    descriptor.magFilter = filterMode(sampler.magFilter);
+    descriptor.minFilter = filterMode(sampler.minFilter);
+    descriptor.mipmapFilter = mipmapFilterMode(sampler.mipmapFilter);
+    if (!sampler.useMipmaps) {
+        // glTF's minFilter NEAREST/LINEAR means "no mipmaps": pin sampling to level 0.
+        descriptor.mipmapFilter = wgpu::MipmapFilterMode::Nearest;
+        descriptor.lodMaxClamp = 0.0f;
+    }
+    descriptor.maxAnisotropy = 1;
+    return descriptor;
+}
+
+bool sameSampler(const wgpu::SamplerDescriptor& a, const wgpu::SamplerDescriptor& b) {
+    return a.addressModeU == b.addressModeU && a.addressModeV == b.addressModeV &&
+           a.magFilter == b.magFilter && a.minFilter == b.minFilter &&
+           a.mipmapFilter == b.mipmapFilter && a.lodMaxClamp == b.lodMaxClamp;
+}
+
+}  // namespace
+
+MaterialUniform makeMaterialUniform(const scene::Material& material) {
+    MaterialUniform uniform{};
+    for (int i = 0; i < 4; ++i) {
+        uniform.baseColorFactor[i] = material.baseColorFactor[i];
+    }
+    scene::TextureTransform transform;
+    if (material.baseColorTexture && material.baseColorTexture->transform) {
+        transform = *material.baseColorTexture->transform;
+    }
+    // KHR_texture_transform: Translation * Rotation * Scale, with
+    // Rotation = [cos sin; -sin cos] (the extension's convention, not the usual one).
+    const float c = std::cos(transform.rotation);
+    const float s = std::sin(transform.rotation);
+    const glm::vec2 scale = transform.scale;
+    uniform.texcoordRow0[0] = c * scale.x;
+    uniform.texcoordRow0[1] = s * scale.y;
+    uniform.texcoordRow0[2] = transform.offset.x;
+    uniform.texcoordRow1[0] = -s * scale.x;
+    uniform.texcoordRow1[1] = c * scale.y;
+    uniform.texcoordRow1[2] = transform.offset.y;
+    uniform.alphaCutoff =
+        material.alphaMode == scene::AlphaMode::Mask ? material.alphaCutoff : 0.0f;
+    return uniform;
+}
+
+// Creation state that the finished MaterialResources does not keep.
+struct MaterialResources::Builder {
+    const wgpu::Device& device;
+    const wgpu::Queue& queue;
+    const scene::SceneData& scene;
+    MaterialResources& out;
+    MipmapGenerator& mipmaps;
+    wgpu::CommandEncoder encoder;
+    std::uint32_t maxDimension = 8192;
+
+    std::size_t addTexture(const std::string& label,
+                           std::uint32_t width,
+                           std::uint32_t height,
+                           wgpu::TextureFormat format,
+                           const std::uint8_t* pixels) {
+        wgpu::TextureDescriptor descriptor{};
+        descriptor.label = label.c_str();
+        descriptor.usage = kTextureUsage;
+        descriptor.dimension = wgpu::TextureDimension::e2D;
+        descriptor.size = {width, height, 1};
+        descriptor.format = format;
+        descriptor.mipLevelCount = fullMipLevelCount(width, height);
+        wgpu::Texture texture = device.CreateTexture(&descriptor);
+
+        wgpu::TexelCopyTextureInfo destination{};
+        destination.texture = texture;
+        wgpu::TexelCopyBufferLayout layout{};
+        layout.bytesPerRow = width * 4;
+        layout.rowsPerImage = height;
+        const wgpu::Extent3D extent{width, height, 1};
+        queue.WriteTexture(&destination, pixels, std::size_t(width) * height * 4, &layout, &extent);
+        out.mTextures.push_back(std::move(texture));
+        return out.mTextures.size() - 1;
+    }
+
+    // The texture of `image` in `space`, created on first use; kNone when the image has no
+    // pixels (the loader already warned about it).
+    Result<std::size_t> imageTexture(scene::ImageId id, ColorSpace space) {
+        if (!id.valid()) {
+            return kNone;
+        }
+        if (id.index() >= scene.images.size()) {
+            return makeError(ErrorCode::InvalidArgument, "Image " + std::to_string(id.value) +
+                                                             " does not exist (the scene has " +
+                                                             std::to_string(scene.images.size()) +
+                                                             " images).");
+        }
+        const scene::Image& image = scene.images[id.index()];
+        ImageTextures& textures = out.mImageTextures[id.index()];
+        std::size_t& slot = space == ColorSpace::Srgb ? textures.srgb : textures.linear;
+        if (slot != kNone) {
+            return slot;
+        }
+        if (image.rgba8.empty() || image.width == 0 || image.height == 0) {
+            return kNone;
+        }
+        if (image.width > maxDimension || image.height > maxDimension) {
+            return makeError(ErrorCode::LimitExceeded,
+                             describeImage(id, image) + " is " + std::to_string(image.width) + "x" +
+                                 std::to_string(image.height) +
+                                 " pixels, larger than the device's maxTextureDimension2D (" +
+                                 std::to_string(maxDimension) + ").");
+        }
+        const std::uint64_t expected = std::uint64_t(image.width) * image.height * 4;
+        if (image.rgba8.size() != expected) {
+            return makeError(ErrorCode::InvalidArgument,
+                             describeImage(id, image) + " has " +
+                                 std::to_string(image.rgba8.size()) + " bytes of pixels (" +
+                                 std::to_string(image.width) + "x" + std::to_string(image.height) +
+                                 " RGBA8 needs " + std::to_string(expected) + ").");
+        }
+        const bool srgb = space == ColorSpace::Srgb;
+        slot =
+            addTexture(image.name + (srgb ? " (sRGB)" : " (linear)"), image.width, image.height,
+                       srgb ? wgpu::TextureFormat::RGBA8UnormSrgb : wgpu::TextureFormat::RGBA8Unorm,
+                       image.rgba8.data());
+        ENCORE_TRY(mipmaps.generate(encoder, out.mTextures[slot]));
+        return slot;
+    }
+
+    // The texture a texture reference binds, validating the reference on the way.
+    Result<std::size_t> referencedTexture(scene::MaterialId materialId,
+                                          const std::optional<scene::TextureRef>& ref,
+                                          ColorSpace space) {
+        if (!ref) {
+            return kNone;
+        }
+        if (ref->texture.index() >= scene.textures.size()) {
+            return makeError(ErrorCode::InvalidArgument,
+                             describeMaterial(materialId, scene.materials[materialId.index()]) +
+                                 " references texture " + std::to_string(ref->texture.value) +
+                                 ", but the scene has " + std::to_string(scene.textures.size()) +
+                                 " textures.");
+        }
+        auto texture = imageTexture(scene.textures[ref->texture.index()].image, space);
+        if (!texture) {
+            return texture.error().withContext(
+                describeMaterial(materialId, scene.materials[materialId.index()]));
+        }
+        return texture;
+    }
+
+    // One wgpu::Sampler per distinct state; scene samplers with equal state share it.
+    std::size_t addSampler(const scene::Sampler& sampler, const std::string& label) {
+        const wgpu::SamplerDescriptor wanted = samplerDescriptor(sampler);
+        for (std::size_t i = 0; i < descriptors.size(); ++i) {
+            if (sameSampler(descriptors[i], wanted)) {
+                return i;
+            }
+        }
+        wgpu::SamplerDescriptor labelled = wanted;
+        labelled.label = label.c_str();
+        out.mSamplers.push_back(device.CreateSampler(&labelled));
+        descriptors.push_back(wanted);
+        return out.mSamplers.size() - 1;
+    }
+
+    std::vector<wgpu::SamplerDescriptor> descriptors;  // Parallel to out.mSamplers, unlabelled.
+};
+
+Result<MaterialResources> MaterialResources::create(const wgpu::Device& device,
+                                                    const wgpu::Queue& queue,
+                                                    shaders::ShaderLibrary& shaders,
+                                                    const BindGroupLayouts& layouts,
+                                                    const scene::SceneData& scene) {
+    auto mipmaps = MipmapGenerator::create(device, shaders);
+    if (!mipmaps) {
+        return mipmaps.error();
+    }
+    wgpu::Limits limits{};
+    device.GetLimits(&limits);
+
+    MaterialResources resources;
+    resources.mImageTextures.resize(scene.images.size());
+    Builder builder{device, queue, scene, resources, *mipmaps, device.CreateCommandEncoder()};
+    builder.maxDimension = limits.maxTextureDimension2D;
+
+    // Index 0 in both vectors, so a material without a base colour texture needs no lookup.
+    const std::uint8_t white[4] = {255, 255, 255, 255};
+    builder.addTexture("default white (sRGB)", 1, 1, wgpu::TextureFormat::RGBA8UnormSrgb, white);
+    const std::size_t defaultSampler = builder.addSampler(scene::Sampler{}, "default");
+
+    resources.mSceneSamplers.reserve(scene.samplers.size());
+    for (std::size_t i = 0; i < scene.samplers.size(); ++i) {
+        resources.mSceneSamplers.push_back(
+            builder.addSampler(scene.samplers[i], "sampler " + std::to_string(i)));
+    }
+
+    // Align each material's range to what a uniform binding offset needs (256 by default).
+    const std::uint64_t alignment =
+        std::max<std::uint64_t>(limits.minUniformBufferOffsetAlignment, 4);
+    resources.mUniformStride = (kUniformSize + alignment - 1) / alignment * alignment;
+    const std::size_t materialCount = scene.materials.size();
+    std::vector<std::uint8_t> uniformBytes(resources.mUniformStride *
+                                           std::max<std::size_t>(materialCount, 1));
+    resources.mUniforms = gpu::createBuffer(
+        device,
+        wgpu::BufferUsage::Uniform | wgpu::BufferUsage::CopyDst | wgpu::BufferUsage::CopySrc,
+        uniformBytes.size(), "material uniforms");
+
+    resources.mBindGroups.reserve(materialCount);
+    resources.mDefaultBaseColor.reserve(materialCount);
+    for (std::size_t i = 0; i < materialCount; ++i) {
+        const scene::MaterialId id{i};
+        const scene::Material& material = scene.materials[i];
+        auto baseColor = builder.referencedTexture(id, material.baseColorTexture, ColorSpace::Srgb);
+        if (!baseColor) {
+            return baseColor.error();
+        }
+        // Not bound by mesh.wgsl yet; uploaded now so their colour space is settled at load.
+        for (const auto& [ref, space] :
+             {std::pair{&material.emissiveTexture, ColorSpace::Srgb},
+              std::pair{&material.metallicRoughnessTexture, ColorSpace::Linear},
+              std::pair{&material.normalTexture, ColorSpace::Linear},
+              std::pair{&material.occlusionTexture, ColorSpace::Linear}}) {
+            auto texture = builder.referencedTexture(id, *ref, space);
+            if (!texture) {
+                return texture.error();
+            }
+        }
+
+        std::size_t textureIndex = kDefaultTexture;
+        std::size_t samplerIndex = defaultSampler;
+        if (*baseColor != kNone) {
+            const scene::Texture& texture =
+                scene.textures[material.baseColorTexture->texture.index()];
+            if (texture.sampler.valid() && texture.sampler.index() >= scene.samplers.size()) {
+                return makeError(ErrorCode::InvalidArgument,
+                                 describeMaterial(id, material) + ": texture " +
+                                     std::to_string(material.baseColorTexture->texture.value) +
+                                     " references sampler " +
+                                     std::to_string(texture.sampler.value) +
+                                     ", but the scene has " +
+                                     std::to_string(scene.samplers.size()) + " samplers.");
+            }
+            textureIndex = *baseColor;
+            if (texture.sampler.valid()) {
+                samplerIndex = resources.mSceneSamplers[texture.sampler.index()];
+            }
+        }
+        resources.mDefaultBaseColor.push_back(textureIndex == kDefaultTexture);
+
+        const MaterialUniform uniform = makeMaterialUniform(material);
+        std::memcpy(uniformBytes.data() + i * resources.mUniformStride, &uniform, kUniformSize);
+
+        wgpu::BindGroupEntry entries[3]{};
+        entries[0].binding = 0;
+        entries[0].buffer = resources.mUniforms;
+        entries[0].offset = i * resources.mUniformStride;
+        entries[0].size = kUniformSize;
+        entries[1].binding = 1;
+        entries[1].sampler = resources.mSamplers[samplerIndex];
+        entries[2].binding = 2;
+        entries[2].textureView = resources.mTextures[textureIndex].CreateView();
+        wgpu::BindGroupDescriptor descriptor{};
+        descriptor.label = material.name.empty() ? "material" : material.name.c_str();
+        descriptor.layout = layouts.material;
+        descriptor.entryCount = 3;
+        descriptor.entries = entries;
+        resources.mBindGroups.push_back(device.CreateBindGroup(&descriptor));
+    }
+    queue.WriteBuffer(resources.mUniforms, 0, uniformBytes.data(), uniformBytes.size());
+
+    wgpu::CommandBuffer commands = builder.encoder.Finish();
+    queue.Submit(1, &commands);
+    return resources;
+}
+
+const wgpu::BindGroup& MaterialResources::bindGroup(scene::MaterialId material) const {
+    assert(material.index() < mBindGroups.size());
+    return mBindGroups[material.index()];
+}
+
+void MaterialResources::updateMaterial(const wgpu::Queue& queue,
+                                       scene::MaterialId material,
+                                       const scene::Material& values) {
+    assert(material.index() < mBindGroups.size());
+    const MaterialUniform uniform = makeMaterialUniform(values);
+    queue.WriteBuffer(mUniforms, material.index() * mUniformStride, &uniform, kUniformSize);
+}
+
+const wgpu::Texture* MaterialResources::texture(scene::ImageId image, ColorSpace space) const {
+    if (image.index() >= mImageTextures.size()) {
+        return nullptr;
+    }
+    const ImageTextures& textures = mImageTextures[image.index()];
+    const std::size_t index = space == ColorSpace::Srgb ? textures.srgb : textures.linear;
+    return index == kNone ? nullptr : &mTextures[index];
+}
+
+const wgpu::Sampler& MaterialResources::sampler(scene::SamplerId sampler) const {
+    assert(sampler.index() < mSceneSamplers.size());
+    return mSamplers[mSceneSamplers[sampler.index()]];
+}
+
+bool MaterialResources::usesDefaultBaseColor(scene::MaterialId material) const {
+    assert(material.index() < mDefaultBaseColor.size());
+    return mDefaultBaseColor[material.index()];
+}
+
+}  // namespace encore::render

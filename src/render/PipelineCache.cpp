@@ -1,0 +1,22 @@
+#include "encore/render/PipelineCache.h"
+
+#include <string>
+
+namespace encore::render {
+
+Result<wgpu::RenderPipeline> PipelineCache::get(const PipelineKey& key) {
+    if (auto found = mPipelines.find(key); found != mPipelines.end()) {
+        ++mHits;
+        return found->second;
+    }
+    auto pipeline = createMeshPipeline(*mSetup, key,
+                                       "cached pipeline " + std::to_string(mPipelines.size()) +
+                                           " (" + key.shader.describe() + ")");
+    if (!pipeline) {
+        return pipeline.error();
+    }
+    mPipelines.emplace(key, *pipeline);
+    return pipeline;
+}
+
+}  // namespace encore::render

@@ -1,0 +1,63 @@
+#include "encore/render/Strategy.h"
+
+#include <array>
+
+#include "strategies/InstancingStrategy.h"
+#include "strategies/LayoutsStrategy.h"
+#include "strategies/NaiveStrategy.h"
+#include "strategies/PipelineCacheStrategy.h"
+
+namespace encore::render {
+
+namespace {
+struct StrategyName {
+    StrategyKind kind;
+    std::string_view name;
+};
+constexpr std::array kStrategyNames = {
+    StrategyName{StrategyKind::Naive, "naive"},
+    StrategyName{StrategyKind::Layouts, "layouts"},
+    StrategyName{StrategyKind::PipelineCache, "pipeline-cache"},
+    StrategyName{StrategyKind::Instancing, "instancing"},
+};
+constexpr std::array kAllStrategies = {StrategyKind::Naive, StrategyKind::Layouts,
+                                       StrategyKind::PipelineCache, StrategyKind::Instancing};
+}  // namespace
+
+std::string_view strategyName(StrategyKind kind) {
+    for (const auto& entry : kStrategyNames) {
+        if (entry.kind == kind) {
+            return entry.name;
+        }
+    }
+    return "unknown";
+}
+
+std::optional<StrategyKind> strategyFromName(std::string_view name) {
+    for (const auto& entry : kStrategyNames) {
+        if (entry.name == name) {
+            return entry.kind;
+        }
+    }
+    return std::nullopt;
+}
+
+std::span<const StrategyKind> allStrategies() {
+    return kAllStrategies;
+}
+
+std::unique_ptr<Strategy> createStrategy(StrategyKind kind) {
+    switch (kind) {
+        case StrategyKind::Naive:
+            return std::make_unique<NaiveStrategy>();
+        case StrategyKind::Layouts:
+            return std::make_unique<LayoutsStrategy>();
+        case StrategyKind::PipelineCache:
+            return std::make_unique<PipelineCacheStrategy>();
+        case StrategyKind::Instancing:
+            return std::make_unique<InstancingStrategy>();
+    }
+    return nullptr;
+}
+
+}  // namespace encore::render

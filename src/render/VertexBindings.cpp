@@ -1,0 +1,196 @@
+#include "encore/render/VertexBindings.h"
+
+#include <algorithm>
+#include <cstring>
+#include <string>
+
+#include "encore/gpu/Upload.h"
+#include "encore/render/RenderEncoder.h"
+#include "encore/render/Strategy.h"
+#include "encore/render/GltfToWebGpu.h"
+
+namespace encore::render {
+
+namespace {
+
+// WebGPU's limit on arrayStride (maxVertexBufferArrayStride).
+constexpr std::uint32_t kMaxArrayStride = 2048;
+
+struct BoundAttribute {
+    scene::Semantic semantic;
+    scene::AccessorId accessor;
+    wgpu::VertexFormat format;
+    std::uint32_t location;
+};
+
+}  // namespace
+
+std::vector<std::uint8_t> paddedVertexElements(const scene::SceneData& scene,
+                                               scene::AccessorId id, std::uint32_t& stride) {
+    const scene::Accessor& accessor = scene.accessors[id.index()];
+    std::vector<std::uint8_t> packed = scene.packedAccessorBytes(id);
+    const std::uint32_t elementSize = accessor.elementSize();
+    stride = (elementSize + 3) & ~3u;
+    if (stride == elementSize) {
+        return packed;
+    }
+    std::vector<std::uint8_t> padded(std::size_t(stride) * accessor.count, 0);
+    for (std::uint32_t i = 0; i < accessor.count; ++i) {
+        std::memcpy(&padded[std::size_t(i) * stride], &packed[std::size_t(i) * elementSize],
+                    elementSize);
+    }
+    return padded;
+}
+
+wgpu::Buffer GeometryBuffers::viewBuffer(scene::BufferViewId id) {
+    if (auto found = mViewBuffers.find(id); found != mViewBuffers.end()) {
+        return found->second;
+    }
+    const scene::BufferView& view = mScene->bufferViews[id.index()];
+    const auto& bytes = mScene->buffers[view.buffer.index()].bytes;
+    auto buffer = gpu::createBufferWithData(
+        mDevice, wgpu::BufferUsage::Vertex | wgpu::BufferUsage::Index,
+        std::span(bytes.data() + view.byteOffset, view.byteLength),
+        "bufferView " + std::to_string(id.value));
+    mViewBuffers.emplace(id, buffer);
+    return buffer;
+}
+
+Result<PrimitiveBindings> GeometryBuffers::bind(const scene::Primitive& primitive,
+                                                std::span<const scene::Semantic> semantics) {
+    PrimitiveBindings bindings;
+    bindings.topology = primitive.topology;
+    bindings.vertexCount = primitive.vertexCount;
+
+    std::vector<BoundAttribute> attributes;
+    for (scene::Semantic semantic : semantics) {
+        const auto accessorId = primitive.attribute(semantic);
+        const auto location = shaderLocation(semantic);
+        if (!accessorId || !location) {
+            continue;
+        }
+        const auto format = vertexFormat(mScene->accessors[accessorId->index()]);
+        if (!format) {
+            return makeError(ErrorCode::Unsupported,
+                             "Accessor " + std::to_string(accessorId->value) + " (" +
+                                 std::string(scene::semanticName(semantic)) +
+                                 ") has no WebGPU vertex format.");
+        }
+        attributes.push_back({semantic, *accessorId, *format, *location});
+    }
+
+    // Group in-place attributes by (view, stride), in offset order, so interleaved ones are
+    // adjacent; the rest get private padded copies.
+    auto inPlace = [&](const BoundAttribute& attribute) {
+        const scene::Accessor& accessor = mScene->accessors[attribute.accessor.index()];
+        return accessor.byteStride % 4 == 0 && accessor.byteOffset % 4 == 0 &&
+               accessor.byteStride <= kMaxArrayStride && accessor.byteStride >= accessor.elementSize();
+    };
+    std::stable_sort(attributes.begin(), attributes.end(), [&](const auto& a, const auto& b) {
+        const scene::Accessor& x = mScene->accessors[a.accessor.index()];
+        const scene::Accessor& y = mScene->accessors[b.accessor.index()];
+        return std::tie(x.view, x.byteStride, x.byteOffset) <
+               std::tie(y.view, y.byteStride, y.byteOffset);
+    });
+
+    struct Slot {
+        VertexBufferBinding binding;
+        VertexBufferKey key;
+        scene::BufferViewId view;
+    };
+    std::vector<Slot> slots;
+    for (const BoundAttribute& attribute : attributes) {
+        const scene::Accessor& accessor = mScene->accessors[attribute.accessor.index()];
+        if (!inPlace(attribute)) {
+            auto& [buffer, stride] = mPrivateBuffers[attribute.accessor];
+            if (!buffer) {
+                const auto bytes = paddedVertexElements(*mScene, attribute.accessor, stride);
+                buffer = gpu::createBufferWithData(mDevice, wgpu::BufferUsage::Vertex, bytes,
+                                                   "repacked accessor " +
+                                                       std::to_string(attribute.accessor.value));
+            }
+            Slot slot{{buffer, 0}, {}, {}};
+            slot.key.arrayStride = stride;
+            slot.key.attributes[slot.key.attributeCount++] = {attribute.format, 0,
+                                                              attribute.location};
+            slots.push_back(slot);
+            continue;
+        }
+        // WebGPU needs offset + size <= arrayStride for every attribute of a slot.
+        const bool joinsLast = !slots.empty() && slots.back().view == accessor.view &&
+                               slots.back().key.arrayStride == accessor.byteStride &&
+                               accessor.byteOffset - slots.back().binding.offset +
+                                       accessor.elementSize() <=
+                                   accessor.byteStride &&
+                               slots.back().key.attributeCount < VertexBufferKey::kMaxAttributes;
+        if (!joinsLast) {
+            Slot slot{{viewBuffer(accessor.view), accessor.byteOffset}, {}, accessor.view};
+            slot.key.arrayStride = accessor.byteStride;
+            slots.push_back(slot);
+        }
+        Slot& slot = slots.back();
+        const auto relative = static_cast<std::uint32_t>(accessor.byteOffset - slot.binding.offset);
+        slot.key.attributes[slot.key.attributeCount++] = {attribute.format, relative,
+                                                          attribute.location};
+    }
+
+    for (Slot& slot : slots) {
+        std::sort(slot.key.attributes, slot.key.attributes + slot.key.attributeCount,
+                  [](const auto& a, const auto& b) { return a.shaderLocation < b.shaderLocation; });
+    }
+    std::sort(slots.begin(), slots.end(), [](const Slot& a, const Slot& b) {
+        return a.key.attributes[0].shaderLocation < b.key.attributes[0].shaderLocation;
+    });
+    for (const Slot& slot : slots) {
+        bindings.vertexBuffers.push_back(slot.binding);
+        bindings.layout.buffers[bindings.layout.bufferCount++] = slot.key;
+    }
+
+    if (primitive.indices) {
+        const scene::Accessor& indices = mScene->accessors[primitive.indices->index()];
+        bindings.indices = IndexBufferBinding{viewBuffer(indices.view), indexFormat(indices),
+                                              indices.byteOffset, indices.count};
+    }
+    return bindings;
+}
+
+}  // namespace encore::render
+
+namespace encore::render {
+
+PipelineKey meshPipelineKey(const RenderSetup& setup, const PrimitiveBindings& bindings,
+                            const shaders::ShaderVariantKey& shader) {
+    PipelineKey key = bindings.layout;
+    key.topology = primitiveTopology(bindings.topology);
+    if (bindings.indices && isStrip(bindings.topology)) {
+        key.stripIndexFormat = bindings.indices->format;
+    }
+    key.colorFormat = setup.colorFormat;
+    key.depthFormat = setup.depthFormat;
+    key.sampleCount = setup.sampleCount;
+    key.shader = shader;
+    return key;
+}
+
+void bindGeometry(RenderEncoder& encoder, const PrimitiveBindings& bindings) {
+    for (std::uint32_t slot = 0; slot < bindings.vertexBuffers.size(); ++slot) {
+        encoder.setVertexBuffer(slot, bindings.vertexBuffers[slot].buffer,
+                                bindings.vertexBuffers[slot].offset);
+    }
+    if (bindings.indices) {
+        encoder.setIndexBuffer(bindings.indices->buffer, bindings.indices->format,
+                               bindings.indices->offset);
+    }
+}
+
+void drawGeometry(RenderEncoder& encoder, const PrimitiveBindings& bindings,
+                  std::uint32_t instanceCount, std::uint32_t firstInstance) {
+    if (bindings.indices) {
+        encoder.drawIndexed(bindings.indices->count, instanceCount, 0, 0, firstInstance,
+                            bindings.topology);
+    } else {
+        encoder.draw(bindings.vertexCount, instanceCount, 0, firstInstance, bindings.topology);
+    }
+}
+
+}  // namespace encore::render

@@ -1,0 +1,57 @@
+#include "InstancingStrategy.h"
+
+#include <unordered_map>
+
+#include "encore/render/ShadingSemantics.h"
+
+namespace encore::render {
+
+Result<void> InstancingStrategy::prepare(const RenderSetup& setup, const scene::SceneData& scene) {
+    mFrameGroup = setup.frame->bindGroup();
+    mGeometry = std::make_unique<GeometryBuffers>(setup.device, scene);
+    mPipelines = std::make_unique<PipelineCache>(setup);
+    mInstances = InstanceBuffer(setup.device, *setup.layouts, scene);
+    mGroups.clear();
+
+    shaders::ShaderVariantKey shader;
+    shader.instanceSource = shaders::InstanceSource::InstanceStorage;
+    std::unordered_map<PipelineKey, std::size_t, PipelineKeyHash> groupOfKey;
+    for (std::size_t mesh = 0; mesh < scene.meshes.size(); ++mesh) {
+        const InstanceRange range = mInstances.meshRange(scene::MeshId(mesh));
+        if (range.count == 0) {
+            continue;
+        }
+        for (const scene::Primitive& primitive : scene.meshes[mesh].primitives) {
+            auto bindings = mGeometry->bind(primitive, kUnlitTransformSemantics);
+            if (!bindings) {
+                return bindings.error();
+            }
+            const PipelineKey key = meshPipelineKey(setup, *bindings, shader);
+            auto [found, inserted] = groupOfKey.try_emplace(key, mGroups.size());
+            if (inserted) {
+                auto pipeline = mPipelines->get(key);
+                if (!pipeline) {
+                    return pipeline.error();
+                }
+                mGroups.push_back({*pipeline, {}});
+            }
+            mGroups[found->second].primitives.push_back({std::move(*bindings), range});
+        }
+    }
+    return {};
+}
+
+void InstancingStrategy::encode(RenderEncoder& encoder, const FrameState&) const {
+    encoder.setBindGroup(0, mFrameGroup);
+    encoder.setBindGroup(1, mInstances.bindGroup());
+    for (const PipelineGroup& group : mGroups) {
+        encoder.setPipeline(group.pipeline);
+        for (const PrimitiveDraw& primitive : group.primitives) {
+            bindGeometry(encoder, primitive.bindings);
+            drawGeometry(encoder, primitive.bindings, primitive.instances.count,
+                         primitive.instances.first);
+        }
+    }
+}
+
+}  // namespace encore::render

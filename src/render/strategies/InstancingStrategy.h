@@ -1,0 +1,41 @@
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "encore/render/InstanceBuffer.h"
+#include "encore/render/PipelineCache.h"
+#include "encore/render/Strategy.h"
+#include "encore/render/VertexBindings.h"
+
+namespace encore::render {
+
+// The case study's Part 4: all transforms in one storage buffer bound once; each primitive drawn
+// once for all the instances of its mesh (firstInstance selects them). Loop pipeline ->
+// primitive.
+class InstancingStrategy final : public Strategy {
+  public:
+    StrategyKind kind() const override { return StrategyKind::Instancing; }
+    Result<void> prepare(const RenderSetup& setup, const scene::SceneData& scene) override;
+    void encode(RenderEncoder& encoder, const FrameState& frame) const override;
+
+    const InstanceBuffer& instances() const { return mInstances; }
+
+  private:
+    struct PrimitiveDraw {
+        PrimitiveBindings bindings;
+        InstanceRange instances;
+    };
+    struct PipelineGroup {
+        wgpu::RenderPipeline pipeline;
+        std::vector<PrimitiveDraw> primitives;
+    };
+
+    std::unique_ptr<GeometryBuffers> mGeometry;
+    std::unique_ptr<PipelineCache> mPipelines;
+    wgpu::BindGroup mFrameGroup;
+    InstanceBuffer mInstances;
+    std::vector<PipelineGroup> mGroups;
+};
+
+}  // namespace encore::render

@@ -1,0 +1,62 @@
+#include "PipelineCacheStrategy.h"
+
+#include <unordered_map>
+
+#include "encore/render/ShadingSemantics.h"
+
+namespace encore::render {
+
+Result<void> PipelineCacheStrategy::prepare(const RenderSetup& setup,
+                                            const scene::SceneData& scene) {
+    mFrameGroup = setup.frame->bindGroup();
+    mGeometry = std::make_unique<GeometryBuffers>(setup.device, scene);
+    mPipelines = std::make_unique<PipelineCache>(setup);
+    mGroups.clear();
+
+    std::vector<std::vector<std::size_t>> nodesOfMesh(scene.meshes.size());
+    for (std::size_t i = 0; i < scene.instances.size(); ++i) {
+        nodesOfMesh[scene.instances[i].mesh.index()].push_back(i);
+    }
+    // Groups in first-use order; a pipeline's group found through its key.
+    std::unordered_map<PipelineKey, std::size_t, PipelineKeyHash> groupOfKey;
+    for (std::size_t mesh = 0; mesh < scene.meshes.size(); ++mesh) {
+        if (nodesOfMesh[mesh].empty()) {
+            continue;
+        }
+        for (const scene::Primitive& primitive : scene.meshes[mesh].primitives) {
+            auto bindings = mGeometry->bind(primitive, kUnlitTransformSemantics);
+            if (!bindings) {
+                return bindings.error();
+            }
+            const PipelineKey key = meshPipelineKey(setup, *bindings, {});
+            auto [found, inserted] = groupOfKey.try_emplace(key, mGroups.size());
+            if (inserted) {
+                auto pipeline = mPipelines->get(key);
+                if (!pipeline) {
+                    return pipeline.error();
+                }
+                mGroups.push_back({*pipeline, {}});
+            }
+            mGroups[found->second].primitives.push_back(
+                {std::move(*bindings), nodesOfMesh[mesh]});
+        }
+    }
+    mNodes = NodeUniforms(setup.device, *setup.layouts, scene);
+    return {};
+}
+
+void PipelineCacheStrategy::encode(RenderEncoder& encoder, const FrameState&) const {
+    encoder.setBindGroup(0, mFrameGroup);
+    for (const PipelineGroup& group : mGroups) {
+        encoder.setPipeline(group.pipeline);
+        for (const PrimitiveDraws& primitive : group.primitives) {
+            bindGeometry(encoder, primitive.bindings);
+            for (std::size_t node : primitive.nodes) {
+                encoder.setBindGroup(1, mNodes.bindGroup(node));
+                drawGeometry(encoder, primitive.bindings, 1, 0);
+            }
+        }
+    }
+}
+
+}  // namespace encore::render

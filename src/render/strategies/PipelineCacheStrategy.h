@@ -1,0 +1,41 @@
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "encore/render/NodeUniforms.h"
+#include "encore/render/PipelineCache.h"
+#include "encore/render/Strategy.h"
+#include "encore/render/VertexBindings.h"
+
+namespace encore::render {
+
+// The case study's Part 3: pipelines cached by a key of every pipeline argument, and the frame
+// regrouped pipeline -> primitive -> node, so setPipeline happens once per distinct pipeline and
+// vertex buffers once per primitive.
+class PipelineCacheStrategy final : public Strategy {
+  public:
+    StrategyKind kind() const override { return StrategyKind::PipelineCache; }
+    Result<void> prepare(const RenderSetup& setup, const scene::SceneData& scene) override;
+    void encode(RenderEncoder& encoder, const FrameState& frame) const override;
+
+    std::size_t pipelineCount() const { return mPipelines ? mPipelines->size() : 0; }
+
+  private:
+    struct PrimitiveDraws {
+        PrimitiveBindings bindings;
+        std::vector<std::size_t> nodes;  // Scene instances drawing this primitive.
+    };
+    struct PipelineGroup {
+        wgpu::RenderPipeline pipeline;
+        std::vector<PrimitiveDraws> primitives;
+    };
+
+    std::unique_ptr<GeometryBuffers> mGeometry;
+    std::unique_ptr<PipelineCache> mPipelines;
+    wgpu::BindGroup mFrameGroup;
+    std::vector<PipelineGroup> mGroups;
+    NodeUniforms mNodes;
+};
+
+}  // namespace encore::render

@@ -1,0 +1,337 @@
+#include "encore/scene/SceneGenerator.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <random>
+#include <string>
+
+#include <glm/glm.hpp>
+#include <glm/gtc/constants.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <nlohmann/json.hpp>
+
+namespace encore::scene {
+
+namespace {
+
+using nlohmann::json;
+
+struct MeshGeometry {
+    std::vector<glm::vec3> positions;
+    std::vector<glm::vec3> normals;
+    std::vector<glm::vec2> texcoords;
+    std::vector<std::uint32_t> indices;
+
+    std::uint32_t addVertex(const glm::vec3& position, const glm::vec3& normal,
+                            const glm::vec2& texcoord) {
+        positions.push_back(position);
+        normals.push_back(normal);
+        texcoords.push_back(texcoord);
+        return static_cast<std::uint32_t>(positions.size() - 1);
+    }
+    void addQuad(std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t d) {
+        indices.insert(indices.end(), {a, b, c, a, c, d});
+    }
+};
+
+// A surface of revolution around Y: `profile(t)` gives (radius, height) and the outward normal
+// in the (r, y) plane for t in [0, 1].
+template <typename Profile>
+MeshGeometry revolve(std::uint32_t segments, std::uint32_t rings, Profile profile) {
+    MeshGeometry mesh;
+    for (std::uint32_t ring = 0; ring <= rings; ++ring) {
+        const float t = float(ring) / float(rings);
+        const auto [radius, height, normalR, normalY] = profile(t);
+        for (std::uint32_t segment = 0; segment <= segments; ++segment) {
+            const float angle = glm::two_pi<float>() * float(segment) / float(segments);
+            const float c = std::cos(angle);
+            const float s = std::sin(angle);
+            mesh.addVertex({radius * c, height, radius * s},
+                           glm::normalize(glm::vec3(normalR * c, normalY, normalR * s)),
+                           {float(segment) / float(segments), t});
+        }
+    }
+    const std::uint32_t stride = segments + 1;
+    for (std::uint32_t ring = 0; ring < rings; ++ring) {
+        for (std::uint32_t segment = 0; segment < segments; ++segment) {
+            const std::uint32_t a = ring * stride + segment;
+            // Counter-clockwise seen from outside.
+            mesh.addQuad(a, a + stride, a + stride + 1, a + 1);
+        }
+    }
+    return mesh;
+}
+
+void addDisk(MeshGeometry& mesh, std::uint32_t segments, float radius, float height, bool up) {
+    const glm::vec3 normal(0.0f, up ? 1.0f : -1.0f, 0.0f);
+    const std::uint32_t center = mesh.addVertex({0.0f, height, 0.0f}, normal, {0.5f, 0.5f});
+    const std::uint32_t first = static_cast<std::uint32_t>(mesh.positions.size());
+    for (std::uint32_t segment = 0; segment <= segments; ++segment) {
+        const float angle = glm::two_pi<float>() * float(segment) / float(segments);
+        mesh.addVertex({radius * std::cos(angle), height, radius * std::sin(angle)}, normal,
+                       {0.5f + 0.5f * std::cos(angle), 0.5f + 0.5f * std::sin(angle)});
+    }
+    for (std::uint32_t segment = 0; segment < segments; ++segment) {
+        if (up) {
+            mesh.indices.insert(mesh.indices.end(), {center, first + segment + 1, first + segment});
+        } else {
+            mesh.indices.insert(mesh.indices.end(), {center, first + segment, first + segment + 1});
+        }
+    }
+}
+
+MeshGeometry makeBox() {
+    MeshGeometry mesh;
+    for (int axis = 0; axis < 3; ++axis) {
+        for (float sign : {-1.0f, 1.0f}) {
+            glm::vec3 normal(0.0f);
+            normal[axis] = sign;
+            const glm::vec3 u = glm::vec3(normal.y, normal.z, normal.x);  // Perpendicular axes.
+            const glm::vec3 v = glm::cross(normal, u);
+            const std::uint32_t base = static_cast<std::uint32_t>(mesh.positions.size());
+            for (int corner = 0; corner < 4; ++corner) {
+                const float a = (corner == 1 || corner == 2) ? 1.0f : -1.0f;
+                const float b = corner >= 2 ? 1.0f : -1.0f;
+                mesh.addVertex(0.5f * (normal + a * u + b * v), normal,
+                               {0.5f + 0.5f * a, 0.5f + 0.5f * b});
+            }
+            mesh.addQuad(base, base + 1, base + 2, base + 3);
+        }
+    }
+    return mesh;
+}
+
+// Mesh `index`: the shape cycles, the tessellation grows, so every mesh is distinct.
+MeshGeometry makeMesh(std::uint32_t index) {
+    const std::uint32_t detail = 8 + 4 * (index / 5);
+    switch (index % 5) {
+        case 0: {
+            MeshGeometry box = makeBox();
+            const float stretch = 1.0f + 0.1f * float(index / 5);
+            for (auto& p : box.positions) {
+                p.y *= stretch;
+            }
+            return box;
+        }
+        case 1:
+            return revolve(detail * 2, detail, [](float t) {
+                const float phi = glm::pi<float>() * t;
+                return std::array{0.5f * std::sin(phi), -0.5f * std::cos(phi), std::sin(phi),
+                                  -std::cos(phi)};
+            });
+        case 2: {
+            auto mesh = revolve(detail * 2, 1, [](float t) {
+                return std::array{0.4f, t - 0.5f, 1.0f, 0.0f};
+            });
+            addDisk(mesh, detail * 2, 0.4f, 0.5f, true);
+            addDisk(mesh, detail * 2, 0.4f, -0.5f, false);
+            return mesh;
+        }
+        case 3: {
+            // Slant normal of a cone of radius 0.5 and height 1.
+            const float length = std::sqrt(1.0f + 0.25f);
+            auto mesh = revolve(detail * 2, 1, [&](float t) {
+                return std::array{0.5f * (1.0f - t), t - 0.5f, 1.0f / length, 0.5f / length};
+            });
+            addDisk(mesh, detail * 2, 0.5f, -0.5f, false);
+            return mesh;
+        }
+        default: {
+            // A torus as rings of a tube around Y.
+            MeshGeometry mesh;
+            const std::uint32_t segments = detail * 2;
+            const std::uint32_t sides = detail;
+            for (std::uint32_t i = 0; i <= segments; ++i) {
+                const float u = glm::two_pi<float>() * float(i) / float(segments);
+                for (std::uint32_t j = 0; j <= sides; ++j) {
+                    const float v = glm::two_pi<float>() * float(j) / float(sides);
+                    const glm::vec3 center(0.35f * std::cos(u), 0.0f, 0.35f * std::sin(u));
+                    const glm::vec3 normal(std::cos(v) * std::cos(u), std::sin(v),
+                                           std::cos(v) * std::sin(u));
+                    mesh.addVertex(center + 0.15f * normal, normal,
+                                   {float(i) / float(segments), float(j) / float(sides)});
+                }
+            }
+            for (std::uint32_t i = 0; i < segments; ++i) {
+                for (std::uint32_t j = 0; j < sides; ++j) {
+                    const std::uint32_t a = i * (sides + 1) + j;
+                    const std::uint32_t b = a + sides + 1;
+                    mesh.addQuad(a, a + 1, b + 1, b);
+                }
+            }
+            return mesh;
+        }
+    }
+}
+
+glm::vec3 paletteColor(std::uint32_t index, std::uint32_t count) {
+    // Evenly spaced hues at full saturation, in linear space.
+    const float hue = float(index) / float(std::max(count, 1u)) * 6.0f;
+    const float x = 1.0f - std::abs(std::fmod(hue, 2.0f) - 1.0f);
+    glm::vec3 rgb;
+    switch (int(hue) % 6) {
+        case 0: rgb = {1, x, 0}; break;
+        case 1: rgb = {x, 1, 0}; break;
+        case 2: rgb = {0, 1, x}; break;
+        case 3: rgb = {0, x, 1}; break;
+        case 4: rgb = {x, 0, 1}; break;
+        default: rgb = {1, 0, x}; break;
+    }
+    return 0.1f + 0.8f * rgb;
+}
+
+class BinaryWriter {
+  public:
+    // Appends data as a bufferView (+ accessor) and returns the accessor index.
+    template <typename T>
+    std::size_t addAccessor(json& document, const std::vector<T>& values, int componentType,
+                            const char* type, int target, bool withBounds) {
+        while (mBytes.size() % 4 != 0) {
+            mBytes.push_back(0);
+        }
+        const std::size_t offset = mBytes.size();
+        mBytes.resize(offset + values.size() * sizeof(T));
+        std::memcpy(mBytes.data() + offset, values.data(), values.size() * sizeof(T));
+        document["bufferViews"].push_back({{"buffer", 0},
+                                           {"byteOffset", offset},
+                                           {"byteLength", values.size() * sizeof(T)},
+                                           {"target", target}});
+        json accessor = {{"bufferView", document["bufferViews"].size() - 1},
+                         {"componentType", componentType},
+                         {"count", values.size()},
+                         {"type", type}};
+        if constexpr (std::is_same_v<T, glm::vec3>) {
+            if (withBounds) {
+                glm::vec3 low(INFINITY), high(-INFINITY);
+                for (const auto& v : values) {
+                    low = glm::min(low, v);
+                    high = glm::max(high, v);
+                }
+                accessor["min"] = {low.x, low.y, low.z};
+                accessor["max"] = {high.x, high.y, high.z};
+            }
+        }
+        document["accessors"].push_back(accessor);
+        return document["accessors"].size() - 1;
+    }
+    std::vector<std::uint8_t>& bytes() { return mBytes; }
+
+  private:
+    std::vector<std::uint8_t> mBytes;
+};
+
+void appendChunk(std::vector<std::uint8_t>& glb, std::uint32_t type,
+                 std::vector<std::uint8_t> data, std::uint8_t padding) {
+    while (data.size() % 4 != 0) {
+        data.push_back(padding);
+    }
+    const std::uint32_t header[2] = {static_cast<std::uint32_t>(data.size()), type};
+    const auto* headerBytes = reinterpret_cast<const std::uint8_t*>(header);
+    glb.insert(glb.end(), headerBytes, headerBytes + sizeof(header));
+    glb.insert(glb.end(), data.begin(), data.end());
+}
+
+}  // namespace
+
+Result<std::vector<std::uint8_t>> generateSceneGlb(const GeneratorOptions& options) {
+    auto outOfRange = [](const char* what, std::uint32_t value, std::uint32_t max) {
+        return makeError(ErrorCode::InvalidArgument,
+                         std::string("The number of ") + what + " (" + std::to_string(value) +
+                             ") must be between 1 and " + std::to_string(max) + ".");
+    };
+    if (options.objectCount == 0 || options.objectCount > kMaxGeneratedObjects) {
+        return outOfRange("objects", options.objectCount, kMaxGeneratedObjects);
+    }
+    if (options.meshCount == 0 || options.meshCount > kMaxGeneratedMeshes) {
+        return outOfRange("meshes", options.meshCount, kMaxGeneratedMeshes);
+    }
+    if (options.materialCount == 0 || options.materialCount > kMaxGeneratedMaterials) {
+        return outOfRange("materials", options.materialCount, kMaxGeneratedMaterials);
+    }
+
+    json document = {{"asset", {{"version", "2.0"}, {"generator", "encore gen"}}},
+                     {"scene", 0},
+                     {"buffers", json::array()},
+                     {"bufferViews", json::array()},
+                     {"accessors", json::array()},
+                     {"meshes", json::array()},
+                     {"materials", json::array()},
+                     {"nodes", json::array()}};
+    for (std::uint32_t i = 0; i < options.materialCount; ++i) {
+        const glm::vec3 color = paletteColor(i, options.materialCount);
+        document["materials"].push_back(
+            {{"name", "material " + std::to_string(i)},
+             {"pbrMetallicRoughness",
+              {{"baseColorFactor", {color.r, color.g, color.b, 1.0}},
+               {"metallicFactor", 0.0},
+               {"roughnessFactor", 0.5 + 0.5 * float(i % 2)}}}});
+    }
+    BinaryWriter binary;
+    constexpr int kFloat = 5126;
+    constexpr int kUnsignedShort = 5123;
+    constexpr int kUnsignedInt = 5125;
+    constexpr int kArrayBuffer = 34962;
+    constexpr int kElementArrayBuffer = 34963;
+    for (std::uint32_t i = 0; i < options.meshCount; ++i) {
+        const MeshGeometry mesh = makeMesh(i);
+        json attributes = {
+            {"POSITION", binary.addAccessor(document, mesh.positions, kFloat, "VEC3",
+                                            kArrayBuffer, true)},
+            {"NORMAL",
+             binary.addAccessor(document, mesh.normals, kFloat, "VEC3", kArrayBuffer, false)},
+            {"TEXCOORD_0",
+             binary.addAccessor(document, mesh.texcoords, kFloat, "VEC2", kArrayBuffer, false)}};
+        std::size_t indices;
+        if (mesh.positions.size() <= 65536) {
+            std::vector<std::uint16_t> narrow(mesh.indices.begin(), mesh.indices.end());
+            indices = binary.addAccessor(document, narrow, kUnsignedShort, "SCALAR",
+                                         kElementArrayBuffer, false);
+        } else {
+            indices = binary.addAccessor(document, mesh.indices, kUnsignedInt, "SCALAR",
+                                         kElementArrayBuffer, false);
+        }
+        document["meshes"].push_back(
+            {{"name", "mesh " + std::to_string(i)},
+             {"primitives",
+              {{{"attributes", attributes},
+                {"indices", indices},
+                {"material", i % options.materialCount}}}}});
+    }
+
+    // Objects on a square grid in the XZ plane, with a seeded random turn and size each.
+    std::mt19937 random(options.seed);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    const std::uint32_t side =
+        static_cast<std::uint32_t>(std::ceil(std::sqrt(double(options.objectCount))));
+    const float spacing = std::max(options.spacing, 1.0f) * 0.5f;
+    const float origin = -0.5f * float(side - 1) * spacing;
+    json rootChildren = json::array();
+    for (std::uint32_t i = 0; i < options.objectCount; ++i) {
+        const float x = origin + float(i % side) * spacing;
+        const float z = origin + float(i / side) * spacing;
+        const glm::vec3 axis = glm::normalize(glm::vec3(unit(random), unit(random), unit(random)) +
+                                              glm::vec3(0.01f));
+        const glm::quat rotation = glm::angleAxis(glm::two_pi<float>() * unit(random), axis);
+        const float scale = 0.6f + 0.4f * unit(random);
+        document["nodes"].push_back(
+            {{"mesh", i % options.meshCount},
+             {"translation", {x, 0.0f, z}},
+             {"rotation", {rotation.x, rotation.y, rotation.z, rotation.w}},
+             {"scale", {scale, scale, scale}}});
+        rootChildren.push_back(i);
+    }
+    document["buffers"].push_back({{"byteLength", binary.bytes().size()}});
+    document["scenes"] = {{{"nodes", rootChildren}}};
+
+    const std::string text = document.dump();
+    std::vector<std::uint8_t> glb = {'g', 'l', 'T', 'F', 2, 0, 0, 0, 0, 0, 0, 0};
+    appendChunk(glb, 0x4E4F534A, std::vector<std::uint8_t>(text.begin(), text.end()), ' ');
+    appendChunk(glb, 0x004E4942, std::move(binary.bytes()), 0);
+    const std::uint32_t total = static_cast<std::uint32_t>(glb.size());
+    std::memcpy(&glb[8], &total, sizeof(total));
+    return glb;
+}
+
+}  // namespace encore::scene

@@ -1,0 +1,90 @@
+#include "encore/shaders/ShaderLibrary.h"
+
+#include <cstring>
+#include <functional>
+
+#include "encore/shaders/ShaderComposer.h"
+
+namespace encore::shaders {
+
+std::set<std::string, std::less<>> ShaderVariantKey::flags() const {
+    std::set<std::string, std::less<>> result;
+    if (instanceSource == InstanceSource::InstanceStorage) {
+        result.insert("INSTANCE_STORAGE");
+    }
+    if (materials) {
+        result.insert("MATERIALS");
+    }
+    if (hasTexcoord) {
+        result.insert("HAS_TEXCOORD");
+    }
+    if (hasColor) {
+        result.insert("HAS_COLOR");
+    }
+    if (alphaMask) {
+        result.insert("ALPHA_MASK");
+    }
+    return result;
+}
+
+std::string ShaderVariantKey::describe() const {
+    std::string text;
+    for (const auto& flag : flags()) {
+        text += text.empty() ? flag : " " + flag;
+    }
+    return text.empty() ? "(no flags)" : text;
+}
+
+std::size_t ShaderVariantKeyHash::operator()(const ShaderVariantKey& key) const noexcept {
+    static_assert(sizeof(ShaderVariantKey) == 8, "keep ShaderVariantKey padded and small");
+    std::uint64_t bits = 0;
+    std::memcpy(&bits, &key, sizeof(key));
+    return std::hash<std::uint64_t>{}(bits);
+}
+
+namespace {
+
+wgpu::ShaderModule createModule(const wgpu::Device& device, const std::string& source,
+                                const std::string& label) {
+    wgpu::ShaderSourceWGSL wgsl;
+    wgsl.code = source.c_str();
+    wgpu::ShaderModuleDescriptor descriptor{};
+    descriptor.nextInChain = &wgsl;
+    descriptor.label = label.c_str();
+    return device.CreateShaderModule(&descriptor);
+}
+
+}  // namespace
+
+Result<wgpu::ShaderModule> ShaderLibrary::meshModule(const ShaderVariantKey& key) {
+    if (auto found = mMeshModules.find(key); found != mMeshModules.end()) {
+        return found->second;
+    }
+    auto source = composeEmbeddedShader("mesh.wgsl", key.flags());
+    if (!source) {
+        return source.error();
+    }
+    auto module = createModule(mDevice, *source, "mesh.wgsl " + key.describe());
+    mMeshModules.emplace(key, module);
+    return module;
+}
+
+Result<wgpu::ShaderModule> ShaderLibrary::module(const std::string& fileName,
+                                                 const std::set<std::string, std::less<>>& flags) {
+    std::string cacheKey = fileName;
+    for (const auto& flag : flags) {
+        cacheKey += " " + flag;
+    }
+    if (auto found = mOtherModules.find(cacheKey); found != mOtherModules.end()) {
+        return found->second;
+    }
+    auto source = composeEmbeddedShader(fileName, flags);
+    if (!source) {
+        return source.error();
+    }
+    auto module = createModule(mDevice, *source, cacheKey);
+    mOtherModules.emplace(cacheKey, module);
+    return module;
+}
+
+}  // namespace encore::shaders

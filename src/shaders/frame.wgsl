@@ -1,0 +1,9 @@
+// Group 0: per-frame data, shared by every pipeline (bind groups are ordered by how often they
+// change: frame, then instances, then material).
+struct Frame {
+    projection: mat4x4f,
+    view: mat4x4f,
+    cameraPosition: vec3f,
+    time: f32,
+}
+@group(0) @binding(0) var<uniform> frame: Frame;
