@@ -17,9 +17,11 @@ namespace encore::render {
 namespace {
 
 constexpr std::uint64_t kUniformSize = sizeof(MaterialUniform);
-constexpr wgpu::TextureUsage kTextureUsage = wgpu::TextureUsage::TextureBinding |
-                                             wgpu::TextureUsage::CopyDst |
-                                             wgpu::TextureUsage::RenderAttachment;
+// RenderAttachment for the mip generator's passes; CopySrc so tests and tools can read any
+// level back (it costs nothing on the drivers Encore targets).
+constexpr wgpu::TextureUsage kTextureUsage =
+    wgpu::TextureUsage::TextureBinding | wgpu::TextureUsage::CopyDst |
+    wgpu::TextureUsage::RenderAttachment | wgpu::TextureUsage::CopySrc;
 
 std::string describeImage(scene::ImageId id, const scene::Image& image) {
     return "Image " + std::to_string(id.value) + " ('" + image.name + "')";

@@ -4,6 +4,7 @@
 
 #include "strategies/InstancingStrategy.h"
 #include "strategies/LayoutsStrategy.h"
+#include "strategies/MaterialsStrategy.h"
 #include "strategies/NaiveStrategy.h"
 #include "strategies/PipelineCacheStrategy.h"
 
@@ -19,9 +20,11 @@ constexpr std::array kStrategyNames = {
     StrategyName{StrategyKind::Layouts, "layouts"},
     StrategyName{StrategyKind::PipelineCache, "pipeline-cache"},
     StrategyName{StrategyKind::Instancing, "instancing"},
+    StrategyName{StrategyKind::Materials, "materials"},
 };
 constexpr std::array kAllStrategies = {StrategyKind::Naive, StrategyKind::Layouts,
-                                       StrategyKind::PipelineCache, StrategyKind::Instancing};
+                                       StrategyKind::PipelineCache, StrategyKind::Instancing,
+                                       StrategyKind::Materials};
 }  // namespace
 
 std::string_view strategyName(StrategyKind kind) {
@@ -56,6 +59,8 @@ std::unique_ptr<Strategy> createStrategy(StrategyKind kind) {
             return std::make_unique<PipelineCacheStrategy>();
         case StrategyKind::Instancing:
             return std::make_unique<InstancingStrategy>();
+        case StrategyKind::Materials:
+            return std::make_unique<MaterialsStrategy>();
     }
     return nullptr;
 }

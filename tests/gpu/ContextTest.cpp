@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <cstring>
+
 #include "GpuTestSupport.h"
 #include "encore/gpu/Readback.h"
 #include "encore/gpu/Upload.h"

@@ -32,6 +32,9 @@ enum class StrategyKind {
     PipelineCache,
     // All transforms in one storage buffer; one draw per primitive for all its instances.
     Instancing,
+    // glTF materials: base colour factor/texture/sampler, MASK, BLEND (sorted back to front),
+    // double-sided culling; loop pipeline -> material -> primitive.
+    Materials,
 };
 
 std::string_view strategyName(StrategyKind kind);

@@ -1,0 +1,164 @@
+#include "MaterialsStrategy.h"
+
+#include <algorithm>
+#include <map>
+#include <unordered_map>
+
+#include "encore/render/ShadingSemantics.h"
+
+namespace encore::render {
+
+namespace {
+
+// The variant a primitive and its material need: a missing TEXCOORD_0 or COLOR_0 removes a
+// vertex input, MASK adds the discard. Everything else (textures or not) is uniform data and
+// 1-pixel default textures, so it shares the variant.
+shaders::ShaderVariantKey materialVariant(const scene::Primitive& primitive,
+                                          const scene::Material& material) {
+    shaders::ShaderVariantKey key;
+    key.instanceSource = shaders::InstanceSource::InstanceStorage;
+    key.materials = true;
+    key.hasTexcoord = primitive.attribute(scene::Semantic::Texcoord0).has_value();
+    key.hasColor = primitive.attribute(scene::Semantic::Color0).has_value();
+    key.alphaMask = material.alphaMode == scene::AlphaMode::Mask;
+    return key;
+}
+
+}  // namespace
+
+Result<void> MaterialsStrategy::prepare(const RenderSetup& setup, const scene::SceneData& scene) {
+    mSetup = &setup;
+    mFrameGroup = setup.frame->bindGroup();
+    mGeometry = std::make_unique<GeometryBuffers>(setup.device, scene);
+    mPipelines = std::make_unique<PipelineCache>(setup);
+    mInstances = InstanceBuffer(setup.device, *setup.layouts, scene);
+    auto materials =
+        MaterialResources::create(setup.device, setup.queue, *setup.shaders, *setup.layouts, scene);
+    if (!materials) {
+        return materials.error();
+    }
+    mMaterials = std::make_unique<MaterialResources>(std::move(*materials));
+    mBindings.clear();
+    mOpaque.clear();
+    mBlended.clear();
+
+    // Opaque groups in first-use order: pipeline -> material -> primitives.
+    std::unordered_map<PipelineKey, std::size_t, PipelineKeyHash> groupOfKey;
+    std::map<std::pair<std::size_t, scene::MaterialId>, std::size_t> materialGroupOf;
+    for (std::size_t mesh = 0; mesh < scene.meshes.size(); ++mesh) {
+        if (mInstances.meshRange(scene::MeshId(mesh)).count == 0) {
+            continue;
+        }
+        for (const scene::Primitive& primitive : scene.meshes[mesh].primitives) {
+            const scene::Material& material = scene.materials[primitive.material.index()];
+            auto bindings = mGeometry->bind(primitive, kMaterialSemantics);
+            if (!bindings) {
+                return bindings.error();
+            }
+            mBindings.push_back(std::make_unique<PrimitiveBindings>(std::move(*bindings)));
+            const PrimitiveBindings* bound = mBindings.back().get();
+
+            PipelineKey key = meshPipelineKey(setup, *bound, materialVariant(primitive, material));
+            key.cullMode = material.doubleSided ? wgpu::CullMode::None : wgpu::CullMode::Back;
+            key.blend = material.alphaMode == scene::AlphaMode::Blend;
+            // Mirrored instances flip the winding, so they need the other front face.
+            for (bool mirrored : {false, true}) {
+                const InstanceRange range = mInstances.meshRange(scene::MeshId(mesh), mirrored);
+                if (range.count == 0) {
+                    continue;
+                }
+                key.frontFace = mirrored ? wgpu::FrontFace::CW : wgpu::FrontFace::CCW;
+                auto pipeline = mPipelines->get(key);
+                if (!pipeline) {
+                    return pipeline.error();
+                }
+                if (key.blend) {
+                    for (std::uint32_t slot = range.first; slot < range.first + range.count;
+                         ++slot) {
+                        const scene::Instance& instance =
+                            scene.instances[mInstances.instanceAt(slot)];
+                        const glm::vec3 center =
+                            primitive.bounds.empty()
+                                ? glm::vec3(instance.world[3])
+                                : primitive.bounds.transformed(instance.world).center();
+                        mBlended.push_back({*pipeline, primitive.material, bound, slot, center});
+                    }
+                    continue;
+                }
+                auto [group, inserted] = groupOfKey.try_emplace(key, mOpaque.size());
+                if (inserted) {
+                    mOpaque.push_back({*pipeline, {}});
+                }
+                auto [materialGroup, newMaterial] = materialGroupOf.try_emplace(
+                    {group->second, primitive.material}, mOpaque[group->second].materials.size());
+                if (newMaterial) {
+                    mOpaque[group->second].materials.push_back({primitive.material, {}});
+                }
+                mOpaque[group->second].materials[materialGroup->second].primitives.push_back(
+                    {bound, range});
+            }
+        }
+    }
+    return {};
+}
+
+void MaterialsStrategy::setSharedBindGroups(RenderEncoder& encoder) const {
+    encoder.setBindGroup(0, mFrameGroup);
+    encoder.setBindGroup(1, mInstances.bindGroup());
+}
+
+void MaterialsStrategy::encodeOpaque(RenderEncoder& encoder) const {
+    for (const PipelineGroup& group : mOpaque) {
+        encoder.setPipeline(group.pipeline);
+        for (const MaterialGroup& material : group.materials) {
+            encoder.setBindGroup(2, mMaterials->bindGroup(material.material));
+            for (const PrimitiveDraw& primitive : material.primitives) {
+                bindGeometry(encoder, *primitive.bindings);
+                drawGeometry(encoder, *primitive.bindings, primitive.instances.count,
+                             primitive.instances.first);
+            }
+        }
+    }
+}
+
+void MaterialsStrategy::encodeBlended(RenderEncoder& encoder,
+                                      const glm::vec3& cameraPosition) const {
+    if (mBlended.empty()) {
+        return;
+    }
+    std::vector<std::pair<float, const BlendedDraw*>> order;
+    order.reserve(mBlended.size());
+    for (const BlendedDraw& draw : mBlended) {
+        const glm::vec3 offset = draw.center - cameraPosition;
+        order.emplace_back(glm::dot(offset, offset), &draw);
+    }
+    // Farthest first; ties keep scene order so the result is deterministic.
+    std::stable_sort(order.begin(), order.end(),
+                     [](const auto& a, const auto& b) { return a.first > b.first; });
+    const wgpu::RenderPipeline* currentPipeline = nullptr;
+    scene::MaterialId currentMaterial;
+    const PrimitiveBindings* currentBindings = nullptr;
+    for (const auto& [distance, draw] : order) {
+        if (currentPipeline == nullptr || currentPipeline->Get() != draw->pipeline.Get()) {
+            encoder.setPipeline(draw->pipeline);
+            currentPipeline = &draw->pipeline;
+        }
+        if (currentMaterial != draw->material) {
+            encoder.setBindGroup(2, mMaterials->bindGroup(draw->material));
+            currentMaterial = draw->material;
+        }
+        if (currentBindings != draw->bindings) {
+            bindGeometry(encoder, *draw->bindings);
+            currentBindings = draw->bindings;
+        }
+        drawGeometry(encoder, *draw->bindings, 1, draw->instanceSlot);
+    }
+}
+
+void MaterialsStrategy::encode(RenderEncoder& encoder, const FrameState& frame) const {
+    setSharedBindGroups(encoder);
+    encodeOpaque(encoder);
+    encodeBlended(encoder, frame.camera.position);
+}
+
+}  // namespace encore::render

@@ -1,0 +1,68 @@
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "encore/render/InstanceBuffer.h"
+#include "encore/render/MaterialResources.h"
+#include "encore/render/PipelineCache.h"
+#include "encore/render/Strategy.h"
+#include "encore/render/VertexBindings.h"
+
+namespace encore::render {
+
+// The case study's Part 5: glTF materials (base colour factor and texture with its sampler,
+// vertex colours, alpha MASK and BLEND, double-sided culling), shader variants only where the
+// vertex inputs or the discard differ, one bind group per material. Opaque and masked geometry
+// is drawn pipeline -> material -> primitive, so each material's bind group is set once per
+// pipeline that uses it; blended geometry follows, one draw per instance, back to front.
+class MaterialsStrategy : public Strategy {
+  public:
+    StrategyKind kind() const override { return StrategyKind::Materials; }
+    Result<void> prepare(const RenderSetup& setup, const scene::SceneData& scene) override;
+    void encode(RenderEncoder& encoder, const FrameState& frame) const override;
+
+    const InstanceBuffer& instances() const { return mInstances; }
+    MaterialResources& materials() { return *mMaterials; }
+    std::size_t pipelineCount() const { return mPipelines ? mPipelines->size() : 0; }
+
+  protected:
+    struct PrimitiveDraw {
+        const PrimitiveBindings* bindings = nullptr;
+        InstanceRange instances;
+    };
+    struct MaterialGroup {
+        scene::MaterialId material;
+        std::vector<PrimitiveDraw> primitives;
+    };
+    struct PipelineGroup {
+        wgpu::RenderPipeline pipeline;
+        std::vector<MaterialGroup> materials;
+    };
+    // One blended primitive of one instance, sorted by distance every frame.
+    struct BlendedDraw {
+        wgpu::RenderPipeline pipeline;
+        scene::MaterialId material;
+        const PrimitiveBindings* bindings = nullptr;
+        std::uint32_t instanceSlot = 0;
+        glm::vec3 center{0.0f};  // World-space centre of the primitive's bounds.
+    };
+
+    // Opaque and masked groups (shared with the bundle strategies, which record them once).
+    void encodeOpaque(RenderEncoder& encoder) const;
+    // Blended draws, back to front as seen from `cameraPosition`.
+    void encodeBlended(RenderEncoder& encoder, const glm::vec3& cameraPosition) const;
+    void setSharedBindGroups(RenderEncoder& encoder) const;
+
+    const RenderSetup* mSetup = nullptr;
+    std::unique_ptr<GeometryBuffers> mGeometry;
+    std::unique_ptr<PipelineCache> mPipelines;
+    std::unique_ptr<MaterialResources> mMaterials;
+    wgpu::BindGroup mFrameGroup;
+    InstanceBuffer mInstances;
+    std::vector<std::unique_ptr<PrimitiveBindings>> mBindings;  // Stable addresses.
+    std::vector<PipelineGroup> mOpaque;
+    std::vector<BlendedDraw> mBlended;
+};
+
+}  // namespace encore::render
