@@ -31,5 +31,6 @@ int reportError(const Error& error);
 void addRenderCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
 void addInfoCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
 void addGenCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
+void addStatsCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
 
 }  // namespace encore::app

@@ -37,6 +37,7 @@ int main(int argc, char** argv) {
     addRenderCommand(app, global, exitCode);
     addInfoCommand(app, global, exitCode);
     addGenCommand(app, global, exitCode);
+    addStatsCommand(app, global, exitCode);
 
     encore::setLogSink([&global](encore::LogLevel level, std::string_view message) {
         if (level == encore::LogLevel::Error) {

@@ -78,6 +78,7 @@ MaterialUniform makeMaterialUniform(const scene::Material& material) {
     uniform.texcoordRow1[2] = transform.offset.y;
     uniform.alphaCutoff =
         material.alphaMode == scene::AlphaMode::Mask ? material.alphaCutoff : 0.0f;
+    uniform.alphaBlend = material.alphaMode == scene::AlphaMode::Blend ? 1.0f : 0.0f;
     return uniform;
 }
 

@@ -114,6 +114,7 @@ Result<wgpu::RenderPipeline> createMeshPipeline(const RenderSetup& setup, const 
     descriptor.depthStencil = &depth;
     descriptor.multisample.count = key.sampleCount;
     descriptor.fragment = &fragment;
+    ++setup.pipelinesCreated;
     return setup.device.CreateRenderPipeline(&descriptor);
 }
 

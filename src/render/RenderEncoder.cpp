@@ -40,29 +40,34 @@ std::uint64_t triangleCount(scene::Topology topology, std::uint64_t count) {
 
 void RenderEncoder::setPipeline(const wgpu::RenderPipeline& pipeline) {
     ++mCounters.setPipeline;
+    record(RecordedCall::Kind::SetPipeline, pipeline.Get());
     ENCORE_FORWARD(SetPipeline(pipeline));
 }
 
 void RenderEncoder::setBindGroup(std::uint32_t index, const wgpu::BindGroup& group,
                                  std::uint32_t dynamicOffset) {
     ++mCounters.setBindGroup;
+    record(RecordedCall::Kind::SetBindGroup, group.Get(), index);
     ENCORE_FORWARD(SetBindGroup(index, group, 1, &dynamicOffset));
 }
 
 void RenderEncoder::setBindGroup(std::uint32_t index, const wgpu::BindGroup& group) {
     ++mCounters.setBindGroup;
+    record(RecordedCall::Kind::SetBindGroup, group.Get(), index);
     ENCORE_FORWARD(SetBindGroup(index, group, 0, nullptr));
 }
 
 void RenderEncoder::setVertexBuffer(std::uint32_t slot, const wgpu::Buffer& buffer,
                                     std::uint64_t offset, std::uint64_t size) {
     ++mCounters.setVertexBuffer;
+    record(RecordedCall::Kind::SetVertexBuffer, buffer.Get(), slot);
     ENCORE_FORWARD(SetVertexBuffer(slot, buffer, offset, size));
 }
 
 void RenderEncoder::setIndexBuffer(const wgpu::Buffer& buffer, wgpu::IndexFormat format,
                                    std::uint64_t offset, std::uint64_t size) {
     ++mCounters.setIndexBuffer;
+    record(RecordedCall::Kind::SetIndexBuffer, buffer.Get());
     ENCORE_FORWARD(SetIndexBuffer(buffer, format, offset, size));
 }
 
@@ -70,6 +75,7 @@ void RenderEncoder::draw(std::uint32_t vertexCount, std::uint32_t instanceCount,
                          std::uint32_t firstVertex, std::uint32_t firstInstance,
                          scene::Topology topology) {
     ++mCounters.draw;
+    record(RecordedCall::Kind::Draw, nullptr);
     ++mCounters.primitives;
     mCounters.instances += instanceCount;
     mCounters.triangles += triangleCount(topology, vertexCount) * instanceCount;
@@ -80,6 +86,7 @@ void RenderEncoder::drawIndexed(std::uint32_t indexCount, std::uint32_t instance
                                 std::uint32_t firstIndex, std::int32_t baseVertex,
                                 std::uint32_t firstInstance, scene::Topology topology) {
     ++mCounters.drawIndexed;
+    record(RecordedCall::Kind::Draw, nullptr);
     ++mCounters.primitives;
     mCounters.instances += instanceCount;
     mCounters.triangles += triangleCount(topology, indexCount) * instanceCount;
@@ -89,12 +96,14 @@ void RenderEncoder::drawIndexed(std::uint32_t indexCount, std::uint32_t instance
 void RenderEncoder::drawIndirect(const wgpu::Buffer& buffer, std::uint64_t offset) {
     ++mCounters.drawIndirect;
     ++mCounters.primitives;
+    record(RecordedCall::Kind::Draw, buffer.Get());
     ENCORE_FORWARD(DrawIndirect(buffer, offset));
 }
 
 void RenderEncoder::drawIndexedIndirect(const wgpu::Buffer& buffer, std::uint64_t offset) {
     ++mCounters.drawIndirect;
     ++mCounters.primitives;
+    record(RecordedCall::Kind::Draw, buffer.Get());
     ENCORE_FORWARD(DrawIndexedIndirect(buffer, offset));
 }
 

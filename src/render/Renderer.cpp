@@ -46,6 +46,8 @@ Result<Renderer> Renderer::create(gpu::Context& context, const RendererOptions& 
 }
 
 Result<void> Renderer::prepare(const scene::SceneData& scene, StrategyKind kind) {
+    mStrategy.reset();  // Release the previous strategy's resources first.
+    mSetup->pipelinesCreated = 0;
     auto strategy = createStrategy(kind);
     const std::string what = "Preparing '" + scene.sourcePath.string() + "' for strategy " +
                              std::string(strategyName(kind));
@@ -58,7 +60,8 @@ Result<void> Renderer::prepare(const scene::SceneData& scene, StrategyKind kind)
     return {};
 }
 
-FrameResult Renderer::renderFrame(const Camera& camera, float timeSeconds) {
+FrameResult Renderer::renderFrame(const Camera& camera, float timeSeconds,
+                                  std::vector<RecordedCall>* trace) {
     FrameResult result;
     mFrame->update(mContext->queue(), camera, timeSeconds);
 
@@ -73,6 +76,7 @@ FrameResult Renderer::renderFrame(const Camera& camera, float timeSeconds) {
     wgpu::RenderPassEncoder pass = commandEncoder.BeginRenderPass(&passDescriptor);
     if (mStrategy) {
         RenderEncoder encoder(pass, result.counters);
+        encoder.setTrace(trace);
         mStrategy->encode(encoder, FrameState{camera, timeSeconds});
     }
     pass.End();

@@ -27,6 +27,8 @@ struct Material {
     texcoordRow0: vec4f,
     texcoordRow1: vec4f,
     alphaCutoff: f32,
+    // 1 for BLEND materials; OPAQUE and MASK ones are fully opaque once drawn (glTF).
+    alphaBlend: f32,
 }
 @group(2) @binding(0) var<uniform> material: Material;
 @group(2) @binding(1) var baseColorSampler: sampler;
@@ -87,8 +89,10 @@ fn fragmentMain(input: VertexOutput) -> @location(0) vec4f {
         discard;
     }
 #endif
+    let alpha = select(1.0, baseColor.a, material.alphaBlend > 0.5);
 #else
     let baseColor = input.color;
+    let alpha = 1.0;
 #endif
-    return vec4f(shade(baseColor.rgb, input.normal), baseColor.a);
+    return vec4f(shade(baseColor.rgb, input.normal), alpha);
 }

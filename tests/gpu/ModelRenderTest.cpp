@@ -8,12 +8,6 @@
 #include "TestPaths.h"
 #include "encore/render/Renderer.h"
 
-namespace encore::test {
-void PrintTo(const ModelVariant& variant, std::ostream* out) {
-    *out << variant.model << " (" << variant.variant << ")";
-}
-}  // namespace encore::test
-
 namespace encore::render {
 namespace {
 

@@ -87,6 +87,10 @@ std::string ModelVariant::testName() const {
     return name;
 }
 
+void PrintTo(const ModelVariant& variant, std::ostream* out) {
+    *out << variant.model << " (" << variant.variant << ")";
+}
+
 std::vector<ModelVariant> sharedModelVariants() {
     std::vector<ModelVariant> variants;
     const auto dir = sharedModelsDir();

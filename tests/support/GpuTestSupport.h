@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cstdint>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -54,5 +55,7 @@ struct ModelVariant {
     std::string testName() const;  // "Duck_glTF_Draco"
 };
 std::vector<ModelVariant> sharedModelVariants();
+// Lets GoogleTest print a variant by name instead of its bytes.
+void PrintTo(const ModelVariant& variant, std::ostream* out);
 
 }  // namespace encore::test

@@ -41,7 +41,9 @@ struct MaterialUniform {
     float texcoordRow1[4];
     // The material's alphaCutoff for AlphaMode::Mask (0 stays 0), 0 otherwise.
     float alphaCutoff;
-    float padding[3];
+    // 1 for AlphaMode::Blend, whose alpha is opacity; OPAQUE and MASK write alpha 1 (glTF).
+    float alphaBlend;
+    float padding[2];
 };
 static_assert(sizeof(MaterialUniform) == 64);
 

@@ -7,11 +7,20 @@
 #include <webgpu/webgpu_cpp.h>
 
 #include <cstdint>
+#include <vector>
 
 #include "encore/render/DrawCounters.h"
 #include "encore/scene/SceneData.h"
 
 namespace encore::render {
+
+// One recorded call, for tests that check the order of calls rather than only their number.
+struct RecordedCall {
+    enum class Kind { SetPipeline, SetBindGroup, SetVertexBuffer, SetIndexBuffer, Draw };
+    Kind kind;
+    const void* object = nullptr;  // The pipeline, bind group or buffer handle.
+    std::uint32_t index = 0;       // Bind group index or vertex buffer slot.
+};
 
 class RenderEncoder {
   public:
@@ -40,11 +49,20 @@ class RenderEncoder {
     void drawIndexedIndirect(const wgpu::Buffer& buffer, std::uint64_t offset);
 
     DrawCounters& counters() { return mCounters; }
+    // Also appends every call to `trace` (nullptr: no trace).
+    void setTrace(std::vector<RecordedCall>* trace) { mTrace = trace; }
 
   private:
+    void record(RecordedCall::Kind kind, const void* object, std::uint32_t index = 0) {
+        if (mTrace) {
+            mTrace->push_back({kind, object, index});
+        }
+    }
+
     wgpu::RenderPassEncoder mPass;
     wgpu::RenderBundleEncoder mBundle;
     DrawCounters& mCounters;
+    std::vector<RecordedCall>* mTrace = nullptr;
 };
 
 // Triangles drawn by `count` vertices or indices of a topology (0 for points and lines).

@@ -39,8 +39,10 @@ class Renderer {
     // previous scene or strategy. Fails on any WebGPU error raised while preparing.
     Result<void> prepare(const scene::SceneData& scene, StrategyKind kind);
 
-    // Updates the frame uniforms, records and submits one frame.
-    FrameResult renderFrame(const Camera& camera, float timeSeconds = 0.0f);
+    // Updates the frame uniforms, records and submits one frame. With `trace`, every recorded
+    // call is also appended there (tests).
+    FrameResult renderFrame(const Camera& camera, float timeSeconds = 0.0f,
+                            std::vector<RecordedCall>* trace = nullptr);
 
     // Waits for the GPU and reads the final image back.
     Result<image::ImageRgba8> readImage();

@@ -51,6 +51,8 @@ struct RenderSetup {
     wgpu::TextureFormat colorFormat = wgpu::TextureFormat::RGBA8UnormSrgb;
     wgpu::TextureFormat depthFormat = wgpu::TextureFormat::Depth32Float;
     std::uint32_t sampleCount = 1;
+    // Render pipelines created through this setup (createMeshPipeline), for stats.
+    mutable std::uint64_t pipelinesCreated = 0;
 };
 
 // What a frame's recording may depend on. Only strategies that sort by distance (blended

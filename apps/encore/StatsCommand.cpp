@@ -1,0 +1,143 @@
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "Commands.h"
+#include "encore/gpu/Context.h"
+#include "encore/render/Renderer.h"
+#include "encore/scene/SceneData.h"
+
+namespace encore::app {
+
+namespace {
+
+struct StatsOptions {
+    std::string model;
+    std::vector<std::string> strategies;
+    bool json = false;
+    std::uint32_t width = 640;
+    std::uint32_t height = 480;
+};
+
+struct StrategyStats {
+    std::string name;
+    std::uint64_t pipelinesCreated = 0;
+    render::DrawCounters counters;
+    double encodeMilliseconds = 0.0;
+};
+
+nlohmann::json toJson(const StrategyStats& stats) {
+    const auto& c = stats.counters;
+    return {{"strategy", stats.name},
+            {"pipelinesCreated", stats.pipelinesCreated},
+            {"setPipeline", c.setPipeline},
+            {"setBindGroup", c.setBindGroup},
+            {"setVertexBuffer", c.setVertexBuffer},
+            {"setIndexBuffer", c.setIndexBuffer},
+            {"draw", c.draw},
+            {"drawIndexed", c.drawIndexed},
+            {"drawIndirect", c.drawIndirect},
+            {"executeBundles", c.executeBundles},
+            {"primitives", c.primitives},
+            {"instances", c.instances},
+            {"triangles", c.triangles},
+            {"encodeMilliseconds", stats.encodeMilliseconds}};
+}
+
+void printMarkdown(const std::string& model, const std::string& adapter,
+                   const std::vector<StrategyStats>& rows) {
+    std::printf("Model: %s  \nAdapter: %s\n\n", model.c_str(), adapter.c_str());
+    std::printf(
+        "| strategy | pipelines created | setPipeline | setBindGroup | setVertexBuffer | "
+        "setIndexBuffer | draw | drawIndexed | indirect draws | executeBundles | instances | "
+        "triangles |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+    for (const auto& row : rows) {
+        const auto& c = row.counters;
+        std::printf("| %s | %llu | %llu | %llu | %llu | %llu | %llu | %llu | %llu | %llu | %llu | "
+                    "%llu |\n",
+                    row.name.c_str(), (unsigned long long)row.pipelinesCreated,
+                    (unsigned long long)c.setPipeline, (unsigned long long)c.setBindGroup,
+                    (unsigned long long)c.setVertexBuffer, (unsigned long long)c.setIndexBuffer,
+                    (unsigned long long)c.draw, (unsigned long long)c.drawIndexed,
+                    (unsigned long long)c.drawIndirect, (unsigned long long)c.executeBundles,
+                    (unsigned long long)c.instances, (unsigned long long)c.triangles);
+    }
+}
+
+int runStats(const StatsOptions& options, const GlobalOptions& global) {
+    std::vector<render::StrategyKind> kinds;
+    if (options.strategies.empty()) {
+        kinds.assign(render::allStrategies().begin(), render::allStrategies().end());
+    }
+    for (const auto& name : options.strategies) {
+        const auto kind = render::strategyFromName(name);
+        if (!kind) {
+            return reportError(
+                makeError(ErrorCode::InvalidArgument, "Unknown strategy '" + name + "'."));
+        }
+        kinds.push_back(*kind);
+    }
+    auto scene = scene::loadScene(options.model);
+    if (!scene) {
+        return reportError(scene.error());
+    }
+    for (const auto& warning : scene->warnings) {
+        std::fprintf(stderr, "warning: %s\n", warning.c_str());
+    }
+    gpu::ContextOptions contextOptions;
+    contextOptions.allowNullBackend = global.allowNullBackend;
+    auto context = gpu::Context::create(contextOptions);
+    if (!context) {
+        return reportError(context.error());
+    }
+    auto renderer = render::Renderer::create(*context, {{options.width, options.height, 1}});
+    if (!renderer) {
+        return reportError(renderer.error());
+    }
+    const auto camera = render::Camera::framing(scene->bounds, renderer->target().aspect());
+    std::vector<StrategyStats> rows;
+    for (auto kind : kinds) {
+        if (auto prepared = renderer->prepare(*scene, kind); !prepared) {
+            return reportError(prepared.error());
+        }
+        StrategyStats stats;
+        stats.name = std::string(render::strategyName(kind));
+        stats.pipelinesCreated = renderer->setup().pipelinesCreated;
+        const auto frame = renderer->renderFrame(camera);
+        stats.counters = frame.counters;
+        stats.encodeMilliseconds = frame.encodeMilliseconds;
+        if (auto image = renderer->readImage(); !image) {
+            return reportError(image.error());
+        }
+        rows.push_back(stats);
+    }
+    const std::string adapter = context->adapterDescription().summary();
+    if (options.json) {
+        nlohmann::json report = {{"model", options.model}, {"adapter", adapter}};
+        for (const auto& row : rows) {
+            report["strategies"].push_back(toJson(row));
+        }
+        std::printf("%s\n", report.dump(2).c_str());
+    } else {
+        printMarkdown(options.model, adapter, rows);
+    }
+    return kExitOk;
+}
+
+}  // namespace
+
+void addStatsCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) {
+    auto options = std::make_shared<StatsOptions>();
+    auto* command = app.add_subcommand(
+        "stats", "Count the WebGPU calls of one frame of a model, for every strategy.");
+    command->add_option("model", options->model, "The .gltf or .glb file")->required();
+    command->add_option("-s,--strategy", options->strategies,
+                        "Only these strategies (repeatable; default: all)");
+    command->add_flag("--json", options->json, "Print JSON instead of a Markdown table");
+    command->callback([options, &global, &exitCode] { exitCode = runStats(*options, global); });
+}
+
+}  // namespace encore::app

@@ -1,0 +1,245 @@
+// Per-frame call counts of every strategy against what the glTF structure implies, on every
+// sample model and on a generated scene; plus the call order each strategy promises.
+
+#include <gtest/gtest.h>
+
+#include <map>
+#include <set>
+
+#include "GpuTestSupport.h"
+#include "TestPaths.h"
+#include "encore/core/FileIO.h"
+#include "encore/render/Renderer.h"
+#include "encore/scene/SceneGenerator.h"
+
+namespace encore::render {
+namespace {
+
+using test::ModelVariant;
+
+// What the scene's structure says each strategy must do.
+struct Structure {
+    std::uint64_t instances = 0;           // Mesh nodes (and GPU-instancing copies).
+    std::uint64_t nodePrimitiveDraws = 0;  // Sum over instances of their mesh's primitives.
+    std::uint64_t nodeIndexedDraws = 0;
+    std::uint64_t nodeSlots = 0;           // Vertex buffer slots with bufferView layouts.
+    std::uint64_t drawnPrimitives = 0;     // Primitives of meshes with at least one instance.
+    std::uint64_t drawnIndexed = 0;
+    std::uint64_t drawnSlots = 0;
+    std::uint64_t allPrimitives = 0;       // Of every mesh, instanced or not.
+};
+
+// Slots the position and normal of a primitive need when bound where they lie: one when they
+// are interleaved in one bufferView (offsets within one stride), two otherwise.
+std::uint64_t slotsOf(const scene::SceneData& scene, const scene::Primitive& primitive) {
+    const auto& position = scene.accessors[primitive.attribute(scene::Semantic::Position)->index()];
+    const auto& normal = scene.accessors[primitive.attribute(scene::Semantic::Normal)->index()];
+    const auto distance = position.byteOffset > normal.byteOffset
+                              ? position.byteOffset - normal.byteOffset
+                              : normal.byteOffset - position.byteOffset;
+    const bool interleaved = position.view == normal.view &&
+                             position.byteStride == normal.byteStride &&
+                             distance < position.byteStride && position.byteStride % 4 == 0;
+    return interleaved ? 1 : 2;
+}
+
+Structure structureOf(const scene::SceneData& scene) {
+    Structure s;
+    std::vector<std::uint64_t> instancesOfMesh(scene.meshes.size(), 0);
+    for (const auto& instance : scene.instances) {
+        ++instancesOfMesh[instance.mesh.index()];
+    }
+    s.instances = scene.instances.size();
+    for (std::size_t mesh = 0; mesh < scene.meshes.size(); ++mesh) {
+        for (const auto& primitive : scene.meshes[mesh].primitives) {
+            const std::uint64_t slots = slotsOf(scene, primitive);
+            const bool indexed = primitive.indices.has_value();
+            ++s.allPrimitives;
+            s.nodePrimitiveDraws += instancesOfMesh[mesh];
+            s.nodeIndexedDraws += indexed ? instancesOfMesh[mesh] : 0;
+            s.nodeSlots += slots * instancesOfMesh[mesh];
+            if (instancesOfMesh[mesh] > 0) {
+                ++s.drawnPrimitives;
+                s.drawnIndexed += indexed;
+                s.drawnSlots += slots;
+            }
+        }
+    }
+    return s;
+}
+
+struct Frame {
+    DrawCounters counters;
+    std::uint64_t pipelinesCreated = 0;
+    std::vector<RecordedCall> trace;
+};
+
+Frame renderWith(Renderer& renderer, const scene::SceneData& scene, StrategyKind kind) {
+    Frame frame;
+    auto prepared = renderer.prepare(scene, kind);
+    EXPECT_TRUE(prepared.ok()) << prepared.error().message;
+    frame.pipelinesCreated = renderer.setup().pipelinesCreated;
+    frame.counters = renderer.renderFrame(Camera::framing(scene.bounds, 1.0f), 0.0f, &frame.trace)
+                         .counters;
+    auto image = renderer.readImage();
+    EXPECT_TRUE(image.ok()) << image.error().message;
+    return frame;
+}
+
+std::uint64_t calls(const Frame& frame, RecordedCall::Kind kind, std::uint32_t index) {
+    std::uint64_t count = 0;
+    for (const auto& call : frame.trace) {
+        count += call.kind == kind && call.index == index;
+    }
+    return count;
+}
+
+// Each pipeline is set once: the loops are grouped by pipeline.
+void expectEachPipelineSetOnce(const Frame& frame) {
+    std::set<const void*> seen;
+    for (const auto& call : frame.trace) {
+        if (call.kind == RecordedCall::Kind::SetPipeline) {
+            EXPECT_TRUE(seen.insert(call.object).second) << "a pipeline was set twice";
+        }
+    }
+}
+
+void checkCounts(const scene::SceneData& scene) {
+    ENCORE_REQUIRE_VULKAN(context);
+    auto renderer = Renderer::create(*context, {{64, 64, 1}});
+    ASSERT_TRUE(renderer.ok()) << renderer.error().message;
+    const Structure s = structureOf(scene);
+
+    const Frame naive = renderWith(*renderer, scene, StrategyKind::Naive);
+    EXPECT_EQ(naive.pipelinesCreated, s.allPrimitives);
+    EXPECT_EQ(naive.counters.setPipeline, s.nodePrimitiveDraws);  // Per (node, primitive).
+    EXPECT_EQ(naive.counters.drawCalls(), s.nodePrimitiveDraws);
+    EXPECT_EQ(naive.counters.setBindGroup, 1 + s.instances);  // Frame + one per node.
+    EXPECT_EQ(naive.counters.setVertexBuffer, 2 * s.nodePrimitiveDraws);
+    EXPECT_EQ(naive.counters.setIndexBuffer, s.nodeIndexedDraws);
+    EXPECT_EQ(naive.counters.instances, s.nodePrimitiveDraws);
+
+    const Frame layouts = renderWith(*renderer, scene, StrategyKind::Layouts);
+    EXPECT_EQ(layouts.counters.setPipeline, s.nodePrimitiveDraws);
+    EXPECT_EQ(layouts.counters.setVertexBuffer, s.nodeSlots);
+    EXPECT_EQ(layouts.counters.drawCalls(), s.nodePrimitiveDraws);
+
+    const Frame cache = renderWith(*renderer, scene, StrategyKind::PipelineCache);
+    EXPECT_LE(cache.pipelinesCreated, s.drawnPrimitives);
+    EXPECT_EQ(cache.counters.setPipeline, cache.pipelinesCreated);  // Once per distinct key.
+    EXPECT_EQ(cache.counters.drawCalls(), s.nodePrimitiveDraws);
+    EXPECT_EQ(cache.counters.setBindGroup, 1 + s.nodePrimitiveDraws);
+    EXPECT_EQ(cache.counters.setVertexBuffer, s.drawnSlots);  // Once per primitive.
+    EXPECT_EQ(cache.counters.setIndexBuffer, s.drawnIndexed);
+    expectEachPipelineSetOnce(cache);
+
+    const Frame instancing = renderWith(*renderer, scene, StrategyKind::Instancing);
+    EXPECT_EQ(instancing.counters.drawCalls(), s.drawnPrimitives);  // One per primitive.
+    EXPECT_EQ(instancing.counters.setBindGroup, 2u);  // Frame and the instance buffer, once.
+    EXPECT_EQ(calls(instancing, RecordedCall::Kind::SetBindGroup, 1), 1u);
+    EXPECT_EQ(instancing.counters.instances, s.nodePrimitiveDraws);
+    EXPECT_EQ(instancing.counters.setPipeline, instancing.pipelinesCreated);
+    EXPECT_EQ(instancing.counters.triangles, naive.counters.triangles);
+    expectEachPipelineSetOnce(instancing);
+
+    const Frame materials = renderWith(*renderer, scene, StrategyKind::Materials);
+    EXPECT_EQ(materials.counters.triangles, naive.counters.triangles);
+    EXPECT_EQ(calls(materials, RecordedCall::Kind::SetBindGroup, 1), 1u);
+    // Opaque geometry: each material bind group set at most once per pipeline that uses it.
+    std::set<std::pair<const void*, const void*>> materialPerPipeline;
+    const void* pipeline = nullptr;
+    bool blendedPart = false;
+    std::set<const void*> opaquePipelines;
+    for (const auto& call : materials.trace) {
+        if (call.kind == RecordedCall::Kind::SetPipeline) {
+            // Blended draws come last and may return to a pipeline (back-to-front order).
+            blendedPart = blendedPart || opaquePipelines.contains(call.object);
+            opaquePipelines.insert(call.object);
+            pipeline = call.object;
+        } else if (call.kind == RecordedCall::Kind::SetBindGroup && call.index == 2 &&
+                   !blendedPart) {
+            EXPECT_TRUE(materialPerPipeline.insert({pipeline, call.object}).second)
+                << "a material was set twice under one pipeline";
+        }
+    }
+    std::set<scene::MaterialId> usedMaterials;
+    for (std::size_t mesh = 0; mesh < scene.meshes.size(); ++mesh) {
+        for (const auto& primitive : scene.meshes[mesh].primitives) {
+            usedMaterials.insert(primitive.material);
+        }
+    }
+    EXPECT_GE(calls(materials, RecordedCall::Kind::SetBindGroup, 2),
+              s.drawnPrimitives > 0 ? 1u : 0u);
+    EXPECT_TRUE(context->checkNoErrors("counting").ok());
+}
+
+class StrategyCountsTest : public ::testing::TestWithParam<ModelVariant> {};
+
+TEST_P(StrategyCountsTest, CountsFollowTheGltfStructure) {
+    const ModelVariant& model = GetParam();
+    if (model.path.empty()) {
+        GTEST_SKIP() << "../shared/models is absent beside the clone: no sample model counted";
+    }
+    auto scene = scene::loadScene(model.path);
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+    checkCounts(*scene);
+}
+
+std::vector<ModelVariant> variants() {
+    auto all = test::sharedModelVariants();
+    if (all.empty()) {
+        all.push_back({"none", "none", ""});
+    }
+    return all;
+}
+
+INSTANTIATE_TEST_SUITE_P(SharedModels, StrategyCountsTest, ::testing::ValuesIn(variants()),
+                         [](const auto& info) { return info.param.testName(); });
+
+TEST(StrategyCountsGeneratedTest, ManyInstancesOfFewMeshes) {
+    scene::GeneratorOptions options;
+    options.objectCount = 300;
+    options.meshCount = 7;
+    options.materialCount = 3;
+    auto glb = scene::generateSceneGlb(options);
+    ASSERT_TRUE(glb.ok());
+    auto scene = scene::loadSceneFromMemory(*glb, {}, "generated.glb");
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+    checkCounts(*scene);
+
+    // The generator's shapes share one vertex layout: instancing draws each mesh once.
+    ENCORE_REQUIRE_VULKAN(context);
+    auto renderer = Renderer::create(*context, {{64, 64, 1}});
+    ASSERT_TRUE(renderer.ok());
+    const Frame instancing = renderWith(*renderer, *scene, StrategyKind::Instancing);
+    EXPECT_EQ(instancing.counters.drawCalls(), 7u);
+    EXPECT_EQ(instancing.counters.setPipeline, 1u);
+    EXPECT_EQ(instancing.counters.instances, 300u);
+    const Frame materials = renderWith(*renderer, *scene, StrategyKind::Materials);
+    EXPECT_EQ(calls(materials, RecordedCall::Kind::SetBindGroup, 2), 3u);  // One per material.
+}
+
+// The case study's published Buggy figures: 236 -> 1 setPipeline, 191 -> 237 setBindGroup,
+// 708 -> 444 vertex + index buffer sets, with pipeline caching.
+TEST(StrategyCountsGeneratedTest, BuggyMatchesTheCaseStudy) {
+    const auto dir = test::sharedModelsDir();
+    if (!dir) {
+        GTEST_SKIP() << "../shared/models is absent beside the clone";
+    }
+    auto scene = scene::loadScene(*dir / "Buggy/glTF-Draco/Buggy.gltf");
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+    ENCORE_REQUIRE_VULKAN(context);
+    auto renderer = Renderer::create(*context, {{64, 64, 1}});
+    ASSERT_TRUE(renderer.ok());
+    const Frame layouts = renderWith(*renderer, *scene, StrategyKind::Layouts);
+    const Frame cache = renderWith(*renderer, *scene, StrategyKind::PipelineCache);
+    EXPECT_EQ(layouts.counters.setPipeline, 236u);
+    EXPECT_EQ(cache.counters.setPipeline, 1u);
+    EXPECT_EQ(layouts.counters.setBindGroup, 191u);
+    EXPECT_EQ(cache.counters.setBindGroup, 237u);
+    EXPECT_EQ(layouts.counters.setVertexBuffer + layouts.counters.setIndexBuffer, 708u);
+    EXPECT_EQ(cache.counters.setVertexBuffer + cache.counters.setIndexBuffer, 444u);
+}
+
+}  // namespace
+}  // namespace encore::render
