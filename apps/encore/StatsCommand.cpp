@@ -26,24 +26,26 @@ struct StrategyStats {
     std::string name;
     std::uint64_t pipelinesCreated = 0;
     render::DrawCounters counters;
+    render::DrawCounters bundleContents;  // Zero unless the strategy replays bundles.
+    std::uint64_t bundlesRecorded = 0;
     double encodeMilliseconds = 0.0;
 };
 
+nlohmann::json countersJson(const render::DrawCounters& c) {
+    return {{"setPipeline", c.setPipeline},       {"setBindGroup", c.setBindGroup},
+            {"setVertexBuffer", c.setVertexBuffer}, {"setIndexBuffer", c.setIndexBuffer},
+            {"draw", c.draw},                     {"drawIndexed", c.drawIndexed},
+            {"drawIndirect", c.drawIndirect},     {"executeBundles", c.executeBundles},
+            {"primitives", c.primitives},         {"instances", c.instances},
+            {"triangles", c.triangles}};
+}
+
 nlohmann::json toJson(const StrategyStats& stats) {
-    const auto& c = stats.counters;
     return {{"strategy", stats.name},
             {"pipelinesCreated", stats.pipelinesCreated},
-            {"setPipeline", c.setPipeline},
-            {"setBindGroup", c.setBindGroup},
-            {"setVertexBuffer", c.setVertexBuffer},
-            {"setIndexBuffer", c.setIndexBuffer},
-            {"draw", c.draw},
-            {"drawIndexed", c.drawIndexed},
-            {"drawIndirect", c.drawIndirect},
-            {"executeBundles", c.executeBundles},
-            {"primitives", c.primitives},
-            {"instances", c.instances},
-            {"triangles", c.triangles},
+            {"frame", countersJson(stats.counters)},
+            {"bundleContents", countersJson(stats.bundleContents)},
+            {"bundlesRecorded", stats.bundlesRecorded},
             {"encodeMilliseconds", stats.encodeMilliseconds}};
 }
 
@@ -54,17 +56,25 @@ void printMarkdown(const std::string& model, const std::string& adapter,
         "| strategy | pipelines created | setPipeline | setBindGroup | setVertexBuffer | "
         "setIndexBuffer | draw | drawIndexed | indirect draws | executeBundles | instances | "
         "triangles |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
-    for (const auto& row : rows) {
-        const auto& c = row.counters;
+    auto printRow = [](const std::string& name, std::uint64_t pipelines,
+                       const render::DrawCounters& c) {
         std::printf("| %s | %llu | %llu | %llu | %llu | %llu | %llu | %llu | %llu | %llu | %llu | "
                     "%llu |\n",
-                    row.name.c_str(), (unsigned long long)row.pipelinesCreated,
+                    name.c_str(), (unsigned long long)pipelines,
                     (unsigned long long)c.setPipeline, (unsigned long long)c.setBindGroup,
                     (unsigned long long)c.setVertexBuffer, (unsigned long long)c.setIndexBuffer,
                     (unsigned long long)c.draw, (unsigned long long)c.drawIndexed,
                     (unsigned long long)c.drawIndirect, (unsigned long long)c.executeBundles,
                     (unsigned long long)c.instances, (unsigned long long)c.triangles);
+    };
+    for (const auto& row : rows) {
+        printRow(row.name, row.pipelinesCreated, row.counters);
+        if (row.bundlesRecorded > 0) {
+            printRow(row.name + ": inside its bundles", 0, row.bundleContents);
+        }
     }
+    std::printf("\nPer frame; \"inside its bundles\" rows count the commands recorded once into "
+                "the render bundles that the frame replays.\n");
 }
 
 int runStats(const StatsOptions& options, const GlobalOptions& global) {
@@ -108,6 +118,8 @@ int runStats(const StatsOptions& options, const GlobalOptions& global) {
         stats.pipelinesCreated = renderer->setup().pipelinesCreated;
         const auto frame = renderer->renderFrame(camera);
         stats.counters = frame.counters;
+        stats.bundleContents = frame.bundleContents;
+        stats.bundlesRecorded = renderer->strategy()->bundlesRecorded();
         stats.encodeMilliseconds = frame.encodeMilliseconds;
         if (auto image = renderer->readImage(); !image) {
             return reportError(image.error());

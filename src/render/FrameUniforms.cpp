@@ -1,6 +1,7 @@
 #include "encore/render/FrameUniforms.h"
 
 #include <cstring>
+#include <vector>
 
 #include <glm/gtc/type_ptr.hpp>
 
@@ -23,15 +24,41 @@ FrameUniforms::FrameUniforms(const wgpu::Device& device, const BindGroupLayouts&
     mBindGroup = device.CreateBindGroup(&descriptor);
 }
 
-void FrameUniforms::update(const wgpu::Queue& queue, const Camera& camera,
-                           float timeSeconds) const {
+namespace {
+FrameUniform makeFrameUniform(const Camera& camera, float timeSeconds) {
     FrameUniform uniform{};
     std::memcpy(uniform.projection, glm::value_ptr(camera.projection), sizeof(uniform.projection));
     std::memcpy(uniform.view, glm::value_ptr(camera.view), sizeof(uniform.view));
     std::memcpy(uniform.cameraPosition, glm::value_ptr(camera.position),
                 sizeof(uniform.cameraPosition));
     uniform.time = timeSeconds;
+    return uniform;
+}
+}  // namespace
+
+void FrameUniforms::update(const wgpu::Queue& queue, const Camera& camera,
+                           float timeSeconds) const {
+    const FrameUniform uniform = makeFrameUniform(camera, timeSeconds);
     queue.WriteBuffer(mBuffer, 0, &uniform, sizeof(uniform));
+}
+
+void FrameUniforms::writeViews(const wgpu::Device& device, const wgpu::Queue& queue,
+                               std::span<const Camera> cameras, float timeSeconds) {
+    const std::uint64_t size = kViewStride * cameras.size();
+    if (!mViews || mViews.GetSize() < size) {
+        mViews = gpu::createBuffer(device, wgpu::BufferUsage::CopySrc | wgpu::BufferUsage::CopyDst,
+                                   size, "view cameras");
+    }
+    std::vector<std::uint8_t> bytes(size, 0);
+    for (std::size_t view = 0; view < cameras.size(); ++view) {
+        const FrameUniform uniform = makeFrameUniform(cameras[view], timeSeconds);
+        std::memcpy(bytes.data() + view * kViewStride, &uniform, sizeof(uniform));
+    }
+    queue.WriteBuffer(mViews, 0, bytes.data(), bytes.size());
+}
+
+void FrameUniforms::selectView(const wgpu::CommandEncoder& commands, std::size_t view) const {
+    commands.CopyBufferToBuffer(mViews, view * kViewStride, mBuffer, 0, sizeof(FrameUniform));
 }
 
 }  // namespace encore::render

@@ -70,8 +70,8 @@ InstanceRange InstanceBuffer::meshRange(scene::MeshId mesh, bool mirrored) const
 }
 
 void InstanceBuffer::update(const wgpu::Queue& queue, std::size_t sceneInstance,
-                            const scene::Instance& instance) const {
-    const TransformUniform transform = makeTransformUniform(instance);
+                          const glm::mat4& world) const {
+    const TransformUniform transform = makeTransformUniform(world);
     queue.WriteBuffer(mBuffer, std::uint64_t(mSlots[sceneInstance]) * sizeof(TransformUniform),
                       &transform, sizeof(transform));
 }

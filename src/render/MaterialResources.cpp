@@ -24,6 +24,9 @@ constexpr wgpu::TextureUsage kTextureUsage =
     wgpu::TextureUsage::RenderAttachment | wgpu::TextureUsage::CopySrc;
 
 std::string describeImage(scene::ImageId id, const scene::Image& image) {
+    if (!id.valid()) {
+        return "Image '" + image.name + "'";  // A replacement, not one of the scene's images.
+    }
     return "Image " + std::to_string(id.value) + " ('" + image.name + "')";
 }
 
@@ -129,12 +132,21 @@ struct MaterialResources::Builder {
                                                              std::to_string(scene.images.size()) +
                                                              " images).");
         }
-        const scene::Image& image = scene.images[id.index()];
         ImageTextures& textures = out.mImageTextures[id.index()];
         std::size_t& slot = space == ColorSpace::Srgb ? textures.srgb : textures.linear;
         if (slot != kNone) {
             return slot;
         }
+        auto uploaded = uploadImage(id, scene.images[id.index()], space);
+        if (uploaded) {
+            slot = *uploaded;
+        }
+        return uploaded;
+    }
+
+    // Validates and uploads one image with its mip chain; kNone when it has no pixels.
+    Result<std::size_t> uploadImage(scene::ImageId id, const scene::Image& image,
+                                    ColorSpace space) {
         if (image.rgba8.empty() || image.width == 0 || image.height == 0) {
             return kNone;
         }
@@ -154,12 +166,12 @@ struct MaterialResources::Builder {
                                  " RGBA8 needs " + std::to_string(expected) + ").");
         }
         const bool srgb = space == ColorSpace::Srgb;
-        slot =
+        const std::size_t index =
             addTexture(image.name + (srgb ? " (sRGB)" : " (linear)"), image.width, image.height,
                        srgb ? wgpu::TextureFormat::RGBA8UnormSrgb : wgpu::TextureFormat::RGBA8Unorm,
                        image.rgba8.data());
-        ENCORE_TRY(mipmaps.generate(encoder, out.mTextures[slot]));
-        return slot;
+        ENCORE_TRY(mipmaps.generate(encoder, out.mTextures[index]));
+        return index;
     }
 
     // The texture a texture reference binds, validating the reference on the way.
@@ -283,31 +295,91 @@ Result<MaterialResources> MaterialResources::create(const wgpu::Device& device,
             }
         }
         resources.mDefaultBaseColor.push_back(textureIndex == kDefaultTexture);
+        resources.mMaterialTextures.push_back(textureIndex);
+        resources.mMaterialSamplers.push_back(samplerIndex);
 
         const MaterialUniform uniform = makeMaterialUniform(material);
         std::memcpy(uniformBytes.data() + i * resources.mUniformStride, &uniform, kUniformSize);
 
-        wgpu::BindGroupEntry entries[3]{};
-        entries[0].binding = 0;
-        entries[0].buffer = resources.mUniforms;
-        entries[0].offset = i * resources.mUniformStride;
-        entries[0].size = kUniformSize;
-        entries[1].binding = 1;
-        entries[1].sampler = resources.mSamplers[samplerIndex];
-        entries[2].binding = 2;
-        entries[2].textureView = resources.mTextures[textureIndex].CreateView();
-        wgpu::BindGroupDescriptor descriptor{};
-        descriptor.label = material.name.empty() ? "material" : material.name.c_str();
-        descriptor.layout = layouts.material;
-        descriptor.entryCount = 3;
-        descriptor.entries = entries;
-        resources.mBindGroups.push_back(device.CreateBindGroup(&descriptor));
+        resources.mBindGroups.push_back(resources.createBindGroup(
+            device, layouts, i, material.name.empty() ? "material" : material.name.c_str()));
     }
     queue.WriteBuffer(resources.mUniforms, 0, uniformBytes.data(), uniformBytes.size());
 
     wgpu::CommandBuffer commands = builder.encoder.Finish();
     queue.Submit(1, &commands);
     return resources;
+}
+
+wgpu::BindGroup MaterialResources::createBindGroup(const wgpu::Device& device,
+                                                   const BindGroupLayouts& layouts,
+                                                   std::size_t material, const char* label) const {
+    wgpu::BindGroupEntry entries[3]{};
+    entries[0].binding = 0;
+    entries[0].buffer = mUniforms;
+    entries[0].offset = material * mUniformStride;
+    entries[0].size = kUniformSize;
+    entries[1].binding = 1;
+    entries[1].sampler = mSamplers[mMaterialSamplers[material]];
+    entries[2].binding = 2;
+    entries[2].textureView = mTextures[mMaterialTextures[material]].CreateView();
+    wgpu::BindGroupDescriptor descriptor{};
+    descriptor.label = label;
+    descriptor.layout = layouts.material;
+    descriptor.entryCount = 3;
+    descriptor.entries = entries;
+    return device.CreateBindGroup(&descriptor);
+}
+
+Result<void> MaterialResources::replaceBaseColorImage(const wgpu::Device& device,
+                                                      const wgpu::Queue& queue,
+                                                      shaders::ShaderLibrary& shaders,
+                                                      const BindGroupLayouts& layouts,
+                                                      scene::MaterialId material,
+                                                      const scene::Image& image) {
+    if (!material.valid() || material.index() >= mBindGroups.size()) {
+        return makeError(ErrorCode::InvalidArgument,
+                         "Material " + std::to_string(material.value) + " does not exist.");
+    }
+    auto mipmaps = MipmapGenerator::create(device, shaders);
+    if (!mipmaps) {
+        return mipmaps.error();
+    }
+    const scene::SceneData noScene;
+    wgpu::Limits limits{};
+    device.GetLimits(&limits);
+    Builder builder{device, queue, noScene, *this, *mipmaps, device.CreateCommandEncoder()};
+    builder.maxDimension = limits.maxTextureDimension2D;
+    auto uploaded = builder.uploadImage(scene::ImageId{}, image, ColorSpace::Srgb);
+    if (!uploaded) {
+        return uploaded.error().withContext("Replacing the base colour image of material " +
+                                            std::to_string(material.value));
+    }
+    if (*uploaded == kNone) {
+        return makeError(ErrorCode::InvalidArgument,
+                         "The replacement image for material " + std::to_string(material.value) +
+                             " has no pixels.");
+    }
+    wgpu::CommandBuffer commands = builder.encoder.Finish();
+    queue.Submit(1, &commands);
+
+    const std::size_t old = mMaterialTextures[material.index()];
+    mMaterialTextures[material.index()] = *uploaded;
+    mDefaultBaseColor[material.index()] = false;
+    mBindGroups[material.index()] =
+        createBindGroup(device, layouts, material.index(), "material (replaced texture)");
+    ++mGeneration;
+
+    const bool stillUsed =
+        old == kDefaultTexture ||
+        std::find(mMaterialTextures.begin(), mMaterialTextures.end(), old) !=
+            mMaterialTextures.end();
+    if (!stillUsed) {
+        // Free the GPU memory now: anything still referencing it (a stale bundle) would fail
+        // validation at submit instead of drawing old data.
+        mTextures[old].Destroy();
+    }
+    return {};
 }
 
 const wgpu::BindGroup& MaterialResources::bindGroup(scene::MaterialId material) const {

@@ -28,8 +28,8 @@ NodeUniforms::NodeUniforms(const wgpu::Device& device, const BindGroupLayouts& l
 }
 
 void NodeUniforms::update(const wgpu::Queue& queue, std::size_t sceneInstance,
-                          const scene::Instance& instance) const {
-    const TransformUniform transform = makeTransformUniform(instance);
+                          const glm::mat4& world) const {
+    const TransformUniform transform = makeTransformUniform(world);
     queue.WriteBuffer(mBuffers[sceneInstance], 0, &transform, sizeof(transform));
 }
 

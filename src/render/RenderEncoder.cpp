@@ -1,5 +1,7 @@
 #include "encore/render/RenderEncoder.h"
 
+#include <cassert>
+
 namespace encore::render {
 
 DrawCounters& DrawCounters::operator+=(const DrawCounters& other) {
@@ -105,6 +107,13 @@ void RenderEncoder::drawIndexedIndirect(const wgpu::Buffer& buffer, std::uint64_
     ++mCounters.primitives;
     record(RecordedCall::Kind::Draw, buffer.Get());
     ENCORE_FORWARD(DrawIndexedIndirect(buffer, offset));
+}
+
+void RenderEncoder::executeBundles(std::span<const wgpu::RenderBundle> bundles) {
+    assert(mPass && "bundles execute only in render passes");
+    ++mCounters.executeBundles;
+    record(RecordedCall::Kind::ExecuteBundles, nullptr, static_cast<std::uint32_t>(bundles.size()));
+    mPass.ExecuteBundles(bundles.size(), bundles.data());
 }
 
 #undef ENCORE_FORWARD

@@ -62,31 +62,95 @@ Result<void> Renderer::prepare(const scene::SceneData& scene, StrategyKind kind)
 
 FrameResult Renderer::renderFrame(const Camera& camera, float timeSeconds,
                                   std::vector<RecordedCall>* trace) {
+    return renderPasses(std::span(&camera, 1), timeSeconds, trace);
+}
+
+FrameResult Renderer::renderViews(std::span<const Camera> cameras, float timeSeconds) {
+    return renderPasses(cameras, timeSeconds, nullptr);
+}
+
+FrameResult Renderer::renderPasses(std::span<const Camera> cameras, float timeSeconds,
+                                   std::vector<RecordedCall>* trace) {
     FrameResult result;
-    mFrame->update(mContext->queue(), camera, timeSeconds);
+    if (cameras.empty()) {
+        return result;
+    }
+    const bool multiView = cameras.size() > 1;
+    if (multiView) {
+        mFrame->writeViews(mContext->device(), mContext->queue(), cameras, timeSeconds);
+    } else {
+        mFrame->update(mContext->queue(), cameras[0], timeSeconds);
+    }
+    const FrameState state{cameras[0], timeSeconds};
 
     const auto encodeStart = std::chrono::steady_clock::now();
     wgpu::CommandEncoder commandEncoder = mContext->device().CreateCommandEncoder();
-    wgpu::RenderPassColorAttachment color = mTarget.colorAttachment(mOptions.clearColor);
-    wgpu::RenderPassDepthStencilAttachment depth = mTarget.depthAttachment();
-    wgpu::RenderPassDescriptor passDescriptor{};
-    passDescriptor.colorAttachmentCount = 1;
-    passDescriptor.colorAttachments = &color;
-    passDescriptor.depthStencilAttachment = &depth;
-    wgpu::RenderPassEncoder pass = commandEncoder.BeginRenderPass(&passDescriptor);
     if (mStrategy) {
-        RenderEncoder encoder(pass, result.counters);
-        encoder.setTrace(trace);
-        mStrategy->encode(encoder, FrameState{camera, timeSeconds});
+        mStrategy->beforePass(commandEncoder, state);
     }
-    pass.End();
+    const std::uint32_t viewWidth = mTarget.width() / std::uint32_t(cameras.size());
+    for (std::size_t view = 0; view < cameras.size(); ++view) {
+        if (multiView) {
+            mFrame->selectView(commandEncoder, view);
+        }
+        wgpu::RenderPassColorAttachment color = mTarget.colorAttachment(mOptions.clearColor);
+        wgpu::RenderPassDepthStencilAttachment depth = mTarget.depthAttachment();
+        if (view > 0) {
+            color.loadOp = wgpu::LoadOp::Load;  // Keep the views drawn before.
+        }
+        if (multiView) {
+            color.storeOp = wgpu::StoreOp::Store;  // Multisampled contents survive the passes.
+        }
+        wgpu::RenderPassDescriptor passDescriptor{};
+        passDescriptor.label = "encore frame";
+        passDescriptor.colorAttachmentCount = 1;
+        passDescriptor.colorAttachments = &color;
+        passDescriptor.depthStencilAttachment = &depth;
+        wgpu::RenderPassEncoder pass = commandEncoder.BeginRenderPass(&passDescriptor);
+        if (multiView) {
+            pass.SetViewport(float(view * viewWidth), 0.0f, float(viewWidth),
+                             float(mTarget.height()), 0.0f, 1.0f);
+        }
+        if (mStrategy) {
+            RenderEncoder encoder(pass, result.counters);
+            encoder.setTrace(trace);
+            mStrategy->encode(encoder, FrameState{cameras[view], timeSeconds});
+        }
+        pass.End();
+    }
     wgpu::CommandBuffer commands = commandEncoder.Finish();
     result.encodeMilliseconds = millisecondsSince(encodeStart);
 
     const auto submitStart = std::chrono::steady_clock::now();
     mContext->queue().Submit(1, &commands);
     result.submitMilliseconds = millisecondsSince(submitStart);
+    if (mStrategy) {
+        result.bundleContents = mStrategy->bundleContents();
+    }
     return result;
+}
+
+Result<void> Renderer::updateInstance(std::size_t instance, const glm::mat4& world) {
+    if (!mStrategy) {
+        return makeError(ErrorCode::InvalidArgument, "No scene is prepared.");
+    }
+    return mStrategy->updateInstance(instance, world);
+}
+
+Result<void> Renderer::updateMaterial(scene::MaterialId material, const scene::Material& value) {
+    if (!mStrategy) {
+        return makeError(ErrorCode::InvalidArgument, "No scene is prepared.");
+    }
+    return mStrategy->updateMaterial(material, value);
+}
+
+Result<void> Renderer::replaceBaseColorImage(scene::MaterialId material,
+                                             const scene::Image& image) {
+    if (!mStrategy) {
+        return makeError(ErrorCode::InvalidArgument, "No scene is prepared.");
+    }
+    ENCORE_TRY(mStrategy->replaceBaseColorImage(material, image));
+    return mContext->checkNoErrors("Replacing a base colour image");
 }
 
 Result<image::ImageRgba8> Renderer::readImage() {

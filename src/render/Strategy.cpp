@@ -1,7 +1,9 @@
 #include "encore/render/Strategy.h"
 
 #include <array>
+#include <string>
 
+#include "strategies/BundlesStrategy.h"
 #include "strategies/InstancingStrategy.h"
 #include "strategies/LayoutsStrategy.h"
 #include "strategies/MaterialsStrategy.h"
@@ -21,10 +23,11 @@ constexpr std::array kStrategyNames = {
     StrategyName{StrategyKind::PipelineCache, "pipeline-cache"},
     StrategyName{StrategyKind::Instancing, "instancing"},
     StrategyName{StrategyKind::Materials, "materials"},
+    StrategyName{StrategyKind::Bundles, "bundles"},
 };
 constexpr std::array kAllStrategies = {StrategyKind::Naive, StrategyKind::Layouts,
                                        StrategyKind::PipelineCache, StrategyKind::Instancing,
-                                       StrategyKind::Materials};
+                                       StrategyKind::Materials, StrategyKind::Bundles};
 }  // namespace
 
 std::string_view strategyName(StrategyKind kind) {
@@ -49,6 +52,15 @@ std::span<const StrategyKind> allStrategies() {
     return kAllStrategies;
 }
 
+Result<void> checkInstanceIndex(std::size_t instance, std::size_t instanceCount) {
+    if (instance >= instanceCount) {
+        return makeError(ErrorCode::InvalidArgument,
+                         "Instance " + std::to_string(instance) + " does not exist (the scene has " +
+                             std::to_string(instanceCount) + " instances).");
+    }
+    return {};
+}
+
 std::unique_ptr<Strategy> createStrategy(StrategyKind kind) {
     switch (kind) {
         case StrategyKind::Naive:
@@ -61,6 +73,8 @@ std::unique_ptr<Strategy> createStrategy(StrategyKind kind) {
             return std::make_unique<InstancingStrategy>();
         case StrategyKind::Materials:
             return std::make_unique<MaterialsStrategy>();
+        case StrategyKind::Bundles:
+            return std::make_unique<BundlesStrategy>();
     }
     return nullptr;
 }

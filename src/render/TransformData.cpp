@@ -13,4 +13,15 @@ TransformUniform makeTransformUniform(const scene::Instance& instance) {
     return transform;
 }
 
+TransformUniform makeTransformUniform(const glm::mat4& world) {
+    scene::Instance instance;
+    instance.world = world;
+    instance.normalMatrix = normalMatrixOf(world);
+    return makeTransformUniform(instance);
+}
+
+glm::mat4 normalMatrixOf(const glm::mat4& world) {
+    return glm::mat4(glm::transpose(glm::inverse(glm::mat3(world))));
+}
+
 }  // namespace encore::render

@@ -5,6 +5,8 @@
 
 #include <webgpu/webgpu_cpp.h>
 
+#include <span>
+
 #include "encore/render/BindGroupLayouts.h"
 #include "encore/render/Camera.h"
 
@@ -24,11 +26,20 @@ class FrameUniforms {
     FrameUniforms(const wgpu::Device& device, const BindGroupLayouts& layouts);
 
     void update(const wgpu::Queue& queue, const Camera& camera, float timeSeconds) const;
+
+    // Several views from the same recorded commands: each view's camera goes into a slot of a
+    // staging buffer, and selectView() copies one slot into the frame buffer between passes,
+    // so the bind group (and any bundle that set it) never changes.
+    void writeViews(const wgpu::Device& device, const wgpu::Queue& queue,
+                    std::span<const Camera> cameras, float timeSeconds);
+    void selectView(const wgpu::CommandEncoder& commands, std::size_t view) const;
     const wgpu::BindGroup& bindGroup() const { return mBindGroup; }
     const wgpu::Buffer& buffer() const { return mBuffer; }
 
   private:
+    static constexpr std::uint64_t kViewStride = 256;  // Copy offsets need 4; 256 keeps slots apart.
     wgpu::Buffer mBuffer;
+    wgpu::Buffer mViews;
     wgpu::BindGroup mBindGroup;
 };
 

@@ -42,8 +42,7 @@ class InstanceBuffer {
     std::uint32_t size() const { return static_cast<std::uint32_t>(mInstances.size()); }
 
     // Rewrites one instance's transforms (animation, edits) without touching bind groups.
-    void update(const wgpu::Queue& queue, std::size_t sceneInstance,
-                const scene::Instance& instance) const;
+    void update(const wgpu::Queue& queue, std::size_t sceneInstance, const glm::mat4& world) const;
 
   private:
     wgpu::Buffer mBuffer;

@@ -83,6 +83,18 @@ class MaterialResources {
                         scene::MaterialId material,
                         const scene::Material& values);
 
+    // Replaces the base colour image of `material` with `image` (uploaded as a new sRGB texture
+    // with its mip chain), rebuilds the material's bind group and destroys the texture it
+    // replaced unless another material or the default still uses it. Bumps generation(): render
+    // bundles that bound the old bind group must be re-recorded before they execute again.
+    Result<void> replaceBaseColorImage(const wgpu::Device& device, const wgpu::Queue& queue,
+                                       shaders::ShaderLibrary& shaders,
+                                       const BindGroupLayouts& layouts,
+                                       scene::MaterialId material, const scene::Image& image);
+
+    // Incremented whenever a bind group is replaced.
+    std::uint64_t generation() const { return mGeneration; }
+
     std::size_t materialCount() const { return mBindGroups.size(); }
     // GPU textures created, the default one included.
     std::size_t textureCount() const { return mTextures.size(); }
@@ -123,6 +135,12 @@ class MaterialResources {
     wgpu::Buffer mUniforms;
     std::uint64_t mUniformStride = 256;
     std::vector<wgpu::BindGroup> mBindGroups;  // Indexed by MaterialId.
+    std::vector<std::size_t> mMaterialTextures;  // MaterialId -> index into mTextures.
+    std::vector<std::size_t> mMaterialSamplers;  // MaterialId -> index into mSamplers.
+    std::uint64_t mGeneration = 0;
+
+    wgpu::BindGroup createBindGroup(const wgpu::Device& device, const BindGroupLayouts& layouts,
+                                    std::size_t material, const char* label) const;
 };
 
 }  // namespace encore::render

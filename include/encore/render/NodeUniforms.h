@@ -21,8 +21,8 @@ class NodeUniforms {
     const wgpu::BindGroup& bindGroup(std::size_t sceneInstance) const {
         return mBindGroups[sceneInstance];
     }
-    void update(const wgpu::Queue& queue, std::size_t sceneInstance,
-                const scene::Instance& instance) const;
+    void update(const wgpu::Queue& queue, std::size_t sceneInstance, const glm::mat4& world) const;
+    std::size_t size() const { return mBindGroups.size(); }
 
   private:
     std::vector<wgpu::Buffer> mBuffers;

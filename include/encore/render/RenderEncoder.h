@@ -7,6 +7,7 @@
 #include <webgpu/webgpu_cpp.h>
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "encore/render/DrawCounters.h"
@@ -16,7 +17,7 @@ namespace encore::render {
 
 // One recorded call, for tests that check the order of calls rather than only their number.
 struct RecordedCall {
-    enum class Kind { SetPipeline, SetBindGroup, SetVertexBuffer, SetIndexBuffer, Draw };
+    enum class Kind { SetPipeline, SetBindGroup, SetVertexBuffer, SetIndexBuffer, Draw, ExecuteBundles };
     Kind kind;
     const void* object = nullptr;  // The pipeline, bind group or buffer handle.
     std::uint32_t index = 0;       // Bind group index or vertex buffer slot.
@@ -47,6 +48,8 @@ class RenderEncoder {
                      std::uint32_t firstInstance, scene::Topology topology);
     void drawIndirect(const wgpu::Buffer& buffer, std::uint64_t offset);
     void drawIndexedIndirect(const wgpu::Buffer& buffer, std::uint64_t offset);
+    // Render passes only: replays recorded bundles (state is reset before and after).
+    void executeBundles(std::span<const wgpu::RenderBundle> bundles);
 
     DrawCounters& counters() { return mCounters; }
     // Also appends every call to `trace` (nullptr: no trace).

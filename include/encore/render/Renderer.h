@@ -4,6 +4,8 @@
 // strategies share (shader library, bind group layouts, frame uniforms) and the strategy itself.
 
 #include <memory>
+#include <span>
+#include <vector>
 
 #include "encore/core/Result.h"
 #include "encore/gpu/Context.h"
@@ -21,7 +23,8 @@ struct RendererOptions {
 };
 
 struct FrameResult {
-    DrawCounters counters;
+    DrawCounters counters;        // Calls recorded into the frame's render pass(es).
+    DrawCounters bundleContents;  // What the executed bundles contain (recorded once).
     double encodeMilliseconds = 0.0;  // CPU: recording the pass and finishing the encoder.
     double submitMilliseconds = 0.0;  // CPU: Queue::Submit (Dawn records Vulkan commands here).
 };
@@ -44,6 +47,19 @@ class Renderer {
     FrameResult renderFrame(const Camera& camera, float timeSeconds = 0.0f,
                             std::vector<RecordedCall>* trace = nullptr);
 
+    // Renders the same scene from several cameras side by side, each view a vertical strip of
+    // the target (cameras should use the strip's aspect). Bundle strategies replay one bundle
+    // per view; only the camera buffer changes between views.
+    FrameResult renderViews(std::span<const Camera> cameras, float timeSeconds = 0.0f);
+
+    // Dynamic content, through buffers (bundles stay valid). `instance` indexes
+    // SceneData::instances; the world matrix replaces that instance's.
+    Result<void> updateInstance(std::size_t instance, const glm::mat4& world);
+    Result<void> updateMaterial(scene::MaterialId material, const scene::Material& value);
+    // Replaces a material's base colour image (materials-based strategies); recorded bundles
+    // that used the old texture are re-recorded before they execute again.
+    Result<void> replaceBaseColorImage(scene::MaterialId material, const scene::Image& image);
+
     // Waits for the GPU and reads the final image back.
     Result<image::ImageRgba8> readImage();
 
@@ -54,6 +70,8 @@ class Renderer {
 
   private:
     Renderer() = default;
+    FrameResult renderPasses(std::span<const Camera> cameras, float timeSeconds,
+                             std::vector<RecordedCall>* trace);
 
     gpu::Context* mContext = nullptr;
     RendererOptions mOptions;

@@ -35,6 +35,9 @@ enum class StrategyKind {
     // glTF materials: base colour factor/texture/sampler, MASK, BLEND (sorted back to front),
     // double-sided culling; loop pipeline -> material -> primitive.
     Materials,
+    // The materials frame recorded once into render bundles and replayed with executeBundles;
+    // dynamic data changes through buffers.
+    Bundles,
 };
 
 std::string_view strategyName(StrategyKind kind);
@@ -70,11 +73,45 @@ class Strategy {
     // Creates the GPU resources for `scene`, which must outlive the strategy.
     virtual Result<void> prepare(const RenderSetup& setup, const scene::SceneData& scene) = 0;
 
+    // Work before the frame's render pass: GPU work in `commands` (culling compute passes) and
+    // CPU bookkeeping (re-recording bundles whose draw sequence changed).
+    virtual void beforePass(const wgpu::CommandEncoder& commands, const FrameState& frame) {
+        (void)commands;
+        (void)frame;
+    }
+
     // Records one frame's draws. Sets every piece of state it uses (group 0 included), so the
     // same code can record into a render bundle.
     virtual void encode(RenderEncoder& encoder, const FrameState& frame) const = 0;
+
+    // Dynamic content: these change data in buffers only, so recorded bundles stay valid.
+    // `instance` is an index into SceneData::instances.
+    virtual Result<void> updateInstance(std::size_t instance, const glm::mat4& world) = 0;
+    // Strategies without materials ignore material changes (they do not draw them).
+    virtual Result<void> updateMaterial(scene::MaterialId material, const scene::Material& value) {
+        (void)material;
+        (void)value;
+        return {};
+    }
+
+    // Replaces a material's base colour image; Unsupported for strategies without materials.
+    virtual Result<void> replaceBaseColorImage(scene::MaterialId material,
+                                               const scene::Image& image) {
+        (void)material;
+        (void)image;
+        return makeError(ErrorCode::Unsupported,
+                         "This strategy draws no materials, so it has no textures to replace.");
+    }
+
+    // What the strategy's render bundles contain (zero for strategies that record directly),
+    // and how many bundles it has recorded since prepare().
+    virtual DrawCounters bundleContents() const { return {}; }
+    virtual std::uint64_t bundlesRecorded() const { return 0; }
 };
 
 std::unique_ptr<Strategy> createStrategy(StrategyKind kind);
+
+// Checks an instance index given to Strategy::updateInstance.
+Result<void> checkInstanceIndex(std::size_t instance, std::size_t instanceCount);
 
 }  // namespace encore::render

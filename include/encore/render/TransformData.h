@@ -7,5 +7,9 @@ namespace encore::render {
 
 // The GPU form of an instance's world and normal matrices.
 TransformUniform makeTransformUniform(const scene::Instance& instance);
+TransformUniform makeTransformUniform(const glm::mat4& world);
+
+// The inverse transpose of the upper 3x3 of `world`, in a mat4 (how normals transform).
+glm::mat4 normalMatrixOf(const glm::mat4& world);
 
 }  // namespace encore::render

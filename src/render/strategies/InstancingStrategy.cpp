@@ -11,6 +11,7 @@ Result<void> InstancingStrategy::prepare(const RenderSetup& setup, const scene::
     mGeometry = std::make_unique<GeometryBuffers>(setup.device, scene);
     mPipelines = std::make_unique<PipelineCache>(setup);
     mInstances = InstanceBuffer(setup.device, *setup.layouts, scene);
+    mQueue = setup.queue;
     mGroups.clear();
 
     shaders::ShaderVariantKey shader;
@@ -52,6 +53,12 @@ void InstancingStrategy::encode(RenderEncoder& encoder, const FrameState&) const
                          primitive.instances.first);
         }
     }
+}
+
+Result<void> InstancingStrategy::updateInstance(std::size_t instance, const glm::mat4& world) {
+    ENCORE_TRY(checkInstanceIndex(instance, mInstances.size()));
+    mInstances.update(mQueue, instance, world);
+    return {};
 }
 
 }  // namespace encore::render

@@ -18,6 +18,8 @@ class InstancingStrategy final : public Strategy {
     StrategyKind kind() const override { return StrategyKind::Instancing; }
     Result<void> prepare(const RenderSetup& setup, const scene::SceneData& scene) override;
     void encode(RenderEncoder& encoder, const FrameState& frame) const override;
+    Result<void> updateInstance(std::size_t instance, const glm::mat4& world) override;
+
 
     const InstanceBuffer& instances() const { return mInstances; }
 
@@ -35,6 +37,7 @@ class InstancingStrategy final : public Strategy {
     std::unique_ptr<PipelineCache> mPipelines;
     wgpu::BindGroup mFrameGroup;
     InstanceBuffer mInstances;
+    wgpu::Queue mQueue;
     std::vector<PipelineGroup> mGroups;
 };
 

@@ -33,6 +33,7 @@ Result<void> LayoutsStrategy::prepare(const RenderSetup& setup, const scene::Sce
         mNodeMeshes.push_back(instance.mesh.index());
     }
     mNodes = NodeUniforms(setup.device, *setup.layouts, scene);
+    mQueue = setup.queue;
     return {};
 }
 
@@ -46,6 +47,12 @@ void LayoutsStrategy::encode(RenderEncoder& encoder, const FrameState&) const {
             drawGeometry(encoder, primitive.bindings, 1, 0);
         }
     }
+}
+
+Result<void> LayoutsStrategy::updateInstance(std::size_t instance, const glm::mat4& world) {
+    ENCORE_TRY(checkInstanceIndex(instance, mNodes.size()));
+    mNodes.update(mQueue, instance, world);
+    return {};
 }
 
 }  // namespace encore::render

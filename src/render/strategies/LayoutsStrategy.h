@@ -17,6 +17,7 @@ class LayoutsStrategy final : public Strategy {
     StrategyKind kind() const override { return StrategyKind::Layouts; }
     Result<void> prepare(const RenderSetup& setup, const scene::SceneData& scene) override;
     void encode(RenderEncoder& encoder, const FrameState& frame) const override;
+    Result<void> updateInstance(std::size_t instance, const glm::mat4& world) override;
 
   private:
     struct PreparedPrimitive {
@@ -29,6 +30,7 @@ class LayoutsStrategy final : public Strategy {
     std::vector<std::vector<PreparedPrimitive>> mMeshes;
     std::vector<std::size_t> mNodeMeshes;
     NodeUniforms mNodes;
+    wgpu::Queue mQueue;
 };
 
 }  // namespace encore::render

@@ -32,6 +32,7 @@ Result<void> MaterialsStrategy::prepare(const RenderSetup& setup, const scene::S
     mGeometry = std::make_unique<GeometryBuffers>(setup.device, scene);
     mPipelines = std::make_unique<PipelineCache>(setup);
     mInstances = InstanceBuffer(setup.device, *setup.layouts, scene);
+    mQueue = setup.queue;
     auto materials =
         MaterialResources::create(setup.device, setup.queue, *setup.shaders, *setup.layouts, scene);
     if (!materials) {
@@ -121,44 +122,73 @@ void MaterialsStrategy::encodeOpaque(RenderEncoder& encoder) const {
     }
 }
 
-void MaterialsStrategy::encodeBlended(RenderEncoder& encoder,
-                                      const glm::vec3& cameraPosition) const {
-    if (mBlended.empty()) {
-        return;
-    }
-    std::vector<std::pair<float, const BlendedDraw*>> order;
-    order.reserve(mBlended.size());
-    for (const BlendedDraw& draw : mBlended) {
-        const glm::vec3 offset = draw.center - cameraPosition;
-        order.emplace_back(glm::dot(offset, offset), &draw);
+std::vector<std::uint32_t> MaterialsStrategy::blendOrder(const glm::vec3& cameraPosition) const {
+    std::vector<std::pair<float, std::uint32_t>> keyed;
+    keyed.reserve(mBlended.size());
+    for (std::uint32_t i = 0; i < mBlended.size(); ++i) {
+        const glm::vec3 offset = mBlended[i].center - cameraPosition;
+        keyed.emplace_back(glm::dot(offset, offset), i);
     }
     // Farthest first; ties keep scene order so the result is deterministic.
-    std::stable_sort(order.begin(), order.end(),
+    std::stable_sort(keyed.begin(), keyed.end(),
                      [](const auto& a, const auto& b) { return a.first > b.first; });
-    const wgpu::RenderPipeline* currentPipeline = nullptr;
+    std::vector<std::uint32_t> order;
+    order.reserve(keyed.size());
+    for (const auto& [distance, index] : keyed) {
+        order.push_back(index);
+    }
+    return order;
+}
+
+void MaterialsStrategy::encodeBlended(RenderEncoder& encoder,
+                                      std::span<const std::uint32_t> order) const {
+    WGPURenderPipeline currentPipeline = nullptr;
     scene::MaterialId currentMaterial;
     const PrimitiveBindings* currentBindings = nullptr;
-    for (const auto& [distance, draw] : order) {
-        if (currentPipeline == nullptr || currentPipeline->Get() != draw->pipeline.Get()) {
-            encoder.setPipeline(draw->pipeline);
-            currentPipeline = &draw->pipeline;
+    for (std::uint32_t index : order) {
+        const BlendedDraw& draw = mBlended[index];
+        if (currentPipeline != draw.pipeline.Get()) {
+            encoder.setPipeline(draw.pipeline);
+            currentPipeline = draw.pipeline.Get();
         }
-        if (currentMaterial != draw->material) {
-            encoder.setBindGroup(2, mMaterials->bindGroup(draw->material));
-            currentMaterial = draw->material;
+        if (currentMaterial != draw.material) {
+            encoder.setBindGroup(2, mMaterials->bindGroup(draw.material));
+            currentMaterial = draw.material;
         }
-        if (currentBindings != draw->bindings) {
-            bindGeometry(encoder, *draw->bindings);
-            currentBindings = draw->bindings;
+        if (currentBindings != draw.bindings) {
+            bindGeometry(encoder, *draw.bindings);
+            currentBindings = draw.bindings;
         }
-        drawGeometry(encoder, *draw->bindings, 1, draw->instanceSlot);
+        drawGeometry(encoder, *draw.bindings, 1, draw.instanceSlot);
     }
 }
 
 void MaterialsStrategy::encode(RenderEncoder& encoder, const FrameState& frame) const {
     setSharedBindGroups(encoder);
     encodeOpaque(encoder);
-    encodeBlended(encoder, frame.camera.position);
+    encodeBlended(encoder, blendOrder(frame.camera.position));
+}
+
+Result<void> MaterialsStrategy::updateInstance(std::size_t instance, const glm::mat4& world) {
+    ENCORE_TRY(checkInstanceIndex(instance, mInstances.size()));
+    mInstances.update(mQueue, instance, world);
+    return {};
+}
+
+Result<void> MaterialsStrategy::updateMaterial(scene::MaterialId material,
+                                               const scene::Material& value) {
+    if (!material.valid() || material.index() >= mMaterials->materialCount()) {
+        return makeError(ErrorCode::InvalidArgument,
+                         "Material " + std::to_string(material.value) + " does not exist.");
+    }
+    mMaterials->updateMaterial(mQueue, material, value);
+    return {};
+}
+
+Result<void> MaterialsStrategy::replaceBaseColorImage(scene::MaterialId material,
+                                                      const scene::Image& image) {
+    return mMaterials->replaceBaseColorImage(mSetup->device, mQueue, *mSetup->shaders,
+                                             *mSetup->layouts, material, image);
 }
 
 }  // namespace encore::render

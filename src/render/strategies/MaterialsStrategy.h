@@ -1,6 +1,7 @@
 #pragma once
 
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "encore/render/InstanceBuffer.h"
@@ -21,6 +22,10 @@ class MaterialsStrategy : public Strategy {
     StrategyKind kind() const override { return StrategyKind::Materials; }
     Result<void> prepare(const RenderSetup& setup, const scene::SceneData& scene) override;
     void encode(RenderEncoder& encoder, const FrameState& frame) const override;
+    Result<void> updateInstance(std::size_t instance, const glm::mat4& world) override;
+    Result<void> updateMaterial(scene::MaterialId material, const scene::Material& value) override;
+    Result<void> replaceBaseColorImage(scene::MaterialId material,
+                                       const scene::Image& image) override;
 
     const InstanceBuffer& instances() const { return mInstances; }
     MaterialResources& materials() { return *mMaterials; }
@@ -50,8 +55,10 @@ class MaterialsStrategy : public Strategy {
 
     // Opaque and masked groups (shared with the bundle strategies, which record them once).
     void encodeOpaque(RenderEncoder& encoder) const;
-    // Blended draws, back to front as seen from `cameraPosition`.
-    void encodeBlended(RenderEncoder& encoder, const glm::vec3& cameraPosition) const;
+    // Indices into mBlended, back to front as seen from `cameraPosition`.
+    std::vector<std::uint32_t> blendOrder(const glm::vec3& cameraPosition) const;
+    // Blended draws in that order, skipping state that does not change between them.
+    void encodeBlended(RenderEncoder& encoder, std::span<const std::uint32_t> order) const;
     void setSharedBindGroups(RenderEncoder& encoder) const;
 
     const RenderSetup* mSetup = nullptr;
@@ -60,6 +67,7 @@ class MaterialsStrategy : public Strategy {
     std::unique_ptr<MaterialResources> mMaterials;
     wgpu::BindGroup mFrameGroup;
     InstanceBuffer mInstances;
+    wgpu::Queue mQueue;
     std::vector<std::unique_ptr<PrimitiveBindings>> mBindings;  // Stable addresses.
     std::vector<PipelineGroup> mOpaque;
     std::vector<BlendedDraw> mBlended;

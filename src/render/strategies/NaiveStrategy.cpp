@@ -87,6 +87,7 @@ Result<void> NaiveStrategy::prepare(const RenderSetup& setup, const scene::Scene
         mNodeMeshes.push_back(instance.mesh.index());
     }
     mNodes = NodeUniforms(setup.device, *setup.layouts, scene);
+    mQueue = setup.queue;
     return {};
 }
 
@@ -107,6 +108,12 @@ void NaiveStrategy::encode(RenderEncoder& encoder, const FrameState&) const {
             }
         }
     }
+}
+
+Result<void> NaiveStrategy::updateInstance(std::size_t instance, const glm::mat4& world) {
+    ENCORE_TRY(checkInstanceIndex(instance, mNodes.size()));
+    mNodes.update(mQueue, instance, world);
+    return {};
 }
 
 }  // namespace encore::render

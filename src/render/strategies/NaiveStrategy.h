@@ -16,6 +16,7 @@ class NaiveStrategy final : public Strategy {
     StrategyKind kind() const override { return StrategyKind::Naive; }
     Result<void> prepare(const RenderSetup& setup, const scene::SceneData& scene) override;
     void encode(RenderEncoder& encoder, const FrameState& frame) const override;
+    Result<void> updateInstance(std::size_t instance, const glm::mat4& world) override;
 
   private:
     struct PreparedPrimitive {
@@ -31,6 +32,7 @@ class NaiveStrategy final : public Strategy {
     std::vector<std::vector<PreparedPrimitive>> mMeshes;
     std::vector<std::size_t> mNodeMeshes;  // Per scene instance.
     NodeUniforms mNodes;
+    wgpu::Queue mQueue;
 };
 
 }  // namespace encore::render

@@ -42,6 +42,7 @@ Result<void> PipelineCacheStrategy::prepare(const RenderSetup& setup,
         }
     }
     mNodes = NodeUniforms(setup.device, *setup.layouts, scene);
+    mQueue = setup.queue;
     return {};
 }
 
@@ -57,6 +58,12 @@ void PipelineCacheStrategy::encode(RenderEncoder& encoder, const FrameState&) co
             }
         }
     }
+}
+
+Result<void> PipelineCacheStrategy::updateInstance(std::size_t instance, const glm::mat4& world) {
+    ENCORE_TRY(checkInstanceIndex(instance, mNodes.size()));
+    mNodes.update(mQueue, instance, world);
+    return {};
 }
 
 }  // namespace encore::render

@@ -18,6 +18,7 @@ class PipelineCacheStrategy final : public Strategy {
     StrategyKind kind() const override { return StrategyKind::PipelineCache; }
     Result<void> prepare(const RenderSetup& setup, const scene::SceneData& scene) override;
     void encode(RenderEncoder& encoder, const FrameState& frame) const override;
+    Result<void> updateInstance(std::size_t instance, const glm::mat4& world) override;
 
     std::size_t pipelineCount() const { return mPipelines ? mPipelines->size() : 0; }
 
@@ -36,6 +37,7 @@ class PipelineCacheStrategy final : public Strategy {
     wgpu::BindGroup mFrameGroup;
     std::vector<PipelineGroup> mGroups;
     NodeUniforms mNodes;
+    wgpu::Queue mQueue;
 };
 
 }  // namespace encore::render

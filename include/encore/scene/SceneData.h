@@ -1,0 +1,231 @@
+#pragma once
+
+// SceneData is the CPU-side result of loading a glTF 2.0 asset: geometry, materials, images
+// and the flattened list of mesh instances with their world matrices. It contains no WebGPU
+// types; src/render maps it to GPU objects.
+//
+// The loader hands out data that a WebGPU renderer can use without further checks:
+//  - every accessor referenced by a primitive lies inside its bufferView and buffer, has a
+//    non-zero effective byteStride and, for vertex attributes, a component type/count/normalized
+//    combination that exists as a WebGPU vertex format (8/16-bit 1- and 3-component attributes
+//    are repacked to 4 components; non-normalized integer POSITION/NORMAL/TANGENT/TEXCOORD/COLOR
+//    attributes are converted to float32);
+//  - index accessors are Uint16 or Uint32 (8-bit indices are widened), tightly packed, and every
+//    index value is smaller than the primitive's vertex count;
+//  - sparse accessors, accessors without a bufferView, Draco- and meshopt-compressed data are
+//    materialised into buffers appended after the asset's own;
+//  - line loops become line strips and triangle fans become triangle lists;
+//  - every primitive has POSITION and NORMAL: flat normals are generated for triangles when
+//    NORMAL is absent (the primitive is de-indexed for that), and zero normals (drawn unlit) for
+//    points and lines;
+//  - every primitive has a material: the glTF default material is appended when needed.
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "encore/core/Result.h"
+#include "encore/scene/Bounds.h"
+#include "encore/scene/Ids.h"
+
+namespace encore::scene {
+
+enum class ComponentType : std::uint8_t { Int8, Uint8, Int16, Uint16, Uint32, Float32 };
+
+// Bytes of one component (1, 2 or 4).
+std::uint32_t componentSize(ComponentType type);
+
+struct Buffer {
+    std::string name;  // The glTF uri, "GLB BIN chunk", or what synthesised it.
+    std::vector<std::uint8_t> bytes;
+};
+
+struct BufferView {
+    BufferId buffer;
+    std::uint64_t byteOffset = 0;
+    std::uint64_t byteLength = 0;
+    std::uint32_t byteStride = 0;  // 0: tightly packed (glTF's absent byteStride).
+};
+
+struct Accessor {
+    BufferViewId view;  // Always valid after loading.
+    std::uint64_t byteOffset = 0;  // Relative to the view.
+    std::uint32_t count = 0;
+    ComponentType componentType = ComponentType::Float32;
+    std::uint8_t componentCount = 1;  // 1..4; matrix accessors never reach a primitive.
+    bool normalized = false;
+    std::uint32_t byteStride = 0;  // Effective stride: the view's, or the element size.
+    std::vector<float> min;        // As declared in the file (may be empty).
+    std::vector<float> max;
+
+    std::uint32_t elementSize() const { return componentSize(componentType) * componentCount; }
+};
+
+// Attribute semantics Encore knows. Others (custom "_NAME", TEXCOORD_2...) are skipped.
+enum class Semantic : std::uint8_t {
+    Position,
+    Normal,
+    Tangent,
+    Texcoord0,
+    Texcoord1,
+    Color0,
+    Joints0,
+    Weights0,
+};
+std::string_view semanticName(Semantic semantic);
+
+struct VertexAttribute {
+    Semantic semantic;
+    AccessorId accessor;
+};
+
+// WebGPU's topologies; glTF line loops and triangle fans are converted at load.
+enum class Topology : std::uint8_t { PointList, LineList, LineStrip, TriangleList, TriangleStrip };
+
+struct Primitive {
+    Topology topology = Topology::TriangleList;
+    std::vector<VertexAttribute> attributes;  // Sorted by semantic; Position and Normal present.
+    std::optional<AccessorId> indices;        // Uint16 or Uint32.
+    MaterialId material;                      // Always valid.
+    std::uint32_t vertexCount = 0;
+    Bounds bounds;  // Object-space box of the positions.
+
+    std::optional<AccessorId> attribute(Semantic semantic) const;
+};
+
+struct Mesh {
+    std::string name;
+    std::vector<Primitive> primitives;
+};
+
+// KHR_texture_transform, applied to the texture coordinates before sampling.
+struct TextureTransform {
+    glm::vec2 offset{0.0f};
+    float rotation = 0.0f;
+    glm::vec2 scale{1.0f};
+};
+
+struct TextureRef {
+    TextureId texture;
+    std::uint32_t texCoord = 0;
+    std::optional<TextureTransform> transform;
+};
+
+enum class AlphaMode : std::uint8_t { Opaque, Mask, Blend };
+
+struct Material {
+    std::string name;
+    glm::vec4 baseColorFactor{1.0f};
+    std::optional<TextureRef> baseColorTexture;
+    float metallicFactor = 1.0f;
+    float roughnessFactor = 1.0f;
+    std::optional<TextureRef> metallicRoughnessTexture;
+    std::optional<TextureRef> normalTexture;
+    std::optional<TextureRef> occlusionTexture;
+    std::optional<TextureRef> emissiveTexture;
+    glm::vec3 emissiveFactor{0.0f};
+    AlphaMode alphaMode = AlphaMode::Opaque;
+    float alphaCutoff = 0.5f;  // Kept as written: a cutoff of 0 stays 0.
+    bool doubleSided = false;
+    bool isDefault = false;  // The glTF default material, appended by the loader.
+};
+
+enum class Filter : std::uint8_t { Nearest, Linear };
+enum class Wrap : std::uint8_t { Repeat, ClampToEdge, MirroredRepeat };
+
+struct Sampler {
+    Filter magFilter = Filter::Linear;
+    Filter minFilter = Filter::Linear;
+    Filter mipmapFilter = Filter::Linear;
+    bool useMipmaps = true;  // False for glTF minFilter NEAREST or LINEAR.
+    Wrap wrapS = Wrap::Repeat;
+    Wrap wrapT = Wrap::Repeat;
+};
+
+struct Texture {
+    ImageId image;      // Invalid when the texture names no usable image.
+    SamplerId sampler;  // Always valid: a default sampler is appended when needed.
+};
+
+struct Image {
+    std::string name;  // uri, or "image N" for embedded ones.
+    std::uint32_t width = 0;
+    std::uint32_t height = 0;
+    std::vector<std::uint8_t> rgba8;  // Empty when the image is missing or undecodable
+                                      // (the loader warned) or decoding was not requested.
+};
+
+struct Node {
+    std::string name;
+    NodeId parent;
+    std::vector<NodeId> children;
+    std::optional<MeshId> mesh;
+    glm::mat4 local{1.0f};  // From matrix or TRS.
+    glm::mat4 world{1.0f};
+};
+
+// One drawable occurrence of a mesh: a node of the chosen scene that references a mesh, or one
+// of the EXT_mesh_gpu_instancing instances of such a node. Ordered depth-first by node.
+struct Instance {
+    MeshId mesh;
+    NodeId node;
+    glm::mat4 world{1.0f};
+    glm::mat4 normalMatrix{1.0f};  // Inverse transpose of world's upper 3x3, in a mat4.
+};
+
+struct SceneData {
+    std::filesystem::path sourcePath;
+    std::vector<Buffer> buffers;
+    std::vector<BufferView> bufferViews;
+    std::vector<Accessor> accessors;
+    std::vector<Mesh> meshes;
+    std::vector<Material> materials;
+    std::vector<Texture> textures;
+    std::vector<Sampler> samplers;
+    std::vector<Image> images;
+    std::vector<Node> nodes;
+    std::vector<Instance> instances;
+    Bounds bounds;  // World-space box of all instances.
+    std::vector<std::string> warnings;
+
+    // Bytes from the accessor's first element to the end of its last one, in the view's layout
+    // (elements are byteStride apart).
+    std::span<const std::uint8_t> accessorBytes(AccessorId accessor) const;
+
+    // The accessor's elements copied tightly packed (byteStride == elementSize()).
+    std::vector<std::uint8_t> packedAccessorBytes(AccessorId accessor) const;
+
+    // Index values widened to 32 bits.
+    std::vector<std::uint32_t> readIndices(AccessorId accessor) const;
+
+    // Elements converted to float (normalized integers mapped to [0,1] or [-1,1]), padded to 4
+    // components with (0, 0, 0, 1).
+    std::vector<glm::vec4> readFloats(AccessorId accessor) const;
+
+    std::size_t primitiveCount() const;  // Summed over meshes.
+};
+
+struct LoadOptions {
+    bool decodeImages = true;  // False skips image decoding (images keep their names only).
+    bool strict = false;       // Warnings (missing images, unsupported optional features)
+                               // become errors.
+};
+
+// Loads a .gltf or .glb file. Errors name the file and the offending element:
+// "<file>: accessor 3 (POSITION of mesh 0, primitive 1) reads past the end of bufferView 2
+// (offset 4096 + 1200 bytes > length 5000)."
+Result<SceneData> loadScene(const std::filesystem::path& path, const LoadOptions& options = {});
+
+// Same, from bytes already in memory (.glb if they start with the GLB magic, JSON otherwise).
+// External uris resolve against baseDirectory; displayName prefixes error messages.
+Result<SceneData> loadSceneFromMemory(std::span<const std::uint8_t> bytes,
+                                      const std::filesystem::path& baseDirectory,
+                                      const std::string& displayName,
+                                      const LoadOptions& options = {});
+
+}  // namespace encore::scene

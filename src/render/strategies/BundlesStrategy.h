@@ -1,0 +1,33 @@
+#pragma once
+
+#include <vector>
+
+#include "MaterialsStrategy.h"
+#include "encore/render/BundleRecorder.h"
+
+namespace encore::render {
+
+// The `materials` frame recorded once into a render bundle and replayed every frame with
+// executeBundles. The camera, transforms and material factors change through buffers, so the
+// opaque bundle is never re-recorded for them. Blended geometry lives in a second bundle that is
+// re-recorded only when the back-to-front order changes; both are re-recorded when a resource
+// they reference is replaced (MaterialResources' generation changes).
+class BundlesStrategy final : public MaterialsStrategy {
+  public:
+    StrategyKind kind() const override { return StrategyKind::Bundles; }
+    Result<void> prepare(const RenderSetup& setup, const scene::SceneData& scene) override;
+    void beforePass(const wgpu::CommandEncoder& commands, const FrameState& frame) override;
+    void encode(RenderEncoder& encoder, const FrameState& frame) const override;
+    DrawCounters bundleContents() const override;
+    std::uint64_t bundlesRecorded() const override { return mBundlesRecorded; }
+
+  private:
+    RecordedBundle mOpaque;
+    RecordedBundle mBlended;
+    std::vector<std::uint32_t> mRecordedBlendOrder;
+    std::uint64_t mRecordedGeneration = 0;
+    std::uint64_t mBundlesRecorded = 0;
+    bool mStale = true;
+};
+
+}  // namespace encore::render

@@ -1,0 +1,190 @@
+#pragma once
+
+// The glTF JSON as plain structs: what the file says, typed but not yet cross-checked. Indices
+// are raw glTF indices; Validation.cpp checks that each one names an existing element, and the
+// later stages turn the structs into SceneData.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "GltfJson.h"
+#include "encore/scene/SceneData.h"
+
+namespace encore::scene {
+
+// glTF componentType enums.
+inline constexpr std::uint32_t kGlByte = 5120;
+inline constexpr std::uint32_t kGlUnsignedByte = 5121;
+inline constexpr std::uint32_t kGlShort = 5122;
+inline constexpr std::uint32_t kGlUnsignedShort = 5123;
+inline constexpr std::uint32_t kGlUnsignedInt = 5125;
+inline constexpr std::uint32_t kGlFloat = 5126;
+
+struct GltfBuffer {
+    std::optional<std::string> uri;
+    std::uint64_t byteLength = 0;
+    bool meshoptFallback = false;  // EXT_meshopt_compression: never loaded.
+};
+
+struct GltfMeshoptCompression {
+    std::uint32_t buffer = 0;
+    std::uint64_t byteOffset = 0;
+    std::uint64_t byteLength = 0;
+    std::uint32_t byteStride = 0;
+    std::uint64_t count = 0;
+    std::string mode;  // ATTRIBUTES, TRIANGLES or INDICES.
+    std::string filter = "NONE";
+};
+
+struct GltfBufferView {
+    std::uint32_t buffer = 0;
+    std::uint64_t byteOffset = 0;
+    std::uint64_t byteLength = 0;
+    std::optional<std::uint64_t> byteStride;
+    std::optional<GltfMeshoptCompression> meshopt;
+};
+
+struct GltfSparse {
+    std::uint64_t count = 0;
+    std::uint32_t indicesView = 0;
+    std::uint64_t indicesOffset = 0;
+    std::uint32_t indicesComponentType = 0;
+    std::uint32_t valuesView = 0;
+    std::uint64_t valuesOffset = 0;
+};
+
+struct GltfAccessor {
+    std::optional<std::uint32_t> bufferView;
+    std::uint64_t byteOffset = 0;
+    std::uint64_t count = 0;
+    ComponentType componentType = ComponentType::Float32;
+    std::uint32_t glComponentType = kGlFloat;
+    std::string type;                  // SCALAR, VEC2..4, MAT2..4.
+    std::uint32_t componentCount = 1;  // 1..4, or 4/9/16 for matrices.
+    bool isMatrix = false;
+    bool normalized = false;
+    std::vector<float> min;
+    std::vector<float> max;
+    std::optional<GltfSparse> sparse;
+};
+
+using AttributeMap = std::vector<std::pair<std::string, std::uint32_t>>;
+
+struct GltfDracoCompression {
+    std::uint32_t bufferView = 0;
+    AttributeMap attributes;  // Semantic → Draco unique attribute id.
+};
+
+struct GltfPrimitive {
+    AttributeMap attributes;  // Semantic → accessor, in file order.
+    std::optional<std::uint32_t> indices;
+    std::optional<std::uint32_t> material;
+    std::uint32_t mode = 4;
+    std::optional<GltfDracoCompression> draco;
+    std::vector<AttributeMap> targets;  // Morph targets: checked, not used.
+};
+
+struct GltfMesh {
+    std::string name;
+    std::vector<GltfPrimitive> primitives;
+};
+
+struct GltfInstancing {
+    std::optional<std::uint32_t> translation;
+    std::optional<std::uint32_t> rotation;
+    std::optional<std::uint32_t> scale;
+};
+
+struct GltfNode {
+    std::string name;
+    std::vector<std::uint32_t> children;
+    std::optional<std::uint32_t> mesh;
+    std::optional<std::uint32_t> skin;
+    std::optional<std::uint32_t> camera;
+    glm::mat4 local{1.0f};
+    std::optional<GltfInstancing> instancing;
+};
+
+struct GltfTextureInfo {
+    std::uint32_t index = 0;
+    std::uint32_t texCoord = 0;
+    std::optional<TextureTransform> transform;
+    float scale = 1.0f;  // normalTexture.scale / occlusionTexture.strength.
+};
+
+struct GltfMaterial {
+    std::string name;
+    glm::vec4 baseColorFactor{1.0f};
+    std::optional<GltfTextureInfo> baseColorTexture;
+    float metallicFactor = 1.0f;
+    float roughnessFactor = 1.0f;
+    std::optional<GltfTextureInfo> metallicRoughnessTexture;
+    std::optional<GltfTextureInfo> normalTexture;
+    std::optional<GltfTextureInfo> occlusionTexture;
+    std::optional<GltfTextureInfo> emissiveTexture;
+    glm::vec3 emissiveFactor{0.0f};
+    std::string alphaMode = "OPAQUE";
+    float alphaCutoff = 0.5f;
+    bool doubleSided = false;
+};
+
+struct GltfTexture {
+    std::optional<std::uint32_t> source;
+    std::optional<std::uint32_t> sampler;
+};
+
+struct GltfImage {
+    std::string name;
+    std::optional<std::string> uri;
+    std::optional<std::uint32_t> bufferView;
+    std::string mimeType;
+};
+
+struct GltfSampler {
+    std::optional<std::uint64_t> magFilter;
+    std::optional<std::uint64_t> minFilter;
+    std::uint64_t wrapS = 10497;
+    std::uint64_t wrapT = 10497;
+};
+
+struct GltfSkin {
+    std::optional<std::uint32_t> inverseBindMatrices;
+    std::vector<std::uint32_t> joints;
+};
+
+struct GltfDocument {
+    std::string version;
+    std::vector<std::string> extensionsUsed;
+    std::vector<std::string> extensionsRequired;
+    std::vector<GltfBuffer> buffers;
+    std::vector<GltfBufferView> bufferViews;
+    std::vector<GltfAccessor> accessors;
+    std::vector<GltfMesh> meshes;
+    std::vector<GltfNode> nodes;
+    std::vector<GltfMaterial> materials;
+    std::vector<GltfTexture> textures;
+    std::vector<GltfImage> images;
+    std::vector<GltfSampler> samplers;
+    std::vector<GltfSkin> skins;
+    std::size_t cameraCount = 0;
+    std::vector<std::vector<std::uint32_t>> scenes;  // Root nodes of each scene.
+    std::optional<std::uint32_t> scene;
+};
+
+// Reads the whole document. Type errors name the element ("accessor 3 has an invalid 'count'
+// (expected a non-negative integer, got "three")."); asset.version and extensionsRequired are
+// checked here too.
+Result<GltfDocument> parseDocument(const Json& root);
+
+// Reads materials, textures, images and samplers (MaterialParser.cpp).
+Result<void> parseMaterialElements(const Json& root, GltfDocument& document);
+
+// Extensions Encore implements; a required extension outside this list is refused.
+bool isSupportedExtension(std::string_view name);
+
+}  // namespace encore::scene

@@ -1,0 +1,208 @@
+// The node tree: world matrices, the chosen scene's instances in depth-first order (expanded by
+// EXT_mesh_gpu_instancing) and the scene's world-space bounds. The file's children lists are
+// checked to form a forest, so a malformed hierarchy cannot loop forever.
+
+#include <cmath>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include "LoadContext.h"
+
+namespace encore::scene {
+namespace {
+
+glm::mat4 normalMatrixOf(const glm::mat4& world) {
+    const glm::mat3 linear(world);
+    const float determinant = glm::determinant(linear);
+    if (std::abs(determinant) > 1e-30f && std::isfinite(determinant)) {
+        return glm::mat4(glm::transpose(glm::inverse(linear)));
+    }
+    // A singular matrix (a zero scale) has no inverse; the cofactor matrix is the inverse
+    // transpose up to a scale and stays defined, and shaders normalise normals anyway.
+    glm::mat3 cofactor;
+    for (int c = 0; c < 3; ++c) {
+        for (int r = 0; r < 3; ++r) {
+            const int c1 = (c + 1) % 3, c2 = (c + 2) % 3, r1 = (r + 1) % 3, r2 = (r + 2) % 3;
+            cofactor[c][r] = linear[c1][r1] * linear[c2][r2] - linear[c1][r2] * linear[c2][r1];
+        }
+    }
+    return glm::mat4(cofactor);
+}
+
+Result<void> linkChildren(const GltfDocument& document, SceneData& scene) {
+    const std::size_t count = document.nodes.size();
+    scene.nodes.resize(count);
+    for (std::size_t i = 0; i < count; ++i) {
+        const GltfNode& source = document.nodes[i];
+        Node& node = scene.nodes[i];
+        node.name = source.name;
+        node.local = source.local;
+        if (source.mesh) {
+            node.mesh = MeshId(*source.mesh);
+        }
+    }
+    for (std::size_t i = 0; i < count; ++i) {
+        for (std::uint32_t child : document.nodes[i].children) {
+            if (child == i) {
+                return makeError(ErrorCode::InvalidFormat,
+                                 "node " + std::to_string(i) + " lists itself as a child.");
+            }
+            if (scene.nodes[child].parent.valid()) {
+                return makeError(ErrorCode::InvalidFormat,
+                                 "node " + std::to_string(child) + " has two parents (node " +
+                                     std::to_string(scene.nodes[child].parent.value) +
+                                     " and node " + std::to_string(i) + ").");
+            }
+            scene.nodes[child].parent = NodeId(i);
+            scene.nodes[i].children.push_back(NodeId(child));
+        }
+    }
+    return {};
+}
+
+Result<void> computeWorlds(SceneData& scene) {
+    std::vector<bool> done(scene.nodes.size(), false);
+    std::vector<std::size_t> stack;
+    for (std::size_t root = 0; root < scene.nodes.size(); ++root) {
+        if (scene.nodes[root].parent.valid()) {
+            continue;
+        }
+        stack.push_back(root);
+        while (!stack.empty()) {
+            const std::size_t index = stack.back();
+            stack.pop_back();
+            Node& node = scene.nodes[index];
+            node.world = node.parent.valid() ? scene.nodes[node.parent.index()].world * node.local
+                                             : node.local;
+            done[index] = true;
+            for (NodeId child : node.children) {
+                stack.push_back(child.index());
+            }
+        }
+    }
+    // With at most one parent per node, a node no root reaches hangs off a cycle.
+    for (std::size_t i = 0; i < done.size(); ++i) {
+        if (!done[i]) {
+            return makeError(ErrorCode::InvalidFormat,
+                             "node " + std::to_string(i) +
+                                 " is part of a cycle in the node hierarchy (no root reaches it).");
+        }
+    }
+    return {};
+}
+
+// The per-instance transforms of an EXT_mesh_gpu_instancing node.
+Result<std::vector<glm::mat4>> instanceTransforms(const LoadContext& context,
+                                                  std::size_t node,
+                                                  const GltfInstancing& instancing) {
+    const SceneData& scene = context.scene;
+    const std::string name = "node " + std::to_string(node) + " (EXT_mesh_gpu_instancing)";
+    std::optional<std::uint32_t> count;
+    std::vector<glm::vec4> values[3];
+    const std::optional<std::uint32_t> accessors[3] = {instancing.translation, instancing.rotation,
+                                                       instancing.scale};
+    constexpr const char* kNames[3] = {"TRANSLATION", "ROTATION", "SCALE"};
+    constexpr std::uint8_t kComponents[3] = {3, 4, 3};
+    for (int a = 0; a < 3; ++a) {
+        if (!accessors[a]) {
+            continue;
+        }
+        const Accessor& accessor = scene.accessors[*accessors[a]];
+        if (accessor.componentCount != kComponents[a]) {
+            return makeError(ErrorCode::InvalidFormat,
+                             name + " has a " + kNames[a] + " accessor (" +
+                                 std::to_string(*accessors[a]) + ") with " +
+                                 std::to_string(accessor.componentCount) + " components (needs " +
+                                 std::to_string(kComponents[a]) + ").");
+        }
+        if (count && *count != accessor.count) {
+            return makeError(ErrorCode::InvalidFormat,
+                             name + " has attributes of different lengths (" + kNames[a] + " has " +
+                                 std::to_string(accessor.count) + ", another has " +
+                                 std::to_string(*count) + ").");
+        }
+        count = accessor.count;
+        values[a] = scene.readFloats(AccessorId(*accessors[a]));
+    }
+    std::vector<glm::mat4> transforms(count.value_or(1), glm::mat4(1.0f));
+    for (std::size_t i = 0; count && i < transforms.size() && i < *count; ++i) {
+        glm::mat4 transform(1.0f);
+        if (!values[0].empty()) {
+            transform = glm::translate(transform, glm::vec3(values[0][i]));
+        }
+        if (!values[1].empty()) {
+            const glm::vec4& r = values[1][i];
+            const glm::quat rotation(r.w, r.x, r.y, r.z);
+            const float length = glm::length(rotation);
+            if (length > 0.0f) {
+                transform *= glm::mat4_cast(rotation / length);
+            }
+        }
+        if (!values[2].empty()) {
+            transform = glm::scale(transform, glm::vec3(values[2][i]));
+        }
+        transforms[i] = transform;
+    }
+    return transforms;
+}
+
+std::vector<std::uint32_t> sceneRoots(const GltfDocument& document, const SceneData& scene) {
+    if (document.scene) {
+        return document.scenes[*document.scene];
+    }
+    if (!document.scenes.empty()) {
+        return document.scenes[0];
+    }
+    std::vector<std::uint32_t> roots;  // No scenes at all: draw every root node.
+    for (std::size_t i = 0; i < scene.nodes.size(); ++i) {
+        if (!scene.nodes[i].parent.valid()) {
+            roots.push_back(static_cast<std::uint32_t>(i));
+        }
+    }
+    return roots;
+}
+
+}  // namespace
+
+Result<void> buildNodes(LoadContext& context) {
+    SceneData& scene = context.scene;
+    ENCORE_TRY(linkChildren(context.document, scene));
+    ENCORE_TRY(computeWorlds(scene));
+
+    std::vector<Bounds> meshBounds(scene.meshes.size());
+    for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
+        for (const Primitive& primitive : scene.meshes[m].primitives) {
+            meshBounds[m].extend(primitive.bounds);
+        }
+    }
+    const auto roots = sceneRoots(context.document, scene);
+    std::vector<std::size_t> stack(roots.rbegin(), roots.rend());
+    while (!stack.empty()) {
+        const std::size_t index = stack.back();
+        stack.pop_back();
+        const Node& node = scene.nodes[index];
+        for (auto child = node.children.rbegin(); child != node.children.rend(); ++child) {
+            stack.push_back(child->index());
+        }
+        if (!node.mesh) {
+            continue;
+        }
+        std::vector<glm::mat4> transforms{glm::mat4(1.0f)};
+        if (const auto& instancing = context.document.nodes[index].instancing) {
+            ENCORE_TRY_ASSIGN(transforms, instanceTransforms(context, index, *instancing));
+        }
+        for (const glm::mat4& transform : transforms) {
+            Instance instance;
+            instance.mesh = *node.mesh;
+            instance.node = NodeId(index);
+            instance.world = node.world * transform;
+            instance.normalMatrix = normalMatrixOf(instance.world);
+            scene.bounds.extend(meshBounds[node.mesh->index()].transformed(instance.world));
+            scene.instances.push_back(instance);
+        }
+    }
+    return {};
+}
+
+}  // namespace encore::scene

@@ -1,0 +1,122 @@
+// loadScene: reads the container (.gltf JSON or .glb), parses the document and runs the stages
+// of LoadContext.h in order. Stage errors name the element; the file's display name is added
+// here, once, so every message reads "<file>: <sentence>".
+
+#include <exception>
+#include <new>
+
+#include "LoadContext.h"
+#include "encore/core/FileIO.h"
+#include "encore/core/Log.h"
+
+namespace encore::scene {
+namespace {
+
+Result<Json> parseJson(std::span<const std::uint8_t> text) {
+    // A UTF-8 byte order mark is not JSON but some exporters write one.
+    if (text.size() >= 3 && text[0] == 0xEF && text[1] == 0xBB && text[2] == 0xBF) {
+        text = text.subspan(3);
+    }
+    // GLB JSON chunks are padded with spaces; some writers pad with NULs, which JSON forbids.
+    while (!text.empty() && text.back() == 0) {
+        text = text.first(text.size() - 1);
+    }
+    try {
+        return Json::parse(text.begin(), text.end());
+    } catch (const Json::parse_error& error) {
+        // nlohmann's message already says where: "parse error at line 3, column 5: ...".
+        return makeError(ErrorCode::InvalidFormat, "The glTF JSON is invalid (" +
+                                                       std::string(error.what()) + ", byte " +
+                                                       std::to_string(error.byte) + ").");
+    }
+}
+
+Result<SceneData> load(std::span<const std::uint8_t> bytes, LoadContext& context) {
+    std::span<const std::uint8_t> jsonText = bytes;
+    // A .glb without the magic gets the GLB error, not a confusing JSON one.
+    const bool glbName =
+        context.displayName.size() >= 4 &&
+        context.displayName.compare(context.displayName.size() - 4, 4, ".glb") == 0;
+    if (hasGlbMagic(bytes) || glbName) {
+        GlbChunks chunks;
+        ENCORE_TRY_ASSIGN(chunks, parseGlb(bytes));
+        jsonText = chunks.json;
+        context.glbBinChunk = chunks.bin;
+    }
+    Json root;
+    ENCORE_TRY_ASSIGN(root, parseJson(jsonText));
+    ENCORE_TRY_ASSIGN(context.document, parseDocument(root));
+    root = Json();  // The document holds everything needed; free the DOM early.
+
+    ENCORE_TRY(validateReferences(context.document));
+    ENCORE_TRY(loadBuffers(context));
+    ENCORE_TRY(buildBufferViews(context));
+    ENCORE_TRY(decodeMeshoptViews(context));
+    labelAccessorUses(context);
+    ENCORE_TRY(decodeDracoPrimitives(context));
+    ENCORE_TRY(resolveAccessors(context));
+    ENCORE_TRY(loadImages(context));
+    ENCORE_TRY(convertMaterials(context));
+    ENCORE_TRY(convertMeshes(context));
+    ENCORE_TRY(buildNodes(context));
+    return std::move(context.scene);
+}
+
+}  // namespace
+
+std::string LoadContext::accessorName(std::size_t index) const {
+    std::string name = "accessor " + std::to_string(index);
+    if (index < accessorUses.size() && !accessorUses[index].empty()) {
+        name += " (" + accessorUses[index] + ")";
+    }
+    return name;
+}
+
+Result<void> LoadContext::warn(ErrorCode code, std::string message) {
+    if (options.strict) {
+        return makeError(code, std::move(message));
+    }
+    std::string warning = displayName + ": " + message;
+    logWarning(warning);
+    scene.warnings.push_back(std::move(warning));
+    return {};
+}
+
+Result<SceneData> loadScene(const std::filesystem::path& path, const LoadOptions& options) {
+    auto bytes = readFile(path);
+    if (!bytes.ok()) {
+        return bytes.error().withContext(path.string());
+    }
+    auto result = loadSceneFromMemory(*bytes, path.parent_path(), path.string(), options);
+    if (result.ok()) {
+        result->sourcePath = path;
+    }
+    return result;
+}
+
+Result<SceneData> loadSceneFromMemory(std::span<const std::uint8_t> bytes,
+                                      const std::filesystem::path& baseDirectory,
+                                      const std::string& displayName,
+                                      const LoadOptions& options) {
+    LoadContext context;
+    context.displayName = displayName;
+    context.baseDirectory = baseDirectory;
+    context.options = options;
+    try {
+        auto result = load(bytes, context);
+        if (!result.ok()) {
+            return result.error().withContext(displayName);
+        }
+        return result;
+    } catch (const std::bad_alloc&) {
+        return makeError(ErrorCode::LimitExceeded,
+                         displayName + ": Loading ran out of memory (the asset is too large).");
+    } catch (const std::exception& exception) {
+        // Nothing above should throw on bad input; this keeps the API's no-throw promise if a
+        // library does anyway.
+        return makeError(ErrorCode::InvalidFormat,
+                         displayName + ": Loading failed (" + std::string(exception.what()) + ").");
+    }
+}
+
+}  // namespace encore::scene
