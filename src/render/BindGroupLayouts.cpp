@@ -42,6 +42,15 @@ BindGroupLayouts BindGroupLayouts::create(const wgpu::Device& device) {
         {bufferEntry(0, wgpu::ShaderStage::Vertex, wgpu::BufferBindingType::ReadOnlyStorage,
                      sizeof(TransformUniform))});
 
+    wgpu::BindGroupLayoutEntry visibleList =
+        bufferEntry(1, wgpu::ShaderStage::Vertex, wgpu::BufferBindingType::ReadOnlyStorage, 4);
+    visibleList.buffer.hasDynamicOffset = true;
+    layouts.culledInstances = createLayout(
+        device, "culled instances",
+        {bufferEntry(0, wgpu::ShaderStage::Vertex, wgpu::BufferBindingType::ReadOnlyStorage,
+                     sizeof(TransformUniform)),
+         visibleList});
+
     wgpu::BindGroupLayoutEntry sampler{};
     sampler.binding = 1;
     sampler.visibility = wgpu::ShaderStage::Fragment;

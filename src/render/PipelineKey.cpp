@@ -50,12 +50,18 @@ Result<wgpu::RenderPipeline> createMeshPipeline(const RenderSetup& setup, const 
         return module.error();
     }
 
-    std::vector<wgpu::BindGroupLayout> groups = {
-        setup.layouts->frame,
-        key.shader.instanceSource == shaders::InstanceSource::InstanceStorage
-            ? setup.layouts->instanceStorage
-            : setup.layouts->nodeUniform,
-    };
+    std::vector<wgpu::BindGroupLayout> groups = {setup.layouts->frame};
+    switch (key.shader.instanceSource) {
+        case shaders::InstanceSource::NodeUniform:
+            groups.push_back(setup.layouts->nodeUniform);
+            break;
+        case shaders::InstanceSource::InstanceStorage:
+            groups.push_back(setup.layouts->instanceStorage);
+            break;
+        case shaders::InstanceSource::VisibleList:
+            groups.push_back(setup.layouts->culledInstances);
+            break;
+    }
     if (key.shader.materials) {
         groups.push_back(setup.layouts->material);
     }

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "strategies/BundlesStrategy.h"
+#include "strategies/GpuCullingStrategy.h"
 #include "strategies/InstancingStrategy.h"
 #include "strategies/LayoutsStrategy.h"
 #include "strategies/MaterialsStrategy.h"
@@ -24,10 +25,14 @@ constexpr std::array kStrategyNames = {
     StrategyName{StrategyKind::Instancing, "instancing"},
     StrategyName{StrategyKind::Materials, "materials"},
     StrategyName{StrategyKind::Bundles, "bundles"},
+    StrategyName{StrategyKind::GpuCulling, "gpu-culling"},
+    StrategyName{StrategyKind::GpuCullingBundles, "gpu-culling-bundles"},
 };
 constexpr std::array kAllStrategies = {StrategyKind::Naive, StrategyKind::Layouts,
                                        StrategyKind::PipelineCache, StrategyKind::Instancing,
-                                       StrategyKind::Materials, StrategyKind::Bundles};
+                                       StrategyKind::Materials, StrategyKind::Bundles,
+                                       StrategyKind::GpuCulling,
+                                       StrategyKind::GpuCullingBundles};
 }  // namespace
 
 std::string_view strategyName(StrategyKind kind) {
@@ -75,6 +80,10 @@ std::unique_ptr<Strategy> createStrategy(StrategyKind kind) {
             return std::make_unique<MaterialsStrategy>();
         case StrategyKind::Bundles:
             return std::make_unique<BundlesStrategy>();
+        case StrategyKind::GpuCulling:
+            return std::make_unique<GpuCullingStrategy>(false);
+        case StrategyKind::GpuCullingBundles:
+            return std::make_unique<GpuCullingStrategy>(true);
     }
     return nullptr;
 }

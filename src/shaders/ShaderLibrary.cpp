@@ -9,8 +9,11 @@ namespace encore::shaders {
 
 std::set<std::string, std::less<>> ShaderVariantKey::flags() const {
     std::set<std::string, std::less<>> result;
-    if (instanceSource == InstanceSource::InstanceStorage) {
+    if (instanceSource != InstanceSource::NodeUniform) {
         result.insert("INSTANCE_STORAGE");
+    }
+    if (instanceSource == InstanceSource::VisibleList) {
+        result.insert("VISIBLE_LIST");
     }
     if (materials) {
         result.insert("MATERIALS");

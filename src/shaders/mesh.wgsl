@@ -1,6 +1,9 @@
 // The mesh shader of every strategy. Variants (ShaderVariantKey):
 //   INSTANCE_STORAGE  transforms come from one storage buffer indexed by instance_index
 //                     (instancing and later strategies); otherwise from a per-node uniform.
+//   VISIBLE_LIST      (with INSTANCE_STORAGE) GPU culling: instance_index indexes this draw's
+//                     list of visible instances, bound with a dynamic offset, so indirect
+//                     draws keep firstInstance 0 (no IndirectFirstInstance feature needed).
 //   MATERIALS         group 2 holds the glTF material (base colour factor and texture).
 //   HAS_TEXCOORD      the primitive has TEXCOORD_0.
 //   HAS_COLOR         the primitive has COLOR_0.
@@ -16,6 +19,9 @@ struct Transform {
 
 #if INSTANCE_STORAGE
 @group(1) @binding(0) var<storage, read> instances: array<Transform>;
+#if VISIBLE_LIST
+@group(1) @binding(1) var<storage, read> visibleInstances: array<u32>;
+#endif
 #else
 @group(1) @binding(0) var<uniform> node: Transform;
 #endif
@@ -56,7 +62,9 @@ struct VertexOutput {
 
 @vertex
 fn vertexMain(input: VertexInput) -> VertexOutput {
-#if INSTANCE_STORAGE
+#if VISIBLE_LIST
+    let transform = instances[visibleInstances[input.instance]];
+#elif INSTANCE_STORAGE
     let transform = instances[input.instance];
 #else
     let transform = node;

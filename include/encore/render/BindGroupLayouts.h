@@ -2,7 +2,8 @@
 
 // The bind group layouts shared by every strategy, ordered by how often a group changes:
 //   0  frame      camera matrices (uniform), once per pass or bundle
-//   1  instances  either one node's transform (uniform) or all transforms (read-only storage)
+//   1  instances  one node's transform (uniform), all transforms (read-only storage), or all
+//                 transforms plus a draw's visible-instance list (GPU culling)
 //   2  material   material uniform, base colour sampler and texture
 
 #include <webgpu/webgpu_cpp.h>
@@ -20,6 +21,8 @@ struct BindGroupLayouts {
     wgpu::BindGroupLayout frame;
     wgpu::BindGroupLayout nodeUniform;
     wgpu::BindGroupLayout instanceStorage;
+    // GPU culling: all transforms plus one draw's visible list (dynamic offset).
+    wgpu::BindGroupLayout culledInstances;
     wgpu::BindGroupLayout material;
 
     static BindGroupLayouts create(const wgpu::Device& device);

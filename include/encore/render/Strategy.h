@@ -38,6 +38,11 @@ enum class StrategyKind {
     // The materials frame recorded once into render bundles and replayed with executeBundles;
     // dynamic data changes through buffers.
     Bundles,
+    // GPU frustum culling: a compute pass writes indirect instance counts and visible lists;
+    // one indirect draw per primitive, recorded directly every frame.
+    GpuCulling,
+    // GPU culling with the indirect draws recorded once into a render bundle.
+    GpuCullingBundles,
 };
 
 std::string_view strategyName(StrategyKind kind);
@@ -64,6 +69,8 @@ struct FrameState {
     Camera camera;
     float timeSeconds = 0.0f;
 };
+
+class GpuCuller;
 
 class Strategy {
   public:
@@ -107,6 +114,8 @@ class Strategy {
     // and how many bundles it has recorded since prepare().
     virtual DrawCounters bundleContents() const { return {}; }
     virtual std::uint64_t bundlesRecorded() const { return 0; }
+    // The GPU culling state, for tests and tools; nullptr when the strategy does not cull.
+    virtual const GpuCuller* culler() const { return nullptr; }
 };
 
 std::unique_ptr<Strategy> createStrategy(StrategyKind kind);

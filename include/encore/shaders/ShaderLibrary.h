@@ -19,6 +19,7 @@ namespace encore::shaders {
 enum class InstanceSource : std::uint8_t {
     NodeUniform,      // One uniform buffer and bind group per node (naive .. pipeline-cache).
     InstanceStorage,  // One storage buffer of all transforms, indexed by instance_index.
+    VisibleList,      // GPU culling: instance_index indexes the draw's visible-instance list.
 };
 
 // Small, padded, hashable: used as a cache key and as part of PipelineKey.

@@ -1,9 +1,7 @@
 #pragma once
 
-#include <vector>
-
+#include "BundledFrame.h"
 #include "MaterialsStrategy.h"
-#include "encore/render/BundleRecorder.h"
 
 namespace encore::render {
 
@@ -18,16 +16,11 @@ class BundlesStrategy final : public MaterialsStrategy {
     Result<void> prepare(const RenderSetup& setup, const scene::SceneData& scene) override;
     void beforePass(const wgpu::CommandEncoder& commands, const FrameState& frame) override;
     void encode(RenderEncoder& encoder, const FrameState& frame) const override;
-    DrawCounters bundleContents() const override;
-    std::uint64_t bundlesRecorded() const override { return mBundlesRecorded; }
+    DrawCounters bundleContents() const override { return mBundles.contents(); }
+    std::uint64_t bundlesRecorded() const override { return mBundles.recorded(); }
 
   private:
-    RecordedBundle mOpaque;
-    RecordedBundle mBlended;
-    std::vector<std::uint32_t> mRecordedBlendOrder;
-    std::uint64_t mRecordedGeneration = 0;
-    std::uint64_t mBundlesRecorded = 0;
-    bool mStale = true;
+    BundledFrame mBundles;
 };
 
 }  // namespace encore::render

@@ -88,7 +88,7 @@ Result<void> MaterialsStrategy::prepare(const RenderSetup& setup, const scene::S
                 }
                 auto [group, inserted] = groupOfKey.try_emplace(key, mOpaque.size());
                 if (inserted) {
-                    mOpaque.push_back({*pipeline, {}});
+                    mOpaque.push_back({key, *pipeline, {}});
                 }
                 auto [materialGroup, newMaterial] = materialGroupOf.try_emplace(
                     {group->second, primitive.material}, mOpaque[group->second].materials.size());

@@ -41,6 +41,7 @@ class MaterialsStrategy : public Strategy {
         std::vector<PrimitiveDraw> primitives;
     };
     struct PipelineGroup {
+        PipelineKey key;
         wgpu::RenderPipeline pipeline;
         std::vector<MaterialGroup> materials;
     };

@@ -78,9 +78,11 @@ TEST(ShaderComposerTest, ReportsErrorsWithFileAndLine) {
 }
 
 TEST(ShaderComposerTest, EveryMeshVariantComposes) {
-    for (int bits = 0; bits < 32; ++bits) {
+    for (int bits = 0; bits < 48; ++bits) {
         ShaderVariantKey key;
-        key.instanceSource = (bits & 1) ? InstanceSource::InstanceStorage : InstanceSource::NodeUniform;
+        key.instanceSource = (bits & 32)  ? InstanceSource::VisibleList
+                             : (bits & 1) ? InstanceSource::InstanceStorage
+                                          : InstanceSource::NodeUniform;
         key.materials = bits & 2;
         key.hasTexcoord = bits & 4;
         key.hasColor = bits & 8;

@@ -1,0 +1,71 @@
+#pragma once
+
+// GPU frustum culling feeding indirect draws (after toji's webgpu-bundle-culling, without its
+// per-drawable buffers). For N draws, each covering one instance range of the InstanceBuffer:
+//  - one indirect-arguments buffer holds all N argument records (one buffer, because Dawn
+//    validates indirect draws per buffer); firstInstance is always 0;
+//  - one visible-instance buffer holds N lists, each starting at a 256-byte aligned entry so a
+//    dynamic offset of the group 1 bind group selects it per draw;
+//  - each frame a compute pass zeroes every instanceCount, tests every instance's bounding
+//    sphere against the frustum and appends visible instances to the lists of its mesh's draws.
+// The draw count never changes; only instance counts do, so recorded bundles stay valid.
+
+#include <webgpu/webgpu_cpp.h>
+
+#include <cstdint>
+#include <vector>
+
+#include "encore/core/Result.h"
+#include "encore/render/Camera.h"
+#include "encore/render/Frustum.h"
+#include "encore/render/InstanceBuffer.h"
+#include "encore/render/Strategy.h"
+
+namespace encore::render {
+
+struct CulledDraw {
+    InstanceRange instances;  // Slots of the InstanceBuffer this draw may show.
+    bool indexed = true;
+    std::uint32_t elementCount = 0;  // Indices, or vertices when not indexed.
+};
+
+class GpuCuller {
+  public:
+    static constexpr std::uint64_t kArgumentsStride = 20;  // Five u32: the indexed layout.
+
+    GpuCuller() = default;
+    // `spheres` holds one world-space bounding sphere per instance slot.
+    static Result<GpuCuller> create(const RenderSetup& setup, const InstanceBuffer& instances,
+                                    std::vector<Sphere> spheres, std::vector<CulledDraw> draws);
+
+    // Writes the camera's frustum and records the reset and cull dispatches.
+    void encode(const wgpu::Queue& queue, const wgpu::CommandEncoder& commands,
+                const Camera& camera) const;
+
+    // A moved instance needs its new sphere.
+    void updateSphere(const wgpu::Queue& queue, std::uint32_t slot, const Sphere& sphere);
+
+    const std::vector<CulledDraw>& draws() const { return mDraws; }
+    const std::vector<Sphere>& spheres() const { return mSpheres; }
+    const wgpu::Buffer& indirectArguments() const { return mArguments; }
+    std::uint64_t argumentsOffset(std::size_t draw) const { return draw * kArgumentsStride; }
+    // Group 1 for draw `draw`: bind with dynamicOffset(draw).
+    const wgpu::BindGroup& drawBindGroup() const { return mDrawBindGroup; }
+    std::uint32_t dynamicOffset(std::size_t draw) const { return mVisibleBase[draw] * 4; }
+
+  private:
+    std::vector<CulledDraw> mDraws;
+    std::vector<Sphere> mSpheres;
+    std::vector<std::uint32_t> mVisibleBase;  // Per draw, in entries.
+    wgpu::Buffer mFrustum;
+    wgpu::Buffer mSphereBuffer;
+    wgpu::Buffer mArguments;
+    wgpu::Buffer mVisible;
+    wgpu::BindGroup mDrawBindGroup;
+    wgpu::BindGroup mCullBindGroup;
+    wgpu::ComputePipeline mReset;
+    wgpu::ComputePipeline mCull;
+    std::uint32_t mSlotCount = 0;
+};
+
+}  // namespace encore::render

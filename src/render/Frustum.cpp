@@ -1,0 +1,38 @@
+#include "encore/render/Frustum.h"
+
+#include <algorithm>
+
+namespace encore::render {
+
+Frustum Frustum::fromViewProjection(const glm::mat4& m) {
+    // Gribb and Hartmann: planes from sums of the matrix rows (glm stores columns).
+    auto row = [&](int i) { return glm::vec4(m[0][i], m[1][i], m[2][i], m[3][i]); };
+    Frustum frustum;
+    frustum.planes = {row(3) + row(0), row(3) - row(0), row(3) + row(1),
+                      row(3) - row(1), row(2),          row(3) - row(2)};
+    for (glm::vec4& plane : frustum.planes) {
+        plane /= glm::length(glm::vec3(plane));
+    }
+    return frustum;
+}
+
+bool Frustum::intersects(const Sphere& sphere) const {
+    for (const glm::vec4& plane : planes) {
+        if (glm::dot(glm::vec3(plane), glm::vec3(sphere)) + plane.w < -sphere.w) {
+            return false;
+        }
+    }
+    return true;
+}
+
+Sphere worldSphere(const scene::Bounds& bounds, const glm::mat4& world) {
+    if (bounds.empty()) {
+        return Sphere(glm::vec3(world[3]), 0.0f);
+    }
+    const glm::vec3 center = glm::vec3(world * glm::vec4(bounds.center(), 1.0f));
+    const float scale = std::max({glm::length(glm::vec3(world[0])), glm::length(glm::vec3(world[1])),
+                                  glm::length(glm::vec3(world[2]))});
+    return Sphere(center, bounds.radius() * scale);
+}
+
+}  // namespace encore::render

@@ -1,0 +1,108 @@
+#include "GpuCullingStrategy.h"
+
+namespace encore::render {
+
+Result<void> GpuCullingStrategy::prepare(const RenderSetup& setup, const scene::SceneData& scene) {
+    ENCORE_TRY(MaterialsStrategy::prepare(setup, scene));
+    mScene = &scene;
+    mBundles = BundledFrame();
+    mCulled.clear();
+
+    // Same grouping as `materials`; each draw becomes an indirect draw of the culled variant.
+    std::vector<CulledDraw> draws;
+    for (const PipelineGroup& group : mOpaque) {
+        PipelineKey key = group.key;
+        key.shader.instanceSource = shaders::InstanceSource::VisibleList;
+        auto pipeline = mPipelines->get(key);
+        if (!pipeline) {
+            return pipeline.error();
+        }
+        CulledPipeline culled{*pipeline, {}};
+        for (const MaterialGroup& material : group.materials) {
+            CulledMaterial culledMaterial{material.material, {}};
+            for (const PrimitiveDraw& primitive : material.primitives) {
+                const PrimitiveBindings& bindings = *primitive.bindings;
+                culledMaterial.primitives.push_back({primitive.bindings, draws.size()});
+                draws.push_back({primitive.instances, bindings.indices.has_value(),
+                                 bindings.indices ? bindings.indices->count : bindings.vertexCount});
+            }
+            culled.materials.push_back(std::move(culledMaterial));
+        }
+        mCulled.push_back(std::move(culled));
+    }
+
+    mMeshBounds.assign(scene.meshes.size(), {});
+    for (std::size_t mesh = 0; mesh < scene.meshes.size(); ++mesh) {
+        for (const scene::Primitive& primitive : scene.meshes[mesh].primitives) {
+            mMeshBounds[mesh].extend(primitive.bounds);
+        }
+    }
+    std::vector<Sphere> spheres(mInstances.size());
+    for (std::uint32_t slot = 0; slot < mInstances.size(); ++slot) {
+        const scene::Instance& instance = scene.instances[mInstances.instanceAt(slot)];
+        spheres[slot] = worldSphere(mMeshBounds[instance.mesh.index()], instance.world);
+    }
+    auto culler = GpuCuller::create(setup, mInstances, std::move(spheres), std::move(draws));
+    if (!culler) {
+        return culler.error();
+    }
+    mCuller = std::move(*culler);
+    return {};
+}
+
+void GpuCullingStrategy::beforePass(const wgpu::CommandEncoder& commands,
+                                    const FrameState& frame) {
+    mCuller.encode(mQueue, commands, frame.camera);
+    if (mUseBundles) {
+        mBundles.update(
+            *mSetup, mMaterials->generation(), blendOrder(frame.camera.position),
+            [this](RenderEncoder& encoder) { encodeCulled(encoder); },
+            [this](RenderEncoder& encoder, std::span<const std::uint32_t> order) {
+                setSharedBindGroups(encoder);
+                encodeBlended(encoder, order);
+            });
+    }
+}
+
+void GpuCullingStrategy::encodeCulled(RenderEncoder& encoder) const {
+    encoder.setBindGroup(0, mFrameGroup);
+    for (const CulledPipeline& group : mCulled) {
+        encoder.setPipeline(group.pipeline);
+        for (const CulledMaterial& material : group.materials) {
+            encoder.setBindGroup(2, mMaterials->bindGroup(material.material));
+            for (const CulledPrimitive& primitive : material.primitives) {
+                bindGeometry(encoder, *primitive.bindings);
+                encoder.setBindGroup(1, mCuller.drawBindGroup(),
+                                     mCuller.dynamicOffset(primitive.draw));
+                const std::uint64_t offset = mCuller.argumentsOffset(primitive.draw);
+                if (primitive.bindings->indices) {
+                    encoder.drawIndexedIndirect(mCuller.indirectArguments(), offset);
+                } else {
+                    encoder.drawIndirect(mCuller.indirectArguments(), offset);
+                }
+            }
+        }
+    }
+}
+
+void GpuCullingStrategy::encode(RenderEncoder& encoder, const FrameState& frame) const {
+    if (mUseBundles) {
+        mBundles.execute(encoder);
+        return;
+    }
+    encodeCulled(encoder);
+    if (!mBlended.empty()) {
+        setSharedBindGroups(encoder);  // Blended pipelines use the plain instance layout.
+        encodeBlended(encoder, blendOrder(frame.camera.position));
+    }
+}
+
+Result<void> GpuCullingStrategy::updateInstance(std::size_t instance, const glm::mat4& world) {
+    ENCORE_TRY(MaterialsStrategy::updateInstance(instance, world));
+    const scene::MeshId mesh = mScene->instances[instance].mesh;
+    mCuller.updateSphere(mQueue, mInstances.slotOf(instance),
+                         worldSphere(mMeshBounds[mesh.index()], world));
+    return {};
+}
+
+}  // namespace encore::render

@@ -1,0 +1,53 @@
+#pragma once
+
+#include "BundledFrame.h"
+#include "MaterialsStrategy.h"
+#include "encore/render/GpuCuller.h"
+
+namespace encore::render {
+
+// The `materials` frame with GPU frustum culling: a compute pass tests every instance each
+// frame and writes the instance counts of one indirect draw per (primitive, instance range) and
+// their visible-instance lists. Recorded directly each frame, or, with bundles, once into a
+// render bundle whose draw sequence never changes (only the GPU-written counts do). Blended
+// geometry is drawn as in `materials`, back to front, unculled.
+class GpuCullingStrategy final : public MaterialsStrategy {
+  public:
+    explicit GpuCullingStrategy(bool useBundles) : mUseBundles(useBundles) {}
+
+    StrategyKind kind() const override {
+        return mUseBundles ? StrategyKind::GpuCullingBundles : StrategyKind::GpuCulling;
+    }
+    Result<void> prepare(const RenderSetup& setup, const scene::SceneData& scene) override;
+    void beforePass(const wgpu::CommandEncoder& commands, const FrameState& frame) override;
+    void encode(RenderEncoder& encoder, const FrameState& frame) const override;
+    Result<void> updateInstance(std::size_t instance, const glm::mat4& world) override;
+    DrawCounters bundleContents() const override { return mBundles.contents(); }
+    std::uint64_t bundlesRecorded() const override { return mBundles.recorded(); }
+    const GpuCuller* culler() const override { return &mCuller; }
+
+  private:
+    struct CulledPrimitive {
+        const PrimitiveBindings* bindings = nullptr;
+        std::size_t draw = 0;  // Index into the culler's draws.
+    };
+    struct CulledMaterial {
+        scene::MaterialId material;
+        std::vector<CulledPrimitive> primitives;
+    };
+    struct CulledPipeline {
+        wgpu::RenderPipeline pipeline;
+        std::vector<CulledMaterial> materials;
+    };
+
+    void encodeCulled(RenderEncoder& encoder) const;
+
+    bool mUseBundles;
+    const scene::SceneData* mScene = nullptr;
+    std::vector<scene::Bounds> mMeshBounds;
+    std::vector<CulledPipeline> mCulled;
+    GpuCuller mCuller;
+    BundledFrame mBundles;
+};
+
+}  // namespace encore::render

@@ -1,0 +1,46 @@
+#include "CommandRunner.h"
+
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+#include "TestPaths.h"
+
+namespace encore::test {
+
+namespace {
+std::string slurp(const std::filesystem::path& path) {
+    std::ifstream file(path);
+    std::stringstream text;
+    text << file.rdbuf();
+    return text.str();
+}
+}  // namespace
+
+std::string quote(const std::string& text) {
+    std::string quoted = "'";
+    for (char c : text) {
+        quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    }
+    return quoted + "'";
+}
+
+CommandResult runEncore(const std::string& arguments) {
+    const char* overridden = std::getenv("ENCORE_BINARY");
+    const std::string binary = overridden ? overridden : ENCORE_BINARY_PATH;
+    CommandResult result;
+    const auto dir = makeTempDir("command");
+    const auto out = dir / "stdout";
+    const auto err = dir / "stderr";
+    const std::string command = quote(binary) + " " + arguments + " >" + quote(out.string()) +
+                                " 2>" + quote(err.string()) + " </dev/null";
+    const int status = std::system(command.c_str());
+    result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    result.out = slurp(out);
+    result.err = slurp(err);
+    return result;
+}
+
+}  // namespace encore::test
