@@ -18,8 +18,9 @@ deps:
 	@bash scripts/install-deps.sh
 
 configure: deps
-	@cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) -Wno-dev > $(BUILD).configure.log 2>&1 \
-		|| (cat $(BUILD).configure.log; exit 1)
+	@mkdir -p $(BUILD)
+	@cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) -Wno-dev > $(BUILD)/configure.log 2>&1 \
+		|| (cat $(BUILD)/configure.log; exit 1)
 
 build: configure
 	@cmake --build $(BUILD) -j$(JOBS)
@@ -28,7 +29,7 @@ build: configure
 demo: build
 	@mkdir -p $(OUT)
 	@$(ENCORE) gen --objects 400 --meshes 6 --materials 5 -o $(OUT)/demo-scene.glb
-	@$(ENCORE) --verbose render $(OUT)/demo-scene.glb --strategy naive -o $(OUT)/demo.png
+	@$(ENCORE) --verbose render $(OUT)/demo-scene.glb --strategy bundles -o $(OUT)/demo.png
 
 test: build
 	@cd $(BUILD) && ctest --output-on-failure -j2 --timeout 900
@@ -41,12 +42,13 @@ test-gpu: build
 
 # Unit and command-line (bad input) tests under AddressSanitizer + UndefinedBehaviorSanitizer.
 test-sanitize: deps
+	@mkdir -p $(ASAN_BUILD)
 	@cmake -S . -B $(ASAN_BUILD) -DCMAKE_BUILD_TYPE=Debug -DENCORE_SANITIZE=ON -Wno-dev \
-		> $(ASAN_BUILD).configure.log 2>&1 || (cat $(ASAN_BUILD).configure.log; exit 1)
+		> $(ASAN_BUILD)/configure.log 2>&1 || (cat $(ASAN_BUILD)/configure.log; exit 1)
 	@cmake --build $(ASAN_BUILD) -j$(JOBS)
 	@cd $(ASAN_BUILD) && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
 		UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
 		ctest --output-on-failure -j2 -L 'unit|cli'
 
 clean:
-	rm -rf $(BUILD) $(ASAN_BUILD) $(OUT) $(BUILD).configure.log $(ASAN_BUILD).configure.log
+	rm -rf $(BUILD) $(ASAN_BUILD) $(OUT)

@@ -8,7 +8,8 @@
 set -euo pipefail
 
 bookworm_packages=(g++ make pkg-config libglm-dev libstb-dev libcli11-dev libgtest-dev
-                   nlohmann-json3-dev libdraco-dev libmeshoptimizer-dev)
+                   nlohmann-json3-dev libdraco-dev libmeshoptimizer-dev
+                   librsvg2-bin)
 # Dawn's CMake package declares C++ module file sets, which need CMake >= 3.28.
 backports_packages=(mesa-vulkan-drivers cmake)
 sid_packages=(libwebgpu-dawn-dev)

@@ -4,6 +4,7 @@
 // the process exit code. Only apps/ prints.
 
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 
 #include <string>
 
@@ -32,5 +33,10 @@ void addRenderCommand(CLI::App& app, const GlobalOptions& global, int& exitCode)
 void addInfoCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
 void addGenCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
 void addStatsCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
+void addBenchCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
+void addPlotCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
+
+// Writes the scaling-curve SVG of a benchmark report; returns an exit code.
+int writePlot(const nlohmann::json& report, const std::string& path);
 
 }  // namespace encore::app

@@ -38,6 +38,8 @@ int main(int argc, char** argv) {
     addInfoCommand(app, global, exitCode);
     addGenCommand(app, global, exitCode);
     addStatsCommand(app, global, exitCode);
+    addBenchCommand(app, global, exitCode);
+    addPlotCommand(app, global, exitCode);
 
     encore::setLogSink([&global](encore::LogLevel level, std::string_view message) {
         if (level == encore::LogLevel::Error) {

@@ -214,6 +214,15 @@ Result<Context> Context::create(const ContextOptions& options) {
     return context;
 }
 
+std::optional<std::uint32_t> Context::bindGroupLimit() const {
+    constexpr std::uint32_t kLavapipeBindGroups = 60000;  // Crashes were seen past 65,000.
+    if (mAdapterDescription.adapterType == wgpu::AdapterType::CPU &&
+        mAdapterDescription.backend == wgpu::BackendType::Vulkan) {
+        return kLavapipeBindGroups;
+    }
+    return std::nullopt;
+}
+
 bool Context::hasFeature(wgpu::FeatureName feature) const {
     return mDevice.HasFeature(feature);
 }

@@ -171,7 +171,7 @@ Result<GpuCuller> GpuCuller::create(const RenderSetup& setup, const InstanceBuff
 }
 
 void GpuCuller::encode(const wgpu::Queue& queue, const wgpu::CommandEncoder& commands,
-                       const Camera& camera) const {
+                       const Camera& camera, gpu::GpuTimer* timer) const {
     if (!mCull) {
         return;
     }
@@ -179,6 +179,7 @@ void GpuCuller::encode(const wgpu::Queue& queue, const wgpu::CommandEncoder& com
     queue.WriteBuffer(mFrustum, 0, frustum.planes.data(), sizeof(frustum.planes));
     wgpu::ComputePassDescriptor descriptor{};
     descriptor.label = "gpu culling";
+    descriptor.timestampWrites = timer ? timer->nextPass() : nullptr;
     wgpu::ComputePassEncoder pass = commands.BeginComputePass(&descriptor);
     // Separate dispatches are separate usage scopes: the cull sees the reset's writes.
     pass.SetPipeline(mReset);

@@ -1,5 +1,7 @@
 #include "encore/render/NodeUniforms.h"
 
+#include <string>
+
 #include "encore/gpu/Upload.h"
 #include "encore/render/TransformData.h"
 
@@ -25,6 +27,21 @@ NodeUniforms::NodeUniforms(const wgpu::Device& device, const BindGroupLayouts& l
         descriptor.entries = &entry;
         mBindGroups.push_back(device.CreateBindGroup(&descriptor));
     }
+}
+
+Result<void> NodeUniforms::checkLimit(const scene::SceneData& scene,
+                                      std::optional<std::uint32_t> limit,
+                                      std::string_view strategy) {
+    if (limit && scene.instances.size() > *limit) {
+        return makeError(ErrorCode::Unsupported,
+                         "The scene has " + std::to_string(scene.instances.size()) +
+                             " mesh nodes and strategy " + std::string(strategy) +
+                             " creates a bind group for each, more than this driver survives (" +
+                             std::to_string(*limit) +
+                             "; lavapipe crashes past about 65,000). Use instancing or a later "
+                             "strategy for this scene.");
+    }
+    return {};
 }
 
 void NodeUniforms::update(const wgpu::Queue& queue, std::size_t sceneInstance,

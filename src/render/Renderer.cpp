@@ -41,6 +41,7 @@ Result<Renderer> Renderer::create(gpu::Context& context, const RendererOptions& 
     setup.colorFormat = RenderTarget::kColorFormat;
     setup.depthFormat = RenderTarget::kDepthFormat;
     setup.sampleCount = options.target.sampleCount;
+    setup.bindGroupLimit = context.bindGroupLimit();
     ENCORE_TRY(context.checkNoErrors("Creating the renderer"));
     return renderer;
 }
@@ -81,7 +82,7 @@ FrameResult Renderer::renderPasses(std::span<const Camera> cameras, float timeSe
     } else {
         mFrame->update(mContext->queue(), cameras[0], timeSeconds);
     }
-    const FrameState state{cameras[0], timeSeconds};
+    const FrameState state{cameras[0], timeSeconds, mTimer};
 
     const auto encodeStart = std::chrono::steady_clock::now();
     wgpu::CommandEncoder commandEncoder = mContext->device().CreateCommandEncoder();
@@ -106,6 +107,7 @@ FrameResult Renderer::renderPasses(std::span<const Camera> cameras, float timeSe
         passDescriptor.colorAttachmentCount = 1;
         passDescriptor.colorAttachments = &color;
         passDescriptor.depthStencilAttachment = &depth;
+        passDescriptor.timestampWrites = mTimer ? mTimer->nextPass() : nullptr;
         wgpu::RenderPassEncoder pass = commandEncoder.BeginRenderPass(&passDescriptor);
         if (multiView) {
             pass.SetViewport(float(view * viewWidth), 0.0f, float(viewWidth),
@@ -114,9 +116,12 @@ FrameResult Renderer::renderPasses(std::span<const Camera> cameras, float timeSe
         if (mStrategy) {
             RenderEncoder encoder(pass, result.counters);
             encoder.setTrace(trace);
-            mStrategy->encode(encoder, FrameState{cameras[view], timeSeconds});
+            mStrategy->encode(encoder, FrameState{cameras[view], timeSeconds, mTimer});
         }
         pass.End();
+    }
+    if (mTimer) {
+        mTimer->resolve(commandEncoder);
     }
     wgpu::CommandBuffer commands = commandEncoder.Finish();
     result.encodeMilliseconds = millisecondsSince(encodeStart);

@@ -104,8 +104,8 @@ MeshGeometry makeBox() {
 }
 
 // Mesh `index`: the shape cycles, the tessellation grows, so every mesh is distinct.
-MeshGeometry makeMesh(std::uint32_t index) {
-    const std::uint32_t detail = 8 + 4 * (index / 5);
+MeshGeometry makeMesh(std::uint32_t index, std::uint32_t tessellation) {
+    const std::uint32_t detail = tessellation + 4 * (index / 5);
     switch (index % 5) {
         case 0: {
             MeshGeometry box = makeBox();
@@ -250,6 +250,11 @@ Result<std::vector<std::uint8_t>> generateSceneGlb(const GeneratorOptions& optio
     if (options.materialCount == 0 || options.materialCount > kMaxGeneratedMaterials) {
         return outOfRange("materials", options.materialCount, kMaxGeneratedMaterials);
     }
+    if (options.tessellation < 3 || options.tessellation > 256) {
+        return makeError(ErrorCode::InvalidArgument,
+                         "The tessellation (" + std::to_string(options.tessellation) +
+                             ") must be between 3 and 256 segments.");
+    }
 
     json document = {{"asset", {{"version", "2.0"}, {"generator", "encore gen"}}},
                      {"scene", 0},
@@ -275,7 +280,7 @@ Result<std::vector<std::uint8_t>> generateSceneGlb(const GeneratorOptions& optio
     constexpr int kArrayBuffer = 34962;
     constexpr int kElementArrayBuffer = 34963;
     for (std::uint32_t i = 0; i < options.meshCount; ++i) {
-        const MeshGeometry mesh = makeMesh(i);
+        const MeshGeometry mesh = makeMesh(i, options.tessellation);
         json attributes = {
             {"POSITION", binary.addAccessor(document, mesh.positions, kFloat, "VEC3",
                                             kArrayBuffer, true)},

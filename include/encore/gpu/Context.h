@@ -11,6 +11,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -55,6 +56,12 @@ class Context {
     const wgpu::Queue& queue() const { return mQueue; }
     const AdapterDescription& adapterDescription() const { return mAdapterDescription; }
     bool hasFeature(wgpu::FeatureName feature) const;
+
+    // How many bind groups (or dynamic-offset binds of one pass) the driver survives, when it is
+    // known to crash beyond some number: Mesa's lavapipe segfaults allocating descriptor pools
+    // past about 65,000 (seen with Mesa 25.0.7). Code that would create more returns an error
+    // instead. nullopt: no known limit.
+    std::optional<std::uint32_t> bindGroupLimit() const;
 
     // Blocks until the future completes. Returns false on timeout.
     bool wait(const wgpu::Future& future, std::uint64_t timeoutNs = UINT64_MAX) const;

@@ -40,7 +40,7 @@ class GpuCuller {
 
     // Writes the camera's frustum and records the reset and cull dispatches.
     void encode(const wgpu::Queue& queue, const wgpu::CommandEncoder& commands,
-                const Camera& camera) const;
+                const Camera& camera, gpu::GpuTimer* timer = nullptr) const;
 
     // A moved instance needs its new sphere.
     void updateSphere(const wgpu::Queue& queue, std::uint32_t slot, const Sphere& sphere);

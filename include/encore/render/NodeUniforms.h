@@ -5,7 +5,11 @@
 
 #include <webgpu/webgpu_cpp.h>
 
+#include <optional>
+#include <string_view>
 #include <vector>
+
+#include "encore/core/Result.h"
 
 #include "encore/render/BindGroupLayouts.h"
 #include "encore/scene/SceneData.h"
@@ -17,6 +21,12 @@ class NodeUniforms {
     NodeUniforms() = default;
     NodeUniforms(const wgpu::Device& device, const BindGroupLayouts& layouts,
                  const scene::SceneData& scene);
+
+    // An error when the scene has more mesh nodes than `limit` bind groups (see
+    // gpu::Context::bindGroupLimit), naming the strategy that would create them.
+    static Result<void> checkLimit(const scene::SceneData& scene,
+                                   std::optional<std::uint32_t> limit,
+                                   std::string_view strategy);
 
     const wgpu::BindGroup& bindGroup(std::size_t sceneInstance) const {
         return mBindGroups[sceneInstance];

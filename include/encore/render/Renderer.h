@@ -63,6 +63,10 @@ class Renderer {
     // Waits for the GPU and reads the final image back.
     Result<image::ImageRgba8> readImage();
 
+    // Times every pass of later frames with `timer` (nullptr: untimed); read the result with
+    // GpuTimer::read after renderFrame.
+    void setGpuTimer(gpu::GpuTimer* timer) { mTimer = timer; }
+
     const RenderTarget& target() const { return mTarget; }
     const RenderSetup& setup() const { return *mSetup; }
     const Strategy* strategy() const { return mStrategy.get(); }
@@ -81,6 +85,7 @@ class Renderer {
     std::unique_ptr<FrameUniforms> mFrame;
     std::unique_ptr<RenderSetup> mSetup;  // Stable address: strategies keep pointers to it.
     std::unique_ptr<Strategy> mStrategy;
+    gpu::GpuTimer* mTimer = nullptr;
 };
 
 }  // namespace encore::render

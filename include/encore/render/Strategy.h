@@ -12,6 +12,7 @@
 #include <string_view>
 
 #include "encore/core/Result.h"
+#include "encore/gpu/GpuTimer.h"
 #include "encore/render/BindGroupLayouts.h"
 #include "encore/render/Camera.h"
 #include "encore/render/FrameUniforms.h"
@@ -59,6 +60,9 @@ struct RenderSetup {
     wgpu::TextureFormat colorFormat = wgpu::TextureFormat::RGBA8UnormSrgb;
     wgpu::TextureFormat depthFormat = wgpu::TextureFormat::Depth32Float;
     std::uint32_t sampleCount = 1;
+    // gpu::Context::bindGroupLimit(): strategies that create a bind group per node refuse
+    // scenes that would exceed it rather than crash the driver.
+    std::optional<std::uint32_t> bindGroupLimit;
     // Render pipelines created through this setup (createMeshPipeline), for stats.
     mutable std::uint64_t pipelinesCreated = 0;
 };
@@ -68,6 +72,7 @@ struct RenderSetup {
 struct FrameState {
     Camera camera;
     float timeSeconds = 0.0f;
+    gpu::GpuTimer* timer = nullptr;  // Times passes the strategy begins itself (culling).
 };
 
 class GpuCuller;

@@ -52,7 +52,7 @@ Result<void> GpuCullingStrategy::prepare(const RenderSetup& setup, const scene::
 
 void GpuCullingStrategy::beforePass(const wgpu::CommandEncoder& commands,
                                     const FrameState& frame) {
-    mCuller.encode(mQueue, commands, frame.camera);
+    mCuller.encode(mQueue, commands, frame.camera, frame.timer);
     if (mUseBundles) {
         mBundles.update(
             *mSetup, mMaterials->generation(), blendOrder(frame.camera.position),

@@ -1,0 +1,126 @@
+#include <cstdio>
+#include <fstream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "Commands.h"
+#include "encore/bench/Benchmark.h"
+#include "encore/core/FileIO.h"
+
+namespace encore::app {
+
+namespace {
+
+struct BenchCommandOptions {
+    bench::BenchOptions bench;
+    std::vector<std::string> strategies;
+    std::string json;
+    std::string markdown;
+    std::string plot;
+    bool smoke = false;
+};
+
+Result<void> writeText(const std::string& path, const std::string& text) {
+    return writeFile(path, std::span(reinterpret_cast<const std::uint8_t*>(text.data()),
+                                     text.size()));
+}
+
+int runBench(BenchCommandOptions options, const GlobalOptions& global) {
+    for (const auto& name : options.strategies) {
+        const auto kind = render::strategyFromName(name);
+        if (!kind) {
+            return reportError(
+                makeError(ErrorCode::InvalidArgument, "Unknown strategy '" + name + "'."));
+        }
+        options.bench.strategies.push_back(*kind);
+    }
+    if (options.smoke) {
+        // A quick run that keeps the benchmark code path exercised in CI.
+        options.bench.objectCounts = {100, 1000};
+        options.bench.frames = 3;
+        options.bench.warmup = 1;
+        options.bench.width = options.bench.height = 128;
+    }
+    if (options.bench.objectCounts.empty() && options.bench.models.empty() &&
+        options.bench.animometerTriangles.empty()) {
+        options.bench.objectCounts = {1000, 10000};
+    }
+
+    gpu::ContextOptions contextOptions;
+    contextOptions.allowNullBackend = global.allowNullBackend;
+    contextOptions.timestamps = !options.bench.callgrind;
+    auto context = gpu::Context::create(contextOptions);
+    if (!context) {
+        return reportError(context.error());
+    }
+    std::fprintf(stderr, "adapter: %s\n", context->adapterDescription().summary().c_str());
+    auto report = bench::runBenchmarks(*context, options.bench, [&](const std::string& label) {
+        if (global.verbose) {
+            std::fprintf(stderr, "measuring %s\n", label.c_str());
+        }
+    });
+    if (!report) {
+        return reportError(report.error());
+    }
+    const std::string markdown = bench::toMarkdown(*report);
+    std::printf("%s", markdown.c_str());
+    if (!options.markdown.empty()) {
+        if (auto written = writeText(options.markdown, markdown); !written) {
+            return reportError(written.error());
+        }
+    }
+    const auto json = bench::toJson(*report);
+    if (!options.json.empty()) {
+        if (auto written = writeText(options.json, json.dump(2) + "\n"); !written) {
+            return reportError(written.error());
+        }
+    }
+    if (!options.plot.empty()) {
+        if (int code = writePlot(json, options.plot); code != kExitOk) {
+            return code;
+        }
+    }
+    return kExitOk;
+}
+
+}  // namespace
+
+void addBenchCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) {
+    auto options = std::make_shared<BenchCommandOptions>();
+    auto& bench = options->bench;
+    auto* command = app.add_subcommand(
+        "bench",
+        "Measure strategies on generated scenes, glTF models and the Animometer scene: CPU encode "
+        "and submit time, GPU time (timestamp queries), API call counts; median and p95.");
+    command->add_option("--objects", bench.objectCounts,
+                        "Generated scenes with these object counts (default 1000 10000)")
+        ->delimiter(',');
+    command->add_option("--model", bench.models, "glTF models to measure (repeatable)");
+    command->add_option("--animometer", bench.animometerTriangles,
+                        "Animometer scenes with these triangle counts")
+        ->delimiter(',');
+    command->add_option("-s,--strategy", options->strategies,
+                        "Only these strategies (repeatable; default: all)");
+    command->add_option("--frames", bench.frames, "Measured frames")->capture_default_str();
+    command->add_option("--warmup", bench.warmup, "Warm-up frames")->capture_default_str();
+    command->add_option("--width", bench.width, "Target width")->capture_default_str();
+    command->add_option("--height", bench.height, "Target height")->capture_default_str();
+    command->add_option("--meshes", bench.meshes, "Distinct meshes of generated scenes")
+        ->capture_default_str();
+    command->add_option("--materials", bench.materials, "Materials of generated scenes")
+        ->capture_default_str();
+    command->add_option("--tessellation", bench.tessellation,
+                        "Segments of the generated round shapes")
+        ->capture_default_str();
+    command->add_option("--json", options->json, "Write the report as JSON");
+    command->add_option("--markdown", options->markdown, "Write the report as Markdown");
+    command->add_option("--plot", options->plot, "Write the scaling curves as SVG");
+    command->add_flag("--callgrind", bench.callgrind,
+                      "No warm-up or GPU timer; bracket the measured frames for valgrind "
+                      "--tool=callgrind --instr-atstart=no");
+    command->add_flag("--smoke", options->smoke, "A few frames of small scenes (CI)");
+    command->callback([options, &global, &exitCode] { exitCode = runBench(*options, global); });
+}
+
+}  // namespace encore::app

@@ -1,0 +1,128 @@
+#include <cstdio>
+#include <map>
+#include <sstream>
+
+#include "encore/bench/Benchmark.h"
+
+namespace encore::bench {
+
+namespace {
+
+nlohmann::json percentilesJson(const render::Percentiles& p) {
+    return {{"median", p.median}, {"p95", p.p95}};
+}
+
+nlohmann::json countersJson(const render::DrawCounters& c) {
+    return {{"setPipeline", c.setPipeline},         {"setBindGroup", c.setBindGroup},
+            {"setVertexBuffer", c.setVertexBuffer}, {"setIndexBuffer", c.setIndexBuffer},
+            {"draw", c.draw},                       {"drawIndexed", c.drawIndexed},
+            {"drawIndirect", c.drawIndirect},       {"executeBundles", c.executeBundles},
+            {"primitives", c.primitives},           {"instances", c.instances},
+            {"triangles", c.triangles},             {"apiCalls", c.apiCalls()}};
+}
+
+std::string format(const char* pattern, double value) {
+    char text[64];
+    std::snprintf(text, sizeof(text), pattern, value);
+    return text;
+}
+
+std::string milliseconds(const render::Percentiles& p) {
+    return format("%.3f", p.median) + " (" + format("%.3f", p.p95) + ")";
+}
+
+}  // namespace
+
+nlohmann::json toJson(const BenchReport& report) {
+    const auto& a = report.adapter;
+    nlohmann::json json = {
+        {"encore", "0.1.0"},
+        {"date", report.date},
+        {"adapter",
+         {{"name", a.name},
+          {"backend", gpu::backendName(a.backend)},
+          {"driver", a.driver},
+          {"vendor", a.vendor},
+          {"summary", a.summary()}}},
+        {"dawn", report.dawnVersion},
+        {"host", {{"cpu", report.cpu}, {"cores", report.cores}}},
+        {"frames", report.options.frames},
+        {"warmup", report.options.callgrind ? 0 : report.options.warmup},
+        {"callgrind", report.options.callgrind},
+        {"timestamps", report.timestamps},
+        {"target", {{"width", report.options.width}, {"height", report.options.height}}},
+        {"results", nlohmann::json::array()},
+        {"skipped", report.skipped},
+    };
+    for (const BenchResult& result : report.results) {
+        json["results"].push_back({
+            {"scene", result.scene},
+            {"label", result.label},
+            {"objects", result.objects},
+            {"strategy", result.strategy},
+            {"encodeMs", percentilesJson(result.encode)},
+            {"submitMs", percentilesJson(result.submit)},
+            {"cpuMs", percentilesJson(result.cpu)},
+            {"gpuMs", result.gpu ? percentilesJson(*result.gpu) : nlohmann::json(nullptr)},
+            {"frame", countersJson(result.frame)},
+            {"bundleContents", countersJson(result.bundleContents)},
+        });
+    }
+    return json;
+}
+
+std::string toMarkdown(const BenchReport& report) {
+    std::ostringstream out;
+    out << "Date: " << report.date << "  \n"
+        << "Adapter: " << report.adapter.summary() << "  \n"
+        << "Dawn: " << report.dawnVersion << "  \n"
+        << "Host CPU: " << report.cpu << " (" << report.cores << " threads)  \n"
+        << "Frames: " << report.options.frames << " measured after "
+        << (report.options.callgrind ? 0 : report.options.warmup) << " warm-up, "
+        << report.options.width << "x" << report.options.height
+        << " target; GPU time from timestamp queries: "
+        << (report.timestamps ? "yes" : "n/a") << "\n\n"
+        << "Times in milliseconds per frame, median (p95). CPU = encode + submit; \"vs naive\" "
+           "is naive's CPU median divided by the strategy's, in the same scene.\n";
+
+    // Results grouped by scene label, in report order.
+    std::vector<std::string> labels;
+    std::map<std::string, std::vector<const BenchResult*>> byLabel;
+    for (const BenchResult& result : report.results) {
+        if (!byLabel.contains(result.label)) {
+            labels.push_back(result.label);
+        }
+        byLabel[result.label].push_back(&result);
+    }
+    for (const auto& label : labels) {
+        const auto& results = byLabel[label];
+        double naive = 0.0;
+        for (const BenchResult* result : results) {
+            if (result->strategy == "naive") {
+                naive = result->cpu.median;
+            }
+        }
+        out << "\n### " << label << " (" << results.front()->objects << " objects)\n\n"
+            << "| strategy | CPU frame | encode | submit | GPU | vs naive | API calls | draws | "
+               "bundle draws |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+        for (const BenchResult* result : results) {
+            out << "| " << result->strategy << " | " << milliseconds(result->cpu) << " | "
+                << milliseconds(result->encode) << " | " << milliseconds(result->submit) << " | "
+                << (result->gpu ? milliseconds(*result->gpu) : std::string("n/a")) << " | "
+                << (naive > 0.0 && result->cpu.median > 0.0
+                        ? format("%.1fx", naive / result->cpu.median)
+                        : std::string("-"))
+                << " | " << result->frame.apiCalls() << " | " << result->frame.drawCalls() << " | "
+                << result->bundleContents.drawCalls() << " |\n";
+        }
+    }
+    if (!report.skipped.empty()) {
+        out << "\nNot measured on this adapter:\n\n";
+        for (const auto& skipped : report.skipped) {
+            out << "- " << skipped << "\n";
+        }
+    }
+    return out.str();
+}
+
+}  // namespace encore::bench

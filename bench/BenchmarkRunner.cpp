@@ -1,0 +1,278 @@
+#include <algorithm>
+#include <chrono>
+#include <ctime>
+#include <fstream>
+#include <thread>
+
+#if __has_include(<valgrind/callgrind.h>)
+#include <valgrind/callgrind.h>
+#define ENCORE_HAS_CALLGRIND 1
+#else
+#define ENCORE_HAS_CALLGRIND 0
+#endif
+
+#include "encore/bench/Benchmark.h"
+#include "encore/gpu/GpuTimer.h"
+#include "encore/render/Animometer.h"
+#include "encore/render/Renderer.h"
+#include "encore/scene/SceneGenerator.h"
+
+namespace encore::bench {
+
+namespace {
+
+void startInstructionCount(bool enabled) {
+#if ENCORE_HAS_CALLGRIND
+    if (enabled) {
+        CALLGRIND_ZERO_STATS;
+        CALLGRIND_START_INSTRUMENTATION;
+    }
+#else
+    (void)enabled;
+#endif
+}
+
+void stopInstructionCount(bool enabled, const std::string& label) {
+#if ENCORE_HAS_CALLGRIND
+    if (enabled) {
+        CALLGRIND_STOP_INSTRUMENTATION;
+        CALLGRIND_DUMP_STATS_AT(label.c_str());
+    }
+#else
+    (void)enabled;
+    (void)label;
+#endif
+}
+
+std::string utcNow() {
+    const std::time_t now = std::time(nullptr);
+    char text[32];
+    std::strftime(text, sizeof(text), "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
+    return text;
+}
+
+std::string cpuModel() {
+    std::ifstream cpuinfo("/proc/cpuinfo");
+    std::string line;
+    while (std::getline(cpuinfo, line)) {
+        if (line.rfind("model name", 0) == 0) {
+            return line.substr(line.find(':') + 2);
+        }
+    }
+    return "unknown CPU";
+}
+
+struct Samples {
+    std::vector<double> encode;
+    std::vector<double> submit;
+    std::vector<double> cpu;
+    std::vector<double> gpu;
+};
+
+void fill(BenchResult& result, const Samples& samples) {
+    result.encode = render::Percentiles::of(samples.encode);
+    result.submit = render::Percentiles::of(samples.submit);
+    result.cpu = render::Percentiles::of(samples.cpu);
+    if (!samples.gpu.empty()) {
+        result.gpu = render::Percentiles::of(samples.gpu);
+    }
+}
+
+// Measures one strategy on one scene.
+Result<BenchResult> measure(gpu::Context& context, render::Renderer& renderer,
+                            const scene::SceneData& scene, render::StrategyKind kind,
+                            const BenchOptions& options, gpu::GpuTimer* timer) {
+    ENCORE_TRY(renderer.prepare(scene, kind));
+    const render::Camera camera =
+        render::Camera::framing(scene.bounds, renderer.target().aspect());
+    BenchResult result;
+    result.strategy = std::string(render::strategyName(kind));
+    result.objects = scene.instances.size();
+    Samples samples;
+    const std::uint32_t warmup = options.callgrind ? 0 : options.warmup;
+    renderer.setGpuTimer(options.callgrind ? nullptr : timer);
+    for (std::uint32_t frame = 0; frame < warmup + options.frames; ++frame) {
+        const bool measured = frame >= warmup;
+        if (measured && frame == warmup) {
+            startInstructionCount(options.callgrind);
+        }
+        const auto rendered = renderer.renderFrame(camera, float(frame) / 60.0f);
+        // One frame at a time: the next frame's CPU work does not wait behind this one's.
+        std::optional<double> gpuMilliseconds;
+        if (timer && !options.callgrind) {
+            gpuMilliseconds = timer->read(context);
+        }
+        context.waitForIdle();
+        if (!measured) {
+            continue;
+        }
+        samples.encode.push_back(rendered.encodeMilliseconds);
+        samples.submit.push_back(rendered.submitMilliseconds);
+        samples.cpu.push_back(rendered.encodeMilliseconds + rendered.submitMilliseconds);
+        if (gpuMilliseconds) {
+            samples.gpu.push_back(*gpuMilliseconds);
+        }
+        result.frame = rendered.counters;
+        result.bundleContents = rendered.bundleContents;
+    }
+    stopInstructionCount(options.callgrind, result.strategy);
+    renderer.setGpuTimer(nullptr);
+    ENCORE_TRY(context.checkNoErrors("Benchmarking " + result.strategy));
+    fill(result, samples);
+    return result;
+}
+
+// Measures one configuration of the Animometer scene.
+Result<BenchResult> measureAnimometer(gpu::Context& context,
+                                      const render::AnimometerOptions& animometer,
+                                      const BenchOptions& options, gpu::GpuTimer* timer) {
+    shaders::ShaderLibrary shaders(context.device());
+    auto scene = render::AnimometerScene::create(context, shaders, animometer);
+    if (!scene) {
+        return scene.error();
+    }
+    BenchResult result;
+    result.scene = "animometer";
+    result.label = "animometer " + std::to_string(animometer.triangles) + " triangles";
+    result.objects = animometer.triangles;
+    Samples samples;
+    const std::uint32_t warmup = options.callgrind ? 0 : options.warmup;
+    for (std::uint32_t frame = 0; frame < warmup + options.frames; ++frame) {
+        const bool measured = frame >= warmup;
+        if (measured && frame == warmup) {
+            startInstructionCount(options.callgrind);
+        }
+        // renderFrame reads the timer itself (FrameTiming::gpuMilliseconds).
+        const auto timing =
+            scene->renderFrame(float(frame) / 60.0f, options.callgrind ? nullptr : timer);
+        const std::optional<double> gpuMilliseconds = timing.gpuMilliseconds;
+        context.waitForIdle();
+        if (!measured) {
+            continue;
+        }
+        samples.encode.push_back(timing.encodeMilliseconds);
+        samples.submit.push_back(timing.submitMilliseconds);
+        samples.cpu.push_back(timing.cpuMilliseconds());
+        if (gpuMilliseconds) {
+            samples.gpu.push_back(*gpuMilliseconds);
+        }
+    }
+    stopInstructionCount(options.callgrind, scene->describe());
+    result.frame = scene->lastFrameCounters();
+    result.bundleContents = scene->bundleContents();
+    ENCORE_TRY(context.checkNoErrors("Benchmarking " + scene->describe()));
+    fill(result, samples);
+    return result;
+}
+
+}  // namespace
+
+std::string dawnVersion() {
+    return ENCORE_DAWN_VERSION;
+}
+
+Result<BenchReport> runBenchmarks(gpu::Context& context, const BenchOptions& options,
+                                  const ProgressCallback& progress) {
+    if (options.frames == 0) {
+        return makeError(ErrorCode::InvalidArgument, "The number of frames must be at least 1.");
+    }
+    BenchReport report;
+    report.date = utcNow();
+    report.adapter = context.adapterDescription();
+    report.dawnVersion = dawnVersion();
+    report.cpu = cpuModel();
+    report.cores = std::thread::hardware_concurrency();
+    report.options = options;
+
+    std::vector<render::StrategyKind> strategies = options.strategies;
+    if (strategies.empty()) {
+        strategies.assign(render::allStrategies().begin(), render::allStrategies().end());
+    }
+    auto renderer = render::Renderer::create(context, {{options.width, options.height, 1}});
+    if (!renderer) {
+        return renderer.error();
+    }
+    auto timer = gpu::GpuTimer::create(context);
+    report.timestamps = timer.has_value() && !options.callgrind;
+    gpu::GpuTimer* timerPointer = timer ? &*timer : nullptr;
+
+    auto runScene = [&](const scene::SceneData& scene, const std::string& kind,
+                        const std::string& label) -> Result<void> {
+        for (auto strategy : strategies) {
+            if (progress) {
+                progress(label + " / " + std::string(render::strategyName(strategy)));
+            }
+            auto result = measure(context, *renderer, scene, strategy, options, timerPointer);
+            if (!result && result.error().code == ErrorCode::Unsupported) {
+                report.skipped.push_back(label + " / " +
+                                         std::string(render::strategyName(strategy)) + ": " +
+                                         result.error().message);
+                continue;
+            }
+            if (!result) {
+                return result.error().withContext(label);
+            }
+            result->scene = kind;
+            result->label = label;
+            report.results.push_back(std::move(*result));
+        }
+        return {};
+    };
+
+    for (std::uint32_t objects : options.objectCounts) {
+        scene::GeneratorOptions generator;
+        generator.objectCount = objects;
+        generator.meshCount = options.meshes;
+        generator.materialCount = options.materials;
+        generator.tessellation = options.tessellation;
+        auto glb = scene::generateSceneGlb(generator);
+        if (!glb) {
+            return glb.error();
+        }
+        const std::string label = "generated " + std::to_string(objects) + " objects";
+        auto scene = scene::loadSceneFromMemory(*glb, {}, label);
+        if (!scene) {
+            return scene.error();
+        }
+        ENCORE_TRY(runScene(*scene, "generated", label));
+    }
+    for (std::uint32_t triangles : options.animometerTriangles) {
+        for (const bool dynamicOffsets : {false, true}) {
+            for (const bool bundle : {false, true}) {
+                render::AnimometerOptions animometer;
+                animometer.triangles = triangles;
+                animometer.bundle = bundle;
+                animometer.dynamicOffsets = dynamicOffsets;
+                animometer.width = options.width;
+                animometer.height = options.height;
+                const std::string strategy = std::string("animometer-") +
+                                             (dynamicOffsets ? "dynamic-offsets-" : "") +
+                                             (bundle ? "bundle" : "direct");
+                if (progress) {
+                    progress("animometer " + std::to_string(triangles) + " / " + strategy);
+                }
+                auto result = measureAnimometer(context, animometer, options, timerPointer);
+                if (!result && result.error().code == ErrorCode::Unsupported) {
+                    report.skipped.push_back("animometer " + std::to_string(triangles) + " / " +
+                                             strategy + ": " + result.error().message);
+                    continue;
+                }
+                if (!result) {
+                    return result.error();
+                }
+                result->strategy = strategy;
+                report.results.push_back(std::move(*result));
+            }
+        }
+    }
+    for (const auto& model : options.models) {
+        auto scene = scene::loadScene(model);
+        if (!scene) {
+            return scene.error();
+        }
+        ENCORE_TRY(runScene(*scene, "model", model.filename().string()));
+    }
+    return report;
+}
+
+}  // namespace encore::bench

@@ -1,0 +1,82 @@
+#pragma once
+
+// The benchmark behind `encore bench`: strategies x scenes, each measured for a warm-up plus N
+// frames, reporting per-frame CPU encode and submit time, GPU time from timestamp queries when
+// the device has them, and the API call counts (median and p95). Compare results as ratios
+// within one report: absolute numbers belong to the adapter and machine named in it.
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "encore/core/Result.h"
+#include "encore/gpu/Context.h"
+#include "encore/render/DrawCounters.h"
+#include "encore/render/FrameTimer.h"
+#include "encore/render/Strategy.h"
+
+namespace encore::bench {
+
+struct BenchOptions {
+    std::vector<std::uint32_t> objectCounts;        // Generated grid scenes.
+    std::vector<std::filesystem::path> models;      // glTF files.
+    std::vector<std::uint32_t> animometerTriangles;  // Animometer scenes (direct and bundle).
+    std::vector<render::StrategyKind> strategies;    // Empty: all.
+    std::uint32_t meshes = 8;
+    std::uint32_t materials = 4;
+    std::uint32_t tessellation = 4;  // Small meshes: CPU rasterisers draw 100,000 objects.
+    std::uint32_t frames = 60;
+    std::uint32_t warmup = 10;
+    std::uint32_t width = 512;
+    std::uint32_t height = 512;
+    // Repeatable instruction counts under valgrind: no warm-up frames, no GPU timer, and the
+    // measured frames bracketed by CALLGRIND_START/STOP_INSTRUMENTATION (run valgrind with
+    // --instr-atstart=no).
+    bool callgrind = false;
+};
+
+struct BenchResult {
+    std::string scene;  // "generated", "model" or "animometer".
+    std::string label;
+    std::uint64_t objects = 0;  // Instances drawn (triangles for the Animometer).
+    std::string strategy;
+    render::Percentiles encode;
+    render::Percentiles submit;
+    render::Percentiles cpu;
+    std::optional<render::Percentiles> gpu;
+    render::DrawCounters frame;
+    render::DrawCounters bundleContents;
+};
+
+struct BenchReport {
+    std::string date;  // ISO 8601, UTC.
+    gpu::AdapterDescription adapter;
+    std::string dawnVersion;
+    std::string cpu;
+    std::uint32_t cores = 0;
+    BenchOptions options;
+    bool timestamps = false;
+    std::vector<BenchResult> results;
+    // Measurements the adapter cannot run (e.g. more bind groups than the driver survives),
+    // each "<scene> / <strategy>: <reason>".
+    std::vector<std::string> skipped;
+};
+
+// Called before each measurement with its label, for progress output.
+using ProgressCallback = std::function<void(const std::string&)>;
+
+Result<BenchReport> runBenchmarks(gpu::Context& context, const BenchOptions& options,
+                                  const ProgressCallback& progress = {});
+
+nlohmann::json toJson(const BenchReport& report);
+std::string toMarkdown(const BenchReport& report);
+
+// The Debian version of the Dawn package Encore was built against.
+std::string dawnVersion();
+
+}  // namespace encore::bench

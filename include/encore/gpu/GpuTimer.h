@@ -1,0 +1,42 @@
+#pragma once
+
+// GPU time of a frame's passes, from timestamp queries written at the beginning and end of each
+// pass (the TimestampQuery feature; Context::create with timestamps = true requests it and
+// disables Dawn's ~65 us timestamp quantization). The result sums every pass's duration.
+
+#include <webgpu/webgpu_cpp.h>
+
+#include <cstdint>
+#include <optional>
+
+#include "encore/gpu/Context.h"
+
+namespace encore::gpu {
+
+class GpuTimer {
+  public:
+    // nullopt when the device lacks TimestampQuery.
+    static std::optional<GpuTimer> create(const Context& context, std::uint32_t maxPasses = 8);
+
+    // Timestamp writes for the next pass of the current frame (nullptr once maxPasses were used:
+    // the pass then goes untimed).
+    const wgpu::PassTimestampWrites* nextPass();
+
+    // Resolves this frame's queries; call on the frame's command encoder after its last pass.
+    void resolve(const wgpu::CommandEncoder& commands);
+
+    // After the frame's submit: waits for the results and returns the summed pass time in
+    // milliseconds, then starts a new frame. nullopt when no pass was timed.
+    std::optional<double> read(Context& context);
+
+  private:
+    wgpu::QuerySet mQueries;
+    wgpu::Buffer mResolved;
+    wgpu::Buffer mStaging;
+    wgpu::PassTimestampWrites mWrites[16];
+    std::uint32_t mMaxPasses = 0;
+    std::uint32_t mPasses = 0;
+    bool mResolvedThisFrame = false;
+};
+
+}  // namespace encore::gpu

@@ -1,0 +1,365 @@
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <optional>
+#include <regex>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "PlotWriter.h"
+#include "TestPaths.h"
+
+namespace encore::app {
+namespace {
+
+using nlohmann::json;
+
+json timing(double median, double p95) {
+    return json{{"median", median}, {"p95", p95}};
+}
+
+// One result as `encore bench` writes it; gpu < 0 stands for "gpuMs": null.
+json result(const std::string& scene,
+            const std::string& strategy,
+            int objects,
+            double cpu,
+            double gpu = -1.0) {
+    return json{{"scene", scene},
+                {"label", scene + " " + std::to_string(objects) + " objects"},
+                {"objects", objects},
+                {"strategy", strategy},
+                {"encodeMs", timing(cpu * 0.6, cpu * 0.7)},
+                {"submitMs", timing(cpu * 0.4, cpu * 0.5)},
+                {"cpuMs", timing(cpu, cpu * 1.2)},
+                {"gpuMs", gpu < 0 ? json(nullptr) : timing(gpu, gpu * 1.1)},
+                {"frame", {{"setPipeline", objects}, {"drawIndexed", objects}}}};
+}
+
+json report(json results, const std::string& adapterName = "llvmpipe (LLVM 15.0.6, 256 bits)") {
+    return json{{"encore", "0.1.0"},
+                {"date", "2026-11-21T13:45:00Z"},
+                {"adapter",
+                 {{"name", adapterName},
+                  {"backend", "Vulkan"},
+                  {"type", "CPU"},
+                  {"driver", "Mesa 25.0.7"}}},
+                {"dawn", "0.0~git20260909.1a75cb7f-1"},
+                {"host", {{"cpu", "test"}, {"cores", 2}}},
+                {"frames", 60},
+                {"warmup", 10},
+                {"timestamps", false},
+                {"results", std::move(results)}};
+}
+
+std::string plot(const json& input) {
+    auto svg = plotScalingSvg(input);
+    EXPECT_TRUE(svg.ok()) << (svg.ok() ? "" : svg.error().message);
+    return svg.ok() ? *svg : std::string();
+}
+
+// A small well-formedness check for the subset of XML the writer emits: every '<' opens a tag,
+// closing tags match the innermost open one, and '&' only starts one of the five entities.
+::testing::AssertionResult isWellFormed(const std::string& svg) {
+    std::vector<std::string> open;
+    size_t pos = 0;
+    while ((pos = svg.find('<', pos)) != std::string::npos) {
+        size_t end = svg.find('>', pos);
+        if (end == std::string::npos) {
+            return ::testing::AssertionFailure() << "unterminated tag at " << pos;
+        }
+        std::string tag = svg.substr(pos + 1, end - pos - 1);
+        if (tag.find('<') != std::string::npos) {
+            return ::testing::AssertionFailure() << "'<' inside tag at " << pos;
+        }
+        if (!tag.empty() && tag[0] == '/') {
+            std::string name = tag.substr(1);
+            if (open.empty() || open.back() != name) {
+                return ::testing::AssertionFailure()
+                       << "</" << name << "> closes <" << (open.empty() ? "" : open.back())
+                       << "> at " << pos;
+            }
+            open.pop_back();
+        } else if (tag.empty() || tag.back() != '/') {
+            open.push_back(tag.substr(0, tag.find_first_of(" \n\t")));
+        }
+        pos = end + 1;
+    }
+    if (!open.empty()) {
+        return ::testing::AssertionFailure() << "<" << open.back() << "> is never closed";
+    }
+    std::regex strayAmpersand("&(?!(amp|lt|gt|quot|apos);)");
+    if (std::regex_search(svg, strayAmpersand)) {
+        return ::testing::AssertionFailure() << "unescaped '&'";
+    }
+    return ::testing::AssertionSuccess();
+}
+
+size_t countOf(const std::string& text, const std::string& needle) {
+    size_t count = 0;
+    for (size_t pos = text.find(needle); pos != std::string::npos;
+         pos = text.find(needle, pos + needle.size())) {
+        ++count;
+    }
+    return count;
+}
+
+// The text of each <g class="panel"> in order.
+std::vector<std::string> panels(const std::string& svg) {
+    const std::string marker = "<g class=\"panel\">";
+    std::vector<std::string> out;
+    for (size_t pos = svg.find(marker); pos != std::string::npos;) {
+        size_t next = svg.find(marker, pos + marker.size());
+        size_t legend = svg.find("<g class=\"legend\">", pos);
+        out.push_back(svg.substr(pos, std::min(next, legend) - pos));
+        pos = next;
+    }
+    return out;
+}
+
+// The (x, y) vertices of a series' polyline within one panel; empty when the series has none.
+std::vector<std::pair<double, double>> polyline(const std::string& panel,
+                                                const std::string& series) {
+    size_t group = panel.find("data-series=\"" + series + "\"");
+    if (group == std::string::npos) {
+        return {};
+    }
+    size_t start = panel.find("points=\"", panel.find("<polyline", group)) + 8;
+    std::string points = panel.substr(start, panel.find('"', start) - start);
+    std::vector<std::pair<double, double>> vertices;
+    std::regex pair("(-?[0-9.]+),(-?[0-9.]+)");
+    for (std::sregex_iterator it(points.begin(), points.end(), pair), end; it != end; ++it) {
+        vertices.emplace_back(std::stod((*it)[1]), std::stod((*it)[2]));
+    }
+    return vertices;
+}
+
+json scalingResults() {
+    return json::array(
+        {result("generated", "naive", 100, 0.5), result("generated", "naive", 1000, 2.0),
+         result("generated", "naive", 10000, 18.0), result("generated", "bundles", 100, 0.3),
+         result("generated", "bundles", 1000, 0.9), result("generated", "bundles", 10000, 6.0),
+         result("generated", "instancing", 1000, 0.2),
+         result("generated", "instancing", 10000, 0.4), result("model", "naive", 6, 1.0),
+         result("animometer", "animometer-bundle", 20000, 4.0)});
+}
+
+TEST(PlotWriterTest, OutputIsOneWellFormedSvgElement) {
+    std::string svg = plot(report(scalingResults()));
+    EXPECT_EQ(svg.rfind("<svg xmlns=\"http://www.w3.org/2000/svg\"", 0), 0u);
+    while (!svg.empty() && svg.back() == '\n') {
+        svg.pop_back();
+    }
+    EXPECT_TRUE(svg.ends_with("</svg>"));
+    EXPECT_EQ(countOf(svg, "<svg"), 1u);
+    EXPECT_TRUE(isWellFormed(svg));
+    EXPECT_NE(svg.find("width=\"900\" height=\"560\""), std::string::npos);
+}
+
+TEST(PlotWriterTest, CheckerRejectsBrokenMarkup) {
+    EXPECT_FALSE(isWellFormed("<svg><g></svg>"));
+    EXPECT_FALSE(isWellFormed("<svg><text>a < b</text></svg>"));
+    EXPECT_FALSE(isWellFormed("<svg><text>AT&T</text></svg>"));
+    EXPECT_TRUE(isWellFormed("<svg><g><line/></g><text>AT&amp;T</text></svg>"));
+}
+
+TEST(PlotWriterTest, OnePolylinePerStrategyWithOnePointPerResult) {
+    const std::string svg = plot(report(scalingResults()));
+    auto all = panels(svg);
+    ASSERT_EQ(all.size(), 1u);
+    EXPECT_EQ(countOf(all[0], "<polyline"), 4u);
+    EXPECT_EQ(polyline(all[0], "naive").size(), 3u);
+    EXPECT_EQ(polyline(all[0], "bundles").size(), 3u);
+    EXPECT_EQ(polyline(all[0], "instancing").size(), 2u);
+    EXPECT_EQ(polyline(all[0], "animometer-bundle").size(), 1u);
+    // Every plotted point has a marker; the model result (6 objects) is not plotted.
+    EXPECT_EQ(countOf(all[0], "class=\"marker\""), 9u);
+    EXPECT_EQ(countOf(all[0], "class=\"p95\""), 9u);
+}
+
+TEST(PlotWriterTest, ObjectCountsAreLogSpacedAndSorted) {
+    // Report order is shuffled: the writer sorts by object count.
+    const std::string svg = plot(report(json::array({result("generated", "naive", 100000, 50.0),
+                                                     result("generated", "naive", 1000, 1.0),
+                                                     result("generated", "naive", 10000, 5.0)})));
+    auto points = polyline(panels(svg).at(0), "naive");
+    ASSERT_EQ(points.size(), 3u);
+    EXPECT_LT(points[0].first, points[1].first);
+    EXPECT_LT(points[1].first, points[2].first);
+    EXPECT_NEAR(points[1].first - points[0].first, points[2].first - points[1].first, 0.15);
+    // Decade labels cover the range.
+    for (const char* label : {">1k<", ">10k<", ">100k<"}) {
+        EXPECT_NE(svg.find(label), std::string::npos) << label;
+    }
+}
+
+TEST(PlotWriterTest, TwiceTheTimeIsLog2OfADecadeHigher) {
+    const std::string svg = plot(report(
+        json::array({result("generated", "naive", 10, 1.0), result("generated", "naive", 100, 2.0),
+                     result("generated", "naive", 1000, 10.0)})));
+    auto points = polyline(panels(svg).at(0), "naive");
+    ASSERT_EQ(points.size(), 3u);
+    const double decade = points[0].second - points[2].second;  // 1 ms -> 10 ms, y grows down.
+    ASSERT_GT(decade, 50.0);
+    EXPECT_NEAR((points[0].second - points[1].second) / decade, std::log10(2.0), 0.002);
+    // The y labels span the data: 1 ms up to 10 ms p95 (12 ms) needs the 100 ms decade.
+    for (const char* label : {">1<", ">10<", ">100<"}) {
+        EXPECT_NE(svg.find(label), std::string::npos) << label;
+    }
+}
+
+TEST(PlotWriterTest, SmallTimesGetFractionalDecadeLabels) {
+    const std::string svg = plot(report(json::array(
+        {result("generated", "naive", 10, 0.02), result("generated", "naive", 100, 0.5)})));
+    for (const char* label : {">0.01<", ">0.1<", ">1<"}) {
+        EXPECT_NE(svg.find(label), std::string::npos) << label;
+    }
+}
+
+TEST(PlotWriterTest, LegendNamesEveryStrategyOnce) {
+    const std::string svg = plot(report(scalingResults()));
+    const std::string legend = svg.substr(svg.find("<g class=\"legend\">"));
+    for (const char* name : {"naive", "bundles", "instancing", "animometer-bundle"}) {
+        EXPECT_EQ(countOf(legend, std::string(">") + name + "</text>"), 1u) << name;
+    }
+}
+
+TEST(PlotWriterTest, SeriesLookDifferentInColourAndShape) {
+    const std::string svg = plot(report(scalingResults()));
+    const std::string legend = svg.substr(svg.find("<g class=\"legend\">"));
+    std::regex stroke("<g stroke=\"(#[0-9a-f]{6})\"");
+    std::vector<std::string> colours;
+    for (std::sregex_iterator it(legend.begin(), legend.end(), stroke), end; it != end; ++it) {
+        colours.push_back((*it)[1]);
+    }
+    ASSERT_EQ(colours.size(), 4u);
+    std::sort(colours.begin(), colours.end());
+    EXPECT_EQ(std::unique(colours.begin(), colours.end()), colours.end());
+    // Greyscale: the first series are told apart by marker element and dash pattern too.
+    EXPECT_NE(legend.find("<circle"), std::string::npos);
+    EXPECT_NE(legend.find("<polygon"), std::string::npos);
+    EXPECT_NE(legend.find("stroke-dasharray"), std::string::npos);
+}
+
+TEST(PlotWriterTest, EscapesXmlInText) {
+    const std::string svg =
+        plot(report(json::array({result("generated", "a<b>&\"c\"", 10, 1.0)}), "AT&T <GPU>"));
+    EXPECT_TRUE(isWellFormed(svg));
+    EXPECT_NE(svg.find("AT&amp;T &lt;GPU&gt; (Vulkan), 2026-11-21T13:45:00Z"), std::string::npos);
+    EXPECT_EQ(svg.find("<GPU>"), std::string::npos);
+    EXPECT_NE(svg.find(">a&lt;b&gt;&amp;&quot;c&quot;</text>"), std::string::npos);
+}
+
+TEST(PlotWriterTest, GpuPanelOnlyWithGpuTimings) {
+    const std::string cpuOnly = plot(report(scalingResults()));
+    EXPECT_EQ(panels(cpuOnly).size(), 1u);
+    EXPECT_NE(cpuOnly.find("CPU time per frame (encode + submit), median"), std::string::npos);
+    EXPECT_EQ(cpuOnly.find("GPU time per frame"), std::string::npos);
+
+    json results = scalingResults();
+    results[1] = result("generated", "naive", 1000, 2.0, 3.1);
+    const std::string withGpu = plot(report(results));
+    auto all = panels(withGpu);
+    ASSERT_EQ(all.size(), 2u);
+    EXPECT_NE(all[1].find("GPU time per frame, median"), std::string::npos);
+    EXPECT_EQ(polyline(all[1], "naive").size(), 1u);
+    EXPECT_EQ(countOf(all[1], "<polyline"), 1u);  // Only naive has a GPU time.
+    EXPECT_EQ(polyline(all[0], "naive").size(), 3u);
+    EXPECT_TRUE(isWellFormed(withGpu));
+}
+
+TEST(PlotWriterTest, NonPositiveAndNonFiniteValuesAreSkipped) {
+    const std::string svg = plot(report(json::array(
+        {result("generated", "naive", 10, 1.0), result("generated", "naive", 100, 0.0),
+         result("generated", "naive", 0, 3.0), result("generated", "naive", 200, -1.0),
+         result("generated", "naive", 300, std::nan("")),
+         result("generated", "naive", 400, HUGE_VAL), result("generated", "naive", 1000, 4.0)})));
+    EXPECT_EQ(polyline(panels(svg).at(0), "naive").size(), 2u);
+    EXPECT_EQ(svg.find("nan"), std::string::npos);
+    EXPECT_EQ(svg.find("inf"), std::string::npos);
+    EXPECT_TRUE(isWellFormed(svg));
+}
+
+TEST(PlotWriterTest, AnimometerIsItsOwnSeriesEvenWithAGeneratedStrategyName) {
+    const std::string svg = plot(report(json::array(
+        {result("generated", "bundles", 10, 1.0), result("generated", "bundles", 100, 2.0),
+         result("animometer", "bundles", 20000, 5.0)})));
+    auto all = panels(svg);
+    EXPECT_EQ(polyline(all.at(0), "bundles").size(), 2u);
+    EXPECT_EQ(polyline(all.at(0), "animometer bundles").size(), 1u);
+    EXPECT_NE(svg.find(">animometer bundles</text>"), std::string::npos);
+}
+
+TEST(PlotWriterTest, FallsBackToEncodePlusSubmit) {
+    json entry = result("generated", "naive", 1000, 2.0);
+    entry.erase("cpuMs");
+    const std::string svg = plot(report(json::array({entry})));
+    // encode 1.2 + submit 0.8; p95 1.4 + 1.0.
+    EXPECT_NE(svg.find("naive: 1000 objects, median 2.000 ms, p95 2.400 ms"), std::string::npos);
+}
+
+TEST(PlotWriterTest, MissingResultsIsAnError) {
+    json input = report(json::array());
+    input.erase("results");
+    auto svg = plotScalingSvg(input);
+    ASSERT_FALSE(svg.ok());
+    EXPECT_EQ(svg.error().code, ErrorCode::InvalidFormat);
+    EXPECT_NE(svg.error().message.find("results"), std::string::npos);
+
+    EXPECT_FALSE(plotScalingSvg(json::array()).ok());
+    EXPECT_FALSE(plotScalingSvg(report(json::array())).ok());  // Nothing to plot.
+    auto modelsOnly = plotScalingSvg(report(json::array({result("model", "naive", 6, 1.0)})));
+    ASSERT_FALSE(modelsOnly.ok());
+    EXPECT_NE(modelsOnly.error().message.find("generated"), std::string::npos);
+}
+
+TEST(PlotWriterTest, MalformedResultNamesTheResultAndField) {
+    json entry = result("generated", "naive", 1000, 2.0);
+    entry.erase("cpuMs");
+    entry.erase("submitMs");
+    auto svg = plotScalingSvg(report(json::array({result("generated", "naive", 10, 1.0), entry})));
+    ASSERT_FALSE(svg.ok());
+    EXPECT_NE(svg.error().message.find("result 1 ('generated 1000 objects')"), std::string::npos)
+        << svg.error().message;
+    EXPECT_NE(svg.error().message.find("submitMs"), std::string::npos);
+
+    json noStrategy = result("generated", "naive", 10, 1.0);
+    noStrategy.erase("strategy");
+    svg = plotScalingSvg(report(json::array({noStrategy})));
+    ASSERT_FALSE(svg.ok());
+    EXPECT_NE(svg.error().message.find("\"strategy\""), std::string::npos);
+
+    json input = report(scalingResults());
+    input.erase("adapter");
+    svg = plotScalingSvg(input);
+    ASSERT_FALSE(svg.ok());
+    EXPECT_NE(svg.error().message.find("adapter"), std::string::npos);
+}
+
+TEST(PlotWriterTest, SameReportGivesSameBytes) {
+    const json input = report(scalingResults());
+    const std::string first = plot(input);
+    EXPECT_EQ(first, plot(input));
+    EXPECT_EQ(first, plot(json::parse(input.dump())));
+}
+
+TEST(PlotWriterTest, SelfContainedAndNeedsNoConverter) {
+    // rsvg-convert (librsvg2-bin) may come later for PNGs; the SVG itself must not need it, nor
+    // anything else on PATH.
+    const char* oldPath = std::getenv("PATH");
+    const std::string savedPath = oldPath ? oldPath : "";
+    const auto emptyDir = test::makeTempDir("plot-empty-path");
+    ASSERT_EQ(setenv("PATH", emptyDir.c_str(), 1), 0);
+    auto svg = plotScalingSvg(report(scalingResults()));
+    setenv("PATH", savedPath.c_str(), 1);
+    ASSERT_TRUE(svg.ok());
+    for (const char* external : {"href", "<script", "<image", "@import", "url("}) {
+        EXPECT_EQ(svg->find(external), std::string::npos) << external;
+    }
+}
+
+}  // namespace
+}  // namespace encore::app
