@@ -1,3 +1,4 @@
+#include <chrono>
 #include <cstdio>
 #include <fstream>
 #include <memory>
@@ -55,9 +56,12 @@ int runBench(BenchCommandOptions options, const GlobalOptions& global) {
         return reportError(context.error());
     }
     std::fprintf(stderr, "adapter: %s\n", context->adapterDescription().summary().c_str());
+    const auto start = std::chrono::steady_clock::now();
     auto report = bench::runBenchmarks(*context, options.bench, [&](const std::string& label) {
         if (global.verbose) {
-            std::fprintf(stderr, "measuring %s\n", label.c_str());
+            const double elapsed =
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            std::fprintf(stderr, "[%7.1f s] measuring %s\n", elapsed, label.c_str());
         }
     });
     if (!report) {

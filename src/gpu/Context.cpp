@@ -1,6 +1,7 @@
 #include "encore/gpu/Context.h"
 
 #include <array>
+#include <cstdio>
 #include <mutex>
 #include <string_view>
 
@@ -214,13 +215,22 @@ Result<Context> Context::create(const ContextOptions& options) {
     return context;
 }
 
-std::optional<std::uint32_t> Context::bindGroupLimit() const {
-    constexpr std::uint32_t kLavapipeBindGroups = 60000;  // Crashes were seen past 65,000.
-    if (mAdapterDescription.adapterType == wgpu::AdapterType::CPU &&
-        mAdapterDescription.backend == wgpu::BackendType::Vulkan) {
-        return kLavapipeBindGroups;
+std::optional<std::uint64_t> Context::mappingBudget() const {
+    if (mAdapterDescription.adapterType != wgpu::AdapterType::CPU ||
+        mAdapterDescription.backend != wgpu::BackendType::Vulkan) {
+        return std::nullopt;
     }
-    return std::nullopt;
+    std::uint64_t maxMapCount = 65530;  // The kernel's default.
+    if (std::FILE* file = std::fopen("/proc/sys/vm/max_map_count", "r")) {
+        unsigned long long value = 0;
+        if (std::fscanf(file, "%llu", &value) == 1) {
+            maxMapCount = value;
+        }
+        std::fclose(file);
+    }
+    // Leave room for the libraries, the heap and Dawn's own allocations.
+    constexpr std::uint64_t kReserved = 8000;
+    return maxMapCount > kReserved ? maxMapCount - kReserved : 0;
 }
 
 bool Context::hasFeature(wgpu::FeatureName feature) const {

@@ -138,12 +138,14 @@ Result<AnimometerScene> AnimometerScene::create(gpu::Context& context,
                          "The animometer draws 1 to " + std::to_string(kMaxAnimometerTriangles) +
                              " triangles (got " + std::to_string(options.triangles) + ").");
     }
-    if (const auto limit = context.bindGroupLimit(); limit && options.triangles > *limit) {
+    // One driver memory mapping per bind group, or per dynamic-offset bind while the pass runs.
+    if (const auto budget = context.mappingBudget(); budget && options.triangles > *budget) {
         return makeError(ErrorCode::Unsupported,
                          "The animometer's " + std::to_string(options.triangles) +
-                             " triangles need as many bind groups (or dynamic-offset binds), more "
-                             "than this driver survives (" + std::to_string(*limit) +
-                             "; lavapipe crashes past about 65,000).");
+                             " triangles need as many bind groups (or dynamic-offset binds); this "
+                             "driver (lavapipe) maps memory for each and would crash at the "
+                             "kernel's limit (room for " + std::to_string(*budget) +
+                             "; raise it with sysctl -w vm.max_map_count=262144).");
     }
     const wgpu::Device& device = context.device();
     wgpu::Limits limits{};

@@ -30,16 +30,19 @@ NodeUniforms::NodeUniforms(const wgpu::Device& device, const BindGroupLayouts& l
 }
 
 Result<void> NodeUniforms::checkLimit(const scene::SceneData& scene,
-                                      std::optional<std::uint32_t> limit,
+                                      std::optional<std::uint64_t> mappingBudget,
                                       std::string_view strategy) {
-    if (limit && scene.instances.size() > *limit) {
-        return makeError(ErrorCode::Unsupported,
-                         "The scene has " + std::to_string(scene.instances.size()) +
-                             " mesh nodes and strategy " + std::string(strategy) +
-                             " creates a bind group for each, more than this driver survives (" +
-                             std::to_string(*limit) +
-                             "; lavapipe crashes past about 65,000). Use instancing or a later "
-                             "strategy for this scene.");
+    constexpr std::uint64_t kMappingsPerNode = 2;  // Its uniform buffer and its bind group.
+    if (mappingBudget && scene.instances.size() * kMappingsPerNode > *mappingBudget) {
+        return makeError(
+            ErrorCode::Unsupported,
+            "The scene has " + std::to_string(scene.instances.size()) + " mesh nodes and strategy " +
+                std::string(strategy) +
+                " creates a uniform buffer and a bind group for each; this driver (lavapipe) maps "
+                "memory for each and would crash at the kernel's limit (room for " +
+                std::to_string(*mappingBudget / kMappingsPerNode) +
+                " nodes; raise it with sysctl -w vm.max_map_count=262144). Use instancing or a "
+                "later strategy for this scene.");
     }
     return {};
 }

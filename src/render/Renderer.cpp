@@ -41,7 +41,7 @@ Result<Renderer> Renderer::create(gpu::Context& context, const RendererOptions& 
     setup.colorFormat = RenderTarget::kColorFormat;
     setup.depthFormat = RenderTarget::kDepthFormat;
     setup.sampleCount = options.target.sampleCount;
-    setup.bindGroupLimit = context.bindGroupLimit();
+    setup.mappingBudget = context.mappingBudget();
     ENCORE_TRY(context.checkNoErrors("Creating the renderer"));
     return renderer;
 }

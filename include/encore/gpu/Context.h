@@ -57,11 +57,12 @@ class Context {
     const AdapterDescription& adapterDescription() const { return mAdapterDescription; }
     bool hasFeature(wgpu::FeatureName feature) const;
 
-    // How many bind groups (or dynamic-offset binds of one pass) the driver survives, when it is
-    // known to crash beyond some number: Mesa's lavapipe segfaults allocating descriptor pools
-    // past about 65,000 (seen with Mesa 25.0.7). Code that would create more returns an error
-    // instead. nullopt: no known limit.
-    std::optional<std::uint32_t> bindGroupLimit() const;
+    // How many more memory mappings the driver may create, when it maps memory per object and
+    // crashes once the kernel refuses: Mesa's lavapipe maps each buffer and descriptor set
+    // allocation, and segfaults when the process reaches vm.max_map_count (65,530 by default;
+    // raise it with `sysctl -w vm.max_map_count=262144`). Code that would create more objects
+    // than this returns an error instead. nullopt: no such driver.
+    std::optional<std::uint64_t> mappingBudget() const;
 
     // Blocks until the future completes. Returns false on timeout.
     bool wait(const wgpu::Future& future, std::uint64_t timeoutNs = UINT64_MAX) const;

@@ -22,10 +22,11 @@ class NodeUniforms {
     NodeUniforms(const wgpu::Device& device, const BindGroupLayouts& layouts,
                  const scene::SceneData& scene);
 
-    // An error when the scene has more mesh nodes than `limit` bind groups (see
-    // gpu::Context::bindGroupLimit), naming the strategy that would create them.
+    // An error when the per-node buffers and bind groups (about two driver memory mappings
+    // each on lavapipe) would exceed `mappingBudget` (gpu::Context::mappingBudget), naming the
+    // strategy that would create them.
     static Result<void> checkLimit(const scene::SceneData& scene,
-                                   std::optional<std::uint32_t> limit,
+                                   std::optional<std::uint64_t> mappingBudget,
                                    std::string_view strategy);
 
     const wgpu::BindGroup& bindGroup(std::size_t sceneInstance) const {

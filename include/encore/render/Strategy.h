@@ -60,9 +60,9 @@ struct RenderSetup {
     wgpu::TextureFormat colorFormat = wgpu::TextureFormat::RGBA8UnormSrgb;
     wgpu::TextureFormat depthFormat = wgpu::TextureFormat::Depth32Float;
     std::uint32_t sampleCount = 1;
-    // gpu::Context::bindGroupLimit(): strategies that create a bind group per node refuse
-    // scenes that would exceed it rather than crash the driver.
-    std::optional<std::uint32_t> bindGroupLimit;
+    // gpu::Context::mappingBudget(): strategies that create a buffer and a bind group per node
+    // refuse scenes that would exceed it rather than crash the driver.
+    std::optional<std::uint64_t> mappingBudget;
     // Render pipelines created through this setup (createMeshPipeline), for stats.
     mutable std::uint64_t pipelinesCreated = 0;
 };

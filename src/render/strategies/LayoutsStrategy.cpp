@@ -8,7 +8,7 @@
 namespace encore::render {
 
 Result<void> LayoutsStrategy::prepare(const RenderSetup& setup, const scene::SceneData& scene) {
-    ENCORE_TRY(NodeUniforms::checkLimit(scene, setup.bindGroupLimit, strategyName(kind())));
+    ENCORE_TRY(NodeUniforms::checkLimit(scene, setup.mappingBudget, strategyName(kind())));
     mFrameGroup = setup.frame->bindGroup();
     mGeometry = std::make_unique<GeometryBuffers>(setup.device, scene);
     mMeshes.assign(scene.meshes.size(), {});

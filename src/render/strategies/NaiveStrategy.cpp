@@ -12,7 +12,7 @@ namespace encore::render {
 
 
 Result<void> NaiveStrategy::prepare(const RenderSetup& setup, const scene::SceneData& scene) {
-    ENCORE_TRY(NodeUniforms::checkLimit(scene, setup.bindGroupLimit, strategyName(kind())));
+    ENCORE_TRY(NodeUniforms::checkLimit(scene, setup.mappingBudget, strategyName(kind())));
     mFrameGroup = setup.frame->bindGroup();
     std::map<scene::AccessorId, wgpu::Buffer> accessorBuffers;
     std::map<scene::AccessorId, std::uint32_t> accessorStrides;
