@@ -28,6 +28,9 @@ void addGenCommand(CLI::App& app, const GlobalOptions&, int& exitCode) {
         ->capture_default_str();
     command->add_option("--seed", options->generator.seed, "Random seed for object placement")
         ->capture_default_str();
+    command->add_option("--tessellation", options->generator.tessellation,
+                        "Segments around the round shapes (3 to 256)")
+        ->capture_default_str();
     command->add_option("-o,--output", options->output, "The .glb file to write")
         ->capture_default_str();
     command->callback([options, &exitCode] {

@@ -228,9 +228,17 @@ std::optional<std::uint64_t> Context::mappingBudget() const {
         }
         std::fclose(file);
     }
-    // Leave room for the libraries, the heap and Dawn's own allocations.
+    // Mappings already in use count against the limit (earlier scenes whose objects Dawn has
+    // not released yet among them); leave room for the heap and Dawn's own allocations.
+    std::uint64_t inUse = 0;
+    if (std::FILE* maps = std::fopen("/proc/self/maps", "r")) {
+        for (int c = std::fgetc(maps); c != EOF; c = std::fgetc(maps)) {
+            inUse += c == '\n';
+        }
+        std::fclose(maps);
+    }
     constexpr std::uint64_t kReserved = 8000;
-    return maxMapCount > kReserved ? maxMapCount - kReserved : 0;
+    return maxMapCount > inUse + kReserved ? maxMapCount - inUse - kReserved : 0;
 }
 
 bool Context::hasFeature(wgpu::FeatureName feature) const {

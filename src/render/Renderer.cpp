@@ -47,8 +47,16 @@ Result<Renderer> Renderer::create(gpu::Context& context, const RendererOptions& 
 }
 
 Result<void> Renderer::prepare(const scene::SceneData& scene, StrategyKind kind) {
-    mStrategy.reset();  // Release the previous strategy's resources first.
+    if (mStrategy) {
+        // Dawn frees objects once the GPU is done with them, on a later tick. Let that happen
+        // before the next strategy allocates: peak memory stays one strategy's worth, and
+        // drivers that map memory per object (lavapipe) stay below the kernel's limit.
+        mStrategy.reset();
+        mContext->waitForIdle();
+        mContext->device().Tick();
+    }
     mSetup->pipelinesCreated = 0;
+    mSetup->mappingBudget = mContext->mappingBudget();  // What the previous scene left in use.
     auto strategy = createStrategy(kind);
     const std::string what = "Preparing '" + scene.sourcePath.string() + "' for strategy " +
                              std::string(strategyName(kind));

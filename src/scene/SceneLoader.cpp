@@ -107,6 +107,7 @@ Result<SceneData> loadSceneFromMemory(std::span<const std::uint8_t> bytes,
         if (!result.ok()) {
             return result.error().withContext(displayName);
         }
+        result->sourcePath = displayName;  // loadScene replaces it with the real path.
         return result;
     } catch (const std::bad_alloc&) {
         return makeError(ErrorCode::LimitExceeded,

@@ -243,3 +243,38 @@ TEST(StrategyCountsGeneratedTest, BuggyMatchesTheCaseStudy) {
 
 }  // namespace
 }  // namespace encore::render
+
+namespace encore::render {
+namespace {
+
+// Drivers that map memory per object (lavapipe) crash past the kernel's mapping limit: the
+// per-node strategies refuse such scenes with an error naming the fix instead.
+TEST(StrategyLimitsTest, PerNodeStrategiesRefuseScenesBeyondTheMappingBudget) {
+    ENCORE_REQUIRE_VULKAN(context);
+    scene::GeneratorOptions options;
+    options.objectCount = 50;
+    auto glb = scene::generateSceneGlb(options);
+    ASSERT_TRUE(glb.ok());
+    auto scene = scene::loadSceneFromMemory(*glb, {}, "fifty.glb");
+    ASSERT_TRUE(scene.ok());
+    auto renderer = Renderer::create(*context, {{32, 32, 1}});
+    ASSERT_TRUE(renderer.ok());
+    RenderSetup tight = renderer->setup();
+    tight.mappingBudget = 60;  // Room for 30 nodes at two mappings each.
+    for (StrategyKind kind : {StrategyKind::Naive, StrategyKind::Layouts,
+                              StrategyKind::PipelineCache}) {
+        auto strategy = createStrategy(kind);
+        auto prepared = strategy->prepare(tight, *scene);
+        ASSERT_FALSE(prepared.ok()) << strategyName(kind);
+        EXPECT_EQ(prepared.error().code, ErrorCode::Unsupported);
+        EXPECT_NE(prepared.error().message.find("vm.max_map_count"), std::string::npos);
+        EXPECT_NE(prepared.error().message.find("50 mesh nodes"), std::string::npos);
+    }
+    // Instancing needs no per-node objects.
+    auto instancing = createStrategy(StrategyKind::Instancing);
+    EXPECT_TRUE(instancing->prepare(tight, *scene).ok());
+    EXPECT_TRUE(context->checkNoErrors("limits").ok());
+}
+
+}  // namespace
+}  // namespace encore::render

@@ -60,8 +60,9 @@ class Context {
     // How many more memory mappings the driver may create, when it maps memory per object and
     // crashes once the kernel refuses: Mesa's lavapipe maps each buffer and descriptor set
     // allocation, and segfaults when the process reaches vm.max_map_count (65,530 by default;
-    // raise it with `sysctl -w vm.max_map_count=262144`). Code that would create more objects
-    // than this returns an error instead. nullopt: no such driver.
+    // raise it with `sysctl -w vm.max_map_count=262144`). The budget is the limit minus the
+    // mappings the process holds now. Code that would create more objects than this returns an
+    // error instead. nullopt: no such driver.
     std::optional<std::uint64_t> mappingBudget() const;
 
     // Blocks until the future completes. Returns false on timeout.

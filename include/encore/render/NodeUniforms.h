@@ -19,8 +19,8 @@ namespace encore::render {
 class NodeUniforms {
   public:
     NodeUniforms() = default;
-    NodeUniforms(const wgpu::Device& device, const BindGroupLayouts& layouts,
-                 const scene::SceneData& scene);
+    NodeUniforms(const wgpu::Device& device, const wgpu::Queue& queue,
+                 const BindGroupLayouts& layouts, const scene::SceneData& scene);
 
     // An error when the per-node buffers and bind groups (about two driver memory mappings
     // each on lavapipe) would exceed `mappingBudget` (gpu::Context::mappingBudget), naming the

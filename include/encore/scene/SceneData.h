@@ -179,7 +179,7 @@ struct Instance {
 };
 
 struct SceneData {
-    std::filesystem::path sourcePath;
+    std::filesystem::path sourcePath;  // The file, or the display name of an in-memory asset.
     std::vector<Buffer> buffers;
     std::vector<BufferView> bufferViews;
     std::vector<Accessor> accessors;

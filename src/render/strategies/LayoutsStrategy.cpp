@@ -33,7 +33,7 @@ Result<void> LayoutsStrategy::prepare(const RenderSetup& setup, const scene::Sce
     for (const scene::Instance& instance : scene.instances) {
         mNodeMeshes.push_back(instance.mesh.index());
     }
-    mNodes = NodeUniforms(setup.device, *setup.layouts, scene);
+    mNodes = NodeUniforms(setup.device, setup.queue, *setup.layouts, scene);
     mQueue = setup.queue;
     return {};
 }

@@ -87,7 +87,7 @@ Result<void> NaiveStrategy::prepare(const RenderSetup& setup, const scene::Scene
     for (const scene::Instance& instance : scene.instances) {
         mNodeMeshes.push_back(instance.mesh.index());
     }
-    mNodes = NodeUniforms(setup.device, *setup.layouts, scene);
+    mNodes = NodeUniforms(setup.device, setup.queue, *setup.layouts, scene);
     mQueue = setup.queue;
     return {};
 }

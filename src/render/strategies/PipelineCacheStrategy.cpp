@@ -42,7 +42,7 @@ Result<void> PipelineCacheStrategy::prepare(const RenderSetup& setup,
                 {std::move(*bindings), nodesOfMesh[mesh]});
         }
     }
-    mNodes = NodeUniforms(setup.device, *setup.layouts, scene);
+    mNodes = NodeUniforms(setup.device, setup.queue, *setup.layouts, scene);
     mQueue = setup.queue;
     return {};
 }
