@@ -12,15 +12,6 @@ nlohmann::json percentilesJson(const render::Percentiles& p) {
     return {{"median", p.median}, {"p95", p.p95}};
 }
 
-nlohmann::json countersJson(const render::DrawCounters& c) {
-    return {{"setPipeline", c.setPipeline},         {"setBindGroup", c.setBindGroup},
-            {"setVertexBuffer", c.setVertexBuffer}, {"setIndexBuffer", c.setIndexBuffer},
-            {"draw", c.draw},                       {"drawIndexed", c.drawIndexed},
-            {"drawIndirect", c.drawIndirect},       {"executeBundles", c.executeBundles},
-            {"primitives", c.primitives},           {"instances", c.instances},
-            {"triangles", c.triangles},             {"apiCalls", c.apiCalls()}};
-}
-
 std::string format(const char* pattern, double value) {
     char text[64];
     std::snprintf(text, sizeof(text), pattern, value);
@@ -32,6 +23,15 @@ std::string milliseconds(const render::Percentiles& p) {
 }
 
 }  // namespace
+
+nlohmann::json toJson(const render::DrawCounters& c) {
+    return {{"setPipeline", c.setPipeline},         {"setBindGroup", c.setBindGroup},
+            {"setVertexBuffer", c.setVertexBuffer}, {"setIndexBuffer", c.setIndexBuffer},
+            {"draw", c.draw},                       {"drawIndexed", c.drawIndexed},
+            {"drawIndirect", c.drawIndirect},       {"executeBundles", c.executeBundles},
+            {"primitives", c.primitives},           {"instances", c.instances},
+            {"triangles", c.triangles},             {"apiCalls", c.apiCalls()}};
+}
 
 nlohmann::json toJson(const BenchReport& report) {
     const auto& a = report.adapter;
@@ -64,8 +64,8 @@ nlohmann::json toJson(const BenchReport& report) {
             {"submitMs", percentilesJson(result.submit)},
             {"cpuMs", percentilesJson(result.cpu)},
             {"gpuMs", result.gpu ? percentilesJson(*result.gpu) : nlohmann::json(nullptr)},
-            {"frame", countersJson(result.frame)},
-            {"bundleContents", countersJson(result.bundleContents)},
+            {"frame", toJson(result.frame)},
+            {"bundleContents", toJson(result.bundleContents)},
         });
     }
     return json;

@@ -48,14 +48,14 @@ int runBench(BenchCommandOptions options, const GlobalOptions& global) {
         options.bench.objectCounts = {1000, 10000};
     }
 
-    gpu::ContextOptions contextOptions;
-    contextOptions.allowNullBackend = global.allowNullBackend;
-    contextOptions.timestamps = !options.bench.callgrind;
-    auto context = gpu::Context::create(contextOptions);
+    auto context = createContext(global, /*timestamps=*/!options.bench.callgrind);
     if (!context) {
         return reportError(context.error());
     }
-    std::fprintf(stderr, "adapter: %s\n", context->adapterDescription().summary().c_str());
+    if (!global.verbose) {
+        // Every benchmark names its adapter; --verbose already printed it.
+        std::fprintf(stderr, "adapter: %s\n", context->adapterDescription().summary().c_str());
+    }
     const auto start = std::chrono::steady_clock::now();
     auto report = bench::runBenchmarks(*context, options.bench, [&](const std::string& label) {
         if (global.verbose) {

@@ -9,6 +9,8 @@
 #include <string>
 
 #include "encore/core/Result.h"
+#include "encore/gpu/Context.h"
+#include "encore/scene/SceneData.h"
 
 namespace encore::app {
 
@@ -28,6 +30,12 @@ struct GlobalOptions {
 
 // Prints "error: <message>" and returns the exit code for the error's code.
 int reportError(const Error& error);
+
+// Loads a model and prints its warnings ("warning: ...").
+Result<scene::SceneData> loadModel(const std::string& path, const scene::LoadOptions& options);
+
+// Creates the GPU context the global options ask for; prints the adapter with --verbose.
+Result<gpu::Context> createContext(const GlobalOptions& global, bool timestamps = false);
 
 void addRenderCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
 void addInfoCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);

@@ -8,9 +8,7 @@ namespace encore::app {
 void addInfoCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) {
     auto* command = app.add_subcommand("info", "Print the GPU adapter Encore would use.");
     command->callback([&global, &exitCode] {
-        gpu::ContextOptions options;
-        options.allowNullBackend = global.allowNullBackend;
-        auto context = gpu::Context::create(options);
+        auto context = createContext(global);
         if (!context) {
             exitCode = reportError(context.error());
             return;

@@ -30,22 +30,13 @@ int runRender(const RenderOptions& options, const GlobalOptions& global) {
     }
     scene::LoadOptions loadOptions;
     loadOptions.strict = options.strict;
-    auto scene = scene::loadScene(options.model, loadOptions);
+    auto scene = loadModel(options.model, loadOptions);
     if (!scene) {
         return reportError(scene.error());
     }
-    for (const auto& warning : scene->warnings) {
-        std::fprintf(stderr, "warning: %s\n", warning.c_str());
-    }
-
-    gpu::ContextOptions contextOptions;
-    contextOptions.allowNullBackend = global.allowNullBackend;
-    auto context = gpu::Context::create(contextOptions);
+    auto context = createContext(global);
     if (!context) {
         return reportError(context.error());
-    }
-    if (global.verbose) {
-        std::fprintf(stderr, "adapter: %s\n", context->adapterDescription().summary().c_str());
     }
 
     render::RendererOptions rendererOptions;

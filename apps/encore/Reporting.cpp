@@ -19,4 +19,25 @@ int reportError(const Error& error) {
     }
 }
 
+Result<scene::SceneData> loadModel(const std::string& path, const scene::LoadOptions& options) {
+    auto scene = scene::loadScene(path, options);
+    if (scene) {
+        for (const auto& warning : scene->warnings) {
+            std::fprintf(stderr, "warning: %s\n", warning.c_str());
+        }
+    }
+    return scene;
+}
+
+Result<gpu::Context> createContext(const GlobalOptions& global, bool timestamps) {
+    gpu::ContextOptions options;
+    options.allowNullBackend = global.allowNullBackend;
+    options.timestamps = timestamps;
+    auto context = gpu::Context::create(options);
+    if (context && global.verbose) {
+        std::fprintf(stderr, "adapter: %s\n", context->adapterDescription().summary().c_str());
+    }
+    return context;
+}
+
 }  // namespace encore::app

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "Commands.h"
+#include "encore/bench/Benchmark.h"
 #include "encore/gpu/Context.h"
 #include "encore/render/Renderer.h"
 #include "encore/scene/SceneData.h"
@@ -31,20 +32,11 @@ struct StrategyStats {
     double encodeMilliseconds = 0.0;
 };
 
-nlohmann::json countersJson(const render::DrawCounters& c) {
-    return {{"setPipeline", c.setPipeline},       {"setBindGroup", c.setBindGroup},
-            {"setVertexBuffer", c.setVertexBuffer}, {"setIndexBuffer", c.setIndexBuffer},
-            {"draw", c.draw},                     {"drawIndexed", c.drawIndexed},
-            {"drawIndirect", c.drawIndirect},     {"executeBundles", c.executeBundles},
-            {"primitives", c.primitives},         {"instances", c.instances},
-            {"triangles", c.triangles}};
-}
-
 nlohmann::json toJson(const StrategyStats& stats) {
     return {{"strategy", stats.name},
             {"pipelinesCreated", stats.pipelinesCreated},
-            {"frame", countersJson(stats.counters)},
-            {"bundleContents", countersJson(stats.bundleContents)},
+            {"frame", bench::toJson(stats.counters)},
+            {"bundleContents", bench::toJson(stats.bundleContents)},
             {"bundlesRecorded", stats.bundlesRecorded},
             {"encodeMilliseconds", stats.encodeMilliseconds}};
 }
@@ -90,16 +82,11 @@ int runStats(const StatsOptions& options, const GlobalOptions& global) {
         }
         kinds.push_back(*kind);
     }
-    auto scene = scene::loadScene(options.model);
+    auto scene = loadModel(options.model, {});
     if (!scene) {
         return reportError(scene.error());
     }
-    for (const auto& warning : scene->warnings) {
-        std::fprintf(stderr, "warning: %s\n", warning.c_str());
-    }
-    gpu::ContextOptions contextOptions;
-    contextOptions.allowNullBackend = global.allowNullBackend;
-    auto context = gpu::Context::create(contextOptions);
+    auto context = createContext(global);
     if (!context) {
         return reportError(context.error());
     }

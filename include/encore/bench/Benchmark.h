@@ -74,6 +74,8 @@ Result<BenchReport> runBenchmarks(gpu::Context& context, const BenchOptions& opt
                                   const ProgressCallback& progress = {});
 
 nlohmann::json toJson(const BenchReport& report);
+// The JSON form of call counts used in reports (also by `encore stats --json`).
+nlohmann::json toJson(const render::DrawCounters& counters);
 std::string toMarkdown(const BenchReport& report);
 
 // The Debian version of the Dawn package Encore was built against.

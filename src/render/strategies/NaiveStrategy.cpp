@@ -10,10 +10,8 @@
 
 namespace encore::render {
 
-
 Result<void> NaiveStrategy::prepare(const RenderSetup& setup, const scene::SceneData& scene) {
-    ENCORE_TRY(NodeUniforms::checkLimit(scene, setup.mappingBudget, strategyName(kind())));
-    mFrameGroup = setup.frame->bindGroup();
+    ENCORE_TRY(beginPrepare(setup, scene));
     std::map<scene::AccessorId, wgpu::Buffer> accessorBuffers;
     std::map<scene::AccessorId, std::uint32_t> accessorStrides;
     auto bufferFor = [&](scene::AccessorId id, wgpu::BufferUsage usage) {
@@ -30,14 +28,15 @@ Result<void> NaiveStrategy::prepare(const RenderSetup& setup, const scene::Scene
         return accessorBuffers[id] = buffer;
     };
 
-    mMeshes.assign(scene.meshes.size(), {});
     for (std::size_t meshIndex = 0; meshIndex < scene.meshes.size(); ++meshIndex) {
         const scene::Mesh& mesh = scene.meshes[meshIndex];
         for (std::size_t primitiveIndex = 0; primitiveIndex < mesh.primitives.size();
              ++primitiveIndex) {
             const scene::Primitive& primitive = mesh.primitives[primitiveIndex];
             PreparedPrimitive prepared;
-            prepared.topology = primitive.topology;
+            PrimitiveBindings& bindings = prepared.bindings;
+            bindings.topology = primitive.topology;
+            bindings.vertexCount = primitive.vertexCount;
             PipelineKey key;
             key.topology = primitiveTopology(primitive.topology);
             key.colorFormat = setup.colorFormat;
@@ -56,20 +55,19 @@ Result<void> NaiveStrategy::prepare(const RenderSetup& setup, const scene::Scene
                                          std::to_string(primitiveIndex) +
                                          " has an attribute without a WebGPU vertex format.");
                 }
-                prepared.vertexBuffers.push_back(bufferFor(*accessorId, wgpu::BufferUsage::Vertex));
+                bindings.vertexBuffers.push_back(
+                    {bufferFor(*accessorId, wgpu::BufferUsage::Vertex), 0});
                 key.addBuffer(accessorStrides[*accessorId]);
                 key.addAttribute(*format, 0, *shaderLocation(semantic));
             }
             if (primitive.indices) {
                 const scene::Accessor& indices = scene.accessors[primitive.indices->index()];
-                prepared.indexBuffer = bufferFor(*primitive.indices, wgpu::BufferUsage::Index);
-                prepared.indexFormat = indexFormat(indices);
-                prepared.count = indices.count;
+                bindings.indices = IndexBufferBinding{
+                    bufferFor(*primitive.indices, wgpu::BufferUsage::Index), indexFormat(indices),
+                    0, indices.count};
                 if (isStrip(primitive.topology)) {
-                    key.stripIndexFormat = prepared.indexFormat;
+                    key.stripIndexFormat = bindings.indices->format;
                 }
-            } else {
-                prepared.count = primitive.vertexCount;
             }
             auto pipeline = createMeshPipeline(
                 setup, key,
@@ -83,37 +81,7 @@ Result<void> NaiveStrategy::prepare(const RenderSetup& setup, const scene::Scene
         }
     }
 
-    mNodeMeshes.clear();
-    for (const scene::Instance& instance : scene.instances) {
-        mNodeMeshes.push_back(instance.mesh.index());
-    }
-    mNodes = NodeUniforms(setup.device, setup.queue, *setup.layouts, scene);
-    mQueue = setup.queue;
-    return {};
-}
-
-void NaiveStrategy::encode(RenderEncoder& encoder, const FrameState&) const {
-    encoder.setBindGroup(0, mFrameGroup);
-    for (std::size_t node = 0; node < mNodeMeshes.size(); ++node) {
-        encoder.setBindGroup(1, mNodes.bindGroup(node));
-        for (const PreparedPrimitive& primitive : mMeshes[mNodeMeshes[node]]) {
-            encoder.setPipeline(primitive.pipeline);
-            for (std::uint32_t slot = 0; slot < primitive.vertexBuffers.size(); ++slot) {
-                encoder.setVertexBuffer(slot, primitive.vertexBuffers[slot]);
-            }
-            if (primitive.indexBuffer) {
-                encoder.setIndexBuffer(primitive.indexBuffer, primitive.indexFormat);
-                encoder.drawIndexed(primitive.count, 1, 0, 0, 0, primitive.topology);
-            } else {
-                encoder.draw(primitive.count, 1, 0, 0, primitive.topology);
-            }
-        }
-    }
-}
-
-Result<void> NaiveStrategy::updateInstance(std::size_t instance, const glm::mat4& world) {
-    ENCORE_TRY(checkInstanceIndex(instance, mNodes.size()));
-    mNodes.update(mQueue, instance, world);
+    finishPrepare(setup, scene);
     return {};
 }
 
