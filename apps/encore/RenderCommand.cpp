@@ -1,6 +1,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include "Commands.h"
 #include "encore/gpu/Context.h"
@@ -19,8 +20,23 @@ struct RenderOptions {
     std::uint32_t height = 720;
     std::uint32_t samples = 4;
     float yawDegrees = 0.0f;
+    std::uint32_t views = 1;
     bool strict = false;
 };
+
+// Views side by side: each camera frames the scene for its strip, turned a few degrees from the
+// previous one (two views: a stereo pair).
+std::vector<render::Camera> viewCameras(const scene::Bounds& bounds, float aspect,
+                                        float yawDegrees, std::uint32_t views) {
+    constexpr float kViewSeparationDegrees = 4.0f;
+    std::vector<render::Camera> cameras;
+    for (std::uint32_t view = 0; view < views; ++view) {
+        const float offset = (float(view) - 0.5f * float(views - 1)) * kViewSeparationDegrees;
+        cameras.push_back(render::Camera::framing(bounds, aspect,
+                                                  (yawDegrees + offset) * float(M_PI) / 180.0f));
+    }
+    return cameras;
+}
 
 int runRender(const RenderOptions& options, const GlobalOptions& global) {
     const auto kind = render::strategyFromName(options.strategy);
@@ -48,9 +64,10 @@ int runRender(const RenderOptions& options, const GlobalOptions& global) {
     if (auto prepared = renderer->prepare(*scene, *kind); !prepared) {
         return reportError(prepared.error());
     }
-    const auto camera = render::Camera::framing(scene->bounds, renderer->target().aspect(),
-                                                options.yawDegrees * float(M_PI) / 180.0f);
-    const auto frame = renderer->renderFrame(camera);
+    // With several views each strip keeps the proportions of width / views by height.
+    const auto cameras = viewCameras(scene->bounds, renderer->target().aspect() / float(options.views),
+                                     options.yawDegrees, options.views);
+    const auto frame = renderer->renderViews(cameras);
     auto image = renderer->readImage();
     if (!image) {
         return reportError(image.error());
@@ -59,10 +76,15 @@ int runRender(const RenderOptions& options, const GlobalOptions& global) {
         return reportError(written.error());
     }
     if (global.verbose) {
-        std::fprintf(stderr, "strategy %s: %llu draws, %llu triangles, encode %.3f ms\n",
+        std::fprintf(stderr,
+                     "strategy %s: %llu draws and %llu executeBundles in the frame, %llu draws in "
+                     "bundles, %llu triangles, encode %.3f ms\n",
                      options.strategy.c_str(),
                      static_cast<unsigned long long>(frame.counters.drawCalls()),
-                     static_cast<unsigned long long>(frame.counters.triangles),
+                     static_cast<unsigned long long>(frame.counters.executeBundles),
+                     static_cast<unsigned long long>(frame.bundleContents.drawCalls()),
+                     static_cast<unsigned long long>(frame.counters.triangles +
+                                                     frame.bundleContents.triangles),
                      frame.encodeMilliseconds);
     }
     std::printf("%s\n", options.output.c_str());
@@ -91,6 +113,11 @@ void addRenderCommand(CLI::App& app, const GlobalOptions& global, int& exitCode)
         ->check(CLI::IsMember({1, 4}));
     command->add_option("--yaw", options->yawDegrees,
                         "Turn the framing viewpoint around the model (degrees)");
+    command->add_option("--views", options->views,
+                        "Render N views side by side from one recording (2: stereo; bundle "
+                        "strategies replay the same bundle per view)")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 8));
     command->add_flag("--strict", options->strict,
                       "Treat warnings (missing images, unsupported optional features) as errors");
     command->callback([options, &global, &exitCode] { exitCode = runRender(*options, global); });

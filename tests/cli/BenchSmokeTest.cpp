@@ -2,12 +2,14 @@
 
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <fstream>
 
 #include <nlohmann/json.hpp>
 
 #include "CommandRunner.h"
 #include "TestPaths.h"
+#include "encore/image/ImageCodec.h"
 
 namespace encore::test {
 namespace {
@@ -49,6 +51,39 @@ TEST(BenchSmokeTest, WritesACompleteReportOnVulkan) {
     const std::string table((std::istreambuf_iterator<char>(text)), {});
     EXPECT_NE(table.find("| gpu-culling-bundles |"), std::string::npos);
     EXPECT_NE(table.find("Vulkan"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace encore::test
+
+namespace encore::test {
+namespace {
+
+// `encore render --views 2` draws two views side by side from one bundle replayed per view.
+TEST(RenderCommandTest, StereoViewsFillBothHalves) {
+    const auto dir = makeTempDir("stereo");
+    const auto scene = dir / "scene.glb";
+    const auto image = dir / "stereo.png";
+    ASSERT_EQ(runEncore("gen --objects 20 -o " + quote(scene.string())).exitCode, 0);
+    const auto result = runEncore("-v render " + quote(scene.string()) +
+                                  " --strategy bundles --views 2 --samples 1 --width 128 "
+                                  "--height 64 -o " + quote(image.string()));
+    ASSERT_EQ(result.exitCode, 0) << result.err;
+    EXPECT_NE(result.err.find("2 executeBundles in the frame"), std::string::npos) << result.err;
+    auto png = image::readImage(image);
+    ASSERT_TRUE(png.ok()) << png.error().message;
+    ASSERT_EQ(png->width, 128u);
+    // Each half has drawn pixels: the corners hold the background.
+    const std::uint8_t* background = png->pixel(0, 0);
+    for (std::uint32_t half = 0; half < 2; ++half) {
+        std::size_t drawn = 0;
+        for (std::uint32_t y = 0; y < 64; ++y) {
+            for (std::uint32_t x = half * 64; x < half * 64 + 64; ++x) {
+                drawn += std::memcmp(png->pixel(x, y), background, 3) != 0;
+            }
+        }
+        EXPECT_GT(drawn, 100u) << "half " << half;
+    }
 }
 
 }  // namespace
