@@ -16,7 +16,9 @@ struct Camera {
                          float aspect, float nearPlane, float farPlane);
 
     // Frames a bounding box: the camera looks at the box's centre from a fixed direction (front,
-    // slightly right and above) at the distance where the enclosing sphere fits the view.
+    // slightly right and above) at the nearest distance where all eight corners of the box lie
+    // inside both fields of view (with a 5% margin). Tighter than fitting the enclosing sphere,
+    // which leaves flat scenes small in the image.
     // `yawRadians` turns the viewpoint around the vertical axis through the centre.
     static Camera framing(const scene::Bounds& bounds, float aspect, float yawRadians = 0.0f);
 };
