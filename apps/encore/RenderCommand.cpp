@@ -15,7 +15,7 @@ namespace {
 struct RenderOptions {
     std::string model;
     std::string output = "encore.png";
-    std::string strategy = "naive";
+    std::string strategy = "bundles";
     std::uint32_t width = 1280;
     std::uint32_t height = 720;
     std::uint32_t samples = 4;
