@@ -6,6 +6,7 @@
 #include <cstring>
 #include <optional>
 #include <string>
+#include <tuple>
 #include <utility>
 
 #include "MipmapGenerator.h"
@@ -218,7 +219,8 @@ Result<MaterialResources> MaterialResources::create(const wgpu::Device& device,
                                                     const wgpu::Queue& queue,
                                                     shaders::ShaderLibrary& shaders,
                                                     const BindGroupLayouts& layouts,
-                                                    const scene::SceneData& scene) {
+                                                    const scene::SceneData& scene,
+                                                    const SampledTextures& sampled) {
     auto mipmaps = MipmapGenerator::create(device, shaders);
     if (!mipmaps) {
         return mipmaps.error();
@@ -259,16 +261,24 @@ Result<MaterialResources> MaterialResources::create(const wgpu::Device& device,
     for (std::size_t i = 0; i < materialCount; ++i) {
         const scene::MaterialId id{i};
         const scene::Material& material = scene.materials[i];
-        auto baseColor = builder.referencedTexture(id, material.baseColorTexture, ColorSpace::Srgb);
+        auto baseColor =
+            sampled.baseColor
+                ? builder.referencedTexture(id, material.baseColorTexture, ColorSpace::Srgb)
+                : Result<std::size_t>(kNone);
         if (!baseColor) {
             return baseColor.error();
         }
-        // Not bound by mesh.wgsl yet; uploaded now so their colour space is settled at load.
-        for (const auto& [ref, space] :
-             {std::pair{&material.emissiveTexture, ColorSpace::Srgb},
-              std::pair{&material.metallicRoughnessTexture, ColorSpace::Linear},
-              std::pair{&material.normalTexture, ColorSpace::Linear},
-              std::pair{&material.occlusionTexture, ColorSpace::Linear}}) {
+        // Slots the shaders sample are uploaded in their colour space; the others only checked,
+        // so an unsampled normal map costs neither load time nor memory.
+        for (const auto& [ref, space, wanted] :
+             {std::tuple{&material.emissiveTexture, ColorSpace::Srgb, sampled.emissive},
+              std::tuple{&material.metallicRoughnessTexture, ColorSpace::Linear,
+                         sampled.metallicRoughness},
+              std::tuple{&material.normalTexture, ColorSpace::Linear, sampled.normal},
+              std::tuple{&material.occlusionTexture, ColorSpace::Linear, sampled.occlusion}}) {
+            if (!wanted && *ref && (*ref)->texture.index() < scene.textures.size()) {
+                continue;  // Valid and unsampled: nothing to upload.
+            }
             auto texture = builder.referencedTexture(id, *ref, space);
             if (!texture) {
                 return texture.error();

@@ -53,9 +53,11 @@ struct Fixture {
     explicit Fixture(gpu::Context& context)
         : shaders(context.device()), layouts(BindGroupLayouts::create(context.device())) {}
 
-    Result<MaterialResources> create(gpu::Context& context, const scene::SceneData& scene) {
+    // Uploads every texture slot, so the tests see linear-space textures too.
+    Result<MaterialResources> create(gpu::Context& context, const scene::SceneData& scene,
+                                     const SampledTextures& sampled = SampledTextures::all()) {
         return MaterialResources::create(context.device(), context.queue(), shaders, layouts,
-                                         scene);
+                                         scene, sampled);
     }
 
     shaders::ShaderLibrary shaders;
@@ -325,6 +327,53 @@ TEST(MaterialResourcesTest, OversizedOrInconsistentImagesAreErrorsNamingTheImage
     EXPECT_NE(badReference.error().message.find("texture 7"), std::string::npos)
         << badReference.error().message;
     EXPECT_TRUE(context->checkNoErrors("invalid images").ok());
+}
+
+}  // namespace
+}  // namespace encore::render
+
+namespace encore::render {
+namespace {
+
+// By default only the slots mesh.wgsl samples (base colour) are uploaded; the other references
+// are still checked, so a dangling one is an error, not a silently skipped texture.
+TEST(MaterialResourcesTest, OnlySampledSlotsAreUploadedByDefault) {
+    ENCORE_REQUIRE_VULKAN(context);
+    scene::SceneData scene;
+    for (const char* name : {"base", "metal-rough", "normal", "emissive"}) {
+        scene::Image image;
+        image.name = name;
+        image.width = image.height = 2;
+        image.rgba8.assign(16, 200);
+        scene.images.push_back(image);
+    }
+    scene.samplers.push_back({});
+    for (std::uint32_t i = 0; i < 4; ++i) {
+        scene.textures.push_back({scene::ImageId{i}, scene::SamplerId{0u}});
+    }
+    scene::Material material;
+    material.baseColorTexture = scene::TextureRef{scene::TextureId{0u}};
+    material.metallicRoughnessTexture = scene::TextureRef{scene::TextureId{1u}};
+    material.normalTexture = scene::TextureRef{scene::TextureId{2u}};
+    material.emissiveTexture = scene::TextureRef{scene::TextureId{3u}};
+    scene.materials.push_back(material);
+
+    shaders::ShaderLibrary shaders(context->device());
+    const BindGroupLayouts layouts = BindGroupLayouts::create(context->device());
+    auto resources =
+        MaterialResources::create(context->device(), context->queue(), shaders, layouts, scene);
+    ASSERT_TRUE(resources.ok()) << resources.error().message;
+    EXPECT_EQ(resources->textureCount(), 2u);  // The white default and the base colour.
+    EXPECT_NE(resources->texture(scene::ImageId{0u}, ColorSpace::Srgb), nullptr);
+    EXPECT_EQ(resources->texture(scene::ImageId{2u}, ColorSpace::Linear), nullptr);
+
+    scene.materials[0].normalTexture = scene::TextureRef{scene::TextureId{9u}};
+    auto dangling =
+        MaterialResources::create(context->device(), context->queue(), shaders, layouts, scene);
+    ASSERT_FALSE(dangling.ok());
+    EXPECT_NE(dangling.error().message.find("texture 9"), std::string::npos)
+        << dangling.error().message;
+    EXPECT_TRUE(context->checkNoErrors("sampled slots").ok());
 }
 
 }  // namespace

@@ -55,6 +55,18 @@ enum class ColorSpace : std::uint8_t {
     Linear,  // Non-colour data: metallic-roughness, normal, occlusion.
 };
 
+// Which material texture slots the shaders sample. Only those are uploaded (with mip chains);
+// references in the others are still validated. mesh.wgsl samples the base colour alone.
+struct SampledTextures {
+    bool baseColor = true;
+    bool metallicRoughness = false;
+    bool normal = false;
+    bool occlusion = false;
+    bool emissive = false;
+
+    static SampledTextures all() { return {true, true, true, true, true}; }
+};
+
 class MaterialResources {
   public:
     // Uploads what the materials of `scene` reference and records one submit that generates
@@ -66,7 +78,8 @@ class MaterialResources {
                                             const wgpu::Queue& queue,
                                             shaders::ShaderLibrary& shaders,
                                             const BindGroupLayouts& layouts,
-                                            const scene::SceneData& scene);
+                                            const scene::SceneData& scene,
+                                            const SampledTextures& sampled = {});
 
     MaterialResources(MaterialResources&&) noexcept = default;
     MaterialResources& operator=(MaterialResources&&) noexcept = default;
