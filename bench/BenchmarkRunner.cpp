@@ -62,20 +62,44 @@ std::string cpuModel() {
     return "unknown CPU";
 }
 
-struct Samples {
+// Renders warm-up plus measured frames one at a time (the CPU waits for the GPU between
+// frames, so one frame's CPU work never queues behind the last) and fills the timings.
+// `renderFrame(index)` renders one frame and returns its timing.
+template <typename RenderFrame>
+void measureFrames(gpu::Context& context, const BenchOptions& options, const std::string& label,
+                   BenchResult& result, RenderFrame&& renderFrame) {
     std::vector<double> encode;
     std::vector<double> submit;
     std::vector<double> cpu;
     std::vector<double> gpu;
-};
-
-void fill(BenchResult& result, const Samples& samples) {
-    result.encode = render::Percentiles::of(samples.encode);
-    result.submit = render::Percentiles::of(samples.submit);
-    result.cpu = render::Percentiles::of(samples.cpu);
-    if (!samples.gpu.empty()) {
-        result.gpu = render::Percentiles::of(samples.gpu);
+    const std::uint32_t warmup = options.callgrind ? 0 : options.warmup;
+    for (std::uint32_t frame = 0; frame < warmup + options.frames; ++frame) {
+        if (frame == warmup) {
+            startInstructionCount(options.callgrind);
+        }
+        const render::FrameTiming timing = renderFrame(frame);
+        context.waitForIdle();
+        if (frame < warmup) {
+            continue;
+        }
+        encode.push_back(timing.encodeMilliseconds);
+        submit.push_back(timing.submitMilliseconds);
+        cpu.push_back(timing.cpuMilliseconds());
+        if (timing.gpuMilliseconds) {
+            gpu.push_back(*timing.gpuMilliseconds);
+        }
     }
+    stopInstructionCount(options.callgrind, label);
+    result.encode = render::Percentiles::of(std::move(encode));
+    result.submit = render::Percentiles::of(std::move(submit));
+    result.cpu = render::Percentiles::of(std::move(cpu));
+    if (!gpu.empty()) {
+        result.gpu = render::Percentiles::of(std::move(gpu));
+    }
+}
+
+float frameTime(std::uint32_t frame) {
+    return float(frame) / 60.0f;
 }
 
 // Measures one strategy on one scene.
@@ -88,37 +112,15 @@ Result<BenchResult> measure(gpu::Context& context, render::Renderer& renderer,
     BenchResult result;
     result.strategy = std::string(render::strategyName(kind));
     result.objects = scene.instances.size();
-    Samples samples;
-    const std::uint32_t warmup = options.callgrind ? 0 : options.warmup;
     renderer.setGpuTimer(options.callgrind ? nullptr : timer);
-    for (std::uint32_t frame = 0; frame < warmup + options.frames; ++frame) {
-        const bool measured = frame >= warmup;
-        if (measured && frame == warmup) {
-            startInstructionCount(options.callgrind);
-        }
-        const auto rendered = renderer.renderFrame(camera, float(frame) / 60.0f);
-        // One frame at a time: the next frame's CPU work does not wait behind this one's.
-        std::optional<double> gpuMilliseconds;
-        if (timer && !options.callgrind) {
-            gpuMilliseconds = timer->read(context);
-        }
-        context.waitForIdle();
-        if (!measured) {
-            continue;
-        }
-        samples.encode.push_back(rendered.encodeMilliseconds);
-        samples.submit.push_back(rendered.submitMilliseconds);
-        samples.cpu.push_back(rendered.encodeMilliseconds + rendered.submitMilliseconds);
-        if (gpuMilliseconds) {
-            samples.gpu.push_back(*gpuMilliseconds);
-        }
+    measureFrames(context, options, result.strategy, result, [&](std::uint32_t frame) {
+        const render::FrameResult rendered = renderer.renderFrame(camera, frameTime(frame));
         result.frame = rendered.counters;
         result.bundleContents = rendered.bundleContents;
-    }
-    stopInstructionCount(options.callgrind, result.strategy);
+        return render::FrameTiming(rendered);
+    });
     renderer.setGpuTimer(nullptr);
     ENCORE_TRY(context.checkNoErrors("Benchmarking " + result.strategy));
-    fill(result, samples);
     return result;
 }
 
@@ -135,33 +137,12 @@ Result<BenchResult> measureAnimometer(gpu::Context& context,
     result.scene = "animometer";
     result.label = "animometer " + std::to_string(animometer.triangles) + " triangles";
     result.objects = animometer.triangles;
-    Samples samples;
-    const std::uint32_t warmup = options.callgrind ? 0 : options.warmup;
-    for (std::uint32_t frame = 0; frame < warmup + options.frames; ++frame) {
-        const bool measured = frame >= warmup;
-        if (measured && frame == warmup) {
-            startInstructionCount(options.callgrind);
-        }
-        // renderFrame reads the timer itself (FrameTiming::gpuMilliseconds).
-        const auto timing =
-            scene->renderFrame(float(frame) / 60.0f, options.callgrind ? nullptr : timer);
-        const std::optional<double> gpuMilliseconds = timing.gpuMilliseconds;
-        context.waitForIdle();
-        if (!measured) {
-            continue;
-        }
-        samples.encode.push_back(timing.encodeMilliseconds);
-        samples.submit.push_back(timing.submitMilliseconds);
-        samples.cpu.push_back(timing.cpuMilliseconds());
-        if (gpuMilliseconds) {
-            samples.gpu.push_back(*gpuMilliseconds);
-        }
-    }
-    stopInstructionCount(options.callgrind, scene->describe());
+    measureFrames(context, options, scene->describe(), result, [&](std::uint32_t frame) {
+        return scene->renderFrame(frameTime(frame), options.callgrind ? nullptr : timer);
+    });
     result.frame = scene->lastFrameCounters();
     result.bundleContents = scene->bundleContents();
     ENCORE_TRY(context.checkNoErrors("Benchmarking " + scene->describe()));
-    fill(result, samples);
     return result;
 }
 

@@ -140,6 +140,9 @@ FrameResult Renderer::renderPasses(std::span<const Camera> cameras, float timeSe
     if (mStrategy) {
         result.bundleContents = mStrategy->bundleContents();
     }
+    if (mTimer) {
+        result.gpuMilliseconds = mTimer->read(*mContext);
+    }
     return result;
 }
 

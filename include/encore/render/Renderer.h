@@ -12,6 +12,7 @@
 #include "encore/image/ImageCodec.h"
 #include "encore/render/Camera.h"
 #include "encore/render/DrawCounters.h"
+#include "encore/render/FrameTimer.h"
 #include "encore/render/RenderTarget.h"
 #include "encore/render/Strategy.h"
 
@@ -22,11 +23,10 @@ struct RendererOptions {
     wgpu::Color clearColor{0.05, 0.05, 0.06, 1.0};
 };
 
-struct FrameResult {
+// A frame's timing (gpuMilliseconds only with a GPU timer set) and what it recorded.
+struct FrameResult : FrameTiming {
     DrawCounters counters;        // Calls recorded into the frame's render pass(es).
     DrawCounters bundleContents;  // What the executed bundles contain (recorded once).
-    double encodeMilliseconds = 0.0;  // CPU: recording the pass and finishing the encoder.
-    double submitMilliseconds = 0.0;  // CPU: Queue::Submit (Dawn records Vulkan commands here).
 };
 
 class Renderer {
@@ -63,8 +63,8 @@ class Renderer {
     // Waits for the GPU and reads the final image back.
     Result<image::ImageRgba8> readImage();
 
-    // Times every pass of later frames with `timer` (nullptr: untimed); read the result with
-    // GpuTimer::read after renderFrame.
+    // Times every pass of later frames with `timer` (nullptr: untimed); each frame then waits
+    // for its timestamps and reports them in FrameResult::gpuMilliseconds.
     void setGpuTimer(gpu::GpuTimer* timer) { mTimer = timer; }
 
     const RenderTarget& target() const { return mTarget; }
