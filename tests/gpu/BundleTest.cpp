@@ -8,6 +8,7 @@
 
 #include "GltfBuilder.h"
 #include "GpuTestSupport.h"
+#include "RenderTestSupport.h"
 #include "encore/render/BundleRecorder.h"
 #include "encore/render/Renderer.h"
 
@@ -16,10 +17,7 @@ namespace {
 
 constexpr std::uint32_t kSize = 64;
 
-Camera frontCamera(float aspect = 1.0f, float x = 0.0f) {
-    return Camera::lookAt({x, 0.0f, 3.0f}, {x, 0.0f, 0.0f}, glm::half_pi<float>(), aspect, 0.1f,
-                          10.0f);
-}
+using test::frontCamera;
 
 // Quads of width 0.8 at the given x centres, each with its own material colour.
 scene::SceneData quadScene(const std::vector<std::pair<float, glm::vec4>>& quads) {
@@ -42,12 +40,8 @@ scene::SceneData quadScene(const std::vector<std::pair<float, glm::vec4>>& quads
     return scene.ok() ? std::move(*scene) : scene::SceneData{};
 }
 
-std::pair<std::uint32_t, std::uint32_t> pixelOf(const Camera& camera, const glm::vec3& point,
-                                                std::uint32_t width = kSize) {
-    const glm::vec4 clip = camera.projection * camera.view * glm::vec4(point, 1.0f);
-    const glm::vec2 ndc = glm::vec2(clip) / clip.w;
-    return {static_cast<std::uint32_t>((ndc.x * 0.5f + 0.5f) * width),
-            static_cast<std::uint32_t>((0.5f - ndc.y * 0.5f) * kSize)};
+std::pair<std::uint32_t, std::uint32_t> pixelOf(const Camera& camera, const glm::vec3& point) {
+    return test::pixelOf(camera, point, kSize, kSize);
 }
 
 // The dominant channel of a pixel: 0 red, 1 green, 2 blue, -1 background (dark grey).

@@ -10,6 +10,7 @@
 
 #include "GltfBuilder.h"
 #include "GpuTestSupport.h"
+#include "RenderTestSupport.h"
 #include "encore/render/Renderer.h"
 
 namespace encore::render {
@@ -30,18 +31,7 @@ test::Rgba encode(const glm::dvec3& linear) {
             test::linearToSrgb8(linear.b), 255};
 }
 
-Camera frontCamera() {
-    return Camera::lookAt({0.0f, 0.0f, 3.0f}, {0.0f, 0.0f, 0.0f}, glm::half_pi<float>(), 1.0f,
-                          0.1f, 10.0f);
-}
-
-std::pair<std::uint32_t, std::uint32_t> pixelOf(const glm::vec3& point) {
-    const Camera camera = frontCamera();
-    const glm::vec4 clip = camera.projection * camera.view * glm::vec4(point, 1.0f);
-    const glm::vec2 ndc = glm::vec2(clip) / clip.w;
-    return {static_cast<std::uint32_t>((ndc.x * 0.5f + 0.5f) * kSize),
-            static_cast<std::uint32_t>((0.5f - ndc.y * 0.5f) * kSize)};
-}
+using test::frontCamera;
 
 struct QuadDesc {
     float left = -1.0f;
@@ -113,7 +103,7 @@ class MaterialPixelTest : public ::testing::Test {
     void expectPixel(const image::ImageRgba8& image, const glm::vec3& point,
                      const test::Rgba& expected, const char* what, int tolerance = 1) {
         ASSERT_EQ(image.width, kSize);
-        const auto [x, y] = pixelOf(point);
+        const auto [x, y] = test::pixelOf(frontCamera(), point, kSize, kSize);
         const test::Rgba actual = test::pixelAt(image, x, y);
         EXPECT_LE(test::channelDistance(actual, expected), tolerance)
             << what << " at (" << x << ", " << y << "): " << test::describe(actual)

@@ -9,6 +9,7 @@
 
 #include "GltfBuilder.h"
 #include "GpuTestSupport.h"
+#include "RenderTestSupport.h"
 #include "encore/render/Renderer.h"
 
 namespace encore::render {
@@ -32,19 +33,7 @@ test::Rgba background() {
     return {test::linearToSrgb8(0.05), test::linearToSrgb8(0.05), test::linearToSrgb8(0.06), 255};
 }
 
-// A camera on +Z looking at the origin with a 90 degree field of view.
-Camera frontCamera() {
-    return Camera::lookAt({0.0f, 0.0f, 3.0f}, {0.0f, 0.0f, 0.0f}, glm::half_pi<float>(), 1.0f,
-                          0.1f, 10.0f);
-}
-
-// The pixel a world point projects to.
-std::pair<std::uint32_t, std::uint32_t> pixelOf(const Camera& camera, const glm::vec3& point) {
-    const glm::vec4 clip = camera.projection * camera.view * glm::vec4(point, 1.0f);
-    const glm::vec2 ndc = glm::vec2(clip) / clip.w;
-    return {static_cast<std::uint32_t>((ndc.x * 0.5f + 0.5f) * kSize),
-            static_cast<std::uint32_t>((0.5f - ndc.y * 0.5f) * kSize)};
-}
+using test::frontCamera;
 
 class PixelRenderTest : public ::testing::TestWithParam<StrategyKind> {
   protected:
@@ -75,7 +64,7 @@ class PixelRenderTest : public ::testing::TestWithParam<StrategyKind> {
     void expectPixel(const image::ImageRgba8& image, const glm::vec3& point,
                      const test::Rgba& expected, const char* what) {
         ASSERT_EQ(image.width, kSize);
-        const auto [x, y] = pixelOf(frontCamera(), point);
+        const auto [x, y] = test::pixelOf(frontCamera(), point, kSize, kSize);
         const test::Rgba actual = test::pixelAt(image, x, y);
         EXPECT_LE(test::channelDistance(actual, expected), 1)
             << what << " at pixel (" << x << ", " << y << "): " << test::describe(actual)
