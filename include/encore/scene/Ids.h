@@ -35,6 +35,8 @@ using TextureId = Id<struct TextureTag>;
 using SamplerId = Id<struct SamplerTag>;
 using ImageId = Id<struct ImageTag>;
 using NodeId = Id<struct NodeTag>;
+using LightId = Id<struct LightTag>;
+using CameraId = Id<struct CameraTag>;
 
 }  // namespace encore::scene
 

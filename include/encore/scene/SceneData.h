@@ -118,21 +118,70 @@ struct TextureRef {
 
 enum class AlphaMode : std::uint8_t { Opaque, Mask, Blend };
 
+// KHR_materials_specular: the strength (texture: alpha channel) and colour (texture: RGB,
+// sRGB) of the dielectric specular reflection.
+struct SpecularExtension {
+    float specularFactor = 1.0f;
+    std::optional<TextureRef> specularTexture;
+    glm::vec3 specularColorFactor{1.0f};
+    std::optional<TextureRef> specularColorTexture;
+};
+
+// KHR_materials_clearcoat: a second, dielectric specular layer (IOR 1.5) on top.
+struct ClearcoatExtension {
+    float clearcoatFactor = 0.0f;
+    std::optional<TextureRef> clearcoatTexture;  // Red channel.
+    float clearcoatRoughnessFactor = 0.0f;
+    std::optional<TextureRef> clearcoatRoughnessTexture;  // Green channel.
+    std::optional<TextureRef> clearcoatNormalTexture;
+    float clearcoatNormalScale = 1.0f;
+};
+
+// KHR_materials_sheen: a Charlie-distribution sheen lobe (cloth, velvet).
+struct SheenExtension {
+    glm::vec3 sheenColorFactor{0.0f};
+    std::optional<TextureRef> sheenColorTexture;  // RGB, sRGB.
+    float sheenRoughnessFactor = 0.0f;
+    std::optional<TextureRef> sheenRoughnessTexture;  // Alpha channel.
+};
+
+// KHR_materials_pbrSpecularGlossiness (archived, still common). When present the material is
+// shaded in the specular-glossiness model: baseColorFactor/baseColorTexture of Material hold
+// the diffuse factor and texture, and metallic-roughness values are ignored.
+struct SpecularGlossinessExtension {
+    glm::vec3 specularFactor{1.0f};
+    float glossinessFactor = 1.0f;
+    std::optional<TextureRef> specularGlossinessTexture;  // RGB specular (sRGB), A glossiness.
+};
+
 struct Material {
     std::string name;
     glm::vec4 baseColorFactor{1.0f};
     std::optional<TextureRef> baseColorTexture;
     float metallicFactor = 1.0f;
     float roughnessFactor = 1.0f;
-    std::optional<TextureRef> metallicRoughnessTexture;
+    std::optional<TextureRef> metallicRoughnessTexture;  // Blue: metal, green: roughness.
     std::optional<TextureRef> normalTexture;
-    std::optional<TextureRef> occlusionTexture;
+    float normalScale = 1.0f;
+    std::optional<TextureRef> occlusionTexture;  // Red channel.
+    float occlusionStrength = 1.0f;
     std::optional<TextureRef> emissiveTexture;
     glm::vec3 emissiveFactor{0.0f};
+    float emissiveStrength = 1.0f;  // KHR_materials_emissive_strength.
     AlphaMode alphaMode = AlphaMode::Opaque;
     float alphaCutoff = 0.5f;  // Kept as written: a cutoff of 0 stays 0.
     bool doubleSided = false;
     bool isDefault = false;  // The glTF default material, appended by the loader.
+
+    bool unlit = false;  // KHR_materials_unlit: the base colour is the output colour.
+    float ior = 1.5f;    // KHR_materials_ior (0 means infinite, as the extension says).
+    std::optional<SpecularExtension> specular;
+    std::optional<ClearcoatExtension> clearcoat;
+    std::optional<SheenExtension> sheen;
+    std::optional<SpecularGlossinessExtension> specularGlossiness;
+    // Material extensions present in the file that Encore does not shade (transmission,
+    // volume, iridescence, anisotropy, dispersion, ...): the base material is drawn instead.
+    std::vector<std::string> ignoredExtensions;
 };
 
 enum class Filter : std::uint8_t { Nearest, Linear };
@@ -178,6 +227,50 @@ struct Instance {
     glm::mat4 normalMatrix{1.0f};  // Inverse transpose of world's upper 3x3, in a mat4.
 };
 
+// KHR_lights_punctual. Intensity is in candela (point, spot) or lux (directional).
+enum class LightType : std::uint8_t { Directional, Point, Spot };
+
+struct Light {
+    std::string name;
+    LightType type = LightType::Point;
+    glm::vec3 color{1.0f};
+    float intensity = 1.0f;
+    float range = 0.0f;  // 0: unlimited (the extension's absent range).
+    float innerConeAngle = 0.0f;
+    float outerConeAngle = 0.7853981634f;  // pi / 4.
+};
+
+// A light placed by a node of the chosen scene, in world space. The light shines along the
+// node's -Z axis.
+struct LightInstance {
+    LightId light;
+    NodeId node;
+    glm::vec3 position{0.0f};
+    glm::vec3 direction{0.0f, 0.0f, -1.0f};  // Normalised.
+};
+
+enum class CameraProjection : std::uint8_t { Perspective, Orthographic };
+
+// A glTF camera as declared.
+struct CameraData {
+    std::string name;
+    CameraProjection projection = CameraProjection::Perspective;
+    float yfov = 0.8f;         // Perspective: vertical field of view, radians.
+    float aspectRatio = 0.0f;  // Perspective: 0 when absent (use the target's).
+    float xmag = 1.0f;         // Orthographic: half width and half height of the view.
+    float ymag = 1.0f;
+    float znear = 0.01f;
+    float zfar = 0.0f;  // 0: infinite (perspective without zfar).
+};
+
+// A camera placed by a node of the chosen scene; `world` is the node's world matrix (the
+// camera looks along its -Z axis with +Y up, scale removed).
+struct CameraInstance {
+    CameraId camera;
+    NodeId node;
+    glm::mat4 world{1.0f};
+};
+
 struct SceneData {
     std::filesystem::path sourcePath;  // The file, or the display name of an in-memory asset.
     std::vector<Buffer> buffers;
@@ -190,7 +283,15 @@ struct SceneData {
     std::vector<Image> images;
     std::vector<Node> nodes;
     std::vector<Instance> instances;
+    std::vector<Light> lights;
+    std::vector<LightInstance> lightInstances;  // Depth-first by node, like instances.
+    std::vector<CameraData> cameras;
+    std::vector<CameraInstance> cameraInstances;  // Depth-first by node.
     Bounds bounds;  // World-space box of all instances.
+    std::vector<std::string> extensionsUsed;      // As the file declares them.
+    std::vector<std::string> extensionsRequired;
+    // Extensions used by the file that Encore does not implement (ignored, optional ones).
+    std::vector<std::string> extensionsIgnored;
     std::vector<std::string> warnings;
 
     // Bytes from the accessor's first element to the end of its last one, in the view's layout

@@ -1,0 +1,87 @@
+#pragma once
+
+// Environment owns the GPU side of image-based lighting: from an equirectangular HDR panorama
+// it computes, on the GPU with compute shaders,
+//  - a specular cube map prefiltered for the GGX distribution, one roughness per mip level
+//    (roughness = level / (levelCount - 1), level 0 a mirror);
+//  - a diffuse irradiance cube map holding, for each normal n, the cosine-weighted average of
+//    the radiance over the hemisphere around n (so diffuse = albedo * irradiance(n));
+//  - the split-sum BRDF lookup table: for (NdotV, roughness) in [0,1]^2, red and green are the
+//    scale and bias applied to F0 for GGX with height-correlated Smith visibility, blue the
+//    directional albedo of the Charlie sheen lobe (KHR_materials_sheen).
+// Directions follow HdrImage's panorama convention in Encore's world space (right-handed,
+// +Y up); a rotation about +Y is applied by the shaders at lookup, not baked in here.
+//
+// load() writes a new panorama into the same textures, so bind groups that reference the
+// views stay valid: changing the environment never re-records a render bundle.
+
+#include <webgpu/webgpu_cpp.h>
+
+#include <cstdint>
+
+#include "encore/core/Result.h"
+#include "encore/image/HdrImage.h"
+#include "encore/shaders/ShaderLibrary.h"
+
+namespace encore::render {
+
+struct EnvironmentOptions {
+    std::uint32_t specularSize = 256;       // Level 0 of the specular cube, per face.
+    std::uint32_t specularLevels = 5;       // Roughness 0, 0.25, 0.5, 0.75, 1.
+    std::uint32_t irradianceSize = 32;
+    std::uint32_t lutSize = 128;
+    std::uint32_t specularSamples = 1024;   // GGX importance samples per texel.
+    std::uint32_t irradianceSamples = 2048;
+};
+
+class Environment {
+  public:
+    static constexpr wgpu::TextureFormat kCubeFormat = wgpu::TextureFormat::RGBA16Float;
+
+    static Result<Environment> create(const wgpu::Device& device, const wgpu::Queue& queue,
+                                      shaders::ShaderLibrary& shaders,
+                                      const image::HdrImage& panorama,
+                                      const EnvironmentOptions& options = {});
+
+    Environment(Environment&&) noexcept = default;
+    Environment& operator=(Environment&&) noexcept = default;
+    Environment(const Environment&) = delete;
+    Environment& operator=(const Environment&) = delete;
+
+    // Recomputes every map from `panorama` into the existing textures (bind groups stay valid).
+    Result<void> load(const image::HdrImage& panorama);
+
+    const wgpu::TextureView& specularView() const { return mSpecularView; }      // Cube.
+    const wgpu::TextureView& irradianceView() const { return mIrradianceView; }  // Cube.
+    const wgpu::TextureView& brdfLutView() const { return mLutView; }            // 2D.
+    // Linear filtering with linear mips, clamped to edge: for all three.
+    const wgpu::Sampler& sampler() const { return mSampler; }
+    std::uint32_t specularLevels() const { return mOptions.specularLevels; }
+
+    // The textures, for tests and tools (CopySrc).
+    const wgpu::Texture& specularTexture() const { return mSpecular; }
+    const wgpu::Texture& irradianceTexture() const { return mIrradiance; }
+    const wgpu::Texture& brdfLutTexture() const { return mLut; }
+
+    // Wall-clock milliseconds the last create() or load() took, GPU work included.
+    double lastBuildMilliseconds() const { return mLastBuildMilliseconds; }
+
+  private:
+    Environment() = default;
+    struct Pipelines;
+
+    wgpu::Device mDevice;
+    wgpu::Queue mQueue;
+    shaders::ShaderLibrary* mShaders = nullptr;
+    EnvironmentOptions mOptions;
+    wgpu::Texture mSpecular;
+    wgpu::Texture mIrradiance;
+    wgpu::Texture mLut;
+    wgpu::TextureView mSpecularView;
+    wgpu::TextureView mIrradianceView;
+    wgpu::TextureView mLutView;
+    wgpu::Sampler mSampler;
+    double mLastBuildMilliseconds = 0.0;
+};
+
+}  // namespace encore::render
