@@ -2,8 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <glm/gtc/matrix_transform.hpp>
+
+#include "encore/scene/SceneData.h"
 
 namespace encore::render {
 
@@ -11,10 +14,72 @@ namespace {
 constexpr float kFramingFov = glm::radians(45.0f);
 // Front, a little to the right and above: shows three faces of a box-like model.
 const glm::vec3 kFramingDirection = glm::normalize(glm::vec3(0.45f, 0.35f, 1.0f));
+
+bool isInfinite(float farPlane) {
+    return !(farPlane > 0.0f) || std::isinf(farPlane);
+}
+
+// The inverse of the rigid part of a camera node's world matrix. Orthonormalising from -Z
+// (where the camera looks) and then +Y keeps the view direction exact and the horizon as close
+// to the authored one as the matrix allows.
+glm::mat4 rigidViewFromWorld(const glm::mat4& world) {
+    const glm::vec3 origin(world[3]);
+    glm::vec3 back(world[2]);
+    glm::vec3 up(world[1]);
+    if (glm::length(back) < 1e-20f || glm::length(up) < 1e-20f) {
+        // A collapsed camera node (zero scale): nothing to orient by, look down -Z.
+        return glm::translate(glm::mat4(1.0f), -origin);
+    }
+    back = glm::normalize(back);
+    up = up - glm::dot(up, back) * back;
+    if (glm::length(up) < 1e-20f) {
+        up = std::abs(back.y) < 0.999f ? glm::vec3(0.0f, 1.0f, 0.0f) : glm::vec3(0.0f, 0.0f, -1.0f);
+        up = up - glm::dot(up, back) * back;
+    }
+    up = glm::normalize(up);
+    const glm::vec3 right = glm::cross(up, back);
+    // The inverse of a rotation is its transpose: the rows of the view are the camera's axes.
+    glm::mat4 view(1.0f);
+    for (int i = 0; i < 3; ++i) {
+        view[i][0] = right[i];
+        view[i][1] = up[i];
+        view[i][2] = back[i];
+    }
+    view[3] =
+        glm::vec4(-glm::dot(right, origin), -glm::dot(up, origin), -glm::dot(back, origin), 1.0f);
+    return view;
+}
 }  // namespace
 
-Camera Camera::lookAt(const glm::vec3& eye, const glm::vec3& target, float verticalFovRadians,
-                      float aspect, float nearPlane, float farPlane) {
+glm::mat4 perspectiveProjection(float verticalFovRadians,
+                                float aspect,
+                                float nearPlane,
+                                float farPlane) {
+    if (!isInfinite(farPlane)) {
+        return glm::perspectiveRH_ZO(verticalFovRadians, aspect, nearPlane, farPlane);
+    }
+    // perspectiveRH_ZO as far -> infinity: z_clip = -z_view - near, w_clip = -z_view, so depth
+    // = 1 - near / distance; the z row is scaled so that depth stays below 1 (see the header).
+    const float tanHalfFov = std::tan(verticalFovRadians * 0.5f);
+    glm::mat4 projection(0.0f);
+    projection[0][0] = 1.0f / (aspect * tanHalfFov);
+    projection[1][1] = 1.0f / tanHalfFov;
+    projection[2][2] = -kInfiniteDepthScale;
+    projection[2][3] = -1.0f;
+    projection[3][2] = -nearPlane * kInfiniteDepthScale;
+    return projection;
+}
+
+bool Camera::infiniteFar() const {
+    return std::isinf(farPlane);
+}
+
+Camera Camera::lookAt(const glm::vec3& eye,
+                      const glm::vec3& target,
+                      float verticalFovRadians,
+                      float aspect,
+                      float nearPlane,
+                      float farPlane) {
     Camera camera;
     camera.position = eye;
     glm::vec3 up(0.0f, 1.0f, 0.0f);
@@ -22,8 +87,57 @@ Camera Camera::lookAt(const glm::vec3& eye, const glm::vec3& target, float verti
         up = glm::vec3(0.0f, 0.0f, -1.0f);
     }
     camera.view = glm::lookAtRH(eye, target, up);
-    camera.projection = glm::perspectiveRH_ZO(verticalFovRadians, aspect, nearPlane, farPlane);
+    camera.projection = perspectiveProjection(verticalFovRadians, aspect, nearPlane, farPlane);
+    camera.kind = ProjectionKind::Perspective;
+    camera.nearPlane = nearPlane;
+    camera.farPlane = isInfinite(farPlane) ? std::numeric_limits<float>::infinity() : farPlane;
     return camera;
+}
+
+Camera Camera::orthographic(const glm::mat4& cameraWorld,
+                            float xmag,
+                            float ymag,
+                            float znear,
+                            float zfar) {
+    if (!(zfar > znear)) {
+        zfar = znear + 1.0f;
+    }
+    Camera camera;
+    camera.view = rigidViewFromWorld(cameraWorld);
+    camera.position = glm::vec3(cameraWorld[3]);
+    camera.projection = glm::orthoRH_ZO(-xmag, xmag, -ymag, ymag, znear, zfar);
+    camera.kind = ProjectionKind::Orthographic;
+    camera.nearPlane = znear;
+    camera.farPlane = zfar;
+    return camera;
+}
+
+Camera Camera::perspective(const glm::mat4& cameraWorld,
+                           float yfov,
+                           float aspect,
+                           float znear,
+                           float zfar) {
+    Camera camera;
+    camera.view = rigidViewFromWorld(cameraWorld);
+    camera.position = glm::vec3(cameraWorld[3]);
+    camera.projection = perspectiveProjection(yfov, aspect, znear, zfar);
+    camera.kind = ProjectionKind::Perspective;
+    camera.nearPlane = znear;
+    camera.farPlane = isInfinite(zfar) ? std::numeric_limits<float>::infinity() : zfar;
+    return camera;
+}
+
+Camera Camera::fromGltf(const scene::CameraData& camera,
+                        const glm::mat4& world,
+                        float targetAspect) {
+    if (camera.projection == scene::CameraProjection::Orthographic) {
+        return orthographic(world, camera.xmag, camera.ymag, camera.znear, camera.zfar);
+    }
+    float aspect = targetAspect;
+    if (!(aspect > 0.0f)) {
+        aspect = camera.aspectRatio > 0.0f ? camera.aspectRatio : 1.0f;
+    }
+    return perspective(world, camera.yfov, aspect, camera.znear, camera.zfar);
 }
 
 Camera Camera::framing(const scene::Bounds& bounds, float aspect, float yawRadians) {
@@ -54,8 +168,7 @@ Camera Camera::framing(const scene::Bounds& bounds, float aspect, float yawRadia
     distance = std::max(distance * 1.05f, radius * 1e-3f);  // A small margin around the model.
     const float nearPlane = std::max(distance - radius * 1.5f, distance * 1e-3f);
     const float farPlane = distance + radius * 1.5f;
-    return lookAt(center + direction * distance, center, kFramingFov, aspect, nearPlane,
-                  farPlane);
+    return lookAt(center + direction * distance, center, kFramingFov, aspect, nearPlane, farPlane);
 }
 
 }  // namespace encore::render

@@ -4,14 +4,31 @@
 
 namespace encore::render {
 
+namespace {
+constexpr float kNoFarPlaneRatio = 1e-5f;
+}  // namespace
+
 Frustum Frustum::fromViewProjection(const glm::mat4& m) {
     // Gribb and Hartmann: planes from sums of the matrix rows (glm stores columns).
     auto row = [&](int i) { return glm::vec4(m[0][i], m[1][i], m[2][i], m[3][i]); };
     Frustum frustum;
     frustum.planes = {row(3) + row(0), row(3) - row(0), row(3) + row(1),
                       row(3) - row(1), row(2),          row(3) - row(2)};
+    // An infinite perspective projection has no far plane: row 3 - row 2 loses its normal
+    // (exactly, or to the kInfiniteDepthScale of Camera.h) and normalising it would divide by
+    // zero or leave a plane made of rounding errors. A far plane whose normal is that small
+    // against the near plane's (a far plane beyond 1e5 near-plane distances) becomes the plane
+    // that passes everything: culling less than possible is safe, the rasterizer still clips.
+    const float nearNormal = glm::length(glm::vec3(frustum.planes[4]));
+    const float farNormal = glm::length(glm::vec3(frustum.planes[5]));
+    if (!(farNormal > kNoFarPlaneRatio * nearNormal)) {
+        frustum.planes[5] = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+    }
     for (glm::vec4& plane : frustum.planes) {
-        plane /= glm::length(glm::vec3(plane));
+        const float length = glm::length(glm::vec3(plane));
+        if (length > 0.0f) {
+            plane /= length;
+        }
     }
     return frustum;
 }

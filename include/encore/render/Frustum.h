@@ -12,7 +12,10 @@ namespace encore::render {
 using Sphere = glm::vec4;
 
 // The six planes of a view-projection's frustum (WebGPU clip space, depth 0..1), each with an
-// inward unit normal in xyz and its distance in w.
+// inward unit normal in xyz and its distance in w: left, right, bottom, top, near, far.
+// Perspective and orthographic projections both work. An infinite perspective projection (and
+// a far plane beyond 1e5 times the near distance) gets the far plane (0, 0, 0, 1), which keeps
+// every sphere.
 struct Frustum {
     std::array<glm::vec4, 6> planes;
 
