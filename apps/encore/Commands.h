@@ -43,6 +43,7 @@ void addGenCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
 void addStatsCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
 void addBenchCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
 void addPlotCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
+void addCompareCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
 
 // Writes the scaling-curve SVG of a benchmark report; returns an exit code.
 int writePlot(const nlohmann::json& report, const std::string& path);

@@ -40,6 +40,7 @@ int main(int argc, char** argv) {
     addStatsCommand(app, global, exitCode);
     addBenchCommand(app, global, exitCode);
     addPlotCommand(app, global, exitCode);
+    addCompareCommand(app, global, exitCode);
 
     encore::setLogSink([&global](encore::LogLevel level, std::string_view message) {
         if (level == encore::LogLevel::Error) {
