@@ -11,7 +11,6 @@
 namespace encore::render {
 
 namespace {
-constexpr float kFramingFov = glm::radians(45.0f);
 // Front, a little to the right and above: shows three faces of a box-like model.
 const glm::vec3 kFramingDirection = glm::normalize(glm::vec3(0.45f, 0.35f, 1.0f));
 
@@ -140,7 +139,10 @@ Camera Camera::fromGltf(const scene::CameraData& camera,
     return perspective(world, camera.yfov, aspect, camera.znear, camera.zfar);
 }
 
-Camera Camera::framing(const scene::Bounds& bounds, float aspect, float yawRadians) {
+Camera Camera::framing(const scene::Bounds& bounds,
+                       float aspect,
+                       float yawRadians,
+                       float verticalFovRadians) {
     const glm::vec3 center = bounds.empty() ? glm::vec3(0.0f) : bounds.center();
     const float radius = std::max(bounds.radius(), 1e-4f);
     const glm::mat4 yaw = glm::rotate(glm::mat4(1.0f), yawRadians, glm::vec3(0.0f, 1.0f, 0.0f));
@@ -148,13 +150,13 @@ Camera Camera::framing(const scene::Bounds& bounds, float aspect, float yawRadia
     // The camera basis for that direction (as lookAt builds it).
     const glm::vec3 right = glm::normalize(glm::cross(glm::vec3(0.0f, 1.0f, 0.0f), direction));
     const glm::vec3 up = glm::cross(direction, right);
-    const float tanHalfY = std::tan(kFramingFov * 0.5f);
+    const float tanHalfY = std::tan(verticalFovRadians * 0.5f);
     const float tanHalfX = tanHalfY * aspect;
     // The distance from the centre at which every corner of the box is inside both fields of
     // view: a corner nearer the camera by `toward` needs |offset| / tan(half fov) + toward.
     float distance = 0.0f;
     if (bounds.empty()) {
-        distance = radius / std::sin(kFramingFov * 0.5f);
+        distance = radius / std::sin(verticalFovRadians * 0.5f);
     }
     for (int corner = 0; corner < 8 && !bounds.empty(); ++corner) {
         const glm::vec3 point((corner & 1) ? bounds.max.x : bounds.min.x,
@@ -168,7 +170,8 @@ Camera Camera::framing(const scene::Bounds& bounds, float aspect, float yawRadia
     distance = std::max(distance * 1.05f, radius * 1e-3f);  // A small margin around the model.
     const float nearPlane = std::max(distance - radius * 1.5f, distance * 1e-3f);
     const float farPlane = distance + radius * 1.5f;
-    return lookAt(center + direction * distance, center, kFramingFov, aspect, nearPlane, farPlane);
+    return lookAt(center + direction * distance, center, verticalFovRadians, aspect, nearPlane,
+                  farPlane);
 }
 
 }  // namespace encore::render

@@ -30,6 +30,9 @@ glm::mat4 perspectiveProjection(float verticalFovRadians,
                                 float nearPlane,
                                 float farPlane);
 
+// The vertical field of view of Camera::framing unless told otherwise (45 degrees).
+inline constexpr float kFramingFovRadians = glm::radians(45.0f);
+
 // A camera producing WebGPU clip space (right-handed view, depth 0..1; draw with depth compare
 // Less and clear depth to 1). Besides the matrices it records the kind of projection and its
 // clip distances, for code that needs them (frustum tests, depth linearisation).
@@ -90,7 +93,10 @@ struct Camera {
     // inside both fields of view (with a 5% margin). Tighter than fitting the enclosing sphere,
     // which leaves flat scenes small in the image.
     // `yawRadians` turns the viewpoint around the vertical axis through the centre.
-    static Camera framing(const scene::Bounds& bounds, float aspect, float yawRadians = 0.0f);
+    static Camera framing(const scene::Bounds& bounds,
+                          float aspect,
+                          float yawRadians = 0.0f,
+                          float verticalFovRadians = kFramingFovRadians);
 };
 
 }  // namespace encore::render

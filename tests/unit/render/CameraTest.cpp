@@ -250,6 +250,9 @@ TEST(CameraTest, FramingIsUnchanged) {
     bounds.min = glm::vec3(-1.0f, 0.0f, -2.0f);
     bounds.max = glm::vec3(3.0f, 1.0f, 2.0f);
     const Camera camera = Camera::framing(bounds, 1.25f, 0.3f);
+    const Camera explicitFov = Camera::framing(bounds, 1.25f, 0.3f, glm::radians(45.0f));
+    EXPECT_TRUE(sameBytes(camera.view, explicitFov.view));
+    EXPECT_TRUE(sameBytes(camera.projection, explicitFov.projection));
     EXPECT_FALSE(camera.infiniteFar());
     EXPECT_GT(camera.farPlane, camera.nearPlane);
     // Every corner of the box is inside the picture and the depth range.
