@@ -29,9 +29,9 @@ Result<void> checkComparable(const ImageRgba8& a, const ImageRgba8& b) {
                              sizeText(b) + ").");
     }
     if (a.width != b.width || a.height != b.height) {
-        return makeError(ErrorCode::InvalidArgument,
-                         "Cannot compare images of different sizes (" + sizeText(a) + " and " +
-                             sizeText(b) + ").");
+        return makeError(ErrorCode::InvalidArgument, "Cannot compare images of different sizes (" +
+                                                         sizeText(a) + " and " + sizeText(b) +
+                                                         ").");
     }
     return {};
 }
@@ -61,13 +61,16 @@ double luma(const std::uint8_t* pixel) {
 struct FilteredRow {
     std::vector<double> a, b, aa, bb, ab;
 
-    explicit FilteredRow(std::size_t width)
-        : a(width), b(width), aa(width), bb(width), ab(width) {}
+    explicit FilteredRow(std::size_t width) : a(width), b(width), aa(width), bb(width), ab(width) {}
 };
 
-void filterRow(const ImageRgba8& imageA, const ImageRgba8& imageB, std::uint32_t y,
-               const std::vector<double>& kernel, std::vector<double>& lumaA,
-               std::vector<double>& lumaB, FilteredRow& out) {
+void filterRow(const ImageRgba8& imageA,
+               const ImageRgba8& imageB,
+               std::uint32_t y,
+               const std::vector<double>& kernel,
+               std::vector<double>& lumaA,
+               std::vector<double>& lumaB,
+               FilteredRow& out) {
     for (std::uint32_t x = 0; x < imageA.width; ++x) {
         lumaA[x] = luma(imageA.pixel(x, y));
         lumaB[x] = luma(imageB.pixel(x, y));
@@ -131,9 +134,9 @@ Result<SsimMap> ssimLuminanceMap(const ImageRgba8& a, const ImageRgba8& b) {
             const double varianceA = aa - muA * muA;
             const double varianceB = bb - muB * muB;
             const double covariance = ab - muA * muB;
-            const double value = ((2.0 * muA * muB + kSsimC1) * (2.0 * covariance + kSsimC2)) /
-                                 ((muA * muA + muB * muB + kSsimC1) *
-                                  (varianceA + varianceB + kSsimC2));
+            const double value =
+                ((2.0 * muA * muB + kSsimC1) * (2.0 * covariance + kSsimC2)) /
+                ((muA * muA + muB * muB + kSsimC1) * (varianceA + varianceB + kSsimC2));
             map.values[std::size_t(y) * map.width + x] = float(value);
             sum += value;
         }

@@ -40,8 +40,8 @@ inline constexpr int kColorErrorThreshold = 16;
 
 // Absolute differences of the R, G and B values (0..255); alpha is ignored.
 struct ColorError {
-    double meanAbsolute = 0.0;  // Mean over all pixels and the three channels.
-    int maxAbsolute = 0;        // Largest difference of any channel of any pixel.
+    double meanAbsolute = 0.0;           // Mean over all pixels and the three channels.
+    int maxAbsolute = 0;                 // Largest difference of any channel of any pixel.
     double fractionOverThreshold = 0.0;  // Pixels whose largest channel difference exceeds
                                          // kColorErrorThreshold, over all pixels (0..1).
 };

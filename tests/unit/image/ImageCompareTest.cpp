@@ -112,8 +112,8 @@ TEST(ImageCompareTest, FlatImagesFollowTheLuminanceTerm) {
     const double c1 = (0.01 * 255) * (0.01 * 255);
     const double a = 100.0;
     const double b = 150.0;
-    auto ssim = ssimLuminance(filled(20, 15, {100, 100, 100, 255}),
-                              filled(20, 15, {150, 150, 150, 255}));
+    auto ssim =
+        ssimLuminance(filled(20, 15, {100, 100, 100, 255}), filled(20, 15, {150, 150, 150, 255}));
     ASSERT_TRUE(ssim.ok());
     EXPECT_NEAR(*ssim, (2 * a * b + c1) / (a * a + b * b + c1), 1e-9);
 
