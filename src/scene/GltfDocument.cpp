@@ -10,10 +10,22 @@
 namespace encore::scene {
 namespace {
 
+// Extensions Encore reads and honours (material extensions: the loader fills them in and the
+// renderer shades them). A file may require any of these.
 constexpr std::array kSupportedExtensions = {
-    std::string_view("KHR_mesh_quantization"),   std::string_view("KHR_draco_mesh_compression"),
-    std::string_view("EXT_meshopt_compression"), std::string_view("EXT_mesh_gpu_instancing"),
+    std::string_view("KHR_mesh_quantization"),
+    std::string_view("KHR_draco_mesh_compression"),
+    std::string_view("EXT_meshopt_compression"),
+    std::string_view("EXT_mesh_gpu_instancing"),
     std::string_view("KHR_texture_transform"),
+    std::string_view("KHR_materials_emissive_strength"),
+    std::string_view("KHR_materials_unlit"),
+    std::string_view("KHR_materials_ior"),
+    std::string_view("KHR_materials_specular"),
+    std::string_view("KHR_materials_clearcoat"),
+    std::string_view("KHR_materials_sheen"),
+    std::string_view("KHR_materials_pbrSpecularGlossiness"),
+    std::string_view("KHR_lights_punctual"),
 };
 
 std::optional<ComponentType> componentTypeFromGl(std::uint64_t gl) {
@@ -281,6 +293,12 @@ Result<void> parseNodes(const Json& root, GltfDocument& document) {
         node.mesh = reader.optionalIndex("mesh");
         node.skin = reader.optionalIndex("skin");
         node.camera = reader.optionalIndex("camera");
+        if (const Json* light = extensionObject(reader, "KHR_lights_punctual")) {
+            FieldReader fields(*light, reader.element() + " KHR_lights_punctual");
+            node.light = fields.requiredIndex("light");
+            if (fields.failed())
+                reader.fail(fields.error().code, fields.error().message);
+        }
         const auto matrix = reader.numbers("matrix", 16);
         const auto translation = reader.numbers("translation", 3);
         const auto rotation = reader.numbers("rotation", 4);
@@ -317,15 +335,11 @@ Result<void> parseScenesAndSkins(const Json& root, GltfDocument& document) {
     ENCORE_TRY(forEachElement(root, "scenes", "scene", [&](FieldReader& reader, std::size_t) {
         document.scenes.push_back(reader.indices("nodes"));
     }));
-    ENCORE_TRY(forEachElement(root, "skins", "skin", [&](FieldReader& reader, std::size_t) {
+    return forEachElement(root, "skins", "skin", [&](FieldReader& reader, std::size_t) {
         GltfSkin skin;
         skin.inverseBindMatrices = reader.optionalIndex("inverseBindMatrices");
         skin.joints = reader.indices("joints");
         document.skins.push_back(std::move(skin));
-    }));
-    return forEachElement(root, "cameras", "camera", [&](FieldReader& reader, std::size_t) {
-        reader.requiredString("type");
-        ++document.cameraCount;
     });
 }
 
@@ -379,6 +393,7 @@ Result<GltfDocument> parseDocument(const Json& root) {
     ENCORE_TRY(parseMeshes(root, document));
     ENCORE_TRY(parseNodes(root, document));
     ENCORE_TRY(parseScenesAndSkins(root, document));
+    ENCORE_TRY(parseLightsAndCameras(root, document));
     ENCORE_TRY(parseMaterialElements(root, document));
     return document;
 }

@@ -106,6 +106,7 @@ struct GltfNode {
     std::optional<std::uint32_t> mesh;
     std::optional<std::uint32_t> skin;
     std::optional<std::uint32_t> camera;
+    std::optional<std::uint32_t> light;  // KHR_lights_punctual.
     glm::mat4 local{1.0f};
     std::optional<GltfInstancing> instancing;
 };
@@ -115,6 +116,37 @@ struct GltfTextureInfo {
     std::uint32_t texCoord = 0;
     std::optional<TextureTransform> transform;
     float scale = 1.0f;  // normalTexture.scale / occlusionTexture.strength.
+};
+
+// Material extensions as written; textures stay raw glTF references until validated.
+struct GltfSpecular {
+    float specularFactor = 1.0f;
+    std::optional<GltfTextureInfo> specularTexture;
+    glm::vec3 specularColorFactor{1.0f};
+    std::optional<GltfTextureInfo> specularColorTexture;
+};
+
+struct GltfClearcoat {
+    float clearcoatFactor = 0.0f;
+    std::optional<GltfTextureInfo> clearcoatTexture;
+    float clearcoatRoughnessFactor = 0.0f;
+    std::optional<GltfTextureInfo> clearcoatRoughnessTexture;
+    std::optional<GltfTextureInfo> clearcoatNormalTexture;  // scale: its 'scale'.
+};
+
+struct GltfSheen {
+    glm::vec3 sheenColorFactor{0.0f};
+    std::optional<GltfTextureInfo> sheenColorTexture;
+    float sheenRoughnessFactor = 0.0f;
+    std::optional<GltfTextureInfo> sheenRoughnessTexture;
+};
+
+struct GltfSpecularGlossiness {
+    glm::vec4 diffuseFactor{1.0f};
+    std::optional<GltfTextureInfo> diffuseTexture;
+    glm::vec3 specularFactor{1.0f};
+    float glossinessFactor = 1.0f;
+    std::optional<GltfTextureInfo> specularGlossinessTexture;
 };
 
 struct GltfMaterial {
@@ -131,7 +163,25 @@ struct GltfMaterial {
     std::string alphaMode = "OPAQUE";
     float alphaCutoff = 0.5f;
     bool doubleSided = false;
+    float emissiveStrength = 1.0f;
+    bool unlit = false;
+    float ior = 1.5f;
+    std::optional<GltfSpecular> specular;
+    std::optional<GltfClearcoat> clearcoat;
+    std::optional<GltfSheen> sheen;
+    std::optional<GltfSpecularGlossiness> specularGlossiness;
+    std::vector<std::string> ignoredExtensions;  // Extension objects Encore does not shade.
 };
+
+// One texture reference of a material, named as messages name it ("normalTexture",
+// "KHR_materials_clearcoat clearcoatTexture").
+struct GltfMaterialTextureSlot {
+    std::string slot;
+    const GltfTextureInfo* info;
+};
+
+// Every texture reference the material holds, core slots first; absent ones are left out.
+std::vector<GltfMaterialTextureSlot> materialTextureSlots(const GltfMaterial& material);
 
 struct GltfTexture {
     std::optional<std::uint32_t> source;
@@ -171,7 +221,8 @@ struct GltfDocument {
     std::vector<GltfImage> images;
     std::vector<GltfSampler> samplers;
     std::vector<GltfSkin> skins;
-    std::size_t cameraCount = 0;
+    std::vector<CameraData> cameras;
+    std::vector<Light> lights;  // KHR_lights_punctual.
     std::vector<std::vector<std::uint32_t>> scenes;  // Root nodes of each scene.
     std::optional<std::uint32_t> scene;
 };
@@ -183,6 +234,9 @@ Result<GltfDocument> parseDocument(const Json& root);
 
 // Reads materials, textures, images and samplers (MaterialParser.cpp).
 Result<void> parseMaterialElements(const Json& root, GltfDocument& document);
+
+// Reads cameras and KHR_lights_punctual lights, checking their values (LightsCameras.cpp).
+Result<void> parseLightsAndCameras(const Json& root, GltfDocument& document);
 
 // Extensions Encore implements; a required extension outside this list is refused.
 bool isSupportedExtension(std::string_view name);

@@ -1,6 +1,7 @@
 #include "GltfJson.h"
 
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 namespace encore::scene {
@@ -12,6 +13,12 @@ std::string describeJson(const Json& value) {
     if (text.size() > kMaxLength) {
         text = text.substr(0, kMaxLength - 3) + "...";
     }
+    return text;
+}
+
+std::string formatNumber(double value) {
+    char text[32];
+    std::snprintf(text, sizeof(text), "%g", value);
     return text;
 }
 

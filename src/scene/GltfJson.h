@@ -24,6 +24,9 @@ using Json = nlohmann::json;
 // A short rendering of a JSON value for error messages (never throws, at most ~40 characters).
 std::string describeJson(const Json& value);
 
+// A number for messages as a person would write it ("0.5", not "0.500000").
+std::string formatNumber(double value);
+
 class FieldReader {
   public:
     // `element` names the object in messages; a non-object is an error right away.

@@ -1,6 +1,11 @@
 // Materials, textures and samplers: parsed from JSON, then mapped to SceneData's types. A texture
 // without a sampler gets the glTF default sampler, appended once; a primitive without a material
-// gets the glTF default material, appended once.
+// gets the glTF default material, appended once. Material extensions Encore shades are read into
+// their structs; other extension objects on a material are only named (ignoredExtensions), so
+// the base material is drawn and the user can be told what was left out.
+
+#include <algorithm>
+#include <array>
 
 #include "LoadContext.h"
 
@@ -54,6 +59,130 @@ std::optional<GltfTextureInfo> readTextureInfo(FieldReader& parent,
         parent.fail(reader.error().code, reader.error().message);
     }
     return info;
+}
+
+// Material extensions the loader reads; any other extension object on a material is ignored.
+constexpr std::array kShadedMaterialExtensions = {
+    std::string_view("KHR_materials_emissive_strength"),
+    std::string_view("KHR_materials_unlit"),
+    std::string_view("KHR_materials_ior"),
+    std::string_view("KHR_materials_specular"),
+    std::string_view("KHR_materials_clearcoat"),
+    std::string_view("KHR_materials_sheen"),
+    std::string_view("KHR_materials_pbrSpecularGlossiness"),
+};
+
+glm::vec3 readVec3(FieldReader& reader, std::string_view key, glm::vec3 fallback) {
+    if (const auto values = reader.numbers(key, 3); values.size() == 3) {
+        return glm::vec3(values[0], values[1], values[2]);
+    }
+    return fallback;
+}
+
+GltfSpecular readSpecular(FieldReader& fields) {
+    GltfSpecular specular;
+    specular.specularFactor = float(fields.number("specularFactor", 1.0));
+    specular.specularTexture =
+        readTextureInfo(fields, fields.object("specularTexture"), "specularTexture", {});
+    specular.specularColorFactor = readVec3(fields, "specularColorFactor", glm::vec3(1.0f));
+    specular.specularColorTexture = readTextureInfo(fields, fields.object("specularColorTexture"),
+                                                    "specularColorTexture", {});
+    return specular;
+}
+
+GltfClearcoat readClearcoat(FieldReader& fields) {
+    GltfClearcoat clearcoat;
+    clearcoat.clearcoatFactor = float(fields.number("clearcoatFactor", 0.0));
+    clearcoat.clearcoatTexture =
+        readTextureInfo(fields, fields.object("clearcoatTexture"), "clearcoatTexture", {});
+    clearcoat.clearcoatRoughnessFactor = float(fields.number("clearcoatRoughnessFactor", 0.0));
+    clearcoat.clearcoatRoughnessTexture = readTextureInfo(
+        fields, fields.object("clearcoatRoughnessTexture"), "clearcoatRoughnessTexture", {});
+    clearcoat.clearcoatNormalTexture = readTextureInfo(
+        fields, fields.object("clearcoatNormalTexture"), "clearcoatNormalTexture", "scale");
+    return clearcoat;
+}
+
+GltfSheen readSheen(FieldReader& fields) {
+    GltfSheen sheen;
+    sheen.sheenColorFactor = readVec3(fields, "sheenColorFactor", glm::vec3(0.0f));
+    sheen.sheenColorTexture =
+        readTextureInfo(fields, fields.object("sheenColorTexture"), "sheenColorTexture", {});
+    sheen.sheenRoughnessFactor = float(fields.number("sheenRoughnessFactor", 0.0));
+    sheen.sheenRoughnessTexture = readTextureInfo(fields, fields.object("sheenRoughnessTexture"),
+                                                  "sheenRoughnessTexture", {});
+    return sheen;
+}
+
+GltfSpecularGlossiness readSpecularGlossiness(FieldReader& fields) {
+    GltfSpecularGlossiness result;
+    if (const auto diffuse = fields.numbers("diffuseFactor", 4); diffuse.size() == 4) {
+        result.diffuseFactor = glm::vec4(diffuse[0], diffuse[1], diffuse[2], diffuse[3]);
+    }
+    result.diffuseTexture =
+        readTextureInfo(fields, fields.object("diffuseTexture"), "diffuseTexture", {});
+    result.specularFactor = readVec3(fields, "specularFactor", glm::vec3(1.0f));
+    result.glossinessFactor = float(fields.number("glossinessFactor", 1.0));
+    result.specularGlossinessTexture = readTextureInfo(
+        fields, fields.object("specularGlossinessTexture"), "specularGlossinessTexture", {});
+    return result;
+}
+
+// Reads the material's extensions object into `material`; errors go to `reader`.
+void readMaterialExtensions(FieldReader& reader, GltfMaterial& material) {
+    const Json* extensions = reader.object("extensions");
+    if (!extensions) {
+        return;
+    }
+    for (const auto& [name, value] : extensions->items()) {
+        if (reader.failed()) {
+            return;
+        }
+        if (std::find(kShadedMaterialExtensions.begin(), kShadedMaterialExtensions.end(), name) ==
+            kShadedMaterialExtensions.end()) {
+            material.ignoredExtensions.push_back(name);
+            continue;
+        }
+        if (!value.is_object()) {
+            reader.fail(ErrorCode::InvalidFormat, reader.element() + " has an invalid " + name +
+                                                      " extension (expected an object, got " +
+                                                      describeJson(value) + ").");
+            return;
+        }
+        FieldReader fields(value, reader.element() + " " + name);
+        if (name == "KHR_materials_emissive_strength") {
+            const double strength = fields.number("emissiveStrength", 1.0);
+            if (strength < 0.0) {
+                fields.fail(ErrorCode::InvalidFormat,
+                            fields.element() + " has an invalid emissiveStrength (" +
+                                formatNumber(strength) + "; it must not be negative).");
+            }
+            material.emissiveStrength = float(strength);
+        } else if (name == "KHR_materials_unlit") {
+            material.unlit = true;
+        } else if (name == "KHR_materials_ior") {
+            const double ior = fields.number("ior", 1.5);
+            // 0 stands for an infinite index of refraction; values between 0 and 1 have no
+            // physical meaning and the extension forbids them.
+            if (ior != 0.0 && ior < 1.0) {
+                fields.fail(ErrorCode::InvalidFormat,
+                            fields.element() + " has an invalid ior (" + formatNumber(ior) +
+                                "; it must be 0 or at least 1).");
+            }
+            material.ior = float(ior);
+        } else if (name == "KHR_materials_specular") {
+            material.specular = readSpecular(fields);
+        } else if (name == "KHR_materials_clearcoat") {
+            material.clearcoat = readClearcoat(fields);
+        } else if (name == "KHR_materials_sheen") {
+            material.sheen = readSheen(fields);
+        } else if (name == "KHR_materials_pbrSpecularGlossiness") {
+            material.specularGlossiness = readSpecularGlossiness(fields);
+        }
+        if (fields.failed()) {
+            reader.fail(fields.error().code, fields.error().message);
+        }
+    }
 }
 
 std::optional<TextureRef> toTextureRef(const std::optional<GltfTextureInfo>& info) {
@@ -147,6 +276,7 @@ Result<void> parseMaterialElements(const Json& root, GltfDocument& document) {
         material.alphaMode = reader.string("alphaMode", "OPAQUE");
         material.alphaCutoff = float(reader.number("alphaCutoff", 0.5));
         material.doubleSided = reader.boolean("doubleSided", false);
+        readMaterialExtensions(reader, material);
         if (!reader.failed() && material.alphaMode != "OPAQUE" && material.alphaMode != "MASK" &&
             material.alphaMode != "BLEND") {
             reader.fail(
@@ -221,9 +351,92 @@ Result<void> convertMaterials(LoadContext& context) {
                                                            : AlphaMode::Opaque;
         material.alphaCutoff = source.alphaCutoff;
         material.doubleSided = source.doubleSided;
+        if (source.normalTexture) {
+            material.normalScale = source.normalTexture->scale;
+        }
+        if (source.occlusionTexture) {
+            material.occlusionStrength = source.occlusionTexture->scale;
+        }
+        material.emissiveStrength = source.emissiveStrength;
+        material.unlit = source.unlit;
+        material.ior = source.ior;
+        if (const auto& specular = source.specular) {
+            material.specular = SpecularExtension{
+                .specularFactor = specular->specularFactor,
+                .specularTexture = toTextureRef(specular->specularTexture),
+                .specularColorFactor = specular->specularColorFactor,
+                .specularColorTexture = toTextureRef(specular->specularColorTexture),
+            };
+        }
+        if (const auto& clearcoat = source.clearcoat) {
+            material.clearcoat = ClearcoatExtension{
+                .clearcoatFactor = clearcoat->clearcoatFactor,
+                .clearcoatTexture = toTextureRef(clearcoat->clearcoatTexture),
+                .clearcoatRoughnessFactor = clearcoat->clearcoatRoughnessFactor,
+                .clearcoatRoughnessTexture = toTextureRef(clearcoat->clearcoatRoughnessTexture),
+                .clearcoatNormalTexture = toTextureRef(clearcoat->clearcoatNormalTexture),
+                .clearcoatNormalScale = clearcoat->clearcoatNormalTexture
+                                            ? clearcoat->clearcoatNormalTexture->scale
+                                            : 1.0f,
+            };
+        }
+        if (const auto& sheen = source.sheen) {
+            material.sheen = SheenExtension{
+                .sheenColorFactor = sheen->sheenColorFactor,
+                .sheenColorTexture = toTextureRef(sheen->sheenColorTexture),
+                .sheenRoughnessFactor = sheen->sheenRoughnessFactor,
+                .sheenRoughnessTexture = toTextureRef(sheen->sheenRoughnessTexture),
+            };
+        }
+        if (const auto& glossiness = source.specularGlossiness) {
+            // The diffuse colour takes the base colour's place (SceneData.h); the metallic-
+            // roughness fallback the file may also carry is for viewers without the extension.
+            material.baseColorFactor = glossiness->diffuseFactor;
+            material.baseColorTexture = toTextureRef(glossiness->diffuseTexture);
+            material.specularGlossiness = SpecularGlossinessExtension{
+                .specularFactor = glossiness->specularFactor,
+                .glossinessFactor = glossiness->glossinessFactor,
+                .specularGlossinessTexture = toTextureRef(glossiness->specularGlossinessTexture),
+            };
+        }
+        material.ignoredExtensions = source.ignoredExtensions;
         scene.materials.push_back(std::move(material));
     }
     return {};
+}
+
+std::vector<GltfMaterialTextureSlot> materialTextureSlots(const GltfMaterial& material) {
+    std::vector<GltfMaterialTextureSlot> slots;
+    auto add = [&slots](std::string slot, const std::optional<GltfTextureInfo>& info) {
+        if (info) {
+            slots.push_back({std::move(slot), &*info});
+        }
+    };
+    add("baseColorTexture", material.baseColorTexture);
+    add("metallicRoughnessTexture", material.metallicRoughnessTexture);
+    add("normalTexture", material.normalTexture);
+    add("occlusionTexture", material.occlusionTexture);
+    add("emissiveTexture", material.emissiveTexture);
+    if (const auto& specular = material.specular) {
+        add("KHR_materials_specular specularTexture", specular->specularTexture);
+        add("KHR_materials_specular specularColorTexture", specular->specularColorTexture);
+    }
+    if (const auto& clearcoat = material.clearcoat) {
+        add("KHR_materials_clearcoat clearcoatTexture", clearcoat->clearcoatTexture);
+        add("KHR_materials_clearcoat clearcoatRoughnessTexture",
+            clearcoat->clearcoatRoughnessTexture);
+        add("KHR_materials_clearcoat clearcoatNormalTexture", clearcoat->clearcoatNormalTexture);
+    }
+    if (const auto& sheen = material.sheen) {
+        add("KHR_materials_sheen sheenColorTexture", sheen->sheenColorTexture);
+        add("KHR_materials_sheen sheenRoughnessTexture", sheen->sheenRoughnessTexture);
+    }
+    if (const auto& glossiness = material.specularGlossiness) {
+        add("KHR_materials_pbrSpecularGlossiness diffuseTexture", glossiness->diffuseTexture);
+        add("KHR_materials_pbrSpecularGlossiness specularGlossinessTexture",
+            glossiness->specularGlossinessTexture);
+    }
+    return slots;
 }
 
 MaterialId defaultMaterial(SceneData& scene) {

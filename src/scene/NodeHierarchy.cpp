@@ -1,6 +1,7 @@
 // The node tree: world matrices, the chosen scene's instances in depth-first order (expanded by
-// EXT_mesh_gpu_instancing) and the scene's world-space bounds. The file's children lists are
-// checked to form a forest, so a malformed hierarchy cannot loop forever.
+// EXT_mesh_gpu_instancing), its placed lights and cameras, and the scene's world-space bounds.
+// The file's children lists are checked to form a forest, so a malformed hierarchy cannot loop
+// forever.
 
 #include <cmath>
 
@@ -147,6 +148,46 @@ Result<std::vector<glm::mat4>> instanceTransforms(const LoadContext& context,
     return transforms;
 }
 
+// A light shines along its node's -Z axis; scale and shear only move where that axis points.
+LightInstance placeLight(std::uint32_t light, std::size_t node, const glm::mat4& world) {
+    LightInstance placed;
+    placed.light = LightId(light);
+    placed.node = NodeId(node);
+    placed.position = glm::vec3(world[3]);
+    const glm::vec3 direction = glm::vec3(world * glm::vec4(0.0f, 0.0f, -1.0f, 0.0f));
+    const float length = glm::length(direction);
+    if (length > 0.0f && std::isfinite(length)) {
+        placed.direction = direction / length;
+    }
+    return placed;
+}
+
+// glTF ignores a camera node's scale: the rotation is orthonormalised (Gram-Schmidt from the
+// view axis, then the up axis, so where the camera looks is kept exactly) and the translation
+// kept. A degenerate matrix keeps the identity rotation.
+glm::mat4 cameraWorld(const glm::mat4& world) {
+    glm::mat4 result(1.0f);
+    result[3] = glm::vec4(glm::vec3(world[3]), 1.0f);
+    const glm::vec3 axisZ(world[2]);
+    const float lengthZ = glm::length(axisZ);
+    if (!(lengthZ > 1e-12f) || !std::isfinite(lengthZ)) {
+        return result;
+    }
+    const glm::vec3 z = axisZ / lengthZ;
+    const glm::vec3 axisY = glm::vec3(world[1]) - glm::dot(glm::vec3(world[1]), z) * z;
+    const float lengthY = glm::length(axisY);
+    if (!(lengthY > 1e-12f) || !std::isfinite(lengthY)) {
+        return result;
+    }
+    const glm::vec3 y = axisY / lengthY;
+    // A mirrored node would flip x; the camera keeps a right-handed frame regardless.
+    const glm::vec3 x = glm::cross(y, z);
+    result[0] = glm::vec4(x, 0.0f);
+    result[1] = glm::vec4(y, 0.0f);
+    result[2] = glm::vec4(z, 0.0f);
+    return result;
+}
+
 std::vector<std::uint32_t> sceneRoots(const GltfDocument& document, const SceneData& scene) {
     if (document.scene) {
         return document.scenes[*document.scene];
@@ -169,6 +210,8 @@ Result<void> buildNodes(LoadContext& context) {
     SceneData& scene = context.scene;
     ENCORE_TRY(linkChildren(context.document, scene));
     ENCORE_TRY(computeWorlds(scene));
+    scene.lights = context.document.lights;
+    scene.cameras = context.document.cameras;
 
     std::vector<Bounds> meshBounds(scene.meshes.size());
     for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
@@ -185,11 +228,19 @@ Result<void> buildNodes(LoadContext& context) {
         for (auto child = node.children.rbegin(); child != node.children.rend(); ++child) {
             stack.push_back(child->index());
         }
+        const GltfNode& source = context.document.nodes[index];
+        if (source.light) {
+            scene.lightInstances.push_back(placeLight(*source.light, index, node.world));
+        }
+        if (source.camera) {
+            scene.cameraInstances.push_back(
+                {CameraId(*source.camera), NodeId(index), cameraWorld(node.world)});
+        }
         if (!node.mesh) {
             continue;
         }
         std::vector<glm::mat4> transforms{glm::mat4(1.0f)};
-        if (const auto& instancing = context.document.nodes[index].instancing) {
+        if (const auto& instancing = source.instancing) {
             ENCORE_TRY_ASSIGN(transforms, instanceTransforms(context, index, *instancing));
         }
         for (const glm::mat4& transform : transforms) {

@@ -2,6 +2,7 @@
 // of LoadContext.h in order. Stage errors name the element; the file's display name is added
 // here, once, so every message reads "<file>: <sentence>".
 
+#include <algorithm>
 #include <exception>
 #include <new>
 
@@ -31,6 +32,30 @@ Result<Json> parseJson(std::span<const std::uint8_t> text) {
     }
 }
 
+// Copies the declared extensions into the scene and warns once per used extension Encore does
+// not implement (parseDocument already refused required ones).
+Result<void> recordExtensions(LoadContext& context) {
+    SceneData& scene = context.scene;
+    scene.extensionsUsed = context.document.extensionsUsed;
+    scene.extensionsRequired = context.document.extensionsRequired;
+    for (const std::string& extension : scene.extensionsUsed) {
+        if (isSupportedExtension(extension) ||
+            std::find(scene.extensionsIgnored.begin(), scene.extensionsIgnored.end(),
+                      extension) != scene.extensionsIgnored.end()) {
+            continue;
+        }
+        scene.extensionsIgnored.push_back(extension);
+        const bool material = extension.starts_with("KHR_materials_") ||
+                              extension.starts_with("EXT_materials_");
+        ENCORE_TRY(context.warn(ErrorCode::Unsupported,
+                                "The asset uses " + extension +
+                                    ", which Encore does not implement; " +
+                                    (material ? "materials are drawn without it."
+                                              : "the asset is drawn without it.")));
+    }
+    return {};
+}
+
 Result<SceneData> load(std::span<const std::uint8_t> bytes, LoadContext& context) {
     std::span<const std::uint8_t> jsonText = bytes;
     // A .glb without the magic gets the GLB error, not a confusing JSON one.
@@ -49,6 +74,7 @@ Result<SceneData> load(std::span<const std::uint8_t> bytes, LoadContext& context
     root = Json();  // The document holds everything needed; free the DOM early.
 
     ENCORE_TRY(validateReferences(context.document));
+    ENCORE_TRY(recordExtensions(context));
     ENCORE_TRY(loadBuffers(context));
     ENCORE_TRY(buildBufferViews(context));
     ENCORE_TRY(decodeMeshoptViews(context));

@@ -46,16 +46,6 @@ class ReferenceChecker {
     std::optional<Error> mError;
 };
 
-void checkMaterialTexture(ReferenceChecker& checker,
-                          const std::string& material,
-                          std::string_view slot,
-                          const std::optional<GltfTextureInfo>& info,
-                          std::size_t textureCount) {
-    if (info) {
-        checker.check(material + " " + std::string(slot), "texture", info->index, textureCount);
-    }
-}
-
 }  // namespace
 
 std::optional<std::uint64_t> mulAdd(std::uint64_t a, std::uint64_t b, std::uint64_t c) {
@@ -120,7 +110,8 @@ Result<void> validateReferences(const GltfDocument& document) {
         const std::string name = "node " + std::to_string(n);
         checker.check(name, "mesh", node.mesh, document.meshes.size());
         checker.check(name, "skin", node.skin, document.skins.size());
-        checker.check(name, "camera", node.camera, document.cameraCount);
+        checker.check(name, "camera", node.camera, document.cameras.size());
+        checker.check(name, "light", node.light, document.lights.size(), "KHR_lights_punctual");
         for (std::uint32_t child : node.children) {
             checker.check(name, "node", child, document.nodes.size(), "child");
         }
@@ -149,14 +140,9 @@ Result<void> validateReferences(const GltfDocument& document) {
         const auto& material = document.materials[m];
         const std::string name = "material " + std::to_string(m);
         const std::size_t textures = document.textures.size();
-        checkMaterialTexture(checker, name, "baseColorTexture", material.baseColorTexture,
-                             textures);
-        checkMaterialTexture(checker, name, "metallicRoughnessTexture",
-                             material.metallicRoughnessTexture, textures);
-        checkMaterialTexture(checker, name, "normalTexture", material.normalTexture, textures);
-        checkMaterialTexture(checker, name, "occlusionTexture", material.occlusionTexture,
-                             textures);
-        checkMaterialTexture(checker, name, "emissiveTexture", material.emissiveTexture, textures);
+        for (const GltfMaterialTextureSlot& slot : materialTextureSlots(material)) {
+            checker.check(name + " " + slot.slot, "texture", slot.info->index, textures);
+        }
     }
     for (std::size_t t = 0; t < document.textures.size(); ++t) {
         const std::string name = "texture " + std::to_string(t);
