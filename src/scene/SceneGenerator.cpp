@@ -266,12 +266,20 @@ Result<std::vector<std::uint8_t>> generateSceneGlb(const GeneratorOptions& optio
                      {"nodes", json::array()}};
     for (std::uint32_t i = 0; i < options.materialCount; ++i) {
         const glm::vec3 color = paletteColor(i, options.materialCount);
+        // Every third material (from the second) is a metal and roughness runs from 0.2 to 0.9
+        // across the materials, so a render shows dielectric and metallic highlights of several
+        // widths while the hues keep the materials apart.
+        const bool metal = i % 3 == 1;
+        const float roughness =
+            options.materialCount > 1
+                ? 0.2f + 0.7f * float(i) / float(options.materialCount - 1)
+                : 0.5f;
         document["materials"].push_back(
             {{"name", "material " + std::to_string(i)},
              {"pbrMetallicRoughness",
               {{"baseColorFactor", {color.r, color.g, color.b, 1.0}},
-               {"metallicFactor", 0.0},
-               {"roughnessFactor", 0.5 + 0.5 * float(i % 2)}}}});
+               {"metallicFactor", metal ? 1.0 : 0.0},
+               {"roughnessFactor", roughness}}}});
     }
     BinaryWriter binary;
     constexpr int kFloat = 5126;

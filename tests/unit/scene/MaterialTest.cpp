@@ -7,6 +7,7 @@
 #include "encore/core/FileIO.h"
 #include "encore/core/Log.h"
 #include "encore/image/ImageCodec.h"
+#include "encore/scene/SceneGenerator.h"
 
 namespace encore::scene {
 namespace {
@@ -176,6 +177,34 @@ TEST(MaterialTest, ImagesDecodeFromFilesAndBufferViews) {
     // "not a png" cannot be decoded: a warning, not an error.
     ASSERT_EQ(scene->warnings.size(), 1u);
     EXPECT_NE(scene->warnings[0].find("image 2"), std::string::npos);
+}
+
+TEST(MaterialTest, GeneratedMaterialsVaryMetalAndRoughness) {
+    GeneratorOptions options;
+    options.objectCount = 8;
+    options.materialCount = 8;
+    auto glb = generateSceneGlb(options);
+    ASSERT_TRUE(glb.ok()) << glb.error().message;
+    auto scene = loadSceneFromMemory(*glb, {}, "generated.glb");
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+    ASSERT_EQ(scene->materials.size(), 8u);
+    int metals = 0;
+    for (std::size_t i = 0; i < scene->materials.size(); ++i) {
+        const Material& material = scene->materials[i];
+        EXPECT_TRUE(material.metallicFactor == 0.0f || material.metallicFactor == 1.0f);
+        metals += material.metallicFactor == 1.0f;
+        EXPECT_GE(material.roughnessFactor, 0.2f - 1e-6f);
+        EXPECT_LE(material.roughnessFactor, 0.9f + 1e-6f);
+        for (std::size_t j = 0; j < i; ++j) {
+            EXPECT_NE(material.baseColorFactor, scene->materials[j].baseColorFactor)
+                << "materials " << j << " and " << i;
+            EXPECT_NE(material.roughnessFactor, scene->materials[j].roughnessFactor);
+        }
+    }
+    EXPECT_FLOAT_EQ(scene->materials.front().roughnessFactor, 0.2f);
+    EXPECT_FLOAT_EQ(scene->materials.back().roughnessFactor, 0.9f);
+    EXPECT_GE(metals, 2);
+    EXPECT_LT(metals, 8);
 }
 
 }  // namespace
