@@ -1,1 +1,158 @@
-// Placeholder: replaced by its implementation.
+#include "ModelInfo.h"
+
+#include <algorithm>
+
+namespace encore::app {
+
+std::uint64_t triangleCount(const scene::SceneData& scene, const scene::Primitive& primitive) {
+    const std::uint64_t count = primitive.indices
+                                    ? scene.accessors[primitive.indices->index()].count
+                                    : primitive.vertexCount;
+    switch (primitive.topology) {
+        case scene::Topology::TriangleList:
+            return count / 3;
+        case scene::Topology::TriangleStrip:
+            return count >= 3 ? count - 2 : 0;
+        default:
+            return 0;
+    }
+}
+
+ModelSummary summarizeModel(const scene::SceneData& scene) {
+    ModelSummary summary;
+    summary.file = scene.sourcePath.string();
+
+    ModelCounts& counts = summary.counts;
+    counts.meshes = scene.meshes.size();
+    counts.primitives = scene.primitiveCount();
+    std::vector<std::uint64_t> meshTriangles(scene.meshes.size(), 0);
+    for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
+        for (const scene::Primitive& primitive : scene.meshes[m].primitives) {
+            meshTriangles[m] += triangleCount(scene, primitive);
+        }
+        counts.triangles += meshTriangles[m];
+    }
+    for (const scene::Instance& instance : scene.instances) {
+        counts.drawnTriangles += meshTriangles[instance.mesh.index()];
+    }
+    counts.materials = scene.materials.size();
+    counts.textures = scene.textures.size();
+    counts.images = scene.images.size();
+    counts.lights = scene.lights.size();
+    counts.placedLights = scene.lightInstances.size();
+    counts.cameras = scene.cameras.size();
+    counts.placedCameras = scene.cameraInstances.size();
+    counts.nodes = scene.nodes.size();
+    counts.instances = scene.instances.size();
+
+    auto contains = [](const std::vector<std::string>& list, const std::string& name) {
+        return std::find(list.begin(), list.end(), name) != list.end();
+    };
+    auto addExtension = [&](const std::string& name) {
+        const bool listed =
+            std::any_of(summary.extensions.begin(), summary.extensions.end(),
+                        [&name](const ExtensionInfo& info) { return info.name == name; });
+        if (!listed) {
+            summary.extensions.push_back({name,
+                                          contains(scene.extensionsIgnored, name) ? "ignored"
+                                                                                  : "shaded",
+                                          contains(scene.extensionsRequired, name)});
+        }
+    };
+    // A file may require an extension it forgets to list as used; show it all the same.
+    for (const std::string& name : scene.extensionsUsed) {
+        addExtension(name);
+    }
+    for (const std::string& name : scene.extensionsRequired) {
+        addExtension(name);
+    }
+
+    for (std::size_t i = 0; i < scene.materials.size(); ++i) {
+        const scene::Material& material = scene.materials[i];
+        if (!material.ignoredExtensions.empty()) {
+            summary.materials.push_back({i, material.name, material.ignoredExtensions});
+        }
+    }
+    summary.warnings = scene.warnings;
+    return summary;
+}
+
+std::string formatModelSummary(const ModelSummary& summary) {
+    const ModelCounts& counts = summary.counts;
+    std::string text = "file: " + summary.file + "\n";
+    auto line = [&text](const char* key, std::uint64_t value, std::string extra = {}) {
+        text += std::string(key) + ": " + std::to_string(value) + extra + "\n";
+    };
+    line("meshes", counts.meshes);
+    line("primitives", counts.primitives);
+    line("triangles", counts.triangles,
+         " (" + std::to_string(counts.drawnTriangles) + " drawn by the instances)");
+    line("materials", counts.materials);
+    line("textures", counts.textures);
+    line("images", counts.images);
+    line("lights", counts.lights, " (" + std::to_string(counts.placedLights) + " placed)");
+    line("cameras", counts.cameras, " (" + std::to_string(counts.placedCameras) + " placed)");
+    line("nodes", counts.nodes);
+    line("instances", counts.instances);
+
+    text += summary.extensions.empty() ? "extensions: none\n" : "extensions:\n";
+    for (const ExtensionInfo& extension : summary.extensions) {
+        text += "  " + extension.name + ": " + extension.status +
+                (extension.required ? ", required" : "") + "\n";
+    }
+    if (!summary.materials.empty()) {
+        text += "materials with ignored extensions:\n";
+        for (const MaterialNote& material : summary.materials) {
+            std::string names;
+            for (const std::string& name : material.ignoredExtensions) {
+                names += (names.empty() ? "" : ", ") + name;
+            }
+            text += "  material " + std::to_string(material.index) +
+                    (material.name.empty() ? "" : " ('" + material.name + "')") + ": " + names +
+                    "\n";
+        }
+    }
+    text += summary.warnings.empty() ? "warnings: none\n" : "warnings:\n";
+    for (const std::string& warning : summary.warnings) {
+        text += "  " + warning + "\n";
+    }
+    return text;
+}
+
+nlohmann::json modelSummaryJson(const ModelSummary& summary) {
+    const ModelCounts& counts = summary.counts;
+    nlohmann::json json;
+    json["file"] = summary.file;
+    json["counts"] = {
+        {"meshes", counts.meshes},
+        {"primitives", counts.primitives},
+        {"triangles", counts.triangles},
+        {"drawnTriangles", counts.drawnTriangles},
+        {"materials", counts.materials},
+        {"textures", counts.textures},
+        {"images", counts.images},
+        {"lights", counts.lights},
+        {"placedLights", counts.placedLights},
+        {"cameras", counts.cameras},
+        {"placedCameras", counts.placedCameras},
+        {"nodes", counts.nodes},
+        {"instances", counts.instances},
+    };
+    json["extensions"] = nlohmann::json::array();
+    for (const ExtensionInfo& extension : summary.extensions) {
+        json["extensions"].push_back({{"name", extension.name},
+                                      {"status", extension.status},
+                                      {"required", extension.required}});
+    }
+    json["materialsWithIgnoredExtensions"] = nlohmann::json::array();
+    for (const MaterialNote& material : summary.materials) {
+        json["materialsWithIgnoredExtensions"].push_back(
+            {{"index", material.index},
+             {"name", material.name},
+             {"ignoredExtensions", material.ignoredExtensions}});
+    }
+    json["warnings"] = summary.warnings;
+    return json;
+}
+
+}  // namespace encore::app

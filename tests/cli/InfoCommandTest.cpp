@@ -1,1 +1,170 @@
-// Placeholder: replaced by its implementation.
+// encore info MODEL: the model summary in text and JSON, without a GPU device, and the usual
+// "error: <file>: ..." with exit code 1 for bad input.
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "CommandRunner.h"
+#include "GltfBuilder.h"
+#include "TestPaths.h"
+
+namespace encore::test {
+namespace {
+
+using nlohmann::json;
+
+bool contains(const std::string& text, const std::string& fragment) {
+    return text.find(fragment) != std::string::npos;
+}
+
+// Two triangles (one mesh, instanced by two nodes), a material with a shaded, required
+// extension and an ignored one, a placed spot light and a placed camera.
+std::filesystem::path writeShowcase(const std::filesystem::path& dir) {
+    GltfBuilder builder;
+    const auto positions = builder.addPositions({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}});
+    const auto indices = builder.addIndices<std::uint16_t>({0, 1, 2, 2, 1, 3});
+    const auto material = builder.addMaterial({});
+    const auto mesh = builder.addMesh(
+        {.attributes = {{"POSITION", positions}}, .indices = indices, .material = material});
+    const auto a = builder.addNode({.mesh = mesh});
+    const auto b = builder.addNode({.mesh = mesh, .translation = glm::vec3(2, 0, 0)});
+    const auto light = builder.addNode({.translation = glm::vec3(0, 3, 0)});
+    const auto camera = builder.addNode({.translation = glm::vec3(0, 0, 5)});
+    builder.addScene({a, b, light, camera});
+    auto& root = builder.json();
+    root["materials"][0]["name"] = "glass";
+    root["materials"][0]["extensions"] = {
+        {"KHR_materials_pbrSpecularGlossiness", {{"glossinessFactor", 0.5}}},
+        {"KHR_materials_transmission", {{"transmissionFactor", 1.0}}}};
+    root["extensionsUsed"] = {"KHR_materials_pbrSpecularGlossiness", "KHR_materials_transmission",
+                              "KHR_lights_punctual"};
+    root["extensionsRequired"] = {"KHR_materials_pbrSpecularGlossiness"};
+    root["extensions"]["KHR_lights_punctual"]["lights"] = {{{"type", "spot"}}};
+    root["nodes"][light]["extensions"]["KHR_lights_punctual"] = {{"light", 0}};
+    root["cameras"] = {{{"type", "perspective"}, {"perspective", {{"yfov", 1}, {"znear", 0.1}}}}};
+    root["nodes"][camera]["camera"] = 0;
+    return builder.writeGltf(dir, "showcase");
+}
+
+TEST(InfoCommandTest, PrintsTheModelSummary) {
+    const auto path = writeShowcase(makeTempDir("info-text"));
+    const auto result = runEncore("info " + quote(path.string()));
+    ASSERT_EQ(result.exitCode, 0) << result.err;
+    const std::string& out = result.out;
+    for (const std::string& line : {
+             "file: " + path.string() + "\n",
+             std::string("meshes: 1\n"),
+             std::string("primitives: 1\n"),
+             std::string("triangles: 2 (4 drawn by the instances)\n"),
+             std::string("materials: 1\n"),
+             std::string("textures: 0\n"),
+             std::string("images: 0\n"),
+             std::string("lights: 1 (1 placed)\n"),
+             std::string("cameras: 1 (1 placed)\n"),
+             std::string("nodes: 4\n"),
+             std::string("instances: 2\n"),
+             std::string("  KHR_materials_pbrSpecularGlossiness: shaded, required\n"),
+             std::string("  KHR_materials_transmission: ignored\n"),
+             std::string("  KHR_lights_punctual: shaded\n"),
+             std::string("  material 0 ('glass'): KHR_materials_transmission\n"),
+             std::string("KHR_materials_transmission, which Encore does not implement; materials "
+                         "are drawn without it."),
+         }) {
+        EXPECT_TRUE(contains(out, line)) << "missing '" << line << "' in:\n" << out;
+    }
+    // The warning is part of the summary, not printed a second time on stderr.
+    EXPECT_FALSE(contains(result.err, "warning:")) << result.err;
+}
+
+TEST(InfoCommandTest, PrintsJson) {
+    const auto path = writeShowcase(makeTempDir("info-json"));
+    const auto result = runEncore("info " + quote(path.string()) + " --json");
+    ASSERT_EQ(result.exitCode, 0) << result.err;
+    const json report = json::parse(result.out, nullptr, false);
+    ASSERT_FALSE(report.is_discarded()) << result.out;
+    EXPECT_EQ(report["file"], path.string());
+    const json& counts = report["counts"];
+    EXPECT_EQ(counts["meshes"], 1);
+    EXPECT_EQ(counts["primitives"], 1);
+    EXPECT_EQ(counts["triangles"], 2);
+    EXPECT_EQ(counts["drawnTriangles"], 4);
+    EXPECT_EQ(counts["materials"], 1);
+    EXPECT_EQ(counts["lights"], 1);
+    EXPECT_EQ(counts["placedLights"], 1);
+    EXPECT_EQ(counts["cameras"], 1);
+    EXPECT_EQ(counts["placedCameras"], 1);
+    EXPECT_EQ(counts["nodes"], 4);
+    EXPECT_EQ(counts["instances"], 2);
+    const json expectedExtensions = json::array(
+        {{{"name", "KHR_materials_pbrSpecularGlossiness"}, {"status", "shaded"}, {"required", true}},
+         {{"name", "KHR_materials_transmission"}, {"status", "ignored"}, {"required", false}},
+         {{"name", "KHR_lights_punctual"}, {"status", "shaded"}, {"required", false}}});
+    EXPECT_EQ(report["extensions"], expectedExtensions);
+    ASSERT_EQ(report["materialsWithIgnoredExtensions"].size(), 1u);
+    EXPECT_EQ(report["materialsWithIgnoredExtensions"][0]["index"], 0);
+    EXPECT_EQ(report["materialsWithIgnoredExtensions"][0]["name"], "glass");
+    EXPECT_EQ(report["materialsWithIgnoredExtensions"][0]["ignoredExtensions"],
+              json::array({"KHR_materials_transmission"}));
+    ASSERT_EQ(report["warnings"].size(), 1u);
+    EXPECT_TRUE(contains(report["warnings"][0].get<std::string>(), "KHR_materials_transmission"));
+}
+
+TEST(InfoCommandTest, GeneratedScene) {
+    const auto dir = makeTempDir("info-generated");
+    const auto path = dir / "generated.glb";
+    ASSERT_EQ(runEncore("gen --objects 12 --meshes 3 --materials 5 -o " + quote(path.string()))
+                  .exitCode,
+              0);
+    const auto result = runEncore("info --json " + quote(path.string()));
+    ASSERT_EQ(result.exitCode, 0) << result.err;
+    const json report = json::parse(result.out, nullptr, false);
+    ASSERT_FALSE(report.is_discarded()) << result.out;
+    EXPECT_EQ(report["counts"]["meshes"], 3);
+    EXPECT_EQ(report["counts"]["materials"], 5);
+    EXPECT_EQ(report["counts"]["instances"], 12);
+    EXPECT_GT(report["counts"]["triangles"].get<std::uint64_t>(), 0u);
+    EXPECT_GT(report["counts"]["drawnTriangles"].get<std::uint64_t>(),
+              report["counts"]["triangles"].get<std::uint64_t>());
+    EXPECT_EQ(report["counts"]["lights"], 0);
+    EXPECT_TRUE(report["extensions"].empty());
+    EXPECT_TRUE(report["warnings"].empty());
+}
+
+TEST(InfoCommandTest, SampleModelWithCamera) {
+    const auto dir = sharedModelsDir();
+    if (!dir) {
+        GTEST_SKIP() << "The shared sample models (../shared/models) are absent; skipping.";
+    }
+    const auto result = runEncore("info " + quote((*dir / "Duck/glTF-Binary/Duck.glb").string()));
+    ASSERT_EQ(result.exitCode, 0) << result.err;
+    EXPECT_TRUE(contains(result.out, "cameras: 1 (1 placed)\n")) << result.out;
+    EXPECT_TRUE(contains(result.out, "triangles: 4212")) << result.out;
+    EXPECT_TRUE(contains(result.out, "extensions: none\n")) << result.out;
+    EXPECT_TRUE(contains(result.out, "warnings: none\n")) << result.out;
+}
+
+TEST(InfoCommandTest, MissingFileIsAnError) {
+    const auto path = makeTempDir("info-missing") / "absent.gltf";
+    for (const char* json : {"", " --json"}) {
+        const auto result = runEncore("info " + quote(path.string()) + json);
+        EXPECT_EQ(result.exitCode, 1);
+        EXPECT_TRUE(contains(result.err, "error: " + path.string() + ": ")) << result.err;
+        EXPECT_TRUE(contains(result.err, "does not exist")) << result.err;
+        EXPECT_TRUE(result.out.empty()) << result.out;
+    }
+}
+
+TEST(InfoCommandTest, MalformedModelIsAnError) {
+    const auto dir = makeTempDir("info-malformed");
+    GltfBuilder builder;
+    builder.json()["cameras"] = {{{"type", "perspective"}, {"perspective", {{"yfov", 0}}}}};
+    const auto path = builder.writeGltf(dir, "bad");
+    const auto result = runEncore("info " + quote(path.string()));
+    EXPECT_EQ(result.exitCode, 1);
+    EXPECT_TRUE(contains(result.err, "error: " + path.string() + ": camera 0 perspective"))
+        << result.err;
+}
+
+}  // namespace
+}  // namespace encore::test

@@ -1,0 +1,67 @@
+#pragma once
+
+// The summary `encore info MODEL` prints: what the loader made of a model (counts, extensions
+// and whether Encore shades or ignores them, material extensions left out, warnings), computed
+// from SceneData alone so no GPU device is needed.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "encore/scene/SceneData.h"
+
+namespace encore::app {
+
+struct ModelCounts {
+    std::size_t meshes = 0;
+    std::size_t primitives = 0;
+    std::uint64_t triangles = 0;       // Of the meshes, each counted once.
+    std::uint64_t drawnTriangles = 0;  // Of the instances: what a frame draws.
+    std::size_t materials = 0;         // Including the glTF default material when appended.
+    std::size_t textures = 0;
+    std::size_t images = 0;
+    std::size_t lights = 0;
+    std::size_t placedLights = 0;  // Nodes of the scene that place a light.
+    std::size_t cameras = 0;
+    std::size_t placedCameras = 0;
+    std::size_t nodes = 0;
+    std::size_t instances = 0;
+};
+
+// One extension the file uses or requires. "shaded": Encore implements it and draws with it;
+// "ignored": the asset is drawn without it. A required one is always implemented (the loader
+// refuses the others), so `required` accompanies "shaded".
+struct ExtensionInfo {
+    std::string name;
+    std::string status;  // "shaded" or "ignored".
+    bool required = false;
+};
+
+struct MaterialNote {
+    std::size_t index = 0;
+    std::string name;
+    std::vector<std::string> ignoredExtensions;
+};
+
+struct ModelSummary {
+    std::string file;
+    ModelCounts counts;
+    std::vector<ExtensionInfo> extensions;  // Used ones in the file's order, then required-only.
+    std::vector<MaterialNote> materials;    // Only materials with ignored extensions.
+    std::vector<std::string> warnings;
+};
+
+// Triangles one primitive draws (0 for points and lines).
+std::uint64_t triangleCount(const scene::SceneData& scene, const scene::Primitive& primitive);
+
+ModelSummary summarizeModel(const scene::SceneData& scene);
+
+// The summary as lines of "key: value" text, ending with a newline.
+std::string formatModelSummary(const ModelSummary& summary);
+
+// The same content as a JSON object (counts as integers, extensions as objects).
+nlohmann::json modelSummaryJson(const ModelSummary& summary);
+
+}  // namespace encore::app
