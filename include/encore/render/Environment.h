@@ -18,6 +18,7 @@
 #include <webgpu/webgpu_cpp.h>
 
 #include <cstdint>
+#include <memory>
 
 #include "encore/core/Result.h"
 #include "encore/image/HdrImage.h"
@@ -30,8 +31,11 @@ struct EnvironmentOptions {
     std::uint32_t specularLevels = 5;       // Roughness 0, 0.25, 0.5, 0.75, 1.
     std::uint32_t irradianceSize = 32;
     std::uint32_t lutSize = 128;
-    std::uint32_t specularSamples = 1024;   // GGX importance samples per texel.
-    std::uint32_t irradianceSamples = 2048;
+    // Samples per texel. Each sample reads the source mip that matches its footprint (filtered
+    // importance sampling), so these few give smooth maps; the defaults build in about a second
+    // on lavapipe.
+    std::uint32_t specularSamples = 256;    // GGX importance samples.
+    std::uint32_t irradianceSamples = 512;  // Cosine-weighted samples.
 };
 
 class Environment {
@@ -69,6 +73,7 @@ class Environment {
   private:
     Environment() = default;
     struct Pipelines;
+    Result<void> build(const image::HdrImage& panorama, bool withLut);
 
     wgpu::Device mDevice;
     wgpu::Queue mQueue;
@@ -81,6 +86,12 @@ class Environment {
     wgpu::TextureView mIrradianceView;
     wgpu::TextureView mLutView;
     wgpu::Sampler mSampler;
+    // Shared so the class stays movable with Pipelines defined only in Environment.cpp.
+    std::shared_ptr<const Pipelines> mPipelines;
+    // The panorama as a cube with a full mip chain, kept between loads: the specular and
+    // irradiance passes read the mip that matches each sample's footprint.
+    wgpu::Texture mSource;
+    wgpu::TextureView mSourceView;
     double mLastBuildMilliseconds = 0.0;
 };
 
