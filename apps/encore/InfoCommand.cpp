@@ -63,8 +63,8 @@ void addInfoCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) {
                         "A .gltf or .glb file: print its counts, extensions and warnings");
     command->add_flag("--json", options->json, "Print a JSON object instead of text");
     command->callback([&global, &exitCode, options] {
-        exitCode = options->model.empty() ? printAdapter(global, options->json)
-                                          : printModel(*options);
+        exitCode =
+            options->model.empty() ? printAdapter(global, options->json) : printModel(*options);
     });
 }
 

@@ -53,10 +53,9 @@ ModelSummary summarizeModel(const scene::SceneData& scene) {
             std::any_of(summary.extensions.begin(), summary.extensions.end(),
                         [&name](const ExtensionInfo& info) { return info.name == name; });
         if (!listed) {
-            summary.extensions.push_back({name,
-                                          contains(scene.extensionsIgnored, name) ? "ignored"
-                                                                                  : "shaded",
-                                          contains(scene.extensionsRequired, name)});
+            summary.extensions.push_back(
+                {name, contains(scene.extensionsIgnored, name) ? "ignored" : "shaded",
+                 contains(scene.extensionsRequired, name)});
         }
     };
     // A file may require an extension it forgets to list as used; show it all the same.

@@ -22,9 +22,9 @@ double requiredNumber(FieldReader& reader, std::string_view key) {
 }
 
 void failRange(FieldReader& reader, std::string_view key, double value, std::string_view rule) {
-    reader.fail(ErrorCode::InvalidFormat, reader.element() + " has an invalid " +
-                                              std::string(key) + " (" + formatNumber(value) +
-                                              "; " + std::string(rule) + ").");
+    reader.fail(ErrorCode::InvalidFormat, reader.element() + " has an invalid " + std::string(key) +
+                                              " (" + formatNumber(value) + "; " +
+                                              std::string(rule) + ").");
 }
 
 void readPerspective(FieldReader& reader, CameraData& camera) {
@@ -117,9 +117,8 @@ void readLight(FieldReader& reader, Light& light) {
     } else if (type == "spot") {
         light.type = LightType::Spot;
     } else {
-        reader.fail(ErrorCode::InvalidFormat,
-                    reader.element() + " has an unknown type ('" + type +
-                        "'; expected directional, point or spot).");
+        reader.fail(ErrorCode::InvalidFormat, reader.element() + " has an unknown type ('" + type +
+                                                  "'; expected directional, point or spot).");
         return;
     }
     if (intensity < 0.0) {
@@ -169,9 +168,9 @@ Result<void> parseLightsAndCameras(const Json& root, GltfDocument& document) {
         } else if (type == "orthographic") {
             readOrthographic(reader, camera);
         } else {
-            reader.fail(ErrorCode::InvalidFormat,
-                        reader.element() + " has an unknown type ('" + type +
-                            "'; expected perspective or orthographic).");
+            reader.fail(ErrorCode::InvalidFormat, reader.element() + " has an unknown type ('" +
+                                                      type +
+                                                      "'; expected perspective or orthographic).");
         }
         document.cameras.push_back(std::move(camera));
     }));

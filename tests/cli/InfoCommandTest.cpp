@@ -97,7 +97,9 @@ TEST(InfoCommandTest, PrintsJson) {
     EXPECT_EQ(counts["nodes"], 4);
     EXPECT_EQ(counts["instances"], 2);
     const json expectedExtensions = json::array(
-        {{{"name", "KHR_materials_pbrSpecularGlossiness"}, {"status", "shaded"}, {"required", true}},
+        {{{"name", "KHR_materials_pbrSpecularGlossiness"},
+          {"status", "shaded"},
+          {"required", true}},
          {{"name", "KHR_materials_transmission"}, {"status", "ignored"}, {"required", false}},
          {{"name", "KHR_lights_punctual"}, {"status", "shaded"}, {"required", false}}});
     EXPECT_EQ(report["extensions"], expectedExtensions);
@@ -113,9 +115,9 @@ TEST(InfoCommandTest, PrintsJson) {
 TEST(InfoCommandTest, GeneratedScene) {
     const auto dir = makeTempDir("info-generated");
     const auto path = dir / "generated.glb";
-    ASSERT_EQ(runEncore("gen --objects 12 --meshes 3 --materials 5 -o " + quote(path.string()))
-                  .exitCode,
-              0);
+    ASSERT_EQ(
+        runEncore("gen --objects 12 --meshes 3 --materials 5 -o " + quote(path.string())).exitCode,
+        0);
     const auto result = runEncore("info --json " + quote(path.string()));
     ASSERT_EQ(result.exitCode, 0) << result.err;
     const json report = json::parse(result.out, nullptr, false);

@@ -87,9 +87,10 @@ TEST(LightsCamerasTest, LightsArePlacedInWorldSpace) {
     // moved one unit along the parent's +Z places light 0. Node 3, a root, places light 1.
     const glm::quat turn = glm::angleAxis(kPi / 2, glm::vec3(0, 1, 0));
     const auto child = builder.addNode({.translation = glm::vec3(0, 0, 1)});
-    const auto parent = builder.addNode(
-        {.children = {child}, .translation = glm::vec3(1, 2, 3), .rotation = turn,
-         .scale = glm::vec3(2)});
+    const auto parent = builder.addNode({.children = {child},
+                                         .translation = glm::vec3(1, 2, 3),
+                                         .rotation = turn,
+                                         .scale = glm::vec3(2)});
     const auto other = builder.addNode({.translation = glm::vec3(-5, 0, 0)});
     builder.json()["scenes"][0]["nodes"] = {0, parent, other};
     placeLight(builder, child, 0);
@@ -158,8 +159,7 @@ TEST(LightsCamerasTest, InvalidLightsAreErrors) {
 
 TEST(LightsCamerasTest, LightsNotAnArrayIsAnError) {
     auto builder = lightsBuilder(json::object());
-    expectError(loadGltf(builder), ErrorCode::InvalidFormat,
-                {"KHR_lights_punctual", "'lights'"});
+    expectError(loadGltf(builder), ErrorCode::InvalidFormat, {"KHR_lights_punctual", "'lights'"});
 }
 
 TEST(LightsCamerasTest, BadLightIndexNamesTheNode) {
@@ -184,8 +184,7 @@ TEST(LightsCamerasTest, CamerasParse) {
     builder.json()["cameras"] = json::array({
         {{"type", "perspective"},
          {"name", "wide"},
-         {"perspective",
-          {{"yfov", 1.0}, {"aspectRatio", 1.5}, {"znear", 0.1}, {"zfar", 100.0}}}},
+         {"perspective", {{"yfov", 1.0}, {"aspectRatio", 1.5}, {"znear", 0.1}, {"zfar", 100.0}}}},
         {{"type", "perspective"}, {"perspective", {{"yfov", 0.5}, {"znear", 0.25}}}},
         {{"type", "orthographic"},
          {"orthographic", {{"xmag", 2.0}, {"ymag", -3.0}, {"znear", 0.0}, {"zfar", 50.0}}}},
@@ -285,10 +284,10 @@ TEST(LightsCamerasTest, InvalidCamerasAreErrors) {
 
 TEST(LightsCamerasTest, CamerasArePlacedWithoutScale) {
     auto builder = triangleBuilder();
-    builder.json()["cameras"] = json::array(
-        {{{"type", "perspective"}, {"perspective", {{"yfov", 1}, {"znear", 0.1}}}},
-         {{"type", "orthographic"},
-          {"orthographic", {{"xmag", 1}, {"ymag", 1}, {"znear", 0}, {"zfar", 10}}}}});
+    builder.json()["cameras"] =
+        json::array({{{"type", "perspective"}, {"perspective", {{"yfov", 1}, {"znear", 0.1}}}},
+                     {{"type", "orthographic"},
+                      {"orthographic", {{"xmag", 1}, {"ymag", 1}, {"znear", 0}, {"zfar", 10}}}}});
     const glm::quat turn = glm::angleAxis(0.7f, glm::normalize(glm::vec3(1, 2, 3)));
     const glm::quat tilt = glm::angleAxis(-0.4f, glm::vec3(1, 0, 0));
     const auto child = builder.addNode({.translation = glm::vec3(0, 1, 0), .rotation = tilt});
@@ -329,8 +328,8 @@ TEST(LightsCamerasTest, CamerasArePlacedWithoutScale) {
 
 TEST(LightsCamerasTest, BadCameraIndexNamesTheNode) {
     auto builder = triangleBuilder();
-    builder.json()["cameras"] = json::array(
-        {{{"type", "perspective"}, {"perspective", {{"yfov", 1}, {"znear", 0.1}}}}});
+    builder.json()["cameras"] =
+        json::array({{{"type", "perspective"}, {"perspective", {{"yfov", 1}, {"znear", 0.1}}}}});
     builder.json()["nodes"][0]["camera"] = 3;
     expectError(loadGltf(builder), ErrorCode::InvalidFormat,
                 {"test.gltf: node 0 refers to camera 3", "the asset has 1 camera."});

@@ -108,8 +108,7 @@ TEST(MaterialExtensionsTest, EmissiveStrengthUnlitAndIor) {
         {"KHR_materials_ior", {{"ior", 1.33}}}};
     builder.addMaterial({});  // Material 1: an infinite ior and empty extension objects.
     builder.json()["materials"][1]["extensions"] = {
-        {"KHR_materials_ior", {{"ior", 0}}},
-        {"KHR_materials_emissive_strength", json::object()}};
+        {"KHR_materials_ior", {{"ior", 0}}}, {"KHR_materials_emissive_strength", json::object()}};
     builder.addMaterial({});  // Material 2: the ior extension without a value.
     builder.json()["materials"][2]["extensions"] = {{"KHR_materials_ior", json::object()}};
     auto scene = loadGltf(builder);
@@ -196,11 +195,10 @@ TEST(MaterialExtensionsTest, Sheen) {
 
 TEST(MaterialExtensionsTest, EmptyExtensionObjectsTakeTheDefaults) {
     auto builder = materialBuilder();
-    materialJson(builder)["extensions"] = {
-        {"KHR_materials_specular", json::object()},
-        {"KHR_materials_clearcoat", json::object()},
-        {"KHR_materials_sheen", json::object()},
-        {"KHR_materials_pbrSpecularGlossiness", json::object()}};
+    materialJson(builder)["extensions"] = {{"KHR_materials_specular", json::object()},
+                                           {"KHR_materials_clearcoat", json::object()},
+                                           {"KHR_materials_sheen", json::object()},
+                                           {"KHR_materials_pbrSpecularGlossiness", json::object()}};
     auto scene = loadGltf(builder);
     ASSERT_TRUE(scene.ok()) << scene.error().message;
     const Material& material = scene->materials[0];
@@ -257,17 +255,17 @@ TEST(MaterialExtensionsTest, RequiredUnsupportedExtensionIsRefused) {
     useExtension(builder, "KHR_materials_transmission", true);
     materialJson(builder)["extensions"]["KHR_materials_transmission"] = {
         {"transmissionFactor", 1.0}};
-    expectError(loadGltf(builder), ErrorCode::Unsupported,
-                {"test.gltf: ", "requires the extension KHR_materials_transmission",
-                 "does not support"});
+    expectError(
+        loadGltf(builder), ErrorCode::Unsupported,
+        {"test.gltf: ", "requires the extension KHR_materials_transmission", "does not support"});
 }
 
 TEST(MaterialExtensionsTest, UnshadedExtensionsAreListedAndWarned) {
     auto builder = materialBuilder();
     const std::vector<std::string> ignored = {
-        "KHR_materials_anisotropy",    "KHR_materials_diffuse_transmission",
-        "KHR_materials_dispersion",    "KHR_materials_iridescence",
-        "KHR_materials_transmission",  "KHR_materials_volume",
+        "KHR_materials_anisotropy",   "KHR_materials_diffuse_transmission",
+        "KHR_materials_dispersion",   "KHR_materials_iridescence",
+        "KHR_materials_transmission", "KHR_materials_volume",
         "VENDOR_materials_custom",
     };
     for (const std::string& name : ignored) {
@@ -349,8 +347,7 @@ TEST(MaterialExtensionsTest, MalformedFieldsNameTheMaterialAndField) {
          {"material 0 KHR_materials_emissive_strength", "emissiveStrength (-1"}},
         {"SpecularColorOfTwo",
          {{"KHR_materials_specular", {{"specularColorFactor", {1, 1}}}}},
-         {"material 0 KHR_materials_specular", "'specularColorFactor'",
-          "an array of 3 numbers"}},
+         {"material 0 KHR_materials_specular", "'specularColorFactor'", "an array of 3 numbers"}},
         {"SpecularFactorString",
          {{"KHR_materials_specular", {{"specularFactor", "high"}}}},
          {"material 0 KHR_materials_specular", "'specularFactor'"}},
