@@ -3,7 +3,9 @@
 #include <string>
 #include <vector>
 
+#include "CameraOptions.h"
 #include "Commands.h"
+#include "ShadingOptions.h"
 #include "encore/gpu/Context.h"
 #include "encore/render/Renderer.h"
 #include "encore/scene/SceneData.h"
@@ -22,6 +24,8 @@ struct RenderOptions {
     float yawDegrees = 0.0f;
     std::uint32_t views = 1;
     bool strict = false;
+    ShadingOptions shading;
+    CameraOptions camera;
 };
 
 // Views side by side: each camera frames the scene for its strip, turned a few degrees from the
@@ -57,6 +61,9 @@ int runRender(const RenderOptions& options, const GlobalOptions& global) {
 
     render::RendererOptions rendererOptions;
     rendererOptions.target = {options.width, options.height, options.samples};
+    if (auto shading = applyShadingOptions(options.shading, rendererOptions); !shading) {
+        return reportError(shading.error());
+    }
     auto renderer = render::Renderer::create(*context, rendererOptions);
     if (!renderer) {
         return reportError(renderer.error());
@@ -65,8 +72,25 @@ int runRender(const RenderOptions& options, const GlobalOptions& global) {
         return reportError(prepared.error());
     }
     // With several views each strip keeps the proportions of width / views by height.
-    const auto cameras = viewCameras(scene->bounds, renderer->target().aspect() / float(options.views),
-                                     options.yawDegrees, options.views);
+    const float aspect = renderer->target().aspect() / float(options.views);
+    std::vector<render::Camera> cameras;
+    const bool explicitCamera = !options.camera.camera.empty() || options.camera.position;
+    if (options.views > 1 && explicitCamera) {
+        return reportError(makeError(ErrorCode::InvalidArgument,
+                                     "--views frames the scene itself; it cannot be combined "
+                                     "with --camera or --camera-position."));
+    }
+    if (options.views > 1) {
+        cameras = viewCameras(scene->bounds, aspect, options.yawDegrees, options.views);
+    } else {
+        CameraOptions cameraOptions = options.camera;
+        cameraOptions.yawDegrees = options.yawDegrees;
+        auto camera = resolveCamera(cameraOptions, *scene, aspect);
+        if (!camera) {
+            return reportError(camera.error());
+        }
+        cameras.push_back(*camera);
+    }
     const auto frame = renderer->renderViews(cameras);
     auto image = renderer->readImage();
     if (!image) {
@@ -120,6 +144,8 @@ void addRenderCommand(CLI::App& app, const GlobalOptions& global, int& exitCode)
         ->check(CLI::Range(1, 8));
     command->add_flag("--strict", options->strict,
                       "Treat warnings (missing images, unsupported optional features) as errors");
+    addShadingOptions(*command, options->shading);
+    addCameraOptions(*command, options->camera);
     command->callback([options, &global, &exitCode] { exitCode = runRender(*options, global); });
 }
 

@@ -1,6 +1,7 @@
 #include "encore/gpu/Readback.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <string>
 
@@ -35,6 +36,21 @@ Result<std::vector<std::uint8_t>> mapAndCopy(Context& context, const wgpu::Buffe
     std::vector<std::uint8_t> bytes(data, data + size);
     staging.Unmap();
     return bytes;
+}
+
+float halfToFloat(std::uint16_t half) {
+    const std::uint32_t sign = (half >> 15) & 1;
+    const std::uint32_t exponent = (half >> 10) & 0x1f;
+    const std::uint32_t mantissa = half & 0x3ff;
+    float value;
+    if (exponent == 0) {
+        value = std::ldexp(float(mantissa), -24);  // Subnormal.
+    } else if (exponent == 31) {
+        value = mantissa ? std::nanf("") : INFINITY;
+    } else {
+        value = std::ldexp(float(mantissa | 0x400), int(exponent) - 25);
+    }
+    return sign ? -value : value;
 }
 
 }  // namespace
@@ -100,6 +116,55 @@ Result<image::ImageRgba8> readTextureLevel(Context& context, const wgpu::Texture
         }
     }
     return image;
+}
+
+Result<std::vector<float>> readTextureRgba16Float(Context& context, const wgpu::Texture& texture,
+                                                  std::uint32_t level, std::uint32_t layer) {
+    if (texture.GetFormat() != wgpu::TextureFormat::RGBA16Float) {
+        return makeError(ErrorCode::InvalidArgument,
+                         "readTextureRgba16Float needs an RGBA16Float texture.");
+    }
+    if (level >= texture.GetMipLevelCount() || layer >= texture.GetDepthOrArrayLayers()) {
+        return makeError(ErrorCode::InvalidArgument,
+                         "Mip level " + std::to_string(level) + " or layer " +
+                             std::to_string(layer) + " does not exist.");
+    }
+    const std::uint32_t width = std::max(texture.GetWidth() >> level, 1u);
+    const std::uint32_t height = std::max(texture.GetHeight() >> level, 1u);
+    const std::uint32_t rowBytes = width * 8;
+    const std::uint32_t paddedRowBytes = (rowBytes + 255) / 256 * 256;
+    const std::uint64_t size = std::uint64_t(paddedRowBytes) * height;
+    wgpu::BufferDescriptor stagingDescriptor{};
+    stagingDescriptor.label = "HDR texture readback";
+    stagingDescriptor.size = size;
+    stagingDescriptor.usage = wgpu::BufferUsage::CopyDst | wgpu::BufferUsage::MapRead;
+    wgpu::Buffer staging = context.device().CreateBuffer(&stagingDescriptor);
+    wgpu::TexelCopyTextureInfo source{};
+    source.texture = texture;
+    source.mipLevel = level;
+    source.origin = {0, 0, layer};
+    wgpu::TexelCopyBufferInfo destination{};
+    destination.buffer = staging;
+    destination.layout.bytesPerRow = paddedRowBytes;
+    destination.layout.rowsPerImage = height;
+    wgpu::Extent3D extent{width, height, 1};
+    wgpu::CommandEncoder encoder = context.device().CreateCommandEncoder();
+    encoder.CopyTextureToBuffer(&source, &destination, &extent);
+    wgpu::CommandBuffer commands = encoder.Finish();
+    context.queue().Submit(1, &commands);
+    auto bytes = mapAndCopy(context, staging, size);
+    if (!bytes) {
+        return bytes.error();
+    }
+    std::vector<float> values(std::size_t(width) * height * 4);
+    for (std::uint32_t y = 0; y < height; ++y) {
+        for (std::uint32_t x = 0; x < width * 4; ++x) {
+            std::uint16_t half;
+            std::memcpy(&half, bytes->data() + std::size_t(y) * paddedRowBytes + x * 2, 2);
+            values[std::size_t(y) * width * 4 + x] = halfToFloat(half);
+        }
+    }
+    return values;
 }
 
 Result<std::vector<std::uint8_t>> readBuffer(Context& context, const wgpu::Buffer& buffer,

@@ -2,6 +2,11 @@
 
 #include "encore/render/FrameUniforms.h"
 
+#include <vector>
+
+#include "encore/render/Lighting.h"
+#include "encore/render/MaterialResources.h"
+
 namespace encore::render {
 
 namespace {
@@ -25,14 +30,40 @@ wgpu::BindGroupLayoutEntry bufferEntry(std::uint32_t binding, wgpu::ShaderStage 
     return entry;
 }
 
+wgpu::BindGroupLayoutEntry textureEntry(std::uint32_t binding, wgpu::TextureViewDimension dimension) {
+    wgpu::BindGroupLayoutEntry entry{};
+    entry.binding = binding;
+    entry.visibility = wgpu::ShaderStage::Fragment;
+    entry.texture.sampleType = wgpu::TextureSampleType::Float;
+    entry.texture.viewDimension = dimension;
+    return entry;
+}
+
+wgpu::BindGroupLayoutEntry samplerEntry(std::uint32_t binding) {
+    wgpu::BindGroupLayoutEntry entry{};
+    entry.binding = binding;
+    entry.visibility = wgpu::ShaderStage::Fragment;
+    entry.sampler.type = wgpu::SamplerBindingType::Filtering;
+    return entry;
+}
+
 }  // namespace
 
 BindGroupLayouts BindGroupLayouts::create(const wgpu::Device& device) {
     constexpr auto kVertexFragment = wgpu::ShaderStage::Vertex | wgpu::ShaderStage::Fragment;
     BindGroupLayouts layouts;
-    layouts.frame = createLayout(device, "frame",
-                                 {bufferEntry(0, kVertexFragment, wgpu::BufferBindingType::Uniform,
-                                              sizeof(FrameUniform))});
+    // Group 0: the camera, then how the scene is lit (scene_lighting.wgsl). Every pipeline uses
+    // this layout, so strategies without materials simply ignore bindings 1..6.
+    layouts.frame = createLayout(
+        device, "frame",
+        {bufferEntry(0, kVertexFragment, wgpu::BufferBindingType::Uniform, sizeof(FrameUniform)),
+         bufferEntry(1, wgpu::ShaderStage::Fragment, wgpu::BufferBindingType::Uniform,
+                     sizeof(LightingUniform)),
+         bufferEntry(2, wgpu::ShaderStage::Fragment, wgpu::BufferBindingType::ReadOnlyStorage,
+                     sizeof(LightUniform)),
+         textureEntry(3, wgpu::TextureViewDimension::Cube),
+         textureEntry(4, wgpu::TextureViewDimension::Cube),
+         textureEntry(5, wgpu::TextureViewDimension::e2D), samplerEntry(6)});
     layouts.nodeUniform =
         createLayout(device, "node transform",
                      {bufferEntry(0, wgpu::ShaderStage::Vertex, wgpu::BufferBindingType::Uniform,
@@ -51,19 +82,18 @@ BindGroupLayouts BindGroupLayouts::create(const wgpu::Device& device) {
                      sizeof(TransformUniform)),
          visibleList});
 
-    wgpu::BindGroupLayoutEntry sampler{};
-    sampler.binding = 1;
-    sampler.visibility = wgpu::ShaderStage::Fragment;
-    sampler.sampler.type = wgpu::SamplerBindingType::Filtering;
-    wgpu::BindGroupLayoutEntry texture{};
-    texture.binding = 2;
-    texture.visibility = wgpu::ShaderStage::Fragment;
-    texture.texture.sampleType = wgpu::TextureSampleType::Float;
-    texture.texture.viewDimension = wgpu::TextureViewDimension::e2D;
-    layouts.material = createLayout(
-        device, "material",
-        {bufferEntry(0, wgpu::ShaderStage::Fragment, wgpu::BufferBindingType::Uniform, 64), sampler,
-         texture});
+    // Group 2: the material uniform, then a sampler and a texture per slot (material.wgsl).
+    std::vector<wgpu::BindGroupLayoutEntry> material = {bufferEntry(
+        0, wgpu::ShaderStage::Fragment, wgpu::BufferBindingType::Uniform, sizeof(MaterialUniform))};
+    for (std::uint32_t slot = 0; slot < kMaterialTextureSlotCount; ++slot) {
+        material.push_back(samplerEntry(materialSamplerBinding(slot)));
+        material.push_back(textureEntry(materialTextureBinding(slot), wgpu::TextureViewDimension::e2D));
+    }
+    wgpu::BindGroupLayoutDescriptor materialDescriptor{};
+    materialDescriptor.label = "material";
+    materialDescriptor.entryCount = material.size();
+    materialDescriptor.entries = material.data();
+    layouts.material = device.CreateBindGroupLayout(&materialDescriptor);
     return layouts;
 }
 

@@ -9,18 +9,39 @@
 
 namespace encore::render {
 
-FrameUniforms::FrameUniforms(const wgpu::Device& device, const BindGroupLayouts& layouts) {
+FrameUniforms::FrameUniforms(const wgpu::Device& device, const BindGroupLayouts& layouts,
+                             const SceneLighting& lighting) {
     mBuffer = gpu::createBuffer(device, wgpu::BufferUsage::Uniform | wgpu::BufferUsage::CopyDst,
                                 sizeof(FrameUniform), "frame uniforms");
-    wgpu::BindGroupEntry entry{};
-    entry.binding = 0;
-    entry.buffer = mBuffer;
-    entry.size = sizeof(FrameUniform);
+    bindLighting(device, layouts, lighting);
+}
+
+void FrameUniforms::bindLighting(const wgpu::Device& device, const BindGroupLayouts& layouts,
+                                 const SceneLighting& lighting) {
+    const Environment& environment = lighting.environment();
+    wgpu::BindGroupEntry entries[7]{};
+    entries[0].binding = 0;
+    entries[0].buffer = mBuffer;
+    entries[0].size = sizeof(FrameUniform);
+    entries[1].binding = 1;
+    entries[1].buffer = lighting.uniformBuffer();
+    entries[1].size = sizeof(LightingUniform);
+    entries[2].binding = 2;
+    entries[2].buffer = lighting.lightBuffer();
+    entries[2].size = lighting.lightBuffer().GetSize();
+    entries[3].binding = 3;
+    entries[3].textureView = environment.specularView();
+    entries[4].binding = 4;
+    entries[4].textureView = environment.irradianceView();
+    entries[5].binding = 5;
+    entries[5].textureView = environment.brdfLutView();
+    entries[6].binding = 6;
+    entries[6].sampler = environment.sampler();
     wgpu::BindGroupDescriptor descriptor{};
     descriptor.label = "frame";
     descriptor.layout = layouts.frame;
-    descriptor.entryCount = 1;
-    descriptor.entries = &entry;
+    descriptor.entryCount = 7;
+    descriptor.entries = entries;
     mBindGroup = device.CreateBindGroup(&descriptor);
 }
 

@@ -79,6 +79,10 @@ std::optional<std::uint32_t> shaderLocation(scene::Semantic semantic) {
             return shaders::kTexcoord0Location;
         case scene::Semantic::Color0:
             return shaders::kColor0Location;
+        case scene::Semantic::Tangent:
+            return shaders::kTangentLocation;
+        case scene::Semantic::Texcoord1:
+            return shaders::kTexcoord1Location;
         default:
             return std::nullopt;
     }

@@ -1,6 +1,7 @@
 #include "encore/render/MaterialResources.h"
 
 #include <algorithm>
+#include <array>
 #include <cassert>
 #include <cmath>
 #include <cstring>
@@ -60,29 +61,166 @@ bool sameSampler(const wgpu::SamplerDescriptor& a, const wgpu::SamplerDescriptor
 
 }  // namespace
 
-MaterialUniform makeMaterialUniform(const scene::Material& material) {
-    MaterialUniform uniform{};
-    for (int i = 0; i < 4; ++i) {
-        uniform.baseColorFactor[i] = material.baseColorFactor[i];
+std::optional<scene::TextureRef> slotTexture(const scene::Material& material, TextureSlot slot) {
+    switch (slot) {
+        case TextureSlot::BaseColor:
+            return material.baseColorTexture;
+        case TextureSlot::MetallicRoughness:
+            return material.specularGlossiness
+                       ? material.specularGlossiness->specularGlossinessTexture
+                       : material.metallicRoughnessTexture;
+        case TextureSlot::Normal:
+            return material.normalTexture;
+        case TextureSlot::Occlusion:
+            return material.occlusionTexture;
+        case TextureSlot::Emissive:
+            return material.emissiveTexture;
+        case TextureSlot::Specular:
+            return material.specular ? material.specular->specularTexture : std::nullopt;
+        case TextureSlot::SpecularColor:
+            return material.specular ? material.specular->specularColorTexture : std::nullopt;
+        case TextureSlot::Clearcoat:
+            return material.clearcoat ? material.clearcoat->clearcoatTexture : std::nullopt;
+        case TextureSlot::ClearcoatRoughness:
+            return material.clearcoat ? material.clearcoat->clearcoatRoughnessTexture
+                                      : std::nullopt;
+        case TextureSlot::ClearcoatNormal:
+            return material.clearcoat ? material.clearcoat->clearcoatNormalTexture : std::nullopt;
+        case TextureSlot::SheenColor:
+            return material.sheen ? material.sheen->sheenColorTexture : std::nullopt;
+        case TextureSlot::SheenRoughness:
+            return material.sheen ? material.sheen->sheenRoughnessTexture : std::nullopt;
     }
+    return std::nullopt;
+}
+
+ColorSpace slotColorSpace(const scene::Material& material, TextureSlot slot) {
+    switch (slot) {
+        case TextureSlot::BaseColor:
+        case TextureSlot::Emissive:
+        case TextureSlot::SpecularColor:
+        case TextureSlot::SheenColor:
+            return ColorSpace::Srgb;
+        case TextureSlot::MetallicRoughness:
+            // The specular-glossiness texture holds an sRGB specular colour (alpha stays linear).
+            return material.specularGlossiness ? ColorSpace::Srgb : ColorSpace::Linear;
+        default:
+            return ColorSpace::Linear;
+    }
+}
+
+bool SampledTextures::sampled(TextureSlot slot) const {
+    switch (slot) {
+        case TextureSlot::BaseColor:
+            return baseColor;
+        case TextureSlot::MetallicRoughness:
+            return metallicRoughness;
+        case TextureSlot::Normal:
+            return normal;
+        case TextureSlot::Occlusion:
+            return occlusion;
+        case TextureSlot::Emissive:
+            return emissive;
+        default:
+            return extensions;
+    }
+}
+
+bool materialUsesTexcoord1(const scene::Material& material) {
+    for (std::uint32_t slot = 0; slot < kMaterialTextureSlotCount; ++slot) {
+        const auto texture = slotTexture(material, TextureSlot(slot));
+        if (texture && texture->texCoord == 1) {
+            return true;
+        }
+    }
+    return false;
+}
+
+bool materialHasNormalMap(const scene::Material& material) {
+    return material.normalTexture.has_value() ||
+           (material.clearcoat && material.clearcoat->clearcoatNormalTexture.has_value());
+}
+
+namespace {
+
+void setVector(float (&out)[4], float x, float y, float z, float w) {
+    out[0] = x;
+    out[1] = y;
+    out[2] = z;
+    out[3] = w;
+}
+
+// KHR_texture_transform: Translation * Rotation * Scale, with Rotation = [cos sin; -sin cos]
+// (the extension's convention, not the usual one), as the two rows of a 2x3 matrix.
+TextureSlotUniform makeSlotUniform(const std::optional<scene::TextureRef>& texture) {
     scene::TextureTransform transform;
-    if (material.baseColorTexture && material.baseColorTexture->transform) {
-        transform = *material.baseColorTexture->transform;
+    if (texture && texture->transform) {
+        transform = *texture->transform;
     }
-    // KHR_texture_transform: Translation * Rotation * Scale, with
-    // Rotation = [cos sin; -sin cos] (the extension's convention, not the usual one).
     const float c = std::cos(transform.rotation);
     const float s = std::sin(transform.rotation);
-    const glm::vec2 scale = transform.scale;
-    uniform.texcoordRow0[0] = c * scale.x;
-    uniform.texcoordRow0[1] = s * scale.y;
-    uniform.texcoordRow0[2] = transform.offset.x;
-    uniform.texcoordRow1[0] = -s * scale.x;
-    uniform.texcoordRow1[1] = c * scale.y;
-    uniform.texcoordRow1[2] = transform.offset.y;
-    uniform.alphaCutoff =
-        material.alphaMode == scene::AlphaMode::Mask ? material.alphaCutoff : 0.0f;
-    uniform.alphaBlend = material.alphaMode == scene::AlphaMode::Blend ? 1.0f : 0.0f;
+    TextureSlotUniform slot{};
+    setVector(slot.row0, c * transform.scale.x, s * transform.scale.y, transform.offset.x,
+              texture && texture->texCoord == 1 ? 1.0f : 0.0f);
+    setVector(slot.row1, -s * transform.scale.x, c * transform.scale.y, transform.offset.y, 0.0f);
+    return slot;
+}
+
+}  // namespace
+
+MaterialUniform makeMaterialUniform(const scene::Material& material) {
+    MaterialUniform uniform{};
+    const glm::vec4& base = material.baseColorFactor;
+    setVector(uniform.baseColorFactor, base.r, base.g, base.b, base.a);
+    const glm::vec3 emissive = material.emissiveFactor * material.emissiveStrength;
+    setVector(uniform.emissive, emissive.r, emissive.g, emissive.b, 0.0f);
+    setVector(uniform.metallicRoughness, material.metallicFactor, material.roughnessFactor,
+              material.normalScale, material.occlusionStrength);
+    setVector(uniform.alpha,
+              material.alphaMode == scene::AlphaMode::Mask ? material.alphaCutoff : 0.0f,
+              material.alphaMode == scene::AlphaMode::Blend ? 1.0f : 0.0f, material.ior, 0.0f);
+    std::uint32_t features = 0;
+    if (material.normalTexture) {
+        features |= kMaterialNormalMap;
+    }
+    setVector(uniform.specular, 1.0f, 1.0f, 1.0f, 1.0f);
+    if (material.specular) {
+        const scene::SpecularExtension& specular = *material.specular;
+        setVector(uniform.specular, specular.specularColorFactor.r, specular.specularColorFactor.g,
+                  specular.specularColorFactor.b, specular.specularFactor);
+        features |= kMaterialSpecular;
+    }
+    if (material.clearcoat) {
+        const scene::ClearcoatExtension& clearcoat = *material.clearcoat;
+        setVector(uniform.clearcoat, clearcoat.clearcoatFactor, clearcoat.clearcoatRoughnessFactor,
+                  clearcoat.clearcoatNormalScale, 0.0f);
+        features |= kMaterialClearcoat;
+        if (clearcoat.clearcoatNormalTexture) {
+            features |= kMaterialClearcoatNormalMap;
+        }
+    }
+    if (material.sheen) {
+        const scene::SheenExtension& sheen = *material.sheen;
+        setVector(uniform.sheen, sheen.sheenColorFactor.r, sheen.sheenColorFactor.g,
+                  sheen.sheenColorFactor.b, sheen.sheenRoughnessFactor);
+        features |= kMaterialSheen;
+    }
+    std::uint32_t model = 0;
+    if (material.specularGlossiness) {
+        const scene::SpecularGlossinessExtension& glossiness = *material.specularGlossiness;
+        setVector(uniform.specularGlossiness, glossiness.specularFactor.r,
+                  glossiness.specularFactor.g, glossiness.specularFactor.b,
+                  glossiness.glossinessFactor);
+        model = 1;
+    }
+    if (material.unlit) {
+        model = 2;
+    }
+    uniform.flags[0] = model;
+    uniform.flags[1] = features;
+    for (std::uint32_t slot = 0; slot < kMaterialTextureSlotCount; ++slot) {
+        uniform.slots[slot] = makeSlotUniform(slotTexture(material, TextureSlot(slot)));
+    }
     return uniform;
 }
 
@@ -233,7 +371,7 @@ Result<MaterialResources> MaterialResources::create(const wgpu::Device& device,
     Builder builder{device, queue, scene, resources, *mipmaps, device.CreateCommandEncoder()};
     builder.maxDimension = limits.maxTextureDimension2D;
 
-    // Index 0 in both vectors, so a material without a base colour texture needs no lookup.
+    // Index 0 in both vectors, so an empty slot needs no lookup.
     const std::uint8_t white[4] = {255, 255, 255, 255};
     builder.addTexture("default white (sRGB)", 1, 1, wgpu::TextureFormat::RGBA8UnormSrgb, white);
     const std::size_t defaultSampler = builder.addSampler(scene::Sampler{}, "default");
@@ -257,56 +395,46 @@ Result<MaterialResources> MaterialResources::create(const wgpu::Device& device,
         uniformBytes.size(), "material uniforms");
 
     resources.mBindGroups.reserve(materialCount);
-    resources.mDefaultBaseColor.reserve(materialCount);
     for (std::size_t i = 0; i < materialCount; ++i) {
         const scene::MaterialId id{i};
         const scene::Material& material = scene.materials[i];
-        auto baseColor =
-            sampled.baseColor
-                ? builder.referencedTexture(id, material.baseColorTexture, ColorSpace::Srgb)
-                : Result<std::size_t>(kNone);
-        if (!baseColor) {
-            return baseColor.error();
-        }
-        // Slots the shaders sample are uploaded in their colour space; the others only checked,
-        // so an unsampled normal map costs neither load time nor memory.
-        for (const auto& [ref, space, wanted] :
-             {std::tuple{&material.emissiveTexture, ColorSpace::Srgb, sampled.emissive},
-              std::tuple{&material.metallicRoughnessTexture, ColorSpace::Linear,
-                         sampled.metallicRoughness},
-              std::tuple{&material.normalTexture, ColorSpace::Linear, sampled.normal},
-              std::tuple{&material.occlusionTexture, ColorSpace::Linear, sampled.occlusion}}) {
-            if (!wanted && *ref && (*ref)->texture.index() < scene.textures.size()) {
-                continue;  // Valid and unsampled: nothing to upload.
+        SlotIndices textures;
+        SlotIndices samplers;
+        textures.fill(kDefaultTexture);
+        samplers.fill(defaultSampler);
+        for (std::uint32_t slotIndex = 0; slotIndex < kMaterialTextureSlotCount; ++slotIndex) {
+            const TextureSlot slot = TextureSlot(slotIndex);
+            const std::optional<scene::TextureRef> ref = slotTexture(material, slot);
+            if (!ref) {
+                continue;
             }
-            auto texture = builder.referencedTexture(id, *ref, space);
-            if (!texture) {
-                return texture.error();
+            // Unsampled slots are only checked, so they cost neither load time nor memory.
+            if (!sampled.sampled(slot) && ref->texture.index() < scene.textures.size()) {
+                continue;
             }
-        }
-
-        std::size_t textureIndex = kDefaultTexture;
-        std::size_t samplerIndex = defaultSampler;
-        if (*baseColor != kNone) {
-            const scene::Texture& texture =
-                scene.textures[material.baseColorTexture->texture.index()];
+            auto uploaded = builder.referencedTexture(id, ref, slotColorSpace(material, slot));
+            if (!uploaded) {
+                return uploaded.error();
+            }
+            if (*uploaded == kNone) {
+                continue;  // Missing or undecoded image: the loader warned; white stands in.
+            }
+            const scene::Texture& texture = scene.textures[ref->texture.index()];
             if (texture.sampler.valid() && texture.sampler.index() >= scene.samplers.size()) {
                 return makeError(ErrorCode::InvalidArgument,
                                  describeMaterial(id, material) + ": texture " +
-                                     std::to_string(material.baseColorTexture->texture.value) +
-                                     " references sampler " +
+                                     std::to_string(ref->texture.value) + " references sampler " +
                                      std::to_string(texture.sampler.value) +
                                      ", but the scene has " +
                                      std::to_string(scene.samplers.size()) + " samplers.");
             }
-            textureIndex = *baseColor;
+            textures[slotIndex] = *uploaded;
             if (texture.sampler.valid()) {
-                samplerIndex = resources.mSceneSamplers[texture.sampler.index()];
+                samplers[slotIndex] = resources.mSceneSamplers[texture.sampler.index()];
             }
         }
-        resources.mDefaultBaseColor.push_back(textureIndex == kDefaultTexture);
-        resources.mMaterialTextures.push_back(textureIndex);
-        resources.mMaterialSamplers.push_back(samplerIndex);
+        resources.mMaterialTextures.push_back(textures);
+        resources.mMaterialSamplers.push_back(samplers);
 
         const MaterialUniform uniform = makeMaterialUniform(material);
         std::memcpy(uniformBytes.data() + i * resources.mUniformStride, &uniform, kUniformSize);
@@ -324,20 +452,24 @@ Result<MaterialResources> MaterialResources::create(const wgpu::Device& device,
 wgpu::BindGroup MaterialResources::createBindGroup(const wgpu::Device& device,
                                                    const BindGroupLayouts& layouts,
                                                    std::size_t material, const char* label) const {
-    wgpu::BindGroupEntry entries[3]{};
+    std::array<wgpu::BindGroupEntry, 1 + 2 * kMaterialTextureSlotCount> entries{};
     entries[0].binding = 0;
     entries[0].buffer = mUniforms;
     entries[0].offset = material * mUniformStride;
     entries[0].size = kUniformSize;
-    entries[1].binding = 1;
-    entries[1].sampler = mSamplers[mMaterialSamplers[material]];
-    entries[2].binding = 2;
-    entries[2].textureView = mTextures[mMaterialTextures[material]].CreateView();
+    for (std::uint32_t slot = 0; slot < kMaterialTextureSlotCount; ++slot) {
+        wgpu::BindGroupEntry& sampler = entries[1 + 2 * slot];
+        sampler.binding = materialSamplerBinding(slot);
+        sampler.sampler = mSamplers[mMaterialSamplers[material][slot]];
+        wgpu::BindGroupEntry& texture = entries[2 + 2 * slot];
+        texture.binding = materialTextureBinding(slot);
+        texture.textureView = mTextures[mMaterialTextures[material][slot]].CreateView();
+    }
     wgpu::BindGroupDescriptor descriptor{};
     descriptor.label = label;
     descriptor.layout = layouts.material;
-    descriptor.entryCount = 3;
-    descriptor.entries = entries;
+    descriptor.entryCount = entries.size();
+    descriptor.entries = entries.data();
     return device.CreateBindGroup(&descriptor);
 }
 
@@ -373,17 +505,19 @@ Result<void> MaterialResources::replaceBaseColorImage(const wgpu::Device& device
     wgpu::CommandBuffer commands = builder.encoder.Finish();
     queue.Submit(1, &commands);
 
-    const std::size_t old = mMaterialTextures[material.index()];
-    mMaterialTextures[material.index()] = *uploaded;
-    mDefaultBaseColor[material.index()] = false;
+    constexpr std::size_t kBaseColor = std::size_t(TextureSlot::BaseColor);
+    const std::size_t old = mMaterialTextures[material.index()][kBaseColor];
+    mMaterialTextures[material.index()][kBaseColor] = *uploaded;
     mBindGroups[material.index()] =
         createBindGroup(device, layouts, material.index(), "material (replaced texture)");
     ++mGeneration;
 
     const bool stillUsed =
         old == kDefaultTexture ||
-        std::find(mMaterialTextures.begin(), mMaterialTextures.end(), old) !=
-            mMaterialTextures.end();
+        std::any_of(mMaterialTextures.begin(), mMaterialTextures.end(),
+                    [old](const SlotIndices& slots) {
+                        return std::find(slots.begin(), slots.end(), old) != slots.end();
+                    });
     if (!stillUsed) {
         // Free the GPU memory now: anything still referencing it (a stale bundle) would fail
         // validation at submit instead of drawing old data.
@@ -420,8 +554,9 @@ const wgpu::Sampler& MaterialResources::sampler(scene::SamplerId sampler) const 
 }
 
 bool MaterialResources::usesDefaultBaseColor(scene::MaterialId material) const {
-    assert(material.index() < mDefaultBaseColor.size());
-    return mDefaultBaseColor[material.index()];
+    assert(material.index() < mMaterialTextures.size());
+    return mMaterialTextures[material.index()][std::size_t(TextureSlot::BaseColor)] ==
+           kDefaultTexture;
 }
 
 }  // namespace encore::render

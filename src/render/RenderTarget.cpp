@@ -25,21 +25,35 @@ Result<RenderTarget> RenderTarget::create(const wgpu::Device& device,
     RenderTarget target;
     target.mOptions = options;
 
-    wgpu::TextureDescriptor color{};
-    color.label = "render target colour";
-    color.size = {options.width, options.height, 1};
-    color.format = kColorFormat;
-    color.usage = wgpu::TextureUsage::RenderAttachment | wgpu::TextureUsage::CopySrc;
-    target.mColor = device.CreateTexture(&color);
-    target.mColorView = target.mColor.CreateView();
+    wgpu::TextureDescriptor output{};
+    output.label = "render target output";
+    output.size = {options.width, options.height, 1};
+    output.format = kColorFormat;
+    output.usage = wgpu::TextureUsage::RenderAttachment | wgpu::TextureUsage::CopySrc;
+    target.mOutput = device.CreateTexture(&output);
+    target.mOutputView = target.mOutput.CreateView();
+    if (options.hdr) {
+        wgpu::TextureDescriptor scene = output;
+        scene.label = "render target scene colour (HDR)";
+        scene.format = kHdrFormat;
+        scene.usage = wgpu::TextureUsage::RenderAttachment | wgpu::TextureUsage::TextureBinding |
+                      wgpu::TextureUsage::CopySrc;
+        target.mScene = device.CreateTexture(&scene);
+        target.mSceneView = target.mScene.CreateView();
+    } else {
+        target.mScene = target.mOutput;
+        target.mSceneView = target.mOutputView;
+    }
 
     if (options.sampleCount > 1) {
-        wgpu::TextureDescriptor multisampled = color;
-        multisampled.label = "render target colour (multisampled)";
+        wgpu::TextureDescriptor multisampled{};
+        multisampled.label = "render target scene colour (multisampled)";
+        multisampled.size = {options.width, options.height, 1};
+        multisampled.format = target.sceneFormat();
         multisampled.sampleCount = options.sampleCount;
         multisampled.usage = wgpu::TextureUsage::RenderAttachment;
-        target.mMultisampledColor = device.CreateTexture(&multisampled);
-        target.mMultisampledColorView = target.mMultisampledColor.CreateView();
+        target.mMultisampledScene = device.CreateTexture(&multisampled);
+        target.mMultisampledSceneView = target.mMultisampledScene.CreateView();
     }
 
     wgpu::TextureDescriptor depth{};
@@ -55,12 +69,12 @@ Result<RenderTarget> RenderTarget::create(const wgpu::Device& device,
 
 wgpu::RenderPassColorAttachment RenderTarget::colorAttachment(const wgpu::Color& clearColor) const {
     wgpu::RenderPassColorAttachment attachment{};
-    if (mMultisampledColor) {
-        attachment.view = mMultisampledColorView;
-        attachment.resolveTarget = mColorView;
+    if (mMultisampledScene) {
+        attachment.view = mMultisampledSceneView;
+        attachment.resolveTarget = mSceneView;
         attachment.storeOp = wgpu::StoreOp::Discard;
     } else {
-        attachment.view = mColorView;
+        attachment.view = mSceneView;
         attachment.storeOp = wgpu::StoreOp::Store;
     }
     attachment.loadOp = wgpu::LoadOp::Clear;

@@ -3,6 +3,7 @@
 #include <chrono>
 
 #include "encore/gpu/Readback.h"
+#include "encore/image/HdrImage.h"
 
 namespace encore::render {
 
@@ -29,7 +30,38 @@ Result<Renderer> Renderer::create(gpu::Context& context, const RendererOptions& 
     renderer.mShaders = std::make_unique<shaders::ShaderLibrary>(context.device());
     renderer.mLayouts =
         std::make_unique<BindGroupLayouts>(BindGroupLayouts::create(context.device()));
-    renderer.mFrame = std::make_unique<FrameUniforms>(context.device(), *renderer.mLayouts);
+    std::shared_ptr<Environment> environment = options.environment;
+    if (!environment) {
+        const image::HdrImage panorama =
+            options.environmentImage ? *options.environmentImage : image::makeStudioEnvironment();
+        auto created = Environment::create(context.device(), context.queue(), *renderer.mShaders,
+                                           panorama, options.environmentOptions);
+        if (!created) {
+            return created.error().withContext("Creating the environment");
+        }
+        environment = std::make_shared<Environment>(std::move(*created));
+    }
+    auto lighting = SceneLighting::create(context.device(), context.queue(), environment);
+    if (!lighting) {
+        return lighting.error();
+    }
+    renderer.mLighting = std::make_unique<SceneLighting>(std::move(*lighting));
+    renderer.mLighting->setParameters(options.lighting);
+    renderer.mFrame =
+        std::make_unique<FrameUniforms>(context.device(), *renderer.mLayouts, *renderer.mLighting);
+    auto toneMapper = ToneMapper::create(context.device(), context.queue(), *renderer.mShaders,
+                                         renderer.mTarget, options.toneMapping);
+    if (!toneMapper) {
+        return toneMapper.error();
+    }
+    renderer.mToneMapper = std::make_unique<ToneMapper>(std::move(*toneMapper));
+    auto background = EnvironmentBackground::create(
+        context.device(), *renderer.mShaders, renderer.mLayouts->frame,
+        renderer.mTarget.sceneFormat(), RenderTarget::kDepthFormat, options.target.sampleCount);
+    if (!background) {
+        return background.error();
+    }
+    renderer.mBackground = std::make_unique<EnvironmentBackground>(std::move(*background));
 
     renderer.mSetup = std::make_unique<RenderSetup>();
     RenderSetup& setup = *renderer.mSetup;
@@ -38,7 +70,7 @@ Result<Renderer> Renderer::create(gpu::Context& context, const RendererOptions& 
     setup.shaders = renderer.mShaders.get();
     setup.layouts = renderer.mLayouts.get();
     setup.frame = renderer.mFrame.get();
-    setup.colorFormat = RenderTarget::kColorFormat;
+    setup.colorFormat = renderer.mTarget.sceneFormat();
     setup.depthFormat = RenderTarget::kDepthFormat;
     setup.sampleCount = options.target.sampleCount;
     setup.mappingBudget = context.mappingBudget();
@@ -54,6 +86,9 @@ Result<void> Renderer::prepare(const scene::SceneData& scene, StrategyKind kind)
         mStrategy.reset();
         mContext->waitForIdle();
         mContext->device().Tick();
+    }
+    if (mLighting->setSceneLights(scene)) {
+        mFrame->bindLighting(mContext->device(), *mLayouts, *mLighting);
     }
     mSetup->pipelinesCreated = 0;
     mSetup->mappingBudget = mContext->mappingBudget();  // What the previous scene left in use.
@@ -102,7 +137,8 @@ FrameResult Renderer::renderPasses(std::span<const Camera> cameras, float timeSe
         if (multiView) {
             mFrame->selectView(commandEncoder, view);
         }
-        wgpu::RenderPassColorAttachment color = mTarget.colorAttachment(mOptions.clearColor);
+        // Alpha is coverage: 0 where nothing is drawn, for the tone mapper's background.
+        wgpu::RenderPassColorAttachment color = mTarget.colorAttachment({0.0, 0.0, 0.0, 0.0});
         wgpu::RenderPassDepthStencilAttachment depth = mTarget.depthAttachment();
         if (view > 0) {
             color.loadOp = wgpu::LoadOp::Load;  // Keep the views drawn before.
@@ -121,12 +157,18 @@ FrameResult Renderer::renderPasses(std::span<const Camera> cameras, float timeSe
             pass.SetViewport(float(view * viewWidth), 0.0f, float(viewWidth),
                              float(mTarget.height()), 0.0f, 1.0f);
         }
+        if (mToneMapper->options().background == BackgroundKind::Environment) {
+            mBackground->draw(pass, mFrame->bindGroup());
+        }
         if (mStrategy) {
             RenderEncoder encoder(pass, result.counters);
             encoder.setTrace(trace);
             mStrategy->encode(encoder, FrameState{cameras[view], timeSeconds, mTimer});
         }
         pass.End();
+    }
+    if (mTarget.hdr()) {
+        mToneMapper->encode(commandEncoder, mTarget);
     }
     if (mTimer) {
         mTimer->resolve(commandEncoder);
@@ -167,6 +209,41 @@ Result<void> Renderer::replaceBaseColorImage(scene::MaterialId material,
     }
     ENCORE_TRY(mStrategy->replaceBaseColorImage(material, image));
     return mContext->checkNoErrors("Replacing a base colour image");
+}
+
+void Renderer::setLighting(const LightingParameters& parameters) {
+    mLighting->setParameters(parameters);
+}
+
+void Renderer::setToneMapping(const ToneMappingOptions& options) {
+    mToneMapper->setOptions(options);
+}
+
+Result<void> Renderer::loadEnvironment(const image::HdrImage& panorama) {
+    ENCORE_TRY(mLighting->loadEnvironment(panorama));
+    return mContext->checkNoErrors("Loading an environment");
+}
+
+Result<void> Renderer::updateLight(std::size_t lightInstance, const scene::Light& light,
+                                   const scene::LightInstance& placed) {
+    return mLighting->updateLight(lightInstance, light, placed);
+}
+
+void Renderer::toneMapScene() {
+    if (!mTarget.hdr()) {
+        return;
+    }
+    wgpu::CommandEncoder commands = mContext->device().CreateCommandEncoder();
+    mToneMapper->encode(commands, mTarget);
+    wgpu::CommandBuffer buffer = commands.Finish();
+    mContext->queue().Submit(1, &buffer);
+}
+
+Result<std::vector<float>> Renderer::readHdrImage() {
+    if (!mTarget.hdr()) {
+        return makeError(ErrorCode::InvalidArgument, "The render target has no HDR colour.");
+    }
+    return gpu::readTextureRgba16Float(*mContext, mTarget.sceneTexture());
 }
 
 Result<image::ImageRgba8> Renderer::readImage() {

@@ -27,6 +27,12 @@ std::set<std::string, std::less<>> ShaderVariantKey::flags() const {
     if (alphaMask) {
         result.insert("ALPHA_MASK");
     }
+    if (hasTexcoord1) {
+        result.insert("HAS_TEXCOORD1");
+    }
+    if (hasTangent) {
+        result.insert("HAS_TANGENT");
+    }
     return result;
 }
 

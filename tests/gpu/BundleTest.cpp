@@ -56,7 +56,7 @@ int dominantChannel(const test::Rgba& pixel) {
 image::ImageRgba8 renderOnce(const scene::SceneData& scene, StrategyKind kind,
                              const Camera& camera, const glm::mat4* moveFirstInstance = nullptr) {
     gpu::Context* context = test::vulkanContext();
-    auto renderer = Renderer::create(*context, {{kSize, kSize, 1}});
+    auto renderer = Renderer::create(*context, test::pixelTestOptions(kSize, kSize));
     EXPECT_TRUE(renderer.ok());
     EXPECT_TRUE(renderer->prepare(scene, kind).ok());
     if (moveFirstInstance) {
@@ -77,7 +77,7 @@ TEST(BundleTest, TwoBundlesBetweenDirectDrawsInOnePass) {
     const auto sceneC = quadScene({{0.5f, {0, 0, 1, 1}}});   // blue, drawn directly before
     const auto sceneD = quadScene({{1.5f, {1, 0, 0, 1}}});   // red, drawn directly after
 
-    auto renderer = Renderer::create(*context, {{kSize, kSize, 1}});
+    auto renderer = Renderer::create(*context, test::pixelTestOptions(kSize, kSize));
     ASSERT_TRUE(renderer.ok());
     const RenderSetup& setup = renderer->setup();
     auto prepare = [&](const scene::SceneData& scene) {
@@ -118,6 +118,7 @@ TEST(BundleTest, TwoBundlesBetweenDirectDrawsInOnePass) {
     pass.End();
     wgpu::CommandBuffer commandBuffer = commands.Finish();
     context->queue().Submit(1, &commandBuffer);
+    renderer->toneMapScene();
     auto image = renderer->readImage();
     ASSERT_TRUE(image.ok()) << image.error().message;
     EXPECT_EQ(counters.executeBundles, 1u);
@@ -138,7 +139,7 @@ TEST(BundleTest, TwoBundlesBetweenDirectDrawsInOnePass) {
 TEST(BundleTest, CameraAndTransformChangesNeedNoReRecording) {
     ENCORE_REQUIRE_VULKAN(context);
     const auto scene = quadScene({{-0.5f, {1, 0, 0, 1}}, {0.5f, {0, 0, 1, 1}}});
-    auto renderer = Renderer::create(*context, {{kSize, kSize, 1}});
+    auto renderer = Renderer::create(*context, test::pixelTestOptions(kSize, kSize));
     ASSERT_TRUE(renderer.ok());
     ASSERT_TRUE(renderer->prepare(scene, StrategyKind::Bundles).ok());
     renderer->renderFrame(frontCamera());
@@ -165,7 +166,7 @@ TEST(BundleTest, CameraAndTransformChangesNeedNoReRecording) {
 TEST(BundleTest, MaterialFactorChangesNeedNoReRecording) {
     ENCORE_REQUIRE_VULKAN(context);
     auto scene = quadScene({{0.0f, {1, 0, 0, 1}}});
-    auto renderer = Renderer::create(*context, {{kSize, kSize, 1}});
+    auto renderer = Renderer::create(*context, test::pixelTestOptions(kSize, kSize));
     ASSERT_TRUE(renderer.ok());
     ASSERT_TRUE(renderer->prepare(scene, StrategyKind::Bundles).ok());
     const Camera camera = frontCamera();
@@ -190,7 +191,7 @@ TEST(BundleTest, MaterialFactorChangesNeedNoReRecording) {
 TEST(BundleTest, ReplacedTextureReRecordsTheBundle) {
     ENCORE_REQUIRE_VULKAN(context);
     const auto scene = quadScene({{0.0f, {1, 1, 1, 1}}});
-    auto renderer = Renderer::create(*context, {{kSize, kSize, 1}});
+    auto renderer = Renderer::create(*context, test::pixelTestOptions(kSize, kSize));
     ASSERT_TRUE(renderer.ok());
     ASSERT_TRUE(renderer->prepare(scene, StrategyKind::Bundles).ok());
     const Camera camera = frontCamera();
@@ -223,7 +224,7 @@ TEST(BundleTest, ReplacedTextureReRecordsTheBundle) {
 TEST(BundleTest, TwoViewsReplayOneBundle) {
     ENCORE_REQUIRE_VULKAN(context);
     const auto scene = quadScene({{-0.5f, {1, 0, 0, 1}}, {0.5f, {0, 0, 1, 1}}});
-    auto stereo = Renderer::create(*context, {{2 * kSize, kSize, 1}});
+    auto stereo = Renderer::create(*context, test::pixelTestOptions(2 * kSize, kSize));
     ASSERT_TRUE(stereo.ok());
     ASSERT_TRUE(stereo->prepare(scene, StrategyKind::Bundles).ok());
     const Camera cameras[] = {frontCamera(1.0f, -0.1f), frontCamera(1.0f, 0.1f)};

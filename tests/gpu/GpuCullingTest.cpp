@@ -12,6 +12,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "GpuTestSupport.h"
+#include "RenderTestSupport.h"
 #include "encore/gpu/Readback.h"
 #include "encore/render/GpuCuller.h"
 #include "encore/render/Renderer.h"
@@ -101,7 +102,7 @@ class GpuCullingTest : public ::testing::TestWithParam<StrategyKind> {};
 TEST_P(GpuCullingTest, VisibleCountsEqualACpuFrustumTestAndTheImageEqualsUnculled) {
     ENCORE_REQUIRE_VULKAN(context);
     const auto scene = gridScene();
-    auto renderer = Renderer::create(*context, {{kSize, kSize, 1}});
+    auto renderer = Renderer::create(*context, test::pixelTestOptions(kSize, kSize));
     ASSERT_TRUE(renderer.ok());
     const Camera camera = partialCamera();
     const auto unculled = render(*renderer, scene, StrategyKind::Materials, camera);
@@ -126,7 +127,7 @@ TEST_P(GpuCullingTest, VisibleCountsEqualACpuFrustumTestAndTheImageEqualsUnculle
 TEST_P(GpuCullingTest, WholeSceneInViewDrawsEverything) {
     ENCORE_REQUIRE_VULKAN(context);
     const auto scene = gridScene();
-    auto renderer = Renderer::create(*context, {{kSize, kSize, 1}});
+    auto renderer = Renderer::create(*context, test::pixelTestOptions(kSize, kSize));
     ASSERT_TRUE(renderer.ok());
     const Camera camera = Camera::framing(scene.bounds, 1.0f);
     const auto unculled = render(*renderer, scene, StrategyKind::Materials, camera);
@@ -142,7 +143,7 @@ TEST_P(GpuCullingTest, WholeSceneInViewDrawsEverything) {
 TEST_P(GpuCullingTest, NothingVisibleDrawsNothingAndStaysValid) {
     ENCORE_REQUIRE_VULKAN(context);
     const auto scene = gridScene();
-    auto renderer = Renderer::create(*context, {{kSize, kSize, 1}});
+    auto renderer = Renderer::create(*context, test::pixelTestOptions(kSize, kSize));
     ASSERT_TRUE(renderer.ok());
     const Camera away = Camera::lookAt({0.0f, 50.0f, 0.0f}, {0.0f, 100.0f, 0.0f},
                                        glm::radians(40.0f), 1.0f, 0.1f, 100.0f);
@@ -159,7 +160,7 @@ TEST_P(GpuCullingTest, NothingVisibleDrawsNothingAndStaysValid) {
 TEST_P(GpuCullingTest, MovedInstancesAreCulledWhereTheyAreNow) {
     ENCORE_REQUIRE_VULKAN(context);
     const auto scene = gridScene();
-    auto renderer = Renderer::create(*context, {{kSize, kSize, 1}});
+    auto renderer = Renderer::create(*context, test::pixelTestOptions(kSize, kSize));
     ASSERT_TRUE(renderer.ok());
     const Camera camera = Camera::framing(scene.bounds, 1.0f);
     render(*renderer, scene, GetParam(), camera);
@@ -194,7 +195,7 @@ TEST(GpuCullingTrapTest, NonZeroFirstInstanceVanishesWithoutTheFeature) {
     ENCORE_REQUIRE_VULKAN(context);
     ASSERT_FALSE(context->hasFeature(wgpu::FeatureName::IndirectFirstInstance));
     const auto scene = gridScene();
-    auto renderer = Renderer::create(*context, {{kSize, kSize, 1}});
+    auto renderer = Renderer::create(*context, test::pixelTestOptions(kSize, kSize));
     ASSERT_TRUE(renderer.ok());
     const Camera camera = Camera::framing(scene.bounds, 1.0f);
     const auto full = render(*renderer, scene, StrategyKind::GpuCulling, camera);

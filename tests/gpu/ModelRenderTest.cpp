@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "GpuTestSupport.h"
+#include "RenderTestSupport.h"
 #include "TestPaths.h"
 #include "encore/render/Renderer.h"
 
@@ -33,7 +34,7 @@ TEST_P(ModelRenderTest, EveryStrategyRendersTheSameImageWithoutErrors) {
     auto scene = scene::loadScene(model.path, options);
     ASSERT_TRUE(scene.ok()) << scene.error().message;
 
-    auto renderer = Renderer::create(*context, {{kSize, kSize, 1}});
+    auto renderer = Renderer::create(*context, test::pixelTestOptions(kSize, kSize));
     ASSERT_TRUE(renderer.ok()) << renderer.error().message;
     const Camera camera = Camera::framing(scene->bounds, renderer->target().aspect());
 
@@ -76,7 +77,10 @@ TEST_P(ModelRenderTest, MaterialStrategiesRenderTheSameImageWithoutErrors) {
     ENCORE_REQUIRE_VULKAN(context);
     auto scene = scene::loadScene(model.path);
     ASSERT_TRUE(scene.ok()) << scene.error().message;
-    auto renderer = Renderer::create(*context, {{kSize, kSize, 1}});
+    // Fully shaded (image-based lighting, every material input) and tone mapped.
+    RendererOptions options = test::pixelTestOptions(kSize, kSize, 1, DebugChannel::Shaded);
+    options.toneMapping.toneMapping = ToneMapping::PbrNeutral;
+    auto renderer = Renderer::create(*context, options);
     ASSERT_TRUE(renderer.ok()) << renderer.error().message;
     const Camera camera = Camera::framing(scene->bounds, renderer->target().aspect());
 

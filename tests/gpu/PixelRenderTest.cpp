@@ -1,5 +1,7 @@
 // Exact pixel checks on tiny in-code scenes, for every strategy: a lit triangle's colour at known
 // pixels, depth order of two quads regardless of draw order, u8 indices and generated normals.
+// Strategies before `materials` shade with one directional light; the materials strategies are
+// rendered with the shading-normal debug channel, whose colour these scenes predict exactly.
 
 #include <gtest/gtest.h>
 
@@ -35,6 +37,10 @@ test::Rgba background() {
 
 using test::frontCamera;
 
+bool shadesMaterials(StrategyKind kind) {
+    return kind >= StrategyKind::Materials;
+}
+
 class PixelRenderTest : public ::testing::TestWithParam<StrategyKind> {
   protected:
     // Loads the builder's asset and renders it from the front camera.
@@ -50,7 +56,8 @@ class PixelRenderTest : public ::testing::TestWithParam<StrategyKind> {
             return {};
         }
         mScene = std::move(*scene);
-        auto renderer = Renderer::create(*context, {{kSize, kSize, 1}});
+        auto renderer = Renderer::create(
+            *context, test::pixelTestOptions(kSize, kSize, 1, DebugChannel::Normal));
         EXPECT_TRUE(renderer.ok()) << renderer.error().message;
         auto prepared = renderer->prepare(mScene, GetParam());
         EXPECT_TRUE(prepared.ok()) << prepared.error().message;
@@ -59,6 +66,16 @@ class PixelRenderTest : public ::testing::TestWithParam<StrategyKind> {
         EXPECT_TRUE(image.ok()) << image.error().message;
         EXPECT_TRUE(context->checkNoErrors("rendering").ok());
         return image.ok() ? std::move(*image) : image::ImageRgba8{};
+    }
+
+    // A white surface with this normal, as the strategy under test draws it.
+    test::Rgba lit(const glm::vec3& normal) const {
+        if (!shadesMaterials(GetParam())) {
+            return gray(litWhite(normal));
+        }
+        const glm::vec3 encoded = glm::normalize(normal) * 0.5f + 0.5f;
+        return {test::linearToSrgb8(encoded.x), test::linearToSrgb8(encoded.y),
+                test::linearToSrgb8(encoded.z), 255};
     }
 
     void expectPixel(const image::ImageRgba8& image, const glm::vec3& point,
@@ -88,8 +105,8 @@ TEST_P(PixelRenderTest, TriangleHasTheLitColourInsideAndBackgroundOutside) {
     test::GltfBuilder builder;
     builder.addScene({builder.addNode({.mesh = addTriangle(builder, true)})});
     const auto image = render(builder);
-    expectPixel(image, {0.0f, 0.0f, 0.0f}, gray(litWhite({0, 0, 1})), "triangle centre");
-    expectPixel(image, {0.0f, -0.8f, 0.0f}, gray(litWhite({0, 0, 1})), "near the base");
+    expectPixel(image, {0.0f, 0.0f, 0.0f}, lit({0, 0, 1}), "triangle centre");
+    expectPixel(image, {0.0f, -0.8f, 0.0f}, lit({0, 0, 1}), "near the base");
     expectPixel(image, {0.9f, 0.9f, 0.0f}, background(), "outside, right of the apex");
     expectPixel(image, {-1.2f, 0.0f, 0.0f}, background(), "outside, left");
     expectPixel(image, {0.0f, -1.3f, 0.0f}, background(), "outside, below the base");
@@ -101,7 +118,7 @@ TEST_P(PixelRenderTest, MissingNormalsAreGeneratedFlat) {
     builder.addScene({builder.addNode({.mesh = addTriangle(builder, false)})});
     const auto image = render(builder);
     // Counter-clockwise seen from +Z: the flat normal faces the camera.
-    expectPixel(image, {0.0f, 0.0f, 0.0f}, gray(litWhite({0, 0, 1})), "triangle centre");
+    expectPixel(image, {0.0f, 0.0f, 0.0f}, lit({0, 0, 1}), "triangle centre");
 }
 
 TEST_P(PixelRenderTest, EightBitIndicesAreWidened) {
@@ -115,8 +132,8 @@ TEST_P(PixelRenderTest, EightBitIndicesAreWidened) {
     primitive.indices = builder.addIndices<std::uint8_t>({0, 1, 2, 0, 2, 3});
     builder.addScene({builder.addNode({.mesh = builder.addMesh(primitive)})});
     const auto image = render(builder);
-    expectPixel(image, {0.5f, 0.5f, 0.0f}, gray(litWhite({0, 0, 1})), "upper triangle");
-    expectPixel(image, {-0.5f, -0.5f, 0.0f}, gray(litWhite({0, 0, 1})), "lower triangle");
+    expectPixel(image, {0.5f, 0.5f, 0.0f}, lit({0, 0, 1}), "upper triangle");
+    expectPixel(image, {-0.5f, -0.5f, 0.0f}, lit({0, 0, 1}), "lower triangle");
     expectPixel(image, {0.0f, 1.3f, 0.0f}, background(), "above the quad");
 }
 
@@ -142,9 +159,9 @@ TEST_P(PixelRenderTest, NearerQuadWinsWhateverTheDrawOrder) {
         const auto farQuad = builder.addNode({.mesh = addQuad(builder, -0.5f, 1.0f, -0.5f, downward)});
         builder.addScene(nearFirst ? std::vector{nearQuad, farQuad} : std::vector{farQuad, nearQuad});
         const auto image = render(builder);
-        expectPixel(image, {0.0f, 0.0f, 0.5f}, gray(litWhite(facing)), "overlap: near quad");
-        expectPixel(image, {-0.8f, 0.0f, 0.5f}, gray(litWhite(facing)), "near quad only");
-        expectPixel(image, {0.9f, 0.0f, -0.5f}, gray(litWhite(downward)), "far quad only");
+        expectPixel(image, {0.0f, 0.0f, 0.5f}, lit(facing), "overlap: near quad");
+        expectPixel(image, {-0.8f, 0.0f, 0.5f}, lit(facing), "near quad only");
+        expectPixel(image, {0.9f, 0.0f, -0.5f}, lit(downward), "far quad only");
     }
 }
 

@@ -7,6 +7,7 @@
 #include <set>
 
 #include "GpuTestSupport.h"
+#include "RenderTestSupport.h"
 #include "TestPaths.h"
 #include "encore/core/FileIO.h"
 #include "encore/render/Renderer.h"
@@ -106,7 +107,7 @@ void expectEachPipelineSetOnce(const Frame& frame) {
 
 void checkCounts(const scene::SceneData& scene) {
     ENCORE_REQUIRE_VULKAN(context);
-    auto renderer = Renderer::create(*context, {{64, 64, 1}});
+    auto renderer = Renderer::create(*context, test::pixelTestOptions(64, 64));
     ASSERT_TRUE(renderer.ok()) << renderer.error().message;
     const Structure s = structureOf(scene);
 
@@ -209,7 +210,7 @@ TEST(StrategyCountsGeneratedTest, ManyInstancesOfFewMeshes) {
 
     // The generator's shapes share one vertex layout: instancing draws each mesh once.
     ENCORE_REQUIRE_VULKAN(context);
-    auto renderer = Renderer::create(*context, {{64, 64, 1}});
+    auto renderer = Renderer::create(*context, test::pixelTestOptions(64, 64));
     ASSERT_TRUE(renderer.ok());
     const Frame instancing = renderWith(*renderer, *scene, StrategyKind::Instancing);
     EXPECT_EQ(instancing.counters.drawCalls(), 7u);
@@ -229,7 +230,7 @@ TEST(StrategyCountsGeneratedTest, BuggyMatchesTheCaseStudy) {
     auto scene = scene::loadScene(*dir / "Buggy/glTF-Draco/Buggy.gltf");
     ASSERT_TRUE(scene.ok()) << scene.error().message;
     ENCORE_REQUIRE_VULKAN(context);
-    auto renderer = Renderer::create(*context, {{64, 64, 1}});
+    auto renderer = Renderer::create(*context, test::pixelTestOptions(64, 64));
     ASSERT_TRUE(renderer.ok());
     const Frame layouts = renderWith(*renderer, *scene, StrategyKind::Layouts);
     const Frame cache = renderWith(*renderer, *scene, StrategyKind::PipelineCache);
@@ -257,7 +258,7 @@ TEST(StrategyLimitsTest, PerNodeStrategiesRefuseScenesBeyondTheMappingBudget) {
     ASSERT_TRUE(glb.ok());
     auto scene = scene::loadSceneFromMemory(*glb, {}, "fifty.glb");
     ASSERT_TRUE(scene.ok());
-    auto renderer = Renderer::create(*context, {{32, 32, 1}});
+    auto renderer = Renderer::create(*context, test::pixelTestOptions(32, 32));
     ASSERT_TRUE(renderer.ok());
     RenderSetup tight = renderer->setup();
     tight.mappingBudget = 60;  // Room for 30 nodes at two mappings each.

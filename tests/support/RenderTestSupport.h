@@ -3,12 +3,14 @@
 // Cameras and projections shared by the pixel tests of tests/gpu.
 
 #include <cstdint>
+#include <memory>
 #include <utility>
 
 #include <glm/glm.hpp>
 #include <glm/gtc/constants.hpp>
 
 #include "encore/render/Camera.h"
+#include "encore/render/Renderer.h"
 
 namespace encore::test {
 
@@ -29,5 +31,21 @@ inline std::pair<std::uint32_t, std::uint32_t> pixelOf(const render::Camera& cam
     return {static_cast<std::uint32_t>((ndc.x * 0.5f + 0.5f) * float(width)),
             static_cast<std::uint32_t>((0.5f - ndc.y * 0.5f) * float(height))};
 }
+
+// Environment maps small enough to build in well under a second on lavapipe.
+render::EnvironmentOptions testEnvironmentOptions();
+
+// The default studio environment at test size, built once per test process and shared by the
+// renderers of pixelTestOptions.
+std::shared_ptr<render::Environment> testEnvironment();
+
+// Renderer options for exact pixel checks: the shared test environment, no tone mapping (so a
+// linear value v encodes to linearToSrgb8(v)), the renderer's neutral background, and the mesh
+// shader's output channel (BaseColor: materials strategies write their base colour unlit, which
+// tests can predict exactly; Shaded: the full physically based result).
+render::RendererOptions pixelTestOptions(std::uint32_t width, std::uint32_t height,
+                                         std::uint32_t samples = 1,
+                                         render::DebugChannel channel =
+                                             render::DebugChannel::BaseColor);
 
 }  // namespace encore::test

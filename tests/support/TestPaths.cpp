@@ -16,6 +16,18 @@ std::optional<std::filesystem::path> sharedModelsDir() {
     return std::nullopt;
 }
 
+std::optional<std::filesystem::path> sharedReferenceDir() {
+    std::filesystem::path dir = std::filesystem::path(ENCORE_SHARED_MODELS_DIR) / ".." / "reference";
+    if (const char* overridden = std::getenv("ENCORE_REFERENCE_DIR")) {
+        dir = overridden;
+    }
+    std::error_code ec;
+    if (std::filesystem::is_regular_file(dir / "list.txt", ec)) {
+        return dir.lexically_normal();
+    }
+    return std::nullopt;
+}
+
 std::filesystem::path makeTempDir(const std::string& name) {
     auto dir = std::filesystem::temp_directory_path() /
                ("encore-test-" + std::to_string(::getpid()) + "-" + name);

@@ -10,6 +10,9 @@ namespace encore::test {
 // message saying so).
 std::optional<std::filesystem::path> sharedModelsDir();
 
+// ../shared/reference (renders by the Khronos glTF Sample Renderer, with list.txt), or nullopt.
+std::optional<std::filesystem::path> sharedReferenceDir();
+
 // A fresh, empty directory under the system temp dir, unique to this process and name.
 std::filesystem::path makeTempDir(const std::string& name);
 

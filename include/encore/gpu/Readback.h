@@ -22,6 +22,12 @@ Result<image::ImageRgba8> readTexture(Context& context, const wgpu::Texture& tex
 Result<image::ImageRgba8> readTextureLevel(Context& context, const wgpu::Texture& texture,
                                            std::uint32_t level);
 
+// Reads one mip level and array layer of an RGBA16Float texture (CopySrc) as RGBA floats, rows
+// top to bottom: HDR render targets and environment maps, for tests and tools.
+Result<std::vector<float>> readTextureRgba16Float(Context& context, const wgpu::Texture& texture,
+                                                  std::uint32_t level = 0,
+                                                  std::uint32_t layer = 0);
+
 // Reads `size` bytes at `offset` of a buffer with CopySrc usage (offset and size multiples of 4).
 Result<std::vector<std::uint8_t>> readBuffer(Context& context, const wgpu::Buffer& buffer,
                                              std::uint64_t offset, std::uint64_t size);

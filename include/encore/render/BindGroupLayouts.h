@@ -1,10 +1,12 @@
 #pragma once
 
 // The bind group layouts shared by every strategy, ordered by how often a group changes:
-//   0  frame      camera matrices (uniform), once per pass or bundle
+//   0  frame      camera matrices (uniform), then the scene's lighting: lighting uniform,
+//                 punctual lights (storage), specular and irradiance cubes, BRDF lookup table
+//                 and their sampler; once per pass or bundle
 //   1  instances  one node's transform (uniform), all transforms (read-only storage), or all
 //                 transforms plus a draw's visible-instance list (GPU culling)
-//   2  material   material uniform, base colour sampler and texture
+//   2  material   material uniform, then a sampler and a texture per texture slot
 
 #include <webgpu/webgpu_cpp.h>
 

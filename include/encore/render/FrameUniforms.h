@@ -1,7 +1,8 @@
 #pragma once
 
-// Group 0: the per-frame uniform buffer (struct Frame in frame.wgsl) and its bind group. The
-// camera changes through writeBuffer; the bind group, and so any recorded bundle, stays valid.
+// Group 0: the per-frame uniform buffer (struct Frame in frame.wgsl) and the bind group that
+// binds it with the scene's lighting (SceneLighting). The camera changes through writeBuffer;
+// the bind group, and so any recorded bundle, stays valid.
 
 #include <webgpu/webgpu_cpp.h>
 
@@ -9,6 +10,7 @@
 
 #include "encore/render/BindGroupLayouts.h"
 #include "encore/render/Camera.h"
+#include "encore/render/Lighting.h"
 
 namespace encore::render {
 
@@ -23,7 +25,13 @@ static_assert(sizeof(FrameUniform) == 144);
 class FrameUniforms {
   public:
     FrameUniforms() = default;
-    FrameUniforms(const wgpu::Device& device, const BindGroupLayouts& layouts);
+    FrameUniforms(const wgpu::Device& device, const BindGroupLayouts& layouts,
+                  const SceneLighting& lighting);
+
+    // Creates the bind group again over `lighting`'s current buffers (after its light buffer
+    // grew); bundles recorded with the old one must be recorded again.
+    void bindLighting(const wgpu::Device& device, const BindGroupLayouts& layouts,
+                      const SceneLighting& lighting);
 
     void update(const wgpu::Queue& queue, const Camera& camera, float timeSeconds) const;
 

@@ -2,19 +2,21 @@
 
 // MaterialResources owns the GPU side of a scene's materials: textures, samplers, one uniform
 // buffer holding every material's factors, and one bind group per material for group 2 of
-// mesh.wgsl (BindGroupLayouts::material).
+// mesh.wgsl (BindGroupLayouts::material, material.wgsl).
 //
-// Textures: one per glTF image that a material references, in the colour space of its use.
-// Images used as base colour or emissive textures are RGBA8UnormSrgb, images used as
-// metallic-roughness, normal or occlusion textures RGBA8Unorm; an image used both ways gets
-// two textures. Every texture has its full mip chain, generated on the GPU at creation.
-// A material without a base colour texture, or whose image is missing or was not decoded
-// (empty pixels), binds a 1x1 opaque white sRGB texture instead, so the shader needs no
-// variant for it.
+// A material has twelve texture slots (TextureSlot): the core metallic-roughness, normal,
+// occlusion and emissive textures and those of the extensions Encore shades. Each slot binds
+// its own sampler and texture and has its own texCoord set and KHR_texture_transform in the
+// uniform. Textures: one per glTF image that a material references, in the colour space of its
+// use (base colour, emissive, specular colour, sheen colour and the specular-glossiness texture
+// sRGB; the rest linear); an image used both ways gets two textures. Every texture has its full
+// mip chain, generated on the GPU at creation. A slot without a texture, or whose image is
+// missing or undecoded, binds a 1x1 opaque white texture, so factors multiply through
+// unchanged and the shader needs no variant for it (normal maps are switched by a flag).
 //
 // Samplers: one per distinct glTF sampler state (equal states share one), and the glTF default
-// (repeat, linear, linear mipmaps) for materials without a base colour texture. A sampler that
-// glTF declares without mipmaps (minFilter NEAREST or LINEAR) only reads level 0.
+// (repeat, linear, linear mipmaps) for slots without a texture. A sampler that glTF declares
+// without mipmaps (minFilter NEAREST or LINEAR) only reads level 0.
 //
 // Uniforms: material i lives at i * uniformStride() in uniformBuffer(), as a MaterialUniform.
 // updateMaterial rewrites that range, so factors can change after render bundles are recorded
@@ -22,7 +24,9 @@
 
 #include <webgpu/webgpu_cpp.h>
 
+#include <array>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "encore/core/Result.h"
@@ -32,39 +36,86 @@
 
 namespace encore::render {
 
-// The `Material` struct of mesh.wgsl, byte for byte.
+// The texture slots of material.wgsl, in binding order.
+enum class TextureSlot : std::uint32_t {
+    BaseColor,          // Specular-glossiness: the diffuse texture.
+    MetallicRoughness,  // Specular-glossiness: the specular-glossiness texture.
+    Normal,
+    Occlusion,
+    Emissive,
+    Specular,
+    SpecularColor,
+    Clearcoat,
+    ClearcoatRoughness,
+    ClearcoatNormal,
+    SheenColor,
+    SheenRoughness,
+};
+inline constexpr std::uint32_t kMaterialTextureSlotCount = 12;
+constexpr std::uint32_t materialSamplerBinding(std::uint32_t slot) { return 1 + 2 * slot; }
+constexpr std::uint32_t materialTextureBinding(std::uint32_t slot) { return 2 + 2 * slot; }
+
+// The texture reference of `material` in `slot` (nullopt when it has none).
+std::optional<scene::TextureRef> slotTexture(const scene::Material& material, TextureSlot slot);
+
+// One slot's texture coordinates: the rows of its 2x3 KHR_texture_transform matrix; row0[3] is
+// 1 when the slot reads TEXCOORD_1.
+struct TextureSlotUniform {
+    float row0[4];
+    float row1[4];
+};
+
+// Bits of MaterialUniform::flags[1] (material.wgsl's kMaterial*).
+inline constexpr std::uint32_t kMaterialNormalMap = 1;
+inline constexpr std::uint32_t kMaterialClearcoatNormalMap = 2;
+inline constexpr std::uint32_t kMaterialClearcoat = 4;
+inline constexpr std::uint32_t kMaterialSheen = 8;
+inline constexpr std::uint32_t kMaterialSpecular = 16;
+
+// The `Material` struct of material.wgsl, byte for byte.
 struct MaterialUniform {
     float baseColorFactor[4];
-    // KHR_texture_transform of the base colour texture as the rows of the 2x3 matrix
-    // T * R * S applied to (u, v, 1); identity when the texture has no transform.
-    float texcoordRow0[4];
-    float texcoordRow1[4];
-    // The material's alphaCutoff for AlphaMode::Mask (0 stays 0), 0 otherwise.
-    float alphaCutoff;
-    // 1 for AlphaMode::Blend, whose alpha is opacity; OPAQUE and MASK write alpha 1 (glTF).
-    float alphaBlend;
-    float padding[2];
+    float emissive[4];            // emissiveFactor * emissiveStrength.
+    float metallicRoughness[4];   // metallic, roughness, normal scale, occlusion strength.
+    float alpha[4];               // alphaCutoff (MASK only, 0 stays 0), BLEND flag, IOR.
+    float specular[4];            // Specular colour factor, specular factor.
+    float clearcoat[4];           // Factor, roughness factor, normal scale.
+    float sheen[4];               // Colour factor, roughness factor.
+    float specularGlossiness[4];  // Specular factor, glossiness factor.
+    std::uint32_t flags[4];       // Shading model (0 metal-rough, 1 spec-gloss, 2 unlit), bits.
+    TextureSlotUniform slots[kMaterialTextureSlotCount];
 };
-static_assert(sizeof(MaterialUniform) == 64);
+static_assert(sizeof(MaterialUniform) == 528);
 
 // The uniform contents of `material` (no GPU involved).
 MaterialUniform makeMaterialUniform(const scene::Material& material);
 
+// Whether the material reads TEXCOORD_1 in any slot (a shader variant).
+bool materialUsesTexcoord1(const scene::Material& material);
+// Whether the material has a normal map (base or clear coat): TANGENT is then worth binding.
+bool materialHasNormalMap(const scene::Material& material);
+
 enum class ColorSpace : std::uint8_t {
-    Srgb,    // Colour data: base colour, emissive.
-    Linear,  // Non-colour data: metallic-roughness, normal, occlusion.
+    Srgb,    // Colour data: base colour, emissive, specular and sheen colour.
+    Linear,  // Non-colour data: metallic-roughness, normal, occlusion, factors.
 };
 
-// Which material texture slots the shaders sample. Only those are uploaded (with mip chains);
-// references in the others are still validated. mesh.wgsl samples the base colour alone.
+// The colour space a slot's texture is sampled in for `material`.
+ColorSpace slotColorSpace(const scene::Material& material, TextureSlot slot);
+
+// Which material texture slots are uploaded (with mip chains); references in the others are
+// still validated. Encore's shading samples all of them.
 struct SampledTextures {
     bool baseColor = true;
-    bool metallicRoughness = false;
-    bool normal = false;
-    bool occlusion = false;
-    bool emissive = false;
+    bool metallicRoughness = true;
+    bool normal = true;
+    bool occlusion = true;
+    bool emissive = true;
+    bool extensions = true;  // Specular, clearcoat and sheen slots.
 
-    static SampledTextures all() { return {true, true, true, true, true}; }
+    static SampledTextures all() { return {}; }
+    static SampledTextures baseColorOnly() { return {true, false, false, false, false, false}; }
+    bool sampled(TextureSlot slot) const;
 };
 
 class MaterialResources {
@@ -144,12 +195,12 @@ class MaterialResources {
     std::vector<ImageTextures> mImageTextures;  // Indexed by ImageId.
     std::vector<wgpu::Sampler> mSamplers;
     std::vector<std::size_t> mSceneSamplers;  // SamplerId -> index into mSamplers.
-    std::vector<bool> mDefaultBaseColor;      // Indexed by MaterialId.
     wgpu::Buffer mUniforms;
     std::uint64_t mUniformStride = 256;
     std::vector<wgpu::BindGroup> mBindGroups;  // Indexed by MaterialId.
-    std::vector<std::size_t> mMaterialTextures;  // MaterialId -> index into mTextures.
-    std::vector<std::size_t> mMaterialSamplers;  // MaterialId -> index into mSamplers.
+    using SlotIndices = std::array<std::size_t, kMaterialTextureSlotCount>;
+    std::vector<SlotIndices> mMaterialTextures;  // MaterialId -> slot -> index into mTextures.
+    std::vector<SlotIndices> mMaterialSamplers;  // MaterialId -> slot -> index into mSamplers.
     std::uint64_t mGeneration = 0;
 
     wgpu::BindGroup createBindGroup(const wgpu::Device& device, const BindGroupLayouts& layouts,

@@ -24,14 +24,14 @@ struct VertexAttributeKey {
 };
 
 struct VertexBufferKey {
-    static constexpr std::uint32_t kMaxAttributes = 4;
+    static constexpr std::uint32_t kMaxAttributes = 8;
     std::uint32_t arrayStride = 0;
     std::uint32_t attributeCount = 0;
     VertexAttributeKey attributes[kMaxAttributes] = {};
 };
 
 struct PipelineKey {
-    static constexpr std::uint32_t kMaxBuffers = 4;
+    static constexpr std::uint32_t kMaxBuffers = 8;  // WebGPU's maxVertexBuffers.
     std::uint32_t bufferCount = 0;
     VertexBufferKey buffers[kMaxBuffers] = {};  // Sorted by their first shader location.
     wgpu::PrimitiveTopology topology = wgpu::PrimitiveTopology::TriangleList;

@@ -1,8 +1,10 @@
 #pragma once
 
-// An offscreen colour + depth target. Colour is RGBA8UnormSrgb (shading happens in linear space
-// and is encoded on write); with sampleCount 4 the pass renders into a multisampled texture and
-// resolves into the readable colour texture.
+// An offscreen target. Scenes render into a linear HDR colour texture (rgba16float, alpha =
+// coverage) with depth; with sampleCount 4 the pass renders into multisampled textures and
+// resolves into the single-sampled HDR texture. A tone-mapping pass then writes the readable
+// RGBA8UnormSrgb output (ToneMapper). A target created with `hdr = false` renders straight into
+// the output format (the Animometer, which has no lighting to map).
 
 #include <webgpu/webgpu_cpp.h>
 
@@ -16,11 +18,13 @@ struct RenderTargetOptions {
     std::uint32_t width = 1280;
     std::uint32_t height = 720;
     std::uint32_t sampleCount = 1;  // 1 or 4.
+    bool hdr = true;
 };
 
 class RenderTarget {
   public:
     static constexpr wgpu::TextureFormat kColorFormat = wgpu::TextureFormat::RGBA8UnormSrgb;
+    static constexpr wgpu::TextureFormat kHdrFormat = wgpu::TextureFormat::RGBA16Float;
     static constexpr wgpu::TextureFormat kDepthFormat = wgpu::TextureFormat::Depth32Float;
 
     static Result<RenderTarget> create(const wgpu::Device& device,
@@ -29,22 +33,32 @@ class RenderTarget {
     std::uint32_t width() const { return mOptions.width; }
     std::uint32_t height() const { return mOptions.height; }
     std::uint32_t sampleCount() const { return mOptions.sampleCount; }
+    bool hdr() const { return mOptions.hdr; }
     float aspect() const { return float(mOptions.width) / float(mOptions.height); }
 
-    // The single-sampled texture that holds the final image (CopySrc).
-    const wgpu::Texture& colorTexture() const { return mColor; }
+    // The format scene pipelines render into: kHdrFormat, or kColorFormat without HDR.
+    wgpu::TextureFormat sceneFormat() const { return mOptions.hdr ? kHdrFormat : kColorFormat; }
 
-    // Attachments for a pass that clears colour to `clearColor` and depth to 1.
+    // The single-sampled texture that holds the final image (kColorFormat, CopySrc).
+    const wgpu::Texture& colorTexture() const { return mOutput; }
+    // The resolved scene colour (the output itself without HDR; TextureBinding with HDR).
+    const wgpu::Texture& sceneTexture() const { return mScene; }
+    const wgpu::TextureView& sceneView() const { return mSceneView; }
+    const wgpu::TextureView& outputView() const { return mOutputView; }
+
+    // Attachments for a scene pass that clears colour to `clearColor` and depth to 1.
     wgpu::RenderPassColorAttachment colorAttachment(const wgpu::Color& clearColor) const;
     wgpu::RenderPassDepthStencilAttachment depthAttachment() const;
 
   private:
     RenderTargetOptions mOptions;
-    wgpu::Texture mColor;
-    wgpu::Texture mMultisampledColor;
+    wgpu::Texture mScene;
+    wgpu::Texture mMultisampledScene;
+    wgpu::Texture mOutput;
     wgpu::Texture mDepth;
-    wgpu::TextureView mColorView;
-    wgpu::TextureView mMultisampledColorView;
+    wgpu::TextureView mSceneView;
+    wgpu::TextureView mMultisampledSceneView;
+    wgpu::TextureView mOutputView;
     wgpu::TextureView mDepthView;
 };
 

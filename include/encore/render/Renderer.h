@@ -1,26 +1,39 @@
 #pragma once
 
 // Renderer draws a SceneData with one strategy into an offscreen RenderTarget. It owns what all
-// strategies share (shader library, bind group layouts, frame uniforms) and the strategy itself.
+// strategies share (shader library, bind group layouts, frame uniforms, the scene's lighting and
+// environment, tone mapping) and the strategy itself. A frame renders the scene in linear HDR,
+// then tone maps it into the target's sRGB output.
 
 #include <memory>
+#include <string>
 #include <span>
 #include <vector>
 
 #include "encore/core/Result.h"
 #include "encore/gpu/Context.h"
+#include "encore/image/HdrImage.h"
 #include "encore/image/ImageCodec.h"
 #include "encore/render/Camera.h"
 #include "encore/render/DrawCounters.h"
 #include "encore/render/FrameTimer.h"
+#include "encore/render/Lighting.h"
 #include "encore/render/RenderTarget.h"
 #include "encore/render/Strategy.h"
+#include "encore/render/ToneMapper.h"
 
 namespace encore::render {
 
 struct RendererOptions {
     RenderTargetOptions target;
-    wgpu::Color clearColor{0.05, 0.05, 0.06, 1.0};
+    ToneMappingOptions toneMapping;
+    LightingParameters lighting;
+    // The image-based light; several renderers may share one. Null: the renderer builds one
+    // from `environmentImage`, or from the default studio (image::makeStudioEnvironment),
+    // with `environmentOptions`.
+    std::shared_ptr<Environment> environment;
+    std::shared_ptr<const image::HdrImage> environmentImage;
+    EnvironmentOptions environmentOptions;
 };
 
 // A frame's timing (gpuMilliseconds only with a GPU timer set) and what it recorded.
@@ -60,8 +73,26 @@ class Renderer {
     // that used the old texture are re-recorded before they execute again.
     Result<void> replaceBaseColorImage(scene::MaterialId material, const scene::Image& image);
 
+    // Lighting and tone mapping, through buffers and in-place texture writes: recorded bundles
+    // stay valid (tests check bundlesRecorded).
+    void setLighting(const LightingParameters& parameters);
+    void setToneMapping(const ToneMappingOptions& options);
+    // Recomputes the environment maps from `panorama` into the same textures.
+    Result<void> loadEnvironment(const image::HdrImage& panorama);
+    // Rewrites a placed light (an index into SceneData::lightInstances of the prepared scene).
+    Result<void> updateLight(std::size_t lightInstance, const scene::Light& light,
+                             const scene::LightInstance& placed);
+    const SceneLighting& lighting() const { return *mLighting; }
+
+    // Tone maps the target's HDR scene colour into its output now: for callers that record
+    // their own passes into target().colorAttachment() (renderFrame does this itself).
+    void toneMapScene();
+
     // Waits for the GPU and reads the final image back.
     Result<image::ImageRgba8> readImage();
+    // The frame's linear HDR colour before tone mapping (RGBA floats, alpha = coverage); for
+    // tests of the shading itself (energy, furnace).
+    Result<std::vector<float>> readHdrImage();
 
     // Times every pass of later frames with `timer` (nullptr: untimed); each frame then waits
     // for its timestamps and reports them in FrameResult::gpuMilliseconds.
@@ -82,7 +113,10 @@ class Renderer {
     RenderTarget mTarget;
     std::unique_ptr<shaders::ShaderLibrary> mShaders;
     std::unique_ptr<BindGroupLayouts> mLayouts;
+    std::unique_ptr<SceneLighting> mLighting;  // Before mFrame: its bind group binds these.
     std::unique_ptr<FrameUniforms> mFrame;
+    std::unique_ptr<ToneMapper> mToneMapper;
+    std::unique_ptr<EnvironmentBackground> mBackground;
     std::unique_ptr<RenderSetup> mSetup;  // Stable address: strategies keep pointers to it.
     std::unique_ptr<Strategy> mStrategy;
     gpu::GpuTimer* mTimer = nullptr;

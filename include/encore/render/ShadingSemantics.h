@@ -10,10 +10,4 @@ namespace encore::render {
 inline constexpr std::array kUnlitTransformSemantics = {scene::Semantic::Position,
                                                         scene::Semantic::Normal};
 
-// Attributes read by the material shading (absent ones select a shader variant).
-inline constexpr std::array kMaterialSemantics = {scene::Semantic::Position,
-                                                  scene::Semantic::Normal,
-                                                  scene::Semantic::Texcoord0,
-                                                  scene::Semantic::Color0};
-
 }  // namespace encore::render

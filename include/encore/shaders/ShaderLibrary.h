@@ -25,11 +25,13 @@ enum class InstanceSource : std::uint8_t {
 // Small, padded, hashable: used as a cache key and as part of PipelineKey.
 struct ShaderVariantKey {
     InstanceSource instanceSource = InstanceSource::NodeUniform;
-    bool materials = false;
+    bool materials = false;  // glTF materials, physically based (mesh.wgsl's MATERIALS).
     bool hasTexcoord = false;
     bool hasColor = false;
     bool alphaMask = false;
-    std::uint8_t padding[3] = {};
+    bool hasTexcoord1 = false;  // A texture of the material reads TEXCOORD_1.
+    bool hasTangent = false;    // TANGENT is bound (the material has a normal map).
+    std::uint8_t padding[1] = {};
 
     bool operator==(const ShaderVariantKey&) const = default;
     std::set<std::string, std::less<>> flags() const;

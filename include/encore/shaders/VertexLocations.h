@@ -10,5 +10,7 @@ inline constexpr std::uint32_t kPositionLocation = 0;
 inline constexpr std::uint32_t kNormalLocation = 1;
 inline constexpr std::uint32_t kTexcoord0Location = 2;
 inline constexpr std::uint32_t kColor0Location = 3;
+inline constexpr std::uint32_t kTangentLocation = 4;
+inline constexpr std::uint32_t kTexcoord1Location = 5;
 
 }  // namespace encore::shaders

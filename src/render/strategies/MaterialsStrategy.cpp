@@ -4,15 +4,15 @@
 #include <map>
 #include <unordered_map>
 
-#include "encore/render/ShadingSemantics.h"
 
 namespace encore::render {
 
 namespace {
 
-// The variant a primitive and its material need: a missing TEXCOORD_0 or COLOR_0 removes a
-// vertex input, MASK adds the discard. Everything else (textures or not) is uniform data and
-// 1-pixel default textures, so it shares the variant.
+// The variant a primitive and its material need: vertex inputs that exist and are read
+// (TEXCOORD_0, COLOR_0; TANGENT only under a normal map; TEXCOORD_1 only when a texture reads
+// it) and MASK's discard. Everything else (textures or not, extensions, unlit) is uniform data
+// and 1-pixel default textures, so it shares the variant.
 shaders::ShaderVariantKey materialVariant(const scene::Primitive& primitive,
                                           const scene::Material& material) {
     shaders::ShaderVariantKey key;
@@ -21,7 +21,29 @@ shaders::ShaderVariantKey materialVariant(const scene::Primitive& primitive,
     key.hasTexcoord = primitive.attribute(scene::Semantic::Texcoord0).has_value();
     key.hasColor = primitive.attribute(scene::Semantic::Color0).has_value();
     key.alphaMask = material.alphaMode == scene::AlphaMode::Mask;
+    key.hasTangent = materialHasNormalMap(material) && !material.unlit &&
+                     primitive.attribute(scene::Semantic::Tangent).has_value();
+    key.hasTexcoord1 = materialUsesTexcoord1(material) &&
+                       primitive.attribute(scene::Semantic::Texcoord1).has_value();
     return key;
+}
+
+// The attributes a variant reads, in the order GeometryBuffers binds them.
+std::vector<scene::Semantic> variantSemantics(const shaders::ShaderVariantKey& key) {
+    std::vector<scene::Semantic> semantics = {scene::Semantic::Position, scene::Semantic::Normal};
+    if (key.hasTexcoord) {
+        semantics.push_back(scene::Semantic::Texcoord0);
+    }
+    if (key.hasColor) {
+        semantics.push_back(scene::Semantic::Color0);
+    }
+    if (key.hasTangent) {
+        semantics.push_back(scene::Semantic::Tangent);
+    }
+    if (key.hasTexcoord1) {
+        semantics.push_back(scene::Semantic::Texcoord1);
+    }
+    return semantics;
 }
 
 }  // namespace
@@ -52,14 +74,15 @@ Result<void> MaterialsStrategy::prepare(const RenderSetup& setup, const scene::S
         }
         for (const scene::Primitive& primitive : scene.meshes[mesh].primitives) {
             const scene::Material& material = scene.materials[primitive.material.index()];
-            auto bindings = mGeometry->bind(primitive, kMaterialSemantics);
+            const shaders::ShaderVariantKey variant = materialVariant(primitive, material);
+            auto bindings = mGeometry->bind(primitive, variantSemantics(variant));
             if (!bindings) {
                 return bindings.error();
             }
             mBindings.push_back(std::make_unique<PrimitiveBindings>(std::move(*bindings)));
             const PrimitiveBindings* bound = mBindings.back().get();
 
-            PipelineKey key = meshPipelineKey(setup, *bound, materialVariant(primitive, material));
+            PipelineKey key = meshPipelineKey(setup, *bound, variant);
             key.cullMode = material.doubleSided ? wgpu::CullMode::None : wgpu::CullMode::Back;
             key.blend = material.alphaMode == scene::AlphaMode::Blend;
             // Mirrored instances flip the winding, so they need the other front face.

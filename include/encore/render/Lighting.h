@@ -1,0 +1,113 @@
+#pragma once
+
+// SceneLighting owns what group 0 binds besides the camera: the lighting uniform (environment
+// rotation and intensity, light count, debug channel), the punctual lights of the scene
+// (KHR_lights_punctual, one storage buffer) and the image-based-lighting Environment. All of it
+// changes through buffers and in-place texture writes: a recorded render bundle stays valid
+// when the environment, its intensity or rotation, or a light changes. Only a scene with more
+// lights than the buffer holds grows the buffer, which replaces the frame bind group (the
+// renderer prepares strategies again then anyway).
+
+#include <webgpu/webgpu_cpp.h>
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "encore/core/Result.h"
+#include "encore/render/Environment.h"
+#include "encore/scene/SceneData.h"
+
+namespace encore::render {
+
+// What the mesh shader outputs: the shaded colour, or one input of the shading (a debug view;
+// tone mapping "none" then shows the value itself).
+enum class DebugChannel : std::uint32_t {
+    Shaded,
+    BaseColor,
+    Normal,  // Shading normal, world space, mapped to 0..1.
+    Metallic,
+    Roughness,
+    Occlusion,
+    Emissive,
+};
+
+struct LightingParameters {
+    float environmentIntensity = 1.0f;
+    float environmentRotationRadians = 0.0f;  // About +Y, counter-clockwise seen from above.
+    bool imageBasedLighting = true;
+    bool punctualLights = true;  // The file's KHR_lights_punctual lights.
+    DebugChannel debugChannel = DebugChannel::Shaded;
+};
+
+// struct Lighting of scene_lighting.wgsl, byte for byte.
+struct LightingUniform {
+    float environmentRotation[12];  // mat3x3f: three columns of vec3 padded to 16 bytes.
+    float environmentIntensity;
+    float specularLevels;
+    std::uint32_t lightCount;
+    std::uint32_t imageBasedLighting;
+    std::uint32_t debugChannel;
+    std::uint32_t padding[3];
+};
+static_assert(sizeof(LightingUniform) == 80);
+
+// struct PunctualLight of scene_lighting.wgsl, byte for byte.
+struct LightUniform {
+    float position[3];
+    float range;
+    float direction[3];
+    std::uint32_t kind;  // 0 directional, 1 point, 2 spot.
+    float color[3];
+    float intensity;
+    float innerConeCos;
+    float outerConeCos;
+    float padding[2];
+};
+static_assert(sizeof(LightUniform) == 64);
+
+LightUniform makeLightUniform(const scene::Light& light, const scene::LightInstance& placed);
+
+class SceneLighting {
+  public:
+    // Uses `environment` (shared: several renderers may light with one).
+    static Result<SceneLighting> create(const wgpu::Device& device, const wgpu::Queue& queue,
+                                        std::shared_ptr<Environment> environment);
+
+    SceneLighting(SceneLighting&&) noexcept = default;
+    SceneLighting& operator=(SceneLighting&&) noexcept = default;
+
+    void setParameters(const LightingParameters& parameters);
+    const LightingParameters& parameters() const { return mParameters; }
+
+    // Uploads the placed lights of `scene`. Returns true when the light buffer had to grow, so
+    // bind groups that reference it must be created again.
+    bool setSceneLights(const scene::SceneData& scene);
+    // Rewrites one placed light (an index into SceneData::lightInstances) in place.
+    Result<void> updateLight(std::size_t lightInstance, const scene::Light& light,
+                             const scene::LightInstance& placed);
+    std::size_t lightCount() const { return mLightCount; }
+
+    // Replaces the environment's contents (the same textures: bind groups stay valid).
+    Result<void> loadEnvironment(const image::HdrImage& panorama);
+    Environment& environment() { return *mEnvironment; }
+    const Environment& environment() const { return *mEnvironment; }
+
+    const wgpu::Buffer& uniformBuffer() const { return mUniform; }
+    const wgpu::Buffer& lightBuffer() const { return mLights; }
+
+  private:
+    SceneLighting() = default;
+    void writeUniform();
+
+    wgpu::Device mDevice;
+    wgpu::Queue mQueue;
+    std::shared_ptr<Environment> mEnvironment;
+    wgpu::Buffer mUniform;
+    wgpu::Buffer mLights;
+    std::size_t mLightCapacity = 0;
+    std::size_t mLightCount = 0;
+    LightingParameters mParameters;
+};
+
+}  // namespace encore::render

@@ -1,0 +1,51 @@
+#include "RenderTestSupport.h"
+
+#include <cstdio>
+
+#include "GpuTestSupport.h"
+#include "encore/image/HdrImage.h"
+
+namespace encore::test {
+
+std::shared_ptr<render::Environment> testEnvironment() {
+    static std::shared_ptr<render::Environment> environment = [] {
+        gpu::Context* context = vulkanContext();
+        if (!context) {
+            return std::shared_ptr<render::Environment>();
+        }
+        // The library must outlive the environment's later load() calls.
+        static shaders::ShaderLibrary shaders(context->device());
+        auto created = render::Environment::create(context->device(), context->queue(), shaders,
+                                                   image::makeStudioEnvironment(256),
+                                                   testEnvironmentOptions());
+        if (!created) {
+            std::fprintf(stderr, "%s\n", created.error().message.c_str());
+            return std::shared_ptr<render::Environment>();
+        }
+        return std::make_shared<render::Environment>(std::move(*created));
+    }();
+    return environment;
+}
+
+render::EnvironmentOptions testEnvironmentOptions() {
+    render::EnvironmentOptions options;
+    options.specularSize = 64;
+    options.irradianceSize = 16;
+    options.lutSize = 64;
+    options.specularSamples = 64;
+    options.irradianceSamples = 128;
+    return options;
+}
+
+render::RendererOptions pixelTestOptions(std::uint32_t width, std::uint32_t height,
+                                         std::uint32_t samples,
+                                         render::DebugChannel channel) {
+    render::RendererOptions options;
+    options.target = {width, height, samples};
+    options.environment = testEnvironment();
+    options.toneMapping.toneMapping = render::ToneMapping::None;
+    options.lighting.debugChannel = channel;
+    return options;
+}
+
+}  // namespace encore::test
