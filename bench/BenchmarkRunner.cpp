@@ -173,6 +173,7 @@ Result<BenchReport> runBenchmarks(gpu::Context& context, const BenchOptions& opt
     if (!renderer) {
         return renderer.error();
     }
+    report.environmentMilliseconds = renderer->lighting().environment().lastBuildMilliseconds();
     auto timer = gpu::GpuTimer::create(context);
     report.timestamps = timer.has_value() && !options.callgrind;
     gpu::GpuTimer* timerPointer = timer ? &*timer : nullptr;

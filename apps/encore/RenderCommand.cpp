@@ -110,6 +110,8 @@ int runRender(const RenderOptions& options, const GlobalOptions& global) {
                      static_cast<unsigned long long>(frame.counters.triangles +
                                                      frame.bundleContents.triangles),
                      frame.encodeMilliseconds);
+        std::fprintf(stderr, "environment: image-based lighting maps built in %.0f ms\n",
+                     renderer->lighting().environment().lastBuildMilliseconds());
     }
     std::printf("%s\n", options.output.c_str());
     return kExitOk;

@@ -270,15 +270,15 @@ TEST(MaterialResourcesTest, UniformsHoldFactorsTransformAndCutoff) {
     EXPECT_EQ(first.baseColorFactor[3], 1.0f);
     // T(0.5, 0) * R(pi/2) * S(2, 2) with KHR_texture_transform's R = [cos sin; -sin cos]:
     // u' = 2v + 0.5, v' = -2u.
-    expectRow(first.texcoordRow0, 0.0f, 2.0f, 0.5f, "row 0");
-    expectRow(first.texcoordRow1, -2.0f, 0.0f, 0.0f, "row 1");
-    EXPECT_EQ(first.alphaCutoff, 0.0f);
+    expectRow(first.slots[0].row0, 0.0f, 2.0f, 0.5f, "row 0");
+    expectRow(first.slots[0].row1, -2.0f, 0.0f, 0.0f, "row 1");
+    EXPECT_EQ(first.alpha[0], 0.0f);
 
     const MaterialUniform second = readUniform(*context, *resources, 1);
-    expectRow(second.texcoordRow0, 1.0f, 0.0f, 0.0f, "identity row 0");
-    expectRow(second.texcoordRow1, 0.0f, 1.0f, 0.0f, "identity row 1");
-    EXPECT_FLOAT_EQ(second.alphaCutoff, 0.3f);
-    EXPECT_EQ(readUniform(*context, *resources, 2).alphaCutoff, 0.0f);
+    expectRow(second.slots[0].row0, 1.0f, 0.0f, 0.0f, "identity row 0");
+    expectRow(second.slots[0].row1, 0.0f, 1.0f, 0.0f, "identity row 1");
+    EXPECT_FLOAT_EQ(second.alpha[0], 0.3f);
+    EXPECT_EQ(readUniform(*context, *resources, 2).alpha[0], 0.0f);
 
     masked.baseColorFactor = {1.0f, 0.0f, 0.0f, 0.5f};
     masked.alphaCutoff = 0.7f;
@@ -287,7 +287,7 @@ TEST(MaterialResourcesTest, UniformsHoldFactorsTransformAndCutoff) {
     EXPECT_EQ(updated.baseColorFactor[0], 1.0f);
     EXPECT_EQ(updated.baseColorFactor[1], 0.0f);
     EXPECT_EQ(updated.baseColorFactor[3], 0.5f);
-    EXPECT_FLOAT_EQ(updated.alphaCutoff, 0.7f);
+    EXPECT_FLOAT_EQ(updated.alpha[0], 0.7f);
     // The neighbours are untouched.
     EXPECT_EQ(readUniform(*context, *resources, 0).baseColorFactor[0], 0.25f);
     EXPECT_EQ(readUniform(*context, *resources, 2).baseColorFactor[0], 1.0f);
@@ -335,9 +335,10 @@ TEST(MaterialResourcesTest, OversizedOrInconsistentImagesAreErrorsNamingTheImage
 namespace encore::render {
 namespace {
 
-// By default only the slots mesh.wgsl samples (base colour) are uploaded; the other references
-// are still checked, so a dangling one is an error, not a silently skipped texture.
-TEST(MaterialResourcesTest, OnlySampledSlotsAreUploadedByDefault) {
+// Every slot a material uses is uploaded in its colour space by default (the shading samples
+// them all); a caller that samples fewer uploads only those, and the other references are still
+// checked, so a dangling one is an error, not a silently skipped texture.
+TEST(MaterialResourcesTest, SampledSlotsAreUploadedInTheirColourSpace) {
     ENCORE_REQUIRE_VULKAN(context);
     scene::SceneData scene;
     for (const char* name : {"base", "metal-rough", "normal", "emissive"}) {
@@ -360,16 +361,26 @@ TEST(MaterialResourcesTest, OnlySampledSlotsAreUploadedByDefault) {
 
     shaders::ShaderLibrary shaders(context->device());
     const BindGroupLayouts layouts = BindGroupLayouts::create(context->device());
-    auto resources =
+    auto all =
         MaterialResources::create(context->device(), context->queue(), shaders, layouts, scene);
+    ASSERT_TRUE(all.ok()) << all.error().message;
+    EXPECT_EQ(all->textureCount(), 5u);  // The white default and the four images.
+    EXPECT_NE(all->texture(scene::ImageId{0u}, ColorSpace::Srgb), nullptr);
+    EXPECT_NE(all->texture(scene::ImageId{1u}, ColorSpace::Linear), nullptr);
+    EXPECT_NE(all->texture(scene::ImageId{2u}, ColorSpace::Linear), nullptr);
+    EXPECT_NE(all->texture(scene::ImageId{3u}, ColorSpace::Srgb), nullptr);
+    EXPECT_EQ(all->texture(scene::ImageId{2u}, ColorSpace::Srgb), nullptr);
+
+    auto resources = MaterialResources::create(context->device(), context->queue(), shaders,
+                                               layouts, scene, SampledTextures::baseColorOnly());
     ASSERT_TRUE(resources.ok()) << resources.error().message;
     EXPECT_EQ(resources->textureCount(), 2u);  // The white default and the base colour.
     EXPECT_NE(resources->texture(scene::ImageId{0u}, ColorSpace::Srgb), nullptr);
     EXPECT_EQ(resources->texture(scene::ImageId{2u}, ColorSpace::Linear), nullptr);
 
     scene.materials[0].normalTexture = scene::TextureRef{scene::TextureId{9u}};
-    auto dangling =
-        MaterialResources::create(context->device(), context->queue(), shaders, layouts, scene);
+    auto dangling = MaterialResources::create(context->device(), context->queue(), shaders,
+                                              layouts, scene, SampledTextures::baseColorOnly());
     ASSERT_FALSE(dangling.ok());
     EXPECT_NE(dangling.error().message.find("texture 9"), std::string::npos)
         << dangling.error().message;

@@ -1,9 +1,10 @@
 // Encore against the Khronos glTF Sample Renderer: every model in ../shared/reference is rendered
 // under the conditions its JSON states (camera, 320x320, studio.hdr, Khronos PBR Neutral,
 // exposure 1, black background, image-based lighting) and compared with the reference PNG by
-// SSIM on luminance and mean absolute colour error. Thresholds are per model, a little below
-// what was measured (docs/reference/README.md lists the numbers). With ENCORE_REFERENCE_OUTPUT
-// set, Encore's images and Encore | reference | difference sheets are written there.
+// SSIM on luminance and mean absolute colour error: per-model floors a little below what was
+// measured (docs/reference/README.md lists the numbers), a mean SSIM of at least 0.95 and no
+// model below 0.90. With ENCORE_REFERENCE_OUTPUT set, Encore's images and
+// Encore | reference | difference sheets are written there.
 
 #include <gtest/gtest.h>
 
@@ -24,9 +25,10 @@
 namespace encore::render {
 namespace {
 
-// The Sample Renderer turns its environment about +Y before lookups (its default rotation);
-// Encore's environment rotation that reproduces it.
-constexpr float kReferenceEnvironmentRotation = 0.0f;
+// The Sample Renderer turns its environment by 90 degrees about +Y before every lookup (its
+// default environmentRotation); Encore's --environment-rotation 90 reproduces it (measured: the
+// other quarter turns lower the mean SSIM from 0.985 to 0.95, 0.90 and 0.85).
+constexpr float kReferenceEnvironmentRotation = 1.5707963f;
 
 struct ReferenceCase {
     std::string name;
@@ -61,10 +63,27 @@ struct Threshold {
     double maximumColorError;
 };
 
+// Measured on lavapipe (docs/reference/README.md), less a margin for drivers that filter or
+// rasterise edges differently.
 Threshold thresholdFor(const std::string& name) {
-    static const std::map<std::string, Threshold> thresholds = {};
+    static const std::map<std::string, Threshold> thresholds = {
+        {"BoxTextured", {0.965, 3.0}},
+        {"Avocado", {0.985, 1.5}},
+        {"Duck", {0.985, 1.5}},
+        {"NormalTangentTest", {0.955, 3.5}},
+        {"MetalRoughSpheresNoTextures", {0.945, 4.5}},
+        {"AlphaBlendModeTest", {0.975, 2.0}},
+        {"TextureTransformTest", {0.975, 3.0}},
+        {"VertexColorTest", {0.965, 4.5}},
+        {"MultiUVTest", {0.980, 2.0}},
+        {"CesiumMilkTruck", {0.965, 3.0}},
+        {"2CylinderEngine", {0.975, 2.0}},
+        {"OrientationTest", {0.975, 2.5}},
+        {"Fox", {0.980, 1.5}},
+        {"BrainStem", {0.975, 2.0}},
+    };
     const auto found = thresholds.find(name);
-    return found != thresholds.end() ? found->second : Threshold{0.90, 12.0};
+    return found != thresholds.end() ? found->second : Threshold{0.90, 8.0};
 }
 
 std::shared_ptr<Environment> studioEnvironment(const std::filesystem::path& file) {
@@ -117,67 +136,80 @@ ReferenceSetup referenceSetup(const nlohmann::json& description,
     return setup;
 }
 
-class ReferenceComparisonTest : public ::testing::TestWithParam<ReferenceCase> {};
+struct Comparison {
+    double ssim = 0.0;
+    double colorError = 0.0;
+};
 
-TEST_P(ReferenceComparisonTest, MatchesTheKhronosSampleRenderer) {
-    const ReferenceCase& entry = GetParam();
-    ENCORE_REQUIRE_VULKAN(context);
-    const auto dir = *test::sharedReferenceDir();
+// Renders one reference model as the reference did and compares the images.
+Comparison compareWithReference(gpu::Context& context, const std::filesystem::path& dir,
+                                const ReferenceCase& entry) {
     std::ifstream jsonFile(dir / (entry.name + ".json"));
     const nlohmann::json description = nlohmann::json::parse(jsonFile);
     auto environment = studioEnvironment(dir / description.value("environment", "studio.hdr"));
-    ASSERT_NE(environment, nullptr);
-
+    EXPECT_NE(environment, nullptr);
     auto scene = scene::loadScene(entry.model);
-    ASSERT_TRUE(scene.ok()) << scene.error().message;
+    EXPECT_TRUE(scene.ok()) << (scene.ok() ? "" : scene.error().message);
+    if (!environment || !scene) {
+        return {};
+    }
     ReferenceSetup setup = referenceSetup(description, environment);
-    auto renderer = Renderer::create(*context, setup.options);
-    ASSERT_TRUE(renderer.ok()) << renderer.error().message;
-    auto prepared = renderer->prepare(*scene, StrategyKind::Bundles);
-    ASSERT_TRUE(prepared.ok()) << prepared.error().message;
+    auto renderer = Renderer::create(context, setup.options);
+    EXPECT_TRUE(renderer.ok());
+    EXPECT_TRUE(renderer->prepare(*scene, StrategyKind::Bundles).ok());
     renderer->renderFrame(setup.camera);
     auto encore = renderer->readImage();
-    ASSERT_TRUE(encore.ok()) << encore.error().message;
     auto reference = image::readImage(dir / (entry.name + ".png"));
-    ASSERT_TRUE(reference.ok()) << reference.error().message;
-
+    EXPECT_TRUE(encore.ok() && reference.ok());
+    if (!encore || !reference) {
+        return {};
+    }
     auto ssim = image::ssimLuminance(*encore, *reference);
-    ASSERT_TRUE(ssim.ok()) << ssim.error().message;
     auto error = image::colorError(*encore, *reference);
-    ASSERT_TRUE(error.ok()) << error.error().message;
-    std::printf("reference %-28s SSIM %.4f  mean abs error %.2f\n", entry.name.c_str(), *ssim,
-                error->meanAbsolute);
+    EXPECT_TRUE(ssim.ok() && error.ok());
+    if (!ssim || !error) {
+        return {};
+    }
     if (const char* output = std::getenv("ENCORE_REFERENCE_OUTPUT")) {
         const std::filesystem::path out(output);
         std::filesystem::create_directories(out);
         const image::ImageRgba8 difference = image::differenceImage(*encore, *reference, 4.0f);
         const image::ImageRgba8 sheet[] = {*encore, *reference, difference};
         EXPECT_TRUE(image::writePng(out / (entry.name + ".png"), *encore).ok());
-        EXPECT_TRUE(image::writePng(out / (entry.name + "-compare.png"),
-                                    image::sideBySide(sheet))
-                        .ok());
-        std::ofstream(out / (entry.name + ".txt"))
-            << *ssim << " " << error->meanAbsolute << "\n";
+        EXPECT_TRUE(
+            image::writePng(out / (entry.name + "-compare.png"), image::sideBySide(sheet)).ok());
     }
-    const Threshold threshold = thresholdFor(entry.name);
-    EXPECT_GE(*ssim, threshold.minimumSsim) << entry.name;
-    EXPECT_LE(error->meanAbsolute, threshold.maximumColorError) << entry.name;
-    EXPECT_TRUE(context->checkNoErrors("rendering a reference model").ok());
+    EXPECT_TRUE(context.checkNoErrors("rendering " + entry.name).ok());
+    return {*ssim, error->meanAbsolute};
 }
 
-std::string caseName(const ::testing::TestParamInfo<ReferenceCase>& info) {
-    return info.param.name;
-}
-
-INSTANTIATE_TEST_SUITE_P(SharedReference, ReferenceComparisonTest,
-                         ::testing::ValuesIn(referenceCases()), caseName);
-GTEST_ALLOW_UNINSTANTIATED_PARAMETERIZED_TEST(ReferenceComparisonTest);
-
-TEST(ReferenceComparison, SharedReferenceIsPresentOrSkipped) {
-    if (!test::sharedReferenceDir()) {
-        GTEST_SKIP() << "../shared/reference is absent: the reference comparison did not run";
+// One test for the whole set: the target is about the mean as much as about each model.
+TEST(ReferenceComparison, EveryModelMatchesTheKhronosSampleRenderer) {
+    const auto dir = test::sharedReferenceDir();
+    if (!dir) {
+        GTEST_SKIP() << "../shared/reference is absent beside the clone: nothing compared";
     }
-    EXPECT_GE(referenceCases().size(), 10u);
+    ENCORE_REQUIRE_VULKAN(context);
+    const auto cases = referenceCases();
+    ASSERT_GE(cases.size(), 10u);
+    double ssimSum = 0.0;
+    double lowest = 1.0;
+    for (const ReferenceCase& entry : cases) {
+        SCOPED_TRACE(entry.name);
+        const Comparison result = compareWithReference(*context, *dir, entry);
+        std::printf("reference %-28s SSIM %.4f  mean abs error %.2f\n", entry.name.c_str(),
+                    result.ssim, result.colorError);
+        const Threshold threshold = thresholdFor(entry.name);
+        EXPECT_GE(result.ssim, threshold.minimumSsim);
+        EXPECT_LE(result.colorError, threshold.maximumColorError);
+        ssimSum += result.ssim;
+        lowest = std::min(lowest, result.ssim);
+    }
+    const double mean = ssimSum / double(cases.size());
+    std::printf("reference mean SSIM %.4f, lowest %.4f over %zu models\n", mean, lowest,
+                cases.size());
+    EXPECT_GE(mean, 0.95);
+    EXPECT_GE(lowest, 0.90);
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
 #include <glm/gtc/constants.hpp>
 
@@ -80,12 +81,18 @@ struct HdrFrame {
     }
 };
 
-// Renders a sphere of one material under `environment` and reads the HDR frame back.
+// Renders a sphere of one material under `environment` and reads the HDR frame back;
+// `editMaterial` may change the material's JSON (extensions) before loading.
 HdrFrame renderSphere(const test::GltfBuilder::MaterialDesc& desc,
-                      std::shared_ptr<Environment> environment) {
+                      std::shared_ptr<Environment> environment,
+                      const std::function<void(test::GltfBuilder&, nlohmann::json&)>&
+                          editMaterial = {}) {
     gpu::Context* context = test::vulkanContext();
     test::GltfBuilder builder;
     const std::uint32_t material = builder.addMaterial(desc);
+    if (editMaterial) {
+        editMaterial(builder, builder.json()["materials"][material]);
+    }
     builder.addScene({addSphere(builder, material)});
     auto scene = scene::loadSceneFromMemory(builder.toGlb(), {}, "sphere.glb");
     EXPECT_TRUE(scene.ok()) << scene.error().message;
@@ -176,6 +183,65 @@ TEST(ShadingEnergyTest, ReflectedEnergyDoesNotGrowWithRoughness) {
             previous = stats.mean;
         }
     }
+}
+
+// KHR_materials_pbrSpecularGlossiness: a file that requires it renders, and a specular-glossiness
+// material with specular 0.04 and diffuse d / 0.96 is the metallic-roughness dielectric of base
+// colour d and roughness 1 - glossiness (the extension's own conversion).
+TEST(SpecularGlossinessTest, MatchesTheEquivalentMetallicRoughnessMaterial) {
+    ENCORE_REQUIRE_VULKAN(context);
+    const glm::vec4 base(0.6f, 0.3f, 0.2f, 1.0f);
+    const float glossiness = 0.6f;
+    const HdrFrame metalRough = renderSphere(
+        {.baseColor = base, .metallic = 0.0f, .roughness = 1.0f - glossiness},
+        test::testEnvironment());
+    const HdrFrame specularGlossy = renderSphere(
+        {.baseColor = glm::vec4(1.0f)}, test::testEnvironment(),
+        [&](test::GltfBuilder& builder, nlohmann::json& material) {
+            const glm::vec3 diffuse = glm::vec3(base) / 0.96f;
+            material["extensions"]["KHR_materials_pbrSpecularGlossiness"] = {
+                {"diffuseFactor", {diffuse.r, diffuse.g, diffuse.b, 1.0}},
+                {"specularFactor", {0.04, 0.04, 0.04}},
+                {"glossinessFactor", glossiness}};
+            builder.json()["extensionsUsed"] = {"KHR_materials_pbrSpecularGlossiness"};
+            builder.json()["extensionsRequired"] = {"KHR_materials_pbrSpecularGlossiness"};
+        });
+    const auto a = sphereStatistics(metalRough);
+    const auto b = sphereStatistics(specularGlossy);
+    ASSERT_GT(a.pixels, 500u);
+    EXPECT_EQ(a.pixels, b.pixels);
+    EXPECT_NEAR(b.mean, a.mean, 0.01 * a.mean);
+    double largest = 0.0;
+    for (std::size_t i = 0; i < metalRough.rgba.size(); ++i) {
+        largest = std::max(largest, double(std::abs(metalRough.rgba[i] - specularGlossy.rgba[i])));
+    }
+    EXPECT_LT(largest, 0.02);
+}
+
+// KHR_materials_emissive_strength scales the emission: an emissive black sphere in a black
+// world shows exactly emissiveFactor x strength.
+TEST(EmissiveTest, EmissiveStrengthScalesTheEmission) {
+    ENCORE_REQUIRE_VULKAN(context);
+    static std::shared_ptr<Environment> black = [] {
+        gpu::Context* gpu = test::vulkanContext();
+        static shaders::ShaderLibrary shaders(gpu->device());
+        auto created = Environment::create(gpu->device(), gpu->queue(), shaders,
+                                           image::makeUniformEnvironment(0.0f, 0.0f, 0.0f),
+                                           test::testEnvironmentOptions());
+        return std::make_shared<Environment>(std::move(*created));
+    }();
+    const HdrFrame frame = renderSphere(
+        {.baseColor = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f)}, black,
+        [](test::GltfBuilder& builder, nlohmann::json& material) {
+            material["emissiveFactor"] = {0.5, 0.25, 1.0};
+            material["extensions"]["KHR_materials_emissive_strength"] = {
+                {"emissiveStrength", 4.0}};
+            builder.json()["extensionsUsed"] = {"KHR_materials_emissive_strength"};
+        });
+    const std::uint32_t centre = kSize / 2;
+    EXPECT_NEAR(frame.at(centre, centre, 0), 2.0f, 0.01f);
+    EXPECT_NEAR(frame.at(centre, centre, 1), 1.0f, 0.01f);
+    EXPECT_NEAR(frame.at(centre, centre, 2), 4.0f, 0.02f);
 }
 
 // --- Normal-map handedness -------------------------------------------------------------------

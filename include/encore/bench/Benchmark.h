@@ -61,6 +61,8 @@ struct BenchReport {
     std::uint32_t cores = 0;
     BenchOptions options;
     bool timestamps = false;
+    // Building the image-based-lighting maps (default studio environment) at start-up.
+    double environmentMilliseconds = 0.0;
     std::vector<BenchResult> results;
     // Measurements the adapter cannot run (e.g. more bind groups than the driver survives),
     // each "<scene> / <strategy>: <reason>".

@@ -1,0 +1,98 @@
+// `encore render` from the command line, as a user reproduces a picture: the reference's exact
+// camera, environment and background given as options give the reference comparison's result,
+// and the shading options reach the image (transparent background, debug channels, errors).
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "CommandRunner.h"
+#include "TestPaths.h"
+#include "encore/image/ImageCodec.h"
+#include "encore/image/ImageCompare.h"
+
+namespace encore::test {
+namespace {
+
+std::string vectorOption(const nlohmann::json& v) {
+    std::ostringstream text;
+    text << v[0].get<double>() << "," << v[1].get<double>() << "," << v[2].get<double>();
+    return text.str();
+}
+
+TEST(RenderCommandTest, ReproducesTheReferencePictureFromTheCommandLine) {
+    const auto reference = sharedReferenceDir();
+    const auto models = sharedModelsDir();
+    if (!reference || !models) {
+        GTEST_SKIP() << "../shared/reference or ../shared/models is absent beside the clone";
+    }
+    std::ifstream jsonFile(*reference / "Duck.json");
+    const auto description = nlohmann::json::parse(jsonFile);
+    const auto& camera = description["camera"];
+    const auto out = makeTempDir("render-reference") / "duck.png";
+    const auto result = runEncore(
+        "render " + quote((*models / "Duck/glTF/Duck.gltf").string()) +
+        " --width 320 --height 320 --environment " +
+        quote((*reference / "studio.hdr").string()) +
+        " --environment-rotation 90 --background '#000000' --camera-position=" +
+        vectorOption(camera["position"]) + " --target=" + vectorOption(camera["target"]) +
+        " --yfov " + std::to_string(camera["yfovDegrees"].get<double>()) + " --znear " +
+        std::to_string(camera["znear"].get<double>()) + " --zfar " +
+        std::to_string(camera["zfar"].get<double>()) + " -o " + quote(out.string()));
+    ASSERT_EQ(result.exitCode, 0) << result.err;
+    auto encore = image::readImage(out);
+    auto expected = image::readImage(*reference / "Duck.png");
+    ASSERT_TRUE(encore.ok() && expected.ok());
+    auto ssim = image::ssimLuminance(*encore, *expected);
+    ASSERT_TRUE(ssim.ok());
+    EXPECT_GE(*ssim, 0.98);
+}
+
+// A generated scene, framed automatically, with a transparent background: the corners are
+// transparent, the objects opaque.
+TEST(RenderCommandTest, TransparentBackgroundLeavesAlphaZeroAroundTheScene) {
+    const auto dir = makeTempDir("render-transparent");
+    const auto scene = dir / "scene.glb";
+    ASSERT_EQ(runEncore("gen --objects 20 --meshes 2 --materials 2 -o " + quote(scene.string()))
+                  .exitCode,
+              0);
+    const auto png = dir / "out.png";
+    const auto result = runEncore("render " + quote(scene.string()) +
+                                  " --width 96 --height 64 --background transparent -o " +
+                                  quote(png.string()));
+    ASSERT_EQ(result.exitCode, 0) << result.err;
+    auto image = image::readImage(png);
+    ASSERT_TRUE(image.ok());
+    EXPECT_EQ(image->pixel(0, 0)[3], 0);
+    std::size_t opaque = 0;
+    for (std::size_t i = 3; i < image->pixels.size(); i += 4) {
+        opaque += image->pixels[i] == 255;
+    }
+    EXPECT_GT(opaque, 200u);
+}
+
+TEST(RenderCommandTest, BadShadingOptionsAreUsageErrors) {
+    const auto dir = makeTempDir("render-options");
+    const auto scene = dir / "scene.glb";
+    ASSERT_EQ(runEncore("gen --objects 2 -o " + quote(scene.string())).exitCode, 0);
+    const auto background = runEncore("render " + quote(scene.string()) +
+                                      " --background '#12345' -o " +
+                                      quote((dir / "a.png").string()));
+    EXPECT_EQ(background.exitCode, 2);
+    EXPECT_NE(background.err.find("#12345"), std::string::npos) << background.err;
+    const auto channel = runEncore("render " + quote(scene.string()) +
+                                   " --debug-channel albedo -o " + quote((dir / "b.png").string()));
+    EXPECT_EQ(channel.exitCode, 2);
+    EXPECT_NE(channel.err.find("albedo"), std::string::npos) << channel.err;
+    const auto environment = runEncore("render " + quote(scene.string()) +
+                                       " --environment " + quote((dir / "none.hdr").string()) +
+                                       " -o " + quote((dir / "c.png").string()));
+    EXPECT_EQ(environment.exitCode, 1);
+    EXPECT_NE(environment.err.find("none.hdr"), std::string::npos) << environment.err;
+}
+
+}  // namespace
+}  // namespace encore::test
