@@ -38,6 +38,49 @@ Result<std::vector<std::uint8_t>> mapAndCopy(Context& context, const wgpu::Buffe
     return bytes;
 }
 
+// Copies one level and layer of a texture into a staging buffer and returns its rows tightly
+// packed (buffer copies need rows aligned to 256 bytes).
+Result<std::vector<std::uint8_t>> readTexelRows(Context& context, const wgpu::Texture& texture,
+                                                std::uint32_t level, std::uint32_t layer,
+                                                std::uint32_t bytesPerTexel) {
+    const std::uint32_t width = std::max(texture.GetWidth() >> level, 1u);
+    const std::uint32_t height = std::max(texture.GetHeight() >> level, 1u);
+    const std::uint32_t rowBytes = width * bytesPerTexel;
+    const std::uint32_t paddedRowBytes = (rowBytes + 255) / 256 * 256;
+    const std::uint64_t size = std::uint64_t(paddedRowBytes) * height;
+
+    wgpu::BufferDescriptor stagingDescriptor{};
+    stagingDescriptor.label = "texture readback";
+    stagingDescriptor.size = size;
+    stagingDescriptor.usage = wgpu::BufferUsage::CopyDst | wgpu::BufferUsage::MapRead;
+    wgpu::Buffer staging = context.device().CreateBuffer(&stagingDescriptor);
+
+    wgpu::TexelCopyTextureInfo source{};
+    source.texture = texture;
+    source.mipLevel = level;
+    source.origin = {0, 0, layer};
+    wgpu::TexelCopyBufferInfo destination{};
+    destination.buffer = staging;
+    destination.layout.bytesPerRow = paddedRowBytes;
+    destination.layout.rowsPerImage = height;
+    wgpu::Extent3D extent{width, height, 1};
+    wgpu::CommandEncoder encoder = context.device().CreateCommandEncoder();
+    encoder.CopyTextureToBuffer(&source, &destination, &extent);
+    wgpu::CommandBuffer commands = encoder.Finish();
+    context.queue().Submit(1, &commands);
+
+    auto bytes = mapAndCopy(context, staging, size);
+    if (!bytes) {
+        return bytes.error();
+    }
+    std::vector<std::uint8_t> rows(std::size_t(rowBytes) * height);
+    for (std::uint32_t y = 0; y < height; ++y) {
+        std::memcpy(&rows[std::size_t(y) * rowBytes],
+                    bytes->data() + std::size_t(y) * paddedRowBytes, rowBytes);
+    }
+    return rows;
+}
+
 float halfToFloat(std::uint16_t half) {
     const std::uint32_t sign = (half >> 15) & 1;
     const std::uint32_t exponent = (half >> 10) & 0x1f;
@@ -72,44 +115,14 @@ Result<image::ImageRgba8> readTextureLevel(Context& context, const wgpu::Texture
                              " does not exist (the texture has " +
                              std::to_string(texture.GetMipLevelCount()) + " levels).");
     }
-    const std::uint32_t width = std::max(texture.GetWidth() >> level, 1u);
-    const std::uint32_t height = std::max(texture.GetHeight() >> level, 1u);
-    // Buffer copies need rows aligned to 256 bytes.
-    const std::uint32_t rowBytes = width * 4;
-    const std::uint32_t paddedRowBytes = (rowBytes + 255) / 256 * 256;
-    const std::uint64_t size = std::uint64_t(paddedRowBytes) * height;
-
-    wgpu::BufferDescriptor stagingDescriptor{};
-    stagingDescriptor.label = "texture readback";
-    stagingDescriptor.size = size;
-    stagingDescriptor.usage = wgpu::BufferUsage::CopyDst | wgpu::BufferUsage::MapRead;
-    wgpu::Buffer staging = context.device().CreateBuffer(&stagingDescriptor);
-
-    wgpu::TexelCopyTextureInfo source{};
-    source.texture = texture;
-    source.mipLevel = level;
-    wgpu::TexelCopyBufferInfo destination{};
-    destination.buffer = staging;
-    destination.layout.bytesPerRow = paddedRowBytes;
-    destination.layout.rowsPerImage = height;
-    wgpu::Extent3D extent{width, height, 1};
-    wgpu::CommandEncoder encoder = context.device().CreateCommandEncoder();
-    encoder.CopyTextureToBuffer(&source, &destination, &extent);
-    wgpu::CommandBuffer commands = encoder.Finish();
-    context.queue().Submit(1, &commands);
-
-    auto bytes = mapAndCopy(context, staging, size);
-    if (!bytes) {
-        return bytes.error();
+    auto rows = readTexelRows(context, texture, level, 0, 4);
+    if (!rows) {
+        return rows.error();
     }
     image::ImageRgba8 image;
-    image.width = width;
-    image.height = height;
-    image.pixels.resize(std::size_t(rowBytes) * height);
-    for (std::uint32_t y = 0; y < height; ++y) {
-        std::memcpy(&image.pixels[std::size_t(y) * rowBytes],
-                    bytes->data() + std::size_t(y) * paddedRowBytes, rowBytes);
-    }
+    image.width = std::max(texture.GetWidth() >> level, 1u);
+    image.height = std::max(texture.GetHeight() >> level, 1u);
+    image.pixels = std::move(*rows);
     if (isBgra(format)) {
         for (std::size_t i = 0; i < image.pixels.size(); i += 4) {
             std::swap(image.pixels[i], image.pixels[i + 2]);
@@ -129,40 +142,15 @@ Result<std::vector<float>> readTextureRgba16Float(Context& context, const wgpu::
                          "Mip level " + std::to_string(level) + " or layer " +
                              std::to_string(layer) + " does not exist.");
     }
-    const std::uint32_t width = std::max(texture.GetWidth() >> level, 1u);
-    const std::uint32_t height = std::max(texture.GetHeight() >> level, 1u);
-    const std::uint32_t rowBytes = width * 8;
-    const std::uint32_t paddedRowBytes = (rowBytes + 255) / 256 * 256;
-    const std::uint64_t size = std::uint64_t(paddedRowBytes) * height;
-    wgpu::BufferDescriptor stagingDescriptor{};
-    stagingDescriptor.label = "HDR texture readback";
-    stagingDescriptor.size = size;
-    stagingDescriptor.usage = wgpu::BufferUsage::CopyDst | wgpu::BufferUsage::MapRead;
-    wgpu::Buffer staging = context.device().CreateBuffer(&stagingDescriptor);
-    wgpu::TexelCopyTextureInfo source{};
-    source.texture = texture;
-    source.mipLevel = level;
-    source.origin = {0, 0, layer};
-    wgpu::TexelCopyBufferInfo destination{};
-    destination.buffer = staging;
-    destination.layout.bytesPerRow = paddedRowBytes;
-    destination.layout.rowsPerImage = height;
-    wgpu::Extent3D extent{width, height, 1};
-    wgpu::CommandEncoder encoder = context.device().CreateCommandEncoder();
-    encoder.CopyTextureToBuffer(&source, &destination, &extent);
-    wgpu::CommandBuffer commands = encoder.Finish();
-    context.queue().Submit(1, &commands);
-    auto bytes = mapAndCopy(context, staging, size);
-    if (!bytes) {
-        return bytes.error();
+    auto rows = readTexelRows(context, texture, level, layer, 8);
+    if (!rows) {
+        return rows.error();
     }
-    std::vector<float> values(std::size_t(width) * height * 4);
-    for (std::uint32_t y = 0; y < height; ++y) {
-        for (std::uint32_t x = 0; x < width * 4; ++x) {
-            std::uint16_t half;
-            std::memcpy(&half, bytes->data() + std::size_t(y) * paddedRowBytes + x * 2, 2);
-            values[std::size_t(y) * width * 4 + x] = halfToFloat(half);
-        }
+    std::vector<float> values(rows->size() / 2);
+    for (std::size_t i = 0; i < values.size(); ++i) {
+        std::uint16_t half;
+        std::memcpy(&half, rows->data() + i * 2, 2);
+        values[i] = halfToFloat(half);
     }
     return values;
 }

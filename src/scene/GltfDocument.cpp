@@ -18,13 +18,6 @@ constexpr std::array kSupportedExtensions = {
     std::string_view("EXT_meshopt_compression"),
     std::string_view("EXT_mesh_gpu_instancing"),
     std::string_view("KHR_texture_transform"),
-    std::string_view("KHR_materials_emissive_strength"),
-    std::string_view("KHR_materials_unlit"),
-    std::string_view("KHR_materials_ior"),
-    std::string_view("KHR_materials_specular"),
-    std::string_view("KHR_materials_clearcoat"),
-    std::string_view("KHR_materials_sheen"),
-    std::string_view("KHR_materials_pbrSpecularGlossiness"),
     std::string_view("KHR_lights_punctual"),
 };
 
@@ -347,7 +340,9 @@ Result<void> parseScenesAndSkins(const Json& root, GltfDocument& document) {
 
 bool isSupportedExtension(std::string_view name) {
     return std::find(kSupportedExtensions.begin(), kSupportedExtensions.end(), name) !=
-           kSupportedExtensions.end();
+               kSupportedExtensions.end() ||
+           std::find(kShadedMaterialExtensions.begin(), kShadedMaterialExtensions.end(), name) !=
+               kShadedMaterialExtensions.end();
 }
 
 Result<GltfDocument> parseDocument(const Json& root) {

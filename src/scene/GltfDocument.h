@@ -4,6 +4,7 @@
 // are raw glTF indices; Validation.cpp checks that each one names an existing element, and the
 // later stages turn the structs into SceneData.
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -240,5 +241,16 @@ Result<void> parseLightsAndCameras(const Json& root, GltfDocument& document);
 
 // Extensions Encore implements; a required extension outside this list is refused.
 bool isSupportedExtension(std::string_view name);
+
+// Material extensions the loader reads; any other extension object on a material is ignored.
+inline constexpr std::array kShadedMaterialExtensions = {
+    std::string_view("KHR_materials_emissive_strength"),
+    std::string_view("KHR_materials_unlit"),
+    std::string_view("KHR_materials_ior"),
+    std::string_view("KHR_materials_specular"),
+    std::string_view("KHR_materials_clearcoat"),
+    std::string_view("KHR_materials_sheen"),
+    std::string_view("KHR_materials_pbrSpecularGlossiness"),
+};
 
 }  // namespace encore::scene

@@ -61,16 +61,6 @@ std::optional<GltfTextureInfo> readTextureInfo(FieldReader& parent,
     return info;
 }
 
-// Material extensions the loader reads; any other extension object on a material is ignored.
-constexpr std::array kShadedMaterialExtensions = {
-    std::string_view("KHR_materials_emissive_strength"),
-    std::string_view("KHR_materials_unlit"),
-    std::string_view("KHR_materials_ior"),
-    std::string_view("KHR_materials_specular"),
-    std::string_view("KHR_materials_clearcoat"),
-    std::string_view("KHR_materials_sheen"),
-    std::string_view("KHR_materials_pbrSpecularGlossiness"),
-};
 
 glm::vec3 readVec3(FieldReader& reader, std::string_view key, glm::vec3 fallback) {
     if (const auto values = reader.numbers(key, 3); values.size() == 3) {

@@ -30,59 +30,12 @@ EnvironmentOptions smallOptions() {
     return options;
 }
 
-float halfToFloat(std::uint16_t half) {
-    const std::uint32_t sign = (half >> 15) & 1;
-    const std::uint32_t exponent = (half >> 10) & 0x1f;
-    const std::uint32_t mantissa = half & 0x3ff;
-    float value = 0.0f;
-    if (exponent == 0) {
-        value = std::ldexp(float(mantissa), -24);
-    } else if (exponent == 31) {
-        value = mantissa ? NAN : INFINITY;
-    } else {
-        value = std::ldexp(float(mantissa | 0x400), int(exponent) - 25);
-    }
-    return sign ? -value : value;
-}
-
 // One level and layer of an RGBA16Float texture as RGBA floats, rows top to bottom.
 std::vector<float> readHalfTexels(gpu::Context& context, const wgpu::Texture& texture,
                                   std::uint32_t level, std::uint32_t layer) {
-    const std::uint32_t width = std::max(texture.GetWidth() >> level, 1u);
-    const std::uint32_t height = std::max(texture.GetHeight() >> level, 1u);
-    const std::uint32_t rowBytes = width * 8;
-    const std::uint32_t paddedRowBytes = (rowBytes + 255) / 256 * 256;
-    wgpu::BufferDescriptor descriptor{};
-    descriptor.size = std::uint64_t(paddedRowBytes) * height;
-    descriptor.usage = wgpu::BufferUsage::CopyDst | wgpu::BufferUsage::CopySrc;
-    const wgpu::Buffer buffer = context.device().CreateBuffer(&descriptor);
-    wgpu::TexelCopyTextureInfo source{};
-    source.texture = texture;
-    source.mipLevel = level;
-    source.origin = {0, 0, layer};
-    wgpu::TexelCopyBufferInfo destination{};
-    destination.buffer = buffer;
-    destination.layout.bytesPerRow = paddedRowBytes;
-    destination.layout.rowsPerImage = height;
-    const wgpu::Extent3D extent{width, height, 1};
-    const wgpu::CommandEncoder encoder = context.device().CreateCommandEncoder();
-    encoder.CopyTextureToBuffer(&source, &destination, &extent);
-    const wgpu::CommandBuffer commands = encoder.Finish();
-    context.queue().Submit(1, &commands);
-    auto bytes = gpu::readBuffer(context, buffer, 0, descriptor.size);
-    EXPECT_TRUE(bytes.ok()) << bytes.error().message;
-    std::vector<float> texels;
-    if (!bytes.ok()) {
-        return texels;
-    }
-    for (std::uint32_t y = 0; y < height; ++y) {
-        for (std::uint32_t x = 0; x < width * 4; ++x) {
-            std::uint16_t half = 0;
-            std::memcpy(&half, bytes->data() + std::size_t(y) * paddedRowBytes + x * 2, 2);
-            texels.push_back(halfToFloat(half));
-        }
-    }
-    return texels;
+    auto texels = gpu::readTextureRgba16Float(context, texture, level, layer);
+    EXPECT_TRUE(texels.ok()) << texels.error().message;
+    return texels.ok() ? std::move(*texels) : std::vector<float>{};
 }
 
 // Samples cube views at given directions with a tiny compute shader, through the sampler the
