@@ -117,8 +117,10 @@ Result<void> decodePrimitive(LoadContext& context,
     const auto key = std::pair{meshIndex, primitiveIndex};
 
     for (const auto& [semantic, uniqueId] : draco.attributes) {
+        // Clang 14 cannot capture a structured binding in a lambda (C++20 allows it).
+        const std::string& wanted = semantic;
         const auto gltf = std::find_if(primitive.attributes.begin(), primitive.attributes.end(),
-                                       [&](const auto& entry) { return entry.first == semantic; });
+                                       [&](const auto& entry) { return entry.first == wanted; });
         if (gltf == primitive.attributes.end()) {
             continue;  // The extension may carry attributes the primitive does not use.
         }
