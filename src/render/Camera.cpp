@@ -143,8 +143,17 @@ Camera Camera::framing(const scene::Bounds& bounds,
                        float aspect,
                        float yawRadians,
                        float verticalFovRadians) {
-    const glm::vec3 center = bounds.empty() ? glm::vec3(0.0f) : bounds.center();
-    const float radius = std::max(bounds.radius(), 1e-4f);
+    glm::vec3 center = bounds.empty() ? glm::vec3(0.0f) : bounds.center();
+    float radius = std::max(bounds.radius(), 1e-4f);
+    // Bounds hold finite points only, but a box near the float range overflows its centre or
+    // radius: frame the origin instead, so the camera never holds NaN or infinity.
+    const bool finite = std::isfinite(center.x) && std::isfinite(center.y) &&
+                        std::isfinite(center.z) && std::isfinite(radius * 4.0f);
+    const scene::Bounds box = finite ? bounds : scene::Bounds{};
+    if (!finite) {
+        center = glm::vec3(0.0f);
+        radius = 1e-4f;
+    }
     const glm::mat4 yaw = glm::rotate(glm::mat4(1.0f), yawRadians, glm::vec3(0.0f, 1.0f, 0.0f));
     const glm::vec3 direction = glm::vec3(yaw * glm::vec4(kFramingDirection, 0.0f));
     // The camera basis for that direction (as lookAt builds it).
@@ -155,13 +164,13 @@ Camera Camera::framing(const scene::Bounds& bounds,
     // The distance from the centre at which every corner of the box is inside both fields of
     // view: a corner nearer the camera by `toward` needs |offset| / tan(half fov) + toward.
     float distance = 0.0f;
-    if (bounds.empty()) {
+    if (box.empty()) {
         distance = radius / std::sin(verticalFovRadians * 0.5f);
     }
-    for (int corner = 0; corner < 8 && !bounds.empty(); ++corner) {
-        const glm::vec3 point((corner & 1) ? bounds.max.x : bounds.min.x,
-                              (corner & 2) ? bounds.max.y : bounds.min.y,
-                              (corner & 4) ? bounds.max.z : bounds.min.z);
+    for (int corner = 0; corner < 8 && !box.empty(); ++corner) {
+        const glm::vec3 point((corner & 1) ? box.max.x : box.min.x,
+                              (corner & 2) ? box.max.y : box.min.y,
+                              (corner & 4) ? box.max.z : box.min.z);
         const glm::vec3 offset = point - center;
         const float toward = glm::dot(offset, direction);
         distance = std::max({distance, std::abs(glm::dot(offset, right)) / tanHalfX + toward,

@@ -21,7 +21,7 @@ TransformUniform makeTransformUniform(const glm::mat4& world) {
 }
 
 glm::mat4 normalMatrixOf(const glm::mat4& world) {
-    return glm::mat4(glm::transpose(glm::inverse(glm::mat3(world))));
+    return scene::normalMatrixOf(world);  // Finite even for singular or non-finite matrices.
 }
 
 }  // namespace encore::render

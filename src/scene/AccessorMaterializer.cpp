@@ -227,6 +227,11 @@ Result<void> resolveAccessors(LoadContext& context) {
         if (context.accessorFilled[i]) {
             continue;
         }
+        if (context.document.accessors[i].count == 0) {
+            return makeError(ErrorCode::InvalidFormat,
+                             context.accessorName(i) +
+                                 " has count 0; glTF requires at least one element.");
+        }
         Accessor accessor;
         ENCORE_TRY_ASSIGN(accessor, resolveAccessor(context, i));
         context.scene.accessors[i] = std::move(accessor);

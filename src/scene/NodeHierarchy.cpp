@@ -9,15 +9,33 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "LoadContext.h"
+#include "encore/core/Log.h"
 
 namespace encore::scene {
+
 namespace {
+
+bool isFinite(const glm::mat3& matrix) {
+    for (int c = 0; c < 3; ++c) {
+        for (int r = 0; r < 3; ++r) {
+            if (!std::isfinite(matrix[c][r])) {
+                return false;
+            }
+        }
+    }
+    return true;
+}
+
+}  // namespace
 
 glm::mat4 normalMatrixOf(const glm::mat4& world) {
     const glm::mat3 linear(world);
     const float determinant = glm::determinant(linear);
     if (std::abs(determinant) > 1e-30f && std::isfinite(determinant)) {
-        return glm::mat4(glm::transpose(glm::inverse(linear)));
+        const glm::mat3 inverseTranspose = glm::transpose(glm::inverse(linear));
+        if (isFinite(inverseTranspose)) {
+            return glm::mat4(inverseTranspose);
+        }
     }
     // A singular matrix (a zero scale) has no inverse; the cofactor matrix is the inverse
     // transpose up to a scale and stays defined, and shaders normalise normals anyway.
@@ -28,7 +46,25 @@ glm::mat4 normalMatrixOf(const glm::mat4& world) {
             cofactor[c][r] = linear[c1][r1] * linear[c2][r2] - linear[c1][r2] * linear[c2][r1];
         }
     }
-    return glm::mat4(cofactor);
+    // A matrix of rank one or less (two zero scales) has a zero cofactor matrix and draws
+    // nothing; a non-finite one would put NaNs on the GPU. Either gets the identity.
+    const bool finite = isFinite(cofactor);
+    const bool zero = cofactor[0] == glm::vec3(0.0f) && cofactor[1] == glm::vec3(0.0f) &&
+                      cofactor[2] == glm::vec3(0.0f);
+    return finite && !zero ? glm::mat4(cofactor) : glm::mat4(1.0f);
+}
+
+namespace {
+
+bool isFinite(const glm::mat4& matrix) {
+    for (int c = 0; c < 4; ++c) {
+        for (int r = 0; r < 4; ++r) {
+            if (!std::isfinite(matrix[c][r])) {
+                return false;
+            }
+        }
+    }
+    return true;
 }
 
 Result<void> linkChildren(const GltfDocument& document, SceneData& scene) {
@@ -243,15 +279,44 @@ Result<void> buildNodes(LoadContext& context) {
         if (const auto& instancing = source.instancing) {
             ENCORE_TRY_ASSIGN(transforms, instanceTransforms(context, index, *instancing));
         }
-        for (const glm::mat4& transform : transforms) {
+        for (std::size_t t = 0; t < transforms.size(); ++t) {
             Instance instance;
             instance.mesh = *node.mesh;
             instance.node = NodeId(index);
-            instance.world = node.world * transform;
+            instance.world = node.world * transforms[t];
+            if (!isFinite(instance.world)) {
+                // NaN or infinite matrices, TRS values or instance transforms: nothing sensible
+                // can be drawn, and the scene's bounds and framing must stay finite.
+                const std::string which =
+                    source.instancing ? " (instance " + std::to_string(t) + ")" : "";
+                ENCORE_TRY(context.warn(ErrorCode::InvalidFormat,
+                                        "node " + std::to_string(index) + which +
+                                            " has a world transform with values that are not "
+                                            "finite (NaN or infinity); its mesh (" +
+                                            std::to_string(node.mesh->index()) +
+                                            ") is not drawn there."));
+                continue;
+            }
             instance.normalMatrix = normalMatrixOf(instance.world);
             scene.bounds.extend(meshBounds[node.mesh->index()].transformed(instance.world));
             scene.instances.push_back(instance);
         }
+    }
+    if (scene.instances.empty()) {
+        // Valid glTF (a scene may have no nodes, nodes no meshes), so not an error even with
+        // --strict: the renderer draws the background alone.
+        std::string why;
+        if (context.document.scenes.empty() && scene.nodes.empty()) {
+            why = "the asset has no scenes and no nodes";
+        } else if (roots.empty()) {
+            why = "the scene it shows has no nodes";
+        } else {
+            why = "no node of the scene it shows has a mesh that can be drawn";
+        }
+        std::string warning = context.displayName + ": The asset draws nothing (" + why +
+                              "); the image shows the background only.";
+        logWarning(warning);
+        scene.warnings.push_back(std::move(warning));
     }
     return {};
 }

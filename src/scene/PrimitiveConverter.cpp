@@ -62,7 +62,9 @@ AccessorId appendIndices(SceneData& scene,
                               static_cast<std::uint32_t>(values.size()), name);
     }
     std::vector<std::uint8_t> bytes(values.size() * 4);
-    std::memcpy(bytes.data(), values.data(), bytes.size());
+    if (!values.empty()) {  // memcpy's pointers must not be null, even for 0 bytes.
+        std::memcpy(bytes.data(), values.data(), bytes.size());
+    }
     return appendAccessor(scene, std::move(bytes), ComponentType::Uint32, 1, false,
                           static_cast<std::uint32_t>(values.size()), name);
 }
@@ -71,7 +73,9 @@ AccessorId appendVec3s(SceneData& scene,
                        const std::vector<glm::vec3>& values,
                        const std::string& name) {
     std::vector<std::uint8_t> bytes(values.size() * sizeof(glm::vec3));
-    std::memcpy(bytes.data(), values.data(), bytes.size());
+    if (!values.empty()) {  // memcpy's pointers must not be null, even for 0 bytes.
+        std::memcpy(bytes.data(), values.data(), bytes.size());
+    }
     return appendAccessor(scene, std::move(bytes), ComponentType::Float32, 3, false,
                           static_cast<std::uint32_t>(values.size()), name);
 }
@@ -204,6 +208,19 @@ Result<void> PrimitiveConverter::readIndexValues() {
                              ") that are not unsigned 8-, 16- or 32-bit scalars.");
     }
     auto values = mScene.readIndices(*id);
+    // glTF forbids the primitive-restart value (all bits set) in index data; WebGPU would
+    // restart a strip there, so convert() widens such 16-bit strip indices to 32 bits.
+    // A 32-bit 0xFFFFFFFF is never below the vertex count: the range check below refuses it.
+    const std::uint32_t restart = type == ComponentType::Uint8 ? 0xFFu : 0xFFFFu;
+    if (const auto found = std::find(values.begin(), values.end(), restart);
+        type != ComponentType::Uint32 && found != values.end()) {
+        ENCORE_TRY(mContext.warn(
+            ErrorCode::InvalidFormat,
+            mName + " has the primitive-restart value " + std::to_string(restart) +
+                " in its indices (accessor " + std::to_string(id->index()) + ", position " +
+                std::to_string(found - values.begin()) +
+                "), which glTF forbids; it is drawn as an ordinary vertex index."));
+    }
     for (std::size_t i = 0; i < values.size(); ++i) {
         if (values[i] >= mResult.vertexCount) {
             return makeError(ErrorCode::InvalidFormat,
@@ -320,7 +337,25 @@ Result<void> convertMeshes(LoadContext& context) {
     for (std::size_t m = 0; m < meshes.size(); ++m) {
         Mesh mesh;
         mesh.name = meshes[m].name;
+        if (meshes[m].primitives.empty()) {
+            ENCORE_TRY(context.warn(ErrorCode::InvalidFormat,
+                                    "mesh " + std::to_string(m) +
+                                        " has no primitives (glTF requires at least one); it "
+                                        "draws nothing."));
+        }
         for (std::size_t p = 0; p < meshes[m].primitives.size(); ++p) {
+            const GltfPrimitive& source = meshes[m].primitives[p];
+            const bool hasPosition = std::any_of(
+                source.attributes.begin(), source.attributes.end(),
+                [](const auto& attribute) { return attribute.first == "POSITION"; });
+            if (!hasPosition) {
+                // The specification says clients should skip such primitives.
+                ENCORE_TRY(context.warn(ErrorCode::InvalidFormat,
+                                        "mesh " + std::to_string(m) + ", primitive " +
+                                            std::to_string(p) +
+                                            " has no POSITION attribute; it is skipped."));
+                continue;
+            }
             Primitive primitive;
             ENCORE_TRY_ASSIGN(primitive, PrimitiveConverter(context, m, p).convert());
             mesh.primitives.push_back(std::move(primitive));

@@ -13,6 +13,35 @@
 namespace encore::scene {
 namespace {
 
+// Deeper JSON than this is refused before parsing: glTF needs a handful of levels, and although
+// nlohmann's parser and destructor iterate, copying or printing a value recurses once per level.
+constexpr std::size_t kMaxJsonDepth = 512;
+
+// The deepest nesting of arrays and objects in `text` (brackets inside strings do not count),
+// stopping early once it passes kMaxJsonDepth.
+std::size_t jsonNestingDepth(std::span<const std::uint8_t> text) {
+    std::size_t depth = 0;
+    std::size_t deepest = 0;
+    bool inString = false;
+    for (std::size_t i = 0; i < text.size() && deepest <= kMaxJsonDepth; ++i) {
+        const std::uint8_t c = text[i];
+        if (inString) {
+            if (c == '\\') {
+                ++i;  // Skips the escaped character (a quote or another backslash).
+            } else if (c == '"') {
+                inString = false;
+            }
+        } else if (c == '"') {
+            inString = true;
+        } else if (c == '[' || c == '{') {
+            deepest = std::max(deepest, ++depth);
+        } else if ((c == ']' || c == '}') && depth > 0) {
+            --depth;
+        }
+    }
+    return deepest;
+}
+
 Result<Json> parseJson(std::span<const std::uint8_t> text) {
     // A UTF-8 byte order mark is not JSON but some exporters write one.
     if (text.size() >= 3 && text[0] == 0xEF && text[1] == 0xBB && text[2] == 0xBF) {
@@ -21,6 +50,16 @@ Result<Json> parseJson(std::span<const std::uint8_t> text) {
     // GLB JSON chunks are padded with spaces; some writers pad with NULs, which JSON forbids.
     while (!text.empty() && text.back() == 0) {
         text = text.first(text.size() - 1);
+    }
+    if (text.empty()) {
+        return makeError(ErrorCode::InvalidFormat,
+                         "The file is empty (0 bytes of glTF JSON); it holds no asset.");
+    }
+    if (const std::size_t depth = jsonNestingDepth(text); depth > kMaxJsonDepth) {
+        return makeError(ErrorCode::LimitExceeded,
+                         "The glTF JSON nests arrays and objects more than " +
+                             std::to_string(kMaxJsonDepth) +
+                             " levels deep; Encore refuses it (no glTF asset needs that depth).");
     }
     try {
         return Json::parse(text.begin(), text.end());

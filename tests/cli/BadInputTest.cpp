@@ -91,7 +91,7 @@ std::vector<BadInput> badInputs() {
              return builder.writeGltf(dir, "a");
          },
          {"accessor 0"}},
-        {"PrimitiveWithoutPosition",
+        {"PrimitiveWithoutPositionUnderStrict",  // Without --strict: skipped with a warning.
          [](const auto& dir) {
              auto builder = triangle();
              auto& attributes = builder.json()["meshes"][0]["primitives"][0]["attributes"];
@@ -140,6 +140,22 @@ std::vector<BadInput> badInputs() {
              return builder.writeGltf(dir, "a");
          },
          {"image 0", "missing.png"}},
+        {"EmptyFile", [](const auto& dir) { return writeText(dir / "a.gltf", ""); },
+         {"empty", "0 bytes"}},
+        {"JsonNestedTwoHundredThousandDeep",
+         [](const auto& dir) {
+             return writeText(dir / "a.gltf", R"({"asset": {"version": "2.0"}, "extras": )" +
+                                                  std::string(200000, '[') +
+                                                  std::string(200000, ']') + "}");
+         },
+         {"nests", "levels deep"}},
+        {"AccessorWithCountZero",
+         [](const auto& dir) {
+             auto builder = triangle();
+             builder.json()["accessors"][1]["count"] = 0;
+             return builder.writeGltf(dir, "a");
+         },
+         {"accessor 1 (indices of mesh 0, primitive 0)", "count 0"}},
     };
 }
 
@@ -156,7 +172,7 @@ TEST_P(BadInputTest, PrintsAClearErrorAndExitsWithOne) {
     const auto output = dir / "out.png";
     const auto result =
         runEncore("render " + quote(path.string()) + " -o " + quote(output.string()) +
-                  (input.name == "MissingImageUnderStrict" ? " --strict" : ""));
+                  (input.name.ends_with("UnderStrict") ? " --strict" : ""));
     EXPECT_EQ(result.exitCode, 1) << result.err;
     const std::string prefix = "error: " + path.string() + ": ";
     EXPECT_EQ(result.err.rfind(prefix, 0), 0u) << "stderr: " << result.err;

@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <fstream>
+
 #include <nlohmann/json.hpp>
 
 #include "CommandRunner.h"
@@ -144,6 +146,32 @@ TEST(InfoCommandTest, SampleModelWithCamera) {
     EXPECT_TRUE(contains(result.out, "triangles: 4212")) << result.out;
     EXPECT_TRUE(contains(result.out, "extensions: none\n")) << result.out;
     EXPECT_TRUE(contains(result.out, "warnings: none\n")) << result.out;
+}
+
+// A scene without nodes is valid glTF: a warning, exit code 0, even with --strict.
+TEST(InfoCommandTest, EmptySceneIsAWarning) {
+    const auto dir = makeTempDir("info-empty");
+    const auto path = dir / "empty.gltf";
+    std::ofstream(path) << R"({"asset": {"version": "2.0"}, "scenes": [{}], "scene": 0})";
+    const auto result = runEncore("info " + quote(path.string()));
+    EXPECT_EQ(result.exitCode, 0) << result.err;
+    EXPECT_TRUE(contains(result.out, "draws nothing")) << result.out;
+    EXPECT_TRUE(contains(result.out, "the scene it shows has no nodes")) << result.out;
+}
+
+// The specification says to skip a primitive without POSITION: a warning, not an error.
+TEST(InfoCommandTest, PrimitiveWithoutPositionIsSkippedWithAWarning) {
+    GltfBuilder builder;
+    const auto normals = builder.addNormals({{0, 0, 1}, {0, 0, 1}, {0, 0, 1}});
+    const auto positions = builder.addPositions({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+    const auto mesh = builder.addMesh(std::vector<GltfBuilder::PrimitiveDesc>{
+        {.attributes = {{"NORMAL", normals}}}, {.attributes = {{"POSITION", positions}}}});
+    builder.addScene({builder.addNode({.mesh = mesh})});
+    const auto path = builder.writeGltf(makeTempDir("info-no-position"), "a");
+    const auto result = runEncore("info " + quote(path.string()));
+    EXPECT_EQ(result.exitCode, 0) << result.err;
+    EXPECT_TRUE(contains(result.out, "mesh 0, primitive 0 has no POSITION attribute; it is skipped"))
+        << result.out;
 }
 
 TEST(InfoCommandTest, MissingFileIsAnError) {

@@ -9,7 +9,8 @@ namespace encore::render {
 TransformUniform makeTransformUniform(const scene::Instance& instance);
 TransformUniform makeTransformUniform(const glm::mat4& world);
 
-// The inverse transpose of the upper 3x3 of `world`, in a mat4 (how normals transform).
+// The inverse transpose of the upper 3x3 of `world`, in a mat4 (how normals transform); always
+// finite (scene::normalMatrixOf says what singular matrices get).
 glm::mat4 normalMatrixOf(const glm::mat4& world);
 
 }  // namespace encore::render

@@ -1,17 +1,23 @@
 #pragma once
 
-#include <glm/glm.hpp>
+#include <cmath>
 #include <limits>
+
+#include <glm/glm.hpp>
 
 namespace encore::scene {
 
-// An axis-aligned box; empty until a point is added.
+// An axis-aligned box; empty until a point is added. Points with a NaN or infinite coordinate
+// are ignored, so a box is either empty or finite.
 struct Bounds {
     glm::vec3 min{std::numeric_limits<float>::infinity()};
     glm::vec3 max{-std::numeric_limits<float>::infinity()};
 
     bool empty() const { return min.x > max.x || min.y > max.y || min.z > max.z; }
     void extend(const glm::vec3& point) {
+        if (!std::isfinite(point.x) || !std::isfinite(point.y) || !std::isfinite(point.z)) {
+            return;
+        }
         min = glm::min(min, point);
         max = glm::max(max, point);
     }

@@ -227,6 +227,11 @@ struct Instance {
     glm::mat4 normalMatrix{1.0f};  // Inverse transpose of world's upper 3x3, in a mat4.
 };
 
+// The inverse transpose of `world`'s upper 3x3, in a mat4. A singular matrix (a zero scale) gets
+// its cofactor matrix, which is the inverse transpose up to scale; one of rank one or less, or
+// one that is not finite, gets the identity: the result is always finite.
+glm::mat4 normalMatrixOf(const glm::mat4& world);
+
 // KHR_lights_punctual. Intensity is in candela (point, spot) or lux (directional).
 enum class LightType : std::uint8_t { Directional, Point, Spot };
 

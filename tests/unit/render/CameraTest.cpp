@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <vector>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -265,6 +266,42 @@ TEST(CameraTest, FramingIsUnchanged) {
         EXPECT_LE(std::abs(ndc.y), 1.0f);
         EXPECT_GT(ndc.z, 0.0f);
         EXPECT_LT(ndc.z, 1.0f);
+    }
+}
+
+bool isFinite(const glm::mat4& matrix) {
+    for (int c = 0; c < 4; ++c) {
+        for (int r = 0; r < 4; ++r) {
+            if (!std::isfinite(matrix[c][r])) {
+                return false;
+            }
+        }
+    }
+    return true;
+}
+
+// Empty boxes, boxes whose centre or size overflows a float, and boxes built by hand with NaN
+// or infinity all give a finite camera.
+TEST(CameraTest, FramingStaysFiniteForEmptyHugeAndNonFiniteBounds) {
+    const float inf = std::numeric_limits<float>::infinity();
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const float big = std::numeric_limits<float>::max();
+    std::vector<scene::Bounds> boxes(5);
+    boxes[1].extend(glm::vec3(-big));
+    boxes[1].extend(glm::vec3(big));
+    boxes[2].min = glm::vec3(0.0f, nan, 0.0f);
+    boxes[2].max = glm::vec3(1.0f);
+    boxes[3].min = glm::vec3(-inf);
+    boxes[3].max = glm::vec3(inf);
+    boxes[4].extend(glm::vec3(big * 0.9f, 0.0f, 0.0f));
+    boxes[4].extend(glm::vec3(big, 1.0f, 1.0f));
+    for (std::size_t i = 0; i < boxes.size(); ++i) {
+        const Camera camera = Camera::framing(boxes[i], 1.5f, 0.0f);
+        EXPECT_TRUE(isFinite(camera.view)) << "box " << i;
+        EXPECT_TRUE(isFinite(camera.projection)) << "box " << i;
+        EXPECT_TRUE(std::isfinite(camera.nearPlane) && std::isfinite(camera.farPlane))
+            << "box " << i;
+        EXPECT_GT(camera.farPlane, camera.nearPlane) << "box " << i;
     }
 }
 
