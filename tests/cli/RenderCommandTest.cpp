@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -51,6 +53,34 @@ TEST(RenderCommandTest, ReproducesTheReferencePictureFromTheCommandLine) {
     EXPECT_GE(*ssim, 0.98);
 }
 
+// A valid scene that draws nothing: every strategy writes the background alone, prints a
+// warning and exits with 0.
+TEST(RenderCommandTest, EmptySceneRendersTheBackgroundWithAWarning) {
+    const auto dir = makeTempDir("render-empty");
+    const auto scene = dir / "empty.gltf";
+    std::ofstream(scene) << R"({"asset": {"version": "2.0"}, "scenes": [{"nodes": [0]}],
+                               "nodes": [{"name": "no mesh"}], "scene": 0})";
+    for (const char* strategy : {"naive", "layouts", "pipeline-cache", "instancing", "materials",
+                                 "bundles", "gpu-culling", "gpu-culling-bundles"}) {
+        const auto out = dir / (std::string(strategy) + ".png");
+        const auto result = runEncore("render " + quote(scene.string()) +
+                                      " --width 48 --height 32 --strategy " + strategy + " -o " +
+                                      quote(out.string()));
+        ASSERT_EQ(result.exitCode, 0) << strategy << ": " << result.err;
+        EXPECT_NE(result.err.find("warning: " + scene.string() + ": The asset draws nothing"),
+                  std::string::npos)
+            << strategy << ": " << result.err;
+        auto image = image::readImage(out);
+        ASSERT_TRUE(image.ok()) << strategy << ": " << image.error().message;
+        ASSERT_EQ(image->width, 48u);
+        ASSERT_EQ(image->height, 32u);
+        for (std::size_t i = 4; i < image->pixels.size(); ++i) {
+            ASSERT_EQ(image->pixels[i], image->pixels[i % 4])
+                << strategy << ": byte " << i << " differs from the background";
+        }
+    }
+}
+
 // A generated scene, framed automatically, with a transparent background: the corners are
 // transparent, the objects opaque.
 TEST(RenderCommandTest, TransparentBackgroundLeavesAlphaZeroAroundTheScene) {
@@ -92,6 +122,24 @@ TEST(RenderCommandTest, BadShadingOptionsAreUsageErrors) {
                                        " -o " + quote((dir / "c.png").string()));
     EXPECT_EQ(environment.exitCode, 1);
     EXPECT_NE(environment.err.find("none.hdr"), std::string::npos) << environment.err;
+}
+
+// A device lost while rendering or benchmarking stops the command with exit code 4 and a message
+// naming the loss (the test hook makes Dawn lose the device once the scene is prepared).
+TEST(RenderCommandTest, ADeviceLossStopsRenderAndBenchWithExitCodeFour) {
+    const auto dir = makeTempDir("device-loss");
+    const auto scene = dir / "scene.glb";
+    ASSERT_EQ(runEncore("gen --objects 8 -o " + quote(scene.string())).exitCode, 0);
+    ::setenv("ENCORE_TEST_FORCE_DEVICE_LOSS", "1", 1);
+    const auto render = runEncore("render " + quote(scene.string()) + " -o " +
+                                  quote((dir / "lost.png").string()));
+    const auto bench = runEncore("bench --objects 8 --frames 2 --warmup 0 --strategy bundles");
+    ::unsetenv("ENCORE_TEST_FORCE_DEVICE_LOSS");
+    EXPECT_EQ(render.exitCode, 4) << render.err;
+    EXPECT_NE(render.err.find("the GPU device was lost"), std::string::npos) << render.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "lost.png"));
+    EXPECT_EQ(bench.exitCode, 4) << bench.err;
+    EXPECT_NE(bench.err.find("the GPU device was lost"), std::string::npos) << bench.err;
 }
 
 }  // namespace
