@@ -42,8 +42,10 @@ AccessorId repack(SceneData& scene, AccessorId id, Semantic semantic, const std:
         isSmallInteger(source.componentType) ? 4 : source.componentCount;
     const auto bytes = scene.accessorBytes(id);
     std::vector<std::uint8_t> packed(std::size_t(source.count) * size * components, 0);
-    // A missing alpha means opaque; every other padded component reads as 0.
-    const bool opaqueAlpha = semantic == Semantic::Color0 && source.componentCount == 3;
+    // A missing alpha means opaque; every other padded component reads as 0. Only small
+    // integers gain a fourth component: float VEC3 colours are repacked (for alignment) as VEC3.
+    const bool opaqueAlpha =
+        semantic == Semantic::Color0 && source.componentCount == 3 && components == 4;
     const std::uint32_t one = source.componentType == ComponentType::Uint8    ? 0xFF
                               : source.componentType == ComponentType::Int8   ? 0x7F
                               : source.componentType == ComponentType::Uint16 ? 0xFFFF
