@@ -7,9 +7,10 @@
 # address is written here. Does nothing when every package is already installed.
 set -euo pipefail
 
+# clang and libclang-rt-14-dev (libFuzzer, sanitizer runtimes) build the fuzz targets.
 bookworm_packages=(g++ make pkg-config libglm-dev libstb-dev libcli11-dev libgtest-dev
                    nlohmann-json3-dev libdraco-dev libmeshoptimizer-dev
-                   librsvg2-bin)
+                   librsvg2-bin clang libclang-rt-14-dev)
 # Dawn's CMake package declares C++ module file sets, which need CMake >= 3.28.
 backports_packages=(mesa-vulkan-drivers cmake)
 sid_packages=(libwebgpu-dawn-dev)
