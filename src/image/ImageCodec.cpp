@@ -38,6 +38,12 @@ Result<ImageRgba8> decodeImage(std::span<const std::uint8_t> encoded) {
                          "Image size " + std::to_string(width) + "x" + std::to_string(height) +
                              " is outside 1.." + std::to_string(kMaxImageDimension) + ".");
     }
+    if (std::uint64_t(width) * std::uint64_t(height) > kMaxImagePixels) {
+        return makeError(ErrorCode::LimitExceeded,
+                         "Image size " + std::to_string(width) + "x" + std::to_string(height) +
+                             " has more than the " + std::to_string(kMaxImagePixels) +
+                             " pixels Encore decodes.");
+    }
     std::unique_ptr<stbi_uc, StbiFree> pixels(
         stbi_load_from_memory(encoded.data(), length, &width, &height, &channels, 4));
     if (!pixels) {

@@ -14,6 +14,10 @@ namespace encore::image {
 // Images larger than this on either side are refused before decoding (WebGPU's default
 // maxTextureDimension2D is 8192; this guards against absurd headers).
 inline constexpr std::uint32_t kMaxImageDimension = 16384;
+// And larger than this in area: decoding needs about twice width x height x 4 bytes at once
+// (the fuzzer found a 16384 x 16384 header asking for 2 GiB), and no GPU texture Encore creates
+// is larger than 8192 x 8192.
+inline constexpr std::uint64_t kMaxImagePixels = 8192ull * 8192ull;
 
 struct ImageRgba8 {
     std::uint32_t width = 0;

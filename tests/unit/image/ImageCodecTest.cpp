@@ -27,6 +27,21 @@ TEST(ImageCodecTest, GarbageIsAnError) {
     EXPECT_EQ(decoded.error().code, ErrorCode::InvalidFormat);
 }
 
+// A PNG header promising 16384 x 16384 pixels (within the side limit) is refused before any
+// allocation: decoding it would need about 2 GiB (found by the loader fuzzer).
+TEST(ImageCodecTest, HugeAreaIsRefusedBeforeDecoding) {
+    std::vector<std::uint8_t> png = {0x89, 'P', 'N', 'G', 0x0D, 0x0A, 0x1A, 0x0A,  // Signature.
+                                     0, 0, 0, 13, 'I', 'H', 'D', 'R',               // IHDR.
+                                     0, 0, 0x40, 0, 0, 0, 0x40, 0,                  // 16384^2.
+                                     8, 6, 0, 0, 0,                                 // RGBA8.
+                                     0, 0, 0, 0};                                   // CRC.
+    auto decoded = decodeImage(png);
+    ASSERT_FALSE(decoded.ok());
+    EXPECT_EQ(decoded.error().code, ErrorCode::LimitExceeded);
+    EXPECT_NE(decoded.error().message.find("16384x16384"), std::string::npos)
+        << decoded.error().message;
+}
+
 TEST(ImageCodecTest, EmptyImageCannotBeEncoded) {
     EXPECT_FALSE(encodePng(ImageRgba8{}).ok());
 }
