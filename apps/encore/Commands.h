@@ -37,6 +37,10 @@ Result<scene::SceneData> loadModel(const std::string& path, const scene::LoadOpt
 // Creates the GPU context the global options ask for; prints the adapter with --verbose.
 Result<gpu::Context> createContext(const GlobalOptions& global, bool timestamps = false);
 
+// Tests of device loss set ENCORE_TEST_FORCE_DEVICE_LOSS: the commands then lose their device
+// on purpose (Dawn's Device::ForceLoss) once the scene is prepared.
+void forceDeviceLossForTests(gpu::Context& context);
+
 void addRenderCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
 void addInfoCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
 void addGenCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);

@@ -1,3 +1,4 @@
+#include <cstdlib>
 #include <cstdio>
 
 #include "Commands.h"
@@ -27,6 +28,13 @@ Result<scene::SceneData> loadModel(const std::string& path, const scene::LoadOpt
         }
     }
     return scene;
+}
+
+void forceDeviceLossForTests(gpu::Context& context) {
+    if (std::getenv("ENCORE_TEST_FORCE_DEVICE_LOSS")) {
+        context.device().ForceLoss(wgpu::DeviceLostReason::Unknown,
+                                   "forced by ENCORE_TEST_FORCE_DEVICE_LOSS");
+    }
 }
 
 Result<gpu::Context> createContext(const GlobalOptions& global, bool timestamps) {

@@ -113,30 +113,42 @@ Result<Context> Context::create(const ContextOptions& options) {
         return makeError(ErrorCode::NoAdapter, "Dawn could not create a WebGPU instance.");
     }
 
+    context.mOptions = options;
+    ENCORE_TRY(context.acquireDevice());
+    return context;
+}
+
+// Requests an adapter and a device on it. Used at creation and again after a device loss (a
+// WebGPU adapter hands out one device, so recovery asks for a new adapter too).
+Result<void> Context::acquireDevice() {
+    const ContextOptions& options = mOptions;
+    mAdapter = nullptr;
+    mDevice = nullptr;
+    mQueue = nullptr;
     wgpu::RequestAdapterOptions adapterOptions{};
     adapterOptions.powerPreference = wgpu::PowerPreference::HighPerformance;
     std::string adapterMessage;
-    context.mInstance.WaitAny(
-        context.mInstance.RequestAdapter(
+    mInstance.WaitAny(
+        mInstance.RequestAdapter(
             &adapterOptions, wgpu::CallbackMode::WaitAnyOnly,
             [&](wgpu::RequestAdapterStatus status, wgpu::Adapter adapter,
                 wgpu::StringView message) {
                 if (status == wgpu::RequestAdapterStatus::Success) {
-                    context.mAdapter = std::move(adapter);
+                    mAdapter = std::move(adapter);
                 } else {
                     adapterMessage = toString(message);
                 }
             }),
         UINT64_MAX);
-    if (!context.mAdapter) {
+    if (!mAdapter) {
         return makeError(ErrorCode::NoAdapter,
                          "no Vulkan adapter found (Dawn found no adapter at all: " +
                              adapterMessage + ").");
     }
 
     wgpu::AdapterInfo info;
-    context.mAdapter.GetInfo(&info);
-    auto& description = context.mAdapterDescription;
+    mAdapter.GetInfo(&info);
+    auto& description = mAdapterDescription;
     description.name = toString(info.device);
     description.vendor = toString(info.vendor);
     description.architecture = toString(info.architecture);
@@ -153,12 +165,12 @@ Result<Context> Context::create(const ContextOptions& options) {
 
     std::vector<wgpu::FeatureName> features;
     std::vector<const char*> disabledToggles;
-    if (options.timestamps && context.mAdapter.HasFeature(wgpu::FeatureName::TimestampQuery)) {
+    if (options.timestamps && mAdapter.HasFeature(wgpu::FeatureName::TimestampQuery)) {
         features.push_back(wgpu::FeatureName::TimestampQuery);
         disabledToggles.push_back("timestamp_quantization");
     }
     for (auto feature : options.optionalFeatures) {
-        if (context.mAdapter.HasFeature(feature)) {
+        if (mAdapter.HasFeature(feature)) {
             features.push_back(feature);
         }
     }
@@ -172,7 +184,7 @@ Result<Context> Context::create(const ContextOptions& options) {
     deviceDescriptor.label = "encore device";
     deviceDescriptor.requiredFeatureCount = features.size();
     deviceDescriptor.requiredFeatures = features.data();
-    ErrorLog* errorLog = context.mErrors.get();
+    ErrorLog* errorLog = mErrors.get();
     deviceDescriptor.SetUncapturedErrorCallback(
         [](const wgpu::Device&, wgpu::ErrorType type, wgpu::StringView message, ErrorLog* log) {
             log->record("WebGPU " + errorTypeName(type) + ": " + toString(message));
@@ -195,24 +207,24 @@ Result<Context> Context::create(const ContextOptions& options) {
         errorLog);
 
     std::string deviceMessage;
-    context.mInstance.WaitAny(
-        context.mAdapter.RequestDevice(
+    mInstance.WaitAny(
+        mAdapter.RequestDevice(
             &deviceDescriptor, wgpu::CallbackMode::WaitAnyOnly,
             [&](wgpu::RequestDeviceStatus status, wgpu::Device device, wgpu::StringView message) {
                 if (status == wgpu::RequestDeviceStatus::Success) {
-                    context.mDevice = std::move(device);
+                    mDevice = std::move(device);
                 } else {
                     deviceMessage = toString(message);
                 }
             }),
         UINT64_MAX);
-    if (!context.mDevice) {
+    if (!mDevice) {
         return makeError(ErrorCode::DeviceError, "Creating a WebGPU device on '" +
                                                      description.name + "' failed (" +
                                                      deviceMessage + ").");
     }
-    context.mQueue = context.mDevice.GetQueue();
-    return context;
+    mQueue = mDevice.GetQueue();
+    return {};
 }
 
 std::optional<std::uint64_t> Context::mappingBudget() const {
@@ -264,6 +276,18 @@ std::vector<std::string> Context::takeErrors() {
     return std::exchange(mErrors->errors, {});
 }
 
+Result<void> Context::recreateDevice() {
+    if (mDevice) {
+        mDevice.Destroy();  // Resolves the old device's callbacks (as Destroyed) before reuse.
+    }
+    {
+        std::lock_guard lock(mErrors->mutex);
+        mErrors->lost = false;
+        mErrors->errors.clear();
+    }
+    return acquireDevice();
+}
+
 bool Context::deviceLost() const {
     std::lock_guard lock(mErrors->mutex);
     return mErrors->lost;
@@ -273,6 +297,17 @@ Result<void> Context::checkNoErrors(const std::string& what) {
     // Errors may be delivered from Dawn's event processing; let pending ones arrive first.
     mInstance.ProcessEvents();
     auto errors = takeErrors();
+    if (deviceLost()) {
+        // The loss explains every later error; name it alone, with its own exit code.
+        std::string reason = "no reason given";
+        for (const std::string& error : errors) {
+            if (error.starts_with("WebGPU device lost: ")) {
+                reason = error.substr(20);
+            }
+        }
+        return makeError(ErrorCode::DeviceError,
+                         what + ": the GPU device was lost (" + reason + ").");
+    }
     if (errors.empty()) {
         return {};
     }

@@ -263,6 +263,7 @@ Result<Environment> Environment::create(const wgpu::Device& device, const wgpu::
     environment.mLutView = environment.mLut.CreateView();
 
     ENCORE_TRY(environment.build(panorama, /*withLut=*/true));
+    environment.mPanorama = std::make_shared<const image::HdrImage>(panorama);
     environment.mLastBuildMilliseconds =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
             .count();
@@ -272,6 +273,7 @@ Result<Environment> Environment::create(const wgpu::Device& device, const wgpu::
 Result<void> Environment::load(const image::HdrImage& panorama) {
     const auto start = std::chrono::steady_clock::now();
     ENCORE_TRY(build(panorama, /*withLut=*/false));  // The LUT depends on no panorama.
+    mPanorama = std::make_shared<const image::HdrImage>(panorama);
     mLastBuildMilliseconds =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
             .count();

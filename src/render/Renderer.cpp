@@ -21,6 +21,13 @@ Renderer::~Renderer() = default;
 Result<Renderer> Renderer::create(gpu::Context& context, const RendererOptions& options) {
     Renderer renderer;
     renderer.mContext = &context;
+    ENCORE_TRY(renderer.build(options));
+    return renderer;
+}
+
+Result<void> Renderer::build(const RendererOptions& options) {
+    gpu::Context& context = *mContext;
+    Renderer& renderer = *this;
     renderer.mOptions = options;
     auto target = RenderTarget::create(context.device(), options.target);
     if (!target) {
@@ -74,8 +81,36 @@ Result<Renderer> Renderer::create(gpu::Context& context, const RendererOptions& 
     setup.depthFormat = RenderTarget::kDepthFormat;
     setup.sampleCount = options.target.sampleCount;
     setup.mappingBudget = context.mappingBudget();
-    ENCORE_TRY(context.checkNoErrors("Creating the renderer"));
-    return renderer;
+    return context.checkNoErrors("Creating the renderer");
+}
+
+Result<void> Renderer::recoverFromDeviceLoss() {
+    // Everything is rebuilt from what the CPU holds: the options as they are now, the
+    // environment's panorama, the scene data and the strategy kind.
+    RendererOptions options = mOptions;
+    options.toneMapping = mToneMapper->options();
+    options.lighting = mLighting->parameters();
+    const Environment& environment = mLighting->environment();
+    options.environment = nullptr;
+    options.environmentImage = std::make_shared<image::HdrImage>(environment.panorama());
+    options.environmentOptions = environment.options();
+    mStrategy.reset();
+    mBackground.reset();
+    mToneMapper.reset();
+    mFrame.reset();
+    mLighting.reset();
+    mSetup.reset();
+    mLayouts.reset();
+    mShaders.reset();
+    mTarget = RenderTarget();
+    ENCORE_TRY(mContext->recreateDevice());
+    if (auto built = build(options); !built) {
+        return built.error().withContext("Rebuilding the renderer after a device loss");
+    }
+    if (mScene) {
+        ENCORE_TRY(prepare(*mScene, mKind));
+    }
+    return {};
 }
 
 Result<void> Renderer::prepare(const scene::SceneData& scene, StrategyKind kind) {
@@ -92,6 +127,8 @@ Result<void> Renderer::prepare(const scene::SceneData& scene, StrategyKind kind)
     }
     mSetup->pipelinesCreated = 0;
     mSetup->mappingBudget = mContext->mappingBudget();  // What the previous scene left in use.
+    mScene = &scene;
+    mKind = kind;
     auto strategy = createStrategy(kind);
     const std::string what = "Preparing '" + scene.sourcePath.string() + "' for strategy " +
                              std::string(strategyName(kind));
@@ -249,6 +286,8 @@ Result<std::vector<float>> Renderer::readHdrImage() {
 Result<image::ImageRgba8> Renderer::readImage() {
     auto image = gpu::readTexture(*mContext, mTarget.colorTexture());
     if (!image) {
+        // A lost device fails the read back; say so rather than how mapping failed.
+        ENCORE_TRY(mContext->checkNoErrors("Rendering"));
         return image.error();
     }
     ENCORE_TRY(mContext->checkNoErrors("Rendering"));

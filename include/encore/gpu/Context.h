@@ -74,19 +74,26 @@ class Context {
     std::size_t errorCount() const;
     std::vector<std::string> takeErrors();
     bool deviceLost() const;
+    // After a loss: requests a new adapter and device (same options) and forgets the recorded
+    // errors. Every object of the old device is useless; owners rebuild theirs (see
+    // render::Renderer::recoverFromDeviceLoss).
+    Result<void> recreateDevice();
 
-    // Returns a ValidationError naming the first recorded error, or success when none occurred.
+    // Returns a ValidationError naming the first recorded error, a DeviceError when the device
+    // was lost, or success when none occurred.
     Result<void> checkNoErrors(const std::string& what);
 
   private:
     struct ErrorLog;
     Context() = default;
+    Result<void> acquireDevice();
 
     wgpu::Instance mInstance;
     wgpu::Adapter mAdapter;
     wgpu::Device mDevice;
     wgpu::Queue mQueue;
     AdapterDescription mAdapterDescription;
+    ContextOptions mOptions;
     std::shared_ptr<ErrorLog> mErrors;
 };
 

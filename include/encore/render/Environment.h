@@ -70,6 +70,11 @@ class Environment {
     // Wall-clock milliseconds the last create() or load() took, GPU work included.
     double lastBuildMilliseconds() const { return mLastBuildMilliseconds; }
 
+    // The panorama of the last create() or load(), and the options: enough to build the same
+    // environment again on another device (after a device loss).
+    const image::HdrImage& panorama() const { return *mPanorama; }
+    const EnvironmentOptions& options() const { return mOptions; }
+
   private:
     Environment() = default;
     struct Pipelines;
@@ -93,6 +98,7 @@ class Environment {
     wgpu::Texture mSource;
     wgpu::TextureView mSourceView;
     double mLastBuildMilliseconds = 0.0;
+    std::shared_ptr<const image::HdrImage> mPanorama;
 };
 
 }  // namespace encore::render

@@ -98,6 +98,12 @@ class Renderer {
     // for its timestamps and reports them in FrameResult::gpuMilliseconds.
     void setGpuTimer(gpu::GpuTimer* timer) { mTimer = timer; }
 
+    // After the device was lost (gpu::Context::deviceLost()): asks the context for a new
+    // device and rebuilds every GPU resource from CPU data — the options as last set, the
+    // environment's panorama, the prepared scene (as loaded: edits made through update*
+    // since prepare() are not replayed) and the strategy. Frames render again afterwards.
+    Result<void> recoverFromDeviceLoss();
+
     const RenderTarget& target() const { return mTarget; }
     const RenderSetup& setup() const { return *mSetup; }
     const Strategy* strategy() const { return mStrategy.get(); }
@@ -105,6 +111,7 @@ class Renderer {
 
   private:
     Renderer() = default;
+    Result<void> build(const RendererOptions& options);
     FrameResult renderPasses(std::span<const Camera> cameras, float timeSeconds,
                              std::vector<RecordedCall>* trace);
 
@@ -120,6 +127,8 @@ class Renderer {
     std::unique_ptr<RenderSetup> mSetup;  // Stable address: strategies keep pointers to it.
     std::unique_ptr<Strategy> mStrategy;
     gpu::GpuTimer* mTimer = nullptr;
+    const scene::SceneData* mScene = nullptr;
+    StrategyKind mKind = StrategyKind::Bundles;
 };
 
 }  // namespace encore::render
