@@ -94,6 +94,10 @@ BindGroupLayouts BindGroupLayouts::create(const wgpu::Device& device) {
     materialDescriptor.entryCount = material.size();
     materialDescriptor.entries = material.data();
     layouts.material = device.CreateBindGroupLayout(&materialDescriptor);
+    layouts.materialUniformOnly = createLayout(
+        device, "material (uniform only)",
+        {bufferEntry(0, wgpu::ShaderStage::Fragment, wgpu::BufferBindingType::Uniform,
+                     sizeof(MaterialUniform))});
     return layouts;
 }
 

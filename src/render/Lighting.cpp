@@ -78,11 +78,20 @@ void SceneLighting::writeUniform() {
     uniform.lightCount = mParameters.punctualLights ? std::uint32_t(mLightCount) : 0u;
     uniform.imageBasedLighting = mParameters.imageBasedLighting ? 1u : 0u;
     uniform.debugChannel = static_cast<std::uint32_t>(mParameters.debugChannel);
+    uniform.exposure = mDisplay.exposure;
+    uniform.toneMapping = static_cast<std::uint32_t>(mDisplay.toneMapping);
+    uniform.displayMapped = mDisplayInShaders ? 1u : 0u;
     mQueue.WriteBuffer(mUniform, 0, &uniform, sizeof(uniform));
 }
 
 void SceneLighting::setParameters(const LightingParameters& parameters) {
     mParameters = parameters;
+    writeUniform();
+}
+
+void SceneLighting::setDisplayMapping(const ToneMappingOptions& options, bool inShaders) {
+    mDisplay = options;
+    mDisplayInShaders = inShaders;
     writeUniform();
 }
 

@@ -435,6 +435,8 @@ Result<MaterialResources> MaterialResources::create(const wgpu::Device& device,
         }
         resources.mMaterialTextures.push_back(textures);
         resources.mMaterialSamplers.push_back(samplers);
+        resources.mTextured.push_back(std::any_of(textures.begin(), textures.end(),
+                                                  [](std::size_t t) { return t != kDefaultTexture; }));
 
         const MaterialUniform uniform = makeMaterialUniform(material);
         std::memcpy(uniformBytes.data() + i * resources.mUniformStride, &uniform, kUniformSize);
@@ -457,6 +459,14 @@ wgpu::BindGroup MaterialResources::createBindGroup(const wgpu::Device& device,
     entries[0].buffer = mUniforms;
     entries[0].offset = material * mUniformStride;
     entries[0].size = kUniformSize;
+    wgpu::BindGroupDescriptor descriptor{};
+    descriptor.label = label;
+    if (!mTextured[material]) {
+        descriptor.layout = layouts.materialUniformOnly;
+        descriptor.entryCount = 1;
+        descriptor.entries = entries.data();
+        return device.CreateBindGroup(&descriptor);
+    }
     for (std::uint32_t slot = 0; slot < kMaterialTextureSlotCount; ++slot) {
         wgpu::BindGroupEntry& sampler = entries[1 + 2 * slot];
         sampler.binding = materialSamplerBinding(slot);
@@ -465,8 +475,6 @@ wgpu::BindGroup MaterialResources::createBindGroup(const wgpu::Device& device,
         texture.binding = materialTextureBinding(slot);
         texture.textureView = mTextures[mMaterialTextures[material][slot]].CreateView();
     }
-    wgpu::BindGroupDescriptor descriptor{};
-    descriptor.label = label;
     descriptor.layout = layouts.material;
     descriptor.entryCount = entries.size();
     descriptor.entries = entries.data();
@@ -508,6 +516,7 @@ Result<void> MaterialResources::replaceBaseColorImage(const wgpu::Device& device
     constexpr std::size_t kBaseColor = std::size_t(TextureSlot::BaseColor);
     const std::size_t old = mMaterialTextures[material.index()][kBaseColor];
     mMaterialTextures[material.index()][kBaseColor] = *uploaded;
+    mTextured[material.index()] = true;
     mBindGroups[material.index()] =
         createBindGroup(device, layouts, material.index(), "material (replaced texture)");
     ++mGeneration;
@@ -551,6 +560,11 @@ const wgpu::Texture* MaterialResources::texture(scene::ImageId image, ColorSpace
 const wgpu::Sampler& MaterialResources::sampler(scene::SamplerId sampler) const {
     assert(sampler.index() < mSceneSamplers.size());
     return mSamplers[mSceneSamplers[sampler.index()]];
+}
+
+bool MaterialResources::textured(scene::MaterialId material) const {
+    assert(material.index() < mTextured.size());
+    return mTextured[material.index()];
 }
 
 bool MaterialResources::usesDefaultBaseColor(scene::MaterialId material) const {

@@ -63,7 +63,8 @@ Result<wgpu::RenderPipeline> createMeshPipeline(const RenderSetup& setup, const 
             break;
     }
     if (key.shader.materials) {
-        groups.push_back(setup.layouts->material);
+        groups.push_back(key.shader.materialTextures ? setup.layouts->material
+                                                     : setup.layouts->materialUniformOnly);
     }
     wgpu::PipelineLayoutDescriptor layoutDescriptor{};
     layoutDescriptor.bindGroupLayoutCount = groups.size();

@@ -29,7 +29,10 @@ Result<void> Renderer::build(const RendererOptions& options) {
     gpu::Context& context = *mContext;
     Renderer& renderer = *this;
     renderer.mOptions = options;
-    auto target = RenderTarget::create(context.device(), options.target);
+    // Straight alpha needs the coverage that only the HDR target keeps.
+    renderer.mOptions.target.hdr =
+        options.target.hdr || options.toneMapping.background == BackgroundKind::Transparent;
+    auto target = RenderTarget::create(context.device(), renderer.mOptions.target);
     if (!target) {
         return target.error();
     }
@@ -54,14 +57,17 @@ Result<void> Renderer::build(const RendererOptions& options) {
     }
     renderer.mLighting = std::make_unique<SceneLighting>(std::move(*lighting));
     renderer.mLighting->setParameters(options.lighting);
+    renderer.mLighting->setDisplayMapping(options.toneMapping, !renderer.mTarget.hdr());
     renderer.mFrame =
         std::make_unique<FrameUniforms>(context.device(), *renderer.mLayouts, *renderer.mLighting);
-    auto toneMapper = ToneMapper::create(context.device(), context.queue(), *renderer.mShaders,
-                                         renderer.mTarget, options.toneMapping);
-    if (!toneMapper) {
-        return toneMapper.error();
+    if (renderer.mTarget.hdr()) {
+        auto toneMapper = ToneMapper::create(context.device(), context.queue(), *renderer.mShaders,
+                                             renderer.mTarget, options.toneMapping);
+        if (!toneMapper) {
+            return toneMapper.error();
+        }
+        renderer.mToneMapper = std::make_unique<ToneMapper>(std::move(*toneMapper));
     }
-    renderer.mToneMapper = std::make_unique<ToneMapper>(std::move(*toneMapper));
     auto background = EnvironmentBackground::create(
         context.device(), *renderer.mShaders, renderer.mLayouts->frame,
         renderer.mTarget.sceneFormat(), RenderTarget::kDepthFormat, options.target.sampleCount);
@@ -88,7 +94,6 @@ Result<void> Renderer::recoverFromDeviceLoss() {
     // Everything is rebuilt from what the CPU holds: the options as they are now, the
     // environment's panorama, the scene data and the strategy kind.
     RendererOptions options = mOptions;
-    options.toneMapping = mToneMapper->options();
     options.lighting = mLighting->parameters();
     const Environment& environment = mLighting->environment();
     options.environment = nullptr;
@@ -174,8 +179,12 @@ FrameResult Renderer::renderPasses(std::span<const Camera> cameras, float timeSe
         if (multiView) {
             mFrame->selectView(commandEncoder, view);
         }
-        // Alpha is coverage: 0 where nothing is drawn, for the tone mapper's background.
-        wgpu::RenderPassColorAttachment color = mTarget.colorAttachment({0.0, 0.0, 0.0, 0.0});
+        // HDR: alpha is coverage, 0 where nothing is drawn, for the tone mapper's background.
+        // Otherwise the background colour itself (linear: the sRGB target encodes the clear).
+        const glm::vec3& background = mOptions.toneMapping.backgroundColor;
+        wgpu::RenderPassColorAttachment color = mTarget.colorAttachment(
+            mTarget.hdr() ? wgpu::Color{0.0, 0.0, 0.0, 0.0}
+                          : wgpu::Color{background.r, background.g, background.b, 1.0});
         wgpu::RenderPassDepthStencilAttachment depth = mTarget.depthAttachment();
         if (view > 0) {
             color.loadOp = wgpu::LoadOp::Load;  // Keep the views drawn before.
@@ -194,7 +203,7 @@ FrameResult Renderer::renderPasses(std::span<const Camera> cameras, float timeSe
             pass.SetViewport(float(view * viewWidth), 0.0f, float(viewWidth),
                              float(mTarget.height()), 0.0f, 1.0f);
         }
-        if (mToneMapper->options().background == BackgroundKind::Environment) {
+        if (mOptions.toneMapping.background == BackgroundKind::Environment) {
             mBackground->draw(pass, mFrame->bindGroup());
         }
         if (mStrategy) {
@@ -204,7 +213,7 @@ FrameResult Renderer::renderPasses(std::span<const Camera> cameras, float timeSe
         }
         pass.End();
     }
-    if (mTarget.hdr()) {
+    if (mToneMapper) {
         mToneMapper->encode(commandEncoder, mTarget);
     }
     if (mTimer) {
@@ -252,8 +261,18 @@ void Renderer::setLighting(const LightingParameters& parameters) {
     mLighting->setParameters(parameters);
 }
 
-void Renderer::setToneMapping(const ToneMappingOptions& options) {
-    mToneMapper->setOptions(options);
+Result<void> Renderer::setToneMapping(const ToneMappingOptions& options) {
+    if (options.background == BackgroundKind::Transparent && !mTarget.hdr()) {
+        return makeError(ErrorCode::InvalidArgument,
+                         "A transparent background needs an HDR render target: create the "
+                         "renderer with a transparent background or RenderTargetOptions::hdr.");
+    }
+    mOptions.toneMapping = options;
+    if (mToneMapper) {
+        mToneMapper->setOptions(options);
+    }
+    mLighting->setDisplayMapping(options, !mTarget.hdr());
+    return {};
 }
 
 Result<void> Renderer::loadEnvironment(const image::HdrImage& panorama) {
@@ -267,7 +286,7 @@ Result<void> Renderer::updateLight(std::size_t lightInstance, const scene::Light
 }
 
 void Renderer::toneMapScene() {
-    if (!mTarget.hdr()) {
+    if (!mToneMapper) {
         return;
     }
     wgpu::CommandEncoder commands = mContext->device().CreateCommandEncoder();

@@ -30,6 +30,9 @@ std::set<std::string, std::less<>> ShaderVariantKey::flags() const {
     if (hasTexcoord1) {
         result.insert("HAS_TEXCOORD1");
     }
+    if (materials && materialTextures) {
+        result.insert("MATERIAL_TEXTURES");
+    }
     if (hasTangent) {
         result.insert("HAS_TANGENT");
     }

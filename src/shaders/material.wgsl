@@ -1,7 +1,8 @@
 // Group 2: one glTF material (MaterialResources in C++). The uniform holds every factor and,
-// for each of the twelve texture slots, the texCoord set and KHR_texture_transform; each slot
-// has its own sampler (the glTF sampler of its texture) and texture (a 1-pixel default when the
-// material has none: white, so that factors multiply through unchanged).
+// for each of the twelve texture slots, the texCoord set and KHR_texture_transform; with
+// MATERIAL_TEXTURES each slot has its own sampler (the glTF sampler of its texture) and texture
+// (a 1-pixel default when the material has none: white, so that factors multiply through
+// unchanged). Materials with no texture at all bind the uniform only and read white.
 
 // Rows of the slot's 2x3 texture transform applied to (u, v, 1); row0.w: 1 reads TEXCOORD_1.
 struct TextureSlot {
@@ -47,6 +48,7 @@ const kSheenColorSlot = 10u;
 const kSheenRoughnessSlot = 11u;
 
 @group(2) @binding(0) var<uniform> material: Material;
+#if MATERIAL_TEXTURES
 @group(2) @binding(1) var baseColorSampler: sampler;
 @group(2) @binding(2) var baseColorTexture: texture_2d<f32>;
 @group(2) @binding(3) var metallicRoughnessSampler: sampler;
@@ -71,6 +73,7 @@ const kSheenRoughnessSlot = 11u;
 @group(2) @binding(22) var sheenColorTexture: texture_2d<f32>;
 @group(2) @binding(23) var sheenRoughnessSampler: sampler;
 @group(2) @binding(24) var sheenRoughnessTexture: texture_2d<f32>;
+#endif
 
 fn slotUv(slot: u32, uv0: vec2f, uv1: vec2f) -> vec2f {
     let transform = material.slots[slot];

@@ -14,12 +14,16 @@
 //                     use a tangent frame from screen-space derivatives.
 //   HAS_COLOR         the primitive has COLOR_0.
 //   ALPHA_MASK        fragments below the material's alphaCutoff are discarded.
-// The colour target is linear HDR (rgba16float); a tone-mapping pass makes the final image.
+//   MATERIAL_TEXTURES (with MATERIALS) the material binds textures; without it group 2 holds
+//                     only the material uniform and every texture slot reads white.
+// The colour target is either the sRGB output, written with the display transform applied
+// (displayColor), or linear HDR (rgba16float) that a tone-mapping pass maps afterwards; a
+// uniform selects which, so both share the variants.
 // Vertex locations must match include/encore/shaders/VertexLocations.h (a test checks).
 #include "frame.wgsl"
 #include "lighting.wgsl"
-#if MATERIALS
 #include "scene_lighting.wgsl"
+#if MATERIALS
 #include "brdf.wgsl"
 #include "material.wgsl"
 #endif
@@ -227,6 +231,7 @@ fn fragmentMain(input: VertexOutput, @builtin(front_facing) frontFacing: bool) -
     // material has a texture there or binds the 1-pixel default.
     let uv0 = input.texcoord;
     let uv1 = input.texcoord1;
+#if MATERIAL_TEXTURES
     let baseColorSample = textureSample(baseColorTexture, baseColorSampler,
                                         slotUv(kBaseColorSlot, uv0, uv1));
     let metallicRoughnessSample = textureSample(metallicRoughnessTexture,
@@ -251,6 +256,21 @@ fn fragmentMain(input: VertexOutput, @builtin(front_facing) frontFacing: bool) -
                                          slotUv(kSheenColorSlot, uv0, uv1)).rgb;
     let sheenRoughnessSample = textureSample(sheenRoughnessTexture, sheenRoughnessSampler,
                                              slotUv(kSheenRoughnessSlot, uv0, uv1)).a;
+#else
+    // No texture anywhere: every slot reads white, as the 1-pixel default would.
+    let baseColorSample = vec4f(1.0);
+    let metallicRoughnessSample = vec4f(1.0);
+    let normalSample = vec3f(1.0);
+    let occlusionSample = 1.0;
+    let emissiveSample = vec3f(1.0);
+    let specularSample = 1.0;
+    let specularColorSample = vec3f(1.0);
+    let clearcoatSample = 1.0;
+    let clearcoatRoughnessSample = 1.0;
+    let clearcoatNormalSample = vec3f(1.0);
+    let sheenColorSample = vec3f(1.0);
+    let sheenRoughnessSample = 1.0;
+#endif
     let positionDx = dpdx(input.worldPosition);
     let positionDy = dpdy(input.worldPosition);
     let uvDx = dpdx(uv0);
@@ -268,7 +288,7 @@ fn fragmentMain(input: VertexOutput, @builtin(front_facing) frontFacing: bool) -
     let features = material.flags.y;
     let emissive = material.emissive.rgb * emissiveSample;
     if (model == kModelUnlit) {
-        return vec4f(baseColor.rgb, alpha);
+        return displayColor(vec4f(baseColor.rgb, alpha));
     }
 
     var surface = surfaceFrame(input, frontFacing, positionDx, positionDy, uvDx, uvDy);
@@ -418,8 +438,8 @@ fn fragmentMain(input: VertexOutput, @builtin(front_facing) frontFacing: bool) -
         default: {
         }
     }
-    return vec4f(color, alpha);
+    return displayColor(vec4f(color, alpha));
 #else
-    return vec4f(shade(input.color.rgb, input.normal), 1.0);
+    return displayColor(vec4f(shade(input.color.rgb, input.normal), 1.0));
 #endif
 }

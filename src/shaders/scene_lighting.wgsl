@@ -1,4 +1,6 @@
-// Group 0, bindings 1..6: how the scene is lit. Shared by every pipeline (BindGroupLayouts::frame);
+#include "tone_map.wgsl"
+
+// Group 0, bindings 1..6: how the scene is lit and displayed. Shared by every pipeline (BindGroupLayouts::frame);
 // only the physically based mesh shader and the environment background read them. Everything
 // here changes through buffers and in-place texture writes, so recorded bundles stay valid.
 
@@ -13,9 +15,12 @@ struct Lighting {
     // What the mesh shader writes (LightingDebug in C++): 0 the shaded colour, 1 base colour,
     // 2 shading normal, 3 metallic, 4 roughness, 5 occlusion, 6 emissive.
     debugChannel: u32,
-    padding0: u32,
-    padding1: u32,
-    padding2: u32,
+    // The display transform (tone_map.wgsl), applied by displayColor when displayMapped is 1:
+    // the scene renders straight into the sRGB output. 0: the target is linear HDR and a later
+    // pass maps it (tone_mapping.wgsl).
+    exposure: f32,
+    toneMapping: u32,
+    displayMapped: u32,
 }
 
 // KHR_lights_punctual in world space (LightBuffer in C++).
@@ -41,4 +46,13 @@ struct PunctualLight {
 
 fn environmentDirection(worldDirection: vec3f) -> vec3f {
     return lighting.environmentRotation * worldDirection;
+}
+
+// What a scene shader writes for a linear colour: the display colour when the scene renders
+// straight into the output, the linear colour itself for an HDR target.
+fn displayColor(color: vec4f) -> vec4f {
+    if (lighting.displayMapped == 0u) {
+        return color;
+    }
+    return vec4f(toneMap(color.rgb, lighting.exposure, lighting.toneMapping), color.a);
 }

@@ -31,5 +31,5 @@ fn fragmentMain(input: SkyOutput) -> @location(0) vec4f {
     let direction = normalize(transpose(rotation) * viewRay);
     let radiance = textureSampleLevel(specularEnvironment, environmentSampler,
                                       environmentDirection(direction), 0.0).rgb;
-    return vec4f(radiance * lighting.environmentIntensity, 1.0);
+    return displayColor(vec4f(radiance * lighting.environmentIntensity, 1.0));
 }

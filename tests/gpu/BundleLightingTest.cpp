@@ -126,7 +126,7 @@ TEST_P(BundleLightingTest, ExposureAndToneMapping) {
     RendererOptions changed = mOptions;
     changed.toneMapping.exposure = 2.5f;
     changed.toneMapping.toneMapping = ToneMapping::AcesHill;
-    mRenderer->setToneMapping(changed.toneMapping);
+    ASSERT_TRUE(mRenderer->setToneMapping(changed.toneMapping).ok());
     expectSameAsFresh(changed, "exposure and tone mapping");
 }
 

@@ -64,6 +64,7 @@ std::vector<float> radianceAt(const LightDesc& light, const std::vector<glm::vec
     gpu::Context* context = test::vulkanContext();
     const scene::SceneData scene = litPlane(light);
     RendererOptions options = test::pixelTestOptions(kSize, kSize, 1, DebugChannel::Shaded);
+    options.target.hdr = true;  // Reads the linear colour back.
     options.lighting.imageBasedLighting = false;
     auto renderer = Renderer::create(*context, options);
     EXPECT_TRUE(renderer.ok());

@@ -15,7 +15,7 @@ TEST(ShaderCompileTest, EveryMeshVariantCompiles) {
     std::size_t compiled = 0;
     for (InstanceSource source : {InstanceSource::NodeUniform, InstanceSource::InstanceStorage,
                                   InstanceSource::VisibleList}) {
-        for (std::uint32_t bits = 0; bits < 64; ++bits) {
+        for (std::uint32_t bits = 0; bits < 128; ++bits) {
             ShaderVariantKey key;
             key.instanceSource = source;
             key.materials = bits & 1;
@@ -24,6 +24,7 @@ TEST(ShaderCompileTest, EveryMeshVariantCompiles) {
             key.alphaMask = bits & 8;
             key.hasTexcoord1 = bits & 16;
             key.hasTangent = bits & 32;
+            key.materialTextures = bits & 64;
             auto module = library.meshModule(key);
             ASSERT_TRUE(module.ok()) << module.error().message;
             auto errors = context->checkNoErrors("compiling mesh.wgsl " + key.describe());
@@ -31,7 +32,7 @@ TEST(ShaderCompileTest, EveryMeshVariantCompiles) {
             ++compiled;
         }
     }
-    EXPECT_EQ(compiled, 3u * 64u);
+    EXPECT_EQ(compiled, 3u * 128u);
 }
 
 TEST(ShaderCompileTest, PassShadersCompile) {

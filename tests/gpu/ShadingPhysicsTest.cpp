@@ -97,6 +97,7 @@ HdrFrame renderSphere(const test::GltfBuilder::MaterialDesc& desc,
     auto scene = scene::loadSceneFromMemory(builder.toGlb(), {}, "sphere.glb");
     EXPECT_TRUE(scene.ok()) << scene.error().message;
     RendererOptions options = test::pixelTestOptions(kSize, kSize, 1, DebugChannel::Shaded);
+    options.target.hdr = true;  // Reads the linear colour back.
     options.environment = std::move(environment);
     auto renderer = Renderer::create(*context, options);
     EXPECT_TRUE(renderer.ok());
@@ -313,9 +314,9 @@ TEST_P(NormalMapHandednessTest, TiltFollowsTheTextureDirections) {
     ASSERT_TRUE(scene.ok()) << scene.error().message;
 
     for (StrategyKind kind : {StrategyKind::Materials, StrategyKind::GpuCullingBundles}) {
-        auto renderer =
-            Renderer::create(*context, test::pixelTestOptions(kSize, kSize, 1,
-                                                              DebugChannel::Normal));
+        RendererOptions options = test::pixelTestOptions(kSize, kSize, 1, DebugChannel::Normal);
+        options.target.hdr = true;  // Reads the linear colour back.
+        auto renderer = Renderer::create(*context, options);
         ASSERT_TRUE(renderer.ok());
         ASSERT_TRUE(renderer->prepare(*scene, kind).ok());
         renderer->renderFrame(test::frontCamera());

@@ -6,7 +6,8 @@
 //                 and their sampler; once per pass or bundle
 //   1  instances  one node's transform (uniform), all transforms (read-only storage), or all
 //                 transforms plus a draw's visible-instance list (GPU culling)
-//   2  material   material uniform, then a sampler and a texture per texture slot
+//   2  material   material uniform, then a sampler and a texture per texture slot; materials
+//                 without any texture use materialUniformOnly (the uniform alone)
 
 #include <webgpu/webgpu_cpp.h>
 
@@ -26,6 +27,7 @@ struct BindGroupLayouts {
     // GPU culling: all transforms plus one draw's visible list (dynamic offset).
     wgpu::BindGroupLayout culledInstances;
     wgpu::BindGroupLayout material;
+    wgpu::BindGroupLayout materialUniformOnly;  // mesh.wgsl without MATERIAL_TEXTURES.
 
     static BindGroupLayouts create(const wgpu::Device& device);
 };

@@ -1,7 +1,7 @@
 #pragma once
 
 // SceneLighting owns what group 0 binds besides the camera: the lighting uniform (environment
-// rotation and intensity, light count, debug channel), the punctual lights of the scene
+// rotation and intensity, light count, debug channel, the display transform), the punctual lights of the scene
 // (KHR_lights_punctual, one storage buffer) and the image-based-lighting Environment. All of it
 // changes through buffers and in-place texture writes: a recorded render bundle stays valid
 // when the environment, its intensity or rotation, or a light changes. Only a scene with more
@@ -16,6 +16,7 @@
 
 #include "encore/core/Result.h"
 #include "encore/render/Environment.h"
+#include "encore/render/ToneMappingOptions.h"
 #include "encore/scene/SceneData.h"
 
 namespace encore::render {
@@ -48,7 +49,9 @@ struct LightingUniform {
     std::uint32_t lightCount;
     std::uint32_t imageBasedLighting;
     std::uint32_t debugChannel;
-    std::uint32_t padding[3];
+    float exposure;
+    std::uint32_t toneMapping;    // ToneMapping.
+    std::uint32_t displayMapped;  // 1: scene shaders write display colour (no HDR pass).
 };
 static_assert(sizeof(LightingUniform) == 80);
 
@@ -80,6 +83,10 @@ class SceneLighting {
     void setParameters(const LightingParameters& parameters);
     const LightingParameters& parameters() const { return mParameters; }
 
+    // The display transform the scene shaders apply (`inShaders`: the target has no HDR pass),
+    // or none (linear output for an HDR target's tone-mapping pass).
+    void setDisplayMapping(const ToneMappingOptions& options, bool inShaders);
+
     // Uploads the placed lights of `scene`. Returns true when the light buffer had to grow, so
     // bind groups that reference it must be created again.
     bool setSceneLights(const scene::SceneData& scene);
@@ -108,6 +115,8 @@ class SceneLighting {
     std::size_t mLightCapacity = 0;
     std::size_t mLightCount = 0;
     LightingParameters mParameters;
+    ToneMappingOptions mDisplay;
+    bool mDisplayInShaders = false;
 };
 
 }  // namespace encore::render

@@ -138,7 +138,13 @@ class MaterialResources {
     MaterialResources& operator=(const MaterialResources&) = delete;
 
     // The group 2 bind group of a material; `material` must be a valid index of the scene.
+    // Its layout is BindGroupLayouts::material when textured(material), else
+    // BindGroupLayouts::materialUniformOnly.
     const wgpu::BindGroup& bindGroup(scene::MaterialId material) const;
+    // Whether the material binds a texture in any slot (an image that was uploaded); pipelines
+    // drawing it need the MATERIAL_TEXTURES variant. Changes only through
+    // replaceBaseColorImage.
+    bool textured(scene::MaterialId material) const;
 
     // Rewrites the uniform range of `material` from `values` (factors, texture transform,
     // alpha cutoff). Textures and samplers stay as created: changing which texture a material
@@ -150,7 +156,8 @@ class MaterialResources {
     // Replaces the base colour image of `material` with `image` (uploaded as a new sRGB texture
     // with its mip chain), rebuilds the material's bind group and destroys the texture it
     // replaced unless another material or the default still uses it. Bumps generation(): render
-    // bundles that bound the old bind group must be re-recorded before they execute again.
+    // bundles that bound the old bind group must be re-recorded before they execute again. A
+    // material without textures becomes textured (callers choose its pipelines again).
     Result<void> replaceBaseColorImage(const wgpu::Device& device, const wgpu::Queue& queue,
                                        shaders::ShaderLibrary& shaders,
                                        const BindGroupLayouts& layouts,
@@ -201,6 +208,7 @@ class MaterialResources {
     using SlotIndices = std::array<std::size_t, kMaterialTextureSlotCount>;
     std::vector<SlotIndices> mMaterialTextures;  // MaterialId -> slot -> index into mTextures.
     std::vector<SlotIndices> mMaterialSamplers;  // MaterialId -> slot -> index into mSamplers.
+    std::vector<bool> mTextured;                 // MaterialId -> binds a texture.
     std::uint64_t mGeneration = 0;
 
     wgpu::BindGroup createBindGroup(const wgpu::Device& device, const BindGroupLayouts& layouts,

@@ -1,10 +1,12 @@
 #pragma once
 
-// An offscreen target. Scenes render into a linear HDR colour texture (rgba16float, alpha =
-// coverage) with depth; with sampleCount 4 the pass renders into multisampled textures and
-// resolves into the single-sampled HDR texture. A tone-mapping pass then writes the readable
-// RGBA8UnormSrgb output (ToneMapper). A target created with `hdr = false` renders straight into
-// the output format (the Animometer, which has no lighting to map).
+// An offscreen target with depth. By default scenes render straight into the readable
+// RGBA8UnormSrgb output, their shaders applying the display transform as they shade (one pass
+// per frame). With `hdr`, scenes render into a linear HDR colour texture (rgba16float, alpha =
+// coverage) and a tone-mapping pass then writes the output (ToneMapper): for a transparent
+// background (straight alpha needs the coverage) and for reading the linear colour back. With
+// sampleCount 4 the scene pass renders into multisampled textures and resolves into the
+// single-sampled scene texture.
 
 #include <webgpu/webgpu_cpp.h>
 
@@ -18,7 +20,7 @@ struct RenderTargetOptions {
     std::uint32_t width = 1280;
     std::uint32_t height = 720;
     std::uint32_t sampleCount = 1;  // 1 or 4.
-    bool hdr = true;
+    bool hdr = false;
 };
 
 class RenderTarget {

@@ -2,8 +2,10 @@
 
 // Renderer draws a SceneData with one strategy into an offscreen RenderTarget. It owns what all
 // strategies share (shader library, bind group layouts, frame uniforms, the scene's lighting and
-// environment, tone mapping) and the strategy itself. A frame renders the scene in linear HDR,
-// then tone maps it into the target's sRGB output.
+// environment, tone mapping) and the strategy itself. A frame renders the scene into the
+// target's sRGB output, the shaders applying the display transform as they shade; with an HDR
+// target (RenderTargetOptions::hdr, or a transparent background) it renders linear HDR and a
+// tone-mapping pass writes the output.
 
 #include <memory>
 #include <string>
@@ -76,7 +78,9 @@ class Renderer {
     // Lighting and tone mapping, through buffers and in-place texture writes: recorded bundles
     // stay valid (tests check bundlesRecorded).
     void setLighting(const LightingParameters& parameters);
-    void setToneMapping(const ToneMappingOptions& options);
+    // Fails when asking for a transparent background on a target without HDR.
+    Result<void> setToneMapping(const ToneMappingOptions& options);
+    const ToneMappingOptions& toneMapping() const { return mOptions.toneMapping; }
     // Recomputes the environment maps from `panorama` into the same textures.
     Result<void> loadEnvironment(const image::HdrImage& panorama);
     // Rewrites a placed light (an index into SceneData::lightInstances of the prepared scene).
@@ -85,7 +89,8 @@ class Renderer {
     const SceneLighting& lighting() const { return *mLighting; }
 
     // Tone maps the target's HDR scene colour into its output now: for callers that record
-    // their own passes into target().colorAttachment() (renderFrame does this itself).
+    // their own passes into target().colorAttachment() (renderFrame does this itself). Nothing
+    // to do without HDR.
     void toneMapScene();
 
     // Waits for the GPU and reads the final image back.
@@ -122,7 +127,7 @@ class Renderer {
     std::unique_ptr<BindGroupLayouts> mLayouts;
     std::unique_ptr<SceneLighting> mLighting;  // Before mFrame: its bind group binds these.
     std::unique_ptr<FrameUniforms> mFrame;
-    std::unique_ptr<ToneMapper> mToneMapper;
+    std::unique_ptr<ToneMapper> mToneMapper;  // HDR targets only.
     std::unique_ptr<EnvironmentBackground> mBackground;
     std::unique_ptr<RenderSetup> mSetup;  // Stable address: strategies keep pointers to it.
     std::unique_ptr<Strategy> mStrategy;

@@ -1,7 +1,8 @@
 #pragma once
 
-// The last pass of a frame: exposure, tone mapping and the background, from the render target's
-// linear HDR scene colour to its sRGB output (tone_mapping.wgsl). Its parameters live in a
+// The last pass of a frame on an HDR render target: exposure, tone mapping and the background,
+// from the target's linear HDR scene colour to its sRGB output (tone_mapping.wgsl). Targets
+// without HDR need no pass: the scene shaders apply the same transform (SceneLighting). Its parameters live in a
 // uniform buffer, so changing exposure, operator or background never touches the scene's
 // recorded bundles.
 
@@ -11,29 +12,10 @@
 
 #include "encore/core/Result.h"
 #include "encore/render/RenderTarget.h"
+#include "encore/render/ToneMappingOptions.h"
 #include "encore/shaders/ShaderLibrary.h"
 
 namespace encore::render {
-
-enum class ToneMapping : std::uint32_t {
-    None,        // Linear, clamped at 1.
-    PbrNeutral,  // Khronos PBR Neutral (the default, as the Khronos Sample Renderer).
-    AcesHill,    // ACES filmic, Stephen Hill's fit.
-};
-
-enum class BackgroundKind : std::uint32_t {
-    Color,        // An opaque colour behind the scene.
-    Transparent,  // Alpha 0 where nothing is drawn; colours are straight (not premultiplied).
-    Environment,  // The environment map, drawn by EnvironmentBackground and tone mapped.
-};
-
-struct ToneMappingOptions {
-    ToneMapping toneMapping = ToneMapping::PbrNeutral;
-    float exposure = 1.0f;  // Multiplies linear colour before tone mapping.
-    BackgroundKind background = BackgroundKind::Color;
-    // Linear RGB of BackgroundKind::Color; the default is a neutral dark grey.
-    glm::vec3 backgroundColor{0.05f, 0.05f, 0.06f};
-};
 
 class ToneMapper {
   public:

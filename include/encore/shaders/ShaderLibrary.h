@@ -31,7 +31,9 @@ struct ShaderVariantKey {
     bool alphaMask = false;
     bool hasTexcoord1 = false;  // A texture of the material reads TEXCOORD_1.
     bool hasTangent = false;    // TANGENT is bound (the material has a normal map).
-    std::uint8_t padding[1] = {};
+    // The material binds at least one texture (MATERIAL_TEXTURES). Texture-less materials bind
+    // only their uniform: no texture for WebGPU to track, nothing to sample per pixel.
+    bool materialTextures = false;
 
     bool operator==(const ShaderVariantKey&) const = default;
     std::set<std::string, std::less<>> flags() const;

@@ -1,11 +1,31 @@
 #include "GpuCullingStrategy.h"
 
+#include <cassert>
+#include <map>
+
 namespace encore::render {
 
 Result<void> GpuCullingStrategy::prepare(const RenderSetup& setup, const scene::SceneData& scene) {
-    ENCORE_TRY(MaterialsStrategy::prepare(setup, scene));
-    mScene = &scene;
     mBundles = BundledFrame();
+    mCulled.clear();
+    mCullerCreated = false;
+    return MaterialsStrategy::prepare(setup, scene);  // Calls groupDraws().
+}
+
+Result<void> GpuCullingStrategy::groupDraws() {
+    ENCORE_TRY(MaterialsStrategy::groupDraws());
+    const scene::SceneData& scene = *mScene;
+    const RenderSetup& setup = *mSetup;
+    // A regrouping (a material gained textures) keeps the culler and its draws, whose spheres
+    // may have moved since: each primitive keeps its draw index.
+    std::map<std::pair<const PrimitiveBindings*, std::uint32_t>, std::size_t> drawOf;
+    for (const CulledPipeline& pipeline : mCulled) {
+        for (const CulledMaterial& material : pipeline.materials) {
+            for (const CulledPrimitive& primitive : material.primitives) {
+                drawOf[{primitive.bindings, primitive.firstInstance}] = primitive.draw;
+            }
+        }
+    }
     mCulled.clear();
 
     // Same grouping as `materials`; each draw becomes an indirect draw of the culled variant.
@@ -22,13 +42,25 @@ Result<void> GpuCullingStrategy::prepare(const RenderSetup& setup, const scene::
             CulledMaterial culledMaterial{material.material, {}};
             for (const PrimitiveDraw& primitive : material.primitives) {
                 const PrimitiveBindings& bindings = *primitive.bindings;
-                culledMaterial.primitives.push_back({primitive.bindings, draws.size()});
-                draws.push_back({primitive.instances, bindings.indices.has_value(),
-                                 bindings.indices ? bindings.indices->count : bindings.vertexCount});
+                std::size_t draw = draws.size();
+                if (mCullerCreated) {
+                    const auto existing = drawOf.find({primitive.bindings, primitive.instances.first});
+                    assert(existing != drawOf.end());
+                    draw = existing->second;
+                } else {
+                    draws.push_back({primitive.instances, bindings.indices.has_value(),
+                                     bindings.indices ? bindings.indices->count
+                                                      : bindings.vertexCount});
+                }
+                culledMaterial.primitives.push_back(
+                    {primitive.bindings, primitive.instances.first, draw});
             }
             culled.materials.push_back(std::move(culledMaterial));
         }
         mCulled.push_back(std::move(culled));
+    }
+    if (mCullerCreated) {
+        return {};
     }
 
     mMeshBounds.assign(scene.meshes.size(), {});
@@ -47,6 +79,7 @@ Result<void> GpuCullingStrategy::prepare(const RenderSetup& setup, const scene::
         return culler.error();
     }
     mCuller = std::move(*culler);
+    mCullerCreated = true;
     return {};
 }
 

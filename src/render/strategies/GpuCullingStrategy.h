@@ -29,7 +29,8 @@ class GpuCullingStrategy final : public MaterialsStrategy {
   private:
     struct CulledPrimitive {
         const PrimitiveBindings* bindings = nullptr;
-        std::size_t draw = 0;  // Index into the culler's draws.
+        std::uint32_t firstInstance = 0;  // With bindings, identifies the draw across groupings.
+        std::size_t draw = 0;             // Index into the culler's draws.
     };
     struct CulledMaterial {
         scene::MaterialId material;
@@ -40,10 +41,11 @@ class GpuCullingStrategy final : public MaterialsStrategy {
         std::vector<CulledMaterial> materials;
     };
 
+    Result<void> groupDraws() override;
     void encodeCulled(RenderEncoder& encoder) const;
 
     bool mUseBundles;
-    const scene::SceneData* mScene = nullptr;
+    bool mCullerCreated = false;
     std::vector<scene::Bounds> mMeshBounds;
     std::vector<CulledPipeline> mCulled;
     GpuCuller mCuller;

@@ -11,11 +11,13 @@ namespace {
 
 // The variant a primitive and its material need: vertex inputs that exist and are read
 // (TEXCOORD_0, COLOR_0; TANGENT only under a normal map; TEXCOORD_1 only when a texture reads
-// it) and MASK's discard. Everything else (textures or not, extensions, unlit) is uniform data
-// and 1-pixel default textures, so it shares the variant.
+// it), MASK's discard, and whether the material binds textures at all. Everything else (which
+// slots have textures, extensions, unlit) is uniform data and 1-pixel default textures, so it
+// shares the variant.
 shaders::ShaderVariantKey materialVariant(const scene::Primitive& primitive,
-                                          const scene::Material& material) {
+                                          const scene::Material& material, bool textured) {
     shaders::ShaderVariantKey key;
+    key.materialTextures = textured;
     key.instanceSource = shaders::InstanceSource::InstanceStorage;
     key.materials = true;
     key.hasTexcoord = primitive.attribute(scene::Semantic::Texcoord0).has_value();
@@ -61,7 +63,18 @@ Result<void> MaterialsStrategy::prepare(const RenderSetup& setup, const scene::S
         return materials.error();
     }
     mMaterials = std::make_unique<MaterialResources>(std::move(*materials));
+    mScene = &scene;
     mBindings.clear();
+    mPrimitiveBindings.assign(scene.meshes.size(), {});
+    for (std::size_t mesh = 0; mesh < scene.meshes.size(); ++mesh) {
+        mPrimitiveBindings[mesh].assign(scene.meshes[mesh].primitives.size(), nullptr);
+    }
+    return groupDraws();
+}
+
+Result<void> MaterialsStrategy::groupDraws() {
+    const scene::SceneData& scene = *mScene;
+    const RenderSetup& setup = *mSetup;
     mOpaque.clear();
     mBlended.clear();
 
@@ -72,15 +85,22 @@ Result<void> MaterialsStrategy::prepare(const RenderSetup& setup, const scene::S
         if (mInstances.meshRange(scene::MeshId(mesh)).count == 0) {
             continue;
         }
-        for (const scene::Primitive& primitive : scene.meshes[mesh].primitives) {
+        const auto& primitives = scene.meshes[mesh].primitives;
+        for (std::size_t index = 0; index < primitives.size(); ++index) {
+            const scene::Primitive& primitive = primitives[index];
             const scene::Material& material = scene.materials[primitive.material.index()];
-            const shaders::ShaderVariantKey variant = materialVariant(primitive, material);
-            auto bindings = mGeometry->bind(primitive, variantSemantics(variant));
-            if (!bindings) {
-                return bindings.error();
+            const shaders::ShaderVariantKey variant =
+                materialVariant(primitive, material, mMaterials->textured(primitive.material));
+            // Vertex inputs do not depend on textures, so a regrouping keeps the bindings.
+            const PrimitiveBindings*& bound = mPrimitiveBindings[mesh][index];
+            if (!bound) {
+                auto bindings = mGeometry->bind(primitive, variantSemantics(variant));
+                if (!bindings) {
+                    return bindings.error();
+                }
+                mBindings.push_back(std::make_unique<PrimitiveBindings>(std::move(*bindings)));
+                bound = mBindings.back().get();
             }
-            mBindings.push_back(std::make_unique<PrimitiveBindings>(std::move(*bindings)));
-            const PrimitiveBindings* bound = mBindings.back().get();
 
             PipelineKey key = meshPipelineKey(setup, *bound, variant);
             key.cullMode = material.doubleSided ? wgpu::CullMode::None : wgpu::CullMode::Back;
@@ -210,8 +230,19 @@ Result<void> MaterialsStrategy::updateMaterial(scene::MaterialId material,
 
 Result<void> MaterialsStrategy::replaceBaseColorImage(scene::MaterialId material,
                                                       const scene::Image& image) {
-    return mMaterials->replaceBaseColorImage(mSetup->device, mQueue, *mSetup->shaders,
-                                             *mSetup->layouts, material, image);
+    if (!material.valid() || material.index() >= mMaterials->materialCount()) {
+        return makeError(ErrorCode::InvalidArgument,
+                         "Material " + std::to_string(material.value) + " does not exist.");
+    }
+    const bool wasTextured = mMaterials->textured(material);
+    ENCORE_TRY(mMaterials->replaceBaseColorImage(mSetup->device, mQueue, *mSetup->shaders,
+                                                 *mSetup->layouts, material, image));
+    if (!wasTextured) {
+        // Its draws need the MATERIAL_TEXTURES pipelines now. The bind group change has
+        // already bumped the generation, so bundles record the new grouping.
+        return groupDraws();
+    }
+    return {};
 }
 
 }  // namespace encore::render

@@ -61,8 +61,13 @@ class MaterialsStrategy : public Strategy {
     // Blended draws in that order, skipping state that does not change between them.
     void encodeBlended(RenderEncoder& encoder, std::span<const std::uint32_t> order) const;
     void setSharedBindGroups(RenderEncoder& encoder) const;
+    // Chooses every primitive's pipeline and groups the draws (mOpaque, mBlended) from the
+    // prepared scene and materials; again when a material gains textures. Strategies that
+    // derive their own structures from the groups extend it.
+    virtual Result<void> groupDraws();
 
     const RenderSetup* mSetup = nullptr;
+    const scene::SceneData* mScene = nullptr;
     std::unique_ptr<GeometryBuffers> mGeometry;
     std::unique_ptr<PipelineCache> mPipelines;
     std::unique_ptr<MaterialResources> mMaterials;
@@ -70,6 +75,8 @@ class MaterialsStrategy : public Strategy {
     InstanceBuffer mInstances;
     wgpu::Queue mQueue;
     std::vector<std::unique_ptr<PrimitiveBindings>> mBindings;  // Stable addresses.
+    // [mesh][primitive] -> its entry of mBindings (null until grouped).
+    std::vector<std::vector<const PrimitiveBindings*>> mPrimitiveBindings;
     std::vector<PipelineGroup> mOpaque;
     std::vector<BlendedDraw> mBlended;
 };
