@@ -315,7 +315,9 @@ Result<void> convertSkins(LoadContext& context) {
             if (accessor.count < skin.joints.size()) {
                 return makeError(ErrorCode::InvalidFormat,
                                  name + " has " + countText(skin.joints.size(), "joint") +
-                                     " but " + countText(accessor.count, "inverse bind matrix") +
+                                     " but " + std::to_string(accessor.count) +
+                                     (accessor.count == 1 ? " inverse bind matrix"
+                                                          : " inverse bind matrices") +
                                      " (accessor " + std::to_string(index) + ").");
             }
             const auto values = readComponents(scene, accessor, AccessorId(index));
