@@ -5,7 +5,9 @@
 //  - every material's uniform (render::makeMaterialUniform) and texture slots, down to the
 //    texture, image and sampler they name;
 //  - instances, lights and cameras, and the automatic framing of the scene's bounds
-//    (render::Camera::framing) and of each glTF camera (render::Camera::fromGltf).
+//    (render::Camera::framing) and of each glTF camera (render::Camera::fromGltf);
+//  - skins, morph targets and animations: every reference the player follows, then every
+//    animation sampled alone at a few times (scene::AnimationPlayer), and all of them together.
 // Inputs the loader rejects end here as in the load target.
 
 #include <cmath>
@@ -15,6 +17,7 @@
 #include "FuzzCommon.h"
 #include "RenderBridge.h"
 #include "encore/render/Camera.h"
+#include "encore/scene/AnimationPlayer.h"
 
 namespace encore::fuzz {
 namespace {
@@ -145,6 +148,86 @@ void prepareSceneGraph(const SceneData& scene, Sink& sink) {
     }
 }
 
+void checkMorphTarget(const SceneData& scene, const Primitive& primitive, AccessorId id) {
+    checkAccessor(scene, id);
+    const Accessor& accessor = scene.accessors[id.index()];
+    ENCORE_FUZZ_CHECK(accessor.componentType == ComponentType::Float32);
+    ENCORE_FUZZ_CHECK(accessor.componentCount == 3);
+    ENCORE_FUZZ_CHECK(accessor.count == primitive.vertexCount);
+}
+
+void prepareAnimation(const SceneData& scene, Sink& sink) {
+    for (const Mesh& mesh : scene.meshes) {
+        for (const Primitive& primitive : mesh.primitives) {
+            ENCORE_FUZZ_CHECK(primitive.targets.size() == mesh.weights.size());
+            for (const MorphTarget& target : primitive.targets) {
+                for (const auto& slot : {target.position, target.normal, target.tangent}) {
+                    if (slot) {
+                        checkMorphTarget(scene, primitive, *slot);
+                    }
+                }
+            }
+        }
+    }
+    for (const Node& node : scene.nodes) {
+        if (node.skin) {
+            ENCORE_FUZZ_CHECK(node.skin->index() < scene.skins.size() && node.mesh);
+        }
+        ENCORE_FUZZ_CHECK(node.weights.size() ==
+                          (node.mesh ? scene.meshes[node.mesh->index()].weights.size() : 0));
+    }
+    for (const Skin& skin : scene.skins) {
+        ENCORE_FUZZ_CHECK(!skin.joints.empty());
+        ENCORE_FUZZ_CHECK(skin.inverseBindMatrices.size() == skin.joints.size());
+        for (const NodeId joint : skin.joints) {
+            ENCORE_FUZZ_CHECK(joint.index() < scene.nodes.size());
+        }
+    }
+    for (const Animation& animation : scene.animations) {
+        for (const AnimationSampler& sampler : animation.samplers) {
+            ENCORE_FUZZ_CHECK(!sampler.times.empty());
+            const std::size_t perKey = sampler.interpolation == Interpolation::CubicSpline ? 3 : 1;
+            ENCORE_FUZZ_CHECK(sampler.values.size() ==
+                              sampler.times.size() * perKey * sampler.components);
+        }
+        for (const AnimationChannel& channel : animation.channels) {
+            ENCORE_FUZZ_CHECK(channel.sampler < animation.samplers.size());
+            ENCORE_FUZZ_CHECK(channel.node.index() < scene.nodes.size());
+            const std::uint32_t components = animation.samplers[channel.sampler].components;
+            const Node& node = scene.nodes[channel.node.index()];
+            ENCORE_FUZZ_CHECK(components == (channel.path == AnimationPath::Weights ? node.weights.size()
+                                             : channel.path == AnimationPath::Rotation ? 4u
+                                                                                       : 3u));
+        }
+    }
+    AnimationPlayer player(scene);
+    auto collect = [&] {
+        for (const glm::mat4& world : player.instanceWorlds()) {
+            sink.add(world);
+        }
+        for (const glm::mat4& joint : player.jointMatrices()) {
+            sink.add(joint);
+        }
+        for (const float weight : player.morphWeights()) {
+            sink.add(weight);
+        }
+        ENCORE_FUZZ_CHECK(player.changedInstances().size() <= scene.instances.size());
+    };
+    for (std::size_t a = 0; a < scene.animations.size(); ++a) {
+        ENCORE_FUZZ_CHECK(player.select(AnimationId(a)).ok());
+        const Animation& animation = scene.animations[a];
+        for (const double t : {double(animation.start), 0.5 * (double(animation.start) + animation.end),
+                               double(animation.end) + 1.0}) {
+            player.evaluate(t);
+            collect();
+        }
+    }
+    player.selectAll();
+    player.setMode(PlaybackMode::Loop);
+    player.evaluate(1.25);
+    collect();
+}
+
 }  // namespace
 }  // namespace encore::fuzz
 
@@ -157,6 +240,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     encore::fuzz::prepareGeometry(*scene, sink);
     encore::fuzz::prepareMaterials(*scene, sink);
     encore::fuzz::prepareSceneGraph(*scene, sink);
+    encore::fuzz::prepareAnimation(*scene, sink);
     volatile double keep = sink.sum;
     (void)keep;
     return 0;

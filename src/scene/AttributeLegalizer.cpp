@@ -17,7 +17,7 @@ bool isSmallInteger(ComponentType type) {
 }
 
 Fix requiredFix(const SceneData& scene, const Accessor& accessor, Semantic semantic) {
-    const bool joints = semantic == Semantic::Joints0;
+    const bool joints = semantic == Semantic::Joints0 || semantic == Semantic::Joints1;
     if (accessor.componentType != ComponentType::Float32 && !accessor.normalized && !joints) {
         return Fix::ToFloat;
     }
@@ -91,6 +91,7 @@ std::optional<Semantic> semanticFromName(std::string_view name) {
         {"TANGENT", Semantic::Tangent},      {"TEXCOORD_0", Semantic::Texcoord0},
         {"TEXCOORD_1", Semantic::Texcoord1}, {"COLOR_0", Semantic::Color0},
         {"JOINTS_0", Semantic::Joints0},     {"WEIGHTS_0", Semantic::Weights0},
+        {"JOINTS_1", Semantic::Joints1},     {"WEIGHTS_1", Semantic::Weights1},
     };
     for (const auto& [text, semantic] : kNames) {
         if (text == name) {
@@ -118,6 +119,24 @@ Result<AccessorId> legalizeAttribute(LoadContext& context,
                          what + " has " + std::to_string(accessor.componentCount) +
                              " components (" + std::string(semanticName(semantic)) + " needs " +
                              (needsVec3 ? "3" : "4") + ").");
+    }
+    const bool joints = semantic == Semantic::Joints0 || semantic == Semantic::Joints1;
+    const bool weights = semantic == Semantic::Weights0 || semantic == Semantic::Weights1;
+    if (joints && (accessor.componentCount != 4 || accessor.normalized ||
+                   (accessor.componentType != ComponentType::Uint8 &&
+                    accessor.componentType != ComponentType::Uint16))) {
+        return makeError(ErrorCode::InvalidFormat,
+                         what + " is not an unsigned byte or short VEC4 that is not normalised (" +
+                             std::string(semanticName(semantic)) + " holds joint indices).");
+    }
+    if (weights &&
+        (accessor.componentCount != 4 ||
+         (accessor.componentType != ComponentType::Float32 &&
+          !(accessor.normalized && (accessor.componentType == ComponentType::Uint8 ||
+                                    accessor.componentType == ComponentType::Uint16))))) {
+        return makeError(ErrorCode::InvalidFormat,
+                         what + " is not a float or normalised unsigned byte or short VEC4 (" +
+                             std::string(semanticName(semantic)) + " holds joint weights).");
     }
     const Fix fix = requiredFix(scene, accessor, semantic);
     if (fix == Fix::None) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -207,6 +208,10 @@ Result<void> parseMeshes(const Json& root, GltfDocument& document) {
     return forEachElement(root, "meshes", "mesh", [&](FieldReader& reader, std::size_t index) {
         GltfMesh mesh;
         mesh.name = reader.string("name");
+        if (reader.has("weights")) {
+            const auto weights = reader.numbers("weights");
+            mesh.weights = std::vector<float>(weights.begin(), weights.end());
+        }
         const Json* primitives = reader.array("primitives");
         if (!primitives && !reader.failed()) {
             reader.fail(ErrorCode::InvalidFormat, reader.element() + " has no 'primitives'.");
@@ -278,6 +283,29 @@ glm::mat4 localFromTrs(const std::vector<double>& t,
     return result;
 }
 
+// Translation, rotation and scale of an affine matrix without shear (what glTF allows for node
+// matrices); a mirrored matrix gets a negative x scale.
+void decomposeMatrix(const glm::mat4& matrix,
+                     glm::vec3& translation,
+                     glm::quat& rotation,
+                     glm::vec3& scale) {
+    translation = glm::vec3(matrix[3]);
+    glm::mat3 linear(matrix);
+    scale = glm::vec3(glm::length(linear[0]), glm::length(linear[1]), glm::length(linear[2]));
+    if (glm::determinant(linear) < 0.0f) {
+        scale.x = -scale.x;
+    }
+    for (int c = 0; c < 3; ++c) {
+        if (scale[c] != 0.0f && std::isfinite(scale[c])) {
+            linear[c] /= scale[c];
+        }
+    }
+    rotation = glm::normalize(glm::quat_cast(linear));
+    if (!std::isfinite(rotation.w + rotation.x + rotation.y + rotation.z)) {
+        rotation = glm::quat(1.0f, 0.0f, 0.0f, 0.0f);
+    }
+}
+
 Result<void> parseNodes(const Json& root, GltfDocument& document) {
     return forEachElement(root, "nodes", "node", [&](FieldReader& reader, std::size_t) {
         GltfNode node;
@@ -296,13 +324,33 @@ Result<void> parseNodes(const Json& root, GltfDocument& document) {
         const auto translation = reader.numbers("translation", 3);
         const auto rotation = reader.numbers("rotation", 4);
         const auto scale = reader.numbers("scale", 3);
+        if (reader.has("weights")) {
+            const auto weights = reader.numbers("weights");
+            node.weights = std::vector<float>(weights.begin(), weights.end());
+        }
         if (matrix.size() == 16) {
             std::array<float, 16> values{};
             std::transform(matrix.begin(), matrix.end(), values.begin(),
                            [](double v) { return float(v); });
             node.local = glm::make_mat4(values.data());  // Column-major, like glTF.
+            node.hasMatrix = true;
+            decomposeMatrix(node.local, node.translation, node.rotation, node.scale);
         } else {
             node.local = localFromTrs(translation, rotation, scale);
+            if (!translation.empty()) {
+                node.translation = glm::vec3(translation[0], translation[1], translation[2]);
+            }
+            if (!rotation.empty()) {
+                const glm::quat q{static_cast<float>(rotation[3]), static_cast<float>(rotation[0]),
+                                  static_cast<float>(rotation[1]), static_cast<float>(rotation[2])};
+                const float length = glm::length(q);
+                if (length > 0.0f) {
+                    node.rotation = q / length;
+                }
+            }
+            if (!scale.empty()) {
+                node.scale = glm::vec3(scale[0], scale[1], scale[2]);
+            }
         }
         if (const Json* instancing = extensionObject(reader, "EXT_mesh_gpu_instancing")) {
             FieldReader fields(*instancing, reader.element() + " EXT_mesh_gpu_instancing");
@@ -330,6 +378,8 @@ Result<void> parseScenesAndSkins(const Json& root, GltfDocument& document) {
     }));
     return forEachElement(root, "skins", "skin", [&](FieldReader& reader, std::size_t) {
         GltfSkin skin;
+        skin.name = reader.string("name");
+        skin.skeleton = reader.optionalIndex("skeleton");
         skin.inverseBindMatrices = reader.optionalIndex("inverseBindMatrices");
         skin.joints = reader.indices("joints");
         document.skins.push_back(std::move(skin));
@@ -388,6 +438,7 @@ Result<GltfDocument> parseDocument(const Json& root) {
     ENCORE_TRY(parseMeshes(root, document));
     ENCORE_TRY(parseNodes(root, document));
     ENCORE_TRY(parseScenesAndSkins(root, document));
+    ENCORE_TRY(parseAnimations(root, document));
     ENCORE_TRY(parseLightsAndCameras(root, document));
     ENCORE_TRY(parseMaterialElements(root, document));
     return document;

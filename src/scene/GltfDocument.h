@@ -12,6 +12,7 @@
 #include <vector>
 
 #include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
 
 #include "GltfJson.h"
 #include "encore/scene/SceneData.h"
@@ -87,12 +88,13 @@ struct GltfPrimitive {
     std::optional<std::uint32_t> material;
     std::uint32_t mode = 4;
     std::optional<GltfDracoCompression> draco;
-    std::vector<AttributeMap> targets;  // Morph targets: checked, not used.
+    std::vector<AttributeMap> targets;  // Morph targets.
 };
 
 struct GltfMesh {
     std::string name;
     std::vector<GltfPrimitive> primitives;
+    std::optional<std::vector<float>> weights;  // Default morph weights.
 };
 
 struct GltfInstancing {
@@ -109,6 +111,12 @@ struct GltfNode {
     std::optional<std::uint32_t> camera;
     std::optional<std::uint32_t> light;  // KHR_lights_punctual.
     glm::mat4 local{1.0f};
+    // TRS as written (defaults when absent); with a matrix, its decomposition.
+    glm::vec3 translation{0.0f};
+    glm::quat rotation{1.0f, 0.0f, 0.0f, 0.0f};  // Normalised (identity when of zero length).
+    glm::vec3 scale{1.0f};
+    bool hasMatrix = false;
+    std::optional<std::vector<float>> weights;  // Morph weights overriding the mesh's.
     std::optional<GltfInstancing> instancing;
 };
 
@@ -204,8 +212,28 @@ struct GltfSampler {
 };
 
 struct GltfSkin {
+    std::string name;
     std::optional<std::uint32_t> inverseBindMatrices;
     std::vector<std::uint32_t> joints;
+    std::optional<std::uint32_t> skeleton;
+};
+
+struct GltfAnimationChannel {
+    std::uint32_t sampler = 0;
+    std::optional<std::uint32_t> node;  // Absent: targeted by an extension (ignored).
+    std::string path;
+};
+
+struct GltfAnimationSampler {
+    std::uint32_t input = 0;
+    std::uint32_t output = 0;
+    std::string interpolation = "LINEAR";
+};
+
+struct GltfAnimation {
+    std::string name;
+    std::vector<GltfAnimationChannel> channels;
+    std::vector<GltfAnimationSampler> samplers;
 };
 
 struct GltfDocument {
@@ -222,6 +250,7 @@ struct GltfDocument {
     std::vector<GltfImage> images;
     std::vector<GltfSampler> samplers;
     std::vector<GltfSkin> skins;
+    std::vector<GltfAnimation> animations;
     std::vector<CameraData> cameras;
     std::vector<Light> lights;  // KHR_lights_punctual.
     std::vector<std::vector<std::uint32_t>> scenes;  // Root nodes of each scene.
@@ -238,6 +267,9 @@ Result<void> parseMaterialElements(const Json& root, GltfDocument& document);
 
 // Reads cameras and KHR_lights_punctual lights, checking their values (LightsCameras.cpp).
 Result<void> parseLightsAndCameras(const Json& root, GltfDocument& document);
+
+// Reads animations (SkinsAnimations.cpp).
+Result<void> parseAnimations(const Json& root, GltfDocument& document);
 
 // Extensions Encore implements; a required extension outside this list is refused.
 bool isSupportedExtension(std::string_view name);

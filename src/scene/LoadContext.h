@@ -46,6 +46,8 @@ struct LoadContext {
         dracoRemaps;
     // Legal copies of vertex attributes, by (accessor, semantic), shared between primitives.
     std::map<std::pair<std::uint32_t, Semantic>, AccessorId> legalCopies;
+    // Float32 copies of integer morph target accessors, by accessor, shared between primitives.
+    std::map<AccessorId, AccessorId> morphCopies;
 
     // "accessor 3 (POSITION of mesh 0, primitive 1)" or "accessor 3".
     std::string accessorName(std::size_t index) const;
@@ -134,5 +136,11 @@ Result<void> loadImages(LoadContext& context);
 // NodeHierarchy.cpp --------------------------------------------------------------------------
 // Fills scene.nodes with world matrices, the instances of the chosen scene and scene.bounds.
 Result<void> buildNodes(LoadContext& context);
+
+// SkinsAnimations.cpp ------------------------------------------------------------------------
+// Fills scene.skins (after buildNodes) and checks the joint indices of skinned primitives.
+Result<void> convertSkins(LoadContext& context);
+// Fills scene.animations: samplers decoded, channels checked against nodes and meshes.
+Result<void> convertAnimations(LoadContext& context);
 
 }  // namespace encore::scene

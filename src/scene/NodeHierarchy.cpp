@@ -54,6 +54,17 @@ glm::mat4 normalMatrixOf(const glm::mat4& world) {
     return finite && !zero ? glm::mat4(cofactor) : glm::mat4(1.0f);
 }
 
+glm::mat4 composeTrs(const glm::vec3& translation, const glm::quat& rotation, const glm::vec3& scale) {
+    // The same operations, in the same order, as the loader's TRS (GltfDocument.cpp), so that a
+    // node animated back to its rest pose gets bit-identical matrices.
+    glm::mat4 result = glm::translate(glm::mat4(1.0f), translation);
+    const float length = glm::length(rotation);
+    if (length > 0.0f) {
+        result *= glm::mat4_cast(rotation / length);
+    }
+    return glm::scale(result, scale);
+}
+
 namespace {
 
 bool isFinite(const glm::mat4& matrix) {
@@ -75,8 +86,28 @@ Result<void> linkChildren(const GltfDocument& document, SceneData& scene) {
         Node& node = scene.nodes[i];
         node.name = source.name;
         node.local = source.local;
+        node.translation = source.translation;
+        node.rotation = source.rotation;
+        node.scale = source.scale;
+        node.hasMatrix = source.hasMatrix;
         if (source.mesh) {
             node.mesh = MeshId(*source.mesh);
+            node.weights = scene.meshes[*source.mesh].weights;
+            if (source.skin) {
+                node.skin = SkinId(*source.skin);
+            }
+            // Weights on a node whose mesh has no morph targets weigh nothing: ignored.
+            if (source.weights && !node.weights.empty()) {
+                if (source.weights->size() != node.weights.size()) {
+                    return makeError(ErrorCode::InvalidFormat,
+                                     "node " + std::to_string(i) + " has " +
+                                         std::to_string(source.weights->size()) +
+                                         " morph weights, but its mesh (" +
+                                         std::to_string(*source.mesh) + ") has " +
+                                         std::to_string(node.weights.size()) + " morph targets.");
+                }
+                node.weights = *source.weights;
+            }
         }
     }
     for (std::size_t i = 0; i < count; ++i) {
@@ -284,6 +315,7 @@ Result<void> buildNodes(LoadContext& context) {
             instance.mesh = *node.mesh;
             instance.node = NodeId(index);
             instance.world = node.world * transforms[t];
+            instance.instanceTransform = transforms[t];
             if (!isFinite(instance.world)) {
                 // NaN or infinite matrices, TRS values or instance transforms: nothing sensible
                 // can be drawn, and the scene's bounds and framing must stay finite.

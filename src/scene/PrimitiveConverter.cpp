@@ -143,6 +143,7 @@ class PrimitiveConverter {
         return AccessorId(gltfAccessor);
     }
     Result<void> convertAttributes();
+    Result<void> convertTargets();
     Result<void> readIndexValues();
     void generateFlatNormals(const std::vector<std::uint32_t>& vertices);
 
@@ -184,6 +185,60 @@ Result<void> PrimitiveConverter::convertAttributes() {
         return makeError(ErrorCode::InvalidFormat, mName + " has no POSITION attribute.");
     }
     mResult.vertexCount = first->second;
+    return {};
+}
+
+// Morph targets: POSITION, NORMAL and TANGENT deltas as Float32 VEC3 accessors of the
+// primitive's vertex count (integer ones, from KHR_mesh_quantization, converted once). Other
+// target attributes (TEXCOORD_n, COLOR_n) are not animated and are skipped.
+Result<void> PrimitiveConverter::convertTargets() {
+    for (std::size_t t = 0; t < mSource.targets.size(); ++t) {
+        MorphTarget target;
+        for (const auto& [name, gltfAccessor] : mSource.targets[t]) {
+            std::optional<AccessorId>* slot = name == "POSITION" ? &target.position
+                                              : name == "NORMAL" ? &target.normal
+                                              : name == "TANGENT" ? &target.tangent
+                                                                  : nullptr;
+            if (!slot) {
+                continue;
+            }
+            const AccessorId id = resolve(gltfAccessor);
+            const Accessor& accessor = mScene.accessors[id.index()];
+            const std::string what = mName + ", morph target " + std::to_string(t) + " " + name +
+                                     " (accessor " + std::to_string(gltfAccessor) + ")";
+            if (accessor.count != mResult.vertexCount) {
+                return makeError(ErrorCode::InvalidFormat,
+                                 what + " has " + std::to_string(accessor.count) +
+                                     " elements, but the primitive has " +
+                                     std::to_string(mResult.vertexCount) + " vertices.");
+            }
+            if (accessor.componentCount != 3 ||
+                (accessor.componentType == ComponentType::Uint32) ||
+                mContext.document.accessors[gltfAccessor].isMatrix) {
+                return makeError(ErrorCode::InvalidFormat,
+                                 what + " is not a VEC3 of floats or of 8- or 16-bit integers.");
+            }
+            if (accessor.componentType == ComponentType::Float32) {
+                *slot = id;
+                continue;
+            }
+            auto cached = mContext.morphCopies.find(id);
+            if (cached == mContext.morphCopies.end()) {
+                std::vector<std::uint8_t> bytes(std::size_t(accessor.count) * 12);
+                const auto values = mScene.readFloats(id);
+                for (std::size_t i = 0; i < values.size(); ++i) {
+                    std::memcpy(bytes.data() + i * 12, &values[i][0], 12);
+                }
+                const AccessorId copy =
+                    appendAccessor(mScene, std::move(bytes), ComponentType::Float32, 3, false,
+                                   mResult.vertexCount,
+                                   "float32 copy of accessor " + std::to_string(gltfAccessor));
+                cached = mContext.morphCopies.emplace(id, copy).first;
+            }
+            *slot = cached->second;
+        }
+        mResult.targets.push_back(target);
+    }
     return {};
 }
 
@@ -256,6 +311,17 @@ void PrimitiveConverter::generateFlatNormals(const std::vector<std::uint32_t>& v
     }
     mResult.attributes.push_back(VertexAttribute{
         Semantic::Normal, appendVec3s(mScene, normals, "flat normals of " + mName)});
+    for (std::size_t t = 0; t < mResult.targets.size(); ++t) {
+        for (std::optional<AccessorId>* slot :
+             {&mResult.targets[t].position, &mResult.targets[t].normal,
+              &mResult.targets[t].tangent}) {
+            if (*slot) {
+                *slot = gatherAccessor(mScene, **slot, corners,
+                                       "de-indexed morph target " + std::to_string(t) + " of " +
+                                           mName);
+            }
+        }
+    }
     mResult.topology = Topology::TriangleList;
     mResult.vertexCount = static_cast<std::uint32_t>(corners.size());
     mResult.indices.reset();
@@ -267,6 +333,7 @@ Result<Primitive> PrimitiveConverter::convert() {
                          mName + " has an unknown mode (" + std::to_string(mSource.mode) + ").");
     }
     ENCORE_TRY(convertAttributes());
+    ENCORE_TRY(convertTargets());
     ENCORE_TRY(readIndexValues());
     const AccessorId position = *mResult.attribute(Semantic::Position);
     mResult.bounds = positionBounds(mScene, position);
@@ -359,6 +426,30 @@ Result<void> convertMeshes(LoadContext& context) {
             Primitive primitive;
             ENCORE_TRY_ASSIGN(primitive, PrimitiveConverter(context, m, p).convert());
             mesh.primitives.push_back(std::move(primitive));
+        }
+        // glTF: every primitive of a mesh has the same number of morph targets.
+        const auto& primitives = meshes[m].primitives;
+        const std::size_t targets = primitives.empty() ? 0 : primitives.front().targets.size();
+        for (std::size_t p = 1; p < primitives.size(); ++p) {
+            if (primitives[p].targets.size() != targets) {
+                return makeError(ErrorCode::InvalidFormat,
+                                 "mesh " + std::to_string(m) + ", primitive " + std::to_string(p) +
+                                     " has " + std::to_string(primitives[p].targets.size()) +
+                                     " morph targets, but primitive 0 has " +
+                                     std::to_string(targets) +
+                                     " (glTF requires the same number in every primitive).");
+            }
+        }
+        mesh.weights.assign(targets, 0.0f);
+        // Weights on a mesh without morph targets have nothing to weigh: ignored.
+        if (const auto& weights = meshes[m].weights; weights && targets > 0) {
+            if (weights->size() != targets) {
+                return makeError(ErrorCode::InvalidFormat,
+                                 "mesh " + std::to_string(m) + " has " +
+                                     std::to_string(weights->size()) + " default weights, but " +
+                                     std::to_string(targets) + " morph targets.");
+            }
+            mesh.weights = *weights;
         }
         context.scene.meshes.push_back(std::move(mesh));
     }

@@ -76,6 +76,10 @@ std::string_view semanticName(Semantic semantic) {
             return "JOINTS_0";
         case Semantic::Weights0:
             return "WEIGHTS_0";
+        case Semantic::Joints1:
+            return "JOINTS_1";
+        case Semantic::Weights1:
+            return "WEIGHTS_1";
     }
     return "UNKNOWN";
 }

@@ -124,6 +124,8 @@ Result<SceneData> load(std::span<const std::uint8_t> bytes, LoadContext& context
     ENCORE_TRY(convertMaterials(context));
     ENCORE_TRY(convertMeshes(context));
     ENCORE_TRY(buildNodes(context));
+    ENCORE_TRY(convertSkins(context));
+    ENCORE_TRY(convertAnimations(context));
     return std::move(context.scene);
 }
 

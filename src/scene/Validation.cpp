@@ -129,6 +129,23 @@ Result<void> validateReferences(const GltfDocument& document) {
         for (std::uint32_t joint : document.skins[s].joints) {
             checker.check(name, "node", joint, document.nodes.size(), "joint");
         }
+        checker.check(name, "node", document.skins[s].skeleton, document.nodes.size(),
+                      "skeleton");
+    }
+    for (std::size_t a = 0; a < document.animations.size(); ++a) {
+        const GltfAnimation& animation = document.animations[a];
+        const std::string name = "animation " + std::to_string(a);
+        for (std::size_t c = 0; c < animation.channels.size(); ++c) {
+            const std::string channel = name + ", channel " + std::to_string(c);
+            // The sampler index is checked with the animation (it is local to it).
+            checker.check(channel, "node", animation.channels[c].node, document.nodes.size(),
+                          "target");
+        }
+        for (std::size_t s = 0; s < animation.samplers.size(); ++s) {
+            const std::string sampler = name + ", sampler " + std::to_string(s);
+            checker.check(sampler, "accessor", animation.samplers[s].input, accessors, "input");
+            checker.check(sampler, "accessor", animation.samplers[s].output, accessors, "output");
+        }
     }
     for (std::size_t s = 0; s < document.scenes.size(); ++s) {
         for (std::uint32_t node : document.scenes[s]) {
@@ -234,6 +251,20 @@ void labelAccessorUses(LoadContext& context) {
                 use(*instancing->rotation, "ROTATION" + where, false);
             if (instancing->scale)
                 use(*instancing->scale, "SCALE" + where, false);
+        }
+    }
+    for (std::size_t s = 0; s < document.skins.size(); ++s) {
+        if (const auto& matrices = document.skins[s].inverseBindMatrices) {
+            use(*matrices, "inverseBindMatrices of skin " + std::to_string(s), false);
+        }
+    }
+    for (std::size_t a = 0; a < document.animations.size(); ++a) {
+        const auto& samplers = document.animations[a].samplers;
+        for (std::size_t s = 0; s < samplers.size(); ++s) {
+            const std::string where =
+                " of animation " + std::to_string(a) + ", sampler " + std::to_string(s);
+            use(samplers[s].input, "input" + where, false);
+            use(samplers[s].output, "output" + where, false);
         }
     }
     context.accessorDracoOnly.assign(count, false);

@@ -37,6 +37,8 @@ using ImageId = Id<struct ImageTag>;
 using NodeId = Id<struct NodeTag>;
 using LightId = Id<struct LightTag>;
 using CameraId = Id<struct CameraTag>;
+using SkinId = Id<struct SkinTag>;
+using AnimationId = Id<struct AnimationTag>;
 
 }  // namespace encore::scene
 

@@ -18,7 +18,10 @@
 //  - every primitive has POSITION and NORMAL: flat normals are generated for triangles when
 //    NORMAL is absent (the primitive is de-indexed for that), and zero normals (drawn unlit) for
 //    points and lines;
-//  - every primitive has a material: the glTF default material is appended when needed.
+//  - every primitive has a material: the glTF default material is appended when needed;
+//  - skins, morph targets and animations are checked (docs/animation.md): joint indices of a
+//    skinned primitive are below its skin's joint count, morph targets have the primitive's
+//    vertex count, animation samplers are decoded to floats with increasing key times.
 
 #include <cstdint>
 #include <filesystem>
@@ -28,8 +31,10 @@
 #include <vector>
 
 #include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
 
 #include "encore/core/Result.h"
+#include "encore/scene/Animation.h"
 #include "encore/scene/Bounds.h"
 #include "encore/scene/Ids.h"
 
@@ -74,8 +79,10 @@ enum class Semantic : std::uint8_t {
     Texcoord0,
     Texcoord1,
     Color0,
-    Joints0,
-    Weights0,
+    Joints0,   // Uint8 or Uint16 VEC4 (never normalised).
+    Weights0,  // Float32, or normalised Uint8/Uint16, VEC4.
+    Joints1,
+    Weights1,
 };
 std::string_view semanticName(Semantic semantic);
 
@@ -87,13 +94,24 @@ struct VertexAttribute {
 // WebGPU's topologies; glTF line loops and triangle fans are converted at load.
 enum class Topology : std::uint8_t { PointList, LineList, LineStrip, TriangleList, TriangleStrip };
 
+// One morph target of a primitive: per-vertex deltas, each a Float32 VEC3 accessor (possibly
+// strided: read it with readFloats or packedAccessorBytes) whose count is the primitive's
+// vertexCount. A TANGENT delta has no w.
+struct MorphTarget {
+    std::optional<AccessorId> position;
+    std::optional<AccessorId> normal;
+    std::optional<AccessorId> tangent;
+};
+
 struct Primitive {
     Topology topology = Topology::TriangleList;
     std::vector<VertexAttribute> attributes;  // Sorted by semantic; Position and Normal present.
     std::optional<AccessorId> indices;        // Uint16 or Uint32.
     MaterialId material;                      // Always valid.
     std::uint32_t vertexCount = 0;
-    Bounds bounds;  // Object-space box of the positions.
+    Bounds bounds;  // Object-space box of the positions (without skinning or morphing).
+    // Morph targets; every primitive of a mesh has the same number (Mesh::weights.size()).
+    std::vector<MorphTarget> targets;
 
     std::optional<AccessorId> attribute(Semantic semantic) const;
 };
@@ -101,6 +119,8 @@ struct Primitive {
 struct Mesh {
     std::string name;
     std::vector<Primitive> primitives;
+    // Default morph weights, one per morph target (zeros when the file gives none).
+    std::vector<float> weights;
 };
 
 // KHR_texture_transform, applied to the texture coordinates before sampling.
@@ -216,6 +236,28 @@ struct Node {
     std::optional<MeshId> mesh;
     glm::mat4 local{1.0f};  // From matrix or TRS.
     glm::mat4 world{1.0f};
+    // The rest pose as TRS, which animation channels override (local == T * R * S unless
+    // hasMatrix). A node given by a matrix keeps the matrix as `local` and its decomposition
+    // here, used only if an (invalid) animation targets it.
+    glm::vec3 translation{0.0f};
+    glm::quat rotation{1.0f, 0.0f, 0.0f, 0.0f};  // Normalised.
+    glm::vec3 scale{1.0f};
+    bool hasMatrix = false;
+    std::optional<SkinId> skin;  // Only on nodes with a mesh.
+    // Morph weights of the node's mesh: the node's `weights`, else the mesh's (empty without
+    // morph targets).
+    std::vector<float> weights;
+};
+
+// T * R * S as a matrix (the rotation normalised), exactly as the loader builds Node::local.
+glm::mat4 composeTrs(const glm::vec3& translation, const glm::quat& rotation, const glm::vec3& scale);
+
+// glTF skin: joint nodes and their inverse bind matrices (identity when the file has none).
+struct Skin {
+    std::string name;
+    std::vector<NodeId> joints;                   // At least one.
+    std::vector<glm::mat4> inverseBindMatrices;   // One per joint.
+    std::optional<NodeId> skeleton;               // Informative only.
 };
 
 // One drawable occurrence of a mesh: a node of the chosen scene that references a mesh, or one
@@ -225,6 +267,8 @@ struct Instance {
     NodeId node;
     glm::mat4 world{1.0f};
     glm::mat4 normalMatrix{1.0f};  // Inverse transpose of world's upper 3x3, in a mat4.
+    // EXT_mesh_gpu_instancing: world == node world * instanceTransform (identity otherwise).
+    glm::mat4 instanceTransform{1.0f};
 };
 
 // The inverse transpose of `world`'s upper 3x3, in a mat4. A singular matrix (a zero scale) gets
@@ -292,6 +336,8 @@ struct SceneData {
     std::vector<LightInstance> lightInstances;  // Depth-first by node, like instances.
     std::vector<CameraData> cameras;
     std::vector<CameraInstance> cameraInstances;  // Depth-first by node.
+    std::vector<Skin> skins;
+    std::vector<Animation> animations;
     Bounds bounds;  // World-space box of all instances.
     std::vector<std::string> extensionsUsed;      // As the file declares them.
     std::vector<std::string> extensionsRequired;
