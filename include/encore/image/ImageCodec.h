@@ -18,6 +18,11 @@ inline constexpr std::uint32_t kMaxImageDimension = 16384;
 // (the fuzzer found a 16384 x 16384 header asking for 2 GiB), and no GPU texture Encore creates
 // is larger than 8192 x 8192.
 inline constexpr std::uint64_t kMaxImagePixels = 8192ull * 8192ull;
+// And by the bytes of the decoded samples (width x height x channels x bytes per channel, as
+// stored in the file): a 16-bit RGBA image of 8192 x 8192 needs 512 MiB raw plus its 16-bit
+// RGBA copy before conversion to 8 bits, and stb's inflate doubles its buffer past that (the
+// fuzzer found one asking for 2 GiB). 256 MiB admits every 8-bit image of kMaxImagePixels.
+inline constexpr std::uint64_t kMaxDecodedImageBytes = 256ull << 20;
 
 struct ImageRgba8 {
     std::uint32_t width = 0;

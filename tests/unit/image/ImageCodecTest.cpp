@@ -1,5 +1,8 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <string_view>
+
 #include "TestPaths.h"
 #include "encore/image/ImageCodec.h"
 
@@ -39,6 +42,41 @@ TEST(ImageCodecTest, HugeAreaIsRefusedBeforeDecoding) {
     ASSERT_FALSE(decoded.ok());
     EXPECT_EQ(decoded.error().code, ErrorCode::LimitExceeded);
     EXPECT_NE(decoded.error().message.find("16384x16384"), std::string::npos)
+        << decoded.error().message;
+}
+
+// 16-bit samples double what decoding holds: 8192 x 8192 RGBA16 passes the area limit but
+// needs 512 MiB of samples, over kMaxDecodedImageBytes.
+TEST(ImageCodecTest, SixteenBitImagesAreLimitedByDecodedBytes) {
+    std::vector<std::uint8_t> png = {0x89, 'P', 'N', 'G', 0x0D, 0x0A, 0x1A, 0x0A,  // Signature.
+                                     0, 0, 0, 13, 'I', 'H', 'D', 'R',               // IHDR.
+                                     0, 0, 0x20, 0, 0, 0, 0x20, 0,                  // 8192^2.
+                                     16, 6, 0, 0, 0,                                // RGBA16.
+                                     0, 0, 0, 0};                                   // CRC.
+    auto decoded = decodeImage(png);
+    ASSERT_FALSE(decoded.ok());
+    EXPECT_EQ(decoded.error().code, ErrorCode::LimitExceeded);
+    EXPECT_NE(decoded.error().message.find("512 MiB"), std::string::npos)
+        << decoded.error().message;
+}
+
+// A chunk declaring more bytes than the file holds is refused before stb_image sizes a buffer
+// from it (the loader fuzzer found an IDAT declaring 1.4 GB in a 42 kB file: a 2 GiB realloc).
+TEST(ImageCodecTest, ChunkLongerThanTheFileIsRefused) {
+    ImageRgba8 image{4, 4, std::vector<std::uint8_t>(4 * 4 * 4, 200)};
+    auto encoded = encodePng(image);
+    ASSERT_TRUE(encoded.ok());
+    std::vector<std::uint8_t> png = *encoded;
+    ASSERT_TRUE(decodeImage(png).ok());
+    const std::string_view bytes(reinterpret_cast<const char*>(png.data()), png.size());
+    const std::size_t idat = bytes.find("IDAT");
+    ASSERT_NE(idat, std::string_view::npos);
+    const std::uint8_t declared[4] = {0x54, 0x45, 0x53, 0x54};  // 1,413,829,460 bytes.
+    std::copy(std::begin(declared), std::end(declared), png.begin() + std::ptrdiff_t(idat) - 4);
+    auto decoded = decodeImage(png);
+    ASSERT_FALSE(decoded.ok());
+    EXPECT_EQ(decoded.error().code, ErrorCode::InvalidFormat);
+    EXPECT_NE(decoded.error().message.find("declares 1413829460 bytes"), std::string::npos)
         << decoded.error().message;
 }
 
