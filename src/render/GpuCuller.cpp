@@ -37,6 +37,25 @@ wgpu::BindGroupEntry bufferEntry(std::uint32_t binding, const wgpu::Buffer& buff
     return entry;
 }
 
+// Every culling buffer is bound whole as storage. The per-draw and per-slot records are bounded
+// by the largest of them per element (20 bytes of indirect arguments per draw, a sphere per slot).
+Result<void> checkCullingBuffers(const gpu::DeviceLimits& limits, std::size_t drawCount,
+                                 std::uint32_t slotCount, std::uint64_t visibleBytes) {
+    const std::string draws = std::to_string(drawCount) + " culled draws";
+    const std::string slots = std::to_string(slotCount) + " instances";
+    ENCORE_TRY(gpu::checkStorageBinding(limits, std::uint64_t(drawCount) * 5 * 4,
+                                        "The indirect draw arguments of " + draws));
+    ENCORE_TRY(gpu::checkStorageBinding(limits, std::uint64_t(drawCount) * sizeof(DrawRecord),
+                                        "The culling records of " + draws));
+    ENCORE_TRY(gpu::checkStorageBinding(limits, std::uint64_t(slotCount) * sizeof(Sphere),
+                                        "The bounding spheres of " + slots));
+    ENCORE_TRY(gpu::checkStorageBinding(
+        limits, visibleBytes,
+        "The visible-instance lists of " + draws + " over " + slots +
+            " (one list per draw, as long as its instance count, rounded to 64 entries)"));
+    return {};
+}
+
 }  // namespace
 
 Result<GpuCuller> GpuCuller::create(const RenderSetup& setup, const InstanceBuffer& instances,
@@ -64,12 +83,14 @@ Result<GpuCuller> GpuCuller::create(const RenderSetup& setup, const InstanceBuff
         nextBase += (capacity + kVisibleAlignmentEntries - 1) / kVisibleAlignmentEntries *
                     kVisibleAlignmentEntries;
     }
+    const std::uint64_t listBytes = std::uint64_t(largestList) * 4;
+    const std::uint64_t visibleBytes = std::uint64_t(culler.mVisibleBase.back()) * 4 + listBytes;
+    ENCORE_TRY(checkCullingBuffers(setup.limits, culler.mDraws.size(), culler.mSlotCount,
+                                   visibleBytes));
     culler.mArguments = storageBuffer(device, arguments, "indirect arguments (all draws)",
                                       wgpu::BufferUsage::Indirect | wgpu::BufferUsage::CopySrc |
                                           wgpu::BufferUsage::CopyDst);
-    const std::uint64_t listBytes = std::uint64_t(largestList) * 4;
-    culler.mVisible = gpu::createBuffer(device, wgpu::BufferUsage::Storage,
-                                        std::uint64_t(culler.mVisibleBase.back()) * 4 + listBytes,
+    culler.mVisible = gpu::createBuffer(device, wgpu::BufferUsage::Storage, visibleBytes,
                                         "visible instance lists");
 
     // Draws grouped by instance range, for the per-instance loop of cullInstances. Range 0 is
