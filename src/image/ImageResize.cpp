@@ -108,4 +108,32 @@ std::vector<std::uint8_t> downscaleRgba8(std::span<const std::uint8_t> pixels, I
     return result;
 }
 
+std::vector<float> downscaleRgbFloat(std::span<const float> pixels, ImageSize source,
+                                     ImageSize target) {
+    assert(pixels.size() == std::size_t(source.width) * source.height * 3);
+    assert(target.width >= 1 && target.height >= 1);
+    assert(target.width <= source.width && target.height <= source.height);
+    const std::vector<Footprint> columns = footprints(source.width, target.width);
+    const std::vector<Footprint> rows = footprints(source.height, target.height);
+    std::vector<float> result(std::size_t(target.width) * target.height * 3, 0.0f);
+    for (std::uint32_t y = 0; y < target.height; ++y) {
+        float* out = result.data() + std::size_t(y) * target.width * 3;
+        const Footprint& row = rows[y];
+        for (std::size_t r = 0; r < row.weights.size(); ++r) {
+            const float* sourceRow = pixels.data() + std::size_t(row.first + r) * source.width * 3;
+            for (std::uint32_t x = 0; x < target.width; ++x) {
+                const Footprint& column = columns[x];
+                for (std::size_t c = 0; c < column.weights.size(); ++c) {
+                    const float weight = row.weights[r] * column.weights[c];
+                    const float* texel = sourceRow + std::size_t(column.first + c) * 3;
+                    for (int channel = 0; channel < 3; ++channel) {
+                        out[x * 3 + channel] += weight * texel[channel];
+                    }
+                }
+            }
+        }
+    }
+    return result;
+}
+
 }  // namespace encore::image

@@ -200,6 +200,30 @@ TEST(DeviceTextureLimitTest, AnImageWiderThanTheDeviceAllowsIsDownscaledToItsLim
     EXPECT_TRUE(context->checkNoErrors("downscaling").ok());
 }
 
+// An environment panorama beyond the device's own limit is downscaled the same way.
+TEST(DeviceTextureLimitTest, APanoramaWiderThanTheDeviceAllowsIsDownscaled) {
+    ENCORE_REQUIRE_VULKAN(context);
+    const std::uint32_t limit = context->limits().maxTextureDimension2D;
+    image::HdrImage panorama;
+    panorama.width = limit + limit / 10;
+    panorama.height = 11;
+    panorama.rgb.assign(std::size_t(panorama.width) * panorama.height * 3, 0.5f);
+    shaders::ShaderLibrary shaders(context->device());
+    WarningCapture capture;
+    auto environment = Environment::create(context->device(), context->queue(), shaders, panorama,
+                                           test::testEnvironmentOptions());
+    ASSERT_TRUE(environment.ok()) << environment.error().message;
+    ASSERT_EQ(capture.warnings.size(), 1u);
+    EXPECT_NE(capture.warnings[0].find("environment panorama is " +
+                                       std::to_string(panorama.width) + "x11"),
+              std::string::npos)
+        << capture.warnings[0];
+    EXPECT_NE(capture.warnings[0].find("downscaled to " + std::to_string(limit) + "x10"),
+              std::string::npos)
+        << capture.warnings[0];
+    EXPECT_TRUE(context->checkNoErrors("the environment").ok());
+}
+
 // 600 instances need 76,800 bytes of instance transforms: too much for a 64 KiB storage
 // binding. Strategies that bind them as storage refuse the scene by name; the node-by-node
 // strategies, which do not, draw it.

@@ -33,4 +33,8 @@ enum class PixelEncoding : std::uint8_t {
 std::vector<std::uint8_t> downscaleRgba8(std::span<const std::uint8_t> pixels, ImageSize source,
                                          ImageSize target, PixelEncoding encoding);
 
+// The same filter for linear RGB floats (HDR panoramas): width * height * 3 floats.
+std::vector<float> downscaleRgbFloat(std::span<const float> pixels, ImageSize source,
+                                     ImageSize target);
+
 }  // namespace encore::image

@@ -82,5 +82,19 @@ TEST(ImageResizeTest, FractionalFootprintsWeighPixelsByCoverage) {
     EXPECT_NEAR(squeezedSum / 7.0, sum / 90.0, 0.5);
 }
 
+TEST(ImageResizeTest, HdrPanoramasKeepTheirMeanRadiance) {
+    // Radiance beyond 1 is kept, not clamped: a bright column spreads into its neighbours.
+    const ImageSize source{5, 2};
+    std::vector<float> pixels(source.width * source.height * 3, 0.25f);
+    pixels[2 * 3] = 100.0f;  // Red of column 2, row 0.
+    const auto result = downscaleRgbFloat(pixels, source, {2, 1});
+    ASSERT_EQ(result.size(), 6u);
+    // Column footprints [0, 2.5) and [2.5, 5) over both rows: column 2 of row 0 weighs
+    // 0.5 (its half) * 0.5 (one of two rows) / 2.5 columns = 0.1 in each.
+    EXPECT_NEAR(result[0], 0.25f * 0.9f + 100.0f * 0.1f, 1e-4f);
+    EXPECT_NEAR(result[3], 0.25f * 0.9f + 100.0f * 0.1f, 1e-4f);
+    EXPECT_NEAR(result[1], 0.25f, 1e-6f);
+}
+
 }  // namespace
 }  // namespace encore::image
