@@ -41,7 +41,9 @@ test-unit: build
 test-gpu: build
 	@cd $(BUILD) && ctest --output-on-failure -j2 -L gpu
 
-# Unit and command-line (bad input) tests under AddressSanitizer + UndefinedBehaviorSanitizer.
+# Unit, command-line (bad input) and the robustness GPU tests (device limits, device loss, fault
+# injection, soak: CTest label sanitize) under AddressSanitizer + UndefinedBehaviorSanitizer, with
+# LeakSanitizer on.
 test-sanitize: deps
 	@mkdir -p $(ASAN_BUILD)
 	@cmake -S . -B $(ASAN_BUILD) -DCMAKE_BUILD_TYPE=Debug -DENCORE_SANITIZE=ON -Wno-dev \
@@ -49,7 +51,7 @@ test-sanitize: deps
 	@cmake --build $(ASAN_BUILD) -j$(JOBS)
 	@cd $(ASAN_BUILD) && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
 		UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-		ctest --output-on-failure -j2 -L 'unit|cli'
+		ctest --output-on-failure -j2 --timeout 900 -L 'unit|cli|sanitize'
 
 # libFuzzer targets of the loader (docs/fuzzing.md), built with clang in their own directory.
 # `make fuzz` fuzzes each target for FUZZ_SECONDS on a working corpus that persists between

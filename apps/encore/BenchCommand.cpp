@@ -58,7 +58,7 @@ int runBench(BenchCommandOptions options, const GlobalOptions& global) {
     }
     const auto start = std::chrono::steady_clock::now();
     auto report = bench::runBenchmarks(*context, options.bench, [&](const std::string& label) {
-        forceDeviceLossForTests(*context);
+        injectFaultsForTests(*context);
         if (global.verbose) {
             const double elapsed =
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

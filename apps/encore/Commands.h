@@ -21,6 +21,7 @@ enum ExitCode : int {
     kExitUsage = 2,       // Command-line errors.
     kExitNoAdapter = 3,   // No usable (Vulkan) GPU adapter.
     kExitGpuError = 4,    // WebGPU validation error or device loss.
+    kExitOutOfMemory = 5, // The GPU ran out of memory (a smaller scene or target may fit).
 };
 
 struct GlobalOptions {
@@ -37,9 +38,11 @@ Result<scene::SceneData> loadModel(const std::string& path, const scene::LoadOpt
 // Creates the GPU context the global options ask for; prints the adapter with --verbose.
 Result<gpu::Context> createContext(const GlobalOptions& global, bool timestamps = false);
 
-// Tests of device loss set ENCORE_TEST_FORCE_DEVICE_LOSS: the commands then lose their device
-// on purpose (Dawn's Device::ForceLoss) once the scene is prepared.
-void forceDeviceLossForTests(gpu::Context& context);
+// Called once the scene is prepared. Tests of device loss set ENCORE_TEST_FORCE_DEVICE_LOSS: the
+// commands then lose their device on purpose (Dawn's Device::ForceLoss). Tests of running out
+// of GPU memory set ENCORE_TEST_INJECT_OUT_OF_MEMORY: Dawn then reports an out-of-memory error
+// (Device::InjectError), as it does when an allocation fails.
+void injectFaultsForTests(gpu::Context& context);
 
 void addRenderCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
 void addInfoCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);

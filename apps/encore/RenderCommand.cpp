@@ -71,7 +71,7 @@ int runRender(const RenderOptions& options, const GlobalOptions& global) {
     if (auto prepared = renderer->prepare(*scene, *kind); !prepared) {
         return reportError(prepared.error());
     }
-    forceDeviceLossForTests(*context);
+    injectFaultsForTests(*context);
     // With several views each strip keeps the proportions of width / views by height.
     const float aspect = renderer->target().aspect() / float(options.views);
     std::vector<render::Camera> cameras;

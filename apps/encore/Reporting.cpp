@@ -13,6 +13,8 @@ int reportError(const Error& error) {
         case ErrorCode::ValidationError:
         case ErrorCode::DeviceError:
             return kExitGpuError;
+        case ErrorCode::OutOfMemory:
+            return kExitOutOfMemory;
         case ErrorCode::InvalidArgument:
             return kExitUsage;
         default:
@@ -30,10 +32,14 @@ Result<scene::SceneData> loadModel(const std::string& path, const scene::LoadOpt
     return scene;
 }
 
-void forceDeviceLossForTests(gpu::Context& context) {
+void injectFaultsForTests(gpu::Context& context) {
     if (std::getenv("ENCORE_TEST_FORCE_DEVICE_LOSS")) {
         context.device().ForceLoss(wgpu::DeviceLostReason::Unknown,
                                    "forced by ENCORE_TEST_FORCE_DEVICE_LOSS");
+    }
+    if (std::getenv("ENCORE_TEST_INJECT_OUT_OF_MEMORY")) {
+        context.device().InjectError(wgpu::ErrorType::OutOfMemory,
+                                     "injected by ENCORE_TEST_INJECT_OUT_OF_MEMORY");
     }
 }
 

@@ -27,7 +27,8 @@ int main(int argc, char** argv) {
     CLI::App app{"encore: render glTF 2.0 scenes with WebGPU through Dawn, strategy by strategy."};
     app.footer("Strategies: " + strategyList() +
                "\nExit codes: 0 success, 1 bad input or I/O error, 2 usage error, "
-               "3 no Vulkan adapter, 4 WebGPU validation error or device loss.");
+               "3 no Vulkan adapter, 4 WebGPU validation error or device loss, "
+               "5 out of GPU memory.");
     app.require_subcommand(1);
     app.add_flag("-v,--verbose", global.verbose, "Print the adapter and per-frame details");
     app.add_flag("--allow-null-backend", global.allowNullBackend,

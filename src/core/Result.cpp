@@ -22,6 +22,8 @@ std::string_view errorCodeName(ErrorCode code) {
             return "device error";
         case ErrorCode::ValidationError:
             return "validation error";
+        case ErrorCode::OutOfMemory:
+            return "out of GPU memory";
         case ErrorCode::IoError:
             return "I/O error";
     }

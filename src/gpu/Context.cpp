@@ -14,6 +14,7 @@ struct Context::ErrorLog {
     std::vector<std::string> errors;
     std::size_t total = 0;
     bool lost = false;
+    bool outOfMemory = false;  // Since the last takeErrors().
 
     void record(std::string message) {
         logError(message);
@@ -184,9 +185,16 @@ Result<void> Context::acquireDevice() {
     deviceDescriptor.label = "encore device";
     deviceDescriptor.requiredFeatureCount = features.size();
     deviceDescriptor.requiredFeatures = features.data();
+    // Dawn raises requested limits below WebGPU's defaults to the defaults; mLimits applies them.
+    const wgpu::Limits required = requiredLimits(options.limitOverrides);
+    deviceDescriptor.requiredLimits = &required;
     ErrorLog* errorLog = mErrors.get();
     deviceDescriptor.SetUncapturedErrorCallback(
         [](const wgpu::Device&, wgpu::ErrorType type, wgpu::StringView message, ErrorLog* log) {
+            if (type == wgpu::ErrorType::OutOfMemory) {
+                std::lock_guard lock(log->mutex);
+                log->outOfMemory = true;
+            }
             log->record("WebGPU " + errorTypeName(type) + ": " + toString(message));
         },
         errorLog);
@@ -224,6 +232,7 @@ Result<void> Context::acquireDevice() {
                                                      deviceMessage + ").");
     }
     mQueue = mDevice.GetQueue();
+    mLimits = DeviceLimits::of(mDevice, options.limitOverrides);
     return {};
 }
 
@@ -273,6 +282,7 @@ std::size_t Context::errorCount() const {
 
 std::vector<std::string> Context::takeErrors() {
     std::lock_guard lock(mErrors->mutex);
+    mErrors->outOfMemory = false;
     return std::exchange(mErrors->errors, {});
 }
 
@@ -283,6 +293,7 @@ Result<void> Context::recreateDevice() {
     {
         std::lock_guard lock(mErrors->mutex);
         mErrors->lost = false;
+        mErrors->outOfMemory = false;
         mErrors->errors.clear();
     }
     return acquireDevice();
@@ -296,6 +307,11 @@ bool Context::deviceLost() const {
 Result<void> Context::checkNoErrors(const std::string& what) {
     // Errors may be delivered from Dawn's event processing; let pending ones arrive first.
     mInstance.ProcessEvents();
+    bool outOfMemory = false;
+    {
+        std::lock_guard lock(mErrors->mutex);
+        outOfMemory = mErrors->outOfMemory;
+    }
     auto errors = takeErrors();
     if (deviceLost()) {
         // The loss explains every later error; name it alone, with its own exit code.
@@ -313,6 +329,22 @@ Result<void> Context::checkNoErrors(const std::string& what) {
     }
     std::string message = what + " raised " + std::to_string(errors.size()) + " WebGPU error" +
                           (errors.size() == 1 ? "" : "s") + "; the first: " + errors.front();
+    if (outOfMemory) {
+        // Not the input's fault nor Encore's: a smaller scene or target may fit.
+        const std::string prefix = "WebGPU " + errorTypeName(wgpu::ErrorType::OutOfMemory) + ": ";
+        std::string reason = errors.front();
+        for (const std::string& error : errors) {
+            if (error.starts_with(prefix)) {
+                reason = error.substr(prefix.size());
+                break;
+            }
+        }
+        if (const auto newline = reason.find('\n'); newline != std::string::npos) {
+            reason.resize(newline);  // Dawn's source location follows on lines of its own.
+        }
+        return makeError(ErrorCode::OutOfMemory,
+                         what + ": the GPU ran out of memory (" + reason + ").");
+    }
     return makeError(ErrorCode::ValidationError, std::move(message));
 }
 

@@ -47,36 +47,49 @@ Result<std::vector<std::uint8_t>> readTexelRows(Context& context, const wgpu::Te
     const std::uint32_t height = std::max(texture.GetHeight() >> level, 1u);
     const std::uint32_t rowBytes = width * bytesPerTexel;
     const std::uint32_t paddedRowBytes = (rowBytes + 255) / 256 * 256;
-    const std::uint64_t size = std::uint64_t(paddedRowBytes) * height;
-
-    wgpu::BufferDescriptor stagingDescriptor{};
-    stagingDescriptor.label = "texture readback";
-    stagingDescriptor.size = size;
-    stagingDescriptor.usage = wgpu::BufferUsage::CopyDst | wgpu::BufferUsage::MapRead;
-    wgpu::Buffer staging = context.device().CreateBuffer(&stagingDescriptor);
-
-    wgpu::TexelCopyTextureInfo source{};
-    source.texture = texture;
-    source.mipLevel = level;
-    source.origin = {0, 0, layer};
-    wgpu::TexelCopyBufferInfo destination{};
-    destination.buffer = staging;
-    destination.layout.bytesPerRow = paddedRowBytes;
-    destination.layout.rowsPerImage = height;
-    wgpu::Extent3D extent{width, height, 1};
-    wgpu::CommandEncoder encoder = context.device().CreateCommandEncoder();
-    encoder.CopyTextureToBuffer(&source, &destination, &extent);
-    wgpu::CommandBuffer commands = encoder.Finish();
-    context.queue().Submit(1, &commands);
-
-    auto bytes = mapAndCopy(context, staging, size);
-    if (!bytes) {
-        return bytes.error();
+    // Bands of rows, each staging buffer within maxBufferSize: an 8192x8192 rgba16float
+    // target is 512 MiB, twice WebGPU's default limit.
+    const std::uint64_t maxBufferSize = context.limits().maxBufferSize;
+    if (paddedRowBytes > maxBufferSize) {
+        return makeError(ErrorCode::LimitExceeded,
+                         "Reading back a texture row of " + std::to_string(paddedRowBytes) +
+                             " bytes needs a buffer larger than the device's maxBufferSize (" +
+                             std::to_string(maxBufferSize) + " bytes).");
     }
+    const auto bandRows = static_cast<std::uint32_t>(
+        std::min<std::uint64_t>(height, maxBufferSize / paddedRowBytes));
     std::vector<std::uint8_t> rows(std::size_t(rowBytes) * height);
-    for (std::uint32_t y = 0; y < height; ++y) {
-        std::memcpy(&rows[std::size_t(y) * rowBytes],
-                    bytes->data() + std::size_t(y) * paddedRowBytes, rowBytes);
+    for (std::uint32_t firstRow = 0; firstRow < height; firstRow += bandRows) {
+        const std::uint32_t bandHeight = std::min(bandRows, height - firstRow);
+        const std::uint64_t size = std::uint64_t(paddedRowBytes) * bandHeight;
+        wgpu::BufferDescriptor stagingDescriptor{};
+        stagingDescriptor.label = "texture readback";
+        stagingDescriptor.size = size;
+        stagingDescriptor.usage = wgpu::BufferUsage::CopyDst | wgpu::BufferUsage::MapRead;
+        wgpu::Buffer staging = context.device().CreateBuffer(&stagingDescriptor);
+
+        wgpu::TexelCopyTextureInfo source{};
+        source.texture = texture;
+        source.mipLevel = level;
+        source.origin = {0, firstRow, layer};
+        wgpu::TexelCopyBufferInfo destination{};
+        destination.buffer = staging;
+        destination.layout.bytesPerRow = paddedRowBytes;
+        destination.layout.rowsPerImage = bandHeight;
+        wgpu::Extent3D extent{width, bandHeight, 1};
+        wgpu::CommandEncoder encoder = context.device().CreateCommandEncoder();
+        encoder.CopyTextureToBuffer(&source, &destination, &extent);
+        wgpu::CommandBuffer commands = encoder.Finish();
+        context.queue().Submit(1, &commands);
+
+        auto bytes = mapAndCopy(context, staging, size);
+        if (!bytes) {
+            return bytes.error();
+        }
+        for (std::uint32_t y = 0; y < bandHeight; ++y) {
+            std::memcpy(&rows[std::size_t(firstRow + y) * rowBytes],
+                        bytes->data() + std::size_t(y) * paddedRowBytes, rowBytes);
+        }
     }
     return rows;
 }
@@ -163,6 +176,7 @@ Result<std::vector<std::uint8_t>> readBuffer(Context& context, const wgpu::Buffe
                              std::to_string(offset) + ", size " + std::to_string(size) +
                              ", buffer size " + std::to_string(buffer.GetSize()) + ").");
     }
+    ENCORE_TRY(checkBufferSize(context.limits(), size, "Reading back a buffer"));
     wgpu::BufferDescriptor stagingDescriptor{};
     stagingDescriptor.label = "buffer readback";
     stagingDescriptor.size = size;

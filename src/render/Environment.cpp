@@ -11,6 +11,8 @@
 #include <vector>
 
 #include "MipmapGenerator.h"
+#include "encore/core/Log.h"
+#include "encore/image/ImageResize.h"
 
 namespace encore::render {
 
@@ -280,23 +282,30 @@ Result<void> Environment::load(const image::HdrImage& panorama) {
     return {};
 }
 
-Result<void> Environment::build(const image::HdrImage& panorama, bool withLut) {
+Result<void> Environment::build(const image::HdrImage& original, bool withLut) {
     wgpu::Limits limits{};
     mDevice.GetLimits(&limits);
-    if (panorama.width == 0 || panorama.height == 0 ||
-        panorama.rgb.size() != std::size_t(panorama.width) * panorama.height * 3) {
+    if (original.width == 0 || original.height == 0 ||
+        original.rgb.size() != std::size_t(original.width) * original.height * 3) {
         return makeError(ErrorCode::InvalidArgument,
                          "The environment panorama is empty or inconsistent (" +
-                             sizeText(panorama.width, panorama.height) + ", " +
-                             std::to_string(panorama.rgb.size()) + " floats).");
+                             sizeText(original.width, original.height) + ", " +
+                             std::to_string(original.rgb.size()) + " floats).");
     }
-    if (panorama.width > limits.maxTextureDimension2D ||
-        panorama.height > limits.maxTextureDimension2D) {
-        return makeError(ErrorCode::LimitExceeded,
-                         "The environment panorama (" + sizeText(panorama.width, panorama.height) +
-                             ") exceeds the device's largest texture (" +
-                             std::to_string(limits.maxTextureDimension2D) + ").");
+    // Larger than a texture can be: box-filtered down (ImageResize.h), as material images are.
+    image::HdrImage downscaled;
+    const image::ImageSize fitted =
+        image::fitWithin({original.width, original.height}, limits.maxTextureDimension2D);
+    if (fitted.width != original.width || fitted.height != original.height) {
+        downscaled = {fitted.width, fitted.height,
+                      image::downscaleRgbFloat(original.rgb, {original.width, original.height},
+                                               fitted)};
+        logWarning("The environment panorama is " + sizeText(original.width, original.height) +
+                   ", larger than the device's maxTextureDimension2D (" +
+                   std::to_string(limits.maxTextureDimension2D) + "); downscaled to " +
+                   sizeText(fitted.width, fitted.height) + ".");
     }
+    const image::HdrImage& panorama = downscaled.rgb.empty() ? original : downscaled;
     const Pipelines& pipelines = *mPipelines;
     // Everything below is validated in one scope so a mistake comes back as a value rather
     // than only through the device's uncaptured-error callback.
@@ -427,8 +436,10 @@ Result<void> Environment::build(const image::HdrImage& panorama, bool withLut) {
 
     const wgpu::Instance instance = mDevice.GetAdapter().GetInstance();
     std::string errors;
-    auto collect = [&errors](wgpu::PopErrorScopeStatus, wgpu::ErrorType type,
-                             wgpu::StringView message) {
+    bool outOfMemory = false;
+    auto collect = [&errors, &outOfMemory](wgpu::PopErrorScopeStatus, wgpu::ErrorType type,
+                                           wgpu::StringView message) {
+        outOfMemory |= type == wgpu::ErrorType::OutOfMemory;
         if (type != wgpu::ErrorType::NoError) {
             errors += (errors.empty() ? "" : "; ") + std::string(std::string_view(message));
         }
@@ -445,7 +456,7 @@ Result<void> Environment::build(const image::HdrImage& panorama, bool withLut) {
                           done = status == wgpu::QueueWorkDoneStatus::Success;
                       }));
     if (!errors.empty()) {
-        return makeError(ErrorCode::ValidationError,
+        return makeError(outOfMemory ? ErrorCode::OutOfMemory : ErrorCode::ValidationError,
                          "Computing the environment maps failed (" + errors + ").");
     }
     if (!popped || !waited || !done) {

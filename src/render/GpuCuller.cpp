@@ -37,6 +37,26 @@ wgpu::BindGroupEntry bufferEntry(std::uint32_t binding, const wgpu::Buffer& buff
     return entry;
 }
 
+// Every culling buffer is bound whole as storage. The per-draw and per-slot buffers checked are
+// the largest of their kind (20 bytes of indirect arguments per draw, a 16-byte sphere per
+// slot); the instance ranges and each slot's range are smaller.
+Result<void> checkCullingBuffers(const gpu::DeviceLimits& limits, std::size_t drawCount,
+                                 std::uint32_t slotCount, std::uint64_t visibleBytes) {
+    const std::string draws = std::to_string(drawCount) + " culled draws";
+    const std::string slots = std::to_string(slotCount) + " instances";
+    ENCORE_TRY(gpu::checkStorageBinding(limits, std::uint64_t(drawCount) * 5 * 4,
+                                        "The indirect draw arguments of " + draws));
+    ENCORE_TRY(gpu::checkStorageBinding(limits, std::uint64_t(drawCount) * sizeof(DrawRecord),
+                                        "The culling records of " + draws));
+    ENCORE_TRY(gpu::checkStorageBinding(limits, std::uint64_t(slotCount) * sizeof(Sphere),
+                                        "The bounding spheres of " + slots));
+    ENCORE_TRY(gpu::checkStorageBinding(
+        limits, visibleBytes,
+        "The visible-instance lists of " + draws + " over " + slots +
+            " (one list per draw, as long as its instance count, rounded to 64 entries)"));
+    return {};
+}
+
 }  // namespace
 
 Result<GpuCuller> GpuCuller::create(const RenderSetup& setup, const InstanceBuffer& instances,
@@ -52,24 +72,29 @@ Result<GpuCuller> GpuCuller::create(const RenderSetup& setup, const InstanceBuff
 
     // Arguments: instanceCount starts at 0; the first cull pass fills it.
     std::vector<std::uint32_t> arguments;
-    std::uint32_t nextBase = 0;
+    // 64 bits until checked: thousands of primitives of a million instances pass 2^32 entries.
+    std::uint64_t nextBase = 0;
+    std::uint64_t lastBase = 0;
     std::uint32_t largestList = 1;
     for (const CulledDraw& draw : culler.mDraws) {
         // drawIndexedIndirect reads five words (count, instances, first index, base vertex,
         // first instance), drawIndirect the first four; one record layout serves both.
         arguments.insert(arguments.end(), {draw.elementCount, 0, 0, 0, 0});
-        culler.mVisibleBase.push_back(nextBase);
+        culler.mVisibleBase.push_back(static_cast<std::uint32_t>(nextBase));
+        lastBase = nextBase;
         const std::uint32_t capacity = std::max(draw.instances.count, 1u);
         largestList = std::max(largestList, capacity);
-        nextBase += (capacity + kVisibleAlignmentEntries - 1) / kVisibleAlignmentEntries *
-                    kVisibleAlignmentEntries;
+        nextBase += (std::uint64_t(capacity) + kVisibleAlignmentEntries - 1) /
+                    kVisibleAlignmentEntries * kVisibleAlignmentEntries;
     }
+    const std::uint64_t listBytes = std::uint64_t(largestList) * 4;
+    const std::uint64_t visibleBytes = lastBase * 4 + listBytes;
+    ENCORE_TRY(checkCullingBuffers(setup.limits, culler.mDraws.size(), culler.mSlotCount,
+                                   visibleBytes));
     culler.mArguments = storageBuffer(device, arguments, "indirect arguments (all draws)",
                                       wgpu::BufferUsage::Indirect | wgpu::BufferUsage::CopySrc |
                                           wgpu::BufferUsage::CopyDst);
-    const std::uint64_t listBytes = std::uint64_t(largestList) * 4;
-    culler.mVisible = gpu::createBuffer(device, wgpu::BufferUsage::Storage,
-                                        std::uint64_t(culler.mVisibleBase.back()) * 4 + listBytes,
+    culler.mVisible = gpu::createBuffer(device, wgpu::BufferUsage::Storage, visibleBytes,
                                         "visible instance lists");
 
     // Draws grouped by instance range, for the per-instance loop of cullInstances. Range 0 is

@@ -10,6 +10,7 @@
 #include <tuple>
 #include <utility>
 
+#include "FittedImage.h"
 #include "MipmapGenerator.h"
 #include "encore/gpu/Upload.h"
 #include "encore/render/GltfToWebGpu.h"
@@ -289,13 +290,6 @@ struct MaterialResources::Builder {
         if (image.rgba8.empty() || image.width == 0 || image.height == 0) {
             return kNone;
         }
-        if (image.width > maxDimension || image.height > maxDimension) {
-            return makeError(ErrorCode::LimitExceeded,
-                             describeImage(id, image) + " is " + std::to_string(image.width) + "x" +
-                                 std::to_string(image.height) +
-                                 " pixels, larger than the device's maxTextureDimension2D (" +
-                                 std::to_string(maxDimension) + ").");
-        }
         const std::uint64_t expected = std::uint64_t(image.width) * image.height * 4;
         if (image.rgba8.size() != expected) {
             return makeError(ErrorCode::InvalidArgument,
@@ -305,10 +299,12 @@ struct MaterialResources::Builder {
                                  " RGBA8 needs " + std::to_string(expected) + ").");
         }
         const bool srgb = space == ColorSpace::Srgb;
+        const FittedImage fitted = fitImage(describeImage(id, image), image, srgb, maxDimension);
         const std::size_t index =
-            addTexture(image.name + (srgb ? " (sRGB)" : " (linear)"), image.width, image.height,
+            addTexture(image.name + (srgb ? " (sRGB)" : " (linear)"), fitted.size.width,
+                       fitted.size.height,
                        srgb ? wgpu::TextureFormat::RGBA8UnormSrgb : wgpu::TextureFormat::RGBA8Unorm,
-                       image.rgba8.data());
+                       fitted.pixels());
         ENCORE_TRY(mipmaps.generate(encoder, out.mTextures[index]));
         return index;
     }
@@ -358,7 +354,8 @@ Result<MaterialResources> MaterialResources::create(const wgpu::Device& device,
                                                     shaders::ShaderLibrary& shaders,
                                                     const BindGroupLayouts& layouts,
                                                     const scene::SceneData& scene,
-                                                    const SampledTextures& sampled) {
+                                                    const SampledTextures& sampled,
+                                                    std::uint32_t maxTextureDimension) {
     auto mipmaps = MipmapGenerator::create(device, shaders);
     if (!mipmaps) {
         return mipmaps.error();
@@ -369,7 +366,9 @@ Result<MaterialResources> MaterialResources::create(const wgpu::Device& device,
     MaterialResources resources;
     resources.mImageTextures.resize(scene.images.size());
     Builder builder{device, queue, scene, resources, *mipmaps, device.CreateCommandEncoder()};
-    builder.maxDimension = limits.maxTextureDimension2D;
+    builder.maxDimension = maxTextureDimension != 0
+                               ? std::min(maxTextureDimension, limits.maxTextureDimension2D)
+                               : limits.maxTextureDimension2D;
 
     // Index 0 in both vectors, so an empty slot needs no lookup.
     const std::uint8_t white[4] = {255, 255, 255, 255};

@@ -2,7 +2,9 @@
 
 #include <chrono>
 
+#include "encore/gpu/OutOfMemoryScope.h"
 #include "encore/gpu/Readback.h"
+#include "encore/render/SceneLimits.h"
 #include "encore/image/HdrImage.h"
 
 namespace encore::render {
@@ -87,6 +89,7 @@ Result<void> Renderer::build(const RendererOptions& options) {
     setup.depthFormat = RenderTarget::kDepthFormat;
     setup.sampleCount = options.target.sampleCount;
     setup.mappingBudget = context.mappingBudget();
+    setup.limits = context.limits();
     return context.checkNoErrors("Creating the renderer");
 }
 
@@ -119,6 +122,10 @@ Result<void> Renderer::recoverFromDeviceLoss() {
 }
 
 Result<void> Renderer::prepare(const scene::SceneData& scene, StrategyKind kind) {
+    if (auto fits = checkSceneWithinLimits(mSetup->limits, scene, kind); !fits) {
+        return fits.error().withContext("Preparing '" + scene.sourcePath.string() +
+                                        "' for strategy " + std::string(strategyName(kind)));
+    }
     if (mStrategy) {
         // Dawn frees objects once the GPU is done with them, on a later tick. Let that happen
         // before the next strategy allocates: peak memory stays one strategy's worth, and
@@ -137,7 +144,9 @@ Result<void> Renderer::prepare(const scene::SceneData& scene, StrategyKind kind)
     auto strategy = createStrategy(kind);
     const std::string what = "Preparing '" + scene.sourcePath.string() + "' for strategy " +
                              std::string(strategyName(kind));
+    gpu::OutOfMemoryScope outOfMemory(*mContext);
     auto prepared = strategy->prepare(*mSetup, scene);
+    ENCORE_TRY(outOfMemory.finish(what));
     if (!prepared) {
         return prepared.error().withContext(what);
     }

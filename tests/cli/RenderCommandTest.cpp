@@ -124,23 +124,5 @@ TEST(RenderCommandTest, BadShadingOptionsAreUsageErrors) {
     EXPECT_NE(environment.err.find("none.hdr"), std::string::npos) << environment.err;
 }
 
-// A device lost while rendering or benchmarking stops the command with exit code 4 and a message
-// naming the loss (the test hook makes Dawn lose the device once the scene is prepared).
-TEST(RenderCommandTest, ADeviceLossStopsRenderAndBenchWithExitCodeFour) {
-    const auto dir = makeTempDir("device-loss");
-    const auto scene = dir / "scene.glb";
-    ASSERT_EQ(runEncore("gen --objects 8 -o " + quote(scene.string())).exitCode, 0);
-    ::setenv("ENCORE_TEST_FORCE_DEVICE_LOSS", "1", 1);
-    const auto render = runEncore("render " + quote(scene.string()) + " -o " +
-                                  quote((dir / "lost.png").string()));
-    const auto bench = runEncore("bench --objects 8 --frames 2 --warmup 0 --strategy bundles");
-    ::unsetenv("ENCORE_TEST_FORCE_DEVICE_LOSS");
-    EXPECT_EQ(render.exitCode, 4) << render.err;
-    EXPECT_NE(render.err.find("the GPU device was lost"), std::string::npos) << render.err;
-    EXPECT_FALSE(std::filesystem::exists(dir / "lost.png"));
-    EXPECT_EQ(bench.exitCode, 4) << bench.err;
-    EXPECT_NE(bench.err.find("the GPU device was lost"), std::string::npos) << bench.err;
-}
-
 }  // namespace
 }  // namespace encore::test

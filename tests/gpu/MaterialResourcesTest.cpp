@@ -294,23 +294,17 @@ TEST(MaterialResourcesTest, UniformsHoldFactorsTransformAndCutoff) {
     EXPECT_TRUE(context->checkNoErrors("uniforms").ok());
 }
 
-TEST(MaterialResourcesTest, OversizedOrInconsistentImagesAreErrorsNamingTheImage) {
+// Images beyond the device's maxTextureDimension2D are downscaled (DeviceLimitsTest checks the
+// warning and the pixels); inconsistent ones and dangling references are errors.
+TEST(MaterialResourcesTest, InconsistentImagesAreErrorsNamingTheImage) {
     ENCORE_REQUIRE_VULKAN(context);
-    wgpu::Limits limits{};
-    context->device().GetLimits(&limits);
     Fixture fixture(*context);
 
     scene::SceneData huge;
-    huge.images.push_back(solidImage("huge.png", limits.maxTextureDimension2D + 2, 1));
+    huge.images.push_back(solidImage("huge.png", 4, 4));
     scene::Material material;
     material.baseColorTexture = addTexture(huge, 0);
     huge.materials.push_back(material);
-    auto tooLarge = fixture.create(*context, huge);
-    ASSERT_FALSE(tooLarge.ok());
-    EXPECT_EQ(tooLarge.error().code, ErrorCode::LimitExceeded);
-    EXPECT_NE(tooLarge.error().message.find("huge.png"), std::string::npos)
-        << tooLarge.error().message;
-    EXPECT_NE(tooLarge.error().message.find("maxTextureDimension2D"), std::string::npos);
 
     scene::SceneData truncated = huge;
     truncated.images[0] = solidImage("short.png", 4, 4);

@@ -23,6 +23,7 @@ enum class ErrorCode {
     NoAdapter,           // No usable GPU adapter (e.g. only Dawn's Null backend).
     DeviceError,         // Device creation failed or the device was lost.
     ValidationError,     // WebGPU reported a validation error.
+    OutOfMemory,         // The GPU could not allocate a resource (a WebGPU out-of-memory error).
     IoError,             // Writing an output failed.
 };
 

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "encore/core/Result.h"
+#include "encore/gpu/DeviceLimits.h"
 
 namespace encore::gpu {
 
@@ -26,6 +27,8 @@ struct ContextOptions {
     bool timestamps = false;
     // Features requested only when the adapter supports them (e.g. IndirectFirstInstance).
     std::vector<wgpu::FeatureName> optionalFeatures;
+    // Limits below the device's, for tests of what lies beyond them (see DeviceLimits.h).
+    LimitOverrides limitOverrides;
 };
 
 struct AdapterDescription {
@@ -56,6 +59,8 @@ class Context {
     const wgpu::Queue& queue() const { return mQueue; }
     const AdapterDescription& adapterDescription() const { return mAdapterDescription; }
     bool hasFeature(wgpu::FeatureName feature) const;
+    // The limits Encore sizes its allocations by: the device's, tightened by the overrides.
+    const DeviceLimits& limits() const { return mLimits; }
 
     // How many more memory mappings the driver may create, when it maps memory per object and
     // crashes once the kernel refuses: Mesa's lavapipe maps each buffer and descriptor set
@@ -79,8 +84,9 @@ class Context {
     // render::Renderer::recoverFromDeviceLoss).
     Result<void> recreateDevice();
 
-    // Returns a ValidationError naming the first recorded error, a DeviceError when the device
-    // was lost, or success when none occurred.
+    // Returns a ValidationError naming the first recorded error, an OutOfMemory error when one
+    // of them was an out-of-memory error, a DeviceError when the device was lost, or success
+    // when none occurred.
     Result<void> checkNoErrors(const std::string& what);
 
   private:
@@ -93,6 +99,7 @@ class Context {
     wgpu::Device mDevice;
     wgpu::Queue mQueue;
     AdapterDescription mAdapterDescription;
+    DeviceLimits mLimits;
     ContextOptions mOptions;
     std::shared_ptr<ErrorLog> mErrors;
 };

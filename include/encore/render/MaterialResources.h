@@ -121,16 +121,19 @@ struct SampledTextures {
 class MaterialResources {
   public:
     // Uploads what the materials of `scene` reference and records one submit that generates
-    // the mip chains. Fails, naming the image, when an image exceeds the device's
-    // maxTextureDimension2D or its pixel data does not match its size, and when a material
-    // names a texture, or a texture a sampler, that does not exist. `scene` need not outlive
-    // the result. WebGPU validation errors surface through the device's error callback.
+    // the mip chains. An image larger than maxTextureDimension (0: the device's
+    // maxTextureDimension2D) is downscaled to fit, keeping its aspect ratio, with a warning
+    // naming it and both sizes (image/ImageResize.h). Fails, naming the image, when its pixel
+    // data does not match its size, and when a material names a texture, or a texture a
+    // sampler, that does not exist. `scene` need not outlive the result. WebGPU validation
+    // errors surface through the device's error callback.
     static Result<MaterialResources> create(const wgpu::Device& device,
                                             const wgpu::Queue& queue,
                                             shaders::ShaderLibrary& shaders,
                                             const BindGroupLayouts& layouts,
                                             const scene::SceneData& scene,
-                                            const SampledTextures& sampled = {});
+                                            const SampledTextures& sampled = {},
+                                            std::uint32_t maxTextureDimension = 0);
 
     MaterialResources(MaterialResources&&) noexcept = default;
     MaterialResources& operator=(MaterialResources&&) noexcept = default;

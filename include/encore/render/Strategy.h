@@ -12,6 +12,7 @@
 #include <string_view>
 
 #include "encore/core/Result.h"
+#include "encore/gpu/DeviceLimits.h"
 #include "encore/gpu/GpuTimer.h"
 #include "encore/render/BindGroupLayouts.h"
 #include "encore/render/Camera.h"
@@ -63,6 +64,8 @@ struct RenderSetup {
     // gpu::Context::mappingBudget(): strategies that create a buffer and a bind group per node
     // refuse scenes that would exceed it rather than crash the driver.
     std::optional<std::uint64_t> mappingBudget;
+    // gpu::Context::limits(): what buffers and textures are sized against.
+    gpu::DeviceLimits limits;
     // Render pipelines created through this setup (createMeshPipeline), for stats.
     mutable std::uint64_t pipelinesCreated = 0;
 };

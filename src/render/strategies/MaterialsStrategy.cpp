@@ -58,7 +58,8 @@ Result<void> MaterialsStrategy::prepare(const RenderSetup& setup, const scene::S
     mInstances = InstanceBuffer(setup.device, *setup.layouts, scene);
     mQueue = setup.queue;
     auto materials =
-        MaterialResources::create(setup.device, setup.queue, *setup.shaders, *setup.layouts, scene);
+        MaterialResources::create(setup.device, setup.queue, *setup.shaders, *setup.layouts, scene,
+                                  SampledTextures::all(), setup.limits.maxTextureDimension2D);
     if (!materials) {
         return materials.error();
     }

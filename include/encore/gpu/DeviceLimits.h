@@ -1,0 +1,54 @@
+#pragma once
+
+// The device limits Encore checks its own allocations against, so that a scene beyond them
+// fails with an error naming the limit and the numbers instead of a WebGPU validation error.
+//
+// They are the device's limits, tightened by ContextOptions::limitOverrides. The overrides exist
+// because Dawn raises any requested limit that is worse than WebGPU's default to that default
+// (requesting maxTextureDimension2D = 256 yields 8192): a device with small limits cannot be
+// had, yet tests must show what happens beyond them without gigabyte-sized scenes. The context
+// still requests the overrides from Dawn, so an implementation that grants smaller limits
+// enforces them too.
+
+#include <webgpu/webgpu_cpp.h>
+
+#include <cstdint>
+#include <optional>
+#include <string_view>
+
+#include "encore/core/Result.h"
+
+namespace encore::gpu {
+
+// Limits to apply below the device's own; absent ones leave the device's value.
+struct LimitOverrides {
+    std::optional<std::uint32_t> maxTextureDimension2D;
+    std::optional<std::uint64_t> maxBufferSize;
+    std::optional<std::uint64_t> maxStorageBufferBindingSize;
+};
+
+struct DeviceLimits {
+    // WebGPU's defaults, which every device offers at least.
+    std::uint32_t maxTextureDimension2D = 8192;
+    std::uint64_t maxBufferSize = 268435456;
+    std::uint64_t maxStorageBufferBindingSize = 134217728;
+    std::uint32_t minUniformBufferOffsetAlignment = 256;
+
+    // The limits `device` reports, tightened by `overrides`.
+    static DeviceLimits of(const wgpu::Device& device, const LimitOverrides& overrides = {});
+};
+
+// wgpu::Limits asking for `overrides` (everything else undefined), for DeviceDescriptor.
+wgpu::Limits requiredLimits(const LimitOverrides& overrides);
+
+// LimitExceeded when a buffer of `bytes` exceeds maxBufferSize, reading "<what>: a buffer of
+// <bytes> bytes, larger than the device's maxBufferSize (<limit> bytes)."; `what` names what
+// needs the buffer, e.g. "The instance transforms of 2000000 instances".
+Result<void> checkBufferSize(const DeviceLimits& limits, std::uint64_t bytes,
+                             std::string_view what);
+// As checkBufferSize, and also against maxStorageBufferBindingSize, for a buffer bound whole as
+// a storage binding.
+Result<void> checkStorageBinding(const DeviceLimits& limits, std::uint64_t bytes,
+                                 std::string_view what);
+
+}  // namespace encore::gpu
