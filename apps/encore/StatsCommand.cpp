@@ -88,9 +88,9 @@ void printMarkdown(const std::string& model, const std::string& adapter,
                 "the render bundles that the frame replays.\n");
     if (!rows.empty() && rows.front().animation) {
         const render::AnimationFrameStats& a = *rows.front().animation;
-        std::printf("\nAnimation, one frame (1/60 s) before the given time: %u channels evaluated, "
-                    "%u nodes changed, %u joint matrices and %u morph weights written, %u "
-                    "instance transforms written, %llu bytes written.\n",
+        std::printf("\nAnimation, the frame from --time - 1/60 s to --time: %u channels "
+                    "evaluated, %u nodes changed, %u joint matrices and %u morph weights "
+                    "written, %u instance transforms written, %llu bytes written.\n",
                     a.player.channelsEvaluated, a.player.nodesChanged, a.upload.jointsWritten,
                     a.upload.weightsWritten, a.instancesWritten,
                     (unsigned long long)a.bytesWritten);

@@ -54,8 +54,9 @@ struct Transform {
 // morph deltas start, and for strategies that draw one node at a time (no instance storage) the
 // instance's joint and weight offsets (0xffffffff: none).
 struct AnimationDraw {
-    deltaOffset: u32,   // In vec4f, into morphDeltas: target t, vertex v, attribute a (0
-                        // position, 1 normal, 2 tangent) at deltaOffset + (t * vertexCount + v) * 3 + a.
+    // In vec4f, into morphDeltas: target t, vertex v, attribute a (0 position, 1 normal,
+    // 2 tangent) lies at deltaOffset + (t * vertexCount + v) * 3 + a.
+    deltaOffset: u32,
     vertexCount: u32,
     targetCount: u32,
     jointOffset: u32,

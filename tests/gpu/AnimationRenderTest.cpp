@@ -28,7 +28,8 @@ test::GltfBuilder::PrimitiveDesc quad(test::GltfBuilder& builder, glm::vec3 cent
                                                              center + glm::vec3(h, -h, 0),
                                                              center + glm::vec3(h, h, 0),
                                                              center + glm::vec3(-h, h, 0)});
-    primitive.attributes["NORMAL"] = builder.addNormals({{0, 0, 1}, {0, 0, 1}, {0, 0, 1}, {0, 0, 1}});
+    primitive.attributes["NORMAL"] =
+        builder.addNormals({{0, 0, 1}, {0, 0, 1}, {0, 0, 1}, {0, 0, 1}});
     primitive.indices = builder.addIndices<std::uint16_t>({0, 1, 2, 0, 2, 3});
     primitive.material = builder.addMaterial({.baseColor = {1, 0, 0, 1}, .doubleSided = true});
     return primitive;
@@ -77,7 +78,8 @@ scene::SceneData skinnedScene() {
 scene::SceneData morphedScene() {
     test::GltfBuilder builder;
     const auto primitive = quad(builder, {0, 0, 0});
-    const auto delta = builder.addPositions({{1.5f, 0, 0}, {1.5f, 0, 0}, {1.5f, 0, 0}, {1.5f, 0, 0}});
+    const auto delta =
+        builder.addPositions({{1.5f, 0, 0}, {1.5f, 0, 0}, {1.5f, 0, 0}, {1.5f, 0, 0}});
     const auto mesh = builder.addMesh(primitive);
     builder.json()["meshes"][mesh]["primitives"][0]["targets"] = {{{"POSITION", delta}}};
     builder.json()["meshes"][mesh]["weights"] = {0.0};

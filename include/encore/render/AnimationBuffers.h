@@ -68,7 +68,8 @@ class AnimationBuffers {
   private:
     wgpu::Buffer mDraws, mJoints, mWeights, mDeltas, mInstanceOffsets;
     wgpu::BindGroup mBindGroup;
-    std::vector<std::vector<std::uint8_t>> mPrimitiveFlags;  // [mesh][primitive]: 1 skin, 2 morph, 4 8-joint
+    // [mesh][primitive]: 1 skinned, 2 morphed, 4 eight joints per vertex.
+    std::vector<std::vector<std::uint8_t>> mPrimitiveFlags;
     std::vector<std::uint32_t> mFirstDraw;                   // Per scene instance.
     std::vector<TransformUniform> mJointScratch;
     std::uint32_t mSkinnedPrimitives = 0;
