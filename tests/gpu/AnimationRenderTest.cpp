@@ -53,8 +53,8 @@ scene::SceneData load(const test::GltfBuilder& builder, const std::string& name)
 
 // A quad centred at (0, 1, 0), skinned to joint 1 (a child of joint 0 at the origin), which
 // turns 90 degrees about +Z between t = 0 and t = 1: the quad moves to (-1, 0, 0). The mesh's
-// node is translated by (2, 0, 0), which glTF says a skinned mesh ignores.
-scene::SceneData skinnedScene() {
+// node is translated by `meshNodeTranslation`, which glTF says a skinned mesh ignores.
+scene::SceneData skinnedScene(glm::vec3 meshNodeTranslation = {2, 0, 0}) {
     test::GltfBuilder builder;
     auto primitive = quad(builder, {0, 1, 0});
     primitive.attributes["JOINTS_0"] = builder.addAccessor<std::uint8_t>(
@@ -62,7 +62,7 @@ scene::SceneData skinnedScene() {
     primitive.attributes["WEIGHTS_0"] = builder.addAccessor<float>(
         {1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0}, "VEC4");
     const auto mesh = builder.addMesh(primitive);
-    const auto meshNode = builder.addNode({.mesh = mesh, .translation = glm::vec3(2, 0, 0)});
+    const auto meshNode = builder.addNode({.mesh = mesh, .translation = meshNodeTranslation});
     const auto joint1 = builder.addNode({.name = "joint1"});
     const auto joint0 = builder.addNode({.children = {joint1}, .name = "joint0"});
     builder.json()["nodes"][meshNode]["skin"] = 0;
@@ -177,6 +177,20 @@ TEST(AnimationRenderTest, MorphedQuadFollowsItsWeightInEveryStrategy) {
     expectAnimatedEverywhere(scene, {0.0, 0.5, 1.0},
                              {{{0, 0, 0}}, {{0.75f, 0, 0}}, {{1.5f, 0, 0}}},
                              {{{1.5f, 0, 0}}, {{-0.6f, 0, 0}, {1.6f, 0, 0}}, {{0, 0, 0}}});
+}
+
+// GPU culling must not cull a skinned instance by its node's transform: here the node lies far
+// outside the view, the skinned quad inside it.
+TEST(AnimationRenderTest, GpuCullingKeepsSkinnedInstancesWhoseNodeIsOutOfView) {
+    ENCORE_REQUIRE_VULKAN(context);
+    const auto scene = skinnedScene({50, 0, 0});
+    for (StrategyKind kind : {StrategyKind::GpuCulling, StrategyKind::GpuCullingBundles}) {
+        SCOPED_TRACE(std::string(strategyName(kind)));
+        const auto images = renderAt(scene, kind, {0.0, 1.0});
+        ASSERT_EQ(images.size(), 2u);
+        EXPECT_TRUE(coveredAt(images[0], {0, 1, 0}));
+        EXPECT_TRUE(coveredAt(images[1], {-1, 0, 0}));
+    }
 }
 
 // 100 animated frames replay the bundles recorded once; every frame equals `materials`.
