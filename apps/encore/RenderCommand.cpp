@@ -1,5 +1,9 @@
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -8,6 +12,7 @@
 #include "ShadingOptions.h"
 #include "encore/gpu/Context.h"
 #include "encore/render/Renderer.h"
+#include "encore/scene/AnimationPlayer.h"
 #include "encore/scene/SceneData.h"
 
 namespace encore::app {
@@ -24,6 +29,9 @@ struct RenderOptions {
     float yawDegrees = 0.0f;
     std::uint32_t views = 1;
     bool strict = false;
+    std::optional<double> time;  // --time: animation time in seconds.
+    std::string animation;       // --animation N|NAME (all when empty).
+    std::string frames;          // --frames START:END:STEP.
     ShadingOptions shading;
     CameraOptions camera;
 };
@@ -42,11 +50,100 @@ std::vector<render::Camera> viewCameras(const scene::Bounds& bounds, float aspec
     return cameras;
 }
 
+// The animation times of `--frames START:END:STEP`: START, START + STEP, ... up to END
+// (inclusive, within a thousandth of a step).
+Result<std::vector<double>> parseFrames(const std::string& text) {
+    auto invalid = [&](const std::string& why) {
+        return makeError(ErrorCode::InvalidArgument,
+                         "--frames takes START:END:STEP in seconds ('" + text + "'): " + why);
+    };
+    double values[3] = {};
+    std::size_t begin = 0;
+    for (int i = 0; i < 3; ++i) {
+        const std::size_t end = i < 2 ? text.find(':', begin) : text.size();
+        if (end == std::string::npos) {
+            return invalid("expected three numbers separated by ':'.");
+        }
+        const std::string part = text.substr(begin, end - begin);
+        char* stop = nullptr;
+        values[i] = std::strtod(part.c_str(), &stop);
+        if (part.empty() || stop != part.c_str() + part.size() || !std::isfinite(values[i])) {
+            return invalid("'" + part + "' is not a number.");
+        }
+        begin = end + 1;
+    }
+    const auto [start, end, step] = values;
+    if (step <= 0.0) {
+        return invalid("STEP must be positive.");
+    }
+    if (end < start) {
+        return invalid("END must not be before START.");
+    }
+    const double count = std::floor((end - start) / step + 1e-3) + 1.0;
+    constexpr double kMaxFrames = 100000.0;
+    if (count > kMaxFrames) {
+        return invalid("more than 100000 frames.");
+    }
+    std::vector<double> times;
+    for (std::size_t i = 0; i < static_cast<std::size_t>(count); ++i) {
+        times.push_back(start + double(i) * step);
+    }
+    return times;
+}
+
+// `pattern` with its one printf-style integer conversion (%d, %4d, %04d) replaced by `index`.
+Result<std::string> framePath(const std::string& pattern, std::size_t index) {
+    const std::size_t percent = pattern.find('%');
+    auto invalid = [&] {
+        return makeError(ErrorCode::InvalidArgument,
+                         "With --frames, -o needs one integer conversion such as %04d for the "
+                         "frame number ('" + pattern + "').");
+    };
+    if (percent == std::string::npos) {
+        return invalid();
+    }
+    std::size_t end = percent + 1;
+    while (end < pattern.size() && std::isdigit(static_cast<unsigned char>(pattern[end]))) {
+        ++end;
+    }
+    if (end >= pattern.size() || pattern[end] != 'd' || end - percent > 4 ||
+        pattern.find('%', end) != std::string::npos) {
+        return invalid();
+    }
+    char number[32];
+    const std::string conversion = pattern.substr(percent, end - percent + 1);
+    std::snprintf(number, sizeof(number), conversion.c_str(), static_cast<int>(index));
+    return pattern.substr(0, percent) + number + pattern.substr(end + 1);
+}
+
 int runRender(const RenderOptions& options, const GlobalOptions& global) {
     const auto kind = render::strategyFromName(options.strategy);
     if (!kind) {
         return reportError(makeError(ErrorCode::InvalidArgument,
                                      "Unknown strategy '" + options.strategy + "'."));
+    }
+    // Animation times: none (the rest pose), --time, or every frame of --frames.
+    std::vector<double> times;
+    const bool sequence = !options.frames.empty();
+    if (sequence) {
+        if (options.time) {
+            return reportError(makeError(ErrorCode::InvalidArgument,
+                                         "--time and --frames cannot be combined."));
+        }
+        auto parsed = parseFrames(options.frames);
+        if (!parsed) {
+            return reportError(parsed.error());
+        }
+        times = std::move(*parsed);
+        if (auto path = framePath(options.output, 0); !path) {
+            return reportError(path.error());
+        }
+    } else if (options.time) {
+        if (!std::isfinite(*options.time)) {
+            return reportError(makeError(ErrorCode::InvalidArgument,
+                                         "--time must be a finite number of seconds."));
+        }
+        times.push_back(*options.time);
     }
     scene::LoadOptions loadOptions;
     loadOptions.strict = options.strict;
@@ -71,6 +168,17 @@ int runRender(const RenderOptions& options, const GlobalOptions& global) {
     if (auto prepared = renderer->prepare(*scene, *kind); !prepared) {
         return reportError(prepared.error());
     }
+    if (!options.animation.empty()) {
+        if (!scene::findAnimation(*scene, options.animation)) {
+            return reportError(makeError(
+                ErrorCode::InvalidArgument,
+                "'" + options.model + "' has no animation '" + options.animation + "' (it has " +
+                    std::to_string(scene->animations.size()) + "; give a name or an index)."));
+        }
+        if (auto selected = renderer->selectAnimation(options.animation); !selected) {
+            return reportError(selected.error());
+        }
+    }
     injectFaultsForTests(*context);
     // With several views each strip keeps the proportions of width / views by height.
     const float aspect = renderer->target().aspect() / float(options.views);
@@ -92,13 +200,39 @@ int runRender(const RenderOptions& options, const GlobalOptions& global) {
         }
         cameras.push_back(*camera);
     }
-    const auto frame = renderer->renderViews(cameras);
-    auto image = renderer->readImage();
-    if (!image) {
-        return reportError(image.error());
+    // One prepared renderer (bundle strategies: one recording) for every frame; animation
+    // changes only buffer contents.
+    render::FrameResult frame;
+    std::vector<std::string> written;
+    const std::size_t frameCount = std::max<std::size_t>(times.size(), 1);
+    for (std::size_t index = 0; index < frameCount; ++index) {
+        if (!times.empty()) {
+            if (auto animated = renderer->setAnimationTime(times[index]); !animated) {
+                return reportError(animated.error());
+            }
+        }
+        frame = renderer->renderViews(cameras);
+        auto image = renderer->readImage();
+        if (!image) {
+            return reportError(image.error());
+        }
+        std::string path = options.output;
+        if (sequence) {
+            path = *framePath(options.output, index);
+        }
+        if (auto saved = image::writePng(path, *image); !saved) {
+            return reportError(saved.error());
+        }
+        written.push_back(std::move(path));
     }
-    if (auto written = image::writePng(options.output, *image); !written) {
-        return reportError(written.error());
+    if (global.verbose && !times.empty()) {
+        const render::AnimationFrameStats& animation = renderer->animationStats();
+        std::fprintf(stderr,
+                     "animation (last frame): %u channels evaluated, %u instances, %u joints, "
+                     "%u morph weights, %llu bytes written\n",
+                     animation.player.channelsEvaluated, animation.instancesWritten,
+                     animation.upload.jointsWritten, animation.upload.weightsWritten,
+                     static_cast<unsigned long long>(animation.bytesWritten));
     }
     if (global.verbose) {
         std::fprintf(stderr,
@@ -114,7 +248,9 @@ int runRender(const RenderOptions& options, const GlobalOptions& global) {
         std::fprintf(stderr, "environment: image-based lighting maps built in %.0f ms\n",
                      renderer->lighting().environment().lastBuildMilliseconds());
     }
-    std::printf("%s\n", options.output.c_str());
+    for (const std::string& path : written) {
+        std::printf("%s\n", path.c_str());
+    }
     return kExitOk;
 }
 
@@ -147,6 +283,14 @@ void addRenderCommand(CLI::App& app, const GlobalOptions& global, int& exitCode)
         ->check(CLI::Range(1, 8));
     command->add_flag("--strict", options->strict,
                       "Treat warnings (missing images, unsupported optional features) as errors");
+    command->add_option("--time", options->time,
+                        "Animation time in seconds (all animations, or --animation's)");
+    command->add_option("--animation", options->animation,
+                        "Play only this animation: its index or its name");
+    command->add_option("--frames", options->frames,
+                        "Render an image sequence at times START:END:STEP (seconds) from one "
+                        "recording; -o must hold a frame number conversion, e.g. "
+                        "frame_%04d.png");
     addShadingOptions(*command, options->shading);
     addCameraOptions(*command, options->camera);
     command->callback([options, &global, &exitCode] { exitCode = runRender(*options, global); });

@@ -98,6 +98,18 @@ BindGroupLayouts BindGroupLayouts::create(const wgpu::Device& device) {
         device, "material (uniform only)",
         {bufferEntry(0, wgpu::ShaderStage::Fragment, wgpu::BufferBindingType::Uniform,
                      sizeof(MaterialUniform))});
+    // Group 3 (2 without materials): skinning and morphing (AnimationBuffers).
+    wgpu::BindGroupLayoutEntry animationDraw =
+        bufferEntry(0, wgpu::ShaderStage::Vertex, wgpu::BufferBindingType::Uniform, 20);
+    animationDraw.buffer.hasDynamicOffset = true;
+    layouts.animation = createLayout(
+        device, "animation",
+        {animationDraw,
+         bufferEntry(1, wgpu::ShaderStage::Vertex, wgpu::BufferBindingType::ReadOnlyStorage,
+                     sizeof(TransformUniform)),
+         bufferEntry(2, wgpu::ShaderStage::Vertex, wgpu::BufferBindingType::ReadOnlyStorage, 4),
+         bufferEntry(3, wgpu::ShaderStage::Vertex, wgpu::BufferBindingType::ReadOnlyStorage, 16),
+         bufferEntry(4, wgpu::ShaderStage::Vertex, wgpu::BufferBindingType::ReadOnlyStorage, 8)});
     return layouts;
 }
 

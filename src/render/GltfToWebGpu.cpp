@@ -83,6 +83,14 @@ std::optional<std::uint32_t> shaderLocation(scene::Semantic semantic) {
             return shaders::kTangentLocation;
         case scene::Semantic::Texcoord1:
             return shaders::kTexcoord1Location;
+        case scene::Semantic::Joints0:
+            return shaders::kJoints0Location;
+        case scene::Semantic::Weights0:
+            return shaders::kWeights0Location;
+        case scene::Semantic::Joints1:
+            return shaders::kJoints1Location;
+        case scene::Semantic::Weights1:
+            return shaders::kWeights1Location;
         default:
             return std::nullopt;
     }

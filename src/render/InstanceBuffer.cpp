@@ -11,16 +11,43 @@ bool isMirrored(const glm::mat4& world) {
     return glm::determinant(glm::mat3(world)) < 0.0f;
 }
 
-InstanceBuffer::InstanceBuffer(const wgpu::Device& device, const BindGroupLayouts& layouts,
-                               const scene::SceneData& scene) {
-    const std::size_t meshCount = scene.meshes.size();
-    // Counting sort by (mesh, mirrored): stable, linear in the instance count.
-    std::vector<std::uint32_t> counts(meshCount * 2, 0);
-    std::vector<std::uint8_t> mirrored(scene.instances.size());
+namespace {
+
+// Counting sort by (mesh, mirrored): stable, linear in the instance count.
+std::vector<std::uint32_t> countInstances(const scene::SceneData& scene,
+                                          std::vector<std::uint8_t>& mirrored) {
+    std::vector<std::uint32_t> counts(scene.meshes.size() * 2, 0);
+    mirrored.resize(scene.instances.size());
     for (std::size_t i = 0; i < scene.instances.size(); ++i) {
         mirrored[i] = isMirrored(scene.instances[i].world);
         ++counts[scene.instances[i].mesh.index() * 2 + mirrored[i]];
     }
+    return counts;
+}
+
+}  // namespace
+
+std::vector<std::uint32_t> instanceSlots(const scene::SceneData& scene) {
+    std::vector<std::uint8_t> mirrored;
+    std::vector<std::uint32_t> cursor = countInstances(scene, mirrored);
+    std::uint32_t next = 0;
+    for (std::uint32_t& count : cursor) {  // Counts become each (mesh, mirrored) first slot.
+        const std::uint32_t first = next;
+        next += count;
+        count = first;
+    }
+    std::vector<std::uint32_t> slots(scene.instances.size());
+    for (std::size_t i = 0; i < scene.instances.size(); ++i) {
+        slots[i] = cursor[scene.instances[i].mesh.index() * 2 + mirrored[i]]++;
+    }
+    return slots;
+}
+
+InstanceBuffer::InstanceBuffer(const wgpu::Device& device, const BindGroupLayouts& layouts,
+                               const scene::SceneData& scene) {
+    const std::size_t meshCount = scene.meshes.size();
+    std::vector<std::uint8_t> mirrored;
+    const std::vector<std::uint32_t> counts = countInstances(scene, mirrored);
     mRegular.resize(meshCount);
     mMirrored.resize(meshCount);
     std::uint32_t next = 0;
@@ -30,17 +57,11 @@ InstanceBuffer::InstanceBuffer(const wgpu::Device& device, const BindGroupLayout
         mMirrored[mesh] = {next, counts[mesh * 2 + 1]};
         next += counts[mesh * 2 + 1];
     }
-    std::vector<std::uint32_t> cursor(meshCount * 2);
-    for (std::size_t mesh = 0; mesh < meshCount; ++mesh) {
-        cursor[mesh * 2] = mRegular[mesh].first;
-        cursor[mesh * 2 + 1] = mMirrored[mesh].first;
-    }
-    mSlots.resize(scene.instances.size());
+    mSlots = instanceSlots(scene);
     mInstances.resize(scene.instances.size());
     std::vector<TransformUniform> transforms(std::max<std::size_t>(scene.instances.size(), 1));
     for (std::size_t i = 0; i < scene.instances.size(); ++i) {
-        const std::uint32_t slot = cursor[scene.instances[i].mesh.index() * 2 + mirrored[i]]++;
-        mSlots[i] = slot;
+        const std::uint32_t slot = mSlots[i];
         mInstances[slot] = i;
         transforms[slot] = makeTransformUniform(scene.instances[i]);
     }

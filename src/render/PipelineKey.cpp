@@ -66,6 +66,9 @@ Result<wgpu::RenderPipeline> createMeshPipeline(const RenderSetup& setup, const 
         groups.push_back(key.shader.materialTextures ? setup.layouts->material
                                                      : setup.layouts->materialUniformOnly);
     }
+    if (key.shader.animated()) {
+        groups.push_back(setup.layouts->animation);  // 3, or 2 without materials.
+    }
     wgpu::PipelineLayoutDescriptor layoutDescriptor{};
     layoutDescriptor.bindGroupLayoutCount = groups.size();
     layoutDescriptor.bindGroupLayouts = groups.data();

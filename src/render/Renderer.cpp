@@ -103,6 +103,8 @@ Result<void> Renderer::recoverFromDeviceLoss() {
     options.environmentImage = std::make_shared<image::HdrImage>(environment.panorama());
     options.environmentOptions = environment.options();
     mStrategy.reset();
+    mAnimation.reset();
+    mPlayer.reset();
     mBackground.reset();
     mToneMapper.reset();
     mFrame.reset();
@@ -141,6 +143,13 @@ Result<void> Renderer::prepare(const scene::SceneData& scene, StrategyKind kind)
     mSetup->mappingBudget = mContext->mappingBudget();  // What the previous scene left in use.
     mScene = &scene;
     mKind = kind;
+    mSetup->animation = nullptr;
+    mAnimation.reset();
+    mPlayer = std::make_unique<scene::AnimationPlayer>(scene);
+    mAnimationStats = {};
+    mAnimation = AnimationBuffers::create(mContext->device(), mContext->queue(), *mLayouts, scene,
+                                          *mPlayer);
+    mSetup->animation = mAnimation.get();
     auto strategy = createStrategy(kind);
     const std::string what = "Preparing '" + scene.sourcePath.string() + "' for strategy " +
                              std::string(strategyName(kind));
@@ -248,6 +257,38 @@ Result<void> Renderer::updateInstance(std::size_t instance, const glm::mat4& wor
         return makeError(ErrorCode::InvalidArgument, "No scene is prepared.");
     }
     return mStrategy->updateInstance(instance, world);
+}
+
+Result<void> Renderer::selectAnimation(std::string_view nameOrIndex) {
+    if (!mPlayer) {
+        return makeError(ErrorCode::InvalidArgument, "No scene is prepared.");
+    }
+    if (nameOrIndex.empty()) {
+        mPlayer->selectAll();
+        return {};
+    }
+    return mPlayer->select(nameOrIndex);
+}
+
+Result<void> Renderer::setAnimationTime(double seconds) {
+    if (!mStrategy || !mPlayer) {
+        return makeError(ErrorCode::InvalidArgument, "No scene is prepared.");
+    }
+    mPlayer->evaluate(seconds);
+    AnimationFrameStats stats;
+    stats.player = mPlayer->stats();
+    const auto worlds = mPlayer->instanceWorlds();
+    for (std::uint32_t instance : mPlayer->changedInstances()) {
+        ENCORE_TRY(mStrategy->updateInstance(instance, worlds[instance]));
+        ++stats.instancesWritten;
+    }
+    stats.bytesWritten = std::uint64_t(stats.instancesWritten) * sizeof(TransformUniform);
+    if (mAnimation) {
+        stats.upload = mAnimation->write(mContext->queue(), *mPlayer);
+        stats.bytesWritten += stats.upload.bytesWritten;
+    }
+    mAnimationStats = stats;
+    return {};
 }
 
 Result<void> Renderer::updateMaterial(scene::MaterialId material, const scene::Material& value) {

@@ -2,6 +2,7 @@
 
 #include <cstring>
 #include <functional>
+#include <string_view>
 
 #include "encore/shaders/ShaderComposer.h"
 
@@ -36,6 +37,18 @@ std::set<std::string, std::less<>> ShaderVariantKey::flags() const {
     if (hasTangent) {
         result.insert("HAS_TANGENT");
     }
+    if (skinned) {
+        result.insert("SKINNED");
+    }
+    if (skinned && skinned8) {
+        result.insert("SKINNED_8");
+    }
+    if (morphed) {
+        result.insert("MORPHED");
+    }
+    if (animated()) {
+        result.insert("ANIMATED");
+    }
     return result;
 }
 
@@ -48,10 +61,9 @@ std::string ShaderVariantKey::describe() const {
 }
 
 std::size_t ShaderVariantKeyHash::operator()(const ShaderVariantKey& key) const noexcept {
-    static_assert(sizeof(ShaderVariantKey) == 8, "keep ShaderVariantKey padded and small");
-    std::uint64_t bits = 0;
-    std::memcpy(&bits, &key, sizeof(key));
-    return std::hash<std::uint64_t>{}(bits);
+    static_assert(sizeof(ShaderVariantKey) == 12, "keep ShaderVariantKey padded and small");
+    return std::hash<std::string_view>{}(
+        std::string_view(reinterpret_cast<const char*>(&key), sizeof(key)));
 }
 
 namespace {

@@ -16,6 +16,13 @@
 //   ALPHA_MASK        fragments below the material's alphaCutoff are discarded.
 //   MATERIAL_TEXTURES (with MATERIALS) the material binds textures; without it group 2 holds
 //                     only the material uniform and every texture slot reads white.
+//   SKINNED           JOINTS_0/WEIGHTS_0 are bound; an instance with a skin is drawn with its
+//                     skin's joint matrices (world space) instead of its world matrix.
+//   SKINNED_8         (with SKINNED) JOINTS_1/WEIGHTS_1 too: eight influences per vertex.
+//   MORPHED           the primitive has morph targets: position, normal and tangent deltas read
+//                     from a storage buffer by vertex_index, weighted by the instance's weights.
+//   ANIMATED          SKINNED or MORPHED: the animation group (render/AnimationBuffers.h) is
+//                     bound, as group 3 with MATERIALS and group 2 without (no material group).
 // The colour target is either the sRGB output, written with the display transform applied
 // (displayColor), or linear HDR (rgba16float) that a tone-mapping pass maps afterwards; a
 // uniform selects which, so both share the variants.
@@ -42,8 +49,42 @@ struct Transform {
 @group(1) @binding(0) var<uniform> node: Transform;
 #endif
 
+#if ANIMATED
+// One draw's animation data (a dynamic offset into one uniform buffer): where the primitive's
+// morph deltas start, and for strategies that draw one node at a time (no instance storage) the
+// instance's joint and weight offsets (0xffffffff: none).
+struct AnimationDraw {
+    // In vec4f, into morphDeltas: target t, vertex v, attribute a (0 position, 1 normal,
+    // 2 tangent) lies at deltaOffset + (t * vertexCount + v) * 3 + a.
+    deltaOffset: u32,
+    vertexCount: u32,
+    targetCount: u32,
+    jointOffset: u32,
+    weightOffset: u32,
+}
+
+#if MATERIALS
+@group(3) @binding(0) var<uniform> animationDraw: AnimationDraw;
+@group(3) @binding(1) var<storage, read> joints: array<Transform>;
+@group(3) @binding(2) var<storage, read> morphWeights: array<f32>;
+@group(3) @binding(3) var<storage, read> morphDeltas: array<vec4f>;
+@group(3) @binding(4) var<storage, read> instanceAnimation: array<vec2u>;  // Per instance slot.
+#else
+@group(2) @binding(0) var<uniform> animationDraw: AnimationDraw;
+@group(2) @binding(1) var<storage, read> joints: array<Transform>;
+@group(2) @binding(2) var<storage, read> morphWeights: array<f32>;
+@group(2) @binding(3) var<storage, read> morphDeltas: array<vec4f>;
+@group(2) @binding(4) var<storage, read> instanceAnimation: array<vec2u>;  // Per instance slot.
+#endif
+
+const kNoAnimation = 0xffffffffu;
+#endif
+
 struct VertexInput {
     @builtin(instance_index) instance: u32,
+#if MORPHED
+    @builtin(vertex_index) vertex: u32,
+#endif
     @location(0) position: vec3f,
     @location(1) normal: vec3f,
 #if HAS_TEXCOORD
@@ -58,6 +99,14 @@ struct VertexInput {
 #if HAS_TEXCOORD1
     @location(5) texcoord1: vec2f,
 #endif
+#if SKINNED
+    @location(6) joints0: vec4u,
+    @location(7) weights0: vec4f,
+#if SKINNED_8
+    @location(8) joints1: vec4u,
+    @location(9) weights1: vec4f,
+#endif
+#endif
 }
 
 struct VertexOutput {
@@ -71,20 +120,76 @@ struct VertexOutput {
     @location(5) tangent: vec4f,
 }
 
+#if SKINNED
+fn addJoint(sum: Transform, joint: u32, weight: f32) -> Transform {
+    let matrices = joints[joint];
+    return Transform(sum.world + matrices.world * weight, sum.normal + matrices.normal * weight);
+}
+#endif
+
 @vertex
 fn vertexMain(input: VertexInput) -> VertexOutput {
 #if VISIBLE_LIST
-    let transform = instances[visibleInstances[input.instance]];
+    let slot = visibleInstances[input.instance];
+    var transform = instances[slot];
 #elif INSTANCE_STORAGE
-    let transform = instances[input.instance];
+    let slot = input.instance;
+    var transform = instances[slot];
 #else
-    let transform = node;
+    var transform = node;
+#endif
+    var position = input.position;
+    var normal = input.normal;
+#if HAS_TANGENT
+    var tangent = input.tangent.xyz;
+#endif
+#if ANIMATED
+#if INSTANCE_STORAGE
+    let jointOffset = instanceAnimation[slot].x;
+    let weightOffset = instanceAnimation[slot].y;
+#else
+    let jointOffset = animationDraw.jointOffset;
+    let weightOffset = animationDraw.weightOffset;
+#endif
+#endif
+#if MORPHED
+    if (weightOffset != kNoAnimation) {
+        for (var t = 0u; t < animationDraw.targetCount; t++) {
+            let weight = morphWeights[weightOffset + t];
+            if (weight == 0.0) {
+                continue;
+            }
+            let base = animationDraw.deltaOffset +
+                       (t * animationDraw.vertexCount + input.vertex) * 3u;
+            position += weight * morphDeltas[base].xyz;
+            normal += weight * morphDeltas[base + 1u].xyz;
+#if HAS_TANGENT
+            tangent += weight * morphDeltas[base + 2u].xyz;
+#endif
+        }
+    }
+#endif
+#if SKINNED
+    if (jointOffset != kNoAnimation) {
+        var skin = Transform(mat4x4f(), mat4x4f());
+        skin = addJoint(skin, jointOffset + input.joints0.x, input.weights0.x);
+        skin = addJoint(skin, jointOffset + input.joints0.y, input.weights0.y);
+        skin = addJoint(skin, jointOffset + input.joints0.z, input.weights0.z);
+        skin = addJoint(skin, jointOffset + input.joints0.w, input.weights0.w);
+#if SKINNED_8
+        skin = addJoint(skin, jointOffset + input.joints1.x, input.weights1.x);
+        skin = addJoint(skin, jointOffset + input.joints1.y, input.weights1.y);
+        skin = addJoint(skin, jointOffset + input.joints1.z, input.weights1.z);
+        skin = addJoint(skin, jointOffset + input.joints1.w, input.weights1.w);
+#endif
+        transform = skin;  // Joint matrices give world space: the node's transform is ignored.
+    }
 #endif
     var output: VertexOutput;
-    let world = transform.world * vec4f(input.position, 1.0);
+    let world = transform.world * vec4f(position, 1.0);
     output.position = frame.projection * frame.view * world;
     output.worldPosition = world.xyz;
-    output.normal = (transform.normal * vec4f(input.normal, 0.0)).xyz;
+    output.normal = (transform.normal * vec4f(normal, 0.0)).xyz;
 #if HAS_TEXCOORD
     output.texcoord = input.texcoord;
 #else
@@ -104,7 +209,7 @@ fn vertexMain(input: VertexInput) -> VertexOutput {
     let linear = mat3x3f(transform.world[0].xyz, transform.world[1].xyz, transform.world[2].xyz);
     // A mirroring transform turns cross(N, T) around; the handedness must follow.
     let mirror = select(1.0, -1.0, determinant(linear) < 0.0);
-    output.tangent = vec4f(linear * input.tangent.xyz, input.tangent.w * mirror);
+    output.tangent = vec4f(linear * tangent, input.tangent.w * mirror);
 #else
     output.tangent = vec4f(0.0);
 #endif

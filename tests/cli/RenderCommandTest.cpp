@@ -124,5 +124,58 @@ TEST(RenderCommandTest, BadShadingOptionsAreUsageErrors) {
     EXPECT_NE(environment.err.find("none.hdr"), std::string::npos) << environment.err;
 }
 
+// --frames renders an image sequence from one prepared renderer, one file per time; an animated
+// model's frames differ.
+TEST(RenderCommandTest, FramesWriteAnImageSequence) {
+    const auto dir = makeTempDir("render-frames");
+    const auto scene = dir / "scene.glb";
+    ASSERT_EQ(runEncore("gen --objects 2 -o " + quote(scene.string())).exitCode, 0);
+    const auto result = runEncore("render " + quote(scene.string()) +
+                                  " --width 32 --height 32 --samples 1 --frames 0:0.2:0.1 -o " +
+                                  quote((dir / "frame_%02d.png").string()));
+    ASSERT_EQ(result.exitCode, 0) << result.err;
+    for (const char* name : {"frame_00.png", "frame_01.png", "frame_02.png"}) {
+        EXPECT_TRUE(std::filesystem::exists(dir / name)) << name;
+    }
+    EXPECT_FALSE(std::filesystem::exists(dir / "frame_03.png"));
+
+    const auto models = sharedModelsDir();
+    if (!models) {
+        GTEST_SKIP() << "The shared models directory is absent.";
+    }
+    const auto cube = *models / "AnimatedMorphCube" / "glTF-Binary" / "AnimatedMorphCube.glb";
+    if (!std::filesystem::exists(cube)) {
+        GTEST_SKIP() << cube << " is absent.";
+    }
+    const auto animated = runEncore("render " + quote(cube.string()) +
+                                    " --width 48 --height 48 --samples 1 --animation 0"
+                                    " --frames 0:1.5:1.5 -o " +
+                                    quote((dir / "cube_%d.png").string()));
+    ASSERT_EQ(animated.exitCode, 0) << animated.err;
+    auto first = image::readImage(dir / "cube_0.png");
+    auto second = image::readImage(dir / "cube_1.png");
+    ASSERT_TRUE(first.ok() && second.ok());
+    EXPECT_NE(first->pixels, second->pixels);
+}
+
+TEST(RenderCommandTest, BadAnimationOptionsAreUsageErrors) {
+    const auto dir = makeTempDir("render-animation-options");
+    const auto scene = dir / "scene.glb";
+    ASSERT_EQ(runEncore("gen --objects 2 -o " + quote(scene.string())).exitCode, 0);
+    const std::string render = "render " + quote(scene.string()) + " --width 16 --height 16 ";
+    const std::string pattern = " -o " + quote((dir / "f_%03d.png").string());
+    for (const std::string& options :
+         {std::string("--frames 1:0:1") + pattern, std::string("--frames 0:1:0") + pattern,
+          std::string("--frames 0:1") + pattern, std::string("--frames a:b:c") + pattern,
+          std::string("--frames 0:1:0.5 --time 1") + pattern,
+          "--frames 0:1:0.5 -o " + quote((dir / "no-pattern.png").string()),
+          "--time nan -o " + quote((dir / "t.png").string()),
+          "--time 1 --animation Walk -o " + quote((dir / "t.png").string())}) {
+        const auto result = runEncore(render + options);
+        EXPECT_EQ(result.exitCode, 2) << options << "\n" << result.err;
+        EXPECT_FALSE(result.err.empty()) << options;
+    }
+}
+
 }  // namespace
 }  // namespace encore::test

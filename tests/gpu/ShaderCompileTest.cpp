@@ -35,6 +35,32 @@ TEST(ShaderCompileTest, EveryMeshVariantCompiles) {
     EXPECT_EQ(compiled, 3u * 128u);
 }
 
+// SKINNED, SKINNED_8 and MORPHED with every instance source, with and without materials (the
+// animation group moves from 3 to 2) and tangents (morphed tangents).
+TEST(ShaderCompileTest, AnimatedMeshVariantsCompile) {
+    ENCORE_REQUIRE_VULKAN(context);
+    ShaderLibrary library(context->device());
+    for (InstanceSource source : {InstanceSource::NodeUniform, InstanceSource::InstanceStorage,
+                                  InstanceSource::VisibleList}) {
+        for (std::uint32_t bits = 1; bits < 32; ++bits) {
+            ShaderVariantKey key;
+            key.instanceSource = source;
+            key.skinned = bits & 1;
+            key.skinned8 = (bits & 2) && key.skinned;
+            key.morphed = bits & 4;
+            key.materials = bits & 8;
+            key.hasTangent = bits & 16;
+            if (!key.animated()) {
+                continue;
+            }
+            auto module = library.meshModule(key);
+            ASSERT_TRUE(module.ok()) << module.error().message;
+            auto errors = context->checkNoErrors("compiling mesh.wgsl " + key.describe());
+            ASSERT_TRUE(errors.ok()) << errors.error().message;
+        }
+    }
+}
+
 TEST(ShaderCompileTest, PassShadersCompile) {
     ENCORE_REQUIRE_VULKAN(context);
     ShaderLibrary library(context->device());

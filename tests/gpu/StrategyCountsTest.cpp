@@ -28,6 +28,11 @@ struct Structure {
     std::uint64_t drawnIndexed = 0;
     std::uint64_t drawnSlots = 0;
     std::uint64_t allPrimitives = 0;       // Of every mesh, instanced or not.
+    // Animation (skinned or morphed primitives): the animation bind group is set before each
+    // of their draws; skinned ones also bind JOINTS_n/WEIGHTS_n.
+    std::uint64_t animatedNodeDraws = 0;     // (instance, animated primitive) pairs.
+    std::uint64_t animatedDrawnPrimitives = 0;
+    std::uint64_t naiveSlots = 0;            // One per attribute bound, per (node, primitive).
 };
 
 // Slots the position and normal of a primitive need when bound where they lie: one when they
@@ -44,16 +49,64 @@ std::uint64_t slotsOf(const scene::SceneData& scene, const scene::Primitive& pri
     return interleaved ? 1 : 2;
 }
 
+// Slots of a skinned primitive's position, normal, joints and weights: attributes of one
+// bufferView with one stride (a multiple of 4) whose offsets lie within a stride of a slot's
+// first attribute share that slot.
+std::uint64_t slotsOf(const scene::SceneData& scene, const scene::Primitive& primitive,
+                      const std::vector<scene::Semantic>& semantics) {
+    std::vector<const scene::Accessor*> slots;
+    for (scene::Semantic semantic : semantics) {
+        const auto& accessor = scene.accessors[primitive.attribute(semantic)->index()];
+        bool shared = false;
+        for (const scene::Accessor* first : slots) {
+            const auto distance = accessor.byteOffset > first->byteOffset
+                                      ? accessor.byteOffset - first->byteOffset
+                                      : first->byteOffset - accessor.byteOffset;
+            shared = shared || (accessor.view == first->view &&
+                                accessor.byteStride == first->byteStride &&
+                                distance < accessor.byteStride && accessor.byteStride % 4 == 0);
+        }
+        if (!shared) {
+            slots.push_back(&accessor);
+        }
+    }
+    return slots.size();
+}
+
+// The skinning attributes a primitive binds: none unless a node with a skin draws its mesh.
+std::vector<scene::Semantic> skinSemantics(const scene::Primitive& primitive, bool meshSkinned) {
+    using S = scene::Semantic;
+    if (!meshSkinned || !primitive.attribute(S::Joints0) || !primitive.attribute(S::Weights0)) {
+        return {};
+    }
+    if (primitive.attribute(S::Joints1) && primitive.attribute(S::Weights1)) {
+        return {S::Joints0, S::Weights0, S::Joints1, S::Weights1};
+    }
+    return {S::Joints0, S::Weights0};
+}
+
 Structure structureOf(const scene::SceneData& scene) {
     Structure s;
     std::vector<std::uint64_t> instancesOfMesh(scene.meshes.size(), 0);
+    std::vector<bool> meshSkinned(scene.meshes.size(), false);
     for (const auto& instance : scene.instances) {
         ++instancesOfMesh[instance.mesh.index()];
+        if (scene.nodes[instance.node.index()].skin) {
+            meshSkinned[instance.mesh.index()] = true;
+        }
     }
     s.instances = scene.instances.size();
     for (std::size_t mesh = 0; mesh < scene.meshes.size(); ++mesh) {
         for (const auto& primitive : scene.meshes[mesh].primitives) {
-            const std::uint64_t slots = slotsOf(scene, primitive);
+            const auto skin = skinSemantics(primitive, meshSkinned[mesh]);
+            std::vector<scene::Semantic> bound = {scene::Semantic::Position,
+                                                  scene::Semantic::Normal};
+            bound.insert(bound.end(), skin.begin(), skin.end());
+            const std::uint64_t slots =
+                skin.empty() ? slotsOf(scene, primitive) : slotsOf(scene, primitive, bound);
+            const bool animated = !skin.empty() || !primitive.targets.empty();
+            s.animatedNodeDraws += animated ? instancesOfMesh[mesh] : 0;
+            s.naiveSlots += bound.size() * instancesOfMesh[mesh];
             const bool indexed = primitive.indices.has_value();
             ++s.allPrimitives;
             s.nodePrimitiveDraws += instancesOfMesh[mesh];
@@ -61,6 +114,7 @@ Structure structureOf(const scene::SceneData& scene) {
             s.nodeSlots += slots * instancesOfMesh[mesh];
             if (instancesOfMesh[mesh] > 0) {
                 ++s.drawnPrimitives;
+                s.animatedDrawnPrimitives += animated;
                 s.drawnIndexed += indexed;
                 s.drawnSlots += slots;
             }
@@ -115,8 +169,9 @@ void checkCounts(const scene::SceneData& scene) {
     EXPECT_EQ(naive.pipelinesCreated, s.allPrimitives);
     EXPECT_EQ(naive.counters.setPipeline, s.nodePrimitiveDraws);  // Per (node, primitive).
     EXPECT_EQ(naive.counters.drawCalls(), s.nodePrimitiveDraws);
-    EXPECT_EQ(naive.counters.setBindGroup, 1 + s.instances);  // Frame + one per node.
-    EXPECT_EQ(naive.counters.setVertexBuffer, 2 * s.nodePrimitiveDraws);
+    // Frame + one per node (+ the animation group per animated draw).
+    EXPECT_EQ(naive.counters.setBindGroup, 1 + s.instances + s.animatedNodeDraws);
+    EXPECT_EQ(naive.counters.setVertexBuffer, s.naiveSlots);
     EXPECT_EQ(naive.counters.setIndexBuffer, s.nodeIndexedDraws);
     EXPECT_EQ(naive.counters.instances, s.nodePrimitiveDraws);
 
@@ -129,14 +184,15 @@ void checkCounts(const scene::SceneData& scene) {
     EXPECT_LE(cache.pipelinesCreated, s.drawnPrimitives);
     EXPECT_EQ(cache.counters.setPipeline, cache.pipelinesCreated);  // Once per distinct key.
     EXPECT_EQ(cache.counters.drawCalls(), s.nodePrimitiveDraws);
-    EXPECT_EQ(cache.counters.setBindGroup, 1 + s.nodePrimitiveDraws);
+    EXPECT_EQ(cache.counters.setBindGroup, 1 + s.nodePrimitiveDraws + s.animatedNodeDraws);
     EXPECT_EQ(cache.counters.setVertexBuffer, s.drawnSlots);  // Once per primitive.
     EXPECT_EQ(cache.counters.setIndexBuffer, s.drawnIndexed);
     expectEachPipelineSetOnce(cache);
 
     const Frame instancing = renderWith(*renderer, scene, StrategyKind::Instancing);
     EXPECT_EQ(instancing.counters.drawCalls(), s.drawnPrimitives);  // One per primitive.
-    EXPECT_EQ(instancing.counters.setBindGroup, 2u);  // Frame and the instance buffer, once.
+    // Frame and the instance buffer, once (+ the animation group per animated draw).
+    EXPECT_EQ(instancing.counters.setBindGroup, 2u + s.animatedDrawnPrimitives);
     EXPECT_EQ(calls(instancing, RecordedCall::Kind::SetBindGroup, 1), 1u);
     EXPECT_EQ(instancing.counters.instances, s.nodePrimitiveDraws);
     EXPECT_EQ(instancing.counters.setPipeline, instancing.pipelinesCreated);

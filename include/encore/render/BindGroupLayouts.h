@@ -8,6 +8,10 @@
 //                 transforms plus a draw's visible-instance list (GPU culling)
 //   2  material   material uniform, then a sampler and a texture per texture slot; materials
 //                 without any texture use materialUniformOnly (the uniform alone)
+//   3  animation  skinned or morphed primitives only (AnimationBuffers): a draw's animation
+//                 record (uniform, dynamic offset), joint matrices, morph weights, morph deltas
+//                 and per-instance joint/weight offsets (read-only storage). Strategies without
+//                 materials have no group 2 and bind it as group 2 (animationGroupIndex).
 
 #include <webgpu/webgpu_cpp.h>
 
@@ -28,6 +32,7 @@ struct BindGroupLayouts {
     wgpu::BindGroupLayout culledInstances;
     wgpu::BindGroupLayout material;
     wgpu::BindGroupLayout materialUniformOnly;  // mesh.wgsl without MATERIAL_TEXTURES.
+    wgpu::BindGroupLayout animation;            // mesh.wgsl's ANIMATED variants.
 
     static BindGroupLayouts create(const wgpu::Device& device);
 };

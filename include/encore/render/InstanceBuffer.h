@@ -56,4 +56,8 @@ class InstanceBuffer {
 // Whether a transform mirrors geometry (negative determinant of its 3x3 part).
 bool isMirrored(const glm::mat4& world);
 
+// The slot of each scene instance in an InstanceBuffer of `scene` (its mesh-major order), for
+// per-instance arrays that must be indexed like the transforms (AnimationBuffers).
+std::vector<std::uint32_t> instanceSlots(const scene::SceneData& scene);
+
 }  // namespace encore::render

@@ -9,6 +9,7 @@
 
 #include <memory>
 #include <string>
+#include <string_view>
 #include <span>
 #include <vector>
 
@@ -16,6 +17,7 @@
 #include "encore/gpu/Context.h"
 #include "encore/image/HdrImage.h"
 #include "encore/image/ImageCodec.h"
+#include "encore/render/AnimationBuffers.h"
 #include "encore/render/Camera.h"
 #include "encore/render/DrawCounters.h"
 #include "encore/render/FrameTimer.h"
@@ -23,6 +25,7 @@
 #include "encore/render/RenderTarget.h"
 #include "encore/render/Strategy.h"
 #include "encore/render/ToneMapper.h"
+#include "encore/scene/AnimationPlayer.h"
 
 namespace encore::render {
 
@@ -39,6 +42,14 @@ struct RendererOptions {
 };
 
 // A frame's timing (gpuMilliseconds only with a GPU timer set) and what it recorded.
+// What one setAnimationTime() did: the player's work and what it uploaded.
+struct AnimationFrameStats {
+    scene::AnimationStats player;
+    AnimationUploadStats upload;  // Joint matrices and morph weights.
+    std::uint32_t instancesWritten = 0;
+    std::uint64_t bytesWritten = 0;  // Instance transforms, joints and weights together.
+};
+
 struct FrameResult : FrameTiming {
     DrawCounters counters;        // Calls recorded into the frame's render pass(es).
     DrawCounters bundleContents;  // What the executed bundles contain (recorded once).
@@ -70,6 +81,18 @@ class Renderer {
     // Dynamic content, through buffers (bundles stay valid). `instance` indexes
     // SceneData::instances; the world matrix replaces that instance's.
     Result<void> updateInstance(std::size_t instance, const glm::mat4& world);
+
+    // Animation, evaluated on the CPU (scene::AnimationPlayer) and uploaded through buffers:
+    // changed instance transforms through the strategy's updateInstance, joint matrices and
+    // morph weights into the shared AnimationBuffers that skinned and morphed variants read.
+    // Every animation is selected after prepare(); selectAnimation picks one by index or name
+    // (scene::findAnimation), or all again with an empty string.
+    Result<void> selectAnimation(std::string_view nameOrIndex);
+    Result<void> setAnimationTime(double seconds);
+    const AnimationFrameStats& animationStats() const { return mAnimationStats; }
+    const scene::AnimationPlayer* animationPlayer() const { return mPlayer.get(); }
+    const AnimationBuffers* animationBuffers() const { return mAnimation.get(); }
+
     Result<void> updateMaterial(scene::MaterialId material, const scene::Material& value);
     // Replaces a material's base colour image (materials-based strategies); recorded bundles
     // that used the old texture are re-recorded before they execute again.
@@ -130,6 +153,9 @@ class Renderer {
     std::unique_ptr<ToneMapper> mToneMapper;  // HDR targets only.
     std::unique_ptr<EnvironmentBackground> mBackground;
     std::unique_ptr<RenderSetup> mSetup;  // Stable address: strategies keep pointers to it.
+    std::unique_ptr<scene::AnimationPlayer> mPlayer;
+    std::unique_ptr<AnimationBuffers> mAnimation;  // Before mStrategy, which binds it.
+    AnimationFrameStats mAnimationStats;
     std::unique_ptr<Strategy> mStrategy;
     gpu::GpuTimer* mTimer = nullptr;
     const scene::SceneData* mScene = nullptr;

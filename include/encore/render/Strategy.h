@@ -51,6 +51,8 @@ std::string_view strategyName(StrategyKind kind);
 std::optional<StrategyKind> strategyFromName(std::string_view name);
 std::span<const StrategyKind> allStrategies();
 
+class AnimationBuffers;
+
 // What a strategy's pipelines and bind groups must be compatible with.
 struct RenderSetup {
     wgpu::Device device;
@@ -68,6 +70,10 @@ struct RenderSetup {
     gpu::DeviceLimits limits;
     // Render pipelines created through this setup (createMeshPipeline), for stats.
     mutable std::uint64_t pipelinesCreated = 0;
+    // The prepared scene's skinning and morph data, shared by every strategy (owned by the
+    // Renderer); null when the scene has none (or for strategies prepared outside a Renderer):
+    // primitives are then drawn unanimated, as loaded.
+    const AnimationBuffers* animation = nullptr;
 };
 
 // What a frame's recording may depend on. Only strategies that sort by distance (blended

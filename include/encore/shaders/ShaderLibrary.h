@@ -34,6 +34,16 @@ struct ShaderVariantKey {
     // The material binds at least one texture (MATERIAL_TEXTURES). Texture-less materials bind
     // only their uniform: no texture for WebGPU to track, nothing to sample per pixel.
     bool materialTextures = false;
+    // Animation (group 3 with materials, 2 without; see render/AnimationBuffers.h). SKINNED:
+    // JOINTS_0/WEIGHTS_0 are bound and skinned instances use joint matrices instead of their
+    // world matrix; SKINNED_8 adds JOINTS_1/WEIGHTS_1. MORPHED: the primitive has morph
+    // targets, whose deltas and weights come from storage buffers.
+    bool skinned = false;
+    bool skinned8 = false;
+    bool morphed = false;
+    std::uint8_t padding = 0;  // Keeps the key free of implicit padding (hashed bytewise).
+
+    bool animated() const { return skinned || morphed; }
 
     bool operator==(const ShaderVariantKey&) const = default;
     std::set<std::string, std::less<>> flags() const;

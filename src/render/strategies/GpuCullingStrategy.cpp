@@ -5,6 +5,27 @@
 
 namespace encore::render {
 
+namespace {
+
+// Skinned and morphed instances are never culled: their geometry moves away from the mesh's
+// bounds (joints, deltas) in ways the world matrix does not describe. A sphere of this radius
+// around the origin passes every frustum plane test.
+constexpr Sphere kUnbounded{0.0f, 0.0f, 0.0f, 1e30f};
+
+bool deformed(const scene::SceneData& scene, const scene::Instance& instance) {
+    if (scene.nodes[instance.node.index()].skin.has_value()) {
+        return true;
+    }
+    for (const scene::Primitive& primitive : scene.meshes[instance.mesh.index()].primitives) {
+        if (!primitive.targets.empty()) {
+            return true;
+        }
+    }
+    return false;
+}
+
+}  // namespace
+
 Result<void> GpuCullingStrategy::prepare(const RenderSetup& setup, const scene::SceneData& scene) {
     mBundles = BundledFrame();
     mCulled.clear();
@@ -37,7 +58,7 @@ Result<void> GpuCullingStrategy::groupDraws() {
         if (!pipeline) {
             return pipeline.error();
         }
-        CulledPipeline culled{*pipeline, {}};
+        CulledPipeline culled{*pipeline, key.shader, {}};
         for (const MaterialGroup& material : group.materials) {
             CulledMaterial culledMaterial{material.material, {}};
             for (const PrimitiveDraw& primitive : material.primitives) {
@@ -52,8 +73,9 @@ Result<void> GpuCullingStrategy::groupDraws() {
                                      bindings.indices ? bindings.indices->count
                                                       : bindings.vertexCount});
                 }
-                culledMaterial.primitives.push_back(
-                    {primitive.bindings, primitive.instances.first, draw});
+                culledMaterial.primitives.push_back({primitive.bindings, primitive.instances.first,
+                                                     draw, primitive.sceneInstance,
+                                                     primitive.primitive});
             }
             culled.materials.push_back(std::move(culledMaterial));
         }
@@ -72,7 +94,9 @@ Result<void> GpuCullingStrategy::groupDraws() {
     std::vector<Sphere> spheres(mInstances.size());
     for (std::uint32_t slot = 0; slot < mInstances.size(); ++slot) {
         const scene::Instance& instance = scene.instances[mInstances.instanceAt(slot)];
-        spheres[slot] = worldSphere(mMeshBounds[instance.mesh.index()], instance.world);
+        spheres[slot] = deformed(scene, instance)
+                            ? kUnbounded
+                            : worldSphere(mMeshBounds[instance.mesh.index()], instance.world);
     }
     auto culler = GpuCuller::create(setup, mInstances, std::move(spheres), std::move(draws));
     if (!culler) {
@@ -104,6 +128,10 @@ void GpuCullingStrategy::encodeCulled(RenderEncoder& encoder) const {
         for (const CulledMaterial& material : group.materials) {
             encoder.setBindGroup(2, mMaterials->bindGroup(material.material));
             for (const CulledPrimitive& primitive : material.primitives) {
+                if (group.shader.animated()) {
+                    mAnimation->bind(encoder, group.shader, primitive.sceneInstance,
+                                     primitive.primitive);
+                }
                 bindGeometry(encoder, *primitive.bindings);
                 encoder.setBindGroup(1, mCuller.drawBindGroup(),
                                      mCuller.dynamicOffset(primitive.draw));
@@ -132,9 +160,11 @@ void GpuCullingStrategy::encode(RenderEncoder& encoder, const FrameState& frame)
 
 Result<void> GpuCullingStrategy::updateInstance(std::size_t instance, const glm::mat4& world) {
     ENCORE_TRY(MaterialsStrategy::updateInstance(instance, world));
-    const scene::MeshId mesh = mScene->instances[instance].mesh;
+    const scene::Instance& placed = mScene->instances[instance];
     mCuller.updateSphere(mQueue, mInstances.slotOf(instance),
-                         worldSphere(mMeshBounds[mesh.index()], world));
+                         deformed(*mScene, placed)
+                             ? kUnbounded
+                             : worldSphere(mMeshBounds[placed.mesh.index()], world));
     return {};
 }
 

@@ -31,6 +31,8 @@ class GpuCullingStrategy final : public MaterialsStrategy {
         const PrimitiveBindings* bindings = nullptr;
         std::uint32_t firstInstance = 0;  // With bindings, identifies the draw across groupings.
         std::size_t draw = 0;             // Index into the culler's draws.
+        std::size_t sceneInstance = 0;    // Its animation draw record (animated variants).
+        std::size_t primitive = 0;
     };
     struct CulledMaterial {
         scene::MaterialId material;
@@ -38,6 +40,7 @@ class GpuCullingStrategy final : public MaterialsStrategy {
     };
     struct CulledPipeline {
         wgpu::RenderPipeline pipeline;
+        shaders::ShaderVariantKey shader;
         std::vector<CulledMaterial> materials;
     };
 

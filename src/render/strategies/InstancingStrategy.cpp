@@ -2,6 +2,7 @@
 
 #include <unordered_map>
 
+#include "encore/render/AnimationBuffers.h"
 #include "encore/render/ShadingSemantics.h"
 
 namespace encore::render {
@@ -12,6 +13,7 @@ Result<void> InstancingStrategy::prepare(const RenderSetup& setup, const scene::
     mPipelines = std::make_unique<PipelineCache>(setup);
     mInstances = InstanceBuffer(setup.device, *setup.layouts, scene);
     mQueue = setup.queue;
+    mAnimation = setup.animation;
     mGroups.clear();
 
     shaders::ShaderVariantKey shader;
@@ -22,12 +24,20 @@ Result<void> InstancingStrategy::prepare(const RenderSetup& setup, const scene::
         if (range.count == 0) {
             continue;
         }
-        for (const scene::Primitive& primitive : scene.meshes[mesh].primitives) {
-            auto bindings = mGeometry->bind(primitive, kUnlitTransformSemantics);
+        const auto& primitives = scene.meshes[mesh].primitives;
+        for (std::size_t index = 0; index < primitives.size(); ++index) {
+            shaders::ShaderVariantKey variant = shader;
+            std::vector<scene::Semantic> semantics(kUnlitTransformSemantics.begin(),
+                                                   kUnlitTransformSemantics.end());
+            if (setup.animation) {
+                setup.animation->addVariantFlags(scene::MeshId(mesh), index, variant);
+                appendAnimationSemantics(variant, semantics);
+            }
+            auto bindings = mGeometry->bind(primitives[index], semantics);
             if (!bindings) {
                 return bindings.error();
             }
-            const PipelineKey key = meshPipelineKey(setup, *bindings, shader);
+            const PipelineKey key = meshPipelineKey(setup, *bindings, variant);
             auto [found, inserted] = groupOfKey.try_emplace(key, mGroups.size());
             if (inserted) {
                 auto pipeline = mPipelines->get(key);
@@ -36,7 +46,8 @@ Result<void> InstancingStrategy::prepare(const RenderSetup& setup, const scene::
                 }
                 mGroups.push_back({*pipeline, {}});
             }
-            mGroups[found->second].primitives.push_back({std::move(*bindings), range});
+            mGroups[found->second].primitives.push_back(
+                {std::move(*bindings), range, variant, mInstances.instanceAt(range.first), index});
         }
     }
     return {};
@@ -48,6 +59,10 @@ void InstancingStrategy::encode(RenderEncoder& encoder, const FrameState&) const
     for (const PipelineGroup& group : mGroups) {
         encoder.setPipeline(group.pipeline);
         for (const PrimitiveDraw& primitive : group.primitives) {
+            if (primitive.shader.animated()) {
+                mAnimation->bind(encoder, primitive.shader, primitive.sceneInstance,
+                                 primitive.primitive);
+            }
             bindGeometry(encoder, primitive.bindings);
             drawGeometry(encoder, primitive.bindings, primitive.instances.count,
                          primitive.instances.first);

@@ -27,6 +27,9 @@ class InstancingStrategy final : public Strategy {
     struct PrimitiveDraw {
         PrimitiveBindings bindings;
         InstanceRange instances;
+        shaders::ShaderVariantKey shader;
+        std::size_t sceneInstance = 0;  // The range's first instance, and the primitive's
+        std::size_t primitive = 0;      // index in its mesh: its animation draw record.
     };
     struct PipelineGroup {
         wgpu::RenderPipeline pipeline;
@@ -39,6 +42,7 @@ class InstancingStrategy final : public Strategy {
     InstanceBuffer mInstances;
     wgpu::Queue mQueue;
     std::vector<PipelineGroup> mGroups;
+    const AnimationBuffers* mAnimation = nullptr;
 };
 
 }  // namespace encore::render

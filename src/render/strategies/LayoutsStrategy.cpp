@@ -2,6 +2,7 @@
 
 #include <string>
 
+#include "encore/render/AnimationBuffers.h"
 #include "encore/render/PipelineKey.h"
 #include "encore/render/ShadingSemantics.h"
 
@@ -12,19 +13,25 @@ Result<void> LayoutsStrategy::prepare(const RenderSetup& setup, const scene::Sce
     mGeometry = std::make_unique<GeometryBuffers>(setup.device, scene);
     for (std::size_t mesh = 0; mesh < scene.meshes.size(); ++mesh) {
         for (std::size_t index = 0; index < scene.meshes[mesh].primitives.size(); ++index) {
-            auto bindings = mGeometry->bind(scene.meshes[mesh].primitives[index],
-                                            kUnlitTransformSemantics);
+            shaders::ShaderVariantKey shader;
+            std::vector<scene::Semantic> semantics(kUnlitTransformSemantics.begin(),
+                                                   kUnlitTransformSemantics.end());
+            if (setup.animation) {
+                setup.animation->addVariantFlags(scene::MeshId(mesh), index, shader);
+                appendAnimationSemantics(shader, semantics);
+            }
+            auto bindings = mGeometry->bind(scene.meshes[mesh].primitives[index], semantics);
             if (!bindings) {
                 return bindings.error();
             }
-            const PipelineKey key = meshPipelineKey(setup, *bindings, {});
+            const PipelineKey key = meshPipelineKey(setup, *bindings, shader);
             auto pipeline = createMeshPipeline(setup, key,
                                                "layouts mesh " + std::to_string(mesh) +
                                                    " primitive " + std::to_string(index));
             if (!pipeline) {
                 return pipeline.error();
             }
-            mMeshes[mesh].push_back({*pipeline, std::move(*bindings)});
+            mMeshes[mesh].push_back({*pipeline, std::move(*bindings), shader});
         }
     }
     finishPrepare(setup, scene);

@@ -33,6 +33,7 @@ shaders::ShaderVariantKey materialVariant(const scene::Primitive& primitive,
 // The attributes a variant reads, in the order GeometryBuffers binds them.
 std::vector<scene::Semantic> variantSemantics(const shaders::ShaderVariantKey& key) {
     std::vector<scene::Semantic> semantics = {scene::Semantic::Position, scene::Semantic::Normal};
+    appendAnimationSemantics(key, semantics);
     if (key.hasTexcoord) {
         semantics.push_back(scene::Semantic::Texcoord0);
     }
@@ -52,6 +53,7 @@ std::vector<scene::Semantic> variantSemantics(const shaders::ShaderVariantKey& k
 
 Result<void> MaterialsStrategy::prepare(const RenderSetup& setup, const scene::SceneData& scene) {
     mSetup = &setup;
+    mAnimation = setup.animation;
     mFrameGroup = setup.frame->bindGroup();
     mGeometry = std::make_unique<GeometryBuffers>(setup.device, scene);
     mPipelines = std::make_unique<PipelineCache>(setup);
@@ -90,8 +92,11 @@ Result<void> MaterialsStrategy::groupDraws() {
         for (std::size_t index = 0; index < primitives.size(); ++index) {
             const scene::Primitive& primitive = primitives[index];
             const scene::Material& material = scene.materials[primitive.material.index()];
-            const shaders::ShaderVariantKey variant =
+            shaders::ShaderVariantKey variant =
                 materialVariant(primitive, material, mMaterials->textured(primitive.material));
+            if (mAnimation) {
+                mAnimation->addVariantFlags(scene::MeshId(mesh), index, variant);
+            }
             // Vertex inputs do not depend on textures, so a regrouping keeps the bindings.
             const PrimitiveBindings*& bound = mPrimitiveBindings[mesh][index];
             if (!bound) {
@@ -126,7 +131,8 @@ Result<void> MaterialsStrategy::groupDraws() {
                             primitive.bounds.empty()
                                 ? glm::vec3(instance.world[3])
                                 : primitive.bounds.transformed(instance.world).center();
-                        mBlended.push_back({*pipeline, primitive.material, bound, slot, center});
+                        mBlended.push_back({*pipeline, primitive.material, bound, slot, center,
+                                            variant, index});
                     }
                     continue;
                 }
@@ -140,7 +146,7 @@ Result<void> MaterialsStrategy::groupDraws() {
                     mOpaque[group->second].materials.push_back({primitive.material, {}});
                 }
                 mOpaque[group->second].materials[materialGroup->second].primitives.push_back(
-                    {bound, range});
+                    {bound, range, mInstances.instanceAt(range.first), index});
             }
         }
     }
@@ -158,6 +164,10 @@ void MaterialsStrategy::encodeOpaque(RenderEncoder& encoder) const {
         for (const MaterialGroup& material : group.materials) {
             encoder.setBindGroup(2, mMaterials->bindGroup(material.material));
             for (const PrimitiveDraw& primitive : material.primitives) {
+                if (group.key.shader.animated()) {
+                    mAnimation->bind(encoder, group.key.shader, primitive.sceneInstance,
+                                     primitive.primitive);
+                }
                 bindGeometry(encoder, *primitive.bindings);
                 drawGeometry(encoder, *primitive.bindings, primitive.instances.count,
                              primitive.instances.first);
@@ -202,6 +212,10 @@ void MaterialsStrategy::encodeBlended(RenderEncoder& encoder,
         if (currentBindings != draw.bindings) {
             bindGeometry(encoder, *draw.bindings);
             currentBindings = draw.bindings;
+        }
+        if (draw.shader.animated()) {
+            mAnimation->bind(encoder, draw.shader, mInstances.instanceAt(draw.instanceSlot),
+                             draw.primitive);
         }
         drawGeometry(encoder, *draw.bindings, 1, draw.instanceSlot);
     }

@@ -4,6 +4,7 @@
 #include <span>
 #include <vector>
 
+#include "encore/render/AnimationBuffers.h"
 #include "encore/render/InstanceBuffer.h"
 #include "encore/render/MaterialResources.h"
 #include "encore/render/PipelineCache.h"
@@ -35,6 +36,10 @@ class MaterialsStrategy : public Strategy {
     struct PrimitiveDraw {
         const PrimitiveBindings* bindings = nullptr;
         InstanceRange instances;
+        // The animation draw record (animated variants): the range's first scene instance and
+        // the primitive's index in its mesh.
+        std::size_t sceneInstance = 0;
+        std::size_t primitive = 0;
     };
     struct MaterialGroup {
         scene::MaterialId material;
@@ -52,6 +57,8 @@ class MaterialsStrategy : public Strategy {
         const PrimitiveBindings* bindings = nullptr;
         std::uint32_t instanceSlot = 0;
         glm::vec3 center{0.0f};  // World-space centre of the primitive's bounds.
+        shaders::ShaderVariantKey shader;
+        std::size_t primitive = 0;  // Index in its mesh.
     };
 
     // Opaque and masked groups (shared with the bundle strategies, which record them once).
@@ -79,6 +86,7 @@ class MaterialsStrategy : public Strategy {
     std::vector<std::vector<const PrimitiveBindings*>> mPrimitiveBindings;
     std::vector<PipelineGroup> mOpaque;
     std::vector<BlendedDraw> mBlended;
+    const AnimationBuffers* mAnimation = nullptr;
 };
 
 }  // namespace encore::render

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "encore/gpu/Upload.h"
+#include "encore/render/AnimationBuffers.h"
 #include "encore/render/GltfToWebGpu.h"
 #include "encore/render/PipelineKey.h"
 #include "encore/render/VertexBindings.h"
@@ -42,7 +43,15 @@ Result<void> NaiveStrategy::prepare(const RenderSetup& setup, const scene::Scene
             key.colorFormat = setup.colorFormat;
             key.depthFormat = setup.depthFormat;
             key.sampleCount = setup.sampleCount;
-            for (scene::Semantic semantic : {scene::Semantic::Position, scene::Semantic::Normal}) {
+            std::vector<scene::Semantic> semantics = {scene::Semantic::Position,
+                                                      scene::Semantic::Normal};
+            if (setup.animation) {
+                setup.animation->addVariantFlags(scene::MeshId(meshIndex), primitiveIndex,
+                                                 key.shader);
+                appendAnimationSemantics(key.shader, semantics);
+            }
+            prepared.shader = key.shader;
+            for (scene::Semantic semantic : semantics) {
                 const auto accessorId = primitive.attribute(semantic);
                 if (!accessorId) {
                     continue;  // The loader guarantees both; keep going rather than crash.

@@ -6,6 +6,7 @@ Result<void> NodeLoopStrategy::beginPrepare(const RenderSetup& setup,
                                             const scene::SceneData& scene) {
     ENCORE_TRY(NodeUniforms::checkLimit(scene, setup.mappingBudget, strategyName(kind())));
     mFrameGroup = setup.frame->bindGroup();
+    mAnimation = setup.animation;
     mMeshes.assign(scene.meshes.size(), {});
     return {};
 }
@@ -23,8 +24,13 @@ void NodeLoopStrategy::encode(RenderEncoder& encoder, const FrameState&) const {
     encoder.setBindGroup(0, mFrameGroup);
     for (std::size_t node = 0; node < mNodeMeshes.size(); ++node) {
         encoder.setBindGroup(1, mNodes.bindGroup(node));
-        for (const PreparedPrimitive& primitive : mMeshes[mNodeMeshes[node]]) {
+        const auto& primitives = mMeshes[mNodeMeshes[node]];
+        for (std::size_t index = 0; index < primitives.size(); ++index) {
+            const PreparedPrimitive& primitive = primitives[index];
             encoder.setPipeline(primitive.pipeline);
+            if (primitive.shader.animated()) {
+                mAnimation->bind(encoder, primitive.shader, node, index);
+            }
             bindGeometry(encoder, primitive.bindings);
             drawGeometry(encoder, primitive.bindings, 1, 0);
         }

@@ -2,6 +2,7 @@
 
 #include <vector>
 
+#include "encore/render/AnimationBuffers.h"
 #include "encore/render/NodeUniforms.h"
 #include "encore/render/Strategy.h"
 #include "encore/render/VertexBindings.h"
@@ -20,6 +21,7 @@ class NodeLoopStrategy : public Strategy {
     struct PreparedPrimitive {
         wgpu::RenderPipeline pipeline;
         PrimitiveBindings bindings;
+        shaders::ShaderVariantKey shader;  // Whether the animation group is bound.
     };
 
     // Checks the scene against the driver's budget; call first in prepare().
@@ -28,6 +30,7 @@ class NodeLoopStrategy : public Strategy {
     void finishPrepare(const RenderSetup& setup, const scene::SceneData& scene);
 
     std::vector<std::vector<PreparedPrimitive>> mMeshes;  // Per mesh, per primitive.
+    const AnimationBuffers* mAnimation = nullptr;
 
   private:
     wgpu::BindGroup mFrameGroup;

@@ -2,6 +2,7 @@
 
 #include <unordered_map>
 
+#include "encore/render/AnimationBuffers.h"
 #include "encore/render/ShadingSemantics.h"
 
 namespace encore::render {
@@ -10,6 +11,7 @@ Result<void> PipelineCacheStrategy::prepare(const RenderSetup& setup,
                                             const scene::SceneData& scene) {
     ENCORE_TRY(NodeUniforms::checkLimit(scene, setup.mappingBudget, strategyName(kind())));
     mFrameGroup = setup.frame->bindGroup();
+    mAnimation = setup.animation;
     mGeometry = std::make_unique<GeometryBuffers>(setup.device, scene);
     mPipelines = std::make_unique<PipelineCache>(setup);
     mGroups.clear();
@@ -24,12 +26,20 @@ Result<void> PipelineCacheStrategy::prepare(const RenderSetup& setup,
         if (nodesOfMesh[mesh].empty()) {
             continue;
         }
-        for (const scene::Primitive& primitive : scene.meshes[mesh].primitives) {
-            auto bindings = mGeometry->bind(primitive, kUnlitTransformSemantics);
+        const auto& primitives = scene.meshes[mesh].primitives;
+        for (std::size_t index = 0; index < primitives.size(); ++index) {
+            shaders::ShaderVariantKey shader;
+            std::vector<scene::Semantic> semantics(kUnlitTransformSemantics.begin(),
+                                                   kUnlitTransformSemantics.end());
+            if (setup.animation) {
+                setup.animation->addVariantFlags(scene::MeshId(mesh), index, shader);
+                appendAnimationSemantics(shader, semantics);
+            }
+            auto bindings = mGeometry->bind(primitives[index], semantics);
             if (!bindings) {
                 return bindings.error();
             }
-            const PipelineKey key = meshPipelineKey(setup, *bindings, {});
+            const PipelineKey key = meshPipelineKey(setup, *bindings, shader);
             auto [found, inserted] = groupOfKey.try_emplace(key, mGroups.size());
             if (inserted) {
                 auto pipeline = mPipelines->get(key);
@@ -39,7 +49,7 @@ Result<void> PipelineCacheStrategy::prepare(const RenderSetup& setup,
                 mGroups.push_back({*pipeline, {}});
             }
             mGroups[found->second].primitives.push_back(
-                {std::move(*bindings), nodesOfMesh[mesh]});
+                {std::move(*bindings), nodesOfMesh[mesh], shader, index});
         }
     }
     mNodes = NodeUniforms(setup.device, setup.queue, *setup.layouts, scene);
@@ -55,6 +65,9 @@ void PipelineCacheStrategy::encode(RenderEncoder& encoder, const FrameState&) co
             bindGeometry(encoder, primitive.bindings);
             for (std::size_t node : primitive.nodes) {
                 encoder.setBindGroup(1, mNodes.bindGroup(node));
+                if (primitive.shader.animated()) {
+                    mAnimation->bind(encoder, primitive.shader, node, primitive.primitive);
+                }
                 drawGeometry(encoder, primitive.bindings, 1, 0);
             }
         }

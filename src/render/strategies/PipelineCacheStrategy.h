@@ -26,6 +26,8 @@ class PipelineCacheStrategy final : public Strategy {
     struct PrimitiveDraws {
         PrimitiveBindings bindings;
         std::vector<std::size_t> nodes;  // Scene instances drawing this primitive.
+        shaders::ShaderVariantKey shader;
+        std::size_t primitive = 0;  // Its index in the mesh (animation draw records).
     };
     struct PipelineGroup {
         wgpu::RenderPipeline pipeline;
@@ -38,6 +40,7 @@ class PipelineCacheStrategy final : public Strategy {
     std::vector<PipelineGroup> mGroups;
     NodeUniforms mNodes;
     wgpu::Queue mQueue;
+    const AnimationBuffers* mAnimation = nullptr;
 };
 
 }  // namespace encore::render

@@ -1,0 +1,244 @@
+#include "encore/render/AnimationBuffers.h"
+
+#include <algorithm>
+#include <cstring>
+
+#include "encore/gpu/Upload.h"
+#include "encore/render/InstanceBuffer.h"
+#include "encore/render/RenderEncoder.h"
+
+namespace encore::render {
+
+namespace {
+
+constexpr std::uint8_t kSkinned = 1;
+constexpr std::uint8_t kMorphed = 2;
+constexpr std::uint8_t kEightJoints = 4;
+constexpr std::uint32_t kNone = scene::InstanceAnimationRange::kNone;
+// minUniformBufferOffsetAlignment: each draw record starts on its own 256 bytes.
+constexpr std::uint32_t kDrawStride = 256;
+
+struct DrawRecord {
+    std::uint32_t deltaOffset = 0;
+    std::uint32_t vertexCount = 0;
+    std::uint32_t targetCount = 0;
+    std::uint32_t jointOffset = kNone;
+    std::uint32_t weightOffset = kNone;
+};
+
+template <typename T>
+wgpu::Buffer storageBuffer(const wgpu::Device& device, std::vector<T> values,
+                           const std::string& label) {
+    if (values.empty()) {
+        values.resize(1);  // WebGPU binds no empty buffer.
+    }
+    return gpu::createBufferFrom<T>(device, wgpu::BufferUsage::Storage | wgpu::BufferUsage::CopyDst,
+                                    values, label);
+}
+
+void packJoints(std::span<const glm::mat4> joints, std::span<const glm::mat4> normals,
+                std::size_t first, std::size_t count, std::vector<TransformUniform>& out) {
+    for (std::size_t j = first; j < first + count; ++j) {
+        std::memcpy(out[j].world, &joints[j][0][0], sizeof(out[j].world));
+        std::memcpy(out[j].normal, &normals[j][0][0], sizeof(out[j].normal));
+    }
+}
+
+}  // namespace
+
+void appendAnimationSemantics(const shaders::ShaderVariantKey& key,
+                              std::vector<scene::Semantic>& semantics) {
+    if (key.skinned) {
+        semantics.push_back(scene::Semantic::Joints0);
+        semantics.push_back(scene::Semantic::Weights0);
+        if (key.skinned8) {
+            semantics.push_back(scene::Semantic::Joints1);
+            semantics.push_back(scene::Semantic::Weights1);
+        }
+    }
+}
+
+std::unique_ptr<AnimationBuffers> AnimationBuffers::create(const wgpu::Device& device,
+                                                           const wgpu::Queue& queue,
+                                                           const BindGroupLayouts& layouts,
+                                                           const scene::SceneData& scene,
+                                                           const scene::AnimationPlayer& player) {
+    (void)queue;
+    auto result = std::unique_ptr<AnimationBuffers>(new AnimationBuffers());
+    AnimationBuffers& buffers = *result;
+
+    // Meshes drawn by a node with a skin get the SKINNED variant where they have joints.
+    std::vector<std::uint8_t> meshSkinned(scene.meshes.size(), 0);
+    for (const scene::Instance& instance : scene.instances) {
+        if (scene.nodes[instance.node.index()].skin.has_value()) {
+            meshSkinned[instance.mesh.index()] = 1;
+        }
+    }
+
+    // Morph deltas, primitive after primitive: target-major, then vertex, then attribute.
+    std::vector<glm::vec4> deltas;
+    std::vector<std::vector<std::uint32_t>> deltaOffsets(scene.meshes.size());
+    bool any = false;
+    buffers.mPrimitiveFlags.resize(scene.meshes.size());
+    for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
+        const auto& primitives = scene.meshes[m].primitives;
+        buffers.mPrimitiveFlags[m].assign(primitives.size(), 0);
+        deltaOffsets[m].assign(primitives.size(), 0);
+        for (std::size_t p = 0; p < primitives.size(); ++p) {
+            const scene::Primitive& primitive = primitives[p];
+            std::uint8_t& flags = buffers.mPrimitiveFlags[m][p];
+            if (meshSkinned[m] && primitive.attribute(scene::Semantic::Joints0) &&
+                primitive.attribute(scene::Semantic::Weights0)) {
+                flags |= kSkinned;
+                ++buffers.mSkinnedPrimitives;
+                if (primitive.attribute(scene::Semantic::Joints1) &&
+                    primitive.attribute(scene::Semantic::Weights1)) {
+                    flags |= kEightJoints;
+                }
+            }
+            if (!primitive.targets.empty()) {
+                flags |= kMorphed;
+                ++buffers.mMorphedPrimitives;
+                deltaOffsets[m][p] = static_cast<std::uint32_t>(deltas.size());
+                const std::size_t vertices = primitive.vertexCount;
+                const std::size_t base = deltas.size();
+                deltas.resize(base + primitive.targets.size() * vertices * 3, glm::vec4(0.0f));
+                for (std::size_t t = 0; t < primitive.targets.size(); ++t) {
+                    const scene::MorphTarget& target = primitive.targets[t];
+                    const std::optional<scene::AccessorId> attributes[3] = {
+                        target.position, target.normal, target.tangent};
+                    for (int a = 0; a < 3; ++a) {
+                        if (!attributes[a]) {
+                            continue;
+                        }
+                        const std::vector<glm::vec4> values = scene.readFloats(*attributes[a]);
+                        const std::size_t count = std::min(values.size(), vertices);
+                        for (std::size_t v = 0; v < count; ++v) {
+                            deltas[base + (t * vertices + v) * 3 + a] =
+                                glm::vec4(glm::vec3(values[v]), 0.0f);
+                        }
+                    }
+                }
+            }
+            any = any || flags != 0;
+        }
+    }
+    if (!any) {
+        return nullptr;
+    }
+
+    // Draw records: every primitive of every instance whose mesh has an animated primitive.
+    const auto ranges = player.instanceRanges();
+    std::vector<std::uint8_t> records;
+    buffers.mFirstDraw.assign(scene.instances.size(), kNone);
+    for (std::size_t i = 0; i < scene.instances.size(); ++i) {
+        const std::size_t m = scene.instances[i].mesh.index();
+        const auto& flags = buffers.mPrimitiveFlags[m];
+        if (std::all_of(flags.begin(), flags.end(), [](std::uint8_t f) { return f == 0; })) {
+            continue;
+        }
+        buffers.mFirstDraw[i] = static_cast<std::uint32_t>(records.size() / kDrawStride);
+        for (std::size_t p = 0; p < flags.size(); ++p) {
+            const scene::Primitive& primitive = scene.meshes[m].primitives[p];
+            DrawRecord record;
+            record.deltaOffset = deltaOffsets[m][p];
+            record.vertexCount = primitive.vertexCount;
+            record.targetCount = static_cast<std::uint32_t>(primitive.targets.size());
+            record.jointOffset = (flags[p] & kSkinned) ? ranges[i].jointOffset : kNone;
+            record.weightOffset = (flags[p] & kMorphed) ? ranges[i].weightOffset : kNone;
+            const std::size_t at = records.size();
+            records.resize(at + kDrawStride, 0);
+            std::memcpy(records.data() + at, &record, sizeof(record));
+        }
+    }
+    if (records.empty()) {
+        records.resize(kDrawStride, 0);  // No instance draws an animated mesh; bind something.
+    }
+    buffers.mDraws = gpu::createBufferWithData(
+        device, wgpu::BufferUsage::Uniform | wgpu::BufferUsage::CopyDst, records,
+        "animation draws");
+
+    // Per instance slot: joint and weight offsets (kNone where the instance has none).
+    const std::vector<std::uint32_t> slots = instanceSlots(scene);
+    std::vector<glm::uvec2> offsets(scene.instances.size(), glm::uvec2(kNone));
+    for (std::size_t i = 0; i < scene.instances.size(); ++i) {
+        offsets[slots[i]] = glm::uvec2(ranges[i].jointOffset, ranges[i].weightOffset);
+    }
+    buffers.mInstanceOffsets = storageBuffer(device, std::move(offsets), "instance animation");
+
+    const auto joints = player.jointMatrices();
+    buffers.mJointScratch.resize(joints.size());
+    packJoints(joints, player.jointNormalMatrices(), 0, joints.size(), buffers.mJointScratch);
+    buffers.mJoints = storageBuffer(device, buffers.mJointScratch, "joint matrices");
+    const auto weights = player.morphWeights();
+    buffers.mWeights =
+        storageBuffer(device, std::vector<float>(weights.begin(), weights.end()), "morph weights");
+    buffers.mDeltas = storageBuffer(device, std::move(deltas), "morph deltas");
+
+    wgpu::BindGroupEntry entries[5] = {};
+    const wgpu::Buffer* bound[5] = {&buffers.mDraws, &buffers.mJoints, &buffers.mWeights,
+                                    &buffers.mDeltas, &buffers.mInstanceOffsets};
+    for (std::uint32_t b = 0; b < 5; ++b) {
+        entries[b].binding = b;
+        entries[b].buffer = *bound[b];
+        entries[b].size = b == 0 ? sizeof(DrawRecord) : bound[b]->GetSize();
+    }
+    wgpu::BindGroupDescriptor descriptor{};
+    descriptor.label = "animation";
+    descriptor.layout = layouts.animation;
+    descriptor.entryCount = 5;
+    descriptor.entries = entries;
+    buffers.mBindGroup = device.CreateBindGroup(&descriptor);
+    return result;
+}
+
+void AnimationBuffers::addVariantFlags(scene::MeshId mesh, std::size_t primitive,
+                                       shaders::ShaderVariantKey& key) const {
+    const std::uint8_t flags = mPrimitiveFlags[mesh.index()][primitive];
+    key.skinned = (flags & kSkinned) != 0;
+    key.skinned8 = key.skinned && (flags & kEightJoints) != 0;
+    key.morphed = (flags & kMorphed) != 0;
+}
+
+std::uint32_t AnimationBuffers::drawOffset(std::size_t sceneInstance, std::size_t primitive) const {
+    const std::uint32_t first = mFirstDraw[sceneInstance];
+    return first == kNone ? 0 : (first + static_cast<std::uint32_t>(primitive)) * kDrawStride;
+}
+
+void AnimationBuffers::bind(RenderEncoder& encoder, const shaders::ShaderVariantKey& key,
+                            std::size_t sceneInstance, std::size_t primitive) const {
+    if (!key.animated()) {
+        return;
+    }
+    encoder.setBindGroup(animationGroupIndex(key), mBindGroup,
+                         drawOffset(sceneInstance, primitive));
+}
+
+AnimationUploadStats AnimationBuffers::write(const wgpu::Queue& queue,
+                                             const scene::AnimationPlayer& player) {
+    AnimationUploadStats stats;
+    const auto joints = player.jointMatrices();
+    const auto skinOffsets = player.skinJointOffsets();
+    for (std::uint32_t skin : player.changedSkins()) {
+        const std::size_t first = skinOffsets[skin];
+        const std::size_t end =
+            skin + 1 < skinOffsets.size() ? skinOffsets[skin + 1] : joints.size();
+        if (end <= first) {
+            continue;
+        }
+        packJoints(joints, player.jointNormalMatrices(), first, end - first, mJointScratch);
+        const std::uint64_t bytes = (end - first) * sizeof(TransformUniform);
+        queue.WriteBuffer(mJoints, first * sizeof(TransformUniform), &mJointScratch[first], bytes);
+        stats.jointsWritten += static_cast<std::uint32_t>(end - first);
+        stats.bytesWritten += bytes;
+    }
+    const auto weights = player.morphWeights();
+    if (!weights.empty() && !player.changedInstances().empty()) {
+        queue.WriteBuffer(mWeights, 0, weights.data(), weights.size_bytes());
+        stats.weightsWritten = static_cast<std::uint32_t>(weights.size());
+        stats.bytesWritten += weights.size_bytes();
+    }
+    return stats;
+}
+
+}  // namespace encore::render

@@ -1,0 +1,292 @@
+// Playing animations in every strategy: GPU skinning and morph targets from CPU-evaluated
+// joint matrices and weights (render::AnimationBuffers), node animation through the strategies'
+// instance buffers, bundles that stay recorded while the animation plays, and the Khronos
+// sample models at two times.
+
+#include <gtest/gtest.h>
+
+#include <glm/gtc/constants.hpp>
+
+#include "GltfBuilder.h"
+#include "GpuTestSupport.h"
+#include "RenderTestSupport.h"
+#include "TestPaths.h"
+#include "encore/render/Renderer.h"
+
+namespace encore::render {
+namespace {
+
+constexpr std::uint32_t kSize = 64;
+
+using test::frontCamera;
+
+// A red quad (0.8 wide) centred at `center`, as one primitive's attribute map.
+test::GltfBuilder::PrimitiveDesc quad(test::GltfBuilder& builder, glm::vec3 center) {
+    test::GltfBuilder::PrimitiveDesc primitive;
+    const float h = 0.4f;
+    primitive.attributes["POSITION"] = builder.addPositions({center + glm::vec3(-h, -h, 0),
+                                                             center + glm::vec3(h, -h, 0),
+                                                             center + glm::vec3(h, h, 0),
+                                                             center + glm::vec3(-h, h, 0)});
+    primitive.attributes["NORMAL"] =
+        builder.addNormals({{0, 0, 1}, {0, 0, 1}, {0, 0, 1}, {0, 0, 1}});
+    primitive.indices = builder.addIndices<std::uint16_t>({0, 1, 2, 0, 2, 3});
+    primitive.material = builder.addMaterial({.baseColor = {1, 0, 0, 1}, .doubleSided = true});
+    return primitive;
+}
+
+// A LINEAR animation of one node's `path`, key times 0 and 1.
+void addAnimation(test::GltfBuilder& builder, std::uint32_t node, const std::string& path,
+                  const std::vector<float>& values, const std::string& type) {
+    const auto times = builder.addAccessor<float>({0.0f, 1.0f}, "SCALAR", {.minMax = true});
+    const auto output = builder.addAccessor<float>(values, type);
+    builder.json()["animations"].push_back(
+        {{"samplers", {{{"input", times}, {"output", output}, {"interpolation", "LINEAR"}}}},
+         {"channels", {{{"sampler", 0}, {"target", {{"node", node}, {"path", path}}}}}}});
+}
+
+scene::SceneData load(const test::GltfBuilder& builder, const std::string& name) {
+    auto scene = scene::loadSceneFromMemory(builder.toGlb(), {}, name);
+    EXPECT_TRUE(scene.ok()) << scene.error().message;
+    return scene.ok() ? std::move(*scene) : scene::SceneData{};
+}
+
+// A quad centred at (0, 1, 0), skinned to joint 1 (a child of joint 0 at the origin), which
+// turns 90 degrees about +Z between t = 0 and t = 1: the quad moves to (-1, 0, 0). The mesh's
+// node is translated by `meshNodeTranslation`, which glTF says a skinned mesh ignores.
+scene::SceneData skinnedScene(glm::vec3 meshNodeTranslation = {2, 0, 0}) {
+    test::GltfBuilder builder;
+    auto primitive = quad(builder, {0, 1, 0});
+    primitive.attributes["JOINTS_0"] = builder.addAccessor<std::uint8_t>(
+        {1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0}, "VEC4");
+    primitive.attributes["WEIGHTS_0"] = builder.addAccessor<float>(
+        {1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0}, "VEC4");
+    const auto mesh = builder.addMesh(primitive);
+    const auto meshNode = builder.addNode({.mesh = mesh, .translation = meshNodeTranslation});
+    const auto joint1 = builder.addNode({.name = "joint1"});
+    const auto joint0 = builder.addNode({.children = {joint1}, .name = "joint0"});
+    builder.json()["nodes"][meshNode]["skin"] = 0;
+    builder.json()["skins"] = {{{"joints", {joint0, joint1}}}};
+    const float s = std::sin(glm::quarter_pi<float>());
+    addAnimation(builder, joint1, "rotation", {0, 0, 0, 1, 0, 0, s, s}, "VEC4");
+    builder.addScene({meshNode, joint0});
+    return load(builder, "skinned.glb");
+}
+
+// A quad at the origin with one morph target moving it by (+1.5, 0, 0); its weight goes from
+// 0 at t = 0 to 1 at t = 1.
+scene::SceneData morphedScene() {
+    test::GltfBuilder builder;
+    const auto primitive = quad(builder, {0, 0, 0});
+    const auto delta =
+        builder.addPositions({{1.5f, 0, 0}, {1.5f, 0, 0}, {1.5f, 0, 0}, {1.5f, 0, 0}});
+    const auto mesh = builder.addMesh(primitive);
+    builder.json()["meshes"][mesh]["primitives"][0]["targets"] = {{{"POSITION", delta}}};
+    builder.json()["meshes"][mesh]["weights"] = {0.0};
+    const auto node = builder.addNode({.mesh = mesh});
+    addAnimation(builder, node, "weights", {0.0f, 1.0f}, "SCALAR");
+    builder.addScene({node});
+    return load(builder, "morphed.glb");
+}
+
+struct Rendered {
+    image::ImageRgba8 image;
+    std::uint64_t bundlesRecorded = 0;
+};
+
+// Renders `scene` with `kind` at each of `times` (one renderer: bundles recorded once).
+std::vector<image::ImageRgba8> renderAt(const scene::SceneData& scene, StrategyKind kind,
+                                        const std::vector<double>& times,
+                                        const Camera& camera = frontCamera(),
+                                        const std::string& animation = {}) {
+    gpu::Context* context = test::vulkanContext();
+    auto renderer = Renderer::create(*context, test::pixelTestOptions(kSize, kSize));
+    EXPECT_TRUE(renderer.ok());
+    auto prepared = renderer->prepare(scene, kind);
+    EXPECT_TRUE(prepared.ok()) << prepared.error().message;
+    EXPECT_TRUE(renderer->selectAnimation(animation).ok());
+    std::vector<image::ImageRgba8> images;
+    for (double t : times) {
+        EXPECT_TRUE(renderer->setAnimationTime(t).ok());
+        renderer->renderFrame(camera);
+        auto image = renderer->readImage();
+        EXPECT_TRUE(image.ok()) << image.error().message;
+        images.push_back(image.ok() ? std::move(*image) : image::ImageRgba8{});
+    }
+    auto errors = context->checkNoErrors(std::string("animating with ") +
+                                         std::string(strategyName(kind)));
+    EXPECT_TRUE(errors.ok()) << errors.error().message;
+    return images;
+}
+
+bool coveredAt(const image::ImageRgba8& image, const glm::vec3& point) {
+    const auto [x, y] = test::pixelOf(frontCamera(), point, kSize, kSize);
+    const test::Rgba background = test::pixelAt(image, 1, 1);
+    return test::channelDistance(test::pixelAt(image, x, y), background) > 20;
+}
+
+bool hasMaterials(StrategyKind kind) {
+    return kind >= StrategyKind::Materials;
+}
+
+// Every strategy draws the animated quad where the animation puts it, and strategies of one
+// family (vertex colours, or materials) produce identical images.
+void expectAnimatedEverywhere(const scene::SceneData& scene, const std::vector<double>& times,
+                              const std::vector<std::vector<glm::vec3>>& covered,
+                              const std::vector<std::vector<glm::vec3>>& uncovered) {
+    std::vector<image::ImageRgba8> unlit, materials;
+    for (StrategyKind kind : allStrategies()) {
+        SCOPED_TRACE(std::string(strategyName(kind)));
+        const auto images = renderAt(scene, kind, times);
+        ASSERT_EQ(images.size(), times.size());
+        for (std::size_t i = 0; i < times.size(); ++i) {
+            SCOPED_TRACE("t = " + std::to_string(times[i]));
+            for (const glm::vec3& point : covered[i]) {
+                EXPECT_TRUE(coveredAt(images[i], point))
+                    << "nothing drawn at (" << point.x << ", " << point.y << ")";
+            }
+            for (const glm::vec3& point : uncovered[i]) {
+                EXPECT_FALSE(coveredAt(images[i], point))
+                    << "something drawn at (" << point.x << ", " << point.y << ")";
+            }
+        }
+        auto& reference = hasMaterials(kind) ? materials : unlit;
+        if (reference.empty()) {
+            reference = images;
+            continue;
+        }
+        for (std::size_t i = 0; i < times.size(); ++i) {
+            EXPECT_EQ(test::differingPixels(images[i], reference[i], 0), 0u)
+                << "differs from the first strategy of its family at t = " << times[i];
+        }
+    }
+}
+
+TEST(AnimationRenderTest, SkinnedQuadFollowsItsJointInEveryStrategy) {
+    ENCORE_REQUIRE_VULKAN(context);
+    const auto scene = skinnedScene();
+    ASSERT_EQ(scene.skins.size(), 1u);
+    // t = 0: at (0, 1) (not at the mesh node's (2, 1)); t = 1: turned to (-1, 0).
+    expectAnimatedEverywhere(scene, {0.0, 1.0}, {{{0, 1, 0}}, {{-1, 0, 0}}},
+                             {{{2, 1, 0}, {-1, 0, 0}}, {{0, 1, 0}, {1, 0, 0}}});
+}
+
+TEST(AnimationRenderTest, MorphedQuadFollowsItsWeightInEveryStrategy) {
+    ENCORE_REQUIRE_VULKAN(context);
+    const auto scene = morphedScene();
+    expectAnimatedEverywhere(scene, {0.0, 0.5, 1.0},
+                             {{{0, 0, 0}}, {{0.75f, 0, 0}}, {{1.5f, 0, 0}}},
+                             {{{1.5f, 0, 0}}, {{-0.6f, 0, 0}, {1.6f, 0, 0}}, {{0, 0, 0}}});
+}
+
+// GPU culling must not cull a skinned instance by its node's transform: here the node lies far
+// outside the view, the skinned quad inside it.
+TEST(AnimationRenderTest, GpuCullingKeepsSkinnedInstancesWhoseNodeIsOutOfView) {
+    ENCORE_REQUIRE_VULKAN(context);
+    const auto scene = skinnedScene({50, 0, 0});
+    for (StrategyKind kind : {StrategyKind::GpuCulling, StrategyKind::GpuCullingBundles}) {
+        SCOPED_TRACE(std::string(strategyName(kind)));
+        const auto images = renderAt(scene, kind, {0.0, 1.0});
+        ASSERT_EQ(images.size(), 2u);
+        EXPECT_TRUE(coveredAt(images[0], {0, 1, 0}));
+        EXPECT_TRUE(coveredAt(images[1], {-1, 0, 0}));
+    }
+}
+
+// 100 animated frames replay the bundles recorded once; every frame equals `materials`.
+TEST(AnimationRenderTest, BundlesStayRecordedWhileAnimating) {
+    ENCORE_REQUIRE_VULKAN(context);
+    const auto scene = skinnedScene();
+    const auto morph = morphedScene();
+    for (const scene::SceneData* animated : {&scene, &morph}) {
+        for (StrategyKind kind : {StrategyKind::Bundles, StrategyKind::GpuCullingBundles}) {
+            SCOPED_TRACE(std::string(strategyName(kind)));
+            auto bundled = Renderer::create(*context, test::pixelTestOptions(kSize, kSize));
+            auto direct = Renderer::create(*context, test::pixelTestOptions(kSize, kSize));
+            ASSERT_TRUE(bundled.ok() && direct.ok());
+            ASSERT_TRUE(bundled->prepare(*animated, kind).ok());
+            ASSERT_TRUE(direct->prepare(*animated, StrategyKind::Materials).ok());
+            bundled->renderFrame(frontCamera());
+            const std::uint64_t recorded = bundled->strategy()->bundlesRecorded();
+            for (int frame = 0; frame < 100; ++frame) {
+                const double t = frame / 99.0;
+                ASSERT_TRUE(bundled->setAnimationTime(t).ok());
+                bundled->renderFrame(frontCamera());
+                if (frame % 33 == 0) {
+                    ASSERT_TRUE(direct->setAnimationTime(t).ok());
+                    direct->renderFrame(frontCamera());
+                    auto a = bundled->readImage();
+                    auto b = direct->readImage();
+                    ASSERT_TRUE(a.ok() && b.ok());
+                    EXPECT_EQ(test::differingPixels(*a, *b, 0), 0u) << "frame " << frame;
+                }
+            }
+            EXPECT_EQ(bundled->strategy()->bundlesRecorded(), recorded);
+            auto errors = context->checkNoErrors("animating bundles");
+            EXPECT_TRUE(errors.ok()) << errors.error().message;
+        }
+    }
+}
+
+TEST(AnimationRenderTest, SelectsOneAnimationByName) {
+    ENCORE_REQUIRE_VULKAN(context);
+    const auto scene = morphedScene();
+    auto renderer = Renderer::create(*context, test::pixelTestOptions(kSize, kSize));
+    ASSERT_TRUE(renderer.ok());
+    ASSERT_TRUE(renderer->prepare(scene, StrategyKind::Bundles).ok());
+    EXPECT_TRUE(renderer->selectAnimation("0").ok());
+    EXPECT_FALSE(renderer->selectAnimation("no such animation").ok());
+    ASSERT_TRUE(renderer->setAnimationTime(1.0).ok());
+    EXPECT_EQ(renderer->animationStats().player.channelsEvaluated, 1u);
+    EXPECT_GT(renderer->animationStats().upload.weightsWritten, 0u);
+    EXPECT_GT(renderer->animationStats().bytesWritten, 0u);
+}
+
+// The Khronos sample models: different images at two times, equal across strategies.
+class AnimatedModelTest : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(AnimatedModelTest, ChangesOverTimeAndAgreesAcrossStrategies) {
+    ENCORE_REQUIRE_VULKAN(context);
+    const auto dir = test::sharedModelsDir();
+    if (!dir) {
+        GTEST_SKIP() << "The shared models directory is absent.";
+    }
+    const std::string name = GetParam();
+    const auto path = *dir / name / "glTF-Binary" / (name + ".glb");
+    if (!std::filesystem::exists(path)) {
+        GTEST_SKIP() << path << " is absent.";
+    }
+    auto scene = scene::loadScene(path);
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+    ASSERT_FALSE(scene->animations.empty());
+    // Only the first animation: Fox's later ones drive the same joints, and a clamped loop ends
+    // where it started.
+    const double later = std::max(0.2, 0.37 * scene->animations[0].end);
+    const Camera camera = Camera::framing(scene->bounds, 1.0f, 0.5f);
+    std::vector<image::ImageRgba8> unlit, materials;
+    for (StrategyKind kind : allStrategies()) {
+        SCOPED_TRACE(std::string(strategyName(kind)));
+        const auto images = renderAt(*scene, kind, {0.0, later}, camera, "0");
+        ASSERT_EQ(images.size(), 2u);
+        EXPECT_GT(test::coveredFraction(images[0], test::pixelAt(images[0], 0, 0)), 0.02)
+            << "the model is not in the picture";
+        // CesiumMilkTruck only turns its wheels, which the vertex-colour strategies barely show.
+        EXPECT_GT(test::differingPixels(images[0], images[1], 2), 0u)
+            << "the animation changes nothing";
+        auto& reference = hasMaterials(kind) ? materials : unlit;
+        if (reference.empty()) {
+            reference = images;
+            continue;
+        }
+        for (std::size_t i = 0; i < 2; ++i) {
+            EXPECT_EQ(test::differingPixels(images[i], reference[i], 0), 0u) << "frame " << i;
+        }
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Models, AnimatedModelTest,
+                         ::testing::Values("Fox", "BrainStem", "CesiumMilkTruck",
+                                           "AnimatedMorphCube"));
+
+}  // namespace
+}  // namespace encore::render
