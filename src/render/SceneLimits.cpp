@@ -96,6 +96,26 @@ Result<void> checkSceneWithinLimits(const gpu::DeviceLimits& limits,
                 " instances (strategy " + std::string(strategyName(kind)) +
                 " binds them as one storage buffer; naive, layouts and pipeline-cache do not)"));
     }
+    // The animation storage buffers every strategy binds (AnimationBuffers): morph deltas
+    // (position, normal, tangent as vec4 per target and vertex) and joint matrices with their
+    // normal matrices.
+    std::uint64_t deltas = 0;
+    for (const scene::Mesh& mesh : scene.meshes) {
+        for (const scene::Primitive& primitive : mesh.primitives) {
+            deltas += std::uint64_t(primitive.targets.size()) * primitive.vertexCount * 3;
+        }
+    }
+    ENCORE_TRY(gpu::checkStorageBinding(limits, deltas * 16,
+                                        "The morph target deltas (" + std::to_string(deltas / 3) +
+                                            " target vertices)"));
+    std::uint64_t joints = 0;
+    for (const scene::Skin& skin : scene.skins) {
+        joints += skin.joints.size();
+    }
+    ENCORE_TRY(gpu::checkStorageBinding(
+        limits, joints * sizeof(TransformUniform),
+        "The joint matrices of " + std::to_string(scene.skins.size()) + " skins (" +
+            std::to_string(joints) + " joints)"));
     if (usesMaterials(kind)) {
         const std::uint64_t stride =
             roundUp(sizeof(MaterialUniform), std::max(limits.minUniformBufferOffsetAlignment, 4u));

@@ -22,6 +22,7 @@
 #include "encore/gpu/Readback.h"
 #include "encore/render/MaterialResources.h"
 #include "encore/render/Renderer.h"
+#include "encore/render/SceneLimits.h"
 #include "encore/scene/SceneGenerator.h"
 
 namespace encore::render {
@@ -333,6 +334,34 @@ TEST(OutOfMemoryTest, OutOfMemoryErrorsBecomeErrorValuesNamingTheWork) {
               std::string::npos)
         << checked.error().message;
     EXPECT_TRUE(context->checkNoErrors("after").ok());
+}
+
+// The animation storage buffers are checked before anything is created: morph deltas
+// (3 x 16 bytes per target vertex) and joint matrices (128 bytes per joint). No device needed.
+TEST(AnimationLimitsTest, MorphDeltasAndJointsBeyondAStorageBindingAreRefused) {
+    gpu::DeviceLimits limits;
+    limits.maxStorageBufferBindingSize = 64 * 1024;
+    scene::SceneData morphed;
+    scene::Primitive primitive;
+    primitive.vertexCount = 2000;  // 96,000 bytes of deltas for one target.
+    primitive.targets.resize(1);
+    morphed.meshes.push_back({});
+    morphed.meshes[0].primitives.push_back(primitive);
+    auto refused = checkSceneWithinLimits(limits, morphed, StrategyKind::Bundles);
+    ASSERT_FALSE(refused.ok());
+    EXPECT_EQ(refused.error().code, ErrorCode::LimitExceeded);
+    EXPECT_NE(refused.error().message.find("morph target deltas"), std::string::npos)
+        << refused.error().message;
+    morphed.meshes[0].primitives[0].vertexCount = 1000;  // 48,000 bytes fit.
+    EXPECT_TRUE(checkSceneWithinLimits(limits, morphed, StrategyKind::Bundles).ok());
+
+    scene::SceneData skinned;
+    skinned.skins.push_back({});
+    skinned.skins[0].joints.resize(600);  // 76,800 bytes of joint matrices.
+    refused = checkSceneWithinLimits(limits, skinned, StrategyKind::Naive);
+    ASSERT_FALSE(refused.ok());
+    EXPECT_NE(refused.error().message.find("joint matrices"), std::string::npos)
+        << refused.error().message;
 }
 
 }  // namespace
