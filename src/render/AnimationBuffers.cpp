@@ -6,6 +6,7 @@
 #include "encore/gpu/Upload.h"
 #include "encore/render/InstanceBuffer.h"
 #include "encore/render/RenderEncoder.h"
+#include "encore/render/ShadingSemantics.h"
 
 namespace encore::render {
 
@@ -45,6 +46,18 @@ void packJoints(std::span<const glm::mat4> joints, std::span<const glm::mat4> no
 }
 
 }  // namespace
+
+std::vector<scene::Semantic> unlitPrimitiveSemantics(const AnimationBuffers* animation,
+                                                     scene::MeshId mesh, std::size_t primitive,
+                                                     shaders::ShaderVariantKey& variant) {
+    std::vector<scene::Semantic> semantics(kUnlitTransformSemantics.begin(),
+                                           kUnlitTransformSemantics.end());
+    if (animation) {
+        animation->addVariantFlags(mesh, primitive, variant);
+        appendAnimationSemantics(variant, semantics);
+    }
+    return semantics;
+}
 
 void appendAnimationSemantics(const shaders::ShaderVariantKey& key,
                               std::vector<scene::Semantic>& semantics) {

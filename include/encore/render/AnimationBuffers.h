@@ -85,4 +85,11 @@ inline std::uint32_t animationGroupIndex(const shaders::ShaderVariantKey& key) {
 void appendAnimationSemantics(const shaders::ShaderVariantKey& key,
                               std::vector<scene::Semantic>& semantics);
 
+// The vertex attributes a strategy before `materials` binds for one primitive
+// (kUnlitTransformSemantics, then joints and weights where it is skinned), adding the
+// primitive's animation flags to `variant`. `animation` is null when nothing is animated.
+std::vector<scene::Semantic> unlitPrimitiveSemantics(const AnimationBuffers* animation,
+                                                     scene::MeshId mesh, std::size_t primitive,
+                                                     shaders::ShaderVariantKey& variant);
+
 }  // namespace encore::render

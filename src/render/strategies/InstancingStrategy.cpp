@@ -3,7 +3,6 @@
 #include <unordered_map>
 
 #include "encore/render/AnimationBuffers.h"
-#include "encore/render/ShadingSemantics.h"
 
 namespace encore::render {
 
@@ -27,12 +26,8 @@ Result<void> InstancingStrategy::prepare(const RenderSetup& setup, const scene::
         const auto& primitives = scene.meshes[mesh].primitives;
         for (std::size_t index = 0; index < primitives.size(); ++index) {
             shaders::ShaderVariantKey variant = shader;
-            std::vector<scene::Semantic> semantics(kUnlitTransformSemantics.begin(),
-                                                   kUnlitTransformSemantics.end());
-            if (setup.animation) {
-                setup.animation->addVariantFlags(scene::MeshId(mesh), index, variant);
-                appendAnimationSemantics(variant, semantics);
-            }
+            const std::vector<scene::Semantic> semantics =
+                unlitPrimitiveSemantics(setup.animation, scene::MeshId(mesh), index, variant);
             auto bindings = mGeometry->bind(primitives[index], semantics);
             if (!bindings) {
                 return bindings.error();

@@ -4,7 +4,6 @@
 
 #include "encore/render/AnimationBuffers.h"
 #include "encore/render/PipelineKey.h"
-#include "encore/render/ShadingSemantics.h"
 
 namespace encore::render {
 
@@ -14,12 +13,8 @@ Result<void> LayoutsStrategy::prepare(const RenderSetup& setup, const scene::Sce
     for (std::size_t mesh = 0; mesh < scene.meshes.size(); ++mesh) {
         for (std::size_t index = 0; index < scene.meshes[mesh].primitives.size(); ++index) {
             shaders::ShaderVariantKey shader;
-            std::vector<scene::Semantic> semantics(kUnlitTransformSemantics.begin(),
-                                                   kUnlitTransformSemantics.end());
-            if (setup.animation) {
-                setup.animation->addVariantFlags(scene::MeshId(mesh), index, shader);
-                appendAnimationSemantics(shader, semantics);
-            }
+            const std::vector<scene::Semantic> semantics =
+                unlitPrimitiveSemantics(setup.animation, scene::MeshId(mesh), index, shader);
             auto bindings = mGeometry->bind(scene.meshes[mesh].primitives[index], semantics);
             if (!bindings) {
                 return bindings.error();

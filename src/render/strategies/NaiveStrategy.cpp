@@ -43,13 +43,8 @@ Result<void> NaiveStrategy::prepare(const RenderSetup& setup, const scene::Scene
             key.colorFormat = setup.colorFormat;
             key.depthFormat = setup.depthFormat;
             key.sampleCount = setup.sampleCount;
-            std::vector<scene::Semantic> semantics = {scene::Semantic::Position,
-                                                      scene::Semantic::Normal};
-            if (setup.animation) {
-                setup.animation->addVariantFlags(scene::MeshId(meshIndex), primitiveIndex,
-                                                 key.shader);
-                appendAnimationSemantics(key.shader, semantics);
-            }
+            const std::vector<scene::Semantic> semantics = unlitPrimitiveSemantics(
+                setup.animation, scene::MeshId(meshIndex), primitiveIndex, key.shader);
             prepared.shader = key.shader;
             for (scene::Semantic semantic : semantics) {
                 const auto accessorId = primitive.attribute(semantic);
