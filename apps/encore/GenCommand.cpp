@@ -31,6 +31,10 @@ void addGenCommand(CLI::App& app, const GlobalOptions&, int& exitCode) {
     command->add_option("--tessellation", options->generator.tessellation,
                         "Segments around the round shapes (3 to 256)")
         ->capture_default_str();
+    options->generator.textures = true;
+    command->add_flag("--textures,!--no-textures", options->generator.textures,
+                      "Give every other material a base colour and a metallic-roughness texture "
+                      "(default: on)");
     command->add_option("-o,--output", options->output, "The .glb file to write")
         ->capture_default_str();
     command->callback([options, &exitCode] {

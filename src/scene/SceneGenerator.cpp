@@ -12,6 +12,8 @@
 #include <glm/gtc/quaternion.hpp>
 #include <nlohmann/json.hpp>
 
+#include "encore/image/ImageCodec.h"
+
 namespace encore::scene {
 
 namespace {
@@ -216,11 +218,59 @@ class BinaryWriter {
         document["accessors"].push_back(accessor);
         return document["accessors"].size() - 1;
     }
+
+    // Appends an encoded image as a bufferView and returns the image index.
+    std::size_t addImage(json& document, const std::vector<std::uint8_t>& png) {
+        while (mBytes.size() % 4 != 0) {
+            mBytes.push_back(0);
+        }
+        const std::size_t offset = mBytes.size();
+        mBytes.insert(mBytes.end(), png.begin(), png.end());
+        document["bufferViews"].push_back(
+            {{"buffer", 0}, {"byteOffset", offset}, {"byteLength", png.size()}});
+        document["images"].push_back(
+            {{"bufferView", document["bufferViews"].size() - 1}, {"mimeType", "image/png"}});
+        return document["images"].size() - 1;
+    }
     std::vector<std::uint8_t>& bytes() { return mBytes; }
 
   private:
     std::vector<std::uint8_t> mBytes;
 };
+
+constexpr std::uint32_t kTextureSize = 64;
+
+// Eight by eight squares of white and light grey: the material's factor gives the hue.
+image::ImageRgba8 checkerImage() {
+    image::ImageRgba8 image{kTextureSize, kTextureSize,
+                            std::vector<std::uint8_t>(kTextureSize * kTextureSize * 4)};
+    for (std::uint32_t y = 0; y < kTextureSize; ++y) {
+        for (std::uint32_t x = 0; x < kTextureSize; ++x) {
+            const bool light = ((x / 8) + (y / 8)) % 2 == 0;
+            std::uint8_t* p = image.pixel(x, y);
+            p[0] = p[1] = p[2] = light ? 255 : 150;
+            p[3] = 255;
+        }
+    }
+    return image;
+}
+
+// glTF's metallicRoughnessTexture: blue is metalness (bands of metal and dielectric across u),
+// green roughness (a ramp from 0.25 to 1 along v, times the factor).
+image::ImageRgba8 metallicRoughnessImage() {
+    image::ImageRgba8 image{kTextureSize, kTextureSize,
+                            std::vector<std::uint8_t>(kTextureSize * kTextureSize * 4)};
+    for (std::uint32_t y = 0; y < kTextureSize; ++y) {
+        for (std::uint32_t x = 0; x < kTextureSize; ++x) {
+            std::uint8_t* p = image.pixel(x, y);
+            p[0] = 0;
+            p[1] = std::uint8_t(64 + (191 * y) / (kTextureSize - 1));
+            p[2] = (x / 16) % 2 == 0 ? 255 : 0;
+            p[3] = 255;
+        }
+    }
+    return image;
+}
 
 void appendChunk(std::vector<std::uint8_t>& glb, std::uint32_t type,
                  std::vector<std::uint8_t> data, std::uint8_t padding) {
@@ -264,6 +314,28 @@ Result<std::vector<std::uint8_t>> generateSceneGlb(const GeneratorOptions& optio
                      {"meshes", json::array()},
                      {"materials", json::array()},
                      {"nodes", json::array()}};
+    BinaryWriter binary;
+    if (options.textures) {
+        auto checker = image::encodePng(checkerImage());
+        auto metallicRoughness = image::encodePng(metallicRoughnessImage());
+        if (!checker) {
+            return checker.error();
+        }
+        if (!metallicRoughness) {
+            return metallicRoughness.error();
+        }
+        document["images"] = json::array();
+        binary.addImage(document, *checker);
+        binary.addImage(document, *metallicRoughness);
+        constexpr int kLinear = 9729;
+        constexpr int kLinearMipmapLinear = 9987;
+        constexpr int kRepeat = 10497;
+        document["samplers"] = {{{"magFilter", kLinear},
+                                 {"minFilter", kLinearMipmapLinear},
+                                 {"wrapS", kRepeat},
+                                 {"wrapT", kRepeat}}};
+        document["textures"] = {{{"source", 0}, {"sampler", 0}}, {{"source", 1}, {"sampler", 0}}};
+    }
     for (std::uint32_t i = 0; i < options.materialCount; ++i) {
         const glm::vec3 color = paletteColor(i, options.materialCount);
         // Every third material (from the second) is a metal and roughness runs from 0.2 to 0.9
@@ -274,14 +346,20 @@ Result<std::vector<std::uint8_t>> generateSceneGlb(const GeneratorOptions& optio
             options.materialCount > 1
                 ? 0.2f + 0.7f * float(i) / float(options.materialCount - 1)
                 : 0.5f;
-        document["materials"].push_back(
-            {{"name", "material " + std::to_string(i)},
-             {"pbrMetallicRoughness",
-              {{"baseColorFactor", {color.r, color.g, color.b, 1.0}},
-               {"metallicFactor", metal ? 1.0 : 0.0},
-               {"roughnessFactor", roughness}}}});
+        json material = {{"name", "material " + std::to_string(i)},
+                         {"pbrMetallicRoughness",
+                          {{"baseColorFactor", {color.r, color.g, color.b, 1.0}},
+                           {"metallicFactor", metal ? 1.0 : 0.0},
+                           {"roughnessFactor", roughness}}}};
+        if (options.textures && i % 2 == 1) {
+            // The texture's bands decide metalness, so the factor lets them through.
+            auto& pbr = material["pbrMetallicRoughness"];
+            pbr["baseColorTexture"] = {{"index", 0}};
+            pbr["metallicRoughnessTexture"] = {{"index", 1}};
+            pbr["metallicFactor"] = 1.0;
+        }
+        document["materials"].push_back(std::move(material));
     }
-    BinaryWriter binary;
     constexpr int kFloat = 5126;
     constexpr int kUnsignedShort = 5123;
     constexpr int kUnsignedInt = 5125;

@@ -22,6 +22,10 @@ struct GeneratorOptions {
     // Segments around the round shapes of the first meshes (later meshes add more). Small
     // values keep triangle counts low when a CPU rasteriser draws 100,000 objects.
     std::uint32_t tessellation = 8;
+    // Every other material (odd indices) also samples two textures: a base colour checker that
+    // its factor tints and a metallic-roughness map (metal and dielectric bands, a roughness
+    // ramp). The others stay texture-less, so a scene draws both material layouts.
+    bool textures = false;
 };
 
 // Limits that keep a typo from generating gigabytes.

@@ -207,5 +207,54 @@ TEST(MaterialTest, GeneratedMaterialsVaryMetalAndRoughness) {
     EXPECT_LT(metals, 8);
 }
 
+TEST(MaterialTest, GeneratedTexturesGoToEveryOtherMaterial) {
+    GeneratorOptions options;
+    options.objectCount = 8;
+    options.materialCount = 5;
+    options.textures = true;
+    auto glb = generateSceneGlb(options);
+    ASSERT_TRUE(glb.ok()) << glb.error().message;
+    auto scene = loadSceneFromMemory(*glb, {}, "generated.glb");
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+    ASSERT_EQ(scene->images.size(), 2u);
+    for (const Image& image : scene->images) {
+        EXPECT_EQ(image.width, 64u);
+        EXPECT_EQ(image.height, 64u);
+        ASSERT_EQ(image.rgba8.size(), 64u * 64u * 4u);
+    }
+    // The checker is light and darker grey; the metallic-roughness map has metal (blue 255)
+    // and dielectric (blue 0) bands and a roughness ramp in green.
+    const auto& checker = scene->images[0].rgba8;
+    EXPECT_EQ(checker[0], 255);
+    EXPECT_EQ(checker[8 * 4], 150);
+    const auto& metallicRoughness = scene->images[1].rgba8;
+    EXPECT_EQ(metallicRoughness[2], 255);
+    EXPECT_EQ(metallicRoughness[16 * 4 + 2], 0);
+    EXPECT_LT(metallicRoughness[1], metallicRoughness[63 * 64 * 4 + 1]);
+    ASSERT_EQ(scene->materials.size(), 5u);
+    for (std::size_t i = 0; i < scene->materials.size(); ++i) {
+        const Material& material = scene->materials[i];
+        EXPECT_EQ(material.baseColorTexture.has_value(), i % 2 == 1) << "material " << i;
+        EXPECT_EQ(material.metallicRoughnessTexture.has_value(), i % 2 == 1) << "material " << i;
+        if (material.baseColorTexture) {
+            EXPECT_EQ(scene->textures[material.baseColorTexture->texture.index()].image.index(), 0u);
+            EXPECT_EQ(
+                scene->textures[material.metallicRoughnessTexture->texture.index()].image.index(),
+                1u);
+            EXPECT_EQ(material.metallicFactor, 1.0f);
+        }
+    }
+
+    options.textures = false;
+    auto plain = generateSceneGlb(options);
+    ASSERT_TRUE(plain.ok());
+    auto untextured = loadSceneFromMemory(*plain, {}, "plain.glb");
+    ASSERT_TRUE(untextured.ok());
+    EXPECT_TRUE(untextured->images.empty());
+    for (const Material& material : untextured->materials) {
+        EXPECT_FALSE(material.baseColorTexture);
+    }
+}
+
 }  // namespace
 }  // namespace encore::scene
