@@ -49,6 +49,14 @@ nlohmann::json toJson(const BenchReport& report) {
         {"frames", report.options.frames},
         {"warmup", report.options.callgrind ? 0 : report.options.warmup},
         {"callgrind", report.options.callgrind},
+        {"generated",
+         {{"meshes", report.options.meshes},
+          {"materials", report.options.materials},
+          {"tessellation", report.options.tessellation},
+          {"textures", report.options.textures}}},
+        {"gpuWait", report.options.gpuWait == gpu::IdleWait::Spin && !report.options.callgrind
+                        ? "spin"
+                        : "block"},
         {"timestamps", report.timestamps},
         {"environmentMilliseconds", report.environmentMilliseconds},
         {"target", {{"width", report.options.width}, {"height", report.options.height}}},
@@ -81,10 +89,17 @@ std::string toMarkdown(const BenchReport& report) {
         << "Frames: " << report.options.frames << " measured after "
         << (report.options.callgrind ? 0 : report.options.warmup) << " warm-up, "
         << report.options.width << "x" << report.options.height
-        << " target; GPU time from timestamp queries: "
+        << " target; the CPU "
+        << (report.options.gpuWait == gpu::IdleWait::Spin && !report.options.callgrind ? "spins"
+                                                                                   : "blocks")
+        << " while it waits for the GPU after each frame; GPU time from timestamp queries: "
         << (report.timestamps ? "yes" : "n/a") << "  \n"
         << "Image-based lighting maps built in " << report.environmentMilliseconds
-        << " ms (default studio environment)\n\n"
+        << " ms (default studio environment)  \n"
+        << "Generated scenes: " << report.options.meshes << " meshes, " << report.options.materials
+        << " materials"
+        << (report.options.textures ? " (every other one textured)" : " (texture-less)")
+        << ", tessellation " << report.options.tessellation << "\n\n"
         << "Times in milliseconds per frame, median (p95). CPU = encode + submit; \"vs naive\" "
            "is naive's CPU median divided by the strategy's, in the same scene.\n";
 

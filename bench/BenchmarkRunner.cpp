@@ -78,7 +78,8 @@ void measureFrames(gpu::Context& context, const BenchOptions& options, const std
             startInstructionCount(options.callgrind);
         }
         const render::FrameTiming timing = renderFrame(frame);
-        context.waitForIdle();
+        // Under callgrind a spinning wait would add a varying number of polls to the count.
+        context.waitForIdle(options.callgrind ? gpu::IdleWait::Block : options.gpuWait);
         if (frame < warmup) {
             continue;
         }
@@ -207,6 +208,7 @@ Result<BenchReport> runBenchmarks(gpu::Context& context, const BenchOptions& opt
         generator.meshCount = options.meshes;
         generator.materialCount = options.materials;
         generator.tessellation = options.tessellation;
+        generator.textures = options.textures;
         auto glb = scene::generateSceneGlb(generator);
         if (!glb) {
             return glb.error();

@@ -1,6 +1,7 @@
 #include <chrono>
 #include <cstdio>
 #include <fstream>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -118,12 +119,24 @@ void addBenchCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) 
     command->add_option("--tessellation", bench.tessellation,
                         "Segments of the generated round shapes")
         ->capture_default_str();
+    command->add_flag("--textures,!--no-textures", bench.textures,
+                      "Every other material of the generated scenes samples base colour and "
+                      "metallic-roughness textures (default: on)");
     command->add_option("--json", options->json, "Write the report as JSON");
     command->add_option("--markdown", options->markdown, "Write the report as Markdown");
     command->add_option("--plot", options->plot, "Write the scaling curves as SVG");
     command->add_flag("--callgrind", bench.callgrind,
                       "No warm-up or GPU timer; bracket the measured frames for valgrind "
                       "--tool=callgrind --instr-atstart=no");
+    command
+        ->add_option("--gpu-wait", bench.gpuWait,
+                     "How the CPU waits for the GPU after each frame: spin (the core stays "
+                     "awake; default) or block (it may sleep, and wake slower); --callgrind "
+                     "always blocks")
+        ->transform(CLI::CheckedTransformer(
+            std::map<std::string, gpu::IdleWait>{{"spin", gpu::IdleWait::Spin},
+                                                 {"block", gpu::IdleWait::Block}},
+            CLI::ignore_case));
     command->add_flag("--smoke", options->smoke, "A few frames of small scenes (CI)");
     command->callback([options, &global, &exitCode] { exitCode = runBench(*options, global); });
 }

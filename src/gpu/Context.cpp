@@ -270,9 +270,15 @@ bool Context::wait(const wgpu::Future& future, std::uint64_t timeoutNs) const {
     return mInstance.WaitAny(future, timeoutNs) == wgpu::WaitStatus::Success;
 }
 
-void Context::waitForIdle() const {
-    wait(mQueue.OnSubmittedWorkDone(wgpu::CallbackMode::WaitAnyOnly,
-                                    [](wgpu::QueueWorkDoneStatus, wgpu::StringView) {}));
+void Context::waitForIdle(IdleWait wait) const {
+    const wgpu::Future done = mQueue.OnSubmittedWorkDone(
+        wgpu::CallbackMode::WaitAnyOnly, [](wgpu::QueueWorkDoneStatus, wgpu::StringView) {});
+    if (wait == IdleWait::Block) {
+        this->wait(done);
+        return;
+    }
+    while (mInstance.WaitAny(done, 0) == wgpu::WaitStatus::TimedOut) {
+    }
 }
 
 std::size_t Context::errorCount() const {

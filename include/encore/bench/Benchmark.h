@@ -30,6 +30,9 @@ struct BenchOptions {
     std::uint32_t meshes = 8;
     std::uint32_t materials = 4;
     std::uint32_t tessellation = 4;  // Small meshes: CPU rasterisers draw 100,000 objects.
+    // Every other material of the generated scenes samples base colour and metallic-roughness
+    // textures (scene::GeneratorOptions::textures); the others are texture-less.
+    bool textures = true;
     std::uint32_t frames = 60;
     std::uint32_t warmup = 10;
     std::uint32_t width = 512;
@@ -38,6 +41,10 @@ struct BenchOptions {
     // measured frames bracketed by CALLGRIND_START/STOP_INSTRUMENTATION (run valgrind with
     // --instr-atstart=no).
     bool callgrind = false;
+    // How the CPU waits for the GPU after each frame. Spinning keeps the core awake: a blocking
+    // wait lets it sleep for as long as the GPU frame lasts, and the next frame's CPU work then
+    // runs slower the longer the GPU frame was (measured on the H100, docs/benchmarks).
+    gpu::IdleWait gpuWait = gpu::IdleWait::Spin;
 };
 
 struct BenchResult {
