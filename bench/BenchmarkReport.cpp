@@ -54,7 +54,7 @@ nlohmann::json toJson(const BenchReport& report) {
           {"materials", report.options.materials},
           {"tessellation", report.options.tessellation},
           {"textures", report.options.textures}}},
-        {"gpuWait", report.options.gpuWait == gpu::IdleWait::Spin && !report.options.callgrind
+        {"gpuWait", report.options.gpuWait == gpu::WaitMode::Spin && !report.options.callgrind
                         ? "spin"
                         : "block"},
         {"timestamps", report.timestamps},
@@ -90,7 +90,7 @@ std::string toMarkdown(const BenchReport& report) {
         << (report.options.callgrind ? 0 : report.options.warmup) << " warm-up, "
         << report.options.width << "x" << report.options.height
         << " target; the CPU "
-        << (report.options.gpuWait == gpu::IdleWait::Spin && !report.options.callgrind ? "spins"
+        << (report.options.gpuWait == gpu::WaitMode::Spin && !report.options.callgrind ? "spins"
                                                                                    : "blocks")
         << " while it waits for the GPU after each frame; GPU time from timestamp queries: "
         << (report.timestamps ? "yes" : "n/a") << "  \n"

@@ -78,8 +78,7 @@ void measureFrames(gpu::Context& context, const BenchOptions& options, const std
             startInstructionCount(options.callgrind);
         }
         const render::FrameTiming timing = renderFrame(frame);
-        // Under callgrind a spinning wait would add a varying number of polls to the count.
-        context.waitForIdle(options.callgrind ? gpu::IdleWait::Block : options.gpuWait);
+        context.waitForIdle();
         if (frame < warmup) {
             continue;
         }
@@ -165,6 +164,14 @@ Result<BenchReport> runBenchmarks(gpu::Context& context, const BenchOptions& opt
     report.cpu = cpuModel();
     report.cores = std::thread::hardware_concurrency();
     report.options = options;
+    // Under callgrind a spinning wait would add a varying number of polls to the count.
+    const gpu::WaitMode previousWait = context.waitMode();
+    context.setWaitMode(options.callgrind ? gpu::WaitMode::Block : options.gpuWait);
+    struct RestoreWait {
+        gpu::Context& context;
+        gpu::WaitMode mode;
+        ~RestoreWait() { context.setWaitMode(mode); }
+    } restoreWait{context, previousWait};
 
     std::vector<render::StrategyKind> strategies = options.strategies;
     if (strategies.empty()) {

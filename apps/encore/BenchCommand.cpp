@@ -134,8 +134,8 @@ void addBenchCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) 
                      "awake; default) or block (it may sleep, and wake slower); --callgrind "
                      "always blocks")
         ->transform(CLI::CheckedTransformer(
-            std::map<std::string, gpu::IdleWait>{{"spin", gpu::IdleWait::Spin},
-                                                 {"block", gpu::IdleWait::Block}},
+            std::map<std::string, gpu::WaitMode>{{"spin", gpu::WaitMode::Spin},
+                                                 {"block", gpu::WaitMode::Block}},
             CLI::ignore_case));
     command->add_flag("--smoke", options->smoke, "A few frames of small scenes (CI)");
     command->callback([options, &global, &exitCode] { exitCode = runBench(*options, global); });

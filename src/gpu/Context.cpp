@@ -267,18 +267,19 @@ bool Context::hasFeature(wgpu::FeatureName feature) const {
 }
 
 bool Context::wait(const wgpu::Future& future, std::uint64_t timeoutNs) const {
+    if (mWaitMode == WaitMode::Spin && timeoutNs == UINT64_MAX) {
+        wgpu::WaitStatus status;
+        do {
+            status = mInstance.WaitAny(future, 0);
+        } while (status == wgpu::WaitStatus::TimedOut);
+        return status == wgpu::WaitStatus::Success;
+    }
     return mInstance.WaitAny(future, timeoutNs) == wgpu::WaitStatus::Success;
 }
 
-void Context::waitForIdle(IdleWait wait) const {
-    const wgpu::Future done = mQueue.OnSubmittedWorkDone(
-        wgpu::CallbackMode::WaitAnyOnly, [](wgpu::QueueWorkDoneStatus, wgpu::StringView) {});
-    if (wait == IdleWait::Block) {
-        this->wait(done);
-        return;
-    }
-    while (mInstance.WaitAny(done, 0) == wgpu::WaitStatus::TimedOut) {
-    }
+void Context::waitForIdle() const {
+    wait(mQueue.OnSubmittedWorkDone(wgpu::CallbackMode::WaitAnyOnly,
+                                    [](wgpu::QueueWorkDoneStatus, wgpu::StringView) {}));
 }
 
 std::size_t Context::errorCount() const {

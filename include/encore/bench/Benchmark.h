@@ -41,10 +41,10 @@ struct BenchOptions {
     // measured frames bracketed by CALLGRIND_START/STOP_INSTRUMENTATION (run valgrind with
     // --instr-atstart=no).
     bool callgrind = false;
-    // How the CPU waits for the GPU after each frame. Spinning keeps the core awake: a blocking
-    // wait lets it sleep for as long as the GPU frame lasts, and the next frame's CPU work then
-    // runs slower the longer the GPU frame was (measured on the H100, docs/benchmarks).
-    gpu::IdleWait gpuWait = gpu::IdleWait::Spin;
+    // How the CPU waits for the GPU after each frame (and for the frame's timestamps). A
+    // blocking wait lets the core sleep for as long as the GPU frame lasts; spinning keeps it
+    // awake, so the next frame's CPU work does not depend on how long the GPU took.
+    gpu::WaitMode gpuWait = gpu::WaitMode::Spin;
 };
 
 struct BenchResult {

@@ -45,7 +45,10 @@ struct AdapterDescription {
 
 std::string backendName(wgpu::BackendType backend);
 
-enum class IdleWait { Block, Spin };
+// How the CPU waits for the GPU (waitForIdle, timestamp and buffer read-backs). Spin polls
+// instead of sleeping in the driver: the core stays awake, so CPU work that follows a wait is
+// not slowed by waking it from a deep idle state. Benchmarks spin; everything else blocks.
+enum class WaitMode { Block, Spin };
 
 class Context {
   public:
@@ -72,12 +75,12 @@ class Context {
     // error instead. nullopt: no such driver.
     std::optional<std::uint64_t> mappingBudget() const;
 
-    // Blocks until the future completes. Returns false on timeout.
+    // Waits until the future completes, as setWaitMode says. Returns false on timeout.
     bool wait(const wgpu::Future& future, std::uint64_t timeoutNs = UINT64_MAX) const;
-    // Blocks until all submitted work has completed on the GPU. Spin polls instead of sleeping
-    // in the driver: the calling core stays awake, so the CPU work that follows the wait is not
-    // slowed by waking a core from a deep idle state (benchmarks measure that work).
-    void waitForIdle(IdleWait wait = IdleWait::Block) const;
+    // Waits until all submitted work has completed on the GPU.
+    void waitForIdle() const;
+    void setWaitMode(WaitMode mode) { mWaitMode = mode; }
+    WaitMode waitMode() const { return mWaitMode; }
 
     // Errors reported by the device since creation (or since the last takeErrors()).
     std::size_t errorCount() const;
@@ -102,6 +105,7 @@ class Context {
     wgpu::Adapter mAdapter;
     wgpu::Device mDevice;
     wgpu::Queue mQueue;
+    WaitMode mWaitMode = WaitMode::Block;
     AdapterDescription mAdapterDescription;
     DeviceLimits mLimits;
     ContextOptions mOptions;
