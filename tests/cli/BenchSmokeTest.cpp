@@ -28,6 +28,8 @@ TEST(BenchSmokeTest, WritesACompleteReportOnVulkan) {
     EXPECT_EQ(report["adapter"]["backend"], "Vulkan");
     EXPECT_FALSE(report["adapter"]["name"].get<std::string>().empty());
     EXPECT_NE(report["dawn"], "unknown");
+    EXPECT_EQ(report["gpuWait"], "spin");
+    EXPECT_EQ(report["generated"]["textures"], true);
     const auto& results = report["results"];
     ASSERT_EQ(results.size(), 2u * 8u);  // Two scenes, every strategy.
     for (const auto& entry : results) {

@@ -47,5 +47,34 @@ TEST(ContextTest, BufferRoundTrip) {
     EXPECT_TRUE(context->checkNoErrors("round trip").ok());
 }
 
+// Benchmarks spin while they wait: every wait (idle, read-backs) still returns once the GPU is
+// done, with the data it wrote, and the mode goes back to blocking.
+TEST(ContextTest, SpinningWaitsSeeTheGpuFinish) {
+    ENCORE_REQUIRE_VULKAN(context);
+    ASSERT_EQ(context->waitMode(), WaitMode::Block);
+    context->setWaitMode(WaitMode::Spin);
+    const std::vector<std::uint32_t> values(4096, 7u);
+    auto source = createBufferFrom<std::uint32_t>(context->device(), wgpu::BufferUsage::CopySrc,
+                                                  values, "spin source");
+    wgpu::BufferDescriptor descriptor{};
+    descriptor.size = values.size() * sizeof(std::uint32_t);
+    descriptor.usage = wgpu::BufferUsage::CopyDst | wgpu::BufferUsage::CopySrc;
+    wgpu::Buffer copy = context->device().CreateBuffer(&descriptor);
+    for (int round = 0; round < 3; ++round) {
+        wgpu::CommandEncoder encoder = context->device().CreateCommandEncoder();
+        encoder.CopyBufferToBuffer(source, 0, copy, 0, descriptor.size);
+        wgpu::CommandBuffer commands = encoder.Finish();
+        context->queue().Submit(1, &commands);
+        context->waitForIdle();
+    }
+    auto bytes = readBuffer(*context, copy, 0, descriptor.size);
+    context->setWaitMode(WaitMode::Block);
+    ASSERT_TRUE(bytes.ok()) << bytes.error().message;
+    std::vector<std::uint32_t> read(values.size());
+    std::memcpy(read.data(), bytes->data(), descriptor.size);
+    EXPECT_EQ(read, values);
+    EXPECT_TRUE(context->checkNoErrors("spinning waits").ok());
+}
+
 }  // namespace
 }  // namespace encore::gpu
