@@ -20,6 +20,7 @@
 #include "TestPaths.h"
 #include "encore/gpu/Readback.h"
 #include "encore/render/Renderer.h"
+#include "encore/scene/CrowdGenerator.h"
 
 namespace encore::render {
 namespace {
@@ -437,6 +438,31 @@ TEST(GpuAnimationTest, SwitchingEvaluationKeepsTheFrame) {
     auto b = reference->readImage();
     ASSERT_TRUE(a.ok() && b.ok());
     EXPECT_EQ(test::differingPixels(*a, *b, 0), 0u);
+}
+
+// The generated crowd (encore gen --crowd): its characters play with different time offsets,
+// and the GPU evaluates it as the CPU does.
+TEST(GpuAnimationTest, CrowdMatchesTheCpuPlayer) {
+    ENCORE_REQUIRE_VULKAN(context);
+    auto glb = scene::generateCrowdGlb({5});
+    ASSERT_TRUE(glb.ok()) << glb.error().message;
+    auto crowd = scene::loadSceneFromMemory(*glb, {}, "crowd.glb");
+    ASSERT_TRUE(crowd.ok()) << crowd.error().message;
+    EXPECT_EQ(crowd->instances.size(), 5u);
+    EXPECT_EQ(crowd->skins.size(), 5u);
+    EXPECT_EQ(crowd->nodes.size(), 5u * scene::kCrowdNodesPerCharacter);
+    ASSERT_EQ(crowd->animations.size(), 1u);
+    EXPECT_EQ(crowd->animations[0].channels.size(), 5u * scene::kCrowdJointsPerCharacter);
+    // Different offsets: at t = 1 the first two characters are in different poses.
+    scene::AnimationPlayer player(*crowd);
+    player.evaluate(1.0);
+    const auto joints = player.jointMatrices();
+    const auto offsets = player.skinJointOffsets();
+    EXPECT_NE(joints[offsets[0] + 3][0], joints[offsets[1] + 3][0]);
+    expectGpuMatchesCpu(*context, *crowd, {-1.0, 0.0, 0.3, 0.74, 1.0, 1.5, 3.0});
+    expectSameFrames(*context, *crowd, {0.5, 1.2}, Camera::framing(crowd->bounds, 1.0f, 0.5f));
+    auto refused = scene::generateCrowdGlb({0});
+    EXPECT_FALSE(refused.ok());
 }
 
 // Every animated model of ../shared/models (skipped without it).
