@@ -69,6 +69,7 @@ nlohmann::json toJson(const BenchReport& report) {
             {"label", result.label},
             {"objects", result.objects},
             {"strategy", result.strategy},
+            {"animation", result.animation},
             {"encodeMs", percentilesJson(result.encode)},
             {"submitMs", percentilesJson(result.submit)},
             {"cpuMs", percentilesJson(result.cpu)},

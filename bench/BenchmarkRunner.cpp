@@ -15,6 +15,7 @@
 #include "encore/gpu/GpuTimer.h"
 #include "encore/render/Animometer.h"
 #include "encore/render/Renderer.h"
+#include "encore/scene/CrowdGenerator.h"
 #include "encore/scene/SceneGenerator.h"
 
 namespace encore::bench {
@@ -103,9 +104,15 @@ float frameTime(std::uint32_t frame) {
 }
 
 // Measures one strategy on one scene.
-Result<BenchResult> measure(gpu::Context& context, render::Renderer& renderer,
-                            const scene::SceneData& scene, render::StrategyKind kind,
-                            const BenchOptions& options, gpu::GpuTimer* timer) {
+// With `animate`, every frame first sets the animation time (its CPU time counts as encoding).
+Result<BenchResult> measure(gpu::Context& context,
+                            render::Renderer& renderer,
+                            const scene::SceneData& scene,
+                            render::StrategyKind kind,
+                            const BenchOptions& options,
+                            gpu::GpuTimer* timer,
+                            std::optional<render::AnimationEvaluation> animate) {
+    ENCORE_TRY(renderer.setAnimationEvaluation(animate.value_or(render::AnimationEvaluation::Cpu)));
     ENCORE_TRY(renderer.prepare(scene, kind));
     const render::Camera camera =
         render::Camera::framing(scene.bounds, renderer.target().aspect());
@@ -113,12 +120,29 @@ Result<BenchResult> measure(gpu::Context& context, render::Renderer& renderer,
     result.strategy = std::string(render::strategyName(kind));
     result.objects = scene.instances.size();
     renderer.setGpuTimer(options.callgrind ? nullptr : timer);
+    if (animate) {
+        result.animation = std::string(render::animationEvaluationName(*animate));
+    }
+    Result<void> animated;
     measureFrames(context, options, result.strategy, result, [&](std::uint32_t frame) {
+        double animationMilliseconds = 0.0;
+        if (animate) {
+            const auto start = std::chrono::steady_clock::now();
+            if (auto set = renderer.setAnimationTime(frameTime(frame)); !set && animated) {
+                animated = set;
+            }
+            animationMilliseconds =
+                std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+                    .count();
+        }
         const render::FrameResult rendered = renderer.renderFrame(camera, frameTime(frame));
         result.frame = rendered.counters;
         result.bundleContents = rendered.bundleContents;
-        return render::FrameTiming(rendered);
+        render::FrameTiming timing(rendered);
+        timing.encodeMilliseconds += animationMilliseconds;
+        return timing;
     });
+    ENCORE_TRY(animated);
     renderer.setGpuTimer(nullptr);
     ENCORE_TRY(context.checkNoErrors("Benchmarking " + result.strategy));
     return result;
@@ -187,12 +211,18 @@ Result<BenchReport> runBenchmarks(gpu::Context& context, const BenchOptions& opt
     gpu::GpuTimer* timerPointer = timer ? &*timer : nullptr;
 
     auto runScene = [&](const scene::SceneData& scene, const std::string& kind,
-                        const std::string& label) -> Result<void> {
+                        const std::string& sceneLabel,
+                        std::optional<render::AnimationEvaluation> animate) -> Result<void> {
+        const std::string label = animate
+                                      ? sceneLabel + ", animation on the " +
+                                            std::string(render::animationEvaluationName(*animate))
+                                      : sceneLabel;
         for (auto strategy : strategies) {
             if (progress) {
                 progress(label + " / " + std::string(render::strategyName(strategy)));
             }
-            auto result = measure(context, *renderer, scene, strategy, options, timerPointer);
+            auto result =
+                measure(context, *renderer, scene, strategy, options, timerPointer, animate);
             if (!result && result.error().code == ErrorCode::Unsupported) {
                 report.skipped.push_back(label + " / " +
                                          std::string(render::strategyName(strategy)) + ": " +
@@ -225,7 +255,34 @@ Result<BenchReport> runBenchmarks(gpu::Context& context, const BenchOptions& opt
         if (!scene) {
             return scene.error();
         }
-        ENCORE_TRY(runScene(*scene, "generated", label));
+        ENCORE_TRY(runScene(*scene, "generated", label, std::nullopt));
+    }
+    // Scenes run once still, or once per requested animation evaluation.
+    auto runAnimated =
+        [&](const scene::SceneData& scene, const std::string& kind, const std::string& label,
+            const std::vector<render::AnimationEvaluation>& evaluations) -> Result<void> {
+        if (evaluations.empty()) {
+            return runScene(scene, kind, label, std::nullopt);
+        }
+        for (const auto evaluation : evaluations) {
+            ENCORE_TRY(runScene(scene, kind, label, evaluation));
+        }
+        return {};
+    };
+    for (std::uint32_t characters : options.crowdCharacters) {
+        auto glb = scene::generateCrowdGlb({characters});
+        if (!glb) {
+            return glb.error();
+        }
+        const std::string label = "crowd of " + std::to_string(characters) + " characters";
+        auto scene = scene::loadSceneFromMemory(*glb, {}, label);
+        if (!scene) {
+            return scene.error();
+        }
+        const std::vector<render::AnimationEvaluation> both = {render::AnimationEvaluation::Cpu,
+                                                               render::AnimationEvaluation::Gpu};
+        ENCORE_TRY(
+            runAnimated(*scene, "crowd", label, options.animate.empty() ? both : options.animate));
     }
     for (std::uint32_t triangles : options.animometerTriangles) {
         for (const bool dynamicOffsets : {false, true}) {
@@ -261,7 +318,7 @@ Result<BenchReport> runBenchmarks(gpu::Context& context, const BenchOptions& opt
         if (!scene) {
             return scene.error();
         }
-        ENCORE_TRY(runScene(*scene, "model", model.filename().string()));
+        ENCORE_TRY(runAnimated(*scene, "model", model.filename().string(), options.animate));
     }
     return report;
 }

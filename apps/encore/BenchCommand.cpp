@@ -21,6 +21,7 @@ struct BenchCommandOptions {
     std::string markdown;
     std::string plot;
     bool smoke = false;
+    std::vector<std::string> animate;
 };
 
 Result<void> writeText(const std::string& path, const std::string& text) {
@@ -44,8 +45,11 @@ int runBench(BenchCommandOptions options, const GlobalOptions& global) {
         options.bench.warmup = 1;
         options.bench.width = options.bench.height = 128;
     }
+    for (const auto& name : options.animate) {
+        options.bench.animate.push_back(*render::animationEvaluationFromName(name));
+    }
     if (options.bench.objectCounts.empty() && options.bench.models.empty() &&
-        options.bench.animometerTriangles.empty()) {
+        options.bench.animometerTriangles.empty() && options.bench.crowdCharacters.empty()) {
         options.bench.objectCounts = {1000, 10000};
     }
 
@@ -106,6 +110,17 @@ void addBenchCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) 
     command->add_option("--animometer", bench.animometerTriangles,
                         "Animometer scenes with these triangle counts")
         ->delimiter(',');
+    command
+        ->add_option("--crowd", bench.crowdCharacters,
+                     "Animated crowds (encore gen --crowd) with these character counts, "
+                     "animated on the cpu and on the gpu unless --animate says")
+        ->delimiter(',');
+    command
+        ->add_option("--animate", options->animate,
+                     "Animate models and crowds every frame, evaluated on the cpu, the gpu or "
+                     "both (cpu,gpu), each measured separately")
+        ->delimiter(',')
+        ->check(CLI::IsMember({"cpu", "gpu"}));
     command->add_option("-s,--strategy", options->strategies,
                         "Only these strategies (repeatable; default: all)");
     command->add_option("--frames", bench.frames, "Measured frames")->capture_default_str();

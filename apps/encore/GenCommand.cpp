@@ -4,6 +4,7 @@
 
 #include "Commands.h"
 #include "encore/core/FileIO.h"
+#include "encore/scene/CrowdGenerator.h"
 #include "encore/scene/SceneGenerator.h"
 
 namespace encore::app {
@@ -12,6 +13,7 @@ namespace {
 struct GenOptions {
     scene::GeneratorOptions generator;
     std::string output = "scene.glb";
+    std::uint32_t crowd = 0;  // --crowd N: an animated crowd instead.
 };
 }  // namespace
 
@@ -35,10 +37,14 @@ void addGenCommand(CLI::App& app, const GlobalOptions&, int& exitCode) {
     command->add_flag("--textures,!--no-textures", options->generator.textures,
                       "Give every other material a base colour and a metallic-roughness texture "
                       "(default: on)");
+    command->add_option("--crowd", options->crowd,
+                        "Generate an animated crowd of N skinned characters instead, each "
+                        "playing the animation with its own time offset");
     command->add_option("-o,--output", options->output, "The .glb file to write")
         ->capture_default_str();
     command->callback([options, &exitCode] {
-        auto glb = scene::generateSceneGlb(options->generator);
+        auto glb = options->crowd > 0 ? scene::generateCrowdGlb({options->crowd})
+                                      : scene::generateSceneGlb(options->generator);
         if (!glb) {
             exitCode = reportError(glb.error());
             return;

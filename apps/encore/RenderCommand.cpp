@@ -32,6 +32,7 @@ struct RenderOptions {
     std::optional<double> time;  // --time: animation time in seconds.
     std::string animation;       // --animation N|NAME (all when empty).
     std::string frames;          // --frames START:END:STEP.
+    std::string animate = "cpu";  // --animate cpu|gpu.
     ShadingOptions shading;
     CameraOptions camera;
 };
@@ -158,6 +159,7 @@ int runRender(const RenderOptions& options, const GlobalOptions& global) {
 
     render::RendererOptions rendererOptions;
     rendererOptions.target = {options.width, options.height, options.samples};
+    rendererOptions.animation = *render::animationEvaluationFromName(options.animate);
     if (auto shading = applyShadingOptions(options.shading, rendererOptions); !shading) {
         return reportError(shading.error());
     }
@@ -225,7 +227,15 @@ int runRender(const RenderOptions& options, const GlobalOptions& global) {
         }
         written.push_back(std::move(path));
     }
-    if (global.verbose && !times.empty()) {
+    if (global.verbose && !times.empty() &&
+        renderer->animationEvaluation() == render::AnimationEvaluation::Gpu) {
+        const render::AnimationFrameStats& animation = renderer->animationStats();
+        std::fprintf(stderr,
+                     "animation on the GPU (last frame): %u compute dispatches, %u buffer copies, "
+                     "%llu bytes written\n",
+                     animation.gpu.dispatches, animation.gpu.copies,
+                     static_cast<unsigned long long>(animation.bytesWritten));
+    } else if (global.verbose && !times.empty()) {
         const render::AnimationFrameStats& animation = renderer->animationStats();
         std::fprintf(stderr,
                      "animation (last frame): %u channels evaluated, %u instances, %u joints, "
@@ -287,6 +297,11 @@ void addRenderCommand(CLI::App& app, const GlobalOptions& global, int& exitCode)
                         "Animation time in seconds (all animations, or --animation's)");
     command->add_option("--animation", options->animation,
                         "Play only this animation: its index or its name");
+    command
+        ->add_option("--animate", options->animate,
+                     "Evaluate animation on the cpu (default) or the gpu (compute passes "
+                     "writing the same buffers)")
+        ->check(CLI::IsMember({"cpu", "gpu"}));
     command->add_option("--frames", options->frames,
                         "Render an image sequence at times START:END:STEP (seconds) from one "
                         "recording; -o must hold a frame number conversion, e.g. "

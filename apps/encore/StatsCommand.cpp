@@ -24,6 +24,7 @@ struct StatsOptions {
     std::uint32_t width = 640;
     std::uint32_t height = 480;
     std::optional<double> time;  // Animate: the frame from time - 1/60 to time.
+    std::string animate = "cpu";  // --animate cpu|gpu.
 };
 
 struct StrategyStats {
@@ -37,7 +38,19 @@ struct StrategyStats {
 };
 
 nlohmann::json toJson(const render::AnimationFrameStats& a) {
-    return {{"channelsEvaluated", a.player.channelsEvaluated},
+    if (a.evaluation == render::AnimationEvaluation::Gpu) {
+        return {{"evaluation", "gpu"},
+                {"computeDispatches", a.gpu.dispatches},
+                {"bufferCopies", a.gpu.copies},
+                {"animatedNodes", a.gpu.animatedNodes},
+                {"worldNodes", a.gpu.worldNodes},
+                {"hierarchyLevels", a.gpu.levels},
+                {"instances", a.gpu.instances},
+                {"joints", a.gpu.joints},
+                {"bytesWritten", a.bytesWritten}};
+    }
+    return {{"evaluation", "cpu"},
+            {"channelsEvaluated", a.player.channelsEvaluated},
             {"nodesChanged", a.player.nodesChanged},
             {"worldsUpdated", a.player.worldsUpdated},
             {"jointsUpdated", a.player.jointsUpdated},
@@ -86,7 +99,16 @@ void printMarkdown(const std::string& model, const std::string& adapter,
     }
     std::printf("\nPer frame; \"inside its bundles\" rows count the commands recorded once into "
                 "the render bundles that the frame replays.\n");
-    if (!rows.empty() && rows.front().animation) {
+    if (!rows.empty() && rows.front().animation &&
+        rows.front().animation->evaluation == render::AnimationEvaluation::Gpu) {
+        const render::AnimationFrameStats& a = *rows.front().animation;
+        std::printf(
+            "\nAnimation evaluated on the GPU, the frame at --time: %u compute "
+            "dispatches (%u animated nodes, %u nodes below them in %u levels, %u "
+            "instances, %u joints), %u buffer copies, %llu bytes written by the CPU.\n",
+            a.gpu.dispatches, a.gpu.animatedNodes, a.gpu.worldNodes, a.gpu.levels, a.gpu.instances,
+            a.gpu.joints, a.gpu.copies, (unsigned long long)a.bytesWritten);
+    } else if (!rows.empty() && rows.front().animation) {
         const render::AnimationFrameStats& a = *rows.front().animation;
         std::printf("\nAnimation, the frame from --time - 1/60 s to --time: %u channels "
                     "evaluated, %u nodes changed, %u joint matrices and %u morph weights "
@@ -118,7 +140,10 @@ int runStats(const StatsOptions& options, const GlobalOptions& global) {
     if (!context) {
         return reportError(context.error());
     }
-    auto renderer = render::Renderer::create(*context, {{options.width, options.height, 1}});
+    render::RendererOptions rendererOptions;
+    rendererOptions.target = {options.width, options.height, 1};
+    rendererOptions.animation = *render::animationEvaluationFromName(options.animate);
+    auto renderer = render::Renderer::create(*context, rendererOptions);
     if (!renderer) {
         return reportError(renderer.error());
     }
@@ -179,6 +204,11 @@ void addStatsCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) 
     command->add_flag("--json", options->json, "Print JSON instead of a Markdown table");
     command->add_option("--time", options->time,
                         "Animate to this time (seconds) and report one frame's animation work");
+    command
+        ->add_option("--animate", options->animate,
+                     "Evaluate animation on the cpu (scene::AnimationPlayer) or the gpu "
+                     "(compute passes)")
+        ->check(CLI::IsMember({"cpu", "gpu"}));
     command->callback([options, &global, &exitCode] { exitCode = runStats(*options, global); });
 }
 

@@ -28,13 +28,15 @@ struct DrawRecord {
 };
 
 template <typename T>
-wgpu::Buffer storageBuffer(const wgpu::Device& device, std::vector<T> values,
-                           const std::string& label) {
+wgpu::Buffer storageBuffer(const wgpu::Device& device,
+                           std::vector<T> values,
+                           const std::string& label,
+                           wgpu::BufferUsage extra = wgpu::BufferUsage::None) {
     if (values.empty()) {
         values.resize(1);  // WebGPU binds no empty buffer.
     }
-    return gpu::createBufferFrom<T>(device, wgpu::BufferUsage::Storage | wgpu::BufferUsage::CopyDst,
-                                    values, label);
+    return gpu::createBufferFrom<T>(
+        device, wgpu::BufferUsage::Storage | wgpu::BufferUsage::CopyDst | extra, values, label);
 }
 
 void packJoints(std::span<const glm::mat4> joints, std::span<const glm::mat4> normals,
@@ -182,10 +184,11 @@ std::unique_ptr<AnimationBuffers> AnimationBuffers::create(const wgpu::Device& d
     const auto joints = player.jointMatrices();
     buffers.mJointScratch.resize(joints.size());
     packJoints(joints, player.jointNormalMatrices(), 0, joints.size(), buffers.mJointScratch);
-    buffers.mJoints = storageBuffer(device, buffers.mJointScratch, "joint matrices");
+    buffers.mJoints =
+        storageBuffer(device, buffers.mJointScratch, "joint matrices", wgpu::BufferUsage::CopySrc);
     const auto weights = player.morphWeights();
-    buffers.mWeights =
-        storageBuffer(device, std::vector<float>(weights.begin(), weights.end()), "morph weights");
+    buffers.mWeights = storageBuffer(device, std::vector<float>(weights.begin(), weights.end()),
+                                     "morph weights", wgpu::BufferUsage::CopySrc);
     buffers.mDeltas = storageBuffer(device, std::move(deltas), "morph deltas");
 
     wgpu::BindGroupEntry entries[5] = {};

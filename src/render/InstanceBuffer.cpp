@@ -66,8 +66,9 @@ InstanceBuffer::InstanceBuffer(const wgpu::Device& device, const BindGroupLayout
         transforms[slot] = makeTransformUniform(scene.instances[i]);
     }
     mBuffer = gpu::createBufferFrom<TransformUniform>(
-        device, wgpu::BufferUsage::Storage | wgpu::BufferUsage::CopyDst, transforms,
-        "instance transforms");
+        device,
+        wgpu::BufferUsage::Storage | wgpu::BufferUsage::CopyDst | wgpu::BufferUsage::CopySrc,
+        transforms, "instance transforms");
 
     wgpu::BindGroupEntry entry{};
     entry.binding = 0;

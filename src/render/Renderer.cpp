@@ -102,6 +102,7 @@ Result<void> Renderer::recoverFromDeviceLoss() {
     options.environment = nullptr;
     options.environmentImage = std::make_shared<image::HdrImage>(environment.panorama());
     options.environmentOptions = environment.options();
+    mGpuAnimation.reset();
     mStrategy.reset();
     mAnimation.reset();
     mPlayer.reset();
@@ -127,6 +128,13 @@ Result<void> Renderer::prepare(const scene::SceneData& scene, StrategyKind kind)
     if (auto fits = checkSceneWithinLimits(mSetup->limits, scene, kind); !fits) {
         return fits.error().withContext("Preparing '" + scene.sourcePath.string() +
                                         "' for strategy " + std::string(strategyName(kind)));
+    }
+    mGpuAnimation.reset();
+    if (mOptions.animation == AnimationEvaluation::Gpu) {
+        if (auto fits = GpuAnimation::checkLimits(mSetup->limits, scene); !fits) {
+            return fits.error().withContext("Preparing '" + scene.sourcePath.string() +
+                                            "' for GPU animation");
+        }
     }
     if (mStrategy) {
         // Dawn frees objects once the GPU is done with them, on a later tick. Let that happen
@@ -161,7 +169,62 @@ Result<void> Renderer::prepare(const scene::SceneData& scene, StrategyKind kind)
     }
     ENCORE_TRY(mContext->checkNoErrors(what));
     mStrategy = std::move(strategy);
+    if (mOptions.animation == AnimationEvaluation::Gpu) {
+        ENCORE_TRY(createGpuAnimation());
+    }
     return {};
+}
+
+Result<void> Renderer::createGpuAnimation() {
+    mGpuAnimation.reset();
+    mGpuAnimationPending = false;
+    if (!mStrategy || !mScene) {
+        return {};
+    }
+    const std::string what = "Preparing GPU animation of '" + mScene->sourcePath.string() + "'";
+    gpu::OutOfMemoryScope outOfMemory(*mContext);
+    auto created =
+        GpuAnimation::create(mContext->device(), mContext->queue(), *mShaders, mSetup->limits,
+                             *mScene, mAnimation.get(), mStrategy->instanceTransformTargets());
+    ENCORE_TRY(outOfMemory.finish(what));
+    if (!created) {
+        return created.error().withContext(what);
+    }
+    ENCORE_TRY(mContext->checkNoErrors(what));
+    mGpuAnimation = std::move(*created);
+    if (mGpuAnimation) {
+        mGpuAnimation->select(mContext->queue(), mPlayer->selection());
+        mStrategy->animateInstancesOnGpu(mGpuAnimation->animatedInstances());
+    }
+    return {};
+}
+
+Result<void> Renderer::setAnimationEvaluation(AnimationEvaluation evaluation) {
+    if (evaluation == mOptions.animation) {
+        return {};
+    }
+    mOptions.animation = evaluation;
+    if (!mStrategy) {
+        return {};
+    }
+    if (evaluation == AnimationEvaluation::Gpu) {
+        if (auto fits = GpuAnimation::checkLimits(mSetup->limits, *mScene); !fits) {
+            mOptions.animation = AnimationEvaluation::Cpu;
+            return fits.error().withContext("Switching '" + mScene->sourcePath.string() +
+                                            "' to GPU animation");
+        }
+        return createGpuAnimation();
+    }
+    // Back to the CPU: a fresh player reports every instance, joint and weight as changed at
+    // its first evaluate(), so everything the GPU wrote is overwritten.
+    mGpuAnimation.reset();
+    mGpuAnimationPending = false;
+    std::vector<scene::AnimationId> selection(mPlayer->selection().begin(),
+                                              mPlayer->selection().end());
+    const scene::PlaybackMode mode = mPlayer->mode();
+    mPlayer = std::make_unique<scene::AnimationPlayer>(*mScene);
+    mPlayer->setMode(mode);
+    return mPlayer->select(selection);
 }
 
 FrameResult Renderer::renderFrame(const Camera& camera, float timeSeconds,
@@ -189,6 +252,10 @@ FrameResult Renderer::renderPasses(std::span<const Camera> cameras, float timeSe
 
     const auto encodeStart = std::chrono::steady_clock::now();
     wgpu::CommandEncoder commandEncoder = mContext->device().CreateCommandEncoder();
+    if (mGpuAnimation && mGpuAnimationPending) {
+        mGpuAnimation->encode(commandEncoder);  // Before anything that reads its results.
+        mGpuAnimationPending = false;
+    }
     if (mStrategy) {
         mStrategy->beforePass(commandEncoder, state);
     }
@@ -265,14 +332,30 @@ Result<void> Renderer::selectAnimation(std::string_view nameOrIndex) {
     }
     if (nameOrIndex.empty()) {
         mPlayer->selectAll();
-        return {};
+    } else {
+        ENCORE_TRY(mPlayer->select(nameOrIndex));
     }
-    return mPlayer->select(nameOrIndex);
+    if (mGpuAnimation) {
+        mGpuAnimation->select(mContext->queue(), mPlayer->selection());
+    }
+    return {};
 }
 
 Result<void> Renderer::setAnimationTime(double seconds) {
     if (!mStrategy || !mPlayer) {
         return makeError(ErrorCode::InvalidArgument, "No scene is prepared.");
+    }
+    if (mOptions.animation == AnimationEvaluation::Gpu) {
+        AnimationFrameStats stats;
+        stats.evaluation = AnimationEvaluation::Gpu;
+        if (mGpuAnimation) {
+            mGpuAnimation->setTime(mContext->queue(), seconds, mPlayer->mode());
+            mGpuAnimationPending = true;
+            stats.gpu = mGpuAnimation->stats();
+            stats.bytesWritten = stats.gpu.bytesPerFrame;
+        }
+        mAnimationStats = stats;
+        return {};
     }
     mPlayer->evaluate(seconds);
     AnimationFrameStats stats;

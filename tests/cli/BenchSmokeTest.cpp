@@ -55,6 +55,39 @@ TEST(BenchSmokeTest, WritesACompleteReportOnVulkan) {
     EXPECT_NE(table.find("Vulkan"), std::string::npos);
 }
 
+// `encore gen --crowd` writes an animated crowd, and `encore bench --crowd` measures it with the
+// animation evaluated on the CPU and on the GPU.
+TEST(BenchSmokeTest, MeasuresAnAnimatedCrowdOnTheCpuAndTheGpu) {
+    const auto dir = makeTempDir("bench-crowd");
+    const auto crowd = dir / "crowd.glb";
+    const auto generated = runEncore("gen --crowd 12 -o " + quote(crowd.string()));
+    ASSERT_EQ(generated.exitCode, 0) << generated.err;
+    const auto rendered = runEncore("render " + quote(crowd.string()) +
+                                    " --width 32 --height 32 --samples 1 --time 0.5 --animate gpu"
+                                    " -o " +
+                                    quote((dir / "crowd.png").string()));
+    ASSERT_EQ(rendered.exitCode, 0) << rendered.err;
+
+    const auto json = dir / "crowd.json";
+    const auto result = runEncore(
+        "bench --crowd 9 -s naive -s bundles --frames 2 --warmup 1 "
+        "--width 32 --height 32 --json " +
+        quote(json.string()));
+    ASSERT_EQ(result.exitCode, 0) << result.err;
+    std::ifstream file(json);
+    const auto report = nlohmann::json::parse(file, nullptr, false);
+    ASSERT_FALSE(report.is_discarded());
+    const auto& results = report["results"];
+    ASSERT_EQ(results.size(), 4u);  // cpu and gpu evaluation, two strategies each.
+    EXPECT_EQ(results[0]["animation"], "cpu");
+    EXPECT_EQ(results[3]["animation"], "gpu");
+    for (const auto& entry : results) {
+        EXPECT_EQ(entry["scene"], "crowd");
+        EXPECT_EQ(entry["objects"], 9);
+        EXPECT_GT(entry["cpuMs"]["median"].get<double>(), 0.0);
+    }
+}
+
 }  // namespace
 }  // namespace encore::test
 

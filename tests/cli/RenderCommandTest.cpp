@@ -170,11 +170,45 @@ TEST(RenderCommandTest, BadAnimationOptionsAreUsageErrors) {
           std::string("--frames 0:1:0.5 --time 1") + pattern,
           "--frames 0:1:0.5 -o " + quote((dir / "no-pattern.png").string()),
           "--time nan -o " + quote((dir / "t.png").string()),
-          "--time 1 --animation Walk -o " + quote((dir / "t.png").string())}) {
+          "--time 1 --animation Walk -o " + quote((dir / "t.png").string()),
+          "--time 1 --animate gpus -o " + quote((dir / "t.png").string())}) {
         const auto result = runEncore(render + options);
         EXPECT_EQ(result.exitCode, 2) << options << "\n" << result.err;
         EXPECT_FALSE(result.err.empty()) << options;
     }
+}
+
+// --animate gpu draws the frame --animate cpu draws, and `encore stats` reports the GPU work.
+TEST(RenderCommandTest, GpuAnimationRendersTheCpuFrame) {
+    const auto models = sharedModelsDir();
+    if (!models) {
+        GTEST_SKIP() << "The shared models directory is absent.";
+    }
+    const auto fox = *models / "Fox" / "glTF-Binary" / "Fox.glb";
+    if (!std::filesystem::exists(fox)) {
+        GTEST_SKIP() << fox << " is absent.";
+    }
+    const auto dir = makeTempDir("render-animate");
+    for (const char* evaluation : {"cpu", "gpu"}) {
+        const auto result =
+            runEncore("render " + quote(fox.string()) +
+                      " --width 48 --height 48 --samples 1 --time 0.7 --animate " + evaluation +
+                      " -o " + quote((dir / (std::string(evaluation) + ".png")).string()));
+        ASSERT_EQ(result.exitCode, 0) << result.err;
+    }
+    auto cpu = image::readImage(dir / "cpu.png");
+    auto gpu = image::readImage(dir / "gpu.png");
+    ASSERT_TRUE(cpu.ok() && gpu.ok());
+    EXPECT_EQ(cpu->pixels, gpu->pixels);
+
+    const auto stats = runEncore("stats " + quote(fox.string()) +
+                                 " --strategy bundles --time 0.7 --animate gpu --json");
+    ASSERT_EQ(stats.exitCode, 0) << stats.err;
+    const auto report = nlohmann::json::parse(stats.out);
+    const auto& animation = report["strategies"][0]["animation"];
+    EXPECT_EQ(animation["evaluation"], "gpu");
+    EXPECT_GT(animation["computeDispatches"].get<int>(), 2);
+    EXPECT_EQ(animation["bytesWritten"].get<int>(), 12);  // The times of Fox's 3 animations.
 }
 
 }  // namespace

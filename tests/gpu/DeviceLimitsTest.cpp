@@ -20,6 +20,7 @@
 #include "encore/core/Log.h"
 #include "encore/gpu/OutOfMemoryScope.h"
 #include "encore/gpu/Readback.h"
+#include "encore/render/GpuAnimation.h"
 #include "encore/render/MaterialResources.h"
 #include "encore/render/Renderer.h"
 #include "encore/render/SceneLimits.h"
@@ -361,6 +362,31 @@ TEST(AnimationLimitsTest, MorphDeltasAndJointsBeyondAStorageBindingAreRefused) {
     refused = checkSceneWithinLimits(limits, skinned, StrategyKind::Naive);
     ASSERT_FALSE(refused.ok());
     EXPECT_NE(refused.error().message.find("joint matrices"), std::string::npos)
+        << refused.error().message;
+}
+
+// GPU-evaluated animation checks its keyframes and records before creating anything.
+TEST(AnimationLimitsTest, GpuAnimationBeyondAStorageBindingIsRefused) {
+    gpu::DeviceLimits limits;
+    limits.maxStorageBufferBindingSize = 64 * 1024;
+    scene::SceneData animated;
+    animated.animations.push_back({});
+    animated.animations[0].samplers.push_back({});
+    animated.animations[0].samplers[0].times.resize(10000);   // 40,000 bytes:
+    animated.animations[0].samplers[0].values.resize(10000);  // 80,000 with the values.
+    auto refused = GpuAnimation::checkLimits(limits, animated);
+    ASSERT_FALSE(refused.ok());
+    EXPECT_EQ(refused.error().code, ErrorCode::LimitExceeded);
+    EXPECT_NE(refused.error().message.find("animation keyframes"), std::string::npos)
+        << refused.error().message;
+    animated.animations[0].samplers[0].values.resize(5000);  // 60,000 bytes fit.
+    EXPECT_TRUE(GpuAnimation::checkLimits(limits, animated).ok());
+
+    animated.skins.push_back({});
+    animated.skins[0].joints.resize(1000);  // 80,000 bytes of joint records.
+    refused = GpuAnimation::checkLimits(limits, animated);
+    ASSERT_FALSE(refused.ok());
+    EXPECT_NE(refused.error().message.find("1000 joints"), std::string::npos)
         << refused.error().message;
 }
 

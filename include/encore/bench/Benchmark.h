@@ -18,6 +18,7 @@
 #include "encore/gpu/Context.h"
 #include "encore/render/DrawCounters.h"
 #include "encore/render/FrameTimer.h"
+#include "encore/render/GpuAnimation.h"
 #include "encore/render/Strategy.h"
 
 namespace encore::bench {
@@ -26,6 +27,10 @@ struct BenchOptions {
     std::vector<std::uint32_t> objectCounts;        // Generated grid scenes.
     std::vector<std::filesystem::path> models;      // glTF files.
     std::vector<std::uint32_t> animometerTriangles;  // Animometer scenes (direct and bundle).
+    std::vector<std::uint32_t> crowdCharacters;      // Animated crowds (scene::generateCrowdGlb).
+    // Animate every frame (setAnimationTime, timed as part of encoding) with each of these
+    // evaluations, measured separately; empty: scenes stand still, crowds use both.
+    std::vector<render::AnimationEvaluation> animate;
     std::vector<render::StrategyKind> strategies;    // Empty: all.
     std::uint32_t meshes = 8;
     std::uint32_t materials = 4;
@@ -52,6 +57,7 @@ struct BenchResult {
     std::string label;
     std::uint64_t objects = 0;  // Instances drawn (triangles for the Animometer).
     std::string strategy;
+    std::string animation;  // "cpu" or "gpu" when animated (encode includes the evaluation).
     render::Percentiles encode;
     render::Percentiles submit;
     render::Percentiles cpu;

@@ -61,6 +61,10 @@ class AnimationBuffers {
     AnimationUploadStats write(const wgpu::Queue& queue, const scene::AnimationPlayer& player);
 
     const wgpu::BindGroup& bindGroup() const { return mBindGroup; }
+    // The joint matrices (binding 1) and morph weights (binding 2), with Storage, CopyDst and
+    // CopySrc usage: GpuAnimation writes them in compute passes, tests read them back.
+    const wgpu::Buffer& jointBuffer() const { return mJoints; }
+    const wgpu::Buffer& weightBuffer() const { return mWeights; }
     std::uint32_t drawOffset(std::size_t sceneInstance, std::size_t primitive) const;
     std::uint32_t skinnedPrimitiveCount() const { return mSkinnedPrimitives; }
     std::uint32_t morphedPrimitiveCount() const { return mMorphedPrimitives; }

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "encore/render/BindGroupLayouts.h"
+#include "encore/render/InstanceTransformTargets.h"
 #include "encore/scene/SceneData.h"
 
 namespace encore::render {
@@ -40,6 +41,8 @@ class InstanceBuffer {
     // The scene instance stored in a slot.
     std::size_t instanceAt(std::uint32_t slot) const { return mInstances[slot]; }
     std::uint32_t size() const { return static_cast<std::uint32_t>(mInstances.size()); }
+    // Where GpuAnimation writes animated instances (the buffer has Storage and CopySrc usage).
+    InstanceTransformTargets transformTargets() const { return {mBuffer, mSlots, {}}; }
 
     // Rewrites one instance's transforms (animation, edits) without touching bind groups.
     void update(const wgpu::Queue& queue, std::size_t sceneInstance, const glm::mat4& world) const;

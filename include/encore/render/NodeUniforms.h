@@ -12,6 +12,7 @@
 #include "encore/core/Result.h"
 
 #include "encore/render/BindGroupLayouts.h"
+#include "encore/render/InstanceTransformTargets.h"
 #include "encore/scene/SceneData.h"
 
 namespace encore::render {
@@ -34,6 +35,8 @@ class NodeUniforms {
     }
     void update(const wgpu::Queue& queue, std::size_t sceneInstance, const glm::mat4& world) const;
     std::size_t size() const { return mBindGroups.size(); }
+    // Where GpuAnimation copies animated instances (one uniform buffer per scene instance).
+    InstanceTransformTargets transformTargets() const { return {{}, {}, mBuffers}; }
 
   private:
     std::vector<wgpu::Buffer> mBuffers;

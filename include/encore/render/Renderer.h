@@ -21,6 +21,7 @@
 #include "encore/render/Camera.h"
 #include "encore/render/DrawCounters.h"
 #include "encore/render/FrameTimer.h"
+#include "encore/render/GpuAnimation.h"
 #include "encore/render/Lighting.h"
 #include "encore/render/RenderTarget.h"
 #include "encore/render/Strategy.h"
@@ -39,15 +40,20 @@ struct RendererOptions {
     std::shared_ptr<Environment> environment;
     std::shared_ptr<const image::HdrImage> environmentImage;
     EnvironmentOptions environmentOptions;
+    // Where animation is evaluated (setAnimationEvaluation changes it later).
+    AnimationEvaluation animation = AnimationEvaluation::Cpu;
 };
 
 // A frame's timing (gpuMilliseconds only with a GPU timer set) and what it recorded.
 // What one setAnimationTime() did: the player's work and what it uploaded.
 struct AnimationFrameStats {
-    scene::AnimationStats player;
+    AnimationEvaluation evaluation = AnimationEvaluation::Cpu;
+    scene::AnimationStats player;  // CPU evaluation only.
+    GpuAnimationStats gpu;         // GPU evaluation only: its size and per-frame dispatches.
     AnimationUploadStats upload;  // Joint matrices and morph weights.
     std::uint32_t instancesWritten = 0;
-    std::uint64_t bytesWritten = 0;  // Instance transforms, joints and weights together.
+    // Instance transforms, joints and weights together (GPU: the animation times).
+    std::uint64_t bytesWritten = 0;
 };
 
 struct FrameResult : FrameTiming {
@@ -87,6 +93,14 @@ class Renderer {
     // morph weights into the shared AnimationBuffers that skinned and morphed variants read.
     // Every animation is selected after prepare(); selectAnimation picks one by index or name
     // (scene::findAnimation), or all again with an empty string.
+    //
+    // With AnimationEvaluation::Gpu, setAnimationTime only writes the animations' local times;
+    // the next frame's command buffer starts with GpuAnimation's compute passes, which write the
+    // same buffers (so animationPlayer() keeps the rest pose). Switching evaluation keeps the
+    // prepared scene and strategy; the next setAnimationTime renders the same pose either way.
+    Result<void> setAnimationEvaluation(AnimationEvaluation evaluation);
+    AnimationEvaluation animationEvaluation() const { return mOptions.animation; }
+    const GpuAnimation* gpuAnimation() const { return mGpuAnimation.get(); }
     Result<void> selectAnimation(std::string_view nameOrIndex);
     Result<void> setAnimationTime(double seconds);
     const AnimationFrameStats& animationStats() const { return mAnimationStats; }
@@ -140,6 +154,7 @@ class Renderer {
   private:
     Renderer() = default;
     Result<void> build(const RendererOptions& options);
+    Result<void> createGpuAnimation();
     FrameResult renderPasses(std::span<const Camera> cameras, float timeSeconds,
                              std::vector<RecordedCall>* trace);
 
@@ -157,6 +172,8 @@ class Renderer {
     std::unique_ptr<AnimationBuffers> mAnimation;  // Before mStrategy, which binds it.
     AnimationFrameStats mAnimationStats;
     std::unique_ptr<Strategy> mStrategy;
+    std::unique_ptr<GpuAnimation> mGpuAnimation;  // After mStrategy: writes its buffers.
+    bool mGpuAnimationPending = false;  // Time set since the last frame encoded the passes.
     gpu::GpuTimer* mTimer = nullptr;
     const scene::SceneData* mScene = nullptr;
     StrategyKind mKind = StrategyKind::Bundles;

@@ -17,6 +17,7 @@
 #include "encore/render/BindGroupLayouts.h"
 #include "encore/render/Camera.h"
 #include "encore/render/FrameUniforms.h"
+#include "encore/render/InstanceTransformTargets.h"
 #include "encore/render/RenderEncoder.h"
 #include "encore/scene/SceneData.h"
 #include "encore/shaders/ShaderLibrary.h"
@@ -108,6 +109,15 @@ class Strategy {
     // Dynamic content: these change data in buffers only, so recorded bundles stay valid.
     // `instance` is an index into SceneData::instances.
     virtual Result<void> updateInstance(std::size_t instance, const glm::mat4& world) = 0;
+    // Where the strategy keeps instance transforms, for GPU-evaluated animation (GpuAnimation),
+    // which writes the animated ones there instead of updateInstance.
+    virtual InstanceTransformTargets instanceTransformTargets() const = 0;
+    // The instances (indices into SceneData::instances) whose transforms the GPU animates from
+    // now on, unknown to the CPU: GPU culling stops culling them (a sphere that passes every
+    // plane), as it does for skinned instances.
+    virtual void animateInstancesOnGpu(std::span<const std::uint32_t> instances) {
+        (void)instances;
+    }
     // Strategies without materials ignore material changes (they do not draw them).
     virtual Result<void> updateMaterial(scene::MaterialId material, const scene::Material& value) {
         (void)material;

@@ -168,4 +168,10 @@ Result<void> GpuCullingStrategy::updateInstance(std::size_t instance, const glm:
     return {};
 }
 
+void GpuCullingStrategy::animateInstancesOnGpu(std::span<const std::uint32_t> instances) {
+    for (const std::uint32_t instance : instances) {
+        mCuller.updateSphere(mQueue, mInstances.slotOf(instance), kUnbounded);
+    }
+}
+
 }  // namespace encore::render

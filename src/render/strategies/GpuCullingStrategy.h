@@ -22,6 +22,7 @@ class GpuCullingStrategy final : public MaterialsStrategy {
     void beforePass(const wgpu::CommandEncoder& commands, const FrameState& frame) override;
     void encode(RenderEncoder& encoder, const FrameState& frame) const override;
     Result<void> updateInstance(std::size_t instance, const glm::mat4& world) override;
+    void animateInstancesOnGpu(std::span<const std::uint32_t> instances) override;
     DrawCounters bundleContents() const override { return mBundles.contents(); }
     std::uint64_t bundlesRecorded() const override { return mBundles.recorded(); }
     const GpuCuller* culler() const override { return &mCuller; }

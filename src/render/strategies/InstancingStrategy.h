@@ -18,6 +18,9 @@ class InstancingStrategy final : public Strategy {
     StrategyKind kind() const override { return StrategyKind::Instancing; }
     Result<void> prepare(const RenderSetup& setup, const scene::SceneData& scene) override;
     void encode(RenderEncoder& encoder, const FrameState& frame) const override;
+    InstanceTransformTargets instanceTransformTargets() const override {
+        return mInstances.transformTargets();
+    }
     Result<void> updateInstance(std::size_t instance, const glm::mat4& world) override;
 
 

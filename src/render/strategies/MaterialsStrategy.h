@@ -23,6 +23,9 @@ class MaterialsStrategy : public Strategy {
     StrategyKind kind() const override { return StrategyKind::Materials; }
     Result<void> prepare(const RenderSetup& setup, const scene::SceneData& scene) override;
     void encode(RenderEncoder& encoder, const FrameState& frame) const override;
+    InstanceTransformTargets instanceTransformTargets() const override {
+        return mInstances.transformTargets();
+    }
     Result<void> updateInstance(std::size_t instance, const glm::mat4& world) override;
     Result<void> updateMaterial(scene::MaterialId material, const scene::Material& value) override;
     Result<void> replaceBaseColorImage(scene::MaterialId material,

@@ -15,6 +15,9 @@ namespace encore::render {
 class NodeLoopStrategy : public Strategy {
   public:
     void encode(RenderEncoder& encoder, const FrameState& frame) const override;
+    InstanceTransformTargets instanceTransformTargets() const override {
+        return mNodes.transformTargets();
+    }
     Result<void> updateInstance(std::size_t instance, const glm::mat4& world) override;
 
   protected:

@@ -18,6 +18,9 @@ class PipelineCacheStrategy final : public Strategy {
     StrategyKind kind() const override { return StrategyKind::PipelineCache; }
     Result<void> prepare(const RenderSetup& setup, const scene::SceneData& scene) override;
     void encode(RenderEncoder& encoder, const FrameState& frame) const override;
+    InstanceTransformTargets instanceTransformTargets() const override {
+        return mNodes.transformTargets();
+    }
     Result<void> updateInstance(std::size_t instance, const glm::mat4& world) override;
 
     std::size_t pipelineCount() const { return mPipelines ? mPipelines->size() : 0; }

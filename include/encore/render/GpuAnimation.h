@@ -1,0 +1,119 @@
+#pragma once
+
+// GpuAnimation evaluates a scene's animations on the GPU, the alternative to
+// scene::AnimationPlayer's CPU evaluation (AnimationEvaluation::Gpu). Every sampler's key times
+// and outputs go into one storage buffer when it is created; each frame the CPU writes only the
+// local time of each animation and records a fixed number of compute dispatches:
+//   1. animation_sample.wgsl: per animated node, samples the selected channels (binary search
+//      over the key times; STEP, LINEAR with normalised shortest-path slerp for rotations,
+//      CUBICSPLINE with tangents scaled by the key interval) into its local matrix and morph
+//      weights (AnimationBuffers' weight buffer, at the player's offsets);
+//   2. animation_world.wgsl: world matrices of the nodes at or below an animated node, one
+//      dispatch per depth level, parents first; other nodes keep their rest world matrix;
+//   3. animation_transforms.wgsl: instance world and normal matrices into the strategy's
+//      instance transforms (or, for strategies with a uniform buffer per node, into a buffer of
+//      its own, then copied to each node's buffer), and joint matrices (world × inverseBind,
+//      with their normal matrices) into AnimationBuffers' joint buffer.
+// The results land in the same buffers at the same offsets as the CPU path's uploads, so the
+// vertex shaders and recorded bundles are unchanged. The CPU cost of a frame depends on the
+// number of animations and hierarchy levels, not on the number of animated nodes (except the
+// per-node copies of the node-uniform strategies, which draw per node anyway).
+
+#include <webgpu/webgpu_cpp.h>
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include "encore/core/Result.h"
+#include "encore/gpu/DeviceLimits.h"
+#include "encore/render/InstanceTransformTargets.h"
+#include "encore/scene/AnimationPlayer.h"
+#include "encore/scene/SceneData.h"
+#include "encore/shaders/ShaderLibrary.h"
+
+namespace encore::render {
+
+class AnimationBuffers;
+
+// Where animation is evaluated.
+enum class AnimationEvaluation : std::uint8_t {
+    Cpu,  // scene::AnimationPlayer; changed transforms, joints and weights written by the CPU.
+    Gpu,  // GpuAnimation: compute passes over keyframes uploaded once.
+};
+
+std::string_view animationEvaluationName(AnimationEvaluation evaluation);
+std::optional<AnimationEvaluation> animationEvaluationFromName(std::string_view name);
+
+// The size of the GPU evaluation, fixed when it is created.
+struct GpuAnimationStats {
+    std::uint32_t animatedNodes = 0;  // Nodes some animation drives (pass 1 threads).
+    std::uint32_t worldNodes = 0;     // Nodes at or below them (pass 2 threads).
+    std::uint32_t levels = 0;         // Depth levels among those: pass 2 dispatches.
+    std::uint32_t instances = 0;      // Instances whose transform they move.
+    std::uint32_t joints = 0;         // Joint matrices of all skins.
+    std::uint32_t dispatches = 0;     // Per frame.
+    std::uint32_t copies = 0;         // Per frame (node-uniform strategies).
+    std::uint64_t bytesPerFrame = 0;  // What the CPU writes per frame (animation times).
+};
+
+class GpuAnimation {
+  public:
+    // An error (LimitExceeded) when one of its storage buffers would exceed the device's limits,
+    // or a dispatch the number of workgroups WebGPU allows.
+    static Result<void> checkLimits(const gpu::DeviceLimits& limits, const scene::SceneData& scene);
+
+    // Null when the scene has no animation. `animation` (the scene's AnimationBuffers; null
+    // when it has neither skins nor morph targets) and the buffers in `targets` must outlive the
+    // returned object. Every animation is selected.
+    static Result<std::unique_ptr<GpuAnimation>> create(const wgpu::Device& device,
+                                                        const wgpu::Queue& queue,
+                                                        shaders::ShaderLibrary& shaders,
+                                                        const gpu::DeviceLimits& limits,
+                                                        const scene::SceneData& scene,
+                                                        const AnimationBuffers* animation,
+                                                        const InstanceTransformTargets& targets);
+
+    // Which animations play: of channels driving the same property, the later animation's wins
+    // (as AnimationPlayer). Writes one small table; call when the selection changes.
+    void select(const wgpu::Queue& queue, std::span<const scene::AnimationId> selection);
+
+    // Writes each animation's local time at `seconds` (wrapped in PlaybackMode::Loop exactly as
+    // AnimationPlayer does).
+    void setTime(const wgpu::Queue& queue, double seconds, scene::PlaybackMode mode);
+
+    // Records the frame's compute passes (and copies) into `commands`; submit them before the
+    // render pass that draws with the results.
+    void encode(const wgpu::CommandEncoder& commands) const;
+
+    const GpuAnimationStats& stats() const { return mStats; }
+    // The scene instances whose transforms the passes write (indices, ascending).
+    std::span<const std::uint32_t> animatedInstances() const { return mInstances; }
+    // Node local and world matrices (mat4x4f per node, CopySrc), for tests and tools.
+    const wgpu::Buffer& locals() const { return mLocals; }
+    const wgpu::Buffer& worlds() const { return mWorlds; }
+
+  private:
+    GpuAnimation() = default;
+
+    const scene::SceneData* mScene = nullptr;
+    std::vector<std::uint32_t> mAnimatedNodes;   // Node index per pass-1 thread.
+    std::vector<std::uint32_t> mInstances;       // Scene instances written.
+    std::vector<std::uint32_t> mSamplerOffsets;  // First GPU sampler of each animation.
+    std::vector<float> mTimes;                   // Per animation, written by setTime.
+    wgpu::Buffer mAnimationTimes, mNodeChannels, mLocals, mWorlds, mInstanceOutput;
+    wgpu::ComputePipeline mSample, mWorld, mTransform;
+    wgpu::BindGroup mSampleGroup, mInstanceGroup, mJointGroup;
+    std::vector<wgpu::BindGroup> mLevelGroups;
+    std::vector<std::uint32_t> mLevelCounts;
+    std::uint32_t mInstanceRecords = 0;
+    std::uint32_t mJointRecords = 0;
+    // Node-uniform strategies: copy record k of mInstanceOutput to mCopyTargets[k].
+    std::vector<wgpu::Buffer> mCopyTargets;
+    GpuAnimationStats mStats;
+};
+
+}  // namespace encore::render

@@ -1,0 +1,521 @@
+// GPU-evaluated animation: the tables the compute passes read are built here once, from the
+// SceneData alone, in the same orders AnimationPlayer uses (node weights node after node, joints
+// skin after skin), so that the passes write where the CPU path writes.
+
+#include "encore/render/GpuAnimation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <string>
+
+#include "encore/gpu/Upload.h"
+#include "encore/render/AnimationBuffers.h"
+#include "encore/render/BindGroupLayouts.h"
+
+namespace encore::render {
+
+namespace {
+
+constexpr std::uint32_t kNone = 0xFFFFFFFFu;
+constexpr std::uint32_t kWorkgroupSize = 64;     // kWorkgroupSize of the animation_*.wgsl shaders.
+constexpr std::uint64_t kMaxWorkgroups = 65535;  // maxComputeWorkgroupsPerDimension (default).
+
+// animation_sample.wgsl's Sampler.
+struct SamplerRecord {
+    std::uint32_t timesOffset;
+    std::uint32_t keyCount;
+    std::uint32_t valuesOffset;
+    std::uint32_t components;
+    std::uint32_t interpolation;  // 0 STEP, 1 LINEAR, 2 CUBICSPLINE.
+    std::uint32_t animation;
+    std::uint32_t pad[2];
+};
+static_assert(sizeof(SamplerRecord) == 32);
+
+// animation_sample.wgsl's AnimatedNode.
+struct NodeRecord {
+    glm::mat4 restLocal;
+    glm::vec4 translation;
+    glm::vec4 rotation;  // x, y, z, w.
+    glm::vec4 scale;
+    std::uint32_t node;
+    std::uint32_t weightOffset;
+    std::uint32_t weightCount;
+    std::uint32_t restWeights;
+};
+static_assert(sizeof(NodeRecord) == 128);
+
+// animation_world.wgsl's WorldNode.
+struct WorldRecord {
+    std::uint32_t node;
+    std::uint32_t parent;
+};
+
+// animation_transforms.wgsl's Record.
+struct TransformRecord {
+    std::uint32_t node;
+    std::uint32_t slot;
+    std::uint32_t pad[2];
+    glm::mat4 transform;
+};
+static_assert(sizeof(TransformRecord) == 80);
+
+std::uint32_t interpolationCode(scene::Interpolation interpolation) {
+    switch (interpolation) {
+        case scene::Interpolation::Step:
+            return 0;
+        case scene::Interpolation::Linear:
+            return 1;
+        case scene::Interpolation::CubicSpline:
+            return 2;
+    }
+    return 1;
+}
+
+std::uint32_t workgroups(std::uint32_t threads) {
+    return (threads + kWorkgroupSize - 1) / kWorkgroupSize;
+}
+
+template <typename T>
+wgpu::Buffer storageBuffer(const wgpu::Device& device,
+                           std::vector<T> values,
+                           const char* label,
+                           wgpu::BufferUsage extra = wgpu::BufferUsage::None) {
+    if (values.empty()) {
+        values.resize(1);  // WebGPU binds no empty buffer; its dispatch is skipped.
+    }
+    return gpu::createBufferFrom<T>(device, wgpu::BufferUsage::Storage | extra, values, label);
+}
+
+wgpu::BindGroupEntry bufferEntry(std::uint32_t binding,
+                                 const wgpu::Buffer& buffer,
+                                 std::uint64_t offset = 0,
+                                 std::uint64_t size = wgpu::kWholeSize) {
+    wgpu::BindGroupEntry entry{};
+    entry.binding = binding;
+    entry.buffer = buffer;
+    entry.offset = offset;
+    entry.size = size;
+    return entry;
+}
+
+wgpu::BindGroup makeBindGroup(const wgpu::Device& device,
+                              const wgpu::ComputePipeline& pipeline,
+                              std::span<const wgpu::BindGroupEntry> entries,
+                              const char* label) {
+    wgpu::BindGroupDescriptor descriptor{};
+    descriptor.label = label;
+    descriptor.layout = pipeline.GetBindGroupLayout(0);
+    descriptor.entryCount = entries.size();
+    descriptor.entries = entries.data();
+    return device.CreateBindGroup(&descriptor);
+}
+
+Result<wgpu::ComputePipeline> makePipeline(const wgpu::Device& device,
+                                           shaders::ShaderLibrary& shaders,
+                                           const char* file,
+                                           const char* entryPoint) {
+    auto module = shaders.module(file);
+    if (!module) {
+        return module.error();
+    }
+    wgpu::ComputePipelineDescriptor descriptor{};
+    descriptor.label = entryPoint;
+    descriptor.compute.module = *module;
+    descriptor.compute.entryPoint = entryPoint;
+    return device.CreateComputePipeline(&descriptor);
+}
+
+// The offset of each node's weights in AnimationPlayer::morphWeights() (kNone without).
+std::vector<std::uint32_t> weightOffsets(const scene::SceneData& scene) {
+    std::vector<std::uint32_t> offsets(scene.nodes.size(), kNone);
+    std::uint32_t next = 0;
+    for (std::size_t n = 0; n < scene.nodes.size(); ++n) {
+        if (!scene.nodes[n].weights.empty()) {
+            offsets[n] = next;
+            next += static_cast<std::uint32_t>(scene.nodes[n].weights.size());
+        }
+    }
+    return offsets;
+}
+
+std::uint64_t keyframeFloats(const scene::SceneData& scene) {
+    std::uint64_t floats = 0;
+    for (const scene::Animation& animation : scene.animations) {
+        for (const scene::AnimationSampler& sampler : animation.samplers) {
+            floats += sampler.times.size() + sampler.values.size();
+        }
+    }
+    for (const scene::Node& node : scene.nodes) {
+        floats += node.weights.size();
+    }
+    return floats;
+}
+
+}  // namespace
+
+std::string_view animationEvaluationName(AnimationEvaluation evaluation) {
+    return evaluation == AnimationEvaluation::Gpu ? "gpu" : "cpu";
+}
+
+std::optional<AnimationEvaluation> animationEvaluationFromName(std::string_view name) {
+    if (name == "cpu") {
+        return AnimationEvaluation::Cpu;
+    }
+    if (name == "gpu") {
+        return AnimationEvaluation::Gpu;
+    }
+    return std::nullopt;
+}
+
+Result<void> GpuAnimation::checkLimits(const gpu::DeviceLimits& limits,
+                                       const scene::SceneData& scene) {
+    const std::uint64_t nodes = scene.nodes.size();
+    std::uint64_t samplers = 0;
+    for (const scene::Animation& animation : scene.animations) {
+        samplers += animation.samplers.size();
+    }
+    std::uint64_t joints = 0;
+    for (const scene::Skin& skin : scene.skins) {
+        joints += skin.joints.size();
+    }
+    const std::uint64_t instances = scene.instances.size();
+    const std::string ofNodes = " of " + std::to_string(nodes) + " nodes";
+    ENCORE_TRY(gpu::checkStorageBinding(
+        limits, keyframeFloats(scene) * 4,
+        "The animation keyframes (" + std::to_string(keyframeFloats(scene)) + " floats)"));
+    ENCORE_TRY(gpu::checkStorageBinding(
+        limits, samplers * sizeof(SamplerRecord),
+        "The GPU animation records of " + std::to_string(samplers) + " samplers"));
+    ENCORE_TRY(gpu::checkStorageBinding(limits, nodes * sizeof(NodeRecord),
+                                        "The GPU animation records" + ofNodes));
+    ENCORE_TRY(gpu::checkStorageBinding(limits, nodes * sizeof(glm::mat4),
+                                        "The GPU-animated local and world matrices" + ofNodes));
+    ENCORE_TRY(gpu::checkStorageBinding(
+        limits, instances * sizeof(TransformUniform),
+        "The GPU-animated transforms of " + std::to_string(instances) + " instances"));
+    ENCORE_TRY(gpu::checkStorageBinding(
+        limits, joints * sizeof(TransformRecord),
+        "The GPU animation records of " + std::to_string(joints) + " joints"));
+    const std::uint64_t largest = std::max({nodes, instances, joints});
+    if (largest > kMaxWorkgroups * kWorkgroupSize) {
+        return makeError(ErrorCode::LimitExceeded,
+                         "GPU animation of " + std::to_string(largest) +
+                             " nodes, instances or joints needs more workgroups in one dispatch "
+                             "than WebGPU's maxComputeWorkgroupsPerDimension (" +
+                             std::to_string(kMaxWorkgroups) + " of " +
+                             std::to_string(kWorkgroupSize) + " threads).");
+    }
+    return {};
+}
+
+Result<std::unique_ptr<GpuAnimation>> GpuAnimation::create(
+    const wgpu::Device& device,
+    const wgpu::Queue& queue,
+    shaders::ShaderLibrary& shaders,
+    const gpu::DeviceLimits& limits,
+    const scene::SceneData& scene,
+    const AnimationBuffers* animation,
+    const InstanceTransformTargets& targets) {
+    if (scene.animations.empty()) {
+        return std::unique_ptr<GpuAnimation>();
+    }
+    ENCORE_TRY(checkLimits(limits, scene));
+    auto result = std::unique_ptr<GpuAnimation>(new GpuAnimation());
+    GpuAnimation& gpu = *result;
+    gpu.mScene = &scene;
+    const std::size_t nodeCount = scene.nodes.size();
+
+    // Keyframes: every sampler's times then values, then the rest weights of animated nodes.
+    std::vector<float> keyframes;
+    keyframes.reserve(keyframeFloats(scene));
+    std::vector<SamplerRecord> samplers;
+    std::vector<std::uint8_t> animated(nodeCount, 0);
+    for (std::size_t a = 0; a < scene.animations.size(); ++a) {
+        const scene::Animation& anim = scene.animations[a];
+        gpu.mSamplerOffsets.push_back(static_cast<std::uint32_t>(samplers.size()));
+        for (const scene::AnimationSampler& sampler : anim.samplers) {
+            SamplerRecord record{};
+            record.timesOffset = static_cast<std::uint32_t>(keyframes.size());
+            record.keyCount = static_cast<std::uint32_t>(sampler.times.size());
+            keyframes.insert(keyframes.end(), sampler.times.begin(), sampler.times.end());
+            record.valuesOffset = static_cast<std::uint32_t>(keyframes.size());
+            keyframes.insert(keyframes.end(), sampler.values.begin(), sampler.values.end());
+            record.components = sampler.components;
+            record.interpolation = interpolationCode(sampler.interpolation);
+            record.animation = static_cast<std::uint32_t>(a);
+            samplers.push_back(record);
+        }
+        for (const scene::AnimationChannel& channel : anim.channels) {
+            animated[channel.node.index()] = 1;
+        }
+    }
+
+    const std::vector<std::uint32_t> weightOffset = weightOffsets(scene);
+    std::vector<NodeRecord> nodeRecords;
+    for (std::size_t n = 0; n < nodeCount; ++n) {
+        if (!animated[n]) {
+            continue;
+        }
+        const scene::Node& node = scene.nodes[n];
+        NodeRecord record{};
+        record.restLocal = node.local;
+        record.translation = glm::vec4(node.translation, 0.0f);
+        record.rotation =
+            glm::vec4(node.rotation.x, node.rotation.y, node.rotation.z, node.rotation.w);
+        record.scale = glm::vec4(node.scale, 0.0f);
+        record.node = static_cast<std::uint32_t>(n);
+        record.weightOffset = weightOffset[n];
+        record.weightCount = static_cast<std::uint32_t>(node.weights.size());
+        record.restWeights = static_cast<std::uint32_t>(keyframes.size());
+        keyframes.insert(keyframes.end(), node.weights.begin(), node.weights.end());
+        nodeRecords.push_back(record);
+        gpu.mAnimatedNodes.push_back(static_cast<std::uint32_t>(n));
+    }
+
+    // Nodes at or below an animated node, grouped by depth (the loader guarantees a forest).
+    std::vector<std::vector<WorldRecord>> levels;
+    std::vector<std::uint8_t> moves(nodeCount, 0);
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> stack;  // (node, depth)
+    for (std::size_t root = 0; root < nodeCount; ++root) {
+        if (scene.nodes[root].parent.valid()) {
+            continue;
+        }
+        stack.emplace_back(static_cast<std::uint32_t>(root), 0u);
+        while (!stack.empty()) {
+            const auto [n, depth] = stack.back();
+            stack.pop_back();
+            const scene::Node& node = scene.nodes[n];
+            moves[n] = animated[n] || (node.parent.valid() && moves[node.parent.index()]);
+            if (moves[n]) {
+                if (levels.size() <= depth) {
+                    levels.resize(depth + 1);
+                }
+                levels[depth].push_back({n, node.parent.valid()
+                                                ? static_cast<std::uint32_t>(node.parent.index())
+                                                : kNone});
+            }
+            for (scene::NodeId child : node.children) {
+                stack.emplace_back(static_cast<std::uint32_t>(child.index()), depth + 1);
+            }
+        }
+    }
+    std::vector<WorldRecord> worldRecords;
+    std::vector<glm::uvec4> levelRanges;
+    for (const auto& level : levels) {
+        if (level.empty()) {
+            continue;
+        }
+        levelRanges.emplace_back(worldRecords.size(), level.size(), 0, 0);
+        worldRecords.insert(worldRecords.end(), level.begin(), level.end());
+        gpu.mLevelCounts.push_back(static_cast<std::uint32_t>(level.size()));
+    }
+
+    // Instances whose node moves, and joints whose node moves.
+    std::vector<TransformRecord> instanceRecords;
+    for (std::size_t i = 0; i < scene.instances.size(); ++i) {
+        const scene::Instance& instance = scene.instances[i];
+        if (!moves[instance.node.index()]) {
+            continue;
+        }
+        TransformRecord record{};
+        record.node = static_cast<std::uint32_t>(instance.node.index());
+        record.slot =
+            targets.storage ? targets.slots[i] : static_cast<std::uint32_t>(instanceRecords.size());
+        record.transform = instance.instanceTransform;
+        if (!targets.storage && !targets.uniforms.empty()) {
+            gpu.mCopyTargets.push_back(targets.uniforms[i]);
+        }
+        instanceRecords.push_back(record);
+        gpu.mInstances.push_back(static_cast<std::uint32_t>(i));
+    }
+    std::vector<TransformRecord> jointRecords;
+    std::uint32_t jointIndex = 0;
+    for (const scene::Skin& skin : scene.skins) {
+        for (std::size_t j = 0; j < skin.joints.size(); ++j, ++jointIndex) {
+            if (!moves[skin.joints[j].index()] || !animation) {
+                continue;
+            }
+            TransformRecord record{};
+            record.node = static_cast<std::uint32_t>(skin.joints[j].index());
+            record.slot = jointIndex;
+            record.transform = skin.inverseBindMatrices[j];
+            jointRecords.push_back(record);
+        }
+    }
+
+    // Buffers.
+    std::vector<glm::mat4> restLocals(nodeCount), restWorlds(nodeCount);
+    for (std::size_t n = 0; n < nodeCount; ++n) {
+        restLocals[n] = scene.nodes[n].local;
+        restWorlds[n] = scene.nodes[n].world;
+    }
+    const auto readable = wgpu::BufferUsage::CopySrc | wgpu::BufferUsage::CopyDst;
+    gpu.mLocals = storageBuffer(device, std::move(restLocals), "animated node locals", readable);
+    gpu.mWorlds = storageBuffer(device, std::move(restWorlds), "animated node worlds", readable);
+    const wgpu::Buffer keyframeBuffer = storageBuffer(device, std::move(keyframes), "keyframes");
+    const wgpu::Buffer samplerBuffer = storageBuffer(device, std::move(samplers), "samplers");
+    const wgpu::Buffer nodeBuffer = storageBuffer(device, nodeRecords, "animated nodes");
+    gpu.mTimes.assign(scene.animations.size(), 0.0f);
+    gpu.mAnimationTimes =
+        storageBuffer(device, gpu.mTimes, "animation times", wgpu::BufferUsage::CopyDst);
+    gpu.mNodeChannels =
+        storageBuffer(device, std::vector<glm::uvec4>(nodeRecords.size(), glm::uvec4(kNone)),
+                      "animated node channels", wgpu::BufferUsage::CopyDst);
+    const wgpu::Buffer worldBuffer = storageBuffer(device, worldRecords, "world levels");
+    const wgpu::Buffer instanceBuffer =
+        storageBuffer(device, instanceRecords, "animated instance records");
+    const wgpu::Buffer jointBuffer = storageBuffer(device, jointRecords, "animated joint records");
+    wgpu::Buffer weights = animation ? animation->weightBuffer() : wgpu::Buffer();
+    if (!weights) {
+        weights = storageBuffer(device, std::vector<float>(1, 0.0f), "no morph weights");
+    }
+    wgpu::Buffer instanceOutput = targets.storage;
+    if (!instanceOutput) {
+        gpu.mInstanceOutput = gpu::createBuffer(
+            device, wgpu::BufferUsage::Storage | wgpu::BufferUsage::CopySrc,
+            std::max<std::uint64_t>(1, instanceRecords.size()) * sizeof(TransformUniform),
+            "animated instance transforms");
+        instanceOutput = gpu.mInstanceOutput;
+    }
+
+    // Pipelines (layouts derived from each shader) and bind groups.
+    auto sample = makePipeline(device, shaders, "animation_sample.wgsl", "sampleNodes");
+    auto world = makePipeline(device, shaders, "animation_world.wgsl", "worldMatrices");
+    auto transform = makePipeline(device, shaders, "animation_transforms.wgsl", "nodeTransforms");
+    if (!sample || !world || !transform) {
+        return !sample ? sample.error() : !world ? world.error() : transform.error();
+    }
+    gpu.mSample = *sample;
+    gpu.mWorld = *world;
+    gpu.mTransform = *transform;
+    const wgpu::BindGroupEntry sampleEntries[] = {bufferEntry(0, keyframeBuffer),
+                                                  bufferEntry(1, samplerBuffer),
+                                                  bufferEntry(2, gpu.mAnimationTimes),
+                                                  bufferEntry(3, nodeBuffer),
+                                                  bufferEntry(4, gpu.mNodeChannels),
+                                                  bufferEntry(5, gpu.mLocals),
+                                                  bufferEntry(6, weights)};
+    gpu.mSampleGroup = makeBindGroup(device, gpu.mSample, sampleEntries, "animation sampling");
+
+    const std::uint64_t levelStride =
+        std::max<std::uint64_t>(limits.minUniformBufferOffsetAlignment, sizeof(glm::uvec4));
+    std::vector<std::uint8_t> levelBytes(std::max<std::size_t>(1, levelRanges.size()) * levelStride,
+                                         0);
+    for (std::size_t l = 0; l < levelRanges.size(); ++l) {
+        std::memcpy(levelBytes.data() + l * levelStride, &levelRanges[l], sizeof(glm::uvec4));
+    }
+    const wgpu::Buffer levelBuffer =
+        gpu::createBufferWithData(device, wgpu::BufferUsage::Uniform | wgpu::BufferUsage::CopyDst,
+                                  levelBytes, "world levels ranges");
+    for (std::size_t l = 0; l < levelRanges.size(); ++l) {
+        const wgpu::BindGroupEntry entries[] = {
+            bufferEntry(0, levelBuffer, l * levelStride, sizeof(glm::uvec4)),
+            bufferEntry(1, worldBuffer), bufferEntry(2, gpu.mLocals), bufferEntry(3, gpu.mWorlds)};
+        gpu.mLevelGroups.push_back(makeBindGroup(device, gpu.mWorld, entries, "world level"));
+    }
+    if (!instanceRecords.empty()) {
+        const wgpu::BindGroupEntry entries[] = {bufferEntry(0, instanceBuffer),
+                                                bufferEntry(1, gpu.mWorlds),
+                                                bufferEntry(2, instanceOutput)};
+        gpu.mInstanceGroup = makeBindGroup(device, gpu.mTransform, entries, "animated instances");
+    }
+    if (!jointRecords.empty()) {
+        const wgpu::BindGroupEntry entries[] = {bufferEntry(0, jointBuffer),
+                                                bufferEntry(1, gpu.mWorlds),
+                                                bufferEntry(2, animation->jointBuffer())};
+        gpu.mJointGroup = makeBindGroup(device, gpu.mTransform, entries, "animated joints");
+    }
+
+    gpu.mInstanceRecords = static_cast<std::uint32_t>(instanceRecords.size());
+    gpu.mJointRecords = static_cast<std::uint32_t>(jointRecords.size());
+    GpuAnimationStats& stats = gpu.mStats;
+    stats.animatedNodes = static_cast<std::uint32_t>(nodeRecords.size());
+    stats.worldNodes = static_cast<std::uint32_t>(worldRecords.size());
+    stats.levels = static_cast<std::uint32_t>(levelRanges.size());
+    stats.instances = gpu.mInstanceRecords;
+    stats.joints = gpu.mJointRecords;
+    stats.dispatches = (stats.animatedNodes ? 1 : 0) + stats.levels + (stats.instances ? 1 : 0) +
+                       (stats.joints ? 1 : 0);
+    stats.copies = static_cast<std::uint32_t>(gpu.mCopyTargets.size());
+    stats.bytesPerFrame = gpu.mTimes.size() * sizeof(float);
+
+    std::vector<scene::AnimationId> all;
+    for (std::size_t a = 0; a < scene.animations.size(); ++a) {
+        all.push_back(scene::AnimationId(a));
+    }
+    gpu.select(queue, all);
+    return result;
+}
+
+void GpuAnimation::select(const wgpu::Queue& queue, std::span<const scene::AnimationId> selection) {
+    if (mAnimatedNodes.empty()) {
+        return;
+    }
+    std::vector<std::uint32_t> slotOfNode(mScene->nodes.size(), kNone);
+    for (std::size_t i = 0; i < mAnimatedNodes.size(); ++i) {
+        slotOfNode[mAnimatedNodes[i]] = static_cast<std::uint32_t>(i);
+    }
+    std::vector<glm::uvec4> channels(mAnimatedNodes.size(), glm::uvec4(kNone));
+    for (const scene::AnimationId id : selection) {
+        const scene::Animation& animation = mScene->animations[id.index()];
+        for (const scene::AnimationChannel& channel : animation.channels) {
+            const std::uint32_t slot = slotOfNode[channel.node.index()];
+            channels[slot][static_cast<int>(channel.path)] =
+                mSamplerOffsets[id.index()] + channel.sampler;
+        }
+    }
+    queue.WriteBuffer(mNodeChannels, 0, channels.data(), channels.size() * sizeof(glm::uvec4));
+}
+
+void GpuAnimation::setTime(const wgpu::Queue& queue, double seconds, scene::PlaybackMode mode) {
+    for (std::size_t a = 0; a < mTimes.size(); ++a) {
+        const float end = mScene->animations[a].end;
+        double time = seconds;
+        if (mode == scene::PlaybackMode::Loop && end > 0.0f) {
+            time = std::fmod(seconds, double(end));
+            if (time < 0.0) {
+                time += end;
+            }
+        }
+        mTimes[a] = static_cast<float>(time);
+    }
+    queue.WriteBuffer(mAnimationTimes, 0, mTimes.data(), mTimes.size() * sizeof(float));
+}
+
+void GpuAnimation::encode(const wgpu::CommandEncoder& commands) const {
+    wgpu::ComputePassDescriptor descriptor{};
+    descriptor.label = "animation";
+    wgpu::ComputePassEncoder pass = commands.BeginComputePass(&descriptor);
+    if (!mAnimatedNodes.empty()) {
+        pass.SetPipeline(mSample);
+        pass.SetBindGroup(0, mSampleGroup);
+        pass.DispatchWorkgroups(workgroups(static_cast<std::uint32_t>(mAnimatedNodes.size())));
+    }
+    if (!mLevelGroups.empty()) {
+        pass.SetPipeline(mWorld);
+        for (std::size_t l = 0; l < mLevelGroups.size(); ++l) {
+            pass.SetBindGroup(0, mLevelGroups[l]);
+            pass.DispatchWorkgroups(workgroups(mLevelCounts[l]));
+        }
+    }
+    if (mInstanceRecords > 0 || mJointRecords > 0) {
+        pass.SetPipeline(mTransform);
+        if (mInstanceRecords > 0) {
+            pass.SetBindGroup(0, mInstanceGroup);
+            pass.DispatchWorkgroups(workgroups(mInstanceRecords));
+        }
+        if (mJointRecords > 0) {
+            pass.SetBindGroup(0, mJointGroup);
+            pass.DispatchWorkgroups(workgroups(mJointRecords));
+        }
+    }
+    pass.End();
+    for (std::size_t k = 0; k < mCopyTargets.size(); ++k) {
+        commands.CopyBufferToBuffer(mInstanceOutput, k * sizeof(TransformUniform), mCopyTargets[k],
+                                    0, sizeof(TransformUniform));
+    }
+}
+
+}  // namespace encore::render
