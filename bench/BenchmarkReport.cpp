@@ -70,6 +70,20 @@ nlohmann::json toJson(const BenchReport& report) {
             {"objects", result.objects},
             {"strategy", result.strategy},
             {"animation", result.animation},
+            {"animationMs",
+             result.animationCpu ? percentilesJson(*result.animationCpu) : nlohmann::json(nullptr)},
+            {"animationWork",
+             result.animation.empty()
+                 ? nlohmann::json(nullptr)
+                 : nlohmann::json{
+                       {"channelsEvaluated", result.animationWork.player.channelsEvaluated},
+                       {"jointsUpdated", result.animationWork.player.jointsUpdated},
+                       {"instancesWritten", result.animationWork.instancesWritten},
+                       {"jointsWritten", result.animationWork.upload.jointsWritten},
+                       {"weightsWritten", result.animationWork.upload.weightsWritten},
+                       {"gpuDispatches", result.animationWork.gpu.dispatches},
+                       {"gpuCopies", result.animationWork.gpu.copies},
+                       {"bytesWritten", result.animationWork.bytesWritten}}},
             {"encodeMs", percentilesJson(result.encode)},
             {"submitMs", percentilesJson(result.submit)},
             {"cpuMs", percentilesJson(result.cpu)},
@@ -121,9 +135,13 @@ std::string toMarkdown(const BenchReport& report) {
                 naive = result->cpu.median;
             }
         }
+        const bool animated = results.front()->animationCpu.has_value();
         out << "\n### " << label << " (" << results.front()->objects << " objects)\n\n"
             << "| strategy | CPU frame | encode | submit | GPU | vs naive | API calls | draws | "
-               "bundle draws |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+               "bundle draws |"
+            << (animated ? " animation (share of CPU frame) | bytes written |" : "")
+            << "\n|---|---:|---:|---:|---:|---:|---:|---:|---:|" << (animated ? "---:|---:|" : "")
+            << "\n";
         for (const BenchResult* result : results) {
             out << "| " << result->strategy << " | " << milliseconds(result->cpu) << " | "
                 << milliseconds(result->encode) << " | " << milliseconds(result->submit) << " | "
@@ -132,7 +150,15 @@ std::string toMarkdown(const BenchReport& report) {
                         ? format("%.1fx", naive / result->cpu.median)
                         : std::string("-"))
                 << " | " << result->frame.apiCalls() << " | " << result->frame.drawCalls() << " | "
-                << result->bundleContents.drawCalls() << " |\n";
+                << result->bundleContents.drawCalls() << " |";
+            if (animated && result->animationCpu) {
+                const double share = result->cpu.median > 0.0
+                                         ? 100.0 * result->animationCpu->median / result->cpu.median
+                                         : 0.0;
+                out << " " << milliseconds(*result->animationCpu) << " (" << format("%.0f%%", share)
+                    << ") | " << result->animationWork.bytesWritten << " |";
+            }
+            out << "\n";
         }
     }
     if (!report.skipped.empty()) {

@@ -124,6 +124,7 @@ Result<BenchResult> measure(gpu::Context& context,
         result.animation = std::string(render::animationEvaluationName(*animate));
     }
     Result<void> animated;
+    std::vector<double> animationTimes;
     measureFrames(context, options, result.strategy, result, [&](std::uint32_t frame) {
         double animationMilliseconds = 0.0;
         if (animate) {
@@ -134,6 +135,9 @@ Result<BenchResult> measure(gpu::Context& context,
             animationMilliseconds =
                 std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
                     .count();
+            if (frame >= (options.callgrind ? 0 : options.warmup)) {
+                animationTimes.push_back(animationMilliseconds);
+            }
         }
         const render::FrameResult rendered = renderer.renderFrame(camera, frameTime(frame));
         result.frame = rendered.counters;
@@ -143,6 +147,10 @@ Result<BenchResult> measure(gpu::Context& context,
         return timing;
     });
     ENCORE_TRY(animated);
+    if (animate) {
+        result.animationCpu = render::Percentiles::of(std::move(animationTimes));
+        result.animationWork = renderer.animationStats();
+    }
     renderer.setGpuTimer(nullptr);
     ENCORE_TRY(context.checkNoErrors("Benchmarking " + result.strategy));
     return result;

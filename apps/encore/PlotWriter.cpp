@@ -53,6 +53,7 @@ struct Point {
 
 struct Series {
     std::string scene;
+    std::string animation;  // Crowds: "cpu" or "gpu", where the animation was evaluated.
     std::string strategy;
     std::string label;
     std::vector<Point> points;
@@ -181,9 +182,12 @@ Result<std::vector<Series>> readSeries(const json& results) {
                              "Benchmark result " + std::to_string(i) + " has no \"scene\" string.");
         }
         const std::string scene = result["scene"].get<std::string>();
-        if (scene != "generated" && scene != "animometer") {
+        if (scene != "generated" && scene != "animometer" && scene != "crowd") {
             continue;  // Single models have no object-count axis.
         }
+        const std::string animation = result.contains("animation") && result["animation"].is_string()
+                                          ? result["animation"].get<std::string>()
+                                          : std::string();
         if (!result.contains("strategy") || !result["strategy"].is_string()) {
             return makeError(ErrorCode::InvalidFormat,
                              describe(result, i) + " has no \"strategy\" string.");
@@ -195,10 +199,16 @@ Result<std::vector<Series>> readSeries(const json& results) {
         }
         const std::string strategy = result["strategy"].get<std::string>();
         auto it = std::find_if(series.begin(), series.end(), [&](const Series& s) {
-            return s.scene == scene && s.strategy == strategy;
+            return s.scene == scene && s.animation == animation && s.strategy == strategy;
         });
         if (it == series.end()) {
-            it = series.insert(series.end(), Series{scene, strategy, strategy, {}});
+            // A crowd's axis counts characters; its series say where the animation ran.
+            const std::string label =
+                scene == "crowd"
+                    ? (animation.empty() ? std::string("still") : animation + "-animated") + " " +
+                          strategy
+                    : strategy;
+            it = series.insert(series.end(), Series{scene, animation, strategy, label, {}});
         }
         it->points.push_back(*point);
     }
@@ -211,7 +221,7 @@ Result<std::vector<Series>> readSeries(const json& results) {
         bool clashes = std::any_of(series.begin(), series.end(), [&](const Series& other) {
             return &other != &s && other.strategy == s.strategy;
         });
-        if (clashes && s.scene != "generated") {
+        if (clashes && s.scene == "animometer") {
             s.label = s.scene + " " + s.strategy;
         }
     }
@@ -327,7 +337,8 @@ void appendPanel(SvgBuilder& svg,
     svg.out += "<rect x=\"" + number(box.left) + "\" y=\"" + number(box.top) + "\" width=\"" +
                number(box.right - box.left) + "\" height=\"" + number(box.bottom - box.top) +
                "\" fill=\"none\" stroke=\"#444444\"/>\n";
-    svg.text(xMid, box.bottom + 32, "objects (log scale)", "text-anchor=\"middle\"");
+    svg.text(xMid, box.bottom + 32, "objects (crowds: characters; log scale)",
+             "text-anchor=\"middle\"");
     svg.text(box.left - 44, yMid, "milliseconds (log scale)",
              "text-anchor=\"middle\" transform=\"rotate(-90 " + number(box.left - 44) + " " +
                  number(yMid) + ")\"");
@@ -422,8 +433,8 @@ Result<std::string> plotScalingSvg(const json& report) {
     const std::vector<Series>& series = *read;
     if (series.empty()) {
         return makeError(ErrorCode::InvalidFormat,
-                         "The benchmark report has no \"generated\" or \"animometer\" results to "
-                         "plot (" +
+                         "The benchmark report has no \"generated\", \"animometer\" or \"crowd\" "
+                         "results to plot (" +
                              std::to_string(report["results"].size()) + " results).");
     }
 

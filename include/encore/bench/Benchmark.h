@@ -19,6 +19,7 @@
 #include "encore/render/DrawCounters.h"
 #include "encore/render/FrameTimer.h"
 #include "encore/render/GpuAnimation.h"
+#include "encore/render/Renderer.h"
 #include "encore/render/Strategy.h"
 
 namespace encore::bench {
@@ -58,6 +59,10 @@ struct BenchResult {
     std::uint64_t objects = 0;  // Instances drawn (triangles for the Animometer).
     std::string strategy;
     std::string animation;  // "cpu" or "gpu" when animated (encode includes the evaluation).
+    // Animated scenes: the CPU time of setAnimationTime per frame (part of encode), and what the
+    // last measured frame's evaluation did.
+    std::optional<render::Percentiles> animationCpu;
+    render::AnimationFrameStats animationWork;
     render::Percentiles encode;
     render::Percentiles submit;
     render::Percentiles cpu;

@@ -361,5 +361,25 @@ TEST(PlotWriterTest, SelfContainedAndNeedsNoConverter) {
     }
 }
 
+// Crowd results plot over their character counts, one series per (evaluation, strategy), so the
+// CPU and GPU animation paths of one strategy are two curves.
+TEST(PlotWriterTest, CrowdsAreSeriesPerAnimationPath) {
+    json results = json::array();
+    for (int characters : {1000, 10000, 100000}) {
+        for (const char* animation : {"cpu", "gpu"}) {
+            json entry = result("crowd", "bundles", characters,
+                                std::string(animation) == "cpu" ? characters * 0.001 : 0.1);
+            entry["animation"] = animation;
+            results.push_back(entry);
+        }
+    }
+    const std::string svg = plot(report(results));
+    const auto all = panels(svg);
+    ASSERT_EQ(all.size(), 1u);
+    EXPECT_EQ(polyline(all.at(0), "cpu-animated bundles").size(), 3u);
+    EXPECT_EQ(polyline(all.at(0), "gpu-animated bundles").size(), 3u);
+    EXPECT_NE(svg.find(">gpu-animated bundles</text>"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace encore::app
