@@ -12,6 +12,8 @@
 #include <glm/gtc/quaternion.hpp>
 #include <nlohmann/json.hpp>
 
+#include "GlbWriter.h"
+
 #include "encore/image/ImageCodec.h"
 
 namespace encore::scene {
@@ -272,16 +274,6 @@ image::ImageRgba8 metallicRoughnessImage() {
     return image;
 }
 
-void appendChunk(std::vector<std::uint8_t>& glb, std::uint32_t type,
-                 std::vector<std::uint8_t> data, std::uint8_t padding) {
-    while (data.size() % 4 != 0) {
-        data.push_back(padding);
-    }
-    const std::uint32_t header[2] = {static_cast<std::uint32_t>(data.size()), type};
-    const auto* headerBytes = reinterpret_cast<const std::uint8_t*>(header);
-    glb.insert(glb.end(), headerBytes, headerBytes + sizeof(header));
-    glb.insert(glb.end(), data.begin(), data.end());
-}
 
 }  // namespace
 
@@ -416,13 +408,7 @@ Result<std::vector<std::uint8_t>> generateSceneGlb(const GeneratorOptions& optio
     document["buffers"].push_back({{"byteLength", binary.bytes().size()}});
     document["scenes"] = {{{"nodes", rootChildren}}};
 
-    const std::string text = document.dump();
-    std::vector<std::uint8_t> glb = {'g', 'l', 'T', 'F', 2, 0, 0, 0, 0, 0, 0, 0};
-    appendChunk(glb, 0x4E4F534A, std::vector<std::uint8_t>(text.begin(), text.end()), ' ');
-    appendChunk(glb, 0x004E4942, std::move(binary.bytes()), 0);
-    const std::uint32_t total = static_cast<std::uint32_t>(glb.size());
-    std::memcpy(&glb[8], &total, sizeof(total));
-    return glb;
+    return writeGlb(document, std::move(binary.bytes()));
 }
 
 }  // namespace encore::scene

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <optional>
+
 #include <glm/gtc/constants.hpp>
 
 #include "GltfBuilder.h"
@@ -245,18 +247,26 @@ TEST(AnimationRenderTest, SelectsOneAnimationByName) {
 // The Khronos sample models: different images at two times, equal across strategies.
 class AnimatedModelTest : public ::testing::TestWithParam<const char*> {};
 
-TEST_P(AnimatedModelTest, ChangesOverTimeAndAgreesAcrossStrategies) {
-    ENCORE_REQUIRE_VULKAN(context);
+// The model's .glb among the shared models; nothing when they or it are absent.
+std::optional<std::filesystem::path> sharedModel(const std::string& name) {
     const auto dir = test::sharedModelsDir();
     if (!dir) {
-        GTEST_SKIP() << "The shared models directory is absent.";
+        return std::nullopt;
     }
-    const std::string name = GetParam();
-    const auto path = *dir / name / "glTF-Binary" / (name + ".glb");
+    auto path = *dir / name / "glTF-Binary" / (name + ".glb");
     if (!std::filesystem::exists(path)) {
-        GTEST_SKIP() << path << " is absent.";
+        return std::nullopt;
     }
-    auto scene = scene::loadScene(path);
+    return path;
+}
+
+TEST_P(AnimatedModelTest, ChangesOverTimeAndAgreesAcrossStrategies) {
+    ENCORE_REQUIRE_VULKAN(context);
+    const auto path = sharedModel(GetParam());
+    if (!path) {
+        GTEST_SKIP() << GetParam() << " is absent from the shared models.";
+    }
+    auto scene = scene::loadScene(*path);
     ASSERT_TRUE(scene.ok()) << scene.error().message;
     ASSERT_FALSE(scene->animations.empty());
     // Only the first animation: Fox's later ones drive the same joints, and a clamped loop ends
@@ -289,16 +299,11 @@ TEST_P(AnimatedModelTest, ChangesOverTimeAndAgreesAcrossStrategies) {
 // Survey, Walk and Run drive the same joints differently).
 TEST_P(AnimatedModelTest, EveryAnimationPlaysThroughBundles) {
     ENCORE_REQUIRE_VULKAN(context);
-    const auto dir = test::sharedModelsDir();
-    if (!dir) {
-        GTEST_SKIP() << "The shared models directory is absent.";
+    const auto path = sharedModel(GetParam());
+    if (!path) {
+        GTEST_SKIP() << GetParam() << " is absent from the shared models.";
     }
-    const std::string name = GetParam();
-    const auto path = *dir / name / "glTF-Binary" / (name + ".glb");
-    if (!std::filesystem::exists(path)) {
-        GTEST_SKIP() << path << " is absent.";
-    }
-    auto scene = scene::loadScene(path);
+    auto scene = scene::loadScene(*path);
     ASSERT_TRUE(scene.ok()) << scene.error().message;
     const Camera camera = Camera::framing(scene->bounds, 1.0f, 0.5f);
     std::vector<image::ImageRgba8> middles;
