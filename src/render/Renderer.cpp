@@ -102,6 +102,14 @@ Result<void> Renderer::recoverFromDeviceLoss() {
     options.environment = nullptr;
     options.environmentImage = std::make_shared<image::HdrImage>(environment.panorama());
     options.environmentOptions = environment.options();
+    // The animation as it played: a rebuilt player would start at rest with every animation.
+    std::vector<scene::AnimationId> selection;
+    scene::PlaybackMode mode{};
+    if (mPlayer) {
+        selection.assign(mPlayer->selection().begin(), mPlayer->selection().end());
+        mode = mPlayer->mode();
+    }
+    const std::optional<double> animationTime = mAnimationTime;
     mGpuAnimation.reset();
     mStrategy.reset();
     mAnimation.reset();
@@ -118,8 +126,17 @@ Result<void> Renderer::recoverFromDeviceLoss() {
     if (auto built = build(options); !built) {
         return built.error().withContext("Rebuilding the renderer after a device loss");
     }
-    if (mScene) {
-        ENCORE_TRY(prepare(*mScene, mKind));
+    if (!mScene) {
+        return {};
+    }
+    ENCORE_TRY(prepare(*mScene, mKind));
+    mPlayer->setMode(mode);
+    ENCORE_TRY(mPlayer->select(selection));
+    if (mGpuAnimation) {
+        mGpuAnimation->select(mContext->queue(), mPlayer->selection());
+    }
+    if (animationTime) {
+        ENCORE_TRY(setAnimationTime(*animationTime));
     }
     return {};
 }
@@ -155,6 +172,7 @@ Result<void> Renderer::prepare(const scene::SceneData& scene, StrategyKind kind)
     mAnimation.reset();
     mPlayer = std::make_unique<scene::AnimationPlayer>(scene);
     mAnimationStats = {};
+    mAnimationTime.reset();
     mAnimation = AnimationBuffers::create(mContext->device(), mContext->queue(), *mLayouts, scene,
                                           *mPlayer);
     mSetup->animation = mAnimation.get();
@@ -345,6 +363,7 @@ Result<void> Renderer::setAnimationTime(double seconds) {
     if (!mStrategy || !mPlayer) {
         return makeError(ErrorCode::InvalidArgument, "No scene is prepared.");
     }
+    mAnimationTime = seconds;
     if (mOptions.animation == AnimationEvaluation::Gpu) {
         AnimationFrameStats stats;
         stats.evaluation = AnimationEvaluation::Gpu;

@@ -12,6 +12,7 @@
 #include "GpuTestSupport.h"
 #include "RenderTestSupport.h"
 #include "encore/render/Renderer.h"
+#include "encore/scene/CrowdGenerator.h"
 #include "encore/scene/SceneGenerator.h"
 
 namespace encore::render {
@@ -83,6 +84,56 @@ INSTANTIATE_TEST_SUITE_P(Strategies, DeviceLossTest,
                              std::string name(strategyName(info.param));
                              std::replace(name.begin(), name.end(), '-', '_');
                              return name;
+                         });
+
+// An animated scene comes back at the time it was playing, with its selection, evaluated where
+// it was (CPU or GPU), not in its rest pose.
+class AnimatedDeviceLossTest : public ::testing::TestWithParam<AnimationEvaluation> {};
+
+TEST_P(AnimatedDeviceLossTest, TheAnimationResumesWhereItWas) {
+    auto context = gpu::Context::create();
+    ASSERT_TRUE(context.ok()) << context.error().message;
+    ASSERT_EQ(context->adapterDescription().backend, wgpu::BackendType::Vulkan);
+    auto glb = scene::generateCrowdGlb({.characters = 9});
+    ASSERT_TRUE(glb.ok()) << glb.error().message;
+    auto scene = scene::loadSceneFromMemory(*glb, {}, "crowd.glb");
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+
+    RendererOptions options = test::pixelTestOptions(kSize, kSize, 1, DebugChannel::Shaded);
+    options.environment = nullptr;
+    options.environmentOptions = test::testEnvironmentOptions();
+    options.animation = GetParam();
+    auto renderer = Renderer::create(*context, options);
+    ASSERT_TRUE(renderer.ok()) << renderer.error().message;
+    ASSERT_TRUE(renderer->prepare(*scene, StrategyKind::Bundles).ok());
+    const Camera camera = Camera::framing(scene->bounds, 1.0f);
+    renderer->renderFrame(camera);
+    auto rest = renderer->readImage();
+    ASSERT_TRUE(rest.ok()) << rest.error().message;
+    ASSERT_TRUE(renderer->selectAnimation("sway").ok());
+    ASSERT_TRUE(renderer->setAnimationTime(0.6).ok());
+    renderer->renderFrame(camera);
+    auto before = renderer->readImage();
+    ASSERT_TRUE(before.ok()) << before.error().message;
+    ASSERT_GT(test::differingPixels(*rest, *before, 2), 0u) << "the crowd does not move";
+
+    context->device().ForceLoss(wgpu::DeviceLostReason::Unknown, "lost on purpose by a test");
+    waitForLoss(*context);
+    ASSERT_TRUE(context->deviceLost());
+    auto recovered = renderer->recoverFromDeviceLoss();
+    ASSERT_TRUE(recovered.ok()) << recovered.error().message;
+    renderer->renderFrame(camera);
+    auto after = renderer->readImage();
+    ASSERT_TRUE(after.ok()) << after.error().message;
+    EXPECT_EQ(test::differingPixels(*before, *after, 0), 0u)
+        << "the animation must resume at its time, not at rest";
+    EXPECT_TRUE(context->checkNoErrors("animating after recovery").ok());
+}
+
+INSTANTIATE_TEST_SUITE_P(Evaluations, AnimatedDeviceLossTest,
+                         ::testing::Values(AnimationEvaluation::Cpu, AnimationEvaluation::Gpu),
+                         [](const auto& info) {
+                             return std::string(animationEvaluationName(info.param));
                          });
 
 }  // namespace

@@ -8,6 +8,7 @@
 // tone-mapping pass writes the output.
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <span>
@@ -143,7 +144,8 @@ class Renderer {
     // After the device was lost (gpu::Context::deviceLost()): asks the context for a new
     // device and rebuilds every GPU resource from CPU data — the options as last set, the
     // environment's panorama, the prepared scene (as loaded: edits made through update*
-    // since prepare() are not replayed) and the strategy. Frames render again afterwards.
+    // since prepare() are not replayed), the strategy, and the animation's selection, playback
+    // mode and last time. Frames render again afterwards, as they were before the loss.
     Result<void> recoverFromDeviceLoss();
 
     const RenderTarget& target() const { return mTarget; }
@@ -171,6 +173,7 @@ class Renderer {
     std::unique_ptr<scene::AnimationPlayer> mPlayer;
     std::unique_ptr<AnimationBuffers> mAnimation;  // Before mStrategy, which binds it.
     AnimationFrameStats mAnimationStats;
+    std::optional<double> mAnimationTime;  // The last setAnimationTime() since prepare().
     std::unique_ptr<Strategy> mStrategy;
     std::unique_ptr<GpuAnimation> mGpuAnimation;  // After mStrategy: writes its buffers.
     bool mGpuAnimationPending = false;  // Time set since the last frame encoded the passes.
