@@ -6,6 +6,7 @@
 #include <string_view>
 
 #include "encore/core/Log.h"
+#include "encore/gpu/OutOfMemoryScope.h"
 
 namespace encore::gpu {
 
@@ -339,18 +340,14 @@ Result<void> Context::checkNoErrors(const std::string& what) {
     if (outOfMemory) {
         // Not the input's fault nor Encore's: a smaller scene or target may fit.
         const std::string prefix = "WebGPU " + errorTypeName(wgpu::ErrorType::OutOfMemory) + ": ";
-        std::string reason = errors.front();
+        std::string_view reason = errors.front();
         for (const std::string& error : errors) {
             if (error.starts_with(prefix)) {
-                reason = error.substr(prefix.size());
+                reason = std::string_view(error).substr(prefix.size());
                 break;
             }
         }
-        if (const auto newline = reason.find('\n'); newline != std::string::npos) {
-            reason.resize(newline);  // Dawn's source location follows on lines of its own.
-        }
-        return makeError(ErrorCode::OutOfMemory,
-                         what + ": the GPU ran out of memory (" + reason + ").");
+        return outOfMemoryError(what, reason);
     }
     return makeError(ErrorCode::ValidationError, std::move(message));
 }

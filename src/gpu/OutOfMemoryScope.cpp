@@ -4,6 +4,12 @@
 
 namespace encore::gpu {
 
+Error outOfMemoryError(std::string_view what, std::string_view dawnMessage) {
+    const std::string_view reason = dawnMessage.substr(0, dawnMessage.find('\n'));
+    return makeError(ErrorCode::OutOfMemory, std::string(what) + ": the GPU ran out of memory (" +
+                                                 std::string(reason) + ").");
+}
+
 OutOfMemoryScope::OutOfMemoryScope(Context& context) : mContext(&context) {
     mContext->device().PushErrorScope(wgpu::ErrorFilter::OutOfMemory);
 }
@@ -32,12 +38,7 @@ Result<void> OutOfMemoryScope::finish(std::string_view what) {
     if (!completed || !outOfMemory) {
         return {};
     }
-    // Dawn appends a source location on lines of its own; the first line is the message.
-    if (const auto newline = message.find('\n'); newline != std::string::npos) {
-        message.resize(newline);
-    }
-    return makeError(ErrorCode::OutOfMemory,
-                     std::string(what) + ": the GPU ran out of memory (" + message + ").");
+    return outOfMemoryError(what, message);
 }
 
 }  // namespace encore::gpu

@@ -16,6 +16,11 @@
 
 namespace encore::gpu {
 
+// ErrorCode::OutOfMemory reading "<what>: the GPU ran out of memory (<reason>)." from Dawn's
+// message, of which only the first line is kept (Dawn appends its source location on lines of
+// their own).
+Error outOfMemoryError(std::string_view what, std::string_view dawnMessage);
+
 class OutOfMemoryScope {
   public:
     explicit OutOfMemoryScope(Context& context);
