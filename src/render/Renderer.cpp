@@ -103,12 +103,7 @@ Result<void> Renderer::recoverFromDeviceLoss() {
     options.environmentImage = std::make_shared<image::HdrImage>(environment.panorama());
     options.environmentOptions = environment.options();
     // The animation as it played: a rebuilt player would start at rest with every animation.
-    std::vector<scene::AnimationId> selection;
-    scene::PlaybackMode mode{};
-    if (mPlayer) {
-        selection.assign(mPlayer->selection().begin(), mPlayer->selection().end());
-        mode = mPlayer->mode();
-    }
+    const Playback playing = playback();
     const std::optional<double> animationTime = mAnimationTime;
     mGpuAnimation.reset();
     mStrategy.reset();
@@ -130,11 +125,7 @@ Result<void> Renderer::recoverFromDeviceLoss() {
         return {};
     }
     ENCORE_TRY(prepare(*mScene, mKind));
-    mPlayer->setMode(mode);
-    ENCORE_TRY(mPlayer->select(selection));
-    if (mGpuAnimation) {
-        mGpuAnimation->select(mContext->queue(), mPlayer->selection());
-    }
+    ENCORE_TRY(restorePlayback(playing));
     if (animationTime) {
         ENCORE_TRY(setAnimationTime(*animationTime));
     }
@@ -142,9 +133,10 @@ Result<void> Renderer::recoverFromDeviceLoss() {
 }
 
 Result<void> Renderer::prepare(const scene::SceneData& scene, StrategyKind kind) {
+    const std::string what = "Preparing '" + scene.sourcePath.string() + "' for strategy " +
+                             std::string(strategyName(kind));
     if (auto fits = checkSceneWithinLimits(mSetup->limits, scene, kind); !fits) {
-        return fits.error().withContext("Preparing '" + scene.sourcePath.string() +
-                                        "' for strategy " + std::string(strategyName(kind)));
+        return fits.error().withContext(what);
     }
     mGpuAnimation.reset();
     if (mOptions.animation == AnimationEvaluation::Gpu) {
@@ -177,8 +169,6 @@ Result<void> Renderer::prepare(const scene::SceneData& scene, StrategyKind kind)
                                           *mPlayer);
     mSetup->animation = mAnimation.get();
     auto strategy = createStrategy(kind);
-    const std::string what = "Preparing '" + scene.sourcePath.string() + "' for strategy " +
-                             std::string(strategyName(kind));
     gpu::OutOfMemoryScope outOfMemory(*mContext);
     auto prepared = strategy->prepare(*mSetup, scene);
     ENCORE_TRY(outOfMemory.finish(what));
@@ -237,12 +227,25 @@ Result<void> Renderer::setAnimationEvaluation(AnimationEvaluation evaluation) {
     // its first evaluate(), so everything the GPU wrote is overwritten.
     mGpuAnimation.reset();
     mGpuAnimationPending = false;
-    std::vector<scene::AnimationId> selection(mPlayer->selection().begin(),
-                                              mPlayer->selection().end());
-    const scene::PlaybackMode mode = mPlayer->mode();
+    const Playback playing = playback();
     mPlayer = std::make_unique<scene::AnimationPlayer>(*mScene);
-    mPlayer->setMode(mode);
-    return mPlayer->select(selection);
+    return restorePlayback(playing);
+}
+
+Renderer::Playback Renderer::playback() const {
+    if (!mPlayer) {
+        return {};
+    }
+    return {{mPlayer->selection().begin(), mPlayer->selection().end()}, mPlayer->mode()};
+}
+
+Result<void> Renderer::restorePlayback(const Playback& playback) {
+    mPlayer->setMode(playback.mode);
+    ENCORE_TRY(mPlayer->select(playback.selection));
+    if (mGpuAnimation) {
+        mGpuAnimation->select(mContext->queue(), mPlayer->selection());
+    }
+    return {};
 }
 
 FrameResult Renderer::renderFrame(const Camera& camera, float timeSeconds,

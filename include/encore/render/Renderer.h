@@ -157,6 +157,15 @@ class Renderer {
     Renderer() = default;
     Result<void> build(const RendererOptions& options);
     Result<void> createGpuAnimation();
+    // What of the player outlives a new player (a device loss, a switch of evaluation): which
+    // animations play and how. restorePlayback applies it to the current player and the GPU
+    // evaluation.
+    struct Playback {
+        std::vector<scene::AnimationId> selection;
+        scene::PlaybackMode mode{};
+    };
+    Playback playback() const;
+    Result<void> restorePlayback(const Playback& playback);
     FrameResult renderPasses(std::span<const Camera> cameras, float timeSeconds,
                              std::vector<RecordedCall>* trace);
 
