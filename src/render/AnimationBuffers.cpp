@@ -27,18 +27,6 @@ struct DrawRecord {
     std::uint32_t weightOffset = kNone;
 };
 
-template <typename T>
-wgpu::Buffer storageBuffer(const wgpu::Device& device,
-                           std::vector<T> values,
-                           const std::string& label,
-                           wgpu::BufferUsage extra = wgpu::BufferUsage::None) {
-    if (values.empty()) {
-        values.resize(1);  // WebGPU binds no empty buffer.
-    }
-    return gpu::createBufferFrom<T>(
-        device, wgpu::BufferUsage::Storage | wgpu::BufferUsage::CopyDst | extra, values, label);
-}
-
 void packJoints(std::span<const glm::mat4> joints, std::span<const glm::mat4> normals,
                 std::size_t first, std::size_t count, std::vector<TransformUniform>& out) {
     for (std::size_t j = first; j < first + count; ++j) {
@@ -179,17 +167,20 @@ std::unique_ptr<AnimationBuffers> AnimationBuffers::create(const wgpu::Device& d
     for (std::size_t i = 0; i < scene.instances.size(); ++i) {
         offsets[slots[i]] = glm::uvec2(ranges[i].jointOffset, ranges[i].weightOffset);
     }
-    buffers.mInstanceOffsets = storageBuffer(device, std::move(offsets), "instance animation");
+    constexpr wgpu::BufferUsage kWritable = wgpu::BufferUsage::CopyDst;
+    buffers.mInstanceOffsets =
+        gpu::createStorageBuffer(device, offsets, "instance animation", kWritable);
 
     const auto joints = player.jointMatrices();
     buffers.mJointScratch.resize(joints.size());
     packJoints(joints, player.jointNormalMatrices(), 0, joints.size(), buffers.mJointScratch);
     buffers.mJoints =
-        storageBuffer(device, buffers.mJointScratch, "joint matrices", wgpu::BufferUsage::CopySrc);
+        gpu::createStorageBuffer(device, buffers.mJointScratch, "joint matrices",
+                                 kWritable | wgpu::BufferUsage::CopySrc);
     const auto weights = player.morphWeights();
-    buffers.mWeights = storageBuffer(device, std::vector<float>(weights.begin(), weights.end()),
-                                     "morph weights", wgpu::BufferUsage::CopySrc);
-    buffers.mDeltas = storageBuffer(device, std::move(deltas), "morph deltas");
+    buffers.mWeights = gpu::createStorageBuffer(device, weights, "morph weights",
+                                                kWritable | wgpu::BufferUsage::CopySrc);
+    buffers.mDeltas = gpu::createStorageBuffer(device, deltas, "morph deltas", kWritable);
 
     wgpu::BindGroupEntry entries[5] = {};
     const wgpu::Buffer* bound[5] = {&buffers.mDraws, &buffers.mJoints, &buffers.mWeights,

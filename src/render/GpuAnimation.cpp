@@ -9,6 +9,7 @@
 #include <cstring>
 #include <string>
 
+#include "encore/gpu/BindGroupEntries.h"
 #include "encore/gpu/Upload.h"
 #include "encore/render/AnimationBuffers.h"
 #include "encore/render/BindGroupLayouts.h"
@@ -16,6 +17,9 @@
 namespace encore::render {
 
 namespace {
+
+using gpu::bufferEntry;
+using gpu::createStorageBuffer;
 
 constexpr std::uint32_t kNone = 0xFFFFFFFFu;
 constexpr std::uint32_t kWorkgroupSize = 64;     // kWorkgroupSize of the animation_*.wgsl shaders.
@@ -75,29 +79,6 @@ std::uint32_t interpolationCode(scene::Interpolation interpolation) {
 
 std::uint32_t workgroups(std::uint32_t threads) {
     return (threads + kWorkgroupSize - 1) / kWorkgroupSize;
-}
-
-template <typename T>
-wgpu::Buffer storageBuffer(const wgpu::Device& device,
-                           std::vector<T> values,
-                           const char* label,
-                           wgpu::BufferUsage extra = wgpu::BufferUsage::None) {
-    if (values.empty()) {
-        values.resize(1);  // WebGPU binds no empty buffer; its dispatch is skipped.
-    }
-    return gpu::createBufferFrom<T>(device, wgpu::BufferUsage::Storage | extra, values, label);
-}
-
-wgpu::BindGroupEntry bufferEntry(std::uint32_t binding,
-                                 const wgpu::Buffer& buffer,
-                                 std::uint64_t offset = 0,
-                                 std::uint64_t size = wgpu::kWholeSize) {
-    wgpu::BindGroupEntry entry{};
-    entry.binding = binding;
-    entry.buffer = buffer;
-    entry.offset = offset;
-    entry.size = size;
-    return entry;
 }
 
 wgpu::BindGroup makeBindGroup(const wgpu::Device& device,
@@ -352,24 +333,24 @@ Result<std::unique_ptr<GpuAnimation>> GpuAnimation::create(
         restWorlds[n] = scene.nodes[n].world;
     }
     const auto readable = wgpu::BufferUsage::CopySrc | wgpu::BufferUsage::CopyDst;
-    gpu.mLocals = storageBuffer(device, std::move(restLocals), "animated node locals", readable);
-    gpu.mWorlds = storageBuffer(device, std::move(restWorlds), "animated node worlds", readable);
-    const wgpu::Buffer keyframeBuffer = storageBuffer(device, std::move(keyframes), "keyframes");
-    const wgpu::Buffer samplerBuffer = storageBuffer(device, std::move(samplers), "samplers");
-    const wgpu::Buffer nodeBuffer = storageBuffer(device, nodeRecords, "animated nodes");
+    gpu.mLocals = createStorageBuffer(device, std::move(restLocals), "animated node locals", readable);
+    gpu.mWorlds = createStorageBuffer(device, std::move(restWorlds), "animated node worlds", readable);
+    const wgpu::Buffer keyframeBuffer = createStorageBuffer(device, std::move(keyframes), "keyframes");
+    const wgpu::Buffer samplerBuffer = createStorageBuffer(device, std::move(samplers), "samplers");
+    const wgpu::Buffer nodeBuffer = createStorageBuffer(device, nodeRecords, "animated nodes");
     gpu.mTimes.assign(scene.animations.size(), 0.0f);
     gpu.mAnimationTimes =
-        storageBuffer(device, gpu.mTimes, "animation times", wgpu::BufferUsage::CopyDst);
+        createStorageBuffer(device, gpu.mTimes, "animation times", wgpu::BufferUsage::CopyDst);
     gpu.mNodeChannels =
-        storageBuffer(device, std::vector<glm::uvec4>(nodeRecords.size(), glm::uvec4(kNone)),
+        createStorageBuffer(device, std::vector<glm::uvec4>(nodeRecords.size(), glm::uvec4(kNone)),
                       "animated node channels", wgpu::BufferUsage::CopyDst);
-    const wgpu::Buffer worldBuffer = storageBuffer(device, worldRecords, "world levels");
+    const wgpu::Buffer worldBuffer = createStorageBuffer(device, worldRecords, "world levels");
     const wgpu::Buffer instanceBuffer =
-        storageBuffer(device, instanceRecords, "animated instance records");
-    const wgpu::Buffer jointBuffer = storageBuffer(device, jointRecords, "animated joint records");
+        createStorageBuffer(device, instanceRecords, "animated instance records");
+    const wgpu::Buffer jointBuffer = createStorageBuffer(device, jointRecords, "animated joint records");
     wgpu::Buffer weights = animation ? animation->weightBuffer() : wgpu::Buffer();
     if (!weights) {
-        weights = storageBuffer(device, std::vector<float>(1, 0.0f), "no morph weights");
+        weights = createStorageBuffer(device, std::vector<float>(1, 0.0f), "no morph weights");
     }
     wgpu::Buffer instanceOutput = targets.storage;
     if (!instanceOutput) {

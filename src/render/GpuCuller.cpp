@@ -4,6 +4,7 @@
 #include <map>
 #include <numeric>
 
+#include "encore/gpu/BindGroupEntries.h"
 #include "encore/gpu/Upload.h"
 
 namespace encore::render {
@@ -21,21 +22,6 @@ struct DrawRecord {
     std::uint32_t visibleBase;
     std::uint32_t argumentsOffset;  // In u32 words.
 };
-
-template <typename T>
-wgpu::Buffer storageBuffer(const wgpu::Device& device, const std::vector<T>& values,
-                           const char* label, wgpu::BufferUsage extra = wgpu::BufferUsage::None) {
-    return gpu::createBufferFrom<T>(device, wgpu::BufferUsage::Storage | extra, values, label);
-}
-
-wgpu::BindGroupEntry bufferEntry(std::uint32_t binding, const wgpu::Buffer& buffer,
-                                 std::uint64_t size) {
-    wgpu::BindGroupEntry entry{};
-    entry.binding = binding;
-    entry.buffer = buffer;
-    entry.size = size;
-    return entry;
-}
 
 // Every culling buffer is bound whole as storage. The per-draw and per-slot buffers checked are
 // the largest of their kind (20 bytes of indirect arguments per draw, a 16-byte sphere per
@@ -91,7 +77,7 @@ Result<GpuCuller> GpuCuller::create(const RenderSetup& setup, const InstanceBuff
     const std::uint64_t visibleBytes = lastBase * 4 + listBytes;
     ENCORE_TRY(checkCullingBuffers(setup.limits, culler.mDraws.size(), culler.mSlotCount,
                                    visibleBytes));
-    culler.mArguments = storageBuffer(device, arguments, "indirect arguments (all draws)",
+    culler.mArguments = gpu::createStorageBuffer(device, arguments, "indirect arguments (all draws)",
                                       wgpu::BufferUsage::Indirect | wgpu::BufferUsage::CopySrc |
                                           wgpu::BufferUsage::CopyDst);
     culler.mVisible = gpu::createBuffer(device, wgpu::BufferUsage::Storage, visibleBytes,
@@ -120,11 +106,11 @@ Result<GpuCuller> GpuCuller::create(const RenderSetup& setup, const InstanceBuff
 
     culler.mFrustum = gpu::createBuffer(device, wgpu::BufferUsage::Uniform | wgpu::BufferUsage::CopyDst,
                                         sizeof(glm::vec4) * 6, "frustum planes");
-    culler.mSphereBuffer = storageBuffer(device, culler.mSpheres, "instance bounding spheres",
+    culler.mSphereBuffer = gpu::createStorageBuffer(device, culler.mSpheres, "instance bounding spheres",
                                          wgpu::BufferUsage::CopyDst);
-    const auto rangeOfSlotBuffer = storageBuffer(device, rangeOfSlot, "range of each slot");
-    const auto rangeBuffer = storageBuffer(device, ranges, "instance ranges");
-    const auto drawBuffer = storageBuffer(device, drawRecords, "culled draws");
+    const auto rangeOfSlotBuffer = gpu::createStorageBuffer(device, rangeOfSlot, "range of each slot");
+    const auto rangeBuffer = gpu::createStorageBuffer(device, ranges, "instance ranges");
+    const auto drawBuffer = gpu::createStorageBuffer(device, drawRecords, "culled draws");
 
     auto module = setup.shaders->module("culling.wgsl");
     if (!module) {
@@ -167,13 +153,13 @@ Result<GpuCuller> GpuCuller::create(const RenderSetup& setup, const InstanceBuff
     culler.mCull = computePipeline("cullInstances");
 
     const wgpu::BindGroupEntry cullEntries[] = {
-        bufferEntry(0, culler.mFrustum, sizeof(glm::vec4) * 6),
-        bufferEntry(1, culler.mSphereBuffer, culler.mSpheres.size() * sizeof(Sphere)),
-        bufferEntry(2, rangeOfSlotBuffer, rangeOfSlot.size() * 4),
-        bufferEntry(3, rangeBuffer, ranges.size() * sizeof(RangeRecord)),
-        bufferEntry(4, drawBuffer, drawRecords.size() * sizeof(DrawRecord)),
-        bufferEntry(5, culler.mArguments, arguments.size() * 4),
-        bufferEntry(6, culler.mVisible, culler.mVisible.GetSize()),
+        gpu::bufferEntry(0, culler.mFrustum, 0, sizeof(glm::vec4) * 6),
+        gpu::bufferEntry(1, culler.mSphereBuffer, 0, culler.mSpheres.size() * sizeof(Sphere)),
+        gpu::bufferEntry(2, rangeOfSlotBuffer, 0, rangeOfSlot.size() * 4),
+        gpu::bufferEntry(3, rangeBuffer, 0, ranges.size() * sizeof(RangeRecord)),
+        gpu::bufferEntry(4, drawBuffer, 0, drawRecords.size() * sizeof(DrawRecord)),
+        gpu::bufferEntry(5, culler.mArguments, 0, arguments.size() * 4),
+        gpu::bufferEntry(6, culler.mVisible, 0, culler.mVisible.GetSize()),
     };
     wgpu::BindGroupDescriptor cullDescriptor{};
     cullDescriptor.label = "culling";
@@ -183,8 +169,8 @@ Result<GpuCuller> GpuCuller::create(const RenderSetup& setup, const InstanceBuff
     culler.mCullBindGroup = device.CreateBindGroup(&cullDescriptor);
 
     const wgpu::BindGroupEntry drawEntries[] = {
-        bufferEntry(0, instances.buffer(), instances.buffer().GetSize()),
-        bufferEntry(1, culler.mVisible, listBytes),
+        gpu::bufferEntry(0, instances.buffer(), 0, instances.buffer().GetSize()),
+        gpu::bufferEntry(1, culler.mVisible, 0, listBytes),
     };
     wgpu::BindGroupDescriptor drawDescriptor{};
     drawDescriptor.label = "culled instances";

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <span>
 #include <string>
+#include <vector>
 
 namespace encore::gpu {
 
@@ -21,6 +22,24 @@ wgpu::Buffer createBufferFrom(const wgpu::Device& device, wgpu::BufferUsage usag
         std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(values.data()),
                                       values.size_bytes()),
         label);
+}
+
+// A storage buffer (and `extra` usages) holding `values`; one zeroed element when there are
+// none, as WebGPU binds no empty buffer.
+template <typename T>
+wgpu::Buffer createStorageBuffer(const wgpu::Device& device, std::span<const T> values,
+                                 const std::string& label,
+                                 wgpu::BufferUsage extra = wgpu::BufferUsage::None) {
+    const T zero{};
+    return createBufferFrom<T>(device, wgpu::BufferUsage::Storage | extra,
+                               values.empty() ? std::span<const T>(&zero, 1) : values, label);
+}
+
+template <typename T>
+wgpu::Buffer createStorageBuffer(const wgpu::Device& device, const std::vector<T>& values,
+                                 const std::string& label,
+                                 wgpu::BufferUsage extra = wgpu::BufferUsage::None) {
+    return createStorageBuffer(device, std::span<const T>(values), label, extra);
 }
 
 // An uninitialised (zeroed by WebGPU) buffer of at least `size` bytes, rounded up to 4.
