@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <string>
 
 #include <glm/glm.hpp>
@@ -28,40 +27,8 @@ constexpr int kUnsignedShort = 5123;
 constexpr float kSegment = 0.5f;
 constexpr std::uint32_t kRings = 2 * kCrowdJointsPerCharacter + 1;  // Two rings per segment.
 
-struct Binary {
-    std::vector<std::uint8_t> bytes;
-
-    template <typename T>
-    std::size_t add(json& document,
-                    const std::vector<T>& values,
-                    int componentType,
-                    const char* type,
-                    std::size_t count,
-                    json bounds = {}) {
-        while (bytes.size() % 4 != 0) {
-            bytes.push_back(0);
-        }
-        const std::size_t offset = bytes.size();
-        bytes.resize(offset + values.size() * sizeof(T));
-        std::memcpy(bytes.data() + offset, values.data(), values.size() * sizeof(T));
-        document["bufferViews"].push_back(
-            {{"buffer", 0}, {"byteOffset", offset}, {"byteLength", values.size() * sizeof(T)}});
-        json accessor = {{"bufferView", document["bufferViews"].size() - 1},
-                         {"componentType", componentType},
-                         {"count", count},
-                         {"type", type}};
-        if (!bounds.is_null()) {
-            accessor["min"] = bounds[0];
-            accessor["max"] = bounds[1];
-        }
-        document["accessors"].push_back(accessor);
-        return document["accessors"].size() - 1;
-    }
-};
-
-
 // The column: per ring four corners (each twice, with the normals of its two faces).
-json addCharacterMesh(json& document, Binary& binary) {
+json addCharacterMesh(json& document, GlbBinaryChunk& binary) {
     std::vector<float> positions, normals, weights;
     std::vector<std::uint8_t> joints;
     std::vector<std::uint16_t> indices;
@@ -99,12 +66,13 @@ json addCharacterMesh(json& document, Binary& binary) {
     const std::size_t vertices = positions.size() / 3;
     const json bounds = {{-h, 0.0f, -h}, {h, height, h}};
     json attributes = {
-        {"POSITION", binary.add(document, positions, kFloat, "VEC3", vertices, bounds)},
-        {"NORMAL", binary.add(document, normals, kFloat, "VEC3", vertices)},
-        {"JOINTS_0", binary.add(document, joints, kUnsignedByte, "VEC4", vertices)},
-        {"WEIGHTS_0", binary.add(document, weights, kFloat, "VEC4", vertices)}};
+        {"POSITION",
+         binary.addAccessor(document, positions, kFloat, "VEC3", vertices, std::nullopt, bounds)},
+        {"NORMAL", binary.addAccessor(document, normals, kFloat, "VEC3", vertices)},
+        {"JOINTS_0", binary.addAccessor(document, joints, kUnsignedByte, "VEC4", vertices)},
+        {"WEIGHTS_0", binary.addAccessor(document, weights, kFloat, "VEC4", vertices)}};
     const std::size_t indexAccessor =
-        binary.add(document, indices, kUnsignedShort, "SCALAR", indices.size());
+        binary.addAccessor(document, indices, kUnsignedShort, "SCALAR", indices.size());
     return {{"name", "character"},
             {"primitives",
              {{{"attributes", attributes}, {"indices", indexAccessor}, {"material", 0}}}}};
@@ -132,7 +100,7 @@ Result<std::vector<std::uint8_t>> generateCrowdGlb(const CrowdOptions& options) 
                           {"roughnessFactor", 0.6}}}}}},
                      {"nodes", json::array()},
                      {"skins", json::array()}};
-    Binary binary;
+    GlbBinaryChunk binary;
     document["meshes"] = {addCharacterMesh(document, binary)};
 
     // Shared by every character: the inverse bind matrices (bind pose at the origin) and each
@@ -144,7 +112,7 @@ Result<std::vector<std::uint8_t>> generateCrowdGlb(const CrowdOptions& options) 
         inverseBinds.insert(inverseBinds.end(), &inverse[0][0], &inverse[0][0] + 16);
     }
     const std::size_t inverseBindAccessor =
-        binary.add(document, inverseBinds, kFloat, "MAT4", kCrowdJointsPerCharacter);
+        binary.addAccessor(document, inverseBinds, kFloat, "MAT4", kCrowdJointsPerCharacter);
     constexpr std::uint32_t kKeys = 5;
     std::vector<std::size_t> rotationAccessors;
     for (std::uint32_t j = 0; j < kCrowdJointsPerCharacter; ++j) {
@@ -154,7 +122,7 @@ Result<std::vector<std::uint8_t>> generateCrowdGlb(const CrowdOptions& options) 
             const glm::quat q = glm::angleAxis(angle, glm::vec3(0.0f, 0.0f, 1.0f));
             values.insert(values.end(), {q.x, q.y, q.z, q.w});
         }
-        rotationAccessors.push_back(binary.add(document, values, kFloat, "VEC4", kKeys));
+        rotationAccessors.push_back(binary.addAccessor(document, values, kFloat, "VEC4", kKeys));
     }
 
     const auto side = static_cast<std::uint32_t>(std::ceil(std::sqrt(double(options.characters))));
@@ -193,8 +161,9 @@ Result<std::vector<std::uint8_t>> generateCrowdGlb(const CrowdOptions& options) 
         for (std::uint32_t key = 0; key < kKeys; ++key) {
             times.push_back(offset + float(key) / float(kKeys - 1));
         }
-        const std::size_t input = binary.add(document, times, kFloat, "SCALAR", kKeys,
-                                             json{{times.front()}, {times.back()}});
+        const std::size_t input = binary.addAccessor(document, times, kFloat, "SCALAR", kKeys,
+                                                     std::nullopt,
+                                                     json{{times.front()}, {times.back()}});
         for (std::uint32_t j = 0; j < kCrowdJointsPerCharacter; ++j) {
             channels.push_back({{"sampler", samplers.size()},
                                 {"target", {{"node", root + 1 + j}, {"path", "rotation"}}}});
@@ -203,10 +172,10 @@ Result<std::vector<std::uint8_t>> generateCrowdGlb(const CrowdOptions& options) 
         }
     }
     document["animations"] = {{{"name", "sway"}, {"samplers", samplers}, {"channels", channels}}};
-    document["buffers"].push_back({{"byteLength", binary.bytes.size()}});
+    document["buffers"].push_back({{"byteLength", binary.size()}});
     document["scenes"] = {{{"nodes", sceneNodes}}};
 
-    return writeGlb(document, std::move(binary.bytes));
+    return writeGlb(document, binary.take());
 }
 
 }  // namespace encore::scene

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstring>
 #include <random>
 #include <string>
 
@@ -186,59 +185,15 @@ glm::vec3 paletteColor(std::uint32_t index, std::uint32_t count) {
     return 0.1f + 0.8f * rgb;
 }
 
-class BinaryWriter {
-  public:
-    // Appends data as a bufferView (+ accessor) and returns the accessor index.
-    template <typename T>
-    std::size_t addAccessor(json& document, const std::vector<T>& values, int componentType,
-                            const char* type, int target, bool withBounds) {
-        while (mBytes.size() % 4 != 0) {
-            mBytes.push_back(0);
-        }
-        const std::size_t offset = mBytes.size();
-        mBytes.resize(offset + values.size() * sizeof(T));
-        std::memcpy(mBytes.data() + offset, values.data(), values.size() * sizeof(T));
-        document["bufferViews"].push_back({{"buffer", 0},
-                                           {"byteOffset", offset},
-                                           {"byteLength", values.size() * sizeof(T)},
-                                           {"target", target}});
-        json accessor = {{"bufferView", document["bufferViews"].size() - 1},
-                         {"componentType", componentType},
-                         {"count", values.size()},
-                         {"type", type}};
-        if constexpr (std::is_same_v<T, glm::vec3>) {
-            if (withBounds) {
-                glm::vec3 low(INFINITY), high(-INFINITY);
-                for (const auto& v : values) {
-                    low = glm::min(low, v);
-                    high = glm::max(high, v);
-                }
-                accessor["min"] = {low.x, low.y, low.z};
-                accessor["max"] = {high.x, high.y, high.z};
-            }
-        }
-        document["accessors"].push_back(accessor);
-        return document["accessors"].size() - 1;
+// [min, max] of `values`, for a POSITION accessor.
+json boundsOf(const std::vector<glm::vec3>& values) {
+    glm::vec3 low(INFINITY), high(-INFINITY);
+    for (const auto& v : values) {
+        low = glm::min(low, v);
+        high = glm::max(high, v);
     }
-
-    // Appends an encoded image as a bufferView and returns the image index.
-    std::size_t addImage(json& document, const std::vector<std::uint8_t>& png) {
-        while (mBytes.size() % 4 != 0) {
-            mBytes.push_back(0);
-        }
-        const std::size_t offset = mBytes.size();
-        mBytes.insert(mBytes.end(), png.begin(), png.end());
-        document["bufferViews"].push_back(
-            {{"buffer", 0}, {"byteOffset", offset}, {"byteLength", png.size()}});
-        document["images"].push_back(
-            {{"bufferView", document["bufferViews"].size() - 1}, {"mimeType", "image/png"}});
-        return document["images"].size() - 1;
-    }
-    std::vector<std::uint8_t>& bytes() { return mBytes; }
-
-  private:
-    std::vector<std::uint8_t> mBytes;
-};
+    return {{low.x, low.y, low.z}, {high.x, high.y, high.z}};
+}
 
 constexpr std::uint32_t kTextureSize = 64;
 
@@ -306,7 +261,7 @@ Result<std::vector<std::uint8_t>> generateSceneGlb(const GeneratorOptions& optio
                      {"meshes", json::array()},
                      {"materials", json::array()},
                      {"nodes", json::array()}};
-    BinaryWriter binary;
+    GlbBinaryChunk binary;
     if (options.textures) {
         auto checker = image::encodePng(checkerImage());
         auto metallicRoughness = image::encodePng(metallicRoughnessImage());
@@ -317,8 +272,8 @@ Result<std::vector<std::uint8_t>> generateSceneGlb(const GeneratorOptions& optio
             return metallicRoughness.error();
         }
         document["images"] = json::array();
-        binary.addImage(document, *checker);
-        binary.addImage(document, *metallicRoughness);
+        binary.addPng(document, *checker);
+        binary.addPng(document, *metallicRoughness);
         constexpr int kLinear = 9729;
         constexpr int kLinearMipmapLinear = 9987;
         constexpr int kRepeat = 10497;
@@ -361,19 +316,20 @@ Result<std::vector<std::uint8_t>> generateSceneGlb(const GeneratorOptions& optio
         const MeshGeometry mesh = makeMesh(i, options.tessellation);
         json attributes = {
             {"POSITION", binary.addAccessor(document, mesh.positions, kFloat, "VEC3",
-                                            kArrayBuffer, true)},
-            {"NORMAL",
-             binary.addAccessor(document, mesh.normals, kFloat, "VEC3", kArrayBuffer, false)},
-            {"TEXCOORD_0",
-             binary.addAccessor(document, mesh.texcoords, kFloat, "VEC2", kArrayBuffer, false)}};
+                                            mesh.positions.size(), kArrayBuffer,
+                                            boundsOf(mesh.positions))},
+            {"NORMAL", binary.addAccessor(document, mesh.normals, kFloat, "VEC3",
+                                          mesh.normals.size(), kArrayBuffer)},
+            {"TEXCOORD_0", binary.addAccessor(document, mesh.texcoords, kFloat, "VEC2",
+                                              mesh.texcoords.size(), kArrayBuffer)}};
         std::size_t indices;
         if (mesh.positions.size() <= 65536) {
             std::vector<std::uint16_t> narrow(mesh.indices.begin(), mesh.indices.end());
             indices = binary.addAccessor(document, narrow, kUnsignedShort, "SCALAR",
-                                         kElementArrayBuffer, false);
+                                         narrow.size(), kElementArrayBuffer);
         } else {
             indices = binary.addAccessor(document, mesh.indices, kUnsignedInt, "SCALAR",
-                                         kElementArrayBuffer, false);
+                                         mesh.indices.size(), kElementArrayBuffer);
         }
         document["meshes"].push_back(
             {{"name", "mesh " + std::to_string(i)},
@@ -405,10 +361,10 @@ Result<std::vector<std::uint8_t>> generateSceneGlb(const GeneratorOptions& optio
              {"scale", {scale, scale, scale}}});
         rootChildren.push_back(i);
     }
-    document["buffers"].push_back({{"byteLength", binary.bytes().size()}});
+    document["buffers"].push_back({{"byteLength", binary.size()}});
     document["scenes"] = {{{"nodes", rootChildren}}};
 
-    return writeGlb(document, std::move(binary.bytes()));
+    return writeGlb(document, binary.take());
 }
 
 }  // namespace encore::scene
