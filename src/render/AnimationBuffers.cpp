@@ -164,8 +164,10 @@ std::unique_ptr<AnimationBuffers> AnimationBuffers::create(const wgpu::Device& d
     // Per instance slot: joint and weight offsets (kNone where the instance has none).
     const std::vector<std::uint32_t> slots = instanceSlots(scene);
     std::vector<glm::uvec2> offsets(scene.instances.size(), glm::uvec2(kNone));
+    buffers.mInstanceRanges.resize(scene.instances.size());
     for (std::size_t i = 0; i < scene.instances.size(); ++i) {
-        offsets[slots[i]] = glm::uvec2(ranges[i].jointOffset, ranges[i].weightOffset);
+        buffers.mInstanceRanges[i] = glm::uvec2(ranges[i].jointOffset, ranges[i].weightOffset);
+        offsets[slots[i]] = buffers.mInstanceRanges[i];
     }
     constexpr wgpu::BufferUsage kWritable = wgpu::BufferUsage::CopyDst;
     buffers.mInstanceOffsets =
@@ -210,6 +212,10 @@ void AnimationBuffers::addVariantFlags(scene::MeshId mesh, std::size_t primitive
 std::uint32_t AnimationBuffers::drawOffset(std::size_t sceneInstance, std::size_t primitive) const {
     const std::uint32_t first = mFirstDraw[sceneInstance];
     return first == kNone ? 0 : (first + static_cast<std::uint32_t>(primitive)) * kDrawStride;
+}
+
+bool AnimationBuffers::skinnedPrimitive(scene::MeshId mesh, std::size_t primitive) const {
+    return (mPrimitiveFlags[mesh.index()][primitive] & kSkinned) != 0;
 }
 
 void AnimationBuffers::bind(RenderEncoder& encoder, const shaders::ShaderVariantKey& key,

@@ -6,6 +6,7 @@
 
 #include "encore/gpu/BindGroupEntries.h"
 #include "encore/gpu/Upload.h"
+#include "encore/render/AnimationBuffers.h"
 
 namespace encore::render {
 
@@ -14,18 +15,13 @@ namespace {
 constexpr std::uint32_t kWorkgroupSize = 64;          // culling.wgsl's kWorkgroupSize.
 constexpr std::uint32_t kVisibleAlignmentEntries = 64;  // 256 bytes: storage offset alignment.
 
-struct RangeRecord {
-    std::uint32_t firstDraw;
-    std::uint32_t drawCount;
-};
 struct DrawRecord {
     std::uint32_t visibleBase;
     std::uint32_t argumentsOffset;  // In u32 words.
 };
 
-// Every culling buffer is bound whole as storage. The per-draw and per-slot buffers checked are
-// the largest of their kind (20 bytes of indirect arguments per draw, a 16-byte sphere per
-// slot); the instance ranges and each slot's range are smaller.
+// Every culling buffer is bound whole as storage. The per-draw buffer checked is the largest of
+// its kind (20 bytes of indirect arguments per draw).
 Result<void> checkCullingBuffers(const gpu::DeviceLimits& limits, std::size_t drawCount,
                                  std::uint32_t slotCount, std::uint64_t visibleBytes) {
     const std::string draws = std::to_string(drawCount) + " culled draws";
@@ -34,8 +30,8 @@ Result<void> checkCullingBuffers(const gpu::DeviceLimits& limits, std::size_t dr
                                         "The indirect draw arguments of " + draws));
     ENCORE_TRY(gpu::checkStorageBinding(limits, std::uint64_t(drawCount) * sizeof(DrawRecord),
                                         "The culling records of " + draws));
-    ENCORE_TRY(gpu::checkStorageBinding(limits, std::uint64_t(slotCount) * sizeof(Sphere),
-                                        "The bounding spheres of " + slots));
+    ENCORE_TRY(gpu::checkStorageBinding(limits, std::uint64_t(slotCount) * sizeof(SlotBounds),
+                                        "The culling bounds of " + slots));
     ENCORE_TRY(gpu::checkStorageBinding(
         limits, visibleBytes,
         "The visible-instance lists of " + draws + " over " + slots +
@@ -46,11 +42,11 @@ Result<void> checkCullingBuffers(const gpu::DeviceLimits& limits, std::size_t dr
 }  // namespace
 
 Result<GpuCuller> GpuCuller::create(const RenderSetup& setup, const InstanceBuffer& instances,
-                                    std::vector<Sphere> spheres, std::vector<CulledDraw> draws) {
+                                    CullingBounds bounds, std::vector<CulledDraw> draws) {
     GpuCuller culler;
     culler.mDraws = std::move(draws);
-    culler.mSpheres = std::move(spheres);
-    culler.mSlotCount = static_cast<std::uint32_t>(culler.mSpheres.size());
+    culler.mBounds = std::move(bounds);
+    culler.mSlotCount = static_cast<std::uint32_t>(culler.mBounds.slots.size());
     if (culler.mDraws.empty() || culler.mSlotCount == 0) {
         return culler;  // Nothing to cull: encode() does nothing.
     }
@@ -83,34 +79,45 @@ Result<GpuCuller> GpuCuller::create(const RenderSetup& setup, const InstanceBuff
     culler.mVisible = gpu::createBuffer(device, wgpu::BufferUsage::Storage, visibleBytes,
                                         "visible instance lists");
 
-    // Draws grouped by instance range, for the per-instance loop of cullInstances. Range 0 is
-    // empty: slots whose mesh has no culled draw (all its primitives blended) point there.
+    // Each slot lists the culled draws of its instance range, contiguous in `draws`; slots whose
+    // mesh has no culled draw (all its primitives blended) list none.
     std::map<std::uint32_t, std::vector<std::uint32_t>> drawsOfRange;  // By first slot.
     for (std::uint32_t i = 0; i < culler.mDraws.size(); ++i) {
         drawsOfRange[culler.mDraws[i].instances.first].push_back(i);
     }
-    std::vector<RangeRecord> ranges = {{0, 0}};
     std::vector<DrawRecord> drawRecords;
-    std::vector<std::uint32_t> rangeOfSlot(culler.mSlotCount, 0);
+    std::vector<SlotBounds>& slots = culler.mBounds.slots;
     for (const auto& [firstSlot, drawIndices] : drawsOfRange) {
-        const auto rangeIndex = static_cast<std::uint32_t>(ranges.size());
-        ranges.push_back({static_cast<std::uint32_t>(drawRecords.size()),
-                          static_cast<std::uint32_t>(drawIndices.size())});
+        const auto firstDraw = static_cast<std::uint32_t>(drawRecords.size());
         for (std::uint32_t draw : drawIndices) {
             drawRecords.push_back({culler.mVisibleBase[draw], draw * 5});
         }
         const InstanceRange range = culler.mDraws[drawIndices.front()].instances;
-        std::fill(rangeOfSlot.begin() + range.first, rangeOfSlot.begin() + range.first + range.count,
-                  rangeIndex);
+        for (std::uint32_t slot = range.first; slot < range.first + range.count; ++slot) {
+            slots[slot].firstDraw = firstDraw;
+            slots[slot].drawCount = static_cast<std::uint32_t>(drawIndices.size());
+        }
     }
 
     culler.mFrustum = gpu::createBuffer(device, wgpu::BufferUsage::Uniform | wgpu::BufferUsage::CopyDst,
                                         sizeof(glm::vec4) * 6, "frustum planes");
-    culler.mSphereBuffer = gpu::createStorageBuffer(device, culler.mSpheres, "instance bounding spheres",
-                                         wgpu::BufferUsage::CopyDst);
-    const auto rangeOfSlotBuffer = gpu::createStorageBuffer(device, rangeOfSlot, "range of each slot");
-    const auto rangeBuffer = gpu::createStorageBuffer(device, ranges, "instance ranges");
+    const auto slotBuffer = gpu::createStorageBuffer(device, slots, "culling bounds");
+    ENCORE_TRY(gpu::checkStorageBinding(
+        setup.limits, culler.mBounds.shapes.size() * sizeof(glm::vec4),
+        "The joint spheres and morph extents of the culling bounds"));
+    const auto shapeBuffer =
+        gpu::createStorageBuffer(device, culler.mBounds.shapes, "culling joint spheres");
     const auto drawBuffer = gpu::createStorageBuffer(device, drawRecords, "culled draws");
+    // A scene without skins or morph targets binds placeholders its records never index.
+    wgpu::Buffer joints, weights;
+    if (setup.animation) {
+        joints = setup.animation->jointBuffer();
+        weights = setup.animation->weightBuffer();
+    } else {
+        joints = gpu::createBuffer(device, wgpu::BufferUsage::Storage, sizeof(glm::mat4) * 2,
+                                   "no joints");
+        weights = gpu::createBuffer(device, wgpu::BufferUsage::Storage, 16, "no morph weights");
+    }
 
     auto module = setup.shaders->module("culling.wgsl");
     if (!module) {
@@ -130,7 +137,8 @@ Result<GpuCuller> GpuCuller::create(const RenderSetup& setup, const InstanceBuff
         layoutEntry(0, Type::Uniform),         layoutEntry(1, Type::ReadOnlyStorage),
         layoutEntry(2, Type::ReadOnlyStorage), layoutEntry(3, Type::ReadOnlyStorage),
         layoutEntry(4, Type::ReadOnlyStorage), layoutEntry(5, Type::Storage),
-        layoutEntry(6, Type::Storage)};
+        layoutEntry(6, Type::Storage),         layoutEntry(7, Type::ReadOnlyStorage),
+        layoutEntry(8, Type::ReadOnlyStorage)};
     wgpu::BindGroupLayoutDescriptor layoutDescriptor{};
     layoutDescriptor.label = "culling";
     layoutDescriptor.entryCount = std::size(layoutEntries);
@@ -154,12 +162,14 @@ Result<GpuCuller> GpuCuller::create(const RenderSetup& setup, const InstanceBuff
 
     const wgpu::BindGroupEntry cullEntries[] = {
         gpu::bufferEntry(0, culler.mFrustum, 0, sizeof(glm::vec4) * 6),
-        gpu::bufferEntry(1, culler.mSphereBuffer, 0, culler.mSpheres.size() * sizeof(Sphere)),
-        gpu::bufferEntry(2, rangeOfSlotBuffer, 0, rangeOfSlot.size() * 4),
-        gpu::bufferEntry(3, rangeBuffer, 0, ranges.size() * sizeof(RangeRecord)),
+        gpu::bufferEntry(1, slotBuffer, 0, slots.size() * sizeof(SlotBounds)),
+        gpu::bufferEntry(2, instances.buffer(), 0, instances.buffer().GetSize()),
+        gpu::bufferEntry(3, shapeBuffer, 0, shapeBuffer.GetSize()),
         gpu::bufferEntry(4, drawBuffer, 0, drawRecords.size() * sizeof(DrawRecord)),
         gpu::bufferEntry(5, culler.mArguments, 0, arguments.size() * 4),
         gpu::bufferEntry(6, culler.mVisible, 0, culler.mVisible.GetSize()),
+        gpu::bufferEntry(7, joints, 0, joints.GetSize()),
+        gpu::bufferEntry(8, weights, 0, weights.GetSize()),
     };
     wgpu::BindGroupDescriptor cullDescriptor{};
     cullDescriptor.label = "culling";
@@ -201,14 +211,6 @@ void GpuCuller::encode(const wgpu::Queue& queue, const wgpu::CommandEncoder& com
     pass.SetBindGroup(0, mCullBindGroup);
     pass.DispatchWorkgroups((mSlotCount + kWorkgroupSize - 1) / kWorkgroupSize);
     pass.End();
-}
-
-void GpuCuller::updateSphere(const wgpu::Queue& queue, std::uint32_t slot, const Sphere& sphere) {
-    if (slot >= mSpheres.size() || !mSphereBuffer) {
-        return;
-    }
-    mSpheres[slot] = sphere;
-    queue.WriteBuffer(mSphereBuffer, std::uint64_t(slot) * sizeof(Sphere), &sphere, sizeof(sphere));
 }
 
 }  // namespace encore::render

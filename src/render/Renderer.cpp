@@ -202,7 +202,6 @@ Result<void> Renderer::createGpuAnimation() {
     mGpuAnimation = std::move(*created);
     if (mGpuAnimation) {
         mGpuAnimation->select(mContext->queue(), mPlayer->selection());
-        mStrategy->animateInstancesOnGpu(mGpuAnimation->animatedInstances());
     }
     return {};
 }

@@ -1,16 +1,31 @@
 // GPU frustum culling. Every frame, `resetCounts` zeroes the instanceCount of every indirect
-// draw, then `cullInstances` tests each instance's bounding sphere against the frustum and, when
-// visible, appends it to the visible list of every draw of its mesh: atomicAdd on that draw's
-// instanceCount gives the slot. Indirect arguments keep firstInstance 0 (see mesh.wgsl).
+// draw, then `cullInstances` bounds each instance where this frame's transforms put it
+// (render::CullingBounds: a rigid sphere moved by the instance's world matrix, joint spheres
+// moved by the joint matrices, grown by the morph deltas the current weights allow) and, when
+// the hull of those spheres meets the frustum, appends the instance to the visible list of
+// every draw of its mesh: atomicAdd on that draw's instanceCount gives the slot. Indirect
+// arguments keep firstInstance 0 (see mesh.wgsl).
 
 struct Frustum {
     planes: array<vec4f, 6>,  // xyz: inward normal, w: distance; visible when dot >= -radius.
 }
 
-// The draws of one mesh's instance range (regular or mirrored instances of one mesh).
-struct InstanceRange {
-    firstDraw: u32,
+// One instance slot (render::SlotBounds).
+struct SlotBounds {
+    rigidSphere: vec4f,  // Object space; radius < 0: every primitive is skinned.
+    firstJointSphere: u32,
+    jointCount: u32,
+    jointOffset: u32,
+    firstMorphExtent: u32,  // In floats.
+    morphCount: u32,
+    weightOffset: u32,
+    firstDraw: u32,  // The culled draws of the slot's mesh, in `draws`.
     drawCount: u32,
+}
+
+struct Transform {
+    world: mat4x4f,
+    normal: mat4x4f,
 }
 
 // Per draw: where its visible list starts (in entries).
@@ -20,12 +35,14 @@ struct Draw {
 }
 
 @group(0) @binding(0) var<uniform> frustum: Frustum;
-@group(0) @binding(1) var<storage, read> spheres: array<vec4f>;          // Per instance slot.
-@group(0) @binding(2) var<storage, read> rangeOfSlot: array<u32>;        // Per instance slot.
-@group(0) @binding(3) var<storage, read> ranges: array<InstanceRange>;
+@group(0) @binding(1) var<storage, read> slots: array<SlotBounds>;
+@group(0) @binding(2) var<storage, read> instances: array<Transform>;  // Per slot.
+@group(0) @binding(3) var<storage, read> shapes: array<vec4f>;
 @group(0) @binding(4) var<storage, read> draws: array<Draw>;
 @group(0) @binding(5) var<storage, read_write> indirectArguments: array<atomic<u32>>;
 @group(0) @binding(6) var<storage, read_write> visibleInstances: array<u32>;
+@group(0) @binding(7) var<storage, read> joints: array<Transform>;
+@group(0) @binding(8) var<storage, read> morphWeights: array<f32>;
 
 override kWorkgroupSize: u32 = 64;
 
@@ -37,10 +54,47 @@ fn resetCounts(@builtin(global_invocation_id) id: vec3u) {
     atomicStore(&indirectArguments[draws[id.x].argumentsOffset + 1u], 0u);
 }
 
-fn isVisible(sphere: vec4f) -> bool {
+fn largestAxisScale(m: mat4x4f) -> f32 {
+    return sqrt(max(max(dot(m[0].xyz, m[0].xyz), dot(m[1].xyz, m[1].xyz)),
+                    dot(m[2].xyz, m[2].xyz)));
+}
+
+// Per plane, how far inside the farthest sphere so far reaches (negative: all outside).
+struct Reach {
+    planes: array<f32, 6>,
+}
+
+fn extend(reach: ptr<function, Reach>, transform: mat4x4f, sphere: vec4f, growth: f32) {
+    let center = (transform * vec4f(sphere.xyz, 1.0)).xyz;
+    let radius = (sphere.w + growth) * largestAxisScale(transform);
     for (var i = 0u; i < 6u; i++) {
         let plane = frustum.planes[i];
-        if (dot(plane.xyz, sphere.xyz) + plane.w < -sphere.w) {
+        (*reach).planes[i] = max((*reach).planes[i], dot(plane.xyz, center) + plane.w + radius);
+    }
+}
+
+fn isVisible(slot: u32) -> bool {
+    let bounds = slots[slot];
+    var growth = 0.0;
+    for (var t = 0u; t < bounds.morphCount; t++) {
+        let extent = bounds.firstMorphExtent + t;
+        growth += abs(morphWeights[bounds.weightOffset + t]) * shapes[extent / 4u][extent % 4u];
+    }
+    var reach: Reach;
+    for (var i = 0u; i < 6u; i++) {
+        reach.planes[i] = -3.4e38;
+    }
+    if (bounds.rigidSphere.w >= 0.0) {
+        extend(&reach, instances[slot].world, bounds.rigidSphere, growth);
+    }
+    for (var j = 0u; j < bounds.jointCount; j++) {
+        let sphere = shapes[bounds.firstJointSphere + j];
+        if (sphere.w >= 0.0) {
+            extend(&reach, joints[bounds.jointOffset + j].world, sphere, growth);
+        }
+    }
+    for (var i = 0u; i < 6u; i++) {
+        if (reach.planes[i] < 0.0) {
             return false;
         }
     }
@@ -50,12 +104,12 @@ fn isVisible(sphere: vec4f) -> bool {
 @compute @workgroup_size(kWorkgroupSize)
 fn cullInstances(@builtin(global_invocation_id) id: vec3u) {
     let slot = id.x;
-    if (slot >= arrayLength(&rangeOfSlot) || !isVisible(spheres[slot])) {
+    if (slot >= arrayLength(&slots) || !isVisible(slot)) {
         return;
     }
-    let range = ranges[rangeOfSlot[slot]];
-    for (var i = 0u; i < range.drawCount; i++) {
-        let draw = draws[range.firstDraw + i];
+    let bounds = slots[slot];
+    for (var i = 0u; i < bounds.drawCount; i++) {
+        let draw = draws[bounds.firstDraw + i];
         let index = atomicAdd(&indirectArguments[draw.argumentsOffset + 1u], 1u);
         visibleInstances[draw.visibleBase + index] = slot;
     }

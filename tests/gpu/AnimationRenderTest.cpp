@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <optional>
 
 #include <glm/gtc/constants.hpp>
@@ -13,6 +14,8 @@
 #include "GpuTestSupport.h"
 #include "RenderTestSupport.h"
 #include "TestPaths.h"
+#include "encore/render/GpuCuller.h"
+#include "encore/render/InstanceBuffer.h"
 #include "encore/render/Renderer.h"
 
 namespace encore::render {
@@ -192,6 +195,90 @@ TEST(AnimationRenderTest, GpuCullingKeepsSkinnedInstancesWhoseNodeIsOutOfView) {
         ASSERT_EQ(images.size(), 2u);
         EXPECT_TRUE(coveredAt(images[0], {0, 1, 0}));
         EXPECT_TRUE(coveredAt(images[1], {-1, 0, 0}));
+    }
+}
+
+// Three quads cross the view from x = -6 to x = +6 (the front camera sees [-3, 3]) between
+// t = 0 and t = 1, each moved by a different kind of animation: a rigid node's translation
+// (y = 1), a joint its vertices are skinned to (y = 0), and a morph target of +12 whose weight
+// goes from 0 to 1 (y = -1). Meshes 0, 1 and 2 in that order.
+scene::SceneData crossingScene() {
+    test::GltfBuilder builder;
+    const auto rigidMesh = builder.addMesh(quad(builder, {0, 1, 0}));
+    auto skinned = quad(builder, {0, 0, 0});
+    skinned.attributes["JOINTS_0"] =
+        builder.addAccessor<std::uint8_t>(std::vector<std::uint8_t>(16, 0), "VEC4");
+    skinned.attributes["WEIGHTS_0"] = builder.addAccessor<float>(
+        {1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0}, "VEC4");
+    const auto skinnedMesh = builder.addMesh(skinned);
+    const auto morphedMesh = builder.addMesh(quad(builder, {-6, -1, 0}));
+    const auto delta =
+        builder.addPositions({{12, 0, 0}, {12, 0, 0}, {12, 0, 0}, {12, 0, 0}});
+    builder.json()["meshes"][morphedMesh]["primitives"][0]["targets"] = {{{"POSITION", delta}}};
+    builder.json()["meshes"][morphedMesh]["weights"] = {0.0};
+
+    const auto rigid = builder.addNode({.mesh = rigidMesh});
+    const auto skinnedNode = builder.addNode({.mesh = skinnedMesh});
+    const auto joint = builder.addNode({.name = "joint"});
+    builder.json()["nodes"][skinnedNode]["skin"] = 0;
+    builder.json()["skins"] = {{{"joints", {joint}}}};
+    const auto morphed = builder.addNode({.mesh = morphedMesh});
+    addAnimation(builder, rigid, "translation", {-6, 0, 0, 6, 0, 0}, "VEC3");
+    addAnimation(builder, joint, "translation", {-6, 0, 0, 6, 0, 0}, "VEC3");
+    addAnimation(builder, morphed, "weights", {0.0f, 1.0f}, "SCALAR");
+    builder.addScene({rigid, skinnedNode, joint, morphed});
+    return load(builder, "crossing.glb");
+}
+
+// GPU culling follows animated geometry across the frustum edge, whether the CPU or the GPU
+// evaluates the animation: out of view, the rigid and skinned quads are culled; crossing the
+// edge or inside, every quad is drawn, and each frame equals `materials`' frame. The morphed
+// quad's bounds grow with its weight (|weight| times the target's largest delta), so it stays
+// drawn once its weight is large, out of view or not: conservative, never wrong.
+TEST(AnimationRenderTest, GpuCullingFollowsAnimationAcrossTheFrustumEdge) {
+    ENCORE_REQUIRE_VULKAN(context);
+    const auto scene = crossingScene();
+    ASSERT_EQ(scene.meshes.size(), 3u);
+    const std::vector<double> times = {0.0, 0.25, 0.5, 0.75, 1.0};
+    // Per time, per mesh (rigid, skinned, morphed): the expected visible instance count.
+    const std::vector<std::vector<std::uint32_t>> expected = {
+        {0, 0, 0}, {1, 1, 1}, {1, 1, 1}, {1, 1, 1}, {0, 0, 1}};
+    const std::vector<std::uint32_t> slots = instanceSlots(scene);
+    for (AnimationEvaluation evaluation : {AnimationEvaluation::Cpu, AnimationEvaluation::Gpu}) {
+        SCOPED_TRACE(evaluation == AnimationEvaluation::Cpu ? "CPU evaluation" : "GPU evaluation");
+        RendererOptions options = test::pixelTestOptions(kSize, kSize);
+        options.animation = evaluation;
+        const auto reference = renderAt(scene, StrategyKind::Materials, times);
+        for (StrategyKind kind : {StrategyKind::GpuCulling, StrategyKind::GpuCullingBundles}) {
+            SCOPED_TRACE(std::string(strategyName(kind)));
+            auto renderer = Renderer::create(*context, options);
+            ASSERT_TRUE(renderer.ok());
+            ASSERT_TRUE(renderer->prepare(scene, kind).ok());
+            std::uint64_t recorded = 0;
+            for (std::size_t i = 0; i < times.size(); ++i) {
+                SCOPED_TRACE("t = " + std::to_string(times[i]));
+                ASSERT_TRUE(renderer->setAnimationTime(times[i]).ok());
+                renderer->renderFrame(frontCamera());
+                auto image = renderer->readImage();
+                ASSERT_TRUE(image.ok()) << image.error().message;
+                EXPECT_EQ(test::differingPixels(*image, reference[i], 0), 0u);
+                const GpuCuller& culler = *renderer->strategy()->culler();
+                const auto counts = test::culledInstanceCounts(*context, culler);
+                std::vector<std::uint32_t> visibleOfMesh(3, 0);
+                for (std::size_t draw = 0; draw < counts.size(); ++draw) {
+                    const auto first = culler.draws()[draw].instances.first;
+                    const auto instance = static_cast<std::size_t>(
+                        std::find(slots.begin(), slots.end(), first) - slots.begin());
+                    visibleOfMesh[scene.instances[instance].mesh.index()] += counts[draw];
+                }
+                EXPECT_EQ(visibleOfMesh, expected[i]);
+                if (i == 0) {
+                    recorded = renderer->strategy()->bundlesRecorded();
+                }
+            }
+            EXPECT_EQ(renderer->strategy()->bundlesRecorded(), recorded);
+            EXPECT_TRUE(context->checkNoErrors("animated culling").ok());
+        }
     }
 }
 

@@ -5,7 +5,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <cstring>
 
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_access.hpp>
@@ -13,7 +12,6 @@
 
 #include "GpuTestSupport.h"
 #include "RenderTestSupport.h"
-#include "encore/gpu/Readback.h"
 #include "encore/render/GpuCuller.h"
 #include "encore/render/Renderer.h"
 #include "encore/scene/SceneGenerator.h"
@@ -42,23 +40,15 @@ Camera partialCamera() {
                           0.1f, 100.0f);
 }
 
-// The instance counts the GPU wrote, per culled draw.
-std::vector<std::uint32_t> readInstanceCounts(gpu::Context& context, const GpuCuller& culler) {
-    auto bytes = gpu::readBuffer(context, culler.indirectArguments(), 0,
-                                 culler.draws().size() * GpuCuller::kArgumentsStride);
-    EXPECT_TRUE(bytes.ok()) << bytes.error().message;
-    std::vector<std::uint32_t> counts;
-    for (std::size_t draw = 0; draw < culler.draws().size() && bytes.ok(); ++draw) {
-        std::uint32_t words[5];
-        std::memcpy(words, bytes->data() + draw * GpuCuller::kArgumentsStride, sizeof(words));
-        EXPECT_EQ(words[4], 0u) << "firstInstance must stay 0 (draw " << draw << ")";
-        counts.push_back(words[1]);
+// An independent CPU frustum test of the instances' spheres (planes from the matrix rows), with
+// `worlds` per scene instance.
+std::vector<std::uint32_t> cpuInstanceCounts(const GpuCuller& culler, const Camera& camera,
+                                             const scene::SceneData& scene) {
+    const std::vector<std::uint32_t> slots = instanceSlots(scene);
+    std::vector<glm::mat4> worldOfSlot(slots.size());
+    for (std::size_t instance = 0; instance < slots.size(); ++instance) {
+        worldOfSlot[slots[instance]] = scene.instances[instance].world;
     }
-    return counts;
-}
-
-// An independent CPU frustum test of the culler's spheres (planes from the matrix rows).
-std::vector<std::uint32_t> cpuInstanceCounts(const GpuCuller& culler, const Camera& camera) {
     const glm::mat4 m = camera.projection * camera.view;
     std::vector<glm::vec4> planes;
     for (int axis = 0; axis < 2; ++axis) {
@@ -73,7 +63,9 @@ std::vector<std::uint32_t> cpuInstanceCounts(const GpuCuller& culler, const Came
         std::uint32_t visible = 0;
         for (std::uint32_t slot = draw.instances.first;
              slot < draw.instances.first + draw.instances.count; ++slot) {
-            const Sphere& sphere = culler.spheres()[slot];
+            const auto spheres = culler.bounds().worldSpheres(slot, worldOfSlot[slot], {}, {});
+            EXPECT_EQ(spheres.size(), 1u);
+            const Sphere& sphere = spheres.front();
             bool inside = true;
             for (const glm::vec4& plane : planes) {
                 const float distance =
@@ -112,8 +104,8 @@ TEST_P(GpuCullingTest, VisibleCountsEqualACpuFrustumTestAndTheImageEqualsUnculle
 
     const GpuCuller* culler = renderer->strategy()->culler();
     ASSERT_NE(culler, nullptr);
-    const auto gpuCounts = readInstanceCounts(*context, *culler);
-    const auto cpuCounts = cpuInstanceCounts(*culler, camera);
+    const auto gpuCounts = test::culledInstanceCounts(*context, *culler);
+    const auto cpuCounts = cpuInstanceCounts(*culler, camera, scene);
     EXPECT_EQ(gpuCounts, cpuCounts);
     std::uint64_t visible = 0;
     for (auto count : gpuCounts) {
@@ -134,7 +126,7 @@ TEST_P(GpuCullingTest, WholeSceneInViewDrawsEverything) {
     const auto culled = render(*renderer, scene, GetParam(), camera);
     EXPECT_EQ(test::differingPixels(unculled, culled), 0u);
     std::uint64_t visible = 0;
-    for (auto count : readInstanceCounts(*context, *renderer->strategy()->culler())) {
+    for (auto count : test::culledInstanceCounts(*context, *renderer->strategy()->culler())) {
         visible += count;
     }
     EXPECT_EQ(visible, scene.instances.size());
@@ -149,7 +141,7 @@ TEST_P(GpuCullingTest, NothingVisibleDrawsNothingAndStaysValid) {
                                        glm::radians(40.0f), 1.0f, 0.1f, 100.0f);
     const auto image = render(*renderer, scene, GetParam(), away);
     EXPECT_EQ(test::coveredFraction(image, test::pixelAt(image, 0, 0)), 0.0);
-    for (auto count : readInstanceCounts(*context, *renderer->strategy()->culler())) {
+    for (auto count : test::culledInstanceCounts(*context, *renderer->strategy()->culler())) {
         EXPECT_EQ(count, 0u);
     }
     EXPECT_TRUE(context->checkNoErrors("nothing visible").ok());
@@ -172,7 +164,7 @@ TEST_P(GpuCullingTest, MovedInstancesAreCulledWhereTheyAreNow) {
     renderer->renderFrame(camera);
     ASSERT_TRUE(renderer->readImage().ok());
     std::uint64_t visible = 0;
-    for (auto count : readInstanceCounts(*context, *renderer->strategy()->culler())) {
+    for (auto count : test::culledInstanceCounts(*context, *renderer->strategy()->culler())) {
         visible += count;
     }
     EXPECT_EQ(visible, scene.instances.size() - 10);

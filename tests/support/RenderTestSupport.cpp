@@ -1,8 +1,12 @@
 #include "RenderTestSupport.h"
 
 #include <cstdio>
+#include <cstring>
+
+#include <gtest/gtest.h>
 
 #include "GpuTestSupport.h"
+#include "encore/gpu/Readback.h"
 #include "encore/image/HdrImage.h"
 
 namespace encore::test {
@@ -46,6 +50,22 @@ render::RendererOptions pixelTestOptions(std::uint32_t width, std::uint32_t heig
     options.toneMapping.toneMapping = render::ToneMapping::None;
     options.lighting.debugChannel = channel;
     return options;
+}
+
+std::vector<std::uint32_t> culledInstanceCounts(gpu::Context& context,
+                                                const render::GpuCuller& culler) {
+    using render::GpuCuller;
+    auto bytes = gpu::readBuffer(context, culler.indirectArguments(), 0,
+                                 culler.draws().size() * GpuCuller::kArgumentsStride);
+    EXPECT_TRUE(bytes.ok()) << bytes.error().message;
+    std::vector<std::uint32_t> counts;
+    for (std::size_t draw = 0; draw < culler.draws().size() && bytes.ok(); ++draw) {
+        std::uint32_t words[5];
+        std::memcpy(words, bytes->data() + draw * GpuCuller::kArgumentsStride, sizeof(words));
+        EXPECT_EQ(words[4], 0u) << "firstInstance must stay 0 (draw " << draw << ")";
+        counts.push_back(words[1]);
+    }
+    return counts;
 }
 
 }  // namespace encore::test

@@ -5,11 +5,13 @@
 #include <cstdint>
 #include <memory>
 #include <utility>
+#include <vector>
 
 #include <glm/glm.hpp>
 #include <glm/gtc/constants.hpp>
 
 #include "encore/render/Camera.h"
+#include "encore/render/GpuCuller.h"
 #include "encore/render/Renderer.h"
 
 namespace encore::test {
@@ -47,5 +49,10 @@ render::RendererOptions pixelTestOptions(std::uint32_t width, std::uint32_t heig
                                          std::uint32_t samples = 1,
                                          render::DebugChannel channel =
                                              render::DebugChannel::BaseColor);
+
+// The instance counts GPU culling wrote, per culled draw (read back; a failed read or a non-zero
+// firstInstance fails the test).
+std::vector<std::uint32_t> culledInstanceCounts(gpu::Context& context,
+                                                const render::GpuCuller& culler);
 
 }  // namespace encore::test

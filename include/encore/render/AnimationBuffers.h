@@ -66,6 +66,11 @@ class AnimationBuffers {
     const wgpu::Buffer& jointBuffer() const { return mJoints; }
     const wgpu::Buffer& weightBuffer() const { return mWeights; }
     std::uint32_t drawOffset(std::size_t sceneInstance, std::size_t primitive) const;
+    // True when `primitive` of `mesh` is drawn skinned by the instances that have a skin.
+    bool skinnedPrimitive(scene::MeshId mesh, std::size_t primitive) const;
+    // The scene instance's first joint in jointBuffer() and first weight in weightBuffer()
+    // (scene::InstanceAnimationRange::kNone where it has no skin or no morph targets).
+    glm::uvec2 instanceOffsets(std::size_t sceneInstance) const { return mInstanceRanges[sceneInstance]; }
     std::uint32_t skinnedPrimitiveCount() const { return mSkinnedPrimitives; }
     std::uint32_t morphedPrimitiveCount() const { return mMorphedPrimitives; }
 
@@ -75,6 +80,7 @@ class AnimationBuffers {
     // [mesh][primitive]: 1 skinned, 2 morphed, 4 eight joints per vertex.
     std::vector<std::vector<std::uint8_t>> mPrimitiveFlags;
     std::vector<std::uint32_t> mFirstDraw;                   // Per scene instance.
+    std::vector<glm::uvec2> mInstanceRanges;                 // Per scene instance.
     std::vector<TransformUniform> mJointScratch;
     std::uint32_t mSkinnedPrimitives = 0;
     std::uint32_t mMorphedPrimitives = 0;

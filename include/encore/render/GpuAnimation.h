@@ -90,8 +90,6 @@ class GpuAnimation {
     void encode(const wgpu::CommandEncoder& commands) const;
 
     const GpuAnimationStats& stats() const { return mStats; }
-    // The scene instances whose transforms the passes write (indices, ascending).
-    std::span<const std::uint32_t> animatedInstances() const { return mInstances; }
     // Node local and world matrices (mat4x4f per node, CopySrc), for tests and tools.
     const wgpu::Buffer& locals() const { return mLocals; }
     const wgpu::Buffer& worlds() const { return mWorlds; }

@@ -6,9 +6,12 @@
 //    validates indirect draws per buffer); firstInstance is always 0;
 //  - one visible-instance buffer holds N lists, each starting at a 256-byte aligned entry so a
 //    dynamic offset of the group 1 bind group selects it per draw;
-//  - each frame a compute pass zeroes every instanceCount, tests every instance's bounding
-//    sphere against the frustum and appends visible instances to the lists of its mesh's draws.
-// The draw count never changes; only instance counts do, so recorded bundles stay valid.
+//  - each frame a compute pass zeroes every instanceCount, bounds every instance where this
+//    frame's transforms put it (CullingBounds: world matrices from the InstanceBuffer, joint
+//    matrices and morph weights from AnimationBuffers), tests that against the frustum and
+//    appends visible instances to the lists of its mesh's draws.
+// The draw count never changes; only instance counts do, so recorded bundles stay valid, and
+// nothing on the CPU follows moved or animated instances.
 
 #include <webgpu/webgpu_cpp.h>
 
@@ -17,6 +20,7 @@
 
 #include "encore/core/Result.h"
 #include "encore/render/Camera.h"
+#include "encore/render/CullingBounds.h"
 #include "encore/render/Frustum.h"
 #include "encore/render/InstanceBuffer.h"
 #include "encore/render/Strategy.h"
@@ -34,19 +38,17 @@ class GpuCuller {
     static constexpr std::uint64_t kArgumentsStride = 20;  // Five u32: the indexed layout.
 
     GpuCuller() = default;
-    // `spheres` holds one world-space bounding sphere per instance slot.
+    // `bounds` has one record per instance slot; setup.animation (when not null) supplies the
+    // joint matrices and morph weights they refer to.
     static Result<GpuCuller> create(const RenderSetup& setup, const InstanceBuffer& instances,
-                                    std::vector<Sphere> spheres, std::vector<CulledDraw> draws);
+                                    CullingBounds bounds, std::vector<CulledDraw> draws);
 
     // Writes the camera's frustum and records the reset and cull dispatches.
     void encode(const wgpu::Queue& queue, const wgpu::CommandEncoder& commands,
                 const Camera& camera, gpu::GpuTimer* timer = nullptr) const;
 
-    // A moved instance needs its new sphere.
-    void updateSphere(const wgpu::Queue& queue, std::uint32_t slot, const Sphere& sphere);
-
     const std::vector<CulledDraw>& draws() const { return mDraws; }
-    const std::vector<Sphere>& spheres() const { return mSpheres; }
+    const CullingBounds& bounds() const { return mBounds; }
     const wgpu::Buffer& indirectArguments() const { return mArguments; }
     std::uint64_t argumentsOffset(std::size_t draw) const { return draw * kArgumentsStride; }
     // Group 1 for draw `draw`: bind with dynamicOffset(draw).
@@ -55,10 +57,9 @@ class GpuCuller {
 
   private:
     std::vector<CulledDraw> mDraws;
-    std::vector<Sphere> mSpheres;
+    CullingBounds mBounds;
     std::vector<std::uint32_t> mVisibleBase;  // Per draw, in entries.
     wgpu::Buffer mFrustum;
-    wgpu::Buffer mSphereBuffer;
     wgpu::Buffer mArguments;
     wgpu::Buffer mVisible;
     wgpu::BindGroup mDrawBindGroup;

@@ -112,12 +112,6 @@ class Strategy {
     // Where the strategy keeps instance transforms, for GPU-evaluated animation (GpuAnimation),
     // which writes the animated ones there instead of updateInstance.
     virtual InstanceTransformTargets instanceTransformTargets() const = 0;
-    // The instances (indices into SceneData::instances) whose transforms the GPU animates from
-    // now on, unknown to the CPU: GPU culling stops culling them (a sphere that passes every
-    // plane), as it does for skinned instances.
-    virtual void animateInstancesOnGpu(std::span<const std::uint32_t> instances) {
-        (void)instances;
-    }
     // Strategies without materials ignore material changes (they do not draw them).
     virtual Result<void> updateMaterial(scene::MaterialId material, const scene::Material& value) {
         (void)material;

@@ -5,27 +5,6 @@
 
 namespace encore::render {
 
-namespace {
-
-// Skinned and morphed instances are never culled: their geometry moves away from the mesh's
-// bounds (joints, deltas) in ways the world matrix does not describe. A sphere of this radius
-// around the origin passes every frustum plane test.
-constexpr Sphere kUnbounded{0.0f, 0.0f, 0.0f, 1e30f};
-
-bool deformed(const scene::SceneData& scene, const scene::Instance& instance) {
-    if (scene.nodes[instance.node.index()].skin.has_value()) {
-        return true;
-    }
-    for (const scene::Primitive& primitive : scene.meshes[instance.mesh.index()].primitives) {
-        if (!primitive.targets.empty()) {
-            return true;
-        }
-    }
-    return false;
-}
-
-}  // namespace
-
 Result<void> GpuCullingStrategy::prepare(const RenderSetup& setup, const scene::SceneData& scene) {
     mBundles = BundledFrame();
     mCulled.clear();
@@ -85,20 +64,12 @@ Result<void> GpuCullingStrategy::groupDraws() {
         return {};
     }
 
-    mMeshBounds.assign(scene.meshes.size(), {});
-    for (std::size_t mesh = 0; mesh < scene.meshes.size(); ++mesh) {
-        for (const scene::Primitive& primitive : scene.meshes[mesh].primitives) {
-            mMeshBounds[mesh].extend(primitive.bounds);
-        }
-    }
-    std::vector<Sphere> spheres(mInstances.size());
+    std::vector<std::size_t> instanceAt(mInstances.size());
     for (std::uint32_t slot = 0; slot < mInstances.size(); ++slot) {
-        const scene::Instance& instance = scene.instances[mInstances.instanceAt(slot)];
-        spheres[slot] = deformed(scene, instance)
-                            ? kUnbounded
-                            : worldSphere(mMeshBounds[instance.mesh.index()], instance.world);
+        instanceAt[slot] = mInstances.instanceAt(slot);
     }
-    auto culler = GpuCuller::create(setup, mInstances, std::move(spheres), std::move(draws));
+    CullingBounds bounds = CullingBounds::build(scene, instanceAt, setup.animation);
+    auto culler = GpuCuller::create(setup, mInstances, std::move(bounds), std::move(draws));
     if (!culler) {
         return culler.error();
     }
@@ -155,22 +126,6 @@ void GpuCullingStrategy::encode(RenderEncoder& encoder, const FrameState& frame)
     if (!mBlended.empty()) {
         setSharedBindGroups(encoder);  // Blended pipelines use the plain instance layout.
         encodeBlended(encoder, blendOrder(frame.camera.position));
-    }
-}
-
-Result<void> GpuCullingStrategy::updateInstance(std::size_t instance, const glm::mat4& world) {
-    ENCORE_TRY(MaterialsStrategy::updateInstance(instance, world));
-    const scene::Instance& placed = mScene->instances[instance];
-    mCuller.updateSphere(mQueue, mInstances.slotOf(instance),
-                         deformed(*mScene, placed)
-                             ? kUnbounded
-                             : worldSphere(mMeshBounds[placed.mesh.index()], world));
-    return {};
-}
-
-void GpuCullingStrategy::animateInstancesOnGpu(std::span<const std::uint32_t> instances) {
-    for (const std::uint32_t instance : instances) {
-        mCuller.updateSphere(mQueue, mInstances.slotOf(instance), kUnbounded);
     }
 }
 

@@ -6,8 +6,8 @@
 
 namespace encore::render {
 
-// The `materials` frame with GPU frustum culling: a compute pass tests every instance each
-// frame and writes the instance counts of one indirect draw per (primitive, instance range) and
+// The `materials` frame with GPU frustum culling: a compute pass bounds every instance where
+// this frame's transforms, joints and morph weights put it, tests it each frame and writes the instance counts of one indirect draw per (primitive, instance range) and
 // their visible-instance lists. Recorded directly each frame, or, with bundles, once into a
 // render bundle whose draw sequence never changes (only the GPU-written counts do). Blended
 // geometry is drawn as in `materials`, back to front, unculled.
@@ -21,8 +21,6 @@ class GpuCullingStrategy final : public MaterialsStrategy {
     Result<void> prepare(const RenderSetup& setup, const scene::SceneData& scene) override;
     void beforePass(const wgpu::CommandEncoder& commands, const FrameState& frame) override;
     void encode(RenderEncoder& encoder, const FrameState& frame) const override;
-    Result<void> updateInstance(std::size_t instance, const glm::mat4& world) override;
-    void animateInstancesOnGpu(std::span<const std::uint32_t> instances) override;
     DrawCounters bundleContents() const override { return mBundles.contents(); }
     std::uint64_t bundlesRecorded() const override { return mBundles.recorded(); }
     const GpuCuller* culler() const override { return &mCuller; }
@@ -50,7 +48,6 @@ class GpuCullingStrategy final : public MaterialsStrategy {
 
     bool mUseBundles;
     bool mCullerCreated = false;
-    std::vector<scene::Bounds> mMeshBounds;
     std::vector<CulledPipeline> mCulled;
     GpuCuller mCuller;
     BundledFrame mBundles;
