@@ -404,7 +404,7 @@ Result<void> Viewer::State::handleKey(int key, int modifiers) {
             if (renderer) {
                 frozenCulling = !frozenCulling;
                 renderer->setCullingCamera(frozenCulling ? std::optional(camera()) : std::nullopt);
-                show(frozenCulling ? "culling frustum frozen" : "culling follows the camera");
+                show(frozenCulling ? "" : "culling follows the camera again");
             }
             break;
         case GLFW_KEY_SPACE:
