@@ -8,9 +8,10 @@
 set -euo pipefail
 
 # clang and libclang-rt-14-dev (libFuzzer, sanitizer runtimes) build the fuzz targets.
+# libglfw3-dev opens `encore view`'s window; xvfb and xauth (xvfb-run) give its tests a display.
 bookworm_packages=(g++ make pkg-config libglm-dev libstb-dev libcli11-dev libgtest-dev
                    nlohmann-json3-dev libdraco-dev libmeshoptimizer-dev
-                   librsvg2-bin clang libclang-rt-14-dev)
+                   librsvg2-bin clang libclang-rt-14-dev libglfw3-dev xvfb xauth)
 # Dawn's CMake package declares C++ module file sets, which need CMake >= 3.28.
 backports_packages=(mesa-vulkan-drivers cmake)
 sid_packages=(libwebgpu-dawn-dev)

@@ -22,6 +22,7 @@ enum ExitCode : int {
     kExitNoAdapter = 3,   // No usable (Vulkan) GPU adapter.
     kExitGpuError = 4,    // WebGPU validation error or device loss.
     kExitOutOfMemory = 5, // The GPU ran out of memory (a smaller scene or target may fit).
+    kExitNoDisplay = 6,   // encore view: no display to open a window on.
 };
 
 struct GlobalOptions {
@@ -51,6 +52,7 @@ void addStatsCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
 void addBenchCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
 void addPlotCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
 void addCompareCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
+void addViewCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
 
 // Writes the scaling-curve SVG of a benchmark report; returns an exit code.
 int writePlot(const nlohmann::json& report, const std::string& path);

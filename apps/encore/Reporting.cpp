@@ -17,6 +17,8 @@ int reportError(const Error& error) {
             return kExitOutOfMemory;
         case ErrorCode::InvalidArgument:
             return kExitUsage;
+        case ErrorCode::NoDisplay:
+            return kExitNoDisplay;
         default:
             return kExitFailure;
     }

@@ -26,6 +26,8 @@ std::string_view errorCodeName(ErrorCode code) {
             return "out of GPU memory";
         case ErrorCode::IoError:
             return "I/O error";
+        case ErrorCode::NoDisplay:
+            return "no display";
     }
     return "unknown error";
 }

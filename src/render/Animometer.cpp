@@ -163,7 +163,8 @@ Result<AnimometerScene> AnimometerScene::create(gpu::Context& context,
     AnimometerScene scene;
     scene.mContext = &context;
     scene.mOptions = options;
-    auto target = RenderTarget::create(device, {options.width, options.height, 1, false});
+    auto target = RenderTarget::create(
+        device, {options.width, options.height, 1, false, options.presentable});
     if (!target) {
         return target.error().withContext("Creating the animometer");
     }
@@ -293,6 +294,20 @@ FrameTiming AnimometerScene::renderFrame(float timeSeconds, gpu::GpuTimer* timer
         timing.gpuMilliseconds = timer->read(*mContext);
     }
     return timing;
+}
+
+Result<void> AnimometerScene::resize(std::uint32_t width, std::uint32_t height) {
+    RenderTargetOptions options = mTarget.options();
+    options.width = width;
+    options.height = height;
+    auto target = RenderTarget::create(mContext->device(), options);
+    if (!target) {
+        return target.error();
+    }
+    mTarget = std::move(*target);
+    mOptions.width = width;
+    mOptions.height = height;
+    return {};
 }
 
 Result<image::ImageRgba8> AnimometerScene::readImage() {

@@ -30,12 +30,26 @@ Result<RenderTarget> RenderTarget::create(const wgpu::Device& device,
     output.size = {options.width, options.height, 1};
     output.format = kColorFormat;
     output.usage = wgpu::TextureUsage::RenderAttachment | wgpu::TextureUsage::CopySrc;
+    constexpr wgpu::TextureFormat kBytesFormat = wgpu::TextureFormat::RGBA8Unorm;
+    if (options.presentable) {
+        output.usage |= wgpu::TextureUsage::TextureBinding;
+        output.viewFormatCount = 1;
+        output.viewFormats = &kBytesFormat;
+    }
     target.mOutput = device.CreateTexture(&output);
     target.mOutputView = target.mOutput.CreateView();
+    if (options.presentable) {
+        wgpu::TextureViewDescriptor bytes{};
+        bytes.label = "render target output bytes";
+        bytes.format = kBytesFormat;
+        target.mOutputBytesView = target.mOutput.CreateView(&bytes);
+    }
     if (options.hdr) {
         wgpu::TextureDescriptor scene = output;
         scene.label = "render target scene colour (HDR)";
         scene.format = kHdrFormat;
+        scene.viewFormatCount = 0;
+        scene.viewFormats = nullptr;
         scene.usage = wgpu::TextureUsage::RenderAttachment | wgpu::TextureUsage::TextureBinding |
                       wgpu::TextureUsage::CopySrc;
         target.mScene = device.CreateTexture(&scene);

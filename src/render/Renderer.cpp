@@ -124,7 +124,7 @@ Result<void> Renderer::recoverFromDeviceLoss() {
     if (!mScene) {
         return {};
     }
-    ENCORE_TRY(prepare(*mScene, mKind));
+    ENCORE_TRY(prepare(*mScene, mKind, mBundle));
     ENCORE_TRY(restorePlayback(playing));
     if (animationTime) {
         ENCORE_TRY(setAnimationTime(*animationTime));
@@ -132,9 +132,9 @@ Result<void> Renderer::recoverFromDeviceLoss() {
     return {};
 }
 
-Result<void> Renderer::prepare(const scene::SceneData& scene, StrategyKind kind) {
+Result<void> Renderer::prepare(const scene::SceneData& scene, StrategyKind kind, bool bundle) {
     const std::string what = "Preparing '" + scene.sourcePath.string() + "' for strategy " +
-                             std::string(strategyName(kind));
+                             std::string(strategyName(kind)) + (bundle ? " (bundled)" : "");
     if (auto fits = checkSceneWithinLimits(mSetup->limits, scene, kind); !fits) {
         return fits.error().withContext(what);
     }
@@ -160,6 +160,7 @@ Result<void> Renderer::prepare(const scene::SceneData& scene, StrategyKind kind)
     mSetup->mappingBudget = mContext->mappingBudget();  // What the previous scene left in use.
     mScene = &scene;
     mKind = kind;
+    mBundle = bundle;
     mSetup->animation = nullptr;
     mAnimation.reset();
     mPlayer = std::make_unique<scene::AnimationPlayer>(scene);
@@ -168,7 +169,7 @@ Result<void> Renderer::prepare(const scene::SceneData& scene, StrategyKind kind)
     mAnimation = AnimationBuffers::create(mContext->device(), mContext->queue(), *mLayouts, scene,
                                           *mPlayer);
     mSetup->animation = mAnimation.get();
-    auto strategy = createStrategy(kind);
+    auto strategy = createStrategy(kind, bundle);
     gpu::OutOfMemoryScope outOfMemory(*mContext);
     auto prepared = strategy->prepare(*mSetup, scene);
     ENCORE_TRY(outOfMemory.finish(what));
@@ -268,7 +269,7 @@ FrameResult Renderer::renderPasses(std::span<const Camera> cameras, float timeSe
     } else {
         mFrame->update(mContext->queue(), cameras[0], timeSeconds);
     }
-    const FrameState state{cameras[0], timeSeconds, mTimer};
+    const FrameState state{cameras[0], timeSeconds, mTimer, mCullingCamera};
 
     const auto encodeStart = std::chrono::steady_clock::now();
     wgpu::CommandEncoder commandEncoder = mContext->device().CreateCommandEncoder();
@@ -314,7 +315,8 @@ FrameResult Renderer::renderPasses(std::span<const Camera> cameras, float timeSe
         if (mStrategy) {
             RenderEncoder encoder(pass, result.counters);
             encoder.setTrace(trace);
-            mStrategy->encode(encoder, FrameState{cameras[view], timeSeconds, mTimer});
+            mStrategy->encode(encoder,
+                              FrameState{cameras[view], timeSeconds, mTimer, mCullingCamera});
         }
         pass.End();
     }
@@ -337,6 +339,24 @@ FrameResult Renderer::renderPasses(std::span<const Camera> cameras, float timeSe
         result.gpuMilliseconds = mTimer->read(*mContext);
     }
     return result;
+}
+
+Result<void> Renderer::resize(std::uint32_t width, std::uint32_t height) {
+    RenderTargetOptions options = mTarget.options();
+    options.width = width;
+    options.height = height;
+    auto target = RenderTarget::create(mContext->device(), options);
+    if (!target) {
+        return target.error();
+    }
+    mTarget = std::move(*target);
+    mOptions.target.width = width;
+    mOptions.target.height = height;
+    if (mToneMapper) {
+        mToneMapper->bindTarget(mContext->device(), mTarget);
+    }
+    return mContext->checkNoErrors("Resizing the render target to " + std::to_string(width) +
+                                   "x" + std::to_string(height));
 }
 
 Result<void> Renderer::updateInstance(std::size_t instance, const glm::mat4& world) {

@@ -3,6 +3,7 @@
 #include <array>
 #include <string>
 
+#include "strategies/BundledStrategy.h"
 #include "strategies/BundlesStrategy.h"
 #include "strategies/GpuCullingStrategy.h"
 #include "strategies/InstancingStrategy.h"
@@ -66,7 +67,41 @@ Result<void> checkInstanceIndex(std::size_t instance, std::size_t instanceCount)
     return {};
 }
 
-std::unique_ptr<Strategy> createStrategy(StrategyKind kind) {
+std::optional<StrategyKind> bundledKind(StrategyKind kind) {
+    switch (kind) {
+        case StrategyKind::Materials:
+        case StrategyKind::Bundles:
+            return StrategyKind::Bundles;
+        case StrategyKind::GpuCulling:
+        case StrategyKind::GpuCullingBundles:
+            return StrategyKind::GpuCullingBundles;
+        default:
+            return std::nullopt;
+    }
+}
+
+std::optional<StrategyKind> directKind(StrategyKind kind) {
+    switch (kind) {
+        case StrategyKind::Bundles:
+            return StrategyKind::Materials;
+        case StrategyKind::GpuCullingBundles:
+            return StrategyKind::GpuCulling;
+        default:
+            return std::nullopt;
+    }
+}
+
+bool isBundledKind(StrategyKind kind) {
+    return directKind(kind).has_value();
+}
+
+std::unique_ptr<Strategy> createStrategy(StrategyKind kind, bool bundle) {
+    if (bundle) {
+        if (auto bundled = bundledKind(kind)) {
+            return createStrategy(*bundled);
+        }
+        return std::make_unique<BundledStrategy>(createStrategy(kind));
+    }
     switch (kind) {
         case StrategyKind::Naive:
             return std::make_unique<NaiveStrategy>();

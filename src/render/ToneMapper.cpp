@@ -67,20 +67,25 @@ Result<ToneMapper> ToneMapper::create(const wgpu::Device& device, const wgpu::Qu
     mapper.mUniform =
         gpu::createBuffer(device, wgpu::BufferUsage::Uniform | wgpu::BufferUsage::CopyDst,
                           sizeof(ToneMappingUniform), "tone mapping");
+    mapper.mLayout = layout;
+    mapper.bindTarget(device, target);
+    mapper.setOptions(options);
+    return mapper;
+}
+
+void ToneMapper::bindTarget(const wgpu::Device& device, const RenderTarget& target) {
     wgpu::BindGroupEntry bindings[2]{};
     bindings[0].binding = 0;
-    bindings[0].buffer = mapper.mUniform;
+    bindings[0].buffer = mUniform;
     bindings[0].size = sizeof(ToneMappingUniform);
     bindings[1].binding = 1;
     bindings[1].textureView = target.sceneView();
     wgpu::BindGroupDescriptor bindGroup{};
     bindGroup.label = "tone mapping";
-    bindGroup.layout = layout;
+    bindGroup.layout = mLayout;
     bindGroup.entryCount = 2;
     bindGroup.entries = bindings;
-    mapper.mBindGroup = device.CreateBindGroup(&bindGroup);
-    mapper.setOptions(options);
-    return mapper;
+    mBindGroup = device.CreateBindGroup(&bindGroup);
 }
 
 void ToneMapper::setOptions(const ToneMappingOptions& options) {

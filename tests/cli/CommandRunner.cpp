@@ -28,13 +28,17 @@ std::string quote(const std::string& text) {
 }
 
 CommandResult runEncore(const std::string& arguments) {
+    return runEncoreThrough("", arguments);
+}
+
+CommandResult runEncoreThrough(const std::string& prefix, const std::string& arguments) {
     const char* overridden = std::getenv("ENCORE_BINARY");
     const std::string binary = overridden ? overridden : ENCORE_BINARY_PATH;
     CommandResult result;
     const auto dir = makeTempDir("command");
     const auto out = dir / "stdout";
     const auto err = dir / "stderr";
-    const std::string command = quote(binary) + " " + arguments + " >" + quote(out.string()) +
+    const std::string command = prefix + " " + quote(binary) + " " + arguments + " >" + quote(out.string()) +
                                 " 2>" + quote(err.string()) + " </dev/null";
     const int status = std::system(command.c_str());
     result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);

@@ -15,6 +15,9 @@ struct CommandResult {
 
 // `arguments` is appended to the binary's path as it is (quote paths yourself).
 CommandResult runEncore(const std::string& arguments);
+// The same, run through `prefix` (a shell command line the binary is appended to, such as
+// `xvfb-run -a` or `env -u DISPLAY`).
+CommandResult runEncoreThrough(const std::string& prefix, const std::string& arguments);
 
 std::string quote(const std::string& text);
 

@@ -25,6 +25,7 @@ enum class ErrorCode {
     ValidationError,     // WebGPU reported a validation error.
     OutOfMemory,         // The GPU could not allocate a resource (a WebGPU out-of-memory error).
     IoError,             // Writing an output failed.
+    NoDisplay,           // No display to open a window on (encore view).
 };
 
 // A name for each code, for logs and test messages.

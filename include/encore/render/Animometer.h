@@ -50,6 +50,7 @@ struct AnimometerOptions {
     std::uint32_t width = 512;
     std::uint32_t height = 512;
     std::uint32_t seed = 1;  // Same seed, same triangles, whatever the mode.
+    bool presentable = false;  // RenderTargetOptions::presentable (a window shows the target).
 };
 
 inline constexpr std::uint32_t kMaxAnimometerTriangles = 1000000;
@@ -71,6 +72,11 @@ class AnimometerScene {
     // command encoder through Finish, submitMilliseconds covers Queue::Submit, as in Renderer.
     // With a timer, the pass is timed and gpuMilliseconds waits for its result after submit.
     FrameTiming renderFrame(float timeSeconds, gpu::GpuTimer* timer = nullptr);
+
+    // Gives the target a new size; the pipeline and the bundle (recorded for formats and sample
+    // count, not size) stay.
+    Result<void> resize(std::uint32_t width, std::uint32_t height);
+    const RenderTarget& target() const { return mTarget; }
 
     // Calls recorded into the last frame's pass (in bundle mode: executeBundles 1, nothing else).
     const DrawCounters& lastFrameCounters() const { return mFrameCounters; }

@@ -21,6 +21,9 @@ struct RenderTargetOptions {
     std::uint32_t height = 720;
     std::uint32_t sampleCount = 1;  // 1 or 4.
     bool hdr = false;
+    // The output can also be sampled, through outputBytesView(): for a window that presents the
+    // image (view::Presenter) by copying its bytes into the window's surface.
+    bool presentable = false;
 };
 
 class RenderTarget {
@@ -47,6 +50,9 @@ class RenderTarget {
     const wgpu::Texture& sceneTexture() const { return mScene; }
     const wgpu::TextureView& sceneView() const { return mSceneView; }
     const wgpu::TextureView& outputView() const { return mOutputView; }
+    // The output's bytes as RGBA8Unorm (no sRGB decoding when sampled): presentable targets only.
+    const wgpu::TextureView& outputBytesView() const { return mOutputBytesView; }
+    const RenderTargetOptions& options() const { return mOptions; }
 
     // Attachments for a scene pass that clears colour to `clearColor` and depth to 1.
     wgpu::RenderPassColorAttachment colorAttachment(const wgpu::Color& clearColor) const;
@@ -61,6 +67,7 @@ class RenderTarget {
     wgpu::TextureView mSceneView;
     wgpu::TextureView mMultisampledSceneView;
     wgpu::TextureView mOutputView;
+    wgpu::TextureView mOutputBytesView;
     wgpu::TextureView mDepthView;
 };
 

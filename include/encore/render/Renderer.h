@@ -72,8 +72,17 @@ class Renderer {
     ~Renderer();
 
     // Prepares `scene` (which must outlive the renderer) for drawing with `kind`, replacing any
-    // previous scene or strategy. Fails on any WebGPU error raised while preparing.
-    Result<void> prepare(const scene::SceneData& scene, StrategyKind kind);
+    // previous scene or strategy; with `bundle`, the frame is drawn from render bundles
+    // (createStrategy). Fails on any WebGPU error raised while preparing.
+    Result<void> prepare(const scene::SceneData& scene, StrategyKind kind, bool bundle = false);
+    // Whether the prepared strategy draws from render bundles (a bundled kind, or `bundle`).
+    bool bundled() const { return mBundle || isBundledKind(mKind); }
+    const scene::SceneData* scene() const { return mScene; }
+
+    // GPU culling tests against `camera` instead of the frame's camera from now on (nullopt:
+    // the frame's camera again): a frozen frustum that can be watched from outside.
+    void setCullingCamera(std::optional<Camera> camera) { mCullingCamera = camera; }
+    const std::optional<Camera>& cullingCamera() const { return mCullingCamera; }
 
     // Updates the frame uniforms, records and submits one frame. With `trace`, every recorded
     // call is also appended there (tests).
@@ -84,6 +93,11 @@ class Renderer {
     // the target (cameras should use the strip's aspect). Bundle strategies replay one bundle
     // per view; only the camera buffer changes between views.
     FrameResult renderViews(std::span<const Camera> cameras, float timeSeconds = 0.0f);
+
+    // Gives the target a new size, keeping its formats and sample count: the depth, multisample
+    // and output textures are created again, while the prepared strategy (its pipelines and
+    // recorded bundles, which depend on formats and sample count only) stays as it is.
+    Result<void> resize(std::uint32_t width, std::uint32_t height);
 
     // Dynamic content, through buffers (bundles stay valid). `instance` indexes
     // SceneData::instances; the world matrix replaces that instance's.
@@ -189,6 +203,8 @@ class Renderer {
     gpu::GpuTimer* mTimer = nullptr;
     const scene::SceneData* mScene = nullptr;
     StrategyKind mKind = StrategyKind::Bundles;
+    bool mBundle = false;
+    std::optional<Camera> mCullingCamera;
 };
 
 }  // namespace encore::render

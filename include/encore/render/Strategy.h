@@ -52,6 +52,15 @@ std::string_view strategyName(StrategyKind kind);
 std::optional<StrategyKind> strategyFromName(std::string_view name);
 std::span<const StrategyKind> allStrategies();
 
+// The bundling axis. Every strategy can draw its frame from render bundles: `materials` and
+// `gpu-culling` have their own bundled kinds (`bundles`, `gpu-culling-bundles`, which also keep
+// blended geometry sorted); the others, whose recording does not depend on the camera, are
+// recorded once into a bundle by a wrapper. bundledKind names the own bundled kind (a bundled
+// kind names itself), directKind the direct kind of a bundled one (nullopt for the others).
+std::optional<StrategyKind> bundledKind(StrategyKind kind);
+std::optional<StrategyKind> directKind(StrategyKind kind);
+bool isBundledKind(StrategyKind kind);
+
 class AnimationBuffers;
 
 // What a strategy's pipelines and bind groups must be compatible with.
@@ -83,6 +92,9 @@ struct FrameState {
     Camera camera;
     float timeSeconds = 0.0f;
     gpu::GpuTimer* timer = nullptr;  // Times passes the strategy begins itself (culling).
+    // What GPU culling tests instances against when it is not `camera`: a frozen frustum,
+    // watched from elsewhere.
+    std::optional<Camera> cullingCamera;
 };
 
 class GpuCuller;
@@ -136,7 +148,8 @@ class Strategy {
     virtual const GpuCuller* culler() const { return nullptr; }
 };
 
-std::unique_ptr<Strategy> createStrategy(StrategyKind kind);
+// With `bundle`, the strategy that draws `kind`'s frame from render bundles (see bundledKind).
+std::unique_ptr<Strategy> createStrategy(StrategyKind kind, bool bundle = false);
 
 // Checks an instance index given to Strategy::updateInstance.
 Result<void> checkInstanceIndex(std::size_t instance, std::size_t instanceCount);

@@ -24,6 +24,8 @@ class ToneMapper {
                                      const ToneMappingOptions& options);
 
     void setOptions(const ToneMappingOptions& options);
+    // Reads `target`'s scene colour from now on (a resized target; same formats).
+    void bindTarget(const wgpu::Device& device, const RenderTarget& target);
     const ToneMappingOptions& options() const { return mOptions; }
 
     // Reads `target`'s resolved HDR scene colour, writes its output.
@@ -34,6 +36,7 @@ class ToneMapper {
 
     wgpu::Queue mQueue;
     wgpu::RenderPipeline mPipeline;
+    wgpu::BindGroupLayout mLayout;
     wgpu::Buffer mUniform;
     wgpu::BindGroup mBindGroup;
     ToneMappingOptions mOptions;

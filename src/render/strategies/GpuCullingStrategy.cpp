@@ -80,7 +80,7 @@ Result<void> GpuCullingStrategy::groupDraws() {
 
 void GpuCullingStrategy::beforePass(const wgpu::CommandEncoder& commands,
                                     const FrameState& frame) {
-    mCuller.encode(mQueue, commands, frame.camera, frame.timer);
+    mCuller.encode(mQueue, commands, frame.cullingCamera.value_or(frame.camera), frame.timer);
     if (mUseBundles) {
         mBundles.update(
             *mSetup, mMaterials->generation(), blendOrder(frame.camera.position),

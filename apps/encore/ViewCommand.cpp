@@ -1,0 +1,212 @@
+#include <cstdio>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "CameraOptions.h"
+#include "Commands.h"
+#include "ShadingOptions.h"
+#include "encore/render/Animometer.h"
+#include "encore/scene/SceneGenerator.h"
+#include "encore/view/ViewScript.h"
+#include "encore/view/Viewer.h"
+
+namespace encore::app {
+
+namespace {
+
+struct ViewOptions {
+    std::string model;
+    std::optional<std::uint32_t> objects;     // --objects N: a generated scene.
+    std::optional<std::uint32_t> animometer;  // --animometer N: the Animometer's triangles.
+    std::string strategy = "bundles";
+    bool bundle = false;
+    std::uint32_t width = 1280;
+    std::uint32_t height = 720;
+    std::uint32_t samples = 4;
+    bool uncapped = false;
+    bool noOverlay = false;
+    bool strict = false;
+    std::string animation;
+    std::string animate = "cpu";
+    std::string script;
+    std::optional<std::uint32_t> frames;  // --frames N [--screenshot out.png]: then exit.
+    std::string screenshot;
+    ShadingOptions shading;
+    CameraOptions camera;
+};
+
+int runView(const ViewOptions& options, const GlobalOptions& global) {
+    const int sources = int(!options.model.empty()) + int(options.objects.has_value()) +
+                        int(options.animometer.has_value());
+    if (sources != 1) {
+        return reportError(makeError(ErrorCode::InvalidArgument,
+                                     "encore view shows one thing: a MODEL, --objects N or "
+                                     "--animometer N."));
+    }
+    const auto kind = render::strategyFromName(options.strategy);
+    if (!kind) {
+        return reportError(makeError(ErrorCode::InvalidArgument,
+                                     "Unknown strategy '" + options.strategy + "'."));
+    }
+    if (!options.screenshot.empty() && !options.frames) {
+        return reportError(makeError(ErrorCode::InvalidArgument,
+                                     "--screenshot needs --frames N (how many frames to show "
+                                     "before it is taken)."));
+    }
+    if (options.frames && !options.script.empty()) {
+        return reportError(
+            makeError(ErrorCode::InvalidArgument, "--frames and --script cannot be combined."));
+    }
+    view::ViewerOptions viewer;
+    if (!options.script.empty()) {
+        auto script = view::loadViewScript(options.script);
+        if (!script) {
+            return reportError(script.error());
+        }
+        viewer.script = std::move(*script);
+    } else if (options.frames) {
+        viewer.script.emplace();
+        view::ScriptStep frames;
+        frames.command = view::ScriptCommand::Frames;
+        frames.count = *options.frames;
+        viewer.script->push_back(frames);
+        if (!options.screenshot.empty()) {
+            view::ScriptStep screenshot;
+            screenshot.command = view::ScriptCommand::Screenshot;
+            screenshot.path = options.screenshot;
+            viewer.script->push_back(screenshot);
+        }
+    }
+
+    scene::LoadOptions loadOptions;
+    loadOptions.strict = options.strict;
+    std::unique_ptr<scene::SceneData> scene;
+    if (!options.model.empty()) {
+        auto loaded = loadModel(options.model, loadOptions);
+        if (!loaded) {
+            return reportError(loaded.error());
+        }
+        scene = std::make_unique<scene::SceneData>(std::move(*loaded));
+    } else if (options.objects) {
+        scene::GeneratorOptions generator;
+        generator.objectCount = *options.objects;
+        auto glb = scene::generateSceneGlb(generator);
+        if (!glb) {
+            return reportError(glb.error());
+        }
+        auto loaded = scene::loadSceneFromMemory(
+            *glb, {}, "generated " + std::to_string(*options.objects) + " objects");
+        if (!loaded) {
+            return reportError(loaded.error());
+        }
+        scene = std::make_unique<scene::SceneData>(std::move(*loaded));
+    }
+    if (scene && !options.animation.empty() && !scene::findAnimation(*scene, options.animation)) {
+        return reportError(makeError(ErrorCode::InvalidArgument,
+                                     "'" + options.model + "' has no animation '" +
+                                         options.animation + "'."));
+    }
+
+    // The window first: without a display nothing else is worth starting.
+    auto window = view::Window::create("encore view", options.width, options.height);
+    if (!window) {
+        return reportError(window.error());
+    }
+    auto context = createContext(global, /*timestamps=*/true);
+    if (!context) {
+        return reportError(context.error());
+    }
+
+    viewer.renderer.target = {options.width, options.height, options.samples};
+    viewer.renderer.animation = *render::animationEvaluationFromName(options.animate);
+    if (auto shading = applyShadingOptions(options.shading, viewer.renderer); !shading) {
+        return reportError(shading.error());
+    }
+    viewer.strategy = *kind;
+    viewer.bundle = options.bundle;
+    if (options.animometer) {
+        render::AnimometerOptions animometer;
+        animometer.triangles = *options.animometer;
+        animometer.bundle = options.bundle;
+        viewer.animometer = animometer;
+    }
+    viewer.present =
+        options.uncapped ? view::PresentPreference::Uncapped : view::PresentPreference::Vsync;
+    viewer.overlay = !options.noOverlay;
+    viewer.animation = options.animation;
+    const CameraOptions cameraOptions = options.camera;
+    viewer.initialCamera = [cameraOptions](const scene::SceneData& data, float aspect) {
+        return resolveCamera(cameraOptions, data, aspect);
+    };
+    viewer.loadScene = [loadOptions](const std::string& path) {
+        return loadModel(path, loadOptions);
+    };
+    viewer.report = [](const std::string& line) {
+        std::printf("%s\n", line.c_str());
+        std::fflush(stdout);
+    };
+    if (!viewer.script) {
+        std::fprintf(stderr, "adapter: %s\n", context->adapterDescription().summary().c_str());
+    }
+    auto created = view::Viewer::create(*context, *window, std::move(scene), std::move(viewer));
+    if (!created) {
+        return reportError(created.error());
+    }
+    if (auto ran = (*created)->run(); !ran) {
+        return reportError(ran.error());
+    }
+    return kExitOk;
+}
+
+}  // namespace
+
+void addViewCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) {
+    auto options = std::make_shared<ViewOptions>();
+    auto* command = app.add_subcommand(
+        "view", "Show a model, a generated scene or the Animometer in a window, live, with any "
+                "strategy (needs a display; `encore render` works without one).");
+    command->add_option("model", options->model, "The .gltf or .glb file");
+    command->add_option("--objects", options->objects, "Show a generated scene of N objects")
+        ->check(CLI::Range(1, 1000000));
+    command->add_option("--animometer", options->animometer,
+                        "Show the Animometer scene with N triangles")
+        ->check(CLI::Range(1u, render::kMaxAnimometerTriangles));
+    command->add_option("-s,--strategy", options->strategy, "Rendering strategy (keys 1-8)")
+        ->capture_default_str();
+    command->add_flag("--bundle", options->bundle,
+                      "Draw the strategy's frame from render bundles (key B)");
+    command->add_option("--width", options->width, "Window width in pixels")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 8192));
+    command->add_option("--height", options->height, "Window height in pixels")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 8192));
+    command->add_option("--samples", options->samples, "Multisampling: 1 or 4")
+        ->capture_default_str()
+        ->check(CLI::IsMember({1, 4}));
+    command->add_flag("--uncapped", options->uncapped,
+                      "Present with the lowest-latency mode the surface supports instead of "
+                      "waiting for the display (FIFO)");
+    command->add_flag("--no-overlay", options->noOverlay, "Start with the overlay hidden (key O)");
+    command->add_flag("--strict", options->strict,
+                      "Treat warnings (missing images, unsupported optional features) as errors");
+    command->add_option("--animation", options->animation,
+                        "Play only this animation: its index or its name");
+    command
+        ->add_option("--animate", options->animate,
+                     "Evaluate animation on the cpu (default) or the gpu")
+        ->check(CLI::IsMember({"cpu", "gpu"}));
+    command->add_option("--script", options->script,
+                        "Run a scripted session (frames, keys, resizes, drops, screenshots; see "
+                        "the README) and exit");
+    command->add_option("--frames", options->frames, "Show N frames, then exit")
+        ->check(CLI::Range(1, 100000));
+    command->add_option("--screenshot", options->screenshot,
+                        "With --frames: save the last frame as this PNG (without the overlay)");
+    addShadingOptions(*command, options->shading);
+    addCameraOptions(*command, options->camera);
+    command->callback([options, &global, &exitCode] { exitCode = runView(*options, global); });
+}
+
+}  // namespace encore::app

@@ -1,0 +1,41 @@
+#pragma once
+
+#include <memory>
+
+#include "encore/render/BundleRecorder.h"
+#include "encore/render/Strategy.h"
+
+namespace encore::render {
+
+// Any strategy whose recording does not depend on the camera (naive, layouts, pipeline-cache,
+// instancing), recorded once into a render bundle and replayed with executeBundles: the
+// bundling axis for the strategies that have no bundled form of their own. The wrapped strategy
+// keeps its buffers (node uniforms, instance transforms), so updates through them leave the
+// bundle valid; replacing a texture records it again.
+class BundledStrategy final : public Strategy {
+  public:
+    explicit BundledStrategy(std::unique_ptr<Strategy> recorded);
+
+    StrategyKind kind() const override { return mRecorded->kind(); }
+    Result<void> prepare(const RenderSetup& setup, const scene::SceneData& scene) override;
+    void beforePass(const wgpu::CommandEncoder& commands, const FrameState& frame) override;
+    void encode(RenderEncoder& encoder, const FrameState& frame) const override;
+    Result<void> updateInstance(std::size_t instance, const glm::mat4& world) override;
+    InstanceTransformTargets instanceTransformTargets() const override;
+    void animateInstancesOnGpu(std::span<const std::uint32_t> instances) override;
+    Result<void> updateMaterial(scene::MaterialId material, const scene::Material& value) override;
+    Result<void> replaceBaseColorImage(scene::MaterialId material,
+                                       const scene::Image& image) override;
+    DrawCounters bundleContents() const override { return mBundle.contents; }
+    std::uint64_t bundlesRecorded() const override { return mRecordings; }
+    const GpuCuller* culler() const override { return mRecorded->culler(); }
+
+  private:
+    std::unique_ptr<Strategy> mRecorded;
+    const RenderSetup* mSetup = nullptr;
+    RecordedBundle mBundle;
+    bool mStale = true;
+    std::uint64_t mRecordings = 0;
+};
+
+}  // namespace encore::render

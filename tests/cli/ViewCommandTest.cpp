@@ -1,0 +1,203 @@
+// `encore view` tested as a user meets it: under a virtual X display (Xvfb, through xvfb-run)
+// on lavapipe, a scripted session renders, switches strategy and bundling, resizes, gets files
+// dropped on it and takes screenshots, which must equal `encore render`'s pictures at the same
+// camera and size, pixel for pixel; without a display it refuses and points to `encore render`.
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <vector>
+
+#include "CommandRunner.h"
+#include "TestPaths.h"
+#include "encore/image/ImageCodec.h"
+
+namespace encore::test {
+namespace {
+
+// A 24-bit screen: xvfb-run's default is 8 bits deep, which Vulkan cannot present to.
+const std::string kXvfb = "xvfb-run -a -s '-screen 0 1024x768x24 -nolisten tcp'";
+
+bool haveXvfb() {
+    return std::system("command -v xvfb-run >/dev/null 2>&1 && command -v Xvfb >/dev/null 2>&1") ==
+           0;
+}
+
+std::vector<std::string> statsLines(const std::string& out) {
+    std::vector<std::string> lines;
+    std::istringstream text(out);
+    std::string line;
+    while (std::getline(text, line)) {
+        if (line.starts_with("stats ")) {
+            lines.push_back(line);
+        }
+    }
+    return lines;
+}
+
+// The value of `key=` in a stats line (up to the next space; the error runs to the end).
+std::string field(const std::string& line, const std::string& key) {
+    const std::size_t start = line.find(" " + key + "=");
+    if (start == std::string::npos) {
+        return "";
+    }
+    const std::size_t begin = start + key.size() + 2;
+    const std::size_t end = key == "error" ? line.size() : line.find(' ', begin);
+    return line.substr(begin, end == std::string::npos ? std::string::npos : end - begin);
+}
+
+image::ImageRgba8 readPng(const std::filesystem::path& path) {
+    auto image = image::readImage(path);
+    EXPECT_TRUE(image.ok()) << path << ": " << (image.ok() ? "" : image.error().message);
+    return image.ok() ? std::move(*image) : image::ImageRgba8{};
+}
+
+std::size_t differingPixels(const image::ImageRgba8& a, const image::ImageRgba8& b) {
+    if (a.width != b.width || a.height != b.height) {
+        return std::size_t(-1);
+    }
+    std::size_t count = 0;
+    for (std::size_t i = 0; i < a.pixels.size(); i += 4) {
+        count += a.pixels[i] != b.pixels[i] || a.pixels[i + 1] != b.pixels[i + 1] ||
+                 a.pixels[i + 2] != b.pixels[i + 2];
+    }
+    return count;
+}
+
+// `encore render` of the same file at the same size and strategy (the default camera).
+image::ImageRgba8 rendered(const std::filesystem::path& model, const std::string& strategy,
+                           std::uint32_t width, std::uint32_t height,
+                           const std::filesystem::path& out) {
+    const auto result = runEncore("render " + quote(model.string()) + " --strategy " + strategy +
+                                  " --width " + std::to_string(width) + " --height " +
+                                  std::to_string(height) + " -o " + quote(out.string()));
+    EXPECT_EQ(result.exitCode, 0) << result.err;
+    return readPng(out);
+}
+
+TEST(ViewCommandTest, WithoutADisplayItRefusesAndPointsToRender) {
+    const auto dir = makeTempDir("view-no-display");
+    ASSERT_EQ(runEncore("gen --objects 4 -o " + quote((dir / "s.glb").string())).exitCode, 0);
+    const auto result =
+        runEncoreThrough("env -u DISPLAY", "view " + quote((dir / "s.glb").string()));
+    EXPECT_EQ(result.exitCode, 6) << result.err;
+    EXPECT_NE(result.err.find("error: No display"), std::string::npos) << result.err;
+    EXPECT_NE(result.err.find("encore render"), std::string::npos) << result.err;
+}
+
+TEST(ViewCommandTest, AScriptedSessionShowsWhatRenderWrites) {
+    if (!haveXvfb()) {
+        GTEST_SKIP() << "xvfb-run (package xvfb) is not installed: no virtual display";
+    }
+    const auto dir = makeTempDir("view-session");
+    const auto scene = dir / "scene.glb";
+    const auto other = dir / "other.glb";
+    const auto bad = dir / "bad.gltf";
+    ASSERT_EQ(runEncore("gen --objects 40 --meshes 4 --materials 3 -o " + quote(scene.string()))
+                  .exitCode,
+              0);
+    ASSERT_EQ(runEncore("gen --objects 12 --meshes 2 --materials 2 --seed 7 -o " +
+                        quote(other.string()))
+                  .exitCode,
+              0);
+    std::ofstream(bad) << R"({"asset": {"version": "2.0"}, "nodes": [{"mesh": 3}]})";
+    const auto shot = [&](const std::string& name) { return (dir / name).string(); };
+    std::ofstream(dir / "session.txt")
+        << "frames 2\n"
+        << "screenshot " << shot("bundles.png") << "\n"
+        << "stats\n"
+        << "key 1   # naive\n"
+        << "frames 2\n"
+        << "screenshot " << shot("naive.png") << "\n"
+        << "key b   # naive recorded into a bundle\n"
+        << "frames 2\n"
+        << "stats\n"
+        << "resize 200 120\n"
+        << "frames 2\n"
+        << "screenshot " << shot("resized.png") << "\n"
+        << "stats\n"
+        << "drop " << bad.string() << "\n"
+        << "frames 1\n"
+        << "stats\n"
+        << "drop " << other.string() << "\n"
+        << "frames 2\n"
+        << "screenshot " << shot("dropped.png") << "\n"
+        << "screenshot " << shot("overlay.png") << " overlay\n"
+        << "stats\n";
+    const auto result = runEncoreThrough(
+        kXvfb, "view " + quote(scene.string()) + " --width 160 --height 120 --script " +
+                   quote((dir / "session.txt").string()));
+    ASSERT_EQ(result.exitCode, 0) << result.err << result.out;
+    const auto stats = statsLines(result.out);
+    ASSERT_EQ(stats.size(), 5u) << result.out;
+
+    EXPECT_EQ(field(stats[0], "strategy"), "bundles");
+    EXPECT_EQ(field(stats[0], "bundlesRecorded"), "1");
+    EXPECT_EQ(field(stats[0], "executeBundles"), "1");
+    EXPECT_EQ(differingPixels(readPng(shot("bundles.png")),
+                              rendered(scene, "bundles", 160, 120, dir / "r-bundles.png")),
+              0u);
+    EXPECT_EQ(differingPixels(readPng(shot("naive.png")),
+                              rendered(scene, "naive", 160, 120, dir / "r-naive.png")),
+              0u);
+
+    // B: naive recorded once into a bundle; the resize records nothing again.
+    EXPECT_EQ(field(stats[1], "strategy"), "naive_+_bundle");
+    EXPECT_EQ(field(stats[1], "bundlesRecorded"), "1");
+    EXPECT_EQ(field(stats[1], "draws"), "0");
+    EXPECT_EQ(field(stats[2], "size"), "200x120");
+    EXPECT_EQ(field(stats[2], "bundlesRecorded"), "1");
+    EXPECT_EQ(differingPixels(readPng(shot("resized.png")),
+                              rendered(scene, "naive", 200, 120, dir / "r-resized.png")),
+              0u);
+
+    // A bad file shows its error and keeps the scene; a good one replaces it.
+    EXPECT_NE(field(stats[3], "error").find("bad.gltf"), std::string::npos) << stats[3];
+    EXPECT_EQ(field(stats[3], "scene"), scene.string());
+    EXPECT_EQ(field(stats[4], "scene"), other.string());
+    EXPECT_EQ(field(stats[4], "bundlesRecorded"), "1");
+    const image::ImageRgba8 dropped = readPng(shot("dropped.png"));
+    EXPECT_EQ(differingPixels(dropped, rendered(other, "naive", 200, 120, dir / "r-other.png")),
+              0u);
+    // The overlay is drawn over the same frame only when asked for.
+    EXPECT_GT(differingPixels(readPng(shot("overlay.png")), dropped), 2000u);
+}
+
+TEST(ViewCommandTest, TheAnimometerRunsDirectAndBundled) {
+    if (!haveXvfb()) {
+        GTEST_SKIP() << "xvfb-run (package xvfb) is not installed: no virtual display";
+    }
+    const auto dir = makeTempDir("view-animometer");
+    std::ofstream(dir / "session.txt") << "frames 2\nstats\nkey b\nresize 96 64\nframes 2\nstats\n"
+                                       << "screenshot " << (dir / "a.png").string() << "\n";
+    const auto result = runEncoreThrough(
+        kXvfb, "view --animometer 500 --width 128 --height 96 --script " +
+                   quote((dir / "session.txt").string()));
+    ASSERT_EQ(result.exitCode, 0) << result.err << result.out;
+    const auto stats = statsLines(result.out);
+    ASSERT_EQ(stats.size(), 2u) << result.out;
+    EXPECT_EQ(field(stats[0], "draws"), "500");
+    EXPECT_EQ(field(stats[0], "executeBundles"), "0");
+    EXPECT_EQ(field(stats[1], "draws"), "0");
+    EXPECT_EQ(field(stats[1], "executeBundles"), "1");
+    EXPECT_EQ(field(stats[1], "size"), "96x64");
+    const image::ImageRgba8 image = readPng(dir / "a.png");
+    EXPECT_EQ(image.width, 96u);
+    EXPECT_EQ(image.height, 64u);
+}
+
+TEST(ViewCommandTest, ABadScriptIsAUsageErrorNamingTheLine) {
+    const auto dir = makeTempDir("view-bad-script");
+    std::ofstream(dir / "session.txt") << "frames 2\nkey nope\n";
+    const auto result = runEncoreThrough(
+        "env -u DISPLAY", "view --animometer 10 --script " + quote((dir / "session.txt").string()));
+    EXPECT_EQ(result.exitCode, 2) << result.err;
+    EXPECT_NE(result.err.find("session.txt:2: unknown key 'nope'"), std::string::npos)
+        << result.err;
+}
+
+}  // namespace
+}  // namespace encore::test
