@@ -108,16 +108,16 @@ float frameTime(std::uint32_t frame) {
 Result<BenchResult> measure(gpu::Context& context,
                             render::Renderer& renderer,
                             const scene::SceneData& scene,
-                            render::StrategyKind kind,
+                            render::StrategyChoice choice,
                             const BenchOptions& options,
                             gpu::GpuTimer* timer,
                             std::optional<render::AnimationEvaluation> animate) {
     ENCORE_TRY(renderer.setAnimationEvaluation(animate.value_or(render::AnimationEvaluation::Cpu)));
-    ENCORE_TRY(renderer.prepare(scene, kind));
+    ENCORE_TRY(renderer.prepare(scene, choice.kind, choice.bundle));
     const render::Camera camera =
         render::Camera::framing(scene.bounds, renderer.target().aspect());
     BenchResult result;
-    result.strategy = std::string(render::strategyName(kind));
+    result.strategy = render::strategyChoiceName(choice);
     result.objects = scene.instances.size();
     renderer.setGpuTimer(options.callgrind ? nullptr : timer);
     if (animate) {
@@ -205,9 +205,11 @@ Result<BenchReport> runBenchmarks(gpu::Context& context, const BenchOptions& opt
         ~RestoreWait() { context.setWaitMode(mode); }
     } restoreWait{context, previousWait};
 
-    std::vector<render::StrategyKind> strategies = options.strategies;
+    std::vector<render::StrategyChoice> strategies = options.strategies;
     if (strategies.empty()) {
-        strategies.assign(render::allStrategies().begin(), render::allStrategies().end());
+        for (auto kind : render::allStrategies()) {
+            strategies.push_back({kind, false});
+        }
     }
     auto renderer = render::Renderer::create(context, {{options.width, options.height, 1}});
     if (!renderer) {
@@ -227,13 +229,13 @@ Result<BenchReport> runBenchmarks(gpu::Context& context, const BenchOptions& opt
                                       : sceneLabel;
         for (auto strategy : strategies) {
             if (progress) {
-                progress(label + " / " + std::string(render::strategyName(strategy)));
+                progress(label + " / " + render::strategyChoiceName(strategy));
             }
             auto result =
                 measure(context, *renderer, scene, strategy, options, timerPointer, animate);
             if (!result && result.error().code == ErrorCode::Unsupported) {
-                report.skipped.push_back(label + " / " +
-                                         std::string(render::strategyName(strategy)) + ": " +
+                report.skipped.push_back(label + " / " + render::strategyChoiceName(strategy) +
+                                         ": " +
                                          result.error().message);
                 continue;
             }

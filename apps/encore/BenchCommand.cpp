@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "Commands.h"
+#include "StrategyOptions.h"
 #include "encore/bench/Benchmark.h"
 #include "encore/core/FileIO.h"
 
@@ -17,6 +18,7 @@ namespace {
 struct BenchCommandOptions {
     bench::BenchOptions bench;
     std::vector<std::string> strategies;
+    bool bundle = false;  // Each strategy also recorded once into render bundles.
     std::string json;
     std::string markdown;
     std::string plot;
@@ -30,14 +32,11 @@ Result<void> writeText(const std::string& path, const std::string& text) {
 }
 
 int runBench(BenchCommandOptions options, const GlobalOptions& global) {
-    for (const auto& name : options.strategies) {
-        const auto kind = render::strategyFromName(name);
-        if (!kind) {
-            return reportError(
-                makeError(ErrorCode::InvalidArgument, "Unknown strategy '" + name + "'."));
-        }
-        options.bench.strategies.push_back(*kind);
+    auto strategies = parseStrategySelection(options.strategies, options.bundle);
+    if (!strategies) {
+        return reportError(strategies.error());
     }
+    options.bench.strategies = std::move(*strategies);
     if (options.smoke) {
         // A quick run that keeps the benchmark code path exercised in CI.
         options.bench.objectCounts = {100, 1000};
@@ -122,7 +121,12 @@ void addBenchCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) 
         ->delimiter(',')
         ->check(CLI::IsMember({"cpu", "gpu"}));
     command->add_option("-s,--strategy", options->strategies,
-                        "Only these strategies (repeatable; default: all)");
+                        "Only these strategies (repeatable; default: all; a direct one with "
+                        "+bundle, e.g. naive+bundle, is recorded once into a render bundle)");
+    command->add_flag("--bundle", options->bundle,
+                      "Also measure each strategy recorded once into render bundles (materials "
+                      "and gpu-culling as bundles and gpu-culling-bundles, the others as "
+                      "NAME+bundle): the bundling axis");
     command->add_option("--frames", bench.frames, "Measured frames")->capture_default_str();
     command->add_option("--warmup", bench.warmup, "Warm-up frames")->capture_default_str();
     command->add_option("--width", bench.width, "Target width")->capture_default_str();

@@ -9,6 +9,7 @@
 
 #include "CameraOptions.h"
 #include "Commands.h"
+#include "StrategyOptions.h"
 #include "ShadingOptions.h"
 #include "encore/gpu/Context.h"
 #include "encore/render/Renderer.h"
@@ -23,6 +24,7 @@ struct RenderOptions {
     std::string model;
     std::string output = "encore.png";
     std::string strategy = "bundles";
+    bool bundle = false;  // --bundle: the strategy's frame recorded once into render bundles.
     std::uint32_t width = 1280;
     std::uint32_t height = 720;
     std::uint32_t samples = 4;
@@ -118,10 +120,9 @@ Result<std::string> framePath(const std::string& pattern, std::size_t index) {
 }
 
 int runRender(const RenderOptions& options, const GlobalOptions& global) {
-    const auto kind = render::strategyFromName(options.strategy);
-    if (!kind) {
-        return reportError(makeError(ErrorCode::InvalidArgument,
-                                     "Unknown strategy '" + options.strategy + "'."));
+    const auto strategy = parseStrategyChoice(options.strategy, options.bundle);
+    if (!strategy) {
+        return reportError(strategy.error());
     }
     // Animation times: none (the rest pose), --time, or every frame of --frames.
     std::vector<double> times;
@@ -167,7 +168,7 @@ int runRender(const RenderOptions& options, const GlobalOptions& global) {
     if (!renderer) {
         return reportError(renderer.error());
     }
-    if (auto prepared = renderer->prepare(*scene, *kind); !prepared) {
+    if (auto prepared = renderer->prepare(*scene, strategy->kind, strategy->bundle); !prepared) {
         return reportError(prepared.error());
     }
     if (!options.animation.empty()) {
@@ -248,7 +249,7 @@ int runRender(const RenderOptions& options, const GlobalOptions& global) {
         std::fprintf(stderr,
                      "strategy %s: %llu draws and %llu executeBundles in the frame, %llu draws in "
                      "bundles, %llu triangles, encode %.3f ms\n",
-                     options.strategy.c_str(),
+                     render::strategyChoiceName(*strategy).c_str(),
                      static_cast<unsigned long long>(frame.counters.drawCalls()),
                      static_cast<unsigned long long>(frame.counters.executeBundles),
                      static_cast<unsigned long long>(frame.bundleContents.drawCalls()),
@@ -275,6 +276,9 @@ void addRenderCommand(CLI::App& app, const GlobalOptions& global, int& exitCode)
         ->capture_default_str();
     command->add_option("-s,--strategy", options->strategy, "Rendering strategy")
         ->capture_default_str();
+    command->add_flag("--bundle", options->bundle,
+                      "Record the strategy's frame once into render bundles and replay them "
+                      "(materials and gpu-culling become bundles and gpu-culling-bundles)");
     command->add_option("--width", options->width, "Image width in pixels")
         ->capture_default_str()
         ->check(CLI::Range(1, 8192));

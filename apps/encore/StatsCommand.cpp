@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "Commands.h"
+#include "StrategyOptions.h"
 #include "encore/bench/Benchmark.h"
 #include "encore/gpu/Context.h"
 #include "encore/render/Renderer.h"
@@ -20,6 +21,7 @@ namespace {
 struct StatsOptions {
     std::string model;
     std::vector<std::string> strategies;
+    bool bundle = false;  // Each strategy also recorded once into render bundles.
     bool json = false;
     std::uint32_t width = 640;
     std::uint32_t height = 480;
@@ -120,17 +122,9 @@ void printMarkdown(const std::string& model, const std::string& adapter,
 }
 
 int runStats(const StatsOptions& options, const GlobalOptions& global) {
-    std::vector<render::StrategyKind> kinds;
-    if (options.strategies.empty()) {
-        kinds.assign(render::allStrategies().begin(), render::allStrategies().end());
-    }
-    for (const auto& name : options.strategies) {
-        const auto kind = render::strategyFromName(name);
-        if (!kind) {
-            return reportError(
-                makeError(ErrorCode::InvalidArgument, "Unknown strategy '" + name + "'."));
-        }
-        kinds.push_back(*kind);
+    const auto choices = parseStrategySelection(options.strategies, options.bundle);
+    if (!choices) {
+        return reportError(choices.error());
     }
     auto scene = loadModel(options.model, {});
     if (!scene) {
@@ -149,12 +143,12 @@ int runStats(const StatsOptions& options, const GlobalOptions& global) {
     }
     const auto camera = render::Camera::framing(scene->bounds, renderer->target().aspect());
     std::vector<StrategyStats> rows;
-    for (auto kind : kinds) {
-        if (auto prepared = renderer->prepare(*scene, kind); !prepared) {
+    for (const auto& choice : *choices) {
+        if (auto prepared = renderer->prepare(*scene, choice.kind, choice.bundle); !prepared) {
             return reportError(prepared.error());
         }
         StrategyStats stats;
-        stats.name = std::string(render::strategyName(kind));
+        stats.name = render::strategyChoiceName(choice);
         stats.pipelinesCreated = renderer->setup().pipelinesCreated;
         if (options.time) {
             if (!std::isfinite(*options.time)) {
@@ -200,7 +194,12 @@ void addStatsCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) 
         "stats", "Count the WebGPU calls of one frame of a model, for every strategy.");
     command->add_option("model", options->model, "The .gltf or .glb file")->required();
     command->add_option("-s,--strategy", options->strategies,
-                        "Only these strategies (repeatable; default: all)");
+                        "Only these strategies (repeatable; default: all; a direct one with "
+                        "+bundle, e.g. naive+bundle, is recorded once into a render bundle)");
+    command->add_flag("--bundle", options->bundle,
+                      "Also count each strategy recorded once into render bundles (materials "
+                      "and gpu-culling as bundles and gpu-culling-bundles, the others as "
+                      "NAME+bundle)");
     command->add_flag("--json", options->json, "Print JSON instead of a Markdown table");
     command->add_option("--time", options->time,
                         "Animate to this time (seconds) and report one frame's animation work");

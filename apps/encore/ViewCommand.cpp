@@ -5,6 +5,7 @@
 
 #include "CameraOptions.h"
 #include "Commands.h"
+#include "StrategyOptions.h"
 #include "ShadingOptions.h"
 #include "encore/render/Animometer.h"
 #include "encore/scene/SceneGenerator.h"
@@ -44,10 +45,9 @@ int runView(const ViewOptions& options, const GlobalOptions& global) {
                                      "encore view shows one thing: a MODEL, --objects N or "
                                      "--animometer N."));
     }
-    const auto kind = render::strategyFromName(options.strategy);
-    if (!kind) {
-        return reportError(makeError(ErrorCode::InvalidArgument,
-                                     "Unknown strategy '" + options.strategy + "'."));
+    const auto strategy = parseStrategyChoice(options.strategy, options.bundle);
+    if (!strategy) {
+        return reportError(strategy.error());
     }
     if (!options.screenshot.empty() && !options.frames) {
         return reportError(makeError(ErrorCode::InvalidArgument,
@@ -123,8 +123,8 @@ int runView(const ViewOptions& options, const GlobalOptions& global) {
     if (auto shading = applyShadingOptions(options.shading, viewer.renderer); !shading) {
         return reportError(shading.error());
     }
-    viewer.strategy = *kind;
-    viewer.bundle = options.bundle;
+    viewer.strategy = strategy->kind;
+    viewer.bundle = strategy->bundle;
     if (options.animometer) {
         render::AnimometerOptions animometer;
         animometer.triangles = *options.animometer;

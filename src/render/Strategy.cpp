@@ -1,5 +1,6 @@
 #include "encore/render/Strategy.h"
 
+#include <algorithm>
 #include <array>
 #include <string>
 
@@ -93,6 +94,60 @@ std::optional<StrategyKind> directKind(StrategyKind kind) {
 
 bool isBundledKind(StrategyKind kind) {
     return directKind(kind).has_value();
+}
+
+StrategyChoice StrategyChoice::of(StrategyKind kind, bool bundle) {
+    if (bundle) {
+        if (auto bundled = bundledKind(kind)) {
+            return {*bundled, false};
+        }
+    }
+    return {kind, bundle};
+}
+
+namespace {
+constexpr std::string_view kBundleSuffix = "+bundle";
+}  // namespace
+
+std::string strategyChoiceName(StrategyChoice choice) {
+    const StrategyChoice normal = StrategyChoice::of(choice.kind, choice.bundle);
+    std::string name(strategyName(normal.kind));
+    if (normal.bundle) {
+        name += kBundleSuffix;
+    }
+    return name;
+}
+
+std::optional<StrategyChoice> strategyChoiceFromName(std::string_view name) {
+    bool bundle = false;
+    if (name.ends_with(kBundleSuffix)) {
+        name.remove_suffix(kBundleSuffix.size());
+        bundle = true;
+    }
+    const auto kind = strategyFromName(name);
+    if (!kind || (bundle && bundledKind(*kind))) {
+        // "bundles+bundle" or "materials+bundle" name no frame of their own: say "bundles".
+        return std::nullopt;
+    }
+    return StrategyChoice{*kind, bundle};
+}
+
+std::vector<StrategyChoice> withBundlingAxis(std::span<const StrategyChoice> choices,
+                                             bool alsoBundled) {
+    std::vector<StrategyChoice> result;
+    auto add = [&](StrategyChoice choice) {
+        choice = StrategyChoice::of(choice.kind, choice.bundle);
+        if (std::find(result.begin(), result.end(), choice) == result.end()) {
+            result.push_back(choice);
+        }
+    };
+    for (const auto& choice : choices) {
+        add(choice);
+        if (alsoBundled) {
+            add({choice.kind, true});
+        }
+    }
+    return result;
 }
 
 std::unique_ptr<Strategy> createStrategy(StrategyKind kind, bool bundle) {

@@ -259,11 +259,7 @@ std::string Viewer::State::strategyLabel() const {
     if (animometer) {
         return std::string("animometer, ") + (options.animometer->bundle ? "bundle" : "direct");
     }
-    std::string label(render::strategyName(kind));
-    if (bundle && !render::isBundledKind(kind)) {
-        label += render::bundledKind(kind) ? "" : " + bundle";
-    }
-    return label;
+    return render::strategyChoiceName({kind, bundle});
 }
 
 void Viewer::State::show(std::string text, bool error) {

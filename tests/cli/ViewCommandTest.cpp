@@ -145,7 +145,7 @@ TEST(ViewCommandTest, AScriptedSessionShowsWhatRenderWrites) {
               0u);
 
     // B: naive recorded once into a bundle; the resize records nothing again.
-    EXPECT_EQ(field(stats[1], "strategy"), "naive_+_bundle");
+    EXPECT_EQ(field(stats[1], "strategy"), "naive+bundle");
     EXPECT_EQ(field(stats[1], "bundlesRecorded"), "1");
     EXPECT_EQ(field(stats[1], "draws"), "0");
     EXPECT_EQ(field(stats[2], "size"), "200x120");

@@ -32,7 +32,9 @@ struct BenchOptions {
     // Animate every frame (setAnimationTime, timed as part of encoding) with each of these
     // evaluations, measured separately; empty: scenes stand still, crowds use both.
     std::vector<render::AnimationEvaluation> animate;
-    std::vector<render::StrategyKind> strategies;    // Empty: all.
+    // Empty: every strategy, drawn directly or as its own bundled kind. A choice with `bundle`
+    // measures a direct strategy recorded once into a render bundle (`naive+bundle`).
+    std::vector<render::StrategyChoice> strategies;
     std::uint32_t meshes = 8;
     std::uint32_t materials = 4;
     std::uint32_t tessellation = 4;  // Small meshes: CPU rasterisers draw 100,000 objects.

@@ -9,7 +9,9 @@
 #include <memory>
 #include <optional>
 #include <span>
+#include <string>
 #include <string_view>
+#include <vector>
 
 #include "encore/core/Result.h"
 #include "encore/gpu/DeviceLimits.h"
@@ -60,6 +62,27 @@ std::span<const StrategyKind> allStrategies();
 std::optional<StrategyKind> bundledKind(StrategyKind kind);
 std::optional<StrategyKind> directKind(StrategyKind kind);
 bool isBundledKind(StrategyKind kind);
+
+// A point on both axes: a strategy, drawn directly or recorded once into render bundles.
+// Normalised so that equal frames compare equal: a kind with a bundled kind of its own is
+// bundled by naming that kind (`materials` bundled is `bundles`, with bundle false).
+struct StrategyChoice {
+    StrategyKind kind = StrategyKind::Bundles;
+    bool bundle = false;
+
+    static StrategyChoice of(StrategyKind kind, bool bundle);
+    bool operator==(const StrategyChoice&) const = default;
+};
+
+// The choice's name in reports and on the command line: the kind's name, or for a kind recorded
+// by the bundling wrapper "<name>+bundle" (`naive+bundle`).
+std::string strategyChoiceName(StrategyChoice choice);
+// Reads strategyChoiceName's names back; nullopt for anything else.
+std::optional<StrategyChoice> strategyChoiceFromName(std::string_view name);
+// `choices`, each followed (with `alsoBundled`) by its bundled form, every distinct choice once
+// in first-seen order: the bundling axis of `stats --bundle` and `bench --bundle`.
+std::vector<StrategyChoice> withBundlingAxis(std::span<const StrategyChoice> choices,
+                                             bool alsoBundled);
 
 class AnimationBuffers;
 

@@ -35,10 +35,6 @@ InstanceTransformTargets BundledStrategy::instanceTransformTargets() const {
     return mRecorded->instanceTransformTargets();
 }
 
-void BundledStrategy::animateInstancesOnGpu(std::span<const std::uint32_t> instances) {
-    mRecorded->animateInstancesOnGpu(instances);
-}
-
 Result<void> BundledStrategy::updateMaterial(scene::MaterialId material,
                                              const scene::Material& value) {
     return mRecorded->updateMaterial(material, value);

@@ -22,7 +22,6 @@ class BundledStrategy final : public Strategy {
     void encode(RenderEncoder& encoder, const FrameState& frame) const override;
     Result<void> updateInstance(std::size_t instance, const glm::mat4& world) override;
     InstanceTransformTargets instanceTransformTargets() const override;
-    void animateInstancesOnGpu(std::span<const std::uint32_t> instances) override;
     Result<void> updateMaterial(scene::MaterialId material, const scene::Material& value) override;
     Result<void> replaceBaseColorImage(scene::MaterialId material,
                                        const scene::Image& image) override;
