@@ -113,6 +113,9 @@ Result<BenchResult> measure(gpu::Context& context,
                             gpu::GpuTimer* timer,
                             std::optional<render::AnimationEvaluation> animate) {
     ENCORE_TRY(renderer.setAnimationEvaluation(animate.value_or(render::AnimationEvaluation::Cpu)));
+    // Every measured frame animates: past an animation's end it starts again (clamped, the CPU
+    // path would stop changing anything after one play).
+    renderer.setPlaybackMode(scene::PlaybackMode::Loop);
     ENCORE_TRY(renderer.prepare(scene, choice.kind, choice.bundle));
     const render::Camera camera =
         render::Camera::framing(scene.bounds, renderer.target().aspect());

@@ -8,6 +8,8 @@
 #include <cmath>
 #include <cstring>
 #include <string>
+#include <string_view>
+#include <unordered_map>
 
 #include "encore/gpu/BindGroupEntries.h"
 #include "encore/gpu/Upload.h"
@@ -36,6 +38,15 @@ struct SamplerRecord {
     std::uint32_t pad[2];
 };
 static_assert(sizeof(SamplerRecord) == 32);
+
+// animation_sample.wgsl's AnimationClock.
+struct AnimationRecord {
+    std::uint32_t clock;
+    float offset;
+    float wrappedOffset;
+    float end;
+};
+static_assert(sizeof(AnimationRecord) == 16);
 
 // animation_sample.wgsl's AnimatedNode.
 struct NodeRecord {
@@ -121,17 +132,98 @@ std::vector<std::uint32_t> weightOffsets(const scene::SceneData& scene) {
     return offsets;
 }
 
-std::uint64_t keyframeFloats(const scene::SceneData& scene) {
-    std::uint64_t floats = 0;
-    for (const scene::Animation& animation : scene.animations) {
-        for (const scene::AnimationSampler& sampler : animation.samplers) {
-            floats += sampler.times.size() + sampler.values.size();
+// The keyframe storage: each distinct run of key times or values once, however many samplers
+// use it (the characters of a crowd share one model's keyframes), then the rest weights.
+class KeyframeStore {
+  public:
+    // Where `floats` starts in the store, appending it unless an equal run is there already.
+    std::uint32_t add(std::span<const float> floats) {
+        const std::string_view bytes(reinterpret_cast<const char*>(floats.data()),
+                                     floats.size_bytes());
+        const std::size_t hash = std::hash<std::string_view>{}(bytes);
+        auto [first, last] = mRuns.equal_range(hash);
+        for (auto it = first; it != last; ++it) {
+            const auto [offset, count] = it->second;
+            if (count == floats.size() &&
+                std::memcmp(mFloats.data() + offset, floats.data(), floats.size_bytes()) == 0) {
+                return offset;
+            }
+        }
+        const auto offset = static_cast<std::uint32_t>(mFloats.size());
+        mFloats.insert(mFloats.end(), floats.begin(), floats.end());
+        mRuns.emplace(hash, std::pair(offset, floats.size()));
+        return offset;
+    }
+    // Appended as they are (never shared): data the GPU indexes per node.
+    std::uint32_t append(std::span<const float> floats) {
+        const auto offset = static_cast<std::uint32_t>(mFloats.size());
+        mFloats.insert(mFloats.end(), floats.begin(), floats.end());
+        return offset;
+    }
+    std::size_t size() const { return mFloats.size(); }
+    std::vector<float> take() { return std::move(mFloats); }
+
+  private:
+    std::vector<float> mFloats;
+    std::unordered_multimap<std::size_t, std::pair<std::uint32_t, std::size_t>> mRuns;
+};
+
+// Every sampler's times and values, shared where equal; the records point into the store.
+struct SamplerLayout {
+    KeyframeStore keyframes;
+    std::vector<SamplerRecord> samplers;
+    std::vector<std::uint32_t> firstSampler;  // Per animation.
+};
+
+SamplerLayout layoutSamplers(const scene::SceneData& scene) {
+    SamplerLayout layout;
+    for (std::size_t a = 0; a < scene.animations.size(); ++a) {
+        layout.firstSampler.push_back(static_cast<std::uint32_t>(layout.samplers.size()));
+        for (const scene::AnimationSampler& sampler : scene.animations[a].samplers) {
+            SamplerRecord record{};
+            record.timesOffset = layout.keyframes.add(sampler.times);
+            record.keyCount = static_cast<std::uint32_t>(sampler.times.size());
+            record.valuesOffset = layout.keyframes.add(sampler.values);
+            record.components = sampler.components;
+            record.interpolation = interpolationCode(sampler.interpolation);
+            record.animation = static_cast<std::uint32_t>(a);
+            layout.samplers.push_back(record);
         }
     }
+    return layout;
+}
+
+std::uint64_t restWeightFloats(const scene::SceneData& scene) {
+    std::uint64_t floats = 0;
     for (const scene::Node& node : scene.nodes) {
         floats += node.weights.size();
     }
     return floats;
+}
+
+// One clock per distinct duration, in order of first use; `clockOf` maps each animation to its.
+std::vector<float> animationClocks(const scene::SceneData& scene,
+                                   std::vector<std::uint32_t>& clockOf) {
+    std::vector<float> ends;
+    std::unordered_map<float, std::uint32_t> clockOfEnd;
+    for (const scene::Animation& animation : scene.animations) {
+        auto [it, inserted] =
+            clockOfEnd.emplace(animation.end, static_cast<std::uint32_t>(ends.size()));
+        if (inserted) {
+            ends.push_back(animation.end);
+        }
+        clockOf.push_back(it->second);
+    }
+    return ends;
+}
+
+// t mod end into [0, end), as scene::AnimationPlayer wraps.
+double wrapTime(double seconds, float end) {
+    double time = std::fmod(seconds, double(end));
+    if (time < 0.0) {
+        time += end;
+    }
+    return time;
 }
 
 }  // namespace
@@ -163,9 +255,11 @@ Result<void> GpuAnimation::checkLimits(const gpu::DeviceLimits& limits,
     }
     const std::uint64_t instances = scene.instances.size();
     const std::string ofNodes = " of " + std::to_string(nodes) + " nodes";
+    const std::uint64_t keyframeFloats =
+        layoutSamplers(scene).keyframes.size() + restWeightFloats(scene);
     ENCORE_TRY(gpu::checkStorageBinding(
-        limits, keyframeFloats(scene) * 4,
-        "The animation keyframes (" + std::to_string(keyframeFloats(scene)) + " floats)"));
+        limits, keyframeFloats * 4,
+        "The animation keyframes (" + std::to_string(keyframeFloats) + " floats)"));
     ENCORE_TRY(gpu::checkStorageBinding(
         limits, samplers * sizeof(SamplerRecord),
         "The GPU animation records of " + std::to_string(samplers) + " samplers"));
@@ -208,26 +302,21 @@ Result<std::unique_ptr<GpuAnimation>> GpuAnimation::create(
     gpu.mScene = &scene;
     const std::size_t nodeCount = scene.nodes.size();
 
-    // Keyframes: every sampler's times then values, then the rest weights of animated nodes.
-    std::vector<float> keyframes;
-    keyframes.reserve(keyframeFloats(scene));
-    std::vector<SamplerRecord> samplers;
+    // Keyframes: every distinct run of sampler times and values, then the rest weights of
+    // animated nodes. Animations: their clock, offset and duration.
+    SamplerLayout layout = layoutSamplers(scene);
+    KeyframeStore& keyframes = layout.keyframes;
+    gpu.mSamplerOffsets = std::move(layout.firstSampler);
+    std::vector<std::uint32_t> clockOf;
+    gpu.mClockEnds = animationClocks(scene, clockOf);
+    std::vector<AnimationRecord> animationRecords;
     std::vector<std::uint8_t> animated(nodeCount, 0);
     for (std::size_t a = 0; a < scene.animations.size(); ++a) {
         const scene::Animation& anim = scene.animations[a];
-        gpu.mSamplerOffsets.push_back(static_cast<std::uint32_t>(samplers.size()));
-        for (const scene::AnimationSampler& sampler : anim.samplers) {
-            SamplerRecord record{};
-            record.timesOffset = static_cast<std::uint32_t>(keyframes.size());
-            record.keyCount = static_cast<std::uint32_t>(sampler.times.size());
-            keyframes.insert(keyframes.end(), sampler.times.begin(), sampler.times.end());
-            record.valuesOffset = static_cast<std::uint32_t>(keyframes.size());
-            keyframes.insert(keyframes.end(), sampler.values.begin(), sampler.values.end());
-            record.components = sampler.components;
-            record.interpolation = interpolationCode(sampler.interpolation);
-            record.animation = static_cast<std::uint32_t>(a);
-            samplers.push_back(record);
-        }
+        const double wrapped = anim.end > 0.0f ? wrapTime(anim.timeOffset, anim.end) : 0.0;
+        // Rounding can carry a tiny negative offset up to `end` itself: that is 0.
+        const float wrappedOffset = float(wrapped) < anim.end ? float(wrapped) : 0.0f;
+        animationRecords.push_back({clockOf[a], anim.timeOffset, wrappedOffset, anim.end});
         for (const scene::AnimationChannel& channel : anim.channels) {
             animated[channel.node.index()] = 1;
         }
@@ -249,8 +338,7 @@ Result<std::unique_ptr<GpuAnimation>> GpuAnimation::create(
         record.node = static_cast<std::uint32_t>(n);
         record.weightOffset = weightOffset[n];
         record.weightCount = static_cast<std::uint32_t>(node.weights.size());
-        record.restWeights = static_cast<std::uint32_t>(keyframes.size());
-        keyframes.insert(keyframes.end(), node.weights.begin(), node.weights.end());
+        record.restWeights = keyframes.append(node.weights);
         nodeRecords.push_back(record);
         gpu.mAnimatedNodes.push_back(static_cast<std::uint32_t>(n));
     }
@@ -335,12 +423,21 @@ Result<std::unique_ptr<GpuAnimation>> GpuAnimation::create(
     const auto readable = wgpu::BufferUsage::CopySrc | wgpu::BufferUsage::CopyDst;
     gpu.mLocals = createStorageBuffer(device, std::move(restLocals), "animated node locals", readable);
     gpu.mWorlds = createStorageBuffer(device, std::move(restWorlds), "animated node worlds", readable);
-    const wgpu::Buffer keyframeBuffer = createStorageBuffer(device, std::move(keyframes), "keyframes");
-    const wgpu::Buffer samplerBuffer = createStorageBuffer(device, std::move(samplers), "samplers");
+    const std::uint64_t storedKeyframes = keyframes.size();
+    std::vector<float> keyframeFloats = keyframes.take();
+    if (keyframeFloats.empty()) {
+        keyframeFloats.push_back(0.0f);  // No zero-sized bindings.
+    }
+    const wgpu::Buffer keyframeBuffer =
+        createStorageBuffer(device, std::move(keyframeFloats), "keyframes");
+    const wgpu::Buffer samplerBuffer =
+        createStorageBuffer(device, std::move(layout.samplers), "samplers");
+    const wgpu::Buffer animationBuffer =
+        createStorageBuffer(device, std::move(animationRecords), "animation clocks");
     const wgpu::Buffer nodeBuffer = createStorageBuffer(device, nodeRecords, "animated nodes");
-    gpu.mTimes.assign(scene.animations.size(), 0.0f);
-    gpu.mAnimationTimes =
-        createStorageBuffer(device, gpu.mTimes, "animation times", wgpu::BufferUsage::CopyDst);
+    gpu.mClockTimes.assign(1 + gpu.mClockEnds.size(), 0.0f);
+    gpu.mClocks = createStorageBuffer(device, gpu.mClockTimes, "animation clock times",
+                                      wgpu::BufferUsage::CopyDst);
     gpu.mNodeChannels =
         createStorageBuffer(device, std::vector<glm::uvec4>(nodeRecords.size(), glm::uvec4(kNone)),
                       "animated node channels", wgpu::BufferUsage::CopyDst);
@@ -373,11 +470,12 @@ Result<std::unique_ptr<GpuAnimation>> GpuAnimation::create(
     gpu.mTransform = *transform;
     const wgpu::BindGroupEntry sampleEntries[] = {bufferEntry(0, keyframeBuffer),
                                                   bufferEntry(1, samplerBuffer),
-                                                  bufferEntry(2, gpu.mAnimationTimes),
+                                                  bufferEntry(2, gpu.mClocks),
                                                   bufferEntry(3, nodeBuffer),
                                                   bufferEntry(4, gpu.mNodeChannels),
                                                   bufferEntry(5, gpu.mLocals),
-                                                  bufferEntry(6, weights)};
+                                                  bufferEntry(6, weights),
+                                                  bufferEntry(7, animationBuffer)};
     gpu.mSampleGroup = makeBindGroup(device, gpu.mSample, sampleEntries, "animation sampling");
 
     const std::uint64_t levelStride =
@@ -420,7 +518,9 @@ Result<std::unique_ptr<GpuAnimation>> GpuAnimation::create(
     stats.dispatches = (stats.animatedNodes ? 1 : 0) + stats.levels + (stats.instances ? 1 : 0) +
                        (stats.joints ? 1 : 0);
     stats.copies = static_cast<std::uint32_t>(gpu.mCopyTargets.size());
-    stats.bytesPerFrame = gpu.mTimes.size() * sizeof(float);
+    stats.bytesPerFrame = gpu.mClockEnds.size() * sizeof(float);
+    stats.clocks = static_cast<std::uint32_t>(gpu.mClockEnds.size());
+    stats.keyframeBytes = storedKeyframes * sizeof(float);
 
     std::vector<scene::AnimationId> all;
     for (std::size_t a = 0; a < scene.animations.size(); ++a) {
@@ -451,18 +551,21 @@ void GpuAnimation::select(const wgpu::Queue& queue, std::span<const scene::Anima
 }
 
 void GpuAnimation::setTime(const wgpu::Queue& queue, double seconds, scene::PlaybackMode mode) {
-    for (std::size_t a = 0; a < mTimes.size(); ++a) {
-        const float end = mScene->animations[a].end;
-        double time = seconds;
-        if (mode == scene::PlaybackMode::Loop && end > 0.0f) {
-            time = std::fmod(seconds, double(end));
-            if (time < 0.0) {
-                time += end;
-            }
-        }
-        mTimes[a] = static_cast<float>(time);
+    const bool loop = mode == scene::PlaybackMode::Loop;
+    for (std::size_t c = 0; c < mClockEnds.size(); ++c) {
+        const float end = mClockEnds[c];
+        mClockTimes[1 + c] = static_cast<float>(loop && end > 0.0f ? wrapTime(seconds, end) : seconds);
     }
-    queue.WriteBuffer(mAnimationTimes, 0, mTimes.data(), mTimes.size() * sizeof(float));
+    // The header (the playback mode) only when it changes: a frame writes one float per clock.
+    const float loopFlag = loop ? 1.0f : 0.0f;
+    const bool modeChanged = !mModeWritten || mClockTimes[0] != loopFlag;
+    mClockTimes[0] = loopFlag;
+    mModeWritten = true;
+    const std::size_t first = modeChanged ? 0 : 1;
+    if (mClockTimes.size() > first) {
+        queue.WriteBuffer(mClocks, first * sizeof(float), mClockTimes.data() + first,
+                          (mClockTimes.size() - first) * sizeof(float));
+    }
 }
 
 void GpuAnimation::encode(const wgpu::CommandEncoder& commands) const {

@@ -164,6 +164,7 @@ Result<void> Renderer::prepare(const scene::SceneData& scene, StrategyKind kind,
     mSetup->animation = nullptr;
     mAnimation.reset();
     mPlayer = std::make_unique<scene::AnimationPlayer>(scene);
+    mPlayer->setMode(mPlaybackMode);
     mAnimationStats = {};
     mAnimationTime.reset();
     mAnimation = AnimationBuffers::create(mContext->device(), mContext->queue(), *mLayouts, scene,
@@ -230,6 +231,13 @@ Result<void> Renderer::setAnimationEvaluation(AnimationEvaluation evaluation) {
     const Playback playing = playback();
     mPlayer = std::make_unique<scene::AnimationPlayer>(*mScene);
     return restorePlayback(playing);
+}
+
+void Renderer::setPlaybackMode(scene::PlaybackMode mode) {
+    mPlaybackMode = mode;
+    if (mPlayer) {
+        mPlayer->setMode(mode);
+    }
 }
 
 Renderer::Playback Renderer::playback() const {

@@ -198,9 +198,9 @@ void AnimationPlayer::evaluate(double seconds) {
 
     for (const AnimationId id : mSelection) {
         const Animation& animation = scene.animations[id.index()];
-        double time = seconds;
+        double time = seconds + double(animation.timeOffset);
         if (mMode == PlaybackMode::Loop && animation.end > 0.0f) {
-            time = std::fmod(seconds, double(animation.end));
+            time = std::fmod(time, double(animation.end));
             if (time < 0.0) {
                 time += animation.end;
             }

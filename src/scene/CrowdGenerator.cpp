@@ -124,13 +124,19 @@ Result<std::vector<std::uint8_t>> generateCrowdGlb(const CrowdOptions& options) 
         }
         rotationAccessors.push_back(binary.addAccessor(document, values, kFloat, "VEC4", kKeys));
     }
+    std::vector<float> times;
+    for (std::uint32_t key = 0; key < kKeys; ++key) {
+        times.push_back(float(key) / float(kKeys - 1));
+    }
+    const std::size_t input = binary.addAccessor(document, times, kFloat, "SCALAR", kKeys,
+                                                 std::nullopt,
+                                                 json{{times.front()}, {times.back()}});
 
     const auto side = static_cast<std::uint32_t>(std::ceil(std::sqrt(double(options.characters))));
     const float spacing = 1.0f;
     const float origin = -0.5f * float(side - 1) * spacing;
     json sceneNodes = json::array();
-    json samplers = json::array();
-    json channels = json::array();
+    json animations = json::array();
     for (std::uint32_t k = 0; k < options.characters; ++k) {
         const std::size_t root = document["nodes"].size();
         const float x = origin + float(k % side) * spacing;
@@ -155,23 +161,22 @@ Result<std::vector<std::uint8_t>> generateCrowdGlb(const CrowdOptions& options) 
             {{"joints", skinJoints}, {"inverseBindMatrices", inverseBindAccessor}});
         sceneNodes.push_back(root);
 
-        // This character's key times: the shared keys shifted by its offset.
-        const float offset = std::fmod(0.37f * float(k), 1.0f);
-        std::vector<float> times;
-        for (std::uint32_t key = 0; key < kKeys; ++key) {
-            times.push_back(offset + float(key) / float(kKeys - 1));
-        }
-        const std::size_t input = binary.addAccessor(document, times, kFloat, "SCALAR", kKeys,
-                                                     std::nullopt,
-                                                     json{{times.front()}, {times.back()}});
+        // This character's animation: the shared keys (the same accessors for every character),
+        // played out of step through Encore's time offset.
+        json samplers = json::array();
+        json channels = json::array();
         for (std::uint32_t j = 0; j < kCrowdJointsPerCharacter; ++j) {
-            channels.push_back({{"sampler", samplers.size()},
+            channels.push_back({{"sampler", j},
                                 {"target", {{"node", root + 1 + j}, {"path", "rotation"}}}});
             samplers.push_back(
                 {{"input", input}, {"output", rotationAccessors[j]}, {"interpolation", "LINEAR"}});
         }
+        animations.push_back({{"name", "sway " + std::to_string(k)},
+                              {"samplers", samplers},
+                              {"channels", channels},
+                              {"extras", {{"encoreTimeOffset", std::fmod(0.37f * float(k), 1.0f)}}}});
     }
-    document["animations"] = {{{"name", "sway"}, {"samplers", samplers}, {"channels", channels}}};
+    document["animations"] = animations;
     document["buffers"].push_back({{"byteLength", binary.size()}});
     document["scenes"] = {{{"nodes", sceneNodes}}};
 

@@ -232,6 +232,7 @@ struct GltfAnimationSampler {
 
 struct GltfAnimation {
     std::string name;
+    double timeOffset = 0.0;  // extras.encoreTimeOffset (see scene::Animation::timeOffset).
     std::vector<GltfAnimationChannel> channels;
     std::vector<GltfAnimationSampler> samplers;
 };

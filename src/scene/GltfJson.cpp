@@ -232,6 +232,11 @@ const Json* FieldReader::object(std::string_view key) {
     return value;
 }
 
+const Json* FieldReader::objectIfAny(std::string_view key) const {
+    const Json* value = find(key);
+    return value && value->is_object() ? value : nullptr;
+}
+
 const Json* FieldReader::array(std::string_view key) {
     const Json* value = find(key);
     if (value && !value->is_array()) {

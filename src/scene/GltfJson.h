@@ -56,6 +56,9 @@ class FieldReader {
     // Nested values; absent yields nullptr, a value of another type is an error.
     const Json* object(std::string_view key);
     const Json* array(std::string_view key);
+    // An object, or nullptr when absent or of another type: for `extras`, which may hold any
+    // value, of which only an object can carry what Encore reads.
+    const Json* objectIfAny(std::string_view key) const;
 
     // Records an error unless one is already recorded.
     void fail(ErrorCode code, std::string message);

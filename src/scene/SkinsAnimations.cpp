@@ -251,6 +251,21 @@ Result<void> parseAnimations(const Json& root, GltfDocument& document) {
     return forEachElement(root, "animations", "animation", [&](FieldReader& reader, std::size_t) {
         GltfAnimation animation;
         animation.name = reader.string("name");
+        // extras may hold anything; only Encore's own key is read, and it must be a number.
+        if (const Json* extras = reader.objectIfAny("extras")) {
+            FieldReader fields(*extras, reader.element() + " extras");
+            animation.timeOffset = fields.number("encoreTimeOffset", 0.0);
+            // Beyond this a float time loses whole keyframe intervals (and 1e39 is no float).
+            constexpr double kMaxTimeOffset = 1e6;
+            if (!fields.failed() && std::abs(animation.timeOffset) > kMaxTimeOffset) {
+                fields.fail(ErrorCode::InvalidFormat,
+                            fields.element() + ": encoreTimeOffset " +
+                                formatNumber(animation.timeOffset) +
+                                " is out of range (at most 1000000 seconds either way).");
+            }
+            if (fields.failed())
+                reader.fail(fields.error().code, fields.error().message);
+        }
         const Json* channels = reader.array("channels");
         const Json* samplers = reader.array("samplers");
         for (std::size_t c = 0; channels && c < channels->size() && !reader.failed(); ++c) {
@@ -379,6 +394,7 @@ Result<void> convertAnimations(LoadContext& context) {
         const std::string name = "animation " + std::to_string(a);
         Animation animation;
         animation.name = source.name;
+        animation.timeOffset = static_cast<float>(source.timeOffset);
         for (std::size_t s = 0; s < source.samplers.size(); ++s) {
             AnimationSampler sampler;
             ENCORE_TRY_ASSIGN(sampler, convertSampler(context, source.samplers[s],

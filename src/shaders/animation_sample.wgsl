@@ -19,7 +19,7 @@ struct Sampler {
                          // value, out-tangent).
     components: u32,
     interpolation: u32,
-    animation: u32,      // Index into animationTimes.
+    animation: u32,      // Index into animations.
     pad0: u32,
     pad1: u32,
 }
@@ -37,7 +37,18 @@ struct AnimatedNode {
 
 @group(0) @binding(0) var<storage, read> keyframes: array<f32>;
 @group(0) @binding(1) var<storage, read> samplers: array<Sampler>;
-@group(0) @binding(2) var<storage, read> animationTimes: array<f32>;
+// Animations share clocks (one per distinct duration), so that the CPU writes per frame one
+// float per clock, however many animations (a crowd's characters) play with their own offsets.
+struct AnimationClock {
+    clock: u32,           // Index into clocks (after its header).
+    offset: f32,          // Animation::timeOffset (playing clamped).
+    wrappedOffset: f32,   // The offset wrapped into [0, end) (playing in a loop).
+    end: f32,             // The animation's duration (0: never wraps).
+}
+// clocks[0]: 1 when playing in a loop, else 0; clocks[1 + c]: clock c's time this frame, already
+// wrapped into [0, end) by the CPU when looping.
+@group(0) @binding(2) var<storage, read> clocks: array<f32>;
+@group(0) @binding(7) var<storage, read> animations: array<AnimationClock>;
 @group(0) @binding(3) var<storage, read> nodes: array<AnimatedNode>;
 // Per animated node, the sampler driving translation, rotation, scale and weights (kNone: none).
 @group(0) @binding(4) var<storage, read> nodeChannels: array<vec4u>;
@@ -160,8 +171,16 @@ fn sampleRotation(index: u32, time: f32) -> vec4f {
     return normalizeQuaternion(q);
 }
 
+// As scene::AnimationPlayer: (t + offset) mod end when looping, t + offset otherwise; the CPU
+// wrapped t, and both terms lie in [0, end), so one subtraction wraps their sum.
 fn timeOf(index: u32) -> f32 {
-    return animationTimes[samplers[index].animation];
+    let a = animations[samplers[index].animation];
+    let time = clocks[1u + a.clock];
+    if (clocks[0] != 0.0 && a.end > 0.0) {
+        let wrapped = time + a.wrappedOffset;
+        return select(wrapped, wrapped - a.end, wrapped >= a.end);
+    }
+    return time + a.offset;
 }
 
 // translate(t) * mat4_cast(normalize(q)) * scale(s), as scene::composeTrs.

@@ -180,6 +180,8 @@ Result<std::unique_ptr<Viewer>> Viewer::create(gpu::Context& context, Window& wi
         }
         s.renderer = std::move(*renderer);
         s.renderer->setGpuTimer(s.timer ? &*s.timer : nullptr);
+        // The window's clock runs on: animations play round and round, not once.
+        s.renderer->setPlaybackMode(scene::PlaybackMode::Loop);
         ENCORE_TRY(s.prepareScene());
         if (!s.options.animation.empty()) {
             if (auto found = scene::findAnimation(*s.scene, s.options.animation)) {

@@ -372,8 +372,11 @@ TEST(AnimationLimitsTest, GpuAnimationBeyondAStorageBindingIsRefused) {
     scene::SceneData animated;
     animated.animations.push_back({});
     animated.animations[0].samplers.push_back({});
-    animated.animations[0].samplers[0].times.resize(10000);   // 40,000 bytes:
-    animated.animations[0].samplers[0].values.resize(10000);  // 80,000 with the values.
+    auto& sampler = animated.animations[0].samplers[0];
+    for (int k = 0; k < 10000; ++k) {
+        sampler.times.push_back(float(k));          // 40,000 bytes:
+        sampler.values.push_back(-1.0f - float(k));  // 80,000 with the values.
+    }
     auto refused = GpuAnimation::checkLimits(limits, animated);
     ASSERT_FALSE(refused.ok());
     EXPECT_EQ(refused.error().code, ErrorCode::LimitExceeded);
@@ -381,6 +384,10 @@ TEST(AnimationLimitsTest, GpuAnimationBeyondAStorageBindingIsRefused) {
         << refused.error().message;
     animated.animations[0].samplers[0].values.resize(5000);  // 60,000 bytes fit.
     EXPECT_TRUE(GpuAnimation::checkLimits(limits, animated).ok());
+    // Keyframes equal to stored ones are shared, not stored again.
+    animated.animations.push_back(animated.animations[0]);
+    EXPECT_TRUE(GpuAnimation::checkLimits(limits, animated).ok());
+    animated.animations.pop_back();
 
     animated.skins.push_back({});
     animated.skins[0].joints.resize(1000);  // 80,000 bytes of joint records.

@@ -110,8 +110,8 @@ TEST_P(AnimatedDeviceLossTest, TheAnimationResumesWhereItWas) {
     renderer->renderFrame(camera);
     auto rest = renderer->readImage();
     ASSERT_TRUE(rest.ok()) << rest.error().message;
-    ASSERT_TRUE(renderer->selectAnimation("sway").ok());
-    ASSERT_TRUE(renderer->setAnimationTime(0.6).ok());
+    ASSERT_TRUE(renderer->selectAnimation("sway 4").ok());  // The middle character alone.
+    ASSERT_TRUE(renderer->setAnimationTime(0.3).ok());  // 0.78 s into its sway.
     renderer->renderFrame(camera);
     auto before = renderer->readImage();
     ASSERT_TRUE(before.ok()) << before.error().message;

@@ -243,11 +243,13 @@ struct Transform {
 void expectGpuMatchesCpu(gpu::Context& context,
                          const scene::SceneData& scene,
                          const std::vector<double>& times,
-                         const std::string& animation = {}) {
+                         const std::string& animation = {},
+                         scene::PlaybackMode mode = scene::PlaybackMode::Clamp) {
     auto options = test::pixelTestOptions(kSize, kSize);
     options.animation = AnimationEvaluation::Gpu;
     auto renderer = Renderer::create(context, options);
     ASSERT_TRUE(renderer.ok());
+    renderer->setPlaybackMode(mode);
     auto prepared = renderer->prepare(scene, StrategyKind::Instancing);
     ASSERT_TRUE(prepared.ok()) << prepared.error().message;
     ASSERT_TRUE(renderer->selectAnimation(animation).ok());
@@ -257,6 +259,7 @@ void expectGpuMatchesCpu(gpu::Context& context,
     const InstanceTransformTargets targets = renderer->strategy()->instanceTransformTargets();
 
     scene::AnimationPlayer player(scene);
+    player.setMode(mode);
     if (!animation.empty()) {
         ASSERT_TRUE(player.select(animation).ok());
     }
@@ -451,18 +454,60 @@ TEST(GpuAnimationTest, CrowdMatchesTheCpuPlayer) {
     EXPECT_EQ(crowd->instances.size(), 5u);
     EXPECT_EQ(crowd->skins.size(), 5u);
     EXPECT_EQ(crowd->nodes.size(), 5u * scene::kCrowdNodesPerCharacter);
-    ASSERT_EQ(crowd->animations.size(), 1u);
-    EXPECT_EQ(crowd->animations[0].channels.size(), 5u * scene::kCrowdJointsPerCharacter);
-    // Different offsets: at t = 1 the first two characters are in different poses.
+    // One animation per character, same keys, each with its own time offset.
+    ASSERT_EQ(crowd->animations.size(), 5u);
+    for (std::size_t k = 0; k < 5; ++k) {
+        EXPECT_EQ(crowd->animations[k].channels.size(), scene::kCrowdJointsPerCharacter);
+        EXPECT_EQ(crowd->animations[k].end, 1.0f);
+        EXPECT_NEAR(crowd->animations[k].timeOffset, std::fmod(0.37 * double(k), 1.0), 1e-6);
+        EXPECT_EQ(crowd->animations[k].samplers[2].times, crowd->animations[0].samplers[2].times);
+        EXPECT_EQ(crowd->animations[k].samplers[2].values,
+                  crowd->animations[0].samplers[2].values);
+    }
+    // Different offsets: at t = 0.3 the first two characters are in different poses.
     scene::AnimationPlayer player(*crowd);
-    player.evaluate(1.0);
+    player.evaluate(0.3);
     const auto joints = player.jointMatrices();
     const auto offsets = player.skinJointOffsets();
     EXPECT_NE(joints[offsets[0] + 3][0], joints[offsets[1] + 3][0]);
-    expectGpuMatchesCpu(*context, *crowd, {-1.0, 0.0, 0.3, 0.74, 1.0, 1.5, 3.0});
+    const std::vector<double> times = {-1.0, 0.0, 0.3, 0.74, 1.0, 1.5, 3.0, 7.81};
+    expectGpuMatchesCpu(*context, *crowd, times);
+    expectGpuMatchesCpu(*context, *crowd, times, {}, scene::PlaybackMode::Loop);
+    expectGpuMatchesCpu(*context, *crowd, times, "sway 3", scene::PlaybackMode::Loop);
     expectSameFrames(*context, *crowd, {0.5, 1.2}, Camera::framing(crowd->bounds, 1.0f, 0.5f));
     auto refused = scene::generateCrowdGlb({0});
     EXPECT_FALSE(refused.ok());
+}
+
+// The GPU stores a crowd's keyframes once and gives its characters one clock: what it keeps and
+// what the CPU writes per frame do not grow with the characters.
+TEST(GpuAnimationTest, ACrowdSharesItsKeyframesAndOneClock) {
+    ENCORE_REQUIRE_VULKAN(context);
+    std::vector<GpuAnimationStats> sizes;
+    for (std::uint32_t characters : {4u, 64u}) {
+        auto glb = scene::generateCrowdGlb({characters});
+        ASSERT_TRUE(glb.ok()) << glb.error().message;
+        auto crowd = scene::loadSceneFromMemory(*glb, {}, "crowd.glb");
+        ASSERT_TRUE(crowd.ok()) << crowd.error().message;
+        auto options = test::pixelTestOptions(kSize, kSize);
+        options.animation = AnimationEvaluation::Gpu;
+        auto renderer = Renderer::create(*context, options);
+        ASSERT_TRUE(renderer.ok());
+        renderer->setPlaybackMode(scene::PlaybackMode::Loop);
+        ASSERT_TRUE(renderer->prepare(*crowd, StrategyKind::GpuCullingBundles).ok());
+        ASSERT_NE(renderer->gpuAnimation(), nullptr);
+        sizes.push_back(renderer->gpuAnimation()->stats());
+        ASSERT_TRUE(renderer->setAnimationTime(0.5).ok());
+        ASSERT_TRUE(renderer->setAnimationTime(12.25).ok());
+        EXPECT_EQ(renderer->animationStats().bytesWritten, sizeof(float)) << characters;
+        EXPECT_EQ(sizes.back().joints, characters * scene::kCrowdJointsPerCharacter);
+    }
+    EXPECT_EQ(sizes[0].clocks, 1u);
+    EXPECT_EQ(sizes[1].clocks, 1u);
+    // 5 key times and 4 joints x 5 rotation keys, however many characters.
+    EXPECT_EQ(sizes[0].keyframeBytes, (5u + 4u * 5u * 4u) * sizeof(float));
+    EXPECT_EQ(sizes[1].keyframeBytes, sizes[0].keyframeBytes);
+    EXPECT_EQ(sizes[1].bytesPerFrame, sizeof(float));
 }
 
 // Every animated model of ../shared/models (skipped without it).

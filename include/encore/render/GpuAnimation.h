@@ -2,8 +2,10 @@
 
 // GpuAnimation evaluates a scene's animations on the GPU, the alternative to
 // scene::AnimationPlayer's CPU evaluation (AnimationEvaluation::Gpu). Every sampler's key times
-// and outputs go into one storage buffer when it is created; each frame the CPU writes only the
-// local time of each animation and records a fixed number of compute dispatches:
+// and outputs go into one storage buffer when it is created (each distinct run once, so copies of
+// one model share them); each frame the CPU writes only the
+// time of each clock (one per distinct animation duration; each animation adds its own time
+// offset on the GPU) and records a fixed number of compute dispatches:
 //   1. animation_sample.wgsl: per animated node, samples the selected channels (binary search
 //      over the key times; STEP, LINEAR with normalised shortest-path slerp for rotations,
 //      CUBICSPLINE with tangents scaled by the key interval) into its local matrix and morph
@@ -57,7 +59,13 @@ struct GpuAnimationStats {
     std::uint32_t joints = 0;         // Joint matrices of all skins.
     std::uint32_t dispatches = 0;     // Per frame.
     std::uint32_t copies = 0;         // Per frame (node-uniform strategies).
-    std::uint64_t bytesPerFrame = 0;  // What the CPU writes per frame (animation times).
+    std::uint64_t bytesPerFrame = 0;  // What the CPU writes per frame (clock times).
+    // Clocks: one per distinct animation duration. Animations that share one (a crowd's
+    // characters, each with its own extras.encoreTimeOffset) cost the CPU one float per frame.
+    std::uint32_t clocks = 0;
+    // Key times and values stored, each distinct run once however many samplers use it (with the
+    // rest weights of animated nodes).
+    std::uint64_t keyframeBytes = 0;
 };
 
 class GpuAnimation {
@@ -81,8 +89,8 @@ class GpuAnimation {
     // (as AnimationPlayer). Writes one small table; call when the selection changes.
     void select(const wgpu::Queue& queue, std::span<const scene::AnimationId> selection);
 
-    // Writes each animation's local time at `seconds` (wrapped in PlaybackMode::Loop exactly as
-    // AnimationPlayer does).
+    // Writes each clock's time at `seconds` (wrapped in PlaybackMode::Loop exactly as
+    // AnimationPlayer wraps); the passes add each animation's time offset and wrap once more.
     void setTime(const wgpu::Queue& queue, double seconds, scene::PlaybackMode mode);
 
     // Records the frame's compute passes (and copies) into `commands`; submit them before the
@@ -101,8 +109,10 @@ class GpuAnimation {
     std::vector<std::uint32_t> mAnimatedNodes;   // Node index per pass-1 thread.
     std::vector<std::uint32_t> mInstances;       // Scene instances written.
     std::vector<std::uint32_t> mSamplerOffsets;  // First GPU sampler of each animation.
-    std::vector<float> mTimes;                   // Per animation, written by setTime.
-    wgpu::Buffer mAnimationTimes, mNodeChannels, mLocals, mWorlds, mInstanceOutput;
+    std::vector<float> mClockEnds;   // Per clock: the duration of the animations that share it.
+    std::vector<float> mClockTimes;  // The playback-mode header, then per clock, by setTime.
+    bool mModeWritten = false;
+    wgpu::Buffer mClocks, mNodeChannels, mLocals, mWorlds, mInstanceOutput;
     wgpu::ComputePipeline mSample, mWorld, mTransform;
     wgpu::BindGroup mSampleGroup, mInstanceGroup, mJointGroup;
     std::vector<wgpu::BindGroup> mLevelGroups;

@@ -118,6 +118,11 @@ class Renderer {
     const GpuAnimation* gpuAnimation() const { return mGpuAnimation.get(); }
     Result<void> selectAnimation(std::string_view nameOrIndex);
     Result<void> setAnimationTime(double seconds);
+    // Times past an animation's end: held at its last pose (Clamp, the default, as `encore render
+    // --time` wants) or wrapped around its duration (Loop: the viewer, benchmarks). Kept across
+    // prepare() and device loss.
+    void setPlaybackMode(scene::PlaybackMode mode);
+    scene::PlaybackMode playbackMode() const { return mPlaybackMode; }
     const AnimationFrameStats& animationStats() const { return mAnimationStats; }
     const scene::AnimationPlayer* animationPlayer() const { return mPlayer.get(); }
     const AnimationBuffers* animationBuffers() const { return mAnimation.get(); }
@@ -197,6 +202,7 @@ class Renderer {
     std::unique_ptr<AnimationBuffers> mAnimation;  // Before mStrategy, which binds it.
     AnimationFrameStats mAnimationStats;
     std::optional<double> mAnimationTime;  // The last setAnimationTime() since prepare().
+    scene::PlaybackMode mPlaybackMode = scene::PlaybackMode::Clamp;
     std::unique_ptr<Strategy> mStrategy;
     std::unique_ptr<GpuAnimation> mGpuAnimation;  // After mStrategy: writes its buffers.
     bool mGpuAnimationPending = false;  // Time set since the last frame encoded the passes.

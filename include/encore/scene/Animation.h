@@ -50,6 +50,11 @@ struct Animation {
     // Channels whose target the loader cannot drive (no node, an unknown path, weights of a node
     // without morph targets) are left out, with a warning where glTF calls them invalid.
     std::vector<AnimationChannel> channels;
+    // Seconds added to the playback time before this animation is sampled (and wrapped, when
+    // looping): glTF has no such property, so Encore reads it from the animation's
+    // `extras.encoreTimeOffset`. Many copies of one animated model can then share its keyframes
+    // (same accessors) and still play out of step; viewers that ignore it play them in step.
+    float timeOffset = 0.0f;
     float start = 0.0f;  // First key time over the channels' samplers (0 without channels).
     float end = 0.0f;    // Last key time: the animation's duration as players report it.
 };

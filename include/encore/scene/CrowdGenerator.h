@@ -2,11 +2,13 @@
 
 // Generates an animated crowd for benchmarks of animation at scale: `characters` copies of one
 // skinned character (a four-segment column skinned to a chain of four joints, each vertex
-// weighing its two nearest joints) on a square grid in the XZ plane, all drawing one mesh. One
-// animation ("sway", 1 second) turns every joint back and forth; character k plays it with
-// its own time offset, baked into its samplers' key times (k × 0.37 s, modulo 1 s), so
-// neighbours never move in step. All characters share the key values and the inverse bind
-// matrices (the skeleton's bind pose is at the origin; each character's root node places it).
+// weighing its two nearest joints) on a square grid in the XZ plane, all drawing one mesh.
+// Character k has its own animation ("sway k", 1 second) that turns its joints back and forth
+// from the same key-time and key-value accessors as every other character's, played with its
+// own time offset (extras.encoreTimeOffset = k × 0.37 s, modulo 1 s; see
+// scene::Animation::timeOffset), so neighbours never move in step while the GPU stores one set
+// of keyframes and one clock for the whole crowd. All characters share the inverse bind matrices
+// too (the skeleton's bind pose is at the origin; each character's root node places it).
 // The output is a self-contained .glb.
 
 #include <cstdint>

@@ -539,5 +539,62 @@ TEST(AnimationLoadTest, SparseMorphTargetWithoutBufferView) {
     EXPECT_EQ(glm::vec3(deltas[2]), glm::vec3(0, 0, 5));
 }
 
+// Encore's time offset (extras.encoreTimeOffset): two animations with the same keys, one
+// offset, play the same poses that far apart, clamped and looping.
+TEST(AnimationLoadTest, TimeOffsetFromExtrasShiftsThePlayback) {
+    auto builder = hierarchy();
+    const auto times = builder.addAccessor(std::vector<float>{0, 1, 2}, "SCALAR", {.minMax = true});
+    const auto values =
+        builder.addAccessor(std::vector<float>{0, 0, 0, 2, 0, 0, 2, 4, 0}, "VEC3");
+    addAnimation(builder, "plain", {sampler(times, values)}, {channel(0, 0, "translation")});
+    addAnimation(builder, "offset", {sampler(times, values)}, {channel(0, 0, "translation")});
+    builder.json()["animations"][1]["extras"] = {{"encoreTimeOffset", 0.75},
+                                                 {"somebodyElses", "kept out"}};
+    const auto scene = loadGltf(builder);
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+    EXPECT_EQ(scene->animations[0].timeOffset, 0.0f);
+    EXPECT_EQ(scene->animations[1].timeOffset, 0.75f);
+    EXPECT_EQ(scene->animations[1].end, 2.0f);  // The offset does not change the duration.
+
+    AnimationPlayer plain(*scene), offset(*scene);
+    ASSERT_TRUE(plain.select("plain").ok());
+    ASSERT_TRUE(offset.select("offset").ok());
+    for (PlaybackMode mode : {PlaybackMode::Clamp, PlaybackMode::Loop}) {
+        plain.setMode(mode);
+        offset.setMode(mode);
+        for (double t : {-1.0, 0.0, 0.5, 1.1, 1.25, 1.9, 3.3}) {
+            SCOPED_TRACE("t = " + std::to_string(t));
+            offset.evaluate(t);
+            // Looping, t + 0.75 wraps around the 2 s duration as a whole.
+            const double shifted =
+                mode == PlaybackMode::Loop ? std::fmod(t + 0.75 + 4.0, 2.0) : t + 0.75;
+            plain.evaluate(shifted);
+            expectMatrixNear(offset.instanceWorlds()[0], plain.instanceWorlds()[0], 1e-6f);
+        }
+    }
+}
+
+TEST(AnimationLoadTest, TimeOffsetThatIsNoNumberOrAbsurdIsRefused) {
+    for (const json& bad : {json("soon"), json(1e7), json(-2e6)}) {
+        auto builder = hierarchy();
+        const auto times = builder.addAccessor(std::vector<float>{0, 1}, "SCALAR", {.minMax = true});
+        const auto values = builder.addAccessor(std::vector<float>{0, 0, 0, 1, 0, 0}, "VEC3");
+        addAnimation(builder, "a", {sampler(times, values)}, {channel(0, 0, "translation")});
+        builder.json()["animations"][0]["extras"] = {{"encoreTimeOffset", bad}};
+        SCOPED_TRACE(bad.dump());
+        expectError(loadGltf(builder), ErrorCode::InvalidFormat,
+                    {"animation 0 extras", "encoreTimeOffset"});
+    }
+    // extras of any other type are somebody else's: ignored.
+    auto builder = hierarchy();
+    const auto times = builder.addAccessor(std::vector<float>{0, 1}, "SCALAR", {.minMax = true});
+    const auto values = builder.addAccessor(std::vector<float>{0, 0, 0, 1, 0, 0}, "VEC3");
+    addAnimation(builder, "a", {sampler(times, values)}, {channel(0, 0, "translation")});
+    builder.json()["animations"][0]["extras"] = json::array({1, 2});
+    const auto scene = loadGltf(builder);
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+    EXPECT_EQ(scene->animations[0].timeOffset, 0.0f);
+}
+
 }  // namespace
 }  // namespace encore::scene
