@@ -68,15 +68,11 @@ TEST(BenchSmokeTest, MeasuresAnAnimatedCrowdOnTheCpuAndTheGpu) {
                                     quote((dir / "crowd.png").string()));
     ASSERT_EQ(rendered.exitCode, 0) << rendered.err;
 
-    const auto json = dir / "crowd.json";
-    const auto result = runEncore(
-        "bench --crowd 9 -s naive -s bundles --frames 2 --warmup 1 "
-        "--width 32 --height 32 --json " +
-        quote(json.string()));
-    ASSERT_EQ(result.exitCode, 0) << result.err;
-    std::ifstream file(json);
-    const auto report = nlohmann::json::parse(file, nullptr, false);
-    ASSERT_FALSE(report.is_discarded());
+    const auto run = runBench(
+        dir, "--crowd 9 -s naive -s bundles --frames 2 --warmup 1 --width 32 --height 32");
+    ASSERT_EQ(run.command.exitCode, 0) << run.command.err;
+    ASSERT_FALSE(run.report.is_discarded());
+    const auto& report = run.report;
     const auto& results = report["results"];
     ASSERT_EQ(results.size(), 4u);  // cpu and gpu evaluation, two strategies each.
     EXPECT_EQ(results[0]["animation"], "cpu");

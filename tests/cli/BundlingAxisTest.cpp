@@ -93,17 +93,12 @@ TEST(BundlingAxisTest, ABundledFrameRendersTheDirectFramesPixels) {
 }
 
 TEST(BundlingAxisTest, BenchMeasuresANaiveFrameReplayedFromABundle) {
-    const auto dir = makeTempDir("bundling-bench");
-    const auto json = dir / "report.json";
-    const auto result = runEncore(
-        "bench --objects 50 -s naive -s gpu-culling --bundle --frames 2 --warmup 1 "
-        "--width 32 --height 32 --json " +
-        quote(json.string()));
-    ASSERT_EQ(result.exitCode, 0) << result.err;
-    std::ifstream file(json);
-    const auto report = nlohmann::json::parse(file, nullptr, false);
-    ASSERT_FALSE(report.is_discarded());
-    const auto& results = report["results"];
+    const auto run = runBench(makeTempDir("bundling-bench"),
+                              "--objects 50 -s naive -s gpu-culling --bundle --frames 2 "
+                              "--warmup 1 --width 32 --height 32");
+    ASSERT_EQ(run.command.exitCode, 0) << run.command.err;
+    ASSERT_FALSE(run.report.is_discarded());
+    const auto& results = run.report["results"];
     ASSERT_EQ(results.size(), 4u);
     EXPECT_EQ(results[0]["strategy"], "naive");
     EXPECT_EQ(results[1]["strategy"], "naive+bundle");

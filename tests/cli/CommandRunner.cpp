@@ -27,6 +27,15 @@ std::string quote(const std::string& text) {
     return quoted + "'";
 }
 
+BenchRun runBench(const std::filesystem::path& dir, const std::string& arguments) {
+    const auto json = dir / "report.json";
+    BenchRun run;
+    run.command = runEncore("bench " + arguments + " --json " + quote(json.string()));
+    std::ifstream file(json);
+    run.report = nlohmann::json::parse(file, nullptr, false);
+    return run;
+}
+
 CommandResult runEncore(const std::string& arguments) {
     return runEncoreThrough("", arguments);
 }

@@ -3,7 +3,10 @@
 // Runs the encore binary built beside the tests (or $ENCORE_BINARY) and captures its output and
 // exit code.
 
+#include <filesystem>
 #include <string>
+
+#include <nlohmann/json.hpp>
 
 namespace encore::test {
 
@@ -20,5 +23,13 @@ CommandResult runEncore(const std::string& arguments);
 CommandResult runEncoreThrough(const std::string& prefix, const std::string& arguments);
 
 std::string quote(const std::string& text);
+
+// `encore bench ARGUMENTS --json DIR/report.json` and the report it wrote (a discarded value
+// when there is none: `command` says why).
+struct BenchRun {
+    CommandResult command;
+    nlohmann::json report;
+};
+BenchRun runBench(const std::filesystem::path& dir, const std::string& arguments);
 
 }  // namespace encore::test

@@ -56,12 +56,17 @@ json sampler(std::uint32_t input, std::uint32_t output, const std::string& mode 
     return {{"input", input}, {"output", output}, {"interpolation", mode}};
 }
 
-TEST(AnimationLoadTest, TranslationChannelIsDecoded) {
-    auto builder = hierarchy();
+// An animation that slides the root from (0, 0, 0) through (2, 0, 0) to (2, 4, 0) in 2 s.
+void addSlide(test::GltfBuilder& builder, const std::string& name) {
     const auto times = builder.addAccessor(std::vector<float>{0, 1, 2}, "SCALAR", {.minMax = true});
     const auto values =
         builder.addAccessor(std::vector<float>{0, 0, 0, 2, 0, 0, 2, 4, 0}, "VEC3");
-    addAnimation(builder, "slide", {sampler(times, values)}, {channel(0, 0, "translation")});
+    addAnimation(builder, name, {sampler(times, values)}, {channel(0, 0, "translation")});
+}
+
+TEST(AnimationLoadTest, TranslationChannelIsDecoded) {
+    auto builder = hierarchy();
+    addSlide(builder, "slide");
     const auto scene = loadGltf(builder);
     ASSERT_TRUE(scene.ok()) << scene.error().message;
     ASSERT_EQ(scene->animations.size(), 1u);
@@ -543,11 +548,8 @@ TEST(AnimationLoadTest, SparseMorphTargetWithoutBufferView) {
 // offset, play the same poses that far apart, clamped and looping.
 TEST(AnimationLoadTest, TimeOffsetFromExtrasShiftsThePlayback) {
     auto builder = hierarchy();
-    const auto times = builder.addAccessor(std::vector<float>{0, 1, 2}, "SCALAR", {.minMax = true});
-    const auto values =
-        builder.addAccessor(std::vector<float>{0, 0, 0, 2, 0, 0, 2, 4, 0}, "VEC3");
-    addAnimation(builder, "plain", {sampler(times, values)}, {channel(0, 0, "translation")});
-    addAnimation(builder, "offset", {sampler(times, values)}, {channel(0, 0, "translation")});
+    addSlide(builder, "plain");
+    addSlide(builder, "offset");
     builder.json()["animations"][1]["extras"] = {{"encoreTimeOffset", 0.75},
                                                  {"somebodyElses", "kept out"}};
     const auto scene = loadGltf(builder);
@@ -577,9 +579,7 @@ TEST(AnimationLoadTest, TimeOffsetFromExtrasShiftsThePlayback) {
 TEST(AnimationLoadTest, TimeOffsetThatIsNoNumberOrAbsurdIsRefused) {
     for (const json& bad : {json("soon"), json(1e7), json(-2e6)}) {
         auto builder = hierarchy();
-        const auto times = builder.addAccessor(std::vector<float>{0, 1}, "SCALAR", {.minMax = true});
-        const auto values = builder.addAccessor(std::vector<float>{0, 0, 0, 1, 0, 0}, "VEC3");
-        addAnimation(builder, "a", {sampler(times, values)}, {channel(0, 0, "translation")});
+        addSlide(builder, "a");
         builder.json()["animations"][0]["extras"] = {{"encoreTimeOffset", bad}};
         SCOPED_TRACE(bad.dump());
         expectError(loadGltf(builder), ErrorCode::InvalidFormat,
@@ -587,9 +587,7 @@ TEST(AnimationLoadTest, TimeOffsetThatIsNoNumberOrAbsurdIsRefused) {
     }
     // extras of any other type are somebody else's: ignored.
     auto builder = hierarchy();
-    const auto times = builder.addAccessor(std::vector<float>{0, 1}, "SCALAR", {.minMax = true});
-    const auto values = builder.addAccessor(std::vector<float>{0, 0, 0, 1, 0, 0}, "VEC3");
-    addAnimation(builder, "a", {sampler(times, values)}, {channel(0, 0, "translation")});
+    addSlide(builder, "a");
     builder.json()["animations"][0]["extras"] = json::array({1, 2});
     const auto scene = loadGltf(builder);
     ASSERT_TRUE(scene.ok()) << scene.error().message;
