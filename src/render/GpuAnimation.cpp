@@ -8,13 +8,13 @@
 #include <cmath>
 #include <cstring>
 #include <string>
-#include <string_view>
 #include <unordered_map>
 
 #include "encore/gpu/BindGroupEntries.h"
 #include "encore/gpu/Upload.h"
 #include "encore/render/AnimationBuffers.h"
 #include "encore/render/BindGroupLayouts.h"
+#include "encore/render/KeyframeStore.h"
 
 namespace encore::render {
 
@@ -132,42 +132,6 @@ std::vector<std::uint32_t> weightOffsets(const scene::SceneData& scene) {
     return offsets;
 }
 
-// The keyframe storage: each distinct run of key times or values once, however many samplers
-// use it (the characters of a crowd share one model's keyframes), then the rest weights.
-class KeyframeStore {
-  public:
-    // Where `floats` starts in the store, appending it unless an equal run is there already.
-    std::uint32_t add(std::span<const float> floats) {
-        const std::string_view bytes(reinterpret_cast<const char*>(floats.data()),
-                                     floats.size_bytes());
-        const std::size_t hash = std::hash<std::string_view>{}(bytes);
-        auto [first, last] = mRuns.equal_range(hash);
-        for (auto it = first; it != last; ++it) {
-            const auto [offset, count] = it->second;
-            if (count == floats.size() &&
-                std::memcmp(mFloats.data() + offset, floats.data(), floats.size_bytes()) == 0) {
-                return offset;
-            }
-        }
-        const auto offset = static_cast<std::uint32_t>(mFloats.size());
-        mFloats.insert(mFloats.end(), floats.begin(), floats.end());
-        mRuns.emplace(hash, std::pair(offset, floats.size()));
-        return offset;
-    }
-    // Appended as they are (never shared): data the GPU indexes per node.
-    std::uint32_t append(std::span<const float> floats) {
-        const auto offset = static_cast<std::uint32_t>(mFloats.size());
-        mFloats.insert(mFloats.end(), floats.begin(), floats.end());
-        return offset;
-    }
-    std::size_t size() const { return mFloats.size(); }
-    std::vector<float> take() { return std::move(mFloats); }
-
-  private:
-    std::vector<float> mFloats;
-    std::unordered_multimap<std::size_t, std::pair<std::uint32_t, std::size_t>> mRuns;
-};
-
 // Every sampler's times and values, shared where equal; the records point into the store.
 struct SamplerLayout {
     KeyframeStore keyframes;
@@ -201,7 +165,7 @@ std::uint64_t restWeightFloats(const scene::SceneData& scene) {
     return floats;
 }
 
-// One clock per distinct duration, in order of first use; `clockOf` maps each animation to its.
+// One clock per distinct duration, in order of first use; `clockOf` gets each animation's clock.
 std::vector<float> animationClocks(const scene::SceneData& scene,
                                    std::vector<std::uint32_t>& clockOf) {
     std::vector<float> ends;
