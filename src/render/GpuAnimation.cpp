@@ -181,15 +181,6 @@ std::vector<float> animationClocks(const scene::SceneData& scene,
     return ends;
 }
 
-// t mod end into [0, end), as scene::AnimationPlayer wraps.
-double wrapTime(double seconds, float end) {
-    double time = std::fmod(seconds, double(end));
-    if (time < 0.0) {
-        time += end;
-    }
-    return time;
-}
-
 }  // namespace
 
 std::string_view animationEvaluationName(AnimationEvaluation evaluation) {
@@ -206,8 +197,12 @@ std::optional<AnimationEvaluation> animationEvaluationFromName(std::string_view 
     return std::nullopt;
 }
 
-Result<void> GpuAnimation::checkLimits(const gpu::DeviceLimits& limits,
-                                       const scene::SceneData& scene) {
+namespace {
+
+// GpuAnimation::checkLimits, given the keyframe floats that the scene stores once shared.
+Result<void> checkSizes(const gpu::DeviceLimits& limits,
+                        const scene::SceneData& scene,
+                        std::uint64_t keyframeFloats) {
     const std::uint64_t nodes = scene.nodes.size();
     std::uint64_t samplers = 0;
     for (const scene::Animation& animation : scene.animations) {
@@ -219,8 +214,6 @@ Result<void> GpuAnimation::checkLimits(const gpu::DeviceLimits& limits,
     }
     const std::uint64_t instances = scene.instances.size();
     const std::string ofNodes = " of " + std::to_string(nodes) + " nodes";
-    const std::uint64_t keyframeFloats =
-        layoutSamplers(scene).keyframes.size() + restWeightFloats(scene);
     ENCORE_TRY(gpu::checkStorageBinding(
         limits, keyframeFloats * 4,
         "The animation keyframes (" + std::to_string(keyframeFloats) + " floats)"));
@@ -249,6 +242,14 @@ Result<void> GpuAnimation::checkLimits(const gpu::DeviceLimits& limits,
     return {};
 }
 
+}  // namespace
+
+Result<void> GpuAnimation::checkLimits(const gpu::DeviceLimits& limits,
+                                       const scene::SceneData& scene) {
+    return checkSizes(limits, scene,
+                      layoutSamplers(scene).keyframes.size() + restWeightFloats(scene));
+}
+
 Result<std::unique_ptr<GpuAnimation>> GpuAnimation::create(
     const wgpu::Device& device,
     const wgpu::Queue& queue,
@@ -260,15 +261,15 @@ Result<std::unique_ptr<GpuAnimation>> GpuAnimation::create(
     if (scene.animations.empty()) {
         return std::unique_ptr<GpuAnimation>();
     }
-    ENCORE_TRY(checkLimits(limits, scene));
+    // Keyframes: every distinct run of sampler times and values, then the rest weights of
+    // animated nodes. Animations: their clock, offset and duration.
+    SamplerLayout layout = layoutSamplers(scene);
+    ENCORE_TRY(checkSizes(limits, scene, layout.keyframes.size() + restWeightFloats(scene)));
     auto result = std::unique_ptr<GpuAnimation>(new GpuAnimation());
     GpuAnimation& gpu = *result;
     gpu.mScene = &scene;
     const std::size_t nodeCount = scene.nodes.size();
 
-    // Keyframes: every distinct run of sampler times and values, then the rest weights of
-    // animated nodes. Animations: their clock, offset and duration.
-    SamplerLayout layout = layoutSamplers(scene);
     KeyframeStore& keyframes = layout.keyframes;
     gpu.mSamplerOffsets = std::move(layout.firstSampler);
     std::vector<std::uint32_t> clockOf;
@@ -277,9 +278,11 @@ Result<std::unique_ptr<GpuAnimation>> GpuAnimation::create(
     std::vector<std::uint8_t> animated(nodeCount, 0);
     for (std::size_t a = 0; a < scene.animations.size(); ++a) {
         const scene::Animation& anim = scene.animations[a];
-        const double wrapped = anim.end > 0.0f ? wrapTime(anim.timeOffset, anim.end) : 0.0;
-        // Rounding can carry a tiny negative offset up to `end` itself: that is 0.
-        const float wrappedOffset = float(wrapped) < anim.end ? float(wrapped) : 0.0f;
+        const auto wrapped =
+            float(scene::playbackTime(anim.timeOffset, anim.end, scene::PlaybackMode::Loop));
+        // Rounding can carry a tiny negative offset up to `end` itself: that is 0 (and an
+        // animation lasting 0 never wraps).
+        const float wrappedOffset = anim.end > 0.0f && wrapped < anim.end ? wrapped : 0.0f;
         animationRecords.push_back({clockOf[a], anim.timeOffset, wrappedOffset, anim.end});
         for (const scene::AnimationChannel& channel : anim.channels) {
             animated[channel.node.index()] = 1;
@@ -515,13 +518,11 @@ void GpuAnimation::select(const wgpu::Queue& queue, std::span<const scene::Anima
 }
 
 void GpuAnimation::setTime(const wgpu::Queue& queue, double seconds, scene::PlaybackMode mode) {
-    const bool loop = mode == scene::PlaybackMode::Loop;
     for (std::size_t c = 0; c < mClockEnds.size(); ++c) {
-        const float end = mClockEnds[c];
-        mClockTimes[1 + c] = static_cast<float>(loop && end > 0.0f ? wrapTime(seconds, end) : seconds);
+        mClockTimes[1 + c] = static_cast<float>(scene::playbackTime(seconds, mClockEnds[c], mode));
     }
     // The header (the playback mode) only when it changes: a frame writes one float per clock.
-    const float loopFlag = loop ? 1.0f : 0.0f;
+    const float loopFlag = mode == scene::PlaybackMode::Loop ? 1.0f : 0.0f;
     const bool modeChanged = !mModeWritten || mClockTimes[0] != loopFlag;
     mClockTimes[0] = loopFlag;
     mModeWritten = true;

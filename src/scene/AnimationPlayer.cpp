@@ -190,6 +190,17 @@ void AnimationPlayer::rebuildChannels() {
     mRestoreNodes.reserve(mRestoreNodes.size() + mAnimatedNodes.size());
 }
 
+double playbackTime(double seconds, float end, PlaybackMode mode) {
+    if (mode != PlaybackMode::Loop || !(end > 0.0f)) {
+        return seconds;
+    }
+    double time = std::fmod(seconds, double(end));
+    if (time < 0.0) {
+        time += end;
+    }
+    return time;
+}
+
 void AnimationPlayer::evaluate(double seconds) {
     const SceneData& scene = *mScene;
     mStats = {};
@@ -198,14 +209,8 @@ void AnimationPlayer::evaluate(double seconds) {
 
     for (const AnimationId id : mSelection) {
         const Animation& animation = scene.animations[id.index()];
-        double time = seconds + double(animation.timeOffset);
-        if (mMode == PlaybackMode::Loop && animation.end > 0.0f) {
-            time = std::fmod(time, double(animation.end));
-            if (time < 0.0) {
-                time += animation.end;
-            }
-        }
-        mAnimationTimes[id.index()] = static_cast<float>(time);
+        mAnimationTimes[id.index()] = static_cast<float>(
+            playbackTime(seconds + double(animation.timeOffset), animation.end, mMode));
     }
 
     // Start from the rest pose: nodes the selection drives, and nodes it stopped driving.

@@ -42,6 +42,11 @@ enum class PlaybackMode : std::uint8_t {
     Loop,   // Time wraps around each animation's own end time (t mod end; negative t wraps too).
 };
 
+// The time within an animation lasting `end` seconds at playback time `seconds`: `seconds`
+// itself when clamped, wrapped into [0, end) when looping (an animation lasting 0 never wraps).
+// The one rule for both evaluations: AnimationPlayer and render::GpuAnimation.
+double playbackTime(double seconds, float end, PlaybackMode mode);
+
 // Where one instance's data lies in the player's arrays (kNone: the instance has none).
 struct InstanceAnimationRange {
     static constexpr std::uint32_t kNone = 0xFFFFFFFFu;
