@@ -6,6 +6,8 @@
 #include <memory>
 #include <string>
 
+#include <unistd.h>
+
 namespace encore {
 namespace {
 
@@ -69,6 +71,42 @@ Result<void> writeFile(const std::filesystem::path& path, std::span<const std::u
     }
     if (std::fclose(file.release()) != 0) {
         return makeError(ErrorCode::IoError, "Closing " + quoted(path) + " failed.");
+    }
+    return {};
+}
+
+std::filesystem::path partialPath(const std::filesystem::path& path) {
+    std::filesystem::path partial = path;
+    partial += ".part";
+    return partial;
+}
+
+Result<void> writeFileAtomically(const std::filesystem::path& path,
+                                 std::span<const std::uint8_t> bytes) {
+    const std::filesystem::path partial = partialPath(path);
+    FileHandle file(std::fopen(partial.c_str(), "wb"));
+    if (!file) {
+        return makeError(ErrorCode::IoError, "Cannot create " + quoted(partial) + " (" +
+                                                 std::strerror(errno) + ").");
+    }
+    if (!bytes.empty() && std::fwrite(bytes.data(), 1, bytes.size(), file.get()) != bytes.size()) {
+        return makeError(ErrorCode::IoError, "Writing " + quoted(partial) + " failed.");
+    }
+    // Without the flush to the disk, a power loss after the rename could leave `path` empty:
+    // file systems may commit the rename before the data.
+    if (std::fflush(file.get()) != 0 || ::fdatasync(::fileno(file.get())) != 0) {
+        return makeError(ErrorCode::IoError, "Flushing " + quoted(partial) +
+                                                 " to the disk failed (" + std::strerror(errno) +
+                                                 ").");
+    }
+    if (std::fclose(file.release()) != 0) {
+        return makeError(ErrorCode::IoError, "Closing " + quoted(partial) + " failed.");
+    }
+    std::error_code ec;
+    std::filesystem::rename(partial, path, ec);
+    if (ec) {
+        return makeError(ErrorCode::IoError, "Renaming " + quoted(partial) + " to " + quoted(path) +
+                                                 " failed (" + ec.message() + ").");
     }
     return {};
 }

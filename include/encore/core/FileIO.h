@@ -20,4 +20,14 @@ Result<std::vector<std::uint8_t>> readFile(const std::filesystem::path& path);
 // Writes a whole file, replacing it.
 Result<void> writeFile(const std::filesystem::path& path, std::span<const std::uint8_t> bytes);
 
+// The name writeFileAtomically gives a file while it is being written: `path` + ".part".
+std::filesystem::path partialPath(const std::filesystem::path& path);
+
+// Writes a whole file so that `path` is either absent, its previous contents, or all of `bytes`,
+// whenever the process stops (a crash, SIGKILL, power loss): the bytes go to partialPath(path),
+// are flushed to the disk, and that file is then renamed to `path`. A stopped write leaves at
+// most the ".part" file behind.
+Result<void> writeFileAtomically(const std::filesystem::path& path,
+                                 std::span<const std::uint8_t> bytes);
+
 }  // namespace encore

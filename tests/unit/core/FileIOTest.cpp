@@ -37,5 +37,21 @@ TEST(FileIOTest, WriteToMissingDirectoryFails) {
     EXPECT_EQ(written.error().code, ErrorCode::IoError);
 }
 
+TEST(FileIOTest, AtomicWriteLeavesNoPartialFile) {
+    auto dir = test::makeTempDir("fileio-atomic");
+    ASSERT_TRUE(writeFile(dir / "a.bin", std::vector<std::uint8_t>{9, 9}).ok());
+    const std::vector<std::uint8_t> bytes = {1, 2, 3};
+    ASSERT_TRUE(writeFileAtomically(dir / "a.bin", bytes).ok());
+    EXPECT_EQ(*readFile(dir / "a.bin"), bytes);
+    EXPECT_EQ(partialPath(dir / "a.bin"), dir / "a.bin.part");
+    EXPECT_FALSE(std::filesystem::exists(dir / "a.bin.part"));
+}
+
+TEST(FileIOTest, AtomicWriteToMissingDirectoryFails) {
+    auto written = writeFileAtomically("/nonexistent/encore/out.bin", std::vector<std::uint8_t>{1});
+    ASSERT_FALSE(written.ok());
+    EXPECT_EQ(written.error().code, ErrorCode::IoError);
+}
+
 }  // namespace
 }  // namespace encore

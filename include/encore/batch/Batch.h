@@ -1,0 +1,89 @@
+#pragma once
+
+// Renders collections of glTF models from fixed or random viewpoints into a dataset folder:
+// for each model OUT/<name>/000.png ... (RGBA, straight alpha, transparent background by
+// default) and OUT/<name>/transforms.json (TransformsJson.h), on one device.
+//
+// It is a pipeline, not a loop: models are parsed and their images decoded on a thread pool
+// ahead of the GPU (as far as BatchOptions::memoryLimitBytes allows), the views of a model are
+// drawn side by side into one wide target (Renderer::renderViews) and read back through a ring
+// of staging buffers with mapAsync, and PNG encoding runs on the pool while the GPU goes on.
+//
+// Nothing is lost and nothing half-written (ModelOutput.h): finished models are skipped, so a
+// run stopped at any moment resumes where it stopped. Bad input never stops the batch: a model
+// that fails is listed in OUT/failures.jsonl (FailureLog.h) and the batch goes on.
+
+#include <atomic>
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <span>
+
+#include "encore/batch/BatchInputs.h"
+#include "encore/batch/ViewRig.h"
+#include "encore/core/Result.h"
+#include "encore/gpu/Context.h"
+#include "encore/render/Renderer.h"
+
+namespace encore::batch {
+
+// Where the time went, in seconds. Load and encode run on the pool: their times add up the
+// threads' work (they may exceed the wall time). The others are the GPU thread's.
+struct StageTimes {
+    double load = 0.0;      // Parsing the file and decoding its images.
+    double upload = 0.0;    // Renderer::prepare: buffers, textures, pipelines, bundles.
+    double render = 0.0;    // Recording and submitting the views.
+    double gpu = 0.0;       // Waiting for the GPU to finish the views and their copy.
+    double readback = 0.0;  // Unpacking the mapped rows into images.
+    double encode = 0.0;    // PNG encoding and writing the files.
+};
+
+struct BatchProgress {
+    std::size_t total = 0;     // Models in the batch.
+    std::size_t rendered = 0;  // Finished by this run (every file written).
+    std::size_t failed = 0;    // Listed in failures.jsonl.
+    std::size_t skipped = 0;   // Finished by an earlier run.
+    std::uint64_t views = 0;   // Images written by this run.
+    double seconds = 0.0;      // Since the batch started.
+
+    std::size_t done() const { return rendered + failed + skipped; }
+};
+
+struct BatchSummary : BatchProgress {
+    bool interrupted = false;  // BatchOptions::stop was set: models were left unrendered.
+    StageTimes stages;
+};
+
+struct BatchOptions {
+    std::filesystem::path output;
+    std::uint32_t width = 512;
+    std::uint32_t height = 512;
+    std::uint32_t samples = 4;  // 1 or 4.
+    ViewRigOptions views;
+    // Lighting, tone mapping and background; the target is set from width, height and samples.
+    render::RendererOptions renderer = [] {
+        render::RendererOptions options;
+        options.toneMapping.background = render::BackgroundKind::Transparent;
+        return options;
+    }();
+    render::StrategyChoice strategy;  // Bundles by default, as `encore render`.
+
+    bool strict = false;   // Loader warnings fail the model.
+    std::size_t jobs = 0;  // Pool threads; 0: one per hardware thread.
+    std::uint64_t memoryLimitBytes = std::uint64_t{2} << 30;  // Scenes loaded ahead, at most.
+    std::size_t readbackSlots = 3;
+    // Set (from a signal handler, another thread) to stop starting models: views in flight are
+    // still written, and runBatch returns with `interrupted`.
+    const std::atomic<bool>* stop = nullptr;
+    // Called on the calling thread as models finish.
+    std::function<void(const BatchProgress&)> progress;
+};
+
+// Runs the batch on `context`. Fails only when the batch cannot run at all (the output folder
+// cannot be created, the options are invalid, the renderer cannot be created); a model's failure
+// is in failures.jsonl and the summary.
+Result<BatchSummary> runBatch(gpu::Context& context,
+                              std::span<const BatchInput> inputs,
+                              const BatchOptions& options);
+
+}  // namespace encore::batch

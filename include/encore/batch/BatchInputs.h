@@ -1,0 +1,40 @@
+#pragma once
+
+// The models of a batch and the names their outputs get.
+//
+// An input is a directory (searched recursively for .gltf and .glb files, any letter case), a
+// single .gltf/.glb file, a text file with one path per line, or a JSON file holding a list of
+// paths (the form the Objaverse download scripts produce). Relative paths in a list resolve
+// against the list's folder. Each model's output name is its path relative to the input root
+// without the extension ("cars/red/model"): the searched directory, or the deepest folder that
+// holds every listed file. Two files that differ only by their extension ("a.gltf", "a.glb")
+// keep it in their names ("a.gltf", "a.glb"), so no two models share an output folder.
+
+#include <filesystem>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "encore/core/Result.h"
+
+namespace encore::batch {
+
+struct BatchInput {
+    std::filesystem::path path;  // As found or listed (list entries made absolute).
+    std::string name;            // Relative output name, '/'-separated, never empty.
+};
+
+// Whether `path` names a glTF model by its extension (.gltf or .glb, any letter case).
+bool isModelPath(const std::filesystem::path& path);
+
+// The models `input` names, sorted by name for directories and in list order for lists (each
+// path once). Fails with FileNotFound for a missing input, InvalidFormat for a list that is not
+// one path per line or a JSON array of strings, and InvalidArgument when no model is found.
+// Listed files are not opened: a missing one fails later, as that model's load.
+Result<std::vector<BatchInput>> discoverInputs(const std::filesystem::path& input);
+
+// Names for `paths` relative to `root`, as described above (paths must lie inside `root`).
+std::vector<std::string> outputNames(std::span<const std::filesystem::path> paths,
+                                     const std::filesystem::path& root);
+
+}  // namespace encore::batch

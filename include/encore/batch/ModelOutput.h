@@ -1,0 +1,32 @@
+#pragma once
+
+// The files of one model in a batch's output folder, and whether all of them are in place.
+//
+// OUT/<name>/000.png ... (one per view) and OUT/<name>/transforms.json, each written under a
+// temporary name and renamed (encore::writeFileAtomically), transforms.json last: a model is
+// finished exactly when every one of its files exists, and a batch run again skips it.
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace encore::batch {
+
+inline constexpr const char* kTransformsFileName = "transforms.json";
+
+std::filesystem::path modelFolder(const std::filesystem::path& output, const std::string& name);
+
+// The image of view `index` in `folder`: "000.png", ...
+std::filesystem::path viewImagePath(const std::filesystem::path& folder, std::size_t index);
+
+// Every file a finished model has: its `views` images, then transforms.json.
+std::vector<std::filesystem::path> modelFiles(const std::filesystem::path& folder,
+                                              std::uint32_t views);
+
+bool modelFinished(const std::filesystem::path& folder, std::uint32_t views);
+
+// Removes what a stopped run left in `folder` (files ending in ".part"); keeps everything else.
+void removePartialFiles(const std::filesystem::path& folder);
+
+}  // namespace encore::batch

@@ -1,0 +1,65 @@
+#pragma once
+
+// The cameras of a batch: where each view looks from, in the frame the outputs describe.
+//
+// Views are camera-to-world matrices in OpenGL's camera axes (the camera looks along its -Z
+// axis, +Y up, +X right), the convention of NeRF's transforms.json. The world is the model's
+// glTF frame (+Y up), normalised by default into a unit box: the model is scaled so that its
+// largest side is 1 and centred at the origin, as the Objaverse rendering scripts do. Every
+// camera looks at the origin.
+//
+// The defaults follow those scripts: 12 views on a circle 30 degrees above the horizon, 1.5
+// units from the centre, with a 35 mm lens on a 32 mm wide sensor (a horizontal field of view
+// of 2 atan(16 / 35), about 49.13 degrees).
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "encore/render/Camera.h"
+#include "encore/scene/Bounds.h"
+
+namespace encore::batch {
+
+inline constexpr float kDefaultHorizontalFovDegrees = 49.134343f;  // 2 atan(16 / 35)
+
+struct ViewRigOptions {
+    std::uint32_t views = 12;
+    // Orbit: view i at azimuth 360 i / views degrees (view 0 on +Z, then towards +X), this many
+    // degrees above the horizontal plane.
+    float elevationDegrees = 30.0f;
+    // Random: views directions drawn uniformly on the sphere from `seed` instead of the orbit;
+    // the same seed gives the same views on every machine.
+    bool random = false;
+    std::uint64_t seed = 0;
+    float distance = 1.5f;  // From the origin, in (normalised) world units.
+    float horizontalFovDegrees = kDefaultHorizontalFovDegrees;
+    bool normalize = true;  // False: the model as it is, cameras around the world origin.
+};
+
+// The camera-to-world matrix of a camera at `eye` looking at `target` with +Y up (-Z up when
+// looking straight up or down, as render::Camera::lookAt does).
+glm::mat4 lookAtCameraToWorld(const glm::vec3& eye, const glm::vec3& target);
+
+// The views' camera-to-world matrices, as the options ask.
+std::vector<glm::mat4> viewMatrices(const ViewRigOptions& options);
+
+// The transform from the model's world into the normalised world: uniform scale and
+// translation putting `bounds` into the unit box centred at the origin (identity for empty or
+// flat-to-a-point bounds, or without normalisation).
+glm::mat4 normalization(const scene::Bounds& bounds, bool normalize);
+
+// The vertical field of view for a horizontal one at `aspect` (width / height), in radians.
+float verticalFov(float horizontalFovRadians, float aspect);
+
+// The render camera for one view: `cameraToWorld` (in the normalised world) taken back into
+// the model's world through the inverse of `normalization` (a uniform scale and translation),
+// so the picture is the one of the normalised model. Perspective with an infinite far plane and
+// a near plane at 1/100 of the distance to the origin.
+render::Camera renderCamera(const glm::mat4& cameraToWorld,
+                            const glm::mat4& normalization,
+                            float horizontalFovRadians,
+                            float aspect);
+
+}  // namespace encore::batch

@@ -1,0 +1,44 @@
+#pragma once
+
+// A fixed set of worker threads running submitted tasks in submission order. Used by pipelines
+// that keep CPU stages (parsing, decoding, encoding) busy beside a GPU thread.
+
+#include <condition_variable>
+#include <cstddef>
+#include <deque>
+#include <functional>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace encore {
+
+class ThreadPool {
+  public:
+    // `threads` workers; 0 means one per hardware thread.
+    explicit ThreadPool(std::size_t threads);
+    // Runs every task already submitted, then joins the workers.
+    ~ThreadPool();
+
+    ThreadPool(const ThreadPool&) = delete;
+    ThreadPool& operator=(const ThreadPool&) = delete;
+
+    // Queues `task`. Tasks must not throw (the library reports errors as values).
+    void submit(std::function<void()> task);
+    // Blocks until every submitted task has finished.
+    void waitIdle();
+    std::size_t size() const { return mWorkers.size(); }
+
+  private:
+    void work();
+
+    std::mutex mMutex;
+    std::condition_variable mWake;  // A task was queued, or the pool is stopping.
+    std::condition_variable mIdle;  // The last running task finished.
+    std::deque<std::function<void()>> mTasks;
+    std::size_t mRunning = 0;
+    bool mStopping = false;
+    std::vector<std::thread> mWorkers;
+};
+
+}  // namespace encore

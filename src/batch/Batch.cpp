@@ -1,0 +1,442 @@
+#include "encore/batch/Batch.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstring>
+#include <deque>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "ModelLoader.h"
+#include "encore/batch/FailureLog.h"
+#include "encore/batch/ModelOutput.h"
+#include "encore/batch/TransformsJson.h"
+#include "encore/core/FileIO.h"
+#include "encore/core/ThreadPool.h"
+#include "encore/gpu/TextureReadbackRing.h"
+
+namespace encore::batch {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// Counters the pool's encode tasks and the GPU thread both update.
+struct SharedCounters {
+    std::atomic<std::size_t> rendered{0};
+    std::atomic<std::size_t> failed{0};
+    std::atomic<std::uint64_t> views{0};
+    std::mutex mutex;  // Guards the sums below.
+    double load = 0.0;
+    double encode = 0.0;
+};
+
+// One model from its upload until its last file is written, shared by its encode tasks.
+struct ModelJob {
+    const BatchInput* input = nullptr;
+    fs::path folder;
+    std::vector<glm::mat4> cameraToWorld;
+    std::atomic<std::uint32_t> remaining{0};  // Images not yet written.
+    std::atomic<bool> failed{false};
+
+    // Records the model's first failure; later ones (other views) add nothing.
+    void fail(FailureLog& log,
+              SharedCounters& counters,
+              const std::string& stage,
+              const Error& error) {
+        if (!failed.exchange(true)) {
+            log.record(input->path, stage, error.message);
+            ++counters.failed;
+        }
+    }
+};
+
+// Views [first, first + count) of a model, drawn side by side in one read-back.
+struct ChunkInFlight {
+    std::shared_ptr<ModelJob> job;
+    std::uint32_t first = 0;
+    std::uint32_t count = 0;
+};
+
+// How many views one wide target holds: as many as the device's texture width and the read-back
+// buffer size allow, spread evenly over the chunks a model needs.
+std::uint32_t viewsPerChunk(const BatchOptions& options, const gpu::DeviceLimits& limits) {
+    const std::uint32_t views = std::max(options.views.views, 1u);
+    std::uint32_t fit = std::max(1u, limits.maxTextureDimension2D / options.width);
+    const std::uint64_t bytesPerView = std::uint64_t(options.width) * 4 * options.height;
+    fit = std::uint32_t(std::max<std::uint64_t>(
+        1, std::min<std::uint64_t>(fit,
+                                   limits.maxBufferSize / (bytesPerView + 256 * options.height))));
+    const std::uint32_t chunks = (views + fit - 1) / fit;
+    return (views + chunks - 1) / chunks;
+}
+
+image::ImageRgba8 cropStrip(const image::ImageRgba8& wide,
+                            std::uint32_t strip,
+                            std::uint32_t width) {
+    image::ImageRgba8 view;
+    view.width = width;
+    view.height = wide.height;
+    view.pixels.resize(std::size_t(width) * wide.height * 4);
+    for (std::uint32_t y = 0; y < wide.height; ++y) {
+        std::memcpy(&view.pixels[std::size_t(y) * width * 4], wide.pixel(strip * width, y),
+                    std::size_t(width) * 4);
+    }
+    return view;
+}
+
+class BatchRun {
+  public:
+    BatchRun(gpu::Context& context, std::span<const BatchInput> inputs, const BatchOptions& options)
+        : mContext(context), mInputs(inputs), mOptions(options), mPool(options.jobs) {}
+
+    Result<BatchSummary> run();
+
+  private:
+    Result<void> createRenderer();
+    bool stopRequested() const { return mOptions.stop && mOptions.stop->load(); }
+    void renderModel(LoadedModel& loaded);
+    // Takes the oldest read-back and hands its views to the pool.
+    void collectOldest();
+    void collectReady();
+    void encodeView(const std::shared_ptr<ModelJob>& job,
+                    std::uint32_t view,
+                    image::ImageRgba8 image);
+    void writeTransforms(ModelJob& job);
+    // After a failure: a lost device is replaced, and the renderer with it.
+    void recoverIfLost();
+    void reportProgress(bool force);
+    BatchProgress progress() const;
+
+    gpu::Context& mContext;
+    std::span<const BatchInput> mInputs;
+    std::vector<BatchInput> mPending;  // Not finished by an earlier run, in load order.
+    const BatchOptions& mOptions;
+    ThreadPool mPool;
+    Clock::time_point mStart = Clock::now();
+    std::optional<FailureLog> mFailures;
+    SharedCounters mCounters;
+    StageTimes mGpuStages;  // The GPU thread's stages.
+    std::size_t mSkipped = 0;
+    std::uint32_t mViewsPerChunk = 1;
+    std::optional<render::Renderer> mRenderer;
+    std::unique_ptr<gpu::TextureReadbackRing> mRing;
+    std::deque<ChunkInFlight> mChunks;  // In the ring's order.
+    // The scene last handed to the renderer, which refers to it until the next prepare.
+    std::optional<LoadedModel> mPrepared;
+    ModelLoader* mLoader = nullptr;
+    Clock::time_point mLastProgress{};
+};
+
+Result<void> BatchRun::createRenderer() {
+    render::RendererOptions rendererOptions = mOptions.renderer;
+    rendererOptions.target = {mOptions.width * mViewsPerChunk, mOptions.height, mOptions.samples};
+    mRing.reset();
+    mRenderer.reset();
+    auto renderer = render::Renderer::create(mContext, rendererOptions);
+    if (!renderer) {
+        return renderer.error();
+    }
+    mRenderer.emplace(std::move(*renderer));
+    mRing = std::make_unique<gpu::TextureReadbackRing>(mContext, mOptions.readbackSlots);
+    return {};
+}
+
+BatchProgress BatchRun::progress() const {
+    BatchProgress progress;
+    progress.total = mInputs.size();
+    progress.rendered = mCounters.rendered.load();
+    progress.failed = mCounters.failed.load();
+    progress.skipped = mSkipped;
+    progress.views = mCounters.views.load();
+    progress.seconds = secondsSince(mStart);
+    return progress;
+}
+
+void BatchRun::reportProgress(bool force) {
+    // Several times a second at most: the callback may print.
+    constexpr double kIntervalSeconds = 0.1;
+    if (mOptions.progress &&
+        (force ||
+         std::chrono::duration<double>(Clock::now() - mLastProgress).count() > kIntervalSeconds)) {
+        mLastProgress = Clock::now();
+        mOptions.progress(progress());
+    }
+}
+
+void BatchRun::writeTransforms(ModelJob& job) {
+    const nlohmann::json json = transformsJson(glm::radians(mOptions.views.horizontalFovDegrees),
+                                               mOptions.width, mOptions.height, job.cameraToWorld);
+    const std::string text = json.dump(2) + "\n";
+    auto written = writeFileAtomically(
+        job.folder / kTransformsFileName,
+        std::span(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()));
+    if (!written) {
+        job.fail(*mFailures, mCounters, "write", written.error());
+        return;
+    }
+    ++mCounters.rendered;
+}
+
+void BatchRun::encodeView(const std::shared_ptr<ModelJob>& job,
+                          std::uint32_t view,
+                          image::ImageRgba8 image) {
+    mPool.submit([this, job, view, image = std::move(image)] {
+        const auto start = Clock::now();
+        if (!job->failed) {
+            auto png = image::encodePng(image);
+            Result<void> written = png ? writeFileAtomically(viewImagePath(job->folder, view), *png)
+                                       : Result<void>(png.error());
+            if (!written) {
+                job->fail(*mFailures, mCounters, "write", written.error());
+            } else {
+                ++mCounters.views;
+            }
+        }
+        // The last image written completes the model: transforms.json goes last, so its
+        // presence says every image is in place.
+        if (job->remaining.fetch_sub(1) == 1 && !job->failed) {
+            writeTransforms(*job);
+        }
+        std::lock_guard lock(mCounters.mutex);
+        mCounters.encode += secondsSince(start);
+    });
+}
+
+void BatchRun::collectOldest() {
+    ChunkInFlight chunk = std::move(mChunks.front());
+    mChunks.pop_front();
+    auto finished = mRing->takeOldest();
+    if (!finished) {
+        chunk.job->fail(*mFailures, mCounters, "render", finished.error());
+        recoverIfLost();
+        return;
+    }
+    mGpuStages.gpu += finished->waitMilliseconds / 1000.0;
+    const auto start = Clock::now();
+    if (!chunk.job->failed) {
+        for (std::uint32_t strip = 0; strip < chunk.count; ++strip) {
+            encodeView(chunk.job, chunk.first + strip,
+                       cropStrip(finished->image, strip, mOptions.width));
+        }
+    }
+    mGpuStages.readback += finished->copyMilliseconds / 1000.0 + secondsSince(start);
+    reportProgress(false);
+}
+
+void BatchRun::collectReady() {
+    while (!mChunks.empty() && mRing->oldestReady()) {
+        collectOldest();
+    }
+}
+
+void BatchRun::recoverIfLost() {
+    if (!mContext.deviceLost()) {
+        return;
+    }
+    // Every read-back in flight belongs to the lost device: those models fail too.
+    while (!mChunks.empty()) {
+        collectOldest();
+    }
+    mPrepared.reset();
+    if (auto recreated = mContext.recreateDevice(); recreated) {
+        if (auto created = createRenderer(); !created) {
+            mRenderer.reset();
+        }
+    } else {
+        mRenderer.reset();
+    }
+}
+
+void BatchRun::renderModel(LoadedModel& loaded) {
+    const BatchInput& input = mPending[loaded.order];
+    auto job = std::make_shared<ModelJob>();
+    job->input = &input;
+    job->folder = modelFolder(mOptions.output, input.name);
+    if (!loaded.scene) {
+        job->fail(*mFailures, mCounters, "load", loaded.scene.error());
+        mLoader->release(loaded.bytes);
+        return;
+    }
+    if (!mRenderer) {
+        job->fail(*mFailures, mCounters, "upload",
+                  makeError(ErrorCode::DeviceError,
+                            "The GPU device was lost and could not be created again."));
+        mLoader->release(loaded.bytes);
+        return;
+    }
+    std::error_code ec;
+    fs::create_directories(job->folder, ec);
+    if (ec) {
+        job->fail(
+            *mFailures, mCounters, "write",
+            makeError(ErrorCode::IoError, "Cannot create the folder '" + job->folder.string() +
+                                              "' (" + ec.message() + ")."));
+        mLoader->release(loaded.bytes);
+        return;
+    }
+    removePartialFiles(job->folder);
+
+    // The renderer refers to the scene it prepared until the next prepare: keep that one alive
+    // until now, and this one until the next model.
+    const auto uploadStart = Clock::now();
+    const scene::SceneData& scene = *loaded.scene;
+    auto prepared = mRenderer->prepare(scene, mOptions.strategy.kind, mOptions.strategy.bundle);
+    if (mPrepared) {
+        mLoader->release(mPrepared->bytes);
+    }
+    mPrepared = std::move(loaded);
+    if (prepared) {
+        prepared = mContext.checkNoErrors("Preparing '" + scene.sourcePath.string() + "'");
+    }
+    mGpuStages.upload += secondsSince(uploadStart);
+    if (!prepared) {
+        job->fail(*mFailures, mCounters, "upload", prepared.error());
+        mContext.takeErrors();
+        recoverIfLost();
+        return;
+    }
+
+    const ViewRigOptions& rig = mOptions.views;
+    job->cameraToWorld = viewMatrices(rig);
+    job->remaining = std::uint32_t(job->cameraToWorld.size());
+    const glm::mat4 toUnitBox = normalization(scene.bounds, rig.normalize);
+    const float aspect = float(mOptions.width) / float(mOptions.height);
+    const float fov = glm::radians(rig.horizontalFovDegrees);
+    const auto renderStart = Clock::now();
+    double renderWaiting = 0.0;
+    for (std::uint32_t first = 0; first < job->cameraToWorld.size(); first += mViewsPerChunk) {
+        const std::uint32_t count = std::min<std::uint32_t>(
+            mViewsPerChunk, std::uint32_t(job->cameraToWorld.size()) - first);
+        // The target always holds mViewsPerChunk strips; a short last chunk repeats its last view.
+        std::vector<render::Camera> cameras;
+        for (std::uint32_t strip = 0; strip < mViewsPerChunk; ++strip) {
+            cameras.push_back(renderCamera(job->cameraToWorld[first + std::min(strip, count - 1)],
+                                           toUnitBox, fov, aspect));
+        }
+        if (mRing->full()) {
+            const auto waitStart = Clock::now();
+            collectOldest();
+            renderWaiting += secondsSince(waitStart);
+        }
+        mRenderer->renderViews(cameras);
+        auto enqueued = mRing->enqueue(mRenderer->target().colorTexture());
+        if (!enqueued) {
+            job->fail(*mFailures, mCounters, "render", enqueued.error());
+            break;
+        }
+        mChunks.push_back({job, first, count});
+    }
+    if (auto clean = mContext.checkNoErrors("Rendering '" + scene.sourcePath.string() + "'");
+        !clean) {
+        job->fail(*mFailures, mCounters, "render", clean.error());
+        mContext.takeErrors();
+        recoverIfLost();
+    }
+    mGpuStages.render += secondsSince(renderStart) - renderWaiting;
+}
+
+Result<BatchSummary> BatchRun::run() {
+    const ViewRigOptions& rig = mOptions.views;
+    if (mOptions.width == 0 || mOptions.height == 0 || rig.views == 0) {
+        return makeError(ErrorCode::InvalidArgument,
+                         "A batch needs at least one view of at least one pixel.");
+    }
+    if (!(rig.horizontalFovDegrees > 0.0f && rig.horizontalFovDegrees < 180.0f) ||
+        !(rig.distance > 0.0f)) {
+        return makeError(ErrorCode::InvalidArgument,
+                         "The field of view (" + std::to_string(rig.horizontalFovDegrees) +
+                             " degrees) must lie in (0, 180) and the distance (" +
+                             std::to_string(rig.distance) + ") must be positive.");
+    }
+    std::error_code ec;
+    fs::create_directories(mOptions.output, ec);
+    if (ec) {
+        return makeError(ErrorCode::IoError, "Cannot create the output folder '" +
+                                                 mOptions.output.string() + "' (" + ec.message() +
+                                                 ").");
+    }
+    auto failures = FailureLog::create(mOptions.output / "failures.jsonl");
+    if (!failures) {
+        return failures.error();
+    }
+    mFailures.emplace(std::move(*failures));
+    mViewsPerChunk = viewsPerChunk(mOptions, mContext.limits());
+    ENCORE_TRY(createRenderer());
+
+    // Finished models are skipped before anything loads.
+    for (const BatchInput& input : mInputs) {
+        if (modelFinished(modelFolder(mOptions.output, input.name), rig.views)) {
+            ++mSkipped;
+        } else {
+            mPending.push_back(input);
+        }
+    }
+    scene::LoadOptions loadOptions;
+    loadOptions.strict = mOptions.strict;
+    // One load per pool thread keeps them busy; encode tasks queue between them.
+    ModelLoader loader(mPool, mPending, loadOptions, mOptions.memoryLimitBytes, mPool.size());
+    mLoader = &loader;
+    reportProgress(true);
+    bool interrupted = false;
+    while (true) {
+        if (stopRequested()) {
+            interrupted = true;
+            break;
+        }
+        if (!loader.nextReady()) {
+            // Keep the GPU thread useful while the next model loads: hand finished views on.
+            if (!mChunks.empty()) {
+                collectOldest();
+                continue;
+            }
+            if (loader.exhausted()) {
+                break;
+            }
+            loader.waitForNext(100);
+            reportProgress(false);
+            continue;
+        }
+        std::optional<LoadedModel> loaded = loader.take();
+        {
+            std::lock_guard lock(mCounters.mutex);
+            mCounters.load += loaded->seconds;
+        }
+        renderModel(*loaded);
+        collectReady();
+        reportProgress(false);
+    }
+    loader.stop();
+    while (!mChunks.empty()) {
+        collectOldest();
+    }
+    loader.finish();
+    mPool.waitIdle();
+    mPrepared.reset();
+
+    BatchSummary summary;
+    static_cast<BatchProgress&>(summary) = progress();
+    summary.interrupted = interrupted || stopRequested();
+    summary.stages = mGpuStages;
+    summary.stages.load = mCounters.load;
+    summary.stages.encode = mCounters.encode;
+    reportProgress(true);
+    return summary;
+}
+
+}  // namespace
+
+Result<BatchSummary> runBatch(gpu::Context& context,
+                              std::span<const BatchInput> inputs,
+                              const BatchOptions& options) {
+    BatchRun run(context, inputs, options);
+    return run.run();
+}
+
+}  // namespace encore::batch

@@ -1,0 +1,182 @@
+#include "encore/batch/BatchInputs.h"
+
+#include <algorithm>
+#include <cctype>
+#include <map>
+#include <set>
+#include <sstream>
+#include <string_view>
+
+#include <nlohmann/json.hpp>
+
+#include "encore/core/FileIO.h"
+
+namespace encore::batch {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string lowercase(std::string text) {
+    std::transform(text.begin(), text.end(), text.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    return text;
+}
+
+std::string quoted(const fs::path& path) {
+    return "'" + path.string() + "'";
+}
+
+std::string trim(std::string_view text) {
+    const auto first = text.find_first_not_of(" \t\r\n");
+    if (first == std::string_view::npos) {
+        return {};
+    }
+    const auto last = text.find_last_not_of(" \t\r\n");
+    return std::string(text.substr(first, last - first + 1));
+}
+
+// The deepest folder holding every path (all absolute and lexically normal).
+fs::path commonFolder(std::span<const fs::path> paths) {
+    fs::path common = paths.front().parent_path();
+    for (const fs::path& path : paths.subspan(1)) {
+        const fs::path folder = path.parent_path();
+        auto [mine, theirs] =
+            std::mismatch(common.begin(), common.end(), folder.begin(), folder.end());
+        fs::path prefix;
+        for (auto part = common.begin(); part != mine; ++part) {
+            prefix /= *part;
+        }
+        common = prefix;
+    }
+    return common;
+}
+
+Result<std::vector<fs::path>> readList(const fs::path& list) {
+    auto bytes = readFile(list);
+    if (!bytes) {
+        return bytes.error();
+    }
+    const std::string text(bytes->begin(), bytes->end());
+    std::vector<std::string> entries;
+    if (lowercase(list.extension().string()) == ".json") {
+        const nlohmann::json json = nlohmann::json::parse(text, nullptr, false);
+        if (json.is_discarded() || !json.is_array()) {
+            return makeError(ErrorCode::InvalidFormat,
+                             "The input list " + quoted(list) + " is not a JSON array of paths.");
+        }
+        for (const nlohmann::json& entry : json) {
+            if (!entry.is_string()) {
+                return makeError(ErrorCode::InvalidFormat, "The input list " + quoted(list) +
+                                                               " holds a value that is not "
+                                                               "a path (" +
+                                                               entry.dump() + ").");
+            }
+            entries.push_back(entry.get<std::string>());
+        }
+    } else {
+        if (text.find('\0') != std::string::npos) {
+            return makeError(ErrorCode::InvalidFormat,
+                             "The input " + quoted(list) +
+                                 " is neither a model, a folder, nor a list of paths (it holds "
+                                 "binary data).");
+        }
+        std::istringstream lines(text);
+        for (std::string line; std::getline(lines, line);) {
+            if (std::string entry = trim(line); !entry.empty() && entry[0] != '#') {
+                entries.push_back(std::move(entry));
+            }
+        }
+    }
+    const fs::path base = fs::absolute(list).parent_path();
+    std::vector<fs::path> paths;
+    std::set<fs::path> seen;
+    for (const std::string& entry : entries) {
+        const fs::path path = (base / fs::path(entry)).lexically_normal();
+        if (seen.insert(path).second) {
+            paths.push_back(path);
+        }
+    }
+    return paths;
+}
+
+std::vector<fs::path> searchFolder(const fs::path& folder) {
+    std::vector<fs::path> paths;
+    std::error_code ec;
+    for (auto it = fs::recursive_directory_iterator(
+             folder, fs::directory_options::skip_permission_denied, ec);
+         !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
+        if (it->is_regular_file(ec) && isModelPath(it->path())) {
+            paths.push_back(it->path().lexically_normal());
+        }
+    }
+    return paths;
+}
+
+}  // namespace
+
+bool isModelPath(const fs::path& path) {
+    const std::string extension = lowercase(path.extension().string());
+    return extension == ".gltf" || extension == ".glb";
+}
+
+std::vector<std::string> outputNames(std::span<const fs::path> paths, const fs::path& root) {
+    std::vector<std::string> names;
+    std::map<std::string, int> uses;
+    for (const fs::path& path : paths) {
+        fs::path relative = path.lexically_relative(root);
+        if (relative.empty() || *relative.begin() == "..") {
+            relative = path.filename();  // Outside the root: the caller broke the contract.
+        }
+        names.push_back(relative.replace_extension().generic_string());
+        ++uses[names.back()];
+    }
+    for (std::size_t i = 0; i < names.size(); ++i) {
+        if (uses[names[i]] > 1) {
+            names[i] += paths[i].extension().string();
+        }
+    }
+    return names;
+}
+
+Result<std::vector<BatchInput>> discoverInputs(const fs::path& input) {
+    std::error_code ec;
+    const auto status = fs::status(input, ec);
+    if (ec || !fs::exists(status)) {
+        return makeError(ErrorCode::FileNotFound,
+                         "The input " + quoted(input) + " does not exist.");
+    }
+    const fs::path absolute = fs::absolute(input).lexically_normal();
+    std::vector<fs::path> paths;
+    fs::path root;
+    if (fs::is_directory(status)) {
+        paths = searchFolder(absolute);
+        std::sort(paths.begin(), paths.end());
+        root = absolute;
+        if (paths.empty()) {
+            return makeError(ErrorCode::InvalidArgument,
+                             "The folder " + quoted(input) + " holds no .gltf or .glb file.");
+        }
+    } else if (isModelPath(absolute)) {
+        paths.push_back(absolute);
+        root = absolute.parent_path();
+    } else {
+        auto listed = readList(absolute);
+        if (!listed) {
+            return listed.error();
+        }
+        paths = std::move(*listed);
+        if (paths.empty()) {
+            return makeError(ErrorCode::InvalidArgument,
+                             "The input list " + quoted(input) + " names no model.");
+        }
+        root = commonFolder(paths);
+    }
+    const std::vector<std::string> names = outputNames(paths, root);
+    std::vector<BatchInput> inputs;
+    for (std::size_t i = 0; i < paths.size(); ++i) {
+        inputs.push_back({paths[i], names[i]});
+    }
+    return inputs;
+}
+
+}  // namespace encore::batch

@@ -1,0 +1,51 @@
+#include "encore/batch/FailureLog.h"
+
+#include <cerrno>
+#include <cstring>
+
+#include <nlohmann/json.hpp>
+
+namespace encore::batch {
+
+struct FailureLog::State {
+    mutable std::mutex mutex;
+    std::FILE* file = nullptr;
+    std::size_t count = 0;
+    ~State() {
+        if (file) {
+            std::fclose(file);
+        }
+    }
+};
+
+Result<FailureLog> FailureLog::create(const std::filesystem::path& path) {
+    FailureLog log;
+    log.mState = std::make_shared<State>();
+    log.mState->file = std::fopen(path.c_str(), "w");
+    if (!log.mState->file) {
+        return makeError(ErrorCode::IoError,
+                         "Cannot create '" + path.string() + "' (" + std::strerror(errno) + ").");
+    }
+    return log;
+}
+
+void FailureLog::record(const std::filesystem::path& file,
+                        const std::string& stage,
+                        const std::string& message) {
+    nlohmann::json line = {{"file", file.string()}, {"stage", stage}, {"error", message}};
+    // Replacement of invalid UTF-8 (file names, messages quoting file contents) rather than an
+    // exception.
+    const std::string text =
+        line.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
+    std::lock_guard lock(mState->mutex);
+    std::fwrite(text.data(), 1, text.size(), mState->file);
+    std::fflush(mState->file);
+    ++mState->count;
+}
+
+std::size_t FailureLog::count() const {
+    std::lock_guard lock(mState->mutex);
+    return mState->count;
+}
+
+}  // namespace encore::batch

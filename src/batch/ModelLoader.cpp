@@ -1,0 +1,104 @@
+#include "ModelLoader.h"
+
+#include <chrono>
+
+namespace encore::batch {
+
+std::uint64_t sceneBytes(const scene::SceneData& scene) {
+    std::uint64_t bytes = 0;
+    for (const scene::Buffer& buffer : scene.buffers) {
+        bytes += buffer.bytes.size();
+    }
+    for (const scene::Image& image : scene.images) {
+        bytes += image.rgba8.size();
+    }
+    return bytes;
+}
+
+ModelLoader::ModelLoader(ThreadPool& pool,
+                         std::span<const BatchInput> inputs,
+                         const scene::LoadOptions& options,
+                         std::uint64_t memoryLimitBytes,
+                         std::size_t ahead)
+    : mPool(&pool),
+      mInputs(inputs),
+      mOptions(options),
+      mMemoryLimit(memoryLimitBytes),
+      mAhead(std::max<std::size_t>(ahead, 1)) {
+    std::lock_guard lock(mMutex);
+    startLoads();
+}
+
+void ModelLoader::startLoads() {
+    // The scenes held count against the limit; a load's size is unknown until it ends, so the
+    // limit may be passed by the loads running when it is reached. With nothing held, one load
+    // always starts: a model larger than the limit still renders, alone.
+    while (!mStopped && mNextToStart < mInputs.size() && mRunning < mAhead &&
+           (mBytesHeld < mMemoryLimit || (mBytesHeld == 0 && mRunning == 0))) {
+        const std::size_t order = mNextToStart++;
+        ++mRunning;
+        mPool->submit([this, order] {
+            const auto start = std::chrono::steady_clock::now();
+            LoadedModel loaded;
+            loaded.order = order;
+            loaded.scene = scene::loadScene(mInputs[order].path, mOptions);
+            if (loaded.scene) {
+                loaded.bytes = sceneBytes(*loaded.scene);
+            }
+            loaded.seconds =
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            std::lock_guard lock(mMutex);
+            --mRunning;
+            mBytesHeld += loaded.bytes;
+            mReady.emplace(order, std::move(loaded));
+            mLoaded.notify_all();
+            startLoads();
+        });
+    }
+}
+
+bool ModelLoader::nextReady() {
+    std::lock_guard lock(mMutex);
+    return mReady.contains(mNextToTake);
+}
+
+bool ModelLoader::exhausted() {
+    std::lock_guard lock(mMutex);
+    return mStopped || mNextToTake >= mInputs.size();
+}
+
+void ModelLoader::waitForNext(int milliseconds) {
+    std::unique_lock lock(mMutex);
+    mLoaded.wait_for(lock, std::chrono::milliseconds(milliseconds),
+                     [this] { return mReady.contains(mNextToTake); });
+}
+
+std::optional<LoadedModel> ModelLoader::take() {
+    std::unique_lock lock(mMutex);
+    if (mStopped || mNextToTake >= mInputs.size()) {
+        return std::nullopt;
+    }
+    mLoaded.wait(lock, [this] { return mReady.contains(mNextToTake); });
+    auto node = mReady.extract(mNextToTake++);
+    return std::move(node.mapped());
+}
+
+void ModelLoader::release(std::uint64_t bytes) {
+    std::lock_guard lock(mMutex);
+    mBytesHeld -= std::min(bytes, mBytesHeld);
+    startLoads();
+}
+
+void ModelLoader::stop() {
+    std::lock_guard lock(mMutex);
+    mStopped = true;
+}
+
+void ModelLoader::finish() {
+    stop();
+    std::unique_lock lock(mMutex);
+    mLoaded.wait(lock, [this] { return mRunning == 0; });
+    mReady.clear();
+}
+
+}  // namespace encore::batch

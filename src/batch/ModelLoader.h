@@ -1,0 +1,78 @@
+#pragma once
+
+// Loads a batch's models on the thread pool ahead of the GPU thread, which takes them in order.
+// Loads start while fewer than `ahead` are running and the scenes loaded but not yet released
+// stay under the memory limit, so a collection of any size needs the memory of a few models.
+
+#include <condition_variable>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "encore/batch/BatchInputs.h"
+#include "encore/core/Result.h"
+#include "encore/core/ThreadPool.h"
+#include "encore/scene/SceneData.h"
+
+namespace encore::batch {
+
+struct LoadedModel {
+    std::size_t order = 0;  // Position in the load order.
+    Result<scene::SceneData> scene = makeError(ErrorCode::InvalidArgument, "Not loaded.");
+    std::uint64_t bytes = 0;  // What the scene holds in memory (buffers and decoded images).
+    double seconds = 0.0;
+};
+
+// The bytes a loaded scene holds: its buffers and decoded images.
+std::uint64_t sceneBytes(const scene::SceneData& scene);
+
+class ModelLoader {
+  public:
+    // Loads `inputs` (which must outlive the loader) in their order. Call finish() before the
+    // loader goes away.
+    ModelLoader(ThreadPool& pool,
+                std::span<const BatchInput> inputs,
+                const scene::LoadOptions& options,
+                std::uint64_t memoryLimitBytes,
+                std::size_t ahead);
+
+    // Whether the next model in order has been loaded (take() will not block).
+    bool nextReady();
+    // Whether every model was taken, or stop() was called.
+    bool exhausted();
+    // The next model in order, waiting for it; nullopt when every model was taken or stop()
+    // was called.
+    std::optional<LoadedModel> take();
+    // Waits up to `milliseconds` for the next model to load.
+    void waitForNext(int milliseconds);
+    // The GPU thread is done with a scene of `bytes`: more loads may start.
+    void release(std::uint64_t bytes);
+    // Starts no more loads.
+    void stop();
+    // Waits for the loads still running (their results are dropped).
+    void finish();
+
+  private:
+    void startLoads();  // Called with mMutex held.
+
+    ThreadPool* mPool;
+    std::span<const BatchInput> mInputs;
+    scene::LoadOptions mOptions;
+    std::uint64_t mMemoryLimit;
+    std::size_t mAhead;
+
+    std::mutex mMutex;
+    std::condition_variable mLoaded;
+    std::map<std::size_t, LoadedModel> mReady;
+    std::size_t mNextToStart = 0;
+    std::size_t mNextToTake = 0;
+    std::size_t mRunning = 0;
+    std::uint64_t mBytesHeld = 0;  // Loaded, not yet released.
+    bool mStopped = false;
+};
+
+}  // namespace encore::batch

@@ -1,0 +1,50 @@
+#include "encore/batch/ModelOutput.h"
+
+#include "encore/batch/TransformsJson.h"
+
+namespace encore::batch {
+
+namespace fs = std::filesystem;
+
+fs::path modelFolder(const fs::path& output, const std::string& name) {
+    return output / fs::path(name);
+}
+
+fs::path viewImagePath(const fs::path& folder, std::size_t index) {
+    return folder / (viewStem(index) + ".png");
+}
+
+std::vector<fs::path> modelFiles(const fs::path& folder, std::uint32_t views) {
+    std::vector<fs::path> files;
+    for (std::uint32_t view = 0; view < views; ++view) {
+        files.push_back(viewImagePath(folder, view));
+    }
+    files.push_back(folder / kTransformsFileName);
+    return files;
+}
+
+bool modelFinished(const fs::path& folder, std::uint32_t views) {
+    std::error_code ec;
+    for (const fs::path& file : modelFiles(folder, views)) {
+        if (!fs::is_regular_file(file, ec)) {
+            return false;
+        }
+    }
+    return true;
+}
+
+void removePartialFiles(const fs::path& folder) {
+    std::error_code ec;
+    std::vector<fs::path> partial;
+    for (auto it = fs::directory_iterator(folder, ec); !ec && it != fs::directory_iterator();
+         it.increment(ec)) {
+        if (it->path().extension() == ".part") {
+            partial.push_back(it->path());
+        }
+    }
+    for (const fs::path& path : partial) {
+        fs::remove(path, ec);
+    }
+}
+
+}  // namespace encore::batch

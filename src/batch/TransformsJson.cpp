@@ -1,0 +1,56 @@
+#include "encore/batch/TransformsJson.h"
+
+#include <cmath>
+#include <cstdio>
+
+namespace encore::batch {
+
+PinholeIntrinsics intrinsicsFor(std::uint32_t width,
+                                std::uint32_t height,
+                                float horizontalFovRadians) {
+    PinholeIntrinsics intrinsics;
+    intrinsics.width = width;
+    intrinsics.height = height;
+    intrinsics.focalX = 0.5 * double(width) / std::tan(0.5 * double(horizontalFovRadians));
+    intrinsics.focalY = intrinsics.focalX;
+    intrinsics.centerX = 0.5 * double(width);
+    intrinsics.centerY = 0.5 * double(height);
+    return intrinsics;
+}
+
+std::string viewStem(std::size_t index) {
+    char stem[32];
+    std::snprintf(stem, sizeof(stem), "%03zu", index);
+    return stem;
+}
+
+nlohmann::json transformsJson(float horizontalFovRadians,
+                              std::uint32_t width,
+                              std::uint32_t height,
+                              std::span<const glm::mat4> cameraToWorld) {
+    const PinholeIntrinsics intrinsics = intrinsicsFor(width, height, horizontalFovRadians);
+    nlohmann::json json;
+    json["camera_angle_x"] = double(horizontalFovRadians);
+    json["w"] = width;
+    json["h"] = height;
+    json["fl_x"] = intrinsics.focalX;
+    json["fl_y"] = intrinsics.focalY;
+    json["cx"] = intrinsics.centerX;
+    json["cy"] = intrinsics.centerY;
+    nlohmann::json frames = nlohmann::json::array();
+    for (std::size_t index = 0; index < cameraToWorld.size(); ++index) {
+        nlohmann::json rows = nlohmann::json::array();
+        for (int row = 0; row < 4; ++row) {
+            nlohmann::json values = nlohmann::json::array();
+            for (int column = 0; column < 4; ++column) {
+                values.push_back(double(cameraToWorld[index][column][row]));  // glm: [column][row]
+            }
+            rows.push_back(std::move(values));
+        }
+        frames.push_back({{"file_path", "./" + viewStem(index)}, {"transform_matrix", rows}});
+    }
+    json["frames"] = std::move(frames);
+    return json;
+}
+
+}  // namespace encore::batch

@@ -1,0 +1,62 @@
+#include "encore/core/ThreadPool.h"
+
+#include <algorithm>
+
+namespace encore {
+
+ThreadPool::ThreadPool(std::size_t threads) {
+    if (threads == 0) {
+        threads = std::max(1u, std::thread::hardware_concurrency());
+    }
+    mWorkers.reserve(threads);
+    for (std::size_t i = 0; i < threads; ++i) {
+        mWorkers.emplace_back([this] { work(); });
+    }
+}
+
+ThreadPool::~ThreadPool() {
+    {
+        std::lock_guard lock(mMutex);
+        mStopping = true;
+    }
+    mWake.notify_all();
+    for (std::thread& worker : mWorkers) {
+        worker.join();
+    }
+}
+
+void ThreadPool::submit(std::function<void()> task) {
+    {
+        std::lock_guard lock(mMutex);
+        mTasks.push_back(std::move(task));
+    }
+    mWake.notify_one();
+}
+
+void ThreadPool::waitIdle() {
+    std::unique_lock lock(mMutex);
+    mIdle.wait(lock, [this] { return mTasks.empty() && mRunning == 0; });
+}
+
+void ThreadPool::work() {
+    std::unique_lock lock(mMutex);
+    while (true) {
+        mWake.wait(lock, [this] { return mStopping || !mTasks.empty(); });
+        if (mTasks.empty()) {
+            return;  // Stopping, and nothing left to run.
+        }
+        std::function<void()> task = std::move(mTasks.front());
+        mTasks.pop_front();
+        ++mRunning;
+        lock.unlock();
+        task();
+        task = nullptr;  // Release what the task captured before reporting idle.
+        lock.lock();
+        --mRunning;
+        if (mTasks.empty() && mRunning == 0) {
+            mIdle.notify_all();
+        }
+    }
+}
+
+}  // namespace encore

@@ -1,0 +1,49 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "encore/batch/TransformsJson.h"
+#include "encore/batch/ViewRig.h"
+
+namespace encore::batch {
+namespace {
+
+TEST(TransformsJsonTest, SyntheticNerfLayout) {
+    ViewRigOptions options;
+    options.views = 3;
+    const auto views = viewMatrices(options);
+    const float fov = glm::radians(options.horizontalFovDegrees);
+    const nlohmann::json json = transformsJson(fov, 512, 256, views);
+    EXPECT_NEAR(json["camera_angle_x"].get<double>(), fov, 1e-6);
+    ASSERT_EQ(json["frames"].size(), 3u);
+    EXPECT_EQ(json["frames"][0]["file_path"], "./000");
+    EXPECT_EQ(json["frames"][2]["file_path"], "./002");
+    // Row-major: the translation is the last column of the first three rows.
+    const auto& matrix = json["frames"][1]["transform_matrix"];
+    ASSERT_EQ(matrix.size(), 4u);
+    for (int row = 0; row < 4; ++row) {
+        ASSERT_EQ(matrix[row].size(), 4u);
+        for (int column = 0; column < 4; ++column) {
+            EXPECT_FLOAT_EQ(matrix[row][column].get<float>(), views[1][column][row]);
+        }
+    }
+    EXPECT_FLOAT_EQ(matrix[0][3].get<float>(), views[1][3].x);
+    EXPECT_EQ(matrix[3], nlohmann::json::parse("[0.0, 0.0, 0.0, 1.0]"));
+    EXPECT_EQ(json["w"], 512);
+    EXPECT_EQ(json["h"], 256);
+    EXPECT_NEAR(json["fl_x"].get<double>(), 256.0 / std::tan(0.5 * fov), 1e-3);
+    EXPECT_EQ(json["fl_x"], json["fl_y"]);
+    EXPECT_EQ(json["cx"], 256.0);
+    EXPECT_EQ(json["cy"], 128.0);
+}
+
+TEST(TransformsJsonTest, ViewStemsHaveAtLeastThreeDigits) {
+    EXPECT_EQ(viewStem(0), "000");
+    EXPECT_EQ(viewStem(42), "042");
+    EXPECT_EQ(viewStem(1234), "1234");
+}
+
+}  // namespace
+}  // namespace encore::batch
