@@ -23,6 +23,7 @@ enum ExitCode : int {
     kExitGpuError = 4,    // WebGPU validation error or device loss.
     kExitOutOfMemory = 5, // The GPU ran out of memory (a smaller scene or target may fit).
     kExitNoDisplay = 6,   // encore view: no display to open a window on.
+    kExitInterrupted = 130,  // encore batch: stopped by SIGINT or SIGTERM (rerun to resume).
 };
 
 struct GlobalOptions {
@@ -53,6 +54,7 @@ void addBenchCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
 void addPlotCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
 void addCompareCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
 void addViewCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
+void addBatchCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
 
 // Writes the scaling-curve SVG of a benchmark report; returns an exit code.
 int writePlot(const nlohmann::json& report, const std::string& path);

@@ -28,7 +28,7 @@ int main(int argc, char** argv) {
     app.footer("Strategies: " + strategyList() +
                "\nExit codes: 0 success, 1 bad input or I/O error, 2 usage error, "
                "3 no Vulkan adapter, 4 WebGPU validation error or device loss, "
-               "5 out of GPU memory, 6 no display (view).");
+               "5 out of GPU memory, 6 no display (view), 130 interrupted (batch).");
     app.require_subcommand(1);
     app.add_flag("-v,--verbose", global.verbose, "Print the adapter and per-frame details");
     app.add_flag("--allow-null-backend", global.allowNullBackend,
@@ -43,6 +43,7 @@ int main(int argc, char** argv) {
     addPlotCommand(app, global, exitCode);
     addCompareCommand(app, global, exitCode);
     addViewCommand(app, global, exitCode);
+    addBatchCommand(app, global, exitCode);
 
     encore::setLogSink([&global](encore::LogLevel level, std::string_view message) {
         if (level == encore::LogLevel::Error) {

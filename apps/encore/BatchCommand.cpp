@@ -1,0 +1,251 @@
+#include <unistd.h>
+
+#include <atomic>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <thread>
+#include <tuple>
+
+#include "Commands.h"
+#include "ShadingOptions.h"
+#include "StrategyOptions.h"
+#include "encore/batch/Batch.h"
+
+namespace encore::app {
+
+namespace {
+
+struct BatchCommandOptions {
+    std::string input;
+    std::string output;
+    std::string size = "512";
+    std::uint32_t samples = 4;
+    std::uint32_t views = 12;
+    std::uint32_t randomViews = 0;
+    std::uint64_t seed = 0;
+    float elevationDegrees = 30.0f;
+    float distance = 1.5f;
+    float fovDegrees = batch::kDefaultHorizontalFovDegrees;
+    bool noNormalize = false;
+    std::string strategy = "bundles";
+    bool strict = false;
+    std::size_t jobs = 0;
+    std::uint64_t memoryLimitMiB = 2048;
+    bool quiet = false;
+    ShadingOptions shading;
+};
+
+// Set by SIGINT and SIGTERM: the batch starts no more models, writes the views in flight and
+// returns. A second signal stops the process at once (the handler puts the default back).
+std::atomic<bool> gStopRequested{false};
+
+extern "C" void requestStop(int signal) {
+    gStopRequested = true;
+    std::signal(signal, SIG_DFL);
+}
+
+Result<std::pair<std::uint32_t, std::uint32_t>> parseSize(const std::string& text) {
+    const std::size_t x = text.find('x');
+    auto number = [](const std::string& part) -> long {
+        if (part.empty() || part.size() > 5 || part.find_first_not_of("0123456789") != part.npos) {
+            return -1;
+        }
+        return std::stol(part);
+    };
+    const long width = number(text.substr(0, x));
+    const long height = x == std::string::npos ? width : number(text.substr(x + 1));
+    if (width < 1 || height < 1 || width > 8192 || height > 8192) {
+        return makeError(ErrorCode::InvalidArgument,
+                         "--size takes W or WxH in pixels, each from 1 to 8192 ('" + text + "').");
+    }
+    return std::pair{std::uint32_t(width), std::uint32_t(height)};
+}
+
+std::string duration(double seconds) {
+    char text[32];
+    if (!std::isfinite(seconds) || seconds < 0.0) {
+        return "--";
+    }
+    const long total = long(seconds + 0.5);
+    std::snprintf(text, sizeof(text), "%ld:%02ld:%02ld", total / 3600, total / 60 % 60, total % 60);
+    return text;
+}
+
+// "12/40 models, 3 failed, 35.2 views/s, ETA 0:00:41"
+std::string progressLine(const batch::BatchProgress& progress, std::size_t startSkipped) {
+    const double viewsPerSecond =
+        progress.seconds > 0.0 ? double(progress.views) / progress.seconds : 0.0;
+    const std::size_t attempted = progress.done() - startSkipped;
+    const std::size_t left = progress.total - progress.done();
+    const double eta = attempted > 0 ? progress.seconds / double(attempted) * double(left) : NAN;
+    char line[256];
+    std::snprintf(line, sizeof(line), "%zu/%zu models, %zu failed, %.1f views/s, ETA %s",
+                  progress.done(), progress.total, progress.failed, viewsPerSecond,
+                  duration(eta).c_str());
+    return line;
+}
+
+int runBatch(const BatchCommandOptions& options, const GlobalOptions& global) {
+    batch::BatchOptions batchOptions;
+    auto size = parseSize(options.size);
+    if (!size) {
+        return reportError(size.error());
+    }
+    std::tie(batchOptions.width, batchOptions.height) = *size;
+    auto strategy = parseStrategyChoice(options.strategy, false);
+    if (!strategy) {
+        return reportError(strategy.error());
+    }
+    batchOptions.strategy = *strategy;
+    batchOptions.output = options.output;
+    batchOptions.samples = options.samples;
+    batchOptions.views.views = options.randomViews > 0 ? options.randomViews : options.views;
+    batchOptions.views.random = options.randomViews > 0;
+    batchOptions.views.seed = options.seed;
+    batchOptions.views.elevationDegrees = options.elevationDegrees;
+    batchOptions.views.distance = options.distance;
+    batchOptions.views.horizontalFovDegrees = options.fovDegrees;
+    batchOptions.views.normalize = !options.noNormalize;
+    batchOptions.strict = options.strict;
+    batchOptions.jobs = options.jobs;
+    batchOptions.memoryLimitBytes = options.memoryLimitMiB << 20;
+    if (auto shading = applyShadingOptions(options.shading, batchOptions.renderer); !shading) {
+        return reportError(shading.error());
+    }
+
+    auto inputs = batch::discoverInputs(options.input);
+    if (!inputs) {
+        return reportError(inputs.error());
+    }
+    auto context = createContext(global);
+    if (!context) {
+        return reportError(context.error());
+    }
+
+    // A live line on a terminal; every few seconds on a pipe or a file; none with --quiet.
+    const bool terminal = ::isatty(STDERR_FILENO) == 1;
+    const double interval = terminal ? 0.2 : 5.0;
+    double lastPrinted = -interval;
+    std::size_t startSkipped = 0;
+    bool first = true;
+    batchOptions.progress = [&](const batch::BatchProgress& progress) {
+        if (first) {
+            startSkipped = progress.skipped;  // Skipped models take no time: not in the ETA.
+            first = false;
+        }
+        if (options.quiet || progress.seconds - lastPrinted < interval) {
+            return;
+        }
+        lastPrinted = progress.seconds;
+        const std::string line = progressLine(progress, startSkipped);
+        std::fprintf(stderr, terminal ? "\r%s\033[K" : "%s\n", line.c_str());
+    };
+    gStopRequested = false;
+    batchOptions.stop = &gStopRequested;
+    auto previousInt = std::signal(SIGINT, requestStop);
+    auto previousTerm = std::signal(SIGTERM, requestStop);
+    auto summary = batch::runBatch(*context, *inputs, batchOptions);
+    std::signal(SIGINT, previousInt);
+    std::signal(SIGTERM, previousTerm);
+    if (terminal && !options.quiet) {
+        std::fprintf(stderr, "\n");
+    }
+    if (!summary) {
+        return reportError(summary.error());
+    }
+    const double viewsPerSecond =
+        summary->seconds > 0.0 ? double(summary->views) / summary->seconds : 0.0;
+    std::printf(
+        "%zu rendered, %zu failed, %zu skipped of %zu models; %llu views in %.2f s "
+        "(%.1f views/s)%s\n",
+        summary->rendered, summary->failed, summary->skipped, summary->total,
+        static_cast<unsigned long long>(summary->views), summary->seconds, viewsPerSecond,
+        summary->interrupted ? "; interrupted, run again to resume" : "");
+    const batch::StageTimes& stages = summary->stages;
+    std::printf(
+        "stages (s): load+decode %.2f, upload %.2f, render %.2f, gpu %.2f, read-back "
+        "%.2f, encode+write %.2f (load and encode summed over %zu threads)\n",
+        stages.load, stages.upload, stages.render, stages.gpu, stages.readback, stages.encode,
+        options.jobs ? options.jobs
+                     : std::size_t(std::max(1u, std::thread::hardware_concurrency())));
+    if (summary->failed > 0) {
+        std::fprintf(stderr, "error: %zu models failed; see %s\n", summary->failed,
+                     (std::filesystem::path(options.output) / "failures.jsonl").c_str());
+        return kExitFailure;
+    }
+    return summary->interrupted ? kExitInterrupted : kExitOk;
+}
+
+}  // namespace
+
+void addBatchCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) {
+    auto options = std::make_shared<BatchCommandOptions>();
+    options->shading.background = "transparent";
+    auto* command = app.add_subcommand(
+        "batch",
+        "Render many glTF models from orbit or random viewpoints into a dataset folder: per "
+        "model RGBA PNGs and a NeRF transforms.json; reruns skip finished models.");
+    command
+        ->add_option("input", options->input,
+                     "A folder (searched recursively for .gltf/.glb), a model, a text file with "
+                     "one path per line, or a JSON list of paths")
+        ->required();
+    command->add_option("-o,--output", options->output, "The output folder")->required();
+    command->add_option("--views", options->views, "Views per model on an orbit")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 10000));
+    auto* random =
+        command
+            ->add_option("--random-views", options->randomViews,
+                         "Views per model drawn uniformly on the sphere instead of the orbit")
+            ->check(CLI::Range(1, 10000));
+    command->add_option("--seed", options->seed, "Seed of --random-views")
+        ->capture_default_str()
+        ->needs(random);
+    command
+        ->add_option("--elevation", options->elevationDegrees,
+                     "Orbit height above the horizon (degrees)")
+        ->capture_default_str()
+        ->check(CLI::Range(-90.0f, 90.0f))
+        ->excludes(random);
+    command
+        ->add_option("--distance", options->distance,
+                     "Camera distance from the centre (unit-box units unless --no-normalize)")
+        ->capture_default_str()
+        ->check(CLI::PositiveNumber);
+    command
+        ->add_option("--fov", options->fovDegrees,
+                     "Horizontal field of view in degrees (default: a 35 mm lens on a 32 mm "
+                     "sensor)")
+        ->check(CLI::Range(0.01f, 179.0f));
+    command->add_flag("--no-normalize", options->noNormalize,
+                      "Keep the model's size and position (default: scale into a unit box "
+                      "centred at the origin)");
+    command->add_option("--size", options->size, "Image size W or WxH in pixels")
+        ->capture_default_str();
+    command->add_option("--samples", options->samples, "Multisampling: 1 or 4")
+        ->capture_default_str()
+        ->check(CLI::IsMember({1, 4}));
+    command->add_option("-s,--strategy", options->strategy, "Rendering strategy")
+        ->capture_default_str();
+    command->add_flag("--strict", options->strict,
+                      "Treat loader warnings as errors (the model fails)");
+    command
+        ->add_option("-j,--jobs", options->jobs,
+                     "Threads for loading and encoding (default: all cores)")
+        ->check(CLI::Range(1, 1024));
+    command
+        ->add_option("--memory-limit", options->memoryLimitMiB,
+                     "MiB of models loaded ahead of the GPU, at most")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 1 << 24));
+    command->add_flag("-q,--quiet", options->quiet, "No progress lines");
+    addShadingOptions(*command, options->shading);
+    command->callback([options, &global, &exitCode] { exitCode = runBatch(*options, global); });
+}
+
+}  // namespace encore::app

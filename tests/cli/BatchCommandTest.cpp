@@ -1,0 +1,220 @@
+// encore batch on generated scenes (no shared models needed) and a malformed file: every model's
+// images and transforms.json, the bad file in failures.jsonl with render's message, exit 1;
+// reruns skip finished models; a batch killed with SIGKILL or stopped with SIGINT resumes with
+// nothing half-written.
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "CommandRunner.h"
+#include "TestPaths.h"
+#include "encore/image/ImageCodec.h"
+
+namespace encore::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string slurp(const fs::path& path) {
+    std::ifstream file(path);
+    std::stringstream text;
+    text << file.rdbuf();
+    return text.str();
+}
+
+// `count` generated scenes in sub-folders (two of them named model.glb) and a malformed file.
+fs::path makeCollection(const std::string& name, int count, int objects) {
+    const fs::path dir = makeTempDir(name);
+    for (int i = 0; i < count; ++i) {
+        const fs::path model = i < 2 ? dir / ("set" + std::to_string(i)) / "model.glb"
+                                     : dir / "more" / ("scene" + std::to_string(i) + ".glb");
+        fs::create_directories(model.parent_path());
+        const CommandResult gen =
+            runEncore("gen --objects " + std::to_string(objects) + " --seed " +
+                      std::to_string(i + 1) + " -o " + quote(model.string()));
+        EXPECT_EQ(gen.exitCode, 0) << gen.err;
+    }
+    std::ofstream(dir / "broken.gltf") << "{\"asset\": ";
+    return dir;
+}
+
+std::vector<fs::path> filesUnder(const fs::path& dir, const std::string& extension) {
+    std::vector<fs::path> files;
+    for (const auto& entry : fs::recursive_directory_iterator(dir)) {
+        if (entry.is_regular_file() && entry.path().extension() == extension) {
+            files.push_back(entry.path());
+        }
+    }
+    return files;
+}
+
+std::vector<nlohmann::json> jsonLines(const fs::path& path) {
+    std::vector<nlohmann::json> lines;
+    std::ifstream file(path);
+    for (std::string line; std::getline(file, line);) {
+        lines.push_back(nlohmann::json::parse(line, nullptr, false));
+    }
+    return lines;
+}
+
+// Every finished model: `views` decodable RGBA images with a transparent corner and some opaque
+// coverage, and a transforms.json naming them.
+void expectFinishedModel(const fs::path& folder, int views) {
+    const nlohmann::json transforms =
+        nlohmann::json::parse(slurp(folder / "transforms.json"), nullptr, false);
+    ASSERT_FALSE(transforms.is_discarded()) << folder;
+    EXPECT_GT(transforms["camera_angle_x"].get<double>(), 0.0);
+    ASSERT_EQ(transforms["frames"].size(), std::size_t(views));
+    for (int view = 0; view < views; ++view) {
+        const std::string stem = transforms["frames"][view]["file_path"].get<std::string>();
+        EXPECT_EQ(transforms["frames"][view]["transform_matrix"].size(), 4u);
+        auto image = image::readImage(folder / (stem.substr(2) + ".png"));
+        ASSERT_TRUE(image.ok()) << folder << " " << stem;
+        EXPECT_EQ(image->pixel(0, 0)[3], 0) << "the background is transparent";
+        bool opaque = false;
+        for (std::size_t i = 3; i < image->pixels.size(); i += 4) {
+            opaque = opaque || image->pixels[i] == 255;
+        }
+        EXPECT_TRUE(opaque) << folder << " " << stem << " shows nothing";
+    }
+}
+
+// A command prefix that runs the batch in the background and sends it `signal` as soon as its
+// first model is finished (a transforms.json exists under `output`): the moment when the next
+// models' images are being drawn, encoded and written.
+std::string signalAfterFirstModel(const fs::path& dir,
+                                  const fs::path& output,
+                                  const std::string& signal) {
+    const fs::path script = dir / ("signal-" + signal + ".sh");
+    std::ofstream(script) << "out=\"$1\"; shift\n"
+                             "\"$@\" & pid=$!\n"
+                             "while kill -0 $pid 2>/dev/null && [ -z \"$(find \"$out\" -name "
+                             "transforms.json 2>/dev/null | head -n 1)\" ]; do sleep 0.01; done\n"
+                             "kill -s "
+                          << signal
+                          << " $pid 2>/dev/null\n"
+                             "wait $pid\n";
+    return "sh " + quote(script.string()) + " " + quote(output.string());
+}
+
+std::string batchArguments(const fs::path& input,
+                           const fs::path& output,
+                           const std::string& extra) {
+    return "-v batch " + quote(input.string()) + " -o " + quote(output.string()) + " " + extra;
+}
+
+TEST(BatchCommandTest, RendersEveryGoodModelAndListsTheBadOne) {
+    const fs::path input = makeCollection("batch-cli-input", 3, 6);
+    const fs::path output = makeTempDir("batch-cli-output");
+    const CommandResult run =
+        runEncore(batchArguments(input, output, "--views 4 --size 96x64 --quiet"));
+    EXPECT_EQ(run.exitCode, 1) << run.out << run.err;
+    EXPECT_NE(run.err.find("Vulkan"), std::string::npos)
+        << "GPU tests need Dawn's Vulkan backend: " << run.err;
+    EXPECT_NE(run.out.find("3 rendered, 1 failed, 0 skipped of 4 models"), std::string::npos)
+        << run.out;
+    for (const char* name : {"set0/model", "set1/model", "more/scene2"}) {
+        expectFinishedModel(output / name, 4);
+        auto image = image::readImage(output / name / "000.png");
+        ASSERT_TRUE(image.ok());
+        EXPECT_EQ(image->width, 96u);
+        EXPECT_EQ(image->height, 64u);
+    }
+    // The two model.glb differ (different seeds): their outputs are their own.
+    EXPECT_NE(slurp(output / "set0/model/000.png"), slurp(output / "set1/model/000.png"));
+
+    const auto failures = jsonLines(output / "failures.jsonl");
+    ASSERT_EQ(failures.size(), 1u);
+    EXPECT_EQ(fs::path(failures[0]["file"].get<std::string>()), input / "broken.gltf");
+    EXPECT_EQ(failures[0]["stage"], "load");
+    const CommandResult render = runEncore("render " + quote((input / "broken.gltf").string()) +
+                                           " -o " + quote((output / "x.png").string()));
+    EXPECT_EQ(render.err, "error: " + failures[0]["error"].get<std::string>() + "\n");
+    EXPECT_TRUE(filesUnder(output, ".part").empty());
+    // No WebGPU error was reported on the way.
+    EXPECT_EQ(run.err.find("error: WebGPU"), std::string::npos) << run.err;
+
+    // Again: everything finished is skipped, the bad file is tried (and listed) again.
+    const auto firstWrite = fs::last_write_time(output / "set0/model/000.png");
+    const CommandResult rerun =
+        runEncore(batchArguments(input, output, "--views 4 --size 96x64 --quiet"));
+    EXPECT_EQ(rerun.exitCode, 1);
+    EXPECT_NE(rerun.out.find("0 rendered, 1 failed, 3 skipped of 4 models"), std::string::npos)
+        << rerun.out;
+    EXPECT_EQ(fs::last_write_time(output / "set0/model/000.png"), firstWrite);
+    EXPECT_EQ(jsonLines(output / "failures.jsonl").size(), 1u);
+}
+
+TEST(BatchCommandTest, RandomViewsFromASeedAndAJsonList) {
+    const fs::path input = makeCollection("batch-cli-random", 1, 3);
+    fs::remove(input / "broken.gltf");
+    std::ofstream(input / "list.json") << "[\"set0/model.glb\"]";
+    const fs::path output = makeTempDir("batch-cli-random-output");
+    const CommandResult run = runEncore(batchArguments(
+        input / "list.json", output / "a", "--random-views 3 --seed 5 --size 32 --quiet"));
+    ASSERT_EQ(run.exitCode, 0) << run.out << run.err;
+    expectFinishedModel(output / "a" / "model", 3);
+    const CommandResult again = runEncore(batchArguments(
+        input / "list.json", output / "b", "--random-views 3 --seed 5 --size 32 --quiet"));
+    ASSERT_EQ(again.exitCode, 0) << again.err;
+    EXPECT_EQ(slurp(output / "a/model/transforms.json"), slurp(output / "b/model/transforms.json"));
+    EXPECT_EQ(slurp(output / "a/model/002.png"), slurp(output / "b/model/002.png"));
+}
+
+// Killed without warning at some moment of the run, then run again: the second run finishes
+// every model, and no image is half-written at any point.
+TEST(BatchCommandTest, SigkillMidRunThenRerunCompletes) {
+    const fs::path input = makeCollection("batch-cli-kill", 8, 40);
+    fs::remove(input / "broken.gltf");
+    const fs::path output = makeTempDir("batch-cli-kill-output");
+    const std::string arguments =
+        batchArguments(input, output, "--views 16 --size 128 --jobs 2 --quiet");
+    const CommandResult killed =
+        runEncoreThrough(signalAfterFirstModel(input, output, "KILL"), arguments);
+    EXPECT_EQ(killed.exitCode, 137) << "not killed (128 + SIGKILL): " << killed.out << killed.err;
+    for (const fs::path& png : filesUnder(output, ".png")) {
+        EXPECT_TRUE(image::readImage(png).ok()) << png << " is half-written";
+    }
+    const CommandResult rerun = runEncore(arguments);
+    ASSERT_EQ(rerun.exitCode, 0) << rerun.out << rerun.err;
+    EXPECT_NE(rerun.out.find("0 failed"), std::string::npos) << rerun.out;
+    EXPECT_TRUE(filesUnder(output, ".part").empty());
+    std::vector<fs::path> models;
+    for (const fs::path& model : filesUnder(input, ".glb")) {
+        models.push_back(output / model.lexically_relative(input).replace_extension());
+    }
+    ASSERT_EQ(models.size(), 8u);
+    for (const fs::path& model : models) {
+        expectFinishedModel(model, 16);
+    }
+}
+
+// SIGINT finishes the files in flight and exits with 130 and a summary.
+TEST(BatchCommandTest, SigintStopsCleanly) {
+    const fs::path input = makeCollection("batch-cli-int", 6, 40);
+    fs::remove(input / "broken.gltf");
+    const fs::path output = makeTempDir("batch-cli-int-output");
+    const std::string arguments =
+        batchArguments(input, output, "--views 16 --size 128 --jobs 2 --quiet");
+    const CommandResult stopped =
+        runEncoreThrough(signalAfterFirstModel(input, output, "INT"), arguments);
+    EXPECT_EQ(stopped.exitCode, 130) << stopped.out << stopped.err;
+    EXPECT_NE(stopped.out.find("interrupted"), std::string::npos) << stopped.out;
+    EXPECT_TRUE(filesUnder(output, ".part").empty());
+    // Models whose views were in flight were finished; none was started afterwards.
+    const std::size_t finished = filesUnder(output, ".json").size();
+    EXPECT_GE(finished, 1u);
+    EXPECT_LT(finished, 6u);
+    EXPECT_EQ(filesUnder(output, ".png").size(), finished * 16);
+    const CommandResult rerun = runEncore(arguments);
+    ASSERT_EQ(rerun.exitCode, 0) << rerun.out << rerun.err;
+    EXPECT_NE(rerun.out.find(std::to_string(6 - finished) + " rendered, 0 failed, " +
+                             std::to_string(finished) + " skipped"),
+              std::string::npos)
+        << rerun.out;
+}
+
+}  // namespace
+}  // namespace encore::test
