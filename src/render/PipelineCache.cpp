@@ -2,6 +2,8 @@
 
 #include <string>
 
+#include "encore/render/Strategy.h"
+
 namespace encore::render {
 
 Result<wgpu::RenderPipeline> PipelineCache::get(const PipelineKey& key) {
@@ -17,6 +19,15 @@ Result<wgpu::RenderPipeline> PipelineCache::get(const PipelineKey& key) {
     }
     mPipelines.emplace(key, *pipeline);
     return pipeline;
+}
+
+PipelineCache* strategyPipelineCache(const RenderSetup& setup, std::unique_ptr<PipelineCache>& own) {
+    if (setup.keptPipelines) {
+        own.reset();
+        return setup.keptPipelines;
+    }
+    own = std::make_unique<PipelineCache>(setup);
+    return own.get();
 }
 
 }  // namespace encore::render

@@ -4,6 +4,7 @@
 
 #include "encore/gpu/OutOfMemoryScope.h"
 #include "encore/gpu/Readback.h"
+#include "encore/render/PipelineCache.h"
 #include "encore/render/SceneLimits.h"
 #include "encore/image/HdrImage.h"
 
@@ -90,6 +91,10 @@ Result<void> Renderer::build(const RendererOptions& options) {
     setup.sampleCount = options.target.sampleCount;
     setup.mappingBudget = context.mappingBudget();
     setup.limits = context.limits();
+    if (options.keepPipelines) {
+        renderer.mKeptPipelines = std::make_unique<PipelineCache>(setup);
+        setup.keptPipelines = renderer.mKeptPipelines.get();
+    }
     return context.checkNoErrors("Creating the renderer");
 }
 
@@ -113,6 +118,7 @@ Result<void> Renderer::recoverFromDeviceLoss() {
     mToneMapper.reset();
     mFrame.reset();
     mLighting.reset();
+    mKeptPipelines.reset();
     mSetup.reset();
     mLayouts.reset();
     mShaders.reset();

@@ -276,6 +276,39 @@ TEST(StrategyCountsGeneratedTest, ManyInstancesOfFewMeshes) {
     EXPECT_EQ(calls(materials, RecordedCall::Kind::SetBindGroup, 2), 3u);  // One per material.
 }
 
+// RendererOptions::keepPipelines: a renderer that prepares scene after scene (encore batch)
+// creates each distinct pipeline once, and draws the same picture with it.
+TEST(StrategyCountsGeneratedTest, KeptPipelinesAreCreatedOncePerRenderer) {
+    scene::GeneratorOptions options;
+    options.objectCount = 20;
+    options.meshCount = 3;
+    options.materialCount = 2;
+    auto glb = scene::generateSceneGlb(options);
+    ASSERT_TRUE(glb.ok());
+    auto first = scene::loadSceneFromMemory(*glb, {}, "first.glb");
+    auto second = scene::loadSceneFromMemory(*glb, {}, "second.glb");
+    ASSERT_TRUE(first.ok() && second.ok());
+    ENCORE_REQUIRE_VULKAN(context);
+    RendererOptions keeping = test::pixelTestOptions(64, 64);
+    keeping.keepPipelines = true;
+    auto renderer = Renderer::create(*context, keeping);
+    ASSERT_TRUE(renderer.ok());
+    const Frame once = renderWith(*renderer, *first, StrategyKind::Bundles);
+    EXPECT_GT(once.pipelinesCreated, 0u);
+    const image::ImageRgba8 firstImage = *renderer->readImage();
+    const Frame again = renderWith(*renderer, *second, StrategyKind::Bundles);
+    EXPECT_EQ(again.pipelinesCreated, 0u);
+    EXPECT_EQ(test::differingPixels(*renderer->readImage(), firstImage), 0u);
+
+    // Without it (the default) each prepare creates its strategy's pipelines.
+    auto plain = Renderer::create(*context, test::pixelTestOptions(64, 64));
+    ASSERT_TRUE(plain.ok());
+    renderWith(*plain, *first, StrategyKind::Bundles);
+    EXPECT_EQ(renderWith(*plain, *second, StrategyKind::Bundles).pipelinesCreated,
+              once.pipelinesCreated);
+    EXPECT_TRUE(context->checkNoErrors("kept pipelines").ok());
+}
+
 // The case study's published Buggy figures: 236 -> 1 setPipeline, 191 -> 237 setBindGroup,
 // 708 -> 444 vertex + index buffer sets, with pipeline caching.
 TEST(StrategyCountsGeneratedTest, BuggyMatchesTheCaseStudy) {

@@ -5,6 +5,7 @@
 
 #include <webgpu/webgpu_cpp.h>
 
+#include <memory>
 #include <unordered_map>
 
 #include "encore/core/Result.h"
@@ -27,5 +28,10 @@ class PipelineCache {
     std::unordered_map<PipelineKey, wgpu::RenderPipeline, PipelineKeyHash> mPipelines;
     std::size_t mHits = 0;
 };
+
+// The cache a strategy prepared with `setup` draws with: the renderer's kept cache
+// (RenderSetup::keptPipelines, RendererOptions::keepPipelines), or otherwise a new one of the
+// strategy's own, created in `own`.
+PipelineCache* strategyPipelineCache(const RenderSetup& setup, std::unique_ptr<PipelineCache>& own);
 
 }  // namespace encore::render

@@ -43,6 +43,12 @@ struct RendererOptions {
     EnvironmentOptions environmentOptions;
     // Where animation is evaluated (setAnimationEvaluation changes it later).
     AnimationEvaluation animation = AnimationEvaluation::Cpu;
+    // Keep the render pipelines of the materials-based and instancing strategies from one
+    // prepare() to the next: a renderer that prepares many scenes in turn (encore batch) creates
+    // each distinct pipeline once, which matters where creating one compiles shaders for
+    // hundreds of milliseconds (lavapipe). Off by default, so that each prepare's
+    // RenderSetup::pipelinesCreated counts what that strategy needs.
+    bool keepPipelines = false;
 };
 
 // A frame's timing (gpuMilliseconds only with a GPU timer set) and what it recorded.
@@ -198,6 +204,7 @@ class Renderer {
     std::unique_ptr<ToneMapper> mToneMapper;  // HDR targets only.
     std::unique_ptr<EnvironmentBackground> mBackground;
     std::unique_ptr<RenderSetup> mSetup;  // Stable address: strategies keep pointers to it.
+    std::unique_ptr<PipelineCache> mKeptPipelines;  // With RendererOptions::keepPipelines.
     std::unique_ptr<scene::AnimationPlayer> mPlayer;
     std::unique_ptr<AnimationBuffers> mAnimation;  // Before mStrategy, which binds it.
     AnimationFrameStats mAnimationStats;

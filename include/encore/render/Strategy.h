@@ -85,6 +85,7 @@ std::vector<StrategyChoice> withBundlingAxis(std::span<const StrategyChoice> cho
                                              bool alsoBundled);
 
 class AnimationBuffers;
+class PipelineCache;
 
 // What a strategy's pipelines and bind groups must be compatible with.
 struct RenderSetup {
@@ -107,6 +108,9 @@ struct RenderSetup {
     // Renderer); null when the scene has none (or for strategies prepared outside a Renderer):
     // primitives are then drawn unanimated, as loaded.
     const AnimationBuffers* animation = nullptr;
+    // Pipelines that outlive the prepared strategy (RendererOptions::keepPipelines), owned by
+    // the Renderer; null: each strategy caches its own.
+    PipelineCache* keptPipelines = nullptr;
 };
 
 // What a frame's recording may depend on. Only strategies that sort by distance (blended

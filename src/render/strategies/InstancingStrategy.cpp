@@ -9,7 +9,7 @@ namespace encore::render {
 Result<void> InstancingStrategy::prepare(const RenderSetup& setup, const scene::SceneData& scene) {
     mFrameGroup = setup.frame->bindGroup();
     mGeometry = std::make_unique<GeometryBuffers>(setup.device, scene);
-    mPipelines = std::make_unique<PipelineCache>(setup);
+    mPipelines = strategyPipelineCache(setup, mOwnPipelines);
     mInstances = InstanceBuffer(setup.device, *setup.layouts, scene);
     mQueue = setup.queue;
     mAnimation = setup.animation;

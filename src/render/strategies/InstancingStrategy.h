@@ -40,7 +40,8 @@ class InstancingStrategy final : public Strategy {
     };
 
     std::unique_ptr<GeometryBuffers> mGeometry;
-    std::unique_ptr<PipelineCache> mPipelines;
+    std::unique_ptr<PipelineCache> mOwnPipelines;
+    PipelineCache* mPipelines = nullptr;  // mOwnPipelines or the renderer's kept cache.
     wgpu::BindGroup mFrameGroup;
     InstanceBuffer mInstances;
     wgpu::Queue mQueue;

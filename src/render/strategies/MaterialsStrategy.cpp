@@ -56,7 +56,7 @@ Result<void> MaterialsStrategy::prepare(const RenderSetup& setup, const scene::S
     mAnimation = setup.animation;
     mFrameGroup = setup.frame->bindGroup();
     mGeometry = std::make_unique<GeometryBuffers>(setup.device, scene);
-    mPipelines = std::make_unique<PipelineCache>(setup);
+    mPipelines = strategyPipelineCache(setup, mOwnPipelines);
     mInstances = InstanceBuffer(setup.device, *setup.layouts, scene);
     mQueue = setup.queue;
     auto materials =

@@ -79,7 +79,8 @@ class MaterialsStrategy : public Strategy {
     const RenderSetup* mSetup = nullptr;
     const scene::SceneData* mScene = nullptr;
     std::unique_ptr<GeometryBuffers> mGeometry;
-    std::unique_ptr<PipelineCache> mPipelines;
+    std::unique_ptr<PipelineCache> mOwnPipelines;
+    PipelineCache* mPipelines = nullptr;  // mOwnPipelines or the renderer's kept cache.
     std::unique_ptr<MaterialResources> mMaterials;
     wgpu::BindGroup mFrameGroup;
     InstanceBuffer mInstances;
