@@ -13,6 +13,7 @@
 #include "encore/batch/FailureLog.h"
 #include "encore/batch/ModelOutput.h"
 #include "encore/batch/TransformsJson.h"
+#include "encore/batch/ViewStrips.h"
 #include "encore/core/FileIO.h"
 #include "encore/core/ThreadPool.h"
 #include "encore/gpu/TextureReadbackRing.h"
@@ -57,39 +58,12 @@ struct ModelJob {
     }
 };
 
-// Views [first, first + count) of a model, drawn side by side in one read-back.
+// Views [first, first + count) of a model, drawn side by side in one read-back (ViewStrips.h).
 struct ChunkInFlight {
     std::shared_ptr<ModelJob> job;
     std::uint32_t first = 0;
     std::uint32_t count = 0;
 };
-
-// How many views one wide target holds: as many as the device's texture width and the read-back
-// buffer size allow, spread evenly over the chunks a model needs.
-std::uint32_t viewsPerChunk(const BatchOptions& options, const gpu::DeviceLimits& limits) {
-    const std::uint32_t views = std::max(options.views.views, 1u);
-    std::uint32_t fit = std::max(1u, limits.maxTextureDimension2D / options.width);
-    const std::uint64_t bytesPerView = std::uint64_t(options.width) * 4 * options.height;
-    fit = std::uint32_t(std::max<std::uint64_t>(
-        1, std::min<std::uint64_t>(fit,
-                                   limits.maxBufferSize / (bytesPerView + 256 * options.height))));
-    const std::uint32_t chunks = (views + fit - 1) / fit;
-    return (views + chunks - 1) / chunks;
-}
-
-image::ImageRgba8 cropStrip(const image::ImageRgba8& wide,
-                            std::uint32_t strip,
-                            std::uint32_t width) {
-    image::ImageRgba8 view;
-    view.width = width;
-    view.height = wide.height;
-    view.pixels.resize(std::size_t(width) * wide.height * 4);
-    for (std::uint32_t y = 0; y < wide.height; ++y) {
-        std::memcpy(&view.pixels[std::size_t(y) * width * 4], wide.pixel(strip * width, y),
-                    std::size_t(width) * 4);
-    }
-    return view;
-}
 
 class BatchRun {
   public:
@@ -124,7 +98,7 @@ class BatchRun {
     SharedCounters mCounters;
     StageTimes mGpuStages;  // The GPU thread's stages.
     std::size_t mSkipped = 0;
-    std::uint32_t mViewsPerChunk = 1;
+    StripLayout mLayout;
     std::optional<render::Renderer> mRenderer;
     std::unique_ptr<gpu::TextureReadbackRing> mRing;
     std::deque<ChunkInFlight> mChunks;  // In the ring's order.
@@ -136,7 +110,7 @@ class BatchRun {
 
 Result<void> BatchRun::createRenderer() {
     render::RendererOptions rendererOptions = mOptions.renderer;
-    rendererOptions.target = {mOptions.width * mViewsPerChunk, mOptions.height, mOptions.samples};
+    rendererOptions.target = {mLayout.targetWidth(), mLayout.height, mOptions.samples};
     rendererOptions.keepPipelines = true;  // Models share most pipelines: create each once.
     mRing.reset();
     mRenderer.reset();
@@ -316,19 +290,14 @@ void BatchRun::renderModel(LoadedModel& loaded) {
     job->cameraToWorld = viewMatrices(rig);
     job->remaining = std::uint32_t(job->cameraToWorld.size());
     const glm::mat4 toUnitBox = normalization(scene.bounds, rig.normalize);
-    const float aspect = float(mOptions.width) / float(mOptions.height);
     const float fov = glm::radians(rig.horizontalFovDegrees);
     const auto renderStart = Clock::now();
     double renderWaiting = 0.0;
-    for (std::uint32_t first = 0; first < job->cameraToWorld.size(); first += mViewsPerChunk) {
+    for (std::uint32_t first = 0; first < job->cameraToWorld.size(); first += mLayout.strips) {
         const std::uint32_t count = std::min<std::uint32_t>(
-            mViewsPerChunk, std::uint32_t(job->cameraToWorld.size()) - first);
-        // The target always holds mViewsPerChunk strips; a short last chunk repeats its last view.
-        std::vector<render::Camera> cameras;
-        for (std::uint32_t strip = 0; strip < mViewsPerChunk; ++strip) {
-            cameras.push_back(renderCamera(job->cameraToWorld[first + std::min(strip, count - 1)],
-                                           toUnitBox, fov, aspect));
-        }
+            mLayout.strips, std::uint32_t(job->cameraToWorld.size()) - first);
+        const std::vector<render::Camera> cameras =
+            stripCameras(job->cameraToWorld, first, mLayout, toUnitBox, fov);
         if (mRing->full()) {
             const auto waitStart = Clock::now();
             collectOldest();
@@ -376,7 +345,7 @@ Result<BatchSummary> BatchRun::run() {
         return failures.error();
     }
     mFailures.emplace(std::move(*failures));
-    mViewsPerChunk = viewsPerChunk(mOptions, mContext.limits());
+    mLayout = stripLayout(mOptions.width, mOptions.height, rig.views, mContext.limits());
     ENCORE_TRY(createRenderer());
 
     // Finished models are skipped before anything loads.
