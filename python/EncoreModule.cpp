@@ -1,0 +1,332 @@
+// The Python module `encore`: the C++ library's batch rendering for Python code (data loaders,
+// task systems). It wraps encore::batch and encore::render, not the executable.
+//
+//   renderer = encore.Renderer()              # one GPU device
+//   scene = renderer.load("model.glb")        # encore.LoadError with the loader's message
+//   images, intrinsics, cameras = renderer.render_views(scene, views=12, size=512)
+//   encore.batch("models/", "out/", views=12)  # the job of `encore batch`, returns its summary
+//
+// The GIL is released while files load and while the GPU renders.
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <cstring>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "encore/batch/Batch.h"
+#include "encore/batch/BatchInputs.h"
+#include "encore/batch/TransformsJson.h"
+#include "encore/batch/ViewRig.h"
+#include "encore/batch/ViewStrips.h"
+#include "encore/gpu/Context.h"
+#include "encore/render/Renderer.h"
+#include "encore/scene/SceneData.h"
+
+namespace py = pybind11;
+
+namespace encore::python {
+namespace {
+
+// Raised as encore.Error (GPU, I/O, arguments) and encore.LoadError (a model that does not
+// load), each with the message `encore render` would print.
+struct EncoreError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+struct LoadError : EncoreError {
+    using EncoreError::EncoreError;
+};
+
+template <typename T>
+T valueOrThrow(Result<T> result) {
+    if (!result) {
+        throw EncoreError(result.error().message);
+    }
+    return std::move(*result);
+}
+
+// A loaded model: immutable, shared by the Python object and the renderer that prepared it.
+struct Scene {
+    std::shared_ptr<const scene::SceneData> data;
+};
+
+// `size` is an int (square) or a (width, height) pair.
+std::pair<std::uint32_t, std::uint32_t> imageSize(const py::object& size) {
+    long width = 0;
+    long height = 0;
+    if (py::isinstance<py::int_>(size)) {
+        width = height = size.cast<long>();
+    } else {
+        auto pair = size.cast<std::pair<long, long>>();
+        width = pair.first;
+        height = pair.second;
+    }
+    if (width < 1 || height < 1 || width > 8192 || height > 8192) {
+        throw py::value_error("size must be an int or a (width, height) pair, each from 1 to 8192");
+    }
+    return {std::uint32_t(width), std::uint32_t(height)};
+}
+
+batch::ViewRigOptions rigOptions(std::uint32_t views,
+                                 float elevation,
+                                 float distance,
+                                 std::optional<float> fov,
+                                 bool random,
+                                 std::uint64_t seed,
+                                 bool normalize) {
+    if (views < 1) {
+        throw py::value_error("views must be at least 1");
+    }
+    batch::ViewRigOptions rig;
+    rig.views = views;
+    rig.elevationDegrees = elevation;
+    rig.distance = distance;
+    rig.horizontalFovDegrees = fov.value_or(batch::kDefaultHorizontalFovDegrees);
+    rig.random = random;
+    rig.seed = seed;
+    rig.normalize = normalize;
+    if (!(rig.distance > 0.0f) ||
+        !(rig.horizontalFovDegrees > 0.0f && rig.horizontalFovDegrees < 180.0f)) {
+        throw py::value_error("distance must be positive and fov within (0, 180) degrees");
+    }
+    return rig;
+}
+
+class Renderer {
+  public:
+    explicit Renderer(std::uint32_t samples) : mSamples(samples) {
+        if (samples != 1 && samples != 4) {
+            throw py::value_error("samples must be 1 or 4");
+        }
+        mContext = std::make_unique<gpu::Context>(valueOrThrow(gpu::Context::create()));
+    }
+
+    Scene load(const std::string& path) {
+        Result<scene::SceneData> loaded = makeError(ErrorCode::InvalidArgument, "");
+        {
+            py::gil_scoped_release release;
+            loaded = scene::loadScene(path);
+        }
+        if (!loaded) {
+            throw LoadError(loaded.error().message);
+        }
+        return Scene{std::make_shared<const scene::SceneData>(std::move(*loaded))};
+    }
+
+    py::tuple renderViews(const Scene& scene,
+                          std::uint32_t views,
+                          const py::object& size,
+                          float elevation,
+                          float distance,
+                          std::optional<float> fov,
+                          bool random,
+                          std::uint64_t seed,
+                          bool normalize) {
+        const auto [width, height] = imageSize(size);
+        const batch::ViewRigOptions rig =
+            rigOptions(views, elevation, distance, fov, random, seed, normalize);
+        const std::vector<glm::mat4> cameraToWorld = batch::viewMatrices(rig);
+        std::vector<image::ImageRgba8> images;
+        {
+            py::gil_scoped_release release;
+            std::lock_guard lock(mMutex);  // Python threads may share a renderer.
+            images = valueOrThrow(render(scene.data, cameraToWorld, rig, width, height));
+        }
+        py::array_t<std::uint8_t> pixels(
+            {std::size_t(views), std::size_t(height), std::size_t(width), std::size_t(4)});
+        std::uint8_t* out = pixels.mutable_data();
+        for (const image::ImageRgba8& image : images) {
+            std::memcpy(out, image.pixels.data(), image.pixels.size());
+            out += image.pixels.size();
+        }
+        const batch::PinholeIntrinsics pinhole =
+            batch::intrinsicsFor(width, height, glm::radians(rig.horizontalFovDegrees));
+        py::array_t<double> intrinsics({3, 3});
+        auto k = intrinsics.mutable_unchecked<2>();
+        const double values[3][3] = {{pinhole.focalX, 0.0, pinhole.centerX},
+                                     {0.0, pinhole.focalY, pinhole.centerY},
+                                     {0.0, 0.0, 1.0}};
+        for (int row = 0; row < 3; ++row) {
+            for (int column = 0; column < 3; ++column) {
+                k(row, column) = values[row][column];
+            }
+        }
+        py::array_t<double> cameras({std::size_t(views), std::size_t(4), std::size_t(4)});
+        auto c = cameras.mutable_unchecked<3>();
+        for (std::size_t view = 0; view < cameraToWorld.size(); ++view) {
+            for (int row = 0; row < 4; ++row) {
+                for (int column = 0; column < 4; ++column) {
+                    c(view, row, column) = cameraToWorld[view][column][row];  // glm: [column][row]
+                }
+            }
+        }
+        return py::make_tuple(pixels, intrinsics, cameras);
+    }
+
+    std::string adapter() const { return mContext->adapterDescription().summary(); }
+
+  private:
+    Result<std::vector<image::ImageRgba8>> render(
+        const std::shared_ptr<const scene::SceneData>& scene,
+        const std::vector<glm::mat4>& cameraToWorld,
+        const batch::ViewRigOptions& rig,
+        std::uint32_t width,
+        std::uint32_t height) {
+        const batch::StripLayout layout =
+            batch::stripLayout(width, height, rig.views, mContext->limits());
+        if (!mRenderer || mRenderer->target().width() != layout.targetWidth() ||
+            mRenderer->target().height() != layout.height) {
+            render::RendererOptions options;
+            options.target = {layout.targetWidth(), layout.height, mSamples};
+            options.toneMapping.background = render::BackgroundKind::Transparent;
+            options.keepPipelines = true;
+            mRenderer.reset();
+            auto created = render::Renderer::create(*mContext, options);
+            if (!created) {
+                return created.error();
+            }
+            mRenderer = std::make_unique<render::Renderer>(std::move(*created));
+            mPrepared.reset();
+        }
+        if (mPrepared != scene) {
+            // The renderer refers to the scene it was given until the next prepare, even when
+            // preparing failed: hold it that long.
+            mPrepared.reset();
+            mHeld = scene;
+            ENCORE_TRY(mRenderer->prepare(*scene, render::StrategyKind::Bundles));
+            mPrepared = scene;
+        }
+        auto images = batch::renderStrips(*mRenderer, scene->bounds, cameraToWorld, rig, layout);
+        ENCORE_TRY(mContext->checkNoErrors("Rendering '" + scene->sourcePath.string() + "'"));
+        return images;
+    }
+
+    std::uint32_t mSamples;
+    std::unique_ptr<gpu::Context> mContext;
+    std::unique_ptr<render::Renderer> mRenderer;        // After mContext: destroyed before it.
+    std::shared_ptr<const scene::SceneData> mHeld;      // Last given to prepare().
+    std::shared_ptr<const scene::SceneData> mPrepared;  // Prepared successfully.
+    std::mutex mMutex;
+};
+
+py::dict runBatch(const std::string& input,
+                  const std::string& output,
+                  std::uint32_t views,
+                  std::uint32_t randomViews,
+                  std::uint64_t seed,
+                  float elevation,
+                  float distance,
+                  std::optional<float> fov,
+                  bool normalize,
+                  const py::object& size,
+                  std::uint32_t samples,
+                  std::size_t jobs,
+                  std::uint64_t memoryLimitMiB,
+                  bool strict) {
+    batch::BatchOptions options;
+    std::tie(options.width, options.height) = imageSize(size);
+    if (samples != 1 && samples != 4) {
+        throw py::value_error("samples must be 1 or 4");
+    }
+    options.samples = samples;
+    options.output = output;
+    options.views = rigOptions(randomViews > 0 ? randomViews : views, elevation, distance, fov,
+                               randomViews > 0, seed, normalize);
+    options.jobs = jobs;
+    options.memoryLimitBytes = memoryLimitMiB << 20;
+    options.strict = strict;
+    Result<batch::BatchSummary> summary = makeError(ErrorCode::InvalidArgument, "");
+    {
+        py::gil_scoped_release release;
+        auto inputs = batch::discoverInputs(input);
+        if (!inputs) {
+            summary = inputs.error();
+        } else if (auto context = gpu::Context::create(); !context) {
+            summary = context.error();
+        } else {
+            summary = batch::runBatch(*context, *inputs, options);
+        }
+    }
+    const batch::BatchSummary& result = valueOrThrow(std::move(summary));
+    py::dict stages;
+    stages["load"] = result.stages.load;
+    stages["upload"] = result.stages.upload;
+    stages["render"] = result.stages.render;
+    stages["gpu"] = result.stages.gpu;
+    stages["readback"] = result.stages.readback;
+    stages["encode"] = result.stages.encode;
+    py::dict dict;
+    dict["total"] = result.total;
+    dict["rendered"] = result.rendered;
+    dict["failed"] = result.failed;
+    dict["skipped"] = result.skipped;
+    dict["views"] = result.views;
+    dict["seconds"] = result.seconds;
+    dict["interrupted"] = result.interrupted;
+    dict["stages"] = stages;
+    return dict;
+}
+
+}  // namespace
+}  // namespace encore::python
+
+PYBIND11_MODULE(encore, module) {
+    using namespace encore::python;
+    module.doc() = "Encore: glTF 2.0 rendering with WebGPU (Dawn), for datasets of rendered views.";
+    static py::exception<EncoreError> error(module, "Error", PyExc_RuntimeError);
+    static py::exception<LoadError> loadError(module, "LoadError", error.ptr());
+    py::register_exception_translator([](std::exception_ptr pointer) {
+        try {
+            if (pointer) {
+                std::rethrow_exception(pointer);
+            }
+        } catch (const LoadError& caught) {
+            PyErr_SetString(loadError.ptr(), caught.what());
+        } catch (const EncoreError& caught) {
+            PyErr_SetString(error.ptr(), caught.what());
+        }
+    });
+
+    py::class_<Scene>(module, "Scene", "A loaded glTF model (renderer.load).")
+        .def_property_readonly("path",
+                               [](const Scene& scene) { return scene.data->sourcePath.string(); })
+        .def_property_readonly("bounds", [](const Scene& scene) {
+            const auto& bounds = scene.data->bounds;
+            return py::make_tuple(py::make_tuple(bounds.min.x, bounds.min.y, bounds.min.z),
+                                  py::make_tuple(bounds.max.x, bounds.max.y, bounds.max.z));
+        });
+
+    py::class_<Renderer>(module, "Renderer",
+                         "One GPU device (Vulkan) rendering models from a view rig.")
+        .def(py::init<std::uint32_t>(), py::arg("samples") = 4)
+        .def("load", &Renderer::load, py::arg("path"),
+             "Loads a .gltf or .glb file; raises encore.LoadError with the loader's message.")
+        .def("render_views", &Renderer::renderViews, py::arg("scene"), py::arg("views") = 12,
+             py::arg("size") = 512, py::arg("elevation") = 30.0f, py::arg("distance") = 1.5f,
+             py::arg("fov") = py::none(), py::arg("random") = false, py::arg("seed") = 0,
+             py::arg("normalize") = true,
+             "Renders `views` RGBA views (straight alpha, transparent background) of the scene "
+             "normalised into a unit box, from an orbit `elevation` degrees above the horizon or "
+             "(random=True) directions uniform on the sphere drawn from `seed`. Returns (images "
+             "uint8 (N, H, W, 4), intrinsics float64 (3, 3) in pixels, camera-to-world float64 "
+             "(N, 4, 4) with OpenGL camera axes), as `encore batch` writes them. `fov` is "
+             "horizontal, in degrees (default: a 35 mm lens on a 32 mm sensor). The GIL is "
+             "released while rendering.")
+        .def_property_readonly("adapter", &Renderer::adapter);
+
+    module.def("batch", &runBatch, py::arg("input"), py::arg("output"), py::arg("views") = 12,
+               py::arg("random_views") = 0, py::arg("seed") = 0, py::arg("elevation") = 30.0f,
+               py::arg("distance") = 1.5f, py::arg("fov") = py::none(), py::arg("normalize") = true,
+               py::arg("size") = 512, py::arg("samples") = 4, py::arg("jobs") = 0,
+               py::arg("memory_limit_mib") = 2048, py::arg("strict") = false,
+               "Runs the job of `encore batch INPUT -o OUTPUT` and returns its summary (models "
+               "rendered, failed, skipped; views; seconds; time per stage). Failed models are "
+               "in OUTPUT/failures.jsonl. The GIL is released while it runs.");
+}
