@@ -74,13 +74,19 @@ std::pair<std::uint32_t, std::uint32_t> imageSize(const py::object& size) {
     return {std::uint32_t(width), std::uint32_t(height)};
 }
 
-batch::ViewRigOptions rigOptions(std::uint32_t views,
-                                 float elevation,
-                                 float distance,
-                                 std::optional<float> fov,
-                                 bool random,
-                                 std::uint64_t seed,
-                                 bool normalize) {
+// The view rig of the keyword arguments render_views and batch share.
+struct RigArguments {
+    std::uint32_t views = 12;
+    float elevation = 30.0f;
+    float distance = 1.5f;
+    std::optional<float> fov;
+    bool random = false;
+    std::uint64_t seed = 0;
+    bool normalize = true;
+};
+
+batch::ViewRigOptions rigOptions(const RigArguments& arguments) {
+    const auto& [views, elevation, distance, fov, random, seed, normalize] = arguments;
     if (views < 1) {
         throw py::value_error("views must be at least 1");
     }
@@ -131,7 +137,7 @@ class Renderer {
                           bool normalize) {
         const auto [width, height] = imageSize(size);
         const batch::ViewRigOptions rig =
-            rigOptions(views, elevation, distance, fov, random, seed, normalize);
+            rigOptions({views, elevation, distance, fov, random, seed, normalize});
         const std::vector<glm::mat4> cameraToWorld = batch::viewMatrices(rig);
         std::vector<image::ImageRgba8> images;
         {
@@ -237,8 +243,8 @@ py::dict runBatch(const std::string& input,
     }
     options.samples = samples;
     options.output = output;
-    options.views = rigOptions(randomViews > 0 ? randomViews : views, elevation, distance, fov,
-                               randomViews > 0, seed, normalize);
+    options.views = rigOptions({randomViews > 0 ? randomViews : views, elevation, distance, fov,
+                                randomViews > 0, seed, normalize});
     options.jobs = jobs;
     options.memoryLimitBytes = memoryLimitMiB << 20;
     options.strict = strict;

@@ -60,7 +60,11 @@ Result<std::vector<std::uint8_t>> readFile(const std::filesystem::path& path) {
     return bytes;
 }
 
-Result<void> writeFile(const std::filesystem::path& path, std::span<const std::uint8_t> bytes) {
+namespace {
+
+// Creates `path` and writes `bytes` into it; the file stays open for the caller to finish.
+Result<FileHandle> createWith(const std::filesystem::path& path,
+                              std::span<const std::uint8_t> bytes) {
     FileHandle file(std::fopen(path.c_str(), "wb"));
     if (!file) {
         return makeError(ErrorCode::IoError, "Cannot create " + quoted(path) + " (" +
@@ -69,10 +73,24 @@ Result<void> writeFile(const std::filesystem::path& path, std::span<const std::u
     if (!bytes.empty() && std::fwrite(bytes.data(), 1, bytes.size(), file.get()) != bytes.size()) {
         return makeError(ErrorCode::IoError, "Writing " + quoted(path) + " failed.");
     }
+    return file;
+}
+
+Result<void> close(FileHandle file, const std::filesystem::path& path) {
     if (std::fclose(file.release()) != 0) {
         return makeError(ErrorCode::IoError, "Closing " + quoted(path) + " failed.");
     }
     return {};
+}
+
+}  // namespace
+
+Result<void> writeFile(const std::filesystem::path& path, std::span<const std::uint8_t> bytes) {
+    auto file = createWith(path, bytes);
+    if (!file) {
+        return file.error();
+    }
+    return close(std::move(*file), path);
 }
 
 std::filesystem::path partialPath(const std::filesystem::path& path) {
@@ -84,24 +102,18 @@ std::filesystem::path partialPath(const std::filesystem::path& path) {
 Result<void> writeFileAtomically(const std::filesystem::path& path,
                                  std::span<const std::uint8_t> bytes) {
     const std::filesystem::path partial = partialPath(path);
-    FileHandle file(std::fopen(partial.c_str(), "wb"));
+    auto file = createWith(partial, bytes);
     if (!file) {
-        return makeError(ErrorCode::IoError, "Cannot create " + quoted(partial) + " (" +
-                                                 std::strerror(errno) + ").");
-    }
-    if (!bytes.empty() && std::fwrite(bytes.data(), 1, bytes.size(), file.get()) != bytes.size()) {
-        return makeError(ErrorCode::IoError, "Writing " + quoted(partial) + " failed.");
+        return file.error();
     }
     // Without the flush to the disk, a power loss after the rename could leave `path` empty:
     // file systems may commit the rename before the data.
-    if (std::fflush(file.get()) != 0 || ::fdatasync(::fileno(file.get())) != 0) {
+    if (std::fflush(file->get()) != 0 || ::fdatasync(::fileno(file->get())) != 0) {
         return makeError(ErrorCode::IoError, "Flushing " + quoted(partial) +
                                                  " to the disk failed (" + std::strerror(errno) +
                                                  ").");
     }
-    if (std::fclose(file.release()) != 0) {
-        return makeError(ErrorCode::IoError, "Closing " + quoted(partial) + " failed.");
-    }
+    ENCORE_TRY(close(std::move(*file), partial));
     std::error_code ec;
     std::filesystem::rename(partial, path, ec);
     if (ec) {

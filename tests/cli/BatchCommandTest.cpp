@@ -163,17 +163,34 @@ TEST(BatchCommandTest, RandomViewsFromASeedAndAJsonList) {
     EXPECT_EQ(slurp(output / "a/model/002.png"), slurp(output / "b/model/002.png"));
 }
 
+// A batch of `count` generated models (no bad file) sent `signal` after its first model.
+struct SignalledRun {
+    fs::path input;
+    fs::path output;
+    std::string arguments;
+    CommandResult result;
+};
+
+SignalledRun signalledRun(const std::string& name, int count, const std::string& signal) {
+    SignalledRun run;
+    run.input = makeCollection(name, count, 40);
+    fs::remove(run.input / "broken.gltf");
+    run.output = makeTempDir(name + "-output");
+    run.arguments = batchArguments(run.input, run.output, "--views 16 --size 128 --jobs 2 --quiet");
+    run.result =
+        runEncoreThrough(signalAfterFirstModel(run.input, run.output, signal), run.arguments);
+    return run;
+}
+
 // Killed without warning at some moment of the run, then run again: the second run finishes
 // every model, and no image is half-written at any point.
 TEST(BatchCommandTest, SigkillMidRunThenRerunCompletes) {
-    const fs::path input = makeCollection("batch-cli-kill", 8, 40);
-    fs::remove(input / "broken.gltf");
-    const fs::path output = makeTempDir("batch-cli-kill-output");
-    const std::string arguments =
-        batchArguments(input, output, "--views 16 --size 128 --jobs 2 --quiet");
-    const CommandResult killed =
-        runEncoreThrough(signalAfterFirstModel(input, output, "KILL"), arguments);
-    EXPECT_EQ(killed.exitCode, 137) << "not killed (128 + SIGKILL): " << killed.out << killed.err;
+    const SignalledRun run = signalledRun("batch-cli-kill", 8, "KILL");
+    EXPECT_EQ(run.result.exitCode, 137)
+        << "not killed (128 + SIGKILL): " << run.result.out << run.result.err;
+    const fs::path& input = run.input;
+    const fs::path& output = run.output;
+    const std::string& arguments = run.arguments;
     for (const fs::path& png : filesUnder(output, ".png")) {
         EXPECT_TRUE(image::readImage(png).ok()) << png << " is half-written";
     }
@@ -193,13 +210,10 @@ TEST(BatchCommandTest, SigkillMidRunThenRerunCompletes) {
 
 // SIGINT finishes the files in flight and exits with 130 and a summary.
 TEST(BatchCommandTest, SigintStopsCleanly) {
-    const fs::path input = makeCollection("batch-cli-int", 6, 40);
-    fs::remove(input / "broken.gltf");
-    const fs::path output = makeTempDir("batch-cli-int-output");
-    const std::string arguments =
-        batchArguments(input, output, "--views 16 --size 128 --jobs 2 --quiet");
-    const CommandResult stopped =
-        runEncoreThrough(signalAfterFirstModel(input, output, "INT"), arguments);
+    const SignalledRun run = signalledRun("batch-cli-int", 6, "INT");
+    const CommandResult& stopped = run.result;
+    const fs::path& output = run.output;
+    const std::string& arguments = run.arguments;
     EXPECT_EQ(stopped.exitCode, 130) << stopped.out << stopped.err;
     EXPECT_NE(stopped.out.find("interrupted"), std::string::npos) << stopped.out;
     EXPECT_TRUE(filesUnder(output, ".part").empty());

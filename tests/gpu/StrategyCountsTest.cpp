@@ -253,14 +253,22 @@ std::vector<ModelVariant> variants() {
 INSTANTIATE_TEST_SUITE_P(SharedModels, StrategyCountsTest, ::testing::ValuesIn(variants()),
                          [](const auto& info) { return info.param.testName(); });
 
-TEST(StrategyCountsGeneratedTest, ManyInstancesOfFewMeshes) {
+// A generated scene of `objects` instances of `meshes` meshes with `materials` materials.
+Result<scene::SceneData> generatedScene(std::uint32_t objects, std::uint32_t meshes,
+                                        std::uint32_t materials, const std::string& name) {
     scene::GeneratorOptions options;
-    options.objectCount = 300;
-    options.meshCount = 7;
-    options.materialCount = 3;
+    options.objectCount = objects;
+    options.meshCount = meshes;
+    options.materialCount = materials;
     auto glb = scene::generateSceneGlb(options);
-    ASSERT_TRUE(glb.ok());
-    auto scene = scene::loadSceneFromMemory(*glb, {}, "generated.glb");
+    if (!glb) {
+        return glb.error();
+    }
+    return scene::loadSceneFromMemory(*glb, {}, name);
+}
+
+TEST(StrategyCountsGeneratedTest, ManyInstancesOfFewMeshes) {
+    auto scene = generatedScene(300, 7, 3, "generated.glb");
     ASSERT_TRUE(scene.ok()) << scene.error().message;
     checkCounts(*scene);
 
@@ -279,14 +287,8 @@ TEST(StrategyCountsGeneratedTest, ManyInstancesOfFewMeshes) {
 // RendererOptions::keepPipelines: a renderer that prepares scene after scene (encore batch)
 // creates each distinct pipeline once, and draws the same picture with it.
 TEST(StrategyCountsGeneratedTest, KeptPipelinesAreCreatedOncePerRenderer) {
-    scene::GeneratorOptions options;
-    options.objectCount = 20;
-    options.meshCount = 3;
-    options.materialCount = 2;
-    auto glb = scene::generateSceneGlb(options);
-    ASSERT_TRUE(glb.ok());
-    auto first = scene::loadSceneFromMemory(*glb, {}, "first.glb");
-    auto second = scene::loadSceneFromMemory(*glb, {}, "second.glb");
+    auto first = generatedScene(20, 3, 2, "first.glb");
+    auto second = generatedScene(20, 3, 2, "second.glb");
     ASSERT_TRUE(first.ok() && second.ok());
     ENCORE_REQUIRE_VULKAN(context);
     RendererOptions keeping = test::pixelTestOptions(64, 64);
