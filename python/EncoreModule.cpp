@@ -235,7 +235,8 @@ py::dict runBatch(const std::string& input,
                   std::uint32_t samples,
                   std::size_t jobs,
                   std::uint64_t memoryLimitMiB,
-                  bool strict) {
+                  bool strict,
+                  bool normals) {
     batch::BatchOptions options;
     std::tie(options.width, options.height) = imageSize(size);
     if (samples != 1 && samples != 4) {
@@ -248,6 +249,7 @@ py::dict runBatch(const std::string& input,
     options.jobs = jobs;
     options.memoryLimitBytes = memoryLimitMiB << 20;
     options.strict = strict;
+    options.normals = normals;
     Result<batch::BatchSummary> summary = makeError(ErrorCode::InvalidArgument, "");
     {
         py::gil_scoped_release release;
@@ -332,6 +334,7 @@ PYBIND11_MODULE(encore, module) {
                py::arg("distance") = 1.5f, py::arg("fov") = py::none(), py::arg("normalize") = true,
                py::arg("size") = 512, py::arg("samples") = 4, py::arg("jobs") = 0,
                py::arg("memory_limit_mib") = 2048, py::arg("strict") = false,
+               py::arg("normals") = false,
                "Runs the job of `encore batch INPUT -o OUTPUT` and returns its summary (models "
                "rendered, failed, skipped; views; seconds; time per stage). Failed models are "
                "in OUTPUT/failures.jsonl. The GIL is released while it runs.");

@@ -33,6 +33,7 @@ struct BatchCommandOptions {
     bool noNormalize = false;
     std::string strategy = "bundles";
     bool strict = false;
+    bool normals = false;
     std::size_t jobs = 0;
     std::uint64_t memoryLimitMiB = 2048;
     bool quiet = false;
@@ -111,6 +112,7 @@ int runBatch(const BatchCommandOptions& options, const GlobalOptions& global) {
     batchOptions.views.horizontalFovDegrees = options.fovDegrees;
     batchOptions.views.normalize = !options.noNormalize;
     batchOptions.strict = options.strict;
+    batchOptions.normals = options.normals;
     batchOptions.jobs = options.jobs;
     batchOptions.memoryLimitBytes = options.memoryLimitMiB << 20;
     if (auto shading = applyShadingOptions(options.shading, batchOptions.renderer); !shading) {
@@ -243,6 +245,8 @@ void addBatchCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) 
                      "MiB of models loaded ahead of the GPU, at most")
         ->capture_default_str()
         ->check(CLI::Range(1, 1 << 24));
+    command->add_flag("--normals", options->normals,
+                      "Also write world-space normals per view (000_normal.png: n * 0.5 + 0.5)");
     command->add_flag("-q,--quiet", options->quiet, "No progress lines");
     addShadingOptions(*command, options->shading);
     command->callback([options, &global, &exitCode] { exitCode = runBatch(*options, global); });

@@ -1,7 +1,9 @@
 #include "encore/batch/Batch.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
+#include <cmath>
 #include <cstring>
 #include <deque>
 #include <memory>
@@ -63,7 +65,28 @@ struct ChunkInFlight {
     std::shared_ptr<ModelJob> job;
     std::uint32_t first = 0;
     std::uint32_t count = 0;
+    ViewImage kind = ViewImage::Color;
 };
+
+// The renderer's output is sRGB-encoded; normal images store n * 0.5 + 0.5 linearly. Decoding
+// the 8-bit sRGB value is exact to within one level (the HDR target holds the normal itself).
+void decodeSrgbColor(image::ImageRgba8& image) {
+    static const std::array<std::uint8_t, 256> kLinear = [] {
+        std::array<std::uint8_t, 256> table{};
+        for (int value = 0; value < 256; ++value) {
+            const double encoded = value / 255.0;
+            const double linear =
+                encoded <= 0.04045 ? encoded / 12.92 : std::pow((encoded + 0.055) / 1.055, 2.4);
+            table[value] = std::uint8_t(std::lround(linear * 255.0));
+        }
+        return table;
+    }();
+    for (std::size_t i = 0; i < image.pixels.size(); i += 4) {
+        for (std::size_t channel = 0; channel < 3; ++channel) {
+            image.pixels[i + channel] = kLinear[image.pixels[i + channel]];
+        }
+    }
+}
 
 class BatchRun {
   public:
@@ -81,7 +104,16 @@ class BatchRun {
     void collectReady();
     void encodeView(const std::shared_ptr<ModelJob>& job,
                     std::uint32_t view,
+                    ViewImage kind,
                     image::ImageRgba8 image);
+    // Draws views [first, first + count) and starts reading them back; `waiting` adds the time
+    // spent waiting for a free read-back slot.
+    void renderChunk(const std::shared_ptr<ModelJob>& job,
+                     std::span<const render::Camera> cameras,
+                     std::uint32_t first,
+                     std::uint32_t count,
+                     ViewImage kind,
+                     double& waiting);
     void writeTransforms(ModelJob& job);
     // After a failure: a lost device is replaced, and the renderer with it.
     void recoverIfLost();
@@ -112,6 +144,8 @@ Result<void> BatchRun::createRenderer() {
     render::RendererOptions rendererOptions = mOptions.renderer;
     rendererOptions.target = {mLayout.targetWidth(), mLayout.height, mOptions.samples};
     rendererOptions.keepPipelines = true;  // Models share most pipelines: create each once.
+    // Normal images have a transparent background whatever the colour images have.
+    rendererOptions.target.hdr = mOptions.normals;
     mRing.reset();
     mRenderer.reset();
     auto renderer = render::Renderer::create(mContext, rendererOptions);
@@ -146,8 +180,9 @@ void BatchRun::reportProgress(bool force) {
 }
 
 void BatchRun::writeTransforms(ModelJob& job) {
-    const nlohmann::json json = transformsJson(glm::radians(mOptions.views.horizontalFovDegrees),
-                                               mOptions.width, mOptions.height, job.cameraToWorld);
+    const nlohmann::json json =
+        transformsJson(glm::radians(mOptions.views.horizontalFovDegrees), mOptions.width,
+                       mOptions.height, job.cameraToWorld, mOptions.normals);
     const std::string text = json.dump(2) + "\n";
     auto written = writeFileAtomically(
         job.folder / kTransformsFileName,
@@ -161,16 +196,21 @@ void BatchRun::writeTransforms(ModelJob& job) {
 
 void BatchRun::encodeView(const std::shared_ptr<ModelJob>& job,
                           std::uint32_t view,
+                          ViewImage kind,
                           image::ImageRgba8 image) {
-    mPool.submit([this, job, view, image = std::move(image)] {
+    mPool.submit([this, job, view, kind, image = std::move(image)]() mutable {
         const auto start = Clock::now();
         if (!job->failed) {
+            if (kind == ViewImage::Normal) {
+                decodeSrgbColor(image);
+            }
             auto png = image::encodePng(image);
-            Result<void> written = png ? writeFileAtomically(viewImagePath(job->folder, view), *png)
-                                       : Result<void>(png.error());
+            Result<void> written =
+                png ? writeFileAtomically(viewImagePath(job->folder, view, kind), *png)
+                    : Result<void>(png.error());
             if (!written) {
                 job->fail(*mFailures, mCounters, "write", written.error());
-            } else {
+            } else if (kind == ViewImage::Color) {
                 ++mCounters.views;
             }
         }
@@ -197,7 +237,7 @@ void BatchRun::collectOldest() {
     const auto start = Clock::now();
     if (!chunk.job->failed) {
         for (std::uint32_t strip = 0; strip < chunk.count; ++strip) {
-            encodeView(chunk.job, chunk.first + strip,
+            encodeView(chunk.job, chunk.first + strip, chunk.kind,
                        cropStrip(finished->image, strip, mOptions.width));
         }
     }
@@ -227,6 +267,26 @@ void BatchRun::recoverIfLost() {
     } else {
         mRenderer.reset();
     }
+}
+
+void BatchRun::renderChunk(const std::shared_ptr<ModelJob>& job,
+                           std::span<const render::Camera> cameras,
+                           std::uint32_t first,
+                           std::uint32_t count,
+                           ViewImage kind,
+                           double& waiting) {
+    if (mRing->full()) {
+        const auto waitStart = Clock::now();
+        collectOldest();
+        waiting += secondsSince(waitStart);
+    }
+    mRenderer->renderViews(cameras);
+    auto enqueued = mRing->enqueue(mRenderer->target().colorTexture());
+    if (!enqueued) {
+        job->fail(*mFailures, mCounters, "render", enqueued.error());
+        return;
+    }
+    mChunks.push_back({job, first, count, kind});
 }
 
 void BatchRun::renderModel(LoadedModel& loaded) {
@@ -288,7 +348,7 @@ void BatchRun::renderModel(LoadedModel& loaded) {
 
     const ViewRigOptions& rig = mOptions.views;
     job->cameraToWorld = viewMatrices(rig);
-    job->remaining = std::uint32_t(job->cameraToWorld.size());
+    job->remaining = std::uint32_t(job->cameraToWorld.size()) * (mOptions.normals ? 2 : 1);
     const glm::mat4 toUnitBox = normalization(scene.bounds, rig.normalize);
     const float fov = glm::radians(rig.horizontalFovDegrees);
     const auto renderStart = Clock::now();
@@ -298,18 +358,30 @@ void BatchRun::renderModel(LoadedModel& loaded) {
             mLayout.strips, std::uint32_t(job->cameraToWorld.size()) - first);
         const std::vector<render::Camera> cameras =
             stripCameras(job->cameraToWorld, first, mLayout, toUnitBox, fov);
-        if (mRing->full()) {
-            const auto waitStart = Clock::now();
-            collectOldest();
-            renderWaiting += secondsSince(waitStart);
+        renderChunk(job, cameras, first, count, ViewImage::Color, renderWaiting);
+        if (mOptions.normals && !job->failed) {
+            // The same frame through the normal debug channel, untouched by tone mapping;
+            // buffer writes only, so the recorded bundles stay valid.
+            const render::LightingParameters shaded = mRenderer->lighting().parameters();
+            const render::ToneMappingOptions mapped = mRenderer->toneMapping();
+            render::LightingParameters normal = shaded;
+            normal.debugChannel = render::DebugChannel::Normal;
+            render::ToneMappingOptions identity = mapped;
+            identity.toneMapping = render::ToneMapping::None;
+            identity.exposure = 1.0f;
+            identity.background = render::BackgroundKind::Transparent;
+            mRenderer->setLighting(normal);
+            if (auto set = mRenderer->setToneMapping(identity); !set) {
+                job->fail(*mFailures, mCounters, "render", set.error());
+            } else {
+                renderChunk(job, cameras, first, count, ViewImage::Normal, renderWaiting);
+            }
+            mRenderer->setLighting(shaded);
+            (void)mRenderer->setToneMapping(mapped);  // Accepted before: cannot fail.
         }
-        mRenderer->renderViews(cameras);
-        auto enqueued = mRing->enqueue(mRenderer->target().colorTexture());
-        if (!enqueued) {
-            job->fail(*mFailures, mCounters, "render", enqueued.error());
+        if (job->failed) {
             break;
         }
-        mChunks.push_back({job, first, count});
     }
     if (auto clean = mContext.checkNoErrors("Rendering '" + scene.sourcePath.string() + "'");
         !clean) {
@@ -350,7 +422,7 @@ Result<BatchSummary> BatchRun::run() {
 
     // Finished models are skipped before anything loads.
     for (const BatchInput& input : mInputs) {
-        if (modelFinished(modelFolder(mOptions.output, input.name), rig.views)) {
+        if (modelFinished(modelFolder(mOptions.output, input.name), rig.views, mOptions.normals)) {
             ++mSkipped;
         } else {
             mPending.push_back(input);

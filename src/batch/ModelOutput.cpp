@@ -10,22 +10,26 @@ fs::path modelFolder(const fs::path& output, const std::string& name) {
     return output / fs::path(name);
 }
 
-fs::path viewImagePath(const fs::path& folder, std::size_t index) {
-    return folder / (viewStem(index) + ".png");
+fs::path viewImagePath(const fs::path& folder, std::size_t index, ViewImage kind) {
+    const char* suffix = kind == ViewImage::Normal ? kNormalSuffix : "";
+    return folder / (viewStem(index) + suffix + ".png");
 }
 
-std::vector<fs::path> modelFiles(const fs::path& folder, std::uint32_t views) {
+std::vector<fs::path> modelFiles(const fs::path& folder, std::uint32_t views, bool normals) {
     std::vector<fs::path> files;
     for (std::uint32_t view = 0; view < views; ++view) {
         files.push_back(viewImagePath(folder, view));
+        if (normals) {
+            files.push_back(viewImagePath(folder, view, ViewImage::Normal));
+        }
     }
     files.push_back(folder / kTransformsFileName);
     return files;
 }
 
-bool modelFinished(const fs::path& folder, std::uint32_t views) {
+bool modelFinished(const fs::path& folder, std::uint32_t views, bool normals) {
     std::error_code ec;
-    for (const fs::path& file : modelFiles(folder, views)) {
+    for (const fs::path& file : modelFiles(folder, views, normals)) {
         if (!fs::is_regular_file(file, ec)) {
             return false;
         }

@@ -27,7 +27,8 @@ std::string viewStem(std::size_t index) {
 nlohmann::json transformsJson(float horizontalFovRadians,
                               std::uint32_t width,
                               std::uint32_t height,
-                              std::span<const glm::mat4> cameraToWorld) {
+                              std::span<const glm::mat4> cameraToWorld,
+                              bool normals) {
     const PinholeIntrinsics intrinsics = intrinsicsFor(width, height, horizontalFovRadians);
     nlohmann::json json;
     json["camera_angle_x"] = double(horizontalFovRadians);
@@ -47,7 +48,12 @@ nlohmann::json transformsJson(float horizontalFovRadians,
             }
             rows.push_back(std::move(values));
         }
-        frames.push_back({{"file_path", "./" + viewStem(index)}, {"transform_matrix", rows}});
+        nlohmann::json frame = {{"file_path", "./" + viewStem(index)},
+                                {"transform_matrix", std::move(rows)}};
+        if (normals) {
+            frame["normal_file_path"] = "./" + viewStem(index) + kNormalSuffix;
+        }
+        frames.push_back(std::move(frame));
     }
     json["frames"] = std::move(frames);
     return json;

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <sstream>
 
@@ -161,6 +163,41 @@ TEST(BatchCommandTest, RandomViewsFromASeedAndAJsonList) {
     ASSERT_EQ(again.exitCode, 0) << again.err;
     EXPECT_EQ(slurp(output / "a/model/transforms.json"), slurp(output / "b/model/transforms.json"));
     EXPECT_EQ(slurp(output / "a/model/002.png"), slurp(output / "b/model/002.png"));
+}
+
+// --normals: a normal image beside every view, unit vectors where the model is opaque.
+TEST(BatchCommandTest, NormalImagesBesideTheViews) {
+    const fs::path input = makeCollection("batch-cli-normals", 1, 6);
+    fs::remove(input / "broken.gltf");
+    const fs::path output = makeTempDir("batch-cli-normals-output");
+    const CommandResult run =
+        runEncore(batchArguments(input, output, "--views 2 --size 64 --normals --quiet"));
+    ASSERT_EQ(run.exitCode, 0) << run.out << run.err;
+    const fs::path model = output / "set0" / "model";
+    expectFinishedModel(model, 2);
+    const nlohmann::json transforms = nlohmann::json::parse(slurp(model / "transforms.json"));
+    EXPECT_EQ(transforms["frames"][1]["normal_file_path"], "./001_normal");
+    auto normals = image::readImage(model / "001_normal.png");
+    ASSERT_TRUE(normals.ok());
+    EXPECT_EQ(normals->pixel(0, 0)[3], 0);
+    std::vector<double> lengths;
+    for (std::size_t i = 0; i < normals->pixels.size(); i += 4) {
+        if (normals->pixels[i + 3] == 255) {
+            double squared = 0.0;
+            for (std::size_t c = 0; c < 3; ++c) {
+                const double component = normals->pixels[i + c] / 255.0 * 2.0 - 1.0;
+                squared += component * component;
+            }
+            lengths.push_back(std::sqrt(squared));
+        }
+    }
+    ASSERT_FALSE(lengths.empty());
+    std::nth_element(lengths.begin(), lengths.begin() + lengths.size() / 2, lengths.end());
+    EXPECT_NEAR(lengths[lengths.size() / 2], 1.0, 0.02);
+    // Run again with --normals: finished.
+    EXPECT_NE(runEncore(batchArguments(input, output, "--views 2 --size 64 --normals --quiet"))
+                  .out.find("1 skipped"),
+              std::string::npos);
 }
 
 // A batch of `count` generated models (no bad file) sent `signal` after its first model.

@@ -68,7 +68,10 @@ struct BatchOptions {
     }();
     render::StrategyChoice strategy;  // Bundles by default, as `encore render`.
 
-    bool strict = false;   // Loader warnings fail the model.
+    bool strict = false;  // Loader warnings fail the model.
+    // Also write each view's world-space normals ("000_normal.png", ModelOutput.h): a second
+    // frame per view through the renderer's normal debug channel, without tone mapping.
+    bool normals = false;
     std::size_t jobs = 0;  // Pool threads; 0: one per hardware thread.
     std::uint64_t memoryLimitBytes = std::uint64_t{2} << 30;  // Scenes loaded ahead, at most.
     std::size_t readbackSlots = 3;

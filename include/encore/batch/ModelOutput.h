@@ -17,14 +17,24 @@ inline constexpr const char* kTransformsFileName = "transforms.json";
 
 std::filesystem::path modelFolder(const std::filesystem::path& output, const std::string& name);
 
-// The image of view `index` in `folder`: "000.png", ...
-std::filesystem::path viewImagePath(const std::filesystem::path& folder, std::size_t index);
+// What a view's image shows.
+enum class ViewImage {
+    Color,   // "000.png": the shaded picture, RGBA.
+    Normal,  // "000_normal.png": world-space normals mapped to 0..255 (n * 0.5 + 0.5), alpha.
+};
 
-// Every file a finished model has: its `views` images, then transforms.json.
+// The image of view `index` in `folder`: "000.png", "000_normal.png", ...
+std::filesystem::path viewImagePath(const std::filesystem::path& folder,
+                                    std::size_t index,
+                                    ViewImage kind = ViewImage::Color);
+
+// Every file a finished model has: its `views` images (and their normal images with
+// `normals`), then transforms.json.
 std::vector<std::filesystem::path> modelFiles(const std::filesystem::path& folder,
-                                              std::uint32_t views);
+                                              std::uint32_t views,
+                                              bool normals = false);
 
-bool modelFinished(const std::filesystem::path& folder, std::uint32_t views);
+bool modelFinished(const std::filesystem::path& folder, std::uint32_t views, bool normals = false);
 
 // Removes what a stopped run left in `folder` (files ending in ".part"); keeps everything else.
 void removePartialFiles(const std::filesystem::path& folder);

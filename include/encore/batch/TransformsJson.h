@@ -35,10 +35,14 @@ PinholeIntrinsics intrinsicsFor(std::uint32_t width,
 
 // The name of view `index`'s image without extension: "000", "001", ... (at least three digits).
 std::string viewStem(std::size_t index);
+// What the normal image of a view adds to its stem: "000_normal".
+inline constexpr const char* kNormalSuffix = "_normal";
 
+// With `normals`, every frame also names its normal image in "normal_file_path" ("./000_normal").
 nlohmann::json transformsJson(float horizontalFovRadians,
                               std::uint32_t width,
                               std::uint32_t height,
-                              std::span<const glm::mat4> cameraToWorld);
+                              std::span<const glm::mat4> cameraToWorld,
+                              bool normals = false);
 
 }  // namespace encore::batch

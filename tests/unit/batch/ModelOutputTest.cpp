@@ -24,6 +24,18 @@ TEST(ModelOutputTest, FinishedOnlyWithEveryFile) {
                                                             folder / "transforms.json"}));
 }
 
+TEST(ModelOutputTest, NormalImagesBelongToTheModelWhenAskedFor) {
+    const fs::path folder = test::makeTempDir("model-output-normals");
+    EXPECT_EQ(viewImagePath(folder, 3, ViewImage::Normal), folder / "003_normal.png");
+    EXPECT_EQ(modelFiles(folder, 1, true),
+              (std::vector<fs::path>{folder / "000.png", folder / "000_normal.png",
+                                     folder / "transforms.json"}));
+    std::ofstream(folder / "000.png") << "x";
+    std::ofstream(folder / kTransformsFileName) << "{}";
+    EXPECT_TRUE(modelFinished(folder, 1));
+    EXPECT_FALSE(modelFinished(folder, 1, true));
+}
+
 TEST(ModelOutputTest, RemovesOnlyPartialFiles) {
     const fs::path folder = test::makeTempDir("model-output-partial");
     std::ofstream(folder / "000.png") << "x";

@@ -39,6 +39,14 @@ TEST(TransformsJsonTest, SyntheticNerfLayout) {
     EXPECT_EQ(json["cy"], 128.0);
 }
 
+TEST(TransformsJsonTest, NormalImagesAreNamedPerFrame) {
+    const std::vector<glm::mat4> views(2, glm::mat4(1.0f));
+    const nlohmann::json plain = transformsJson(1.0f, 8, 8, views);
+    EXPECT_FALSE(plain["frames"][0].contains("normal_file_path"));
+    const nlohmann::json withNormals = transformsJson(1.0f, 8, 8, views, true);
+    EXPECT_EQ(withNormals["frames"][1]["normal_file_path"], "./001_normal");
+}
+
 TEST(TransformsJsonTest, ViewStemsHaveAtLeastThreeDigits) {
     EXPECT_EQ(viewStem(0), "000");
     EXPECT_EQ(viewStem(42), "042");
