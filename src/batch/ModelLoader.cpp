@@ -31,10 +31,11 @@ ModelLoader::ModelLoader(ThreadPool& pool,
 
 void ModelLoader::startLoads() {
     // The scenes held count against the limit; a load's size is unknown until it ends, so the
-    // limit may be passed by the loads running when it is reached. With nothing held, one load
-    // always starts: a model larger than the limit still renders, alone.
+    // limit may be passed by the loads running when it is reached. With nothing loaded or
+    // loading ahead of the GPU thread, one load always starts, whatever the scene the GPU
+    // thread holds: models larger than the limit still render, one at a time.
     while (!mStopped && mNextToStart < mInputs.size() && mRunning < mAhead &&
-           (mBytesHeld < mMemoryLimit || (mBytesHeld == 0 && mRunning == 0))) {
+           (mBytesHeld < mMemoryLimit || (mReady.empty() && mRunning == 0))) {
         const std::size_t order = mNextToStart++;
         ++mRunning;
         mPool->submit([this, order] {
