@@ -236,7 +236,8 @@ py::dict runBatch(const std::string& input,
                   std::size_t jobs,
                   std::uint64_t memoryLimitMiB,
                   bool strict,
-                  bool normals) {
+                  bool normals,
+                  bool depth) {
     batch::BatchOptions options;
     std::tie(options.width, options.height) = imageSize(size);
     if (samples != 1 && samples != 4) {
@@ -249,7 +250,8 @@ py::dict runBatch(const std::string& input,
     options.jobs = jobs;
     options.memoryLimitBytes = memoryLimitMiB << 20;
     options.strict = strict;
-    options.normals = normals;
+    options.images.normals = normals;
+    options.images.depth = depth;
     Result<batch::BatchSummary> summary = makeError(ErrorCode::InvalidArgument, "");
     {
         py::gil_scoped_release release;
@@ -334,7 +336,7 @@ PYBIND11_MODULE(encore, module) {
                py::arg("distance") = 1.5f, py::arg("fov") = py::none(), py::arg("normalize") = true,
                py::arg("size") = 512, py::arg("samples") = 4, py::arg("jobs") = 0,
                py::arg("memory_limit_mib") = 2048, py::arg("strict") = false,
-               py::arg("normals") = false,
+               py::arg("normals") = false, py::arg("depth") = false,
                "Runs the job of `encore batch INPUT -o OUTPUT` and returns its summary (models "
                "rendered, failed, skipped; views; seconds; time per stage). Failed models are "
                "in OUTPUT/failures.jsonl. The GIL is released while it runs.");

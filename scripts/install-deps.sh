@@ -11,7 +11,7 @@ set -euo pipefail
 # libglfw3-dev opens `encore view`'s window; xvfb and xauth (xvfb-run) give its tests a display.
 # pybind11-dev, python3-dev, python3-numpy and python3-pytest build and test the Python module.
 bookworm_packages=(g++ make pkg-config libglm-dev libstb-dev libcli11-dev libgtest-dev
-                   nlohmann-json3-dev libdraco-dev libmeshoptimizer-dev
+                   nlohmann-json3-dev libdraco-dev libmeshoptimizer-dev zlib1g-dev
                    librsvg2-bin clang libclang-rt-14-dev libglfw3-dev xvfb xauth
                    pybind11-dev python3-dev python3-numpy python3-pytest)
 # Dawn's CMake package declares C++ module file sets, which need CMake >= 3.28.

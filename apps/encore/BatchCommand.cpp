@@ -34,6 +34,7 @@ struct BatchCommandOptions {
     std::string strategy = "bundles";
     bool strict = false;
     bool normals = false;
+    bool depth = false;
     std::size_t jobs = 0;
     std::uint64_t memoryLimitMiB = 2048;
     bool quiet = false;
@@ -112,7 +113,8 @@ int runBatch(const BatchCommandOptions& options, const GlobalOptions& global) {
     batchOptions.views.horizontalFovDegrees = options.fovDegrees;
     batchOptions.views.normalize = !options.noNormalize;
     batchOptions.strict = options.strict;
-    batchOptions.normals = options.normals;
+    batchOptions.images.normals = options.normals;
+    batchOptions.images.depth = options.depth;
     batchOptions.jobs = options.jobs;
     batchOptions.memoryLimitBytes = options.memoryLimitMiB << 20;
     if (auto shading = applyShadingOptions(options.shading, batchOptions.renderer); !shading) {
@@ -247,6 +249,9 @@ void addBatchCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) 
         ->check(CLI::Range(1, 1 << 24));
     command->add_flag("--normals", options->normals,
                       "Also write world-space normals per view (000_normal.png: n * 0.5 + 0.5)");
+    command->add_flag("--depth", options->depth,
+                      "Also write 16-bit depth per view (000_depth.png; depth_scale in "
+                      "transforms.json)");
     command->add_flag("-q,--quiet", options->quiet, "No progress lines");
     addShadingOptions(*command, options->shading);
     command->callback([options, &global, &exitCode] { exitCode = runBatch(*options, global); });

@@ -27,7 +27,8 @@ const std::map<std::string, render::DebugChannel>& debugChannels() {
         {"metallic", render::DebugChannel::Metallic},
         {"roughness", render::DebugChannel::Roughness},
         {"occlusion", render::DebugChannel::Occlusion},
-        {"emissive", render::DebugChannel::Emissive}};
+        {"emissive", render::DebugChannel::Emissive},
+        {"depth", render::DebugChannel::Depth}};
     return names;
 }
 

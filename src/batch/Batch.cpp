@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 #include <deque>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -106,6 +107,25 @@ class BatchRun {
                     std::uint32_t view,
                     ViewImage kind,
                     image::ImageRgba8 image);
+    // Encodes one image of `job` on the pool and writes it; the last one completes the model.
+    void writeImage(const std::shared_ptr<ModelJob>& job,
+                    std::uint32_t view,
+                    ViewImage kind,
+                    std::function<Result<std::vector<std::uint8_t>>()> encode);
+    // Draws the views through `channel` with tone mapping off, then shades again.
+    void renderDebugChannel(const std::shared_ptr<ModelJob>& job,
+                            render::DebugChannel channel,
+                            const std::function<void()>& draw);
+    // Draws views [first, first + count) through the depth channel and reads them back now.
+    void renderDepth(const std::shared_ptr<ModelJob>& job,
+                     std::span<const render::Camera> cameras,
+                     std::uint32_t first,
+                     std::uint32_t count,
+                     float unitsPerModelUnit,
+                     double& waiting);
+    // What one step of a 16-bit depth value is, in transforms.json's units: the depth range
+    // covers twice the camera distance.
+    double depthScale() const { return 2.0 * double(mOptions.views.distance) / 65535.0; }
     // Draws views [first, first + count) and starts reading them back; `waiting` adds the time
     // spent waiting for a free read-back slot.
     void renderChunk(const std::shared_ptr<ModelJob>& job,
@@ -145,7 +165,7 @@ Result<void> BatchRun::createRenderer() {
     rendererOptions.target = {mLayout.targetWidth(), mLayout.height, mOptions.samples};
     rendererOptions.keepPipelines = true;  // Models share most pipelines: create each once.
     // Normal images have a transparent background whatever the colour images have.
-    rendererOptions.target.hdr = mOptions.normals;
+    rendererOptions.target.hdr = mOptions.images.normals || mOptions.images.depth;
     mRing.reset();
     mRenderer.reset();
     auto renderer = render::Renderer::create(mContext, rendererOptions);
@@ -182,7 +202,7 @@ void BatchRun::reportProgress(bool force) {
 void BatchRun::writeTransforms(ModelJob& job) {
     const nlohmann::json json =
         transformsJson(glm::radians(mOptions.views.horizontalFovDegrees), mOptions.width,
-                       mOptions.height, job.cameraToWorld, mOptions.normals);
+                       mOptions.height, job.cameraToWorld, mOptions.images, depthScale());
     const std::string text = json.dump(2) + "\n";
     auto written = writeFileAtomically(
         job.folder / kTransformsFileName,
@@ -198,13 +218,22 @@ void BatchRun::encodeView(const std::shared_ptr<ModelJob>& job,
                           std::uint32_t view,
                           ViewImage kind,
                           image::ImageRgba8 image) {
-    mPool.submit([this, job, view, kind, image = std::move(image)]() mutable {
+    writeImage(job, view, kind, [kind, image = std::move(image)]() mutable {
+        if (kind == ViewImage::Normal) {
+            decodeSrgbColor(image);
+        }
+        return image::encodePng(image);
+    });
+}
+
+void BatchRun::writeImage(const std::shared_ptr<ModelJob>& job,
+                          std::uint32_t view,
+                          ViewImage kind,
+                          std::function<Result<std::vector<std::uint8_t>>()> encode) {
+    mPool.submit([this, job, view, kind, encode = std::move(encode)] {
         const auto start = Clock::now();
         if (!job->failed) {
-            if (kind == ViewImage::Normal) {
-                decodeSrgbColor(image);
-            }
-            auto png = image::encodePng(image);
+            auto png = encode();
             Result<void> written =
                 png ? writeFileAtomically(viewImagePath(job->folder, view, kind), *png)
                     : Result<void>(png.error());
@@ -289,6 +318,72 @@ void BatchRun::renderChunk(const std::shared_ptr<ModelJob>& job,
     mChunks.push_back({job, first, count, kind});
 }
 
+void BatchRun::renderDebugChannel(const std::shared_ptr<ModelJob>& job,
+                                  render::DebugChannel channel,
+                                  const std::function<void()>& draw) {
+    // Buffer writes only: the recorded bundles stay valid.
+    const render::LightingParameters shaded = mRenderer->lighting().parameters();
+    const render::ToneMappingOptions mapped = mRenderer->toneMapping();
+    render::LightingParameters debug = shaded;
+    debug.debugChannel = channel;
+    render::ToneMappingOptions identity = mapped;
+    identity.toneMapping = render::ToneMapping::None;
+    identity.exposure = 1.0f;
+    identity.background = render::BackgroundKind::Transparent;
+    mRenderer->setLighting(debug);
+    if (auto set = mRenderer->setToneMapping(identity); !set) {
+        job->fail(*mFailures, mCounters, "render", set.error());
+    } else {
+        draw();
+    }
+    mRenderer->setLighting(shaded);
+    (void)mRenderer->setToneMapping(mapped);  // Accepted before: cannot fail.
+}
+
+void BatchRun::renderDepth(const std::shared_ptr<ModelJob>& job,
+                           std::span<const render::Camera> cameras,
+                           std::uint32_t first,
+                           std::uint32_t count,
+                           float unitsPerModelUnit,
+                           double& waiting) {
+    mRenderer->renderViews(cameras);
+    // The HDR target holds the depth itself (the channel writes it as colour); read back now,
+    // waiting, since depth images are the exception.
+    const auto start = Clock::now();
+    auto wide = mRenderer->readHdrImage();
+    mGpuStages.gpu += secondsSince(start);
+    waiting += secondsSince(start);
+    if (!wide) {
+        job->fail(*mFailures, mCounters, "render", wide.error());
+        return;
+    }
+    const std::uint32_t targetWidth = mLayout.targetWidth();
+    const double scale = depthScale();
+    for (std::uint32_t strip = 0; strip < count; ++strip) {
+        image::ImageGray16 depth;
+        depth.width = mOptions.width;
+        depth.height = mOptions.height;
+        depth.pixels.resize(std::size_t(depth.width) * depth.height);
+        for (std::uint32_t y = 0; y < depth.height; ++y) {
+            for (std::uint32_t x = 0; x < depth.width; ++x) {
+                const float* texel =
+                    &(*wide)[(std::size_t(y) * targetWidth + strip * depth.width + x) * 4];
+                // Edges and blended surfaces hold depth x coverage over an empty (0) background;
+                // below half coverage the quotient is mostly rounding (half floats): empty.
+                const float coverage = texel[3];
+                if (!(coverage >= 0.5f)) {
+                    continue;  // 0: nothing there.
+                }
+                const double units = double(texel[0] / coverage) * unitsPerModelUnit / scale;
+                depth.pixels[std::size_t(y) * depth.width + x] =
+                    std::uint16_t(std::clamp(std::lround(units), 1l, 65535l));
+            }
+        }
+        writeImage(job, first + strip, ViewImage::Depth,
+                   [depth = std::move(depth)] { return image::encodePng16(depth); });
+    }
+}
+
 void BatchRun::renderModel(LoadedModel& loaded) {
     const BatchInput& input = mPending[loaded.order];
     auto job = std::make_shared<ModelJob>();
@@ -348,7 +443,7 @@ void BatchRun::renderModel(LoadedModel& loaded) {
 
     const ViewRigOptions& rig = mOptions.views;
     job->cameraToWorld = viewMatrices(rig);
-    job->remaining = std::uint32_t(job->cameraToWorld.size()) * (mOptions.normals ? 2 : 1);
+    job->remaining = std::uint32_t(job->cameraToWorld.size()) * mOptions.images.perView();
     const glm::mat4 toUnitBox = normalization(scene.bounds, rig.normalize);
     const float fov = glm::radians(rig.horizontalFovDegrees);
     const auto renderStart = Clock::now();
@@ -359,25 +454,15 @@ void BatchRun::renderModel(LoadedModel& loaded) {
         const std::vector<render::Camera> cameras =
             stripCameras(job->cameraToWorld, first, mLayout, toUnitBox, fov);
         renderChunk(job, cameras, first, count, ViewImage::Color, renderWaiting);
-        if (mOptions.normals && !job->failed) {
-            // The same frame through the normal debug channel, untouched by tone mapping;
-            // buffer writes only, so the recorded bundles stay valid.
-            const render::LightingParameters shaded = mRenderer->lighting().parameters();
-            const render::ToneMappingOptions mapped = mRenderer->toneMapping();
-            render::LightingParameters normal = shaded;
-            normal.debugChannel = render::DebugChannel::Normal;
-            render::ToneMappingOptions identity = mapped;
-            identity.toneMapping = render::ToneMapping::None;
-            identity.exposure = 1.0f;
-            identity.background = render::BackgroundKind::Transparent;
-            mRenderer->setLighting(normal);
-            if (auto set = mRenderer->setToneMapping(identity); !set) {
-                job->fail(*mFailures, mCounters, "render", set.error());
-            } else {
+        if (mOptions.images.normals && !job->failed) {
+            renderDebugChannel(job, render::DebugChannel::Normal, [&] {
                 renderChunk(job, cameras, first, count, ViewImage::Normal, renderWaiting);
-            }
-            mRenderer->setLighting(shaded);
-            (void)mRenderer->setToneMapping(mapped);  // Accepted before: cannot fail.
+            });
+        }
+        if (mOptions.images.depth && !job->failed) {
+            renderDebugChannel(job, render::DebugChannel::Depth, [&] {
+                renderDepth(job, cameras, first, count, toUnitBox[0][0], renderWaiting);
+            });
         }
         if (job->failed) {
             break;
@@ -422,7 +507,7 @@ Result<BatchSummary> BatchRun::run() {
 
     // Finished models are skipped before anything loads.
     for (const BatchInput& input : mInputs) {
-        if (modelFinished(modelFolder(mOptions.output, input.name), rig.views, mOptions.normals)) {
+        if (modelFinished(modelFolder(mOptions.output, input.name), rig.views, mOptions.images)) {
             ++mSkipped;
         } else {
             mPending.push_back(input);

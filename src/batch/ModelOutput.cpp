@@ -1,7 +1,5 @@
 #include "encore/batch/ModelOutput.h"
 
-#include "encore/batch/TransformsJson.h"
-
 namespace encore::batch {
 
 namespace fs = std::filesystem;
@@ -11,25 +9,29 @@ fs::path modelFolder(const fs::path& output, const std::string& name) {
 }
 
 fs::path viewImagePath(const fs::path& folder, std::size_t index, ViewImage kind) {
-    const char* suffix = kind == ViewImage::Normal ? kNormalSuffix : "";
-    return folder / (viewStem(index) + suffix + ".png");
+    return folder / (viewStem(index, kind) + ".png");
 }
 
-std::vector<fs::path> modelFiles(const fs::path& folder, std::uint32_t views, bool normals) {
+std::vector<fs::path> modelFiles(const fs::path& folder,
+                                 std::uint32_t views,
+                                 const ExtraImages& extras) {
     std::vector<fs::path> files;
     for (std::uint32_t view = 0; view < views; ++view) {
         files.push_back(viewImagePath(folder, view));
-        if (normals) {
+        if (extras.normals) {
             files.push_back(viewImagePath(folder, view, ViewImage::Normal));
+        }
+        if (extras.depth) {
+            files.push_back(viewImagePath(folder, view, ViewImage::Depth));
         }
     }
     files.push_back(folder / kTransformsFileName);
     return files;
 }
 
-bool modelFinished(const fs::path& folder, std::uint32_t views, bool normals) {
+bool modelFinished(const fs::path& folder, std::uint32_t views, const ExtraImages& extras) {
     std::error_code ec;
-    for (const fs::path& file : modelFiles(folder, views, normals)) {
+    for (const fs::path& file : modelFiles(folder, views, extras)) {
         if (!fs::is_regular_file(file, ec)) {
             return false;
         }

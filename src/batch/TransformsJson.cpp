@@ -1,7 +1,6 @@
 #include "encore/batch/TransformsJson.h"
 
 #include <cmath>
-#include <cstdio>
 
 namespace encore::batch {
 
@@ -18,17 +17,12 @@ PinholeIntrinsics intrinsicsFor(std::uint32_t width,
     return intrinsics;
 }
 
-std::string viewStem(std::size_t index) {
-    char stem[32];
-    std::snprintf(stem, sizeof(stem), "%03zu", index);
-    return stem;
-}
-
 nlohmann::json transformsJson(float horizontalFovRadians,
                               std::uint32_t width,
                               std::uint32_t height,
                               std::span<const glm::mat4> cameraToWorld,
-                              bool normals) {
+                              const ExtraImages& extras,
+                              double depthScale) {
     const PinholeIntrinsics intrinsics = intrinsicsFor(width, height, horizontalFovRadians);
     nlohmann::json json;
     json["camera_angle_x"] = double(horizontalFovRadians);
@@ -50,10 +44,16 @@ nlohmann::json transformsJson(float horizontalFovRadians,
         }
         nlohmann::json frame = {{"file_path", "./" + viewStem(index)},
                                 {"transform_matrix", std::move(rows)}};
-        if (normals) {
-            frame["normal_file_path"] = "./" + viewStem(index) + kNormalSuffix;
+        if (extras.normals) {
+            frame["normal_file_path"] = "./" + viewStem(index, ViewImage::Normal);
+        }
+        if (extras.depth) {
+            frame["depth_file_path"] = "./" + viewStem(index, ViewImage::Depth);
         }
         frames.push_back(std::move(frame));
+    }
+    if (extras.depth) {
+        json["depth_scale"] = depthScale;
     }
     json["frames"] = std::move(frames);
     return json;

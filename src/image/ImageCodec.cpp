@@ -2,6 +2,7 @@
 
 #include <stb_image.h>
 #include <stb_image_write.h>
+#include <zlib.h>
 
 #include <algorithm>
 #include <memory>
@@ -103,13 +104,23 @@ Result<ImageRgba8> decodeImage(std::span<const std::uint8_t> encoded) {
     return image;
 }
 
-Result<std::vector<std::uint8_t>> encodePng(const ImageRgba8& image) {
-    if (image.width == 0 || image.height == 0 ||
-        image.pixels.size() != std::size_t(image.width) * image.height * 4) {
-        return makeError(ErrorCode::InvalidArgument, "Cannot encode an empty or inconsistent image (" +
-                                                         std::to_string(image.width) + "x" +
-                                                         std::to_string(image.height) + ").");
+namespace {
+
+// An image to encode has pixels, and as many samples as its size says.
+Result<void> checkEncodable(std::uint32_t width, std::uint32_t height, std::size_t samples,
+                            std::size_t samplesPerPixel) {
+    if (width == 0 || height == 0 || samples != std::size_t(width) * height * samplesPerPixel) {
+        return makeError(ErrorCode::InvalidArgument,
+                         "Cannot encode an empty or inconsistent image (" + std::to_string(width) +
+                             "x" + std::to_string(height) + ").");
     }
+    return {};
+}
+
+}  // namespace
+
+Result<std::vector<std::uint8_t>> encodePng(const ImageRgba8& image) {
+    ENCORE_TRY(checkEncodable(image.width, image.height, image.pixels.size(), 4));
     std::vector<std::uint8_t> png;
     auto append = [](void* context, void* data, int size) {
         auto* out = static_cast<std::vector<std::uint8_t>*>(context);
@@ -122,6 +133,59 @@ Result<std::vector<std::uint8_t>> encodePng(const ImageRgba8& image) {
     if (!ok) {
         return makeError(ErrorCode::IoError, "PNG encoding failed.");
     }
+    return png;
+}
+
+namespace {
+
+void appendBigEndian(std::vector<std::uint8_t>& out, std::uint32_t value) {
+    for (int shift = 24; shift >= 0; shift -= 8) {
+        out.push_back(std::uint8_t(value >> shift));
+    }
+}
+
+// One PNG chunk: length, type, data, CRC of type and data.
+void appendChunk(std::vector<std::uint8_t>& out, const char* type,
+                 std::span<const std::uint8_t> data) {
+    appendBigEndian(out, std::uint32_t(data.size()));
+    const std::size_t typeStart = out.size();
+    out.insert(out.end(), type, type + 4);
+    out.insert(out.end(), data.begin(), data.end());
+    const uLong crc = crc32(0, out.data() + typeStart, uInt(out.size() - typeStart));
+    appendBigEndian(out, std::uint32_t(crc));
+}
+
+}  // namespace
+
+Result<std::vector<std::uint8_t>> encodePng16(const ImageGray16& image) {
+    ENCORE_TRY(checkEncodable(image.width, image.height, image.pixels.size(), 1));
+    // Rows with filter type 0 (none) and big-endian samples, as PNG stores 16-bit values.
+    const std::size_t rowBytes = std::size_t(image.width) * 2;
+    std::vector<std::uint8_t> raw;
+    raw.reserve((rowBytes + 1) * image.height);
+    for (std::uint32_t y = 0; y < image.height; ++y) {
+        raw.push_back(0);
+        for (std::uint32_t x = 0; x < image.width; ++x) {
+            const std::uint16_t value = image.pixels[std::size_t(y) * image.width + x];
+            raw.push_back(std::uint8_t(value >> 8));
+            raw.push_back(std::uint8_t(value & 0xff));
+        }
+    }
+    uLongf compressedSize = compressBound(uLong(raw.size()));
+    std::vector<std::uint8_t> compressed(compressedSize);
+    if (compress2(compressed.data(), &compressedSize, raw.data(), uLong(raw.size()), 6) != Z_OK) {
+        return makeError(ErrorCode::IoError, "PNG encoding failed (zlib).");
+    }
+    compressed.resize(compressedSize);
+
+    std::vector<std::uint8_t> png = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    std::vector<std::uint8_t> header;
+    appendBigEndian(header, image.width);
+    appendBigEndian(header, image.height);
+    header.insert(header.end(), {16, 0, 0, 0, 0});  // 16 bits, greyscale, deflate, no interlace.
+    appendChunk(png, "IHDR", header);
+    appendChunk(png, "IDAT", compressed);
+    appendChunk(png, "IEND", {});
     return png;
 }
 

@@ -540,6 +540,9 @@ fn fragmentMain(input: VertexOutput, @builtin(front_facing) frontFacing: bool) -
         case 6u: {
             color = emissive;
         }
+        case 7u: {
+            color = vec3f(-(frame.view * vec4f(input.worldPosition, 1.0)).z);
+        }
         default: {
         }
     }

@@ -165,13 +165,14 @@ TEST(BatchCommandTest, RandomViewsFromASeedAndAJsonList) {
     EXPECT_EQ(slurp(output / "a/model/002.png"), slurp(output / "b/model/002.png"));
 }
 
-// --normals: a normal image beside every view, unit vectors where the model is opaque.
-TEST(BatchCommandTest, NormalImagesBesideTheViews) {
+// --normals and --depth: a normal and a 16-bit depth image beside every view: unit vectors
+// where the model is opaque, depths within the unit box around the orbit's centre.
+TEST(BatchCommandTest, NormalAndDepthImagesBesideTheViews) {
     const fs::path input = makeCollection("batch-cli-normals", 1, 6);
     fs::remove(input / "broken.gltf");
     const fs::path output = makeTempDir("batch-cli-normals-output");
     const CommandResult run =
-        runEncore(batchArguments(input, output, "--views 2 --size 64 --normals --quiet"));
+        runEncore(batchArguments(input, output, "--views 2 --size 64 --normals --depth --quiet"));
     ASSERT_EQ(run.exitCode, 0) << run.out << run.err;
     const fs::path model = output / "set0" / "model";
     expectFinishedModel(model, 2);
@@ -194,10 +195,33 @@ TEST(BatchCommandTest, NormalImagesBesideTheViews) {
     ASSERT_FALSE(lengths.empty());
     std::nth_element(lengths.begin(), lengths.begin() + lengths.size() / 2, lengths.end());
     EXPECT_NEAR(lengths[lengths.size() / 2], 1.0, 0.02);
-    // Run again with --normals: finished.
-    EXPECT_NE(runEncore(batchArguments(input, output, "--views 2 --size 64 --normals --quiet"))
-                  .out.find("1 skipped"),
-              std::string::npos);
+
+    EXPECT_EQ(transforms["frames"][1]["depth_file_path"], "./001_depth");
+    const double scale = transforms["depth_scale"].get<double>();
+    EXPECT_NEAR(scale, 3.0 / 65535.0, 1e-9);                 // Twice the default distance of 1.5.
+    auto depth = image::readImage(model / "001_depth.png");  // 16 bits read as their high byte.
+    auto color = image::readImage(model / "001.png");
+    ASSERT_TRUE(depth.ok() && color.ok());
+    std::size_t covered = 0;
+    for (std::uint32_t y = 0; y < depth->height; ++y) {
+        for (std::uint32_t x = 0; x < depth->width; ++x) {
+            const double z = depth->pixel(x, y)[0] * 256.0 * scale;
+            if (color->pixel(x, y)[3] == 0) {
+                EXPECT_EQ(depth->pixel(x, y)[0], 0) << x << "," << y << " is empty";
+            } else if (color->pixel(x, y)[3] == 255) {
+                ++covered;
+                // Within the unit box's half-diagonal of the centre, 1.5 away.
+                EXPECT_GT(z, 1.5 - 0.87 - 0.02) << x << "," << y;
+                EXPECT_LT(z, 1.5 + 0.87) << x << "," << y;
+            }
+        }
+    }
+    EXPECT_GT(covered, 0u);
+    // Run again with the same images: finished.
+    EXPECT_NE(
+        runEncore(batchArguments(input, output, "--views 2 --size 64 --normals --depth --quiet"))
+            .out.find("1 skipped"),
+        std::string::npos);
 }
 
 // A batch of `count` generated models (no bad file) sent `signal` after its first model.

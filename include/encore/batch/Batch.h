@@ -20,6 +20,7 @@
 #include <span>
 
 #include "encore/batch/BatchInputs.h"
+#include "encore/batch/ViewImages.h"
 #include "encore/batch/ViewRig.h"
 #include "encore/core/Result.h"
 #include "encore/gpu/Context.h"
@@ -69,9 +70,10 @@ struct BatchOptions {
     render::StrategyChoice strategy;  // Bundles by default, as `encore render`.
 
     bool strict = false;  // Loader warnings fail the model.
-    // Also write each view's world-space normals ("000_normal.png", ModelOutput.h): a second
-    // frame per view through the renderer's normal debug channel, without tone mapping.
-    bool normals = false;
+    // Also write each view's world-space normals ("000_normal.png") and 16-bit depth
+    // ("000_depth.png", its scale in transforms.json): one more frame per view and image,
+    // through the renderer's normal and depth debug channels without tone mapping.
+    ExtraImages images;
     std::size_t jobs = 0;  // Pool threads; 0: one per hardware thread.
     std::uint64_t memoryLimitBytes = std::uint64_t{2} << 30;  // Scenes loaded ahead, at most.
     std::size_t readbackSlots = 3;

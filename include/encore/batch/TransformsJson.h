@@ -17,6 +17,8 @@
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
 
+#include "encore/batch/ViewImages.h"
+
 namespace encore::batch {
 
 struct PinholeIntrinsics {
@@ -33,16 +35,14 @@ PinholeIntrinsics intrinsicsFor(std::uint32_t width,
                                 std::uint32_t height,
                                 float horizontalFovRadians);
 
-// The name of view `index`'s image without extension: "000", "001", ... (at least three digits).
-std::string viewStem(std::size_t index);
-// What the normal image of a view adds to its stem: "000_normal".
-inline constexpr const char* kNormalSuffix = "_normal";
-
-// With `normals`, every frame also names its normal image in "normal_file_path" ("./000_normal").
+// With `extras`, every frame also names its normal image ("normal_file_path": "./000_normal")
+// and its depth image ("depth_file_path": "./000_depth"); with depth, "depth_scale" says what
+// one unit of the 16-bit value is in world units.
 nlohmann::json transformsJson(float horizontalFovRadians,
                               std::uint32_t width,
                               std::uint32_t height,
                               std::span<const glm::mat4> cameraToWorld,
-                              bool normals = false);
+                              const ExtraImages& extras = {},
+                              double depthScale = 0.0);
 
 }  // namespace encore::batch

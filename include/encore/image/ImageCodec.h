@@ -39,6 +39,16 @@ struct ImageRgba8 {
 Result<ImageRgba8> decodeImage(std::span<const std::uint8_t> encoded);
 
 Result<std::vector<std::uint8_t>> encodePng(const ImageRgba8& image);
+
+// A 16-bit greyscale image (depth maps), rows top to bottom.
+struct ImageGray16 {
+    std::uint32_t width = 0;
+    std::uint32_t height = 0;
+    std::vector<std::uint16_t> pixels;  // width * height values.
+};
+
+// Encodes a 16-bit greyscale PNG (stb writes 8-bit PNGs only; this one deflates with zlib).
+Result<std::vector<std::uint8_t>> encodePng16(const ImageGray16& image);
 Result<void> writePng(const std::filesystem::path& path, const ImageRgba8& image);
 Result<ImageRgba8> readImage(const std::filesystem::path& path);
 

@@ -31,6 +31,7 @@ enum class DebugChannel : std::uint32_t {
     Roughness,
     Occlusion,
     Emissive,
+    Depth,  // Distance in front of the camera along its axis (view-space -z), in world units.
 };
 
 struct LightingParameters {

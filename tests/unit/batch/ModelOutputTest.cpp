@@ -27,13 +27,14 @@ TEST(ModelOutputTest, FinishedOnlyWithEveryFile) {
 TEST(ModelOutputTest, NormalImagesBelongToTheModelWhenAskedFor) {
     const fs::path folder = test::makeTempDir("model-output-normals");
     EXPECT_EQ(viewImagePath(folder, 3, ViewImage::Normal), folder / "003_normal.png");
-    EXPECT_EQ(modelFiles(folder, 1, true),
+    EXPECT_EQ(viewImagePath(folder, 3, ViewImage::Depth), folder / "003_depth.png");
+    EXPECT_EQ(modelFiles(folder, 1, {.normals = true, .depth = true}),
               (std::vector<fs::path>{folder / "000.png", folder / "000_normal.png",
-                                     folder / "transforms.json"}));
+                                     folder / "000_depth.png", folder / "transforms.json"}));
     std::ofstream(folder / "000.png") << "x";
     std::ofstream(folder / kTransformsFileName) << "{}";
     EXPECT_TRUE(modelFinished(folder, 1));
-    EXPECT_FALSE(modelFinished(folder, 1, true));
+    EXPECT_FALSE(modelFinished(folder, 1, {.normals = true}));
 }
 
 TEST(ModelOutputTest, RemovesOnlyPartialFiles) {

@@ -39,18 +39,25 @@ TEST(TransformsJsonTest, SyntheticNerfLayout) {
     EXPECT_EQ(json["cy"], 128.0);
 }
 
-TEST(TransformsJsonTest, NormalImagesAreNamedPerFrame) {
+TEST(TransformsJsonTest, NormalAndDepthImagesAreNamedPerFrame) {
     const std::vector<glm::mat4> views(2, glm::mat4(1.0f));
     const nlohmann::json plain = transformsJson(1.0f, 8, 8, views);
     EXPECT_FALSE(plain["frames"][0].contains("normal_file_path"));
-    const nlohmann::json withNormals = transformsJson(1.0f, 8, 8, views, true);
+    EXPECT_FALSE(plain.contains("depth_scale"));
+    const nlohmann::json withNormals = transformsJson(1.0f, 8, 8, views, {.normals = true});
     EXPECT_EQ(withNormals["frames"][1]["normal_file_path"], "./001_normal");
+    EXPECT_FALSE(withNormals["frames"][1].contains("depth_file_path"));
+    const nlohmann::json withDepth = transformsJson(1.0f, 8, 8, views, {.depth = true}, 0.5);
+    EXPECT_EQ(withDepth["frames"][0]["depth_file_path"], "./000_depth");
+    EXPECT_EQ(withDepth["depth_scale"], 0.5);
 }
 
 TEST(TransformsJsonTest, ViewStemsHaveAtLeastThreeDigits) {
     EXPECT_EQ(viewStem(0), "000");
     EXPECT_EQ(viewStem(42), "042");
     EXPECT_EQ(viewStem(1234), "1234");
+    EXPECT_EQ(viewStem(7, ViewImage::Normal), "007_normal");
+    EXPECT_EQ(viewStem(7, ViewImage::Depth), "007_depth");
 }
 
 }  // namespace

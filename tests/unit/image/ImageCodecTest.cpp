@@ -84,5 +84,28 @@ TEST(ImageCodecTest, EmptyImageCannotBeEncoded) {
     EXPECT_FALSE(encodePng(ImageRgba8{}).ok());
 }
 
+// 16-bit greyscale PNGs decode (stb reduces them to 8 bits: the high byte) and say 16 bits in
+// their header.
+TEST(ImageCodecTest, Gray16RoundTripsThroughADecoder) {
+    ImageGray16 image;
+    image.width = 3;
+    image.height = 2;
+    image.pixels = {0x0000, 0x1234, 0xffff, 0x8000, 0x00ff, 0x7f01};
+    auto encoded = encodePng16(image);
+    ASSERT_TRUE(encoded.ok()) << encoded.error().message;
+    EXPECT_EQ((*encoded)[24], 16);  // IHDR bit depth.
+    EXPECT_EQ((*encoded)[25], 0);   // Greyscale.
+    auto decoded = decodeImage(*encoded);
+    ASSERT_TRUE(decoded.ok()) << decoded.error().message;
+    ASSERT_EQ(decoded->width, 3u);
+    ASSERT_EQ(decoded->height, 2u);
+    const std::uint8_t expected[6] = {0x00, 0x12, 0xff, 0x80, 0x00, 0x7f};
+    for (std::uint32_t i = 0; i < 6; ++i) {
+        EXPECT_EQ(decoded->pixel(i % 3, i / 3)[0], expected[i]) << i;
+        EXPECT_EQ(decoded->pixel(i % 3, i / 3)[3], 255);
+    }
+    EXPECT_FALSE(encodePng16(ImageGray16{}).ok());
+}
+
 }  // namespace
 }  // namespace encore::image
