@@ -89,6 +89,14 @@ void decodeSrgbColor(image::ImageRgba8& image) {
     }
 }
 
+// The views of a model that one target holds: [first, first + count), drawn with `cameras`.
+struct TargetViews {
+    std::shared_ptr<ModelJob> job;
+    std::span<const render::Camera> cameras;
+    std::uint32_t first = 0;
+    std::uint32_t count = 0;
+};
+
 class BatchRun {
   public:
     BatchRun(gpu::Context& context, std::span<const BatchInput> inputs, const BatchOptions& options)
@@ -116,24 +124,14 @@ class BatchRun {
     void renderDebugChannel(const std::shared_ptr<ModelJob>& job,
                             render::DebugChannel channel,
                             const std::function<void()>& draw);
-    // Draws views [first, first + count) through the depth channel and reads them back now.
-    void renderDepth(const std::shared_ptr<ModelJob>& job,
-                     std::span<const render::Camera> cameras,
-                     std::uint32_t first,
-                     std::uint32_t count,
-                     float unitsPerModelUnit,
-                     double& waiting);
+    // Draws a target's views through the depth channel and reads them back now.
+    void renderDepth(const TargetViews& views, float unitsPerModelUnit, double& waiting);
     // What one step of a 16-bit depth value is, in transforms.json's units: the depth range
     // covers twice the camera distance.
     double depthScale() const { return 2.0 * double(mOptions.views.distance) / 65535.0; }
-    // Draws views [first, first + count) and starts reading them back; `waiting` adds the time
-    // spent waiting for a free read-back slot.
-    void renderChunk(const std::shared_ptr<ModelJob>& job,
-                     std::span<const render::Camera> cameras,
-                     std::uint32_t first,
-                     std::uint32_t count,
-                     ViewImage kind,
-                     double& waiting);
+    // Draws a target's views and starts reading them back; `waiting` adds the time spent
+    // waiting for a free read-back slot.
+    void renderChunk(const TargetViews& views, ViewImage kind, double& waiting);
     void writeTransforms(ModelJob& job);
     // After a failure: a lost device is replaced, and the renderer with it.
     void recoverIfLost();
@@ -298,12 +296,8 @@ void BatchRun::recoverIfLost() {
     }
 }
 
-void BatchRun::renderChunk(const std::shared_ptr<ModelJob>& job,
-                           std::span<const render::Camera> cameras,
-                           std::uint32_t first,
-                           std::uint32_t count,
-                           ViewImage kind,
-                           double& waiting) {
+void BatchRun::renderChunk(const TargetViews& views, ViewImage kind, double& waiting) {
+    const auto& [job, cameras, first, count] = views;
     if (mRing->full()) {
         const auto waitStart = Clock::now();
         collectOldest();
@@ -340,12 +334,8 @@ void BatchRun::renderDebugChannel(const std::shared_ptr<ModelJob>& job,
     (void)mRenderer->setToneMapping(mapped);  // Accepted before: cannot fail.
 }
 
-void BatchRun::renderDepth(const std::shared_ptr<ModelJob>& job,
-                           std::span<const render::Camera> cameras,
-                           std::uint32_t first,
-                           std::uint32_t count,
-                           float unitsPerModelUnit,
-                           double& waiting) {
+void BatchRun::renderDepth(const TargetViews& views, float unitsPerModelUnit, double& waiting) {
+    const auto& [job, cameras, first, count] = views;
     mRenderer->renderViews(cameras);
     // The HDR target holds the depth itself (the channel writes it as colour); read back now,
     // waiting, since depth images are the exception.
@@ -453,16 +443,15 @@ void BatchRun::renderModel(LoadedModel& loaded) {
             mLayout.strips, std::uint32_t(job->cameraToWorld.size()) - first);
         const std::vector<render::Camera> cameras =
             stripCameras(job->cameraToWorld, first, mLayout, toUnitBox, fov);
-        renderChunk(job, cameras, first, count, ViewImage::Color, renderWaiting);
+        const TargetViews views{job, cameras, first, count};
+        renderChunk(views, ViewImage::Color, renderWaiting);
         if (mOptions.images.normals && !job->failed) {
-            renderDebugChannel(job, render::DebugChannel::Normal, [&] {
-                renderChunk(job, cameras, first, count, ViewImage::Normal, renderWaiting);
-            });
+            renderDebugChannel(job, render::DebugChannel::Normal,
+                               [&] { renderChunk(views, ViewImage::Normal, renderWaiting); });
         }
         if (mOptions.images.depth && !job->failed) {
-            renderDebugChannel(job, render::DebugChannel::Depth, [&] {
-                renderDepth(job, cameras, first, count, toUnitBox[0][0], renderWaiting);
-            });
+            renderDebugChannel(job, render::DebugChannel::Depth,
+                               [&] { renderDepth(views, toUnitBox[0][0], renderWaiting); });
         }
         if (job->failed) {
             break;
