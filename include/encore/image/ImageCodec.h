@@ -1,6 +1,7 @@
 #pragma once
 
-// PNG and JPEG decoding and PNG encoding. This is the only place an image library appears.
+// PNG and JPEG decoding (stb) and PNG encoding (zlib). This is the only place an image library
+// appears.
 
 #include <cstdint>
 #include <filesystem>
@@ -47,7 +48,7 @@ struct ImageGray16 {
     std::vector<std::uint16_t> pixels;  // width * height values.
 };
 
-// Encodes a 16-bit greyscale PNG (stb writes 8-bit PNGs only; this one deflates with zlib).
+// Encodes a 16-bit greyscale PNG.
 Result<std::vector<std::uint8_t>> encodePng16(const ImageGray16& image);
 Result<void> writePng(const std::filesystem::path& path, const ImageRgba8& image);
 Result<ImageRgba8> readImage(const std::filesystem::path& path);
