@@ -237,7 +237,8 @@ py::dict runBatch(const std::string& input,
                   std::uint64_t memoryLimitMiB,
                   bool strict,
                   bool normals,
-                  bool depth) {
+                  bool depth,
+                  float topLightLux) {
     batch::BatchOptions options;
     std::tie(options.width, options.height) = imageSize(size);
     if (samples != 1 && samples != 4) {
@@ -252,6 +253,7 @@ py::dict runBatch(const std::string& input,
     options.strict = strict;
     options.images.normals = normals;
     options.images.depth = depth;
+    options.topLightLux = topLightLux;
     Result<batch::BatchSummary> summary = makeError(ErrorCode::InvalidArgument, "");
     {
         py::gil_scoped_release release;
@@ -336,7 +338,7 @@ PYBIND11_MODULE(encore, module) {
                py::arg("distance") = 1.5f, py::arg("fov") = py::none(), py::arg("normalize") = true,
                py::arg("size") = 512, py::arg("samples") = 4, py::arg("jobs") = 0,
                py::arg("memory_limit_mib") = 2048, py::arg("strict") = false,
-               py::arg("normals") = false, py::arg("depth") = false,
+               py::arg("normals") = false, py::arg("depth") = false, py::arg("top_light") = 0.0f,
                "Runs the job of `encore batch INPUT -o OUTPUT` and returns its summary (models "
                "rendered, failed, skipped; views; seconds; time per stage). Failed models are "
                "in OUTPUT/failures.jsonl. The GIL is released while it runs.");

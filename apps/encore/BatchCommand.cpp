@@ -35,6 +35,7 @@ struct BatchCommandOptions {
     bool strict = false;
     bool normals = false;
     bool depth = false;
+    float topLightLux = 0.0f;
     std::size_t jobs = 0;
     std::uint64_t memoryLimitMiB = 2048;
     bool quiet = false;
@@ -115,6 +116,7 @@ int runBatch(const BatchCommandOptions& options, const GlobalOptions& global) {
     batchOptions.strict = options.strict;
     batchOptions.images.normals = options.normals;
     batchOptions.images.depth = options.depth;
+    batchOptions.topLightLux = options.topLightLux;
     batchOptions.jobs = options.jobs;
     batchOptions.memoryLimitBytes = options.memoryLimitMiB << 20;
     if (auto shading = applyShadingOptions(options.shading, batchOptions.renderer); !shading) {
@@ -252,6 +254,12 @@ void addBatchCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) 
     command->add_flag("--depth", options->depth,
                       "Also write 16-bit depth per view (000_depth.png; depth_scale in "
                       "transforms.json)");
+    command
+        ->add_option("--top-light", options->topLightLux,
+                     "Add a directional light shining straight down, this many lux (the dataset "
+                     "scripts' light from above)")
+        ->check(CLI::NonNegativeNumber)
+        ->type_name("LUX");
     command->add_flag("-q,--quiet", options->quiet, "No progress lines");
     addShadingOptions(*command, options->shading);
     command->callback([options, &global, &exitCode] { exitCode = runBatch(*options, global); });

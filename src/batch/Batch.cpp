@@ -89,6 +89,19 @@ void decodeSrgbColor(image::ImageRgba8& image) {
     }
 }
 
+// A directional light shining straight down, placed by no node.
+void addTopLight(scene::SceneData& scene, float lux) {
+    scene::Light light;
+    light.name = "encore batch top light";
+    light.type = scene::LightType::Directional;
+    light.intensity = lux;
+    scene::LightInstance placed;
+    placed.light = scene::LightId(scene.lights.size());
+    placed.direction = glm::vec3(0.0f, -1.0f, 0.0f);
+    scene.lights.push_back(light);
+    scene.lightInstances.push_back(placed);
+}
+
 // The views of a model that one target holds: [first, first + count), drawn with `cameras`.
 struct TargetViews {
     std::shared_ptr<ModelJob> job;
@@ -410,6 +423,10 @@ void BatchRun::renderModel(LoadedModel& loaded) {
     mContext.waitForIdle();
     mGpuStages.gpu += secondsSince(idleStart);
     collectReady();
+
+    if (mOptions.topLightLux > 0.0f) {
+        addTopLight(*loaded.scene, mOptions.topLightLux);
+    }
 
     // The renderer refers to the scene it prepared until the next prepare: keep that one alive
     // until now, and this one until the next model.

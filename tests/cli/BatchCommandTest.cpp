@@ -224,6 +224,30 @@ TEST(BatchCommandTest, NormalAndDepthImagesBesideTheViews) {
         std::string::npos);
 }
 
+// --top-light adds a light from above: the same views come out brighter.
+TEST(BatchCommandTest, TopLightBrightensTheViews) {
+    const fs::path input = makeCollection("batch-cli-top-light", 1, 6);
+    fs::remove(input / "broken.gltf");
+    const fs::path output = makeTempDir("batch-cli-top-light-output");
+    ASSERT_EQ(
+        runEncore(batchArguments(input, output / "plain", "--views 1 --size 64 --quiet")).exitCode,
+        0);
+    const CommandResult lit = runEncore(
+        batchArguments(input, output / "lit", "--views 1 --size 64 --top-light 5 --quiet"));
+    ASSERT_EQ(lit.exitCode, 0) << lit.out << lit.err;
+    auto brightness = [](const fs::path& png) {
+        auto image = image::readImage(png);
+        EXPECT_TRUE(image.ok());
+        double sum = 0.0;
+        for (std::size_t i = 0; i < image->pixels.size(); i += 4) {
+            sum += image->pixels[i] + image->pixels[i + 1] + image->pixels[i + 2];
+        }
+        return sum;
+    };
+    EXPECT_GT(brightness(output / "lit/set0/model/000.png"),
+              1.05 * brightness(output / "plain/set0/model/000.png"));
+}
+
 // A batch of `count` generated models (no bad file) sent `signal` after its first model.
 struct SignalledRun {
     fs::path input;
@@ -267,6 +291,14 @@ TEST(BatchCommandTest, SigkillMidRunThenRerunCompletes) {
     for (const fs::path& model : models) {
         expectFinishedModel(model, 16);
     }
+}
+
+// SIGTERM stops the batch as SIGINT does.
+TEST(BatchCommandTest, SigtermStopsCleanly) {
+    const SignalledRun run = signalledRun("batch-cli-term", 4, "TERM");
+    EXPECT_EQ(run.result.exitCode, 130) << run.result.out << run.result.err;
+    EXPECT_NE(run.result.out.find("interrupted"), std::string::npos) << run.result.out;
+    EXPECT_TRUE(filesUnder(run.output, ".part").empty());
 }
 
 // SIGINT finishes the files in flight and exits with 130 and a summary.

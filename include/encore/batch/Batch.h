@@ -74,6 +74,9 @@ struct BatchOptions {
     // ("000_depth.png", its scale in transforms.json): one more frame per view and image,
     // through the renderer's normal and depth debug channels without tone mapping.
     ExtraImages images;
+    // Lux of a directional light shining straight down (-Y) added to every model beside the
+    // environment, as the dataset scripts light objects from above; 0: none.
+    float topLightLux = 0.0f;
     std::size_t jobs = 0;  // Pool threads; 0: one per hardware thread.
     std::uint64_t memoryLimitBytes = std::uint64_t{2} << 30;  // Scenes loaded ahead, at most.
     std::size_t readbackSlots = 3;
