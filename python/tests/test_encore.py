@@ -127,3 +127,26 @@ def test_bad_arguments_raise_value_errors(renderer, tmp_path):
         renderer.render_views(scene, size=0)
     with pytest.raises(ValueError):
         encore.Renderer(samples=3)
+
+
+def test_renderer_batch_without_a_log_returns_the_failures(renderer, tmp_path):
+    generate(tmp_path / "in" / "good.glb", seed=3)
+    (tmp_path / "in" / "broken.gltf").write_text("not json")
+    models = encore.discover_inputs(str(tmp_path / "in"))
+    assert [name for _, name in models] == ["broken", "good"]
+    out = tmp_path / "out"
+    summary = renderer.batch(models, str(out), views=2, size=32, failure_log=False)
+    assert (summary["rendered"], summary["failed"]) == (1, 1)
+    assert not (out / "failures.jsonl").exists()
+    [failure] = summary["failures"]
+    assert failure["file"] == str(tmp_path / "in" / "broken.gltf")
+    assert failure["stage"] == "load" and "JSON is invalid" in failure["error"]
+    assert (out / "good" / "transforms.json").is_file()
+
+
+def test_discover_inputs_names_a_list_of_paths_from_their_common_folder(tmp_path):
+    paths = [tmp_path / "set" / "b" / "model.glb", tmp_path / "set" / "a" / "model.glb"]
+    assert encore.discover_inputs([str(path) for path in paths]) == [
+        (str(paths[0]), "b/model"), (str(paths[1]), "a/model")]
+    with pytest.raises(encore.Error):
+        encore.discover_inputs(str(tmp_path / "nothing"))
