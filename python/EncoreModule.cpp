@@ -13,6 +13,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <atomic>
 #include <cstring>
 #include <memory>
 #include <mutex>
@@ -288,11 +289,27 @@ class Renderer {
         options.topLightLux = topLightLux;
         options.writeFailureLog = failureLog;
         const std::vector<batch::BatchInput> models = batchInputs(inputs);
+        // Python runs signal handlers only when the interpreter gets the GIL back: look for one
+        // as progress is reported. A KeyboardInterrupt (or a handler's exception) stops the
+        // batch as SIGINT stops the command, the models in flight finished, and is raised after.
+        std::atomic<bool> stop{false};
+        std::optional<py::error_already_set> interrupt;
+        options.stop = &stop;
+        options.progress = [&](const batch::BatchProgress&) {
+            py::gil_scoped_acquire acquire;
+            if (!interrupt && PyErr_CheckSignals() != 0) {
+                interrupt.emplace();  // Takes the exception out of the interpreter.
+                stop = true;
+            }
+        };
         Result<batch::BatchSummary> summary = makeError(ErrorCode::InvalidArgument, "");
         {
             py::gil_scoped_release release;
             std::lock_guard lock(mMutex);  // One job on the device at a time.
             summary = batch::runBatch(*mContext, models, options);
+        }
+        if (interrupt) {
+            throw std::move(*interrupt);
         }
         return summaryDict(valueOrThrow(std::move(summary)));
     }

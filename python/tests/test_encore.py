@@ -7,6 +7,7 @@ ENCORE_BINARY at the encore executable, which generates the scenes.
 import json
 import math
 import os
+import signal
 import subprocess
 import threading
 import time
@@ -150,3 +151,24 @@ def test_discover_inputs_names_a_list_of_paths_from_their_common_folder(tmp_path
         (str(paths[0]), "b/model"), (str(paths[1]), "a/model")]
     with pytest.raises(encore.Error):
         encore.discover_inputs(str(tmp_path / "nothing"))
+
+
+def test_keyboard_interrupt_stops_the_batch_cleanly_and_a_rerun_resumes(tmp_path):
+    for index in range(8):
+        generate(tmp_path / "in" / f"m{index}.glb", objects=30, seed=index + 1)
+    out = tmp_path / "out"
+    options = {"views": 12, "size": 256, "jobs": 1}
+    # SIGINT arrives while the GIL is released: Python's handler runs when the batch looks.
+    timer = threading.Timer(1.0, os.kill, (os.getpid(), signal.SIGINT))
+    timer.start()
+    with pytest.raises(KeyboardInterrupt):
+        encore.batch(str(tmp_path / "in"), str(out), **options)
+    timer.join()
+    finished = [folder for folder in out.iterdir()
+                if folder.is_dir() and (folder / "transforms.json").exists()]
+    assert len(finished) < 8, "the batch stopped before the end"
+    assert not list(out.rglob("*.part")), "the models in flight were finished, not cut"
+    for folder in finished:
+        assert len(list(folder.glob("*.png"))) == 12
+    again = encore.batch(str(tmp_path / "in"), str(out), **options)
+    assert (again["skipped"], again["rendered"]) == (len(finished), 8 - len(finished))
