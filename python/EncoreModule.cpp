@@ -4,14 +4,16 @@
 //   renderer = encore.Renderer()              # one GPU device
 //   scene = renderer.load("model.glb")        # encore.LoadError with the loader's message
 //   images, intrinsics, cameras = renderer.render_views(scene, views=12, size=512)
-//   encore.batch("models/", "out/", views=12)  # the job of `encore batch`, returns its summary
+//   renderer.batch("models/", "out/", views=12)  # the job of `encore batch`, returns its summary
 //
-// The GIL is released while files load and while the GPU renders.
+// The GIL is released while files load and while the GPU renders. The package around it
+// (python/encore/__init__.py) adds encore.batch and encore.dask.
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <atomic>
 #include <cstring>
 #include <memory>
 #include <mutex>
@@ -105,6 +107,81 @@ batch::ViewRigOptions rigOptions(const RigArguments& arguments) {
     return rig;
 }
 
+// The models a batch renders: a folder, list file or model path (what `encore batch` takes) or
+// a sequence of (path, name) pairs (discover_inputs).
+std::vector<batch::BatchInput> batchInputs(const py::object& inputs) {
+    if (py::isinstance<py::str>(inputs) || py::hasattr(inputs, "__fspath__")) {
+        const std::string path = py::str(py::module_::import("os").attr("fspath")(inputs));
+        Result<std::vector<batch::BatchInput>> discovered =
+            makeError(ErrorCode::InvalidArgument, "");
+        {
+            py::gil_scoped_release release;
+            discovered = batch::discoverInputs(path);
+        }
+        return valueOrThrow(std::move(discovered));
+    }
+    std::vector<batch::BatchInput> listed;
+    for (const py::handle item : inputs) {
+        const auto [path, name] = item.cast<std::pair<std::string, std::string>>();
+        if (name.empty()) {
+            throw py::value_error("every input needs a non-empty output name");
+        }
+        listed.push_back({path, name});
+    }
+    return listed;
+}
+
+// discover_inputs: a folder, list file or model path, or a sequence of model paths.
+py::list discoverInputs(const py::object& input) {
+    std::vector<batch::BatchInput> inputs;
+    if (py::isinstance<py::str>(input) || py::hasattr(input, "__fspath__")) {
+        inputs = batchInputs(input);
+    } else {
+        std::vector<std::filesystem::path> paths;
+        for (const py::handle item : input) {
+            paths.emplace_back(
+                py::str(py::module_::import("os").attr("fspath")(item)).cast<std::string>());
+        }
+        inputs = valueOrThrow(batch::listedInputs(paths));
+    }
+    py::list pairs;
+    for (const batch::BatchInput& model : inputs) {
+        pairs.append(py::make_tuple(model.path.string(), model.name));
+    }
+    return pairs;
+}
+
+py::dict summaryDict(const batch::BatchSummary& result) {
+    py::dict stages;
+    stages["load"] = result.stages.load;
+    stages["upload"] = result.stages.upload;
+    stages["render"] = result.stages.render;
+    stages["gpu"] = result.stages.gpu;
+    stages["readback"] = result.stages.readback;
+    stages["encode"] = result.stages.encode;
+    py::list failures;
+    for (const batch::Failure& failure : result.failures) {
+        py::dict entry;
+        entry["file"] = failure.file.string();
+        entry["stage"] = failure.stage;
+        // Messages may quote file contents: invalid UTF-8 is replaced, as failures.jsonl does.
+        entry["error"] = py::reinterpret_steal<py::object>(PyUnicode_DecodeUTF8(
+            failure.error.data(), Py_ssize_t(failure.error.size()), "replace"));
+        failures.append(entry);
+    }
+    py::dict dict;
+    dict["total"] = result.total;
+    dict["rendered"] = result.rendered;
+    dict["failed"] = result.failed;
+    dict["skipped"] = result.skipped;
+    dict["views"] = result.views;
+    dict["seconds"] = result.seconds;
+    dict["interrupted"] = result.interrupted;
+    dict["stages"] = stages;
+    dict["failures"] = failures;
+    return dict;
+}
+
 class Renderer {
   public:
     explicit Renderer(std::uint32_t samples) : mSamples(samples) {
@@ -176,7 +253,69 @@ class Renderer {
         return py::make_tuple(pixels, intrinsics, cameras);
     }
 
+    // Runs the job of `encore batch` on this renderer's device.
+    py::dict runBatch(const py::object& inputs,
+                      const std::string& output,
+                      std::uint32_t views,
+                      std::uint32_t randomViews,
+                      std::uint64_t seed,
+                      float elevation,
+                      float distance,
+                      std::optional<float> fov,
+                      bool normalize,
+                      const py::object& size,
+                      std::optional<std::uint32_t> samples,
+                      std::size_t jobs,
+                      std::uint64_t memoryLimitMiB,
+                      bool strict,
+                      bool normals,
+                      bool depth,
+                      float topLightLux,
+                      bool failureLog) {
+        batch::BatchOptions options;
+        std::tie(options.width, options.height) = imageSize(size);
+        options.samples = samples.value_or(mSamples);
+        if (options.samples != 1 && options.samples != 4) {
+            throw py::value_error("samples must be 1 or 4");
+        }
+        options.output = output;
+        options.views = rigOptions({randomViews > 0 ? randomViews : views, elevation, distance, fov,
+                                    randomViews > 0, seed, normalize});
+        options.jobs = jobs;
+        options.memoryLimitBytes = memoryLimitMiB << 20;
+        options.strict = strict;
+        options.images.normals = normals;
+        options.images.depth = depth;
+        options.topLightLux = topLightLux;
+        options.writeFailureLog = failureLog;
+        const std::vector<batch::BatchInput> models = batchInputs(inputs);
+        // Python runs signal handlers only when the interpreter gets the GIL back: look for one
+        // as progress is reported. A KeyboardInterrupt (or a handler's exception) stops the
+        // batch as SIGINT stops the command, the models in flight finished, and is raised after.
+        std::atomic<bool> stop{false};
+        std::optional<py::error_already_set> interrupt;
+        options.stop = &stop;
+        options.progress = [&](const batch::BatchProgress&) {
+            py::gil_scoped_acquire acquire;
+            if (!interrupt && PyErr_CheckSignals() != 0) {
+                interrupt.emplace();  // Takes the exception out of the interpreter.
+                stop = true;
+            }
+        };
+        Result<batch::BatchSummary> summary = makeError(ErrorCode::InvalidArgument, "");
+        {
+            py::gil_scoped_release release;
+            std::lock_guard lock(mMutex);  // One job on the device at a time.
+            summary = batch::runBatch(*mContext, models, options);
+        }
+        if (interrupt) {
+            throw std::move(*interrupt);
+        }
+        return summaryDict(valueOrThrow(std::move(summary)));
+    }
+
     std::string adapter() const { return mContext->adapterDescription().summary(); }
+    std::uint32_t samples() const { return mSamples; }
 
   private:
     Result<std::vector<image::ImageRgba8>> render(
@@ -222,74 +361,10 @@ class Renderer {
     std::mutex mMutex;
 };
 
-py::dict runBatch(const std::string& input,
-                  const std::string& output,
-                  std::uint32_t views,
-                  std::uint32_t randomViews,
-                  std::uint64_t seed,
-                  float elevation,
-                  float distance,
-                  std::optional<float> fov,
-                  bool normalize,
-                  const py::object& size,
-                  std::uint32_t samples,
-                  std::size_t jobs,
-                  std::uint64_t memoryLimitMiB,
-                  bool strict,
-                  bool normals,
-                  bool depth,
-                  float topLightLux) {
-    batch::BatchOptions options;
-    std::tie(options.width, options.height) = imageSize(size);
-    if (samples != 1 && samples != 4) {
-        throw py::value_error("samples must be 1 or 4");
-    }
-    options.samples = samples;
-    options.output = output;
-    options.views = rigOptions({randomViews > 0 ? randomViews : views, elevation, distance, fov,
-                                randomViews > 0, seed, normalize});
-    options.jobs = jobs;
-    options.memoryLimitBytes = memoryLimitMiB << 20;
-    options.strict = strict;
-    options.images.normals = normals;
-    options.images.depth = depth;
-    options.topLightLux = topLightLux;
-    Result<batch::BatchSummary> summary = makeError(ErrorCode::InvalidArgument, "");
-    {
-        py::gil_scoped_release release;
-        auto inputs = batch::discoverInputs(input);
-        if (!inputs) {
-            summary = inputs.error();
-        } else if (auto context = gpu::Context::create(); !context) {
-            summary = context.error();
-        } else {
-            summary = batch::runBatch(*context, *inputs, options);
-        }
-    }
-    const batch::BatchSummary& result = valueOrThrow(std::move(summary));
-    py::dict stages;
-    stages["load"] = result.stages.load;
-    stages["upload"] = result.stages.upload;
-    stages["render"] = result.stages.render;
-    stages["gpu"] = result.stages.gpu;
-    stages["readback"] = result.stages.readback;
-    stages["encode"] = result.stages.encode;
-    py::dict dict;
-    dict["total"] = result.total;
-    dict["rendered"] = result.rendered;
-    dict["failed"] = result.failed;
-    dict["skipped"] = result.skipped;
-    dict["views"] = result.views;
-    dict["seconds"] = result.seconds;
-    dict["interrupted"] = result.interrupted;
-    dict["stages"] = stages;
-    return dict;
-}
-
 }  // namespace
 }  // namespace encore::python
 
-PYBIND11_MODULE(encore, module) {
+PYBIND11_MODULE(_encore, module) {
     using namespace encore::python;
     module.doc() = "Encore: glTF 2.0 rendering with WebGPU (Dawn), for datasets of rendered views.";
     static py::exception<EncoreError> error(module, "Error", PyExc_RuntimeError);
@@ -331,15 +406,26 @@ PYBIND11_MODULE(encore, module) {
              "(N, 4, 4) with OpenGL camera axes), as `encore batch` writes them. `fov` is "
              "horizontal, in degrees (default: a 35 mm lens on a 32 mm sensor). The GIL is "
              "released while rendering.")
+        .def("batch", &Renderer::runBatch, py::arg("inputs"), py::arg("output"),
+             py::arg("views") = 12, py::arg("random_views") = 0, py::arg("seed") = 0,
+             py::arg("elevation") = 30.0f, py::arg("distance") = 1.5f, py::arg("fov") = py::none(),
+             py::arg("normalize") = true, py::arg("size") = 512, py::arg("samples") = py::none(),
+             py::arg("jobs") = 0, py::arg("memory_limit_mib") = 2048, py::arg("strict") = false,
+             py::arg("normals") = false, py::arg("depth") = false, py::arg("top_light") = 0.0f,
+             py::arg("failure_log") = true,
+             "Runs the job of `encore batch` on this renderer's device: `inputs` is what the "
+             "command takes (folder, list file, model) or (path, name) pairs from "
+             "discover_inputs. Returns the summary (models rendered, failed, skipped; views; "
+             "seconds; time per stage; failures). Failed models are also written to "
+             "OUTPUT/failures.jsonl unless failure_log=False. `samples` defaults to the "
+             "renderer's. The GIL is released while it runs.")
+        .def_property_readonly("samples",
+                               [](const Renderer& renderer) { return renderer.samples(); })
         .def_property_readonly("adapter", &Renderer::adapter);
 
-    module.def("batch", &runBatch, py::arg("input"), py::arg("output"), py::arg("views") = 12,
-               py::arg("random_views") = 0, py::arg("seed") = 0, py::arg("elevation") = 30.0f,
-               py::arg("distance") = 1.5f, py::arg("fov") = py::none(), py::arg("normalize") = true,
-               py::arg("size") = 512, py::arg("samples") = 4, py::arg("jobs") = 0,
-               py::arg("memory_limit_mib") = 2048, py::arg("strict") = false,
-               py::arg("normals") = false, py::arg("depth") = false, py::arg("top_light") = 0.0f,
-               "Runs the job of `encore batch INPUT -o OUTPUT` and returns its summary (models "
-               "rendered, failed, skipped; views; seconds; time per stage). Failed models are "
-               "in OUTPUT/failures.jsonl. The GIL is released while it runs.");
+    module.def("discover_inputs", &discoverInputs, py::arg("input"),
+               "The models `encore batch INPUT` renders, as (path, output name) pairs: INPUT is a "
+               "folder (searched recursively), a list file (one path per line, or a JSON array), "
+               "a model, or a sequence of model paths (named relative to the deepest folder that "
+               "holds them all).");
 }

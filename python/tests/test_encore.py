@@ -7,6 +7,7 @@ ENCORE_BINARY at the encore executable, which generates the scenes.
 import json
 import math
 import os
+import signal
 import subprocess
 import threading
 import time
@@ -127,3 +128,47 @@ def test_bad_arguments_raise_value_errors(renderer, tmp_path):
         renderer.render_views(scene, size=0)
     with pytest.raises(ValueError):
         encore.Renderer(samples=3)
+
+
+def test_renderer_batch_without_a_log_returns_the_failures(renderer, tmp_path):
+    generate(tmp_path / "in" / "good.glb", seed=3)
+    (tmp_path / "in" / "broken.gltf").write_text("not json")
+    models = encore.discover_inputs(str(tmp_path / "in"))
+    assert [name for _, name in models] == ["broken", "good"]
+    out = tmp_path / "out"
+    summary = renderer.batch(models, str(out), views=2, size=32, failure_log=False)
+    assert (summary["rendered"], summary["failed"]) == (1, 1)
+    assert not (out / "failures.jsonl").exists()
+    [failure] = summary["failures"]
+    assert failure["file"] == str(tmp_path / "in" / "broken.gltf")
+    assert failure["stage"] == "load" and "JSON is invalid" in failure["error"]
+    assert (out / "good" / "transforms.json").is_file()
+
+
+def test_discover_inputs_names_a_list_of_paths_from_their_common_folder(tmp_path):
+    paths = [tmp_path / "set" / "b" / "model.glb", tmp_path / "set" / "a" / "model.glb"]
+    assert encore.discover_inputs([str(path) for path in paths]) == [
+        (str(paths[0]), "b/model"), (str(paths[1]), "a/model")]
+    with pytest.raises(encore.Error):
+        encore.discover_inputs(str(tmp_path / "nothing"))
+
+
+def test_keyboard_interrupt_stops_the_batch_cleanly_and_a_rerun_resumes(tmp_path):
+    for index in range(8):
+        generate(tmp_path / "in" / f"m{index}.glb", objects=30, seed=index + 1)
+    out = tmp_path / "out"
+    options = {"views": 12, "size": 256, "jobs": 1}
+    # SIGINT arrives while the GIL is released: Python's handler runs when the batch looks.
+    timer = threading.Timer(1.0, os.kill, (os.getpid(), signal.SIGINT))
+    timer.start()
+    with pytest.raises(KeyboardInterrupt):
+        encore.batch(str(tmp_path / "in"), str(out), **options)
+    timer.join()
+    finished = [folder for folder in out.iterdir()
+                if folder.is_dir() and (folder / "transforms.json").exists()]
+    assert len(finished) < 8, "the batch stopped before the end"
+    assert not list(out.rglob("*.part")), "the models in flight were finished, not cut"
+    for folder in finished:
+        assert len(list(folder.glob("*.png"))) == 12
+    again = encore.batch(str(tmp_path / "in"), str(out), **options)
+    assert (again["skipped"], again["rendered"]) == (len(finished), 8 - len(finished))

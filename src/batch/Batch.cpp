@@ -503,11 +503,15 @@ Result<BatchSummary> BatchRun::run() {
                                                  mOptions.output.string() + "' (" + ec.message() +
                                                  ").");
     }
-    auto failures = FailureLog::create(mOptions.output / "failures.jsonl");
-    if (!failures) {
-        return failures.error();
+    if (mOptions.writeFailureLog) {
+        auto failures = FailureLog::create(mOptions.output / "failures.jsonl");
+        if (!failures) {
+            return failures.error();
+        }
+        mFailures.emplace(std::move(*failures));
+    } else {
+        mFailures.emplace(FailureLog::inMemory());
     }
-    mFailures.emplace(std::move(*failures));
     mLayout = stripLayout(mOptions.width, mOptions.height, rig.views, mContext.limits());
     ENCORE_TRY(createRenderer());
 
@@ -567,6 +571,7 @@ Result<BatchSummary> BatchRun::run() {
     summary.stages = mGpuStages;
     summary.stages.load = mCounters.load;
     summary.stages.encode = mCounters.encode;
+    summary.failures = mFailures->entries();
     reportProgress(true);
     return summary;
 }

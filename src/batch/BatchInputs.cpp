@@ -89,14 +89,32 @@ Result<std::vector<fs::path>> readList(const fs::path& list) {
     }
     const fs::path base = fs::absolute(list).parent_path();
     std::vector<fs::path> paths;
-    std::set<fs::path> seen;
     for (const std::string& entry : entries) {
-        const fs::path path = (base / fs::path(entry)).lexically_normal();
+        paths.push_back(base / fs::path(entry));
+    }
+    return paths;
+}
+
+// Each path once, absolute and lexically normal, in list order.
+std::vector<fs::path> uniqueAbsolutePaths(std::span<const fs::path> listed) {
+    std::vector<fs::path> paths;
+    std::set<fs::path> seen;
+    for (const fs::path& entry : listed) {
+        const fs::path path = fs::absolute(entry).lexically_normal();
         if (seen.insert(path).second) {
             paths.push_back(path);
         }
     }
     return paths;
+}
+
+std::vector<BatchInput> namedInputs(const std::vector<fs::path>& paths, const fs::path& root) {
+    const std::vector<std::string> names = outputNames(paths, root);
+    std::vector<BatchInput> inputs;
+    for (std::size_t i = 0; i < paths.size(); ++i) {
+        inputs.push_back({paths[i], names[i]});
+    }
+    return inputs;
 }
 
 std::vector<fs::path> searchFolder(const fs::path& folder) {
@@ -164,19 +182,21 @@ Result<std::vector<BatchInput>> discoverInputs(const fs::path& input) {
         if (!listed) {
             return listed.error();
         }
-        paths = std::move(*listed);
-        if (paths.empty()) {
+        if (listed->empty()) {
             return makeError(ErrorCode::InvalidArgument,
                              "The input list " + quoted(input) + " names no model.");
         }
-        root = commonFolder(paths);
+        return listedInputs(*listed);
     }
-    const std::vector<std::string> names = outputNames(paths, root);
-    std::vector<BatchInput> inputs;
-    for (std::size_t i = 0; i < paths.size(); ++i) {
-        inputs.push_back({paths[i], names[i]});
+    return namedInputs(paths, root);
+}
+
+Result<std::vector<BatchInput>> listedInputs(std::span<const fs::path> listed) {
+    if (listed.empty()) {
+        return makeError(ErrorCode::InvalidArgument, "The list of models is empty.");
     }
-    return inputs;
+    const std::vector<fs::path> paths = uniqueAbsolutePaths(listed);
+    return namedInputs(paths, commonFolder(paths));
 }
 
 }  // namespace encore::batch

@@ -9,8 +9,8 @@ namespace encore::batch {
 
 struct FailureLog::State {
     mutable std::mutex mutex;
-    std::FILE* file = nullptr;
-    std::size_t count = 0;
+    std::FILE* file = nullptr;  // Null for a log in memory.
+    std::vector<Failure> entries;
     ~State() {
         if (file) {
             std::fclose(file);
@@ -29,6 +29,12 @@ Result<FailureLog> FailureLog::create(const std::filesystem::path& path) {
     return log;
 }
 
+FailureLog FailureLog::inMemory() {
+    FailureLog log;
+    log.mState = std::make_shared<State>();
+    return log;
+}
+
 void FailureLog::record(const std::filesystem::path& file,
                         const std::string& stage,
                         const std::string& message) {
@@ -38,14 +44,21 @@ void FailureLog::record(const std::filesystem::path& file,
     const std::string text =
         line.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
     std::lock_guard lock(mState->mutex);
-    std::fwrite(text.data(), 1, text.size(), mState->file);
-    std::fflush(mState->file);
-    ++mState->count;
+    if (mState->file) {
+        std::fwrite(text.data(), 1, text.size(), mState->file);
+        std::fflush(mState->file);
+    }
+    mState->entries.push_back({file, stage, message});
 }
 
 std::size_t FailureLog::count() const {
     std::lock_guard lock(mState->mutex);
-    return mState->count;
+    return mState->entries.size();
+}
+
+std::vector<Failure> FailureLog::entries() const {
+    std::lock_guard lock(mState->mutex);
+    return mState->entries;
 }
 
 }  // namespace encore::batch

@@ -20,6 +20,7 @@
 #include <span>
 
 #include "encore/batch/BatchInputs.h"
+#include "encore/batch/FailureLog.h"
 #include "encore/batch/ViewImages.h"
 #include "encore/batch/ViewRig.h"
 #include "encore/core/Result.h"
@@ -53,6 +54,7 @@ struct BatchProgress {
 struct BatchSummary : BatchProgress {
     bool interrupted = false;  // BatchOptions::stop was set: models were left unrendered.
     StageTimes stages;
+    std::vector<Failure> failures;  // As failures.jsonl lists them.
 };
 
 struct BatchOptions {
@@ -70,6 +72,10 @@ struct BatchOptions {
     render::StrategyChoice strategy;  // Bundles by default, as `encore render`.
 
     bool strict = false;  // Loader warnings fail the model.
+    // Whether OUT/failures.jsonl is written (and emptied first). Off, the failures are only in
+    // the summary: for callers that run several batches into one folder at once and write one
+    // log of them all (encore.dask), where each run would empty the others' log.
+    bool writeFailureLog = true;
     // Also write each view's world-space normals ("000_normal.png") and 16-bit depth
     // ("000_depth.png", its scale in transforms.json): one more frame per view and image,
     // through the renderer's normal and depth debug channels without tone mapping.

@@ -33,6 +33,11 @@ bool isModelPath(const std::filesystem::path& path);
 // Listed files are not opened: a missing one fails later, as that model's load.
 Result<std::vector<BatchInput>> discoverInputs(const std::filesystem::path& input);
 
+// The models of a list of paths (relative ones against the working folder), each once, in list
+// order, named relative to the deepest folder that holds them all, as a list file's are. Fails
+// with InvalidArgument for an empty list; the files are not opened.
+Result<std::vector<BatchInput>> listedInputs(std::span<const std::filesystem::path> paths);
+
 // Names for `paths` relative to `root`, as described above (paths must lie inside `root`).
 std::vector<std::string> outputNames(std::span<const std::filesystem::path> paths,
                                      const std::filesystem::path& root);

@@ -62,6 +62,18 @@ TEST(BatchInputsTest, TextListResolvesAgainstItsFolderFromTheCommonRoot) {
     EXPECT_EQ((*inputs)[0].path, dir / "models" / "one" / "model.glb");
 }
 
+TEST(BatchInputsTest, ListedPathsAreNamedFromTheirCommonFolderOncePerFile) {
+    const fs::path dir = test::makeTempDir("batch-inputs-listed");
+    const std::vector<fs::path> paths = {dir / "set" / "b" / "model.glb",
+                                         dir / "set" / "a" / "x.gltf",
+                                         dir / "set" / "a" / ".." / "b" / "model.glb"};
+    auto inputs = listedInputs(paths);
+    ASSERT_TRUE(inputs.ok()) << inputs.error().message;
+    EXPECT_EQ(namesOf(*inputs), (std::vector<std::string>{"b/model", "a/x"}));
+    EXPECT_EQ((*inputs)[0].path, dir / "set" / "b" / "model.glb");
+    EXPECT_FALSE(listedInputs({}).ok());
+}
+
 TEST(BatchInputsTest, JsonListOfPaths) {
     const fs::path dir = test::makeTempDir("batch-inputs-json");
     std::ofstream(dir / "list.json") << R"(["glbs/000-001/abc.glb", "glbs/000-002/def.glb"])";

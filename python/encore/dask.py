@@ -1,0 +1,130 @@
+"""Rendering a collection of glTF models across a Dask cluster (distributed's scheduler).
+
+    from distributed import Client, LocalCluster
+    import encore.dask
+    client = Client(LocalCluster(n_workers=2, threads_per_worker=1))
+    summary = encore.dask.render_collection(client, "models/", "out/", views=12, size=512)
+
+The models are split into chunks of `chunk_size`, one task each. Every worker process keeps one
+encore.Renderer (one GPU device), created by the first task that runs there and reused by every
+task after it, and renders its chunks as `encore batch` does, into the same output folder: that
+folder must be the same path on every worker (shared storage). The files are those a single
+`encore batch` writes, byte for byte.
+
+Tasks are idempotent: a finished model is skipped and every file is written under a temporary
+name and renamed, so when a worker dies Dask runs its task again elsewhere and nothing is lost
+or written twice. Failures come back with the tasks' results; the client writes
+OUTPUT/failures.jsonl once, after the last task.
+"""
+
+import json
+import os
+import threading
+import time
+
+import distributed
+
+from . import Renderer, discover_inputs
+
+__all__ = ["render_collection"]
+
+_STAGES = ("load", "upload", "render", "gpu", "readback", "encode")
+
+
+class _WorkerRenderers:
+    """The renderers of this process, one per sample count: a device costs far more to create
+    than most models take to render, so tasks share them."""
+
+    def __init__(self):
+        self._lock = threading.Lock()
+        self._renderers = {}
+        self.created = 0
+
+    def get(self, samples):
+        with self._lock:
+            renderer = self._renderers.get(samples)
+            if renderer is None:
+                renderer = self._renderers[samples] = Renderer(samples=samples)
+                self.created += 1
+            return renderer
+
+
+_worker_renderers = _WorkerRenderers()
+
+
+def _render_chunk(models, output, options):
+    """One task: the chunk's models on this worker's renderer. Runs on a worker."""
+    options = dict(options)
+    renderer = _worker_renderers.get(options.pop("samples", 4))
+    summary = renderer.batch(models, output, failure_log=False, **options)
+    summary["worker"] = distributed.get_worker().address
+    return summary
+
+
+def _write_failures(output, models, failures):
+    """OUTPUT/failures.jsonl in input order, one line per model, written under a temporary
+    name and renamed, with the fields and key order of `encore batch`'s log."""
+    order = {path: index for index, (path, _) in enumerate(models)}
+    by_file = {failure["file"]: failure for failure in failures}
+    lines = [json.dumps({"error": failure["error"], "file": failure["file"],
+                         "stage": failure["stage"]}, ensure_ascii=False,
+                        separators=(",", ":")) + "\n"
+             for failure in sorted(by_file.values(),
+                                   key=lambda failure: order.get(failure["file"], len(order)))]
+    path = os.path.join(output, "failures.jsonl")
+    with open(path + ".part", "w", encoding="utf-8") as log:
+        log.writelines(lines)
+    os.replace(path + ".part", path)
+    return list(by_file.values())
+
+
+def render_collection(client, inputs, output, *, chunk_size=8, retries=2, **options):
+    """Renders `inputs` on the workers of `client` (a distributed.Client) into `output`, as
+    `encore batch INPUTS -o OUTPUT` does, and returns the summary of the whole collection.
+
+    `inputs` is what encore.discover_inputs takes: a folder, a list file, a model, or a
+    sequence of model paths; paths must name the same files on every worker. `chunk_size`
+    models make one task; a task that raises (a device that cannot be created) runs again up
+    to `retries` times. The other keywords are those of encore.Renderer.batch (views,
+    random_views, seed, elevation, distance, fov, normalize, size, samples, jobs,
+    memory_limit_mib, strict, normals, depth, top_light).
+
+    The summary has the models of the collection (`total`) and those rendered, failed and
+    skipped (finished by an earlier run, or by a task's attempt on a worker that then died),
+    the views written, the wall time (`seconds`), the stage times summed over the tasks, the
+    failures as failures.jsonl lists them, the number of tasks and the tasks each worker ran.
+    """
+    if chunk_size < 1:
+        raise ValueError("chunk_size must be at least 1")
+    if "failure_log" in options:
+        raise TypeError("render_collection writes failures.jsonl itself")
+    start = time.monotonic()
+    models = discover_inputs(inputs)
+    output = os.path.abspath(output)
+    os.makedirs(output, exist_ok=True)
+    chunks = [models[first:first + chunk_size] for first in range(0, len(models), chunk_size)]
+    futures = client.map(_render_chunk, chunks, output=output, options=options, pure=False,
+                         retries=retries)
+    try:
+        results = client.gather(futures)
+    finally:
+        client.cancel([future for future in futures if not future.done()])
+
+    failures = _write_failures(output, models, [failure for result in results
+                                                for failure in result["failures"]])
+    workers = {}
+    for result in results:
+        workers[result["worker"]] = workers.get(result["worker"], 0) + 1
+    return {
+        "total": len(models),
+        "rendered": sum(result["rendered"] for result in results),
+        "failed": len(failures),
+        "skipped": sum(result["skipped"] for result in results),
+        "views": sum(result["views"] for result in results),
+        "seconds": time.monotonic() - start,
+        "stages": {stage: sum(result["stages"][stage] for result in results)
+                   for stage in _STAGES},
+        "failures": failures,
+        "tasks": len(chunks),
+        "workers": workers,
+    }
