@@ -90,15 +90,9 @@ render::Camera renderCamera(const glm::mat4& cameraToWorld,
     constexpr float kNearFraction = 0.01f;
     const float nearPlane = std::max(distance * kNearFraction, 1e-4f) / scale;
 
-    render::Camera camera;
-    camera.view = glm::inverse(modelCameraToWorld);
-    camera.projection = render::perspectiveProjection(verticalFov(horizontalFovRadians, aspect),
-                                                      aspect, nearPlane, 0.0f);
-    camera.position = glm::vec3(modelCameraToWorld[3]);
-    camera.kind = render::ProjectionKind::Perspective;
-    camera.nearPlane = nearPlane;
-    camera.farPlane = std::numeric_limits<float>::infinity();
-    return camera;
+    // zfar 0: the infinite far plane.
+    return render::Camera::perspective(modelCameraToWorld, verticalFov(horizontalFovRadians, aspect),
+                                       aspect, nearPlane, 0.0f);
 }
 
 }  // namespace encore::batch
