@@ -53,7 +53,7 @@ BindGroupLayouts BindGroupLayouts::create(const wgpu::Device& device) {
     constexpr auto kVertexFragment = wgpu::ShaderStage::Vertex | wgpu::ShaderStage::Fragment;
     BindGroupLayouts layouts;
     // Group 0: the camera, then how the scene is lit (scene_lighting.wgsl). Every pipeline uses
-    // this layout, so strategies without materials simply ignore bindings 1..6.
+    // this layout, so strategies without materials simply ignore bindings 1..4.
     layouts.frame = createLayout(
         device, "frame",
         {bufferEntry(0, kVertexFragment, wgpu::BufferBindingType::Uniform, sizeof(FrameUniform)),
@@ -61,9 +61,7 @@ BindGroupLayouts BindGroupLayouts::create(const wgpu::Device& device) {
                      sizeof(LightingUniform)),
          bufferEntry(2, wgpu::ShaderStage::Fragment, wgpu::BufferBindingType::ReadOnlyStorage,
                      sizeof(LightUniform)),
-         textureEntry(3, wgpu::TextureViewDimension::Cube),
-         textureEntry(4, wgpu::TextureViewDimension::Cube),
-         textureEntry(5, wgpu::TextureViewDimension::e2D), samplerEntry(6)});
+         textureEntry(3, wgpu::TextureViewDimension::e2D), samplerEntry(4)});
     layouts.nodeUniform =
         createLayout(device, "node transform",
                      {bufferEntry(0, wgpu::ShaderStage::Vertex, wgpu::BufferBindingType::Uniform,

@@ -37,6 +37,13 @@ struct CubeParams {
     std::uint32_t padding[3] = {};
 };
 
+// Mirrors the Params struct of environment_atlas_pack.wgsl.
+struct PackParams {
+    std::uint32_t origin[2] = {};
+    std::uint32_t size = 0;
+    float level = 0.0f;
+};
+
 std::string sizeText(std::uint32_t width, std::uint32_t height) {
     return std::to_string(width) + "x" + std::to_string(height);
 }
@@ -128,13 +135,14 @@ wgpu::BindGroupEntry samplerEntry(std::uint32_t binding, const wgpu::Sampler& sa
     return entry;
 }
 
+template <typename Params = CubeParams>
 wgpu::BindGroupEntry slotEntry(std::uint32_t binding, const wgpu::Buffer& buffer,
                                std::uint32_t slot) {
     wgpu::BindGroupEntry entry{};
     entry.binding = binding;
     entry.buffer = buffer;
     entry.offset = slot * kSlotStride;
-    entry.size = sizeof(CubeParams);
+    entry.size = sizeof(Params);
     return entry;
 }
 
@@ -170,6 +178,20 @@ Result<void> checkOptions(const EnvironmentOptions& options, const wgpu::Limits&
                        ") must be in 1.." + std::to_string(fullChain) + " for specularSize " +
                        std::to_string(options.specularSize) + ".");
     }
+    if (options.specularLevels > EnvironmentAtlasLayout::kMaxSpecularLevels) {
+        return invalid("specularLevels (" + std::to_string(options.specularLevels) +
+                       ") must be at most " +
+                       std::to_string(EnvironmentAtlasLayout::kMaxSpecularLevels) + ".");
+    }
+    const EnvironmentAtlasLayout atlas = layoutEnvironmentAtlas(
+        options.specularSize, options.specularLevels, options.irradianceSize, options.lutSize);
+    if (atlas.width > limits.maxTextureDimension2D || atlas.height > limits.maxTextureDimension2D) {
+        return invalid("the environment atlas for specularSize " +
+                       std::to_string(options.specularSize) + " would be " +
+                       sizeText(atlas.width, atlas.height) + ", larger than the device's " +
+                       "maxTextureDimension2D (" + std::to_string(limits.maxTextureDimension2D) +
+                       ").");
+    }
     if (options.specularSamples == 0 || options.irradianceSamples == 0) {
         return invalid("sample counts must be positive (specularSamples " +
                        std::to_string(options.specularSamples) + ", irradianceSamples " +
@@ -186,6 +208,8 @@ struct Environment::Pipelines {
     wgpu::ComputePipeline specular;
     wgpu::ComputePipeline irradiance;
     wgpu::ComputePipeline lut;
+    wgpu::ComputePipeline packCube;
+    wgpu::ComputePipeline packTable;
     wgpu::Sampler panoramaSampler;  // Repeats across the longitude seam.
 };
 
@@ -205,7 +229,8 @@ Result<Environment> Environment::create(const wgpu::Device& device, const wgpu::
     environment.mOptions = options;
 
     auto pipelines = std::make_shared<Pipelines>();
-    auto computePipeline = [&](const char* file, wgpu::ComputePipeline& out) -> Result<void> {
+    auto computePipeline = [&](const char* file, wgpu::ComputePipeline& out,
+                               const char* entryPoint = "main") -> Result<void> {
         auto module = shaders.module(file);
         if (!module) {
             return module.error().withContext("Creating the environment pipelines");
@@ -213,7 +238,7 @@ Result<Environment> Environment::create(const wgpu::Device& device, const wgpu::
         wgpu::ComputePipelineDescriptor descriptor{};
         descriptor.label = file;
         descriptor.compute.module = *module;
-        descriptor.compute.entryPoint = "main";
+        descriptor.compute.entryPoint = entryPoint;
         out = device.CreateComputePipeline(&descriptor);
         return {};
     };
@@ -222,6 +247,8 @@ Result<Environment> Environment::create(const wgpu::Device& device, const wgpu::
     ENCORE_TRY(computePipeline("environment_specular.wgsl", pipelines->specular));
     ENCORE_TRY(computePipeline("environment_irradiance.wgsl", pipelines->irradiance));
     ENCORE_TRY(computePipeline("environment_brdf_lut.wgsl", pipelines->lut));
+    ENCORE_TRY(computePipeline("environment_atlas_pack.wgsl", pipelines->packCube, "packCube"));
+    ENCORE_TRY(computePipeline("environment_atlas_pack.wgsl", pipelines->packTable, "packTable"));
 
     wgpu::SamplerDescriptor panoramaSampler{};
     panoramaSampler.label = "environment panorama";
@@ -263,6 +290,17 @@ Result<Environment> Environment::create(const wgpu::Device& device, const wgpu::
                 wgpu::TextureUsage::CopySrc;
     environment.mLut = device.CreateTexture(&lut);
     environment.mLutView = environment.mLut.CreateView();
+
+    environment.mAtlasLayout = layoutEnvironmentAtlas(options.specularSize, options.specularLevels,
+                                                      options.irradianceSize, options.lutSize);
+    wgpu::TextureDescriptor atlas{};
+    atlas.label = "environment atlas";
+    atlas.size = {environment.mAtlasLayout.width, environment.mAtlasLayout.height, 1};
+    atlas.format = wgpu::TextureFormat::RGBA16Float;
+    atlas.usage = wgpu::TextureUsage::TextureBinding | wgpu::TextureUsage::StorageBinding |
+                  wgpu::TextureUsage::CopySrc;
+    environment.mAtlas = device.CreateTexture(&atlas);
+    environment.mAtlasView = environment.mAtlas.CreateView();
 
     ENCORE_TRY(environment.build(panorama, /*withLut=*/true));
     environment.mPanorama = std::make_shared<const image::HdrImage>(panorama);
@@ -356,9 +394,22 @@ Result<void> Environment::build(const image::HdrImage& original, bool withLut) {
     }
     const auto lutSlot = static_cast<std::uint32_t>(slots.size());
     slots.push_back({0, kLutSamples});
-    std::vector<std::uint8_t> slotBytes(slots.size() * kSlotStride);
+    // Then the atlas regions: the specular levels, the irradiance, the table.
+    std::vector<PackParams> packs;
+    for (std::uint32_t level = 0; level < mOptions.specularLevels; ++level) {
+        const AtlasRegion& region = mAtlasLayout.specular[level];
+        packs.push_back({{region.x, region.y}, region.size, float(level)});
+    }
+    packs.push_back({{mAtlasLayout.irradiance.x, mAtlasLayout.irradiance.y},
+                     mAtlasLayout.irradiance.size, 0.0f});
+    packs.push_back({{mAtlasLayout.brdf.x, mAtlasLayout.brdf.y}, mAtlasLayout.brdf.size, 0.0f});
+    const auto firstPackSlot = static_cast<std::uint32_t>(slots.size());
+    std::vector<std::uint8_t> slotBytes((slots.size() + packs.size()) * kSlotStride);
     for (std::size_t i = 0; i < slots.size(); ++i) {
         std::memcpy(&slotBytes[i * kSlotStride], &slots[i], sizeof(CubeParams));
+    }
+    for (std::size_t i = 0; i < packs.size(); ++i) {
+        std::memcpy(&slotBytes[(firstPackSlot + i) * kSlotStride], &packs[i], sizeof(PackParams));
     }
     wgpu::BufferDescriptor slotDescriptor{};
     slotDescriptor.label = "environment parameters";
@@ -430,6 +481,32 @@ Result<void> Environment::build(const image::HdrImage& original, bool withLut) {
     copyDestination.texture = mSpecular;
     const wgpu::Extent3D faces{sourceSize, sourceSize, kCubeFaces};
     encoder.CopyTextureToTexture(&copySource, &copyDestination, &faces);
+
+    // Everything the frame samples, into the atlas (after the copy: level 0 is packed too).
+    passDescriptor.label = "environment atlas";
+    const wgpu::ComputePassEncoder packPass = encoder.BeginComputePass(&passDescriptor);
+    packPass.SetPipeline(pipelines.packCube);
+    for (std::uint32_t i = 0; i < mOptions.specularLevels + 1; ++i) {
+        const bool irradiance = i == mOptions.specularLevels;
+        const std::uint32_t span = packs[i].size + 2;
+        packPass.SetBindGroup(
+            0, bindGroup(mDevice, pipelines.packCube,
+                         {textureEntry(0, irradiance ? mIrradianceView : mSpecularView),
+                          samplerEntry(1, mSampler), textureEntry(2, mAtlasView),
+                          slotEntry<PackParams>(3, slotBuffer, firstPackSlot + i)}));
+        packPass.DispatchWorkgroups(groups(3 * span), groups(2 * span), 1);
+    }
+    if (withLut) {
+        packPass.SetPipeline(pipelines.packTable);
+        const std::uint32_t slot = firstPackSlot + mOptions.specularLevels + 1;
+        packPass.SetBindGroup(0, bindGroup(mDevice, pipelines.packTable,
+                                           {textureEntry(2, mAtlasView),
+                                            slotEntry<PackParams>(3, slotBuffer, slot),
+                                            textureEntry(4, mLutView)}));
+        const std::uint32_t size = mAtlasLayout.brdf.size + 2;
+        packPass.DispatchWorkgroups(groups(size), groups(size), 1);
+    }
+    packPass.End();
 
     const wgpu::CommandBuffer commands = encoder.Finish();
     mQueue.Submit(1, &commands);

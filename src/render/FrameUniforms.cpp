@@ -19,7 +19,7 @@ FrameUniforms::FrameUniforms(const wgpu::Device& device, const BindGroupLayouts&
 void FrameUniforms::bindLighting(const wgpu::Device& device, const BindGroupLayouts& layouts,
                                  const SceneLighting& lighting) {
     const Environment& environment = lighting.environment();
-    wgpu::BindGroupEntry entries[7]{};
+    wgpu::BindGroupEntry entries[5]{};
     entries[0].binding = 0;
     entries[0].buffer = mBuffer;
     entries[0].size = sizeof(FrameUniform);
@@ -30,17 +30,13 @@ void FrameUniforms::bindLighting(const wgpu::Device& device, const BindGroupLayo
     entries[2].buffer = lighting.lightBuffer();
     entries[2].size = lighting.lightBuffer().GetSize();
     entries[3].binding = 3;
-    entries[3].textureView = environment.specularView();
+    entries[3].textureView = environment.atlasView();
     entries[4].binding = 4;
-    entries[4].textureView = environment.irradianceView();
-    entries[5].binding = 5;
-    entries[5].textureView = environment.brdfLutView();
-    entries[6].binding = 6;
-    entries[6].sampler = environment.sampler();
+    entries[4].sampler = environment.sampler();
     wgpu::BindGroupDescriptor descriptor{};
     descriptor.label = "frame";
     descriptor.layout = layouts.frame;
-    descriptor.entryCount = 7;
+    descriptor.entryCount = 5;
     descriptor.entries = entries;
     mBindGroup = device.CreateBindGroup(&descriptor);
 }

@@ -81,6 +81,7 @@ void SceneLighting::writeUniform() {
     uniform.exposure = mDisplay.exposure;
     uniform.toneMapping = static_cast<std::uint32_t>(mDisplay.toneMapping);
     uniform.displayMapped = mDisplayInShaders ? 1u : 0u;
+    uniform.atlas = makeEnvironmentAtlasUniform(mEnvironment->atlasLayout());
     mQueue.WriteBuffer(mUniform, 0, &uniform, sizeof(uniform));
 }
 

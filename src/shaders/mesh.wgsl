@@ -317,15 +317,7 @@ fn incomingLight(light: PunctualLight, position: vec3f) -> IncomingLight {
 
 // Specular reflection of the prefiltered environment for a direction and roughness.
 fn environmentSpecular(direction: vec3f, roughness: f32) -> vec3f {
-    let level = roughness * (lighting.specularLevels - 1.0);
-    return textureSampleLevel(specularEnvironment, environmentSampler,
-                              environmentDirection(direction), level).rgb *
-           lighting.environmentIntensity;
-}
-
-fn brdfLutAt(nDotV: f32, roughness: f32) -> vec3f {
-    let uv = clamp(vec2f(nDotV, roughness), vec2f(0.0), vec2f(1.0));
-    return textureSampleLevel(brdfLut, environmentSampler, uv, 0.0).rgb;
+    return environmentRadiance(direction, roughness * (lighting.specularLevels - 1.0));
 }
 #endif
 
@@ -438,9 +430,7 @@ fn fragmentMain(input: VertexOutput, @builtin(front_facing) frontFacing: bool) -
     // Image-based light: split-sum specular, Lambertian irradiance; occlusion applies here only.
     let lut = brdfLutAt(nDotV, roughness);
     if (lighting.imageBasedLighting != 0u) {
-        let diffuseLight = textureSampleLevel(irradianceEnvironment, environmentSampler,
-                                              environmentDirection(n), 0.0).rgb *
-                           lighting.environmentIntensity;
+        let diffuseLight = environmentIrradiance(n);
         let specularLight = environmentSpecular(reflect(-v, n), roughness);
         let diffuse = diffuseLight * albedo;
         let dielectricFresnel = iblFresnel(f0Dielectric, specularWeight, roughness, nDotV, lut.rg);

@@ -1,6 +1,7 @@
 #include "tone_map.wgsl"
+#include "environment_atlas.wgsl"
 
-// Group 0, bindings 1..6: how the scene is lit and displayed. Shared by every pipeline (BindGroupLayouts::frame);
+// Group 0, bindings 1..4: how the scene is lit and displayed. Shared by every pipeline (BindGroupLayouts::frame);
 // only the physically based mesh shader and the environment background read them. Everything
 // here changes through buffers and in-place texture writes, so recorded bundles stay valid.
 
@@ -21,6 +22,7 @@ struct Lighting {
     exposure: f32,
     toneMapping: u32,
     displayMapped: u32,
+    atlas: EnvironmentAtlasLayout,
 }
 
 // KHR_lights_punctual in world space (LightBuffer in C++).
@@ -39,13 +41,51 @@ struct PunctualLight {
 
 @group(0) @binding(1) var<uniform> lighting: Lighting;
 @group(0) @binding(2) var<storage, read> lights: array<PunctualLight>;
-@group(0) @binding(3) var specularEnvironment: texture_cube<f32>;
-@group(0) @binding(4) var irradianceEnvironment: texture_cube<f32>;
-@group(0) @binding(5) var brdfLut: texture_2d<f32>;
-@group(0) @binding(6) var environmentSampler: sampler;
+// The prefiltered specular levels, the irradiance and the BRDF table (environment_atlas.wgsl).
+@group(0) @binding(3) var environmentAtlas: texture_2d<f32>;
+@group(0) @binding(4) var environmentSampler: sampler;
 
 fn environmentDirection(worldDirection: vec3f) -> vec3f {
     return lighting.environmentRotation * worldDirection;
+}
+
+// Radiance toward a world direction, prefiltered for the GGX lobe of specular level `level`
+// (roughness level / (levels - 1)); fractional levels blend the two nearest, as trilinear
+// filtering between mips would.
+fn environmentRadiance(worldDirection: vec3f, level: f32) -> vec3f {
+    let lookup = cubeFaceUv(environmentDirection(worldDirection));
+    let clamped = clamp(level, 0.0, lighting.specularLevels - 1.0);
+    let lower = u32(clamped);
+    let upper = min(lower + 1u, u32(lighting.specularLevels) - 1u);
+    let inverseSize = lighting.atlas.inverseSize;
+    let a = textureSampleLevel(environmentAtlas, environmentSampler,
+                               atlasCubeCoordinates(lighting.atlas.specular[lower], lookup.face,
+                                                    lookup.uv, inverseSize),
+                               0.0).rgb;
+    let b = textureSampleLevel(environmentAtlas, environmentSampler,
+                               atlasCubeCoordinates(lighting.atlas.specular[upper], lookup.face,
+                                                    lookup.uv, inverseSize),
+                               0.0).rgb;
+    return mix(a, b, clamped - f32(lower)) * lighting.environmentIntensity;
+}
+
+// Cosine-weighted average radiance around a world normal.
+fn environmentIrradiance(worldNormal: vec3f) -> vec3f {
+    let lookup = cubeFaceUv(environmentDirection(worldNormal));
+    return textureSampleLevel(environmentAtlas, environmentSampler,
+                              atlasCubeCoordinates(lighting.atlas.irradiance, lookup.face,
+                                                   lookup.uv, lighting.atlas.inverseSize),
+                              0.0).rgb *
+           lighting.environmentIntensity;
+}
+
+// The split-sum table at (NdotV, perceptual roughness): F0 scale, bias, sheen albedo.
+fn brdfLutAt(nDotV: f32, roughness: f32) -> vec3f {
+    let uv = clamp(vec2f(nDotV, roughness), vec2f(0.0), vec2f(1.0));
+    return textureSampleLevel(environmentAtlas, environmentSampler,
+                              atlasTableCoordinates(lighting.atlas.brdf, uv,
+                                                    lighting.atlas.inverseSize),
+                              0.0).rgb;
 }
 
 // What a scene shader writes for a linear colour: the display colour when the scene renders

@@ -29,7 +29,5 @@ fn fragmentMain(input: SkyOutput) -> @location(0) vec4f {
     // The view matrix is a rigid transform: its rotation's transpose is its inverse.
     let rotation = mat3x3f(frame.view[0].xyz, frame.view[1].xyz, frame.view[2].xyz);
     let direction = normalize(transpose(rotation) * viewRay);
-    let radiance = textureSampleLevel(specularEnvironment, environmentSampler,
-                                      environmentDirection(direction), 0.0).rgb;
-    return displayColor(vec4f(radiance * lighting.environmentIntensity, 1.0));
+    return displayColor(vec4f(environmentRadiance(direction, 0.0), 1.0));
 }

@@ -11,6 +11,9 @@
 #include "encore/gpu/Readback.h"
 #include "encore/image/HdrImage.h"
 #include "encore/render/Environment.h"
+#include "encore/render/Lighting.h"
+#include "encore/shaders/EmbeddedFiles.h"
+#include "encore/shaders/ShaderComposer.h"
 
 namespace encore::render {
 namespace {
@@ -121,6 +124,125 @@ fn main(@builtin(global_invocation_id) id: vec3u) {
     wgpu::ComputePipeline mPipeline;
 };
 
+// Looks the environment up exactly as the scene shaders do: a compute shader that includes
+// scene_lighting.wgsl and calls its environmentRadiance, environmentIrradiance and brdfLutAt,
+// bound to a SceneLighting's uniform and the atlas.
+class AtlasProbe {
+  public:
+    enum class Lookup : std::uint32_t { Radiance, Irradiance, Brdf };
+
+    explicit AtlasProbe(gpu::Context& context) : mContext(context) {
+        const std::string probe = R"(
+#include "scene_lighting.wgsl"
+@group(0) @binding(5) var<storage, read> probes: array<vec4f>;  // (xyz, lod), (lookup, ...)
+@group(0) @binding(6) var<storage, read_write> results: array<vec4f>;
+@compute @workgroup_size(1)
+fn main(@builtin(global_invocation_id) id: vec3u) {
+    let probe = probes[2u * id.x];
+    let lookup = u32(probes[2u * id.x + 1u].x);
+    var value = vec3f(0.0);
+    if (lookup == 0u) {
+        value = environmentRadiance(normalize(probe.xyz), probe.w);
+    } else if (lookup == 1u) {
+        value = environmentIrradiance(normalize(probe.xyz));
+    } else {
+        value = brdfLutAt(probe.x, probe.y);
+    }
+    results[id.x] = vec4f(value, 1.0);
+}
+)";
+        const shaders::FileLookup lookup =
+            [&probe](std::string_view name) -> std::optional<std::string_view> {
+            if (name == "probe.wgsl") {
+                return probe;
+            }
+            for (const auto& file : shaders::wgslFiles()) {
+                if (file.name == name) {
+                    return file.contents;
+                }
+            }
+            return std::nullopt;
+        };
+        auto source = shaders::composeShader("probe.wgsl", {}, lookup);
+        EXPECT_TRUE(source.ok()) << source.error().message;
+        if (!source.ok()) {
+            return;
+        }
+        wgpu::ShaderSourceWGSL wgsl;
+        wgsl.code = source->c_str();
+        wgpu::ShaderModuleDescriptor moduleDescriptor{};
+        moduleDescriptor.nextInChain = &wgsl;
+        wgpu::ComputePipelineDescriptor descriptor{};
+        descriptor.compute.module = context.device().CreateShaderModule(&moduleDescriptor);
+        descriptor.compute.entryPoint = "main";
+        mPipeline = context.device().CreateComputePipeline(&descriptor);
+    }
+
+    // `lookup` at each direction (Brdf: x = NdotV, y = roughness), `lod` for Radiance.
+    std::vector<Vec3> sample(const SceneLighting& lighting, Lookup lookup,
+                             const std::vector<Vec3>& directions, float lod = 0.0f) {
+        std::vector<Vec3> results;
+        if (!mPipeline) {
+            return results;
+        }
+        std::vector<float> input;
+        for (const Vec3& d : directions) {
+            input.insert(input.end(), {d[0], d[1], d[2], lod, float(lookup), 0, 0, 0});
+        }
+        const std::uint64_t inSize = input.size() * sizeof(float);
+        const std::uint64_t outSize = directions.size() * 4 * sizeof(float);
+        wgpu::BufferDescriptor descriptor{};
+        descriptor.size = inSize;
+        descriptor.usage = wgpu::BufferUsage::Storage | wgpu::BufferUsage::CopyDst;
+        const wgpu::Buffer in = mContext.device().CreateBuffer(&descriptor);
+        mContext.queue().WriteBuffer(in, 0, input.data(), inSize);
+        descriptor.size = outSize;
+        descriptor.usage = wgpu::BufferUsage::Storage | wgpu::BufferUsage::CopySrc;
+        const wgpu::Buffer out = mContext.device().CreateBuffer(&descriptor);
+
+        const Environment& environment = lighting.environment();
+        wgpu::BindGroupEntry entries[5]{};
+        entries[0].binding = 1;
+        entries[0].buffer = lighting.uniformBuffer();
+        entries[1].binding = 3;
+        entries[1].textureView = environment.atlasView();
+        entries[2].binding = 4;
+        entries[2].sampler = environment.sampler();
+        entries[3].binding = 5;
+        entries[3].buffer = in;
+        entries[4].binding = 6;
+        entries[4].buffer = out;
+        wgpu::BindGroupDescriptor groupDescriptor{};
+        groupDescriptor.layout = mPipeline.GetBindGroupLayout(0);
+        groupDescriptor.entryCount = 5;
+        groupDescriptor.entries = entries;
+        const wgpu::BindGroup group = mContext.device().CreateBindGroup(&groupDescriptor);
+
+        const wgpu::CommandEncoder encoder = mContext.device().CreateCommandEncoder();
+        const wgpu::ComputePassEncoder pass = encoder.BeginComputePass();
+        pass.SetPipeline(mPipeline);
+        pass.SetBindGroup(0, group);
+        pass.DispatchWorkgroups(static_cast<std::uint32_t>(directions.size()));
+        pass.End();
+        const wgpu::CommandBuffer commands = encoder.Finish();
+        mContext.queue().Submit(1, &commands);
+        auto bytes = gpu::readBuffer(mContext, out, 0, outSize);
+        EXPECT_TRUE(bytes.ok()) << bytes.error().message;
+        if (!bytes.ok()) {
+            return results;
+        }
+        const auto* values = reinterpret_cast<const float*>(bytes->data());
+        for (std::size_t i = 0; i < directions.size(); ++i) {
+            results.push_back({values[i * 4], values[i * 4 + 1], values[i * 4 + 2]});
+        }
+        return results;
+    }
+
+  private:
+    gpu::Context& mContext;
+    wgpu::ComputePipeline mPipeline;
+};
+
 Vec3 normalized(Vec3 v) {
     const float length = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
     return {v[0] / length, v[1] / length, v[2] / length};
@@ -169,6 +291,29 @@ struct Fixture {
     }
     shaders::ShaderLibrary shaders;
 };
+
+// On the cube's edges and corners, where a lookup crosses from one atlas cell to another, and a
+// hair to either side: filtering must not show the seams.
+std::vector<Vec3> seamDirections() {
+    std::vector<Vec3> directions;
+    for (float a : {1.0f, -1.0f}) {
+        for (float b : {1.0f, -1.0f}) {
+            for (float offset : {0.0f, 0.003f, -0.003f}) {
+                directions.push_back(normalized({a, b + offset, 0.4f}));   // x-y edges.
+                directions.push_back(normalized({a + offset, -0.3f, b}));  // x-z edges.
+                directions.push_back(normalized({0.6f, a, b + offset}));   // y-z edges.
+            }
+            directions.push_back(normalized({a, b, 1.0f}));  // Corners.
+            directions.push_back(normalized({a, b, -1.0f}));
+        }
+    }
+    return directions;
+}
+
+Result<SceneLighting> lightingFor(gpu::Context& context, Environment&& environment) {
+    return SceneLighting::create(context.device(), context.queue(),
+                                 std::make_shared<Environment>(std::move(environment)));
+}
 
 TEST(EnvironmentTest, UniformEnvironmentStaysUniform) {
     ENCORE_REQUIRE_VULKAN(context);
@@ -356,6 +501,8 @@ TEST(EnvironmentTest, LoadReplacesContentsInTheSameTextures) {
     const WGPUTextureView irradianceView = environment->irradianceView().Get();
     const WGPUTextureView lutView = environment->brdfLutView().Get();
     const WGPUTexture specular = environment->specularTexture().Get();
+    const WGPUTexture atlas = environment->atlasTexture().Get();
+    const WGPUTextureView atlasView = environment->atlasView().Get();
     const WGPUSampler sampler = environment->sampler().Get();
     const std::vector<float> lutBefore =
         readHalfTexels(*context, environment->brdfLutTexture(), 0, 0);
@@ -366,6 +513,8 @@ TEST(EnvironmentTest, LoadReplacesContentsInTheSameTextures) {
     EXPECT_EQ(environment->irradianceView().Get(), irradianceView);
     EXPECT_EQ(environment->brdfLutView().Get(), lutView);
     EXPECT_EQ(environment->specularTexture().Get(), specular);
+    EXPECT_EQ(environment->atlasTexture().Get(), atlas);
+    EXPECT_EQ(environment->atlasView().Get(), atlasView);
     EXPECT_EQ(environment->sampler().Get(), sampler);
     for (std::uint32_t level : {0u, 2u, 4u}) {
         const auto texels = readHalfTexels(*context, environment->specularTexture(), level, 3);
@@ -385,6 +534,13 @@ TEST(EnvironmentTest, LoadReplacesContentsInTheSameTextures) {
     ASSERT_EQ(mirror.size(), 1u);
     EXPECT_NEAR(mirror[0][2], 1.0f, 0.05f);
     EXPECT_GT(environment->lastBuildMilliseconds(), 0.0);
+    // What the shaders see, through the atlas, is the new panorama too.
+    auto lighting = lightingFor(*context, std::move(*environment));
+    ASSERT_TRUE(lighting.ok()) << lighting.error().message;
+    const auto seen =
+        AtlasProbe(*context).sample(*lighting, AtlasProbe::Lookup::Radiance, {{0, 0, -1}}, 0.0f);
+    ASSERT_EQ(seen.size(), 1u);
+    EXPECT_NEAR(seen[0][2], 1.0f, 0.05f);
     EXPECT_TRUE(context->checkNoErrors("environment load").ok());
 }
 
@@ -397,6 +553,14 @@ TEST(EnvironmentTest, RefusesBadOptionsAndPanoramas) {
     ASSERT_FALSE(tooManyLevels.ok());
     EXPECT_EQ(tooManyLevels.error().code, ErrorCode::InvalidArgument);
     EXPECT_NE(tooManyLevels.error().message.find("specularLevels"), std::string::npos);
+
+    options = smallOptions();
+    options.specularSize = 1024;
+    options.specularLevels = 9;  // The chain has 11, the lighting uniform room for 8.
+    auto pastUniform = fixture.create(*context, image::makeUniformEnvironment(1, 1, 1), options);
+    ASSERT_FALSE(pastUniform.ok());
+    EXPECT_NE(pastUniform.error().message.find("at most 8"), std::string::npos)
+        << pastUniform.error().message;
 
     options = smallOptions();
     options.irradianceSamples = 0;
@@ -412,6 +576,145 @@ TEST(EnvironmentTest, RefusesBadOptionsAndPanoramas) {
     ASSERT_TRUE(environment.ok()) << environment.error().message;
     EXPECT_FALSE(environment->load(image::HdrImage{}).ok());
     EXPECT_TRUE(context->checkNoErrors("environment refusals").ok());
+}
+
+TEST(EnvironmentTest, AtlasIsOneSubresourceHoldingEveryMap) {
+    ENCORE_REQUIRE_VULKAN(context);
+    Fixture fixture(*context);
+    const Vec3 radiance = {0.8f, 1.0f, 1.25f};
+    auto environment = fixture.create(
+        *context, image::makeUniformEnvironment(radiance[0], radiance[1], radiance[2]));
+    ASSERT_TRUE(environment.ok()) << environment.error().message;
+    const wgpu::Texture& atlas = environment->atlasTexture();
+    EXPECT_EQ(atlas.GetMipLevelCount(), 1u);
+    EXPECT_EQ(atlas.GetDepthOrArrayLayers(), 1u);
+    EXPECT_EQ(atlas.GetFormat(), wgpu::TextureFormat::RGBA16Float);
+    const EnvironmentAtlasLayout& layout = environment->atlasLayout();
+    EXPECT_EQ(atlas.GetWidth(), layout.width);
+    EXPECT_EQ(atlas.GetHeight(), layout.height);
+    ASSERT_EQ(layout.specular.size(), 5u);
+
+    // Every texel of every cube cell, borders included, holds the uniform radiance.
+    const std::vector<float> texels = readHalfTexels(*context, atlas, 0, 0);
+    ASSERT_EQ(texels.size(), std::size_t(layout.width) * layout.height * 4);
+    auto worstIn = [&](const AtlasRegion& region) {
+        float worst = 0.0f;
+        for (std::uint32_t y = region.y; y < region.y + region.height(); ++y) {
+            for (std::uint32_t x = region.x; x < region.x + region.width(); ++x) {
+                for (int c = 0; c < 3; ++c) {
+                    const float value = texels[(std::size_t(y) * layout.width + x) * 4 + c];
+                    worst = std::max(worst, std::fabs(value / radiance[c] - 1.0f));
+                }
+            }
+        }
+        return worst;
+    };
+    for (std::size_t level = 0; level < layout.specular.size(); ++level) {
+        EXPECT_LT(worstIn(layout.specular[level]), 0.015f) << "specular level " << level;
+    }
+    EXPECT_LT(worstIn(layout.irradiance), 0.015f) << "irradiance";
+
+    // The table region is the table, its border repeating the edge texels.
+    const std::vector<float> lut = readHalfTexels(*context, environment->brdfLutTexture(), 0, 0);
+    const std::uint32_t size = environment->brdfLutTexture().GetWidth();
+    ASSERT_EQ(layout.brdf.size, size);
+    for (std::uint32_t y = 0; y < size + 2; ++y) {
+        for (std::uint32_t x = 0; x < size + 2; ++x) {
+            const std::uint32_t sx = std::clamp(int(x) - 1, 0, int(size) - 1);
+            const std::uint32_t sy = std::clamp(int(y) - 1, 0, int(size) - 1);
+            for (int c = 0; c < 4; ++c) {
+                ASSERT_EQ(texels[(std::size_t(layout.brdf.y + y) * layout.width + layout.brdf.x +
+                                  x) * 4 + c],
+                          lut[(std::size_t(sy) * size + sx) * 4 + c])
+                    << "table texel " << x << ", " << y << " channel " << c;
+            }
+        }
+    }
+    EXPECT_TRUE(context->checkNoErrors("environment atlas").ok());
+}
+
+TEST(EnvironmentTest, AtlasLookupsMatchTheMapsTheyPack) {
+    ENCORE_REQUIRE_VULKAN(context);
+    Fixture fixture(*context);
+    // Faces of at least 8 texels at every level: on a 4-texel face the cube's own filtering
+    // across edges (three texels meet at a corner) and the atlas's borders differ by more
+    // than the tolerance, though both are smooth.
+    EnvironmentOptions options = smallOptions();
+    options.specularSize = 128;
+    auto environment = fixture.create(*context, directionalPanorama(256), options);
+    ASSERT_TRUE(environment.ok()) << environment.error().message;
+    const wgpu::TextureView specularCube = environment->specularView();
+    const wgpu::TextureView irradianceCube = environment->irradianceView();
+    const wgpu::Sampler sampler = environment->sampler();
+    const std::uint32_t levels = environment->specularLevels();
+    auto lighting = lightingFor(*context, std::move(*environment));
+    ASSERT_TRUE(lighting.ok()) << lighting.error().message;
+    CubeProbe cubes(*context);
+    AtlasProbe atlas(*context);
+    std::vector<Vec3> directions = probeDirections();
+    const std::vector<Vec3> seams = seamDirections();
+    directions.insert(directions.end(), seams.begin(), seams.end());
+
+    // The mirror level is the panorama, 2 + d, across the folds as anywhere else.
+    const auto mirror = atlas.sample(*lighting, AtlasProbe::Lookup::Radiance, directions, 0.0f);
+    ASSERT_EQ(mirror.size(), directions.size());
+    for (std::size_t i = 0; i < directions.size(); ++i) {
+        for (int c = 0; c < 3; ++c) {
+            EXPECT_NEAR(mirror[i][c], 2.0f + directions[i][c], 0.03f)
+                << "direction " << i << " (" << directions[i][0] << ", " << directions[i][1]
+                << ", " << directions[i][2] << ") channel " << c;
+        }
+    }
+    // Every level, and between levels, as the cube's own trilinear lookup gives it.
+    for (float lod : {0.0f, 1.0f, 1.5f, 2.0f, 3.25f, float(levels - 1)}) {
+        const auto expected = cubes.sample(specularCube, sampler, directions, lod);
+        const auto actual = atlas.sample(*lighting, AtlasProbe::Lookup::Radiance, directions, lod);
+        ASSERT_EQ(actual.size(), directions.size());
+        for (std::size_t i = 0; i < directions.size(); ++i) {
+            for (int c = 0; c < 3; ++c) {
+                EXPECT_NEAR(actual[i][c], expected[i][c], 0.02f)
+                    << "lod " << lod << ", direction " << i << " channel " << c;
+            }
+        }
+    }
+    const auto expectedIrradiance = cubes.sample(irradianceCube, sampler, directions, 0.0f);
+    const auto irradiance = atlas.sample(*lighting, AtlasProbe::Lookup::Irradiance, directions);
+    ASSERT_EQ(irradiance.size(), directions.size());
+    for (std::size_t i = 0; i < directions.size(); ++i) {
+        for (int c = 0; c < 3; ++c) {
+            EXPECT_NEAR(irradiance[i][c], 2.0f + 2.0f / 3.0f * directions[i][c], 0.04f)
+                << "irradiance, direction " << i << " channel " << c;
+            EXPECT_NEAR(irradiance[i][c], expectedIrradiance[i][c], 0.02f)
+                << "irradiance against the cube, direction " << i << " channel " << c;
+        }
+    }
+
+    // The table: texel centres give the texels, and outside 0..1 the edge (clamped).
+    const Environment& packed = lighting->environment();
+    const std::uint32_t size = packed.brdfLutTexture().GetWidth();
+    const std::vector<float> lut = readHalfTexels(*context, packed.brdfLutTexture(), 0, 0);
+    std::vector<Vec3> coordinates;
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> texelsAt;
+    for (auto [x, y] : {std::pair{0u, 0u}, std::pair{5u, 9u}, std::pair{size - 1, 3u},
+                        std::pair{17u, size - 1}, std::pair{size - 1, size - 1}}) {
+        coordinates.push_back({(x + 0.5f) / size, (y + 0.5f) / size, 0.0f});
+        texelsAt.emplace_back(x, y);
+    }
+    coordinates.push_back({0.0f, 0.0f, 0.0f});
+    texelsAt.emplace_back(0, 0);
+    coordinates.push_back({1.0f, 1.0f, 0.0f});
+    texelsAt.emplace_back(size - 1, size - 1);
+    const auto table = atlas.sample(*lighting, AtlasProbe::Lookup::Brdf, coordinates);
+    ASSERT_EQ(table.size(), coordinates.size());
+    for (std::size_t i = 0; i < coordinates.size(); ++i) {
+        const auto [x, y] = texelsAt[i];
+        for (int c = 0; c < 3; ++c) {
+            EXPECT_NEAR(table[i][c], lut[(std::size_t(y) * size + x) * 4 + c], 1e-3f)
+                << "table at " << coordinates[i][0] << ", " << coordinates[i][1] << " channel "
+                << c;
+        }
+    }
+    EXPECT_TRUE(context->checkNoErrors("environment atlas lookups").ok());
 }
 
 // Prints how long the default maps take from the studio panorama (not asserted: lavapipe's

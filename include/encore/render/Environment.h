@@ -12,8 +12,12 @@
 // Directions follow HdrImage's panorama convention in Encore's world space (right-handed,
 // +Y up); a rotation about +Y is applied by the shaders at lookup, not baked in here.
 //
+// The scene shaders sample none of those three: a last pass packs them into the environment
+// atlas (EnvironmentAtlas.h), one texture of one subresource, which is all a frame binds. The
+// cube maps and the table stay as the atlas's sources (a later load() writes them again).
+//
 // load() writes a new panorama into the same textures, so bind groups that reference the
-// views stay valid: changing the environment never re-records a render bundle.
+// atlas stay valid: changing the environment never re-records a render bundle.
 
 #include <webgpu/webgpu_cpp.h>
 
@@ -22,13 +26,14 @@
 
 #include "encore/core/Result.h"
 #include "encore/image/HdrImage.h"
+#include "encore/render/EnvironmentAtlas.h"
 #include "encore/shaders/ShaderLibrary.h"
 
 namespace encore::render {
 
 struct EnvironmentOptions {
     std::uint32_t specularSize = 256;       // Level 0 of the specular cube, per face.
-    std::uint32_t specularLevels = 5;       // Roughness 0, 0.25, 0.5, 0.75, 1.
+    std::uint32_t specularLevels = 5;       // Roughness 0, 0.25, 0.5, 0.75, 1; at most 8.
     std::uint32_t irradianceSize = 32;
     std::uint32_t lutSize = 128;
     // Samples per texel. Each sample reads the source mip that matches its footprint (filtered
@@ -55,14 +60,18 @@ class Environment {
     // Recomputes every map from `panorama` into the existing textures (bind groups stay valid).
     Result<void> load(const image::HdrImage& panorama);
 
-    const wgpu::TextureView& specularView() const { return mSpecularView; }      // Cube.
-    const wgpu::TextureView& irradianceView() const { return mIrradianceView; }  // Cube.
-    const wgpu::TextureView& brdfLutView() const { return mLutView; }            // 2D.
-    // Linear filtering with linear mips, clamped to edge: for all three.
+    // What the scene shaders sample: the atlas, through sampler() (linear, clamped to edge).
+    const wgpu::TextureView& atlasView() const { return mAtlasView; }
+    const wgpu::Texture& atlasTexture() const { return mAtlas; }
+    const EnvironmentAtlasLayout& atlasLayout() const { return mAtlasLayout; }
     const wgpu::Sampler& sampler() const { return mSampler; }
     std::uint32_t specularLevels() const { return mOptions.specularLevels; }
 
-    // The textures, for tests and tools (CopySrc).
+    // The atlas's sources, for tests and tools (CopySrc): cube views with their mips, the 2D
+    // table.
+    const wgpu::TextureView& specularView() const { return mSpecularView; }
+    const wgpu::TextureView& irradianceView() const { return mIrradianceView; }
+    const wgpu::TextureView& brdfLutView() const { return mLutView; }
     const wgpu::Texture& specularTexture() const { return mSpecular; }
     const wgpu::Texture& irradianceTexture() const { return mIrradiance; }
     const wgpu::Texture& brdfLutTexture() const { return mLut; }
@@ -90,6 +99,9 @@ class Environment {
     wgpu::TextureView mSpecularView;
     wgpu::TextureView mIrradianceView;
     wgpu::TextureView mLutView;
+    wgpu::Texture mAtlas;
+    wgpu::TextureView mAtlasView;
+    EnvironmentAtlasLayout mAtlasLayout;
     wgpu::Sampler mSampler;
     // Shared so the class stays movable with Pipelines defined only in Environment.cpp.
     std::shared_ptr<const Pipelines> mPipelines;

@@ -53,8 +53,9 @@ struct LightingUniform {
     float exposure;
     std::uint32_t toneMapping;    // ToneMapping.
     std::uint32_t displayMapped;  // 1: scene shaders write display colour (no HDR pass).
+    EnvironmentAtlasUniform atlas;
 };
-static_assert(sizeof(LightingUniform) == 80);
+static_assert(sizeof(LightingUniform) == 256);
 
 // struct PunctualLight of scene_lighting.wgsl, byte for byte.
 struct LightUniform {
