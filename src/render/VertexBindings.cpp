@@ -1,6 +1,8 @@
 #include "encore/render/VertexBindings.h"
 
 #include <algorithm>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <string>
 
@@ -42,18 +44,90 @@ std::vector<std::uint8_t> paddedVertexElements(const scene::SceneData& scene,
     return padded;
 }
 
-wgpu::Buffer GeometryBuffers::viewBuffer(scene::BufferViewId id) {
-    if (auto found = mViewBuffers.find(id); found != mViewBuffers.end()) {
-        return found->second;
+bool readsInPlace(const scene::Accessor& accessor) {
+    return accessor.byteStride % 4 == 0 && accessor.byteOffset % 4 == 0 &&
+           accessor.byteStride <= kMaxArrayStride && accessor.byteStride >= accessor.elementSize();
+}
+
+void GeometryBuffers::uploadViews() {
+    mUploaded = true;
+    // Every view a primitive may read in place: those of in-place attributes and of indices.
+    std::vector<scene::BufferViewId> views;
+    auto add = [&](scene::AccessorId id, bool indices) {
+        if (id.index() >= mScene->accessors.size()) {
+            return;
+        }
+        const scene::Accessor& accessor = mScene->accessors[id.index()];
+        if (accessor.view.index() < mScene->bufferViews.size() &&
+            (indices || readsInPlace(accessor))) {
+            views.push_back(accessor.view);
+        }
+    };
+    for (const scene::Mesh& mesh : mScene->meshes) {
+        for (const scene::Primitive& primitive : mesh.primitives) {
+            for (const scene::VertexAttribute& attribute : primitive.attributes) {
+                add(attribute.accessor, false);
+            }
+            if (primitive.indices) {
+                add(*primitive.indices, true);
+            }
+        }
     }
-    const scene::BufferView& view = mScene->bufferViews[id.index()];
-    const auto& bytes = mScene->buffers[view.buffer.index()].bytes;
-    auto buffer = gpu::createBufferWithData(
-        mDevice, wgpu::BufferUsage::Vertex | wgpu::BufferUsage::Index,
-        std::span(bytes.data() + view.byteOffset, view.byteLength),
-        "bufferView " + std::to_string(id.value));
-    mViewBuffers.emplace(id, buffer);
-    return buffer;
+    std::sort(views.begin(), views.end());
+    views.erase(std::unique(views.begin(), views.end()), views.end());
+
+    std::uint64_t maxBytes = mMaxSharedBufferBytes;
+    if (maxBytes == 0) {
+        wgpu::Limits limits{};
+        mDevice.GetLimits(&limits);
+        maxBytes = limits.maxBufferSize;
+    }
+    std::vector<std::uint8_t> bytes;
+    std::vector<scene::BufferViewId> pending;
+    auto flush = [&] {
+        if (pending.empty()) {
+            return;
+        }
+        bytes.resize((bytes.size() + 3) & ~std::size_t(3), 0);
+        const wgpu::Buffer buffer = gpu::createBufferWithData(
+            mDevice, wgpu::BufferUsage::Vertex | wgpu::BufferUsage::Index, bytes,
+            "geometry " + std::to_string(mSharedBuffers.size()));
+        for (scene::BufferViewId id : pending) {
+            mViews[id].buffer = buffer;
+        }
+        mSharedBuffers.push_back(buffer);
+        bytes.clear();
+        pending.clear();
+    };
+    for (scene::BufferViewId id : views) {
+        const scene::BufferView& view = mScene->bufferViews[id.index()];
+        const auto& source = mScene->buffers[view.buffer.index()].bytes;
+        std::uint64_t offset = (bytes.size() + 3) & ~std::uint64_t(3);
+        if (!pending.empty() && offset + view.byteLength > maxBytes) {
+            // A view larger than the device's limit on its own was refused before (SceneLimits).
+            flush();
+            offset = 0;
+        }
+        bytes.resize(offset, 0);
+        bytes.insert(bytes.end(), source.begin() + std::ptrdiff_t(view.byteOffset),
+                     source.begin() + std::ptrdiff_t(view.byteOffset + view.byteLength));
+        mViews[id] = {{}, offset, view.byteLength};
+        pending.push_back(id);
+    }
+    flush();
+}
+
+const GeometryBuffers::ViewPlacement& GeometryBuffers::viewPlacement(scene::BufferViewId id) {
+    if (!mUploaded) {
+        uploadViews();
+    }
+    const auto found = mViews.find(id);
+    if (found == mViews.end()) {
+        // bind() asks only for views of the scene's primitives, all collected by uploadViews().
+        std::fprintf(stderr, "GeometryBuffers: bufferView %u was not uploaded\n", id.value);
+        std::abort();
+    }
+    return found->second;
 }
 
 Result<PrimitiveBindings> GeometryBuffers::bind(const scene::Primitive& primitive,
@@ -82,9 +156,7 @@ Result<PrimitiveBindings> GeometryBuffers::bind(const scene::Primitive& primitiv
     // Group in-place attributes by (view, stride), in offset order, so interleaved ones are
     // adjacent; the rest get private padded copies.
     auto inPlace = [&](const BoundAttribute& attribute) {
-        const scene::Accessor& accessor = mScene->accessors[attribute.accessor.index()];
-        return accessor.byteStride % 4 == 0 && accessor.byteOffset % 4 == 0 &&
-               accessor.byteStride <= kMaxArrayStride && accessor.byteStride >= accessor.elementSize();
+        return readsInPlace(mScene->accessors[attribute.accessor.index()]);
     };
     std::stable_sort(attributes.begin(), attributes.end(), [&](const auto& a, const auto& b) {
         const scene::Accessor& x = mScene->accessors[a.accessor.index()];
@@ -109,27 +181,29 @@ Result<PrimitiveBindings> GeometryBuffers::bind(const scene::Primitive& primitiv
                                                    "repacked accessor " +
                                                        std::to_string(attribute.accessor.value));
             }
-            Slot slot{{buffer, 0}, {}, {}};
+            Slot slot{{buffer, 0, buffer.GetSize()}, {}, {}};
             slot.key.arrayStride = stride;
             slot.key.attributes[slot.key.attributeCount++] = {attribute.format, 0,
                                                               attribute.location};
             slots.push_back(slot);
             continue;
         }
+        // Offsets below are within the shared buffer; the slot's view is the attribute's.
+        const ViewPlacement& view = viewPlacement(accessor.view);
+        const std::uint64_t offset = view.offset + accessor.byteOffset;
         // WebGPU needs offset + size <= arrayStride for every attribute of a slot.
         const bool joinsLast = !slots.empty() && slots.back().view == accessor.view &&
                                slots.back().key.arrayStride == accessor.byteStride &&
-                               accessor.byteOffset - slots.back().binding.offset +
-                                       accessor.elementSize() <=
+                               offset - slots.back().binding.offset + accessor.elementSize() <=
                                    accessor.byteStride &&
                                slots.back().key.attributeCount < VertexBufferKey::kMaxAttributes;
         if (!joinsLast) {
-            Slot slot{{viewBuffer(accessor.view), accessor.byteOffset}, {}, accessor.view};
+            Slot slot{{view.buffer, offset, view.offset + view.length - offset}, {}, accessor.view};
             slot.key.arrayStride = accessor.byteStride;
             slots.push_back(slot);
         }
         Slot& slot = slots.back();
-        const auto relative = static_cast<std::uint32_t>(accessor.byteOffset - slot.binding.offset);
+        const auto relative = static_cast<std::uint32_t>(offset - slot.binding.offset);
         slot.key.attributes[slot.key.attributeCount++] = {attribute.format, relative,
                                                           attribute.location};
     }
@@ -148,8 +222,10 @@ Result<PrimitiveBindings> GeometryBuffers::bind(const scene::Primitive& primitiv
 
     if (primitive.indices) {
         const scene::Accessor& indices = mScene->accessors[primitive.indices->index()];
-        bindings.indices = IndexBufferBinding{viewBuffer(indices.view), indexFormat(indices),
-                                              indices.byteOffset, indices.count};
+        const ViewPlacement& view = viewPlacement(indices.view);
+        const std::uint64_t offset = view.offset + indices.byteOffset;
+        bindings.indices = IndexBufferBinding{view.buffer, indexFormat(indices), offset,
+                                              indices.count, view.offset + view.length - offset};
     }
     return bindings;
 }
@@ -175,11 +251,12 @@ PipelineKey meshPipelineKey(const RenderSetup& setup, const PrimitiveBindings& b
 void bindGeometry(RenderEncoder& encoder, const PrimitiveBindings& bindings) {
     for (std::uint32_t slot = 0; slot < bindings.vertexBuffers.size(); ++slot) {
         encoder.setVertexBuffer(slot, bindings.vertexBuffers[slot].buffer,
-                                bindings.vertexBuffers[slot].offset);
+                                bindings.vertexBuffers[slot].offset,
+                                bindings.vertexBuffers[slot].size);
     }
     if (bindings.indices) {
         encoder.setIndexBuffer(bindings.indices->buffer, bindings.indices->format,
-                               bindings.indices->offset);
+                               bindings.indices->offset, bindings.indices->size);
     }
 }
 

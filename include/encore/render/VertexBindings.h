@@ -1,7 +1,10 @@
 #pragma once
 
 // The case study's Part 2 ("buffer layouts"), shared by every strategy after `naive`:
-//  - one GPU buffer per glTF bufferView, uploaded once, its size rounded up to 4 bytes;
+//  - the glTF bufferViews that primitives read, uploaded once into one GPU buffer (more only
+//    past maxBufferSize), each view at a 4-byte-aligned offset and bound with its own size:
+//    Dawn tracks every distinct buffer a pass uses (a hash-map entry and a barrier check per
+//    buffer per frame, bundles included), so one buffer for all geometry keeps that cost flat;
 //  - a primitive's attributes grouped per bufferView: attributes whose offsets lie within one
 //    stride of each other are interleaved and bound once, as one vertex buffer slot; attributes
 //    further apart (non-interleaved data sharing a view) get slots of their own;
@@ -28,6 +31,9 @@ namespace encore::render {
 struct VertexBufferBinding {
     wgpu::Buffer buffer;
     std::uint64_t offset = 0;
+    // The bytes the slot may read: up to the end of its bufferView, so a shared buffer binds no
+    // more than a buffer of its own would.
+    std::uint64_t size = wgpu::kWholeSize;
 };
 
 struct IndexBufferBinding {
@@ -35,6 +41,7 @@ struct IndexBufferBinding {
     wgpu::IndexFormat format = wgpu::IndexFormat::Undefined;
     std::uint64_t offset = 0;
     std::uint32_t count = 0;
+    std::uint64_t size = wgpu::kWholeSize;
 };
 
 // How to bind one primitive: slots in order, the layout part of its pipeline key, the draw.
@@ -46,25 +53,39 @@ struct PrimitiveBindings {
     scene::Topology topology = scene::Topology::TriangleList;
 };
 
-// Owns the per-bufferView GPU buffers of one scene and computes primitive bindings over them.
+// Owns the GPU geometry of one scene and computes primitive bindings over it.
 class GeometryBuffers {
   public:
-    GeometryBuffers(wgpu::Device device, const scene::SceneData& scene)
-        : mDevice(std::move(device)), mScene(&scene) {}
+    // `maxSharedBufferBytes`: where a shared buffer ends and the next begins; 0 (the default)
+    // takes the device's maxBufferSize (tests pass less to exercise the split).
+    GeometryBuffers(wgpu::Device device, const scene::SceneData& scene,
+                    std::uint64_t maxSharedBufferBytes = 0)
+        : mDevice(std::move(device)), mScene(&scene), mMaxSharedBufferBytes(maxSharedBufferBytes) {}
 
     // Bindings of `primitive` for the attributes with these semantics (those the shader
     // variant consumes; absent ones are skipped).
     Result<PrimitiveBindings> bind(const scene::Primitive& primitive,
                                    std::span<const scene::Semantic> semantics);
 
-    std::size_t bufferCount() const { return mViewBuffers.size() + mPrivateBuffers.size(); }
+    // GPU buffers created: the shared ones (one unless the geometry passes maxBufferSize) and
+    // the private padded copies.
+    std::size_t bufferCount() const { return mSharedBuffers.size() + mPrivateBuffers.size(); }
 
   private:
-    wgpu::Buffer viewBuffer(scene::BufferViewId view);
+    struct ViewPlacement {
+        wgpu::Buffer buffer;
+        std::uint64_t offset = 0;  // Of the view's first byte in `buffer`.
+        std::uint64_t length = 0;
+    };
+    const ViewPlacement& viewPlacement(scene::BufferViewId view);
+    void uploadViews();
 
     wgpu::Device mDevice;
     const scene::SceneData* mScene;
-    std::map<scene::BufferViewId, wgpu::Buffer> mViewBuffers;
+    std::uint64_t mMaxSharedBufferBytes = 0;
+    bool mUploaded = false;
+    std::vector<wgpu::Buffer> mSharedBuffers;
+    std::map<scene::BufferViewId, ViewPlacement> mViews;
     std::map<scene::AccessorId, std::pair<wgpu::Buffer, std::uint32_t>> mPrivateBuffers;
 };
 
