@@ -41,6 +41,70 @@ std::vector<float> readHalfTexels(gpu::Context& context, const wgpu::Texture& te
     return texels.ok() ? std::move(*texels) : std::vector<float>{};
 }
 
+// Runs a compute pipeline with one invocation per probe: `inputs` (floats) in a storage buffer
+// at binding `inputBinding`, one vec4f result per probe read back from `outputBinding`, beside
+// the caller's other group-0 entries. Returns each result's rgb.
+std::vector<Vec3> runProbes(gpu::Context& context, const wgpu::ComputePipeline& pipeline,
+                            std::vector<wgpu::BindGroupEntry> entries,
+                            const std::vector<float>& inputs, std::size_t probeCount,
+                            std::uint32_t inputBinding, std::uint32_t outputBinding) {
+    std::vector<Vec3> results;
+    const std::uint64_t inSize = inputs.size() * sizeof(float);
+    const std::uint64_t outSize = probeCount * 4 * sizeof(float);
+    wgpu::BufferDescriptor descriptor{};
+    descriptor.size = inSize;
+    descriptor.usage = wgpu::BufferUsage::Storage | wgpu::BufferUsage::CopyDst;
+    const wgpu::Buffer in = context.device().CreateBuffer(&descriptor);
+    context.queue().WriteBuffer(in, 0, inputs.data(), inSize);
+    descriptor.size = outSize;
+    descriptor.usage = wgpu::BufferUsage::Storage | wgpu::BufferUsage::CopySrc;
+    const wgpu::Buffer out = context.device().CreateBuffer(&descriptor);
+    entries.push_back({});
+    entries.back().binding = inputBinding;
+    entries.back().buffer = in;
+    entries.push_back({});
+    entries.back().binding = outputBinding;
+    entries.back().buffer = out;
+
+    wgpu::BindGroupDescriptor groupDescriptor{};
+    groupDescriptor.layout = pipeline.GetBindGroupLayout(0);
+    groupDescriptor.entryCount = entries.size();
+    groupDescriptor.entries = entries.data();
+    const wgpu::BindGroup group = context.device().CreateBindGroup(&groupDescriptor);
+    const wgpu::CommandEncoder encoder = context.device().CreateCommandEncoder();
+    const wgpu::ComputePassEncoder pass = encoder.BeginComputePass();
+    pass.SetPipeline(pipeline);
+    pass.SetBindGroup(0, group);
+    pass.DispatchWorkgroups(static_cast<std::uint32_t>(probeCount));
+    pass.End();
+    const wgpu::CommandBuffer commands = encoder.Finish();
+    context.queue().Submit(1, &commands);
+    auto bytes = gpu::readBuffer(context, out, 0, outSize);
+    EXPECT_TRUE(bytes.ok()) << bytes.error().message;
+    if (!bytes.ok()) {
+        return results;
+    }
+    const auto* values = reinterpret_cast<const float*>(bytes->data());
+    for (std::size_t i = 0; i < probeCount; ++i) {
+        results.push_back({values[i * 4], values[i * 4 + 1], values[i * 4 + 2]});
+    }
+    return results;
+}
+
+wgpu::BindGroupEntry textureBinding(std::uint32_t binding, const wgpu::TextureView& view) {
+    wgpu::BindGroupEntry entry{};
+    entry.binding = binding;
+    entry.textureView = view;
+    return entry;
+}
+
+wgpu::BindGroupEntry samplerBinding(std::uint32_t binding, const wgpu::Sampler& sampler) {
+    wgpu::BindGroupEntry entry{};
+    entry.binding = binding;
+    entry.sampler = sampler;
+    return entry;
+}
+
 // Samples cube views at given directions with a tiny compute shader, through the sampler the
 // renderer will use: this checks the face convention end to end, not texel by texel.
 class CubeProbe {
@@ -74,49 +138,8 @@ fn main(@builtin(global_invocation_id) id: vec3u) {
         for (const Vec3& d : directions) {
             input.insert(input.end(), {d[0], d[1], d[2], lod});
         }
-        const std::uint64_t size = input.size() * sizeof(float);
-        wgpu::BufferDescriptor descriptor{};
-        descriptor.size = size;
-        descriptor.usage = wgpu::BufferUsage::Storage | wgpu::BufferUsage::CopyDst;
-        const wgpu::Buffer in = mContext.device().CreateBuffer(&descriptor);
-        mContext.queue().WriteBuffer(in, 0, input.data(), size);
-        descriptor.usage = wgpu::BufferUsage::Storage | wgpu::BufferUsage::CopySrc;
-        const wgpu::Buffer out = mContext.device().CreateBuffer(&descriptor);
-
-        wgpu::BindGroupEntry entries[4]{};
-        entries[0].binding = 0;
-        entries[0].textureView = cube;
-        entries[1].binding = 1;
-        entries[1].sampler = sampler;
-        entries[2].binding = 2;
-        entries[2].buffer = in;
-        entries[3].binding = 3;
-        entries[3].buffer = out;
-        wgpu::BindGroupDescriptor groupDescriptor{};
-        groupDescriptor.layout = mPipeline.GetBindGroupLayout(0);
-        groupDescriptor.entryCount = 4;
-        groupDescriptor.entries = entries;
-        const wgpu::BindGroup group = mContext.device().CreateBindGroup(&groupDescriptor);
-
-        const wgpu::CommandEncoder encoder = mContext.device().CreateCommandEncoder();
-        const wgpu::ComputePassEncoder pass = encoder.BeginComputePass();
-        pass.SetPipeline(mPipeline);
-        pass.SetBindGroup(0, group);
-        pass.DispatchWorkgroups(static_cast<std::uint32_t>(directions.size()));
-        pass.End();
-        const wgpu::CommandBuffer commands = encoder.Finish();
-        mContext.queue().Submit(1, &commands);
-        std::vector<Vec3> results;
-        auto bytes = gpu::readBuffer(mContext, out, 0, size);
-        EXPECT_TRUE(bytes.ok()) << bytes.error().message;
-        if (!bytes.ok()) {
-            return results;
-        }
-        const auto* values = reinterpret_cast<const float*>(bytes->data());
-        for (std::size_t i = 0; i < directions.size(); ++i) {
-            results.push_back({values[i * 4], values[i * 4 + 1], values[i * 4 + 2]});
-        }
-        return results;
+        return runProbes(mContext, mPipeline, {textureBinding(0, cube), samplerBinding(1, sampler)},
+                         input, directions.size(), 2, 3);
     }
 
   private:
@@ -181,61 +204,21 @@ fn main(@builtin(global_invocation_id) id: vec3u) {
     // `lookup` at each direction (Brdf: x = NdotV, y = roughness), `lod` for Radiance.
     std::vector<Vec3> sample(const SceneLighting& lighting, Lookup lookup,
                              const std::vector<Vec3>& directions, float lod = 0.0f) {
-        std::vector<Vec3> results;
         if (!mPipeline) {
-            return results;
+            return {};
         }
         std::vector<float> input;
         for (const Vec3& d : directions) {
             input.insert(input.end(), {d[0], d[1], d[2], lod, float(lookup), 0, 0, 0});
         }
-        const std::uint64_t inSize = input.size() * sizeof(float);
-        const std::uint64_t outSize = directions.size() * 4 * sizeof(float);
-        wgpu::BufferDescriptor descriptor{};
-        descriptor.size = inSize;
-        descriptor.usage = wgpu::BufferUsage::Storage | wgpu::BufferUsage::CopyDst;
-        const wgpu::Buffer in = mContext.device().CreateBuffer(&descriptor);
-        mContext.queue().WriteBuffer(in, 0, input.data(), inSize);
-        descriptor.size = outSize;
-        descriptor.usage = wgpu::BufferUsage::Storage | wgpu::BufferUsage::CopySrc;
-        const wgpu::Buffer out = mContext.device().CreateBuffer(&descriptor);
-
+        wgpu::BindGroupEntry uniform{};
+        uniform.binding = 1;
+        uniform.buffer = lighting.uniformBuffer();
         const Environment& environment = lighting.environment();
-        wgpu::BindGroupEntry entries[5]{};
-        entries[0].binding = 1;
-        entries[0].buffer = lighting.uniformBuffer();
-        entries[1].binding = 3;
-        entries[1].textureView = environment.atlasView();
-        entries[2].binding = 4;
-        entries[2].sampler = environment.sampler();
-        entries[3].binding = 5;
-        entries[3].buffer = in;
-        entries[4].binding = 6;
-        entries[4].buffer = out;
-        wgpu::BindGroupDescriptor groupDescriptor{};
-        groupDescriptor.layout = mPipeline.GetBindGroupLayout(0);
-        groupDescriptor.entryCount = 5;
-        groupDescriptor.entries = entries;
-        const wgpu::BindGroup group = mContext.device().CreateBindGroup(&groupDescriptor);
-
-        const wgpu::CommandEncoder encoder = mContext.device().CreateCommandEncoder();
-        const wgpu::ComputePassEncoder pass = encoder.BeginComputePass();
-        pass.SetPipeline(mPipeline);
-        pass.SetBindGroup(0, group);
-        pass.DispatchWorkgroups(static_cast<std::uint32_t>(directions.size()));
-        pass.End();
-        const wgpu::CommandBuffer commands = encoder.Finish();
-        mContext.queue().Submit(1, &commands);
-        auto bytes = gpu::readBuffer(mContext, out, 0, outSize);
-        EXPECT_TRUE(bytes.ok()) << bytes.error().message;
-        if (!bytes.ok()) {
-            return results;
-        }
-        const auto* values = reinterpret_cast<const float*>(bytes->data());
-        for (std::size_t i = 0; i < directions.size(); ++i) {
-            results.push_back({values[i * 4], values[i * 4 + 1], values[i * 4 + 2]});
-        }
-        return results;
+        return runProbes(mContext, mPipeline,
+                         {uniform, textureBinding(3, environment.atlasView()),
+                          samplerBinding(4, environment.sampler())},
+                         input, directions.size(), 5, 6);
     }
 
   private:

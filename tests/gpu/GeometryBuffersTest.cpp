@@ -15,11 +15,7 @@ scene::SceneData generatedScene() {
     options.objectCount = 16;
     options.meshCount = 8;
     options.textures = true;
-    auto glb = scene::generateSceneGlb(options);
-    EXPECT_TRUE(glb.ok()) << glb.error().message;
-    auto scene = scene::loadSceneFromMemory(*glb, {}, "generated.glb");
-    EXPECT_TRUE(scene.ok()) << scene.error().message;
-    return std::move(*scene);
+    return test::generatedScene(options);
 }
 
 constexpr scene::Semantic kSemantics[] = {scene::Semantic::Position, scene::Semantic::Normal,

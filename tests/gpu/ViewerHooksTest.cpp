@@ -17,11 +17,7 @@ scene::SceneData generatedScene() {
     generator.objectCount = 60;
     generator.meshCount = 4;
     generator.materialCount = 3;
-    auto glb = scene::generateSceneGlb(generator);
-    EXPECT_TRUE(glb.ok());
-    auto scene = scene::loadSceneFromMemory(*glb, {}, "generated.glb");
-    EXPECT_TRUE(scene.ok()) << scene.error().message;
-    return std::move(*scene);
+    return test::generatedScene(generator);
 }
 
 RendererOptions options(std::uint32_t width, std::uint32_t height) {

@@ -111,4 +111,15 @@ std::vector<ModelVariant> sharedModelVariants() {
     return variants;
 }
 
+scene::SceneData generatedScene(const scene::GeneratorOptions& options) {
+    auto glb = scene::generateSceneGlb(options);
+    EXPECT_TRUE(glb.ok()) << glb.error().message;
+    if (!glb.ok()) {
+        return {};
+    }
+    auto scene = scene::loadSceneFromMemory(*glb, {}, "generated.glb");
+    EXPECT_TRUE(scene.ok()) << scene.error().message;
+    return scene.ok() ? std::move(*scene) : scene::SceneData{};
+}
+
 }  // namespace encore::test

@@ -15,6 +15,7 @@
 #include "encore/gpu/Context.h"
 #include "encore/image/ImageCodec.h"
 #include "encore/scene/SceneData.h"
+#include "encore/scene/SceneGenerator.h"
 
 namespace encore::test {
 
@@ -55,6 +56,10 @@ struct ModelVariant {
     std::string testName() const;  // "Duck_glTF_Draco"
 };
 std::vector<ModelVariant> sharedModelVariants();
+
+// A scene from the generator, loaded as `encore gen` output would be (a test failure, and an
+// empty scene, when it cannot be).
+scene::SceneData generatedScene(const scene::GeneratorOptions& options);
 // Lets GoogleTest print a variant by name instead of its bytes.
 void PrintTo(const ModelVariant& variant, std::ostream* out);
 
