@@ -91,6 +91,18 @@ std::vector<Vec3> runProbes(gpu::Context& context, const wgpu::ComputePipeline& 
     return results;
 }
 
+// The "main" entry point of a compute shader given as WGSL text.
+wgpu::ComputePipeline computePipeline(gpu::Context& context, const char* code) {
+    wgpu::ShaderSourceWGSL wgsl;
+    wgsl.code = code;
+    wgpu::ShaderModuleDescriptor moduleDescriptor{};
+    moduleDescriptor.nextInChain = &wgsl;
+    wgpu::ComputePipelineDescriptor descriptor{};
+    descriptor.compute.module = context.device().CreateShaderModule(&moduleDescriptor);
+    descriptor.compute.entryPoint = "main";
+    return context.device().CreateComputePipeline(&descriptor);
+}
+
 wgpu::BindGroupEntry textureBinding(std::uint32_t binding, const wgpu::TextureView& view) {
     wgpu::BindGroupEntry entry{};
     entry.binding = binding;
@@ -121,14 +133,7 @@ fn main(@builtin(global_invocation_id) id: vec3u) {
     results[id.x] = textureSampleLevel(cube, cubeSampler, probe.xyz, probe.w);
 }
 )";
-        wgpu::ShaderSourceWGSL wgsl;
-        wgsl.code = code;
-        wgpu::ShaderModuleDescriptor moduleDescriptor{};
-        moduleDescriptor.nextInChain = &wgsl;
-        wgpu::ComputePipelineDescriptor descriptor{};
-        descriptor.compute.module = context.device().CreateShaderModule(&moduleDescriptor);
-        descriptor.compute.entryPoint = "main";
-        mPipeline = context.device().CreateComputePipeline(&descriptor);
+        mPipeline = computePipeline(context, code);
     }
 
     // The radiance toward each direction at `lod`.
@@ -191,14 +196,7 @@ fn main(@builtin(global_invocation_id) id: vec3u) {
         if (!source.ok()) {
             return;
         }
-        wgpu::ShaderSourceWGSL wgsl;
-        wgsl.code = source->c_str();
-        wgpu::ShaderModuleDescriptor moduleDescriptor{};
-        moduleDescriptor.nextInChain = &wgsl;
-        wgpu::ComputePipelineDescriptor descriptor{};
-        descriptor.compute.module = context.device().CreateShaderModule(&moduleDescriptor);
-        descriptor.compute.entryPoint = "main";
-        mPipeline = context.device().CreateComputePipeline(&descriptor);
+        mPipeline = computePipeline(context, source->c_str());
     }
 
     // `lookup` at each direction (Brdf: x = NdotV, y = roughness), `lod` for Radiance.
