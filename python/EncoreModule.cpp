@@ -25,6 +25,7 @@
 
 #include "encore/batch/Batch.h"
 #include "encore/batch/BatchInputs.h"
+#include "encore/batch/BatchRenderer.h"
 #include "encore/batch/TransformsJson.h"
 #include "encore/batch/ViewRig.h"
 #include "encore/batch/ViewStrips.h"
@@ -189,6 +190,7 @@ class Renderer {
             throw py::value_error("samples must be 1 or 4");
         }
         mContext = std::make_unique<gpu::Context>(valueOrThrow(gpu::Context::create()));
+        mBatchRenderers = std::make_unique<batch::BatchRenderer>(*mContext);
     }
 
     Scene load(const std::string& path) {
@@ -306,7 +308,10 @@ class Renderer {
         {
             py::gil_scoped_release release;
             std::lock_guard lock(mMutex);  // One job on the device at a time.
-            summary = batch::runBatch(*mContext, models, options);
+            // The batch renderer of the previous call when the options allow: encore.dask calls
+            // this once per task, and building it (environment maps, pipelines) would otherwise
+            // cost every task as much as a few models.
+            summary = batch::runBatch(*mBatchRenderers, models, options);
         }
         if (interrupt) {
             throw std::move(*interrupt);
@@ -315,6 +320,12 @@ class Renderer {
     }
 
     std::string adapter() const { return mContext->adapterDescription().summary(); }
+    batch::BatchRendererCounts batchCounts() {
+        // Without the GIL while waiting: a batch on another thread takes it to report progress.
+        py::gil_scoped_release release;
+        std::lock_guard lock(mMutex);
+        return mBatchRenderers->counts();
+    }
     std::uint32_t samples() const { return mSamples; }
 
   private:
@@ -356,6 +367,7 @@ class Renderer {
     std::uint32_t mSamples;
     std::unique_ptr<gpu::Context> mContext;
     std::unique_ptr<render::Renderer> mRenderer;        // After mContext: destroyed before it.
+    std::unique_ptr<batch::BatchRenderer> mBatchRenderers;  // Kept by batch() between calls.
     std::shared_ptr<const scene::SceneData> mHeld;      // Last given to prepare().
     std::shared_ptr<const scene::SceneData> mPrepared;  // Prepared successfully.
     std::mutex mMutex;
@@ -421,7 +433,16 @@ PYBIND11_MODULE(_encore, module) {
              "renderer's. The GIL is released while it runs.")
         .def_property_readonly("samples",
                                [](const Renderer& renderer) { return renderer.samples(); })
-        .def_property_readonly("adapter", &Renderer::adapter);
+        .def_property_readonly("adapter", &Renderer::adapter)
+        .def_property_readonly(
+            "batch_renderers_created",
+            [](Renderer& renderer) { return renderer.batchCounts().renderers; },
+            "How many times batch() built its renderer (render target, pipelines): once for "
+            "calls with the same size, samples and normals/depth, again when those change.")
+        .def_property_readonly(
+            "batch_environments_created",
+            [](Renderer& renderer) { return renderer.batchCounts().environments; },
+            "How many times batch() computed the environment maps: once for every call so far.");
 
     module.def("discover_inputs", &discoverInputs, py::arg("input"),
                "The models `encore batch INPUT` renders, as (path, output name) pairs: INPUT is a "

@@ -101,6 +101,46 @@ def test_batch_lists_failures_and_skips_finished_models(tmp_path):
     assert (again["rendered"], again["failed"], again["skipped"]) == (0, 1, 2)
 
 
+def files_under(folder):
+    """Every file below `folder` except failures.jsonl, by relative path, with its bytes."""
+    return {str(path.relative_to(folder)): path.read_bytes()
+            for path in sorted(folder.rglob("*"))
+            if path.is_file() and path.name != "failures.jsonl"}
+
+
+def test_batch_reuses_its_renderer_across_calls_and_writes_the_commands_files(tmp_path):
+    models = [(str(generate(tmp_path / "in" / f"m{seed}.glb", seed=seed)), f"m{seed}")
+              for seed in (1, 2, 3, 4)]
+    renderer = encore.Renderer()
+    assert (renderer.batch_renderers_created, renderer.batch_environments_created) == (0, 0)
+    out = tmp_path / "reused"
+    # As encore.dask's tasks call it: a few models per call, one renderer for them all.
+    for chunk in (models[:1], models[1:3], models[3:]):
+        summary = renderer.batch(chunk, str(out), views=3, size=32, failure_log=False)
+        assert summary["rendered"] == len(chunk) and summary["failed"] == 0
+        assert renderer.batch_renderers_created == 1, "built once, by the first call"
+        assert renderer.batch_environments_created == 1
+
+    reference = tmp_path / "command"
+    subprocess.run([os.environ["ENCORE_BINARY"], "batch", str(tmp_path / "in"), "-o",
+                    str(reference), "--views", "3", "--size", "32", "--quiet"], check=True,
+                   capture_output=True)
+    assert files_under(out) == files_under(reference), "the same files, byte for byte"
+
+    # Normal images need an HDR target: a new renderer, the same environment maps; and one
+    # that still renders what the command renders.
+    normals = tmp_path / "normals"
+    renderer.batch(models[:2], str(normals), views=3, size=32, normals=True)
+    assert (renderer.batch_renderers_created, renderer.batch_environments_created) == (2, 1)
+    renderer.batch(models[2:], str(normals), views=3, size=32, normals=True)
+    assert (renderer.batch_renderers_created, renderer.batch_environments_created) == (2, 1)
+    reference = tmp_path / "command-normals"
+    subprocess.run([os.environ["ENCORE_BINARY"], "batch", str(tmp_path / "in"), "-o",
+                    str(reference), "--views", "3", "--size", "32", "--normals", "--quiet"],
+                   check=True, capture_output=True)
+    assert files_under(normals) == files_under(reference)
+
+
 def test_rendering_releases_the_gil(renderer, tmp_path):
     scene = renderer.load(str(generate(tmp_path / "gil.glb", objects=30)))
     renderer.render_views(scene, views=24, size=256)  # Prepared and warm.

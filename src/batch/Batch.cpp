@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "ModelLoader.h"
+#include "encore/batch/BatchRenderer.h"
 #include "encore/batch/FailureLog.h"
 #include "encore/batch/ModelOutput.h"
 #include "encore/batch/TransformsJson.h"
@@ -112,8 +113,14 @@ struct TargetViews {
 
 class BatchRun {
   public:
-    BatchRun(gpu::Context& context, std::span<const BatchInput> inputs, const BatchOptions& options)
-        : mContext(context), mInputs(inputs), mOptions(options), mPool(options.jobs) {}
+    BatchRun(BatchRenderer& renderers,
+             std::span<const BatchInput> inputs,
+             const BatchOptions& options)
+        : mContext(renderers.context()),
+          mRenderers(renderers),
+          mInputs(inputs),
+          mOptions(options),
+          mPool(options.jobs) {}
 
     Result<BatchSummary> run();
 
@@ -152,6 +159,8 @@ class BatchRun {
     BatchProgress progress() const;
 
     gpu::Context& mContext;
+    // Owns the renderer and the read-back ring, which may outlive this run (BatchRenderer.h).
+    BatchRenderer& mRenderers;
     std::span<const BatchInput> mInputs;
     std::vector<BatchInput> mPending;  // Not finished by an earlier run, in load order.
     const BatchOptions& mOptions;
@@ -162,8 +171,9 @@ class BatchRun {
     StageTimes mGpuStages;  // The GPU thread's stages.
     std::size_t mSkipped = 0;
     StripLayout mLayout;
-    std::optional<render::Renderer> mRenderer;
-    std::unique_ptr<gpu::TextureReadbackRing> mRing;
+    // mRenderers' renderer and ring; null after a device loss that could not be recovered.
+    render::Renderer* mRenderer = nullptr;
+    gpu::TextureReadbackRing* mRing = nullptr;
     std::deque<ChunkInFlight> mChunks;  // In the ring's order.
     // The scene last handed to the renderer, which refers to it until the next prepare.
     std::optional<LoadedModel> mPrepared;
@@ -177,14 +187,12 @@ Result<void> BatchRun::createRenderer() {
     rendererOptions.keepPipelines = true;  // Models share most pipelines: create each once.
     // Normal images have a transparent background whatever the colour images have.
     rendererOptions.target.hdr = mOptions.images.normals || mOptions.images.depth;
-    mRing.reset();
-    mRenderer.reset();
-    auto renderer = render::Renderer::create(mContext, rendererOptions);
-    if (!renderer) {
-        return renderer.error();
-    }
-    mRenderer.emplace(std::move(*renderer));
-    mRing = std::make_unique<gpu::TextureReadbackRing>(mContext, mOptions.readbackSlots);
+    mRing = nullptr;
+    mRenderer = nullptr;
+    // The renderer of an earlier run when it was built from the same options.
+    ENCORE_TRY(mRenderers.acquire(rendererOptions, mOptions.readbackSlots));
+    mRenderer = &mRenderers.renderer();
+    mRing = &mRenderers.ring();
     return {};
 }
 
@@ -299,13 +307,12 @@ void BatchRun::recoverIfLost() {
     while (!mChunks.empty()) {
         collectOldest();
     }
+    mRenderer = nullptr;
+    mRing = nullptr;
+    mRenderers.discard();  // Built on the lost device.
     mPrepared.reset();
     if (auto recreated = mContext.recreateDevice(); recreated) {
-        if (auto created = createRenderer(); !created) {
-            mRenderer.reset();
-        }
-    } else {
-        mRenderer.reset();
+        (void)createRenderer();  // On failure mRenderer stays null: later models fail.
     }
 }
 
@@ -563,6 +570,11 @@ Result<BatchSummary> BatchRun::run() {
     }
     loader.finish();
     mPool.waitIdle();
+    // The renderer may serve later runs (BatchRenderer): it must not refer to the scene freed
+    // here, nor hold that scene's GPU memory.
+    if (mRenderer) {
+        mRenderer->releaseScene();
+    }
     mPrepared.reset();
 
     BatchSummary summary;
@@ -581,7 +593,14 @@ Result<BatchSummary> BatchRun::run() {
 Result<BatchSummary> runBatch(gpu::Context& context,
                               std::span<const BatchInput> inputs,
                               const BatchOptions& options) {
-    BatchRun run(context, inputs, options);
+    BatchRenderer renderers(context);
+    return runBatch(renderers, inputs, options);
+}
+
+Result<BatchSummary> runBatch(BatchRenderer& renderers,
+                              std::span<const BatchInput> inputs,
+                              const BatchOptions& options) {
+    BatchRun run(renderers, inputs, options);
     return run.run();
 }
 
