@@ -8,9 +8,11 @@ import json
 import math
 import os
 import signal
+import struct
 import subprocess
 import threading
 import time
+import zlib
 
 import numpy as np
 import pytest
@@ -69,6 +71,85 @@ def test_render_views_matches_the_batch_command(renderer, tmp_path):
                                           random=True, seed=9)
     expected = np.array([frame["transform_matrix"] for frame in transforms["frames"]])
     assert np.allclose(cameras, expected, atol=1e-6)
+
+
+def read_png(path):
+    """The pixels of an 8-bit RGBA or 16-bit greyscale PNG (what `encore batch` writes), as
+    uint8 (H, W, 4) or uint16 (H, W). Small images only: the filters are undone in Python."""
+    data = path.read_bytes()
+    position, compressed = 8, b""
+    while position < len(data):
+        length, kind = struct.unpack(">I4s", data[position:position + 8])
+        body = data[position + 8:position + 8 + length]
+        if kind == b"IHDR":
+            width, height, depth, colour = struct.unpack(">IIBB", body[:10])
+        elif kind == b"IDAT":
+            compressed += body
+        position += 12 + length
+    assert (depth, colour) in ((8, 6), (16, 0)), (depth, colour)
+    step = 4 if colour == 6 else 2  # Bytes per pixel, what the filters look back.
+    stride = width * step
+    raw = zlib.decompress(compressed)
+    rows, previous = [], bytearray(stride)
+    for y in range(height):
+        kind = raw[y * (stride + 1)]
+        row = bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
+        for x in range(stride):
+            left = row[x - step] if x >= step else 0
+            up = previous[x]
+            corner = previous[x - step] if x >= step else 0
+            if kind == 1:
+                row[x] = (row[x] + left) & 0xFF
+            elif kind == 2:
+                row[x] = (row[x] + up) & 0xFF
+            elif kind == 3:
+                row[x] = (row[x] + ((left + up) >> 1)) & 0xFF
+            elif kind == 4:
+                estimate = left + up - corner
+                nearest = min((abs(estimate - left), 0, left), (abs(estimate - up), 1, up),
+                              (abs(estimate - corner), 2, corner))
+                row[x] = (row[x] + nearest[2]) & 0xFF
+        rows.append(bytes(row))
+        previous = row
+    if colour == 6:
+        return np.frombuffer(b"".join(rows), np.uint8).reshape(height, width, 4)
+    return np.frombuffer(b"".join(rows), ">u2").reshape(height, width).astype(np.uint16)
+
+
+def test_render_views_returns_the_batch_commands_normals_and_depth(renderer, tmp_path):
+    model = generate(tmp_path / "in" / "scene.glb", seed=5)
+    out = tmp_path / "out"
+    subprocess.run([os.environ["ENCORE_BINARY"], "batch", str(tmp_path / "in"), "-o", str(out),
+                    "--views", "3", "--size", "32", "--normals", "--depth", "--quiet"],
+                   check=True, capture_output=True)
+    scene = renderer.load(str(model))
+    images, _, _, normals, depth = renderer.render_views(scene, views=3, size=32, normals=True,
+                                                         depth=True)
+    assert normals.shape == (3, 32, 32, 4) and normals.dtype == np.uint8
+    assert depth.shape == (3, 32, 32) and depth.dtype == np.float32
+
+    folder = out / "scene"
+    scale = json.loads((folder / "transforms.json").read_text())["depth_scale"]
+    for view in range(3):
+        assert np.array_equal(images[view], read_png(folder / f"{view:03}.png"))
+        assert np.array_equal(normals[view], read_png(folder / f"{view:03}_normal.png"))
+        steps = read_png(folder / f"{view:03}_depth.png")
+        assert np.allclose(depth[view], steps * scale, rtol=1e-6, atol=0.0)
+
+    # What they mean: the model lies within the orbit (1.5 units away, inside a unit box);
+    # normals are unit vectors wherever a pixel is covered.
+    covered = depth > 0.0
+    assert covered.any()
+    assert (depth[covered] > 1.5 - 0.9).all() and (depth[covered] < 1.5 + 0.9).all()
+    assert ((images[..., 3] == 0) <= (depth == 0.0)).all(), "no depth where nothing is drawn"
+    vectors = normals[..., :3][normals[..., 3] == 255] / 255.0 * 2.0 - 1.0
+    lengths = np.linalg.norm(vectors, axis=1)
+    assert np.median(np.abs(lengths - 1.0)) < 0.02
+
+    # One or the other alone: one array appended.
+    assert len(renderer.render_views(scene, views=3, size=32, depth=True)) == 4
+    only_normals = renderer.render_views(scene, views=3, size=32, normals=True)
+    assert np.array_equal(only_normals[3], normals)
 
 
 def test_load_error_carries_the_loader_message(renderer, tmp_path):
