@@ -25,6 +25,7 @@
 
 #include "encore/batch/Batch.h"
 #include "encore/batch/BatchInputs.h"
+#include "encore/batch/BatchRenderer.h"
 #include "encore/batch/TransformsJson.h"
 #include "encore/batch/ViewRig.h"
 #include "encore/batch/ViewStrips.h"
@@ -189,6 +190,7 @@ class Renderer {
             throw py::value_error("samples must be 1 or 4");
         }
         mContext = std::make_unique<gpu::Context>(valueOrThrow(gpu::Context::create()));
+        mBatchRenderers = std::make_unique<batch::BatchRenderer>(*mContext);
     }
 
     Scene load(const std::string& path) {
@@ -211,24 +213,31 @@ class Renderer {
                           std::optional<float> fov,
                           bool random,
                           std::uint64_t seed,
-                          bool normalize) {
+                          bool normalize,
+                          bool normals,
+                          bool depth) {
         const auto [width, height] = imageSize(size);
         const batch::ViewRigOptions rig =
             rigOptions({views, elevation, distance, fov, random, seed, normalize});
         const std::vector<glm::mat4> cameraToWorld = batch::viewMatrices(rig);
-        std::vector<image::ImageRgba8> images;
+        Rendered rendered;
         {
             py::gil_scoped_release release;
             std::lock_guard lock(mMutex);  // Python threads may share a renderer.
-            images = valueOrThrow(render(scene.data, cameraToWorld, rig, width, height));
+            rendered =
+                valueOrThrow(render(scene.data, cameraToWorld, rig, width, height, normals, depth));
         }
-        py::array_t<std::uint8_t> pixels(
-            {std::size_t(views), std::size_t(height), std::size_t(width), std::size_t(4)});
-        std::uint8_t* out = pixels.mutable_data();
-        for (const image::ImageRgba8& image : images) {
-            std::memcpy(out, image.pixels.data(), image.pixels.size());
-            out += image.pixels.size();
-        }
+        const auto rgbaArray = [&](const std::vector<image::ImageRgba8>& images) {
+            py::array_t<std::uint8_t> pixels(
+                {std::size_t(views), std::size_t(height), std::size_t(width), std::size_t(4)});
+            std::uint8_t* out = pixels.mutable_data();
+            for (const image::ImageRgba8& image : images) {
+                std::memcpy(out, image.pixels.data(), image.pixels.size());
+                out += image.pixels.size();
+            }
+            return pixels;
+        };
+        py::array_t<std::uint8_t> pixels = rgbaArray(rendered.color);
         const batch::PinholeIntrinsics pinhole =
             batch::intrinsicsFor(width, height, glm::radians(rig.horizontalFovDegrees));
         py::array_t<double> intrinsics({3, 3});
@@ -250,7 +259,28 @@ class Renderer {
                 }
             }
         }
-        return py::make_tuple(pixels, intrinsics, cameras);
+        py::list result;
+        result.append(pixels);
+        result.append(intrinsics);
+        result.append(cameras);
+        if (normals) {
+            result.append(rgbaArray(rendered.normals));
+        }
+        if (depth) {
+            // The 16-bit values of 000_depth.png times its depth_scale: distances along the
+            // camera axis in the cameras' units, 0 where the pixel is mostly empty.
+            const double scale = batch::depthScale(rig);
+            py::array_t<float> distances(
+                {std::size_t(views), std::size_t(height), std::size_t(width)});
+            float* out = distances.mutable_data();
+            for (const image::ImageGray16& image : rendered.depth) {
+                for (const std::uint16_t steps : image.pixels) {
+                    *out++ = float(double(steps) * scale);
+                }
+            }
+            result.append(distances);
+        }
+        return py::tuple(result);
     }
 
     // Runs the job of `encore batch` on this renderer's device.
@@ -306,7 +336,10 @@ class Renderer {
         {
             py::gil_scoped_release release;
             std::lock_guard lock(mMutex);  // One job on the device at a time.
-            summary = batch::runBatch(*mContext, models, options);
+            // The batch renderer of the previous call when the options allow: encore.dask calls
+            // this once per task, and building it (environment maps, pipelines) would otherwise
+            // cost every task as much as a few models.
+            summary = batch::runBatch(*mBatchRenderers, models, options);
         }
         if (interrupt) {
             throw std::move(*interrupt);
@@ -315,15 +348,29 @@ class Renderer {
     }
 
     std::string adapter() const { return mContext->adapterDescription().summary(); }
+    batch::BatchRendererCounts batchCounts() {
+        // Without the GIL while waiting: a batch on another thread takes it to report progress.
+        py::gil_scoped_release release;
+        std::lock_guard lock(mMutex);
+        return mBatchRenderers->counts();
+    }
     std::uint32_t samples() const { return mSamples; }
 
   private:
-    Result<std::vector<image::ImageRgba8>> render(
-        const std::shared_ptr<const scene::SceneData>& scene,
-        const std::vector<glm::mat4>& cameraToWorld,
-        const batch::ViewRigOptions& rig,
-        std::uint32_t width,
-        std::uint32_t height) {
+    // A model's views, and its normal and depth images when asked for.
+    struct Rendered {
+        std::vector<image::ImageRgba8> color;
+        std::vector<image::ImageRgba8> normals;
+        std::vector<image::ImageGray16> depth;
+    };
+
+    Result<Rendered> render(const std::shared_ptr<const scene::SceneData>& scene,
+                            const std::vector<glm::mat4>& cameraToWorld,
+                            const batch::ViewRigOptions& rig,
+                            std::uint32_t width,
+                            std::uint32_t height,
+                            bool normals,
+                            bool depth) {
         const batch::StripLayout layout =
             batch::stripLayout(width, height, rig.views, mContext->limits());
         if (!mRenderer || mRenderer->target().width() != layout.targetWidth() ||
@@ -348,14 +395,36 @@ class Renderer {
             ENCORE_TRY(mRenderer->prepare(*scene, render::StrategyKind::Bundles));
             mPrepared = scene;
         }
-        auto images = batch::renderStrips(*mRenderer, scene->bounds, cameraToWorld, rig, layout);
+        Rendered rendered;
+        auto color = batch::renderStrips(*mRenderer, scene->bounds, cameraToWorld, rig, layout);
+        if (!color) {
+            return color.error();
+        }
+        rendered.color = std::move(*color);
+        if (normals) {
+            auto normalImages = batch::renderStrips(*mRenderer, scene->bounds, cameraToWorld, rig,
+                                                    layout, batch::ViewImage::Normal);
+            if (!normalImages) {
+                return normalImages.error();
+            }
+            rendered.normals = std::move(*normalImages);
+        }
+        if (depth) {
+            auto depthImages =
+                batch::renderDepthStrips(*mRenderer, scene->bounds, cameraToWorld, rig, layout);
+            if (!depthImages) {
+                return depthImages.error();
+            }
+            rendered.depth = std::move(*depthImages);
+        }
         ENCORE_TRY(mContext->checkNoErrors("Rendering '" + scene->sourcePath.string() + "'"));
-        return images;
+        return rendered;
     }
 
     std::uint32_t mSamples;
     std::unique_ptr<gpu::Context> mContext;
     std::unique_ptr<render::Renderer> mRenderer;        // After mContext: destroyed before it.
+    std::unique_ptr<batch::BatchRenderer> mBatchRenderers;  // Kept by batch() between calls.
     std::shared_ptr<const scene::SceneData> mHeld;      // Last given to prepare().
     std::shared_ptr<const scene::SceneData> mPrepared;  // Prepared successfully.
     std::mutex mMutex;
@@ -398,14 +467,18 @@ PYBIND11_MODULE(_encore, module) {
         .def("render_views", &Renderer::renderViews, py::arg("scene"), py::arg("views") = 12,
              py::arg("size") = 512, py::arg("elevation") = 30.0f, py::arg("distance") = 1.5f,
              py::arg("fov") = py::none(), py::arg("random") = false, py::arg("seed") = 0,
-             py::arg("normalize") = true,
+             py::arg("normalize") = true, py::arg("normals") = false, py::arg("depth") = false,
              "Renders `views` RGBA views (straight alpha, transparent background) of the scene "
              "normalised into a unit box, from an orbit `elevation` degrees above the horizon or "
              "(random=True) directions uniform on the sphere drawn from `seed`. Returns (images "
              "uint8 (N, H, W, 4), intrinsics float64 (3, 3) in pixels, camera-to-world float64 "
              "(N, 4, 4) with OpenGL camera axes), as `encore batch` writes them. `fov` is "
-             "horizontal, in degrees (default: a 35 mm lens on a 32 mm sensor). The GIL is "
-             "released while rendering.")
+             "horizontal, in degrees (default: a 35 mm lens on a 32 mm sensor). normals=True "
+             "appends the world-space normals, uint8 (N, H, W, 4) as n * 0.5 + 0.5 with the "
+             "views' alpha, and depth=True (after them) the distances along each camera's axis, "
+             "float32 (N, H, W), 0 where less than half of a pixel is covered: the pixels of "
+             "`encore batch --normals --depth`'s 000_normal.png and of 000_depth.png times its "
+             "depth_scale. The GIL is released while rendering.")
         .def("batch", &Renderer::runBatch, py::arg("inputs"), py::arg("output"),
              py::arg("views") = 12, py::arg("random_views") = 0, py::arg("seed") = 0,
              py::arg("elevation") = 30.0f, py::arg("distance") = 1.5f, py::arg("fov") = py::none(),
@@ -421,7 +494,16 @@ PYBIND11_MODULE(_encore, module) {
              "renderer's. The GIL is released while it runs.")
         .def_property_readonly("samples",
                                [](const Renderer& renderer) { return renderer.samples(); })
-        .def_property_readonly("adapter", &Renderer::adapter);
+        .def_property_readonly("adapter", &Renderer::adapter)
+        .def_property_readonly(
+            "batch_renderers_created",
+            [](Renderer& renderer) { return renderer.batchCounts().renderers; },
+            "How many times batch() built its renderer (render target, pipelines): once for "
+            "calls with the same size, samples and normals/depth, again when those change.")
+        .def_property_readonly(
+            "batch_environments_created",
+            [](Renderer& renderer) { return renderer.batchCounts().environments; },
+            "How many times batch() computed the environment maps: once for every call so far.");
 
     module.def("discover_inputs", &discoverInputs, py::arg("input"),
                "The models `encore batch INPUT` renders, as (path, output name) pairs: INPUT is a "

@@ -1,12 +1,14 @@
 """Renders one glTF model as the Objaverse rendering scripts do, for the collection benchmark.
 
-    blender -b -P blender_views.py -- MODEL OUT_DIR eevee|cycles [VIEWS] [SIZE] [SAMPLES]
+    blender -b -P blender_views.py -- MODEL OUT_DIR eevee|cycles [VIEWS] [SIZE] [SAMPLES] [ONLY]
 
 The scene is emptied, the model imported and scaled into a unit box centred at the origin, one
 large area light put above it, and VIEWS (12) cameras with a 35 mm lens on a 32 mm sensor
 placed 1.5 units away on a circle 30 degrees above the horizon, as `encore batch` places them
 (view 0 on glTF's +Z, then towards +X). Each view is written as OUT_DIR/000.png ... (RGBA,
-transparent film), SIZE (512) square, with SAMPLES (16) samples per pixel.
+transparent film), SIZE (512) square, with SAMPLES (16) samples per pixel. ONLY, a
+comma-separated list of view indices ("0,3,6,9"), renders those views of the circle and no
+others (the contact sheet shows a few; at seconds per view, rendering the rest is wasted).
 """
 
 import math
@@ -26,6 +28,8 @@ model, out_dir, engine = arguments[:3]
 views = int(arguments[3]) if len(arguments) > 3 else 12
 size = int(arguments[4]) if len(arguments) > 4 else 512
 samples = int(arguments[5]) if len(arguments) > 5 else 16
+only = ([int(view) for view in arguments[6].split(",")] if len(arguments) > 6
+        else list(range(views)))
 
 bpy.ops.wm.read_factory_settings(use_empty=True)
 scene = bpy.context.scene
@@ -89,7 +93,7 @@ track.track_axis = "TRACK_NEGATIVE_Z"
 track.up_axis = "UP_Y"
 
 elevation = math.radians(30.0)
-for view in range(views):
+for view in only:
     azimuth = 2.0 * math.pi * view / views
     # glTF (x, y, z) is Blender (x, -z, y).
     x = math.cos(elevation) * math.sin(azimuth)

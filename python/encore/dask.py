@@ -7,7 +7,9 @@
 
 The models are split into chunks of `chunk_size`, one task each. Every worker process keeps one
 encore.Renderer (one GPU device), created by the first task that runs there and reused by every
-task after it, and renders its chunks as `encore batch` does, into the same output folder: that
+task after it; its batch renderer (environment maps, pipelines) is likewise built by the first
+task and kept (Renderer.batch keeps it between calls with the same size and samples). Each task
+renders its chunk as `encore batch` does, into the same output folder: that
 folder must be the same path on every worker (shared storage). The files are those a single
 `encore batch` writes, byte for byte.
 

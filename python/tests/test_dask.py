@@ -125,6 +125,12 @@ def test_each_worker_keeps_one_renderer(client, collection, tmp_path):
     created = client.run(lambda: encore.dask._worker_renderers.created)
     assert all(count <= 1 for count in created.values()), created
     assert sum(created.values()) == len(summary["workers"])
+    # Every task so far had the same options: each worker built its batch renderer (the
+    # environment maps, the pipelines) once, in its first task, not once per task.
+    built = client.run(lambda: [(renderer.batch_renderers_created,
+                                 renderer.batch_environments_created)
+                                for renderer in encore.dask._worker_renderers._renderers.values()])
+    assert all(counts == [(1, 1)] for counts in built.values() if counts), built
 
 
 def test_killing_a_worker_mid_run_still_renders_every_model(client, tmp_path):

@@ -8,9 +8,11 @@ import json
 import math
 import os
 import signal
+import struct
 import subprocess
 import threading
 import time
+import zlib
 
 import numpy as np
 import pytest
@@ -71,6 +73,85 @@ def test_render_views_matches_the_batch_command(renderer, tmp_path):
     assert np.allclose(cameras, expected, atol=1e-6)
 
 
+def read_png(path):
+    """The pixels of an 8-bit RGBA or 16-bit greyscale PNG (what `encore batch` writes), as
+    uint8 (H, W, 4) or uint16 (H, W). Small images only: the filters are undone in Python."""
+    data = path.read_bytes()
+    position, compressed = 8, b""
+    while position < len(data):
+        length, kind = struct.unpack(">I4s", data[position:position + 8])
+        body = data[position + 8:position + 8 + length]
+        if kind == b"IHDR":
+            width, height, depth, colour = struct.unpack(">IIBB", body[:10])
+        elif kind == b"IDAT":
+            compressed += body
+        position += 12 + length
+    assert (depth, colour) in ((8, 6), (16, 0)), (depth, colour)
+    step = 4 if colour == 6 else 2  # Bytes per pixel, what the filters look back.
+    stride = width * step
+    raw = zlib.decompress(compressed)
+    rows, previous = [], bytearray(stride)
+    for y in range(height):
+        kind = raw[y * (stride + 1)]
+        row = bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
+        for x in range(stride):
+            left = row[x - step] if x >= step else 0
+            up = previous[x]
+            corner = previous[x - step] if x >= step else 0
+            if kind == 1:
+                row[x] = (row[x] + left) & 0xFF
+            elif kind == 2:
+                row[x] = (row[x] + up) & 0xFF
+            elif kind == 3:
+                row[x] = (row[x] + ((left + up) >> 1)) & 0xFF
+            elif kind == 4:
+                estimate = left + up - corner
+                nearest = min((abs(estimate - left), 0, left), (abs(estimate - up), 1, up),
+                              (abs(estimate - corner), 2, corner))
+                row[x] = (row[x] + nearest[2]) & 0xFF
+        rows.append(bytes(row))
+        previous = row
+    if colour == 6:
+        return np.frombuffer(b"".join(rows), np.uint8).reshape(height, width, 4)
+    return np.frombuffer(b"".join(rows), ">u2").reshape(height, width).astype(np.uint16)
+
+
+def test_render_views_returns_the_batch_commands_normals_and_depth(renderer, tmp_path):
+    model = generate(tmp_path / "in" / "scene.glb", seed=5)
+    out = tmp_path / "out"
+    subprocess.run([os.environ["ENCORE_BINARY"], "batch", str(tmp_path / "in"), "-o", str(out),
+                    "--views", "3", "--size", "32", "--normals", "--depth", "--quiet"],
+                   check=True, capture_output=True)
+    scene = renderer.load(str(model))
+    images, _, _, normals, depth = renderer.render_views(scene, views=3, size=32, normals=True,
+                                                         depth=True)
+    assert normals.shape == (3, 32, 32, 4) and normals.dtype == np.uint8
+    assert depth.shape == (3, 32, 32) and depth.dtype == np.float32
+
+    folder = out / "scene"
+    scale = json.loads((folder / "transforms.json").read_text())["depth_scale"]
+    for view in range(3):
+        assert np.array_equal(images[view], read_png(folder / f"{view:03}.png"))
+        assert np.array_equal(normals[view], read_png(folder / f"{view:03}_normal.png"))
+        steps = read_png(folder / f"{view:03}_depth.png")
+        assert np.allclose(depth[view], steps * scale, rtol=1e-6, atol=0.0)
+
+    # What they mean: the model lies within the orbit (1.5 units away, inside a unit box);
+    # normals are unit vectors wherever a pixel is covered.
+    covered = depth > 0.0
+    assert covered.any()
+    assert (depth[covered] > 1.5 - 0.9).all() and (depth[covered] < 1.5 + 0.9).all()
+    assert ((images[..., 3] == 0) <= (depth == 0.0)).all(), "no depth where nothing is drawn"
+    vectors = normals[..., :3][normals[..., 3] == 255] / 255.0 * 2.0 - 1.0
+    lengths = np.linalg.norm(vectors, axis=1)
+    assert np.median(np.abs(lengths - 1.0)) < 0.02
+
+    # One or the other alone: one array appended.
+    assert len(renderer.render_views(scene, views=3, size=32, depth=True)) == 4
+    only_normals = renderer.render_views(scene, views=3, size=32, normals=True)
+    assert np.array_equal(only_normals[3], normals)
+
+
 def test_load_error_carries_the_loader_message(renderer, tmp_path):
     broken = tmp_path / "broken.gltf"
     broken.write_text('{"asset": ')
@@ -99,6 +180,46 @@ def test_batch_lists_failures_and_skips_finished_models(tmp_path):
         ("load", "broken.gltf")]
     again = encore.batch(str(tmp_path / "in"), str(out), views=3, size=32)
     assert (again["rendered"], again["failed"], again["skipped"]) == (0, 1, 2)
+
+
+def files_under(folder):
+    """Every file below `folder` except failures.jsonl, by relative path, with its bytes."""
+    return {str(path.relative_to(folder)): path.read_bytes()
+            for path in sorted(folder.rglob("*"))
+            if path.is_file() and path.name != "failures.jsonl"}
+
+
+def test_batch_reuses_its_renderer_across_calls_and_writes_the_commands_files(tmp_path):
+    models = [(str(generate(tmp_path / "in" / f"m{seed}.glb", seed=seed)), f"m{seed}")
+              for seed in (1, 2, 3, 4)]
+    renderer = encore.Renderer()
+    assert (renderer.batch_renderers_created, renderer.batch_environments_created) == (0, 0)
+    out = tmp_path / "reused"
+    # As encore.dask's tasks call it: a few models per call, one renderer for them all.
+    for chunk in (models[:1], models[1:3], models[3:]):
+        summary = renderer.batch(chunk, str(out), views=3, size=32, failure_log=False)
+        assert summary["rendered"] == len(chunk) and summary["failed"] == 0
+        assert renderer.batch_renderers_created == 1, "built once, by the first call"
+        assert renderer.batch_environments_created == 1
+
+    reference = tmp_path / "command"
+    subprocess.run([os.environ["ENCORE_BINARY"], "batch", str(tmp_path / "in"), "-o",
+                    str(reference), "--views", "3", "--size", "32", "--quiet"], check=True,
+                   capture_output=True)
+    assert files_under(out) == files_under(reference), "the same files, byte for byte"
+
+    # Normal images need an HDR target: a new renderer, the same environment maps; and one
+    # that still renders what the command renders.
+    normals = tmp_path / "normals"
+    renderer.batch(models[:2], str(normals), views=3, size=32, normals=True)
+    assert (renderer.batch_renderers_created, renderer.batch_environments_created) == (2, 1)
+    renderer.batch(models[2:], str(normals), views=3, size=32, normals=True)
+    assert (renderer.batch_renderers_created, renderer.batch_environments_created) == (2, 1)
+    reference = tmp_path / "command-normals"
+    subprocess.run([os.environ["ENCORE_BINARY"], "batch", str(tmp_path / "in"), "-o",
+                    str(reference), "--views", "3", "--size", "32", "--normals", "--quiet"],
+                   check=True, capture_output=True)
+    assert files_under(normals) == files_under(reference)
 
 
 def test_rendering_releases_the_gil(renderer, tmp_path):

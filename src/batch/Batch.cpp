@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "ModelLoader.h"
+#include "encore/batch/BatchRenderer.h"
 #include "encore/batch/FailureLog.h"
 #include "encore/batch/ModelOutput.h"
 #include "encore/batch/TransformsJson.h"
@@ -69,26 +70,6 @@ struct ChunkInFlight {
     ViewImage kind = ViewImage::Color;
 };
 
-// The renderer's output is sRGB-encoded; normal images store n * 0.5 + 0.5 linearly. Decoding
-// the 8-bit sRGB value is exact to within one level (the HDR target holds the normal itself).
-void decodeSrgbColor(image::ImageRgba8& image) {
-    static const std::array<std::uint8_t, 256> kLinear = [] {
-        std::array<std::uint8_t, 256> table{};
-        for (int value = 0; value < 256; ++value) {
-            const double encoded = value / 255.0;
-            const double linear =
-                encoded <= 0.04045 ? encoded / 12.92 : std::pow((encoded + 0.055) / 1.055, 2.4);
-            table[value] = std::uint8_t(std::lround(linear * 255.0));
-        }
-        return table;
-    }();
-    for (std::size_t i = 0; i < image.pixels.size(); i += 4) {
-        for (std::size_t channel = 0; channel < 3; ++channel) {
-            image.pixels[i + channel] = kLinear[image.pixels[i + channel]];
-        }
-    }
-}
-
 // A directional light shining straight down, placed by no node.
 void addTopLight(scene::SceneData& scene, float lux) {
     scene::Light light;
@@ -112,8 +93,14 @@ struct TargetViews {
 
 class BatchRun {
   public:
-    BatchRun(gpu::Context& context, std::span<const BatchInput> inputs, const BatchOptions& options)
-        : mContext(context), mInputs(inputs), mOptions(options), mPool(options.jobs) {}
+    BatchRun(BatchRenderer& renderers,
+             std::span<const BatchInput> inputs,
+             const BatchOptions& options)
+        : mContext(renderers.context()),
+          mRenderers(renderers),
+          mInputs(inputs),
+          mOptions(options),
+          mPool(options.jobs) {}
 
     Result<BatchSummary> run();
 
@@ -141,7 +128,7 @@ class BatchRun {
     void renderDepth(const TargetViews& views, float unitsPerModelUnit, double& waiting);
     // What one step of a 16-bit depth value is, in transforms.json's units: the depth range
     // covers twice the camera distance.
-    double depthScale() const { return 2.0 * double(mOptions.views.distance) / 65535.0; }
+    double depthScale() const { return batch::depthScale(mOptions.views); }
     // Draws a target's views and starts reading them back; `waiting` adds the time spent
     // waiting for a free read-back slot.
     void renderChunk(const TargetViews& views, ViewImage kind, double& waiting);
@@ -152,6 +139,8 @@ class BatchRun {
     BatchProgress progress() const;
 
     gpu::Context& mContext;
+    // Owns the renderer and the read-back ring, which may outlive this run (BatchRenderer.h).
+    BatchRenderer& mRenderers;
     std::span<const BatchInput> mInputs;
     std::vector<BatchInput> mPending;  // Not finished by an earlier run, in load order.
     const BatchOptions& mOptions;
@@ -162,8 +151,9 @@ class BatchRun {
     StageTimes mGpuStages;  // The GPU thread's stages.
     std::size_t mSkipped = 0;
     StripLayout mLayout;
-    std::optional<render::Renderer> mRenderer;
-    std::unique_ptr<gpu::TextureReadbackRing> mRing;
+    // mRenderers' renderer and ring; null after a device loss that could not be recovered.
+    render::Renderer* mRenderer = nullptr;
+    gpu::TextureReadbackRing* mRing = nullptr;
     std::deque<ChunkInFlight> mChunks;  // In the ring's order.
     // The scene last handed to the renderer, which refers to it until the next prepare.
     std::optional<LoadedModel> mPrepared;
@@ -177,14 +167,12 @@ Result<void> BatchRun::createRenderer() {
     rendererOptions.keepPipelines = true;  // Models share most pipelines: create each once.
     // Normal images have a transparent background whatever the colour images have.
     rendererOptions.target.hdr = mOptions.images.normals || mOptions.images.depth;
-    mRing.reset();
-    mRenderer.reset();
-    auto renderer = render::Renderer::create(mContext, rendererOptions);
-    if (!renderer) {
-        return renderer.error();
-    }
-    mRenderer.emplace(std::move(*renderer));
-    mRing = std::make_unique<gpu::TextureReadbackRing>(mContext, mOptions.readbackSlots);
+    mRing = nullptr;
+    mRenderer = nullptr;
+    // The renderer of an earlier run when it was built from the same options.
+    ENCORE_TRY(mRenderers.acquire(rendererOptions, mOptions.readbackSlots));
+    mRenderer = &mRenderers.renderer();
+    mRing = &mRenderers.ring();
     return {};
 }
 
@@ -231,7 +219,7 @@ void BatchRun::encodeView(const std::shared_ptr<ModelJob>& job,
                           image::ImageRgba8 image) {
     writeImage(job, view, kind, [kind, image = std::move(image)]() mutable {
         if (kind == ViewImage::Normal) {
-            decodeSrgbColor(image);
+            decodeNormalImage(image);
         }
         return image::encodePng(image);
     });
@@ -299,13 +287,12 @@ void BatchRun::recoverIfLost() {
     while (!mChunks.empty()) {
         collectOldest();
     }
+    mRenderer = nullptr;
+    mRing = nullptr;
+    mRenderers.discard();  // Built on the lost device.
     mPrepared.reset();
     if (auto recreated = mContext.recreateDevice(); recreated) {
-        if (auto created = createRenderer(); !created) {
-            mRenderer.reset();
-        }
-    } else {
-        mRenderer.reset();
+        (void)createRenderer();  // On failure mRenderer stays null: later models fail.
     }
 }
 
@@ -328,23 +315,9 @@ void BatchRun::renderChunk(const TargetViews& views, ViewImage kind, double& wai
 void BatchRun::renderDebugChannel(const std::shared_ptr<ModelJob>& job,
                                   render::DebugChannel channel,
                                   const std::function<void()>& draw) {
-    // Buffer writes only: the recorded bundles stay valid.
-    const render::LightingParameters shaded = mRenderer->lighting().parameters();
-    const render::ToneMappingOptions mapped = mRenderer->toneMapping();
-    render::LightingParameters debug = shaded;
-    debug.debugChannel = channel;
-    render::ToneMappingOptions identity = mapped;
-    identity.toneMapping = render::ToneMapping::None;
-    identity.exposure = 1.0f;
-    identity.background = render::BackgroundKind::Transparent;
-    mRenderer->setLighting(debug);
-    if (auto set = mRenderer->setToneMapping(identity); !set) {
-        job->fail(*mFailures, mCounters, "render", set.error());
-    } else {
-        draw();
+    if (auto drawn = drawDebugChannel(*mRenderer, channel, draw); !drawn) {
+        job->fail(*mFailures, mCounters, "render", drawn.error());
     }
-    mRenderer->setLighting(shaded);
-    (void)mRenderer->setToneMapping(mapped);  // Accepted before: cannot fail.
 }
 
 void BatchRun::renderDepth(const TargetViews& views, float unitsPerModelUnit, double& waiting) {
@@ -360,28 +333,9 @@ void BatchRun::renderDepth(const TargetViews& views, float unitsPerModelUnit, do
         job->fail(*mFailures, mCounters, "render", wide.error());
         return;
     }
-    const std::uint32_t targetWidth = mLayout.targetWidth();
-    const double scale = depthScale();
     for (std::uint32_t strip = 0; strip < count; ++strip) {
-        image::ImageGray16 depth;
-        depth.width = mOptions.width;
-        depth.height = mOptions.height;
-        depth.pixels.resize(std::size_t(depth.width) * depth.height);
-        for (std::uint32_t y = 0; y < depth.height; ++y) {
-            for (std::uint32_t x = 0; x < depth.width; ++x) {
-                const float* texel =
-                    &(*wide)[(std::size_t(y) * targetWidth + strip * depth.width + x) * 4];
-                // Edges and blended surfaces hold depth x coverage over an empty (0) background;
-                // below half coverage the quotient is mostly rounding (half floats): empty.
-                const float coverage = texel[3];
-                if (!(coverage >= 0.5f)) {
-                    continue;  // 0: nothing there.
-                }
-                const double units = double(texel[0] / coverage) * unitsPerModelUnit / scale;
-                depth.pixels[std::size_t(y) * depth.width + x] =
-                    std::uint16_t(std::clamp(std::lround(units), 1l, 65535l));
-            }
-        }
+        image::ImageGray16 depth = depthStrip(*wide, mLayout.targetWidth(), strip, mOptions.width,
+                                              mOptions.height, unitsPerModelUnit, depthScale());
         writeImage(job, first + strip, ViewImage::Depth,
                    [depth = std::move(depth)] { return image::encodePng16(depth); });
     }
@@ -563,6 +517,11 @@ Result<BatchSummary> BatchRun::run() {
     }
     loader.finish();
     mPool.waitIdle();
+    // The renderer may serve later runs (BatchRenderer): it must not refer to the scene freed
+    // here, nor hold that scene's GPU memory.
+    if (mRenderer) {
+        mRenderer->releaseScene();
+    }
     mPrepared.reset();
 
     BatchSummary summary;
@@ -581,7 +540,14 @@ Result<BatchSummary> BatchRun::run() {
 Result<BatchSummary> runBatch(gpu::Context& context,
                               std::span<const BatchInput> inputs,
                               const BatchOptions& options) {
-    BatchRun run(context, inputs, options);
+    BatchRenderer renderers(context);
+    return runBatch(renderers, inputs, options);
+}
+
+Result<BatchSummary> runBatch(BatchRenderer& renderers,
+                              std::span<const BatchInput> inputs,
+                              const BatchOptions& options) {
+    BatchRun run(renderers, inputs, options);
     return run.run();
 }
 

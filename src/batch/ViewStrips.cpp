@@ -1,6 +1,8 @@
 #include "encore/batch/ViewStrips.h"
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <cstring>
 
 namespace encore::batch {
@@ -54,17 +56,102 @@ image::ImageRgba8 cropStrip(const image::ImageRgba8& wide,
     return view;
 }
 
+Result<void> drawDebugChannel(render::Renderer& renderer,
+                              render::DebugChannel channel,
+                              const std::function<void()>& draw) {
+    const render::LightingParameters shaded = renderer.lighting().parameters();
+    const render::ToneMappingOptions mapped = renderer.toneMapping();
+    render::LightingParameters debug = shaded;
+    debug.debugChannel = channel;
+    render::ToneMappingOptions identity = mapped;
+    identity.toneMapping = render::ToneMapping::None;
+    identity.exposure = 1.0f;
+    identity.background = render::BackgroundKind::Transparent;
+    renderer.setLighting(debug);
+    Result<void> set = renderer.setToneMapping(identity);
+    if (set) {
+        draw();
+    }
+    renderer.setLighting(shaded);
+    (void)renderer.setToneMapping(mapped);  // Accepted before: cannot fail.
+    return set;
+}
+
+void decodeNormalImage(image::ImageRgba8& image) {
+    static const std::array<std::uint8_t, 256> kLinear = [] {
+        std::array<std::uint8_t, 256> table{};
+        for (int value = 0; value < 256; ++value) {
+            const double encoded = value / 255.0;
+            const double linear =
+                encoded <= 0.04045 ? encoded / 12.92 : std::pow((encoded + 0.055) / 1.055, 2.4);
+            table[value] = std::uint8_t(std::lround(linear * 255.0));
+        }
+        return table;
+    }();
+    for (std::size_t i = 0; i < image.pixels.size(); i += 4) {
+        for (std::size_t channel = 0; channel < 3; ++channel) {
+            image.pixels[i + channel] = kLinear[image.pixels[i + channel]];
+        }
+    }
+}
+
+double depthScale(const ViewRigOptions& rig) {
+    return 2.0 * double(rig.distance) / 65535.0;
+}
+
+image::ImageGray16 depthStrip(std::span<const float> wide,
+                              std::uint32_t targetWidth,
+                              std::uint32_t strip,
+                              std::uint32_t width,
+                              std::uint32_t height,
+                              float unitsPerModelUnit,
+                              double scale) {
+    image::ImageGray16 depth;
+    depth.width = width;
+    depth.height = height;
+    depth.pixels.resize(std::size_t(width) * height);
+    for (std::uint32_t y = 0; y < height; ++y) {
+        for (std::uint32_t x = 0; x < width; ++x) {
+            const float* texel = &wide[(std::size_t(y) * targetWidth + strip * width + x) * 4];
+            // Edges and blended surfaces hold depth x coverage over an empty (0) background;
+            // below half coverage the quotient is mostly rounding (half floats): empty.
+            const float coverage = texel[3];
+            if (!(coverage >= 0.5f)) {
+                continue;  // 0: nothing there.
+            }
+            const double units = double(texel[0] / coverage) * unitsPerModelUnit / scale;
+            depth.pixels[std::size_t(y) * width + x] =
+                std::uint16_t(std::clamp(std::lround(units), 1l, 65535l));
+        }
+    }
+    return depth;
+}
+
 Result<std::vector<image::ImageRgba8>> renderStrips(render::Renderer& renderer,
                                                     const scene::Bounds& bounds,
                                                     std::span<const glm::mat4> cameraToWorld,
                                                     const ViewRigOptions& rig,
-                                                    const StripLayout& layout) {
+                                                    const StripLayout& layout,
+                                                    ViewImage kind) {
+    if (kind == ViewImage::Depth) {
+        return makeError(ErrorCode::InvalidArgument,
+                         "Depth images are 16-bit: renderDepthStrips draws them.");
+    }
     const glm::mat4 toUnitBox = normalization(bounds, rig.normalize);
     const float fov = glm::radians(rig.horizontalFovDegrees);
     std::vector<image::ImageRgba8> views;
     for (std::uint32_t first = 0; first < cameraToWorld.size(); first += layout.strips) {
-        renderer.renderViews(stripCameras(cameraToWorld, first, layout, toUnitBox, fov));
-        auto wide = renderer.readImage();
+        const auto cameras = stripCameras(cameraToWorld, first, layout, toUnitBox, fov);
+        Result<image::ImageRgba8> wide = makeError(ErrorCode::InvalidArgument, "Not drawn.");
+        auto drawAndRead = [&] {
+            renderer.renderViews(cameras);
+            wide = renderer.readImage();
+        };
+        if (kind == ViewImage::Normal) {
+            ENCORE_TRY(drawDebugChannel(renderer, render::DebugChannel::Normal, drawAndRead));
+        } else {
+            drawAndRead();
+        }
         if (!wide) {
             return wide.error();
         }
@@ -72,6 +159,38 @@ Result<std::vector<image::ImageRgba8>> renderStrips(render::Renderer& renderer,
             std::min<std::uint32_t>(layout.strips, std::uint32_t(cameraToWorld.size()) - first);
         for (std::uint32_t strip = 0; strip < count; ++strip) {
             views.push_back(cropStrip(*wide, strip, layout.width));
+            if (kind == ViewImage::Normal) {
+                decodeNormalImage(views.back());
+            }
+        }
+    }
+    return views;
+}
+
+Result<std::vector<image::ImageGray16>> renderDepthStrips(render::Renderer& renderer,
+                                                          const scene::Bounds& bounds,
+                                                          std::span<const glm::mat4> cameraToWorld,
+                                                          const ViewRigOptions& rig,
+                                                          const StripLayout& layout) {
+    const glm::mat4 toUnitBox = normalization(bounds, rig.normalize);
+    const float fov = glm::radians(rig.horizontalFovDegrees);
+    const double scale = depthScale(rig);
+    std::vector<image::ImageGray16> views;
+    for (std::uint32_t first = 0; first < cameraToWorld.size(); first += layout.strips) {
+        const auto cameras = stripCameras(cameraToWorld, first, layout, toUnitBox, fov);
+        Result<std::vector<float>> wide = makeError(ErrorCode::InvalidArgument, "Not drawn.");
+        ENCORE_TRY(drawDebugChannel(renderer, render::DebugChannel::Depth, [&] {
+            renderer.renderViews(cameras);
+            wide = renderer.readHdrImage();
+        }));
+        if (!wide) {
+            return wide.error();
+        }
+        const std::uint32_t count =
+            std::min<std::uint32_t>(layout.strips, std::uint32_t(cameraToWorld.size()) - first);
+        for (std::uint32_t strip = 0; strip < count; ++strip) {
+            views.push_back(depthStrip(*wide, layout.targetWidth(), strip, layout.width,
+                                       layout.height, toUnitBox[0][0], scale));
         }
     }
     return views;

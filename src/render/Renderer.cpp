@@ -191,6 +191,22 @@ Result<void> Renderer::prepare(const scene::SceneData& scene, StrategyKind kind,
     return {};
 }
 
+void Renderer::releaseScene() {
+    mGpuAnimation.reset();
+    mGpuAnimationPending = false;
+    mStrategy.reset();
+    mSetup->animation = nullptr;
+    mAnimation.reset();
+    mPlayer.reset();
+    mAnimationStats = {};
+    mAnimationTime.reset();
+    mScene = nullptr;
+    // As prepare() does before the next strategy: Dawn frees the objects on a later tick, so
+    // let it happen now rather than hold the scene's memory until the next prepare.
+    mContext->waitForIdle();
+    mContext->device().Tick();
+}
+
 Result<void> Renderer::createGpuAnimation() {
     mGpuAnimation.reset();
     mGpuAnimationPending = false;

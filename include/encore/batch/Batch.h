@@ -20,6 +20,7 @@
 #include <span>
 
 #include "encore/batch/BatchInputs.h"
+#include "encore/batch/BatchRenderer.h"
 #include "encore/batch/FailureLog.h"
 #include "encore/batch/ViewImages.h"
 #include "encore/batch/ViewRig.h"
@@ -97,6 +98,12 @@ struct BatchOptions {
 // cannot be created, the options are invalid, the renderer cannot be created); a model's failure
 // is in failures.jsonl and the summary.
 Result<BatchSummary> runBatch(gpu::Context& context,
+                              std::span<const BatchInput> inputs,
+                              const BatchOptions& options);
+// The same on the device of `renderers`, with the renderer it kept from an earlier run when the
+// options allow (BatchRenderer.h); what this run builds is kept in it for the next. The images
+// are the same either way.
+Result<BatchSummary> runBatch(BatchRenderer& renderers,
                               std::span<const BatchInput> inputs,
                               const BatchOptions& options);
 

@@ -5,11 +5,13 @@
 // target holds, which cameras fill them, and how the read-back image is cut into views.
 
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <vector>
 
 #include <glm/glm.hpp>
 
+#include "encore/batch/ViewImages.h"
 #include "encore/batch/ViewRig.h"
 #include "encore/core/Result.h"
 #include "encore/gpu/DeviceLimits.h"
@@ -48,14 +50,55 @@ image::ImageRgba8 cropStrip(const image::ImageRgba8& wide,
                             std::uint32_t strip,
                             std::uint32_t width);
 
+// Normal and depth images (ViewImages.h) come from the renderer's debug channels, drawn with
+// tone mapping off. What follows is shared by runBatch and renderStrips, so that both write the
+// same values.
+
+// Calls `draw` with `renderer` switched to `channel`, tone mapping off (identity, exposure 1)
+// and a transparent background, then shades as before. Buffer writes only: recorded bundles
+// stay valid. Fails, without drawing, when the target cannot take a transparent background.
+Result<void> drawDebugChannel(render::Renderer& renderer,
+                              render::DebugChannel channel,
+                              const std::function<void()>& draw);
+
+// A normal image as read back: the target stores its colour sRGB-encoded, the image n * 0.5 +
+// 0.5 linearly. Decoding the 8-bit values is exact to within one level (the HDR target holds the
+// normal itself).
+void decodeNormalImage(image::ImageRgba8& image);
+
+// One step of a 16-bit depth image, in the units of the rig's cameras: the range covers twice
+// the camera distance (transforms.json's depth_scale).
+double depthScale(const ViewRigOptions& rig);
+
+// Strip `strip` of a target drawn through the depth channel and read back as HDR floats
+// (Renderer::readHdrImage, RGBA, targetWidth wide): distances along the camera axis in steps of
+// `scale`, the scene scaled by `unitsPerModelUnit` (the normalisation's scale), 0 where less
+// than half of the pixel is covered.
+image::ImageGray16 depthStrip(std::span<const float> wide,
+                              std::uint32_t targetWidth,
+                              std::uint32_t strip,
+                              std::uint32_t width,
+                              std::uint32_t height,
+                              float unitsPerModelUnit,
+                              double scale);
+
 // Draws the views of the scene `renderer` has prepared (from `rig`'s cameras, normalised by
 // the scene's bounds as `rig` says) and reads them back, waiting for each target: for callers
-// that render one model at a time (the Python module). The renderer's target must be
+// that render one model at a time (the Python module). `kind` is Color or Normal (the images
+// `encore batch` writes as 000.png and 000_normal.png). The renderer's target must be
 // layout.targetWidth() x layout.height.
 Result<std::vector<image::ImageRgba8>> renderStrips(render::Renderer& renderer,
                                                     const scene::Bounds& bounds,
                                                     std::span<const glm::mat4> cameraToWorld,
                                                     const ViewRigOptions& rig,
-                                                    const StripLayout& layout);
+                                                    const StripLayout& layout,
+                                                    ViewImage kind = ViewImage::Color);
+// The same views' depth, as `encore batch --depth` writes it (000_depth.png, in steps of
+// depthScale(rig)).
+Result<std::vector<image::ImageGray16>> renderDepthStrips(render::Renderer& renderer,
+                                                          const scene::Bounds& bounds,
+                                                          std::span<const glm::mat4> cameraToWorld,
+                                                          const ViewRigOptions& rig,
+                                                          const StripLayout& layout);
 
 }  // namespace encore::batch

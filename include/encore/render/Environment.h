@@ -41,6 +41,8 @@ struct EnvironmentOptions {
     // on lavapipe.
     std::uint32_t specularSamples = 256;    // GGX importance samples.
     std::uint32_t irradianceSamples = 512;  // Cosine-weighted samples.
+
+    bool operator==(const EnvironmentOptions&) const = default;
 };
 
 class Environment {

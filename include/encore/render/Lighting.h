@@ -40,6 +40,8 @@ struct LightingParameters {
     bool imageBasedLighting = true;
     bool punctualLights = true;  // The file's KHR_lights_punctual lights.
     DebugChannel debugChannel = DebugChannel::Shaded;
+
+    bool operator==(const LightingParameters&) const = default;
 };
 
 // struct Lighting of scene_lighting.wgsl, byte for byte.

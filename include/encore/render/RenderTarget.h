@@ -24,6 +24,8 @@ struct RenderTargetOptions {
     // The output can also be sampled, through outputBytesView(): for a window that presents the
     // image (view::Presenter) by copying its bytes into the window's surface.
     bool presentable = false;
+
+    bool operator==(const RenderTargetOptions&) const = default;
 };
 
 class RenderTarget {

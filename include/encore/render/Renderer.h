@@ -49,6 +49,10 @@ struct RendererOptions {
     // hundreds of milliseconds (lavapipe). Off by default, so that each prepare's
     // RenderSetup::pipelinesCreated counts what that strategy needs.
     bool keepPipelines = false;
+
+    // Equal options build equal renderers. The environment and its image compare as pointers:
+    // the same shared object, not equal contents.
+    bool operator==(const RendererOptions&) const = default;
 };
 
 // A frame's timing (gpuMilliseconds only with a GPU timer set) and what it recorded.
@@ -81,6 +85,12 @@ class Renderer {
     // previous scene or strategy; with `bundle`, the frame is drawn from render bundles
     // (createStrategy). Fails on any WebGPU error raised while preparing.
     Result<void> prepare(const scene::SceneData& scene, StrategyKind kind, bool bundle = false);
+    // Forgets the prepared scene and frees what was made for it (the strategy's buffers,
+    // textures and bundles, the animation), keeping what serves any scene (target, environment,
+    // kept pipelines). For a renderer kept after the scene it prepared is gone (encore batch
+    // between two runs): it no longer refers to that scene. Frames then draw nothing but the
+    // background until the next prepare().
+    void releaseScene();
     // Whether the prepared strategy draws from render bundles (a bundled kind, or `bundle`).
     bool bundled() const { return mBundle || isBundledKind(mKind); }
     const scene::SceneData* scene() const { return mScene; }

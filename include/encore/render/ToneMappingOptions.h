@@ -28,6 +28,8 @@ struct ToneMappingOptions {
     BackgroundKind background = BackgroundKind::Color;
     // Linear RGB of BackgroundKind::Color; the default is a neutral dark grey.
     glm::vec3 backgroundColor{0.05f, 0.05f, 0.06f};
+
+    bool operator==(const ToneMappingOptions&) const = default;
 };
 
 }  // namespace encore::render

@@ -1,0 +1,85 @@
+#pragma once
+
+// What a batch builds on its device before it renders a model, kept for the batches after it:
+// the renderer (render target, image-based light, the pipelines it keeps from one model to the
+// next) and the ring of read-back buffers.
+//
+// runBatch builds these once per call. A caller that runs many batches on one device in turn
+// (encore.Renderer.batch, called once per Dask task on a worker) keeps one BatchRenderer and
+// hands it to every runBatch: only the first builds, and the batches after it start at once with
+// the pipelines already created, as the models of one long batch do. What is kept is rebuilt only
+// when a batch asks for different options: a new size or sample count makes a new renderer (and
+// ring) but keeps the environment maps; a new environment image or environment options rebuild
+// those too. The images are those of a fresh build, byte for byte.
+
+#include <cstddef>
+#include <memory>
+#include <optional>
+
+#include "encore/core/Result.h"
+#include "encore/gpu/Context.h"
+#include "encore/gpu/TextureReadbackRing.h"
+#include "encore/render/Environment.h"
+#include "encore/render/Renderer.h"
+#include "encore/shaders/ShaderLibrary.h"
+
+namespace encore::batch {
+
+// How often a BatchRenderer built what it keeps: what tells reuse from rebuilding.
+struct BatchRendererCounts {
+    std::size_t renderers = 0;     // render::Renderer::create calls (each with its ring).
+    std::size_t environments = 0;  // Environment maps computed.
+};
+
+class BatchRenderer {
+  public:
+    // The context must outlive this object.
+    explicit BatchRenderer(gpu::Context& context);
+    ~BatchRenderer();
+    BatchRenderer(const BatchRenderer&) = delete;
+    BatchRenderer& operator=(const BatchRenderer&) = delete;
+
+    // Makes renderer() one built from `options` with `readbackSlots` read-back buffers: the one
+    // already kept when it was built from equal options, otherwise a new one. The environment
+    // maps are kept when `options` names the same environment source (no `environment` of its
+    // own, the same `environmentImage` object, equal `environmentOptions`). No scene is prepared
+    // on return.
+    Result<void> acquire(const render::RendererOptions& options, std::size_t readbackSlots);
+
+    // Valid after a successful acquire() until the next acquire() or discard().
+    render::Renderer& renderer() { return *mRenderer; }
+    gpu::TextureReadbackRing& ring() { return *mRing; }
+    bool ready() const { return mRenderer.has_value(); }
+
+    // Forgets everything it built: after a device loss its objects belong to the lost device.
+    // (acquire() also rebuilds by itself when the context's device is not the one it built on.)
+    void discard();
+
+    gpu::Context& context() { return mContext; }
+
+    const BatchRendererCounts& counts() const { return mCounts; }
+
+  private:
+    Result<std::shared_ptr<render::Environment>> environmentFor(
+        const render::RendererOptions& options);
+
+    gpu::Context& mContext;
+    BatchRendererCounts mCounts;
+    // The device everything below was built on; held, so that a new device never compares
+    // equal to it.
+    wgpu::Device mDevice;
+    // Compiles the environment's passes; the environment keeps a pointer to it (Environment::
+    // load), so it outlives mEnvironment.
+    std::unique_ptr<shaders::ShaderLibrary> mEnvironmentShaders;
+    std::shared_ptr<render::Environment> mEnvironment;
+    // What mEnvironment was computed from.
+    std::shared_ptr<const image::HdrImage> mEnvironmentImage;
+    render::EnvironmentOptions mEnvironmentOptions;
+    std::optional<render::Renderer> mRenderer;
+    std::optional<render::RendererOptions> mRendererOptions;  // As acquire() was given them.
+    std::size_t mReadbackSlots = 0;
+    // After mRenderer: destroyed first, it waits for reads of the renderer's target.
+    std::unique_ptr<gpu::TextureReadbackRing> mRing;
+};
+
+}  // namespace encore::batch

@@ -1,0 +1,85 @@
+#include "encore/batch/BatchRenderer.h"
+
+#include "encore/image/HdrImage.h"
+
+namespace encore::batch {
+
+BatchRenderer::BatchRenderer(gpu::Context& context) : mContext(context) {}
+
+BatchRenderer::~BatchRenderer() {
+    discard();
+}
+
+void BatchRenderer::discard() {
+    // The ring first: it waits for reads of the renderer's target still in flight.
+    mRing.reset();
+    mRenderer.reset();
+    mRendererOptions.reset();
+    mEnvironment.reset();
+    mEnvironmentImage.reset();
+    mEnvironmentShaders.reset();
+    mDevice = nullptr;
+}
+
+Result<std::shared_ptr<render::Environment>> BatchRenderer::environmentFor(
+    const render::RendererOptions& options) {
+    if (options.environment) {
+        return options.environment;  // The caller's own: nothing to build.
+    }
+    if (mEnvironment && mEnvironmentImage == options.environmentImage &&
+        mEnvironmentOptions == options.environmentOptions) {
+        return mEnvironment;
+    }
+    // What Renderer::create would build from these options, built here so it outlives the
+    // renderer.
+    mEnvironment.reset();
+    if (!mEnvironmentShaders) {
+        mEnvironmentShaders = std::make_unique<shaders::ShaderLibrary>(mContext.device());
+    }
+    const image::HdrImage panorama =
+        options.environmentImage ? *options.environmentImage : image::makeStudioEnvironment();
+    auto created = render::Environment::create(mContext.device(), mContext.queue(),
+                                               *mEnvironmentShaders, panorama,
+                                               options.environmentOptions);
+    if (!created) {
+        return created.error().withContext("Creating the environment");
+    }
+    mEnvironment = std::make_shared<render::Environment>(std::move(*created));
+    mEnvironmentImage = options.environmentImage;
+    mEnvironmentOptions = options.environmentOptions;
+    ++mCounts.environments;
+    return mEnvironment;
+}
+
+Result<void> BatchRenderer::acquire(const render::RendererOptions& options,
+                                    std::size_t readbackSlots) {
+    if (mDevice.Get() != mContext.device().Get()) {
+        discard();  // A new device (after a loss): nothing built on the old one is of use.
+        mDevice = mContext.device();
+    }
+    if (mRenderer && mRendererOptions == options && mReadbackSlots == readbackSlots) {
+        // The previous batch left the scene it prepared last released (runBatch's end).
+        return {};
+    }
+    mRing.reset();
+    mRenderer.reset();
+    mRendererOptions.reset();
+    auto environment = environmentFor(options);
+    if (!environment) {
+        return environment.error();
+    }
+    render::RendererOptions built = options;
+    built.environment = *environment;
+    auto renderer = render::Renderer::create(mContext, built);
+    if (!renderer) {
+        return renderer.error();
+    }
+    mRenderer.emplace(std::move(*renderer));
+    mRendererOptions = options;
+    mReadbackSlots = readbackSlots;
+    mRing = std::make_unique<gpu::TextureReadbackRing>(mContext, readbackSlots);
+    ++mCounts.renderers;
+    return {};
+}
+
+}  // namespace encore::batch
