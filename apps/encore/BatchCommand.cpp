@@ -38,6 +38,7 @@ struct BatchCommandOptions {
     float topLightLux = 0.0f;
     std::size_t jobs = 0;
     std::uint64_t memoryLimitMiB = 2048;
+    std::size_t renderers = batch::kDefaultRenderers;
     bool quiet = false;
     ShadingOptions shading;
 };
@@ -119,6 +120,7 @@ int runBatch(const BatchCommandOptions& options, const GlobalOptions& global) {
     batchOptions.topLightLux = options.topLightLux;
     batchOptions.jobs = options.jobs;
     batchOptions.memoryLimitBytes = options.memoryLimitMiB << 20;
+    batchOptions.renderers = options.renderers;
     if (auto shading = applyShadingOptions(options.shading, batchOptions.renderer); !shading) {
         return reportError(shading.error());
     }
@@ -173,11 +175,23 @@ int runBatch(const BatchCommandOptions& options, const GlobalOptions& global) {
         summary->interrupted ? "; interrupted, run again to resume" : "");
     const batch::StageTimes& stages = summary->stages;
     std::printf(
-        "stages (s): load+decode %.2f, upload %.2f, render %.2f, gpu %.2f, read-back "
-        "%.2f, encode+write %.2f (load and encode summed over %zu threads)\n",
+        "stages (s): load+decode %.2f, upload %.2f, render %.2f, gpu wait %.2f, read-back "
+        "%.2f, encode+write %.2f (load and encode summed over %zu threads; the GPU works "
+        "beside the upload, render and read-back)\n",
         stages.load, stages.upload, stages.render, stages.gpu, stages.readback, stages.encode,
         options.jobs ? options.jobs
                      : std::size_t(std::max(1u, std::thread::hardware_concurrency())));
+    if (global.verbose) {
+        const render::PrepareTimes& parts = stages.uploadParts;
+        const double strategyOther =
+            parts.strategy - parts.geometry - parts.instances - parts.materials - parts.draws;
+        std::printf(
+            "upload (s): release %.2f, lights+animation %.2f, geometry %.2f, instances %.2f, "
+            "materials %.2f, draws+pipelines %.2f, other strategy %.2f, error checks %.2f\n",
+            parts.release / 1000.0, parts.animation / 1000.0, parts.geometry / 1000.0,
+            parts.instances / 1000.0, parts.materials / 1000.0, parts.draws / 1000.0,
+            strategyOther / 1000.0, parts.checks / 1000.0);
+    }
     if (summary->failed > 0) {
         std::fprintf(stderr, "error: %zu models failed; see %s\n", summary->failed,
                      (std::filesystem::path(options.output) / "failures.jsonl").c_str());
@@ -249,6 +263,12 @@ void addBatchCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) 
                      "MiB of models loaded ahead of the GPU, at most")
         ->capture_default_str()
         ->check(CLI::Range(1, 1 << 24));
+    command
+        ->add_option("--renderers", options->renderers,
+                     "Models on the device at once: the next uploads while the GPU draws the "
+                     "others (1: one after the other)")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 8));
     command->add_flag("--normals", options->normals,
                       "Also write world-space normals per view (000_normal.png: n * 0.5 + 0.5)");
     command->add_flag("--depth", options->depth,

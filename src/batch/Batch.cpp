@@ -32,6 +32,11 @@ double secondsSince(Clock::time_point start) {
     return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
+Error lostWhileDrawing() {
+    return makeError(ErrorCode::DeviceError,
+                     "The GPU device was lost while the model's views were drawn.");
+}
+
 // Counters the pool's encode tasks and the GPU thread both update.
 struct SharedCounters {
     std::atomic<std::size_t> rendered{0};
@@ -65,6 +70,7 @@ struct ModelJob {
 // Views [first, first + count) of a model, drawn side by side in one read-back (ViewStrips.h).
 struct ChunkInFlight {
     std::shared_ptr<ModelJob> job;
+    std::size_t renderer = 0;  // Which of BatchRun's renderers drew them.
     std::uint32_t first = 0;
     std::uint32_t count = 0;
     ViewImage kind = ViewImage::Color;
@@ -83,9 +89,17 @@ void addTopLight(scene::SceneData& scene, float lux) {
     scene.lightInstances.push_back(placed);
 }
 
+// One of the renderers that take models in turn, and the scene it last prepared: the renderer
+// refers to that scene (and the loader's bytes behind it) until it prepares the next one.
+struct RendererSlot {
+    render::Renderer* renderer = nullptr;  // Owned by the run's BatchRenderer.
+    std::optional<LoadedModel> prepared;
+};
+
 // The views of a model that one target holds: [first, first + count), drawn with `cameras`.
 struct TargetViews {
     std::shared_ptr<ModelJob> job;
+    std::size_t renderer = 0;  // An index into BatchRun::mRenderers.
     std::span<const render::Camera> cameras;
     std::uint32_t first = 0;
     std::uint32_t count = 0;
@@ -97,7 +111,7 @@ class BatchRun {
              std::span<const BatchInput> inputs,
              const BatchOptions& options)
         : mContext(renderers.context()),
-          mRenderers(renderers),
+          mBatchRenderer(renderers),
           mInputs(inputs),
           mOptions(options),
           mPool(options.jobs) {}
@@ -105,16 +119,25 @@ class BatchRun {
     Result<BatchSummary> run();
 
   private:
-    Result<void> createRenderer();
+    // Creates the renderers (and the read-back ring) on the context's device, one environment
+    // for them all.
+    Result<void> createRenderers();
+    // Waits until the GPU is done with what renderer `slot` drew last, handing those views to
+    // the encoders, so that it may prepare its next scene without waiting for the others.
+    void collectRenderer(std::size_t slot);
+    // Frees renderer `slot`'s scene and gives its bytes back to the loader.
+    void releasePrepared(RendererSlot& slot);
     bool stopRequested() const { return mOptions.stop && mOptions.stop->load(); }
     void renderModel(LoadedModel& loaded);
     // Takes the oldest read-back and hands its views to the pool.
     void collectOldest();
     void collectReady();
+    // Crops strip `strip` of a read-back target and encodes it, both on the pool.
     void encodeView(const std::shared_ptr<ModelJob>& job,
                     std::uint32_t view,
                     ViewImage kind,
-                    image::ImageRgba8 image);
+                    std::shared_ptr<const image::ImageRgba8> wide,
+                    std::uint32_t strip);
     // Encodes one image of `job` on the pool and writes it; the last one completes the model.
     void writeImage(const std::shared_ptr<ModelJob>& job,
                     std::uint32_t view,
@@ -122,6 +145,7 @@ class BatchRun {
                     std::function<Result<std::vector<std::uint8_t>>()> encode);
     // Draws the views through `channel` with tone mapping off, then shades again.
     void renderDebugChannel(const std::shared_ptr<ModelJob>& job,
+                            render::Renderer& renderer,
                             render::DebugChannel channel,
                             const std::function<void()>& draw);
     // Draws a target's views through the depth channel and reads them back now.
@@ -140,7 +164,7 @@ class BatchRun {
 
     gpu::Context& mContext;
     // Owns the renderer and the read-back ring, which may outlive this run (BatchRenderer.h).
-    BatchRenderer& mRenderers;
+    BatchRenderer& mBatchRenderer;
     std::span<const BatchInput> mInputs;
     std::vector<BatchInput> mPending;  // Not finished by an earlier run, in load order.
     const BatchOptions& mOptions;
@@ -148,31 +172,41 @@ class BatchRun {
     Clock::time_point mStart = Clock::now();
     std::optional<FailureLog> mFailures;
     SharedCounters mCounters;
-    StageTimes mGpuStages;  // The GPU thread's stages.
+    StageTimes mGpuStages;  // The device thread's stages.
     std::size_t mSkipped = 0;
     StripLayout mLayout;
-    // mRenderers' renderer and ring; null after a device loss that could not be recovered.
-    render::Renderer* mRenderer = nullptr;
+    // Models go to the renderers in turn: while the GPU draws model k with one, the device
+    // thread uploads model k + 1 with another (BatchOptions::renderers). The renderers and the
+    // ring belong to mBatchRenderer, which may keep them for later runs; no renderer is left
+    // after a device loss that could not be recovered.
+    std::vector<RendererSlot> mRenderers;
+    std::uint64_t mModelsPrepared = 0;  // Models handed to a renderer: picks the next one.
+    // Device losses so far: a renderer used across a collectOldest() may have been replaced.
+    std::uint64_t mDevicesLost = 0;
     gpu::TextureReadbackRing* mRing = nullptr;
     std::deque<ChunkInFlight> mChunks;  // In the ring's order.
-    // The scene last handed to the renderer, which refers to it until the next prepare.
-    std::optional<LoadedModel> mPrepared;
     ModelLoader* mLoader = nullptr;
     Clock::time_point mLastProgress{};
 };
 
-Result<void> BatchRun::createRenderer() {
+Result<void> BatchRun::createRenderers() {
     render::RendererOptions rendererOptions = mOptions.renderer;
     rendererOptions.target = {mLayout.targetWidth(), mLayout.height, mOptions.samples};
     rendererOptions.keepPipelines = true;  // Models share most pipelines: create each once.
     // Normal images have a transparent background whatever the colour images have.
     rendererOptions.target.hdr = mOptions.images.normals || mOptions.images.depth;
+    // collectRenderer makes sure the GPU is done with a renderer's scene before it prepares.
+    rendererOptions.prepareWaitsForIdle = false;
     mRing = nullptr;
-    mRenderer = nullptr;
-    // The renderer of an earlier run when it was built from the same options.
-    ENCORE_TRY(mRenderers.acquire(rendererOptions, mOptions.readbackSlots));
-    mRenderer = &mRenderers.renderer();
-    mRing = &mRenderers.ring();
+    mRenderers.clear();
+    // The renderers of an earlier run when they were built from the same options; they light
+    // with one environment.
+    ENCORE_TRY(mBatchRenderer.acquire(rendererOptions, mOptions.readbackSlots,
+                                      std::max<std::size_t>(mOptions.renderers, 1)));
+    for (std::size_t i = 0; i < mBatchRenderer.rendererCount(); ++i) {
+        mRenderers.push_back({&mBatchRenderer.renderer(i), {}});
+    }
+    mRing = &mBatchRenderer.ring();
     return {};
 }
 
@@ -216,8 +250,10 @@ void BatchRun::writeTransforms(ModelJob& job) {
 void BatchRun::encodeView(const std::shared_ptr<ModelJob>& job,
                           std::uint32_t view,
                           ViewImage kind,
-                          image::ImageRgba8 image) {
-    writeImage(job, view, kind, [kind, image = std::move(image)]() mutable {
+                          std::shared_ptr<const image::ImageRgba8> wide,
+                          std::uint32_t strip) {
+    writeImage(job, view, kind, [kind, wide = std::move(wide), strip, width = mOptions.width] {
+        image::ImageRgba8 image = cropStrip(*wide, strip, width);
         if (kind == ViewImage::Normal) {
             decodeNormalImage(image);
         }
@@ -264,13 +300,33 @@ void BatchRun::collectOldest() {
     mGpuStages.gpu += finished->waitMilliseconds / 1000.0;
     const auto start = Clock::now();
     if (!chunk.job->failed) {
+        // The encoders crop their strips: the device thread only hands the image on.
+        auto wide = std::make_shared<const image::ImageRgba8>(std::move(finished->image));
         for (std::uint32_t strip = 0; strip < chunk.count; ++strip) {
-            encodeView(chunk.job, chunk.first + strip, chunk.kind,
-                       cropStrip(finished->image, strip, mOptions.width));
+            encodeView(chunk.job, chunk.first + strip, chunk.kind, wide, strip);
         }
     }
     mGpuStages.readback += finished->copyMilliseconds / 1000.0 + secondsSince(start);
     reportProgress(false);
+}
+
+void BatchRun::collectRenderer(std::size_t slot) {
+    // The ring reads back in submission order: once the last read of the renderer's views is
+    // taken, the GPU has finished everything the renderer submitted before it.
+    const auto drewLast = [&] {
+        return std::any_of(mChunks.begin(), mChunks.end(),
+                           [&](const ChunkInFlight& chunk) { return chunk.renderer == slot; });
+    };
+    while (drewLast()) {
+        collectOldest();
+    }
+}
+
+void BatchRun::releasePrepared(RendererSlot& slot) {
+    if (slot.prepared) {
+        mLoader->release(slot.prepared->bytes);
+        slot.prepared.reset();
+    }
 }
 
 void BatchRun::collectReady() {
@@ -287,46 +343,61 @@ void BatchRun::recoverIfLost() {
     while (!mChunks.empty()) {
         collectOldest();
     }
-    mRenderer = nullptr;
+    ++mDevicesLost;
+    for (RendererSlot& slot : mRenderers) {
+        slot.renderer = nullptr;
+        releasePrepared(slot);
+    }
+    mRenderers.clear();  // renderModel fails every later model's upload when none is left.
     mRing = nullptr;
-    mRenderers.discard();  // Built on the lost device.
-    mPrepared.reset();
+    mBatchRenderer.discard();  // Built on the lost device.
     if (auto recreated = mContext.recreateDevice(); recreated) {
-        (void)createRenderer();  // On failure mRenderer stays null: later models fail.
+        (void)createRenderers();
     }
 }
 
 void BatchRun::renderChunk(const TargetViews& views, ViewImage kind, double& waiting) {
-    const auto& [job, cameras, first, count] = views;
+    const auto& [job, slot, cameras, first, count] = views;
     if (mRing->full()) {
         const auto waitStart = Clock::now();
+        const std::uint64_t device = mDevicesLost;
         collectOldest();
         waiting += secondsSince(waitStart);
+        if (device != mDevicesLost) {
+            job->fail(*mFailures, mCounters, "render", lostWhileDrawing());
+            return;
+        }
     }
-    mRenderer->renderViews(cameras);
-    auto enqueued = mRing->enqueue(mRenderer->target().colorTexture());
+    render::Renderer& renderer = *mRenderers[slot].renderer;
+    renderer.renderViews(cameras);
+    auto enqueued = mRing->enqueue(renderer.target().colorTexture());
     if (!enqueued) {
         job->fail(*mFailures, mCounters, "render", enqueued.error());
         return;
     }
-    mChunks.push_back({job, first, count, kind});
+    mChunks.push_back({job, slot, first, count, kind});
 }
 
 void BatchRun::renderDebugChannel(const std::shared_ptr<ModelJob>& job,
+                                  render::Renderer& renderer,
                                   render::DebugChannel channel,
                                   const std::function<void()>& draw) {
-    if (auto drawn = drawDebugChannel(*mRenderer, channel, draw); !drawn) {
+    const std::uint64_t device = mDevicesLost;
+    // After a device loss inside draw() the renderer is gone: nothing to switch back.
+    const auto rendererAlive = [&] { return device == mDevicesLost; };
+    if (auto drawn = drawDebugChannel(renderer, channel, draw, rendererAlive); !drawn) {
         job->fail(*mFailures, mCounters, "render", drawn.error());
     }
 }
 
 void BatchRun::renderDepth(const TargetViews& views, float unitsPerModelUnit, double& waiting) {
-    const auto& [job, cameras, first, count] = views;
-    mRenderer->renderViews(cameras);
+    const auto& [job, slot, cameras, first, count] = views;
+    render::Renderer& renderer = *mRenderers[slot].renderer;
+    renderer.renderViews(cameras);
     // The HDR target holds the depth itself (the channel writes it as colour); read back now,
     // waiting, since depth images are the exception.
     const auto start = Clock::now();
-    auto wide = mRenderer->readHdrImage();
+    auto wide = renderer.readHdrImage();
     mGpuStages.gpu += secondsSince(start);
     waiting += secondsSince(start);
     if (!wide) {
@@ -351,7 +422,7 @@ void BatchRun::renderModel(LoadedModel& loaded) {
         mLoader->release(loaded.bytes);
         return;
     }
-    if (!mRenderer) {
+    if (mRenderers.empty()) {
         job->fail(*mFailures, mCounters, "upload",
                   makeError(ErrorCode::DeviceError,
                             "The GPU device was lost and could not be created again."));
@@ -370,31 +441,39 @@ void BatchRun::renderModel(LoadedModel& loaded) {
     }
     removePartialFiles(job->folder);
 
-    // prepare() waits for the GPU to finish the previous model before it frees that model's
-    // resources. Waiting here instead counts that time as the GPU's, not the upload's, and hands
-    // the finished views to the encoders before the upload keeps this thread busy.
-    const auto idleStart = Clock::now();
-    mContext.waitForIdle();
-    mGpuStages.gpu += secondsSince(idleStart);
+    // The renderer that drew the oldest model in flight prepares this one, while the GPU may
+    // still draw the later ones with the others. Its own views must be read back first:
+    // preparing frees its scene. (collectOldest counts the wait as the GPU's.)
+    const std::size_t slotIndex = mModelsPrepared++ % mRenderers.size();
+    collectRenderer(slotIndex);
     collectReady();
+    if (mRenderers.empty()) {
+        // Collecting found the device lost and could not create it again.
+        job->fail(*mFailures, mCounters, "upload",
+                  makeError(ErrorCode::DeviceError,
+                            "The GPU device was lost and could not be created again."));
+        mLoader->release(loaded.bytes);
+        return;
+    }
 
     if (mOptions.topLightLux > 0.0f) {
         addTopLight(*loaded.scene, mOptions.topLightLux);
     }
 
     // The renderer refers to the scene it prepared until the next prepare: keep that one alive
-    // until now, and this one until the next model.
+    // until now, and this one until the renderer's next model.
     const auto uploadStart = Clock::now();
+    RendererSlot& slot = mRenderers[slotIndex];
+    render::Renderer& renderer = *slot.renderer;
     const scene::SceneData& scene = *loaded.scene;
-    auto prepared = mRenderer->prepare(scene, mOptions.strategy.kind, mOptions.strategy.bundle);
-    if (mPrepared) {
-        mLoader->release(mPrepared->bytes);
-    }
-    mPrepared = std::move(loaded);
+    auto prepared = renderer.prepare(scene, mOptions.strategy.kind, mOptions.strategy.bundle);
+    releasePrepared(slot);
+    slot.prepared = std::move(loaded);
     if (prepared) {
         prepared = mContext.checkNoErrors("Preparing '" + scene.sourcePath.string() + "'");
     }
     mGpuStages.upload += secondsSince(uploadStart);
+    mGpuStages.uploadParts += renderer.prepareTimes();
     if (!prepared) {
         job->fail(*mFailures, mCounters, "upload", prepared.error());
         mContext.takeErrors();
@@ -414,14 +493,14 @@ void BatchRun::renderModel(LoadedModel& loaded) {
             mLayout.strips, std::uint32_t(job->cameraToWorld.size()) - first);
         const std::vector<render::Camera> cameras =
             stripCameras(job->cameraToWorld, first, mLayout, toUnitBox, fov);
-        const TargetViews views{job, cameras, first, count};
+        const TargetViews views{job, slotIndex, cameras, first, count};
         renderChunk(views, ViewImage::Color, renderWaiting);
         if (mOptions.images.normals && !job->failed) {
-            renderDebugChannel(job, render::DebugChannel::Normal,
+            renderDebugChannel(job, renderer, render::DebugChannel::Normal,
                                [&] { renderChunk(views, ViewImage::Normal, renderWaiting); });
         }
         if (mOptions.images.depth && !job->failed) {
-            renderDebugChannel(job, render::DebugChannel::Depth,
+            renderDebugChannel(job, renderer, render::DebugChannel::Depth,
                                [&] { renderDepth(views, toUnitBox[0][0], renderWaiting); });
         }
         if (job->failed) {
@@ -467,7 +546,7 @@ Result<BatchSummary> BatchRun::run() {
         mFailures.emplace(FailureLog::inMemory());
     }
     mLayout = stripLayout(mOptions.width, mOptions.height, rig.views, mContext.limits());
-    ENCORE_TRY(createRenderer());
+    ENCORE_TRY(createRenderers());
 
     // Finished models are skipped before anything loads.
     for (const BatchInput& input : mInputs) {
@@ -517,12 +596,15 @@ Result<BatchSummary> BatchRun::run() {
     }
     loader.finish();
     mPool.waitIdle();
-    // The renderer may serve later runs (BatchRenderer): it must not refer to the scene freed
-    // here, nor hold that scene's GPU memory.
-    if (mRenderer) {
-        mRenderer->releaseScene();
+    // The renderers may serve later runs (BatchRenderer): they must not refer to the scenes
+    // freed here, nor hold those scenes' GPU memory.
+    for (RendererSlot& slot : mRenderers) {
+        if (slot.renderer) {
+            slot.renderer->releaseScene();
+        }
+        slot.prepared.reset();
     }
-    mPrepared.reset();
+    mRenderers.clear();
 
     BatchSummary summary;
     static_cast<BatchProgress&>(summary) = progress();

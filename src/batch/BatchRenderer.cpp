@@ -1,5 +1,7 @@
 #include "encore/batch/BatchRenderer.h"
 
+#include <algorithm>
+
 #include "encore/image/HdrImage.h"
 
 namespace encore::batch {
@@ -13,7 +15,7 @@ BatchRenderer::~BatchRenderer() {
 void BatchRenderer::discard() {
     // The ring first: it waits for reads of the renderer's target still in flight.
     mRing.reset();
-    mRenderer.reset();
+    mRenderers.clear();
     mRendererOptions.reset();
     mEnvironment.reset();
     mEnvironmentImage.reset();
@@ -52,17 +54,18 @@ Result<std::shared_ptr<render::Environment>> BatchRenderer::environmentFor(
 }
 
 Result<void> BatchRenderer::acquire(const render::RendererOptions& options,
-                                    std::size_t readbackSlots) {
+                                    std::size_t readbackSlots, std::size_t rendererCount) {
     if (mDevice.Get() != mContext.device().Get()) {
         discard();  // A new device (after a loss): nothing built on the old one is of use.
         mDevice = mContext.device();
     }
-    if (mRenderer && mRendererOptions == options && mReadbackSlots == readbackSlots) {
+    if (!mRenderers.empty() && mRendererOptions == options && mReadbackSlots == readbackSlots &&
+        mRenderers.size() == rendererCount) {
         // The previous batch left the scene it prepared last released (runBatch's end).
         return {};
     }
     mRing.reset();
-    mRenderer.reset();
+    mRenderers.clear();
     mRendererOptions.reset();
     auto environment = environmentFor(options);
     if (!environment) {
@@ -70,11 +73,14 @@ Result<void> BatchRenderer::acquire(const render::RendererOptions& options,
     }
     render::RendererOptions built = options;
     built.environment = *environment;
-    auto renderer = render::Renderer::create(mContext, built);
-    if (!renderer) {
-        return renderer.error();
+    for (std::size_t i = 0; i < std::max<std::size_t>(rendererCount, 1); ++i) {
+        auto renderer = render::Renderer::create(mContext, built);
+        if (!renderer) {
+            mRenderers.clear();
+            return renderer.error();
+        }
+        mRenderers.push_back(std::move(*renderer));
     }
-    mRenderer.emplace(std::move(*renderer));
     mRendererOptions = options;
     mReadbackSlots = readbackSlots;
     mRing = std::make_unique<gpu::TextureReadbackRing>(mContext, readbackSlots);

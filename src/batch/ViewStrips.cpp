@@ -58,7 +58,8 @@ image::ImageRgba8 cropStrip(const image::ImageRgba8& wide,
 
 Result<void> drawDebugChannel(render::Renderer& renderer,
                               render::DebugChannel channel,
-                              const std::function<void()>& draw) {
+                              const std::function<void()>& draw,
+                              const std::function<bool()>& rendererAlive) {
     const render::LightingParameters shaded = renderer.lighting().parameters();
     const render::ToneMappingOptions mapped = renderer.toneMapping();
     render::LightingParameters debug = shaded;
@@ -71,6 +72,9 @@ Result<void> drawDebugChannel(render::Renderer& renderer,
     Result<void> set = renderer.setToneMapping(identity);
     if (set) {
         draw();
+    }
+    if (rendererAlive && !rendererAlive()) {
+        return set;
     }
     renderer.setLighting(shaded);
     (void)renderer.setToneMapping(mapped);  // Accepted before: cannot fail.

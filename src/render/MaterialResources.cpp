@@ -355,10 +355,15 @@ Result<MaterialResources> MaterialResources::create(const wgpu::Device& device,
                                                     const BindGroupLayouts& layouts,
                                                     const scene::SceneData& scene,
                                                     const SampledTextures& sampled,
-                                                    std::uint32_t maxTextureDimension) {
-    auto mipmaps = MipmapGenerator::create(device, shaders);
+                                                    std::uint32_t maxTextureDimension,
+                                                    MipmapGenerator* mipmaps) {
+    std::optional<MipmapGenerator> ownMipmaps;
     if (!mipmaps) {
-        return mipmaps.error();
+        auto created = MipmapGenerator::create(device, shaders);
+        if (!created) {
+            return created.error();
+        }
+        mipmaps = &ownMipmaps.emplace(std::move(*created));
     }
     wgpu::Limits limits{};
     device.GetLimits(&limits);

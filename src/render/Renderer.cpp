@@ -2,6 +2,7 @@
 
 #include <chrono>
 
+#include "MipmapGenerator.h"
 #include "encore/gpu/OutOfMemoryScope.h"
 #include "encore/gpu/Readback.h"
 #include "encore/render/PipelineCache.h"
@@ -95,6 +96,12 @@ Result<void> Renderer::build(const RendererOptions& options) {
         renderer.mKeptPipelines = std::make_unique<PipelineCache>(setup);
         setup.keptPipelines = renderer.mKeptPipelines.get();
     }
+    auto mipmaps = MipmapGenerator::create(context.device(), *renderer.mShaders);
+    if (!mipmaps) {
+        return mipmaps.error();
+    }
+    renderer.mMipmaps = std::make_unique<MipmapGenerator>(std::move(*mipmaps));
+    setup.mipmaps = renderer.mMipmaps.get();
     return context.checkNoErrors("Creating the renderer");
 }
 
@@ -119,6 +126,7 @@ Result<void> Renderer::recoverFromDeviceLoss() {
     mFrame.reset();
     mLighting.reset();
     mKeptPipelines.reset();
+    mMipmaps.reset();
     mSetup.reset();
     mLayouts.reset();
     mShaders.reset();
@@ -151,14 +159,21 @@ Result<void> Renderer::prepare(const scene::SceneData& scene, StrategyKind kind,
                                             "' for GPU animation");
         }
     }
+    PrepareTimes& times = mSetup->prepareTimes;
+    times = {};
+    auto start = std::chrono::steady_clock::now();
     if (mStrategy) {
         // Dawn frees objects once the GPU is done with them, on a later tick. Let that happen
         // before the next strategy allocates: peak memory stays one strategy's worth, and
         // drivers that map memory per object (lavapipe) stay below the kernel's limit.
         mStrategy.reset();
-        mContext->waitForIdle();
+        if (mOptions.prepareWaitsForIdle) {
+            mContext->waitForIdle();
+        }
         mContext->device().Tick();
     }
+    times.release = millisecondsSince(start);
+    start = std::chrono::steady_clock::now();
     if (mLighting->setSceneLights(scene)) {
         mFrame->bindLighting(mContext->device(), *mLayouts, *mLighting);
     }
@@ -176,14 +191,19 @@ Result<void> Renderer::prepare(const scene::SceneData& scene, StrategyKind kind,
     mAnimation = AnimationBuffers::create(mContext->device(), mContext->queue(), *mLayouts, scene,
                                           *mPlayer);
     mSetup->animation = mAnimation.get();
+    times.animation = millisecondsSince(start);
+    start = std::chrono::steady_clock::now();
     auto strategy = createStrategy(kind, bundle);
     gpu::OutOfMemoryScope outOfMemory(*mContext);
     auto prepared = strategy->prepare(*mSetup, scene);
+    times.strategy = millisecondsSince(start);
+    start = std::chrono::steady_clock::now();
     ENCORE_TRY(outOfMemory.finish(what));
     if (!prepared) {
         return prepared.error().withContext(what);
     }
     ENCORE_TRY(mContext->checkNoErrors(what));
+    times.checks = millisecondsSince(start);
     mStrategy = std::move(strategy);
     if (mOptions.animation == AnimationEvaluation::Gpu) {
         ENCORE_TRY(createGpuAnimation());

@@ -37,6 +37,18 @@ constexpr std::array kAllStrategies = {StrategyKind::Naive, StrategyKind::Layout
                                        StrategyKind::GpuCullingBundles};
 }  // namespace
 
+PrepareTimes& PrepareTimes::operator+=(const PrepareTimes& other) {
+    release += other.release;
+    animation += other.animation;
+    strategy += other.strategy;
+    geometry += other.geometry;
+    instances += other.instances;
+    materials += other.materials;
+    draws += other.draws;
+    checks += other.checks;
+    return *this;
+}
+
 std::string_view strategyName(StrategyKind kind) {
     for (const auto& entry : kStrategyNames) {
         if (entry.kind == kind) {

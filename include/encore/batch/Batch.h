@@ -31,14 +31,19 @@
 namespace encore::batch {
 
 // Where the time went, in seconds. Load and encode run on the pool: their times add up the
-// threads' work (they may exceed the wall time). The others are the GPU thread's.
+// threads' work (they may exceed the wall time). The others are the device thread's and add up
+// to at most the wall time; the GPU works beside them, so its own time is not among them.
 struct StageTimes {
     double load = 0.0;      // Parsing the file and decoding its images.
     double upload = 0.0;    // Renderer::prepare: buffers, textures, pipelines, bundles.
     double render = 0.0;    // Recording and submitting the views.
-    double gpu = 0.0;       // Waiting for the GPU to finish the views and their copy.
+    // The device thread waiting for the GPU to finish views and their copies: what the GPU's
+    // work exceeds the uploads and recording it overlaps with.
+    double gpu = 0.0;
     double readback = 0.0;  // Unpacking the mapped rows into images.
     double encode = 0.0;    // PNG encoding and writing the files.
+    // The upload's parts (Renderer::prepare's own breakdown, milliseconds summed over models).
+    render::PrepareTimes uploadParts;
 };
 
 struct BatchProgress {
@@ -57,6 +62,8 @@ struct BatchSummary : BatchProgress {
     StageTimes stages;
     std::vector<Failure> failures;  // As failures.jsonl lists them.
 };
+
+inline constexpr std::size_t kDefaultRenderers = 3;
 
 struct BatchOptions {
     std::filesystem::path output;
@@ -87,6 +94,12 @@ struct BatchOptions {
     std::size_t jobs = 0;  // Pool threads; 0: one per hardware thread.
     std::uint64_t memoryLimitBytes = std::uint64_t{2} << 30;  // Scenes loaded ahead, at most.
     std::size_t readbackSlots = 3;
+    // Renderers that take the models in turn, each holding one model's scene on the device:
+    // with N, the device thread uploads a model while the GPU may still draw the N - 1 before
+    // it. 1: each model is uploaded only once the previous model's views are read back (the
+    // sequential pipeline). More smooths out models whose upload and drawing times differ, at
+    // the cost of one more scene and render target in GPU memory each.
+    std::size_t renderers = kDefaultRenderers;
     // Set (from a signal handler, another thread) to stop starting models: views in flight are
     // still written, and runBatch returns with `interrupted`.
     const std::atomic<bool>* stop = nullptr;

@@ -15,6 +15,7 @@
 #include <cstddef>
 #include <memory>
 #include <optional>
+#include <vector>
 
 #include "encore/core/Result.h"
 #include "encore/gpu/Context.h"
@@ -27,7 +28,7 @@ namespace encore::batch {
 
 // How often a BatchRenderer built what it keeps: what tells reuse from rebuilding.
 struct BatchRendererCounts {
-    std::size_t renderers = 0;     // render::Renderer::create calls (each with its ring).
+    std::size_t renderers = 0;     // Times the renderers (and the ring) were built.
     std::size_t environments = 0;  // Environment maps computed.
 };
 
@@ -39,17 +40,20 @@ class BatchRenderer {
     BatchRenderer(const BatchRenderer&) = delete;
     BatchRenderer& operator=(const BatchRenderer&) = delete;
 
-    // Makes renderer() one built from `options` with `readbackSlots` read-back buffers: the one
-    // already kept when it was built from equal options, otherwise a new one. The environment
+    // Makes renderer(0) .. renderer(rendererCount - 1) ones built from `options`, lighting with
+    // one environment, with a ring of `readbackSlots` read-back buffers: those already kept when
+    // they were built from equal options and count, otherwise new ones. The environment
     // maps are kept when `options` names the same environment source (no `environment` of its
     // own, the same `environmentImage` object, equal `environmentOptions`). No scene is prepared
     // on return.
-    Result<void> acquire(const render::RendererOptions& options, std::size_t readbackSlots);
+    Result<void> acquire(const render::RendererOptions& options, std::size_t readbackSlots,
+                         std::size_t rendererCount = 1);
 
     // Valid after a successful acquire() until the next acquire() or discard().
-    render::Renderer& renderer() { return *mRenderer; }
+    render::Renderer& renderer(std::size_t index = 0) { return mRenderers[index]; }
+    std::size_t rendererCount() const { return mRenderers.size(); }
     gpu::TextureReadbackRing& ring() { return *mRing; }
-    bool ready() const { return mRenderer.has_value(); }
+    bool ready() const { return !mRenderers.empty(); }
 
     // Forgets everything it built: after a device loss its objects belong to the lost device.
     // (acquire() also rebuilds by itself when the context's device is not the one it built on.)
@@ -75,10 +79,10 @@ class BatchRenderer {
     // What mEnvironment was computed from.
     std::shared_ptr<const image::HdrImage> mEnvironmentImage;
     render::EnvironmentOptions mEnvironmentOptions;
-    std::optional<render::Renderer> mRenderer;
+    std::vector<render::Renderer> mRenderers;
     std::optional<render::RendererOptions> mRendererOptions;  // As acquire() was given them.
     std::size_t mReadbackSlots = 0;
-    // After mRenderer: destroyed first, it waits for reads of the renderer's target.
+    // After mRenderers: destroyed first, it waits for reads of the renderers' targets.
     std::unique_ptr<gpu::TextureReadbackRing> mRing;
 };
 

@@ -57,9 +57,12 @@ image::ImageRgba8 cropStrip(const image::ImageRgba8& wide,
 // Calls `draw` with `renderer` switched to `channel`, tone mapping off (identity, exposure 1)
 // and a transparent background, then shades as before. Buffer writes only: recorded bundles
 // stay valid. Fails, without drawing, when the target cannot take a transparent background.
+// `rendererAlive`, when given, says after `draw` whether `renderer` still exists (a device loss
+// inside `draw` may replace it); if not, nothing is switched back.
 Result<void> drawDebugChannel(render::Renderer& renderer,
                               render::DebugChannel channel,
-                              const std::function<void()>& draw);
+                              const std::function<void()>& draw,
+                              const std::function<bool()>& rendererAlive = {});
 
 // A normal image as read back: the target stores its colour sRGB-encoded, the image n * 0.5 +
 // 0.5 linearly. Decoding the 8-bit values is exact to within one level (the HDR target holds the

@@ -103,6 +103,8 @@ class SceneLighting {
     Result<void> loadEnvironment(const image::HdrImage& panorama);
     Environment& environment() { return *mEnvironment; }
     const Environment& environment() const { return *mEnvironment; }
+    // For another renderer to light with the same environment (RendererOptions::environment).
+    const std::shared_ptr<Environment>& sharedEnvironment() const { return mEnvironment; }
 
     const wgpu::Buffer& uniformBuffer() const { return mUniform; }
     const wgpu::Buffer& lightBuffer() const { return mLights; }

@@ -118,6 +118,8 @@ struct SampledTextures {
     bool sampled(TextureSlot slot) const;
 };
 
+class MipmapGenerator;
+
 class MaterialResources {
   public:
     // Uploads what the materials of `scene` reference and records one submit that generates
@@ -126,14 +128,17 @@ class MaterialResources {
     // naming it and both sizes (image/ImageResize.h). Fails, naming the image, when its pixel
     // data does not match its size, and when a material names a texture, or a texture a
     // sampler, that does not exist. `scene` need not outlive the result. WebGPU validation
-    // errors surface through the device's error callback.
+    // errors surface through the device's error callback. `mipmaps` is a generator kept from
+    // one scene to the next (RenderSetup::mipmaps, so its pipelines are created once); null:
+    // one made for this call.
     static Result<MaterialResources> create(const wgpu::Device& device,
                                             const wgpu::Queue& queue,
                                             shaders::ShaderLibrary& shaders,
                                             const BindGroupLayouts& layouts,
                                             const scene::SceneData& scene,
                                             const SampledTextures& sampled = {},
-                                            std::uint32_t maxTextureDimension = 0);
+                                            std::uint32_t maxTextureDimension = 0,
+                                            MipmapGenerator* mipmaps = nullptr);
 
     MaterialResources(MaterialResources&&) noexcept = default;
     MaterialResources& operator=(MaterialResources&&) noexcept = default;

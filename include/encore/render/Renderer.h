@@ -49,6 +49,11 @@ struct RendererOptions {
     // hundreds of milliseconds (lavapipe). Off by default, so that each prepare's
     // RenderSetup::pipelinesCreated counts what that strategy needs.
     bool keepPipelines = false;
+    // Whether prepare() waits for the GPU to finish everything submitted before it frees the
+    // previous scene, so that peak memory stays one scene's worth. Off, the caller makes sure the
+    // GPU is done with this renderer's previous scene (encore batch reads its views back first),
+    // and prepare() never blocks on work that other renderers of the device submitted.
+    bool prepareWaitsForIdle = true;
 
     // Equal options build equal renderers. The environment and its image compare as pointers:
     // the same shared object, not equal contents.
@@ -185,6 +190,8 @@ class Renderer {
 
     const RenderTarget& target() const { return mTarget; }
     const RenderSetup& setup() const { return *mSetup; }
+    // Where the last prepare()'s time went.
+    const PrepareTimes& prepareTimes() const { return mSetup->prepareTimes; }
     const Strategy* strategy() const { return mStrategy.get(); }
     gpu::Context& context() { return *mContext; }
 
@@ -215,6 +222,7 @@ class Renderer {
     std::unique_ptr<EnvironmentBackground> mBackground;
     std::unique_ptr<RenderSetup> mSetup;  // Stable address: strategies keep pointers to it.
     std::unique_ptr<PipelineCache> mKeptPipelines;  // With RendererOptions::keepPipelines.
+    std::unique_ptr<MipmapGenerator> mMipmaps;
     std::unique_ptr<scene::AnimationPlayer> mPlayer;
     std::unique_ptr<AnimationBuffers> mAnimation;  // Before mStrategy, which binds it.
     AnimationFrameStats mAnimationStats;

@@ -85,7 +85,24 @@ std::vector<StrategyChoice> withBundlingAxis(std::span<const StrategyChoice> cho
                                              bool alsoBundled);
 
 class AnimationBuffers;
+class MipmapGenerator;
 class PipelineCache;
+
+// Where Renderer::prepare's time went, in milliseconds. The materials-based strategies fill in
+// their parts; other strategies' work counts only in `strategy`.
+struct PrepareTimes {
+    double release = 0.0;    // Freeing the previous scene (waiting for the GPU first, by default).
+    double animation = 0.0;  // Lights, the animation player and its buffers.
+    double strategy = 0.0;   // Strategy::prepare, the four parts below included.
+    double geometry = 0.0;   // Vertex and index buffers.
+    double instances = 0.0;  // Instance transforms and their bind group.
+    double materials = 0.0;  // Textures (upload and mipmaps), samplers, material bind groups.
+    double draws = 0.0;      // Grouping the draws: pipelines (found or created), vertex bindings.
+    double checks = 0.0;     // Collecting errors (out-of-memory scope, validation errors).
+
+    double total() const { return release + animation + strategy + checks; }
+    PrepareTimes& operator+=(const PrepareTimes& other);
+};
 
 // What a strategy's pipelines and bind groups must be compatible with.
 struct RenderSetup {
@@ -104,6 +121,8 @@ struct RenderSetup {
     gpu::DeviceLimits limits;
     // Render pipelines created through this setup (createMeshPipeline), for stats.
     mutable std::uint64_t pipelinesCreated = 0;
+    // The last Renderer::prepare's times; strategies add their parts.
+    mutable PrepareTimes prepareTimes;
     // The prepared scene's skinning and morph data, shared by every strategy (owned by the
     // Renderer); null when the scene has none (or for strategies prepared outside a Renderer):
     // primitives are then drawn unanimated, as loaded.
@@ -111,6 +130,9 @@ struct RenderSetup {
     // Pipelines that outlive the prepared strategy (RendererOptions::keepPipelines), owned by
     // the Renderer; null: each strategy caches its own.
     PipelineCache* keptPipelines = nullptr;
+    // Fills textures' mip chains, owned by the Renderer so that its pipelines outlive each
+    // scene; null: MaterialResources makes one per scene.
+    MipmapGenerator* mipmaps = nullptr;
 };
 
 // What a frame's recording may depend on. Only strategies that sort by distance (blended

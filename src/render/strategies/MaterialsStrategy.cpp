@@ -1,6 +1,7 @@
 #include "MaterialsStrategy.h"
 
 #include <algorithm>
+#include <chrono>
 #include <map>
 #include <unordered_map>
 
@@ -49,30 +50,46 @@ std::vector<scene::Semantic> variantSemantics(const shaders::ShaderVariantKey& k
     return semantics;
 }
 
+using Clock = std::chrono::steady_clock;
+
+double millisecondsSince(Clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
 }  // namespace
 
 Result<void> MaterialsStrategy::prepare(const RenderSetup& setup, const scene::SceneData& scene) {
+    PrepareTimes& times = setup.prepareTimes;
     mSetup = &setup;
     mAnimation = setup.animation;
     mFrameGroup = setup.frame->bindGroup();
+    auto start = Clock::now();
     mGeometry = std::make_unique<GeometryBuffers>(setup.device, scene);
+    times.geometry += millisecondsSince(start);
     mPipelines = strategyPipelineCache(setup, mOwnPipelines);
+    start = Clock::now();
     mInstances = InstanceBuffer(setup.device, *setup.layouts, scene);
+    times.instances += millisecondsSince(start);
     mQueue = setup.queue;
-    auto materials =
-        MaterialResources::create(setup.device, setup.queue, *setup.shaders, *setup.layouts, scene,
-                                  SampledTextures::all(), setup.limits.maxTextureDimension2D);
+    start = Clock::now();
+    auto materials = MaterialResources::create(setup.device, setup.queue, *setup.shaders,
+                                               *setup.layouts, scene, SampledTextures::all(),
+                                               setup.limits.maxTextureDimension2D, setup.mipmaps);
+    times.materials += millisecondsSince(start);
     if (!materials) {
         return materials.error();
     }
     mMaterials = std::make_unique<MaterialResources>(std::move(*materials));
     mScene = &scene;
+    start = Clock::now();
     mBindings.clear();
     mPrimitiveBindings.assign(scene.meshes.size(), {});
     for (std::size_t mesh = 0; mesh < scene.meshes.size(); ++mesh) {
         mPrimitiveBindings[mesh].assign(scene.meshes[mesh].primitives.size(), nullptr);
     }
-    return groupDraws();
+    auto grouped = groupDraws();
+    times.draws += millisecondsSince(start);
+    return grouped;
 }
 
 Result<void> MaterialsStrategy::groupDraws() {

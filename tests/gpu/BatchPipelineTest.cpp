@@ -1,0 +1,181 @@
+// batch::runBatch's pipeline: several renderers take the models in turn, so that the next model
+// uploads while the GPU draws the previous ones (BatchOptions::renderers). That must change
+// nothing but the time: every file is byte for byte what the sequential pipeline (one renderer,
+// each model prepared after the previous one's views are read back) writes, and a bad model
+// between good ones fails at its own stage while its neighbours render.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "GpuTestSupport.h"
+#include "RenderTestSupport.h"
+#include "TestPaths.h"
+#include "encore/batch/Batch.h"
+#include "encore/scene/SceneGenerator.h"
+
+namespace encore::batch {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string slurp(const fs::path& path) {
+    std::ifstream file(path, std::ios::binary);
+    std::stringstream bytes;
+    bytes << file.rdbuf();
+    return bytes.str();
+}
+
+// Every file under `folder` (but failures.jsonl), by its path relative to it.
+std::map<std::string, std::string> filesUnder(const fs::path& folder) {
+    std::map<std::string, std::string> files;
+    for (const auto& entry : fs::recursive_directory_iterator(folder)) {
+        if (entry.is_regular_file() && entry.path().filename() != "failures.jsonl") {
+            files[fs::relative(entry.path(), folder).generic_string()] = slurp(entry.path());
+        }
+    }
+    return files;
+}
+
+// A generated scene of `objects` objects (textured), written as `path`.
+void writeGeneratedScene(const fs::path& path, std::uint32_t objects, std::uint32_t seed) {
+    scene::GeneratorOptions generator;
+    generator.objectCount = objects;
+    generator.meshCount = 3;
+    generator.materialCount = 2;
+    generator.seed = seed;
+    generator.textures = true;
+    auto glb = scene::generateSceneGlb(generator);
+    ASSERT_TRUE(glb.ok()) << glb.error().message;
+    fs::create_directories(path.parent_path());
+    std::ofstream(path, std::ios::binary)
+        .write(reinterpret_cast<const char*>(glb->data()), std::streamsize(glb->size()));
+}
+
+BatchOptions smallBatch(const fs::path& output) {
+    BatchOptions options;
+    options.output = output;
+    options.width = 48;
+    options.height = 40;
+    options.views.views = 5;
+    options.jobs = 2;
+    return options;
+}
+
+// Shared models of different kinds (textured, skinned, blended, untextured) and generated
+// scenes, in an order that makes both renderers prepare several of them.
+std::vector<BatchInput> mixedCollection(const fs::path& dir) {
+    std::vector<BatchInput> inputs;
+    const auto models = test::sharedModelsDir();
+    if (models) {
+        for (const char* name : {"Duck", "Fox", "AlphaBlendModeTest", "BoxTextured"}) {
+            const fs::path path = *models / name / "glTF-Binary" / (std::string(name) + ".glb");
+            if (fs::exists(path)) {
+                inputs.push_back({path, name});
+            }
+        }
+    }
+    for (std::uint32_t seed = 1; seed <= 3; ++seed) {
+        const fs::path path = dir / ("generated" + std::to_string(seed) + ".glb");
+        writeGeneratedScene(path, 4 + seed, seed);
+        inputs.insert(inputs.begin() + std::min<std::size_t>(inputs.size(), 2 * seed - 1),
+                      {path, "generated" + std::to_string(seed)});
+    }
+    return inputs;
+}
+
+TEST(BatchPipelineTest, OverlappedModelsWriteTheSameFilesAsSequentialOnes) {
+    ENCORE_REQUIRE_VULKAN(context);
+    const fs::path dir = test::makeTempDir("batch-pipeline-same");
+    const std::vector<BatchInput> inputs = mixedCollection(dir);
+    ASSERT_GE(inputs.size(), 5u);
+
+    // One renderer (sequential), two and three (the default).
+    std::map<std::string, std::string> written[4];
+    for (const std::size_t renderers : {1, 2, 3}) {
+        BatchOptions options = smallBatch(dir / ("renderers" + std::to_string(renderers)));
+        options.renderer.environment = test::testEnvironment();
+        options.images.normals = true;
+        options.images.depth = true;
+        options.renderers = renderers;
+        auto summary = runBatch(*context, inputs, options);
+        ASSERT_TRUE(summary.ok()) << summary.error().message;
+        EXPECT_EQ(summary->rendered, inputs.size());
+        EXPECT_EQ(summary->failed, 0u);
+        for (const Failure& failure : summary->failures) {
+            ADD_FAILURE() << failure.file << " (" << failure.stage << "): " << failure.error;
+        }
+        written[renderers] = filesUnder(options.output);
+    }
+    // Per model: five views of colour, normals and depth, and transforms.json.
+    EXPECT_EQ(written[1].size(), inputs.size() * (5 * 3 + 1));
+    for (const std::size_t renderers : {2, 3}) {
+        ASSERT_EQ(written[renderers].size(), written[1].size()) << renderers << " renderers";
+        for (const auto& [name, bytes] : written[1]) {
+            const auto found = written[renderers].find(name);
+            ASSERT_NE(found, written[renderers].end())
+                << name << " is missing with " << renderers << " renderers";
+            EXPECT_TRUE(found->second == bytes)
+                << name << " differs between 1 and " << renderers << " renderers";
+        }
+    }
+    EXPECT_TRUE(context->checkNoErrors("the batches").ok());
+}
+
+// A device whose storage bindings hold 64 KiB: a scene of 600 instances loads but cannot be
+// uploaded with the bundles strategy (DeviceLimitsTest), so it fails at the "upload" stage.
+TEST(BatchPipelineTest, ABadModelMidPipelineFailsAtItsStageWhileItsNeighboursRender) {
+    gpu::ContextOptions contextOptions;
+    contextOptions.limitOverrides = {256, 128 * 1024, 64 * 1024};
+    auto context = gpu::Context::create(contextOptions);
+    ASSERT_TRUE(context.ok()) << context.error().message;
+    ASSERT_EQ(context->adapterDescription().backend, wgpu::BackendType::Vulkan);
+
+    const fs::path dir = test::makeTempDir("batch-pipeline-bad");
+    std::vector<BatchInput> inputs;
+    for (const char* name : {"a", "b", "too-large", "c", "broken", "d"}) {
+        const fs::path path = dir / "in" / (std::string(name) + ".glb");
+        if (std::string(name) == "broken") {
+            fs::create_directories(path.parent_path());
+            std::ofstream(path) << "glTF, but not really";
+        } else {
+            writeGeneratedScene(path, std::string(name) == "too-large" ? 600 : 5,
+                                std::uint32_t(inputs.size() + 1));
+        }
+        inputs.push_back({path, name});
+    }
+
+    for (const std::size_t renderers : {2, 1}) {
+        BatchOptions options = smallBatch(dir / ("renderers" + std::to_string(renderers)));
+        options.renderer.environmentOptions = test::testEnvironmentOptions();
+        options.renderers = renderers;
+        auto summary = runBatch(*context, inputs, options);
+        ASSERT_TRUE(summary.ok()) << summary.error().message;
+        EXPECT_EQ(summary->rendered, 4u);
+        EXPECT_EQ(summary->failed, 2u);
+        std::map<std::string, std::string> stageOf;
+        for (const Failure& failure : summary->failures) {
+            stageOf[failure.file.stem().string()] = failure.stage;
+        }
+        EXPECT_EQ(stageOf["too-large"], "upload");
+        EXPECT_EQ(stageOf["broken"], "load");
+        EXPECT_EQ(stageOf.size(), 2u);
+        const std::string log = slurp(options.output / "failures.jsonl");
+        EXPECT_NE(log.find("\"stage\":\"upload\""), std::string::npos) << log;
+        EXPECT_NE(log.find("maxStorageBufferBindingSize"), std::string::npos) << log;
+        for (const char* name : {"a", "b", "c", "d"}) {
+            EXPECT_TRUE(fs::exists(options.output / name / "transforms.json")) << name;
+            EXPECT_TRUE(fs::exists(options.output / name / "004.png")) << name;
+        }
+        EXPECT_FALSE(fs::exists(options.output / "too-large" / "transforms.json"));
+    }
+    EXPECT_TRUE(context->checkNoErrors("the batches").ok());
+}
+
+}  // namespace
+}  // namespace encore::batch
