@@ -5,9 +5,11 @@
 // default) and OUT/<name>/transforms.json (TransformsJson.h), on one device.
 //
 // It is a pipeline, not a loop: models are parsed and their images decoded on a thread pool
-// ahead of the GPU (as far as BatchOptions::memoryLimitBytes allows), the views of a model are
-// drawn side by side into one wide target (Renderer::renderViews) and read back through a ring
-// of staging buffers with mapAsync, and PNG encoding runs on the pool while the GPU goes on.
+// ahead of the GPU (as far as BatchOptions::memoryLimitBytes allows), several renderers take
+// the models in turn so that the next model uploads while the GPU draws the previous ones
+// (BatchOptions::renderers), the views of a model are drawn side by side into one wide target
+// (Renderer::renderViews) and read back through a ring of staging buffers with mapAsync, and
+// PNG encoding runs on the pool while the GPU goes on.
 //
 // Nothing is lost and nothing half-written (ModelOutput.h): finished models are skipped, so a
 // run stopped at any moment resumes where it stopped. Bad input never stops the batch: a model
@@ -34,9 +36,9 @@ namespace encore::batch {
 // threads' work (they may exceed the wall time). The others are the device thread's and add up
 // to at most the wall time; the GPU works beside them, so its own time is not among them.
 struct StageTimes {
-    double load = 0.0;      // Parsing the file and decoding its images.
-    double upload = 0.0;    // Renderer::prepare: buffers, textures, pipelines, bundles.
-    double render = 0.0;    // Recording and submitting the views.
+    double load = 0.0;    // Parsing the file and decoding its images.
+    double upload = 0.0;  // Renderer::prepare: buffers, textures, pipelines, bundles.
+    double render = 0.0;  // Recording and submitting the views.
     // The device thread waiting for the GPU to finish views and their copies: what the GPU's
     // work exceeds the uploads and recording it overlaps with.
     double gpu = 0.0;
