@@ -301,8 +301,13 @@ class Renderer {
                       bool normals,
                       bool depth,
                       float topLightLux,
-                      bool failureLog) {
+                      bool failureLog,
+                      std::uint32_t renderers) {
         batch::BatchOptions options;
+        if (renderers == 0) {
+            throw py::value_error("renderers must be at least 1");
+        }
+        options.renderers = renderers;
         std::tie(options.width, options.height) = imageSize(size);
         options.samples = samples.value_or(mSamples);
         if (options.samples != 1 && options.samples != 4) {
@@ -485,7 +490,7 @@ PYBIND11_MODULE(_encore, module) {
              py::arg("normalize") = true, py::arg("size") = 512, py::arg("samples") = py::none(),
              py::arg("jobs") = 0, py::arg("memory_limit_mib") = 2048, py::arg("strict") = false,
              py::arg("normals") = false, py::arg("depth") = false, py::arg("top_light") = 0.0f,
-             py::arg("failure_log") = true,
+             py::arg("failure_log") = true, py::arg("renderers") = encore::batch::BatchOptions{}.renderers,
              "Runs the job of `encore batch` on this renderer's device: `inputs` is what the "
              "command takes (folder, list file, model) or (path, name) pairs from "
              "discover_inputs. Returns the summary (models rendered, failed, skipped; views; "

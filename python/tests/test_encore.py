@@ -222,6 +222,20 @@ def test_batch_reuses_its_renderer_across_calls_and_writes_the_commands_files(tm
     assert files_under(normals) == files_under(reference)
 
 
+def test_batch_with_one_renderer_writes_what_the_overlapped_pipeline_writes(tmp_path):
+    models = [(str(generate(tmp_path / "in" / f"m{seed}.glb", seed=seed)), f"m{seed}")
+              for seed in (5, 6, 7)]
+    renderer = encore.Renderer()
+    sequential = tmp_path / "one"
+    overlapped = tmp_path / "three"
+    renderer.batch(models, str(sequential), views=3, size=32, renderers=1)
+    renderer.batch(models, str(overlapped), views=3, size=32, renderers=3)
+    assert renderer.batch_renderers_created == 2  # A new count builds anew.
+    assert files_under(sequential) == files_under(overlapped)
+    with pytest.raises(ValueError):
+        renderer.batch(models, str(tmp_path / "none"), renderers=0)
+
+
 def test_rendering_releases_the_gil(renderer, tmp_path):
     scene = renderer.load(str(generate(tmp_path / "gil.glb", objects=30)))
     renderer.render_views(scene, views=24, size=256)  # Prepared and warm.
