@@ -417,26 +417,27 @@ void BatchRun::renderModel(LoadedModel& loaded) {
     auto job = std::make_shared<ModelJob>();
     job->input = &input;
     job->folder = modelFolder(mOptions.output, input.name);
-    if (!loaded.scene) {
-        job->fail(*mFailures, mCounters, "load", loaded.scene.error());
+    // Fails the model before any renderer holds it: its bytes go back to the loader.
+    const auto failBeforeUpload = [&](const char* stage, const Error& error) {
+        job->fail(*mFailures, mCounters, stage, error);
         mLoader->release(loaded.bytes);
+    };
+    const Error noDevice = makeError(ErrorCode::DeviceError,
+                                     "The GPU device was lost and could not be created again.");
+    if (!loaded.scene) {
+        failBeforeUpload("load", loaded.scene.error());
         return;
     }
     if (mRenderers.empty()) {
-        job->fail(*mFailures, mCounters, "upload",
-                  makeError(ErrorCode::DeviceError,
-                            "The GPU device was lost and could not be created again."));
-        mLoader->release(loaded.bytes);
+        failBeforeUpload("upload", noDevice);
         return;
     }
     std::error_code ec;
     fs::create_directories(job->folder, ec);
     if (ec) {
-        job->fail(
-            *mFailures, mCounters, "write",
-            makeError(ErrorCode::IoError, "Cannot create the folder '" + job->folder.string() +
-                                              "' (" + ec.message() + ")."));
-        mLoader->release(loaded.bytes);
+        failBeforeUpload("write", makeError(ErrorCode::IoError,
+                                            "Cannot create the folder '" + job->folder.string() +
+                                                "' (" + ec.message() + ")."));
         return;
     }
     removePartialFiles(job->folder);
@@ -449,10 +450,7 @@ void BatchRun::renderModel(LoadedModel& loaded) {
     collectReady();
     if (mRenderers.empty()) {
         // Collecting found the device lost and could not create it again.
-        job->fail(*mFailures, mCounters, "upload",
-                  makeError(ErrorCode::DeviceError,
-                            "The GPU device was lost and could not be created again."));
-        mLoader->release(loaded.bytes);
+        failBeforeUpload("upload", noDevice);
         return;
     }
 
