@@ -49,8 +49,13 @@ bool readsInPlace(const scene::Accessor& accessor) {
            accessor.byteStride <= kMaxArrayStride && accessor.byteStride >= accessor.elementSize();
 }
 
-void GeometryBuffers::uploadViews() {
-    mUploaded = true;
+GeometryBuffers::GeometryBuffers(wgpu::Device device, const scene::SceneData& scene,
+                                 std::uint64_t maxSharedBufferBytes)
+    : mDevice(std::move(device)), mScene(&scene) {
+    uploadViews(maxSharedBufferBytes);
+}
+
+void GeometryBuffers::uploadViews(std::uint64_t maxSharedBufferBytes) {
     // Every view a primitive may read in place: those of in-place attributes and of indices.
     std::vector<scene::BufferViewId> views;
     auto add = [&](scene::AccessorId id, bool indices) {
@@ -76,7 +81,7 @@ void GeometryBuffers::uploadViews() {
     std::sort(views.begin(), views.end());
     views.erase(std::unique(views.begin(), views.end()), views.end());
 
-    std::uint64_t maxBytes = mMaxSharedBufferBytes;
+    std::uint64_t maxBytes = maxSharedBufferBytes;
     if (maxBytes == 0) {
         wgpu::Limits limits{};
         mDevice.GetLimits(&limits);
@@ -118,12 +123,9 @@ void GeometryBuffers::uploadViews() {
 }
 
 const GeometryBuffers::ViewPlacement& GeometryBuffers::viewPlacement(scene::BufferViewId id) {
-    if (!mUploaded) {
-        uploadViews();
-    }
     const auto found = mViews.find(id);
     if (found == mViews.end()) {
-        // bind() asks only for views of the scene's primitives, all collected by uploadViews().
+        // bind() asks only for views of the scene's primitives, all uploaded by the constructor.
         std::fprintf(stderr, "GeometryBuffers: bufferView %u was not uploaded\n", id.value);
         std::abort();
     }

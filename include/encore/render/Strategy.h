@@ -94,11 +94,10 @@ struct PrepareTimes {
     double release = 0.0;    // Freeing the previous scene (waiting for the GPU first, by default).
     double animation = 0.0;  // Lights, the animation player and its buffers.
     double strategy = 0.0;   // Strategy::prepare, the four parts below included.
-    double geometry = 0.0;   // Vertex and index data (uploaded at the first draw's binding).
+    double geometry = 0.0;   // Vertex and index data, uploaded into the shared buffers.
     double instances = 0.0;  // Instance transforms and their bind group.
     double materials = 0.0;  // Textures (upload and mipmaps), samplers, material bind groups.
-    double draws = 0.0;      // Grouping the draws: pipelines (found or created), vertex bindings
-                             // (the first of which uploads the geometry).
+    double draws = 0.0;      // Grouping the draws: pipelines (found or created), vertex bindings.
     double checks = 0.0;     // Collecting errors (out-of-memory scope, validation errors).
 
     double total() const { return release + animation + strategy + checks; }

@@ -56,11 +56,11 @@ struct PrimitiveBindings {
 // Owns the GPU geometry of one scene and computes primitive bindings over it.
 class GeometryBuffers {
   public:
-    // `maxSharedBufferBytes`: where a shared buffer ends and the next begins; 0 (the default)
-    // takes the device's maxBufferSize (tests pass less to exercise the split).
+    // Uploads the bufferViews that the scene's primitives read. `maxSharedBufferBytes`: where a
+    // shared buffer ends and the next begins; 0 (the default) takes the device's maxBufferSize
+    // (tests pass less to exercise the split).
     GeometryBuffers(wgpu::Device device, const scene::SceneData& scene,
-                    std::uint64_t maxSharedBufferBytes = 0)
-        : mDevice(std::move(device)), mScene(&scene), mMaxSharedBufferBytes(maxSharedBufferBytes) {}
+                    std::uint64_t maxSharedBufferBytes = 0);
 
     // Bindings of `primitive` for the attributes with these semantics (those the shader
     // variant consumes; absent ones are skipped).
@@ -78,12 +78,10 @@ class GeometryBuffers {
         std::uint64_t length = 0;
     };
     const ViewPlacement& viewPlacement(scene::BufferViewId view);
-    void uploadViews();
+    void uploadViews(std::uint64_t maxSharedBufferBytes);
 
     wgpu::Device mDevice;
     const scene::SceneData* mScene;
-    std::uint64_t mMaxSharedBufferBytes = 0;
-    bool mUploaded = false;
     std::vector<wgpu::Buffer> mSharedBuffers;
     std::map<scene::BufferViewId, ViewPlacement> mViews;
     std::map<scene::AccessorId, std::pair<wgpu::Buffer, std::uint32_t>> mPrivateBuffers;
