@@ -12,6 +12,7 @@
 #endif
 
 #include "encore/bench/Benchmark.h"
+#include "encore/core/Elapsed.h"
 #include "encore/gpu/GpuTimer.h"
 #include "encore/render/Animometer.h"
 #include "encore/render/Renderer.h"
@@ -135,9 +136,7 @@ Result<BenchResult> measure(gpu::Context& context,
             if (auto set = renderer.setAnimationTime(frameTime(frame)); !set && animated) {
                 animated = set;
             }
-            animationMilliseconds =
-                std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-                    .count();
+            animationMilliseconds = millisecondsSince(start);
             if (frame >= (options.callgrind ? 0 : options.warmup)) {
                 animationTimes.push_back(animationMilliseconds);
             }

@@ -9,6 +9,7 @@
 #include "Commands.h"
 #include "StrategyOptions.h"
 #include "encore/bench/Benchmark.h"
+#include "encore/core/Elapsed.h"
 #include "encore/core/FileIO.h"
 
 namespace encore::app {
@@ -64,8 +65,7 @@ int runBench(BenchCommandOptions options, const GlobalOptions& global) {
     auto report = bench::runBenchmarks(*context, options.bench, [&](const std::string& label) {
         injectFaultsForTests(*context);
         if (global.verbose) {
-            const double elapsed =
-                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            const double elapsed = secondsSince(start);
             std::fprintf(stderr, "[%7.1f s] measuring %s\n", elapsed, label.c_str());
         }
     });

@@ -2,6 +2,8 @@
 
 #include <chrono>
 
+#include "encore/core/Elapsed.h"
+
 namespace encore::batch {
 
 std::uint64_t sceneBytes(const scene::SceneData& scene) {
@@ -46,8 +48,7 @@ void ModelLoader::startLoads() {
             if (loaded.scene) {
                 loaded.bytes = sceneBytes(*loaded.scene);
             }
-            loaded.seconds =
-                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            loaded.seconds = secondsSince(start);
             std::lock_guard lock(mMutex);
             --mRunning;
             mBytesHeld += loaded.bytes;

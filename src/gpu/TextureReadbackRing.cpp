@@ -5,6 +5,8 @@
 #include <cstring>
 #include <string>
 
+#include "encore/core/Elapsed.h"
+
 namespace encore::gpu {
 
 struct TextureReadbackRing::Slot {
@@ -18,15 +20,6 @@ struct TextureReadbackRing::Slot {
     bool mapped = false;
     std::string mapMessage;
 };
-
-namespace {
-
-double millisecondsSince(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-        .count();
-}
-
-}  // namespace
 
 TextureReadbackRing::TextureReadbackRing(Context& context, std::size_t slots) : mContext(&context) {
     for (std::size_t i = 0; i < std::max<std::size_t>(slots, 1); ++i) {

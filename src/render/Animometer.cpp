@@ -4,6 +4,7 @@
 #include <cstring>
 #include <random>
 
+#include "encore/core/Elapsed.h"
 #include "encore/gpu/Readback.h"
 #include "encore/gpu/Upload.h"
 #include "encore/render/BundleRecorder.h"
@@ -29,11 +30,6 @@ static_assert(sizeof(TriangleParameters) == 32);
 
 // The sample's triangle, centred on the origin; the shader scales it by 0.2 .. 0.4.
 constexpr float kCorners[] = {0.0f, 0.1f, -0.1f, -0.1f, 0.1f, -0.1f};
-
-double millisecondsSince(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-        .count();
-}
 
 // Floats in [0, 1) from the top 24 bits of mt19937, whose output (unlike
 // std::uniform_real_distribution's) is the same with every standard library.

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "MipmapGenerator.h"
+#include "encore/core/Elapsed.h"
 #include "encore/core/Log.h"
 #include "encore/image/ImageResize.h"
 
@@ -304,9 +305,7 @@ Result<Environment> Environment::create(const wgpu::Device& device, const wgpu::
 
     ENCORE_TRY(environment.build(panorama, /*withLut=*/true));
     environment.mPanorama = std::make_shared<const image::HdrImage>(panorama);
-    environment.mLastBuildMilliseconds =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-            .count();
+    environment.mLastBuildMilliseconds = millisecondsSince(start);
     return environment;
 }
 
@@ -314,9 +313,7 @@ Result<void> Environment::load(const image::HdrImage& panorama) {
     const auto start = std::chrono::steady_clock::now();
     ENCORE_TRY(build(panorama, /*withLut=*/false));  // The LUT depends on no panorama.
     mPanorama = std::make_shared<const image::HdrImage>(panorama);
-    mLastBuildMilliseconds =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-            .count();
+    mLastBuildMilliseconds = millisecondsSince(start);
     return {};
 }
 

@@ -3,6 +3,7 @@
 #include <chrono>
 
 #include "MipmapGenerator.h"
+#include "encore/core/Elapsed.h"
 #include "encore/gpu/OutOfMemoryScope.h"
 #include "encore/gpu/Readback.h"
 #include "encore/render/PipelineCache.h"
@@ -10,13 +11,6 @@
 #include "encore/image/HdrImage.h"
 
 namespace encore::render {
-
-namespace {
-double millisecondsSince(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-        .count();
-}
-}  // namespace
 
 Renderer::Renderer(Renderer&&) noexcept = default;
 Renderer& Renderer::operator=(Renderer&&) noexcept = default;

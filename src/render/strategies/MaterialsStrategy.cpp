@@ -5,6 +5,7 @@
 #include <map>
 #include <unordered_map>
 
+#include "encore/core/Elapsed.h"
 
 namespace encore::render {
 
@@ -50,12 +51,6 @@ std::vector<scene::Semantic> variantSemantics(const shaders::ShaderVariantKey& k
     return semantics;
 }
 
-using Clock = std::chrono::steady_clock;
-
-double millisecondsSince(Clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
-
 }  // namespace
 
 Result<void> MaterialsStrategy::prepare(const RenderSetup& setup, const scene::SceneData& scene) {
@@ -63,15 +58,15 @@ Result<void> MaterialsStrategy::prepare(const RenderSetup& setup, const scene::S
     mSetup = &setup;
     mAnimation = setup.animation;
     mFrameGroup = setup.frame->bindGroup();
-    auto start = Clock::now();
+    auto start = std::chrono::steady_clock::now();
     mGeometry = std::make_unique<GeometryBuffers>(setup.device, scene);
     times.geometry += millisecondsSince(start);
     mPipelines = strategyPipelineCache(setup, mOwnPipelines);
-    start = Clock::now();
+    start = std::chrono::steady_clock::now();
     mInstances = InstanceBuffer(setup.device, *setup.layouts, scene);
     times.instances += millisecondsSince(start);
     mQueue = setup.queue;
-    start = Clock::now();
+    start = std::chrono::steady_clock::now();
     auto materials = MaterialResources::create(setup.device, setup.queue, *setup.shaders,
                                                *setup.layouts, scene, SampledTextures::all(),
                                                setup.limits.maxTextureDimension2D, setup.mipmaps);
@@ -81,7 +76,7 @@ Result<void> MaterialsStrategy::prepare(const RenderSetup& setup, const scene::S
     }
     mMaterials = std::make_unique<MaterialResources>(std::move(*materials));
     mScene = &scene;
-    start = Clock::now();
+    start = std::chrono::steady_clock::now();
     mBindings.clear();
     mPrimitiveBindings.assign(scene.meshes.size(), {});
     for (std::size_t mesh = 0; mesh < scene.meshes.size(); ++mesh) {
