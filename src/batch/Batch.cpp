@@ -18,6 +18,7 @@
 #include "encore/batch/ModelOutput.h"
 #include "encore/batch/TransformsJson.h"
 #include "encore/batch/ViewStrips.h"
+#include "encore/core/Elapsed.h"
 #include "encore/core/FileIO.h"
 #include "encore/core/ThreadPool.h"
 #include "encore/gpu/TextureReadbackRing.h"
@@ -28,13 +29,14 @@ namespace {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
-double secondsSince(Clock::time_point start) {
-    return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
 Error lostWhileDrawing() {
     return makeError(ErrorCode::DeviceError,
                      "The GPU device was lost while the model's views were drawn.");
+}
+
+Error deviceNotRecreated() {
+    return makeError(ErrorCode::DeviceError,
+                     "The GPU device was lost and could not be created again.");
 }
 
 // Counters the pool's encode tasks and the GPU thread both update.
@@ -345,7 +347,6 @@ void BatchRun::recoverIfLost() {
     }
     ++mDevicesLost;
     for (RendererSlot& slot : mRenderers) {
-        slot.renderer = nullptr;
         releasePrepared(slot);
     }
     mRenderers.clear();  // renderModel fails every later model's upload when none is left.
@@ -422,14 +423,12 @@ void BatchRun::renderModel(LoadedModel& loaded) {
         job->fail(*mFailures, mCounters, stage, error);
         mLoader->release(loaded.bytes);
     };
-    const Error noDevice = makeError(ErrorCode::DeviceError,
-                                     "The GPU device was lost and could not be created again.");
     if (!loaded.scene) {
         failBeforeUpload("load", loaded.scene.error());
         return;
     }
     if (mRenderers.empty()) {
-        failBeforeUpload("upload", noDevice);
+        failBeforeUpload("upload", deviceNotRecreated());
         return;
     }
     std::error_code ec;
@@ -450,7 +449,7 @@ void BatchRun::renderModel(LoadedModel& loaded) {
     collectReady();
     if (mRenderers.empty()) {
         // Collecting found the device lost and could not create it again.
-        failBeforeUpload("upload", noDevice);
+        failBeforeUpload("upload", deviceNotRecreated());
         return;
     }
 
@@ -597,9 +596,7 @@ Result<BatchSummary> BatchRun::run() {
     // The renderers may serve later runs (BatchRenderer): they must not refer to the scenes
     // freed here, nor hold those scenes' GPU memory.
     for (RendererSlot& slot : mRenderers) {
-        if (slot.renderer) {
-            slot.renderer->releaseScene();
-        }
+        slot.renderer->releaseScene();
         slot.prepared.reset();
     }
     mRenderers.clear();
