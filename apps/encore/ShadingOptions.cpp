@@ -6,6 +6,7 @@
 #include <string>
 
 #include "encore/image/HdrImage.h"
+#include "encore/image/Srgb.h"
 
 namespace encore::app {
 
@@ -40,9 +41,6 @@ std::string names(const auto& table) {
     return list;
 }
 
-double srgbToLinear(double value) {
-    return value <= 0.04045 ? value / 12.92 : std::pow((value + 0.055) / 1.055, 2.4);
-}
 
 Result<glm::vec3> parseHexColor(const std::string& text) {
     const auto invalid = [&] {
@@ -59,7 +57,7 @@ Result<glm::vec3> parseHexColor(const std::string& text) {
         if (digits.find_first_not_of("0123456789abcdefABCDEF") != std::string::npos) {
             return invalid();
         }
-        color[channel] = float(srgbToLinear(std::stoi(digits, nullptr, 16) / 255.0));
+        color[channel] = float(image::srgbToLinear(std::stoi(digits, nullptr, 16) / 255.0));
     }
     return color;
 }

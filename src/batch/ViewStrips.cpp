@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstring>
 
+#include "encore/image/Srgb.h"
+
 namespace encore::batch {
 
 StripLayout stripLayout(std::uint32_t width,
@@ -85,10 +87,7 @@ void decodeNormalImage(image::ImageRgba8& image) {
     static const std::array<std::uint8_t, 256> kLinear = [] {
         std::array<std::uint8_t, 256> table{};
         for (int value = 0; value < 256; ++value) {
-            const double encoded = value / 255.0;
-            const double linear =
-                encoded <= 0.04045 ? encoded / 12.92 : std::pow((encoded + 0.055) / 1.055, 2.4);
-            table[value] = std::uint8_t(std::lround(linear * 255.0));
+            table[value] = std::uint8_t(std::lround(image::srgbToLinear(value / 255.0) * 255.0));
         }
         return table;
     }();

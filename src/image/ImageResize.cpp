@@ -5,6 +5,8 @@
 #include <cassert>
 #include <cmath>
 
+#include "encore/image/Srgb.h"
+
 namespace encore::image {
 
 namespace {
@@ -36,8 +38,7 @@ const std::array<float, 256>& srgbToLinearTable() {
     static const std::array<float, 256> table = [] {
         std::array<float, 256> values{};
         for (int i = 0; i < 256; ++i) {
-            const double c = i / 255.0;
-            values[i] = float(c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4));
+            values[i] = float(srgbToLinear(i / 255.0));
         }
         return values;
     }();
