@@ -168,6 +168,25 @@ Result<std::vector<float>> readTextureRgba16Float(Context& context, const wgpu::
     return values;
 }
 
+Result<std::vector<float>> readTextureR32Float(Context& context, const wgpu::Texture& texture,
+                                               std::uint32_t level) {
+    if (texture.GetFormat() != wgpu::TextureFormat::R32Float) {
+        return makeError(ErrorCode::InvalidArgument,
+                         "readTextureR32Float needs an R32Float texture.");
+    }
+    if (level >= texture.GetMipLevelCount()) {
+        return makeError(ErrorCode::InvalidArgument,
+                         "Mip level " + std::to_string(level) + " does not exist.");
+    }
+    auto rows = readTexelRows(context, texture, level, 0, 4);
+    if (!rows) {
+        return rows.error();
+    }
+    std::vector<float> values(rows->size() / 4);
+    std::memcpy(values.data(), rows->data(), rows->size());
+    return values;
+}
+
 Result<std::vector<std::uint8_t>> readBuffer(Context& context, const wgpu::Buffer& buffer,
                                              std::uint64_t offset, std::uint64_t size) {
     if (size == 0 || size % 4 != 0 || offset % 4 != 0 || offset + size > buffer.GetSize()) {

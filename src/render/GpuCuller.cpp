@@ -1,6 +1,10 @@
 #include "encore/render/GpuCuller.h"
 
 #include <algorithm>
+#include <array>
+#include <bit>
+#include <cstdio>
+#include <cstdlib>
 #include <map>
 #include <numeric>
 
@@ -15,27 +19,56 @@ namespace {
 constexpr std::uint32_t kWorkgroupSize = 64;          // culling.wgsl's kWorkgroupSize.
 constexpr std::uint32_t kVisibleAlignmentEntries = 64;  // 256 bytes: storage offset alignment.
 
-struct DrawRecord {
-    std::uint32_t visibleBase;
-    std::uint32_t argumentsOffset;  // In u32 words.
+// culling.wgsl's Culling uniform.
+struct CullingUniform {
+    std::array<glm::vec4, 6> planes;
+    glm::mat4 viewProjection;
+    glm::vec3 cameraPosition;
+    float lodPixelsPerUnit = 0.0f;
+    float lodThresholdPixels = 0.0f;
+    std::uint32_t orthographic = 0;
+    std::uint32_t occlusion = 0;
+    std::uint32_t padding0 = 0;  // The viewport is 8-byte aligned.
+    glm::vec2 viewport;
+    std::uint32_t phaseArguments = 0;
+    std::uint32_t phaseVisible = 0;
+    std::uint32_t trianglesDrawnWord = 0;
+    std::uint32_t visibilityBase = 0;
+    std::uint32_t levelBase = 0;
+    std::uint32_t padding1 = 0;
 };
+static_assert(sizeof(CullingUniform) == 224);
+
+// The triangles one instance of a draw of `elementCount` indices (or vertices) draws.
+std::uint32_t trianglesOf(const CulledDraw& draw, std::uint32_t elementCount) {
+    switch (draw.topology) {
+        case scene::Topology::TriangleList:
+            return elementCount / 3;
+        case scene::Topology::TriangleStrip:
+            return elementCount >= 3 ? elementCount - 2 : 0;
+        default:
+            return 0;
+    }
+}
 
 // Every culling buffer is bound whole as storage. The per-draw buffer checked is the largest of
-// its kind (20 bytes of indirect arguments per draw).
-Result<void> checkCullingBuffers(const gpu::DeviceLimits& limits, std::size_t drawCount,
+// its kind (20 bytes of indirect arguments per draw and phase).
+Result<void> checkCullingBuffers(const gpu::DeviceLimits& limits, std::size_t levelDrawCount,
                                  std::uint32_t slotCount, std::uint64_t visibleBytes) {
-    const std::string draws = std::to_string(drawCount) + " culled draws";
+    const std::string draws = std::to_string(levelDrawCount) + " culled draws";
     const std::string slots = std::to_string(slotCount) + " instances";
-    ENCORE_TRY(gpu::checkStorageBinding(limits, std::uint64_t(drawCount) * 5 * 4,
-                                        "The indirect draw arguments of " + draws));
-    ENCORE_TRY(gpu::checkStorageBinding(limits, std::uint64_t(drawCount) * sizeof(DrawRecord),
+    ENCORE_TRY(gpu::checkStorageBinding(
+        limits, std::uint64_t(levelDrawCount) * GpuCuller::kPhases * 5 * 4 + 4,
+        "The indirect draw arguments of " + draws));
+    ENCORE_TRY(gpu::checkStorageBinding(limits, std::uint64_t(levelDrawCount) * 2 * 16,
                                         "The culling records of " + draws));
     ENCORE_TRY(gpu::checkStorageBinding(limits, std::uint64_t(slotCount) * sizeof(SlotBounds),
                                         "The culling bounds of " + slots));
     ENCORE_TRY(gpu::checkStorageBinding(
         limits, visibleBytes,
         "The visible-instance lists of " + draws + " over " + slots +
-            " (one list per draw, as long as its instance count, rounded to 64 entries)"));
+            " (two lists per draw, as long as its instance count, rounded to 64 entries, and "
+            "one word per instance)"));
     return {};
 }
 
@@ -44,53 +77,84 @@ Result<void> checkCullingBuffers(const gpu::DeviceLimits& limits, std::size_t dr
 Result<GpuCuller> GpuCuller::create(const RenderSetup& setup, const InstanceBuffer& instances,
                                     CullingBounds bounds, std::vector<CulledDraw> draws) {
     GpuCuller culler;
+    culler.mSetup = &setup;
     culler.mDraws = std::move(draws);
     culler.mBounds = std::move(bounds);
     culler.mSlotCount = static_cast<std::uint32_t>(culler.mBounds.slots.size());
     if (culler.mDraws.empty() || culler.mSlotCount == 0) {
-        return culler;  // Nothing to cull: encode() does nothing.
+        return culler;  // Nothing to cull: encoding does nothing.
     }
     const wgpu::Device& device = setup.device;
 
-    // Arguments: instanceCount starts at 0; the first cull pass fills it.
-    std::vector<std::uint32_t> arguments;
+    // Records: per draw (firstLevel, levelCount, 0, 0), then per level draw (visibleBase,
+    // argumentsOffset, triangles, error bits).
+    std::vector<glm::uvec4> primitiveRecords;
+    std::vector<glm::uvec4> levelRecords;
     // 64 bits until checked: thousands of primitives of a million instances pass 2^32 entries.
     std::uint64_t nextBase = 0;
-    std::uint64_t lastBase = 0;
     std::uint32_t largestList = 1;
     for (const CulledDraw& draw : culler.mDraws) {
-        // drawIndexedIndirect reads five words (count, instances, first index, base vertex,
-        // first instance), drawIndirect the first four; one record layout serves both.
-        arguments.insert(arguments.end(), {draw.elementCount, 0, 0, 0, 0});
-        culler.mVisibleBase.push_back(static_cast<std::uint32_t>(nextBase));
-        lastBase = nextBase;
+        const auto firstLevel = static_cast<std::uint32_t>(levelRecords.size());
+        culler.mFirstLevel.push_back(firstLevel);
+        primitiveRecords.push_back({firstLevel, draw.levelCount(), 0, 0});
         const std::uint32_t capacity = std::max(draw.instances.count, 1u);
         largestList = std::max(largestList, capacity);
-        nextBase += (std::uint64_t(capacity) + kVisibleAlignmentEntries - 1) /
-                    kVisibleAlignmentEntries * kVisibleAlignmentEntries;
+        for (std::uint32_t level = 0; level < draw.levelCount(); ++level) {
+            const std::uint32_t elements =
+                level == 0 ? draw.elementCount : draw.coarserLevels[level - 1].indexCount;
+            const float error = level == 0 ? 0.0f : draw.coarserLevels[level - 1].error;
+            const auto levelDraw = static_cast<std::uint32_t>(levelRecords.size());
+            culler.mVisibleBase.push_back(static_cast<std::uint32_t>(nextBase));
+            levelRecords.push_back({static_cast<std::uint32_t>(nextBase), levelDraw * 5,
+                                    trianglesOf(draw, elements), std::bit_cast<std::uint32_t>(error)});
+            nextBase += (std::uint64_t(capacity) + kVisibleAlignmentEntries - 1) /
+                        kVisibleAlignmentEntries * kVisibleAlignmentEntries;
+        }
     }
+    culler.mLevelDrawCount = static_cast<std::uint32_t>(levelRecords.size());
+
     const std::uint64_t listBytes = std::uint64_t(largestList) * 4;
-    const std::uint64_t visibleBytes = lastBase * 4 + listBytes;
-    ENCORE_TRY(checkCullingBuffers(setup.limits, culler.mDraws.size(), culler.mSlotCount,
-                                   visibleBytes));
+    // Phase 2's lists follow phase 1's; the slots' visibility follows both.
+    const std::uint64_t phaseVisible = nextBase;
+    const std::uint64_t visibilityBase = phaseVisible * kPhases;
+    const std::uint64_t visibleBytes = (visibilityBase + culler.mSlotCount) * 4;
+    ENCORE_TRY(checkCullingBuffers(setup.limits, levelRecords.size(), culler.mSlotCount,
+                                   std::max(visibleBytes, visibilityBase * 4 + listBytes)));
+    culler.mPhaseVisible = static_cast<std::uint32_t>(phaseVisible);
+
+    // Arguments: instanceCount starts at 0; the first cull pass fills it. drawIndexedIndirect
+    // reads five words (count, instances, first index, base vertex, first instance),
+    // drawIndirect the first four; one record layout serves both.
+    std::vector<std::uint32_t> arguments;
+    for (std::uint32_t phase = 0; phase < kPhases; ++phase) {
+        for (const CulledDraw& draw : culler.mDraws) {
+            arguments.insert(arguments.end(), {draw.elementCount, 0, 0, 0, 0});
+            for (const DrawLevel& level : draw.coarserLevels) {
+                arguments.insert(arguments.end(), {level.indexCount, 0, level.firstIndex, 0, 0});
+            }
+        }
+    }
+    culler.mTrianglesDrawnWord = static_cast<std::uint32_t>(arguments.size());
+    arguments.push_back(0);
     culler.mArguments = gpu::createStorageBuffer(device, arguments, "indirect arguments (all draws)",
                                       wgpu::BufferUsage::Indirect | wgpu::BufferUsage::CopySrc |
                                           wgpu::BufferUsage::CopyDst);
-    culler.mVisible = gpu::createBuffer(device, wgpu::BufferUsage::Storage, visibleBytes,
-                                        "visible instance lists");
+    culler.mVisible = gpu::createBuffer(device, wgpu::BufferUsage::Storage,
+                                        std::max(visibleBytes, visibilityBase * 4 + listBytes),
+                                        "visible instance lists and visibility");
 
-    // Each slot lists the culled draws of its instance range, contiguous in `draws`; slots whose
-    // mesh has no culled draw (all its primitives blended) list none.
+    // Each slot lists the culled draws of its instance range, contiguous in the primitive
+    // records; slots whose mesh has no culled draw (all its primitives blended) list none.
     std::map<std::uint32_t, std::vector<std::uint32_t>> drawsOfRange;  // By first slot.
     for (std::uint32_t i = 0; i < culler.mDraws.size(); ++i) {
         drawsOfRange[culler.mDraws[i].instances.first].push_back(i);
     }
-    std::vector<DrawRecord> drawRecords;
+    std::vector<glm::uvec4> records;
     std::vector<SlotBounds>& slots = culler.mBounds.slots;
     for (const auto& [firstSlot, drawIndices] : drawsOfRange) {
-        const auto firstDraw = static_cast<std::uint32_t>(drawRecords.size());
+        const auto firstDraw = static_cast<std::uint32_t>(records.size());
         for (std::uint32_t draw : drawIndices) {
-            drawRecords.push_back({culler.mVisibleBase[draw], draw * 5});
+            records.push_back(primitiveRecords[draw]);
         }
         const InstanceRange range = culler.mDraws[drawIndices.front()].instances;
         for (std::uint32_t slot = range.first; slot < range.first + range.count; ++slot) {
@@ -98,16 +162,26 @@ Result<GpuCuller> GpuCuller::create(const RenderSetup& setup, const InstanceBuff
             slots[slot].drawCount = static_cast<std::uint32_t>(drawIndices.size());
         }
     }
+    const auto levelBase = static_cast<std::uint32_t>(records.size());
+    culler.mLevelBase = levelBase;
+    records.insert(records.end(), levelRecords.begin(), levelRecords.end());
 
-    culler.mFrustum = gpu::createBuffer(device, wgpu::BufferUsage::Uniform | wgpu::BufferUsage::CopyDst,
-                                        sizeof(glm::vec4) * 6, "frustum planes");
+    CullingUniform uniform{};
+    uniform.phaseArguments = culler.mLevelDrawCount * 5;
+    uniform.phaseVisible = culler.mPhaseVisible;
+    uniform.trianglesDrawnWord = culler.mTrianglesDrawnWord;
+    uniform.visibilityBase = static_cast<std::uint32_t>(visibilityBase);
+    uniform.levelBase = levelBase;
+    culler.mUniform = gpu::createBufferFrom<CullingUniform>(
+        device, wgpu::BufferUsage::Uniform | wgpu::BufferUsage::CopyDst, std::span(&uniform, 1),
+        "culling uniform");
     const auto slotBuffer = gpu::createStorageBuffer(device, slots, "culling bounds");
     ENCORE_TRY(gpu::checkStorageBinding(
         setup.limits, culler.mBounds.shapes.size() * sizeof(glm::vec4),
         "The joint spheres and morph extents of the culling bounds"));
     const auto shapeBuffer =
         gpu::createStorageBuffer(device, culler.mBounds.shapes, "culling joint spheres");
-    const auto drawBuffer = gpu::createStorageBuffer(device, drawRecords, "culled draws");
+    const auto recordBuffer = gpu::createStorageBuffer(device, records, "culled draws and levels");
     // A scene without skins or morph targets binds placeholders its records never index.
     wgpu::Buffer joints, weights;
     if (setup.animation) {
@@ -123,8 +197,8 @@ Result<GpuCuller> GpuCuller::create(const RenderSetup& setup, const InstanceBuff
     if (!module) {
         return module.error();
     }
-    // One explicit layout for both entry points: layouts derived from each shader entry point
-    // would be distinct and their bind groups incompatible.
+    // Explicit layouts, shared by the entry points: layouts derived from each shader entry point
+    // would be distinct and their bind groups incompatible. The second phase adds the pyramid.
     auto layoutEntry = [](std::uint32_t binding, wgpu::BufferBindingType type) {
         wgpu::BindGroupLayoutEntry entry{};
         entry.binding = binding;
@@ -144,28 +218,38 @@ Result<GpuCuller> GpuCuller::create(const RenderSetup& setup, const InstanceBuff
     layoutDescriptor.entryCount = std::size(layoutEntries);
     layoutDescriptor.entries = layoutEntries;
     const wgpu::BindGroupLayout cullLayout = device.CreateBindGroupLayout(&layoutDescriptor);
-    wgpu::PipelineLayoutDescriptor pipelineLayoutDescriptor{};
-    pipelineLayoutDescriptor.bindGroupLayoutCount = 1;
-    pipelineLayoutDescriptor.bindGroupLayouts = &cullLayout;
-    const wgpu::PipelineLayout pipelineLayout =
-        device.CreatePipelineLayout(&pipelineLayoutDescriptor);
-    auto computePipeline = [&](const char* entryPoint) {
+    wgpu::BindGroupLayoutEntry pyramidEntry{};
+    pyramidEntry.binding = 0;
+    pyramidEntry.visibility = wgpu::ShaderStage::Compute;
+    pyramidEntry.texture.sampleType = wgpu::TextureSampleType::UnfilterableFloat;
+    wgpu::BindGroupLayoutDescriptor pyramidDescriptor{};
+    pyramidDescriptor.label = "culling depth pyramid";
+    pyramidDescriptor.entryCount = 1;
+    pyramidDescriptor.entries = &pyramidEntry;
+    culler.mPyramidLayout = device.CreateBindGroupLayout(&pyramidDescriptor);
+
+    auto computePipeline = [&](const char* entryPoint, bool withPyramid) {
+        const wgpu::BindGroupLayout layouts[] = {cullLayout, culler.mPyramidLayout};
+        wgpu::PipelineLayoutDescriptor pipelineLayoutDescriptor{};
+        pipelineLayoutDescriptor.bindGroupLayoutCount = withPyramid ? 2 : 1;
+        pipelineLayoutDescriptor.bindGroupLayouts = layouts;
         wgpu::ComputePipelineDescriptor descriptor{};
         descriptor.label = entryPoint;
-        descriptor.layout = pipelineLayout;
+        descriptor.layout = device.CreatePipelineLayout(&pipelineLayoutDescriptor);
         descriptor.compute.module = *module;
         descriptor.compute.entryPoint = entryPoint;
         return device.CreateComputePipeline(&descriptor);
     };
-    culler.mReset = computePipeline("resetCounts");
-    culler.mCull = computePipeline("cullInstances");
+    culler.mReset = computePipeline("resetCounts", false);
+    culler.mCullFirst = computePipeline("cullFirstPhase", false);
+    culler.mCullSecond = computePipeline("cullSecondPhase", true);
 
     const wgpu::BindGroupEntry cullEntries[] = {
-        gpu::bufferEntry(0, culler.mFrustum, 0, sizeof(glm::vec4) * 6),
+        gpu::bufferEntry(0, culler.mUniform, 0, sizeof(CullingUniform)),
         gpu::bufferEntry(1, slotBuffer, 0, slots.size() * sizeof(SlotBounds)),
         gpu::bufferEntry(2, instances.buffer(), 0, instances.buffer().GetSize()),
         gpu::bufferEntry(3, shapeBuffer, 0, shapeBuffer.GetSize()),
-        gpu::bufferEntry(4, drawBuffer, 0, drawRecords.size() * sizeof(DrawRecord)),
+        gpu::bufferEntry(4, recordBuffer, 0, records.size() * sizeof(glm::uvec4)),
         gpu::bufferEntry(5, culler.mArguments, 0, arguments.size() * 4),
         gpu::bufferEntry(6, culler.mVisible, 0, culler.mVisible.GetSize()),
         gpu::bufferEntry(7, joints, 0, joints.GetSize()),
@@ -191,24 +275,94 @@ Result<GpuCuller> GpuCuller::create(const RenderSetup& setup, const InstanceBuff
     return culler;
 }
 
-void GpuCuller::encode(const wgpu::Queue& queue, const wgpu::CommandEncoder& commands,
-                       const Camera& camera, gpu::GpuTimer* timer) const {
-    if (!mCull) {
+std::uint64_t GpuCuller::trianglesSubmitted() const {
+    std::uint64_t triangles = 0;
+    for (const CulledDraw& draw : mDraws) {
+        triangles += std::uint64_t(trianglesOf(draw, draw.elementCount)) * draw.instances.count;
+    }
+    return triangles;
+}
+
+void GpuCuller::encodeFirstPhase(const wgpu::Queue& queue, const wgpu::CommandEncoder& commands,
+                                 const CullingView& view, gpu::GpuTimer* timer) {
+    if (!mCullFirst) {
         return;
     }
-    const Frustum frustum = Frustum::fromViewProjection(camera.projection * camera.view);
-    queue.WriteBuffer(mFrustum, 0, frustum.planes.data(), sizeof(frustum.planes));
+    const Camera& camera = view.camera;
+    const glm::mat4 viewProjection = camera.projection * camera.view;
+    CullingUniform uniform{};
+    const Frustum frustum = Frustum::fromViewProjection(viewProjection);
+    std::copy(frustum.planes.begin(), frustum.planes.end(), uniform.planes.begin());
+    uniform.viewProjection = viewProjection;
+    uniform.cameraPosition = camera.position;
+    // The projection's y scale maps a unit at distance one (orthographic: anywhere) to that many
+    // half-heights of the viewport.
+    if (view.options.levelsOfDetail) {
+        uniform.lodPixelsPerUnit = camera.projection[1][1] * float(view.targetHeight) * 0.5f;
+    }
+    uniform.lodThresholdPixels = view.options.lodErrorPixels;
+    uniform.orthographic = camera.projection[2][3] == 0.0f ? 1u : 0u;
+    uniform.occlusion = view.twoPhases ? 1u : 0u;
+    uniform.viewport = glm::vec2(view.targetWidth, view.targetHeight);
+    uniform.phaseArguments = mLevelDrawCount * 5;
+    uniform.phaseVisible = mPhaseVisible;
+    uniform.trianglesDrawnWord = mTrianglesDrawnWord;
+    uniform.visibilityBase = mPhaseVisible * kPhases;
+    uniform.levelBase = mLevelBase;
+    queue.WriteBuffer(mUniform, 0, &uniform, sizeof(uniform));
+
     wgpu::ComputePassDescriptor descriptor{};
-    descriptor.label = "gpu culling";
+    descriptor.label = "gpu culling (first phase)";
     descriptor.timestampWrites = timer ? timer->nextPass() : nullptr;
     wgpu::ComputePassEncoder pass = commands.BeginComputePass(&descriptor);
     // Separate dispatches are separate usage scopes: the cull sees the reset's writes.
     pass.SetPipeline(mReset);
     pass.SetBindGroup(0, mCullBindGroup);
-    pass.DispatchWorkgroups((static_cast<std::uint32_t>(mDraws.size()) + kWorkgroupSize - 1) /
-                            kWorkgroupSize);
-    pass.SetPipeline(mCull);
+    pass.DispatchWorkgroups((mLevelDrawCount + kWorkgroupSize - 1) / kWorkgroupSize);
+    pass.SetPipeline(mCullFirst);
     pass.SetBindGroup(0, mCullBindGroup);
+    pass.DispatchWorkgroups((mSlotCount + kWorkgroupSize - 1) / kWorkgroupSize);
+    pass.End();
+}
+
+void GpuCuller::encodeSecondPhase(const wgpu::CommandEncoder& commands, const wgpu::Texture& depth,
+                                  gpu::GpuTimer* timer) {
+    if (!mCullSecond) {
+        return;
+    }
+    if (!mPyramid.builtFor(depth)) {
+        auto pyramid = DepthPyramid::create(mSetup->device, *mSetup->shaders, depth);
+        // The shader is embedded and the depth texture the renderer's own: a failure here is a
+        // bug, not an input error.
+        if (!pyramid) {
+            std::fprintf(stderr, "encore: the depth pyramid cannot be built: %s\n",
+                         pyramid.error().message.c_str());
+            std::abort();
+        }
+        mPyramid = std::move(*pyramid);
+        wgpu::BindGroupEntry entry{};
+        entry.binding = 0;
+        entry.textureView = mPyramid.view();
+        wgpu::BindGroupDescriptor descriptor{};
+        descriptor.label = "culling depth pyramid";
+        descriptor.layout = mPyramidLayout;
+        descriptor.entryCount = 1;
+        descriptor.entries = &entry;
+        mPyramidBindGroup = mSetup->device.CreateBindGroup(&descriptor);
+    }
+    wgpu::ComputePassDescriptor pyramidDescriptor{};
+    pyramidDescriptor.label = "depth pyramid";
+    pyramidDescriptor.timestampWrites = timer ? timer->nextPass() : nullptr;
+    wgpu::ComputePassEncoder pyramidPass = commands.BeginComputePass(&pyramidDescriptor);
+    mPyramid.encode(pyramidPass);
+    pyramidPass.End();
+    wgpu::ComputePassDescriptor descriptor{};
+    descriptor.label = "gpu culling (second phase)";
+    descriptor.timestampWrites = timer ? timer->nextPass() : nullptr;
+    wgpu::ComputePassEncoder pass = commands.BeginComputePass(&descriptor);
+    pass.SetPipeline(mCullSecond);
+    pass.SetBindGroup(0, mCullBindGroup);
+    pass.SetBindGroup(1, mPyramidBindGroup);
     pass.DispatchWorkgroups((mSlotCount + kWorkgroupSize - 1) / kWorkgroupSize);
     pass.End();
 }

@@ -75,7 +75,8 @@ Result<RenderTarget> RenderTarget::create(const wgpu::Device& device,
     depth.size = {options.width, options.height, 1};
     depth.format = kDepthFormat;
     depth.sampleCount = options.sampleCount;
-    depth.usage = wgpu::TextureUsage::RenderAttachment;
+    // Sampled by the depth pyramid of occlusion culling (DepthPyramid).
+    depth.usage = wgpu::TextureUsage::RenderAttachment | wgpu::TextureUsage::TextureBinding;
     target.mDepth = device.CreateTexture(&depth);
     target.mDepthView = target.mDepth.CreateView();
     return target;

@@ -313,7 +313,14 @@ FrameResult Renderer::renderPasses(std::span<const Camera> cameras, float timeSe
     } else {
         mFrame->update(mContext->queue(), cameras[0], timeSeconds);
     }
-    const FrameState state{cameras[0], timeSeconds, mTimer, mCullingCamera};
+    FrameState state{cameras[0], timeSeconds, mTimer, mCullingCamera};
+    state.culling = mOptions.culling;
+    state.targetWidth = mTarget.width();
+    state.targetHeight = mTarget.height();
+    const bool twoPhases = !multiView && mStrategy && mStrategy->drawsInTwoPhases(state);
+    if (twoPhases) {
+        state.phase = DrawPhase::First;
+    }
 
     const auto encodeStart = std::chrono::steady_clock::now();
     wgpu::CommandEncoder commandEncoder = mContext->device().CreateCommandEncoder();
@@ -325,10 +332,9 @@ FrameResult Renderer::renderPasses(std::span<const Camera> cameras, float timeSe
         mStrategy->beforePass(commandEncoder, state);
     }
     const std::uint32_t viewWidth = mTarget.width() / std::uint32_t(cameras.size());
-    for (std::size_t view = 0; view < cameras.size(); ++view) {
-        if (multiView) {
-            mFrame->selectView(commandEncoder, view);
-        }
+    // One pass per view, or the two passes of a two-phase frame: the first keeps its colour and
+    // depth for the second (multisampled: unresolved), which loads them and finishes the view.
+    auto encodePass = [&](std::size_t view, DrawPhase phase) {
         // HDR: alpha is coverage, 0 where nothing is drawn, for the tone mapper's background.
         // Otherwise the background colour itself (linear: the sRGB target encodes the clear).
         const glm::vec3& background = mOptions.toneMapping.backgroundColor;
@@ -336,14 +342,23 @@ FrameResult Renderer::renderPasses(std::span<const Camera> cameras, float timeSe
             mTarget.hdr() ? wgpu::Color{0.0, 0.0, 0.0, 0.0}
                           : wgpu::Color{background.r, background.g, background.b, 1.0});
         wgpu::RenderPassDepthStencilAttachment depth = mTarget.depthAttachment();
-        if (view > 0) {
-            color.loadOp = wgpu::LoadOp::Load;  // Keep the views drawn before.
+        if (view > 0 || phase == DrawPhase::Second) {
+            color.loadOp = wgpu::LoadOp::Load;  // Keep the views (or the phase) drawn before.
         }
         if (multiView) {
             color.storeOp = wgpu::StoreOp::Store;  // Multisampled contents survive the passes.
         }
+        if (phase == DrawPhase::First) {
+            color.storeOp = wgpu::StoreOp::Store;
+            color.resolveTarget = nullptr;  // The second pass resolves.
+            depth.depthStoreOp = wgpu::StoreOp::Store;
+        } else if (phase == DrawPhase::Second) {
+            depth.depthLoadOp = wgpu::LoadOp::Load;
+        }
         wgpu::RenderPassDescriptor passDescriptor{};
-        passDescriptor.label = "encore frame";
+        passDescriptor.label = phase == DrawPhase::First    ? "encore frame (first phase)"
+                               : phase == DrawPhase::Second ? "encore frame (second phase)"
+                                                            : "encore frame";
         passDescriptor.colorAttachmentCount = 1;
         passDescriptor.colorAttachments = &color;
         passDescriptor.depthStencilAttachment = &depth;
@@ -353,16 +368,31 @@ FrameResult Renderer::renderPasses(std::span<const Camera> cameras, float timeSe
             pass.SetViewport(float(view * viewWidth), 0.0f, float(viewWidth),
                              float(mTarget.height()), 0.0f, 1.0f);
         }
-        if (mOptions.toneMapping.background == BackgroundKind::Environment) {
+        if (mOptions.toneMapping.background == BackgroundKind::Environment &&
+            phase != DrawPhase::Second) {
             mBackground->draw(pass, mFrame->bindGroup());
         }
         if (mStrategy) {
             RenderEncoder encoder(pass, result.counters);
             encoder.setTrace(trace);
-            mStrategy->encode(encoder,
-                              FrameState{cameras[view], timeSeconds, mTimer, mCullingCamera});
+            FrameState viewState = state;
+            viewState.camera = cameras[view];
+            viewState.phase = phase;
+            mStrategy->encode(encoder, viewState);
         }
         pass.End();
+    };
+    if (twoPhases) {
+        encodePass(0, DrawPhase::First);
+        mStrategy->betweenPhases(commandEncoder, state, mTarget.depthTexture());
+        encodePass(0, DrawPhase::Second);
+    } else {
+        for (std::size_t view = 0; view < cameras.size(); ++view) {
+            if (multiView) {
+                mFrame->selectView(commandEncoder, view);
+            }
+            encodePass(view, DrawPhase::Whole);
+        }
     }
     if (mToneMapper) {
         mToneMapper->encode(commandEncoder, mTarget);

@@ -1,13 +1,41 @@
-// GPU frustum culling. Every frame, `resetCounts` zeroes the instanceCount of every indirect
-// draw, then `cullInstances` bounds each instance where this frame's transforms put it
-// (render::CullingBounds: a rigid sphere moved by the instance's world matrix, joint spheres
-// moved by the joint matrices, grown by the morph deltas the current weights allow) and, when
-// the hull of those spheres meets the frustum, appends the instance to the visible list of
-// every draw of its mesh: atomicAdd on that draw's instanceCount gives the slot. Indirect
-// arguments keep firstInstance 0 (see mesh.wgsl).
+// GPU culling with levels of detail and two-phase occlusion culling (render::GpuCuller).
+//
+// Each instance slot is bounded where this frame's transforms put it (render::CullingBounds: a
+// rigid sphere moved by the instance's world matrix, joint spheres moved by the joint matrices,
+// grown by the morph deltas the current weights allow). A visible instance is appended to the
+// visible list of one indirect draw per primitive of its mesh: the draw of the level of detail
+// chosen for it (the coarsest whose object-space error, projected, stays under the threshold),
+// atomicAdd on that draw's instanceCount giving the slot. Indirect arguments keep firstInstance 0
+// (see mesh.wgsl).
+//
+// Every draw has two argument records and two visible lists, one per phase. A frame of one view
+// with occlusion culling runs:
+//   resetCounts; cullFirstPhase: instances in the frustum that were visible last frame -> phase 1;
+//   (phase 1 is drawn; depth_pyramid.wgsl reduces its depth)
+//   cullSecondPhase: every instance in the frustum is tested against the pyramid; the visible ones
+//   not drawn in phase 1 -> phase 2; the result is remembered for the next frame.
+// Without occlusion culling, cullFirstPhase takes every instance in the frustum and phase 2
+// stays empty.
 
-struct Frustum {
+struct Culling {
     planes: array<vec4f, 6>,  // xyz: inward normal, w: distance; visible when dot >= -radius.
+    viewProjection: mat4x4f,
+    cameraPosition: vec3f,
+    // Pixels that one unit at distance one covers (orthographic: at any distance); 0: levels of
+    // detail off.
+    lodPixelsPerUnit: f32,
+    lodThresholdPixels: f32,
+    orthographic: u32,
+    occlusion: u32,          // 1: two phases (cullFirstPhase reads last frame's visibility).
+    viewport: vec2f,         // The depth target's size in pixels.
+    phaseArguments: u32,     // Words from a draw's phase 1 arguments to its phase 2 arguments.
+    phaseVisible: u32,       // Entries from a draw's phase 1 list to its phase 2 list.
+    // Where `indirectArguments` keeps the frame's count of triangles drawn (after all records),
+    // and where `visibleInstances` keeps last frame's visibility, one word per slot (after all
+    // lists): WebGPU's default limit is 8 storage buffers per stage, and these make 10 otherwise.
+    trianglesDrawnWord: u32,
+    visibilityBase: u32,
+    levelBase: u32,          // Index of the first level record in `records`.
 }
 
 // One instance slot (render::SlotBounds).
@@ -19,7 +47,7 @@ struct SlotBounds {
     firstMorphExtent: u32,  // In floats.
     morphCount: u32,
     weightOffset: u32,
-    firstDraw: u32,  // The culled draws of the slot's mesh, in `draws`.
+    firstDraw: u32,  // The culled primitives of the slot's mesh, in `primitives`.
     drawCount: u32,
 }
 
@@ -28,30 +56,50 @@ struct Transform {
     normal: mat4x4f,
 }
 
-// Per draw: where its visible list starts (in entries).
-struct Draw {
-    visibleBase: u32,
+// `records` holds, per culled primitive, (firstLevel, levelCount, 0, 0): its levels of detail,
+// finer to coarser, contiguous from `levelBase + firstLevel`; and per level, one indirect draw of
+// the primitive at that level (its phase 1 records; phase 2's follow at the phase strides):
+struct Level {
+    visibleBase: u32,      // In entries.
     argumentsOffset: u32,  // In u32 words; instanceCount is the next word.
+    triangles: u32,        // Per instance.
+    error: f32,            // Object-space simplification error (0 for the mesh as loaded).
 }
 
-@group(0) @binding(0) var<uniform> frustum: Frustum;
+fn levelAt(index: u32) -> Level {
+    let record = records[culling.levelBase + index];
+    return Level(record.x, record.y, record.z, bitcast<f32>(record.w));
+}
+
+@group(0) @binding(0) var<uniform> culling: Culling;
 @group(0) @binding(1) var<storage, read> slots: array<SlotBounds>;
 @group(0) @binding(2) var<storage, read> instances: array<Transform>;  // Per slot.
 @group(0) @binding(3) var<storage, read> shapes: array<vec4f>;
-@group(0) @binding(4) var<storage, read> draws: array<Draw>;
+@group(0) @binding(4) var<storage, read> records: array<vec4u>;
 @group(0) @binding(5) var<storage, read_write> indirectArguments: array<atomic<u32>>;
 @group(0) @binding(6) var<storage, read_write> visibleInstances: array<u32>;
 @group(0) @binding(7) var<storage, read> joints: array<Transform>;
 @group(0) @binding(8) var<storage, read> morphWeights: array<f32>;
 
+@group(1) @binding(0) var depthPyramid: texture_2d<f32>;  // cullSecondPhase only.
+
 override kWorkgroupSize: u32 = 64;
+
+// The triangles a workgroup appended, added to the frame's count once per workgroup rather than
+// once per instance (a million atomics on one word serialise).
+var<workgroup> trianglesAppended: atomic<u32>;
 
 @compute @workgroup_size(kWorkgroupSize)
 fn resetCounts(@builtin(global_invocation_id) id: vec3u) {
-    if (id.x >= arrayLength(&draws)) {
+    if (id.x == 0u) {
+        atomicStore(&indirectArguments[culling.trianglesDrawnWord], 0u);
+    }
+    if (culling.levelBase + id.x >= arrayLength(&records)) {
         return;
     }
-    atomicStore(&indirectArguments[draws[id.x].argumentsOffset + 1u], 0u);
+    let arguments = levelAt(id.x).argumentsOffset + 1u;
+    atomicStore(&indirectArguments[arguments], 0u);
+    atomicStore(&indirectArguments[arguments + culling.phaseArguments], 0u);
 }
 
 fn largestAxisScale(m: mat4x4f) -> f32 {
@@ -59,58 +107,190 @@ fn largestAxisScale(m: mat4x4f) -> f32 {
                     dot(m[2].xyz, m[2].xyz)));
 }
 
-// Per plane, how far inside the farthest sphere so far reaches (negative: all outside).
-struct Reach {
-    planes: array<f32, 6>,
+// Where an instance is this frame: per frustum plane, how far inside the farthest of its spheres
+// reaches (negative: all outside), and the world-space box around the spheres.
+struct InstanceBounds {
+    reach: array<f32, 6>,
+    boxMin: vec3f,
+    boxMax: vec3f,
+    scale: f32,  // The largest axis scale of the transforms that moved the spheres.
 }
 
-fn extend(reach: ptr<function, Reach>, transform: mat4x4f, sphere: vec4f, growth: f32) {
+fn extend(bounds: ptr<function, InstanceBounds>, transform: mat4x4f, sphere: vec4f, growth: f32) {
+    let scale = largestAxisScale(transform);
     let center = (transform * vec4f(sphere.xyz, 1.0)).xyz;
-    let radius = (sphere.w + growth) * largestAxisScale(transform);
+    let radius = (sphere.w + growth) * scale;
     for (var i = 0u; i < 6u; i++) {
-        let plane = frustum.planes[i];
-        (*reach).planes[i] = max((*reach).planes[i], dot(plane.xyz, center) + plane.w + radius);
+        let plane = culling.planes[i];
+        (*bounds).reach[i] = max((*bounds).reach[i], dot(plane.xyz, center) + plane.w + radius);
     }
+    (*bounds).boxMin = min((*bounds).boxMin, center - vec3f(radius));
+    (*bounds).boxMax = max((*bounds).boxMax, center + vec3f(radius));
+    (*bounds).scale = max((*bounds).scale, scale);
 }
 
-fn isVisible(slot: u32) -> bool {
+fn boundsOf(slot: u32) -> InstanceBounds {
     let bounds = slots[slot];
     var growth = 0.0;
     for (var t = 0u; t < bounds.morphCount; t++) {
         let extent = bounds.firstMorphExtent + t;
         growth += abs(morphWeights[bounds.weightOffset + t]) * shapes[extent / 4u][extent % 4u];
     }
-    var reach: Reach;
+    var result: InstanceBounds;
     for (var i = 0u; i < 6u; i++) {
-        reach.planes[i] = -3.4e38;
+        result.reach[i] = -3.4e38;
     }
+    result.boxMin = vec3f(3.4e38);
+    result.boxMax = vec3f(-3.4e38);
+    result.scale = 0.0;
     if (bounds.rigidSphere.w >= 0.0) {
-        extend(&reach, instances[slot].world, bounds.rigidSphere, growth);
+        extend(&result, instances[slot].world, bounds.rigidSphere, growth);
     }
     for (var j = 0u; j < bounds.jointCount; j++) {
         let sphere = shapes[bounds.firstJointSphere + j];
         if (sphere.w >= 0.0) {
-            extend(&reach, joints[bounds.jointOffset + j].world, sphere, growth);
+            extend(&result, joints[bounds.jointOffset + j].world, sphere, growth);
         }
     }
+    return result;
+}
+
+fn inFrustum(bounds: InstanceBounds) -> bool {
     for (var i = 0u; i < 6u; i++) {
-        if (reach.planes[i] < 0.0) {
+        if (bounds.reach[i] < 0.0) {
             return false;
         }
     }
     return true;
 }
 
+// The coarsest level whose error, projected from the nearest point of the instance's box, stays
+// under the threshold (levels are ordered finer to coarser, errors growing).
+fn chooseLevel(primitive: vec4u, bounds: InstanceBounds) -> u32 {
+    let firstLevel = primitive.x;
+    let levelCount = primitive.y;
+    if (levelCount <= 1u || culling.lodPixelsPerUnit <= 0.0) {
+        return firstLevel;
+    }
+    var pixelsPerUnit = culling.lodPixelsPerUnit * bounds.scale;
+    if (culling.orthographic == 0u) {
+        let nearest = clamp(culling.cameraPosition, bounds.boxMin, bounds.boxMax);
+        pixelsPerUnit /= max(distance(nearest, culling.cameraPosition), 1e-6);
+    }
+    var chosen = firstLevel;
+    for (var level = 1u; level < levelCount; level++) {
+        let candidate = firstLevel + level;
+        if (levelAt(candidate).error * pixelsPerUnit > culling.lodThresholdPixels) {
+            break;
+        }
+        chosen = candidate;
+    }
+    return chosen;
+}
+
+// Appends the slot to the draws of its primitives' chosen levels; returns the triangles added.
+fn append(slot: u32, bounds: InstanceBounds, phase: u32) -> u32 {
+    let record = slots[slot];
+    var triangles = 0u;
+    for (var i = 0u; i < record.drawCount; i++) {
+        let level = levelAt(chooseLevel(records[record.firstDraw + i], bounds));
+        let index = atomicAdd(
+            &indirectArguments[level.argumentsOffset + 1u + phase * culling.phaseArguments], 1u);
+        visibleInstances[level.visibleBase + phase * culling.phaseVisible + index] = slot;
+        triangles += level.triangles;
+    }
+    return triangles;
+}
+
+fn wasVisibleLastFrame(slot: u32) -> bool {
+    return visibleInstances[culling.visibilityBase + slot] != 0u;
+}
+
+// Ends a cull: the workgroup's triangles join the frame's count. Every invocation gets here (no
+// early return), as the barrier requires.
+fn countTriangles(local: u32, triangles: u32) {
+    if (triangles > 0u) {
+        atomicAdd(&trianglesAppended, triangles);
+    }
+    workgroupBarrier();
+    if (local == 0u) {
+        let total = atomicLoad(&trianglesAppended);
+        if (total > 0u) {
+            atomicAdd(&indirectArguments[culling.trianglesDrawnWord], total);
+        }
+    }
+}
+
 @compute @workgroup_size(kWorkgroupSize)
-fn cullInstances(@builtin(global_invocation_id) id: vec3u) {
+fn cullFirstPhase(@builtin(global_invocation_id) id: vec3u,
+                  @builtin(local_invocation_index) local: u32) {
     let slot = id.x;
-    if (slot >= arrayLength(&slots) || !isVisible(slot)) {
-        return;
+    var triangles = 0u;
+    if (slot < arrayLength(&slots) && (culling.occlusion == 0u || wasVisibleLastFrame(slot))) {
+        let bounds = boundsOf(slot);
+        if (inFrustum(bounds)) {
+            triangles = append(slot, bounds, 0u);
+        }
     }
-    let bounds = slots[slot];
-    for (var i = 0u; i < bounds.drawCount; i++) {
-        let draw = draws[bounds.firstDraw + i];
-        let index = atomicAdd(&indirectArguments[draw.argumentsOffset + 1u], 1u);
-        visibleInstances[draw.visibleBase + index] = slot;
+    countTriangles(local, triangles);
+}
+
+// Whether the pyramid proves the box hidden: its nearest depth lies behind the farthest depth
+// drawn anywhere over the pixels it covers.
+fn isOccluded(bounds: InstanceBounds) -> bool {
+    var low = vec2f(3.4e38);
+    var high = vec2f(-3.4e38);
+    var nearestDepth = 1.0;
+    for (var corner = 0u; corner < 8u; corner++) {
+        let point = select(bounds.boxMin, bounds.boxMax,
+                           vec3<bool>((corner & 1u) != 0u, (corner & 2u) != 0u,
+                                      (corner & 4u) != 0u));
+        let clip = culling.viewProjection * vec4f(point, 1.0);
+        if (clip.w <= 1e-6 || clip.z < 0.0) {
+            return false;  // The box reaches the near plane: it may cover the whole view.
+        }
+        let ndc = clip.xyz / clip.w;
+        let pixel = vec2f(ndc.x * 0.5 + 0.5, 0.5 - ndc.y * 0.5) * culling.viewport;
+        low = min(low, pixel);
+        high = max(high, pixel);
+        nearestDepth = min(nearestDepth, ndc.z);
     }
+    let lastPixel = culling.viewport - vec2f(1.0);
+    low = clamp(low, vec2f(0.0), lastPixel);
+    high = clamp(high, vec2f(0.0), lastPixel);
+    // Level k's texels cover 2^(k+1) pixels a side: at the level where that is at least the
+    // box's extent, the box overlaps at most 2x2 texels. Pixels past the last texel belong to it
+    // (depth_pyramid.wgsl).
+    let extent = max(high.x - low.x, high.y - low.y);
+    let level = min(u32(max(ceil(log2(max(extent, 1.0))) - 1.0, 0.0)),
+                    textureNumLevels(depthPyramid) - 1u);
+    // The level's size from level 0's, as mips round down: llvmpipe's textureDimensions of the
+    // smallest levels is not to be trusted.
+    let lastTexel = max(textureDimensions(depthPyramid) >> vec2u(level), vec2u(1u)) - vec2u(1u);
+    let texelSize = f32(1u << (level + 1u));
+    let first = min(vec2u(low / texelSize), lastTexel);
+    let last = min(vec2u(high / texelSize), lastTexel);
+    var farthest = 0.0;
+    for (var y = first.y; y <= last.y; y++) {
+        for (var x = first.x; x <= last.x; x++) {
+            farthest = max(farthest, textureLoad(depthPyramid, vec2u(x, y), level).r);
+        }
+    }
+    return nearestDepth > farthest;
+}
+
+@compute @workgroup_size(kWorkgroupSize)
+fn cullSecondPhase(@builtin(global_invocation_id) id: vec3u,
+                   @builtin(local_invocation_index) local: u32) {
+    let slot = id.x;
+    var triangles = 0u;
+    if (slot < arrayLength(&slots)) {
+        let bounds = boundsOf(slot);
+        let visible = inFrustum(bounds) && !isOccluded(bounds);
+        if (visible && !wasVisibleLastFrame(slot)) {
+            triangles = append(slot, bounds, 1u);
+        }
+        visibleInstances[culling.visibilityBase + slot] = select(0u, 1u, visible);
+    }
+    countTriangles(local, triangles);
 }

@@ -56,14 +56,21 @@ std::vector<std::uint32_t> culledInstanceCounts(gpu::Context& context,
                                                 const render::GpuCuller& culler) {
     using render::GpuCuller;
     auto bytes = gpu::readBuffer(context, culler.indirectArguments(), 0,
-                                 culler.draws().size() * GpuCuller::kArgumentsStride);
+                                 culler.indirectArguments().GetSize());
     EXPECT_TRUE(bytes.ok()) << bytes.error().message;
     std::vector<std::uint32_t> counts;
     for (std::size_t draw = 0; draw < culler.draws().size() && bytes.ok(); ++draw) {
-        std::uint32_t words[5];
-        std::memcpy(words, bytes->data() + draw * GpuCuller::kArgumentsStride, sizeof(words));
-        EXPECT_EQ(words[4], 0u) << "firstInstance must stay 0 (draw " << draw << ")";
-        counts.push_back(words[1]);
+        std::uint32_t count = 0;
+        for (std::uint32_t level = 0; level < culler.draws()[draw].levelCount(); ++level) {
+            for (std::uint32_t phase = 0; phase < GpuCuller::kPhases; ++phase) {
+                std::uint32_t words[5];
+                std::memcpy(words, bytes->data() + culler.argumentsOffset(draw, level, phase),
+                            sizeof(words));
+                EXPECT_EQ(words[4], 0u) << "firstInstance must stay 0 (draw " << draw << ")";
+                count += words[1];
+            }
+        }
+        counts.push_back(count);
     }
     return counts;
 }

@@ -50,8 +50,8 @@ render::RendererOptions pixelTestOptions(std::uint32_t width, std::uint32_t heig
                                          render::DebugChannel channel =
                                              render::DebugChannel::BaseColor);
 
-// The instance counts GPU culling wrote, per culled draw (read back; a failed read or a non-zero
-// firstInstance fails the test).
+// The instance counts GPU culling wrote, per culled draw, summed over its levels of detail and
+// both phases (read back; a failed read or a non-zero firstInstance fails the test).
 std::vector<std::uint32_t> culledInstanceCounts(gpu::Context& context,
                                                 const render::GpuCuller& culler);
 

@@ -28,6 +28,10 @@ Result<std::vector<float>> readTextureRgba16Float(Context& context, const wgpu::
                                                   std::uint32_t level = 0,
                                                   std::uint32_t layer = 0);
 
+// Reads one mip level of an R32Float texture (CopySrc), rows top to bottom: depth pyramids.
+Result<std::vector<float>> readTextureR32Float(Context& context, const wgpu::Texture& texture,
+                                               std::uint32_t level);
+
 // Reads `size` bytes at `offset` of a buffer with CopySrc usage (offset and size multiples of 4).
 Result<std::vector<std::uint8_t>> readBuffer(Context& context, const wgpu::Buffer& buffer,
                                              std::uint64_t offset, std::uint64_t size);

@@ -1,17 +1,24 @@
 #pragma once
 
-// GPU frustum culling feeding indirect draws (after toji's webgpu-bundle-culling, without its
-// per-drawable buffers). For N draws, each covering one instance range of the InstanceBuffer:
-//  - one indirect-arguments buffer holds all N argument records (one buffer, because Dawn
-//    validates indirect draws per buffer); firstInstance is always 0;
-//  - one visible-instance buffer holds N lists, each starting at a 256-byte aligned entry so a
-//    dynamic offset of the group 1 bind group selects it per draw;
+// GPU culling feeding indirect draws (after toji's webgpu-bundle-culling, without its
+// per-drawable buffers), with levels of detail and two-phase occlusion culling (Haar and
+// Aaltonen, "GPU-Driven Rendering Pipelines", SIGGRAPH 2015). For N culled primitives, each
+// covering one instance range of the InstanceBuffer and drawn at one of its levels of detail:
+//  - one indirect-arguments buffer holds one argument record per (primitive, level, phase) (one
+//    buffer, because Dawn validates indirect draws per buffer); firstInstance is always 0;
+//  - one visible-instance buffer holds one list per record, each starting at a 256-byte
+//    aligned entry so a dynamic offset of the group 1 bind group selects it per draw;
 //  - each frame a compute pass zeroes every instanceCount, bounds every instance where this
 //    frame's transforms put it (CullingBounds: world matrices from the InstanceBuffer, joint
-//    matrices and morph weights from AnimationBuffers), tests that against the frustum and
-//    appends visible instances to the lists of its mesh's draws.
+//    matrices and morph weights from AnimationBuffers), tests that against the frustum, picks
+//    each primitive's level from the error its simplification projects on the screen, and
+//    appends the instance to that level's list: phase 1 takes what was visible last frame;
+//  - after phase 1 is drawn, a depth pyramid (DepthPyramid) is reduced from its depth and a
+//    second pass tests every instance in the frustum against it: phase 2 draws the visible ones
+//    phase 1 did not, and each instance's visibility is kept for the next frame.
 // The draw count never changes; only instance counts do, so recorded bundles stay valid, and
-// nothing on the CPU follows moved or animated instances.
+// nothing on the CPU follows moved or animated instances. The culling passes also count the
+// triangles the frame draws (trianglesDrawnOffset).
 
 #include <webgpu/webgpu_cpp.h>
 
@@ -21,21 +28,48 @@
 #include "encore/core/Result.h"
 #include "encore/render/Camera.h"
 #include "encore/render/CullingBounds.h"
+#include "encore/render/CullingOptions.h"
+#include "encore/render/DepthPyramid.h"
 #include "encore/render/Frustum.h"
 #include "encore/render/InstanceBuffer.h"
 #include "encore/render/Strategy.h"
 
 namespace encore::render {
 
+// A coarser level of detail of an indexed primitive: a range of its index buffer.
+struct DrawLevel {
+    std::uint32_t firstIndex = 0;
+    std::uint32_t indexCount = 0;
+    float error = 0.0f;  // Object-space simplification error.
+};
+
 struct CulledDraw {
     InstanceRange instances;  // Slots of the InstanceBuffer this draw may show.
     bool indexed = true;
-    std::uint32_t elementCount = 0;  // Indices, or vertices when not indexed.
+    std::uint32_t elementCount = 0;  // Indices, or vertices when not indexed (level 0).
+    scene::Topology topology = scene::Topology::TriangleList;  // What the triangle counts count.
+    // Finer to coarser, each with a larger error; empty without levels of detail.
+    std::vector<DrawLevel> coarserLevels;
+
+    std::uint32_t levelCount() const {
+        return 1 + static_cast<std::uint32_t>(coarserLevels.size());
+    }
+};
+
+// What the first culling pass of a frame tests against.
+struct CullingView {
+    Camera camera;
+    std::uint32_t targetWidth = 0;  // Pixels, for the projected error of levels of detail.
+    std::uint32_t targetHeight = 0;
+    CullingOptions options;
+    // Two phases follow (encodeSecondPhase): the first takes only what was visible last frame.
+    bool twoPhases = false;
 };
 
 class GpuCuller {
   public:
     static constexpr std::uint64_t kArgumentsStride = 20;  // Five u32: the indexed layout.
+    static constexpr std::uint32_t kPhases = 2;
 
     GpuCuller() = default;
     // `bounds` has one record per instance slot; setup.animation (when not null) supplies the
@@ -43,29 +77,58 @@ class GpuCuller {
     static Result<GpuCuller> create(const RenderSetup& setup, const InstanceBuffer& instances,
                                     CullingBounds bounds, std::vector<CulledDraw> draws);
 
-    // Writes the camera's frustum and records the reset and cull dispatches.
-    void encode(const wgpu::Queue& queue, const wgpu::CommandEncoder& commands,
-                const Camera& camera, gpu::GpuTimer* timer = nullptr) const;
+    // Writes the view's culling uniform and records the reset and the first phase's cull.
+    void encodeFirstPhase(const wgpu::Queue& queue, const wgpu::CommandEncoder& commands,
+                          const CullingView& view, gpu::GpuTimer* timer = nullptr);
+    // After phase 1 is drawn into `depth`: reduces the depth pyramid and records the second
+    // phase's cull (a pyramid is made for each new depth texture).
+    void encodeSecondPhase(const wgpu::CommandEncoder& commands, const wgpu::Texture& depth,
+                           gpu::GpuTimer* timer = nullptr);
 
     const std::vector<CulledDraw>& draws() const { return mDraws; }
     const CullingBounds& bounds() const { return mBounds; }
     const wgpu::Buffer& indirectArguments() const { return mArguments; }
-    std::uint64_t argumentsOffset(std::size_t draw) const { return draw * kArgumentsStride; }
-    // Group 1 for draw `draw`: bind with dynamicOffset(draw).
+    // The indirect draw of `draw` at `level` in `phase` (0 or 1).
+    std::uint64_t argumentsOffset(std::size_t draw, std::uint32_t level = 0,
+                                  std::uint32_t phase = 0) const {
+        return (phase * std::uint64_t(mLevelDrawCount) + mFirstLevel[draw] + level) *
+               kArgumentsStride;
+    }
+    // Group 1 for that draw: bind with its dynamicOffset.
     const wgpu::BindGroup& drawBindGroup() const { return mDrawBindGroup; }
-    std::uint32_t dynamicOffset(std::size_t draw) const { return mVisibleBase[draw] * 4; }
+    std::uint32_t dynamicOffset(std::size_t draw, std::uint32_t level = 0,
+                                std::uint32_t phase = 0) const {
+        return (mVisibleBase[mFirstLevel[draw] + level] + phase * mPhaseVisible) * 4;
+    }
+    // Where indirectArguments() holds the triangles the last culled frame drew (a u32 summed
+    // over both phases; the culling passes count them).
+    std::uint64_t trianglesDrawnOffset() const { return mTrianglesDrawnWord * 4ull; }
+    // The pyramid the last two-phase frame built (empty before one).
+    const DepthPyramid& depthPyramid() const { return mPyramid; }
+    // The triangles every draw would draw with every instance visible at level 0.
+    std::uint64_t trianglesSubmitted() const;
 
   private:
+    RenderSetup const* mSetup = nullptr;
     std::vector<CulledDraw> mDraws;
     CullingBounds mBounds;
-    std::vector<std::uint32_t> mVisibleBase;  // Per draw, in entries.
-    wgpu::Buffer mFrustum;
+    std::vector<std::uint32_t> mFirstLevel;   // Per draw: its first level draw.
+    std::vector<std::uint32_t> mVisibleBase;  // Per level draw, in entries (phase 1).
+    std::uint32_t mLevelDrawCount = 0;
+    std::uint32_t mPhaseVisible = 0;          // Entries from a phase 1 list to its phase 2 list.
+    std::uint32_t mTrianglesDrawnWord = 0;
+    std::uint32_t mLevelBase = 0;             // The first level record, after the primitives'.
+    wgpu::Buffer mUniform;
     wgpu::Buffer mArguments;
     wgpu::Buffer mVisible;
     wgpu::BindGroup mDrawBindGroup;
     wgpu::BindGroup mCullBindGroup;
+    wgpu::BindGroupLayout mPyramidLayout;
+    wgpu::BindGroup mPyramidBindGroup;
     wgpu::ComputePipeline mReset;
-    wgpu::ComputePipeline mCull;
+    wgpu::ComputePipeline mCullFirst;
+    wgpu::ComputePipeline mCullSecond;
+    DepthPyramid mPyramid;
     std::uint32_t mSlotCount = 0;
 };
 

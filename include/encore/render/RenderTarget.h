@@ -55,6 +55,8 @@ class RenderTarget {
     // The output's bytes as RGBA8Unorm (no sRGB decoding when sampled): presentable targets only.
     const wgpu::TextureView& outputBytesView() const { return mOutputBytesView; }
     const RenderTargetOptions& options() const { return mOptions; }
+    // Depth32Float with the colour's sample count; also TextureBinding (DepthPyramid reads it).
+    const wgpu::Texture& depthTexture() const { return mDepth; }
 
     // Attachments for a scene pass that clears colour to `clearColor` and depth to 1.
     wgpu::RenderPassColorAttachment colorAttachment(const wgpu::Color& clearColor) const;

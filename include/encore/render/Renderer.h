@@ -54,6 +54,8 @@ struct RendererOptions {
     // GPU is done with this renderer's previous scene (encore batch reads its views back first),
     // and prepare() never blocks on work that other renderers of the device submitted.
     bool prepareWaitsForIdle = true;
+    // Occlusion culling and levels of detail of the GPU-culling strategies.
+    CullingOptions culling;
 
     // Equal options build equal renderers. The environment and its image compare as pointers:
     // the same shared object, not equal contents.
@@ -104,6 +106,9 @@ class Renderer {
     // the frame's camera again): a frozen frustum that can be watched from outside.
     void setCullingCamera(std::optional<Camera> camera) { mCullingCamera = camera; }
     const std::optional<Camera>& cullingCamera() const { return mCullingCamera; }
+    // Occlusion culling and levels of detail of the GPU-culling strategies, from the next frame.
+    void setCullingOptions(const CullingOptions& culling) { mOptions.culling = culling; }
+    const CullingOptions& cullingOptions() const { return mOptions.culling; }
 
     // Updates the frame uniforms, records and submits one frame. With `trace`, every recorded
     // call is also appended there (tests).

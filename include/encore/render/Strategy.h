@@ -18,6 +18,7 @@
 #include "encore/gpu/GpuTimer.h"
 #include "encore/render/BindGroupLayouts.h"
 #include "encore/render/Camera.h"
+#include "encore/render/CullingOptions.h"
 #include "encore/render/FrameUniforms.h"
 #include "encore/render/InstanceTransformTargets.h"
 #include "encore/render/RenderEncoder.h"
@@ -135,6 +136,14 @@ struct RenderSetup {
     MipmapGenerator* mipmaps = nullptr;
 };
 
+// Which part of a frame a render pass draws. Strategies that cull against the depth drawn so
+// far (two-phase occlusion culling) split a frame of one view into two passes.
+enum class DrawPhase {
+    Whole,   // The one pass of the view: everything.
+    First,   // What was visible last frame.
+    Second,  // What the first pass's depth does not hide and was not drawn yet, then blended.
+};
+
 // What a frame's recording may depend on. Only strategies that sort by distance (blended
 // geometry) read the camera while recording; all others take it from the frame uniforms.
 struct FrameState {
@@ -144,6 +153,10 @@ struct FrameState {
     // What GPU culling tests instances against when it is not `camera`: a frozen frustum,
     // watched from elsewhere.
     std::optional<Camera> cullingCamera;
+    DrawPhase phase = DrawPhase::Whole;
+    CullingOptions culling;
+    std::uint32_t targetWidth = 0;  // The render target's size in pixels.
+    std::uint32_t targetHeight = 0;
 };
 
 class GpuCuller;
@@ -161,6 +174,21 @@ class Strategy {
     virtual void beforePass(const wgpu::CommandEncoder& commands, const FrameState& frame) {
         (void)commands;
         (void)frame;
+    }
+
+    // Whether this frame (of one view) is drawn in two passes: beforePass, encode() with
+    // DrawPhase::First, betweenPhases() with the first pass's depth, encode() with
+    // DrawPhase::Second. Asked before beforePass; false: one pass, DrawPhase::Whole.
+    virtual bool drawsInTwoPhases(const FrameState& frame) const {
+        (void)frame;
+        return false;
+    }
+    // Between the two passes of a two-phase frame: GPU work that reads the first pass's depth.
+    virtual void betweenPhases(const wgpu::CommandEncoder& commands, const FrameState& frame,
+                               const wgpu::Texture& depth) {
+        (void)commands;
+        (void)frame;
+        (void)depth;
     }
 
     // Records one frame's draws. Sets every piece of state it uses (group 0 included), so the

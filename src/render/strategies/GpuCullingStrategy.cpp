@@ -7,6 +7,7 @@ namespace encore::render {
 
 Result<void> GpuCullingStrategy::prepare(const RenderSetup& setup, const scene::SceneData& scene) {
     mBundles = BundledFrame();
+    mFirstPhaseBundle = BundledFrame();
     mCulled.clear();
     mCullerCreated = false;
     return MaterialsStrategy::prepare(setup, scene);  // Calls groupDraws().
@@ -41,16 +42,13 @@ Result<void> GpuCullingStrategy::groupDraws() {
         for (const MaterialGroup& material : group.materials) {
             CulledMaterial culledMaterial{material.material, {}};
             for (const PrimitiveDraw& primitive : material.primitives) {
-                const PrimitiveBindings& bindings = *primitive.bindings;
                 std::size_t draw = draws.size();
                 if (mCullerCreated) {
                     const auto existing = drawOf.find({primitive.bindings, primitive.instances.first});
                     assert(existing != drawOf.end());
                     draw = existing->second;
                 } else {
-                    draws.push_back({primitive.instances, bindings.indices.has_value(),
-                                     bindings.indices ? bindings.indices->count
-                                                      : bindings.vertexCount});
+                    draws.push_back(culledDraw(primitive));
                 }
                 culledMaterial.primitives.push_back({primitive.bindings, primitive.instances.first,
                                                      draw, primitive.sceneInstance,
@@ -78,13 +76,40 @@ Result<void> GpuCullingStrategy::groupDraws() {
     return {};
 }
 
+CulledDraw GpuCullingStrategy::culledDraw(const PrimitiveDraw& primitive) const {
+    const PrimitiveBindings& bindings = *primitive.bindings;
+    CulledDraw draw;
+    draw.instances = primitive.instances;
+    draw.indexed = bindings.indices.has_value();
+    draw.elementCount = bindings.indices ? bindings.indices->count : bindings.vertexCount;
+    draw.topology = bindings.topology;
+    return draw;
+}
+
+bool GpuCullingStrategy::drawsInTwoPhases(const FrameState& frame) const {
+    // A frozen culling camera sees another view than the depth drawn: frustum culling only.
+    return frame.culling.occlusion && !frame.cullingCamera;
+}
+
 void GpuCullingStrategy::beforePass(const wgpu::CommandEncoder& commands,
                                     const FrameState& frame) {
-    mCuller.encode(mQueue, commands, frame.cullingCamera.value_or(frame.camera), frame.timer);
+    CullingView view;
+    view.camera = frame.cullingCamera.value_or(frame.camera);
+    view.targetWidth = frame.targetWidth;
+    view.targetHeight = frame.targetHeight;
+    view.options = frame.culling;
+    view.twoPhases = frame.phase == DrawPhase::First;
+    mCuller.encodeFirstPhase(mQueue, commands, view, frame.timer);
     if (mUseBundles) {
+        // Phase 1's draws, then phase 2's and the blended geometry: a frame of one pass replays
+        // both (phase 2's counts stay zero), a two-phase frame one per pass.
+        mFirstPhaseBundle.update(
+            *mSetup, mMaterials->generation(), {},
+            [this](RenderEncoder& encoder) { encodeCulled(encoder, 0); },
+            [](RenderEncoder&, std::span<const std::uint32_t>) {});
         mBundles.update(
             *mSetup, mMaterials->generation(), blendOrder(frame.camera.position),
-            [this](RenderEncoder& encoder) { encodeCulled(encoder); },
+            [this](RenderEncoder& encoder) { encodeCulled(encoder, 1); },
             [this](RenderEncoder& encoder, std::span<const std::uint32_t> order) {
                 setSharedBindGroups(encoder);
                 encodeBlended(encoder, order);
@@ -92,7 +117,12 @@ void GpuCullingStrategy::beforePass(const wgpu::CommandEncoder& commands,
     }
 }
 
-void GpuCullingStrategy::encodeCulled(RenderEncoder& encoder) const {
+void GpuCullingStrategy::betweenPhases(const wgpu::CommandEncoder& commands,
+                                       const FrameState& frame, const wgpu::Texture& depth) {
+    mCuller.encodeSecondPhase(commands, depth, frame.timer);
+}
+
+void GpuCullingStrategy::encodeCulled(RenderEncoder& encoder, std::uint32_t phase) const {
     encoder.setBindGroup(0, mFrameGroup);
     for (const CulledPipeline& group : mCulled) {
         encoder.setPipeline(group.pipeline);
@@ -104,13 +134,16 @@ void GpuCullingStrategy::encodeCulled(RenderEncoder& encoder) const {
                                      primitive.primitive);
                 }
                 bindGeometry(encoder, *primitive.bindings);
-                encoder.setBindGroup(1, mCuller.drawBindGroup(),
-                                     mCuller.dynamicOffset(primitive.draw));
-                const std::uint64_t offset = mCuller.argumentsOffset(primitive.draw);
-                if (primitive.bindings->indices) {
-                    encoder.drawIndexedIndirect(mCuller.indirectArguments(), offset);
-                } else {
-                    encoder.drawIndirect(mCuller.indirectArguments(), offset);
+                const std::uint32_t levels = mCuller.draws()[primitive.draw].levelCount();
+                for (std::uint32_t level = 0; level < levels; ++level) {
+                    encoder.setBindGroup(1, mCuller.drawBindGroup(),
+                                         mCuller.dynamicOffset(primitive.draw, level, phase));
+                    const std::uint64_t offset = mCuller.argumentsOffset(primitive.draw, level, phase);
+                    if (primitive.bindings->indices) {
+                        encoder.drawIndexedIndirect(mCuller.indirectArguments(), offset);
+                    } else {
+                        encoder.drawIndirect(mCuller.indirectArguments(), offset);
+                    }
                 }
             }
         }
@@ -119,11 +152,21 @@ void GpuCullingStrategy::encodeCulled(RenderEncoder& encoder) const {
 
 void GpuCullingStrategy::encode(RenderEncoder& encoder, const FrameState& frame) const {
     if (mUseBundles) {
-        mBundles.execute(encoder);
+        if (frame.phase != DrawPhase::Second) {
+            mFirstPhaseBundle.execute(encoder);
+        }
+        if (frame.phase != DrawPhase::First) {
+            mBundles.execute(encoder);
+        }
         return;
     }
-    encodeCulled(encoder);
-    if (!mBlended.empty()) {
+    if (frame.phase != DrawPhase::Second) {
+        encodeCulled(encoder, 0);
+    }
+    if (frame.phase == DrawPhase::Second) {
+        encodeCulled(encoder, 1);
+    }
+    if (frame.phase != DrawPhase::First && !mBlended.empty()) {
         setSharedBindGroups(encoder);  // Blended pipelines use the plain instance layout.
         encodeBlended(encoder, blendOrder(frame.camera.position));
     }

@@ -6,11 +6,14 @@
 
 namespace encore::render {
 
-// The `materials` frame with GPU frustum culling: a compute pass bounds every instance where
-// this frame's transforms, joints and morph weights put it, tests it each frame and writes the instance counts of one indirect draw per (primitive, instance range) and
-// their visible-instance lists. Recorded directly each frame, or, with bundles, once into a
-// render bundle whose draw sequence never changes (only the GPU-written counts do). Blended
-// geometry is drawn as in `materials`, back to front, unculled.
+// The `materials` frame with GPU culling (GpuCuller): compute passes bound every instance where
+// this frame's transforms, joints and morph weights put it, test it against the frustum and,
+// in frames of one view, against a depth pyramid of what was drawn first (two-phase occlusion
+// culling), pick each primitive's level of detail, and write the instance counts of one indirect
+// draw per (primitive, level, phase) and their visible-instance lists. Recorded directly each
+// frame, or, with bundles, once into two render bundles (one per phase) whose draw sequence
+// never changes (only the GPU-written counts do). Blended geometry is drawn as in `materials`,
+// back to front, unculled, after both phases.
 class GpuCullingStrategy final : public MaterialsStrategy {
   public:
     explicit GpuCullingStrategy(bool useBundles) : mUseBundles(useBundles) {}
@@ -19,10 +22,19 @@ class GpuCullingStrategy final : public MaterialsStrategy {
         return mUseBundles ? StrategyKind::GpuCullingBundles : StrategyKind::GpuCulling;
     }
     Result<void> prepare(const RenderSetup& setup, const scene::SceneData& scene) override;
+    bool drawsInTwoPhases(const FrameState& frame) const override;
     void beforePass(const wgpu::CommandEncoder& commands, const FrameState& frame) override;
+    void betweenPhases(const wgpu::CommandEncoder& commands, const FrameState& frame,
+                       const wgpu::Texture& depth) override;
     void encode(RenderEncoder& encoder, const FrameState& frame) const override;
-    DrawCounters bundleContents() const override { return mBundles.contents(); }
-    std::uint64_t bundlesRecorded() const override { return mBundles.recorded(); }
+    DrawCounters bundleContents() const override {
+        DrawCounters contents = mFirstPhaseBundle.contents();
+        contents += mBundles.contents();
+        return contents;
+    }
+    std::uint64_t bundlesRecorded() const override {
+        return mFirstPhaseBundle.recorded() + mBundles.recorded();
+    }
     const GpuCuller* culler() const override { return &mCuller; }
 
   private:
@@ -44,13 +56,16 @@ class GpuCullingStrategy final : public MaterialsStrategy {
     };
 
     Result<void> groupDraws() override;
-    void encodeCulled(RenderEncoder& encoder) const;
+    // Every level's indirect draw of every culled primitive, with the arguments of `phase`.
+    void encodeCulled(RenderEncoder& encoder, std::uint32_t phase) const;
+    CulledDraw culledDraw(const PrimitiveDraw& primitive) const;
 
     bool mUseBundles;
     bool mCullerCreated = false;
     std::vector<CulledPipeline> mCulled;
     GpuCuller mCuller;
-    BundledFrame mBundles;
+    BundledFrame mFirstPhaseBundle;  // Phase 1's draws.
+    BundledFrame mBundles;           // Phase 2's draws, then the blended geometry.
 };
 
 }  // namespace encore::render

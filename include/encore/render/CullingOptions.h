@@ -1,0 +1,21 @@
+#pragma once
+
+// How the GPU-culling strategies choose what to draw, changeable between frames (the culling pass
+// reads them from a uniform each frame, so recorded bundles stay valid).
+
+namespace encore::render {
+
+struct CullingOptions {
+    // Two-phase occlusion culling: draw what was visible last frame, build a depth pyramid from
+    // it, then draw whatever else the pyramid does not hide. Only for frames of one view (a
+    // multi-view frame culls against the frustum only).
+    bool occlusion = true;
+    // Draw each instance at the coarsest level of detail whose simplification error, projected
+    // on the screen, stays under `lodErrorPixels` (level 0, the mesh as loaded, when off).
+    bool levelsOfDetail = true;
+    float lodErrorPixels = 1.0f;
+
+    bool operator==(const CullingOptions&) const = default;
+};
+
+}  // namespace encore::render

@@ -1,0 +1,113 @@
+#include "encore/render/DepthPyramid.h"
+
+#include <algorithm>
+
+namespace encore::render {
+
+namespace {
+
+constexpr std::uint32_t kWorkgroupSize = 8;  // depth_pyramid.wgsl's workgroup_size.
+
+wgpu::TextureView levelView(const wgpu::Texture& texture, std::uint32_t level) {
+    wgpu::TextureViewDescriptor descriptor{};
+    descriptor.baseMipLevel = level;
+    descriptor.mipLevelCount = 1;
+    return texture.CreateView(&descriptor);
+}
+
+wgpu::BindGroupEntry textureEntry(std::uint32_t binding, const wgpu::TextureView& view) {
+    wgpu::BindGroupEntry entry{};
+    entry.binding = binding;
+    entry.textureView = view;
+    return entry;
+}
+
+}  // namespace
+
+Result<DepthPyramid> DepthPyramid::create(const wgpu::Device& device,
+                                          shaders::ShaderLibrary& shaders,
+                                          const wgpu::Texture& depth) {
+    DepthPyramid pyramid;
+    pyramid.mDepth = depth;
+    const bool multisampled = depth.GetSampleCount() > 1;
+    auto module = shaders.module("depth_pyramid.wgsl",
+                                 multisampled ? std::set<std::string, std::less<>>{"MULTISAMPLED"}
+                                              : std::set<std::string, std::less<>>{});
+    if (!module) {
+        return module.error();
+    }
+    auto computePipeline = [&](const char* entryPoint) {
+        wgpu::ComputePipelineDescriptor descriptor{};
+        descriptor.label = entryPoint;
+        descriptor.compute.module = *module;
+        descriptor.compute.entryPoint = entryPoint;
+        return device.CreateComputePipeline(&descriptor);  // Layout from the entry point.
+    };
+    pyramid.mReduceDepth = computePipeline("reduceDepth");
+    pyramid.mReduceLevel = computePipeline("reduceLevel");
+
+    // Mip sizes round down; the shader's last texels cover what that drops.
+    std::uint32_t width = std::max(depth.GetWidth() / 2, 1u);
+    std::uint32_t height = std::max(depth.GetHeight() / 2, 1u);
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> sizes{{width, height}};
+    while (width > 1 || height > 1) {
+        width = std::max(width / 2, 1u);
+        height = std::max(height / 2, 1u);
+        sizes.emplace_back(width, height);
+    }
+    wgpu::TextureDescriptor descriptor{};
+    descriptor.label = "depth pyramid";
+    descriptor.size = {sizes[0].first, sizes[0].second, 1};
+    descriptor.format = wgpu::TextureFormat::R32Float;
+    descriptor.mipLevelCount = static_cast<std::uint32_t>(sizes.size());
+    descriptor.usage = wgpu::TextureUsage::StorageBinding | wgpu::TextureUsage::TextureBinding |
+                       wgpu::TextureUsage::CopyDst |  // See below.
+                       wgpu::TextureUsage::CopySrc;   // Read back by tests.
+    pyramid.mPyramid = device.CreateTexture(&descriptor);
+    pyramid.mView = pyramid.mPyramid.CreateView();
+    // Written once here so that Dawn holds every level initialised: left to its lazy clearing, a
+    // level read in the frame it is first written (the first pass that builds it) was cleared
+    // again before the culling dispatch read it, hiding whatever that level tested.
+    const wgpu::Queue queue = device.GetQueue();
+    std::vector<float> farthest(std::size_t(sizes[0].first) * sizes[0].second, 1.0f);
+    for (std::uint32_t level = 0; level < sizes.size(); ++level) {
+        wgpu::TexelCopyTextureInfo destination{};
+        destination.texture = pyramid.mPyramid;
+        destination.mipLevel = level;
+        wgpu::TexelCopyBufferLayout layout{};
+        layout.bytesPerRow = sizes[level].first * 4;
+        layout.rowsPerImage = sizes[level].second;
+        const wgpu::Extent3D size{sizes[level].first, sizes[level].second, 1};
+        queue.WriteTexture(&destination, farthest.data(),
+                           std::size_t(sizes[level].first) * sizes[level].second * 4, &layout,
+                           &size);
+    }
+
+    const wgpu::TextureView depthView = depth.CreateView();
+    for (std::uint32_t level = 0; level < sizes.size(); ++level) {
+        const wgpu::BindGroupEntry entries[] = {
+            level == 0 ? textureEntry(0, depthView)
+                       : textureEntry(1, levelView(pyramid.mPyramid, level - 1)),
+            textureEntry(2, levelView(pyramid.mPyramid, level)),
+        };
+        wgpu::BindGroupDescriptor group{};
+        group.label = "depth pyramid level";
+        group.layout = (level == 0 ? pyramid.mReduceDepth : pyramid.mReduceLevel).GetBindGroupLayout(0);
+        group.entryCount = std::size(entries);
+        group.entries = entries;
+        pyramid.mLevels.push_back({device.CreateBindGroup(&group), sizes[level].first,
+                                   sizes[level].second});
+    }
+    return pyramid;
+}
+
+void DepthPyramid::encode(const wgpu::ComputePassEncoder& pass) const {
+    for (std::size_t level = 0; level < mLevels.size(); ++level) {
+        pass.SetPipeline(level == 0 ? mReduceDepth : mReduceLevel);
+        pass.SetBindGroup(0, mLevels[level].bindGroup);
+        pass.DispatchWorkgroups((mLevels[level].width + kWorkgroupSize - 1) / kWorkgroupSize,
+                                (mLevels[level].height + kWorkgroupSize - 1) / kWorkgroupSize);
+    }
+}
+
+}  // namespace encore::render

@@ -1,0 +1,230 @@
+// Two-phase occlusion culling: the depth pyramid keeps the farthest depth of each footprint,
+// nothing visible goes missing (every frame of a walk through a grid renders the same pixels as
+// the unculled `materials` frame, single- and multisampled, directly and from bundles), hidden
+// instances are not drawn, a still camera draws everything in phase 1, the triangle counter
+// counts what the draws drew, and bundles are recorded once.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstring>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "GpuTestSupport.h"
+#include "RenderTestSupport.h"
+#include "encore/gpu/Readback.h"
+#include "encore/render/GpuCuller.h"
+#include "encore/render/Renderer.h"
+#include "encore/scene/SceneGenerator.h"
+
+namespace encore::render {
+namespace {
+
+constexpr std::uint32_t kWidth = 97;  // Odd sizes exercise the pyramid's last texels.
+constexpr std::uint32_t kHeight = 61;
+
+scene::SceneData denseGrid() {
+    scene::GeneratorOptions options;
+    options.objectCount = 600;
+    options.meshCount = 5;
+    options.materialCount = 3;
+    options.spacing = 2.2f;
+    auto glb = scene::generateSceneGlb(options);
+    EXPECT_TRUE(glb.ok());
+    auto scene = scene::loadSceneFromMemory(*glb, {}, "dense-grid.glb");
+    EXPECT_TRUE(scene.ok()) << scene.error().message;
+    return scene.ok() ? std::move(*scene) : scene::SceneData{};
+}
+
+// A walk at object height through the grid, looking along it: the nearest objects hide most of
+// the rest.
+std::vector<Camera> walk(const scene::SceneData& scene, std::size_t frames) {
+    const glm::vec3 low = scene.bounds.min;
+    const glm::vec3 high = scene.bounds.max;
+    const glm::vec3 center = (low + high) * 0.5f;
+    std::vector<Camera> cameras;
+    for (std::size_t frame = 0; frame < frames; ++frame) {
+        const float t = float(frame) / float(frames);
+        const glm::vec3 eye{low.x - 2.0f + t * (high.x - low.x) * 0.5f, center.y,
+                            center.z + (t - 0.5f) * (high.z - low.z) * 0.3f};
+        const glm::vec3 target = eye + glm::vec3(10.0f, -0.2f, 2.0f * (t - 0.5f));
+        cameras.push_back(Camera::lookAt(eye, target, glm::radians(60.0f),
+                                         float(kWidth) / float(kHeight), 0.05f, 500.0f));
+    }
+    return cameras;
+}
+
+image::ImageRgba8 readImage(Renderer& renderer) {
+    auto image = renderer.readImage();
+    EXPECT_TRUE(image.ok()) << image.error().message;
+    return image.ok() ? std::move(*image) : image::ImageRgba8{};
+}
+
+std::uint64_t sum(const std::vector<std::uint32_t>& counts) {
+    std::uint64_t total = 0;
+    for (std::uint32_t count : counts) {
+        total += count;
+    }
+    return total;
+}
+
+// Instances drawn in one phase, summed over draws and levels.
+std::uint64_t phaseCount(gpu::Context& context, const GpuCuller& culler, std::uint32_t phase) {
+    auto bytes = gpu::readBuffer(context, culler.indirectArguments(), 0,
+                                 culler.indirectArguments().GetSize());
+    EXPECT_TRUE(bytes.ok());
+    std::uint64_t total = 0;
+    for (std::size_t draw = 0; bytes.ok() && draw < culler.draws().size(); ++draw) {
+        for (std::uint32_t level = 0; level < culler.draws()[draw].levelCount(); ++level) {
+            std::uint32_t count = 0;
+            std::memcpy(&count, bytes->data() + culler.argumentsOffset(draw, level, phase) + 4, 4);
+            total += count;
+        }
+    }
+    return total;
+}
+
+class OcclusionCullingTest
+    : public ::testing::TestWithParam<std::tuple<StrategyKind, std::uint32_t>> {};
+
+TEST_P(OcclusionCullingTest, EveryFrameOfAWalkEqualsTheUnculledFrameAndHidesInstances) {
+    ENCORE_REQUIRE_VULKAN(context);
+    const auto [kind, samples] = GetParam();
+    const auto scene = denseGrid();
+    const auto cameras = walk(scene, 6);
+    auto unculled = Renderer::create(*context, test::pixelTestOptions(kWidth, kHeight, samples));
+    auto culled = Renderer::create(*context, test::pixelTestOptions(kWidth, kHeight, samples));
+    auto frustumOnly = Renderer::create(*context, test::pixelTestOptions(kWidth, kHeight, samples));
+    ASSERT_TRUE(unculled.ok() && culled.ok() && frustumOnly.ok());
+    frustumOnly->setCullingOptions({.occlusion = false});
+    ASSERT_TRUE(unculled->prepare(scene, StrategyKind::Materials).ok());
+    ASSERT_TRUE(culled->prepare(scene, kind).ok());
+    ASSERT_TRUE(frustumOnly->prepare(scene, kind).ok());
+    std::uint64_t recorded = 0;
+    std::uint64_t hiddenFrames = 0;
+    for (std::size_t frame = 0; frame < cameras.size(); ++frame) {
+        unculled->renderFrame(cameras[frame]);
+        culled->renderFrame(cameras[frame]);
+        frustumOnly->renderFrame(cameras[frame]);
+        const auto expected = readImage(*unculled);
+        const auto image = readImage(*culled);
+        EXPECT_EQ(test::differingPixels(expected, image, 0), 0u) << "frame " << frame;
+        EXPECT_GT(test::coveredFraction(image, test::pixelAt(image, 0, 0)), 0.2);
+        const std::uint64_t drawn =
+            sum(test::culledInstanceCounts(*context, *culled->strategy()->culler()));
+        const std::uint64_t inFrustum =
+            sum(test::culledInstanceCounts(*context, *frustumOnly->strategy()->culler()));
+        EXPECT_LE(drawn, inFrustum) << "frame " << frame;
+        hiddenFrames += 5 * drawn < 4 * inFrustum;
+        if (frame == 0) {
+            recorded = culled->strategy()->bundlesRecorded();
+        }
+    }
+    EXPECT_GE(hiddenFrames, 3u) << "the nearest objects should hide a fifth of the grid in view";
+    EXPECT_EQ(culled->strategy()->bundlesRecorded(), recorded);
+    EXPECT_TRUE(context->checkNoErrors("occlusion culling").ok());
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    DirectAndBundled, OcclusionCullingTest,
+    ::testing::Combine(::testing::Values(StrategyKind::GpuCulling, StrategyKind::GpuCullingBundles),
+                       ::testing::Values(1u, 4u)),
+    [](const auto& info) {
+        std::string name(strategyName(std::get<0>(info.param)));
+        std::replace(name.begin(), name.end(), '-', '_');
+        return name + "_" + std::to_string(std::get<1>(info.param)) + "x";
+    });
+
+// A still camera: the first frame finds everything in phase 2 (nothing was visible before), the
+// next draws it all in phase 1 and nothing in phase 2. The triangle counter adds up the draws.
+TEST(OcclusionCullingPhasesTest, AStillCameraDrawsEverythingInPhaseOneFromTheSecondFrame) {
+    ENCORE_REQUIRE_VULKAN(context);
+    const auto scene = denseGrid();
+    const Camera camera = walk(scene, 6)[2];
+    auto renderer = Renderer::create(*context, test::pixelTestOptions(kWidth, kHeight));
+    ASSERT_TRUE(renderer.ok());
+    ASSERT_TRUE(renderer->prepare(scene, StrategyKind::GpuCullingBundles).ok());
+    const GpuCuller& culler = *renderer->strategy()->culler();
+    renderer->renderFrame(camera);
+    ASSERT_TRUE(renderer->readImage().ok());
+    const std::uint64_t first = phaseCount(*context, culler, 1);
+    EXPECT_EQ(phaseCount(*context, culler, 0), 0u);
+    EXPECT_GT(first, 0u);
+    renderer->renderFrame(camera);
+    ASSERT_TRUE(renderer->readImage().ok());
+    EXPECT_EQ(phaseCount(*context, culler, 0), first);
+    EXPECT_EQ(phaseCount(*context, culler, 1), 0u);
+
+    // Every level of every draw adds its triangles per instance drawn.
+    auto bytes = gpu::readBuffer(*context, culler.indirectArguments(), 0,
+                                 culler.indirectArguments().GetSize());
+    ASSERT_TRUE(bytes.ok());
+    std::uint64_t expected = 0;
+    for (std::size_t draw = 0; draw < culler.draws().size(); ++draw) {
+        const CulledDraw& culled = culler.draws()[draw];
+        for (std::uint32_t level = 0; level < culled.levelCount(); ++level) {
+            std::uint32_t words[5];
+            std::memcpy(words, bytes->data() + culler.argumentsOffset(draw, level, 0), 20);
+            expected += std::uint64_t(words[0] / 3) * words[1];
+        }
+    }
+    std::uint32_t counted = 0;
+    std::memcpy(&counted, bytes->data() + culler.trianglesDrawnOffset(), 4);
+    EXPECT_EQ(counted, expected);
+    EXPECT_GT(counted, 0u);
+    EXPECT_LT(counted, culler.trianglesSubmitted());
+}
+
+// Level k + 1 holds the farthest of the texels of level k it covers (two by two, three where
+// level k is odd and the texel is the last), level 0 the farthest of the depth, drawn or cleared.
+TEST(DepthPyramidTest, EachTexelHoldsTheFarthestDepthOfItsFootprint) {
+    ENCORE_REQUIRE_VULKAN(context);
+    const auto scene = denseGrid();
+    auto renderer = Renderer::create(*context, test::pixelTestOptions(kWidth, kHeight, 4));
+    ASSERT_TRUE(renderer.ok());
+    ASSERT_TRUE(renderer->prepare(scene, StrategyKind::GpuCulling).ok());
+    // The second frame's phase 1 draws what the first found visible.
+    renderer->renderFrame(walk(scene, 6)[1]);
+    renderer->renderFrame(walk(scene, 6)[1]);
+    ASSERT_TRUE(renderer->readImage().ok());
+    const DepthPyramid& pyramid = renderer->strategy()->culler()->depthPyramid();
+    ASSERT_TRUE(pyramid.builtFor(renderer->target().depthTexture()));
+    ASSERT_EQ(pyramid.texture().GetWidth(), kWidth / 2);
+    ASSERT_EQ(pyramid.texture().GetHeight(), kHeight / 2);
+    std::vector<std::vector<float>> levels;
+    for (std::uint32_t level = 0; level < pyramid.levelCount(); ++level) {
+        auto values = gpu::readTextureR32Float(*context, pyramid.texture(), level);
+        ASSERT_TRUE(values.ok()) << values.error().message;
+        levels.push_back(std::move(*values));
+    }
+    EXPECT_EQ(levels.back().size(), 1u);
+    const auto [nearest, farthest] = std::minmax_element(levels[0].begin(), levels[0].end());
+    EXPECT_GE(*nearest, 0.0f);
+    EXPECT_LT(*nearest, 0.999f) << "the walk's nearest objects cover texels";
+    EXPECT_EQ(*farthest, 1.0f) << "the sky between objects keeps the cleared depth";
+    for (std::uint32_t level = 1; level < levels.size(); ++level) {
+        const std::uint32_t width = std::max(pyramid.texture().GetWidth() >> level, 1u);
+        const std::uint32_t height = std::max(pyramid.texture().GetHeight() >> level, 1u);
+        const std::uint32_t finerWidth = std::max(pyramid.texture().GetWidth() >> (level - 1), 1u);
+        const std::uint32_t finerHeight =
+            std::max(pyramid.texture().GetHeight() >> (level - 1), 1u);
+        for (std::uint32_t y = 0; y < height; ++y) {
+            for (std::uint32_t x = 0; x < width; ++x) {
+                const std::uint32_t lastX = x + 1 == width ? finerWidth - 1 : std::min(2 * x + 1, finerWidth - 1);
+                const std::uint32_t lastY = y + 1 == height ? finerHeight - 1 : std::min(2 * y + 1, finerHeight - 1);
+                float expected = 0.0f;
+                for (std::uint32_t fy = 2 * y; fy <= lastY; ++fy) {
+                    for (std::uint32_t fx = 2 * x; fx <= lastX; ++fx) {
+                        expected = std::max(expected, levels[level - 1][fy * finerWidth + fx]);
+                    }
+                }
+                ASSERT_EQ(levels[level][y * width + x], expected)
+                    << "level " << level << " texel " << x << "," << y;
+            }
+        }
+    }
+}
+
+}  // namespace
+}  // namespace encore::render
