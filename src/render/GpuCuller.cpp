@@ -18,6 +18,7 @@ constexpr std::uint32_t kVisibleAlignmentEntries = 64;  // 256 bytes: storage of
 struct DrawRecord {
     std::uint32_t visibleBase;
     std::uint32_t argumentsOffset;  // In u32 words.
+    std::uint32_t triangles;        // Per instance, for the drawn-triangle count.
 };
 
 // Every culling buffer is bound whole as storage. The per-draw buffer checked is the largest of
@@ -26,7 +27,7 @@ Result<void> checkCullingBuffers(const gpu::DeviceLimits& limits, std::size_t dr
                                  std::uint32_t slotCount, std::uint64_t visibleBytes) {
     const std::string draws = std::to_string(drawCount) + " culled draws";
     const std::string slots = std::to_string(slotCount) + " instances";
-    ENCORE_TRY(gpu::checkStorageBinding(limits, std::uint64_t(drawCount) * 5 * 4,
+    ENCORE_TRY(gpu::checkStorageBinding(limits, std::uint64_t(drawCount) * 5 * 4 + 4,
                                         "The indirect draw arguments of " + draws));
     ENCORE_TRY(gpu::checkStorageBinding(limits, std::uint64_t(drawCount) * sizeof(DrawRecord),
                                         "The culling records of " + draws));
@@ -40,6 +41,14 @@ Result<void> checkCullingBuffers(const gpu::DeviceLimits& limits, std::size_t dr
 }
 
 }  // namespace
+
+std::uint64_t submittedTriangles(std::span<const CulledDraw> draws) {
+    std::uint64_t triangles = 0;
+    for (const CulledDraw& draw : draws) {
+        triangles += std::uint64_t(draw.triangles) * draw.instances.count;
+    }
+    return triangles;
+}
 
 Result<GpuCuller> GpuCuller::create(const RenderSetup& setup, const InstanceBuffer& instances,
                                     CullingBounds bounds, std::vector<CulledDraw> draws) {
@@ -69,6 +78,7 @@ Result<GpuCuller> GpuCuller::create(const RenderSetup& setup, const InstanceBuff
         nextBase += (std::uint64_t(capacity) + kVisibleAlignmentEntries - 1) /
                     kVisibleAlignmentEntries * kVisibleAlignmentEntries;
     }
+    arguments.push_back(0);  // The drawn-triangle count (drawnTrianglesOffset).
     const std::uint64_t listBytes = std::uint64_t(largestList) * 4;
     const std::uint64_t visibleBytes = lastBase * 4 + listBytes;
     ENCORE_TRY(checkCullingBuffers(setup.limits, culler.mDraws.size(), culler.mSlotCount,
@@ -90,7 +100,8 @@ Result<GpuCuller> GpuCuller::create(const RenderSetup& setup, const InstanceBuff
     for (const auto& [firstSlot, drawIndices] : drawsOfRange) {
         const auto firstDraw = static_cast<std::uint32_t>(drawRecords.size());
         for (std::uint32_t draw : drawIndices) {
-            drawRecords.push_back({culler.mVisibleBase[draw], draw * 5});
+            drawRecords.push_back(
+                {culler.mVisibleBase[draw], draw * 5, culler.mDraws[draw].triangles});
         }
         const InstanceRange range = culler.mDraws[drawIndices.front()].instances;
         for (std::uint32_t slot = range.first; slot < range.first + range.count; ++slot) {

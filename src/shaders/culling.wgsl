@@ -4,7 +4,10 @@
 // moved by the joint matrices, grown by the morph deltas the current weights allow) and, when
 // the hull of those spheres meets the frustum, appends the instance to the visible list of
 // every draw of its mesh: atomicAdd on that draw's instanceCount gives the slot. Indirect
-// arguments keep firstInstance 0 (see mesh.wgsl).
+// arguments keep firstInstance 0 (see mesh.wgsl). It also counts the triangles it lets through
+// in the word after the last argument record (render::GpuCuller::drawnTrianglesOffset; no
+// binding of its own: the pass already uses the 8 storage buffers of the default limits),
+// summed per workgroup first so that a million instances do not all add to one word.
 
 struct Frustum {
     planes: array<vec4f, 6>,  // xyz: inward normal, w: distance; visible when dot >= -radius.
@@ -32,6 +35,7 @@ struct Transform {
 struct Draw {
     visibleBase: u32,
     argumentsOffset: u32,  // In u32 words; instanceCount is the next word.
+    triangles: u32,        // Per instance.
 }
 
 @group(0) @binding(0) var<uniform> frustum: Frustum;
@@ -44,10 +48,21 @@ struct Draw {
 @group(0) @binding(7) var<storage, read> joints: array<Transform>;
 @group(0) @binding(8) var<storage, read> morphWeights: array<f32>;
 
+var<workgroup> workgroupTriangles: atomic<u32>;  // Zero at the start of each workgroup.
+
+// The frame's drawn triangles (wraps past 2^32, far beyond the benchmark scenes): the last
+// word of indirectArguments.
+fn drawnTrianglesWord() -> u32 {
+    return arrayLength(&indirectArguments) - 1u;
+}
+
 override kWorkgroupSize: u32 = 64;
 
 @compute @workgroup_size(kWorkgroupSize)
 fn resetCounts(@builtin(global_invocation_id) id: vec3u) {
+    if (id.x == 0u) {
+        atomicStore(&indirectArguments[drawnTrianglesWord()], 0u);
+    }
     if (id.x >= arrayLength(&draws)) {
         return;
     }
@@ -102,15 +117,26 @@ fn isVisible(slot: u32) -> bool {
 }
 
 @compute @workgroup_size(kWorkgroupSize)
-fn cullInstances(@builtin(global_invocation_id) id: vec3u) {
+fn cullInstances(@builtin(global_invocation_id) id: vec3u,
+                 @builtin(local_invocation_index) local: u32) {
     let slot = id.x;
-    if (slot >= arrayLength(&slots) || !isVisible(slot)) {
-        return;
+    // No early return: the barrier below needs every invocation of the workgroup.
+    if (slot < arrayLength(&slots) && isVisible(slot)) {
+        let bounds = slots[slot];
+        var triangles = 0u;
+        for (var i = 0u; i < bounds.drawCount; i++) {
+            let draw = draws[bounds.firstDraw + i];
+            let index = atomicAdd(&indirectArguments[draw.argumentsOffset + 1u], 1u);
+            visibleInstances[draw.visibleBase + index] = slot;
+            triangles += draw.triangles;
+        }
+        atomicAdd(&workgroupTriangles, triangles);
     }
-    let bounds = slots[slot];
-    for (var i = 0u; i < bounds.drawCount; i++) {
-        let draw = draws[bounds.firstDraw + i];
-        let index = atomicAdd(&indirectArguments[draw.argumentsOffset + 1u], 1u);
-        visibleInstances[draw.visibleBase + index] = slot;
+    workgroupBarrier();
+    if (local == 0u) {
+        let triangles = atomicLoad(&workgroupTriangles);
+        if (triangles > 0u) {
+            atomicAdd(&indirectArguments[drawnTrianglesWord()], triangles);
+        }
     }
 }

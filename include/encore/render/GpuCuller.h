@@ -9,13 +9,16 @@
 //  - each frame a compute pass zeroes every instanceCount, bounds every instance where this
 //    frame's transforms put it (CullingBounds: world matrices from the InstanceBuffer, joint
 //    matrices and morph weights from AnimationBuffers), tests that against the frustum and
-//    appends visible instances to the lists of its mesh's draws.
+//    appends visible instances to the lists of its mesh's draws;
+//  - the same pass counts the triangles it lets through (drawnTrianglesOffset()): per appended
+//    (instance, draw), the draw's triangles.
 // The draw count never changes; only instance counts do, so recorded bundles stay valid, and
 // nothing on the CPU follows moved or animated instances.
 
 #include <webgpu/webgpu_cpp.h>
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "encore/core/Result.h"
@@ -31,7 +34,14 @@ struct CulledDraw {
     InstanceRange instances;  // Slots of the InstanceBuffer this draw may show.
     bool indexed = true;
     std::uint32_t elementCount = 0;  // Indices, or vertices when not indexed.
+    // What one instance of the draw draws: triangleCount(topology, elementCount).
+    std::uint32_t triangles = 0;
 };
+
+// What `draws` could draw with every instance visible: the sum of triangles x instance count.
+// The CPU side of the culling pass's count (GpuCuller::drawnTriangles), and the triangles
+// "submitted" by the indirect draws in benchmark reports.
+std::uint64_t submittedTriangles(std::span<const CulledDraw> draws);
 
 class GpuCuller {
   public:
@@ -54,6 +64,14 @@ class GpuCuller {
     // Group 1 for draw `draw`: bind with dynamicOffset(draw).
     const wgpu::BindGroup& drawBindGroup() const { return mDrawBindGroup; }
     std::uint32_t dynamicOffset(std::size_t draw) const { return mVisibleBase[draw] * 4; }
+    // Where in indirectArguments() (CopySrc) the triangles the last cull let through lie: one
+    // u32 after the last argument record, the sum over visible instances of their draws'
+    // triangles. The reset dispatch zeroes it each frame; copy it out after encode()
+    // (Renderer::setTriangleCounting). It shares the arguments' binding because the culling
+    // pass already binds the 8 storage buffers a device offers by default. 32 bits hold it: a
+    // million objects of tessellation 16 are about 5 x 10^8 triangles, under 2^32 (4.3 x 10^9);
+    // a scene with more wraps around.
+    std::uint64_t drawnTrianglesOffset() const { return mDraws.size() * kArgumentsStride; }
 
   private:
     std::vector<CulledDraw> mDraws;

@@ -3,6 +3,8 @@
 #include <cassert>
 #include <map>
 
+#include "encore/render/RenderEncoder.h"
+
 namespace encore::render {
 
 Result<void> GpuCullingStrategy::prepare(const RenderSetup& setup, const scene::SceneData& scene) {
@@ -48,9 +50,11 @@ Result<void> GpuCullingStrategy::groupDraws() {
                     assert(existing != drawOf.end());
                     draw = existing->second;
                 } else {
-                    draws.push_back({primitive.instances, bindings.indices.has_value(),
-                                     bindings.indices ? bindings.indices->count
-                                                      : bindings.vertexCount});
+                    const std::uint32_t elements =
+                        bindings.indices ? bindings.indices->count : bindings.vertexCount;
+                    draws.push_back({primitive.instances, bindings.indices.has_value(), elements,
+                                     static_cast<std::uint32_t>(
+                                         triangleCount(bindings.topology, elements))});
                 }
                 culledMaterial.primitives.push_back({primitive.bindings, primitive.instances.first,
                                                      draw, primitive.sceneInstance,
