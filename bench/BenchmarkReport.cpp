@@ -29,8 +29,8 @@ std::string countRange(std::vector<std::uint64_t> counts) {
         return "-";
     }
     std::sort(counts.begin(), counts.end());
-    const std::string range = " (" + std::to_string(counts.front()) + "–" +
-                              std::to_string(counts.back()) + ")";
+    const std::string range =
+        " (" + std::to_string(counts.front()) + "–" + std::to_string(counts.back()) + ")";
     return std::to_string(counts[counts.size() / 2]) +
            (counts.front() == counts.back() ? std::string() : range);
 }
@@ -71,7 +71,8 @@ nlohmann::json toJson(const BenchReport& report) {
           {"materials", report.options.materials},
           {"tessellation", report.options.tessellation},
           {"textures", report.options.textures},
-          {"scenes", [&] {
+          {"scenes",
+           [&] {
                nlohmann::json scenes = nlohmann::json::array();
                for (const GeneratedScene scene : report.options.scenes) {
                    scenes.push_back(std::string(generatedSceneName(scene)));

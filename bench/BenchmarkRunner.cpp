@@ -154,7 +154,8 @@ Result<BenchResult> measure(gpu::Context& context,
         if (frame == warmup) {
             renderer.setTriangleCounting(true);  // The measured frames only.
         }
-        const render::FrameResult rendered = renderer.renderFrame(cameraOf(frame), frameTime(frame));
+        const render::FrameResult rendered =
+            renderer.renderFrame(cameraOf(frame), frameTime(frame));
         result.frame = rendered.counters;
         result.bundleContents = rendered.bundleContents;
         if (frame >= warmup) {
@@ -206,16 +207,19 @@ Result<BenchResult> measureAnimometer(gpu::Context& context,
 
 std::string_view generatedSceneName(GeneratedScene scene) {
     switch (scene) {
-        case GeneratedScene::Grid: return "grid";
-        case GeneratedScene::Flythrough: return "flythrough";
-        case GeneratedScene::City: return "city";
+        case GeneratedScene::Grid:
+            return "grid";
+        case GeneratedScene::Flythrough:
+            return "flythrough";
+        case GeneratedScene::City:
+            return "city";
     }
     return "unknown";
 }
 
 std::optional<GeneratedScene> generatedSceneFromName(std::string_view name) {
-    for (const auto scene : {GeneratedScene::Grid, GeneratedScene::Flythrough,
-                             GeneratedScene::City}) {
+    for (const auto scene :
+         {GeneratedScene::Grid, GeneratedScene::Flythrough, GeneratedScene::City}) {
         if (generatedSceneName(scene) == name) {
             return scene;
         }
@@ -275,8 +279,8 @@ Result<BenchReport> runBenchmarks(gpu::Context& context, const BenchOptions& opt
             if (progress) {
                 progress(label + " / " + render::strategyChoiceName(strategy));
             }
-            auto result = measure(context, *renderer, scene, strategy, options, timerPointer,
-                                  animate, path);
+            auto result =
+                measure(context, *renderer, scene, strategy, options, timerPointer, animate, path);
             if (!result && result.error().code == ErrorCode::Unsupported) {
                 report.skipped.push_back(label + " / " + render::strategyChoiceName(strategy) +
                                          ": " +

@@ -31,8 +31,8 @@ CameraPath CameraPath::flythrough(const scene::GeneratorOptions& options) {
     // as the straight runs are from theirs (the arc's centre is a point of the lattice).
     const float width = float(lattice.side) * lattice.spacing;
     const float depth = float(lattice.layers) * lattice.spacing;
-    return CameraPath(origin + glm::vec2(lattice.aisle(low)), origin + glm::vec2(lattice.aisle(high)),
-                      height, 0.5f * lattice.spacing,
+    return CameraPath(origin + glm::vec2(lattice.aisle(low)),
+                      origin + glm::vec2(lattice.aisle(high)), height, 0.5f * lattice.spacing,
                       std::sqrt(2.0f * width * width + depth * depth) + lattice.spacing);
 }
 
@@ -61,8 +61,7 @@ std::optional<CameraPath> CameraPath::forLayout(const scene::GeneratorOptions& o
     return std::nullopt;
 }
 
-CameraPath::CameraPath(glm::vec2 low, glm::vec2 high, float height, float radius,
-                       float farPlane)
+CameraPath::CameraPath(glm::vec2 low, glm::vec2 high, float height, float radius, float farPlane)
     : mFarPlane(farPlane) {
     radius = std::min(radius, 0.5f * std::min(high.x - low.x, high.y - low.y));
     // Counter-clockwise seen from above (+Y): east along the south side first.

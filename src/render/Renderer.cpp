@@ -395,8 +395,8 @@ FrameResult Renderer::renderPasses(std::span<const Camera> cameras, float timeSe
     // Bundles and indirect draws replay per view; counters already sum the direct draws.
     result.trianglesSubmitted =
         result.counters.triangles +
-        cameras.size() * (result.bundleContents.triangles +
-                          (culler ? submittedTriangles(culler->draws()) : 0));
+        cameras.size() *
+            (result.bundleContents.triangles + (culler ? submittedTriangles(culler->draws()) : 0));
     return result;
 }
 

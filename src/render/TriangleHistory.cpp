@@ -19,14 +19,14 @@ void TriangleHistory::addChunk() {
                                         kFramesPerChunk * 4, "drawn triangles per frame"));
 }
 
-void TriangleHistory::record(const wgpu::CommandEncoder& commands, const wgpu::Buffer& source,
+void TriangleHistory::record(const wgpu::CommandEncoder& commands,
+                             const wgpu::Buffer& source,
                              std::uint64_t offset) {
     const std::uint64_t chunk = mFrames / kFramesPerChunk;
     if (chunk == mChunks.size()) {
         addChunk();
     }
-    commands.CopyBufferToBuffer(source, offset, mChunks[chunk], (mFrames % kFramesPerChunk) * 4,
-                                4);
+    commands.CopyBufferToBuffer(source, offset, mChunks[chunk], (mFrames % kFramesPerChunk) * 4, 4);
     ++mFrames;
 }
 

@@ -24,7 +24,8 @@ class TriangleHistory {
     explicit TriangleHistory(wgpu::Device device);
 
     // Records the copy of the u32 at `offset` of `source` (CopySrc usage) into the next slot.
-    void record(const wgpu::CommandEncoder& commands, const wgpu::Buffer& source,
+    void record(const wgpu::CommandEncoder& commands,
+                const wgpu::Buffer& source,
                 std::uint64_t offset);
     // Waits for the GPU and returns one value per frame recorded since the last take, which
     // starts a new history.

@@ -234,7 +234,9 @@ float unitSpacing(const GeneratorOptions& options) {
     return std::max(options.spacing, 1.0f) * 0.5f;
 }
 
-json node(std::uint32_t mesh, const glm::vec3& translation, const glm::quat& rotation,
+json node(std::uint32_t mesh,
+          const glm::vec3& translation,
+          const glm::quat& rotation,
           const glm::vec3& scale) {
     return {{"mesh", mesh},
             {"translation", {translation.x, translation.y, translation.z}},
@@ -250,8 +252,8 @@ struct RandomPose {
 };
 RandomPose randomPose(std::mt19937& random) {
     std::uniform_real_distribution<float> unit(0.0f, 1.0f);
-    const glm::vec3 axis = glm::normalize(glm::vec3(unit(random), unit(random), unit(random)) +
-                                          glm::vec3(0.01f));
+    const glm::vec3 axis =
+        glm::normalize(glm::vec3(unit(random), unit(random), unit(random)) + glm::vec3(0.01f));
     const glm::quat rotation = glm::angleAxis(glm::two_pi<float>() * unit(random), axis);
     const float scale = 0.6f + 0.4f * unit(random);
     return {rotation, scale};
@@ -291,7 +293,9 @@ float boxStretch(std::uint32_t mesh) {
 }
 
 // `meshBottoms`: the lowest Y of each mesh, so that the small objects stand on the ground.
-void addCityNodes(json& document, const GeneratorOptions& options, std::mt19937& random,
+void addCityNodes(json& document,
+                  const GeneratorOptions& options,
+                  std::mt19937& random,
                   const std::vector<float>& meshBottoms) {
     const CityLayout city = cityLayout(options);
     std::uniform_real_distribution<float> unit(0.0f, 1.0f);
@@ -318,17 +322,16 @@ void addCityNodes(json& document, const GeneratorOptions& options, std::mt19937&
             const glm::vec2 lot =
                 corner + city.lotSize * glm::vec2(float(slot % CityLayout::kLotsPerSide) + 0.5f,
                                                   float(slot / CityLayout::kLotsPerSide) + 0.5f);
-            const std::uint32_t mesh = 5 * std::min(std::uint32_t(unit(random) * boxCount),
-                                                    boxCount - 1);
+            const std::uint32_t mesh =
+                5 * std::min(std::uint32_t(unit(random) * boxCount), boxCount - 1);
             // Mostly low buildings and a few towers (the square favours small heights).
             const float tower = unit(random);
             const float height = 1.5f + (city.maxBuildingHeight - 1.5f) * tower * tower;
             const glm::vec2 footprint =
                 city.lotSize * glm::vec2(0.6f + 0.3f * unit(random), 0.6f + 0.3f * unit(random));
-            document["nodes"].push_back(node(mesh, {lot.x, 0.5f * height, lot.y},
-                                             glm::quat(1.0f, 0.0f, 0.0f, 0.0f),
-                                             {footprint.x, height / boxStretch(mesh),
-                                              footprint.y}));
+            document["nodes"].push_back(
+                node(mesh, {lot.x, 0.5f * height, lot.y}, glm::quat(1.0f, 0.0f, 0.0f, 0.0f),
+                     {footprint.x, height / boxStretch(mesh), footprint.y}));
             continue;
         }
         // Small objects on the pavement: beside the middle lot on the south and west sides and
@@ -337,18 +340,22 @@ void addCityNodes(json& document, const GeneratorOptions& options, std::mt19937&
         const float pavement = -0.25f * city.streetWidth;  // From the block's edge.
         glm::vec2 position;
         switch (slot - kLots) {
-            case 0: position = corner + glm::vec2(1.5f * city.lotSize, pavement); break;
-            case 1: position = corner + glm::vec2(pavement, 1.5f * city.lotSize); break;
-            default: position = corner + glm::vec2(blockSize - 0.5f * city.lotSize, pavement);
+            case 0:
+                position = corner + glm::vec2(1.5f * city.lotSize, pavement);
+                break;
+            case 1:
+                position = corner + glm::vec2(pavement, 1.5f * city.lotSize);
+                break;
+            default:
+                position = corner + glm::vec2(blockSize - 0.5f * city.lotSize, pavement);
         }
         const std::uint32_t mesh = streetMeshes[std::min(
             std::size_t(unit(random) * float(streetMeshes.size())), streetMeshes.size() - 1)];
         const float scale = 0.5f + 0.3f * unit(random);
         const glm::quat turn =
             glm::angleAxis(glm::two_pi<float>() * unit(random), glm::vec3(0.0f, 1.0f, 0.0f));
-        document["nodes"].push_back(
-            node(mesh, {position.x, -meshBottoms[mesh] * scale, position.y}, turn,
-                 glm::vec3(scale)));
+        document["nodes"].push_back(node(mesh, {position.x, -meshBottoms[mesh] * scale, position.y},
+                                         turn, glm::vec3(scale)));
     }
 }
 
@@ -356,9 +363,12 @@ void addCityNodes(json& document, const GeneratorOptions& options, std::mt19937&
 
 std::string_view sceneLayoutName(SceneLayout layout) {
     switch (layout) {
-        case SceneLayout::Grid: return "grid";
-        case SceneLayout::Lattice: return "lattice";
-        case SceneLayout::City: return "city";
+        case SceneLayout::Grid:
+            return "grid";
+        case SceneLayout::Lattice:
+            return "lattice";
+        case SceneLayout::City:
+            return "city";
     }
     return "unknown";
 }
@@ -366,7 +376,8 @@ std::string_view sceneLayoutName(SceneLayout layout) {
 LatticeLayout latticeLayout(const GeneratorOptions& options) {
     LatticeLayout lattice;
     const double objects = std::max(options.objectCount, 1u);
-    lattice.layers = std::max(1u, static_cast<std::uint32_t>(std::lround(std::cbrt(objects / 16.0))));
+    lattice.layers =
+        std::max(1u, static_cast<std::uint32_t>(std::lround(std::cbrt(objects / 16.0))));
     lattice.side = static_cast<std::uint32_t>(
         std::ceil(std::sqrt(std::ceil(objects / double(lattice.layers)))));
     lattice.spacing = unitSpacing(options);
@@ -467,11 +478,10 @@ Result<std::vector<std::uint8_t>> generateSceneGlb(const GeneratorOptions& optio
     std::vector<float> meshBottoms;
     for (std::uint32_t i = 0; i < options.meshCount; ++i) {
         const MeshGeometry mesh = makeMesh(i, options.tessellation);
-        meshBottoms.push_back(std::min_element(mesh.positions.begin(), mesh.positions.end(),
-                                               [](const glm::vec3& a, const glm::vec3& b) {
-                                                   return a.y < b.y;
-                                               })
-                                  ->y);
+        meshBottoms.push_back(
+            std::min_element(mesh.positions.begin(), mesh.positions.end(),
+                             [](const glm::vec3& a, const glm::vec3& b) { return a.y < b.y; })
+                ->y);
         json attributes = {
             {"POSITION", binary.addAccessor(document, mesh.positions, kFloat, "VEC3",
                                             mesh.positions.size(), kArrayBuffer,

@@ -135,8 +135,7 @@ TEST(BenchSmokeTest, FlythroughAndCityReportTrianglesPerFrame) {
                 << "the camera inside the scene sees part of it";
         }
     }
-    EXPECT_NE(run.command.out.find("| triangles submitted | triangles drawn |"),
-              std::string::npos)
+    EXPECT_NE(run.command.out.find("| triangles submitted | triangles drawn |"), std::string::npos)
         << run.command.out;
 }
 

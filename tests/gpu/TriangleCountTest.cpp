@@ -132,7 +132,8 @@ TEST_P(TriangleCountTest, TheFlythroughCullsPartOfTheLattice) {
     EXPECT_TRUE(context->checkNoErrors("fly-through").ok());
 }
 
-INSTANTIATE_TEST_SUITE_P(DirectAndBundled, TriangleCountTest,
+INSTANTIATE_TEST_SUITE_P(DirectAndBundled,
+                         TriangleCountTest,
                          ::testing::Values(StrategyKind::GpuCulling,
                                            StrategyKind::GpuCullingBundles),
                          [](const auto& info) {
@@ -149,8 +150,8 @@ TEST(TriangleCountTest, StrategiesWithoutCullingSubmitTheSameTriangles) {
     auto renderer = Renderer::create(*context, test::pixelTestOptions(kSize, kSize));
     ASSERT_TRUE(renderer.ok());
     const Camera camera = Camera::framing(scene.bounds, 1.0f);
-    for (const StrategyKind kind : {StrategyKind::Naive, StrategyKind::Bundles,
-                                    StrategyKind::GpuCulling}) {
+    for (const StrategyKind kind :
+         {StrategyKind::Naive, StrategyKind::Bundles, StrategyKind::GpuCulling}) {
         SCOPED_TRACE(strategyName(kind));
         ASSERT_TRUE(renderer->prepare(scene, kind).ok());
         renderer->setTriangleCounting(true);

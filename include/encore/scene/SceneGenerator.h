@@ -88,9 +88,7 @@ struct CityLayout {
     float blockSize() const { return float(kLotsPerSide) * lotSize; }
     float pitch() const { return blockSize() + streetWidth; }
     // Centred on the origin: street 0 is the west (and south) edge of the city.
-    float streetCenter(int k) const {
-        return (float(k) - 0.5f * float(blocksPerSide)) * pitch();
-    }
+    float streetCenter(int k) const { return (float(k) - 0.5f * float(blocksPerSide)) * pitch(); }
 };
 CityLayout cityLayout(const GeneratorOptions& options);
 

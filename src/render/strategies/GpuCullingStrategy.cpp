@@ -52,9 +52,9 @@ Result<void> GpuCullingStrategy::groupDraws() {
                 } else {
                     const std::uint32_t elements =
                         bindings.indices ? bindings.indices->count : bindings.vertexCount;
-                    draws.push_back({primitive.instances, bindings.indices.has_value(), elements,
-                                     static_cast<std::uint32_t>(
-                                         triangleCount(bindings.topology, elements))});
+                    draws.push_back(
+                        {primitive.instances, bindings.indices.has_value(), elements,
+                         static_cast<std::uint32_t>(triangleCount(bindings.topology, elements))});
                 }
                 culledMaterial.primitives.push_back({primitive.bindings, primitive.instances.first,
                                                      draw, primitive.sceneInstance,

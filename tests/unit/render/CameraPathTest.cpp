@@ -109,8 +109,7 @@ TEST_P(CameraPathTest, StaysInsideTheSceneAndOutsideEveryObject) {
             << "sample " << i << " leaves the scene";
         for (std::size_t object = 0; object < scene.instances.size(); ++object) {
             if (city) {
-                const glm::vec3 outside =
-                    glm::max(boxes[object].min - p, p - boxes[object].max);
+                const glm::vec3 outside = glm::max(boxes[object].min - p, p - boxes[object].max);
                 const float gap = std::max({outside.x, outside.y, outside.z});
                 nearest = std::min(nearest, gap);
             } else {
@@ -147,16 +146,16 @@ TEST_P(CameraPathTest, MostObjectsAreOutOfView) {
     EXPECT_LT(inView / kFrames, 0.5);
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    GeneratedScenes, CameraPathTest,
-    ::testing::Values(PathCase{scene::SceneLayout::Lattice, 2000},
-                      PathCase{scene::SceneLayout::Lattice, 30},
-                      PathCase{scene::SceneLayout::City, 2000},
-                      PathCase{scene::SceneLayout::City, 12}),
-    [](const auto& info) {
-        return std::string(scene::sceneLayoutName(info.param.layout)) +
-               std::to_string(info.param.objects);
-    });
+INSTANTIATE_TEST_SUITE_P(GeneratedScenes,
+                         CameraPathTest,
+                         ::testing::Values(PathCase{scene::SceneLayout::Lattice, 2000},
+                                           PathCase{scene::SceneLayout::Lattice, 30},
+                                           PathCase{scene::SceneLayout::City, 2000},
+                                           PathCase{scene::SceneLayout::City, 12}),
+                         [](const auto& info) {
+                             return std::string(scene::sceneLayoutName(info.param.layout)) +
+                                    std::to_string(info.param.objects);
+                         });
 
 TEST(CameraPathTest, TheGridHasNoPath) {
     EXPECT_FALSE(CameraPath::forLayout(optionsFor(scene::SceneLayout::Grid, 100)));

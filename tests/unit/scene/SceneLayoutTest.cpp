@@ -44,8 +44,10 @@ TEST_P(SceneLayoutTest, LoadsWithOneInstancePerObjectAndIsDeterministic) {
     EXPECT_NE(*generateSceneGlb(other), *generateSceneGlb(optionsFor(GetParam(), 200)));
 }
 
-INSTANTIATE_TEST_SUITE_P(AllLayouts, SceneLayoutTest,
-                         ::testing::Values(SceneLayout::Grid, SceneLayout::Lattice,
+INSTANTIATE_TEST_SUITE_P(AllLayouts,
+                         SceneLayoutTest,
+                         ::testing::Values(SceneLayout::Grid,
+                                           SceneLayout::Lattice,
                                            SceneLayout::City),
                          [](const auto& info) { return std::string(sceneLayoutName(info.param)); });
 
@@ -80,9 +82,10 @@ TEST(SceneLayoutTest, CityBuildingsStandInTheirBlocksAndLeaveTheStreetsFree) {
         Bounds box;
         for (const Primitive& primitive : scene.meshes[instance.mesh.index()].primitives) {
             for (int corner = 0; corner < 8; ++corner) {
-                const glm::vec3 local((corner & 1) ? primitive.bounds.max.x : primitive.bounds.min.x,
-                                      (corner & 2) ? primitive.bounds.max.y : primitive.bounds.min.y,
-                                      (corner & 4) ? primitive.bounds.max.z : primitive.bounds.min.z);
+                const glm::vec3 local(
+                    (corner & 1) ? primitive.bounds.max.x : primitive.bounds.min.x,
+                    (corner & 2) ? primitive.bounds.max.y : primitive.bounds.min.y,
+                    (corner & 4) ? primitive.bounds.max.z : primitive.bounds.min.z);
                 box.extend(glm::vec3(instance.world * glm::vec4(local, 1.0f)));
             }
         }
@@ -99,8 +102,8 @@ TEST(SceneLayoutTest, CityBuildingsStandInTheirBlocksAndLeaveTheStreetsFree) {
             const float street = city.streetCenter(int(k));
             for (int axis : {0, 2}) {
                 const bool crosses = box.min[axis] < street + 0.4f && box.max[axis] > street - 0.4f;
-                EXPECT_FALSE(crosses) << "object " << i << " reaches street " << k << " (axis "
-                                      << axis << ")";
+                EXPECT_FALSE(crosses)
+                    << "object " << i << " reaches street " << k << " (axis " << axis << ")";
             }
         }
     }
