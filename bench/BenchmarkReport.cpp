@@ -71,6 +71,7 @@ nlohmann::json toJson(const BenchReport& report) {
           {"materials", report.options.materials},
           {"tessellation", report.options.tessellation},
           {"textures", report.options.textures},
+          {"pathStep", report.options.pathStep},
           {"scenes",
            [&] {
                nlohmann::json scenes = nlohmann::json::array();
@@ -141,7 +142,13 @@ std::string toMarkdown(const BenchReport& report) {
         << "Generated scenes: " << report.options.meshes << " meshes, " << report.options.materials
         << " materials"
         << (report.options.textures ? " (every other one textured)" : " (texture-less)")
-        << ", tessellation " << report.options.tessellation << "\n\n"
+        << ", tessellation " << report.options.tessellation
+        << (report.options.pathStep > 0.0f
+                ? "; flythrough and city cameras move " + format("%g", report.options.pathStep) +
+                      " units per frame"
+                : std::string("; flythrough and city cameras go once round their loops over the "
+                              "measured frames"))
+        << "\n\n"
         << "Times in milliseconds per frame, median (p95). CPU = encode + submit; \"vs naive\" "
            "is naive's CPU median divided by the strategy's, in the same scene. Triangles per "
            "frame, median (min–max): submitted = what the recorded draws could draw, drawn = "

@@ -128,7 +128,11 @@ Result<BenchResult> measure(gpu::Context& context,
         if (!path) {
             return framing;
         }
-        return path->camera(frame < warmup ? 0 : frame - warmup, options.frames, aspect);
+        const std::uint32_t measured = frame < warmup ? 0 : frame - warmup;
+        if (options.pathStep > 0.0f) {
+            return path->cameraAtDistance(options.pathStep * float(measured), aspect);
+        }
+        return path->camera(measured, options.frames, aspect);
     };
     BenchResult result;
     result.strategy = render::strategyChoiceName(choice);

@@ -116,6 +116,9 @@ void addBenchCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) 
                      "city (a camera driving down the streets of a city); several measure each")
         ->delimiter(',')
         ->check(CLI::IsMember({"grid", "flythrough", "city"}));
+    command->add_option("--path-step", bench.pathStep,
+                        "Units the flythrough and city cameras move per frame (default 0: once "
+                        "round their loop over the measured frames)");
     command->add_option("--model", bench.models, "glTF models to measure (repeatable)");
     command->add_option("--animometer", bench.animometerTriangles,
                         "Animometer scenes with these triangle counts")

@@ -42,6 +42,9 @@ std::optional<GeneratedScene> generatedSceneFromName(std::string_view name);
 struct BenchOptions {
     std::vector<std::uint32_t> objectCounts;        // Generated scenes, each of `scenes`.
     std::vector<GeneratedScene> scenes;             // Empty: the grid.
+    // How far the camera of the fly-through and the city moves per frame, in scene units; 0:
+    // once round its loop over the measured frames (render::CameraPath::camera).
+    float pathStep = 0.0f;
     std::vector<std::filesystem::path> models;      // glTF files.
     std::vector<std::uint32_t> animometerTriangles;  // Animometer scenes (direct and bundle).
     std::vector<std::uint32_t> crowdCharacters;      // Animated crowds (scene::generateCrowdGlb).

@@ -45,8 +45,14 @@ class CameraPath {
 
     // The camera `fraction` of the way round, looking along the path, for a target of `aspect`.
     Camera cameraAt(float fraction, float aspect) const;
-    // Frame `frame` of `frameCount`: the frames go round the loop once, evenly spaced.
+    // Frame `frame` of `frameCount`: the frames go round the loop once, evenly spaced. In the
+    // largest scenes that is a long step per frame (about 8 units for a million-object lattice
+    // over 60 frames); cameraAtDistance moves at a chosen speed instead.
     Camera camera(std::uint32_t frame, std::uint32_t frameCount, float aspect) const;
+    // The camera `distance` units along the path from its start (wrapping around).
+    Camera cameraAtDistance(float distance, float aspect) const {
+        return cameraAt(distance / mLength, aspect);
+    }
 
   private:
     // A straight run from `start` along `direction`, or a quarter circle around `center` that

@@ -73,6 +73,9 @@ TEST_P(CameraPathTest, IsReproducibleClosedAndSmooth) {
     EXPECT_EQ(camera.kind, ProjectionKind::Perspective);
     EXPECT_FLOAT_EQ(camera.nearPlane, CameraPath::kNearPlane);
     EXPECT_EQ(camera.position, path->position(0.3f));
+    EXPECT_LT(glm::distance(path->cameraAtDistance(0.3f * path->length(), 2.0f).position,
+                            camera.position),
+              1e-3f);
 }
 
 // Every point of the path of a large scene lies inside its box; every point of any path lies
