@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cstdio>
 #include <map>
 #include <sstream>
@@ -20,6 +21,22 @@ std::string format(const char* pattern, double value) {
 
 std::string milliseconds(const render::Percentiles& p) {
     return format("%.3f", p.median) + " (" + format("%.3f", p.p95) + ")";
+}
+
+// Per-frame counts as "median (min-max)"; "-" when there are none.
+std::string countRange(std::vector<std::uint64_t> counts) {
+    if (counts.empty()) {
+        return "-";
+    }
+    std::sort(counts.begin(), counts.end());
+    const std::string range =
+        " (" + std::to_string(counts.front()) + "–" + std::to_string(counts.back()) + ")";
+    return std::to_string(counts[counts.size() / 2]) +
+           (counts.front() == counts.back() ? std::string() : range);
+}
+
+nlohmann::json countsJson(const std::vector<std::uint64_t>& counts) {
+    return counts.empty() ? nlohmann::json(nullptr) : nlohmann::json(counts);
 }
 
 }  // namespace
@@ -53,7 +70,16 @@ nlohmann::json toJson(const BenchReport& report) {
          {{"meshes", report.options.meshes},
           {"materials", report.options.materials},
           {"tessellation", report.options.tessellation},
-          {"textures", report.options.textures}}},
+          {"textures", report.options.textures},
+          {"pathStep", report.options.pathStep},
+          {"scenes",
+           [&] {
+               nlohmann::json scenes = nlohmann::json::array();
+               for (const GeneratedScene scene : report.options.scenes) {
+                   scenes.push_back(std::string(generatedSceneName(scene)));
+               }
+               return scenes.empty() ? nlohmann::json::array({"grid"}) : scenes;
+           }()}}},
         {"gpuWait", report.options.gpuWait == gpu::WaitMode::Spin && !report.options.callgrind
                         ? "spin"
                         : "block"},
@@ -90,6 +116,8 @@ nlohmann::json toJson(const BenchReport& report) {
             {"gpuMs", result.gpu ? percentilesJson(*result.gpu) : nlohmann::json(nullptr)},
             {"frame", toJson(result.frame)},
             {"bundleContents", toJson(result.bundleContents)},
+            {"trianglesSubmitted", countsJson(result.trianglesSubmitted)},
+            {"trianglesDrawn", countsJson(result.trianglesDrawn)},
         });
     }
     return json;
@@ -114,9 +142,18 @@ std::string toMarkdown(const BenchReport& report) {
         << "Generated scenes: " << report.options.meshes << " meshes, " << report.options.materials
         << " materials"
         << (report.options.textures ? " (every other one textured)" : " (texture-less)")
-        << ", tessellation " << report.options.tessellation << "\n\n"
+        << ", tessellation " << report.options.tessellation
+        << (report.options.pathStep > 0.0f
+                ? "; flythrough and city cameras move " + format("%g", report.options.pathStep) +
+                      " units per frame"
+                : std::string("; flythrough and city cameras go once round their loops over the "
+                              "measured frames"))
+        << "\n\n"
         << "Times in milliseconds per frame, median (p95). CPU = encode + submit; \"vs naive\" "
-           "is naive's CPU median divided by the strategy's, in the same scene.\n";
+           "is naive's CPU median divided by the strategy's, in the same scene. Triangles per "
+           "frame, median (min–max): submitted = what the recorded draws could draw, drawn = "
+           "what GPU culling let through (- for strategies without it: they draw what they "
+           "submit).\n";
 
     // Results grouped by scene label, in report order.
     std::vector<std::string> labels;
@@ -136,12 +173,14 @@ std::string toMarkdown(const BenchReport& report) {
             }
         }
         const bool animated = results.front()->animationCpu.has_value();
+        const bool triangles = !results.front()->trianglesSubmitted.empty();
         out << "\n### " << label << " (" << results.front()->objects << " objects)\n\n"
             << "| strategy | CPU frame | encode | submit | GPU | vs naive | API calls | draws | "
                "bundle draws |"
+            << (triangles ? " triangles submitted | triangles drawn |" : "")
             << (animated ? " animation (share of CPU frame) | bytes written |" : "")
-            << "\n|---|---:|---:|---:|---:|---:|---:|---:|---:|" << (animated ? "---:|---:|" : "")
-            << "\n";
+            << "\n|---|---:|---:|---:|---:|---:|---:|---:|---:|" << (triangles ? "---:|---:|" : "")
+            << (animated ? "---:|---:|" : "") << "\n";
         for (const BenchResult* result : results) {
             out << "| " << result->strategy << " | " << milliseconds(result->cpu) << " | "
                 << milliseconds(result->encode) << " | " << milliseconds(result->submit) << " | "
@@ -151,6 +190,10 @@ std::string toMarkdown(const BenchReport& report) {
                         : std::string("-"))
                 << " | " << result->frame.apiCalls() << " | " << result->frame.drawCalls() << " | "
                 << result->bundleContents.drawCalls() << " |";
+            if (triangles) {
+                out << " " << countRange(result->trianglesSubmitted) << " | "
+                    << countRange(result->trianglesDrawn) << " |";
+            }
             if (animated && result->animationCpu) {
                 const double share = result->cpu.median > 0.0
                                          ? 100.0 * result->animationCpu->median / result->cpu.median

@@ -15,6 +15,7 @@
 #include "encore/core/Elapsed.h"
 #include "encore/gpu/GpuTimer.h"
 #include "encore/render/Animometer.h"
+#include "encore/render/CameraPath.h"
 #include "encore/render/Renderer.h"
 #include "encore/scene/CrowdGenerator.h"
 #include "encore/scene/SceneGenerator.h"
@@ -104,7 +105,8 @@ float frameTime(std::uint32_t frame) {
     return float(frame) / 60.0f;
 }
 
-// Measures one strategy on one scene.
+// Measures one strategy on one scene, seen whole (Camera::framing) or, with `path`, from the
+// path's camera: the warm-up frames from its start, the measured frames once round it.
 // With `animate`, every frame first sets the animation time (its CPU time counts as encoding).
 Result<BenchResult> measure(gpu::Context& context,
                             render::Renderer& renderer,
@@ -112,14 +114,26 @@ Result<BenchResult> measure(gpu::Context& context,
                             render::StrategyChoice choice,
                             const BenchOptions& options,
                             gpu::GpuTimer* timer,
-                            std::optional<render::AnimationEvaluation> animate) {
+                            std::optional<render::AnimationEvaluation> animate,
+                            const std::optional<render::CameraPath>& path) {
     ENCORE_TRY(renderer.setAnimationEvaluation(animate.value_or(render::AnimationEvaluation::Cpu)));
     // Every measured frame animates: past an animation's end it starts again (clamped, the CPU
     // path would stop changing anything after one play).
     renderer.setPlaybackMode(scene::PlaybackMode::Loop);
     ENCORE_TRY(renderer.prepare(scene, choice.kind, choice.bundle));
-    const render::Camera camera =
-        render::Camera::framing(scene.bounds, renderer.target().aspect());
+    const float aspect = renderer.target().aspect();
+    const render::Camera framing = render::Camera::framing(scene.bounds, aspect);
+    const std::uint32_t warmup = options.callgrind ? 0 : options.warmup;
+    auto cameraOf = [&](std::uint32_t frame) {
+        if (!path) {
+            return framing;
+        }
+        const std::uint32_t measured = frame < warmup ? 0 : frame - warmup;
+        if (options.pathStep > 0.0f) {
+            return path->cameraAtDistance(options.pathStep * float(measured), aspect);
+        }
+        return path->camera(measured, options.frames, aspect);
+    };
     BenchResult result;
     result.strategy = render::strategyChoiceName(choice);
     result.objects = scene.instances.size();
@@ -141,14 +155,27 @@ Result<BenchResult> measure(gpu::Context& context,
                 animationTimes.push_back(animationMilliseconds);
             }
         }
-        const render::FrameResult rendered = renderer.renderFrame(camera, frameTime(frame));
+        if (frame == warmup) {
+            renderer.setTriangleCounting(true);  // The measured frames only.
+        }
+        const render::FrameResult rendered =
+            renderer.renderFrame(cameraOf(frame), frameTime(frame));
         result.frame = rendered.counters;
         result.bundleContents = rendered.bundleContents;
+        if (frame >= warmup) {
+            result.trianglesSubmitted.push_back(rendered.trianglesSubmitted);
+        }
         render::FrameTiming timing(rendered);
         timing.encodeMilliseconds += animationMilliseconds;
         return timing;
     });
     ENCORE_TRY(animated);
+    auto drawn = renderer.takeDrawnTriangles();
+    renderer.setTriangleCounting(false);
+    if (!drawn) {
+        return drawn.error().withContext("Benchmarking " + result.strategy);
+    }
+    result.trianglesDrawn = std::move(*drawn);
     if (animate) {
         result.animationCpu = render::Percentiles::of(std::move(animationTimes));
         result.animationWork = renderer.animationStats();
@@ -181,6 +208,28 @@ Result<BenchResult> measureAnimometer(gpu::Context& context,
 }
 
 }  // namespace
+
+std::string_view generatedSceneName(GeneratedScene scene) {
+    switch (scene) {
+        case GeneratedScene::Grid:
+            return "grid";
+        case GeneratedScene::Flythrough:
+            return "flythrough";
+        case GeneratedScene::City:
+            return "city";
+    }
+    return "unknown";
+}
+
+std::optional<GeneratedScene> generatedSceneFromName(std::string_view name) {
+    for (const auto scene :
+         {GeneratedScene::Grid, GeneratedScene::Flythrough, GeneratedScene::City}) {
+        if (generatedSceneName(scene) == name) {
+            return scene;
+        }
+    }
+    return std::nullopt;
+}
 
 std::string dawnVersion() {
     return ENCORE_DAWN_VERSION;
@@ -224,7 +273,8 @@ Result<BenchReport> runBenchmarks(gpu::Context& context, const BenchOptions& opt
 
     auto runScene = [&](const scene::SceneData& scene, const std::string& kind,
                         const std::string& sceneLabel,
-                        std::optional<render::AnimationEvaluation> animate) -> Result<void> {
+                        std::optional<render::AnimationEvaluation> animate,
+                        const std::optional<render::CameraPath>& path = {}) -> Result<void> {
         const std::string label = animate
                                       ? sceneLabel + ", animation on the " +
                                             std::string(render::animationEvaluationName(*animate))
@@ -234,7 +284,7 @@ Result<BenchReport> runBenchmarks(gpu::Context& context, const BenchOptions& opt
                 progress(label + " / " + render::strategyChoiceName(strategy));
             }
             auto result =
-                measure(context, *renderer, scene, strategy, options, timerPointer, animate);
+                measure(context, *renderer, scene, strategy, options, timerPointer, animate, path);
             if (!result && result.error().code == ErrorCode::Unsupported) {
                 report.skipped.push_back(label + " / " + render::strategyChoiceName(strategy) +
                                          ": " +
@@ -251,23 +301,35 @@ Result<BenchReport> runBenchmarks(gpu::Context& context, const BenchOptions& opt
         return {};
     };
 
-    for (std::uint32_t objects : options.objectCounts) {
-        scene::GeneratorOptions generator;
-        generator.objectCount = objects;
-        generator.meshCount = options.meshes;
-        generator.materialCount = options.materials;
-        generator.tessellation = options.tessellation;
-        generator.textures = options.textures;
-        auto glb = scene::generateSceneGlb(generator);
-        if (!glb) {
-            return glb.error();
+    const std::vector<GeneratedScene> generatedScenes =
+        options.scenes.empty() ? std::vector{GeneratedScene::Grid} : options.scenes;
+    for (const GeneratedScene kind : generatedScenes) {
+        for (std::uint32_t objects : options.objectCounts) {
+            scene::GeneratorOptions generator;
+            generator.objectCount = objects;
+            generator.meshCount = options.meshes;
+            generator.materialCount = options.materials;
+            generator.tessellation = options.tessellation;
+            generator.textures = options.textures;
+            generator.layout = kind == GeneratedScene::Flythrough ? scene::SceneLayout::Lattice
+                               : kind == GeneratedScene::City     ? scene::SceneLayout::City
+                                                                  : scene::SceneLayout::Grid;
+            auto glb = scene::generateSceneGlb(generator);
+            if (!glb) {
+                return glb.error();
+            }
+            // The grid keeps the name its reports have always had.
+            const std::string name = kind == GeneratedScene::Grid
+                                         ? std::string("generated")
+                                         : std::string(generatedSceneName(kind));
+            const std::string label = name + " " + std::to_string(objects) + " objects";
+            auto scene = scene::loadSceneFromMemory(*glb, {}, label);
+            if (!scene) {
+                return scene.error();
+            }
+            ENCORE_TRY(runScene(*scene, name, label, std::nullopt,
+                                render::CameraPath::forLayout(generator)));
         }
-        const std::string label = "generated " + std::to_string(objects) + " objects";
-        auto scene = scene::loadSceneFromMemory(*glb, {}, label);
-        if (!scene) {
-            return scene.error();
-        }
-        ENCORE_TRY(runScene(*scene, "generated", label, std::nullopt));
     }
     // Scenes run once still, or once per requested animation evaluation.
     auto runAnimated =

@@ -25,6 +25,7 @@ struct BenchCommandOptions {
     std::string plot;
     bool smoke = false;
     std::vector<std::string> animate;
+    std::vector<std::string> scenes;
 };
 
 Result<void> writeText(const std::string& path, const std::string& text) {
@@ -44,6 +45,9 @@ int runBench(BenchCommandOptions options, const GlobalOptions& global) {
         options.bench.frames = 3;
         options.bench.warmup = 1;
         options.bench.width = options.bench.height = 128;
+    }
+    for (const auto& name : options.scenes) {
+        options.bench.scenes.push_back(*bench::generatedSceneFromName(name));
     }
     for (const auto& name : options.animate) {
         options.bench.animate.push_back(*render::animationEvaluationFromName(name));
@@ -105,6 +109,16 @@ void addBenchCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) 
     command->add_option("--objects", bench.objectCounts,
                         "Generated scenes with these object counts (default 1000 10000)")
         ->delimiter(',');
+    command
+        ->add_option("--scene", options->scenes,
+                     "What the generated scenes (--objects) are: grid (seen whole, still; the "
+                     "default), flythrough (a camera flying through a lattice of objects) or "
+                     "city (a camera driving down the streets of a city); several measure each")
+        ->delimiter(',')
+        ->check(CLI::IsMember({"grid", "flythrough", "city"}));
+    command->add_option("--path-step", bench.pathStep,
+                        "Units the flythrough and city cameras move per frame (default 0: once "
+                        "round their loop over the measured frames)");
     command->add_option("--model", bench.models, "glTF models to measure (repeatable)");
     command->add_option("--animometer", bench.animometerTriangles,
                         "Animometer scenes with these triangle counts")

@@ -1,4 +1,5 @@
 #include <cstdio>
+#include <map>
 #include <memory>
 #include <string>
 
@@ -28,6 +29,15 @@ void addGenCommand(CLI::App& app, const GlobalOptions&, int& exitCode) {
     command->add_option("--materials", options->generator.materialCount,
                         "Number of shared materials")
         ->capture_default_str();
+    command
+        ->add_option("--layout", options->generator.layout,
+                     "Where the objects stand: grid (one flat square grid), lattice (a wide box "
+                     "of layers to fly through) or city (buildings on a street grid)")
+        ->transform(CLI::CheckedTransformer(
+            std::map<std::string, scene::SceneLayout>{{"grid", scene::SceneLayout::Grid},
+                                                      {"lattice", scene::SceneLayout::Lattice},
+                                                      {"city", scene::SceneLayout::City}},
+            CLI::ignore_case));
     command->add_option("--seed", options->generator.seed, "Random seed for object placement")
         ->capture_default_str();
     command->add_option("--tessellation", options->generator.tessellation,

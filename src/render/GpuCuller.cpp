@@ -11,6 +11,7 @@
 #include "encore/gpu/BindGroupEntries.h"
 #include "encore/gpu/Upload.h"
 #include "encore/render/AnimationBuffers.h"
+#include "encore/render/RenderEncoder.h"
 
 namespace encore::render {
 
@@ -41,14 +42,7 @@ static_assert(sizeof(CullingUniform) == 224);
 
 // The triangles one instance of a draw of `elementCount` indices (or vertices) draws.
 std::uint32_t trianglesOf(const CulledDraw& draw, std::uint32_t elementCount) {
-    switch (draw.topology) {
-        case scene::Topology::TriangleList:
-            return elementCount / 3;
-        case scene::Topology::TriangleStrip:
-            return elementCount >= 3 ? elementCount - 2 : 0;
-        default:
-            return 0;
-    }
+    return static_cast<std::uint32_t>(triangleCount(draw.topology, elementCount));
 }
 
 // Every culling buffer is bound whole as storage. The per-draw buffer checked is the largest of
@@ -275,9 +269,9 @@ Result<GpuCuller> GpuCuller::create(const RenderSetup& setup, const InstanceBuff
     return culler;
 }
 
-std::uint64_t GpuCuller::trianglesSubmitted() const {
+std::uint64_t submittedTriangles(std::span<const CulledDraw> draws) {
     std::uint64_t triangles = 0;
-    for (const CulledDraw& draw : mDraws) {
+    for (const CulledDraw& draw : draws) {
         triangles += std::uint64_t(trianglesOf(draw, draw.elementCount)) * draw.instances.count;
     }
     return triangles;

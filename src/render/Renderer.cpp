@@ -3,9 +3,11 @@
 #include <chrono>
 
 #include "MipmapGenerator.h"
+#include "TriangleHistory.h"
 #include "encore/core/Elapsed.h"
 #include "encore/gpu/OutOfMemoryScope.h"
 #include "encore/gpu/Readback.h"
+#include "encore/render/GpuCuller.h"
 #include "encore/render/PipelineCache.h"
 #include "encore/render/SceneLimits.h"
 #include "encore/image/HdrImage.h"
@@ -176,6 +178,9 @@ Result<void> Renderer::prepare(const scene::SceneData& scene, StrategyKind kind,
     mScene = &scene;
     mKind = kind;
     mBundle = bundle;
+    if (mTriangleHistory) {
+        setTriangleCounting(true);  // Counts of the previous strategy are not this one's.
+    }
     mSetup->animation = nullptr;
     mAnimation.reset();
     mPlayer = std::make_unique<scene::AnimationPlayer>(scene);
@@ -328,6 +333,7 @@ FrameResult Renderer::renderPasses(std::span<const Camera> cameras, float timeSe
         mGpuAnimation->encode(commandEncoder);  // Before anything that reads its results.
         mGpuAnimationPending = false;
     }
+    const GpuCuller* culler = mStrategy ? mStrategy->culler() : nullptr;
     if (mStrategy) {
         mStrategy->beforePass(commandEncoder, state);
     }
@@ -394,6 +400,11 @@ FrameResult Renderer::renderPasses(std::span<const Camera> cameras, float timeSe
             encodePass(view, DrawPhase::Whole);
         }
     }
+    // After the last pass: a two-phase frame counts in both culling passes.
+    if (mTriangleHistory && culler && culler->indirectArguments()) {
+        mTriangleHistory->record(commandEncoder, culler->indirectArguments(),
+                                 culler->drawnTrianglesOffset());
+    }
     if (mToneMapper) {
         mToneMapper->encode(commandEncoder, mTarget);
     }
@@ -412,7 +423,23 @@ FrameResult Renderer::renderPasses(std::span<const Camera> cameras, float timeSe
     if (mTimer) {
         result.gpuMilliseconds = mTimer->read(*mContext);
     }
+    // Bundles and indirect draws replay per view; counters already sum the direct draws.
+    result.trianglesSubmitted =
+        result.counters.triangles +
+        cameras.size() *
+            (result.bundleContents.triangles + (culler ? submittedTriangles(culler->draws()) : 0));
     return result;
+}
+
+void Renderer::setTriangleCounting(bool on) {
+    mTriangleHistory = on ? std::make_unique<TriangleHistory>(mContext->device()) : nullptr;
+}
+
+Result<std::vector<std::uint64_t>> Renderer::takeDrawnTriangles() {
+    if (!mTriangleHistory) {
+        return std::vector<std::uint64_t>{};
+    }
+    return mTriangleHistory->take(*mContext);
 }
 
 Result<void> Renderer::resize(std::uint32_t width, std::uint32_t height) {

@@ -229,8 +229,171 @@ image::ImageRgba8 metallicRoughnessImage() {
     return image;
 }
 
+// Spacing in units from the options' spacing in object radii (meshes are about a unit wide).
+float unitSpacing(const GeneratorOptions& options) {
+    return std::max(options.spacing, 1.0f) * 0.5f;
+}
+
+json node(std::uint32_t mesh,
+          const glm::vec3& translation,
+          const glm::quat& rotation,
+          const glm::vec3& scale) {
+    return {{"mesh", mesh},
+            {"translation", {translation.x, translation.y, translation.z}},
+            {"rotation", {rotation.x, rotation.y, rotation.z, rotation.w}},
+            {"scale", {scale.x, scale.y, scale.z}}};
+}
+
+// A seeded random turn about a random axis and a size of 0.6 to 1, drawn in this order (the
+// grid's nodes have always drawn them so: its scenes stay as they were).
+struct RandomPose {
+    glm::quat rotation;
+    float scale;
+};
+RandomPose randomPose(std::mt19937& random) {
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    const glm::vec3 axis =
+        glm::normalize(glm::vec3(unit(random), unit(random), unit(random)) + glm::vec3(0.01f));
+    const glm::quat rotation = glm::angleAxis(glm::two_pi<float>() * unit(random), axis);
+    const float scale = 0.6f + 0.4f * unit(random);
+    return {rotation, scale};
+}
+
+// Objects on a square grid in the XZ plane, with a seeded random turn and size each.
+void addGridNodes(json& document, const GeneratorOptions& options, std::mt19937& random) {
+    const std::uint32_t side =
+        static_cast<std::uint32_t>(std::ceil(std::sqrt(double(options.objectCount))));
+    const float spacing = unitSpacing(options);
+    const float origin = -0.5f * float(side - 1) * spacing;
+    for (std::uint32_t i = 0; i < options.objectCount; ++i) {
+        const float x = origin + float(i % side) * spacing;
+        const float z = origin + float(i / side) * spacing;
+        const RandomPose pose = randomPose(random);
+        document["nodes"].push_back(
+            node(i % options.meshCount, {x, 0.0f, z}, pose.rotation, glm::vec3(pose.scale)));
+    }
+}
+
+void addLatticeNodes(json& document, const GeneratorOptions& options, std::mt19937& random) {
+    const LatticeLayout lattice = latticeLayout(options);
+    const std::uint32_t perLayer = lattice.side * lattice.side;
+    for (std::uint32_t i = 0; i < options.objectCount; ++i) {
+        const glm::vec3 point(float(i % lattice.side), float(i / perLayer),
+                              float((i / lattice.side) % lattice.side));
+        const RandomPose pose = randomPose(random);
+        document["nodes"].push_back(node(i % options.meshCount,
+                                         lattice.origin + lattice.spacing * point, pose.rotation,
+                                         glm::vec3(pose.scale)));
+    }
+}
+
+// makeMesh's boxes are meshes 0, 5, 10, ... stretched along Y by this factor.
+float boxStretch(std::uint32_t mesh) {
+    return 1.0f + 0.1f * float(mesh / 5);
+}
+
+// `meshBottoms`: the lowest Y of each mesh, so that the small objects stand on the ground.
+void addCityNodes(json& document,
+                  const GeneratorOptions& options,
+                  std::mt19937& random,
+                  const std::vector<float>& meshBottoms) {
+    const CityLayout city = cityLayout(options);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    const std::uint32_t boxCount = (options.meshCount + 4) / 5;
+    std::vector<std::uint32_t> streetMeshes;  // Everything round; the box when there is none.
+    for (std::uint32_t mesh = 0; mesh < options.meshCount; ++mesh) {
+        if (mesh % 5 != 0) {
+            streetMeshes.push_back(mesh);
+        }
+    }
+    if (streetMeshes.empty()) {
+        streetMeshes.push_back(0);
+    }
+    const float blockSize = city.blockSize();
+    for (std::uint32_t i = 0; i < options.objectCount; ++i) {
+        const std::uint32_t block = i / CityLayout::kObjectsPerBlock;
+        const std::uint32_t slot = i % CityLayout::kObjectsPerBlock;
+        // The block's south-west corner: half a street in from the streets around it.
+        const glm::vec2 corner(
+            city.streetCenter(int(block % city.blocksPerSide)) + 0.5f * city.streetWidth,
+            city.streetCenter(int(block / city.blocksPerSide)) + 0.5f * city.streetWidth);
+        constexpr std::uint32_t kLots = CityLayout::kLotsPerSide * CityLayout::kLotsPerSide;
+        if (slot < kLots) {
+            const glm::vec2 lot =
+                corner + city.lotSize * glm::vec2(float(slot % CityLayout::kLotsPerSide) + 0.5f,
+                                                  float(slot / CityLayout::kLotsPerSide) + 0.5f);
+            const std::uint32_t mesh =
+                5 * std::min(std::uint32_t(unit(random) * boxCount), boxCount - 1);
+            // Mostly low buildings and a few towers (the square favours small heights).
+            const float tower = unit(random);
+            const float height = 1.5f + (city.maxBuildingHeight - 1.5f) * tower * tower;
+            const glm::vec2 footprint =
+                city.lotSize * glm::vec2(0.6f + 0.3f * unit(random), 0.6f + 0.3f * unit(random));
+            document["nodes"].push_back(
+                node(mesh, {lot.x, 0.5f * height, lot.y}, glm::quat(1.0f, 0.0f, 0.0f, 0.0f),
+                     {footprint.x, height / boxStretch(mesh), footprint.y}));
+            continue;
+        }
+        // Small objects on the pavement: beside the middle lot on the south and west sides and
+        // the east lot on the south side, half way from the buildings to the street's centre
+        // line (where a camera drives), and away from the crossings (where it turns).
+        const float pavement = -0.25f * city.streetWidth;  // From the block's edge.
+        glm::vec2 position;
+        switch (slot - kLots) {
+            case 0:
+                position = corner + glm::vec2(1.5f * city.lotSize, pavement);
+                break;
+            case 1:
+                position = corner + glm::vec2(pavement, 1.5f * city.lotSize);
+                break;
+            default:
+                position = corner + glm::vec2(blockSize - 0.5f * city.lotSize, pavement);
+        }
+        const std::uint32_t mesh = streetMeshes[std::min(
+            std::size_t(unit(random) * float(streetMeshes.size())), streetMeshes.size() - 1)];
+        const float scale = 0.5f + 0.3f * unit(random);
+        const glm::quat turn =
+            glm::angleAxis(glm::two_pi<float>() * unit(random), glm::vec3(0.0f, 1.0f, 0.0f));
+        document["nodes"].push_back(node(mesh, {position.x, -meshBottoms[mesh] * scale, position.y},
+                                         turn, glm::vec3(scale)));
+    }
+}
 
 }  // namespace
+
+std::string_view sceneLayoutName(SceneLayout layout) {
+    switch (layout) {
+        case SceneLayout::Grid:
+            return "grid";
+        case SceneLayout::Lattice:
+            return "lattice";
+        case SceneLayout::City:
+            return "city";
+    }
+    return "unknown";
+}
+
+LatticeLayout latticeLayout(const GeneratorOptions& options) {
+    LatticeLayout lattice;
+    const double objects = std::max(options.objectCount, 1u);
+    lattice.layers =
+        std::max(1u, static_cast<std::uint32_t>(std::lround(std::cbrt(objects / 16.0))));
+    lattice.side = static_cast<std::uint32_t>(
+        std::ceil(std::sqrt(std::ceil(objects / double(lattice.layers)))));
+    lattice.spacing = unitSpacing(options);
+    const float halfWidth = 0.5f * float(lattice.side - 1) * lattice.spacing;
+    lattice.origin = {-halfWidth, 0.0f, -halfWidth};
+    return lattice;
+}
+
+CityLayout cityLayout(const GeneratorOptions& options) {
+    CityLayout city;
+    const std::uint32_t blocks =
+        (std::max(options.objectCount, 1u) + CityLayout::kObjectsPerBlock - 1) /
+        CityLayout::kObjectsPerBlock;
+    city.blocksPerSide = static_cast<std::uint32_t>(std::ceil(std::sqrt(double(blocks))));
+    return city;
+}
 
 Result<std::vector<std::uint8_t>> generateSceneGlb(const GeneratorOptions& options) {
     auto outOfRange = [](const char* what, std::uint32_t value, std::uint32_t max) {
@@ -312,8 +475,13 @@ Result<std::vector<std::uint8_t>> generateSceneGlb(const GeneratorOptions& optio
     constexpr int kUnsignedInt = 5125;
     constexpr int kArrayBuffer = 34962;
     constexpr int kElementArrayBuffer = 34963;
+    std::vector<float> meshBottoms;
     for (std::uint32_t i = 0; i < options.meshCount; ++i) {
         const MeshGeometry mesh = makeMesh(i, options.tessellation);
+        meshBottoms.push_back(
+            std::min_element(mesh.positions.begin(), mesh.positions.end(),
+                             [](const glm::vec3& a, const glm::vec3& b) { return a.y < b.y; })
+                ->y);
         json attributes = {
             {"POSITION", binary.addAccessor(document, mesh.positions, kFloat, "VEC3",
                                             mesh.positions.size(), kArrayBuffer,
@@ -339,26 +507,20 @@ Result<std::vector<std::uint8_t>> generateSceneGlb(const GeneratorOptions& optio
                 {"material", i % options.materialCount}}}}});
     }
 
-    // Objects on a square grid in the XZ plane, with a seeded random turn and size each.
     std::mt19937 random(options.seed);
-    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
-    const std::uint32_t side =
-        static_cast<std::uint32_t>(std::ceil(std::sqrt(double(options.objectCount))));
-    const float spacing = std::max(options.spacing, 1.0f) * 0.5f;
-    const float origin = -0.5f * float(side - 1) * spacing;
+    switch (options.layout) {
+        case SceneLayout::Grid:
+            addGridNodes(document, options, random);
+            break;
+        case SceneLayout::Lattice:
+            addLatticeNodes(document, options, random);
+            break;
+        case SceneLayout::City:
+            addCityNodes(document, options, random, meshBottoms);
+            break;
+    }
     json rootChildren = json::array();
     for (std::uint32_t i = 0; i < options.objectCount; ++i) {
-        const float x = origin + float(i % side) * spacing;
-        const float z = origin + float(i / side) * spacing;
-        const glm::vec3 axis = glm::normalize(glm::vec3(unit(random), unit(random), unit(random)) +
-                                              glm::vec3(0.01f));
-        const glm::quat rotation = glm::angleAxis(glm::two_pi<float>() * unit(random), axis);
-        const float scale = 0.6f + 0.4f * unit(random);
-        document["nodes"].push_back(
-            {{"mesh", i % options.meshCount},
-             {"translation", {x, 0.0f, z}},
-             {"rotation", {rotation.x, rotation.y, rotation.z, rotation.w}},
-             {"scale", {scale, scale, scale}}});
         rootChildren.push_back(i);
     }
     document["buffers"].push_back({{"byteLength", binary.size()}});

@@ -98,6 +98,47 @@ TEST(BenchSmokeTest, MeasuresAnAnimatedCrowdOnTheCpuAndTheGpu) {
     }
 }
 
+// `encore bench --scene flythrough,city`: the camera follows each scene's path, and every
+// measured frame reports the triangles its draws could draw and, with GPU culling, those drawn.
+TEST(BenchSmokeTest, FlythroughAndCityReportTrianglesPerFrame) {
+    const auto dir = makeTempDir("bench-scenes");
+    const auto run = runBench(dir,
+                              "--scene flythrough,city --objects 200 --frames 3 --warmup 1 "
+                              "-s bundles -s gpu-culling-bundles --width 64 --height 64");
+    ASSERT_EQ(run.command.exitCode, 0) << run.command.err;
+    ASSERT_FALSE(run.report.is_discarded());
+    EXPECT_EQ(run.report["generated"]["scenes"], nlohmann::json({"flythrough", "city"}));
+    const auto& results = run.report["results"];
+    ASSERT_EQ(results.size(), 4u);  // Two scenes, two strategies.
+    EXPECT_EQ(results[0]["scene"], "flythrough");
+    EXPECT_EQ(results[0]["label"], "flythrough 200 objects");
+    EXPECT_EQ(results[2]["scene"], "city");
+    for (const auto& entry : results) {
+        SCOPED_TRACE(entry["label"].get<std::string>() + " / " +
+                     entry["strategy"].get<std::string>());
+        EXPECT_EQ(entry["objects"], 200);
+        const auto& submitted = entry["trianglesSubmitted"];
+        ASSERT_EQ(submitted.size(), 3u);
+        for (const auto& count : submitted) {
+            EXPECT_GT(count.get<std::uint64_t>(), 0u);
+            EXPECT_EQ(count, submitted[0]);  // Every object, every frame.
+        }
+        if (entry["strategy"] == "bundles") {
+            EXPECT_TRUE(entry["trianglesDrawn"].is_null());
+            continue;
+        }
+        const auto& drawn = entry["trianglesDrawn"];
+        ASSERT_EQ(drawn.size(), 3u);
+        for (const auto& count : drawn) {
+            EXPECT_GT(count.get<std::uint64_t>(), 0u);
+            EXPECT_LT(count.get<std::uint64_t>(), submitted[0].get<std::uint64_t>())
+                << "the camera inside the scene sees part of it";
+        }
+    }
+    EXPECT_NE(run.command.out.find("| triangles submitted | triangles drawn |"), std::string::npos)
+        << run.command.out;
+}
+
 }  // namespace
 }  // namespace encore::test
 

@@ -49,6 +49,9 @@ render::RendererOptions pixelTestOptions(std::uint32_t width, std::uint32_t heig
     options.environment = testEnvironment();
     options.toneMapping.toneMapping = render::ToneMapping::None;
     options.lighting.debugChannel = channel;
+    // Levels of detail change pixels by design; tests that compare strategies pixel for pixel
+    // draw every instance at full detail (occlusion culling stays on: it must change nothing).
+    options.culling.levelsOfDetail = false;
     return options;
 }
 

@@ -44,7 +44,8 @@ std::shared_ptr<render::Environment> testEnvironment();
 // Renderer options for exact pixel checks: the shared test environment, no tone mapping (so a
 // linear value v encodes to linearToSrgb8(v)), the renderer's neutral background, and the mesh
 // shader's output channel (BaseColor: materials strategies write their base colour unlit, which
-// tests can predict exactly; Shaded: the full physically based result).
+// tests can predict exactly; Shaded: the full physically based result). GPU culling draws every
+// instance at full detail (levels of detail off); occlusion culling stays on.
 render::RendererOptions pixelTestOptions(std::uint32_t width, std::uint32_t height,
                                          std::uint32_t samples = 1,
                                          render::DebugChannel channel =

@@ -10,6 +10,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -24,8 +25,26 @@
 
 namespace encore::bench {
 
+// What the generated scenes (BenchOptions::objectCounts) look like and how the camera sees them.
+enum class GeneratedScene : std::uint8_t {
+    // The grid (scene::SceneLayout::Grid) seen whole from outside (Camera::framing), still.
+    Grid,
+    // The lattice (SceneLayout::Lattice) from a camera flying through it, one loop over the
+    // measured frames (render::CameraPath::flythrough).
+    Flythrough,
+    // The city (SceneLayout::City) from street level, one loop round its middle over the
+    // measured frames (render::CameraPath::city).
+    City,
+};
+std::string_view generatedSceneName(GeneratedScene scene);  // "grid", "flythrough", "city".
+std::optional<GeneratedScene> generatedSceneFromName(std::string_view name);
+
 struct BenchOptions {
-    std::vector<std::uint32_t> objectCounts;        // Generated grid scenes.
+    std::vector<std::uint32_t> objectCounts;        // Generated scenes, each of `scenes`.
+    std::vector<GeneratedScene> scenes;             // Empty: the grid.
+    // How far the camera of the fly-through and the city moves per frame, in scene units; 0:
+    // once round its loop over the measured frames (render::CameraPath::camera).
+    float pathStep = 0.0f;
     std::vector<std::filesystem::path> models;      // glTF files.
     std::vector<std::uint32_t> animometerTriangles;  // Animometer scenes (direct and bundle).
     std::vector<std::uint32_t> crowdCharacters;      // Animated crowds (scene::generateCrowdGlb).
@@ -56,7 +75,8 @@ struct BenchOptions {
 };
 
 struct BenchResult {
-    std::string scene;  // "generated", "model" or "animometer".
+    // "generated" (the grid), "flythrough", "city", "crowd", "model" or "animometer".
+    std::string scene;
     std::string label;
     std::uint64_t objects = 0;  // Instances drawn (triangles for the Animometer).
     std::string strategy;
@@ -71,6 +91,12 @@ struct BenchResult {
     std::optional<render::Percentiles> gpu;
     render::DrawCounters frame;
     render::DrawCounters bundleContents;
+    // Per measured frame (scenes drawn by a Renderer): what the draws could draw
+    // (FrameResult::trianglesSubmitted), and what the GPU culling pass let through
+    // (Renderer::takeDrawnTriangles, read back after the measured frames; empty for strategies
+    // that do not cull on the GPU, which draw what they submit).
+    std::vector<std::uint64_t> trianglesSubmitted;
+    std::vector<std::uint64_t> trianglesDrawn;
 };
 
 struct BenchReport {

@@ -23,6 +23,7 @@
 #include <webgpu/webgpu_cpp.h>
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "encore/core/Result.h"
@@ -55,6 +56,11 @@ struct CulledDraw {
         return 1 + static_cast<std::uint32_t>(coarserLevels.size());
     }
 };
+
+// What `draws` could draw with every instance visible at full detail: the sum of each draw's
+// level-0 triangles x its instance count. The CPU side of the culling pass's count, and the
+// triangles "submitted" by the indirect draws in benchmark reports.
+std::uint64_t submittedTriangles(std::span<const CulledDraw> draws);
 
 // What the first culling pass of a frame tests against.
 struct CullingView {
@@ -100,13 +106,16 @@ class GpuCuller {
                                 std::uint32_t phase = 0) const {
         return (mVisibleBase[mFirstLevel[draw] + level] + phase * mPhaseVisible) * 4;
     }
-    // Where indirectArguments() holds the triangles the last culled frame drew (a u32 summed
-    // over both phases; the culling passes count them).
-    std::uint64_t trianglesDrawnOffset() const { return mTrianglesDrawnWord * 4ull; }
+    // Where in indirectArguments() (CopySrc) the triangles the last culled frame drew lie: one
+    // u32 after the last argument record, the sum over both phases of every appended instance's
+    // triangles at its level. The reset zeroes it each frame; copy it out after the frame's
+    // last pass (Renderer::setTriangleCounting). It shares the arguments' binding because the
+    // culling pass already binds the 8 storage buffers a device offers by default. 32 bits
+    // hold it: a million objects of tessellation 16 are about 5 x 10^8 triangles, under 2^32;
+    // a scene with more wraps around.
+    std::uint64_t drawnTrianglesOffset() const { return mTrianglesDrawnWord * 4ull; }
     // The pyramid the last two-phase frame built (empty before one).
     const DepthPyramid& depthPyramid() const { return mPyramid; }
-    // The triangles every draw would draw with every instance visible at level 0.
-    std::uint64_t trianglesSubmitted() const;
 
   private:
     RenderSetup const* mSetup = nullptr;

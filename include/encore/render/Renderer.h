@@ -77,7 +77,13 @@ struct AnimationFrameStats {
 struct FrameResult : FrameTiming {
     DrawCounters counters;        // Calls recorded into the frame's render pass(es).
     DrawCounters bundleContents;  // What the executed bundles contain (recorded once).
+    // What the frame's draws could draw: the triangles of its direct draws, of the bundles it
+    // executed and of its indirect draws at full instance counts (submittedTriangles), summed
+    // over views. Culling decides how many of them are drawn (Renderer::takeDrawnTriangles).
+    std::uint64_t trianglesSubmitted = 0;
 };
+
+class TriangleHistory;
 
 class Renderer {
   public:
@@ -176,6 +182,17 @@ class Renderer {
     // to do without HDR.
     void toneMapScene();
 
+    // Triangle counting, for strategies with GPU culling: while on, every frame copies the count
+    // of triangles its culling pass let through (GpuCuller::drawnTrianglesOffset) into a history on
+    // the GPU, without waiting for anything; takeDrawnTriangles reads it back later, outside
+    // the frames being measured. Turning it on starts a new history; prepare() does too.
+    void setTriangleCounting(bool on);
+    bool triangleCounting() const { return mTriangleHistory != nullptr; }
+    // Waits for the GPU and returns one count per frame rendered since counting began (or
+    // since the last take, which starts a new history); empty when counting is off or the
+    // prepared strategy does not cull on the GPU.
+    Result<std::vector<std::uint64_t>> takeDrawnTriangles();
+
     // Waits for the GPU and reads the final image back.
     Result<image::ImageRgba8> readImage();
     // The frame's linear HDR colour before tone mapping (RGBA floats, alpha = coverage); for
@@ -241,6 +258,7 @@ class Renderer {
     StrategyKind mKind = StrategyKind::Bundles;
     bool mBundle = false;
     std::optional<Camera> mCullingCamera;
+    std::unique_ptr<TriangleHistory> mTriangleHistory;  // While counting.
 };
 
 }  // namespace encore::render
