@@ -127,11 +127,9 @@ class BatchRun {
     // Creates the renderers (and the read-back ring) on the context's device, one environment
     // for them all, with the stage timestamps when asked for.
     Result<void> createRenderers();
-    // Ends the stage timestamps of the current device, adding what they measured to
-    // mLostDeviceGpuStages, and detaches them from the renderers.
+    // Ends the stage timestamps of the current device (lost, or at the run's end), adding what
+    // they measured to mGpuStageTotals, and detaches them from the renderers.
     void finishTimestamps();
-    // Every stage's GPU time so far (after finishTimestamps).
-    std::vector<gpu::StageTime> gpuStageTotals() const { return mLostDeviceGpuStages; }
     // Waits until the GPU is done with what renderer `slot` drew last, handing those views to
     // the encoders, so that it may prepare its next scene without waiting for the others.
     void collectRenderer(std::size_t slot);
@@ -200,8 +198,8 @@ class BatchRun {
     std::shared_ptr<gpu::StagingBuffers> mStaging;
     // With BatchOptions::gpuTimestamps: on the current device, flushed after every model.
     std::optional<gpu::StageTimestamps> mTimestamps;
-    // What the timestamps of devices lost earlier measured.
-    std::vector<gpu::StageTime> mLostDeviceGpuStages;
+    // What the timestamps of the devices finished with measured (finishTimestamps).
+    std::vector<gpu::StageTime> mGpuStageTotals;
     std::deque<ChunkInFlight> mChunks;  // In the ring's order.
     ModelLoader* mLoader = nullptr;
     Clock::time_point mLastProgress{};
@@ -244,11 +242,11 @@ void BatchRun::finishTimestamps() {
     }
     mTimestamps->finish();
     const std::vector<gpu::StageTime>& measured = mTimestamps->totals();
-    mLostDeviceGpuStages.resize(measured.size());
+    mGpuStageTotals.resize(measured.size());
     for (std::size_t stage = 0; stage < measured.size(); ++stage) {
-        mLostDeviceGpuStages[stage].milliseconds += measured[stage].milliseconds;
-        mLostDeviceGpuStages[stage].timed += measured[stage].timed;
-        mLostDeviceGpuStages[stage].untimed += measured[stage].untimed;
+        mGpuStageTotals[stage].milliseconds += measured[stage].milliseconds;
+        mGpuStageTotals[stage].timed += measured[stage].timed;
+        mGpuStageTotals[stage].untimed += measured[stage].untimed;
     }
     mTimestamps.reset();
 }
@@ -678,7 +676,7 @@ Result<BatchSummary> BatchRun::run() {
     static_cast<BatchProgress&>(summary) = progress();
     summary.interrupted = interrupted || stopRequested();
     summary.stages = mGpuStages;
-    summary.stages.gpuStages = gpuStageTotals();
+    summary.stages.gpuStages = mGpuStageTotals;
     summary.stages.load = mCounters.load;
     summary.stages.encode = mCounters.encode;
     summary.failures = mFailures->entries();
