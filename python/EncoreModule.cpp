@@ -304,8 +304,9 @@ class Renderer {
                       bool failureLog,
                       std::uint32_t renderers) {
         batch::BatchOptions options;
-        if (renderers == 0) {
-            throw py::value_error("renderers must be at least 1");
+        if (renderers < 1 || renderers > batch::kMaxRenderers) {
+            // As `encore batch --renderers` takes them.
+            throw py::value_error("renderers must be 1 to " + std::to_string(batch::kMaxRenderers));
         }
         options.renderers = renderers;
         std::tie(options.width, options.height) = imageSize(size);

@@ -9,11 +9,13 @@
 #include <string>
 #include <thread>
 #include <tuple>
+#include <vector>
 
 #include "Commands.h"
 #include "ShadingOptions.h"
 #include "StrategyOptions.h"
 #include "encore/batch/Batch.h"
+#include "encore/render/GpuStage.h"
 
 namespace encore::app {
 
@@ -93,6 +95,36 @@ std::string progressLine(const batch::BatchProgress& progress, std::size_t start
     return line;
 }
 
+// "gpu (s, timestamps): mipmaps 1.23 (1.2 ms per model, 33 passes per model), ..."
+void printGpuStages(const std::vector<gpu::StageTime>& stages, std::size_t models) {
+    if (stages.empty()) {
+        std::printf("gpu: no timestamps (the device has no timestamp queries)\n");
+        return;
+    }
+    const double perModel = models > 0 ? 1.0 / double(models) : 0.0;
+    std::string line = "gpu (s, timestamps";
+    line += models > 0 ? "; ms and passes per model" : "";
+    line += "):";
+    double total = 0.0;
+    for (std::size_t stage = 0; stage < stages.size(); ++stage) {
+        const gpu::StageTime& time = stages[stage];
+        char part[160];
+        std::snprintf(part, sizeof(part), "%s %s %.2f (%.2f ms, %.1f)", stage == 0 ? "" : ",",
+                      std::string(render::kGpuStageNames[stage]).c_str(),
+                      time.milliseconds / 1000.0, time.milliseconds * perModel,
+                      double(time.timed) * perModel);
+        line += part;
+        if (time.untimed > 0) {
+            line += " [" + std::to_string(time.untimed) + " untimed]";
+        }
+        total += time.milliseconds;
+    }
+    char sum[96];
+    std::snprintf(sum, sizeof(sum), "; together %.2f (%.2f ms per model)", total / 1000.0,
+                  total * perModel);
+    std::printf("%s%s\n", line.c_str(), sum);
+}
+
 int runBatch(const BatchCommandOptions& options, const GlobalOptions& global) {
     batch::BatchOptions batchOptions;
     auto size = parseSize(options.size);
@@ -129,7 +161,9 @@ int runBatch(const BatchCommandOptions& options, const GlobalOptions& global) {
     if (!inputs) {
         return reportError(inputs.error());
     }
-    auto context = createContext(global);
+    // -v times the GPU's stages: timestamps need the device feature, asked for only then.
+    batchOptions.gpuTimestamps = global.verbose;
+    auto context = createContext(global, /*timestamps=*/global.verbose);
     if (!context) {
         return reportError(context.error());
     }
@@ -175,10 +209,11 @@ int runBatch(const BatchCommandOptions& options, const GlobalOptions& global) {
         summary->interrupted ? "; interrupted, run again to resume" : "");
     const batch::StageTimes& stages = summary->stages;
     std::printf(
-        "stages (s): load+decode %.2f, upload %.2f, render %.2f, gpu wait %.2f, read-back "
-        "%.2f, encode+write %.2f (load and encode summed over %zu threads; the GPU works "
-        "beside the upload, render and read-back)\n",
-        stages.load, stages.upload, stages.render, stages.gpu, stages.readback, stages.encode,
+        "stages (s): load+decode %.2f, upload %.2f (staging %.2f), render %.2f, gpu wait %.2f, "
+        "read-back %.2f, encode+write %.2f (load and encode summed over %zu threads; the GPU "
+        "works beside the upload, render and read-back)\n",
+        stages.load, stages.upload, stages.staging, stages.render, stages.gpu, stages.readback,
+        stages.encode,
         options.jobs ? options.jobs
                      : std::size_t(std::max(1u, std::thread::hardware_concurrency())));
     if (global.verbose) {
@@ -191,6 +226,12 @@ int runBatch(const BatchCommandOptions& options, const GlobalOptions& global) {
             parts.release / 1000.0, parts.animation / 1000.0, parts.geometry / 1000.0,
             parts.instances / 1000.0, parts.materials / 1000.0, parts.draws / 1000.0,
             strategyOther / 1000.0, parts.checks / 1000.0);
+        std::printf(
+            "materials (s): texture creation %.2f, texture writes %.2f, mipmaps %.2f, submit "
+            "%.2f\n",
+            parts.textureCreation / 1000.0, parts.textureWrites / 1000.0, parts.mipmaps / 1000.0,
+            parts.materialSubmit / 1000.0);
+        printGpuStages(stages.gpuStages, summary->rendered + summary->failed);
     }
     if (summary->failed > 0) {
         std::fprintf(stderr, "error: %zu models failed; see %s\n", summary->failed,
@@ -268,7 +309,7 @@ void addBatchCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) 
                      "Models on the device at once: the next uploads while the GPU draws the "
                      "others (1: one after the other)")
         ->capture_default_str()
-        ->check(CLI::Range(1, 8));
+        ->check(CLI::Range(std::size_t{1}, batch::kMaxRenderers));
     command->add_flag("--normals", options->normals,
                       "Also write world-space normals per view (000_normal.png: n * 0.5 + 0.5)");
     command->add_flag("--depth", options->depth,

@@ -236,6 +236,26 @@ def test_batch_with_one_renderer_writes_what_the_overlapped_pipeline_writes(tmp_
         renderer.batch(models, str(tmp_path / "none"), renderers=0)
 
 
+def test_batch_renderers_take_the_range_of_the_command_line(tmp_path):
+    """renderers= and `encore batch --renderers` accept the same counts, 1 to 8."""
+    model = str(generate(tmp_path / "in" / "m.glb", seed=3))
+    renderer = encore.Renderer()
+    renderer.batch([(model, "m")], str(tmp_path / "eight"), views=1, size=16, renderers=8)
+
+    def command_line(count):
+        return subprocess.run([os.environ["ENCORE_BINARY"], "batch", model, "-o",
+                               str(tmp_path / "cli"), "--views", "1", "--size", "16",
+                               "--renderers", str(count), "--quiet"], capture_output=True)
+
+    for count in (0, 9):
+        with pytest.raises(ValueError):
+            renderer.batch([(model, "m")], str(tmp_path / "refused"), views=1, size=16,
+                           renderers=count)
+        assert command_line(count).returncode != 0
+    accepted = command_line(8)
+    assert accepted.returncode == 0, accepted.stderr
+
+
 def test_rendering_releases_the_gil(renderer, tmp_path):
     scene = renderer.load(str(generate(tmp_path / "gil.glb", objects=30)))
     renderer.render_views(scene, views=24, size=256)  # Prepared and warm.

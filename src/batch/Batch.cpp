@@ -21,7 +21,10 @@
 #include "encore/core/Elapsed.h"
 #include "encore/core/FileIO.h"
 #include "encore/core/ThreadPool.h"
+#include "encore/gpu/StageTimestamps.h"
+#include "encore/gpu/StagingBuffers.h"
 #include "encore/gpu/TextureReadbackRing.h"
+#include "encore/render/StagedImages.h"
 
 namespace encore::batch {
 namespace {
@@ -122,8 +125,11 @@ class BatchRun {
 
   private:
     // Creates the renderers (and the read-back ring) on the context's device, one environment
-    // for them all.
+    // for them all, with the stage timestamps when asked for.
     Result<void> createRenderers();
+    // Ends the stage timestamps of the current device (lost, or at the run's end), adding what
+    // they measured to mGpuStageTotals, and detaches them from the renderers.
+    void finishTimestamps();
     // Waits until the GPU is done with what renderer `slot` drew last, handing those views to
     // the encoders, so that it may prepare its next scene without waiting for the others.
     void collectRenderer(std::size_t slot);
@@ -134,11 +140,12 @@ class BatchRun {
     // Takes the oldest read-back and hands its views to the pool.
     void collectOldest();
     void collectReady();
-    // Crops strip `strip` of a read-back target and encodes it, both on the pool.
+    // Crops strip `strip` of a read-back target on the pool, ahead of other tasks (the ring
+    // waits for its buffer), then encodes it.
     void encodeView(const std::shared_ptr<ModelJob>& job,
                     std::uint32_t view,
                     ViewImage kind,
-                    std::shared_ptr<const image::ImageRgba8> wide,
+                    std::shared_ptr<const gpu::MappedReadback> wide,
                     std::uint32_t strip);
     // Encodes one image of `job` on the pool and writes it; the last one completes the model.
     void writeImage(const std::shared_ptr<ModelJob>& job,
@@ -186,6 +193,13 @@ class BatchRun {
     // Device losses so far: a renderer used across a collectOldest() may have been replaced.
     std::uint64_t mDevicesLost = 0;
     gpu::TextureReadbackRing* mRing = nullptr;
+    // The staging buffers of the models' images, on the current device, reused from model to
+    // model.
+    std::shared_ptr<gpu::StagingBuffers> mStaging;
+    // With BatchOptions::gpuTimestamps: on the current device, flushed after every model.
+    std::optional<gpu::StageTimestamps> mTimestamps;
+    // What the timestamps of the devices finished with measured (finishTimestamps).
+    std::vector<gpu::StageTime> mGpuStageTotals;
     std::deque<ChunkInFlight> mChunks;  // In the ring's order.
     ModelLoader* mLoader = nullptr;
     Clock::time_point mLastProgress{};
@@ -203,13 +217,38 @@ Result<void> BatchRun::createRenderers() {
     mRenderers.clear();
     // The renderers of an earlier run when they were built from the same options; they light
     // with one environment.
-    ENCORE_TRY(mBatchRenderer.acquire(rendererOptions, mOptions.readbackSlots,
-                                      std::max<std::size_t>(mOptions.renderers, 1)));
+    ENCORE_TRY(mBatchRenderer.acquire(rendererOptions, mOptions.readbackSlots, mOptions.renderers));
     for (std::size_t i = 0; i < mBatchRenderer.rendererCount(); ++i) {
         mRenderers.push_back({&mBatchRenderer.renderer(i), {}});
     }
     mRing = &mBatchRenderer.ring();
+    mStaging = std::make_shared<gpu::StagingBuffers>(mContext);
+    mTimestamps.reset();
+    if (mOptions.gpuTimestamps) {
+        mTimestamps = gpu::StageTimestamps::create(mContext, render::kGpuStageCount);
+    }
+    for (RendererSlot& slot : mRenderers) {
+        slot.renderer->setStageTimestamps(mTimestamps ? &*mTimestamps : nullptr);
+    }
     return {};
+}
+
+void BatchRun::finishTimestamps() {
+    for (RendererSlot& slot : mRenderers) {
+        slot.renderer->setStageTimestamps(nullptr);  // The renderers may outlive this run.
+    }
+    if (!mTimestamps) {
+        return;
+    }
+    mTimestamps->finish();
+    const std::vector<gpu::StageTime>& measured = mTimestamps->totals();
+    mGpuStageTotals.resize(measured.size());
+    for (std::size_t stage = 0; stage < measured.size(); ++stage) {
+        mGpuStageTotals[stage].milliseconds += measured[stage].milliseconds;
+        mGpuStageTotals[stage].timed += measured[stage].timed;
+        mGpuStageTotals[stage].untimed += measured[stage].untimed;
+    }
+    mTimestamps.reset();
 }
 
 BatchProgress BatchRun::progress() const {
@@ -252,14 +291,23 @@ void BatchRun::writeTransforms(ModelJob& job) {
 void BatchRun::encodeView(const std::shared_ptr<ModelJob>& job,
                           std::uint32_t view,
                           ViewImage kind,
-                          std::shared_ptr<const image::ImageRgba8> wide,
+                          std::shared_ptr<const gpu::MappedReadback> wide,
                           std::uint32_t strip) {
-    writeImage(job, view, kind, [kind, wide = std::move(wide), strip, width = mOptions.width] {
-        image::ImageRgba8 image = cropStrip(*wide, strip, width);
-        if (kind == ViewImage::Normal) {
-            decodeNormalImage(image);
+    mPool.submitFirst([this, job, view, kind, wide = std::move(wide), strip]() mutable {
+        const auto start = Clock::now();
+        auto image = std::make_shared<image::ImageRgba8>(
+            cropStrip(wide->rows, wide->bytesPerRow, wide->height, strip, mOptions.width));
+        wide.reset();  // The last strip lets the ring have its buffer back.
+        {
+            std::lock_guard lock(mCounters.mutex);
+            mCounters.encode += secondsSince(start);
         }
-        return image::encodePng(image);
+        writeImage(job, view, kind, [kind, image] {
+            if (kind == ViewImage::Normal) {
+                decodeNormalImage(*image);
+            }
+            return image::encodePng(*image);
+        });
     });
 }
 
@@ -293,7 +341,7 @@ void BatchRun::writeImage(const std::shared_ptr<ModelJob>& job,
 void BatchRun::collectOldest() {
     ChunkInFlight chunk = std::move(mChunks.front());
     mChunks.pop_front();
-    auto finished = mRing->takeOldest();
+    auto finished = mRing->takeOldestMapped();
     if (!finished) {
         chunk.job->fail(*mFailures, mCounters, "render", finished.error());
         recoverIfLost();
@@ -302,13 +350,14 @@ void BatchRun::collectOldest() {
     mGpuStages.gpu += finished->waitMilliseconds / 1000.0;
     const auto start = Clock::now();
     if (!chunk.job->failed) {
-        // The encoders crop their strips: the device thread only hands the image on.
-        auto wide = std::make_shared<const image::ImageRgba8>(std::move(finished->image));
+        // The pool crops the strips straight out of the mapped buffer: the device thread copies
+        // nothing, and the ring unmaps the buffer once the last strip is cropped.
+        auto wide = std::make_shared<const gpu::MappedReadback>(std::move(*finished));
         for (std::uint32_t strip = 0; strip < chunk.count; ++strip) {
             encodeView(chunk.job, chunk.first + strip, chunk.kind, wide, strip);
         }
     }
-    mGpuStages.readback += finished->copyMilliseconds / 1000.0 + secondsSince(start);
+    mGpuStages.readback += secondsSince(start);
     reportProgress(false);
 }
 
@@ -346,6 +395,7 @@ void BatchRun::recoverIfLost() {
         collectOldest();
     }
     ++mDevicesLost;
+    finishTimestamps();
     for (RendererSlot& slot : mRenderers) {
         releasePrepared(slot);
     }
@@ -371,7 +421,9 @@ void BatchRun::renderChunk(const TargetViews& views, ViewImage kind, double& wai
     }
     render::Renderer& renderer = *mRenderers[slot].renderer;
     renderer.renderViews(cameras);
-    auto enqueued = mRing->enqueue(renderer.target().colorTexture());
+    auto enqueued =
+        mRing->enqueue(renderer.target().colorTexture(), mTimestamps ? &*mTimestamps : nullptr,
+                       render::gpuStageIndex(render::GpuStage::ReadbackCopy));
     if (!enqueued) {
         job->fail(*mFailures, mCounters, "render", enqueued.error());
         return;
@@ -441,6 +493,15 @@ void BatchRun::renderModel(LoadedModel& loaded) {
     }
     removePartialFiles(job->folder);
 
+    // The pool copies the images into staging buffers while this thread waits for the
+    // renderer below: prepare then only records copies (StagedImages.h).
+    const auto stagingStart = Clock::now();
+    const std::unique_ptr<render::StagedImages> staged = render::StagedImages::stage(
+        mContext.device(), *loaded.scene, mContext.limits().maxTextureDimension2D,
+        [this](std::function<void()> copy) { mPool.submitFirst(std::move(copy)); }, mStaging);
+    mGpuStages.staging += secondsSince(stagingStart);
+    mGpuStages.upload += secondsSince(stagingStart);
+
     // The renderer that drew the oldest model in flight prepares this one, while the GPU may
     // still draw the later ones with the others. Its own views must be read back first:
     // preparing frees its scene. (collectOldest counts the wait as the GPU's.)
@@ -463,7 +524,8 @@ void BatchRun::renderModel(LoadedModel& loaded) {
     RendererSlot& slot = mRenderers[slotIndex];
     render::Renderer& renderer = *slot.renderer;
     const scene::SceneData& scene = *loaded.scene;
-    auto prepared = renderer.prepare(scene, mOptions.strategy.kind, mOptions.strategy.bundle);
+    auto prepared =
+        renderer.prepare(scene, mOptions.strategy.kind, mOptions.strategy.bundle, staged.get());
     releasePrepared(slot);
     slot.prepared = std::move(loaded);
     if (prepared) {
@@ -510,6 +572,9 @@ void BatchRun::renderModel(LoadedModel& loaded) {
         mContext.takeErrors();
         recoverIfLost();
     }
+    if (mTimestamps) {
+        mTimestamps->flush();  // Every pass of the model is submitted: its mips and views.
+    }
     mGpuStages.render += secondsSince(renderStart) - renderWaiting;
 }
 
@@ -525,6 +590,11 @@ Result<BatchSummary> BatchRun::run() {
                          "The field of view (" + std::to_string(rig.horizontalFovDegrees) +
                              " degrees) must lie in (0, 180) and the distance (" +
                              std::to_string(rig.distance) + ") must be positive.");
+    }
+    if (mOptions.renderers < 1 || mOptions.renderers > kMaxRenderers) {
+        return makeError(ErrorCode::InvalidArgument,
+                         "A batch takes 1 to " + std::to_string(kMaxRenderers) +
+                             " renderers (asked for " + std::to_string(mOptions.renderers) + ").");
     }
     std::error_code ec;
     fs::create_directories(mOptions.output, ec);
@@ -593,6 +663,7 @@ Result<BatchSummary> BatchRun::run() {
     }
     loader.finish();
     mPool.waitIdle();
+    finishTimestamps();
     // The renderers may serve later runs (BatchRenderer): they must not refer to the scenes
     // freed here, nor hold those scenes' GPU memory.
     for (RendererSlot& slot : mRenderers) {
@@ -605,6 +676,7 @@ Result<BatchSummary> BatchRun::run() {
     static_cast<BatchProgress&>(summary) = progress();
     summary.interrupted = interrupted || stopRequested();
     summary.stages = mGpuStages;
+    summary.stages.gpuStages = mGpuStageTotals;
     summary.stages.load = mCounters.load;
     summary.stages.encode = mCounters.encode;
     summary.failures = mFailures->entries();

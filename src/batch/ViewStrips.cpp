@@ -47,12 +47,21 @@ std::vector<render::Camera> stripCameras(std::span<const glm::mat4> cameraToWorl
 image::ImageRgba8 cropStrip(const image::ImageRgba8& wide,
                             std::uint32_t strip,
                             std::uint32_t width) {
+    return cropStrip(wide.pixels.data(), wide.width * 4, wide.height, strip, width);
+}
+
+image::ImageRgba8 cropStrip(const std::uint8_t* rows,
+                            std::uint32_t bytesPerRow,
+                            std::uint32_t height,
+                            std::uint32_t strip,
+                            std::uint32_t width) {
     image::ImageRgba8 view;
     view.width = width;
-    view.height = wide.height;
-    view.pixels.resize(std::size_t(width) * wide.height * 4);
-    for (std::uint32_t y = 0; y < wide.height; ++y) {
-        std::memcpy(&view.pixels[std::size_t(y) * width * 4], wide.pixel(strip * width, y),
+    view.height = height;
+    view.pixels.resize(std::size_t(width) * height * 4);
+    for (std::uint32_t y = 0; y < height; ++y) {
+        std::memcpy(&view.pixels[std::size_t(y) * width * 4],
+                    rows + std::size_t(y) * bytesPerRow + std::size_t(strip) * width * 4,
                     std::size_t(width) * 4);
     }
     return view;
@@ -130,6 +139,39 @@ image::ImageGray16 depthStrip(std::span<const float> wide,
     return depth;
 }
 
+namespace {
+
+// The per-target loop of renderStrips and renderDepthStrips: `drawTarget(cameras)` draws one
+// target's views and reads it back (a Result of the wide image), `cutStrip(wide, strip)` makes
+// the image of one of its strips.
+template <typename Image, typename DrawTarget, typename CutStrip>
+Result<std::vector<Image>> renderTargets(const scene::Bounds& bounds,
+                                         std::span<const glm::mat4> cameraToWorld,
+                                         const ViewRigOptions& rig,
+                                         const StripLayout& layout,
+                                         DrawTarget drawTarget,
+                                         CutStrip cutStrip) {
+    const glm::mat4 toUnitBox = normalization(bounds, rig.normalize);
+    const float fov = glm::radians(rig.horizontalFovDegrees);
+    std::vector<Image> views;
+    for (std::uint32_t first = 0; first < cameraToWorld.size(); first += layout.strips) {
+        const std::vector<render::Camera> cameras =
+            stripCameras(cameraToWorld, first, layout, toUnitBox, fov);
+        auto wide = drawTarget(std::span<const render::Camera>(cameras));
+        if (!wide) {
+            return wide.error();
+        }
+        const std::uint32_t count =
+            std::min<std::uint32_t>(layout.strips, std::uint32_t(cameraToWorld.size()) - first);
+        for (std::uint32_t strip = 0; strip < count; ++strip) {
+            views.push_back(cutStrip(*wide, strip));
+        }
+    }
+    return views;
+}
+
+}  // namespace
+
 Result<std::vector<image::ImageRgba8>> renderStrips(render::Renderer& renderer,
                                                     const scene::Bounds& bounds,
                                                     std::span<const glm::mat4> cameraToWorld,
@@ -140,11 +182,8 @@ Result<std::vector<image::ImageRgba8>> renderStrips(render::Renderer& renderer,
         return makeError(ErrorCode::InvalidArgument,
                          "Depth images are 16-bit: renderDepthStrips draws them.");
     }
-    const glm::mat4 toUnitBox = normalization(bounds, rig.normalize);
-    const float fov = glm::radians(rig.horizontalFovDegrees);
-    std::vector<image::ImageRgba8> views;
-    for (std::uint32_t first = 0; first < cameraToWorld.size(); first += layout.strips) {
-        const auto cameras = stripCameras(cameraToWorld, first, layout, toUnitBox, fov);
+    const auto drawTarget =
+        [&](std::span<const render::Camera> cameras) -> Result<image::ImageRgba8> {
         Result<image::ImageRgba8> wide = makeError(ErrorCode::InvalidArgument, "Not drawn.");
         auto drawAndRead = [&] {
             renderer.renderViews(cameras);
@@ -155,19 +194,17 @@ Result<std::vector<image::ImageRgba8>> renderStrips(render::Renderer& renderer,
         } else {
             drawAndRead();
         }
-        if (!wide) {
-            return wide.error();
+        return wide;
+    };
+    const auto cutStrip = [&](const image::ImageRgba8& wide, std::uint32_t strip) {
+        image::ImageRgba8 view = cropStrip(wide, strip, layout.width);
+        if (kind == ViewImage::Normal) {
+            decodeNormalImage(view);
         }
-        const std::uint32_t count =
-            std::min<std::uint32_t>(layout.strips, std::uint32_t(cameraToWorld.size()) - first);
-        for (std::uint32_t strip = 0; strip < count; ++strip) {
-            views.push_back(cropStrip(*wide, strip, layout.width));
-            if (kind == ViewImage::Normal) {
-                decodeNormalImage(views.back());
-            }
-        }
-    }
-    return views;
+        return view;
+    };
+    return renderTargets<image::ImageRgba8>(bounds, cameraToWorld, rig, layout, drawTarget,
+                                            cutStrip);
 }
 
 Result<std::vector<image::ImageGray16>> renderDepthStrips(render::Renderer& renderer,
@@ -175,28 +212,23 @@ Result<std::vector<image::ImageGray16>> renderDepthStrips(render::Renderer& rend
                                                           std::span<const glm::mat4> cameraToWorld,
                                                           const ViewRigOptions& rig,
                                                           const StripLayout& layout) {
-    const glm::mat4 toUnitBox = normalization(bounds, rig.normalize);
-    const float fov = glm::radians(rig.horizontalFovDegrees);
-    const double scale = depthScale(rig);
-    std::vector<image::ImageGray16> views;
-    for (std::uint32_t first = 0; first < cameraToWorld.size(); first += layout.strips) {
-        const auto cameras = stripCameras(cameraToWorld, first, layout, toUnitBox, fov);
+    const auto drawTarget =
+        [&](std::span<const render::Camera> cameras) -> Result<std::vector<float>> {
         Result<std::vector<float>> wide = makeError(ErrorCode::InvalidArgument, "Not drawn.");
         ENCORE_TRY(drawDebugChannel(renderer, render::DebugChannel::Depth, [&] {
             renderer.renderViews(cameras);
             wide = renderer.readHdrImage();
         }));
-        if (!wide) {
-            return wide.error();
-        }
-        const std::uint32_t count =
-            std::min<std::uint32_t>(layout.strips, std::uint32_t(cameraToWorld.size()) - first);
-        for (std::uint32_t strip = 0; strip < count; ++strip) {
-            views.push_back(depthStrip(*wide, layout.targetWidth(), strip, layout.width,
-                                       layout.height, toUnitBox[0][0], scale));
-        }
-    }
-    return views;
+        return wide;
+    };
+    const float unitsPerModelUnit = normalization(bounds, rig.normalize)[0][0];
+    const double scale = depthScale(rig);
+    const auto cutStrip = [&](const std::vector<float>& wide, std::uint32_t strip) {
+        return depthStrip(wide, layout.targetWidth(), strip, layout.width, layout.height,
+                          unitsPerModelUnit, scale);
+    };
+    return renderTargets<image::ImageGray16>(bounds, cameraToWorld, rig, layout, drawTarget,
+                                             cutStrip);
 }
 
 }  // namespace encore::batch

@@ -33,6 +33,14 @@ void ThreadPool::submit(std::function<void()> task) {
     mWake.notify_one();
 }
 
+void ThreadPool::submitFirst(std::function<void()> task) {
+    {
+        std::lock_guard lock(mMutex);
+        mTasks.push_front(std::move(task));
+    }
+    mWake.notify_one();
+}
+
 void ThreadPool::waitIdle() {
     std::unique_lock lock(mMutex);
     mIdle.wait(lock, [this] { return mTasks.empty() && mRunning == 0; });

@@ -46,7 +46,7 @@ Result<std::vector<std::uint8_t>> readTexelRows(Context& context, const wgpu::Te
     const std::uint32_t width = std::max(texture.GetWidth() >> level, 1u);
     const std::uint32_t height = std::max(texture.GetHeight() >> level, 1u);
     const std::uint32_t rowBytes = width * bytesPerTexel;
-    const std::uint32_t paddedRowBytes = (rowBytes + 255) / 256 * 256;
+    const std::uint32_t paddedRowBytes = gpu::paddedRowBytes(rowBytes);
     // Bands of rows, each staging buffer within maxBufferSize: an 8192x8192 rgba16float
     // target is 512 MiB, twice WebGPU's default limit.
     const std::uint64_t maxBufferSize = context.limits().maxBufferSize;
@@ -86,10 +86,7 @@ Result<std::vector<std::uint8_t>> readTexelRows(Context& context, const wgpu::Te
         if (!bytes) {
             return bytes.error();
         }
-        for (std::uint32_t y = 0; y < bandHeight; ++y) {
-            std::memcpy(&rows[std::size_t(firstRow + y) * rowBytes],
-                        bytes->data() + std::size_t(y) * paddedRowBytes, rowBytes);
-        }
+        unpadRows(bytes->data(), rowBytes, bandHeight, &rows[std::size_t(firstRow) * rowBytes]);
     }
     return rows;
 }
@@ -110,6 +107,16 @@ float halfToFloat(std::uint16_t half) {
 }
 
 }  // namespace
+
+void unpadRows(const std::uint8_t* padded,
+               std::uint32_t rowBytes,
+               std::uint32_t rows,
+               std::uint8_t* packed) {
+    const std::size_t stride = paddedRowBytes(rowBytes);
+    for (std::uint32_t y = 0; y < rows; ++y) {
+        std::memcpy(packed + std::size_t(y) * rowBytes, padded + y * stride, rowBytes);
+    }
+}
 
 Result<image::ImageRgba8> readTexture(Context& context, const wgpu::Texture& texture) {
     return readTextureLevel(context, texture, 0);

@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstring>
 #include <string>
 
 #include "encore/core/Elapsed.h"
+#include "encore/gpu/Readback.h"
 
 namespace encore::gpu {
 
@@ -19,11 +19,15 @@ struct TextureReadbackRing::Slot {
     // Set by the map callback, which runs inside Context::wait (WaitAnyOnly).
     bool mapped = false;
     std::string mapMessage;
+    // Taken with takeOldestMapped and still mapped: `held` until the ring unmaps it, `released`
+    // (guarded by Releases::mutex) once the last holder let go.
+    bool held = false;
+    bool released = false;
 };
 
 TextureReadbackRing::TextureReadbackRing(Context& context, std::size_t slots) : mContext(&context) {
     for (std::size_t i = 0; i < std::max<std::size_t>(slots, 1); ++i) {
-        mSlots.push_back(std::make_unique<Slot>());
+        mSlots.push_back(std::make_shared<Slot>());
     }
 }
 
@@ -31,35 +35,64 @@ TextureReadbackRing::~TextureReadbackRing() {
     for (Slot* slot : mInFlight) {
         mContext->wait(slot->future);
     }
+    // Holders read the mapped rows: the buffers must outlive them.
+    std::unique_lock lock(mReleases->mutex);
+    for (const auto& slot : mSlots) {
+        mReleases->released.wait(lock, [&] { return !slot->held || slot->released; });
+    }
 }
 
 bool TextureReadbackRing::oldestReady() const {
     return !mInFlight.empty() && mContext->wait(mInFlight.front()->future, 0);
 }
 
-Result<std::uint64_t> TextureReadbackRing::enqueue(const wgpu::Texture& texture) {
-    if (full()) {
-        return makeError(ErrorCode::InvalidArgument, "Every read-back slot is in use (" +
-                                                         std::to_string(mSlots.size()) +
-                                                         "); take a finished read first.");
+TextureReadbackRing::Slot* TextureReadbackRing::freeSlot() {
+    const auto inFlight = [&](const Slot* slot) {
+        return std::find(mInFlight.begin(), mInFlight.end(), slot) != mInFlight.end();
+    };
+    std::unique_lock lock(mReleases->mutex);
+    while (true) {
+        bool anyHeld = false;
+        for (const auto& slot : mSlots) {
+            if (inFlight(slot.get())) {
+                continue;
+            }
+            if (!slot->held) {
+                return slot.get();
+            }
+            anyHeld = true;
+            if (slot->released) {
+                slot->buffer.Unmap();
+                slot->held = false;
+                slot->released = false;
+                return slot.get();
+            }
+        }
+        if (!anyHeld) {
+            return nullptr;
+        }
+        mReleases->released.wait(lock);
     }
+}
+
+Result<std::uint64_t> TextureReadbackRing::enqueue(const wgpu::Texture& texture,
+                                                   StageTimestamps* timestamps,
+                                                   std::uint32_t stage) {
     const wgpu::TextureFormat format = texture.GetFormat();
     if (format != wgpu::TextureFormat::RGBA8Unorm &&
         format != wgpu::TextureFormat::RGBA8UnormSrgb) {
         return makeError(ErrorCode::InvalidArgument,
                          "TextureReadbackRing reads RGBA8 textures only.");
     }
-    Slot* slot = nullptr;
-    for (const auto& candidate : mSlots) {
-        if (std::find(mInFlight.begin(), mInFlight.end(), candidate.get()) == mInFlight.end()) {
-            slot = candidate.get();
-            break;
-        }
+    Slot* slot = full() ? nullptr : freeSlot();
+    if (!slot) {
+        return makeError(ErrorCode::InvalidArgument, "Every read-back slot is in use (" +
+                                                         std::to_string(mSlots.size()) +
+                                                         "); take a finished read first.");
     }
     slot->width = texture.GetWidth();
     slot->height = texture.GetHeight();
-    // Buffer copies need rows aligned to 256 bytes.
-    slot->paddedRowBytes = (slot->width * 4 + 255) / 256 * 256;
+    slot->paddedRowBytes = paddedRowBytes(slot->width * 4);
     const std::uint64_t size = std::uint64_t(slot->paddedRowBytes) * slot->height;
     if (size > mContext->limits().maxBufferSize) {
         return makeError(ErrorCode::LimitExceeded,
@@ -84,7 +117,12 @@ Result<std::uint64_t> TextureReadbackRing::enqueue(const wgpu::Texture& texture)
     destination.layout.rowsPerImage = slot->height;
     wgpu::Extent3D extent{slot->width, slot->height, 1};
     wgpu::CommandEncoder encoder = mContext->device().CreateCommandEncoder();
-    encoder.CopyTextureToBuffer(&source, &destination, &extent);
+    if (timestamps) {
+        timestamps->timeCommands(
+            encoder, stage, [&] { encoder.CopyTextureToBuffer(&source, &destination, &extent); });
+    } else {
+        encoder.CopyTextureToBuffer(&source, &destination, &extent);
+    }
     wgpu::CommandBuffer commands = encoder.Finish();
     mContext->queue().Submit(1, &commands);
 
@@ -101,13 +139,13 @@ Result<std::uint64_t> TextureReadbackRing::enqueue(const wgpu::Texture& texture)
     return slot->ticket;
 }
 
-Result<FinishedReadback> TextureReadbackRing::takeOldest() {
+Result<MappedReadback> TextureReadbackRing::takeOldestMapped() {
     if (mInFlight.empty()) {
         return makeError(ErrorCode::InvalidArgument, "No read-back is in flight.");
     }
     Slot* slot = mInFlight.front();
     mInFlight.pop_front();
-    FinishedReadback finished;
+    MappedReadback finished;
     finished.ticket = slot->ticket;
     const auto waitStart = std::chrono::steady_clock::now();
     mContext->wait(slot->future);
@@ -116,21 +154,43 @@ Result<FinishedReadback> TextureReadbackRing::takeOldest() {
         return makeError(ErrorCode::DeviceError,
                          "Mapping a read-back buffer failed (" + slot->mapMessage + ").");
     }
-    const auto copyStart = std::chrono::steady_clock::now();
     const std::uint64_t size = std::uint64_t(slot->paddedRowBytes) * slot->height;
-    const auto* mapped =
-        static_cast<const std::uint8_t*>(slot->buffer.GetConstMappedRange(0, size));
-    finished.image.width = slot->width;
-    finished.image.height = slot->height;
-    const std::size_t rowBytes = std::size_t(slot->width) * 4;
-    finished.image.pixels.resize(rowBytes * slot->height);
-    for (std::uint32_t y = 0; y < slot->height; ++y) {
-        std::memcpy(&finished.image.pixels[y * rowBytes],
-                    mapped + std::size_t(y) * slot->paddedRowBytes, rowBytes);
-    }
-    slot->buffer.Unmap();
-    finished.copyMilliseconds = millisecondsSince(copyStart);
+    finished.width = slot->width;
+    finished.height = slot->height;
+    finished.bytesPerRow = slot->paddedRowBytes;
+    finished.rows = static_cast<const std::uint8_t*>(slot->buffer.GetConstMappedRange(0, size));
+    slot->held = true;
+    slot->released = false;
+    // The last holder marks the slot released; this ring unmaps it on its own thread.
+    const auto owner = std::find_if(mSlots.begin(), mSlots.end(),
+                                    [&](const auto& candidate) { return candidate.get() == slot; });
+    finished.hold =
+        std::shared_ptr<const void>(slot, [keep = *owner, releases = mReleases](const void*) {
+            {
+                std::lock_guard lock(releases->mutex);
+                keep->released = true;
+            }
+            releases->released.notify_all();
+        });
     return finished;
+}
+
+Result<FinishedReadback> TextureReadbackRing::takeOldest() {
+    auto mapped = takeOldestMapped();
+    if (!mapped) {
+        return mapped.error();
+    }
+    FinishedReadback finished;
+    finished.ticket = mapped->ticket;
+    finished.waitMilliseconds = mapped->waitMilliseconds;
+    const auto copyStart = std::chrono::steady_clock::now();
+    const std::uint32_t rowBytes = mapped->width * 4;
+    finished.image.width = mapped->width;
+    finished.image.height = mapped->height;
+    finished.image.pixels.resize(std::size_t(rowBytes) * mapped->height);
+    unpadRows(mapped->rows, rowBytes, mapped->height, finished.image.pixels.data());
+    finished.copyMilliseconds = millisecondsSince(copyStart);
+    return finished;  // `mapped` lets go of the slot: the next enqueue unmaps it.
 }
 
 }  // namespace encore::gpu

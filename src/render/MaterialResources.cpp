@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cassert>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <optional>
@@ -12,8 +13,10 @@
 
 #include "FittedImage.h"
 #include "MipmapGenerator.h"
+#include "encore/core/Elapsed.h"
 #include "encore/gpu/Upload.h"
 #include "encore/render/GltfToWebGpu.h"
+#include "encore/render/StagedImages.h"
 
 namespace encore::render {
 
@@ -233,13 +236,15 @@ struct MaterialResources::Builder {
     MaterialResources& out;
     MipmapGenerator& mipmaps;
     wgpu::CommandEncoder encoder;
+    StagedImages* staged = nullptr;
     std::uint32_t maxDimension = 8192;
 
     std::size_t addTexture(const std::string& label,
                            std::uint32_t width,
                            std::uint32_t height,
                            wgpu::TextureFormat format,
-                           const std::uint8_t* pixels) {
+                           const std::uint8_t* pixels,
+                           const wgpu::TexelCopyBufferInfo* stagedPixels = nullptr) {
         wgpu::TextureDescriptor descriptor{};
         descriptor.label = label.c_str();
         descriptor.usage = kTextureUsage;
@@ -247,7 +252,10 @@ struct MaterialResources::Builder {
         descriptor.size = {width, height, 1};
         descriptor.format = format;
         descriptor.mipLevelCount = fullMipLevelCount(width, height);
+        auto start = std::chrono::steady_clock::now();
         wgpu::Texture texture = device.CreateTexture(&descriptor);
+        out.mUploadTimes.creation += millisecondsSince(start);
+        start = std::chrono::steady_clock::now();
 
         wgpu::TexelCopyTextureInfo destination{};
         destination.texture = texture;
@@ -255,7 +263,14 @@ struct MaterialResources::Builder {
         layout.bytesPerRow = width * 4;
         layout.rowsPerImage = height;
         const wgpu::Extent3D extent{width, height, 1};
-        queue.WriteTexture(&destination, pixels, std::size_t(width) * height * 4, &layout, &extent);
+        if (stagedPixels) {
+            // Before the mip passes that read it, in the same command buffer.
+            encoder.CopyBufferToTexture(stagedPixels, &destination, &extent);
+        } else {
+            queue.WriteTexture(&destination, pixels, std::size_t(width) * height * 4, &layout,
+                               &extent);
+        }
+        out.mUploadTimes.writes += millisecondsSince(start);
         out.mTextures.push_back(std::move(texture));
         return out.mTextures.size() - 1;
     }
@@ -300,12 +315,18 @@ struct MaterialResources::Builder {
         }
         const bool srgb = space == ColorSpace::Srgb;
         const FittedImage fitted = fitImage(describeImage(id, image), image, srgb, maxDimension);
-        const std::size_t index =
-            addTexture(image.name + (srgb ? " (sRGB)" : " (linear)"), fitted.size.width,
-                       fitted.size.height,
-                       srgb ? wgpu::TextureFormat::RGBA8UnormSrgb : wgpu::TextureFormat::RGBA8Unorm,
-                       fitted.pixels());
+        // Staged images hold the original pixels: a downscaled one is written instead.
+        const auto waitStart = std::chrono::steady_clock::now();
+        const std::optional<wgpu::TexelCopyBufferInfo> stagedPixels =
+            staged && fitted.downscaled.empty() ? staged->copySource(id) : std::nullopt;
+        out.mUploadTimes.writes += millisecondsSince(waitStart);
+        const std::size_t index = addTexture(
+            image.name + (srgb ? " (sRGB)" : " (linear)"), fitted.size.width, fitted.size.height,
+            srgb ? wgpu::TextureFormat::RGBA8UnormSrgb : wgpu::TextureFormat::RGBA8Unorm,
+            fitted.pixels(), stagedPixels ? &*stagedPixels : nullptr);
+        const auto start = std::chrono::steady_clock::now();
         ENCORE_TRY(mipmaps.generate(encoder, out.mTextures[index]));
+        out.mUploadTimes.mipmaps += millisecondsSince(start);
         return index;
     }
 
@@ -356,7 +377,8 @@ Result<MaterialResources> MaterialResources::create(const wgpu::Device& device,
                                                     const scene::SceneData& scene,
                                                     const SampledTextures& sampled,
                                                     std::uint32_t maxTextureDimension,
-                                                    MipmapGenerator* mipmaps) {
+                                                    MipmapGenerator* mipmaps,
+                                                    StagedImages* staged) {
     std::optional<MipmapGenerator> ownMipmaps;
     if (!mipmaps) {
         auto created = MipmapGenerator::create(device, shaders);
@@ -370,7 +392,8 @@ Result<MaterialResources> MaterialResources::create(const wgpu::Device& device,
 
     MaterialResources resources;
     resources.mImageTextures.resize(scene.images.size());
-    Builder builder{device, queue, scene, resources, *mipmaps, device.CreateCommandEncoder()};
+    Builder builder{device, queue, scene, resources, *mipmaps, device.CreateCommandEncoder(),
+                    staged};
     builder.maxDimension = maxTextureDimension != 0
                                ? std::min(maxTextureDimension, limits.maxTextureDimension2D)
                                : limits.maxTextureDimension2D;
@@ -450,8 +473,10 @@ Result<MaterialResources> MaterialResources::create(const wgpu::Device& device,
     }
     queue.WriteBuffer(resources.mUniforms, 0, uniformBytes.data(), uniformBytes.size());
 
+    const auto submitStart = std::chrono::steady_clock::now();
     wgpu::CommandBuffer commands = builder.encoder.Finish();
     queue.Submit(1, &commands);
+    resources.mUploadTimes.submit += millisecondsSince(submitStart);
     return resources;
 }
 

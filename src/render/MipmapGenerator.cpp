@@ -124,6 +124,7 @@ Result<void> MipmapGenerator::generate(const wgpu::CommandEncoder& encoder,
         passDescriptor.label = "mipmap level";
         passDescriptor.colorAttachmentCount = 1;
         passDescriptor.colorAttachments = &attachment;
+        passDescriptor.timestampWrites = mTimestamps ? mTimestamps->pass(mStage) : nullptr;
         wgpu::RenderPassEncoder pass = encoder.BeginRenderPass(&passDescriptor);
         pass.SetPipeline(downsample);
         pass.SetBindGroup(0, bindGroup);

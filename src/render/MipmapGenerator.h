@@ -14,6 +14,7 @@
 #include <unordered_map>
 
 #include "encore/core/Result.h"
+#include "encore/gpu/StageTimestamps.h"
 #include "encore/shaders/ShaderLibrary.h"
 
 namespace encore::render {
@@ -34,6 +35,12 @@ class MipmapGenerator {
 
     std::size_t pipelineCount() const { return mPipelines.size(); }
 
+    // Times the passes of later generate() calls as `stage` (nullptr: untimed).
+    void setTimestamps(gpu::StageTimestamps* timestamps, std::uint32_t stage) {
+        mTimestamps = timestamps;
+        mStage = stage;
+    }
+
   private:
     MipmapGenerator() = default;
     const wgpu::RenderPipeline& pipeline(wgpu::TextureFormat format);
@@ -44,6 +51,8 @@ class MipmapGenerator {
     wgpu::BindGroupLayout mLayout;
     wgpu::PipelineLayout mPipelineLayout;
     std::unordered_map<wgpu::TextureFormat, wgpu::RenderPipeline> mPipelines;
+    gpu::StageTimestamps* mTimestamps = nullptr;
+    std::uint32_t mStage = 0;
 };
 
 }  // namespace encore::render

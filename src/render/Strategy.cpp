@@ -44,6 +44,10 @@ PrepareTimes& PrepareTimes::operator+=(const PrepareTimes& other) {
     geometry += other.geometry;
     instances += other.instances;
     materials += other.materials;
+    textureCreation += other.textureCreation;
+    textureWrites += other.textureWrites;
+    mipmaps += other.mipmaps;
+    materialSubmit += other.materialSubmit;
     draws += other.draws;
     checks += other.checks;
     return *this;

@@ -101,7 +101,9 @@ void ToneMapper::setOptions(const ToneMappingOptions& options) {
     mQueue.WriteBuffer(mUniform, 0, &uniform, sizeof(uniform));
 }
 
-void ToneMapper::encode(const wgpu::CommandEncoder& commands, const RenderTarget& target) const {
+void ToneMapper::encode(const wgpu::CommandEncoder& commands,
+                        const RenderTarget& target,
+                        const wgpu::PassTimestampWrites* timestamps) const {
     wgpu::RenderPassColorAttachment color{};
     color.view = target.outputView();
     color.loadOp = wgpu::LoadOp::Clear;
@@ -110,6 +112,7 @@ void ToneMapper::encode(const wgpu::CommandEncoder& commands, const RenderTarget
     descriptor.label = "encore tone mapping";
     descriptor.colorAttachmentCount = 1;
     descriptor.colorAttachments = &color;
+    descriptor.timestampWrites = timestamps;
     wgpu::RenderPassEncoder pass = commands.BeginRenderPass(&descriptor);
     pass.SetPipeline(mPipeline);
     pass.SetBindGroup(0, mBindGroup);

@@ -177,5 +177,67 @@ TEST(BatchPipelineTest, ABadModelMidPipelineFailsAtItsStageWhileItsNeighboursRen
     EXPECT_TRUE(context->checkNoErrors("the batches").ok());
 }
 
+// BatchOptions::gpuTimestamps (encore batch -v) times every stage of the GPU's work and changes
+// no file.
+TEST(BatchPipelineTest, GpuTimestampsTimeEachStageAndChangeNoFile) {
+    gpu::ContextOptions contextOptions;
+    contextOptions.timestamps = true;
+    auto context = gpu::Context::create(contextOptions);
+    ASSERT_TRUE(context.ok()) << context.error().message;
+    if (!context->hasFeature(wgpu::FeatureName::TimestampQuery)) {
+        GTEST_SKIP() << "The adapter has no timestamp queries.";
+    }
+    const fs::path dir = test::makeTempDir("batch-pipeline-timestamps");
+    std::vector<BatchInput> inputs;
+    for (std::uint32_t seed = 1; seed <= 3; ++seed) {
+        const fs::path path = dir / "in" / ("m" + std::to_string(seed) + ".glb");
+        writeGeneratedScene(path, 4, seed);
+        inputs.push_back({path, "m" + std::to_string(seed)});
+    }
+    std::map<std::string, std::string> written[2];
+    for (const bool timed : {false, true}) {
+        BatchOptions options = smallBatch(dir / (timed ? "timed" : "untimed"));
+        options.renderer.environmentOptions = test::testEnvironmentOptions();
+        options.gpuTimestamps = timed;
+        auto summary = runBatch(*context, inputs, options);
+        ASSERT_TRUE(summary.ok()) << summary.error().message;
+        EXPECT_EQ(summary->rendered, inputs.size());
+        written[timed] = filesUnder(options.output);
+        if (!timed) {
+            EXPECT_TRUE(summary->stages.gpuStages.empty());
+            continue;
+        }
+        ASSERT_EQ(summary->stages.gpuStages.size(), render::kGpuStageCount);
+        for (std::uint32_t stage = 0; stage < render::kGpuStageCount; ++stage) {
+            const gpu::StageTime& time = summary->stages.gpuStages[stage];
+            EXPECT_GT(time.timed, 0u) << render::kGpuStageNames[stage];
+            EXPECT_EQ(time.untimed, 0u) << render::kGpuStageNames[stage];
+            EXPECT_GE(time.milliseconds, 0.0) << render::kGpuStageNames[stage];
+        }
+        // One pass per view (5 views: one target) and one tone mapping and copy per model.
+        const auto& scene =
+            summary->stages.gpuStages[render::gpuStageIndex(render::GpuStage::Scene)];
+        EXPECT_EQ(scene.timed, inputs.size() * 5);
+    }
+    EXPECT_TRUE(written[0] == written[1]);
+    EXPECT_TRUE(context->checkNoErrors("the timed batches").ok());
+}
+
+// BatchOptions::renderers takes 1..kMaxRenderers, as `encore batch --renderers` does.
+TEST(BatchPipelineTest, RendererCountsOutsideTheRangeAreRefused) {
+    ENCORE_REQUIRE_VULKAN(context);
+    const fs::path dir = test::makeTempDir("batch-pipeline-renderers");
+    const fs::path path = dir / "in" / "m.glb";
+    writeGeneratedScene(path, 2, 1);
+    const std::vector<BatchInput> inputs{{path, "m"}};
+    for (const std::size_t renderers : {std::size_t{0}, kMaxRenderers + 1}) {
+        BatchOptions options = smallBatch(dir / "out");
+        options.renderers = renderers;
+        auto summary = runBatch(*context, inputs, options);
+        ASSERT_FALSE(summary.ok()) << renderers;
+        EXPECT_EQ(summary.error().code, ErrorCode::InvalidArgument);
+    }
+}
+
 }  // namespace
 }  // namespace encore::batch

@@ -28,6 +28,7 @@
 #include "encore/batch/ViewRig.h"
 #include "encore/core/Result.h"
 #include "encore/gpu/Context.h"
+#include "encore/gpu/StageTimestamps.h"
 #include "encore/render/Renderer.h"
 
 namespace encore::batch {
@@ -37,7 +38,10 @@ namespace encore::batch {
 // to at most the wall time; the GPU works beside them, so its own time is not among them.
 struct StageTimes {
     double load = 0.0;    // Parsing the file and decoding its images.
-    double upload = 0.0;  // Renderer::prepare: buffers, textures, pipelines, bundles.
+    // Renderer::prepare (buffers, textures, pipelines, bundles) and, before it, creating the
+    // staging buffers that the pool copies the model's images into (`staging`).
+    double upload = 0.0;
+    double staging = 0.0;
     double render = 0.0;  // Recording and submitting the views.
     // The device thread waiting for the GPU to finish views and their copies: what the GPU's
     // work exceeds the uploads and recording it overlaps with.
@@ -46,6 +50,9 @@ struct StageTimes {
     double encode = 0.0;    // PNG encoding and writing the files.
     // The upload's parts (Renderer::prepare's own breakdown, milliseconds summed over models).
     render::PrepareTimes uploadParts;
+    // The GPU's own time by render::GpuStage, from timestamps (BatchOptions::gpuTimestamps);
+    // empty when not asked for or the device has no timestamp queries.
+    std::vector<gpu::StageTime> gpuStages;
 };
 
 struct BatchProgress {
@@ -65,7 +72,12 @@ struct BatchSummary : BatchProgress {
     std::vector<Failure> failures;  // As failures.jsonl lists them.
 };
 
-inline constexpr std::size_t kDefaultRenderers = 3;
+// Four: on the H100 at 4x multisampling, three left the device thread waiting for the GPU
+// behind models whose GPU and upload times differ (797 against 898 views per second).
+inline constexpr std::size_t kDefaultRenderers = 4;
+// BatchOptions::renderers lies in 1..kMaxRenderers: each holds a scene and a render target on
+// the device, and past a few they only add memory (the queue ahead of the GPU is deep enough).
+inline constexpr std::size_t kMaxRenderers = 8;
 
 struct BatchOptions {
     std::filesystem::path output;
@@ -95,13 +107,18 @@ struct BatchOptions {
     float topLightLux = 0.0f;
     std::size_t jobs = 0;  // Pool threads; 0: one per hardware thread.
     std::uint64_t memoryLimitBytes = std::uint64_t{2} << 30;  // Scenes loaded ahead, at most.
-    std::size_t readbackSlots = 3;
+    // Read-backs in flight or still being cropped by the pool: one more than the default
+    // renderers, so that a read whose strips are being cropped does not hold up the next.
+    std::size_t readbackSlots = kDefaultRenderers + 1;
     // Renderers that take the models in turn, each holding one model's scene on the device:
     // with N, the device thread uploads a model while the GPU may still draw the N - 1 before
     // it. 1: each model is uploaded only once the previous model's views are read back (the
     // sequential pipeline). More smooths out models whose upload and drawing times differ, at
-    // the cost of one more scene and render target in GPU memory each.
+    // the cost of one more scene and render target in GPU memory each. 1..kMaxRenderers.
     std::size_t renderers = kDefaultRenderers;
+    // Time the GPU's stages with timestamp queries (StageTimes::gpuStages), when the context's
+    // device has them (gpu::ContextOptions::timestamps). A few queries per pass; nothing waits.
+    bool gpuTimestamps = false;
     // Set (from a signal handler, another thread) to stop starting models: views in flight are
     // still written, and runBatch returns with `interrupted`.
     const std::atomic<bool>* stop = nullptr;

@@ -49,6 +49,12 @@ std::vector<render::Camera> stripCameras(std::span<const glm::mat4> cameraToWorl
 image::ImageRgba8 cropStrip(const image::ImageRgba8& wide,
                             std::uint32_t strip,
                             std::uint32_t width);
+// The same from rows `bytesPerRow` apart (a mapped read-back buffer, gpu::MappedReadback).
+image::ImageRgba8 cropStrip(const std::uint8_t* rows,
+                            std::uint32_t bytesPerRow,
+                            std::uint32_t height,
+                            std::uint32_t strip,
+                            std::uint32_t width);
 
 // Normal and depth images (ViewImages.h) come from the renderer's debug channels, drawn with
 // tone mapping off. What follows is shared by runBatch and renderStrips, so that both write the

@@ -25,6 +25,9 @@ class ThreadPool {
 
     // Queues `task`. Tasks must not throw (the library reports errors as values).
     void submit(std::function<void()> task);
+    // Queues `task` ahead of every task not yet started: for work that another thread is about
+    // to wait for.
+    void submitFirst(std::function<void()> task);
     // Blocks until every submitted task has finished.
     void waitIdle();
     std::size_t size() const { return mWorkers.size(); }

@@ -14,6 +14,19 @@
 
 namespace encore::gpu {
 
+// Texture-to-buffer copies lay rows out kCopyRowAlignment bytes apart at least (WebGPU's
+// bytesPerRow alignment): paddedRowBytes is the bytesPerRow of a copy of rows of `rowBytes`.
+inline constexpr std::uint32_t kCopyRowAlignment = 256;
+constexpr std::uint32_t paddedRowBytes(std::uint32_t rowBytes) {
+    return (rowBytes + kCopyRowAlignment - 1) / kCopyRowAlignment * kCopyRowAlignment;
+}
+// Copies `rows` rows of `rowBytes` bytes from `padded`, where they lie paddedRowBytes(rowBytes)
+// apart (a mapped read-back buffer), to `packed`, where they follow each other.
+void unpadRows(const std::uint8_t* padded,
+               std::uint32_t rowBytes,
+               std::uint32_t rows,
+               std::uint8_t* packed);
+
 // Reads mip level 0 of a 2D texture with CopySrc usage. Supported formats: RGBA8Unorm(Srgb) and
 // BGRA8Unorm(Srgb); the result is RGBA either way (bytes as stored, no colour conversion).
 Result<image::ImageRgba8> readTexture(Context& context, const wgpu::Texture& texture);

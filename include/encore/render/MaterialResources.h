@@ -119,6 +119,17 @@ struct SampledTextures {
 };
 
 class MipmapGenerator;
+class StagedImages;
+
+// Where create()'s time went on the CPU, in milliseconds.
+struct TextureUploadTimes {
+    double creation = 0.0;  // Device::CreateTexture.
+    // Level 0: Queue::WriteTexture (Dawn copies the pixels into staging memory), or waiting for
+    // a staged image and recording its copy.
+    double writes = 0.0;
+    double mipmaps = 0.0;  // Recording the mip generation.
+    double submit = 0.0;   // Finishing and submitting those commands.
+};
 
 class MaterialResources {
   public:
@@ -130,7 +141,8 @@ class MaterialResources {
     // sampler, that does not exist. `scene` need not outlive the result. WebGPU validation
     // errors surface through the device's error callback. `mipmaps` is a generator kept from
     // one scene to the next (RenderSetup::mipmaps, so its pipelines are created once); null:
-    // one made for this call.
+    // one made for this call. `staged`: the scene's images already in staging buffers
+    // (StagedImages.h), copied from there rather than written through the queue.
     static Result<MaterialResources> create(const wgpu::Device& device,
                                             const wgpu::Queue& queue,
                                             shaders::ShaderLibrary& shaders,
@@ -138,7 +150,8 @@ class MaterialResources {
                                             const scene::SceneData& scene,
                                             const SampledTextures& sampled = {},
                                             std::uint32_t maxTextureDimension = 0,
-                                            MipmapGenerator* mipmaps = nullptr);
+                                            MipmapGenerator* mipmaps = nullptr,
+                                            StagedImages* staged = nullptr);
 
     MaterialResources(MaterialResources&&) noexcept = default;
     MaterialResources& operator=(MaterialResources&&) noexcept = default;
@@ -170,6 +183,9 @@ class MaterialResources {
                                        shaders::ShaderLibrary& shaders,
                                        const BindGroupLayouts& layouts,
                                        scene::MaterialId material, const scene::Image& image);
+
+    // Where create()'s time went.
+    const TextureUploadTimes& uploadTimes() const { return mUploadTimes; }
 
     // Incremented whenever a bind group is replaced.
     std::uint64_t generation() const { return mGeneration; }
@@ -218,6 +234,7 @@ class MaterialResources {
     std::vector<SlotIndices> mMaterialSamplers;  // MaterialId -> slot -> index into mSamplers.
     std::vector<bool> mTextured;                 // MaterialId -> binds a texture.
     std::uint64_t mGeneration = 0;
+    TextureUploadTimes mUploadTimes;
 
     wgpu::BindGroup createBindGroup(const wgpu::Device& device, const BindGroupLayouts& layouts,
                                     std::size_t material, const char* label) const;

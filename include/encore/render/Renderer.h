@@ -16,6 +16,7 @@
 
 #include "encore/core/Result.h"
 #include "encore/gpu/Context.h"
+#include "encore/gpu/StageTimestamps.h"
 #include "encore/image/HdrImage.h"
 #include "encore/image/ImageCodec.h"
 #include "encore/render/AnimationBuffers.h"
@@ -23,6 +24,7 @@
 #include "encore/render/DrawCounters.h"
 #include "encore/render/FrameTimer.h"
 #include "encore/render/GpuAnimation.h"
+#include "encore/render/GpuStage.h"
 #include "encore/render/Lighting.h"
 #include "encore/render/RenderTarget.h"
 #include "encore/render/Strategy.h"
@@ -96,8 +98,13 @@ class Renderer {
 
     // Prepares `scene` (which must outlive the renderer) for drawing with `kind`, replacing any
     // previous scene or strategy; with `bundle`, the frame is drawn from render bundles
-    // (createStrategy). Fails on any WebGPU error raised while preparing.
-    Result<void> prepare(const scene::SceneData& scene, StrategyKind kind, bool bundle = false);
+    // (createStrategy). Fails on any WebGPU error raised while preparing. `staged`: the scene's
+    // images already copied into staging buffers (StagedImages.h; materials-based strategies
+    // copy their textures from there), used during this call only.
+    Result<void> prepare(const scene::SceneData& scene,
+                         StrategyKind kind,
+                         bool bundle = false,
+                         StagedImages* staged = nullptr);
     // Forgets the prepared scene and frees what was made for it (the strategy's buffers,
     // textures and bundles, the animation), keeping what serves any scene (target, environment,
     // kept pipelines). For a renderer kept after the scene it prepared is gone (encore batch
@@ -202,6 +209,11 @@ class Renderer {
     // Times every pass of later frames with `timer` (nullptr: untimed); each frame then waits
     // for its timestamps and reports them in FrameResult::gpuMilliseconds.
     void setGpuTimer(gpu::GpuTimer* timer) { mTimer = timer; }
+    // Adds the GPU time of later work to `timestamps` by GpuStage (its stage count at least
+    // kGpuStageCount), without waiting for it: the mip generation of prepare(), the scene and
+    // tone-mapping passes of frames. nullptr: untimed. The caller flushes. A GPU timer set with
+    // setGpuTimer takes the frame's passes instead.
+    void setStageTimestamps(gpu::StageTimestamps* timestamps);
 
     // After the device was lost (gpu::Context::deviceLost()): asks the context for a new
     // device and rebuilds every GPU resource from CPU data — the options as last set, the
@@ -230,6 +242,8 @@ class Renderer {
     };
     Playback playback() const;
     Result<void> restorePlayback(const Playback& playback);
+    // The timestamp writes of a pass of `stage`: the GPU timer's, else the stage timestamps'.
+    const wgpu::PassTimestampWrites* timestampWrites(GpuStage stage);
     FrameResult renderPasses(std::span<const Camera> cameras, float timeSeconds,
                              std::vector<RecordedCall>* trace);
 
@@ -254,6 +268,7 @@ class Renderer {
     std::unique_ptr<GpuAnimation> mGpuAnimation;  // After mStrategy: writes its buffers.
     bool mGpuAnimationPending = false;  // Time set since the last frame encoded the passes.
     gpu::GpuTimer* mTimer = nullptr;
+    gpu::StageTimestamps* mStageTimestamps = nullptr;
     const scene::SceneData* mScene = nullptr;
     StrategyKind mKind = StrategyKind::Bundles;
     bool mBundle = false;

@@ -88,6 +88,7 @@ std::vector<StrategyChoice> withBundlingAxis(std::span<const StrategyChoice> cho
 class AnimationBuffers;
 class MipmapGenerator;
 class PipelineCache;
+class StagedImages;
 
 // Where Renderer::prepare's time went, in milliseconds. The materials-based strategies fill in
 // their parts; other strategies' work counts only in `strategy`.
@@ -98,6 +99,11 @@ struct PrepareTimes {
     double geometry = 0.0;   // Vertex and index data, uploaded into the shared buffers.
     double instances = 0.0;  // Instance transforms and their bind group.
     double materials = 0.0;  // Textures (upload and mipmaps), samplers, material bind groups.
+    // The textures' part of `materials` (MaterialResources::uploadTimes).
+    double textureCreation = 0.0;
+    double textureWrites = 0.0;
+    double mipmaps = 0.0;
+    double materialSubmit = 0.0;
     double draws = 0.0;      // Grouping the draws: pipelines (found or created), vertex bindings.
     double checks = 0.0;     // Collecting errors (out-of-memory scope, validation errors).
 
@@ -120,6 +126,9 @@ struct RenderSetup {
     std::optional<std::uint64_t> mappingBudget;
     // gpu::Context::limits(): what buffers and textures are sized against.
     gpu::DeviceLimits limits;
+    // The images of the scene being prepared, already in staging buffers (Renderer::prepare's
+    // `staged`); null: MaterialResources writes them itself.
+    StagedImages* stagedImages = nullptr;
     // Render pipelines created through this setup (createMeshPipeline), for stats.
     mutable std::uint64_t pipelinesCreated = 0;
     // The last Renderer::prepare's times; strategies add their parts.

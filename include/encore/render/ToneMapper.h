@@ -29,7 +29,10 @@ class ToneMapper {
     const ToneMappingOptions& options() const { return mOptions; }
 
     // Reads `target`'s resolved HDR scene colour, writes its output.
-    void encode(const wgpu::CommandEncoder& commands, const RenderTarget& target) const;
+    // `timestamps`: the pass's timestamp writes, or nullptr (untimed).
+    void encode(const wgpu::CommandEncoder& commands,
+                const RenderTarget& target,
+                const wgpu::PassTimestampWrites* timestamps = nullptr) const;
 
   private:
     ToneMapper() = default;

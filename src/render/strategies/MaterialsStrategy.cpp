@@ -67,14 +67,19 @@ Result<void> MaterialsStrategy::prepare(const RenderSetup& setup, const scene::S
     times.instances += millisecondsSince(start);
     mQueue = setup.queue;
     start = std::chrono::steady_clock::now();
-    auto materials = MaterialResources::create(setup.device, setup.queue, *setup.shaders,
-                                               *setup.layouts, scene, SampledTextures::all(),
-                                               setup.limits.maxTextureDimension2D, setup.mipmaps);
+    auto materials = MaterialResources::create(
+        setup.device, setup.queue, *setup.shaders, *setup.layouts, scene, SampledTextures::all(),
+        setup.limits.maxTextureDimension2D, setup.mipmaps, setup.stagedImages);
     times.materials += millisecondsSince(start);
     if (!materials) {
         return materials.error();
     }
     mMaterials = std::make_unique<MaterialResources>(std::move(*materials));
+    const TextureUploadTimes& upload = mMaterials->uploadTimes();
+    times.textureCreation += upload.creation;
+    times.textureWrites += upload.writes;
+    times.mipmaps += upload.mipmaps;
+    times.materialSubmit += upload.submit;
     mScene = &scene;
     start = std::chrono::steady_clock::now();
     mBindings.clear();

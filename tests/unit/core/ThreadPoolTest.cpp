@@ -1,6 +1,9 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <future>
+#include <mutex>
+#include <vector>
 
 #include "encore/core/ThreadPool.h"
 
@@ -40,6 +43,25 @@ TEST(ThreadPoolTest, DestructorRunsQueuedTasks) {
         }
     }
     EXPECT_EQ(count.load(), 10);
+}
+
+TEST(ThreadPoolTest, SubmitFirstRunsAheadOfQueuedTasks) {
+    ThreadPool pool(1);
+    std::promise<void> release;
+    std::shared_future<void> released = release.get_future().share();
+    std::mutex mutex;
+    std::vector<int> order;
+    const auto record = [&](int value) {
+        std::lock_guard lock(mutex);
+        order.push_back(value);
+    };
+    pool.submit([released] { released.wait(); });  // Holds the only worker.
+    pool.submit([&] { record(1); });
+    pool.submit([&] { record(2); });
+    pool.submitFirst([&] { record(0); });
+    release.set_value();
+    pool.waitIdle();
+    EXPECT_EQ(order, (std::vector<int>{0, 1, 2}));
 }
 
 TEST(ThreadPoolTest, ZeroThreadsMeansOnePerCore) {

@@ -1,0 +1,79 @@
+#include "encore/gpu/StagingBuffers.h"
+
+#include <algorithm>
+#include <bit>
+
+namespace encore::gpu {
+
+namespace {
+constexpr std::uint64_t kSmallestBuffer = std::uint64_t{1} << 20;
+}
+
+StagingBuffers::StagingBuffers(Context& context, std::uint64_t keptBytes)
+    : mContext(context), mKeptBytes(keptBytes) {}
+
+StagingBuffers::~StagingBuffers() {
+    for (const auto& remapping : mRemapping) {
+        mContext.wait(remapping->future);
+    }
+}
+
+void StagingBuffers::collect() {
+    // Mappings finish in the order the GPU finishes the copies, which is the order of the
+    // submits: stop at the first still pending.
+    while (!mRemapping.empty() && mContext.wait(mRemapping.front()->future, 0)) {
+        Remapping& done = *mRemapping.front();
+        if (done.mapped) {
+            mFree.push_back(std::move(done.buffer));
+        } else {
+            mBytes -= done.buffer.GetSize();  // A lost device: let it go.
+        }
+        mRemapping.pop_front();
+    }
+}
+
+wgpu::Buffer StagingBuffers::acquire(std::uint64_t size) {
+    collect();
+    // The smallest kept buffer that is large enough.
+    auto best = mFree.end();
+    for (auto it = mFree.begin(); it != mFree.end(); ++it) {
+        if (it->GetSize() >= size && (best == mFree.end() || it->GetSize() < best->GetSize())) {
+            best = it;
+        }
+    }
+    if (best != mFree.end()) {
+        wgpu::Buffer buffer = std::move(*best);
+        mFree.erase(best);
+        mBytes -= buffer.GetSize();
+        return buffer;
+    }
+    wgpu::BufferDescriptor descriptor{};
+    descriptor.label = "staging";
+    descriptor.size = std::max(kSmallestBuffer, std::bit_ceil(size));
+    descriptor.usage = wgpu::BufferUsage::MapWrite | wgpu::BufferUsage::CopySrc;
+    descriptor.mappedAtCreation = true;
+    ++mCreated;
+    return mContext.device().CreateBuffer(&descriptor);
+}
+
+void StagingBuffers::giveBack(wgpu::Buffer buffer, bool mapped) {
+    if (!buffer || mBytes + buffer.GetSize() > mKeptBytes) {
+        return;  // Freed once the GPU is done with it.
+    }
+    mBytes += buffer.GetSize();
+    if (mapped) {
+        mFree.push_back(std::move(buffer));
+        return;
+    }
+    auto remapping = std::make_unique<Remapping>();
+    Remapping* target = remapping.get();
+    remapping->buffer = std::move(buffer);
+    remapping->future = target->buffer.MapAsync(
+        wgpu::MapMode::Write, 0, target->buffer.GetSize(), wgpu::CallbackMode::WaitAnyOnly,
+        [target](wgpu::MapAsyncStatus status, wgpu::StringView) {
+            target->mapped = status == wgpu::MapAsyncStatus::Success;
+        });
+    mRemapping.push_back(std::move(remapping));
+}
+
+}  // namespace encore::gpu
