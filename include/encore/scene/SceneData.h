@@ -21,7 +21,9 @@
 //  - every primitive has a material: the glTF default material is appended when needed;
 //  - skins, morph targets and animations are checked (docs/animation.md): joint indices of a
 //    skinned primitive are below its skin's joint count, morph targets have the primitive's
-//    vertex count, animation samplers are decoded to floats with increasing key times.
+//    vertex count, animation samplers are decoded to floats with increasing key times;
+//  - with LoadOptions::optimizeMeshes, indexed triangle lists are reordered for the vertex cache
+//    and vertex fetch, and with buildLevelsOfDetail they get Primitive::levels (MeshOptimizer.h).
 
 #include <cstdint>
 #include <filesystem>
@@ -103,6 +105,17 @@ struct MorphTarget {
     std::optional<AccessorId> tangent;
 };
 
+// One coarser version of a primitive's triangles, made at load by simplification (MeshOptimizer.h).
+// It draws the primitive's own vertex buffers with other indices.
+struct LevelOfDetail {
+    AccessorId indices;  // Same bufferView and componentType as the primitive's indices.
+    // How far (object-space distance, in the units of POSITION) the level's surface may lie from
+    // the full-detail surface: meshoptimizer's relative error times the positions' extent
+    // (meshopt_simplifyScale). A renderer picks the coarsest level whose error, projected to the
+    // screen, stays under its pixel threshold.
+    float error = 0.0f;
+};
+
 struct Primitive {
     Topology topology = Topology::TriangleList;
     std::vector<VertexAttribute> attributes;  // Sorted by semantic; Position and Normal present.
@@ -112,6 +125,14 @@ struct Primitive {
     Bounds bounds;  // Object-space box of the positions (without skinning or morphing).
     // Morph targets; every primitive of a mesh has the same number (Mesh::weights.size()).
     std::vector<MorphTarget> targets;
+    // Levels of detail coarser than `indices` (level 0), finer to coarser; empty when the
+    // primitive has none (not an indexed triangle list, simplification declined, or
+    // LoadOptions::buildLevelsOfDetail off). Each has at most half the triangles of the one
+    // before and an error no smaller. All of a primitive's index data lies in ONE bufferView:
+    // `indices` at its start (byteOffset 0), then each level at a byteOffset that is a multiple
+    // of 4, all with the same componentType. A renderer binds the view once as the index buffer
+    // and draws level k with firstIndex = levels[k] byteOffset / index size, indexCount = count.
+    std::vector<LevelOfDetail> levels;
 
     std::optional<AccessorId> attribute(Semantic semantic) const;
 };
@@ -366,6 +387,12 @@ struct LoadOptions {
     bool decodeImages = true;  // False skips image decoding (images keep their names only).
     bool strict = false;       // Warnings (missing images, unsupported optional features)
                                // become errors.
+    // Reorders the triangles and vertices of indexed triangle lists for the GPU's vertex cache
+    // and vertex fetch (MeshOptimizer.h); what is drawn stays the same.
+    bool optimizeMeshes = true;
+    // Builds Primitive::levels (MeshOptimizer.h). Costs load time and memory that only a
+    // renderer which selects levels earns back.
+    bool buildLevelsOfDetail = true;
 };
 
 // Loads a .gltf or .glb file. Errors name the file and the offending element:
