@@ -332,6 +332,34 @@ bool streamsRenumberable(const SceneData& scene, const Primitive& primitive,
     return true;
 }
 
+// Which buffers the primitives read: vertex streams, indices and levels.
+std::vector<bool> buffersReadByPrimitives(const SceneData& scene) {
+    std::vector<bool> read(scene.buffers.size(), false);
+    auto mark = [&](AccessorId id) {
+        if (id.index() < scene.accessors.size()) {
+            const BufferViewId view = scene.accessors[id.index()].view;
+            if (view.index() < scene.bufferViews.size() &&
+                scene.bufferViews[view.index()].buffer.index() < read.size()) {
+                read[scene.bufferViews[view.index()].buffer.index()] = true;
+            }
+        }
+    };
+    for (const Mesh& mesh : scene.meshes) {
+        for (const Primitive& primitive : mesh.primitives) {
+            for (AccessorId stream : vertexStreams(primitive)) {
+                mark(stream);
+            }
+            if (primitive.indices) {
+                mark(*primitive.indices);
+            }
+            for (const LevelOfDetail& level : primitive.levels) {
+                mark(level.indices);
+            }
+        }
+    }
+    return read;
+}
+
 }  // namespace
 
 Result<MeshOptimizerReport> optimizeMeshes(SceneData& scene, const MeshOptimizerOptions& options) {
@@ -357,6 +385,7 @@ Result<MeshOptimizerReport> optimizeMeshes(SceneData& scene, const MeshOptimizer
     }
 
     const auto readers = streamReaders(scene);
+    const std::vector<bool> readBefore = buffersReadByPrimitives(scene);
     OutputBuffer output(scene, reserve);
     for (Mesh& mesh : scene.meshes) {
         for (Primitive& primitive : mesh.primitives) {
@@ -389,6 +418,15 @@ Result<MeshOptimizerReport> optimizeMeshes(SceneData& scene, const MeshOptimizer
                 report.levelsBuilt += levels.size();
             }
             writeIndexLevels(scene, output, primitive, indices, levels);
+        }
+    }
+    // Once every primitive reading a buffer has moved to new data, the buffer only holds memory
+    // (a .glb's BIN chunk would double the geometry a batch keeps loaded): its bytes go.
+    const std::vector<bool> readAfter = buffersReadByPrimitives(scene);
+    for (std::size_t b = 0; b < readBefore.size(); ++b) {
+        if (readBefore[b] && !readAfter[b]) {
+            scene.buffers[b].bytes = {};
+            ++report.buffersReleased;
         }
     }
     return report;

@@ -28,8 +28,10 @@
 // Output: each processed primitive gets new index data (level 0 then its levels in one
 // bufferView, Primitive::levels describes the layout) and, when its vertices were renumbered,
 // new tightly packed vertex streams (stride rounded up to 4 bytes). All of it goes into one
-// buffer appended to the scene; the data the primitive used before stays where it was, unused
-// unless another primitive reads it.
+// buffer appended to the scene. The data the primitive used before stays where it was, unused
+// unless another primitive reads it; a buffer that primitives read before and none reads after
+// is emptied (Buffer::bytes cleared, its views and accessors left in place but read by no
+// primitive: SceneData::accessorBytes returns nothing for them).
 
 #include "encore/core/Result.h"
 #include "encore/scene/SceneData.h"
@@ -58,6 +60,7 @@ struct MeshOptimizerReport {
     std::size_t primitivesReordered = 0;    // Triangles and vertices reordered.
     std::size_t primitivesIndicesOnly = 0;  // Triangles (or vertices) only, as explained above.
     std::size_t levelsBuilt = 0;            // Summed over primitives.
+    std::size_t buffersReleased = 0;        // Emptied: no primitive reads them any more.
 };
 
 // Processes every mesh of `scene`. Fails (naming the mesh and primitive) only on data that

@@ -23,7 +23,9 @@
 //    skinned primitive are below its skin's joint count, morph targets have the primitive's
 //    vertex count, animation samplers are decoded to floats with increasing key times;
 //  - with LoadOptions::optimizeMeshes, indexed triangle lists are reordered for the vertex cache
-//    and vertex fetch, and with buildLevelsOfDetail they get Primitive::levels (MeshOptimizer.h).
+//    and vertex fetch, and with buildLevelsOfDetail they get Primitive::levels (MeshOptimizer.h);
+//    buffers that no primitive reads after that are emptied, so only accessors that primitives
+//    reference are guaranteed to lie inside their buffer.
 
 #include <cstdint>
 #include <filesystem>

@@ -250,6 +250,9 @@ TEST(MeshOptimizerTest, KeepsEveryTriangleAndVertexValue) {
         next = std::max(next, index + 1);
     }
     EXPECT_NE(before->readIndices(*before->meshes[0].primitives[0].indices), indices);
+    // Every stream moved, so the GLB's BIN chunk holds nothing any primitive reads: released.
+    EXPECT_EQ(after->buffers[0].name, "GLB BIN chunk");
+    EXPECT_TRUE(after->buffers[0].bytes.empty());
 }
 
 TEST(MeshOptimizerTest, ImprovesTheVertexCacheHitRate) {
@@ -362,6 +365,7 @@ TEST(MeshOptimizerTest, SharedVertexStreamsKeepTheirOrder) {
         EXPECT_NE(a.indices, b.indices);  // The triangles were still reordered.
         expectLevelLayout(*after, b);
     }
+    EXPECT_EQ(after->buffers[0].bytes, before->buffers[0].bytes);  // Still read: kept.
 }
 
 TEST(MeshOptimizerTest, LeavesOtherTopologiesAlone) {
