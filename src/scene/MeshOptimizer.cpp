@@ -44,8 +44,8 @@ bool isProcessed(const Primitive& primitive, const SceneData& scene) {
     }
     const std::uint32_t count = scene.accessors[primitive.indices->index()].count;
     return count >= 3 && count % 3 == 0 && count <= kMaxProcessedIndices &&
-           primitive.vertexCount <= std::max(kVerticesAlwaysProcessed,
-                                             kMaxVerticesPerIndex * count);
+           primitive.vertexCount <=
+               std::max(kVerticesAlwaysProcessed, kMaxVerticesPerIndex * count);
 }
 
 // Every accessor that holds one element per vertex of the primitive: attributes, then morph
@@ -117,7 +117,9 @@ class OutputBuffer {
 
 // A copy of `stream` with its elements in the order `remap` gives (remap[old] = new), tightly
 // packed but with the stride rounded up to 4 bytes so WebGPU can bind it in place.
-AccessorId remapStream(SceneData& scene, OutputBuffer& output, AccessorId stream,
+AccessorId remapStream(SceneData& scene,
+                       OutputBuffer& output,
+                       AccessorId stream,
                        const std::vector<std::uint32_t>& remap) {
     Accessor accessor = scene.accessors[stream.index()];
     const std::uint32_t elementSize = accessor.elementSize();
@@ -141,7 +143,9 @@ AccessorId remapStream(SceneData& scene, OutputBuffer& output, AccessorId stream
 
 // Renumbers the primitive's vertices in the order `indices` first reads them and rewrites
 // `indices` and every vertex stream to match.
-void renumberVertices(SceneData& scene, OutputBuffer& output, Primitive& primitive,
+void renumberVertices(SceneData& scene,
+                      OutputBuffer& output,
+                      Primitive& primitive,
                       std::vector<std::uint32_t>& indices) {
     const std::uint32_t vertexCount = primitive.vertexCount;
     std::vector<std::uint32_t> remap(vertexCount);
@@ -175,7 +179,8 @@ void renumberVertices(SceneData& scene, OutputBuffer& output, Primitive& primiti
         replace(attribute.accessor);
     }
     for (MorphTarget& target : primitive.targets) {
-        for (std::optional<AccessorId>* delta : {&target.position, &target.normal, &target.tangent}) {
+        for (std::optional<AccessorId>* delta :
+             {&target.position, &target.normal, &target.tangent}) {
             if (*delta) {
                 replace(**delta);
             }
@@ -192,9 +197,11 @@ struct SimplifiedLevel {
 // empty or the error budget is spent. Level k is simplified from level k-1 (far cheaper than
 // from level 0 each time); its error relative to level 0 is at most the sum of the steps'
 // errors, which is what it records, so errors never decrease and stay within the budget.
-std::vector<SimplifiedLevel> simplifyChain(const SceneData& scene, const Primitive& primitive,
+std::vector<SimplifiedLevel> simplifyChain(const SceneData& scene,
+                                           const Primitive& primitive,
                                            const std::vector<std::uint32_t>& level0,
-                                           const MeshOptimizerOptions& options) {
+                                           const MeshOptimizerOptions& options,
+                                           bool lockBorders) {
     const auto positionAccessor = primitive.attribute(Semantic::Position);
     if (!positionAccessor) {
         return {};
@@ -210,12 +217,13 @@ std::vector<SimplifiedLevel> simplifyChain(const SceneData& scene, const Primiti
     const float* xyz = &positions[0].x;
     const std::size_t stride = sizeof(glm::vec4);
     const float scale = meshopt_simplifyScale(xyz, primitive.vertexCount, stride);
-    const unsigned int flags = options.lockBorders ? unsigned(meshopt_SimplifyLockBorder) : 0u;
+    const unsigned int flags = lockBorders ? unsigned(meshopt_SimplifyLockBorder) : 0u;
 
     std::vector<SimplifiedLevel> levels;
     float spent = 0.0f;  // Relative error summed over the steps so far.
     while (true) {
-        const std::vector<std::uint32_t>& previous = levels.empty() ? level0 : levels.back().indices;
+        const std::vector<std::uint32_t>& previous =
+            levels.empty() ? level0 : levels.back().indices;
         const std::size_t target = previous.size() / 3 / 2 * 3;
         const float budget = options.maxRelativeError - spent;
         if (target == 0 || !(budget > 0.0f)) {
@@ -223,9 +231,9 @@ std::vector<SimplifiedLevel> simplifyChain(const SceneData& scene, const Primiti
         }
         std::vector<std::uint32_t> simplified(previous.size());
         float stepError = 0.0f;
-        const std::size_t count = meshopt_simplify(
-            simplified.data(), previous.data(), previous.size(), xyz, primitive.vertexCount,
-            stride, target, budget, flags, &stepError);
+        const std::size_t count =
+            meshopt_simplify(simplified.data(), previous.data(), previous.size(), xyz,
+                             primitive.vertexCount, stride, target, budget, flags, &stepError);
         if (count == 0 || count > target) {
             break;
         }
@@ -240,7 +248,9 @@ std::vector<SimplifiedLevel> simplifyChain(const SceneData& scene, const Primiti
 
 // Writes level 0 and the levels into one new view, in the layout SceneData.h documents, and
 // points the primitive at it.
-void writeIndexLevels(SceneData& scene, OutputBuffer& output, Primitive& primitive,
+void writeIndexLevels(SceneData& scene,
+                      OutputBuffer& output,
+                      Primitive& primitive,
                       const std::vector<std::uint32_t>& level0,
                       const std::vector<SimplifiedLevel>& levels) {
     const bool narrow = primitive.vertexCount <= kMaxUint16Vertices;
@@ -286,14 +296,15 @@ void writeIndexLevels(SceneData& scene, OutputBuffer& output, Primitive& primiti
 
 // The checks the processing relies on, made before anything changes: readable indices below
 // the vertex count. Returns the bytes the new data can take at most.
-Result<std::uint64_t> checkPrimitive(const SceneData& scene, const Primitive& primitive,
+Result<std::uint64_t> checkPrimitive(const SceneData& scene,
+                                     const Primitive& primitive,
                                      const std::string& name) {
     const AccessorId id = *primitive.indices;
     const std::vector<std::uint32_t> indices = scene.readIndices(id);
     if (indices.size() != scene.accessors[id.index()].count) {
-        return makeError(ErrorCode::InvalidFormat,
-                         name + ": its indices (accessor " + std::to_string(id.value) +
-                             ") cannot be read from their bufferView.");
+        return makeError(ErrorCode::InvalidFormat, name + ": its indices (accessor " +
+                                                       std::to_string(id.value) +
+                                                       ") cannot be read from their bufferView.");
     }
     const auto beyond = std::find_if(indices.begin(), indices.end(),
                                      [&](std::uint32_t i) { return i >= primitive.vertexCount; });
@@ -317,7 +328,8 @@ Result<std::uint64_t> checkPrimitive(const SceneData& scene, const Primitive& pr
 
 // Renumbering needs every stream readable with one element per vertex; otherwise (only a
 // hand-built SceneData gets here) the vertex order is kept.
-bool streamsRenumberable(const SceneData& scene, const Primitive& primitive,
+bool streamsRenumberable(const SceneData& scene,
+                         const Primitive& primitive,
                          const std::unordered_map<AccessorId, std::uint32_t>& readers) {
     for (AccessorId stream : vertexStreams(primitive)) {
         if (stream.index() >= scene.accessors.size() || readers.at(stream) > 1) {
@@ -395,9 +407,9 @@ Result<MeshOptimizerReport> optimizeMeshes(SceneData& scene, const MeshOptimizer
             std::vector<std::uint32_t> indices = scene.readIndices(*primitive.indices);
             if (options.optimizeVertexOrder) {
                 // Blending depends on the order triangles are drawn in: keep it.
-                const bool blends = primitive.material.index() < scene.materials.size() &&
-                                    scene.materials[primitive.material.index()].alphaMode ==
-                                        AlphaMode::Blend;
+                const bool blends =
+                    primitive.material.index() < scene.materials.size() &&
+                    scene.materials[primitive.material.index()].alphaMode == AlphaMode::Blend;
                 if (!blends) {
                     meshopt_optimizeVertexCache(indices.data(), indices.data(), indices.size(),
                                                 primitive.vertexCount);
@@ -414,7 +426,8 @@ Result<MeshOptimizerReport> optimizeMeshes(SceneData& scene, const MeshOptimizer
             }
             std::vector<SimplifiedLevel> levels;
             if (options.buildLevelsOfDetail) {
-                levels = simplifyChain(scene, primitive, indices, options);
+                const bool lockBorders = options.lockSharedBorders && mesh.primitives.size() > 1;
+                levels = simplifyChain(scene, primitive, indices, options, lockBorders);
                 report.levelsBuilt += levels.size();
             }
             writeIndexLevels(scene, output, primitive, indices, levels);

@@ -26,7 +26,9 @@ scene::LoadOptions loadOptions(bool optimise) {
 
 // Renders `scene` shaded (every material input, image-based lighting) with `kind`, framed, at
 // `timeSeconds` into its first animation (skinning and morphing deform the meshes).
-image::ImageRgba8 render(gpu::Context& context, const scene::SceneData& scene, StrategyKind kind,
+image::ImageRgba8 render(gpu::Context& context,
+                         const scene::SceneData& scene,
+                         StrategyKind kind,
                          float timeSeconds) {
     RendererOptions options = test::pixelTestOptions(kSize, kSize, 1, DebugChannel::Shaded);
     options.toneMapping.toneMapping = ToneMapping::PbrNeutral;
@@ -37,18 +39,19 @@ image::ImageRgba8 render(gpu::Context& context, const scene::SceneData& scene, S
     }
     auto prepared = renderer->prepare(scene, kind);
     EXPECT_TRUE(prepared.ok()) << prepared.error().message;
-    renderer->renderFrame(Camera::framing(scene.bounds, renderer->target().aspect()),
-                          timeSeconds);
+    renderer->renderFrame(Camera::framing(scene.bounds, renderer->target().aspect()), timeSeconds);
     auto image = renderer->readImage();
     EXPECT_TRUE(image.ok()) << image.error().message;
     EXPECT_TRUE(context.checkNoErrors("mesh optimiser render").ok());
     return image.ok() ? std::move(*image) : image::ImageRgba8{};
 }
 
-void expectSamePixels(gpu::Context& context, const scene::SceneData& plain,
-                      const scene::SceneData& optimised, float timeSeconds = 0.0f) {
-    for (StrategyKind kind : {StrategyKind::Naive, StrategyKind::Materials,
-                              StrategyKind::GpuCulling}) {
+void expectSamePixels(gpu::Context& context,
+                      const scene::SceneData& plain,
+                      const scene::SceneData& optimised,
+                      float timeSeconds = 0.0f) {
+    for (StrategyKind kind :
+         {StrategyKind::Naive, StrategyKind::Materials, StrategyKind::GpuCulling}) {
         SCOPED_TRACE(strategyName(kind));
         const image::ImageRgba8 before = render(context, plain, kind, timeSeconds);
         const image::ImageRgba8 after = render(context, optimised, kind, timeSeconds);

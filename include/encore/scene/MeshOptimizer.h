@@ -50,9 +50,13 @@ struct MeshOptimizerOptions {
     // look the same as thousands. A smaller budget stops chains earlier (0.01 leaves about one
     // level on a smooth sphere).
     float maxRelativeError = 0.25f;
-    // Keeps vertices on open borders in place (meshopt_SimplifyLockBorder), so the seam
-    // between two primitives of one surface (a mesh split by material) does not open.
-    bool lockBorders = true;
+    // Keeps the vertices on open borders of a primitive in place (meshopt_SimplifyLockBorder)
+    // when its mesh has other primitives, so the seam between two primitives of one surface (a
+    // mesh split by material) does not open. Single-primitive meshes simplify their borders too
+    // (along the border, within the error): locking them would stop most CAD parts, whose faces
+    // are full of open borders, from halving (2CylinderEngine's level 1: 80% of the triangles
+    // locked, 52% unlocked).
+    bool lockSharedBorders = true;
 };
 
 // What optimizeMeshes did, for `encore info` and tests.

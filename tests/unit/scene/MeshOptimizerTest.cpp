@@ -59,8 +59,8 @@ std::vector<Triangle> triangles(const SceneData& scene, const Primitive& primiti
     }
     std::vector<Triangle> result;
     for (std::size_t i = 0; i + 2 < indices.size(); i += 3) {
-        result.push_back({tuples.at(indices[i]), tuples.at(indices[i + 1]),
-                          tuples.at(indices[i + 2])});
+        result.push_back(
+            {tuples.at(indices[i]), tuples.at(indices[i + 1]), tuples.at(indices[i + 2])});
     }
     return result;
 }
@@ -163,8 +163,8 @@ test::GltfBuilder sphereBuilder(const SphereOptions& options = {}) {
             const float phi = 6.2831853f * float(s) / float(options.segments);
             positions.push_back({std::sin(theta) * std::cos(phi), std::cos(theta),
                                  std::sin(theta) * std::sin(phi)});
-            texcoords.push_back({float(s) / float(options.segments),
-                                 float(r) / float(options.rings)});
+            texcoords.push_back(
+                {float(s) / float(options.segments), float(r) / float(options.rings)});
         }
     }
     std::vector<std::uint32_t> indices;
@@ -345,9 +345,11 @@ TEST(MeshOptimizerTest, SharedVertexStreamsKeepTheirOrder) {
     const std::map<std::string, std::uint32_t> attributes = {
         {"POSITION", builder.addPositions(positions)}, {"NORMAL", builder.addNormals(normals)}};
     const std::uint32_t mesh = builder.addMesh(std::vector<test::GltfBuilder::PrimitiveDesc>{
-        {.attributes = attributes, .indices = builder.addIndices(left),
+        {.attributes = attributes,
+         .indices = builder.addIndices(left),
          .material = builder.addMaterial({})},
-        {.attributes = attributes, .indices = builder.addIndices(right),
+        {.attributes = attributes,
+         .indices = builder.addIndices(right),
          .material = builder.addMaterial({.baseColor = {1, 0, 0, 1}})}});
     builder.addScene({builder.addNode({.mesh = mesh})});
 
@@ -371,13 +373,13 @@ TEST(MeshOptimizerTest, SharedVertexStreamsKeepTheirOrder) {
 TEST(MeshOptimizerTest, LeavesOtherTopologiesAlone) {
     for (std::uint32_t mode : {0u, 1u, 3u, 5u}) {
         test::GltfBuilder builder;
-        const std::uint32_t positions =
-            builder.addPositions({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {2, 2, 0}, {3, 1, 0}});
-        const std::uint32_t indices = builder.addIndices(std::vector<std::uint16_t>{5, 4, 3, 2, 1, 0});
-        builder.addScene({builder.addNode({.mesh = builder.addMesh(
-                                               {.attributes = {{"POSITION", positions}},
-                                                .indices = indices,
-                                                .mode = mode})})});
+        const std::uint32_t positions = builder.addPositions(
+            {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {2, 2, 0}, {3, 1, 0}});
+        const std::uint32_t indices =
+            builder.addIndices(std::vector<std::uint16_t>{5, 4, 3, 2, 1, 0});
+        builder.addScene({builder.addNode(
+            {.mesh = builder.addMesh(
+                 {.attributes = {{"POSITION", positions}}, .indices = indices, .mode = mode})})});
         auto before = loadGlb(builder, unoptimised());
         auto after = loadGlb(builder);
         ASSERT_TRUE(before.ok() && after.ok()) << mode;
