@@ -87,8 +87,9 @@ TEST(GeometryBuffersTest, SplitsPastTheBufferLimit) {
     std::uint64_t largestView = 0;
     std::uint64_t totalBytes = 0;
     for (scene::BufferViewId id : read) {
-        largestView = std::max<std::uint64_t>(largestView, scene.bufferViews[id.index()].byteLength);
-        totalBytes += scene.bufferViews[id.index()].byteLength;
+        const std::uint64_t length = scene.bufferViews[id.index()].byteLength;
+        largestView = std::max(largestView, length);
+        totalBytes += length;
     }
     // Room for about two views per buffer.
     const std::uint64_t limit = 2 * largestView + 8;

@@ -107,8 +107,8 @@ struct MorphTarget {
     std::optional<AccessorId> tangent;
 };
 
-// One coarser version of a primitive's triangles, made at load by simplification (MeshOptimizer.h).
-// It draws the primitive's own vertex buffers with other indices.
+// A coarser version of a primitive's triangles, made at load by simplification
+// (MeshOptimizer.h): other indices into the primitive's own vertices.
 struct LevelOfDetail {
     AccessorId indices;  // Same bufferView and componentType as the primitive's indices.
     // How far (object-space distance, in the units of POSITION) the level's surface may lie from
@@ -127,13 +127,15 @@ struct Primitive {
     Bounds bounds;  // Object-space box of the positions (without skinning or morphing).
     // Morph targets; every primitive of a mesh has the same number (Mesh::weights.size()).
     std::vector<MorphTarget> targets;
-    // Levels of detail coarser than `indices` (level 0), finer to coarser; empty when the
-    // primitive has none (not an indexed triangle list, simplification declined, or
-    // LoadOptions::buildLevelsOfDetail off). Each has at most half the triangles of the one
-    // before and an error no smaller. All of a primitive's index data lies in ONE bufferView:
-    // `indices` at its start (byteOffset 0), then each level at a byteOffset that is a multiple
-    // of 4, all with the same componentType. A renderer binds the view once as the index buffer
-    // and draws level k with firstIndex = levels[k] byteOffset / index size, indexCount = count.
+    // Levels of detail 1, 2, ... (levels[0] is level 1; `indices` is level 0), finer to
+    // coarser; empty when the primitive has none (not an indexed triangle list, simplification
+    // declined, or LoadOptions::buildLevelsOfDetail off). Each has at most half the triangles of
+    // the one before and an error no smaller. All of a primitive's index data lies in ONE
+    // bufferView: `indices` at its start (byteOffset 0), then each level at a byteOffset that is
+    // a multiple of 4, all with the same componentType. A renderer binds the index buffer once,
+    // at `indices` (as for level 0), and draws levels[i] with indexCount = its count and
+    // firstIndex = (its byteOffset - indices' byteOffset) / index size; the binding must reach
+    // the end of the view (render::GeometryBuffers' bindings do).
     std::vector<LevelOfDetail> levels;
 
     std::optional<AccessorId> attribute(Semantic semantic) const;
