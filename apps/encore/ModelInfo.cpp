@@ -18,6 +18,35 @@ std::uint64_t triangleCount(const scene::SceneData& scene, const scene::Primitiv
     }
 }
 
+namespace {
+
+void summarizeLevels(const scene::SceneData& scene, ModelCounts& counts) {
+    std::size_t deepest = 0;
+    for (const scene::Mesh& mesh : scene.meshes) {
+        for (const scene::Primitive& primitive : mesh.primitives) {
+            deepest = std::max(deepest, primitive.levels.size());
+            counts.primitivesWithLevels += primitive.levels.empty() ? 0 : 1;
+        }
+    }
+    if (deepest == 0) {
+        return;
+    }
+    counts.levelTriangles.assign(deepest + 1, 0);
+    for (const scene::Mesh& mesh : scene.meshes) {
+        for (const scene::Primitive& primitive : mesh.primitives) {
+            for (std::size_t k = 0; k <= deepest; ++k) {
+                const std::size_t level = std::min(k, primitive.levels.size());
+                counts.levelTriangles[k] +=
+                    level == 0 ? triangleCount(scene, primitive)
+                               : scene.accessors[primitive.levels[level - 1].indices.index()]
+                                         .count / 3;
+            }
+        }
+    }
+}
+
+}  // namespace
+
 ModelSummary summarizeModel(const scene::SceneData& scene) {
     ModelSummary summary;
     summary.file = scene.sourcePath.string();
@@ -35,6 +64,7 @@ ModelSummary summarizeModel(const scene::SceneData& scene) {
     for (const scene::Instance& instance : scene.instances) {
         counts.drawnTriangles += meshTriangles[instance.mesh.index()];
     }
+    summarizeLevels(scene, counts);
     counts.materials = scene.materials.size();
     counts.textures = scene.textures.size();
     counts.images = scene.images.size();
@@ -86,6 +116,16 @@ std::string formatModelSummary(const ModelSummary& summary) {
     line("primitives", counts.primitives);
     line("triangles", counts.triangles,
          " (" + std::to_string(counts.drawnTriangles) + " drawn by the instances)");
+    if (!counts.levelTriangles.empty()) {
+        std::string perLevel;
+        for (std::uint64_t triangles : counts.levelTriangles) {
+            perLevel += (perLevel.empty() ? "" : ", ") + std::to_string(triangles);
+        }
+        line("levels of detail", counts.levelTriangles.size(),
+             " (triangles per level: " + perLevel + "; " +
+                 std::to_string(counts.primitivesWithLevels) + " of " +
+                 std::to_string(counts.primitives) + " primitives have levels)");
+    }
     line("materials", counts.materials);
     line("textures", counts.textures);
     line("images", counts.images);
@@ -136,6 +176,8 @@ nlohmann::json modelSummaryJson(const ModelSummary& summary) {
         {"placedCameras", counts.placedCameras},
         {"nodes", counts.nodes},
         {"instances", counts.instances},
+        {"levelTriangles", counts.levelTriangles},
+        {"primitivesWithLevels", counts.primitivesWithLevels},
     };
     json["extensions"] = nlohmann::json::array();
     for (const ExtensionInfo& extension : summary.extensions) {

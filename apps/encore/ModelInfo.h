@@ -28,6 +28,11 @@ struct ModelCounts {
     std::size_t placedCameras = 0;
     std::size_t nodes = 0;
     std::size_t instances = 0;
+    // Triangles of the meshes (each counted once) when every primitive draws its level k of
+    // detail, or its coarsest level if it has fewer; one entry per level, level 0 first. Empty
+    // when no primitive has levels (LoadOptions::buildLevelsOfDetail).
+    std::vector<std::uint64_t> levelTriangles;
+    std::size_t primitivesWithLevels = 0;
 };
 
 // One extension the file uses or requires. "shaded": Encore implements it and draws with it;

@@ -9,6 +9,7 @@
 #include "LoadContext.h"
 #include "encore/core/FileIO.h"
 #include "encore/core/Log.h"
+#include "encore/scene/MeshOptimizer.h"
 
 namespace encore::scene {
 namespace {
@@ -126,6 +127,11 @@ Result<SceneData> load(std::span<const std::uint8_t> bytes, LoadContext& context
     ENCORE_TRY(buildNodes(context));
     ENCORE_TRY(convertSkins(context));
     ENCORE_TRY(convertAnimations(context));
+    // Last: it rewrites the index and vertex data every stage above has checked.
+    MeshOptimizerOptions meshOptions;
+    meshOptions.optimizeVertexOrder = context.options.optimizeMeshes;
+    meshOptions.buildLevelsOfDetail = context.options.buildLevelsOfDetail;
+    ENCORE_TRY(optimizeMeshes(context.scene, meshOptions));
     return std::move(context.scene);
 }
 

@@ -144,6 +144,8 @@ TEST(InfoCommandTest, SampleModelWithCamera) {
     ASSERT_EQ(result.exitCode, 0) << result.err;
     EXPECT_TRUE(contains(result.out, "cameras: 1 (1 placed)\n")) << result.out;
     EXPECT_TRUE(contains(result.out, "triangles: 4212")) << result.out;
+    // The chain the loader builds: level 0 is the full mesh, coarser levels follow.
+    EXPECT_TRUE(contains(result.out, "(triangles per level: 4212, ")) << result.out;
     EXPECT_TRUE(contains(result.out, "extensions: none\n")) << result.out;
     EXPECT_TRUE(contains(result.out, "warnings: none\n")) << result.out;
 }

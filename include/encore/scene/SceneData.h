@@ -21,7 +21,11 @@
 //  - every primitive has a material: the glTF default material is appended when needed;
 //  - skins, morph targets and animations are checked (docs/animation.md): joint indices of a
 //    skinned primitive are below its skin's joint count, morph targets have the primitive's
-//    vertex count, animation samplers are decoded to floats with increasing key times.
+//    vertex count, animation samplers are decoded to floats with increasing key times;
+//  - with LoadOptions::optimizeMeshes, indexed triangle lists are reordered for the vertex cache
+//    and vertex fetch, and with buildLevelsOfDetail they get Primitive::levels (MeshOptimizer.h);
+//    buffers that no primitive reads after that are emptied, so only accessors that primitives
+//    reference are guaranteed to lie inside their buffer.
 
 #include <cstdint>
 #include <filesystem>
@@ -103,6 +107,17 @@ struct MorphTarget {
     std::optional<AccessorId> tangent;
 };
 
+// A coarser version of a primitive's triangles, made at load by simplification
+// (MeshOptimizer.h): other indices into the primitive's own vertices.
+struct LevelOfDetail {
+    AccessorId indices;  // Same bufferView and componentType as the primitive's indices.
+    // How far (object-space distance, in the units of POSITION) the level's surface may lie from
+    // the full-detail surface: meshoptimizer's relative error times the positions' extent
+    // (meshopt_simplifyScale). A renderer picks the coarsest level whose error, projected to the
+    // screen, stays under its pixel threshold.
+    float error = 0.0f;
+};
+
 struct Primitive {
     Topology topology = Topology::TriangleList;
     std::vector<VertexAttribute> attributes;  // Sorted by semantic; Position and Normal present.
@@ -112,6 +127,16 @@ struct Primitive {
     Bounds bounds;  // Object-space box of the positions (without skinning or morphing).
     // Morph targets; every primitive of a mesh has the same number (Mesh::weights.size()).
     std::vector<MorphTarget> targets;
+    // Levels of detail 1, 2, ... (levels[0] is level 1; `indices` is level 0), finer to
+    // coarser; empty when the primitive has none (not an indexed triangle list, simplification
+    // declined, or LoadOptions::buildLevelsOfDetail off). Each has at most half the triangles of
+    // the one before and an error no smaller. All of a primitive's index data lies in ONE
+    // bufferView: `indices` at its start (byteOffset 0), then each level at a byteOffset that is
+    // a multiple of 4, all with the same componentType. A renderer binds the index buffer once,
+    // at `indices` (as for level 0), and draws levels[i] with indexCount = its count and
+    // firstIndex = (its byteOffset - indices' byteOffset) / index size; the binding must reach
+    // the end of the view (render::GeometryBuffers' bindings do).
+    std::vector<LevelOfDetail> levels;
 
     std::optional<AccessorId> attribute(Semantic semantic) const;
 };
@@ -366,6 +391,12 @@ struct LoadOptions {
     bool decodeImages = true;  // False skips image decoding (images keep their names only).
     bool strict = false;       // Warnings (missing images, unsupported optional features)
                                // become errors.
+    // Reorders the triangles and vertices of indexed triangle lists for the GPU's vertex cache
+    // and vertex fetch (MeshOptimizer.h); what is drawn stays the same.
+    bool optimizeMeshes = true;
+    // Builds Primitive::levels (MeshOptimizer.h). Costs load time and memory that only a
+    // renderer which selects levels earns back.
+    bool buildLevelsOfDetail = true;
 };
 
 // Loads a .gltf or .glb file. Errors name the file and the offending element:

@@ -73,7 +73,11 @@ TEST(PrimitiveTest, TriangleFanBecomesTriangleList) {
 }
 
 TEST(PrimitiveTest, IndexedTriangleFan) {
-    auto scene = loadGltf(quadBuilder(6, std::vector<std::uint16_t>{3, 0, 1, 2}));
+    // The converter's triangles, in the fan's order (mesh optimisation would reorder them).
+    LoadOptions options;
+    options.optimizeMeshes = false;
+    options.buildLevelsOfDetail = false;
+    auto scene = loadGltf(quadBuilder(6, std::vector<std::uint16_t>{3, 0, 1, 2}), options);
     const Primitive& primitive = loadPrimitive(scene);
     EXPECT_EQ(scene->readIndices(*primitive.indices),
               (std::vector<std::uint32_t>{3, 0, 1, 3, 1, 2}));
