@@ -80,6 +80,10 @@ nlohmann::json toJson(const BenchReport& report) {
                }
                return scenes.empty() ? nlohmann::json::array({"grid"}) : scenes;
            }()}}},
+        {"culling",
+         {{"occlusion", report.options.culling.occlusion},
+          {"levelsOfDetail", report.options.culling.levelsOfDetail},
+          {"lodErrorPixels", report.options.culling.lodErrorPixels}}},
         {"gpuWait", report.options.gpuWait == gpu::WaitMode::Spin && !report.options.callgrind
                         ? "spin"
                         : "block"},
@@ -143,6 +147,11 @@ std::string toMarkdown(const BenchReport& report) {
         << " materials"
         << (report.options.textures ? " (every other one textured)" : " (texture-less)")
         << ", tessellation " << report.options.tessellation
+        << "; gpu-culling: occlusion culling " << (report.options.culling.occlusion ? "on" : "off")
+        << ", levels of detail "
+        << (report.options.culling.levelsOfDetail
+                ? "under " + format("%g", report.options.culling.lodErrorPixels) + " pixel(s)"
+                : std::string("off"))
         << (report.options.pathStep > 0.0f
                 ? "; flythrough and city cameras move " + format("%g", report.options.pathStep) +
                       " units per frame"

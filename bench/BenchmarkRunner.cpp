@@ -266,6 +266,7 @@ Result<BenchReport> runBenchmarks(gpu::Context& context, const BenchOptions& opt
     if (!renderer) {
         return renderer.error();
     }
+    renderer->setCullingOptions(options.culling);
     report.environmentMilliseconds = renderer->lighting().environment().lastBuildMilliseconds();
     auto timer = gpu::GpuTimer::create(context);
     report.timestamps = timer.has_value() && !options.callgrind;

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "Commands.h"
+#include "CullingFlags.h"
 #include "StrategyOptions.h"
 #include "encore/bench/Benchmark.h"
 #include "encore/core/Elapsed.h"
@@ -171,6 +172,7 @@ void addBenchCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) 
                                                  {"block", gpu::WaitMode::Block}},
             CLI::ignore_case));
     command->add_flag("--smoke", options->smoke, "A few frames of small scenes (CI)");
+    addCullingOptions(*command, bench.culling);
     command->callback([options, &global, &exitCode] { exitCode = runBench(*options, global); });
 }
 

@@ -10,6 +10,7 @@
 #include "CameraOptions.h"
 #include "Commands.h"
 #include "StrategyOptions.h"
+#include "CullingFlags.h"
 #include "ShadingOptions.h"
 #include "encore/gpu/Context.h"
 #include "encore/render/Renderer.h"
@@ -37,6 +38,7 @@ struct RenderOptions {
     std::string animate = "cpu";  // --animate cpu|gpu.
     ShadingOptions shading;
     CameraOptions camera;
+    render::CullingOptions culling;
 };
 
 // Views side by side: each camera frames the scene for its strip, turned a few degrees from the
@@ -161,6 +163,7 @@ int runRender(const RenderOptions& options, const GlobalOptions& global) {
     render::RendererOptions rendererOptions;
     rendererOptions.target = {options.width, options.height, options.samples};
     rendererOptions.animation = *render::animationEvaluationFromName(options.animate);
+    rendererOptions.culling = options.culling;
     if (auto shading = applyShadingOptions(options.shading, rendererOptions); !shading) {
         return reportError(shading.error());
     }
@@ -312,6 +315,7 @@ void addRenderCommand(CLI::App& app, const GlobalOptions& global, int& exitCode)
                         "frame_%04d.png");
     addShadingOptions(*command, options->shading);
     addCameraOptions(*command, options->camera);
+    addCullingOptions(*command, options->culling);
     command->callback([options, &global, &exitCode] { exitCode = runRender(*options, global); });
 }
 

@@ -6,6 +6,7 @@
 #include "CameraOptions.h"
 #include "Commands.h"
 #include "StrategyOptions.h"
+#include "CullingFlags.h"
 #include "ShadingOptions.h"
 #include "encore/render/Animometer.h"
 #include "encore/scene/SceneGenerator.h"
@@ -35,6 +36,7 @@ struct ViewOptions {
     std::string screenshot;
     ShadingOptions shading;
     CameraOptions camera;
+    render::CullingOptions culling;
 };
 
 int runView(const ViewOptions& options, const GlobalOptions& global) {
@@ -120,6 +122,7 @@ int runView(const ViewOptions& options, const GlobalOptions& global) {
 
     viewer.renderer.target = {options.width, options.height, options.samples};
     viewer.renderer.animation = *render::animationEvaluationFromName(options.animate);
+    viewer.renderer.culling = options.culling;
     if (auto shading = applyShadingOptions(options.shading, viewer.renderer); !shading) {
         return reportError(shading.error());
     }
@@ -206,6 +209,7 @@ void addViewCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) {
                         "With --frames: save the last frame as this PNG (without the overlay)");
     addShadingOptions(*command, options->shading);
     addCameraOptions(*command, options->camera);
+    addCullingOptions(*command, options->culling);
     command->callback([options, &global, &exitCode] { exitCode = runView(*options, global); });
 }
 

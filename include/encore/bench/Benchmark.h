@@ -40,6 +40,8 @@ std::string_view generatedSceneName(GeneratedScene scene);  // "grid", "flythrou
 std::optional<GeneratedScene> generatedSceneFromName(std::string_view name);
 
 struct BenchOptions {
+    // Occlusion culling and levels of detail of the gpu-culling strategies.
+    render::CullingOptions culling;
     std::vector<std::uint32_t> objectCounts;        // Generated scenes, each of `scenes`.
     std::vector<GeneratedScene> scenes;             // Empty: the grid.
     // How far the camera of the fly-through and the city moves per frame, in scene units; 0:

@@ -83,6 +83,21 @@ CulledDraw GpuCullingStrategy::culledDraw(const PrimitiveDraw& primitive) const 
     draw.indexed = bindings.indices.has_value();
     draw.elementCount = bindings.indices ? bindings.indices->count : bindings.vertexCount;
     draw.topology = bindings.topology;
+    // The coarser levels live in the index view after level 0 (scene::LevelOfDetail), which the
+    // index binding reaches: each is a range of the same index buffer.
+    const scene::SceneData& scene = *mScene;
+    const scene::Mesh& mesh = scene.meshes[scene.instances[primitive.sceneInstance].mesh.value];
+    const scene::Primitive& source = mesh.primitives[primitive.primitive];
+    if (bindings.indices && source.indices) {
+        const scene::Accessor& levelZero = scene.accessors[source.indices->value];
+        for (const scene::LevelOfDetail& level : source.levels) {
+            const scene::Accessor& indices = scene.accessors[level.indices.value];
+            draw.coarserLevels.push_back(
+                {static_cast<std::uint32_t>((indices.byteOffset - levelZero.byteOffset) /
+                                            levelZero.elementSize()),
+                 indices.count, level.error});
+        }
+    }
     return draw;
 }
 

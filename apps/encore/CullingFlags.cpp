@@ -1,0 +1,20 @@
+#include "CullingFlags.h"
+
+namespace encore::app {
+
+void addCullingOptions(CLI::App& command, render::CullingOptions& options) {
+    command
+        .add_option("--lod-error", options.lodErrorPixels,
+                    "gpu-culling strategies: draw each instance at the coarsest level of detail "
+                    "whose simplification error, projected on the screen, stays under this many "
+                    "pixels")
+        ->check(CLI::PositiveNumber)
+        ->capture_default_str();
+    command.add_flag("!--no-lod", options.levelsOfDetail,
+                     "gpu-culling strategies: draw every instance at full detail");
+    command.add_flag("!--no-occlusion", options.occlusion,
+                     "gpu-culling strategies: cull against the frustum only (no two-phase "
+                     "occlusion culling)");
+}
+
+}  // namespace encore::app

@@ -1,0 +1,15 @@
+#pragma once
+
+// Command-line options of GPU culling, shared by render, bench, stats and view: occlusion culling
+// and levels of detail of the gpu-culling strategies (render::CullingOptions).
+
+#include <CLI/CLI.hpp>
+
+#include "encore/render/CullingOptions.h"
+
+namespace encore::app {
+
+// --lod-error PIXELS, --no-lod, --no-occlusion.
+void addCullingOptions(CLI::App& command, render::CullingOptions& options);
+
+}  // namespace encore::app
