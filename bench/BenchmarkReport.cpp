@@ -122,6 +122,14 @@ nlohmann::json toJson(const BenchReport& report) {
             {"bundleContents", toJson(result.bundleContents)},
             {"trianglesSubmitted", countsJson(result.trianglesSubmitted)},
             {"trianglesDrawn", countsJson(result.trianglesDrawn)},
+            {"gpuPassesMs",
+             [&] {
+                 nlohmann::json passes = nlohmann::json::object();
+                 for (const auto& [label, times] : result.gpuPasses) {
+                     passes[label] = percentilesJson(times);
+                 }
+                 return passes;
+             }()},
         });
     }
     return json;
@@ -211,6 +219,26 @@ std::string toMarkdown(const BenchReport& report) {
                     << ") | " << result->animationWork.bytesWritten << " |";
             }
             out << "\n";
+        }
+        // Where the GPU time of strategies with more than one kind of pass goes.
+        bool passes = false;
+        for (const BenchResult* result : results) {
+            passes = passes || result->gpuPasses.size() > 1;
+        }
+        if (passes) {
+            out << "\nGPU time per pass, median (p95):\n\n";
+            for (const BenchResult* result : results) {
+                if (result->gpuPasses.size() <= 1) {
+                    continue;
+                }
+                out << "- " << result->strategy << ":";
+                const char* separator = " ";
+                for (const auto& [passLabel, times] : result->gpuPasses) {
+                    out << separator << passLabel << " " << milliseconds(times);
+                    separator = ", ";
+                }
+                out << "\n";
+            }
         }
     }
     if (!report.skipped.empty()) {

@@ -143,6 +143,7 @@ Result<BenchResult> measure(gpu::Context& context,
     }
     Result<void> animated;
     std::vector<double> animationTimes;
+    std::map<std::string, std::vector<double>> passTimes;
     measureFrames(context, options, result.strategy, result, [&](std::uint32_t frame) {
         double animationMilliseconds = 0.0;
         if (animate) {
@@ -164,12 +165,24 @@ Result<BenchResult> measure(gpu::Context& context,
         result.bundleContents = rendered.bundleContents;
         if (frame >= warmup) {
             result.trianglesSubmitted.push_back(rendered.trianglesSubmitted);
+            if (rendered.gpuMilliseconds && timer && !options.callgrind) {
+                std::map<std::string, double> frameTimes;
+                for (const gpu::GpuTimer::TimedPass& pass : timer->lastPasses()) {
+                    frameTimes[pass.label] += pass.milliseconds;
+                }
+                for (const auto& [label, milliseconds] : frameTimes) {
+                    passTimes[label].push_back(milliseconds);
+                }
+            }
         }
         render::FrameTiming timing(rendered);
         timing.encodeMilliseconds += animationMilliseconds;
         return timing;
     });
     ENCORE_TRY(animated);
+    for (auto& [label, times] : passTimes) {
+        result.gpuPasses[label] = render::Percentiles::of(std::move(times));
+    }
     auto drawn = renderer.takeDrawnTriangles();
     renderer.setTriangleCounting(false);
     if (!drawn) {
@@ -280,16 +293,35 @@ Result<BenchReport> runBenchmarks(gpu::Context& context, const BenchOptions& opt
                                       ? sceneLabel + ", animation on the " +
                                             std::string(render::animationEvaluationName(*animate))
                                       : sceneLabel;
+        // The GPU-culling strategies once more with frustum culling alone, when asked: the
+        // baseline that occlusion culling and levels of detail are measured against.
+        struct Measurement {
+            render::StrategyChoice strategy;
+            render::CullingOptions culling;
+            std::string suffix;
+        };
+        std::vector<Measurement> measurements;
         for (auto strategy : strategies) {
-            if (progress) {
-                progress(label + " / " + render::strategyChoiceName(strategy));
+            measurements.push_back({strategy, options.culling, ""});
+            const bool culls = strategy.kind == render::StrategyKind::GpuCulling ||
+                               strategy.kind == render::StrategyKind::GpuCullingBundles;
+            if (culls && options.frustumBaseline) {
+                measurements.push_back({strategy,
+                                        {.occlusion = false, .levelsOfDetail = false},
+                                        " (frustum only)"});
             }
-            auto result =
-                measure(context, *renderer, scene, strategy, options, timerPointer, animate, path);
+        }
+        for (const Measurement& measurement : measurements) {
+            const std::string name =
+                render::strategyChoiceName(measurement.strategy) + measurement.suffix;
+            if (progress) {
+                progress(label + " / " + name);
+            }
+            renderer->setCullingOptions(measurement.culling);
+            auto result = measure(context, *renderer, scene, measurement.strategy, options,
+                                  timerPointer, animate, path);
             if (!result && result.error().code == ErrorCode::Unsupported) {
-                report.skipped.push_back(label + " / " + render::strategyChoiceName(strategy) +
-                                         ": " +
-                                         result.error().message);
+                report.skipped.push_back(label + " / " + name + ": " + result.error().message);
                 continue;
             }
             if (!result) {
@@ -297,8 +329,10 @@ Result<BenchReport> runBenchmarks(gpu::Context& context, const BenchOptions& opt
             }
             result->scene = kind;
             result->label = label;
+            result->strategy = name;
             report.results.push_back(std::move(*result));
         }
+        renderer->setCullingOptions(options.culling);
         return {};
     };
 

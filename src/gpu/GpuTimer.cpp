@@ -30,10 +30,11 @@ std::optional<GpuTimer> GpuTimer::create(const Context& context, std::uint32_t m
     return timer;
 }
 
-const wgpu::PassTimestampWrites* GpuTimer::nextPass() {
+const wgpu::PassTimestampWrites* GpuTimer::nextPass(std::string_view label) {
     if (mPasses >= mMaxPasses) {
         return nullptr;
     }
+    mLabels[mPasses] = label;
     wgpu::PassTimestampWrites& writes = mWrites[mPasses];
     writes.querySet = mQueries;
     writes.beginningOfPassWriteIndex = mPasses * 2;
@@ -54,6 +55,7 @@ void GpuTimer::resolve(const wgpu::CommandEncoder& commands) {
 std::optional<double> GpuTimer::read(Context& context) {
     const std::uint32_t passes = mPasses;
     mPasses = 0;
+    mLastPasses.clear();
     if (!mResolvedThisFrame || passes == 0) {
         return std::nullopt;
     }
@@ -72,7 +74,9 @@ std::optional<double> GpuTimer::read(Context& context) {
     for (std::uint32_t pass = 0; pass < passes; ++pass) {
         const std::uint64_t begin = ticks[pass * 2];
         const std::uint64_t end = ticks[pass * 2 + 1];
-        nanoseconds += end > begin ? double(end - begin) : 0.0;
+        const double passNanoseconds = end > begin ? double(end - begin) : 0.0;
+        nanoseconds += passNanoseconds;
+        mLastPasses.push_back({mLabels[pass], passNanoseconds / 1e6});
     }
     mStaging.Unmap();
     return nanoseconds / 1e6;

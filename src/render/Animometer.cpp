@@ -268,7 +268,7 @@ FrameTiming AnimometerScene::renderFrame(float timeSeconds, gpu::GpuTimer* timer
     passDescriptor.colorAttachmentCount = 1;
     passDescriptor.colorAttachments = &color;
     passDescriptor.depthStencilAttachment = &depth;
-    passDescriptor.timestampWrites = timer ? timer->nextPass() : nullptr;
+    passDescriptor.timestampWrites = timer ? timer->nextPass("animometer") : nullptr;
     wgpu::RenderPassEncoder pass = commandEncoder.BeginRenderPass(&passDescriptor);
     RenderEncoder encoder(pass, mFrameCounters);
     if (mBundle) {

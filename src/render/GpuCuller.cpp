@@ -307,7 +307,7 @@ void GpuCuller::encodeFirstPhase(const wgpu::Queue& queue, const wgpu::CommandEn
 
     wgpu::ComputePassDescriptor descriptor{};
     descriptor.label = "gpu culling (first phase)";
-    descriptor.timestampWrites = timer ? timer->nextPass() : nullptr;
+    descriptor.timestampWrites = timer ? timer->nextPass("culling (first phase)") : nullptr;
     wgpu::ComputePassEncoder pass = commands.BeginComputePass(&descriptor);
     // Separate dispatches are separate usage scopes: the cull sees the reset's writes.
     pass.SetPipeline(mReset);
@@ -346,13 +346,13 @@ void GpuCuller::encodeSecondPhase(const wgpu::CommandEncoder& commands, const wg
     }
     wgpu::ComputePassDescriptor pyramidDescriptor{};
     pyramidDescriptor.label = "depth pyramid";
-    pyramidDescriptor.timestampWrites = timer ? timer->nextPass() : nullptr;
+    pyramidDescriptor.timestampWrites = timer ? timer->nextPass("depth pyramid") : nullptr;
     wgpu::ComputePassEncoder pyramidPass = commands.BeginComputePass(&pyramidDescriptor);
     mPyramid.encode(pyramidPass);
     pyramidPass.End();
     wgpu::ComputePassDescriptor descriptor{};
     descriptor.label = "gpu culling (second phase)";
-    descriptor.timestampWrites = timer ? timer->nextPass() : nullptr;
+    descriptor.timestampWrites = timer ? timer->nextPass("culling (second phase)") : nullptr;
     wgpu::ComputePassEncoder pass = commands.BeginComputePass(&descriptor);
     pass.SetPipeline(mCullSecond);
     pass.SetBindGroup(0, mCullBindGroup);

@@ -319,9 +319,10 @@ FrameResult Renderer::renderViews(std::span<const Camera> cameras, float timeSec
     return renderPasses(cameras, timeSeconds, nullptr);
 }
 
-const wgpu::PassTimestampWrites* Renderer::timestampWrites(GpuStage stage) {
+const wgpu::PassTimestampWrites* Renderer::timestampWrites(GpuStage stage,
+                                                           std::string_view label) {
     if (mTimer) {
-        return mTimer->nextPass();
+        return mTimer->nextPass(label);
     }
     return mStageTimestamps ? mStageTimestamps->pass(gpuStageIndex(stage)) : nullptr;
 }
@@ -401,7 +402,10 @@ FrameResult Renderer::renderPasses(std::span<const Camera> cameras, float timeSe
         passDescriptor.colorAttachmentCount = 1;
         passDescriptor.colorAttachments = &color;
         passDescriptor.depthStencilAttachment = &depth;
-        passDescriptor.timestampWrites = timestampWrites(GpuStage::Scene);
+        passDescriptor.timestampWrites = timestampWrites(
+            GpuStage::Scene, phase == DrawPhase::First    ? "scene (first phase)"
+                             : phase == DrawPhase::Second ? "scene (second phase)"
+                                                          : "scene");
         wgpu::RenderPassEncoder pass = commandEncoder.BeginRenderPass(&passDescriptor);
         if (multiView) {
             pass.SetViewport(float(view * viewWidth), 0.0f, float(viewWidth),

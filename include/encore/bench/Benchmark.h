@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -42,6 +43,9 @@ std::optional<GeneratedScene> generatedSceneFromName(std::string_view name);
 struct BenchOptions {
     // Occlusion culling and levels of detail of the gpu-culling strategies.
     render::CullingOptions culling;
+    // Also measure each gpu-culling strategy with frustum culling alone ("<name> (frustum
+    // only)"), in the same run.
+    bool frustumBaseline = false;
     std::vector<std::uint32_t> objectCounts;        // Generated scenes, each of `scenes`.
     std::vector<GeneratedScene> scenes;             // Empty: the grid.
     // How far the camera of the fly-through and the city moves per frame, in scene units; 0:
@@ -91,6 +95,9 @@ struct BenchResult {
     render::Percentiles submit;
     render::Percentiles cpu;
     std::optional<render::Percentiles> gpu;
+    // GPU time per pass label (gpu::GpuTimer::lastPasses, same-label passes of a frame summed):
+    // where `gpu` goes, e.g. the culling passes, the depth pyramid and the scene passes.
+    std::map<std::string, render::Percentiles> gpuPasses;
     render::DrawCounters frame;
     render::DrawCounters bundleContents;
     // Per measured frame (scenes drawn by a Renderer): what the draws could draw

@@ -8,6 +8,9 @@
 
 #include <cstdint>
 #include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
 
 #include "encore/gpu/Context.h"
 
@@ -19,8 +22,8 @@ class GpuTimer {
     static std::optional<GpuTimer> create(const Context& context, std::uint32_t maxPasses = 8);
 
     // Timestamp writes for the next pass of the current frame (nullptr once maxPasses were used:
-    // the pass then goes untimed).
-    const wgpu::PassTimestampWrites* nextPass();
+    // the pass then goes untimed). `label` names the pass in lastPasses().
+    const wgpu::PassTimestampWrites* nextPass(std::string_view label = "pass");
 
     // Resolves this frame's queries; call on the frame's command encoder after its last pass.
     void resolve(const wgpu::CommandEncoder& commands);
@@ -29,11 +32,20 @@ class GpuTimer {
     // milliseconds, then starts a new frame. nullopt when no pass was timed.
     std::optional<double> read(Context& context);
 
+    // The passes the last read() summed, in the order they began, each with its label.
+    struct TimedPass {
+        std::string label;
+        double milliseconds = 0.0;
+    };
+    const std::vector<TimedPass>& lastPasses() const { return mLastPasses; }
+
   private:
     wgpu::QuerySet mQueries;
     wgpu::Buffer mResolved;
     wgpu::Buffer mStaging;
     wgpu::PassTimestampWrites mWrites[16];
+    std::string mLabels[16];
+    std::vector<TimedPass> mLastPasses;
     std::uint32_t mMaxPasses = 0;
     std::uint32_t mPasses = 0;
     bool mResolvedThisFrame = false;

@@ -243,7 +243,8 @@ class Renderer {
     Playback playback() const;
     Result<void> restorePlayback(const Playback& playback);
     // The timestamp writes of a pass of `stage`: the GPU timer's, else the stage timestamps'.
-    const wgpu::PassTimestampWrites* timestampWrites(GpuStage stage);
+    const wgpu::PassTimestampWrites* timestampWrites(GpuStage stage,
+                                                     std::string_view label = "pass");
     FrameResult renderPasses(std::span<const Camera> cameras, float timeSeconds,
                              std::vector<RecordedCall>* trace);
 
