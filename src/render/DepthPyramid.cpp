@@ -61,27 +61,9 @@ Result<DepthPyramid> DepthPyramid::create(const wgpu::Device& device,
     descriptor.format = wgpu::TextureFormat::R32Float;
     descriptor.mipLevelCount = static_cast<std::uint32_t>(sizes.size());
     descriptor.usage = wgpu::TextureUsage::StorageBinding | wgpu::TextureUsage::TextureBinding |
-                       wgpu::TextureUsage::CopyDst |  // See below.
-                       wgpu::TextureUsage::CopySrc;   // Read back by tests.
+                       wgpu::TextureUsage::CopySrc;  // Read back by tests.
     pyramid.mPyramid = device.CreateTexture(&descriptor);
     pyramid.mView = pyramid.mPyramid.CreateView();
-    // Written once here so that Dawn holds every level initialised: left to its lazy clearing, a
-    // level read in the frame it is first written (the first pass that builds it) was cleared
-    // again before the culling dispatch read it, hiding whatever that level tested.
-    const wgpu::Queue queue = device.GetQueue();
-    std::vector<float> farthest(std::size_t(sizes[0].first) * sizes[0].second, 1.0f);
-    for (std::uint32_t level = 0; level < sizes.size(); ++level) {
-        wgpu::TexelCopyTextureInfo destination{};
-        destination.texture = pyramid.mPyramid;
-        destination.mipLevel = level;
-        wgpu::TexelCopyBufferLayout layout{};
-        layout.bytesPerRow = sizes[level].first * 4;
-        layout.rowsPerImage = sizes[level].second;
-        const wgpu::Extent3D size{sizes[level].first, sizes[level].second, 1};
-        queue.WriteTexture(&destination, farthest.data(),
-                           std::size_t(sizes[level].first) * sizes[level].second * 4, &layout,
-                           &size);
-    }
 
     const wgpu::TextureView depthView = depth.CreateView();
     for (std::uint32_t level = 0; level < sizes.size(); ++level) {

@@ -344,16 +344,13 @@ void GpuCuller::encodeSecondPhase(const wgpu::CommandEncoder& commands, const wg
         descriptor.entries = &entry;
         mPyramidBindGroup = mSetup->device.CreateBindGroup(&descriptor);
     }
-    wgpu::ComputePassDescriptor pyramidDescriptor{};
-    pyramidDescriptor.label = "depth pyramid";
-    pyramidDescriptor.timestampWrites = timer ? timer->nextPass("depth pyramid") : nullptr;
-    wgpu::ComputePassEncoder pyramidPass = commands.BeginComputePass(&pyramidDescriptor);
-    mPyramid.encode(pyramidPass);
-    pyramidPass.End();
+    // One pass: each dispatch is its own usage scope, so the cull reads the finished pyramid.
     wgpu::ComputePassDescriptor descriptor{};
-    descriptor.label = "gpu culling (second phase)";
-    descriptor.timestampWrites = timer ? timer->nextPass("culling (second phase)") : nullptr;
+    descriptor.label = "depth pyramid and gpu culling (second phase)";
+    descriptor.timestampWrites =
+        timer ? timer->nextPass("depth pyramid and culling (second phase)") : nullptr;
     wgpu::ComputePassEncoder pass = commands.BeginComputePass(&descriptor);
+    mPyramid.encode(pass);
     pass.SetPipeline(mCullSecond);
     pass.SetBindGroup(0, mCullBindGroup);
     pass.SetBindGroup(1, mPyramidBindGroup);
