@@ -98,7 +98,7 @@ class BundleLightingTest : public ::testing::TestWithParam<StrategyKind> {
         ASSERT_TRUE(mRenderer->prepare(mScene, GetParam()).ok());
         mFirst = frame(*mRenderer);
         mRecorded = mRenderer->strategy()->bundlesRecorded();
-        ASSERT_EQ(mRecorded, 1u);
+        ASSERT_EQ(mRecorded, test::bundlesPerRecording(GetParam()));
     }
 
     // The frame after a change equals a fresh renderer's and nothing was recorded again.

@@ -51,6 +51,13 @@ render::RendererOptions pixelTestOptions(std::uint32_t width, std::uint32_t heig
                                          render::DebugChannel channel =
                                              render::DebugChannel::BaseColor);
 
+// The render bundles a bundled strategy records at once and executes per frame (of one view):
+// gpu-culling-bundles draws its frame in two passes for occlusion culling, one bundle each; the
+// others record one.
+inline std::uint64_t bundlesPerRecording(render::StrategyKind kind) {
+    return kind == render::StrategyKind::GpuCullingBundles ? 2 : 1;
+}
+
 // The instance counts GPU culling wrote, per culled draw, summed over its levels of detail and
 // both phases (read back; a failed read or a non-zero firstInstance fails the test).
 std::vector<std::uint32_t> culledInstanceCounts(gpu::Context& context,
