@@ -2,6 +2,8 @@
 #include <cstdlib>
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "Commands.h"
 #include "PlotWriter.h"
@@ -54,26 +56,36 @@ int writePlot(const nlohmann::json& report, const std::string& path) {
 }
 
 void addPlotCommand(CLI::App& app, const GlobalOptions&, int& exitCode) {
-    auto input = std::make_shared<std::string>();
+    auto inputs = std::make_shared<std::vector<std::string>>();
     auto output = std::make_shared<std::string>("bench.svg");
     auto* command = app.add_subcommand(
-        "plot", "Draw the scaling curves of a benchmark report (JSON) as an SVG (and a PNG when "
-                "rsvg-convert is installed).");
-    command->add_option("report", *input, "A report written by encore bench --json")->required();
+        "plot",
+        "Draw the scaling curves of benchmark reports (JSON) as an SVG (and a PNG when "
+        "rsvg-convert is installed). Several reports of one adapter are plotted together.");
+    command->add_option("reports", *inputs, "Reports written by encore bench --json")->required();
     command->add_option("-o,--output", *output, "The SVG to write")->capture_default_str();
-    command->callback([input, output, &exitCode] {
-        auto bytes = readFile(*input);
-        if (!bytes) {
-            exitCode = reportError(bytes.error());
+    command->callback([inputs, output, &exitCode] {
+        std::vector<NamedReport> reports;
+        for (const std::string& input : *inputs) {
+            auto bytes = readFile(input);
+            if (!bytes) {
+                exitCode = reportError(bytes.error());
+                return;
+            }
+            auto report = nlohmann::json::parse(bytes->begin(), bytes->end(), nullptr, false);
+            if (report.is_discarded()) {
+                exitCode = reportError(
+                    makeError(ErrorCode::InvalidFormat, input + ": the report is not valid JSON."));
+                return;
+            }
+            reports.push_back({input, std::move(report)});
+        }
+        auto merged = mergeReports(reports);
+        if (!merged) {
+            exitCode = reportError(merged.error());
             return;
         }
-        const auto report = nlohmann::json::parse(bytes->begin(), bytes->end(), nullptr, false);
-        if (report.is_discarded()) {
-            exitCode = reportError(makeError(ErrorCode::InvalidFormat,
-                                             *input + ": the report is not valid JSON."));
-            return;
-        }
-        exitCode = writePlot(report, *output);
+        exitCode = writePlot(*merged, *output);
     });
 }
 

@@ -16,6 +16,7 @@ namespace {
 using nlohmann::json;
 
 constexpr double kWidth = 900.0;
+constexpr double kWideWidth = 1320.0;  // Three panels side by side.
 constexpr double kMinHeight = 560.0;
 constexpr double kMinPlotHeight = 250.0;
 constexpr double kPlotTop = 78.0;
@@ -40,15 +41,24 @@ const std::array<Outline, 6> kMarkers = {
     Outline{{0, 4.5}, {4.2, -3.2}, {-4.2, -3.2}},
     Outline{{-4.2, -4.2}, {4.2, 4.2}, {4.2, -4.2}, {-4.2, 4.2}}};  // A bow tie.
 
-struct Timing {
+// A median and where its whisker ends: the p95 for times, the maximum for triangle counts.
+struct Spread {
     double median = 0.0;
-    double p95 = 0.0;  // 0 when the report has none: no whisker is drawn.
+    double high = 0.0;  // 0 when the report has none: no whisker is drawn.
 };
 
 struct Point {
     double objects = 0.0;
-    Timing cpu;
-    std::optional<Timing> gpu;
+    Spread cpu;
+    std::optional<Spread> gpu;
+    std::optional<Spread> triangles;  // Per frame: drawn after GPU culling, else submitted.
+};
+
+// What a panel's y axis shows.
+enum class Quantity {
+    CpuMs,
+    GpuMs,
+    Triangles,
 };
 
 struct Series {
@@ -140,13 +150,44 @@ std::optional<double> numberAt(const json& object, const char* pointer) {
     return object[at].get<double>();
 }
 
+// A per-frame array of counts; missing and null read as empty. The error message is completed
+// by the caller, which knows which result this is.
+Result<std::vector<double>> readCounts(const json& result, const char* key) {
+    std::vector<double> counts;
+    auto it = result.find(key);
+    if (it == result.end() || it->is_null()) {
+        return counts;
+    }
+    if (!it->is_array()) {
+        return makeError(ErrorCode::InvalidFormat,
+                         "has a \"" + std::string(key) + "\" that is neither an array nor null");
+    }
+    for (const json& count : *it) {
+        if (!count.is_number()) {
+            return makeError(ErrorCode::InvalidFormat,
+                             "has a non-numeric entry in \"" + std::string(key) + "\"");
+        }
+        counts.push_back(count.get<double>());
+    }
+    return counts;
+}
+
+// The median (the mean of the middle two for an even count) and the maximum.
+Spread summarize(std::vector<double> values) {
+    std::sort(values.begin(), values.end());
+    const size_t middle = values.size() / 2;
+    const double median =
+        values.size() % 2 ? values[middle] : (values[middle - 1] + values[middle]) / 2;
+    return {median, values.back()};
+}
+
 // The error message is completed by the caller, which knows which result this is.
 Result<Point> readPoint(const json& result) {
     const auto objects = numberAt(result, "/objects");
     if (!objects) {
         return makeError(ErrorCode::InvalidFormat, "has no numeric \"objects\" count");
     }
-    Point point{*objects, {}, {}};
+    Point point{*objects, {}, {}, {}};
     if (auto cpu = numberAt(result, "/cpuMs/median")) {
         point.cpu = {*cpu, numberAt(result, "/cpuMs/p95").value_or(0.0)};
     } else {
@@ -168,7 +209,18 @@ Result<Point> readPoint(const json& result) {
         if (!gpu) {
             return makeError(ErrorCode::InvalidFormat, "has no numeric \"gpuMs.median\"");
         }
-        point.gpu = Timing{*gpu, numberAt(result, "/gpuMs/p95").value_or(0.0)};
+        point.gpu = Spread{*gpu, numberAt(result, "/gpuMs/p95").value_or(0.0)};
+    }
+    // Strategies without GPU culling draw what they submit and report "trianglesDrawn": null.
+    for (const char* key : {"trianglesDrawn", "trianglesSubmitted"}) {
+        auto counts = readCounts(result, key);
+        if (!counts) {
+            return counts.error();
+        }
+        if (!counts->empty()) {
+            point.triangles = summarize(*counts);
+            break;
+        }
     }
     return point;
 }
@@ -182,7 +234,8 @@ Result<std::vector<Series>> readSeries(const json& results) {
                              "Benchmark result " + std::to_string(i) + " has no \"scene\" string.");
         }
         const std::string scene = result["scene"].get<std::string>();
-        if (scene != "generated" && scene != "animometer" && scene != "crowd") {
+        const bool walkthrough = scene == "flythrough" || scene == "city";
+        if (scene != "generated" && scene != "animometer" && scene != "crowd" && !walkthrough) {
             continue;  // Single models have no object-count axis.
         }
         const std::string animation = result.contains("animation") && result["animation"].is_string()
@@ -203,11 +256,13 @@ Result<std::vector<Series>> readSeries(const json& results) {
         });
         if (it == series.end()) {
             // A crowd's axis counts characters; its series say where the animation ran.
+            // Generated walkthroughs share strategy names; the scene tells their curves apart.
             const std::string label =
                 scene == "crowd"
                     ? (animation.empty() ? std::string("still") : animation + "-animated") + " " +
                           strategy
-                    : strategy;
+                : walkthrough ? scene + ": " + strategy
+                              : strategy;
             it = series.insert(series.end(), Series{scene, animation, strategy, label, {}});
         }
         it->points.push_back(*point);
@@ -233,8 +288,16 @@ bool plottable(double value) {
     return value > 0 && std::isfinite(value);
 }
 
-std::optional<Timing> timingOf(const Point& point, bool gpu) {
-    return gpu ? point.gpu : std::optional<Timing>(point.cpu);
+std::optional<Spread> spreadOf(const Point& point, Quantity quantity) {
+    switch (quantity) {
+        case Quantity::CpuMs:
+            return point.cpu;
+        case Quantity::GpuMs:
+            return point.gpu;
+        case Quantity::Triangles:
+            return point.triangles;
+    }
+    return std::nullopt;
 }
 
 // Appends SVG elements to one string; every coordinate goes through number().
@@ -286,16 +349,16 @@ struct PanelBox {
     double left, right, top, bottom;
 };
 
-// The positive medians and p95s a panel shows, which set its y range.
-std::vector<double> panelValues(const std::vector<Series>& series, bool gpu) {
+// The positive medians and whisker ends a panel shows, which set its y range.
+std::vector<double> panelValues(const std::vector<Series>& series, Quantity quantity) {
     std::vector<double> values;
     for (const Series& s : series) {
         for (const Point& p : s.points) {
-            auto t = timingOf(p, gpu);
+            auto t = spreadOf(p, quantity);
             if (plottable(p.objects) && t && plottable(t->median)) {
                 values.push_back(t->median);
-                if (plottable(t->p95)) {
-                    values.push_back(t->p95);
+                if (plottable(t->high)) {
+                    values.push_back(t->high);
                 }
             }
         }
@@ -305,10 +368,11 @@ std::vector<double> panelValues(const std::vector<Series>& series, bool gpu) {
 
 void appendPanel(SvgBuilder& svg,
                  const std::vector<Series>& series,
-                 bool gpu,
+                 Quantity quantity,
                  std::pair<int, int> xDecades,
                  const PanelBox& box) {
-    const std::vector<double> values = panelValues(series, gpu);
+    const std::vector<double> values = panelValues(series, quantity);
+    const bool counts = quantity == Quantity::Triangles;
     const auto [yLow, yHigh] = decadeRange(values);
     const LogAxis xAxis{xDecades.first, xDecades.second, box.left, box.right};
     const LogAxis yAxis{yLow, yHigh, box.bottom, box.top};
@@ -316,8 +380,10 @@ void appendPanel(SvgBuilder& svg,
     const double yMid = (box.top + box.bottom) / 2;
 
     svg.out += "<g class=\"panel\">\n";
-    svg.text(xMid, box.top - 12,
-             gpu ? "GPU time per frame, median" : "CPU time per frame (encode + submit), median",
+    const char* title = quantity == Quantity::CpuMs ? "CPU time per frame (encode + submit), median"
+                        : quantity == Quantity::GpuMs ? "GPU time per frame, median"
+                                                      : "Triangles per frame, median";
+    svg.text(xMid, box.top - 12, title,
              "text-anchor=\"middle\" font-size=\"13\" font-weight=\"bold\"");
     // Decade gridlines carry the labels; fainter ones at 2..9 make log distances readable.
     for (bool vertical : {true, false}) {
@@ -331,7 +397,7 @@ void appendPanel(SvgBuilder& svg,
             }
             const double p = axis.map(std::pow(10.0, e));
             vertical ? svg.text(p, box.bottom + 15, decadeLabel(e, true), "text-anchor=\"middle\"")
-                     : svg.text(box.left - 6, p + 4, decadeLabel(e, false), "text-anchor=\"end\"");
+                     : svg.text(box.left - 6, p + 4, decadeLabel(e, counts), "text-anchor=\"end\"");
         }
     }
     svg.out += "<rect x=\"" + number(box.left) + "\" y=\"" + number(box.top) + "\" width=\"" +
@@ -339,7 +405,8 @@ void appendPanel(SvgBuilder& svg,
                "\" fill=\"none\" stroke=\"#444444\"/>\n";
     svg.text(xMid, box.bottom + 32, "objects (crowds: characters; log scale)",
              "text-anchor=\"middle\"");
-    svg.text(box.left - 44, yMid, "milliseconds (log scale)",
+    svg.text(box.left - 44, yMid,
+             counts ? "triangles drawn (else submitted; log scale)" : "milliseconds (log scale)",
              "text-anchor=\"middle\" transform=\"rotate(-90 " + number(box.left - 44) + " " +
                  number(yMid) + ")\"");
     if (values.empty()) {
@@ -351,21 +418,23 @@ void appendPanel(SvgBuilder& svg,
         std::string points;
         SvgBuilder marks;
         for (const Point& p : s.points) {
-            auto t = timingOf(p, gpu);
+            auto t = spreadOf(p, quantity);
             if (!plottable(p.objects) || !t || !plottable(t->median)) {
                 continue;
             }
             const double x = xAxis.map(p.objects);
             const double y = yAxis.map(t->median);
             points += (points.empty() ? "" : " ") + number(x) + "," + number(y);
+            const std::string unit = counts ? " triangles" : " ms";
+            const int precision = counts ? 0 : 3;
             std::string tip = s.label + ": " + number(p.objects, 0) + " objects, median " +
-                              number(t->median, 3) + " ms";
-            if (plottable(t->p95)) {
-                const double yP95 = yAxis.map(t->p95);
+                              number(t->median, precision) + unit;
+            if (plottable(t->high)) {
+                const double yP95 = yAxis.map(t->high);
                 marks.out += "<path class=\"p95\" fill=\"none\" d=\"M" + number(x) + "," +
                              number(y) + "V" + number(yP95) + "M" + number(x - 3) + "," +
                              number(yP95) + "H" + number(x + 3) + "\"/>\n";
-                tip += ", p95 " + number(t->p95, 3) + " ms";
+                tip += (counts ? ", max " : ", p95 ") + number(t->high, precision) + unit;
             }
             marks.marker(i, x, y, tip);
         }
@@ -378,8 +447,8 @@ void appendPanel(SvgBuilder& svg,
     svg.out += "</g>\n";
 }
 
-void appendLegend(SvgBuilder& svg, const std::vector<Series>& series, double top) {
-    const double columnWidth = (kWidth - 40) / kLegendColumns;
+void appendLegend(SvgBuilder& svg, const std::vector<Series>& series, double width, double top) {
+    const double columnWidth = (width - 40) / kLegendColumns;
     svg.out += "<g class=\"legend\">\n";
     for (size_t i = 0; i < series.size(); ++i) {
         const double x = 20 + static_cast<double>(i % kLegendColumns) * columnWidth;
@@ -399,7 +468,7 @@ std::string stringField(const json& object, const char* key) {
 }
 
 // "encore 0.1.0 · Dawn ... · 60 frames after 10 warm-up": what a reader needs to compare runs.
-std::string detailsLine(const json& report, bool anyGpu) {
+std::string detailsLine(const json& report, bool anyGpu, bool anyTriangles) {
     std::string line = "encore " + stringField(report, "encore");
     if (auto dawn = stringField(report, "dawn"); !dawn.empty()) {
         line += " \xC2\xB7 Dawn " + dawn;
@@ -411,10 +480,42 @@ std::string detailsLine(const json& report, bool anyGpu) {
         }
     }
     return line + (anyGpu ? "" : " \xC2\xB7 no GPU timestamps") +
-           " \xC2\xB7 whiskers: median to p95";
+           " \xC2\xB7 whiskers: median to p95" + (anyTriangles ? " (triangles: to max)" : "");
 }
 
 }  // namespace
+
+Result<json> mergeReports(const std::vector<NamedReport>& reports) {
+    if (reports.empty()) {
+        return makeError(ErrorCode::InvalidFormat, "No benchmark report to merge.");
+    }
+    json merged;
+    for (const NamedReport& named : reports) {
+        const json& report = named.report;
+        if (!report.is_object() || !report.contains("results") || !report["results"].is_array()) {
+            return makeError(ErrorCode::InvalidFormat,
+                             named.name + ": the benchmark report has no \"results\" array.");
+        }
+        if (merged.is_null()) {
+            merged = report;
+            continue;
+        }
+        // Timings of different adapters (or drivers) do not belong on one curve.
+        const json none;
+        const json& first = merged.contains("adapter") ? merged["adapter"] : none;
+        const json& adapter = report.contains("adapter") ? report["adapter"] : none;
+        if (adapter != first) {
+            return makeError(ErrorCode::InvalidFormat,
+                             named.name + ": the adapter (" + adapter.dump() +
+                                 ") differs from that of " + reports.front().name + " (" +
+                                 first.dump() + "); plot reports of one adapter together.");
+        }
+        for (const json& result : report["results"]) {
+            merged["results"].push_back(result);
+        }
+    }
+    return merged;
+}
 
 Result<std::string> plotScalingSvg(const json& report) {
     if (!report.is_object() || !report.contains("results") || !report["results"].is_array()) {
@@ -433,21 +534,31 @@ Result<std::string> plotScalingSvg(const json& report) {
     const std::vector<Series>& series = *read;
     if (series.empty()) {
         return makeError(ErrorCode::InvalidFormat,
-                         "The benchmark report has no \"generated\", \"animometer\" or \"crowd\" "
-                         "results to plot (" +
+                         "The benchmark report has no \"generated\", \"animometer\", \"crowd\", "
+                         "\"flythrough\" or \"city\" results to plot (" +
                              std::to_string(report["results"].size()) + " results).");
     }
 
     std::vector<double> objects;
     bool anyGpu = false;
+    bool anyTriangles = false;
     for (const Series& s : series) {
         for (const Point& p : s.points) {
             if (plottable(p.objects)) {
                 objects.push_back(p.objects);
             }
             anyGpu = anyGpu || p.gpu.has_value();
+            anyTriangles = anyTriangles || p.triangles.has_value();
         }
     }
+    std::vector<Quantity> quantities = {Quantity::CpuMs};
+    if (anyGpu) {
+        quantities.push_back(Quantity::GpuMs);
+    }
+    if (anyTriangles) {
+        quantities.push_back(Quantity::Triangles);
+    }
+    const double width = quantities.size() > 2 ? kWideWidth : kWidth;
 
     const size_t legendRows = (series.size() + kLegendColumns - 1) / kLegendColumns;
     const double legendHeight = static_cast<double>(legendRows) * kLegendRowHeight;
@@ -464,23 +575,22 @@ Result<std::string> plotScalingSvg(const json& report) {
     }
 
     SvgBuilder svg;
-    const std::string width = number(kWidth, 0);
-    svg.out += "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + width + "\" height=\"" +
-               number(height, 0) + "\" viewBox=\"0 0 " + width + " " + number(height, 0) +
+    const std::string widthText = number(width, 0);
+    svg.out += "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + widthText + "\" height=\"" +
+               number(height, 0) + "\" viewBox=\"0 0 " + widthText + " " + number(height, 0) +
                "\" font-family=\"sans-serif\" font-size=\"11\">\n";
     svg.out += "<rect width=\"100%\" height=\"100%\" fill=\"#ffffff\"/>\n";
-    svg.text(kWidth / 2, 24, title, "text-anchor=\"middle\" font-size=\"15\" font-weight=\"bold\"");
-    svg.text(kWidth / 2, 42, detailsLine(report, anyGpu),
+    svg.text(width / 2, 24, title, "text-anchor=\"middle\" font-size=\"15\" font-weight=\"bold\"");
+    svg.text(width / 2, 42, detailsLine(report, anyGpu, anyTriangles),
              "text-anchor=\"middle\" fill=\"#555555\"");
 
-    const int panels = anyGpu ? 2 : 1;
-    const double panelWidth = (kWidth - 20) / panels;
-    for (int i = 0; i < panels; ++i) {
-        const double left = 10 + panelWidth * i;
-        appendPanel(svg, series, i == 1, decadeRange(objects),
+    const double panelWidth = (width - 20) / static_cast<double>(quantities.size());
+    for (size_t i = 0; i < quantities.size(); ++i) {
+        const double left = 10 + panelWidth * static_cast<double>(i);
+        appendPanel(svg, series, quantities[i], decadeRange(objects),
                     {left + 64, left + panelWidth - 18, kPlotTop, legendTop - 44});
     }
-    appendLegend(svg, series, legendTop);
+    appendLegend(svg, series, width, legendTop);
     svg.out += "</svg>\n";
     return std::move(svg.out);
 }

@@ -1,36 +1,59 @@
 #pragma once
 
 // Plots of `encore bench` reports. A report holds one entry per (scene, strategy, object count);
-// the scaling plot shows how the per-frame time of each strategy grows with the number of
-// objects, so strategies can be compared across several orders of magnitude at a glance.
+// the scaling plot shows how the per-frame CPU and GPU time (and, for culling strategies, the
+// triangles drawn) of each strategy grow with the number of objects, so strategies can be
+// compared across several orders of magnitude at a glance.
 
-#include <nlohmann/json_fwd.hpp>
+#include <nlohmann/json.hpp>
 
 #include <string>
+#include <vector>
 
 #include "encore/core/Result.h"
 
 namespace encore::app {
 
 // Renders the scaling curves of a benchmark report as a self-contained SVG document (about
-// 900×560 px, no external fonts, scripts or images).
+// 900×560 px, 1320 px wide with three panels; no external fonts, scripts or images).
 //
-// Plotted are the results whose "scene" is "generated" (one series per "strategy", points sorted
-// by "objects") and those whose "scene" is "animometer" (their own series, one per strategy);
-// other scenes (single models) have no object-count axis and are left out. Both axes are log10:
-// x is the object count, y milliseconds. Each point is a median with a whisker up to the p95.
-// The left (or only) panel shows CPU time per frame: "cpuMs" where the report has it, otherwise
-// "encodeMs" + "submitMs" (the p95 then being the sum of both p95s, an upper bound). A second
-// panel with "gpuMs" appears when any plotted result has GPU timings; "gpuMs": null means the
-// adapter had no timestamp queries. Points whose values are not positive are skipped, since a
-// log axis cannot show them.
+// Plotted are the results whose "scene" is
+//   - "generated": one series per "strategy";
+//   - "animometer": their own series, one per strategy;
+//   - "crowd": one series per strategy and "animation" (where the animation was evaluated);
+//   - "flythrough" or "city" (generated walkthroughs): one series per scene and strategy, named
+//     "<scene>: <strategy>".
+// Points are sorted by "objects" (characters for crowds). Other scenes (single models) have no
+// object-count axis and are left out. Both axes are log10: x is the object count.
+//
+// Each point is a median with a whisker. The first panel shows CPU time per frame in ms: "cpuMs"
+// where the report has it, otherwise "encodeMs" + "submitMs" (the p95 then being the sum of both
+// p95s, an upper bound). A second panel with "gpuMs" appears when any plotted result has GPU
+// timings; "gpuMs": null means the adapter had no timestamp queries. Time whiskers end at the p95.
+// A last panel, "triangles per frame", appears when any plotted result has per-frame triangle
+// counts: the median of "trianglesDrawn" (what GPU culling let through), or of
+// "trianglesSubmitted" where "trianglesDrawn" is null or empty (strategies that draw what they
+// submit), with a whisker up to the largest count. Points whose values are not positive are
+// skipped, since a log axis cannot show them.
 //
 // The output depends only on the report: the same JSON gives the same bytes, with coordinates
 // printed to one decimal whatever the process locale.
 //
 // Returns an InvalidFormat error naming the offending field when the report lacks "results" or
 // "adapter.name", when a plotted result lacks a "strategy", an "objects" count or a CPU median,
-// or when no result is plottable at all.
+// when a triangle count array holds a non-number, or when no result is plottable at all.
 Result<std::string> plotScalingSvg(const nlohmann::json& report);
+
+// One parsed report and the name (its path) that error messages use.
+struct NamedReport {
+    std::string name;
+    nlohmann::json report;
+};
+
+// Joins several reports of one adapter into one, so runs made separately (one per object count)
+// plot as one set of curves: the "results" arrays are concatenated in order, and every other field
+// (adapter, date, frames, ...) is the first report's. Returns an InvalidFormat error when there
+// is no report, when one lacks a "results" array, or when an "adapter" differs from the first's.
+Result<nlohmann::json> mergeReports(const std::vector<NamedReport>& reports);
 
 }  // namespace encore::app

@@ -381,5 +381,130 @@ TEST(PlotWriterTest, CrowdsAreSeriesPerAnimationPath) {
     EXPECT_NE(svg.find(">gpu-animated bundles</text>"), std::string::npos);
 }
 
+// A generated walkthrough ("flythrough" or "city") as `encore bench --scene` writes it; drawn
+// empty stands for "trianglesDrawn": null (a strategy without GPU culling).
+json walkthrough(const std::string& scene,
+                 const std::string& strategy,
+                 int objects,
+                 double gpu,
+                 std::vector<int> submitted,
+                 std::vector<int> drawn = {}) {
+    json entry = result(scene, strategy, objects, 0.3, gpu);
+    entry["trianglesSubmitted"] = submitted;
+    entry["trianglesDrawn"] = drawn.empty() ? json(nullptr) : json(drawn);
+    return entry;
+}
+
+TEST(PlotWriterTest, WalkthroughsAreSeriesPerSceneAndStrategy) {
+    json results = json::array();
+    for (int objects : {100000, 1000000}) {
+        for (const char* scene : {"flythrough", "city"}) {
+            results.push_back(walkthrough(scene, "bundles", objects, objects * 1e-5, {}));
+            results.push_back(walkthrough(scene, "gpu-culling-bundles", objects, 2.0, {}, {}));
+        }
+    }
+    const std::string svg = plot(report(results));
+    EXPECT_TRUE(isWellFormed(svg));
+    const auto all = panels(svg);
+    ASSERT_EQ(all.size(), 2u);  // No triangle counts: CPU and GPU only.
+    for (const std::string& panel : all) {
+        for (const char* series : {"flythrough: bundles", "flythrough: gpu-culling-bundles",
+                                   "city: bundles", "city: gpu-culling-bundles"}) {
+            EXPECT_EQ(polyline(panel, series).size(), 2u) << series;
+        }
+    }
+    // GPU time of bundles grows tenfold from 100k to 1M objects: one decade up, x one decade on.
+    const auto bundles = polyline(all[1], "city: bundles");
+    const auto culling = polyline(all[1], "city: gpu-culling-bundles");
+    EXPECT_LT(bundles[0].first, bundles[1].first);
+    EXPECT_GT(bundles[0].second, bundles[1].second);
+    EXPECT_DOUBLE_EQ(culling[0].second, culling[1].second);
+    EXPECT_NE(svg.find(">flythrough: gpu-culling-bundles</text>"), std::string::npos);
+    EXPECT_EQ(svg.find("Triangles per frame"), std::string::npos);
+}
+
+TEST(PlotWriterTest, TrianglesPanelShowsMedianDrawnElseSubmittedWithWhiskerToMax) {
+    const json results =
+        json::array({walkthrough("city", "bundles", 100000, 4.0, {3000000, 3000000, 3000000}),
+                     walkthrough("city", "gpu-culling-bundles", 100000, 0.8,
+                                 {3000000, 3000000, 3000000}, {30000, 50000, 20000, 40000}),
+                     walkthrough("city", "gpu-culling-bundles", 1000000, 0.9, {30000000},
+                                 {100000, 300000, 200000}),
+                     result("generated", "naive", 1000, 2.0, 3.0)});
+    const std::string svg = plot(report(results));
+    EXPECT_TRUE(isWellFormed(svg));
+    EXPECT_NE(svg.find("width=\"1320\""), std::string::npos);
+    const auto all = panels(svg);
+    ASSERT_EQ(all.size(), 3u);
+    EXPECT_NE(all[2].find("Triangles per frame, median"), std::string::npos);
+    EXPECT_EQ(polyline(all[2], "naive").size(), 0u);  // No triangle counts.
+    const auto bundles = polyline(all[2], "city: bundles");
+    const auto culling = polyline(all[2], "city: gpu-culling-bundles");
+    ASSERT_EQ(bundles.size(), 1u);
+    ASSERT_EQ(culling.size(), 2u);
+    // Medians 3M (submitted), 35k (the mean of the middle two drawn) and 200k, on a log y axis.
+    EXPECT_DOUBLE_EQ(culling[0].first, bundles[0].first);
+    const double rise = culling[0].second - culling[1].second;
+    const double toSubmitted = culling[0].second - bundles[0].second;
+    EXPECT_NEAR(rise / toSubmitted, std::log10(200000.0 / 35000) / std::log10(3000000.0 / 35000),
+                0.01);
+    EXPECT_NE(all[2].find("city: gpu-culling-bundles: 100000 objects, median 35000 triangles, "
+                          "max 50000 triangles"),
+              std::string::npos);
+    EXPECT_NE(all[2].find("city: bundles: 100000 objects, median 3000000 triangles, max "
+                          "3000000 triangles"),
+              std::string::npos);
+    EXPECT_NE(all[2].find("city: gpu-culling-bundles: 1000000 objects, median 200000 triangles"),
+              std::string::npos);
+    EXPECT_GT(culling[0].second, bundles[0].second);            // Fewer triangles sit lower.
+    EXPECT_NE(all[2].find(">100k</text>"), std::string::npos);  // Count labels on y as well.
+    EXPECT_NE(svg.find("(triangles: to max)"), std::string::npos);
+    EXPECT_EQ(plot(report(results)), svg);
+}
+
+TEST(PlotWriterTest, NonNumericTriangleCountIsAnError) {
+    json entry = walkthrough("city", "bundles", 1000, 1.0, {10, 20});
+    entry["trianglesSubmitted"][1] = "many";
+    auto svg = plotScalingSvg(report(json::array({entry})));
+    ASSERT_FALSE(svg.ok());
+    EXPECT_NE(svg.error().message.find("'city 1000 objects'"), std::string::npos)
+        << svg.error().message;
+    EXPECT_NE(svg.error().message.find("\"trianglesSubmitted\""), std::string::npos);
+}
+
+TEST(PlotWriterTest, MergedReportsConcatenateResults) {
+    const json small = report(json::array({walkthrough("city", "bundles", 100000, 4.0, {})}));
+    json large = report(json::array({walkthrough("city", "bundles", 1000000, 33.0, {})}));
+    large["date"] = "2026-11-22T10:00:00Z";
+    auto merged = mergeReports({{"small.json", small}, {"large.json", large}});
+    ASSERT_TRUE(merged.ok()) << merged.error().message;
+    ASSERT_EQ((*merged)["results"].size(), 2u);
+    EXPECT_EQ((*merged)["results"][1]["objects"], 1000000);
+    EXPECT_EQ((*merged)["date"], small["date"]);  // Everything else is the first report's.
+    const std::string svg = plot(*merged);
+    EXPECT_EQ(polyline(panels(svg).at(1), "city: bundles").size(), 2u);
+
+    auto single = mergeReports({{"small.json", small}});
+    ASSERT_TRUE(single.ok());
+    EXPECT_EQ(*single, small);
+}
+
+TEST(PlotWriterTest, MergingReportsOfDifferentAdaptersIsAnError) {
+    const json a = report(json::array({result("generated", "naive", 10, 1.0)}));
+    const json b = report(json::array({result("generated", "naive", 100, 2.0)}), "Other GPU");
+    auto merged = mergeReports({{"a.json", a}, {"b.json", b}});
+    ASSERT_FALSE(merged.ok());
+    EXPECT_EQ(merged.error().code, ErrorCode::InvalidFormat);
+    EXPECT_NE(merged.error().message.find("b.json"), std::string::npos) << merged.error().message;
+    EXPECT_NE(merged.error().message.find("Other GPU"), std::string::npos);
+
+    json noResults = a;
+    noResults.erase("results");
+    auto broken = mergeReports({{"a.json", a}, {"c.json", noResults}});
+    ASSERT_FALSE(broken.ok());
+    EXPECT_NE(broken.error().message.find("c.json"), std::string::npos);
+    EXPECT_FALSE(mergeReports({}).ok());
+}
+
 }  // namespace
 }  // namespace encore::app
