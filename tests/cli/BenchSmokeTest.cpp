@@ -139,6 +139,39 @@ TEST(BenchSmokeTest, FlythroughAndCityReportTrianglesPerFrame) {
         << run.command.out;
 }
 
+// The culling options reach the report, --frustum-baseline adds a frustum-only measurement of
+// each culling strategy, and per-pass GPU times name the culling passes when timestamps exist.
+TEST(BenchSmokeTest, CullingOptionsAndTheFrustumBaseline) {
+    const auto dir = makeTempDir("bench-culling");
+    const auto run = runBench(dir,
+                              "--scene city --objects 200 --frames 2 --warmup 1 -s "
+                              "gpu-culling-bundles --frustum-baseline --lod-error 2.5 "
+                              "--width 64 --height 64");
+    ASSERT_EQ(run.command.exitCode, 0) << run.command.err;
+    ASSERT_FALSE(run.report.is_discarded());
+    EXPECT_EQ(run.report["culling"]["occlusion"], true);
+    EXPECT_EQ(run.report["culling"]["levelsOfDetail"], true);
+    EXPECT_EQ(run.report["culling"]["lodErrorPixels"], 2.5);
+    const auto& results = run.report["results"];
+    ASSERT_EQ(results.size(), 2u);
+    EXPECT_EQ(results[0]["strategy"], "gpu-culling-bundles");
+    EXPECT_EQ(results[1]["strategy"], "gpu-culling-bundles (frustum only)");
+    if (run.report["timestamps"] == true) {
+        EXPECT_TRUE(results[0]["gpuPassesMs"].contains("depth pyramid and culling (second phase)"));
+        EXPECT_FALSE(results[1]["gpuPassesMs"].contains("scene (second phase)"));
+    }
+
+    const auto off = runBench(dir, "--scene city --objects 200 --frames 2 --warmup 1 -s "
+                                   "gpu-culling --no-occlusion --no-lod --width 64 --height 64");
+    ASSERT_EQ(off.command.exitCode, 0) << off.command.err;
+    EXPECT_EQ(off.report["culling"]["occlusion"], false);
+    EXPECT_EQ(off.report["culling"]["levelsOfDetail"], false);
+
+    const auto bad = runBench(dir, "--objects 10 --lod-error 0");
+    EXPECT_NE(bad.command.exitCode, 0);
+    EXPECT_NE(bad.command.err.find("--lod-error"), std::string::npos) << bad.command.err;
+}
+
 }  // namespace
 }  // namespace encore::test
 
