@@ -72,15 +72,10 @@ std::uint64_t sum(const std::vector<std::uint32_t>& counts) {
 
 // Instances drawn in one phase, summed over draws and levels.
 std::uint64_t phaseCount(gpu::Context& context, const GpuCuller& culler, std::uint32_t phase) {
-    auto bytes = gpu::readBuffer(context, culler.indirectArguments(), 0,
-                                 culler.indirectArguments().GetSize());
-    EXPECT_TRUE(bytes.ok());
     std::uint64_t total = 0;
-    for (std::size_t draw = 0; bytes.ok() && draw < culler.draws().size(); ++draw) {
-        for (std::uint32_t level = 0; level < culler.draws()[draw].levelCount(); ++level) {
-            std::uint32_t count = 0;
-            std::memcpy(&count, bytes->data() + culler.argumentsOffset(draw, level, phase) + 4, 4);
-            total += count;
+    for (const auto& levels : test::culledCountsByLevel(context, culler)) {
+        for (const auto& phases : levels) {
+            total += phases[phase];
         }
     }
     return total;

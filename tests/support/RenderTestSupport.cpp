@@ -55,23 +55,35 @@ render::RendererOptions pixelTestOptions(std::uint32_t width, std::uint32_t heig
     return options;
 }
 
-std::vector<std::uint32_t> culledInstanceCounts(gpu::Context& context,
-                                                const render::GpuCuller& culler) {
+CulledCounts culledCountsByLevel(gpu::Context& context, const render::GpuCuller& culler) {
     using render::GpuCuller;
+    static_assert(GpuCuller::kPhases == 2);
     auto bytes = gpu::readBuffer(context, culler.indirectArguments(), 0,
                                  culler.indirectArguments().GetSize());
     EXPECT_TRUE(bytes.ok()) << bytes.error().message;
-    std::vector<std::uint32_t> counts;
+    CulledCounts counts;
     for (std::size_t draw = 0; draw < culler.draws().size() && bytes.ok(); ++draw) {
-        std::uint32_t count = 0;
-        for (std::uint32_t level = 0; level < culler.draws()[draw].levelCount(); ++level) {
+        auto& levels = counts.emplace_back(culler.draws()[draw].levelCount());
+        for (std::uint32_t level = 0; level < levels.size(); ++level) {
             for (std::uint32_t phase = 0; phase < GpuCuller::kPhases; ++phase) {
                 std::uint32_t words[5];
                 std::memcpy(words, bytes->data() + culler.argumentsOffset(draw, level, phase),
                             sizeof(words));
                 EXPECT_EQ(words[4], 0u) << "firstInstance must stay 0 (draw " << draw << ")";
-                count += words[1];
+                levels[level][phase] = words[1];
             }
+        }
+    }
+    return counts;
+}
+
+std::vector<std::uint32_t> culledInstanceCounts(gpu::Context& context,
+                                                const render::GpuCuller& culler) {
+    std::vector<std::uint32_t> counts;
+    for (const auto& levels : culledCountsByLevel(context, culler)) {
+        std::uint32_t count = 0;
+        for (const auto& phases : levels) {
+            count += phases[0] + phases[1];
         }
         counts.push_back(count);
     }

@@ -2,6 +2,7 @@
 
 // Cameras and projections shared by the pixel tests of tests/gpu.
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <utility>
@@ -58,8 +59,12 @@ inline std::uint64_t bundlesPerRecording(render::StrategyKind kind) {
     return kind == render::StrategyKind::GpuCullingBundles ? 2 : 1;
 }
 
-// The instance counts GPU culling wrote, per culled draw, summed over its levels of detail and
-// both phases (read back; a failed read or a non-zero firstInstance fails the test).
+// The instance counts GPU culling wrote, per culled draw, level of detail and phase (read back;
+// a failed read or a non-zero firstInstance fails the test): counts[draw][level][phase].
+using CulledCounts = std::vector<std::vector<std::array<std::uint32_t, 2>>>;
+CulledCounts culledCountsByLevel(gpu::Context& context, const render::GpuCuller& culler);
+
+// The same, per culled draw, summed over its levels of detail and both phases.
 std::vector<std::uint32_t> culledInstanceCounts(gpu::Context& context,
                                                 const render::GpuCuller& culler);
 
