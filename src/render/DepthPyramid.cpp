@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "encore/gpu/BindGroupEntries.h"
+
 namespace encore::render {
 
 namespace {
@@ -13,13 +15,6 @@ wgpu::TextureView levelView(const wgpu::Texture& texture, std::uint32_t level) {
     descriptor.baseMipLevel = level;
     descriptor.mipLevelCount = 1;
     return texture.CreateView(&descriptor);
-}
-
-wgpu::BindGroupEntry textureEntry(std::uint32_t binding, const wgpu::TextureView& view) {
-    wgpu::BindGroupEntry entry{};
-    entry.binding = binding;
-    entry.textureView = view;
-    return entry;
 }
 
 }  // namespace
@@ -68,9 +63,9 @@ Result<DepthPyramid> DepthPyramid::create(const wgpu::Device& device,
     const wgpu::TextureView depthView = depth.CreateView();
     for (std::uint32_t level = 0; level < sizes.size(); ++level) {
         const wgpu::BindGroupEntry entries[] = {
-            level == 0 ? textureEntry(0, depthView)
-                       : textureEntry(1, levelView(pyramid.mPyramid, level - 1)),
-            textureEntry(2, levelView(pyramid.mPyramid, level)),
+            level == 0 ? gpu::textureEntry(0, depthView)
+                       : gpu::textureEntry(1, levelView(pyramid.mPyramid, level - 1)),
+            gpu::textureEntry(2, levelView(pyramid.mPyramid, level)),
         };
         wgpu::BindGroupDescriptor group{};
         group.label = "depth pyramid level";

@@ -13,6 +13,7 @@
 #include "MipmapGenerator.h"
 #include "encore/core/Elapsed.h"
 #include "encore/core/Log.h"
+#include "encore/gpu/BindGroupEntries.h"
 #include "encore/image/ImageResize.h"
 
 namespace encore::render {
@@ -120,20 +121,6 @@ wgpu::TextureView levelView(const wgpu::Texture& texture, std::uint32_t level) {
     descriptor.mipLevelCount = 1;
     descriptor.arrayLayerCount = kCubeFaces;
     return texture.CreateView(&descriptor);
-}
-
-wgpu::BindGroupEntry textureEntry(std::uint32_t binding, const wgpu::TextureView& view) {
-    wgpu::BindGroupEntry entry{};
-    entry.binding = binding;
-    entry.textureView = view;
-    return entry;
-}
-
-wgpu::BindGroupEntry samplerEntry(std::uint32_t binding, const wgpu::Sampler& sampler) {
-    wgpu::BindGroupEntry entry{};
-    entry.binding = binding;
-    entry.sampler = sampler;
-    return entry;
 }
 
 template <typename Params = CubeParams>
@@ -424,17 +411,17 @@ Result<void> Environment::build(const image::HdrImage& original, bool withLut) {
     // (lavapipe runs a dispatch to completion before anything else).
     pass.SetPipeline(pipelines.panorama);
     pass.SetBindGroup(0, bindGroup(mDevice, pipelines.panorama,
-                                   {textureEntry(0, panoramaTexture.CreateView()),
-                                    samplerEntry(1, pipelines.panoramaSampler),
-                                    textureEntry(2, levelView(mSource, 0))}));
+                                   {gpu::textureEntry(0, panoramaTexture.CreateView()),
+                                    gpu::samplerEntry(1, pipelines.panoramaSampler),
+                                    gpu::textureEntry(2, levelView(mSource, 0))}));
     pass.DispatchWorkgroups(groups(sourceSize), groups(sourceSize), kCubeFaces);
 
     pass.SetPipeline(pipelines.downsample);
     for (std::uint32_t level = 1; level < sourceLevels; ++level) {
         const std::uint32_t size = std::max(sourceSize >> level, 1u);
         pass.SetBindGroup(0, bindGroup(mDevice, pipelines.downsample,
-                                       {textureEntry(0, levelView(mSource, level - 1)),
-                                        textureEntry(1, levelView(mSource, level))}));
+                                       {gpu::textureEntry(0, levelView(mSource, level - 1)),
+                                        gpu::textureEntry(1, levelView(mSource, level))}));
         pass.DispatchWorkgroups(groups(size), groups(size), kCubeFaces);
     }
 
@@ -445,8 +432,8 @@ Result<void> Environment::build(const image::HdrImage& original, bool withLut) {
         for (std::uint32_t face = 0; face < kCubeFaces; ++face) {
             const std::uint32_t slot = (level - 1) * kCubeFaces + face;
             pass.SetBindGroup(0, bindGroup(mDevice, pipelines.specular,
-                                           {textureEntry(0, mSourceView), samplerEntry(1, mSampler),
-                                            textureEntry(2, target),
+                                           {gpu::textureEntry(0, mSourceView), gpu::samplerEntry(1, mSampler),
+                                            gpu::textureEntry(2, target),
                                             slotEntry(3, slotBuffer, slot)}));
             pass.DispatchWorkgroups(groups(size), groups(size), 1);
         }
@@ -456,8 +443,8 @@ Result<void> Environment::build(const image::HdrImage& original, bool withLut) {
     const wgpu::TextureView irradianceTarget = levelView(mIrradiance, 0);
     for (std::uint32_t face = 0; face < kCubeFaces; ++face) {
         pass.SetBindGroup(0, bindGroup(mDevice, pipelines.irradiance,
-                                       {textureEntry(0, mSourceView), samplerEntry(1, mSampler),
-                                        textureEntry(2, irradianceTarget),
+                                       {gpu::textureEntry(0, mSourceView), gpu::samplerEntry(1, mSampler),
+                                        gpu::textureEntry(2, irradianceTarget),
                                         slotEntry(3, slotBuffer, firstIrradianceSlot + face)}));
         const std::uint32_t size = mOptions.irradianceSize;
         pass.DispatchWorkgroups(groups(size), groups(size), 1);
@@ -466,7 +453,7 @@ Result<void> Environment::build(const image::HdrImage& original, bool withLut) {
     if (withLut) {
         pass.SetPipeline(pipelines.lut);
         pass.SetBindGroup(0, bindGroup(mDevice, pipelines.lut,
-                                       {textureEntry(0, mLutView), slotEntry(1, slotBuffer, lutSlot)}));
+                                       {gpu::textureEntry(0, mLutView), slotEntry(1, slotBuffer, lutSlot)}));
         pass.DispatchWorkgroups(groups(mOptions.lutSize), groups(mOptions.lutSize), 1);
     }
     pass.End();
@@ -488,8 +475,8 @@ Result<void> Environment::build(const image::HdrImage& original, bool withLut) {
         const std::uint32_t span = packs[i].size + 2;
         packPass.SetBindGroup(
             0, bindGroup(mDevice, pipelines.packCube,
-                         {textureEntry(0, irradiance ? mIrradianceView : mSpecularView),
-                          samplerEntry(1, mSampler), textureEntry(2, mAtlasView),
+                         {gpu::textureEntry(0, irradiance ? mIrradianceView : mSpecularView),
+                          gpu::samplerEntry(1, mSampler), gpu::textureEntry(2, mAtlasView),
                           slotEntry<PackParams>(3, slotBuffer, firstPackSlot + i)}));
         packPass.DispatchWorkgroups(groups(3 * span), groups(2 * span), 1);
     }
@@ -497,9 +484,9 @@ Result<void> Environment::build(const image::HdrImage& original, bool withLut) {
         packPass.SetPipeline(pipelines.packTable);
         const std::uint32_t slot = firstPackSlot + mOptions.specularLevels + 1;
         packPass.SetBindGroup(0, bindGroup(mDevice, pipelines.packTable,
-                                           {textureEntry(2, mAtlasView),
+                                           {gpu::textureEntry(2, mAtlasView),
                                             slotEntry<PackParams>(3, slotBuffer, slot),
-                                            textureEntry(4, mLutView)}));
+                                            gpu::textureEntry(4, mLutView)}));
         const std::uint32_t size = mAtlasLayout.brdf.size + 2;
         packPass.DispatchWorkgroups(groups(size), groups(size), 1);
     }

@@ -1,6 +1,7 @@
 #pragma once
 
-// Bind group entries for buffers: the descriptor boilerplate every compute pass repeats.
+// Bind group entries for buffers, texture views and samplers: the descriptor boilerplate every
+// pass repeats.
 
 #include <webgpu/webgpu_cpp.h>
 
@@ -17,6 +18,20 @@ inline wgpu::BindGroupEntry bufferEntry(std::uint32_t binding, const wgpu::Buffe
     entry.buffer = buffer;
     entry.offset = offset;
     entry.size = size;
+    return entry;
+}
+
+inline wgpu::BindGroupEntry textureEntry(std::uint32_t binding, const wgpu::TextureView& view) {
+    wgpu::BindGroupEntry entry{};
+    entry.binding = binding;
+    entry.textureView = view;
+    return entry;
+}
+
+inline wgpu::BindGroupEntry samplerEntry(std::uint32_t binding, const wgpu::Sampler& sampler) {
+    wgpu::BindGroupEntry entry{};
+    entry.binding = binding;
+    entry.sampler = sampler;
     return entry;
 }
 
