@@ -76,7 +76,7 @@ std::optional<double> GpuTimer::read(Context& context) {
         const std::uint64_t end = ticks[pass * 2 + 1];
         const double passNanoseconds = end > begin ? double(end - begin) : 0.0;
         nanoseconds += passNanoseconds;
-        mLastPasses.push_back({mLabels[pass], passNanoseconds / 1e6});
+        mLastPasses.push_back({std::string(mLabels[pass]), passNanoseconds / 1e6});
     }
     mStaging.Unmap();
     return nanoseconds / 1e6;

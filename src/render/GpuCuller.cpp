@@ -108,12 +108,14 @@ Result<GpuCuller> GpuCuller::create(const RenderSetup& setup, const InstanceBuff
     culler.mLevelDrawCount = static_cast<std::uint32_t>(levelRecords.size());
 
     const std::uint64_t listBytes = std::uint64_t(largestList) * 4;
-    // Phase 2's lists follow phase 1's; the slots' visibility follows both.
+    // Phase 2's lists follow phase 1's; the slots' visibility follows both. The draw bind group
+    // binds listBytes from any list's start; the last list's binding ends within the
+    // visibility words, since no list is longer than there are slots.
     const std::uint64_t phaseVisible = nextBase;
     const std::uint64_t visibilityBase = phaseVisible * kPhases;
     const std::uint64_t visibleBytes = (visibilityBase + culler.mSlotCount) * 4;
     ENCORE_TRY(checkCullingBuffers(setup.limits, levelRecords.size(), culler.mSlotCount,
-                                   std::max(visibleBytes, visibilityBase * 4 + listBytes)));
+                                   visibleBytes));
     culler.mPhaseVisible = static_cast<std::uint32_t>(phaseVisible);
 
     // Arguments: instanceCount starts at 0; the first cull pass fills it. drawIndexedIndirect
@@ -133,8 +135,7 @@ Result<GpuCuller> GpuCuller::create(const RenderSetup& setup, const InstanceBuff
     culler.mArguments = gpu::createStorageBuffer(device, arguments, "indirect arguments (all draws)",
                                       wgpu::BufferUsage::Indirect | wgpu::BufferUsage::CopySrc |
                                           wgpu::BufferUsage::CopyDst);
-    culler.mVisible = gpu::createBuffer(device, wgpu::BufferUsage::Storage,
-                                        std::max(visibleBytes, visibilityBase * 4 + listBytes),
+    culler.mVisible = gpu::createBuffer(device, wgpu::BufferUsage::Storage, visibleBytes,
                                         "visible instance lists and visibility");
 
     // Each slot lists the culled draws of its instance range, contiguous in the primitive
@@ -156,19 +157,13 @@ Result<GpuCuller> GpuCuller::create(const RenderSetup& setup, const InstanceBuff
             slots[slot].drawCount = static_cast<std::uint32_t>(drawIndices.size());
         }
     }
-    const auto levelBase = static_cast<std::uint32_t>(records.size());
-    culler.mLevelBase = levelBase;
+    culler.mLevelBase = static_cast<std::uint32_t>(records.size());
     records.insert(records.end(), levelRecords.begin(), levelRecords.end());
 
-    CullingUniform uniform{};
-    uniform.phaseArguments = culler.mLevelDrawCount * 5;
-    uniform.phaseVisible = culler.mPhaseVisible;
-    uniform.trianglesDrawnWord = culler.mTrianglesDrawnWord;
-    uniform.visibilityBase = static_cast<std::uint32_t>(visibilityBase);
-    uniform.levelBase = levelBase;
-    culler.mUniform = gpu::createBufferFrom<CullingUniform>(
-        device, wgpu::BufferUsage::Uniform | wgpu::BufferUsage::CopyDst, std::span(&uniform, 1),
-        "culling uniform");
+    // Written whole before every first-phase cull (encodeFirstPhase).
+    culler.mUniform =
+        gpu::createBuffer(device, wgpu::BufferUsage::Uniform | wgpu::BufferUsage::CopyDst,
+                          sizeof(CullingUniform), "culling uniform");
     const auto slotBuffer = gpu::createStorageBuffer(device, slots, "culling bounds");
     ENCORE_TRY(gpu::checkStorageBinding(
         setup.limits, culler.mBounds.shapes.size() * sizeof(glm::vec4),
@@ -334,9 +329,7 @@ void GpuCuller::encodeSecondPhase(const wgpu::CommandEncoder& commands, const wg
             std::abort();
         }
         mPyramid = std::move(*pyramid);
-        wgpu::BindGroupEntry entry{};
-        entry.binding = 0;
-        entry.textureView = mPyramid.view();
+        const wgpu::BindGroupEntry entry = gpu::textureEntry(0, mPyramid.view());
         wgpu::BindGroupDescriptor descriptor{};
         descriptor.label = "culling depth pyramid";
         descriptor.layout = mPyramidLayout;

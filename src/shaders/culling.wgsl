@@ -164,18 +164,24 @@ fn inFrustum(bounds: InstanceBounds) -> bool {
     return true;
 }
 
-// The coarsest level whose error, projected from the nearest point of the instance's box, stays
-// under the threshold (levels are ordered finer to coarser, errors growing).
-fn chooseLevel(primitive: vec4u, bounds: InstanceBounds) -> u32 {
-    let firstLevel = primitive.x;
-    let levelCount = primitive.y;
-    if (levelCount <= 1u || culling.lodPixelsPerUnit <= 0.0) {
-        return firstLevel;
-    }
+// Pixels that one object-space unit of the instance covers at its nearest point (0: levels of
+// detail off); the same for every primitive of the instance.
+fn lodPixelsPerUnit(bounds: InstanceBounds) -> f32 {
     var pixelsPerUnit = culling.lodPixelsPerUnit * bounds.scale;
     if (culling.orthographic == 0u) {
         let nearest = clamp(culling.cameraPosition, bounds.boxMin, bounds.boxMax);
         pixelsPerUnit /= max(distance(nearest, culling.cameraPosition), 1e-6);
+    }
+    return pixelsPerUnit;
+}
+
+// The coarsest level whose error, projected at `pixelsPerUnit`, stays under the threshold
+// (levels are ordered finer to coarser, errors growing).
+fn chooseLevel(primitive: vec4u, pixelsPerUnit: f32) -> u32 {
+    let firstLevel = primitive.x;
+    let levelCount = primitive.y;
+    if (levelCount <= 1u || pixelsPerUnit <= 0.0) {
+        return firstLevel;
     }
     var chosen = firstLevel;
     for (var level = 1u; level < levelCount; level++) {
@@ -191,9 +197,10 @@ fn chooseLevel(primitive: vec4u, bounds: InstanceBounds) -> u32 {
 // Appends the slot to the draws of its primitives' chosen levels; returns the triangles added.
 fn append(slot: u32, bounds: InstanceBounds, phase: u32) -> u32 {
     let record = slots[slot];
+    let pixelsPerUnit = lodPixelsPerUnit(bounds);
     var triangles = 0u;
     for (var i = 0u; i < record.drawCount; i++) {
-        let level = levelAt(chooseLevel(records[record.firstDraw + i], bounds));
+        let level = levelAt(chooseLevel(records[record.firstDraw + i], pixelsPerUnit));
         let index = atomicAdd(
             &indirectArguments[level.argumentsOffset + 1u + phase * culling.phaseArguments], 1u);
         visibleInstances[level.visibleBase + phase * culling.phaseVisible + index] = slot;

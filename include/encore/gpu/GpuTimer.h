@@ -22,7 +22,8 @@ class GpuTimer {
     static std::optional<GpuTimer> create(const Context& context, std::uint32_t maxPasses = 8);
 
     // Timestamp writes for the next pass of the current frame (nullptr once maxPasses were used:
-    // the pass then goes untimed). `label` names the pass in lastPasses().
+    // the pass then goes untimed). `label` names the pass in lastPasses(); it must live until
+    // read() (a string literal: nothing is copied while the frame is encoded).
     const wgpu::PassTimestampWrites* nextPass(std::string_view label = "pass");
 
     // Resolves this frame's queries; call on the frame's command encoder after its last pass.
@@ -44,7 +45,7 @@ class GpuTimer {
     wgpu::Buffer mResolved;
     wgpu::Buffer mStaging;
     wgpu::PassTimestampWrites mWrites[16];
-    std::string mLabels[16];
+    std::string_view mLabels[16];
     std::vector<TimedPass> mLastPasses;
     std::uint32_t mMaxPasses = 0;
     std::uint32_t mPasses = 0;

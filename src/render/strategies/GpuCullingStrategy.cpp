@@ -175,12 +175,8 @@ void GpuCullingStrategy::encode(RenderEncoder& encoder, const FrameState& frame)
         }
         return;
     }
-    if (frame.phase != DrawPhase::Second) {
-        encodeCulled(encoder, 0);
-    }
-    if (frame.phase == DrawPhase::Second) {
-        encodeCulled(encoder, 1);
-    }
+    // A frame of one pass draws phase 1's records only: phase 2's counts stay zero.
+    encodeCulled(encoder, frame.phase == DrawPhase::Second ? 1 : 0);
     if (frame.phase != DrawPhase::First && !mBlended.empty()) {
         setSharedBindGroups(encoder);  // Blended pipelines use the plain instance layout.
         encodeBlended(encoder, blendOrder(frame.camera.position));
