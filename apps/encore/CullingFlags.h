@@ -1,6 +1,6 @@
 #pragma once
 
-// Command-line options of GPU culling, shared by render, bench, stats and view: occlusion culling
+// Command-line options of GPU culling, shared by render, bench and view: occlusion culling
 // and levels of detail of the gpu-culling strategies (render::CullingOptions).
 
 #include <CLI/CLI.hpp>
