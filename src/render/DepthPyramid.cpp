@@ -1,20 +1,40 @@
 #include "encore/render/DepthPyramid.h"
 
 #include <algorithm>
+#include <bit>
+#include <cstring>
 
 #include "encore/gpu/BindGroupEntries.h"
+#include "encore/gpu/Upload.h"
 
 namespace encore::render {
 
 namespace {
 
-constexpr std::uint32_t kWorkgroupSize = 8;  // depth_pyramid.wgsl's workgroup_size.
+constexpr std::uint32_t kTile = 16;              // depth_pyramid.wgsl's workgroup tile.
+constexpr std::uint32_t kLevelsPerDispatch = 4;  // Its storage bindings (level0..level3).
+constexpr std::uint64_t kUniformStride = 256;    // minUniformBufferOffsetAlignment's default.
+
+// depth_pyramid.wgsl's Reduction.
+struct ReductionUniform {
+    std::uint32_t depthSize[2];
+    std::uint32_t firstLevel;
+    std::uint32_t levelCount;
+};
 
 wgpu::TextureView levelView(const wgpu::Texture& texture, std::uint32_t level) {
     wgpu::TextureViewDescriptor descriptor{};
     descriptor.baseMipLevel = level;
     descriptor.mipLevelCount = 1;
     return texture.CreateView(&descriptor);
+}
+
+std::uint32_t powerOfTwoAtLeast(std::uint32_t value) {
+    std::uint32_t power = 1;
+    while (power < value) {
+        power *= 2;
+    }
+    return power;
 }
 
 }  // namespace
@@ -39,51 +59,80 @@ Result<DepthPyramid> DepthPyramid::create(const wgpu::Device& device,
         return device.CreateComputePipeline(&descriptor);  // Layout from the entry point.
     };
     pyramid.mReduceDepth = computePipeline("reduceDepth");
-    pyramid.mReduceLevel = computePipeline("reduceLevel");
+    pyramid.mReduceLevels = computePipeline("reduceLevels");
 
-    // Mip sizes round down; the shader's last texels cover what that drops.
-    std::uint32_t width = std::max(depth.GetWidth() / 2, 1u);
-    std::uint32_t height = std::max(depth.GetHeight() / 2, 1u);
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> sizes{{width, height}};
-    while (width > 1 || height > 1) {
-        width = std::max(width / 2, 1u);
-        height = std::max(height / 2, 1u);
-        sizes.emplace_back(width, height);
-    }
+    const std::uint32_t depthWidth = depth.GetWidth();
+    const std::uint32_t depthHeight = depth.GetHeight();
     wgpu::TextureDescriptor descriptor{};
     descriptor.label = "depth pyramid";
-    descriptor.size = {sizes[0].first, sizes[0].second, 1};
+    descriptor.size = {powerOfTwoAtLeast(levelSize(depthWidth, 0)),
+                       powerOfTwoAtLeast(levelSize(depthHeight, 0)), 1};
     descriptor.format = wgpu::TextureFormat::R32Float;
-    descriptor.mipLevelCount = static_cast<std::uint32_t>(sizes.size());
+    descriptor.mipLevelCount = static_cast<std::uint32_t>(
+        std::bit_width(std::max(descriptor.size.width, descriptor.size.height)));
     descriptor.usage = wgpu::TextureUsage::StorageBinding | wgpu::TextureUsage::TextureBinding |
                        wgpu::TextureUsage::CopySrc;  // Read back by tests.
     pyramid.mPyramid = device.CreateTexture(&descriptor);
     pyramid.mView = pyramid.mPyramid.CreateView();
+    pyramid.mLevelCount = descriptor.mipLevelCount;
 
+    // WebGPU forbids two writable bindings of one subresource: each unused binding of the last
+    // dispatch (at most its last three) gets a level of its own.
+    descriptor.label = "depth pyramid: unused levels";
+    descriptor.size = {4, 4, 1};
+    descriptor.mipLevelCount = kLevelsPerDispatch - 1;
+    descriptor.usage = wgpu::TextureUsage::StorageBinding;
+    pyramid.mUnusedLevels = device.CreateTexture(&descriptor);
+
+    const std::uint32_t dispatches =
+        (pyramid.mLevelCount + kLevelsPerDispatch - 1) / kLevelsPerDispatch;
+    std::vector<std::uint8_t> uniforms(dispatches * kUniformStride);
     const wgpu::TextureView depthView = depth.CreateView();
-    for (std::uint32_t level = 0; level < sizes.size(); ++level) {
-        const wgpu::BindGroupEntry entries[] = {
-            level == 0 ? gpu::textureEntry(0, depthView)
-                       : gpu::textureEntry(1, levelView(pyramid.mPyramid, level - 1)),
-            gpu::textureEntry(2, levelView(pyramid.mPyramid, level)),
-        };
+    for (std::uint32_t dispatch = 0; dispatch < dispatches; ++dispatch) {
+        const std::uint32_t firstLevel = dispatch * kLevelsPerDispatch;
+        const ReductionUniform uniform{
+            {depthWidth, depthHeight},
+            firstLevel,
+            std::min(kLevelsPerDispatch, pyramid.mLevelCount - firstLevel)};
+        std::memcpy(&uniforms[dispatch * kUniformStride], &uniform, sizeof(uniform));
+    }
+    pyramid.mUniforms = gpu::createBufferFrom<std::uint8_t>(device, wgpu::BufferUsage::Uniform,
+                                                            uniforms, "depth pyramid reductions");
+    for (std::uint32_t dispatch = 0; dispatch < dispatches; ++dispatch) {
+        const std::uint32_t firstLevel = dispatch * kLevelsPerDispatch;
+        std::vector<wgpu::BindGroupEntry> entries = {
+            firstLevel == 0 ? gpu::textureEntry(0, depthView)
+                            : gpu::textureEntry(1, levelView(pyramid.mPyramid, firstLevel - 1)),
+            gpu::bufferEntry(2, pyramid.mUniforms, dispatch * kUniformStride,
+                             sizeof(ReductionUniform))};
+        for (std::uint32_t step = 0; step < kLevelsPerDispatch; ++step) {
+            const std::uint32_t level = firstLevel + step;
+            entries.push_back(
+                gpu::textureEntry(3 + step, level < pyramid.mLevelCount
+                                                ? levelView(pyramid.mPyramid, level)
+                                                : levelView(pyramid.mUnusedLevels, step - 1)));
+        }
+        const wgpu::ComputePipeline& pipeline =
+            firstLevel == 0 ? pyramid.mReduceDepth : pyramid.mReduceLevels;
         wgpu::BindGroupDescriptor group{};
-        group.label = "depth pyramid level";
-        group.layout = (level == 0 ? pyramid.mReduceDepth : pyramid.mReduceLevel).GetBindGroupLayout(0);
-        group.entryCount = std::size(entries);
-        group.entries = entries;
-        pyramid.mLevels.push_back({device.CreateBindGroup(&group), sizes[level].first,
-                                   sizes[level].second});
+        group.label = "depth pyramid reduction";
+        group.layout = pipeline.GetBindGroupLayout(0);
+        group.entryCount = entries.size();
+        group.entries = entries.data();
+        pyramid.mReductions.push_back({device.CreateBindGroup(&group), firstLevel,
+                                       (levelSize(depthWidth, firstLevel) + kTile - 1) / kTile,
+                                       (levelSize(depthHeight, firstLevel) + kTile - 1) / kTile});
     }
     return pyramid;
 }
 
 void DepthPyramid::encode(const wgpu::ComputePassEncoder& pass) const {
-    for (std::size_t level = 0; level < mLevels.size(); ++level) {
-        pass.SetPipeline(level == 0 ? mReduceDepth : mReduceLevel);
-        pass.SetBindGroup(0, mLevels[level].bindGroup);
-        pass.DispatchWorkgroups((mLevels[level].width + kWorkgroupSize - 1) / kWorkgroupSize,
-                                (mLevels[level].height + kWorkgroupSize - 1) / kWorkgroupSize);
+    for (const Reduction& reduction : mReductions) {
+        if (reduction.firstLevel <= kLevelsPerDispatch) {  // The first two change pipelines.
+            pass.SetPipeline(reduction.firstLevel == 0 ? mReduceDepth : mReduceLevels);
+        }
+        pass.SetBindGroup(0, reduction.bindGroup);
+        pass.DispatchWorkgroups(reduction.workgroupsX, reduction.workgroupsY);
     }
 }
 

@@ -265,16 +265,14 @@ fn isOccluded(bounds: InstanceBounds) -> bool {
     let lastPixel = culling.viewport - vec2f(1.0);
     low = clamp(low, vec2f(0.0), lastPixel);
     high = clamp(high, vec2f(0.0), lastPixel);
-    // Level k's texels cover 2^(k+1) pixels a side: at the level where that is at least the
-    // box's extent, the box overlaps at most 2x2 texels. Pixels past the last texel belong to it
-    // (depth_pyramid.wgsl).
+    // Level k's texels cover 2^(k+1) pixels a side (depth_pyramid.wgsl): at the level where that
+    // is at least the box's extent, the box overlaps at most 2x2 texels.
     let extent = max(high.x - low.x, high.y - low.y);
     let level = min(u32(max(ceil(log2(max(extent, 1.0))) - 1.0, 0.0)),
                     textureNumLevels(depthPyramid) - 1u);
-    // The level's size from level 0's, as mips round down: llvmpipe's textureDimensions of the
-    // smallest levels is not to be trusted.
-    let lastTexel = max(textureDimensions(depthPyramid) >> vec2u(level), vec2u(1u)) - vec2u(1u);
-    let texelSize = f32(1u << (level + 1u));
+    let texelPixels = 1u << (level + 1u);
+    let lastTexel = (vec2u(culling.viewport) + vec2u(texelPixels - 1u)) / texelPixels - vec2u(1u);
+    let texelSize = f32(texelPixels);
     let first = min(vec2u(low / texelSize), lastTexel);
     let last = min(vec2u(high / texelSize), lastTexel);
     var farthest = 0.0;

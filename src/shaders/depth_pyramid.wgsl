@@ -1,69 +1,121 @@
 // A conservative depth pyramid for occlusion culling (GpuCuller's second phase). The scene's
 // depth test is `less` with depth cleared to 1, so a texel keeps the FARTHEST depth of the
 // pixels (and, multisampled, of every sample) it covers: whatever lies behind it lies behind
-// everything drawn there. Level 0 is half the target's size, rounded up, and each level is half
-// the one before, rounded up, so texel t of level k covers the pixels [t * 2^(k+1),
-// (t + 1) * 2^(k+1)); reads past an odd edge clamp to the last pixel, which it covers anyway.
+// everything drawn there.
+//
+// Texel t of level k covers the pixels [t * 2^(k+1), (t + 1) * 2^(k+1)), so level k holds
+// ceil(depth size / 2^(k+1)) texels a side (`levelSize`) and each texel reduces exactly the 2x2
+// texels below it: no texel straddles another's footprint, and a workgroup can reduce a tile
+// through several levels on its own. The texture is a power of two a side (mips round down, the
+// levels' sizes here round up), so the texels a level holds sit in its top-left corner.
+//
+// A dispatch writes up to four levels (WebGPU's default limit of storage textures per stage):
+// each 16x16 workgroup reduces its tile of the first level, then halves it in workgroup memory
+// three times. Texels past a level's size hold 0, which the max ignores.
 
 #if MULTISAMPLED
 @group(0) @binding(0) var depth: texture_depth_multisampled_2d;
 #else
 @group(0) @binding(0) var depth: texture_depth_2d;
 #endif
-@group(0) @binding(1) var finer: texture_2d<f32>;  // The previous level (reduceLevel).
-@group(0) @binding(2) var destination: texture_storage_2d<r32float, write>;
+@group(0) @binding(1) var finer: texture_2d<f32>;  // Level firstLevel - 1 (reduceLevels).
+
+struct Reduction {
+    depthSize: vec2u,
+    firstLevel: u32,
+    levelCount: u32,  // 1 to 4: the levels this dispatch writes, from firstLevel.
+}
+@group(0) @binding(2) var<uniform> reduction: Reduction;
+@group(0) @binding(3) var level0: texture_storage_2d<r32float, write>;
+@group(0) @binding(4) var level1: texture_storage_2d<r32float, write>;
+@group(0) @binding(5) var level2: texture_storage_2d<r32float, write>;
+@group(0) @binding(6) var level3: texture_storage_2d<r32float, write>;
+
+const kTile = 16u;
+var<workgroup> farthest: array<f32, 256>;  // kTile * kTile
+
+fn levelSize(level: u32) -> vec2u {
+    let texelPixels = 1u << (level + 1u);
+    return (reduction.depthSize + vec2u(texelPixels - 1u)) / texelPixels;
+}
+
+fn storeLevel(step: u32, texel: vec2u, value: f32) {
+    if (step >= reduction.levelCount || any(texel >= levelSize(reduction.firstLevel + step))) {
+        return;
+    }
+    switch step {
+        case 0u: { textureStore(level0, texel, vec4f(value)); }
+        case 1u: { textureStore(level1, texel, vec4f(value)); }
+        case 2u: { textureStore(level2, texel, vec4f(value)); }
+        default: { textureStore(level3, texel, vec4f(value)); }
+    }
+}
+
+// The first level's value of this invocation is in `farthest`; the tile halves three times.
+// Barriers stay in uniform control flow: every invocation runs every step.
+fn reduceTile(local: vec2u, group: vec2u) {
+    var size = kTile;
+    for (var step = 1u; step < 4u; step++) {
+        size /= 2u;
+        workgroupBarrier();
+        let reduces = all(local < vec2u(size));
+        var value = 0.0;
+        if (reduces) {
+            let child = local * 2u;
+            let top = child.y * kTile + child.x;
+            value = max(max(farthest[top], farthest[top + 1u]),
+                        max(farthest[top + kTile], farthest[top + kTile + 1u]));
+        }
+        workgroupBarrier();
+        if (reduces) {
+            farthest[local.y * kTile + local.x] = value;
+            storeLevel(step, group * size + local, value);
+        }
+    }
+}
 
 fn farthestDepthAt(pixel: vec2u) -> f32 {
-#if MULTISAMPLED
-    var farthest = 0.0;
-    for (var sample = 0u; sample < textureNumSamples(depth); sample++) {
-        farthest = max(farthest, textureLoad(depth, pixel, i32(sample)));
+    if (any(pixel >= reduction.depthSize)) {
+        return 0.0;
     }
-    return farthest;
+#if MULTISAMPLED
+    var deepest = 0.0;
+    for (var sample = 0u; sample < textureNumSamples(depth); sample++) {
+        deepest = max(deepest, textureLoad(depth, pixel, i32(sample)));
+    }
+    return deepest;
 #else
     return textureLoad(depth, pixel, 0);
 #endif
 }
 
-// The texels of the level above (or pixels) that texel `texel` reduces: [first, last].
-struct Footprint {
-    first: vec2u,
-    last: vec2u,
+@compute @workgroup_size(16, 16)
+fn reduceDepth(@builtin(workgroup_id) group: vec3u,
+               @builtin(local_invocation_id) local: vec3u) {
+    let texel = group.xy * kTile + local.xy;
+    let pixel = texel * 2u;
+    let value = max(max(farthestDepthAt(pixel), farthestDepthAt(pixel + vec2u(1u, 0u))),
+                    max(farthestDepthAt(pixel + vec2u(0u, 1u)), farthestDepthAt(pixel + 1u)));
+    farthest[local.y * kTile + local.x] = value;
+    storeLevel(0u, texel, value);
+    reduceTile(local.xy, group.xy);
 }
 
-fn footprint(texel: vec2u, sourceSize: vec2u) -> Footprint {
-    let first = texel * 2u;
-    let lastTexel = textureDimensions(destination) - 1u;
-    return Footprint(first, min(select(first + 1u, sourceSize - 1u, texel == lastTexel),
-                                sourceSize - 1u));
+fn finerTexel(texel: vec2u) -> f32 {
+    if (any(texel >= levelSize(reduction.firstLevel - 1u))) {
+        return 0.0;
+    }
+    return textureLoad(finer, texel, 0).r;
 }
 
-@compute @workgroup_size(8, 8)
-fn reduceDepth(@builtin(global_invocation_id) id: vec3u) {
-    if (any(id.xy >= textureDimensions(destination))) {
-        return;
-    }
-    let area = footprint(id.xy, textureDimensions(depth));
-    var farthest = 0.0;
-    for (var y = area.first.y; y <= area.last.y; y++) {
-        for (var x = area.first.x; x <= area.last.x; x++) {
-            farthest = max(farthest, farthestDepthAt(vec2u(x, y)));
-        }
-    }
-    textureStore(destination, id.xy, vec4f(farthest));
-}
-
-@compute @workgroup_size(8, 8)
-fn reduceLevel(@builtin(global_invocation_id) id: vec3u) {
-    if (any(id.xy >= textureDimensions(destination))) {
-        return;
-    }
-    let area = footprint(id.xy, textureDimensions(finer));
-    var farthest = 0.0;
-    for (var y = area.first.y; y <= area.last.y; y++) {
-        for (var x = area.first.x; x <= area.last.x; x++) {
-            farthest = max(farthest, textureLoad(finer, vec2u(x, y), 0).r);
-        }
-    }
-    textureStore(destination, id.xy, vec4f(farthest));
+@compute @workgroup_size(16, 16)
+fn reduceLevels(@builtin(workgroup_id) group: vec3u,
+                @builtin(local_invocation_id) local: vec3u) {
+    let texel = group.xy * kTile + local.xy;
+    let child = texel * 2u;
+    let value = max(max(finerTexel(child), finerTexel(child + vec2u(1u, 0u))),
+                    max(finerTexel(child + vec2u(0u, 1u)), finerTexel(child + 1u)));
+    farthest[local.y * kTile + local.x] = value;
+    storeLevel(0u, texel, value);
+    reduceTile(local.xy, group.xy);
 }

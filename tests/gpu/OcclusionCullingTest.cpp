@@ -122,15 +122,16 @@ TEST_P(OcclusionCullingTest, EveryFrameOfAWalkEqualsTheUnculledFrameAndHidesInst
     EXPECT_TRUE(context->checkNoErrors("occlusion culling").ok());
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    DirectAndBundled, OcclusionCullingTest,
-    ::testing::Combine(::testing::Values(StrategyKind::GpuCulling, StrategyKind::GpuCullingBundles),
-                       ::testing::Values(1u, 4u)),
-    [](const auto& info) {
-        std::string name(strategyName(std::get<0>(info.param)));
-        std::replace(name.begin(), name.end(), '-', '_');
-        return name + "_" + std::to_string(std::get<1>(info.param)) + "x";
-    });
+INSTANTIATE_TEST_SUITE_P(DirectAndBundled,
+                         OcclusionCullingTest,
+                         ::testing::Combine(::testing::Values(StrategyKind::GpuCulling,
+                                                              StrategyKind::GpuCullingBundles),
+                                            ::testing::Values(1u, 4u)),
+                         [](const auto& info) {
+                             std::string name(strategyName(std::get<0>(info.param)));
+                             std::replace(name.begin(), name.end(), '-', '_');
+                             return name + "_" + std::to_string(std::get<1>(info.param)) + "x";
+                         });
 
 // The benchmark scenes: every frame along their camera paths, moving a little each frame as a
 // walk would, renders the same pixels with gpu-culling-bundles (occlusion culling on, levels of
@@ -185,7 +186,8 @@ TEST_P(BenchmarkSceneOcclusionTest, EveryFrameEqualsBundlesWithFewerTriangles) {
     EXPECT_TRUE(context->checkNoErrors("benchmark scene").ok());
 }
 
-INSTANTIATE_TEST_SUITE_P(FlythroughAndCity, BenchmarkSceneOcclusionTest,
+INSTANTIATE_TEST_SUITE_P(FlythroughAndCity,
+                         BenchmarkSceneOcclusionTest,
                          ::testing::Values(scene::SceneLayout::Lattice, scene::SceneLayout::City),
                          [](const auto& info) {
                              return std::string(scene::sceneLayoutName(info.param));
@@ -231,8 +233,9 @@ TEST(OcclusionCullingPhasesTest, AStillCameraDrawsEverythingInPhaseOneFromTheSec
     EXPECT_LT(counted, submittedTriangles(culler.draws()));
 }
 
-// Level k + 1 holds the farthest of the texels of level k it covers (two by two, three where
-// level k is odd and the texel is the last), level 0 the farthest of the depth, drawn or cleared.
+// Level k + 1 holds the farthest of the two by two texels of level k it covers (fewer at an odd
+// edge), level 0 the farthest of the depth, drawn or cleared; each level holds
+// ceil(size / 2^(k+1)) texels a side, the last one texel.
 TEST(DepthPyramidTest, EachTexelHoldsTheFarthestDepthOfItsFootprint) {
     ENCORE_REQUIRE_VULKAN(context);
     const auto scene = denseGrid();
@@ -245,36 +248,47 @@ TEST(DepthPyramidTest, EachTexelHoldsTheFarthestDepthOfItsFootprint) {
     ASSERT_TRUE(renderer->readImage().ok());
     const DepthPyramid& pyramid = renderer->strategy()->culler()->depthPyramid();
     ASSERT_TRUE(pyramid.builtFor(renderer->target().depthTexture()));
-    ASSERT_EQ(pyramid.texture().GetWidth(), kWidth / 2);
-    ASSERT_EQ(pyramid.texture().GetHeight(), kHeight / 2);
+    const std::uint32_t textureWidth = pyramid.texture().GetWidth();
     std::vector<std::vector<float>> levels;
     for (std::uint32_t level = 0; level < pyramid.levelCount(); ++level) {
         auto values = gpu::readTextureR32Float(*context, pyramid.texture(), level);
         ASSERT_TRUE(values.ok()) << values.error().message;
         levels.push_back(std::move(*values));
     }
-    EXPECT_EQ(levels.back().size(), 1u);
-    const auto [nearest, farthest] = std::minmax_element(levels[0].begin(), levels[0].end());
-    EXPECT_GE(*nearest, 0.0f);
-    EXPECT_LT(*nearest, 0.999f) << "the walk's nearest objects cover texels";
-    EXPECT_EQ(*farthest, 1.0f) << "the sky between objects keeps the cleared depth";
+    auto texel = [&](std::uint32_t level, std::uint32_t x, std::uint32_t y) {
+        return levels[level][y * std::max(textureWidth >> level, 1u) + x];
+    };
+    ASSERT_EQ(DepthPyramid::levelSize(kWidth, 0), (kWidth + 1) / 2);
+    ASSERT_EQ(DepthPyramid::levelSize(kWidth, pyramid.levelCount() - 1), 1u);
+    ASSERT_EQ(DepthPyramid::levelSize(kHeight, pyramid.levelCount() - 1), 1u);
+    ASSERT_GT(DepthPyramid::levelSize(std::max(kWidth, kHeight), pyramid.levelCount() - 2), 1u)
+        << "no level past the first of one texel";
+    float nearest = 1.0f;
+    float farthest = 0.0f;
+    for (std::uint32_t y = 0; y < DepthPyramid::levelSize(kHeight, 0); ++y) {
+        for (std::uint32_t x = 0; x < DepthPyramid::levelSize(kWidth, 0); ++x) {
+            nearest = std::min(nearest, texel(0, x, y));
+            farthest = std::max(farthest, texel(0, x, y));
+        }
+    }
+    EXPECT_GE(nearest, 0.0f);
+    EXPECT_LT(nearest, 0.999f) << "the walk's nearest objects cover texels";
+    EXPECT_EQ(farthest, 1.0f) << "the sky between objects keeps the cleared depth";
     for (std::uint32_t level = 1; level < levels.size(); ++level) {
-        const std::uint32_t width = std::max(pyramid.texture().GetWidth() >> level, 1u);
-        const std::uint32_t height = std::max(pyramid.texture().GetHeight() >> level, 1u);
-        const std::uint32_t finerWidth = std::max(pyramid.texture().GetWidth() >> (level - 1), 1u);
-        const std::uint32_t finerHeight =
-            std::max(pyramid.texture().GetHeight() >> (level - 1), 1u);
+        const std::uint32_t width = DepthPyramid::levelSize(kWidth, level);
+        const std::uint32_t height = DepthPyramid::levelSize(kHeight, level);
+        const std::uint32_t finerWidth = DepthPyramid::levelSize(kWidth, level - 1);
+        const std::uint32_t finerHeight = DepthPyramid::levelSize(kHeight, level - 1);
         for (std::uint32_t y = 0; y < height; ++y) {
             for (std::uint32_t x = 0; x < width; ++x) {
-                const std::uint32_t lastX = x + 1 == width ? finerWidth - 1 : std::min(2 * x + 1, finerWidth - 1);
-                const std::uint32_t lastY = y + 1 == height ? finerHeight - 1 : std::min(2 * y + 1, finerHeight - 1);
                 float expected = 0.0f;
-                for (std::uint32_t fy = 2 * y; fy <= lastY; ++fy) {
-                    for (std::uint32_t fx = 2 * x; fx <= lastX; ++fx) {
-                        expected = std::max(expected, levels[level - 1][fy * finerWidth + fx]);
+                for (std::uint32_t fy = 2 * y; fy <= std::min(2 * y + 1, finerHeight - 1); ++fy) {
+                    for (std::uint32_t fx = 2 * x; fx <= std::min(2 * x + 1, finerWidth - 1);
+                         ++fx) {
+                        expected = std::max(expected, texel(level - 1, fx, fy));
                     }
                 }
-                ASSERT_EQ(levels[level][y * width + x], expected)
+                ASSERT_EQ(texel(level, x, y), expected)
                     << "level " << level << " texel " << x << "," << y;
             }
         }
