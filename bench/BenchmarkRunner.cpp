@@ -282,8 +282,8 @@ Result<BenchReport> runBenchmarks(gpu::Context& context, const BenchOptions& opt
     renderer->setCullingOptions(options.culling);
     report.environmentMilliseconds = renderer->lighting().environment().lastBuildMilliseconds();
     auto timer = gpu::GpuTimer::create(context);
-    report.timestamps = timer.has_value() && !options.callgrind;
-    gpu::GpuTimer* timerPointer = timer ? &*timer : nullptr;
+    report.timestamps = timer.has_value() && !options.callgrind && options.gpuTimer;
+    gpu::GpuTimer* timerPointer = report.timestamps ? &*timer : nullptr;
 
     auto runScene = [&](const scene::SceneData& scene, const std::string& kind,
                         const std::string& sceneLabel,

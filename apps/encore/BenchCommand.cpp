@@ -162,6 +162,9 @@ void addBenchCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) 
     command->add_flag("--callgrind", bench.callgrind,
                       "No warm-up or GPU timer; bracket the measured frames for valgrind "
                       "--tool=callgrind --instr-atstart=no");
+    command->add_flag("--gpu-timer,!--no-gpu-timer", bench.gpuTimer,
+                      "Timestamp queries around every pass (default: on); without them GPU "
+                      "time is n/a and the CPU frame is what an application pays");
     command
         ->add_option("--gpu-wait", bench.gpuWait,
                      "How the CPU waits for the GPU after each frame: spin (the core stays "

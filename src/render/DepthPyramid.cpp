@@ -14,6 +14,10 @@ namespace {
 constexpr std::uint32_t kTile = 16;              // depth_pyramid.wgsl's workgroup tile.
 constexpr std::uint32_t kLevelsPerDispatch = 4;  // Its storage bindings (level0..level3).
 constexpr std::uint64_t kUniformStride = 256;    // minUniformBufferOffsetAlignment's default.
+// Two dispatches. Level 7's texels cover 256 pixels a side: a box larger than that (near the
+// camera, and then usually visible) reads a few more texels there rather than costing a third
+// dispatch on the CPU every frame.
+constexpr std::uint32_t kMaxLevels = 2 * kLevelsPerDispatch;
 
 // depth_pyramid.wgsl's Reduction.
 struct ReductionUniform {
@@ -68,8 +72,9 @@ Result<DepthPyramid> DepthPyramid::create(const wgpu::Device& device,
     descriptor.size = {powerOfTwoAtLeast(levelSize(depthWidth, 0)),
                        powerOfTwoAtLeast(levelSize(depthHeight, 0)), 1};
     descriptor.format = wgpu::TextureFormat::R32Float;
-    descriptor.mipLevelCount = static_cast<std::uint32_t>(
-        std::bit_width(std::max(descriptor.size.width, descriptor.size.height)));
+    descriptor.mipLevelCount = std::min(
+        kMaxLevels, static_cast<std::uint32_t>(
+                        std::bit_width(std::max(descriptor.size.width, descriptor.size.height))));
     descriptor.usage = wgpu::TextureUsage::StorageBinding | wgpu::TextureUsage::TextureBinding |
                        wgpu::TextureUsage::CopySrc;  // Read back by tests.
     pyramid.mPyramid = device.CreateTexture(&descriptor);

@@ -266,7 +266,8 @@ fn isOccluded(bounds: InstanceBounds) -> bool {
     low = clamp(low, vec2f(0.0), lastPixel);
     high = clamp(high, vec2f(0.0), lastPixel);
     // Level k's texels cover 2^(k+1) pixels a side (depth_pyramid.wgsl): at the level where that
-    // is at least the box's extent, the box overlaps at most 2x2 texels.
+    // is at least the box's extent, the box overlaps at most 2x2 texels (more where the box is
+    // larger than the last level's texels).
     let extent = max(high.x - low.x, high.y - low.y);
     let level = min(u32(max(ceil(log2(max(extent, 1.0))) - 1.0, 0.0)),
                     textureNumLevels(depthPyramid) - 1u);

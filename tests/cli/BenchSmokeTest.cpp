@@ -167,6 +167,16 @@ TEST(BenchSmokeTest, CullingOptionsAndTheFrustumBaseline) {
     EXPECT_EQ(off.report["culling"]["occlusion"], false);
     EXPECT_EQ(off.report["culling"]["levelsOfDetail"], false);
 
+    // Without the GPU timer: no GPU times, CPU times still measured.
+    const auto untimed = runBench(dir, "--scene city --objects 200 --frames 2 --warmup 1 -s "
+                                       "gpu-culling-bundles --no-gpu-timer --width 64 --height 64");
+    ASSERT_EQ(untimed.command.exitCode, 0) << untimed.command.err;
+    EXPECT_EQ(untimed.report["timestamps"], false);
+    ASSERT_EQ(untimed.report["results"].size(), 1u);
+    EXPECT_TRUE(untimed.report["results"][0]["gpuMs"].is_null());
+    EXPECT_TRUE(untimed.report["results"][0]["gpuPassesMs"].empty());
+    EXPECT_GT(untimed.report["results"][0]["cpuMs"]["median"].get<double>(), 0.0);
+
     const auto bad = runBench(dir, "--objects 10 --lod-error 0");
     EXPECT_NE(bad.command.exitCode, 0);
     EXPECT_NE(bad.command.err.find("--lod-error"), std::string::npos) << bad.command.err;

@@ -135,13 +135,22 @@ INSTANTIATE_TEST_SUITE_P(DirectAndBundled,
 
 // The benchmark scenes: every frame along their camera paths, moving a little each frame as a
 // walk would, renders the same pixels with gpu-culling-bundles (occlusion culling on, levels of
-// detail off) as with bundles, while occlusion culling draws part of what the frustum holds.
-class BenchmarkSceneOcclusionTest : public ::testing::TestWithParam<scene::SceneLayout> {};
+// detail off) as with bundles, while occlusion culling draws part of what the frustum holds. The
+// large target's pyramid stops before one texel (DepthPyramid's eight levels): the blocks nearest
+// the camera, larger than its last texels, are tested against several of them.
+struct BenchmarkScene {
+    scene::SceneLayout layout;
+    std::uint32_t width;
+    std::uint32_t height;
+};
+
+class BenchmarkSceneOcclusionTest : public ::testing::TestWithParam<BenchmarkScene> {};
 
 TEST_P(BenchmarkSceneOcclusionTest, EveryFrameEqualsBundlesWithFewerTriangles) {
     ENCORE_REQUIRE_VULKAN(context);
     scene::GeneratorOptions options;
-    options.layout = GetParam();
+    const auto [layout, width, height] = GetParam();
+    options.layout = layout;
     options.objectCount = 3000;
     options.tessellation = 4;
     auto glb = scene::generateSceneGlb(options);
@@ -150,9 +159,9 @@ TEST_P(BenchmarkSceneOcclusionTest, EveryFrameEqualsBundlesWithFewerTriangles) {
     ASSERT_TRUE(scene.ok()) << scene.error().message;
     const auto path = CameraPath::forLayout(options);
     ASSERT_TRUE(path.has_value());
-    auto bundles = Renderer::create(*context, test::pixelTestOptions(kWidth, kHeight));
-    auto culled = Renderer::create(*context, test::pixelTestOptions(kWidth, kHeight));
-    auto frustumOnly = Renderer::create(*context, test::pixelTestOptions(kWidth, kHeight));
+    auto bundles = Renderer::create(*context, test::pixelTestOptions(width, height));
+    auto culled = Renderer::create(*context, test::pixelTestOptions(width, height));
+    auto frustumOnly = Renderer::create(*context, test::pixelTestOptions(width, height));
     ASSERT_TRUE(bundles.ok() && culled.ok() && frustumOnly.ok());
     frustumOnly->setCullingOptions({.occlusion = false, .levelsOfDetail = false});
     ASSERT_TRUE(bundles->prepare(*scene, StrategyKind::Bundles).ok());
@@ -163,7 +172,7 @@ TEST_P(BenchmarkSceneOcclusionTest, EveryFrameEqualsBundlesWithFewerTriangles) {
     constexpr int kFrames = 5;
     for (int frame = 0; frame < kFrames; ++frame) {
         const Camera camera =
-            path->cameraAtDistance(0.3f * float(frame), float(kWidth) / float(kHeight));
+            path->cameraAtDistance(0.3f * float(frame), float(width) / float(height));
         bundles->renderFrame(camera);
         culled->renderFrame(camera);
         frustumOnly->renderFrame(camera);
@@ -178,7 +187,7 @@ TEST_P(BenchmarkSceneOcclusionTest, EveryFrameEqualsBundlesWithFewerTriangles) {
     // visible before) and marks it visible, so the second draws it all again in phase 1 and
     // only then learns what its depth hides. The city's nearest blocks hide most of it; the
     // lattice, seen at this size, a sixth or more.
-    const double hiddenAtLeast = GetParam() == scene::SceneLayout::City ? 0.5 : 0.1;
+    const double hiddenAtLeast = layout == scene::SceneLayout::City ? 0.5 : 0.1;
     for (int frame = 2; frame < kFrames; ++frame) {
         EXPECT_LT(double((*drawn)[frame]), (1.0 - hiddenAtLeast) * double((*inFrustum)[frame]))
             << "frame " << frame;
@@ -186,12 +195,16 @@ TEST_P(BenchmarkSceneOcclusionTest, EveryFrameEqualsBundlesWithFewerTriangles) {
     EXPECT_TRUE(context->checkNoErrors("benchmark scene").ok());
 }
 
-INSTANTIATE_TEST_SUITE_P(FlythroughAndCity,
-                         BenchmarkSceneOcclusionTest,
-                         ::testing::Values(scene::SceneLayout::Lattice, scene::SceneLayout::City),
-                         [](const auto& info) {
-                             return std::string(scene::sceneLayoutName(info.param));
-                         });
+INSTANTIATE_TEST_SUITE_P(
+    FlythroughAndCity,
+    BenchmarkSceneOcclusionTest,
+    ::testing::Values(BenchmarkScene{scene::SceneLayout::Lattice, kWidth, kHeight},
+                      BenchmarkScene{scene::SceneLayout::City, kWidth, kHeight},
+                      BenchmarkScene{scene::SceneLayout::City, 1100, 620}),
+    [](const auto& info) {
+        return std::string(scene::sceneLayoutName(info.param.layout)) + "_" +
+               std::to_string(info.param.width);
+    });
 
 // A still camera: the first frame finds everything in phase 2 (nothing was visible before), the
 // next draws it all in phase 1 and nothing in phase 2. The triangle counter adds up the draws.
@@ -259,6 +272,7 @@ TEST(DepthPyramidTest, EachTexelHoldsTheFarthestDepthOfItsFootprint) {
         return levels[level][y * std::max(textureWidth >> level, 1u) + x];
     };
     ASSERT_EQ(DepthPyramid::levelSize(kWidth, 0), (kWidth + 1) / 2);
+    // Small targets reduce to one texel; large ones stop at eight levels (two dispatches).
     ASSERT_EQ(DepthPyramid::levelSize(kWidth, pyramid.levelCount() - 1), 1u);
     ASSERT_EQ(DepthPyramid::levelSize(kHeight, pyramid.levelCount() - 1), 1u);
     ASSERT_GT(DepthPyramid::levelSize(std::max(kWidth, kHeight), pyramid.levelCount() - 2), 1u)

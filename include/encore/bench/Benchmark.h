@@ -74,6 +74,9 @@ struct BenchOptions {
     // measured frames bracketed by CALLGRIND_START/STOP_INSTRUMENTATION (run valgrind with
     // --instr-atstart=no).
     bool callgrind = false;
+    // Timestamp queries around every pass (GPU time per frame and per pass). Off, the CPU frame
+    // is what an application pays, without the queries' commands, which grow with the passes.
+    bool gpuTimer = true;
     // How the CPU waits for the GPU after each frame (and for the frame's timestamps). A
     // blocking wait lets the core sleep for as long as the GPU frame lasts; spinning keeps it
     // awake, so the next frame's CPU work does not depend on how long the GPU took.

@@ -5,8 +5,8 @@
 // render target's depth after the first phase has drawn (depth_pyramid.wgsl). Level k holds
 // ceil(depth size / 2^(k+1)) texels a side in the top-left corner of a texture that is a power
 // of two a side, so that every texel reduces exactly 2x2 of the level below and one dispatch
-// can build four levels; the last level is 1x1. Built for one depth texture: a resized target
-// needs a new pyramid.
+// can build four levels; there are at most eight (down to 1x1 for targets up to 512 pixels). Built
+// for one depth texture: a resized target needs a new pyramid.
 
 #include <webgpu/webgpu_cpp.h>
 
