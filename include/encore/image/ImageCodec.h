@@ -1,7 +1,8 @@
 #pragma once
 
 // PNG decoding (libspng), JPEG decoding (libjpeg-turbo; stb_image for CMYK JPEGs and the other
-// formats stb reads) and PNG encoding (zlib). This is the only place an image library appears.
+// formats stb reads) and PNG encoding (libdeflate). This is the only place an image library
+// appears.
 
 #include <cstdint>
 #include <filesystem>
