@@ -221,6 +221,25 @@ TEST(ImageDecodersTest, PngEqualsStbForEveryColourTypeAndBitDepth) {
     }
 }
 
+// Malformed ancillary chunks (metadata) are ignored, as stb_image ignored them: such files
+// still decode, to the same pixels.
+TEST(ImageDecodersTest, MalformedAncillaryChunksAreIgnored) {
+    const Bytes png = makePng({2, 8, false, false}, 13, 7, 3);
+    Bytes chunks;
+    appendChunk(chunks, "tEXt", {0, 'n', 'o', ' ', 'k', 'e', 'y'});  // An empty keyword.
+    appendChunk(chunks, "gAMA", {0, 0, 0, 0});                        // Gamma 0.
+    appendChunk(chunks, "pHYs", {0, 0, 0, 1});                        // 4 of 9 bytes.
+    appendChunk(chunks, "iCCP", {'p', 0, 0, 1, 2, 3});                // Not zlib data.
+    Bytes withChunks(png.begin(), png.begin() + 33);                  // Signature and IHDR.
+    withChunks.insert(withChunks.end(), chunks.begin(), chunks.end());
+    withChunks.insert(withChunks.end(), png.begin() + 33, png.end());
+    auto expected = decodeImage(png);
+    ASSERT_TRUE(expected.ok()) << expected.error().message;
+    auto decoded = decodeImage(withChunks);
+    ASSERT_TRUE(decoded.ok()) << decoded.error().message;
+    EXPECT_TRUE(decoded->pixels == expected->pixels);
+}
+
 // Every prefix of a PNG that cuts into its pixels is an error, never a crash or a partial image.
 // (One that lacks only the IEND chunk holds all of them and decodes, with stb_image too.)
 TEST(ImageDecodersTest, TruncatedPngIsAnError) {
