@@ -255,7 +255,10 @@ TEST(ImageDecodersTest, TruncatedPngIsAnError) {
     }
 }
 
-Bytes encodeJpeg(std::uint32_t width, std::uint32_t height, bool progressive) {
+// A JPEG of smooth gradients and a hard edge, in `color` (JCS_RGB, JCS_GRAYSCALE or JCS_CMYK,
+// stored as such).
+Bytes encodeJpeg(std::uint32_t width, std::uint32_t height, bool progressive,
+                 J_COLOR_SPACE color = JCS_RGB) {
     jpeg_compress_struct info{};
     jpeg_error_mgr errors{};
     info.err = jpeg_std_error(&errors);
@@ -265,20 +268,22 @@ Bytes encodeJpeg(std::uint32_t width, std::uint32_t height, bool progressive) {
     jpeg_mem_dest(&info, &buffer, &size);
     info.image_width = width;
     info.image_height = height;
-    info.input_components = 3;
-    info.in_color_space = JCS_RGB;
+    info.input_components = color == JCS_GRAYSCALE ? 1 : color == JCS_CMYK ? 4 : 3;
+    info.in_color_space = color;
     jpeg_set_defaults(&info);
     jpeg_set_quality(&info, 90, TRUE);
     if (progressive) {
         jpeg_simple_progression(&info);
     }
     jpeg_start_compress(&info, TRUE);
-    Bytes row(std::size_t(width) * 3);
+    const std::size_t channels = std::size_t(info.input_components);
+    Bytes row(std::size_t(width) * channels);
     while (info.next_scanline < height) {
-        for (std::uint32_t x = 0; x < width; ++x) {  // Smooth gradients and a hard edge.
-            row[x * 3] = std::uint8_t(x * 255 / width);
-            row[x * 3 + 1] = std::uint8_t(info.next_scanline * 255 / height);
-            row[x * 3 + 2] = x < width / 2 ? 40 : 220;
+        for (std::uint32_t x = 0; x < width; ++x) {
+            const std::uint8_t values[4] = {std::uint8_t(x * 255 / width),
+                                            std::uint8_t(info.next_scanline * 255 / height),
+                                            std::uint8_t(x < width / 2 ? 40 : 220), 30};
+            std::copy(values, values + channels, &row[x * channels]);
         }
         JSAMPROW rows[1] = {row.data()};
         jpeg_write_scanlines(&info, rows, 1);
@@ -314,6 +319,29 @@ TEST(ImageDecodersTest, JpegIsCloseToStb) {
         EXPECT_LE(maxDifference(decoded->pixels, expected), 3) << progressive;
         for (std::size_t i = 3; i < decoded->pixels.size(); i += 4) {
             ASSERT_EQ(decoded->pixels[i], 255);
+        }
+    }
+}
+
+// Greyscale JPEGs become grey RGBA; CMYK ones, which libjpeg-turbo cannot convert to RGBA, are
+// decoded by stb_image as before.
+TEST(ImageDecodersTest, GreyAndCmykJpegsDecode) {
+    for (const J_COLOR_SPACE color : {JCS_GRAYSCALE, JCS_CMYK}) {
+        const Bytes jpeg = encodeJpeg(33, 21, false, color);
+        int width = 0;
+        int height = 0;
+        const Bytes expected = decodeWithStb(jpeg, width, height);
+        ASSERT_FALSE(expected.empty()) << color;
+        auto decoded = decodeImage(jpeg);
+        ASSERT_TRUE(decoded.ok()) << decoded.error().message;
+        ASSERT_EQ(decoded->pixels.size(), expected.size());
+        EXPECT_LE(maxDifference(decoded->pixels, expected), color == JCS_CMYK ? 0 : 3) << color;
+        if (color == JCS_GRAYSCALE) {
+            for (std::size_t i = 0; i < decoded->pixels.size(); i += 4) {
+                ASSERT_EQ(decoded->pixels[i], decoded->pixels[i + 1]);
+                ASSERT_EQ(decoded->pixels[i], decoded->pixels[i + 2]);
+                ASSERT_EQ(decoded->pixels[i + 3], 255);
+            }
         }
     }
 }
