@@ -7,12 +7,15 @@
 # address is written here. Does nothing when every package is already installed.
 set -euo pipefail
 
+# libspng-dev and libjpeg62-turbo-dev decode PNG and JPEG textures (stb_image is slower);
+# libdeflate-dev compresses the PNGs Encore writes (faster than zlib, and smaller files).
 # clang and libclang-rt-14-dev (libFuzzer, sanitizer runtimes) build the fuzz targets.
 # libglfw3-dev opens `encore view`'s window; xvfb and xauth (xvfb-run) give its tests a display.
 # pybind11-dev, python3-dev, python3-numpy and python3-pytest build and test the Python module;
 # python3-distributed (Dask's distributed scheduler, with python3-dask) runs encore.dask.
 bookworm_packages=(g++ make pkg-config libglm-dev libstb-dev libcli11-dev libgtest-dev
                    nlohmann-json3-dev libdraco-dev libmeshoptimizer-dev zlib1g-dev
+                   libspng-dev libjpeg62-turbo-dev libdeflate-dev
                    librsvg2-bin clang libclang-rt-14-dev libglfw3-dev xvfb xauth
                    pybind11-dev python3-dev python3-numpy python3-pytest python3-dask
                    python3-distributed)

@@ -59,6 +59,9 @@ struct ModelJob {
     std::vector<glm::mat4> cameraToWorld;
     std::atomic<std::uint32_t> remaining{0};  // Images not yet written.
     std::atomic<bool> failed{false};
+    // Images written under their partial names, flushed and renamed together by the last one.
+    std::mutex writtenMutex;
+    std::vector<fs::path> written;
 
     // Records the model's first failure; later ones (other views) add nothing.
     void fail(FailureLog& log,
@@ -165,6 +168,9 @@ class BatchRun {
     // Draws a target's views and starts reading them back; `waiting` adds the time spent
     // waiting for a free read-back slot.
     void renderChunk(const TargetViews& views, ViewImage kind, double& waiting);
+    // Flushes and renames the model's images (or removes them if it failed), then writes
+    // transforms.json.
+    void finishImages(ModelJob& job);
     void writeTransforms(ModelJob& job);
     // After a failure: a lost device is replaced, and the renderer with it.
     void recoverIfLost();
@@ -319,23 +325,44 @@ void BatchRun::writeImage(const std::shared_ptr<ModelJob>& job,
         const auto start = Clock::now();
         if (!job->failed) {
             auto png = encode();
-            Result<void> written =
-                png ? writeFileAtomically(viewImagePath(job->folder, view, kind), *png)
-                    : Result<void>(png.error());
+            const fs::path path = viewImagePath(job->folder, view, kind);
+            Result<void> written = png ? writePartialFile(path, *png) : Result<void>(png.error());
             if (!written) {
                 job->fail(*mFailures, mCounters, "write", written.error());
-            } else if (kind == ViewImage::Color) {
+            } else {
+                std::lock_guard lock(job->writtenMutex);
+                job->written.push_back(path);
+            }
+            if (written && kind == ViewImage::Color) {
                 ++mCounters.views;
             }
         }
-        // The last image written completes the model: transforms.json goes last, so its
-        // presence says every image is in place.
-        if (job->remaining.fetch_sub(1) == 1 && !job->failed) {
-            writeTransforms(*job);
+        // The last image written completes the model: its images are flushed and renamed
+        // together, then transforms.json goes last, so its presence says every image is in
+        // place.
+        if (job->remaining.fetch_sub(1) == 1) {
+            finishImages(*job);
         }
         std::lock_guard lock(mCounters.mutex);
         mCounters.encode += secondsSince(start);
     });
+}
+
+void BatchRun::finishImages(ModelJob& job) {
+    if (!job.failed) {
+        if (auto committed = commitFiles(job.written); !committed) {
+            job.fail(*mFailures, mCounters, "write", committed.error());
+        }
+    }
+    if (job.failed) {
+        // A failed model leaves no partial files; its finished images are redone next run.
+        for (const fs::path& path : job.written) {
+            std::error_code ignored;
+            fs::remove(partialPath(path), ignored);
+        }
+        return;
+    }
+    writeTransforms(job);
 }
 
 void BatchRun::collectOldest() {

@@ -6,6 +6,7 @@
 #include <memory>
 #include <string>
 
+#include <fcntl.h>
 #include <unistd.h>
 
 namespace encore {
@@ -119,6 +120,52 @@ Result<void> writeFileAtomically(const std::filesystem::path& path,
     if (ec) {
         return makeError(ErrorCode::IoError, "Renaming " + quoted(partial) + " to " + quoted(path) +
                                                  " failed (" + ec.message() + ").");
+    }
+    return {};
+}
+
+Result<void> writePartialFile(const std::filesystem::path& path,
+                              std::span<const std::uint8_t> bytes) {
+    const std::filesystem::path partial = partialPath(path);
+    auto file = createWith(partial, bytes);
+    if (!file) {
+        return file.error();
+    }
+    if (std::fflush(file->get()) != 0) {
+        return makeError(ErrorCode::IoError, "Writing " + quoted(partial) + " failed (" +
+                                                 std::strerror(errno) + ").");
+    }
+    // Only a hint: commitFiles flushes for certain. Started now, the writeback overlaps the
+    // encoding of the model's other images.
+    ::sync_file_range(::fileno(file->get()), 0, 0, SYNC_FILE_RANGE_WRITE);
+    return close(std::move(*file), partial);
+}
+
+Result<void> commitFiles(std::span<const std::filesystem::path> paths) {
+    for (const std::filesystem::path& path : paths) {
+        const std::filesystem::path partial = partialPath(path);
+        const int descriptor = ::open(partial.c_str(), O_RDONLY | O_CLOEXEC);
+        if (descriptor < 0) {
+            return makeError(ErrorCode::IoError, "Cannot open " + quoted(partial) + " (" +
+                                                     std::strerror(errno) + ").");
+        }
+        const bool flushed = ::fdatasync(descriptor) == 0;
+        const int flushError = errno;
+        ::close(descriptor);
+        if (!flushed) {
+            return makeError(ErrorCode::IoError, "Flushing " + quoted(partial) +
+                                                     " to the disk failed (" +
+                                                     std::strerror(flushError) + ").");
+        }
+    }
+    for (const std::filesystem::path& path : paths) {
+        std::error_code ec;
+        std::filesystem::rename(partialPath(path), path, ec);
+        if (ec) {
+            return makeError(ErrorCode::IoError, "Renaming " + quoted(partialPath(path)) +
+                                                     " to " + quoted(path) + " failed (" +
+                                                     ec.message() + ").");
+        }
     }
     return {};
 }

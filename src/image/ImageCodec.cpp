@@ -1,12 +1,13 @@
 #include "encore/image/ImageCodec.h"
 
+#include <libdeflate.h>
 #include <stb_image.h>
-#include <zlib.h>
 
 #include <algorithm>
 #include <memory>
 #include <string>
 
+#include "ImageDecoders.h"
 #include "encore/core/FileIO.h"
 
 namespace encore::image {
@@ -16,44 +17,34 @@ struct StbiFree {
     void operator()(stbi_uc* pixels) const { stbi_image_free(pixels); }
 };
 
-// stb_image sizes its buffer for compressed PNG data from each chunk's declared length before
-// it reads the chunk, so a corrupt length allocates gigabytes (a fuzzer finding: an IDAT
-// declaring 1.4 GB in a 42 kB file). Every chunk must fit in the bytes that are there.
-Result<void> checkPngChunks(std::span<const std::uint8_t> encoded) {
-    static constexpr std::uint8_t kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-    if (encoded.size() < sizeof(kSignature) ||
-        !std::equal(std::begin(kSignature), std::end(kSignature), encoded.begin())) {
-        return {};  // Not a PNG.
+}  // namespace
+
+Result<void> checkDecodable(const ImageHeader& header) {
+    const std::string size = std::to_string(header.width) + "x" + std::to_string(header.height);
+    if (header.width == 0 || header.height == 0 || header.width > kMaxImageDimension ||
+        header.height > kMaxImageDimension) {
+        return makeError(ErrorCode::LimitExceeded, "Image size " + size + " is outside 1.." +
+                                                       std::to_string(kMaxImageDimension) + ".");
     }
-    std::size_t offset = sizeof(kSignature);
-    while (encoded.size() - offset >= 12) {
-        const std::uint8_t* chunk = encoded.data() + offset;
-        const std::uint64_t length = (std::uint64_t(chunk[0]) << 24) | (std::uint64_t(chunk[1]) << 16) |
-                                     (std::uint64_t(chunk[2]) << 8) | std::uint64_t(chunk[3]);
-        const std::string type(reinterpret_cast<const char*>(chunk + 4), 4);
-        const std::uint64_t remaining = encoded.size() - offset - 12;
-        if (length > remaining) {
-            return makeError(ErrorCode::InvalidFormat,
-                             "PNG chunk at byte " + std::to_string(offset) + " declares " +
-                                 std::to_string(length) + " bytes, but only " +
-                                 std::to_string(remaining) + " follow.");
-        }
-        if (type == "IEND") {
-            break;
-        }
-        offset += 12 + std::size_t(length);
+    if (std::uint64_t(header.width) * header.height > kMaxImagePixels) {
+        return makeError(ErrorCode::LimitExceeded,
+                         "Image size " + size + " has more than the " +
+                             std::to_string(kMaxImagePixels) + " pixels Encore decodes.");
+    }
+    // Four channels: grey, grey-alpha and RGB become RGBA.
+    const std::uint64_t decodedBytes =
+        std::uint64_t(header.width) * header.height * 4 * (header.bitsPerChannel / 8);
+    if (decodedBytes > kMaxDecodedImageBytes) {
+        return makeError(ErrorCode::LimitExceeded,
+                         "Image size " + size + " with " + std::to_string(header.bitsPerChannel) +
+                             "-bit channels needs " + std::to_string(decodedBytes >> 20) +
+                             " MiB to decode, more than the " +
+                             std::to_string(kMaxDecodedImageBytes >> 20) + " MiB Encore allows.");
     }
     return {};
 }
 
-}  // namespace
-
-Result<ImageRgba8> decodeImage(std::span<const std::uint8_t> encoded) {
-    if (encoded.empty() || encoded.size() > static_cast<std::size_t>(INT32_MAX)) {
-        return makeError(ErrorCode::InvalidFormat,
-                         "Image data is empty or too large (" + std::to_string(encoded.size()) +
-                             " bytes).");
-    }
+Result<ImageRgba8> decodeWithStb(std::span<const std::uint8_t> encoded) {
     const int length = static_cast<int>(encoded.size());
     int width = 0;
     int height = 0;
@@ -63,33 +54,10 @@ Result<ImageRgba8> decodeImage(std::span<const std::uint8_t> encoded) {
                          std::string("Image data is not a decodable PNG or JPEG (") +
                              stbi_failure_reason() + ").");
     }
-    if (width <= 0 || height <= 0 || static_cast<std::uint32_t>(width) > kMaxImageDimension ||
-        static_cast<std::uint32_t>(height) > kMaxImageDimension) {
-        return makeError(ErrorCode::LimitExceeded,
-                         "Image size " + std::to_string(width) + "x" + std::to_string(height) +
-                             " is outside 1.." + std::to_string(kMaxImageDimension) + ".");
-    }
-    if (std::uint64_t(width) * std::uint64_t(height) > kMaxImagePixels) {
-        return makeError(ErrorCode::LimitExceeded,
-                         "Image size " + std::to_string(width) + "x" + std::to_string(height) +
-                             " has more than the " + std::to_string(kMaxImagePixels) +
-                             " pixels Encore decodes.");
-    }
-    const int bytesPerChannel = stbi_is_16_bit_from_memory(encoded.data(), length) ? 2 : 1;
-    const std::uint64_t decodedBytes = std::uint64_t(width) * std::uint64_t(height) *
-                                       std::uint64_t(std::max(channels, 4)) *
-                                       std::uint64_t(bytesPerChannel);
-    if (decodedBytes > kMaxDecodedImageBytes) {
-        return makeError(ErrorCode::LimitExceeded,
-                         "Image size " + std::to_string(width) + "x" + std::to_string(height) +
-                             " with " + std::to_string(8 * bytesPerChannel) +
-                             "-bit channels needs " + std::to_string(decodedBytes >> 20) +
-                             " MiB to decode, more than the " +
-                             std::to_string(kMaxDecodedImageBytes >> 20) + " MiB Encore allows.");
-    }
-    if (auto chunks = checkPngChunks(encoded); !chunks) {
-        return chunks.error();
-    }
+    const bool sixteenBit = stbi_is_16_bit_from_memory(encoded.data(), length);
+    ENCORE_TRY(checkDecodable({static_cast<std::uint32_t>(std::max(width, 0)),
+                               static_cast<std::uint32_t>(std::max(height, 0)),
+                               sixteenBit ? 16u : 8u}));
     std::unique_ptr<stbi_uc, StbiFree> pixels(
         stbi_load_from_memory(encoded.data(), length, &width, &height, &channels, 4));
     if (!pixels) {
@@ -101,6 +69,21 @@ Result<ImageRgba8> decodeImage(std::span<const std::uint8_t> encoded) {
     image.height = static_cast<std::uint32_t>(height);
     image.pixels.assign(pixels.get(), pixels.get() + std::size_t(width) * std::size_t(height) * 4);
     return image;
+}
+
+Result<ImageRgba8> decodeImage(std::span<const std::uint8_t> encoded) {
+    if (encoded.empty() || encoded.size() > static_cast<std::size_t>(INT32_MAX)) {
+        return makeError(ErrorCode::InvalidFormat,
+                         "Image data is empty or too large (" + std::to_string(encoded.size()) +
+                             " bytes).");
+    }
+    if (isPng(encoded)) {
+        return decodePng(encoded);
+    }
+    if (isJpeg(encoded)) {
+        return decodeJpeg(encoded);
+    }
+    return decodeWithStb(encoded);
 }
 
 namespace {
@@ -129,16 +112,25 @@ void appendChunk(std::vector<std::uint8_t>& out, const char* type,
     const std::size_t typeStart = out.size();
     out.insert(out.end(), type, type + 4);
     out.insert(out.end(), data.begin(), data.end());
-    const uLong crc = crc32(0, out.data() + typeStart, uInt(out.size() - typeStart));
-    appendBigEndian(out, std::uint32_t(crc));
+    appendBigEndian(out, libdeflate_crc32(0, out.data() + typeStart, out.size() - typeStart));
 }
+
+constexpr int kCompressionLevel = 2;
+
+struct CompressorFree {
+    void operator()(libdeflate_compressor* compressor) const {
+        libdeflate_free_compressor(compressor);
+    }
+};
 
 enum class PngColor : std::uint8_t { Gray = 0, Rgba = 6 };
 
 // A PNG of `samples` (rows top to bottom, each sample as PNG stores it: 16-bit ones big-endian).
-// Speed over size: every row gets the Up filter and zlib's fastest level, which on rendered
-// views takes about a tenth of stb's time (2 to 6 ms for 512x512 RGBA) for files of about
-// the same size.
+// Speed over size: every row gets the Up filter (of the five filters the cheapest to compute
+// that compresses rendered views as well as Paeth), and libdeflate compresses at level 2: on
+// rendered 512x512 views 2.6 ms for 66 KiB where zlib's fastest level took 2.9 ms for 78 KiB
+// (libdeflate's level 1 takes 2.9 ms too: its matcher pays for the long runs of transparent
+// black). See docs/benchmarks/2026-11-24-lavapipe-batch-codecs.md.
 Result<std::vector<std::uint8_t>> writePngStream(std::uint32_t width, std::uint32_t height,
                                                  std::uint8_t bitDepth, PngColor color,
                                                  std::span<const std::uint8_t> samples) {
@@ -157,11 +149,18 @@ Result<std::vector<std::uint8_t>> writePngStream(std::uint32_t width, std::uint3
             out[i] = std::uint8_t(row[i] - above[i]);
         }
     }
-    uLongf compressedSize = compressBound(uLong(filtered.size()));
-    std::vector<std::uint8_t> compressed(compressedSize);
-    if (compress2(compressed.data(), &compressedSize, filtered.data(), uLong(filtered.size()),
-                  Z_BEST_SPEED) != Z_OK) {
-        return makeError(ErrorCode::IoError, "PNG encoding failed (zlib).");
+    std::unique_ptr<libdeflate_compressor, CompressorFree> compressor(
+        libdeflate_alloc_compressor(kCompressionLevel));
+    if (!compressor) {
+        return makeError(ErrorCode::IoError, "PNG encoding failed (out of memory).");
+    }
+    std::vector<std::uint8_t> compressed(
+        libdeflate_zlib_compress_bound(compressor.get(), filtered.size()));
+    const std::size_t compressedSize =
+        libdeflate_zlib_compress(compressor.get(), filtered.data(), filtered.size(),
+                                 compressed.data(), compressed.size());
+    if (compressedSize == 0) {
+        return makeError(ErrorCode::IoError, "PNG encoding failed (libdeflate).");
     }
     compressed.resize(compressedSize);
 

@@ -3,8 +3,9 @@
 // The files of one model in a batch's output folder, and whether all of them are in place.
 //
 // OUT/<name>/000.png ... (one per view) and OUT/<name>/transforms.json, each written under a
-// temporary name and renamed (encore::writeFileAtomically), transforms.json last: a model is
-// finished exactly when every one of its files exists, and a batch run again skips it.
+// temporary name, flushed and renamed (the images together once the last is written:
+// encore::writePartialFile and commitFiles), transforms.json last (encore::writeFileAtomically):
+// a model is finished exactly when every one of its files exists, and a batch run again skips it.
 
 #include <cstdint>
 #include <filesystem>

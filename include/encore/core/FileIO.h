@@ -30,4 +30,13 @@ std::filesystem::path partialPath(const std::filesystem::path& path);
 Result<void> writeFileAtomically(const std::filesystem::path& path,
                                  std::span<const std::uint8_t> bytes);
 
+// writeFileAtomically in two steps, for files that appear together (the images of a model):
+// writePartialFile writes partialPath(path) and starts its writeback to the disk without waiting;
+// commitFiles flushes each partial file to the disk (fdatasync), then renames each to its path.
+// By the time a group is committed most of its data is on the disk, and the flushes wait far
+// less than one flush per file did (docs/benchmarks/2026-11-24-lavapipe-batch-codecs.md).
+Result<void> writePartialFile(const std::filesystem::path& path,
+                              std::span<const std::uint8_t> bytes);
+Result<void> commitFiles(std::span<const std::filesystem::path> paths);
+
 }  // namespace encore

@@ -1,6 +1,7 @@
 #pragma once
 
-// PNG and JPEG decoding (stb) and PNG encoding (zlib). This is the only place an image library
+// PNG decoding (libspng), JPEG decoding (libjpeg-turbo; stb_image for CMYK JPEGs and the other
+// formats stb reads) and PNG encoding (libdeflate). This is the only place an image library
 // appears.
 
 #include <cstdint>
@@ -21,8 +22,9 @@ inline constexpr std::uint32_t kMaxImageDimension = 16384;
 inline constexpr std::uint64_t kMaxImagePixels = 8192ull * 8192ull;
 // And by the bytes of the decoded samples (width x height x channels x bytes per channel, as
 // stored in the file): a 16-bit RGBA image of 8192 x 8192 needs 512 MiB raw plus its 16-bit
-// RGBA copy before conversion to 8 bits, and stb's inflate doubles its buffer past that (the
-// fuzzer found one asking for 2 GiB). 256 MiB admits every 8-bit image of kMaxImagePixels.
+// RGBA copy before conversion to 8 bits (in stb_image), and stb's inflate doubles its buffer
+// past that (the fuzzer found one asking for 2 GiB). 256 MiB admits every 8-bit image of
+// kMaxImagePixels.
 inline constexpr std::uint64_t kMaxDecodedImageBytes = 256ull << 20;
 
 struct ImageRgba8 {
@@ -36,7 +38,8 @@ struct ImageRgba8 {
     }
 };
 
-// Decodes PNG or JPEG bytes into RGBA8.
+// Decodes PNG or JPEG bytes into RGBA8: grey, grey-alpha, palette and RGB images get their
+// colours expanded and alpha 255 (tRNS applied), 16-bit samples keep their high byte.
 Result<ImageRgba8> decodeImage(std::span<const std::uint8_t> encoded);
 
 Result<std::vector<std::uint8_t>> encodePng(const ImageRgba8& image);

@@ -53,5 +53,35 @@ TEST(FileIOTest, AtomicWriteToMissingDirectoryFails) {
     EXPECT_EQ(written.error().code, ErrorCode::IoError);
 }
 
+// A group of files exists under partial names until commitFiles gives all of them their names.
+TEST(FileIOTest, PartialFilesAppearWhenCommitted) {
+    auto dir = test::makeTempDir("fileio-group");
+    const std::vector<std::filesystem::path> paths = {dir / "000.png", dir / "001.png"};
+    ASSERT_TRUE(writePartialFile(paths[0], std::vector<std::uint8_t>{1, 2}).ok());
+    ASSERT_TRUE(writePartialFile(paths[1], std::vector<std::uint8_t>{3}).ok());
+    EXPECT_FALSE(std::filesystem::exists(paths[0]));
+    EXPECT_FALSE(std::filesystem::exists(paths[1]));
+    EXPECT_TRUE(std::filesystem::exists(dir / "001.png.part"));
+    ASSERT_TRUE(commitFiles(paths).ok());
+    EXPECT_EQ(*readFile(paths[0]), (std::vector<std::uint8_t>{1, 2}));
+    EXPECT_EQ(*readFile(paths[1]), (std::vector<std::uint8_t>{3}));
+    EXPECT_FALSE(std::filesystem::exists(dir / "000.png.part"));
+    EXPECT_FALSE(std::filesystem::exists(dir / "001.png.part"));
+}
+
+// A missing partial file fails the commit, naming it, and renames none of the group.
+TEST(FileIOTest, CommitOfAMissingPartialFileFails) {
+    auto dir = test::makeTempDir("fileio-group-missing");
+    ASSERT_TRUE(writePartialFile(dir / "a.png", std::vector<std::uint8_t>{1}).ok());
+    const std::vector<std::filesystem::path> paths = {dir / "a.png", dir / "b.png"};
+    auto committed = commitFiles(paths);
+    ASSERT_FALSE(committed.ok());
+    EXPECT_EQ(committed.error().code, ErrorCode::IoError);
+    EXPECT_NE(committed.error().message.find("b.png.part"), std::string::npos)
+        << committed.error().message;
+    EXPECT_FALSE(std::filesystem::exists(dir / "a.png"));
+    EXPECT_FALSE(writePartialFile("/nonexistent/encore/c.png", std::vector<std::uint8_t>{1}).ok());
+}
+
 }  // namespace
 }  // namespace encore

@@ -1,4 +1,5 @@
 #include <gtest/gtest.h>
+#include <zlib.h>
 
 #include <algorithm>
 #include <string_view>
@@ -21,6 +22,71 @@ TEST(ImageCodecTest, PngRoundTripIsExact) {
     EXPECT_EQ(read->width, 3u);
     EXPECT_EQ(read->height, 2u);
     EXPECT_EQ(read->pixels, image.pixels);
+}
+
+// What decodeImage does not check (it ignores checksums, as stb_image did): every chunk's CRC,
+// and that zlib inflates the IDAT data, Adler-32 included, to `rawBytes` (filter bytes and rows).
+void expectStrictlyValidPng(const std::vector<std::uint8_t>& png, std::size_t rawBytes) {
+    const auto be32 = [&](std::size_t at) {
+        return std::uint32_t(png[at]) << 24 | std::uint32_t(png[at + 1]) << 16 |
+               std::uint32_t(png[at + 2]) << 8 | std::uint32_t(png[at + 3]);
+    };
+    std::vector<std::uint8_t> idat;
+    std::size_t offset = 8;
+    while (offset + 12 <= png.size()) {
+        const std::uint32_t length = be32(offset);
+        ASSERT_LE(offset + 12 + length, png.size());
+        const std::string_view type(reinterpret_cast<const char*>(&png[offset + 4]), 4);
+        EXPECT_EQ(be32(offset + 8 + length), crc32(0, &png[offset + 4], length + 4)) << type;
+        if (type == "IDAT") {
+            idat.insert(idat.end(), &png[offset + 8], &png[offset + 8 + length]);
+        }
+        offset += 12 + length;
+    }
+    EXPECT_EQ(offset, png.size());
+    std::vector<std::uint8_t> raw(rawBytes + 1);
+    uLongf rawSize = uLongf(raw.size());
+    EXPECT_EQ(uncompress(raw.data(), &rawSize, idat.data(), uLong(idat.size())), Z_OK);
+    EXPECT_EQ(rawSize, rawBytes);
+}
+
+// A view as `encore batch` writes them: an object on a transparent background, with smooth
+// shading and noise. Its PNG decodes to the same pixels, and the 16-bit greyscale form too.
+TEST(ImageCodecTest, RenderedViewRoundTripsExactly) {
+    ImageRgba8 image{300, 200, std::vector<std::uint8_t>(300 * 200 * 4, 0)};
+    std::uint32_t noise = 12345;
+    for (std::uint32_t y = 40; y < 170; ++y) {
+        for (std::uint32_t x = 60; x < 250; ++x) {
+            noise = noise * 1664525u + 1013904223u;
+            std::uint8_t* pixel = image.pixel(x, y);
+            pixel[0] = std::uint8_t(x + (noise >> 29));
+            pixel[1] = std::uint8_t(y * 2);
+            pixel[2] = std::uint8_t((x * y) >> 6);
+            pixel[3] = x < 64 ? 128 : 255;
+        }
+    }
+    auto encoded = encodePng(image);
+    ASSERT_TRUE(encoded.ok()) << encoded.error().message;
+    EXPECT_LT(encoded->size(), image.pixels.size() / 2);
+    expectStrictlyValidPng(*encoded, (300 * 4 + 1) * 200);
+    auto decoded = decodeImage(*encoded);
+    ASSERT_TRUE(decoded.ok()) << decoded.error().message;
+    EXPECT_EQ(decoded->width, 300u);
+    EXPECT_EQ(decoded->height, 200u);
+    EXPECT_TRUE(decoded->pixels == image.pixels);
+
+    ImageGray16 depth{300, 200, {}};
+    for (std::uint32_t i = 0; i < 300 * 200; ++i) {
+        depth.pixels.push_back(image.pixels[i * 4 + 3] ? std::uint16_t(i * 7) : 0);
+    }
+    auto depthPng = encodePng16(depth);
+    ASSERT_TRUE(depthPng.ok()) << depthPng.error().message;
+    expectStrictlyValidPng(*depthPng, (300 * 2 + 1) * 200);
+    auto depthDecoded = decodeImage(*depthPng);
+    ASSERT_TRUE(depthDecoded.ok()) << depthDecoded.error().message;
+    for (std::uint32_t i = 0; i < 300 * 200; ++i) {
+        ASSERT_EQ(depthDecoded->pixels[i * 4], depth.pixels[i] >> 8) << i;  // The high byte.
+    }
 }
 
 TEST(ImageCodecTest, GarbageIsAnError) {
