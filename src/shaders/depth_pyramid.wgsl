@@ -51,25 +51,27 @@ fn storeLevel(step: u32, texel: vec2u, value: f32) {
     }
 }
 
-// The first level's value of this invocation is in `farthest`; the tile halves three times.
-// Barriers stay in uniform control flow: every invocation runs every step.
-fn reduceTile(local: vec2u, group: vec2u) {
+// Stores this invocation's texel of the dispatch's first level, `value`, then halves the tile
+// three times. Barriers stay in uniform control flow: every invocation runs every step.
+fn reduceTile(local: vec2u, group: vec2u, value: f32) {
+    farthest[local.y * kTile + local.x] = value;
+    storeLevel(0u, group * kTile + local, value);
     var size = kTile;
     for (var step = 1u; step < 4u; step++) {
         size /= 2u;
         workgroupBarrier();
         let reduces = all(local < vec2u(size));
-        var value = 0.0;
+        var coarser = 0.0;
         if (reduces) {
             let child = local * 2u;
             let top = child.y * kTile + child.x;
-            value = max(max(farthest[top], farthest[top + 1u]),
+            coarser = max(max(farthest[top], farthest[top + 1u]),
                         max(farthest[top + kTile], farthest[top + kTile + 1u]));
         }
         workgroupBarrier();
         if (reduces) {
-            farthest[local.y * kTile + local.x] = value;
-            storeLevel(step, group * size + local, value);
+            farthest[local.y * kTile + local.x] = coarser;
+            storeLevel(step, group * size + local, coarser);
         }
     }
 }
@@ -92,13 +94,10 @@ fn farthestDepthAt(pixel: vec2u) -> f32 {
 @compute @workgroup_size(16, 16)
 fn reduceDepth(@builtin(workgroup_id) group: vec3u,
                @builtin(local_invocation_id) local: vec3u) {
-    let texel = group.xy * kTile + local.xy;
-    let pixel = texel * 2u;
-    let value = max(max(farthestDepthAt(pixel), farthestDepthAt(pixel + vec2u(1u, 0u))),
-                    max(farthestDepthAt(pixel + vec2u(0u, 1u)), farthestDepthAt(pixel + 1u)));
-    farthest[local.y * kTile + local.x] = value;
-    storeLevel(0u, texel, value);
-    reduceTile(local.xy, group.xy);
+    let pixel = (group.xy * kTile + local.xy) * 2u;
+    reduceTile(local.xy, group.xy,
+               max(max(farthestDepthAt(pixel), farthestDepthAt(pixel + vec2u(1u, 0u))),
+                   max(farthestDepthAt(pixel + vec2u(0u, 1u)), farthestDepthAt(pixel + 1u))));
 }
 
 fn finerTexel(texel: vec2u) -> f32 {
@@ -111,11 +110,8 @@ fn finerTexel(texel: vec2u) -> f32 {
 @compute @workgroup_size(16, 16)
 fn reduceLevels(@builtin(workgroup_id) group: vec3u,
                 @builtin(local_invocation_id) local: vec3u) {
-    let texel = group.xy * kTile + local.xy;
-    let child = texel * 2u;
-    let value = max(max(finerTexel(child), finerTexel(child + vec2u(1u, 0u))),
-                    max(finerTexel(child + vec2u(0u, 1u)), finerTexel(child + 1u)));
-    farthest[local.y * kTile + local.x] = value;
-    storeLevel(0u, texel, value);
-    reduceTile(local.xy, group.xy);
+    let child = (group.xy * kTile + local.xy) * 2u;
+    reduceTile(local.xy, group.xy,
+               max(max(finerTexel(child), finerTexel(child + vec2u(1u, 0u))),
+                   max(finerTexel(child + vec2u(0u, 1u)), finerTexel(child + 1u))));
 }
