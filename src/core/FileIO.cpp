@@ -35,8 +35,7 @@ Result<std::vector<std::uint8_t>> readFile(const std::filesystem::path& path) {
     }
     FileHandle file(std::fopen(path.c_str(), "rb"));
     if (!file) {
-        return makeError(ErrorCode::FileUnreadable, "File " + quoted(path) +
-                                                        " cannot be opened (" +
+        return makeError(ErrorCode::FileUnreadable, "File " + quoted(path) + " cannot be opened (" +
                                                         std::strerror(errno) + ").");
     }
     if (std::fseek(file.get(), 0, SEEK_END) != 0) {
@@ -48,9 +47,9 @@ Result<std::vector<std::uint8_t>> readFile(const std::filesystem::path& path) {
                          "File " + quoted(path) + " has no readable size.");
     }
     if (static_cast<std::uint64_t>(size) > kMaxFileBytes) {
-        return makeError(ErrorCode::LimitExceeded,
-                         "File " + quoted(path) + " is too large (" + std::to_string(size) +
-                             " bytes, limit " + std::to_string(kMaxFileBytes) + ").");
+        return makeError(ErrorCode::LimitExceeded, "File " + quoted(path) + " is too large (" +
+                                                       std::to_string(size) + " bytes, limit " +
+                                                       std::to_string(kMaxFileBytes) + ").");
     }
     std::rewind(file.get());
     std::vector<std::uint8_t> bytes(static_cast<std::size_t>(size));
@@ -68,8 +67,8 @@ Result<FileHandle> createWith(const std::filesystem::path& path,
                               std::span<const std::uint8_t> bytes) {
     FileHandle file(std::fopen(path.c_str(), "wb"));
     if (!file) {
-        return makeError(ErrorCode::IoError, "Cannot create " + quoted(path) + " (" +
-                                                 std::strerror(errno) + ").");
+        return makeError(ErrorCode::IoError,
+                         "Cannot create " + quoted(path) + " (" + std::strerror(errno) + ").");
     }
     if (!bytes.empty() && std::fwrite(bytes.data(), 1, bytes.size(), file.get()) != bytes.size()) {
         return makeError(ErrorCode::IoError, "Writing " + quoted(path) + " failed.");
@@ -100,6 +99,22 @@ std::filesystem::path partialPath(const std::filesystem::path& path) {
     return partial;
 }
 
+namespace {
+
+// Gives the flushed partial file of `path` its final name.
+Result<void> renamePartial(const std::filesystem::path& path) {
+    const std::filesystem::path partial = partialPath(path);
+    std::error_code ec;
+    std::filesystem::rename(partial, path, ec);
+    if (ec) {
+        return makeError(ErrorCode::IoError, "Renaming " + quoted(partial) + " to " + quoted(path) +
+                                                 " failed (" + ec.message() + ").");
+    }
+    return {};
+}
+
+}  // namespace
+
 Result<void> writeFileAtomically(const std::filesystem::path& path,
                                  std::span<const std::uint8_t> bytes) {
     const std::filesystem::path partial = partialPath(path);
@@ -110,18 +125,12 @@ Result<void> writeFileAtomically(const std::filesystem::path& path,
     // Without the flush to the disk, a power loss after the rename could leave `path` empty:
     // file systems may commit the rename before the data.
     if (std::fflush(file->get()) != 0 || ::fdatasync(::fileno(file->get())) != 0) {
-        return makeError(ErrorCode::IoError, "Flushing " + quoted(partial) +
-                                                 " to the disk failed (" + std::strerror(errno) +
-                                                 ").");
+        return makeError(
+            ErrorCode::IoError,
+            "Flushing " + quoted(partial) + " to the disk failed (" + std::strerror(errno) + ").");
     }
     ENCORE_TRY(close(std::move(*file), partial));
-    std::error_code ec;
-    std::filesystem::rename(partial, path, ec);
-    if (ec) {
-        return makeError(ErrorCode::IoError, "Renaming " + quoted(partial) + " to " + quoted(path) +
-                                                 " failed (" + ec.message() + ").");
-    }
-    return {};
+    return renamePartial(path);
 }
 
 Result<void> writePartialFile(const std::filesystem::path& path,
@@ -132,8 +141,8 @@ Result<void> writePartialFile(const std::filesystem::path& path,
         return file.error();
     }
     if (std::fflush(file->get()) != 0) {
-        return makeError(ErrorCode::IoError, "Writing " + quoted(partial) + " failed (" +
-                                                 std::strerror(errno) + ").");
+        return makeError(ErrorCode::IoError,
+                         "Writing " + quoted(partial) + " failed (" + std::strerror(errno) + ").");
     }
     // Only a hint: commitFiles flushes for certain. Started now, the writeback overlaps the
     // encoding of the model's other images.
@@ -146,8 +155,8 @@ Result<void> commitFiles(std::span<const std::filesystem::path> paths) {
         const std::filesystem::path partial = partialPath(path);
         const int descriptor = ::open(partial.c_str(), O_RDONLY | O_CLOEXEC);
         if (descriptor < 0) {
-            return makeError(ErrorCode::IoError, "Cannot open " + quoted(partial) + " (" +
-                                                     std::strerror(errno) + ").");
+            return makeError(ErrorCode::IoError,
+                             "Cannot open " + quoted(partial) + " (" + std::strerror(errno) + ").");
         }
         const bool flushed = ::fdatasync(descriptor) == 0;
         const int flushError = errno;
@@ -159,13 +168,7 @@ Result<void> commitFiles(std::span<const std::filesystem::path> paths) {
         }
     }
     for (const std::filesystem::path& path : paths) {
-        std::error_code ec;
-        std::filesystem::rename(partialPath(path), path, ec);
-        if (ec) {
-            return makeError(ErrorCode::IoError, "Renaming " + quoted(partialPath(path)) +
-                                                     " to " + quoted(path) + " failed (" +
-                                                     ec.message() + ").");
-        }
+        ENCORE_TRY(renamePartial(path));
     }
     return {};
 }
