@@ -193,6 +193,20 @@ struct SimplifiedLevel {
     float error = 0.0f;  // Object space.
 };
 
+// In place. The FIFO variant models a 16-entry cache: smaller than today's GPUs keep, as
+// meshoptimizer advises, so that the order does not thrash a cache that holds fewer vertices
+// than expected.
+void orderForVertexCache(std::vector<std::uint32_t>& indices,
+                         std::size_t vertexCount,
+                         VertexCacheOrder order) {
+    if (order == VertexCacheOrder::Fast) {
+        meshopt_optimizeVertexCacheFifo(indices.data(), indices.data(), indices.size(),
+                                        vertexCount, 16);
+    } else {
+        meshopt_optimizeVertexCache(indices.data(), indices.data(), indices.size(), vertexCount);
+    }
+}
+
 // Halves the triangles of the previous level until a level no longer gets to half, comes out
 // empty or the error budget is spent. Level k is simplified from level k-1 (far cheaper than
 // from level 0 each time); its error relative to level 0 is at most the sum of the steps'
@@ -238,8 +252,7 @@ std::vector<SimplifiedLevel> simplifyChain(const SceneData& scene,
             break;
         }
         simplified.resize(count);
-        meshopt_optimizeVertexCache(simplified.data(), simplified.data(), count,
-                                    primitive.vertexCount);
+        orderForVertexCache(simplified, primitive.vertexCount, options.vertexCacheOrder);
         spent += stepError;
         levels.push_back({std::move(simplified), spent * scale});
     }
@@ -411,8 +424,8 @@ Result<MeshOptimizerReport> optimizeMeshes(SceneData& scene, const MeshOptimizer
                     primitive.material.index() < scene.materials.size() &&
                     scene.materials[primitive.material.index()].alphaMode == AlphaMode::Blend;
                 if (!blends) {
-                    meshopt_optimizeVertexCache(indices.data(), indices.data(), indices.size(),
-                                                primitive.vertexCount);
+                    orderForVertexCache(indices, primitive.vertexCount,
+                                        options.vertexCacheOrder);
                 }
                 const bool renumber = streamsRenumberable(scene, primitive, readers);
                 if (renumber) {

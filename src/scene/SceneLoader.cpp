@@ -130,6 +130,7 @@ Result<SceneData> load(std::span<const std::uint8_t> bytes, LoadContext& context
     // Last: it rewrites the index and vertex data every stage above has checked.
     MeshOptimizerOptions meshOptions;
     meshOptions.optimizeVertexOrder = context.options.optimizeMeshes;
+    meshOptions.vertexCacheOrder = context.options.vertexCacheOrder;
     meshOptions.buildLevelsOfDetail = context.options.buildLevelsOfDetail;
     ENCORE_TRY(optimizeMeshes(context.scene, meshOptions));
     return std::move(context.scene);

@@ -17,10 +17,12 @@ namespace {
 
 constexpr std::uint32_t kSize = 160;
 
-scene::LoadOptions loadOptions(bool optimise) {
+scene::LoadOptions loadOptions(bool optimise,
+                               scene::VertexCacheOrder order = scene::VertexCacheOrder::Thorough) {
     scene::LoadOptions options;
     options.optimizeMeshes = optimise;
     options.buildLevelsOfDetail = optimise;
+    options.vertexCacheOrder = order;
     return options;
 }
 
@@ -82,6 +84,11 @@ TEST(MeshOptimizerRenderTest, GeneratedSceneDrawsTheSamePixels) {
     }
     EXPECT_GT(levels, 0u);
     expectSamePixels(*context, *plain, *optimised);
+    // The fast FIFO order (encore batch) draws the same too.
+    auto fast = scene::loadSceneFromMemory(*glb, {}, "generated.glb",
+                                           loadOptions(true, scene::VertexCacheOrder::Fast));
+    ASSERT_TRUE(fast.ok()) << fast.error().message;
+    expectSamePixels(*context, *plain, *fast);
 }
 
 TEST(MeshOptimizerRenderTest, SharedModelsDrawTheSamePixels) {

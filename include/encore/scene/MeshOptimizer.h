@@ -8,7 +8,8 @@
 // indices, or more than 65,536 vertices and 8 per index: a primitive reading a small part of a
 // large shared vertex buffer). For each indexed triangle list:
 //  - Vertex order (optimizeVertexOrder): the triangles are reordered for the post-transform
-//    vertex cache (meshopt_optimizeVertexCache), then the vertices are renumbered in the order
+//    vertex cache (meshopt_optimizeVertexCache, or its FIFO variant with
+//    VertexCacheOrder::Fast), then the vertices are renumbered in the order
 //    the triangles first use them (meshopt_optimizeVertexFetchRemap), so vertex fetches walk
 //    memory forwards. Every vertex stream of the primitive moves together: all attributes and
 //    every morph target delta. Vertices no triangle uses keep their place after the used ones,
@@ -40,6 +41,8 @@ namespace encore::scene {
 
 struct MeshOptimizerOptions {
     bool optimizeVertexOrder = true;
+    // Which cache optimiser orders the triangles of level 0 and of every level of detail.
+    VertexCacheOrder vertexCacheOrder = VertexCacheOrder::Thorough;
     bool buildLevelsOfDetail = true;
     // The largest deviation a level may have from the full-detail surface, relative to the
     // primitive's extent (meshoptimizer's target_error). The budget covers the whole chain:

@@ -387,6 +387,18 @@ struct SceneData {
     std::size_t primitiveCount() const;  // Summed over meshes.
 };
 
+// How LoadOptions::optimizeMeshes orders triangles for the post-transform vertex cache
+// (MeshOptimizer.h).
+enum class VertexCacheOrder : std::uint8_t {
+    // meshopt_optimizeVertexCache: the order that suits any cache size best. For models that
+    // are loaded once and drawn many times.
+    Thorough,
+    // meshopt_optimizeVertexCacheFifo with a 16-entry FIFO: four to five times faster for a
+    // slightly worse order (docs/benchmarks/2026-11-24-lavapipe-batch-load.md). For models drawn
+    // only a few times each, where load time matters more than drawing time (encore batch).
+    Fast,
+};
+
 struct LoadOptions {
     bool decodeImages = true;  // False skips image decoding (images keep their names only).
     bool strict = false;       // Warnings (missing images, unsupported optional features)
@@ -394,6 +406,7 @@ struct LoadOptions {
     // Reorders the triangles and vertices of indexed triangle lists for the GPU's vertex cache
     // and vertex fetch (MeshOptimizer.h); what is drawn stays the same.
     bool optimizeMeshes = true;
+    VertexCacheOrder vertexCacheOrder = VertexCacheOrder::Thorough;
     // Builds Primitive::levels (MeshOptimizer.h). Costs load time and memory that only a
     // renderer which selects levels earns back.
     bool buildLevelsOfDetail = true;
