@@ -160,6 +160,8 @@ py::dict summaryDict(const batch::BatchSummary& result) {
     stages["gpu"] = result.stages.gpu;
     stages["readback"] = result.stages.readback;
     stages["encode"] = result.stages.encode;
+    stages["load_cpu"] = result.stages.loadCpu;
+    stages["encode_cpu"] = result.stages.encodeCpu;
     py::list failures;
     for (const batch::Failure& failure : result.failures) {
         py::dict entry;

@@ -209,11 +209,12 @@ int runBatch(const BatchCommandOptions& options, const GlobalOptions& global) {
         summary->interrupted ? "; interrupted, run again to resume" : "");
     const batch::StageTimes& stages = summary->stages;
     std::printf(
-        "stages (s): load+decode %.2f, upload %.2f (staging %.2f), render %.2f, gpu wait %.2f, "
-        "read-back %.2f, encode+write %.2f (load and encode summed over %zu threads; the GPU "
-        "works beside the upload, render and read-back)\n",
-        stages.load, stages.upload, stages.staging, stages.render, stages.gpu, stages.readback,
-        stages.encode,
+        "stages (s): load+decode %.2f (cpu %.2f), upload %.2f (staging %.2f), render %.2f, gpu "
+        "wait %.2f, read-back %.2f, encode+write %.2f (cpu %.2f) (load and encode summed over "
+        "%zu threads, cpu: their CPU time without waiting for a core or the disk; the GPU works "
+        "beside the upload, render and read-back)\n",
+        stages.load, stages.loadCpu, stages.upload, stages.staging, stages.render, stages.gpu,
+        stages.readback, stages.encode, stages.encodeCpu,
         options.jobs ? options.jobs
                      : std::size_t(std::max(1u, std::thread::hardware_concurrency())));
     if (global.verbose) {

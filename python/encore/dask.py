@@ -30,7 +30,7 @@ from . import Renderer, discover_inputs
 
 __all__ = ["render_collection"]
 
-_STAGES = ("load", "upload", "render", "gpu", "readback", "encode")
+_STAGES = ("load", "upload", "render", "gpu", "readback", "encode", "load_cpu", "encode_cpu")
 
 
 class _WorkerRenderers:

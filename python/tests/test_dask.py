@@ -85,7 +85,8 @@ def test_output_equals_the_batch_command_and_reruns_skip(client, collection, tmp
         8, 6, 2, 0)
     assert summary["views"] == 18
     assert summary["tasks"] == 4
-    assert set(summary["stages"]) == {"load", "upload", "render", "gpu", "readback", "encode"}
+    assert set(summary["stages"]) == {"load", "upload", "render", "gpu", "readback", "encode",
+                                      "load_cpu", "encode_cpu"}
     assert summary["stages"]["gpu"] > 0.0
 
     produced = files_under(output)

@@ -171,7 +171,8 @@ def test_batch_lists_failures_and_skips_finished_models(tmp_path):
     summary = encore.batch(str(tmp_path / "in"), str(out), views=3, size=32)
     assert (summary["rendered"], summary["failed"], summary["skipped"]) == (2, 1, 0)
     assert summary["views"] == 6
-    assert set(summary["stages"]) == {"load", "upload", "render", "gpu", "readback", "encode"}
+    assert set(summary["stages"]) == {"load", "upload", "render", "gpu", "readback", "encode",
+                                      "load_cpu", "encode_cpu"}
     for name in ("a/model", "b/model"):
         assert sorted(p.name for p in (out / name).iterdir()) == [
             "000.png", "001.png", "002.png", "transforms.json"]

@@ -50,6 +50,8 @@ struct SharedCounters {
     std::mutex mutex;  // Guards the sums below.
     double load = 0.0;
     double encode = 0.0;
+    double loadCpu = 0.0;
+    double encodeCpu = 0.0;
 };
 
 // One model from its upload until its last file is written, shared by its encode tasks.
@@ -301,12 +303,14 @@ void BatchRun::encodeView(const std::shared_ptr<ModelJob>& job,
                           std::uint32_t strip) {
     mPool.submitFirst([this, job, view, kind, wide = std::move(wide), strip]() mutable {
         const auto start = Clock::now();
+        const double cpuStart = threadCpuSeconds();
         auto image = std::make_shared<image::ImageRgba8>(
             cropStrip(wide->rows, wide->bytesPerRow, wide->height, strip, mOptions.width));
         wide.reset();  // The last strip lets the ring have its buffer back.
         {
             std::lock_guard lock(mCounters.mutex);
             mCounters.encode += secondsSince(start);
+            mCounters.encodeCpu += threadCpuSeconds() - cpuStart;
         }
         writeImage(job, view, kind, [kind, image] {
             if (kind == ViewImage::Normal) {
@@ -323,6 +327,7 @@ void BatchRun::writeImage(const std::shared_ptr<ModelJob>& job,
                           std::function<Result<std::vector<std::uint8_t>>()> encode) {
     mPool.submit([this, job, view, kind, encode = std::move(encode)] {
         const auto start = Clock::now();
+        const double cpuStart = threadCpuSeconds();
         if (!job->failed) {
             auto png = encode();
             const fs::path path = viewImagePath(job->folder, view, kind);
@@ -345,6 +350,7 @@ void BatchRun::writeImage(const std::shared_ptr<ModelJob>& job,
         }
         std::lock_guard lock(mCounters.mutex);
         mCounters.encode += secondsSince(start);
+        mCounters.encodeCpu += threadCpuSeconds() - cpuStart;
     });
 }
 
@@ -683,6 +689,7 @@ Result<BatchSummary> BatchRun::run() {
         {
             std::lock_guard lock(mCounters.mutex);
             mCounters.load += loaded->seconds;
+            mCounters.loadCpu += loaded->cpuSeconds;
         }
         renderModel(*loaded);
         collectReady();
@@ -710,6 +717,8 @@ Result<BatchSummary> BatchRun::run() {
     summary.stages.gpuStages = mGpuStageTotals;
     summary.stages.load = mCounters.load;
     summary.stages.encode = mCounters.encode;
+    summary.stages.loadCpu = mCounters.loadCpu;
+    summary.stages.encodeCpu = mCounters.encodeCpu;
     summary.failures = mFailures->entries();
     reportProgress(true);
     return summary;

@@ -42,6 +42,7 @@ void ModelLoader::startLoads() {
         ++mRunning;
         mPool->submit([this, order] {
             const auto start = std::chrono::steady_clock::now();
+            const double cpuStart = threadCpuSeconds();
             LoadedModel loaded;
             loaded.order = order;
             loaded.scene = scene::loadScene(mInputs[order].path, mOptions);
@@ -49,6 +50,7 @@ void ModelLoader::startLoads() {
                 loaded.bytes = sceneBytes(*loaded.scene);
             }
             loaded.seconds = secondsSince(start);
+            loaded.cpuSeconds = threadCpuSeconds() - cpuStart;
             std::lock_guard lock(mMutex);
             --mRunning;
             mBytesHeld += loaded.bytes;

@@ -25,6 +25,7 @@ struct LoadedModel {
     Result<scene::SceneData> scene = makeError(ErrorCode::InvalidArgument, "Not loaded.");
     std::uint64_t bytes = 0;  // What the scene holds in memory (buffers and decoded images).
     double seconds = 0.0;
+    double cpuSeconds = 0.0;  // The loading thread's CPU time.
 };
 
 // The bytes a loaded scene holds: its buffers and decoded images.

@@ -48,6 +48,11 @@ struct StageTimes {
     double gpu = 0.0;
     double readback = 0.0;  // Unpacking the mapped rows into images.
     double encode = 0.0;    // PNG encoding and writing the files.
+    // The CPU time of the load and encode work (the threads' CPU clocks): on a host with more
+    // pool threads than free cores, load and encode also count the time a thread waited for a
+    // core; these do not, so they say which stage's work fills the cores.
+    double loadCpu = 0.0;
+    double encodeCpu = 0.0;
     // The upload's parts (Renderer::prepare's own breakdown, milliseconds summed over models).
     render::PrepareTimes uploadParts;
     // The GPU's own time by render::GpuStage, from timestamps (BatchOptions::gpuTimestamps);
