@@ -173,5 +173,41 @@ TEST(ImageCodecTest, Gray16RoundTripsThroughADecoder) {
     EXPECT_FALSE(encodePng16(ImageGray16{}).ok());
 }
 
+// The encoder keeps its buffers per thread (PngScratch): images of other sizes and kinds in
+// between, larger and smaller, leave nothing behind. The same image encodes to the same bytes
+// every time, and each PNG is strictly valid and decodes to its own pixels.
+TEST(ImageCodecTest, EncodingsInTurnOnOneThreadAreIndependent) {
+    auto pattern = [](std::uint32_t width, std::uint32_t height, std::uint32_t seed) {
+        ImageRgba8 image{width, height, std::vector<std::uint8_t>(std::size_t(width) * height * 4)};
+        for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+            seed = seed * 1664525u + 1013904223u;
+            image.pixels[i] = (i / 4) % 7 == 0 ? std::uint8_t(seed >> 24) : std::uint8_t(i / 64);
+        }
+        return image;
+    };
+    const ImageRgba8 large = pattern(640, 480, 1);
+    const ImageRgba8 small = pattern(17, 5, 2);
+    ImageGray16 depth{40, 30, std::vector<std::uint16_t>(40 * 30)};
+    for (std::size_t i = 0; i < depth.pixels.size(); ++i) {
+        depth.pixels[i] = std::uint16_t(i * 977);
+    }
+    auto first = encodePng(large);
+    ASSERT_TRUE(first.ok()) << first.error().message;
+    auto smallPng = encodePng(small);
+    auto depthPng = encodePng16(depth);
+    auto again = encodePng(large);
+    ASSERT_TRUE(smallPng.ok() && depthPng.ok() && again.ok());
+    EXPECT_EQ(*again, *first);
+    expectStrictlyValidPng(*first, (640 * 4 + 1) * 480);
+    expectStrictlyValidPng(*smallPng, (17 * 4 + 1) * 5);
+    expectStrictlyValidPng(*depthPng, (40 * 2 + 1) * 30);
+    auto decodedSmall = decodeImage(*smallPng);
+    ASSERT_TRUE(decodedSmall.ok()) << decodedSmall.error().message;
+    EXPECT_EQ(decodedSmall->pixels, small.pixels);
+    auto decodedLarge = decodeImage(*again);
+    ASSERT_TRUE(decodedLarge.ok()) << decodedLarge.error().message;
+    EXPECT_EQ(decodedLarge->pixels, large.pixels);
+}
+
 }  // namespace
 }  // namespace encore::image
