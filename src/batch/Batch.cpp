@@ -42,6 +42,11 @@ Error deviceNotRecreated() {
                      "The GPU device was lost and could not be created again.");
 }
 
+// The pool runs at a lower priority than the device thread: with a thread per core loading and
+// encoding, the device thread (uploads, recording, read-back, the GPU's only feeder) otherwise
+// waits for a core behind them while the GPU runs dry.
+constexpr int kPoolNiceness = 10;
+
 // Counters the pool's encode tasks and the GPU thread both update.
 struct SharedCounters {
     std::atomic<std::size_t> rendered{0};
@@ -124,7 +129,7 @@ class BatchRun {
           mBatchRenderer(renderers),
           mInputs(inputs),
           mOptions(options),
-          mPool(options.jobs) {}
+          mPool(options.jobs, kPoolNiceness) {}
 
     Result<BatchSummary> run();
 

@@ -1,16 +1,28 @@
 #include "encore/core/ThreadPool.h"
 
+#include <sys/resource.h>
+#include <unistd.h>
+
 #include <algorithm>
 
 namespace encore {
 
-ThreadPool::ThreadPool(std::size_t threads) {
+ThreadPool::ThreadPool(std::size_t threads, int niceness) {
     if (threads == 0) {
         threads = std::max(1u, std::thread::hardware_concurrency());
     }
+    niceness = std::clamp(niceness, 0, 19);
     mWorkers.reserve(threads);
     for (std::size_t i = 0; i < threads; ++i) {
-        mWorkers.emplace_back([this] { work(); });
+        mWorkers.emplace_back([this, niceness] {
+            if (niceness > 0) {
+                // Per thread on Linux (a thread id names the thread alone). Raising one's own
+                // nice value needs no privilege; failure leaves the normal priority, which is
+                // only slower.
+                setpriority(PRIO_PROCESS, id_t(gettid()), niceness);
+            }
+            work();
+        });
     }
 }
 

@@ -15,8 +15,11 @@ namespace encore {
 
 class ThreadPool {
   public:
-    // `threads` workers; 0 means one per hardware thread.
-    explicit ThreadPool(std::size_t threads);
+    // `threads` workers; 0 means one per hardware thread. A positive `niceness` lowers the
+    // workers' scheduling priority by that much (Linux thread nice values, 1..19): when the
+    // workers fill every core, a thread at normal priority that feeds a GPU still gets a core
+    // as soon as it has work.
+    explicit ThreadPool(std::size_t threads, int niceness = 0);
     // Runs every task already submitted, then joins the workers.
     ~ThreadPool();
 
