@@ -1,6 +1,9 @@
 #include <gtest/gtest.h>
+#include <sys/resource.h>
+#include <unistd.h>
 
 #include <atomic>
+#include <cerrno>
 #include <future>
 #include <mutex>
 #include <vector>
@@ -67,6 +70,34 @@ TEST(ThreadPoolTest, SubmitFirstRunsAheadOfQueuedTasks) {
 TEST(ThreadPoolTest, ZeroThreadsMeansOnePerCore) {
     ThreadPool pool(0);
     EXPECT_GE(pool.size(), 1u);
+}
+
+// Workers run at the niceness asked for, added to the creating thread's; the creating thread
+// keeps its own.
+TEST(ThreadPoolTest, WorkersRunAtTheNicenessAskedFor) {
+    errno = 0;
+    const int base = getpriority(PRIO_PROCESS, id_t(gettid()));
+    ASSERT_EQ(errno, 0);
+    for (int niceness : {0, 7}) {
+        std::mutex mutex;
+        std::vector<int> seen;
+        {
+            ThreadPool pool(3, niceness);
+            for (int i = 0; i < 6; ++i) {
+                pool.submit([&] {
+                    const int value = getpriority(PRIO_PROCESS, id_t(gettid()));
+                    std::lock_guard lock(mutex);
+                    seen.push_back(value);
+                });
+            }
+            pool.waitIdle();
+        }
+        ASSERT_EQ(seen.size(), 6u);
+        for (int value : seen) {
+            EXPECT_EQ(value, std::min(base + niceness, 19)) << "niceness " << niceness;
+        }
+    }
+    EXPECT_EQ(getpriority(PRIO_PROCESS, id_t(gettid())), base);
 }
 
 }  // namespace
