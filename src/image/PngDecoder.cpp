@@ -2,6 +2,8 @@
 // (zlib's inflate against stb's) and its RGBA8 output equals stb's byte for byte for every
 // colour type and bit depth (16-bit samples keep their high byte, low bit depths are scaled,
 // palettes and tRNS colour keys expanded), which the unit tests check against stb itself.
+// 8-bit non-interlaced PNGs, nearly all textures, go through decodePngWithLibdeflate first
+// (faster again, same pixels); libspng takes the rest and everything that path refuses.
 
 #include <spng.h>
 
@@ -59,6 +61,9 @@ bool isPng(std::span<const std::uint8_t> encoded) {
 
 Result<ImageRgba8> decodePng(std::span<const std::uint8_t> encoded) {
     ENCORE_TRY(checkPngChunks(encoded));
+    if (std::optional<ImageRgba8> image = decodePngWithLibdeflate(encoded)) {
+        return std::move(*image);
+    }
     // stb_image checked neither the chunks' CRCs nor the zlib stream's Adler-32: files that
     // decoded before still decode.
     std::unique_ptr<spng_ctx, SpngContextFree> context(spng_ctx_new(SPNG_CTX_IGNORE_ADLER32));

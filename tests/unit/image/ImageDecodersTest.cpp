@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "ImageDecoders.h"
 #include "TestPaths.h"
 #include "encore/core/FileIO.h"
 #include "encore/image/ImageCodec.h"
@@ -219,6 +220,67 @@ TEST(ImageDecodersTest, PngEqualsStbForEveryColourTypeAndBitDepth) {
                 << describe(c) << ", " << width << "x" << height;
         }
     }
+}
+
+// decodePng's fast path (libdeflate) takes every 8-bit, non-interlaced PNG, with all five
+// filters, palettes and tRNS keys, and gives stb's pixels; it leaves the other depths and
+// Adam7 to libspng. IDAT data split over several chunks decodes the same, and so does a stream
+// whose Adler-32 is wrong: the fast path refuses it and libspng ignores the checksum.
+TEST(ImageDecodersTest, LibdeflatePathTakesEightBitPngsAndEqualsStb) {
+    unsigned seed = 100;
+    for (const bool interlaced : {false, true}) {
+        for (const std::uint8_t depth : {4, 8, 16}) {
+            for (const std::uint8_t colorType : {0, 2, 3, 4, 6}) {
+                if ((colorType == 3 && depth == 16) || (colorType != 0 && colorType != 3 &&
+                                                        depth < 8)) {
+                    continue;
+                }
+                for (const bool transparency : {false, true}) {
+                    if (transparency && (colorType == 4 || colorType == 6)) {
+                        continue;
+                    }
+                    const PngCase c{colorType, depth, transparency, interlaced};
+                    const Bytes png = makePng(c, 37, 29, seed++);
+                    const std::optional<ImageRgba8> fast = decodePngWithLibdeflate(png);
+                    if (depth != 8 || interlaced) {
+                        EXPECT_FALSE(fast.has_value()) << describe(c);
+                        continue;
+                    }
+                    ASSERT_TRUE(fast.has_value()) << describe(c);
+                    int width = 0;
+                    int height = 0;
+                    EXPECT_TRUE(fast->pixels == decodeWithStb(png, width, height)) << describe(c);
+                }
+            }
+        }
+    }
+
+    const Bytes png = makePng({6, 8, false, false}, 37, 29, 5);
+    const auto expected = decodePngWithLibdeflate(png);
+    ASSERT_TRUE(expected.has_value());
+    // The IDAT chunk starts after the signature and IHDR (33 bytes); IEND is the last 12.
+    const std::size_t idatLength = png.size() - 33 - 12 - 12;
+    const Bytes idat(png.begin() + 33 + 8, png.begin() + 33 + 8 + std::ptrdiff_t(idatLength));
+    Bytes split(png.begin(), png.begin() + 33);
+    const std::size_t third = idatLength / 3;
+    appendChunk(split, "IDAT", Bytes(idat.begin(), idat.begin() + std::ptrdiff_t(third)));
+    appendChunk(split, "IDAT",
+                Bytes(idat.begin() + std::ptrdiff_t(third), idat.begin() + std::ptrdiff_t(2 * third)));
+    appendChunk(split, "IDAT", Bytes(idat.begin() + std::ptrdiff_t(2 * third), idat.end()));
+    appendChunk(split, "IEND", {});
+    const auto joined = decodePngWithLibdeflate(split);
+    ASSERT_TRUE(joined.has_value());
+    EXPECT_TRUE(joined->pixels == expected->pixels);
+
+    Bytes badChecksum(png.begin(), png.begin() + 33);
+    Bytes corrupted = idat;
+    corrupted.back() ^= 0x5a;  // The Adler-32's last byte.
+    appendChunk(badChecksum, "IDAT", corrupted);
+    appendChunk(badChecksum, "IEND", {});
+    EXPECT_FALSE(decodePngWithLibdeflate(badChecksum).has_value());
+    auto decoded = decodeImage(badChecksum);
+    ASSERT_TRUE(decoded.ok()) << decoded.error().message;
+    EXPECT_TRUE(decoded->pixels == expected->pixels);
 }
 
 // Malformed ancillary chunks (metadata) are ignored, as stb_image ignored them: such files
