@@ -109,8 +109,11 @@ std::size_t channelsOf(std::uint8_t colorType) {
 
 // Undoes the row's filter in place; `above` is the previous unfiltered row (zeros for the
 // first). False for a filter type PNG does not define.
-bool unfilterRow(std::uint8_t filter, std::uint8_t* row, const std::uint8_t* above,
-                 std::size_t rowBytes, std::size_t bytesPerPixel) {
+bool unfilterRow(std::uint8_t filter,
+                 std::uint8_t* row,
+                 const std::uint8_t* above,
+                 std::size_t rowBytes,
+                 std::size_t bytesPerPixel) {
     switch (filter) {
         case 0:
             return true;
@@ -162,8 +165,7 @@ bool expandRow(const PngChunks& chunks, const std::uint8_t* row, std::uint8_t* o
     switch (chunks.colorType) {
         case 0: {
             // A tRNS key is a 16-bit sample; at 8 bits only values up to 255 can match.
-            const int transparent =
-                key.size() >= 2 ? int(std::uint32_t(key[0]) << 8 | key[1]) : -1;
+            const int transparent = key.size() >= 2 ? int(std::uint32_t(key[0]) << 8 | key[1]) : -1;
             for (std::uint32_t x = 0; x < width; ++x, out += 4) {
                 const std::uint8_t grey = row[x];
                 out[0] = out[1] = out[2] = grey;

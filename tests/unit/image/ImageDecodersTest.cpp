@@ -264,8 +264,8 @@ TEST(ImageDecodersTest, LibdeflatePathTakesEightBitPngsAndEqualsStb) {
     Bytes split(png.begin(), png.begin() + 33);
     const std::size_t third = idatLength / 3;
     appendChunk(split, "IDAT", Bytes(idat.begin(), idat.begin() + std::ptrdiff_t(third)));
-    appendChunk(split, "IDAT",
-                Bytes(idat.begin() + std::ptrdiff_t(third), idat.begin() + std::ptrdiff_t(2 * third)));
+    const auto middle = idat.begin() + std::ptrdiff_t(third);
+    appendChunk(split, "IDAT", Bytes(middle, middle + std::ptrdiff_t(third)));
     appendChunk(split, "IDAT", Bytes(idat.begin() + std::ptrdiff_t(2 * third), idat.end()));
     appendChunk(split, "IEND", {});
     const auto joined = decodePngWithLibdeflate(split);
