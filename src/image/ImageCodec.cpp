@@ -9,6 +9,7 @@
 #include <string>
 
 #include "ImageDecoders.h"
+#include "RunLengthDeflate.h"
 #include "encore/core/FileIO.h"
 
 namespace encore::image {
@@ -179,13 +180,15 @@ void filterUp(const std::uint8_t* samples, std::size_t rowBytes, std::uint32_t h
 
 // A PNG of `samples` (rows top to bottom, each sample as PNG stores it: 16-bit ones big-endian).
 // Speed over size: every row gets the Up filter (of the five filters the cheapest to compute
-// that compresses rendered views as well as Paeth), and libdeflate compresses at level 2: on
-// rendered 512x512 views 2.6 ms for 66 KiB where zlib's fastest level took 2.9 ms for 78 KiB
-// (libdeflate's level 1 takes 2.9 ms too: its matcher pays for the long runs of transparent
-// black). See docs/benchmarks/2026-11-24-lavapipe-batch-codecs.md.
+// that compresses rendered views as well as Paeth). PngCompression::Small compresses with
+// libdeflate at level 2: on rendered 512x512 views 2.6 ms for 66 KiB where zlib's fastest level
+// took 2.9 ms for 78 KiB (libdeflate's level 1 takes 2.9 ms too: its matcher pays for the long
+// runs of transparent black; docs/benchmarks/2026-11-24-lavapipe-batch-codecs.md).
+// PngCompression::Fast skips the match search: runLengthZlib.
 Result<std::vector<std::uint8_t>> writePngStream(std::uint32_t width, std::uint32_t height,
                                                  std::uint8_t bitDepth, PngColor color,
-                                                 std::span<const std::uint8_t> samples) {
+                                                 std::span<const std::uint8_t> samples,
+                                                 PngCompression compression) {
     thread_local PngScratch scratch;
     const Error outOfMemory = makeError(ErrorCode::IoError, "PNG encoding failed (out of memory).");
     const std::size_t rowBytes = samples.size() / height;
@@ -199,14 +202,19 @@ Result<std::vector<std::uint8_t>> writePngStream(std::uint32_t width, std::uint3
         return outOfMemory;
     }
     filterUp(samples.data(), rowBytes, height, filtered);
-    const std::size_t bound = libdeflate_zlib_compress_bound(scratch.compressor.get(), filteredSize);
+    const bool fast = compression == PngCompression::Fast;
+    const std::size_t bound =
+        fast ? runLengthZlibBound(filteredSize)
+             : libdeflate_zlib_compress_bound(scratch.compressor.get(), filteredSize);
     std::uint8_t* compressed =
         PngScratch::reserve(scratch.compressed, scratch.compressedCapacity, bound);
     if (!compressed) {
         return outOfMemory;
     }
-    const std::size_t compressedSize = libdeflate_zlib_compress(
-        scratch.compressor.get(), filtered, filteredSize, compressed, bound);
+    const std::size_t compressedSize =
+        fast ? runLengthZlib({filtered, filteredSize}, compressed)
+             : libdeflate_zlib_compress(scratch.compressor.get(), filtered, filteredSize,
+                                        compressed, bound);
     if (compressedSize == 0) {
         return makeError(ErrorCode::IoError, "PNG encoding failed (libdeflate).");
     }
@@ -229,12 +237,14 @@ Result<std::vector<std::uint8_t>> writePngStream(std::uint32_t width, std::uint3
 
 }  // namespace
 
-Result<std::vector<std::uint8_t>> encodePng(const ImageRgba8& image) {
+Result<std::vector<std::uint8_t>> encodePng(const ImageRgba8& image, PngCompression compression) {
     ENCORE_TRY(checkEncodable(image.width, image.height, image.pixels.size(), 4));
-    return writePngStream(image.width, image.height, 8, PngColor::Rgba, image.pixels);
+    return writePngStream(image.width, image.height, 8, PngColor::Rgba, image.pixels,
+                          compression);
 }
 
-Result<std::vector<std::uint8_t>> encodePng16(const ImageGray16& image) {
+Result<std::vector<std::uint8_t>> encodePng16(const ImageGray16& image,
+                                              PngCompression compression) {
     ENCORE_TRY(checkEncodable(image.width, image.height, image.pixels.size(), 1));
     std::vector<std::uint8_t> samples;
     samples.reserve(image.pixels.size() * 2);
@@ -242,7 +252,7 @@ Result<std::vector<std::uint8_t>> encodePng16(const ImageGray16& image) {
         samples.push_back(std::uint8_t(value >> 8));  // PNG stores 16-bit samples big-endian.
         samples.push_back(std::uint8_t(value & 0xff));
     }
-    return writePngStream(image.width, image.height, 16, PngColor::Gray, samples);
+    return writePngStream(image.width, image.height, 16, PngColor::Gray, samples, compression);
 }
 
 Result<void> writePng(const std::filesystem::path& path, const ImageRgba8& image) {

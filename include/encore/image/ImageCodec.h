@@ -42,7 +42,18 @@ struct ImageRgba8 {
 // colours expanded and alpha 255 (tRNS applied), 16-bit samples keep their high byte.
 Result<ImageRgba8> decodeImage(std::span<const std::uint8_t> encoded);
 
-Result<std::vector<std::uint8_t>> encodePng(const ImageRgba8& image);
+// How hard PNG encoding works at compressing. Both filter every row with Up.
+enum class PngCompression : std::uint8_t {
+    // libdeflate at level 2: 2.6 ms and 66 KiB for a typical 512x512 rendered view.
+    Small,
+    // One Huffman-coded deflate block whose only matches are runs of a repeated byte
+    // (RunLengthDeflate.h): 1.0 ms and 76 KiB for the same views, for bulk rendering where
+    // encoding limits the throughput (docs/benchmarks/2026-11-24-lavapipe-batch-load.md).
+    Fast,
+};
+
+Result<std::vector<std::uint8_t>> encodePng(const ImageRgba8& image,
+                                            PngCompression compression = PngCompression::Small);
 
 // A 16-bit greyscale image (depth maps), rows top to bottom.
 struct ImageGray16 {
@@ -52,7 +63,8 @@ struct ImageGray16 {
 };
 
 // Encodes a 16-bit greyscale PNG.
-Result<std::vector<std::uint8_t>> encodePng16(const ImageGray16& image);
+Result<std::vector<std::uint8_t>> encodePng16(const ImageGray16& image,
+                                              PngCompression compression = PngCompression::Small);
 Result<void> writePng(const std::filesystem::path& path, const ImageRgba8& image);
 Result<ImageRgba8> readImage(const std::filesystem::path& path);
 

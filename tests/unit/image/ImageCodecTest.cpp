@@ -5,6 +5,7 @@
 #include <string_view>
 
 #include "TestPaths.h"
+#include "RunLengthDeflate.h"
 #include "encore/image/ImageCodec.h"
 
 namespace encore::image {
@@ -207,6 +208,85 @@ TEST(ImageCodecTest, EncodingsInTurnOnOneThreadAreIndependent) {
     auto decodedLarge = decodeImage(*again);
     ASSERT_TRUE(decodedLarge.ok()) << decodedLarge.error().message;
     EXPECT_EQ(decodedLarge->pixels, large.pixels);
+}
+
+// runLengthZlib's streams inflate with zlib (which refuses incomplete or over-subscribed codes)
+// to their data: no data, one byte, one repeated byte, random bytes (all literals), runs of
+// every length around deflate's 258 and its 3-byte minimum, and frequencies in a Fibonacci
+// sequence, whose Huffman code is 24 bits deep and must be limited to 15.
+TEST(ImageCodecTest, RunLengthZlibInflatesToItsData) {
+    std::vector<std::vector<std::uint8_t>> cases;
+    cases.push_back({});
+    cases.push_back({42});
+    cases.push_back(std::vector<std::uint8_t>(1 << 20, 0));
+    std::uint32_t seed = 7;
+    auto random = [&] {
+        seed = seed * 1664525u + 1013904223u;
+        return seed >> 24;
+    };
+    std::vector<std::uint8_t> noise(100000);
+    for (auto& byte : noise) {
+        byte = std::uint8_t(random());
+    }
+    cases.push_back(noise);
+    std::vector<std::uint8_t> runs;
+    for (std::size_t length = 1; length <= 600; ++length) {
+        runs.insert(runs.end(), length, std::uint8_t(length % 7));
+    }
+    cases.push_back(runs);
+    std::vector<std::uint8_t> skewed;
+    std::uint32_t previous = 1;
+    std::uint32_t current = 1;
+    for (std::uint8_t symbol = 0; symbol < 26; ++symbol) {
+        skewed.insert(skewed.end(), current, symbol);
+        const std::uint32_t next = previous + current;
+        previous = current;
+        current = next;
+    }
+    for (std::size_t i = skewed.size() - 1; i > 0; --i) {  // No long runs: shuffled.
+        std::swap(skewed[i], skewed[random() % (i + 1)]);
+    }
+    cases.push_back(skewed);
+    for (const auto& data : cases) {
+        SCOPED_TRACE(data.size());
+        std::vector<std::uint8_t> stream(runLengthZlibBound(data.size()));
+        stream.resize(runLengthZlib(data, stream.data()));
+        ASSERT_GT(stream.size(), 6u);
+        std::vector<std::uint8_t> inflated(data.size() + 1);
+        uLongf size = uLongf(inflated.size());
+        ASSERT_EQ(uncompress(inflated.data(), &size, stream.data(), uLong(stream.size())), Z_OK);
+        ASSERT_EQ(size, data.size());
+        EXPECT_TRUE(std::equal(data.begin(), data.end(), inflated.begin()));
+    }
+}
+
+// PngCompression::Fast gives strictly valid PNGs of the same pixels.
+TEST(ImageCodecTest, FastPngCompressionKeepsThePixels) {
+    ImageRgba8 image{300, 200, std::vector<std::uint8_t>(300 * 200 * 4, 0)};
+    for (std::uint32_t y = 40; y < 170; ++y) {
+        for (std::uint32_t x = 60; x < 250; ++x) {
+            std::uint8_t* p = image.pixel(x, y);
+            p[0] = std::uint8_t(x);
+            p[1] = std::uint8_t(y * 2);
+            p[2] = std::uint8_t((x * y) >> 6);
+            p[3] = 255;
+        }
+    }
+    auto small = encodePng(image);
+    auto fast = encodePng(image, PngCompression::Fast);
+    ASSERT_TRUE(small.ok() && fast.ok());
+    EXPECT_NE(*fast, *small);
+    expectStrictlyValidPng(*fast, (300 * 4 + 1) * 200);
+    auto decoded = decodeImage(*fast);
+    ASSERT_TRUE(decoded.ok()) << decoded.error().message;
+    EXPECT_EQ(decoded->pixels, image.pixels);
+    ImageGray16 depth{40, 30, std::vector<std::uint16_t>(40 * 30)};
+    for (std::size_t i = 0; i < depth.pixels.size(); ++i) {
+        depth.pixels[i] = std::uint16_t(i * 977);
+    }
+    auto depthPng = encodePng16(depth, PngCompression::Fast);
+    ASSERT_TRUE(depthPng.ok());
+    expectStrictlyValidPng(*depthPng, (40 * 2 + 1) * 30);
 }
 
 }  // namespace

@@ -1,0 +1,357 @@
+// A zlib stream of one dynamic-Huffman deflate block whose only matches are runs (distance 1):
+// no LZ77 search, so it costs a scan to count symbols and a scan to write them. On filtered
+// rendered views (long runs of transparent black, small residuals on the object) that is what
+// most of libdeflate's time went to find anyway.
+
+#include "RunLengthDeflate.h"
+
+#include <libdeflate.h>
+
+#include <algorithm>
+#include <array>
+#include <cstring>
+#include <numeric>
+#include <vector>
+
+namespace encore::image {
+namespace {
+
+constexpr int kEndOfBlock = 256;
+constexpr int kLiteralLengthSymbols = 286;  // Codes 286 and 287 never occur.
+constexpr int kMinRun = 3;
+constexpr int kMaxRun = 258;
+
+// Deflate's length codes: for each run length 3..258 its symbol, extra bit count and extra value.
+struct LengthCode {
+    std::uint16_t symbol;
+    std::uint8_t extraBits;
+    std::uint16_t extraValue;
+};
+
+constexpr std::array<LengthCode, kMaxRun + 1> makeLengthCodes() {
+    constexpr std::uint16_t kBase[29] = {3,  4,  5,  6,   7,   8,   9,   10,  11, 13,
+                                         15, 17, 19, 23,  27,  31,  35,  43,  51, 59,
+                                         67, 83, 99, 115, 131, 163, 195, 227, 258};
+    constexpr std::uint8_t kExtra[29] = {0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2,
+                                         2, 3, 3, 3, 3, 4, 4, 4, 4, 5, 5, 5, 5, 0};
+    std::array<LengthCode, kMaxRun + 1> codes{};
+    for (int code = 0; code < 29; ++code) {
+        const int last = code == 28 ? 258 : kBase[code + 1] - 1;
+        for (int length = kBase[code]; length <= last && length <= kMaxRun; ++length) {
+            codes[length] = {std::uint16_t(257 + code), kExtra[code],
+                             std::uint16_t(length - kBase[code])};
+        }
+    }
+    return codes;
+}
+
+constexpr std::array<LengthCode, kMaxRun + 1> kLengthCodes = makeLengthCodes();
+
+// How many bytes from `at` on repeat the byte before it, up to kMaxRun.
+std::size_t runLength(const std::uint8_t* data, std::size_t at, std::size_t size) {
+    const std::uint8_t value = data[at - 1];
+    const std::size_t limit = std::min(size - at, std::size_t(kMaxRun));
+    std::size_t length = 0;
+    std::uint64_t pattern = 0x0101010101010101ull * value;
+    while (length + 8 <= limit) {
+        std::uint64_t word;
+        std::memcpy(&word, data + at + length, 8);
+        const std::uint64_t differ = word ^ pattern;
+        if (differ != 0) {
+            return length + std::size_t(__builtin_ctzll(differ) / 8);
+        }
+        length += 8;
+    }
+    while (length < limit && data[at + length] == value) {
+        ++length;
+    }
+    return length;
+}
+
+// Calls literal(byte) and run(length) for the symbols of `data`, in order.
+template <typename Literal, typename Run>
+void tokenize(const std::uint8_t* data, std::size_t size, Literal literal, Run run) {
+    std::size_t at = 0;
+    while (at < size) {
+        literal(data[at]);
+        ++at;
+        if (at < size && data[at] == data[at - 1]) {
+            std::size_t length = runLength(data, at, size);
+            while (length >= kMinRun) {
+                run(length);
+                at += length;
+                if (at >= size || data[at] != data[at - 1]) {
+                    length = 0;
+                    break;
+                }
+                length = runLength(data, at, size);
+            }
+        }
+    }
+}
+
+// Code lengths of at most `maxLength` bits for `frequencies` (zero-frequency symbols get 0):
+// Huffman's lengths, then, where they exceed the limit, the overflow moved to the limit and the
+// Kraft sum repaired by lengthening the deepest shorter codes (as miniz does); the most
+// frequent symbols keep the shortest codes.
+std::vector<std::uint8_t> codeLengths(const std::vector<std::uint32_t>& frequencies,
+                                      int maxLength) {
+    const std::size_t count = frequencies.size();
+    std::vector<std::uint8_t> lengths(count, 0);
+    std::vector<std::uint32_t> symbols;
+    for (std::uint32_t s = 0; s < count; ++s) {
+        if (frequencies[s] > 0) {
+            symbols.push_back(s);
+        }
+    }
+    if (symbols.empty()) {
+        return lengths;
+    }
+    if (symbols.size() == 1) {
+        lengths[symbols[0]] = 1;
+        return lengths;
+    }
+    std::sort(symbols.begin(), symbols.end(), [&](std::uint32_t a, std::uint32_t b) {
+        return frequencies[a] != frequencies[b] ? frequencies[a] < frequencies[b] : a < b;
+    });
+    // Two-queue Huffman: leaves in frequency order, internal nodes in creation order.
+    const std::size_t leaves = symbols.size();
+    std::vector<std::uint64_t> weight(2 * leaves - 1);
+    std::vector<std::uint32_t> parent(2 * leaves - 1, 0);
+    for (std::size_t i = 0; i < leaves; ++i) {
+        weight[i] = frequencies[symbols[i]];
+    }
+    std::size_t nextLeaf = 0;
+    std::size_t nextNode = leaves;
+    std::size_t created = leaves;
+    auto takeSmallest = [&]() {
+        if (nextLeaf < leaves && (nextNode >= created || weight[nextLeaf] <= weight[nextNode])) {
+            return nextLeaf++;
+        }
+        return nextNode++;
+    };
+    while (created < 2 * leaves - 1) {
+        const std::size_t a = takeSmallest();
+        const std::size_t b = takeSmallest();
+        weight[created] = weight[a] + weight[b];
+        parent[a] = parent[b] = std::uint32_t(created);
+        ++created;
+    }
+    std::vector<int> depth(2 * leaves - 1, 0);
+    for (std::size_t node = 2 * leaves - 2; node-- > 0;) {
+        depth[node] = depth[parent[node]] + 1;
+    }
+    // Codes per length, limited and repaired.
+    std::vector<std::uint32_t> perLength(64, 0);
+    for (std::size_t i = 0; i < leaves; ++i) {
+        ++perLength[std::min(depth[i], maxLength)];
+    }
+    std::uint64_t kraft = 0;
+    for (int length = 1; length <= maxLength; ++length) {
+        kraft += std::uint64_t(perLength[length]) << (maxLength - length);
+    }
+    while (kraft > (std::uint64_t(1) << maxLength)) {
+        --perLength[maxLength];
+        for (int length = maxLength - 1; length > 0; --length) {
+            if (perLength[length] > 0) {
+                --perLength[length];
+                perLength[length + 1] += 2;
+                break;
+            }
+        }
+        --kraft;
+    }
+    // Shortest lengths to the most frequent symbols (the end of `symbols`).
+    std::size_t next = leaves;
+    for (int length = 1; length <= maxLength; ++length) {
+        for (std::uint32_t n = 0; n < perLength[length]; ++n) {
+            lengths[symbols[--next]] = std::uint8_t(length);
+        }
+    }
+    return lengths;
+}
+
+// Canonical codes for `lengths`, bit-reversed for deflate's least-significant-bit-first order.
+std::vector<std::uint16_t> canonicalCodes(const std::vector<std::uint8_t>& lengths) {
+    std::array<std::uint16_t, 17> perLength{};
+    for (std::uint8_t length : lengths) {
+        ++perLength[length];
+    }
+    perLength[0] = 0;
+    std::array<std::uint16_t, 17> next{};
+    std::uint16_t code = 0;
+    for (int length = 1; length <= 16; ++length) {
+        code = std::uint16_t((code + perLength[length - 1]) << 1);
+        next[length] = code;
+    }
+    std::vector<std::uint16_t> codes(lengths.size(), 0);
+    for (std::size_t s = 0; s < lengths.size(); ++s) {
+        const int length = lengths[s];
+        if (length == 0) {
+            continue;
+        }
+        std::uint16_t value = next[length]++;
+        std::uint16_t reversed = 0;
+        for (int bit = 0; bit < length; ++bit) {
+            reversed = std::uint16_t((reversed << 1) | ((value >> bit) & 1));
+        }
+        codes[s] = reversed;
+    }
+    return codes;
+}
+
+// Writes into a buffer sized beforehand for the worst case (RunLengthDeflate's bound).
+class BitWriter {
+  public:
+    explicit BitWriter(std::uint8_t* out) : mOut(out) {}
+
+    void put(std::uint32_t value, int bits) {
+        mBits |= std::uint64_t(value) << mCount;
+        mCount += bits;
+        if (mCount >= 32) {
+            const std::uint32_t low = std::uint32_t(mBits);
+            std::memcpy(mOut, &low, 4);  // Little-endian: deflate's bit order.
+            mOut += 4;
+            mBits >>= 32;
+            mCount -= 32;
+        }
+    }
+
+    // Writes the last partial bytes; returns the end of the data.
+    std::uint8_t* finish() {
+        for (; mCount > 0; mCount -= 8) {
+            *mOut++ = std::uint8_t(mBits);
+            mBits >>= 8;
+        }
+        return mOut;
+    }
+
+  private:
+    std::uint8_t* mOut;
+    std::uint64_t mBits = 0;
+    int mCount = 0;
+};
+
+// The code length sequence (literal/length lengths then distance lengths) in deflate's
+// run-length alphabet: 0..15 literally, 16 = repeat the previous 3..6 times, 17 = 3..10 zeros,
+// 18 = 11..138 zeros. Each entry is symbol | extra value << 8.
+std::vector<std::uint16_t> codeLengthSymbols(const std::vector<std::uint8_t>& all) {
+    std::vector<std::uint16_t> out;
+    std::size_t i = 0;
+    while (i < all.size()) {
+        const std::uint8_t value = all[i];
+        std::size_t run = 1;
+        while (i + run < all.size() && all[i + run] == value) {
+            ++run;
+        }
+        std::size_t left = run;
+        if (value == 0) {
+            while (left >= 11) {
+                const std::size_t n = std::min<std::size_t>(left, 138);
+                out.push_back(std::uint16_t(18 | (n - 11) << 8));
+                left -= n;
+            }
+            if (left >= 3) {
+                out.push_back(std::uint16_t(17 | (left - 3) << 8));
+                left = 0;
+            }
+        } else {
+            out.push_back(value);
+            --left;
+            while (left >= 3) {
+                const std::size_t n = std::min<std::size_t>(left, 6);
+                out.push_back(std::uint16_t(16 | (n - 3) << 8));
+                left -= n;
+            }
+        }
+        for (; left > 0; --left) {
+            out.push_back(value);
+        }
+        i += run;
+    }
+    return out;
+}
+
+}  // namespace
+
+std::size_t runLengthZlibBound(std::size_t size) {
+    // At most 15 bits per byte of data (a literal each); the header takes under 1 KiB.
+    return 2 + size * 2 + 1024 + 4;
+}
+
+std::size_t runLengthZlib(std::span<const std::uint8_t> data, std::uint8_t* out) {
+    std::vector<std::uint32_t> frequencies(kLiteralLengthSymbols, 0);
+    tokenize(
+        data.data(), data.size(), [&](std::uint8_t byte) { ++frequencies[byte]; },
+        [&](std::size_t length) { ++frequencies[kLengthCodes[length].symbol]; });
+    frequencies[kEndOfBlock] = 1;
+    const std::vector<std::uint8_t> literalLengths = codeLengths(frequencies, 15);
+    const std::vector<std::uint16_t> literalCodes = canonicalCodes(literalLengths);
+    std::size_t literalCount = kLiteralLengthSymbols;
+    while (literalCount > 257 && literalLengths[literalCount - 1] == 0) {
+        --literalCount;
+    }
+    // One distance code, 0 (distance 1), one bit long, as deflate allows for a single code.
+    std::vector<std::uint8_t> all(literalLengths.begin(),
+                                  literalLengths.begin() + std::ptrdiff_t(literalCount));
+    all.push_back(1);
+    const std::vector<std::uint16_t> lengthSymbols = codeLengthSymbols(all);
+    std::vector<std::uint32_t> lengthFrequencies(19, 0);
+    for (std::uint16_t symbol : lengthSymbols) {
+        ++lengthFrequencies[symbol & 0xff];
+    }
+    // zlib refuses an incomplete code-length code: give a lone symbol a partner.
+    if (std::count_if(lengthFrequencies.begin(), lengthFrequencies.end(),
+                      [](std::uint32_t f) { return f > 0; }) < 2) {
+        ++lengthFrequencies[lengthFrequencies[0] > 0 ? 1 : 0];
+    }
+    const std::vector<std::uint8_t> lengthLengths = codeLengths(lengthFrequencies, 7);
+    const std::vector<std::uint16_t> lengthCodes = canonicalCodes(lengthLengths);
+    static constexpr std::uint8_t kOrder[19] = {16, 17, 18, 0, 8,  7, 9,  6, 10, 5,
+                                                11, 4,  12, 3, 13, 2, 14, 1, 15};
+    int orderCount = 19;
+    while (orderCount > 4 && lengthLengths[kOrder[orderCount - 1]] == 0) {
+        --orderCount;
+    }
+
+    out[0] = 0x78;  // Deflate, 32 KiB window.
+    out[1] = 0x01;  // Fastest compression; (0x7801 % 31) == 0.
+    BitWriter writer(out + 2);
+    writer.put(1, 1);  // The final block,
+    writer.put(2, 2);  // with dynamic Huffman codes.
+    writer.put(std::uint32_t(literalCount - 257), 5);
+    writer.put(0, 5);  // One distance code.
+    writer.put(std::uint32_t(orderCount - 4), 4);
+    for (int i = 0; i < orderCount; ++i) {
+        writer.put(lengthLengths[kOrder[i]], 3);
+    }
+    static constexpr int kExtraBits[19] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 2, 3, 7};
+    for (std::uint16_t entry : lengthSymbols) {
+        const int symbol = entry & 0xff;
+        writer.put(lengthCodes[symbol], lengthLengths[symbol]);
+        if (kExtraBits[symbol] > 0) {
+            writer.put(entry >> 8, kExtraBits[symbol]);
+        }
+    }
+    // The distance code is the single one-bit code 0.
+    tokenize(
+        data.data(), data.size(),
+        [&](std::uint8_t byte) { writer.put(literalCodes[byte], literalLengths[byte]); },
+        [&](std::size_t length) {
+            const LengthCode& code = kLengthCodes[length];
+            writer.put(literalCodes[code.symbol], literalLengths[code.symbol]);
+            if (code.extraBits > 0) {
+                writer.put(code.extraValue, code.extraBits);
+            }
+            writer.put(0, 1);
+        });
+    writer.put(literalCodes[kEndOfBlock], literalLengths[kEndOfBlock]);
+    std::uint8_t* end = writer.finish();
+    const std::uint32_t adler = libdeflate_adler32(1, data.data(), data.size());
+    for (int shift = 24; shift >= 0; shift -= 8) {
+        *end++ = std::uint8_t(adler >> shift);
+    }
+    return std::size_t(end - out);
+}
+
+}  // namespace encore::image
