@@ -303,6 +303,7 @@ class Renderer {
                       bool normals,
                       bool depth,
                       float topLightLux,
+                      const std::string& pngCompression,
                       bool failureLog,
                       std::uint32_t renderers) {
         batch::BatchOptions options;
@@ -325,6 +326,13 @@ class Renderer {
         options.images.normals = normals;
         options.images.depth = depth;
         options.topLightLux = topLightLux;
+        if (pngCompression == "small" || pngCompression == "fast") {
+            options.pngCompression = pngCompression == "fast" ? image::PngCompression::Fast
+                                                              : image::PngCompression::Small;
+        } else {
+            // As `encore batch --png-compression` takes it.
+            throw py::value_error("png_compression must be \"small\" or \"fast\"");
+        }
         options.writeFailureLog = failureLog;
         const std::vector<batch::BatchInput> models = batchInputs(inputs);
         // Python runs signal handlers only when the interpreter gets the GIL back: look for one
@@ -493,7 +501,7 @@ PYBIND11_MODULE(_encore, module) {
              py::arg("normalize") = true, py::arg("size") = 512, py::arg("samples") = py::none(),
              py::arg("jobs") = 0, py::arg("memory_limit_mib") = 2048, py::arg("strict") = false,
              py::arg("normals") = false, py::arg("depth") = false, py::arg("top_light") = 0.0f,
-             py::arg("failure_log") = true, py::arg("renderers") = encore::batch::BatchOptions{}.renderers,
+             py::arg("png_compression") = "small", py::arg("failure_log") = true, py::arg("renderers") = encore::batch::BatchOptions{}.renderers,
              "Runs the job of `encore batch` on this renderer's device: `inputs` is what the "
              "command takes (folder, list file, model) or (path, name) pairs from "
              "discover_inputs. Returns the summary (models rendered, failed, skipped; views; "

@@ -38,6 +38,7 @@ struct BatchCommandOptions {
     bool normals = false;
     bool depth = false;
     float topLightLux = 0.0f;
+    std::string pngCompression = "small";
     std::size_t jobs = 0;
     std::uint64_t memoryLimitMiB = 2048;
     std::size_t renderers = batch::kDefaultRenderers;
@@ -150,6 +151,8 @@ int runBatch(const BatchCommandOptions& options, const GlobalOptions& global) {
     batchOptions.images.normals = options.normals;
     batchOptions.images.depth = options.depth;
     batchOptions.topLightLux = options.topLightLux;
+    batchOptions.pngCompression = options.pngCompression == "fast" ? image::PngCompression::Fast
+                                                                   : image::PngCompression::Small;
     batchOptions.jobs = options.jobs;
     batchOptions.memoryLimitBytes = options.memoryLimitMiB << 20;
     batchOptions.renderers = options.renderers;
@@ -322,6 +325,12 @@ void addBatchCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) 
                      "scripts' light from above)")
         ->check(CLI::NonNegativeNumber)
         ->type_name("LUX");
+    command
+        ->add_option("--png-compression", options->pngCompression,
+                     "small: libdeflate (the default); fast: about 2.5 times less encoding time "
+                     "for files about 16% larger, when encoding limits the batch")
+        ->check(CLI::IsMember({"small", "fast"}))
+        ->capture_default_str();
     command->add_flag("-q,--quiet", options->quiet, "No progress lines");
     addShadingOptions(*command, options->shading);
     command->callback([options, &global, &exitCode] { exitCode = runBatch(*options, global); });

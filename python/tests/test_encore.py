@@ -286,6 +286,18 @@ def test_bad_arguments_raise_value_errors(renderer, tmp_path):
         encore.Renderer(samples=3)
 
 
+def test_batch_fast_png_compression_writes_the_same_pixels(renderer, tmp_path):
+    models = [(str(generate(tmp_path / "in" / "m.glb", seed=5)), "m")]
+    renderer.batch(models, str(tmp_path / "small"), views=2, size=48)
+    renderer.batch(models, str(tmp_path / "fast"), views=2, size=48, png_compression="fast")
+    for view in ("000.png", "001.png"):
+        small, fast = tmp_path / "small" / "m" / view, tmp_path / "fast" / "m" / view
+        assert small.read_bytes() != fast.read_bytes()
+        assert np.array_equal(read_png(small), read_png(fast))
+    with pytest.raises(ValueError):
+        renderer.batch(models, str(tmp_path / "bad"), png_compression="tiny")
+
+
 def test_renderer_batch_without_a_log_returns_the_failures(renderer, tmp_path):
     generate(tmp_path / "in" / "good.glb", seed=3)
     (tmp_path / "in" / "broken.gltf").write_text("not json")

@@ -317,11 +317,11 @@ void BatchRun::encodeView(const std::shared_ptr<ModelJob>& job,
             mCounters.encode += secondsSince(start);
             mCounters.encodeCpu += threadCpuSeconds() - cpuStart;
         }
-        writeImage(job, view, kind, [kind, image] {
+        writeImage(job, view, kind, [kind, image, compression = mOptions.pngCompression] {
             if (kind == ViewImage::Normal) {
                 decodeNormalImage(*image);
             }
-            return image::encodePng(*image);
+            return image::encodePng(*image, compression);
         });
     });
 }
@@ -499,7 +499,9 @@ void BatchRun::renderDepth(const TargetViews& views, float unitsPerModelUnit, do
         image::ImageGray16 depth = depthStrip(*wide, mLayout.targetWidth(), strip, mOptions.width,
                                               mOptions.height, unitsPerModelUnit, depthScale());
         writeImage(job, first + strip, ViewImage::Depth,
-                   [depth = std::move(depth)] { return image::encodePng16(depth); });
+                   [depth = std::move(depth), compression = mOptions.pngCompression] {
+                       return image::encodePng16(depth, compression);
+                   });
     }
 }
 

@@ -248,6 +248,32 @@ TEST(BatchCommandTest, TopLightBrightensTheViews) {
               1.05 * brightness(output / "plain/set0/model/000.png"));
 }
 
+// --png-compression fast writes the same pixels (views, normals, 16-bit depth) in other bytes;
+// an unknown value is a usage error.
+TEST(BatchCommandTest, FastPngCompressionKeepsThePixels) {
+    const fs::path input = makeCollection("batch-cli-png", 1, 6);
+    fs::remove(input / "broken.gltf");
+    const fs::path output = makeTempDir("batch-cli-png-output");
+    const std::string common = "--views 2 --size 96 --normals --depth --quiet";
+    ASSERT_EQ(runEncore(batchArguments(input, output / "small", common)).exitCode, 0);
+    const CommandResult fast =
+        runEncore(batchArguments(input, output / "fast", common + " --png-compression fast"));
+    ASSERT_EQ(fast.exitCode, 0) << fast.out << fast.err;
+    for (const char* file : {"000.png", "001.png", "001_normal.png", "001_depth.png"}) {
+        const fs::path small = output / "small/set0/model" / file;
+        const fs::path quick = output / "fast/set0/model" / file;
+        EXPECT_NE(slurp(small), slurp(quick)) << file << ": the same bytes, so no other encoder";
+        auto a = image::readImage(small);
+        auto b = image::readImage(quick);
+        ASSERT_TRUE(a.ok() && b.ok()) << file;
+        EXPECT_TRUE(a->pixels == b->pixels) << file;
+    }
+    const CommandResult bad =
+        runEncore(batchArguments(input, output / "bad", common + " --png-compression tiny"));
+    EXPECT_EQ(bad.exitCode, 2);
+    EXPECT_NE(bad.err.find("--png-compression"), std::string::npos) << bad.err;
+}
+
 // A batch of `count` generated models (no bad file) sent `signal` after its first model.
 struct SignalledRun {
     fs::path input;
