@@ -129,8 +129,8 @@ enum class PngColor : std::uint8_t { Gray = 0, Rgba = 6 };
 
 // What encoding a PNG needs besides its input and output, kept by each thread from one image to
 // the next: a batch encodes thousands of views of one size on the same few threads, and
-// allocating these afresh cost a quarter of the time of encoding a 512x512 view (the compressor's
-// tables, and page faults on two fresh megabytes that were then filled anyway).
+// allocating these afresh cost nearly a third of the time of encoding a 512x512 view (the
+// compressor's tables, and page faults on two fresh megabytes that were then filled anyway).
 struct PngScratch {
     std::unique_ptr<libdeflate_compressor, CompressorFree> compressor;
     std::unique_ptr<std::uint8_t[]> filtered;
@@ -190,26 +190,28 @@ Result<std::vector<std::uint8_t>> writePngStream(std::uint32_t width, std::uint3
                                                  std::span<const std::uint8_t> samples,
                                                  PngCompression compression) {
     thread_local PngScratch scratch;
-    const Error outOfMemory = makeError(ErrorCode::IoError, "PNG encoding failed (out of memory).");
+    const auto outOfMemory = [] {
+        return makeError(ErrorCode::IoError, "PNG encoding failed (out of memory).");
+    };
+    const bool fast = compression == PngCompression::Fast;
     const std::size_t rowBytes = samples.size() / height;
     const std::size_t filteredSize = (rowBytes + 1) * height;
     std::uint8_t* filtered =
         PngScratch::reserve(scratch.filtered, scratch.filteredCapacity, filteredSize);
-    if (!scratch.compressor) {
+    if (!fast && !scratch.compressor) {
         scratch.compressor.reset(libdeflate_alloc_compressor(kCompressionLevel));
     }
-    if (!filtered || !scratch.compressor) {
-        return outOfMemory;
+    if (!filtered || (!fast && !scratch.compressor)) {
+        return outOfMemory();
     }
     filterUp(samples.data(), rowBytes, height, filtered);
-    const bool fast = compression == PngCompression::Fast;
     const std::size_t bound =
         fast ? runLengthZlibBound(filteredSize)
              : libdeflate_zlib_compress_bound(scratch.compressor.get(), filteredSize);
     std::uint8_t* compressed =
         PngScratch::reserve(scratch.compressed, scratch.compressedCapacity, bound);
     if (!compressed) {
-        return outOfMemory;
+        return outOfMemory();
     }
     const std::size_t compressedSize =
         fast ? runLengthZlib({filtered, filteredSize}, compressed)
