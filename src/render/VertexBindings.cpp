@@ -87,39 +87,50 @@ void GeometryBuffers::uploadViews(std::uint64_t maxSharedBufferBytes) {
         mDevice.GetLimits(&limits);
         maxBytes = limits.maxBufferSize;
     }
-    std::vector<std::uint8_t> bytes;
-    std::vector<scene::BufferViewId> pending;
-    auto flush = [&] {
-        if (pending.empty()) {
-            return;
-        }
-        bytes.resize((bytes.size() + 3) & ~std::size_t(3), 0);
-        const wgpu::Buffer buffer = gpu::createBufferWithData(
-            mDevice, wgpu::BufferUsage::Vertex | wgpu::BufferUsage::Index, bytes,
-            "geometry " + std::to_string(mSharedBuffers.size()));
-        for (scene::BufferViewId id : pending) {
-            mViews[id].buffer = buffer;
-        }
-        mSharedBuffers.push_back(buffer);
-        bytes.clear();
-        pending.clear();
+    // Where each view goes: views packed at 4-byte offsets into shared buffers of at most
+    // maxBytes each. Then each buffer is created mapped and the views are copied straight into
+    // it: gathering them into one vector first copied every byte twice on the device's thread
+    // (a tenth of `encore batch`'s upload time).
+    struct SharedBuffer {
+        std::uint64_t size = 0;
+        std::vector<scene::BufferViewId> views;
     };
+    std::vector<SharedBuffer> layout;
     for (scene::BufferViewId id : views) {
         const scene::BufferView& view = mScene->bufferViews[id.index()];
-        const auto& source = mScene->buffers[view.buffer.index()].bytes;
-        std::uint64_t offset = (bytes.size() + 3) & ~std::uint64_t(3);
-        if (!pending.empty() && offset + view.byteLength > maxBytes) {
-            // A view larger than the device's limit on its own was refused before (SceneLimits).
-            flush();
+        std::uint64_t offset = layout.empty() ? 0 : (layout.back().size + 3) & ~std::uint64_t(3);
+        // A view larger than the device's limit on its own was refused before (SceneLimits).
+        if (layout.empty() || offset + view.byteLength > maxBytes) {
+            layout.emplace_back();
             offset = 0;
         }
-        bytes.resize(offset, 0);
-        bytes.insert(bytes.end(), source.begin() + std::ptrdiff_t(view.byteOffset),
-                     source.begin() + std::ptrdiff_t(view.byteOffset + view.byteLength));
+        layout.back().size = offset + view.byteLength;
+        layout.back().views.push_back(id);
         mViews[id] = {{}, offset, view.byteLength};
-        pending.push_back(id);
     }
-    flush();
+    for (const SharedBuffer& shared : layout) {
+        wgpu::BufferDescriptor descriptor{};
+        const std::string label = "geometry " + std::to_string(mSharedBuffers.size());
+        descriptor.label = label.c_str();
+        descriptor.size = (shared.size + 3) & ~std::uint64_t(3);
+        descriptor.usage = wgpu::BufferUsage::Vertex | wgpu::BufferUsage::Index;
+        descriptor.mappedAtCreation = true;  // Zeroed: the gaps between views read as zeros.
+        wgpu::Buffer buffer = mDevice.CreateBuffer(&descriptor);
+        // Null when the buffer could not be created (out of memory): the device reports it.
+        auto* mapped = static_cast<std::uint8_t*>(buffer.GetMappedRange(0, descriptor.size));
+        for (scene::BufferViewId id : shared.views) {
+            ViewPlacement& placement = mViews[id];
+            placement.buffer = buffer;
+            if (mapped != nullptr) {
+                const scene::BufferView& view = mScene->bufferViews[id.index()];
+                const auto& source = mScene->buffers[view.buffer.index()].bytes;
+                std::memcpy(mapped + placement.offset, source.data() + view.byteOffset,
+                            view.byteLength);
+            }
+        }
+        buffer.Unmap();
+        mSharedBuffers.push_back(buffer);
+    }
 }
 
 const GeometryBuffers::ViewPlacement& GeometryBuffers::viewPlacement(scene::BufferViewId id) {
