@@ -4,6 +4,7 @@
 #include <stb_image.h>
 
 #include <algorithm>
+#include <cstring>
 #include <memory>
 #include <new>
 #include <string>
@@ -172,7 +173,19 @@ void filterUp(const std::uint8_t* samples, std::size_t rowBytes, std::uint32_t h
             continue;
         }
         const std::uint8_t* __restrict above = row - rowBytes;
-        for (std::size_t i = 0; i < rowBytes; ++i) {
+        // Sixteen bytes at a time: the release build's -O2 does not vectorise loops, and byte by
+        // byte the filter cost a tenth of encoding a view, more or less with code placement.
+        using Bytes16 = std::uint8_t __attribute__((vector_size(16)));
+        std::size_t i = 0;
+        for (; i + 16 <= rowBytes; i += 16) {
+            Bytes16 current;
+            Bytes16 previous;
+            std::memcpy(&current, row + i, 16);
+            std::memcpy(&previous, above + i, 16);
+            const Bytes16 difference = current - previous;
+            std::memcpy(out + i, &difference, 16);
+        }
+        for (; i < rowBytes; ++i) {
             out[i] = std::uint8_t(row[i] - above[i]);
         }
     }
