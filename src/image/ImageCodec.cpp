@@ -6,11 +6,11 @@
 #include <algorithm>
 #include <cstring>
 #include <memory>
-#include <new>
 #include <string>
 
 #include "ImageDecoders.h"
 #include "RunLengthDeflate.h"
+#include "ScratchBuffer.h"
 #include "encore/core/FileIO.h"
 
 namespace encore::image {
@@ -129,36 +129,13 @@ struct CompressorFree {
 enum class PngColor : std::uint8_t { Gray = 0, Rgba = 6 };
 
 // What encoding a PNG needs besides its input and output, kept by each thread from one image to
-// the next: a batch encodes thousands of views of one size on the same few threads, and
-// allocating these afresh cost nearly a third of the time of encoding a 512x512 view (the
-// compressor's tables, and page faults on two fresh megabytes that were then filled anyway).
+// the next: allocating these afresh cost nearly a third of the time of encoding a 512x512 view
+// (the compressor's tables, and page faults on two fresh megabytes that were then filled anyway).
 struct PngScratch {
     std::unique_ptr<libdeflate_compressor, CompressorFree> compressor;
-    std::unique_ptr<std::uint8_t[]> filtered;
-    std::size_t filteredCapacity = 0;
-    std::unique_ptr<std::uint8_t[]> compressed;
-    std::size_t compressedCapacity = 0;
-
-    // Buffers past this are freed after use rather than kept (a one-off large image).
-    static constexpr std::size_t kKeptBytes = std::size_t(64) << 20;
-
-    static std::uint8_t* reserve(std::unique_ptr<std::uint8_t[]>& buffer,
-                                 std::size_t& capacity,
-                                 std::size_t bytes) {
-        if (capacity < bytes) {
-            buffer.reset(new (std::nothrow) std::uint8_t[bytes]);  // Not zeroed: overwritten.
-            capacity = buffer ? bytes : 0;
-        }
-        return buffer.get();
-    }
-
-    void releaseLarge() {
-        if (filteredCapacity + compressedCapacity > kKeptBytes) {
-            filtered.reset();
-            compressed.reset();
-            filteredCapacity = compressedCapacity = 0;
-        }
-    }
+    // At most 64 MiB kept per thread between them.
+    ScratchBuffer filtered{std::size_t(32) << 20};
+    ScratchBuffer compressed{std::size_t(32) << 20};
 };
 
 // Rows with the Up filter (None for the first), each after its filter-type byte.
@@ -209,8 +186,9 @@ Result<std::vector<std::uint8_t>> writePngStream(std::uint32_t width, std::uint3
     const bool fast = compression == PngCompression::Fast;
     const std::size_t rowBytes = samples.size() / height;
     const std::size_t filteredSize = (rowBytes + 1) * height;
-    std::uint8_t* filtered =
-        PngScratch::reserve(scratch.filtered, scratch.filteredCapacity, filteredSize);
+    const ScratchBuffer::Use useFiltered(scratch.filtered);
+    const ScratchBuffer::Use useCompressed(scratch.compressed);
+    std::uint8_t* filtered = scratch.filtered.reserve(filteredSize);
     if (!fast && !scratch.compressor) {
         scratch.compressor.reset(libdeflate_alloc_compressor(kCompressionLevel));
     }
@@ -221,8 +199,7 @@ Result<std::vector<std::uint8_t>> writePngStream(std::uint32_t width, std::uint3
     const std::size_t bound =
         fast ? runLengthZlibBound(filteredSize)
              : libdeflate_zlib_compress_bound(scratch.compressor.get(), filteredSize);
-    std::uint8_t* compressed =
-        PngScratch::reserve(scratch.compressed, scratch.compressedCapacity, bound);
+    std::uint8_t* compressed = scratch.compressed.reserve(bound);
     if (!compressed) {
         return outOfMemory();
     }
@@ -246,7 +223,6 @@ Result<std::vector<std::uint8_t>> writePngStream(std::uint32_t width, std::uint3
     appendChunk(png, "IHDR", header);
     appendChunk(png, "IDAT", {compressed, compressedSize});
     appendChunk(png, "IEND", {});
-    scratch.releaseLarge();
     return png;
 }
 

@@ -10,10 +10,10 @@
 
 #include <cstring>
 #include <memory>
-#include <new>
 #include <vector>
 
 #include "ImageDecoders.h"
+#include "ScratchBuffer.h"
 
 namespace encore::image {
 namespace {
@@ -238,32 +238,16 @@ std::optional<ImageRgba8> decodePngWithLibdeflate(std::span<const std::uint8_t> 
     const std::size_t filteredBytes = (rowBytes + 1) * chunks.height;
 
     // Kept by each thread for the next image: fresh megabytes cost as much in page faults as
-    // the inflate itself. Larger than kKeptBytes, the buffer goes after this image.
-    constexpr std::size_t kKeptBytes = std::size_t(64) << 20;
+    // the inflate itself.
     thread_local std::unique_ptr<libdeflate_decompressor, DecompressorFree> decompressor(
         libdeflate_alloc_decompressor());
-    thread_local std::unique_ptr<std::uint8_t[]> scratch;
-    thread_local std::size_t scratchBytes = 0;
-    if (!decompressor) {
+    thread_local ScratchBuffer scratch(std::size_t(64) << 20);
+    const ScratchBuffer::Use useScratch(scratch);
+    // Not zeroed: the inflate writes every byte or the decode is abandoned.
+    std::uint8_t* const filtered = scratch.reserve(filteredBytes);
+    if (!decompressor || !filtered) {
         return std::nullopt;
     }
-    if (scratchBytes < filteredBytes) {
-        // Not zeroed: the inflate writes every byte or the decode is abandoned.
-        scratch.reset(new (std::nothrow) std::uint8_t[filteredBytes]);
-        scratchBytes = scratch ? filteredBytes : 0;
-        if (!scratch) {
-            return std::nullopt;
-        }
-    }
-    struct ReleaseLarge {
-        ~ReleaseLarge() {
-            if (scratchBytes > kKeptBytes) {
-                scratch.reset();
-                scratchBytes = 0;
-            }
-        }
-    } releaseLarge;
-    std::uint8_t* const filtered = scratch.get();
     std::size_t inflated = 0;
     // The whole stream must inflate to exactly the rows: short data, trailing data and a bad
     // Adler-32 (which libspng is told to ignore, as stb_image did) all go to libspng.
