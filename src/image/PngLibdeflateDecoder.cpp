@@ -175,18 +175,9 @@ bool expandRow(const PngChunks& chunks, const std::uint8_t* row, std::uint8_t* o
         }
         case 2: {
             const bool keyed = key.size() >= 6;
-            if (!keyed) {
-                for (std::uint32_t x = 0; x < width; ++x, out += 4, row += 3) {
-                    out[0] = row[0];
-                    out[1] = row[1];
-                    out[2] = row[2];
-                    out[3] = 255;
-                }
-                return true;
-            }
-            const int red = int(std::uint32_t(key[0]) << 8 | key[1]);
-            const int green = int(std::uint32_t(key[2]) << 8 | key[3]);
-            const int blue = int(std::uint32_t(key[4]) << 8 | key[5]);
+            const int red = keyed ? int(std::uint32_t(key[0]) << 8 | key[1]) : -1;
+            const int green = keyed ? int(std::uint32_t(key[2]) << 8 | key[3]) : -1;
+            const int blue = keyed ? int(std::uint32_t(key[4]) << 8 | key[5]) : -1;
             for (std::uint32_t x = 0; x < width; ++x, out += 4, row += 3) {
                 out[0] = row[0];
                 out[1] = row[1];

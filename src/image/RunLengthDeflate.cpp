@@ -10,7 +10,6 @@
 #include <algorithm>
 #include <array>
 #include <cstring>
-#include <numeric>
 #include <vector>
 
 namespace encore::image {
@@ -37,7 +36,7 @@ constexpr std::array<LengthCode, kMaxRun + 1> makeLengthCodes() {
     std::array<LengthCode, kMaxRun + 1> codes{};
     for (int code = 0; code < 29; ++code) {
         const int last = code == 28 ? 258 : kBase[code + 1] - 1;
-        for (int length = kBase[code]; length <= last && length <= kMaxRun; ++length) {
+        for (int length = kBase[code]; length <= last; ++length) {
             codes[length] = {std::uint16_t(257 + code), kExtra[code],
                              std::uint16_t(length - kBase[code])};
         }
