@@ -326,13 +326,12 @@ class Renderer {
         options.images.normals = normals;
         options.images.depth = depth;
         options.topLightLux = topLightLux;
-        if (pngCompression == "small" || pngCompression == "fast") {
-            options.pngCompression = pngCompression == "fast" ? image::PngCompression::Fast
-                                                              : image::PngCompression::Small;
-        } else {
+        const auto compression = image::pngCompressionFromName(pngCompression);
+        if (!compression) {
             // As `encore batch --png-compression` takes it.
             throw py::value_error("png_compression must be \"small\" or \"fast\"");
         }
+        options.pngCompression = *compression;
         options.writeFailureLog = failureLog;
         const std::vector<batch::BatchInput> models = batchInputs(inputs);
         // Python runs signal handlers only when the interpreter gets the GIL back: look for one

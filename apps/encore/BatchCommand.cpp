@@ -151,8 +151,7 @@ int runBatch(const BatchCommandOptions& options, const GlobalOptions& global) {
     batchOptions.images.normals = options.normals;
     batchOptions.images.depth = options.depth;
     batchOptions.topLightLux = options.topLightLux;
-    batchOptions.pngCompression = options.pngCompression == "fast" ? image::PngCompression::Fast
-                                                                   : image::PngCompression::Small;
+    batchOptions.pngCompression = *image::pngCompressionFromName(options.pngCompression);
     batchOptions.jobs = options.jobs;
     batchOptions.memoryLimitBytes = options.memoryLimitMiB << 20;
     batchOptions.renderers = options.renderers;

@@ -228,6 +228,16 @@ Result<std::vector<std::uint8_t>> writePngStream(std::uint32_t width, std::uint3
 
 }  // namespace
 
+std::optional<PngCompression> pngCompressionFromName(std::string_view name) {
+    if (name == "small") {
+        return PngCompression::Small;
+    }
+    if (name == "fast") {
+        return PngCompression::Fast;
+    }
+    return std::nullopt;
+}
+
 Result<std::vector<std::uint8_t>> encodePng(const ImageRgba8& image, PngCompression compression) {
     ENCORE_TRY(checkEncodable(image.width, image.height, image.pixels.size(), 4));
     return writePngStream(image.width, image.height, 8, PngColor::Rgba, image.pixels,

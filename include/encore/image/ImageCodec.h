@@ -6,7 +6,9 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <span>
+#include <string_view>
 #include <vector>
 
 #include "encore/core/Result.h"
@@ -51,6 +53,9 @@ enum class PngCompression : std::uint8_t {
     // encoding limits the throughput (docs/benchmarks/2026-11-24-lavapipe-batch-load.md).
     Fast,
 };
+
+// "small" or "fast", as `encore batch --png-compression` and Python's png_compression take it.
+std::optional<PngCompression> pngCompressionFromName(std::string_view name);
 
 Result<std::vector<std::uint8_t>> encodePng(const ImageRgba8& image,
                                             PngCompression compression = PngCompression::Small);
