@@ -326,7 +326,7 @@ void addBatchCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) 
         ->type_name("LUX");
     command
         ->add_option("--png-compression", options->pngCompression,
-                     "small: libdeflate (the default); fast: about 2.5 times less encoding time "
+                     "small: libdeflate (the default); fast: about 2.4 times less compression time "
                      "for files about 16% larger, when encoding limits the batch")
         ->check(CLI::IsMember({"small", "fast"}))
         ->capture_default_str();

@@ -1,6 +1,6 @@
 // The PNGs that glTF textures almost always are (8 bits per sample, not interlaced), decoded with
 // libdeflate's inflate, which is about twice as fast as zlib's that libspng uses: loading
-// Avocado (three 2048x2048 PNG textures) took 142 ms of CPU with libspng, 89 ms with this and
+// Avocado (three 2048x2048 PNG textures) took 142 ms of CPU with libspng, 98 ms with this and
 // a buffer kept per thread (docs/benchmarks/2026-11-24-lavapipe-batch-load.md). The rows are
 // unfiltered and expanded to RGBA8 as libspng does (palettes and tRNS colour keys applied), one
 // row at a time while it is still in cache. Anything else, and any file this path finds wrong,

@@ -111,7 +111,7 @@ struct BatchOptions {
     // Lux of a directional light shining straight down (-Y) added to every model beside the
     // environment, as the dataset scripts light objects from above; 0: none.
     float topLightLux = 0.0f;
-    // Small: libdeflate's matches (the default). Fast: runs only, about 2.5 times faster for
+    // Small: libdeflate's matches (the default). Fast: runs only, about 2.4 times faster for
     // files about 16% larger, for when encoding limits the batch (image::PngCompression).
     image::PngCompression pngCompression = image::PngCompression::Small;
     std::size_t jobs = 0;  // Pool threads; 0: one per hardware thread.

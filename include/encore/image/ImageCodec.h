@@ -49,7 +49,7 @@ enum class PngCompression : std::uint8_t {
     // libdeflate at level 2: 2.6 ms and 66 KiB for a typical 512x512 rendered view.
     Small,
     // One Huffman-coded deflate block whose only matches are runs of a repeated byte
-    // (RunLengthDeflate.h): 1.0 ms and 76 KiB for the same views, for bulk rendering where
+    // (RunLengthDeflate.h): 1.1 ms and 76 KiB for the same views, for bulk rendering where
     // encoding limits the throughput (docs/benchmarks/2026-11-24-lavapipe-batch-load.md).
     Fast,
 };

@@ -393,9 +393,10 @@ enum class VertexCacheOrder : std::uint8_t {
     // meshopt_optimizeVertexCache: the order that suits any cache size best. For models that
     // are loaded once and drawn many times.
     Thorough,
-    // meshopt_optimizeVertexCacheFifo with a 16-entry FIFO: four to five times faster for a
-    // slightly worse order (docs/benchmarks/2026-11-24-lavapipe-batch-load.md). For models drawn
-    // only a few times each, where load time matters more than drawing time (encore batch).
+    // meshopt_optimizeVertexCacheFifo with a 16-entry FIFO: 3.4 times faster on the shared
+    // models, whose orders then missed a FIFO cache as rarely
+    // (docs/benchmarks/2026-11-24-lavapipe-batch-load.md); meshoptimizer rates its orders a
+    // little worse in general. For models drawn only a few times each (encore batch).
     Fast,
 };
 
