@@ -36,7 +36,7 @@ struct CullingUniform {
     std::uint32_t trianglesDrawnWord = 0;
     std::uint32_t visibilityBase = 0;
     std::uint32_t levelBase = 0;
-    std::uint32_t padding1 = 0;
+    float lodDistanceSlack = 0.0f;
 };
 static_assert(sizeof(CullingUniform) == 224);
 
@@ -280,14 +280,34 @@ void GpuCuller::encodeFirstPhase(const wgpu::Queue& queue, const wgpu::CommandEn
     const Camera& camera = view.camera;
     const glm::mat4 viewProjection = camera.projection * camera.view;
     CullingUniform uniform{};
-    const Frustum frustum = Frustum::fromViewProjection(viewProjection);
-    std::copy(frustum.planes.begin(), frustum.planes.end(), uniform.planes.begin());
     uniform.viewProjection = viewProjection;
-    uniform.cameraPosition = camera.position;
     // The projection's y scale maps a unit at distance one (orthographic: anywhere) to that many
     // half-heights of the viewport.
+    float projectionScale = camera.projection[1][1];
+    if (view.views.size() > 1) {
+        // One cull serves every view, so it must keep what any of them sees. No frustum rejects
+        // anything (views that frame the scene, as `render --views` and batch strips do, each
+        // see all of it anyway), and levels of detail are chosen for the nearest view:
+        // distances are measured from the views' centroid less the farthest view's distance
+        // from it, which is never more than the distance to any view.
+        uniform.planes.fill(glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+        glm::vec3 centroid(0.0f);
+        for (const Camera& each : view.views) {
+            centroid += each.position / float(view.views.size());
+            projectionScale = std::max(projectionScale, each.projection[1][1]);
+        }
+        for (const Camera& each : view.views) {
+            uniform.lodDistanceSlack =
+                std::max(uniform.lodDistanceSlack, glm::distance(each.position, centroid));
+        }
+        uniform.cameraPosition = centroid;
+    } else {
+        const Frustum frustum = Frustum::fromViewProjection(viewProjection);
+        std::copy(frustum.planes.begin(), frustum.planes.end(), uniform.planes.begin());
+        uniform.cameraPosition = camera.position;
+    }
     if (view.options.levelsOfDetail) {
-        uniform.lodPixelsPerUnit = camera.projection[1][1] * float(view.targetHeight) * 0.5f;
+        uniform.lodPixelsPerUnit = projectionScale * float(view.targetHeight) * 0.5f;
     }
     uniform.lodThresholdPixels = view.options.lodErrorPixels;
     uniform.orthographic = camera.projection[2][3] == 0.0f ? 1u : 0u;

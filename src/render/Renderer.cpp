@@ -339,7 +339,7 @@ FrameResult Renderer::renderPasses(std::span<const Camera> cameras, float timeSe
     } else {
         mFrame->update(mContext->queue(), cameras[0], timeSeconds);
     }
-    FrameState state{cameras[0], timeSeconds, mTimer, mCullingCamera};
+    FrameState state{cameras[0], cameras, timeSeconds, mTimer, mCullingCamera};
     state.culling = mOptions.culling;
     state.targetWidth = mTarget.width();
     state.targetHeight = mTarget.height();

@@ -36,6 +36,9 @@ struct Culling {
     trianglesDrawnWord: u32,
     visibilityBase: u32,
     levelBase: u32,          // Index of the first level record in `records`.
+    // Subtracted from the distance to cameraPosition for levels of detail: a multi-view frame
+    // measures from its views' centroid, less the farthest view's distance from it.
+    lodDistanceSlack: f32,
 }
 
 // One instance slot (render::SlotBounds).
@@ -170,7 +173,8 @@ fn lodPixelsPerUnit(bounds: InstanceBounds) -> f32 {
     var pixelsPerUnit = culling.lodPixelsPerUnit * bounds.scale;
     if (culling.orthographic == 0u) {
         let nearest = clamp(culling.cameraPosition, bounds.boxMin, bounds.boxMax);
-        pixelsPerUnit /= max(distance(nearest, culling.cameraPosition), 1e-6);
+        pixelsPerUnit /= max(distance(nearest, culling.cameraPosition) - culling.lodDistanceSlack,
+                             1e-6);
     }
     return pixelsPerUnit;
 }

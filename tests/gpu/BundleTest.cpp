@@ -91,7 +91,7 @@ TEST(BundleTest, TwoBundlesBetweenDirectDrawsInOnePass) {
     auto d = prepare(sceneD);
     const Camera camera = frontCamera();
     setup.frame->update(context->queue(), camera, 0.0f);
-    const FrameState frame{camera, 0.0f};
+    const FrameState frame{camera, {&camera, 1}, 0.0f};
     const RecordedBundle bundleA = recordBundle(setup, "bundle A", [&](RenderEncoder& encoder) {
         a->encode(encoder, frame);
     });

@@ -171,6 +171,45 @@ TEST_P(GpuCullingTest, MovedInstancesAreCulledWhereTheyAreNow) {
     EXPECT_EQ(renderer->strategy()->bundlesRecorded(), recorded);
 }
 
+// A frame of several views (`render --views`, batch strips) culls once for all of them: it must
+// keep what any of its views sees, not only what the first one does.
+TEST_P(GpuCullingTest, AMultiViewFrameKeepsWhatEveryViewSees) {
+    ENCORE_REQUIRE_VULKAN(context);
+    const auto scene = gridScene();
+    auto renderer = Renderer::create(*context, test::pixelTestOptions(2 * kSize, kSize));
+    ASSERT_TRUE(renderer.ok());
+    // From the middle of the grid, looking opposite ways: neither frustum holds the other's
+    // objects.
+    const glm::vec3 eye = scene.bounds.center() + glm::vec3(0.0f, 1.5f, 0.0f);
+    const Camera views[] = {Camera::lookAt(eye, eye + glm::vec3(1.0f, -0.1f, 0.3f),
+                                           glm::radians(40.0f), 1.0f, 0.1f, 100.0f),
+                            Camera::lookAt(eye, eye - glm::vec3(1.0f, 0.1f, 0.3f),
+                                           glm::radians(40.0f), 1.0f, 0.1f, 100.0f)};
+    auto renderViews = [&](StrategyKind kind) {
+        EXPECT_TRUE(renderer->prepare(scene, kind).ok());
+        renderer->renderViews(views);
+        auto image = renderer->readImage();
+        EXPECT_TRUE(image.ok()) << image.error().message;
+        return image.ok() ? std::move(*image) : image::ImageRgba8{};
+    };
+    const auto unculled = renderViews(StrategyKind::Materials);
+    const auto culled = renderViews(GetParam());
+    ASSERT_EQ(culled.width, 2 * kSize);
+    EXPECT_EQ(test::differingPixels(unculled, culled), 0u);
+    const auto background = test::pixelAt(unculled, 0, 0);
+    for (std::uint32_t view = 0; view < 2; ++view) {
+        std::size_t covered = 0;
+        for (std::uint32_t y = 0; y < kSize; ++y) {
+            for (std::uint32_t x = view * kSize; x < (view + 1) * kSize; ++x) {
+                covered += test::pixelAt(unculled, x, y) != background;
+            }
+        }
+        EXPECT_GT(covered, kSize * kSize / 100)
+            << "view " << view << " should show part of the grid";
+    }
+    EXPECT_TRUE(context->checkNoErrors("multi-view culling").ok());
+}
+
 INSTANTIATE_TEST_SUITE_P(DirectAndBundled, GpuCullingTest,
                          ::testing::Values(StrategyKind::GpuCulling,
                                            StrategyKind::GpuCullingBundles),

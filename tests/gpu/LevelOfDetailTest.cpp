@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <span>
 
 #include "GpuTestSupport.h"
 #include "RenderTestSupport.h"
@@ -132,6 +133,48 @@ TEST(LevelOfDetailTest, ATinyThresholdDrawsFullDetail) {
     tiny->renderFrame(camera);
     EXPECT_EQ(test::differingPixels(readImage(*full), readImage(*tiny), 0), 0u);
     EXPECT_EQ(coarserInstances(*context, *tiny->strategy()->culler()), 0u);
+}
+
+// Instances drawn at level 0 of primitives that have coarser levels, over both phases.
+std::uint64_t finestInstances(gpu::Context& context, const GpuCuller& culler) {
+    std::uint64_t total = 0;
+    for (const auto& levels : test::culledCountsByLevel(context, culler)) {
+        if (levels.size() > 1) {
+            total += levels[0][0] + levels[0][1];
+        }
+    }
+    return total;
+}
+
+// One cull serves all views of a multi-view frame: each instance gets a level at least as fine
+// as the nearest view needs, whichever view comes first.
+TEST(LevelOfDetailTest, AMultiViewFrameChoosesLevelsForItsNearestView) {
+    ENCORE_REQUIRE_VULKAN(context);
+    const auto scene = lattice();
+    const float aspect = float(kWidth) / float(kHeight);
+    // Far enough back that no instance needs level 0 there.
+    const glm::vec3 center = scene.bounds.center();
+    const Camera far =
+        Camera::lookAt(center + glm::vec3(0.0f, 0.5f, 1.0f) * 12.0f * scene.bounds.radius(), center,
+                       glm::radians(40.0f), aspect, 1.0f, 1000.0f);
+    const Camera near = CameraPath::flythrough(latticeOptions()).camera(1, kFrames, aspect);
+    auto finestFor = [&](std::span<const Camera> views) {
+        RendererOptions options = shadedOptions(true);
+        options.target.width = kWidth * std::uint32_t(views.size());
+        auto renderer = Renderer::create(*context, options);
+        EXPECT_TRUE(renderer.ok());
+        EXPECT_TRUE(renderer->prepare(scene, StrategyKind::GpuCullingBundles).ok());
+        renderer->renderViews(views);
+        EXPECT_TRUE(renderer->readImage().ok());
+        return finestInstances(*context, *renderer->strategy()->culler());
+    };
+    const std::uint64_t farOnly = finestFor({&far, 1});
+    const std::uint64_t nearOnly = finestFor({&near, 1});
+    ASSERT_LT(farOnly, nearOnly)
+        << "the near view should need full detail where the far one does not";
+    const Camera both[] = {far, near};
+    EXPECT_GE(finestFor(both), nearOnly);
+    EXPECT_TRUE(context->checkNoErrors("multi-view levels of detail").ok());
 }
 
 }  // namespace

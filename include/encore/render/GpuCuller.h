@@ -65,6 +65,9 @@ std::uint64_t submittedTriangles(std::span<const CulledDraw> draws);
 // What the first culling pass of a frame tests against.
 struct CullingView {
     Camera camera;
+    // All views of a multi-view frame, which one cull serves (`camera` is one of them); empty or
+    // one for a frame of one view.
+    std::span<const Camera> views;
     std::uint32_t targetWidth = 0;  // Pixels, for the projected error of levels of detail.
     std::uint32_t targetHeight = 0;
     CullingOptions options;

@@ -157,6 +157,9 @@ enum class DrawPhase {
 // geometry) read the camera while recording; all others take it from the frame uniforms.
 struct FrameState {
     Camera camera;
+    // Every view of the frame, `camera` among them: one, or those of a multi-view frame, which
+    // a strategy prepares for once (culling, in beforePass) and then encodes view by view.
+    std::span<const Camera> views;
     float timeSeconds = 0.0f;
     gpu::GpuTimer* timer = nullptr;  // Times passes the strategy begins itself (culling).
     // What GPU culling tests instances against when it is not `camera`: a frozen frustum,

@@ -110,6 +110,9 @@ void GpuCullingStrategy::beforePass(const wgpu::CommandEncoder& commands,
                                     const FrameState& frame) {
     CullingView view;
     view.camera = frame.cullingCamera.value_or(frame.camera);
+    if (!frame.cullingCamera) {
+        view.views = frame.views;
+    }
     view.targetWidth = frame.targetWidth;
     view.targetHeight = frame.targetHeight;
     view.options = frame.culling;
