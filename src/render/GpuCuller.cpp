@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <cstddef>
 #include <cstdio>
 #include <cstdlib>
 #include <map>
@@ -24,7 +25,7 @@ constexpr std::uint32_t kVisibleAlignmentEntries = 64;  // 256 bytes: storage of
 struct CullingUniform {
     std::array<glm::vec4, 6> planes;
     glm::mat4 viewProjection;
-    glm::vec3 cameraPosition;
+    std::uint32_t lodViewCount = 0;
     float lodPixelsPerUnit = 0.0f;
     float lodThresholdPixels = 0.0f;
     std::uint32_t orthographic = 0;
@@ -37,8 +38,12 @@ struct CullingUniform {
     std::uint32_t visibilityBase = 0;
     std::uint32_t levelBase = 0;
     float lodDistanceSlack = 0.0f;
+    std::uint32_t padding1[2] = {};  // The array is 16-byte aligned.
+    std::array<glm::vec4, GpuCuller::kMaxLodViews> lodViews;
 };
-static_assert(sizeof(CullingUniform) == 224);
+static_assert(offsetof(CullingUniform, viewport) == 184);
+static_assert(offsetof(CullingUniform, lodViews) == 224);
+static_assert(sizeof(CullingUniform) == 480);
 
 // The triangles one instance of a draw of `elementCount` indices (or vertices) draws.
 std::uint32_t trianglesOf(const CulledDraw& draw, std::uint32_t elementCount) {
@@ -287,24 +292,34 @@ void GpuCuller::encodeFirstPhase(const wgpu::Queue& queue, const wgpu::CommandEn
     if (view.views.size() > 1) {
         // One cull serves every view, so it must keep what any of them sees. No frustum rejects
         // anything (views that frame the scene, as `render --views` and batch strips do, each
-        // see all of it anyway), and levels of detail are chosen for the nearest view:
-        // distances are measured from the views' centroid less the farthest view's distance
-        // from it, which is never more than the distance to any view.
+        // see all of it anyway), and levels of detail are chosen for the nearest view. Past
+        // kMaxLodViews views, distances are measured from their centroid less the farthest
+        // view's distance from it: never more than the distance to any view.
         uniform.planes.fill(glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
-        glm::vec3 centroid(0.0f);
         for (const Camera& each : view.views) {
-            centroid += each.position / float(view.views.size());
             projectionScale = std::max(projectionScale, each.projection[1][1]);
         }
-        for (const Camera& each : view.views) {
-            uniform.lodDistanceSlack =
-                std::max(uniform.lodDistanceSlack, glm::distance(each.position, centroid));
+        if (view.views.size() <= kMaxLodViews) {
+            for (const Camera& each : view.views) {
+                uniform.lodViews[uniform.lodViewCount++] = glm::vec4(each.position, 1.0f);
+            }
+        } else {
+            glm::vec3 centroid(0.0f);
+            for (const Camera& each : view.views) {
+                centroid += each.position / float(view.views.size());
+            }
+            for (const Camera& each : view.views) {
+                uniform.lodDistanceSlack =
+                    std::max(uniform.lodDistanceSlack, glm::distance(each.position, centroid));
+            }
+            uniform.lodViews[0] = glm::vec4(centroid, 1.0f);
+            uniform.lodViewCount = 1;
         }
-        uniform.cameraPosition = centroid;
     } else {
         const Frustum frustum = Frustum::fromViewProjection(viewProjection);
         std::copy(frustum.planes.begin(), frustum.planes.end(), uniform.planes.begin());
-        uniform.cameraPosition = camera.position;
+        uniform.lodViews[0] = glm::vec4(camera.position, 1.0f);
+        uniform.lodViewCount = 1;
     }
     if (view.options.levelsOfDetail) {
         uniform.lodPixelsPerUnit = projectionScale * float(view.targetHeight) * 0.5f;

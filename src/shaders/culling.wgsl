@@ -20,7 +20,7 @@
 struct Culling {
     planes: array<vec4f, 6>,  // xyz: inward normal, w: distance; visible when dot >= -radius.
     viewProjection: mat4x4f,
-    cameraPosition: vec3f,
+    lodViewCount: u32,       // Entries of lodViews.
     // Pixels that one unit at distance one covers (orthographic: at any distance); 0: levels of
     // detail off.
     lodPixelsPerUnit: f32,
@@ -36,9 +36,12 @@ struct Culling {
     trianglesDrawnWord: u32,
     visibilityBase: u32,
     levelBase: u32,          // Index of the first level record in `records`.
-    // Subtracted from the distance to cameraPosition for levels of detail: a multi-view frame
-    // measures from its views' centroid, less the farthest view's distance from it.
+    // Subtracted from the distance to the nearest of lodViews: a frame of more views than
+    // lodViews holds measures from their centroid, less the farthest view's distance from it.
     lodDistanceSlack: f32,
+    // xyz: where the frame's views are (render::GpuCuller::kMaxLodViews); levels of detail are
+    // chosen for the nearest.
+    lodViews: array<vec4f, 16>,
 }
 
 // One instance slot (render::SlotBounds).
@@ -172,9 +175,13 @@ fn inFrustum(bounds: InstanceBounds) -> bool {
 fn lodPixelsPerUnit(bounds: InstanceBounds) -> f32 {
     var pixelsPerUnit = culling.lodPixelsPerUnit * bounds.scale;
     if (culling.orthographic == 0u) {
-        let nearest = clamp(culling.cameraPosition, bounds.boxMin, bounds.boxMax);
-        pixelsPerUnit /= max(distance(nearest, culling.cameraPosition) - culling.lodDistanceSlack,
-                             1e-6);
+        var nearest = 3.4e38;
+        for (var view = 0u; view < culling.lodViewCount; view++) {
+            let position = culling.lodViews[view].xyz;
+            nearest = min(nearest,
+                          distance(clamp(position, bounds.boxMin, bounds.boxMax), position));
+        }
+        pixelsPerUnit /= max(nearest - culling.lodDistanceSlack, 1e-6);
     }
     return pixelsPerUnit;
 }

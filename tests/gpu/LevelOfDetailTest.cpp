@@ -5,8 +5,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
 #include <span>
+#include <vector>
 
 #include "GpuTestSupport.h"
 #include "RenderTestSupport.h"
@@ -175,6 +177,35 @@ TEST(LevelOfDetailTest, AMultiViewFrameChoosesLevelsForItsNearestView) {
     const Camera both[] = {far, near};
     EXPECT_GE(finestFor(both), nearOnly);
     EXPECT_TRUE(context->checkNoErrors("multi-view levels of detail").ok());
+}
+
+// Views on an orbit around the lattice (as `encore batch` puts its cameras) still get coarser
+// levels for what is far from all of them: the levels follow the nearest view, not a bound
+// around all the views (which would be nearer than anything inside the orbit).
+TEST(LevelOfDetailTest, AnOrbitOfViewsStillDrawsDistantInstancesCoarser) {
+    ENCORE_REQUIRE_VULKAN(context);
+    const auto scene = lattice();
+    const glm::vec3 center = scene.bounds.center();
+    const float radius = 1.1f * scene.bounds.radius();
+    std::vector<Camera> orbit;
+    for (int view = 0; view < 4; ++view) {
+        const float angle = glm::half_pi<float>() * float(view);
+        const glm::vec3 position =
+            center + radius * glm::vec3(std::cos(angle), 0.4f, std::sin(angle));
+        orbit.push_back(Camera::lookAt(position, center, glm::radians(40.0f), 1.0f, 0.1f,
+                                       4.0f * radius));
+    }
+    RendererOptions options = shadedOptions(true);
+    options.target.width = kHeight * std::uint32_t(orbit.size());
+    auto renderer = Renderer::create(*context, options);
+    ASSERT_TRUE(renderer.ok());
+    ASSERT_TRUE(renderer->prepare(scene, StrategyKind::GpuCullingBundles).ok());
+    renderer->renderViews(orbit);
+    ASSERT_TRUE(renderer->readImage().ok());
+    const GpuCuller& culler = *renderer->strategy()->culler();
+    EXPECT_GT(coarserInstances(*context, culler), 0u);
+    EXPECT_GT(finestInstances(*context, culler), 0u) << "instances near a view keep full detail";
+    EXPECT_TRUE(context->checkNoErrors("orbit levels of detail").ok());
 }
 
 }  // namespace

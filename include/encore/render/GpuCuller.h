@@ -79,6 +79,9 @@ class GpuCuller {
   public:
     static constexpr std::uint64_t kArgumentsStride = 20;  // Five u32: the indexed layout.
     static constexpr std::uint32_t kPhases = 2;
+    // Views of a multi-view frame whose positions levels of detail are chosen from
+    // (culling.wgsl's lodViews); a frame of more uses a bound around them.
+    static constexpr std::size_t kMaxLodViews = 16;
 
     GpuCuller() = default;
     // `bounds` has one record per instance slot; setup.animation (when not null) supplies the
