@@ -305,8 +305,18 @@ class Renderer {
                       float topLightLux,
                       const std::string& pngCompression,
                       bool failureLog,
-                      std::uint32_t renderers) {
+                      std::uint32_t renderers,
+                      float lodError) {
         batch::BatchOptions options;
+        if (!(lodError >= 0.0f)) {
+            throw py::value_error("lod_error must be a number of pixels, 0 or more");
+        }
+        // As `encore batch --lod-error`: levels of detail are chosen by GPU culling.
+        options.lodErrorPixels = lodError;
+        if (lodError > 0.0f) {
+            options.strategy = render::StrategyChoice::of(render::StrategyKind::GpuCullingBundles,
+                                                          false);
+        }
         if (renderers < 1 || renderers > batch::kMaxRenderers) {
             // As `encore batch --renderers` takes them.
             throw py::value_error("renderers must be 1 to " + std::to_string(batch::kMaxRenderers));
@@ -501,12 +511,15 @@ PYBIND11_MODULE(_encore, module) {
              py::arg("jobs") = 0, py::arg("memory_limit_mib") = 2048, py::arg("strict") = false,
              py::arg("normals") = false, py::arg("depth") = false, py::arg("top_light") = 0.0f,
              py::arg("png_compression") = "small", py::arg("failure_log") = true, py::arg("renderers") = encore::batch::BatchOptions{}.renderers,
+             py::arg("lod_error") = 0.0f,
              "Runs the job of `encore batch` on this renderer's device: `inputs` is what the "
              "command takes (folder, list file, model) or (path, name) pairs from "
              "discover_inputs. Returns the summary (models rendered, failed, skipped; views; "
              "seconds; time per stage; failures). Failed models are also written to "
              "OUTPUT/failures.jsonl unless failure_log=False. `samples` defaults to the "
-             "renderer's. The GIL is released while it runs.")
+             "renderer's. lod_error > 0 draws each instance at the coarsest level of detail "
+             "whose error stays under that many pixels in the nearest view (`encore batch "
+             "--lod-error`). The GIL is released while it runs.")
         .def_property_readonly("samples",
                                [](const Renderer& renderer) { return renderer.samples(); })
         .def_property_readonly("adapter", &Renderer::adapter)

@@ -33,7 +33,8 @@ struct BatchCommandOptions {
     float distance = 1.5f;
     float fovDegrees = batch::kDefaultHorizontalFovDegrees;
     bool noNormalize = false;
-    std::string strategy = "bundles";
+    std::string strategy;  // Empty: bundles, or gpu-culling-bundles with --lod-error.
+    float lodErrorPixels = 0.0f;
     bool strict = false;
     bool normals = false;
     bool depth = false;
@@ -133,11 +134,16 @@ int runBatch(const BatchCommandOptions& options, const GlobalOptions& global) {
         return reportError(size.error());
     }
     std::tie(batchOptions.width, batchOptions.height) = *size;
-    auto strategy = parseStrategyChoice(options.strategy, false);
+    std::string strategyName = options.strategy;
+    if (strategyName.empty()) {
+        strategyName = options.lodErrorPixels > 0.0f ? "gpu-culling-bundles" : "bundles";
+    }
+    auto strategy = parseStrategyChoice(strategyName, false);
     if (!strategy) {
         return reportError(strategy.error());
     }
     batchOptions.strategy = *strategy;
+    batchOptions.lodErrorPixels = options.lodErrorPixels;
     batchOptions.output = options.output;
     batchOptions.samples = options.samples;
     batchOptions.views.views = options.randomViews > 0 ? options.randomViews : options.views;
@@ -294,8 +300,16 @@ void addBatchCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) 
     command->add_option("--samples", options->samples, "Multisampling: 1 or 4")
         ->capture_default_str()
         ->check(CLI::IsMember({1, 4}));
-    command->add_option("-s,--strategy", options->strategy, "Rendering strategy")
-        ->capture_default_str();
+    command->add_option("-s,--strategy", options->strategy,
+                        "Rendering strategy (default: bundles; gpu-culling-bundles with "
+                        "--lod-error)");
+    command
+        ->add_option("--lod-error", options->lodErrorPixels,
+                     "Draw each instance at the coarsest level of detail whose simplification "
+                     "error stays under this many pixels in the nearest view (levels are built "
+                     "at load; a gpu-culling strategy chooses them). Default: full detail")
+        ->check(CLI::PositiveNumber)
+        ->type_name("PIXELS");
     command->add_flag("--strict", options->strict,
                       "Treat loader warnings as errors (the model fails)");
     command

@@ -298,6 +298,25 @@ def test_batch_fast_png_compression_writes_the_same_pixels(renderer, tmp_path):
         renderer.batch(models, str(tmp_path / "bad"), png_compression="tiny")
 
 
+def test_batch_lod_error_draws_coarser_levels_close_to_full_detail(renderer, tmp_path):
+    fine = tmp_path / "in" / "fine.glb"
+    fine.parent.mkdir(parents=True)
+    subprocess.run([os.environ["ENCORE_BINARY"], "gen", "--objects", "60", "--meshes", "3",
+                    "--tessellation", "48", "-o", str(fine)], check=True, capture_output=True)
+    models = [(str(fine), "fine")]
+    renderer.batch(models, str(tmp_path / "full"), views=2, size=128)
+    renderer.batch(models, str(tmp_path / "lod"), views=2, size=128, lod_error=0.5)
+    changed = False
+    for view in ("000.png", "001.png"):
+        full = read_png(tmp_path / "full" / "fine" / view).astype(np.int32)
+        coarse = read_png(tmp_path / "lod" / "fine" / view).astype(np.int32)
+        assert np.abs(full - coarse).mean() < 1.0
+        changed = changed or not np.array_equal(full, coarse)
+    assert changed, "no view changed: were coarser levels drawn at all?"
+    with pytest.raises(ValueError):
+        renderer.batch(models, str(tmp_path / "bad"), lod_error=-1.0)
+
+
 def test_renderer_batch_without_a_log_returns_the_failures(renderer, tmp_path):
     generate(tmp_path / "in" / "good.glb", seed=3)
     (tmp_path / "in" / "broken.gltf").write_text("not json")

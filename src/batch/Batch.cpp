@@ -221,6 +221,10 @@ class BatchRun {
 Result<void> BatchRun::createRenderers() {
     render::RendererOptions rendererOptions = mOptions.renderer;
     rendererOptions.target = {mLayout.targetWidth(), mLayout.height, mOptions.samples};
+    rendererOptions.culling.levelsOfDetail = mOptions.lodErrorPixels > 0.0f;
+    if (rendererOptions.culling.levelsOfDetail) {
+        rendererOptions.culling.lodErrorPixels = mOptions.lodErrorPixels;
+    }
     rendererOptions.keepPipelines = true;  // Models share most pipelines: create each once.
     // Normal images have a transparent background whatever the colour images have.
     rendererOptions.target.hdr = mOptions.images.normals || mOptions.images.depth;
@@ -631,6 +635,14 @@ Result<BatchSummary> BatchRun::run() {
                              " degrees) must lie in (0, 180) and the distance (" +
                              std::to_string(rig.distance) + ") must be positive.");
     }
+    if (!(mOptions.lodErrorPixels >= 0.0f) || (mOptions.lodErrorPixels > 0.0f &&
+                                               !render::cullsOnTheGpu(mOptions.strategy.kind))) {
+        return makeError(ErrorCode::InvalidArgument,
+                         "Levels of detail (an error of " + std::to_string(mOptions.lodErrorPixels) +
+                             " pixels) need a non-negative error and a gpu-culling strategy, "
+                             "which chooses the levels (not " +
+                             render::strategyChoiceName(mOptions.strategy) + ").");
+    }
     if (mOptions.renderers < 1 || mOptions.renderers > kMaxRenderers) {
         return makeError(ErrorCode::InvalidArgument,
                          "A batch takes 1 to " + std::to_string(kMaxRenderers) +
@@ -669,7 +681,7 @@ Result<BatchSummary> BatchRun::run() {
     // time and memory for nothing. The vertex-cache order is kept, but made by the fast FIFO
     // optimiser: the thorough one took a third of the ten shared models' load time (most of it
     // on one sphere grid of a million triangles), more than a few views earn back.
-    loadOptions.buildLevelsOfDetail = false;
+    loadOptions.buildLevelsOfDetail = mOptions.lodErrorPixels > 0.0f;
     loadOptions.vertexCacheOrder = scene::VertexCacheOrder::Fast;
     // One load per pool thread keeps them busy; encode tasks queue between them.
     ModelLoader loader(mPool, mPending, loadOptions, mOptions.memoryLimitBytes, mPool.size());

@@ -112,6 +112,10 @@ bool isBundledKind(StrategyKind kind) {
     return directKind(kind).has_value();
 }
 
+bool cullsOnTheGpu(StrategyKind kind) {
+    return kind == StrategyKind::GpuCulling || kind == StrategyKind::GpuCullingBundles;
+}
+
 StrategyChoice StrategyChoice::of(StrategyKind kind, bool bundle) {
     if (bundle) {
         if (auto bundled = bundledKind(kind)) {

@@ -13,6 +13,7 @@
 #include "CommandRunner.h"
 #include "TestPaths.h"
 #include "encore/image/ImageCodec.h"
+#include "encore/image/ImageCompare.h"
 
 namespace encore::test {
 namespace {
@@ -272,6 +273,42 @@ TEST(BatchCommandTest, FastPngCompressionKeepsThePixels) {
         runEncore(batchArguments(input, output / "bad", common + " --png-compression tiny"));
     EXPECT_EQ(bad.exitCode, 2);
     EXPECT_NE(bad.err.find("--png-compression"), std::string::npos) << bad.err;
+}
+
+// --lod-error draws coarser levels where the views can hardly tell (at half a pixel every view
+// within SSIM 0.98 of full detail, yet not the same pixels) through gpu-culling-bundles, which it selects; with a
+// strategy that does not cull on the GPU it is refused before anything renders.
+TEST(BatchCommandTest, LevelsOfDetailKeepTheLookAndNeedAGpuCullingStrategy) {
+    const fs::path input = makeTempDir("batch-cli-lod");
+    const CommandResult gen = runEncore("gen --objects 60 --meshes 3 --tessellation 48 -o " +
+                                        quote((input / "fine.glb").string()));
+    ASSERT_EQ(gen.exitCode, 0) << gen.err;
+    const fs::path output = makeTempDir("batch-cli-lod-output");
+    const std::string common = "--views 3 --size 256 --quiet";
+    ASSERT_EQ(runEncore(batchArguments(input, output / "full",
+                                       common + " --strategy gpu-culling-bundles"))
+                  .exitCode,
+              0);
+    const CommandResult lod =
+        runEncore(batchArguments(input, output / "lod", common + " --lod-error 0.5"));
+    ASSERT_EQ(lod.exitCode, 0) << lod.out << lod.err;
+    bool anyDifferent = false;
+    for (const char* file : {"000.png", "001.png", "002.png"}) {
+        auto full = image::readImage(output / "full/fine" / file);
+        auto coarse = image::readImage(output / "lod/fine" / file);
+        ASSERT_TRUE(full.ok() && coarse.ok()) << file;
+        auto ssim = image::ssimLuminance(*full, *coarse);
+        ASSERT_TRUE(ssim.ok()) << ssim.error().message;
+        EXPECT_GE(*ssim, 0.98) << file;
+        anyDifferent = anyDifferent || full->pixels != coarse->pixels;
+    }
+    EXPECT_TRUE(anyDifferent) << "no view changed: were coarser levels drawn at all?";
+
+    const CommandResult refused = runEncore(
+        batchArguments(input, output / "refused", common + " --lod-error 1 --strategy bundles"));
+    EXPECT_NE(refused.exitCode, 0);
+    EXPECT_NE(refused.err.find("gpu-culling strategy"), std::string::npos) << refused.err;
+    EXPECT_FALSE(fs::exists(output / "refused/fine/000.png"));
 }
 
 // A batch of `count` generated models (no bad file) sent `signal` after its first model.

@@ -98,6 +98,13 @@ struct BatchOptions {
         return options;
     }();
     render::StrategyChoice strategy;  // Bundles by default, as `encore render`.
+    // > 0: models load with levels of detail (scene::LoadOptions::buildLevelsOfDetail) and each
+    // instance is drawn at the coarsest level whose simplification error, projected in the
+    // nearest view, stays under this many pixels. Needs a gpu-culling strategy, which chooses
+    // the levels. Building the levels costs load time (0.65 s of CPU for the ten shared models,
+    // most of it a sphere grid of a million triangles): it pays where the GPU draws more
+    // triangles than the views can show, as on lavapipe. 0: full detail (the default).
+    float lodErrorPixels = 0.0f;
 
     bool strict = false;  // Loader warnings fail the model.
     // Whether OUT/failures.jsonl is written (and emptied first). Off, the failures are only in

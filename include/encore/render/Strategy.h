@@ -63,6 +63,8 @@ std::span<const StrategyKind> allStrategies();
 std::optional<StrategyKind> bundledKind(StrategyKind kind);
 std::optional<StrategyKind> directKind(StrategyKind kind);
 bool isBundledKind(StrategyKind kind);
+// The kinds whose culling pass chooses what to draw (render::CullingOptions applies to them).
+bool cullsOnTheGpu(StrategyKind kind);
 
 // A point on both axes: a strategy, drawn directly or recorded once into render bundles.
 // Normalised so that equal frames compare equal: a kind with a bundled kind of its own is
