@@ -148,6 +148,28 @@ std::uint64_t finestInstances(gpu::Context& context, const GpuCuller& culler) {
     return total;
 }
 
+// A gpu-culling-bundles renderer with levels of detail after one frame of `views` side by side,
+// each `viewWidth` x kHeight.
+Result<Renderer> renderedViews(gpu::Context& context,
+                               const scene::SceneData& scene,
+                               std::span<const Camera> views,
+                               std::uint32_t viewWidth) {
+    RendererOptions options = shadedOptions(true);
+    options.target.width = viewWidth * std::uint32_t(views.size());
+    auto renderer = Renderer::create(context, options);
+    if (!renderer) {
+        return renderer;
+    }
+    if (auto prepared = renderer->prepare(scene, StrategyKind::GpuCullingBundles); !prepared) {
+        return prepared.error();
+    }
+    renderer->renderViews(views);
+    if (auto image = renderer->readImage(); !image) {
+        return image.error();
+    }
+    return renderer;
+}
+
 // One cull serves all views of a multi-view frame: each instance gets a level at least as fine
 // as the nearest view needs, whichever view comes first.
 TEST(LevelOfDetailTest, AMultiViewFrameChoosesLevelsForItsNearestView) {
@@ -160,15 +182,10 @@ TEST(LevelOfDetailTest, AMultiViewFrameChoosesLevelsForItsNearestView) {
         Camera::lookAt(center + glm::vec3(0.0f, 0.5f, 1.0f) * 12.0f * scene.bounds.radius(), center,
                        glm::radians(40.0f), aspect, 1.0f, 1000.0f);
     const Camera near = CameraPath::flythrough(latticeOptions()).camera(1, kFrames, aspect);
-    auto finestFor = [&](std::span<const Camera> views) {
-        RendererOptions options = shadedOptions(true);
-        options.target.width = kWidth * std::uint32_t(views.size());
-        auto renderer = Renderer::create(*context, options);
-        EXPECT_TRUE(renderer.ok());
-        EXPECT_TRUE(renderer->prepare(scene, StrategyKind::GpuCullingBundles).ok());
-        renderer->renderViews(views);
-        EXPECT_TRUE(renderer->readImage().ok());
-        return finestInstances(*context, *renderer->strategy()->culler());
+    auto finestFor = [&](std::span<const Camera> views) -> std::uint64_t {
+        auto renderer = renderedViews(*context, scene, views, kWidth);
+        EXPECT_TRUE(renderer.ok()) << renderer.error().message;
+        return renderer.ok() ? finestInstances(*context, *renderer->strategy()->culler()) : 0;
     };
     const std::uint64_t farOnly = finestFor({&far, 1});
     const std::uint64_t nearOnly = finestFor({&near, 1});
@@ -195,13 +212,8 @@ TEST(LevelOfDetailTest, AnOrbitOfViewsStillDrawsDistantInstancesCoarser) {
         orbit.push_back(Camera::lookAt(position, center, glm::radians(40.0f), 1.0f, 0.1f,
                                        4.0f * radius));
     }
-    RendererOptions options = shadedOptions(true);
-    options.target.width = kHeight * std::uint32_t(orbit.size());
-    auto renderer = Renderer::create(*context, options);
-    ASSERT_TRUE(renderer.ok());
-    ASSERT_TRUE(renderer->prepare(scene, StrategyKind::GpuCullingBundles).ok());
-    renderer->renderViews(orbit);
-    ASSERT_TRUE(renderer->readImage().ok());
+    auto renderer = renderedViews(*context, scene, orbit, kHeight);
+    ASSERT_TRUE(renderer.ok()) << renderer.error().message;
     const GpuCuller& culler = *renderer->strategy()->culler();
     EXPECT_GT(coarserInstances(*context, culler), 0u);
     EXPECT_GT(finestInstances(*context, culler), 0u) << "instances near a view keep full detail";
