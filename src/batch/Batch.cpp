@@ -638,7 +638,8 @@ Result<BatchSummary> BatchRun::run() {
     if (!(mOptions.lodErrorPixels >= 0.0f) || (mOptions.lodErrorPixels > 0.0f &&
                                                !render::cullsOnTheGpu(mOptions.strategy.kind))) {
         return makeError(ErrorCode::InvalidArgument,
-                         "Levels of detail (an error of " + std::to_string(mOptions.lodErrorPixels) +
+                         "Levels of detail (an error of " +
+                             std::to_string(mOptions.lodErrorPixels) +
                              " pixels) need a non-negative error and a gpu-culling strategy, "
                              "which chooses the levels (not " +
                              render::strategyChoiceName(mOptions.strategy) + ").");
@@ -677,10 +678,11 @@ Result<BatchSummary> BatchRun::run() {
     }
     scene::LoadOptions loadOptions;
     loadOptions.strict = mOptions.strict;
-    // Batch renders each model a few times at full detail: levels of detail would cost load
-    // time and memory for nothing. The vertex-cache order is kept, but made by the fast FIFO
-    // optimiser: the thorough one took a third of the ten shared models' load time (most of it
-    // on one sphere grid of a million triangles), more than a few views earn back.
+    // Levels of detail only when asked for: they cost load time and memory that only GPUs
+    // drawing more than the CPU loads earn back (BatchOptions::lodErrorPixels). The vertex-cache
+    // order is kept, but made by the fast FIFO optimiser: the thorough one took a third of the
+    // ten shared models' load time (most of it on one sphere grid of a million triangles), more
+    // than a few views earn back.
     loadOptions.buildLevelsOfDetail = mOptions.lodErrorPixels > 0.0f;
     loadOptions.vertexCacheOrder = scene::VertexCacheOrder::Fast;
     // One load per pool thread keeps them busy; encode tasks queue between them.

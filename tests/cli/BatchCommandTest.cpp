@@ -276,8 +276,8 @@ TEST(BatchCommandTest, FastPngCompressionKeepsThePixels) {
 }
 
 // --lod-error draws coarser levels where the views can hardly tell (at half a pixel every view
-// within SSIM 0.98 of full detail, yet not the same pixels) through gpu-culling-bundles, which it selects; with a
-// strategy that does not cull on the GPU it is refused before anything renders.
+// within SSIM 0.98 of full detail, yet not the same pixels) through gpu-culling-bundles, which it
+// selects; with a strategy that does not cull on the GPU it is refused before anything renders.
 TEST(BatchCommandTest, LevelsOfDetailKeepTheLookAndNeedAGpuCullingStrategy) {
     const fs::path input = makeTempDir("batch-cli-lod");
     const CommandResult gen = runEncore("gen --objects 60 --meshes 3 --tessellation 48 -o " +
