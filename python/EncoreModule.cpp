@@ -311,12 +311,7 @@ class Renderer {
         if (!(lodError >= 0.0f)) {
             throw py::value_error("lod_error must be a number of pixels, 0 or more");
         }
-        // As `encore batch --lod-error`: levels of detail are chosen by GPU culling.
-        options.lodErrorPixels = lodError;
-        if (lodError > 0.0f) {
-            options.strategy = render::StrategyChoice::of(render::StrategyKind::GpuCullingBundles,
-                                                          false);
-        }
+        options.lodErrorPixels = lodError;  // With the strategy that chooses the levels.
         if (renderers < 1 || renderers > batch::kMaxRenderers) {
             // As `encore batch --renderers` takes them.
             throw py::value_error("renderers must be 1 to " + std::to_string(batch::kMaxRenderers));

@@ -33,7 +33,7 @@ struct BatchCommandOptions {
     float distance = 1.5f;
     float fovDegrees = batch::kDefaultHorizontalFovDegrees;
     bool noNormalize = false;
-    std::string strategy;  // Empty: bundles, or gpu-culling-bundles with --lod-error.
+    std::string strategy;  // Empty: batch::BatchOptions::strategy's default.
     float lodErrorPixels = 0.0f;
     bool strict = false;
     bool normals = false;
@@ -134,15 +134,13 @@ int runBatch(const BatchCommandOptions& options, const GlobalOptions& global) {
         return reportError(size.error());
     }
     std::tie(batchOptions.width, batchOptions.height) = *size;
-    std::string strategyName = options.strategy;
-    if (strategyName.empty()) {
-        strategyName = options.lodErrorPixels > 0.0f ? "gpu-culling-bundles" : "bundles";
+    if (!options.strategy.empty()) {
+        auto strategy = parseStrategyChoice(options.strategy, false);
+        if (!strategy) {
+            return reportError(strategy.error());
+        }
+        batchOptions.strategy = *strategy;
     }
-    auto strategy = parseStrategyChoice(strategyName, false);
-    if (!strategy) {
-        return reportError(strategy.error());
-    }
-    batchOptions.strategy = *strategy;
     batchOptions.lodErrorPixels = options.lodErrorPixels;
     batchOptions.output = options.output;
     batchOptions.samples = options.samples;

@@ -129,6 +129,10 @@ class BatchRun {
           mBatchRenderer(renderers),
           mInputs(inputs),
           mOptions(options),
+          mStrategy(options.strategy.value_or(render::StrategyChoice::of(
+              options.lodErrorPixels > 0.0f ? render::StrategyKind::GpuCullingBundles
+                                            : render::StrategyKind::Bundles,
+              false))),
           mPool(options.jobs, kPoolNiceness) {}
 
     Result<BatchSummary> run();
@@ -190,6 +194,7 @@ class BatchRun {
     std::span<const BatchInput> mInputs;
     std::vector<BatchInput> mPending;  // Not finished by an earlier run, in load order.
     const BatchOptions& mOptions;
+    const render::StrategyChoice mStrategy;  // BatchOptions::strategy, or its default.
     ThreadPool mPool;
     Clock::time_point mStart = Clock::now();
     std::optional<FailureLog> mFailures;
@@ -569,7 +574,7 @@ void BatchRun::renderModel(LoadedModel& loaded) {
     render::Renderer& renderer = *slot.renderer;
     const scene::SceneData& scene = *loaded.scene;
     auto prepared =
-        renderer.prepare(scene, mOptions.strategy.kind, mOptions.strategy.bundle, staged.get());
+        renderer.prepare(scene, mStrategy.kind, mStrategy.bundle, staged.get());
     releasePrepared(slot);
     slot.prepared = std::move(loaded);
     if (prepared) {
@@ -636,13 +641,13 @@ Result<BatchSummary> BatchRun::run() {
                              std::to_string(rig.distance) + ") must be positive.");
     }
     if (!(mOptions.lodErrorPixels >= 0.0f) || (mOptions.lodErrorPixels > 0.0f &&
-                                               !render::cullsOnTheGpu(mOptions.strategy.kind))) {
+                                               !render::cullsOnTheGpu(mStrategy.kind))) {
         return makeError(ErrorCode::InvalidArgument,
                          "Levels of detail (an error of " +
                              std::to_string(mOptions.lodErrorPixels) +
                              " pixels) need a non-negative error and a gpu-culling strategy, "
                              "which chooses the levels (not " +
-                             render::strategyChoiceName(mOptions.strategy) + ").");
+                             render::strategyChoiceName(mStrategy) + ").");
     }
     if (mOptions.renderers < 1 || mOptions.renderers > kMaxRenderers) {
         return makeError(ErrorCode::InvalidArgument,

@@ -19,6 +19,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <span>
 
 #include "encore/batch/BatchInputs.h"
@@ -97,7 +98,9 @@ struct BatchOptions {
         options.toneMapping.background = render::BackgroundKind::Transparent;
         return options;
     }();
-    render::StrategyChoice strategy;  // Bundles by default, as `encore render`.
+    // Unset: bundles, as `encore render` draws, or gpu-culling-bundles with levels of detail
+    // (lodErrorPixels > 0), which chooses the levels.
+    std::optional<render::StrategyChoice> strategy;
     // > 0: models load with levels of detail (scene::LoadOptions::buildLevelsOfDetail) and each
     // instance is drawn at the coarsest level whose simplification error, projected in the
     // nearest view, stays under this many pixels. Needs a gpu-culling strategy, which chooses
