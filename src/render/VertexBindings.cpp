@@ -109,26 +109,20 @@ void GeometryBuffers::uploadViews(std::uint64_t maxSharedBufferBytes) {
         mViews[id] = {{}, offset, view.byteLength};
     }
     for (const SharedBuffer& shared : layout) {
-        wgpu::BufferDescriptor descriptor{};
-        const std::string label = "geometry " + std::to_string(mSharedBuffers.size());
-        descriptor.label = label.c_str();
-        descriptor.size = (shared.size + 3) & ~std::uint64_t(3);
-        descriptor.usage = wgpu::BufferUsage::Vertex | wgpu::BufferUsage::Index;
-        descriptor.mappedAtCreation = true;  // Zeroed: the gaps between views read as zeros.
-        wgpu::Buffer buffer = mDevice.CreateBuffer(&descriptor);
-        // Null when the buffer could not be created (out of memory): the device reports it.
-        auto* mapped = static_cast<std::uint8_t*>(buffer.GetMappedRange(0, descriptor.size));
+        // Mapped at creation, so zeroed: the gaps between views read as zeros.
+        const wgpu::Buffer buffer = gpu::createBufferFilledBy(
+            mDevice, wgpu::BufferUsage::Vertex | wgpu::BufferUsage::Index, shared.size,
+            "geometry " + std::to_string(mSharedBuffers.size()), [&](std::uint8_t* mapped) {
+                for (scene::BufferViewId id : shared.views) {
+                    const scene::BufferView& view = mScene->bufferViews[id.index()];
+                    const auto& source = mScene->buffers[view.buffer.index()].bytes;
+                    std::memcpy(mapped + mViews[id].offset, source.data() + view.byteOffset,
+                                view.byteLength);
+                }
+            });
         for (scene::BufferViewId id : shared.views) {
-            ViewPlacement& placement = mViews[id];
-            placement.buffer = buffer;
-            if (mapped != nullptr) {
-                const scene::BufferView& view = mScene->bufferViews[id.index()];
-                const auto& source = mScene->buffers[view.buffer.index()].bytes;
-                std::memcpy(mapped + placement.offset, source.data() + view.byteOffset,
-                            view.byteLength);
-            }
+            mViews[id].buffer = buffer;
         }
-        buffer.Unmap();
         mSharedBuffers.push_back(buffer);
     }
 }

@@ -2,12 +2,39 @@
 
 #include <webgpu/webgpu_cpp.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <span>
 #include <string>
 #include <vector>
 
 namespace encore::gpu {
+
+// The size of a buffer for `size` bytes: a multiple of 4 (WebGPU requires it for mapped creation
+// and for vertex/index data), at least 4.
+inline std::uint64_t bufferSizeFor(std::uint64_t size) {
+    return std::max<std::uint64_t>(4, (size + 3) & ~std::uint64_t{3});
+}
+
+// Creates a buffer of bufferSizeFor(size) bytes mapped (zeroed by WebGPU), has `fill` write into
+// it (std::uint8_t* to the mapping) and unmaps it: data goes straight into the buffer, without a
+// copy gathered first. `fill` is not called when the buffer could not be created (out of memory,
+// which the device reports).
+template <typename Fill>
+wgpu::Buffer createBufferFilledBy(const wgpu::Device& device, wgpu::BufferUsage usage,
+                                  std::uint64_t size, const std::string& label, Fill&& fill) {
+    wgpu::BufferDescriptor descriptor{};
+    descriptor.label = label.c_str();
+    descriptor.size = bufferSizeFor(size);
+    descriptor.usage = usage;
+    descriptor.mappedAtCreation = true;
+    wgpu::Buffer buffer = device.CreateBuffer(&descriptor);
+    if (void* mapped = buffer.GetMappedRange(0, descriptor.size)) {
+        fill(static_cast<std::uint8_t*>(mapped));
+    }
+    buffer.Unmap();
+    return buffer;
+}
 
 // Creates a buffer holding `bytes`, its size rounded up to a multiple of 4 (WebGPU requires it
 // for mapped creation and for vertex/index data) and zero-padded.
