@@ -18,11 +18,6 @@
 namespace encore::image {
 namespace {
 
-std::uint32_t bigEndian32(const std::uint8_t* bytes) {
-    return std::uint32_t(bytes[0]) << 24 | std::uint32_t(bytes[1]) << 16 |
-           std::uint32_t(bytes[2]) << 8 | std::uint32_t(bytes[3]);
-}
-
 struct DecompressorFree {
     void operator()(libdeflate_decompressor* decompressor) const {
         libdeflate_free_decompressor(decompressor);
@@ -43,35 +38,32 @@ struct PngChunks {
     std::vector<std::uint8_t> joined;
 };
 
-// Reads the chunks (the caller has checked with checkPngChunks that every one fits). False on
-// anything this path does not take or finds odd: the caller then uses libspng.
+// Reads the chunks. False on anything this path does not take or finds odd (a chunk that does
+// not fit included): the caller then uses libspng.
 bool readChunks(std::span<const std::uint8_t> encoded, PngChunks& chunks) {
-    std::size_t offset = 8;
     std::size_t idatChunks = 0;
     bool sawHeader = false;
-    while (encoded.size() - offset >= 12) {
-        const std::uint8_t* chunk = encoded.data() + offset;
-        const std::uint32_t length = bigEndian32(chunk);
-        const std::span<const std::uint8_t> data(chunk + 8, length);
-        if (std::memcmp(chunk + 4, "IHDR", 4) == 0) {
-            if (sawHeader || offset != 8 || length != 13) {
+    bool usable = true;
+    const Result<void> walked = forEachPngChunk(encoded, [&](const PngChunk& chunk) {
+        const std::span<const std::uint8_t> data = chunk.data;
+        if (chunk.type == "IHDR") {
+            // Compression and filter method 0 are the only ones PNG defines.
+            if (sawHeader || chunk.offset != 8 || data.size() != 13 || data[10] != 0 ||
+                data[11] != 0 || data[12] > 1) {
+                usable = false;
                 return false;
             }
             sawHeader = true;
-            chunks.width = bigEndian32(data.data());
-            chunks.height = bigEndian32(data.data() + 4);
+            chunks.width = pngUint32(data.data());
+            chunks.height = pngUint32(data.data() + 4);
             chunks.bitDepth = data[8];
             chunks.colorType = data[9];
-            // Compression and filter method 0 are the only ones PNG defines.
-            if (data[10] != 0 || data[11] != 0 || data[12] > 1) {
-                return false;
-            }
             chunks.interlaced = data[12] == 1;
-        } else if (std::memcmp(chunk + 4, "PLTE", 4) == 0) {
+        } else if (chunk.type == "PLTE") {
             chunks.palette = data;
-        } else if (std::memcmp(chunk + 4, "tRNS", 4) == 0) {
+        } else if (chunk.type == "tRNS") {
             chunks.transparency = data;
-        } else if (std::memcmp(chunk + 4, "IDAT", 4) == 0) {
+        } else if (chunk.type == "IDAT") {
             if (++idatChunks == 1) {
                 chunks.compressed = data;
             } else {
@@ -80,15 +72,13 @@ bool readChunks(std::span<const std::uint8_t> encoded, PngChunks& chunks) {
                 }
                 chunks.joined.insert(chunks.joined.end(), data.begin(), data.end());
             }
-        } else if (std::memcmp(chunk + 4, "IEND", 4) == 0) {
-            break;
         }
-        offset += 12 + std::size_t(length);
-    }
+        return true;
+    });
     if (idatChunks > 1) {
         chunks.compressed = chunks.joined;
     }
-    return sawHeader && idatChunks > 0;
+    return walked.ok() && usable && sawHeader && idatChunks > 0;
 }
 
 std::size_t channelsOf(std::uint8_t colorType) {
