@@ -344,13 +344,23 @@ def test_keyboard_interrupt_stops_the_batch_cleanly_and_a_rerun_resumes(tmp_path
     for index in range(8):
         generate(tmp_path / "in" / f"m{index}.glb", objects=30, seed=index + 1)
     out = tmp_path / "out"
-    options = {"views": 12, "size": 256, "jobs": 1}
-    # SIGINT arrives while the GIL is released: Python's handler runs when the batch looks.
-    timer = threading.Timer(1.0, os.kill, (os.getpid(), signal.SIGINT))
-    timer.start()
+    # One renderer: few models in flight when the interrupt is seen.
+    options = {"views": 12, "size": 256, "jobs": 1, "renderers": 1}
+
+    # SIGINT arrives while the GIL is released: Python's handler runs when the batch looks. It is
+    # sent once the first model is written, not after a fixed time, which a loaded machine (the
+    # tests run two at a time) could let the whole batch outlast.
+    def interrupt_after_the_first_model():
+        deadline = time.monotonic() + 120
+        while not list(out.glob("*/transforms.json")) and time.monotonic() < deadline:
+            time.sleep(0.01)
+        os.kill(os.getpid(), signal.SIGINT)
+
+    interrupter = threading.Thread(target=interrupt_after_the_first_model)
+    interrupter.start()
     with pytest.raises(KeyboardInterrupt):
         encore.batch(str(tmp_path / "in"), str(out), **options)
-    timer.join()
+    interrupter.join()
     finished = [folder for folder in out.iterdir()
                 if folder.is_dir() and (folder / "transforms.json").exists()]
     assert len(finished) < 8, "the batch stopped before the end"
