@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "encore/core/Result.h"
-#include "encore/render/Strategy.h"
+#include "encore/render/StrategyKind.h"
 
 namespace encore::app {
 

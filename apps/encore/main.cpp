@@ -6,7 +6,7 @@
 
 #include "Commands.h"
 #include "encore/core/Log.h"
-#include "encore/render/Strategy.h"
+#include "encore/render/StrategyKind.h"
 
 namespace {
 

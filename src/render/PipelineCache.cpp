@@ -2,7 +2,7 @@
 
 #include <string>
 
-#include "encore/render/Strategy.h"
+#include "encore/render/RenderSetup.h"
 
 namespace encore::render {
 

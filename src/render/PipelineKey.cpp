@@ -6,7 +6,7 @@
 #include <string_view>
 #include <vector>
 
-#include "encore/render/Strategy.h"
+#include "encore/render/RenderSetup.h"
 
 namespace encore::render {
 

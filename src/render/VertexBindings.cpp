@@ -8,7 +8,7 @@
 
 #include "encore/gpu/Upload.h"
 #include "encore/render/RenderEncoder.h"
-#include "encore/render/Strategy.h"
+#include "encore/render/RenderSetup.h"
 #include "encore/render/GltfToWebGpu.h"
 
 namespace encore::render {

@@ -22,7 +22,7 @@
 #include "encore/render/FrameTimer.h"
 #include "encore/render/GpuAnimation.h"
 #include "encore/render/Renderer.h"
-#include "encore/render/Strategy.h"
+#include "encore/render/StrategyKind.h"
 
 namespace encore::bench {
 

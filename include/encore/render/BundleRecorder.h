@@ -12,7 +12,7 @@
 
 #include "encore/render/DrawCounters.h"
 #include "encore/render/RenderEncoder.h"
-#include "encore/render/Strategy.h"
+#include "encore/render/RenderSetup.h"
 
 namespace encore::render {
 

@@ -27,13 +27,14 @@
 #include <vector>
 
 #include "encore/core/Result.h"
+#include "encore/gpu/GpuTimer.h"
 #include "encore/render/Camera.h"
 #include "encore/render/CullingBounds.h"
 #include "encore/render/CullingOptions.h"
 #include "encore/render/DepthPyramid.h"
 #include "encore/render/Frustum.h"
 #include "encore/render/InstanceBuffer.h"
-#include "encore/render/Strategy.h"
+#include "encore/render/RenderSetup.h"
 
 namespace encore::render {
 

@@ -13,7 +13,7 @@
 
 #include "encore/core/Result.h"
 #include "encore/gpu/DeviceLimits.h"
-#include "encore/render/Strategy.h"
+#include "encore/render/StrategyKind.h"
 #include "encore/scene/SceneData.h"
 
 namespace encore::render {

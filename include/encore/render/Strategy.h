@@ -14,138 +14,16 @@
 #include <vector>
 
 #include "encore/core/Result.h"
-#include "encore/gpu/DeviceLimits.h"
 #include "encore/gpu/GpuTimer.h"
-#include "encore/render/BindGroupLayouts.h"
 #include "encore/render/Camera.h"
 #include "encore/render/CullingOptions.h"
-#include "encore/render/FrameUniforms.h"
 #include "encore/render/InstanceTransformTargets.h"
 #include "encore/render/RenderEncoder.h"
+#include "encore/render/RenderSetup.h"
+#include "encore/render/StrategyKind.h"
 #include "encore/scene/SceneData.h"
-#include "encore/shaders/ShaderLibrary.h"
 
 namespace encore::render {
-
-enum class StrategyKind {
-    // One pipeline per primitive; one uniform buffer + bind group per node; each attribute
-    // copied into its own tightly packed vertex buffer and bound to its own slot.
-    Naive,
-    // Vertex data bound in place: one buffer per bufferView, offsets in setVertexBuffer,
-    // interleaved attributes bound once. Still one pipeline per primitive.
-    Layouts,
-    // Pipelines cached by every pipeline argument; loop pipeline -> primitive -> node.
-    PipelineCache,
-    // All transforms in one storage buffer; one draw per primitive for all its instances.
-    Instancing,
-    // glTF materials: base colour factor/texture/sampler, MASK, BLEND (sorted back to front),
-    // double-sided culling; loop pipeline -> material -> primitive.
-    Materials,
-    // The materials frame recorded once into render bundles and replayed with executeBundles;
-    // dynamic data changes through buffers.
-    Bundles,
-    // GPU frustum culling: a compute pass writes indirect instance counts and visible lists;
-    // one indirect draw per primitive, recorded directly every frame.
-    GpuCulling,
-    // GPU culling with the indirect draws recorded once into a render bundle.
-    GpuCullingBundles,
-};
-
-std::string_view strategyName(StrategyKind kind);
-std::optional<StrategyKind> strategyFromName(std::string_view name);
-std::span<const StrategyKind> allStrategies();
-
-// The bundling axis. Every strategy can draw its frame from render bundles: `materials` and
-// `gpu-culling` have their own bundled kinds (`bundles`, `gpu-culling-bundles`, which also keep
-// blended geometry sorted); the others, whose recording does not depend on the camera, are
-// recorded once into a bundle by a wrapper. bundledKind names the own bundled kind (a bundled
-// kind names itself), directKind the direct kind of a bundled one (nullopt for the others).
-std::optional<StrategyKind> bundledKind(StrategyKind kind);
-std::optional<StrategyKind> directKind(StrategyKind kind);
-bool isBundledKind(StrategyKind kind);
-// The kinds whose culling pass chooses what to draw (render::CullingOptions applies to them).
-bool cullsOnTheGpu(StrategyKind kind);
-
-// A point on both axes: a strategy, drawn directly or recorded once into render bundles.
-// Normalised so that equal frames compare equal: a kind with a bundled kind of its own is
-// bundled by naming that kind (`materials` bundled is `bundles`, with bundle false).
-struct StrategyChoice {
-    StrategyKind kind = StrategyKind::Bundles;
-    bool bundle = false;
-
-    static StrategyChoice of(StrategyKind kind, bool bundle);
-    bool operator==(const StrategyChoice&) const = default;
-};
-
-// The choice's name in reports and on the command line: the kind's name, or for a kind recorded
-// by the bundling wrapper "<name>+bundle" (`naive+bundle`).
-std::string strategyChoiceName(StrategyChoice choice);
-// Reads strategyChoiceName's names back; nullopt for anything else.
-std::optional<StrategyChoice> strategyChoiceFromName(std::string_view name);
-// `choices`, each followed (with `alsoBundled`) by its bundled form, every distinct choice once
-// in first-seen order: the bundling axis of `stats --bundle` and `bench --bundle`.
-std::vector<StrategyChoice> withBundlingAxis(std::span<const StrategyChoice> choices,
-                                             bool alsoBundled);
-
-class AnimationBuffers;
-class MipmapGenerator;
-class PipelineCache;
-class StagedImages;
-
-// Where Renderer::prepare's time went, in milliseconds. The materials-based strategies fill in
-// their parts; other strategies' work counts only in `strategy`.
-struct PrepareTimes {
-    double release = 0.0;    // Freeing the previous scene (waiting for the GPU first, by default).
-    double animation = 0.0;  // Lights, the animation player and its buffers.
-    double strategy = 0.0;   // Strategy::prepare, the four parts below included.
-    double geometry = 0.0;   // Vertex and index data, uploaded into the shared buffers.
-    double instances = 0.0;  // Instance transforms and their bind group.
-    double materials = 0.0;  // Textures (upload and mipmaps), samplers, material bind groups.
-    // The textures' part of `materials` (MaterialResources::uploadTimes).
-    double textureCreation = 0.0;
-    double textureWrites = 0.0;
-    double mipmaps = 0.0;
-    double materialSubmit = 0.0;
-    double draws = 0.0;      // Grouping the draws: pipelines (found or created), vertex bindings.
-    double checks = 0.0;     // Collecting errors (out-of-memory scope, validation errors).
-
-    double total() const { return release + animation + strategy + checks; }
-    PrepareTimes& operator+=(const PrepareTimes& other);
-};
-
-// What a strategy's pipelines and bind groups must be compatible with.
-struct RenderSetup {
-    wgpu::Device device;
-    wgpu::Queue queue;
-    shaders::ShaderLibrary* shaders = nullptr;
-    const BindGroupLayouts* layouts = nullptr;
-    const FrameUniforms* frame = nullptr;
-    wgpu::TextureFormat colorFormat = wgpu::TextureFormat::RGBA8UnormSrgb;
-    wgpu::TextureFormat depthFormat = wgpu::TextureFormat::Depth32Float;
-    std::uint32_t sampleCount = 1;
-    // gpu::Context::mappingBudget(): strategies that create a buffer and a bind group per node
-    // refuse scenes that would exceed it rather than crash the driver.
-    std::optional<std::uint64_t> mappingBudget;
-    // gpu::Context::limits(): what buffers and textures are sized against.
-    gpu::DeviceLimits limits;
-    // The images of the scene being prepared, already in staging buffers (Renderer::prepare's
-    // `staged`); null: MaterialResources writes them itself.
-    StagedImages* stagedImages = nullptr;
-    // Render pipelines created through this setup (createMeshPipeline), for stats.
-    mutable std::uint64_t pipelinesCreated = 0;
-    // The last Renderer::prepare's times; strategies add their parts.
-    mutable PrepareTimes prepareTimes;
-    // The prepared scene's skinning and morph data, shared by every strategy (owned by the
-    // Renderer); null when the scene has none (or for strategies prepared outside a Renderer):
-    // primitives are then drawn unanimated, as loaded.
-    const AnimationBuffers* animation = nullptr;
-    // Pipelines that outlive the prepared strategy (RendererOptions::keepPipelines), owned by
-    // the Renderer; null: each strategy caches its own.
-    PipelineCache* keptPipelines = nullptr;
-    // Fills textures' mip chains, owned by the Renderer so that its pipelines outlive each
-    // scene; null: MaterialResources makes one per scene.
-    MipmapGenerator* mipmaps = nullptr;
-};
 
 // Which part of a frame a render pass draws. Strategies that cull against the depth drawn so
 // far (two-phase occlusion culling) split a frame of one view into two passes.

@@ -2,12 +2,26 @@
 
 #include <vector>
 
-#include "encore/render/Strategy.h"
+#include "encore/render/StrategyKind.h"
 
 namespace encore::render {
 namespace {
 
 using Kind = StrategyKind;
+
+// allStrategies() is derived from the list of names: every kind of the enumeration is in it once,
+// in the enumeration's order, with a name of its own.
+TEST(StrategyChoiceTest, EveryKindIsListedOnceWithItsOwnName) {
+    const auto kinds = allStrategies();
+    ASSERT_EQ(kinds.size(), std::size_t(Kind::GpuCullingBundles) + 1);
+    for (std::size_t i = 0; i < kinds.size(); ++i) {
+        EXPECT_EQ(kinds[i], Kind(i));
+        EXPECT_NE(strategyName(kinds[i]), "unknown");
+        for (std::size_t j = 0; j < i; ++j) {
+            EXPECT_NE(strategyName(kinds[i]), strategyName(kinds[j]));
+        }
+    }
+}
 
 TEST(StrategyChoiceTest, KindsWithABundledKindOfTheirOwnAreBundledByNamingIt) {
     EXPECT_EQ(StrategyChoice::of(Kind::Materials, true), (StrategyChoice{Kind::Bundles, false}));

@@ -1,0 +1,78 @@
+#pragma once
+
+// What a strategy's pipelines and bind groups must be compatible with (RenderSetup), and where
+// Renderer::prepare's time went (PrepareTimes).
+
+#include <webgpu/webgpu_cpp.h>
+
+#include <cstdint>
+#include <optional>
+
+#include "encore/gpu/DeviceLimits.h"
+#include "encore/render/BindGroupLayouts.h"
+#include "encore/render/FrameUniforms.h"
+#include "encore/shaders/ShaderLibrary.h"
+
+namespace encore::render {
+
+class AnimationBuffers;
+class MipmapGenerator;
+class PipelineCache;
+class StagedImages;
+
+// Where Renderer::prepare's time went, in milliseconds. The materials-based strategies fill in
+// their parts; other strategies' work counts only in `strategy`.
+struct PrepareTimes {
+    double release = 0.0;    // Freeing the previous scene (waiting for the GPU first, by default).
+    double animation = 0.0;  // Lights, the animation player and its buffers.
+    double strategy = 0.0;   // Strategy::prepare, the four parts below included.
+    double geometry = 0.0;   // Vertex and index data, uploaded into the shared buffers.
+    double instances = 0.0;  // Instance transforms and their bind group.
+    double materials = 0.0;  // Textures (upload and mipmaps), samplers, material bind groups.
+    // The textures' part of `materials` (MaterialResources::uploadTimes).
+    double textureCreation = 0.0;
+    double textureWrites = 0.0;
+    double mipmaps = 0.0;
+    double materialSubmit = 0.0;
+    double draws = 0.0;      // Grouping the draws: pipelines (found or created), vertex bindings.
+    double checks = 0.0;     // Collecting errors (out-of-memory scope, validation errors).
+
+    double total() const { return release + animation + strategy + checks; }
+    PrepareTimes& operator+=(const PrepareTimes& other);
+};
+
+// What a strategy's pipelines and bind groups must be compatible with.
+struct RenderSetup {
+    wgpu::Device device;
+    wgpu::Queue queue;
+    shaders::ShaderLibrary* shaders = nullptr;
+    const BindGroupLayouts* layouts = nullptr;
+    const FrameUniforms* frame = nullptr;
+    wgpu::TextureFormat colorFormat = wgpu::TextureFormat::RGBA8UnormSrgb;
+    wgpu::TextureFormat depthFormat = wgpu::TextureFormat::Depth32Float;
+    std::uint32_t sampleCount = 1;
+    // gpu::Context::mappingBudget(): strategies that create a buffer and a bind group per node
+    // refuse scenes that would exceed it rather than crash the driver.
+    std::optional<std::uint64_t> mappingBudget;
+    // gpu::Context::limits(): what buffers and textures are sized against.
+    gpu::DeviceLimits limits;
+    // The images of the scene being prepared, already in staging buffers (Renderer::prepare's
+    // `staged`); null: MaterialResources writes them itself.
+    StagedImages* stagedImages = nullptr;
+    // Render pipelines created through this setup (createMeshPipeline), for stats.
+    mutable std::uint64_t pipelinesCreated = 0;
+    // The last Renderer::prepare's times; strategies add their parts.
+    mutable PrepareTimes prepareTimes;
+    // The prepared scene's skinning and morph data, shared by every strategy (owned by the
+    // Renderer); null when the scene has none (or for strategies prepared outside a Renderer):
+    // primitives are then drawn unanimated, as loaded.
+    const AnimationBuffers* animation = nullptr;
+    // Pipelines that outlive the prepared strategy (RendererOptions::keepPipelines), owned by
+    // the Renderer; null: each strategy caches its own.
+    PipelineCache* keptPipelines = nullptr;
+    // Fills textures' mip chains, owned by the Renderer so that its pipelines outlive each
+    // scene; null: MaterialResources makes one per scene.
+    MipmapGenerator* mipmaps = nullptr;
+};
+
+}  // namespace encore::render

@@ -1,0 +1,21 @@
+#include "encore/render/RenderSetup.h"
+
+namespace encore::render {
+
+PrepareTimes& PrepareTimes::operator+=(const PrepareTimes& other) {
+    release += other.release;
+    animation += other.animation;
+    strategy += other.strategy;
+    geometry += other.geometry;
+    instances += other.instances;
+    materials += other.materials;
+    textureCreation += other.textureCreation;
+    textureWrites += other.textureWrites;
+    mipmaps += other.mipmaps;
+    materialSubmit += other.materialSubmit;
+    draws += other.draws;
+    checks += other.checks;
+    return *this;
+}
+
+}  // namespace encore::render
