@@ -1,5 +1,8 @@
 #include "encore/core/Result.h"
 
+#include <cstdio>
+#include <cstdlib>
+
 namespace encore {
 
 std::string_view errorCodeName(ErrorCode code) {
@@ -38,5 +41,15 @@ Error Error::withContext(std::string_view context) const {
     combined += message;
     return Error{code, std::move(combined)};
 }
+
+namespace detail {
+
+void checkFailed(const char* condition, const char* file, int line, std::string_view message) {
+    std::fprintf(stderr, "encore: internal error at %s:%d: %.*s (%s is false)\n", file, line,
+                 int(message.size()), message.data(), condition);
+    std::abort();
+}
+
+}  // namespace detail
 
 }  // namespace encore

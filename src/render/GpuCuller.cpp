@@ -4,8 +4,6 @@
 #include <array>
 #include <bit>
 #include <cstddef>
-#include <cstdio>
-#include <cstdlib>
 #include <map>
 #include <numeric>
 
@@ -358,11 +356,8 @@ void GpuCuller::encodeSecondPhase(const wgpu::CommandEncoder& commands, const wg
         auto pyramid = DepthPyramid::create(mSetup->device, *mSetup->shaders, depth);
         // The shader is embedded and the depth texture the renderer's own: a failure here is a
         // bug, not an input error.
-        if (!pyramid) {
-            std::fprintf(stderr, "encore: the depth pyramid cannot be built: %s\n",
-                         pyramid.error().message.c_str());
-            std::abort();
-        }
+        ENCORE_CHECK(pyramid.ok(),
+                     "the depth pyramid cannot be built: " + pyramid.error().message);
         mPyramid = std::move(*pyramid);
         const wgpu::BindGroupEntry entry = gpu::textureEntry(0, mPyramid.view());
         wgpu::BindGroupDescriptor descriptor{};

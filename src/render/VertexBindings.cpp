@@ -1,8 +1,6 @@
 #include "encore/render/VertexBindings.h"
 
 #include <algorithm>
-#include <cstdio>
-#include <cstdlib>
 #include <cstring>
 #include <string>
 
@@ -129,11 +127,9 @@ void GeometryBuffers::uploadViews(std::uint64_t maxSharedBufferBytes) {
 
 const GeometryBuffers::ViewPlacement& GeometryBuffers::viewPlacement(scene::BufferViewId id) {
     const auto found = mViews.find(id);
-    if (found == mViews.end()) {
-        // bind() asks only for views of the scene's primitives, all uploaded by the constructor.
-        std::fprintf(stderr, "GeometryBuffers: bufferView %u was not uploaded\n", id.value);
-        std::abort();
-    }
+    // bind() asks only for views of the scene's primitives, all uploaded by the constructor.
+    ENCORE_CHECK(found != mViews.end(),
+                 "GeometryBuffers: bufferView " + std::to_string(id.value) + " was not uploaded");
     return found->second;
 }
 

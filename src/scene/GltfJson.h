@@ -88,15 +88,3 @@ Result<void> forEachElement(const Json& root,
 const Json* extensionObject(FieldReader& reader, std::string_view name);
 
 }  // namespace encore::scene
-
-// Assigns the value of a Result-returning expression to `target`, or returns its error.
-#define ENCORE_TRY_ASSIGN(target, expression)        \
-    do {                                             \
-        auto encoreTryAssign = (expression);         \
-        if (!encoreTryAssign.ok()) {                 \
-            return encoreTryAssign.error();          \
-        }                                            \
-        target = std::move(encoreTryAssign).value(); \
-    } while (false)
-
-namespace encore::scene {}  // namespace encore::scene

@@ -96,6 +96,12 @@ inline Error makeError(ErrorCode code, std::string message) {
     return Error{code, std::move(message)};
 }
 
+namespace detail {
+// Prints where and which invariant broke, then aborts (ENCORE_CHECK).
+[[noreturn]] void checkFailed(const char* condition, const char* file, int line,
+                              std::string_view message);
+}  // namespace detail
+
 }  // namespace encore
 
 // Propagates the error of a Result-returning expression, otherwise yields nothing.
@@ -105,4 +111,23 @@ inline Error makeError(ErrorCode code, std::string message) {
         if (!encoreTryResult.ok()) {                  \
             return encoreTryResult.error();           \
         }                                             \
+    } while (false)
+
+// Assigns the value of a Result-returning expression to `target`, or returns its error.
+#define ENCORE_TRY_ASSIGN(target, expression)        \
+    do {                                             \
+        auto encoreTryAssign = (expression);         \
+        if (!encoreTryAssign.ok()) {                 \
+            return encoreTryAssign.error();          \
+        }                                            \
+        target = std::move(encoreTryAssign).value(); \
+    } while (false)
+
+// A programmer's error, never bad input (that is a Result): when `condition` is false, prints it
+// with `message` (evaluated only then) and the file and line, and aborts.
+#define ENCORE_CHECK(condition, message)                                                   \
+    do {                                                                                   \
+        if (!(condition)) {                                                                \
+            ::encore::detail::checkFailed(#condition, __FILE__, __LINE__, (message));      \
+        }                                                                                  \
     } while (false)
