@@ -21,9 +21,8 @@ SANITIZE_FLAGS ?= -O0 -g1
 # folder (CI) reuses the objects that a build of the same sources on this machine left.
 export CCACHE_BASEDIR ?= $(CURDIR)
 export CCACHE_NOHASHDIR ?= true
-export CCACHE_SLOPPINESS ?= pch_defines,time_macros,include_file_mtime,include_file_ctime
 # Ninja where it is installed (scripts/install-deps.sh installs it): it starts a target's
-# compiles before the libraries it links are built, which keeps both cores busy.
+# compiles before the libraries it links are built.
 # $(call cmake_configure,DIR,ARGUMENTS): configures DIR, quietly unless it fails. A tree
 # configured earlier with another generator is configured afresh (its objects are rebuilt,
 # from ccache when they are there).
