@@ -356,8 +356,7 @@ void GpuCuller::encodeSecondPhase(const wgpu::CommandEncoder& commands, const wg
         auto pyramid = DepthPyramid::create(mSetup->device, *mSetup->shaders, depth);
         // The shader is embedded and the depth texture the renderer's own: a failure here is a
         // bug, not an input error.
-        ENCORE_CHECK(pyramid.ok(),
-                     "the depth pyramid cannot be built: " + pyramid.error().message);
+        ENCORE_CHECK(pyramid.ok(), "the depth pyramid cannot be built: " + pyramid.error().message);
         mPyramid = std::move(*pyramid);
         const wgpu::BindGroupEntry entry = gpu::textureEntry(0, mPyramid.view());
         wgpu::BindGroupDescriptor descriptor{};

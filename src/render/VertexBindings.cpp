@@ -5,9 +5,9 @@
 #include <string>
 
 #include "encore/gpu/Upload.h"
+#include "encore/render/GltfToWebGpu.h"
 #include "encore/render/RenderEncoder.h"
 #include "encore/render/RenderSetup.h"
-#include "encore/render/GltfToWebGpu.h"
 
 namespace encore::render {
 

@@ -6,6 +6,7 @@
 #include <regex>
 #include <set>
 #include <string>
+#include <vector>
 
 #include "GpuTestSupport.h"
 #include "encore/shaders/EmbeddedFiles.h"

@@ -98,7 +98,9 @@ inline Error makeError(ErrorCode code, std::string message) {
 
 namespace detail {
 // Prints where and which invariant broke, then aborts (ENCORE_CHECK).
-[[noreturn]] void checkFailed(const char* condition, const char* file, int line,
+[[noreturn]] void checkFailed(const char* condition,
+                              const char* file,
+                              int line,
                               std::string_view message);
 }  // namespace detail
 
@@ -125,9 +127,9 @@ namespace detail {
 
 // A programmer's error, never bad input (that is a Result): when `condition` is false, prints it
 // with `message` (evaluated only then) and the file and line, and aborts.
-#define ENCORE_CHECK(condition, message)                                                   \
-    do {                                                                                   \
-        if (!(condition)) {                                                                \
-            ::encore::detail::checkFailed(#condition, __FILE__, __LINE__, (message));      \
-        }                                                                                  \
+#define ENCORE_CHECK(condition, message)                                              \
+    do {                                                                              \
+        if (!(condition)) {                                                           \
+            ::encore::detail::checkFailed(#condition, __FILE__, __LINE__, (message)); \
+        }                                                                             \
     } while (false)

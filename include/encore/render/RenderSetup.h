@@ -34,8 +34,8 @@ struct PrepareTimes {
     double textureWrites = 0.0;
     double mipmaps = 0.0;
     double materialSubmit = 0.0;
-    double draws = 0.0;      // Grouping the draws: pipelines (found or created), vertex bindings.
-    double checks = 0.0;     // Collecting errors (out-of-memory scope, validation errors).
+    double draws = 0.0;   // Grouping the draws: pipelines (found or created), vertex bindings.
+    double checks = 0.0;  // Collecting errors (out-of-memory scope, validation errors).
 
     double total() const { return release + animation + strategy + checks; }
     PrepareTimes& operator+=(const PrepareTimes& other);

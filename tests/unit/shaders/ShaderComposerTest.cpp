@@ -97,16 +97,16 @@ TEST(ShaderComposerTest, EveryMeshVariantComposes) {
 // The C++ location table and the WGSL declarations must agree, for every vertex input (the
 // flags below declare them all).
 TEST(ShaderComposerTest, VertexLocationsMatchTheWgsl) {
-    Flags all = {"HAS_TEXCOORD", "HAS_COLOR",  "HAS_TANGENT", "HAS_TEXCOORD1",
+    Flags all = {"HAS_TEXCOORD", "HAS_COLOR", "HAS_TANGENT", "HAS_TEXCOORD1",
                  "SKINNED",      "SKINNED_8", "ANIMATED"};
     auto source = composeEmbeddedShader("mesh.wgsl", all);
     ASSERT_TRUE(source.ok());
     const std::map<std::string, std::uint32_t> expected = {
-        {"position", kPositionLocation},   {"normal", kNormalLocation},
-        {"texcoord", kTexcoord0Location},  {"color", kColor0Location},
-        {"tangent", kTangentLocation},     {"texcoord1", kTexcoord1Location},
-        {"joints0", kJoints0Location},     {"weights0", kWeights0Location},
-        {"joints1", kJoints1Location},     {"weights1", kWeights1Location}};
+        {"position", kPositionLocation},  {"normal", kNormalLocation},
+        {"texcoord", kTexcoord0Location}, {"color", kColor0Location},
+        {"tangent", kTangentLocation},    {"texcoord1", kTexcoord1Location},
+        {"joints0", kJoints0Location},    {"weights0", kWeights0Location},
+        {"joints1", kJoints1Location},    {"weights1", kWeights1Location}};
     const auto inputStart = source->find("struct VertexInput");
     const auto inputEnd = source->find('}', inputStart);
     const std::string input = source->substr(inputStart, inputEnd - inputStart);
