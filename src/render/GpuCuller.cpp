@@ -72,7 +72,8 @@ Result<void> checkCullingBuffers(const gpu::DeviceLimits& limits, std::size_t le
 }  // namespace
 
 Result<GpuCuller> GpuCuller::create(const RenderSetup& setup, const InstanceBuffer& instances,
-                                    CullingBounds bounds, std::vector<CulledDraw> draws) {
+                                    const AnimationBuffers* animation, CullingBounds bounds,
+                                    std::vector<CulledDraw> draws) {
     GpuCuller culler;
     culler.mSetup = &setup;
     culler.mDraws = std::move(draws);
@@ -176,9 +177,9 @@ Result<GpuCuller> GpuCuller::create(const RenderSetup& setup, const InstanceBuff
     const auto recordBuffer = gpu::createStorageBuffer(device, records, "culled draws and levels");
     // A scene without skins or morph targets binds placeholders its records never index.
     wgpu::Buffer joints, weights;
-    if (setup.animation) {
-        joints = setup.animation->jointBuffer();
-        weights = setup.animation->weightBuffer();
+    if (animation) {
+        joints = animation->jointBuffer();
+        weights = animation->weightBuffer();
     } else {
         joints = gpu::createBuffer(device, wgpu::BufferUsage::Storage, sizeof(glm::mat4) * 2,
                                    "no joints");

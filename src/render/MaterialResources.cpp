@@ -271,6 +271,7 @@ struct MaterialResources::Builder {
                                &extent);
         }
         out.mUploadTimes.writes += millisecondsSince(start);
+        out.mUploadedBytes += std::uint64_t(width) * height * 4;
         out.mTextures.push_back(std::move(texture));
         return out.mTextures.size() - 1;
     }

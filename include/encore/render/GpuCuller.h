@@ -28,6 +28,7 @@
 
 #include "encore/core/Result.h"
 #include "encore/gpu/GpuTimer.h"
+#include "encore/render/AnimationBuffers.h"
 #include "encore/render/Camera.h"
 #include "encore/render/CullingBounds.h"
 #include "encore/render/CullingOptions.h"
@@ -85,10 +86,11 @@ class GpuCuller {
     static constexpr std::size_t kMaxLodViews = 16;
 
     GpuCuller() = default;
-    // `bounds` has one record per instance slot; setup.animation (when not null) supplies the
+    // `bounds` has one record per instance slot; `animation` (when not null) supplies the
     // joint matrices and morph weights they refer to.
     static Result<GpuCuller> create(const RenderSetup& setup, const InstanceBuffer& instances,
-                                    CullingBounds bounds, std::vector<CulledDraw> draws);
+                                    const AnimationBuffers* animation, CullingBounds bounds,
+                                    std::vector<CulledDraw> draws);
 
     // Writes the view's culling uniform and records the reset and the first phase's cull.
     void encodeFirstPhase(const wgpu::Queue& queue, const wgpu::CommandEncoder& commands,

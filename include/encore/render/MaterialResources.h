@@ -187,6 +187,9 @@ class MaterialResources {
     // Where create()'s time went.
     const TextureUploadTimes& uploadTimes() const { return mUploadTimes; }
 
+    // Pixels written into the textures' first level since create() (the default texture and
+    // replaced images included; mip levels are generated on the GPU and not counted).
+    std::uint64_t uploadedBytes() const { return mUploadedBytes; }
     // Incremented whenever a bind group is replaced.
     std::uint64_t generation() const { return mGeneration; }
 
@@ -234,6 +237,7 @@ class MaterialResources {
     std::vector<SlotIndices> mMaterialSamplers;  // MaterialId -> slot -> index into mSamplers.
     std::vector<bool> mTextured;                 // MaterialId -> binds a texture.
     std::uint64_t mGeneration = 0;
+    std::uint64_t mUploadedBytes = 0;
     TextureUploadTimes mUploadTimes;
 
     wgpu::BindGroup createBindGroup(const wgpu::Device& device, const BindGroupLayouts& layouts,

@@ -67,7 +67,8 @@ Result<void> GpuCullingStrategy::groupDraws() {
         instanceAt[slot] = mInstances.instanceAt(slot);
     }
     CullingBounds bounds = CullingBounds::build(scene, instanceAt, setup.animation);
-    auto culler = GpuCuller::create(setup, mInstances, std::move(bounds), std::move(draws));
+    auto culler = GpuCuller::create(setup, mInstances, setup.animation, std::move(bounds),
+                                    std::move(draws));
     if (!culler) {
         return culler.error();
     }
