@@ -116,14 +116,18 @@ namespace detail {
     } while (false)
 
 // Assigns the value of a Result-returning expression to `target`, or returns its error.
-#define ENCORE_TRY_ASSIGN(target, expression)        \
-    do {                                             \
-        auto encoreTryAssign = (expression);         \
-        if (!encoreTryAssign.ok()) {                 \
-            return encoreTryAssign.error();          \
-        }                                            \
-        target = std::move(encoreTryAssign).value(); \
-    } while (false)
+// `target` may declare a variable: ENCORE_TRY_ASSIGN(auto image, decode(bytes)). Expands to
+// several statements, so it stands in a block of its own, never as an unbraced if's body.
+#define ENCORE_TRY_ASSIGN(target, expression) \
+    ENCORE_TRY_ASSIGN_IMPL(ENCORE_TRY_CONCAT(encoreTryAssign, __LINE__), target, expression)
+#define ENCORE_TRY_ASSIGN_IMPL(result, target, expression) \
+    auto result = (expression);                            \
+    if (!result.ok()) {                                    \
+        return result.error();                             \
+    }                                                      \
+    target = std::move(result).value()
+#define ENCORE_TRY_CONCAT(a, b) ENCORE_TRY_CONCAT_IMPL(a, b)
+#define ENCORE_TRY_CONCAT_IMPL(a, b) a##b
 
 // A programmer's error, never bad input (that is a Result): when `condition` is false, prints it
 // with `message` (evaluated only then) and the file and line, and aborts.
