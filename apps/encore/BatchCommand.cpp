@@ -225,14 +225,15 @@ int runBatch(const BatchCommandOptions& options, const GlobalOptions& global) {
                      : std::size_t(std::max(1u, std::thread::hardware_concurrency())));
     if (global.verbose) {
         const render::PrepareTimes& parts = stages.uploadParts;
-        const double strategyOther =
-            parts.strategy - parts.geometry - parts.instances - parts.materials - parts.draws;
+        const double sceneOther = parts.scene - parts.geometry - parts.instances - parts.materials;
+        const double strategyOther = parts.strategy - parts.draws;
         std::printf(
             "upload (s): release %.2f, lights+animation %.2f, geometry %.2f, instances %.2f, "
-            "materials %.2f, draws+pipelines %.2f, other strategy %.2f, error checks %.2f\n",
+            "materials %.2f, other scene %.2f, draws+pipelines %.2f, other strategy %.2f, error "
+            "checks %.2f\n",
             parts.release / 1000.0, parts.animation / 1000.0, parts.geometry / 1000.0,
-            parts.instances / 1000.0, parts.materials / 1000.0, parts.draws / 1000.0,
-            strategyOther / 1000.0, parts.checks / 1000.0);
+            parts.instances / 1000.0, parts.materials / 1000.0, sceneOther / 1000.0,
+            parts.draws / 1000.0, strategyOther / 1000.0, parts.checks / 1000.0);
         std::printf(
             "materials (s): texture creation %.2f, texture writes %.2f, mipmaps %.2f, submit "
             "%.2f\n",

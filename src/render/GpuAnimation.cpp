@@ -257,7 +257,7 @@ Result<std::unique_ptr<GpuAnimation>> GpuAnimation::create(
     const gpu::DeviceLimits& limits,
     const scene::SceneData& scene,
     const AnimationBuffers* animation,
-    const InstanceTransformTargets& targets) {
+    const InstanceTransformTargets& instances) {
     if (scene.animations.empty()) {
         return std::unique_ptr<GpuAnimation>();
     }
@@ -357,14 +357,11 @@ Result<std::unique_ptr<GpuAnimation>> GpuAnimation::create(
         }
         TransformRecord record{};
         record.node = static_cast<std::uint32_t>(instance.node.index());
-        record.slot =
-            targets.storage ? targets.slots[i] : static_cast<std::uint32_t>(instanceRecords.size());
+        record.slot = instances.slots[i];
         record.transform = instance.instanceTransform;
-        if (!targets.storage && !targets.uniforms.empty()) {
-            gpu.mCopyTargets.push_back(targets.uniforms[i]);
-        }
         instanceRecords.push_back(record);
         gpu.mInstances.push_back(static_cast<std::uint32_t>(i));
+        gpu.mInstanceSlots.push_back(record.slot);
     }
     std::vector<TransformRecord> jointRecords;
     std::uint32_t jointIndex = 0;
@@ -416,14 +413,8 @@ Result<std::unique_ptr<GpuAnimation>> GpuAnimation::create(
     if (!weights) {
         weights = createStorageBuffer(device, std::vector<float>(1, 0.0f), "no morph weights");
     }
-    wgpu::Buffer instanceOutput = targets.storage;
-    if (!instanceOutput) {
-        gpu.mInstanceOutput = gpu::createBuffer(
-            device, wgpu::BufferUsage::Storage | wgpu::BufferUsage::CopySrc,
-            std::max<std::uint64_t>(1, instanceRecords.size()) * sizeof(TransformUniform),
-            "animated instance transforms");
-        instanceOutput = gpu.mInstanceOutput;
-    }
+    gpu.mInstanceOutput = instances.storage;
+    const wgpu::Buffer instanceOutput = instances.storage;
 
     // Pipelines (layouts derived from each shader) and bind groups.
     auto sample = makePipeline(device, shaders, "animation_sample.wgsl", "sampleNodes");
@@ -562,9 +553,20 @@ void GpuAnimation::encode(const wgpu::CommandEncoder& commands) const {
     }
     pass.End();
     for (std::size_t k = 0; k < mCopyTargets.size(); ++k) {
-        commands.CopyBufferToBuffer(mInstanceOutput, k * sizeof(TransformUniform), mCopyTargets[k],
-                                    0, sizeof(TransformUniform));
+        const std::uint64_t slot = mInstanceSlots[k];
+        commands.CopyBufferToBuffer(mInstanceOutput, slot * sizeof(TransformUniform),
+                                    mCopyTargets[k], 0, sizeof(TransformUniform));
     }
+}
+
+void GpuAnimation::copyInstancesTo(std::span<const wgpu::Buffer> uniforms) {
+    mCopyTargets.clear();
+    if (!uniforms.empty()) {
+        for (std::uint32_t instance : mInstances) {
+            mCopyTargets.push_back(uniforms[instance]);
+        }
+    }
+    mStats.copies = static_cast<std::uint32_t>(mCopyTargets.size());
 }
 
 }  // namespace encore::render

@@ -7,18 +7,25 @@
 
 namespace encore::render {
 
-NodeUniforms::NodeUniforms(const wgpu::Device& device, const wgpu::Queue& queue,
-                           const BindGroupLayouts& layouts, const scene::SceneData& scene) {
+NodeUniforms::NodeUniforms(const wgpu::Device& device,
+                           const wgpu::Queue& queue,
+                           const BindGroupLayouts& layouts,
+                           const scene::SceneData& scene,
+                           std::span<const glm::mat4> worlds) {
     mBuffers.reserve(scene.instances.size());
     mBindGroups.reserve(scene.instances.size());
-    for (const scene::Instance& instance : scene.instances) {
+    for (std::size_t i = 0; i < scene.instances.size(); ++i) {
+        const scene::Instance& instance = scene.instances[i];
         // writeBuffer, not mappedAtCreation: Dawn gives every mapped-at-creation buffer that
         // the GPU cannot map its own staging allocation, which made 40,000 nodes take minutes
         // to prepare on an NVIDIA driver; writes share one staging ring.
         mBuffers.push_back(gpu::createBuffer(device,
                                              wgpu::BufferUsage::Uniform | wgpu::BufferUsage::CopyDst,
                                              sizeof(TransformUniform), "node transform"));
-        const TransformUniform transform = makeTransformUniform(instance);
+        // Edited since loading: the normal matrix is computed again.
+        const TransformUniform transform = worlds[i] == instance.world
+                                               ? makeTransformUniform(instance)
+                                               : makeTransformUniform(worlds[i]);
         queue.WriteBuffer(mBuffers.back(), 0, &transform, sizeof(transform));
         wgpu::BindGroupEntry entry{};
         entry.binding = 0;

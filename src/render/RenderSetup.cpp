@@ -5,6 +5,7 @@ namespace encore::render {
 PrepareTimes& PrepareTimes::operator+=(const PrepareTimes& other) {
     release += other.release;
     animation += other.animation;
+    scene += other.scene;
     strategy += other.strategy;
     geometry += other.geometry;
     instances += other.instances;

@@ -7,10 +7,11 @@
 #include "encore/core/Elapsed.h"
 #include "encore/gpu/OutOfMemoryScope.h"
 #include "encore/gpu/Readback.h"
+#include "encore/image/HdrImage.h"
 #include "encore/render/GpuCuller.h"
+#include "encore/render/GpuScene.h"
 #include "encore/render/PipelineCache.h"
 #include "encore/render/SceneLimits.h"
-#include "encore/image/HdrImage.h"
 
 namespace encore::render {
 
@@ -123,7 +124,7 @@ Result<void> Renderer::recoverFromDeviceLoss() {
     const std::optional<double> animationTime = mAnimationTime;
     mGpuAnimation.reset();
     mStrategy.reset();
-    mAnimation.reset();
+    mGpuScene.reset();
     mPlayer.reset();
     mBackground.reset();
     mToneMapper.reset();
@@ -169,11 +170,13 @@ Result<void> Renderer::prepare(const scene::SceneData& scene,
     PrepareTimes& times = mSetup->prepareTimes;
     times = {};
     auto start = std::chrono::steady_clock::now();
-    if (mStrategy) {
+    if (mStrategy || mGpuScene) {
         // Dawn frees objects once the GPU is done with them, on a later tick. Let that happen
-        // before the next strategy allocates: peak memory stays one strategy's worth, and
-        // drivers that map memory per object (lavapipe) stay below the kernel's limit.
+        // before the next scene allocates: peak memory stays one scene's worth, and drivers
+        // that map memory per object (lavapipe) stay below the kernel's limit.
+        mGpuAnimation.reset();
         mStrategy.reset();
+        retireGpuScene();
         if (mOptions.prepareWaitsForIdle) {
             mContext->waitForIdle();
         }
@@ -184,30 +187,66 @@ Result<void> Renderer::prepare(const scene::SceneData& scene,
     if (mLighting->setSceneLights(scene)) {
         mFrame->bindLighting(mContext->device(), *mLayouts, *mLighting);
     }
-    mSetup->pipelinesCreated = 0;
-    mSetup->mappingBudget = mContext->mappingBudget();  // What the previous scene left in use.
     mScene = &scene;
-    mKind = kind;
-    mBundle = bundle;
     if (mTriangleHistory) {
         setTriangleCounting(true);  // Counts of the previous strategy are not this one's.
     }
-    mSetup->animation = nullptr;
-    mAnimation.reset();
     mPlayer = std::make_unique<scene::AnimationPlayer>(scene);
     mPlayer->setMode(mPlaybackMode);
     mAnimationStats = {};
     mAnimationTime.reset();
-    mAnimation = AnimationBuffers::create(mContext->device(), mContext->queue(), *mLayouts, scene,
-                                          *mPlayer);
-    mSetup->animation = mAnimation.get();
     times.animation = millisecondsSince(start);
     start = std::chrono::steady_clock::now();
+    {
+        gpu::OutOfMemoryScope outOfMemory(*mContext);
+        auto created = GpuScene::create(*mSetup, scene, mPlayer.get(), staged);
+        times.scene = millisecondsSince(start);
+        ENCORE_TRY(outOfMemory.finish(what));
+        if (!created) {
+            return created.error().withContext(what);
+        }
+        mGpuScene = std::move(*created);
+        ++mSceneUploads;
+    }
+    return prepareStrategy(kind, bundle, what);
+}
+
+Result<void> Renderer::setStrategy(StrategyKind kind, bool bundle) {
+    if (!mGpuScene) {
+        return makeError(ErrorCode::InvalidArgument, "No scene is prepared.");
+    }
+    const std::string what = "Switching '" + mScene->sourcePath.string() + "' to strategy " +
+                             std::string(strategyName(kind)) + (bundle ? " (bundled)" : "");
+    if (auto fits = checkSceneWithinLimits(mSetup->limits, *mScene, kind); !fits) {
+        return fits.error().withContext(what);
+    }
+    mSetup->prepareTimes = {};
+    const auto start = std::chrono::steady_clock::now();
+    if (mGpuAnimation) {
+        mGpuAnimation->copyInstancesTo({});  // Into the old strategy's buffers no more.
+    }
+    mStrategy.reset();
+    if (mOptions.prepareWaitsForIdle) {
+        mContext->waitForIdle();
+    }
+    mContext->device().Tick();
+    mSetup->prepareTimes.release = millisecondsSince(start);
+    if (mTriangleHistory) {
+        setTriangleCounting(true);
+    }
+    return prepareStrategy(kind, bundle, what);
+}
+
+Result<void> Renderer::prepareStrategy(StrategyKind kind, bool bundle, const std::string& what) {
+    PrepareTimes& times = mSetup->prepareTimes;
+    mKind = kind;
+    mBundle = bundle;
+    mSetup->pipelinesCreated = 0;
+    mSetup->mappingBudget = mContext->mappingBudget();  // What the scenes left in use.
+    auto start = std::chrono::steady_clock::now();
     auto strategy = createStrategy(kind, bundle);
     gpu::OutOfMemoryScope outOfMemory(*mContext);
-    mSetup->stagedImages = staged;
-    auto prepared = strategy->prepare(*mSetup, scene);
-    mSetup->stagedImages = nullptr;
+    auto prepared = strategy->prepare(*mSetup, *mGpuScene);
     times.strategy = millisecondsSince(start);
     start = std::chrono::steady_clock::now();
     ENCORE_TRY(outOfMemory.finish(what));
@@ -217,18 +256,37 @@ Result<void> Renderer::prepare(const scene::SceneData& scene,
     ENCORE_TRY(mContext->checkNoErrors(what));
     times.checks = millisecondsSince(start);
     mStrategy = std::move(strategy);
-    if (mOptions.animation == AnimationEvaluation::Gpu) {
-        ENCORE_TRY(createGpuAnimation());
+    if (mOptions.animation == AnimationEvaluation::Gpu && !mGpuAnimation) {
+        ENCORE_TRY(createGpuAnimation());  // Once per GPU scene.
+    } else if (mGpuAnimation) {
+        mGpuAnimation->copyInstancesTo(mStrategy->instanceTransformTargets().uniforms);
+        if (mAnimationTime) {
+            mGpuAnimationPending = true;  // The new strategy's node uniforms hold no pose yet.
+        }
     }
     return {};
+}
+
+const AnimationBuffers* Renderer::animationBuffers() const {
+    return mGpuScene ? mGpuScene->animation() : nullptr;
+}
+
+void Renderer::retireGpuScene() {
+    if (mGpuScene) {
+        mRetiredUploadBytes += mGpuScene->uploadedBytes();
+        mGpuScene.reset();
+    }
+}
+
+std::uint64_t Renderer::uploadedBytes() const {
+    return mRetiredUploadBytes + (mGpuScene ? mGpuScene->uploadedBytes() : 0);
 }
 
 void Renderer::releaseScene() {
     mGpuAnimation.reset();
     mGpuAnimationPending = false;
     mStrategy.reset();
-    mSetup->animation = nullptr;
-    mAnimation.reset();
+    retireGpuScene();
     mPlayer.reset();
     mAnimationStats = {};
     mAnimationTime.reset();
@@ -242,14 +300,14 @@ void Renderer::releaseScene() {
 Result<void> Renderer::createGpuAnimation() {
     mGpuAnimation.reset();
     mGpuAnimationPending = false;
-    if (!mStrategy || !mScene) {
+    if (!mGpuScene || !mScene) {
         return {};
     }
     const std::string what = "Preparing GPU animation of '" + mScene->sourcePath.string() + "'";
     gpu::OutOfMemoryScope outOfMemory(*mContext);
-    auto created =
-        GpuAnimation::create(mContext->device(), mContext->queue(), *mShaders, mSetup->limits,
-                             *mScene, mAnimation.get(), mStrategy->instanceTransformTargets());
+    auto created = GpuAnimation::create(mContext->device(), mContext->queue(), *mShaders,
+                                        mSetup->limits, *mScene, mGpuScene->animation(),
+                                        mGpuScene->instances().transformTargets());
     ENCORE_TRY(outOfMemory.finish(what));
     if (!created) {
         return created.error().withContext(what);
@@ -258,6 +316,9 @@ Result<void> Renderer::createGpuAnimation() {
     mGpuAnimation = std::move(*created);
     if (mGpuAnimation) {
         mGpuAnimation->select(mContext->queue(), mPlayer->selection());
+        if (mStrategy) {
+            mGpuAnimation->copyInstancesTo(mStrategy->instanceTransformTargets().uniforms);
+        }
     }
     return {};
 }
@@ -506,7 +567,9 @@ Result<void> Renderer::updateInstance(std::size_t instance, const glm::mat4& wor
     if (!mStrategy) {
         return makeError(ErrorCode::InvalidArgument, "No scene is prepared.");
     }
-    return mStrategy->updateInstance(instance, world);
+    ENCORE_TRY(mGpuScene->updateInstance(instance, world));
+    mStrategy->instanceMoved(instance, world);
+    return {};
 }
 
 Result<void> Renderer::selectAnimation(std::string_view nameOrIndex) {
@@ -546,14 +609,13 @@ Result<void> Renderer::setAnimationTime(double seconds) {
     stats.player = mPlayer->stats();
     const auto worlds = mPlayer->instanceWorlds();
     for (std::uint32_t instance : mPlayer->changedInstances()) {
-        ENCORE_TRY(mStrategy->updateInstance(instance, worlds[instance]));
+        ENCORE_TRY(mGpuScene->updateInstance(instance, worlds[instance]));
+        mStrategy->instanceMoved(instance, worlds[instance]);
         ++stats.instancesWritten;
     }
     stats.bytesWritten = std::uint64_t(stats.instancesWritten) * sizeof(TransformUniform);
-    if (mAnimation) {
-        stats.upload = mAnimation->write(mContext->queue(), *mPlayer);
-        stats.bytesWritten += stats.upload.bytesWritten;
-    }
+    stats.upload = mGpuScene->writeAnimation(*mPlayer);
+    stats.bytesWritten += stats.upload.bytesWritten;
     mAnimationStats = stats;
     return {};
 }
@@ -562,7 +624,7 @@ Result<void> Renderer::updateMaterial(scene::MaterialId material, const scene::M
     if (!mStrategy) {
         return makeError(ErrorCode::InvalidArgument, "No scene is prepared.");
     }
-    return mStrategy->updateMaterial(material, value);
+    return mGpuScene->updateMaterial(material, value);
 }
 
 Result<void> Renderer::replaceBaseColorImage(scene::MaterialId material,
@@ -570,7 +632,8 @@ Result<void> Renderer::replaceBaseColorImage(scene::MaterialId material,
     if (!mStrategy) {
         return makeError(ErrorCode::InvalidArgument, "No scene is prepared.");
     }
-    ENCORE_TRY(mStrategy->replaceBaseColorImage(material, image));
+    ENCORE_TRY(mGpuScene->replaceBaseColorImage(material, image));
+    ENCORE_TRY(mStrategy->refresh());
     return mContext->checkNoErrors("Replacing a base colour image");
 }
 

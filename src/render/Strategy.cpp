@@ -1,7 +1,5 @@
 #include "encore/render/Strategy.h"
 
-#include <string>
-
 #include "strategies/BundledStrategy.h"
 #include "strategies/BundlesStrategy.h"
 #include "strategies/GpuCullingStrategy.h"
@@ -12,15 +10,6 @@
 #include "strategies/PipelineCacheStrategy.h"
 
 namespace encore::render {
-
-Result<void> checkInstanceIndex(std::size_t instance, std::size_t instanceCount) {
-    if (instance >= instanceCount) {
-        return makeError(ErrorCode::InvalidArgument,
-                         "Instance " + std::to_string(instance) + " does not exist (the scene has " +
-                             std::to_string(instanceCount) + " instances).");
-    }
-    return {};
-}
 
 std::unique_ptr<Strategy> createStrategy(StrategyKind kind, bool bundle) {
     if (bundle) {

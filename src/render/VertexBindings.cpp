@@ -51,6 +51,34 @@ GeometryBuffers::GeometryBuffers(wgpu::Device device, const scene::SceneData& sc
                                  std::uint64_t maxSharedBufferBytes)
     : mDevice(std::move(device)), mScene(&scene) {
     uploadViews(maxSharedBufferBytes);
+    uploadRepackedAccessors();
+}
+
+void GeometryBuffers::uploadRepackedAccessors() {
+    // Every attribute a shader may read that cannot be bound in place, copied now rather than
+    // on first bind: every strategy binds from the same uploads, whichever binds first.
+    for (const scene::Mesh& mesh : mScene->meshes) {
+        for (const scene::Primitive& primitive : mesh.primitives) {
+            for (const scene::VertexAttribute& attribute : primitive.attributes) {
+                const scene::AccessorId id = attribute.accessor;
+                if (id.index() >= mScene->accessors.size() || mPrivateBuffers.contains(id) ||
+                    !shaderLocation(attribute.semantic)) {
+                    continue;
+                }
+                const scene::Accessor& accessor = mScene->accessors[id.index()];
+                if (readsInPlace(accessor) || !vertexFormat(accessor)) {
+                    continue;  // Bound in place, or refused by bind().
+                }
+                std::uint32_t stride = 0;
+                const auto bytes = paddedVertexElements(*mScene, id, stride);
+                const wgpu::Buffer buffer = gpu::createBufferWithData(
+                    mDevice, wgpu::BufferUsage::Vertex | wgpu::BufferUsage::Storage, bytes,
+                    "repacked accessor " + std::to_string(id.value));
+                mUploadedBytes += bytes.size();
+                mPrivateBuffers[id] = {buffer, stride};
+            }
+        }
+    }
 }
 
 void GeometryBuffers::uploadViews(std::uint64_t maxSharedBufferBytes) {
@@ -108,9 +136,12 @@ void GeometryBuffers::uploadViews(std::uint64_t maxSharedBufferBytes) {
     }
     for (const SharedBuffer& shared : layout) {
         // Mapped at creation, so zeroed: the gaps between views read as zeros.
+        // Storage too: passes that fetch vertices themselves read the same bytes.
         const wgpu::Buffer buffer = gpu::createBufferFilledBy(
-            mDevice, wgpu::BufferUsage::Vertex | wgpu::BufferUsage::Index, shared.size,
-            "geometry " + std::to_string(mSharedBuffers.size()), [&](std::uint8_t* mapped) {
+            mDevice,
+            wgpu::BufferUsage::Vertex | wgpu::BufferUsage::Index | wgpu::BufferUsage::Storage,
+            shared.size, "geometry " + std::to_string(mSharedBuffers.size()),
+            [&](std::uint8_t* mapped) {
                 for (scene::BufferViewId id : shared.views) {
                     const scene::BufferView& view = mScene->bufferViews[id.index()];
                     const auto& source = mScene->buffers[view.buffer.index()].bytes;
@@ -121,11 +152,12 @@ void GeometryBuffers::uploadViews(std::uint64_t maxSharedBufferBytes) {
         for (scene::BufferViewId id : shared.views) {
             mViews[id].buffer = buffer;
         }
+        mUploadedBytes += shared.size;
         mSharedBuffers.push_back(buffer);
     }
 }
 
-const GeometryBuffers::ViewPlacement& GeometryBuffers::viewPlacement(scene::BufferViewId id) {
+const GeometryBuffers::ViewPlacement& GeometryBuffers::viewPlacement(scene::BufferViewId id) const {
     const auto found = mViews.find(id);
     // bind() asks only for views of the scene's primitives, all uploaded by the constructor.
     ENCORE_CHECK(found != mViews.end(),
@@ -134,7 +166,7 @@ const GeometryBuffers::ViewPlacement& GeometryBuffers::viewPlacement(scene::Buff
 }
 
 Result<PrimitiveBindings> GeometryBuffers::bind(const scene::Primitive& primitive,
-                                                std::span<const scene::Semantic> semantics) {
+                                                std::span<const scene::Semantic> semantics) const {
     PrimitiveBindings bindings;
     bindings.topology = primitive.topology;
     bindings.vertexCount = primitive.vertexCount;
@@ -177,13 +209,12 @@ Result<PrimitiveBindings> GeometryBuffers::bind(const scene::Primitive& primitiv
     for (const BoundAttribute& attribute : attributes) {
         const scene::Accessor& accessor = mScene->accessors[attribute.accessor.index()];
         if (!inPlace(attribute)) {
-            auto& [buffer, stride] = mPrivateBuffers[attribute.accessor];
-            if (!buffer) {
-                const auto bytes = paddedVertexElements(*mScene, attribute.accessor, stride);
-                buffer = gpu::createBufferWithData(mDevice, wgpu::BufferUsage::Vertex, bytes,
-                                                   "repacked accessor " +
-                                                       std::to_string(attribute.accessor.value));
-            }
+            const auto repacked = mPrivateBuffers.find(attribute.accessor);
+            // The constructor repacked every attribute with a shader location and a format.
+            ENCORE_CHECK(repacked != mPrivateBuffers.end(),
+                         "GeometryBuffers: accessor " + std::to_string(attribute.accessor.value) +
+                             " was not repacked");
+            const auto& [buffer, stride] = repacked->second;
             Slot slot{{buffer, 0, buffer.GetSize()}, {}, {}};
             slot.key.arrayStride = stride;
             slot.key.attributes[slot.key.attributeCount++] = {attribute.format, 0,

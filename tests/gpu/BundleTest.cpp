@@ -10,6 +10,7 @@
 #include "GpuTestSupport.h"
 #include "RenderTestSupport.h"
 #include "encore/render/BundleRecorder.h"
+#include "encore/render/GpuScene.h"
 #include "encore/render/Renderer.h"
 
 namespace encore::render {
@@ -80,9 +81,13 @@ TEST(BundleTest, TwoBundlesBetweenDirectDrawsInOnePass) {
     auto renderer = Renderer::create(*context, test::pixelTestOptions(kSize, kSize));
     ASSERT_TRUE(renderer.ok());
     const RenderSetup& setup = renderer->setup();
+    std::vector<std::unique_ptr<GpuScene>> gpuScenes;  // Outlive the strategies.
     auto prepare = [&](const scene::SceneData& scene) {
+        auto uploaded = GpuScene::create(setup, scene);
+        EXPECT_TRUE(uploaded.ok());
+        gpuScenes.push_back(std::move(*uploaded));
         auto strategy = createStrategy(StrategyKind::Materials);
-        EXPECT_TRUE(strategy->prepare(setup, scene).ok());
+        EXPECT_TRUE(strategy->prepare(setup, *gpuScenes.back()).ok());
         return strategy;
     };
     auto a = prepare(sceneA);

@@ -23,7 +23,8 @@ constexpr scene::Semantic kSemantics[] = {scene::Semantic::Position, scene::Sema
 
 // Every binding of every primitive: inside its buffer, 4-byte aligned, and reading exactly
 // to the end of its bufferView, no further.
-std::vector<PrimitiveBindings> bindAll(GeometryBuffers& geometry, const scene::SceneData& scene) {
+std::vector<PrimitiveBindings> bindAll(const GeometryBuffers& geometry,
+                                       const scene::SceneData& scene) {
     std::vector<PrimitiveBindings> all;
     for (const scene::Mesh& mesh : scene.meshes) {
         for (const scene::Primitive& primitive : mesh.primitives) {

@@ -10,6 +10,7 @@
 #include "RenderTestSupport.h"
 #include "TestPaths.h"
 #include "encore/core/FileIO.h"
+#include "encore/render/GpuScene.h"
 #include "encore/render/Renderer.h"
 #include "encore/scene/SceneGenerator.h"
 
@@ -353,10 +354,12 @@ TEST(StrategyLimitsTest, PerNodeStrategiesRefuseScenesBeyondTheMappingBudget) {
     ASSERT_TRUE(renderer.ok());
     RenderSetup tight = renderer->setup();
     tight.mappingBudget = 60;  // Room for 30 nodes at two mappings each.
+    auto gpuScene = GpuScene::create(tight, *scene);
+    ASSERT_TRUE(gpuScene.ok());
     for (StrategyKind kind : {StrategyKind::Naive, StrategyKind::Layouts,
                               StrategyKind::PipelineCache}) {
         auto strategy = createStrategy(kind);
-        auto prepared = strategy->prepare(tight, *scene);
+        auto prepared = strategy->prepare(tight, **gpuScene);
         ASSERT_FALSE(prepared.ok()) << strategyName(kind);
         EXPECT_EQ(prepared.error().code, ErrorCode::Unsupported);
         EXPECT_NE(prepared.error().message.find("vm.max_map_count"), std::string::npos);
@@ -364,7 +367,7 @@ TEST(StrategyLimitsTest, PerNodeStrategiesRefuseScenesBeyondTheMappingBudget) {
     }
     // Instancing needs no per-node objects.
     auto instancing = createStrategy(StrategyKind::Instancing);
-    EXPECT_TRUE(instancing->prepare(tight, *scene).ok());
+    EXPECT_TRUE(instancing->prepare(tight, **gpuScene).ok());
     EXPECT_TRUE(context->checkNoErrors("limits").ok());
 }
 

@@ -12,9 +12,9 @@
 //      weights (AnimationBuffers' weight buffer, at the player's offsets);
 //   2. animation_world.wgsl: world matrices of the nodes at or below an animated node, one
 //      dispatch per depth level, parents first; other nodes keep their rest world matrix;
-//   3. animation_transforms.wgsl: instance world and normal matrices into the strategy's
-//      instance transforms (or, for strategies with a uniform buffer per node, into a buffer of
-//      its own, then copied to each node's buffer), and joint matrices (world × inverseBind,
+//   3. animation_transforms.wgsl: instance world and normal matrices into the GPU scene's
+//      instance transforms (for strategies with a uniform buffer per node, then copied to each
+//      node's buffer), and joint matrices (world × inverseBind,
 //      with their normal matrices) into AnimationBuffers' joint buffer.
 // The results land in the same buffers at the same offsets as the CPU path's uploads, so the
 // vertex shaders and recorded bundles are unchanged. The CPU cost of a frame depends on the
@@ -75,15 +75,21 @@ class GpuAnimation {
     static Result<void> checkLimits(const gpu::DeviceLimits& limits, const scene::SceneData& scene);
 
     // Null when the scene has no animation. `animation` (the scene's AnimationBuffers; null
-    // when it has neither skins nor morph targets) and the buffers in `targets` must outlive the
-    // returned object. Every animation is selected.
+    // when it has neither skins nor morph targets) and `instances` (the GPU scene's instance
+    // transforms: InstanceBuffer::transformTargets) must outlive the returned object. Every
+    // animation is selected. Built once per GPU scene, whichever strategy draws it.
     static Result<std::unique_ptr<GpuAnimation>> create(const wgpu::Device& device,
                                                         const wgpu::Queue& queue,
                                                         shaders::ShaderLibrary& shaders,
                                                         const gpu::DeviceLimits& limits,
                                                         const scene::SceneData& scene,
                                                         const AnimationBuffers* animation,
-                                                        const InstanceTransformTargets& targets);
+                                                        const InstanceTransformTargets& instances);
+
+    // For strategies that keep transforms of their own (InstanceTransformTargets::uniforms, one
+    // uniform buffer per scene instance): after the passes, every moved instance's transform is
+    // also copied there. Empty: no copies.
+    void copyInstancesTo(std::span<const wgpu::Buffer> uniforms);
 
     // Which animations play: of channels driving the same property, the later animation's wins
     // (as AnimationPlayer). Writes one small table; call when the selection changes.
@@ -112,14 +118,16 @@ class GpuAnimation {
     std::vector<float> mClockEnds;   // Per clock: the duration of the animations that share it.
     std::vector<float> mClockTimes;  // The playback-mode header, then per clock, by setTime.
     bool mModeWritten = false;
-    wgpu::Buffer mClocks, mNodeChannels, mLocals, mWorlds, mInstanceOutput;
+    wgpu::Buffer mClocks, mNodeChannels, mLocals, mWorlds;
+    wgpu::Buffer mInstanceOutput;  // The GPU scene's instance transforms.
     wgpu::ComputePipeline mSample, mWorld, mTransform;
     wgpu::BindGroup mSampleGroup, mInstanceGroup, mJointGroup;
     std::vector<wgpu::BindGroup> mLevelGroups;
     std::vector<std::uint32_t> mLevelCounts;
     std::uint32_t mInstanceRecords = 0;
     std::uint32_t mJointRecords = 0;
-    // Node-uniform strategies: copy record k of mInstanceOutput to mCopyTargets[k].
+    std::vector<std::uint32_t> mInstanceSlots;  // Where mInstances[k] lives in the output.
+    // Node-uniform strategies: copy record k from mInstanceOutput to mCopyTargets[k].
     std::vector<wgpu::Buffer> mCopyTargets;
     GpuAnimationStats mStats;
 };

@@ -6,6 +6,7 @@
 #include <webgpu/webgpu_cpp.h>
 
 #include <optional>
+#include <span>
 #include <string_view>
 #include <vector>
 
@@ -20,8 +21,13 @@ namespace encore::render {
 class NodeUniforms {
   public:
     NodeUniforms() = default;
-    NodeUniforms(const wgpu::Device& device, const wgpu::Queue& queue,
-                 const BindGroupLayouts& layouts, const scene::SceneData& scene);
+    // One buffer per instance of `scene`, holding its transform in `worlds` (one per instance:
+    // the GPU scene's, edits included).
+    NodeUniforms(const wgpu::Device& device,
+                 const wgpu::Queue& queue,
+                 const BindGroupLayouts& layouts,
+                 const scene::SceneData& scene,
+                 std::span<const glm::mat4> worlds);
 
     // An error when the per-node buffers and bind groups (about two driver memory mappings
     // each on lavapipe) would exceed `mappingBudget` (gpu::Context::mappingBudget), naming the

@@ -15,17 +15,17 @@
 
 namespace encore::render {
 
-class AnimationBuffers;
 class MipmapGenerator;
 class PipelineCache;
-class StagedImages;
 
-// Where Renderer::prepare's time went, in milliseconds. The materials-based strategies fill in
-// their parts; other strategies' work counts only in `strategy`.
+// Where Renderer::prepare's time went, in milliseconds: the GPU scene's parts (geometry,
+// instances, materials), then the strategy's (draws, for the materials-based strategies; other
+// strategies' work counts only in `strategy`).
 struct PrepareTimes {
     double release = 0.0;    // Freeing the previous scene (waiting for the GPU first, by default).
-    double animation = 0.0;  // Lights, the animation player and its buffers.
-    double strategy = 0.0;   // Strategy::prepare, the four parts below included.
+    double animation = 0.0;  // Lights and the animation player.
+    double scene = 0.0;      // Building the GPU scene: the three parts below, animation buffers.
+    double strategy = 0.0;   // Strategy::prepare, `draws` included.
     double geometry = 0.0;   // Vertex and index data, uploaded into the shared buffers.
     double instances = 0.0;  // Instance transforms and their bind group.
     double materials = 0.0;  // Textures (upload and mipmaps), samplers, material bind groups.
@@ -37,7 +37,7 @@ struct PrepareTimes {
     double draws = 0.0;   // Grouping the draws: pipelines (found or created), vertex bindings.
     double checks = 0.0;  // Collecting errors (out-of-memory scope, validation errors).
 
-    double total() const { return release + animation + strategy + checks; }
+    double total() const { return release + animation + scene + strategy + checks; }
     PrepareTimes& operator+=(const PrepareTimes& other);
 };
 
@@ -56,17 +56,10 @@ struct RenderSetup {
     std::optional<std::uint64_t> mappingBudget;
     // gpu::Context::limits(): what buffers and textures are sized against.
     gpu::DeviceLimits limits;
-    // The images of the scene being prepared, already in staging buffers (Renderer::prepare's
-    // `staged`); null: MaterialResources writes them itself.
-    StagedImages* stagedImages = nullptr;
     // Render pipelines created through this setup (createMeshPipeline), for stats.
     mutable std::uint64_t pipelinesCreated = 0;
     // The last Renderer::prepare's times; strategies add their parts.
     mutable PrepareTimes prepareTimes;
-    // The prepared scene's skinning and morph data, shared by every strategy (owned by the
-    // Renderer); null when the scene has none (or for strategies prepared outside a Renderer):
-    // primitives are then drawn unanimated, as loaded.
-    const AnimationBuffers* animation = nullptr;
     // Pipelines that outlive the prepared strategy (RendererOptions::keepPipelines), owned by
     // the Renderer; null: each strategy caches its own.
     PipelineCache* keptPipelines = nullptr;

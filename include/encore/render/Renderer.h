@@ -2,10 +2,10 @@
 
 // Renderer draws a SceneData with one strategy into an offscreen RenderTarget. It owns what all
 // strategies share (shader library, bind group layouts, frame uniforms, the scene's lighting and
-// environment, tone mapping) and the strategy itself. A frame renders the scene into the
-// target's sRGB output, the shaders applying the display transform as they shade; with an HDR
-// target (RenderTargetOptions::hdr, or a transparent background) it renders linear HDR and a
-// tone-mapping pass writes the output.
+// environment, tone mapping), the prepared scene on the GPU (GpuScene) and the strategy itself. A
+// frame renders the scene into the target's sRGB output, the shaders applying the display transform
+// as they shade; with an HDR target (RenderTargetOptions::hdr, or a transparent background) it
+// renders linear HDR and a tone-mapping pass writes the output.
 
 #include <memory>
 #include <optional>
@@ -85,6 +85,8 @@ struct FrameResult : FrameTiming {
     std::uint64_t trianglesSubmitted = 0;
 };
 
+class GpuScene;
+class StagedImages;
 class TriangleHistory;
 
 class Renderer {
@@ -97,14 +99,18 @@ class Renderer {
     ~Renderer();
 
     // Prepares `scene` (which must outlive the renderer) for drawing with `kind`, replacing any
-    // previous scene or strategy; with `bundle`, the frame is drawn from render bundles
-    // (createStrategy). Fails on any WebGPU error raised while preparing. `staged`: the scene's
-    // images already copied into staging buffers (StagedImages.h; materials-based strategies
-    // copy their textures from there), used during this call only.
+    // previous scene or strategy: uploads it into a new GPU scene (GpuScene) and prepares the
+    // strategy on it; with `bundle`, the frame is drawn from render bundles (createStrategy).
+    // Fails on any WebGPU error raised while preparing. `staged`: the scene's images already
+    // copied into staging buffers (StagedImages.h; the GPU scene copies its textures from
+    // there), used during this call only.
     Result<void> prepare(const scene::SceneData& scene,
                          StrategyKind kind,
                          bool bundle = false,
                          StagedImages* staged = nullptr);
+    // Draws the prepared scene with another strategy: only the strategy's recording structures
+    // are made again; the GPU scene, with every edit made through it, stays as it is.
+    Result<void> setStrategy(StrategyKind kind, bool bundle = false);
     // Forgets the prepared scene and frees what was made for it (the strategy's buffers,
     // textures and bundles, the animation), keeping what serves any scene (target, environment,
     // kept pipelines). For a renderer kept after the scene it prepared is gone (encore batch
@@ -164,7 +170,7 @@ class Renderer {
     scene::PlaybackMode playbackMode() const { return mPlaybackMode; }
     const AnimationFrameStats& animationStats() const { return mAnimationStats; }
     const scene::AnimationPlayer* animationPlayer() const { return mPlayer.get(); }
-    const AnimationBuffers* animationBuffers() const { return mAnimation.get(); }
+    const AnimationBuffers* animationBuffers() const;
 
     Result<void> updateMaterial(scene::MaterialId material, const scene::Material& value);
     // Replaces a material's base colour image (materials-based strategies); recorded bundles
@@ -227,12 +233,22 @@ class Renderer {
     // Where the last prepare()'s time went.
     const PrepareTimes& prepareTimes() const { return mSetup->prepareTimes; }
     const Strategy* strategy() const { return mStrategy.get(); }
+    // The prepared scene on the GPU; null before prepare() and after releaseScene().
+    const GpuScene* gpuScene() const { return mGpuScene.get(); }
+    // How many GPU scenes this renderer built (prepare() and device recovery, never a switch of
+    // strategy), and the geometry and texture bytes they uploaded, edits included.
+    std::uint64_t sceneUploads() const { return mSceneUploads; }
+    std::uint64_t uploadedBytes() const;
     gpu::Context& context() { return *mContext; }
 
   private:
     Renderer() = default;
     Result<void> build(const RendererOptions& options);
     Result<void> createGpuAnimation();
+    // Creates and prepares the strategy on the GPU scene; `what` names it in errors.
+    Result<void> prepareStrategy(StrategyKind kind, bool bundle, const std::string& what);
+    // Frees the GPU scene, counting what it uploaded.
+    void retireGpuScene();
     // What of the player outlives a new player (a device loss, a switch of evaluation): which
     // animations play and how. restorePlayback applies it to the current player and the GPU
     // evaluation.
@@ -261,7 +277,9 @@ class Renderer {
     std::unique_ptr<PipelineCache> mKeptPipelines;  // With RendererOptions::keepPipelines.
     std::unique_ptr<MipmapGenerator> mMipmaps;
     std::unique_ptr<scene::AnimationPlayer> mPlayer;
-    std::unique_ptr<AnimationBuffers> mAnimation;  // Before mStrategy, which binds it.
+    std::unique_ptr<GpuScene> mGpuScene;  // Before mStrategy, which records from it.
+    std::uint64_t mSceneUploads = 0;
+    std::uint64_t mRetiredUploadBytes = 0;  // Of the GPU scenes freed since creation.
     AnimationFrameStats mAnimationStats;
     std::optional<double> mAnimationTime;  // The last setAnimationTime() since prepare().
     scene::PlaybackMode mPlaybackMode = scene::PlaybackMode::Clamp;

@@ -1,8 +1,11 @@
 #pragma once
 
 // A strategy is one step of the case study's path from a naive glTF renderer to an efficient one.
-// Each prepares its own GPU resources from SceneData and records a frame's draws through a
-// RenderEncoder, so every step can be selected, counted and compared in one binary.
+// Each records a frame's draws from the GPU scene (GpuScene: geometry, instances, materials,
+// animation, uploaded once) through a RenderEncoder, so every step can be selected, counted and
+// compared in one binary. A strategy owns only its recording structures: the pipelines it picks,
+// draw groups, bundles, indirect arguments and culling buffers, and what is its very point
+// (naive's buffer and bind group per node).
 
 #include <webgpu/webgpu_cpp.h>
 
@@ -12,6 +15,8 @@
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include <glm/mat4x4.hpp>
 
 #include "encore/core/Result.h"
 #include "encore/gpu/GpuTimer.h"
@@ -52,14 +57,21 @@ struct FrameState {
 };
 
 class GpuCuller;
+class GpuScene;
 
 class Strategy {
   public:
     virtual ~Strategy() = default;
     virtual StrategyKind kind() const = 0;
 
-    // Creates the GPU resources for `scene`, which must outlive the strategy.
-    virtual Result<void> prepare(const RenderSetup& setup, const scene::SceneData& scene) = 0;
+    // Creates the recording structures for `scene`, which (like `setup`) must outlive the
+    // strategy.
+    virtual Result<void> prepare(const RenderSetup& setup, const GpuScene& scene) = 0;
+
+    // Brings the recording structures up to date after the GPU scene's generation changed (a
+    // replaced bind group: a material that gained textures needs other pipelines). Bundles
+    // notice the generation themselves before their next replay.
+    virtual Result<void> refresh() { return {}; }
 
     // Work before the frame's render pass: GPU work in `commands` (culling compute passes) and
     // CPU bookkeeping (re-recording bundles whose draw sequence changed).
@@ -87,27 +99,16 @@ class Strategy {
     // same code can record into a render bundle.
     virtual void encode(RenderEncoder& encoder, const FrameState& frame) const = 0;
 
-    // Dynamic content: these change data in buffers only, so recorded bundles stay valid.
-    // `instance` is an index into SceneData::instances.
-    virtual Result<void> updateInstance(std::size_t instance, const glm::mat4& world) = 0;
-    // Where the strategy keeps instance transforms, for GPU-evaluated animation (GpuAnimation),
-    // which writes the animated ones there instead of updateInstance.
+    // Strategies that keep instance transforms of their own (the per-node uniforms of naive,
+    // layouts and pipeline-cache) rewrite them: the GPU scene's are written already. Data in
+    // buffers only, so recorded bundles stay valid.
+    virtual void instanceMoved(std::size_t instance, const glm::mat4& world) {
+        (void)instance;
+        (void)world;
+    }
+    // Where the transforms this strategy draws with live, for GPU-evaluated animation
+    // (GpuAnimation), which writes the animated ones there.
     virtual InstanceTransformTargets instanceTransformTargets() const = 0;
-    // Strategies without materials ignore material changes (they do not draw them).
-    virtual Result<void> updateMaterial(scene::MaterialId material, const scene::Material& value) {
-        (void)material;
-        (void)value;
-        return {};
-    }
-
-    // Replaces a material's base colour image; Unsupported for strategies without materials.
-    virtual Result<void> replaceBaseColorImage(scene::MaterialId material,
-                                               const scene::Image& image) {
-        (void)material;
-        (void)image;
-        return makeError(ErrorCode::Unsupported,
-                         "This strategy draws no materials, so it has no textures to replace.");
-    }
 
     // What the strategy's render bundles contain (zero for strategies that record directly),
     // and how many bundles it has recorded since prepare().
@@ -119,8 +120,5 @@ class Strategy {
 
 // With `bundle`, the strategy that draws `kind`'s frame from render bundles (see bundledKind).
 std::unique_ptr<Strategy> createStrategy(StrategyKind kind, bool bundle = false);
-
-// Checks an instance index given to Strategy::updateInstance.
-Result<void> checkInstanceIndex(std::size_t instance, std::size_t instanceCount);
 
 }  // namespace encore::render

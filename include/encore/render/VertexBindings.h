@@ -53,10 +53,13 @@ struct PrimitiveBindings {
     scene::Topology topology = scene::Topology::TriangleList;
 };
 
-// Owns the GPU geometry of one scene and computes primitive bindings over it.
+// Owns the GPU geometry of one scene (part of the GpuScene) and computes primitive bindings
+// over it.
 class GeometryBuffers {
   public:
-    // Uploads the bufferViews that the scene's primitives read. `maxSharedBufferBytes`: where a
+    // Uploads the bufferViews that the scene's primitives read, and padded copies of the
+    // attributes that cannot be bound in place (all of them now, not on first bind: every
+    // strategy binds from the same uploads). `maxSharedBufferBytes`: where a
     // shared buffer ends and the next begins; 0 (the default) takes the device's maxBufferSize
     // (tests pass less to exercise the split).
     GeometryBuffers(wgpu::Device device, const scene::SceneData& scene,
@@ -65,11 +68,15 @@ class GeometryBuffers {
     // Bindings of `primitive` for the attributes with these semantics (those the shader
     // variant consumes; absent ones are skipped).
     Result<PrimitiveBindings> bind(const scene::Primitive& primitive,
-                                   std::span<const scene::Semantic> semantics);
+                                   std::span<const scene::Semantic> semantics) const;
 
     // GPU buffers created: the shared ones (one unless the geometry passes maxBufferSize) and
     // the private padded copies.
     std::size_t bufferCount() const { return mSharedBuffers.size() + mPrivateBuffers.size(); }
+    // The shared buffers (Vertex, Index and Storage usage: vertex pulling reads them too).
+    std::span<const wgpu::Buffer> sharedBuffers() const { return mSharedBuffers; }
+    // Bytes written to the GPU: shared buffers (gaps included) and padded copies.
+    std::uint64_t uploadedBytes() const { return mUploadedBytes; }
 
   private:
     struct ViewPlacement {
@@ -77,14 +84,16 @@ class GeometryBuffers {
         std::uint64_t offset = 0;  // Of the view's first byte in `buffer`.
         std::uint64_t length = 0;
     };
-    const ViewPlacement& viewPlacement(scene::BufferViewId view);
+    const ViewPlacement& viewPlacement(scene::BufferViewId view) const;
     void uploadViews(std::uint64_t maxSharedBufferBytes);
+    void uploadRepackedAccessors();
 
     wgpu::Device mDevice;
     const scene::SceneData* mScene;
     std::vector<wgpu::Buffer> mSharedBuffers;
     std::map<scene::BufferViewId, ViewPlacement> mViews;
     std::map<scene::AccessorId, std::pair<wgpu::Buffer, std::uint32_t>> mPrivateBuffers;
+    std::uint64_t mUploadedBytes = 0;
 };
 
 // The accessor's elements copied with a stride rounded up to a multiple of 4 (WebGPU requires

@@ -10,21 +10,19 @@ namespace encore::render {
 // Any strategy whose recording does not depend on the camera (naive, layouts, pipeline-cache,
 // instancing), recorded once into a render bundle and replayed with executeBundles: the
 // bundling axis for the strategies that have no bundled form of their own. The wrapped strategy
-// keeps its buffers (node uniforms, instance transforms), so updates through them leave the
-// bundle valid; replacing a texture records it again.
+// reads transforms from buffers (node uniforms, the GPU scene's instances), so updates leave the
+// bundle valid; a replaced bind group of the GPU scene records it again.
 class BundledStrategy final : public Strategy {
   public:
     explicit BundledStrategy(std::unique_ptr<Strategy> recorded);
 
     StrategyKind kind() const override { return mRecorded->kind(); }
-    Result<void> prepare(const RenderSetup& setup, const scene::SceneData& scene) override;
+    Result<void> prepare(const RenderSetup& setup, const GpuScene& scene) override;
+    Result<void> refresh() override;
     void beforePass(const wgpu::CommandEncoder& commands, const FrameState& frame) override;
     void encode(RenderEncoder& encoder, const FrameState& frame) const override;
-    Result<void> updateInstance(std::size_t instance, const glm::mat4& world) override;
+    void instanceMoved(std::size_t instance, const glm::mat4& world) override;
     InstanceTransformTargets instanceTransformTargets() const override;
-    Result<void> updateMaterial(scene::MaterialId material, const scene::Material& value) override;
-    Result<void> replaceBaseColorImage(scene::MaterialId material,
-                                       const scene::Image& image) override;
     DrawCounters bundleContents() const override { return mBundle.contents; }
     std::uint64_t bundlesRecorded() const override { return mRecordings; }
     const GpuCuller* culler() const override { return mRecorded->culler(); }
@@ -32,7 +30,9 @@ class BundledStrategy final : public Strategy {
   private:
     std::unique_ptr<Strategy> mRecorded;
     const RenderSetup* mSetup = nullptr;
+    const GpuScene* mScene = nullptr;
     RecordedBundle mBundle;
+    std::uint64_t mGeneration = 0;
     bool mStale = true;
     std::uint64_t mRecordings = 0;
 };

@@ -1,28 +1,43 @@
 #include "BundlesStrategy.h"
 
+#include <chrono>
+
+#include "encore/core/Elapsed.h"
+
 namespace encore::render {
 
-Result<void> BundlesStrategy::prepare(const RenderSetup& setup, const scene::SceneData& scene) {
-    ENCORE_TRY(MaterialsStrategy::prepare(setup, scene));
+Result<void> BundlesStrategy::prepare(const RenderSetup& setup, const GpuScene& scene) {
+    mSetup = &setup;
     mBundles = BundledFrame();
-    return {};
+    const auto start = std::chrono::steady_clock::now();
+    auto grouped = mDraws.prepare(setup, scene);
+    setup.prepareTimes.draws += millisecondsSince(start);
+    return grouped;
+}
+
+Result<void> BundlesStrategy::refresh() {
+    return mDraws.stale() ? mDraws.regroup() : Result<void>{};
 }
 
 void BundlesStrategy::beforePass(const wgpu::CommandEncoder&, const FrameState& frame) {
     mBundles.update(
-        *mSetup, mMaterials->generation(), blendOrder(frame.camera.position),
+        *mSetup, mDraws.scene().generation(), mDraws.blendOrder(frame.camera.position),
         [this](RenderEncoder& encoder) {
-            setSharedBindGroups(encoder);
-            encodeOpaque(encoder);
+            mDraws.setSharedBindGroups(encoder);
+            mDraws.encodeOpaque(encoder);
         },
         [this](RenderEncoder& encoder, std::span<const std::uint32_t> order) {
-            setSharedBindGroups(encoder);
-            encodeBlended(encoder, order);
+            mDraws.setSharedBindGroups(encoder);
+            mDraws.encodeBlended(encoder, order);
         });
 }
 
 void BundlesStrategy::encode(RenderEncoder& encoder, const FrameState&) const {
     mBundles.execute(encoder);
+}
+
+InstanceTransformTargets BundlesStrategy::instanceTransformTargets() const {
+    return mDraws.scene().instances().transformTargets();
 }
 
 }  // namespace encore::render

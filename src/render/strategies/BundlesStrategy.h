@@ -1,25 +1,30 @@
 #pragma once
 
 #include "BundledFrame.h"
-#include "MaterialsStrategy.h"
+#include "MaterialDrawGroups.h"
+#include "encore/render/Strategy.h"
 
 namespace encore::render {
 
 // The `materials` frame recorded once into a render bundle and replayed every frame with
 // executeBundles. The camera, transforms and material factors change through buffers, so the
 // opaque bundle is never re-recorded for them. Blended geometry lives in a second bundle that is
-// re-recorded only when the back-to-front order changes; both are re-recorded when a resource
-// they reference is replaced (MaterialResources' generation changes).
-class BundlesStrategy final : public MaterialsStrategy {
+// re-recorded only when the back-to-front order changes; both are re-recorded when a bind group
+// they reference is replaced (the GPU scene's generation changes).
+class BundlesStrategy final : public Strategy {
   public:
     StrategyKind kind() const override { return StrategyKind::Bundles; }
-    Result<void> prepare(const RenderSetup& setup, const scene::SceneData& scene) override;
+    Result<void> prepare(const RenderSetup& setup, const GpuScene& scene) override;
+    Result<void> refresh() override;
     void beforePass(const wgpu::CommandEncoder& commands, const FrameState& frame) override;
     void encode(RenderEncoder& encoder, const FrameState& frame) const override;
+    InstanceTransformTargets instanceTransformTargets() const override;
     DrawCounters bundleContents() const override { return mBundles.contents(); }
     std::uint64_t bundlesRecorded() const override { return mBundles.recorded(); }
 
   private:
+    const RenderSetup* mSetup = nullptr;
+    MaterialDrawGroups mDraws;
     BundledFrame mBundles;
 };
 

@@ -1,21 +1,41 @@
 #include "GpuCullingStrategy.h"
 
 #include <cassert>
+#include <chrono>
 #include <map>
+
+#include "encore/core/Elapsed.h"
 
 namespace encore::render {
 
-Result<void> GpuCullingStrategy::prepare(const RenderSetup& setup, const scene::SceneData& scene) {
+Result<void> GpuCullingStrategy::prepare(const RenderSetup& setup, const GpuScene& scene) {
+    mSetup = &setup;
     mBundles = BundledFrame();
     mFirstPhaseBundle = BundledFrame();
     mCulled.clear();
     mCullerCreated = false;
-    return MaterialsStrategy::prepare(setup, scene);  // Calls groupDraws().
+    const auto start = std::chrono::steady_clock::now();
+    ENCORE_TRY(mDraws.prepare(setup, scene));
+    auto grouped = groupDraws();
+    setup.prepareTimes.draws += millisecondsSince(start);
+    return grouped;
+}
+
+Result<void> GpuCullingStrategy::refresh() {
+    if (!mDraws.stale()) {
+        return {};
+    }
+    ENCORE_TRY(mDraws.regroup());
+    return groupDraws();
+}
+
+InstanceTransformTargets GpuCullingStrategy::instanceTransformTargets() const {
+    return mDraws.scene().instances().transformTargets();
 }
 
 Result<void> GpuCullingStrategy::groupDraws() {
-    ENCORE_TRY(MaterialsStrategy::groupDraws());
-    const scene::SceneData& scene = *mScene;
+    const scene::SceneData& scene = mDraws.scene().data();
+    const InstanceBuffer& instances = mDraws.scene().instances();
     const RenderSetup& setup = *mSetup;
     // A regrouping (a material gained textures) keeps the culler and its draws, whose spheres
     // may have moved since: each primitive keeps its draw index.
@@ -31,15 +51,15 @@ Result<void> GpuCullingStrategy::groupDraws() {
 
     // Same grouping as `materials`; each draw becomes an indirect draw of the culled variant.
     std::vector<CulledDraw> draws;
-    for (const PipelineGroup& group : mOpaque) {
+    for (const MaterialDrawGroups::PipelineGroup& group : mDraws.opaque()) {
         PipelineKey key = group.key;
         key.shader.instanceSource = shaders::InstanceSource::VisibleList;
-        auto pipeline = mPipelines->get(key);
+        auto pipeline = mDraws.pipelines().get(key);
         if (!pipeline) {
             return pipeline.error();
         }
         CulledPipeline culled{*pipeline, key.shader, {}};
-        for (const MaterialGroup& material : group.materials) {
+        for (const MaterialDrawGroups::MaterialGroup& material : group.materials) {
             CulledMaterial culledMaterial{material.material, {}};
             for (const PrimitiveDraw& primitive : material.primitives) {
                 std::size_t draw = draws.size();
@@ -62,13 +82,14 @@ Result<void> GpuCullingStrategy::groupDraws() {
         return {};
     }
 
-    std::vector<std::size_t> instanceAt(mInstances.size());
-    for (std::uint32_t slot = 0; slot < mInstances.size(); ++slot) {
-        instanceAt[slot] = mInstances.instanceAt(slot);
+    std::vector<std::size_t> instanceAt(instances.size());
+    for (std::uint32_t slot = 0; slot < instances.size(); ++slot) {
+        instanceAt[slot] = instances.instanceAt(slot);
     }
-    CullingBounds bounds = CullingBounds::build(scene, instanceAt, setup.animation);
-    auto culler = GpuCuller::create(setup, mInstances, setup.animation, std::move(bounds),
-                                    std::move(draws));
+    const AnimationBuffers* animation = mDraws.scene().animation();
+    CullingBounds bounds = CullingBounds::build(scene, instanceAt, animation);
+    auto culler =
+        GpuCuller::create(setup, instances, animation, std::move(bounds), std::move(draws));
     if (!culler) {
         return culler.error();
     }
@@ -86,7 +107,7 @@ CulledDraw GpuCullingStrategy::culledDraw(const PrimitiveDraw& primitive) const 
     draw.topology = bindings.topology;
     // The coarser levels live in the index view after level 0 (scene::LevelOfDetail), which the
     // index binding reaches: each is a range of the same index buffer.
-    const scene::SceneData& scene = *mScene;
+    const scene::SceneData& scene = mDraws.scene().data();
     const scene::Mesh& mesh = scene.meshes[scene.instances[primitive.sceneInstance].mesh.value];
     const scene::Primitive& source = mesh.primitives[primitive.primitive];
     if (bindings.indices && source.indices) {
@@ -118,20 +139,20 @@ void GpuCullingStrategy::beforePass(const wgpu::CommandEncoder& commands,
     view.targetHeight = frame.targetHeight;
     view.options = frame.culling;
     view.twoPhases = frame.phase == DrawPhase::First;
-    mCuller.encodeFirstPhase(mQueue, commands, view, frame.timer);
+    mCuller.encodeFirstPhase(mSetup->queue, commands, view, frame.timer);
     if (mUseBundles) {
         // Phase 1's draws, then phase 2's and the blended geometry: a frame of one pass replays
         // both (phase 2's counts stay zero), a two-phase frame one per pass.
         mFirstPhaseBundle.update(
-            *mSetup, mMaterials->generation(), {},
+            *mSetup, mDraws.scene().generation(), {},
             [this](RenderEncoder& encoder) { encodeCulled(encoder, 0); },
             [](RenderEncoder&, std::span<const std::uint32_t>) {});
         mBundles.update(
-            *mSetup, mMaterials->generation(), blendOrder(frame.camera.position),
+            *mSetup, mDraws.scene().generation(), mDraws.blendOrder(frame.camera.position),
             [this](RenderEncoder& encoder) { encodeCulled(encoder, 1); },
             [this](RenderEncoder& encoder, std::span<const std::uint32_t> order) {
-                setSharedBindGroups(encoder);
-                encodeBlended(encoder, order);
+                mDraws.setSharedBindGroups(encoder);
+                mDraws.encodeBlended(encoder, order);
             });
     }
 }
@@ -142,15 +163,15 @@ void GpuCullingStrategy::betweenPhases(const wgpu::CommandEncoder& commands,
 }
 
 void GpuCullingStrategy::encodeCulled(RenderEncoder& encoder, std::uint32_t phase) const {
-    encoder.setBindGroup(0, mFrameGroup);
+    encoder.setBindGroup(0, mSetup->frame->bindGroup());
     for (const CulledPipeline& group : mCulled) {
         encoder.setPipeline(group.pipeline);
         for (const CulledMaterial& material : group.materials) {
-            encoder.setBindGroup(2, mMaterials->bindGroup(material.material));
+            mDraws.bindMaterial(encoder, material.material);
             for (const CulledPrimitive& primitive : material.primitives) {
                 if (group.shader.animated()) {
-                    mAnimation->bind(encoder, group.shader, primitive.sceneInstance,
-                                     primitive.primitive);
+                    mDraws.scene().animation()->bind(encoder, group.shader, primitive.sceneInstance,
+                                                     primitive.primitive);
                 }
                 bindGeometry(encoder, *primitive.bindings);
                 const std::uint32_t levels = mCuller.draws()[primitive.draw].levelCount();
@@ -181,9 +202,9 @@ void GpuCullingStrategy::encode(RenderEncoder& encoder, const FrameState& frame)
     }
     // A frame of one pass draws phase 1's records only: phase 2's counts stay zero.
     encodeCulled(encoder, frame.phase == DrawPhase::Second ? 1 : 0);
-    if (frame.phase != DrawPhase::First && !mBlended.empty()) {
-        setSharedBindGroups(encoder);  // Blended pipelines use the plain instance layout.
-        encodeBlended(encoder, blendOrder(frame.camera.position));
+    if (frame.phase != DrawPhase::First && !mDraws.blended().empty()) {
+        mDraws.setSharedBindGroups(encoder);  // Blended pipelines use the plain instance layout.
+        mDraws.encodeBlended(encoder, mDraws.blendOrder(frame.camera.position));
     }
 }
 

@@ -1,8 +1,9 @@
 #pragma once
 
 #include "BundledFrame.h"
-#include "MaterialsStrategy.h"
+#include "MaterialDrawGroups.h"
 #include "encore/render/GpuCuller.h"
+#include "encore/render/Strategy.h"
 
 namespace encore::render {
 
@@ -14,14 +15,16 @@ namespace encore::render {
 // frame, or, with bundles, once into two render bundles (one per phase) whose draw sequence
 // never changes (only the GPU-written counts do). Blended geometry is drawn as in `materials`,
 // back to front, unculled, after both phases.
-class GpuCullingStrategy final : public MaterialsStrategy {
+class GpuCullingStrategy final : public Strategy {
   public:
     explicit GpuCullingStrategy(bool useBundles) : mUseBundles(useBundles) {}
 
     StrategyKind kind() const override {
         return mUseBundles ? StrategyKind::GpuCullingBundles : StrategyKind::GpuCulling;
     }
-    Result<void> prepare(const RenderSetup& setup, const scene::SceneData& scene) override;
+    Result<void> prepare(const RenderSetup& setup, const GpuScene& scene) override;
+    Result<void> refresh() override;
+    InstanceTransformTargets instanceTransformTargets() const override;
     bool drawsInTwoPhases(const FrameState& frame) const override;
     void beforePass(const wgpu::CommandEncoder& commands, const FrameState& frame) override;
     void betweenPhases(const wgpu::CommandEncoder& commands, const FrameState& frame,
@@ -55,12 +58,17 @@ class GpuCullingStrategy final : public MaterialsStrategy {
         std::vector<CulledMaterial> materials;
     };
 
-    Result<void> groupDraws() override;
+    using PrimitiveDraw = MaterialDrawGroups::PrimitiveDraw;
+
+    // Groups the draws as `materials` does, each one an indirect draw of the culled variant.
+    Result<void> groupDraws();
     // Every level's indirect draw of every culled primitive, with the arguments of `phase`.
     void encodeCulled(RenderEncoder& encoder, std::uint32_t phase) const;
     CulledDraw culledDraw(const PrimitiveDraw& primitive) const;
 
     bool mUseBundles;
+    const RenderSetup* mSetup = nullptr;
+    MaterialDrawGroups mDraws;
     bool mCullerCreated = false;
     std::vector<CulledPipeline> mCulled;
     GpuCuller mCuller;

@@ -6,20 +6,19 @@
 
 namespace encore::render {
 
-Result<void> InstancingStrategy::prepare(const RenderSetup& setup, const scene::SceneData& scene) {
+Result<void> InstancingStrategy::prepare(const RenderSetup& setup, const GpuScene& gpuScene) {
+    const scene::SceneData& scene = gpuScene.data();
+    const InstanceBuffer& instances = gpuScene.instances();
+    mScene = &gpuScene;
     mFrameGroup = setup.frame->bindGroup();
-    mGeometry = std::make_unique<GeometryBuffers>(setup.device, scene);
     mPipelines = strategyPipelineCache(setup, mOwnPipelines);
-    mInstances = InstanceBuffer(setup.device, *setup.layouts, scene);
-    mQueue = setup.queue;
-    mAnimation = setup.animation;
     mGroups.clear();
 
     shaders::ShaderVariantKey shader;
     shader.instanceSource = shaders::InstanceSource::InstanceStorage;
     std::unordered_map<PipelineKey, std::size_t, PipelineKeyHash> groupOfKey;
     for (std::size_t mesh = 0; mesh < scene.meshes.size(); ++mesh) {
-        const InstanceRange range = mInstances.meshRange(scene::MeshId(mesh));
+        const InstanceRange range = instances.meshRange(scene::MeshId(mesh));
         if (range.count == 0) {
             continue;
         }
@@ -27,8 +26,8 @@ Result<void> InstancingStrategy::prepare(const RenderSetup& setup, const scene::
         for (std::size_t index = 0; index < primitives.size(); ++index) {
             shaders::ShaderVariantKey variant = shader;
             const std::vector<scene::Semantic> semantics =
-                unlitPrimitiveSemantics(setup.animation, scene::MeshId(mesh), index, variant);
-            auto bindings = mGeometry->bind(primitives[index], semantics);
+                unlitPrimitiveSemantics(gpuScene.animation(), scene::MeshId(mesh), index, variant);
+            auto bindings = gpuScene.geometry().bind(primitives[index], semantics);
             if (!bindings) {
                 return bindings.error();
             }
@@ -42,7 +41,7 @@ Result<void> InstancingStrategy::prepare(const RenderSetup& setup, const scene::
                 mGroups.push_back({*pipeline, {}});
             }
             mGroups[found->second].primitives.push_back(
-                {std::move(*bindings), range, variant, mInstances.instanceAt(range.first), index});
+                {std::move(*bindings), range, variant, instances.instanceAt(range.first), index});
         }
     }
     return {};
@@ -50,25 +49,19 @@ Result<void> InstancingStrategy::prepare(const RenderSetup& setup, const scene::
 
 void InstancingStrategy::encode(RenderEncoder& encoder, const FrameState&) const {
     encoder.setBindGroup(0, mFrameGroup);
-    encoder.setBindGroup(1, mInstances.bindGroup());
+    encoder.setBindGroup(1, mScene->instances().bindGroup());
     for (const PipelineGroup& group : mGroups) {
         encoder.setPipeline(group.pipeline);
         for (const PrimitiveDraw& primitive : group.primitives) {
             if (primitive.shader.animated()) {
-                mAnimation->bind(encoder, primitive.shader, primitive.sceneInstance,
-                                 primitive.primitive);
+                mScene->animation()->bind(encoder, primitive.shader, primitive.sceneInstance,
+                                          primitive.primitive);
             }
             bindGeometry(encoder, primitive.bindings);
             drawGeometry(encoder, primitive.bindings, primitive.instances.count,
                          primitive.instances.first);
         }
     }
-}
-
-Result<void> InstancingStrategy::updateInstance(std::size_t instance, const glm::mat4& world) {
-    ENCORE_TRY(checkInstanceIndex(instance, mInstances.size()));
-    mInstances.update(mQueue, instance, world);
-    return {};
 }
 
 }  // namespace encore::render

@@ -3,6 +3,7 @@
 #include <memory>
 #include <vector>
 
+#include "encore/render/GpuScene.h"
 #include "encore/render/InstanceBuffer.h"
 #include "encore/render/PipelineCache.h"
 #include "encore/render/Strategy.h"
@@ -16,15 +17,11 @@ namespace encore::render {
 class InstancingStrategy final : public Strategy {
   public:
     StrategyKind kind() const override { return StrategyKind::Instancing; }
-    Result<void> prepare(const RenderSetup& setup, const scene::SceneData& scene) override;
+    Result<void> prepare(const RenderSetup& setup, const GpuScene& scene) override;
     void encode(RenderEncoder& encoder, const FrameState& frame) const override;
     InstanceTransformTargets instanceTransformTargets() const override {
-        return mInstances.transformTargets();
+        return mScene->instances().transformTargets();
     }
-    Result<void> updateInstance(std::size_t instance, const glm::mat4& world) override;
-
-
-    const InstanceBuffer& instances() const { return mInstances; }
 
   private:
     struct PrimitiveDraw {
@@ -39,14 +36,11 @@ class InstancingStrategy final : public Strategy {
         std::vector<PrimitiveDraw> primitives;
     };
 
-    std::unique_ptr<GeometryBuffers> mGeometry;
+    const GpuScene* mScene = nullptr;
     std::unique_ptr<PipelineCache> mOwnPipelines;
     PipelineCache* mPipelines = nullptr;  // mOwnPipelines or the renderer's kept cache.
     wgpu::BindGroup mFrameGroup;
-    InstanceBuffer mInstances;
-    wgpu::Queue mQueue;
     std::vector<PipelineGroup> mGroups;
-    const AnimationBuffers* mAnimation = nullptr;
 };
 
 }  // namespace encore::render

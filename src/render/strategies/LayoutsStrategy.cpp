@@ -7,15 +7,16 @@
 
 namespace encore::render {
 
-Result<void> LayoutsStrategy::prepare(const RenderSetup& setup, const scene::SceneData& scene) {
-    ENCORE_TRY(beginPrepare(setup, scene));
-    mGeometry = std::make_unique<GeometryBuffers>(setup.device, scene);
+Result<void> LayoutsStrategy::prepare(const RenderSetup& setup, const GpuScene& gpuScene) {
+    ENCORE_TRY(beginPrepare(setup, gpuScene));
+    const scene::SceneData& scene = gpuScene.data();
     for (std::size_t mesh = 0; mesh < scene.meshes.size(); ++mesh) {
         for (std::size_t index = 0; index < scene.meshes[mesh].primitives.size(); ++index) {
             shaders::ShaderVariantKey shader;
             const std::vector<scene::Semantic> semantics =
-                unlitPrimitiveSemantics(setup.animation, scene::MeshId(mesh), index, shader);
-            auto bindings = mGeometry->bind(scene.meshes[mesh].primitives[index], semantics);
+                unlitPrimitiveSemantics(gpuScene.animation(), scene::MeshId(mesh), index, shader);
+            auto bindings =
+                gpuScene.geometry().bind(scene.meshes[mesh].primitives[index], semantics);
             if (!bindings) {
                 return bindings.error();
             }
@@ -29,7 +30,7 @@ Result<void> LayoutsStrategy::prepare(const RenderSetup& setup, const scene::Sce
             mMeshes[mesh].push_back({*pipeline, std::move(*bindings), shader});
         }
     }
-    finishPrepare(setup, scene);
+    finishPrepare(setup, gpuScene);
     return {};
 }
 

@@ -1,7 +1,5 @@
 #pragma once
 
-#include <memory>
-
 #include "NodeLoopStrategy.h"
 
 namespace encore::render {
@@ -12,10 +10,7 @@ namespace encore::render {
 class LayoutsStrategy final : public NodeLoopStrategy {
   public:
     StrategyKind kind() const override { return StrategyKind::Layouts; }
-    Result<void> prepare(const RenderSetup& setup, const scene::SceneData& scene) override;
-
-  private:
-    std::unique_ptr<GeometryBuffers> mGeometry;
+    Result<void> prepare(const RenderSetup& setup, const GpuScene& scene) override;
 };
 
 }  // namespace encore::render

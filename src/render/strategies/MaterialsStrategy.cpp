@@ -1,280 +1,30 @@
 #include "MaterialsStrategy.h"
 
-#include <algorithm>
 #include <chrono>
-#include <map>
-#include <unordered_map>
 
 #include "encore/core/Elapsed.h"
 
 namespace encore::render {
 
-namespace {
-
-// The variant a primitive and its material need: vertex inputs that exist and are read
-// (TEXCOORD_0, COLOR_0; TANGENT only under a normal map; TEXCOORD_1 only when a texture reads
-// it), MASK's discard, and whether the material binds textures at all. Everything else (which
-// slots have textures, extensions, unlit) is uniform data and 1-pixel default textures, so it
-// shares the variant.
-shaders::ShaderVariantKey materialVariant(const scene::Primitive& primitive,
-                                          const scene::Material& material, bool textured) {
-    shaders::ShaderVariantKey key;
-    key.materialTextures = textured;
-    key.instanceSource = shaders::InstanceSource::InstanceStorage;
-    key.materials = true;
-    key.hasTexcoord = primitive.attribute(scene::Semantic::Texcoord0).has_value();
-    key.hasColor = primitive.attribute(scene::Semantic::Color0).has_value();
-    key.alphaMask = material.alphaMode == scene::AlphaMode::Mask;
-    key.hasTangent = materialHasNormalMap(material) && !material.unlit &&
-                     primitive.attribute(scene::Semantic::Tangent).has_value();
-    key.hasTexcoord1 = materialUsesTexcoord1(material) &&
-                       primitive.attribute(scene::Semantic::Texcoord1).has_value();
-    return key;
-}
-
-// The attributes a variant reads, in the order GeometryBuffers binds them.
-std::vector<scene::Semantic> variantSemantics(const shaders::ShaderVariantKey& key) {
-    std::vector<scene::Semantic> semantics = {scene::Semantic::Position, scene::Semantic::Normal};
-    appendAnimationSemantics(key, semantics);
-    if (key.hasTexcoord) {
-        semantics.push_back(scene::Semantic::Texcoord0);
-    }
-    if (key.hasColor) {
-        semantics.push_back(scene::Semantic::Color0);
-    }
-    if (key.hasTangent) {
-        semantics.push_back(scene::Semantic::Tangent);
-    }
-    if (key.hasTexcoord1) {
-        semantics.push_back(scene::Semantic::Texcoord1);
-    }
-    return semantics;
-}
-
-}  // namespace
-
-Result<void> MaterialsStrategy::prepare(const RenderSetup& setup, const scene::SceneData& scene) {
-    PrepareTimes& times = setup.prepareTimes;
-    mSetup = &setup;
-    mAnimation = setup.animation;
-    mFrameGroup = setup.frame->bindGroup();
-    auto start = std::chrono::steady_clock::now();
-    mGeometry = std::make_unique<GeometryBuffers>(setup.device, scene);
-    times.geometry += millisecondsSince(start);
-    mPipelines = strategyPipelineCache(setup, mOwnPipelines);
-    start = std::chrono::steady_clock::now();
-    mInstances = InstanceBuffer(setup.device, *setup.layouts, scene);
-    times.instances += millisecondsSince(start);
-    mQueue = setup.queue;
-    start = std::chrono::steady_clock::now();
-    auto materials = MaterialResources::create(
-        setup.device, setup.queue, *setup.shaders, *setup.layouts, scene, SampledTextures::all(),
-        setup.limits.maxTextureDimension2D, setup.mipmaps, setup.stagedImages);
-    times.materials += millisecondsSince(start);
-    if (!materials) {
-        return materials.error();
-    }
-    mMaterials = std::make_unique<MaterialResources>(std::move(*materials));
-    const TextureUploadTimes& upload = mMaterials->uploadTimes();
-    times.textureCreation += upload.creation;
-    times.textureWrites += upload.writes;
-    times.mipmaps += upload.mipmaps;
-    times.materialSubmit += upload.submit;
-    mScene = &scene;
-    start = std::chrono::steady_clock::now();
-    mBindings.clear();
-    mPrimitiveBindings.assign(scene.meshes.size(), {});
-    for (std::size_t mesh = 0; mesh < scene.meshes.size(); ++mesh) {
-        mPrimitiveBindings[mesh].assign(scene.meshes[mesh].primitives.size(), nullptr);
-    }
-    auto grouped = groupDraws();
-    times.draws += millisecondsSince(start);
+Result<void> MaterialsStrategy::prepare(const RenderSetup& setup, const GpuScene& scene) {
+    const auto start = std::chrono::steady_clock::now();
+    auto grouped = mDraws.prepare(setup, scene);
+    setup.prepareTimes.draws += millisecondsSince(start);
     return grouped;
 }
 
-Result<void> MaterialsStrategy::groupDraws() {
-    const scene::SceneData& scene = *mScene;
-    const RenderSetup& setup = *mSetup;
-    mOpaque.clear();
-    mBlended.clear();
-
-    // Opaque groups in first-use order: pipeline -> material -> primitives.
-    std::unordered_map<PipelineKey, std::size_t, PipelineKeyHash> groupOfKey;
-    std::map<std::pair<std::size_t, scene::MaterialId>, std::size_t> materialGroupOf;
-    for (std::size_t mesh = 0; mesh < scene.meshes.size(); ++mesh) {
-        if (mInstances.meshRange(scene::MeshId(mesh)).count == 0) {
-            continue;
-        }
-        const auto& primitives = scene.meshes[mesh].primitives;
-        for (std::size_t index = 0; index < primitives.size(); ++index) {
-            const scene::Primitive& primitive = primitives[index];
-            const scene::Material& material = scene.materials[primitive.material.index()];
-            shaders::ShaderVariantKey variant =
-                materialVariant(primitive, material, mMaterials->textured(primitive.material));
-            if (mAnimation) {
-                mAnimation->addVariantFlags(scene::MeshId(mesh), index, variant);
-            }
-            // Vertex inputs do not depend on textures, so a regrouping keeps the bindings.
-            const PrimitiveBindings*& bound = mPrimitiveBindings[mesh][index];
-            if (!bound) {
-                auto bindings = mGeometry->bind(primitive, variantSemantics(variant));
-                if (!bindings) {
-                    return bindings.error();
-                }
-                mBindings.push_back(std::make_unique<PrimitiveBindings>(std::move(*bindings)));
-                bound = mBindings.back().get();
-            }
-
-            PipelineKey key = meshPipelineKey(setup, *bound, variant);
-            key.cullMode = material.doubleSided ? wgpu::CullMode::None : wgpu::CullMode::Back;
-            key.blend = material.alphaMode == scene::AlphaMode::Blend;
-            // Mirrored instances flip the winding, so they need the other front face.
-            for (bool mirrored : {false, true}) {
-                const InstanceRange range = mInstances.meshRange(scene::MeshId(mesh), mirrored);
-                if (range.count == 0) {
-                    continue;
-                }
-                key.frontFace = mirrored ? wgpu::FrontFace::CW : wgpu::FrontFace::CCW;
-                auto pipeline = mPipelines->get(key);
-                if (!pipeline) {
-                    return pipeline.error();
-                }
-                if (key.blend) {
-                    for (std::uint32_t slot = range.first; slot < range.first + range.count;
-                         ++slot) {
-                        const scene::Instance& instance =
-                            scene.instances[mInstances.instanceAt(slot)];
-                        const glm::vec3 center =
-                            primitive.bounds.empty()
-                                ? glm::vec3(instance.world[3])
-                                : primitive.bounds.transformed(instance.world).center();
-                        mBlended.push_back({*pipeline, primitive.material, bound, slot, center,
-                                            variant, index});
-                    }
-                    continue;
-                }
-                auto [group, inserted] = groupOfKey.try_emplace(key, mOpaque.size());
-                if (inserted) {
-                    mOpaque.push_back({key, *pipeline, {}});
-                }
-                auto [materialGroup, newMaterial] = materialGroupOf.try_emplace(
-                    {group->second, primitive.material}, mOpaque[group->second].materials.size());
-                if (newMaterial) {
-                    mOpaque[group->second].materials.push_back({primitive.material, {}});
-                }
-                mOpaque[group->second].materials[materialGroup->second].primitives.push_back(
-                    {bound, range, mInstances.instanceAt(range.first), index});
-            }
-        }
-    }
-    return {};
-}
-
-void MaterialsStrategy::setSharedBindGroups(RenderEncoder& encoder) const {
-    encoder.setBindGroup(0, mFrameGroup);
-    encoder.setBindGroup(1, mInstances.bindGroup());
-}
-
-void MaterialsStrategy::encodeOpaque(RenderEncoder& encoder) const {
-    for (const PipelineGroup& group : mOpaque) {
-        encoder.setPipeline(group.pipeline);
-        for (const MaterialGroup& material : group.materials) {
-            encoder.setBindGroup(2, mMaterials->bindGroup(material.material));
-            for (const PrimitiveDraw& primitive : material.primitives) {
-                if (group.key.shader.animated()) {
-                    mAnimation->bind(encoder, group.key.shader, primitive.sceneInstance,
-                                     primitive.primitive);
-                }
-                bindGeometry(encoder, *primitive.bindings);
-                drawGeometry(encoder, *primitive.bindings, primitive.instances.count,
-                             primitive.instances.first);
-            }
-        }
-    }
-}
-
-std::vector<std::uint32_t> MaterialsStrategy::blendOrder(const glm::vec3& cameraPosition) const {
-    std::vector<std::pair<float, std::uint32_t>> keyed;
-    keyed.reserve(mBlended.size());
-    for (std::uint32_t i = 0; i < mBlended.size(); ++i) {
-        const glm::vec3 offset = mBlended[i].center - cameraPosition;
-        keyed.emplace_back(glm::dot(offset, offset), i);
-    }
-    // Farthest first; ties keep scene order so the result is deterministic.
-    std::stable_sort(keyed.begin(), keyed.end(),
-                     [](const auto& a, const auto& b) { return a.first > b.first; });
-    std::vector<std::uint32_t> order;
-    order.reserve(keyed.size());
-    for (const auto& [distance, index] : keyed) {
-        order.push_back(index);
-    }
-    return order;
-}
-
-void MaterialsStrategy::encodeBlended(RenderEncoder& encoder,
-                                      std::span<const std::uint32_t> order) const {
-    WGPURenderPipeline currentPipeline = nullptr;
-    scene::MaterialId currentMaterial;
-    const PrimitiveBindings* currentBindings = nullptr;
-    for (std::uint32_t index : order) {
-        const BlendedDraw& draw = mBlended[index];
-        if (currentPipeline != draw.pipeline.Get()) {
-            encoder.setPipeline(draw.pipeline);
-            currentPipeline = draw.pipeline.Get();
-        }
-        if (currentMaterial != draw.material) {
-            encoder.setBindGroup(2, mMaterials->bindGroup(draw.material));
-            currentMaterial = draw.material;
-        }
-        if (currentBindings != draw.bindings) {
-            bindGeometry(encoder, *draw.bindings);
-            currentBindings = draw.bindings;
-        }
-        if (draw.shader.animated()) {
-            mAnimation->bind(encoder, draw.shader, mInstances.instanceAt(draw.instanceSlot),
-                             draw.primitive);
-        }
-        drawGeometry(encoder, *draw.bindings, 1, draw.instanceSlot);
-    }
+Result<void> MaterialsStrategy::refresh() {
+    return mDraws.stale() ? mDraws.regroup() : Result<void>{};
 }
 
 void MaterialsStrategy::encode(RenderEncoder& encoder, const FrameState& frame) const {
-    setSharedBindGroups(encoder);
-    encodeOpaque(encoder);
-    encodeBlended(encoder, blendOrder(frame.camera.position));
+    mDraws.setSharedBindGroups(encoder);
+    mDraws.encodeOpaque(encoder);
+    mDraws.encodeBlended(encoder, mDraws.blendOrder(frame.camera.position));
 }
 
-Result<void> MaterialsStrategy::updateInstance(std::size_t instance, const glm::mat4& world) {
-    ENCORE_TRY(checkInstanceIndex(instance, mInstances.size()));
-    mInstances.update(mQueue, instance, world);
-    return {};
-}
-
-Result<void> MaterialsStrategy::updateMaterial(scene::MaterialId material,
-                                               const scene::Material& value) {
-    if (!material.valid() || material.index() >= mMaterials->materialCount()) {
-        return makeError(ErrorCode::InvalidArgument,
-                         "Material " + std::to_string(material.value) + " does not exist.");
-    }
-    mMaterials->updateMaterial(mQueue, material, value);
-    return {};
-}
-
-Result<void> MaterialsStrategy::replaceBaseColorImage(scene::MaterialId material,
-                                                      const scene::Image& image) {
-    if (!material.valid() || material.index() >= mMaterials->materialCount()) {
-        return makeError(ErrorCode::InvalidArgument,
-                         "Material " + std::to_string(material.value) + " does not exist.");
-    }
-    const bool wasTextured = mMaterials->textured(material);
-    ENCORE_TRY(mMaterials->replaceBaseColorImage(mSetup->device, mQueue, *mSetup->shaders,
-                                                 *mSetup->layouts, material, image));
-    if (!wasTextured) {
-        // Its draws need the MATERIAL_TEXTURES pipelines now. The bind group change has
-        // already bumped the generation, so bundles record the new grouping.
-        return groupDraws();
-    }
-    return {};
+InstanceTransformTargets MaterialsStrategy::instanceTransformTargets() const {
+    return mDraws.scene().instances().transformTargets();
 }
 
 }  // namespace encore::render

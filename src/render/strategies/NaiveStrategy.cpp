@@ -11,8 +11,10 @@
 
 namespace encore::render {
 
-Result<void> NaiveStrategy::prepare(const RenderSetup& setup, const scene::SceneData& scene) {
-    ENCORE_TRY(beginPrepare(setup, scene));
+Result<void> NaiveStrategy::prepare(const RenderSetup& setup, const GpuScene& gpuScene) {
+    ENCORE_TRY(beginPrepare(setup, gpuScene));
+    // Naive's very point: every accessor in a buffer of its own, not the GPU scene's geometry.
+    const scene::SceneData& scene = gpuScene.data();
     std::map<scene::AccessorId, wgpu::Buffer> accessorBuffers;
     std::map<scene::AccessorId, std::uint32_t> accessorStrides;
     auto bufferFor = [&](scene::AccessorId id, wgpu::BufferUsage usage) {
@@ -44,7 +46,7 @@ Result<void> NaiveStrategy::prepare(const RenderSetup& setup, const scene::Scene
             key.depthFormat = setup.depthFormat;
             key.sampleCount = setup.sampleCount;
             const std::vector<scene::Semantic> semantics = unlitPrimitiveSemantics(
-                setup.animation, scene::MeshId(meshIndex), primitiveIndex, key.shader);
+                gpuScene.animation(), scene::MeshId(meshIndex), primitiveIndex, key.shader);
             prepared.shader = key.shader;
             for (scene::Semantic semantic : semantics) {
                 const auto accessorId = primitive.attribute(semantic);
@@ -85,7 +87,7 @@ Result<void> NaiveStrategy::prepare(const RenderSetup& setup, const scene::Scene
         }
     }
 
-    finishPrepare(setup, scene);
+    finishPrepare(setup, gpuScene);
     return {};
 }
 

@@ -11,7 +11,7 @@ namespace encore::render {
 class NaiveStrategy final : public NodeLoopStrategy {
   public:
     StrategyKind kind() const override { return StrategyKind::Naive; }
-    Result<void> prepare(const RenderSetup& setup, const scene::SceneData& scene) override;
+    Result<void> prepare(const RenderSetup& setup, const GpuScene& scene) override;
 };
 
 }  // namespace encore::render

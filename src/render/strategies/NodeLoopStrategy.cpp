@@ -2,21 +2,21 @@
 
 namespace encore::render {
 
-Result<void> NodeLoopStrategy::beginPrepare(const RenderSetup& setup,
-                                            const scene::SceneData& scene) {
-    ENCORE_TRY(NodeUniforms::checkLimit(scene, setup.mappingBudget, strategyName(kind())));
+Result<void> NodeLoopStrategy::beginPrepare(const RenderSetup& setup, const GpuScene& scene) {
+    ENCORE_TRY(NodeUniforms::checkLimit(scene.data(), setup.mappingBudget, strategyName(kind())));
     mFrameGroup = setup.frame->bindGroup();
-    mAnimation = setup.animation;
-    mMeshes.assign(scene.meshes.size(), {});
+    mAnimation = scene.animation();
+    mMeshes.assign(scene.data().meshes.size(), {});
     return {};
 }
 
-void NodeLoopStrategy::finishPrepare(const RenderSetup& setup, const scene::SceneData& scene) {
+void NodeLoopStrategy::finishPrepare(const RenderSetup& setup, const GpuScene& scene) {
     mNodeMeshes.clear();
-    for (const scene::Instance& instance : scene.instances) {
+    for (const scene::Instance& instance : scene.data().instances) {
         mNodeMeshes.push_back(instance.mesh.index());
     }
-    mNodes = NodeUniforms(setup.device, setup.queue, *setup.layouts, scene);
+    mNodes = NodeUniforms(setup.device, setup.queue, *setup.layouts, scene.data(),
+                          scene.instanceWorlds());
     mQueue = setup.queue;
 }
 
@@ -37,10 +37,8 @@ void NodeLoopStrategy::encode(RenderEncoder& encoder, const FrameState&) const {
     }
 }
 
-Result<void> NodeLoopStrategy::updateInstance(std::size_t instance, const glm::mat4& world) {
-    ENCORE_TRY(checkInstanceIndex(instance, mNodes.size()));
+void NodeLoopStrategy::instanceMoved(std::size_t instance, const glm::mat4& world) {
     mNodes.update(mQueue, instance, world);
-    return {};
 }
 
 }  // namespace encore::render

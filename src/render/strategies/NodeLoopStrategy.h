@@ -3,6 +3,7 @@
 #include <vector>
 
 #include "encore/render/AnimationBuffers.h"
+#include "encore/render/GpuScene.h"
 #include "encore/render/NodeUniforms.h"
 #include "encore/render/Strategy.h"
 #include "encore/render/VertexBindings.h"
@@ -18,7 +19,7 @@ class NodeLoopStrategy : public Strategy {
     InstanceTransformTargets instanceTransformTargets() const override {
         return mNodes.transformTargets();
     }
-    Result<void> updateInstance(std::size_t instance, const glm::mat4& world) override;
+    void instanceMoved(std::size_t instance, const glm::mat4& world) override;
 
   protected:
     struct PreparedPrimitive {
@@ -28,9 +29,9 @@ class NodeLoopStrategy : public Strategy {
     };
 
     // Checks the scene against the driver's budget; call first in prepare().
-    Result<void> beginPrepare(const RenderSetup& setup, const scene::SceneData& scene);
+    Result<void> beginPrepare(const RenderSetup& setup, const GpuScene& scene);
     // Creates the per-node uniforms; call last in prepare(), once mMeshes is filled.
-    void finishPrepare(const RenderSetup& setup, const scene::SceneData& scene);
+    void finishPrepare(const RenderSetup& setup, const GpuScene& scene);
 
     std::vector<std::vector<PreparedPrimitive>> mMeshes;  // Per mesh, per primitive.
     const AnimationBuffers* mAnimation = nullptr;

@@ -6,12 +6,11 @@
 
 namespace encore::render {
 
-Result<void> PipelineCacheStrategy::prepare(const RenderSetup& setup,
-                                            const scene::SceneData& scene) {
+Result<void> PipelineCacheStrategy::prepare(const RenderSetup& setup, const GpuScene& gpuScene) {
+    const scene::SceneData& scene = gpuScene.data();
     ENCORE_TRY(NodeUniforms::checkLimit(scene, setup.mappingBudget, strategyName(kind())));
     mFrameGroup = setup.frame->bindGroup();
-    mAnimation = setup.animation;
-    mGeometry = std::make_unique<GeometryBuffers>(setup.device, scene);
+    mAnimation = gpuScene.animation();
     mPipelines = std::make_unique<PipelineCache>(setup);
     mGroups.clear();
 
@@ -29,8 +28,8 @@ Result<void> PipelineCacheStrategy::prepare(const RenderSetup& setup,
         for (std::size_t index = 0; index < primitives.size(); ++index) {
             shaders::ShaderVariantKey shader;
             const std::vector<scene::Semantic> semantics =
-                unlitPrimitiveSemantics(setup.animation, scene::MeshId(mesh), index, shader);
-            auto bindings = mGeometry->bind(primitives[index], semantics);
+                unlitPrimitiveSemantics(gpuScene.animation(), scene::MeshId(mesh), index, shader);
+            auto bindings = gpuScene.geometry().bind(primitives[index], semantics);
             if (!bindings) {
                 return bindings.error();
             }
@@ -47,7 +46,8 @@ Result<void> PipelineCacheStrategy::prepare(const RenderSetup& setup,
                 {std::move(*bindings), nodesOfMesh[mesh], shader, index});
         }
     }
-    mNodes = NodeUniforms(setup.device, setup.queue, *setup.layouts, scene);
+    mNodes =
+        NodeUniforms(setup.device, setup.queue, *setup.layouts, scene, gpuScene.instanceWorlds());
     mQueue = setup.queue;
     return {};
 }
@@ -69,10 +69,8 @@ void PipelineCacheStrategy::encode(RenderEncoder& encoder, const FrameState&) co
     }
 }
 
-Result<void> PipelineCacheStrategy::updateInstance(std::size_t instance, const glm::mat4& world) {
-    ENCORE_TRY(checkInstanceIndex(instance, mNodes.size()));
+void PipelineCacheStrategy::instanceMoved(std::size_t instance, const glm::mat4& world) {
     mNodes.update(mQueue, instance, world);
-    return {};
 }
 
 }  // namespace encore::render

@@ -3,6 +3,7 @@
 #include <memory>
 #include <vector>
 
+#include "encore/render/GpuScene.h"
 #include "encore/render/NodeUniforms.h"
 #include "encore/render/PipelineCache.h"
 #include "encore/render/Strategy.h"
@@ -16,12 +17,12 @@ namespace encore::render {
 class PipelineCacheStrategy final : public Strategy {
   public:
     StrategyKind kind() const override { return StrategyKind::PipelineCache; }
-    Result<void> prepare(const RenderSetup& setup, const scene::SceneData& scene) override;
+    Result<void> prepare(const RenderSetup& setup, const GpuScene& scene) override;
     void encode(RenderEncoder& encoder, const FrameState& frame) const override;
     InstanceTransformTargets instanceTransformTargets() const override {
         return mNodes.transformTargets();
     }
-    Result<void> updateInstance(std::size_t instance, const glm::mat4& world) override;
+    void instanceMoved(std::size_t instance, const glm::mat4& world) override;
 
     std::size_t pipelineCount() const { return mPipelines ? mPipelines->size() : 0; }
 
@@ -37,7 +38,6 @@ class PipelineCacheStrategy final : public Strategy {
         std::vector<PrimitiveDraws> primitives;
     };
 
-    std::unique_ptr<GeometryBuffers> mGeometry;
     std::unique_ptr<PipelineCache> mPipelines;
     wgpu::BindGroup mFrameGroup;
     std::vector<PipelineGroup> mGroups;

@@ -1,0 +1,83 @@
+#pragma once
+
+// The GPU side of one loaded scene, built once and shared by every strategy: the geometry
+// (bufferViews in shared buffers that are vertex, index and storage buffers at once), the
+// instance transforms, the materials (factors, textures with their mip chains, samplers, bind
+// groups) and the skinning and morph buffers. Strategies record from it and own only their
+// recording structures, so switching strategy uploads nothing again and keeps every edit.
+//
+// Edits go through the GPU scene and change data in buffers; replacing an image replaces a bind
+// group and bumps generation(): whatever recorded that bind group (a render bundle, a draw
+// grouping) records again before its next use.
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include <glm/mat4x4.hpp>
+
+#include "encore/core/Result.h"
+#include "encore/render/AnimationBuffers.h"
+#include "encore/render/InstanceBuffer.h"
+#include "encore/render/MaterialResources.h"
+#include "encore/render/RenderSetup.h"
+#include "encore/render/VertexBindings.h"
+#include "encore/scene/AnimationPlayer.h"
+#include "encore/scene/SceneData.h"
+
+namespace encore::render {
+
+class StagedImages;
+
+class GpuScene {
+  public:
+    // Uploads `scene` (which, like `setup`, must outlive the result), the animation buffers at
+    // `player`'s current pose (null: the rest pose). `staged`: the scene's images already in
+    // staging buffers (StagedImages.h), used during this call only. Adds its parts to
+    // setup.prepareTimes.
+    static Result<std::unique_ptr<GpuScene>> create(const RenderSetup& setup,
+                                                    const scene::SceneData& scene,
+                                                    const scene::AnimationPlayer* player = nullptr,
+                                                    StagedImages* staged = nullptr);
+
+    const scene::SceneData& data() const { return *mScene; }
+    const GeometryBuffers& geometry() const { return mGeometry; }
+    const InstanceBuffer& instances() const { return mInstances; }
+    const MaterialResources& materials() const { return mMaterials; }
+    // Null when the scene has neither skins nor morph targets.
+    const AnimationBuffers* animation() const { return mAnimation.get(); }
+
+    // Each scene instance's world matrix as last written (updateInstance), for strategies that
+    // keep copies of their own (per-node uniforms).
+    std::span<const glm::mat4> instanceWorlds() const { return mWorlds; }
+    // Incremented whenever a bind group that recordings may hold is replaced.
+    std::uint64_t generation() const { return mMaterials.generation(); }
+    // Geometry and texture bytes written to the GPU since creation (replaced images included).
+    std::uint64_t uploadedBytes() const {
+        return mGeometry.uploadedBytes() + mMaterials.uploadedBytes();
+    }
+
+    // Edits. `instance` indexes SceneData::instances; errors name what does not exist.
+    Result<void> updateInstance(std::size_t instance, const glm::mat4& world);
+    Result<void> updateMaterial(scene::MaterialId material, const scene::Material& value);
+    // A new sRGB texture with its mip chain for `material`'s base colour; bumps generation().
+    // A material without textures becomes textured (its draws need other pipelines).
+    Result<void> replaceBaseColorImage(scene::MaterialId material, const scene::Image& image);
+    // Uploads the joints and weights that the player's last evaluate() changed.
+    AnimationUploadStats writeAnimation(const scene::AnimationPlayer& player);
+
+  private:
+    GpuScene(const RenderSetup& setup, const scene::SceneData& scene, MaterialResources materials);
+    Result<void> checkMaterial(scene::MaterialId material) const;
+
+    const RenderSetup* mSetup;
+    const scene::SceneData* mScene;
+    GeometryBuffers mGeometry;
+    InstanceBuffer mInstances;
+    MaterialResources mMaterials;
+    std::unique_ptr<AnimationBuffers> mAnimation;
+    std::vector<glm::mat4> mWorlds;
+};
+
+}  // namespace encore::render

@@ -1,0 +1,105 @@
+#include "encore/render/GpuScene.h"
+
+#include <chrono>
+#include <optional>
+#include <string>
+
+#include "encore/core/Elapsed.h"
+
+namespace encore::render {
+
+Result<std::unique_ptr<GpuScene>> GpuScene::create(const RenderSetup& setup,
+                                                   const scene::SceneData& scene,
+                                                   const scene::AnimationPlayer* player,
+                                                   StagedImages* staged) {
+    PrepareTimes& times = setup.prepareTimes;
+    const auto start = std::chrono::steady_clock::now();
+    ENCORE_TRY_ASSIGN(
+        auto materials,
+        MaterialResources::create(setup.device, setup.queue, *setup.shaders, *setup.layouts, scene,
+                                  SampledTextures::all(), setup.limits.maxTextureDimension2D,
+                                  setup.mipmaps, staged));
+    times.materials += millisecondsSince(start);
+    const TextureUploadTimes& upload = materials.uploadTimes();
+    times.textureCreation += upload.creation;
+    times.textureWrites += upload.writes;
+    times.mipmaps += upload.mipmaps;
+    times.materialSubmit += upload.submit;
+    std::unique_ptr<GpuScene> created(new GpuScene(setup, scene, std::move(materials)));
+    std::optional<scene::AnimationPlayer> restPose;
+    if (!player) {
+        player = &restPose.emplace(scene);
+    }
+    created->mAnimation =
+        AnimationBuffers::create(setup.device, setup.queue, *setup.layouts, scene, *player);
+    return created;
+}
+
+namespace {
+
+// Times one member's construction into `milliseconds` (members are built in the initialiser
+// list, where no statement can stand).
+template <typename Build>
+auto timed(double& milliseconds, Build&& build) {
+    const auto start = std::chrono::steady_clock::now();
+    auto built = build();
+    milliseconds += millisecondsSince(start);
+    return built;
+}
+
+}  // namespace
+
+GpuScene::GpuScene(const RenderSetup& setup,
+                   const scene::SceneData& scene,
+                   MaterialResources materials)
+    : mSetup(&setup),
+      mScene(&scene),
+      mGeometry(
+          timed(setup.prepareTimes.geometry, [&] { return GeometryBuffers(setup.device, scene); })),
+      mInstances(timed(setup.prepareTimes.instances,
+                       [&] { return InstanceBuffer(setup.device, *setup.layouts, scene); })),
+      mMaterials(std::move(materials)) {
+    mWorlds.reserve(scene.instances.size());
+    for (const scene::Instance& instance : scene.instances) {
+        mWorlds.push_back(instance.world);
+    }
+}
+
+Result<void> GpuScene::updateInstance(std::size_t instance, const glm::mat4& world) {
+    if (instance >= mWorlds.size()) {
+        return makeError(ErrorCode::InvalidArgument, "Instance " + std::to_string(instance) +
+                                                         " does not exist (the scene has " +
+                                                         std::to_string(mWorlds.size()) +
+                                                         " instances).");
+    }
+    mWorlds[instance] = world;
+    mInstances.update(mSetup->queue, instance, world);
+    return {};
+}
+
+Result<void> GpuScene::checkMaterial(scene::MaterialId material) const {
+    if (!material.valid() || material.index() >= mMaterials.materialCount()) {
+        return makeError(ErrorCode::InvalidArgument,
+                         "Material " + std::to_string(material.value) + " does not exist.");
+    }
+    return {};
+}
+
+Result<void> GpuScene::updateMaterial(scene::MaterialId material, const scene::Material& value) {
+    ENCORE_TRY(checkMaterial(material));
+    mMaterials.updateMaterial(mSetup->queue, material, value);
+    return {};
+}
+
+Result<void> GpuScene::replaceBaseColorImage(scene::MaterialId material,
+                                             const scene::Image& image) {
+    ENCORE_TRY(checkMaterial(material));
+    return mMaterials.replaceBaseColorImage(mSetup->device, mSetup->queue, *mSetup->shaders,
+                                            *mSetup->layouts, material, image);
+}
+
+AnimationUploadStats GpuScene::writeAnimation(const scene::AnimationPlayer& player) {
+    return mAnimation ? mAnimation->write(mSetup->queue, player) : AnimationUploadStats{};
+}
+
+}  // namespace encore::render

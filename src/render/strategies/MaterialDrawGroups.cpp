@@ -1,0 +1,223 @@
+#include "MaterialDrawGroups.h"
+
+#include <algorithm>
+#include <map>
+#include <unordered_map>
+
+namespace encore::render {
+
+namespace {
+
+// The variant a primitive and its material need: vertex inputs that exist and are read
+// (TEXCOORD_0, COLOR_0; TANGENT only under a normal map; TEXCOORD_1 only when a texture reads
+// it), MASK's discard, and whether the material binds textures at all. Everything else (which
+// slots have textures, extensions, unlit) is uniform data and 1-pixel default textures, so it
+// shares the variant.
+shaders::ShaderVariantKey materialVariant(const scene::Primitive& primitive,
+                                          const scene::Material& material,
+                                          bool textured) {
+    shaders::ShaderVariantKey key;
+    key.materialTextures = textured;
+    key.instanceSource = shaders::InstanceSource::InstanceStorage;
+    key.materials = true;
+    key.hasTexcoord = primitive.attribute(scene::Semantic::Texcoord0).has_value();
+    key.hasColor = primitive.attribute(scene::Semantic::Color0).has_value();
+    key.alphaMask = material.alphaMode == scene::AlphaMode::Mask;
+    key.hasTangent = materialHasNormalMap(material) && !material.unlit &&
+                     primitive.attribute(scene::Semantic::Tangent).has_value();
+    key.hasTexcoord1 = materialUsesTexcoord1(material) &&
+                       primitive.attribute(scene::Semantic::Texcoord1).has_value();
+    return key;
+}
+
+// The attributes a variant reads, in the order GeometryBuffers binds them.
+std::vector<scene::Semantic> variantSemantics(const shaders::ShaderVariantKey& key) {
+    std::vector<scene::Semantic> semantics = {scene::Semantic::Position, scene::Semantic::Normal};
+    appendAnimationSemantics(key, semantics);
+    if (key.hasTexcoord) {
+        semantics.push_back(scene::Semantic::Texcoord0);
+    }
+    if (key.hasColor) {
+        semantics.push_back(scene::Semantic::Color0);
+    }
+    if (key.hasTangent) {
+        semantics.push_back(scene::Semantic::Tangent);
+    }
+    if (key.hasTexcoord1) {
+        semantics.push_back(scene::Semantic::Texcoord1);
+    }
+    return semantics;
+}
+
+}  // namespace
+
+Result<void> MaterialDrawGroups::prepare(const RenderSetup& setup, const GpuScene& scene) {
+    mSetup = &setup;
+    mScene = &scene;
+    mFrameGroup = setup.frame->bindGroup();
+    mPipelines = strategyPipelineCache(setup, mOwnPipelines);
+    mBindings.clear();
+    const scene::SceneData& data = scene.data();
+    mPrimitiveBindings.assign(data.meshes.size(), {});
+    for (std::size_t mesh = 0; mesh < data.meshes.size(); ++mesh) {
+        mPrimitiveBindings[mesh].assign(data.meshes[mesh].primitives.size(), nullptr);
+    }
+    return regroup();
+}
+
+Result<void> MaterialDrawGroups::regroup() {
+    const scene::SceneData& scene = mScene->data();
+    const InstanceBuffer& instances = mScene->instances();
+    const MaterialResources& materials = mScene->materials();
+    const AnimationBuffers* animation = mScene->animation();
+    const RenderSetup& setup = *mSetup;
+    mGeneration = mScene->generation();
+    mOpaque.clear();
+    mBlended.clear();
+
+    // Opaque groups in first-use order: pipeline -> material -> primitives.
+    std::unordered_map<PipelineKey, std::size_t, PipelineKeyHash> groupOfKey;
+    std::map<std::pair<std::size_t, scene::MaterialId>, std::size_t> materialGroupOf;
+    for (std::size_t mesh = 0; mesh < scene.meshes.size(); ++mesh) {
+        if (instances.meshRange(scene::MeshId(mesh)).count == 0) {
+            continue;
+        }
+        const auto& primitives = scene.meshes[mesh].primitives;
+        for (std::size_t index = 0; index < primitives.size(); ++index) {
+            const scene::Primitive& primitive = primitives[index];
+            const scene::Material& material = scene.materials[primitive.material.index()];
+            shaders::ShaderVariantKey variant =
+                materialVariant(primitive, material, materials.textured(primitive.material));
+            if (animation) {
+                animation->addVariantFlags(scene::MeshId(mesh), index, variant);
+            }
+            // Vertex inputs do not depend on textures, so a regrouping keeps the bindings.
+            const PrimitiveBindings*& bound = mPrimitiveBindings[mesh][index];
+            if (!bound) {
+                auto bindings = mScene->geometry().bind(primitive, variantSemantics(variant));
+                if (!bindings) {
+                    return bindings.error();
+                }
+                mBindings.push_back(std::make_unique<PrimitiveBindings>(std::move(*bindings)));
+                bound = mBindings.back().get();
+            }
+
+            PipelineKey key = meshPipelineKey(setup, *bound, variant);
+            key.cullMode = material.doubleSided ? wgpu::CullMode::None : wgpu::CullMode::Back;
+            key.blend = material.alphaMode == scene::AlphaMode::Blend;
+            // Mirrored instances flip the winding, so they need the other front face.
+            for (bool mirrored : {false, true}) {
+                const InstanceRange range = instances.meshRange(scene::MeshId(mesh), mirrored);
+                if (range.count == 0) {
+                    continue;
+                }
+                key.frontFace = mirrored ? wgpu::FrontFace::CW : wgpu::FrontFace::CCW;
+                auto pipeline = mPipelines->get(key);
+                if (!pipeline) {
+                    return pipeline.error();
+                }
+                if (key.blend) {
+                    for (std::uint32_t slot = range.first; slot < range.first + range.count;
+                         ++slot) {
+                        // Where the instance is now: edits before a regrouping count.
+                        const glm::mat4& world =
+                            mScene->instanceWorlds()[instances.instanceAt(slot)];
+                        const glm::vec3 center = primitive.bounds.empty()
+                                                     ? glm::vec3(world[3])
+                                                     : primitive.bounds.transformed(world).center();
+                        mBlended.push_back(
+                            {*pipeline, primitive.material, bound, slot, center, variant, index});
+                    }
+                    continue;
+                }
+                auto [group, inserted] = groupOfKey.try_emplace(key, mOpaque.size());
+                if (inserted) {
+                    mOpaque.push_back({key, *pipeline, {}});
+                }
+                auto [materialGroup, newMaterial] = materialGroupOf.try_emplace(
+                    {group->second, primitive.material}, mOpaque[group->second].materials.size());
+                if (newMaterial) {
+                    mOpaque[group->second].materials.push_back({primitive.material, {}});
+                }
+                mOpaque[group->second].materials[materialGroup->second].primitives.push_back(
+                    {bound, range, instances.instanceAt(range.first), index});
+            }
+        }
+    }
+    return {};
+}
+
+void MaterialDrawGroups::setSharedBindGroups(RenderEncoder& encoder) const {
+    encoder.setBindGroup(0, mFrameGroup);
+    encoder.setBindGroup(1, mScene->instances().bindGroup());
+}
+
+void MaterialDrawGroups::encodeOpaque(RenderEncoder& encoder) const {
+    for (const PipelineGroup& group : mOpaque) {
+        encoder.setPipeline(group.pipeline);
+        for (const MaterialGroup& material : group.materials) {
+            bindMaterial(encoder, material.material);
+            for (const PrimitiveDraw& primitive : material.primitives) {
+                if (group.key.shader.animated()) {
+                    mScene->animation()->bind(encoder, group.key.shader, primitive.sceneInstance,
+                                              primitive.primitive);
+                }
+                bindGeometry(encoder, *primitive.bindings);
+                drawGeometry(encoder, *primitive.bindings, primitive.instances.count,
+                             primitive.instances.first);
+            }
+        }
+    }
+}
+
+std::vector<std::uint32_t> MaterialDrawGroups::blendOrder(const glm::vec3& cameraPosition) const {
+    std::vector<std::pair<float, std::uint32_t>> keyed;
+    keyed.reserve(mBlended.size());
+    for (std::uint32_t i = 0; i < mBlended.size(); ++i) {
+        const glm::vec3 offset = mBlended[i].center - cameraPosition;
+        keyed.emplace_back(glm::dot(offset, offset), i);
+    }
+    // Farthest first; ties keep scene order so the result is deterministic.
+    std::stable_sort(keyed.begin(), keyed.end(),
+                     [](const auto& a, const auto& b) { return a.first > b.first; });
+    std::vector<std::uint32_t> order;
+    order.reserve(keyed.size());
+    for (const auto& [distance, index] : keyed) {
+        order.push_back(index);
+    }
+    return order;
+}
+
+void MaterialDrawGroups::encodeBlended(RenderEncoder& encoder,
+                                       std::span<const std::uint32_t> order) const {
+    WGPURenderPipeline currentPipeline = nullptr;
+    scene::MaterialId currentMaterial;
+    const PrimitiveBindings* currentBindings = nullptr;
+    for (std::uint32_t index : order) {
+        const BlendedDraw& draw = mBlended[index];
+        if (currentPipeline != draw.pipeline.Get()) {
+            encoder.setPipeline(draw.pipeline);
+            currentPipeline = draw.pipeline.Get();
+        }
+        if (currentMaterial != draw.material) {
+            bindMaterial(encoder, draw.material);
+            currentMaterial = draw.material;
+        }
+        if (currentBindings != draw.bindings) {
+            bindGeometry(encoder, *draw.bindings);
+            currentBindings = draw.bindings;
+        }
+        if (draw.shader.animated()) {
+            mScene->animation()->bind(encoder, draw.shader,
+                                      mScene->instances().instanceAt(draw.instanceSlot),
+                                      draw.primitive);
+        }
+        drawGeometry(encoder, *draw.bindings, 1, draw.instanceSlot);
+    }
+}
+
+void MaterialDrawGroups::bindMaterial(RenderEncoder& encoder, scene::MaterialId material) const {
+    encoder.setBindGroup(2, mScene->materials().bindGroup(material));
+}
+
+}  // namespace encore::render

@@ -1,0 +1,93 @@
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "encore/render/GpuScene.h"
+#include "encore/render/PipelineCache.h"
+#include "encore/render/RenderEncoder.h"
+#include "encore/render/RenderSetup.h"
+#include "encore/render/VertexBindings.h"
+
+namespace encore::render {
+
+// The draws of the case study's Part 5 (glTF materials), grouped for recording: opaque and
+// masked geometry pipeline -> material -> primitive, so each material's bind group is set once
+// per pipeline that uses it; blended geometry one draw per instance, back to front. The
+// strategies that draw materials (materials, bundles, gpu-culling) record from it; it owns the
+// pipelines it picks and the vertex bindings, never scene data.
+//
+// Shader variants differ only where the vertex inputs or the discard differ, or where a
+// material binds no texture at all: which slots have textures, extensions and unlit are uniform
+// data and 1-pixel default textures.
+class MaterialDrawGroups {
+  public:
+    struct PrimitiveDraw {
+        const PrimitiveBindings* bindings = nullptr;
+        InstanceRange instances;
+        // The animation draw record (animated variants): the range's first scene instance and
+        // the primitive's index in its mesh.
+        std::size_t sceneInstance = 0;
+        std::size_t primitive = 0;
+    };
+    struct MaterialGroup {
+        scene::MaterialId material;
+        std::vector<PrimitiveDraw> primitives;
+    };
+    struct PipelineGroup {
+        PipelineKey key;
+        wgpu::RenderPipeline pipeline;
+        std::vector<MaterialGroup> materials;
+    };
+    // One blended primitive of one instance, sorted by distance every frame.
+    struct BlendedDraw {
+        wgpu::RenderPipeline pipeline;
+        scene::MaterialId material;
+        const PrimitiveBindings* bindings = nullptr;
+        std::uint32_t instanceSlot = 0;
+        glm::vec3 center{0.0f};  // World-space centre of the primitive's bounds.
+        shaders::ShaderVariantKey shader;
+        std::size_t primitive = 0;  // Index in its mesh.
+    };
+
+    // Chooses every primitive's pipeline and groups the draws of `scene` (which, like `setup`,
+    // must outlive this).
+    Result<void> prepare(const RenderSetup& setup, const GpuScene& scene);
+    // Whether a bind group the groups depend on was replaced since they were made (a material
+    // that gained textures needs other pipelines).
+    bool stale() const { return mGeneration != mScene->generation(); }
+    // Groups the draws again, keeping the vertex bindings (they do not depend on textures).
+    Result<void> regroup();
+
+    const std::vector<PipelineGroup>& opaque() const { return mOpaque; }
+    const std::vector<BlendedDraw>& blended() const { return mBlended; }
+    PipelineCache& pipelines() const { return *mPipelines; }
+    const GpuScene& scene() const { return *mScene; }
+
+    // Group 0 (frame) and group 1 (instance transforms).
+    void setSharedBindGroups(RenderEncoder& encoder) const;
+    void encodeOpaque(RenderEncoder& encoder) const;
+    // Indices into blended(), back to front as seen from `cameraPosition`.
+    std::vector<std::uint32_t> blendOrder(const glm::vec3& cameraPosition) const;
+    // Blended draws in that order, skipping state that does not change between them.
+    void encodeBlended(RenderEncoder& encoder, std::span<const std::uint32_t> order) const;
+    // Binds the material of group 2 (its bind group as the GPU scene holds it now).
+    void bindMaterial(RenderEncoder& encoder, scene::MaterialId material) const;
+
+  private:
+    const RenderSetup* mSetup = nullptr;
+    const GpuScene* mScene = nullptr;
+    std::unique_ptr<PipelineCache> mOwnPipelines;
+    PipelineCache* mPipelines = nullptr;  // mOwnPipelines or the renderer's kept cache.
+    wgpu::BindGroup mFrameGroup;
+    std::vector<std::unique_ptr<PrimitiveBindings>> mBindings;  // Stable addresses.
+    // [mesh][primitive] -> its entry of mBindings (null until grouped).
+    std::vector<std::vector<const PrimitiveBindings*>> mPrimitiveBindings;
+    std::vector<PipelineGroup> mOpaque;
+    std::vector<BlendedDraw> mBlended;
+    std::uint64_t mGeneration = 0;
+};
+
+}  // namespace encore::render
