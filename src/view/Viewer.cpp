@@ -297,11 +297,13 @@ Result<void> Viewer::State::switchStrategy(render::StrategyKind newKind, bool ne
     const bool oldBundle = bundle;
     kind = newKind;
     bundle = newBundle;
-    if (auto prepared = prepareScene(); !prepared) {
-        show(prepared.error().message, true);
+    // Only the strategy is made again: the GPU scene, its edits, the animation selection and a
+    // frozen culling camera stay.
+    if (auto switched = renderer->setStrategy(kind, bundle); !switched) {
+        show(switched.error().message, true);
         kind = oldKind;
         bundle = oldBundle;
-        ENCORE_TRY(prepareScene());
+        ENCORE_TRY(renderer->setStrategy(kind, bundle));
         return {};
     }
     show("strategy " + strategyLabel());
@@ -732,6 +734,13 @@ std::string Viewer::State::statsLine() const {
                    height, (unsigned long long)frameNumber, (unsigned long long)bundlesRecorded,
                    (unsigned long long)lastFrame.counters.drawCalls(),
                    (unsigned long long)lastFrame.counters.executeBundles);
+    if (renderer) {
+        // GPU scenes built and bytes uploaded since the viewer opened: a switch of strategy
+        // changes neither.
+        line += format(" sceneUploads=%llu uploadedBytes=%llu",
+                       (unsigned long long)renderer->sceneUploads(),
+                       (unsigned long long)renderer->uploadedBytes());
+    }
     if (scene) {
         line += " scene=" + scene->sourcePath.string();
     }

@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 #include <vector>
 
@@ -164,6 +165,53 @@ TEST(ViewCommandTest, AScriptedSessionShowsWhatRenderWrites) {
               0u);
     // The overlay is drawn over the same frame only when asked for.
     EXPECT_GT(differingPixels(readPng(shot("overlay.png")), dropped), 2000u);
+}
+
+// Keys 1-8 and B switch the strategy only: the GPU scene (geometry, textures) is uploaded
+// once, whichever strategies draw it; a dropped file is the next upload.
+TEST(ViewCommandTest, SwitchingStrategiesUploadsTheSceneOnce) {
+    if (!haveXvfb()) {
+        GTEST_SKIP() << "xvfb-run (package xvfb) is not installed: no virtual display";
+    }
+    const auto dir = makeTempDir("view-switch");
+    const auto scene = dir / "scene.glb";
+    const auto other = dir / "other.glb";
+    ASSERT_EQ(
+        runEncore("gen --objects 20 --meshes 3 --materials 3 -o " + quote(scene.string())).exitCode,
+        0);
+    ASSERT_EQ(
+        runEncore("gen --objects 6 --meshes 2 --materials 2 --seed 5 -o " + quote(other.string()))
+            .exitCode,
+        0);
+    std::ofstream script(dir / "session.txt");
+    script << "frames 1\nstats\n";
+    for (char key = '1'; key <= '8'; ++key) {
+        script << "key " << key << "\nframes 1\nstats\nkey b\nframes 1\nstats\n";
+    }
+    script << "drop " << other.string() << "\nframes 1\nstats\n";
+    script.close();
+    const auto result = runEncoreThrough(kXvfb, "view " + quote(scene.string()) +
+                                                    " --width 96 --height 64 --script " +
+                                                    quote((dir / "session.txt").string()));
+    ASSERT_EQ(result.exitCode, 0) << result.err << result.out;
+    const auto stats = statsLines(result.out);
+    ASSERT_EQ(stats.size(), 18u) << result.out;
+    const std::string uploaded = field(stats[0], "uploadedBytes");
+    EXPECT_GT(std::stoull(uploaded), 0u) << stats[0];
+    std::set<std::string> strategies;
+    for (std::size_t i = 0; i + 1 < stats.size(); ++i) {
+        SCOPED_TRACE(stats[i]);
+        EXPECT_EQ(field(stats[i], "error"), "");
+        EXPECT_EQ(field(stats[i], "sceneUploads"), "1");
+        EXPECT_EQ(field(stats[i], "uploadedBytes"), uploaded);
+        strategies.insert(field(stats[i], "strategy") + field(stats[i], "bundled"));
+    }
+    // Every strategy, directly and from a bundle (bundles and gpu-culling-bundles are the
+    // bundled forms of materials and gpu-culling).
+    EXPECT_GE(strategies.size(), 12u);
+    EXPECT_EQ(field(stats.back(), "scene"), other.string());
+    EXPECT_EQ(field(stats.back(), "sceneUploads"), "2");
+    EXPECT_GT(std::stoull(field(stats.back(), "uploadedBytes")), std::stoull(uploaded));
 }
 
 TEST(ViewCommandTest, TheAnimometerRunsDirectAndBundled) {
