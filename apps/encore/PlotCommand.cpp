@@ -7,6 +7,7 @@
 
 #include "Commands.h"
 #include "PlotWriter.h"
+#include "encore/bench/BenchmarkReportReader.h"
 #include "encore/core/FileIO.h"
 
 namespace encore::app {
@@ -65,7 +66,7 @@ void addPlotCommand(CLI::App& app, const GlobalOptions&, int& exitCode) {
     command->add_option("reports", *inputs, "Reports written by encore bench --json")->required();
     command->add_option("-o,--output", *output, "The SVG to write")->capture_default_str();
     command->callback([inputs, output, &exitCode] {
-        std::vector<NamedReport> reports;
+        std::vector<bench::NamedReport> reports;
         for (const std::string& input : *inputs) {
             auto bytes = readFile(input);
             if (!bytes) {
@@ -80,7 +81,7 @@ void addPlotCommand(CLI::App& app, const GlobalOptions&, int& exitCode) {
             }
             reports.push_back({input, std::move(report)});
         }
-        auto merged = mergeReports(reports);
+        auto merged = bench::mergeReports(reports);
         if (!merged) {
             exitCode = reportError(merged.error());
             return;

@@ -4,15 +4,20 @@
 
 #include <algorithm>
 #include <array>
-#include <charconv>
 #include <cmath>
 #include <optional>
 #include <string_view>
 #include <vector>
 
+#include "SvgBuilder.h"
+#include "encore/bench/BenchmarkReportReader.h"
+
 namespace encore::app {
 namespace {
 
+using bench::ScalingPoint;
+using bench::ScalingSeries;
+using bench::Spread;
 using nlohmann::json;
 
 constexpr double kWidth = 900.0;
@@ -30,9 +35,8 @@ constexpr std::array<std::string_view, 10> kPalette = {"#1f77b4", "#d62728", "#2
                                                        "#bcbd22", "#17becf"};
 constexpr std::array<std::string_view, 4> kDashes = {"", "6 3", "2 3", "8 3 2 3"};
 
-// Marker outlines around the point, in pixels; an empty outline is a circle. Six shapes against
-// four dash patterns give twelve series that differ in greyscale.
-using Outline = std::vector<std::pair<double, double>>;
+// Marker outlines (an empty one is a circle): six shapes against four dash patterns give twelve
+// series that differ in greyscale.
 const std::array<Outline, 6> kMarkers = {
     Outline{},
     Outline{{-3.2, -3.2}, {3.2, -3.2}, {3.2, 3.2}, {-3.2, 3.2}},
@@ -41,32 +45,11 @@ const std::array<Outline, 6> kMarkers = {
     Outline{{0, 4.5}, {4.2, -3.2}, {-4.2, -3.2}},
     Outline{{-4.2, -4.2}, {4.2, 4.2}, {4.2, -4.2}, {-4.2, 4.2}}};  // A bow tie.
 
-// A median and where its whisker ends: the p95 for times, the maximum for triangle counts.
-struct Spread {
-    double median = 0.0;
-    double high = 0.0;  // 0 when the report has none: no whisker is drawn.
-};
-
-struct Point {
-    double objects = 0.0;
-    Spread cpu;
-    std::optional<Spread> gpu;
-    std::optional<Spread> triangles;  // Per frame: drawn after GPU culling, else submitted.
-};
-
 // What a panel's y axis shows.
 enum class Quantity {
     CpuMs,
     GpuMs,
     Triangles,
-};
-
-struct Series {
-    std::string scene;
-    std::string animation;  // Crowds: "cpu" or "gpu", where the animation was evaluated.
-    std::string strategy;
-    std::string label;
-    std::vector<Point> points;
 };
 
 // A log10 axis spanning whole decades [low, high], mapped onto [pixelLow, pixelHigh].
@@ -80,36 +63,6 @@ struct LogAxis {
         return pixelLow + (std::log10(value) - low) / (high - low) * (pixelHigh - pixelLow);
     }
 };
-
-// Fixed notation through to_chars, because printf-style formatting follows the process locale
-// and a decimal comma would corrupt the SVG.
-std::string number(double value, int precision = 1) {
-    std::array<char, 64> buffer{};
-    auto [end, ec] = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value,
-                                   std::chars_format::fixed, precision);
-    std::string text(buffer.data(), ec == std::errc() ? end : buffer.data());
-    // -0.0 and 0.0 are the same coordinate; print them alike so output stays byte-stable.
-    if (text[0] == '-' && text.find_first_not_of("-0.") == std::string::npos) {
-        text.erase(0, 1);
-    }
-    return text;
-}
-
-std::string escapeXml(std::string_view text) {
-    constexpr std::string_view kSpecial = "&<>\"'";
-    constexpr std::array<std::string_view, 5> kEntities = {"&amp;", "&lt;", "&gt;", "&quot;",
-                                                           "&apos;"};
-    std::string out;
-    for (char c : text) {
-        if (size_t i = kSpecial.find(c); i != std::string_view::npos) {
-            out += kEntities[i];
-        } else {
-            // XML 1.0 forbids most control characters, even as character references.
-            out += (static_cast<unsigned char>(c) < 0x20 && c != '\t') ? ' ' : c;
-        }
-    }
-    return out;
-}
 
 std::string decadeLabel(int exponent, bool isCount) {
     if (exponent < 0) {
@@ -134,161 +87,12 @@ std::pair<int, int> decadeRange(const std::vector<double>& values) {
     return {low, std::max(high, low + 1)};
 }
 
-std::string describe(const json& result, size_t index) {
-    std::string text = "Benchmark result " + std::to_string(index);
-    if (result.contains("label") && result["label"].is_string()) {
-        text += " ('" + result["label"].get<std::string>() + "')";
-    }
-    return text;
-}
-
-std::optional<double> numberAt(const json& object, const char* pointer) {
-    const json::json_pointer at(pointer);
-    if (!object.contains(at) || !object[at].is_number()) {
-        return std::nullopt;
-    }
-    return object[at].get<double>();
-}
-
-// A per-frame array of counts; missing and null read as empty. The error message is completed
-// by the caller, which knows which result this is.
-Result<std::vector<double>> readCounts(const json& result, const char* key) {
-    std::vector<double> counts;
-    auto it = result.find(key);
-    if (it == result.end() || it->is_null()) {
-        return counts;
-    }
-    if (!it->is_array()) {
-        return makeError(ErrorCode::InvalidFormat,
-                         "has a \"" + std::string(key) + "\" that is neither an array nor null");
-    }
-    for (const json& count : *it) {
-        if (!count.is_number()) {
-            return makeError(ErrorCode::InvalidFormat,
-                             "has a non-numeric entry in \"" + std::string(key) + "\"");
-        }
-        counts.push_back(count.get<double>());
-    }
-    return counts;
-}
-
-// The median (the mean of the middle two for an even count) and the maximum.
-Spread summarize(std::vector<double> values) {
-    std::sort(values.begin(), values.end());
-    const size_t middle = values.size() / 2;
-    const double median =
-        values.size() % 2 ? values[middle] : (values[middle - 1] + values[middle]) / 2;
-    return {median, values.back()};
-}
-
-// The error message is completed by the caller, which knows which result this is.
-Result<Point> readPoint(const json& result) {
-    const auto objects = numberAt(result, "/objects");
-    if (!objects) {
-        return makeError(ErrorCode::InvalidFormat, "has no numeric \"objects\" count");
-    }
-    Point point{*objects, {}, {}, {}};
-    if (auto cpu = numberAt(result, "/cpuMs/median")) {
-        point.cpu = {*cpu, numberAt(result, "/cpuMs/p95").value_or(0.0)};
-    } else {
-        // Reports may only split CPU time into encode and submit; the sum of their p95s bounds
-        // the p95 of the sum from above.
-        auto encode = numberAt(result, "/encodeMs/median");
-        auto submit = numberAt(result, "/submitMs/median");
-        if (!encode || !submit) {
-            return makeError(ErrorCode::InvalidFormat,
-                             "has neither \"cpuMs.median\" nor both \"encodeMs.median\" and "
-                             "\"submitMs.median\"");
-        }
-        point.cpu = {*encode + *submit, numberAt(result, "/encodeMs/p95").value_or(0.0) +
-                                            numberAt(result, "/submitMs/p95").value_or(0.0)};
-    }
-    // "gpuMs": null means the adapter had no timestamp queries.
-    if (result.contains("gpuMs") && !result["gpuMs"].is_null()) {
-        auto gpu = numberAt(result, "/gpuMs/median");
-        if (!gpu) {
-            return makeError(ErrorCode::InvalidFormat, "has no numeric \"gpuMs.median\"");
-        }
-        point.gpu = Spread{*gpu, numberAt(result, "/gpuMs/p95").value_or(0.0)};
-    }
-    // Strategies without GPU culling draw what they submit and report "trianglesDrawn": null.
-    for (const char* key : {"trianglesDrawn", "trianglesSubmitted"}) {
-        auto counts = readCounts(result, key);
-        if (!counts) {
-            return counts.error();
-        }
-        if (!counts->empty()) {
-            point.triangles = summarize(*counts);
-            break;
-        }
-    }
-    return point;
-}
-
-Result<std::vector<Series>> readSeries(const json& results) {
-    std::vector<Series> series;
-    for (size_t i = 0; i < results.size(); ++i) {
-        const json& result = results[i];
-        if (!result.is_object() || !result.contains("scene") || !result["scene"].is_string()) {
-            return makeError(ErrorCode::InvalidFormat,
-                             "Benchmark result " + std::to_string(i) + " has no \"scene\" string.");
-        }
-        const std::string scene = result["scene"].get<std::string>();
-        const bool walkthrough = scene == "flythrough" || scene == "city";
-        if (scene != "generated" && scene != "animometer" && scene != "crowd" && !walkthrough) {
-            continue;  // Single models have no object-count axis.
-        }
-        const std::string animation = result.contains("animation") && result["animation"].is_string()
-                                          ? result["animation"].get<std::string>()
-                                          : std::string();
-        if (!result.contains("strategy") || !result["strategy"].is_string()) {
-            return makeError(ErrorCode::InvalidFormat,
-                             describe(result, i) + " has no \"strategy\" string.");
-        }
-        auto point = readPoint(result);
-        if (!point) {
-            return makeError(point.error().code,
-                             describe(result, i) + " " + point.error().message + ".");
-        }
-        const std::string strategy = result["strategy"].get<std::string>();
-        auto it = std::find_if(series.begin(), series.end(), [&](const Series& s) {
-            return s.scene == scene && s.animation == animation && s.strategy == strategy;
-        });
-        if (it == series.end()) {
-            // A crowd's axis counts characters; its series say where the animation ran.
-            // Generated walkthroughs share strategy names; the scene tells their curves apart.
-            const std::string label =
-                scene == "crowd"
-                    ? (animation.empty() ? std::string("still") : animation + "-animated") + " " +
-                          strategy
-                : walkthrough ? scene + ": " + strategy
-                              : strategy;
-            it = series.insert(series.end(), Series{scene, animation, strategy, label, {}});
-        }
-        it->points.push_back(*point);
-    }
-    // Generated scenes first (they are the scaling study), animometer after, each in report order.
-    std::stable_partition(series.begin(), series.end(),
-                          [](const Series& s) { return s.scene == "generated"; });
-    for (Series& s : series) {
-        std::stable_sort(s.points.begin(), s.points.end(),
-                         [](const Point& a, const Point& b) { return a.objects < b.objects; });
-        bool clashes = std::any_of(series.begin(), series.end(), [&](const Series& other) {
-            return &other != &s && other.strategy == s.strategy;
-        });
-        if (clashes && s.scene == "animometer") {
-            s.label = s.scene + " " + s.strategy;
-        }
-    }
-    return series;
-}
-
 // Log axes can show only finite positive values; the rest are skipped, not clamped.
 bool plottable(double value) {
     return value > 0 && std::isfinite(value);
 }
 
-std::optional<Spread> spreadOf(const Point& point, Quantity quantity) {
+std::optional<Spread> spreadOf(const ScalingPoint& point, Quantity quantity) {
     switch (quantity) {
         case Quantity::CpuMs:
             return point.cpu;
@@ -300,60 +104,31 @@ std::optional<Spread> spreadOf(const Point& point, Quantity quantity) {
     return std::nullopt;
 }
 
-// Appends SVG elements to one string; every coordinate goes through number().
-struct SvgBuilder {
-    std::string out;
+// Opens a group in the series' colour; lines inside take its dash pattern with dashed().
+void beginSeries(SvgBuilder& svg, size_t series, std::string_view extra = {}) {
+    svg.beginGroup(kPalette[series % kPalette.size()], extra);
+}
 
-    void text(double x, double y, std::string_view content, std::string_view attributes = {}) {
-        out += "<text x=\"" + number(x) + "\" y=\"" + number(y) + "\" " + std::string(attributes) +
-               ">" + escapeXml(content) + "</text>\n";
-    }
+// The attributes of a series' line: unfilled, in its dash pattern.
+std::string dashed(size_t series) {
+    const std::string_view dash = kDashes[series % kDashes.size()];
+    return "fill=\"none\" stroke-width=\"1.8\"" +
+           (dash.empty() ? "" : " stroke-dasharray=\"" + std::string(dash) + "\"");
+}
 
-    void line(double x1, double y1, double x2, double y2, std::string_view attributes) {
-        out += "<line x1=\"" + number(x1) + "\" y1=\"" + number(y1) + "\" x2=\"" + number(x2) +
-               "\" y2=\"" + number(y2) + "\" " + std::string(attributes) + "/>\n";
-    }
-
-    void marker(size_t series, double x, double y, std::string_view tip) {
-        const Outline& outline = kMarkers[series % kMarkers.size()];
-        const std::string tag = outline.empty() ? "circle" : "polygon";
-        out += "<" + tag + " class=\"marker\"";
-        if (outline.empty()) {
-            out += " cx=\"" + number(x) + "\" cy=\"" + number(y) + "\" r=\"3.5\"";
-        } else {
-            out += " points=\"";
-            for (size_t i = 0; i < outline.size(); ++i) {
-                out += (i ? " " : "") + number(x + outline[i].first) + "," +
-                       number(y + outline[i].second);
-            }
-            out += "\"";
-        }
-        // A <title> child is the tooltip browsers show on hover: the numbers behind a point.
-        out += "><title>" + escapeXml(tip) + "</title></" + tag + ">\n";
-    }
-
-    // Opens a group in the series' colour; lines inside take its dash pattern with dashed().
-    void beginSeries(size_t series, std::string_view extra = {}) {
-        const std::string colour(kPalette[series % kPalette.size()]);
-        out += "<g" + std::string(extra) + " stroke=\"" + colour + "\" fill=\"" + colour + "\">\n";
-    }
-
-    static std::string dashed(size_t series) {
-        const std::string_view dash = kDashes[series % kDashes.size()];
-        return "fill=\"none\" stroke-width=\"1.8\"" +
-               (dash.empty() ? "" : " stroke-dasharray=\"" + std::string(dash) + "\"");
-    }
-};
+void seriesMarker(SvgBuilder& svg, size_t series, double x, double y, std::string_view tip) {
+    svg.marker(kMarkers[series % kMarkers.size()], x, y, tip);
+}
 
 struct PanelBox {
     double left, right, top, bottom;
 };
 
 // The positive medians and whisker ends a panel shows, which set its y range.
-std::vector<double> panelValues(const std::vector<Series>& series, Quantity quantity) {
+std::vector<double> panelValues(const std::vector<ScalingSeries>& series, Quantity quantity) {
     std::vector<double> values;
-    for (const Series& s : series) {
-        for (const Point& p : s.points) {
+    for (const ScalingSeries& s : series) {
+        for (const ScalingPoint& p : s.points) {
             auto t = spreadOf(p, quantity);
             if (plottable(p.objects) && t && plottable(t->median)) {
                 values.push_back(t->median);
@@ -367,7 +142,7 @@ std::vector<double> panelValues(const std::vector<Series>& series, Quantity quan
 }
 
 void appendPanel(SvgBuilder& svg,
-                 const std::vector<Series>& series,
+                 const std::vector<ScalingSeries>& series,
                  Quantity quantity,
                  std::pair<int, int> xDecades,
                  const PanelBox& box) {
@@ -400,62 +175,65 @@ void appendPanel(SvgBuilder& svg,
                      : svg.text(box.left - 6, p + 4, decadeLabel(e, counts), "text-anchor=\"end\"");
         }
     }
-    svg.out += "<rect x=\"" + number(box.left) + "\" y=\"" + number(box.top) + "\" width=\"" +
-               number(box.right - box.left) + "\" height=\"" + number(box.bottom - box.top) +
+    svg.out += "<rect x=\"" + svgNumber(box.left) + "\" y=\"" + svgNumber(box.top) + "\" width=\"" +
+               svgNumber(box.right - box.left) + "\" height=\"" + svgNumber(box.bottom - box.top) +
                "\" fill=\"none\" stroke=\"#444444\"/>\n";
     svg.text(xMid, box.bottom + 32, "objects (crowds: characters; log scale)",
              "text-anchor=\"middle\"");
     svg.text(box.left - 44, yMid,
              counts ? "triangles drawn (else submitted; log scale)" : "milliseconds (log scale)",
-             "text-anchor=\"middle\" transform=\"rotate(-90 " + number(box.left - 44) + " " +
-                 number(yMid) + ")\"");
+             "text-anchor=\"middle\" transform=\"rotate(-90 " + svgNumber(box.left - 44) + " " +
+                 svgNumber(yMid) + ")\"");
     if (values.empty()) {
         svg.text(xMid, yMid, "no data", "text-anchor=\"middle\" fill=\"#888888\"");
     }
 
     for (size_t i = 0; i < series.size(); ++i) {
-        const Series& s = series[i];
+        const ScalingSeries& s = series[i];
         std::string points;
         SvgBuilder marks;
-        for (const Point& p : s.points) {
+        for (const ScalingPoint& p : s.points) {
             auto t = spreadOf(p, quantity);
             if (!plottable(p.objects) || !t || !plottable(t->median)) {
                 continue;
             }
             const double x = xAxis.map(p.objects);
             const double y = yAxis.map(t->median);
-            points += (points.empty() ? "" : " ") + number(x) + "," + number(y);
+            points += (points.empty() ? "" : " ") + svgNumber(x) + "," + svgNumber(y);
             const std::string unit = counts ? " triangles" : " ms";
             const int precision = counts ? 0 : 3;
-            std::string tip = s.label + ": " + number(p.objects, 0) + " objects, median " +
-                              number(t->median, precision) + unit;
+            std::string tip = s.label + ": " + svgNumber(p.objects, 0) + " objects, median " +
+                              svgNumber(t->median, precision) + unit;
             if (plottable(t->high)) {
                 const double yP95 = yAxis.map(t->high);
-                marks.out += "<path class=\"p95\" fill=\"none\" d=\"M" + number(x) + "," +
-                             number(y) + "V" + number(yP95) + "M" + number(x - 3) + "," +
-                             number(yP95) + "H" + number(x + 3) + "\"/>\n";
-                tip += (counts ? ", max " : ", p95 ") + number(t->high, precision) + unit;
+                marks.out += "<path class=\"p95\" fill=\"none\" d=\"M" + svgNumber(x) + "," +
+                             svgNumber(y) + "V" + svgNumber(yP95) + "M" + svgNumber(x - 3) + "," +
+                             svgNumber(yP95) + "H" + svgNumber(x + 3) + "\"/>\n";
+                tip += (counts ? ", max " : ", p95 ") + svgNumber(t->high, precision) + unit;
             }
-            marks.marker(i, x, y, tip);
+            seriesMarker(marks, i, x, y, tip);
         }
         if (!points.empty()) {
-            svg.beginSeries(i, " class=\"series\" data-series=\"" + escapeXml(s.label) + "\"");
-            svg.out += "<polyline " + SvgBuilder::dashed(i) + " points=\"" + points + "\"/>\n" +
-                       marks.out + "</g>\n";
+            beginSeries(svg, i, " class=\"series\" data-series=\"" + escapeXml(s.label) + "\"");
+            svg.out +=
+                "<polyline " + dashed(i) + " points=\"" + points + "\"/>\n" + marks.out + "</g>\n";
         }
     }
     svg.out += "</g>\n";
 }
 
-void appendLegend(SvgBuilder& svg, const std::vector<Series>& series, double width, double top) {
+void appendLegend(SvgBuilder& svg,
+                  const std::vector<ScalingSeries>& series,
+                  double width,
+                  double top) {
     const double columnWidth = (width - 40) / kLegendColumns;
     svg.out += "<g class=\"legend\">\n";
     for (size_t i = 0; i < series.size(); ++i) {
         const double x = 20 + static_cast<double>(i % kLegendColumns) * columnWidth;
         const double y = top + static_cast<double>(i / kLegendColumns) * kLegendRowHeight + 9;
-        svg.beginSeries(i);
-        svg.line(x, y, x + 28, y, SvgBuilder::dashed(i));
-        svg.marker(i, x + 14, y, series[i].label);
+        beginSeries(svg, i);
+        svg.line(x, y, x + 28, y, dashed(i));
+        seriesMarker(svg, i, x + 14, y, series[i].label);
         svg.out += "</g>\n";
         svg.text(x + 34, y + 4, series[i].label);
     }
@@ -485,38 +263,6 @@ std::string detailsLine(const json& report, bool anyGpu, bool anyTriangles) {
 
 }  // namespace
 
-Result<json> mergeReports(const std::vector<NamedReport>& reports) {
-    if (reports.empty()) {
-        return makeError(ErrorCode::InvalidFormat, "No benchmark report to merge.");
-    }
-    json merged;
-    for (const NamedReport& named : reports) {
-        const json& report = named.report;
-        if (!report.is_object() || !report.contains("results") || !report["results"].is_array()) {
-            return makeError(ErrorCode::InvalidFormat,
-                             named.name + ": the benchmark report has no \"results\" array.");
-        }
-        if (merged.is_null()) {
-            merged = report;
-            continue;
-        }
-        // Timings of different adapters (or drivers) do not belong on one curve.
-        const json none;
-        const json& first = merged.contains("adapter") ? merged["adapter"] : none;
-        const json& adapter = report.contains("adapter") ? report["adapter"] : none;
-        if (adapter != first) {
-            return makeError(ErrorCode::InvalidFormat,
-                             named.name + ": the adapter (" + adapter.dump() +
-                                 ") differs from that of " + reports.front().name + " (" +
-                                 first.dump() + "); plot reports of one adapter together.");
-        }
-        for (const json& result : report["results"]) {
-            merged["results"].push_back(result);
-        }
-    }
-    return merged;
-}
-
 Result<std::string> plotScalingSvg(const json& report) {
     if (!report.is_object() || !report.contains("results") || !report["results"].is_array()) {
         return makeError(ErrorCode::InvalidFormat,
@@ -527,11 +273,11 @@ Result<std::string> plotScalingSvg(const json& report) {
         return makeError(ErrorCode::InvalidFormat,
                          "The benchmark report has no \"adapter.name\" string.");
     }
-    auto read = readSeries(report["results"]);
+    auto read = bench::readScalingSeries(report["results"]);
     if (!read) {
         return read.error();
     }
-    const std::vector<Series>& series = *read;
+    const std::vector<ScalingSeries>& series = *read;
     if (series.empty()) {
         return makeError(ErrorCode::InvalidFormat,
                          "The benchmark report has no \"generated\", \"animometer\", \"crowd\", "
@@ -542,8 +288,8 @@ Result<std::string> plotScalingSvg(const json& report) {
     std::vector<double> objects;
     bool anyGpu = false;
     bool anyTriangles = false;
-    for (const Series& s : series) {
-        for (const Point& p : s.points) {
+    for (const ScalingSeries& s : series) {
+        for (const ScalingPoint& p : s.points) {
             if (plottable(p.objects)) {
                 objects.push_back(p.objects);
             }
@@ -575,9 +321,9 @@ Result<std::string> plotScalingSvg(const json& report) {
     }
 
     SvgBuilder svg;
-    const std::string widthText = number(width, 0);
+    const std::string widthText = svgNumber(width, 0);
     svg.out += "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + widthText + "\" height=\"" +
-               number(height, 0) + "\" viewBox=\"0 0 " + widthText + " " + number(height, 0) +
+               svgNumber(height, 0) + "\" viewBox=\"0 0 " + widthText + " " + svgNumber(height, 0) +
                "\" font-family=\"sans-serif\" font-size=\"11\">\n";
     svg.out += "<rect width=\"100%\" height=\"100%\" fill=\"#ffffff\"/>\n";
     svg.text(width / 2, 24, title, "text-anchor=\"middle\" font-size=\"15\" font-weight=\"bold\"");

@@ -8,7 +8,6 @@
 #include <nlohmann/json.hpp>
 
 #include <string>
-#include <vector>
 
 #include "encore/core/Result.h"
 
@@ -17,7 +16,8 @@ namespace encore::app {
 // Renders the scaling curves of a benchmark report as a self-contained SVG document (about
 // 900×560 px, 1320 px wide with three panels; no external fonts, scripts or images).
 //
-// Plotted are the results whose "scene" is
+// Plotted are the series bench::readScalingSeries reads (BenchmarkReportReader.h), from the
+// results whose "scene" is
 //   - "generated": one series per "strategy";
 //   - "animometer": their own series, one per strategy;
 //   - "crowd": one series per strategy and "animation" (where the animation was evaluated);
@@ -43,17 +43,5 @@ namespace encore::app {
 // "adapter.name", when a plotted result lacks a "strategy", an "objects" count or a CPU median,
 // when a triangle count array holds a non-number, or when no result is plottable at all.
 Result<std::string> plotScalingSvg(const nlohmann::json& report);
-
-// One parsed report and the name (its path) that error messages use.
-struct NamedReport {
-    std::string name;
-    nlohmann::json report;
-};
-
-// Joins several reports of one adapter into one, so runs made separately (one per object count)
-// plot as one set of curves: the "results" arrays are concatenated in order, and every other field
-// (adapter, date, frames, ...) is the first report's. Returns an InvalidFormat error when there
-// is no report, when one lacks a "results" array, or when an "adapter" differs from the first's.
-Result<nlohmann::json> mergeReports(const std::vector<NamedReport>& reports);
 
 }  // namespace encore::app

@@ -12,10 +12,12 @@
 
 #include "PlotWriter.h"
 #include "TestPaths.h"
+#include "encore/bench/BenchmarkReportReader.h"
 
 namespace encore::app {
 namespace {
 
+using bench::mergeReports;  // `encore plot` merges reports before plotting them.
 using nlohmann::json;
 
 json timing(double median, double p95) {

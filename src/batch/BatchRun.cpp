@@ -1,25 +1,24 @@
 #include "encore/batch/Batch.h"
 
 #include <algorithm>
-#include <array>
 #include <chrono>
-#include <cmath>
-#include <cstring>
 #include <deque>
 #include <functional>
 #include <memory>
 #include <mutex>
+#include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
+#include "BatchOptionsValidation.h"
 #include "ModelLoader.h"
+#include "ModelWriter.h"
 #include "encore/batch/BatchRenderer.h"
 #include "encore/batch/FailureLog.h"
 #include "encore/batch/ModelOutput.h"
-#include "encore/batch/TransformsJson.h"
 #include "encore/batch/ViewStrips.h"
 #include "encore/core/Elapsed.h"
-#include "encore/core/FileIO.h"
 #include "encore/core/ThreadPool.h"
 #include "encore/gpu/StageTimestamps.h"
 #include "encore/gpu/StagingBuffers.h"
@@ -46,41 +45,6 @@ Error deviceNotRecreated() {
 // encoding, the device thread (uploads, recording, read-back, the GPU's only feeder) otherwise
 // waits for a core behind them while the GPU runs dry.
 constexpr int kPoolNiceness = 10;
-
-// Counters the pool's encode tasks and the GPU thread both update.
-struct SharedCounters {
-    std::atomic<std::size_t> rendered{0};
-    std::atomic<std::size_t> failed{0};
-    std::atomic<std::uint64_t> views{0};
-    std::mutex mutex;  // Guards the sums below.
-    double load = 0.0;
-    double encode = 0.0;
-    double loadCpu = 0.0;
-    double encodeCpu = 0.0;
-};
-
-// One model from its upload until its last file is written, shared by its encode tasks.
-struct ModelJob {
-    const BatchInput* input = nullptr;
-    fs::path folder;
-    std::vector<glm::mat4> cameraToWorld;
-    std::atomic<std::uint32_t> remaining{0};  // Images not yet written.
-    std::atomic<bool> failed{false};
-    // Images written under their partial names, flushed and renamed together by the last one.
-    std::mutex writtenMutex;
-    std::vector<fs::path> written;
-
-    // Records the model's first failure; later ones (other views) add nothing.
-    void fail(FailureLog& log,
-              SharedCounters& counters,
-              const std::string& stage,
-              const Error& error) {
-        if (!failed.exchange(true)) {
-            log.record(input->path, stage, error.message);
-            ++counters.failed;
-        }
-    }
-};
 
 // Views [first, first + count) of a model, drawn side by side in one read-back (ViewStrips.h).
 struct ChunkInFlight {
@@ -129,10 +93,7 @@ class BatchRun {
           mBatchRenderer(renderers),
           mInputs(inputs),
           mOptions(options),
-          mStrategy(options.strategy.value_or(render::StrategyChoice::of(
-              options.lodErrorPixels > 0.0f ? render::StrategyKind::GpuCullingBundles
-                                            : render::StrategyKind::Bundles,
-              false))),
+          mStrategy(batchStrategy(options)),
           mPool(options.jobs, kPoolNiceness) {}
 
     Result<BatchSummary> run();
@@ -154,18 +115,6 @@ class BatchRun {
     // Takes the oldest read-back and hands its views to the pool.
     void collectOldest();
     void collectReady();
-    // Crops strip `strip` of a read-back target on the pool, ahead of other tasks (the ring
-    // waits for its buffer), then encodes it.
-    void encodeView(const std::shared_ptr<ModelJob>& job,
-                    std::uint32_t view,
-                    ViewImage kind,
-                    std::shared_ptr<const gpu::MappedReadback> wide,
-                    std::uint32_t strip);
-    // Encodes one image of `job` on the pool and writes it; the last one completes the model.
-    void writeImage(const std::shared_ptr<ModelJob>& job,
-                    std::uint32_t view,
-                    ViewImage kind,
-                    std::function<Result<std::vector<std::uint8_t>>()> encode);
     // Draws the views through `channel` with tone mapping off, then shades again.
     void renderDebugChannel(const std::shared_ptr<ModelJob>& job,
                             render::Renderer& renderer,
@@ -173,16 +122,9 @@ class BatchRun {
                             const std::function<void()>& draw);
     // Draws a target's views through the depth channel and reads them back now.
     void renderDepth(const TargetViews& views, float unitsPerModelUnit, double& waiting);
-    // What one step of a 16-bit depth value is, in transforms.json's units: the depth range
-    // covers twice the camera distance.
-    double depthScale() const { return batch::depthScale(mOptions.views); }
     // Draws a target's views and starts reading them back; `waiting` adds the time spent
     // waiting for a free read-back slot.
     void renderChunk(const TargetViews& views, ViewImage kind, double& waiting);
-    // Flushes and renames the model's images (or removes them if it failed), then writes
-    // transforms.json.
-    void finishImages(ModelJob& job);
-    void writeTransforms(ModelJob& job);
     // After a failure: a lost device is replaced, and the renderer with it.
     void recoverIfLost();
     void reportProgress(bool force);
@@ -199,6 +141,8 @@ class BatchRun {
     Clock::time_point mStart = Clock::now();
     std::optional<FailureLog> mFailures;
     SharedCounters mCounters;
+    // Writes to mFailures: made with it, by run().
+    std::optional<ModelWriter> mWriter;
     StageTimes mGpuStages;  // The device thread's stages.
     std::size_t mSkipped = 0;
     StripLayout mLayout;
@@ -295,96 +239,6 @@ void BatchRun::reportProgress(bool force) {
     }
 }
 
-void BatchRun::writeTransforms(ModelJob& job) {
-    const nlohmann::json json =
-        transformsJson(glm::radians(mOptions.views.horizontalFovDegrees), mOptions.width,
-                       mOptions.height, job.cameraToWorld, mOptions.images, depthScale());
-    const std::string text = json.dump(2) + "\n";
-    auto written = writeFileAtomically(
-        job.folder / kTransformsFileName,
-        std::span(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()));
-    if (!written) {
-        job.fail(*mFailures, mCounters, "write", written.error());
-        return;
-    }
-    ++mCounters.rendered;
-}
-
-void BatchRun::encodeView(const std::shared_ptr<ModelJob>& job,
-                          std::uint32_t view,
-                          ViewImage kind,
-                          std::shared_ptr<const gpu::MappedReadback> wide,
-                          std::uint32_t strip) {
-    mPool.submitFirst([this, job, view, kind, wide = std::move(wide), strip]() mutable {
-        const auto start = Clock::now();
-        const double cpuStart = threadCpuSeconds();
-        auto image = std::make_shared<image::ImageRgba8>(
-            cropStrip(wide->rows, wide->bytesPerRow, wide->height, strip, mOptions.width));
-        wide.reset();  // The last strip lets the ring have its buffer back.
-        {
-            std::lock_guard lock(mCounters.mutex);
-            mCounters.encode += secondsSince(start);
-            mCounters.encodeCpu += threadCpuSeconds() - cpuStart;
-        }
-        writeImage(job, view, kind, [kind, image, compression = mOptions.pngCompression] {
-            if (kind == ViewImage::Normal) {
-                decodeNormalImage(*image);
-            }
-            return image::encodePng(*image, compression);
-        });
-    });
-}
-
-void BatchRun::writeImage(const std::shared_ptr<ModelJob>& job,
-                          std::uint32_t view,
-                          ViewImage kind,
-                          std::function<Result<std::vector<std::uint8_t>>()> encode) {
-    mPool.submit([this, job, view, kind, encode = std::move(encode)] {
-        const auto start = Clock::now();
-        const double cpuStart = threadCpuSeconds();
-        if (!job->failed) {
-            auto png = encode();
-            const fs::path path = viewImagePath(job->folder, view, kind);
-            Result<void> written = png ? writePartialFile(path, *png) : Result<void>(png.error());
-            if (!written) {
-                job->fail(*mFailures, mCounters, "write", written.error());
-            } else {
-                std::lock_guard lock(job->writtenMutex);
-                job->written.push_back(path);
-            }
-            if (written && kind == ViewImage::Color) {
-                ++mCounters.views;
-            }
-        }
-        // The last image written completes the model: its images are flushed and renamed
-        // together, then transforms.json goes last, so its presence says every image is in
-        // place.
-        if (job->remaining.fetch_sub(1) == 1) {
-            finishImages(*job);
-        }
-        std::lock_guard lock(mCounters.mutex);
-        mCounters.encode += secondsSince(start);
-        mCounters.encodeCpu += threadCpuSeconds() - cpuStart;
-    });
-}
-
-void BatchRun::finishImages(ModelJob& job) {
-    if (!job.failed) {
-        if (auto committed = commitFiles(job.written); !committed) {
-            job.fail(*mFailures, mCounters, "write", committed.error());
-        }
-    }
-    if (job.failed) {
-        // A failed model leaves no partial files; its finished images are redone next run.
-        for (const fs::path& path : job.written) {
-            std::error_code ignored;
-            fs::remove(partialPath(path), ignored);
-        }
-        return;
-    }
-    writeTransforms(job);
-}
-
 void BatchRun::collectOldest() {
     ChunkInFlight chunk = std::move(mChunks.front());
     mChunks.pop_front();
@@ -400,9 +254,7 @@ void BatchRun::collectOldest() {
         // The pool crops the strips straight out of the mapped buffer: the device thread copies
         // nothing, and the ring unmaps the buffer once the last strip is cropped.
         auto wide = std::make_shared<const gpu::MappedReadback>(std::move(*finished));
-        for (std::uint32_t strip = 0; strip < chunk.count; ++strip) {
-            encodeView(chunk.job, chunk.first + strip, chunk.kind, wide, strip);
-        }
+        mWriter->writeViews(chunk.job, chunk.first, chunk.count, chunk.kind, std::move(wide));
     }
     mGpuStages.readback += secondsSince(start);
     reportProgress(false);
@@ -504,14 +356,7 @@ void BatchRun::renderDepth(const TargetViews& views, float unitsPerModelUnit, do
         job->fail(*mFailures, mCounters, "render", wide.error());
         return;
     }
-    for (std::uint32_t strip = 0; strip < count; ++strip) {
-        image::ImageGray16 depth = depthStrip(*wide, mLayout.targetWidth(), strip, mOptions.width,
-                                              mOptions.height, unitsPerModelUnit, depthScale());
-        writeImage(job, first + strip, ViewImage::Depth,
-                   [depth = std::move(depth), compression = mOptions.pngCompression] {
-                       return image::encodePng16(depth, compression);
-                   });
-    }
+    mWriter->writeDepthViews(job, first, count, *wide, mLayout.targetWidth(), unitsPerModelUnit);
 }
 
 void BatchRun::renderModel(LoadedModel& loaded) {
@@ -532,15 +377,10 @@ void BatchRun::renderModel(LoadedModel& loaded) {
         failBeforeUpload("upload", deviceNotRecreated());
         return;
     }
-    std::error_code ec;
-    fs::create_directories(job->folder, ec);
-    if (ec) {
-        failBeforeUpload("write", makeError(ErrorCode::IoError,
-                                            "Cannot create the folder '" + job->folder.string() +
-                                                "' (" + ec.message() + ")."));
+    if (auto opened = openModelFolder(job->folder); !opened) {
+        failBeforeUpload("write", opened.error());
         return;
     }
-    removePartialFiles(job->folder);
 
     // The pool copies the images into staging buffers while this thread waits for the
     // renderer below: prepare then only records copies (StagedImages.h).
@@ -629,31 +469,7 @@ void BatchRun::renderModel(LoadedModel& loaded) {
 
 Result<BatchSummary> BatchRun::run() {
     const ViewRigOptions& rig = mOptions.views;
-    if (mOptions.width == 0 || mOptions.height == 0 || rig.views == 0) {
-        return makeError(ErrorCode::InvalidArgument,
-                         "A batch needs at least one view of at least one pixel.");
-    }
-    if (!(rig.horizontalFovDegrees > 0.0f && rig.horizontalFovDegrees < 180.0f) ||
-        !(rig.distance > 0.0f)) {
-        return makeError(ErrorCode::InvalidArgument,
-                         "The field of view (" + std::to_string(rig.horizontalFovDegrees) +
-                             " degrees) must lie in (0, 180) and the distance (" +
-                             std::to_string(rig.distance) + ") must be positive.");
-    }
-    if (!(mOptions.lodErrorPixels >= 0.0f) || (mOptions.lodErrorPixels > 0.0f &&
-                                               !render::cullsOnTheGpu(mStrategy.kind))) {
-        return makeError(ErrorCode::InvalidArgument,
-                         "Levels of detail (an error of " +
-                             std::to_string(mOptions.lodErrorPixels) +
-                             " pixels) need a non-negative error and a gpu-culling strategy, "
-                             "which chooses the levels (not " +
-                             render::strategyChoiceName(mStrategy) + ").");
-    }
-    if (mOptions.renderers < 1 || mOptions.renderers > kMaxRenderers) {
-        return makeError(ErrorCode::InvalidArgument,
-                         "A batch takes 1 to " + std::to_string(kMaxRenderers) +
-                             " renderers (asked for " + std::to_string(mOptions.renderers) + ").");
-    }
+    ENCORE_TRY(validateBatchOptions(mOptions));
     std::error_code ec;
     fs::create_directories(mOptions.output, ec);
     if (ec) {
@@ -670,6 +486,7 @@ Result<BatchSummary> BatchRun::run() {
     } else {
         mFailures.emplace(FailureLog::inMemory());
     }
+    mWriter.emplace(mPool, mOptions, *mFailures, mCounters);
     mLayout = stripLayout(mOptions.width, mOptions.height, rig.views, mContext.limits());
     ENCORE_TRY(createRenderers());
 

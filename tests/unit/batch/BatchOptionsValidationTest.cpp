@@ -1,0 +1,117 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "BatchOptionsValidation.h"
+
+namespace encore::batch {
+namespace {
+
+using render::StrategyChoice;
+using render::StrategyKind;
+
+// Whether `options` fail with InvalidArgument and a message that contains `phrase`.
+::testing::AssertionResult rejected(const BatchOptions& options, const std::string& phrase) {
+    auto checked = validateBatchOptions(options);
+    if (checked) {
+        return ::testing::AssertionFailure() << "the options were accepted";
+    }
+    if (checked.error().code != ErrorCode::InvalidArgument) {
+        return ::testing::AssertionFailure() << "not InvalidArgument: " << checked.error().message;
+    }
+    if (checked.error().message.find(phrase) == std::string::npos) {
+        return ::testing::AssertionFailure()
+               << "'" << checked.error().message << "' does not say '" << phrase << "'";
+    }
+    return ::testing::AssertionSuccess();
+}
+
+TEST(BatchOptionsValidationTest, AcceptsTheDefaults) {
+    EXPECT_TRUE(validateBatchOptions(BatchOptions{}).ok());
+}
+
+TEST(BatchOptionsValidationTest, AcceptsTheSmallestBatch) {
+    BatchOptions options;
+    options.width = 1;
+    options.height = 1;
+    options.views.views = 1;
+    options.renderers = 1;
+    EXPECT_TRUE(validateBatchOptions(options).ok());
+    options.renderers = kMaxRenderers;
+    EXPECT_TRUE(validateBatchOptions(options).ok());
+}
+
+TEST(BatchOptionsValidationTest, RejectsNoPixelsOrNoViews) {
+    const std::string phrase = "at least one view of at least one pixel";
+    BatchOptions options;
+    options.width = 0;
+    EXPECT_TRUE(rejected(options, phrase));
+    options = {};
+    options.height = 0;
+    EXPECT_TRUE(rejected(options, phrase));
+    options = {};
+    options.views.views = 0;
+    EXPECT_TRUE(rejected(options, phrase));
+}
+
+TEST(BatchOptionsValidationTest, RejectsAFieldOfViewOutsideTheOpenRange) {
+    BatchOptions options;
+    for (float degrees : {0.0f, -10.0f, 180.0f, 200.0f, std::numeric_limits<float>::quiet_NaN()}) {
+        options.views.horizontalFovDegrees = degrees;
+        EXPECT_TRUE(rejected(options, "must lie in (0, 180)")) << degrees;
+    }
+    options.views.horizontalFovDegrees = 179.0f;
+    EXPECT_TRUE(validateBatchOptions(options).ok());
+}
+
+TEST(BatchOptionsValidationTest, RejectsADistanceThatIsNotPositive) {
+    BatchOptions options;
+    for (float distance : {0.0f, -1.0f, std::numeric_limits<float>::quiet_NaN()}) {
+        options.views.distance = distance;
+        EXPECT_TRUE(rejected(options, "must be positive")) << distance;
+    }
+    options.views.distance = 0.01f;
+    EXPECT_TRUE(validateBatchOptions(options).ok());
+}
+
+TEST(BatchOptionsValidationTest, LevelsOfDetailNeedANonNegativeErrorAndGpuCulling) {
+    BatchOptions options;
+    options.lodErrorPixels = -1.0f;
+    EXPECT_TRUE(rejected(options, "need a non-negative error"));
+    options.lodErrorPixels = std::numeric_limits<float>::quiet_NaN();
+    EXPECT_TRUE(rejected(options, "need a non-negative error"));
+
+    // Without a strategy the batch picks one that culls on the GPU.
+    options.lodErrorPixels = 1.0f;
+    EXPECT_TRUE(validateBatchOptions(options).ok());
+    options.strategy = StrategyChoice::of(StrategyKind::GpuCulling, false);
+    EXPECT_TRUE(validateBatchOptions(options).ok());
+    // A strategy that draws everything cannot choose levels; the error names it.
+    options.strategy = StrategyChoice::of(StrategyKind::Bundles, false);
+    EXPECT_TRUE(rejected(options, "(not " + render::strategyChoiceName(*options.strategy) + ")"));
+    // Full detail goes with any strategy.
+    options.lodErrorPixels = 0.0f;
+    EXPECT_TRUE(validateBatchOptions(options).ok());
+}
+
+TEST(BatchOptionsValidationTest, RejectsRendererCountsOutsideTheRange) {
+    BatchOptions options;
+    options.renderers = 0;
+    EXPECT_TRUE(rejected(options, "renderers (asked for 0)"));
+    options.renderers = kMaxRenderers + 1;
+    EXPECT_TRUE(rejected(options, "A batch takes 1 to " + std::to_string(kMaxRenderers)));
+}
+
+TEST(BatchOptionsValidationTest, DefaultStrategyFollowsLevelsOfDetail) {
+    BatchOptions options;
+    EXPECT_EQ(batchStrategy(options), StrategyChoice::of(StrategyKind::Bundles, false));
+    options.lodErrorPixels = 2.0f;
+    EXPECT_EQ(batchStrategy(options), StrategyChoice::of(StrategyKind::GpuCullingBundles, false));
+    options.strategy = StrategyChoice::of(StrategyKind::Naive, true);
+    EXPECT_EQ(batchStrategy(options), StrategyChoice::of(StrategyKind::Naive, true));
+}
+
+}  // namespace
+}  // namespace encore::batch
