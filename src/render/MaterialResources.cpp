@@ -65,86 +65,6 @@ bool sameSampler(const wgpu::SamplerDescriptor& a, const wgpu::SamplerDescriptor
 
 }  // namespace
 
-std::optional<scene::TextureRef> slotTexture(const scene::Material& material, TextureSlot slot) {
-    switch (slot) {
-        case TextureSlot::BaseColor:
-            return material.baseColorTexture;
-        case TextureSlot::MetallicRoughness:
-            return material.specularGlossiness
-                       ? material.specularGlossiness->specularGlossinessTexture
-                       : material.metallicRoughnessTexture;
-        case TextureSlot::Normal:
-            return material.normalTexture;
-        case TextureSlot::Occlusion:
-            return material.occlusionTexture;
-        case TextureSlot::Emissive:
-            return material.emissiveTexture;
-        case TextureSlot::Specular:
-            return material.specular ? material.specular->specularTexture : std::nullopt;
-        case TextureSlot::SpecularColor:
-            return material.specular ? material.specular->specularColorTexture : std::nullopt;
-        case TextureSlot::Clearcoat:
-            return material.clearcoat ? material.clearcoat->clearcoatTexture : std::nullopt;
-        case TextureSlot::ClearcoatRoughness:
-            return material.clearcoat ? material.clearcoat->clearcoatRoughnessTexture
-                                      : std::nullopt;
-        case TextureSlot::ClearcoatNormal:
-            return material.clearcoat ? material.clearcoat->clearcoatNormalTexture : std::nullopt;
-        case TextureSlot::SheenColor:
-            return material.sheen ? material.sheen->sheenColorTexture : std::nullopt;
-        case TextureSlot::SheenRoughness:
-            return material.sheen ? material.sheen->sheenRoughnessTexture : std::nullopt;
-    }
-    return std::nullopt;
-}
-
-ColorSpace slotColorSpace(const scene::Material& material, TextureSlot slot) {
-    switch (slot) {
-        case TextureSlot::BaseColor:
-        case TextureSlot::Emissive:
-        case TextureSlot::SpecularColor:
-        case TextureSlot::SheenColor:
-            return ColorSpace::Srgb;
-        case TextureSlot::MetallicRoughness:
-            // The specular-glossiness texture holds an sRGB specular colour (alpha stays linear).
-            return material.specularGlossiness ? ColorSpace::Srgb : ColorSpace::Linear;
-        default:
-            return ColorSpace::Linear;
-    }
-}
-
-bool SampledTextures::sampled(TextureSlot slot) const {
-    switch (slot) {
-        case TextureSlot::BaseColor:
-            return baseColor;
-        case TextureSlot::MetallicRoughness:
-            return metallicRoughness;
-        case TextureSlot::Normal:
-            return normal;
-        case TextureSlot::Occlusion:
-            return occlusion;
-        case TextureSlot::Emissive:
-            return emissive;
-        default:
-            return extensions;
-    }
-}
-
-bool materialUsesTexcoord1(const scene::Material& material) {
-    for (std::uint32_t slot = 0; slot < kMaterialTextureSlotCount; ++slot) {
-        const auto texture = slotTexture(material, TextureSlot(slot));
-        if (texture && texture->texCoord == 1) {
-            return true;
-        }
-    }
-    return false;
-}
-
-bool materialHasNormalMap(const scene::Material& material) {
-    return material.normalTexture.has_value() ||
-           (material.clearcoat && material.clearcoat->clearcoatNormalTexture.has_value());
-}
-
 namespace {
 
 void setVector(float (&out)[4], float x, float y, float z, float w) {
@@ -430,17 +350,17 @@ Result<MaterialResources> MaterialResources::create(const wgpu::Device& device,
         SlotIndices samplers;
         textures.fill(kDefaultTexture);
         samplers.fill(defaultSampler);
-        for (std::uint32_t slotIndex = 0; slotIndex < kMaterialTextureSlotCount; ++slotIndex) {
-            const TextureSlot slot = TextureSlot(slotIndex);
-            const std::optional<scene::TextureRef> ref = slotTexture(material, slot);
+        for (const TextureSlotInfo& slot : textureSlots()) {
+            const std::uint32_t slotIndex = std::uint32_t(slot.slot);
+            const std::optional<scene::TextureRef>& ref = slot.texture(material);
             if (!ref) {
                 continue;
             }
             // Unsampled slots are only checked, so they cost neither load time nor memory.
-            if (!sampled.sampled(slot) && ref->texture.index() < scene.textures.size()) {
+            if (!sampled.sampled(slot.slot) && ref->texture.index() < scene.textures.size()) {
                 continue;
             }
-            auto uploaded = builder.referencedTexture(id, ref, slotColorSpace(material, slot));
+            auto uploaded = builder.referencedTexture(id, ref, slotColorSpace(material, slot.slot));
             if (!uploaded) {
                 return uploaded.error();
             }
