@@ -5,7 +5,8 @@
 // is sampled in, which SampledTextures switch uploads it, whether it is a normal map, and which
 // scene::Material field it reads. The slot's texture, its colour space, whether it is uploaded
 // and its uniform transform all come from this table rather than from switches over
-// TextureSlot, so a new slot is one enumerator, one row and two declarations in material.wgsl.
+// TextureSlot, so a new slot is one enumerator, one row and two declarations in material.wgsl;
+// tests/unit/render/MaterialWgslTest.cpp checks the table against material.wgsl.
 //
 // CPU-only: no WebGPU, so the fuzzers and unit tests use it without a device.
 

@@ -4,6 +4,7 @@
 // byte for byte, and makeMaterialUniform packs a scene::Material into it (factors, shading
 // model, feature bits, and each texture slot's texCoord set and KHR_texture_transform).
 // CPU-only: MaterialResources uploads the result; tests and fuzzers call it without a device.
+// tests/unit/render/MaterialWgslTest.cpp checks the layout and the constants against the WGSL.
 
 #include <cstdint>
 
