@@ -6,7 +6,8 @@
 // scene::Material field it reads. The slot's texture, its colour space, whether it is uploaded
 // and its uniform transform all come from this table rather than from switches over
 // TextureSlot, so a new slot is one enumerator, one row and two declarations in material.wgsl;
-// tests/unit/render/MaterialWgslTest.cpp checks the table against material.wgsl.
+// tests/unit/render/MaterialWgslTest.cpp checks the table against material.wgsl. Every place
+// a new material extension touches: docs/adding-a-material-extension.md.
 //
 // CPU-only: no WebGPU, so the fuzzers and unit tests use it without a device.
 
