@@ -1,375 +1,30 @@
 #include "encore/render/MaterialResources.h"
 
+// MaterialResources::create resolves each material's slots (textureSlots()) to textures and
+// samplers that MaterialResources::Builder uploads (MaterialResourcesBuilder.cpp), packs the
+// uniforms (MaterialUniform.cpp) and makes the bind groups; the rest of the class keeps them.
+
 #include <algorithm>
 #include <array>
 #include <cassert>
 #include <chrono>
-#include <cmath>
 #include <cstring>
 #include <optional>
 #include <string>
-#include <tuple>
 #include <utility>
 
-#include "FittedImage.h"
+#include "MaterialResourcesBuilder.h"
 #include "MipmapGenerator.h"
 #include "encore/core/Elapsed.h"
 #include "encore/gpu/Upload.h"
-#include "encore/render/GltfToWebGpu.h"
-#include "encore/render/StagedImages.h"
 
 namespace encore::render {
 
 namespace {
 
 constexpr std::uint64_t kUniformSize = sizeof(MaterialUniform);
-// RenderAttachment for the mip generator's passes; CopySrc so tests and tools can read any
-// level back (it costs nothing on the drivers Encore targets).
-constexpr wgpu::TextureUsage kTextureUsage =
-    wgpu::TextureUsage::TextureBinding | wgpu::TextureUsage::CopyDst |
-    wgpu::TextureUsage::RenderAttachment | wgpu::TextureUsage::CopySrc;
-
-std::string describeImage(scene::ImageId id, const scene::Image& image) {
-    if (!id.valid()) {
-        return "Image '" + image.name + "'";  // A replacement, not one of the scene's images.
-    }
-    return "Image " + std::to_string(id.value) + " ('" + image.name + "')";
-}
-
-std::string describeMaterial(scene::MaterialId id, const scene::Material& material) {
-    return "Material " + std::to_string(id.value) + " ('" + material.name + "')";
-}
-
-wgpu::SamplerDescriptor samplerDescriptor(const scene::Sampler& sampler) {
-    wgpu::SamplerDescriptor descriptor{};
-    descriptor.addressModeU = addressMode(sampler.wrapS);
-    descriptor.addressModeV = addressMode(sampler.wrapT);
-    descriptor.addressModeW = wgpu::AddressMode::Repeat;
-    descriptor.magFilter = filterMode(sampler.magFilter);
-    descriptor.minFilter = filterMode(sampler.minFilter);
-    descriptor.mipmapFilter = mipmapFilterMode(sampler.mipmapFilter);
-    if (!sampler.useMipmaps) {
-        // glTF's minFilter NEAREST/LINEAR means "no mipmaps": pin sampling to level 0.
-        descriptor.mipmapFilter = wgpu::MipmapFilterMode::Nearest;
-        descriptor.lodMaxClamp = 0.0f;
-    }
-    descriptor.maxAnisotropy = 1;
-    return descriptor;
-}
-
-bool sameSampler(const wgpu::SamplerDescriptor& a, const wgpu::SamplerDescriptor& b) {
-    return a.addressModeU == b.addressModeU && a.addressModeV == b.addressModeV &&
-           a.magFilter == b.magFilter && a.minFilter == b.minFilter &&
-           a.mipmapFilter == b.mipmapFilter && a.lodMaxClamp == b.lodMaxClamp;
-}
 
 }  // namespace
-
-std::optional<scene::TextureRef> slotTexture(const scene::Material& material, TextureSlot slot) {
-    switch (slot) {
-        case TextureSlot::BaseColor:
-            return material.baseColorTexture;
-        case TextureSlot::MetallicRoughness:
-            return material.specularGlossiness
-                       ? material.specularGlossiness->specularGlossinessTexture
-                       : material.metallicRoughnessTexture;
-        case TextureSlot::Normal:
-            return material.normalTexture;
-        case TextureSlot::Occlusion:
-            return material.occlusionTexture;
-        case TextureSlot::Emissive:
-            return material.emissiveTexture;
-        case TextureSlot::Specular:
-            return material.specular ? material.specular->specularTexture : std::nullopt;
-        case TextureSlot::SpecularColor:
-            return material.specular ? material.specular->specularColorTexture : std::nullopt;
-        case TextureSlot::Clearcoat:
-            return material.clearcoat ? material.clearcoat->clearcoatTexture : std::nullopt;
-        case TextureSlot::ClearcoatRoughness:
-            return material.clearcoat ? material.clearcoat->clearcoatRoughnessTexture
-                                      : std::nullopt;
-        case TextureSlot::ClearcoatNormal:
-            return material.clearcoat ? material.clearcoat->clearcoatNormalTexture : std::nullopt;
-        case TextureSlot::SheenColor:
-            return material.sheen ? material.sheen->sheenColorTexture : std::nullopt;
-        case TextureSlot::SheenRoughness:
-            return material.sheen ? material.sheen->sheenRoughnessTexture : std::nullopt;
-    }
-    return std::nullopt;
-}
-
-ColorSpace slotColorSpace(const scene::Material& material, TextureSlot slot) {
-    switch (slot) {
-        case TextureSlot::BaseColor:
-        case TextureSlot::Emissive:
-        case TextureSlot::SpecularColor:
-        case TextureSlot::SheenColor:
-            return ColorSpace::Srgb;
-        case TextureSlot::MetallicRoughness:
-            // The specular-glossiness texture holds an sRGB specular colour (alpha stays linear).
-            return material.specularGlossiness ? ColorSpace::Srgb : ColorSpace::Linear;
-        default:
-            return ColorSpace::Linear;
-    }
-}
-
-bool SampledTextures::sampled(TextureSlot slot) const {
-    switch (slot) {
-        case TextureSlot::BaseColor:
-            return baseColor;
-        case TextureSlot::MetallicRoughness:
-            return metallicRoughness;
-        case TextureSlot::Normal:
-            return normal;
-        case TextureSlot::Occlusion:
-            return occlusion;
-        case TextureSlot::Emissive:
-            return emissive;
-        default:
-            return extensions;
-    }
-}
-
-bool materialUsesTexcoord1(const scene::Material& material) {
-    for (std::uint32_t slot = 0; slot < kMaterialTextureSlotCount; ++slot) {
-        const auto texture = slotTexture(material, TextureSlot(slot));
-        if (texture && texture->texCoord == 1) {
-            return true;
-        }
-    }
-    return false;
-}
-
-bool materialHasNormalMap(const scene::Material& material) {
-    return material.normalTexture.has_value() ||
-           (material.clearcoat && material.clearcoat->clearcoatNormalTexture.has_value());
-}
-
-namespace {
-
-void setVector(float (&out)[4], float x, float y, float z, float w) {
-    out[0] = x;
-    out[1] = y;
-    out[2] = z;
-    out[3] = w;
-}
-
-// KHR_texture_transform: Translation * Rotation * Scale, with Rotation = [cos sin; -sin cos]
-// (the extension's convention, not the usual one), as the two rows of a 2x3 matrix.
-TextureSlotUniform makeSlotUniform(const std::optional<scene::TextureRef>& texture) {
-    scene::TextureTransform transform;
-    if (texture && texture->transform) {
-        transform = *texture->transform;
-    }
-    const float c = std::cos(transform.rotation);
-    const float s = std::sin(transform.rotation);
-    TextureSlotUniform slot{};
-    setVector(slot.row0, c * transform.scale.x, s * transform.scale.y, transform.offset.x,
-              texture && texture->texCoord == 1 ? 1.0f : 0.0f);
-    setVector(slot.row1, -s * transform.scale.x, c * transform.scale.y, transform.offset.y, 0.0f);
-    return slot;
-}
-
-}  // namespace
-
-MaterialUniform makeMaterialUniform(const scene::Material& material) {
-    MaterialUniform uniform{};
-    const glm::vec4& base = material.baseColorFactor;
-    setVector(uniform.baseColorFactor, base.r, base.g, base.b, base.a);
-    const glm::vec3 emissive = material.emissiveFactor * material.emissiveStrength;
-    setVector(uniform.emissive, emissive.r, emissive.g, emissive.b, 0.0f);
-    setVector(uniform.metallicRoughness, material.metallicFactor, material.roughnessFactor,
-              material.normalScale, material.occlusionStrength);
-    setVector(uniform.alpha,
-              material.alphaMode == scene::AlphaMode::Mask ? material.alphaCutoff : 0.0f,
-              material.alphaMode == scene::AlphaMode::Blend ? 1.0f : 0.0f, material.ior, 0.0f);
-    std::uint32_t features = 0;
-    if (material.normalTexture) {
-        features |= kMaterialNormalMap;
-    }
-    setVector(uniform.specular, 1.0f, 1.0f, 1.0f, 1.0f);
-    if (material.specular) {
-        const scene::SpecularExtension& specular = *material.specular;
-        setVector(uniform.specular, specular.specularColorFactor.r, specular.specularColorFactor.g,
-                  specular.specularColorFactor.b, specular.specularFactor);
-        features |= kMaterialSpecular;
-    }
-    if (material.clearcoat) {
-        const scene::ClearcoatExtension& clearcoat = *material.clearcoat;
-        setVector(uniform.clearcoat, clearcoat.clearcoatFactor, clearcoat.clearcoatRoughnessFactor,
-                  clearcoat.clearcoatNormalScale, 0.0f);
-        features |= kMaterialClearcoat;
-        if (clearcoat.clearcoatNormalTexture) {
-            features |= kMaterialClearcoatNormalMap;
-        }
-    }
-    if (material.sheen) {
-        const scene::SheenExtension& sheen = *material.sheen;
-        setVector(uniform.sheen, sheen.sheenColorFactor.r, sheen.sheenColorFactor.g,
-                  sheen.sheenColorFactor.b, sheen.sheenRoughnessFactor);
-        features |= kMaterialSheen;
-    }
-    std::uint32_t model = 0;
-    if (material.specularGlossiness) {
-        const scene::SpecularGlossinessExtension& glossiness = *material.specularGlossiness;
-        setVector(uniform.specularGlossiness, glossiness.specularFactor.r,
-                  glossiness.specularFactor.g, glossiness.specularFactor.b,
-                  glossiness.glossinessFactor);
-        model = 1;
-    }
-    if (material.unlit) {
-        model = 2;
-    }
-    uniform.flags[0] = model;
-    uniform.flags[1] = features;
-    for (std::uint32_t slot = 0; slot < kMaterialTextureSlotCount; ++slot) {
-        uniform.slots[slot] = makeSlotUniform(slotTexture(material, TextureSlot(slot)));
-    }
-    return uniform;
-}
-
-// Creation state that the finished MaterialResources does not keep.
-struct MaterialResources::Builder {
-    const wgpu::Device& device;
-    const wgpu::Queue& queue;
-    const scene::SceneData& scene;
-    MaterialResources& out;
-    MipmapGenerator& mipmaps;
-    wgpu::CommandEncoder encoder;
-    StagedImages* staged = nullptr;
-    std::uint32_t maxDimension = 8192;
-
-    std::size_t addTexture(const std::string& label,
-                           std::uint32_t width,
-                           std::uint32_t height,
-                           wgpu::TextureFormat format,
-                           const std::uint8_t* pixels,
-                           const wgpu::TexelCopyBufferInfo* stagedPixels = nullptr) {
-        wgpu::TextureDescriptor descriptor{};
-        descriptor.label = label.c_str();
-        descriptor.usage = kTextureUsage;
-        descriptor.dimension = wgpu::TextureDimension::e2D;
-        descriptor.size = {width, height, 1};
-        descriptor.format = format;
-        descriptor.mipLevelCount = fullMipLevelCount(width, height);
-        auto start = std::chrono::steady_clock::now();
-        wgpu::Texture texture = device.CreateTexture(&descriptor);
-        out.mUploadTimes.creation += millisecondsSince(start);
-        start = std::chrono::steady_clock::now();
-
-        wgpu::TexelCopyTextureInfo destination{};
-        destination.texture = texture;
-        wgpu::TexelCopyBufferLayout layout{};
-        layout.bytesPerRow = width * 4;
-        layout.rowsPerImage = height;
-        const wgpu::Extent3D extent{width, height, 1};
-        if (stagedPixels) {
-            // Before the mip passes that read it, in the same command buffer.
-            encoder.CopyBufferToTexture(stagedPixels, &destination, &extent);
-        } else {
-            queue.WriteTexture(&destination, pixels, std::size_t(width) * height * 4, &layout,
-                               &extent);
-        }
-        out.mUploadTimes.writes += millisecondsSince(start);
-        out.mUploadedBytes += std::uint64_t(width) * height * 4;
-        out.mTextures.push_back(std::move(texture));
-        return out.mTextures.size() - 1;
-    }
-
-    // The texture of `image` in `space`, created on first use; kNone when the image has no
-    // pixels (the loader already warned about it).
-    Result<std::size_t> imageTexture(scene::ImageId id, ColorSpace space) {
-        if (!id.valid()) {
-            return kNone;
-        }
-        if (id.index() >= scene.images.size()) {
-            return makeError(ErrorCode::InvalidArgument, "Image " + std::to_string(id.value) +
-                                                             " does not exist (the scene has " +
-                                                             std::to_string(scene.images.size()) +
-                                                             " images).");
-        }
-        ImageTextures& textures = out.mImageTextures[id.index()];
-        std::size_t& slot = space == ColorSpace::Srgb ? textures.srgb : textures.linear;
-        if (slot != kNone) {
-            return slot;
-        }
-        auto uploaded = uploadImage(id, scene.images[id.index()], space);
-        if (uploaded) {
-            slot = *uploaded;
-        }
-        return uploaded;
-    }
-
-    // Validates and uploads one image with its mip chain; kNone when it has no pixels.
-    Result<std::size_t> uploadImage(scene::ImageId id, const scene::Image& image,
-                                    ColorSpace space) {
-        if (image.rgba8.empty() || image.width == 0 || image.height == 0) {
-            return kNone;
-        }
-        const std::uint64_t expected = std::uint64_t(image.width) * image.height * 4;
-        if (image.rgba8.size() != expected) {
-            return makeError(ErrorCode::InvalidArgument,
-                             describeImage(id, image) + " has " +
-                                 std::to_string(image.rgba8.size()) + " bytes of pixels (" +
-                                 std::to_string(image.width) + "x" + std::to_string(image.height) +
-                                 " RGBA8 needs " + std::to_string(expected) + ").");
-        }
-        const bool srgb = space == ColorSpace::Srgb;
-        const FittedImage fitted = fitImage(describeImage(id, image), image, srgb, maxDimension);
-        // Staged images hold the original pixels: a downscaled one is written instead.
-        const auto waitStart = std::chrono::steady_clock::now();
-        const std::optional<wgpu::TexelCopyBufferInfo> stagedPixels =
-            staged && fitted.downscaled.empty() ? staged->copySource(id) : std::nullopt;
-        out.mUploadTimes.writes += millisecondsSince(waitStart);
-        const std::size_t index = addTexture(
-            image.name + (srgb ? " (sRGB)" : " (linear)"), fitted.size.width, fitted.size.height,
-            srgb ? wgpu::TextureFormat::RGBA8UnormSrgb : wgpu::TextureFormat::RGBA8Unorm,
-            fitted.pixels(), stagedPixels ? &*stagedPixels : nullptr);
-        const auto start = std::chrono::steady_clock::now();
-        ENCORE_TRY(mipmaps.generate(encoder, out.mTextures[index]));
-        out.mUploadTimes.mipmaps += millisecondsSince(start);
-        return index;
-    }
-
-    // The texture a texture reference binds, validating the reference on the way.
-    Result<std::size_t> referencedTexture(scene::MaterialId materialId,
-                                          const std::optional<scene::TextureRef>& ref,
-                                          ColorSpace space) {
-        if (!ref) {
-            return kNone;
-        }
-        if (ref->texture.index() >= scene.textures.size()) {
-            return makeError(ErrorCode::InvalidArgument,
-                             describeMaterial(materialId, scene.materials[materialId.index()]) +
-                                 " references texture " + std::to_string(ref->texture.value) +
-                                 ", but the scene has " + std::to_string(scene.textures.size()) +
-                                 " textures.");
-        }
-        auto texture = imageTexture(scene.textures[ref->texture.index()].image, space);
-        if (!texture) {
-            return texture.error().withContext(
-                describeMaterial(materialId, scene.materials[materialId.index()]));
-        }
-        return texture;
-    }
-
-    // One wgpu::Sampler per distinct state; scene samplers with equal state share it.
-    std::size_t addSampler(const scene::Sampler& sampler, const std::string& label) {
-        const wgpu::SamplerDescriptor wanted = samplerDescriptor(sampler);
-        for (std::size_t i = 0; i < descriptors.size(); ++i) {
-            if (sameSampler(descriptors[i], wanted)) {
-                return i;
-            }
-        }
-        wgpu::SamplerDescriptor labelled = wanted;
-        labelled.label = label.c_str();
-        out.mSamplers.push_back(device.CreateSampler(&labelled));
-        descriptors.push_back(wanted);
-        return out.mSamplers.size() - 1;
-    }
-
-    std::vector<wgpu::SamplerDescriptor> descriptors;  // Parallel to out.mSamplers, unlabelled.
-};
 
 Result<MaterialResources> MaterialResources::create(const wgpu::Device& device,
                                                     const wgpu::Queue& queue,
@@ -430,17 +85,17 @@ Result<MaterialResources> MaterialResources::create(const wgpu::Device& device,
         SlotIndices samplers;
         textures.fill(kDefaultTexture);
         samplers.fill(defaultSampler);
-        for (std::uint32_t slotIndex = 0; slotIndex < kMaterialTextureSlotCount; ++slotIndex) {
-            const TextureSlot slot = TextureSlot(slotIndex);
-            const std::optional<scene::TextureRef> ref = slotTexture(material, slot);
+        for (const TextureSlotInfo& slot : textureSlots()) {
+            const std::uint32_t slotIndex = std::uint32_t(slot.slot);
+            const std::optional<scene::TextureRef>& ref = slot.texture(material);
             if (!ref) {
                 continue;
             }
             // Unsampled slots are only checked, so they cost neither load time nor memory.
-            if (!sampled.sampled(slot) && ref->texture.index() < scene.textures.size()) {
+            if (!sampled.sampled(slot.slot) && ref->texture.index() < scene.textures.size()) {
                 continue;
             }
-            auto uploaded = builder.referencedTexture(id, ref, slotColorSpace(material, slot));
+            auto uploaded = builder.referencedTexture(id, ref, slotColorSpace(material, slot.slot));
             if (!uploaded) {
                 return uploaded.error();
             }

@@ -3,6 +3,10 @@
 // MATERIAL_TEXTURES each slot has its own sampler (the glTF sampler of its texture) and texture
 // (a 1-pixel default when the material has none: white, so that factors multiply through
 // unchanged). Materials with no texture at all bind the uniform only and read white.
+//
+// Written by hand to match C++: the slot table (render/MaterialSlots.h: names, bindings, slot
+// indices), MaterialUniform and the kMaterial*/kModel* values (render/MaterialUniform.h).
+// tests/unit/render/MaterialWgslTest.cpp fails when they disagree.
 
 // Rows of the slot's 2x3 texture transform applied to (u, v, 1); row0.w: 1 reads TEXCOORD_1.
 struct TextureSlot {

@@ -4,15 +4,16 @@
 // buffer holding every material's factors, and one bind group per material for group 2 of
 // mesh.wgsl (BindGroupLayouts::material, material.wgsl).
 //
-// A material has twelve texture slots (TextureSlot): the core metallic-roughness, normal,
-// occlusion and emissive textures and those of the extensions Encore shades. Each slot binds
-// its own sampler and texture and has its own texCoord set and KHR_texture_transform in the
-// uniform. Textures: one per glTF image that a material references, in the colour space of its
-// use (base colour, emissive, specular colour, sheen colour and the specular-glossiness texture
-// sRGB; the rest linear); an image used both ways gets two textures. Every texture has its full
-// mip chain, generated on the GPU at creation. A slot without a texture, or whose image is
-// missing or undecoded, binds a 1x1 opaque white texture, so factors multiply through
-// unchanged and the shader needs no variant for it (normal maps are switched by a flag).
+// A material has twelve texture slots (TextureSlot, one row each in the table of
+// MaterialSlots.h): the core metallic-roughness, normal, occlusion and emissive textures and
+// those of the extensions Encore shades. Each slot binds its own sampler and texture and has its
+// own texCoord set and KHR_texture_transform in the uniform (MaterialUniform.h). Textures: one
+// per glTF image that a material references, in the colour space of its use (the table's: base
+// colour, emissive, specular colour, sheen colour and the specular-glossiness texture sRGB; the
+// rest linear); an image used both ways gets two textures. Every texture has its full mip
+// chain, generated on the GPU at creation. A slot without a texture, or whose image is missing
+// or undecoded, binds a 1x1 opaque white texture, so factors multiply through unchanged and the
+// shader needs no variant for it (normal maps are switched by a flag).
 //
 // Samplers: one per distinct glTF sampler state (equal states share one), and the glTF default
 // (repeat, linear, linear mipmaps) for slots without a texture. A sampler that glTF declares
@@ -31,92 +32,12 @@
 
 #include "encore/core/Result.h"
 #include "encore/render/BindGroupLayouts.h"
+#include "encore/render/MaterialSlots.h"
+#include "encore/render/MaterialUniform.h"
 #include "encore/scene/SceneData.h"
 #include "encore/shaders/ShaderLibrary.h"
 
 namespace encore::render {
-
-// The texture slots of material.wgsl, in binding order.
-enum class TextureSlot : std::uint32_t {
-    BaseColor,          // Specular-glossiness: the diffuse texture.
-    MetallicRoughness,  // Specular-glossiness: the specular-glossiness texture.
-    Normal,
-    Occlusion,
-    Emissive,
-    Specular,
-    SpecularColor,
-    Clearcoat,
-    ClearcoatRoughness,
-    ClearcoatNormal,
-    SheenColor,
-    SheenRoughness,
-};
-inline constexpr std::uint32_t kMaterialTextureSlotCount = 12;
-constexpr std::uint32_t materialSamplerBinding(std::uint32_t slot) { return 1 + 2 * slot; }
-constexpr std::uint32_t materialTextureBinding(std::uint32_t slot) { return 2 + 2 * slot; }
-
-// The texture reference of `material` in `slot` (nullopt when it has none).
-std::optional<scene::TextureRef> slotTexture(const scene::Material& material, TextureSlot slot);
-
-// One slot's texture coordinates: the rows of its 2x3 KHR_texture_transform matrix; row0[3] is
-// 1 when the slot reads TEXCOORD_1.
-struct TextureSlotUniform {
-    float row0[4];
-    float row1[4];
-};
-
-// Bits of MaterialUniform::flags[1] (material.wgsl's kMaterial*).
-inline constexpr std::uint32_t kMaterialNormalMap = 1;
-inline constexpr std::uint32_t kMaterialClearcoatNormalMap = 2;
-inline constexpr std::uint32_t kMaterialClearcoat = 4;
-inline constexpr std::uint32_t kMaterialSheen = 8;
-inline constexpr std::uint32_t kMaterialSpecular = 16;
-
-// The `Material` struct of material.wgsl, byte for byte.
-struct MaterialUniform {
-    float baseColorFactor[4];
-    float emissive[4];            // emissiveFactor * emissiveStrength.
-    float metallicRoughness[4];   // metallic, roughness, normal scale, occlusion strength.
-    float alpha[4];               // alphaCutoff (MASK only, 0 stays 0), BLEND flag, IOR.
-    float specular[4];            // Specular colour factor, specular factor.
-    float clearcoat[4];           // Factor, roughness factor, normal scale.
-    float sheen[4];               // Colour factor, roughness factor.
-    float specularGlossiness[4];  // Specular factor, glossiness factor.
-    std::uint32_t flags[4];       // Shading model (0 metal-rough, 1 spec-gloss, 2 unlit), bits.
-    TextureSlotUniform slots[kMaterialTextureSlotCount];
-};
-static_assert(sizeof(MaterialUniform) == 528);
-
-// The uniform contents of `material` (no GPU involved).
-MaterialUniform makeMaterialUniform(const scene::Material& material);
-
-// Whether the material reads TEXCOORD_1 in any slot (a shader variant).
-bool materialUsesTexcoord1(const scene::Material& material);
-// Whether the material has a normal map (base or clear coat): TANGENT is then worth binding.
-bool materialHasNormalMap(const scene::Material& material);
-
-enum class ColorSpace : std::uint8_t {
-    Srgb,    // Colour data: base colour, emissive, specular and sheen colour.
-    Linear,  // Non-colour data: metallic-roughness, normal, occlusion, factors.
-};
-
-// The colour space a slot's texture is sampled in for `material`.
-ColorSpace slotColorSpace(const scene::Material& material, TextureSlot slot);
-
-// Which material texture slots are uploaded (with mip chains); references in the others are
-// still validated. Encore's shading samples all of them.
-struct SampledTextures {
-    bool baseColor = true;
-    bool metallicRoughness = true;
-    bool normal = true;
-    bool occlusion = true;
-    bool emissive = true;
-    bool extensions = true;  // Specular, clearcoat and sheen slots.
-
-    static SampledTextures all() { return {}; }
-    static SampledTextures baseColorOnly() { return {true, false, false, false, false, false}; }
-    bool sampled(TextureSlot slot) const;
-};
 
 class MipmapGenerator;
 class StagedImages;

@@ -1,0 +1,100 @@
+#pragma once
+
+// The texture slots of a material, as one table (textureSlots()). Each row says, for one slot of
+// material.wgsl: the names of its sampler and texture variables, the colour space its texture
+// is sampled in, which SampledTextures switch uploads it, whether it is a normal map, and which
+// scene::Material field it reads. The slot's texture, its colour space, whether it is uploaded
+// and its uniform transform all come from this table rather than from switches over
+// TextureSlot, so a new slot is one enumerator, one row and two declarations in material.wgsl;
+// tests/unit/render/MaterialWgslTest.cpp checks the table against material.wgsl. Every place
+// a new material extension touches: docs/adding-a-material-extension.md.
+//
+// CPU-only: no WebGPU, so the fuzzers and unit tests use it without a device.
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string_view>
+
+#include "encore/scene/SceneData.h"
+
+namespace encore::render {
+
+// The texture slots of material.wgsl, in binding order.
+enum class TextureSlot : std::uint32_t {
+    BaseColor,          // Specular-glossiness: the diffuse texture.
+    MetallicRoughness,  // Specular-glossiness: the specular-glossiness texture.
+    Normal,
+    Occlusion,
+    Emissive,
+    Specular,
+    SpecularColor,
+    Clearcoat,
+    ClearcoatRoughness,
+    ClearcoatNormal,
+    SheenColor,
+    SheenRoughness,
+};
+inline constexpr std::uint32_t kMaterialTextureSlotCount = 12;
+// Group 2's bindings: 0 is the uniform, then a sampler and a texture per slot.
+constexpr std::uint32_t materialSamplerBinding(std::uint32_t slot) { return 1 + 2 * slot; }
+constexpr std::uint32_t materialTextureBinding(std::uint32_t slot) { return 2 + 2 * slot; }
+
+enum class ColorSpace : std::uint8_t {
+    Srgb,    // Colour data: base colour, emissive, specular and sheen colour.
+    Linear,  // Non-colour data: metallic-roughness, normal, occlusion, factors.
+};
+
+// Which material texture slots are uploaded (with mip chains); references in the others are
+// still validated. Encore's shading samples all of them. A slot's switch is its table row's
+// `sampled` member.
+struct SampledTextures {
+    bool baseColor = true;
+    bool metallicRoughness = true;
+    bool normal = true;
+    bool occlusion = true;
+    bool emissive = true;
+    bool extensions = true;  // Specular, clearcoat and sheen slots.
+
+    static SampledTextures all() { return {}; }
+    static SampledTextures baseColorOnly() { return {true, false, false, false, false, false}; }
+    bool sampled(TextureSlot slot) const;
+};
+
+// One row of the slot table.
+struct TextureSlotInfo {
+    TextureSlot slot;
+    // material.wgsl's variables, at @group(2) @binding(materialSamplerBinding(slot)) and
+    // @binding(materialTextureBinding(slot)).
+    std::string_view samplerName;
+    std::string_view textureName;
+    // The colour space of the slot's texture, and the one it has when the material uses
+    // KHR_materials_pbrSpecularGlossiness (whose specular-glossiness texture, read through the
+    // metallic-roughness slot, holds an sRGB specular colour; its alpha stays linear).
+    ColorSpace colorSpace;
+    ColorSpace specularGlossinessColorSpace;
+    // The SampledTextures switch that uploads the slot's texture.
+    bool SampledTextures::*sampled;
+    // A tangent-space normal map: a primitive drawn with it is worth binding TANGENT for.
+    bool normalMap;
+    // The texture reference the slot reads: an empty optional when the material, or the
+    // extension owning the slot, has none. The reference lives in `material`.
+    const std::optional<scene::TextureRef>& (*texture)(const scene::Material& material);
+};
+
+// The table, indexed by TextureSlot.
+std::span<const TextureSlotInfo, kMaterialTextureSlotCount> textureSlots();
+const TextureSlotInfo& textureSlotInfo(TextureSlot slot);
+
+// The texture reference of `material` in `slot` (nullopt when it has none).
+std::optional<scene::TextureRef> slotTexture(const scene::Material& material, TextureSlot slot);
+
+// The colour space a slot's texture is sampled in for `material`.
+ColorSpace slotColorSpace(const scene::Material& material, TextureSlot slot);
+
+// Whether the material reads TEXCOORD_1 in any slot (a shader variant).
+bool materialUsesTexcoord1(const scene::Material& material);
+// Whether the material has a normal map (base or clear coat): TANGENT is then worth binding.
+bool materialHasNormalMap(const scene::Material& material);
+
+}  // namespace encore::render

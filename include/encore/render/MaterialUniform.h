@@ -1,0 +1,55 @@
+#pragma once
+
+// The uniform half of a material: MaterialUniform is the `Material` struct of material.wgsl
+// byte for byte, and makeMaterialUniform packs a scene::Material into it (factors, shading
+// model, feature bits, and each texture slot's texCoord set and KHR_texture_transform).
+// CPU-only: MaterialResources uploads the result; tests and fuzzers call it without a device.
+// tests/unit/render/MaterialWgslTest.cpp checks the layout and the constants against the WGSL.
+
+#include <cstdint>
+
+#include "encore/render/MaterialSlots.h"
+#include "encore/scene/SceneData.h"
+
+namespace encore::render {
+
+// One slot's texture coordinates: the rows of its 2x3 KHR_texture_transform matrix; row0[3] is
+// 1 when the slot reads TEXCOORD_1.
+struct TextureSlotUniform {
+    float row0[4];
+    float row1[4];
+};
+
+// MaterialUniform::flags[0] (material.wgsl's kModel*).
+enum class ShadingModel : std::uint32_t {
+    MetallicRoughness = 0,
+    SpecularGlossiness = 1,  // KHR_materials_pbrSpecularGlossiness.
+    Unlit = 2,               // KHR_materials_unlit (wins over specular-glossiness).
+};
+
+// Bits of MaterialUniform::flags[1] (material.wgsl's kMaterial*).
+inline constexpr std::uint32_t kMaterialNormalMap = 1;
+inline constexpr std::uint32_t kMaterialClearcoatNormalMap = 2;
+inline constexpr std::uint32_t kMaterialClearcoat = 4;
+inline constexpr std::uint32_t kMaterialSheen = 8;
+inline constexpr std::uint32_t kMaterialSpecular = 16;
+
+// The `Material` struct of material.wgsl, byte for byte.
+struct MaterialUniform {
+    float baseColorFactor[4];
+    float emissive[4];            // emissiveFactor * emissiveStrength.
+    float metallicRoughness[4];   // metallic, roughness, normal scale, occlusion strength.
+    float alpha[4];               // alphaCutoff (MASK only, 0 stays 0), BLEND flag, IOR.
+    float specular[4];            // Specular colour factor, specular factor.
+    float clearcoat[4];           // Factor, roughness factor, normal scale.
+    float sheen[4];               // Colour factor, roughness factor.
+    float specularGlossiness[4];  // Specular factor, glossiness factor.
+    std::uint32_t flags[4];       // ShadingModel, kMaterial* bits.
+    TextureSlotUniform slots[kMaterialTextureSlotCount];  // Indexed by TextureSlot.
+};
+static_assert(sizeof(MaterialUniform) == 528);
+
+// The uniform contents of `material` (no GPU involved).
+MaterialUniform makeMaterialUniform(const scene::Material& material);
+
+}  // namespace encore::render
