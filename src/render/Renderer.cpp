@@ -7,6 +7,7 @@
 #include "encore/core/Elapsed.h"
 #include "encore/gpu/OutOfMemoryScope.h"
 #include "encore/gpu/Readback.h"
+#include "encore/gpu/TimedSubmit.h"
 #include "encore/render/GpuCuller.h"
 #include "encore/render/PipelineCache.h"
 #include "encore/render/SceneLimits.h"
@@ -348,122 +349,114 @@ FrameResult Renderer::renderPasses(std::span<const Camera> cameras, float timeSe
         state.phase = DrawPhase::First;
     }
 
-    const auto encodeStart = std::chrono::steady_clock::now();
-    wgpu::CommandEncoder commandEncoder = mContext->device().CreateCommandEncoder();
-    if (mGpuAnimation && mGpuAnimationPending) {
-        mGpuAnimation->encode(commandEncoder);  // Before anything that reads its results.
-        mGpuAnimationPending = false;
-    }
     const GpuCuller* culler = mStrategy ? mStrategy->culler() : nullptr;
-    if (mStrategy) {
-        mStrategy->beforePass(commandEncoder, state);
-    }
-    const std::uint32_t viewWidth = mTarget.width() / std::uint32_t(cameras.size());
-    // One pass per view, or the two passes of a two-phase frame: the first keeps its colour and
-    // depth for the second (multisampled: unresolved), which loads them and finishes the view.
-    auto encodePass = [&](std::size_t view, DrawPhase phase) {
-        // HDR: alpha is coverage, 0 where nothing is drawn, for the tone mapper's background.
-        // Otherwise the background colour itself (linear: the sRGB target encodes the clear).
-        const glm::vec3& background = mOptions.toneMapping.backgroundColor;
-        wgpu::RenderPassColorAttachment color = mTarget.colorAttachment(
-            mTarget.hdr() ? wgpu::Color{0.0, 0.0, 0.0, 0.0}
-                          : wgpu::Color{background.r, background.g, background.b, 1.0});
-        wgpu::RenderPassDepthStencilAttachment depth = mTarget.depthAttachment();
-        if (view > 0 || phase == DrawPhase::Second) {
-            color.loadOp = wgpu::LoadOp::Load;  // Keep the views (or the phase) drawn before.
-        }
-        if (multiView) {
-            color.storeOp = wgpu::StoreOp::Store;  // Multisampled contents survive the passes.
-            if (view + 1 < cameras.size()) {
-                // A resolve writes the whole target, whatever the viewport: resolve once, after
-                // the last view, rather than the whole wide target once per view.
-                color.resolveTarget = nullptr;
-            }
-            // Depth likewise: cleared once for the whole target and kept between the passes,
-            // rather than cleared whole by each (each view tests only its own strip).
-            if (view > 0) {
-                depth.depthLoadOp = wgpu::LoadOp::Load;
-            }
-            if (view + 1 < cameras.size()) {
-                depth.depthStoreOp = wgpu::StoreOp::Store;
-            }
-        }
-        if (phase == DrawPhase::First) {
-            color.storeOp = wgpu::StoreOp::Store;
-            color.resolveTarget = nullptr;  // The second pass resolves.
-            depth.depthStoreOp = wgpu::StoreOp::Store;
-        } else if (phase == DrawPhase::Second) {
-            depth.depthLoadOp = wgpu::LoadOp::Load;
-        }
-        wgpu::RenderPassDescriptor passDescriptor{};
-        passDescriptor.label = phase == DrawPhase::First    ? "encore frame (first phase)"
-                               : phase == DrawPhase::Second ? "encore frame (second phase)"
-                                                            : "encore frame";
-        passDescriptor.colorAttachmentCount = 1;
-        passDescriptor.colorAttachments = &color;
-        passDescriptor.depthStencilAttachment = &depth;
-        passDescriptor.timestampWrites = timestampWrites(
-            GpuStage::Scene, phase == DrawPhase::First    ? "scene (first phase)"
-                             : phase == DrawPhase::Second ? "scene (second phase)"
-                                                          : "scene");
-        wgpu::RenderPassEncoder pass = commandEncoder.BeginRenderPass(&passDescriptor);
-        if (multiView) {
-            pass.SetViewport(float(view * viewWidth), 0.0f, float(viewWidth),
-                             float(mTarget.height()), 0.0f, 1.0f);
-            // Clipping keeps a view's fragments inside its viewport already; the scissor makes
-            // sure no rounding reaches the neighbouring strips, whose colour and depth persist.
-            pass.SetScissorRect(view * viewWidth, 0, viewWidth, mTarget.height());
-        }
-        if (mOptions.toneMapping.background == BackgroundKind::Environment &&
-            phase != DrawPhase::Second) {
-            mBackground->draw(pass, mFrame->bindGroup());
+    auto encodeFrame = [&](const wgpu::CommandEncoder& commandEncoder) {
+        if (mGpuAnimation && mGpuAnimationPending) {
+            mGpuAnimation->encode(commandEncoder);  // Before anything that reads its results.
+            mGpuAnimationPending = false;
         }
         if (mStrategy) {
-            RenderEncoder encoder(pass, result.counters);
-            encoder.setTrace(trace);
-            FrameState viewState = state;
-            viewState.camera = cameras[view];
-            viewState.phase = phase;
-            mStrategy->encode(encoder, viewState);
+            mStrategy->beforePass(commandEncoder, state);
         }
-        pass.End();
-    };
-    if (twoPhases) {
-        encodePass(0, DrawPhase::First);
-        mStrategy->betweenPhases(commandEncoder, state, mTarget.depthTexture());
-        encodePass(0, DrawPhase::Second);
-    } else {
-        for (std::size_t view = 0; view < cameras.size(); ++view) {
-            if (multiView) {
-                mFrame->selectView(commandEncoder, view);
+        const std::uint32_t viewWidth = mTarget.width() / std::uint32_t(cameras.size());
+        // One pass per view, or the two passes of a two-phase frame: the first keeps its colour and
+        // depth for the second (multisampled: unresolved), which loads them and finishes the view.
+        auto encodePass = [&](std::size_t view, DrawPhase phase) {
+            // HDR: alpha is coverage, 0 where nothing is drawn, for the tone mapper's background.
+            // Otherwise the background colour itself (linear: the sRGB target encodes the clear).
+            const glm::vec3& background = mOptions.toneMapping.backgroundColor;
+            wgpu::RenderPassColorAttachment color = mTarget.colorAttachment(
+                mTarget.hdr() ? wgpu::Color{0.0, 0.0, 0.0, 0.0}
+                              : wgpu::Color{background.r, background.g, background.b, 1.0});
+            wgpu::RenderPassDepthStencilAttachment depth = mTarget.depthAttachment();
+            if (view > 0 || phase == DrawPhase::Second) {
+                color.loadOp = wgpu::LoadOp::Load;  // Keep the views (or the phase) drawn before.
             }
-            encodePass(view, DrawPhase::Whole);
+            if (multiView) {
+                color.storeOp = wgpu::StoreOp::Store;  // Multisampled contents survive the passes.
+                if (view + 1 < cameras.size()) {
+                    // A resolve writes the whole target, whatever the viewport: resolve once, after
+                    // the last view, rather than the whole wide target once per view.
+                    color.resolveTarget = nullptr;
+                }
+                // Depth likewise: cleared once for the whole target and kept between the passes,
+                // rather than cleared whole by each (each view tests only its own strip).
+                if (view > 0) {
+                    depth.depthLoadOp = wgpu::LoadOp::Load;
+                }
+                if (view + 1 < cameras.size()) {
+                    depth.depthStoreOp = wgpu::StoreOp::Store;
+                }
+            }
+            if (phase == DrawPhase::First) {
+                color.storeOp = wgpu::StoreOp::Store;
+                color.resolveTarget = nullptr;  // The second pass resolves.
+                depth.depthStoreOp = wgpu::StoreOp::Store;
+            } else if (phase == DrawPhase::Second) {
+                depth.depthLoadOp = wgpu::LoadOp::Load;
+            }
+            wgpu::RenderPassDescriptor passDescriptor{};
+            passDescriptor.label = phase == DrawPhase::First    ? "encore frame (first phase)"
+                                   : phase == DrawPhase::Second ? "encore frame (second phase)"
+                                                                : "encore frame";
+            passDescriptor.colorAttachmentCount = 1;
+            passDescriptor.colorAttachments = &color;
+            passDescriptor.depthStencilAttachment = &depth;
+            passDescriptor.timestampWrites = timestampWrites(
+                GpuStage::Scene, phase == DrawPhase::First    ? "scene (first phase)"
+                                 : phase == DrawPhase::Second ? "scene (second phase)"
+                                                              : "scene");
+            wgpu::RenderPassEncoder pass = commandEncoder.BeginRenderPass(&passDescriptor);
+            if (multiView) {
+                pass.SetViewport(float(view * viewWidth), 0.0f, float(viewWidth),
+                                 float(mTarget.height()), 0.0f, 1.0f);
+                // Clipping keeps a view's fragments inside its viewport already; the scissor makes
+                // sure no rounding reaches the neighbouring strips, whose colour and depth persist.
+                pass.SetScissorRect(view * viewWidth, 0, viewWidth, mTarget.height());
+            }
+            if (mOptions.toneMapping.background == BackgroundKind::Environment &&
+                phase != DrawPhase::Second) {
+                mBackground->draw(pass, mFrame->bindGroup());
+            }
+            if (mStrategy) {
+                RenderEncoder encoder(pass, result.counters);
+                encoder.setTrace(trace);
+                FrameState viewState = state;
+                viewState.camera = cameras[view];
+                viewState.phase = phase;
+                mStrategy->encode(encoder, viewState);
+            }
+            pass.End();
+        };
+        if (twoPhases) {
+            encodePass(0, DrawPhase::First);
+            mStrategy->betweenPhases(commandEncoder, state, mTarget.depthTexture());
+            encodePass(0, DrawPhase::Second);
+        } else {
+            for (std::size_t view = 0; view < cameras.size(); ++view) {
+                if (multiView) {
+                    mFrame->selectView(commandEncoder, view);
+                }
+                encodePass(view, DrawPhase::Whole);
+            }
         }
-    }
-    // After the last pass: a two-phase frame counts in both culling passes.
-    if (mTriangleHistory && culler && culler->indirectArguments()) {
-        mTriangleHistory->record(commandEncoder, culler->indirectArguments(),
-                                 culler->drawnTrianglesOffset());
-    }
-    if (mToneMapper) {
-        // The GPU timer times the scene passes only, as benchmarks report them.
-        mToneMapper->encode(commandEncoder, mTarget,
-                            mTimer ? nullptr : timestampWrites(GpuStage::ToneMapping));
-    }
-    if (mTimer) {
-        mTimer->resolve(commandEncoder);
-    }
-    wgpu::CommandBuffer commands = commandEncoder.Finish();
-    result.encodeMilliseconds = millisecondsSince(encodeStart);
-
-    const auto submitStart = std::chrono::steady_clock::now();
-    mContext->queue().Submit(1, &commands);
-    result.submitMilliseconds = millisecondsSince(submitStart);
+        // After the last pass: a two-phase frame counts in both culling passes.
+        if (mTriangleHistory && culler && culler->indirectArguments()) {
+            mTriangleHistory->record(commandEncoder, culler->indirectArguments(),
+                                     culler->drawnTrianglesOffset());
+        }
+        if (mToneMapper) {
+            // The GPU timer times the scene passes only, as benchmarks report them.
+            mToneMapper->encode(commandEncoder, mTarget,
+                                mTimer ? nullptr : timestampWrites(GpuStage::ToneMapping));
+        }
+    };
+    const gpu::SubmitTiming timing = gpu::submitTimed(*mContext, mTimer, encodeFrame);
+    result.encodeMilliseconds = timing.encodeMilliseconds;
+    result.submitMilliseconds = timing.submitMilliseconds;
+    result.gpuMilliseconds = timing.gpuMilliseconds;
     if (mStrategy) {
         result.bundleContents = mStrategy->bundleContents();
-    }
-    if (mTimer) {
-        result.gpuMilliseconds = mTimer->read(*mContext);
     }
     // Bundles and indirect draws replay per view; counters already sum the direct draws.
     result.trianglesSubmitted =
