@@ -106,13 +106,19 @@ wgpu::BindGroupLayout makeBindGroupLayout(const wgpu::Device& device,
 }
 
 wgpu::PipelineLayout makePipelineLayout(const wgpu::Device& device,
-                                        std::initializer_list<wgpu::BindGroupLayout> groups,
+                                        std::span<const wgpu::BindGroupLayout> groups,
                                         wgpu::StringView label) {
     wgpu::PipelineLayoutDescriptor descriptor{};
     descriptor.label = label;
     descriptor.bindGroupLayoutCount = groups.size();
-    descriptor.bindGroupLayouts = groups.begin();
+    descriptor.bindGroupLayouts = groups.data();
     return device.CreatePipelineLayout(&descriptor);
+}
+
+wgpu::PipelineLayout makePipelineLayout(const wgpu::Device& device,
+                                        std::initializer_list<wgpu::BindGroupLayout> groups,
+                                        wgpu::StringView label) {
+    return makePipelineLayout(device, std::span(groups.begin(), groups.size()), label);
 }
 
 }  // namespace encore::gpu

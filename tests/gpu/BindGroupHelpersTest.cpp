@@ -170,7 +170,9 @@ TEST(BindGroupHelpersTest, PipelineLayoutGroupsAreInOrder) {
     wgpu::ComputePipelineDescriptor descriptor{};
     descriptor.compute.module = module;
     descriptor.compute.entryPoint = "main";
-    descriptor.layout = makePipelineLayout(device, {uniformLayout, storageLayout}, "in order");
+    // From a vector (as PipelineKey builds its groups) and from a braced list.
+    const std::vector<wgpu::BindGroupLayout> inOrder = {uniformLayout, storageLayout};
+    descriptor.layout = makePipelineLayout(device, inOrder, "in order");
     device.CreateComputePipeline(&descriptor);
     ASSERT_TRUE(context->checkNoErrors("A pipeline layout in the shader's order").ok());
 

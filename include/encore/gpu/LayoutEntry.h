@@ -65,6 +65,9 @@ wgpu::BindGroupLayout makeBindGroupLayout(const wgpu::Device& device,
 
 // A pipeline layout of `groups`: bind group i of the pipeline has layout groups[i].
 wgpu::PipelineLayout makePipelineLayout(const wgpu::Device& device,
+                                        std::span<const wgpu::BindGroupLayout> groups,
+                                        wgpu::StringView label = {});
+wgpu::PipelineLayout makePipelineLayout(const wgpu::Device& device,
                                         std::initializer_list<wgpu::BindGroupLayout> groups,
                                         wgpu::StringView label = {});
 
