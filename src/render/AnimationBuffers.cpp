@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstring>
 
+#include "encore/gpu/BindingResource.h"
 #include "encore/gpu/Upload.h"
 #include "encore/render/InstanceBuffer.h"
 #include "encore/render/RenderEncoder.h"
@@ -184,20 +185,14 @@ std::unique_ptr<AnimationBuffers> AnimationBuffers::create(const wgpu::Device& d
                                                 kWritable | wgpu::BufferUsage::CopySrc);
     buffers.mDeltas = gpu::createStorageBuffer(device, deltas, "morph deltas", kWritable);
 
-    wgpu::BindGroupEntry entries[5] = {};
-    const wgpu::Buffer* bound[5] = {&buffers.mDraws, &buffers.mJoints, &buffers.mWeights,
-                                    &buffers.mDeltas, &buffers.mInstanceOffsets};
-    for (std::uint32_t b = 0; b < 5; ++b) {
-        entries[b].binding = b;
-        entries[b].buffer = *bound[b];
-        entries[b].size = b == 0 ? sizeof(DrawRecord) : bound[b]->GetSize();
-    }
-    wgpu::BindGroupDescriptor descriptor{};
-    descriptor.label = "animation";
-    descriptor.layout = layouts.animation;
-    descriptor.entryCount = 5;
-    descriptor.entries = entries;
-    buffers.mBindGroup = device.CreateBindGroup(&descriptor);
+    buffers.mBindGroup =
+        gpu::makeBindGroup(device, layouts.animation,
+                           {{0, buffers.mDraws, 0, sizeof(DrawRecord)},
+                            {1, buffers.mJoints, 0, buffers.mJoints.GetSize()},
+                            {2, buffers.mWeights, 0, buffers.mWeights.GetSize()},
+                            {3, buffers.mDeltas, 0, buffers.mDeltas.GetSize()},
+                            {4, buffers.mInstanceOffsets, 0, buffers.mInstanceOffsets.GetSize()}},
+                           "animation");
     return result;
 }
 

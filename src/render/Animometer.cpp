@@ -1,11 +1,12 @@
 #include "encore/render/Animometer.h"
 
-#include <chrono>
 #include <cstring>
 #include <random>
 
-#include "encore/core/Elapsed.h"
+#include "encore/gpu/BindingResource.h"
+#include "encore/gpu/LayoutEntry.h"
 #include "encore/gpu/Readback.h"
+#include "encore/gpu/TimedSubmit.h"
 #include "encore/gpu/Upload.h"
 #include "encore/render/BundleRecorder.h"
 
@@ -52,35 +53,6 @@ TriangleParameters randomTriangle(UnitRandom& random) {
     triangle.scalar = random.next() * 1.5f + 0.5f;
     triangle.scalarOffset = random.next() * 10.0f;
     return triangle;
-}
-
-wgpu::BindGroupLayout uniformLayout(const wgpu::Device& device, const char* label,
-                                    bool dynamicOffset) {
-    wgpu::BindGroupLayoutEntry entry{};
-    entry.binding = 0;
-    entry.visibility = wgpu::ShaderStage::Vertex;
-    entry.buffer.type = wgpu::BufferBindingType::Uniform;
-    entry.buffer.hasDynamicOffset = dynamicOffset;
-    wgpu::BindGroupLayoutDescriptor descriptor{};
-    descriptor.label = label;
-    descriptor.entryCount = 1;
-    descriptor.entries = &entry;
-    return device.CreateBindGroupLayout(&descriptor);
-}
-
-wgpu::BindGroup uniformGroup(const wgpu::Device& device, const wgpu::BindGroupLayout& layout,
-                             const wgpu::Buffer& buffer, std::uint64_t offset,
-                             std::uint64_t size) {
-    wgpu::BindGroupEntry entry{};
-    entry.binding = 0;
-    entry.buffer = buffer;
-    entry.offset = offset;
-    entry.size = size;
-    wgpu::BindGroupDescriptor descriptor{};
-    descriptor.layout = layout;
-    descriptor.entryCount = 1;
-    descriptor.entries = &entry;
-    return device.CreateBindGroup(&descriptor);
 }
 
 wgpu::RenderPipeline createPipeline(const wgpu::Device& device, const wgpu::ShaderModule& module,
@@ -170,21 +142,21 @@ Result<AnimometerScene> AnimometerScene::create(gpu::Context& context,
     if (!module) {
         return module.error();
     }
-    const wgpu::BindGroupLayout timeLayout = uniformLayout(device, "animometer time", false);
-    const wgpu::BindGroupLayout triangleLayout =
-        uniformLayout(device, "animometer triangle", options.dynamicOffsets);
-    const wgpu::BindGroupLayout groupLayouts[] = {timeLayout, triangleLayout};
-    wgpu::PipelineLayoutDescriptor pipelineLayout{};
-    pipelineLayout.bindGroupLayoutCount = 2;
-    pipelineLayout.bindGroupLayouts = groupLayouts;
-    scene.mPipeline = createPipeline(device, *module, device.CreatePipelineLayout(&pipelineLayout));
+    const auto uniform = gpu::LayoutEntry::uniform(0, wgpu::ShaderStage::Vertex);
+    const wgpu::BindGroupLayout timeLayout =
+        gpu::makeBindGroupLayout(device, {uniform}, "animometer time");
+    const wgpu::BindGroupLayout triangleLayout = gpu::makeBindGroupLayout(
+        device, {options.dynamicOffsets ? uniform.withDynamicOffset() : uniform},
+        "animometer triangle");
+    scene.mPipeline = createPipeline(device, *module,
+                                     gpu::makePipelineLayout(device, {timeLayout, triangleLayout}));
 
     scene.mVertices = gpu::createBufferFrom(device, wgpu::BufferUsage::Vertex,
                                             std::span<const float>(kCorners), "animometer corners");
     // 16 bytes: the time is one f32, padded to the uniform alignment.
     scene.mTime = gpu::createBuffer(device, wgpu::BufferUsage::Uniform | wgpu::BufferUsage::CopyDst,
                                     16, "animometer time");
-    scene.mTimeGroup = uniformGroup(device, timeLayout, scene.mTime, 0, 16);
+    scene.mTimeGroup = gpu::makeBindGroup(device, timeLayout, {{0, scene.mTime, 0, 16}});
 
     // Written straight into the mapped buffer: at a million triangles a staging copy would be
     // another 256 MB.
@@ -209,14 +181,14 @@ Result<AnimometerScene> AnimometerScene::create(gpu::Context& context,
     scene.mTriangles.Unmap();
 
     if (options.dynamicOffsets) {
-        scene.mTriangleGroups.push_back(
-            uniformGroup(device, triangleLayout, scene.mTriangles, 0, sizeof(TriangleParameters)));
+        scene.mTriangleGroups.push_back(gpu::makeBindGroup(
+            device, triangleLayout, {{0, scene.mTriangles, 0, sizeof(TriangleParameters)}}));
     } else {
         scene.mTriangleGroups.reserve(options.triangles);
         for (std::uint32_t i = 0; i < options.triangles; ++i) {
-            scene.mTriangleGroups.push_back(uniformGroup(device, triangleLayout, scene.mTriangles,
-                                                         i * kSlotSize,
-                                                         sizeof(TriangleParameters)));
+            scene.mTriangleGroups.push_back(gpu::makeBindGroup(
+                device, triangleLayout,
+                {{0, scene.mTriangles, i * kSlotSize, sizeof(TriangleParameters)}}));
         }
     }
 
@@ -255,41 +227,28 @@ void AnimometerScene::recordDraws(RenderEncoder& encoder) const {
 }
 
 FrameTiming AnimometerScene::renderFrame(float timeSeconds, gpu::GpuTimer* timer) {
-    FrameTiming timing;
     mFrameCounters = {};
     mContext->queue().WriteBuffer(mTime, 0, &timeSeconds, sizeof(timeSeconds));
-
-    const auto encodeStart = std::chrono::steady_clock::now();
-    wgpu::CommandEncoder commandEncoder = mContext->device().CreateCommandEncoder();
-    wgpu::RenderPassColorAttachment color = mTarget.colorAttachment(kClearColor);
-    wgpu::RenderPassDepthStencilAttachment depth = mTarget.depthAttachment();
-    wgpu::RenderPassDescriptor passDescriptor{};
-    passDescriptor.label = "animometer frame";
-    passDescriptor.colorAttachmentCount = 1;
-    passDescriptor.colorAttachments = &color;
-    passDescriptor.depthStencilAttachment = &depth;
-    passDescriptor.timestampWrites = timer ? timer->nextPass("animometer") : nullptr;
-    wgpu::RenderPassEncoder pass = commandEncoder.BeginRenderPass(&passDescriptor);
-    RenderEncoder encoder(pass, mFrameCounters);
-    if (mBundle) {
-        encoder.executeBundles(std::span(&mBundle, 1));
-    } else {
-        recordDraws(encoder);
-    }
-    pass.End();
-    if (timer) {
-        timer->resolve(commandEncoder);
-    }
-    wgpu::CommandBuffer commands = commandEncoder.Finish();
-    timing.encodeMilliseconds = millisecondsSince(encodeStart);
-
-    const auto submitStart = std::chrono::steady_clock::now();
-    mContext->queue().Submit(1, &commands);
-    timing.submitMilliseconds = millisecondsSince(submitStart);
-    if (timer) {
-        timing.gpuMilliseconds = timer->read(*mContext);
-    }
-    return timing;
+    const gpu::SubmitTiming timing =
+        gpu::submitTimed(*mContext, timer, [&](const wgpu::CommandEncoder& commands) {
+            wgpu::RenderPassColorAttachment color = mTarget.colorAttachment(kClearColor);
+            wgpu::RenderPassDepthStencilAttachment depth = mTarget.depthAttachment();
+            wgpu::RenderPassDescriptor passDescriptor{};
+            passDescriptor.label = "animometer frame";
+            passDescriptor.colorAttachmentCount = 1;
+            passDescriptor.colorAttachments = &color;
+            passDescriptor.depthStencilAttachment = &depth;
+            passDescriptor.timestampWrites = timer ? timer->nextPass("animometer") : nullptr;
+            wgpu::RenderPassEncoder pass = commands.BeginRenderPass(&passDescriptor);
+            RenderEncoder encoder(pass, mFrameCounters);
+            if (mBundle) {
+                encoder.executeBundles(std::span(&mBundle, 1));
+            } else {
+                recordDraws(encoder);
+            }
+            pass.End();
+        });
+    return {timing.encodeMilliseconds, timing.submitMilliseconds, timing.gpuMilliseconds};
 }
 
 Result<void> AnimometerScene::resize(std::uint32_t width, std::uint32_t height) {

@@ -4,7 +4,7 @@
 #include <bit>
 #include <cstring>
 
-#include "encore/gpu/BindGroupEntries.h"
+#include "encore/gpu/BindingResource.h"
 #include "encore/gpu/Upload.h"
 
 namespace encore::render {
@@ -105,26 +105,21 @@ Result<DepthPyramid> DepthPyramid::create(const wgpu::Device& device,
                                                             uniforms, "depth pyramid reductions");
     for (std::uint32_t dispatch = 0; dispatch < dispatches; ++dispatch) {
         const std::uint32_t firstLevel = dispatch * kLevelsPerDispatch;
-        std::vector<wgpu::BindGroupEntry> entries = {
-            firstLevel == 0 ? gpu::textureEntry(0, depthView)
-                            : gpu::textureEntry(1, levelView(pyramid.mPyramid, firstLevel - 1)),
-            gpu::bufferEntry(2, pyramid.mUniforms, dispatch * kUniformStride,
-                             sizeof(ReductionUniform))};
+        std::vector<gpu::BindingResource> resources = {
+            firstLevel == 0 ? gpu::BindingResource(0, depthView)
+                            : gpu::BindingResource(1, levelView(pyramid.mPyramid, firstLevel - 1)),
+            {2, pyramid.mUniforms, dispatch * kUniformStride, sizeof(ReductionUniform)}};
         for (std::uint32_t step = 0; step < kLevelsPerDispatch; ++step) {
             const std::uint32_t level = firstLevel + step;
-            entries.push_back(
-                gpu::textureEntry(3 + step, level < pyramid.mLevelCount
-                                                ? levelView(pyramid.mPyramid, level)
-                                                : levelView(pyramid.mUnusedLevels, step - 1)));
+            resources.emplace_back(3 + step, level < pyramid.mLevelCount
+                                                 ? levelView(pyramid.mPyramid, level)
+                                                 : levelView(pyramid.mUnusedLevels, step - 1));
         }
         const wgpu::ComputePipeline& pipeline =
             firstLevel == 0 ? pyramid.mReduceDepth : pyramid.mReduceLevels;
-        wgpu::BindGroupDescriptor group{};
-        group.label = "depth pyramid reduction";
-        group.layout = pipeline.GetBindGroupLayout(0);
-        group.entryCount = entries.size();
-        group.entries = entries.data();
-        pyramid.mReductions.push_back({device.CreateBindGroup(&group), firstLevel,
+        const wgpu::BindGroup group = gpu::makeBindGroup(device, pipeline.GetBindGroupLayout(0),
+                                                         resources, "depth pyramid reduction");
+        pyramid.mReductions.push_back({group, firstLevel,
                                        (levelSize(depthWidth, firstLevel) + kTile - 1) / kTile,
                                        (levelSize(depthHeight, firstLevel) + kTile - 1) / kTile});
     }

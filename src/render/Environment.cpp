@@ -13,7 +13,7 @@
 #include "MipmapGenerator.h"
 #include "encore/core/Elapsed.h"
 #include "encore/core/Log.h"
-#include "encore/gpu/BindGroupEntries.h"
+#include "encore/gpu/BindingResource.h"
 #include "encore/image/ImageResize.h"
 
 namespace encore::render {
@@ -124,23 +124,16 @@ wgpu::TextureView levelView(const wgpu::Texture& texture, std::uint32_t level) {
 }
 
 template <typename Params = CubeParams>
-wgpu::BindGroupEntry slotEntry(std::uint32_t binding, const wgpu::Buffer& buffer,
-                               std::uint32_t slot) {
-    wgpu::BindGroupEntry entry{};
-    entry.binding = binding;
-    entry.buffer = buffer;
-    entry.offset = slot * kSlotStride;
-    entry.size = sizeof(Params);
-    return entry;
+gpu::BindingResource slotResource(std::uint32_t binding,
+                                  const wgpu::Buffer& buffer,
+                                  std::uint32_t slot) {
+    return {binding, buffer, slot * kSlotStride, sizeof(Params)};
 }
 
-wgpu::BindGroup bindGroup(const wgpu::Device& device, const wgpu::ComputePipeline& pipeline,
-                          std::initializer_list<wgpu::BindGroupEntry> entries) {
-    wgpu::BindGroupDescriptor descriptor{};
-    descriptor.layout = pipeline.GetBindGroupLayout(0);
-    descriptor.entryCount = entries.size();
-    descriptor.entries = entries.begin();
-    return device.CreateBindGroup(&descriptor);
+wgpu::BindGroup bindGroup(const wgpu::Device& device,
+                          const wgpu::ComputePipeline& pipeline,
+                          std::initializer_list<gpu::BindingResource> resources) {
+    return gpu::makeBindGroup(device, pipeline.GetBindGroupLayout(0), resources);
 }
 
 std::uint32_t groups(std::uint32_t size) {
@@ -411,17 +404,17 @@ Result<void> Environment::build(const image::HdrImage& original, bool withLut) {
     // (lavapipe runs a dispatch to completion before anything else).
     pass.SetPipeline(pipelines.panorama);
     pass.SetBindGroup(0, bindGroup(mDevice, pipelines.panorama,
-                                   {gpu::textureEntry(0, panoramaTexture.CreateView()),
-                                    gpu::samplerEntry(1, pipelines.panoramaSampler),
-                                    gpu::textureEntry(2, levelView(mSource, 0))}));
+                                   {{0, panoramaTexture.CreateView()},
+                                    {1, pipelines.panoramaSampler},
+                                    {2, levelView(mSource, 0)}}));
     pass.DispatchWorkgroups(groups(sourceSize), groups(sourceSize), kCubeFaces);
 
     pass.SetPipeline(pipelines.downsample);
     for (std::uint32_t level = 1; level < sourceLevels; ++level) {
         const std::uint32_t size = std::max(sourceSize >> level, 1u);
-        pass.SetBindGroup(0, bindGroup(mDevice, pipelines.downsample,
-                                       {gpu::textureEntry(0, levelView(mSource, level - 1)),
-                                        gpu::textureEntry(1, levelView(mSource, level))}));
+        pass.SetBindGroup(
+            0, bindGroup(mDevice, pipelines.downsample,
+                         {{0, levelView(mSource, level - 1)}, {1, levelView(mSource, level)}}));
         pass.DispatchWorkgroups(groups(size), groups(size), kCubeFaces);
     }
 
@@ -432,9 +425,10 @@ Result<void> Environment::build(const image::HdrImage& original, bool withLut) {
         for (std::uint32_t face = 0; face < kCubeFaces; ++face) {
             const std::uint32_t slot = (level - 1) * kCubeFaces + face;
             pass.SetBindGroup(0, bindGroup(mDevice, pipelines.specular,
-                                           {gpu::textureEntry(0, mSourceView), gpu::samplerEntry(1, mSampler),
-                                            gpu::textureEntry(2, target),
-                                            slotEntry(3, slotBuffer, slot)}));
+                                           {{0, mSourceView},
+                                            {1, mSampler},
+                                            {2, target},
+                                            slotResource(3, slotBuffer, slot)}));
             pass.DispatchWorkgroups(groups(size), groups(size), 1);
         }
     }
@@ -443,9 +437,10 @@ Result<void> Environment::build(const image::HdrImage& original, bool withLut) {
     const wgpu::TextureView irradianceTarget = levelView(mIrradiance, 0);
     for (std::uint32_t face = 0; face < kCubeFaces; ++face) {
         pass.SetBindGroup(0, bindGroup(mDevice, pipelines.irradiance,
-                                       {gpu::textureEntry(0, mSourceView), gpu::samplerEntry(1, mSampler),
-                                        gpu::textureEntry(2, irradianceTarget),
-                                        slotEntry(3, slotBuffer, firstIrradianceSlot + face)}));
+                                       {{0, mSourceView},
+                                        {1, mSampler},
+                                        {2, irradianceTarget},
+                                        slotResource(3, slotBuffer, firstIrradianceSlot + face)}));
         const std::uint32_t size = mOptions.irradianceSize;
         pass.DispatchWorkgroups(groups(size), groups(size), 1);
     }
@@ -453,7 +448,7 @@ Result<void> Environment::build(const image::HdrImage& original, bool withLut) {
     if (withLut) {
         pass.SetPipeline(pipelines.lut);
         pass.SetBindGroup(0, bindGroup(mDevice, pipelines.lut,
-                                       {gpu::textureEntry(0, mLutView), slotEntry(1, slotBuffer, lutSlot)}));
+                                       {{0, mLutView}, slotResource(1, slotBuffer, lutSlot)}));
         pass.DispatchWorkgroups(groups(mOptions.lutSize), groups(mOptions.lutSize), 1);
     }
     pass.End();
@@ -475,18 +470,19 @@ Result<void> Environment::build(const image::HdrImage& original, bool withLut) {
         const std::uint32_t span = packs[i].size + 2;
         packPass.SetBindGroup(
             0, bindGroup(mDevice, pipelines.packCube,
-                         {gpu::textureEntry(0, irradiance ? mIrradianceView : mSpecularView),
-                          gpu::samplerEntry(1, mSampler), gpu::textureEntry(2, mAtlasView),
-                          slotEntry<PackParams>(3, slotBuffer, firstPackSlot + i)}));
+                         {{0, irradiance ? mIrradianceView : mSpecularView},
+                          {1, mSampler},
+                          {2, mAtlasView},
+                          slotResource<PackParams>(3, slotBuffer, firstPackSlot + i)}));
         packPass.DispatchWorkgroups(groups(3 * span), groups(2 * span), 1);
     }
     if (withLut) {
         packPass.SetPipeline(pipelines.packTable);
         const std::uint32_t slot = firstPackSlot + mOptions.specularLevels + 1;
         packPass.SetBindGroup(0, bindGroup(mDevice, pipelines.packTable,
-                                           {gpu::textureEntry(2, mAtlasView),
-                                            slotEntry<PackParams>(3, slotBuffer, slot),
-                                            gpu::textureEntry(4, mLutView)}));
+                                           {{2, mAtlasView},
+                                            slotResource<PackParams>(3, slotBuffer, slot),
+                                            {4, mLutView}}));
         const std::uint32_t size = mAtlasLayout.brdf.size + 2;
         packPass.DispatchWorkgroups(groups(size), groups(size), 1);
     }

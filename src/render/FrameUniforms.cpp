@@ -5,6 +5,7 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include "encore/gpu/BindingResource.h"
 #include "encore/gpu/Upload.h"
 
 namespace encore::render {
@@ -19,26 +20,14 @@ FrameUniforms::FrameUniforms(const wgpu::Device& device, const BindGroupLayouts&
 void FrameUniforms::bindLighting(const wgpu::Device& device, const BindGroupLayouts& layouts,
                                  const SceneLighting& lighting) {
     const Environment& environment = lighting.environment();
-    wgpu::BindGroupEntry entries[5]{};
-    entries[0].binding = 0;
-    entries[0].buffer = mBuffer;
-    entries[0].size = sizeof(FrameUniform);
-    entries[1].binding = 1;
-    entries[1].buffer = lighting.uniformBuffer();
-    entries[1].size = sizeof(LightingUniform);
-    entries[2].binding = 2;
-    entries[2].buffer = lighting.lightBuffer();
-    entries[2].size = lighting.lightBuffer().GetSize();
-    entries[3].binding = 3;
-    entries[3].textureView = environment.atlasView();
-    entries[4].binding = 4;
-    entries[4].sampler = environment.sampler();
-    wgpu::BindGroupDescriptor descriptor{};
-    descriptor.label = "frame";
-    descriptor.layout = layouts.frame;
-    descriptor.entryCount = 5;
-    descriptor.entries = entries;
-    mBindGroup = device.CreateBindGroup(&descriptor);
+    mBindGroup =
+        gpu::makeBindGroup(device, layouts.frame,
+                           {{0, mBuffer, 0, sizeof(FrameUniform)},
+                            {1, lighting.uniformBuffer(), 0, sizeof(LightingUniform)},
+                            {2, lighting.lightBuffer(), 0, lighting.lightBuffer().GetSize()},
+                            {3, environment.atlasView()},
+                            {4, environment.sampler()}},
+                           "frame");
 }
 
 namespace {

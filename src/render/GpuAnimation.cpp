@@ -10,7 +10,7 @@
 #include <string>
 #include <unordered_map>
 
-#include "encore/gpu/BindGroupEntries.h"
+#include "encore/gpu/BindingResource.h"
 #include "encore/gpu/Upload.h"
 #include "encore/render/AnimationBuffers.h"
 #include "encore/render/BindGroupLayouts.h"
@@ -20,7 +20,6 @@ namespace encore::render {
 
 namespace {
 
-using gpu::bufferEntry;
 using gpu::createStorageBuffer;
 
 constexpr std::uint32_t kNone = 0xFFFFFFFFu;
@@ -92,16 +91,12 @@ std::uint32_t workgroups(std::uint32_t threads) {
     return (threads + kWorkgroupSize - 1) / kWorkgroupSize;
 }
 
-wgpu::BindGroup makeBindGroup(const wgpu::Device& device,
+// A bind group of the layout WebGPU derived from the pipeline's shader.
+wgpu::BindGroup pipelineBindGroup(const wgpu::Device& device,
                               const wgpu::ComputePipeline& pipeline,
-                              std::span<const wgpu::BindGroupEntry> entries,
+                                  std::initializer_list<gpu::BindingResource> resources,
                               const char* label) {
-    wgpu::BindGroupDescriptor descriptor{};
-    descriptor.label = label;
-    descriptor.layout = pipeline.GetBindGroupLayout(0);
-    descriptor.entryCount = entries.size();
-    descriptor.entries = entries.data();
-    return device.CreateBindGroup(&descriptor);
+    return gpu::makeBindGroup(device, pipeline.GetBindGroupLayout(0), resources, label);
 }
 
 Result<wgpu::ComputePipeline> makePipeline(const wgpu::Device& device,
@@ -426,15 +421,16 @@ Result<std::unique_ptr<GpuAnimation>> GpuAnimation::create(
     gpu.mSample = *sample;
     gpu.mWorld = *world;
     gpu.mTransform = *transform;
-    const wgpu::BindGroupEntry sampleEntries[] = {bufferEntry(0, keyframeBuffer),
-                                                  bufferEntry(1, samplerBuffer),
-                                                  bufferEntry(2, gpu.mClocks),
-                                                  bufferEntry(3, nodeBuffer),
-                                                  bufferEntry(4, gpu.mNodeChannels),
-                                                  bufferEntry(5, gpu.mLocals),
-                                                  bufferEntry(6, weights),
-                                                  bufferEntry(7, animationBuffer)};
-    gpu.mSampleGroup = makeBindGroup(device, gpu.mSample, sampleEntries, "animation sampling");
+    gpu.mSampleGroup = pipelineBindGroup(device, gpu.mSample,
+                                         {{0, keyframeBuffer},
+                                          {1, samplerBuffer},
+                                          {2, gpu.mClocks},
+                                          {3, nodeBuffer},
+                                          {4, gpu.mNodeChannels},
+                                          {5, gpu.mLocals},
+                                          {6, weights},
+                                          {7, animationBuffer}},
+                                         "animation sampling");
 
     const std::uint64_t levelStride =
         std::max<std::uint64_t>(limits.minUniformBufferOffsetAlignment, sizeof(glm::uvec4));
@@ -447,22 +443,23 @@ Result<std::unique_ptr<GpuAnimation>> GpuAnimation::create(
         gpu::createBufferWithData(device, wgpu::BufferUsage::Uniform | wgpu::BufferUsage::CopyDst,
                                   levelBytes, "world levels ranges");
     for (std::size_t l = 0; l < levelRanges.size(); ++l) {
-        const wgpu::BindGroupEntry entries[] = {
-            bufferEntry(0, levelBuffer, l * levelStride, sizeof(glm::uvec4)),
-            bufferEntry(1, worldBuffer), bufferEntry(2, gpu.mLocals), bufferEntry(3, gpu.mWorlds)};
-        gpu.mLevelGroups.push_back(makeBindGroup(device, gpu.mWorld, entries, "world level"));
+        gpu.mLevelGroups.push_back(
+            pipelineBindGroup(device, gpu.mWorld,
+                              {{0, levelBuffer, l * levelStride, sizeof(glm::uvec4)},
+                               {1, worldBuffer},
+                               {2, gpu.mLocals},
+                               {3, gpu.mWorlds}},
+                              "world level"));
     }
     if (!instanceRecords.empty()) {
-        const wgpu::BindGroupEntry entries[] = {bufferEntry(0, instanceBuffer),
-                                                bufferEntry(1, gpu.mWorlds),
-                                                bufferEntry(2, instanceOutput)};
-        gpu.mInstanceGroup = makeBindGroup(device, gpu.mTransform, entries, "animated instances");
+        gpu.mInstanceGroup = pipelineBindGroup(
+            device, gpu.mTransform, {{0, instanceBuffer}, {1, gpu.mWorlds}, {2, instanceOutput}},
+            "animated instances");
     }
     if (!jointRecords.empty()) {
-        const wgpu::BindGroupEntry entries[] = {bufferEntry(0, jointBuffer),
-                                                bufferEntry(1, gpu.mWorlds),
-                                                bufferEntry(2, animation->jointBuffer())};
-        gpu.mJointGroup = makeBindGroup(device, gpu.mTransform, entries, "animated joints");
+        gpu.mJointGroup = pipelineBindGroup(
+            device, gpu.mTransform,
+            {{0, jointBuffer}, {1, gpu.mWorlds}, {2, animation->jointBuffer()}}, "animated joints");
     }
 
     gpu.mInstanceRecords = static_cast<std::uint32_t>(instanceRecords.size());

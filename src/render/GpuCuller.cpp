@@ -7,7 +7,8 @@
 #include <map>
 #include <numeric>
 
-#include "encore/gpu/BindGroupEntries.h"
+#include "encore/gpu/BindingResource.h"
+#include "encore/gpu/LayoutEntry.h"
 #include "encore/gpu/Upload.h"
 #include "encore/render/AnimationBuffers.h"
 #include "encore/render/RenderEncoder.h"
@@ -192,43 +193,26 @@ Result<GpuCuller> GpuCuller::create(const RenderSetup& setup, const InstanceBuff
     }
     // Explicit layouts, shared by the entry points: layouts derived from each shader entry point
     // would be distinct and their bind groups incompatible. The second phase adds the pyramid.
-    auto layoutEntry = [](std::uint32_t binding, wgpu::BufferBindingType type) {
-        wgpu::BindGroupLayoutEntry entry{};
-        entry.binding = binding;
-        entry.visibility = wgpu::ShaderStage::Compute;
-        entry.buffer.type = type;
-        return entry;
-    };
-    using Type = wgpu::BufferBindingType;
-    const wgpu::BindGroupLayoutEntry layoutEntries[] = {
-        layoutEntry(0, Type::Uniform),         layoutEntry(1, Type::ReadOnlyStorage),
-        layoutEntry(2, Type::ReadOnlyStorage), layoutEntry(3, Type::ReadOnlyStorage),
-        layoutEntry(4, Type::ReadOnlyStorage), layoutEntry(5, Type::Storage),
-        layoutEntry(6, Type::Storage),         layoutEntry(7, Type::ReadOnlyStorage),
-        layoutEntry(8, Type::ReadOnlyStorage)};
-    wgpu::BindGroupLayoutDescriptor layoutDescriptor{};
-    layoutDescriptor.label = "culling";
-    layoutDescriptor.entryCount = std::size(layoutEntries);
-    layoutDescriptor.entries = layoutEntries;
-    const wgpu::BindGroupLayout cullLayout = device.CreateBindGroupLayout(&layoutDescriptor);
-    wgpu::BindGroupLayoutEntry pyramidEntry{};
-    pyramidEntry.binding = 0;
-    pyramidEntry.visibility = wgpu::ShaderStage::Compute;
-    pyramidEntry.texture.sampleType = wgpu::TextureSampleType::UnfilterableFloat;
-    wgpu::BindGroupLayoutDescriptor pyramidDescriptor{};
-    pyramidDescriptor.label = "culling depth pyramid";
-    pyramidDescriptor.entryCount = 1;
-    pyramidDescriptor.entries = &pyramidEntry;
-    culler.mPyramidLayout = device.CreateBindGroupLayout(&pyramidDescriptor);
+    constexpr auto kCompute = wgpu::ShaderStage::Compute;
+    using gpu::LayoutEntry;
+    const wgpu::BindGroupLayout cullLayout = gpu::makeBindGroupLayout(
+        device,
+        {LayoutEntry::uniform(0, kCompute), LayoutEntry::readOnlyStorage(1, kCompute),
+         LayoutEntry::readOnlyStorage(2, kCompute), LayoutEntry::readOnlyStorage(3, kCompute),
+         LayoutEntry::readOnlyStorage(4, kCompute), LayoutEntry::storage(5, kCompute),
+         LayoutEntry::storage(6, kCompute), LayoutEntry::readOnlyStorage(7, kCompute),
+         LayoutEntry::readOnlyStorage(8, kCompute)},
+        "culling");
+    culler.mPyramidLayout = gpu::makeBindGroupLayout(
+        device, {LayoutEntry::texture(0, kCompute, wgpu::TextureSampleType::UnfilterableFloat)},
+        "culling depth pyramid");
 
     auto computePipeline = [&](const char* entryPoint, bool withPyramid) {
-        const wgpu::BindGroupLayout layouts[] = {cullLayout, culler.mPyramidLayout};
-        wgpu::PipelineLayoutDescriptor pipelineLayoutDescriptor{};
-        pipelineLayoutDescriptor.bindGroupLayoutCount = withPyramid ? 2 : 1;
-        pipelineLayoutDescriptor.bindGroupLayouts = layouts;
         wgpu::ComputePipelineDescriptor descriptor{};
         descriptor.label = entryPoint;
-        descriptor.layout = device.CreatePipelineLayout(&pipelineLayoutDescriptor);
+        descriptor.layout =
+            withPyramid ? gpu::makePipelineLayout(device, {cullLayout, culler.mPyramidLayout})
+                        : gpu::makePipelineLayout(device, {cullLayout});
         descriptor.compute.module = *module;
         descriptor.compute.entryPoint = entryPoint;
         return device.CreateComputePipeline(&descriptor);
@@ -237,34 +221,23 @@ Result<GpuCuller> GpuCuller::create(const RenderSetup& setup, const InstanceBuff
     culler.mCullFirst = computePipeline("cullFirstPhase", false);
     culler.mCullSecond = computePipeline("cullSecondPhase", true);
 
-    const wgpu::BindGroupEntry cullEntries[] = {
-        gpu::bufferEntry(0, culler.mUniform, 0, sizeof(CullingUniform)),
-        gpu::bufferEntry(1, slotBuffer, 0, slots.size() * sizeof(SlotBounds)),
-        gpu::bufferEntry(2, instances.buffer(), 0, instances.buffer().GetSize()),
-        gpu::bufferEntry(3, shapeBuffer, 0, shapeBuffer.GetSize()),
-        gpu::bufferEntry(4, recordBuffer, 0, records.size() * sizeof(glm::uvec4)),
-        gpu::bufferEntry(5, culler.mArguments, 0, arguments.size() * 4),
-        gpu::bufferEntry(6, culler.mVisible, 0, culler.mVisible.GetSize()),
-        gpu::bufferEntry(7, joints, 0, joints.GetSize()),
-        gpu::bufferEntry(8, weights, 0, weights.GetSize()),
-    };
-    wgpu::BindGroupDescriptor cullDescriptor{};
-    cullDescriptor.label = "culling";
-    cullDescriptor.layout = cullLayout;
-    cullDescriptor.entryCount = std::size(cullEntries);
-    cullDescriptor.entries = cullEntries;
-    culler.mCullBindGroup = device.CreateBindGroup(&cullDescriptor);
-
-    const wgpu::BindGroupEntry drawEntries[] = {
-        gpu::bufferEntry(0, instances.buffer(), 0, instances.buffer().GetSize()),
-        gpu::bufferEntry(1, culler.mVisible, 0, listBytes),
-    };
-    wgpu::BindGroupDescriptor drawDescriptor{};
-    drawDescriptor.label = "culled instances";
-    drawDescriptor.layout = setup.layouts->culledInstances;
-    drawDescriptor.entryCount = std::size(drawEntries);
-    drawDescriptor.entries = drawEntries;
-    culler.mDrawBindGroup = device.CreateBindGroup(&drawDescriptor);
+    culler.mCullBindGroup =
+        gpu::makeBindGroup(device, cullLayout,
+                           {{0, culler.mUniform, 0, sizeof(CullingUniform)},
+                            {1, slotBuffer, 0, slots.size() * sizeof(SlotBounds)},
+                            {2, instances.buffer(), 0, instances.buffer().GetSize()},
+                            {3, shapeBuffer, 0, shapeBuffer.GetSize()},
+                            {4, recordBuffer, 0, records.size() * sizeof(glm::uvec4)},
+                            {5, culler.mArguments, 0, arguments.size() * 4},
+                            {6, culler.mVisible, 0, culler.mVisible.GetSize()},
+                            {7, joints, 0, joints.GetSize()},
+                            {8, weights, 0, weights.GetSize()}},
+                           "culling");
+    culler.mDrawBindGroup =
+        gpu::makeBindGroup(device, setup.layouts->culledInstances,
+                           {{0, instances.buffer(), 0, instances.buffer().GetSize()},
+                            {1, culler.mVisible, 0, listBytes}},
+                           "culled instances");
     return culler;
 }
 
@@ -359,13 +332,8 @@ void GpuCuller::encodeSecondPhase(const wgpu::CommandEncoder& commands, const wg
         // bug, not an input error.
         ENCORE_CHECK(pyramid.ok(), "the depth pyramid cannot be built: " + pyramid.error().message);
         mPyramid = std::move(*pyramid);
-        const wgpu::BindGroupEntry entry = gpu::textureEntry(0, mPyramid.view());
-        wgpu::BindGroupDescriptor descriptor{};
-        descriptor.label = "culling depth pyramid";
-        descriptor.layout = mPyramidLayout;
-        descriptor.entryCount = 1;
-        descriptor.entries = &entry;
-        mPyramidBindGroup = mSetup->device.CreateBindGroup(&descriptor);
+        mPyramidBindGroup = gpu::makeBindGroup(mSetup->device, mPyramidLayout,
+                                               {{0, mPyramid.view()}}, "culling depth pyramid");
     }
     // One pass: each dispatch is its own usage scope, so the cull reads the finished pyramid.
     wgpu::ComputePassDescriptor descriptor{};

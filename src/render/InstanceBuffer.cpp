@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "encore/gpu/BindingResource.h"
 #include "encore/gpu/Upload.h"
 #include "encore/render/TransformData.h"
 
@@ -70,16 +71,8 @@ InstanceBuffer::InstanceBuffer(const wgpu::Device& device, const BindGroupLayout
         wgpu::BufferUsage::Storage | wgpu::BufferUsage::CopyDst | wgpu::BufferUsage::CopySrc,
         transforms, "instance transforms");
 
-    wgpu::BindGroupEntry entry{};
-    entry.binding = 0;
-    entry.buffer = mBuffer;
-    entry.size = mBuffer.GetSize();
-    wgpu::BindGroupDescriptor descriptor{};
-    descriptor.label = "instance transforms";
-    descriptor.layout = layouts.instanceStorage;
-    descriptor.entryCount = 1;
-    descriptor.entries = &entry;
-    mBindGroup = device.CreateBindGroup(&descriptor);
+    mBindGroup = gpu::makeBindGroup(device, layouts.instanceStorage,
+                                    {{0, mBuffer, 0, mBuffer.GetSize()}}, "instance transforms");
 }
 
 InstanceRange InstanceBuffer::meshRange(scene::MeshId mesh) const {

@@ -4,6 +4,10 @@
 #include <bit>
 #include <string>
 
+#include "encore/gpu/BindingResource.h"
+#include "encore/gpu/FullscreenPipeline.h"
+#include "encore/gpu/LayoutEntry.h"
+
 namespace encore::render {
 
 std::uint32_t fullMipLevelCount(std::uint32_t width, std::uint32_t height) {
@@ -29,25 +33,12 @@ Result<MipmapGenerator> MipmapGenerator::create(const wgpu::Device& device,
     sampler.minFilter = wgpu::FilterMode::Linear;
     generator.mSampler = device.CreateSampler(&sampler);
 
-    wgpu::BindGroupLayoutEntry entries[2]{};
-    entries[0].binding = 0;
-    entries[0].visibility = wgpu::ShaderStage::Fragment;
-    entries[0].sampler.type = wgpu::SamplerBindingType::Filtering;
-    entries[1].binding = 1;
-    entries[1].visibility = wgpu::ShaderStage::Fragment;
-    entries[1].texture.sampleType = wgpu::TextureSampleType::Float;
-    entries[1].texture.viewDimension = wgpu::TextureViewDimension::e2D;
-    wgpu::BindGroupLayoutDescriptor layout{};
-    layout.label = "mipmap source";
-    layout.entryCount = 2;
-    layout.entries = entries;
-    generator.mLayout = device.CreateBindGroupLayout(&layout);
-
-    wgpu::PipelineLayoutDescriptor pipelineLayout{};
-    pipelineLayout.label = "mipmap";
-    pipelineLayout.bindGroupLayoutCount = 1;
-    pipelineLayout.bindGroupLayouts = &generator.mLayout;
-    generator.mPipelineLayout = device.CreatePipelineLayout(&pipelineLayout);
+    generator.mLayout =
+        gpu::makeBindGroupLayout(device,
+                                 {gpu::LayoutEntry::sampler(0, wgpu::ShaderStage::Fragment),
+                                  gpu::LayoutEntry::texture(1, wgpu::ShaderStage::Fragment)},
+                                 "mipmap source");
+    generator.mPipelineLayout = gpu::makePipelineLayout(device, {generator.mLayout}, "mipmap");
     return generator;
 }
 
@@ -55,21 +46,12 @@ const wgpu::RenderPipeline& MipmapGenerator::pipeline(wgpu::TextureFormat format
     if (auto found = mPipelines.find(format); found != mPipelines.end()) {
         return found->second;
     }
-    wgpu::ColorTargetState target{};
-    target.format = format;
-    wgpu::FragmentState fragment{};
-    fragment.module = mModule;
-    fragment.entryPoint = "fragmentMain";
-    fragment.targetCount = 1;
-    fragment.targets = &target;
-    wgpu::RenderPipelineDescriptor descriptor{};
-    descriptor.label = "mipmap downsample";
-    descriptor.layout = mPipelineLayout;
-    descriptor.vertex.module = mModule;
-    descriptor.vertex.entryPoint = "vertexMain";
-    descriptor.primitive.topology = wgpu::PrimitiveTopology::TriangleList;
-    descriptor.fragment = &fragment;
-    return mPipelines.emplace(format, mDevice.CreateRenderPipeline(&descriptor)).first->second;
+    wgpu::RenderPipeline downsample =
+        gpu::makeFullscreenPipeline(mDevice, {.label = "mipmap downsample",
+                                              .module = mModule,
+                                              .layout = mPipelineLayout,
+                                              .colorFormat = format});
+    return mPipelines.emplace(format, std::move(downsample)).first->second;
 }
 
 Result<void> MipmapGenerator::generate(const wgpu::CommandEncoder& encoder,
@@ -104,16 +86,8 @@ Result<void> MipmapGenerator::generate(const wgpu::CommandEncoder& encoder,
         viewDescriptor.baseMipLevel = level;
         wgpu::TextureView destination = texture.CreateView(&viewDescriptor);
 
-        wgpu::BindGroupEntry entries[2]{};
-        entries[0].binding = 0;
-        entries[0].sampler = mSampler;
-        entries[1].binding = 1;
-        entries[1].textureView = source;
-        wgpu::BindGroupDescriptor bindGroupDescriptor{};
-        bindGroupDescriptor.layout = mLayout;
-        bindGroupDescriptor.entryCount = 2;
-        bindGroupDescriptor.entries = entries;
-        wgpu::BindGroup bindGroup = mDevice.CreateBindGroup(&bindGroupDescriptor);
+        const wgpu::BindGroup bindGroup =
+            gpu::makeBindGroup(mDevice, mLayout, {{0, mSampler}, {1, source}});
 
         wgpu::RenderPassColorAttachment attachment{};
         attachment.view = destination;

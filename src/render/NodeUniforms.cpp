@@ -2,6 +2,7 @@
 
 #include <string>
 
+#include "encore/gpu/BindingResource.h"
 #include "encore/gpu/Upload.h"
 #include "encore/render/TransformData.h"
 
@@ -27,15 +28,8 @@ NodeUniforms::NodeUniforms(const wgpu::Device& device,
                                                ? makeTransformUniform(instance)
                                                : makeTransformUniform(worlds[i]);
         queue.WriteBuffer(mBuffers.back(), 0, &transform, sizeof(transform));
-        wgpu::BindGroupEntry entry{};
-        entry.binding = 0;
-        entry.buffer = mBuffers.back();
-        entry.size = sizeof(TransformUniform);
-        wgpu::BindGroupDescriptor descriptor{};
-        descriptor.layout = layouts.nodeUniform;
-        descriptor.entryCount = 1;
-        descriptor.entries = &entry;
-        mBindGroups.push_back(device.CreateBindGroup(&descriptor));
+        mBindGroups.push_back(gpu::makeBindGroup(
+            device, layouts.nodeUniform, {{0, mBuffers.back(), 0, sizeof(TransformUniform)}}));
     }
 }
 

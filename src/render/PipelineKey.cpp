@@ -6,6 +6,7 @@
 #include <string_view>
 #include <vector>
 
+#include "encore/gpu/LayoutEntry.h"
 #include "encore/render/RenderSetup.h"
 
 namespace encore::render {
@@ -69,10 +70,7 @@ Result<wgpu::RenderPipeline> createMeshPipeline(const RenderSetup& setup, const 
     if (key.shader.animated()) {
         groups.push_back(setup.layouts->animation);  // 3, or 2 without materials.
     }
-    wgpu::PipelineLayoutDescriptor layoutDescriptor{};
-    layoutDescriptor.bindGroupLayoutCount = groups.size();
-    layoutDescriptor.bindGroupLayouts = groups.data();
-    wgpu::PipelineLayout layout = setup.device.CreatePipelineLayout(&layoutDescriptor);
+    const wgpu::PipelineLayout layout = gpu::makePipelineLayout(setup.device, groups);
 
     std::vector<wgpu::VertexAttribute> attributes(PipelineKey::kMaxBuffers *
                                                   VertexBufferKey::kMaxAttributes);

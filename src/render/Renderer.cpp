@@ -7,6 +7,7 @@
 #include "encore/core/Elapsed.h"
 #include "encore/gpu/OutOfMemoryScope.h"
 #include "encore/gpu/Readback.h"
+#include "encore/gpu/TimedSubmit.h"
 #include "encore/image/HdrImage.h"
 #include "encore/render/GpuCuller.h"
 #include "encore/render/GpuScene.h"
@@ -409,13 +410,12 @@ FrameResult Renderer::renderPasses(std::span<const Camera> cameras, float timeSe
         state.phase = DrawPhase::First;
     }
 
-    const auto encodeStart = std::chrono::steady_clock::now();
-    wgpu::CommandEncoder commandEncoder = mContext->device().CreateCommandEncoder();
+    const GpuCuller* culler = mStrategy ? mStrategy->culler() : nullptr;
+    auto encodeFrame = [&](const wgpu::CommandEncoder& commandEncoder) {
     if (mGpuAnimation && mGpuAnimationPending) {
         mGpuAnimation->encode(commandEncoder);  // Before anything that reads its results.
         mGpuAnimationPending = false;
     }
-    const GpuCuller* culler = mStrategy ? mStrategy->culler() : nullptr;
     if (mStrategy) {
         mStrategy->beforePass(commandEncoder, state);
     }
@@ -511,20 +511,13 @@ FrameResult Renderer::renderPasses(std::span<const Camera> cameras, float timeSe
         mToneMapper->encode(commandEncoder, mTarget,
                             mTimer ? nullptr : timestampWrites(GpuStage::ToneMapping));
     }
-    if (mTimer) {
-        mTimer->resolve(commandEncoder);
-    }
-    wgpu::CommandBuffer commands = commandEncoder.Finish();
-    result.encodeMilliseconds = millisecondsSince(encodeStart);
-
-    const auto submitStart = std::chrono::steady_clock::now();
-    mContext->queue().Submit(1, &commands);
-    result.submitMilliseconds = millisecondsSince(submitStart);
+    };
+    const gpu::SubmitTiming timing = gpu::submitTimed(*mContext, mTimer, encodeFrame);
+    result.encodeMilliseconds = timing.encodeMilliseconds;
+    result.submitMilliseconds = timing.submitMilliseconds;
+    result.gpuMilliseconds = timing.gpuMilliseconds;
     if (mStrategy) {
         result.bundleContents = mStrategy->bundleContents();
-    }
-    if (mTimer) {
-        result.gpuMilliseconds = mTimer->read(*mContext);
     }
     // Bundles and indirect draws replay per view; counters already sum the direct draws.
     result.trianglesSubmitted =

@@ -2,6 +2,9 @@
 
 #include <cmath>
 
+#include "encore/gpu/BindingResource.h"
+#include "encore/gpu/FullscreenPipeline.h"
+#include "encore/gpu/LayoutEntry.h"
 #include "encore/gpu/Upload.h"
 
 namespace encore::render {
@@ -30,62 +33,31 @@ Result<ToneMapper> ToneMapper::create(const wgpu::Device& device, const wgpu::Qu
     ToneMapper mapper;
     mapper.mQueue = queue;
 
-    wgpu::BindGroupLayoutEntry entries[2]{};
-    entries[0].binding = 0;
-    entries[0].visibility = wgpu::ShaderStage::Fragment;
-    entries[0].buffer.type = wgpu::BufferBindingType::Uniform;
-    entries[0].buffer.minBindingSize = sizeof(ToneMappingUniform);
-    entries[1].binding = 1;
-    entries[1].visibility = wgpu::ShaderStage::Fragment;
-    // Read with textureLoad only, so the HDR format need not be filterable.
-    entries[1].texture.sampleType = wgpu::TextureSampleType::UnfilterableFloat;
-    entries[1].texture.viewDimension = wgpu::TextureViewDimension::e2D;
-    wgpu::BindGroupLayoutDescriptor layoutDescriptor{};
-    layoutDescriptor.label = "tone mapping";
-    layoutDescriptor.entryCount = 2;
-    layoutDescriptor.entries = entries;
-    wgpu::BindGroupLayout layout = device.CreateBindGroupLayout(&layoutDescriptor);
-    wgpu::PipelineLayoutDescriptor pipelineLayout{};
-    pipelineLayout.bindGroupLayoutCount = 1;
-    pipelineLayout.bindGroupLayouts = &layout;
-
-    wgpu::ColorTargetState color{};
-    color.format = RenderTarget::kColorFormat;
-    wgpu::FragmentState fragment{};
-    fragment.module = *module;
-    fragment.entryPoint = "fragmentMain";
-    fragment.targetCount = 1;
-    fragment.targets = &color;
-    wgpu::RenderPipelineDescriptor descriptor{};
-    descriptor.label = "tone mapping";
-    descriptor.layout = device.CreatePipelineLayout(&pipelineLayout);
-    descriptor.vertex.module = *module;
-    descriptor.vertex.entryPoint = "vertexMain";
-    descriptor.fragment = &fragment;
-    mapper.mPipeline = device.CreateRenderPipeline(&descriptor);
+    mapper.mLayout = gpu::makeBindGroupLayout(
+        device,
+        {gpu::LayoutEntry::uniform(0, wgpu::ShaderStage::Fragment, sizeof(ToneMappingUniform)),
+         // Read with textureLoad only, so the HDR format need not be filterable.
+         gpu::LayoutEntry::texture(1, wgpu::ShaderStage::Fragment,
+                                   wgpu::TextureSampleType::UnfilterableFloat)},
+        "tone mapping");
+    mapper.mPipeline = gpu::makeFullscreenPipeline(
+        device, {.label = "tone mapping",
+                 .module = *module,
+                 .layout = gpu::makePipelineLayout(device, {mapper.mLayout}),
+                 .colorFormat = RenderTarget::kColorFormat});
 
     mapper.mUniform =
         gpu::createBuffer(device, wgpu::BufferUsage::Uniform | wgpu::BufferUsage::CopyDst,
                           sizeof(ToneMappingUniform), "tone mapping");
-    mapper.mLayout = layout;
     mapper.bindTarget(device, target);
     mapper.setOptions(options);
     return mapper;
 }
 
 void ToneMapper::bindTarget(const wgpu::Device& device, const RenderTarget& target) {
-    wgpu::BindGroupEntry bindings[2]{};
-    bindings[0].binding = 0;
-    bindings[0].buffer = mUniform;
-    bindings[0].size = sizeof(ToneMappingUniform);
-    bindings[1].binding = 1;
-    bindings[1].textureView = target.sceneView();
-    wgpu::BindGroupDescriptor bindGroup{};
-    bindGroup.label = "tone mapping";
-    bindGroup.layout = mLayout;
-    bindGroup.entryCount = 2;
-    bindGroup.entries = bindings;
-    mBindGroup = device.CreateBindGroup(&bindGroup);
+    mBindGroup = gpu::makeBindGroup(
+        device, mLayout, {{0, mUniform, 0, sizeof(ToneMappingUniform)}, {1, target.sceneView()}},
+        "tone mapping");
 }
 
 void ToneMapper::setOptions(const ToneMappingOptions& options) {
@@ -128,30 +100,14 @@ Result<EnvironmentBackground> EnvironmentBackground::create(
     if (!module) {
         return module.error();
     }
-    wgpu::PipelineLayoutDescriptor pipelineLayout{};
-    pipelineLayout.bindGroupLayoutCount = 1;
-    pipelineLayout.bindGroupLayouts = &frameLayout;
-    wgpu::ColorTargetState color{};
-    color.format = colorFormat;
-    wgpu::FragmentState fragment{};
-    fragment.module = *module;
-    fragment.entryPoint = "fragmentMain";
-    fragment.targetCount = 1;
-    fragment.targets = &color;
-    wgpu::DepthStencilState depth{};
-    depth.format = depthFormat;
-    depth.depthWriteEnabled = wgpu::OptionalBool::False;
-    depth.depthCompare = wgpu::CompareFunction::Always;
-    wgpu::RenderPipelineDescriptor descriptor{};
-    descriptor.label = "environment background";
-    descriptor.layout = device.CreatePipelineLayout(&pipelineLayout);
-    descriptor.vertex.module = *module;
-    descriptor.vertex.entryPoint = "vertexMain";
-    descriptor.fragment = &fragment;
-    descriptor.depthStencil = &depth;
-    descriptor.multisample.count = sampleCount;
     EnvironmentBackground background;
-    background.mPipeline = device.CreateRenderPipeline(&descriptor);
+    background.mPipeline = gpu::makeFullscreenPipeline(
+        device, {.label = "environment background",
+                 .module = *module,
+                 .layout = gpu::makePipelineLayout(device, {frameLayout}),
+                 .colorFormat = colorFormat,
+                 .depthFormat = depthFormat,
+                 .sampleCount = sampleCount});
     return background;
 }
 

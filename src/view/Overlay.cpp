@@ -4,6 +4,8 @@
 #include <cmath>
 #include <string>
 
+#include "encore/gpu/BindingResource.h"
+#include "encore/gpu/LayoutEntry.h"
 #include "encore/gpu/Upload.h"
 
 // stb_easy_font's functions are static; the ones this file does not call would warn.
@@ -40,19 +42,8 @@ Result<Overlay> Overlay::create(const wgpu::Device& device, const wgpu::Queue& q
     overlay.mDevice = device;
     overlay.mQueue = queue;
 
-    wgpu::BindGroupLayoutEntry entry{};
-    entry.binding = 0;
-    entry.visibility = wgpu::ShaderStage::Vertex;
-    entry.buffer.type = wgpu::BufferBindingType::Uniform;
-    entry.buffer.minBindingSize = 16;
-    wgpu::BindGroupLayoutDescriptor layoutDescriptor{};
-    layoutDescriptor.label = "overlay";
-    layoutDescriptor.entryCount = 1;
-    layoutDescriptor.entries = &entry;
-    wgpu::BindGroupLayout layout = device.CreateBindGroupLayout(&layoutDescriptor);
-    wgpu::PipelineLayoutDescriptor pipelineLayout{};
-    pipelineLayout.bindGroupLayoutCount = 1;
-    pipelineLayout.bindGroupLayouts = &layout;
+    const wgpu::BindGroupLayout layout = gpu::makeBindGroupLayout(
+        device, {gpu::LayoutEntry::uniform(0, wgpu::ShaderStage::Vertex, 16)}, "overlay");
 
     wgpu::VertexAttribute attributes[2]{};
     attributes[0].format = wgpu::VertexFormat::Float32x2;
@@ -81,7 +72,7 @@ Result<Overlay> Overlay::create(const wgpu::Device& device, const wgpu::Queue& q
     fragment.targets = &color;
     wgpu::RenderPipelineDescriptor descriptor{};
     descriptor.label = "overlay";
-    descriptor.layout = device.CreatePipelineLayout(&pipelineLayout);
+    descriptor.layout = gpu::makePipelineLayout(device, {layout});
     descriptor.vertex.module = *module;
     descriptor.vertex.entryPoint = "vertexMain";
     descriptor.vertex.bufferCount = 1;
@@ -91,16 +82,8 @@ Result<Overlay> Overlay::create(const wgpu::Device& device, const wgpu::Queue& q
 
     overlay.mViewport = gpu::createBuffer(
         device, wgpu::BufferUsage::Uniform | wgpu::BufferUsage::CopyDst, 16, "overlay viewport");
-    wgpu::BindGroupEntry binding{};
-    binding.binding = 0;
-    binding.buffer = overlay.mViewport;
-    binding.size = 16;
-    wgpu::BindGroupDescriptor bindGroup{};
-    bindGroup.label = "overlay";
-    bindGroup.layout = layout;
-    bindGroup.entryCount = 1;
-    bindGroup.entries = &binding;
-    overlay.mBindGroup = device.CreateBindGroup(&bindGroup);
+    overlay.mBindGroup =
+        gpu::makeBindGroup(device, layout, {{0, overlay.mViewport, 0, 16}}, "overlay");
     return overlay;
 }
 

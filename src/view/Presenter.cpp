@@ -1,5 +1,9 @@
 #include "encore/view/Presenter.h"
 
+#include "encore/gpu/BindingResource.h"
+#include "encore/gpu/FullscreenPipeline.h"
+#include "encore/gpu/LayoutEntry.h"
+
 namespace encore::view {
 
 Result<Presenter> Presenter::create(const wgpu::Device& device, shaders::ShaderLibrary& shaders,
@@ -10,49 +14,20 @@ Result<Presenter> Presenter::create(const wgpu::Device& device, shaders::ShaderL
     }
     Presenter presenter;
     presenter.mDevice = device;
-    wgpu::BindGroupLayoutEntry entry{};
-    entry.binding = 0;
-    entry.visibility = wgpu::ShaderStage::Fragment;
-    entry.texture.sampleType = wgpu::TextureSampleType::Float;
-    entry.texture.viewDimension = wgpu::TextureViewDimension::e2D;
-    wgpu::BindGroupLayoutDescriptor layout{};
-    layout.label = "present";
-    layout.entryCount = 1;
-    layout.entries = &entry;
-    presenter.mLayout = device.CreateBindGroupLayout(&layout);
-    wgpu::PipelineLayoutDescriptor pipelineLayout{};
-    pipelineLayout.bindGroupLayoutCount = 1;
-    pipelineLayout.bindGroupLayouts = &presenter.mLayout;
-
-    wgpu::ColorTargetState color{};
-    color.format = surfaceFormat;
-    wgpu::FragmentState fragment{};
-    fragment.module = *module;
-    fragment.entryPoint = "fragmentMain";
-    fragment.targetCount = 1;
-    fragment.targets = &color;
-    wgpu::RenderPipelineDescriptor descriptor{};
-    descriptor.label = "present";
-    descriptor.layout = device.CreatePipelineLayout(&pipelineLayout);
-    descriptor.vertex.module = *module;
-    descriptor.vertex.entryPoint = "vertexMain";
-    descriptor.fragment = &fragment;
-    presenter.mPipeline = device.CreateRenderPipeline(&descriptor);
+    presenter.mLayout = gpu::makeBindGroupLayout(
+        device, {gpu::LayoutEntry::texture(0, wgpu::ShaderStage::Fragment)}, "present");
+    presenter.mPipeline = gpu::makeFullscreenPipeline(
+        device, {.label = "present",
+                 .module = *module,
+                 .layout = gpu::makePipelineLayout(device, {presenter.mLayout}),
+                 .colorFormat = surfaceFormat});
     return presenter;
 }
 
 void Presenter::encode(const wgpu::CommandEncoder& commands, const wgpu::TextureView& source,
                        const wgpu::TextureView& target) {
     if (source.Get() != mBoundSource.Get()) {
-        wgpu::BindGroupEntry entry{};
-        entry.binding = 0;
-        entry.textureView = source;
-        wgpu::BindGroupDescriptor bindGroup{};
-        bindGroup.label = "present";
-        bindGroup.layout = mLayout;
-        bindGroup.entryCount = 1;
-        bindGroup.entries = &entry;
-        mBindGroup = mDevice.CreateBindGroup(&bindGroup);
+        mBindGroup = gpu::makeBindGroup(mDevice, mLayout, {{0, source}}, "present");
         mBoundSource = source;
     }
     wgpu::RenderPassColorAttachment color{};

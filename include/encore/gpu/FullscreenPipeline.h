@@ -1,0 +1,34 @@
+#pragma once
+
+// The render pipeline of a fullscreen pass: one triangle, three vertices and no vertex buffer,
+// that covers the target (its vertex shader places them from the vertex index), and a fragment
+// shader that writes one colour attachment. Tone mapping, presenting, mipmap downsampling and the
+// environment background are all such passes; each draws with pass.Draw(3).
+
+#include <webgpu/webgpu_cpp.h>
+
+#include <cstdint>
+#include <optional>
+
+namespace encore::gpu {
+
+struct FullscreenPipelineDescriptor {
+    wgpu::StringView label;
+    wgpu::ShaderModule module;  // Holds both entry points.
+    wgpu::StringView vertexEntryPoint = "vertexMain";
+    wgpu::StringView fragmentEntryPoint = "fragmentMain";
+    // Null: the layout WebGPU derives from the module (then only its bind groups fit).
+    wgpu::PipelineLayout layout;
+    wgpu::TextureFormat colorFormat = wgpu::TextureFormat::Undefined;
+    // Without one, the fragment's colour replaces the target's.
+    std::optional<wgpu::BlendState> blend;
+    // For a pass that has a depth attachment (and samples): the triangle neither tests nor
+    // writes depth. Undefined: a pass without depth.
+    wgpu::TextureFormat depthFormat = wgpu::TextureFormat::Undefined;
+    std::uint32_t sampleCount = 1;
+};
+
+wgpu::RenderPipeline makeFullscreenPipeline(const wgpu::Device& device,
+                                            const FullscreenPipelineDescriptor& descriptor);
+
+}  // namespace encore::gpu
