@@ -89,12 +89,9 @@ Result<ScalingPoint> readPoint(const json& result) {
     }
     // Strategies without GPU culling draw what they submit and report "trianglesDrawn": null.
     for (const char* key : {"trianglesDrawn", "trianglesSubmitted"}) {
-        auto counts = readCounts(result, key);
-        if (!counts) {
-            return counts.error();
-        }
-        if (!counts->empty()) {
-            point.triangles = summarize(*counts);
+        ENCORE_TRY_ASSIGN(auto counts, readCounts(result, key));
+        if (!counts.empty()) {
+            point.triangles = summarize(counts);
             break;
         }
     }

@@ -203,20 +203,17 @@ Result<BenchResult> measureAnimometer(gpu::Context& context,
                                       const render::AnimometerOptions& animometer,
                                       const BenchOptions& options, gpu::GpuTimer* timer) {
     shaders::ShaderLibrary shaders(context.device());
-    auto scene = render::AnimometerScene::create(context, shaders, animometer);
-    if (!scene) {
-        return scene.error();
-    }
+    ENCORE_TRY_ASSIGN(auto scene, render::AnimometerScene::create(context, shaders, animometer));
     BenchResult result;
     result.scene = "animometer";
     result.label = "animometer " + std::to_string(animometer.triangles) + " triangles";
     result.objects = animometer.triangles;
-    measureFrames(context, options, scene->describe(), result, [&](std::uint32_t frame) {
-        return scene->renderFrame(frameTime(frame), options.callgrind ? nullptr : timer);
+    measureFrames(context, options, scene.describe(), result, [&](std::uint32_t frame) {
+        return scene.renderFrame(frameTime(frame), options.callgrind ? nullptr : timer);
     });
-    result.frame = scene->lastFrameCounters();
-    result.bundleContents = scene->bundleContents();
-    ENCORE_TRY(context.checkNoErrors("Benchmarking " + scene->describe()));
+    result.frame = scene.lastFrameCounters();
+    result.bundleContents = scene.bundleContents();
+    ENCORE_TRY(context.checkNoErrors("Benchmarking " + scene.describe()));
     return result;
 }
 
@@ -275,12 +272,10 @@ Result<BenchReport> runBenchmarks(gpu::Context& context, const BenchOptions& opt
             strategies.push_back({kind, false});
         }
     }
-    auto renderer = render::Renderer::create(context, {{options.width, options.height, 1}});
-    if (!renderer) {
-        return renderer.error();
-    }
-    renderer->setCullingOptions(options.culling);
-    report.environmentMilliseconds = renderer->lighting().environment().lastBuildMilliseconds();
+    ENCORE_TRY_ASSIGN(auto renderer,
+                      render::Renderer::create(context, {{options.width, options.height, 1}}));
+    renderer.setCullingOptions(options.culling);
+    report.environmentMilliseconds = renderer.lighting().environment().lastBuildMilliseconds();
     auto timer = gpu::GpuTimer::create(context);
     report.timestamps = timer.has_value() && !options.callgrind && options.gpuTimer;
     gpu::GpuTimer* timerPointer = report.timestamps ? &*timer : nullptr;
@@ -317,8 +312,8 @@ Result<BenchReport> runBenchmarks(gpu::Context& context, const BenchOptions& opt
             if (progress) {
                 progress(label + " / " + name);
             }
-            renderer->setCullingOptions(measurement.culling);
-            auto result = measure(context, *renderer, scene, measurement.strategy, options,
+            renderer.setCullingOptions(measurement.culling);
+            auto result = measure(context, renderer, scene, measurement.strategy, options,
                                   timerPointer, animate, path);
             if (!result && result.error().code == ErrorCode::Unsupported) {
                 report.skipped.push_back(label + " / " + name + ": " + result.error().message);
@@ -332,7 +327,7 @@ Result<BenchReport> runBenchmarks(gpu::Context& context, const BenchOptions& opt
             result->strategy = name;
             report.results.push_back(std::move(*result));
         }
-        renderer->setCullingOptions(options.culling);
+        renderer.setCullingOptions(options.culling);
         return {};
     };
 
@@ -349,20 +344,14 @@ Result<BenchReport> runBenchmarks(gpu::Context& context, const BenchOptions& opt
             generator.layout = kind == GeneratedScene::Flythrough ? scene::SceneLayout::Lattice
                                : kind == GeneratedScene::City     ? scene::SceneLayout::City
                                                                   : scene::SceneLayout::Grid;
-            auto glb = scene::generateSceneGlb(generator);
-            if (!glb) {
-                return glb.error();
-            }
+            ENCORE_TRY_ASSIGN(auto glb, scene::generateSceneGlb(generator));
             // The grid keeps the name its reports have always had.
             const std::string name = kind == GeneratedScene::Grid
                                          ? std::string("generated")
                                          : std::string(generatedSceneName(kind));
             const std::string label = name + " " + std::to_string(objects) + " objects";
-            auto scene = scene::loadSceneFromMemory(*glb, {}, label);
-            if (!scene) {
-                return scene.error();
-            }
-            ENCORE_TRY(runScene(*scene, name, label, std::nullopt,
+            ENCORE_TRY_ASSIGN(auto scene, scene::loadSceneFromMemory(glb, {}, label));
+            ENCORE_TRY(runScene(scene, name, label, std::nullopt,
                                 render::CameraPath::forLayout(generator)));
         }
     }
@@ -379,19 +368,13 @@ Result<BenchReport> runBenchmarks(gpu::Context& context, const BenchOptions& opt
         return {};
     };
     for (std::uint32_t characters : options.crowdCharacters) {
-        auto glb = scene::generateCrowdGlb({characters});
-        if (!glb) {
-            return glb.error();
-        }
+        ENCORE_TRY_ASSIGN(auto glb, scene::generateCrowdGlb({characters}));
         const std::string label = "crowd of " + std::to_string(characters) + " characters";
-        auto scene = scene::loadSceneFromMemory(*glb, {}, label);
-        if (!scene) {
-            return scene.error();
-        }
+        ENCORE_TRY_ASSIGN(auto scene, scene::loadSceneFromMemory(glb, {}, label));
         const std::vector<render::AnimationEvaluation> both = {render::AnimationEvaluation::Cpu,
                                                                render::AnimationEvaluation::Gpu};
         ENCORE_TRY(
-            runAnimated(*scene, "crowd", label, options.animate.empty() ? both : options.animate));
+            runAnimated(scene, "crowd", label, options.animate.empty() ? both : options.animate));
     }
     for (std::uint32_t triangles : options.animometerTriangles) {
         for (const bool dynamicOffsets : {false, true}) {
@@ -423,11 +406,8 @@ Result<BenchReport> runBenchmarks(gpu::Context& context, const BenchOptions& opt
         }
     }
     for (const auto& model : options.models) {
-        auto scene = scene::loadScene(model);
-        if (!scene) {
-            return scene.error();
-        }
-        ENCORE_TRY(runAnimated(*scene, "model", model.filename().string(), options.animate));
+        ENCORE_TRY_ASSIGN(auto scene, scene::loadScene(model));
+        ENCORE_TRY(runAnimated(scene, "model", model.filename().string(), options.animate));
     }
     return report;
 }

@@ -400,11 +400,8 @@ class Renderer {
             options.toneMapping.background = render::BackgroundKind::Transparent;
             options.keepPipelines = true;
             mRenderer.reset();
-            auto created = render::Renderer::create(*mContext, options);
-            if (!created) {
-                return created.error();
-            }
-            mRenderer = std::make_unique<render::Renderer>(std::move(*created));
+            ENCORE_TRY_ASSIGN(auto created, render::Renderer::create(*mContext, options));
+            mRenderer = std::make_unique<render::Renderer>(std::move(created));
             mPrepared.reset();
         }
         if (mPrepared != scene) {
@@ -416,26 +413,16 @@ class Renderer {
             mPrepared = scene;
         }
         Rendered rendered;
-        auto color = batch::renderStrips(*mRenderer, scene->bounds, cameraToWorld, rig, layout);
-        if (!color) {
-            return color.error();
-        }
-        rendered.color = std::move(*color);
+        ENCORE_TRY_ASSIGN(rendered.color, batch::renderStrips(*mRenderer, scene->bounds,
+                                                              cameraToWorld, rig, layout));
         if (normals) {
-            auto normalImages = batch::renderStrips(*mRenderer, scene->bounds, cameraToWorld, rig,
-                                                    layout, batch::ViewImage::Normal);
-            if (!normalImages) {
-                return normalImages.error();
-            }
-            rendered.normals = std::move(*normalImages);
+            ENCORE_TRY_ASSIGN(rendered.normals,
+                              batch::renderStrips(*mRenderer, scene->bounds, cameraToWorld, rig,
+                                                  layout, batch::ViewImage::Normal));
         }
         if (depth) {
-            auto depthImages =
-                batch::renderDepthStrips(*mRenderer, scene->bounds, cameraToWorld, rig, layout);
-            if (!depthImages) {
-                return depthImages.error();
-            }
-            rendered.depth = std::move(*depthImages);
+            ENCORE_TRY_ASSIGN(rendered.depth, batch::renderDepthStrips(*mRenderer, scene->bounds,
+                                                                       cameraToWorld, rig, layout));
         }
         ENCORE_TRY(mContext->checkNoErrors("Rendering '" + scene->sourcePath.string() + "'"));
         return rendered;

@@ -131,11 +131,8 @@ Result<void> checkClipDistances(const scene::SceneData& scene, float znear, floa
 Result<render::Camera> gltfCamera(const CameraOptions& options,
                                   const scene::SceneData& scene,
                                   float aspect) {
-    auto instance = findCamera(options.camera, scene);
-    if (!instance) {
-        return instance.error();
-    }
-    const scene::CameraInstance& placed = **instance;
+    ENCORE_TRY_ASSIGN(auto instance, findCamera(options.camera, scene));
+    const scene::CameraInstance& placed = *instance;
     if (placed.camera.index() >= scene.cameras.size()) {
         return makeError(ErrorCode::InvalidFormat, fileOf(scene) + ": camera instance '" +
                                                        options.camera +

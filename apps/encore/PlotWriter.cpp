@@ -273,11 +273,8 @@ Result<std::string> plotScalingSvg(const json& report) {
         return makeError(ErrorCode::InvalidFormat,
                          "The benchmark report has no \"adapter.name\" string.");
     }
-    auto read = bench::readScalingSeries(report["results"]);
-    if (!read) {
-        return read.error();
-    }
-    const std::vector<ScalingSeries>& series = *read;
+    ENCORE_TRY_ASSIGN(const std::vector<ScalingSeries> series,
+                      bench::readScalingSeries(report["results"]));
     if (series.empty()) {
         return makeError(ErrorCode::InvalidFormat,
                          "The benchmark report has no \"generated\", \"animometer\", \"crowd\", "

@@ -103,12 +103,9 @@ Result<void> applyShadingOptions(const ShadingOptions& options,
     } else if (options.background == "transparent") {
         renderer.toneMapping.background = render::BackgroundKind::Transparent;
     } else if (!options.background.empty()) {
-        auto color = parseHexColor(options.background);
-        if (!color) {
-            return color.error();
-        }
+        ENCORE_TRY_ASSIGN(auto color, parseHexColor(options.background));
         renderer.toneMapping.background = render::BackgroundKind::Color;
-        renderer.toneMapping.backgroundColor = *color;
+        renderer.toneMapping.backgroundColor = color;
     }
     const auto channel = debugChannels().find(options.debugChannel);
     if (channel == debugChannels().end()) {
@@ -123,11 +120,8 @@ Result<void> applyShadingOptions(const ShadingOptions& options,
     renderer.lighting.imageBasedLighting = !options.noImageBasedLighting;
     renderer.lighting.punctualLights = !options.noPunctualLights;
     if (!options.environment.empty()) {
-        auto panorama = image::readHdr(options.environment);
-        if (!panorama) {
-            return panorama.error();
-        }
-        renderer.environmentImage = std::make_shared<image::HdrImage>(std::move(*panorama));
+        ENCORE_TRY_ASSIGN(auto panorama, image::readHdr(options.environment));
+        renderer.environmentImage = std::make_shared<image::HdrImage>(std::move(panorama));
     }
     return {};
 }

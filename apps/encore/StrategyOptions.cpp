@@ -32,11 +32,8 @@ Result<std::vector<render::StrategyChoice>> parseStrategySelection(
         }
     }
     for (const auto& name : names) {
-        auto choice = parseStrategyChoice(name, false);
-        if (!choice) {
-            return choice.error();
-        }
-        choices.push_back(*choice);
+        ENCORE_TRY_ASSIGN(auto choice, parseStrategyChoice(name, false));
+        choices.push_back(choice);
     }
     return render::withBundlingAxis(choices, alsoBundled);
 }

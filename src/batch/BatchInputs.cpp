@@ -52,11 +52,8 @@ fs::path commonFolder(std::span<const fs::path> paths) {
 }
 
 Result<std::vector<fs::path>> readList(const fs::path& list) {
-    auto bytes = readFile(list);
-    if (!bytes) {
-        return bytes.error();
-    }
-    const std::string text(bytes->begin(), bytes->end());
+    ENCORE_TRY_ASSIGN(auto bytes, readFile(list));
+    const std::string text(bytes.begin(), bytes.end());
     std::vector<std::string> entries;
     if (lowercase(list.extension().string()) == ".json") {
         const nlohmann::json json = nlohmann::json::parse(text, nullptr, false);
@@ -178,15 +175,12 @@ Result<std::vector<BatchInput>> discoverInputs(const fs::path& input) {
         paths.push_back(absolute);
         root = absolute.parent_path();
     } else {
-        auto listed = readList(absolute);
-        if (!listed) {
-            return listed.error();
-        }
-        if (listed->empty()) {
+        ENCORE_TRY_ASSIGN(auto listed, readList(absolute));
+        if (listed.empty()) {
             return makeError(ErrorCode::InvalidArgument,
                              "The input list " + quoted(input) + " names no model.");
         }
-        return listedInputs(*listed);
+        return listedInputs(listed);
     }
     return namedInputs(paths, root);
 }

@@ -67,12 +67,9 @@ Result<void> BatchRenderer::acquire(const render::RendererOptions& options,
     mRing.reset();
     mRenderers.clear();
     mRendererOptions.reset();
-    auto environment = environmentFor(options);
-    if (!environment) {
-        return environment.error();
-    }
+    ENCORE_TRY_ASSIGN(auto environment, environmentFor(options));
     render::RendererOptions built = options;
-    built.environment = *environment;
+    built.environment = environment;
     for (std::size_t i = 0; i < std::max<std::size_t>(rendererCount, 1); ++i) {
         auto renderer = render::Renderer::create(mContext, built);
         if (!renderer) {

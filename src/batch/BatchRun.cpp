@@ -478,11 +478,8 @@ Result<BatchSummary> BatchRun::run() {
                                                  ").");
     }
     if (mOptions.writeFailureLog) {
-        auto failures = FailureLog::create(mOptions.output / "failures.jsonl");
-        if (!failures) {
-            return failures.error();
-        }
-        mFailures.emplace(std::move(*failures));
+        ENCORE_TRY_ASSIGN(auto failures, FailureLog::create(mOptions.output / "failures.jsonl"));
+        mFailures.emplace(std::move(failures));
     } else {
         mFailures.emplace(FailureLog::inMemory());
     }

@@ -157,14 +157,11 @@ Result<std::vector<Image>> renderTargets(const scene::Bounds& bounds,
     for (std::uint32_t first = 0; first < cameraToWorld.size(); first += layout.strips) {
         const std::vector<render::Camera> cameras =
             stripCameras(cameraToWorld, first, layout, toUnitBox, fov);
-        auto wide = drawTarget(std::span<const render::Camera>(cameras));
-        if (!wide) {
-            return wide.error();
-        }
+        ENCORE_TRY_ASSIGN(auto wide, drawTarget(std::span<const render::Camera>(cameras)));
         const std::uint32_t count =
             std::min<std::uint32_t>(layout.strips, std::uint32_t(cameraToWorld.size()) - first);
         for (std::uint32_t strip = 0; strip < count; ++strip) {
-            views.push_back(cutStrip(*wide, strip));
+            views.push_back(cutStrip(wide, strip));
         }
     }
     return views;

@@ -86,11 +86,8 @@ Result<void> close(FileHandle file, const std::filesystem::path& path) {
 }  // namespace
 
 Result<void> writeFile(const std::filesystem::path& path, std::span<const std::uint8_t> bytes) {
-    auto file = createWith(path, bytes);
-    if (!file) {
-        return file.error();
-    }
-    return close(std::move(*file), path);
+    ENCORE_TRY_ASSIGN(auto file, createWith(path, bytes));
+    return close(std::move(file), path);
 }
 
 std::filesystem::path partialPath(const std::filesystem::path& path) {
@@ -118,36 +115,30 @@ Result<void> renamePartial(const std::filesystem::path& path) {
 Result<void> writeFileAtomically(const std::filesystem::path& path,
                                  std::span<const std::uint8_t> bytes) {
     const std::filesystem::path partial = partialPath(path);
-    auto file = createWith(partial, bytes);
-    if (!file) {
-        return file.error();
-    }
+    ENCORE_TRY_ASSIGN(auto file, createWith(partial, bytes));
     // Without the flush to the disk, a power loss after the rename could leave `path` empty:
     // file systems may commit the rename before the data.
-    if (std::fflush(file->get()) != 0 || ::fdatasync(::fileno(file->get())) != 0) {
+    if (std::fflush(file.get()) != 0 || ::fdatasync(::fileno(file.get())) != 0) {
         return makeError(
             ErrorCode::IoError,
             "Flushing " + quoted(partial) + " to the disk failed (" + std::strerror(errno) + ").");
     }
-    ENCORE_TRY(close(std::move(*file), partial));
+    ENCORE_TRY(close(std::move(file), partial));
     return renamePartial(path);
 }
 
 Result<void> writePartialFile(const std::filesystem::path& path,
                               std::span<const std::uint8_t> bytes) {
     const std::filesystem::path partial = partialPath(path);
-    auto file = createWith(partial, bytes);
-    if (!file) {
-        return file.error();
-    }
-    if (std::fflush(file->get()) != 0) {
+    ENCORE_TRY_ASSIGN(auto file, createWith(partial, bytes));
+    if (std::fflush(file.get()) != 0) {
         return makeError(ErrorCode::IoError,
                          "Writing " + quoted(partial) + " failed (" + std::strerror(errno) + ").");
     }
     // Only a hint: commitFiles flushes for certain. Started now, the writeback overlaps the
     // encoding of the model's other images.
-    ::sync_file_range(::fileno(file->get()), 0, 0, SYNC_FILE_RANGE_WRITE);
-    return close(std::move(*file), partial);
+    ::sync_file_range(::fileno(file.get()), 0, 0, SYNC_FILE_RANGE_WRITE);
+    return close(std::move(file), partial);
 }
 
 Result<void> commitFiles(std::span<const std::filesystem::path> paths) {

@@ -82,11 +82,8 @@ Result<std::vector<std::uint8_t>> readTexelRows(Context& context, const wgpu::Te
         wgpu::CommandBuffer commands = encoder.Finish();
         context.queue().Submit(1, &commands);
 
-        auto bytes = mapAndCopy(context, staging, size);
-        if (!bytes) {
-            return bytes.error();
-        }
-        unpadRows(bytes->data(), rowBytes, bandHeight, &rows[std::size_t(firstRow) * rowBytes]);
+        ENCORE_TRY_ASSIGN(auto bytes, mapAndCopy(context, staging, size));
+        unpadRows(bytes.data(), rowBytes, bandHeight, &rows[std::size_t(firstRow) * rowBytes]);
     }
     return rows;
 }
@@ -135,14 +132,11 @@ Result<image::ImageRgba8> readTextureLevel(Context& context, const wgpu::Texture
                              " does not exist (the texture has " +
                              std::to_string(texture.GetMipLevelCount()) + " levels).");
     }
-    auto rows = readTexelRows(context, texture, level, 0, 4);
-    if (!rows) {
-        return rows.error();
-    }
+    ENCORE_TRY_ASSIGN(auto rows, readTexelRows(context, texture, level, 0, 4));
     image::ImageRgba8 image;
     image.width = std::max(texture.GetWidth() >> level, 1u);
     image.height = std::max(texture.GetHeight() >> level, 1u);
-    image.pixels = std::move(*rows);
+    image.pixels = std::move(rows);
     if (isBgra(format)) {
         for (std::size_t i = 0; i < image.pixels.size(); i += 4) {
             std::swap(image.pixels[i], image.pixels[i + 2]);
@@ -162,14 +156,11 @@ Result<std::vector<float>> readTextureRgba16Float(Context& context, const wgpu::
                          "Mip level " + std::to_string(level) + " or layer " +
                              std::to_string(layer) + " does not exist.");
     }
-    auto rows = readTexelRows(context, texture, level, layer, 8);
-    if (!rows) {
-        return rows.error();
-    }
-    std::vector<float> values(rows->size() / 2);
+    ENCORE_TRY_ASSIGN(auto rows, readTexelRows(context, texture, level, layer, 8));
+    std::vector<float> values(rows.size() / 2);
     for (std::size_t i = 0; i < values.size(); ++i) {
         std::uint16_t half;
-        std::memcpy(&half, rows->data() + i * 2, 2);
+        std::memcpy(&half, rows.data() + i * 2, 2);
         values[i] = halfToFloat(half);
     }
     return values;
@@ -185,12 +176,9 @@ Result<std::vector<float>> readTextureR32Float(Context& context, const wgpu::Tex
         return makeError(ErrorCode::InvalidArgument,
                          "Mip level " + std::to_string(level) + " does not exist.");
     }
-    auto rows = readTexelRows(context, texture, level, 0, 4);
-    if (!rows) {
-        return rows.error();
-    }
-    std::vector<float> values(rows->size() / 4);
-    std::memcpy(values.data(), rows->data(), rows->size());
+    ENCORE_TRY_ASSIGN(auto rows, readTexelRows(context, texture, level, 0, 4));
+    std::vector<float> values(rows.size() / 4);
+    std::memcpy(values.data(), rows.data(), rows.size());
     return values;
 }
 

@@ -176,19 +176,16 @@ Result<MappedReadback> TextureReadbackRing::takeOldestMapped() {
 }
 
 Result<FinishedReadback> TextureReadbackRing::takeOldest() {
-    auto mapped = takeOldestMapped();
-    if (!mapped) {
-        return mapped.error();
-    }
+    ENCORE_TRY_ASSIGN(auto mapped, takeOldestMapped());
     FinishedReadback finished;
-    finished.ticket = mapped->ticket;
-    finished.waitMilliseconds = mapped->waitMilliseconds;
+    finished.ticket = mapped.ticket;
+    finished.waitMilliseconds = mapped.waitMilliseconds;
     const auto copyStart = std::chrono::steady_clock::now();
-    const std::uint32_t rowBytes = mapped->width * 4;
-    finished.image.width = mapped->width;
-    finished.image.height = mapped->height;
-    finished.image.pixels.resize(std::size_t(rowBytes) * mapped->height);
-    unpadRows(mapped->rows, rowBytes, mapped->height, finished.image.pixels.data());
+    const std::uint32_t rowBytes = mapped.width * 4;
+    finished.image.width = mapped.width;
+    finished.image.height = mapped.height;
+    finished.image.pixels.resize(std::size_t(rowBytes) * mapped.height);
+    unpadRows(mapped.rows, rowBytes, mapped.height, finished.image.pixels.data());
     finished.copyMilliseconds = millisecondsSince(copyStart);
     return finished;  // `mapped` lets go of the slot: the next enqueue unmaps it.
 }

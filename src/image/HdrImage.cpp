@@ -139,11 +139,8 @@ Result<HdrImage> decodeHdr(std::span<const std::uint8_t> encoded) {
 }
 
 Result<HdrImage> readHdr(const std::filesystem::path& path) {
-    auto bytes = readFile(path);
-    if (!bytes) {
-        return bytes.error();  // readFile's messages already name the path.
-    }
-    auto image = decodeHdr(*bytes);
+    ENCORE_TRY_ASSIGN(auto bytes, readFile(path));  // readFile's messages already name the path.
+    auto image = decodeHdr(bytes);
     if (!image) {
         return image.error().withContext("'" + path.string() + "'");
     }

@@ -265,11 +265,8 @@ Result<void> writePng(const std::filesystem::path& path, const ImageRgba8& image
 }
 
 Result<ImageRgba8> readImage(const std::filesystem::path& path) {
-    auto bytes = readFile(path);
-    if (!bytes) {
-        return bytes.error();
-    }
-    auto image = decodeImage(*bytes);
+    ENCORE_TRY_ASSIGN(auto bytes, readFile(path));
+    auto image = decodeImage(bytes);
     if (!image) {
         return image.error().withContext("'" + path.string() + "'");
     }

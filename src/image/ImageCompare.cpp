@@ -146,11 +146,8 @@ Result<SsimMap> ssimLuminanceMap(const ImageRgba8& a, const ImageRgba8& b) {
 }
 
 Result<double> ssimLuminance(const ImageRgba8& a, const ImageRgba8& b) {
-    auto map = ssimLuminanceMap(a, b);
-    if (!map) {
-        return map.error();
-    }
-    return map->mean;
+    ENCORE_TRY_ASSIGN(auto map, ssimLuminanceMap(a, b));
+    return map.mean;
 }
 
 Result<ColorError> colorError(const ImageRgba8& a, const ImageRgba8& b) {

@@ -138,17 +138,14 @@ Result<AnimometerScene> AnimometerScene::create(gpu::Context& context,
     }
     scene.mTarget = std::move(*target);
 
-    auto module = shaders.module("animometer.wgsl");
-    if (!module) {
-        return module.error();
-    }
+    ENCORE_TRY_ASSIGN(auto module, shaders.module("animometer.wgsl"));
     const auto uniform = gpu::LayoutEntry::uniform(0, wgpu::ShaderStage::Vertex);
     const wgpu::BindGroupLayout timeLayout =
         gpu::makeBindGroupLayout(device, {uniform}, "animometer time");
     const wgpu::BindGroupLayout triangleLayout = gpu::makeBindGroupLayout(
         device, {options.dynamicOffsets ? uniform.withDynamicOffset() : uniform},
         "animometer triangle");
-    scene.mPipeline = createPipeline(device, *module,
+    scene.mPipeline = createPipeline(device, module,
                                      gpu::makePipelineLayout(device, {timeLayout, triangleLayout}));
 
     scene.mVertices = gpu::createBufferFrom(device, wgpu::BufferUsage::Vertex,
@@ -255,21 +252,14 @@ Result<void> AnimometerScene::resize(std::uint32_t width, std::uint32_t height) 
     RenderTargetOptions options = mTarget.options();
     options.width = width;
     options.height = height;
-    auto target = RenderTarget::create(mContext->device(), options);
-    if (!target) {
-        return target.error();
-    }
-    mTarget = std::move(*target);
+    ENCORE_TRY_ASSIGN(mTarget, RenderTarget::create(mContext->device(), options));
     mOptions.width = width;
     mOptions.height = height;
     return {};
 }
 
 Result<image::ImageRgba8> AnimometerScene::readImage() {
-    auto image = gpu::readTexture(*mContext, mTarget.colorTexture());
-    if (!image) {
-        return image.error();
-    }
+    ENCORE_TRY_ASSIGN(auto image, gpu::readTexture(*mContext, mTarget.colorTexture()));
     ENCORE_TRY(mContext->checkNoErrors("Rendering " + describe()));
     return image;
 }

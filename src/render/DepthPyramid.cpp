@@ -49,16 +49,15 @@ Result<DepthPyramid> DepthPyramid::create(const wgpu::Device& device,
     DepthPyramid pyramid;
     pyramid.mDepth = depth;
     const bool multisampled = depth.GetSampleCount() > 1;
-    auto module = shaders.module("depth_pyramid.wgsl",
-                                 multisampled ? std::set<std::string, std::less<>>{"MULTISAMPLED"}
-                                              : std::set<std::string, std::less<>>{});
-    if (!module) {
-        return module.error();
-    }
+    ENCORE_TRY_ASSIGN(
+        auto module,
+        shaders.module("depth_pyramid.wgsl",
+                       multisampled ? std::set<std::string, std::less<>>{"MULTISAMPLED"}
+                                    : std::set<std::string, std::less<>>{}));
     auto computePipeline = [&](const char* entryPoint) {
         wgpu::ComputePipelineDescriptor descriptor{};
         descriptor.label = entryPoint;
-        descriptor.compute.module = *module;
+        descriptor.compute.module = module;
         descriptor.compute.entryPoint = entryPoint;
         return device.CreateComputePipeline(&descriptor);  // Layout from the entry point.
     };

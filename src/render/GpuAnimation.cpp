@@ -103,13 +103,10 @@ Result<wgpu::ComputePipeline> makePipeline(const wgpu::Device& device,
                                            shaders::ShaderLibrary& shaders,
                                            const char* file,
                                            const char* entryPoint) {
-    auto module = shaders.module(file);
-    if (!module) {
-        return module.error();
-    }
+    ENCORE_TRY_ASSIGN(auto module, shaders.module(file));
     wgpu::ComputePipelineDescriptor descriptor{};
     descriptor.label = entryPoint;
-    descriptor.compute.module = *module;
+    descriptor.compute.module = module;
     descriptor.compute.entryPoint = entryPoint;
     return device.CreateComputePipeline(&descriptor);
 }

@@ -187,10 +187,7 @@ Result<GpuCuller> GpuCuller::create(const RenderSetup& setup, const InstanceBuff
         weights = gpu::createBuffer(device, wgpu::BufferUsage::Storage, 16, "no morph weights");
     }
 
-    auto module = setup.shaders->module("culling.wgsl");
-    if (!module) {
-        return module.error();
-    }
+    ENCORE_TRY_ASSIGN(auto module, setup.shaders->module("culling.wgsl"));
     // Explicit layouts, shared by the entry points: layouts derived from each shader entry point
     // would be distinct and their bind groups incompatible. The second phase adds the pyramid.
     constexpr auto kCompute = wgpu::ShaderStage::Compute;
@@ -213,7 +210,7 @@ Result<GpuCuller> GpuCuller::create(const RenderSetup& setup, const InstanceBuff
         descriptor.layout =
             withPyramid ? gpu::makePipelineLayout(device, {cullLayout, culler.mPyramidLayout})
                         : gpu::makePipelineLayout(device, {cullLayout});
-        descriptor.compute.module = *module;
+        descriptor.compute.module = module;
         descriptor.compute.entryPoint = entryPoint;
         return device.CreateComputePipeline(&descriptor);
     };

@@ -37,11 +37,8 @@ Result<MaterialResources> MaterialResources::create(const wgpu::Device& device,
                                                     StagedImages* staged) {
     std::optional<MipmapGenerator> ownMipmaps;
     if (!mipmaps) {
-        auto created = MipmapGenerator::create(device, shaders);
-        if (!created) {
-            return created.error();
-        }
-        mipmaps = &ownMipmaps.emplace(std::move(*created));
+        ENCORE_TRY_ASSIGN(auto created, MipmapGenerator::create(device, shaders));
+        mipmaps = &ownMipmaps.emplace(std::move(created));
     }
     wgpu::Limits limits{};
     device.GetLimits(&limits);
@@ -95,11 +92,9 @@ Result<MaterialResources> MaterialResources::create(const wgpu::Device& device,
             if (!sampled.sampled(slot.slot) && ref->texture.index() < scene.textures.size()) {
                 continue;
             }
-            auto uploaded = builder.referencedTexture(id, ref, slotColorSpace(material, slot.slot));
-            if (!uploaded) {
-                return uploaded.error();
-            }
-            if (*uploaded == kNone) {
+            ENCORE_TRY_ASSIGN(auto uploaded, builder.referencedTexture(
+                                                 id, ref, slotColorSpace(material, slot.slot)));
+            if (uploaded == kNone) {
                 continue;  // Missing or undecoded image: the loader warned; white stands in.
             }
             const scene::Texture& texture = scene.textures[ref->texture.index()];
@@ -111,7 +106,7 @@ Result<MaterialResources> MaterialResources::create(const wgpu::Device& device,
                                      ", but the scene has " +
                                      std::to_string(scene.samplers.size()) + " samplers.");
             }
-            textures[slotIndex] = *uploaded;
+            textures[slotIndex] = uploaded;
             if (texture.sampler.valid()) {
                 samplers[slotIndex] = resources.mSceneSamplers[texture.sampler.index()];
             }
@@ -176,14 +171,11 @@ Result<void> MaterialResources::replaceBaseColorImage(const wgpu::Device& device
         return makeError(ErrorCode::InvalidArgument,
                          "Material " + std::to_string(material.value) + " does not exist.");
     }
-    auto mipmaps = MipmapGenerator::create(device, shaders);
-    if (!mipmaps) {
-        return mipmaps.error();
-    }
+    ENCORE_TRY_ASSIGN(auto mipmaps, MipmapGenerator::create(device, shaders));
     const scene::SceneData noScene;
     wgpu::Limits limits{};
     device.GetLimits(&limits);
-    Builder builder{device, queue, noScene, *this, *mipmaps, device.CreateCommandEncoder()};
+    Builder builder{device, queue, noScene, *this, mipmaps, device.CreateCommandEncoder()};
     builder.maxDimension = limits.maxTextureDimension2D;
     auto uploaded = builder.uploadImage(scene::ImageId{}, image, ColorSpace::Srgb);
     if (!uploaded) {

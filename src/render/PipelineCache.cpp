@@ -11,13 +11,11 @@ Result<wgpu::RenderPipeline> PipelineCache::get(const PipelineKey& key) {
         ++mHits;
         return found->second;
     }
-    auto pipeline = createMeshPipeline(*mSetup, key,
-                                       "cached pipeline " + std::to_string(mPipelines.size()) +
-                                           " (" + key.shader.describe() + ")");
-    if (!pipeline) {
-        return pipeline.error();
-    }
-    mPipelines.emplace(key, *pipeline);
+    ENCORE_TRY_ASSIGN(auto pipeline,
+                      createMeshPipeline(*mSetup, key,
+                                         "cached pipeline " + std::to_string(mPipelines.size()) +
+                                             " (" + key.shader.describe() + ")"));
+    mPipelines.emplace(key, pipeline);
     return pipeline;
 }
 

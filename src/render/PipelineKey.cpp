@@ -46,10 +46,7 @@ std::size_t PipelineKeyHash::operator()(const PipelineKey& key) const noexcept {
 
 Result<wgpu::RenderPipeline> createMeshPipeline(const RenderSetup& setup, const PipelineKey& key,
                                                 const std::string& label) {
-    auto module = setup.shaders->meshModule(key.shader);
-    if (!module) {
-        return module.error();
-    }
+    ENCORE_TRY_ASSIGN(auto module, setup.shaders->meshModule(key.shader));
 
     std::vector<wgpu::BindGroupLayout> groups = {setup.layouts->frame};
     switch (key.shader.instanceSource) {
@@ -98,7 +95,7 @@ Result<wgpu::RenderPipeline> createMeshPipeline(const RenderSetup& setup, const 
     colorTarget.format = key.colorFormat;
     colorTarget.blend = key.blend ? &blend : nullptr;
     wgpu::FragmentState fragment{};
-    fragment.module = *module;
+    fragment.module = module;
     fragment.entryPoint = "fragmentMain";
     fragment.targetCount = 1;
     fragment.targets = &colorTarget;
@@ -111,7 +108,7 @@ Result<wgpu::RenderPipeline> createMeshPipeline(const RenderSetup& setup, const 
     wgpu::RenderPipelineDescriptor descriptor{};
     descriptor.label = label.c_str();
     descriptor.layout = layout;
-    descriptor.vertex.module = *module;
+    descriptor.vertex.module = module;
     descriptor.vertex.entryPoint = "vertexMain";
     descriptor.vertex.bufferCount = buffers.size();
     descriptor.vertex.buffers = buffers.data();

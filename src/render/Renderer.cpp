@@ -34,11 +34,8 @@ Result<void> Renderer::build(const RendererOptions& options) {
     // Straight alpha needs the coverage that only the HDR target keeps.
     renderer.mOptions.target.hdr =
         options.target.hdr || options.toneMapping.background == BackgroundKind::Transparent;
-    auto target = RenderTarget::create(context.device(), renderer.mOptions.target);
-    if (!target) {
-        return target.error();
-    }
-    renderer.mTarget = std::move(*target);
+    ENCORE_TRY_ASSIGN(renderer.mTarget,
+                      RenderTarget::create(context.device(), renderer.mOptions.target));
     renderer.mShaders = std::make_unique<shaders::ShaderLibrary>(context.device());
     renderer.mLayouts =
         std::make_unique<BindGroupLayouts>(BindGroupLayouts::create(context.device()));
@@ -53,30 +50,24 @@ Result<void> Renderer::build(const RendererOptions& options) {
         }
         environment = std::make_shared<Environment>(std::move(*created));
     }
-    auto lighting = SceneLighting::create(context.device(), context.queue(), environment);
-    if (!lighting) {
-        return lighting.error();
-    }
-    renderer.mLighting = std::make_unique<SceneLighting>(std::move(*lighting));
+    ENCORE_TRY_ASSIGN(auto lighting,
+                      SceneLighting::create(context.device(), context.queue(), environment));
+    renderer.mLighting = std::make_unique<SceneLighting>(std::move(lighting));
     renderer.mLighting->setParameters(options.lighting);
     renderer.mLighting->setDisplayMapping(options.toneMapping, !renderer.mTarget.hdr());
     renderer.mFrame =
         std::make_unique<FrameUniforms>(context.device(), *renderer.mLayouts, *renderer.mLighting);
     if (renderer.mTarget.hdr()) {
-        auto toneMapper = ToneMapper::create(context.device(), context.queue(), *renderer.mShaders,
-                                             renderer.mTarget, options.toneMapping);
-        if (!toneMapper) {
-            return toneMapper.error();
-        }
-        renderer.mToneMapper = std::make_unique<ToneMapper>(std::move(*toneMapper));
+        ENCORE_TRY_ASSIGN(auto toneMapper,
+                          ToneMapper::create(context.device(), context.queue(), *renderer.mShaders,
+                                             renderer.mTarget, options.toneMapping));
+        renderer.mToneMapper = std::make_unique<ToneMapper>(std::move(toneMapper));
     }
-    auto background = EnvironmentBackground::create(
-        context.device(), *renderer.mShaders, renderer.mLayouts->frame,
-        renderer.mTarget.sceneFormat(), RenderTarget::kDepthFormat, options.target.sampleCount);
-    if (!background) {
-        return background.error();
-    }
-    renderer.mBackground = std::make_unique<EnvironmentBackground>(std::move(*background));
+    ENCORE_TRY_ASSIGN(auto background, EnvironmentBackground::create(
+                                           context.device(), *renderer.mShaders,
+                                           renderer.mLayouts->frame, renderer.mTarget.sceneFormat(),
+                                           RenderTarget::kDepthFormat, options.target.sampleCount));
+    renderer.mBackground = std::make_unique<EnvironmentBackground>(std::move(background));
 
     renderer.mSetup = std::make_unique<RenderSetup>();
     RenderSetup& setup = *renderer.mSetup;
@@ -94,11 +85,8 @@ Result<void> Renderer::build(const RendererOptions& options) {
         renderer.mKeptPipelines = std::make_unique<PipelineCache>(setup);
         setup.keptPipelines = renderer.mKeptPipelines.get();
     }
-    auto mipmaps = MipmapGenerator::create(context.device(), *renderer.mShaders);
-    if (!mipmaps) {
-        return mipmaps.error();
-    }
-    renderer.mMipmaps = std::make_unique<MipmapGenerator>(std::move(*mipmaps));
+    ENCORE_TRY_ASSIGN(auto mipmaps, MipmapGenerator::create(context.device(), *renderer.mShaders));
+    renderer.mMipmaps = std::make_unique<MipmapGenerator>(std::move(mipmaps));
     setup.mipmaps = renderer.mMipmaps.get();
     renderer.mMipmaps->setTimestamps(mStageTimestamps, gpuStageIndex(GpuStage::Mipmaps));
     return context.checkNoErrors("Creating the renderer");
@@ -542,11 +530,7 @@ Result<void> Renderer::resize(std::uint32_t width, std::uint32_t height) {
     RenderTargetOptions options = mTarget.options();
     options.width = width;
     options.height = height;
-    auto target = RenderTarget::create(mContext->device(), options);
-    if (!target) {
-        return target.error();
-    }
-    mTarget = std::move(*target);
+    ENCORE_TRY_ASSIGN(mTarget, RenderTarget::create(mContext->device(), options));
     mOptions.target.width = width;
     mOptions.target.height = height;
     if (mToneMapper) {

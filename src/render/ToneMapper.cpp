@@ -26,10 +26,7 @@ static_assert(sizeof(ToneMappingUniform) == 32);
 Result<ToneMapper> ToneMapper::create(const wgpu::Device& device, const wgpu::Queue& queue,
                                       shaders::ShaderLibrary& shaders, const RenderTarget& target,
                                       const ToneMappingOptions& options) {
-    auto module = shaders.module("tone_mapping.wgsl");
-    if (!module) {
-        return module.error();
-    }
+    ENCORE_TRY_ASSIGN(auto module, shaders.module("tone_mapping.wgsl"));
     ToneMapper mapper;
     mapper.mQueue = queue;
 
@@ -42,7 +39,7 @@ Result<ToneMapper> ToneMapper::create(const wgpu::Device& device, const wgpu::Qu
         "tone mapping");
     mapper.mPipeline = gpu::makeFullscreenPipeline(
         device, {.label = "tone mapping",
-                 .module = *module,
+                 .module = module,
                  .layout = gpu::makePipelineLayout(device, {mapper.mLayout}),
                  .colorFormat = RenderTarget::kColorFormat});
 
@@ -96,14 +93,11 @@ Result<EnvironmentBackground> EnvironmentBackground::create(
     const wgpu::Device& device, shaders::ShaderLibrary& shaders,
     const wgpu::BindGroupLayout& frameLayout, wgpu::TextureFormat colorFormat,
     wgpu::TextureFormat depthFormat, std::uint32_t sampleCount) {
-    auto module = shaders.module("sky.wgsl");
-    if (!module) {
-        return module.error();
-    }
+    ENCORE_TRY_ASSIGN(auto module, shaders.module("sky.wgsl"));
     EnvironmentBackground background;
     background.mPipeline = gpu::makeFullscreenPipeline(
         device, {.label = "environment background",
-                 .module = *module,
+                 .module = module,
                  .layout = gpu::makePipelineLayout(device, {frameLayout}),
                  .colorFormat = colorFormat,
                  .depthFormat = depthFormat,

@@ -397,11 +397,9 @@ Result<MeshOptimizerReport> optimizeMeshes(SceneData& scene, const MeshOptimizer
         for (std::size_t p = 0; p < scene.meshes[m].primitives.size(); ++p) {
             const Primitive& primitive = scene.meshes[m].primitives[p];
             if (isProcessed(primitive, scene)) {
-                const auto bytes = checkPrimitive(scene, primitive, primitiveName(m, p));
-                if (!bytes.ok()) {
-                    return bytes.error();
-                }
-                reserve += *bytes;
+                ENCORE_TRY_ASSIGN(const auto bytes,
+                                  checkPrimitive(scene, primitive, primitiveName(m, p)));
+                reserve += bytes;
             }
         }
     }

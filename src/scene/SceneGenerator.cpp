@@ -426,17 +426,11 @@ Result<std::vector<std::uint8_t>> generateSceneGlb(const GeneratorOptions& optio
                      {"nodes", json::array()}};
     GlbBinaryChunk binary;
     if (options.textures) {
-        auto checker = image::encodePng(checkerImage());
-        auto metallicRoughness = image::encodePng(metallicRoughnessImage());
-        if (!checker) {
-            return checker.error();
-        }
-        if (!metallicRoughness) {
-            return metallicRoughness.error();
-        }
+        ENCORE_TRY_ASSIGN(auto checker, image::encodePng(checkerImage()));
+        ENCORE_TRY_ASSIGN(auto metallicRoughness, image::encodePng(metallicRoughnessImage()));
         document["images"] = json::array();
-        binary.addPng(document, *checker);
-        binary.addPng(document, *metallicRoughness);
+        binary.addPng(document, checker);
+        binary.addPng(document, metallicRoughness);
         constexpr int kLinear = 9729;
         constexpr int kLinearMipmapLinear = 9987;
         constexpr int kRepeat = 10497;

@@ -65,10 +65,7 @@ class Composer {
             const bool active = stack.empty() || stack.back().active;
             const std::string_view trimmed = trim(line);
             if (trimmed.starts_with('#')) {
-                auto handled = directive(fileName, lineNumber, trimmed, active, stack);
-                if (!handled) {
-                    return handled.error();
-                }
+                ENCORE_TRY(directive(fileName, lineNumber, trimmed, active, stack));
             } else if (active) {
                 mOutput.append(line);
                 mOutput.push_back('\n');
@@ -119,11 +116,8 @@ class Composer {
             return {};
         }
         if (name == "#if") {
-            auto value = evaluate(file, line, argument);
-            if (!value) {
-                return value.error();
-            }
-            stack.push_back({active, active && *value, active && *value, false});
+            ENCORE_TRY_ASSIGN(const bool value, evaluate(file, line, argument));
+            stack.push_back({active, active && value, active && value, false});
             return {};
         }
         if (name == "#elif" || name == "#else" || name == "#endif") {
@@ -140,11 +134,7 @@ class Composer {
             }
             bool condition = true;
             if (name == "#elif") {
-                auto value = evaluate(file, line, argument);
-                if (!value) {
-                    return value.error();
-                }
-                condition = *value;
+                ENCORE_TRY_ASSIGN(condition, evaluate(file, line, argument));
             } else {
                 top.sawElse = true;
             }
@@ -167,10 +157,7 @@ Result<std::string> composeShader(std::string_view fileName,
                                   const std::set<std::string, std::less<>>& flags,
                                   const FileLookup& lookup) {
     Composer composer(flags, lookup);
-    auto composed = composer.compose(fileName);
-    if (!composed) {
-        return composed.error();
-    }
+    ENCORE_TRY(composer.compose(fileName));
     return composer.takeOutput();
 }
 

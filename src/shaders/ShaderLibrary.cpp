@@ -84,11 +84,8 @@ Result<wgpu::ShaderModule> ShaderLibrary::meshModule(const ShaderVariantKey& key
     if (auto found = mMeshModules.find(key); found != mMeshModules.end()) {
         return found->second;
     }
-    auto source = composeEmbeddedShader("mesh.wgsl", key.flags());
-    if (!source) {
-        return source.error();
-    }
-    auto module = createModule(mDevice, *source, "mesh.wgsl " + key.describe());
+    ENCORE_TRY_ASSIGN(auto source, composeEmbeddedShader("mesh.wgsl", key.flags()));
+    auto module = createModule(mDevice, source, "mesh.wgsl " + key.describe());
     mMeshModules.emplace(key, module);
     return module;
 }
@@ -102,11 +99,8 @@ Result<wgpu::ShaderModule> ShaderLibrary::module(const std::string& fileName,
     if (auto found = mOtherModules.find(cacheKey); found != mOtherModules.end()) {
         return found->second;
     }
-    auto source = composeEmbeddedShader(fileName, flags);
-    if (!source) {
-        return source.error();
-    }
-    auto module = createModule(mDevice, *source, cacheKey);
+    ENCORE_TRY_ASSIGN(auto source, composeEmbeddedShader(fileName, flags));
+    auto module = createModule(mDevice, source, cacheKey);
     mOtherModules.emplace(cacheKey, module);
     return module;
 }

@@ -34,10 +34,7 @@ constexpr std::uint64_t kInitialVertexCapacity = 16384;
 Result<Overlay> Overlay::create(const wgpu::Device& device, const wgpu::Queue& queue,
                                 shaders::ShaderLibrary& shaders,
                                 wgpu::TextureFormat surfaceFormat) {
-    auto module = shaders.module("overlay.wgsl");
-    if (!module) {
-        return module.error();
-    }
+    ENCORE_TRY_ASSIGN(auto module, shaders.module("overlay.wgsl"));
     Overlay overlay;
     overlay.mDevice = device;
     overlay.mQueue = queue;
@@ -66,14 +63,14 @@ Result<Overlay> Overlay::create(const wgpu::Device& device, const wgpu::Queue& q
     color.format = surfaceFormat;
     color.blend = &blend;
     wgpu::FragmentState fragment{};
-    fragment.module = *module;
+    fragment.module = module;
     fragment.entryPoint = "fragmentMain";
     fragment.targetCount = 1;
     fragment.targets = &color;
     wgpu::RenderPipelineDescriptor descriptor{};
     descriptor.label = "overlay";
     descriptor.layout = gpu::makePipelineLayout(device, {layout});
-    descriptor.vertex.module = *module;
+    descriptor.vertex.module = module;
     descriptor.vertex.entryPoint = "vertexMain";
     descriptor.vertex.bufferCount = 1;
     descriptor.vertex.buffers = &vertexLayout;

@@ -8,17 +8,14 @@ namespace encore::view {
 
 Result<Presenter> Presenter::create(const wgpu::Device& device, shaders::ShaderLibrary& shaders,
                                     wgpu::TextureFormat surfaceFormat) {
-    auto module = shaders.module("present.wgsl");
-    if (!module) {
-        return module.error();
-    }
+    ENCORE_TRY_ASSIGN(auto module, shaders.module("present.wgsl"));
     Presenter presenter;
     presenter.mDevice = device;
     presenter.mLayout = gpu::makeBindGroupLayout(
         device, {gpu::LayoutEntry::texture(0, wgpu::ShaderStage::Fragment)}, "present");
     presenter.mPipeline = gpu::makeFullscreenPipeline(
         device, {.label = "present",
-                 .module = *module,
+                 .module = module,
                  .layout = gpu::makePipelineLayout(device, {presenter.mLayout}),
                  .colorFormat = surfaceFormat});
     return presenter;

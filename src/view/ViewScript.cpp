@@ -130,11 +130,8 @@ Result<std::vector<ScriptStep>> parseViewScript(const std::string& text,
 }
 
 Result<std::vector<ScriptStep>> loadViewScript(const std::string& path) {
-    auto bytes = readFile(path);
-    if (!bytes) {
-        return bytes.error();
-    }
-    return parseViewScript(std::string(bytes->begin(), bytes->end()), path);
+    ENCORE_TRY_ASSIGN(auto bytes, readFile(path));
+    return parseViewScript(std::string(bytes.begin(), bytes.end()), path);
 }
 
 }  // namespace encore::view

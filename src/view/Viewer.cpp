@@ -30,24 +30,13 @@ Result<std::unique_ptr<Viewer>> Viewer::create(gpu::Context& context, Window& wi
     s.scene = std::move(scene);
     s.shaders = std::make_unique<shaders::ShaderLibrary>(context.device());
 
-    auto surface = WindowSurface::create(context, window, s.options.present);
-    if (!surface) {
-        return surface.error();
-    }
-    s.surface = std::move(*surface);
+    ENCORE_TRY_ASSIGN(s.surface, WindowSurface::create(context, window, s.options.present));
     s.width = s.surface->width();
     s.height = s.surface->height();
-    auto presenter = Presenter::create(context.device(), *s.shaders, s.surface->format());
-    if (!presenter) {
-        return presenter.error();
-    }
-    s.presenter = std::move(*presenter);
-    auto overlay = Overlay::create(context.device(), context.queue(), *s.shaders,
-                                   s.surface->format());
-    if (!overlay) {
-        return overlay.error();
-    }
-    s.overlay = std::move(*overlay);
+    ENCORE_TRY_ASSIGN(s.presenter,
+                      Presenter::create(context.device(), *s.shaders, s.surface->format()));
+    ENCORE_TRY_ASSIGN(s.overlay, Overlay::create(context.device(), context.queue(), *s.shaders,
+                                                 s.surface->format()));
     s.timer = gpu::GpuTimer::create(context);
 
     if (s.options.animometer) {
@@ -57,11 +46,7 @@ Result<std::unique_ptr<Viewer>> Viewer::create(gpu::Context& context, Window& wi
         rendererOptions.target.width = s.width;
         rendererOptions.target.height = s.height;
         rendererOptions.target.presentable = true;
-        auto renderer = render::Renderer::create(context, rendererOptions);
-        if (!renderer) {
-            return renderer.error();
-        }
-        s.renderer = std::move(*renderer);
+        ENCORE_TRY_ASSIGN(s.renderer, render::Renderer::create(context, rendererOptions));
         s.renderer->setGpuTimer(s.timer ? &*s.timer : nullptr);
         // The window's clock runs on: animations play round and round, not once.
         s.renderer->setPlaybackMode(scene::PlaybackMode::Loop);
@@ -84,11 +69,8 @@ Result<void> Viewer::State::createAnimometer(bool bundleDraws) {
     animometerOptions.height = height;
     animometerOptions.presentable = true;
     animometer.reset();
-    auto created = render::AnimometerScene::create(*context, *shaders, animometerOptions);
-    if (!created) {
-        return created.error();
-    }
-    animometer = std::move(*created);
+    ENCORE_TRY_ASSIGN(animometer,
+                      render::AnimometerScene::create(*context, *shaders, animometerOptions));
     options.animometer->bundle = bundleDraws;
     return {};
 }

@@ -36,11 +36,8 @@ Result<void> Viewer::State::renderFrame(double deltaSeconds) {
         history.pop_front();
     }
 
-    auto texture = surface->acquire();
-    if (!texture) {
-        return texture.error();
-    }
-    const wgpu::TextureView view = texture->CreateView();
+    ENCORE_TRY_ASSIGN(auto texture, surface->acquire());
+    const wgpu::TextureView view = texture.CreateView();
     const render::RenderTarget& target = renderer ? renderer->target() : animometer->target();
     const wgpu::Device& device = context->device();
 
@@ -57,12 +54,10 @@ Result<void> Viewer::State::renderFrame(double deltaSeconds) {
                 continue;
             }
             // What the window shows; a surface that cannot be copied gives the scene's image.
-            auto image = surface->copyable() ? gpu::readTexture(*context, *texture)
-                                             : gpu::readTexture(*context, target.colorTexture());
-            if (!image) {
-                return image.error();
-            }
-            ENCORE_TRY(image::writePng(screenshot.path, *image));
+            ENCORE_TRY_ASSIGN(auto image, surface->copyable()
+                                              ? gpu::readTexture(*context, texture)
+                                              : gpu::readTexture(*context, target.colorTexture()));
+            ENCORE_TRY(image::writePng(screenshot.path, image));
             if (options.report) {
                 options.report("screenshot " + screenshot.path);
             }

@@ -54,11 +54,8 @@ Result<void> GpuCullingStrategy::groupDraws() {
     for (const MaterialDrawGroups::PipelineGroup& group : mDraws.opaque()) {
         PipelineKey key = group.key;
         key.shader.instanceSource = shaders::InstanceSource::VisibleList;
-        auto pipeline = mDraws.pipelines().get(key);
-        if (!pipeline) {
-            return pipeline.error();
-        }
-        CulledPipeline culled{*pipeline, key.shader, {}};
+        ENCORE_TRY_ASSIGN(auto pipeline, mDraws.pipelines().get(key));
+        CulledPipeline culled{pipeline, key.shader, {}};
         for (const MaterialDrawGroups::MaterialGroup& material : group.materials) {
             CulledMaterial culledMaterial{material.material, {}};
             for (const PrimitiveDraw& primitive : material.primitives) {
@@ -88,12 +85,8 @@ Result<void> GpuCullingStrategy::groupDraws() {
     }
     const AnimationBuffers* animation = mDraws.scene().animation();
     CullingBounds bounds = CullingBounds::build(scene, instanceAt, animation);
-    auto culler =
-        GpuCuller::create(setup, instances, animation, std::move(bounds), std::move(draws));
-    if (!culler) {
-        return culler.error();
-    }
-    mCuller = std::move(*culler);
+    ENCORE_TRY_ASSIGN(mCuller, GpuCuller::create(setup, instances, animation, std::move(bounds),
+                                                 std::move(draws)));
     mCullerCreated = true;
     return {};
 }

@@ -27,21 +27,16 @@ Result<void> InstancingStrategy::prepare(const RenderSetup& setup, const GpuScen
             shaders::ShaderVariantKey variant = shader;
             const std::vector<scene::Semantic> semantics =
                 unlitPrimitiveSemantics(gpuScene.animation(), scene::MeshId(mesh), index, variant);
-            auto bindings = gpuScene.geometry().bind(primitives[index], semantics);
-            if (!bindings) {
-                return bindings.error();
-            }
-            const PipelineKey key = meshPipelineKey(setup, *bindings, variant);
+            ENCORE_TRY_ASSIGN(auto bindings,
+                              gpuScene.geometry().bind(primitives[index], semantics));
+            const PipelineKey key = meshPipelineKey(setup, bindings, variant);
             auto [found, inserted] = groupOfKey.try_emplace(key, mGroups.size());
             if (inserted) {
-                auto pipeline = mPipelines->get(key);
-                if (!pipeline) {
-                    return pipeline.error();
-                }
-                mGroups.push_back({*pipeline, {}});
+                ENCORE_TRY_ASSIGN(auto pipeline, mPipelines->get(key));
+                mGroups.push_back({pipeline, {}});
             }
             mGroups[found->second].primitives.push_back(
-                {std::move(*bindings), range, variant, instances.instanceAt(range.first), index});
+                {std::move(bindings), range, variant, instances.instanceAt(range.first), index});
         }
     }
     return {};

@@ -15,19 +15,14 @@ Result<void> LayoutsStrategy::prepare(const RenderSetup& setup, const GpuScene& 
             shaders::ShaderVariantKey shader;
             const std::vector<scene::Semantic> semantics =
                 unlitPrimitiveSemantics(gpuScene.animation(), scene::MeshId(mesh), index, shader);
-            auto bindings =
-                gpuScene.geometry().bind(scene.meshes[mesh].primitives[index], semantics);
-            if (!bindings) {
-                return bindings.error();
-            }
-            const PipelineKey key = meshPipelineKey(setup, *bindings, shader);
-            auto pipeline = createMeshPipeline(setup, key,
-                                               "layouts mesh " + std::to_string(mesh) +
-                                                   " primitive " + std::to_string(index));
-            if (!pipeline) {
-                return pipeline.error();
-            }
-            mMeshes[mesh].push_back({*pipeline, std::move(*bindings), shader});
+            ENCORE_TRY_ASSIGN(auto bindings, gpuScene.geometry().bind(
+                                                 scene.meshes[mesh].primitives[index], semantics));
+            const PipelineKey key = meshPipelineKey(setup, bindings, shader);
+            ENCORE_TRY_ASSIGN(auto pipeline,
+                              createMeshPipeline(setup, key,
+                                                 "layouts mesh " + std::to_string(mesh) +
+                                                     " primitive " + std::to_string(index)));
+            mMeshes[mesh].push_back({pipeline, std::move(bindings), shader});
         }
     }
     finishPrepare(setup, gpuScene);

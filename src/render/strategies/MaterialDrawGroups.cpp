@@ -94,11 +94,9 @@ Result<void> MaterialDrawGroups::regroup() {
             // Vertex inputs do not depend on textures, so a regrouping keeps the bindings.
             const PrimitiveBindings*& bound = mPrimitiveBindings[mesh][index];
             if (!bound) {
-                auto bindings = mScene->geometry().bind(primitive, variantSemantics(variant));
-                if (!bindings) {
-                    return bindings.error();
-                }
-                mBindings.push_back(std::make_unique<PrimitiveBindings>(std::move(*bindings)));
+                ENCORE_TRY_ASSIGN(auto bindings,
+                                  mScene->geometry().bind(primitive, variantSemantics(variant)));
+                mBindings.push_back(std::make_unique<PrimitiveBindings>(std::move(bindings)));
                 bound = mBindings.back().get();
             }
 
@@ -112,10 +110,7 @@ Result<void> MaterialDrawGroups::regroup() {
                     continue;
                 }
                 key.frontFace = mirrored ? wgpu::FrontFace::CW : wgpu::FrontFace::CCW;
-                auto pipeline = mPipelines->get(key);
-                if (!pipeline) {
-                    return pipeline.error();
-                }
+                ENCORE_TRY_ASSIGN(auto pipeline, mPipelines->get(key));
                 if (key.blend) {
                     for (std::uint32_t slot = range.first; slot < range.first + range.count;
                          ++slot) {
@@ -126,13 +121,13 @@ Result<void> MaterialDrawGroups::regroup() {
                                                      ? glm::vec3(world[3])
                                                      : primitive.bounds.transformed(world).center();
                         mBlended.push_back(
-                            {*pipeline, primitive.material, bound, slot, center, variant, index});
+                            {pipeline, primitive.material, bound, slot, center, variant, index});
                     }
                     continue;
                 }
                 auto [group, inserted] = groupOfKey.try_emplace(key, mOpaque.size());
                 if (inserted) {
-                    mOpaque.push_back({key, *pipeline, {}});
+                    mOpaque.push_back({key, pipeline, {}});
                 }
                 auto [materialGroup, newMaterial] = materialGroupOf.try_emplace(
                     {group->second, primitive.material}, mOpaque[group->second].materials.size());

@@ -75,14 +75,11 @@ Result<void> NaiveStrategy::prepare(const RenderSetup& setup, const GpuScene& gp
                     key.stripIndexFormat = bindings.indices->format;
                 }
             }
-            auto pipeline = createMeshPipeline(
-                setup, key,
-                "naive mesh " + std::to_string(meshIndex) + " primitive " +
-                    std::to_string(primitiveIndex));
-            if (!pipeline) {
-                return pipeline.error();
-            }
-            prepared.pipeline = *pipeline;
+            ENCORE_TRY_ASSIGN(
+                prepared.pipeline,
+                createMeshPipeline(setup, key,
+                                   "naive mesh " + std::to_string(meshIndex) + " primitive " +
+                                       std::to_string(primitiveIndex)));
             mMeshes[meshIndex].push_back(std::move(prepared));
         }
     }

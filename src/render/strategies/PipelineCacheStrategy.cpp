@@ -29,21 +29,16 @@ Result<void> PipelineCacheStrategy::prepare(const RenderSetup& setup, const GpuS
             shaders::ShaderVariantKey shader;
             const std::vector<scene::Semantic> semantics =
                 unlitPrimitiveSemantics(gpuScene.animation(), scene::MeshId(mesh), index, shader);
-            auto bindings = gpuScene.geometry().bind(primitives[index], semantics);
-            if (!bindings) {
-                return bindings.error();
-            }
-            const PipelineKey key = meshPipelineKey(setup, *bindings, shader);
+            ENCORE_TRY_ASSIGN(auto bindings,
+                              gpuScene.geometry().bind(primitives[index], semantics));
+            const PipelineKey key = meshPipelineKey(setup, bindings, shader);
             auto [found, inserted] = groupOfKey.try_emplace(key, mGroups.size());
             if (inserted) {
-                auto pipeline = mPipelines->get(key);
-                if (!pipeline) {
-                    return pipeline.error();
-                }
-                mGroups.push_back({*pipeline, {}});
+                ENCORE_TRY_ASSIGN(auto pipeline, mPipelines->get(key));
+                mGroups.push_back({pipeline, {}});
             }
             mGroups[found->second].primitives.push_back(
-                {std::move(*bindings), nodesOfMesh[mesh], shader, index});
+                {std::move(bindings), nodesOfMesh[mesh], shader, index});
         }
     }
     mNodes =
