@@ -186,18 +186,17 @@ Result<void> Renderer::prepare(const scene::SceneData& scene,
     mAnimationTime.reset();
     times.animation = millisecondsSince(start);
     start = std::chrono::steady_clock::now();
-    {
-        gpu::OutOfMemoryScope outOfMemory(*mContext);
-        auto created = GpuScene::create(*mSetup, scene, mPlayer.get(), staged);
-        times.scene = millisecondsSince(start);
+    // One scope for the scene and the strategy: each pop waits on the device.
+    gpu::OutOfMemoryScope outOfMemory(*mContext);
+    auto created = GpuScene::create(*mSetup, scene, mPlayer.get(), staged);
+    times.scene = millisecondsSince(start);
+    if (!created) {
         ENCORE_TRY(outOfMemory.finish(what));
-        if (!created) {
-            return created.error().withContext(what);
-        }
-        mGpuScene = std::move(*created);
-        ++mSceneUploads;
+        return created.error().withContext(what);
     }
-    return prepareStrategy(kind, bundle, what);
+    mGpuScene = std::move(*created);
+    ++mSceneUploads;
+    return prepareStrategy(kind, bundle, what, outOfMemory);
 }
 
 Result<void> Renderer::setStrategy(StrategyKind kind, bool bundle) {
@@ -223,10 +222,12 @@ Result<void> Renderer::setStrategy(StrategyKind kind, bool bundle) {
     if (mTriangleHistory) {
         setTriangleCounting(true);
     }
-    return prepareStrategy(kind, bundle, what);
+    gpu::OutOfMemoryScope outOfMemory(*mContext);
+    return prepareStrategy(kind, bundle, what, outOfMemory);
 }
 
-Result<void> Renderer::prepareStrategy(StrategyKind kind, bool bundle, const std::string& what) {
+Result<void> Renderer::prepareStrategy(StrategyKind kind, bool bundle, const std::string& what,
+                                       gpu::OutOfMemoryScope& outOfMemory) {
     PrepareTimes& times = mSetup->prepareTimes;
     mKind = kind;
     mBundle = bundle;
@@ -234,7 +235,6 @@ Result<void> Renderer::prepareStrategy(StrategyKind kind, bool bundle, const std
     mSetup->mappingBudget = mContext->mappingBudget();  // What the scenes left in use.
     auto start = std::chrono::steady_clock::now();
     auto strategy = createStrategy(kind, bundle);
-    gpu::OutOfMemoryScope outOfMemory(*mContext);
     auto prepared = strategy->prepare(*mSetup, *mGpuScene);
     times.strategy = millisecondsSince(start);
     start = std::chrono::steady_clock::now();

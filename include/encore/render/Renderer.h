@@ -31,6 +31,10 @@
 #include "encore/render/ToneMapper.h"
 #include "encore/scene/AnimationPlayer.h"
 
+namespace encore::gpu {
+class OutOfMemoryScope;
+}
+
 namespace encore::render {
 
 struct RendererOptions {
@@ -245,8 +249,10 @@ class Renderer {
     Renderer() = default;
     Result<void> build(const RendererOptions& options);
     Result<void> createGpuAnimation();
-    // Creates and prepares the strategy on the GPU scene; `what` names it in errors.
-    Result<void> prepareStrategy(StrategyKind kind, bool bundle, const std::string& what);
+    // Creates and prepares the strategy on the GPU scene, then finishes `outOfMemory` (opened
+    // by the caller) and collects errors; `what` names it in errors.
+    Result<void> prepareStrategy(StrategyKind kind, bool bundle, const std::string& what,
+                                 gpu::OutOfMemoryScope& outOfMemory);
     // Frees the GPU scene, counting what it uploaded.
     void retireGpuScene();
     // What of the player outlives a new player (a device loss, a switch of evaluation): which
