@@ -3,6 +3,7 @@
 #include <chrono>
 
 #include "MipmapGenerator.h"
+#include "PassAttachments.h"
 #include "TriangleHistory.h"
 #include "encore/core/Elapsed.h"
 #include "encore/gpu/OutOfMemoryScope.h"
@@ -420,53 +421,34 @@ FrameResult Renderer::renderPasses(std::span<const Camera> cameras, float timeSe
         mStrategy->beforePass(commandEncoder, state);
     }
     const std::uint32_t viewWidth = mTarget.width() / std::uint32_t(cameras.size());
-    // One pass per view, or the two passes of a two-phase frame: the first keeps its colour and
-    // depth for the second (multisampled: unresolved), which loads them and finishes the view.
+    // One pass per view, or the two passes of a two-phase frame; what each loads, keeps and
+    // resolves is passAttachments' decision (PassAttachments.h).
     auto encodePass = [&](std::size_t view, DrawPhase phase) {
-        // HDR: alpha is coverage, 0 where nothing is drawn, for the tone mapper's background.
-        // Otherwise the background colour itself (linear: the sRGB target encodes the clear).
-        const glm::vec3& background = mOptions.toneMapping.backgroundColor;
-        wgpu::RenderPassColorAttachment color = mTarget.colorAttachment(
-            mTarget.hdr() ? wgpu::Color{0.0, 0.0, 0.0, 0.0}
-                          : wgpu::Color{background.r, background.g, background.b, 1.0});
+        PassPlan plan;
+        plan.view = view;
+        plan.viewCount = cameras.size();
+        plan.phase = phase;
+        plan.multisampled = mTarget.sampleCount() > 1;
+        plan.hdr = mTarget.hdr();
+        plan.backgroundColor = mOptions.toneMapping.backgroundColor;
+        const PassAttachments attachments = passAttachments(plan);
+        wgpu::RenderPassColorAttachment color = mTarget.colorAttachment(attachments.clearColor);
+        color.loadOp = attachments.colorLoadOp;
+        color.storeOp = attachments.colorStoreOp;
+        if (!attachments.resolve) {
+            color.resolveTarget = nullptr;
+        }
         wgpu::RenderPassDepthStencilAttachment depth = mTarget.depthAttachment();
-        if (view > 0 || phase == DrawPhase::Second) {
-            color.loadOp = wgpu::LoadOp::Load;  // Keep the views (or the phase) drawn before.
-        }
-        if (multiView) {
-            color.storeOp = wgpu::StoreOp::Store;  // Multisampled contents survive the passes.
-            if (view + 1 < cameras.size()) {
-                // A resolve writes the whole target, whatever the viewport: resolve once, after
-                // the last view, rather than the whole wide target once per view.
-                color.resolveTarget = nullptr;
-            }
-            // Depth likewise: cleared once for the whole target and kept between the passes,
-            // rather than cleared whole by each (each view tests only its own strip).
-            if (view > 0) {
-                depth.depthLoadOp = wgpu::LoadOp::Load;
-            }
-            if (view + 1 < cameras.size()) {
-                depth.depthStoreOp = wgpu::StoreOp::Store;
-            }
-        }
-        if (phase == DrawPhase::First) {
-            color.storeOp = wgpu::StoreOp::Store;
-            color.resolveTarget = nullptr;  // The second pass resolves.
-            depth.depthStoreOp = wgpu::StoreOp::Store;
-        } else if (phase == DrawPhase::Second) {
-            depth.depthLoadOp = wgpu::LoadOp::Load;
-        }
+        depth.depthLoadOp = attachments.depthLoadOp;
+        depth.depthStoreOp = attachments.depthStoreOp;
+        depth.depthClearValue = attachments.depthClearValue;
         wgpu::RenderPassDescriptor passDescriptor{};
-        passDescriptor.label = phase == DrawPhase::First    ? "encore frame (first phase)"
-                               : phase == DrawPhase::Second ? "encore frame (second phase)"
-                                                            : "encore frame";
+        passDescriptor.label = attachments.label;
         passDescriptor.colorAttachmentCount = 1;
         passDescriptor.colorAttachments = &color;
         passDescriptor.depthStencilAttachment = &depth;
-        passDescriptor.timestampWrites = timestampWrites(
-            GpuStage::Scene, phase == DrawPhase::First    ? "scene (first phase)"
-                             : phase == DrawPhase::Second ? "scene (second phase)"
-                                                          : "scene");
+        passDescriptor.timestampWrites =
+            timestampWrites(GpuStage::Scene, attachments.timestampLabel);
         wgpu::RenderPassEncoder pass = commandEncoder.BeginRenderPass(&passDescriptor);
         if (multiView) {
             pass.SetViewport(float(view * viewWidth), 0.0f, float(viewWidth),
