@@ -52,86 +52,86 @@ FrameResult Renderer::renderPasses(std::span<const Camera> cameras, float timeSe
 
     const GpuCuller* culler = mStrategy ? mStrategy->culler() : nullptr;
     auto encodeFrame = [&](const wgpu::CommandEncoder& commandEncoder) {
-    if (mGpuAnimation && mGpuAnimationPending) {
-        mGpuAnimation->encode(commandEncoder);  // Before anything that reads its results.
-        mGpuAnimationPending = false;
-    }
-    if (mStrategy) {
-        mStrategy->beforePass(commandEncoder, state);
-    }
-    const std::uint32_t viewWidth = mTarget.width() / std::uint32_t(cameras.size());
-    // One pass per view, or the two passes of a two-phase frame; what each loads, keeps and
-    // resolves is passAttachments' decision (PassAttachments.h).
-    auto encodePass = [&](std::size_t view, DrawPhase phase) {
-        PassPlan plan;
-        plan.view = view;
-        plan.viewCount = cameras.size();
-        plan.phase = phase;
-        plan.multisampled = mTarget.sampleCount() > 1;
-        plan.hdr = mTarget.hdr();
-        plan.backgroundColor = mOptions.toneMapping.backgroundColor;
-        const PassAttachments attachments = passAttachments(plan);
-        wgpu::RenderPassColorAttachment color = mTarget.colorAttachment(attachments.clearColor);
-        color.loadOp = attachments.colorLoadOp;
-        color.storeOp = attachments.colorStoreOp;
-        if (!attachments.resolve) {
-            color.resolveTarget = nullptr;
-        }
-        wgpu::RenderPassDepthStencilAttachment depth = mTarget.depthAttachment();
-        depth.depthLoadOp = attachments.depthLoadOp;
-        depth.depthStoreOp = attachments.depthStoreOp;
-        depth.depthClearValue = attachments.depthClearValue;
-        wgpu::RenderPassDescriptor passDescriptor{};
-        passDescriptor.label = attachments.label;
-        passDescriptor.colorAttachmentCount = 1;
-        passDescriptor.colorAttachments = &color;
-        passDescriptor.depthStencilAttachment = &depth;
-        passDescriptor.timestampWrites =
-            timestampWrites(GpuStage::Scene, attachments.timestampLabel);
-        wgpu::RenderPassEncoder pass = commandEncoder.BeginRenderPass(&passDescriptor);
-        if (multiView) {
-            pass.SetViewport(float(view * viewWidth), 0.0f, float(viewWidth),
-                             float(mTarget.height()), 0.0f, 1.0f);
-            // Clipping keeps a view's fragments inside its viewport already; the scissor makes
-            // sure no rounding reaches the neighbouring strips, whose colour and depth persist.
-            pass.SetScissorRect(view * viewWidth, 0, viewWidth, mTarget.height());
-        }
-        if (mOptions.toneMapping.background == BackgroundKind::Environment &&
-            phase != DrawPhase::Second) {
-            mBackground->draw(pass, mFrame->bindGroup());
+        if (mGpuAnimation && mGpuAnimationPending) {
+            mGpuAnimation->encode(commandEncoder);  // Before anything that reads its results.
+            mGpuAnimationPending = false;
         }
         if (mStrategy) {
-            RenderEncoder encoder(pass, result.counters);
-            encoder.setTrace(trace);
-            FrameState viewState = state;
-            viewState.camera = cameras[view];
-            viewState.phase = phase;
-            mStrategy->encode(encoder, viewState);
+            mStrategy->beforePass(commandEncoder, state);
         }
-        pass.End();
-    };
-    if (twoPhases) {
-        encodePass(0, DrawPhase::First);
-        mStrategy->betweenPhases(commandEncoder, state, mTarget.depthTexture());
-        encodePass(0, DrawPhase::Second);
-    } else {
-        for (std::size_t view = 0; view < cameras.size(); ++view) {
-            if (multiView) {
-                mFrame->selectView(commandEncoder, view);
+        const std::uint32_t viewWidth = mTarget.width() / std::uint32_t(cameras.size());
+        // One pass per view, or the two passes of a two-phase frame; what each loads, keeps and
+        // resolves is passAttachments' decision (PassAttachments.h).
+        auto encodePass = [&](std::size_t view, DrawPhase phase) {
+            PassPlan plan;
+            plan.view = view;
+            plan.viewCount = cameras.size();
+            plan.phase = phase;
+            plan.multisampled = mTarget.sampleCount() > 1;
+            plan.hdr = mTarget.hdr();
+            plan.backgroundColor = mOptions.toneMapping.backgroundColor;
+            const PassAttachments attachments = passAttachments(plan);
+            wgpu::RenderPassColorAttachment color = mTarget.colorAttachment(attachments.clearColor);
+            color.loadOp = attachments.colorLoadOp;
+            color.storeOp = attachments.colorStoreOp;
+            if (!attachments.resolve) {
+                color.resolveTarget = nullptr;
             }
-            encodePass(view, DrawPhase::Whole);
+            wgpu::RenderPassDepthStencilAttachment depth = mTarget.depthAttachment();
+            depth.depthLoadOp = attachments.depthLoadOp;
+            depth.depthStoreOp = attachments.depthStoreOp;
+            depth.depthClearValue = attachments.depthClearValue;
+            wgpu::RenderPassDescriptor passDescriptor{};
+            passDescriptor.label = attachments.label;
+            passDescriptor.colorAttachmentCount = 1;
+            passDescriptor.colorAttachments = &color;
+            passDescriptor.depthStencilAttachment = &depth;
+            passDescriptor.timestampWrites =
+                timestampWrites(GpuStage::Scene, attachments.timestampLabel);
+            wgpu::RenderPassEncoder pass = commandEncoder.BeginRenderPass(&passDescriptor);
+            if (multiView) {
+                pass.SetViewport(float(view * viewWidth), 0.0f, float(viewWidth),
+                                 float(mTarget.height()), 0.0f, 1.0f);
+                // Clipping keeps a view's fragments inside its viewport already; the scissor makes
+                // sure no rounding reaches the neighbouring strips, whose colour and depth persist.
+                pass.SetScissorRect(view * viewWidth, 0, viewWidth, mTarget.height());
+            }
+            if (mOptions.toneMapping.background == BackgroundKind::Environment &&
+                phase != DrawPhase::Second) {
+                mBackground->draw(pass, mFrame->bindGroup());
+            }
+            if (mStrategy) {
+                RenderEncoder encoder(pass, result.counters);
+                encoder.setTrace(trace);
+                FrameState viewState = state;
+                viewState.camera = cameras[view];
+                viewState.phase = phase;
+                mStrategy->encode(encoder, viewState);
+            }
+            pass.End();
+        };
+        if (twoPhases) {
+            encodePass(0, DrawPhase::First);
+            mStrategy->betweenPhases(commandEncoder, state, mTarget.depthTexture());
+            encodePass(0, DrawPhase::Second);
+        } else {
+            for (std::size_t view = 0; view < cameras.size(); ++view) {
+                if (multiView) {
+                    mFrame->selectView(commandEncoder, view);
+                }
+                encodePass(view, DrawPhase::Whole);
+            }
         }
-    }
-    // After the last pass: a two-phase frame counts in both culling passes.
-    if (mTriangleHistory && culler && culler->indirectArguments()) {
-        mTriangleHistory->record(commandEncoder, culler->indirectArguments(),
-                                 culler->drawnTrianglesOffset());
-    }
-    if (mToneMapper) {
-        // The GPU timer times the scene passes only, as benchmarks report them.
-        mToneMapper->encode(commandEncoder, mTarget,
-                            mTimer ? nullptr : timestampWrites(GpuStage::ToneMapping));
-    }
+        // After the last pass: a two-phase frame counts in both culling passes.
+        if (mTriangleHistory && culler && culler->indirectArguments()) {
+            mTriangleHistory->record(commandEncoder, culler->indirectArguments(),
+                                     culler->drawnTrianglesOffset());
+        }
+        if (mToneMapper) {
+            // The GPU timer times the scene passes only, as benchmarks report them.
+            mToneMapper->encode(commandEncoder, mTarget,
+                                mTimer ? nullptr : timestampWrites(GpuStage::ToneMapping));
+        }
     };
     const gpu::SubmitTiming timing = gpu::submitTimed(*mContext, mTimer, encodeFrame);
     result.encodeMilliseconds = timing.encodeMilliseconds;
