@@ -6,10 +6,7 @@
 #include "TriangleHistory.h"
 #include "encore/core/Elapsed.h"
 #include "encore/gpu/OutOfMemoryScope.h"
-#include "encore/gpu/Readback.h"
-#include "encore/gpu/TimedSubmit.h"
 #include "encore/image/HdrImage.h"
-#include "encore/render/GpuCuller.h"
 #include "encore/render/GpuScene.h"
 #include "encore/render/PipelineCache.h"
 #include "encore/render/SceneLimits.h"
@@ -256,10 +253,6 @@ Result<void> Renderer::prepareStrategy(StrategyKind kind, bool bundle, const std
     return {};
 }
 
-const AnimationBuffers* Renderer::animationBuffers() const {
-    return mGpuScene ? mGpuScene->animation() : nullptr;
-}
-
 void Renderer::retireGpuScene() {
     if (mGpuScene) {
         mRetiredUploadBytes += mGpuScene->uploadedBytes();
@@ -286,246 +279,6 @@ void Renderer::releaseScene() {
     mContext->device().Tick();
 }
 
-Result<void> Renderer::createGpuAnimation() {
-    mGpuAnimation.reset();
-    mGpuAnimationPending = false;
-    if (!mGpuScene || !mScene) {
-        return {};
-    }
-    const std::string what = "Preparing GPU animation of '" + mScene->sourcePath.string() + "'";
-    gpu::OutOfMemoryScope outOfMemory(*mContext);
-    auto created = GpuAnimation::create(mContext->device(), mContext->queue(), *mShaders,
-                                        mSetup->limits, *mScene, mGpuScene->animation(),
-                                        mGpuScene->instances().transformTargets());
-    ENCORE_TRY(outOfMemory.finish(what));
-    if (!created) {
-        return created.error().withContext(what);
-    }
-    ENCORE_TRY(mContext->checkNoErrors(what));
-    mGpuAnimation = std::move(*created);
-    if (mGpuAnimation) {
-        mGpuAnimation->select(mContext->queue(), mPlayer->selection());
-        if (mStrategy) {
-            mGpuAnimation->copyInstancesTo(mStrategy->instanceTransformTargets().uniforms);
-        }
-    }
-    return {};
-}
-
-Result<void> Renderer::setAnimationEvaluation(AnimationEvaluation evaluation) {
-    if (evaluation == mOptions.animation) {
-        return {};
-    }
-    mOptions.animation = evaluation;
-    if (!mStrategy) {
-        return {};
-    }
-    if (evaluation == AnimationEvaluation::Gpu) {
-        if (auto fits = GpuAnimation::checkLimits(mSetup->limits, *mScene); !fits) {
-            mOptions.animation = AnimationEvaluation::Cpu;
-            return fits.error().withContext("Switching '" + mScene->sourcePath.string() +
-                                            "' to GPU animation");
-        }
-        return createGpuAnimation();
-    }
-    // Back to the CPU: a fresh player reports every instance, joint and weight as changed at
-    // its first evaluate(), so everything the GPU wrote is overwritten.
-    mGpuAnimation.reset();
-    mGpuAnimationPending = false;
-    const Playback playing = playback();
-    mPlayer = std::make_unique<scene::AnimationPlayer>(*mScene);
-    return restorePlayback(playing);
-}
-
-void Renderer::setPlaybackMode(scene::PlaybackMode mode) {
-    mPlaybackMode = mode;
-    if (mPlayer) {
-        mPlayer->setMode(mode);
-    }
-}
-
-Renderer::Playback Renderer::playback() const {
-    if (!mPlayer) {
-        return {};
-    }
-    return {{mPlayer->selection().begin(), mPlayer->selection().end()}, mPlayer->mode()};
-}
-
-Result<void> Renderer::restorePlayback(const Playback& playback) {
-    mPlayer->setMode(playback.mode);
-    ENCORE_TRY(mPlayer->select(playback.selection));
-    if (mGpuAnimation) {
-        mGpuAnimation->select(mContext->queue(), mPlayer->selection());
-    }
-    return {};
-}
-
-FrameResult Renderer::renderFrame(const Camera& camera, float timeSeconds,
-                                  std::vector<RecordedCall>* trace) {
-    return renderPasses(std::span(&camera, 1), timeSeconds, trace);
-}
-
-FrameResult Renderer::renderViews(std::span<const Camera> cameras, float timeSeconds) {
-    return renderPasses(cameras, timeSeconds, nullptr);
-}
-
-const wgpu::PassTimestampWrites* Renderer::timestampWrites(GpuStage stage,
-                                                           std::string_view label) {
-    if (mTimer) {
-        return mTimer->nextPass(label);
-    }
-    return mStageTimestamps ? mStageTimestamps->pass(gpuStageIndex(stage)) : nullptr;
-}
-
-FrameResult Renderer::renderPasses(std::span<const Camera> cameras, float timeSeconds,
-                                   std::vector<RecordedCall>* trace) {
-    FrameResult result;
-    if (cameras.empty()) {
-        return result;
-    }
-    const bool multiView = cameras.size() > 1;
-    if (multiView) {
-        mFrame->writeViews(mContext->device(), mContext->queue(), cameras, timeSeconds);
-    } else {
-        mFrame->update(mContext->queue(), cameras[0], timeSeconds);
-    }
-    FrameState state{cameras[0], cameras, timeSeconds, mTimer, mCullingCamera};
-    state.culling = mOptions.culling;
-    state.targetWidth = mTarget.width();
-    state.targetHeight = mTarget.height();
-    const bool twoPhases = !multiView && mStrategy && mStrategy->drawsInTwoPhases(state);
-    if (twoPhases) {
-        state.phase = DrawPhase::First;
-    }
-
-    const GpuCuller* culler = mStrategy ? mStrategy->culler() : nullptr;
-    auto encodeFrame = [&](const wgpu::CommandEncoder& commandEncoder) {
-    if (mGpuAnimation && mGpuAnimationPending) {
-        mGpuAnimation->encode(commandEncoder);  // Before anything that reads its results.
-        mGpuAnimationPending = false;
-    }
-    if (mStrategy) {
-        mStrategy->beforePass(commandEncoder, state);
-    }
-    const std::uint32_t viewWidth = mTarget.width() / std::uint32_t(cameras.size());
-    // One pass per view, or the two passes of a two-phase frame: the first keeps its colour and
-    // depth for the second (multisampled: unresolved), which loads them and finishes the view.
-    auto encodePass = [&](std::size_t view, DrawPhase phase) {
-        // HDR: alpha is coverage, 0 where nothing is drawn, for the tone mapper's background.
-        // Otherwise the background colour itself (linear: the sRGB target encodes the clear).
-        const glm::vec3& background = mOptions.toneMapping.backgroundColor;
-        wgpu::RenderPassColorAttachment color = mTarget.colorAttachment(
-            mTarget.hdr() ? wgpu::Color{0.0, 0.0, 0.0, 0.0}
-                          : wgpu::Color{background.r, background.g, background.b, 1.0});
-        wgpu::RenderPassDepthStencilAttachment depth = mTarget.depthAttachment();
-        if (view > 0 || phase == DrawPhase::Second) {
-            color.loadOp = wgpu::LoadOp::Load;  // Keep the views (or the phase) drawn before.
-        }
-        if (multiView) {
-            color.storeOp = wgpu::StoreOp::Store;  // Multisampled contents survive the passes.
-            if (view + 1 < cameras.size()) {
-                // A resolve writes the whole target, whatever the viewport: resolve once, after
-                // the last view, rather than the whole wide target once per view.
-                color.resolveTarget = nullptr;
-            }
-            // Depth likewise: cleared once for the whole target and kept between the passes,
-            // rather than cleared whole by each (each view tests only its own strip).
-            if (view > 0) {
-                depth.depthLoadOp = wgpu::LoadOp::Load;
-            }
-            if (view + 1 < cameras.size()) {
-                depth.depthStoreOp = wgpu::StoreOp::Store;
-            }
-        }
-        if (phase == DrawPhase::First) {
-            color.storeOp = wgpu::StoreOp::Store;
-            color.resolveTarget = nullptr;  // The second pass resolves.
-            depth.depthStoreOp = wgpu::StoreOp::Store;
-        } else if (phase == DrawPhase::Second) {
-            depth.depthLoadOp = wgpu::LoadOp::Load;
-        }
-        wgpu::RenderPassDescriptor passDescriptor{};
-        passDescriptor.label = phase == DrawPhase::First    ? "encore frame (first phase)"
-                               : phase == DrawPhase::Second ? "encore frame (second phase)"
-                                                            : "encore frame";
-        passDescriptor.colorAttachmentCount = 1;
-        passDescriptor.colorAttachments = &color;
-        passDescriptor.depthStencilAttachment = &depth;
-        passDescriptor.timestampWrites = timestampWrites(
-            GpuStage::Scene, phase == DrawPhase::First    ? "scene (first phase)"
-                             : phase == DrawPhase::Second ? "scene (second phase)"
-                                                          : "scene");
-        wgpu::RenderPassEncoder pass = commandEncoder.BeginRenderPass(&passDescriptor);
-        if (multiView) {
-            pass.SetViewport(float(view * viewWidth), 0.0f, float(viewWidth),
-                             float(mTarget.height()), 0.0f, 1.0f);
-            // Clipping keeps a view's fragments inside its viewport already; the scissor makes
-            // sure no rounding reaches the neighbouring strips, whose colour and depth persist.
-            pass.SetScissorRect(view * viewWidth, 0, viewWidth, mTarget.height());
-        }
-        if (mOptions.toneMapping.background == BackgroundKind::Environment &&
-            phase != DrawPhase::Second) {
-            mBackground->draw(pass, mFrame->bindGroup());
-        }
-        if (mStrategy) {
-            RenderEncoder encoder(pass, result.counters);
-            encoder.setTrace(trace);
-            FrameState viewState = state;
-            viewState.camera = cameras[view];
-            viewState.phase = phase;
-            mStrategy->encode(encoder, viewState);
-        }
-        pass.End();
-    };
-    if (twoPhases) {
-        encodePass(0, DrawPhase::First);
-        mStrategy->betweenPhases(commandEncoder, state, mTarget.depthTexture());
-        encodePass(0, DrawPhase::Second);
-    } else {
-        for (std::size_t view = 0; view < cameras.size(); ++view) {
-            if (multiView) {
-                mFrame->selectView(commandEncoder, view);
-            }
-            encodePass(view, DrawPhase::Whole);
-        }
-    }
-    // After the last pass: a two-phase frame counts in both culling passes.
-    if (mTriangleHistory && culler && culler->indirectArguments()) {
-        mTriangleHistory->record(commandEncoder, culler->indirectArguments(),
-                                 culler->drawnTrianglesOffset());
-    }
-    if (mToneMapper) {
-        // The GPU timer times the scene passes only, as benchmarks report them.
-        mToneMapper->encode(commandEncoder, mTarget,
-                            mTimer ? nullptr : timestampWrites(GpuStage::ToneMapping));
-    }
-    };
-    const gpu::SubmitTiming timing = gpu::submitTimed(*mContext, mTimer, encodeFrame);
-    result.encodeMilliseconds = timing.encodeMilliseconds;
-    result.submitMilliseconds = timing.submitMilliseconds;
-    result.gpuMilliseconds = timing.gpuMilliseconds;
-    if (mStrategy) {
-        result.bundleContents = mStrategy->bundleContents();
-    }
-    // Bundles and indirect draws replay per view; counters already sum the direct draws.
-    result.trianglesSubmitted =
-        result.counters.triangles +
-        cameras.size() *
-            (result.bundleContents.triangles + (culler ? submittedTriangles(culler->draws()) : 0));
-    return result;
-}
-
-void Renderer::setTriangleCounting(bool on) {
-    mTriangleHistory = on ? std::make_unique<TriangleHistory>(mContext->device()) : nullptr;
-}
-
-Result<std::vector<std::uint64_t>> Renderer::takeDrawnTriangles() {
-    if (!mTriangleHistory) {
-        return std::vector<std::uint64_t>{};
-    }
-    return mTriangleHistory->take(*mContext);
-}
-
 Result<void> Renderer::resize(std::uint32_t width, std::uint32_t height) {
     RenderTargetOptions options = mTarget.options();
     options.width = width;
@@ -546,54 +299,6 @@ Result<void> Renderer::updateInstance(std::size_t instance, const glm::mat4& wor
     }
     ENCORE_TRY(mGpuScene->updateInstance(instance, world));
     mStrategy->instanceMoved(instance, world);
-    return {};
-}
-
-Result<void> Renderer::selectAnimation(std::string_view nameOrIndex) {
-    if (!mPlayer) {
-        return makeError(ErrorCode::InvalidArgument, "No scene is prepared.");
-    }
-    if (nameOrIndex.empty()) {
-        mPlayer->selectAll();
-    } else {
-        ENCORE_TRY(mPlayer->select(nameOrIndex));
-    }
-    if (mGpuAnimation) {
-        mGpuAnimation->select(mContext->queue(), mPlayer->selection());
-    }
-    return {};
-}
-
-Result<void> Renderer::setAnimationTime(double seconds) {
-    if (!mStrategy || !mPlayer) {
-        return makeError(ErrorCode::InvalidArgument, "No scene is prepared.");
-    }
-    mAnimationTime = seconds;
-    if (mOptions.animation == AnimationEvaluation::Gpu) {
-        AnimationFrameStats stats;
-        stats.evaluation = AnimationEvaluation::Gpu;
-        if (mGpuAnimation) {
-            mGpuAnimation->setTime(mContext->queue(), seconds, mPlayer->mode());
-            mGpuAnimationPending = true;
-            stats.gpu = mGpuAnimation->stats();
-            stats.bytesWritten = stats.gpu.bytesPerFrame;
-        }
-        mAnimationStats = stats;
-        return {};
-    }
-    mPlayer->evaluate(seconds);
-    AnimationFrameStats stats;
-    stats.player = mPlayer->stats();
-    const auto worlds = mPlayer->instanceWorlds();
-    for (std::uint32_t instance : mPlayer->changedInstances()) {
-        ENCORE_TRY(mGpuScene->updateInstance(instance, worlds[instance]));
-        mStrategy->instanceMoved(instance, worlds[instance]);
-        ++stats.instancesWritten;
-    }
-    stats.bytesWritten = std::uint64_t(stats.instancesWritten) * sizeof(TransformUniform);
-    stats.upload = mGpuScene->writeAnimation(*mPlayer);
-    stats.bytesWritten += stats.upload.bytesWritten;
-    mAnimationStats = stats;
     return {};
 }
 
@@ -640,34 +345,6 @@ Result<void> Renderer::loadEnvironment(const image::HdrImage& panorama) {
 Result<void> Renderer::updateLight(std::size_t lightInstance, const scene::Light& light,
                                    const scene::LightInstance& placed) {
     return mLighting->updateLight(lightInstance, light, placed);
-}
-
-void Renderer::toneMapScene() {
-    if (!mToneMapper) {
-        return;
-    }
-    wgpu::CommandEncoder commands = mContext->device().CreateCommandEncoder();
-    mToneMapper->encode(commands, mTarget);
-    wgpu::CommandBuffer buffer = commands.Finish();
-    mContext->queue().Submit(1, &buffer);
-}
-
-Result<std::vector<float>> Renderer::readHdrImage() {
-    if (!mTarget.hdr()) {
-        return makeError(ErrorCode::InvalidArgument, "The render target has no HDR colour.");
-    }
-    return gpu::readTextureRgba16Float(*mContext, mTarget.sceneTexture());
-}
-
-Result<image::ImageRgba8> Renderer::readImage() {
-    auto image = gpu::readTexture(*mContext, mTarget.colorTexture());
-    if (!image) {
-        // A lost device fails the read back; say so rather than how mapping failed.
-        ENCORE_TRY(mContext->checkNoErrors("Rendering"));
-        return image.error();
-    }
-    ENCORE_TRY(mContext->checkNoErrors("Rendering"));
-    return image;
 }
 
 }  // namespace encore::render

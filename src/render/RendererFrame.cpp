@@ -1,0 +1,190 @@
+// Renderer's frames: the frame uniforms, one render pass per view (or the two passes of a
+// two-phase frame) recorded by the strategy, tone mapping, timing and submission; then the
+// triangle counts of GPU culling and the image read back.
+
+#include "encore/render/Renderer.h"
+
+#include "PassAttachments.h"
+#include "TriangleHistory.h"
+#include "encore/gpu/Readback.h"
+#include "encore/gpu/TimedSubmit.h"
+#include "encore/render/GpuCuller.h"
+
+namespace encore::render {
+
+FrameResult Renderer::renderFrame(const Camera& camera, float timeSeconds,
+                                  std::vector<RecordedCall>* trace) {
+    return renderPasses(std::span(&camera, 1), timeSeconds, trace);
+}
+
+FrameResult Renderer::renderViews(std::span<const Camera> cameras, float timeSeconds) {
+    return renderPasses(cameras, timeSeconds, nullptr);
+}
+
+const wgpu::PassTimestampWrites* Renderer::timestampWrites(GpuStage stage,
+                                                           std::string_view label) {
+    if (mTimer) {
+        return mTimer->nextPass(label);
+    }
+    return mStageTimestamps ? mStageTimestamps->pass(gpuStageIndex(stage)) : nullptr;
+}
+
+FrameResult Renderer::renderPasses(std::span<const Camera> cameras, float timeSeconds,
+                                   std::vector<RecordedCall>* trace) {
+    FrameResult result;
+    if (cameras.empty()) {
+        return result;
+    }
+    const bool multiView = cameras.size() > 1;
+    if (multiView) {
+        mFrame->writeViews(mContext->device(), mContext->queue(), cameras, timeSeconds);
+    } else {
+        mFrame->update(mContext->queue(), cameras[0], timeSeconds);
+    }
+    FrameState state{cameras[0], cameras, timeSeconds, mTimer, mCullingCamera};
+    state.culling = mOptions.culling;
+    state.targetWidth = mTarget.width();
+    state.targetHeight = mTarget.height();
+    const bool twoPhases = !multiView && mStrategy && mStrategy->drawsInTwoPhases(state);
+    if (twoPhases) {
+        state.phase = DrawPhase::First;
+    }
+
+    const GpuCuller* culler = mStrategy ? mStrategy->culler() : nullptr;
+    auto encodeFrame = [&](const wgpu::CommandEncoder& commandEncoder) {
+        if (mGpuAnimation && mGpuAnimationPending) {
+            mGpuAnimation->encode(commandEncoder);  // Before anything that reads its results.
+            mGpuAnimationPending = false;
+        }
+        if (mStrategy) {
+            mStrategy->beforePass(commandEncoder, state);
+        }
+        const std::uint32_t viewWidth = mTarget.width() / std::uint32_t(cameras.size());
+        // One pass per view, or the two passes of a two-phase frame; what each loads, keeps and
+        // resolves is passAttachments' decision (PassAttachments.h).
+        auto encodePass = [&](std::size_t view, DrawPhase phase) {
+            PassPlan plan;
+            plan.view = view;
+            plan.viewCount = cameras.size();
+            plan.phase = phase;
+            plan.multisampled = mTarget.sampleCount() > 1;
+            plan.hdr = mTarget.hdr();
+            plan.backgroundColor = mOptions.toneMapping.backgroundColor;
+            const PassAttachments attachments = passAttachments(plan);
+            wgpu::RenderPassColorAttachment color = mTarget.colorAttachment(attachments.clearColor);
+            color.loadOp = attachments.colorLoadOp;
+            color.storeOp = attachments.colorStoreOp;
+            if (!attachments.resolve) {
+                color.resolveTarget = nullptr;
+            }
+            wgpu::RenderPassDepthStencilAttachment depth = mTarget.depthAttachment();
+            depth.depthLoadOp = attachments.depthLoadOp;
+            depth.depthStoreOp = attachments.depthStoreOp;
+            depth.depthClearValue = attachments.depthClearValue;
+            wgpu::RenderPassDescriptor passDescriptor{};
+            passDescriptor.label = attachments.label;
+            passDescriptor.colorAttachmentCount = 1;
+            passDescriptor.colorAttachments = &color;
+            passDescriptor.depthStencilAttachment = &depth;
+            passDescriptor.timestampWrites =
+                timestampWrites(GpuStage::Scene, attachments.timestampLabel);
+            wgpu::RenderPassEncoder pass = commandEncoder.BeginRenderPass(&passDescriptor);
+            if (multiView) {
+                pass.SetViewport(float(view * viewWidth), 0.0f, float(viewWidth),
+                                 float(mTarget.height()), 0.0f, 1.0f);
+                // Clipping keeps a view's fragments inside its viewport already; the scissor makes
+                // sure no rounding reaches the neighbouring strips, whose colour and depth persist.
+                pass.SetScissorRect(view * viewWidth, 0, viewWidth, mTarget.height());
+            }
+            if (mOptions.toneMapping.background == BackgroundKind::Environment &&
+                phase != DrawPhase::Second) {
+                mBackground->draw(pass, mFrame->bindGroup());
+            }
+            if (mStrategy) {
+                RenderEncoder encoder(pass, result.counters);
+                encoder.setTrace(trace);
+                FrameState viewState = state;
+                viewState.camera = cameras[view];
+                viewState.phase = phase;
+                mStrategy->encode(encoder, viewState);
+            }
+            pass.End();
+        };
+        if (twoPhases) {
+            encodePass(0, DrawPhase::First);
+            mStrategy->betweenPhases(commandEncoder, state, mTarget.depthTexture());
+            encodePass(0, DrawPhase::Second);
+        } else {
+            for (std::size_t view = 0; view < cameras.size(); ++view) {
+                if (multiView) {
+                    mFrame->selectView(commandEncoder, view);
+                }
+                encodePass(view, DrawPhase::Whole);
+            }
+        }
+        // After the last pass: a two-phase frame counts in both culling passes.
+        if (mTriangleHistory && culler && culler->indirectArguments()) {
+            mTriangleHistory->record(commandEncoder, culler->indirectArguments(),
+                                     culler->drawnTrianglesOffset());
+        }
+        if (mToneMapper) {
+            // The GPU timer times the scene passes only, as benchmarks report them.
+            mToneMapper->encode(commandEncoder, mTarget,
+                                mTimer ? nullptr : timestampWrites(GpuStage::ToneMapping));
+        }
+    };
+    const gpu::SubmitTiming timing = gpu::submitTimed(*mContext, mTimer, encodeFrame);
+    result.encodeMilliseconds = timing.encodeMilliseconds;
+    result.submitMilliseconds = timing.submitMilliseconds;
+    result.gpuMilliseconds = timing.gpuMilliseconds;
+    if (mStrategy) {
+        result.bundleContents = mStrategy->bundleContents();
+    }
+    // Bundles and indirect draws replay per view; counters already sum the direct draws.
+    result.trianglesSubmitted =
+        result.counters.triangles +
+        cameras.size() *
+            (result.bundleContents.triangles + (culler ? submittedTriangles(culler->draws()) : 0));
+    return result;
+}
+
+void Renderer::toneMapScene() {
+    if (!mToneMapper) {
+        return;
+    }
+    wgpu::CommandEncoder commands = mContext->device().CreateCommandEncoder();
+    mToneMapper->encode(commands, mTarget);
+    wgpu::CommandBuffer buffer = commands.Finish();
+    mContext->queue().Submit(1, &buffer);
+}
+
+void Renderer::setTriangleCounting(bool on) {
+    mTriangleHistory = on ? std::make_unique<TriangleHistory>(mContext->device()) : nullptr;
+}
+
+Result<std::vector<std::uint64_t>> Renderer::takeDrawnTriangles() {
+    if (!mTriangleHistory) {
+        return std::vector<std::uint64_t>{};
+    }
+    return mTriangleHistory->take(*mContext);
+}
+
+Result<std::vector<float>> Renderer::readHdrImage() {
+    if (!mTarget.hdr()) {
+        return makeError(ErrorCode::InvalidArgument, "The render target has no HDR colour.");
+    }
+    return gpu::readTextureRgba16Float(*mContext, mTarget.sceneTexture());
+}
+
+Result<image::ImageRgba8> Renderer::readImage() {
+    auto image = gpu::readTexture(*mContext, mTarget.colorTexture());
+    if (!image) {
+        // A lost device fails the read back; say so rather than how mapping failed.
+        ENCORE_TRY(mContext->checkNoErrors("Rendering"));
+        return image.error();
+    }
+    ENCORE_TRY(mContext->checkNoErrors("Rendering"));
+    return image;
+}
+
+}  // namespace encore::render
