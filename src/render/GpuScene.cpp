@@ -8,33 +8,6 @@
 
 namespace encore::render {
 
-Result<std::unique_ptr<GpuScene>> GpuScene::create(const RenderSetup& setup,
-                                                   const scene::SceneData& scene,
-                                                   const scene::AnimationPlayer* player,
-                                                   StagedImages* staged) {
-    PrepareTimes& times = setup.prepareTimes;
-    const auto start = std::chrono::steady_clock::now();
-    ENCORE_TRY_ASSIGN(
-        auto materials,
-        MaterialResources::create(setup.device, setup.queue, *setup.shaders, *setup.layouts, scene,
-                                  SampledTextures::all(), setup.limits.maxTextureDimension2D,
-                                  setup.mipmaps, staged));
-    times.materials += millisecondsSince(start);
-    const TextureUploadTimes& upload = materials.uploadTimes();
-    times.textureCreation += upload.creation;
-    times.textureWrites += upload.writes;
-    times.mipmaps += upload.mipmaps;
-    times.materialSubmit += upload.submit;
-    std::unique_ptr<GpuScene> created(new GpuScene(setup, scene, std::move(materials)));
-    std::optional<scene::AnimationPlayer> restPose;
-    if (!player) {
-        player = &restPose.emplace(scene);
-    }
-    created->mAnimation =
-        AnimationBuffers::create(setup.device, setup.queue, *setup.layouts, scene, *player);
-    return created;
-}
-
 namespace {
 
 // Times one member's construction into `milliseconds` (members are built in the initialiser
@@ -49,16 +22,43 @@ auto timed(double& milliseconds, Build&& build) {
 
 }  // namespace
 
+Result<std::unique_ptr<GpuScene>> GpuScene::create(const RenderSetup& setup,
+                                                   const scene::SceneData& scene,
+                                                   const scene::AnimationPlayer* player,
+                                                   StagedImages* staged) {
+    std::optional<scene::AnimationPlayer> restPose;
+    if (!player) {
+        player = &restPose.emplace(scene);
+    }
+    // Buffers first, textures last: the buffers' staged copies then go with the one submit that
+    // generates the mip chains instead of waiting for the next one (measured: 3% of the batch).
+    std::unique_ptr<GpuScene> created(new GpuScene(setup, scene, *player));
+    PrepareTimes& times = setup.prepareTimes;
+    const auto start = std::chrono::steady_clock::now();
+    ENCORE_TRY_ASSIGN(
+        created->mMaterials,
+        MaterialResources::create(setup.device, setup.queue, *setup.shaders, *setup.layouts, scene,
+                                  SampledTextures::all(), setup.limits.maxTextureDimension2D,
+                                  setup.mipmaps, staged));
+    times.materials += millisecondsSince(start);
+    const TextureUploadTimes& upload = created->mMaterials->uploadTimes();
+    times.textureCreation += upload.creation;
+    times.textureWrites += upload.writes;
+    times.mipmaps += upload.mipmaps;
+    times.materialSubmit += upload.submit;
+    return created;
+}
+
 GpuScene::GpuScene(const RenderSetup& setup,
                    const scene::SceneData& scene,
-                   MaterialResources materials)
+                   const scene::AnimationPlayer& player)
     : mSetup(&setup),
       mScene(&scene),
+      mAnimation(AnimationBuffers::create(setup.device, setup.queue, *setup.layouts, scene, player)),
       mGeometry(
           timed(setup.prepareTimes.geometry, [&] { return GeometryBuffers(setup.device, scene); })),
       mInstances(timed(setup.prepareTimes.instances,
-                       [&] { return InstanceBuffer(setup.device, *setup.layouts, scene); })),
-      mMaterials(std::move(materials)) {
+                       [&] { return InstanceBuffer(setup.device, *setup.layouts, scene); })) {
     mWorlds.reserve(scene.instances.size());
     for (const scene::Instance& instance : scene.instances) {
         mWorlds.push_back(instance.world);
@@ -78,7 +78,7 @@ Result<void> GpuScene::updateInstance(std::size_t instance, const glm::mat4& wor
 }
 
 Result<void> GpuScene::checkMaterial(scene::MaterialId material) const {
-    if (!material.valid() || material.index() >= mMaterials.materialCount()) {
+    if (!material.valid() || material.index() >= mMaterials->materialCount()) {
         return makeError(ErrorCode::InvalidArgument,
                          "Material " + std::to_string(material.value) + " does not exist.");
     }
@@ -87,14 +87,14 @@ Result<void> GpuScene::checkMaterial(scene::MaterialId material) const {
 
 Result<void> GpuScene::updateMaterial(scene::MaterialId material, const scene::Material& value) {
     ENCORE_TRY(checkMaterial(material));
-    mMaterials.updateMaterial(mSetup->queue, material, value);
+    mMaterials->updateMaterial(mSetup->queue, material, value);
     return {};
 }
 
 Result<void> GpuScene::replaceBaseColorImage(scene::MaterialId material,
                                              const scene::Image& image) {
     ENCORE_TRY(checkMaterial(material));
-    return mMaterials.replaceBaseColorImage(mSetup->device, mSetup->queue, *mSetup->shaders,
+    return mMaterials->replaceBaseColorImage(mSetup->device, mSetup->queue, *mSetup->shaders,
                                             *mSetup->layouts, material, image);
 }
 

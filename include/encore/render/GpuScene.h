@@ -12,6 +12,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -44,7 +45,7 @@ class GpuScene {
     const scene::SceneData& data() const { return *mScene; }
     const GeometryBuffers& geometry() const { return mGeometry; }
     const InstanceBuffer& instances() const { return mInstances; }
-    const MaterialResources& materials() const { return mMaterials; }
+    const MaterialResources& materials() const { return *mMaterials; }
     // Null when the scene has neither skins nor morph targets.
     const AnimationBuffers* animation() const { return mAnimation.get(); }
 
@@ -52,10 +53,10 @@ class GpuScene {
     // keep copies of their own (per-node uniforms).
     std::span<const glm::mat4> instanceWorlds() const { return mWorlds; }
     // Incremented whenever a bind group that recordings may hold is replaced.
-    std::uint64_t generation() const { return mMaterials.generation(); }
+    std::uint64_t generation() const { return mMaterials->generation(); }
     // Geometry and texture bytes written to the GPU since creation (replaced images included).
     std::uint64_t uploadedBytes() const {
-        return mGeometry.uploadedBytes() + mMaterials.uploadedBytes();
+        return mGeometry.uploadedBytes() + mMaterials->uploadedBytes();
     }
 
     // Edits. `instance` indexes SceneData::instances; errors name what does not exist.
@@ -68,15 +69,16 @@ class GpuScene {
     AnimationUploadStats writeAnimation(const scene::AnimationPlayer& player);
 
   private:
-    GpuScene(const RenderSetup& setup, const scene::SceneData& scene, MaterialResources materials);
+    GpuScene(const RenderSetup& setup, const scene::SceneData& scene,
+             const scene::AnimationPlayer& player);
     Result<void> checkMaterial(scene::MaterialId material) const;
 
     const RenderSetup* mSetup;
     const scene::SceneData* mScene;
+    std::unique_ptr<AnimationBuffers> mAnimation;
     GeometryBuffers mGeometry;
     InstanceBuffer mInstances;
-    MaterialResources mMaterials;
-    std::unique_ptr<AnimationBuffers> mAnimation;
+    std::optional<MaterialResources> mMaterials;  // Always set once create() returns.
     std::vector<glm::mat4> mWorlds;
 };
 
