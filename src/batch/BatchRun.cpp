@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "BatchOptionsValidation.h"
-#include "ModelLoader.h"
-#include "ModelWriter.h"
+#include "batch/BatchOptionsValidation.h"
+#include "batch/ModelLoader.h"
+#include "batch/ModelWriter.h"
 #include "encore/batch/BatchRenderer.h"
 #include "encore/batch/FailureLog.h"
 #include "encore/batch/ModelOutput.h"

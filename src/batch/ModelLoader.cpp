@@ -1,4 +1,4 @@
-#include "ModelLoader.h"
+#include "batch/ModelLoader.h"
 
 #include <chrono>
 

@@ -1,4 +1,4 @@
-#include "ModelWriter.h"
+#include "batch/ModelWriter.h"
 
 #include <chrono>
 #include <span>

@@ -1,4 +1,4 @@
-#include "FittedImage.h"
+#include "render/FittedImage.h"
 
 #include "encore/core/Log.h"
 

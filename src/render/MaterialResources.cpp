@@ -13,10 +13,10 @@
 #include <string>
 #include <utility>
 
-#include "MaterialResourcesBuilder.h"
-#include "MipmapGenerator.h"
 #include "encore/core/Elapsed.h"
 #include "encore/gpu/Upload.h"
+#include "render/MaterialResourcesBuilder.h"
+#include "render/MipmapGenerator.h"
 
 namespace encore::render {
 

@@ -1,4 +1,4 @@
-#include "MipmapGenerator.h"
+#include "render/MipmapGenerator.h"
 
 #include <algorithm>
 #include <bit>

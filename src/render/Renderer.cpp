@@ -2,8 +2,6 @@
 
 #include <chrono>
 
-#include "MipmapGenerator.h"
-#include "TriangleHistory.h"
 #include "encore/core/Elapsed.h"
 #include "encore/gpu/OutOfMemoryScope.h"
 #include "encore/gpu/Readback.h"
@@ -13,6 +11,8 @@
 #include "encore/render/GpuScene.h"
 #include "encore/render/PipelineCache.h"
 #include "encore/render/SceneLimits.h"
+#include "render/MipmapGenerator.h"
+#include "render/TriangleHistory.h"
 
 namespace encore::render {
 

@@ -1,4 +1,4 @@
-#include "TriangleHistory.h"
+#include "render/TriangleHistory.h"
 
 #include <algorithm>
 #include <cstring>

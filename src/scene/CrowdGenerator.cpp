@@ -13,7 +13,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <nlohmann/json.hpp>
 
-#include "GlbWriter.h"
+#include "scene/GlbWriter.h"
 
 namespace encore::scene {
 

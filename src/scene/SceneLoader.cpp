@@ -6,10 +6,10 @@
 #include <exception>
 #include <new>
 
-#include "LoadContext.h"
 #include "encore/core/FileIO.h"
 #include "encore/core/Log.h"
 #include "encore/scene/MeshOptimizer.h"
+#include "scene/LoadContext.h"
 
 namespace encore::scene {
 namespace {

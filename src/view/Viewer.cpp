@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include "ViewerState.h"
 #include "encore/scene/AnimationPlayer.h"
+#include "view/ViewerState.h"
 
 namespace encore::view {
 

@@ -1,4 +1,4 @@
-#include "BundledStrategy.h"
+#include "render/strategies/BundledStrategy.h"
 
 #include "encore/render/GpuScene.h"
 

@@ -1,4 +1,4 @@
-#include "BundlesStrategy.h"
+#include "render/strategies/BundlesStrategy.h"
 
 #include <chrono>
 

@@ -1,4 +1,4 @@
-#include "GpuCullingStrategy.h"
+#include "render/strategies/GpuCullingStrategy.h"
 
 #include <cassert>
 #include <chrono>

@@ -1,4 +1,4 @@
-#include "LayoutsStrategy.h"
+#include "render/strategies/LayoutsStrategy.h"
 
 #include <string>
 

@@ -1,4 +1,4 @@
-#include "MaterialsStrategy.h"
+#include "render/strategies/MaterialsStrategy.h"
 
 #include <chrono>
 

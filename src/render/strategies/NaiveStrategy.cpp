@@ -1,4 +1,4 @@
-#include "NaiveStrategy.h"
+#include "render/strategies/NaiveStrategy.h"
 
 #include <map>
 #include <string>

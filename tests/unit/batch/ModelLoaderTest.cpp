@@ -3,8 +3,8 @@
 #include <chrono>
 #include <future>
 
-#include "ModelLoader.h"
 #include "TestPaths.h"
+#include "batch/ModelLoader.h"
 #include "encore/core/FileIO.h"
 #include "encore/scene/SceneGenerator.h"
 
