@@ -11,8 +11,8 @@
 #define ENCORE_HAS_CALLGRIND 0
 #endif
 
+#include "core/Elapsed.h"
 #include "encore/bench/Benchmark.h"
-#include "encore/core/Elapsed.h"
 #include "encore/gpu/GpuTimer.h"
 #include "encore/render/Animometer.h"
 #include "encore/render/CameraPath.h"

@@ -4,7 +4,7 @@
 #include <string>
 
 #include "Commands.h"
-#include "encore/core/FileIO.h"
+#include "core/FileIO.h"
 #include "encore/image/ImageCodec.h"
 #include "encore/image/ImageCompare.h"
 

@@ -4,7 +4,7 @@
 #include <string>
 
 #include "Commands.h"
-#include "encore/core/FileIO.h"
+#include "core/FileIO.h"
 #include "encore/scene/CrowdGenerator.h"
 #include "encore/scene/SceneGenerator.h"
 

@@ -3,11 +3,11 @@
 #include <chrono>
 #include <span>
 
+#include "core/Elapsed.h"
+#include "core/FileIO.h"
 #include "encore/batch/ModelOutput.h"
 #include "encore/batch/TransformsJson.h"
 #include "encore/batch/ViewStrips.h"
-#include "encore/core/Elapsed.h"
-#include "encore/core/FileIO.h"
 #include "encore/image/ImageCodec.h"
 
 namespace encore::batch {

@@ -5,7 +5,7 @@
 #include <mutex>
 #include <string_view>
 
-#include "encore/core/Log.h"
+#include "core/Log.h"
 #include "encore/gpu/OutOfMemoryScope.h"
 
 namespace encore::gpu {

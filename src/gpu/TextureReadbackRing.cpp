@@ -4,7 +4,7 @@
 #include <chrono>
 #include <string>
 
-#include "encore/core/Elapsed.h"
+#include "core/Elapsed.h"
 #include "encore/gpu/Readback.h"
 
 namespace encore::gpu {

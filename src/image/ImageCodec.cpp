@@ -8,7 +8,7 @@
 #include <memory>
 #include <string>
 
-#include "encore/core/FileIO.h"
+#include "core/FileIO.h"
 #include "image/ImageDecoders.h"
 #include "image/RunLengthDeflate.h"
 #include "image/ScratchBuffer.h"

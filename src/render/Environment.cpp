@@ -10,8 +10,8 @@
 #include <thread>
 #include <vector>
 
-#include "encore/core/Elapsed.h"
-#include "encore/core/Log.h"
+#include "core/Elapsed.h"
+#include "core/Log.h"
 #include "encore/gpu/BindingResource.h"
 #include "encore/image/ImageResize.h"
 #include "render/MipmapGenerator.h"

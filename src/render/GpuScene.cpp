@@ -4,7 +4,7 @@
 #include <optional>
 #include <string>
 
-#include "encore/core/Elapsed.h"
+#include "core/Elapsed.h"
 
 namespace encore::render {
 

@@ -13,7 +13,7 @@
 #include <string>
 #include <utility>
 
-#include "encore/core/Elapsed.h"
+#include "core/Elapsed.h"
 #include "encore/gpu/Upload.h"
 #include "render/MaterialResourcesBuilder.h"
 #include "render/MipmapGenerator.h"

@@ -4,7 +4,7 @@
 #include <string>
 #include <utility>
 
-#include "encore/core/Elapsed.h"
+#include "core/Elapsed.h"
 #include "encore/render/GltfToWebGpu.h"
 #include "encore/render/StagedImages.h"
 #include "render/FittedImage.h"

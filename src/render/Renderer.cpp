@@ -2,7 +2,7 @@
 
 #include <chrono>
 
-#include "encore/core/Elapsed.h"
+#include "core/Elapsed.h"
 #include "encore/gpu/OutOfMemoryScope.h"
 #include "encore/gpu/Readback.h"
 #include "encore/gpu/TimedSubmit.h"

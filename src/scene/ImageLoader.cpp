@@ -4,7 +4,7 @@
 
 #include <filesystem>
 
-#include "encore/core/FileIO.h"
+#include "core/FileIO.h"
 #include "encore/image/ImageCodec.h"
 #include "scene/LoadContext.h"
 

@@ -8,7 +8,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 
-#include "encore/core/Log.h"
+#include "core/Log.h"
 #include "scene/LoadContext.h"
 
 namespace encore::scene {

@@ -6,8 +6,8 @@
 #include <exception>
 #include <new>
 
-#include "encore/core/FileIO.h"
-#include "encore/core/Log.h"
+#include "core/FileIO.h"
+#include "core/Log.h"
 #include "encore/scene/MeshOptimizer.h"
 #include "scene/LoadContext.h"
 

@@ -4,7 +4,7 @@
 
 #include <array>
 
-#include "encore/core/FileIO.h"
+#include "core/FileIO.h"
 #include "scene/LoadContext.h"
 
 namespace encore::scene {

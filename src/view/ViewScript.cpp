@@ -5,7 +5,7 @@
 
 #include <sstream>
 
-#include "encore/core/FileIO.h"
+#include "core/FileIO.h"
 
 namespace encore::view {
 

@@ -17,7 +17,7 @@
 #include "GpuTestSupport.h"
 #include "RenderTestSupport.h"
 #include "TestPaths.h"
-#include "encore/core/Log.h"
+#include "core/Log.h"
 #include "encore/gpu/OutOfMemoryScope.h"
 #include "encore/gpu/Readback.h"
 #include "encore/render/GpuAnimation.h"

@@ -9,7 +9,7 @@
 #include "GpuTestSupport.h"
 #include "RenderTestSupport.h"
 #include "TestPaths.h"
-#include "encore/core/FileIO.h"
+#include "core/FileIO.h"
 #include "encore/render/GpuScene.h"
 #include "encore/render/Renderer.h"
 #include "encore/scene/SceneGenerator.h"

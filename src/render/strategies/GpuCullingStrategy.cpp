@@ -4,7 +4,7 @@
 #include <chrono>
 #include <map>
 
-#include "encore/core/Elapsed.h"
+#include "core/Elapsed.h"
 
 namespace encore::render {
 

@@ -5,7 +5,7 @@
 
 #include "TestPaths.h"
 #include "batch/ModelLoader.h"
-#include "encore/core/FileIO.h"
+#include "core/FileIO.h"
 #include "encore/scene/SceneGenerator.h"
 
 namespace encore::batch {

@@ -19,7 +19,7 @@
 #include <vector>
 
 #include "TestPaths.h"
-#include "encore/core/FileIO.h"
+#include "core/FileIO.h"
 #include "encore/image/ImageCodec.h"
 #include "image/ImageDecoders.h"
 

@@ -4,8 +4,8 @@
 
 #include "SceneTestUtils.h"
 #include "TestPaths.h"
-#include "encore/core/FileIO.h"
-#include "encore/core/Log.h"
+#include "core/FileIO.h"
+#include "core/Log.h"
 #include "encore/image/ImageCodec.h"
 #include "encore/scene/SceneGenerator.h"
 
