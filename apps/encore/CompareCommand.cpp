@@ -6,7 +6,7 @@
 #include "Commands.h"
 #include "core/FileIO.h"
 #include "encore/image/ImageCodec.h"
-#include "encore/image/ImageCompare.h"
+#include "image/ImageCompare.h"
 
 namespace encore::app {
 

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <cstring>
 
-#include "encore/image/Srgb.h"
+#include "image/Srgb.h"
 
 namespace encore::batch {
 

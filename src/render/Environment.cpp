@@ -13,7 +13,7 @@
 #include "core/Elapsed.h"
 #include "core/Log.h"
 #include "encore/gpu/BindingResource.h"
-#include "encore/image/ImageResize.h"
+#include "image/ImageResize.h"
 #include "render/MipmapGenerator.h"
 
 namespace encore::render {
