@@ -1,4 +1,4 @@
-#include "encore/view/Overlay.h"
+#include "view/Overlay.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "encore/view/Presenter.h"
+#include "view/Presenter.h"
 
 #include "encore/gpu/BindingResource.h"
 #include "encore/gpu/FullscreenPipeline.h"

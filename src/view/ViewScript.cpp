@@ -1,4 +1,4 @@
-#include "encore/view/ViewScript.h"
+#include "view/ViewScript.h"
 
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>

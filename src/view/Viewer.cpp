@@ -1,4 +1,4 @@
-#include "encore/view/Viewer.h"
+#include "view/Viewer.h"
 
 #include <cmath>
 

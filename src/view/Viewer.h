@@ -22,9 +22,9 @@
 #include "encore/render/Animometer.h"
 #include "encore/render/Renderer.h"
 #include "encore/scene/SceneData.h"
-#include "encore/view/ViewScript.h"
-#include "encore/view/Window.h"
-#include "encore/view/WindowSurface.h"
+#include "view/ViewScript.h"
+#include "view/Window.h"
+#include "view/WindowSurface.h"
 
 namespace encore::view {
 
