@@ -23,7 +23,7 @@
 #include "encore/gpu/StageTimestamps.h"
 #include "encore/gpu/StagingBuffers.h"
 #include "encore/gpu/TextureReadbackRing.h"
-#include "encore/render/StagedImages.h"
+#include "render/StagedImages.h"
 
 namespace encore::batch {
 namespace {

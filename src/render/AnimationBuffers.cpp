@@ -5,9 +5,9 @@
 
 #include "encore/gpu/BindingResource.h"
 #include "encore/gpu/Upload.h"
-#include "encore/render/InstanceBuffer.h"
 #include "encore/render/RenderEncoder.h"
-#include "encore/render/ShadingSemantics.h"
+#include "render/InstanceBuffer.h"
+#include "render/ShadingSemantics.h"
 
 namespace encore::render {
 

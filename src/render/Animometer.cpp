@@ -1,4 +1,4 @@
-#include "encore/render/Animometer.h"
+#include "render/Animometer.h"
 
 #include <cstring>
 #include <random>
@@ -8,7 +8,7 @@
 #include "encore/gpu/Readback.h"
 #include "encore/gpu/TimedSubmit.h"
 #include "encore/gpu/Upload.h"
-#include "encore/render/BundleRecorder.h"
+#include "render/BundleRecorder.h"
 
 namespace encore::render {
 

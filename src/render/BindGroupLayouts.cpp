@@ -6,7 +6,7 @@
 
 #include "encore/gpu/LayoutEntry.h"
 #include "encore/render/Lighting.h"
-#include "encore/render/MaterialResources.h"
+#include "render/MaterialResources.h"
 
 namespace encore::render {
 

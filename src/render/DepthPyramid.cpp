@@ -1,4 +1,4 @@
-#include "encore/render/DepthPyramid.h"
+#include "render/DepthPyramid.h"
 
 #include <algorithm>
 #include <bit>

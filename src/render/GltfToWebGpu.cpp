@@ -1,4 +1,4 @@
-#include "encore/render/GltfToWebGpu.h"
+#include "render/GltfToWebGpu.h"
 
 #include "encore/shaders/VertexLocations.h"
 

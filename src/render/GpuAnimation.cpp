@@ -14,7 +14,7 @@
 #include "encore/gpu/Upload.h"
 #include "encore/render/AnimationBuffers.h"
 #include "encore/render/BindGroupLayouts.h"
-#include "encore/render/KeyframeStore.h"
+#include "render/KeyframeStore.h"
 
 namespace encore::render {
 

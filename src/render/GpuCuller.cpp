@@ -1,4 +1,4 @@
-#include "encore/render/GpuCuller.h"
+#include "render/GpuCuller.h"
 
 #include <algorithm>
 #include <array>

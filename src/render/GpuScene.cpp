@@ -1,4 +1,4 @@
-#include "encore/render/GpuScene.h"
+#include "render/GpuScene.h"
 
 #include <chrono>
 #include <optional>

@@ -1,4 +1,4 @@
-#include "encore/render/MaterialResources.h"
+#include "render/MaterialResources.h"
 
 // MaterialResources::create resolves each material's slots (textureSlots()) to textures and
 // samplers that MaterialResources::Builder uploads (MaterialResourcesBuilder.cpp), packs the

@@ -5,10 +5,10 @@
 #include <utility>
 
 #include "core/Elapsed.h"
-#include "encore/render/GltfToWebGpu.h"
-#include "encore/render/StagedImages.h"
 #include "render/FittedImage.h"
+#include "render/GltfToWebGpu.h"
 #include "render/MipmapGenerator.h"
+#include "render/StagedImages.h"
 
 namespace encore::render {
 

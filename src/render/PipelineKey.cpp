@@ -1,4 +1,4 @@
-#include "encore/render/PipelineKey.h"
+#include "render/PipelineKey.h"
 
 #include <algorithm>
 #include <cassert>

@@ -7,11 +7,11 @@
 #include "encore/gpu/Readback.h"
 #include "encore/gpu/TimedSubmit.h"
 #include "encore/image/HdrImage.h"
-#include "encore/render/GpuCuller.h"
-#include "encore/render/GpuScene.h"
-#include "encore/render/PipelineCache.h"
-#include "encore/render/SceneLimits.h"
+#include "render/GpuCuller.h"
+#include "render/GpuScene.h"
 #include "render/MipmapGenerator.h"
+#include "render/PipelineCache.h"
+#include "render/SceneLimits.h"
 #include "render/TriangleHistory.h"
 
 namespace encore::render {

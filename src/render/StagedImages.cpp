@@ -1,4 +1,4 @@
-#include "encore/render/StagedImages.h"
+#include "render/StagedImages.h"
 
 #include <cstring>
 

@@ -19,9 +19,9 @@
 
 #include "encore/core/Result.h"
 #include "encore/gpu/Context.h"
-#include "encore/render/Animometer.h"
 #include "encore/render/Renderer.h"
 #include "encore/scene/SceneData.h"
+#include "render/Animometer.h"
 #include "view/ViewScript.h"
 #include "view/Window.h"
 #include "view/WindowSurface.h"

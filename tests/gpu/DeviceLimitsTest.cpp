@@ -21,10 +21,10 @@
 #include "encore/gpu/OutOfMemoryScope.h"
 #include "encore/gpu/Readback.h"
 #include "encore/render/GpuAnimation.h"
-#include "encore/render/MaterialResources.h"
 #include "encore/render/Renderer.h"
-#include "encore/render/SceneLimits.h"
 #include "encore/scene/SceneGenerator.h"
+#include "render/MaterialResources.h"
+#include "render/SceneLimits.h"
 
 namespace encore::render {
 namespace {

@@ -7,7 +7,7 @@
 #include "GpuTestSupport.h"
 #include "encore/gpu/Readback.h"
 #include "encore/render/BindGroupLayouts.h"
-#include "encore/render/MaterialResources.h"
+#include "render/MaterialResources.h"
 
 namespace encore::render {
 namespace {

@@ -10,9 +10,9 @@
 #include "RenderTestSupport.h"
 #include "TestPaths.h"
 #include "core/FileIO.h"
-#include "encore/render/GpuScene.h"
 #include "encore/render/Renderer.h"
 #include "encore/scene/SceneGenerator.h"
+#include "render/GpuScene.h"
 
 namespace encore::render {
 namespace {

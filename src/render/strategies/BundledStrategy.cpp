@@ -1,6 +1,6 @@
 #include "render/strategies/BundledStrategy.h"
 
-#include "encore/render/GpuScene.h"
+#include "render/GpuScene.h"
 
 namespace encore::render {
 

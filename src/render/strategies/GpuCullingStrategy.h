@@ -1,7 +1,7 @@
 #pragma once
 
-#include "encore/render/GpuCuller.h"
 #include "encore/render/Strategy.h"
+#include "render/GpuCuller.h"
 #include "render/strategies/BundledFrame.h"
 #include "render/strategies/MaterialDrawGroups.h"
 

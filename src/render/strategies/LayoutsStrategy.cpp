@@ -3,7 +3,7 @@
 #include <string>
 
 #include "encore/render/AnimationBuffers.h"
-#include "encore/render/PipelineKey.h"
+#include "render/PipelineKey.h"
 
 namespace encore::render {
 

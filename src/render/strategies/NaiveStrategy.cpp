@@ -5,9 +5,9 @@
 
 #include "encore/gpu/Upload.h"
 #include "encore/render/AnimationBuffers.h"
-#include "encore/render/GltfToWebGpu.h"
-#include "encore/render/PipelineKey.h"
-#include "encore/render/VertexBindings.h"
+#include "render/GltfToWebGpu.h"
+#include "render/PipelineKey.h"
+#include "render/VertexBindings.h"
 
 namespace encore::render {
 
