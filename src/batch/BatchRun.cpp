@@ -21,8 +21,8 @@
 #include "encore/batch/ModelOutput.h"
 #include "encore/batch/ViewStrips.h"
 #include "encore/gpu/StageTimestamps.h"
-#include "encore/gpu/StagingBuffers.h"
 #include "encore/gpu/TextureReadbackRing.h"
+#include "gpu/StagingBuffers.h"
 #include "render/StagedImages.h"
 
 namespace encore::batch {

@@ -6,7 +6,7 @@
 #include <string_view>
 
 #include "core/Log.h"
-#include "encore/gpu/OutOfMemoryScope.h"
+#include "gpu/OutOfMemoryScope.h"
 
 namespace encore::gpu {
 

@@ -5,7 +5,7 @@
 #include <string>
 
 #include "core/Elapsed.h"
-#include "encore/gpu/Readback.h"
+#include "gpu/Readback.h"
 
 namespace encore::gpu {
 

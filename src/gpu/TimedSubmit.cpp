@@ -1,4 +1,4 @@
-#include "encore/gpu/TimedSubmit.h"
+#include "gpu/TimedSubmit.h"
 
 #include <chrono>
 

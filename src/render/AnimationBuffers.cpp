@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <cstring>
 
-#include "encore/gpu/BindingResource.h"
-#include "encore/gpu/Upload.h"
 #include "encore/render/RenderEncoder.h"
+#include "gpu/BindingResource.h"
+#include "gpu/Upload.h"
 #include "render/InstanceBuffer.h"
 #include "render/ShadingSemantics.h"
 

@@ -4,8 +4,8 @@
 
 #include <vector>
 
-#include "encore/gpu/LayoutEntry.h"
 #include "encore/render/Lighting.h"
+#include "gpu/LayoutEntry.h"
 #include "render/MaterialResources.h"
 
 namespace encore::render {

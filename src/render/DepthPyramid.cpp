@@ -4,8 +4,8 @@
 #include <bit>
 #include <cstring>
 
-#include "encore/gpu/BindingResource.h"
-#include "encore/gpu/Upload.h"
+#include "gpu/BindingResource.h"
+#include "gpu/Upload.h"
 
 namespace encore::render {
 

@@ -12,7 +12,7 @@
 
 #include "core/Elapsed.h"
 #include "core/Log.h"
-#include "encore/gpu/BindingResource.h"
+#include "gpu/BindingResource.h"
 #include "image/ImageResize.h"
 #include "render/MipmapGenerator.h"
 

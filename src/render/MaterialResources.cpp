@@ -14,7 +14,7 @@
 #include <utility>
 
 #include "core/Elapsed.h"
-#include "encore/gpu/Upload.h"
+#include "gpu/Upload.h"
 #include "render/MaterialResourcesBuilder.h"
 #include "render/MipmapGenerator.h"
 

@@ -2,8 +2,8 @@
 
 #include <string>
 
-#include "encore/gpu/BindingResource.h"
-#include "encore/gpu/Upload.h"
+#include "gpu/BindingResource.h"
+#include "gpu/Upload.h"
 #include "render/TransformData.h"
 
 namespace encore::render {

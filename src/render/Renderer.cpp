@@ -3,10 +3,10 @@
 #include <chrono>
 
 #include "core/Elapsed.h"
-#include "encore/gpu/OutOfMemoryScope.h"
-#include "encore/gpu/Readback.h"
-#include "encore/gpu/TimedSubmit.h"
 #include "encore/image/HdrImage.h"
+#include "gpu/OutOfMemoryScope.h"
+#include "gpu/Readback.h"
+#include "gpu/TimedSubmit.h"
 #include "render/GpuCuller.h"
 #include "render/GpuScene.h"
 #include "render/MipmapGenerator.h"

@@ -2,7 +2,7 @@
 
 #include <cstring>
 
-#include "encore/gpu/Readback.h"
+#include "gpu/Readback.h"
 
 namespace encore::render {
 

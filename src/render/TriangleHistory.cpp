@@ -4,8 +4,8 @@
 #include <cstring>
 #include <utility>
 
-#include "encore/gpu/Readback.h"
-#include "encore/gpu/Upload.h"
+#include "gpu/Readback.h"
+#include "gpu/Upload.h"
 
 namespace encore::render {
 

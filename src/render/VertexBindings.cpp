@@ -4,9 +4,9 @@
 #include <cstring>
 #include <string>
 
-#include "encore/gpu/Upload.h"
 #include "encore/render/RenderEncoder.h"
 #include "encore/render/RenderSetup.h"
+#include "gpu/Upload.h"
 #include "render/GltfToWebGpu.h"
 
 namespace encore::render {

@@ -4,9 +4,9 @@
 #include <cmath>
 #include <string>
 
-#include "encore/gpu/BindingResource.h"
-#include "encore/gpu/LayoutEntry.h"
-#include "encore/gpu/Upload.h"
+#include "gpu/BindingResource.h"
+#include "gpu/LayoutEntry.h"
+#include "gpu/Upload.h"
 
 // stb_easy_font's functions are static; the ones this file does not call would warn.
 #pragma GCC diagnostic push

@@ -3,8 +3,8 @@
 
 #include <chrono>
 
-#include "encore/gpu/Readback.h"
 #include "encore/image/ImageCodec.h"
+#include "gpu/Readback.h"
 #include "view/ViewerState.h"
 
 namespace encore::view {

@@ -18,11 +18,11 @@
 #include "RenderTestSupport.h"
 #include "TestPaths.h"
 #include "core/Log.h"
-#include "encore/gpu/OutOfMemoryScope.h"
-#include "encore/gpu/Readback.h"
 #include "encore/render/GpuAnimation.h"
 #include "encore/render/Renderer.h"
 #include "encore/scene/SceneGenerator.h"
+#include "gpu/OutOfMemoryScope.h"
+#include "gpu/Readback.h"
 #include "render/MaterialResources.h"
 #include "render/SceneLimits.h"
 

@@ -13,9 +13,9 @@
 
 #include "GpuTestSupport.h"
 #include "RenderTestSupport.h"
-#include "encore/gpu/Readback.h"
 #include "encore/render/Renderer.h"
 #include "encore/scene/SceneGenerator.h"
+#include "gpu/Readback.h"
 #include "render/CameraPath.h"
 #include "render/GpuCuller.h"
 
