@@ -15,10 +15,10 @@
 #include "encore/bench/Benchmark.h"
 #include "encore/gpu/GpuTimer.h"
 #include "encore/render/Renderer.h"
-#include "encore/scene/CrowdGenerator.h"
-#include "encore/scene/SceneGenerator.h"
 #include "render/Animometer.h"
 #include "render/CameraPath.h"
+#include "scene/CrowdGenerator.h"
+#include "scene/SceneGenerator.h"
 
 namespace encore::bench {
 

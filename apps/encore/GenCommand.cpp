@@ -5,8 +5,8 @@
 
 #include "Commands.h"
 #include "core/FileIO.h"
-#include "encore/scene/CrowdGenerator.h"
-#include "encore/scene/SceneGenerator.h"
+#include "scene/CrowdGenerator.h"
+#include "scene/SceneGenerator.h"
 
 namespace encore::app {
 

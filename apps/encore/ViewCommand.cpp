@@ -8,8 +8,8 @@
 #include "CullingFlags.h"
 #include "ShadingOptions.h"
 #include "StrategyOptions.h"
-#include "encore/scene/SceneGenerator.h"
 #include "render/Animometer.h"
+#include "scene/SceneGenerator.h"
 #include "view/ViewScript.h"
 #include "view/Viewer.h"
 

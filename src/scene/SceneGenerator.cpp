@@ -1,4 +1,4 @@
-#include "encore/scene/SceneGenerator.h"
+#include "scene/SceneGenerator.h"
 
 #include <algorithm>
 #include <array>

@@ -8,8 +8,8 @@
 
 #include "core/FileIO.h"
 #include "core/Log.h"
-#include "encore/scene/MeshOptimizer.h"
 #include "scene/LoadContext.h"
+#include "scene/MeshOptimizer.h"
 
 namespace encore::scene {
 namespace {

@@ -20,11 +20,11 @@
 #include "core/Log.h"
 #include "encore/render/GpuAnimation.h"
 #include "encore/render/Renderer.h"
-#include "encore/scene/SceneGenerator.h"
 #include "gpu/OutOfMemoryScope.h"
 #include "gpu/Readback.h"
 #include "render/MaterialResources.h"
 #include "render/SceneLimits.h"
+#include "scene/SceneGenerator.h"
 
 namespace encore::render {
 namespace {

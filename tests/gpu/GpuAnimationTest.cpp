@@ -19,8 +19,8 @@
 #include "RenderTestSupport.h"
 #include "TestPaths.h"
 #include "encore/render/Renderer.h"
-#include "encore/scene/CrowdGenerator.h"
 #include "gpu/Readback.h"
+#include "scene/CrowdGenerator.h"
 
 namespace encore::render {
 namespace {

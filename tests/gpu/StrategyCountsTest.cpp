@@ -11,8 +11,8 @@
 #include "TestPaths.h"
 #include "core/FileIO.h"
 #include "encore/render/Renderer.h"
-#include "encore/scene/SceneGenerator.h"
 #include "render/GpuScene.h"
+#include "scene/SceneGenerator.h"
 
 namespace encore::render {
 namespace {

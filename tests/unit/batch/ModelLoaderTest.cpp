@@ -6,7 +6,7 @@
 #include "TestPaths.h"
 #include "batch/ModelLoader.h"
 #include "core/FileIO.h"
-#include "encore/scene/SceneGenerator.h"
+#include "scene/SceneGenerator.h"
 
 namespace encore::batch {
 namespace {

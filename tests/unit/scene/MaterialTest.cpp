@@ -7,7 +7,7 @@
 #include "core/FileIO.h"
 #include "core/Log.h"
 #include "encore/image/ImageCodec.h"
-#include "encore/scene/SceneGenerator.h"
+#include "scene/SceneGenerator.h"
 
 namespace encore::scene {
 namespace {

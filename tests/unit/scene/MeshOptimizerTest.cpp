@@ -11,7 +11,7 @@
 
 #include "SceneTestUtils.h"
 #include "TestPaths.h"
-#include "encore/scene/MeshOptimizer.h"
+#include "scene/MeshOptimizer.h"
 
 namespace encore::scene {
 namespace {
