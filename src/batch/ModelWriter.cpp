@@ -3,11 +3,11 @@
 #include <chrono>
 #include <span>
 
+#include "batch/ModelOutput.h"
+#include "batch/TransformsJson.h"
+#include "batch/ViewStrips.h"
 #include "core/Elapsed.h"
 #include "core/FileIO.h"
-#include "encore/batch/ModelOutput.h"
-#include "encore/batch/TransformsJson.h"
-#include "encore/batch/ViewStrips.h"
 #include "encore/image/ImageCodec.h"
 
 namespace encore::batch {

@@ -1,4 +1,4 @@
-#include "encore/batch/ViewStrips.h"
+#include "batch/ViewStrips.h"
 
 #include <algorithm>
 #include <array>
