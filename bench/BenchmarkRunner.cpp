@@ -11,14 +11,14 @@
 #define ENCORE_HAS_CALLGRIND 0
 #endif
 
+#include "core/Elapsed.h"
 #include "encore/bench/Benchmark.h"
-#include "encore/core/Elapsed.h"
 #include "encore/gpu/GpuTimer.h"
-#include "encore/render/Animometer.h"
-#include "encore/render/CameraPath.h"
 #include "encore/render/Renderer.h"
-#include "encore/scene/CrowdGenerator.h"
-#include "encore/scene/SceneGenerator.h"
+#include "render/Animometer.h"
+#include "render/CameraPath.h"
+#include "scene/CrowdGenerator.h"
+#include "scene/SceneGenerator.h"
 
 namespace encore::bench {
 

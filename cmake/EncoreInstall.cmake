@@ -1,8 +1,13 @@
-# Installs the libraries, headers and a CMake package so another project can
-#   find_package(encore) and link encore::encore.
+# Installs the CMake package another project finds with find_package(encore) and links as
+# encore::encore: the static libraries of encore::encore, the API headers (include/encore, and
+# nothing of src/: scripts/api-headers.py keeps internal headers out of it) and the package
+# files. The command line (bin/encore) and the Python module (python/CMakeLists.txt) install
+# beside it. tests/package builds and runs a consumer against an installed copy.
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
-get_property(encore_libraries GLOBAL PROPERTY ENCORE_LIBRARIES)
+# The libraries encore::encore links, and only those: encore_view (the window of `encore view`,
+# on GLFW) serves the command line alone and has no API headers.
+get_target_property(encore_libraries encore_all INTERFACE_LINK_LIBRARIES)
 install(TARGETS ${encore_libraries} encore_all EXPORT encoreTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
 install(TARGETS encore RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})

@@ -1,8 +1,8 @@
 #include "RenderBridge.h"
 
-#include "encore/render/GltfToWebGpu.h"
-#include "encore/render/MaterialResources.h"
-#include "encore/render/VertexBindings.h"
+#include "render/GltfToWebGpu.h"
+#include "render/MaterialResources.h"
+#include "render/VertexBindings.h"
 
 namespace encore::fuzz {
 

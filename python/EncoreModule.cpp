@@ -23,12 +23,12 @@
 #include <utility>
 #include <vector>
 
+#include "batch/TransformsJson.h"
+#include "batch/ViewStrips.h"
 #include "encore/batch/Batch.h"
 #include "encore/batch/BatchInputs.h"
 #include "encore/batch/BatchRenderer.h"
-#include "encore/batch/TransformsJson.h"
 #include "encore/batch/ViewRig.h"
-#include "encore/batch/ViewStrips.h"
 #include "encore/gpu/Context.h"
 #include "encore/render/Renderer.h"
 #include "encore/scene/SceneData.h"

@@ -9,9 +9,9 @@
 #include "Commands.h"
 #include "CullingFlags.h"
 #include "StrategyOptions.h"
+#include "core/Elapsed.h"
+#include "core/FileIO.h"
 #include "encore/bench/Benchmark.h"
-#include "encore/core/Elapsed.h"
-#include "encore/core/FileIO.h"
 
 namespace encore::app {
 

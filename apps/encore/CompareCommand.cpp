@@ -4,9 +4,9 @@
 #include <string>
 
 #include "Commands.h"
-#include "encore/core/FileIO.h"
+#include "core/FileIO.h"
 #include "encore/image/ImageCodec.h"
-#include "encore/image/ImageCompare.h"
+#include "image/ImageCompare.h"
 
 namespace encore::app {
 

@@ -4,9 +4,9 @@
 #include <string>
 
 #include "Commands.h"
-#include "encore/core/FileIO.h"
-#include "encore/scene/CrowdGenerator.h"
-#include "encore/scene/SceneGenerator.h"
+#include "core/FileIO.h"
+#include "scene/CrowdGenerator.h"
+#include "scene/SceneGenerator.h"
 
 namespace encore::app {
 

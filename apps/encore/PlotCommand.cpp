@@ -7,8 +7,8 @@
 
 #include "Commands.h"
 #include "PlotWriter.h"
+#include "core/FileIO.h"
 #include "encore/bench/BenchmarkReportReader.h"
-#include "encore/core/FileIO.h"
 
 namespace encore::app {
 

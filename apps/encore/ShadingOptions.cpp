@@ -6,7 +6,7 @@
 #include <string>
 
 #include "encore/image/HdrImage.h"
-#include "encore/image/Srgb.h"
+#include "image/Srgb.h"
 
 namespace encore::app {
 

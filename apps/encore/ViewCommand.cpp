@@ -5,13 +5,13 @@
 
 #include "CameraOptions.h"
 #include "Commands.h"
-#include "StrategyOptions.h"
 #include "CullingFlags.h"
 #include "ShadingOptions.h"
-#include "encore/render/Animometer.h"
-#include "encore/scene/SceneGenerator.h"
-#include "encore/view/ViewScript.h"
-#include "encore/view/Viewer.h"
+#include "StrategyOptions.h"
+#include "render/Animometer.h"
+#include "scene/SceneGenerator.h"
+#include "view/ViewScript.h"
+#include "view/Viewer.h"
 
 namespace encore::app {
 

@@ -5,7 +5,7 @@
 #include <string>
 
 #include "Commands.h"
-#include "encore/core/Log.h"
+#include "core/Log.h"
 #include "encore/render/StrategyKind.h"
 
 namespace {

@@ -9,7 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "encore/core/FileIO.h"
+#include "core/FileIO.h"
 
 namespace encore::batch {
 namespace {

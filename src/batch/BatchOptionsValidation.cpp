@@ -1,4 +1,4 @@
-#include "BatchOptionsValidation.h"
+#include "batch/BatchOptionsValidation.h"
 
 #include <string>
 

@@ -11,19 +11,19 @@
 #include <string>
 #include <vector>
 
-#include "BatchOptionsValidation.h"
-#include "ModelLoader.h"
-#include "ModelWriter.h"
+#include "batch/BatchOptionsValidation.h"
+#include "batch/ModelLoader.h"
+#include "batch/ModelOutput.h"
+#include "batch/ModelWriter.h"
+#include "batch/ViewStrips.h"
+#include "core/Elapsed.h"
+#include "core/ThreadPool.h"
 #include "encore/batch/BatchRenderer.h"
 #include "encore/batch/FailureLog.h"
-#include "encore/batch/ModelOutput.h"
-#include "encore/batch/ViewStrips.h"
-#include "encore/core/Elapsed.h"
-#include "encore/core/ThreadPool.h"
 #include "encore/gpu/StageTimestamps.h"
-#include "encore/gpu/StagingBuffers.h"
 #include "encore/gpu/TextureReadbackRing.h"
-#include "encore/render/StagedImages.h"
+#include "gpu/StagingBuffers.h"
+#include "render/StagedImages.h"
 
 namespace encore::batch {
 namespace {

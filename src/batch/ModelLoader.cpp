@@ -1,8 +1,8 @@
-#include "ModelLoader.h"
+#include "batch/ModelLoader.h"
 
 #include <chrono>
 
-#include "encore/core/Elapsed.h"
+#include "core/Elapsed.h"
 
 namespace encore::batch {
 

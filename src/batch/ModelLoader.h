@@ -13,9 +13,9 @@
 #include <span>
 #include <vector>
 
+#include "core/ThreadPool.h"
 #include "encore/batch/BatchInputs.h"
 #include "encore/core/Result.h"
-#include "encore/core/ThreadPool.h"
 #include "encore/scene/SceneData.h"
 
 namespace encore::batch {

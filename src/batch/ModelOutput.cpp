@@ -1,4 +1,4 @@
-#include "encore/batch/ModelOutput.h"
+#include "batch/ModelOutput.h"
 
 namespace encore::batch {
 

@@ -1,13 +1,13 @@
-#include "ModelWriter.h"
+#include "batch/ModelWriter.h"
 
 #include <chrono>
 #include <span>
 
-#include "encore/batch/ModelOutput.h"
-#include "encore/batch/TransformsJson.h"
-#include "encore/batch/ViewStrips.h"
-#include "encore/core/Elapsed.h"
-#include "encore/core/FileIO.h"
+#include "batch/ModelOutput.h"
+#include "batch/TransformsJson.h"
+#include "batch/ViewStrips.h"
+#include "core/Elapsed.h"
+#include "core/FileIO.h"
 #include "encore/image/ImageCodec.h"
 
 namespace encore::batch {

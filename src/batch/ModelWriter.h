@@ -17,12 +17,12 @@
 
 #include <glm/glm.hpp>
 
+#include "core/ThreadPool.h"
 #include "encore/batch/Batch.h"
 #include "encore/batch/BatchInputs.h"
 #include "encore/batch/FailureLog.h"
 #include "encore/batch/ViewImages.h"
 #include "encore/core/Result.h"
-#include "encore/core/ThreadPool.h"
 #include "encore/gpu/TextureReadbackRing.h"
 
 namespace encore::batch {

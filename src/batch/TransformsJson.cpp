@@ -1,4 +1,4 @@
-#include "encore/batch/TransformsJson.h"
+#include "batch/TransformsJson.h"
 
 #include <cmath>
 

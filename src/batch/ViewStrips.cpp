@@ -1,11 +1,11 @@
-#include "encore/batch/ViewStrips.h"
+#include "batch/ViewStrips.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstring>
 
-#include "encore/image/Srgb.h"
+#include "image/Srgb.h"
 
 namespace encore::batch {
 

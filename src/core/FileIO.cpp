@@ -1,4 +1,4 @@
-#include "encore/core/FileIO.h"
+#include "core/FileIO.h"
 
 #include <cerrno>
 #include <cstdio>

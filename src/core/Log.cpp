@@ -1,4 +1,4 @@
-#include "encore/core/Log.h"
+#include "core/Log.h"
 
 #include <mutex>
 #include <utility>

@@ -1,4 +1,4 @@
-#include "encore/core/ThreadPool.h"
+#include "core/ThreadPool.h"
 
 #include <sys/resource.h>
 #include <unistd.h>

@@ -1,4 +1,4 @@
-#include "encore/gpu/BindingResource.h"
+#include "gpu/BindingResource.h"
 
 #include <array>
 #include <vector>

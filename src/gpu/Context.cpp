@@ -5,8 +5,8 @@
 #include <mutex>
 #include <string_view>
 
-#include "encore/core/Log.h"
-#include "encore/gpu/OutOfMemoryScope.h"
+#include "core/Log.h"
+#include "gpu/OutOfMemoryScope.h"
 
 namespace encore::gpu {
 

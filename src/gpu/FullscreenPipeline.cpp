@@ -1,4 +1,4 @@
-#include "encore/gpu/FullscreenPipeline.h"
+#include "gpu/FullscreenPipeline.h"
 
 namespace encore::gpu {
 

@@ -1,4 +1,4 @@
-#include "encore/gpu/LayoutEntry.h"
+#include "gpu/LayoutEntry.h"
 
 #include <vector>
 

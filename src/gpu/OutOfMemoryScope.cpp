@@ -1,4 +1,4 @@
-#include "encore/gpu/OutOfMemoryScope.h"
+#include "gpu/OutOfMemoryScope.h"
 
 #include <string>
 

@@ -1,4 +1,4 @@
-#include "encore/gpu/Readback.h"
+#include "gpu/Readback.h"
 
 #include <algorithm>
 #include <cmath>

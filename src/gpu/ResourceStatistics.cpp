@@ -1,4 +1,4 @@
-#include "encore/gpu/ResourceStatistics.h"
+#include "gpu/ResourceStatistics.h"
 
 #include <dawn/native/DawnNative.h>
 

@@ -1,4 +1,4 @@
-#include "encore/gpu/StagingBuffers.h"
+#include "gpu/StagingBuffers.h"
 
 #include <algorithm>
 #include <bit>

@@ -4,8 +4,8 @@
 #include <chrono>
 #include <string>
 
-#include "encore/core/Elapsed.h"
-#include "encore/gpu/Readback.h"
+#include "core/Elapsed.h"
+#include "gpu/Readback.h"
 
 namespace encore::gpu {
 

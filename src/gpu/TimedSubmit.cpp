@@ -1,8 +1,8 @@
-#include "encore/gpu/TimedSubmit.h"
+#include "gpu/TimedSubmit.h"
 
 #include <chrono>
 
-#include "encore/core/Elapsed.h"
+#include "core/Elapsed.h"
 
 namespace encore::gpu {
 

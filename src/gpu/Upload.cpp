@@ -1,4 +1,4 @@
-#include "encore/gpu/Upload.h"
+#include "gpu/Upload.h"
 
 #include <algorithm>
 #include <cstring>

@@ -8,7 +8,7 @@
 #include <memory>
 #include <string>
 
-#include "encore/core/FileIO.h"
+#include "core/FileIO.h"
 #include "encore/image/ImageCodec.h"
 
 namespace encore::image {

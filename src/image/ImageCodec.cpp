@@ -8,10 +8,10 @@
 #include <memory>
 #include <string>
 
-#include "ImageDecoders.h"
-#include "RunLengthDeflate.h"
-#include "ScratchBuffer.h"
-#include "encore/core/FileIO.h"
+#include "core/FileIO.h"
+#include "image/ImageDecoders.h"
+#include "image/RunLengthDeflate.h"
+#include "image/ScratchBuffer.h"
 
 namespace encore::image {
 namespace {

@@ -1,4 +1,4 @@
-#include "encore/image/ImageCompare.h"
+#include "image/ImageCompare.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,11 +1,11 @@
-#include "encore/image/ImageResize.h"
+#include "image/ImageResize.h"
 
 #include <algorithm>
 #include <array>
 #include <cassert>
 #include <cmath>
 
-#include "encore/image/Srgb.h"
+#include "image/Srgb.h"
 
 namespace encore::image {
 

@@ -15,7 +15,7 @@
 #include <csetjmp>
 #include <string>
 
-#include "ImageDecoders.h"
+#include "image/ImageDecoders.h"
 
 namespace encore::image {
 namespace {

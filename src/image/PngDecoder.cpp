@@ -11,7 +11,7 @@
 #include <memory>
 #include <string>
 
-#include "ImageDecoders.h"
+#include "image/ImageDecoders.h"
 
 namespace encore::image {
 namespace {

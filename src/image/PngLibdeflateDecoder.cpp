@@ -12,8 +12,8 @@
 #include <memory>
 #include <vector>
 
-#include "ImageDecoders.h"
-#include "ScratchBuffer.h"
+#include "image/ImageDecoders.h"
+#include "image/ScratchBuffer.h"
 
 namespace encore::image {
 namespace {

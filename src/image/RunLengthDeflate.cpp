@@ -3,7 +3,7 @@
 // rendered views (long runs of transparent black, small residuals on the object) that is what
 // most of libdeflate's time went to find anyway.
 
-#include "RunLengthDeflate.h"
+#include "image/RunLengthDeflate.h"
 
 #include <libdeflate.h>
 

@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <cstring>
 
-#include "encore/gpu/BindingResource.h"
-#include "encore/gpu/Upload.h"
-#include "encore/render/InstanceBuffer.h"
 #include "encore/render/RenderEncoder.h"
-#include "encore/render/ShadingSemantics.h"
+#include "gpu/BindingResource.h"
+#include "gpu/Upload.h"
+#include "render/InstanceBuffer.h"
+#include "render/ShadingSemantics.h"
 
 namespace encore::render {
 

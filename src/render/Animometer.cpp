@@ -1,14 +1,14 @@
-#include "encore/render/Animometer.h"
+#include "render/Animometer.h"
 
 #include <cstring>
 #include <random>
 
-#include "encore/gpu/BindingResource.h"
-#include "encore/gpu/LayoutEntry.h"
-#include "encore/gpu/Readback.h"
-#include "encore/gpu/TimedSubmit.h"
-#include "encore/gpu/Upload.h"
-#include "encore/render/BundleRecorder.h"
+#include "gpu/BindingResource.h"
+#include "gpu/LayoutEntry.h"
+#include "gpu/Readback.h"
+#include "gpu/TimedSubmit.h"
+#include "gpu/Upload.h"
+#include "render/BundleRecorder.h"
 
 namespace encore::render {
 

@@ -4,9 +4,9 @@
 
 #include <vector>
 
-#include "encore/gpu/LayoutEntry.h"
 #include "encore/render/Lighting.h"
-#include "encore/render/MaterialResources.h"
+#include "gpu/LayoutEntry.h"
+#include "render/MaterialResources.h"
 
 namespace encore::render {
 

@@ -1,4 +1,4 @@
-#include "encore/render/CameraPath.h"
+#include "render/CameraPath.h"
 
 #include <algorithm>
 #include <cmath>

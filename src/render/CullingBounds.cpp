@@ -1,4 +1,4 @@
-#include "encore/render/CullingBounds.h"
+#include "render/CullingBounds.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,11 +1,11 @@
-#include "encore/render/DepthPyramid.h"
+#include "render/DepthPyramid.h"
 
 #include <algorithm>
 #include <bit>
 #include <cstring>
 
-#include "encore/gpu/BindingResource.h"
-#include "encore/gpu/Upload.h"
+#include "gpu/BindingResource.h"
+#include "gpu/Upload.h"
 
 namespace encore::render {
 

@@ -10,11 +10,11 @@
 #include <thread>
 #include <vector>
 
-#include "MipmapGenerator.h"
-#include "encore/core/Elapsed.h"
-#include "encore/core/Log.h"
-#include "encore/gpu/BindingResource.h"
-#include "encore/image/ImageResize.h"
+#include "core/Elapsed.h"
+#include "core/Log.h"
+#include "gpu/BindingResource.h"
+#include "image/ImageResize.h"
+#include "render/MipmapGenerator.h"
 
 namespace encore::render {
 

@@ -1,6 +1,6 @@
-#include "FittedImage.h"
+#include "render/FittedImage.h"
 
-#include "encore/core/Log.h"
+#include "core/Log.h"
 
 namespace encore::render {
 

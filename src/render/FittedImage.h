@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "encore/image/ImageResize.h"
 #include "encore/scene/SceneData.h"
+#include "image/ImageResize.h"
 
 namespace encore::render {
 

@@ -5,8 +5,8 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
-#include "encore/gpu/BindingResource.h"
-#include "encore/gpu/Upload.h"
+#include "gpu/BindingResource.h"
+#include "gpu/Upload.h"
 
 namespace encore::render {
 

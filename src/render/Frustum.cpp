@@ -1,4 +1,4 @@
-#include "encore/render/Frustum.h"
+#include "render/Frustum.h"
 
 #include <algorithm>
 

@@ -1,6 +1,6 @@
-#include "encore/render/GltfToWebGpu.h"
+#include "render/GltfToWebGpu.h"
 
-#include "encore/shaders/VertexLocations.h"
+#include "shaders/VertexLocations.h"
 
 namespace encore::render {
 

@@ -10,11 +10,11 @@
 #include <string>
 #include <unordered_map>
 
-#include "encore/gpu/BindingResource.h"
-#include "encore/gpu/Upload.h"
 #include "encore/render/AnimationBuffers.h"
 #include "encore/render/BindGroupLayouts.h"
-#include "encore/render/KeyframeStore.h"
+#include "gpu/BindingResource.h"
+#include "gpu/Upload.h"
+#include "render/KeyframeStore.h"
 
 namespace encore::render {
 

@@ -1,4 +1,4 @@
-#include "encore/render/GpuCuller.h"
+#include "render/GpuCuller.h"
 
 #include <algorithm>
 #include <array>
@@ -7,11 +7,11 @@
 #include <map>
 #include <numeric>
 
-#include "encore/gpu/BindingResource.h"
-#include "encore/gpu/LayoutEntry.h"
-#include "encore/gpu/Upload.h"
 #include "encore/render/AnimationBuffers.h"
 #include "encore/render/RenderEncoder.h"
+#include "gpu/BindingResource.h"
+#include "gpu/LayoutEntry.h"
+#include "gpu/Upload.h"
 
 namespace encore::render {
 

@@ -1,10 +1,10 @@
-#include "encore/render/GpuScene.h"
+#include "render/GpuScene.h"
 
 #include <chrono>
 #include <optional>
 #include <string>
 
-#include "encore/core/Elapsed.h"
+#include "core/Elapsed.h"
 
 namespace encore::render {
 

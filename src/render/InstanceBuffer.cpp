@@ -1,10 +1,10 @@
-#include "encore/render/InstanceBuffer.h"
+#include "render/InstanceBuffer.h"
 
 #include <algorithm>
 
-#include "encore/gpu/BindingResource.h"
-#include "encore/gpu/Upload.h"
-#include "encore/render/TransformData.h"
+#include "gpu/BindingResource.h"
+#include "gpu/Upload.h"
+#include "render/TransformData.h"
 
 namespace encore::render {
 

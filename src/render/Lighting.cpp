@@ -4,7 +4,7 @@
 #include <cmath>
 #include <string>
 
-#include "encore/gpu/Upload.h"
+#include "gpu/Upload.h"
 
 namespace encore::render {
 

@@ -1,4 +1,4 @@
-#include "encore/render/MaterialResources.h"
+#include "render/MaterialResources.h"
 
 // MaterialResources::create resolves each material's slots (textureSlots()) to textures and
 // samplers that MaterialResources::Builder uploads (MaterialResourcesBuilder.cpp), packs the
@@ -13,10 +13,10 @@
 #include <string>
 #include <utility>
 
-#include "MaterialResourcesBuilder.h"
-#include "MipmapGenerator.h"
-#include "encore/core/Elapsed.h"
-#include "encore/gpu/Upload.h"
+#include "core/Elapsed.h"
+#include "gpu/Upload.h"
+#include "render/MaterialResourcesBuilder.h"
+#include "render/MipmapGenerator.h"
 
 namespace encore::render {
 

@@ -1,14 +1,14 @@
-#include "MaterialResourcesBuilder.h"
+#include "render/MaterialResourcesBuilder.h"
 
 #include <chrono>
 #include <string>
 #include <utility>
 
-#include "FittedImage.h"
-#include "MipmapGenerator.h"
-#include "encore/core/Elapsed.h"
-#include "encore/render/GltfToWebGpu.h"
-#include "encore/render/StagedImages.h"
+#include "core/Elapsed.h"
+#include "render/FittedImage.h"
+#include "render/GltfToWebGpu.h"
+#include "render/MipmapGenerator.h"
+#include "render/StagedImages.h"
 
 namespace encore::render {
 

@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "encore/core/Result.h"
-#include "encore/render/MaterialResources.h"
+#include "render/MaterialResources.h"
 
 namespace encore::render {
 

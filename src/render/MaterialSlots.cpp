@@ -1,4 +1,4 @@
-#include "encore/render/MaterialSlots.h"
+#include "render/MaterialSlots.h"
 
 #include <algorithm>
 #include <array>

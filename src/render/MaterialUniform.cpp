@@ -1,4 +1,4 @@
-#include "encore/render/MaterialUniform.h"
+#include "render/MaterialUniform.h"
 
 #include <cmath>
 

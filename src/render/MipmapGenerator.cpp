@@ -1,12 +1,12 @@
-#include "MipmapGenerator.h"
+#include "render/MipmapGenerator.h"
 
 #include <algorithm>
 #include <bit>
 #include <string>
 
-#include "encore/gpu/BindingResource.h"
-#include "encore/gpu/FullscreenPipeline.h"
-#include "encore/gpu/LayoutEntry.h"
+#include "gpu/BindingResource.h"
+#include "gpu/FullscreenPipeline.h"
+#include "gpu/LayoutEntry.h"
 
 namespace encore::render {
 

@@ -1,10 +1,10 @@
-#include "encore/render/NodeUniforms.h"
+#include "render/NodeUniforms.h"
 
 #include <string>
 
-#include "encore/gpu/BindingResource.h"
-#include "encore/gpu/Upload.h"
-#include "encore/render/TransformData.h"
+#include "gpu/BindingResource.h"
+#include "gpu/Upload.h"
+#include "render/TransformData.h"
 
 namespace encore::render {
 

@@ -1,4 +1,4 @@
-#include "PassAttachments.h"
+#include "render/PassAttachments.h"
 
 namespace encore::render {
 

@@ -1,4 +1,4 @@
-#include "encore/render/PipelineCache.h"
+#include "render/PipelineCache.h"
 
 #include <string>
 

@@ -1,4 +1,4 @@
-#include "encore/render/PipelineKey.h"
+#include "render/PipelineKey.h"
 
 #include <algorithm>
 #include <cassert>
@@ -6,8 +6,8 @@
 #include <string_view>
 #include <vector>
 
-#include "encore/gpu/LayoutEntry.h"
 #include "encore/render/RenderSetup.h"
+#include "gpu/LayoutEntry.h"
 
 namespace encore::render {
 

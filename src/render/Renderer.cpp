@@ -2,14 +2,14 @@
 
 #include <chrono>
 
-#include "MipmapGenerator.h"
-#include "TriangleHistory.h"
-#include "encore/core/Elapsed.h"
-#include "encore/gpu/OutOfMemoryScope.h"
+#include "core/Elapsed.h"
 #include "encore/image/HdrImage.h"
-#include "encore/render/GpuScene.h"
-#include "encore/render/PipelineCache.h"
-#include "encore/render/SceneLimits.h"
+#include "gpu/OutOfMemoryScope.h"
+#include "render/GpuScene.h"
+#include "render/MipmapGenerator.h"
+#include "render/PipelineCache.h"
+#include "render/SceneLimits.h"
+#include "render/TriangleHistory.h"
 
 namespace encore::render {
 

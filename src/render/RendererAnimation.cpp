@@ -4,8 +4,8 @@
 
 #include "encore/render/Renderer.h"
 
-#include "encore/gpu/OutOfMemoryScope.h"
-#include "encore/render/GpuScene.h"
+#include "gpu/OutOfMemoryScope.h"
+#include "render/GpuScene.h"
 
 namespace encore::render {
 

@@ -4,11 +4,11 @@
 
 #include "encore/render/Renderer.h"
 
-#include "PassAttachments.h"
-#include "TriangleHistory.h"
-#include "encore/gpu/Readback.h"
-#include "encore/gpu/TimedSubmit.h"
-#include "encore/render/GpuCuller.h"
+#include "gpu/Readback.h"
+#include "gpu/TimedSubmit.h"
+#include "render/GpuCuller.h"
+#include "render/PassAttachments.h"
+#include "render/TriangleHistory.h"
 
 namespace encore::render {
 

@@ -1,4 +1,4 @@
-#include "encore/render/SceneLimits.h"
+#include "render/SceneLimits.h"
 
 #include <algorithm>
 #include <set>
@@ -6,7 +6,7 @@
 
 #include "encore/render/BindGroupLayouts.h"
 #include "encore/render/Lighting.h"
-#include "encore/render/MaterialResources.h"
+#include "render/MaterialResources.h"
 
 namespace encore::render {
 

@@ -1,8 +1,8 @@
-#include "encore/render/StagedImages.h"
+#include "render/StagedImages.h"
 
 #include <cstring>
 
-#include "encore/gpu/Readback.h"
+#include "gpu/Readback.h"
 
 namespace encore::render {
 

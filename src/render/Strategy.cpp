@@ -1,13 +1,13 @@
 #include "encore/render/Strategy.h"
 
-#include "strategies/BundledStrategy.h"
-#include "strategies/BundlesStrategy.h"
-#include "strategies/GpuCullingStrategy.h"
-#include "strategies/InstancingStrategy.h"
-#include "strategies/LayoutsStrategy.h"
-#include "strategies/MaterialsStrategy.h"
-#include "strategies/NaiveStrategy.h"
-#include "strategies/PipelineCacheStrategy.h"
+#include "render/strategies/BundledStrategy.h"
+#include "render/strategies/BundlesStrategy.h"
+#include "render/strategies/GpuCullingStrategy.h"
+#include "render/strategies/InstancingStrategy.h"
+#include "render/strategies/LayoutsStrategy.h"
+#include "render/strategies/MaterialsStrategy.h"
+#include "render/strategies/NaiveStrategy.h"
+#include "render/strategies/PipelineCacheStrategy.h"
 
 namespace encore::render {
 

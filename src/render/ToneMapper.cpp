@@ -2,10 +2,10 @@
 
 #include <cmath>
 
-#include "encore/gpu/BindingResource.h"
-#include "encore/gpu/FullscreenPipeline.h"
-#include "encore/gpu/LayoutEntry.h"
-#include "encore/gpu/Upload.h"
+#include "gpu/BindingResource.h"
+#include "gpu/FullscreenPipeline.h"
+#include "gpu/LayoutEntry.h"
+#include "gpu/Upload.h"
 
 namespace encore::render {
 

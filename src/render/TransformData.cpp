@@ -1,4 +1,4 @@
-#include "encore/render/TransformData.h"
+#include "render/TransformData.h"
 
 #include <cstring>
 

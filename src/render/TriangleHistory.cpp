@@ -1,11 +1,11 @@
-#include "TriangleHistory.h"
+#include "render/TriangleHistory.h"
 
 #include <algorithm>
 #include <cstring>
 #include <utility>
 
-#include "encore/gpu/Readback.h"
-#include "encore/gpu/Upload.h"
+#include "gpu/Readback.h"
+#include "gpu/Upload.h"
 
 namespace encore::render {
 

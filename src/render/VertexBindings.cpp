@@ -1,13 +1,13 @@
-#include "encore/render/VertexBindings.h"
+#include "render/VertexBindings.h"
 
 #include <algorithm>
 #include <cstring>
 #include <string>
 
-#include "encore/gpu/Upload.h"
-#include "encore/render/GltfToWebGpu.h"
 #include "encore/render/RenderEncoder.h"
 #include "encore/render/RenderSetup.h"
+#include "gpu/Upload.h"
+#include "render/GltfToWebGpu.h"
 
 namespace encore::render {
 

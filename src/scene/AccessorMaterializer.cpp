@@ -4,8 +4,8 @@
 
 #include <cstring>
 
-#include "LoadContext.h"
-#include "encore/core/FileIO.h"
+#include "core/FileIO.h"
+#include "scene/LoadContext.h"
 
 namespace encore::scene {
 namespace {

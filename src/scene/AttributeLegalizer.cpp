@@ -5,7 +5,7 @@
 
 #include <cstring>
 
-#include "LoadContext.h"
+#include "scene/LoadContext.h"
 
 namespace encore::scene {
 namespace {

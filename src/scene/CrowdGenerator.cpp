@@ -2,7 +2,7 @@
 // in four segments, joint j at height 0.5 j, each ring of vertices weighed between the joints
 // below and above it, so the column bends smoothly when the joints turn.
 
-#include "encore/scene/CrowdGenerator.h"
+#include "scene/CrowdGenerator.h"
 
 #include <algorithm>
 #include <cmath>
@@ -13,7 +13,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <nlohmann/json.hpp>
 
-#include "GlbWriter.h"
+#include "scene/GlbWriter.h"
 
 namespace encore::scene {
 

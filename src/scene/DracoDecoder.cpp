@@ -10,7 +10,7 @@
 #include <draco/compression/decode.h>
 #include <draco/core/decoder_buffer.h>
 
-#include "LoadContext.h"
+#include "scene/LoadContext.h"
 
 namespace encore::scene {
 namespace {

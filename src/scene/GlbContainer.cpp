@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <cstring>
 
-#include "LoadContext.h"
+#include "scene/LoadContext.h"
 
 namespace encore::scene {
 namespace {

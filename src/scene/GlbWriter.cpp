@@ -1,4 +1,4 @@
-#include "GlbWriter.h"
+#include "scene/GlbWriter.h"
 
 #include <cstring>
 #include <string>

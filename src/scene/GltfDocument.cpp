@@ -1,4 +1,4 @@
-#include "GltfDocument.h"
+#include "scene/GltfDocument.h"
 
 #include <algorithm>
 #include <array>

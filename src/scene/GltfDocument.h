@@ -14,8 +14,8 @@
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
 
-#include "GltfJson.h"
 #include "encore/scene/SceneData.h"
+#include "scene/GltfJson.h"
 
 namespace encore::scene {
 

@@ -1,4 +1,4 @@
-#include "GltfJson.h"
+#include "scene/GltfJson.h"
 
 #include <cmath>
 #include <cstdio>

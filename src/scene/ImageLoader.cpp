@@ -4,9 +4,9 @@
 
 #include <filesystem>
 
-#include "LoadContext.h"
-#include "encore/core/FileIO.h"
+#include "core/FileIO.h"
 #include "encore/image/ImageCodec.h"
+#include "scene/LoadContext.h"
 
 namespace encore::scene {
 namespace {

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "GltfDocument.h"
+#include "scene/GltfDocument.h"
 
 namespace encore::scene {
 namespace {

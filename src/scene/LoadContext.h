@@ -14,8 +14,8 @@
 #include <utility>
 #include <vector>
 
-#include "GltfDocument.h"
 #include "encore/scene/SceneData.h"
+#include "scene/GltfDocument.h"
 
 namespace encore::scene {
 

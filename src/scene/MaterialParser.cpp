@@ -7,7 +7,7 @@
 #include <algorithm>
 #include <array>
 
-#include "LoadContext.h"
+#include "scene/LoadContext.h"
 
 namespace encore::scene {
 namespace {

@@ -2,7 +2,7 @@
 // every indexed triangle list (the contract is in MeshOptimizer.h). Everything is checked before
 // anything changes, so a failure leaves the scene as it was.
 
-#include "encore/scene/MeshOptimizer.h"
+#include "scene/MeshOptimizer.h"
 
 #include <meshoptimizer.h>
 

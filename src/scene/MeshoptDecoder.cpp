@@ -4,7 +4,7 @@
 
 #include <meshoptimizer.h>
 
-#include "LoadContext.h"
+#include "scene/LoadContext.h"
 
 namespace encore::scene {
 namespace {

@@ -8,8 +8,8 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 
-#include "LoadContext.h"
-#include "encore/core/Log.h"
+#include "core/Log.h"
+#include "scene/LoadContext.h"
 
 namespace encore::scene {
 

@@ -7,7 +7,7 @@
 #include <cstring>
 #include <numeric>
 
-#include "LoadContext.h"
+#include "scene/LoadContext.h"
 
 namespace encore::scene {
 namespace {

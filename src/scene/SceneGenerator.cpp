@@ -1,4 +1,4 @@
-#include "encore/scene/SceneGenerator.h"
+#include "scene/SceneGenerator.h"
 
 #include <algorithm>
 #include <array>
@@ -11,7 +11,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <nlohmann/json.hpp>
 
-#include "GlbWriter.h"
+#include "scene/GlbWriter.h"
 
 #include "encore/image/ImageCodec.h"
 

@@ -6,10 +6,10 @@
 #include <exception>
 #include <new>
 
-#include "LoadContext.h"
-#include "encore/core/FileIO.h"
-#include "encore/core/Log.h"
-#include "encore/scene/MeshOptimizer.h"
+#include "core/FileIO.h"
+#include "core/Log.h"
+#include "scene/LoadContext.h"
+#include "scene/MeshOptimizer.h"
 
 namespace encore::scene {
 namespace {

@@ -7,7 +7,7 @@
 #include <cstring>
 #include <unordered_map>
 
-#include "LoadContext.h"
+#include "scene/LoadContext.h"
 
 namespace encore::scene {
 namespace {

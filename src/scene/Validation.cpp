@@ -1,7 +1,7 @@
 // Cross-reference and range checks that need the whole document: every index names an existing
 // element, every bufferView lies inside its buffer. Later stages rely on these and index freely.
 
-#include "LoadContext.h"
+#include "scene/LoadContext.h"
 
 namespace encore::scene {
 namespace {

@@ -1,9 +1,9 @@
-#include "encore/shaders/ShaderComposer.h"
+#include "shaders/ShaderComposer.h"
 
 #include <cctype>
 #include <vector>
 
-#include "encore/shaders/EmbeddedFiles.h"
+#include "shaders/EmbeddedFiles.h"
 
 namespace encore::shaders {
 namespace {

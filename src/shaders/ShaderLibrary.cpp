@@ -4,7 +4,7 @@
 #include <functional>
 #include <string_view>
 
-#include "encore/shaders/ShaderComposer.h"
+#include "shaders/ShaderComposer.h"
 
 namespace encore::shaders {
 

@@ -26,7 +26,7 @@
 // The colour target is either the sRGB output, written with the display transform applied
 // (displayColor), or linear HDR (rgba16float) that a tone-mapping pass maps afterwards; a
 // uniform selects which, so both share the variants.
-// Vertex locations must match include/encore/shaders/VertexLocations.h (a test checks).
+// Vertex locations must match src/shaders/VertexLocations.h (a test checks).
 #include "frame.wgsl"
 #include "lighting.wgsl"
 #include "scene_lighting.wgsl"

@@ -1,4 +1,4 @@
-#include "encore/view/OrbitCamera.h"
+#include "view/OrbitCamera.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,12 +1,12 @@
-#include "encore/view/Overlay.h"
+#include "view/Overlay.h"
 
 #include <algorithm>
 #include <cmath>
 #include <string>
 
-#include "encore/gpu/BindingResource.h"
-#include "encore/gpu/LayoutEntry.h"
-#include "encore/gpu/Upload.h"
+#include "gpu/BindingResource.h"
+#include "gpu/LayoutEntry.h"
+#include "gpu/Upload.h"
 
 // stb_easy_font's functions are static; the ones this file does not call would warn.
 #pragma GCC diagnostic push

@@ -1,8 +1,8 @@
-#include "encore/view/Presenter.h"
+#include "view/Presenter.h"
 
-#include "encore/gpu/BindingResource.h"
-#include "encore/gpu/FullscreenPipeline.h"
-#include "encore/gpu/LayoutEntry.h"
+#include "gpu/BindingResource.h"
+#include "gpu/FullscreenPipeline.h"
+#include "gpu/LayoutEntry.h"
 
 namespace encore::view {
 

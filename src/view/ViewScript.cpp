@@ -1,11 +1,11 @@
-#include "encore/view/ViewScript.h"
+#include "view/ViewScript.h"
 
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
 #include <sstream>
 
-#include "encore/core/FileIO.h"
+#include "core/FileIO.h"
 
 namespace encore::view {
 

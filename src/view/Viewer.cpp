@@ -1,9 +1,9 @@
-#include "encore/view/Viewer.h"
+#include "view/Viewer.h"
 
 #include <cmath>
 
-#include "ViewerState.h"
 #include "encore/scene/AnimationPlayer.h"
+#include "view/ViewerState.h"
 
 namespace encore::view {
 

@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "ViewerState.h"
+#include "view/ViewerState.h"
 
 namespace encore::view {
 

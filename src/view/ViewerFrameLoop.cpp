@@ -3,9 +3,9 @@
 
 #include <chrono>
 
-#include "ViewerState.h"
-#include "encore/gpu/Readback.h"
 #include "encore/image/ImageCodec.h"
+#include "gpu/Readback.h"
+#include "view/ViewerState.h"
 
 namespace encore::view {
 

@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <filesystem>
 
-#include "ViewerState.h"
+#include "view/ViewerState.h"
 
 namespace encore::view {
 namespace {

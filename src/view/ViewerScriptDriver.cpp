@@ -5,7 +5,7 @@
 #include <chrono>
 #include <thread>
 
-#include "ViewerState.h"
+#include "view/ViewerState.h"
 
 namespace encore::view {
 namespace {

@@ -16,10 +16,10 @@
 
 #include "encore/gpu/GpuTimer.h"
 #include "encore/shaders/ShaderLibrary.h"
-#include "encore/view/OrbitCamera.h"
-#include "encore/view/Overlay.h"
-#include "encore/view/Presenter.h"
-#include "encore/view/Viewer.h"
+#include "view/OrbitCamera.h"
+#include "view/Overlay.h"
+#include "view/Presenter.h"
+#include "view/Viewer.h"
 
 namespace encore::view {
 

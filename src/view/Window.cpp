@@ -1,4 +1,4 @@
-#include "encore/view/Window.h"
+#include "view/Window.h"
 
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>

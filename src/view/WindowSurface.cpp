@@ -1,4 +1,4 @@
-#include "encore/view/WindowSurface.h"
+#include "view/WindowSurface.h"
 
 #include <algorithm>
 #include <span>

@@ -13,7 +13,7 @@
 #include "CommandRunner.h"
 #include "TestPaths.h"
 #include "encore/image/ImageCodec.h"
-#include "encore/image/ImageCompare.h"
+#include "image/ImageCompare.h"
 
 namespace encore::test {
 namespace {

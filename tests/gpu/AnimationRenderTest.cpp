@@ -14,9 +14,9 @@
 #include "GpuTestSupport.h"
 #include "RenderTestSupport.h"
 #include "TestPaths.h"
-#include "encore/render/GpuCuller.h"
-#include "encore/render/InstanceBuffer.h"
 #include "encore/render/Renderer.h"
+#include "render/GpuCuller.h"
+#include "render/InstanceBuffer.h"
 
 namespace encore::render {
 namespace {

@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "GpuTestSupport.h"
-#include "encore/render/Animometer.h"
+#include "render/Animometer.h"
 
 namespace encore::render {
 namespace {

@@ -18,7 +18,7 @@
 #include "RenderTestSupport.h"
 #include "TestPaths.h"
 #include "encore/batch/Batch.h"
-#include "encore/scene/SceneGenerator.h"
+#include "scene/SceneGenerator.h"
 
 namespace encore::batch {
 namespace {

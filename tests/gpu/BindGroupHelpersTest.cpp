@@ -8,10 +8,10 @@
 #include <vector>
 
 #include "GpuTestSupport.h"
-#include "encore/gpu/BindingResource.h"
-#include "encore/gpu/LayoutEntry.h"
-#include "encore/gpu/Readback.h"
-#include "encore/gpu/Upload.h"
+#include "gpu/BindingResource.h"
+#include "gpu/LayoutEntry.h"
+#include "gpu/Readback.h"
+#include "gpu/Upload.h"
 
 namespace encore::gpu {
 namespace {

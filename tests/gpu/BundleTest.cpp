@@ -9,9 +9,9 @@
 #include "GltfBuilder.h"
 #include "GpuTestSupport.h"
 #include "RenderTestSupport.h"
-#include "encore/render/BundleRecorder.h"
-#include "encore/render/GpuScene.h"
 #include "encore/render/Renderer.h"
+#include "render/BundleRecorder.h"
+#include "render/GpuScene.h"
 
 namespace encore::render {
 namespace {

@@ -3,8 +3,8 @@
 #include <cstring>
 
 #include "GpuTestSupport.h"
-#include "encore/gpu/Readback.h"
-#include "encore/gpu/Upload.h"
+#include "gpu/Readback.h"
+#include "gpu/Upload.h"
 
 namespace encore::gpu {
 namespace {

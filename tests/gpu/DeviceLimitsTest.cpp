@@ -17,14 +17,14 @@
 #include "GpuTestSupport.h"
 #include "RenderTestSupport.h"
 #include "TestPaths.h"
-#include "encore/core/Log.h"
-#include "encore/gpu/OutOfMemoryScope.h"
-#include "encore/gpu/Readback.h"
+#include "core/Log.h"
 #include "encore/render/GpuAnimation.h"
-#include "encore/render/MaterialResources.h"
 #include "encore/render/Renderer.h"
-#include "encore/render/SceneLimits.h"
-#include "encore/scene/SceneGenerator.h"
+#include "gpu/OutOfMemoryScope.h"
+#include "gpu/Readback.h"
+#include "render/MaterialResources.h"
+#include "render/SceneLimits.h"
+#include "scene/SceneGenerator.h"
 
 namespace encore::render {
 namespace {

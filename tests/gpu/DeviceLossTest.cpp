@@ -12,8 +12,8 @@
 #include "GpuTestSupport.h"
 #include "RenderTestSupport.h"
 #include "encore/render/Renderer.h"
-#include "encore/scene/CrowdGenerator.h"
-#include "encore/scene/SceneGenerator.h"
+#include "scene/CrowdGenerator.h"
+#include "scene/SceneGenerator.h"
 
 namespace encore::render {
 namespace {

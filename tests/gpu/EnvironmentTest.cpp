@@ -8,12 +8,12 @@
 #include <vector>
 
 #include "GpuTestSupport.h"
-#include "encore/gpu/Readback.h"
 #include "encore/image/HdrImage.h"
 #include "encore/render/Environment.h"
 #include "encore/render/Lighting.h"
-#include "encore/shaders/EmbeddedFiles.h"
-#include "encore/shaders/ShaderComposer.h"
+#include "gpu/Readback.h"
+#include "shaders/EmbeddedFiles.h"
+#include "shaders/ShaderComposer.h"
 
 namespace encore::render {
 namespace {

@@ -6,11 +6,11 @@
 #include <optional>
 
 #include "GpuTestSupport.h"
-#include "encore/gpu/BindingResource.h"
-#include "encore/gpu/FullscreenPipeline.h"
-#include "encore/gpu/LayoutEntry.h"
-#include "encore/gpu/Readback.h"
-#include "encore/gpu/Upload.h"
+#include "gpu/BindingResource.h"
+#include "gpu/FullscreenPipeline.h"
+#include "gpu/LayoutEntry.h"
+#include "gpu/Readback.h"
+#include "gpu/Upload.h"
 
 namespace encore::gpu {
 namespace {

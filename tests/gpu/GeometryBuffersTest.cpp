@@ -4,8 +4,8 @@
 #include <vector>
 
 #include "GpuTestSupport.h"
-#include "encore/render/VertexBindings.h"
-#include "encore/scene/SceneGenerator.h"
+#include "render/VertexBindings.h"
+#include "scene/SceneGenerator.h"
 
 namespace encore::render {
 namespace {

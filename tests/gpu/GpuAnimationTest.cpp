@@ -18,9 +18,9 @@
 #include "GpuTestSupport.h"
 #include "RenderTestSupport.h"
 #include "TestPaths.h"
-#include "encore/gpu/Readback.h"
 #include "encore/render/Renderer.h"
-#include "encore/scene/CrowdGenerator.h"
+#include "gpu/Readback.h"
+#include "scene/CrowdGenerator.h"
 
 namespace encore::render {
 namespace {

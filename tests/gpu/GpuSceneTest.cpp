@@ -5,9 +5,9 @@
 
 #include "GpuTestSupport.h"
 #include "RenderTestSupport.h"
-#include "encore/render/GpuScene.h"
 #include "encore/render/Renderer.h"
-#include "encore/scene/SceneGenerator.h"
+#include "render/GpuScene.h"
+#include "scene/SceneGenerator.h"
 
 namespace encore::render {
 namespace {

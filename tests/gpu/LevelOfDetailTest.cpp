@@ -12,12 +12,12 @@
 
 #include "GpuTestSupport.h"
 #include "RenderTestSupport.h"
-#include "encore/gpu/Readback.h"
-#include "encore/image/ImageCompare.h"
-#include "encore/render/CameraPath.h"
-#include "encore/render/GpuCuller.h"
 #include "encore/render/Renderer.h"
-#include "encore/scene/SceneGenerator.h"
+#include "gpu/Readback.h"
+#include "image/ImageCompare.h"
+#include "render/CameraPath.h"
+#include "render/GpuCuller.h"
+#include "scene/SceneGenerator.h"
 
 namespace encore::render {
 namespace {

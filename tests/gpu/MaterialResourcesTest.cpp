@@ -5,9 +5,9 @@
 #include <numbers>
 
 #include "GpuTestSupport.h"
-#include "encore/gpu/Readback.h"
 #include "encore/render/BindGroupLayouts.h"
-#include "encore/render/MaterialResources.h"
+#include "gpu/Readback.h"
+#include "render/MaterialResources.h"
 
 namespace encore::render {
 namespace {

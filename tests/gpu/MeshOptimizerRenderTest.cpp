@@ -10,7 +10,7 @@
 #include "RenderTestSupport.h"
 #include "TestPaths.h"
 #include "encore/render/Renderer.h"
-#include "encore/scene/SceneGenerator.h"
+#include "scene/SceneGenerator.h"
 
 namespace encore::render {
 namespace {

@@ -19,8 +19,8 @@
 #include "RenderTestSupport.h"
 #include "TestPaths.h"
 #include "encore/image/HdrImage.h"
-#include "encore/image/ImageCompare.h"
 #include "encore/render/Renderer.h"
+#include "image/ImageCompare.h"
 
 namespace encore::render {
 namespace {

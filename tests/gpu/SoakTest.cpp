@@ -23,9 +23,9 @@
 
 #include "GpuTestSupport.h"
 #include "RenderTestSupport.h"
-#include "encore/gpu/ResourceStatistics.h"
 #include "encore/render/Renderer.h"
-#include "encore/scene/SceneGenerator.h"
+#include "gpu/ResourceStatistics.h"
+#include "scene/SceneGenerator.h"
 
 namespace encore::render {
 namespace {

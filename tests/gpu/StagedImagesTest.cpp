@@ -9,10 +9,10 @@
 #include <vector>
 
 #include "GpuTestSupport.h"
-#include "encore/gpu/Readback.h"
 #include "encore/render/BindGroupLayouts.h"
-#include "encore/render/MaterialResources.h"
-#include "encore/render/StagedImages.h"
+#include "gpu/Readback.h"
+#include "render/MaterialResources.h"
+#include "render/StagedImages.h"
 
 namespace encore::render {
 namespace {

@@ -9,10 +9,10 @@
 #include "GpuTestSupport.h"
 #include "RenderTestSupport.h"
 #include "TestPaths.h"
-#include "encore/core/FileIO.h"
-#include "encore/render/GpuScene.h"
+#include "core/FileIO.h"
 #include "encore/render/Renderer.h"
-#include "encore/scene/SceneGenerator.h"
+#include "render/GpuScene.h"
+#include "scene/SceneGenerator.h"
 
 namespace encore::render {
 namespace {

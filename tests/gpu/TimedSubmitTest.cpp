@@ -7,9 +7,9 @@
 
 #include "GpuTestSupport.h"
 #include "encore/gpu/GpuTimer.h"
-#include "encore/gpu/Readback.h"
-#include "encore/gpu/TimedSubmit.h"
-#include "encore/gpu/Upload.h"
+#include "gpu/Readback.h"
+#include "gpu/TimedSubmit.h"
+#include "gpu/Upload.h"
 
 namespace encore::gpu {
 namespace {

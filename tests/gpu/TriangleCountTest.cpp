@@ -9,10 +9,10 @@
 
 #include "GpuTestSupport.h"
 #include "RenderTestSupport.h"
-#include "encore/render/CameraPath.h"
-#include "encore/render/GpuCuller.h"
 #include "encore/render/Renderer.h"
-#include "encore/scene/SceneGenerator.h"
+#include "render/CameraPath.h"
+#include "render/GpuCuller.h"
+#include "scene/SceneGenerator.h"
 
 namespace encore::render {
 namespace {

@@ -7,7 +7,7 @@
 #include "GpuTestSupport.h"
 #include "RenderTestSupport.h"
 #include "encore/render/Renderer.h"
-#include "encore/scene/SceneGenerator.h"
+#include "scene/SceneGenerator.h"
 
 namespace encore::render {
 namespace {

@@ -9,7 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "TestPaths.h"
-#include "encore/core/Log.h"
+#include "core/Log.h"
 
 namespace encore::test {
 

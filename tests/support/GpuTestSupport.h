@@ -15,7 +15,7 @@
 #include "encore/gpu/Context.h"
 #include "encore/image/ImageCodec.h"
 #include "encore/scene/SceneData.h"
-#include "encore/scene/SceneGenerator.h"
+#include "scene/SceneGenerator.h"
 
 namespace encore::test {
 

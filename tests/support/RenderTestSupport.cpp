@@ -6,8 +6,8 @@
 #include <gtest/gtest.h>
 
 #include "GpuTestSupport.h"
-#include "encore/gpu/Readback.h"
 #include "encore/image/HdrImage.h"
+#include "gpu/Readback.h"
 
 namespace encore::test {
 

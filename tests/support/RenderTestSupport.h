@@ -12,8 +12,8 @@
 #include <glm/gtc/constants.hpp>
 
 #include "encore/render/Camera.h"
-#include "encore/render/GpuCuller.h"
 #include "encore/render/Renderer.h"
+#include "render/GpuCuller.h"
 
 namespace encore::test {
 

@@ -4,7 +4,7 @@
 #include <span>
 #include <vector>
 
-#include "encore/render/BundleRecorder.h"
+#include "render/BundleRecorder.h"
 
 namespace encore::render {
 

@@ -1,6 +1,6 @@
-#include "BundledStrategy.h"
+#include "render/strategies/BundledStrategy.h"
 
-#include "encore/render/GpuScene.h"
+#include "render/GpuScene.h"
 
 namespace encore::render {
 

@@ -2,8 +2,8 @@
 
 #include <memory>
 
-#include "encore/render/BundleRecorder.h"
 #include "encore/render/Strategy.h"
+#include "render/BundleRecorder.h"
 
 namespace encore::render {
 

@@ -1,8 +1,8 @@
-#include "BundlesStrategy.h"
+#include "render/strategies/BundlesStrategy.h"
 
 #include <chrono>
 
-#include "encore/core/Elapsed.h"
+#include "core/Elapsed.h"
 
 namespace encore::render {
 

@@ -1,8 +1,8 @@
 #pragma once
 
-#include "BundledFrame.h"
-#include "MaterialDrawGroups.h"
 #include "encore/render/Strategy.h"
+#include "render/strategies/BundledFrame.h"
+#include "render/strategies/MaterialDrawGroups.h"
 
 namespace encore::render {
 

@@ -1,10 +1,10 @@
-#include "GpuCullingStrategy.h"
+#include "render/strategies/GpuCullingStrategy.h"
 
 #include <cassert>
 #include <chrono>
 #include <map>
 
-#include "encore/core/Elapsed.h"
+#include "core/Elapsed.h"
 
 namespace encore::render {
 

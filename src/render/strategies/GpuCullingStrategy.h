@@ -1,9 +1,9 @@
 #pragma once
 
-#include "BundledFrame.h"
-#include "MaterialDrawGroups.h"
-#include "encore/render/GpuCuller.h"
 #include "encore/render/Strategy.h"
+#include "render/GpuCuller.h"
+#include "render/strategies/BundledFrame.h"
+#include "render/strategies/MaterialDrawGroups.h"
 
 namespace encore::render {
 

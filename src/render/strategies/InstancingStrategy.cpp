@@ -1,4 +1,4 @@
-#include "InstancingStrategy.h"
+#include "render/strategies/InstancingStrategy.h"
 
 #include <unordered_map>
 

@@ -1,9 +1,9 @@
-#include "LayoutsStrategy.h"
+#include "render/strategies/LayoutsStrategy.h"
 
 #include <string>
 
 #include "encore/render/AnimationBuffers.h"
-#include "encore/render/PipelineKey.h"
+#include "render/PipelineKey.h"
 
 namespace encore::render {
 

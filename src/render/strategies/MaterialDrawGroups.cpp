@@ -1,4 +1,4 @@
-#include "MaterialDrawGroups.h"
+#include "render/strategies/MaterialDrawGroups.h"
 
 #include <algorithm>
 #include <map>

@@ -5,11 +5,11 @@
 #include <span>
 #include <vector>
 
-#include "encore/render/GpuScene.h"
-#include "encore/render/PipelineCache.h"
 #include "encore/render/RenderEncoder.h"
 #include "encore/render/RenderSetup.h"
-#include "encore/render/VertexBindings.h"
+#include "render/GpuScene.h"
+#include "render/PipelineCache.h"
+#include "render/VertexBindings.h"
 
 namespace encore::render {
 

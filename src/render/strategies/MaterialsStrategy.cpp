@@ -1,8 +1,8 @@
-#include "MaterialsStrategy.h"
+#include "render/strategies/MaterialsStrategy.h"
 
 #include <chrono>
 
-#include "encore/core/Elapsed.h"
+#include "core/Elapsed.h"
 
 namespace encore::render {
 

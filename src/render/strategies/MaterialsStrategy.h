@@ -1,7 +1,7 @@
 #pragma once
 
-#include "MaterialDrawGroups.h"
 #include "encore/render/Strategy.h"
+#include "render/strategies/MaterialDrawGroups.h"
 
 namespace encore::render {
 

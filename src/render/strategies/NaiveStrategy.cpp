@@ -1,13 +1,13 @@
-#include "NaiveStrategy.h"
+#include "render/strategies/NaiveStrategy.h"
 
 #include <map>
 #include <string>
 
-#include "encore/gpu/Upload.h"
 #include "encore/render/AnimationBuffers.h"
-#include "encore/render/GltfToWebGpu.h"
-#include "encore/render/PipelineKey.h"
-#include "encore/render/VertexBindings.h"
+#include "gpu/Upload.h"
+#include "render/GltfToWebGpu.h"
+#include "render/PipelineKey.h"
+#include "render/VertexBindings.h"
 
 namespace encore::render {
 

@@ -1,6 +1,6 @@
 #pragma once
 
-#include "NodeLoopStrategy.h"
+#include "render/strategies/NodeLoopStrategy.h"
 
 namespace encore::render {
 

@@ -1,4 +1,4 @@
-#include "NodeLoopStrategy.h"
+#include "render/strategies/NodeLoopStrategy.h"
 
 namespace encore::render {
 

@@ -3,10 +3,10 @@
 #include <vector>
 
 #include "encore/render/AnimationBuffers.h"
-#include "encore/render/GpuScene.h"
-#include "encore/render/NodeUniforms.h"
 #include "encore/render/Strategy.h"
-#include "encore/render/VertexBindings.h"
+#include "render/GpuScene.h"
+#include "render/NodeUniforms.h"
+#include "render/VertexBindings.h"
 
 namespace encore::render {
 

@@ -1,4 +1,4 @@
-#include "PipelineCacheStrategy.h"
+#include "render/strategies/PipelineCacheStrategy.h"
 
 #include <unordered_map>
 

@@ -3,11 +3,11 @@
 #include <memory>
 #include <vector>
 
-#include "encore/render/GpuScene.h"
-#include "encore/render/NodeUniforms.h"
-#include "encore/render/PipelineCache.h"
 #include "encore/render/Strategy.h"
-#include "encore/render/VertexBindings.h"
+#include "render/GpuScene.h"
+#include "render/NodeUniforms.h"
+#include "render/PipelineCache.h"
+#include "render/VertexBindings.h"
 
 namespace encore::render {
 

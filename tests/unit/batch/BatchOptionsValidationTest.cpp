@@ -4,7 +4,7 @@
 #include <limits>
 #include <string>
 
-#include "BatchOptionsValidation.h"
+#include "batch/BatchOptionsValidation.h"
 
 namespace encore::batch {
 namespace {

@@ -3,10 +3,10 @@
 #include <chrono>
 #include <future>
 
-#include "ModelLoader.h"
 #include "TestPaths.h"
-#include "encore/core/FileIO.h"
-#include "encore/scene/SceneGenerator.h"
+#include "batch/ModelLoader.h"
+#include "core/FileIO.h"
+#include "scene/SceneGenerator.h"
 
 namespace encore::batch {
 namespace {

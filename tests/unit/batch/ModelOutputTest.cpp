@@ -3,7 +3,7 @@
 #include <fstream>
 
 #include "TestPaths.h"
-#include "encore/batch/ModelOutput.h"
+#include "batch/ModelOutput.h"
 
 namespace encore::batch {
 namespace {

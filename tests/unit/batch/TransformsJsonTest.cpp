@@ -4,7 +4,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "encore/batch/TransformsJson.h"
+#include "batch/TransformsJson.h"
 #include "encore/batch/ViewRig.h"
 
 namespace encore::batch {

@@ -1,7 +1,7 @@
 #include <gtest/gtest.h>
 
 #include "TestPaths.h"
-#include "encore/core/FileIO.h"
+#include "core/FileIO.h"
 
 namespace encore {
 namespace {

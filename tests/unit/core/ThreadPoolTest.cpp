@@ -8,7 +8,7 @@
 #include <mutex>
 #include <vector>
 
-#include "encore/core/ThreadPool.h"
+#include "core/ThreadPool.h"
 
 namespace encore {
 namespace {

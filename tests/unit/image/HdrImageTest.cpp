@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "TestPaths.h"
-#include "encore/core/FileIO.h"
+#include "core/FileIO.h"
 #include "encore/image/HdrImage.h"
 
 namespace encore::image {

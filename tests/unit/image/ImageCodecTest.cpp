@@ -5,8 +5,8 @@
 #include <string_view>
 
 #include "TestPaths.h"
-#include "RunLengthDeflate.h"
 #include "encore/image/ImageCodec.h"
+#include "image/RunLengthDeflate.h"
 
 namespace encore::image {
 namespace {

@@ -18,10 +18,10 @@
 #include <string>
 #include <vector>
 
-#include "ImageDecoders.h"
 #include "TestPaths.h"
-#include "encore/core/FileIO.h"
+#include "core/FileIO.h"
 #include "encore/image/ImageCodec.h"
+#include "image/ImageDecoders.h"
 
 namespace encore::image {
 namespace {

@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "encore/image/ImageResize.h"
+#include "image/ImageResize.h"
 
 namespace encore::image {
 namespace {

@@ -1,15 +1,15 @@
 // Camera paths through the generated benchmark scenes (no GPU): reproducible, a smooth closed
 // loop inside the scene that never enters an object, with most objects out of view.
 
-#include "encore/render/CameraPath.h"
+#include "render/CameraPath.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 
-#include "encore/render/Frustum.h"
 #include "encore/scene/SceneData.h"
+#include "render/Frustum.h"
 
 namespace encore::render {
 namespace {

@@ -13,8 +13,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "encore/render/Frustum.h"
 #include "encore/scene/SceneData.h"
+#include "render/Frustum.h"
 
 namespace encore::render {
 namespace {

@@ -1,4 +1,4 @@
-#include "encore/render/KeyframeStore.h"
+#include "render/KeyframeStore.h"
 
 #include <gtest/gtest.h>
 

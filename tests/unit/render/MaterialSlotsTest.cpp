@@ -3,7 +3,7 @@
 #include <set>
 #include <string>
 
-#include "encore/render/MaterialSlots.h"
+#include "render/MaterialSlots.h"
 
 // The slot table on the CPU: which field each slot reads, its colour space, which switch
 // uploads it. MaterialWgslTest checks the same table against material.wgsl.

@@ -3,7 +3,7 @@
 #include <numbers>
 #include <string>
 
-#include "encore/render/MaterialUniform.h"
+#include "render/MaterialUniform.h"
 
 // makeMaterialUniform on the CPU: each scene::Material field lands in its place of the
 // MaterialUniform (material.wgsl's `Material`), with the values the shader expects.

@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "encore/render/MaterialSlots.h"
-#include "encore/render/MaterialUniform.h"
-#include "encore/shaders/EmbeddedFiles.h"
+#include "render/MaterialSlots.h"
+#include "render/MaterialUniform.h"
+#include "shaders/EmbeddedFiles.h"
 
 // material.wgsl is written by hand; these tests hold it to the C++ side (the slot table,
 // MaterialUniform, the kMaterial* bits and ShadingModel), reading the text embedded in the

@@ -2,7 +2,7 @@
 
 #include <string_view>
 
-#include "PassAttachments.h"
+#include "render/PassAttachments.h"
 
 // What each pass of a frame loads, keeps, resolves and clears to (PassAttachments.h), for every
 // shape of frame: one view, views side by side, two phases; with and without multisampling and

@@ -13,7 +13,7 @@
 #include "GltfBuilder.h"
 #include "TestPaths.h"
 #include "encore/scene/SceneData.h"
-#include "encore/scene/SceneGenerator.h"
+#include "scene/SceneGenerator.h"
 
 namespace encore::scene {
 namespace {

@@ -4,10 +4,10 @@
 
 #include "SceneTestUtils.h"
 #include "TestPaths.h"
-#include "encore/core/FileIO.h"
-#include "encore/core/Log.h"
+#include "core/FileIO.h"
+#include "core/Log.h"
 #include "encore/image/ImageCodec.h"
-#include "encore/scene/SceneGenerator.h"
+#include "scene/SceneGenerator.h"
 
 namespace encore::scene {
 namespace {

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "encore/scene/MeshOptimizer.h"
+#include "scene/MeshOptimizer.h"
 
 namespace encore::scene {
 namespace {

@@ -13,7 +13,7 @@
 
 #include "SceneTestUtils.h"
 #include "TestPaths.h"
-#include "encore/scene/MeshOptimizer.h"
+#include "scene/MeshOptimizer.h"
 
 namespace encore::scene {
 namespace {

@@ -7,7 +7,7 @@
 #include <algorithm>
 
 #include "encore/scene/SceneData.h"
-#include "encore/scene/SceneGenerator.h"
+#include "scene/SceneGenerator.h"
 
 namespace encore::scene {
 namespace {

@@ -3,10 +3,10 @@
 #include <map>
 #include <regex>
 
-#include "encore/shaders/EmbeddedFiles.h"
-#include "encore/shaders/ShaderComposer.h"
 #include "encore/shaders/ShaderLibrary.h"
-#include "encore/shaders/VertexLocations.h"
+#include "shaders/EmbeddedFiles.h"
+#include "shaders/ShaderComposer.h"
+#include "shaders/VertexLocations.h"
 
 namespace encore::shaders {
 namespace {

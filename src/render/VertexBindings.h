@@ -23,8 +23,8 @@
 #include <vector>
 
 #include "encore/core/Result.h"
-#include "encore/render/PipelineKey.h"
 #include "encore/scene/SceneData.h"
+#include "render/PipelineKey.h"
 
 namespace encore::render {
 

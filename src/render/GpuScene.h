@@ -20,12 +20,12 @@
 
 #include "encore/core/Result.h"
 #include "encore/render/AnimationBuffers.h"
-#include "encore/render/InstanceBuffer.h"
-#include "encore/render/MaterialResources.h"
 #include "encore/render/RenderSetup.h"
-#include "encore/render/VertexBindings.h"
 #include "encore/scene/AnimationPlayer.h"
 #include "encore/scene/SceneData.h"
+#include "render/InstanceBuffer.h"
+#include "render/MaterialResources.h"
+#include "render/VertexBindings.h"
 
 namespace encore::render {
 

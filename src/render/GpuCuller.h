@@ -30,12 +30,12 @@
 #include "encore/gpu/GpuTimer.h"
 #include "encore/render/AnimationBuffers.h"
 #include "encore/render/Camera.h"
-#include "encore/render/CullingBounds.h"
 #include "encore/render/CullingOptions.h"
-#include "encore/render/DepthPyramid.h"
-#include "encore/render/Frustum.h"
-#include "encore/render/InstanceBuffer.h"
 #include "encore/render/RenderSetup.h"
+#include "render/CullingBounds.h"
+#include "render/DepthPyramid.h"
+#include "render/Frustum.h"
+#include "render/InstanceBuffer.h"
 
 namespace encore::render {
 

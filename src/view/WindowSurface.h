@@ -20,7 +20,7 @@
 
 #include "encore/core/Result.h"
 #include "encore/gpu/Context.h"
-#include "encore/view/Window.h"
+#include "view/Window.h"
 
 namespace encore::view {
 

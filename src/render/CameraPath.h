@@ -14,7 +14,7 @@
 #include <glm/glm.hpp>
 
 #include "encore/render/Camera.h"
-#include "encore/scene/SceneGenerator.h"
+#include "scene/SceneGenerator.h"
 
 namespace encore::render {
 

@@ -32,10 +32,10 @@
 
 #include "encore/core/Result.h"
 #include "encore/render/BindGroupLayouts.h"
-#include "encore/render/MaterialSlots.h"
-#include "encore/render/MaterialUniform.h"
 #include "encore/scene/SceneData.h"
 #include "encore/shaders/ShaderLibrary.h"
+#include "render/MaterialSlots.h"
+#include "render/MaterialUniform.h"
 
 namespace encore::render {
 

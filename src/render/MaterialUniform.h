@@ -8,8 +8,8 @@
 
 #include <cstdint>
 
-#include "encore/render/MaterialSlots.h"
 #include "encore/scene/SceneData.h"
+#include "render/MaterialSlots.h"
 
 namespace encore::render {
 

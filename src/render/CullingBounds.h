@@ -20,8 +20,8 @@
 
 #include <glm/glm.hpp>
 
-#include "encore/render/Frustum.h"
 #include "encore/scene/SceneData.h"
+#include "render/Frustum.h"
 
 namespace encore::render {
 

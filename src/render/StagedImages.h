@@ -25,8 +25,8 @@
 #include <optional>
 #include <vector>
 
-#include "encore/gpu/StagingBuffers.h"
 #include "encore/scene/SceneData.h"
+#include "gpu/StagingBuffers.h"
 
 namespace encore::render {
 

@@ -19,12 +19,12 @@
 
 #include "encore/core/Result.h"
 #include "encore/gpu/Context.h"
-#include "encore/render/Animometer.h"
 #include "encore/render/Renderer.h"
 #include "encore/scene/SceneData.h"
-#include "encore/view/ViewScript.h"
-#include "encore/view/Window.h"
-#include "encore/view/WindowSurface.h"
+#include "render/Animometer.h"
+#include "view/ViewScript.h"
+#include "view/Window.h"
+#include "view/WindowSurface.h"
 
 namespace encore::view {
 

@@ -9,7 +9,7 @@
 #include <unordered_map>
 
 #include "encore/core/Result.h"
-#include "encore/render/PipelineKey.h"
+#include "render/PipelineKey.h"
 
 namespace encore::render {
 
