@@ -42,12 +42,18 @@ nlohmann::json countsJson(const std::vector<std::uint64_t>& counts) {
 }  // namespace
 
 nlohmann::json toJson(const render::DrawCounters& c) {
-    return {{"setPipeline", c.setPipeline},         {"setBindGroup", c.setBindGroup},
-            {"setVertexBuffer", c.setVertexBuffer}, {"setIndexBuffer", c.setIndexBuffer},
-            {"draw", c.draw},                       {"drawIndexed", c.drawIndexed},
-            {"drawIndirect", c.drawIndirect},       {"executeBundles", c.executeBundles},
-            {"primitives", c.primitives},           {"instances", c.instances},
-            {"triangles", c.triangles},             {"apiCalls", c.apiCalls()}};
+    return {{"setPipeline", c.setPipeline},
+            {"setBindGroup", c.setBindGroup},
+            {"setVertexBuffer", c.setVertexBuffer},
+            {"setIndexBuffer", c.setIndexBuffer},
+            {"draw", c.draw},
+            {"drawIndexed", c.drawIndexed},
+            {"drawIndirect", c.drawIndirect},
+            {"executeBundles", c.executeBundles},
+            {"primitives", c.primitives},
+            {"instances", c.instances},
+            {"triangles", c.triangles},
+            {"apiCalls", c.apiCalls()}};
 }
 
 nlohmann::json toJson(const BenchReport& report) {
@@ -105,15 +111,15 @@ nlohmann::json toJson(const BenchReport& report) {
             {"animationWork",
              result.animation.empty()
                  ? nlohmann::json(nullptr)
-                 : nlohmann::json{
-                       {"channelsEvaluated", result.animationWork.player.channelsEvaluated},
-                       {"jointsUpdated", result.animationWork.player.jointsUpdated},
-                       {"instancesWritten", result.animationWork.instancesWritten},
-                       {"jointsWritten", result.animationWork.upload.jointsWritten},
-                       {"weightsWritten", result.animationWork.upload.weightsWritten},
-                       {"gpuDispatches", result.animationWork.gpu.dispatches},
-                       {"gpuCopies", result.animationWork.gpu.copies},
-                       {"bytesWritten", result.animationWork.bytesWritten}}},
+                 : nlohmann::json{{"channelsEvaluated",
+                                   result.animationWork.player.channelsEvaluated},
+                                  {"jointsUpdated", result.animationWork.player.jointsUpdated},
+                                  {"instancesWritten", result.animationWork.instancesWritten},
+                                  {"jointsWritten", result.animationWork.upload.jointsWritten},
+                                  {"weightsWritten", result.animationWork.upload.weightsWritten},
+                                  {"gpuDispatches", result.animationWork.gpu.dispatches},
+                                  {"gpuCopies", result.animationWork.gpu.copies},
+                                  {"bytesWritten", result.animationWork.bytesWritten}}},
             {"encodeMs", percentilesJson(result.encode)},
             {"submitMs", percentilesJson(result.submit)},
             {"cpuMs", percentilesJson(result.cpu)},
@@ -143,10 +149,9 @@ std::string toMarkdown(const BenchReport& report) {
         << "Host CPU: " << report.cpu << " (" << report.cores << " threads)  \n"
         << "Frames: " << report.options.frames << " measured after "
         << (report.options.callgrind ? 0 : report.options.warmup) << " warm-up, "
-        << report.options.width << "x" << report.options.height
-        << " target; the CPU "
+        << report.options.width << "x" << report.options.height << " target; the CPU "
         << (report.options.gpuWait == gpu::WaitMode::Spin && !report.options.callgrind ? "spins"
-                                                                                   : "blocks")
+                                                                                       : "blocks")
         << " while it waits for the GPU after each frame; GPU time from timestamp queries: "
         << (report.timestamps ? "yes" : "n/a") << "  \n"
         << "Image-based lighting maps built in " << report.environmentMilliseconds
@@ -154,9 +159,8 @@ std::string toMarkdown(const BenchReport& report) {
         << "Generated scenes: " << report.options.meshes << " meshes, " << report.options.materials
         << " materials"
         << (report.options.textures ? " (every other one textured)" : " (texture-less)")
-        << ", tessellation " << report.options.tessellation
-        << "; gpu-culling: occlusion culling " << (report.options.culling.occlusion ? "on" : "off")
-        << ", levels of detail "
+        << ", tessellation " << report.options.tessellation << "; gpu-culling: occlusion culling "
+        << (report.options.culling.occlusion ? "on" : "off") << ", levels of detail "
         << (report.options.culling.levelsOfDetail
                 ? "under " + format("%g", report.options.culling.lodErrorPixels) + " pixel(s)"
                 : std::string("off"))

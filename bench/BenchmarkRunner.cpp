@@ -69,8 +69,11 @@ std::string cpuModel() {
 // frames, so one frame's CPU work never queues behind the last) and fills the timings.
 // `renderFrame(index)` renders one frame and returns its timing.
 template <typename RenderFrame>
-void measureFrames(gpu::Context& context, const BenchOptions& options, const std::string& label,
-                   BenchResult& result, RenderFrame&& renderFrame) {
+void measureFrames(gpu::Context& context,
+                   const BenchOptions& options,
+                   const std::string& label,
+                   BenchResult& result,
+                   RenderFrame&& renderFrame) {
     std::vector<double> encode;
     std::vector<double> submit;
     std::vector<double> cpu;
@@ -201,7 +204,8 @@ Result<BenchResult> measure(gpu::Context& context,
 // Measures one configuration of the Animometer scene.
 Result<BenchResult> measureAnimometer(gpu::Context& context,
                                       const render::AnimometerOptions& animometer,
-                                      const BenchOptions& options, gpu::GpuTimer* timer) {
+                                      const BenchOptions& options,
+                                      gpu::GpuTimer* timer) {
     shaders::ShaderLibrary shaders(context.device());
     ENCORE_TRY_ASSIGN(auto scene, render::AnimometerScene::create(context, shaders, animometer));
     BenchResult result;
@@ -245,7 +249,8 @@ std::string dawnVersion() {
     return ENCORE_DAWN_VERSION;
 }
 
-Result<BenchReport> runBenchmarks(gpu::Context& context, const BenchOptions& options,
+Result<BenchReport> runBenchmarks(gpu::Context& context,
+                                  const BenchOptions& options,
                                   const ProgressCallback& progress) {
     if (options.frames == 0) {
         return makeError(ErrorCode::InvalidArgument, "The number of frames must be at least 1.");
@@ -301,9 +306,8 @@ Result<BenchReport> runBenchmarks(gpu::Context& context, const BenchOptions& opt
             const bool culls = strategy.kind == render::StrategyKind::GpuCulling ||
                                strategy.kind == render::StrategyKind::GpuCullingBundles;
             if (culls && options.frustumBaseline) {
-                measurements.push_back({strategy,
-                                        {.occlusion = false, .levelsOfDetail = false},
-                                        " (frustum only)"});
+                measurements.push_back(
+                    {strategy, {.occlusion = false, .levelsOfDetail = false}, " (frustum only)"});
             }
         }
         for (const Measurement& measurement : measurements) {

@@ -20,7 +20,10 @@ using Json = nlohmann::json;
 
 // A 1x1 RGBA PNG.
 constexpr const char* kPngUri =
-    "data:image/png;base64,iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAYAAAAfFcSJAAAADUlEQVR42mP8z8BQDwAEhQGAhKmMIQAAAABJRU5ErkJggg==";
+    "data:image/"
+    "png;base64,"
+    "iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAYAAAAfFcSJAAAADUlEQVR42mP8z8BQDwAEhQGAhKmMIQAAAABJRU5ErkJggg"
+    "==";
 
 void writeBytes(const std::filesystem::path& path, const std::vector<std::uint8_t>& bytes) {
     std::ofstream(path, std::ios::binary)
@@ -40,12 +43,15 @@ GltfBuilder triangle() {
 GltfBuilder attributes() {
     GltfBuilder builder;
     GltfBuilder::PrimitiveDesc primitive;
-    primitive.attributes["POSITION"] = builder.addPositions({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}});
-    primitive.attributes["NORMAL"] = builder.addNormals({{0, 0, 1}, {0, 0, 1}, {0, 0, 1}, {0, 0, 1}});
+    primitive.attributes["POSITION"] =
+        builder.addPositions({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}});
+    primitive.attributes["NORMAL"] =
+        builder.addNormals({{0, 0, 1}, {0, 0, 1}, {0, 0, 1}, {0, 0, 1}});
     primitive.attributes["TEXCOORD_0"] = builder.addTexcoords({{0, 0}, {1, 0}, {0, 1}, {1, 1}});
-    primitive.attributes["COLOR_0"] = builder.addColors({{1, 0, 0, 1}, {0, 1, 0, 1}, {0, 0, 1, 1}, {1, 1, 1, 1}});
-    primitive.attributes["TEXCOORD_1"] =
-        builder.addAccessor<std::uint8_t>({0, 0, 255, 0, 0, 255, 255, 255}, "VEC2", {.normalized = true});
+    primitive.attributes["COLOR_0"] =
+        builder.addColors({{1, 0, 0, 1}, {0, 1, 0, 1}, {0, 0, 1, 1}, {1, 1, 1, 1}});
+    primitive.attributes["TEXCOORD_1"] = builder.addAccessor<std::uint8_t>(
+        {0, 0, 255, 0, 0, 255, 255, 255}, "VEC2", {.normalized = true});
     primitive.attributes["TANGENT"] = builder.addAccessor<float>(
         {1, 0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 1}, "VEC4", {.byteStride = 20});
     primitive.indices = builder.addIndices<std::uint8_t>({0, 1, 2, 2, 1, 3});
@@ -61,10 +67,12 @@ GltfBuilder quantized() {
     GltfBuilder::PrimitiveDesc primitive;
     primitive.attributes["POSITION"] = builder.addAccessor<std::int16_t>(
         {0, 0, 0, 100, 0, 0, 0, 100, 0}, "VEC3", {.minMax = true});
-    primitive.attributes["NORMAL"] =
-        builder.addAccessor<std::int8_t>({0, 0, 127, 0, 0, 127, 0, 0, 127}, "VEC3", {.normalized = true});
-    primitive.attributes["TEXCOORD_0"] = builder.addAccessor<std::uint16_t>({0, 0, 1, 0, 0, 1}, "VEC2");
-    builder.addScene({builder.addNode({.mesh = builder.addMesh(primitive), .scale = glm::vec3(0.01f)})});
+    primitive.attributes["NORMAL"] = builder.addAccessor<std::int8_t>(
+        {0, 0, 127, 0, 0, 127, 0, 0, 127}, "VEC3", {.normalized = true});
+    primitive.attributes["TEXCOORD_0"] =
+        builder.addAccessor<std::uint16_t>({0, 0, 1, 0, 0, 1}, "VEC2");
+    builder.addScene(
+        {builder.addNode({.mesh = builder.addMesh(primitive), .scale = glm::vec3(0.01f)})});
     return builder;
 }
 
@@ -91,7 +99,8 @@ GltfBuilder sparseAndZeroAccessors() {
         {"indices", {{"bufferView", indices}, {"componentType", 5123}}},
         {"values", {{"bufferView", values}}}};
     // An accessor without a bufferView (all zeros) used as NORMAL.
-    builder.json()["accessors"].push_back({{"componentType", 5126}, {"count", 3}, {"type", "VEC3"}});
+    builder.json()["accessors"].push_back(
+        {{"componentType", 5126}, {"count", 3}, {"type", "VEC3"}});
     builder.json()["meshes"][0]["primitives"][0]["attributes"]["NORMAL"] =
         builder.json()["accessors"].size() - 1;
     return builder;
@@ -147,46 +156,66 @@ GltfBuilder materials() {
     GltfBuilder builder;
     const auto texture = builder.addTexture(kPngUri, builder.addSampler(9728, 9987, 33071, 33648));
     const auto texture2 = builder.addTexture(kPngUri, builder.addSampler({}, 9729));
-    const Json ref = {{"index", texture}, {"texCoord", 1},
-                      {"extensions", {{"KHR_texture_transform",
-                                       {{"offset", {0.5, 0}}, {"rotation", 0.3}, {"scale", {2, 2}}}}}}};
+    const Json ref = {{"index", texture},
+                      {"texCoord", 1},
+                      {"extensions",
+                       {{"KHR_texture_transform",
+                         {{"offset", {0.5, 0}}, {"rotation", 0.3}, {"scale", {2, 2}}}}}}};
     const Json ref2 = {{"index", texture2}};
     builder.json()["extensionsUsed"] = {
-        "KHR_texture_transform", "KHR_materials_specular", "KHR_materials_clearcoat",
-        "KHR_materials_sheen", "KHR_materials_ior", "KHR_materials_emissive_strength",
-        "KHR_materials_unlit", "KHR_materials_pbrSpecularGlossiness", "KHR_materials_transmission",
-        "KHR_materials_volume"};
+        "KHR_texture_transform",      "KHR_materials_specular",
+        "KHR_materials_clearcoat",    "KHR_materials_sheen",
+        "KHR_materials_ior",          "KHR_materials_emissive_strength",
+        "KHR_materials_unlit",        "KHR_materials_pbrSpecularGlossiness",
+        "KHR_materials_transmission", "KHR_materials_volume"};
     Json materialList = Json::array();
-    materialList.push_back(
-        {{"name", "metal-rough"},
-         {"pbrMetallicRoughness", {{"baseColorFactor", {1, 0.5, 0.5, 0.8}}, {"baseColorTexture", ref},
-                                   {"metallicFactor", 0.2}, {"roughnessFactor", 0.7},
-                                   {"metallicRoughnessTexture", ref2}}},
-         {"normalTexture", {{"index", texture}, {"scale", 0.5}}},
-         {"occlusionTexture", {{"index", texture2}, {"strength", 0.3}}},
-         {"emissiveTexture", ref2}, {"emissiveFactor", {1, 1, 0}},
-         {"alphaMode", "MASK"}, {"alphaCutoff", 0}, {"doubleSided", true},
-         {"extensions",
-          {{"KHR_materials_emissive_strength", {{"emissiveStrength", 4}}},
-           {"KHR_materials_ior", {{"ior", 1.3}}},
-           {"KHR_materials_specular", {{"specularFactor", 0.5}, {"specularTexture", ref2},
-                                       {"specularColorFactor", {1, 0, 0}}, {"specularColorTexture", ref}}},
-           {"KHR_materials_clearcoat", {{"clearcoatFactor", 1}, {"clearcoatTexture", ref2},
-                                        {"clearcoatRoughnessFactor", 0.1}, {"clearcoatRoughnessTexture", ref2},
-                                        {"clearcoatNormalTexture", {{"index", texture}, {"scale", 2}}}}},
-           {"KHR_materials_sheen", {{"sheenColorFactor", {1, 1, 1}}, {"sheenColorTexture", ref},
-                                    {"sheenRoughnessFactor", 0.5}, {"sheenRoughnessTexture", ref2}}},
-           {"KHR_materials_transmission", {{"transmissionFactor", 1}}},
-           {"KHR_materials_volume", {{"thicknessFactor", 1}}}}}});
-    materialList.push_back({{"name", "unlit"}, {"alphaMode", "BLEND"},
+    materialList.push_back({{"name", "metal-rough"},
+                            {"pbrMetallicRoughness",
+                             {{"baseColorFactor", {1, 0.5, 0.5, 0.8}},
+                              {"baseColorTexture", ref},
+                              {"metallicFactor", 0.2},
+                              {"roughnessFactor", 0.7},
+                              {"metallicRoughnessTexture", ref2}}},
+                            {"normalTexture", {{"index", texture}, {"scale", 0.5}}},
+                            {"occlusionTexture", {{"index", texture2}, {"strength", 0.3}}},
+                            {"emissiveTexture", ref2},
+                            {"emissiveFactor", {1, 1, 0}},
+                            {"alphaMode", "MASK"},
+                            {"alphaCutoff", 0},
+                            {"doubleSided", true},
+                            {"extensions",
+                             {{"KHR_materials_emissive_strength", {{"emissiveStrength", 4}}},
+                              {"KHR_materials_ior", {{"ior", 1.3}}},
+                              {"KHR_materials_specular",
+                               {{"specularFactor", 0.5},
+                                {"specularTexture", ref2},
+                                {"specularColorFactor", {1, 0, 0}},
+                                {"specularColorTexture", ref}}},
+                              {"KHR_materials_clearcoat",
+                               {{"clearcoatFactor", 1},
+                                {"clearcoatTexture", ref2},
+                                {"clearcoatRoughnessFactor", 0.1},
+                                {"clearcoatRoughnessTexture", ref2},
+                                {"clearcoatNormalTexture", {{"index", texture}, {"scale", 2}}}}},
+                              {"KHR_materials_sheen",
+                               {{"sheenColorFactor", {1, 1, 1}},
+                                {"sheenColorTexture", ref},
+                                {"sheenRoughnessFactor", 0.5},
+                                {"sheenRoughnessTexture", ref2}}},
+                              {"KHR_materials_transmission", {{"transmissionFactor", 1}}},
+                              {"KHR_materials_volume", {{"thicknessFactor", 1}}}}}});
+    materialList.push_back({{"name", "unlit"},
+                            {"alphaMode", "BLEND"},
                             {"pbrMetallicRoughness", {{"baseColorTexture", ref2}}},
                             {"extensions", {{"KHR_materials_unlit", Json::object()}}}});
-    materialList.push_back(
-        {{"name", "spec-gloss"},
-         {"extensions",
-          {{"KHR_materials_pbrSpecularGlossiness",
-            {{"diffuseFactor", {1, 1, 1, 1}}, {"diffuseTexture", ref2}, {"specularFactor", {0.5, 0.5, 0.5}},
-             {"glossinessFactor", 0.3}, {"specularGlossinessTexture", ref}}}}}});
+    materialList.push_back({{"name", "spec-gloss"},
+                            {"extensions",
+                             {{"KHR_materials_pbrSpecularGlossiness",
+                               {{"diffuseFactor", {1, 1, 1, 1}},
+                                {"diffuseTexture", ref2},
+                                {"specularFactor", {0.5, 0.5, 0.5}},
+                                {"glossinessFactor", 0.3},
+                                {"specularGlossinessTexture", ref}}}}}});
     std::vector<GltfBuilder::PrimitiveDesc> primitives;
     const auto positions = builder.addPositions({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
     const auto texcoords = builder.addTexcoords({{0, 0}, {1, 0}, {0, 1}});
@@ -210,9 +239,13 @@ struct Document {
 };
 
 std::vector<Document> documents() {
-    return {{"triangle", triangle},   {"attributes", attributes}, {"quantized", quantized},
-            {"topologies", topologies}, {"sparse", sparseAndZeroAccessors},
-            {"scene-graph", sceneGraph}, {"lights-cameras", lightsAndCameras},
+    return {{"triangle", triangle},
+            {"attributes", attributes},
+            {"quantized", quantized},
+            {"topologies", topologies},
+            {"sparse", sparseAndZeroAccessors},
+            {"scene-graph", sceneGraph},
+            {"lights-cameras", lightsAndCameras},
             {"materials", materials}};
 }
 

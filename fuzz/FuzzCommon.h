@@ -29,8 +29,8 @@ inline Result<scene::SceneData> loadFuzzInput(const std::uint8_t* data, std::siz
 
 }  // namespace encore::fuzz
 
-#define ENCORE_FUZZ_CHECK(condition)                                                 \
-    do {                                                                             \
-        if (!(condition))                                                            \
-            ::encore::fuzz::invariantFailed(#condition, __FILE__, __LINE__);         \
+#define ENCORE_FUZZ_CHECK(condition)                                         \
+    do {                                                                     \
+        if (!(condition))                                                    \
+            ::encore::fuzz::invariantFailed(#condition, __FILE__, __LINE__); \
     } while (false)

@@ -45,10 +45,11 @@ void checkAccessor(const SceneData& scene, AccessorId id) {
     ENCORE_FUZZ_CHECK(accessor.byteStride != 0);
     ENCORE_FUZZ_CHECK(accessor.componentCount >= 1 && accessor.componentCount <= 4);
     const std::uint64_t bufferSize = scene.buffers[view.buffer.index()].bytes.size();
-    ENCORE_FUZZ_CHECK(view.byteOffset <= bufferSize && view.byteLength <= bufferSize - view.byteOffset);
+    ENCORE_FUZZ_CHECK(view.byteOffset <= bufferSize &&
+                      view.byteLength <= bufferSize - view.byteOffset);
     if (accessor.count > 0) {
-        const std::uint64_t span = std::uint64_t(accessor.count - 1) * accessor.byteStride +
-                                   accessor.elementSize();
+        const std::uint64_t span =
+            std::uint64_t(accessor.count - 1) * accessor.byteStride + accessor.elementSize();
         ENCORE_FUZZ_CHECK(accessor.byteOffset <= view.byteLength &&
                           span <= view.byteLength - accessor.byteOffset);
     }
@@ -75,7 +76,8 @@ void prepareGeometry(const SceneData& scene, Sink& sink) {
                     sink.add(value);
                 }
                 const auto packed = scene.packedAccessorBytes(attribute.accessor);
-                ENCORE_FUZZ_CHECK(packed.size() == std::size_t(accessor.count) * accessor.elementSize());
+                ENCORE_FUZZ_CHECK(packed.size() ==
+                                  std::size_t(accessor.count) * accessor.elementSize());
                 std::uint32_t stride = 0;
                 const std::size_t padded = paddedVertexBytes(scene, attribute.accessor, stride);
                 ENCORE_FUZZ_CHECK(stride % 4 == 0 && stride >= accessor.elementSize());
@@ -118,7 +120,8 @@ void prepareMaterials(const SceneData& scene, Sink& sink) {
                 ENCORE_FUZZ_CHECK(texture.image.index() < scene.images.size());
                 const Image& image = scene.images[texture.image.index()];
                 ENCORE_FUZZ_CHECK(image.rgba8.empty() ||
-                                  image.rgba8.size() == std::size_t(image.width) * image.height * 4);
+                                  image.rgba8.size() ==
+                                      std::size_t(image.width) * image.height * 4);
             }
         }
     }
@@ -137,8 +140,8 @@ void prepareSceneGraph(const SceneData& scene, Sink& sink) {
     for (const CameraInstance& placed : scene.cameraInstances) {
         ENCORE_FUZZ_CHECK(placed.camera.valid() && placed.camera.index() < scene.cameras.size());
         for (const float aspect : {1.5f, 0.0f}) {
-            const auto camera =
-                render::Camera::fromGltf(scene.cameras[placed.camera.index()], placed.world, aspect);
+            const auto camera = render::Camera::fromGltf(scene.cameras[placed.camera.index()],
+                                                         placed.world, aspect);
             sink.add(camera.viewProjection());
         }
     }
@@ -195,7 +198,8 @@ void prepareAnimation(const SceneData& scene, Sink& sink) {
             ENCORE_FUZZ_CHECK(channel.node.index() < scene.nodes.size());
             const std::uint32_t components = animation.samplers[channel.sampler].components;
             const Node& node = scene.nodes[channel.node.index()];
-            ENCORE_FUZZ_CHECK(components == (channel.path == AnimationPath::Weights ? node.weights.size()
+            ENCORE_FUZZ_CHECK(components == (channel.path == AnimationPath::Weights
+                                                 ? node.weights.size()
                                              : channel.path == AnimationPath::Rotation ? 4u
                                                                                        : 3u));
         }
@@ -216,8 +220,9 @@ void prepareAnimation(const SceneData& scene, Sink& sink) {
     for (std::size_t a = 0; a < scene.animations.size(); ++a) {
         ENCORE_FUZZ_CHECK(player.select(AnimationId(a)).ok());
         const Animation& animation = scene.animations[a];
-        for (const double t : {double(animation.start), 0.5 * (double(animation.start) + animation.end),
-                               double(animation.end) + 1.0}) {
+        for (const double t :
+             {double(animation.start), 0.5 * (double(animation.start) + animation.end),
+              double(animation.end) + 1.0}) {
             player.evaluate(t);
             collect();
         }

@@ -19,7 +19,8 @@ bool hasIndexFormat(const scene::Accessor& accessor) {
     return format == wgpu::IndexFormat::Uint16 || format == wgpu::IndexFormat::Uint32;
 }
 
-std::size_t paddedVertexBytes(const scene::SceneData& scene, scene::AccessorId accessor,
+std::size_t paddedVertexBytes(const scene::SceneData& scene,
+                              scene::AccessorId accessor,
                               std::uint32_t& stride) {
     return render::paddedVertexElements(scene, accessor, stride).size();
 }

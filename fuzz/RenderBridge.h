@@ -19,7 +19,8 @@ bool hasVertexFormat(const scene::Accessor& accessor);
 // render::indexFormat(accessor) is Uint16 or Uint32.
 bool hasIndexFormat(const scene::Accessor& accessor);
 // render::paddedVertexElements: its size in bytes, and the stride it chose.
-std::size_t paddedVertexBytes(const scene::SceneData& scene, scene::AccessorId accessor,
+std::size_t paddedVertexBytes(const scene::SceneData& scene,
+                              scene::AccessorId accessor,
                               std::uint32_t& stride);
 // render::makeMaterialUniform plus the shader-variant questions, folded into one number.
 float materialUniformChecksum(const scene::Material& material);

@@ -430,10 +430,10 @@ class Renderer {
 
     std::uint32_t mSamples;
     std::unique_ptr<gpu::Context> mContext;
-    std::unique_ptr<render::Renderer> mRenderer;        // After mContext: destroyed before it.
+    std::unique_ptr<render::Renderer> mRenderer;            // After mContext: destroyed before it.
     std::unique_ptr<batch::BatchRenderer> mBatchRenderers;  // Kept by batch() between calls.
-    std::shared_ptr<const scene::SceneData> mHeld;      // Last given to prepare().
-    std::shared_ptr<const scene::SceneData> mPrepared;  // Prepared successfully.
+    std::shared_ptr<const scene::SceneData> mHeld;          // Last given to prepare().
+    std::shared_ptr<const scene::SceneData> mPrepared;      // Prepared successfully.
     std::mutex mMutex;
 };
 
@@ -492,7 +492,8 @@ PYBIND11_MODULE(_encore, module) {
              py::arg("normalize") = true, py::arg("size") = 512, py::arg("samples") = py::none(),
              py::arg("jobs") = 0, py::arg("memory_limit_mib") = 2048, py::arg("strict") = false,
              py::arg("normals") = false, py::arg("depth") = false, py::arg("top_light") = 0.0f,
-             py::arg("png_compression") = "small", py::arg("failure_log") = true, py::arg("renderers") = encore::batch::BatchOptions{}.renderers,
+             py::arg("png_compression") = "small", py::arg("failure_log") = true,
+             py::arg("renderers") = encore::batch::BatchOptions{}.renderers,
              py::arg("lod_error") = 0.0f,
              "Runs the job of `encore batch` on this renderer's device: `inputs` is what the "
              "command takes (folder, list file, model) or (path, name) pairs from "

@@ -30,8 +30,8 @@ struct BenchCommandOptions {
 };
 
 Result<void> writeText(const std::string& path, const std::string& text) {
-    return writeFile(path, std::span(reinterpret_cast<const std::uint8_t*>(text.data()),
-                                     text.size()));
+    return writeFile(path,
+                     std::span(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()));
 }
 
 int runBench(BenchCommandOptions options, const GlobalOptions& global) {
@@ -107,8 +107,9 @@ void addBenchCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) 
         "bench",
         "Measure strategies on generated scenes, glTF models and the Animometer scene: CPU encode "
         "and submit time, GPU time (timestamp queries), API call counts; median and p95.");
-    command->add_option("--objects", bench.objectCounts,
-                        "Generated scenes with these object counts (default 1000 10000)")
+    command
+        ->add_option("--objects", bench.objectCounts,
+                     "Generated scenes with these object counts (default 1000 10000)")
         ->delimiter(',');
     command
         ->add_option("--scene", options->scenes,
@@ -121,8 +122,9 @@ void addBenchCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) 
                         "Units the flythrough and city cameras move per frame (default 0: once "
                         "round their loop over the measured frames)");
     command->add_option("--model", bench.models, "glTF models to measure (repeatable)");
-    command->add_option("--animometer", bench.animometerTriangles,
-                        "Animometer scenes with these triangle counts")
+    command
+        ->add_option("--animometer", bench.animometerTriangles,
+                     "Animometer scenes with these triangle counts")
         ->delimiter(',');
     command
         ->add_option("--crowd", bench.crowdCharacters,
@@ -150,8 +152,8 @@ void addBenchCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) 
         ->capture_default_str();
     command->add_option("--materials", bench.materials, "Materials of generated scenes")
         ->capture_default_str();
-    command->add_option("--tessellation", bench.tessellation,
-                        "Segments of the generated round shapes")
+    command
+        ->add_option("--tessellation", bench.tessellation, "Segments of the generated round shapes")
         ->capture_default_str();
     command->add_flag("--textures,!--no-textures", bench.textures,
                       "Every other material of the generated scenes samples base colour and "

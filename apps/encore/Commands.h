@@ -17,12 +17,12 @@ namespace encore::app {
 // Exit codes, documented in `encore --help` and the README.
 enum ExitCode : int {
     kExitOk = 0,
-    kExitFailure = 1,     // Bad input, I/O errors.
-    kExitUsage = 2,       // Command-line errors.
-    kExitNoAdapter = 3,   // No usable (Vulkan) GPU adapter.
-    kExitGpuError = 4,    // WebGPU validation error or device loss.
-    kExitOutOfMemory = 5, // The GPU ran out of memory (a smaller scene or target may fit).
-    kExitNoDisplay = 6,   // encore view: no display to open a window on.
+    kExitFailure = 1,        // Bad input, I/O errors.
+    kExitUsage = 2,          // Command-line errors.
+    kExitNoAdapter = 3,      // No usable (Vulkan) GPU adapter.
+    kExitGpuError = 4,       // WebGPU validation error or device loss.
+    kExitOutOfMemory = 5,    // The GPU ran out of memory (a smaller scene or target may fit).
+    kExitNoDisplay = 6,      // encore view: no display to open a window on.
     kExitInterrupted = 130,  // encore batch: stopped by SIGINT or SIGTERM (rerun to resume).
 };
 

@@ -26,8 +26,8 @@ void addGenCommand(CLI::App& app, const GlobalOptions&, int& exitCode) {
         ->capture_default_str();
     command->add_option("--meshes", options->generator.meshCount, "Number of distinct meshes")
         ->capture_default_str();
-    command->add_option("--materials", options->generator.materialCount,
-                        "Number of shared materials")
+    command
+        ->add_option("--materials", options->generator.materialCount, "Number of shared materials")
         ->capture_default_str();
     command
         ->add_option("--layout", options->generator.layout,
@@ -40,8 +40,9 @@ void addGenCommand(CLI::App& app, const GlobalOptions&, int& exitCode) {
             CLI::ignore_case));
     command->add_option("--seed", options->generator.seed, "Random seed for object placement")
         ->capture_default_str();
-    command->add_option("--tessellation", options->generator.tessellation,
-                        "Segments around the round shapes (3 to 256)")
+    command
+        ->add_option("--tessellation", options->generator.tessellation,
+                     "Segments around the round shapes (3 to 256)")
         ->capture_default_str();
     options->generator.textures = true;
     command->add_flag("--textures,!--no-textures", options->generator.textures,

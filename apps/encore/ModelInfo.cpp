@@ -37,9 +37,9 @@ void summarizeLevels(const scene::SceneData& scene, ModelCounts& counts) {
             for (std::size_t k = 0; k <= deepest; ++k) {
                 const std::size_t level = std::min(k, primitive.levels.size());
                 counts.levelTriangles[k] +=
-                    level == 0 ? triangleCount(scene, primitive)
-                               : scene.accessors[primitive.levels[level - 1].indices.index()]
-                                         .count / 3;
+                    level == 0
+                        ? triangleCount(scene, primitive)
+                        : scene.accessors[primitive.levels[level - 1].indices.index()].count / 3;
             }
         }
     }

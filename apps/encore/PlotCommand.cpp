@@ -46,8 +46,8 @@ int writePlot(const nlohmann::json& report, const std::string& path) {
     if (!svg) {
         return reportError(svg.error());
     }
-    auto written = writeFile(
-        path, std::span(reinterpret_cast<const std::uint8_t*>(svg->data()), svg->size()));
+    auto written =
+        writeFile(path, std::span(reinterpret_cast<const std::uint8_t*>(svg->data()), svg->size()));
     if (!written) {
         return reportError(written.error());
     }

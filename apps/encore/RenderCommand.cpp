@@ -9,9 +9,9 @@
 
 #include "CameraOptions.h"
 #include "Commands.h"
-#include "StrategyOptions.h"
 #include "CullingFlags.h"
 #include "ShadingOptions.h"
+#include "StrategyOptions.h"
 #include "encore/gpu/Context.h"
 #include "encore/render/Renderer.h"
 #include "encore/scene/AnimationPlayer.h"
@@ -32,9 +32,9 @@ struct RenderOptions {
     float yawDegrees = 0.0f;
     std::uint32_t views = 1;
     bool strict = false;
-    std::optional<double> time;  // --time: animation time in seconds.
-    std::string animation;       // --animation N|NAME (all when empty).
-    std::string frames;          // --frames START:END:STEP.
+    std::optional<double> time;   // --time: animation time in seconds.
+    std::string animation;        // --animation N|NAME (all when empty).
+    std::string frames;           // --frames START:END:STEP.
     std::string animate = "cpu";  // --animate cpu|gpu.
     ShadingOptions shading;
     CameraOptions camera;
@@ -43,14 +43,16 @@ struct RenderOptions {
 
 // Views side by side: each camera frames the scene for its strip, turned a few degrees from the
 // previous one (two views: a stereo pair).
-std::vector<render::Camera> viewCameras(const scene::Bounds& bounds, float aspect,
-                                        float yawDegrees, std::uint32_t views) {
+std::vector<render::Camera> viewCameras(const scene::Bounds& bounds,
+                                        float aspect,
+                                        float yawDegrees,
+                                        std::uint32_t views) {
     constexpr float kViewSeparationDegrees = 4.0f;
     std::vector<render::Camera> cameras;
     for (std::uint32_t view = 0; view < views; ++view) {
         const float offset = (float(view) - 0.5f * float(views - 1)) * kViewSeparationDegrees;
-        cameras.push_back(render::Camera::framing(bounds, aspect,
-                                                  (yawDegrees + offset) * float(M_PI) / 180.0f));
+        cameras.push_back(
+            render::Camera::framing(bounds, aspect, (yawDegrees + offset) * float(M_PI) / 180.0f));
     }
     return cameras;
 }
@@ -102,7 +104,8 @@ Result<std::string> framePath(const std::string& pattern, std::size_t index) {
     auto invalid = [&] {
         return makeError(ErrorCode::InvalidArgument,
                          "With --frames, -o needs one integer conversion such as %04d for the "
-                         "frame number ('" + pattern + "').");
+                         "frame number ('" +
+                             pattern + "').");
     };
     if (percent == std::string::npos) {
         return invalid();
@@ -131,8 +134,8 @@ int runRender(const RenderOptions& options, const GlobalOptions& global) {
     const bool sequence = !options.frames.empty();
     if (sequence) {
         if (options.time) {
-            return reportError(makeError(ErrorCode::InvalidArgument,
-                                         "--time and --frames cannot be combined."));
+            return reportError(
+                makeError(ErrorCode::InvalidArgument, "--time and --frames cannot be combined."));
         }
         auto parsed = parseFrames(options.frames);
         if (!parsed) {
@@ -275,8 +278,7 @@ void addRenderCommand(CLI::App& app, const GlobalOptions& global, int& exitCode)
     auto* command = app.add_subcommand(
         "render", "Render a glTF 2.0 model (.gltf or .glb) headless into a PNG image.");
     command->add_option("model", options->model, "The .gltf or .glb file")->required();
-    command->add_option("-o,--output", options->output, "The PNG to write")
-        ->capture_default_str();
+    command->add_option("-o,--output", options->output, "The PNG to write")->capture_default_str();
     command->add_option("-s,--strategy", options->strategy, "Rendering strategy")
         ->capture_default_str();
     command->add_flag("--bundle", options->bundle,
@@ -293,9 +295,10 @@ void addRenderCommand(CLI::App& app, const GlobalOptions& global, int& exitCode)
         ->check(CLI::IsMember({1, 4}));
     command->add_option("--yaw", options->yawDegrees,
                         "Turn the framing viewpoint around the model (degrees)");
-    command->add_option("--views", options->views,
-                        "Render N views side by side from one recording (2: stereo; bundle "
-                        "strategies replay the same bundle per view)")
+    command
+        ->add_option("--views", options->views,
+                     "Render N views side by side from one recording (2: stereo; bundle "
+                     "strategies replay the same bundle per view)")
         ->capture_default_str()
         ->check(CLI::Range(1, 8));
     command->add_flag("--strict", options->strict,

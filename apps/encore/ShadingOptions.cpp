@@ -41,12 +41,11 @@ std::string names(const auto& table) {
     return list;
 }
 
-
 Result<glm::vec3> parseHexColor(const std::string& text) {
     const auto invalid = [&] {
-        return makeError(ErrorCode::InvalidArgument,
-                         "The background '" + text +
-                             "' is not env, transparent or a colour written #rrggbb.");
+        return makeError(
+            ErrorCode::InvalidArgument,
+            "The background '" + text + "' is not env, transparent or a colour written #rrggbb.");
     };
     if (text.size() != 7 || text[0] != '#') {
         return invalid();
@@ -68,17 +67,20 @@ void addShadingOptions(CLI::App& command, ShadingOptions& options) {
     command.add_option("--environment", options.environment,
                        "Equirectangular Radiance .hdr for image-based lighting (default: a "
                        "built-in neutral studio)");
-    command.add_option("--environment-intensity", options.environmentIntensity,
-                       "Multiplies the environment's radiance")
+    command
+        .add_option("--environment-intensity", options.environmentIntensity,
+                    "Multiplies the environment's radiance")
         ->check(CLI::NonNegativeNumber);
     command.add_option("--environment-rotation", options.environmentRotationDegrees,
                        "Turns the environment about the vertical axis (degrees)");
-    command.add_option("--tonemap", options.toneMapping, "Tone mapping: neutral (Khronos PBR "
-                                                         "Neutral), aces (Hill) or none")
+    command
+        .add_option("--tonemap", options.toneMapping,
+                    "Tone mapping: neutral (Khronos PBR "
+                    "Neutral), aces (Hill) or none")
         ->capture_default_str()
         ->check(CLI::IsMember({"neutral", "aces", "none"}));
-    command.add_option("--exposure", options.exposure,
-                       "Multiplies linear colour before tone mapping")
+    command
+        .add_option("--exposure", options.exposure, "Multiplies linear colour before tone mapping")
         ->capture_default_str()
         ->check(CLI::NonNegativeNumber);
     command.add_option("--background", options.background,
@@ -88,14 +90,14 @@ void addShadingOptions(CLI::App& command, ShadingOptions& options) {
                      "Light with the file's punctual lights only");
     command.add_flag("--no-lights", options.noPunctualLights,
                      "Ignore the file's KHR_lights_punctual lights");
-    command.add_option("--debug-channel", options.debugChannel,
-                       "Output one shading input instead of the shaded colour: " +
-                           names(debugChannels()))
+    command
+        .add_option(
+            "--debug-channel", options.debugChannel,
+            "Output one shading input instead of the shaded colour: " + names(debugChannels()))
         ->capture_default_str();
 }
 
-Result<void> applyShadingOptions(const ShadingOptions& options,
-                                 render::RendererOptions& renderer) {
+Result<void> applyShadingOptions(const ShadingOptions& options, render::RendererOptions& renderer) {
     renderer.toneMapping.toneMapping = toneMappings().at(options.toneMapping);
     renderer.toneMapping.exposure = options.exposure;
     if (options.background == "env") {
@@ -110,8 +112,8 @@ Result<void> applyShadingOptions(const ShadingOptions& options,
     const auto channel = debugChannels().find(options.debugChannel);
     if (channel == debugChannels().end()) {
         return makeError(ErrorCode::InvalidArgument,
-                         "Unknown debug channel '" + options.debugChannel + "' (known: " +
-                             names(debugChannels()) + ").");
+                         "Unknown debug channel '" + options.debugChannel +
+                             "' (known: " + names(debugChannels()) + ").");
     }
     renderer.lighting.debugChannel = channel->second;
     renderer.lighting.environmentIntensity = options.environmentIntensity;

@@ -28,7 +28,6 @@ void addShadingOptions(CLI::App& command, ShadingOptions& options);
 
 // Fills the lighting, tone mapping and environment of `renderer` options; loads the
 // environment file (errors name it).
-Result<void> applyShadingOptions(const ShadingOptions& options,
-                                 render::RendererOptions& renderer);
+Result<void> applyShadingOptions(const ShadingOptions& options, render::RendererOptions& renderer);
 
 }  // namespace encore::app

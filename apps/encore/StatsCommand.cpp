@@ -25,7 +25,7 @@ struct StatsOptions {
     bool json = false;
     std::uint32_t width = 640;
     std::uint32_t height = 480;
-    std::optional<double> time;  // Animate: the frame from time - 1/60 to time.
+    std::optional<double> time;   // Animate: the frame from time - 1/60 to time.
     std::string animate = "cpu";  // --animate cpu|gpu.
 };
 
@@ -64,18 +64,19 @@ nlohmann::json toJson(const render::AnimationFrameStats& a) {
 
 nlohmann::json toJson(const StrategyStats& stats) {
     nlohmann::json json = {{"strategy", stats.name},
-            {"pipelinesCreated", stats.pipelinesCreated},
-            {"frame", bench::toJson(stats.counters)},
-            {"bundleContents", bench::toJson(stats.bundleContents)},
-            {"bundlesRecorded", stats.bundlesRecorded},
-            {"encodeMilliseconds", stats.encodeMilliseconds}};
+                           {"pipelinesCreated", stats.pipelinesCreated},
+                           {"frame", bench::toJson(stats.counters)},
+                           {"bundleContents", bench::toJson(stats.bundleContents)},
+                           {"bundlesRecorded", stats.bundlesRecorded},
+                           {"encodeMilliseconds", stats.encodeMilliseconds}};
     if (stats.animation) {
         json["animation"] = toJson(*stats.animation);
     }
     return json;
 }
 
-void printMarkdown(const std::string& model, const std::string& adapter,
+void printMarkdown(const std::string& model,
+                   const std::string& adapter,
                    const std::vector<StrategyStats>& rows) {
     std::printf("Model: %s  \nAdapter: %s\n\n", model.c_str(), adapter.c_str());
     std::printf(
@@ -84,14 +85,15 @@ void printMarkdown(const std::string& model, const std::string& adapter,
         "triangles |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
     auto printRow = [](const std::string& name, std::uint64_t pipelines,
                        const render::DrawCounters& c) {
-        std::printf("| %s | %llu | %llu | %llu | %llu | %llu | %llu | %llu | %llu | %llu | %llu | "
-                    "%llu |\n",
-                    name.c_str(), (unsigned long long)pipelines,
-                    (unsigned long long)c.setPipeline, (unsigned long long)c.setBindGroup,
-                    (unsigned long long)c.setVertexBuffer, (unsigned long long)c.setIndexBuffer,
-                    (unsigned long long)c.draw, (unsigned long long)c.drawIndexed,
-                    (unsigned long long)c.drawIndirect, (unsigned long long)c.executeBundles,
-                    (unsigned long long)c.instances, (unsigned long long)c.triangles);
+        std::printf(
+            "| %s | %llu | %llu | %llu | %llu | %llu | %llu | %llu | %llu | %llu | %llu | "
+            "%llu |\n",
+            name.c_str(), (unsigned long long)pipelines, (unsigned long long)c.setPipeline,
+            (unsigned long long)c.setBindGroup, (unsigned long long)c.setVertexBuffer,
+            (unsigned long long)c.setIndexBuffer, (unsigned long long)c.draw,
+            (unsigned long long)c.drawIndexed, (unsigned long long)c.drawIndirect,
+            (unsigned long long)c.executeBundles, (unsigned long long)c.instances,
+            (unsigned long long)c.triangles);
     };
     for (const auto& row : rows) {
         printRow(row.name, row.pipelinesCreated, row.counters);
@@ -99,8 +101,9 @@ void printMarkdown(const std::string& model, const std::string& adapter,
             printRow(row.name + ": inside its bundles", 0, row.bundleContents);
         }
     }
-    std::printf("\nPer frame; \"inside its bundles\" rows count the commands recorded once into "
-                "the render bundles that the frame replays.\n");
+    std::printf(
+        "\nPer frame; \"inside its bundles\" rows count the commands recorded once into "
+        "the render bundles that the frame replays.\n");
     if (!rows.empty() && rows.front().animation &&
         rows.front().animation->evaluation == render::AnimationEvaluation::Gpu) {
         const render::AnimationFrameStats& a = *rows.front().animation;
@@ -112,12 +115,12 @@ void printMarkdown(const std::string& model, const std::string& adapter,
             a.gpu.joints, a.gpu.copies, (unsigned long long)a.bytesWritten);
     } else if (!rows.empty() && rows.front().animation) {
         const render::AnimationFrameStats& a = *rows.front().animation;
-        std::printf("\nAnimation, the frame from --time - 1/60 s to --time: %u channels "
-                    "evaluated, %u nodes changed, %u joint matrices and %u morph weights "
-                    "written, %u instance transforms written, %llu bytes written.\n",
-                    a.player.channelsEvaluated, a.player.nodesChanged, a.upload.jointsWritten,
-                    a.upload.weightsWritten, a.instancesWritten,
-                    (unsigned long long)a.bytesWritten);
+        std::printf(
+            "\nAnimation, the frame from --time - 1/60 s to --time: %u channels "
+            "evaluated, %u nodes changed, %u joint matrices and %u morph weights "
+            "written, %u instance transforms written, %llu bytes written.\n",
+            a.player.channelsEvaluated, a.player.nodesChanged, a.upload.jointsWritten,
+            a.upload.weightsWritten, a.instancesWritten, (unsigned long long)a.bytesWritten);
     }
 }
 

@@ -24,7 +24,8 @@ Result<render::StrategyChoice> parseStrategyChoice(const std::string& name, bool
 }
 
 Result<std::vector<render::StrategyChoice>> parseStrategySelection(
-    const std::vector<std::string>& names, bool alsoBundled) {
+    const std::vector<std::string>& names,
+    bool alsoBundled) {
     std::vector<render::StrategyChoice> choices;
     if (names.empty()) {
         for (auto kind : render::allStrategies()) {

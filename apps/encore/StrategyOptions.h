@@ -16,6 +16,7 @@ Result<render::StrategyChoice> parseStrategyChoice(const std::string& name, bool
 
 // `names` (every strategy when empty), each followed by its bundled form when `alsoBundled`.
 Result<std::vector<render::StrategyChoice>> parseStrategySelection(
-    const std::vector<std::string>& names, bool alsoBundled);
+    const std::vector<std::string>& names,
+    bool alsoBundled);
 
 }  // namespace encore::app

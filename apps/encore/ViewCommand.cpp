@@ -105,9 +105,9 @@ int runView(const ViewOptions& options, const GlobalOptions& global) {
         scene = std::make_unique<scene::SceneData>(std::move(*loaded));
     }
     if (scene && !options.animation.empty() && !scene::findAnimation(*scene, options.animation)) {
-        return reportError(makeError(ErrorCode::InvalidArgument,
-                                     "'" + options.model + "' has no animation '" +
-                                         options.animation + "'."));
+        return reportError(
+            makeError(ErrorCode::InvalidArgument,
+                      "'" + options.model + "' has no animation '" + options.animation + "'."));
     }
 
     // The window first: without a display nothing else is worth starting.
@@ -167,13 +167,15 @@ int runView(const ViewOptions& options, const GlobalOptions& global) {
 void addViewCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) {
     auto options = std::make_shared<ViewOptions>();
     auto* command = app.add_subcommand(
-        "view", "Show a model, a generated scene or the Animometer in a window, live, with any "
-                "strategy (needs a display; `encore render` works without one).");
+        "view",
+        "Show a model, a generated scene or the Animometer in a window, live, with any "
+        "strategy (needs a display; `encore render` works without one).");
     command->add_option("model", options->model, "The .gltf or .glb file");
     command->add_option("--objects", options->objects, "Show a generated scene of N objects")
         ->check(CLI::Range(1, 1000000));
-    command->add_option("--animometer", options->animometer,
-                        "Show the Animometer scene with N triangles")
+    command
+        ->add_option("--animometer", options->animometer,
+                     "Show the Animometer scene with N triangles")
         ->check(CLI::Range(1u, render::kMaxAnimometerTriangles));
     command->add_option("-s,--strategy", options->strategy, "Rendering strategy (keys 1-8)")
         ->capture_default_str();

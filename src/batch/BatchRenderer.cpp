@@ -40,9 +40,9 @@ Result<std::shared_ptr<render::Environment>> BatchRenderer::environmentFor(
     }
     const image::HdrImage panorama =
         options.environmentImage ? *options.environmentImage : image::makeStudioEnvironment();
-    auto created = render::Environment::create(mContext.device(), mContext.queue(),
-                                               *mEnvironmentShaders, panorama,
-                                               options.environmentOptions);
+    auto created =
+        render::Environment::create(mContext.device(), mContext.queue(), *mEnvironmentShaders,
+                                    panorama, options.environmentOptions);
     if (!created) {
         return created.error().withContext("Creating the environment");
     }
@@ -54,7 +54,8 @@ Result<std::shared_ptr<render::Environment>> BatchRenderer::environmentFor(
 }
 
 Result<void> BatchRenderer::acquire(const render::RendererOptions& options,
-                                    std::size_t readbackSlots, std::size_t rendererCount) {
+                                    std::size_t readbackSlots,
+                                    std::size_t rendererCount) {
     if (mDevice.Get() != mContext.device().Get()) {
         discard();  // A new device (after a loss): nothing built on the old one is of use.
         mDevice = mContext.device();

@@ -413,8 +413,7 @@ void BatchRun::renderModel(LoadedModel& loaded) {
     RendererSlot& slot = mRenderers[slotIndex];
     render::Renderer& renderer = *slot.renderer;
     const scene::SceneData& scene = *loaded.scene;
-    auto prepared =
-        renderer.prepare(scene, mStrategy.kind, mStrategy.bundle, staged.get());
+    auto prepared = renderer.prepare(scene, mStrategy.kind, mStrategy.bundle, staged.get());
     releasePrepared(slot);
     slot.prepared = std::move(loaded);
     if (prepared) {

@@ -91,8 +91,8 @@ render::Camera renderCamera(const glm::mat4& cameraToWorld,
     const float nearPlane = std::max(distance * kNearFraction, 1e-4f) / scale;
 
     // zfar 0: the infinite far plane.
-    return render::Camera::perspective(modelCameraToWorld, verticalFov(horizontalFovRadians, aspect),
-                                       aspect, nearPlane, 0.0f);
+    return render::Camera::perspective(
+        modelCameraToWorld, verticalFov(horizontalFovRadians, aspect), aspect, nearPlane, 0.0f);
 }
 
 }  // namespace encore::batch

@@ -131,21 +131,20 @@ Result<void> Context::acquireDevice() {
     adapterOptions.powerPreference = wgpu::PowerPreference::HighPerformance;
     std::string adapterMessage;
     mInstance.WaitAny(
-        mInstance.RequestAdapter(
-            &adapterOptions, wgpu::CallbackMode::WaitAnyOnly,
-            [&](wgpu::RequestAdapterStatus status, wgpu::Adapter adapter,
-                wgpu::StringView message) {
-                if (status == wgpu::RequestAdapterStatus::Success) {
-                    mAdapter = std::move(adapter);
-                } else {
-                    adapterMessage = toString(message);
-                }
-            }),
+        mInstance.RequestAdapter(&adapterOptions, wgpu::CallbackMode::WaitAnyOnly,
+                                 [&](wgpu::RequestAdapterStatus status, wgpu::Adapter adapter,
+                                     wgpu::StringView message) {
+                                     if (status == wgpu::RequestAdapterStatus::Success) {
+                                         mAdapter = std::move(adapter);
+                                     } else {
+                                         adapterMessage = toString(message);
+                                     }
+                                 }),
         UINT64_MAX);
     if (!mAdapter) {
-        return makeError(ErrorCode::NoAdapter,
-                         "no Vulkan adapter found (Dawn found no adapter at all: " +
-                             adapterMessage + ").");
+        return makeError(
+            ErrorCode::NoAdapter,
+            "no Vulkan adapter found (Dawn found no adapter at all: " + adapterMessage + ").");
     }
 
     wgpu::AdapterInfo info;
@@ -216,17 +215,16 @@ Result<void> Context::acquireDevice() {
         errorLog);
 
     std::string deviceMessage;
-    mInstance.WaitAny(
-        mAdapter.RequestDevice(
-            &deviceDescriptor, wgpu::CallbackMode::WaitAnyOnly,
-            [&](wgpu::RequestDeviceStatus status, wgpu::Device device, wgpu::StringView message) {
-                if (status == wgpu::RequestDeviceStatus::Success) {
-                    mDevice = std::move(device);
-                } else {
-                    deviceMessage = toString(message);
-                }
-            }),
-        UINT64_MAX);
+    mInstance.WaitAny(mAdapter.RequestDevice(&deviceDescriptor, wgpu::CallbackMode::WaitAnyOnly,
+                                             [&](wgpu::RequestDeviceStatus status,
+                                                 wgpu::Device device, wgpu::StringView message) {
+                                                 if (status == wgpu::RequestDeviceStatus::Success) {
+                                                     mDevice = std::move(device);
+                                                 } else {
+                                                     deviceMessage = toString(message);
+                                                 }
+                                             }),
+                      UINT64_MAX);
     if (!mDevice) {
         return makeError(ErrorCode::DeviceError, "Creating a WebGPU device on '" +
                                                      description.name + "' failed (" +

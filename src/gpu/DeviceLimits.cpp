@@ -7,15 +7,18 @@ namespace encore::gpu {
 
 namespace {
 
-Result<void> checkLimit(std::uint64_t limit, const char* limitName, const char* needed,
-                        std::uint64_t bytes, std::string_view what) {
+Result<void> checkLimit(std::uint64_t limit,
+                        const char* limitName,
+                        const char* needed,
+                        std::uint64_t bytes,
+                        std::string_view what) {
     if (bytes <= limit) {
         return {};
     }
-    return makeError(ErrorCode::LimitExceeded,
-                     std::string(what) + ": " + needed + " of " + std::to_string(bytes) +
-                         " bytes, larger than the device's " + limitName + " (" +
-                         std::to_string(limit) + " bytes).");
+    return makeError(ErrorCode::LimitExceeded, std::string(what) + ": " + needed + " of " +
+                                                   std::to_string(bytes) +
+                                                   " bytes, larger than the device's " + limitName +
+                                                   " (" + std::to_string(limit) + " bytes).");
 }
 
 }  // namespace
@@ -60,12 +63,14 @@ wgpu::Limits requiredLimits(const LimitOverrides& overrides) {
     return limits;
 }
 
-Result<void> checkBufferSize(const DeviceLimits& limits, std::uint64_t bytes,
+Result<void> checkBufferSize(const DeviceLimits& limits,
+                             std::uint64_t bytes,
                              std::string_view what) {
     return checkLimit(limits.maxBufferSize, "maxBufferSize", "a buffer", bytes, what);
 }
 
-Result<void> checkStorageBinding(const DeviceLimits& limits, std::uint64_t bytes,
+Result<void> checkStorageBinding(const DeviceLimits& limits,
+                                 std::uint64_t bytes,
                                  std::string_view what) {
     ENCORE_TRY(checkBufferSize(limits, bytes, what));
     return checkLimit(limits.maxStorageBufferBindingSize, "maxStorageBufferBindingSize",

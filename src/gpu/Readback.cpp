@@ -19,7 +19,8 @@ bool isReadableColor(wgpu::TextureFormat format) {
 }
 
 // Maps a MapRead buffer and copies its contents out.
-Result<std::vector<std::uint8_t>> mapAndCopy(Context& context, const wgpu::Buffer& staging,
+Result<std::vector<std::uint8_t>> mapAndCopy(Context& context,
+                                             const wgpu::Buffer& staging,
                                              std::uint64_t size) {
     bool mapped = false;
     std::string mapMessage;
@@ -40,8 +41,10 @@ Result<std::vector<std::uint8_t>> mapAndCopy(Context& context, const wgpu::Buffe
 
 // Copies one level and layer of a texture into a staging buffer and returns its rows tightly
 // packed (buffer copies need rows aligned to 256 bytes).
-Result<std::vector<std::uint8_t>> readTexelRows(Context& context, const wgpu::Texture& texture,
-                                                std::uint32_t level, std::uint32_t layer,
+Result<std::vector<std::uint8_t>> readTexelRows(Context& context,
+                                                const wgpu::Texture& texture,
+                                                std::uint32_t level,
+                                                std::uint32_t layer,
                                                 std::uint32_t bytesPerTexel) {
     const std::uint32_t width = std::max(texture.GetWidth() >> level, 1u);
     const std::uint32_t height = std::max(texture.GetHeight() >> level, 1u);
@@ -56,8 +59,8 @@ Result<std::vector<std::uint8_t>> readTexelRows(Context& context, const wgpu::Te
                              " bytes needs a buffer larger than the device's maxBufferSize (" +
                              std::to_string(maxBufferSize) + " bytes).");
     }
-    const auto bandRows = static_cast<std::uint32_t>(
-        std::min<std::uint64_t>(height, maxBufferSize / paddedRowBytes));
+    const auto bandRows =
+        static_cast<std::uint32_t>(std::min<std::uint64_t>(height, maxBufferSize / paddedRowBytes));
     std::vector<std::uint8_t> rows(std::size_t(rowBytes) * height);
     for (std::uint32_t firstRow = 0; firstRow < height; firstRow += bandRows) {
         const std::uint32_t bandHeight = std::min(bandRows, height - firstRow);
@@ -119,7 +122,8 @@ Result<image::ImageRgba8> readTexture(Context& context, const wgpu::Texture& tex
     return readTextureLevel(context, texture, 0);
 }
 
-Result<image::ImageRgba8> readTextureLevel(Context& context, const wgpu::Texture& texture,
+Result<image::ImageRgba8> readTextureLevel(Context& context,
+                                           const wgpu::Texture& texture,
                                            std::uint32_t level) {
     const auto format = texture.GetFormat();
     if (!isReadableColor(format)) {
@@ -145,16 +149,18 @@ Result<image::ImageRgba8> readTextureLevel(Context& context, const wgpu::Texture
     return image;
 }
 
-Result<std::vector<float>> readTextureRgba16Float(Context& context, const wgpu::Texture& texture,
-                                                  std::uint32_t level, std::uint32_t layer) {
+Result<std::vector<float>> readTextureRgba16Float(Context& context,
+                                                  const wgpu::Texture& texture,
+                                                  std::uint32_t level,
+                                                  std::uint32_t layer) {
     if (texture.GetFormat() != wgpu::TextureFormat::RGBA16Float) {
         return makeError(ErrorCode::InvalidArgument,
                          "readTextureRgba16Float needs an RGBA16Float texture.");
     }
     if (level >= texture.GetMipLevelCount() || layer >= texture.GetDepthOrArrayLayers()) {
-        return makeError(ErrorCode::InvalidArgument,
-                         "Mip level " + std::to_string(level) + " or layer " +
-                             std::to_string(layer) + " does not exist.");
+        return makeError(ErrorCode::InvalidArgument, "Mip level " + std::to_string(level) +
+                                                         " or layer " + std::to_string(layer) +
+                                                         " does not exist.");
     }
     ENCORE_TRY_ASSIGN(auto rows, readTexelRows(context, texture, level, layer, 8));
     std::vector<float> values(rows.size() / 2);
@@ -166,7 +172,8 @@ Result<std::vector<float>> readTextureRgba16Float(Context& context, const wgpu::
     return values;
 }
 
-Result<std::vector<float>> readTextureR32Float(Context& context, const wgpu::Texture& texture,
+Result<std::vector<float>> readTextureR32Float(Context& context,
+                                               const wgpu::Texture& texture,
                                                std::uint32_t level) {
     if (texture.GetFormat() != wgpu::TextureFormat::R32Float) {
         return makeError(ErrorCode::InvalidArgument,
@@ -182,8 +189,10 @@ Result<std::vector<float>> readTextureR32Float(Context& context, const wgpu::Tex
     return values;
 }
 
-Result<std::vector<std::uint8_t>> readBuffer(Context& context, const wgpu::Buffer& buffer,
-                                             std::uint64_t offset, std::uint64_t size) {
+Result<std::vector<std::uint8_t>> readBuffer(Context& context,
+                                             const wgpu::Buffer& buffer,
+                                             std::uint64_t offset,
+                                             std::uint64_t size) {
     if (size == 0 || size % 4 != 0 || offset % 4 != 0 || offset + size > buffer.GetSize()) {
         return makeError(ErrorCode::InvalidArgument,
                          "readBuffer range is empty, unaligned or out of bounds (offset " +

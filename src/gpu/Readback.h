@@ -32,21 +32,26 @@ void unpadRows(const std::uint8_t* padded,
 Result<image::ImageRgba8> readTexture(Context& context, const wgpu::Texture& texture);
 
 // Same for one mip level (its size is the level-0 size halved `level` times, at least 1).
-Result<image::ImageRgba8> readTextureLevel(Context& context, const wgpu::Texture& texture,
+Result<image::ImageRgba8> readTextureLevel(Context& context,
+                                           const wgpu::Texture& texture,
                                            std::uint32_t level);
 
 // Reads one mip level and array layer of an RGBA16Float texture (CopySrc) as RGBA floats, rows
 // top to bottom: HDR render targets and environment maps, for tests and tools.
-Result<std::vector<float>> readTextureRgba16Float(Context& context, const wgpu::Texture& texture,
+Result<std::vector<float>> readTextureRgba16Float(Context& context,
+                                                  const wgpu::Texture& texture,
                                                   std::uint32_t level = 0,
                                                   std::uint32_t layer = 0);
 
 // Reads one mip level of an R32Float texture (CopySrc), rows top to bottom: depth pyramids.
-Result<std::vector<float>> readTextureR32Float(Context& context, const wgpu::Texture& texture,
+Result<std::vector<float>> readTextureR32Float(Context& context,
+                                               const wgpu::Texture& texture,
                                                std::uint32_t level);
 
 // Reads `size` bytes at `offset` of a buffer with CopySrc usage (offset and size multiples of 4).
-Result<std::vector<std::uint8_t>> readBuffer(Context& context, const wgpu::Buffer& buffer,
-                                             std::uint64_t offset, std::uint64_t size);
+Result<std::vector<std::uint8_t>> readBuffer(Context& context,
+                                             const wgpu::Buffer& buffer,
+                                             std::uint64_t offset,
+                                             std::uint64_t size);
 
 }  // namespace encore::gpu

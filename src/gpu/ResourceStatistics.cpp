@@ -16,15 +16,15 @@ class CountingDump : public dawn::native::MemoryDump {
   public:
     explicit CountingDump(ResourceStatistics& statistics) : mStatistics(statistics) {}
 
-    void AddScalar(const char* name, const char* key, const char* units,
-                   uint64_t value) override {
+    void AddScalar(const char* name, const char* key, const char* units, uint64_t value) override {
         (void)units;
         if (std::strcmp(key, kNameSize) != 0) {
             return;
         }
         const std::string_view object(name);
         const auto slash = object.rfind('/');
-        const std::string_view leaf = slash == std::string_view::npos ? object : object.substr(slash + 1);
+        const std::string_view leaf =
+            slash == std::string_view::npos ? object : object.substr(slash + 1);
         if (leaf.starts_with("buffer_")) {
             ++mStatistics.buffers;
             mStatistics.bufferBytes += value;

@@ -5,8 +5,10 @@
 
 namespace encore::gpu {
 
-wgpu::Buffer createBufferWithData(const wgpu::Device& device, wgpu::BufferUsage usage,
-                                  std::span<const std::uint8_t> bytes, const std::string& label) {
+wgpu::Buffer createBufferWithData(const wgpu::Device& device,
+                                  wgpu::BufferUsage usage,
+                                  std::span<const std::uint8_t> bytes,
+                                  const std::string& label) {
     return createBufferFilledBy(device, usage, bytes.size(), label, [&](std::uint8_t* mapped) {
         if (!bytes.empty()) {
             std::memcpy(mapped, bytes.data(), bytes.size());
@@ -15,7 +17,9 @@ wgpu::Buffer createBufferWithData(const wgpu::Device& device, wgpu::BufferUsage 
     });
 }
 
-wgpu::Buffer createBuffer(const wgpu::Device& device, wgpu::BufferUsage usage, std::uint64_t size,
+wgpu::Buffer createBuffer(const wgpu::Device& device,
+                          wgpu::BufferUsage usage,
+                          std::uint64_t size,
                           const std::string& label) {
     wgpu::BufferDescriptor descriptor{};
     descriptor.label = label.c_str();

@@ -21,8 +21,11 @@ inline std::uint64_t bufferSizeFor(std::uint64_t size) {
 // copy gathered first. `fill` is not called when the buffer could not be created (out of memory,
 // which the device reports).
 template <typename Fill>
-wgpu::Buffer createBufferFilledBy(const wgpu::Device& device, wgpu::BufferUsage usage,
-                                  std::uint64_t size, const std::string& label, Fill&& fill) {
+wgpu::Buffer createBufferFilledBy(const wgpu::Device& device,
+                                  wgpu::BufferUsage usage,
+                                  std::uint64_t size,
+                                  const std::string& label,
+                                  Fill&& fill) {
     wgpu::BufferDescriptor descriptor{};
     descriptor.label = label.c_str();
     descriptor.size = bufferSizeFor(size);
@@ -38,12 +41,16 @@ wgpu::Buffer createBufferFilledBy(const wgpu::Device& device, wgpu::BufferUsage 
 
 // Creates a buffer holding `bytes`, its size rounded up to a multiple of 4 (WebGPU requires it
 // for mapped creation and for vertex/index data) and zero-padded.
-wgpu::Buffer createBufferWithData(const wgpu::Device& device, wgpu::BufferUsage usage,
-                                  std::span<const std::uint8_t> bytes, const std::string& label);
+wgpu::Buffer createBufferWithData(const wgpu::Device& device,
+                                  wgpu::BufferUsage usage,
+                                  std::span<const std::uint8_t> bytes,
+                                  const std::string& label);
 
 template <typename T>
-wgpu::Buffer createBufferFrom(const wgpu::Device& device, wgpu::BufferUsage usage,
-                              std::span<const T> values, const std::string& label) {
+wgpu::Buffer createBufferFrom(const wgpu::Device& device,
+                              wgpu::BufferUsage usage,
+                              std::span<const T> values,
+                              const std::string& label) {
     return createBufferWithData(
         device, usage,
         std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(values.data()),
@@ -54,7 +61,8 @@ wgpu::Buffer createBufferFrom(const wgpu::Device& device, wgpu::BufferUsage usag
 // A storage buffer (and `extra` usages) holding `values`; one zeroed element when there are
 // none, as WebGPU binds no empty buffer.
 template <typename T>
-wgpu::Buffer createStorageBuffer(const wgpu::Device& device, std::span<const T> values,
+wgpu::Buffer createStorageBuffer(const wgpu::Device& device,
+                                 std::span<const T> values,
                                  const std::string& label,
                                  wgpu::BufferUsage extra = wgpu::BufferUsage::None) {
     const T zero{};
@@ -63,14 +71,17 @@ wgpu::Buffer createStorageBuffer(const wgpu::Device& device, std::span<const T> 
 }
 
 template <typename T>
-wgpu::Buffer createStorageBuffer(const wgpu::Device& device, const std::vector<T>& values,
+wgpu::Buffer createStorageBuffer(const wgpu::Device& device,
+                                 const std::vector<T>& values,
                                  const std::string& label,
                                  wgpu::BufferUsage extra = wgpu::BufferUsage::None) {
     return createStorageBuffer(device, std::span<const T>(values), label, extra);
 }
 
 // An uninitialised (zeroed by WebGPU) buffer of at least `size` bytes, rounded up to 4.
-wgpu::Buffer createBuffer(const wgpu::Device& device, wgpu::BufferUsage usage, std::uint64_t size,
+wgpu::Buffer createBuffer(const wgpu::Device& device,
+                          wgpu::BufferUsage usage,
+                          std::uint64_t size,
                           const std::string& label);
 
 }  // namespace encore::gpu

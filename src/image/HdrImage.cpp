@@ -25,7 +25,8 @@ std::string sizeText(long long width, long long height) {
 // stb's RLE reader loops forever on a dump of length 0, which is also what it reads past the
 // end of truncated data (stbi__get8 returns 0 there), so the scanline structure is walked here
 // first. Only what would hang stb is refused; other corruption is left to stb's own errors.
-Result<void> checkRunLengthScanlines(std::span<const std::uint8_t> data, std::uint32_t width,
+Result<void> checkRunLengthScanlines(std::span<const std::uint8_t> data,
+                                     std::uint32_t width,
                                      std::uint32_t height) {
     std::size_t position = 0;
     auto nextLine = [&] {
@@ -68,9 +69,9 @@ Result<void> checkRunLengthScanlines(std::span<const std::uint8_t> data, std::ui
                 }
                 const std::uint32_t count = data[position++];
                 if (count == 0) {
-                    return makeError(ErrorCode::InvalidFormat,
-                                     "The Radiance HDR scanline " + std::to_string(row) +
-                                         " has a run of length 0.");
+                    return makeError(ErrorCode::InvalidFormat, "The Radiance HDR scanline " +
+                                                                   std::to_string(row) +
+                                                                   " has a run of length 0.");
                 }
                 const std::uint32_t length = count > 128 ? count - 128 : count;
                 if (length > width - filled) {
@@ -94,9 +95,8 @@ Result<void> checkRunLengthScanlines(std::span<const std::uint8_t> data, std::ui
 
 Result<HdrImage> decodeHdr(std::span<const std::uint8_t> encoded) {
     if (encoded.empty() || encoded.size() > static_cast<std::size_t>(INT32_MAX)) {
-        return makeError(ErrorCode::InvalidFormat,
-                         "HDR data is empty or too large (" + std::to_string(encoded.size()) +
-                             " bytes).");
+        return makeError(ErrorCode::InvalidFormat, "HDR data is empty or too large (" +
+                                                       std::to_string(encoded.size()) + " bytes).");
     }
     const int length = static_cast<int>(encoded.size());
     // stbi_loadf would also accept a PNG or JPEG and return it linearised; an environment must
@@ -110,9 +110,9 @@ Result<HdrImage> decodeHdr(std::span<const std::uint8_t> encoded) {
     int height = 0;
     int channels = 0;
     if (!stbi_info_from_memory(encoded.data(), length, &width, &height, &channels)) {
-        return makeError(ErrorCode::InvalidFormat,
-                         std::string("The Radiance HDR header is malformed (") +
-                             stbi_failure_reason() + ").");
+        return makeError(
+            ErrorCode::InvalidFormat,
+            std::string("The Radiance HDR header is malformed (") + stbi_failure_reason() + ").");
     }
     // Checked before decoding: a hostile header must not make stb allocate gigabytes.
     if (width <= 0 || height <= 0 || static_cast<std::uint32_t>(width) > kMaxImageDimension ||

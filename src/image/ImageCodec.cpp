@@ -30,9 +30,9 @@ Result<void> checkDecodable(const ImageHeader& header) {
                                                        std::to_string(kMaxImageDimension) + ".");
     }
     if (std::uint64_t(header.width) * header.height > kMaxImagePixels) {
-        return makeError(ErrorCode::LimitExceeded,
-                         "Image size " + size + " has more than the " +
-                             std::to_string(kMaxImagePixels) + " pixels Encore decodes.");
+        return makeError(ErrorCode::LimitExceeded, "Image size " + size + " has more than the " +
+                                                       std::to_string(kMaxImagePixels) +
+                                                       " pixels Encore decodes.");
     }
     // Four channels: grey, grey-alpha and RGB become RGBA.
     const std::uint64_t decodedBytes =
@@ -58,9 +58,9 @@ Result<ImageRgba8> decodeWithStb(std::span<const std::uint8_t> encoded) {
                              stbi_failure_reason() + ").");
     }
     const bool sixteenBit = stbi_is_16_bit_from_memory(encoded.data(), length);
-    ENCORE_TRY(checkDecodable({static_cast<std::uint32_t>(std::max(width, 0)),
-                               static_cast<std::uint32_t>(std::max(height, 0)),
-                               sixteenBit ? 16u : 8u}));
+    ENCORE_TRY(
+        checkDecodable({static_cast<std::uint32_t>(std::max(width, 0)),
+                        static_cast<std::uint32_t>(std::max(height, 0)), sixteenBit ? 16u : 8u}));
     std::unique_ptr<stbi_uc, StbiFree> pixels(
         stbi_load_from_memory(encoded.data(), length, &width, &height, &channels, 4));
     if (!pixels) {
@@ -76,9 +76,8 @@ Result<ImageRgba8> decodeWithStb(std::span<const std::uint8_t> encoded) {
 
 Result<ImageRgba8> decodeImage(std::span<const std::uint8_t> encoded) {
     if (encoded.empty() || encoded.size() > static_cast<std::size_t>(INT32_MAX)) {
-        return makeError(ErrorCode::InvalidFormat,
-                         "Image data is empty or too large (" + std::to_string(encoded.size()) +
-                             " bytes).");
+        return makeError(ErrorCode::InvalidFormat, "Image data is empty or too large (" +
+                                                       std::to_string(encoded.size()) + " bytes).");
     }
     if (isPng(encoded)) {
         return decodePng(encoded);
@@ -92,7 +91,9 @@ Result<ImageRgba8> decodeImage(std::span<const std::uint8_t> encoded) {
 namespace {
 
 // An image to encode has pixels, and as many samples as its size says.
-Result<void> checkEncodable(std::uint32_t width, std::uint32_t height, std::size_t samples,
+Result<void> checkEncodable(std::uint32_t width,
+                            std::uint32_t height,
+                            std::size_t samples,
                             std::size_t samplesPerPixel) {
     if (width == 0 || height == 0 || samples != std::size_t(width) * height * samplesPerPixel) {
         return makeError(ErrorCode::InvalidArgument,
@@ -109,7 +110,8 @@ void appendBigEndian(std::vector<std::uint8_t>& out, std::uint32_t value) {
 }
 
 // One PNG chunk: length, type, data, CRC of type and data.
-void appendChunk(std::vector<std::uint8_t>& out, const char* type,
+void appendChunk(std::vector<std::uint8_t>& out,
+                 const char* type,
                  std::span<const std::uint8_t> data) {
     appendBigEndian(out, std::uint32_t(data.size()));
     const std::size_t typeStart = out.size();
@@ -139,7 +141,9 @@ struct PngScratch {
 };
 
 // Rows with the Up filter (None for the first), each after its filter-type byte.
-void filterUp(const std::uint8_t* samples, std::size_t rowBytes, std::uint32_t height,
+void filterUp(const std::uint8_t* samples,
+              std::size_t rowBytes,
+              std::uint32_t height,
               std::uint8_t* __restrict filtered) {
     for (std::uint32_t y = 0; y < height; ++y) {
         std::uint8_t* __restrict out = filtered + std::size_t(y) * (rowBytes + 1);
@@ -175,8 +179,10 @@ void filterUp(const std::uint8_t* samples, std::size_t rowBytes, std::uint32_t h
 // took 2.9 ms for 78 KiB (libdeflate's level 1 takes 2.9 ms too: its matcher pays for the long
 // runs of transparent black; docs/benchmarks/2026-11-24-lavapipe-batch-codecs.md).
 // PngCompression::Fast skips the match search: runLengthZlib.
-Result<std::vector<std::uint8_t>> writePngStream(std::uint32_t width, std::uint32_t height,
-                                                 std::uint8_t bitDepth, PngColor color,
+Result<std::vector<std::uint8_t>> writePngStream(std::uint32_t width,
+                                                 std::uint32_t height,
+                                                 std::uint8_t bitDepth,
+                                                 PngColor color,
                                                  std::span<const std::uint8_t> samples,
                                                  PngCompression compression) {
     thread_local PngScratch scratch;
@@ -240,8 +246,7 @@ std::optional<PngCompression> pngCompressionFromName(std::string_view name) {
 
 Result<std::vector<std::uint8_t>> encodePng(const ImageRgba8& image, PngCompression compression) {
     ENCORE_TRY(checkEncodable(image.width, image.height, image.pixels.size(), 4));
-    return writePngStream(image.width, image.height, 8, PngColor::Rgba, image.pixels,
-                          compression);
+    return writePngStream(image.width, image.height, 8, PngColor::Rgba, image.pixels, compression);
 }
 
 Result<std::vector<std::uint8_t>> encodePng16(const ImageGray16& image,

@@ -66,8 +66,10 @@ ImageSize fitWithin(ImageSize size, std::uint32_t maxDimension) {
     return {side(size.width), side(size.height)};
 }
 
-std::vector<std::uint8_t> downscaleRgba8(std::span<const std::uint8_t> pixels, ImageSize source,
-                                         ImageSize target, PixelEncoding encoding) {
+std::vector<std::uint8_t> downscaleRgba8(std::span<const std::uint8_t> pixels,
+                                         ImageSize source,
+                                         ImageSize target,
+                                         PixelEncoding encoding) {
     assert(pixels.size() == std::size_t(source.width) * source.height * 4);
     assert(target.width >= 1 && target.height >= 1);
     assert(target.width <= source.width && target.height <= source.height);
@@ -91,8 +93,8 @@ std::vector<std::uint8_t> downscaleRgba8(std::span<const std::uint8_t> pixels, I
                     const float weight = row.weights[r] * column.weights[c];
                     const std::uint8_t* texel = sourceRow + std::size_t(column.first + c) * 4;
                     for (int channel = 0; channel < 3; ++channel) {
-                        sum[channel] += weight * (srgb ? toLinear[texel[channel]]
-                                                       : texel[channel] / 255.0f);
+                        sum[channel] +=
+                            weight * (srgb ? toLinear[texel[channel]] : texel[channel] / 255.0f);
                     }
                     sum[3] += weight * (texel[3] / 255.0f);
                 }
@@ -109,7 +111,8 @@ std::vector<std::uint8_t> downscaleRgba8(std::span<const std::uint8_t> pixels, I
     return result;
 }
 
-std::vector<float> downscaleRgbFloat(std::span<const float> pixels, ImageSize source,
+std::vector<float> downscaleRgbFloat(std::span<const float> pixels,
+                                     ImageSize source,
                                      ImageSize target) {
     assert(pixels.size() == std::size_t(source.width) * source.height * 3);
     assert(target.width >= 1 && target.height >= 1);

@@ -45,8 +45,8 @@ void limitScans(j_common_ptr info) {
     auto* decompress = reinterpret_cast<j_decompress_ptr>(info);
     if (decompress->input_scan_number > kMaxJpegScans) {
         auto* errors = reinterpret_cast<JpegErrors*>(info->err);
-        std::snprintf(errors->message, sizeof(errors->message),
-                      "more than %d progressive scans", kMaxJpegScans);
+        std::snprintf(errors->message, sizeof(errors->message), "more than %d progressive scans",
+                      kMaxJpegScans);
         std::longjmp(errors->jump, 1);
     }
 }

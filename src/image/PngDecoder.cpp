@@ -71,8 +71,8 @@ Result<ImageRgba8> decodePng(std::span<const std::uint8_t> encoded) {
     }
     spng_set_crc_action(context.get(), SPNG_CRC_USE, SPNG_CRC_USE);
     // spng_set_png_buffer only reads the buffer; its pointer parameter is not const.
-    if (const int code = spng_set_png_buffer(context.get(), const_cast<std::uint8_t*>(encoded.data()),
-                                             encoded.size())) {
+    if (const int code = spng_set_png_buffer(
+            context.get(), const_cast<std::uint8_t*>(encoded.data()), encoded.size())) {
         return spngError("Image data is not a decodable PNG", code);
     }
     spng_ihdr ihdr{};

@@ -45,8 +45,13 @@ float longitudeDistance(float a, float b) {
 
 // A rectangle in (longitude, elevation) with edges softened over `soft` radians: 1 inside,
 // falling smoothly to 0 outside, so the boxes read as diffusers rather than hard cards.
-float softBox(float phi, float elevation, float centrePhi, float centreElevation,
-              float halfWidth, float halfHeight, float soft) {
+float softBox(float phi,
+              float elevation,
+              float centrePhi,
+              float centreElevation,
+              float halfWidth,
+              float halfHeight,
+              float soft) {
     const float dx = longitudeDistance(phi, centrePhi);
     const float dy = std::fabs(elevation - centreElevation);
     return (1.0f - smoothstep(halfWidth - soft, halfWidth + soft, dx)) *
@@ -97,10 +102,10 @@ HdrImage makeStudioEnvironment(std::uint32_t width) {
             Rgb radiance = mix(ground, sky, smoothstep(-3.0f * kDegree, 3.0f * kDegree, elevation));
 
             // Two soft boxes at horizon height, left (-X) and right (+X) of the viewer.
-            const float box = 6.0f * softBox(phi, elevation, 0.0f, 12.0f * kDegree,
-                                              18.0f * kDegree, 12.0f * kDegree, 4.0f * kDegree) +
-                              4.0f * softBox(phi, elevation, kPi, 12.0f * kDegree,
-                                              18.0f * kDegree, 12.0f * kDegree, 4.0f * kDegree);
+            const float box = 6.0f * softBox(phi, elevation, 0.0f, 12.0f * kDegree, 18.0f * kDegree,
+                                             12.0f * kDegree, 4.0f * kDegree) +
+                              4.0f * softBox(phi, elevation, kPi, 12.0f * kDegree, 18.0f * kDegree,
+                                             12.0f * kDegree, 4.0f * kDegree);
             radiance = radiance + Rgb{1.0f, 1.0f, 1.0f} * box;
 
             const float cosToSun = std::clamp(x * sunX + y * sunY + z * sunZ, -1.0f, 1.0f);

@@ -28,8 +28,11 @@ struct DrawRecord {
     std::uint32_t weightOffset = kNone;
 };
 
-void packJoints(std::span<const glm::mat4> joints, std::span<const glm::mat4> normals,
-                std::size_t first, std::size_t count, std::vector<TransformUniform>& out) {
+void packJoints(std::span<const glm::mat4> joints,
+                std::span<const glm::mat4> normals,
+                std::size_t first,
+                std::size_t count,
+                std::vector<TransformUniform>& out) {
     for (std::size_t j = first; j < first + count; ++j) {
         std::memcpy(out[j].world, &joints[j][0][0], sizeof(out[j].world));
         std::memcpy(out[j].normal, &normals[j][0][0], sizeof(out[j].normal));
@@ -39,7 +42,8 @@ void packJoints(std::span<const glm::mat4> joints, std::span<const glm::mat4> no
 }  // namespace
 
 std::vector<scene::Semantic> unlitPrimitiveSemantics(const AnimationBuffers* animation,
-                                                     scene::MeshId mesh, std::size_t primitive,
+                                                     scene::MeshId mesh,
+                                                     std::size_t primitive,
                                                      shaders::ShaderVariantKey& variant) {
     std::vector<scene::Semantic> semantics(kUnlitTransformSemantics.begin(),
                                            kUnlitTransformSemantics.end());
@@ -158,9 +162,9 @@ std::unique_ptr<AnimationBuffers> AnimationBuffers::create(const wgpu::Device& d
     if (records.empty()) {
         records.resize(kDrawStride, 0);  // No instance draws an animated mesh; bind something.
     }
-    buffers.mDraws = gpu::createBufferWithData(
-        device, wgpu::BufferUsage::Uniform | wgpu::BufferUsage::CopyDst, records,
-        "animation draws");
+    buffers.mDraws =
+        gpu::createBufferWithData(device, wgpu::BufferUsage::Uniform | wgpu::BufferUsage::CopyDst,
+                                  records, "animation draws");
 
     // Per instance slot: joint and weight offsets (kNone where the instance has none).
     const std::vector<std::uint32_t> slots = instanceSlots(scene);
@@ -177,9 +181,8 @@ std::unique_ptr<AnimationBuffers> AnimationBuffers::create(const wgpu::Device& d
     const auto joints = player.jointMatrices();
     buffers.mJointScratch.resize(joints.size());
     packJoints(joints, player.jointNormalMatrices(), 0, joints.size(), buffers.mJointScratch);
-    buffers.mJoints =
-        gpu::createStorageBuffer(device, buffers.mJointScratch, "joint matrices",
-                                 kWritable | wgpu::BufferUsage::CopySrc);
+    buffers.mJoints = gpu::createStorageBuffer(device, buffers.mJointScratch, "joint matrices",
+                                               kWritable | wgpu::BufferUsage::CopySrc);
     const auto weights = player.morphWeights();
     buffers.mWeights = gpu::createStorageBuffer(device, weights, "morph weights",
                                                 kWritable | wgpu::BufferUsage::CopySrc);
@@ -196,7 +199,8 @@ std::unique_ptr<AnimationBuffers> AnimationBuffers::create(const wgpu::Device& d
     return result;
 }
 
-void AnimationBuffers::addVariantFlags(scene::MeshId mesh, std::size_t primitive,
+void AnimationBuffers::addVariantFlags(scene::MeshId mesh,
+                                       std::size_t primitive,
                                        shaders::ShaderVariantKey& key) const {
     const std::uint8_t flags = mPrimitiveFlags[mesh.index()][primitive];
     key.skinned = (flags & kSkinned) != 0;
@@ -213,8 +217,10 @@ bool AnimationBuffers::skinnedPrimitive(scene::MeshId mesh, std::size_t primitiv
     return (mPrimitiveFlags[mesh.index()][primitive] & kSkinned) != 0;
 }
 
-void AnimationBuffers::bind(RenderEncoder& encoder, const shaders::ShaderVariantKey& key,
-                            std::size_t sceneInstance, std::size_t primitive) const {
+void AnimationBuffers::bind(RenderEncoder& encoder,
+                            const shaders::ShaderVariantKey& key,
+                            std::size_t sceneInstance,
+                            std::size_t primitive) const {
     if (!key.animated()) {
         return;
     }

@@ -55,7 +55,8 @@ TriangleParameters randomTriangle(UnitRandom& random) {
     return triangle;
 }
 
-wgpu::RenderPipeline createPipeline(const wgpu::Device& device, const wgpu::ShaderModule& module,
+wgpu::RenderPipeline createPipeline(const wgpu::Device& device,
+                                    const wgpu::ShaderModule& module,
                                     const wgpu::PipelineLayout& layout) {
     wgpu::VertexAttribute corner{};
     corner.format = wgpu::VertexFormat::Float32x2;
@@ -112,7 +113,8 @@ Result<AnimometerScene> AnimometerScene::create(gpu::Context& context,
                          "The animometer's " + std::to_string(options.triangles) +
                              " triangles need as many bind groups (or dynamic-offset binds); this "
                              "driver (lavapipe) maps memory for each and would crash at the "
-                             "kernel's limit (room for " + std::to_string(*budget) +
+                             "kernel's limit (room for " +
+                             std::to_string(*budget) +
                              "; raise it with sysctl -w vm.max_map_count=262144).");
     }
     const wgpu::Device& device = context.device();

@@ -49,7 +49,7 @@ struct AnimometerOptions {
     bool dynamicOffsets = false;
     std::uint32_t width = 512;
     std::uint32_t height = 512;
-    std::uint32_t seed = 1;  // Same seed, same triangles, whatever the mode.
+    std::uint32_t seed = 1;    // Same seed, same triangles, whatever the mode.
     bool presentable = false;  // RenderTargetOptions::presentable (a window shows the target).
 };
 
@@ -64,7 +64,8 @@ class AnimometerScene {
     // kMaxAnimometerTriangles or the size is not a valid target size, with LimitExceeded when
     // the parameter buffer (256 bytes per triangle) exceeds the device's maxBufferSize, and on
     // any WebGPU error raised while creating. The context must outlive the scene.
-    static Result<AnimometerScene> create(gpu::Context& context, shaders::ShaderLibrary& shaders,
+    static Result<AnimometerScene> create(gpu::Context& context,
+                                          shaders::ShaderLibrary& shaders,
                                           const AnimometerOptions& options);
 
     // Writes the time uniform, records the frame's pass (the draws directly, or executeBundles

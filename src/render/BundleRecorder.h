@@ -23,7 +23,8 @@ struct RecordedBundle {
 
 // Calls `record(RenderEncoder&)` on a fresh bundle encoder and finishes the bundle.
 template <typename RecordFunction>
-RecordedBundle recordBundle(const RenderSetup& setup, const std::string& label,
+RecordedBundle recordBundle(const RenderSetup& setup,
+                            const std::string& label,
                             RecordFunction&& record) {
     wgpu::RenderBundleEncoderDescriptor descriptor{};
     descriptor.label = label.c_str();

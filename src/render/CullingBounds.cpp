@@ -31,7 +31,8 @@ struct MeshJointSpheres {
 };
 
 // The spheres around the vertices each joint influences, over the primitives drawn skinned.
-MeshJointSpheres appendJointSpheres(const scene::SceneData& scene, scene::MeshId meshId,
+MeshJointSpheres appendJointSpheres(const scene::SceneData& scene,
+                                    scene::MeshId meshId,
                                     const AnimationBuffers& animation,
                                     std::vector<glm::vec4>& spheres) {
     MeshJointSpheres result;
@@ -82,7 +83,8 @@ MeshJointSpheres appendJointSpheres(const scene::SceneData& scene, scene::MeshId
 
 // Each target's largest position delta over the mesh's primitives; returns the first one's
 // float index.
-std::uint32_t appendMorphExtents(const scene::SceneData& scene, const scene::Mesh& mesh,
+std::uint32_t appendMorphExtents(const scene::SceneData& scene,
+                                 const scene::Mesh& mesh,
                                  std::vector<glm::vec4>& shapes) {
     std::vector<float> extents(mesh.weights.size(), 0.0f);
     for (const scene::Primitive& primitive : mesh.primitives) {
@@ -169,7 +171,8 @@ CullingBounds CullingBounds::build(const scene::SceneData& scene,
     return bounds;
 }
 
-std::vector<Sphere> CullingBounds::worldSpheres(std::uint32_t slot, const glm::mat4& world,
+std::vector<Sphere> CullingBounds::worldSpheres(std::uint32_t slot,
+                                                const glm::mat4& world,
                                                 std::span<const glm::mat4> joints,
                                                 std::span<const float> weights) const {
     const SlotBounds& record = slots[slot];

@@ -31,19 +31,19 @@ class AnimationBuffers;
 struct SlotBounds {
     static constexpr std::uint32_t kNone = 0xFFFFFFFFu;
     glm::vec4 rigidSphere{0.0f, 0.0f, 0.0f, -1.0f};  // Object space; radius < 0: no rigid part.
-    std::uint32_t firstJointSphere = 0;  // Into CullingBounds::shapes.
-    std::uint32_t jointCount = 0;        // 0: not skinned.
-    std::uint32_t jointOffset = kNone;   // The instance's first joint matrix.
-    std::uint32_t firstMorphExtent = 0;  // In floats: component 4i + c is shapes[i][c].
-    std::uint32_t morphCount = 0;        // 0: not morphed.
-    std::uint32_t weightOffset = kNone;  // The instance's first morph weight.
-    std::uint32_t firstDraw = 0;         // Set by GpuCuller: the culled draws of the slot's mesh.
+    std::uint32_t firstJointSphere = 0;              // Into CullingBounds::shapes.
+    std::uint32_t jointCount = 0;                    // 0: not skinned.
+    std::uint32_t jointOffset = kNone;               // The instance's first joint matrix.
+    std::uint32_t firstMorphExtent = 0;              // In floats: component 4i + c is shapes[i][c].
+    std::uint32_t morphCount = 0;                    // 0: not morphed.
+    std::uint32_t weightOffset = kNone;              // The instance's first morph weight.
+    std::uint32_t firstDraw = 0;  // Set by GpuCuller: the culled draws of the slot's mesh.
     std::uint32_t drawCount = 0;
 };
 static_assert(sizeof(SlotBounds) == 48);
 
 struct CullingBounds {
-    std::vector<SlotBounds> slots;        // InstanceBuffer slot order.
+    std::vector<SlotBounds> slots;  // InstanceBuffer slot order.
     // One array, so the culling pass stays within WebGPU's default 8 storage buffers: per
     // skinned mesh its joint spheres (radius < 0: the joint moves no vertex), per morphed mesh
     // its targets' largest deltas, four to a vec4.
@@ -58,7 +58,8 @@ struct CullingBounds {
     // The world-space spheres whose convex hull bounds the slot's geometry, given the slot's
     // world matrix and the current joint matrices and morph weights (as culling.wgsl computes
     // them; for tests and CPU checks).
-    std::vector<Sphere> worldSpheres(std::uint32_t slot, const glm::mat4& world,
+    std::vector<Sphere> worldSpheres(std::uint32_t slot,
+                                     const glm::mat4& world,
                                      std::span<const glm::mat4> joints,
                                      std::span<const float> weights) const;
 };

@@ -75,8 +75,7 @@ std::uint16_t toHalf(float value) {
         mantissa |= 0x800000;
         return static_cast<std::uint16_t>(roundShifted(mantissa, 14 - exponent));
     }
-    return static_cast<std::uint16_t>((std::uint32_t(exponent) << 10) +
-                                      roundShifted(mantissa, 13));
+    return static_cast<std::uint16_t>((std::uint32_t(exponent) << 10) + roundShifted(mantissa, 13));
 }
 
 // Waits for a future. Instances without TimedWaitAny refuse a timeout, so poll them instead.
@@ -94,7 +93,9 @@ bool waitFor(const wgpu::Instance& instance, const wgpu::Future& future) {
     return true;
 }
 
-wgpu::Texture createCube(const wgpu::Device& device, const char* label, std::uint32_t size,
+wgpu::Texture createCube(const wgpu::Device& device,
+                         const char* label,
+                         std::uint32_t size,
                          std::uint32_t levels) {
     wgpu::TextureDescriptor descriptor{};
     descriptor.label = label;
@@ -149,8 +150,8 @@ Result<void> checkOptions(const EnvironmentOptions& options, const wgpu::Limits&
                               std::pair{"irradianceSize", options.irradianceSize},
                               std::pair{"lutSize", options.lutSize}}) {
         if (size == 0 || size > largestCube) {
-            return invalid(std::string(name) + " (" + std::to_string(size) +
-                           ") must be in 1.." + std::to_string(largestCube) + ".");
+            return invalid(std::string(name) + " (" + std::to_string(size) + ") must be in 1.." +
+                           std::to_string(largestCube) + ".");
         }
     }
     const std::uint32_t fullChain = fullMipLevelCount(options.specularSize, options.specularSize);
@@ -167,11 +168,10 @@ Result<void> checkOptions(const EnvironmentOptions& options, const wgpu::Limits&
     const EnvironmentAtlasLayout atlas = layoutEnvironmentAtlas(
         options.specularSize, options.specularLevels, options.irradianceSize, options.lutSize);
     if (atlas.width > limits.maxTextureDimension2D || atlas.height > limits.maxTextureDimension2D) {
-        return invalid("the environment atlas for specularSize " +
-                       std::to_string(options.specularSize) + " would be " +
-                       sizeText(atlas.width, atlas.height) + ", larger than the device's " +
-                       "maxTextureDimension2D (" + std::to_string(limits.maxTextureDimension2D) +
-                       ").");
+        return invalid(
+            "the environment atlas for specularSize " + std::to_string(options.specularSize) +
+            " would be " + sizeText(atlas.width, atlas.height) + ", larger than the device's " +
+            "maxTextureDimension2D (" + std::to_string(limits.maxTextureDimension2D) + ").");
     }
     if (options.specularSamples == 0 || options.irradianceSamples == 0) {
         return invalid("sample counts must be positive (specularSamples " +
@@ -194,7 +194,8 @@ struct Environment::Pipelines {
     wgpu::Sampler panoramaSampler;  // Repeats across the longitude seam.
 };
 
-Result<Environment> Environment::create(const wgpu::Device& device, const wgpu::Queue& queue,
+Result<Environment> Environment::create(const wgpu::Device& device,
+                                        const wgpu::Queue& queue,
                                         shaders::ShaderLibrary& shaders,
                                         const image::HdrImage& panorama,
                                         const EnvironmentOptions& options) {
@@ -252,12 +253,11 @@ Result<Environment> Environment::create(const wgpu::Device& device, const wgpu::
 
     // The source has the specular cube's size so its level 0 is copied, not resampled, into
     // the mirror level.
-    environment.mSource =
-        createCube(device, "environment source", options.specularSize,
-                   fullMipLevelCount(options.specularSize, options.specularSize));
+    environment.mSource = createCube(device, "environment source", options.specularSize,
+                                     fullMipLevelCount(options.specularSize, options.specularSize));
     environment.mSourceView = cubeView(environment.mSource);
-    environment.mSpecular = createCube(device, "environment specular", options.specularSize,
-                                       options.specularLevels);
+    environment.mSpecular =
+        createCube(device, "environment specular", options.specularSize, options.specularLevels);
     environment.mSpecularView = cubeView(environment.mSpecular);
     environment.mIrradiance =
         createCube(device, "environment irradiance", options.irradianceSize, 1);
@@ -312,9 +312,9 @@ Result<void> Environment::build(const image::HdrImage& original, bool withLut) {
     const image::ImageSize fitted =
         image::fitWithin({original.width, original.height}, limits.maxTextureDimension2D);
     if (fitted.width != original.width || fitted.height != original.height) {
-        downscaled = {fitted.width, fitted.height,
-                      image::downscaleRgbFloat(original.rgb, {original.width, original.height},
-                                               fitted)};
+        downscaled = {
+            fitted.width, fitted.height,
+            image::downscaleRgbFloat(original.rgb, {original.width, original.height}, fitted)};
         logWarning("The environment panorama is " + sizeText(original.width, original.height) +
                    ", larger than the device's maxTextureDimension2D (" +
                    std::to_string(limits.maxTextureDimension2D) + "); downscaled to " +
@@ -348,8 +348,8 @@ Result<void> Environment::build(const image::HdrImage& original, bool withLut) {
     layout.bytesPerRow = panorama.width * 8;
     layout.rowsPerImage = panorama.height;
     const wgpu::Extent3D panoramaExtent{panorama.width, panorama.height, 1};
-    mQueue.WriteTexture(&destination, halves.data(), halves.size() * sizeof(std::uint16_t),
-                        &layout, &panoramaExtent);
+    mQueue.WriteTexture(&destination, halves.data(), halves.size() * sizeof(std::uint16_t), &layout,
+                        &panoramaExtent);
 
     // Parameters of every dispatch that takes them, one uniform slot each.
     const std::uint32_t sourceLevels = mSource.GetMipLevelCount();
@@ -378,7 +378,8 @@ Result<void> Environment::build(const image::HdrImage& original, bool withLut) {
         packs.push_back({{region.x, region.y}, region.size, float(level)});
     }
     packs.push_back({{mAtlasLayout.irradiance.x, mAtlasLayout.irradiance.y},
-                     mAtlasLayout.irradiance.size, 0.0f});
+                     mAtlasLayout.irradiance.size,
+                     0.0f});
     packs.push_back({{mAtlasLayout.brdf.x, mAtlasLayout.brdf.y}, mAtlasLayout.brdf.size, 0.0f});
     const auto firstPackSlot = static_cast<std::uint32_t>(slots.size());
     std::vector<std::uint8_t> slotBytes((slots.size() + packs.size()) * kSlotStride);
@@ -507,11 +508,11 @@ Result<void> Environment::build(const image::HdrImage& original, bool withLut) {
     // The build time includes the GPU's work: wait until it has finished.
     bool done = false;
     const bool waited = waitFor(
-        instance, mQueue.OnSubmittedWorkDone(
-                      wgpu::CallbackMode::WaitAnyOnly,
-                      [&done](wgpu::QueueWorkDoneStatus status, wgpu::StringView) {
-                          done = status == wgpu::QueueWorkDoneStatus::Success;
-                      }));
+        instance,
+        mQueue.OnSubmittedWorkDone(wgpu::CallbackMode::WaitAnyOnly,
+                                   [&done](wgpu::QueueWorkDoneStatus status, wgpu::StringView) {
+                                       done = status == wgpu::QueueWorkDoneStatus::Success;
+                                   }));
     if (!errors.empty()) {
         return makeError(outOfMemory ? ErrorCode::OutOfMemory : ErrorCode::ValidationError,
                          "Computing the environment maps failed (" + errors + ").");

@@ -22,9 +22,9 @@ EnvironmentAtlasLayout layoutEnvironmentAtlas(std::uint32_t specularFaceSize,
     regions.push_back(&layout.irradiance);
     regions.push_back(&layout.brdf);
     // Stable, so equal heights keep the order above.
-    std::stable_sort(regions.begin(), regions.end(), [](const AtlasRegion* a, const AtlasRegion* b) {
-        return a->height() > b->height();
-    });
+    std::stable_sort(
+        regions.begin(), regions.end(),
+        [](const AtlasRegion* a, const AtlasRegion* b) { return a->height() > b->height(); });
     std::uint32_t shelfWidth = 0;
     for (const AtlasRegion* region : regions) {
         shelfWidth = std::max(shelfWidth, region->width());
@@ -53,7 +53,7 @@ EnvironmentAtlasUniform makeEnvironmentAtlasUniform(const EnvironmentAtlasLayout
     EnvironmentAtlasUniform uniform{};
     uniform.inverseSize[0] = layout.width ? 1.0f / float(layout.width) : 0.0f;
     uniform.inverseSize[1] = layout.height ? 1.0f / float(layout.height) : 0.0f;
-    auto write = [](const AtlasRegion& region, float (&out)[4]) {
+    auto write = [](const AtlasRegion& region, float(&out)[4]) {
         out[0] = float(region.x);
         out[1] = float(region.y);
         out[2] = float(region.size);

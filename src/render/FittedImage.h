@@ -23,7 +23,9 @@ struct FittedImage {
 
 // `description` names the image in the warning ("image 3 ('albedo.png')"). `image` must hold
 // width * height * 4 bytes and outlive the result.
-FittedImage fitImage(const std::string& description, const scene::Image& image, bool srgb,
+FittedImage fitImage(const std::string& description,
+                     const scene::Image& image,
+                     bool srgb,
                      std::uint32_t maxDimension);
 
 }  // namespace encore::render

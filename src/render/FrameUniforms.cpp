@@ -10,14 +10,16 @@
 
 namespace encore::render {
 
-FrameUniforms::FrameUniforms(const wgpu::Device& device, const BindGroupLayouts& layouts,
+FrameUniforms::FrameUniforms(const wgpu::Device& device,
+                             const BindGroupLayouts& layouts,
                              const SceneLighting& lighting) {
     mBuffer = gpu::createBuffer(device, wgpu::BufferUsage::Uniform | wgpu::BufferUsage::CopyDst,
                                 sizeof(FrameUniform), "frame uniforms");
     bindLighting(device, layouts, lighting);
 }
 
-void FrameUniforms::bindLighting(const wgpu::Device& device, const BindGroupLayouts& layouts,
+void FrameUniforms::bindLighting(const wgpu::Device& device,
+                                 const BindGroupLayouts& layouts,
                                  const SceneLighting& lighting) {
     const Environment& environment = lighting.environment();
     mBindGroup =
@@ -42,14 +44,17 @@ FrameUniform makeFrameUniform(const Camera& camera, float timeSeconds) {
 }
 }  // namespace
 
-void FrameUniforms::update(const wgpu::Queue& queue, const Camera& camera,
+void FrameUniforms::update(const wgpu::Queue& queue,
+                           const Camera& camera,
                            float timeSeconds) const {
     const FrameUniform uniform = makeFrameUniform(camera, timeSeconds);
     queue.WriteBuffer(mBuffer, 0, &uniform, sizeof(uniform));
 }
 
-void FrameUniforms::writeViews(const wgpu::Device& device, const wgpu::Queue& queue,
-                               std::span<const Camera> cameras, float timeSeconds) {
+void FrameUniforms::writeViews(const wgpu::Device& device,
+                               const wgpu::Queue& queue,
+                               std::span<const Camera> cameras,
+                               float timeSeconds) {
     const std::uint64_t size = kViewStride * cameras.size();
     if (!mViews || mViews.GetSize() < size) {
         mViews = gpu::createBuffer(device, wgpu::BufferUsage::CopySrc | wgpu::BufferUsage::CopyDst,

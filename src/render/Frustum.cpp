@@ -47,8 +47,9 @@ Sphere worldSphere(const scene::Bounds& bounds, const glm::mat4& world) {
         return Sphere(glm::vec3(world[3]), 0.0f);
     }
     const glm::vec3 center = glm::vec3(world * glm::vec4(bounds.center(), 1.0f));
-    const float scale = std::max({glm::length(glm::vec3(world[0])), glm::length(glm::vec3(world[1])),
-                                  glm::length(glm::vec3(world[2]))});
+    const float scale =
+        std::max({glm::length(glm::vec3(world[0])), glm::length(glm::vec3(world[1])),
+                  glm::length(glm::vec3(world[2]))});
     return Sphere(center, bounds.radius() * scale);
 }
 

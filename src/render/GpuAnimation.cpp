@@ -93,9 +93,9 @@ std::uint32_t workgroups(std::uint32_t threads) {
 
 // A bind group of the layout WebGPU derived from the pipeline's shader.
 wgpu::BindGroup pipelineBindGroup(const wgpu::Device& device,
-                              const wgpu::ComputePipeline& pipeline,
+                                  const wgpu::ComputePipeline& pipeline,
                                   std::initializer_list<gpu::BindingResource> resources,
-                              const char* label) {
+                                  const char* label) {
     return gpu::makeBindGroup(device, pipeline.GetBindGroupLayout(0), resources, label);
 }
 
@@ -377,8 +377,10 @@ Result<std::unique_ptr<GpuAnimation>> GpuAnimation::create(
         restWorlds[n] = scene.nodes[n].world;
     }
     const auto readable = wgpu::BufferUsage::CopySrc | wgpu::BufferUsage::CopyDst;
-    gpu.mLocals = createStorageBuffer(device, std::move(restLocals), "animated node locals", readable);
-    gpu.mWorlds = createStorageBuffer(device, std::move(restWorlds), "animated node worlds", readable);
+    gpu.mLocals =
+        createStorageBuffer(device, std::move(restLocals), "animated node locals", readable);
+    gpu.mWorlds =
+        createStorageBuffer(device, std::move(restWorlds), "animated node worlds", readable);
     const std::uint64_t storedKeyframes = keyframes.size();
     std::vector<float> keyframeFloats = keyframes.take();
     if (keyframeFloats.empty()) {
@@ -396,11 +398,12 @@ Result<std::unique_ptr<GpuAnimation>> GpuAnimation::create(
                                       wgpu::BufferUsage::CopyDst);
     gpu.mNodeChannels =
         createStorageBuffer(device, std::vector<glm::uvec4>(nodeRecords.size(), glm::uvec4(kNone)),
-                      "animated node channels", wgpu::BufferUsage::CopyDst);
+                            "animated node channels", wgpu::BufferUsage::CopyDst);
     const wgpu::Buffer worldBuffer = createStorageBuffer(device, worldRecords, "world levels");
     const wgpu::Buffer instanceBuffer =
         createStorageBuffer(device, instanceRecords, "animated instance records");
-    const wgpu::Buffer jointBuffer = createStorageBuffer(device, jointRecords, "animated joint records");
+    const wgpu::Buffer jointBuffer =
+        createStorageBuffer(device, jointRecords, "animated joint records");
     wgpu::Buffer weights = animation ? animation->weightBuffer() : wgpu::Buffer();
     if (!weights) {
         weights = createStorageBuffer(device, std::vector<float>(1, 0.0f), "no morph weights");

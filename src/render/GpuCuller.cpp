@@ -17,7 +17,7 @@ namespace encore::render {
 
 namespace {
 
-constexpr std::uint32_t kWorkgroupSize = 64;          // culling.wgsl's kWorkgroupSize.
+constexpr std::uint32_t kWorkgroupSize = 64;            // culling.wgsl's kWorkgroupSize.
 constexpr std::uint32_t kVisibleAlignmentEntries = 64;  // 256 bytes: storage offset alignment.
 
 // culling.wgsl's Culling uniform.
@@ -51,8 +51,10 @@ std::uint32_t trianglesOf(const CulledDraw& draw, std::uint32_t elementCount) {
 
 // Every culling buffer is bound whole as storage. The per-draw buffer checked is the largest of
 // its kind (20 bytes of indirect arguments per draw and phase).
-Result<void> checkCullingBuffers(const gpu::DeviceLimits& limits, std::size_t levelDrawCount,
-                                 std::uint32_t slotCount, std::uint64_t visibleBytes) {
+Result<void> checkCullingBuffers(const gpu::DeviceLimits& limits,
+                                 std::size_t levelDrawCount,
+                                 std::uint32_t slotCount,
+                                 std::uint64_t visibleBytes) {
     const std::string draws = std::to_string(levelDrawCount) + " culled draws";
     const std::string slots = std::to_string(slotCount) + " instances";
     ENCORE_TRY(gpu::checkStorageBinding(
@@ -72,8 +74,10 @@ Result<void> checkCullingBuffers(const gpu::DeviceLimits& limits, std::size_t le
 
 }  // namespace
 
-Result<GpuCuller> GpuCuller::create(const RenderSetup& setup, const InstanceBuffer& instances,
-                                    const AnimationBuffers* animation, CullingBounds bounds,
+Result<GpuCuller> GpuCuller::create(const RenderSetup& setup,
+                                    const InstanceBuffer& instances,
+                                    const AnimationBuffers* animation,
+                                    CullingBounds bounds,
                                     std::vector<CulledDraw> draws) {
     GpuCuller culler;
     culler.mSetup = &setup;
@@ -105,7 +109,8 @@ Result<GpuCuller> GpuCuller::create(const RenderSetup& setup, const InstanceBuff
             const auto levelDraw = static_cast<std::uint32_t>(levelRecords.size());
             culler.mVisibleBase.push_back(static_cast<std::uint32_t>(nextBase));
             levelRecords.push_back({static_cast<std::uint32_t>(nextBase), levelDraw * 5,
-                                    trianglesOf(draw, elements), std::bit_cast<std::uint32_t>(error)});
+                                    trianglesOf(draw, elements),
+                                    std::bit_cast<std::uint32_t>(error)});
             nextBase += (std::uint64_t(capacity) + kVisibleAlignmentEntries - 1) /
                         kVisibleAlignmentEntries * kVisibleAlignmentEntries;
         }
@@ -119,8 +124,8 @@ Result<GpuCuller> GpuCuller::create(const RenderSetup& setup, const InstanceBuff
     const std::uint64_t phaseVisible = nextBase;
     const std::uint64_t visibilityBase = phaseVisible * kPhases;
     const std::uint64_t visibleBytes = (visibilityBase + culler.mSlotCount) * 4;
-    ENCORE_TRY(checkCullingBuffers(setup.limits, levelRecords.size(), culler.mSlotCount,
-                                   visibleBytes));
+    ENCORE_TRY(
+        checkCullingBuffers(setup.limits, levelRecords.size(), culler.mSlotCount, visibleBytes));
     culler.mPhaseVisible = static_cast<std::uint32_t>(phaseVisible);
 
     // Arguments: instanceCount starts at 0; the first cull pass fills it. drawIndexedIndirect
@@ -137,9 +142,9 @@ Result<GpuCuller> GpuCuller::create(const RenderSetup& setup, const InstanceBuff
     }
     culler.mTrianglesDrawnWord = static_cast<std::uint32_t>(arguments.size());
     arguments.push_back(0);
-    culler.mArguments = gpu::createStorageBuffer(device, arguments, "indirect arguments (all draws)",
-                                      wgpu::BufferUsage::Indirect | wgpu::BufferUsage::CopySrc |
-                                          wgpu::BufferUsage::CopyDst);
+    culler.mArguments = gpu::createStorageBuffer(
+        device, arguments, "indirect arguments (all draws)",
+        wgpu::BufferUsage::Indirect | wgpu::BufferUsage::CopySrc | wgpu::BufferUsage::CopyDst);
     culler.mVisible = gpu::createBuffer(device, wgpu::BufferUsage::Storage, visibleBytes,
                                         "visible instance lists and visibility");
 
@@ -170,9 +175,9 @@ Result<GpuCuller> GpuCuller::create(const RenderSetup& setup, const InstanceBuff
         gpu::createBuffer(device, wgpu::BufferUsage::Uniform | wgpu::BufferUsage::CopyDst,
                           sizeof(CullingUniform), "culling uniform");
     const auto slotBuffer = gpu::createStorageBuffer(device, slots, "culling bounds");
-    ENCORE_TRY(gpu::checkStorageBinding(
-        setup.limits, culler.mBounds.shapes.size() * sizeof(glm::vec4),
-        "The joint spheres and morph extents of the culling bounds"));
+    ENCORE_TRY(
+        gpu::checkStorageBinding(setup.limits, culler.mBounds.shapes.size() * sizeof(glm::vec4),
+                                 "The joint spheres and morph extents of the culling bounds"));
     const auto shapeBuffer =
         gpu::createStorageBuffer(device, culler.mBounds.shapes, "culling joint spheres");
     const auto recordBuffer = gpu::createStorageBuffer(device, records, "culled draws and levels");
@@ -246,8 +251,10 @@ std::uint64_t submittedTriangles(std::span<const CulledDraw> draws) {
     return triangles;
 }
 
-void GpuCuller::encodeFirstPhase(const wgpu::Queue& queue, const wgpu::CommandEncoder& commands,
-                                 const CullingView& view, gpu::GpuTimer* timer) {
+void GpuCuller::encodeFirstPhase(const wgpu::Queue& queue,
+                                 const wgpu::CommandEncoder& commands,
+                                 const CullingView& view,
+                                 gpu::GpuTimer* timer) {
     if (!mCullFirst) {
         return;
     }
@@ -318,7 +325,8 @@ void GpuCuller::encodeFirstPhase(const wgpu::Queue& queue, const wgpu::CommandEn
     pass.End();
 }
 
-void GpuCuller::encodeSecondPhase(const wgpu::CommandEncoder& commands, const wgpu::Texture& depth,
+void GpuCuller::encodeSecondPhase(const wgpu::CommandEncoder& commands,
+                                  const wgpu::Texture& depth,
                                   gpu::GpuTimer* timer) {
     if (!mCullSecond) {
         return;

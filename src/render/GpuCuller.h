@@ -88,30 +88,37 @@ class GpuCuller {
     GpuCuller() = default;
     // `bounds` has one record per instance slot; `animation` (when not null) supplies the
     // joint matrices and morph weights they refer to.
-    static Result<GpuCuller> create(const RenderSetup& setup, const InstanceBuffer& instances,
-                                    const AnimationBuffers* animation, CullingBounds bounds,
+    static Result<GpuCuller> create(const RenderSetup& setup,
+                                    const InstanceBuffer& instances,
+                                    const AnimationBuffers* animation,
+                                    CullingBounds bounds,
                                     std::vector<CulledDraw> draws);
 
     // Writes the view's culling uniform and records the reset and the first phase's cull.
-    void encodeFirstPhase(const wgpu::Queue& queue, const wgpu::CommandEncoder& commands,
-                          const CullingView& view, gpu::GpuTimer* timer = nullptr);
+    void encodeFirstPhase(const wgpu::Queue& queue,
+                          const wgpu::CommandEncoder& commands,
+                          const CullingView& view,
+                          gpu::GpuTimer* timer = nullptr);
     // After phase 1 is drawn into `depth`: reduces the depth pyramid and records the second
     // phase's cull (a pyramid is made for each new depth texture).
-    void encodeSecondPhase(const wgpu::CommandEncoder& commands, const wgpu::Texture& depth,
+    void encodeSecondPhase(const wgpu::CommandEncoder& commands,
+                           const wgpu::Texture& depth,
                            gpu::GpuTimer* timer = nullptr);
 
     const std::vector<CulledDraw>& draws() const { return mDraws; }
     const CullingBounds& bounds() const { return mBounds; }
     const wgpu::Buffer& indirectArguments() const { return mArguments; }
     // The indirect draw of `draw` at `level` in `phase` (0 or 1).
-    std::uint64_t argumentsOffset(std::size_t draw, std::uint32_t level = 0,
+    std::uint64_t argumentsOffset(std::size_t draw,
+                                  std::uint32_t level = 0,
                                   std::uint32_t phase = 0) const {
         return (phase * std::uint64_t(mLevelDrawCount) + mFirstLevel[draw] + level) *
                kArgumentsStride;
     }
     // Group 1 for that draw: bind with its dynamicOffset.
     const wgpu::BindGroup& drawBindGroup() const { return mDrawBindGroup; }
-    std::uint32_t dynamicOffset(std::size_t draw, std::uint32_t level = 0,
+    std::uint32_t dynamicOffset(std::size_t draw,
+                                std::uint32_t level = 0,
                                 std::uint32_t phase = 0) const {
         return (mVisibleBase[mFirstLevel[draw] + level] + phase * mPhaseVisible) * 4;
     }
@@ -133,9 +140,9 @@ class GpuCuller {
     std::vector<std::uint32_t> mFirstLevel;   // Per draw: its first level draw.
     std::vector<std::uint32_t> mVisibleBase;  // Per level draw, in entries (phase 1).
     std::uint32_t mLevelDrawCount = 0;
-    std::uint32_t mPhaseVisible = 0;          // Entries from a phase 1 list to its phase 2 list.
+    std::uint32_t mPhaseVisible = 0;  // Entries from a phase 1 list to its phase 2 list.
     std::uint32_t mTrianglesDrawnWord = 0;
-    std::uint32_t mLevelBase = 0;             // The first level record, after the primitives'.
+    std::uint32_t mLevelBase = 0;  // The first level record, after the primitives'.
     wgpu::Buffer mUniform;
     wgpu::Buffer mArguments;
     wgpu::Buffer mVisible;

@@ -54,7 +54,8 @@ GpuScene::GpuScene(const RenderSetup& setup,
                    const scene::AnimationPlayer& player)
     : mSetup(&setup),
       mScene(&scene),
-      mAnimation(AnimationBuffers::create(setup.device, setup.queue, *setup.layouts, scene, player)),
+      mAnimation(
+          AnimationBuffers::create(setup.device, setup.queue, *setup.layouts, scene, player)),
       mGeometry(
           timed(setup.prepareTimes.geometry, [&] { return GeometryBuffers(setup.device, scene); })),
       mInstances(timed(setup.prepareTimes.instances,
@@ -95,7 +96,7 @@ Result<void> GpuScene::replaceBaseColorImage(scene::MaterialId material,
                                              const scene::Image& image) {
     ENCORE_TRY(checkMaterial(material));
     return mMaterials->replaceBaseColorImage(mSetup->device, mSetup->queue, *mSetup->shaders,
-                                            *mSetup->layouts, material, image);
+                                             *mSetup->layouts, material, image);
 }
 
 AnimationUploadStats GpuScene::writeAnimation(const scene::AnimationPlayer& player) {

@@ -69,7 +69,8 @@ class GpuScene {
     AnimationUploadStats writeAnimation(const scene::AnimationPlayer& player);
 
   private:
-    GpuScene(const RenderSetup& setup, const scene::SceneData& scene,
+    GpuScene(const RenderSetup& setup,
+             const scene::SceneData& scene,
              const scene::AnimationPlayer& player);
     Result<void> checkMaterial(scene::MaterialId material) const;
 

@@ -44,7 +44,8 @@ std::vector<std::uint32_t> instanceSlots(const scene::SceneData& scene) {
     return slots;
 }
 
-InstanceBuffer::InstanceBuffer(const wgpu::Device& device, const BindGroupLayouts& layouts,
+InstanceBuffer::InstanceBuffer(const wgpu::Device& device,
+                               const BindGroupLayouts& layouts,
                                const scene::SceneData& scene) {
     const std::size_t meshCount = scene.meshes.size();
     std::vector<std::uint8_t> mirrored;
@@ -84,8 +85,9 @@ InstanceRange InstanceBuffer::meshRange(scene::MeshId mesh, bool mirrored) const
     return mirrored ? mMirrored[mesh.index()] : mRegular[mesh.index()];
 }
 
-void InstanceBuffer::update(const wgpu::Queue& queue, std::size_t sceneInstance,
-                          const glm::mat4& world) const {
+void InstanceBuffer::update(const wgpu::Queue& queue,
+                            std::size_t sceneInstance,
+                            const glm::mat4& world) const {
     const TransformUniform transform = makeTransformUniform(world);
     queue.WriteBuffer(mBuffer, std::uint64_t(mSlots[sceneInstance]) * sizeof(TransformUniform),
                       &transform, sizeof(transform));

@@ -25,7 +25,8 @@ struct InstanceRange {
 class InstanceBuffer {
   public:
     InstanceBuffer() = default;
-    InstanceBuffer(const wgpu::Device& device, const BindGroupLayouts& layouts,
+    InstanceBuffer(const wgpu::Device& device,
+                   const BindGroupLayouts& layouts,
                    const scene::SceneData& scene);
 
     const wgpu::BindGroup& bindGroup() const { return mBindGroup; }
@@ -50,10 +51,10 @@ class InstanceBuffer {
   private:
     wgpu::Buffer mBuffer;
     wgpu::BindGroup mBindGroup;
-    std::vector<std::uint32_t> mSlots;        // Scene instance -> slot.
-    std::vector<std::size_t> mInstances;      // Slot -> scene instance.
-    std::vector<InstanceRange> mRegular;      // Per mesh.
-    std::vector<InstanceRange> mMirrored;     // Per mesh.
+    std::vector<std::uint32_t> mSlots;     // Scene instance -> slot.
+    std::vector<std::size_t> mInstances;   // Slot -> scene instance.
+    std::vector<InstanceRange> mRegular;   // Per mesh.
+    std::vector<InstanceRange> mMirrored;  // Per mesh.
 };
 
 // Whether a transform mirrors geometry (negative determinant of its 3x3 part).

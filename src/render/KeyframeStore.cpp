@@ -7,8 +7,7 @@
 namespace encore::render {
 
 std::uint32_t KeyframeStore::add(std::span<const float> floats) {
-    const std::string_view bytes(reinterpret_cast<const char*>(floats.data()),
-                                 floats.size_bytes());
+    const std::string_view bytes(reinterpret_cast<const char*>(floats.data()), floats.size_bytes());
     const std::size_t hash = std::hash<std::string_view>{}(bytes);
     auto [first, last] = mRuns.equal_range(hash);
     for (auto it = first; it != last; ++it) {

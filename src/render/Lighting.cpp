@@ -41,7 +41,8 @@ LightUniform makeLightUniform(const scene::Light& light, const scene::LightInsta
     return uniform;
 }
 
-Result<SceneLighting> SceneLighting::create(const wgpu::Device& device, const wgpu::Queue& queue,
+Result<SceneLighting> SceneLighting::create(const wgpu::Device& device,
+                                            const wgpu::Queue& queue,
                                             std::shared_ptr<Environment> environment) {
     if (!environment) {
         return makeError(ErrorCode::InvalidArgument, "Scene lighting needs an environment.");
@@ -119,12 +120,14 @@ bool SceneLighting::setSceneLights(const scene::SceneData& scene) {
     return grew;
 }
 
-Result<void> SceneLighting::updateLight(std::size_t lightInstance, const scene::Light& light,
+Result<void> SceneLighting::updateLight(std::size_t lightInstance,
+                                        const scene::Light& light,
                                         const scene::LightInstance& placed) {
     if (lightInstance >= mLightCount) {
-        return makeError(ErrorCode::InvalidArgument,
-                         "Light " + std::to_string(lightInstance) + " does not exist (the scene has " +
-                             std::to_string(mLightCount) + " placed lights).");
+        return makeError(ErrorCode::InvalidArgument, "Light " + std::to_string(lightInstance) +
+                                                         " does not exist (the scene has " +
+                                                         std::to_string(mLightCount) +
+                                                         " placed lights).");
     }
     const LightUniform uniform = makeLightUniform(light, placed);
     mQueue.WriteBuffer(mLights, lightInstance * sizeof(LightUniform), &uniform, sizeof(uniform));

@@ -113,8 +113,8 @@ Result<MaterialResources> MaterialResources::create(const wgpu::Device& device,
         }
         resources.mMaterialTextures.push_back(textures);
         resources.mMaterialSamplers.push_back(samplers);
-        resources.mTextured.push_back(std::any_of(textures.begin(), textures.end(),
-                                                  [](std::size_t t) { return t != kDefaultTexture; }));
+        resources.mTextured.push_back(std::any_of(
+            textures.begin(), textures.end(), [](std::size_t t) { return t != kDefaultTexture; }));
 
         const MaterialUniform uniform = makeMaterialUniform(material);
         std::memcpy(uniformBytes.data() + i * resources.mUniformStride, &uniform, kUniformSize);
@@ -133,7 +133,8 @@ Result<MaterialResources> MaterialResources::create(const wgpu::Device& device,
 
 wgpu::BindGroup MaterialResources::createBindGroup(const wgpu::Device& device,
                                                    const BindGroupLayouts& layouts,
-                                                   std::size_t material, const char* label) const {
+                                                   std::size_t material,
+                                                   const char* label) const {
     std::array<wgpu::BindGroupEntry, 1 + 2 * kMaterialTextureSlotCount> entries{};
     entries[0].binding = 0;
     entries[0].buffer = mUniforms;
@@ -183,9 +184,9 @@ Result<void> MaterialResources::replaceBaseColorImage(const wgpu::Device& device
                                             std::to_string(material.value));
     }
     if (*uploaded == kNone) {
-        return makeError(ErrorCode::InvalidArgument,
-                         "The replacement image for material " + std::to_string(material.value) +
-                             " has no pixels.");
+        return makeError(ErrorCode::InvalidArgument, "The replacement image for material " +
+                                                         std::to_string(material.value) +
+                                                         " has no pixels.");
     }
     wgpu::CommandBuffer commands = builder.encoder.Finish();
     queue.Submit(1, &commands);

@@ -100,10 +100,12 @@ class MaterialResources {
     // replaced unless another material or the default still uses it. Bumps generation(): render
     // bundles that bound the old bind group must be re-recorded before they execute again. A
     // material without textures becomes textured (callers choose its pipelines again).
-    Result<void> replaceBaseColorImage(const wgpu::Device& device, const wgpu::Queue& queue,
+    Result<void> replaceBaseColorImage(const wgpu::Device& device,
+                                       const wgpu::Queue& queue,
                                        shaders::ShaderLibrary& shaders,
                                        const BindGroupLayouts& layouts,
-                                       scene::MaterialId material, const scene::Image& image);
+                                       scene::MaterialId material,
+                                       const scene::Image& image);
 
     // Where create()'s time went.
     const TextureUploadTimes& uploadTimes() const { return mUploadTimes; }
@@ -161,8 +163,10 @@ class MaterialResources {
     std::uint64_t mUploadedBytes = 0;
     TextureUploadTimes mUploadTimes;
 
-    wgpu::BindGroup createBindGroup(const wgpu::Device& device, const BindGroupLayouts& layouts,
-                                    std::size_t material, const char* label) const;
+    wgpu::BindGroup createBindGroup(const wgpu::Device& device,
+                                    const BindGroupLayouts& layouts,
+                                    std::size_t material,
+                                    const char* label) const;
 };
 
 }  // namespace encore::render

@@ -37,8 +37,12 @@ enum class TextureSlot : std::uint32_t {
 };
 inline constexpr std::uint32_t kMaterialTextureSlotCount = 12;
 // Group 2's bindings: 0 is the uniform, then a sampler and a texture per slot.
-constexpr std::uint32_t materialSamplerBinding(std::uint32_t slot) { return 1 + 2 * slot; }
-constexpr std::uint32_t materialTextureBinding(std::uint32_t slot) { return 2 + 2 * slot; }
+constexpr std::uint32_t materialSamplerBinding(std::uint32_t slot) {
+    return 1 + 2 * slot;
+}
+constexpr std::uint32_t materialTextureBinding(std::uint32_t slot) {
+    return 2 + 2 * slot;
+}
 
 enum class ColorSpace : std::uint8_t {
     Srgb,    // Colour data: base colour, emissive, specular and sheen colour.

@@ -20,9 +20,9 @@ NodeUniforms::NodeUniforms(const wgpu::Device& device,
         // writeBuffer, not mappedAtCreation: Dawn gives every mapped-at-creation buffer that
         // the GPU cannot map its own staging allocation, which made 40,000 nodes take minutes
         // to prepare on an NVIDIA driver; writes share one staging ring.
-        mBuffers.push_back(gpu::createBuffer(device,
-                                             wgpu::BufferUsage::Uniform | wgpu::BufferUsage::CopyDst,
-                                             sizeof(TransformUniform), "node transform"));
+        mBuffers.push_back(
+            gpu::createBuffer(device, wgpu::BufferUsage::Uniform | wgpu::BufferUsage::CopyDst,
+                              sizeof(TransformUniform), "node transform"));
         // Edited since loading: the normal matrix is computed again.
         const TransformUniform transform = worlds[i] == instance.world
                                                ? makeTransformUniform(instance)
@@ -40,8 +40,8 @@ Result<void> NodeUniforms::checkLimit(const scene::SceneData& scene,
     if (mappingBudget && scene.instances.size() * kMappingsPerNode > *mappingBudget) {
         return makeError(
             ErrorCode::Unsupported,
-            "The scene has " + std::to_string(scene.instances.size()) + " mesh nodes and strategy " +
-                std::string(strategy) +
+            "The scene has " + std::to_string(scene.instances.size()) +
+                " mesh nodes and strategy " + std::string(strategy) +
                 " creates a uniform buffer and a bind group for each; this driver (lavapipe) maps "
                 "memory for each and would crash at the kernel's limit (room for " +
                 std::to_string(*mappingBudget / kMappingsPerNode) +
@@ -51,7 +51,8 @@ Result<void> NodeUniforms::checkLimit(const scene::SceneData& scene,
     return {};
 }
 
-void NodeUniforms::update(const wgpu::Queue& queue, std::size_t sceneInstance,
+void NodeUniforms::update(const wgpu::Queue& queue,
+                          std::size_t sceneInstance,
                           const glm::mat4& world) const {
     const TransformUniform transform = makeTransformUniform(world);
     queue.WriteBuffer(mBuffers[sceneInstance], 0, &transform, sizeof(transform));

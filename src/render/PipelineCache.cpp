@@ -19,7 +19,8 @@ Result<wgpu::RenderPipeline> PipelineCache::get(const PipelineKey& key) {
     return pipeline;
 }
 
-PipelineCache* strategyPipelineCache(const RenderSetup& setup, std::unique_ptr<PipelineCache>& own) {
+PipelineCache* strategyPipelineCache(const RenderSetup& setup,
+                                     std::unique_ptr<PipelineCache>& own) {
     if (setup.keptPipelines) {
         own.reset();
         return setup.keptPipelines;

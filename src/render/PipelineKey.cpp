@@ -20,7 +20,8 @@ void PipelineKey::addBuffer(std::uint32_t arrayStride) {
     buffers[bufferCount++].arrayStride = arrayStride;
 }
 
-void PipelineKey::addAttribute(wgpu::VertexFormat format, std::uint32_t offset,
+void PipelineKey::addAttribute(wgpu::VertexFormat format,
+                               std::uint32_t offset,
                                std::uint32_t location) {
     assert(bufferCount > 0);
     VertexBufferKey& buffer = buffers[bufferCount - 1];
@@ -44,7 +45,8 @@ std::size_t PipelineKeyHash::operator()(const PipelineKey& key) const noexcept {
         std::string_view(reinterpret_cast<const char*>(&key), sizeof(key)));
 }
 
-Result<wgpu::RenderPipeline> createMeshPipeline(const RenderSetup& setup, const PipelineKey& key,
+Result<wgpu::RenderPipeline> createMeshPipeline(const RenderSetup& setup,
+                                                const PipelineKey& key,
                                                 const std::string& label) {
     ENCORE_TRY_ASSIGN(auto module, setup.shaders->meshModule(key.shader));
 

@@ -59,7 +59,8 @@ struct PipelineKeyHash {
 };
 
 // Creates the mesh pipeline a key describes.
-Result<wgpu::RenderPipeline> createMeshPipeline(const RenderSetup& setup, const PipelineKey& key,
+Result<wgpu::RenderPipeline> createMeshPipeline(const RenderSetup& setup,
+                                                const PipelineKey& key,
                                                 const std::string& label);
 
 }  // namespace encore::render

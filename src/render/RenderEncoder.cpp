@@ -46,7 +46,8 @@ void RenderEncoder::setPipeline(const wgpu::RenderPipeline& pipeline) {
     ENCORE_FORWARD(SetPipeline(pipeline));
 }
 
-void RenderEncoder::setBindGroup(std::uint32_t index, const wgpu::BindGroup& group,
+void RenderEncoder::setBindGroup(std::uint32_t index,
+                                 const wgpu::BindGroup& group,
                                  std::uint32_t dynamicOffset) {
     ++mCounters.setBindGroup;
     record(RecordedCall::Kind::SetBindGroup, group.Get(), index);
@@ -59,22 +60,28 @@ void RenderEncoder::setBindGroup(std::uint32_t index, const wgpu::BindGroup& gro
     ENCORE_FORWARD(SetBindGroup(index, group, 0, nullptr));
 }
 
-void RenderEncoder::setVertexBuffer(std::uint32_t slot, const wgpu::Buffer& buffer,
-                                    std::uint64_t offset, std::uint64_t size) {
+void RenderEncoder::setVertexBuffer(std::uint32_t slot,
+                                    const wgpu::Buffer& buffer,
+                                    std::uint64_t offset,
+                                    std::uint64_t size) {
     ++mCounters.setVertexBuffer;
     record(RecordedCall::Kind::SetVertexBuffer, buffer.Get(), slot);
     ENCORE_FORWARD(SetVertexBuffer(slot, buffer, offset, size));
 }
 
-void RenderEncoder::setIndexBuffer(const wgpu::Buffer& buffer, wgpu::IndexFormat format,
-                                   std::uint64_t offset, std::uint64_t size) {
+void RenderEncoder::setIndexBuffer(const wgpu::Buffer& buffer,
+                                   wgpu::IndexFormat format,
+                                   std::uint64_t offset,
+                                   std::uint64_t size) {
     ++mCounters.setIndexBuffer;
     record(RecordedCall::Kind::SetIndexBuffer, buffer.Get());
     ENCORE_FORWARD(SetIndexBuffer(buffer, format, offset, size));
 }
 
-void RenderEncoder::draw(std::uint32_t vertexCount, std::uint32_t instanceCount,
-                         std::uint32_t firstVertex, std::uint32_t firstInstance,
+void RenderEncoder::draw(std::uint32_t vertexCount,
+                         std::uint32_t instanceCount,
+                         std::uint32_t firstVertex,
+                         std::uint32_t firstInstance,
                          scene::Topology topology) {
     ++mCounters.draw;
     record(RecordedCall::Kind::Draw, nullptr);
@@ -84,9 +91,12 @@ void RenderEncoder::draw(std::uint32_t vertexCount, std::uint32_t instanceCount,
     ENCORE_FORWARD(Draw(vertexCount, instanceCount, firstVertex, firstInstance));
 }
 
-void RenderEncoder::drawIndexed(std::uint32_t indexCount, std::uint32_t instanceCount,
-                                std::uint32_t firstIndex, std::int32_t baseVertex,
-                                std::uint32_t firstInstance, scene::Topology topology) {
+void RenderEncoder::drawIndexed(std::uint32_t indexCount,
+                                std::uint32_t instanceCount,
+                                std::uint32_t firstIndex,
+                                std::int32_t baseVertex,
+                                std::uint32_t firstInstance,
+                                scene::Topology topology) {
     ++mCounters.drawIndexed;
     record(RecordedCall::Kind::Draw, nullptr);
     ++mCounters.primitives;

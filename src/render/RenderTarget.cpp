@@ -12,10 +12,10 @@ Result<RenderTarget> RenderTarget::create(const wgpu::Device& device,
                                           const RenderTargetOptions& options) {
     if (options.width == 0 || options.height == 0 || options.width > kMaxTargetDimension ||
         options.height > kMaxTargetDimension) {
-        return makeError(ErrorCode::InvalidArgument,
-                         "Image size " + std::to_string(options.width) + "x" +
-                             std::to_string(options.height) + " is outside 1.." +
-                             std::to_string(kMaxTargetDimension) + ".");
+        return makeError(ErrorCode::InvalidArgument, "Image size " + std::to_string(options.width) +
+                                                         "x" + std::to_string(options.height) +
+                                                         " is outside 1.." +
+                                                         std::to_string(kMaxTargetDimension) + ".");
     }
     if (options.sampleCount != 1 && options.sampleCount != 4) {
         return makeError(ErrorCode::InvalidArgument,

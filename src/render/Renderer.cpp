@@ -223,7 +223,9 @@ Result<void> Renderer::setStrategy(StrategyKind kind, bool bundle) {
     return prepareStrategy(kind, bundle, what, outOfMemory);
 }
 
-Result<void> Renderer::prepareStrategy(StrategyKind kind, bool bundle, const std::string& what,
+Result<void> Renderer::prepareStrategy(StrategyKind kind,
+                                       bool bundle,
+                                       const std::string& what,
                                        gpu::OutOfMemoryScope& outOfMemory) {
     PrepareTimes& times = mSetup->prepareTimes;
     mKind = kind;
@@ -289,8 +291,8 @@ Result<void> Renderer::resize(std::uint32_t width, std::uint32_t height) {
     if (mToneMapper) {
         mToneMapper->bindTarget(mContext->device(), mTarget);
     }
-    return mContext->checkNoErrors("Resizing the render target to " + std::to_string(width) +
-                                   "x" + std::to_string(height));
+    return mContext->checkNoErrors("Resizing the render target to " + std::to_string(width) + "x" +
+                                   std::to_string(height));
 }
 
 Result<void> Renderer::updateInstance(std::size_t instance, const glm::mat4& world) {
@@ -342,7 +344,8 @@ Result<void> Renderer::loadEnvironment(const image::HdrImage& panorama) {
     return mContext->checkNoErrors("Loading an environment");
 }
 
-Result<void> Renderer::updateLight(std::size_t lightInstance, const scene::Light& light,
+Result<void> Renderer::updateLight(std::size_t lightInstance,
+                                   const scene::Light& light,
                                    const scene::LightInstance& placed) {
     return mLighting->updateLight(lightInstance, light, placed);
 }

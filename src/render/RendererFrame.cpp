@@ -12,7 +12,8 @@
 
 namespace encore::render {
 
-FrameResult Renderer::renderFrame(const Camera& camera, float timeSeconds,
+FrameResult Renderer::renderFrame(const Camera& camera,
+                                  float timeSeconds,
                                   std::vector<RecordedCall>* trace) {
     return renderPasses(std::span(&camera, 1), timeSeconds, trace);
 }
@@ -21,15 +22,15 @@ FrameResult Renderer::renderViews(std::span<const Camera> cameras, float timeSec
     return renderPasses(cameras, timeSeconds, nullptr);
 }
 
-const wgpu::PassTimestampWrites* Renderer::timestampWrites(GpuStage stage,
-                                                           std::string_view label) {
+const wgpu::PassTimestampWrites* Renderer::timestampWrites(GpuStage stage, std::string_view label) {
     if (mTimer) {
         return mTimer->nextPass(label);
     }
     return mStageTimestamps ? mStageTimestamps->pass(gpuStageIndex(stage)) : nullptr;
 }
 
-FrameResult Renderer::renderPasses(std::span<const Camera> cameras, float timeSeconds,
+FrameResult Renderer::renderPasses(std::span<const Camera> cameras,
+                                   float timeSeconds,
                                    std::vector<RecordedCall>* trace) {
     FrameResult result;
     if (cameras.empty()) {

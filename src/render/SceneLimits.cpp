@@ -16,7 +16,8 @@ std::uint64_t roundUp(std::uint64_t value, std::uint64_t multiple) {
     return (value + multiple - 1) / multiple * multiple;
 }
 
-std::string describePrimitive(const scene::SceneData& scene, std::size_t mesh,
+std::string describePrimitive(const scene::SceneData& scene,
+                              std::size_t mesh,
                               std::size_t primitive) {
     const std::string& name = scene.meshes[mesh].name;
     return "mesh " + std::to_string(mesh) + (name.empty() ? "" : " ('" + name + "')") +
@@ -26,7 +27,8 @@ std::string describePrimitive(const scene::SceneData& scene, std::size_t mesh,
 // Every buffer the strategies make of a primitive's vertex and index data: `naive` copies each
 // accessor; the others bind bufferViews where they lie and copy the attributes WebGPU cannot
 // read in place (GeometryBuffers), whose padded copies are checked whichever way they end up.
-Result<void> checkGeometry(const gpu::DeviceLimits& limits, const scene::SceneData& scene,
+Result<void> checkGeometry(const gpu::DeviceLimits& limits,
+                           const scene::SceneData& scene,
                            StrategyKind kind) {
     std::set<std::uint32_t> checkedViews;
     std::set<std::uint32_t> checkedAccessors;
@@ -39,19 +41,18 @@ Result<void> checkGeometry(const gpu::DeviceLimits& limits, const scene::SceneDa
         if (checkedAccessors.insert(id.value).second) {
             const std::uint64_t elementBytes =
                 index ? accessor.elementSize() : roundUp(accessor.elementSize(), 4);
-            ENCORE_TRY(gpu::checkBufferSize(
-                limits, std::uint64_t(accessor.count) * elementBytes,
-                "The " + std::string(semantic) + " data of " + where + " (accessor " +
-                    std::to_string(id.value) + ", " + std::to_string(accessor.count) +
-                    " elements)"));
+            ENCORE_TRY(gpu::checkBufferSize(limits, std::uint64_t(accessor.count) * elementBytes,
+                                            "The " + std::string(semantic) + " data of " + where +
+                                                " (accessor " + std::to_string(id.value) + ", " +
+                                                std::to_string(accessor.count) + " elements)"));
         }
         if (kind != StrategyKind::Naive && accessor.view.valid() &&
             accessor.view.index() < scene.bufferViews.size() &&
             checkedViews.insert(accessor.view.value).second) {
             ENCORE_TRY(gpu::checkBufferSize(
                 limits, roundUp(scene.bufferViews[accessor.view.index()].byteLength, 4),
-                "BufferView " + std::to_string(accessor.view.value) + " (vertex and index data of " +
-                    where + ")"));
+                "BufferView " + std::to_string(accessor.view.value) +
+                    " (vertex and index data of " + where + ")"));
         }
         return {};
     };
@@ -83,7 +84,8 @@ bool usesMaterials(StrategyKind kind) {
 }  // namespace
 
 Result<void> checkSceneWithinLimits(const gpu::DeviceLimits& limits,
-                                    const scene::SceneData& scene, StrategyKind kind) {
+                                    const scene::SceneData& scene,
+                                    StrategyKind kind) {
     ENCORE_TRY(checkGeometry(limits, scene, kind));
     ENCORE_TRY(gpu::checkStorageBinding(
         limits, std::uint64_t(scene.lightInstances.size()) * sizeof(LightUniform),
@@ -105,17 +107,17 @@ Result<void> checkSceneWithinLimits(const gpu::DeviceLimits& limits,
             deltas += std::uint64_t(primitive.targets.size()) * primitive.vertexCount * 3;
         }
     }
-    ENCORE_TRY(gpu::checkStorageBinding(limits, deltas * 16,
-                                        "The morph target deltas (" + std::to_string(deltas / 3) +
-                                            " target vertices)"));
+    ENCORE_TRY(gpu::checkStorageBinding(
+        limits, deltas * 16,
+        "The morph target deltas (" + std::to_string(deltas / 3) + " target vertices)"));
     std::uint64_t joints = 0;
     for (const scene::Skin& skin : scene.skins) {
         joints += skin.joints.size();
     }
-    ENCORE_TRY(gpu::checkStorageBinding(
-        limits, joints * sizeof(TransformUniform),
-        "The joint matrices of " + std::to_string(scene.skins.size()) + " skins (" +
-            std::to_string(joints) + " joints)"));
+    ENCORE_TRY(gpu::checkStorageBinding(limits, joints * sizeof(TransformUniform),
+                                        "The joint matrices of " +
+                                            std::to_string(scene.skins.size()) + " skins (" +
+                                            std::to_string(joints) + " joints)"));
     if (usesMaterials(kind)) {
         const std::uint64_t stride =
             roundUp(sizeof(MaterialUniform), std::max(limits.minUniformBufferOffsetAlignment, 4u));

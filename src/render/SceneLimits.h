@@ -19,6 +19,7 @@
 namespace encore::render {
 
 Result<void> checkSceneWithinLimits(const gpu::DeviceLimits& limits,
-                                    const scene::SceneData& scene, StrategyKind kind);
+                                    const scene::SceneData& scene,
+                                    StrategyKind kind);
 
 }  // namespace encore::render

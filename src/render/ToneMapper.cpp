@@ -23,8 +23,10 @@ static_assert(sizeof(ToneMappingUniform) == 32);
 
 }  // namespace
 
-Result<ToneMapper> ToneMapper::create(const wgpu::Device& device, const wgpu::Queue& queue,
-                                      shaders::ShaderLibrary& shaders, const RenderTarget& target,
+Result<ToneMapper> ToneMapper::create(const wgpu::Device& device,
+                                      const wgpu::Queue& queue,
+                                      shaders::ShaderLibrary& shaders,
+                                      const RenderTarget& target,
                                       const ToneMappingOptions& options) {
     ENCORE_TRY_ASSIGN(auto module, shaders.module("tone_mapping.wgsl"));
     ToneMapper mapper;
@@ -90,9 +92,12 @@ void ToneMapper::encode(const wgpu::CommandEncoder& commands,
 }
 
 Result<EnvironmentBackground> EnvironmentBackground::create(
-    const wgpu::Device& device, shaders::ShaderLibrary& shaders,
-    const wgpu::BindGroupLayout& frameLayout, wgpu::TextureFormat colorFormat,
-    wgpu::TextureFormat depthFormat, std::uint32_t sampleCount) {
+    const wgpu::Device& device,
+    shaders::ShaderLibrary& shaders,
+    const wgpu::BindGroupLayout& frameLayout,
+    wgpu::TextureFormat colorFormat,
+    wgpu::TextureFormat depthFormat,
+    std::uint32_t sampleCount) {
     ENCORE_TRY_ASSIGN(auto module, shaders.module("sky.wgsl"));
     EnvironmentBackground background;
     background.mPipeline = gpu::makeFullscreenPipeline(

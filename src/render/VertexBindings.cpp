@@ -26,7 +26,8 @@ struct BoundAttribute {
 }  // namespace
 
 std::vector<std::uint8_t> paddedVertexElements(const scene::SceneData& scene,
-                                               scene::AccessorId id, std::uint32_t& stride) {
+                                               scene::AccessorId id,
+                                               std::uint32_t& stride) {
     const scene::Accessor& accessor = scene.accessors[id.index()];
     std::vector<std::uint8_t> packed = scene.packedAccessorBytes(id);
     const std::uint32_t elementSize = accessor.elementSize();
@@ -47,7 +48,8 @@ bool readsInPlace(const scene::Accessor& accessor) {
            accessor.byteStride <= kMaxArrayStride && accessor.byteStride >= accessor.elementSize();
 }
 
-GeometryBuffers::GeometryBuffers(wgpu::Device device, const scene::SceneData& scene,
+GeometryBuffers::GeometryBuffers(wgpu::Device device,
+                                 const scene::SceneData& scene,
                                  std::uint64_t maxSharedBufferBytes)
     : mDevice(std::move(device)), mScene(&scene) {
     uploadViews(maxSharedBufferBytes);
@@ -226,11 +228,11 @@ Result<PrimitiveBindings> GeometryBuffers::bind(const scene::Primitive& primitiv
         const ViewPlacement& view = viewPlacement(accessor.view);
         const std::uint64_t offset = view.offset + accessor.byteOffset;
         // WebGPU needs offset + size <= arrayStride for every attribute of a slot.
-        const bool joinsLast = !slots.empty() && slots.back().view == accessor.view &&
-                               slots.back().key.arrayStride == accessor.byteStride &&
-                               offset - slots.back().binding.offset + accessor.elementSize() <=
-                                   accessor.byteStride &&
-                               slots.back().key.attributeCount < VertexBufferKey::kMaxAttributes;
+        const bool joinsLast =
+            !slots.empty() && slots.back().view == accessor.view &&
+            slots.back().key.arrayStride == accessor.byteStride &&
+            offset - slots.back().binding.offset + accessor.elementSize() <= accessor.byteStride &&
+            slots.back().key.attributeCount < VertexBufferKey::kMaxAttributes;
         if (!joinsLast) {
             Slot slot{{view.buffer, offset, view.offset + view.length - offset}, {}, accessor.view};
             slot.key.arrayStride = accessor.byteStride;
@@ -268,7 +270,8 @@ Result<PrimitiveBindings> GeometryBuffers::bind(const scene::Primitive& primitiv
 
 namespace encore::render {
 
-PipelineKey meshPipelineKey(const RenderSetup& setup, const PrimitiveBindings& bindings,
+PipelineKey meshPipelineKey(const RenderSetup& setup,
+                            const PrimitiveBindings& bindings,
                             const shaders::ShaderVariantKey& shader) {
     PipelineKey key = bindings.layout;
     key.topology = primitiveTopology(bindings.topology);
@@ -294,8 +297,10 @@ void bindGeometry(RenderEncoder& encoder, const PrimitiveBindings& bindings) {
     }
 }
 
-void drawGeometry(RenderEncoder& encoder, const PrimitiveBindings& bindings,
-                  std::uint32_t instanceCount, std::uint32_t firstInstance) {
+void drawGeometry(RenderEncoder& encoder,
+                  const PrimitiveBindings& bindings,
+                  std::uint32_t instanceCount,
+                  std::uint32_t firstInstance) {
     if (bindings.indices) {
         encoder.drawIndexed(bindings.indices->count, instanceCount, 0, 0, firstInstance,
                             bindings.topology);

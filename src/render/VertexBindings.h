@@ -62,7 +62,8 @@ class GeometryBuffers {
     // strategy binds from the same uploads). `maxSharedBufferBytes`: where a
     // shared buffer ends and the next begins; 0 (the default) takes the device's maxBufferSize
     // (tests pass less to exercise the split).
-    GeometryBuffers(wgpu::Device device, const scene::SceneData& scene,
+    GeometryBuffers(wgpu::Device device,
+                    const scene::SceneData& scene,
                     std::uint64_t maxSharedBufferBytes = 0);
 
     // Bindings of `primitive` for the attributes with these semantics (those the shader
@@ -99,7 +100,8 @@ class GeometryBuffers {
 // The accessor's elements copied with a stride rounded up to a multiple of 4 (WebGPU requires
 // it); `stride` receives that stride.
 std::vector<std::uint8_t> paddedVertexElements(const scene::SceneData& scene,
-                                               scene::AccessorId accessor, std::uint32_t& stride);
+                                               scene::AccessorId accessor,
+                                               std::uint32_t& stride);
 
 }  // namespace encore::render
 
@@ -110,14 +112,17 @@ struct RenderSetup;
 
 // The pipeline key for drawing `bindings` with a shader variant into the setup's target:
 // the bindings' vertex layouts plus topology, strip index format and attachment formats.
-PipelineKey meshPipelineKey(const RenderSetup& setup, const PrimitiveBindings& bindings,
+PipelineKey meshPipelineKey(const RenderSetup& setup,
+                            const PrimitiveBindings& bindings,
                             const shaders::ShaderVariantKey& shader);
 
 // Sets the primitive's vertex buffers (with their offsets) and index buffer.
 void bindGeometry(RenderEncoder& encoder, const PrimitiveBindings& bindings);
 
 // Draws the bound primitive: drawIndexed or draw, for `instanceCount` instances.
-void drawGeometry(RenderEncoder& encoder, const PrimitiveBindings& bindings,
-                  std::uint32_t instanceCount, std::uint32_t firstInstance);
+void drawGeometry(RenderEncoder& encoder,
+                  const PrimitiveBindings& bindings,
+                  std::uint32_t instanceCount,
+                  std::uint32_t firstInstance);
 
 }  // namespace encore::render

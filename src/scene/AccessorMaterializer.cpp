@@ -228,9 +228,9 @@ Result<void> resolveAccessors(LoadContext& context) {
             continue;
         }
         if (context.document.accessors[i].count == 0) {
-            return makeError(ErrorCode::InvalidFormat,
-                             context.accessorName(i) +
-                                 " has count 0; glTF requires at least one element.");
+            return makeError(
+                ErrorCode::InvalidFormat,
+                context.accessorName(i) + " has count 0; glTF requires at least one element.");
         }
         Accessor accessor;
         ENCORE_TRY_ASSIGN(accessor, resolveAccessor(context, i));

@@ -252,10 +252,9 @@ void AnimationPlayer::evaluate(double seconds) {
                 break;
             }
             case AnimationPath::Weights:
-                sampleAnimation(
-                    *channel.sampler, time, false, cursor,
-                    std::span<float>(mPendingWeights).subspan(mNodeWeightOffset[n],
-                                                              scene.nodes[n].weights.size()));
+                sampleAnimation(*channel.sampler, time, false, cursor,
+                                std::span<float>(mPendingWeights)
+                                    .subspan(mNodeWeightOffset[n], scene.nodes[n].weights.size()));
                 break;
         }
         ++mStats.channelsEvaluated;

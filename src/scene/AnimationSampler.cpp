@@ -121,8 +121,8 @@ void sampleAnimation(const AnimationSampler& sampler,
                 const float* p1 = value(k + 1);
                 const float* m1 = values + (k + 1) * stride;  // In-tangent of k + 1.
                 for (std::uint32_t c = 0; c < n; ++c) {
-                    out[c] = h00 * p0[c] + h10 * interval * m0[c] + h01 * p1[c] +
-                             h11 * interval * m1[c];
+                    out[c] =
+                        h00 * p0[c] + h10 * interval * m0[c] + h01 * p1[c] + h11 * interval * m1[c];
                 }
                 break;
             }

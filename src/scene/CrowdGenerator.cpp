@@ -128,9 +128,9 @@ Result<std::vector<std::uint8_t>> generateCrowdGlb(const CrowdOptions& options) 
     for (std::uint32_t key = 0; key < kKeys; ++key) {
         times.push_back(float(key) / float(kKeys - 1));
     }
-    const std::size_t input = binary.addAccessor(document, times, kFloat, "SCALAR", kKeys,
-                                                 std::nullopt,
-                                                 json{{times.front()}, {times.back()}});
+    const std::size_t input =
+        binary.addAccessor(document, times, kFloat, "SCALAR", kKeys, std::nullopt,
+                           json{{times.front()}, {times.back()}});
 
     const auto side = static_cast<std::uint32_t>(std::ceil(std::sqrt(double(options.characters))));
     const float spacing = 1.0f;
@@ -166,15 +166,16 @@ Result<std::vector<std::uint8_t>> generateCrowdGlb(const CrowdOptions& options) 
         json samplers = json::array();
         json channels = json::array();
         for (std::uint32_t j = 0; j < kCrowdJointsPerCharacter; ++j) {
-            channels.push_back({{"sampler", j},
-                                {"target", {{"node", root + 1 + j}, {"path", "rotation"}}}});
+            channels.push_back(
+                {{"sampler", j}, {"target", {{"node", root + 1 + j}, {"path", "rotation"}}}});
             samplers.push_back(
                 {{"input", input}, {"output", rotationAccessors[j]}, {"interpolation", "LINEAR"}});
         }
-        animations.push_back({{"name", "sway " + std::to_string(k)},
-                              {"samplers", samplers},
-                              {"channels", channels},
-                              {"extras", {{"encoreTimeOffset", std::fmod(0.37f * float(k), 1.0f)}}}});
+        animations.push_back(
+            {{"name", "sway " + std::to_string(k)},
+             {"samplers", samplers},
+             {"channels", channels},
+             {"extras", {{"encoreTimeOffset", std::fmod(0.37f * float(k), 1.0f)}}}});
     }
     document["animations"] = animations;
     document["buffers"].push_back({{"byteLength", binary.size()}});

@@ -7,8 +7,10 @@ namespace encore::scene {
 
 namespace {
 
-void appendChunk(std::vector<std::uint8_t>& glb, std::uint32_t type,
-                 std::vector<std::uint8_t> data, std::uint8_t padding) {
+void appendChunk(std::vector<std::uint8_t>& glb,
+                 std::uint32_t type,
+                 std::vector<std::uint8_t> data,
+                 std::uint8_t padding) {
     while (data.size() % 4 != 0) {
         data.push_back(padding);
     }
@@ -20,7 +22,8 @@ void appendChunk(std::vector<std::uint8_t>& glb, std::uint32_t type,
 
 }  // namespace
 
-std::size_t GlbBinaryChunk::addView(nlohmann::json& document, std::span<const std::uint8_t> bytes,
+std::size_t GlbBinaryChunk::addView(nlohmann::json& document,
+                                    std::span<const std::uint8_t> bytes,
                                     std::optional<int> target) {
     while (mBytes.size() % 4 != 0) {
         mBytes.push_back(0);
@@ -41,7 +44,8 @@ std::size_t GlbBinaryChunk::addPng(nlohmann::json& document, std::span<const std
     return document["images"].size() - 1;
 }
 
-std::vector<std::uint8_t> writeGlb(const nlohmann::json& document, std::vector<std::uint8_t> binary) {
+std::vector<std::uint8_t> writeGlb(const nlohmann::json& document,
+                                   std::vector<std::uint8_t> binary) {
     constexpr std::uint32_t kJsonChunk = 0x4E4F534A;
     constexpr std::uint32_t kBinaryChunk = 0x004E4942;
     const std::string text = document.dump();

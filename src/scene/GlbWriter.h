@@ -19,21 +19,25 @@ class GlbBinaryChunk {
   public:
     // Appends `bytes`, 4-byte aligned, as a bufferView with `target` when given; returns its
     // index.
-    std::size_t addView(nlohmann::json& document, std::span<const std::uint8_t> bytes,
+    std::size_t addView(nlohmann::json& document,
+                        std::span<const std::uint8_t> bytes,
                         std::optional<int> target = std::nullopt);
 
     // Appends `values` as a bufferView and an accessor of `count` elements of `type`, with
     // `bounds` ([min, max]) when it is not null; returns the accessor's index.
     template <typename T>
-    std::size_t addAccessor(nlohmann::json& document, const std::vector<T>& values,
-                            int componentType, const char* type, std::size_t count,
+    std::size_t addAccessor(nlohmann::json& document,
+                            const std::vector<T>& values,
+                            int componentType,
+                            const char* type,
+                            std::size_t count,
                             std::optional<int> target = std::nullopt,
                             const nlohmann::json& bounds = nullptr) {
-        const std::size_t view = addView(
-            document,
-            std::span(reinterpret_cast<const std::uint8_t*>(values.data()),
-                      values.size() * sizeof(T)),
-            target);
+        const std::size_t view =
+            addView(document,
+                    std::span(reinterpret_cast<const std::uint8_t*>(values.data()),
+                              values.size() * sizeof(T)),
+                    target);
         nlohmann::json accessor = {{"bufferView", view},
                                    {"componentType", componentType},
                                    {"count", count},
@@ -56,6 +60,7 @@ class GlbBinaryChunk {
     std::vector<std::uint8_t> mBytes;
 };
 
-std::vector<std::uint8_t> writeGlb(const nlohmann::json& document, std::vector<std::uint8_t> binary);
+std::vector<std::uint8_t> writeGlb(const nlohmann::json& document,
+                                   std::vector<std::uint8_t> binary);
 
 }  // namespace encore::scene

@@ -14,12 +14,9 @@ namespace {
 // Extensions Encore reads and honours (material extensions: the loader fills them in and the
 // renderer shades them). A file may require any of these.
 constexpr std::array kSupportedExtensions = {
-    std::string_view("KHR_mesh_quantization"),
-    std::string_view("KHR_draco_mesh_compression"),
-    std::string_view("EXT_meshopt_compression"),
-    std::string_view("EXT_mesh_gpu_instancing"),
-    std::string_view("KHR_texture_transform"),
-    std::string_view("KHR_lights_punctual"),
+    std::string_view("KHR_mesh_quantization"),   std::string_view("KHR_draco_mesh_compression"),
+    std::string_view("EXT_meshopt_compression"), std::string_view("EXT_mesh_gpu_instancing"),
+    std::string_view("KHR_texture_transform"),   std::string_view("KHR_lights_punctual"),
 };
 
 std::optional<ComponentType> componentTypeFromGl(std::uint64_t gl) {
@@ -42,20 +39,27 @@ std::optional<ComponentType> componentTypeFromGl(std::uint64_t gl) {
 }
 
 std::optional<std::pair<std::uint32_t, bool>> componentsOfType(const std::string& type) {
-    if (type == "SCALAR")
+    if (type == "SCALAR") {
         return std::pair{1u, false};
-    if (type == "VEC2")
+    }
+    if (type == "VEC2") {
         return std::pair{2u, false};
-    if (type == "VEC3")
+    }
+    if (type == "VEC3") {
         return std::pair{3u, false};
-    if (type == "VEC4")
+    }
+    if (type == "VEC4") {
         return std::pair{4u, false};
-    if (type == "MAT2")
+    }
+    if (type == "MAT2") {
         return std::pair{4u, true};
-    if (type == "MAT3")
+    }
+    if (type == "MAT3") {
         return std::pair{9u, true};
-    if (type == "MAT4")
+    }
+    if (type == "MAT4") {
         return std::pair{16u, true};
+    }
     return std::nullopt;
 }
 
@@ -88,11 +92,13 @@ Result<void> parseBuffers(const Json& root, GltfDocument& document) {
             if (const Json* meshopt = ext.object("EXT_meshopt_compression")) {
                 FieldReader fields(*meshopt, reader.element() + " EXT_meshopt_compression");
                 buffer.meshoptFallback = fields.boolean("fallback", false);
-                if (fields.failed())
+                if (fields.failed()) {
                     reader.fail(fields.error().code, fields.error().message);
+                }
             }
-            if (ext.failed())
+            if (ext.failed()) {
                 reader.fail(ext.error().code, ext.error().message);
+            }
         }
         document.buffers.push_back(std::move(buffer));
     });
@@ -117,8 +123,9 @@ Result<void> parseBufferViews(const Json& root, GltfDocument& document) {
             compression.mode = fields.requiredString("mode");
             compression.filter = fields.string("filter", "NONE");
             view.meshopt = compression;
-            if (fields.failed())
+            if (fields.failed()) {
                 reader.fail(fields.error().code, fields.error().message);
+            }
         }
         document.bufferViews.push_back(view);
     });
@@ -133,10 +140,12 @@ Result<void> parseAccessors(const Json& root, GltfDocument& document) {
         const std::uint64_t gl = reader.requiredUint("componentType");
         accessor.type = reader.requiredString("type");
         accessor.normalized = reader.boolean("normalized", false);
-        for (double value : reader.numbers("min"))
+        for (double value : reader.numbers("min")) {
             accessor.min.push_back(float(value));
-        for (double value : reader.numbers("max"))
+        }
+        for (double value : reader.numbers("max")) {
             accessor.max.push_back(float(value));
+        }
         if (reader.failed()) {
             return;
         }
@@ -177,13 +186,15 @@ Result<void> parseAccessors(const Json& root, GltfDocument& document) {
                 result.valuesView = valueFields.requiredIndex("bufferView");
                 result.valuesOffset = valueFields.uint("byteOffset", 0);
                 for (FieldReader* part : {&indexFields, &valueFields}) {
-                    if (part->failed())
+                    if (part->failed()) {
                         fields.fail(part->error().code, part->error().message);
+                    }
                 }
             }
             accessor.sparse = result;
-            if (fields.failed())
+            if (fields.failed()) {
                 reader.fail(fields.error().code, fields.error().message);
+            }
         }
         document.accessors.push_back(std::move(accessor));
     });
@@ -253,8 +264,9 @@ Result<void> parseMeshes(const Json& root, GltfDocument& document) {
                     fields.fail(dracoFields.error().code, dracoFields.error().message);
                 }
             }
-            if (fields.failed())
+            if (fields.failed()) {
                 reader.fail(fields.error().code, fields.error().message);
+            }
             mesh.primitives.push_back(std::move(primitive));
         }
         document.meshes.push_back(std::move(mesh));
@@ -317,8 +329,9 @@ Result<void> parseNodes(const Json& root, GltfDocument& document) {
         if (const Json* light = extensionObject(reader, "KHR_lights_punctual")) {
             FieldReader fields(*light, reader.element() + " KHR_lights_punctual");
             node.light = fields.requiredIndex("light");
-            if (fields.failed())
+            if (fields.failed()) {
                 reader.fail(fields.error().code, fields.error().message);
+            }
         }
         const auto matrix = reader.numbers("matrix", 16);
         const auto translation = reader.numbers("translation", 3);
@@ -365,8 +378,9 @@ Result<void> parseNodes(const Json& root, GltfDocument& document) {
                 }
             }
             node.instancing = result;
-            if (fields.failed())
+            if (fields.failed()) {
                 reader.fail(fields.error().code, fields.error().message);
+            }
         }
         document.nodes.push_back(std::move(node));
     });

@@ -253,7 +253,7 @@ struct GltfDocument {
     std::vector<GltfSkin> skins;
     std::vector<GltfAnimation> animations;
     std::vector<CameraData> cameras;
-    std::vector<Light> lights;  // KHR_lights_punctual.
+    std::vector<Light> lights;                       // KHR_lights_punctual.
     std::vector<std::vector<std::uint32_t>> scenes;  // Root nodes of each scene.
     std::optional<std::uint32_t> scene;
 };

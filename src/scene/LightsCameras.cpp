@@ -59,8 +59,9 @@ void readPerspective(FieldReader& reader, CameraData& camera) {
     camera.aspectRatio = float(aspectRatio);
     camera.znear = float(znear);
     camera.zfar = float(zfar);
-    if (fields.failed())
+    if (fields.failed()) {
         reader.fail(fields.error().code, fields.error().message);
+    }
 }
 
 void readOrthographic(FieldReader& reader, CameraData& camera) {
@@ -95,8 +96,9 @@ void readOrthographic(FieldReader& reader, CameraData& camera) {
     camera.ymag = float(ymag);
     camera.znear = float(znear);
     camera.zfar = float(zfar);
-    if (fields.failed())
+    if (fields.failed()) {
         reader.fail(fields.error().code, fields.error().message);
+    }
 }
 
 void readLight(FieldReader& reader, Light& light) {
@@ -148,8 +150,9 @@ void readLight(FieldReader& reader, Light& light) {
         }
         light.innerConeAngle = float(inner);
         light.outerConeAngle = float(outer);
-        if (fields.failed())
+        if (fields.failed()) {
             reader.fail(fields.error().code, fields.error().message);
+        }
     }
 }
 

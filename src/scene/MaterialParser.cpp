@@ -52,15 +52,15 @@ std::optional<GltfTextureInfo> readTextureInfo(FieldReader& parent,
             info.texCoord = static_cast<std::uint32_t>(std::min<std::uint64_t>(*texCoord, 255));
         }
         info.transform = result;
-        if (fields.failed())
+        if (fields.failed()) {
             reader.fail(fields.error().code, fields.error().message);
+        }
     }
     if (reader.failed()) {
         parent.fail(reader.error().code, reader.error().message);
     }
     return info;
 }
-
 
 glm::vec3 readVec3(FieldReader& reader, std::string_view key, glm::vec3 fallback) {
     if (const auto values = reader.numbers(key, 3); values.size() == 3) {
@@ -75,8 +75,8 @@ GltfSpecular readSpecular(FieldReader& fields) {
     specular.specularTexture =
         readTextureInfo(fields, fields.object("specularTexture"), "specularTexture", {});
     specular.specularColorFactor = readVec3(fields, "specularColorFactor", glm::vec3(1.0f));
-    specular.specularColorTexture = readTextureInfo(fields, fields.object("specularColorTexture"),
-                                                    "specularColorTexture", {});
+    specular.specularColorTexture =
+        readTextureInfo(fields, fields.object("specularColorTexture"), "specularColorTexture", {});
     return specular;
 }
 
@@ -155,9 +155,9 @@ void readMaterialExtensions(FieldReader& reader, GltfMaterial& material) {
             // 0 stands for an infinite index of refraction; values between 0 and 1 have no
             // physical meaning and the extension forbids them.
             if (ior != 0.0 && ior < 1.0) {
-                fields.fail(ErrorCode::InvalidFormat,
-                            fields.element() + " has an invalid ior (" + formatNumber(ior) +
-                                "; it must be 0 or at least 1).");
+                fields.fail(ErrorCode::InvalidFormat, fields.element() + " has an invalid ior (" +
+                                                          formatNumber(ior) +
+                                                          "; it must be 0 or at least 1).");
             }
             material.ior = float(ior);
         } else if (name == "KHR_materials_specular") {
@@ -251,8 +251,9 @@ Result<void> parseMaterialElements(const Json& root, GltfDocument& document) {
             material.roughnessFactor = float(fields.number("roughnessFactor", 1.0));
             material.metallicRoughnessTexture = readTextureInfo(
                 reader, fields.object("metallicRoughnessTexture"), "metallicRoughnessTexture", {});
-            if (fields.failed())
+            if (fields.failed()) {
                 reader.fail(fields.error().code, fields.error().message);
+            }
         }
         material.normalTexture =
             readTextureInfo(reader, reader.object("normalTexture"), "normalTexture", "scale");

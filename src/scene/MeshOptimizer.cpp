@@ -200,8 +200,8 @@ void orderForVertexCache(std::vector<std::uint32_t>& indices,
                          std::size_t vertexCount,
                          VertexCacheOrder order) {
     if (order == VertexCacheOrder::Fast) {
-        meshopt_optimizeVertexCacheFifo(indices.data(), indices.data(), indices.size(),
-                                        vertexCount, 16);
+        meshopt_optimizeVertexCacheFifo(indices.data(), indices.data(), indices.size(), vertexCount,
+                                        16);
     } else {
         meshopt_optimizeVertexCache(indices.data(), indices.data(), indices.size(), vertexCount);
     }
@@ -422,8 +422,7 @@ Result<MeshOptimizerReport> optimizeMeshes(SceneData& scene, const MeshOptimizer
                     primitive.material.index() < scene.materials.size() &&
                     scene.materials[primitive.material.index()].alphaMode == AlphaMode::Blend;
                 if (!blends) {
-                    orderForVertexCache(indices, primitive.vertexCount,
-                                        options.vertexCacheOrder);
+                    orderForVertexCache(indices, primitive.vertexCount, options.vertexCacheOrder);
                 }
                 const bool renumber = streamsRenumberable(scene, primitive, readers);
                 if (renumber) {

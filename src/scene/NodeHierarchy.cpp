@@ -54,7 +54,9 @@ glm::mat4 normalMatrixOf(const glm::mat4& world) {
     return finite && !zero ? glm::mat4(cofactor) : glm::mat4(1.0f);
 }
 
-glm::mat4 composeTrs(const glm::vec3& translation, const glm::quat& rotation, const glm::vec3& scale) {
+glm::mat4 composeTrs(const glm::vec3& translation,
+                     const glm::quat& rotation,
+                     const glm::vec3& scale) {
     // The same operations, in the same order, as the loader's TRS (GltfDocument.cpp), so that a
     // node animated back to its rest pose gets bit-identical matrices.
     glm::mat4 result = glm::translate(glm::mat4(1.0f), translation);

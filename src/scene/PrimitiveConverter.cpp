@@ -195,8 +195,8 @@ Result<void> PrimitiveConverter::convertTargets() {
     for (std::size_t t = 0; t < mSource.targets.size(); ++t) {
         MorphTarget target;
         for (const auto& [name, gltfAccessor] : mSource.targets[t]) {
-            std::optional<AccessorId>* slot = name == "POSITION" ? &target.position
-                                              : name == "NORMAL" ? &target.normal
+            std::optional<AccessorId>* slot = name == "POSITION"  ? &target.position
+                                              : name == "NORMAL"  ? &target.normal
                                               : name == "TANGENT" ? &target.tangent
                                                                   : nullptr;
             if (!slot) {
@@ -212,8 +212,7 @@ Result<void> PrimitiveConverter::convertTargets() {
                                      " elements, but the primitive has " +
                                      std::to_string(mResult.vertexCount) + " vertices.");
             }
-            if (accessor.componentCount != 3 ||
-                (accessor.componentType == ComponentType::Uint32) ||
+            if (accessor.componentCount != 3 || (accessor.componentType == ComponentType::Uint32) ||
                 mContext.document.accessors[gltfAccessor].isMatrix) {
                 return makeError(ErrorCode::InvalidFormat,
                                  what + " is not a VEC3 of floats or of 8- or 16-bit integers.");
@@ -229,10 +228,9 @@ Result<void> PrimitiveConverter::convertTargets() {
                 for (std::size_t i = 0; i < values.size(); ++i) {
                     std::memcpy(bytes.data() + i * 12, &values[i][0], 12);
                 }
-                const AccessorId copy =
-                    appendAccessor(mScene, std::move(bytes), ComponentType::Float32, 3, false,
-                                   mResult.vertexCount,
-                                   "float32 copy of accessor " + std::to_string(gltfAccessor));
+                const AccessorId copy = appendAccessor(
+                    mScene, std::move(bytes), ComponentType::Float32, 3, false, mResult.vertexCount,
+                    "float32 copy of accessor " + std::to_string(gltfAccessor));
                 cached = mContext.morphCopies.emplace(id, copy).first;
             }
             *slot = cached->second;
@@ -269,12 +267,12 @@ Result<void> PrimitiveConverter::readIndexValues() {
     const std::uint32_t restart = type == ComponentType::Uint8 ? 0xFFu : 0xFFFFu;
     if (const auto found = std::find(values.begin(), values.end(), restart);
         type != ComponentType::Uint32 && found != values.end()) {
-        ENCORE_TRY(mContext.warn(
-            ErrorCode::InvalidFormat,
-            mName + " has the primitive-restart value " + std::to_string(restart) +
-                " in its indices (accessor " + std::to_string(id->index()) + ", position " +
-                std::to_string(found - values.begin()) +
-                "), which glTF forbids; it is drawn as an ordinary vertex index."));
+        ENCORE_TRY(
+            mContext.warn(ErrorCode::InvalidFormat,
+                          mName + " has the primitive-restart value " + std::to_string(restart) +
+                              " in its indices (accessor " + std::to_string(id->index()) +
+                              ", position " + std::to_string(found - values.begin()) +
+                              "), which glTF forbids; it is drawn as an ordinary vertex index."));
     }
     for (std::size_t i = 0; i < values.size(); ++i) {
         if (values[i] >= mResult.vertexCount) {
@@ -316,9 +314,9 @@ void PrimitiveConverter::generateFlatNormals(const std::vector<std::uint32_t>& v
              {&mResult.targets[t].position, &mResult.targets[t].normal,
               &mResult.targets[t].tangent}) {
             if (*slot) {
-                *slot = gatherAccessor(mScene, **slot, corners,
-                                       "de-indexed morph target " + std::to_string(t) + " of " +
-                                           mName);
+                *slot =
+                    gatherAccessor(mScene, **slot, corners,
+                                   "de-indexed morph target " + std::to_string(t) + " of " + mName);
             }
         }
     }
@@ -412,9 +410,9 @@ Result<void> convertMeshes(LoadContext& context) {
         }
         for (std::size_t p = 0; p < meshes[m].primitives.size(); ++p) {
             const GltfPrimitive& source = meshes[m].primitives[p];
-            const bool hasPosition = std::any_of(
-                source.attributes.begin(), source.attributes.end(),
-                [](const auto& attribute) { return attribute.first == "POSITION"; });
+            const bool hasPosition =
+                std::any_of(source.attributes.begin(), source.attributes.end(),
+                            [](const auto& attribute) { return attribute.first == "POSITION"; });
             if (!hasPosition) {
                 // The specification says clients should skip such primitives.
                 ENCORE_TRY(context.warn(ErrorCode::InvalidFormat,

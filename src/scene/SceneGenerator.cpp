@@ -27,7 +27,8 @@ struct MeshGeometry {
     std::vector<glm::vec2> texcoords;
     std::vector<std::uint32_t> indices;
 
-    std::uint32_t addVertex(const glm::vec3& position, const glm::vec3& normal,
+    std::uint32_t addVertex(const glm::vec3& position,
+                            const glm::vec3& normal,
                             const glm::vec2& texcoord) {
         positions.push_back(position);
         normals.push_back(normal);
@@ -175,12 +176,24 @@ glm::vec3 paletteColor(std::uint32_t index, std::uint32_t count) {
     const float x = 1.0f - std::abs(std::fmod(hue, 2.0f) - 1.0f);
     glm::vec3 rgb;
     switch (int(hue) % 6) {
-        case 0: rgb = {1, x, 0}; break;
-        case 1: rgb = {x, 1, 0}; break;
-        case 2: rgb = {0, 1, x}; break;
-        case 3: rgb = {0, x, 1}; break;
-        case 4: rgb = {x, 0, 1}; break;
-        default: rgb = {1, 0, x}; break;
+        case 0:
+            rgb = {1, x, 0};
+            break;
+        case 1:
+            rgb = {x, 1, 0};
+            break;
+        case 2:
+            rgb = {0, 1, x};
+            break;
+        case 3:
+            rgb = {0, x, 1};
+            break;
+        case 4:
+            rgb = {x, 0, 1};
+            break;
+        default:
+            rgb = {1, 0, x};
+            break;
     }
     return 0.1f + 0.8f * rgb;
 }
@@ -411,9 +424,9 @@ Result<std::vector<std::uint8_t>> generateSceneGlb(const GeneratorOptions& optio
         return outOfRange("materials", options.materialCount, kMaxGeneratedMaterials);
     }
     if (options.tessellation < 3 || options.tessellation > 256) {
-        return makeError(ErrorCode::InvalidArgument,
-                         "The tessellation (" + std::to_string(options.tessellation) +
-                             ") must be between 3 and 256 segments.");
+        return makeError(ErrorCode::InvalidArgument, "The tessellation (" +
+                                                         std::to_string(options.tessellation) +
+                                                         ") must be between 3 and 256 segments.");
     }
 
     json document = {{"asset", {{"version", "2.0"}, {"generator", "encore gen"}}},
@@ -446,10 +459,9 @@ Result<std::vector<std::uint8_t>> generateSceneGlb(const GeneratorOptions& optio
         // across the materials, so a render shows dielectric and metallic highlights of several
         // widths while the hues keep the materials apart.
         const bool metal = i % 3 == 1;
-        const float roughness =
-            options.materialCount > 1
-                ? 0.2f + 0.7f * float(i) / float(options.materialCount - 1)
-                : 0.5f;
+        const float roughness = options.materialCount > 1
+                                    ? 0.2f + 0.7f * float(i) / float(options.materialCount - 1)
+                                    : 0.5f;
         json material = {{"name", "material " + std::to_string(i)},
                          {"pbrMetallicRoughness",
                           {{"baseColorFactor", {color.r, color.g, color.b, 1.0}},
@@ -477,9 +489,9 @@ Result<std::vector<std::uint8_t>> generateSceneGlb(const GeneratorOptions& optio
                              [](const glm::vec3& a, const glm::vec3& b) { return a.y < b.y; })
                 ->y);
         json attributes = {
-            {"POSITION", binary.addAccessor(document, mesh.positions, kFloat, "VEC3",
-                                            mesh.positions.size(), kArrayBuffer,
-                                            boundsOf(mesh.positions))},
+            {"POSITION",
+             binary.addAccessor(document, mesh.positions, kFloat, "VEC3", mesh.positions.size(),
+                                kArrayBuffer, boundsOf(mesh.positions))},
             {"NORMAL", binary.addAccessor(document, mesh.normals, kFloat, "VEC3",
                                           mesh.normals.size(), kArrayBuffer)},
             {"TEXCOORD_0", binary.addAccessor(document, mesh.texcoords, kFloat, "VEC2",
@@ -487,18 +499,17 @@ Result<std::vector<std::uint8_t>> generateSceneGlb(const GeneratorOptions& optio
         std::size_t indices;
         if (mesh.positions.size() <= 65536) {
             std::vector<std::uint16_t> narrow(mesh.indices.begin(), mesh.indices.end());
-            indices = binary.addAccessor(document, narrow, kUnsignedShort, "SCALAR",
-                                         narrow.size(), kElementArrayBuffer);
+            indices = binary.addAccessor(document, narrow, kUnsignedShort, "SCALAR", narrow.size(),
+                                         kElementArrayBuffer);
         } else {
             indices = binary.addAccessor(document, mesh.indices, kUnsignedInt, "SCALAR",
                                          mesh.indices.size(), kElementArrayBuffer);
         }
-        document["meshes"].push_back(
-            {{"name", "mesh " + std::to_string(i)},
-             {"primitives",
-              {{{"attributes", attributes},
-                {"indices", indices},
-                {"material", i % options.materialCount}}}}});
+        document["meshes"].push_back({{"name", "mesh " + std::to_string(i)},
+                                      {"primitives",
+                                       {{{"attributes", attributes},
+                                         {"indices", indices},
+                                         {"material", i % options.materialCount}}}}});
     }
 
     std::mt19937 random(options.seed);

@@ -80,18 +80,17 @@ Result<void> recordExtensions(LoadContext& context) {
     scene.extensionsRequired = context.document.extensionsRequired;
     for (const std::string& extension : scene.extensionsUsed) {
         if (isSupportedExtension(extension) ||
-            std::find(scene.extensionsIgnored.begin(), scene.extensionsIgnored.end(),
-                      extension) != scene.extensionsIgnored.end()) {
+            std::find(scene.extensionsIgnored.begin(), scene.extensionsIgnored.end(), extension) !=
+                scene.extensionsIgnored.end()) {
             continue;
         }
         scene.extensionsIgnored.push_back(extension);
-        const bool material = extension.starts_with("KHR_materials_") ||
-                              extension.starts_with("EXT_materials_");
-        ENCORE_TRY(context.warn(ErrorCode::Unsupported,
-                                "The asset uses " + extension +
-                                    ", which Encore does not implement; " +
-                                    (material ? "materials are drawn without it."
-                                              : "the asset is drawn without it.")));
+        const bool material =
+            extension.starts_with("KHR_materials_") || extension.starts_with("EXT_materials_");
+        ENCORE_TRY(context.warn(
+            ErrorCode::Unsupported,
+            "The asset uses " + extension + ", which Encore does not implement; " +
+                (material ? "materials are drawn without it." : "the asset is drawn without it.")));
     }
     return {};
 }

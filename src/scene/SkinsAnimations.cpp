@@ -18,7 +18,9 @@ std::string countText(std::uint64_t count, std::string_view what) {
 
 // The accessor's components as floats (normalised integers mapped), in element order;
 // matrices read column by column, skipping glTF's column padding of 1- and 2-byte types.
-std::vector<float> readComponents(const SceneData& scene, const GltfAccessor& source, AccessorId id) {
+std::vector<float> readComponents(const SceneData& scene,
+                                  const GltfAccessor& source,
+                                  AccessorId id) {
     const Accessor& accessor = scene.accessors[id.index()];
     const auto bytes = scene.accessorBytes(id);
     std::vector<float> result;
@@ -27,7 +29,9 @@ std::vector<float> readComponents(const SceneData& scene, const GltfAccessor& so
     }
     const std::uint32_t size = componentSize(accessor.componentType);
     const std::uint32_t components = source.componentCount;
-    const std::uint32_t rows = source.isMatrix ? (components == 4 ? 2 : components == 9 ? 3 : 4)
+    const std::uint32_t rows = source.isMatrix ? (components == 4   ? 2
+                                                  : components == 9 ? 3
+                                                                    : 4)
                                                : components;
     const std::uint32_t columnBytes = source.isMatrix ? (rows * size + 3) / 4 * 4 : rows * size;
     result.resize(std::size_t(accessor.count) * components);
@@ -74,24 +78,31 @@ std::vector<float> readComponents(const SceneData& scene, const GltfAccessor& so
 }
 
 std::optional<Interpolation> interpolationFromName(std::string_view name) {
-    if (name == "LINEAR")
+    if (name == "LINEAR") {
         return Interpolation::Linear;
-    if (name == "STEP")
+    }
+    if (name == "STEP") {
         return Interpolation::Step;
-    if (name == "CUBICSPLINE")
+    }
+    if (name == "CUBICSPLINE") {
         return Interpolation::CubicSpline;
+    }
     return std::nullopt;
 }
 
 std::optional<AnimationPath> pathFromName(std::string_view name) {
-    if (name == "translation")
+    if (name == "translation") {
         return AnimationPath::Translation;
-    if (name == "rotation")
+    }
+    if (name == "rotation") {
         return AnimationPath::Rotation;
-    if (name == "scale")
+    }
+    if (name == "scale") {
         return AnimationPath::Scale;
-    if (name == "weights")
+    }
+    if (name == "weights") {
         return AnimationPath::Weights;
+    }
     return std::nullopt;
 }
 
@@ -105,34 +116,32 @@ Result<AnimationSampler> convertSampler(const LoadContext& context,
     AnimationSampler sampler;
     const auto interpolation = interpolationFromName(source.interpolation);
     if (!interpolation) {
-        return makeError(ErrorCode::InvalidFormat,
-                         name + " has an unknown interpolation ('" + source.interpolation +
-                             "'; expected LINEAR, STEP or CUBICSPLINE).");
+        return makeError(ErrorCode::InvalidFormat, name + " has an unknown interpolation ('" +
+                                                       source.interpolation +
+                                                       "'; expected LINEAR, STEP or CUBICSPLINE).");
     }
     sampler.interpolation = *interpolation;
     const GltfAccessor& input = document.accessors[source.input];
     if (input.type != "SCALAR" || input.componentType != ComponentType::Float32 ||
         input.normalized) {
         return makeError(ErrorCode::InvalidFormat,
-                         name + " has an input (accessor " + std::to_string(source.input) +
-                             ", " + input.type +
-                             ") that is not a SCALAR of floats; key times must be.");
+                         name + " has an input (accessor " + std::to_string(source.input) + ", " +
+                             input.type + ") that is not a SCALAR of floats; key times must be.");
     }
     sampler.times = readComponents(scene, input, AccessorId(source.input));
     for (std::size_t k = 0; k < sampler.times.size(); ++k) {
         const float time = sampler.times[k];
         if (!std::isfinite(time)) {
             return makeError(ErrorCode::InvalidFormat,
-                             name + " has a key time that is not finite (key " +
-                                 std::to_string(k) + " of accessor " +
-                                 std::to_string(source.input) + ").");
+                             name + " has a key time that is not finite (key " + std::to_string(k) +
+                                 " of accessor " + std::to_string(source.input) + ").");
         }
         if (k > 0 && !(time > sampler.times[k - 1])) {
             return makeError(ErrorCode::InvalidFormat,
                              name + " has key times that are not strictly increasing (key " +
-                                 std::to_string(k) + " at " + formatNumber(time) +
-                                 " s follows " + formatNumber(sampler.times[k - 1]) +
-                                 " s in accessor " + std::to_string(source.input) + ").");
+                                 std::to_string(k) + " at " + formatNumber(time) + " s follows " +
+                                 formatNumber(sampler.times[k - 1]) + " s in accessor " +
+                                 std::to_string(source.input) + ").");
         }
     }
     const GltfAccessor& output = document.accessors[source.output];
@@ -169,8 +178,8 @@ Result<void> checkChannelOutput(const LoadContext& context,
                                 std::uint32_t targets,
                                 const std::string& name) {
     const GltfAccessor& output = context.document.accessors[source.output];
-    const std::string accessor = "output (accessor " + std::to_string(source.output) + ", " +
-                                 output.type + ")";
+    const std::string accessor =
+        "output (accessor " + std::to_string(source.output) + ", " + output.type + ")";
     const bool isFloat = output.componentType == ComponentType::Float32 && !output.normalized;
     const bool isNormalized = output.normalized && output.componentType != ComponentType::Uint32 &&
                               output.componentType != ComponentType::Float32;
@@ -263,8 +272,9 @@ Result<void> parseAnimations(const Json& root, GltfDocument& document) {
                                 formatNumber(animation.timeOffset) +
                                 " is out of range (at most 1000000 seconds either way).");
             }
-            if (fields.failed())
+            if (fields.failed()) {
                 reader.fail(fields.error().code, fields.error().message);
+            }
         }
         const Json* channels = reader.array("channels");
         const Json* samplers = reader.array("samplers");
@@ -276,13 +286,15 @@ Result<void> parseAnimations(const Json& root, GltfDocument& document) {
                 FieldReader targetFields(*target, fields.element() + " target");
                 channel.node = targetFields.optionalIndex("node");
                 channel.path = targetFields.requiredString("path");
-                if (targetFields.failed())
+                if (targetFields.failed()) {
                     fields.fail(targetFields.error().code, targetFields.error().message);
+                }
             } else if (!fields.failed()) {
                 fields.fail(ErrorCode::InvalidFormat, fields.element() + " has no 'target'.");
             }
-            if (fields.failed())
+            if (fields.failed()) {
                 reader.fail(fields.error().code, fields.error().message);
+            }
             animation.channels.push_back(std::move(channel));
         }
         for (std::size_t s = 0; samplers && s < samplers->size() && !reader.failed(); ++s) {
@@ -291,8 +303,9 @@ Result<void> parseAnimations(const Json& root, GltfDocument& document) {
             sampler.input = fields.requiredIndex("input");
             sampler.output = fields.requiredIndex("output");
             sampler.interpolation = fields.string("interpolation", "LINEAR");
-            if (fields.failed())
+            if (fields.failed()) {
                 reader.fail(fields.error().code, fields.error().message);
+            }
             animation.samplers.push_back(std::move(sampler));
         }
         document.animations.push_back(std::move(animation));
@@ -328,12 +341,12 @@ Result<void> convertSkins(LoadContext& context) {
                                      ") that are not MAT4 floats.");
             }
             if (accessor.count < skin.joints.size()) {
-                return makeError(ErrorCode::InvalidFormat,
-                                 name + " has " + countText(skin.joints.size(), "joint") +
-                                     " but " + std::to_string(accessor.count) +
-                                     (accessor.count == 1 ? " inverse bind matrix"
-                                                          : " inverse bind matrices") +
-                                     " (accessor " + std::to_string(index) + ").");
+                return makeError(
+                    ErrorCode::InvalidFormat,
+                    name + " has " + countText(skin.joints.size(), "joint") + " but " +
+                        std::to_string(accessor.count) +
+                        (accessor.count == 1 ? " inverse bind matrix" : " inverse bind matrices") +
+                        " (accessor " + std::to_string(index) + ").");
             }
             const auto values = readComponents(scene, accessor, AccessorId(index));
             for (std::size_t j = 0; j < skin.joints.size(); ++j) {
@@ -369,15 +382,14 @@ Result<void> convertSkins(LoadContext& context) {
                     found = largestJoint.emplace(key, static_cast<std::uint32_t>(largest)).first;
                 }
                 if (found->second >= joints) {
-                    return makeError(
-                        ErrorCode::InvalidFormat,
-                        "mesh " + std::to_string(node.mesh->index()) + ", primitive " +
-                            std::to_string(p) + " has joint index " +
-                            std::to_string(found->second) + " in " +
-                            std::string(semanticName(semantic)) + ", but node " +
-                            std::to_string(n) + " skins it with skin " +
-                            std::to_string(node.skin->index()) + ", which has " +
-                            countText(joints, "joint") + ".");
+                    return makeError(ErrorCode::InvalidFormat,
+                                     "mesh " + std::to_string(node.mesh->index()) + ", primitive " +
+                                         std::to_string(p) + " has joint index " +
+                                         std::to_string(found->second) + " in " +
+                                         std::string(semanticName(semantic)) + ", but node " +
+                                         std::to_string(n) + " skins it with skin " +
+                                         std::to_string(node.skin->index()) + ", which has " +
+                                         countText(joints, "joint") + ".");
                 }
             }
         }
@@ -444,12 +456,12 @@ Result<void> convertAnimations(LoadContext& context) {
                         "matrix is decomposed into TRS."));
             }
             const AnimationSampler& sampler = animation.samplers[channel.sampler];
-            ENCORE_TRY(checkChannelOutput(context, source.samplers[channel.sampler], sampler,
-                                          *path, targets, where));
+            ENCORE_TRY(checkChannelOutput(context, source.samplers[channel.sampler], sampler, *path,
+                                          targets, where));
             animation.channels.push_back(
                 AnimationChannel{channel.sampler, NodeId(*channel.node), *path});
-            animation.start = any ? std::min(animation.start, sampler.times.front())
-                                  : sampler.times.front();
+            animation.start =
+                any ? std::min(animation.start, sampler.times.front()) : sampler.times.front();
             animation.end =
                 any ? std::max(animation.end, sampler.times.back()) : sampler.times.back();
             any = true;

@@ -11,22 +11,27 @@ namespace encore::scene {
 namespace {
 
 int hexValue(char c) {
-    if (c >= '0' && c <= '9')
+    if (c >= '0' && c <= '9') {
         return c - '0';
-    if (c >= 'a' && c <= 'f')
+    }
+    if (c >= 'a' && c <= 'f') {
         return c - 'a' + 10;
-    if (c >= 'A' && c <= 'F')
+    }
+    if (c >= 'A' && c <= 'F') {
         return c - 'A' + 10;
+    }
     return -1;
 }
 
 constexpr std::array<std::int8_t, 256> makeBase64Table() {
     std::array<std::int8_t, 256> table{};
-    for (auto& entry : table)
+    for (auto& entry : table) {
         entry = -1;
+    }
     constexpr char kAlphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    for (int i = 0; i < 64; ++i)
+    for (int i = 0; i < 64; ++i) {
         table[static_cast<unsigned char>(kAlphabet[i])] = std::int8_t(i);
+    }
     // The URL-safe alphabet too: some exporters write it.
     table[static_cast<unsigned char>('-')] = 62;
     table[static_cast<unsigned char>('_')] = 63;

@@ -129,8 +129,7 @@ Result<void> validateReferences(const GltfDocument& document) {
         for (std::uint32_t joint : document.skins[s].joints) {
             checker.check(name, "node", joint, document.nodes.size(), "joint");
         }
-        checker.check(name, "node", document.skins[s].skeleton, document.nodes.size(),
-                      "skeleton");
+        checker.check(name, "node", document.skins[s].skeleton, document.nodes.size(), "skeleton");
     }
     for (std::size_t a = 0; a < document.animations.size(); ++a) {
         const GltfAnimation& animation = document.animations[a];
@@ -245,12 +244,15 @@ void labelAccessorUses(LoadContext& context) {
     for (std::size_t n = 0; n < document.nodes.size(); ++n) {
         if (const auto& instancing = document.nodes[n].instancing) {
             const std::string where = " of node " + std::to_string(n);
-            if (instancing->translation)
+            if (instancing->translation) {
                 use(*instancing->translation, "TRANSLATION" + where, false);
-            if (instancing->rotation)
+            }
+            if (instancing->rotation) {
                 use(*instancing->rotation, "ROTATION" + where, false);
-            if (instancing->scale)
+            }
+            if (instancing->scale) {
                 use(*instancing->scale, "SCALE" + where, false);
+            }
         }
     }
     for (std::size_t s = 0; s < document.skins.size(); ++s) {

@@ -95,13 +95,17 @@ class Composer {
             condition = trim(condition.substr(1));
         }
         if (!isIdentifier(condition)) {
-            return error(file, line, "condition '" + std::string(condition) + "' is not a flag name");
+            return error(file, line,
+                         "condition '" + std::string(condition) + "' is not a flag name");
         }
         return mFlags.contains(condition) != negate;
     }
 
-    Result<void> directive(std::string_view file, std::size_t line, std::string_view text,
-                           bool active, std::vector<Conditional>& stack) {
+    Result<void> directive(std::string_view file,
+                           std::size_t line,
+                           std::string_view text,
+                           bool active,
+                           std::vector<Conditional>& stack) {
         const auto space = text.find_first_of(" \t");
         const std::string_view name = text.substr(0, space);
         const std::string_view argument =

@@ -68,7 +68,8 @@ std::size_t ShaderVariantKeyHash::operator()(const ShaderVariantKey& key) const 
 
 namespace {
 
-wgpu::ShaderModule createModule(const wgpu::Device& device, const std::string& source,
+wgpu::ShaderModule createModule(const wgpu::Device& device,
+                                const std::string& source,
                                 const std::string& label) {
     wgpu::ShaderSourceWGSL wgsl;
     wgsl.code = source.c_str();

@@ -31,7 +31,8 @@ constexpr std::uint64_t kInitialVertexCapacity = 16384;
 
 }  // namespace
 
-Result<Overlay> Overlay::create(const wgpu::Device& device, const wgpu::Queue& queue,
+Result<Overlay> Overlay::create(const wgpu::Device& device,
+                                const wgpu::Queue& queue,
                                 shaders::ShaderLibrary& shaders,
                                 wgpu::TextureFormat surfaceFormat) {
     ENCORE_TRY_ASSIGN(auto module, shaders.module("overlay.wgsl"));
@@ -91,15 +92,17 @@ glm::vec2 Overlay::measureText(std::string_view text, float scale) {
            scale;
 }
 
-glm::vec2 Overlay::addText(float x, float y, std::string_view text, OverlayColor color,
+glm::vec2 Overlay::addText(float x,
+                           float y,
+                           std::string_view text,
+                           OverlayColor color,
                            float scale) {
     std::string copy(text);
     // About 270 bytes per character is stb_easy_font's worst case.
     std::vector<EasyFontVertex> quads(copy.size() * 70 + 4);
     unsigned char rgba[4] = {color.r, color.g, color.b, color.a};
-    const int quadCount =
-        stb_easy_font_print(0.0f, 0.0f, copy.data(), rgba, quads.data(),
-                            int(quads.size() * sizeof(EasyFontVertex)));
+    const int quadCount = stb_easy_font_print(0.0f, 0.0f, copy.data(), rgba, quads.data(),
+                                              int(quads.size() * sizeof(EasyFontVertex)));
     for (int quad = 0; quad < quadCount; ++quad) {
         glm::vec2 corners[4];
         for (int corner = 0; corner < 4; ++corner) {
@@ -112,8 +115,7 @@ glm::vec2 Overlay::addText(float x, float y, std::string_view text, OverlayColor
 }
 
 void Overlay::addRectangle(float x, float y, float width, float height, OverlayColor color) {
-    const glm::vec2 corners[4] = {{x, y}, {x + width, y}, {x + width, y + height},
-                                  {x, y + height}};
+    const glm::vec2 corners[4] = {{x, y}, {x + width, y}, {x + width, y + height}, {x, y + height}};
     addQuad(corners, color);
 }
 
@@ -134,16 +136,18 @@ void Overlay::addQuad(const glm::vec2 corners[4], OverlayColor color) {
     }
 }
 
-void Overlay::encode(const wgpu::CommandEncoder& commands, const wgpu::TextureView& target,
-                     std::uint32_t width, std::uint32_t height) {
+void Overlay::encode(const wgpu::CommandEncoder& commands,
+                     const wgpu::TextureView& target,
+                     std::uint32_t width,
+                     std::uint32_t height) {
     if (mVertices.empty()) {
         return;
     }
     if (mVertices.size() > mVertexCapacity) {
         mVertexCapacity = std::max<std::uint64_t>(kInitialVertexCapacity, mVertices.size() * 2);
-        mVertexBuffer = gpu::createBuffer(mDevice,
-                                          wgpu::BufferUsage::Vertex | wgpu::BufferUsage::CopyDst,
-                                          mVertexCapacity * sizeof(Vertex), "overlay vertices");
+        mVertexBuffer =
+            gpu::createBuffer(mDevice, wgpu::BufferUsage::Vertex | wgpu::BufferUsage::CopyDst,
+                              mVertexCapacity * sizeof(Vertex), "overlay vertices");
     }
     mQueue.WriteBuffer(mVertexBuffer, 0, mVertices.data(), mVertices.size() * sizeof(Vertex));
     const float viewport[4] = {float(width), float(height), 0.0f, 0.0f};

@@ -28,7 +28,8 @@ struct OverlayColor {
 
 class Overlay {
   public:
-    static Result<Overlay> create(const wgpu::Device& device, const wgpu::Queue& queue,
+    static Result<Overlay> create(const wgpu::Device& device,
+                                  const wgpu::Queue& queue,
                                   shaders::ShaderLibrary& shaders,
                                   wgpu::TextureFormat surfaceFormat);
 
@@ -36,7 +37,10 @@ class Overlay {
     void clear() { mVertices.clear(); }
     // Text with its top left at (x, y); `scale` multiplies stb_easy_font's 6-pixel-high glyphs.
     // Lines break at '\n'. Returns the text's width and height in pixels.
-    glm::vec2 addText(float x, float y, std::string_view text, OverlayColor color,
+    glm::vec2 addText(float x,
+                      float y,
+                      std::string_view text,
+                      OverlayColor color,
                       float scale = 2.0f);
     static glm::vec2 measureText(std::string_view text, float scale = 2.0f);
     void addRectangle(float x, float y, float width, float height, OverlayColor color);
@@ -44,8 +48,10 @@ class Overlay {
 
     // Draws what was added into `target` (a `width` x `height` view of the surface format),
     // over its contents. Nothing is recorded when nothing was added.
-    void encode(const wgpu::CommandEncoder& commands, const wgpu::TextureView& target,
-                std::uint32_t width, std::uint32_t height);
+    void encode(const wgpu::CommandEncoder& commands,
+                const wgpu::TextureView& target,
+                std::uint32_t width,
+                std::uint32_t height);
 
     std::size_t vertexCount() const { return mVertices.size(); }
 

@@ -6,7 +6,8 @@
 
 namespace encore::view {
 
-Result<Presenter> Presenter::create(const wgpu::Device& device, shaders::ShaderLibrary& shaders,
+Result<Presenter> Presenter::create(const wgpu::Device& device,
+                                    shaders::ShaderLibrary& shaders,
                                     wgpu::TextureFormat surfaceFormat) {
     ENCORE_TRY_ASSIGN(auto module, shaders.module("present.wgsl"));
     Presenter presenter;
@@ -21,7 +22,8 @@ Result<Presenter> Presenter::create(const wgpu::Device& device, shaders::ShaderL
     return presenter;
 }
 
-void Presenter::encode(const wgpu::CommandEncoder& commands, const wgpu::TextureView& source,
+void Presenter::encode(const wgpu::CommandEncoder& commands,
+                       const wgpu::TextureView& source,
                        const wgpu::TextureView& target) {
     if (source.Get() != mBoundSource.Get()) {
         mBindGroup = gpu::makeBindGroup(mDevice, mLayout, {{0, source}}, "present");

@@ -16,11 +16,13 @@ namespace encore::view {
 
 class Presenter {
   public:
-    static Result<Presenter> create(const wgpu::Device& device, shaders::ShaderLibrary& shaders,
+    static Result<Presenter> create(const wgpu::Device& device,
+                                    shaders::ShaderLibrary& shaders,
                                     wgpu::TextureFormat surfaceFormat);
 
     // Records the copy of `source` (a view the size of `target`) into `target`.
-    void encode(const wgpu::CommandEncoder& commands, const wgpu::TextureView& source,
+    void encode(const wgpu::CommandEncoder& commands,
+                const wgpu::TextureView& source,
                 const wgpu::TextureView& target);
 
   private:

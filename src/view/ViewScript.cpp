@@ -81,8 +81,7 @@ Result<std::vector<ScriptStep>> parseViewScript(const std::string& text,
         } else if (command == "drag") {
             step.command = ScriptCommand::Drag;
             std::string button;
-            if (!(words >> button >> step.x >> step.y) ||
-                (button != "left" && button != "right")) {
+            if (!(words >> button >> step.x >> step.y) || (button != "left" && button != "right")) {
                 return invalid("drag takes left|right DX DY");
             }
             step.key = button == "left" ? GLFW_MOUSE_BUTTON_LEFT : GLFW_MOUSE_BUTTON_RIGHT;

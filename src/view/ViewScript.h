@@ -27,13 +27,13 @@ enum class ScriptCommand { Frames, Key, Drag, Scroll, Resize, Drop, Screenshot, 
 
 struct ScriptStep {
     ScriptCommand command = ScriptCommand::Frames;
-    std::uint32_t count = 0;      // Frames
-    int key = 0;                  // Key: a GLFW key code; Drag: a GLFW mouse button.
-    double x = 0.0, y = 0.0;      // Drag: DX, DY; Scroll: 0, DY.
+    std::uint32_t count = 0;              // Frames
+    int key = 0;                          // Key: a GLFW key code; Drag: a GLFW mouse button.
+    double x = 0.0, y = 0.0;              // Drag: DX, DY; Scroll: 0, DY.
     std::uint32_t width = 0, height = 0;  // Resize
-    std::string path;             // Drop, Screenshot
-    bool overlay = false;         // Screenshot
-    int line = 0;                 // Where it was written, for errors.
+    std::string path;                     // Drop, Screenshot
+    bool overlay = false;                 // Screenshot
+    int line = 0;                         // Where it was written, for errors.
 };
 
 // Parses a script; errors name the file, the line and what is wrong.

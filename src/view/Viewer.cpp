@@ -16,7 +16,8 @@ Viewer::~Viewer() {
     }
 }
 
-Result<std::unique_ptr<Viewer>> Viewer::create(gpu::Context& context, Window& window,
+Result<std::unique_ptr<Viewer>> Viewer::create(gpu::Context& context,
+                                               Window& window,
                                                std::unique_ptr<scene::SceneData> scene,
                                                ViewerOptions options) {
     auto state = std::make_unique<State>();
@@ -217,8 +218,8 @@ void Viewer::State::drop(const std::string& path) {
         show("The Animometer shows no files; run encore view on the file instead.", true);
         return;
     }
-    auto loaded = options.loadScene ? options.loadScene(path)
-                                    : scene::loadScene(path, scene::LoadOptions{});
+    auto loaded =
+        options.loadScene ? options.loadScene(path) : scene::loadScene(path, scene::LoadOptions{});
     if (!loaded) {
         show(loaded.error().message, true);
         return;

@@ -52,7 +52,8 @@ struct ViewerOptions {
 class Viewer {
   public:
     // `scene` is null with options.animometer. The context and window must outlive the viewer.
-    static Result<std::unique_ptr<Viewer>> create(gpu::Context& context, Window& window,
+    static Result<std::unique_ptr<Viewer>> create(gpu::Context& context,
+                                                  Window& window,
                                                   std::unique_ptr<scene::SceneData> scene,
                                                   ViewerOptions options);
     ~Viewer();

@@ -78,22 +78,21 @@ void Viewer::State::buildOverlay() {
         }
         fps = sum > 0.0 ? double(frameIntervals.size()) / sum : 0.0;
     }
-    lines.push_back({format("%.1f fps (%.2f ms)  %ux%u  present %s", fps,
-                            fps > 0.0 ? 1000.0 / fps : 0.0, width, height,
-                            presentModeName(surface->presentMode())),
-                     kText});
+    lines.push_back(
+        {format("%.1f fps (%.2f ms)  %ux%u  present %s", fps, fps > 0.0 ? 1000.0 / fps : 0.0, width,
+                height, presentModeName(surface->presentMode())),
+         kText});
     lines.push_back({"strategy " + strategyLabel(), kText});
-    std::string gpu = lastFrame.gpuMilliseconds
-                          ? format("%.3f ms", *lastFrame.gpuMilliseconds)
-                          : std::string("n/a (no timestamp queries)");
+    std::string gpu = lastFrame.gpuMilliseconds ? format("%.3f ms", *lastFrame.gpuMilliseconds)
+                                                : std::string("n/a (no timestamp queries)");
     lines.push_back({format("CPU encode %.3f ms  submit %.3f ms", lastFrame.encodeMilliseconds,
                             lastFrame.submitMilliseconds),
                      kCpuColor});
     lines.push_back({"GPU " + gpu, kGpuColor});
-    const std::uint64_t bundlesRecorded =
-        renderer && renderer->strategy() ? renderer->strategy()->bundlesRecorded()
-        : animometer && options.animometer->bundle ? 1
-                                                   : 0;
+    const std::uint64_t bundlesRecorded = renderer && renderer->strategy()
+                                              ? renderer->strategy()->bundlesRecorded()
+                                          : animometer && options.animometer->bundle ? 1
+                                                                                     : 0;
     lines.push_back({format("draws %llu  executeBundles %llu  draws in bundles %llu",
                             (unsigned long long)lastFrame.counters.drawCalls(),
                             (unsigned long long)lastFrame.counters.executeBundles,
@@ -125,8 +124,8 @@ void Viewer::State::buildOverlay() {
         panelWidth = std::max(panelWidth, Overlay::measureText(text, kScale).x);
     }
     const float graphHeight = 48.0f;
-    panelWidth = std::min(std::max(panelWidth, 2.0f * kHistoryFrames) + 2.0f * kMargin,
-                          float(width));
+    panelWidth =
+        std::min(std::max(panelWidth, 2.0f * kHistoryFrames) + 2.0f * kMargin, float(width));
     const float panelHeight = float(lines.size()) * kLineHeight + graphHeight + 3.0f * kMargin;
     overlay->addRectangle(0.0f, 0.0f, panelWidth, panelHeight, kPanel);
     float y = kMargin;
@@ -151,8 +150,8 @@ void Viewer::State::buildOverlay() {
         }
         x += 2.0f;
     }
-    overlay->addText(kMargin + 2.0f * kHistoryFrames + 4.0f, y,
-                     format("%.1f ms", highest), kDim, 1.5f);
+    overlay->addText(kMargin + 2.0f * kHistoryFrames + 4.0f, y, format("%.1f ms", highest), kDim,
+                     1.5f);
 
     const std::string help =
         "drag orbit  right-drag pan  wheel zoom  F frame  1-8 strategy  B bundle  C freeze "

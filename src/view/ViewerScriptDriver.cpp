@@ -19,16 +19,17 @@ std::string Viewer::State::statsLine() const {
     std::string label = strategyLabel();
     std::replace(label.begin(), label.end(), ' ', '_');
     std::string line = "stats strategy=" + label;
-    const std::uint64_t bundlesRecorded =
-        renderer && renderer->strategy() ? renderer->strategy()->bundlesRecorded()
-        : animometer && options.animometer->bundle ? 1
-                                                   : 0;
-    line += format(" bundled=%d size=%ux%u frames=%llu bundlesRecorded=%llu draws=%llu "
-                   "executeBundles=%llu",
-                   renderer ? int(renderer->bundled()) : int(options.animometer->bundle), width,
-                   height, (unsigned long long)frameNumber, (unsigned long long)bundlesRecorded,
-                   (unsigned long long)lastFrame.counters.drawCalls(),
-                   (unsigned long long)lastFrame.counters.executeBundles);
+    const std::uint64_t bundlesRecorded = renderer && renderer->strategy()
+                                              ? renderer->strategy()->bundlesRecorded()
+                                          : animometer && options.animometer->bundle ? 1
+                                                                                     : 0;
+    line += format(
+        " bundled=%d size=%ux%u frames=%llu bundlesRecorded=%llu draws=%llu "
+        "executeBundles=%llu",
+        renderer ? int(renderer->bundled()) : int(options.animometer->bundle), width, height,
+        (unsigned long long)frameNumber, (unsigned long long)bundlesRecorded,
+        (unsigned long long)lastFrame.counters.drawCalls(),
+        (unsigned long long)lastFrame.counters.executeBundles);
     if (renderer) {
         // GPU scenes built and bytes uploaded since the viewer opened: a switch of strategy
         // changes neither.

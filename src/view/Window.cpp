@@ -39,8 +39,7 @@ Window::Window(Window&&) noexcept = default;
 Window& Window::operator=(Window&&) noexcept = default;
 Window::~Window() = default;
 
-Result<Window> Window::create(const std::string& title, std::uint32_t width,
-                              std::uint32_t height) {
+Result<Window> Window::create(const std::string& title, std::uint32_t width, std::uint32_t height) {
     glfwSetErrorCallback([](int, const char* description) { gLastGlfwError = description; });
     const char* display = std::getenv("DISPLAY");
     if (!display || !*display) {

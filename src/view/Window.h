@@ -42,7 +42,8 @@ class Window {
   public:
     // Fails with ErrorCode::NoDisplay when there is no display to open (no DISPLAY, or the X
     // server refuses), naming GLFW's reason.
-    static Result<Window> create(const std::string& title, std::uint32_t width,
+    static Result<Window> create(const std::string& title,
+                                 std::uint32_t width,
                                  std::uint32_t height);
 
     Window(Window&&) noexcept;

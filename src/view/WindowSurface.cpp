@@ -33,7 +33,8 @@ const char* presentModeName(wgpu::PresentMode mode) {
     }
 }
 
-Result<WindowSurface> WindowSurface::create(gpu::Context& context, const Window& window,
+Result<WindowSurface> WindowSurface::create(gpu::Context& context,
+                                            const Window& window,
                                             PresentPreference preference) {
     wgpu::SurfaceSourceXlibWindow x11;
     x11.display = window.x11Display();

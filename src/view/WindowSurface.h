@@ -29,7 +29,8 @@ enum class PresentPreference { Vsync, Uncapped };
 
 class WindowSurface {
   public:
-    static Result<WindowSurface> create(gpu::Context& context, const Window& window,
+    static Result<WindowSurface> create(gpu::Context& context,
+                                        const Window& window,
                                         PresentPreference preference);
 
     WindowSurface(WindowSurface&&) noexcept = default;

@@ -51,7 +51,8 @@ std::vector<BadInput> badInputs() {
              return dir / "folder.gltf";
          },
          {"is a directory"}},
-        {"InvalidJson", [](const auto& dir) { return writeText(dir / "a.gltf", "{\"asset\": "); },
+        {"InvalidJson",
+         [](const auto& dir) { return writeText(dir / "a.gltf", "{\"asset\": "); },
          {"JSON is invalid"}},
         {"UnsupportedVersion",
          [](const auto& dir) {
@@ -140,7 +141,8 @@ std::vector<BadInput> badInputs() {
              return builder.writeGltf(dir, "a");
          },
          {"image 0", "missing.png"}},
-        {"EmptyFile", [](const auto& dir) { return writeText(dir / "a.gltf", ""); },
+        {"EmptyFile",
+         [](const auto& dir) { return writeText(dir / "a.gltf", ""); },
          {"empty", "0 bytes"}},
         {"JsonNestedTwoHundredThousandDeep",
          [](const auto& dir) {
@@ -185,7 +187,9 @@ TEST_P(BadInputTest, PrintsAClearErrorAndExitsWithOne) {
     EXPECT_EQ(result.err.find("runtime error"), std::string::npos);  // UBSan.
 }
 
-INSTANTIATE_TEST_SUITE_P(AllBadInputs, BadInputTest, ::testing::ValuesIn(badInputs()),
+INSTANTIATE_TEST_SUITE_P(AllBadInputs,
+                         BadInputTest,
+                         ::testing::ValuesIn(badInputs()),
                          [](const auto& info) { return info.param.name; });
 
 TEST(CommandLineTest, UsageErrorsExitWithTwo) {

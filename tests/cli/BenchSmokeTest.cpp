@@ -18,8 +18,8 @@ TEST(BenchSmokeTest, WritesACompleteReportOnVulkan) {
     const auto dir = makeTempDir("bench-smoke");
     const auto json = dir / "report.json";
     const auto markdown = dir / "report.md";
-    const auto result = runEncore("bench --smoke --json " + quote(json.string()) +
-                                  " --markdown " + quote(markdown.string()));
+    const auto result = runEncore("bench --smoke --json " + quote(json.string()) + " --markdown " +
+                                  quote(markdown.string()));
     ASSERT_EQ(result.exitCode, 0) << result.err;
     std::ifstream file(json);
     const auto report = nlohmann::json::parse(file, nullptr, false);
@@ -68,8 +68,8 @@ TEST(BenchSmokeTest, MeasuresAnAnimatedCrowdOnTheCpuAndTheGpu) {
                                     quote((dir / "crowd.png").string()));
     ASSERT_EQ(rendered.exitCode, 0) << rendered.err;
 
-    const auto run = runBench(
-        dir, "--crowd 9 -s naive -s bundles --frames 2 --warmup 1 --width 32 --height 32");
+    const auto run =
+        runBench(dir, "--crowd 9 -s naive -s bundles --frames 2 --warmup 1 --width 32 --height 32");
     ASSERT_EQ(run.command.exitCode, 0) << run.command.err;
     ASSERT_FALSE(run.report.is_discarded());
     const auto& report = run.report;
@@ -161,15 +161,17 @@ TEST(BenchSmokeTest, CullingOptionsAndTheFrustumBaseline) {
         EXPECT_FALSE(results[1]["gpuPassesMs"].contains("scene (second phase)"));
     }
 
-    const auto off = runBench(dir, "--scene city --objects 200 --frames 2 --warmup 1 -s "
-                                   "gpu-culling --no-occlusion --no-lod --width 64 --height 64");
+    const auto off = runBench(dir,
+                              "--scene city --objects 200 --frames 2 --warmup 1 -s "
+                              "gpu-culling --no-occlusion --no-lod --width 64 --height 64");
     ASSERT_EQ(off.command.exitCode, 0) << off.command.err;
     EXPECT_EQ(off.report["culling"]["occlusion"], false);
     EXPECT_EQ(off.report["culling"]["levelsOfDetail"], false);
 
     // Without the GPU timer: no GPU times, CPU times still measured.
-    const auto untimed = runBench(dir, "--scene city --objects 200 --frames 2 --warmup 1 -s "
-                                       "gpu-culling-bundles --no-gpu-timer --width 64 --height 64");
+    const auto untimed = runBench(dir,
+                                  "--scene city --objects 200 --frames 2 --warmup 1 -s "
+                                  "gpu-culling-bundles --no-gpu-timer --width 64 --height 64");
     ASSERT_EQ(untimed.command.exitCode, 0) << untimed.command.err;
     EXPECT_EQ(untimed.report["timestamps"], false);
     ASSERT_EQ(untimed.report["results"].size(), 1u);
@@ -196,7 +198,8 @@ TEST(RenderCommandTest, StereoViewsFillBothHalves) {
     ASSERT_EQ(runEncore("gen --objects 20 -o " + quote(scene.string())).exitCode, 0);
     const auto result = runEncore("-v render " + quote(scene.string()) +
                                   " --strategy bundles --views 2 --samples 1 --width 128 "
-                                  "--height 64 -o " + quote(image.string()));
+                                  "--height 64 -o " +
+                                  quote(image.string()));
     ASSERT_EQ(result.exitCode, 0) << result.err;
     EXPECT_NE(result.err.find("2 executeBundles in the frame"), std::string::npos) << result.err;
     auto png = image::readImage(image);

@@ -47,8 +47,8 @@ CommandResult runEncoreThrough(const std::string& prefix, const std::string& arg
     const auto dir = makeTempDir("command");
     const auto out = dir / "stdout";
     const auto err = dir / "stderr";
-    const std::string command = prefix + " " + quote(binary) + " " + arguments + " >" + quote(out.string()) +
-                                " 2>" + quote(err.string()) + " </dev/null";
+    const std::string command = prefix + " " + quote(binary) + " " + arguments + " >" +
+                                quote(out.string()) + " 2>" + quote(err.string()) + " </dev/null";
     const int status = std::system(command.c_str());
     result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
     result.out = slurp(out);

@@ -21,8 +21,8 @@ TEST(FaultInjectionTest, ADeviceLossStopsRenderAndBenchWithExitCodeFour) {
     const auto scene = dir / "scene.glb";
     ASSERT_EQ(runEncore("gen --objects 8 -o " + quote(scene.string())).exitCode, 0);
     ::setenv("ENCORE_TEST_FORCE_DEVICE_LOSS", "1", 1);
-    const auto render = runEncore("render " + quote(scene.string()) + " -o " +
-                                  quote((dir / "lost.png").string()));
+    const auto render =
+        runEncore("render " + quote(scene.string()) + " -o " + quote((dir / "lost.png").string()));
     const auto bench = runEncore("bench --objects 8 --frames 2 --warmup 0 --strategy bundles");
     ::unsetenv("ENCORE_TEST_FORCE_DEVICE_LOSS");
     EXPECT_EQ(render.exitCode, 4) << render.err;
@@ -32,7 +32,6 @@ TEST(FaultInjectionTest, ADeviceLossStopsRenderAndBenchWithExitCodeFour) {
     EXPECT_NE(bench.err.find("the GPU device was lost"), std::string::npos) << bench.err;
 }
 
-
 // The GPU running out of memory stops render and bench with exit code 5 and a message saying so
 // (the test hook makes Dawn report an out-of-memory error once the scene is prepared, as it does
 // when an allocation fails).
@@ -41,8 +40,8 @@ TEST(FaultInjectionTest, RunningOutOfGpuMemoryStopsRenderAndBenchWithExitCodeFiv
     const auto scene = dir / "scene.glb";
     ASSERT_EQ(runEncore("gen --objects 8 -o " + quote(scene.string())).exitCode, 0);
     ::setenv("ENCORE_TEST_INJECT_OUT_OF_MEMORY", "1", 1);
-    const auto render = runEncore("render " + quote(scene.string()) + " -o " +
-                                  quote((dir / "oom.png").string()));
+    const auto render =
+        runEncore("render " + quote(scene.string()) + " -o " + quote((dir / "oom.png").string()));
     const auto bench = runEncore("bench --objects 8 --frames 2 --warmup 0 --strategy bundles");
     ::unsetenv("ENCORE_TEST_INJECT_OUT_OF_MEMORY");
     EXPECT_EQ(render.exitCode, 5) << render.err;

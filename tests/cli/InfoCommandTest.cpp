@@ -172,7 +172,8 @@ TEST(InfoCommandTest, PrimitiveWithoutPositionIsSkippedWithAWarning) {
     const auto path = builder.writeGltf(makeTempDir("info-no-position"), "a");
     const auto result = runEncore("info " + quote(path.string()));
     EXPECT_EQ(result.exitCode, 0) << result.err;
-    EXPECT_TRUE(contains(result.out, "mesh 0, primitive 0 has no POSITION attribute; it is skipped"))
+    EXPECT_TRUE(
+        contains(result.out, "mesh 0, primitive 0 has no POSITION attribute; it is skipped"))
         << result.out;
 }
 

@@ -37,8 +37,7 @@ TEST(RenderCommandTest, ReproducesTheReferencePictureFromTheCommandLine) {
     const auto out = makeTempDir("render-reference") / "duck.png";
     const auto result = runEncore(
         "render " + quote((*models / "Duck/glTF/Duck.gltf").string()) +
-        " --width 320 --height 320 --environment " +
-        quote((*reference / "studio.hdr").string()) +
+        " --width 320 --height 320 --environment " + quote((*reference / "studio.hdr").string()) +
         " --environment-rotation 90 --background '#000000' --camera-position=" +
         vectorOption(camera["position"]) + " --target=" + vectorOption(camera["target"]) +
         " --yfov " + std::to_string(camera["yfovDegrees"].get<double>()) + " --znear " +
@@ -63,9 +62,9 @@ TEST(RenderCommandTest, EmptySceneRendersTheBackgroundWithAWarning) {
     for (const char* strategy : {"naive", "layouts", "pipeline-cache", "instancing", "materials",
                                  "bundles", "gpu-culling", "gpu-culling-bundles"}) {
         const auto out = dir / (std::string(strategy) + ".png");
-        const auto result = runEncore("render " + quote(scene.string()) +
-                                      " --width 48 --height 32 --strategy " + strategy + " -o " +
-                                      quote(out.string()));
+        const auto result =
+            runEncore("render " + quote(scene.string()) + " --width 48 --height 32 --strategy " +
+                      strategy + " -o " + quote(out.string()));
         ASSERT_EQ(result.exitCode, 0) << strategy << ": " << result.err;
         EXPECT_NE(result.err.find("warning: " + scene.string() + ": The asset draws nothing"),
                   std::string::npos)
@@ -86,13 +85,13 @@ TEST(RenderCommandTest, EmptySceneRendersTheBackgroundWithAWarning) {
 TEST(RenderCommandTest, TransparentBackgroundLeavesAlphaZeroAroundTheScene) {
     const auto dir = makeTempDir("render-transparent");
     const auto scene = dir / "scene.glb";
-    ASSERT_EQ(runEncore("gen --objects 20 --meshes 2 --materials 2 -o " + quote(scene.string()))
-                  .exitCode,
-              0);
+    ASSERT_EQ(
+        runEncore("gen --objects 20 --meshes 2 --materials 2 -o " + quote(scene.string())).exitCode,
+        0);
     const auto png = dir / "out.png";
-    const auto result = runEncore("render " + quote(scene.string()) +
-                                  " --width 96 --height 64 --background transparent -o " +
-                                  quote(png.string()));
+    const auto result =
+        runEncore("render " + quote(scene.string()) +
+                  " --width 96 --height 64 --background transparent -o " + quote(png.string()));
     ASSERT_EQ(result.exitCode, 0) << result.err;
     auto image = image::readImage(png);
     ASSERT_TRUE(image.ok());
@@ -108,18 +107,18 @@ TEST(RenderCommandTest, BadShadingOptionsAreUsageErrors) {
     const auto dir = makeTempDir("render-options");
     const auto scene = dir / "scene.glb";
     ASSERT_EQ(runEncore("gen --objects 2 -o " + quote(scene.string())).exitCode, 0);
-    const auto background = runEncore("render " + quote(scene.string()) +
-                                      " --background '#12345' -o " +
-                                      quote((dir / "a.png").string()));
+    const auto background =
+        runEncore("render " + quote(scene.string()) + " --background '#12345' -o " +
+                  quote((dir / "a.png").string()));
     EXPECT_EQ(background.exitCode, 2);
     EXPECT_NE(background.err.find("#12345"), std::string::npos) << background.err;
     const auto channel = runEncore("render " + quote(scene.string()) +
                                    " --debug-channel albedo -o " + quote((dir / "b.png").string()));
     EXPECT_EQ(channel.exitCode, 2);
     EXPECT_NE(channel.err.find("albedo"), std::string::npos) << channel.err;
-    const auto environment = runEncore("render " + quote(scene.string()) +
-                                       " --environment " + quote((dir / "none.hdr").string()) +
-                                       " -o " + quote((dir / "c.png").string()));
+    const auto environment =
+        runEncore("render " + quote(scene.string()) + " --environment " +
+                  quote((dir / "none.hdr").string()) + " -o " + quote((dir / "c.png").string()));
     EXPECT_EQ(environment.exitCode, 1);
     EXPECT_NE(environment.err.find("none.hdr"), std::string::npos) << environment.err;
 }

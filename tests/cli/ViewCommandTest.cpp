@@ -69,8 +69,10 @@ std::size_t differingPixels(const image::ImageRgba8& a, const image::ImageRgba8&
 }
 
 // `encore render` of the same file at the same size and strategy (the default camera).
-image::ImageRgba8 rendered(const std::filesystem::path& model, const std::string& strategy,
-                           std::uint32_t width, std::uint32_t height,
+image::ImageRgba8 rendered(const std::filesystem::path& model,
+                           const std::string& strategy,
+                           std::uint32_t width,
+                           std::uint32_t height,
                            const std::filesystem::path& out) {
     const auto result = runEncore("render " + quote(model.string()) + " --strategy " + strategy +
                                   " --width " + std::to_string(width) + " --height " +
@@ -97,40 +99,39 @@ TEST(ViewCommandTest, AScriptedSessionShowsWhatRenderWrites) {
     const auto scene = dir / "scene.glb";
     const auto other = dir / "other.glb";
     const auto bad = dir / "bad.gltf";
-    ASSERT_EQ(runEncore("gen --objects 40 --meshes 4 --materials 3 -o " + quote(scene.string()))
-                  .exitCode,
-              0);
-    ASSERT_EQ(runEncore("gen --objects 12 --meshes 2 --materials 2 --seed 7 -o " +
-                        quote(other.string()))
-                  .exitCode,
-              0);
+    ASSERT_EQ(
+        runEncore("gen --objects 40 --meshes 4 --materials 3 -o " + quote(scene.string())).exitCode,
+        0);
+    ASSERT_EQ(
+        runEncore("gen --objects 12 --meshes 2 --materials 2 --seed 7 -o " + quote(other.string()))
+            .exitCode,
+        0);
     std::ofstream(bad) << R"({"asset": {"version": "2.0"}, "nodes": [{"mesh": 3}]})";
     const auto shot = [&](const std::string& name) { return (dir / name).string(); };
-    std::ofstream(dir / "session.txt")
-        << "frames 2\n"
-        << "screenshot " << shot("bundles.png") << "\n"
-        << "stats\n"
-        << "key 1   # naive\n"
-        << "frames 2\n"
-        << "screenshot " << shot("naive.png") << "\n"
-        << "key b   # naive recorded into a bundle\n"
-        << "frames 2\n"
-        << "stats\n"
-        << "resize 200 120\n"
-        << "frames 2\n"
-        << "screenshot " << shot("resized.png") << "\n"
-        << "stats\n"
-        << "drop " << bad.string() << "\n"
-        << "frames 1\n"
-        << "stats\n"
-        << "drop " << other.string() << "\n"
-        << "frames 2\n"
-        << "screenshot " << shot("dropped.png") << "\n"
-        << "screenshot " << shot("overlay.png") << " overlay\n"
-        << "stats\n";
-    const auto result = runEncoreThrough(
-        kXvfb, "view " + quote(scene.string()) + " --width 160 --height 120 --script " +
-                   quote((dir / "session.txt").string()));
+    std::ofstream(dir / "session.txt") << "frames 2\n"
+                                       << "screenshot " << shot("bundles.png") << "\n"
+                                       << "stats\n"
+                                       << "key 1   # naive\n"
+                                       << "frames 2\n"
+                                       << "screenshot " << shot("naive.png") << "\n"
+                                       << "key b   # naive recorded into a bundle\n"
+                                       << "frames 2\n"
+                                       << "stats\n"
+                                       << "resize 200 120\n"
+                                       << "frames 2\n"
+                                       << "screenshot " << shot("resized.png") << "\n"
+                                       << "stats\n"
+                                       << "drop " << bad.string() << "\n"
+                                       << "frames 1\n"
+                                       << "stats\n"
+                                       << "drop " << other.string() << "\n"
+                                       << "frames 2\n"
+                                       << "screenshot " << shot("dropped.png") << "\n"
+                                       << "screenshot " << shot("overlay.png") << " overlay\n"
+                                       << "stats\n";
+    const auto result = runEncoreThrough(kXvfb, "view " + quote(scene.string()) +
+                                                    " --width 160 --height 120 --script " +
+                                                    quote((dir / "session.txt").string()));
     ASSERT_EQ(result.exitCode, 0) << result.err << result.out;
     const auto stats = statsLines(result.out);
     ASSERT_EQ(stats.size(), 5u) << result.out;
@@ -221,9 +222,9 @@ TEST(ViewCommandTest, TheAnimometerRunsDirectAndBundled) {
     const auto dir = makeTempDir("view-animometer");
     std::ofstream(dir / "session.txt") << "frames 2\nstats\nkey b\nresize 96 64\nframes 2\nstats\n"
                                        << "screenshot " << (dir / "a.png").string() << "\n";
-    const auto result = runEncoreThrough(
-        kXvfb, "view --animometer 500 --width 128 --height 96 --script " +
-                   quote((dir / "session.txt").string()));
+    const auto result =
+        runEncoreThrough(kXvfb, "view --animometer 500 --width 128 --height 96 --script " +
+                                    quote((dir / "session.txt").string()));
     ASSERT_EQ(result.exitCode, 0) << result.err << result.out;
     const auto stats = statsLines(result.out);
     ASSERT_EQ(stats.size(), 2u) << result.out;

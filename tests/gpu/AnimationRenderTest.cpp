@@ -29,10 +29,9 @@ using test::frontCamera;
 test::GltfBuilder::PrimitiveDesc quad(test::GltfBuilder& builder, glm::vec3 center) {
     test::GltfBuilder::PrimitiveDesc primitive;
     const float h = 0.4f;
-    primitive.attributes["POSITION"] = builder.addPositions({center + glm::vec3(-h, -h, 0),
-                                                             center + glm::vec3(h, -h, 0),
-                                                             center + glm::vec3(h, h, 0),
-                                                             center + glm::vec3(-h, h, 0)});
+    primitive.attributes["POSITION"] =
+        builder.addPositions({center + glm::vec3(-h, -h, 0), center + glm::vec3(h, -h, 0),
+                              center + glm::vec3(h, h, 0), center + glm::vec3(-h, h, 0)});
     primitive.attributes["NORMAL"] =
         builder.addNormals({{0, 0, 1}, {0, 0, 1}, {0, 0, 1}, {0, 0, 1}});
     primitive.indices = builder.addIndices<std::uint16_t>({0, 1, 2, 0, 2, 3});
@@ -41,8 +40,11 @@ test::GltfBuilder::PrimitiveDesc quad(test::GltfBuilder& builder, glm::vec3 cent
 }
 
 // A LINEAR animation of one node's `path`, key times 0 and 1.
-void addAnimation(test::GltfBuilder& builder, std::uint32_t node, const std::string& path,
-                  const std::vector<float>& values, const std::string& type) {
+void addAnimation(test::GltfBuilder& builder,
+                  std::uint32_t node,
+                  const std::string& path,
+                  const std::vector<float>& values,
+                  const std::string& type) {
     const auto times = builder.addAccessor<float>({0.0f, 1.0f}, "SCALAR", {.minMax = true});
     const auto output = builder.addAccessor<float>(values, type);
     builder.json()["animations"].push_back(
@@ -62,10 +64,10 @@ scene::SceneData load(const test::GltfBuilder& builder, const std::string& name)
 scene::SceneData skinnedScene(glm::vec3 meshNodeTranslation = {2, 0, 0}) {
     test::GltfBuilder builder;
     auto primitive = quad(builder, {0, 1, 0});
-    primitive.attributes["JOINTS_0"] = builder.addAccessor<std::uint8_t>(
-        {1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0}, "VEC4");
-    primitive.attributes["WEIGHTS_0"] = builder.addAccessor<float>(
-        {1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0}, "VEC4");
+    primitive.attributes["JOINTS_0"] =
+        builder.addAccessor<std::uint8_t>({1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0}, "VEC4");
+    primitive.attributes["WEIGHTS_0"] =
+        builder.addAccessor<float>({1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0}, "VEC4");
     const auto mesh = builder.addMesh(primitive);
     const auto meshNode = builder.addNode({.mesh = mesh, .translation = meshNodeTranslation});
     const auto joint1 = builder.addNode({.name = "joint1"});
@@ -100,7 +102,8 @@ struct Rendered {
 };
 
 // Renders `scene` with `kind` at each of `times` (one renderer: bundles recorded once).
-std::vector<image::ImageRgba8> renderAt(const scene::SceneData& scene, StrategyKind kind,
+std::vector<image::ImageRgba8> renderAt(const scene::SceneData& scene,
+                                        StrategyKind kind,
                                         const std::vector<double>& times,
                                         const Camera& camera = frontCamera(),
                                         const std::string& animation = {}) {
@@ -118,8 +121,8 @@ std::vector<image::ImageRgba8> renderAt(const scene::SceneData& scene, StrategyK
         EXPECT_TRUE(image.ok()) << image.error().message;
         images.push_back(image.ok() ? std::move(*image) : image::ImageRgba8{});
     }
-    auto errors = context->checkNoErrors(std::string("animating with ") +
-                                         std::string(strategyName(kind)));
+    auto errors =
+        context->checkNoErrors(std::string("animating with ") + std::string(strategyName(kind)));
     EXPECT_TRUE(errors.ok()) << errors.error().message;
     return images;
 }
@@ -136,7 +139,8 @@ bool hasMaterials(StrategyKind kind) {
 
 // Every strategy draws the animated quad where the animation puts it, and strategies of one
 // family (vertex colours, or materials) produce identical images.
-void expectAnimatedEverywhere(const scene::SceneData& scene, const std::vector<double>& times,
+void expectAnimatedEverywhere(const scene::SceneData& scene,
+                              const std::vector<double>& times,
                               const std::vector<std::vector<glm::vec3>>& covered,
                               const std::vector<std::vector<glm::vec3>>& uncovered) {
     std::vector<image::ImageRgba8> unlit, materials;
@@ -179,8 +183,7 @@ TEST(AnimationRenderTest, SkinnedQuadFollowsItsJointInEveryStrategy) {
 TEST(AnimationRenderTest, MorphedQuadFollowsItsWeightInEveryStrategy) {
     ENCORE_REQUIRE_VULKAN(context);
     const auto scene = morphedScene();
-    expectAnimatedEverywhere(scene, {0.0, 0.5, 1.0},
-                             {{{0, 0, 0}}, {{0.75f, 0, 0}}, {{1.5f, 0, 0}}},
+    expectAnimatedEverywhere(scene, {0.0, 0.5, 1.0}, {{{0, 0, 0}}, {{0.75f, 0, 0}}, {{1.5f, 0, 0}}},
                              {{{1.5f, 0, 0}}, {{-0.6f, 0, 0}, {1.6f, 0, 0}}, {{0, 0, 0}}});
 }
 
@@ -208,12 +211,11 @@ scene::SceneData crossingScene() {
     auto skinned = quad(builder, {0, 0, 0});
     skinned.attributes["JOINTS_0"] =
         builder.addAccessor<std::uint8_t>(std::vector<std::uint8_t>(16, 0), "VEC4");
-    skinned.attributes["WEIGHTS_0"] = builder.addAccessor<float>(
-        {1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0}, "VEC4");
+    skinned.attributes["WEIGHTS_0"] =
+        builder.addAccessor<float>({1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0}, "VEC4");
     const auto skinnedMesh = builder.addMesh(skinned);
     const auto morphedMesh = builder.addMesh(quad(builder, {-6, -1, 0}));
-    const auto delta =
-        builder.addPositions({{12, 0, 0}, {12, 0, 0}, {12, 0, 0}, {12, 0, 0}});
+    const auto delta = builder.addPositions({{12, 0, 0}, {12, 0, 0}, {12, 0, 0}, {12, 0, 0}});
     builder.json()["meshes"][morphedMesh]["primitives"][0]["targets"] = {{{"POSITION", delta}}};
     builder.json()["meshes"][morphedMesh]["weights"] = {0.0};
 
@@ -401,9 +403,9 @@ TEST_P(AnimatedModelTest, EveryAnimationPlaysThroughBundles) {
         SCOPED_TRACE("animation " + selector);
         const double start = animation.start;
         const double length = std::max(animation.end - start, 0.2);
-        const auto images = renderAt(*scene, StrategyKind::Bundles,
-                                     {start + 0.25 * length, start + 0.6 * length}, camera,
-                                     selector);
+        const auto images =
+            renderAt(*scene, StrategyKind::Bundles, {start + 0.25 * length, start + 0.6 * length},
+                     camera, selector);
         ASSERT_EQ(images.size(), 2u);
         EXPECT_GT(test::differingPixels(images[0], images[1], 2), 0u)
             << "the animation changes nothing";
@@ -415,9 +417,10 @@ TEST_P(AnimatedModelTest, EveryAnimationPlaysThroughBundles) {
     }
 }
 
-INSTANTIATE_TEST_SUITE_P(Models, AnimatedModelTest,
-                         ::testing::Values("Fox", "BrainStem", "CesiumMilkTruck",
-                                           "AnimatedMorphCube"));
+INSTANTIATE_TEST_SUITE_P(
+    Models,
+    AnimatedModelTest,
+    ::testing::Values("Fox", "BrainStem", "CesiumMilkTruck", "AnimatedMorphCube"));
 
 }  // namespace
 }  // namespace encore::render

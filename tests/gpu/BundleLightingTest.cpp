@@ -23,20 +23,24 @@ constexpr std::uint32_t kSize = 48;
 // the environment and one point light.
 scene::SceneData litScene() {
     test::GltfBuilder builder;
-    const std::uint32_t metal =
-        builder.addMaterial({.baseColor = {0.9f, 0.6f, 0.3f, 1.0f}, .metallic = 1.0f,
-                             .roughness = 0.4f});
+    const std::uint32_t metal = builder.addMaterial(
+        {.baseColor = {0.9f, 0.6f, 0.3f, 1.0f}, .metallic = 1.0f, .roughness = 0.4f});
     const std::uint32_t plastic =
         builder.addMaterial({.baseColor = {0.2f, 0.4f, 0.8f, 1.0f}, .roughness = 0.2f});
     std::vector<std::uint32_t> nodes;
     for (const auto& [material, x] : {std::pair{metal, -0.55f}, std::pair{plastic, 0.55f}}) {
         test::GltfBuilder::PrimitiveDesc quad;
         // A quad folded into a shallow roof, so normals vary across it.
-        quad.attributes["POSITION"] = builder.addPositions(
-            {{-0.5f, -1, 0}, {0, -1, 0.4f}, {0.5f, -1, 0}, {-0.5f, 1, 0}, {0, 1, 0.4f}, {0.5f, 1, 0}});
+        quad.attributes["POSITION"] = builder.addPositions({{-0.5f, -1, 0},
+                                                            {0, -1, 0.4f},
+                                                            {0.5f, -1, 0},
+                                                            {-0.5f, 1, 0},
+                                                            {0, 1, 0.4f},
+                                                            {0.5f, 1, 0}});
         quad.indices = builder.addIndices<std::uint16_t>({0, 1, 4, 0, 4, 3, 1, 2, 5, 1, 5, 4});
         quad.material = material;
-        nodes.push_back(builder.addNode({.mesh = builder.addMesh(quad), .translation = glm::vec3(x, 0, 0)}));
+        nodes.push_back(
+            builder.addNode({.mesh = builder.addMesh(quad), .translation = glm::vec3(x, 0, 0)}));
     }
     auto& json = builder.json();
     json["extensionsUsed"] = {"KHR_lights_punctual"};
@@ -102,13 +106,14 @@ class BundleLightingTest : public ::testing::TestWithParam<StrategyKind> {
     }
 
     // The frame after a change equals a fresh renderer's and nothing was recorded again.
-    void expectSameAsFresh(const RendererOptions& fresh, const char* what,
+    void expectSameAsFresh(const RendererOptions& fresh,
+                           const char* what,
                            const scene::SceneData* freshScene = nullptr) {
         const image::ImageRgba8 changed = frame(*mRenderer);
         EXPECT_GT(test::differingPixels(mFirst, changed, 2), 20u) << what << " changed nothing";
-        EXPECT_EQ(test::differingPixels(freshFrame(freshScene ? *freshScene : mScene, fresh),
-                                        changed, 1),
-                  0u)
+        EXPECT_EQ(
+            test::differingPixels(freshFrame(freshScene ? *freshScene : mScene, fresh), changed, 1),
+            0u)
             << what;
         EXPECT_EQ(mRenderer->strategy()->bundlesRecorded(), mRecorded) << what;
         EXPECT_TRUE(test::vulkanContext()->checkNoErrors(what).ok());
@@ -167,9 +172,9 @@ TEST_P(BundleLightingTest, LoadingANewEnvironmentDoesNotReRecord) {
     expectSameAsFresh(fresh, "a new environment");
 }
 
-INSTANTIATE_TEST_SUITE_P(BundleStrategies, BundleLightingTest,
-                         ::testing::Values(StrategyKind::Bundles,
-                                           StrategyKind::GpuCullingBundles),
+INSTANTIATE_TEST_SUITE_P(BundleStrategies,
+                         BundleLightingTest,
+                         ::testing::Values(StrategyKind::Bundles, StrategyKind::GpuCullingBundles),
                          [](const auto& info) {
                              std::string name(strategyName(info.param));
                              std::replace(name.begin(), name.end(), '-', '_');

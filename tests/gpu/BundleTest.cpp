@@ -54,8 +54,10 @@ int dominantChannel(const test::Rgba& pixel) {
     return pixel[0] == maxValue ? 0 : (pixel[1] == maxValue ? 1 : 2);
 }
 
-image::ImageRgba8 renderOnce(const scene::SceneData& scene, StrategyKind kind,
-                             const Camera& camera, const glm::mat4* moveFirstInstance = nullptr) {
+image::ImageRgba8 renderOnce(const scene::SceneData& scene,
+                             StrategyKind kind,
+                             const Camera& camera,
+                             const glm::mat4* moveFirstInstance = nullptr) {
     gpu::Context* context = test::vulkanContext();
     auto renderer = Renderer::create(*context, test::pixelTestOptions(kSize, kSize));
     EXPECT_TRUE(renderer.ok());
@@ -97,12 +99,10 @@ TEST(BundleTest, TwoBundlesBetweenDirectDrawsInOnePass) {
     const Camera camera = frontCamera();
     setup.frame->update(context->queue(), camera, 0.0f);
     const FrameState frame{camera, {&camera, 1}, 0.0f};
-    const RecordedBundle bundleA = recordBundle(setup, "bundle A", [&](RenderEncoder& encoder) {
-        a->encode(encoder, frame);
-    });
-    const RecordedBundle bundleB = recordBundle(setup, "bundle B", [&](RenderEncoder& encoder) {
-        b->encode(encoder, frame);
-    });
+    const RecordedBundle bundleA =
+        recordBundle(setup, "bundle A", [&](RenderEncoder& encoder) { a->encode(encoder, frame); });
+    const RecordedBundle bundleB =
+        recordBundle(setup, "bundle B", [&](RenderEncoder& encoder) { b->encode(encoder, frame); });
     EXPECT_EQ(bundleA.contents.drawIndexed, 1u);
     EXPECT_EQ(bundleA.contents.setBindGroup, 3u);  // Frame, instances, material: all its state.
 
@@ -244,7 +244,8 @@ TEST(BundleTest, TwoViewsReplayOneBundle) {
         std::size_t differing = 0;
         for (std::uint32_t y = 0; y < kSize; ++y) {
             for (std::uint32_t x = 0; x < kSize; ++x) {
-                differing += test::pixelAt(*both, x + view * kSize, y) != test::pixelAt(single, x, y);
+                differing +=
+                    test::pixelAt(*both, x + view * kSize, y) != test::pixelAt(single, x, y);
             }
         }
         EXPECT_EQ(differing, 0u) << "view " << view;

@@ -124,8 +124,8 @@ TEST_F(DeviceLimitsTest, ATextureBeyondTheLimitIsDownscaledAndStillDrawn) {
     for (std::uint32_t y = 0; y < picture.height; ++y) {
         for (std::uint32_t x = 0; x < picture.width; ++x) {
             const bool left = x < picture.width / 2;
-            picture.pixels.insert(picture.pixels.end(),
-                                  {std::uint8_t(left ? 255 : 0), 0, std::uint8_t(left ? 0 : 255), 255});
+            picture.pixels.insert(picture.pixels.end(), {std::uint8_t(left ? 255 : 0), 0,
+                                                         std::uint8_t(left ? 0 : 255), 255});
         }
     }
     ASSERT_TRUE(image::writePng(dir / "wide.png", picture).ok());
@@ -134,10 +134,10 @@ TEST_F(DeviceLimitsTest, ATextureBeyondTheLimitIsDownscaledAndStillDrawn) {
     const auto texcoords = builder.addTexcoords({{0, 1}, {1, 1}, {1, 0}, {0, 0}});
     const auto indices = builder.addIndices<std::uint16_t>({0, 1, 2, 0, 2, 3});
     const auto material = builder.addMaterial({.baseColorTexture = builder.addTexture("wide.png")});
-    const auto mesh = builder.addMesh({.attributes = {{"POSITION", positions},
-                                                      {"TEXCOORD_0", texcoords}},
-                                       .indices = indices,
-                                       .material = material});
+    const auto mesh =
+        builder.addMesh({.attributes = {{"POSITION", positions}, {"TEXCOORD_0", texcoords}},
+                         .indices = indices,
+                         .material = material});
     builder.addScene({builder.addNode({.mesh = mesh})});
     auto scene = scene::loadScene(builder.writeGltf(dir, "quad"));
     ASSERT_TRUE(scene.ok()) << scene.error().message;
@@ -188,8 +188,7 @@ TEST(DeviceTextureLimitTest, AnImageWiderThanTheDeviceAllowsIsDownscaledToItsLim
     auto resources = MaterialResources::create(context->device(), context->queue(), shaders,
                                                layouts, scene, SampledTextures::baseColorOnly());
     ASSERT_TRUE(resources.ok()) << resources.error().message;
-    const wgpu::Texture* texture =
-        resources->texture(scene::ImageId{0u}, ColorSpace::Srgb);
+    const wgpu::Texture* texture = resources->texture(scene::ImageId{0u}, ColorSpace::Srgb);
     ASSERT_NE(texture, nullptr);
     EXPECT_EQ(texture->GetWidth(), limit);
     EXPECT_EQ(texture->GetHeight(), 10u);  // 11 / 1.1.
@@ -216,8 +215,8 @@ TEST(DeviceTextureLimitTest, APanoramaWiderThanTheDeviceAllowsIsDownscaled) {
                                            test::testEnvironmentOptions());
     ASSERT_TRUE(environment.ok()) << environment.error().message;
     ASSERT_EQ(capture.warnings.size(), 1u);
-    EXPECT_NE(capture.warnings[0].find("environment panorama is " +
-                                       std::to_string(panorama.width) + "x11"),
+    EXPECT_NE(capture.warnings[0].find("environment panorama is " + std::to_string(panorama.width) +
+                                       "x11"),
               std::string::npos)
         << capture.warnings[0];
     EXPECT_NE(capture.warnings[0].find("downscaled to " + std::to_string(limit) + "x10"),
@@ -232,8 +231,8 @@ TEST(DeviceTextureLimitTest, APanoramaWiderThanTheDeviceAllowsIsDownscaled) {
 TEST_F(DeviceLimitsTest, InstanceTransformsBeyondTheStorageLimitAreAClearError) {
     auto scene = generatedScene(600);
     ASSERT_TRUE(scene.ok()) << scene.error().message;
-    for (StrategyKind kind : {StrategyKind::Instancing, StrategyKind::Bundles,
-                              StrategyKind::GpuCullingBundles}) {
+    for (StrategyKind kind :
+         {StrategyKind::Instancing, StrategyKind::Bundles, StrategyKind::GpuCullingBundles}) {
         auto prepared = sRenderer->prepare(*scene, kind);
         ASSERT_FALSE(prepared.ok()) << strategyName(kind);
         EXPECT_EQ(prepared.error().code, ErrorCode::LimitExceeded);
@@ -259,7 +258,8 @@ TEST_F(DeviceLimitsTest, VertexDataBeyondTheBufferLimitIsAClearError) {
         positions.push_back({x, y, -0.001f * float(i / 3)});
     }
     test::GltfBuilder builder;
-    const auto mesh = builder.addMesh({.attributes = {{"POSITION", builder.addPositions(positions)}}});
+    const auto mesh =
+        builder.addMesh({.attributes = {{"POSITION", builder.addPositions(positions)}}});
     builder.addScene({builder.addNode({.mesh = mesh})});
     auto scene = scene::loadSceneFromMemory(builder.toGlb(), {}, "large-mesh.glb");
     ASSERT_TRUE(scene.ok()) << scene.error().message;
@@ -288,7 +288,8 @@ TEST_F(DeviceLimitsTest, CullingListsBeyondTheStorageLimitAreAClearError) {
     const auto mesh = builder.addMesh(primitives, "forty primitives");
     std::vector<std::uint32_t> nodes;
     for (int i = 0; i < 500; ++i) {
-        nodes.push_back(builder.addNode({.mesh = mesh, .translation = glm::vec3(i % 25, i / 25, 0)}));
+        nodes.push_back(
+            builder.addNode({.mesh = mesh, .translation = glm::vec3(i % 25, i / 25, 0)}));
     }
     builder.addScene(nodes);
     auto scene = scene::loadSceneFromMemory(builder.toGlb(), {}, "many-primitives.glb");
@@ -377,7 +378,7 @@ TEST(AnimationLimitsTest, GpuAnimationBeyondAStorageBindingIsRefused) {
     animated.animations[0].samplers.push_back({});
     auto& sampler = animated.animations[0].samplers[0];
     for (int k = 0; k < 10000; ++k) {
-        sampler.times.push_back(float(k));          // 40,000 bytes:
+        sampler.times.push_back(float(k));           // 40,000 bytes:
         sampler.values.push_back(-1.0f - float(k));  // 80,000 with the values.
     }
     auto refused = GpuAnimation::checkLimits(limits, animated);

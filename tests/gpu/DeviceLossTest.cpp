@@ -77,8 +77,10 @@ TEST_P(DeviceLossTest, RendererRebuildsOnANewDeviceAndDrawsTheSameFrame) {
     EXPECT_TRUE(context->checkNoErrors("rendering after recovery").ok());
 }
 
-INSTANTIATE_TEST_SUITE_P(Strategies, DeviceLossTest,
-                         ::testing::Values(StrategyKind::Naive, StrategyKind::Bundles,
+INSTANTIATE_TEST_SUITE_P(Strategies,
+                         DeviceLossTest,
+                         ::testing::Values(StrategyKind::Naive,
+                                           StrategyKind::Bundles,
                                            StrategyKind::GpuCullingBundles),
                          [](const auto& info) {
                              std::string name(strategyName(info.param));
@@ -111,7 +113,7 @@ TEST_P(AnimatedDeviceLossTest, TheAnimationResumesWhereItWas) {
     auto rest = renderer->readImage();
     ASSERT_TRUE(rest.ok()) << rest.error().message;
     ASSERT_TRUE(renderer->selectAnimation("sway 4").ok());  // The middle character alone.
-    ASSERT_TRUE(renderer->setAnimationTime(0.3).ok());  // 0.78 s into its sway.
+    ASSERT_TRUE(renderer->setAnimationTime(0.3).ok());      // 0.78 s into its sway.
     renderer->renderFrame(camera);
     auto before = renderer->readImage();
     ASSERT_TRUE(before.ok()) << before.error().message;
@@ -130,7 +132,8 @@ TEST_P(AnimatedDeviceLossTest, TheAnimationResumesWhereItWas) {
     EXPECT_TRUE(context->checkNoErrors("animating after recovery").ok());
 }
 
-INSTANTIATE_TEST_SUITE_P(Evaluations, AnimatedDeviceLossTest,
+INSTANTIATE_TEST_SUITE_P(Evaluations,
+                         AnimatedDeviceLossTest,
                          ::testing::Values(AnimationEvaluation::Cpu, AnimationEvaluation::Gpu),
                          [](const auto& info) {
                              return std::string(animationEvaluationName(info.param));

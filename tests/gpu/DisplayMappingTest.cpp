@@ -32,15 +32,19 @@ std::pair<std::uint32_t, std::uint32_t> plasticPixel() {
 // a point light: bright highlights exercise the tone-mapping curve.
 scene::SceneData litScene(bool withTexture) {
     test::GltfBuilder builder;
-    const std::uint32_t metal =
-        builder.addMaterial({.baseColor = {0.9f, 0.7f, 0.3f, 1.0f}, .metallic = 1.0f, .roughness = 0.3f});
+    const std::uint32_t metal = builder.addMaterial(
+        {.baseColor = {0.9f, 0.7f, 0.3f, 1.0f}, .metallic = 1.0f, .roughness = 0.3f});
     const std::uint32_t plastic =
         builder.addMaterial({.baseColor = {0.2f, 0.4f, 0.8f, 1.0f}, .roughness = 0.2f});
     std::vector<std::uint32_t> nodes;
     for (const auto& [material, x] : {std::pair{metal, -0.55f}, std::pair{plastic, 0.55f}}) {
         test::GltfBuilder::PrimitiveDesc roof;
-        roof.attributes["POSITION"] = builder.addPositions(
-            {{-0.5f, -1, 0}, {0, -1, 0.4f}, {0.5f, -1, 0}, {-0.5f, 1, 0}, {0, 1, 0.4f}, {0.5f, 1, 0}});
+        roof.attributes["POSITION"] = builder.addPositions({{-0.5f, -1, 0},
+                                                            {0, -1, 0.4f},
+                                                            {0.5f, -1, 0},
+                                                            {-0.5f, 1, 0},
+                                                            {0, 1, 0.4f},
+                                                            {0.5f, 1, 0}});
         roof.attributes["TEXCOORD_0"] =
             builder.addTexcoords({{0, 1}, {0.5f, 1}, {1, 1}, {0, 0}, {0.5f, 0}, {1, 0}});
         roof.indices = builder.addIndices<std::uint16_t>({0, 1, 4, 0, 4, 3, 1, 2, 5, 1, 5, 4});
@@ -89,7 +93,8 @@ RendererOptions options(bool hdr, BackgroundKind background) {
     return result;
 }
 
-image::ImageRgba8 render(const scene::SceneData& scene, const RendererOptions& rendererOptions,
+image::ImageRgba8 render(const scene::SceneData& scene,
+                         const RendererOptions& rendererOptions,
                          StrategyKind kind) {
     auto renderer = Renderer::create(*test::vulkanContext(), rendererOptions);
     EXPECT_TRUE(renderer.ok());
@@ -197,9 +202,10 @@ TEST(DisplayMappingTest, TexturelessMaterialGainsATexture) {
                       recorded + test::bundlesPerRecording(kind))
                 << strategyName(kind);
         }
-        EXPECT_TRUE(context->checkNoErrors(std::string("texture gained, ") +
-                                           std::string(strategyName(kind)))
-                        .ok());
+        EXPECT_TRUE(
+            context
+                ->checkNoErrors(std::string("texture gained, ") + std::string(strategyName(kind)))
+                .ok());
     }
 }
 

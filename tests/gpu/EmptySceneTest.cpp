@@ -100,16 +100,15 @@ TEST_P(EmptySceneTest, RendersTheBackgroundOnly) {
     }
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    AllStrategies,
-    EmptySceneTest,
-    ::testing::Combine(::testing::ValuesIn(allStrategies()),
-                       ::testing::Range<std::size_t>(0, emptyCases().size())),
-    [](const auto& info) {
-        std::string name(strategyName(std::get<0>(info.param)));
-        std::replace(name.begin(), name.end(), '-', '_');
-        return name + "_" + emptyCases()[std::get<1>(info.param)].name;
-    });
+INSTANTIATE_TEST_SUITE_P(AllStrategies,
+                         EmptySceneTest,
+                         ::testing::Combine(::testing::ValuesIn(allStrategies()),
+                                            ::testing::Range<std::size_t>(0, emptyCases().size())),
+                         [](const auto& info) {
+                             std::string name(strategyName(std::get<0>(info.param)));
+                             std::replace(name.begin(), name.end(), '-', '_');
+                             return name + "_" + emptyCases()[std::get<1>(info.param)].name;
+                         });
 
 }  // namespace
 }  // namespace encore::render

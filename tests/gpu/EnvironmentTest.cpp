@@ -34,8 +34,10 @@ EnvironmentOptions smallOptions() {
 }
 
 // One level and layer of an RGBA16Float texture as RGBA floats, rows top to bottom.
-std::vector<float> readHalfTexels(gpu::Context& context, const wgpu::Texture& texture,
-                                  std::uint32_t level, std::uint32_t layer) {
+std::vector<float> readHalfTexels(gpu::Context& context,
+                                  const wgpu::Texture& texture,
+                                  std::uint32_t level,
+                                  std::uint32_t layer) {
     auto texels = gpu::readTextureRgba16Float(context, texture, level, layer);
     EXPECT_TRUE(texels.ok()) << texels.error().message;
     return texels.ok() ? std::move(*texels) : std::vector<float>{};
@@ -44,10 +46,13 @@ std::vector<float> readHalfTexels(gpu::Context& context, const wgpu::Texture& te
 // Runs a compute pipeline with one invocation per probe: `inputs` (floats) in a storage buffer
 // at binding `inputBinding`, one vec4f result per probe read back from `outputBinding`, beside
 // the caller's other group-0 entries. Returns each result's rgb.
-std::vector<Vec3> runProbes(gpu::Context& context, const wgpu::ComputePipeline& pipeline,
+std::vector<Vec3> runProbes(gpu::Context& context,
+                            const wgpu::ComputePipeline& pipeline,
                             std::vector<wgpu::BindGroupEntry> entries,
-                            const std::vector<float>& inputs, std::size_t probeCount,
-                            std::uint32_t inputBinding, std::uint32_t outputBinding) {
+                            const std::vector<float>& inputs,
+                            std::size_t probeCount,
+                            std::uint32_t inputBinding,
+                            std::uint32_t outputBinding) {
     std::vector<Vec3> results;
     const std::uint64_t inSize = inputs.size() * sizeof(float);
     const std::uint64_t outSize = probeCount * 4 * sizeof(float);
@@ -137,8 +142,10 @@ fn main(@builtin(global_invocation_id) id: vec3u) {
     }
 
     // The radiance toward each direction at `lod`.
-    std::vector<Vec3> sample(const wgpu::TextureView& cube, const wgpu::Sampler& sampler,
-                             const std::vector<Vec3>& directions, float lod) {
+    std::vector<Vec3> sample(const wgpu::TextureView& cube,
+                             const wgpu::Sampler& sampler,
+                             const std::vector<Vec3>& directions,
+                             float lod) {
         std::vector<float> input;
         for (const Vec3& d : directions) {
             input.insert(input.end(), {d[0], d[1], d[2], lod});
@@ -200,8 +207,10 @@ fn main(@builtin(global_invocation_id) id: vec3u) {
     }
 
     // `lookup` at each direction (Brdf: x = NdotV, y = roughness), `lod` for Radiance.
-    std::vector<Vec3> sample(const SceneLighting& lighting, Lookup lookup,
-                             const std::vector<Vec3>& directions, float lod = 0.0f) {
+    std::vector<Vec3> sample(const SceneLighting& lighting,
+                             Lookup lookup,
+                             const std::vector<Vec3>& directions,
+                             float lod = 0.0f) {
         if (!mPipeline) {
             return {};
         }
@@ -250,8 +259,10 @@ image::HdrImage directionalPanorama(std::uint32_t width, float scale = 1.0f) {
 }
 
 // The radiance of directionalPanorama at level 0: 2 + d toward every direction d.
-void expectDirectional(const std::vector<Vec3>& values, const std::vector<Vec3>& directions,
-                       float tolerance, const char* what) {
+void expectDirectional(const std::vector<Vec3>& values,
+                       const std::vector<Vec3>& directions,
+                       float tolerance,
+                       const char* what) {
     ASSERT_EQ(values.size(), directions.size()) << what;
     for (std::size_t i = 0; i < directions.size(); ++i) {
         for (int c = 0; c < 3; ++c) {
@@ -263,23 +274,24 @@ void expectDirectional(const std::vector<Vec3>& values, const std::vector<Vec3>&
 }
 
 std::vector<Vec3> probeDirections() {
-    std::vector<Vec3> directions = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0},
-                                    {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+    std::vector<Vec3> directions = {{1, 0, 0},  {-1, 0, 0}, {0, 1, 0},
+                                    {0, -1, 0}, {0, 0, 1},  {0, 0, -1}};
     // Off-axis directions too, in every octant, so a mirrored (sc, tc) within a face shows.
     for (int i = 0; i < 8; ++i) {
-        directions.push_back(normalized({(i & 1) ? 0.8f : -0.8f, (i & 2) ? 0.45f : -0.45f,
-                                         (i & 4) ? 0.3f : -0.3f}));
-        directions.push_back(normalized({(i & 1) ? 0.2f : -0.2f, (i & 2) ? 0.9f : -0.9f,
-                                         (i & 4) ? 0.5f : -0.5f}));
-        directions.push_back(normalized({(i & 1) ? 0.35f : -0.35f, (i & 2) ? 0.15f : -0.15f,
-                                         (i & 4) ? 0.9f : -0.9f}));
+        directions.push_back(
+            normalized({(i & 1) ? 0.8f : -0.8f, (i & 2) ? 0.45f : -0.45f, (i & 4) ? 0.3f : -0.3f}));
+        directions.push_back(
+            normalized({(i & 1) ? 0.2f : -0.2f, (i & 2) ? 0.9f : -0.9f, (i & 4) ? 0.5f : -0.5f}));
+        directions.push_back(normalized(
+            {(i & 1) ? 0.35f : -0.35f, (i & 2) ? 0.15f : -0.15f, (i & 4) ? 0.9f : -0.9f}));
     }
     return directions;
 }
 
 struct Fixture {
     explicit Fixture(gpu::Context& context) : shaders(context.device()) {}
-    Result<Environment> create(gpu::Context& context, const image::HdrImage& panorama,
+    Result<Environment> create(gpu::Context& context,
+                               const image::HdrImage& panorama,
                                const EnvironmentOptions& options = smallOptions()) {
         return Environment::create(context.device(), context.queue(), shaders, panorama, options);
     }
@@ -313,13 +325,12 @@ TEST(EnvironmentTest, UniformEnvironmentStaysUniform) {
     ENCORE_REQUIRE_VULKAN(context);
     Fixture fixture(*context);
     const Vec3 radiance = {0.8f, 1.0f, 1.25f};
-    auto environment =
-        fixture.create(*context, image::makeUniformEnvironment(radiance[0], radiance[1], radiance[2]));
+    auto environment = fixture.create(
+        *context, image::makeUniformEnvironment(radiance[0], radiance[1], radiance[2]));
     ASSERT_TRUE(environment.ok()) << environment.error().message;
     ASSERT_TRUE(context->checkNoErrors("environment").ok());
 
-    auto expectUniform = [&](const wgpu::Texture& texture, std::uint32_t level,
-                             const char* name) {
+    auto expectUniform = [&](const wgpu::Texture& texture, std::uint32_t level, const char* name) {
         float worst = 0.0f;
         for (std::uint32_t face = 0; face < 6; ++face) {
             const std::vector<float> texels = readHalfTexels(*context, texture, level, face);
@@ -351,14 +362,14 @@ TEST(EnvironmentTest, CubeFacesFollowThePanoramaConvention) {
     const std::vector<Vec3> directions = probeDirections();
 
     // Level 0 is the panorama itself.
-    expectDirectional(probe.sample(environment->specularView(), environment->sampler(),
-                                   directions, 0.0f),
-                      directions, 0.03f, "cube mirror level");
+    expectDirectional(
+        probe.sample(environment->specularView(), environment->sampler(), directions, 0.0f),
+        directions, 0.03f, "cube mirror level");
 
     // The cosine-weighted average of d over the hemisphere around n is (2/3) n, so the
     // irradiance of this panorama is exactly 2 + (2/3) n.
-    const auto irradiance = probe.sample(environment->irradianceView(), environment->sampler(),
-                                         directions, 0.0f);
+    const auto irradiance =
+        probe.sample(environment->irradianceView(), environment->sampler(), directions, 0.0f);
     ASSERT_EQ(irradiance.size(), directions.size());
     for (std::size_t i = 0; i < directions.size(); ++i) {
         for (int c = 0; c < 3; ++c) {
@@ -409,13 +420,12 @@ Vec3 referenceLut(double nDotV, double roughness) {
                 std::sqrt((lx + vx) * (lx + vx) + ly * ly + (nDotL + nDotV) * (nDotL + nDotV));
             const double nDotH = (nDotL + nDotV) / hLength;
             const double vDotH = (vx * (lx + vx) + nDotV * (nDotL + nDotV)) / hLength;
-            const double solidAngle = std::sin(theta) * (std::numbers::pi / 2.0 / steps) *
-                                      (std::numbers::pi / steps);
+            const double solidAngle =
+                std::sin(theta) * (std::numbers::pi / 2.0 / steps) * (std::numbers::pi / steps);
             const double f = nDotH * nDotH * (a2 - 1.0) + 1.0;
             const double d = a2 / (std::numbers::pi * f * f);
-            const double visibility =
-                0.5 / (nDotL * std::sqrt(nDotV * nDotV * (1.0 - a2) + a2) +
-                       nDotV * std::sqrt(nDotL * nDotL * (1.0 - a2) + a2));
+            const double visibility = 0.5 / (nDotL * std::sqrt(nDotV * nDotV * (1.0 - a2) + a2) +
+                                             nDotV * std::sqrt(nDotL * nDotL * (1.0 - a2) + a2));
             const double fresnel = std::pow(1.0 - vDotH, 5.0);
             scale += d * visibility * (1.0 - fresnel) * nDotL * solidAngle;
             bias += d * visibility * fresnel * nDotL * solidAngle;
@@ -433,7 +443,8 @@ TEST(EnvironmentTest, BrdfLutIsPlausible) {
     Fixture fixture(*context);
     EnvironmentOptions options = smallOptions();
     options.lutSize = 64;
-    auto environment = fixture.create(*context, image::makeUniformEnvironment(1, 1, 1, 16), options);
+    auto environment =
+        fixture.create(*context, image::makeUniformEnvironment(1, 1, 1, 16), options);
     ASSERT_TRUE(environment.ok()) << environment.error().message;
     const std::uint32_t size = environment->brdfLutTexture().GetWidth();
     ASSERT_EQ(size, 64u);
@@ -516,8 +527,8 @@ TEST(EnvironmentTest, LoadReplacesContentsInTheSameTextures) {
     // And back to a directional one of yet another size: the probe sees it.
     ASSERT_TRUE(environment->load(directionalPanorama(128)).ok());
     CubeProbe probe(*context);
-    const auto mirror = probe.sample(environment->specularView(), environment->sampler(),
-                                     {{0, 0, -1}}, 0.0f);
+    const auto mirror =
+        probe.sample(environment->specularView(), environment->sampler(), {{0, 0, -1}}, 0.0f);
     ASSERT_EQ(mirror.size(), 1u);
     EXPECT_NEAR(mirror[0][2], 1.0f, 0.05f);
     EXPECT_GT(environment->lastBuildMilliseconds(), 0.0);
@@ -610,9 +621,10 @@ TEST(EnvironmentTest, AtlasIsOneSubresourceHoldingEveryMap) {
             const std::uint32_t sx = std::clamp(int(x) - 1, 0, int(size) - 1);
             const std::uint32_t sy = std::clamp(int(y) - 1, 0, int(size) - 1);
             for (int c = 0; c < 4; ++c) {
-                ASSERT_EQ(texels[(std::size_t(layout.brdf.y + y) * layout.width + layout.brdf.x +
-                                  x) * 4 + c],
-                          lut[(std::size_t(sy) * size + sx) * 4 + c])
+                ASSERT_EQ(
+                    texels[(std::size_t(layout.brdf.y + y) * layout.width + layout.brdf.x + x) * 4 +
+                           c],
+                    lut[(std::size_t(sy) * size + sx) * 4 + c])
                     << "table texel " << x << ", " << y << " channel " << c;
             }
         }
@@ -708,9 +720,10 @@ TEST(EnvironmentTest, DefaultBuildTime) {
     const double createMs = environment->lastBuildMilliseconds();
     ASSERT_TRUE(environment->load(studio).ok());
     const double loadMs = environment->lastBuildMilliseconds();
-    std::printf("[ timing   ] Environment::create (defaults, studio 512x256): %.1f ms; "
-                "load: %.1f ms on %s\n",
-                createMs, loadMs, context->adapterDescription().summary().c_str());
+    std::printf(
+        "[ timing   ] Environment::create (defaults, studio 512x256): %.1f ms; "
+        "load: %.1f ms on %s\n",
+        createMs, loadMs, context->adapterDescription().summary().c_str());
     // The studio's sun is the brightest direction of the mirror level and survives into the
     // irradiance as a warm, bright upper hemisphere.
     CubeProbe probe(*context);

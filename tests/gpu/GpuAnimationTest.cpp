@@ -461,8 +461,7 @@ TEST(GpuAnimationTest, CrowdMatchesTheCpuPlayer) {
         EXPECT_EQ(crowd->animations[k].end, 1.0f);
         EXPECT_NEAR(crowd->animations[k].timeOffset, std::fmod(0.37 * double(k), 1.0), 1e-6);
         EXPECT_EQ(crowd->animations[k].samplers[2].times, crowd->animations[0].samplers[2].times);
-        EXPECT_EQ(crowd->animations[k].samplers[2].values,
-                  crowd->animations[0].samplers[2].values);
+        EXPECT_EQ(crowd->animations[k].samplers[2].values, crowd->animations[0].samplers[2].values);
     }
     // Different offsets: at t = 0.3 the first two characters are in different poses.
     scene::AnimationPlayer player(*crowd);

@@ -42,7 +42,8 @@ Camera partialCamera() {
 
 // An independent CPU frustum test of the instances' spheres (planes from the matrix rows), with
 // `worlds` per scene instance.
-std::vector<std::uint32_t> cpuInstanceCounts(const GpuCuller& culler, const Camera& camera,
+std::vector<std::uint32_t> cpuInstanceCounts(const GpuCuller& culler,
+                                             const Camera& camera,
                                              const scene::SceneData& scene) {
     const std::vector<std::uint32_t> slots = instanceSlots(scene);
     std::vector<glm::mat4> worldOfSlot(slots.size());
@@ -68,9 +69,8 @@ std::vector<std::uint32_t> cpuInstanceCounts(const GpuCuller& culler, const Came
             const Sphere& sphere = spheres.front();
             bool inside = true;
             for (const glm::vec4& plane : planes) {
-                const float distance =
-                    (glm::dot(glm::vec3(plane), glm::vec3(sphere)) + plane.w) /
-                    glm::length(glm::vec3(plane));
+                const float distance = (glm::dot(glm::vec3(plane), glm::vec3(sphere)) + plane.w) /
+                                       glm::length(glm::vec3(plane));
                 inside = inside && distance >= -sphere.w;
             }
             visible += inside;
@@ -80,7 +80,9 @@ std::vector<std::uint32_t> cpuInstanceCounts(const GpuCuller& culler, const Came
     return counts;
 }
 
-image::ImageRgba8 render(Renderer& renderer, const scene::SceneData& scene, StrategyKind kind,
+image::ImageRgba8 render(Renderer& renderer,
+                         const scene::SceneData& scene,
+                         StrategyKind kind,
                          const Camera& camera) {
     EXPECT_TRUE(renderer.prepare(scene, kind).ok());
     renderer.renderFrame(camera);
@@ -210,7 +212,8 @@ TEST_P(GpuCullingTest, AMultiViewFrameKeepsWhatEveryViewSees) {
     EXPECT_TRUE(context->checkNoErrors("multi-view culling").ok());
 }
 
-INSTANTIATE_TEST_SUITE_P(DirectAndBundled, GpuCullingTest,
+INSTANTIATE_TEST_SUITE_P(DirectAndBundled,
+                         GpuCullingTest,
                          ::testing::Values(StrategyKind::GpuCulling,
                                            StrategyKind::GpuCullingBundles),
                          [](const auto& info) {

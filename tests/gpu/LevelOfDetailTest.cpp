@@ -129,8 +129,8 @@ TEST(LevelOfDetailTest, ATinyThresholdDrawsFullDetail) {
     ASSERT_TRUE(full.ok() && tiny.ok());
     ASSERT_TRUE(full->prepare(scene, StrategyKind::GpuCulling).ok());
     ASSERT_TRUE(tiny->prepare(scene, StrategyKind::GpuCulling).ok());
-    const Camera camera = CameraPath::flythrough(latticeOptions())
-                              .camera(1, kFrames, float(kWidth) / float(kHeight));
+    const Camera camera =
+        CameraPath::flythrough(latticeOptions()).camera(1, kFrames, float(kWidth) / float(kHeight));
     full->renderFrame(camera);
     tiny->renderFrame(camera);
     EXPECT_EQ(test::differingPixels(readImage(*full), readImage(*tiny), 0), 0u);
@@ -209,8 +209,8 @@ TEST(LevelOfDetailTest, AnOrbitOfViewsStillDrawsDistantInstancesCoarser) {
         const float angle = glm::half_pi<float>() * float(view);
         const glm::vec3 position =
             center + radius * glm::vec3(std::cos(angle), 0.4f, std::sin(angle));
-        orbit.push_back(Camera::lookAt(position, center, glm::radians(40.0f), 1.0f, 0.1f,
-                                       4.0f * radius));
+        orbit.push_back(
+            Camera::lookAt(position, center, glm::radians(40.0f), 1.0f, 0.1f, 4.0f * radius));
     }
     auto renderer = renderedViews(*context, scene, orbit, kHeight);
     ASSERT_TRUE(renderer.ok()) << renderer.error().message;

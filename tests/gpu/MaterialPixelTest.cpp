@@ -103,14 +103,17 @@ class MaterialPixelTest : public ::testing::Test {
         return image.ok() ? std::move(*image) : image::ImageRgba8{};
     }
 
-    void expectPixel(const image::ImageRgba8& image, const glm::vec3& point,
-                     const test::Rgba& expected, const char* what, int tolerance = 1) {
+    void expectPixel(const image::ImageRgba8& image,
+                     const glm::vec3& point,
+                     const test::Rgba& expected,
+                     const char* what,
+                     int tolerance = 1) {
         ASSERT_EQ(image.width, kSize);
         const auto [x, y] = test::pixelOf(frontCamera(), point, kSize, kSize);
         const test::Rgba actual = test::pixelAt(image, x, y);
         EXPECT_LE(test::channelDistance(actual, expected), tolerance)
-            << what << " at (" << x << ", " << y << "): " << test::describe(actual)
-            << ", expected " << test::describe(expected);
+            << what << " at (" << x << ", " << y << "): " << test::describe(actual) << ", expected "
+            << test::describe(expected);
     }
 
     scene::SceneData mScene;
@@ -195,12 +198,12 @@ TEST_F(MaterialPixelTest, BlendedQuadsAreDrawnBackToFrontWhateverTheNodeOrder) {
         test::GltfBuilder builder;
         const auto red = builder.addMaterial({.baseColor = {1, 0, 0, 0.5f}, .alphaMode = "BLEND"});
         const auto blue = builder.addMaterial({.baseColor = {0, 0, 1, 0.5f}, .alphaMode = "BLEND"});
-        const auto nearQuad = addQuad(builder, {.left = -1.0f, .right = 0.5f, .depth = 0.5f,
-                                                .material = red});
-        const auto farQuad = addQuad(builder, {.left = -0.5f, .right = 1.0f, .depth = -0.5f,
-                                               .material = blue});
-        const auto image = render(builder, nearFirst ? std::vector{nearQuad, farQuad}
-                                                     : std::vector{farQuad, nearQuad});
+        const auto nearQuad =
+            addQuad(builder, {.left = -1.0f, .right = 0.5f, .depth = 0.5f, .material = red});
+        const auto farQuad =
+            addQuad(builder, {.left = -0.5f, .right = 1.0f, .depth = -0.5f, .material = blue});
+        const auto image = render(
+            builder, nearFirst ? std::vector{nearQuad, farQuad} : std::vector{farQuad, nearQuad});
         expectPixel(image, {0.0f, 0.0f, 0.5f}, encode(expected), "overlap", 2);
     }
 }

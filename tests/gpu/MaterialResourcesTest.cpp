@@ -54,10 +54,11 @@ struct Fixture {
         : shaders(context.device()), layouts(BindGroupLayouts::create(context.device())) {}
 
     // Uploads every texture slot, so the tests see linear-space textures too.
-    Result<MaterialResources> create(gpu::Context& context, const scene::SceneData& scene,
+    Result<MaterialResources> create(gpu::Context& context,
+                                     const scene::SceneData& scene,
                                      const SampledTextures& sampled = SampledTextures::all()) {
-        return MaterialResources::create(context.device(), context.queue(), shaders, layouts,
-                                         scene, sampled);
+        return MaterialResources::create(context.device(), context.queue(), shaders, layouts, scene,
+                                         sampled);
     }
 
     shaders::ShaderLibrary shaders;
@@ -373,8 +374,8 @@ TEST(MaterialResourcesTest, SampledSlotsAreUploadedInTheirColourSpace) {
     EXPECT_EQ(resources->texture(scene::ImageId{2u}, ColorSpace::Linear), nullptr);
 
     scene.materials[0].normalTexture = scene::TextureRef{scene::TextureId{9u}};
-    auto dangling = MaterialResources::create(context->device(), context->queue(), shaders,
-                                              layouts, scene, SampledTextures::baseColorOnly());
+    auto dangling = MaterialResources::create(context->device(), context->queue(), shaders, layouts,
+                                              scene, SampledTextures::baseColorOnly());
     ASSERT_FALSE(dangling.ok());
     EXPECT_NE(dangling.error().message.find("texture 9"), std::string::npos)
         << dangling.error().message;

@@ -112,7 +112,9 @@ std::vector<ModelVariant> variants() {
     return all;
 }
 
-INSTANTIATE_TEST_SUITE_P(SharedModels, ModelRenderTest, ::testing::ValuesIn(variants()),
+INSTANTIATE_TEST_SUITE_P(SharedModels,
+                         ModelRenderTest,
+                         ::testing::ValuesIn(variants()),
                          [](const auto& info) { return info.param.testName(); });
 
 }  // namespace

@@ -78,8 +78,10 @@ class PixelRenderTest : public ::testing::TestWithParam<StrategyKind> {
                 test::linearToSrgb8(encoded.z), 255};
     }
 
-    void expectPixel(const image::ImageRgba8& image, const glm::vec3& point,
-                     const test::Rgba& expected, const char* what) {
+    void expectPixel(const image::ImageRgba8& image,
+                     const glm::vec3& point,
+                     const test::Rgba& expected,
+                     const char* what) {
         ASSERT_EQ(image.width, kSize);
         const auto [x, y] = test::pixelOf(frontCamera(), point, kSize, kSize);
         const test::Rgba actual = test::pixelAt(image, x, y);
@@ -138,7 +140,10 @@ TEST_P(PixelRenderTest, EightBitIndicesAreWidened) {
 }
 
 // A quad in the plane z = depth, spanning [left, right] x [-1, 1], with one normal.
-std::uint32_t addQuad(test::GltfBuilder& builder, float left, float right, float depth,
+std::uint32_t addQuad(test::GltfBuilder& builder,
+                      float left,
+                      float right,
+                      float depth,
                       const glm::vec3& normal) {
     test::GltfBuilder::PrimitiveDesc primitive;
     primitive.attributes["POSITION"] = builder.addPositions(
@@ -155,9 +160,12 @@ TEST_P(PixelRenderTest, NearerQuadWinsWhateverTheDrawOrder) {
     for (bool nearFirst : {true, false}) {
         SCOPED_TRACE(nearFirst ? "near quad drawn first" : "far quad drawn first");
         test::GltfBuilder builder;
-        const auto nearQuad = builder.addNode({.mesh = addQuad(builder, -1.0f, 0.5f, 0.5f, facing)});
-        const auto farQuad = builder.addNode({.mesh = addQuad(builder, -0.5f, 1.0f, -0.5f, downward)});
-        builder.addScene(nearFirst ? std::vector{nearQuad, farQuad} : std::vector{farQuad, nearQuad});
+        const auto nearQuad =
+            builder.addNode({.mesh = addQuad(builder, -1.0f, 0.5f, 0.5f, facing)});
+        const auto farQuad =
+            builder.addNode({.mesh = addQuad(builder, -0.5f, 1.0f, -0.5f, downward)});
+        builder.addScene(nearFirst ? std::vector{nearQuad, farQuad}
+                                   : std::vector{farQuad, nearQuad});
         const auto image = render(builder);
         expectPixel(image, {0.0f, 0.0f, 0.5f}, lit(facing), "overlap: near quad");
         expectPixel(image, {-0.8f, 0.0f, 0.5f}, lit(facing), "near quad only");
@@ -165,7 +173,9 @@ TEST_P(PixelRenderTest, NearerQuadWinsWhateverTheDrawOrder) {
     }
 }
 
-INSTANTIATE_TEST_SUITE_P(AllStrategies, PixelRenderTest, ::testing::ValuesIn(allStrategies()),
+INSTANTIATE_TEST_SUITE_P(AllStrategies,
+                         PixelRenderTest,
+                         ::testing::ValuesIn(allStrategies()),
                          [](const auto& info) {
                              std::string name(strategyName(info.param));
                              std::replace(name.begin(), name.end(), '-', '_');

@@ -69,8 +69,8 @@ std::vector<float> radianceAt(const LightDesc& light, const std::vector<glm::vec
     auto renderer = Renderer::create(*context, options);
     EXPECT_TRUE(renderer.ok());
     EXPECT_TRUE(renderer->prepare(scene, StrategyKind::Bundles).ok());
-    const Camera camera = Camera::lookAt({0, 0, 3}, {0, 0, 0}, glm::radians(80.0f), 1.0f, 0.1f,
-                                         10.0f);
+    const Camera camera =
+        Camera::lookAt({0, 0, 3}, {0, 0, 0}, glm::radians(80.0f), 1.0f, 0.1f, 10.0f);
     renderer->renderFrame(camera);
     auto hdr = renderer->readHdrImage();
     EXPECT_TRUE(hdr.ok());

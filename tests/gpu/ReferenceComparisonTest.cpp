@@ -129,10 +129,10 @@ ReferenceSetup referenceSetup(const nlohmann::json& description,
         return glm::vec3(v.at(0).get<float>(), v.at(1).get<float>(), v.at(2).get<float>());
     };
     const float zfar = camera.at("zfar").is_number() ? camera.at("zfar").get<float>() : 0.0f;
-    setup.camera = Camera::lookAt(vec(camera.at("position")), vec(camera.at("target")),
-                                  glm::radians(camera.at("yfovDegrees").get<float>()),
-                                  float(width) / float(height), camera.at("znear").get<float>(),
-                                  zfar);
+    setup.camera =
+        Camera::lookAt(vec(camera.at("position")), vec(camera.at("target")),
+                       glm::radians(camera.at("yfovDegrees").get<float>()),
+                       float(width) / float(height), camera.at("znear").get<float>(), zfar);
     return setup;
 }
 
@@ -142,7 +142,8 @@ struct Comparison {
 };
 
 // Renders one reference model as the reference did and compares the images.
-Comparison compareWithReference(gpu::Context& context, const std::filesystem::path& dir,
+Comparison compareWithReference(gpu::Context& context,
+                                const std::filesystem::path& dir,
                                 const ReferenceCase& entry) {
     std::ifstream jsonFile(dir / (entry.name + ".json"));
     const nlohmann::json description = nlohmann::json::parse(jsonFile);

@@ -83,10 +83,10 @@ struct HdrFrame {
 
 // Renders a sphere of one material under `environment` and reads the HDR frame back;
 // `editMaterial` may change the material's JSON (extensions) before loading.
-HdrFrame renderSphere(const test::GltfBuilder::MaterialDesc& desc,
-                      std::shared_ptr<Environment> environment,
-                      const std::function<void(test::GltfBuilder&, nlohmann::json&)>&
-                          editMaterial = {}) {
+HdrFrame renderSphere(
+    const test::GltfBuilder::MaterialDesc& desc,
+    std::shared_ptr<Environment> environment,
+    const std::function<void(test::GltfBuilder&, nlohmann::json&)>& editMaterial = {}) {
     gpu::Context* context = test::vulkanContext();
     test::GltfBuilder builder;
     const std::uint32_t material = builder.addMaterial(desc);
@@ -140,10 +140,9 @@ class WhiteFurnaceTest : public ::testing::TestWithParam<float> {};
 
 TEST_P(WhiteFurnaceTest, WhiteDielectricReflectsExactlyWhatArrives) {
     ENCORE_REQUIRE_VULKAN(context);
-    const auto stats =
-        sphereStatistics(renderSphere({.baseColor = glm::vec4(1.0f), .metallic = 0.0f,
-                                       .roughness = GetParam()},
-                                      furnaceEnvironment()));
+    const auto stats = sphereStatistics(
+        renderSphere({.baseColor = glm::vec4(1.0f), .metallic = 0.0f, .roughness = GetParam()},
+                     furnaceEnvironment()));
     ASSERT_GT(stats.pixels, 500u);
     EXPECT_GT(stats.minimum, 0.97f) << "roughness " << GetParam();
     EXPECT_LT(stats.maximum, 1.02f) << "roughness " << GetParam();
@@ -151,10 +150,9 @@ TEST_P(WhiteFurnaceTest, WhiteDielectricReflectsExactlyWhatArrives) {
 
 TEST_P(WhiteFurnaceTest, WhiteMetalReflectsExactlyWhatArrives) {
     ENCORE_REQUIRE_VULKAN(context);
-    const auto stats =
-        sphereStatistics(renderSphere({.baseColor = glm::vec4(1.0f), .metallic = 1.0f,
-                                       .roughness = GetParam()},
-                                      furnaceEnvironment()));
+    const auto stats = sphereStatistics(
+        renderSphere({.baseColor = glm::vec4(1.0f), .metallic = 1.0f, .roughness = GetParam()},
+                     furnaceEnvironment()));
     ASSERT_GT(stats.pixels, 500u);
     // Multiple-scattering compensation keeps rough metals white; the LUT's 16-bit values and
     // its resolution leave a few percent at grazing angles.
@@ -163,23 +161,23 @@ TEST_P(WhiteFurnaceTest, WhiteMetalReflectsExactlyWhatArrives) {
     EXPECT_LT(stats.maximum, 1.03f) << "roughness " << GetParam();
 }
 
-INSTANTIATE_TEST_SUITE_P(Roughness, WhiteFurnaceTest,
+INSTANTIATE_TEST_SUITE_P(Roughness,
+                         WhiteFurnaceTest,
                          ::testing::Values(0.0f, 0.25f, 0.5f, 0.75f, 1.0f));
 
 TEST(ShadingEnergyTest, ReflectedEnergyDoesNotGrowWithRoughness) {
     ENCORE_REQUIRE_VULKAN(context);
     // A grey metal and a coloured dielectric in the furnace: rougher may lose a little energy
     // (single scattering) but must never gain any.
-    for (const auto& [baseColor, metallic] :
-         {std::pair{glm::vec4(0.6f, 0.6f, 0.6f, 1.0f), 1.0f},
-          std::pair{glm::vec4(0.8f, 0.3f, 0.2f, 1.0f), 0.0f}}) {
+    for (const auto& [baseColor, metallic] : {std::pair{glm::vec4(0.6f, 0.6f, 0.6f, 1.0f), 1.0f},
+                                              std::pair{glm::vec4(0.8f, 0.3f, 0.2f, 1.0f), 0.0f}}) {
         double previous = 1e9;
         for (float roughness : {0.05f, 0.25f, 0.5f, 0.75f, 1.0f}) {
-            const auto stats = sphereStatistics(renderSphere(
-                {.baseColor = baseColor, .metallic = metallic, .roughness = roughness},
-                furnaceEnvironment()));
-            EXPECT_LE(stats.mean, previous * 1.01) << "metallic " << metallic << ", roughness "
-                                                   << roughness;
+            const auto stats = sphereStatistics(
+                renderSphere({.baseColor = baseColor, .metallic = metallic, .roughness = roughness},
+                             furnaceEnvironment()));
+            EXPECT_LE(stats.mean, previous * 1.01)
+                << "metallic " << metallic << ", roughness " << roughness;
             EXPECT_LE(stats.maximum, 1.02f);
             previous = stats.mean;
         }
@@ -193,9 +191,9 @@ TEST(SpecularGlossinessTest, MatchesTheEquivalentMetallicRoughnessMaterial) {
     ENCORE_REQUIRE_VULKAN(context);
     const glm::vec4 base(0.6f, 0.3f, 0.2f, 1.0f);
     const float glossiness = 0.6f;
-    const HdrFrame metalRough = renderSphere(
-        {.baseColor = base, .metallic = 0.0f, .roughness = 1.0f - glossiness},
-        test::testEnvironment());
+    const HdrFrame metalRough =
+        renderSphere({.baseColor = base, .metallic = 0.0f, .roughness = 1.0f - glossiness},
+                     test::testEnvironment());
     const HdrFrame specularGlossy = renderSphere(
         {.baseColor = glm::vec4(1.0f)}, test::testEnvironment(),
         [&](test::GltfBuilder& builder, nlohmann::json& material) {
@@ -235,8 +233,7 @@ TEST(EmissiveTest, EmissiveStrengthScalesTheEmission) {
         {.baseColor = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f)}, black,
         [](test::GltfBuilder& builder, nlohmann::json& material) {
             material["emissiveFactor"] = {0.5, 0.25, 1.0};
-            material["extensions"]["KHR_materials_emissive_strength"] = {
-                {"emissiveStrength", 4.0}};
+            material["extensions"]["KHR_materials_emissive_strength"] = {{"emissiveStrength", 4.0}};
             builder.json()["extensionsUsed"] = {"KHR_materials_emissive_strength"};
         });
     const std::uint32_t centre = kSize / 2;
@@ -299,8 +296,8 @@ TEST_P(NormalMapHandednessTest, TiltFollowsTheTextureDirections) {
         const float w = glm::dot(up, imageUp) > 0 ? 1.0f : -1.0f;
         const glm::vec4 t(tangent, w);
         quad.attributes["TANGENT"] =
-            builder.addAccessor(std::vector<float>{t.x, t.y, t.z, t.w, t.x, t.y, t.z, t.w, t.x,
-                                                   t.y, t.z, t.w, t.x, t.y, t.z, t.w},
+            builder.addAccessor(std::vector<float>{t.x, t.y, t.z, t.w, t.x, t.y, t.z, t.w, t.x, t.y,
+                                                   t.z, t.w, t.x, t.y, t.z, t.w},
                                 "VEC4");
     }
     quad.indices = builder.addIndices<std::uint16_t>({0, 1, 2, 0, 2, 3});
@@ -337,16 +334,16 @@ std::string handednessName(const ::testing::TestParamInfo<HandednessCase>& info)
 }
 
 INSTANTIATE_TEST_SUITE_P(
-    Frames, NormalMapHandednessTest,
-    ::testing::Values(
-        HandednessCase{"Standard", false, false, false, false, 1, 1},
-        HandednessCase{"StandardTangents", false, false, false, true, 1, 1},
-        HandednessCase{"MirroredU", true, false, false, false, -1, 1},
-        HandednessCase{"MirroredUTangents", true, false, false, true, -1, 1},
-        HandednessCase{"MirroredV", false, true, false, false, 1, -1},
-        HandednessCase{"MirroredVTangents", false, true, false, true, 1, -1},
-        HandednessCase{"MirroredInstance", false, false, true, false, -1, 1},
-        HandednessCase{"MirroredInstanceTangents", false, false, true, true, -1, 1}),
+    Frames,
+    NormalMapHandednessTest,
+    ::testing::Values(HandednessCase{"Standard", false, false, false, false, 1, 1},
+                      HandednessCase{"StandardTangents", false, false, false, true, 1, 1},
+                      HandednessCase{"MirroredU", true, false, false, false, -1, 1},
+                      HandednessCase{"MirroredUTangents", true, false, false, true, -1, 1},
+                      HandednessCase{"MirroredV", false, true, false, false, 1, -1},
+                      HandednessCase{"MirroredVTangents", false, true, false, true, 1, -1},
+                      HandednessCase{"MirroredInstance", false, false, true, false, -1, 1},
+                      HandednessCase{"MirroredInstanceTangents", false, false, true, true, -1, 1}),
     handednessName);
 
 // --- Unlit ------------------------------------------------------------------------------------

@@ -126,8 +126,8 @@ TEST(SoakTest, MemoryAndGpuObjectsStayFlatOverThousandsOfFrames) {
             const float t = float(frame) * 0.01f;
             for (std::size_t k = 0; k < 4; ++k) {
                 const std::size_t instance = (std::size_t(frame) * 4 + k) % scene.instances.size();
-                const glm::mat4 world = glm::rotate(scene.instances[instance].world, t,
-                                                    glm::vec3(0.0f, 1.0f, 0.0f));
+                const glm::mat4 world =
+                    glm::rotate(scene.instances[instance].world, t, glm::vec3(0.0f, 1.0f, 0.0f));
                 ASSERT_TRUE(renderer->updateInstance(instance, world).ok());
             }
             if (frame % 4 == 0) {
@@ -138,8 +138,7 @@ TEST(SoakTest, MemoryAndGpuObjectsStayFlatOverThousandsOfFrames) {
                 ASSERT_TRUE(renderer->updateMaterial(material, value).ok());
             }
             if (frame % 10 == 0) {
-                ASSERT_TRUE(
-                    renderer->setToneMapping({.exposure = 1.0f + 0.2f * std::sin(t)}).ok());
+                ASSERT_TRUE(renderer->setToneMapping({.exposure = 1.0f + 0.2f * std::sin(t)}).ok());
             }
             if (local == kFramesPerCycle / 2) {
                 // Strategies with materials replace a texture (a new texture, bind group and
@@ -165,7 +164,8 @@ TEST(SoakTest, MemoryAndGpuObjectsStayFlatOverThousandsOfFrames) {
             << strategyName(kind) << " drew nothing in cycle " << cycle;
         context->waitForIdle();
         context->device().Tick();
-        samples.push_back({residentBytes(), heapBytesInUse(), gpu::resourceStatistics(context->device()),
+        samples.push_back({residentBytes(), heapBytesInUse(),
+                           gpu::resourceStatistics(context->device()),
                            gpu::processMemoryMappings()});
     }
     const double seconds =
@@ -212,20 +212,20 @@ TEST(SoakTest, MemoryAndGpuObjectsStayFlatOverThousandsOfFrames) {
         "same point (median, least growing period): heap in use %.3f MiB, resident %.2f MiB\n"
         "soak: live buffers %llu (%.2f MiB), textures %llu (%.2f MiB), memory mappings %llu "
         "at the end\n",
-        frame, samples.size(), seconds, seconds * 1000.0 / frame,
-        double(warm.resident) / 1048576.0, cyclesPerPeriod * kFramesPerCycle,
-        double(last.resident) / 1048576.0, double(heapGrowth) / 1048576.0,
-        double(residentGrowth) / 1048576.0,
+        frame, samples.size(), seconds, seconds * 1000.0 / frame, double(warm.resident) / 1048576.0,
+        cyclesPerPeriod * kFramesPerCycle, double(last.resident) / 1048576.0,
+        double(heapGrowth) / 1048576.0, double(residentGrowth) / 1048576.0,
         (unsigned long long)last.resources.buffers, double(last.resources.bufferBytes) / 1048576.0,
         (unsigned long long)last.resources.textures,
         double(last.resources.textureBytes) / 1048576.0, (unsigned long long)last.mappings);
     for (int period = 0; period < kPeriods; ++period) {
         const Sample& end = samples[cyclesPerPeriod * (period + 1) - 1];
-        std::printf("soak: period %d: resident %.2f MiB, heap in use %.2f MiB, %llu buffers, "
-                    "%llu textures, %llu mappings\n",
-                    period, double(end.resident) / 1048576.0, double(end.heapInUse) / 1048576.0,
-                    (unsigned long long)end.resources.buffers,
-                    (unsigned long long)end.resources.textures, (unsigned long long)end.mappings);
+        std::printf(
+            "soak: period %d: resident %.2f MiB, heap in use %.2f MiB, %llu buffers, "
+            "%llu textures, %llu mappings\n",
+            period, double(end.resident) / 1048576.0, double(end.heapInUse) / 1048576.0,
+            (unsigned long long)end.resources.buffers, (unsigned long long)end.resources.textures,
+            (unsigned long long)end.mappings);
     }
     // ASan's allocator has no mallinfo and holds freed memory in quarantine by design.
     if (!kSanitized) {

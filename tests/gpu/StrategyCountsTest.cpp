@@ -24,16 +24,16 @@ struct Structure {
     std::uint64_t instances = 0;           // Mesh nodes (and GPU-instancing copies).
     std::uint64_t nodePrimitiveDraws = 0;  // Sum over instances of their mesh's primitives.
     std::uint64_t nodeIndexedDraws = 0;
-    std::uint64_t nodeSlots = 0;           // Vertex buffer slots with bufferView layouts.
-    std::uint64_t drawnPrimitives = 0;     // Primitives of meshes with at least one instance.
+    std::uint64_t nodeSlots = 0;        // Vertex buffer slots with bufferView layouts.
+    std::uint64_t drawnPrimitives = 0;  // Primitives of meshes with at least one instance.
     std::uint64_t drawnIndexed = 0;
     std::uint64_t drawnSlots = 0;
-    std::uint64_t allPrimitives = 0;       // Of every mesh, instanced or not.
+    std::uint64_t allPrimitives = 0;  // Of every mesh, instanced or not.
     // Animation (skinned or morphed primitives): the animation bind group is set before each
     // of their draws; skinned ones also bind JOINTS_n/WEIGHTS_n.
-    std::uint64_t animatedNodeDraws = 0;     // (instance, animated primitive) pairs.
+    std::uint64_t animatedNodeDraws = 0;  // (instance, animated primitive) pairs.
     std::uint64_t animatedDrawnPrimitives = 0;
-    std::uint64_t naiveSlots = 0;            // One per attribute bound, per (node, primitive).
+    std::uint64_t naiveSlots = 0;  // One per attribute bound, per (node, primitive).
 };
 
 // Slots the position and normal of a primitive need when bound where they lie: one when they
@@ -53,7 +53,8 @@ std::uint64_t slotsOf(const scene::SceneData& scene, const scene::Primitive& pri
 // Slots of a skinned primitive's position, normal, joints and weights: attributes of one
 // bufferView with one stride (a multiple of 4) whose offsets lie within a stride of a slot's
 // first attribute share that slot.
-std::uint64_t slotsOf(const scene::SceneData& scene, const scene::Primitive& primitive,
+std::uint64_t slotsOf(const scene::SceneData& scene,
+                      const scene::Primitive& primitive,
                       const std::vector<scene::Semantic>& semantics) {
     std::vector<const scene::Accessor*> slots;
     for (scene::Semantic semantic : semantics) {
@@ -63,9 +64,9 @@ std::uint64_t slotsOf(const scene::SceneData& scene, const scene::Primitive& pri
             const auto distance = accessor.byteOffset > first->byteOffset
                                       ? accessor.byteOffset - first->byteOffset
                                       : first->byteOffset - accessor.byteOffset;
-            shared = shared || (accessor.view == first->view &&
-                                accessor.byteStride == first->byteStride &&
-                                distance < accessor.byteStride && accessor.byteStride % 4 == 0);
+            shared = shared ||
+                     (accessor.view == first->view && accessor.byteStride == first->byteStride &&
+                      distance < accessor.byteStride && accessor.byteStride % 4 == 0);
         }
         if (!shared) {
             slots.push_back(&accessor);
@@ -135,8 +136,8 @@ Frame renderWith(Renderer& renderer, const scene::SceneData& scene, StrategyKind
     auto prepared = renderer.prepare(scene, kind);
     EXPECT_TRUE(prepared.ok()) << prepared.error().message;
     frame.pipelinesCreated = renderer.setup().pipelinesCreated;
-    frame.counters = renderer.renderFrame(Camera::framing(scene.bounds, 1.0f), 0.0f, &frame.trace)
-                         .counters;
+    frame.counters =
+        renderer.renderFrame(Camera::framing(scene.bounds, 1.0f), 0.0f, &frame.trace).counters;
     auto image = renderer.readImage();
     EXPECT_TRUE(image.ok()) << image.error().message;
     return frame;
@@ -251,12 +252,16 @@ std::vector<ModelVariant> variants() {
     return all;
 }
 
-INSTANTIATE_TEST_SUITE_P(SharedModels, StrategyCountsTest, ::testing::ValuesIn(variants()),
+INSTANTIATE_TEST_SUITE_P(SharedModels,
+                         StrategyCountsTest,
+                         ::testing::ValuesIn(variants()),
                          [](const auto& info) { return info.param.testName(); });
 
 // A generated scene of `objects` instances of `meshes` meshes with `materials` materials.
-Result<scene::SceneData> generatedScene(std::uint32_t objects, std::uint32_t meshes,
-                                        std::uint32_t materials, const std::string& name) {
+Result<scene::SceneData> generatedScene(std::uint32_t objects,
+                                        std::uint32_t meshes,
+                                        std::uint32_t materials,
+                                        const std::string& name) {
     scene::GeneratorOptions options;
     options.objectCount = objects;
     options.meshCount = meshes;
@@ -356,8 +361,8 @@ TEST(StrategyLimitsTest, PerNodeStrategiesRefuseScenesBeyondTheMappingBudget) {
     tight.mappingBudget = 60;  // Room for 30 nodes at two mappings each.
     auto gpuScene = GpuScene::create(tight, *scene);
     ASSERT_TRUE(gpuScene.ok());
-    for (StrategyKind kind : {StrategyKind::Naive, StrategyKind::Layouts,
-                              StrategyKind::PipelineCache}) {
+    for (StrategyKind kind :
+         {StrategyKind::Naive, StrategyKind::Layouts, StrategyKind::PipelineCache}) {
         auto strategy = createStrategy(kind);
         auto prepared = strategy->prepare(tight, **gpuScene);
         ASSERT_FALSE(prepared.ok()) << strategyName(kind);

@@ -65,7 +65,8 @@ TEST_P(TriangleCountTest, AllInViewNoneInViewAndHalfBehindTheCamera) {
     const auto scene = generated(scene::SceneLayout::Grid, 300);
     auto renderer = Renderer::create(*context, test::pixelTestOptions(kSize, kSize));
     ASSERT_TRUE(renderer.ok());
-    renderer->setCullingOptions({.occlusion = false, .levelsOfDetail = false});  // Frustum culling: exact expectations.
+    renderer->setCullingOptions(
+        {.occlusion = false, .levelsOfDetail = false});  // Frustum culling: exact expectations.
     ASSERT_TRUE(renderer->prepare(scene, GetParam()).ok());
     const GpuCuller* culler = renderer->strategy()->culler();
     ASSERT_NE(culler, nullptr);

@@ -26,8 +26,11 @@ RendererOptions options(std::uint32_t width, std::uint32_t height) {
     return result;
 }
 
-image::ImageRgba8 render(const scene::SceneData& scene, StrategyKind kind, bool bundle,
-                         std::uint32_t width, std::uint32_t height) {
+image::ImageRgba8 render(const scene::SceneData& scene,
+                         StrategyKind kind,
+                         bool bundle,
+                         std::uint32_t width,
+                         std::uint32_t height) {
     gpu::Context* context = test::vulkanContext();
     auto renderer = Renderer::create(*context, options(width, height));
     EXPECT_TRUE(renderer.ok());
@@ -46,9 +49,9 @@ struct Case {
 TEST(ViewerHooksTest, ResizingKeepsTheRecordedBundlesAndRendersLikeANewTarget) {
     ENCORE_REQUIRE_VULKAN(context);
     const scene::SceneData scene = generatedScene();
-    for (const Case& c : {Case{StrategyKind::Bundles, false},
-                          Case{StrategyKind::GpuCullingBundles, false},
-                          Case{StrategyKind::Naive, true}, Case{StrategyKind::Instancing, true}}) {
+    for (const Case& c :
+         {Case{StrategyKind::Bundles, false}, Case{StrategyKind::GpuCullingBundles, false},
+          Case{StrategyKind::Naive, true}, Case{StrategyKind::Instancing, true}}) {
         SCOPED_TRACE(std::string(strategyName(c.kind)) + (c.bundle ? " bundled" : ""));
         auto renderer = Renderer::create(*context, options(64, 48));
         ASSERT_TRUE(renderer.ok());

@@ -8,18 +8,24 @@ namespace encore::test {
 namespace {
 
 std::uint32_t componentsOf(const std::string& type) {
-    if (type == "VEC2")
+    if (type == "VEC2") {
         return 2;
-    if (type == "VEC3")
+    }
+    if (type == "VEC3") {
         return 3;
-    if (type == "VEC4")
+    }
+    if (type == "VEC4") {
         return 4;
-    if (type == "MAT2")
+    }
+    if (type == "MAT2") {
         return 4;
-    if (type == "MAT3")
+    }
+    if (type == "MAT3") {
         return 9;
-    if (type == "MAT4")
+    }
+    if (type == "MAT4") {
         return 16;
+    }
     return 1;
 }
 
@@ -51,8 +57,9 @@ template <typename Vec>
 std::vector<float> flatten(const std::vector<Vec>& values) {
     std::vector<float> result;
     for (const Vec& value : values) {
-        for (int c = 0; c < Vec::length(); ++c)
+        for (int c = 0; c < Vec::length(); ++c) {
             result.push_back(value[c]);
+        }
     }
     return result;
 }
@@ -98,10 +105,12 @@ std::uint32_t GltfBuilder::addAccessor(std::uint32_t bufferView,
                                {"componentType", componentType},
                                {"count", count},
                                {"type", type}};
-    if (byteOffset)
+    if (byteOffset) {
         accessor["byteOffset"] = byteOffset;
-    if (normalized)
+    }
+    if (normalized) {
         accessor["normalized"] = true;
+    }
     return append("accessors", std::move(accessor));
 }
 
@@ -164,32 +173,40 @@ std::uint32_t GltfBuilder::addMesh(const std::vector<PrimitiveDesc>& primitives,
         for (const auto& [semantic, accessor] : desc.attributes) {
             primitive["attributes"][semantic] = accessor;
         }
-        if (desc.indices)
+        if (desc.indices) {
             primitive["indices"] = *desc.indices;
-        if (desc.material)
+        }
+        if (desc.material) {
             primitive["material"] = *desc.material;
-        if (desc.mode)
+        }
+        if (desc.mode) {
             primitive["mode"] = *desc.mode;
+        }
         mesh["primitives"].push_back(std::move(primitive));
     }
-    if (!name.empty())
+    if (!name.empty()) {
         mesh["name"] = name;
+    }
     return append("meshes", std::move(mesh));
 }
 
 std::uint32_t GltfBuilder::addNode(const NodeDesc& desc) {
     nlohmann::json node = nlohmann::json::object();
-    if (!desc.name.empty())
+    if (!desc.name.empty()) {
         node["name"] = desc.name;
-    if (desc.mesh)
+    }
+    if (desc.mesh) {
         node["mesh"] = *desc.mesh;
-    if (!desc.children.empty())
+    }
+    if (!desc.children.empty()) {
         node["children"] = desc.children;
+    }
     if (desc.matrix) {
         std::vector<float> values;
         for (int c = 0; c < 4; ++c) {
-            for (int r = 0; r < 4; ++r)
+            for (int r = 0; r < 4; ++r) {
                 values.push_back((*desc.matrix)[c][r]);
+            }
         }
         node["matrix"] = values;
     } else {
@@ -200,8 +217,9 @@ std::uint32_t GltfBuilder::addNode(const NodeDesc& desc) {
             node["rotation"] = {desc.rotation->x, desc.rotation->y, desc.rotation->z,
                                 desc.rotation->w};
         }
-        if (desc.scale)
+        if (desc.scale) {
             node["scale"] = {desc.scale->x, desc.scale->y, desc.scale->z};
+        }
     }
     return append("nodes", std::move(node));
 }
@@ -212,13 +230,16 @@ std::uint32_t GltfBuilder::addMaterial(const MaterialDesc& desc) {
          {desc.baseColor.r, desc.baseColor.g, desc.baseColor.b, desc.baseColor.a}},
         {"metallicFactor", desc.metallic},
         {"roughnessFactor", desc.roughness}};
-    if (desc.baseColorTexture)
+    if (desc.baseColorTexture) {
         pbr["baseColorTexture"] = {{"index", *desc.baseColorTexture}};
+    }
     nlohmann::json material = {{"pbrMetallicRoughness", pbr}, {"alphaMode", desc.alphaMode}};
-    if (desc.alphaCutoff)
+    if (desc.alphaCutoff) {
         material["alphaCutoff"] = *desc.alphaCutoff;
-    if (desc.doubleSided)
+    }
+    if (desc.doubleSided) {
         material["doubleSided"] = true;
+    }
     return append("materials", std::move(material));
 }
 
@@ -226,8 +247,9 @@ std::uint32_t GltfBuilder::addTexture(const std::string& imageUri,
                                       std::optional<std::uint32_t> sampler) {
     const std::uint32_t image = append("images", {{"uri", imageUri}});
     nlohmann::json texture = {{"source", image}};
-    if (sampler)
+    if (sampler) {
         texture["sampler"] = *sampler;
+    }
     return append("textures", std::move(texture));
 }
 
@@ -236,10 +258,12 @@ std::uint32_t GltfBuilder::addSampler(std::optional<std::uint32_t> magFilter,
                                       std::uint32_t wrapS,
                                       std::uint32_t wrapT) {
     nlohmann::json sampler = {{"wrapS", wrapS}, {"wrapT", wrapT}};
-    if (magFilter)
+    if (magFilter) {
         sampler["magFilter"] = *magFilter;
-    if (minFilter)
+    }
+    if (minFilter) {
         sampler["minFilter"] = *minFilter;
+    }
     return append("samplers", std::move(sampler));
 }
 
@@ -304,8 +328,9 @@ std::vector<std::uint8_t> makeGlb(const std::string& jsonText, std::span<const s
     json.resize((json.size() + 3) / 4 * 4, ' ');
     std::vector<std::uint8_t> bytes;
     auto put32 = [&](std::uint32_t value) {
-        for (int i = 0; i < 4; ++i)
+        for (int i = 0; i < 4; ++i) {
             bytes.push_back(std::uint8_t(value >> (8 * i)));
+        }
     };
     const std::size_t binPadded = (bin.size() + 3) / 4 * 4;
     const std::size_t total = 12 + 8 + json.size() + (bin.empty() ? 0 : 8 + binPadded);

@@ -40,17 +40,17 @@ namespace encore::test {
 // glTF component type enum of a C++ element type.
 template <typename T>
 constexpr std::uint32_t gltfComponentType() {
-    if constexpr (std::is_same_v<T, std::int8_t>)
+    if constexpr (std::is_same_v<T, std::int8_t>) {
         return 5120;
-    else if constexpr (std::is_same_v<T, std::uint8_t>)
+    } else if constexpr (std::is_same_v<T, std::uint8_t>) {
         return 5121;
-    else if constexpr (std::is_same_v<T, std::int16_t>)
+    } else if constexpr (std::is_same_v<T, std::int16_t>) {
         return 5122;
-    else if constexpr (std::is_same_v<T, std::uint16_t>)
+    } else if constexpr (std::is_same_v<T, std::uint16_t>) {
         return 5123;
-    else if constexpr (std::is_same_v<T, std::uint32_t>)
+    } else if constexpr (std::is_same_v<T, std::uint32_t>) {
         return 5125;
-    else {
+    } else {
         static_assert(std::is_same_v<T, float>, "glTF components are i8/u8/i16/u16/u32/f32");
         return 5126;
     }

@@ -60,8 +60,7 @@ double coveredFraction(const image::ImageRgba8& image, const Rgba& background, i
     return double(covered) / double(std::size_t(image.width) * image.height);
 }
 
-std::size_t differingPixels(const image::ImageRgba8& a, const image::ImageRgba8& b,
-                            int tolerance) {
+std::size_t differingPixels(const image::ImageRgba8& a, const image::ImageRgba8& b, int tolerance) {
     if (a.width != b.width || a.height != b.height) {
         return std::size_t(-1);
     }

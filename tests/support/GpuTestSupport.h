@@ -24,10 +24,10 @@ namespace encore::test {
 gpu::Context* vulkanContext();
 
 // Use in a test body: gets the context or stops the test with a failure.
-#define ENCORE_REQUIRE_VULKAN(contextVariable)                                                 \
-    gpu::Context* contextVariable = ::encore::test::vulkanContext();                           \
+#define ENCORE_REQUIRE_VULKAN(contextVariable)                                               \
+    gpu::Context* contextVariable = ::encore::test::vulkanContext();                         \
     ASSERT_NE(contextVariable, nullptr) << "GPU tests need Dawn's Vulkan backend (lavapipe " \
-                                           "from Mesa >= 25 or a GPU driver)";                 \
+                                           "from Mesa >= 25 or a GPU driver)";               \
     ASSERT_EQ(contextVariable->adapterDescription().backend, wgpu::BackendType::Vulkan)
 
 using Rgba = std::array<std::uint8_t, 4>;
@@ -42,7 +42,8 @@ int channelDistance(const Rgba& a, const Rgba& b);
 double coveredFraction(const image::ImageRgba8& image, const Rgba& background, int tolerance = 2);
 
 // Number of pixels whose colour differs by more than `tolerance` on some channel.
-std::size_t differingPixels(const image::ImageRgba8& a, const image::ImageRgba8& b,
+std::size_t differingPixels(const image::ImageRgba8& a,
+                            const image::ImageRgba8& b,
                             int tolerance = 0);
 
 // The 8-bit sRGB encoding of a linear value in [0, 1].
@@ -50,9 +51,9 @@ std::uint8_t linearToSrgb8(double linear);
 
 // One variant of a model listed in shared/models/index.json.
 struct ModelVariant {
-    std::string model;    // e.g. "Duck"
-    std::string variant;  // e.g. "glTF-Draco"
-    std::string path;     // absolute
+    std::string model;             // e.g. "Duck"
+    std::string variant;           // e.g. "glTF-Draco"
+    std::string path;              // absolute
     std::string testName() const;  // "Duck_glTF_Draco"
 };
 std::vector<ModelVariant> sharedModelVariants();

@@ -41,7 +41,8 @@ render::EnvironmentOptions testEnvironmentOptions() {
     return options;
 }
 
-render::RendererOptions pixelTestOptions(std::uint32_t width, std::uint32_t height,
+render::RendererOptions pixelTestOptions(std::uint32_t width,
+                                         std::uint32_t height,
                                          std::uint32_t samples,
                                          render::DebugChannel channel) {
     render::RendererOptions options;

@@ -20,8 +20,8 @@ namespace encore::test {
 // A camera on the +Z axis (shifted by `x`) looking down -Z at z = 0, 90 degree field of view:
 // at z = 0 the view spans [-3, 3] vertically, so tests can place geometry in known pixels.
 inline render::Camera frontCamera(float aspect = 1.0f, float x = 0.0f) {
-    return render::Camera::lookAt({x, 0.0f, 3.0f}, {x, 0.0f, 0.0f}, glm::half_pi<float>(),
-                                  aspect, 0.1f, 10.0f);
+    return render::Camera::lookAt({x, 0.0f, 3.0f}, {x, 0.0f, 0.0f}, glm::half_pi<float>(), aspect,
+                                  0.1f, 10.0f);
 }
 
 // The pixel of a `width` x `height` image that a world point projects to.
@@ -47,10 +47,11 @@ std::shared_ptr<render::Environment> testEnvironment();
 // shader's output channel (BaseColor: materials strategies write their base colour unlit, which
 // tests can predict exactly; Shaded: the full physically based result). GPU culling draws every
 // instance at full detail (levels of detail off); occlusion culling stays on.
-render::RendererOptions pixelTestOptions(std::uint32_t width, std::uint32_t height,
-                                         std::uint32_t samples = 1,
-                                         render::DebugChannel channel =
-                                             render::DebugChannel::BaseColor);
+render::RendererOptions pixelTestOptions(
+    std::uint32_t width,
+    std::uint32_t height,
+    std::uint32_t samples = 1,
+    render::DebugChannel channel = render::DebugChannel::BaseColor);
 
 // The render bundles a bundled strategy records at once and executes per frame (of one view):
 // gpu-culling-bundles draws its frame in two passes for occlusion culling, one bundle each; the

@@ -17,7 +17,8 @@ std::optional<std::filesystem::path> sharedModelsDir() {
 }
 
 std::optional<std::filesystem::path> sharedReferenceDir() {
-    std::filesystem::path dir = std::filesystem::path(ENCORE_SHARED_MODELS_DIR) / ".." / "reference";
+    std::filesystem::path dir =
+        std::filesystem::path(ENCORE_SHARED_MODELS_DIR) / ".." / "reference";
     if (const char* overridden = std::getenv("ENCORE_REFERENCE_DIR")) {
         dir = overridden;
     }

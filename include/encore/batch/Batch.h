@@ -27,10 +27,10 @@
 #include "encore/batch/FailureLog.h"
 #include "encore/batch/ViewImages.h"
 #include "encore/batch/ViewRig.h"
-#include "encore/image/ImageCodec.h"
 #include "encore/core/Result.h"
 #include "encore/gpu/Context.h"
 #include "encore/gpu/StageTimestamps.h"
+#include "encore/image/ImageCodec.h"
 #include "encore/render/Renderer.h"
 
 namespace encore::batch {
@@ -39,7 +39,7 @@ namespace encore::batch {
 // threads' work (they may exceed the wall time). The others are the device thread's and add up
 // to at most the wall time; the GPU works beside them, so its own time is not among them.
 struct StageTimes {
-    double load = 0.0;    // Parsing the file and decoding its images.
+    double load = 0.0;  // Parsing the file and decoding its images.
     // Renderer::prepare (buffers, textures, pipelines, bundles) and, before it, creating the
     // staging buffers that the pool copies the model's images into (`staging`).
     double upload = 0.0;

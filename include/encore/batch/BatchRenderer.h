@@ -46,7 +46,8 @@ class BatchRenderer {
     // maps are kept when `options` names the same environment source (no `environment` of its
     // own, the same `environmentImage` object, equal `environmentOptions`). No scene is prepared
     // on return.
-    Result<void> acquire(const render::RendererOptions& options, std::size_t readbackSlots,
+    Result<void> acquire(const render::RendererOptions& options,
+                         std::size_t readbackSlots,
                          std::size_t rendererCount = 1);
 
     // Valid after a successful acquire() until the next acquire() or discard().

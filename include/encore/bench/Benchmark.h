@@ -46,12 +46,12 @@ struct BenchOptions {
     // Also measure each gpu-culling strategy with frustum culling alone ("<name> (frustum
     // only)"), in the same run.
     bool frustumBaseline = false;
-    std::vector<std::uint32_t> objectCounts;        // Generated scenes, each of `scenes`.
-    std::vector<GeneratedScene> scenes;             // Empty: the grid.
+    std::vector<std::uint32_t> objectCounts;  // Generated scenes, each of `scenes`.
+    std::vector<GeneratedScene> scenes;       // Empty: the grid.
     // How far the camera of the fly-through and the city moves per frame, in scene units; 0:
     // once round its loop over the measured frames (render::CameraPath::camera).
     float pathStep = 0.0f;
-    std::vector<std::filesystem::path> models;      // glTF files.
+    std::vector<std::filesystem::path> models;       // glTF files.
     std::vector<std::uint32_t> animometerTriangles;  // Animometer scenes (direct and bundle).
     std::vector<std::uint32_t> crowdCharacters;      // Animated crowds (scene::generateCrowdGlb).
     // Animate every frame (setAnimationTime, timed as part of encoding) with each of these
@@ -130,7 +130,8 @@ struct BenchReport {
 // Called before each measurement with its label, for progress output.
 using ProgressCallback = std::function<void(const std::string&)>;
 
-Result<BenchReport> runBenchmarks(gpu::Context& context, const BenchOptions& options,
+Result<BenchReport> runBenchmarks(gpu::Context& context,
+                                  const BenchOptions& options,
                                   const ProgressCallback& progress = {});
 
 nlohmann::json toJson(const BenchReport& report);

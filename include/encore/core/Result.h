@@ -14,18 +14,18 @@
 namespace encore {
 
 enum class ErrorCode {
-    InvalidArgument,     // A caller passed something meaningless (a zero size, an unknown name).
-    FileNotFound,        // A path that does not exist.
-    FileUnreadable,      // Exists but cannot be read (permissions, a directory, I/O error).
-    InvalidFormat,       // Malformed content: bad JSON, bad GLB framing, out-of-range data.
-    Unsupported,         // Well-formed but uses something Encore does not implement.
-    LimitExceeded,       // A size that would overflow or exceed a sane allocation limit.
-    NoAdapter,           // No usable GPU adapter (e.g. only Dawn's Null backend).
-    DeviceError,         // Device creation failed or the device was lost.
-    ValidationError,     // WebGPU reported a validation error.
-    OutOfMemory,         // The GPU could not allocate a resource (a WebGPU out-of-memory error).
-    IoError,             // Writing an output failed.
-    NoDisplay,           // No display to open a window on (encore view).
+    InvalidArgument,  // A caller passed something meaningless (a zero size, an unknown name).
+    FileNotFound,     // A path that does not exist.
+    FileUnreadable,   // Exists but cannot be read (permissions, a directory, I/O error).
+    InvalidFormat,    // Malformed content: bad JSON, bad GLB framing, out-of-range data.
+    Unsupported,      // Well-formed but uses something Encore does not implement.
+    LimitExceeded,    // A size that would overflow or exceed a sane allocation limit.
+    NoAdapter,        // No usable GPU adapter (e.g. only Dawn's Null backend).
+    DeviceError,      // Device creation failed or the device was lost.
+    ValidationError,  // WebGPU reported a validation error.
+    OutOfMemory,      // The GPU could not allocate a resource (a WebGPU out-of-memory error).
+    IoError,          // Writing an output failed.
+    NoDisplay,        // No display to open a window on (encore view).
 };
 
 // A name for each code, for logs and test messages.
@@ -107,12 +107,12 @@ namespace detail {
 }  // namespace encore
 
 // Propagates the error of a Result-returning expression, otherwise yields nothing.
-#define ENCORE_TRY(expression)                        \
-    do {                                              \
-        auto encoreTryResult = (expression);          \
-        if (!encoreTryResult.ok()) {                  \
-            return encoreTryResult.error();           \
-        }                                             \
+#define ENCORE_TRY(expression)               \
+    do {                                     \
+        auto encoreTryResult = (expression); \
+        if (!encoreTryResult.ok()) {         \
+            return encoreTryResult.error();  \
+        }                                    \
     } while (false)
 
 // Assigns the value of a Result-returning expression to `target`, or returns its error.

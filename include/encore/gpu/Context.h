@@ -32,10 +32,10 @@ struct ContextOptions {
 };
 
 struct AdapterDescription {
-    std::string name;          // e.g. "llvmpipe (LLVM 19.1.7, 256 bits)"
+    std::string name;  // e.g. "llvmpipe (LLVM 19.1.7, 256 bits)"
     std::string vendor;
     std::string architecture;
-    std::string driver;        // The driver description Dawn reports.
+    std::string driver;  // The driver description Dawn reports.
     wgpu::BackendType backend = wgpu::BackendType::Undefined;
     wgpu::AdapterType adapterType = wgpu::AdapterType::Unknown;
 

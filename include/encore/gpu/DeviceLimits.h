@@ -44,11 +44,13 @@ wgpu::Limits requiredLimits(const LimitOverrides& overrides);
 // LimitExceeded when a buffer of `bytes` exceeds maxBufferSize, reading "<what>: a buffer of
 // <bytes> bytes, larger than the device's maxBufferSize (<limit> bytes)."; `what` names what
 // needs the buffer, e.g. "The instance transforms of 2000000 instances".
-Result<void> checkBufferSize(const DeviceLimits& limits, std::uint64_t bytes,
+Result<void> checkBufferSize(const DeviceLimits& limits,
+                             std::uint64_t bytes,
                              std::string_view what);
 // As checkBufferSize, and also against maxStorageBufferBindingSize, for a buffer bound whole as
 // a storage binding.
-Result<void> checkStorageBinding(const DeviceLimits& limits, std::uint64_t bytes,
+Result<void> checkStorageBinding(const DeviceLimits& limits,
+                                 std::uint64_t bytes,
                                  std::string_view what);
 
 }  // namespace encore::gpu

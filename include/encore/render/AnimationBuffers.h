@@ -48,13 +48,16 @@ class AnimationBuffers {
                                                     const scene::AnimationPlayer& player);
 
     // Sets the SKINNED, SKINNED_8 and MORPHED flags that primitive `primitive` of `mesh` needs.
-    void addVariantFlags(scene::MeshId mesh, std::size_t primitive,
+    void addVariantFlags(scene::MeshId mesh,
+                         std::size_t primitive,
                          shaders::ShaderVariantKey& key) const;
 
     // Sets the animation group for drawing `primitive` of scene instance `sceneInstance` with a
     // pipeline of variant `key`; nothing when the variant is not animated.
-    void bind(RenderEncoder& encoder, const shaders::ShaderVariantKey& key,
-              std::size_t sceneInstance, std::size_t primitive) const;
+    void bind(RenderEncoder& encoder,
+              const shaders::ShaderVariantKey& key,
+              std::size_t sceneInstance,
+              std::size_t primitive) const;
 
     // Uploads what the player's last evaluate() changed: the joint matrices of changed skins and
     // the morph weights.
@@ -70,7 +73,9 @@ class AnimationBuffers {
     bool skinnedPrimitive(scene::MeshId mesh, std::size_t primitive) const;
     // The scene instance's first joint in jointBuffer() and first weight in weightBuffer()
     // (scene::InstanceAnimationRange::kNone where it has no skin or no morph targets).
-    glm::uvec2 instanceOffsets(std::size_t sceneInstance) const { return mInstanceRanges[sceneInstance]; }
+    glm::uvec2 instanceOffsets(std::size_t sceneInstance) const {
+        return mInstanceRanges[sceneInstance];
+    }
     std::uint32_t skinnedPrimitiveCount() const { return mSkinnedPrimitives; }
     std::uint32_t morphedPrimitiveCount() const { return mMorphedPrimitives; }
 
@@ -79,8 +84,8 @@ class AnimationBuffers {
     wgpu::BindGroup mBindGroup;
     // [mesh][primitive]: 1 skinned, 2 morphed, 4 eight joints per vertex.
     std::vector<std::vector<std::uint8_t>> mPrimitiveFlags;
-    std::vector<std::uint32_t> mFirstDraw;                   // Per scene instance.
-    std::vector<glm::uvec2> mInstanceRanges;                 // Per scene instance.
+    std::vector<std::uint32_t> mFirstDraw;    // Per scene instance.
+    std::vector<glm::uvec2> mInstanceRanges;  // Per scene instance.
     std::vector<TransformUniform> mJointScratch;
     std::uint32_t mSkinnedPrimitives = 0;
     std::uint32_t mMorphedPrimitives = 0;
@@ -99,7 +104,8 @@ void appendAnimationSemantics(const shaders::ShaderVariantKey& key,
 // (kUnlitTransformSemantics, then joints and weights where it is skinned), adding the
 // primitive's animation flags to `variant`. `animation` is null when nothing is animated.
 std::vector<scene::Semantic> unlitPrimitiveSemantics(const AnimationBuffers* animation,
-                                                     scene::MeshId mesh, std::size_t primitive,
+                                                     scene::MeshId mesh,
+                                                     std::size_t primitive,
                                                      shaders::ShaderVariantKey& variant);
 
 }  // namespace encore::render

@@ -32,8 +32,8 @@
 namespace encore::render {
 
 struct EnvironmentOptions {
-    std::uint32_t specularSize = 256;       // Level 0 of the specular cube, per face.
-    std::uint32_t specularLevels = 5;       // Roughness 0, 0.25, 0.5, 0.75, 1; at most 8.
+    std::uint32_t specularSize = 256;  // Level 0 of the specular cube, per face.
+    std::uint32_t specularLevels = 5;  // Roughness 0, 0.25, 0.5, 0.75, 1; at most 8.
     std::uint32_t irradianceSize = 32;
     std::uint32_t lutSize = 128;
     // Samples per texel. Each sample reads the source mip that matches its footprint (filtered
@@ -49,7 +49,8 @@ class Environment {
   public:
     static constexpr wgpu::TextureFormat kCubeFormat = wgpu::TextureFormat::RGBA16Float;
 
-    static Result<Environment> create(const wgpu::Device& device, const wgpu::Queue& queue,
+    static Result<Environment> create(const wgpu::Device& device,
+                                      const wgpu::Queue& queue,
                                       shaders::ShaderLibrary& shaders,
                                       const image::HdrImage& panorama,
                                       const EnvironmentOptions& options = {});

@@ -14,10 +14,10 @@
 namespace encore::render {
 
 struct AtlasRegion {
-    std::uint32_t x = 0;     // First texel, borders included.
+    std::uint32_t x = 0;  // First texel, borders included.
     std::uint32_t y = 0;
-    std::uint32_t size = 0;  // Interior texels per side of one cell.
-    std::uint32_t cells = 1; // 6: a cube map level (3 x 2 cells); 1: a table.
+    std::uint32_t size = 0;   // Interior texels per side of one cell.
+    std::uint32_t cells = 1;  // 6: a cube map level (3 x 2 cells); 1: a table.
 
     std::uint32_t cellSpan() const { return size + 2; }
     std::uint32_t width() const { return (cells == 6 ? 3 : 1) * cellSpan(); }

@@ -25,12 +25,14 @@ static_assert(sizeof(FrameUniform) == 144);
 class FrameUniforms {
   public:
     FrameUniforms() = default;
-    FrameUniforms(const wgpu::Device& device, const BindGroupLayouts& layouts,
+    FrameUniforms(const wgpu::Device& device,
+                  const BindGroupLayouts& layouts,
                   const SceneLighting& lighting);
 
     // Creates the bind group again over `lighting`'s current buffers (after its light buffer
     // grew); bundles recorded with the old one must be recorded again.
-    void bindLighting(const wgpu::Device& device, const BindGroupLayouts& layouts,
+    void bindLighting(const wgpu::Device& device,
+                      const BindGroupLayouts& layouts,
                       const SceneLighting& lighting);
 
     void update(const wgpu::Queue& queue, const Camera& camera, float timeSeconds) const;
@@ -38,14 +40,17 @@ class FrameUniforms {
     // Several views from the same recorded commands: each view's camera goes into a slot of a
     // staging buffer, and selectView() copies one slot into the frame buffer between passes,
     // so the bind group (and any bundle that set it) never changes.
-    void writeViews(const wgpu::Device& device, const wgpu::Queue& queue,
-                    std::span<const Camera> cameras, float timeSeconds);
+    void writeViews(const wgpu::Device& device,
+                    const wgpu::Queue& queue,
+                    std::span<const Camera> cameras,
+                    float timeSeconds);
     void selectView(const wgpu::CommandEncoder& commands, std::size_t view) const;
     const wgpu::BindGroup& bindGroup() const { return mBindGroup; }
     const wgpu::Buffer& buffer() const { return mBuffer; }
 
   private:
-    static constexpr std::uint64_t kViewStride = 256;  // Copy offsets need 4; 256 keeps slots apart.
+    static constexpr std::uint64_t kViewStride =
+        256;  // Copy offsets need 4; 256 keeps slots apart.
     wgpu::Buffer mBuffer;
     wgpu::Buffer mViews;
     wgpu::BindGroup mBindGroup;

@@ -1,10 +1,10 @@
 #pragma once
 
 // SceneLighting owns what group 0 binds besides the camera: the lighting uniform (environment
-// rotation and intensity, light count, debug channel, the display transform), the punctual lights of the scene
-// (KHR_lights_punctual, one storage buffer) and the image-based-lighting Environment. All of it
-// changes through buffers and in-place texture writes: a recorded render bundle stays valid
-// when the environment, its intensity or rotation, or a light changes. Only a scene with more
+// rotation and intensity, light count, debug channel, the display transform), the punctual lights
+// of the scene (KHR_lights_punctual, one storage buffer) and the image-based-lighting Environment.
+// All of it changes through buffers and in-place texture writes: a recorded render bundle stays
+// valid when the environment, its intensity or rotation, or a light changes. Only a scene with more
 // lights than the buffer holds grows the buffer, which replaces the frame bind group (the
 // renderer prepares strategies again then anyway).
 
@@ -78,7 +78,8 @@ LightUniform makeLightUniform(const scene::Light& light, const scene::LightInsta
 class SceneLighting {
   public:
     // Uses `environment` (shared: several renderers may light with one).
-    static Result<SceneLighting> create(const wgpu::Device& device, const wgpu::Queue& queue,
+    static Result<SceneLighting> create(const wgpu::Device& device,
+                                        const wgpu::Queue& queue,
                                         std::shared_ptr<Environment> environment);
 
     SceneLighting(SceneLighting&&) noexcept = default;
@@ -95,7 +96,8 @@ class SceneLighting {
     // bind groups that reference it must be created again.
     bool setSceneLights(const scene::SceneData& scene);
     // Rewrites one placed light (an index into SceneData::lightInstances) in place.
-    Result<void> updateLight(std::size_t lightInstance, const scene::Light& light,
+    Result<void> updateLight(std::size_t lightInstance,
+                             const scene::Light& light,
                              const scene::LightInstance& placed);
     std::size_t lightCount() const { return mLightCount; }
 

@@ -17,7 +17,14 @@ namespace encore::render {
 
 // One recorded call, for tests that check the order of calls rather than only their number.
 struct RecordedCall {
-    enum class Kind { SetPipeline, SetBindGroup, SetVertexBuffer, SetIndexBuffer, Draw, ExecuteBundles };
+    enum class Kind {
+        SetPipeline,
+        SetBindGroup,
+        SetVertexBuffer,
+        SetIndexBuffer,
+        Draw,
+        ExecuteBundles
+    };
     Kind kind;
     const void* object = nullptr;  // The pipeline, bind group or buffer handle.
     std::uint32_t index = 0;       // Bind group index or vertex buffer slot.
@@ -33,19 +40,30 @@ class RenderEncoder {
     bool recordsBundle() const { return bool(mBundle); }
 
     void setPipeline(const wgpu::RenderPipeline& pipeline);
-    void setBindGroup(std::uint32_t index, const wgpu::BindGroup& group,
+    void setBindGroup(std::uint32_t index,
+                      const wgpu::BindGroup& group,
                       std::uint32_t dynamicOffset);
     void setBindGroup(std::uint32_t index, const wgpu::BindGroup& group);
-    void setVertexBuffer(std::uint32_t slot, const wgpu::Buffer& buffer, std::uint64_t offset = 0,
+    void setVertexBuffer(std::uint32_t slot,
+                         const wgpu::Buffer& buffer,
+                         std::uint64_t offset = 0,
                          std::uint64_t size = wgpu::kWholeSize);
-    void setIndexBuffer(const wgpu::Buffer& buffer, wgpu::IndexFormat format,
-                        std::uint64_t offset = 0, std::uint64_t size = wgpu::kWholeSize);
+    void setIndexBuffer(const wgpu::Buffer& buffer,
+                        wgpu::IndexFormat format,
+                        std::uint64_t offset = 0,
+                        std::uint64_t size = wgpu::kWholeSize);
     // `topology` only feeds the triangle counter.
-    void draw(std::uint32_t vertexCount, std::uint32_t instanceCount, std::uint32_t firstVertex,
-              std::uint32_t firstInstance, scene::Topology topology);
-    void drawIndexed(std::uint32_t indexCount, std::uint32_t instanceCount,
-                     std::uint32_t firstIndex, std::int32_t baseVertex,
-                     std::uint32_t firstInstance, scene::Topology topology);
+    void draw(std::uint32_t vertexCount,
+              std::uint32_t instanceCount,
+              std::uint32_t firstVertex,
+              std::uint32_t firstInstance,
+              scene::Topology topology);
+    void drawIndexed(std::uint32_t indexCount,
+                     std::uint32_t instanceCount,
+                     std::uint32_t firstIndex,
+                     std::int32_t baseVertex,
+                     std::uint32_t firstInstance,
+                     scene::Topology topology);
     void drawIndirect(const wgpu::Buffer& buffer, std::uint64_t offset);
     void drawIndexedIndirect(const wgpu::Buffer& buffer, std::uint64_t offset);
     // Render passes only: replays recorded bundles (state is reset before and after).

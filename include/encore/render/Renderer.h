@@ -9,9 +9,9 @@
 
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
-#include <span>
 #include <vector>
 
 #include "encore/core/Result.h"
@@ -74,7 +74,7 @@ struct AnimationFrameStats {
     AnimationEvaluation evaluation = AnimationEvaluation::Cpu;
     scene::AnimationStats player;  // CPU evaluation only.
     GpuAnimationStats gpu;         // GPU evaluation only: its size and per-frame dispatches.
-    AnimationUploadStats upload;  // Joint matrices and morph weights.
+    AnimationUploadStats upload;   // Joint matrices and morph weights.
     std::uint32_t instancesWritten = 0;
     // Instance transforms, joints and weights together (GPU: the animation times).
     std::uint64_t bytesWritten = 0;
@@ -135,7 +135,8 @@ class Renderer {
 
     // Updates the frame uniforms, records and submits one frame. With `trace`, every recorded
     // call is also appended there (tests).
-    FrameResult renderFrame(const Camera& camera, float timeSeconds = 0.0f,
+    FrameResult renderFrame(const Camera& camera,
+                            float timeSeconds = 0.0f,
                             std::vector<RecordedCall>* trace = nullptr);
 
     // Renders the same scene from several cameras side by side, each view a vertical strip of
@@ -190,7 +191,8 @@ class Renderer {
     // Recomputes the environment maps from `panorama` into the same textures.
     Result<void> loadEnvironment(const image::HdrImage& panorama);
     // Rewrites a placed light (an index into SceneData::lightInstances of the prepared scene).
-    Result<void> updateLight(std::size_t lightInstance, const scene::Light& light,
+    Result<void> updateLight(std::size_t lightInstance,
+                             const scene::Light& light,
                              const scene::LightInstance& placed);
     const SceneLighting& lighting() const { return *mLighting; }
 
@@ -251,7 +253,9 @@ class Renderer {
     Result<void> createGpuAnimation();
     // Creates and prepares the strategy on the GPU scene, then finishes `outOfMemory` (opened
     // by the caller) and collects errors; `what` names it in errors.
-    Result<void> prepareStrategy(StrategyKind kind, bool bundle, const std::string& what,
+    Result<void> prepareStrategy(StrategyKind kind,
+                                 bool bundle,
+                                 const std::string& what,
                                  gpu::OutOfMemoryScope& outOfMemory);
     // Frees the GPU scene, counting what it uploaded.
     void retireGpuScene();
@@ -267,7 +271,8 @@ class Renderer {
     // The timestamp writes of a pass of `stage`: the GPU timer's, else the stage timestamps'.
     const wgpu::PassTimestampWrites* timestampWrites(GpuStage stage,
                                                      std::string_view label = "pass");
-    FrameResult renderPasses(std::span<const Camera> cameras, float timeSeconds,
+    FrameResult renderPasses(std::span<const Camera> cameras,
+                             float timeSeconds,
                              std::vector<RecordedCall>* trace);
 
     gpu::Context* mContext = nullptr;

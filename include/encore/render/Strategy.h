@@ -88,7 +88,8 @@ class Strategy {
         return false;
     }
     // Between the two passes of a two-phase frame: GPU work that reads the first pass's depth.
-    virtual void betweenPhases(const wgpu::CommandEncoder& commands, const FrameState& frame,
+    virtual void betweenPhases(const wgpu::CommandEncoder& commands,
+                               const FrameState& frame,
                                const wgpu::Texture& depth) {
         (void)commands;
         (void)frame;

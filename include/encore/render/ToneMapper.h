@@ -2,9 +2,9 @@
 
 // The last pass of a frame on an HDR render target: exposure, tone mapping and the background,
 // from the target's linear HDR scene colour to its sRGB output (tone_mapping.wgsl). Targets
-// without HDR need no pass: the scene shaders apply the same transform (SceneLighting). Its parameters live in a
-// uniform buffer, so changing exposure, operator or background never touches the scene's
-// recorded bundles.
+// without HDR need no pass: the scene shaders apply the same transform (SceneLighting). Its
+// parameters live in a uniform buffer, so changing exposure, operator or background never touches
+// the scene's recorded bundles.
 
 #include <webgpu/webgpu_cpp.h>
 
@@ -19,8 +19,10 @@ namespace encore::render {
 
 class ToneMapper {
   public:
-    static Result<ToneMapper> create(const wgpu::Device& device, const wgpu::Queue& queue,
-                                     shaders::ShaderLibrary& shaders, const RenderTarget& target,
+    static Result<ToneMapper> create(const wgpu::Device& device,
+                                     const wgpu::Queue& queue,
+                                     shaders::ShaderLibrary& shaders,
+                                     const RenderTarget& target,
                                      const ToneMappingOptions& options);
 
     void setOptions(const ToneMappingOptions& options);

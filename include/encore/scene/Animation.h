@@ -26,8 +26,8 @@ enum class Interpolation : std::uint8_t {
     CubicSpline,  // Cubic Hermite with the file's tangents (scaled by the key interval).
 };
 
-std::string_view animationPathName(AnimationPath path);       // "translation"...
-std::string_view interpolationName(Interpolation mode);        // "STEP", "LINEAR", "CUBICSPLINE"
+std::string_view animationPathName(AnimationPath path);  // "translation"...
+std::string_view interpolationName(Interpolation mode);  // "STEP", "LINEAR", "CUBICSPLINE"
 
 struct AnimationSampler {
     Interpolation interpolation = Interpolation::Linear;

@@ -136,11 +136,11 @@ class AnimationPlayer {
     bool mFirst = true;
 
     std::vector<ActiveChannel> mChannels;
-    std::vector<SamplerCursor> mCursors;           // One per sampler of every animation.
-    std::vector<std::uint32_t> mCursorOffsets;     // First cursor of each animation.
-    std::vector<std::uint32_t> mAnimatedNodes;     // Nodes the selection drives (ascending).
-    std::vector<std::uint32_t> mRestoreNodes;      // Nodes to put back to rest next time.
-    std::vector<float> mAnimationTimes;            // Per animation, this evaluate's local time.
+    std::vector<SamplerCursor> mCursors;        // One per sampler of every animation.
+    std::vector<std::uint32_t> mCursorOffsets;  // First cursor of each animation.
+    std::vector<std::uint32_t> mAnimatedNodes;  // Nodes the selection drives (ascending).
+    std::vector<std::uint32_t> mRestoreNodes;   // Nodes to put back to rest next time.
+    std::vector<float> mAnimationTimes;         // Per animation, this evaluate's local time.
 
     std::vector<std::uint32_t> mOrder;  // Parents before children.
     std::vector<glm::vec3> mTranslation, mPendingTranslation;

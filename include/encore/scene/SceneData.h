@@ -62,7 +62,7 @@ struct BufferView {
 };
 
 struct Accessor {
-    BufferViewId view;  // Always valid after loading.
+    BufferViewId view;             // Always valid after loading.
     std::uint64_t byteOffset = 0;  // Relative to the view.
     std::uint32_t count = 0;
     ComponentType componentType = ComponentType::Float32;
@@ -275,14 +275,16 @@ struct Node {
 };
 
 // T * R * S as a matrix (the rotation normalised), exactly as the loader builds Node::local.
-glm::mat4 composeTrs(const glm::vec3& translation, const glm::quat& rotation, const glm::vec3& scale);
+glm::mat4 composeTrs(const glm::vec3& translation,
+                     const glm::quat& rotation,
+                     const glm::vec3& scale);
 
 // glTF skin: joint nodes and their inverse bind matrices (identity when the file has none).
 struct Skin {
     std::string name;
-    std::vector<NodeId> joints;                   // At least one.
-    std::vector<glm::mat4> inverseBindMatrices;   // One per joint.
-    std::optional<NodeId> skeleton;               // Informative only.
+    std::vector<NodeId> joints;                  // At least one.
+    std::vector<glm::mat4> inverseBindMatrices;  // One per joint.
+    std::optional<NodeId> skeleton;              // Informative only.
 };
 
 // One drawable occurrence of a mesh: a node of the chosen scene that references a mesh, or one
@@ -363,8 +365,8 @@ struct SceneData {
     std::vector<CameraInstance> cameraInstances;  // Depth-first by node.
     std::vector<Skin> skins;
     std::vector<Animation> animations;
-    Bounds bounds;  // World-space box of all instances.
-    std::vector<std::string> extensionsUsed;      // As the file declares them.
+    Bounds bounds;                            // World-space box of all instances.
+    std::vector<std::string> extensionsUsed;  // As the file declares them.
     std::vector<std::string> extensionsRequired;
     // Extensions used by the file that Encore does not implement (ignored, optional ones).
     std::vector<std::string> extensionsIgnored;

@@ -17,8 +17,10 @@ class BundledFrame {
     void invalidate() { mStale = true; }
 
     template <typename RecordOpaque, typename RecordBlended>
-    void update(const RenderSetup& setup, std::uint64_t resourceGeneration,
-                std::vector<std::uint32_t> blendOrder, RecordOpaque&& recordOpaque,
+    void update(const RenderSetup& setup,
+                std::uint64_t resourceGeneration,
+                std::vector<std::uint32_t> blendOrder,
+                RecordOpaque&& recordOpaque,
                 RecordBlended&& recordBlended) {
         if (resourceGeneration != mGeneration) {
             mStale = true;
@@ -28,10 +30,9 @@ class BundledFrame {
             ++mRecorded;
         }
         if (!blendOrder.empty() && (mStale || blendOrder != mBlendOrder)) {
-            mBlended = recordBundle(setup, "encore blended geometry (back to front)",
-                                    [&](RenderEncoder& encoder) {
-                                        recordBlended(encoder, std::span(blendOrder));
-                                    });
+            mBlended = recordBundle(
+                setup, "encore blended geometry (back to front)",
+                [&](RenderEncoder& encoder) { recordBlended(encoder, std::span(blendOrder)); });
             mBlendOrder = std::move(blendOrder);
             ++mRecorded;
         }

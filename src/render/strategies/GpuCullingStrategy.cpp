@@ -61,7 +61,8 @@ Result<void> GpuCullingStrategy::groupDraws() {
             for (const PrimitiveDraw& primitive : material.primitives) {
                 std::size_t draw = draws.size();
                 if (mCullerCreated) {
-                    const auto existing = drawOf.find({primitive.bindings, primitive.instances.first});
+                    const auto existing =
+                        drawOf.find({primitive.bindings, primitive.instances.first});
                     assert(existing != drawOf.end());
                     draw = existing->second;
                 } else {
@@ -121,8 +122,7 @@ bool GpuCullingStrategy::drawsInTwoPhases(const FrameState& frame) const {
     return frame.culling.occlusion && !frame.cullingCamera;
 }
 
-void GpuCullingStrategy::beforePass(const wgpu::CommandEncoder& commands,
-                                    const FrameState& frame) {
+void GpuCullingStrategy::beforePass(const wgpu::CommandEncoder& commands, const FrameState& frame) {
     CullingView view;
     view.camera = frame.cullingCamera.value_or(frame.camera);
     if (!frame.cullingCamera) {
@@ -151,7 +151,8 @@ void GpuCullingStrategy::beforePass(const wgpu::CommandEncoder& commands,
 }
 
 void GpuCullingStrategy::betweenPhases(const wgpu::CommandEncoder& commands,
-                                       const FrameState& frame, const wgpu::Texture& depth) {
+                                       const FrameState& frame,
+                                       const wgpu::Texture& depth) {
     mCuller.encodeSecondPhase(commands, depth, frame.timer);
 }
 
@@ -171,7 +172,8 @@ void GpuCullingStrategy::encodeCulled(RenderEncoder& encoder, std::uint32_t phas
                 for (std::uint32_t level = 0; level < levels; ++level) {
                     encoder.setBindGroup(1, mCuller.drawBindGroup(),
                                          mCuller.dynamicOffset(primitive.draw, level, phase));
-                    const std::uint64_t offset = mCuller.argumentsOffset(primitive.draw, level, phase);
+                    const std::uint64_t offset =
+                        mCuller.argumentsOffset(primitive.draw, level, phase);
                     if (primitive.bindings->indices) {
                         encoder.drawIndexedIndirect(mCuller.indirectArguments(), offset);
                     } else {

@@ -27,7 +27,8 @@ class GpuCullingStrategy final : public Strategy {
     InstanceTransformTargets instanceTransformTargets() const override;
     bool drawsInTwoPhases(const FrameState& frame) const override;
     void beforePass(const wgpu::CommandEncoder& commands, const FrameState& frame) override;
-    void betweenPhases(const wgpu::CommandEncoder& commands, const FrameState& frame,
+    void betweenPhases(const wgpu::CommandEncoder& commands,
+                       const FrameState& frame,
                        const wgpu::Texture& depth) override;
     void encode(RenderEncoder& encoder, const FrameState& frame) const override;
     DrawCounters bundleContents() const override {

@@ -23,8 +23,9 @@ Result<void> NaiveStrategy::prepare(const RenderSetup& setup, const GpuScene& gp
             return found->second;
         }
         std::uint32_t stride = 0;
-        const auto bytes = usage == wgpu::BufferUsage::Index ? scene.packedAccessorBytes(id)
-                                                             : paddedVertexElements(scene, id, stride);
+        const auto bytes = usage == wgpu::BufferUsage::Index
+                               ? scene.packedAccessorBytes(id)
+                               : paddedVertexElements(scene, id, stride);
         auto buffer = gpu::createBufferWithData(setup.device, usage, bytes,
                                                 "accessor " + std::to_string(id.value));
         accessorStrides[id] = stride;
@@ -68,9 +69,9 @@ Result<void> NaiveStrategy::prepare(const RenderSetup& setup, const GpuScene& gp
             }
             if (primitive.indices) {
                 const scene::Accessor& indices = scene.accessors[primitive.indices->index()];
-                bindings.indices = IndexBufferBinding{
-                    bufferFor(*primitive.indices, wgpu::BufferUsage::Index), indexFormat(indices),
-                    0, indices.count};
+                bindings.indices =
+                    IndexBufferBinding{bufferFor(*primitive.indices, wgpu::BufferUsage::Index),
+                                       indexFormat(indices), 0, indices.count};
                 if (isStrip(primitive.topology)) {
                     key.stripIndexFormat = bindings.indices->format;
                 }

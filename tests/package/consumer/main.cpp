@@ -32,7 +32,8 @@ int fail(const std::string& what) {
 
 // A red, double-sided triangle in the XY plane: positions and 16-bit indices in triangle.bin.
 void writeTriangle(const std::filesystem::path& gltf) {
-    const std::array<float, 9> positions = {-1.0f, -1.0f, 0.0f, 1.0f, -1.0f, 0.0f, 0.0f, 1.0f, 0.0f};
+    const std::array<float, 9> positions = {-1.0f, -1.0f, 0.0f, 1.0f, -1.0f,
+                                            0.0f,  0.0f,  1.0f, 0.0f};
     const std::array<std::uint16_t, 3> indices = {0, 1, 2};
     std::ofstream bin(gltf.parent_path() / "triangle.bin", std::ios::binary);
     bin.write(reinterpret_cast<const char*>(positions.data()), sizeof(positions));

@@ -7,8 +7,8 @@ namespace {
 
 Result<int> parsePositive(int value) {
     if (value <= 0) {
-        return makeError(ErrorCode::InvalidArgument, "Value must be positive (" +
-                                                         std::to_string(value) + ").");
+        return makeError(ErrorCode::InvalidArgument,
+                         "Value must be positive (" + std::to_string(value) + ").");
     }
     return value;
 }

@@ -182,8 +182,7 @@ TEST(HdrImageTest, RefusesAbsurdSizesBeforeDecoding) {
     // stb itself may refuse the header first; ours names the size.
     EXPECT_TRUE(decoded.error().code == ErrorCode::LimitExceeded ||
                 decoded.error().code == ErrorCode::InvalidFormat);
-    EXPECT_NE(decoded.error().message.find("100000"), std::string::npos)
-        << decoded.error().message;
+    EXPECT_NE(decoded.error().message.find("100000"), std::string::npos) << decoded.error().message;
 }
 
 TEST(HdrImageTest, MissingFileIsNamed) {

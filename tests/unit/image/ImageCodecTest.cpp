@@ -100,11 +100,11 @@ TEST(ImageCodecTest, GarbageIsAnError) {
 // A PNG header promising 16384 x 16384 pixels (within the side limit) is refused before any
 // allocation: decoding it would need about 2 GiB (found by the loader fuzzer).
 TEST(ImageCodecTest, HugeAreaIsRefusedBeforeDecoding) {
-    std::vector<std::uint8_t> png = {0x89, 'P', 'N', 'G', 0x0D, 0x0A, 0x1A, 0x0A,  // Signature.
-                                     0, 0, 0, 13, 'I', 'H', 'D', 'R',               // IHDR.
-                                     0, 0, 0x40, 0, 0, 0, 0x40, 0,                  // 16384^2.
-                                     8, 6, 0, 0, 0,                                 // RGBA8.
-                                     0, 0, 0, 0};                                   // CRC.
+    std::vector<std::uint8_t> png = {0x89, 'P', 'N',  'G', 0x0D, 0x0A, 0x1A, 0x0A,  // Signature.
+                                     0,    0,   0,    13,  'I',  'H',  'D',  'R',   // IHDR.
+                                     0,    0,   0x40, 0,   0,    0,    0x40, 0,     // 16384^2.
+                                     8,    6,   0,    0,   0,                       // RGBA8.
+                                     0,    0,   0,    0};                           // CRC.
     auto decoded = decodeImage(png);
     ASSERT_FALSE(decoded.ok());
     EXPECT_EQ(decoded.error().code, ErrorCode::LimitExceeded);
@@ -115,11 +115,11 @@ TEST(ImageCodecTest, HugeAreaIsRefusedBeforeDecoding) {
 // 16-bit samples double what decoding holds: 8192 x 8192 RGBA16 passes the area limit but
 // needs 512 MiB of samples, over kMaxDecodedImageBytes.
 TEST(ImageCodecTest, SixteenBitImagesAreLimitedByDecodedBytes) {
-    std::vector<std::uint8_t> png = {0x89, 'P', 'N', 'G', 0x0D, 0x0A, 0x1A, 0x0A,  // Signature.
-                                     0, 0, 0, 13, 'I', 'H', 'D', 'R',               // IHDR.
-                                     0, 0, 0x20, 0, 0, 0, 0x20, 0,                  // 8192^2.
-                                     16, 6, 0, 0, 0,                                // RGBA16.
-                                     0, 0, 0, 0};                                   // CRC.
+    std::vector<std::uint8_t> png = {0x89, 'P', 'N',  'G', 0x0D, 0x0A, 0x1A, 0x0A,  // Signature.
+                                     0,    0,   0,    13,  'I',  'H',  'D',  'R',   // IHDR.
+                                     0,    0,   0x20, 0,   0,    0,    0x20, 0,     // 8192^2.
+                                     16,   6,   0,    0,   0,                       // RGBA16.
+                                     0,    0,   0,    0};                           // CRC.
     auto decoded = decodeImage(png);
     ASSERT_FALSE(decoded.ok());
     EXPECT_EQ(decoded.error().code, ErrorCode::LimitExceeded);

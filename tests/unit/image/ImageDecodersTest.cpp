@@ -127,7 +127,8 @@ Bytes makePng(const PngCase& c, std::uint32_t width, std::uint32_t height, unsig
         static constexpr std::uint32_t kStepX[7] = {8, 8, 4, 4, 2, 2, 1};
         static constexpr std::uint32_t kStepY[7] = {8, 8, 8, 4, 4, 2, 2};
         for (int pass = 0; pass < 7; ++pass) {
-            const std::uint32_t passWidth = (width + kStepX[pass] - kStartX[pass] - 1) / kStepX[pass];
+            const std::uint32_t passWidth =
+                (width + kStepX[pass] - kStartX[pass] - 1) / kStepX[pass];
             const std::uint32_t passHeight =
                 (height + kStepY[pass] - kStartY[pass] - 1) / kStepY[pass];
             if (passWidth > 0 && passHeight > 0) {
@@ -137,9 +138,9 @@ Bytes makePng(const PngCase& c, std::uint32_t width, std::uint32_t height, unsig
     }
     uLongf compressedSize = compressBound(uLong(scanlines.size()));
     Bytes compressed(compressedSize);
-    EXPECT_EQ(compress2(compressed.data(), &compressedSize, scanlines.data(),
-                        uLong(scanlines.size()), 6),
-              Z_OK);
+    EXPECT_EQ(
+        compress2(compressed.data(), &compressedSize, scanlines.data(), uLong(scanlines.size()), 6),
+        Z_OK);
     compressed.resize(compressedSize);
 
     Bytes png = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
@@ -179,8 +180,8 @@ struct StbiFree {
 
 Bytes decodeWithStb(const Bytes& encoded, int& width, int& height) {
     int channels = 0;
-    std::unique_ptr<stbi_uc, StbiFree> pixels(stbi_load_from_memory(
-        encoded.data(), int(encoded.size()), &width, &height, &channels, 4));
+    std::unique_ptr<stbi_uc, StbiFree> pixels(
+        stbi_load_from_memory(encoded.data(), int(encoded.size()), &width, &height, &channels, 4));
     if (!pixels) {
         return {};
     }
@@ -231,8 +232,8 @@ TEST(ImageDecodersTest, LibdeflatePathTakesEightBitPngsAndEqualsStb) {
     for (const bool interlaced : {false, true}) {
         for (const std::uint8_t depth : {4, 8, 16}) {
             for (const std::uint8_t colorType : {0, 2, 3, 4, 6}) {
-                if ((colorType == 3 && depth == 16) || (colorType != 0 && colorType != 3 &&
-                                                        depth < 8)) {
+                if ((colorType == 3 && depth == 16) ||
+                    (colorType != 0 && colorType != 3 && depth < 8)) {
                     continue;
                 }
                 for (const bool transparency : {false, true}) {
@@ -289,10 +290,10 @@ TEST(ImageDecodersTest, MalformedAncillaryChunksAreIgnored) {
     const Bytes png = makePng({2, 8, false, false}, 13, 7, 3);
     Bytes chunks;
     appendChunk(chunks, "tEXt", {0, 'n', 'o', ' ', 'k', 'e', 'y'});  // An empty keyword.
-    appendChunk(chunks, "gAMA", {0, 0, 0, 0});                        // Gamma 0.
-    appendChunk(chunks, "pHYs", {0, 0, 0, 1});                        // 4 of 9 bytes.
-    appendChunk(chunks, "iCCP", {'p', 0, 0, 1, 2, 3});                // Not zlib data.
-    Bytes withChunks(png.begin(), png.begin() + 33);                  // Signature and IHDR.
+    appendChunk(chunks, "gAMA", {0, 0, 0, 0});                       // Gamma 0.
+    appendChunk(chunks, "pHYs", {0, 0, 0, 1});                       // 4 of 9 bytes.
+    appendChunk(chunks, "iCCP", {'p', 0, 0, 1, 2, 3});               // Not zlib data.
+    Bytes withChunks(png.begin(), png.begin() + 33);                 // Signature and IHDR.
     withChunks.insert(withChunks.end(), chunks.begin(), chunks.end());
     withChunks.insert(withChunks.end(), png.begin() + 33, png.end());
     auto expected = decodeImage(png);
@@ -319,7 +320,9 @@ TEST(ImageDecodersTest, TruncatedPngIsAnError) {
 
 // A JPEG of smooth gradients and a hard edge, in `color` (JCS_RGB, JCS_GRAYSCALE or JCS_CMYK,
 // stored as such).
-Bytes encodeJpeg(std::uint32_t width, std::uint32_t height, bool progressive,
+Bytes encodeJpeg(std::uint32_t width,
+                 std::uint32_t height,
+                 bool progressive,
                  J_COLOR_SPACE color = JCS_RGB) {
     jpeg_compress_struct info{};
     jpeg_error_mgr errors{};

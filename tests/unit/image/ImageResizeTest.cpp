@@ -12,7 +12,10 @@
 namespace encore::image {
 namespace {
 
-std::vector<std::uint8_t> solid(ImageSize size, std::uint8_t r, std::uint8_t g, std::uint8_t b,
+std::vector<std::uint8_t> solid(ImageSize size,
+                                std::uint8_t r,
+                                std::uint8_t g,
+                                std::uint8_t b,
                                 std::uint8_t a) {
     std::vector<std::uint8_t> pixels;
     for (std::uint32_t i = 0; i < size.width * size.height; ++i) {
@@ -24,7 +27,7 @@ std::vector<std::uint8_t> solid(ImageSize size, std::uint8_t r, std::uint8_t g, 
 TEST(ImageResizeTest, FitWithinKeepsTheAspectRatioAndLeavesFittingImagesAlone) {
     EXPECT_EQ(fitWithin({600, 300}, 256), (ImageSize{256, 128}));
     EXPECT_EQ(fitWithin({300, 600}, 256), (ImageSize{128, 256}));
-    EXPECT_EQ(fitWithin({9000, 6}, 8192), (ImageSize{8192, 5}));  // 5.46 rounds to 5.
+    EXPECT_EQ(fitWithin({9000, 6}, 8192), (ImageSize{8192, 5}));    // 5.46 rounds to 5.
     EXPECT_EQ(fitWithin({100000, 1}, 8192), (ImageSize{8192, 1}));  // Never below one pixel.
     EXPECT_EQ(fitWithin({256, 256}, 256), (ImageSize{256, 256}));
     EXPECT_EQ(fitWithin({17, 3}, 256), (ImageSize{17, 3}));

@@ -59,8 +59,8 @@ TEST(EnvironmentAtlasTest, DefaultSizesPackWithoutOverlap) {
 
 TEST(EnvironmentAtlasTest, OddAndTinySizesStillPack) {
     for (const auto& [specular, levels, irradiance, table] :
-         {std::tuple{64u, 7u, 16u, 32u}, std::tuple{1u, 1u, 1u, 1u}, std::tuple{100u, 4u, 50u, 300u},
-          std::tuple{8u, 4u, 64u, 16u}}) {
+         {std::tuple{64u, 7u, 16u, 32u}, std::tuple{1u, 1u, 1u, 1u},
+          std::tuple{100u, 4u, 50u, 300u}, std::tuple{8u, 4u, 64u, 16u}}) {
         const EnvironmentAtlasLayout layout =
             layoutEnvironmentAtlas(specular, levels, irradiance, table);
         ASSERT_EQ(layout.specular.size(), levels);

@@ -29,8 +29,7 @@ TEST(StrategyChoiceTest, KindsWithABundledKindOfTheirOwnAreBundledByNamingIt) {
               (StrategyChoice{Kind::GpuCullingBundles, false}));
     EXPECT_EQ(StrategyChoice::of(Kind::Bundles, true), (StrategyChoice{Kind::Bundles, false}));
     EXPECT_EQ(StrategyChoice::of(Kind::Naive, true), (StrategyChoice{Kind::Naive, true}));
-    EXPECT_EQ(StrategyChoice::of(Kind::Materials, false),
-              (StrategyChoice{Kind::Materials, false}));
+    EXPECT_EQ(StrategyChoice::of(Kind::Materials, false), (StrategyChoice{Kind::Materials, false}));
 }
 
 TEST(StrategyChoiceTest, NamesRoundTripForEveryKindOnBothAxes) {
@@ -50,16 +49,18 @@ TEST(StrategyChoiceTest, NamesRoundTripForEveryKindOnBothAxes) {
 }
 
 TEST(StrategyChoiceTest, NamesWithoutAFrameOfTheirOwnAreRefused) {
-    for (const char* name : {"bundles+bundle", "materials+bundle", "gpu-culling+bundle",
-                             "+bundle", "naive+", "naive+bundles", "Naive", ""}) {
+    for (const char* name : {"bundles+bundle", "materials+bundle", "gpu-culling+bundle", "+bundle",
+                             "naive+", "naive+bundles", "Naive", ""}) {
         EXPECT_FALSE(strategyChoiceFromName(name).has_value()) << name;
     }
 }
 
 TEST(StrategyChoiceTest, TheBundlingAxisFollowsEachChoiceWithItsBundledFormOnce) {
-    const std::vector<StrategyChoice> selection = {
-        {Kind::Naive, false}, {Kind::Materials, false}, {Kind::Bundles, false},
-        {Kind::Naive, false}, {Kind::Layouts, true}};
+    const std::vector<StrategyChoice> selection = {{Kind::Naive, false},
+                                                   {Kind::Materials, false},
+                                                   {Kind::Bundles, false},
+                                                   {Kind::Naive, false},
+                                                   {Kind::Layouts, true}};
     EXPECT_EQ(withBundlingAxis(selection, false),
               (std::vector<StrategyChoice>{{Kind::Naive, false},
                                            {Kind::Materials, false},

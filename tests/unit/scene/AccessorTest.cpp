@@ -33,8 +33,9 @@ TEST(AccessorTest, InterleavedStrideIsKept) {
     // Position (12 bytes) and normal (12 bytes) interleaved with stride 24.
     std::vector<float> interleaved;
     const float data[3][6] = {{0, 0, 0, 0, 0, 1}, {1, 0, 0, 0, 0, 1}, {0, 1, 0, 0, 0, 1}};
-    for (const auto& vertex : data)
+    for (const auto& vertex : data) {
         interleaved.insert(interleaved.end(), vertex, vertex + 6);
+    }
     std::vector<std::uint8_t> bytes(interleaved.size() * 4);
     std::memcpy(bytes.data(), interleaved.data(), bytes.size());
     const auto view = builder.addBufferView(bytes, 24);
@@ -174,8 +175,9 @@ TEST(AccessorTest, AccessorWithoutBufferViewIsZeros) {
     ASSERT_TRUE(scene.ok()) << scene.error().message;
     const auto id = *firstPrimitive(*scene).attribute(Semantic::Normal);
     EXPECT_TRUE(scene->accessors[id.index()].view.valid());
-    for (const auto& value : scene->readFloats(id))
+    for (const auto& value : scene->readFloats(id)) {
         EXPECT_EQ(glm::vec3(value), glm::vec3(0));
+    }
 }
 
 TEST(AccessorTest, U8IndicesAreWidenedToU16) {
@@ -253,8 +255,9 @@ TEST(AccessorTest, NonBase64DataUri) {
     auto builder = triangleBuilder();
     // Percent-encoded payload: 36 zero bytes.
     std::string uri = "data:application/octet-stream,";
-    for (int i = 0; i < 36; ++i)
+    for (int i = 0; i < 36; ++i) {
         uri += "%00";
+    }
     builder.json()["buffers"][0]["uri"] = uri;
     auto scene = loadGltf(builder);
     ASSERT_TRUE(scene.ok()) << scene.error().message;

@@ -17,7 +17,9 @@ using testing::expectError;
 using testing::loadGltf;
 using json = nlohmann::json;
 
-void expectMatrixNear(const glm::mat4& actual, const glm::mat4& expected, float tolerance,
+void expectMatrixNear(const glm::mat4& actual,
+                      const glm::mat4& expected,
+                      float tolerance,
                       const std::string& label = {}) {
     for (int c = 0; c < 4; ++c) {
         for (int r = 0; r < 4; ++r) {
@@ -59,8 +61,7 @@ json sampler(std::uint32_t input, std::uint32_t output, const std::string& mode 
 // An animation that slides the root from (0, 0, 0) through (2, 0, 0) to (2, 4, 0) in 2 s.
 void addSlide(test::GltfBuilder& builder, const std::string& name) {
     const auto times = builder.addAccessor(std::vector<float>{0, 1, 2}, "SCALAR", {.minMax = true});
-    const auto values =
-        builder.addAccessor(std::vector<float>{0, 0, 0, 2, 0, 0, 2, 4, 0}, "VEC3");
+    const auto values = builder.addAccessor(std::vector<float>{0, 0, 0, 2, 0, 0, 2, 4, 0}, "VEC3");
     addAnimation(builder, name, {sampler(times, values)}, {channel(0, 0, "translation")});
 }
 
@@ -87,14 +88,12 @@ TEST(AnimationLoadTest, TranslationChannelIsDecoded) {
     expectMatrixNear(player.instanceWorlds()[0], scene->instances[0].world, 0.0f);
     player.evaluate(1.5);
     // Root at (2, 2, 0), child 1 further along z.
-    expectMatrixNear(player.instanceWorlds()[0], glm::translate(glm::mat4(1.0f), {2, 2, 1}),
-                     1e-6f);
+    expectMatrixNear(player.instanceWorlds()[0], glm::translate(glm::mat4(1.0f), {2, 2, 1}), 1e-6f);
     EXPECT_EQ(player.changedInstances().size(), 1u);
     EXPECT_EQ(player.stats().channelsEvaluated, 1u);
     // Clamped past the end: the pose stops, nothing changes twice.
     player.evaluate(5.0);
-    expectMatrixNear(player.instanceWorlds()[0], glm::translate(glm::mat4(1.0f), {2, 4, 1}),
-                     1e-6f);
+    expectMatrixNear(player.instanceWorlds()[0], glm::translate(glm::mat4(1.0f), {2, 4, 1}), 1e-6f);
     EXPECT_EQ(player.changedInstances().size(), 1u);
     player.evaluate(6.0);
     EXPECT_TRUE(player.changedInstances().empty());
@@ -102,8 +101,7 @@ TEST(AnimationLoadTest, TranslationChannelIsDecoded) {
     // Looping: 5 s wraps to 1 s.
     player.setMode(PlaybackMode::Loop);
     player.evaluate(5.0);
-    expectMatrixNear(player.instanceWorlds()[0], glm::translate(glm::mat4(1.0f), {2, 0, 1}),
-                     1e-6f);
+    expectMatrixNear(player.instanceWorlds()[0], glm::translate(glm::mat4(1.0f), {2, 0, 1}), 1e-6f);
     // No animation selected: back to the loader's matrices, exactly.
     player.selectNone();
     player.evaluate(1.0);
@@ -150,11 +148,10 @@ TEST(AnimationLoadTest, NormalisedIntegerRotationsAndStep) {
     auto builder = hierarchy();
     const auto times = builder.addAccessor(std::vector<float>{0, 1}, "SCALAR");
     // Identity, then 90 degrees about z as normalised shorts: 23170 / 32767 = 0.70711.
-    const auto rotations = builder.addAccessor(
-        std::vector<std::int16_t>{0, 0, 0, 32767, 0, 0, 23170, 23170}, "VEC4",
-        {.normalized = true});
-    addAnimation(builder, "turn", {sampler(times, rotations, "STEP")},
-                 {channel(0, 1, "rotation")});
+    const auto rotations =
+        builder.addAccessor(std::vector<std::int16_t>{0, 0, 0, 32767, 0, 0, 23170, 23170}, "VEC4",
+                            {.normalized = true});
+    addAnimation(builder, "turn", {sampler(times, rotations, "STEP")}, {channel(0, 1, "rotation")});
     const auto scene = loadGltf(builder);
     ASSERT_TRUE(scene.ok()) << scene.error().message;
     const AnimationSampler& decoded = scene->animations[0].samplers[0];
@@ -210,8 +207,8 @@ TEST(AnimationLoadTest, MorphTargetsAndWeights) {
     EXPECT_EQ(scene->meshes[0].weights, (std::vector<float>{0.25f, 0.5f}));
     EXPECT_EQ(scene->nodes[0].weights, (std::vector<float>{0.25f, 0.5f}));
 
-    const auto overridden = loadGltf(morphScene(std::vector<float>{0.25f, 0.5f},
-                                                std::vector<float>{1.0f, 0.0f}));
+    const auto overridden =
+        loadGltf(morphScene(std::vector<float>{0.25f, 0.5f}, std::vector<float>{1.0f, 0.0f}));
     ASSERT_TRUE(overridden.ok()) << overridden.error().message;
     EXPECT_EQ(overridden->nodes[0].weights, (std::vector<float>{1.0f, 0.0f}));
     const auto zeros = loadGltf(morphScene());
@@ -223,8 +220,8 @@ TEST(AnimationLoadTest, NormalisedWeightsAnimation) {
     auto builder = morphScene();
     const auto times = builder.addAccessor(std::vector<float>{0, 2}, "SCALAR");
     // Two keys x two targets, normalised unsigned bytes.
-    const auto weights = builder.addAccessor(std::vector<std::uint8_t>{0, 255, 255, 51},
-                                             "SCALAR", {.normalized = true});
+    const auto weights = builder.addAccessor(std::vector<std::uint8_t>{0, 255, 255, 51}, "SCALAR",
+                                             {.normalized = true});
     addAnimation(builder, "blend", {sampler(times, weights)}, {channel(0, 0, "weights")});
     const auto scene = loadGltf(builder);
     ASSERT_TRUE(scene.ok()) << scene.error().message;
@@ -264,9 +261,8 @@ test::GltfBuilder skinScene(bool inverseBind, std::uint8_t largestJoint = 1) {
         std::vector<std::uint8_t>{0, 1, 0, 0, 0, 1, 0, 0, largestJoint, 0, 0, 0}, "VEC4");
     const auto weights =
         builder.addAccessor(std::vector<float>{0.5f, 0.5f, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0}, "VEC4");
-    builder.addMesh({.attributes = {{"POSITION", positions},
-                                    {"JOINTS_0", joints},
-                                    {"WEIGHTS_0", weights}}});
+    builder.addMesh(
+        {.attributes = {{"POSITION", positions}, {"JOINTS_0", joints}, {"WEIGHTS_0", weights}}});
     builder.json()["nodes"] = json::array();
     builder.json()["nodes"].push_back({{"mesh", 0}, {"skin", 0}});
     builder.json()["nodes"].push_back({{"children", {2}}, {"translation", {0.0, 1.0, 0.0}}});
@@ -321,8 +317,7 @@ TEST(AnimationLoadTest, AnimatedJointMovesItsChildAndTheSkin) {
     auto builder = skinScene(true);
     const auto times = builder.addAccessor(std::vector<float>{0, 1}, "SCALAR");
     const float h = std::sqrt(0.5f);
-    const auto rotations =
-        builder.addAccessor(std::vector<float>{0, 0, 0, 1, 0, 0, h, h}, "VEC4");
+    const auto rotations = builder.addAccessor(std::vector<float>{0, 0, 0, 1, 0, 0, h, h}, "VEC4");
     addAnimation(builder, "bend", {sampler(times, rotations)}, {channel(0, 1, "rotation")});
     const auto scene = loadGltf(builder);
     ASSERT_TRUE(scene.ok()) << scene.error().message;
@@ -352,9 +347,9 @@ TEST(AnimationLoadTest, ChannelTargetingAMissingNode) {
     const auto values = builder.addAccessor(std::vector<float>{0, 0, 0, 1, 1, 1}, "VEC3");
     addAnimation(builder, "", {sampler(times, values)},
                  {channel(0, 0, "scale"), channel(0, 17, "translation")});
-    expectError(loadGltf(builder), ErrorCode::InvalidFormat,
-                {"test.gltf: animation 0, channel 1 refers to node 17 (target)",
-                 "the asset has 2 nodes."});
+    expectError(
+        loadGltf(builder), ErrorCode::InvalidFormat,
+        {"test.gltf: animation 0, channel 1 refers to node 17 (target)", "the asset has 2 nodes."});
 }
 
 TEST(AnimationLoadTest, ChannelSamplerOutOfRange) {
@@ -417,20 +412,21 @@ TEST(AnimationLoadTest, OutputCountMustMatchTheKeys) {
         // Twice as many values as keys: fine for weights of 2 targets, not for a translation.
         auto builder = hierarchy();
         const auto times = builder.addAccessor(std::vector<float>{0, 1}, "SCALAR");
-        const auto values = builder.addAccessor(
-            std::vector<float>{0, 0, 0, 1, 1, 1, 2, 2, 2, 3, 3, 3}, "VEC3");
+        const auto values =
+            builder.addAccessor(std::vector<float>{0, 0, 0, 1, 1, 1, 2, 2, 2, 3, 3, 3}, "VEC3");
         addAnimation(builder, "", {sampler(times, values)}, {channel(0, 0, "translation")});
         expectError(loadGltf(builder), ErrorCode::InvalidFormat,
-                    {"animation 0, channel 0 animates translation", "has 4 elements for 2 key "
-                                                                    "times (needs 2)"});
+                    {"animation 0, channel 0 animates translation",
+                     "has 4 elements for 2 key "
+                     "times (needs 2)"});
     }
 }
 
 TEST(AnimationLoadTest, OutputTypeMustFitThePath) {
     auto builder = hierarchy();
     const auto times = builder.addAccessor(std::vector<float>{0, 1}, "SCALAR");
-    const auto values =
-        builder.addAccessor(std::vector<std::int16_t>{0, 0, 0, 1, 1, 1}, "VEC3", {.normalized = true});
+    const auto values = builder.addAccessor(std::vector<std::int16_t>{0, 0, 0, 1, 1, 1}, "VEC3",
+                                            {.normalized = true});
     addAnimation(builder, "", {sampler(times, values)}, {channel(0, 0, "translation")});
     expectError(loadGltf(builder), ErrorCode::InvalidFormat,
                 {"animation 0, channel 0 animates translation with an output (accessor",
@@ -498,18 +494,18 @@ TEST(AnimationLoadTest, JointsMustBeUnsignedIntegers) {
     auto builder = skinScene(true);
     const auto floats = builder.addAccessor(std::vector<float>(12, 0.0f), "VEC4");
     builder.json()["meshes"][0]["primitives"][0]["attributes"]["JOINTS_0"] = floats;
-    expectError(loadGltf(builder), ErrorCode::InvalidFormat,
-                {"JOINTS_0 holds joint indices"});
+    expectError(loadGltf(builder), ErrorCode::InvalidFormat, {"JOINTS_0 holds joint indices"});
 }
 
 TEST(AnimationLoadTest, MorphTargetCountMustMatchTheVertexCount) {
     auto builder = morphScene();
     const auto shortDelta = builder.addAccessor(std::vector<float>{0, 0, 1, 0, 0, 1}, "VEC3");
     builder.json()["meshes"][0]["primitives"][0]["targets"][1]["POSITION"] = shortDelta;
-    expectError(loadGltf(builder), ErrorCode::InvalidFormat,
-                {"mesh 0, primitive 0, morph target 1 POSITION (accessor " +
-                     std::to_string(shortDelta) + ") has 2 elements, but the primitive has 3 "
-                                                  "vertices."});
+    expectError(
+        loadGltf(builder), ErrorCode::InvalidFormat,
+        {"mesh 0, primitive 0, morph target 1 POSITION (accessor " + std::to_string(shortDelta) +
+         ") has 2 elements, but the primitive has 3 "
+         "vertices."});
 }
 
 TEST(AnimationLoadTest, MorphWeightCountsMustMatch) {
@@ -524,8 +520,8 @@ TEST(AnimationLoadTest, SparseMorphTargetWithoutBufferView) {
     // Target 1: all zeros except vertex 2 = (0, 0, 5), as a sparse accessor without a view.
     const auto indices = builder.addBufferView(std::vector<std::uint8_t>{2, 0, 0, 0});
     const float five[3] = {0, 0, 5};
-    const auto values = builder.addBufferView(std::span<const std::uint8_t>(
-        reinterpret_cast<const std::uint8_t*>(five), sizeof(five)));
+    const auto values = builder.addBufferView(
+        std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(five), sizeof(five)));
     builder.json()["accessors"].push_back(
         {{"componentType", 5126},
          {"count", 3},

@@ -25,11 +25,11 @@ std::optional<SceneData> loadModel(const std::string& relative) {
     return std::move(*scene);
 }
 
-#define LOAD_OR_SKIP(variable, relative)                                                      \
-    auto variable = loadModel(relative);                                                      \
-    if (!variable) {                                                                          \
-        GTEST_SKIP() << "The shared sample model " << (relative)                              \
-                     << " (../shared/models) is absent or did not load; skipping.";           \
+#define LOAD_OR_SKIP(variable, relative)                                            \
+    auto variable = loadModel(relative);                                            \
+    if (!variable) {                                                                \
+        GTEST_SKIP() << "The shared sample model " << (relative)                    \
+                     << " (../shared/models) is absent or did not load; skipping."; \
     }
 
 float maxDifference(const glm::mat4& a, const glm::mat4& b) {
@@ -43,7 +43,8 @@ float maxDifference(const glm::mat4& a, const glm::mat4& b) {
 }
 
 // Joint matrices must be world(joint) * inverseBind of the player's own node worlds.
-void expectJointsConsistent(const AnimationPlayer& player, const SceneData& scene,
+void expectJointsConsistent(const AnimationPlayer& player,
+                            const SceneData& scene,
                             const std::string& label) {
     for (std::size_t s = 0; s < scene.skins.size(); ++s) {
         const Skin& skin = scene.skins[s];
@@ -53,7 +54,8 @@ void expectJointsConsistent(const AnimationPlayer& player, const SceneData& scen
             const glm::mat4& actual = player.jointMatrices()[player.skinJointOffsets()[s] + j];
             EXPECT_LT(maxDifference(actual, expected), 1e-5f) << label << " joint " << j;
             for (int c = 0; c < 4; ++c) {
-                EXPECT_TRUE(std::isfinite(actual[c][0] + actual[c][1] + actual[c][2] + actual[c][3]))
+                EXPECT_TRUE(
+                    std::isfinite(actual[c][0] + actual[c][1] + actual[c][2] + actual[c][3]))
                     << label;
             }
         }
@@ -95,25 +97,28 @@ TEST(AnimationModelsTest, FoxAnimationsAndBindPose) {
     }
     for (const AnimationChannel& channel : scene->animations[0].channels) {
         const AnimationSampler& sampler = scene->animations[0].samplers[channel.sampler];
-        const float* v = sampler.values.data() +
-                         (sampler.interpolation == Interpolation::CubicSpline ? sampler.components
-                                                                              : 0);
+        const float* v =
+            sampler.values.data() +
+            (sampler.interpolation == Interpolation::CubicSpline ? sampler.components : 0);
         const std::size_t n = channel.node.index();
-        if (channel.path == AnimationPath::Translation)
+        if (channel.path == AnimationPath::Translation) {
             translation[n] = glm::vec3(v[0], v[1], v[2]);
-        if (channel.path == AnimationPath::Rotation)
+        }
+        if (channel.path == AnimationPath::Rotation) {
             rotation[n] = glm::normalize(glm::quat(v[3], v[0], v[1], v[2]));
-        if (channel.path == AnimationPath::Scale)
+        }
+        if (channel.path == AnimationPath::Scale) {
             scale[n] = glm::vec3(v[0], v[1], v[2]);
+        }
     }
     auto world = [&](std::size_t n) {
         glm::mat4 result(1.0f);
         for (NodeId at(n); at.valid(); at = scene->nodes[at.index()].parent) {
             const Node& node = scene->nodes[at.index()];
             const glm::mat4 local =
-                node.hasMatrix ? node.local
-                               : composeTrs(translation[at.index()], rotation[at.index()],
-                                            scale[at.index()]);
+                node.hasMatrix
+                    ? node.local
+                    : composeTrs(translation[at.index()], rotation[at.index()], scale[at.index()]);
             result = local * result;
         }
         return result;

@@ -43,9 +43,9 @@ TEST(AnimationSamplerTest, LinearInterpolatesAndClampsOutsideTheKeys) {
     const auto sampler = scalarSampler(Interpolation::Linear, {1, 2, 4}, {0, 10, 30});
     EXPECT_FLOAT_EQ(sample(sampler, 1.25f), 2.5f);
     EXPECT_FLOAT_EQ(sample(sampler, 3.0f), 20.0f);
-    EXPECT_EQ(sample(sampler, 0.0f), 0.0f);    // Before the first key.
+    EXPECT_EQ(sample(sampler, 0.0f), 0.0f);  // Before the first key.
     EXPECT_EQ(sample(sampler, -5.0f), 0.0f);
-    EXPECT_EQ(sample(sampler, 4.0f), 30.0f);   // At and after the last.
+    EXPECT_EQ(sample(sampler, 4.0f), 30.0f);  // At and after the last.
     EXPECT_EQ(sample(sampler, 100.0f), 30.0f);
     EXPECT_EQ(sample(sampler, std::nanf("")), 0.0f);
 }

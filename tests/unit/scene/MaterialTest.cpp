@@ -130,8 +130,9 @@ TEST(MaterialTest, TexturesGetADefaultSamplerAndTransforms) {
 TEST(MaterialTest, MissingImageIsAWarning) {
     std::vector<std::string> logged;
     const auto previous = setLogSink([&](LogLevel level, std::string_view message) {
-        if (level == LogLevel::Warning)
+        if (level == LogLevel::Warning) {
             logged.emplace_back(message);
+        }
     });
     for (bool decode : {true, false}) {
         logged.clear();
@@ -237,7 +238,8 @@ TEST(MaterialTest, GeneratedTexturesGoToEveryOtherMaterial) {
         EXPECT_EQ(material.baseColorTexture.has_value(), i % 2 == 1) << "material " << i;
         EXPECT_EQ(material.metallicRoughnessTexture.has_value(), i % 2 == 1) << "material " << i;
         if (material.baseColorTexture) {
-            EXPECT_EQ(scene->textures[material.baseColorTexture->texture.index()].image.index(), 0u);
+            EXPECT_EQ(scene->textures[material.baseColorTexture->texture.index()].image.index(),
+                      0u);
             EXPECT_EQ(
                 scene->textures[material.metallicRoughnessTexture->texture.index()].image.index(),
                 1u);

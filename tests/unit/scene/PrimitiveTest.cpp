@@ -95,8 +95,9 @@ TEST(PrimitiveTest, FlatNormalsDeindexTriangles) {
     ASSERT_EQ(normals.size(), 6u);
     EXPECT_EQ(glm::vec3(positions[4]), glm::vec3(1, 1, 0));
     EXPECT_EQ(glm::vec3(positions[5]), glm::vec3(0, 1, 0));
-    for (const auto& normal : normals)
+    for (const auto& normal : normals) {
         EXPECT_EQ(glm::vec3(normal), glm::vec3(0, 0, 1));
+    }
     // Sorted by semantic, Position first.
     EXPECT_EQ(primitive.attributes.front().semantic, Semantic::Position);
     EXPECT_EQ(primitive.attributes[1].semantic, Semantic::Normal);
@@ -133,8 +134,9 @@ TEST(PrimitiveTest, PointsAndLinesGetZeroNormals) {
         EXPECT_EQ(accessor.componentType, ComponentType::Float32);
         EXPECT_EQ(accessor.componentCount, 3);
         EXPECT_EQ(accessor.count, 4u);
-        for (const auto& value : scene->readFloats(*normal))
+        for (const auto& value : scene->readFloats(*normal)) {
             EXPECT_EQ(glm::vec3(value), glm::vec3(0));
+        }
     }
 }
 

@@ -21,10 +21,12 @@ std::uint64_t triangleCount(const SceneData& scene, const Primitive& primitive) 
     const std::uint64_t elements = primitive.indices
                                        ? scene.accessors[primitive.indices->index()].count
                                        : primitive.vertexCount;
-    if (primitive.topology == Topology::TriangleList)
+    if (primitive.topology == Topology::TriangleList) {
         return elements / 3;
-    if (primitive.topology == Topology::TriangleStrip)
+    }
+    if (primitive.topology == Topology::TriangleStrip) {
         return elements >= 3 ? elements - 2 : 0;
+    }
     return 0;
 }
 

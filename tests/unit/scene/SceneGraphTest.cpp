@@ -14,8 +14,9 @@ using testing::loadGltf;
 bool near(const glm::mat4& a, const glm::mat4& b) {
     for (int c = 0; c < 4; ++c) {
         for (int r = 0; r < 4; ++r) {
-            if (std::abs(a[c][r] - b[c][r]) > 1e-5f)
+            if (std::abs(a[c][r] - b[c][r]) > 1e-5f) {
                 return false;
+            }
         }
     }
     return true;
@@ -77,8 +78,9 @@ TEST(SceneGraphTest, InstancesAreDepthFirst) {
     auto scene = loadGltf(builder);
     ASSERT_TRUE(scene.ok()) << scene.error().message;
     std::string order;
-    for (const Instance& instance : scene->instances)
+    for (const Instance& instance : scene->instances) {
         order += scene->nodes[instance.node.index()].name;
+    }
     EXPECT_EQ(order, "abcd");
 }
 
@@ -164,8 +166,9 @@ TEST(SceneGraphTest, ZeroScaleHasAFiniteNormalMatrix) {
     ASSERT_TRUE(scene.ok()) << scene.error().message;
     const glm::mat4& normal = scene->instances[0].normalMatrix;
     for (int c = 0; c < 4; ++c) {
-        for (int r = 0; r < 4; ++r)
+        for (int r = 0; r < 4; ++r) {
             EXPECT_TRUE(std::isfinite(normal[c][r]));
+        }
     }
 }
 

@@ -83,12 +83,14 @@ TEST(SpecificationEdgeCaseTest, PrimitiveWithoutPositionIsSkippedWithAWarning) {
 TEST(SpecificationEdgeCaseTest, PrimitiveWithoutAttributesIsSkipped) {
     test::GltfBuilder builder;
     const auto mesh = addTriangleMesh(builder);
-    builder.json()["meshes"][mesh]["primitives"].push_back({{"attributes", nlohmann::json::object()}});
+    builder.json()["meshes"][mesh]["primitives"].push_back(
+        {{"attributes", nlohmann::json::object()}});
     builder.addScene({builder.addNode({.mesh = mesh})});
     auto scene = loadGltf(builder);
     ASSERT_TRUE(scene.ok()) << scene.error().message;
     EXPECT_EQ(scene->meshes[0].primitives.size(), 1u);
-    EXPECT_TRUE(hasWarning(*scene, "mesh 0, primitive 1 has no POSITION")) << describeWarnings(*scene);
+    EXPECT_TRUE(hasWarning(*scene, "mesh 0, primitive 1 has no POSITION"))
+        << describeWarnings(*scene);
 }
 
 // ---- Primitive-restart values --------------------------------------------------------------
@@ -100,16 +102,14 @@ std::map<std::string, std::uint32_t> manyVertices(test::GltfBuilder& builder, st
         positions[i] = glm::vec3(float(i % 7), float(i % 5), 0.0f);
     }
     const std::vector<glm::vec3> normals(count, glm::vec3(0, 0, 1));
-    return {{"POSITION", builder.addPositions(positions)},
-            {"NORMAL", builder.addNormals(normals)}};
+    return {{"POSITION", builder.addPositions(positions)}, {"NORMAL", builder.addNormals(normals)}};
 }
 
 TEST(SpecificationEdgeCaseTest, SixteenBitRestartValueInAStripIsWarnedAndWidened) {
     test::GltfBuilder builder;
     const auto vertices = manyVertices(builder, 65537);
     const auto indices = builder.addIndices(std::vector<std::uint16_t>{0, 1, 0xFFFF, 2, 3});
-    const auto mesh = builder.addMesh(
-        {.attributes = vertices, .indices = indices, .mode = 5});
+    const auto mesh = builder.addMesh({.attributes = vertices, .indices = indices, .mode = 5});
     builder.addScene({builder.addNode({.mesh = mesh})});
     auto scene = loadGlb(builder);
     ASSERT_TRUE(scene.ok()) << scene.error().message;
@@ -127,8 +127,7 @@ TEST(SpecificationEdgeCaseTest, SixteenBitRestartValueInAListKeepsItsIndices) {
     test::GltfBuilder builder;
     const auto vertices = manyVertices(builder, 65537);
     const auto indices = builder.addIndices(std::vector<std::uint16_t>{0, 1, 0xFFFF});
-    const auto mesh =
-        builder.addMesh({.attributes = vertices, .indices = indices});
+    const auto mesh = builder.addMesh({.attributes = vertices, .indices = indices});
     builder.addScene({builder.addNode({.mesh = mesh})});
     auto scene = loadGlb(builder);
     ASSERT_TRUE(scene.ok()) << scene.error().message;
@@ -142,8 +141,7 @@ TEST(SpecificationEdgeCaseTest, EightBitRestartValueIsWarnedAndWidenedToSixteenB
     test::GltfBuilder builder;
     const auto vertices = manyVertices(builder, 256);
     const auto indices = builder.addIndices(std::vector<std::uint8_t>{0, 1, 0xFF, 2});
-    const auto mesh = builder.addMesh(
-        {.attributes = vertices, .indices = indices, .mode = 5});
+    const auto mesh = builder.addMesh({.attributes = vertices, .indices = indices, .mode = 5});
     builder.addScene({builder.addNode({.mesh = mesh})});
     auto scene = loadGlb(builder);
     ASSERT_TRUE(scene.ok()) << scene.error().message;
@@ -157,8 +155,7 @@ TEST(SpecificationEdgeCaseTest, RestartValueIsAnErrorWhenStrict) {
     test::GltfBuilder builder;
     const auto vertices = manyVertices(builder, 256);
     const auto indices = builder.addIndices(std::vector<std::uint8_t>{0, 1, 0xFF});
-    const auto mesh =
-        builder.addMesh({.attributes = vertices, .indices = indices});
+    const auto mesh = builder.addMesh({.attributes = vertices, .indices = indices});
     builder.addScene({builder.addNode({.mesh = mesh})});
     expectError(loadGlb(builder, {.strict = true}), ErrorCode::InvalidFormat,
                 {"test.glb: ", "mesh 0, primitive 0", "primitive-restart value 255"});
@@ -177,8 +174,7 @@ TEST(SpecificationEdgeCaseTest, AccessorWithCountZeroIsAClearError) {
 
 TEST(SpecificationEdgeCaseTest, MeshWithoutPrimitivesIsWarnedAbout) {
     test::GltfBuilder builder;
-    builder.json()["meshes"] = nlohmann::json::array(
-        {{{"primitives", nlohmann::json::array()}}});
+    builder.json()["meshes"] = nlohmann::json::array({{{"primitives", nlohmann::json::array()}}});
     builder.addScene({builder.addNode({.mesh = 0})});
     auto scene = loadGltf(builder);
     ASSERT_TRUE(scene.ok()) << scene.error().message;
@@ -211,8 +207,7 @@ TEST(SpecificationEdgeCaseTest, SceneWithoutNodesDrawsNothingWithAWarning) {
 }
 
 TEST(SpecificationEdgeCaseTest, EmptySceneIsNotAnErrorWhenStrict) {
-    auto scene = loadSceneFromMemory(
-        std::vector<std::uint8_t>{}, "/nonexistent", "empty.gltf", {});
+    auto scene = loadSceneFromMemory(std::vector<std::uint8_t>{}, "/nonexistent", "empty.gltf", {});
     EXPECT_FALSE(scene.ok());
     const std::string minimal = R"({"asset": {"version": "2.0"}})";
     auto loaded = loadSceneFromMemory(std::vector<std::uint8_t>(minimal.begin(), minimal.end()),
@@ -284,9 +279,9 @@ TEST(SpecificationEdgeCaseTest, NaNPositionsAreLeftOutOfTheBounds) {
     // No min/max: the bounds come from the values themselves.
     const auto positions =
         builder.addAccessor(std::vector<float>{0, 0, 0, nan, 5, 0, 2, 1, 0, inf, 0, 0}, "VEC3");
-    const auto mesh = builder.addMesh({.attributes = {{"POSITION", positions}},
-                                       .indices = builder.addIndices(
-                                           std::vector<std::uint16_t>{0, 1, 2, 0, 2, 3})});
+    const auto mesh = builder.addMesh(
+        {.attributes = {{"POSITION", positions}},
+         .indices = builder.addIndices(std::vector<std::uint16_t>{0, 1, 2, 0, 2, 3})});
     builder.addScene({builder.addNode({.mesh = mesh})});
     auto scene = loadGlb(builder);
     ASSERT_TRUE(scene.ok()) << scene.error().message;

@@ -13,8 +13,7 @@ namespace {
 
 using Flags = std::set<std::string, std::less<>>;
 
-Result<std::string> compose(const std::map<std::string, std::string>& files,
-                            const Flags& flags) {
+Result<std::string> compose(const std::map<std::string, std::string>& files, const Flags& flags) {
     FileLookup lookup = [&](std::string_view name) -> std::optional<std::string_view> {
         auto found = files.find(std::string(name));
         if (found == files.end()) {
@@ -45,7 +44,8 @@ TEST(ShaderComposerTest, NestsAndNegates) {
 
 TEST(ShaderComposerTest, IncludesOnceAndOnlyInActiveBranches) {
     const std::map<std::string, std::string> files = {
-        {"main.wgsl", "#include \"lib.wgsl\"\n#include \"lib.wgsl\"\n#if X\n#include \"x.wgsl\"\n#endif\nmain"},
+        {"main.wgsl",
+         "#include \"lib.wgsl\"\n#include \"lib.wgsl\"\n#if X\n#include \"x.wgsl\"\n#endif\nmain"},
         {"lib.wgsl", "lib"},
         {"x.wgsl", "x"}};
     EXPECT_EQ(*compose(files, {}), "lib\nmain\n");
