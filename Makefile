@@ -37,7 +37,7 @@ define cmake_configure
 endef
 
 .PHONY: all deps configure build demo test test-unit test-gpu test-sanitize bench-smoke clean \
-	fuzz-build fuzz fuzz-replay
+	fuzz-build fuzz fuzz-replay format format-check
 
 all: build
 
@@ -59,6 +59,13 @@ demo: build
 
 test: build
 	@cd $(BUILD) && ctest --output-on-failure -j2 --timeout 900
+
+# .clang-format on every tracked C++ source (CI checks it; `make format` applies it).
+format-check:
+	@bash scripts/check-format.sh
+
+format:
+	@bash scripts/check-format.sh --fix
 
 test-unit: build
 	@cd $(BUILD) && ctest --output-on-failure -j2 -L unit
