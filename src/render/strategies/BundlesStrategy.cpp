@@ -1,22 +1,15 @@
 #include "render/strategies/BundlesStrategy.h"
 
-#include <chrono>
-
-#include "core/Elapsed.h"
-
 namespace encore::render {
 
 Result<void> BundlesStrategy::prepare(const RenderSetup& setup, const GpuScene& scene) {
     mSetup = &setup;
     mBundles = BundledFrame();
-    const auto start = std::chrono::steady_clock::now();
-    auto grouped = mDraws.prepare(setup, scene);
-    setup.prepareTimes.draws += millisecondsSince(start);
-    return grouped;
+    return mDraws.prepare(setup, scene);
 }
 
 Result<void> BundlesStrategy::refresh() {
-    return mDraws.stale() ? mDraws.regroup() : Result<void>{};
+    return mDraws.refresh();
 }
 
 void BundlesStrategy::beforePass(const wgpu::CommandEncoder&, const FrameState& frame) {

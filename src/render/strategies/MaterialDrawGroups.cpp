@@ -1,8 +1,11 @@
 #include "render/strategies/MaterialDrawGroups.h"
 
 #include <algorithm>
+#include <chrono>
 #include <map>
 #include <unordered_map>
+
+#include "core/Elapsed.h"
 
 namespace encore::render {
 
@@ -62,7 +65,14 @@ Result<void> MaterialDrawGroups::prepare(const RenderSetup& setup, const GpuScen
     for (std::size_t mesh = 0; mesh < data.meshes.size(); ++mesh) {
         mPrimitiveBindings[mesh].assign(data.meshes[mesh].primitives.size(), nullptr);
     }
-    return regroup();
+    const auto start = std::chrono::steady_clock::now();
+    auto grouped = regroup();
+    setup.prepareTimes.draws += millisecondsSince(start);
+    return grouped;
+}
+
+Result<void> MaterialDrawGroups::refresh() {
+    return stale() ? regroup() : Result<void>{};
 }
 
 Result<void> MaterialDrawGroups::regroup() {

@@ -53,13 +53,15 @@ class MaterialDrawGroups {
     };
 
     // Chooses every primitive's pipeline and groups the draws of `scene` (which, like `setup`,
-    // must outlive this).
+    // must outlive this); adds the time to setup.prepareTimes.draws.
     Result<void> prepare(const RenderSetup& setup, const GpuScene& scene);
     // Whether a bind group the groups depend on was replaced since they were made (a material
     // that gained textures needs other pipelines).
     bool stale() const { return mGeneration != mScene->generation(); }
     // Groups the draws again, keeping the vertex bindings (they do not depend on textures).
     Result<void> regroup();
+    // regroup() when stale(), else nothing.
+    Result<void> refresh();
 
     const std::vector<PipelineGroup>& opaque() const { return mOpaque; }
     const std::vector<BlendedDraw>& blended() const { return mBlended; }

@@ -1,20 +1,13 @@
 #include "render/strategies/MaterialsStrategy.h"
 
-#include <chrono>
-
-#include "core/Elapsed.h"
-
 namespace encore::render {
 
 Result<void> MaterialsStrategy::prepare(const RenderSetup& setup, const GpuScene& scene) {
-    const auto start = std::chrono::steady_clock::now();
-    auto grouped = mDraws.prepare(setup, scene);
-    setup.prepareTimes.draws += millisecondsSince(start);
-    return grouped;
+    return mDraws.prepare(setup, scene);
 }
 
 Result<void> MaterialsStrategy::refresh() {
-    return mDraws.stale() ? mDraws.regroup() : Result<void>{};
+    return mDraws.refresh();
 }
 
 void MaterialsStrategy::encode(RenderEncoder& encoder, const FrameState& frame) const {
