@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "core/Bytes.h"
 #include "image/Srgb.h"
 
 namespace encore::batch {
@@ -60,9 +61,10 @@ image::ImageRgba8 cropStrip(const std::uint8_t* rows,
     view.height = height;
     view.pixels.resize(std::size_t(width) * height * 4);
     for (std::uint32_t y = 0; y < height; ++y) {
-        std::memcpy(&view.pixels[std::size_t(y) * width * 4],
-                    rows + std::size_t(y) * bytesPerRow + std::size_t(strip) * width * 4,
-                    std::size_t(width) * 4);
+        // A strip of width 0 has no pixels: view.pixels.data() is null.
+        copyBytes(view.pixels.data() + std::size_t(y) * width * 4,
+                  rows + std::size_t(y) * bytesPerRow + std::size_t(strip) * width * 4,
+                  std::size_t(width) * 4);
     }
     return view;
 }

@@ -5,6 +5,8 @@
 #include <cstring>
 #include <string>
 
+#include "core/Bytes.h"
+
 namespace encore::gpu {
 namespace {
 
@@ -185,7 +187,7 @@ Result<std::vector<float>> readTextureR32Float(Context& context,
     }
     ENCORE_TRY_ASSIGN(auto rows, readTexelRows(context, texture, level, 0, 4));
     std::vector<float> values(rows.size() / 4);
-    std::memcpy(values.data(), rows.data(), rows.size());
+    copyBytes(values.data(), rows.data(), rows.size());
     return values;
 }
 

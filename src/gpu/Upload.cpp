@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cstring>
 
+#include "core/Bytes.h"
+
 namespace encore::gpu {
 
 wgpu::Buffer createBufferWithData(const wgpu::Device& device,
@@ -10,9 +12,7 @@ wgpu::Buffer createBufferWithData(const wgpu::Device& device,
                                   std::span<const std::uint8_t> bytes,
                                   const std::string& label) {
     return createBufferFilledBy(device, usage, bytes.size(), label, [&](std::uint8_t* mapped) {
-        if (!bytes.empty()) {
-            std::memcpy(mapped, bytes.data(), bytes.size());
-        }
+        copyBytes(mapped, bytes.data(), bytes.size());
         std::memset(mapped + bytes.size(), 0, bufferSizeFor(bytes.size()) - bytes.size());
     });
 }

@@ -2,6 +2,7 @@
 
 #include <cstring>
 
+#include "core/Bytes.h"
 #include "gpu/Readback.h"
 
 namespace encore::render {
@@ -74,7 +75,7 @@ void StagedImages::copy(Image& image, Done& done) {
     const scene::Image& source = *image.source;
     const std::uint32_t rowBytes = source.width * 4;
     if (rowBytes == image.bytesPerRow) {
-        std::memcpy(image.mapped, source.rgba8.data(), source.rgba8.size());
+        copyBytes(image.mapped, source.rgba8.data(), source.rgba8.size());
     } else {
         for (std::uint32_t y = 0; y < source.height; ++y) {
             std::memcpy(image.mapped + std::size_t(y) * image.bytesPerRow,

@@ -4,6 +4,7 @@
 #include <cstring>
 #include <string>
 
+#include "core/Bytes.h"
 #include "encore/render/RenderEncoder.h"
 #include "encore/render/RenderSetup.h"
 #include "gpu/Upload.h"
@@ -147,8 +148,9 @@ void GeometryBuffers::uploadViews(std::uint64_t maxSharedBufferBytes) {
                 for (scene::BufferViewId id : shared.views) {
                     const scene::BufferView& view = mScene->bufferViews[id.index()];
                     const auto& source = mScene->buffers[view.buffer.index()].bytes;
-                    std::memcpy(mapped + mViews[id].offset, source.data() + view.byteOffset,
-                                view.byteLength);
+                    // An empty buffer's data() is null: a zero-length view of it copies nothing.
+                    copyBytes(mapped + mViews[id].offset, source.data() + view.byteOffset,
+                              view.byteLength);
                 }
             });
         for (scene::BufferViewId id : shared.views) {

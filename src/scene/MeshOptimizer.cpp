@@ -13,6 +13,8 @@
 #include <string>
 #include <unordered_map>
 
+#include "core/Bytes.h"
+
 namespace encore::scene {
 namespace {
 
@@ -288,7 +290,7 @@ void writeIndexLevels(SceneData& scene,
                 std::memcpy(bytes + offset + i * 2, &value, 2);
             }
         } else {
-            std::memcpy(bytes + offset, indices.data(), indices.size() * 4);
+            copyBytes(bytes + offset, indices.data(), indices.size() * 4);
         }
         Accessor accessor;
         accessor.view = view;

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <numeric>
 
+#include "core/Bytes.h"
 #include "scene/LoadContext.h"
 
 namespace encore::scene {
@@ -62,9 +63,7 @@ AccessorId appendIndices(SceneData& scene,
                               static_cast<std::uint32_t>(values.size()), name);
     }
     std::vector<std::uint8_t> bytes(values.size() * 4);
-    if (!values.empty()) {  // memcpy's pointers must not be null, even for 0 bytes.
-        std::memcpy(bytes.data(), values.data(), bytes.size());
-    }
+    copyBytes(bytes.data(), values.data(), bytes.size());
     return appendAccessor(scene, std::move(bytes), ComponentType::Uint32, 1, false,
                           static_cast<std::uint32_t>(values.size()), name);
 }
@@ -73,9 +72,7 @@ AccessorId appendVec3s(SceneData& scene,
                        const std::vector<glm::vec3>& values,
                        const std::string& name) {
     std::vector<std::uint8_t> bytes(values.size() * sizeof(glm::vec3));
-    if (!values.empty()) {  // memcpy's pointers must not be null, even for 0 bytes.
-        std::memcpy(bytes.data(), values.data(), bytes.size());
-    }
+    copyBytes(bytes.data(), values.data(), bytes.size());
     return appendAccessor(scene, std::move(bytes), ComponentType::Float32, 3, false,
                           static_cast<std::uint32_t>(values.size()), name);
 }

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -170,6 +171,71 @@ TEST(SpecificationEdgeCaseTest, AccessorWithCountZeroIsAClearError) {
     builder.json()["accessors"][0].erase("max");
     expectError(loadGltf(builder), ErrorCode::InvalidFormat,
                 {"test.gltf: ", "accessor 0 (POSITION of mesh 0, primitive 0)", "count 0"});
+}
+
+// Issue 32: a triangle fan of two indices has no triangle. Its rewritten index accessor has
+// count 0 in a new, empty buffer (data() null), which every copy of its bytes must accept.
+TEST(SpecificationEdgeCaseTest, FanWithoutTrianglesHasAnEmptyIndexAccessor) {
+    test::GltfBuilder builder;
+    const auto positions = builder.addPositions({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+    // NORMAL given: without it, flat normals are generated and the fan is drawn unindexed.
+    const auto normals = builder.addNormals({{0, 0, 1}, {0, 0, 1}, {0, 0, 1}});
+    const auto indices = builder.addIndices(std::vector<std::uint16_t>{0, 1});
+    const auto mesh = builder.addMesh({.attributes = {{"POSITION", positions}, {"NORMAL", normals}},
+                                       .indices = indices,
+                                       .mode = 6});
+    builder.addScene({builder.addNode({.mesh = mesh})});
+    auto scene = loadGltf(builder);
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+    ASSERT_EQ(scene->meshes.size(), 1u);
+    ASSERT_EQ(scene->meshes[0].primitives.size(), 1u);
+    const Primitive& primitive = scene->meshes[0].primitives[0];
+    ASSERT_TRUE(primitive.indices);
+    const Accessor& accessor = scene->accessors[primitive.indices->index()];
+    EXPECT_EQ(accessor.count, 0u);
+    EXPECT_EQ(scene->bufferViews[accessor.view.index()].byteLength, 0u);
+    EXPECT_TRUE(
+        scene->buffers[scene->bufferViews[accessor.view.index()].buffer.index()].bytes.empty());
+    EXPECT_TRUE(scene->readIndices(*primitive.indices).empty());
+    EXPECT_TRUE(scene->packedAccessorBytes(*primitive.indices).empty());
+}
+
+// A buffer of byteLength 0 (an empty data: uri) and a bufferView of byteLength 0 into it.
+test::GltfBuilder triangleWithEmptyBuffer() {
+    auto builder = testing::triangleBuilder();
+    builder.json()["buffers"].push_back(
+        {{"byteLength", 0}, {"uri", "data:application/octet-stream;base64,"}});
+    builder.json()["bufferViews"].push_back({{"buffer", 1}, {"byteLength", 0}});
+    return builder;
+}
+
+TEST(SpecificationEdgeCaseTest, EmptyBufferAndViewLoad) {
+    auto scene = loadGltf(triangleWithEmptyBuffer());
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+    EXPECT_EQ(scene->meshes.size(), 1u);
+    const bool emptyView =
+        std::any_of(scene->bufferViews.begin(), scene->bufferViews.end(), [&](const auto& view) {
+            return view.byteLength == 0 && scene->buffers[view.buffer.index()].bytes.empty();
+        });
+    EXPECT_TRUE(emptyView);
+}
+
+TEST(SpecificationEdgeCaseTest, AccessorInAnEmptyViewIsAClearError) {
+    auto builder = triangleWithEmptyBuffer();
+    builder.json()["accessors"][0]["bufferView"] = builder.json()["bufferViews"].size() - 1;
+    expectError(loadGltf(builder), ErrorCode::InvalidFormat,
+                {"test.gltf: ", "accessor 0 (POSITION of mesh 0, primitive 0)",
+                 "reads past the end of bufferView 1", "length 0"});
+}
+
+TEST(SpecificationEdgeCaseTest, IndexAccessorWithCountZeroIsAClearError) {
+    auto builder = testing::triangleBuilder();
+    const auto indices = builder.addIndices(std::vector<std::uint16_t>{0, 1, 2});
+    builder.json()["meshes"][0]["primitives"][0]["indices"] = indices;
+    builder.json()["accessors"][indices]["count"] = 0;
+    builder.json()["accessors"][indices]["min"] = {2147483647};
+    builder.json()["accessors"][indices]["max"] = {2147483647};
+    expectError(loadGltf(builder), ErrorCode::InvalidFormat, {"test.gltf: ", "count 0"});
 }
 
 TEST(SpecificationEdgeCaseTest, MeshWithoutPrimitivesIsWarnedAbout) {
