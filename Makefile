@@ -89,7 +89,7 @@ test-sanitize: deps
 # runs; `make fuzz-replay` (CI) replays the seed corpus and fuzzes each for a fixed 20 s.
 FUZZ_BUILD ?= build-fuzz
 FUZZ_SECONDS ?= 60
-FUZZ_TARGETS = encore_fuzz_load encore_fuzz_prepare
+FUZZ_TARGETS = encore_fuzz_load encore_fuzz_prepare encore_fuzz_numbers
 FUZZ_MODELS ?= ../shared/models
 # One process per target (the machine is shared); -jobs would also log to ./fuzz-N.log.
 FUZZ_FLAGS = -dict=fuzz/gltf.dict -max_len=65536 -timeout=10 -rss_limit_mb=2048 -detect_leaks=1 \
