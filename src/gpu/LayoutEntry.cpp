@@ -6,13 +6,19 @@ namespace encore::gpu {
 
 namespace {
 
+// The fields every kind of entry sets.
+LayoutEntry entryAt(std::uint32_t binding, wgpu::ShaderStage visibility) {
+    LayoutEntry layout;
+    layout.entry.binding = binding;
+    layout.entry.visibility = visibility;
+    return layout;
+}
+
 LayoutEntry bufferLayout(std::uint32_t binding,
                          wgpu::ShaderStage visibility,
                          wgpu::BufferBindingType type,
                          std::uint64_t minBindingSize) {
-    LayoutEntry layout;
-    layout.entry.binding = binding;
-    layout.entry.visibility = visibility;
+    LayoutEntry layout = entryAt(binding, visibility);
     layout.entry.buffer.type = type;
     layout.entry.buffer.minBindingSize = minBindingSize;
     return layout;
@@ -44,9 +50,7 @@ LayoutEntry LayoutEntry::texture(std::uint32_t binding,
                                  wgpu::TextureSampleType sampleType,
                                  wgpu::TextureViewDimension viewDimension,
                                  bool multisampled) {
-    LayoutEntry layout;
-    layout.entry.binding = binding;
-    layout.entry.visibility = visibility;
+    LayoutEntry layout = entryAt(binding, visibility);
     layout.entry.texture.sampleType = sampleType;
     layout.entry.texture.viewDimension = viewDimension;
     layout.entry.texture.multisampled = multisampled;
@@ -56,9 +60,7 @@ LayoutEntry LayoutEntry::texture(std::uint32_t binding,
 LayoutEntry LayoutEntry::sampler(std::uint32_t binding,
                                  wgpu::ShaderStage visibility,
                                  wgpu::SamplerBindingType type) {
-    LayoutEntry layout;
-    layout.entry.binding = binding;
-    layout.entry.visibility = visibility;
+    LayoutEntry layout = entryAt(binding, visibility);
     layout.entry.sampler.type = type;
     return layout;
 }
@@ -68,9 +70,7 @@ LayoutEntry LayoutEntry::storageTexture(std::uint32_t binding,
                                         wgpu::TextureFormat format,
                                         wgpu::StorageTextureAccess access,
                                         wgpu::TextureViewDimension viewDimension) {
-    LayoutEntry layout;
-    layout.entry.binding = binding;
-    layout.entry.visibility = visibility;
+    LayoutEntry layout = entryAt(binding, visibility);
     layout.entry.storageTexture.access = access;
     layout.entry.storageTexture.format = format;
     layout.entry.storageTexture.viewDimension = viewDimension;

@@ -157,16 +157,9 @@ Result<void> Renderer::prepare(const scene::SceneData& scene,
     times = {};
     auto start = std::chrono::steady_clock::now();
     if (mStrategy || mGpuScene) {
-        // Dawn frees objects once the GPU is done with them, on a later tick. Let that happen
-        // before the next scene allocates: peak memory stays one scene's worth, and drivers
-        // that map memory per object (lavapipe) stay below the kernel's limit.
-        mGpuAnimation.reset();
         mStrategy.reset();
         retireGpuScene();
-        if (mOptions.prepareWaitsForIdle) {
-            mContext->waitForIdle();
-        }
-        mContext->device().Tick();
+        freeReleasedObjects();
     }
     times.release = millisecondsSince(start);
     start = std::chrono::steady_clock::now();
@@ -211,10 +204,7 @@ Result<void> Renderer::setStrategy(StrategyKind kind, bool bundle) {
         mGpuAnimation->copyInstancesTo({});  // Into the old strategy's buffers no more.
     }
     mStrategy.reset();
-    if (mOptions.prepareWaitsForIdle) {
-        mContext->waitForIdle();
-    }
-    mContext->device().Tick();
+    freeReleasedObjects();
     mSetup->prepareTimes.release = millisecondsSince(start);
     if (mTriangleHistory) {
         setTriangleCounting(true);
@@ -253,6 +243,16 @@ Result<void> Renderer::prepareStrategy(StrategyKind kind,
         }
     }
     return {};
+}
+
+void Renderer::freeReleasedObjects() {
+    // Dawn frees objects once the GPU is done with them, on a later tick. Let that happen before
+    // the next scene or strategy allocates: peak memory stays one scene's worth, and drivers that
+    // map memory per object (lavapipe) stay below the kernel's limit.
+    if (mOptions.prepareWaitsForIdle) {
+        mContext->waitForIdle();
+    }
+    mContext->device().Tick();
 }
 
 void Renderer::retireGpuScene() {

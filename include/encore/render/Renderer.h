@@ -259,6 +259,8 @@ class Renderer {
                                  gpu::OutOfMemoryScope& outOfMemory);
     // Frees the GPU scene, counting what it uploaded.
     void retireGpuScene();
+    // Lets Dawn free what was released (waiting for the GPU first, by default).
+    void freeReleasedObjects();
     // What of the player outlives a new player (a device loss, a switch of evaluation): which
     // animations play and how. restorePlayback applies it to the current player and the GPU
     // evaluation.
