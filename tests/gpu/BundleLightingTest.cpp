@@ -175,11 +175,7 @@ TEST_P(BundleLightingTest, LoadingANewEnvironmentDoesNotReRecord) {
 INSTANTIATE_TEST_SUITE_P(BundleStrategies,
                          BundleLightingTest,
                          ::testing::Values(StrategyKind::Bundles, StrategyKind::GpuCullingBundles),
-                         [](const auto& info) {
-                             std::string name(strategyName(info.param));
-                             std::replace(name.begin(), name.end(), '-', '_');
-                             return name;
-                         });
+                         [](const auto& info) { return test::strategyTestName(info.param); });
 
 }  // namespace
 }  // namespace encore::render

@@ -82,11 +82,7 @@ INSTANTIATE_TEST_SUITE_P(Strategies,
                          ::testing::Values(StrategyKind::Naive,
                                            StrategyKind::Bundles,
                                            StrategyKind::GpuCullingBundles),
-                         [](const auto& info) {
-                             std::string name(strategyName(info.param));
-                             std::replace(name.begin(), name.end(), '-', '_');
-                             return name;
-                         });
+                         [](const auto& info) { return test::strategyTestName(info.param); });
 
 // An animated scene comes back at the time it was playing, with its selection, evaluated where
 // it was (CPU or GPU), not in its rest pose.

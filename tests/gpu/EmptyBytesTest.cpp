@@ -20,16 +20,7 @@ namespace {
 constexpr std::uint32_t kSize = 32;
 
 scene::SceneData fanWithoutTriangles() {
-    test::GltfBuilder builder;
-    const auto positions = builder.addPositions({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
-    // NORMAL given: without it, flat normals are generated and the fan is drawn unindexed.
-    const auto normals = builder.addNormals({{0, 0, 1}, {0, 0, 1}, {0, 0, 1}});
-    const auto indices = builder.addIndices(std::vector<std::uint16_t>{0, 1});
-    const auto mesh = builder.addMesh({.attributes = {{"POSITION", positions}, {"NORMAL", normals}},
-                                       .indices = indices,
-                                       .mode = 6});
-    builder.addScene({builder.addNode({.mesh = mesh})});
-    auto scene = scene::loadSceneFromMemory(builder.toGlb(), {}, "fan.glb");
+    auto scene = scene::loadSceneFromMemory(test::fanWithoutTriangles().toGlb(), {}, "fan.glb");
     EXPECT_TRUE(scene.ok()) << scene.error().message;
     return scene.ok() ? std::move(*scene) : scene::SceneData{};
 }
@@ -78,11 +69,7 @@ TEST_P(EmptyBytesRenderTest, FanWithoutTrianglesDrawsNothing) {
 INSTANTIATE_TEST_SUITE_P(AllStrategies,
                          EmptyBytesRenderTest,
                          ::testing::ValuesIn(allStrategies()),
-                         [](const auto& info) {
-                             std::string name(strategyName(info.param));
-                             std::replace(name.begin(), name.end(), '-', '_');
-                             return name;
-                         });
+                         [](const auto& info) { return test::strategyTestName(info.param); });
 
 }  // namespace
 }  // namespace encore::render

@@ -105,9 +105,8 @@ INSTANTIATE_TEST_SUITE_P(AllStrategies,
                          ::testing::Combine(::testing::ValuesIn(allStrategies()),
                                             ::testing::Range<std::size_t>(0, emptyCases().size())),
                          [](const auto& info) {
-                             std::string name(strategyName(std::get<0>(info.param)));
-                             std::replace(name.begin(), name.end(), '-', '_');
-                             return name + "_" + emptyCases()[std::get<1>(info.param)].name;
+                             return test::strategyTestName(std::get<0>(info.param)) + "_" +
+                                    emptyCases()[std::get<1>(info.param)].name;
                          });
 
 }  // namespace

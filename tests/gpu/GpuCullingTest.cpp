@@ -216,11 +216,7 @@ INSTANTIATE_TEST_SUITE_P(DirectAndBundled,
                          GpuCullingTest,
                          ::testing::Values(StrategyKind::GpuCulling,
                                            StrategyKind::GpuCullingBundles),
-                         [](const auto& info) {
-                             std::string name(strategyName(info.param));
-                             std::replace(name.begin(), name.end(), '-', '_');
-                             return name;
-                         });
+                         [](const auto& info) { return test::strategyTestName(info.param); });
 
 // Dawn's indirect-draw validation zeroes any draw whose firstInstance is non-zero unless the
 // device has IndirectFirstInstance (Encore does not request it). The draw vanishes without an

@@ -128,9 +128,8 @@ INSTANTIATE_TEST_SUITE_P(DirectAndBundled,
                                                               StrategyKind::GpuCullingBundles),
                                             ::testing::Values(1u, 4u)),
                          [](const auto& info) {
-                             std::string name(strategyName(std::get<0>(info.param)));
-                             std::replace(name.begin(), name.end(), '-', '_');
-                             return name + "_" + std::to_string(std::get<1>(info.param)) + "x";
+                             return test::strategyTestName(std::get<0>(info.param)) + "_" +
+                                    std::to_string(std::get<1>(info.param)) + "x";
                          });
 
 // The benchmark scenes: every frame along their camera paths, moving a little each frame as a

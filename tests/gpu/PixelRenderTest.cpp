@@ -176,11 +176,7 @@ TEST_P(PixelRenderTest, NearerQuadWinsWhateverTheDrawOrder) {
 INSTANTIATE_TEST_SUITE_P(AllStrategies,
                          PixelRenderTest,
                          ::testing::ValuesIn(allStrategies()),
-                         [](const auto& info) {
-                             std::string name(strategyName(info.param));
-                             std::replace(name.begin(), name.end(), '-', '_');
-                             return name;
-                         });
+                         [](const auto& info) { return test::strategyTestName(info.param); });
 
 }  // namespace
 }  // namespace encore::render

@@ -138,11 +138,7 @@ INSTANTIATE_TEST_SUITE_P(DirectAndBundled,
                          TriangleCountTest,
                          ::testing::Values(StrategyKind::GpuCulling,
                                            StrategyKind::GpuCullingBundles),
-                         [](const auto& info) {
-                             std::string name(strategyName(info.param));
-                             std::replace(name.begin(), name.end(), '-', '_');
-                             return name;
-                         });
+                         [](const auto& info) { return test::strategyTestName(info.param); });
 
 // Strategies without GPU culling submit what they draw and have no drawn count; they submit as
 // many triangles as the culling strategies.

@@ -349,4 +349,17 @@ std::vector<std::uint8_t> makeGlb(const std::string& jsonText, std::span<const s
     return bytes;
 }
 
+GltfBuilder fanWithoutTriangles() {
+    GltfBuilder builder;
+    const auto positions = builder.addPositions({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+    // NORMAL given: without it, flat normals are generated and the fan is drawn unindexed.
+    const auto normals = builder.addNormals({{0, 0, 1}, {0, 0, 1}, {0, 0, 1}});
+    const auto indices = builder.addIndices(std::vector<std::uint16_t>{0, 1});
+    const auto mesh = builder.addMesh({.attributes = {{"POSITION", positions}, {"NORMAL", normals}},
+                                       .indices = indices,
+                                       .mode = 6});
+    builder.addScene({builder.addNode({.mesh = mesh})});
+    return builder;
+}
+
 }  // namespace encore::test

@@ -175,6 +175,10 @@ class GltfBuilder {
     std::vector<std::uint8_t> mBuffer;
 };
 
+// A triangle fan (mode 6) of two indices, with its own NORMAL: no triangle, so the loader
+// rewrites its indices into a count-0 accessor in a new, empty buffer (issue 32's case).
+GltfBuilder fanWithoutTriangles();
+
 // Builds GLB bytes from JSON text and an optional BIN chunk (no validation: tests corrupt them).
 std::vector<std::uint8_t> makeGlb(const std::string& jsonText,
                                   std::span<const std::uint8_t> bin = {});

@@ -80,6 +80,12 @@ std::uint8_t linearToSrgb8(double linear) {
     return static_cast<std::uint8_t>(std::lround(encoded * 255.0));
 }
 
+std::string strategyTestName(render::StrategyKind kind) {
+    std::string name(render::strategyName(kind));
+    std::replace(name.begin(), name.end(), '-', '_');
+    return name;
+}
+
 std::string ModelVariant::testName() const {
     std::string name = model + "_" + variant;
     std::replace(name.begin(), name.end(), '-', '_');

@@ -14,6 +14,7 @@
 
 #include "encore/gpu/Context.h"
 #include "encore/image/ImageCodec.h"
+#include "encore/render/StrategyKind.h"
 #include "encore/scene/SceneData.h"
 #include "scene/SceneGenerator.h"
 
@@ -33,6 +34,9 @@ gpu::Context* vulkanContext();
 using Rgba = std::array<std::uint8_t, 4>;
 
 Rgba pixelAt(const image::ImageRgba8& image, std::uint32_t x, std::uint32_t y);
+
+// A strategy's name as a GoogleTest parameter name ("gpu-culling" -> "gpu_culling").
+std::string strategyTestName(render::StrategyKind kind);
 std::string describe(const Rgba& color);
 
 // Largest per-channel difference.
