@@ -6,6 +6,8 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include <cstddef>
+#include <optional>
 #include <string>
 
 #include "encore/core/Result.h"
@@ -29,7 +31,14 @@ enum ExitCode : int {
 struct GlobalOptions {
     bool verbose = false;
     bool allowNullBackend = false;
+    // --device N: the adapter of `encore info`'s list to render on; unset: ENCORE_DEVICE when
+    // the environment sets it, otherwise 0 (the adapter Dawn prefers).
+    std::optional<std::size_t> device;
 };
+
+// The adapter index the global options and the environment name (GlobalOptions::device), or
+// a usage error when ENCORE_DEVICE is not a number.
+Result<std::size_t> chosenDevice(const GlobalOptions& global);
 
 // Prints "error: <message>" and returns the exit code for the error's code.
 int reportError(const Error& error);
@@ -37,8 +46,11 @@ int reportError(const Error& error);
 // Loads a model and prints its warnings ("warning: ...").
 Result<scene::SceneData> loadModel(const std::string& path, const scene::LoadOptions& options);
 
-// Creates the GPU context the global options ask for; prints the adapter with --verbose.
-Result<gpu::Context> createContext(const GlobalOptions& global, bool timestamps = false);
+// Creates the GPU context the global options ask for (on their device); prints the adapter with
+// --verbose. `device` overrides the global choice (encore batch --devices).
+Result<gpu::Context> createContext(const GlobalOptions& global,
+                                   bool timestamps = false,
+                                   std::optional<std::size_t> device = std::nullopt);
 
 // Called once the scene is prepared. Tests of device loss set ENCORE_TEST_FORCE_DEVICE_LOSS: the
 // commands then lose their device on purpose (Dawn's Device::ForceLoss). Tests of running out

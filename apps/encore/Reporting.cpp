@@ -2,6 +2,7 @@
 #include <cstdlib>
 
 #include "Commands.h"
+#include "DeviceOptions.h"
 
 namespace encore::app {
 
@@ -45,8 +46,27 @@ void injectFaultsForTests(gpu::Context& context) {
     }
 }
 
-Result<gpu::Context> createContext(const GlobalOptions& global, bool timestamps) {
+Result<std::size_t> chosenDevice(const GlobalOptions& global) {
+    if (global.device) {
+        return *global.device;
+    }
+    const char* variable = std::getenv("ENCORE_DEVICE");
+    if (!variable || !*variable) {
+        return std::size_t{0};
+    }
+    ENCORE_TRY_ASSIGN(auto index, parseDeviceIndex(variable));
+    return index;
+}
+
+Result<gpu::Context> createContext(const GlobalOptions& global,
+                                   bool timestamps,
+                                   std::optional<std::size_t> device) {
     gpu::ContextOptions options;
+    if (device) {
+        options.adapterIndex = *device;
+    } else {
+        ENCORE_TRY_ASSIGN(options.adapterIndex, chosenDevice(global));
+    }
     options.allowNullBackend = global.allowNullBackend;
     options.timestamps = timestamps;
     auto context = gpu::Context::create(options);

@@ -33,6 +33,13 @@ int main(int argc, char** argv) {
     app.add_flag("-v,--verbose", global.verbose, "Print the adapter and per-frame details");
     app.add_flag("--allow-null-backend", global.allowNullBackend,
                  "Accept Dawn's Null backend (validation only: images stay blank)");
+    app.add_option("--device", global.device,
+                   "The adapter to render on, by its index in `encore info` (default: "
+                   "$ENCORE_DEVICE, else 0, the adapter Dawn prefers)")
+        ->check(CLI::NonNegativeNumber)
+        ->type_name("N");
+    // Global options may follow the subcommand: `encore render --device 1 model.glb`.
+    app.fallthrough();
 
     int exitCode = kExitOk;
     addRenderCommand(app, global, exitCode);

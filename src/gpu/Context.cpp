@@ -6,6 +6,7 @@
 #include <string_view>
 
 #include "core/Log.h"
+#include "gpu/AdapterEnumeration.h"
 #include "gpu/OutOfMemoryScope.h"
 
 namespace encore::gpu {
@@ -45,19 +46,6 @@ std::string errorTypeName(wgpu::ErrorType type) {
     }
 }
 
-std::string adapterTypeName(wgpu::AdapterType type) {
-    switch (type) {
-        case wgpu::AdapterType::DiscreteGPU:
-            return "discrete GPU";
-        case wgpu::AdapterType::IntegratedGPU:
-            return "integrated GPU";
-        case wgpu::AdapterType::CPU:
-            return "CPU";
-        default:
-            return "unknown type";
-    }
-}
-
 }  // namespace
 
 std::string backendName(wgpu::BackendType backend) {
@@ -83,6 +71,19 @@ std::string backendName(wgpu::BackendType backend) {
     }
 }
 
+std::string adapterTypeName(wgpu::AdapterType type) {
+    switch (type) {
+        case wgpu::AdapterType::DiscreteGPU:
+            return "discrete GPU";
+        case wgpu::AdapterType::IntegratedGPU:
+            return "integrated GPU";
+        case wgpu::AdapterType::CPU:
+            return "CPU";
+        default:
+            return "unknown type";
+    }
+}
+
 std::string AdapterDescription::summary() const {
     std::string text = name + ", " + backendName(backend) + ", " + adapterTypeName(adapterType);
     if (!driver.empty()) {
@@ -105,64 +106,57 @@ Context::~Context() {
 Result<Context> Context::create(const ContextOptions& options) {
     Context context;
     context.mErrors = std::make_shared<ErrorLog>();
-
-    static constexpr auto kTimedWaitAny = wgpu::InstanceFeatureName::TimedWaitAny;
-    wgpu::InstanceDescriptor instanceDescriptor{};
-    instanceDescriptor.requiredFeatureCount = 1;
-    instanceDescriptor.requiredFeatures = &kTimedWaitAny;
-    context.mInstance = wgpu::CreateInstance(&instanceDescriptor);
-    if (!context.mInstance) {
-        return makeError(ErrorCode::NoAdapter, "Dawn could not create a WebGPU instance.");
-    }
-
     context.mOptions = options;
     ENCORE_TRY(context.acquireDevice());
     return context;
 }
 
-// Requests an adapter and a device on it. Used at creation and again after a device loss (a
-// WebGPU adapter hands out one device, so recovery asks for a new adapter too).
+Result<std::vector<AdapterDescription>> listAdapters(bool allowNullBackend) {
+    ENCORE_TRY_ASSIGN(auto enumerated, enumerateAdapters(allowNullBackend));
+    return std::move(enumerated.descriptions);
+}
+
+std::vector<std::size_t> adaptersLike(std::span<const AdapterDescription> adapters,
+                                      std::size_t first) {
+    std::vector<std::size_t> like;
+    if (first >= adapters.size()) {
+        return like;
+    }
+    for (const AdapterDescription& adapter : adapters) {
+        if (adapter.adapterType == adapters[first].adapterType &&
+            adapter.backend == adapters[first].backend) {
+            like.push_back(adapter.index);
+        }
+    }
+    return like;
+}
+
+// Takes adapter ContextOptions::adapterIndex of a new instance and requests a device on it.
+// Used at creation and again after a device loss (a WebGPU adapter hands out one device, so
+// recovery asks for a new adapter too).
 Result<void> Context::acquireDevice() {
     const ContextOptions& options = mOptions;
     mAdapter = nullptr;
     mDevice = nullptr;
     mQueue = nullptr;
-    wgpu::RequestAdapterOptions adapterOptions{};
-    adapterOptions.powerPreference = wgpu::PowerPreference::HighPerformance;
-    std::string adapterMessage;
-    mInstance.WaitAny(
-        mInstance.RequestAdapter(&adapterOptions, wgpu::CallbackMode::WaitAnyOnly,
-                                 [&](wgpu::RequestAdapterStatus status, wgpu::Adapter adapter,
-                                     wgpu::StringView message) {
-                                     if (status == wgpu::RequestAdapterStatus::Success) {
-                                         mAdapter = std::move(adapter);
-                                     } else {
-                                         adapterMessage = toString(message);
-                                     }
-                                 }),
-        UINT64_MAX);
-    if (!mAdapter) {
-        return makeError(
-            ErrorCode::NoAdapter,
-            "no Vulkan adapter found (Dawn found no adapter at all: " + adapterMessage + ").");
+    ENCORE_TRY_ASSIGN(auto enumerated, enumerateAdapters(options.allowNullBackend));
+    if (options.adapterIndex >= enumerated.adapters.size()) {
+        std::string names;
+        for (const AdapterDescription& adapter : enumerated.descriptions) {
+            names += (names.empty() ? "" : "; ") + std::to_string(adapter.index) + ": " +
+                     adapter.summary();
+        }
+        const std::size_t count = enumerated.adapters.size();
+        return makeError(ErrorCode::NoAdapter, "there is no device " +
+                                                   std::to_string(options.adapterIndex) +
+                                                   ": this machine has " + std::to_string(count) +
+                                                   " adapter" + (count == 1 ? "" : "s") + " (" +
+                                                   names + "); `encore info` lists them.");
     }
-
-    wgpu::AdapterInfo info;
-    mAdapter.GetInfo(&info);
-    auto& description = mAdapterDescription;
-    description.name = toString(info.device);
-    description.vendor = toString(info.vendor);
-    description.architecture = toString(info.architecture);
-    description.driver = toString(info.description);
-    description.backend = info.backendType;
-    description.adapterType = info.adapterType;
-    if (description.backend == wgpu::BackendType::Null && !options.allowNullBackend) {
-        return makeError(
-            ErrorCode::NoAdapter,
-            "no Vulkan adapter found (Dawn offered only its Null backend, which renders "
-            "nothing; install a Vulkan driver such as Mesa >= 25 lavapipe, or pass "
-            "--allow-null-backend for a validation-only run).");
-    }
+    mInstance = std::move(enumerated.instance);
+    mAdapter = std::move(enumerated.adapters[options.adapterIndex]);
+    mAdapterDescription = std::move(enumerated.descriptions[options.adapterIndex]);
+    const AdapterDescription& description = mAdapterDescription;
 
     std::vector<wgpu::FeatureName> features;
     std::vector<const char*> disabledToggles;

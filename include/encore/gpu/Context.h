@@ -9,9 +9,11 @@
 
 #include <webgpu/webgpu_cpp.h>
 
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -21,6 +23,9 @@
 namespace encore::gpu {
 
 struct ContextOptions {
+    // Which adapter of listAdapters() to use: 0, the first, is the one Dawn would offer by
+    // itself (the highest-performance Vulkan adapter).
+    std::size_t adapterIndex = 0;
     bool allowNullBackend = false;
     // Requests TimestampQuery when the adapter has it and disables Dawn's timestamp
     // quantization (~65 us granularity otherwise), for benchmarks.
@@ -32,7 +37,8 @@ struct ContextOptions {
 };
 
 struct AdapterDescription {
-    std::string name;  // e.g. "llvmpipe (LLVM 19.1.7, 256 bits)"
+    std::size_t index = 0;  // In listAdapters()' order: what ContextOptions::adapterIndex names.
+    std::string name;       // e.g. "llvmpipe (LLVM 19.1.7, 256 bits)"
     std::string vendor;
     std::string architecture;
     std::string driver;  // The driver description Dawn reports.
@@ -44,6 +50,18 @@ struct AdapterDescription {
 };
 
 std::string backendName(wgpu::BackendType backend);
+std::string adapterTypeName(wgpu::AdapterType type);  // "discrete GPU", "CPU", ...
+
+// Every adapter a Context may be created on, the one Dawn prefers first (discrete GPUs before
+// integrated ones before CPU renderers such as lavapipe): the Vulkan adapters, or with
+// `allowNullBackend` Dawn's Null adapter when there is no Vulkan one. Fails with NoAdapter when
+// the list would be empty.
+Result<std::vector<AdapterDescription>> listAdapters(bool allowNullBackend = false);
+
+// The indices of the adapters that `--devices all` uses: every adapter of the same type as the
+// first (all the GPUs of a GPU machine, without a CPU renderer it may also have).
+std::vector<std::size_t> adaptersLike(std::span<const AdapterDescription> adapters,
+                                      std::size_t first = 0);
 
 // How the CPU waits for the GPU (waitForIdle, timestamp and buffer read-backs). Spin polls
 // instead of sleeping in the driver: the core stays awake, so CPU work that follows a wait is
