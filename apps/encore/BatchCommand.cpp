@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "Commands.h"
+#include "DeviceOptions.h"
 #include "ShadingOptions.h"
 #include "StrategyOptions.h"
 #include "encore/batch/Batch.h"
@@ -43,6 +44,7 @@ struct BatchCommandOptions {
     std::size_t jobs = 0;
     std::uint64_t memoryLimitMiB = 2048;
     std::size_t renderers = batch::kDefaultRenderers;
+    std::string devices;  // --devices all|N,M,...; empty: the global device.
     bool quiet = false;
     ShadingOptions shading;
 };
@@ -127,6 +129,21 @@ void printGpuStages(const std::vector<gpu::StageTime>& stages, std::size_t model
     std::printf("%s%s\n", line.c_str(), sum);
 }
 
+// The adapters of --devices, or the one --device (or ENCORE_DEVICE) names.
+Result<std::vector<std::size_t>> batchDevices(const BatchCommandOptions& options,
+                                              const GlobalOptions& global) {
+    if (options.devices.empty()) {
+        ENCORE_TRY_ASSIGN(auto device, chosenDevice(global));
+        return std::vector<std::size_t>{device};
+    }
+    if (global.device) {
+        return makeError(ErrorCode::InvalidArgument,
+                         "--device and --devices exclude each other: --devices lists them all.");
+    }
+    ENCORE_TRY_ASSIGN(auto adapters, gpu::listAdapters(global.allowNullBackend));
+    return parseDeviceList(options.devices, adapters);
+}
+
 int runBatch(const BatchCommandOptions& options, const GlobalOptions& global) {
     batch::BatchOptions batchOptions;
     auto size = parseSize(options.size);
@@ -169,9 +186,25 @@ int runBatch(const BatchCommandOptions& options, const GlobalOptions& global) {
     }
     // -v times the GPU's stages: timestamps need the device feature, asked for only then.
     batchOptions.gpuTimestamps = global.verbose;
-    auto context = createContext(global, /*timestamps=*/global.verbose);
-    if (!context) {
-        return reportError(context.error());
+    auto devices = batchDevices(options, global);
+    if (!devices) {
+        return reportError(devices.error());
+    }
+    // One context (device) and one set of renderers per entry of --devices.
+    std::vector<gpu::Context> contexts;
+    contexts.reserve(devices->size());
+    for (std::size_t device : *devices) {
+        auto context = createContext(global, /*timestamps=*/global.verbose, device);
+        if (!context) {
+            return reportError(context.error());
+        }
+        contexts.push_back(std::move(*context));
+    }
+    std::vector<std::unique_ptr<batch::BatchRenderer>> renderers;
+    std::vector<batch::BatchRenderer*> deviceRenderers;
+    for (gpu::Context& context : contexts) {
+        renderers.push_back(std::make_unique<batch::BatchRenderer>(context));
+        deviceRenderers.push_back(renderers.back().get());
     }
 
     // A live line on a terminal; every few seconds on a pipe or a file; none with --quiet.
@@ -196,7 +229,7 @@ int runBatch(const BatchCommandOptions& options, const GlobalOptions& global) {
     batchOptions.stop = &gStopRequested;
     auto previousInt = std::signal(SIGINT, requestStop);
     auto previousTerm = std::signal(SIGTERM, requestStop);
-    auto summary = batch::runBatch(*context, *inputs, batchOptions);
+    auto summary = batch::runBatch(deviceRenderers, *inputs, batchOptions);
     std::signal(SIGINT, previousInt);
     std::signal(SIGTERM, previousTerm);
     if (terminal && !options.quiet) {
@@ -223,6 +256,13 @@ int runBatch(const BatchCommandOptions& options, const GlobalOptions& global) {
         stages.readback, stages.encode, stages.encodeCpu,
         options.jobs ? options.jobs
                      : std::size_t(std::max(1u, std::thread::hardware_concurrency())));
+    if (summary->devices.size() > 1 || global.verbose) {
+        for (const batch::DeviceSummary& device : summary->devices) {
+            std::printf("device %zu (%s): %llu models, %llu views\n", device.device,
+                        device.adapter.c_str(), static_cast<unsigned long long>(device.models),
+                        static_cast<unsigned long long>(device.views));
+        }
+    }
     if (global.verbose) {
         const render::PrepareTimes& parts = stages.uploadParts;
         const double sceneOther = parts.scene - parts.geometry - parts.instances - parts.materials;
@@ -326,6 +366,12 @@ void addBatchCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) 
                      "others (1: one after the other)")
         ->capture_default_str()
         ->check(CLI::Range(std::size_t{1}, batch::kMaxRenderers));
+    command
+        ->add_option("--devices", options->devices,
+                     "Render on several GPUs at once: all (every adapter like the first: the "
+                     "GPUs, not a CPU renderer beside them) or indices as `encore info` lists "
+                     "them (0,1,...; one listed twice gets two devices)")
+        ->type_name("all|N,M,...");
     command->add_flag("--normals", options->normals,
                       "Also write world-space normals per view (000_normal.png: n * 0.5 + 0.5)");
     command->add_flag("--depth", options->depth,

@@ -21,12 +21,14 @@ ModelLoader::ModelLoader(ThreadPool& pool,
                          std::span<const BatchInput> inputs,
                          const scene::LoadOptions& options,
                          std::uint64_t memoryLimitBytes,
-                         std::size_t ahead)
+                         std::size_t ahead,
+                         Order order)
     : mPool(&pool),
       mInputs(inputs),
       mOptions(options),
       mMemoryLimit(memoryLimitBytes),
-      mAhead(std::max<std::size_t>(ahead, 1)) {
+      mAhead(std::max<std::size_t>(ahead, 1)),
+      mOrder(order) {
     std::lock_guard lock(mMutex);
     startLoads();
 }
@@ -61,30 +63,40 @@ void ModelLoader::startLoads() {
     }
 }
 
-bool ModelLoader::nextReady() {
-    std::lock_guard lock(mMutex);
-    return mReady.contains(mNextToTake);
+bool ModelLoader::nextLoaded() const {
+    return mOrder == Order::InOrder ? mReady.contains(mNextToTake) : !mReady.empty();
 }
 
 bool ModelLoader::exhausted() {
     std::lock_guard lock(mMutex);
-    return mStopped || mNextToTake >= mInputs.size();
+    return mStopped || mTaken >= mInputs.size();
 }
 
 void ModelLoader::waitForNext(int milliseconds) {
     std::unique_lock lock(mMutex);
     mLoaded.wait_for(lock, std::chrono::milliseconds(milliseconds),
-                     [this] { return mReady.contains(mNextToTake); });
+                     [this] { return mStopped || nextLoaded(); });
+}
+
+std::optional<LoadedModel> ModelLoader::takeLoaded() {
+    if (mStopped || !nextLoaded()) {
+        return std::nullopt;
+    }
+    auto node =
+        mOrder == Order::InOrder ? mReady.extract(mNextToTake++) : mReady.extract(mReady.begin());
+    ++mTaken;
+    return std::move(node.mapped());
+}
+
+std::optional<LoadedModel> ModelLoader::tryTake() {
+    std::lock_guard lock(mMutex);
+    return takeLoaded();
 }
 
 std::optional<LoadedModel> ModelLoader::take() {
     std::unique_lock lock(mMutex);
-    if (mStopped || mNextToTake >= mInputs.size()) {
-        return std::nullopt;
-    }
-    mLoaded.wait(lock, [this] { return mReady.contains(mNextToTake); });
-    auto node = mReady.extract(mNextToTake++);
-    return std::move(node.mapped());
+    mLoaded.wait(lock, [this] { return mStopped || mTaken >= mInputs.size() || nextLoaded(); });
+    return takeLoaded();
 }
 
 void ModelLoader::release(std::uint64_t bytes) {
@@ -96,6 +108,7 @@ void ModelLoader::release(std::uint64_t bytes) {
 void ModelLoader::stop() {
     std::lock_guard lock(mMutex);
     mStopped = true;
+    mLoaded.notify_all();
 }
 
 void ModelLoader::finish() {

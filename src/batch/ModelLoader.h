@@ -35,17 +35,23 @@ class ModelLoader {
   public:
     // Loads `inputs` (which must outlive the loader) in their order. Call finish() before the
     // loader goes away.
+    // InOrder: models are taken in the order of `inputs`. AsLoaded: whichever has loaded, the
+    // earliest first, so that one slow load holds up none of several takers (device threads).
+    enum class Order { InOrder, AsLoaded };
+
     ModelLoader(ThreadPool& pool,
                 std::span<const BatchInput> inputs,
                 const scene::LoadOptions& options,
                 std::uint64_t memoryLimitBytes,
-                std::size_t ahead);
+                std::size_t ahead,
+                Order order = Order::InOrder);
 
-    // Whether the next model in order has been loaded (take() will not block).
-    bool nextReady();
     // Whether every model was taken, or stop() was called.
     bool exhausted();
-    // The next model in order, waiting for it; nullopt when every model was taken or stop()
+    // The next model (as Order says) when it has loaded; nullopt otherwise, or when every model
+    // was taken or stop() was called. Any thread may call it.
+    std::optional<LoadedModel> tryTake();
+    // The same, waiting for the next model to load; nullopt when every model was taken or stop()
     // was called.
     std::optional<LoadedModel> take();
     // Waits up to `milliseconds` for the next model to load.
@@ -59,18 +65,23 @@ class ModelLoader {
 
   private:
     void startLoads();  // Called with mMutex held.
+    // Called with mMutex held.
+    bool nextLoaded() const;
+    std::optional<LoadedModel> takeLoaded();
 
     ThreadPool* mPool;
     std::span<const BatchInput> mInputs;
     scene::LoadOptions mOptions;
     std::uint64_t mMemoryLimit;
     std::size_t mAhead;
+    Order mOrder;
 
     std::mutex mMutex;
     std::condition_variable mLoaded;
     std::map<std::size_t, LoadedModel> mReady;
     std::size_t mNextToStart = 0;
-    std::size_t mNextToTake = 0;
+    std::size_t mNextToTake = 0;  // InOrder: the next to take.
+    std::size_t mTaken = 0;
     std::size_t mRunning = 0;
     std::uint64_t mBytesHeld = 0;  // Loaded, not yet released.
     bool mStopped = false;

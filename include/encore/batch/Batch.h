@@ -2,14 +2,16 @@
 
 // Renders collections of glTF models from fixed or random viewpoints into a dataset folder:
 // for each model OUT/<name>/000.png ... (RGBA, straight alpha, transparent background by
-// default) and OUT/<name>/transforms.json (TransformsJson.h), on one device.
+// default) and OUT/<name>/transforms.json (TransformsJson.h), on one device or several.
 //
 // It is a pipeline, not a loop: models are parsed and their images decoded on a thread pool
 // ahead of the GPU (as far as BatchOptions::memoryLimitBytes allows), several renderers take
 // the models in turn so that the next model uploads while the GPU draws the previous ones
 // (BatchOptions::renderers), the views of a model are drawn side by side into one wide target
 // (Renderer::renderViews) and read back through a ring of staging buffers with mapAsync, and
-// PNG encoding runs on the pool while the GPU goes on.
+// PNG encoding runs on the pool while the GPU goes on. With several devices, each has its own
+// device thread and renderers (DeviceLane.h); they share the pool, the output folder and the
+// failure log, and each takes whichever model has loaded next.
 //
 // Nothing is lost and nothing half-written (ModelOutput.h): finished models are skipped, so a
 // run stopped at any moment resumes where it stopped. Bad input never stops the batch: a model
@@ -21,6 +23,8 @@
 #include <functional>
 #include <optional>
 #include <span>
+#include <string>
+#include <vector>
 
 #include "encore/batch/BatchInputs.h"
 #include "encore/batch/BatchRenderer.h"
@@ -73,10 +77,21 @@ struct BatchProgress {
     std::size_t done() const { return rendered + failed + skipped; }
 };
 
+// What one device of a batch did.
+struct DeviceSummary {
+    std::string adapter;       // gpu::AdapterDescription::summary().
+    std::size_t device = 0;    // Its index (gpu::listAdapters).
+    std::uint64_t models = 0;  // Models it uploaded (failed ones too).
+    std::uint64_t views = 0;   // Views it drew.
+};
+
 struct BatchSummary : BatchProgress {
     bool interrupted = false;  // BatchOptions::stop was set: models were left unrendered.
+    // The device threads' stages are summed over the devices (with several, the sums may exceed
+    // the wall time).
     StageTimes stages;
-    std::vector<Failure> failures;  // As failures.jsonl lists them.
+    std::vector<DeviceSummary> devices;  // One per device, in the order they were given.
+    std::vector<Failure> failures;       // As failures.jsonl lists them.
 };
 
 // Four: on the H100 at 4x multisampling, three left the device thread waiting for the GPU
@@ -155,6 +170,13 @@ Result<BatchSummary> runBatch(gpu::Context& context,
 // options allow (BatchRenderer.h); what this run builds is kept in it for the next. The images
 // are the same either way.
 Result<BatchSummary> runBatch(BatchRenderer& renderers,
+                              std::span<const BatchInput> inputs,
+                              const BatchOptions& options);
+// The same on several devices at once, each BatchRenderer on its own context (device): a device
+// thread each, one pool, one output folder. Every model is rendered once, by whichever device
+// is free, and its files are byte for byte those one device writes (on devices of one kind:
+// two drivers may round differently). Fails when a device's renderers cannot be created.
+Result<BatchSummary> runBatch(std::span<BatchRenderer* const> devices,
                               std::span<const BatchInput> inputs,
                               const BatchOptions& options);
 

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <future>
 
@@ -79,6 +80,36 @@ TEST(ModelLoaderTest, ModelsLargerThanTheLimitLoadOneAhead) {
         held = std::move(next);
     }
     loader.release(held->bytes);
+    loader.finish();
+}
+
+// Several device threads take models as they load: each model goes to exactly one of them.
+TEST(ModelLoaderTest, ThreadsTakingAsLoadedGetEveryModelOnce) {
+    const auto inputs = generatedInputs("model-loader-as-loaded", 6);
+    ThreadPool pool(2);
+    ModelLoader loader(pool, inputs, {}, std::uint64_t{1} << 30, 3, ModelLoader::Order::AsLoaded);
+    const auto takeAll = [&] {
+        std::vector<std::size_t> taken;
+        const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+        while (!loader.exhausted() && std::chrono::steady_clock::now() < deadline) {
+            if (auto loaded = loader.tryTake()) {
+                taken.push_back(loaded->order);
+                loader.release(loaded->bytes);
+            } else {
+                loader.waitForNext(10);
+            }
+        }
+        return taken;
+    };
+    auto first = std::async(std::launch::async, takeAll);
+    auto second = std::async(std::launch::async, takeAll);
+    std::vector<std::size_t> all = first.get();
+    const std::vector<std::size_t> others = second.get();
+    all.insert(all.end(), others.begin(), others.end());
+    std::sort(all.begin(), all.end());
+    // Six generated models and the absent file (a failed load is a model too).
+    EXPECT_EQ(all, (std::vector<std::size_t>{0, 1, 2, 3, 4, 5, 6}));
+    EXPECT_FALSE(loader.tryTake());
     loader.finish();
 }
 

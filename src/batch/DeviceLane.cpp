@@ -1,0 +1,386 @@
+#include "batch/DeviceLane.h"
+
+#include <algorithm>
+#include <chrono>
+#include <string>
+
+#include "batch/ModelOutput.h"
+#include "core/Elapsed.h"
+#include "render/StagedImages.h"
+
+namespace encore::batch {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+Error lostWhileDrawing() {
+    return makeError(ErrorCode::DeviceError,
+                     "The GPU device was lost while the model's views were drawn.");
+}
+
+Error deviceNotRecreated() {
+    return makeError(ErrorCode::DeviceError,
+                     "The GPU device was lost and could not be created again.");
+}
+
+// A directional light shining straight down, placed by no node.
+void addTopLight(scene::SceneData& scene, float lux) {
+    scene::Light light;
+    light.name = "encore batch top light";
+    light.type = scene::LightType::Directional;
+    light.intensity = lux;
+    scene::LightInstance placed;
+    placed.light = scene::LightId(scene.lights.size());
+    placed.direction = glm::vec3(0.0f, -1.0f, 0.0f);
+    scene.lights.push_back(light);
+    scene.lightInstances.push_back(placed);
+}
+
+}  // namespace
+
+Result<void> DeviceLane::createRenderers() {
+    const BatchOptions& options = mShared.options;
+    mLayout = stripLayout(options.width, options.height, options.views.views, mContext.limits());
+    render::RendererOptions rendererOptions = options.renderer;
+    rendererOptions.target = {mLayout.targetWidth(), mLayout.height, options.samples};
+    rendererOptions.culling.levelsOfDetail = options.lodErrorPixels > 0.0f;
+    if (rendererOptions.culling.levelsOfDetail) {
+        rendererOptions.culling.lodErrorPixels = options.lodErrorPixels;
+    }
+    rendererOptions.keepPipelines = true;  // Models share most pipelines: create each once.
+    // Normal images have a transparent background whatever the colour images have.
+    rendererOptions.target.hdr = options.images.normals || options.images.depth;
+    // collectRenderer makes sure the GPU is done with a renderer's scene before it prepares.
+    rendererOptions.prepareWaitsForIdle = false;
+    mRing = nullptr;
+    mRenderers.clear();
+    // The renderers of an earlier run when they were built from the same options; they light
+    // with one environment.
+    ENCORE_TRY(mBatchRenderer.acquire(rendererOptions, options.readbackSlots, options.renderers));
+    for (std::size_t i = 0; i < mBatchRenderer.rendererCount(); ++i) {
+        mRenderers.push_back({&mBatchRenderer.renderer(i), {}});
+    }
+    mRing = &mBatchRenderer.ring();
+    mStaging = std::make_shared<gpu::StagingBuffers>(mContext);
+    mTimestamps.reset();
+    if (options.gpuTimestamps) {
+        mTimestamps = gpu::StageTimestamps::create(mContext, render::kGpuStageCount);
+    }
+    for (RendererSlot& slot : mRenderers) {
+        slot.renderer->setStageTimestamps(mTimestamps ? &*mTimestamps : nullptr);
+    }
+    return {};
+}
+
+void DeviceLane::finishTimestamps() {
+    for (RendererSlot& slot : mRenderers) {
+        slot.renderer->setStageTimestamps(nullptr);  // The renderers may outlive this run.
+    }
+    if (!mTimestamps) {
+        return;
+    }
+    mTimestamps->finish();
+    const std::vector<gpu::StageTime>& measured = mTimestamps->totals();
+    mGpuStageTotals.resize(measured.size());
+    for (std::size_t stage = 0; stage < measured.size(); ++stage) {
+        mGpuStageTotals[stage].milliseconds += measured[stage].milliseconds;
+        mGpuStageTotals[stage].timed += measured[stage].timed;
+        mGpuStageTotals[stage].untimed += measured[stage].untimed;
+    }
+    mTimestamps.reset();
+}
+
+void DeviceLane::collectOldest() {
+    ChunkInFlight chunk = std::move(mChunks.front());
+    mChunks.pop_front();
+    auto finished = mRing->takeOldestMapped();
+    if (!finished) {
+        chunk.job->fail(mShared.failures, mShared.counters, "render", finished.error());
+        recoverIfLost();
+        return;
+    }
+    mStages.gpu += finished->waitMilliseconds / 1000.0;
+    const auto start = Clock::now();
+    if (!chunk.job->failed) {
+        // The pool crops the strips straight out of the mapped buffer: the device thread copies
+        // nothing, and the ring unmaps the buffer once the last strip is cropped.
+        auto wide = std::make_shared<const gpu::MappedReadback>(std::move(*finished));
+        mShared.writer.writeViews(chunk.job, chunk.first, chunk.count, chunk.kind, std::move(wide));
+    }
+    mStages.readback += secondsSince(start);
+}
+
+void DeviceLane::collectRenderer(std::size_t slot) {
+    // The ring reads back in submission order: once the last read of the renderer's views is
+    // taken, the GPU has finished everything the renderer submitted before it.
+    const auto drewLast = [&] {
+        return std::any_of(mChunks.begin(), mChunks.end(),
+                           [&](const ChunkInFlight& chunk) { return chunk.renderer == slot; });
+    };
+    while (drewLast()) {
+        collectOldest();
+    }
+}
+
+void DeviceLane::releasePrepared(RendererSlot& slot) {
+    if (slot.prepared) {
+        mShared.loader.release(slot.prepared->bytes);
+        slot.prepared.reset();
+    }
+}
+
+void DeviceLane::collectReady() {
+    while (!mChunks.empty() && mRing->oldestReady()) {
+        collectOldest();
+    }
+}
+
+void DeviceLane::recoverIfLost() {
+    if (!mContext.deviceLost()) {
+        return;
+    }
+    // Every read-back in flight belongs to the lost device: those models fail too.
+    while (!mChunks.empty()) {
+        collectOldest();
+    }
+    ++mDevicesLost;
+    finishTimestamps();
+    for (RendererSlot& slot : mRenderers) {
+        releasePrepared(slot);
+    }
+    mRenderers.clear();  // renderModel fails every later model's upload when none is left.
+    mRing = nullptr;
+    mBatchRenderer.discard();  // Built on the lost device.
+    if (auto recreated = mContext.recreateDevice(); recreated) {
+        (void)createRenderers();
+    }
+}
+
+void DeviceLane::renderChunk(const TargetViews& views, ViewImage kind, double& waiting) {
+    const auto& [job, slot, cameras, first, count] = views;
+    if (mRing->full()) {
+        const auto waitStart = Clock::now();
+        const std::uint64_t device = mDevicesLost;
+        collectOldest();
+        waiting += secondsSince(waitStart);
+        if (device != mDevicesLost) {
+            job->fail(mShared.failures, mShared.counters, "render", lostWhileDrawing());
+            return;
+        }
+    }
+    render::Renderer& renderer = *mRenderers[slot].renderer;
+    renderer.renderViews(cameras);
+    if (kind == ViewImage::Color) {
+        mViewsDrawn += count;
+    }
+    auto enqueued =
+        mRing->enqueue(renderer.target().colorTexture(), mTimestamps ? &*mTimestamps : nullptr,
+                       render::gpuStageIndex(render::GpuStage::ReadbackCopy));
+    if (!enqueued) {
+        job->fail(mShared.failures, mShared.counters, "render", enqueued.error());
+        return;
+    }
+    mChunks.push_back({job, slot, first, count, kind});
+}
+
+void DeviceLane::renderDebugChannel(const std::shared_ptr<ModelJob>& job,
+                                    render::Renderer& renderer,
+                                    render::DebugChannel channel,
+                                    const std::function<void()>& draw) {
+    const std::uint64_t device = mDevicesLost;
+    // After a device loss inside draw() the renderer is gone: nothing to switch back.
+    const auto rendererAlive = [&] { return device == mDevicesLost; };
+    if (auto drawn = drawDebugChannel(renderer, channel, draw, rendererAlive); !drawn) {
+        job->fail(mShared.failures, mShared.counters, "render", drawn.error());
+    }
+}
+
+void DeviceLane::renderDepth(const TargetViews& views, float unitsPerModelUnit, double& waiting) {
+    const auto& [job, slot, cameras, first, count] = views;
+    render::Renderer& renderer = *mRenderers[slot].renderer;
+    renderer.renderViews(cameras);
+    // The HDR target holds the depth itself (the channel writes it as colour); read back now,
+    // waiting, since depth images are the exception.
+    const auto start = Clock::now();
+    auto wide = renderer.readHdrImage();
+    mStages.gpu += secondsSince(start);
+    waiting += secondsSince(start);
+    if (!wide) {
+        job->fail(mShared.failures, mShared.counters, "render", wide.error());
+        return;
+    }
+    mShared.writer.writeDepthViews(job, first, count, *wide, mLayout.targetWidth(),
+                                   unitsPerModelUnit);
+}
+
+void DeviceLane::renderModel(LoadedModel& loaded) {
+    const BatchInput& input = mShared.pending[loaded.order];
+    auto job = std::make_shared<ModelJob>();
+    job->input = &input;
+    job->folder = modelFolder(mShared.options.output, input.name);
+    // Fails the model before any renderer holds it: its bytes go back to the loader.
+    const auto failBeforeUpload = [&](const char* stage, const Error& error) {
+        job->fail(mShared.failures, mShared.counters, stage, error);
+        mShared.loader.release(loaded.bytes);
+    };
+    if (!loaded.scene) {
+        failBeforeUpload("load", loaded.scene.error());
+        return;
+    }
+    if (mRenderers.empty()) {
+        failBeforeUpload("upload", deviceNotRecreated());
+        return;
+    }
+    if (auto opened = openModelFolder(job->folder); !opened) {
+        failBeforeUpload("write", opened.error());
+        return;
+    }
+
+    // The pool copies the images into staging buffers while this thread waits for the
+    // renderer below: prepare then only records copies (StagedImages.h).
+    const auto stagingStart = Clock::now();
+    const std::unique_ptr<render::StagedImages> staged = render::StagedImages::stage(
+        mContext.device(), *loaded.scene, mContext.limits().maxTextureDimension2D,
+        [this](std::function<void()> copy) { mShared.pool.submitFirst(std::move(copy)); },
+        mStaging);
+    mStages.staging += secondsSince(stagingStart);
+    mStages.upload += secondsSince(stagingStart);
+
+    // The renderer that drew the oldest model in flight prepares this one, while the GPU may
+    // still draw the later ones with the others. Its own views must be read back first:
+    // preparing frees its scene. (collectOldest counts the wait as the GPU's.)
+    const std::size_t slotIndex = mModelsPrepared++ % mRenderers.size();
+    collectRenderer(slotIndex);
+    collectReady();
+    if (mRenderers.empty()) {
+        // Collecting found the device lost and could not create it again.
+        failBeforeUpload("upload", deviceNotRecreated());
+        return;
+    }
+
+    if (mShared.options.topLightLux > 0.0f) {
+        addTopLight(*loaded.scene, mShared.options.topLightLux);
+    }
+
+    // The renderer refers to the scene it prepared until the next prepare: keep that one alive
+    // until now, and this one until the renderer's next model.
+    const auto uploadStart = Clock::now();
+    RendererSlot& slot = mRenderers[slotIndex];
+    render::Renderer& renderer = *slot.renderer;
+    const scene::SceneData& scene = *loaded.scene;
+    auto prepared =
+        renderer.prepare(scene, mShared.strategy.kind, mShared.strategy.bundle, staged.get());
+    releasePrepared(slot);
+    slot.prepared = std::move(loaded);
+    if (prepared) {
+        prepared = mContext.checkNoErrors("Preparing '" + scene.sourcePath.string() + "'");
+    }
+    mStages.upload += secondsSince(uploadStart);
+    mStages.uploadParts += renderer.prepareTimes();
+    if (!prepared) {
+        job->fail(mShared.failures, mShared.counters, "upload", prepared.error());
+        mContext.takeErrors();
+        recoverIfLost();
+        return;
+    }
+
+    const ViewRigOptions& rig = mShared.options.views;
+    job->cameraToWorld = viewMatrices(rig);
+    job->remaining = std::uint32_t(job->cameraToWorld.size()) * mShared.options.images.perView();
+    const glm::mat4 toUnitBox = normalization(scene.bounds, rig.normalize);
+    const float fov = glm::radians(rig.horizontalFovDegrees);
+    const auto renderStart = Clock::now();
+    double renderWaiting = 0.0;
+    for (std::uint32_t first = 0; first < job->cameraToWorld.size(); first += mLayout.strips) {
+        const std::uint32_t count = std::min<std::uint32_t>(
+            mLayout.strips, std::uint32_t(job->cameraToWorld.size()) - first);
+        const std::vector<render::Camera> cameras =
+            stripCameras(job->cameraToWorld, first, mLayout, toUnitBox, fov);
+        const TargetViews views{job, slotIndex, cameras, first, count};
+        renderChunk(views, ViewImage::Color, renderWaiting);
+        if (mShared.options.images.normals && !job->failed) {
+            renderDebugChannel(job, renderer, render::DebugChannel::Normal,
+                               [&] { renderChunk(views, ViewImage::Normal, renderWaiting); });
+        }
+        if (mShared.options.images.depth && !job->failed) {
+            renderDebugChannel(job, renderer, render::DebugChannel::Depth,
+                               [&] { renderDepth(views, toUnitBox[0][0], renderWaiting); });
+        }
+        if (job->failed) {
+            break;
+        }
+    }
+    if (auto clean = mContext.checkNoErrors("Rendering '" + scene.sourcePath.string() + "'");
+        !clean) {
+        job->fail(mShared.failures, mShared.counters, "render", clean.error());
+        mContext.takeErrors();
+        recoverIfLost();
+    }
+    if (mTimestamps) {
+        mTimestamps->flush();  // Every pass of the model is submitted: its mips and views.
+    }
+    mStages.render += secondsSince(renderStart) - renderWaiting;
+}
+
+void DeviceLane::run(const std::function<void()>& idle) {
+    ModelLoader& loader = mShared.loader;
+    while (true) {
+        if (mShared.stopRequested()) {
+            loader.stop();
+            break;
+        }
+        std::optional<LoadedModel> loaded = loader.tryTake();
+        if (!loaded) {
+            // Keep the device thread useful while the next model loads: hand finished views on.
+            if (!mChunks.empty()) {
+                collectOldest();
+                continue;
+            }
+            if (loader.exhausted()) {
+                break;
+            }
+            loader.waitForNext(100);
+            idle();
+            continue;
+        }
+        {
+            std::lock_guard lock(mShared.counters.mutex);
+            mShared.counters.load += loaded->seconds;
+            mShared.counters.loadCpu += loaded->cpuSeconds;
+        }
+        renderModel(*loaded);
+        collectReady();
+        idle();
+    }
+    while (!mChunks.empty()) {
+        collectOldest();
+    }
+}
+
+void DeviceLane::finish() {
+    finishTimestamps();
+    // The renderers may serve later runs (BatchRenderer): they must not refer to the scenes
+    // freed here, nor hold those scenes' GPU memory.
+    for (RendererSlot& slot : mRenderers) {
+        slot.renderer->releaseScene();
+        slot.prepared.reset();
+    }
+    mRenderers.clear();
+}
+
+StageTimes DeviceLane::stages() const {
+    StageTimes stages = mStages;
+    stages.gpuStages = mGpuStageTotals;
+    return stages;
+}
+
+DeviceSummary DeviceLane::summary() const {
+    DeviceSummary summary;
+    summary.adapter = mContext.adapterDescription().summary();
+    summary.device = mContext.adapterDescription().index;
+    summary.models = mModelsPrepared;
+    summary.views = mViewsDrawn;
+    return summary;
+}
+
+}  // namespace encore::batch

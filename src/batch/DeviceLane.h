@@ -1,0 +1,138 @@
+#pragma once
+
+// One device's part of a batch (Batch.h): the thread that takes loaded models, uploads them to
+// its renderers, draws their views and reads them back, handing the images to the writer. A
+// batch on several devices runs one lane per device, each on its own thread; they share the
+// loader, the pool, the writer, the failure log and the counters (BatchShared).
+
+#include <chrono>
+#include <cstdint>
+#include <deque>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "batch/ModelLoader.h"
+#include "batch/ModelWriter.h"
+#include "batch/ViewStrips.h"
+#include "core/ThreadPool.h"
+#include "encore/batch/Batch.h"
+#include "encore/batch/BatchRenderer.h"
+#include "encore/batch/FailureLog.h"
+#include "encore/gpu/StageTimestamps.h"
+#include "encore/gpu/TextureReadbackRing.h"
+#include "gpu/StagingBuffers.h"
+
+namespace encore::batch {
+
+// What every lane of a batch uses; owned by the batch's run, which outlives its lanes.
+struct BatchShared {
+    const BatchOptions& options;
+    render::StrategyChoice strategy;      // BatchOptions::strategy, or its default.
+    std::span<const BatchInput> pending;  // Not finished by an earlier run, in load order.
+    ThreadPool& pool;
+    FailureLog& failures;
+    SharedCounters& counters;
+    ModelWriter& writer;
+    ModelLoader& loader;
+
+    bool stopRequested() const { return options.stop && options.stop->load(); }
+};
+
+// Views [first, first + count) of a model, drawn side by side in one read-back (ViewStrips.h).
+struct ChunkInFlight {
+    std::shared_ptr<ModelJob> job;
+    std::size_t renderer = 0;  // Which of the lane's renderers drew them.
+    std::uint32_t first = 0;
+    std::uint32_t count = 0;
+    ViewImage kind = ViewImage::Color;
+};
+
+// One of the renderers that take models in turn, and the scene it last prepared: the renderer
+// refers to that scene (and the loader's bytes behind it) until it prepares the next one.
+struct RendererSlot {
+    render::Renderer* renderer = nullptr;  // Owned by the lane's BatchRenderer.
+    std::optional<LoadedModel> prepared;
+};
+
+// The views of a model that one target holds: [first, first + count), drawn with `cameras`.
+struct TargetViews {
+    std::shared_ptr<ModelJob> job;
+    std::size_t renderer = 0;  // An index into DeviceLane::mRenderers.
+    std::span<const render::Camera> cameras;
+    std::uint32_t first = 0;
+    std::uint32_t count = 0;
+};
+
+class DeviceLane {
+  public:
+    DeviceLane(BatchRenderer& renderers, BatchShared& shared)
+        : mContext(renderers.context()), mBatchRenderer(renderers), mShared(shared) {}
+
+    // Creates the renderers (and the read-back ring) on the lane's device, one environment for
+    // them all, with the stage timestamps when asked for.
+    Result<void> createRenderers();
+    // Takes models from the loader until it is exhausted or the batch is stopped, then waits for
+    // the read-backs still in flight. `idle` is called between models and while waiting for
+    // the loader (the batch reports its progress there).
+    void run(const std::function<void()>& idle);
+    // After run(): ends the timestamps and frees the renderers' scenes (the renderers may serve
+    // later batches, BatchRenderer.h).
+    void finish();
+
+    // The device thread's stages, the GPU's own times (StageTimes::gpuStages) among them.
+    StageTimes stages() const;
+    DeviceSummary summary() const;
+
+  private:
+    void finishTimestamps();
+    // Waits until the GPU is done with what renderer `slot` drew last, handing those views to
+    // the encoders, so that it may prepare its next scene without waiting for the others.
+    void collectRenderer(std::size_t slot);
+    // Frees renderer `slot`'s scene and gives its bytes back to the loader.
+    void releasePrepared(RendererSlot& slot);
+    void renderModel(LoadedModel& loaded);
+    // Takes the oldest read-back and hands its views to the pool.
+    void collectOldest();
+    void collectReady();
+    // Draws the views through `channel` with tone mapping off, then shades again.
+    void renderDebugChannel(const std::shared_ptr<ModelJob>& job,
+                            render::Renderer& renderer,
+                            render::DebugChannel channel,
+                            const std::function<void()>& draw);
+    // Draws a target's views through the depth channel and reads them back now.
+    void renderDepth(const TargetViews& views, float unitsPerModelUnit, double& waiting);
+    // Draws a target's views and starts reading them back; `waiting` adds the time spent
+    // waiting for a free read-back slot.
+    void renderChunk(const TargetViews& views, ViewImage kind, double& waiting);
+    // After a failure: a lost device is replaced, and the renderer with it.
+    void recoverIfLost();
+
+    gpu::Context& mContext;
+    // Owns the renderers and the read-back ring, which may outlive this lane (BatchRenderer.h).
+    BatchRenderer& mBatchRenderer;
+    BatchShared& mShared;
+    StageTimes mStages;  // The device thread's stages.
+    StripLayout mLayout;
+    // Models go to the renderers in turn: while the GPU draws model k with one, the device
+    // thread uploads model k + 1 with another (BatchOptions::renderers). No renderer is left
+    // after a device loss that could not be recovered.
+    std::vector<RendererSlot> mRenderers;
+    std::uint64_t mModelsPrepared = 0;  // Models handed to a renderer: picks the next one.
+    std::uint64_t mViewsDrawn = 0;
+    // Device losses so far: a renderer used across a collectOldest() may have been replaced.
+    std::uint64_t mDevicesLost = 0;
+    gpu::TextureReadbackRing* mRing = nullptr;
+    // The staging buffers of the models' images, on the current device, reused from model to
+    // model.
+    std::shared_ptr<gpu::StagingBuffers> mStaging;
+    // With BatchOptions::gpuTimestamps: on the current device, flushed after every model.
+    std::optional<gpu::StageTimestamps> mTimestamps;
+    // What the timestamps of the devices finished with measured (finishTimestamps).
+    std::vector<gpu::StageTime> mGpuStageTotals;
+    std::deque<ChunkInFlight> mChunks;  // In the ring's order.
+};
+
+}  // namespace encore::batch
