@@ -14,6 +14,7 @@
 #include <pybind11/stl.h>
 
 #include <atomic>
+#include <cstdlib>
 #include <cstring>
 #include <memory>
 #include <mutex>
@@ -53,6 +54,22 @@ T valueOrThrow(Result<T> result) {
         throw EncoreError(result.error().message);
     }
     return std::move(*result);
+}
+
+// ENCORE_DEVICE, as `encore --device` reads it: how a Dask worker (encore.dask) is given its
+// GPU. Unset or empty: 0.
+std::size_t deviceFromEnvironment() {
+    const char* variable = std::getenv("ENCORE_DEVICE");
+    if (!variable || !*variable) {
+        return 0;
+    }
+    char* end = nullptr;
+    const unsigned long long index = std::strtoull(variable, &end, 10);
+    if (*end != '\0' || variable[0] == '-') {
+        throw py::value_error(std::string("ENCORE_DEVICE='") + variable +
+                              "' is not a device index (0, 1, ...: encore.adapters() lists them)");
+    }
+    return std::size_t(index);
 }
 
 // A loaded model: immutable, shared by the Python object and the renderer that prepared it.
@@ -182,16 +199,28 @@ py::dict summaryDict(const batch::BatchSummary& result) {
     dict["interrupted"] = result.interrupted;
     dict["stages"] = stages;
     dict["failures"] = failures;
+    py::list devices;
+    for (const batch::DeviceSummary& device : result.devices) {
+        py::dict entry;
+        entry["device"] = device.device;
+        entry["adapter"] = device.adapter;
+        entry["models"] = device.models;
+        entry["views"] = device.views;
+        devices.append(entry);
+    }
+    dict["devices"] = devices;
     return dict;
 }
 
 class Renderer {
   public:
-    explicit Renderer(std::uint32_t samples) : mSamples(samples) {
+    Renderer(std::uint32_t samples, std::optional<std::size_t> device) : mSamples(samples) {
         if (samples != 1 && samples != 4) {
             throw py::value_error("samples must be 1 or 4");
         }
-        mContext = std::make_unique<gpu::Context>(valueOrThrow(gpu::Context::create()));
+        gpu::ContextOptions options;
+        options.adapterIndex = device ? *device : deviceFromEnvironment();
+        mContext = std::make_unique<gpu::Context>(valueOrThrow(gpu::Context::create(options)));
         mBatchRenderers = std::make_unique<batch::BatchRenderer>(*mContext);
     }
 
@@ -368,6 +397,7 @@ class Renderer {
     }
 
     std::string adapter() const { return mContext->adapterDescription().summary(); }
+    std::size_t device() const { return mContext->adapterDescription().index; }
     batch::BatchRendererCounts batchCounts() {
         // Without the GIL while waiting: a batch on another thread takes it to report progress.
         py::gil_scoped_release release;
@@ -468,7 +498,10 @@ PYBIND11_MODULE(_encore, module) {
 
     py::class_<Renderer>(module, "Renderer",
                          "One GPU device (Vulkan) rendering models from a view rig.")
-        .def(py::init<std::uint32_t>(), py::arg("samples") = 4)
+        .def(py::init<std::uint32_t, std::optional<std::size_t>>(), py::arg("samples") = 4,
+             py::arg("device") = py::none(),
+             "A renderer on adapter `device` of encore.adapters() (default: the ENCORE_DEVICE "
+             "environment variable, else 0, the adapter Dawn prefers).")
         .def("load", &Renderer::load, py::arg("path"),
              "Loads a .gltf or .glb file; raises encore.LoadError with the loader's message.")
         .def("render_views", &Renderer::renderViews, py::arg("scene"), py::arg("views") = 12,
@@ -506,6 +539,8 @@ PYBIND11_MODULE(_encore, module) {
         .def_property_readonly("samples",
                                [](const Renderer& renderer) { return renderer.samples(); })
         .def_property_readonly("adapter", &Renderer::adapter)
+        .def_property_readonly("device", &Renderer::device,
+                               "The index of the renderer's adapter in encore.adapters().")
         .def_property_readonly(
             "batch_renderers_created",
             [](Renderer& renderer) { return renderer.batchCounts().renderers; },
@@ -516,6 +551,25 @@ PYBIND11_MODULE(_encore, module) {
             [](Renderer& renderer) { return renderer.batchCounts().environments; },
             "How many times batch() computed the environment maps: once for every call so far.");
 
+    module.def(
+        "adapters",
+        [] {
+            py::list list;
+            for (const encore::gpu::AdapterDescription& adapter :
+                 valueOrThrow(encore::gpu::listAdapters())) {
+                py::dict entry;
+                entry["index"] = adapter.index;
+                entry["name"] = adapter.name;
+                entry["type"] = encore::gpu::adapterTypeName(adapter.adapterType);
+                entry["backend"] = encore::gpu::backendName(adapter.backend);
+                entry["driver"] = adapter.driver;
+                entry["summary"] = adapter.summary();
+                list.append(entry);
+            }
+            return list;
+        },
+        "The GPU adapters, as `encore info` lists them: dicts of index, name, type ('discrete "
+        "GPU', 'CPU', ...), backend, driver and summary. Renderer(device=index) picks one.");
     module.def("discover_inputs", &discoverInputs, py::arg("input"),
                "The models `encore batch INPUT` renders, as (path, output name) pairs: INPUT is a "
                "folder (searched recursively), a list file (one path per line, or a JSON array), "

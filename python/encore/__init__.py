@@ -1,6 +1,6 @@
 """Encore: glTF 2.0 rendering with WebGPU (Dawn), for datasets of rendered views.
 
-    renderer = encore.Renderer()              # one GPU device
+    renderer = encore.Renderer()              # one GPU device (device=N: encore.adapters()[N])
     scene = renderer.load("model.glb")        # encore.LoadError with the loader's message
     images, intrinsics, cameras = renderer.render_views(scene, views=12, size=512)
     encore.batch("models/", "out/", views=12)  # the job of `encore batch`, returns its summary
@@ -8,9 +8,9 @@
 encore.dask spreads a collection over a Dask cluster (it imports distributed when imported).
 """
 
-from ._encore import Error, LoadError, Renderer, Scene, discover_inputs
+from ._encore import Error, LoadError, Renderer, Scene, adapters, discover_inputs
 
-__all__ = ["Error", "LoadError", "Renderer", "Scene", "batch", "discover_inputs"]
+__all__ = ["Error", "LoadError", "Renderer", "Scene", "adapters", "batch", "discover_inputs"]
 
 for _public in (Error, LoadError, Renderer, Scene):
     _public.__module__ = __name__  # Tracebacks and reprs name encore.Error, not encore._encore.
@@ -23,8 +23,8 @@ def batch(input, output, **options):
     `input` is a folder, a list file or a model, or (path, name) pairs from discover_inputs.
     The keywords are those of Renderer.batch (views, random_views, seed, elevation, distance,
     fov, normalize, size, samples, jobs, memory_limit_mib, strict, normals, depth, top_light,
-    png_compression, lod_error).
+    png_compression, lod_error) and `device` (Renderer's).
     Failed models are in OUTPUT/failures.jsonl. The GIL is released while it runs.
     """
-    renderer = Renderer(samples=options.pop("samples", 4))
+    renderer = Renderer(samples=options.pop("samples", 4), device=options.pop("device", None))
     return renderer.batch(input, output, **options)

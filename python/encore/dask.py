@@ -1,9 +1,13 @@
 """Rendering a collection of glTF models across a Dask cluster (distributed's scheduler).
 
-    from distributed import Client, LocalCluster
+    from distributed import Client
     import encore.dask
-    client = Client(LocalCluster(n_workers=2, threads_per_worker=1))
+    client = Client(encore.dask.gpu_cluster())   # one worker process per GPU of this machine
     summary = encore.dask.render_collection(client, "models/", "out/", views=12, size=512)
+
+A worker renders on the GPU its ENCORE_DEVICE environment variable names (an index of
+encore.adapters(); unset: 0). gpu_cluster() starts one worker per GPU with that variable set;
+on a cluster of machines, start one `dask worker` per GPU the same way (docs/batch.md).
 
 The models are split into chunks of `chunk_size`, one task each. Every worker process keeps one
 encore.Renderer (one GPU device), created by the first task that runs there and reused by every
@@ -27,8 +31,9 @@ import time
 import distributed
 
 from . import Renderer, discover_inputs
+from . import adapters as adapters_list
 
-__all__ = ["render_collection"]
+__all__ = ["gpu_cluster", "gpu_devices", "render_collection"]
 
 _STAGES = ("load", "upload", "render", "gpu", "readback", "encode", "load_cpu", "encode_cpu")
 
@@ -60,7 +65,47 @@ def _render_chunk(models, output, options):
     renderer = _worker_renderers.get(options.pop("samples", 4))
     summary = renderer.batch(models, output, failure_log=False, **options)
     summary["worker"] = distributed.get_worker().address
+    summary["device"] = renderer.device
     return summary
+
+
+def gpu_devices(devices="all"):
+    """The adapter indices that `devices` names, as `encore batch --devices` reads it: "all"
+    (every adapter of the first one's type: a GPU machine's GPUs, without the CPU renderer
+    beside them), or a sequence of indices (one may repeat: two workers on one GPU)."""
+    adapters = adapters_list()
+    if isinstance(devices, str):
+        if devices != "all":
+            raise ValueError(f"devices must be 'all' or a sequence of indices, not {devices!r}")
+        first = adapters[0]
+        return [adapter["index"] for adapter in adapters
+                if adapter["type"] == first["type"] and adapter["backend"] == first["backend"]]
+    devices = [int(device) for device in devices]
+    for device in devices:
+        if not 0 <= device < len(adapters):
+            raise ValueError(f"there is no device {device}: this machine has {len(adapters)} "
+                             f"adapter{'s' if len(adapters) != 1 else ''} (encore.adapters() "
+                             "lists them)")
+    if not devices:
+        raise ValueError("devices is empty")
+    return devices
+
+
+def gpu_cluster(devices="all", **scheduler_options):
+    """A cluster of this machine with one worker process per GPU: distributed's SpecCluster (the
+    class LocalCluster is made of) whose workers are Nannies with one thread each and
+    ENCORE_DEVICE set to their GPU (gpu_devices(devices)). The keywords go to the scheduler
+    (dashboard_address, ...). Use it as LocalCluster: Client(gpu_cluster()), and close it."""
+    workers = {
+        f"gpu{device}-{position}": {
+            "cls": distributed.Nanny,
+            "options": {"nthreads": 1, "env": {"ENCORE_DEVICE": str(device)}},
+        }
+        for position, device in enumerate(gpu_devices(devices))
+    }
+    scheduler = {"cls": distributed.Scheduler,
+                 "options": {"dashboard_address": None, **scheduler_options}}
+    return distributed.SpecCluster(workers=workers, scheduler=scheduler)
 
 
 def _write_failures(output, models, failures):
@@ -94,7 +139,8 @@ def render_collection(client, inputs, output, *, chunk_size=8, retries=2, **opti
     The summary has the models of the collection (`total`) and those rendered, failed and
     skipped (finished by an earlier run, or by a task's attempt on a worker that then died),
     the views written, the wall time (`seconds`), the stage times summed over the tasks, the
-    failures as failures.jsonl lists them, the number of tasks and the tasks each worker ran.
+    failures as failures.jsonl lists them, the number of tasks, the tasks each worker ran
+    (`workers`) and the device each worker rendered on (`devices`, by worker address).
     """
     if chunk_size < 1:
         raise ValueError("chunk_size must be at least 1")
@@ -115,8 +161,10 @@ def render_collection(client, inputs, output, *, chunk_size=8, retries=2, **opti
     failures = _write_failures(output, models, [failure for result in results
                                                 for failure in result["failures"]])
     workers = {}
+    devices = {}
     for result in results:
         workers[result["worker"]] = workers.get(result["worker"], 0) + 1
+        devices[result["worker"]] = result["device"]
     return {
         "total": len(models),
         "rendered": sum(result["rendered"] for result in results),
@@ -129,4 +177,5 @@ def render_collection(client, inputs, output, *, chunk_size=8, retries=2, **opti
         "failures": failures,
         "tasks": len(chunks),
         "workers": workers,
+        "devices": devices,
     }

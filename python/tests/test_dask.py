@@ -1,4 +1,5 @@
-"""Tests of encore.dask on a LocalCluster of two worker processes, on generated scenes.
+"""Tests of encore.dask on encore.dask.gpu_cluster with two worker processes (lavapipe listed
+twice: two devices on one adapter stand in for two GPUs), on generated scenes.
 
 Run by CTest (python_dask_tests, label gpu) with PYTHONPATH pointing at the built package and
 ENCORE_BINARY at the encore executable, which generates the scenes and runs the reference
@@ -41,9 +42,9 @@ def read_failures(output):
 
 @pytest.fixture(scope="module")
 def client():
-    # Worker processes inherit PYTHONPATH and import encore.dask when a task arrives.
-    cluster = distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                                       dashboard_address=None)
+    # Worker processes inherit PYTHONPATH and import encore.dask when a task arrives. The
+    # machine's one adapter twice: what gpu_cluster() makes of a two-GPU machine.
+    cluster = encore.dask.gpu_cluster(devices=[0, 0])
     with distributed.Client(cluster) as client:
         yield client
     cluster.close()
@@ -163,6 +164,28 @@ def test_killing_a_worker_mid_run_still_renders_every_model(client, tmp_path):
     assert read_failures(output) == []
     # The nanny restarted the worker: the cluster has two again for the tests after this one.
     client.wait_for_workers(2, timeout=60)
+
+
+def test_each_worker_renders_on_the_device_its_environment_names(client, collection, tmp_path):
+    devices = client.run(lambda: os.environ.get("ENCORE_DEVICE"))
+    assert sorted(devices.values()) == ["0", "0"], devices
+    summary = encore.dask.render_collection(client, str(collection / "a"), str(tmp_path / "out"),
+                                            chunk_size=1, **OPTIONS)
+    assert summary["rendered"] == 3
+    assert set(summary["devices"].values()) == {0}
+    assert set(summary["devices"]) == set(summary["workers"])
+
+
+def test_gpu_devices_reads_all_and_index_lists():
+    adapters = encore.adapters()
+    assert adapters and adapters[0]["index"] == 0
+    assert encore.dask.gpu_devices("all") == [adapter["index"] for adapter in adapters
+                                              if adapter["type"] == adapters[0]["type"]]
+    assert encore.dask.gpu_devices([0, 0]) == [0, 0]
+    with pytest.raises(ValueError, match="there is no device 99"):
+        encore.dask.gpu_devices([99])
+    with pytest.raises(ValueError):
+        encore.dask.gpu_devices("some")
 
 
 def test_bad_options_fail_on_the_client(client, collection, tmp_path):

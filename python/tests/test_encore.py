@@ -276,6 +276,25 @@ def test_rendering_releases_the_gil(renderer, tmp_path):
     assert largest_gap < duration / 2
 
 
+def test_the_device_is_chosen_by_index_or_environment(renderer, tmp_path, monkeypatch):
+    adapters = encore.adapters()
+    assert [adapter["index"] for adapter in adapters] == list(range(len(adapters)))
+    assert all(adapter["backend"] == "Vulkan" for adapter in adapters)
+    assert renderer.device == 0
+    assert adapters[0]["name"] in renderer.adapter
+    chosen = encore.Renderer(samples=1, device=0)
+    assert chosen.device == 0
+    with pytest.raises(encore.Error, match=f"this machine has {len(adapters)} adapter"):
+        encore.Renderer(device=len(adapters))
+    monkeypatch.setenv("ENCORE_DEVICE", str(len(adapters)))
+    with pytest.raises(encore.Error, match=f"there is no device {len(adapters)}"):
+        encore.Renderer()
+    monkeypatch.setenv("ENCORE_DEVICE", "first")
+    with pytest.raises(ValueError, match="not a device index"):
+        encore.Renderer()
+    assert encore.Renderer(device=0).device == 0  # The argument wins over the environment.
+
+
 def test_bad_arguments_raise_value_errors(renderer, tmp_path):
     scene = renderer.load(str(generate(tmp_path / "args.glb", objects=2)))
     with pytest.raises(ValueError):
