@@ -103,8 +103,10 @@ def gpu_cluster(devices="all", **scheduler_options):
         }
         for position, device in enumerate(gpu_devices(devices))
     }
+    # On the loopback interface, as LocalCluster's: the workers are this machine's.
     scheduler = {"cls": distributed.Scheduler,
-                 "options": {"dashboard_address": None, **scheduler_options}}
+                 "options": {"host": "127.0.0.1", "dashboard_address": None,
+                             **scheduler_options}}
     return distributed.SpecCluster(workers=workers, scheduler=scheduler)
 
 
