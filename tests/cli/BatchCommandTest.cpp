@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "CommandRunner.h"
+#include "TestFiles.h"
 #include "TestPaths.h"
 #include "encore/image/ImageCodec.h"
 #include "image/ImageCompare.h"
@@ -19,13 +20,6 @@ namespace encore::test {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string slurp(const fs::path& path) {
-    std::ifstream file(path);
-    std::stringstream text;
-    text << file.rdbuf();
-    return text.str();
-}
 
 // `count` generated scenes in sub-folders (two of them named model.glb) and a malformed file.
 fs::path makeCollection(const std::string& name, int count, int objects) {
@@ -66,7 +60,7 @@ std::vector<nlohmann::json> jsonLines(const fs::path& path) {
 // coverage, and a transforms.json naming them.
 void expectFinishedModel(const fs::path& folder, int views) {
     const nlohmann::json transforms =
-        nlohmann::json::parse(slurp(folder / "transforms.json"), nullptr, false);
+        nlohmann::json::parse(readBytes(folder / "transforms.json"), nullptr, false);
     ASSERT_FALSE(transforms.is_discarded()) << folder;
     EXPECT_GT(transforms["camera_angle_x"].get<double>(), 0.0);
     ASSERT_EQ(transforms["frames"].size(), std::size_t(views));
@@ -126,7 +120,7 @@ TEST(BatchCommandTest, RendersEveryGoodModelAndListsTheBadOne) {
         EXPECT_EQ(image->height, 64u);
     }
     // The two model.glb differ (different seeds): their outputs are their own.
-    EXPECT_NE(slurp(output / "set0/model/000.png"), slurp(output / "set1/model/000.png"));
+    EXPECT_NE(readBytes(output / "set0/model/000.png"), readBytes(output / "set1/model/000.png"));
 
     const auto failures = jsonLines(output / "failures.jsonl");
     ASSERT_EQ(failures.size(), 1u);
@@ -162,8 +156,9 @@ TEST(BatchCommandTest, RandomViewsFromASeedAndAJsonList) {
     const CommandResult again = runEncore(batchArguments(
         input / "list.json", output / "b", "--random-views 3 --seed 5 --size 32 --quiet"));
     ASSERT_EQ(again.exitCode, 0) << again.err;
-    EXPECT_EQ(slurp(output / "a/model/transforms.json"), slurp(output / "b/model/transforms.json"));
-    EXPECT_EQ(slurp(output / "a/model/002.png"), slurp(output / "b/model/002.png"));
+    EXPECT_EQ(readBytes(output / "a/model/transforms.json"),
+              readBytes(output / "b/model/transforms.json"));
+    EXPECT_EQ(readBytes(output / "a/model/002.png"), readBytes(output / "b/model/002.png"));
 }
 
 // --normals and --depth: a normal and a 16-bit depth image beside every view: unit vectors
@@ -177,7 +172,7 @@ TEST(BatchCommandTest, NormalAndDepthImagesBesideTheViews) {
     ASSERT_EQ(run.exitCode, 0) << run.out << run.err;
     const fs::path model = output / "set0" / "model";
     expectFinishedModel(model, 2);
-    const nlohmann::json transforms = nlohmann::json::parse(slurp(model / "transforms.json"));
+    const nlohmann::json transforms = nlohmann::json::parse(readBytes(model / "transforms.json"));
     EXPECT_EQ(transforms["frames"][1]["normal_file_path"], "./001_normal");
     auto normals = image::readImage(model / "001_normal.png");
     ASSERT_TRUE(normals.ok());
@@ -263,7 +258,8 @@ TEST(BatchCommandTest, FastPngCompressionKeepsThePixels) {
     for (const char* file : {"000.png", "001.png", "001_normal.png", "001_depth.png"}) {
         const fs::path small = output / "small/set0/model" / file;
         const fs::path quick = output / "fast/set0/model" / file;
-        EXPECT_NE(slurp(small), slurp(quick)) << file << ": the same bytes, so no other encoder";
+        EXPECT_NE(readBytes(small), readBytes(quick))
+            << file << ": the same bytes, so no other encoder";
         auto a = image::readImage(small);
         auto b = image::readImage(quick);
         ASSERT_TRUE(a.ok() && b.ok()) << file;
@@ -319,12 +315,16 @@ struct SignalledRun {
     CommandResult result;
 };
 
-SignalledRun signalledRun(const std::string& name, int count, const std::string& signal) {
+SignalledRun signalledRun(const std::string& name,
+                          int count,
+                          const std::string& signal,
+                          const std::string& extra = "") {
     SignalledRun run;
     run.input = makeCollection(name, count, 40);
     fs::remove(run.input / "broken.gltf");
     run.output = makeTempDir(name + "-output");
-    run.arguments = batchArguments(run.input, run.output, "--views 16 --size 128 --jobs 2 --quiet");
+    run.arguments =
+        batchArguments(run.input, run.output, "--views 16 --size 128 --jobs 2 --quiet " + extra);
     run.result =
         runEncoreThrough(signalAfterFirstModel(run.input, run.output, signal), run.arguments);
     return run;
@@ -332,8 +332,7 @@ SignalledRun signalledRun(const std::string& name, int count, const std::string&
 
 // Killed without warning at some moment of the run, then run again: the second run finishes
 // every model, and no image is half-written at any point.
-TEST(BatchCommandTest, SigkillMidRunThenRerunCompletes) {
-    const SignalledRun run = signalledRun("batch-cli-kill", 8, "KILL");
+void expectKilledRunResumes(const SignalledRun& run) {
     EXPECT_EQ(run.result.exitCode, 137)
         << "not killed (128 + SIGKILL): " << run.result.out << run.result.err;
     const fs::path& input = run.input;
@@ -356,12 +355,35 @@ TEST(BatchCommandTest, SigkillMidRunThenRerunCompletes) {
     }
 }
 
+TEST(BatchCommandTest, SigkillMidRunThenRerunCompletes) {
+    expectKilledRunResumes(signalledRun("batch-cli-kill", 8, "KILL"));
+}
+
+// The same with two device threads (two devices on the one adapter) writing at once.
+TEST(BatchCommandTest, SigkillMidRunOnTwoDevicesThenRerunCompletes) {
+    expectKilledRunResumes(signalledRun("batch-cli-kill-devices", 8, "KILL", "--devices 0,0"));
+}
+
 // SIGTERM stops the batch as SIGINT does.
 TEST(BatchCommandTest, SigtermStopsCleanly) {
     const SignalledRun run = signalledRun("batch-cli-term", 4, "TERM");
     EXPECT_EQ(run.result.exitCode, 130) << run.result.out << run.result.err;
     EXPECT_NE(run.result.out.find("interrupted"), std::string::npos) << run.result.out;
     EXPECT_TRUE(filesUnder(run.output, ".part").empty());
+}
+
+// Every device thread stops starting models; the models in flight on each are finished.
+TEST(BatchCommandTest, SigtermStopsEveryDeviceCleanly) {
+    const SignalledRun run = signalledRun("batch-cli-term-devices", 6, "TERM", "--devices 0,0");
+    EXPECT_EQ(run.result.exitCode, 130) << run.result.out << run.result.err;
+    EXPECT_NE(run.result.out.find("interrupted"), std::string::npos) << run.result.out;
+    EXPECT_TRUE(filesUnder(run.output, ".part").empty());
+    const CommandResult rerun = runEncore(run.arguments);
+    ASSERT_EQ(rerun.exitCode, 0) << rerun.out << rerun.err;
+    // The models finished before the signal are skipped, the rest rendered.
+    EXPECT_NE(rerun.out.find(" rendered, 0 failed, "), std::string::npos) << rerun.out;
+    EXPECT_EQ(rerun.out.find(" 0 skipped"), std::string::npos) << "nothing resumed: " << rerun.out;
+    EXPECT_NE(rerun.out.find(" of 6 models"), std::string::npos) << rerun.out;
 }
 
 // SIGINT finishes the files in flight and exits with 130 and a summary.

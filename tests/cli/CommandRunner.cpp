@@ -6,18 +6,10 @@
 #include <fstream>
 #include <sstream>
 
+#include "TestFiles.h"
 #include "TestPaths.h"
 
 namespace encore::test {
-
-namespace {
-std::string slurp(const std::filesystem::path& path) {
-    std::ifstream file(path);
-    std::stringstream text;
-    text << file.rdbuf();
-    return text.str();
-}
-}  // namespace
 
 std::string quote(const std::string& text) {
     std::string quoted = "'";
@@ -51,8 +43,8 @@ CommandResult runEncoreThrough(const std::string& prefix, const std::string& arg
                                 quote(out.string()) + " 2>" + quote(err.string()) + " </dev/null";
     const int status = std::system(command.c_str());
     result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-    result.out = slurp(out);
-    result.err = slurp(err);
+    result.out = readBytes(out);
+    result.err = readBytes(err);
     return result;
 }
 

@@ -6,13 +6,13 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
-#include <map>
 #include <set>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
 
 #include "CommandRunner.h"
+#include "TestFiles.h"
 #include "TestPaths.h"
 
 namespace encore::test {
@@ -22,24 +22,6 @@ namespace fs = std::filesystem;
 
 bool contains(const std::string& text, const std::string& fragment) {
     return text.find(fragment) != std::string::npos;
-}
-
-std::string slurp(const fs::path& path) {
-    std::ifstream file(path, std::ios::binary);
-    std::stringstream bytes;
-    bytes << file.rdbuf();
-    return bytes.str();
-}
-
-// Every file under `folder` but failures.jsonl, by relative path, with its bytes.
-std::map<std::string, std::string> filesUnder(const fs::path& folder) {
-    std::map<std::string, std::string> files;
-    for (const auto& entry : fs::recursive_directory_iterator(folder)) {
-        if (entry.is_regular_file() && entry.path().filename() != "failures.jsonl") {
-            files[fs::relative(entry.path(), folder).string()] = slurp(entry.path());
-        }
-    }
-    return files;
 }
 
 std::set<std::string> lines(const fs::path& path) {
@@ -113,7 +95,7 @@ TEST(DeviceSelectionTest, RenderingOnDeviceZeroIsTheDefault) {
         runEncore("render " + quote(model.string()) + " --width 64 --height 64 --device 0 -o " +
                   quote((dir / "chosen.png").string()));
     ASSERT_EQ(chosen.exitCode, 0) << chosen.err;
-    EXPECT_EQ(slurp(dir / "plain.png"), slurp(dir / "chosen.png"));
+    EXPECT_EQ(readBytes(dir / "plain.png"), readBytes(dir / "chosen.png"));
 }
 
 TEST(DeviceSelectionTest, BatchOnSeveralDevicesWritesWhatOneDeviceWrites) {

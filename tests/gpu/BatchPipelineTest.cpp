@@ -16,6 +16,7 @@
 
 #include "GpuTestSupport.h"
 #include "RenderTestSupport.h"
+#include "TestFiles.h"
 #include "TestPaths.h"
 #include "encore/batch/Batch.h"
 #include "scene/SceneGenerator.h"
@@ -24,24 +25,6 @@ namespace encore::batch {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string slurp(const fs::path& path) {
-    std::ifstream file(path, std::ios::binary);
-    std::stringstream bytes;
-    bytes << file.rdbuf();
-    return bytes.str();
-}
-
-// Every file under `folder` (but failures.jsonl), by its path relative to it.
-std::map<std::string, std::string> filesUnder(const fs::path& folder) {
-    std::map<std::string, std::string> files;
-    for (const auto& entry : fs::recursive_directory_iterator(folder)) {
-        if (entry.is_regular_file() && entry.path().filename() != "failures.jsonl") {
-            files[fs::relative(entry.path(), folder).generic_string()] = slurp(entry.path());
-        }
-    }
-    return files;
-}
 
 // A generated scene of `objects` objects (textured), written as `path`.
 void writeGeneratedScene(const fs::path& path, std::uint32_t objects, std::uint32_t seed) {
@@ -111,7 +94,7 @@ TEST(BatchPipelineTest, OverlappedModelsWriteTheSameFilesAsSequentialOnes) {
         for (const Failure& failure : summary->failures) {
             ADD_FAILURE() << failure.file << " (" << failure.stage << "): " << failure.error;
         }
-        written[renderers] = filesUnder(options.output);
+        written[renderers] = test::filesUnder(options.output);
     }
     // Per model: five views of colour, normals and depth, and transforms.json.
     EXPECT_EQ(written[1].size(), inputs.size() * (5 * 3 + 1));
@@ -166,7 +149,7 @@ TEST(BatchPipelineTest, ABadModelMidPipelineFailsAtItsStageWhileItsNeighboursRen
         EXPECT_EQ(stageOf["too-large"], "upload");
         EXPECT_EQ(stageOf["broken"], "load");
         EXPECT_EQ(stageOf.size(), 2u);
-        const std::string log = slurp(options.output / "failures.jsonl");
+        const std::string log = test::readBytes(options.output / "failures.jsonl");
         EXPECT_NE(log.find("\"stage\":\"upload\""), std::string::npos) << log;
         EXPECT_NE(log.find("maxStorageBufferBindingSize"), std::string::npos) << log;
         for (const char* name : {"a", "b", "c", "d"}) {
@@ -209,7 +192,7 @@ TEST(BatchPipelineTest, GpuTimestampsTimeEachStageAndChangeNoFile) {
                 .count();
         ASSERT_TRUE(summary.ok()) << summary.error().message;
         EXPECT_EQ(summary->rendered, inputs.size());
-        written[timed] = filesUnder(options.output);
+        written[timed] = test::filesUnder(options.output);
         if (!timed) {
             EXPECT_TRUE(summary->stages.gpuStages.empty());
             continue;
