@@ -31,6 +31,7 @@
 #include "encore/batch/ViewRig.h"
 #include "encore/gpu/Context.h"
 #include "encore/render/Renderer.h"
+#include "encore/render/VisibilityFeatures.h"
 #include "encore/scene/SceneData.h"
 
 namespace py = pybind11;
@@ -191,7 +192,9 @@ class Renderer {
         if (samples != 1 && samples != 4) {
             throw py::value_error("samples must be 1 or 4");
         }
-        mContext = std::make_unique<gpu::Context>(valueOrThrow(gpu::Context::create()));
+        gpu::ContextOptions options;
+        render::requestVisibilityFeatures(options);
+        mContext = std::make_unique<gpu::Context>(valueOrThrow(gpu::Context::create(options)));
         mBatchRenderers = std::make_unique<batch::BatchRenderer>(*mContext);
     }
 

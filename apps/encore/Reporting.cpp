@@ -2,6 +2,7 @@
 #include <cstdlib>
 
 #include "Commands.h"
+#include "encore/render/VisibilityFeatures.h"
 
 namespace encore::app {
 
@@ -49,6 +50,7 @@ Result<gpu::Context> createContext(const GlobalOptions& global, bool timestamps)
     gpu::ContextOptions options;
     options.allowNullBackend = global.allowNullBackend;
     options.timestamps = timestamps;
+    render::requestVisibilityFeatures(options);
     auto context = gpu::Context::create(options);
     if (context && global.verbose) {
         std::fprintf(stderr, "adapter: %s\n", context->adapterDescription().summary().c_str());

@@ -129,6 +129,14 @@ Result<void> Context::acquireDevice() {
     mQueue = nullptr;
     wgpu::RequestAdapterOptions adapterOptions{};
     adapterOptions.powerPreference = wgpu::PowerPreference::HighPerformance;
+    // Features behind allow_unsafe_apis are reported only by an adapter requested with it.
+    static constexpr const char* kUnsafeApis[] = {"allow_unsafe_apis"};
+    wgpu::DawnTogglesDescriptor adapterToggles;
+    if (options.allowUnsafeApis) {
+        adapterToggles.enabledToggleCount = 1;
+        adapterToggles.enabledToggles = kUnsafeApis;
+        adapterOptions.nextInChain = &adapterToggles;
+    }
     std::string adapterMessage;
     mInstance.WaitAny(
         mInstance.RequestAdapter(&adapterOptions, wgpu::CallbackMode::WaitAnyOnly,
@@ -179,6 +187,10 @@ Result<void> Context::acquireDevice() {
     wgpu::DawnTogglesDescriptor toggles;
     toggles.disabledToggleCount = disabledToggles.size();
     toggles.disabledToggles = disabledToggles.data();
+    if (options.allowUnsafeApis) {
+        toggles.enabledToggleCount = 1;
+        toggles.enabledToggles = kUnsafeApis;
+    }
 
     wgpu::DeviceDescriptor deviceDescriptor{};
     deviceDescriptor.nextInChain = &toggles;
