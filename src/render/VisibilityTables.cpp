@@ -199,8 +199,8 @@ VisibilityTables buildVisibilityTables(const GpuScene& scene, std::uint64_t maxG
                 continue;
             }
             const std::uint32_t triangles = records[record + kTriangleCount];
-            const std::uint32_t units =
-                (triangles + VisibilityTables::kUnitTriangles - 1) / VisibilityTables::kUnitTriangles;
+            const std::uint32_t units = (triangles + VisibilityTables::kUnitTriangles - 1) /
+                                        VisibilityTables::kUnitTriangles;
             items.insert(items.end(), {slot, std::uint32_t(record), units, mirrored ? 1u : 0u});
             tables.unitCount += units;
             tables.triangleCount += triangles;

@@ -18,7 +18,6 @@
 #include "RenderTestSupport.h"
 #include "encore/render/Renderer.h"
 #include "gpu/Readback.h"
-#include "encore/image/ImageCodec.h"
 #include "image/ImageCompare.h"
 #include "render/strategies/VisibilityStrategy.h"
 #include "scene/CrowdGenerator.h"
@@ -59,10 +58,6 @@ void expectClose(const image::ImageRgba8& expected,
                  const image::ImageRgba8& image,
                  double maxDiffering = 0.005) {
     ASSERT_EQ(expected.width, image.width);
-    if (const char* dump = std::getenv("VIS_DUMP")) {
-        (void)image::writePng(std::string(dump) + "_hw.png", expected);
-        (void)image::writePng(std::string(dump) + "_vis.png", image);
-    }
     const auto ssim = image::ssimLuminance(expected, image);
     ASSERT_TRUE(ssim.ok());
     EXPECT_GE(*ssim, 0.99);
@@ -110,7 +105,8 @@ TEST_P(VisibilityGeneratedTest, LooksLikeGpuCullingBundles) {
 
 INSTANTIATE_TEST_SUITE_P(Layouts,
                          VisibilityGeneratedTest,
-                         ::testing::Values(scene::SceneLayout::Grid, scene::SceneLayout::Lattice,
+                         ::testing::Values(scene::SceneLayout::Grid,
+                                           scene::SceneLayout::Lattice,
                                            scene::SceneLayout::City),
                          [](const auto& info) {
                              switch (info.param) {
@@ -134,8 +130,8 @@ TEST_P(VisibilityModelTest, LooksLikeGpuCullingBundles) {
     auto scene = scene::loadScene(model.path);
     ASSERT_TRUE(scene.ok()) << scene.error().message;
     const Camera camera = Camera::framing(scene->bounds, float(kWidth) / float(kHeight));
-    const auto expected = render(*context, *scene, StrategyKind::GpuCullingBundles, camera,
-                                 DebugChannel::Shaded);
+    const auto expected =
+        render(*context, *scene, StrategyKind::GpuCullingBundles, camera, DebugChannel::Shaded);
     const auto image =
         render(*context, *scene, StrategyKind::Visibility, camera, DebugChannel::Shaded);
     // Textures magnified across this small target (BoxTextured, TextureSettingsTest) differ in up
@@ -168,10 +164,10 @@ scene::SceneData triangles(const std::vector<std::array<glm::vec3, 3>>& list,
     for (std::size_t i = 0; i < list.size(); ++i) {
         const auto positions = builder.addPositions({list[i][0], list[i][1], list[i][2]});
         const float hue = float(i + 1) / float(list.size() + 1);
-        const auto material = builder.addMaterial(
-            {.baseColor = {hue, 1.0f - hue, std::fmod(hue * 7.0f, 1.0f), 1.0f},
-             .alphaMode = alphaMode,
-             .doubleSided = true});
+        const auto material =
+            builder.addMaterial({.baseColor = {hue, 1.0f - hue, std::fmod(hue * 7.0f, 1.0f), 1.0f},
+                                 .alphaMode = alphaMode,
+                                 .doubleSided = true});
         primitives.push_back({.attributes = {{"POSITION", positions}}, .material = material});
     }
     builder.addScene({builder.addNode({.mesh = builder.addMesh(primitives)})});
@@ -192,10 +188,6 @@ void expectSameCoverage(gpu::Context& context,
     const auto image =
         render(context, scene, StrategyKind::Visibility, camera, DebugChannel::BaseColor);
     EXPECT_EQ(test::differingPixels(expected, image, 1), 0u);
-    if (const char* dump = std::getenv("VIS_DUMP")) {
-        (void)image::writePng(std::string(dump) + "_hw.png", expected);
-        (void)image::writePng(std::string(dump) + "_vis.png", image);
-    }
     std::set<std::uint32_t> colors;
     for (std::uint32_t y = 0; y < image.height; ++y) {
         for (std::uint32_t x = 0; x < image.width; ++x) {
@@ -239,10 +231,10 @@ TEST(VisibilityFillRuleTest, SubPixelDegenerateAndScreenEdgeTrianglesAsTheHardwa
     list.push_back({glm::vec3(0, 1, 0), glm::vec3(0.5f, 1.5f, 0), glm::vec3(1, 2, 0)});
     list.push_back({glm::vec3(1, 1, 0), glm::vec3(1, 1, 0), glm::vec3(1, 1, 0)});
     // Across the left and top screen edges (the view spans +-4 by +-3 at z = 0).
-    list.push_back({glm::vec3(-4.3f, 2.5f, 0), glm::vec3(-3.6f, 2.4f, 0),
-                    glm::vec3(-3.9f, 3.3f, 0)});
-    list.push_back({glm::vec3(3.7f, -3.2f, 0), glm::vec3(4.3f, -2.7f, 0),
-                    glm::vec3(3.8f, -2.6f, 0)});
+    list.push_back(
+        {glm::vec3(-4.3f, 2.5f, 0), glm::vec3(-3.6f, 2.4f, 0), glm::vec3(-3.9f, 3.3f, 0)});
+    list.push_back(
+        {glm::vec3(3.7f, -3.2f, 0), glm::vec3(4.3f, -2.7f, 0), glm::vec3(3.8f, -2.6f, 0)});
     expectSameCoverage(*context, triangles(list), kFront, 6);
 }
 
@@ -276,9 +268,8 @@ TEST(VisibilityFallbackTest, MaskBlendAndSkinnedGeometryIsDrawn) {
     ENCORE_REQUIRE_VULKAN(context);
     for (const char* mode : {"MASK", "BLEND"}) {
         SCOPED_TRACE(mode);
-        const auto scene = triangles({{glm::vec3(-1, -1, 0), glm::vec3(1, -1, 0),
-                                       glm::vec3(0, 1, 0)}},
-                                     mode);
+        const auto scene =
+            triangles({{glm::vec3(-1, -1, 0), glm::vec3(1, -1, 0), glm::vec3(0, 1, 0)}}, mode);
         const auto expected = render(*context, scene, StrategyKind::GpuCullingBundles, kFront,
                                      DebugChannel::BaseColor);
         const auto image =

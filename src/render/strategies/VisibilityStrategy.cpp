@@ -77,8 +77,8 @@ Result<void> VisibilityStrategy::prepare(const RenderSetup& setup, const GpuScen
 
     const auto shared = scene.geometry().sharedBuffers();
     if (shared.empty()) {
-        mGeometry = gpu::createBuffer(device, wgpu::BufferUsage::Storage, 16,
-                                      "visibility: no geometry");
+        mGeometry =
+            gpu::createBuffer(device, wgpu::BufferUsage::Storage, 16, "visibility: no geometry");
         mGeometryBytes = 16;
     } else {
         mGeometry = shared[0];
@@ -91,14 +91,14 @@ Result<void> VisibilityStrategy::prepare(const RenderSetup& setup, const GpuScen
     }));
 
     mTableBuffer = gpu::createStorageBuffer(device, mTables.words, "visibility tables");
-    mUnits = gpu::createBuffer(device, wgpu::BufferUsage::Storage,
-                               std::max<std::uint64_t>(mTables.unitCount, 1) * 8,
-                               "visibility units");
-    mHardwareCapacity = std::uint32_t(
-        std::clamp<std::uint64_t>(mTables.triangleCount, 1, kMaxHardwareTriangles));
-    mHardwareList = gpu::createBuffer(device, wgpu::BufferUsage::Storage,
-                                      std::uint64_t(mHardwareCapacity) * 4,
-                                      "visibility hardware triangles");
+    mUnits =
+        gpu::createBuffer(device, wgpu::BufferUsage::Storage,
+                          std::max<std::uint64_t>(mTables.unitCount, 1) * 8, "visibility units");
+    mHardwareCapacity =
+        std::uint32_t(std::clamp<std::uint64_t>(mTables.triangleCount, 1, kMaxHardwareTriangles));
+    mHardwareList =
+        gpu::createBuffer(device, wgpu::BufferUsage::Storage, std::uint64_t(mHardwareCapacity) * 4,
+                          "visibility hardware triangles");
     mCounters = gpu::createBuffer(device,
                                   wgpu::BufferUsage::Storage | wgpu::BufferUsage::Indirect |
                                       wgpu::BufferUsage::CopyDst | wgpu::BufferUsage::CopySrc,
@@ -106,8 +106,8 @@ Result<void> VisibilityStrategy::prepare(const RenderSetup& setup, const GpuScen
     // Unit count 0, hardware draw (0 vertices, 1 instance, 0, 0).
     std::array<std::uint32_t, kCounterBytes / 4> initial{};
     initial[5] = 1;
-    mInitialCounters = gpu::createBufferFrom<std::uint32_t>(
-        device, wgpu::BufferUsage::CopySrc, initial, "visibility initial counters");
+    mInitialCounters = gpu::createBufferFrom<std::uint32_t>(device, wgpu::BufferUsage::CopySrc,
+                                                            initial, "visibility initial counters");
     mRasterArguments =
         gpu::createBuffer(device, wgpu::BufferUsage::Storage | wgpu::BufferUsage::Indirect, 16,
                           "visibility raster dispatch");
@@ -131,18 +131,17 @@ Result<void> VisibilityStrategy::createPipelines() {
     // The frame uniform alone (frame.wgsl's group 0) for the raster passes: the frame layout's
     // lights would take one of the eight storage buffers a stage may bind.
     mFrameOnlyLayout = gpu::makeBindGroupLayout(
-        device,
-        {LayoutEntry::uniform(0, kCompute | vertex | fragment, sizeof(FrameUniform))},
+        device, {LayoutEntry::uniform(0, kCompute | vertex | fragment, sizeof(FrameUniform))},
         "visibility frame");
     mArgumentsLayout = gpu::makeBindGroupLayout(
         device, {LayoutEntry::storage(5, kCompute), LayoutEntry::storage(8, kCompute)},
         "visibility raster arguments");
     mRasterLayout = gpu::makeBindGroupLayout(
         device,
-        {params, LayoutEntry::readOnlyStorage(1, kCompute), LayoutEntry::readOnlyStorage(2, kCompute),
-         LayoutEntry::readOnlyStorage(3, kCompute), LayoutEntry::storage(4, kCompute),
-         LayoutEntry::storage(5, kCompute), LayoutEntry::storage(6, kCompute),
-         LayoutEntry::storage(7, kCompute)},
+        {params, LayoutEntry::readOnlyStorage(1, kCompute),
+         LayoutEntry::readOnlyStorage(2, kCompute), LayoutEntry::readOnlyStorage(3, kCompute),
+         LayoutEntry::storage(4, kCompute), LayoutEntry::storage(5, kCompute),
+         LayoutEntry::storage(6, kCompute), LayoutEntry::storage(7, kCompute)},
         "visibility raster");
     mHardwareLayout = gpu::makeBindGroupLayout(
         device,
@@ -153,15 +152,16 @@ Result<void> VisibilityStrategy::createPipelines() {
         "visibility hardware");
     mBinLayout = gpu::makeBindGroupLayout(
         device,
-        {params, LayoutEntry::readOnlyStorage(1, kCompute), LayoutEntry::readOnlyStorage(2, kCompute),
-         LayoutEntry::readOnlyStorage(3, kCompute), LayoutEntry::storage(4, kCompute),
-         LayoutEntry::storage(5, kCompute)},
+        {params, LayoutEntry::readOnlyStorage(1, kCompute),
+         LayoutEntry::readOnlyStorage(2, kCompute), LayoutEntry::readOnlyStorage(3, kCompute),
+         LayoutEntry::storage(4, kCompute), LayoutEntry::storage(5, kCompute)},
         "visibility bins");
     mShadeLayout = gpu::makeBindGroupLayout(
         device,
-        {params, LayoutEntry::readOnlyStorage(1, kCompute), LayoutEntry::readOnlyStorage(2, kCompute),
-         LayoutEntry::readOnlyStorage(3, kCompute), LayoutEntry::readOnlyStorage(4, kCompute),
-         LayoutEntry::readOnlyStorage(5, kCompute), LayoutEntry::readOnlyStorage(6, kCompute),
+        {params, LayoutEntry::readOnlyStorage(1, kCompute),
+         LayoutEntry::readOnlyStorage(2, kCompute), LayoutEntry::readOnlyStorage(3, kCompute),
+         LayoutEntry::readOnlyStorage(4, kCompute), LayoutEntry::readOnlyStorage(5, kCompute),
+         LayoutEntry::readOnlyStorage(6, kCompute),
          LayoutEntry::readOnlyStorage(7, kCompute, kBinStride).withDynamicOffset(),
          LayoutEntry::storageTexture(8, kCompute, wgpu::TextureFormat::RGBA16Float)},
         "visibility shading");
@@ -177,12 +177,12 @@ Result<void> VisibilityStrategy::createPipelines() {
     mCull = computePipeline(device, raster, "cullMain", {mFrameOnlyLayout, mRasterLayout});
     mRasterArgs = computePipeline(device, raster, "argsMain", {mFrameOnlyLayout, mArgumentsLayout});
     mRaster = computePipeline(device, raster, "rasterMain", {mFrameOnlyLayout, mRasterLayout});
-    mFrameOnlyGroup = gpu::makeBindGroup(
-        device, mFrameOnlyLayout, {{0, mSetup->frame->buffer(), 0, sizeof(FrameUniform)}},
-        "visibility frame");
-    mArgumentsGroup = gpu::makeBindGroup(device, mArgumentsLayout,
-                                         {{5, mCounters}, {8, mRasterArguments}},
-                                         "visibility raster arguments");
+    mFrameOnlyGroup = gpu::makeBindGroup(device, mFrameOnlyLayout,
+                                         {{0, mSetup->frame->buffer(), 0, sizeof(FrameUniform)}},
+                                         "visibility frame");
+    mArgumentsGroup =
+        gpu::makeBindGroup(device, mArgumentsLayout, {{5, mCounters}, {8, mRasterArguments}},
+                           "visibility raster arguments");
 
     ENCORE_TRY_ASSIGN(auto bins, library.module("visibility_bins.wgsl"));
     mBinCount = computePipeline(device, bins, "countMain", {mBinLayout});
@@ -238,15 +238,17 @@ Result<void> VisibilityStrategy::createPipelines() {
     return {};
 }
 
-void VisibilityStrategy::ensureTarget(std::uint32_t width, std::uint32_t height, std::size_t views) {
+void VisibilityStrategy::ensureTarget(std::uint32_t width,
+                                      std::uint32_t height,
+                                      std::size_t views) {
     const wgpu::Device& device = mSetup->device;
     if (views > mViewCapacity) {
         mViewCapacity = views;
         mParams = gpu::createBuffer(device, wgpu::BufferUsage::Uniform | wgpu::BufferUsage::CopyDst,
                                     views * kParamsStride, "visibility view parameters");
-        mTriangleCounts = gpu::createBuffer(
-            device, wgpu::BufferUsage::CopyDst | wgpu::BufferUsage::CopySrc, views * 8,
-            "visibility triangle counts");
+        mTriangleCounts =
+            gpu::createBuffer(device, wgpu::BufferUsage::CopyDst | wgpu::BufferUsage::CopySrc,
+                              views * 8, "visibility triangle counts");
         mWidth = 0;  // The bind groups hold the parameters.
     }
     if (width == mWidth && height == mHeight) {
@@ -273,27 +275,43 @@ void VisibilityStrategy::ensureTarget(std::uint32_t width, std::uint32_t height,
     const wgpu::Buffer& instances = mScene->instances().buffer();
     const gpu::BindingResource params(0, mParams, 0, sizeof(ViewParams));
     const gpu::BindingResource geometry(1, mGeometry, 0, mGeometryBytes);
-    mRasterGroup = gpu::makeBindGroup(
-        device, mRasterLayout,
-        {params, geometry, {2, instances}, {3, mTableBuffer}, {4, mUnits}, {5, mCounters},
-         {6, mHardwareList}, {7, mVisibility}},
-        "visibility raster");
+    mRasterGroup = gpu::makeBindGroup(device, mRasterLayout,
+                                      {params,
+                                       geometry,
+                                       {2, instances},
+                                       {3, mTableBuffer},
+                                       {4, mUnits},
+                                       {5, mCounters},
+                                       {6, mHardwareList},
+                                       {7, mVisibility}},
+                                      "visibility raster");
     mHardwareGroup = gpu::makeBindGroup(device, mHardwareLayout,
-                                        {params, geometry, {2, instances}, {3, mTableBuffer},
-                                         {4, mUnits}, {5, mHardwareList}, {6, mVisibility}},
+                                        {params,
+                                         geometry,
+                                         {2, instances},
+                                         {3, mTableBuffer},
+                                         {4, mUnits},
+                                         {5, mHardwareList},
+                                         {6, mVisibility}},
                                         "visibility hardware");
-    mBinGroup = gpu::makeBindGroup(device, mBinLayout,
-                                   {params, {1, mTableBuffer}, {2, mUnits}, {3, mVisibility},
-                                    {4, mBins}, {5, mPixels}},
-                                   "visibility bins");
-    mShadeGroup = gpu::makeBindGroup(
-        device, mShadeLayout,
-        {params, geometry, {2, instances}, {3, mTableBuffer}, {4, mUnits}, {5, mVisibility},
-         {6, mPixels}, {7, mBins, 0, kBinStride}, {8, mShaded.CreateView()}},
-        "visibility shading");
-    mCompositeGroup = gpu::makeBindGroup(device, mCompositeLayout,
-                                         {{0, mVisibility}, {1, mShaded.CreateView()}},
-                                         "visibility composite");
+    mBinGroup = gpu::makeBindGroup(
+        device, mBinLayout,
+        {params, {1, mTableBuffer}, {2, mUnits}, {3, mVisibility}, {4, mBins}, {5, mPixels}},
+        "visibility bins");
+    mShadeGroup = gpu::makeBindGroup(device, mShadeLayout,
+                                     {params,
+                                      geometry,
+                                      {2, instances},
+                                      {3, mTableBuffer},
+                                      {4, mUnits},
+                                      {5, mVisibility},
+                                      {6, mPixels},
+                                      {7, mBins, 0, kBinStride},
+                                      {8, mShaded.CreateView()}},
+                                     "visibility shading");
+    mCompositeGroup =
+        gpu::makeBindGroup(device, mCompositeLayout, {{0, mVisibility}, {1, mShaded.CreateView()}},
+                           "visibility composite");
 }
 
 void VisibilityStrategy::beforePass(const wgpu::CommandEncoder& commands, const FrameState& frame) {
@@ -312,8 +330,7 @@ void VisibilityStrategy::beforePass(const wgpu::CommandEncoder& commands, const 
         p.viewportX = std::uint32_t(view) * viewWidth;
         p.viewportWidth = viewWidth;
         p.viewportHeight = frame.targetHeight;
-        p.maxComputePixels =
-            std::clamp(frame.culling.computeRasterPixels, 0.0f, kMaxComputePixels);
+        p.maxComputePixels = std::clamp(frame.culling.computeRasterPixels, 0.0f, kMaxComputePixels);
         p.frustumTest = views == 1 ? 1 : 0;
         p.hardwareCapacity = mHardwareCapacity;
         p.binCount = mTables.binCount;
