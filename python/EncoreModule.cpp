@@ -32,6 +32,7 @@
 #include "encore/batch/ViewRig.h"
 #include "encore/gpu/Context.h"
 #include "encore/render/Renderer.h"
+#include "encore/render/VisibilityFeatures.h"
 #include "encore/scene/SceneData.h"
 
 namespace py = pybind11;
@@ -220,6 +221,7 @@ class Renderer {
         }
         gpu::ContextOptions options;
         options.adapterIndex = device ? *device : deviceFromEnvironment();
+        render::requestVisibilityFeatures(options);
         mContext = std::make_unique<gpu::Context>(valueOrThrow(gpu::Context::create(options)));
         mBatchRenderers = std::make_unique<batch::BatchRenderer>(*mContext);
     }

@@ -3,6 +3,7 @@
 
 #include "Commands.h"
 #include "DeviceOptions.h"
+#include "encore/render/VisibilityFeatures.h"
 
 namespace encore::app {
 
@@ -69,6 +70,7 @@ Result<gpu::Context> createContext(const GlobalOptions& global,
     }
     options.allowNullBackend = global.allowNullBackend;
     options.timestamps = timestamps;
+    render::requestVisibilityFeatures(options);
     auto context = gpu::Context::create(options);
     if (context && global.verbose) {
         std::fprintf(stderr, "adapter: %s\n", context->adapterDescription().summary().c_str());

@@ -28,7 +28,7 @@ AdapterDescription describe(const wgpu::Adapter& adapter, std::size_t index) {
 
 }  // namespace
 
-Result<EnumeratedAdapters> enumerateAdapters(bool allowNullBackend) {
+Result<EnumeratedAdapters> enumerateAdapters(bool allowNullBackend, bool allowUnsafeApis) {
     static constexpr auto kTimedWaitAny = wgpu::InstanceFeatureName::TimedWaitAny;
     wgpu::InstanceDescriptor instanceDescriptor{};
     instanceDescriptor.requiredFeatureCount = 1;
@@ -47,6 +47,13 @@ Result<EnumeratedAdapters> enumerateAdapters(bool allowNullBackend) {
     wgpu::RequestAdapterOptions options{};
     options.powerPreference = wgpu::PowerPreference::HighPerformance;
     options.backendType = wgpu::BackendType::Vulkan;
+    static constexpr const char* kUnsafeApis[] = {"allow_unsafe_apis"};
+    wgpu::DawnTogglesDescriptor toggles;
+    if (allowUnsafeApis) {
+        toggles.enabledToggleCount = 1;
+        toggles.enabledToggles = kUnsafeApis;
+        options.nextInChain = &toggles;
+    }
     std::vector<dawn::native::Adapter> found = native.EnumerateAdapters(&options);
     if (found.empty() && allowNullBackend) {
         options.backendType = wgpu::BackendType::Null;

@@ -21,6 +21,8 @@ struct EnumeratedAdapters {
 
 // Creates an instance (with TimedWaitAny) and lists its Vulkan adapters, or with
 // `allowNullBackend` Dawn's Null adapter when there is no Vulkan one. NoAdapter when none.
-Result<EnumeratedAdapters> enumerateAdapters(bool allowNullBackend);
+// `allowUnsafeApis`: the adapters are requested with Dawn's allow_unsafe_apis toggle, without
+// which they do not report the features behind it (AtomicVec2uMinMax).
+Result<EnumeratedAdapters> enumerateAdapters(bool allowNullBackend, bool allowUnsafeApis = false);
 
 }  // namespace encore::gpu

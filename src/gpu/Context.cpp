@@ -139,7 +139,8 @@ Result<void> Context::acquireDevice() {
     mAdapter = nullptr;
     mDevice = nullptr;
     mQueue = nullptr;
-    ENCORE_TRY_ASSIGN(auto enumerated, enumerateAdapters(options.allowNullBackend));
+    ENCORE_TRY_ASSIGN(auto enumerated,
+                      enumerateAdapters(options.allowNullBackend, options.allowUnsafeApis));
     if (options.adapterIndex >= enumerated.adapters.size()) {
         std::string names;
         for (const AdapterDescription& adapter : enumerated.descriptions) {
@@ -173,6 +174,12 @@ Result<void> Context::acquireDevice() {
     wgpu::DawnTogglesDescriptor toggles;
     toggles.disabledToggleCount = disabledToggles.size();
     toggles.disabledToggles = disabledToggles.data();
+    // Features behind allow_unsafe_apis need it on the device as on the adapter request.
+    static constexpr const char* kUnsafeApis[] = {"allow_unsafe_apis"};
+    if (options.allowUnsafeApis) {
+        toggles.enabledToggleCount = 1;
+        toggles.enabledToggles = kUnsafeApis;
+    }
 
     wgpu::DeviceDescriptor deviceDescriptor{};
     deviceDescriptor.nextInChain = &toggles;

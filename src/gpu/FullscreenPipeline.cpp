@@ -14,7 +14,8 @@ wgpu::RenderPipeline makeFullscreenPipeline(const wgpu::Device& device,
     fragment.targets = &color;
     wgpu::DepthStencilState depth{};
     depth.format = descriptor.depthFormat;
-    depth.depthWriteEnabled = wgpu::OptionalBool::False;
+    depth.depthWriteEnabled =
+        descriptor.writesDepth ? wgpu::OptionalBool::True : wgpu::OptionalBool::False;
     depth.depthCompare = wgpu::CompareFunction::Always;
 
     wgpu::RenderPipelineDescriptor pipeline{};

@@ -25,6 +25,8 @@ struct FullscreenPipelineDescriptor {
     // For a pass that has a depth attachment (and samples): the triangle neither tests nor
     // writes depth. Undefined: a pass without depth.
     wgpu::TextureFormat depthFormat = wgpu::TextureFormat::Undefined;
+    // With a depth format: the fragment's frag_depth is written (always, untested).
+    bool writesDepth = false;
     std::uint32_t sampleCount = 1;
 };
 

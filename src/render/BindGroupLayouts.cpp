@@ -13,7 +13,8 @@ namespace encore::render {
 BindGroupLayouts BindGroupLayouts::create(const wgpu::Device& device) {
     using gpu::LayoutEntry;
     constexpr auto kVertex = wgpu::ShaderStage::Vertex;
-    constexpr auto kFragment = wgpu::ShaderStage::Fragment;
+    // Lighting and materials are also read by the visibility strategy's compute resolve.
+    constexpr auto kFragment = wgpu::ShaderStage::Fragment | wgpu::ShaderStage::Compute;
     BindGroupLayouts layouts;
     // Group 0: the camera, then how the scene is lit (scene_lighting.wgsl). Every pipeline uses
     // this layout, so strategies without materials simply ignore bindings 1..4.

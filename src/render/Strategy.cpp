@@ -8,6 +8,7 @@
 #include "render/strategies/MaterialsStrategy.h"
 #include "render/strategies/NaiveStrategy.h"
 #include "render/strategies/PipelineCacheStrategy.h"
+#include "render/strategies/VisibilityStrategy.h"
 
 namespace encore::render {
 
@@ -35,6 +36,8 @@ std::unique_ptr<Strategy> createStrategy(StrategyKind kind, bool bundle) {
             return std::make_unique<GpuCullingStrategy>(false);
         case StrategyKind::GpuCullingBundles:
             return std::make_unique<GpuCullingStrategy>(true);
+        case StrategyKind::Visibility:
+            return std::make_unique<VisibilityStrategy>();
     }
     return nullptr;
 }

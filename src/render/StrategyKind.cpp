@@ -19,6 +19,7 @@ constexpr std::array kStrategyNames = {
     StrategyName{StrategyKind::Bundles, "bundles"},
     StrategyName{StrategyKind::GpuCulling, "gpu-culling"},
     StrategyName{StrategyKind::GpuCullingBundles, "gpu-culling-bundles"},
+    StrategyName{StrategyKind::Visibility, "visibility"},
 };
 // The kinds in the order above, so that the names are the one list to extend.
 constexpr auto kAllStrategies = [] {

@@ -169,6 +169,26 @@ const GeometryBuffers::ViewPlacement& GeometryBuffers::viewPlacement(scene::Buff
     return found->second;
 }
 
+std::optional<GeometryBuffers::SharedPlacement> GeometryBuffers::sharedPlacement(
+    scene::AccessorId id) const {
+    if (id.index() >= mScene->accessors.size()) {
+        return std::nullopt;
+    }
+    const scene::Accessor& accessor = mScene->accessors[id.index()];
+    const auto found = mViews.find(accessor.view);
+    if (found == mViews.end()) {
+        return std::nullopt;
+    }
+    const auto buffer =
+        std::find_if(mSharedBuffers.begin(), mSharedBuffers.end(),
+                     [&](const wgpu::Buffer& b) { return b.Get() == found->second.buffer.Get(); });
+    if (buffer == mSharedBuffers.end()) {
+        return std::nullopt;
+    }
+    return SharedPlacement{std::size_t(buffer - mSharedBuffers.begin()),
+                           found->second.offset + accessor.byteOffset};
+}
+
 Result<PrimitiveBindings> GeometryBuffers::bind(const scene::Primitive& primitive,
                                                 std::span<const scene::Semantic> semantics) const {
     PrimitiveBindings bindings;

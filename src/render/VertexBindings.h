@@ -19,6 +19,7 @@
 
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -76,6 +77,15 @@ class GeometryBuffers {
     std::size_t bufferCount() const { return mSharedBuffers.size() + mPrivateBuffers.size(); }
     // The shared buffers (Vertex, Index and Storage usage: vertex pulling reads them too).
     std::span<const wgpu::Buffer> sharedBuffers() const { return mSharedBuffers; }
+    // Where an accessor's data lies in the shared buffers, for shaders that pull vertices and
+    // indices themselves: the buffer's index in sharedBuffers() and the byte offset of its first
+    // element. nullopt when its bufferView was not uploaded in place (only a padded copy).
+    struct SharedPlacement {
+        std::size_t buffer = 0;
+        std::uint64_t byteOffset = 0;
+    };
+    std::optional<SharedPlacement> sharedPlacement(scene::AccessorId accessor) const;
+
     // Bytes written to the GPU: shared buffers (gaps included) and padded copies.
     std::uint64_t uploadedBytes() const { return mUploadedBytes; }
 

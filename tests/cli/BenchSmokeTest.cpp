@@ -31,7 +31,7 @@ TEST(BenchSmokeTest, WritesACompleteReportOnVulkan) {
     EXPECT_EQ(report["gpuWait"], "spin");
     EXPECT_EQ(report["generated"]["textures"], true);
     const auto& results = report["results"];
-    ASSERT_EQ(results.size(), 2u * 8u);  // Two scenes, every strategy.
+    ASSERT_EQ(results.size(), 2u * 9u);  // Two scenes, every strategy.
     for (const auto& entry : results) {
         SCOPED_TRACE(entry["label"].get<std::string>() + " / " +
                      entry["strategy"].get<std::string>());

@@ -378,6 +378,15 @@ TEST_P(AnimatedModelTest, ChangesOverTimeAndAgreesAcrossStrategies) {
             continue;
         }
         for (std::size_t i = 0; i < 2; ++i) {
+            if (kind == StrategyKind::Visibility) {
+                // Shaded in compute with explicit texture gradients: close, not identical
+                // (docs/visibility.md; VisibilityStrategyTest holds the same bound).
+                const std::size_t pixels = std::size_t(images[i].width) * images[i].height;
+                EXPECT_LE(double(test::differingPixels(images[i], reference[i], 2)),
+                          0.015 * double(pixels))
+                    << "frame " << i;
+                continue;
+            }
             EXPECT_EQ(test::differingPixels(images[i], reference[i], 0), 0u) << "frame " << i;
         }
     }

@@ -10,6 +10,7 @@
 
 #include "TestPaths.h"
 #include "core/Log.h"
+#include "encore/render/VisibilityFeatures.h"
 
 namespace encore::test {
 
@@ -21,7 +22,9 @@ gpu::Context* vulkanContext() {
                 std::fprintf(stderr, "[webgpu] %.*s\n", int(message.size()), message.data());
             }
         });
-        auto created = gpu::Context::create();
+        gpu::ContextOptions options;
+        render::requestVisibilityFeatures(options);
+        auto created = gpu::Context::create(options);
         if (!created) {
             std::fprintf(stderr, "%s\n", created.error().message.c_str());
             return std::unique_ptr<gpu::Context>();

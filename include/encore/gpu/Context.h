@@ -32,6 +32,10 @@ struct ContextOptions {
     bool timestamps = false;
     // Features requested only when the adapter supports them (e.g. IndirectFirstInstance).
     std::vector<wgpu::FeatureName> optionalFeatures;
+    // Turns on Dawn's allow_unsafe_apis toggle for the adapter request and the device: Dawn
+    // offers some features only with it (AtomicVec2uMinMax, which the visibility strategy's
+    // 64-bit atomics need; render::requestVisibilityFeatures asks for both). Off by default.
+    bool allowUnsafeApis = false;
     // Limits below the device's, for tests of what lies beyond them (see DeviceLimits.h).
     LimitOverrides limitOverrides;
 };

@@ -14,6 +14,9 @@ struct CullingOptions {
     // on the screen, stays under `lodErrorPixels` (level 0, the mesh as loaded, when off).
     bool levelsOfDetail = true;
     float lodErrorPixels = 1.0f;
+    // The visibility strategy: triangles whose screen bounds span at most this many pixels
+    // each way are rasterised in compute, larger ones by the hardware (at most 64).
+    float computeRasterPixels = 16.0f;
 
     bool operator==(const CullingOptions&) const = default;
 };

@@ -29,6 +29,7 @@
 #include "encore/render/RenderTarget.h"
 #include "encore/render/Strategy.h"
 #include "encore/render/ToneMapper.h"
+#include "encore/render/VisibilityFeatures.h"  // What a context needs for the visibility strategy.
 #include "encore/scene/AnimationPlayer.h"
 
 namespace encore::gpu {

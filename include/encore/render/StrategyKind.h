@@ -33,6 +33,10 @@ enum class StrategyKind {
     GpuCulling,
     // GPU culling with the indirect draws recorded once into a render bundle.
     GpuCullingBundles,
+    // A visibility buffer: small triangles rasterised in compute (64-bit atomics of depth and
+    // triangle id), large ones by the hardware into the same buffer, then shaded per pixel in
+    // compute. Needs the AtomicVec2uMinMax feature (docs/visibility.md).
+    Visibility,
 };
 
 std::string_view strategyName(StrategyKind kind);

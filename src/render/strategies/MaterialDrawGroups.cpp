@@ -54,8 +54,11 @@ std::vector<scene::Semantic> variantSemantics(const shaders::ShaderVariantKey& k
 
 }  // namespace
 
-Result<void> MaterialDrawGroups::prepare(const RenderSetup& setup, const GpuScene& scene) {
+Result<void> MaterialDrawGroups::prepare(const RenderSetup& setup,
+                                         const GpuScene& scene,
+                                         PrimitiveFilter filter) {
     mSetup = &setup;
+    mFilter = std::move(filter);
     mScene = &scene;
     mFrameGroup = setup.frame->bindGroup();
     mPipelines = strategyPipelineCache(setup, mOwnPipelines);
@@ -94,6 +97,9 @@ Result<void> MaterialDrawGroups::regroup() {
         }
         const auto& primitives = scene.meshes[mesh].primitives;
         for (std::size_t index = 0; index < primitives.size(); ++index) {
+            if (mFilter && !mFilter(scene::MeshId(mesh), index)) {
+                continue;
+            }
             const scene::Primitive& primitive = primitives[index];
             const scene::Material& material = scene.materials[primitive.material.index()];
             shaders::ShaderVariantKey variant =

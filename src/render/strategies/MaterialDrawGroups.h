@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <span>
 #include <vector>
@@ -52,9 +53,16 @@ class MaterialDrawGroups {
         std::size_t primitive = 0;  // Index in its mesh.
     };
 
+    // Which primitives (of a mesh, by index in it) the groups draw, for strategies that draw only
+    // part of the scene this way (visibility: what its compute path does not draw).
+    using PrimitiveFilter = std::function<bool(scene::MeshId mesh, std::size_t primitive)>;
+
     // Chooses every primitive's pipeline and groups the draws of `scene` (which, like `setup`,
-    // must outlive this); adds the time to setup.prepareTimes.draws.
-    Result<void> prepare(const RenderSetup& setup, const GpuScene& scene);
+    // must outlive this); adds the time to setup.prepareTimes.draws. With `filter`, only the
+    // primitives it accepts.
+    Result<void> prepare(const RenderSetup& setup,
+                         const GpuScene& scene,
+                         PrimitiveFilter filter = {});
     // Whether a bind group the groups depend on was replaced since they were made (a material
     // that gained textures needs other pipelines).
     bool stale() const { return mGeneration != mScene->generation(); }
@@ -90,6 +98,7 @@ class MaterialDrawGroups {
     std::vector<PipelineGroup> mOpaque;
     std::vector<BlendedDraw> mBlended;
     std::uint64_t mGeneration = 0;
+    PrimitiveFilter mFilter;
 };
 
 }  // namespace encore::render

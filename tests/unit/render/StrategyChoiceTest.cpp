@@ -13,7 +13,7 @@ using Kind = StrategyKind;
 // in the enumeration's order, with a name of its own.
 TEST(StrategyChoiceTest, EveryKindIsListedOnceWithItsOwnName) {
     const auto kinds = allStrategies();
-    ASSERT_EQ(kinds.size(), std::size_t(Kind::GpuCullingBundles) + 1);
+    ASSERT_EQ(kinds.size(), std::size_t(Kind::Visibility) + 1);
     for (std::size_t i = 0; i < kinds.size(); ++i) {
         EXPECT_EQ(kinds[i], Kind(i));
         EXPECT_NE(strategyName(kinds[i]), "unknown");

@@ -1,0 +1,40 @@
+#pragma once
+
+// What the visibility strategy's shaders read about the scene (visibility_geometry.wgsl): a
+// record per primitive that the compute path draws (where its indices and attributes lie in the
+// GPU scene's first shared geometry buffer, their formats, material, shading bin, bounds) and a
+// list of items, one per (instance, such primitive), in instance-buffer order. Built once per
+// scene from the GpuScene; the strategy uploads `words`.
+//
+// The compute path takes opaque, static triangle lists whose data lies in the first shared
+// buffer within `maxGeometryBytes`; the rest (MASK and BLEND materials, skinned or morphed
+// primitives, other topologies, data elsewhere) is drawn by the hardware as `materials` draws
+// it, so nothing goes missing.
+
+#include <cstdint>
+#include <vector>
+
+#include "render/GpuScene.h"
+
+namespace encore::render {
+
+struct VisibilityTables {
+    static constexpr std::uint32_t kItemWords = 4;        // visibility_geometry.wgsl's.
+    static constexpr std::uint32_t kPrimitiveWords = 32;  // Likewise.
+    static constexpr std::uint32_t kUnitTriangles = 256;  // Likewise.
+
+    // Items (kItemWords each), then primitive records (kPrimitiveWords each).
+    std::vector<std::uint32_t> words;
+    std::uint32_t itemCount = 0;
+    std::uint64_t unitCount = 0;      // Units of all items: the unit list's capacity.
+    std::uint64_t triangleCount = 0;  // Triangles of all items.
+    // [mesh][primitive]: whether the compute path draws it (for every instance of the mesh).
+    std::vector<std::vector<bool>> computePath;
+    // The shading bins (material * 2 + 1 with a bound TANGENT) that some item uses, ascending.
+    std::vector<std::uint32_t> bins;
+    std::uint32_t binCount = 0;  // 2 * materials: the bin table's size.
+};
+
+VisibilityTables buildVisibilityTables(const GpuScene& scene, std::uint64_t maxGeometryBytes);
+
+}  // namespace encore::render

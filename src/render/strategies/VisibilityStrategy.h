@@ -1,0 +1,108 @@
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "encore/render/Strategy.h"
+#include "render/VisibilityTables.h"
+#include "render/strategies/MaterialDrawGroups.h"
+
+namespace encore::render {
+
+// A visibility buffer rasterised in compute (docs/visibility.md). Before the frame's render
+// pass, for each view: a compute pass culls items (instance x primitive) against the frustum and
+// lists their units of 256 triangles; a compute raster writes each small triangle's
+// (depth, id) into a 64-bit-per-pixel storage buffer with atomicStoreMax; triangles that cross
+// the near or far plane or span more than maxComputePixels go to one indirect hardware draw whose
+// fragments do the same atomic; compute passes then sort the covered pixels into bins by
+// material and shade each bin (the PBR code of mesh.wgsl) into a colour texture. In the render
+// pass a fullscreen triangle copies colour and depth of covered pixels, and what the compute path
+// does not take (MASK, BLEND, skinned or morphed primitives) is drawn as `materials` draws it.
+// Needs the AtomicVec2uMinMax feature; prepare() fails naming it otherwise.
+class VisibilityStrategy final : public Strategy {
+  public:
+    // Bounds of the compute raster's triangle size (wider or taller goes to the hardware):
+    // the fixed-point edge functions stay within 32 bits up to kMaxComputePixels.
+    static constexpr float kMaxComputePixels = 64.0f;
+    static constexpr float kDefaultComputePixels = 16.0f;
+
+    StrategyKind kind() const override { return StrategyKind::Visibility; }
+    Result<void> prepare(const RenderSetup& setup, const GpuScene& scene) override;
+    Result<void> refresh() override { return mDraws.refresh(); }
+    void beforePass(const wgpu::CommandEncoder& commands, const FrameState& frame) override;
+    void encode(RenderEncoder& encoder, const FrameState& frame) const override;
+    InstanceTransformTargets instanceTransformTargets() const override {
+        return mDraws.scene().instances().transformTargets();
+    }
+
+    const VisibilityTables& tables() const { return mTables; }
+    // Per view of the last frame, two words: triangles rasterised in compute, then vertices
+    // drawn by the hardware path (3 per triangle). CopySrc usage, for read-back.
+    const wgpu::Buffer& triangleCounts() const { return mTriangleCounts; }
+    std::size_t lastViewCount() const { return mLastViewCount; }
+
+  private:
+    Result<void> createPipelines();
+    void ensureTarget(std::uint32_t width, std::uint32_t height, std::size_t views);
+    void encodeView(const wgpu::CommandEncoder& commands,
+                    const FrameState& frame,
+                    std::size_t view,
+                    std::uint32_t viewX,
+                    std::uint32_t viewWidth);
+
+    const RenderSetup* mSetup = nullptr;
+    const GpuScene* mScene = nullptr;
+    MaterialDrawGroups mDraws;  // What the compute path does not draw.
+    VisibilityTables mTables;
+
+    // Scene-sized buffers.
+    wgpu::Buffer mTableBuffer;
+    wgpu::Buffer mUnits;
+    wgpu::Buffer mCounters;
+    wgpu::Buffer mInitialCounters;
+    wgpu::Buffer mHardwareList;
+    std::uint32_t mHardwareCapacity = 0;
+    wgpu::Buffer mRasterArguments;
+    wgpu::Buffer mBins;
+    wgpu::Buffer mGeometry;  // The first shared geometry buffer, or a placeholder.
+    std::uint64_t mGeometryBytes = 0;
+
+    // Target-sized resources, made on the first frame and when the size changes.
+    std::uint32_t mWidth = 0;
+    std::uint32_t mHeight = 0;
+    std::size_t mViewCapacity = 0;
+    wgpu::Buffer mParams;  // One 256-byte slot per view.
+    wgpu::Buffer mVisibility;
+    wgpu::Buffer mPixels;
+    wgpu::Texture mShaded;
+    wgpu::Texture mHardwareDepth;
+    wgpu::Buffer mTriangleCounts;
+    std::size_t mLastViewCount = 0;
+
+    wgpu::BindGroupLayout mFrameOnlyLayout;
+    wgpu::BindGroupLayout mArgumentsLayout;
+    wgpu::BindGroupLayout mRasterLayout;
+    wgpu::BindGroupLayout mHardwareLayout;
+    wgpu::BindGroupLayout mBinLayout;
+    wgpu::BindGroupLayout mShadeLayout;
+    wgpu::BindGroupLayout mCompositeLayout;
+    wgpu::ComputePipeline mCull;
+    wgpu::ComputePipeline mRasterArgs;
+    wgpu::ComputePipeline mRaster;
+    wgpu::RenderPipeline mHardware;
+    wgpu::ComputePipeline mBinCount;
+    wgpu::ComputePipeline mBinOffsets;
+    wgpu::ComputePipeline mBinScatter;
+    // [textured][tangent].
+    std::array<std::array<wgpu::ComputePipeline, 2>, 2> mShade;
+    wgpu::RenderPipeline mComposite;
+    wgpu::BindGroup mFrameOnlyGroup;
+    wgpu::BindGroup mArgumentsGroup;
+    wgpu::BindGroup mRasterGroup;
+    wgpu::BindGroup mHardwareGroup;
+    wgpu::BindGroup mBinGroup;
+    wgpu::BindGroup mShadeGroup;
+    wgpu::BindGroup mCompositeGroup;
+};
+
+}  // namespace encore::render

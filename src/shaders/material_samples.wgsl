@@ -1,0 +1,92 @@
+// Every texture slot of the material (material.wgsl) sampled at one surface point. A fragment
+// shader samples with implicit derivatives; with SAMPLE_GRADIENT (compute shaders, which have
+// none) the caller passes the screen-space derivatives of both texture coordinate sets, and each
+// slot's KHR_texture_transform applies to them as to the coordinates.
+
+struct MaterialSamples {
+    baseColor: vec4f,
+    metallicRoughness: vec4f,
+    normal: vec3f,
+    occlusion: f32,
+    emissive: vec3f,
+    specular: f32,
+    specularColor: vec3f,
+    clearcoat: f32,
+    clearcoatRoughness: f32,
+    clearcoatNormal: vec3f,
+    sheenColor: vec3f,
+    sheenRoughness: f32,
+}
+
+// d(uv)/dx and d(uv)/dy of TEXCOORD_0 and TEXCOORD_1 (unused without SAMPLE_GRADIENT).
+struct UvGradients {
+    dx0: vec2f,
+    dy0: vec2f,
+    dx1: vec2f,
+    dy1: vec2f,
+}
+
+#if MATERIAL_TEXTURES
+// The slot's texture transform applied to a derivative (its linear part only).
+fn slotUvGradient(slot: u32, d0: vec2f, d1: vec2f) -> vec2f {
+    let transform = material.slots[slot];
+    let d = select(d0, d1, transform.row0.w > 0.5);
+    return vec2f(dot(transform.row0.xy, d), dot(transform.row1.xy, d));
+}
+
+fn sampleSlot(slotTexture: texture_2d<f32>, slotSampler: sampler, slot: u32, uv0: vec2f,
+              uv1: vec2f, gradients: UvGradients) -> vec4f {
+#if SAMPLE_GRADIENT
+    return textureSampleGrad(slotTexture, slotSampler, slotUv(slot, uv0, uv1),
+                             slotUvGradient(slot, gradients.dx0, gradients.dx1),
+                             slotUvGradient(slot, gradients.dy0, gradients.dy1));
+#else
+    return textureSample(slotTexture, slotSampler, slotUv(slot, uv0, uv1));
+#endif
+}
+#endif
+
+fn sampleMaterial(uv0: vec2f, uv1: vec2f, gradients: UvGradients) -> MaterialSamples {
+    var samples: MaterialSamples;
+#if MATERIAL_TEXTURES
+    samples.baseColor = sampleSlot(baseColorTexture, baseColorSampler, kBaseColorSlot, uv0, uv1,
+                                   gradients);
+    samples.metallicRoughness = sampleSlot(metallicRoughnessTexture, metallicRoughnessSampler,
+                                           kMetallicRoughnessSlot, uv0, uv1, gradients);
+    samples.normal = sampleSlot(normalTexture, normalSampler, kNormalSlot, uv0, uv1,
+                                gradients).rgb;
+    samples.occlusion = sampleSlot(occlusionTexture, occlusionSampler, kOcclusionSlot, uv0, uv1,
+                                   gradients).r;
+    samples.emissive = sampleSlot(emissiveTexture, emissiveSampler, kEmissiveSlot, uv0, uv1,
+                                  gradients).rgb;
+    samples.specular = sampleSlot(specularTexture, specularSampler, kSpecularSlot, uv0, uv1,
+                                  gradients).a;
+    samples.specularColor = sampleSlot(specularColorTexture, specularColorSampler,
+                                       kSpecularColorSlot, uv0, uv1, gradients).rgb;
+    samples.clearcoat = sampleSlot(clearcoatTexture, clearcoatSampler, kClearcoatSlot, uv0, uv1,
+                                   gradients).r;
+    samples.clearcoatRoughness = sampleSlot(clearcoatRoughnessTexture, clearcoatRoughnessSampler,
+                                            kClearcoatRoughnessSlot, uv0, uv1, gradients).g;
+    samples.clearcoatNormal = sampleSlot(clearcoatNormalTexture, clearcoatNormalSampler,
+                                         kClearcoatNormalSlot, uv0, uv1, gradients).rgb;
+    samples.sheenColor = sampleSlot(sheenColorTexture, sheenColorSampler, kSheenColorSlot, uv0,
+                                    uv1, gradients).rgb;
+    samples.sheenRoughness = sampleSlot(sheenRoughnessTexture, sheenRoughnessSampler,
+                                        kSheenRoughnessSlot, uv0, uv1, gradients).a;
+#else
+    // No texture anywhere: every slot reads white, as the 1-pixel default would.
+    samples.baseColor = vec4f(1.0);
+    samples.metallicRoughness = vec4f(1.0);
+    samples.normal = vec3f(1.0);
+    samples.occlusion = 1.0;
+    samples.emissive = vec3f(1.0);
+    samples.specular = 1.0;
+    samples.specularColor = vec3f(1.0);
+    samples.clearcoat = 1.0;
+    samples.clearcoatRoughness = 1.0;
+    samples.clearcoatNormal = vec3f(1.0);
+    samples.sheenColor = vec3f(1.0);
+    samples.sheenRoughness = 1.0;
+#endif
+    return samples;
+}

@@ -1,0 +1,157 @@
+// What every pass of the visibility strategy reads (render/VisibilityTables.h writes it): the
+// view's parameters, the GPU scene's shared geometry buffer (vertices and indices pulled here,
+// in any glTF component type), the instance transforms, and the tables of primitives and items
+// (instance x primitive), all in group 1. Needs frame.wgsl.
+//
+// A visibility-buffer id is unit * 256 + triangle in the unit; a unit is up to 256 consecutive
+// triangles of one item, listed by the culling pass for this view.
+
+#include "visibility_params.wgsl"
+
+struct Transform {
+    world: mat4x4f,
+    normal: mat4x4f,
+}
+
+// An attribute as the tables describe it: byte offset of element 0 in the geometry buffer,
+// stride, and format (0: absent; else kind | components << 8 | normalized << 16).
+struct Attribute {
+    offset: u32,
+    stride: u32,
+    format: u32,
+}
+
+const kUnitTriangles = 256u;
+const kItemWords = 4u;
+const kPrimitiveWords = 32u;
+
+// Item: instance slot, primitive record (word index), unit count, 1 when mirrored.
+struct Item {
+    slot: u32,
+    record: u32,
+    unitCount: u32,
+    mirrored: u32,
+}
+
+@group(1) @binding(0) var<uniform> params: VisibilityParams;
+@group(1) @binding(1) var<storage, read> geometry: array<u32>;
+@group(1) @binding(2) var<storage, read> instances: array<Transform>;
+@group(1) @binding(3) var<storage, read> tables: array<u32>;
+
+fn loadItem(index: u32) -> Item {
+    let base = index * kItemWords;
+    return Item(tables[base], tables[base + 1u], tables[base + 2u], tables[base + 3u]);
+}
+
+// Primitive record fields (word offsets).
+const kIndexOffset = 0u;   // Byte offset of index 0, or of nothing when not indexed.
+const kIndexSize = 1u;     // 0 (not indexed), 2 or 4.
+const kTriangleCount = 2u;
+const kMaterial = 3u;
+const kBin = 4u;           // Shading bin: material * 2 + 1 with a bound TANGENT.
+const kDoubleSided = 5u;
+const kPosition = 6u;
+const kNormal = 9u;
+const kTexcoord0 = 12u;
+const kTexcoord1 = 15u;
+const kColor = 18u;
+const kTangent = 21u;
+const kBoundsCenter = 24u;
+const kBoundsExtent = 27u;
+
+fn field(record: u32, offset: u32) -> u32 {
+    return tables[record + offset];
+}
+
+fn attributeAt(record: u32, offset: u32) -> Attribute {
+    return Attribute(tables[record + offset], tables[record + offset + 1u],
+                     tables[record + offset + 2u]);
+}
+
+fn vec3At(record: u32, offset: u32) -> vec3f {
+    return bitcast<vec3f>(vec3u(tables[record + offset], tables[record + offset + 1u],
+                                tables[record + offset + 2u]));
+}
+
+// `bytes` (1, 2 or 4) little-endian bytes at any byte address of the geometry buffer.
+fn loadBits(address: u32, bytes: u32) -> u32 {
+    let word = address >> 2u;
+    let shift = (address & 3u) * 8u;
+    var value = geometry[word] >> shift;
+    if (shift + bytes * 8u > 32u) {
+        value |= geometry[word + 1u] << (32u - shift);
+    }
+    if (bytes < 4u) {
+        value &= (1u << (bytes * 8u)) - 1u;
+    }
+    return value;
+}
+
+// Component kinds: 1 int8, 2 uint8, 3 int16, 4 uint16, 5 uint32, 6 float32.
+fn componentSize(kind: u32) -> u32 {
+    return select(select(4u, 2u, kind == 3u || kind == 4u), 1u, kind <= 2u);
+}
+
+fn loadComponent(address: u32, kind: u32, normalized: bool) -> f32 {
+    switch (kind) {
+        case 1u: {
+            let v = f32(bitcast<i32>(loadBits(address, 1u) << 24u) >> 24u);
+            return select(v, max(v / 127.0, -1.0), normalized);
+        }
+        case 2u: {
+            let v = f32(loadBits(address, 1u));
+            return select(v, v / 255.0, normalized);
+        }
+        case 3u: {
+            let v = f32(bitcast<i32>(loadBits(address, 2u) << 16u) >> 16u);
+            return select(v, max(v / 32767.0, -1.0), normalized);
+        }
+        case 4u: {
+            let v = f32(loadBits(address, 2u));
+            return select(v, v / 65535.0, normalized);
+        }
+        case 5u: {
+            return f32(loadBits(address, 4u));
+        }
+        default: {
+            return bitcast<f32>(loadBits(address, 4u));
+        }
+    }
+}
+
+// The attribute of `vertex`, its missing components (or all, when absent) from `fallback`.
+fn loadAttribute(source: Attribute, vertex: u32, fallback: vec4f) -> vec4f {
+    var result = fallback;
+    if (source.format == 0u) {
+        return result;
+    }
+    let kind = source.format & 0xffu;
+    let count = (source.format >> 8u) & 0xffu;
+    let normalized = ((source.format >> 16u) & 1u) != 0u;
+    let size = componentSize(kind);
+    let base = source.offset + vertex * source.stride;
+    for (var c = 0u; c < count; c++) {
+        result[c] = loadComponent(base + c * size, kind, normalized);
+    }
+    return result;
+}
+
+// The vertex index of a triangle's corner.
+fn vertexIndex(record: u32, triangle: u32, corner: u32) -> u32 {
+    let i = triangle * 3u + corner;
+    let size = field(record, kIndexSize);
+    if (size == 0u) {
+        return i;
+    }
+    return loadBits(field(record, kIndexOffset) + i * size, size);
+}
+
+// What mesh.wgsl's vertex shader computes, in the same order (so the same rounding).
+fn worldPosition(record: u32, transform: Transform, vertex: u32) -> vec4f {
+    let position = loadAttribute(attributeAt(record, kPosition), vertex, vec4f(0.0)).xyz;
+    return transform.world * vec4f(position, 1.0);
+}
+
+fn clipPosition(world: vec4f) -> vec4f {
+    return frame.projection * frame.view * world;
+}

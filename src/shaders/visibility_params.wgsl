@@ -1,0 +1,16 @@
+// The parameters of one view of the visibility strategy (VisibilityStrategy.cpp's ViewParams):
+// a uniform bound with a dynamic offset per view.
+struct VisibilityParams {
+    itemCount: u32,
+    targetWidth: u32,
+    // The view's viewport in target pixels.
+    viewportX: u32,
+    viewportY: u32,
+    viewportWidth: u32,
+    viewportHeight: u32,
+    // Triangles whose screen bounds are wider or taller than this go to the hardware.
+    maxComputePixels: f32,
+    frustumTest: u32,  // 0 in multi-view frames, whose views each frame the whole scene.
+    hardwareCapacity: u32,
+    binCount: u32,
+}

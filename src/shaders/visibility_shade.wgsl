@@ -1,0 +1,161 @@
+// The visibility strategy's resolve: one thread per covered pixel of one shading bin (one
+// material; HAS_TANGENT as the bin says), dispatched indirectly per bin. It rebuilds the pixel's
+// triangle from the visibility buffer's id, its perspective-correct barycentrics at the pixel
+// centre and their screen-space derivatives (texture LOD, the tangent frame), interpolates what
+// mesh.wgsl's vertex shader outputs, and shades with the same code as mesh.wgsl's fragment
+// shader (surface_shading.wgsl), sampling with explicit gradients (SAMPLE_GRADIENT).
+// Variants: MATERIAL_TEXTURES, HAS_TANGENT.
+#include "frame.wgsl"
+#include "scene_lighting.wgsl"
+#include "brdf.wgsl"
+#include "material.wgsl"
+#include "material_samples.wgsl"
+#include "surface_shading.wgsl"
+#include "visibility_geometry.wgsl"
+#include "visibility_bin_record.wgsl"
+
+struct Bin {
+    count: u32,
+    cursor: u32,
+    first: u32,
+    x: u32,
+    y: u32,
+    z: u32,
+    padding: array<u32, kBinPaddingWords>,
+}
+
+@group(1) @binding(4) var<storage, read> units: array<vec2u>;
+@group(1) @binding(5) var<storage, read> visibility: array<vec2u>;
+@group(1) @binding(6) var<storage, read> pixels: array<u32>;
+@group(1) @binding(7) var<storage, read> bin: Bin;
+@group(1) @binding(8) var shaded: texture_storage_2d<rgba16float, write>;
+
+// Barycentrics of the pixel centre and their change one pixel right and one pixel down.
+struct Barycentrics {
+    value: vec3f,
+    dx: vec3f,
+    dy: vec3f,
+}
+
+// Perspective-correct barycentrics from the clip positions: 1/w and attribute/w are linear in
+// normalised device coordinates, and one pixel is a fixed step there.
+fn barycentrics(c0: vec4f, c1: vec4f, c2: vec4f, ndc: vec2f, step: vec2f) -> Barycentrics {
+    let inverseW = 1.0 / vec3f(c0.w, c1.w, c2.w);
+    let n0 = c0.xy * inverseW.x;
+    let n1 = c1.xy * inverseW.y;
+    let n2 = c2.xy * inverseW.z;
+    let inverseDet = 1.0 / determinant(mat2x2f(n2 - n1, n0 - n1));
+    let ddx = vec3f(n1.y - n2.y, n2.y - n0.y, n0.y - n1.y) * inverseDet * inverseW;
+    let ddy = vec3f(n2.x - n1.x, n0.x - n2.x, n1.x - n0.x) * inverseDet * inverseW;
+    let delta = ndc - n0;
+    let numerator = vec3f(inverseW.x, 0.0, 0.0) + delta.x * ddx + delta.y * ddy;
+    let interpolatedInverseW = numerator.x + numerator.y + numerator.z;
+    var result: Barycentrics;
+    result.value = numerator / interpolatedInverseW;
+    let numeratorX = numerator + step.x * ddx;
+    let numeratorY = numerator + step.y * ddy;
+    result.dx = numeratorX / (numeratorX.x + numeratorX.y + numeratorX.z) - result.value;
+    result.dy = numeratorY / (numeratorY.x + numeratorY.y + numeratorY.z) - result.value;
+    return result;
+}
+
+fn mix3(b: vec3f, a0: vec4f, a1: vec4f, a2: vec4f) -> vec4f {
+    return a0 * b.x + a1 * b.y + a2 * b.z;
+}
+
+@compute @workgroup_size(64)
+fn shadeMain(@builtin(workgroup_id) group: vec3u, @builtin(local_invocation_index) lane: u32) {
+    let i = (group.y * 65535u + group.x) * 64u + lane;
+    if (i >= bin.count) {
+        return;
+    }
+    let pixelIndex = pixels[bin.first + i];
+    let pixel = vec2u(pixelIndex % params.targetWidth, pixelIndex / params.targetWidth);
+    let id = visibility[pixelIndex].x;
+    let unit = units[id / kUnitTriangles];
+    let item = loadItem(unit.x);
+    let record = item.record;
+    let triangle = unit.y + id % kUnitTriangles;
+    let transform = instances[item.slot];
+    let i0 = vertexIndex(record, triangle, 0u);
+    let i1 = vertexIndex(record, triangle, 1u);
+    let i2 = vertexIndex(record, triangle, 2u);
+    let w0 = worldPosition(record, transform, i0);
+    let w1 = worldPosition(record, transform, i1);
+    let w2 = worldPosition(record, transform, i2);
+    let c0 = clipPosition(w0);
+    let c1 = clipPosition(w1);
+    let c2 = clipPosition(w2);
+
+    let halfSize = vec2f(f32(params.viewportWidth), f32(params.viewportHeight)) * 0.5;
+    let viewport = vec2f(f32(params.viewportX), f32(params.viewportY));
+    let step = vec2f(1.0, -1.0) / halfSize;
+    let centre = vec2f(pixel) + 0.5 - viewport;
+    let ndc = vec2f(centre.x / halfSize.x - 1.0, 1.0 - centre.y / halfSize.y);
+    var b = barycentrics(c0, c1, c2, ndc, step);
+    // Derivatives as a fragment shader's coarse ones: those of the 2x2 quad's first pixel, so
+    // that textures pick the same level of detail as the hardware path.
+    let quad = vec2f(pixel & vec2u(~1u)) + 0.5 - viewport;
+    let quadNdc = vec2f(quad.x / halfSize.x - 1.0, 1.0 - quad.y / halfSize.y);
+    let atQuad = barycentrics(c0, c1, c2, quadNdc, step);
+    b.dx = atQuad.dx;
+    b.dy = atQuad.dy;
+
+    let worldPosition = mix3(b.value, w0, w1, w2).xyz;
+    let positionDx = mix3(b.dx, w0, w1, w2).xyz;
+    let positionDy = mix3(b.dy, w0, w1, w2).xyz;
+
+    let normals = attributeAt(record, kNormal);
+    let normal = mix3(b.value, loadAttribute(normals, i0, vec4f(0.0)),
+                      loadAttribute(normals, i1, vec4f(0.0)),
+                      loadAttribute(normals, i2, vec4f(0.0))).xyz;
+    let worldNormal = (transform.normal * vec4f(normal, 0.0)).xyz;
+
+    let uvs0 = attributeAt(record, kTexcoord0);
+    let t0 = loadAttribute(uvs0, i0, vec4f(0.0));
+    let t1 = loadAttribute(uvs0, i1, vec4f(0.0));
+    let t2 = loadAttribute(uvs0, i2, vec4f(0.0));
+    var uvs1 = attributeAt(record, kTexcoord1);
+    if (uvs1.format == 0u) {
+        uvs1 = uvs0;  // mesh.wgsl: TEXCOORD_1 falls back to TEXCOORD_0.
+    }
+    let s0 = loadAttribute(uvs1, i0, vec4f(0.0));
+    let s1 = loadAttribute(uvs1, i1, vec4f(0.0));
+    let s2 = loadAttribute(uvs1, i2, vec4f(0.0));
+    let uv0 = mix3(b.value, t0, t1, t2).xy;
+    let uv1 = mix3(b.value, s0, s1, s2).xy;
+    var gradients: UvGradients;
+    gradients.dx0 = mix3(b.dx, t0, t1, t2).xy;
+    gradients.dy0 = mix3(b.dy, t0, t1, t2).xy;
+    gradients.dx1 = mix3(b.dx, s0, s1, s2).xy;
+    gradients.dy1 = mix3(b.dy, s0, s1, s2).xy;
+
+    let colors = attributeAt(record, kColor);
+    let color = mix3(b.value, loadAttribute(colors, i0, vec4f(1.0)),
+                     loadAttribute(colors, i1, vec4f(1.0)),
+                     loadAttribute(colors, i2, vec4f(1.0)));
+
+    let linear = mat3x3f(transform.world[0].xyz, transform.world[1].xyz, transform.world[2].xyz);
+    let mirrored = determinant(linear) < 0.0;
+    var tangent = vec4f(0.0);
+#if HAS_TANGENT
+    let tangents = attributeAt(record, kTangent);
+    let vertexTangent = mix3(b.value, loadAttribute(tangents, i0, vec4f(0.0)),
+                             loadAttribute(tangents, i1, vec4f(0.0)),
+                             loadAttribute(tangents, i2, vec4f(0.0)));
+    tangent = vec4f(linear * vertexTangent.xyz, vertexTangent.w * select(1.0, -1.0, mirrored));
+#endif
+    // Counter-clockwise in normalised device coordinates faces the viewer, unless the instance
+    // mirrors (its pipelines take the other front face).
+    let n0 = c0.xy / c0.w;
+    let n1 = c1.xy / c1.w;
+    let n2 = c2.xy / c2.w;
+    let counterClockwise = determinant(mat2x2f(n1 - n0, n2 - n0)) > 0.0;
+    let frontFacing = counterClockwise != mirrored;
+
+    let samples = sampleMaterial(uv0, uv1, gradients);
+    let baseColor = material.baseColorFactor * color * samples.baseColor;
+    let result = shadeSurface(worldPosition, worldNormal, tangent, frontFacing, baseColor,
+                              samples, positionDx, positionDy, gradients.dx0, gradients.dy0);
+    textureStore(shaded, pixel, displayColor(result));
+}
