@@ -67,8 +67,9 @@ def test_render_views_matches_the_batch_command(renderer, tmp_path):
                            size=32)
     assert summary["rendered"] == 1 and summary["failed"] == 0
     transforms = json.loads((tmp_path / "out" / "scene" / "transforms.json").read_text())
+    # The batch draws each model's views from the seed and the model's name.
     _, _, cameras = renderer.render_views(renderer.load(str(model)), views=3, size=32,
-                                          random=True, seed=9)
+                                          random=True, seed=9, name="scene")
     expected = np.array([frame["transform_matrix"] for frame in transforms["frames"]])
     assert np.allclose(cameras, expected, atol=1e-6)
 
@@ -175,7 +176,7 @@ def test_batch_lists_failures_and_skips_finished_models(tmp_path):
                                       "load_cpu", "encode_cpu"}
     for name in ("a/model", "b/model"):
         assert sorted(p.name for p in (out / name).iterdir()) == [
-            "000.png", "001.png", "002.png", "transforms.json"]
+            "000.png", "001.png", "002.png", "metadata.json", "transforms.json"]
     failures = [json.loads(line) for line in (out / "failures.jsonl").read_text().splitlines()]
     assert [(f["stage"], os.path.basename(f["file"])) for f in failures] == [
         ("load", "broken.gltf")]
@@ -184,10 +185,19 @@ def test_batch_lists_failures_and_skips_finished_models(tmp_path):
 
 
 def files_under(folder):
-    """Every file below `folder` except failures.jsonl, by relative path, with its bytes."""
-    return {str(path.relative_to(folder)): path.read_bytes()
-            for path in sorted(folder.rglob("*"))
-            if path.is_file() and path.name != "failures.jsonl"}
+    """Every file below `folder` except failures.jsonl, by relative path, with its bytes;
+    metadata.json without its timings, which differ from run to run."""
+    files = {}
+    for path in sorted(folder.rglob("*")):
+        if not path.is_file() or path.name == "failures.jsonl":
+            continue
+        if path.name == "metadata.json":
+            metadata = json.loads(path.read_text())
+            del metadata["seconds"]
+            files[str(path.relative_to(folder))] = metadata
+        else:
+            files[str(path.relative_to(folder))] = path.read_bytes()
+    return files
 
 
 def test_batch_reuses_its_renderer_across_calls_and_writes_the_commands_files(tmp_path):

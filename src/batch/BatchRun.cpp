@@ -14,6 +14,7 @@
 #include "batch/BatchOptionsValidation.h"
 #include "batch/ModelLoader.h"
 #include "batch/ModelOutput.h"
+#include "batch/ModelPlan.h"
 #include "batch/ModelWriter.h"
 #include "batch/ViewStrips.h"
 #include "core/Elapsed.h"
@@ -143,7 +144,8 @@ class BatchRun {
     SharedCounters mCounters;
     // Writes to mFailures: made with it, by run().
     std::optional<ModelWriter> mWriter;
-    StageTimes mGpuStages;  // The device thread's stages.
+    std::optional<ModelPlanner> mPlanner;  // Made by run().
+    StageTimes mGpuStages;                 // The device thread's stages.
     std::size_t mSkipped = 0;
     StripLayout mLayout;
     // Models go to the renderers in turn: while the GPU draws model k with one, the device
@@ -364,6 +366,9 @@ void BatchRun::renderModel(LoadedModel& loaded) {
     auto job = std::make_shared<ModelJob>();
     job->input = &input;
     job->folder = modelFolder(mOptions.output, input.name);
+    job->facts = std::move(loaded.facts);
+    job->times.load = loaded.seconds;
+    mPlanner->plan(*job);
     // Fails the model before any renderer holds it: its bytes go back to the loader.
     const auto failBeforeUpload = [&](const char* stage, const Error& error) {
         job->fail(*mFailures, mCounters, stage, error);
@@ -413,6 +418,11 @@ void BatchRun::renderModel(LoadedModel& loaded) {
     RendererSlot& slot = mRenderers[slotIndex];
     render::Renderer& renderer = *slot.renderer;
     const scene::SceneData& scene = *loaded.scene;
+    // The model's environment is bound by the prepare() below.
+    if (auto lit = mBatchRenderer.light(renderer, job->lighting); !lit) {
+        failBeforeUpload("load", lit.error());
+        return;
+    }
     auto prepared = renderer.prepare(scene, mStrategy.kind, mStrategy.bundle, staged.get());
     releasePrepared(slot);
     slot.prepared = std::move(loaded);
@@ -420,6 +430,7 @@ void BatchRun::renderModel(LoadedModel& loaded) {
         prepared = mContext.checkNoErrors("Preparing '" + scene.sourcePath.string() + "'");
     }
     mGpuStages.upload += secondsSince(uploadStart);
+    job->times.upload = secondsSince(uploadStart);
     mGpuStages.uploadParts += renderer.prepareTimes();
     if (!prepared) {
         job->fail(*mFailures, mCounters, "upload", prepared.error());
@@ -429,17 +440,16 @@ void BatchRun::renderModel(LoadedModel& loaded) {
     }
 
     const ViewRigOptions& rig = mOptions.views;
-    job->cameraToWorld = viewMatrices(rig);
-    job->remaining = std::uint32_t(job->cameraToWorld.size()) * mOptions.images.perView();
+    const auto viewCount = std::uint32_t(job->views.size());
+    // And one that this thread holds until the model's times are set (ModelWriter::rendered).
+    job->remaining = viewCount * mOptions.images.perView() + 1;
     const glm::mat4 toUnitBox = normalization(scene.bounds, rig.normalize);
-    const float fov = glm::radians(rig.horizontalFovDegrees);
     const auto renderStart = Clock::now();
     double renderWaiting = 0.0;
-    for (std::uint32_t first = 0; first < job->cameraToWorld.size(); first += mLayout.strips) {
-        const std::uint32_t count = std::min<std::uint32_t>(
-            mLayout.strips, std::uint32_t(job->cameraToWorld.size()) - first);
+    for (std::uint32_t first = 0; first < viewCount; first += mLayout.strips) {
+        const std::uint32_t count = std::min<std::uint32_t>(mLayout.strips, viewCount - first);
         const std::vector<render::Camera> cameras =
-            stripCameras(job->cameraToWorld, first, mLayout, toUnitBox, fov);
+            stripCameras(job->views, first, mLayout, toUnitBox);
         const TargetViews views{job, slotIndex, cameras, first, count};
         renderChunk(views, ViewImage::Color, renderWaiting);
         if (mOptions.images.normals && !job->failed) {
@@ -464,11 +474,15 @@ void BatchRun::renderModel(LoadedModel& loaded) {
         mTimestamps->flush();  // Every pass of the model is submitted: its mips and views.
     }
     mGpuStages.render += secondsSince(renderStart) - renderWaiting;
+    job->times.render = secondsSince(renderStart) - renderWaiting;
+    mWriter->rendered(job);
 }
 
 Result<BatchSummary> BatchRun::run() {
     const ViewRigOptions& rig = mOptions.views;
     ENCORE_TRY(validateBatchOptions(mOptions));
+    ENCORE_TRY_ASSIGN(auto planner, ModelPlanner::create(mOptions));  // Lists the environments.
+    mPlanner.emplace(std::move(planner));
     std::error_code ec;
     fs::create_directories(mOptions.output, ec);
     if (ec) {
@@ -488,7 +502,7 @@ Result<BatchSummary> BatchRun::run() {
 
     // Finished models are skipped before anything loads.
     for (const BatchInput& input : mInputs) {
-        if (modelFinished(modelFolder(mOptions.output, input.name), rig.views, mOptions.images)) {
+        if (modelFinished(modelFolder(mOptions.output, input.name), modelFileSet(mOptions))) {
             ++mSkipped;
         } else {
             mPending.push_back(input);

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "BatchOutput.h"
 #include "GpuTestSupport.h"
 #include "RenderTestSupport.h"
 #include "TestPaths.h"
@@ -32,15 +33,10 @@ std::string slurp(const fs::path& path) {
     return bytes.str();
 }
 
-// Every file under `folder` (but failures.jsonl), by its path relative to it.
+// Every file under `folder` (but failures.jsonl, and metadata.json's timings), by its path
+// relative to it.
 std::map<std::string, std::string> filesUnder(const fs::path& folder) {
-    std::map<std::string, std::string> files;
-    for (const auto& entry : fs::recursive_directory_iterator(folder)) {
-        if (entry.is_regular_file() && entry.path().filename() != "failures.jsonl") {
-            files[fs::relative(entry.path(), folder).generic_string()] = slurp(entry.path());
-        }
-    }
-    return files;
+    return test::batchOutputFiles(folder);
 }
 
 // A generated scene of `objects` objects (textured), written as `path`.
@@ -113,8 +109,8 @@ TEST(BatchPipelineTest, OverlappedModelsWriteTheSameFilesAsSequentialOnes) {
         }
         written[renderers] = filesUnder(options.output);
     }
-    // Per model: five views of colour, normals and depth, and transforms.json.
-    EXPECT_EQ(written[1].size(), inputs.size() * (5 * 3 + 1));
+    // Per model: five views of colour, normals and depth, metadata.json and transforms.json.
+    EXPECT_EQ(written[1].size(), inputs.size() * (5 * 3 + 2));
     for (const std::size_t renderers : {2, 3}) {
         ASSERT_EQ(written[renderers].size(), written[1].size()) << renderers << " renderers";
         for (const auto& [name, bytes] : written[1]) {
