@@ -39,21 +39,29 @@ Result<std::vector<fs::path>> environmentFiles(const fs::path& directory) {
     return files;
 }
 
+std::size_t environmentIndex(std::size_t count, std::uint64_t seed, std::string_view modelName) {
+    if (count == 0) {
+        return 0;
+    }
+    std::mt19937_64 draws = randomStream(modelSeed(seed, modelName), RandomStream::Lighting);
+    return std::min(count - 1, std::size_t(unitInterval(draws) * double(count)));
+}
+
 ModelLighting modelLighting(const LightingVariation& variation,
                             std::span<const fs::path> environments,
                             const render::LightingParameters& base,
                             std::uint64_t seed,
                             std::string_view modelName) {
     std::mt19937_64 draws = randomStream(modelSeed(seed, modelName), RandomStream::Lighting);
-    // Always three draws, in this order, so that one choice never shifts another.
-    const double environmentDraw = unitInterval(draws);
+    // Always three draws, in this order, so that one choice never shifts another; the first is
+    // environmentIndex's.
+    (void)unitInterval(draws);
     const double rotationDraw = unitInterval(draws);
     const double intensityDraw = unitInterval(draws);
 
     ModelLighting lighting;
     if (!variation.environmentDirectory.empty() && !environments.empty()) {
-        const std::size_t index = std::min(
-            environments.size() - 1, std::size_t(environmentDraw * double(environments.size())));
+        const std::size_t index = environmentIndex(environments.size(), seed, modelName);
         lighting.environmentFile = environments[index];
         lighting.environment =
             environments[index].lexically_relative(variation.environmentDirectory).generic_string();

@@ -508,6 +508,7 @@ Result<BatchSummary> BatchRun::run() {
             mPending.push_back(input);
         }
     }
+    mPlanner->groupByEnvironment(mPending);  // Each environment file's maps computed once.
     scene::LoadOptions loadOptions;
     loadOptions.strict = mOptions.strict;
     // Levels of detail only when asked for: they cost load time and memory that only GPUs

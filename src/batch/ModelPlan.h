@@ -22,6 +22,12 @@ class ModelPlanner {
     // Sets the views, the lighting and the coverage counters of `job`, whose input is set.
     void plan(ModelJob& job) const;
 
+    // Puts the models lit by the same environment file next to each other (in file order, each
+    // group in its given order), so that each file's maps are computed once per run however few
+    // BatchRenderer keeps: nothing drawn depends on the order. Without a folder, or with one
+    // file, the order stays.
+    void groupByEnvironment(std::vector<BatchInput>& inputs) const;
+
   private:
     explicit ModelPlanner(const BatchOptions& options) : mOptions(&options) {}
 

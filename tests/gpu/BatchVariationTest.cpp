@@ -165,6 +165,45 @@ TEST(BatchVariationTest, EachModelIsLitByItsDrawnEnvironmentAsAFixedOneWouldLigh
     EXPECT_TRUE(context->checkNoErrors("the lit batches").ok());
 }
 
+// More files than BatchRenderer keeps: the models lit by one file are rendered one after the
+// other, so each file's maps are still computed once per run, and the order changes no byte.
+TEST(BatchVariationTest, ModelsAreGroupedByEnvironmentSoEachFileIsBuiltOnce) {
+    ENCORE_REQUIRE_VULKAN(context);
+    const fs::path dir = test::makeTempDir("batch-variation-grouped");
+    const std::vector<BatchInput> inputs = generatedModels(dir / "in", 16);
+    const fs::path skies = dir / "skies";
+    fs::create_directories(skies);
+    const std::size_t files = kEnvironmentCacheSize + 4;
+    for (std::size_t i = 0; i < files; ++i) {
+        const float shade = 0.2f + 0.1f * float(i);
+        test::writeHdr(skies / ("sky" + std::to_string(10 + i) + ".hdr"),
+                       {shade, 1.0f, 2.0f - shade}, {0.3f, 0.3f, 0.3f}, 16);
+    }
+    BatchOptions options = smallBatch(dir / "out");
+    options.views.views = 1;
+    options.width = options.height = 8;
+    options.lighting.environmentDirectory = skies;
+    BatchRenderer batchRenderer(*context);
+    auto summary = runBatch(batchRenderer, inputs, options);
+    ASSERT_TRUE(summary.ok()) << summary.error().message;
+    ASSERT_EQ(summary->rendered, inputs.size());
+    std::set<std::string> used;
+    for (const BatchInput& input : inputs) {
+        used.insert(
+            readJson(options.output / input.name / "transforms.json")["frames"][0]["environment"]
+                .get<std::string>());
+    }
+    ASSERT_GT(used.size(), kEnvironmentCacheSize) << "too few files drawn to test the cache";
+    EXPECT_EQ(batchRenderer.counts().environments, 1 + used.size());
+
+    // In the opposite order: the same files.
+    BatchOptions reversed = options;
+    reversed.output = dir / "reversed";
+    ASSERT_TRUE(
+        runBatch(*context, std::vector<BatchInput>(inputs.rbegin(), inputs.rend()), reversed).ok());
+    EXPECT_TRUE(test::batchOutputFiles(options.output) == test::batchOutputFiles(reversed.output));
+}
+
 // Everything random at once: directions on the upper hemisphere, jitter, distances, fields of
 // view, environments, rotations and intensities. The same seed writes the same bytes, in any
 // order of the models; another seed draws other views and lighting.

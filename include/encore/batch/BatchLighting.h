@@ -54,6 +54,10 @@ struct ModelLighting {
 // when it is not a folder or holds none.
 Result<std::vector<std::filesystem::path>> environmentFiles(const std::filesystem::path& directory);
 
+// Which of `count` environment files the model named `modelName` is lit by (modelLighting's
+// choice), in 0..count-1; 0 when count is 0.
+std::size_t environmentIndex(std::size_t count, std::uint64_t seed, std::string_view modelName);
+
 // The lighting of the model named `modelName`: one of `environments` (environmentFiles of the
 // variation's folder; ignored without one), the rotation and intensity drawn from the variation's
 // ranges, or `base`'s where it has none.
