@@ -24,6 +24,8 @@
 #include <utility>
 #include <vector>
 
+#include "BatchArguments.h"
+#include "batch/BatchOptionsValidation.h"
 #include "batch/TransformsJson.h"
 #include "batch/ViewStrips.h"
 #include "encore/batch/Batch.h"
@@ -31,6 +33,7 @@
 #include "encore/batch/BatchRenderer.h"
 #include "encore/batch/ViewRig.h"
 #include "encore/gpu/Context.h"
+#include "encore/image/HdrImage.h"
 #include "encore/render/Renderer.h"
 #include "encore/render/VisibilityFeatures.h"
 #include "encore/scene/SceneData.h"
@@ -93,37 +96,6 @@ std::pair<std::uint32_t, std::uint32_t> imageSize(const py::object& size) {
         throw py::value_error("size must be an int or a (width, height) pair, each from 1 to 8192");
     }
     return {std::uint32_t(width), std::uint32_t(height)};
-}
-
-// The view rig of the keyword arguments render_views and batch share.
-struct RigArguments {
-    std::uint32_t views = 12;
-    float elevation = 30.0f;
-    float distance = 1.5f;
-    std::optional<float> fov;
-    bool random = false;
-    std::uint64_t seed = 0;
-    bool normalize = true;
-};
-
-batch::ViewRigOptions rigOptions(const RigArguments& arguments) {
-    const auto& [views, elevation, distance, fov, random, seed, normalize] = arguments;
-    if (views < 1) {
-        throw py::value_error("views must be at least 1");
-    }
-    batch::ViewRigOptions rig;
-    rig.views = views;
-    rig.elevationDegrees = elevation;
-    rig.distance = distance;
-    rig.horizontalFovDegrees = fov.value_or(batch::kDefaultHorizontalFovDegrees);
-    rig.random = random;
-    rig.seed = seed;
-    rig.normalize = normalize;
-    if (!(rig.distance > 0.0f) ||
-        !(rig.horizontalFovDegrees > 0.0f && rig.horizontalFovDegrees < 180.0f)) {
-        throw py::value_error("distance must be positive and fov within (0, 180) degrees");
-    }
-    return rig;
 }
 
 // The models a batch renders: a folder, list file or model path (what `encore batch` takes) or
@@ -248,17 +220,21 @@ class Renderer {
                           std::uint64_t seed,
                           bool normalize,
                           bool normals,
-                          bool depth) {
+                          bool depth,
+                          const std::string& name) {
         const auto [width, height] = imageSize(size);
-        const batch::ViewRigOptions rig =
-            rigOptions({views, elevation, distance, fov, random, seed, normalize});
-        const std::vector<glm::mat4> cameraToWorld = batch::viewMatrices(rig);
+        const batch::ViewRigOptions rig = rigOptions(
+            {views, elevation, py::float_(distance),
+             fov ? py::object(py::float_(*fov)) : py::none(),
+             random ? batch::CameraDistribution::Sphere : batch::CameraDistribution::Orbit, seed,
+             normalize});
+        const std::vector<batch::ViewCamera> cameraViews = batch::viewCameras(rig, name);
         Rendered rendered;
         {
             py::gil_scoped_release release;
             std::lock_guard lock(mMutex);  // Python threads may share a renderer.
             rendered =
-                valueOrThrow(render(scene.data, cameraToWorld, rig, width, height, normals, depth));
+                valueOrThrow(render(scene.data, cameraViews, rig, width, height, normals, depth));
         }
         const auto rgbaArray = [&](const std::vector<image::ImageRgba8>& images) {
             py::array_t<std::uint8_t> pixels(
@@ -272,7 +248,7 @@ class Renderer {
         };
         py::array_t<std::uint8_t> pixels = rgbaArray(rendered.color);
         const batch::PinholeIntrinsics pinhole =
-            batch::intrinsicsFor(width, height, glm::radians(rig.horizontalFovDegrees));
+            batch::intrinsicsFor(width, height, glm::radians(rig.horizontalFovDegrees.min));
         py::array_t<double> intrinsics({3, 3});
         auto k = intrinsics.mutable_unchecked<2>();
         const double values[3][3] = {{pinhole.focalX, 0.0, pinhole.centerX},
@@ -285,10 +261,11 @@ class Renderer {
         }
         py::array_t<double> cameras({std::size_t(views), std::size_t(4), std::size_t(4)});
         auto c = cameras.mutable_unchecked<3>();
-        for (std::size_t view = 0; view < cameraToWorld.size(); ++view) {
+        for (std::size_t view = 0; view < cameraViews.size(); ++view) {
+            const glm::mat4& cameraToWorld = cameraViews[view].cameraToWorld;
             for (int row = 0; row < 4; ++row) {
                 for (int column = 0; column < 4; ++column) {
-                    c(view, row, column) = cameraToWorld[view][column][row];  // glm: [column][row]
+                    c(view, row, column) = cameraToWorld[column][row];  // glm: [column][row]
                 }
             }
         }
@@ -323,8 +300,8 @@ class Renderer {
                       std::uint32_t randomViews,
                       std::uint64_t seed,
                       float elevation,
-                      float distance,
-                      std::optional<float> fov,
+                      const py::object& distance,
+                      const py::object& fov,
                       bool normalize,
                       const py::object& size,
                       std::optional<std::uint32_t> samples,
@@ -337,7 +314,15 @@ class Renderer {
                       const std::string& pngCompression,
                       bool failureLog,
                       std::uint32_t renderers,
-                      float lodError) {
+                      float lodError,
+                      const std::string& distribution,
+                      float jitter,
+                      const std::optional<std::string>& environment,
+                      const std::optional<std::string>& environmentDirectory,
+                      const py::object& environmentRotation,
+                      const py::object& environmentIntensity,
+                      const std::string& layout,
+                      std::uint32_t blankThreshold) {
         batch::BatchOptions options;
         if (!(lodError >= 0.0f)) {
             throw py::value_error("lod_error must be a number of pixels, 0 or more");
@@ -354,8 +339,18 @@ class Renderer {
             throw py::value_error("samples must be 1 or 4");
         }
         options.output = output;
-        options.views = rigOptions({randomViews > 0 ? randomViews : views, elevation, distance, fov,
-                                    randomViews > 0, seed, normalize});
+        options.views = rigOptions(
+            {randomViews > 0 ? randomViews : views, elevation, distance, fov,
+             randomViews > 0 ? batch::CameraDistribution::Sphere : cameraDistribution(distribution),
+             seed, normalize, jitter});
+        applyLighting(options, environment, environmentDirectory, environmentRotation,
+                      environmentIntensity);
+        if (layout != "nerf" && layout != "objaverse") {
+            throw py::value_error("layout must be \"nerf\" or \"objaverse\"");
+        }
+        options.layout =
+            layout == "objaverse" ? batch::OutputLayout::Objaverse : batch::OutputLayout::Nerf;
+        options.blankThreshold = blankThreshold;
         options.jobs = jobs;
         options.memoryLimitBytes = memoryLimitMiB << 20;
         options.strict = strict;
@@ -369,6 +364,9 @@ class Renderer {
         }
         options.pngCompression = *compression;
         options.writeFailureLog = failureLog;
+        if (auto valid = batch::validateBatchOptions(options); !valid) {
+            throw py::value_error(valid.error().message);
+        }
         const std::vector<batch::BatchInput> models = batchInputs(inputs);
         // Python runs signal handlers only when the interpreter gets the GIL back: look for one
         // as progress is reported. A KeyboardInterrupt (or a handler's exception) stops the
@@ -409,6 +407,46 @@ class Renderer {
     std::uint32_t samples() const { return mSamples; }
 
   private:
+    // The environment keywords of batch(): one file, or a folder's files drawn per model, and
+    // the rotation ("random", degrees or a (min, max) pair) and intensity drawn per model.
+    static void applyLighting(batch::BatchOptions& options,
+                              const std::optional<std::string>& environment,
+                              const std::optional<std::string>& directory,
+                              const py::object& rotation,
+                              const py::object& intensity) {
+        if (environment && directory) {
+            throw py::value_error("environment and environment_dir exclude each other");
+        }
+        if (environment) {
+            Result<image::HdrImage> panorama = makeError(ErrorCode::InvalidArgument, "");
+            {
+                py::gil_scoped_release release;
+                panorama = image::readHdr(*environment);
+            }
+            options.renderer.environmentImage =
+                std::make_shared<image::HdrImage>(valueOrThrow(std::move(panorama)));
+            options.lighting.environmentName = *environment;
+        }
+        if (directory) {
+            options.lighting.environmentDirectory = *directory;
+            if (auto listed = batch::environmentFiles(*directory); !listed) {
+                throw py::value_error(listed.error().message);
+            }
+        }
+        if (py::isinstance<py::str>(rotation)) {
+            if (rotation.cast<std::string>() != "random") {
+                throw py::value_error(
+                    "environment_rotation must be degrees, a (min, max) pair or \"random\"");
+            }
+            options.lighting.rotationDegrees = batch::ValueRange(0.0f, 360.0f);
+        } else if (!rotation.is_none()) {
+            options.lighting.rotationDegrees = valueRange(rotation, "environment_rotation");
+        }
+        if (!intensity.is_none()) {
+            options.lighting.intensity = valueRange(intensity, "environment_intensity");
+        }
+    }
+
     // A model's views, and its normal and depth images when asked for.
     struct Rendered {
         std::vector<image::ImageRgba8> color;
@@ -417,7 +455,7 @@ class Renderer {
     };
 
     Result<Rendered> render(const std::shared_ptr<const scene::SceneData>& scene,
-                            const std::vector<glm::mat4>& cameraToWorld,
+                            const std::vector<batch::ViewCamera>& views,
                             const batch::ViewRigOptions& rig,
                             std::uint32_t width,
                             std::uint32_t height,
@@ -445,16 +483,16 @@ class Renderer {
             mPrepared = scene;
         }
         Rendered rendered;
-        ENCORE_TRY_ASSIGN(rendered.color, batch::renderStrips(*mRenderer, scene->bounds,
-                                                              cameraToWorld, rig, layout));
+        ENCORE_TRY_ASSIGN(rendered.color,
+                          batch::renderStrips(*mRenderer, scene->bounds, views, rig, layout));
         if (normals) {
             ENCORE_TRY_ASSIGN(rendered.normals,
-                              batch::renderStrips(*mRenderer, scene->bounds, cameraToWorld, rig,
-                                                  layout, batch::ViewImage::Normal));
+                              batch::renderStrips(*mRenderer, scene->bounds, views, rig, layout,
+                                                  batch::ViewImage::Normal));
         }
         if (depth) {
             ENCORE_TRY_ASSIGN(rendered.depth, batch::renderDepthStrips(*mRenderer, scene->bounds,
-                                                                       cameraToWorld, rig, layout));
+                                                                       views, rig, layout));
         }
         ENCORE_TRY(mContext->checkNoErrors("Rendering '" + scene->sourcePath.string() + "'"));
         return rendered;
@@ -510,9 +548,12 @@ PYBIND11_MODULE(_encore, module) {
              py::arg("size") = 512, py::arg("elevation") = 30.0f, py::arg("distance") = 1.5f,
              py::arg("fov") = py::none(), py::arg("random") = false, py::arg("seed") = 0,
              py::arg("normalize") = true, py::arg("normals") = false, py::arg("depth") = false,
+             py::arg("name") = "",
              "Renders `views` RGBA views (straight alpha, transparent background) of the scene "
              "normalised into a unit box, from an orbit `elevation` degrees above the horizon or "
-             "(random=True) directions uniform on the sphere drawn from `seed`. Returns (images "
+             "(random=True) directions uniform on the sphere drawn from `seed` (and, as `encore "
+             "batch` "
+             "draws them, the model's output `name`). Returns (images "
              "uint8 (N, H, W, 4), intrinsics float64 (3, 3) in pixels, camera-to-world float64 "
              "(N, 4, 4) with OpenGL camera axes), as `encore batch` writes them. `fov` is "
              "horizontal, in degrees (default: a 35 mm lens on a 32 mm sensor). normals=True "
@@ -529,7 +570,11 @@ PYBIND11_MODULE(_encore, module) {
              py::arg("normals") = false, py::arg("depth") = false, py::arg("top_light") = 0.0f,
              py::arg("png_compression") = "small", py::arg("failure_log") = true,
              py::arg("renderers") = encore::batch::BatchOptions{}.renderers,
-             py::arg("lod_error") = 0.0f,
+             py::arg("lod_error") = 0.0f, py::arg("camera_distribution") = "orbit",
+             py::arg("camera_jitter") = 0.0f, py::arg("environment") = py::none(),
+             py::arg("environment_dir") = py::none(), py::arg("environment_rotation") = py::none(),
+             py::arg("environment_intensity") = py::none(), py::arg("layout") = "nerf",
+             py::arg("blank_threshold") = encore::batch::kDefaultBlankThreshold,
              "Runs the job of `encore batch` on this renderer's device: `inputs` is what the "
              "command takes (folder, list file, model) or (path, name) pairs from "
              "discover_inputs. Returns the summary (models rendered, failed, skipped; views; "
@@ -537,7 +582,13 @@ PYBIND11_MODULE(_encore, module) {
              "OUTPUT/failures.jsonl unless failure_log=False. `samples` defaults to the "
              "renderer's. lod_error > 0 draws each instance at the coarsest level of detail "
              "whose error stays under that many pixels in the nearest view (`encore batch "
-             "--lod-error`). The GIL is released while it runs.")
+             "--lod-error`). As the command's options: camera_distribution (\"orbit\", "
+             "\"sphere\", \"upper-hemisphere\"), camera_jitter (degrees), distance and fov (a "
+             "number or a (min, max) pair drawn per view), environment (an .hdr), environment_dir "
+             "(a folder of .hdr, one drawn per model), environment_rotation (degrees, a pair or "
+             "\"random\") and environment_intensity (a number or a pair) drawn per model, layout "
+             "(\"nerf\" or \"objaverse\": a .npy camera matrix per view) and blank_threshold "
+             "(pixels). The GIL is released while it runs.")
         .def_property_readonly("samples",
                                [](const Renderer& renderer) { return renderer.samples(); })
         .def_property_readonly("adapter", &Renderer::adapter)

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -15,6 +16,7 @@
 #include "DeviceOptions.h"
 #include "ShadingOptions.h"
 #include "StrategyOptions.h"
+#include "batch/BatchOptionsValidation.h"
 #include "encore/batch/Batch.h"
 #include "encore/render/GpuStage.h"
 
@@ -30,10 +32,17 @@ struct BatchCommandOptions {
     std::uint32_t views = 12;
     std::uint32_t randomViews = 0;
     std::uint64_t seed = 0;
+    std::string cameraDistribution = "orbit";
     float elevationDegrees = 30.0f;
-    float distance = 1.5f;
-    float fovDegrees = batch::kDefaultHorizontalFovDegrees;
+    std::string distance = "1.5";
+    std::string fovDegrees;  // Empty: batch::kDefaultHorizontalFovDegrees.
+    float jitterDegrees = 0.0f;
     bool noNormalize = false;
+    std::string environmentDirectory;
+    std::string environmentRotation;   // Empty: none.
+    std::string environmentIntensity;  // Empty: 1.
+    std::string layout = "nerf";
+    std::uint32_t blankThreshold = batch::kDefaultBlankThreshold;
     std::string strategy;  // Empty: batch::BatchOptions::strategy's default.
     float lodErrorPixels = 0.0f;
     bool strict = false;
@@ -73,6 +82,63 @@ Result<std::pair<std::uint32_t, std::uint32_t>> parseSize(const std::string& tex
                          "--size takes W or WxH in pixels, each from 1 to 8192 ('" + text + "').");
     }
     return std::pair{std::uint32_t(width), std::uint32_t(height)};
+}
+
+// "X" or "MIN:MAX", each a finite number: what --distance, --fov and the environment's options
+// take. `option` names the option in the error.
+Result<batch::ValueRange> parseRange(const std::string& text, const std::string& option) {
+    const auto number = [](const std::string& part, float& value) {
+        char* end = nullptr;
+        value = std::strtof(part.c_str(), &end);
+        return !part.empty() && end == part.c_str() + part.size() && std::isfinite(value);
+    };
+    const std::size_t colon = text.find(':');
+    batch::ValueRange range;
+    const bool parsed =
+        colon == std::string::npos
+            ? number(text, range.min) && number(text, range.max)
+            : number(text.substr(0, colon), range.min) && number(text.substr(colon + 1), range.max);
+    if (!parsed) {
+        return makeError(ErrorCode::InvalidArgument,
+                         option + " takes a number or a range MIN:MAX ('" + text + "').");
+    }
+    return range;
+}
+
+// The camera and lighting options that take ranges, into `batchOptions`.
+Result<void> applyVariations(const BatchCommandOptions& options,
+                             batch::BatchOptions& batchOptions) {
+    batch::ViewRigOptions& views = batchOptions.views;
+    if (options.randomViews > 0) {
+        views.distribution = batch::CameraDistribution::Sphere;
+    } else if (options.cameraDistribution == "sphere") {
+        views.distribution = batch::CameraDistribution::Sphere;
+    } else if (options.cameraDistribution == "upper-hemisphere") {
+        views.distribution = batch::CameraDistribution::UpperHemisphere;
+    }
+    ENCORE_TRY_ASSIGN(views.distance, parseRange(options.distance, "--distance"));
+    if (!options.fovDegrees.empty()) {
+        ENCORE_TRY_ASSIGN(views.horizontalFovDegrees, parseRange(options.fovDegrees, "--fov"));
+    }
+    views.jitterDegrees = options.jitterDegrees;
+
+    batch::LightingVariation& lighting = batchOptions.lighting;
+    lighting.environmentDirectory = options.environmentDirectory;
+    lighting.environmentName = options.shading.environment;
+    if (options.environmentRotation == "random") {
+        lighting.rotationDegrees = batch::ValueRange(0.0f, 360.0f);
+    } else if (!options.environmentRotation.empty()) {
+        ENCORE_TRY_ASSIGN(lighting.rotationDegrees,
+                          parseRange(options.environmentRotation, "--environment-rotation"));
+    }
+    if (!options.environmentIntensity.empty()) {
+        ENCORE_TRY_ASSIGN(lighting.intensity,
+                          parseRange(options.environmentIntensity, "--environment-intensity"));
+    }
+    batchOptions.layout =
+        options.layout == "objaverse" ? batch::OutputLayout::Objaverse : batch::OutputLayout::Nerf;
+    batchOptions.blankThreshold = options.blankThreshold;
+    return {};
 }
 
 std::string duration(double seconds) {
@@ -162,11 +228,8 @@ int runBatch(const BatchCommandOptions& options, const GlobalOptions& global) {
     batchOptions.output = options.output;
     batchOptions.samples = options.samples;
     batchOptions.views.views = options.randomViews > 0 ? options.randomViews : options.views;
-    batchOptions.views.random = options.randomViews > 0;
     batchOptions.views.seed = options.seed;
     batchOptions.views.elevationDegrees = options.elevationDegrees;
-    batchOptions.views.distance = options.distance;
-    batchOptions.views.horizontalFovDegrees = options.fovDegrees;
     batchOptions.views.normalize = !options.noNormalize;
     batchOptions.strict = options.strict;
     batchOptions.images.normals = options.normals;
@@ -178,6 +241,18 @@ int runBatch(const BatchCommandOptions& options, const GlobalOptions& global) {
     batchOptions.renderers = options.renderers;
     if (auto shading = applyShadingOptions(options.shading, batchOptions.renderer); !shading) {
         return reportError(shading.error());
+    }
+    // Usage errors before the device starts: the ranges, then the environment folder.
+    if (auto varied = applyVariations(options, batchOptions); !varied) {
+        return reportError(varied.error());
+    }
+    if (auto valid = batch::validateBatchOptions(batchOptions); !valid) {
+        return reportError(valid.error());
+    }
+    if (!options.environmentDirectory.empty()) {
+        if (auto listed = batch::environmentFiles(options.environmentDirectory); !listed) {
+            return reportError(listed.error());
+        }
     }
 
     auto inputs = batch::discoverInputs(options.input);
@@ -297,7 +372,8 @@ void addBatchCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) 
     auto* command = app.add_subcommand(
         "batch",
         "Render many glTF models from orbit or random viewpoints into a dataset folder: per "
-        "model RGBA PNGs and a NeRF transforms.json; reruns skip finished models.");
+        "model RGBA PNGs, a NeRF transforms.json and metadata.json; reruns skip finished "
+        "models.");
     command
         ->add_option("input", options->input,
                      "A folder (searched recursively for .gltf/.glb), a model, a text file with "
@@ -312,9 +388,18 @@ void addBatchCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) 
             ->add_option("--random-views", options->randomViews,
                          "Views per model drawn uniformly on the sphere instead of the orbit")
             ->check(CLI::Range(1, 10000));
-    command->add_option("--seed", options->seed, "Seed of --random-views")
+    command
+        ->add_option("--camera-distribution", options->cameraDistribution,
+                     "Where the views look from: orbit (evenly around, --elevation high), sphere "
+                     "or upper-hemisphere (drawn uniformly, per model, from --seed)")
         ->capture_default_str()
-        ->needs(random);
+        ->check(CLI::IsMember({"orbit", "sphere", "upper-hemisphere"}))
+        ->excludes(random);
+    command
+        ->add_option("--seed", options->seed,
+                     "Seeds everything drawn at random (directions, jitter, ranges, environments), "
+                     "with each model's name: the same pictures for the same seed")
+        ->capture_default_str();
     command
         ->add_option("--elevation", options->elevationDegrees,
                      "Orbit height above the horizon (degrees)")
@@ -323,14 +408,21 @@ void addBatchCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) 
         ->excludes(random);
     command
         ->add_option("--distance", options->distance,
-                     "Camera distance from the centre (unit-box units unless --no-normalize)")
+                     "Camera distance from the centre (unit-box units unless --no-normalize), or "
+                     "MIN:MAX: drawn per view")
         ->capture_default_str()
-        ->check(CLI::PositiveNumber);
+        ->type_name("D|MIN:MAX");
     command
         ->add_option("--fov", options->fovDegrees,
-                     "Horizontal field of view in degrees (default: a 35 mm lens on a 32 mm "
-                     "sensor)")
-        ->check(CLI::Range(0.01f, 179.0f));
+                     "Horizontal field of view in degrees, or MIN:MAX: drawn per view (default: a "
+                     "35 mm lens on a 32 mm sensor)")
+        ->type_name("DEG|MIN:MAX");
+    command
+        ->add_option("--camera-jitter", options->jitterDegrees,
+                     "Move each view's direction by up to this many degrees in azimuth and "
+                     "elevation (drawn from --seed)")
+        ->check(CLI::Range(0.0f, 180.0f))
+        ->type_name("DEG");
     command->add_flag("--no-normalize", options->noNormalize,
                       "Keep the model's size and position (default: scale into a unit box "
                       "centred at the origin)");
@@ -389,8 +481,35 @@ void addBatchCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) 
                      "for files about 16% larger, when encoding limits the batch")
         ->check(CLI::IsMember({"small", "fast"}))
         ->capture_default_str();
+    command
+        ->add_option("--layout", options->layout,
+                     "nerf: images and transforms.json; objaverse: also a 000.npy camera matrix "
+                     "per view, as the Objaverse-XL scripts write them")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"nerf", "objaverse"}));
+    command
+        ->add_option("--blank-threshold", options->blankThreshold,
+                     "A view covering fewer pixels is blank: listed in metadata.json (and a "
+                     "failure with --strict); 0: none is")
+        ->capture_default_str()
+        ->type_name("PIXELS");
     command->add_flag("-q,--quiet", options->quiet, "No progress lines");
-    addShadingOptions(*command, options->shading);
+    addShadingOptions(*command, options->shading, /*environmentLevels=*/false);
+    command
+        ->add_option("--environment-dir", options->environmentDirectory,
+                     "Light each model with one Radiance .hdr of this folder, drawn from --seed "
+                     "and the model's name")
+        ->excludes("--environment")
+        ->type_name("DIR");
+    command
+        ->add_option("--environment-rotation", options->environmentRotation,
+                     "Turns the environment about the vertical axis: degrees, MIN:MAX or random "
+                     "(0:360), drawn per model")
+        ->type_name("DEG|MIN:MAX|random");
+    command
+        ->add_option("--environment-intensity", options->environmentIntensity,
+                     "Multiplies the environment's radiance: a number or MIN:MAX, drawn per model")
+        ->type_name("X|MIN:MAX");
     command->callback([options, &global, &exitCode] { exitCode = runBatch(*options, global); });
 }
 

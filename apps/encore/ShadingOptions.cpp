@@ -63,16 +63,18 @@ Result<glm::vec3> parseHexColor(const std::string& text) {
 
 }  // namespace
 
-void addShadingOptions(CLI::App& command, ShadingOptions& options) {
+void addShadingOptions(CLI::App& command, ShadingOptions& options, bool environmentLevels) {
     command.add_option("--environment", options.environment,
                        "Equirectangular Radiance .hdr for image-based lighting (default: a "
                        "built-in neutral studio)");
-    command
-        .add_option("--environment-intensity", options.environmentIntensity,
-                    "Multiplies the environment's radiance")
-        ->check(CLI::NonNegativeNumber);
-    command.add_option("--environment-rotation", options.environmentRotationDegrees,
-                       "Turns the environment about the vertical axis (degrees)");
+    if (environmentLevels) {
+        command
+            .add_option("--environment-intensity", options.environmentIntensity,
+                        "Multiplies the environment's radiance")
+            ->check(CLI::NonNegativeNumber);
+        command.add_option("--environment-rotation", options.environmentRotationDegrees,
+                           "Turns the environment about the vertical axis (degrees)");
+    }
     command
         .add_option("--tonemap", options.toneMapping,
                     "Tone mapping: neutral (Khronos PBR "

@@ -24,7 +24,9 @@ struct ShadingOptions {
     std::string debugChannel = "none";
 };
 
-void addShadingOptions(CLI::App& command, ShadingOptions& options);
+// `environmentLevels` false leaves out --environment-intensity and --environment-rotation, for a
+// command that takes them in forms of its own (batch: ranges and `random`).
+void addShadingOptions(CLI::App& command, ShadingOptions& options, bool environmentLevels = true);
 
 // Fills the lighting, tone mapping and environment of `renderer` options; loads the
 // environment file (errors name it).

@@ -136,7 +136,10 @@ def render_collection(client, inputs, output, *, chunk_size=8, retries=2, **opti
     models make one task; a task that raises (a device that cannot be created) runs again up
     to `retries` times. The other keywords are those of encore.Renderer.batch (views,
     random_views, seed, elevation, distance, fov, normalize, size, samples, jobs,
-    memory_limit_mib, strict, normals, depth, top_light, png_compression, lod_error).
+    memory_limit_mib, strict, normals, depth, top_light, png_compression, lod_error,
+    camera_distribution, camera_jitter, environment, environment_dir, environment_rotation,
+    environment_intensity, layout, blank_threshold): what is drawn at random depends on the seed
+    and each model's name only, so the tasks draw what one `encore batch` would.
 
     The summary has the models of the collection (`total`) and those rendered, failed and
     skipped (finished by an earlier run, or by a task's attempt on a worker that then died),

@@ -30,10 +30,19 @@ def generate(path, seed, objects=6):
 
 
 def files_under(folder):
-    """Every file below `folder` except failures.jsonl, by relative path, with its bytes."""
-    return {str(path.relative_to(folder)): path.read_bytes()
-            for path in sorted(folder.rglob("*"))
-            if path.is_file() and path.name != "failures.jsonl"}
+    """Every file below `folder` except failures.jsonl, by relative path, with its bytes;
+    metadata.json without its timings, which differ from run to run."""
+    files = {}
+    for path in sorted(folder.rglob("*")):
+        if not path.is_file() or path.name == "failures.jsonl":
+            continue
+        if path.name == "metadata.json":
+            metadata = json.loads(path.read_text())
+            del metadata["seconds"]
+            files[str(path.relative_to(folder))] = metadata
+        else:
+            files[str(path.relative_to(folder))] = path.read_bytes()
+    return files
 
 
 def read_failures(output):
@@ -160,7 +169,7 @@ def test_killing_a_worker_mid_run_still_renders_every_model(client, tmp_path):
         folder = output / f"m{index:02}"
         assert sorted(path.name for path in folder.iterdir()) == [
             "000.png", "001.png", "002.png", "003.png", "004.png", "005.png",
-            "transforms.json"], "every model complete, no temporary file left"
+            "metadata.json", "transforms.json"], "every model complete, no temporary file left"
     assert read_failures(output) == []
     # The nanny restarted the worker: the cluster has two again for the tests after this one.
     client.wait_for_workers(2, timeout=60)

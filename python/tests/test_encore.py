@@ -4,6 +4,8 @@ Run by CTest (python_module_tests, label gpu) with PYTHONPATH pointing at the bu
 ENCORE_BINARY at the encore executable, which generates the scenes.
 """
 
+import hashlib
+import io
 import json
 import math
 import os
@@ -67,8 +69,9 @@ def test_render_views_matches_the_batch_command(renderer, tmp_path):
                            size=32)
     assert summary["rendered"] == 1 and summary["failed"] == 0
     transforms = json.loads((tmp_path / "out" / "scene" / "transforms.json").read_text())
+    # The batch draws each model's views from the seed and the model's name.
     _, _, cameras = renderer.render_views(renderer.load(str(model)), views=3, size=32,
-                                          random=True, seed=9)
+                                          random=True, seed=9, name="scene")
     expected = np.array([frame["transform_matrix"] for frame in transforms["frames"]])
     assert np.allclose(cameras, expected, atol=1e-6)
 
@@ -175,7 +178,7 @@ def test_batch_lists_failures_and_skips_finished_models(tmp_path):
                                       "load_cpu", "encode_cpu"}
     for name in ("a/model", "b/model"):
         assert sorted(p.name for p in (out / name).iterdir()) == [
-            "000.png", "001.png", "002.png", "transforms.json"]
+            "000.png", "001.png", "002.png", "metadata.json", "transforms.json"]
     failures = [json.loads(line) for line in (out / "failures.jsonl").read_text().splitlines()]
     assert [(f["stage"], os.path.basename(f["file"])) for f in failures] == [
         ("load", "broken.gltf")]
@@ -184,10 +187,19 @@ def test_batch_lists_failures_and_skips_finished_models(tmp_path):
 
 
 def files_under(folder):
-    """Every file below `folder` except failures.jsonl, by relative path, with its bytes."""
-    return {str(path.relative_to(folder)): path.read_bytes()
-            for path in sorted(folder.rglob("*"))
-            if path.is_file() and path.name != "failures.jsonl"}
+    """Every file below `folder` except failures.jsonl, by relative path, with its bytes;
+    metadata.json without its timings, which differ from run to run."""
+    files = {}
+    for path in sorted(folder.rglob("*")):
+        if not path.is_file() or path.name == "failures.jsonl":
+            continue
+        if path.name == "metadata.json":
+            metadata = json.loads(path.read_text())
+            del metadata["seconds"]
+            files[str(path.relative_to(folder))] = metadata
+        else:
+            files[str(path.relative_to(folder))] = path.read_bytes()
+    return files
 
 
 def test_batch_reuses_its_renderer_across_calls_and_writes_the_commands_files(tmp_path):
@@ -388,3 +400,104 @@ def test_keyboard_interrupt_stops_the_batch_cleanly_and_a_rerun_resumes(tmp_path
         assert len(list(folder.glob("*.png"))) == 12
     again = encore.batch(str(tmp_path / "in"), str(out), **options)
     assert (again["skipped"], again["rendered"]) == (len(finished), 8 - len(finished))
+
+
+def write_hdr(path, sky, ground, width=16):
+    """A flat Radiance .hdr panorama: `sky` radiance above the horizon, `ground` below."""
+    height = width // 2
+
+    def rgbe(colour):
+        largest = max(colour)
+        mantissa, exponent = math.frexp(largest)
+        scale = mantissa * 256.0 / largest
+        return bytes([int(c * scale) for c in colour] + [exponent + 128])
+
+    pixels = b"".join((rgbe(sky) if y < height // 2 else rgbe(ground)) * width
+                      for y in range(height))
+    path.write_bytes(b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n" +
+                     f"-Y {height} +X {width}\n".encode() + pixels)
+
+
+def test_batch_takes_the_commands_dataset_options_as_keywords(tmp_path):
+    for seed in (1, 2):
+        generate(tmp_path / "in" / f"m{seed}.glb", seed=seed, objects=4)
+    skies = tmp_path / "skies"
+    skies.mkdir()
+    write_hdr(skies / "dawn.hdr", (2.0, 0.8, 0.4), (0.3, 0.3, 0.3))
+    write_hdr(skies / "noon.hdr", (0.6, 0.8, 2.0), (0.4, 0.4, 0.4))
+    encore.batch(str(tmp_path / "in"), str(tmp_path / "python"), views=3, size=32, samples=1,
+                 seed=3, camera_distribution="upper-hemisphere", distance=(1.5, 2.2),
+                 fov=(30, 60), camera_jitter=5, environment_dir=str(skies),
+                 environment_rotation="random", environment_intensity=(0.5, 1.5),
+                 layout="objaverse", blank_threshold=4)
+    subprocess.run([os.environ["ENCORE_BINARY"], "batch", str(tmp_path / "in"), "-o",
+                    str(tmp_path / "command"), "--views", "3", "--size", "32", "--samples", "1",
+                    "--seed", "3", "--camera-distribution", "upper-hemisphere", "--distance",
+                    "1.5:2.2", "--fov", "30:60", "--camera-jitter", "5", "--environment-dir",
+                    str(skies), "--environment-rotation", "random", "--environment-intensity",
+                    "0.5:1.5", "--layout", "objaverse", "--blank-threshold", "4", "--quiet"],
+                   check=True, capture_output=True)
+    produced = files_under(tmp_path / "python")
+    assert produced == files_under(tmp_path / "command"), "the same files, byte for byte"
+    assert len(produced) == 2 * (3 + 3 + 2)
+    frame = json.loads((tmp_path / "python" / "m1" / "transforms.json").read_text())["frames"][0]
+    assert frame["environment"] in ("dawn.hdr", "noon.hdr")
+    assert 0.5 <= frame["intensity"] <= 1.5
+    assert produced["m1/metadata.json"]["blankThreshold"] == 4
+
+
+def test_objaverse_layout_npy_files_hold_the_blender_world_to_camera_matrix(renderer, tmp_path):
+    model = generate(tmp_path / "in" / "m.glb", seed=4)
+    out = tmp_path / "out"
+    renderer.batch([(str(model), "m")], str(out), views=4, size=16, random_views=4, seed=2,
+                   layout="objaverse")
+    transforms = json.loads((out / "m" / "transforms.json").read_text())
+    # Blender's glTF importer puts glTF's (x, y, z) at (x, -z, y).
+    gltf_to_blender = np.array([[1, 0, 0], [0, 0, -1], [0, 1, 0]], dtype=np.float64)
+    for view, frame in enumerate(transforms["frames"]):
+        path = out / "m" / f"{view:03}.npy"
+        with open(path, "rb") as file:
+            assert np.lib.format.read_magic(file) == (1, 0)
+        rt = np.load(path)
+        assert rt.shape == (3, 4) and rt.dtype == np.float64
+        if hasattr(np.lib.format, "GROWTH_AXIS_MAX_DIGITS"):  # numpy >= 1.23's header padding.
+            saved = io.BytesIO()
+            np.save(saved, rt)
+            assert saved.getvalue() == path.read_bytes(), "numpy.save's bytes"
+        camera_to_world = np.array(frame["transform_matrix"], dtype=np.float64)
+        rotation = gltf_to_blender @ camera_to_world[:3, :3]
+        location = gltf_to_blender @ camera_to_world[:3, 3]
+        # As blender_script.py's get_3x4_RT_matrix_from_blender computes it.
+        expected = np.hstack([rotation.T, (-rotation.T @ location)[:, None]])
+        assert np.allclose(rt, expected, atol=1e-6)
+        # The origin (the model's centre) lies in front of the camera, along its -z.
+        assert rt[2, 3] < 0 and abs(rt[0, 3]) < 1e-5 and abs(rt[1, 3]) < 1e-5
+
+
+def test_batch_writes_metadata_with_the_files_digest(renderer, tmp_path):
+    model = generate(tmp_path / "in" / "m.glb", seed=6, objects=5)
+    out = tmp_path / "out"
+    renderer.batch([(str(model), "m")], str(out), views=2, size=32)
+    metadata = json.loads((out / "m" / "metadata.json").read_text())
+    assert metadata["sha256"] == hashlib.sha256(model.read_bytes()).hexdigest()
+    assert metadata["fileBytes"] == model.stat().st_size
+    assert metadata["instances"] == 5 and metadata["triangles"] > 5
+    assert metadata["blankViews"] == [] and len(metadata["coveredPixels"]) == 2
+    assert set(metadata["seconds"]) == {"load", "upload", "render", "encode"}
+
+
+def test_bad_dataset_keywords_raise_value_errors(renderer, tmp_path):
+    models = [(str(generate(tmp_path / "in" / "m.glb", seed=1, objects=2)), "m")]
+    skies = tmp_path / "skies"
+    skies.mkdir()
+    write_hdr(skies / "sky.hdr", (1.0, 1.0, 1.0), (0.5, 0.5, 0.5))
+    for keywords in ({"distance": (2.0, 1.0)}, {"distance": "far"}, {"fov": (0, 40)},
+                     {"fov": (10, 20, 30)}, {"camera_distribution": "cube"},
+                     {"camera_jitter": 200}, {"environment_rotation": "sideways"},
+                     {"environment_rotation": (90, 10)}, {"environment_intensity": -1},
+                     {"layout": "zip"}, {"environment_dir": str(tmp_path / "absent")},
+                     {"environment_dir": str(tmp_path / "in")},
+                     {"environment_dir": str(skies), "environment": str(skies / "sky.hdr")}):
+        with pytest.raises(ValueError):
+            renderer.batch(models, str(tmp_path / "out"), views=1, size=8, **keywords)
+    assert not (tmp_path / "out" / "m").exists()

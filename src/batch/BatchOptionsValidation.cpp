@@ -1,8 +1,69 @@
 #include "batch/BatchOptionsValidation.h"
 
+#include <cmath>
+#include <sstream>
 #include <string>
 
 namespace encore::batch {
+namespace {
+
+// "1.5", or "1.5 to 2.2" for a range.
+std::string rangeText(const ValueRange& range) {
+    std::ostringstream text;
+    text << range.min;
+    if (!range.fixed()) {
+        text << " to " << range.max;
+    }
+    return text.str();
+}
+
+// Written as negations of what is valid so that NaN fails them too.
+bool ordered(const ValueRange& range) {
+    return range.min <= range.max && std::isfinite(range.min) && std::isfinite(range.max);
+}
+
+Result<void> checkCameras(const ViewRigOptions& rig) {
+    const ValueRange& fov = rig.horizontalFovDegrees;
+    if (!(ordered(fov) && fov.min > 0.0f && fov.max < 180.0f)) {
+        return makeError(ErrorCode::InvalidArgument,
+                         "The field of view (" + rangeText(fov) +
+                             " degrees) must lie in (0, 180), a range with its minimum first.");
+    }
+    if (!(ordered(rig.distance) && rig.distance.min > 0.0f)) {
+        return makeError(ErrorCode::InvalidArgument,
+                         "The camera distance (" + rangeText(rig.distance) +
+                             ") must be positive, a range with its minimum first.");
+    }
+    if (!(rig.jitterDegrees >= 0.0f && rig.jitterDegrees <= 180.0f)) {
+        return makeError(ErrorCode::InvalidArgument, "The camera jitter (" +
+                                                         rangeText(rig.jitterDegrees) +
+                                                         " degrees) must lie in [0, 180].");
+    }
+    return {};
+}
+
+Result<void> checkLighting(const BatchOptions& options) {
+    const LightingVariation& lighting = options.lighting;
+    if (lighting.intensity && !(ordered(*lighting.intensity) && lighting.intensity->min >= 0.0f)) {
+        return makeError(ErrorCode::InvalidArgument,
+                         "The environment intensity (" + rangeText(*lighting.intensity) +
+                             ") must be 0 or more, a range with its minimum first.");
+    }
+    if (lighting.rotationDegrees && !ordered(*lighting.rotationDegrees)) {
+        return makeError(ErrorCode::InvalidArgument,
+                         "The environment rotation (" + rangeText(*lighting.rotationDegrees) +
+                             " degrees) must be finite, a range with its minimum first.");
+    }
+    if (!lighting.environmentDirectory.empty() &&
+        (options.renderer.environment || options.renderer.environmentImage)) {
+        return makeError(ErrorCode::InvalidArgument,
+                         "An environment folder ('" + lighting.environmentDirectory.string() +
+                             "') and an environment of the renderer options exclude each other.");
+    }
+    return {};
+}
+
+}  // namespace
 
 render::StrategyChoice batchStrategy(const BatchOptions& options) {
     return options.strategy.value_or(render::StrategyChoice::of(
@@ -17,14 +78,8 @@ Result<void> validateBatchOptions(const BatchOptions& options) {
         return makeError(ErrorCode::InvalidArgument,
                          "A batch needs at least one view of at least one pixel.");
     }
-    // Written as negations so that NaN fails them too.
-    if (!(rig.horizontalFovDegrees > 0.0f && rig.horizontalFovDegrees < 180.0f) ||
-        !(rig.distance > 0.0f)) {
-        return makeError(ErrorCode::InvalidArgument,
-                         "The field of view (" + std::to_string(rig.horizontalFovDegrees) +
-                             " degrees) must lie in (0, 180) and the distance (" +
-                             std::to_string(rig.distance) + ") must be positive.");
-    }
+    ENCORE_TRY(checkCameras(rig));
+    ENCORE_TRY(checkLighting(options));
     const render::StrategyChoice strategy = batchStrategy(options);
     if (!(options.lodErrorPixels >= 0.0f) ||
         (options.lodErrorPixels > 0.0f && !render::cullsOnTheGpu(strategy.kind))) {

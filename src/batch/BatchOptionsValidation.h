@@ -14,8 +14,11 @@ namespace encore::batch {
 render::StrategyChoice batchStrategy(const BatchOptions& options);
 
 // Succeeds for options a batch can run with. Otherwise an InvalidArgument error for: no pixels
-// (width or height 0) or no views; a field of view outside (0, 180) degrees or a distance that is
-// not positive; a negative level-of-detail error, or a positive one with a strategy that does not
+// (width or height 0) or no views; a field of view outside (0, 180) degrees, a distance that is
+// not positive or a range of them with its maximum first, a jitter outside [0, 180] degrees; a
+// negative environment intensity, a range of intensities or rotations with its maximum first (or
+// not finite), an environment folder beside an environment of the renderer options; a negative
+// level-of-detail error, or a positive one with a strategy that does not
 // cull on the GPU (batchStrategy); a renderer count outside 1..kMaxRenderers. Checks nothing on
 // disk or on the device.
 Result<void> validateBatchOptions(const BatchOptions& options);

@@ -18,6 +18,8 @@ void BatchRenderer::discard() {
     mRenderers.clear();
     mRendererOptions.reset();
     mEnvironment.reset();
+    mRenderersEnvironment.reset();
+    mFileEnvironments.clear();
     mEnvironmentImage.reset();
     mEnvironmentShaders.reset();
     mDevice = nullptr;
@@ -53,6 +55,63 @@ Result<std::shared_ptr<render::Environment>> BatchRenderer::environmentFor(
     return mEnvironment;
 }
 
+Result<std::shared_ptr<render::Environment>> BatchRenderer::environmentFromFile(
+    const std::filesystem::path& file,
+    const render::EnvironmentOptions& options) {
+    if (mDevice.Get() != mContext.device().Get()) {
+        discard();  // A new device (after a loss).
+        mDevice = mContext.device();
+    }
+    ++mEnvironmentUses;
+    for (FileEnvironment& kept : mFileEnvironments) {
+        if (kept.file == file && kept.options == options) {
+            kept.lastUse = mEnvironmentUses;
+            return kept.environment;
+        }
+    }
+    auto panorama = image::readHdr(file);
+    if (!panorama) {
+        return panorama.error().withContext("Reading the environment '" + file.string() + "'");
+    }
+    if (!mEnvironmentShaders) {
+        mEnvironmentShaders = std::make_unique<shaders::ShaderLibrary>(mContext.device());
+    }
+    auto created = render::Environment::create(mContext.device(), mContext.queue(),
+                                               *mEnvironmentShaders, *panorama, options);
+    if (!created) {
+        return created.error().withContext("Creating the environment of '" + file.string() + "'");
+    }
+    ++mCounts.environments;
+    auto environment = std::make_shared<render::Environment>(std::move(*created));
+    if (mFileEnvironments.size() >= kEnvironmentCacheSize) {
+        // The one used longest ago goes; renderers still lighting with it keep it alive.
+        const auto oldest =
+            std::min_element(mFileEnvironments.begin(), mFileEnvironments.end(),
+                             [](const FileEnvironment& a, const FileEnvironment& b) {
+                                 return a.lastUse < b.lastUse;
+                             });
+        mFileEnvironments.erase(oldest);
+    }
+    mFileEnvironments.push_back({file, options, environment, mEnvironmentUses});
+    return environment;
+}
+
+Result<void> BatchRenderer::light(render::Renderer& renderer, const ModelLighting& lighting) {
+    std::shared_ptr<render::Environment> environment = mRenderersEnvironment;
+    if (!lighting.environmentFile.empty()) {
+        ENCORE_TRY_ASSIGN(
+            environment, environmentFromFile(lighting.environmentFile,
+                                             mRendererOptions ? mRendererOptions->environmentOptions
+                                                              : render::EnvironmentOptions{}));
+    }
+    renderer.setEnvironment(std::move(environment));
+    render::LightingParameters parameters = renderer.lighting().parameters();
+    parameters.environmentRotationRadians = lighting.rotationRadians;
+    parameters.environmentIntensity = lighting.intensity;
+    renderer.setLighting(parameters);
+    return {};
+}
+
 Result<void> BatchRenderer::acquire(const render::RendererOptions& options,
                                     std::size_t readbackSlots,
                                     std::size_t rendererCount) {
@@ -79,6 +138,7 @@ Result<void> BatchRenderer::acquire(const render::RendererOptions& options,
         }
         mRenderers.push_back(std::move(*renderer));
     }
+    mRenderersEnvironment = environment;
     mRendererOptions = options;
     mReadbackSlots = readbackSlots;
     mRing = std::make_unique<gpu::TextureReadbackRing>(mContext, readbackSlots);

@@ -15,6 +15,7 @@
 #include "batch/DeviceLane.h"
 #include "batch/ModelLoader.h"
 #include "batch/ModelOutput.h"
+#include "batch/ModelPlan.h"
 #include "batch/ModelWriter.h"
 #include "core/Elapsed.h"
 #include "core/ThreadPool.h"
@@ -155,8 +156,8 @@ void BatchRun::runLanes() {
 }
 
 Result<BatchSummary> BatchRun::run() {
-    const ViewRigOptions& rig = mOptions.views;
     ENCORE_TRY(validateBatchOptions(mOptions));
+    ENCORE_TRY_ASSIGN(auto planner, ModelPlanner::create(mOptions));  // Lists the environments.
     if (mDevices.empty()) {
         return makeError(ErrorCode::InvalidArgument, "A batch needs at least one device.");
     }
@@ -177,12 +178,13 @@ Result<BatchSummary> BatchRun::run() {
 
     // Finished models are skipped before anything loads.
     for (const BatchInput& input : mInputs) {
-        if (modelFinished(modelFolder(mOptions.output, input.name), rig.views, mOptions.images)) {
+        if (modelFinished(modelFolder(mOptions.output, input.name), modelFileSet(mOptions))) {
             ++mSkipped;
         } else {
             mPending.push_back(input);
         }
     }
+    planner.groupByEnvironment(mPending);  // Each environment file's maps computed once.
     scene::LoadOptions loadOptions;
     loadOptions.strict = mOptions.strict;
     // Levels of detail only when asked for: they cost load time and memory that only GPUs
@@ -198,7 +200,8 @@ Result<BatchSummary> BatchRun::run() {
         mPool, mPending, loadOptions, mOptions.memoryLimitBytes, mPool.size(),
         mDevices.size() == 1 ? ModelLoader::Order::InOrder : ModelLoader::Order::AsLoaded);
     BatchShared shared{
-        mOptions, batchStrategy(mOptions), mPending, mPool, *mFailures, mCounters, writer, loader};
+        mOptions, batchStrategy(mOptions), mPending, mPool, *mFailures, mCounters, writer, loader,
+        planner};
     if (auto created = createLanes(shared); !created) {
         loader.finish();
         return created.error();

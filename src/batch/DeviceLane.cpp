@@ -218,6 +218,9 @@ void DeviceLane::renderModel(LoadedModel& loaded) {
     auto job = std::make_shared<ModelJob>();
     job->input = &input;
     job->folder = modelFolder(mShared.options.output, input.name);
+    job->facts = std::move(loaded.facts);
+    job->times.load = loaded.seconds;
+    mShared.planner.plan(*job);
     // Fails the model before any renderer holds it: its bytes go back to the loader.
     const auto failBeforeUpload = [&](const char* stage, const Error& error) {
         job->fail(mShared.failures, mShared.counters, stage, error);
@@ -268,6 +271,11 @@ void DeviceLane::renderModel(LoadedModel& loaded) {
     RendererSlot& slot = mRenderers[slotIndex];
     render::Renderer& renderer = *slot.renderer;
     const scene::SceneData& scene = *loaded.scene;
+    // The model's environment is bound by the prepare() below.
+    if (auto lit = mBatchRenderer.light(renderer, job->lighting); !lit) {
+        failBeforeUpload("load", lit.error());
+        return;
+    }
     auto prepared =
         renderer.prepare(scene, mShared.strategy.kind, mShared.strategy.bundle, staged.get());
     releasePrepared(slot);
@@ -276,6 +284,7 @@ void DeviceLane::renderModel(LoadedModel& loaded) {
         prepared = mContext.checkNoErrors("Preparing '" + scene.sourcePath.string() + "'");
     }
     mStages.upload += secondsSince(uploadStart);
+    job->times.upload = secondsSince(uploadStart);
     mStages.uploadParts += renderer.prepareTimes();
     if (!prepared) {
         job->fail(mShared.failures, mShared.counters, "upload", prepared.error());
@@ -285,17 +294,16 @@ void DeviceLane::renderModel(LoadedModel& loaded) {
     }
 
     const ViewRigOptions& rig = mShared.options.views;
-    job->cameraToWorld = viewMatrices(rig);
-    job->remaining = std::uint32_t(job->cameraToWorld.size()) * mShared.options.images.perView();
+    const auto viewCount = std::uint32_t(job->views.size());
+    // And one that this thread holds until the model's times are set (ModelWriter::rendered).
+    job->remaining = viewCount * mShared.options.images.perView() + 1;
     const glm::mat4 toUnitBox = normalization(scene.bounds, rig.normalize);
-    const float fov = glm::radians(rig.horizontalFovDegrees);
     const auto renderStart = Clock::now();
     double renderWaiting = 0.0;
-    for (std::uint32_t first = 0; first < job->cameraToWorld.size(); first += mLayout.strips) {
-        const std::uint32_t count = std::min<std::uint32_t>(
-            mLayout.strips, std::uint32_t(job->cameraToWorld.size()) - first);
+    for (std::uint32_t first = 0; first < viewCount; first += mLayout.strips) {
+        const std::uint32_t count = std::min<std::uint32_t>(mLayout.strips, viewCount - first);
         const std::vector<render::Camera> cameras =
-            stripCameras(job->cameraToWorld, first, mLayout, toUnitBox, fov);
+            stripCameras(job->views, first, mLayout, toUnitBox);
         const TargetViews views{job, slotIndex, cameras, first, count};
         renderChunk(views, ViewImage::Color, renderWaiting);
         if (mShared.options.images.normals && !job->failed) {
@@ -320,6 +328,8 @@ void DeviceLane::renderModel(LoadedModel& loaded) {
         mTimestamps->flush();  // Every pass of the model is submitted: its mips and views.
     }
     mStages.render += secondsSince(renderStart) - renderWaiting;
+    job->times.render = secondsSince(renderStart) - renderWaiting;
+    mShared.writer.rendered(job);
 }
 
 void DeviceLane::run(const std::function<void()>& idle) {

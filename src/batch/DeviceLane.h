@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "batch/ModelLoader.h"
+#include "batch/ModelPlan.h"
 #include "batch/ModelWriter.h"
 #include "batch/ViewStrips.h"
 #include "core/ThreadPool.h"
@@ -37,6 +38,7 @@ struct BatchShared {
     SharedCounters& counters;
     ModelWriter& writer;
     ModelLoader& loader;
+    const ModelPlanner& planner;  // Each model's views and lighting.
 
     bool stopRequested() const { return options.stop && options.stop->load(); }
 };

@@ -47,7 +47,7 @@ void ModelLoader::startLoads() {
             const double cpuStart = threadCpuSeconds();
             LoadedModel loaded;
             loaded.order = order;
-            loaded.scene = scene::loadScene(mInputs[order].path, mOptions);
+            loaded.scene = loadModelFile(mInputs[order].path, mOptions, loaded.facts);
             if (loaded.scene) {
                 loaded.bytes = sceneBytes(*loaded.scene);
             }

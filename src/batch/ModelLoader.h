@@ -13,6 +13,7 @@
 #include <span>
 #include <vector>
 
+#include "batch/ModelMetadata.h"
 #include "core/ThreadPool.h"
 #include "encore/batch/BatchInputs.h"
 #include "encore/core/Result.h"
@@ -24,6 +25,7 @@ struct LoadedModel {
     std::size_t order = 0;  // Position in the load order.
     Result<scene::SceneData> scene = makeError(ErrorCode::InvalidArgument, "Not loaded.");
     std::uint64_t bytes = 0;  // What the scene holds in memory (buffers and decoded images).
+    ModelFacts facts;         // Its file's size and digest, and what the scene holds.
     double seconds = 0.0;
     double cpuSeconds = 0.0;  // The loading thread's CPU time.
 };

@@ -1,5 +1,7 @@
 #include "batch/ModelOutput.h"
 
+#include "batch/ModelMetadata.h"
+
 namespace encore::batch {
 
 namespace fs = std::filesystem;
@@ -12,26 +14,36 @@ fs::path viewImagePath(const fs::path& folder, std::size_t index, ViewImage kind
     return folder / (viewStem(index, kind) + ".png");
 }
 
-std::vector<fs::path> modelFiles(const fs::path& folder,
-                                 std::uint32_t views,
-                                 const ExtraImages& extras) {
+ModelFileSet modelFileSet(const BatchOptions& options) {
+    return {options.views.views, options.images, options.layout == OutputLayout::Objaverse};
+}
+
+fs::path cameraMatrixPath(const fs::path& folder, std::size_t index) {
+    return folder / (viewStem(index) + ".npy");
+}
+
+std::vector<fs::path> modelFiles(const fs::path& folder, const ModelFileSet& set) {
     std::vector<fs::path> files;
-    for (std::uint32_t view = 0; view < views; ++view) {
+    for (std::uint32_t view = 0; view < set.views; ++view) {
         files.push_back(viewImagePath(folder, view));
-        if (extras.normals) {
+        if (set.extras.normals) {
             files.push_back(viewImagePath(folder, view, ViewImage::Normal));
         }
-        if (extras.depth) {
+        if (set.extras.depth) {
             files.push_back(viewImagePath(folder, view, ViewImage::Depth));
         }
+        if (set.cameraMatrices) {
+            files.push_back(cameraMatrixPath(folder, view));
+        }
     }
+    files.push_back(folder / kMetadataFileName);
     files.push_back(folder / kTransformsFileName);
     return files;
 }
 
-bool modelFinished(const fs::path& folder, std::uint32_t views, const ExtraImages& extras) {
+bool modelFinished(const fs::path& folder, const ModelFileSet& set) {
     std::error_code ec;
-    for (const fs::path& file : modelFiles(folder, views, extras)) {
+    for (const fs::path& file : modelFiles(folder, set)) {
         if (!fs::is_regular_file(file, ec)) {
             return false;
         }

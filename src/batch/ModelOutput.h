@@ -2,21 +2,34 @@
 
 // The files of one model in a batch's output folder, and whether all of them are in place.
 //
-// OUT/<name>/000.png ... (one per view) and OUT/<name>/transforms.json, each written under a
-// temporary name, flushed and renamed (the images together once the last is written:
-// encore::writePartialFile and commitFiles), transforms.json last (encore::writeFileAtomically):
-// a model is finished exactly when every one of its files exists, and a batch run again skips it.
+// OUT/<name>/000.png ... (one per view, with their normal and depth images and, in the Objaverse
+// layout, 000.npy camera matrices), then OUT/<name>/metadata.json and OUT/<name>/transforms.json,
+// each written under a temporary name, flushed and renamed (the images and matrices together
+// once the last image is written: encore::writePartialFile and commitFiles), metadata.json and
+// transforms.json last, in that order (encore::writeFileAtomically): a model is finished exactly
+// when every one of its files exists, and a batch run again skips it. Output of a version that
+// wrote no metadata.json is rendered again.
 
 #include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
 
+#include "encore/batch/Batch.h"
 #include "encore/batch/ViewImages.h"
 
 namespace encore::batch {
 
 inline constexpr const char* kTransformsFileName = "transforms.json";
+
+// What a finished model's folder holds.
+struct ModelFileSet {
+    std::uint32_t views = 0;
+    ExtraImages extras;
+    bool cameraMatrices = false;  // 000.npy ... (OutputLayout::Objaverse).
+};
+
+ModelFileSet modelFileSet(const BatchOptions& options);
 
 std::filesystem::path modelFolder(const std::filesystem::path& output, const std::string& name);
 
@@ -25,14 +38,15 @@ std::filesystem::path viewImagePath(const std::filesystem::path& folder,
                                     std::size_t index,
                                     ViewImage kind = ViewImage::Color);
 
-// Every file a finished model has: its `views` images and their `extras`, then transforms.json.
-std::vector<std::filesystem::path> modelFiles(const std::filesystem::path& folder,
-                                              std::uint32_t views,
-                                              const ExtraImages& extras = {});
+// View `index`'s camera matrix in `folder`: "000.npy", ...
+std::filesystem::path cameraMatrixPath(const std::filesystem::path& folder, std::size_t index);
 
-bool modelFinished(const std::filesystem::path& folder,
-                   std::uint32_t views,
-                   const ExtraImages& extras = {});
+// Every file a finished model has: per view its images (and camera matrix), then metadata.json
+// and transforms.json.
+std::vector<std::filesystem::path> modelFiles(const std::filesystem::path& folder,
+                                              const ModelFileSet& files);
+
+bool modelFinished(const std::filesystem::path& folder, const ModelFileSet& files);
 
 // Removes what a stopped run left in `folder` (files ending in ".part"); keeps everything else.
 void removePartialFiles(const std::filesystem::path& folder);

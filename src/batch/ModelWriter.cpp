@@ -4,6 +4,8 @@
 #include <span>
 
 #include "batch/ModelOutput.h"
+#include "batch/NpyFile.h"
+#include "batch/ObjaverseCamera.h"
 #include "batch/TransformsJson.h"
 #include "batch/ViewStrips.h"
 #include "core/Elapsed.h"
@@ -15,6 +17,13 @@ namespace {
 
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
+
+Result<void> writeJson(const fs::path& path, const nlohmann::json& json) {
+    const std::string text =
+        json.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
+    return writeFileAtomically(
+        path, std::span(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()));
+}
 
 }  // namespace
 
@@ -29,19 +38,57 @@ Result<void> openModelFolder(const fs::path& folder) {
     return {};
 }
 
+void ModelWriter::writeMetadata(ModelJob& job) {
+    std::lock_guard lock(job.writtenMutex);  // The encode times.
+    const nlohmann::json json =
+        metadataJson(*job.input, job.facts, job.times, std::uint32_t(job.views.size()),
+                     job.coveredPixels, mOptions.blankThreshold);
+    if (auto written = writeJson(job.folder / kMetadataFileName, json); !written) {
+        job.fail(mFailures, mCounters, "write", written.error());
+    }
+}
+
 void ModelWriter::writeTransforms(ModelJob& job) {
-    const nlohmann::json json = transformsJson(glm::radians(mOptions.views.horizontalFovDegrees),
-                                               mOptions.width, mOptions.height, job.cameraToWorld,
-                                               mOptions.images, depthScale(mOptions.views));
-    const std::string text = json.dump(2) + "\n";
-    auto written = writeFileAtomically(
-        job.folder / kTransformsFileName,
-        std::span(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()));
-    if (!written) {
+    const nlohmann::json json =
+        transformsJson(job.views, mOptions.width, mOptions.height, mOptions.images,
+                       depthScale(mOptions.views), &job.lighting);
+    if (auto written = writeJson(job.folder / kTransformsFileName, json); !written) {
         job.fail(mFailures, mCounters, "write", written.error());
         return;
     }
     ++mCounters.rendered;
+}
+
+Result<void> ModelWriter::writeCameraMatrices(ModelJob& job) {
+    for (std::size_t view = 0; view < job.views.size(); ++view) {
+        const std::array<double, 12> matrix = objaverseCameraMatrix(job.views[view].cameraToWorld);
+        const fs::path path = cameraMatrixPath(job.folder, view);
+        ENCORE_TRY(writePartialFile(path, npyFloat64(matrix, 3, 4)));
+        job.written.push_back(path);
+    }
+    return {};
+}
+
+void ModelWriter::checkCoverage(ModelJob& job, std::uint32_t view, const image::ImageRgba8& image) {
+    const std::uint64_t covered = coveredPixels(image.pixels);
+    job.coveredPixels[view] = covered;  // Each view's task writes its own element.
+    if (mOptions.strict && covered < mOptions.blankThreshold) {
+        job.fail(
+            mFailures, mCounters, "blank",
+            makeError(ErrorCode::InvalidFormat,
+                      "View " + std::to_string(view) + " is blank: " + std::to_string(covered) +
+                          " of its " + std::to_string(std::uint64_t(image.width) * image.height) +
+                          " pixels are covered, fewer than the blank threshold (" +
+                          std::to_string(mOptions.blankThreshold) + ")."));
+    }
+}
+
+void ModelWriter::rendered(const std::shared_ptr<ModelJob>& job) {
+    if (job->remaining.fetch_sub(1) == 1) {
+        // Every image is written: finish on the pool, which flushes files, not on the device
+        // thread.
+        mPool.submit([this, job] { finishImages(*job); });
+    }
 }
 
 void ModelWriter::writeViews(const std::shared_ptr<ModelJob>& job,
@@ -82,10 +129,18 @@ void ModelWriter::encodeView(const std::shared_ptr<ModelJob>& job,
         auto image = std::make_shared<image::ImageRgba8>(
             cropStrip(wide->rows, wide->bytesPerRow, wide->height, strip, mOptions.width));
         wide.reset();  // The last strip lets the ring have its buffer back.
+        if (kind == ViewImage::Color && !job->coveredPixels.empty()) {
+            checkCoverage(*job, view, *image);
+        }
+        const double seconds = secondsSince(start);
         {
             std::lock_guard lock(mCounters.mutex);
-            mCounters.encode += secondsSince(start);
+            mCounters.encode += seconds;
             mCounters.encodeCpu += threadCpuSeconds() - cpuStart;
+        }
+        {
+            std::lock_guard lock(job->writtenMutex);
+            job->times.encode += seconds;
         }
         writeImage(job, view, kind, [kind, image, compression = mOptions.pngCompression] {
             if (kind == ViewImage::Normal) {
@@ -117,9 +172,14 @@ void ModelWriter::writeImage(const std::shared_ptr<ModelJob>& job,
                 ++mCounters.views;
             }
         }
-        // The last image written completes the model: its images are flushed and renamed
-        // together, then transforms.json goes last, so its presence says every image is in
-        // place.
+        {
+            std::lock_guard lock(job->writtenMutex);
+            job->times.encode += secondsSince(start);
+        }
+        // The last image written completes the model (unless the device thread still holds
+        // it: ModelWriter::rendered): its images are flushed and renamed together, then
+        // metadata.json and transforms.json go last, so the presence of transforms.json says
+        // every file is in place.
         if (job->remaining.fetch_sub(1) == 1) {
             finishImages(*job);
         }
@@ -130,6 +190,11 @@ void ModelWriter::writeImage(const std::shared_ptr<ModelJob>& job,
 }
 
 void ModelWriter::finishImages(ModelJob& job) {
+    if (!job.failed && mOptions.layout == OutputLayout::Objaverse) {
+        if (auto written = writeCameraMatrices(job); !written) {
+            job.fail(mFailures, mCounters, "write", written.error());
+        }
+    }
     if (!job.failed) {
         if (auto committed = commitFiles(job.written); !committed) {
             job.fail(mFailures, mCounters, "write", committed.error());
@@ -143,7 +208,10 @@ void ModelWriter::finishImages(ModelJob& job) {
         }
         return;
     }
-    writeTransforms(job);
+    writeMetadata(job);
+    if (!job.failed) {
+        writeTransforms(job);
+    }
 }
 
 }  // namespace encore::batch

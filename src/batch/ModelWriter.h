@@ -1,9 +1,11 @@
 #pragma once
 
 // Writes the files of the models a batch has in flight, on the thread pool, so that the device
-// thread never waits for a PNG encoder or the disk: each view is cropped out of its read-back,
-// encoded and written under its partial name; the last image of a model renames them all and
-// writes transforms.json last (ModelOutput.h), so its presence says every image is in place.
+// thread never waits for a PNG encoder or the disk: each view is cropped out of its read-back
+// (its covered pixels counted on the way: blank views), encoded and written under its partial
+// name; once the last image is written and the device thread is done with the model, its images
+// (and camera matrices) are renamed together, then metadata.json and transforms.json are written,
+// transforms.json last (ModelOutput.h), so its presence says every file is in place.
 
 #include <atomic>
 #include <cstdint>
@@ -17,6 +19,7 @@
 
 #include <glm/glm.hpp>
 
+#include "batch/ModelMetadata.h"
 #include "core/ThreadPool.h"
 #include "encore/batch/Batch.h"
 #include "encore/batch/BatchInputs.h"
@@ -43,8 +46,17 @@ struct SharedCounters {
 struct ModelJob {
     const BatchInput* input = nullptr;
     std::filesystem::path folder;
-    std::vector<glm::mat4> cameraToWorld;
-    std::atomic<std::uint32_t> remaining{0};  // Images not yet written.
+    std::vector<ViewCamera> views;
+    ModelLighting lighting;
+    ModelFacts facts;  // From the loader.
+    // load, upload and render are set by the device thread before it lets the model finish
+    // (ModelWriter::rendered); encode is summed by the pool under writtenMutex.
+    ModelTimes times;
+    // Covered pixels of each colour view, counted by the task that encodes it; empty when not
+    // counted (ModelPlanner).
+    std::vector<std::uint64_t> coveredPixels;
+    // Images not yet written, and one more until the device thread calls ModelWriter::rendered.
+    std::atomic<std::uint32_t> remaining{0};
     std::atomic<bool> failed{false};
     // Images written under their partial names, flushed and renamed together by the last one.
     std::mutex writtenMutex;
@@ -83,6 +95,10 @@ class ModelWriter {
                     std::uint32_t count,
                     ViewImage kind,
                     std::shared_ptr<const gpu::MappedReadback> wide);
+    // The device thread has handed on every image of `job` (and set its times): once they are
+    // written, the model finishes (on the pool). Once per job, after `remaining` was set to its
+    // images plus one.
+    void rendered(const std::shared_ptr<ModelJob>& job);
     // Converts the views [first, first + count) of a target drawn through the depth channel
     // (Renderer::readHdrImage, `targetWidth` wide) into 16-bit depth images on the calling
     // thread, then encodes and writes them on the pool.
@@ -101,14 +117,20 @@ class ModelWriter {
                     ViewImage kind,
                     std::shared_ptr<const gpu::MappedReadback> wide,
                     std::uint32_t strip);
+    // Records how many pixels colour view `view` covers; with --strict, a blank view fails the
+    // model (stage "blank").
+    void checkCoverage(ModelJob& job, std::uint32_t view, const image::ImageRgba8& image);
     // Encodes one image of `job` on the pool and writes it; the last one completes the model.
     void writeImage(const std::shared_ptr<ModelJob>& job,
                     std::uint32_t view,
                     ViewImage kind,
                     std::function<Result<std::vector<std::uint8_t>>()> encode);
-    // Flushes and renames the model's images (or removes them if it failed), then writes
+    // Writes the camera matrices (OutputLayout::Objaverse), flushes and renames them with the
+    // model's images (or removes them all if it failed), then writes metadata.json and
     // transforms.json.
     void finishImages(ModelJob& job);
+    Result<void> writeCameraMatrices(ModelJob& job);
+    void writeMetadata(ModelJob& job);
     void writeTransforms(ModelJob& job);
 
     ThreadPool& mPool;

@@ -1,5 +1,6 @@
 #include "batch/TransformsJson.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace encore::batch {
@@ -17,38 +18,66 @@ PinholeIntrinsics intrinsicsFor(std::uint32_t width,
     return intrinsics;
 }
 
-nlohmann::json transformsJson(float horizontalFovRadians,
-                              std::uint32_t width,
-                              std::uint32_t height,
-                              std::span<const glm::mat4> cameraToWorld,
-                              const ExtraImages& extras,
-                              double depthScale) {
-    const PinholeIntrinsics intrinsics = intrinsicsFor(width, height, horizontalFovRadians);
-    nlohmann::json json;
-    json["camera_angle_x"] = double(horizontalFovRadians);
-    json["w"] = width;
-    json["h"] = height;
+namespace {
+
+void addIntrinsics(nlohmann::json& json, const PinholeIntrinsics& intrinsics, float fovRadians) {
+    json["camera_angle_x"] = double(fovRadians);
     json["fl_x"] = intrinsics.focalX;
     json["fl_y"] = intrinsics.focalY;
     json["cx"] = intrinsics.centerX;
     json["cy"] = intrinsics.centerY;
+    json["w"] = std::uint32_t(intrinsics.width);
+    json["h"] = std::uint32_t(intrinsics.height);
+}
+
+}  // namespace
+
+nlohmann::json transformsJson(std::span<const ViewCamera> views,
+                              std::uint32_t width,
+                              std::uint32_t height,
+                              const ExtraImages& extras,
+                              double depthScale,
+                              const ModelLighting* lighting) {
+    nlohmann::json json;
+    const bool sharedFov = std::all_of(views.begin(), views.end(), [&](const ViewCamera& view) {
+        return view.horizontalFovRadians == views.front().horizontalFovRadians;
+    });
+    if (!views.empty() && sharedFov) {
+        const float fov = views.front().horizontalFovRadians;
+        addIntrinsics(json, intrinsicsFor(width, height, fov), fov);
+    } else {
+        // The principal point and the size are still shared.
+        const PinholeIntrinsics centre = intrinsicsFor(width, height, 1.0f);
+        json["w"] = width;
+        json["h"] = height;
+        json["cx"] = centre.centerX;
+        json["cy"] = centre.centerY;
+    }
     nlohmann::json frames = nlohmann::json::array();
-    for (std::size_t index = 0; index < cameraToWorld.size(); ++index) {
+    for (std::size_t index = 0; index < views.size(); ++index) {
+        const glm::mat4& cameraToWorld = views[index].cameraToWorld;
         nlohmann::json rows = nlohmann::json::array();
         for (int row = 0; row < 4; ++row) {
             nlohmann::json values = nlohmann::json::array();
             for (int column = 0; column < 4; ++column) {
-                values.push_back(double(cameraToWorld[index][column][row]));  // glm: [column][row]
+                values.push_back(double(cameraToWorld[column][row]));  // glm: [column][row]
             }
             rows.push_back(std::move(values));
         }
         nlohmann::json frame = {{"file_path", "./" + viewStem(index)},
                                 {"transform_matrix", std::move(rows)}};
+        const float fov = views[index].horizontalFovRadians;
+        addIntrinsics(frame, intrinsicsFor(width, height, fov), fov);
         if (extras.normals) {
             frame["normal_file_path"] = "./" + viewStem(index, ViewImage::Normal);
         }
         if (extras.depth) {
             frame["depth_file_path"] = "./" + viewStem(index, ViewImage::Depth);
+        }
+        if (lighting) {
+            frame["environment"] = lighting->environment;
+            frame["rotation"] = double(lighting->rotationDegrees);
+            frame["intensity"] = double(lighting->intensity);
         }
         frames.push_back(std::move(frame));
     }

@@ -8,6 +8,13 @@
 //                      axes (looking along -Z, +Y up).
 // Beside them the pinhole intrinsics in the keys nerfstudio and instant-ngp also read (w, h,
 // fl_x, fl_y, cx, cy, in pixels) so no reader has to derive them.
+//
+// Every frame also keeps its own intrinsics (camera_angle_x, fl_x, fl_y, cx, cy, w, h, as
+// nerfstudio reads them per frame), since a batch may draw each view's field of view from a
+// range; the file-level keys are written too where every frame shares them (camera_angle_x and
+// the focal lengths only then). And every frame records its lighting: "environment" (the file
+// relative to --environment-dir, the --environment file, or "studio"), "rotation" (degrees about
+// +Y) and "intensity".
 
 #include <cstdint>
 #include <span>
@@ -17,7 +24,9 @@
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
 
+#include "encore/batch/BatchLighting.h"
 #include "encore/batch/ViewImages.h"
+#include "encore/batch/ViewRig.h"
 
 namespace encore::batch {
 
@@ -38,11 +47,12 @@ PinholeIntrinsics intrinsicsFor(std::uint32_t width,
 // With `extras`, every frame also names its normal image ("normal_file_path": "./000_normal")
 // and its depth image ("depth_file_path": "./000_depth"); with depth, "depth_scale" says what
 // one unit of the 16-bit value is in world units.
-nlohmann::json transformsJson(float horizontalFovRadians,
+// With `lighting`, every frame records it.
+nlohmann::json transformsJson(std::span<const ViewCamera> views,
                               std::uint32_t width,
                               std::uint32_t height,
-                              std::span<const glm::mat4> cameraToWorld,
                               const ExtraImages& extras = {},
-                              double depthScale = 0.0);
+                              double depthScale = 0.0,
+                              const ModelLighting* lighting = nullptr);
 
 }  // namespace encore::batch

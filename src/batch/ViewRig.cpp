@@ -7,13 +7,43 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "batch/ModelSeed.h"
+
 namespace encore::batch {
 namespace {
 
-// A double in [0, 1) from the generator's raw bits: std::uniform_real_distribution may differ
-// between standard libraries, and --seed promises the same views everywhere.
-double unitInterval(std::mt19937_64& generator) {
-    return double(generator() >> 11) * 0x1.0p-53;
+// The direction of view `view` from the origin, before any jitter.
+glm::vec3 viewDirection(const ViewRigOptions& options,
+                        std::uint32_t view,
+                        std::mt19937_64& generator) {
+    if (options.distribution == CameraDistribution::Orbit) {
+        const double azimuth = 2.0 * M_PI * double(view) / double(options.views);
+        const double elevation = double(options.elevationDegrees) * M_PI / 180.0;
+        return glm::vec3(float(std::cos(elevation) * std::sin(azimuth)), float(std::sin(elevation)),
+                         float(std::cos(elevation) * std::cos(azimuth)));
+    }
+    // Uniform on the sphere: the height is uniform in [-1, 1] (Archimedes' hat-box theorem), the
+    // azimuth uniform around it; on the upper hemisphere the height is uniform in [0, 1].
+    const double unit = unitInterval(generator);
+    const double height =
+        options.distribution == CameraDistribution::UpperHemisphere ? unit : 2.0 * unit - 1.0;
+    const double azimuth = 2.0 * M_PI * unitInterval(generator);
+    const double ring = std::sqrt(std::max(0.0, 1.0 - height * height));
+    return glm::vec3(float(ring * std::sin(azimuth)), float(height),
+                     float(ring * std::cos(azimuth)));
+}
+
+// `direction` moved by up to `degrees` in azimuth and elevation, the elevation kept within the
+// poles.
+glm::vec3 jittered(const glm::vec3& direction, float degrees, std::mt19937_64& generator) {
+    const double range = double(degrees) * M_PI / 180.0;
+    const double azimuth = std::atan2(double(direction.x), double(direction.z)) +
+                           range * (2.0 * unitInterval(generator) - 1.0);
+    const double elevation = std::clamp(std::asin(std::clamp(double(direction.y), -1.0, 1.0)) +
+                                            range * (2.0 * unitInterval(generator) - 1.0),
+                                        -0.5 * M_PI, 0.5 * M_PI);
+    return glm::vec3(float(std::cos(elevation) * std::sin(azimuth)), float(std::sin(elevation)),
+                     float(std::cos(elevation) * std::cos(azimuth)));
 }
 
 }  // namespace
@@ -34,29 +64,32 @@ glm::mat4 lookAtCameraToWorld(const glm::vec3& eye, const glm::vec3& target) {
     return cameraToWorld;
 }
 
-std::vector<glm::mat4> viewMatrices(const ViewRigOptions& options) {
-    std::vector<glm::mat4> views;
-    std::mt19937_64 generator(options.seed);
+std::vector<ViewCamera> viewCameras(const ViewRigOptions& options, std::string_view modelName) {
+    const std::uint64_t seed = modelSeed(options.seed, modelName);
+    std::mt19937_64 directions = randomStream(seed, RandomStream::Directions);
+    std::mt19937_64 jitter = randomStream(seed, RandomStream::Jitter);
+    std::mt19937_64 distances = randomStream(seed, RandomStream::Distance);
+    std::mt19937_64 fields = randomStream(seed, RandomStream::FieldOfView);
+    std::vector<ViewCamera> views;
     for (std::uint32_t view = 0; view < options.views; ++view) {
-        glm::vec3 direction;
-        if (options.random) {
-            // Uniform on the sphere: the height is uniform in [-1, 1] (Archimedes' hat-box
-            // theorem), the azimuth uniform around it.
-            const double height = 2.0 * unitInterval(generator) - 1.0;
-            const double azimuth = 2.0 * M_PI * unitInterval(generator);
-            const double ring = std::sqrt(std::max(0.0, 1.0 - height * height));
-            direction = glm::vec3(float(ring * std::sin(azimuth)), float(height),
-                                  float(ring * std::cos(azimuth)));
-        } else {
-            const double azimuth = 2.0 * M_PI * double(view) / double(options.views);
-            const double elevation = double(options.elevationDegrees) * M_PI / 180.0;
-            direction = glm::vec3(float(std::cos(elevation) * std::sin(azimuth)),
-                                  float(std::sin(elevation)),
-                                  float(std::cos(elevation) * std::cos(azimuth)));
+        glm::vec3 direction = viewDirection(options, view, directions);
+        if (options.jitterDegrees > 0.0f) {
+            direction = jittered(direction, options.jitterDegrees, jitter);
         }
-        views.push_back(lookAtCameraToWorld(direction * options.distance, glm::vec3(0.0f)));
+        const float distance = options.distance.at(unitInterval(distances));
+        const float fovDegrees = options.horizontalFovDegrees.at(unitInterval(fields));
+        views.push_back(
+            {lookAtCameraToWorld(direction * distance, glm::vec3(0.0f)), glm::radians(fovDegrees)});
     }
     return views;
+}
+
+std::vector<glm::mat4> viewMatrices(const ViewRigOptions& options, std::string_view modelName) {
+    std::vector<glm::mat4> matrices;
+    for (const ViewCamera& view : viewCameras(options, modelName)) {
+        matrices.push_back(view.cameraToWorld);
+    }
+    return matrices;
 }
 
 glm::mat4 normalization(const scene::Bounds& bounds, bool normalize) {

@@ -29,18 +29,17 @@ StripLayout stripLayout(std::uint32_t width,
     return layout;
 }
 
-std::vector<render::Camera> stripCameras(std::span<const glm::mat4> cameraToWorld,
+std::vector<render::Camera> stripCameras(std::span<const ViewCamera> views,
                                          std::uint32_t first,
                                          const StripLayout& layout,
-                                         const glm::mat4& normalization,
-                                         float horizontalFovRadians) {
+                                         const glm::mat4& normalization) {
     const float aspect = float(layout.width) / float(layout.height);
-    const std::size_t last = cameraToWorld.size() - 1;
+    const std::size_t last = views.size() - 1;
     std::vector<render::Camera> cameras;
     for (std::uint32_t strip = 0; strip < layout.strips; ++strip) {
-        const std::size_t view = std::min<std::size_t>(first + strip, last);
+        const ViewCamera& view = views[std::min<std::size_t>(first + strip, last)];
         cameras.push_back(
-            renderCamera(cameraToWorld[view], normalization, horizontalFovRadians, aspect));
+            renderCamera(view.cameraToWorld, normalization, view.horizontalFovRadians, aspect));
     }
     return cameras;
 }
@@ -110,7 +109,7 @@ void decodeNormalImage(image::ImageRgba8& image) {
 }
 
 double depthScale(const ViewRigOptions& rig) {
-    return 2.0 * double(rig.distance) / 65535.0;
+    return 2.0 * double(rig.distance.max) / 65535.0;
 }
 
 image::ImageGray16 depthStrip(std::span<const float> wide,
@@ -148,32 +147,30 @@ namespace {
 // the image of one of its strips.
 template <typename Image, typename DrawTarget, typename CutStrip>
 Result<std::vector<Image>> renderTargets(const scene::Bounds& bounds,
-                                         std::span<const glm::mat4> cameraToWorld,
+                                         std::span<const ViewCamera> views,
                                          const ViewRigOptions& rig,
                                          const StripLayout& layout,
                                          DrawTarget drawTarget,
                                          CutStrip cutStrip) {
     const glm::mat4 toUnitBox = normalization(bounds, rig.normalize);
-    const float fov = glm::radians(rig.horizontalFovDegrees);
-    std::vector<Image> views;
-    for (std::uint32_t first = 0; first < cameraToWorld.size(); first += layout.strips) {
-        const std::vector<render::Camera> cameras =
-            stripCameras(cameraToWorld, first, layout, toUnitBox, fov);
+    std::vector<Image> images;
+    for (std::uint32_t first = 0; first < views.size(); first += layout.strips) {
+        const std::vector<render::Camera> cameras = stripCameras(views, first, layout, toUnitBox);
         ENCORE_TRY_ASSIGN(auto wide, drawTarget(std::span<const render::Camera>(cameras)));
         const std::uint32_t count =
-            std::min<std::uint32_t>(layout.strips, std::uint32_t(cameraToWorld.size()) - first);
+            std::min<std::uint32_t>(layout.strips, std::uint32_t(views.size()) - first);
         for (std::uint32_t strip = 0; strip < count; ++strip) {
-            views.push_back(cutStrip(wide, strip));
+            images.push_back(cutStrip(wide, strip));
         }
     }
-    return views;
+    return images;
 }
 
 }  // namespace
 
 Result<std::vector<image::ImageRgba8>> renderStrips(render::Renderer& renderer,
                                                     const scene::Bounds& bounds,
-                                                    std::span<const glm::mat4> cameraToWorld,
+                                                    std::span<const ViewCamera> views,
                                                     const ViewRigOptions& rig,
                                                     const StripLayout& layout,
                                                     ViewImage kind) {
@@ -202,13 +199,12 @@ Result<std::vector<image::ImageRgba8>> renderStrips(render::Renderer& renderer,
         }
         return view;
     };
-    return renderTargets<image::ImageRgba8>(bounds, cameraToWorld, rig, layout, drawTarget,
-                                            cutStrip);
+    return renderTargets<image::ImageRgba8>(bounds, views, rig, layout, drawTarget, cutStrip);
 }
 
 Result<std::vector<image::ImageGray16>> renderDepthStrips(render::Renderer& renderer,
                                                           const scene::Bounds& bounds,
-                                                          std::span<const glm::mat4> cameraToWorld,
+                                                          std::span<const ViewCamera> views,
                                                           const ViewRigOptions& rig,
                                                           const StripLayout& layout) {
     const auto drawTarget =
@@ -226,8 +222,7 @@ Result<std::vector<image::ImageGray16>> renderDepthStrips(render::Renderer& rend
         return depthStrip(wide, layout.targetWidth(), strip, layout.width, layout.height,
                           unitsPerModelUnit, scale);
     };
-    return renderTargets<image::ImageGray16>(bounds, cameraToWorld, rig, layout, drawTarget,
-                                             cutStrip);
+    return renderTargets<image::ImageGray16>(bounds, views, rig, layout, drawTarget, cutStrip);
 }
 
 }  // namespace encore::batch

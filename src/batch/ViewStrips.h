@@ -37,13 +37,12 @@ StripLayout stripLayout(std::uint32_t width,
                         std::uint32_t views,
                         const gpu::DeviceLimits& limits);
 
-// The render cameras of views [first, first + layout.strips) of `cameraToWorld`; past its end
-// the last view repeats, so that every strip keeps its width.
-std::vector<render::Camera> stripCameras(std::span<const glm::mat4> cameraToWorld,
+// The render cameras of views [first, first + layout.strips) of `views`, each with its own field
+// of view; past the end the last view repeats, so that every strip keeps its width.
+std::vector<render::Camera> stripCameras(std::span<const ViewCamera> views,
                                          std::uint32_t first,
                                          const StripLayout& layout,
-                                         const glm::mat4& normalization,
-                                         float horizontalFovRadians);
+                                         const glm::mat4& normalization);
 
 // Strip `strip` of a read-back target image.
 image::ImageRgba8 cropStrip(const image::ImageRgba8& wide,
@@ -76,7 +75,7 @@ Result<void> drawDebugChannel(render::Renderer& renderer,
 void decodeNormalImage(image::ImageRgba8& image);
 
 // One step of a 16-bit depth image, in the units of the rig's cameras: the range covers twice
-// the camera distance (transforms.json's depth_scale).
+// the (largest) camera distance (transforms.json's depth_scale).
 double depthScale(const ViewRigOptions& rig);
 
 // Strip `strip` of a target drawn through the depth channel and read back as HDR floats
@@ -91,14 +90,14 @@ image::ImageGray16 depthStrip(std::span<const float> wide,
                               float unitsPerModelUnit,
                               double scale);
 
-// Draws the views of the scene `renderer` has prepared (from `rig`'s cameras, normalised by
-// the scene's bounds as `rig` says) and reads them back, waiting for each target: for callers
+// Draws the views of the scene `renderer` has prepared (`views`, normalised by the scene's
+// bounds as `rig` says) and reads them back, waiting for each target: for callers
 // that render one model at a time (the Python module). `kind` is Color or Normal (the images
 // `encore batch` writes as 000.png and 000_normal.png). The renderer's target must be
 // layout.targetWidth() x layout.height.
 Result<std::vector<image::ImageRgba8>> renderStrips(render::Renderer& renderer,
                                                     const scene::Bounds& bounds,
-                                                    std::span<const glm::mat4> cameraToWorld,
+                                                    std::span<const ViewCamera> views,
                                                     const ViewRigOptions& rig,
                                                     const StripLayout& layout,
                                                     ViewImage kind = ViewImage::Color);
@@ -106,7 +105,7 @@ Result<std::vector<image::ImageRgba8>> renderStrips(render::Renderer& renderer,
 // depthScale(rig)).
 Result<std::vector<image::ImageGray16>> renderDepthStrips(render::Renderer& renderer,
                                                           const scene::Bounds& bounds,
-                                                          std::span<const glm::mat4> cameraToWorld,
+                                                          std::span<const ViewCamera> views,
                                                           const ViewRigOptions& rig,
                                                           const StripLayout& layout);
 

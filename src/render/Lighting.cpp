@@ -134,6 +134,11 @@ Result<void> SceneLighting::updateLight(std::size_t lightInstance,
     return {};
 }
 
+void SceneLighting::setEnvironment(std::shared_ptr<Environment> environment) {
+    mEnvironment = std::move(environment);
+    writeUniform();  // Its atlas layout and level count.
+}
+
 Result<void> SceneLighting::loadEnvironment(const image::HdrImage& panorama) {
     ENCORE_TRY(mEnvironment->load(panorama));
     writeUniform();  // The level count is fixed, but keep the uniform in step regardless.

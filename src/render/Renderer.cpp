@@ -105,6 +105,7 @@ Result<void> Renderer::recoverFromDeviceLoss() {
     options.environment = nullptr;
     options.environmentImage = std::make_shared<image::HdrImage>(environment.panorama());
     options.environmentOptions = environment.options();
+    mPendingEnvironment.reset();  // Built on the lost device.
     // The animation as it played: a rebuilt player would start at rest with every animation.
     const Playback playing = playback();
     const std::optional<double> animationTime = mAnimationTime;
@@ -163,6 +164,7 @@ Result<void> Renderer::prepare(const scene::SceneData& scene,
     }
     times.release = millisecondsSince(start);
     start = std::chrono::steady_clock::now();
+    applyPendingEnvironment();  // The strategy about to be prepared binds it.
     if (mLighting->setSceneLights(scene)) {
         mFrame->bindLighting(mContext->device(), *mLayouts, *mLighting);
     }
@@ -206,6 +208,7 @@ Result<void> Renderer::setStrategy(StrategyKind kind, bool bundle) {
     mStrategy.reset();
     freeReleasedObjects();
     mSetup->prepareTimes.release = millisecondsSince(start);
+    applyPendingEnvironment();
     if (mTriangleHistory) {
         setTriangleCounting(true);
     }
@@ -275,6 +278,7 @@ void Renderer::releaseScene() {
     mAnimationStats = {};
     mAnimationTime.reset();
     mScene = nullptr;
+    applyPendingEnvironment();
     // As prepare() does before the next strategy: Dawn frees the objects on a later tick, so
     // let it happen now rather than hold the scene's memory until the next prepare.
     mContext->waitForIdle();
@@ -337,6 +341,24 @@ Result<void> Renderer::setToneMapping(const ToneMappingOptions& options) {
     }
     mLighting->setDisplayMapping(options, !mTarget.hdr());
     return {};
+}
+
+void Renderer::setEnvironment(std::shared_ptr<Environment> environment) {
+    if (!environment) {
+        return;
+    }
+    mPendingEnvironment = std::move(environment);
+    if (!mStrategy) {
+        applyPendingEnvironment();  // Nothing holds the frame bind group yet.
+    }
+}
+
+void Renderer::applyPendingEnvironment() {
+    if (mPendingEnvironment && mPendingEnvironment != mLighting->sharedEnvironment()) {
+        mLighting->setEnvironment(std::move(mPendingEnvironment));
+        mFrame->bindLighting(mContext->device(), *mLayouts, *mLighting);
+    }
+    mPendingEnvironment.reset();
 }
 
 Result<void> Renderer::loadEnvironment(const image::HdrImage& panorama) {

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "BatchCommandSupport.h"
 #include "CommandRunner.h"
 #include "TestFiles.h"
 #include "TestPaths.h"
@@ -21,47 +22,18 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// `count` generated scenes in sub-folders (two of them named model.glb) and a malformed file.
-fs::path makeCollection(const std::string& name, int count, int objects) {
-    const fs::path dir = makeTempDir(name);
-    for (int i = 0; i < count; ++i) {
-        const fs::path model = i < 2 ? dir / ("set" + std::to_string(i)) / "model.glb"
-                                     : dir / "more" / ("scene" + std::to_string(i) + ".glb");
-        fs::create_directories(model.parent_path());
-        const CommandResult gen =
-            runEncore("gen --objects " + std::to_string(objects) + " --seed " +
-                      std::to_string(i + 1) + " -o " + quote(model.string()));
-        EXPECT_EQ(gen.exitCode, 0) << gen.err;
-    }
-    std::ofstream(dir / "broken.gltf") << "{\"asset\": ";
-    return dir;
-}
-
-std::vector<fs::path> filesUnder(const fs::path& dir, const std::string& extension) {
-    std::vector<fs::path> files;
-    for (const auto& entry : fs::recursive_directory_iterator(dir)) {
-        if (entry.is_regular_file() && entry.path().extension() == extension) {
-            files.push_back(entry.path());
-        }
-    }
-    return files;
-}
-
-std::vector<nlohmann::json> jsonLines(const fs::path& path) {
-    std::vector<nlohmann::json> lines;
-    std::ifstream file(path);
-    for (std::string line; std::getline(file, line);) {
-        lines.push_back(nlohmann::json::parse(line, nullptr, false));
-    }
-    return lines;
-}
-
 // Every finished model: `views` decodable RGBA images with a transparent corner and some opaque
-// coverage, and a transforms.json naming them.
+// coverage, a transforms.json naming them and a metadata.json with no blank view.
 void expectFinishedModel(const fs::path& folder, int views) {
     const nlohmann::json transforms =
         nlohmann::json::parse(readBytes(folder / "transforms.json"), nullptr, false);
     ASSERT_FALSE(transforms.is_discarded()) << folder;
+    const nlohmann::json metadata =
+        nlohmann::json::parse(readBytes(folder / "metadata.json"), nullptr, false);
+    ASSERT_FALSE(metadata.is_discarded()) << folder;
+    EXPECT_EQ(metadata["views"], views);
+    EXPECT_EQ(metadata["blankViews"], nlohmann::json::array()) << folder;
+    EXPECT_EQ(metadata["sha256"].get<std::string>().size(), 64u);
     EXPECT_GT(transforms["camera_angle_x"].get<double>(), 0.0);
     ASSERT_EQ(transforms["frames"].size(), std::size_t(views));
     for (int view = 0; view < views; ++view) {
@@ -94,12 +66,6 @@ std::string signalAfterFirstModel(const fs::path& dir,
                           << " $pid 2>/dev/null\n"
                              "wait $pid\n";
     return "sh " + quote(script.string()) + " " + quote(output.string());
-}
-
-std::string batchArguments(const fs::path& input,
-                           const fs::path& output,
-                           const std::string& extra) {
-    return "-v batch " + quote(input.string()) + " -o " + quote(output.string()) + " " + extra;
 }
 
 TEST(BatchCommandTest, RendersEveryGoodModelAndListsTheBadOne) {
@@ -396,7 +362,10 @@ TEST(BatchCommandTest, SigintStopsCleanly) {
     EXPECT_NE(stopped.out.find("interrupted"), std::string::npos) << stopped.out;
     EXPECT_TRUE(filesUnder(output, ".part").empty());
     // Models whose views were in flight were finished; none was started afterwards.
-    const std::size_t finished = filesUnder(output, ".json").size();
+    std::size_t finished = 0;
+    for (const fs::path& json : filesUnder(output, ".json")) {
+        finished += json.filename() == "transforms.json" ? 1 : 0;
+    }
     EXPECT_GE(finished, 1u);
     EXPECT_LT(finished, 6u);
     EXPECT_EQ(filesUnder(output, ".png").size(), finished * 16);

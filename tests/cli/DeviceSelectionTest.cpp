@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "BatchOutput.h"
 #include "CommandRunner.h"
 #include "TestFiles.h"
 #include "TestPaths.h"
@@ -117,10 +118,10 @@ TEST(DeviceSelectionTest, BatchOnSeveralDevicesWritesWhatOneDeviceWrites) {
     const auto [single, singleOut] = batch("devices-default", "");
     const auto [zero, zeroOut] = batch("devices-zero", "--devices 0");
     const auto [two, twoOut] = batch("devices-two", "--devices 0,0 --renderers 2");
-    const auto reference = filesUnder(single);
-    ASSERT_EQ(reference.size(), 5u * 4u);  // Three views and transforms.json per model.
-    EXPECT_TRUE(reference == filesUnder(zero));
-    EXPECT_TRUE(reference == filesUnder(two));
+    const auto reference = batchOutputFiles(single);
+    ASSERT_EQ(reference.size(), 5u * 5u);  // Three views, metadata.json, transforms.json.
+    EXPECT_TRUE(reference == batchOutputFiles(zero));
+    EXPECT_TRUE(reference == batchOutputFiles(two));
     EXPECT_EQ(lines(single / "failures.jsonl"), lines(two / "failures.jsonl"));
 
     // Both devices are reported; together they uploaded every good model once.

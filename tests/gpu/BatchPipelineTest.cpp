@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "BatchOutput.h"
 #include "GpuTestSupport.h"
 #include "RenderTestSupport.h"
 #include "TestFiles.h"
@@ -94,10 +95,10 @@ TEST(BatchPipelineTest, OverlappedModelsWriteTheSameFilesAsSequentialOnes) {
         for (const Failure& failure : summary->failures) {
             ADD_FAILURE() << failure.file << " (" << failure.stage << "): " << failure.error;
         }
-        written[renderers] = test::filesUnder(options.output);
+        written[renderers] = test::batchOutputFiles(options.output);
     }
-    // Per model: five views of colour, normals and depth, and transforms.json.
-    EXPECT_EQ(written[1].size(), inputs.size() * (5 * 3 + 1));
+    // Per model: five views of colour, normals and depth, metadata.json and transforms.json.
+    EXPECT_EQ(written[1].size(), inputs.size() * (5 * 3 + 2));
     for (const std::size_t renderers : {2, 3}) {
         ASSERT_EQ(written[renderers].size(), written[1].size()) << renderers << " renderers";
         for (const auto& [name, bytes] : written[1]) {
@@ -192,7 +193,7 @@ TEST(BatchPipelineTest, GpuTimestampsTimeEachStageAndChangeNoFile) {
                 .count();
         ASSERT_TRUE(summary.ok()) << summary.error().message;
         EXPECT_EQ(summary->rendered, inputs.size());
-        written[timed] = test::filesUnder(options.output);
+        written[timed] = test::batchOutputFiles(options.output);
         if (!timed) {
             EXPECT_TRUE(summary->stages.gpuStages.empty());
             continue;

@@ -2,7 +2,7 @@
 // environment's intensity and rotation, a new environment, punctual light parameters and
 // material factors all change through buffers (or in-place texture writes). Each frame after a
 // change must equal a renderer created with that state from the start, and the strategy must
-// not record again.
+// not record again. Another environment object takes effect at the next prepare().
 
 #include <gtest/gtest.h>
 
@@ -170,6 +170,27 @@ TEST_P(BundleLightingTest, LoadingANewEnvironmentDoesNotReRecord) {
     RendererOptions fresh = mOptions;
     fresh.environment = ownEnvironment(warm);
     expectSameAsFresh(fresh, "a new environment");
+}
+
+// Another environment, already built (encore batch keeps one per file): a prepared strategy
+// keeps the one it was prepared with (its bind group binds it) until the next prepare(), which
+// draws what a renderer created with the new one draws; and back again.
+TEST_P(BundleLightingTest, SettingAnotherEnvironmentTakesEffectAtTheNextPrepare) {
+    const std::shared_ptr<Environment> warm =
+        ownEnvironment(image::makeUniformEnvironment(1.5f, 0.8f, 0.3f, 64));
+    mRenderer->setEnvironment(warm);
+    EXPECT_EQ(test::differingPixels(mFirst, frame(*mRenderer), 0), 0u) << "before prepare()";
+    ASSERT_TRUE(mRenderer->prepare(mScene, GetParam()).ok());
+    const image::ImageRgba8 changed = frame(*mRenderer);
+    EXPECT_GT(test::differingPixels(mFirst, changed, 2), 20u) << "the environment did not change";
+    RendererOptions fresh = mOptions;
+    fresh.environment = warm;
+    EXPECT_EQ(test::differingPixels(freshFrame(mScene, fresh), changed, 1), 0u);
+
+    mRenderer->setEnvironment(mEnvironment);
+    ASSERT_TRUE(mRenderer->prepare(mScene, GetParam()).ok());
+    EXPECT_EQ(test::differingPixels(mFirst, frame(*mRenderer), 0), 0u);
+    EXPECT_TRUE(test::vulkanContext()->checkNoErrors("switching environments").ok());
 }
 
 INSTANTIATE_TEST_SUITE_P(BundleStrategies,

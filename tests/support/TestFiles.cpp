@@ -12,15 +12,4 @@ std::string readBytes(const std::filesystem::path& path) {
     return bytes.str();
 }
 
-std::map<std::string, std::string> filesUnder(const std::filesystem::path& folder) {
-    std::map<std::string, std::string> files;
-    for (const auto& entry : std::filesystem::recursive_directory_iterator(folder)) {
-        if (entry.is_regular_file() && entry.path().filename() != "failures.jsonl") {
-            files[std::filesystem::relative(entry.path(), folder).generic_string()] =
-                readBytes(entry.path());
-        }
-    }
-    return files;
-}
-
 }  // namespace encore::test

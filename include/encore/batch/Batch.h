@@ -16,6 +16,12 @@
 // Nothing is lost and nothing half-written (ModelOutput.h): finished models are skipped, so a
 // run stopped at any moment resumes where it stopped. Bad input never stops the batch: a model
 // that fails is listed in OUT/failures.jsonl (FailureLog.h) and the batch goes on.
+//
+// Each model also gets OUT/<name>/metadata.json (what the file holds, its SHA-256, the views
+// that came out blank, timings), and with OutputLayout::Objaverse a camera matrix per view as
+// NumPy's 000.npy. Cameras and lighting may vary from view to view and model to model
+// (ViewRig.h, BatchLighting.h), drawn from the seed and the model's name: every frame of
+// transforms.json records its own intrinsics and lighting.
 
 #include <atomic>
 #include <cstdint>
@@ -27,6 +33,7 @@
 #include <vector>
 
 #include "encore/batch/BatchInputs.h"
+#include "encore/batch/BatchLighting.h"
 #include "encore/batch/BatchRenderer.h"
 #include "encore/batch/FailureLog.h"
 #include "encore/batch/ViewImages.h"
@@ -101,12 +108,31 @@ inline constexpr std::size_t kDefaultRenderers = 4;
 // the device, and past a few they only add memory (the queue ahead of the GPU is deep enough).
 inline constexpr std::size_t kMaxRenderers = 8;
 
+// What a model's folder holds besides its images, transforms.json and metadata.json.
+enum class OutputLayout {
+    Nerf,       // Nothing more: transforms.json describes the cameras.
+    Objaverse,  // A 000.npy beside each 000.png: the camera as the Objaverse-XL scripts save it
+                // (ObjaverseCamera.h).
+};
+
+// Fewer covered pixels than this make a view blank (BatchOptions::blankThreshold).
+inline constexpr std::uint32_t kDefaultBlankThreshold = 1;
+
 struct BatchOptions {
     std::filesystem::path output;
     std::uint32_t width = 512;
     std::uint32_t height = 512;
     std::uint32_t samples = 4;  // 1 or 4.
     ViewRigOptions views;
+    // An environment, rotation and intensity per model (drawn from views.seed), applied over
+    // `renderer`'s lighting.
+    LightingVariation lighting;
+    OutputLayout layout = OutputLayout::Nerf;
+    // A view whose colour image has fewer pixels with non-zero alpha than this is blank: listed
+    // in metadata.json's blankViews, and with `strict` the model fails (stage "blank"). Coverage
+    // is counted with a transparent background only (the default); with another background no
+    // view is blank. 0: none is.
+    std::uint32_t blankThreshold = kDefaultBlankThreshold;
     // Lighting, tone mapping and background; the target is set from width, height and samples.
     render::RendererOptions renderer = [] {
         render::RendererOptions options;
@@ -124,7 +150,7 @@ struct BatchOptions {
     // triangles than the views can show, as on lavapipe. 0: full detail (the default).
     float lodErrorPixels = 0.0f;
 
-    bool strict = false;  // Loader warnings fail the model.
+    bool strict = false;  // Loader warnings and blank views fail the model.
     // Whether OUT/failures.jsonl is written (and emptied first). Off, the failures are only in
     // the summary: for callers that run several batches into one folder at once and write one
     // log of them all (encore.dask), where each run would empty the others' log.

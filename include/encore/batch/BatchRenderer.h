@@ -11,12 +11,20 @@
 // when a batch asks for different options: a new size or sample count makes a new renderer (and
 // ring) but keeps the environment maps; a new environment image or environment options rebuild
 // those too. The images are those of a fresh build, byte for byte.
+//
+// A batch that lights each model with one of a folder's panoramas (BatchLighting.h) gets their
+// environment maps from here too: computed once per file and kept, the kEnvironmentCacheSize
+// used last, so models lit by the same file share them and a renderer switches between them for
+// the price of one bind group.
 
 #include <cstddef>
+#include <cstdint>
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <vector>
 
+#include "encore/batch/BatchLighting.h"
 #include "encore/core/Result.h"
 #include "encore/gpu/Context.h"
 #include "encore/gpu/TextureReadbackRing.h"
@@ -29,8 +37,13 @@ namespace encore::batch {
 // How often a BatchRenderer built what it keeps: what tells reuse from rebuilding.
 struct BatchRendererCounts {
     std::size_t renderers = 0;     // Times the renderers (and the ring) were built.
-    std::size_t environments = 0;  // Environment maps computed.
+    std::size_t environments = 0;  // Environment maps computed (the options' and files').
 };
+
+// Environment maps of files kept at most: each holds about 13 MiB of textures at the default
+// EnvironmentOptions (its cube maps and atlas) and its panorama on the CPU; computing one costs
+// reading the file and about a second of GPU work on lavapipe.
+inline constexpr std::size_t kEnvironmentCacheSize = 8;
 
 class BatchRenderer {
   public:
@@ -56,6 +69,16 @@ class BatchRenderer {
     gpu::TextureReadbackRing& ring() { return *mRing; }
     bool ready() const { return !mRenderers.empty(); }
 
+    // The environment maps of the Radiance .hdr `file` with `options`: computed on the first
+    // call, then kept (the kEnvironmentCacheSize used last). Errors name the file.
+    Result<std::shared_ptr<render::Environment>> environmentFromFile(
+        const std::filesystem::path& file,
+        const render::EnvironmentOptions& options);
+    // Lights `renderer` (one of this object's, after acquire()) as `lighting` says: its
+    // environment (the file's, or the one acquire() built the renderers with) from the
+    // renderer's next prepare(), the rotation and intensity at once.
+    Result<void> light(render::Renderer& renderer, const ModelLighting& lighting);
+
     // Forgets everything it built: after a device loss its objects belong to the lost device.
     // (acquire() also rebuilds by itself when the context's device is not the one it built on.)
     void discard();
@@ -77,6 +100,16 @@ class BatchRenderer {
     // load), so it outlives mEnvironment.
     std::unique_ptr<shaders::ShaderLibrary> mEnvironmentShaders;
     std::shared_ptr<render::Environment> mEnvironment;
+    // What the renderers were built with: mEnvironment, or the options' own.
+    std::shared_ptr<render::Environment> mRenderersEnvironment;
+    struct FileEnvironment {
+        std::filesystem::path file;
+        render::EnvironmentOptions options;
+        std::shared_ptr<render::Environment> environment;
+        std::uint64_t lastUse = 0;
+    };
+    std::vector<FileEnvironment> mFileEnvironments;  // At most kEnvironmentCacheSize.
+    std::uint64_t mEnvironmentUses = 0;
     // What mEnvironment was computed from.
     std::shared_ptr<const image::HdrImage> mEnvironmentImage;
     render::EnvironmentOptions mEnvironmentOptions;

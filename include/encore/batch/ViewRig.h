@@ -11,12 +11,18 @@
 // The defaults follow those scripts: 12 views on a circle 30 degrees above the horizon, 1.5
 // units from the centre, with a 35 mm lens on a 32 mm wide sensor (a horizontal field of view
 // of 2 atan(16 / 35), about 49.13 degrees).
+//
+// What a rig draws at random (directions on the sphere, a jitter, distances and fields of view
+// from ranges) comes from its seed and the model's name (ModelSeed.h): each model has views of
+// its own, the same ones whatever order the models are rendered in.
 
 #include <cstdint>
+#include <string_view>
 #include <vector>
 
 #include <glm/glm.hpp>
 
+#include "encore/batch/ValueRange.h"
 #include "encore/render/Camera.h"
 #include "encore/scene/Bounds.h"
 
@@ -24,26 +30,50 @@ namespace encore::batch {
 
 inline constexpr float kDefaultHorizontalFovDegrees = 49.134343f;  // 2 atan(16 / 35)
 
+// Where the views' directions come from.
+enum class CameraDistribution {
+    // View i at azimuth 360 i / views degrees (view 0 on +Z, then towards +X), elevationDegrees
+    // above the horizontal plane.
+    Orbit,
+    Sphere,           // Uniform on the sphere, drawn from the seed.
+    UpperHemisphere,  // Uniform on the half above the horizontal plane (+Y), from the seed.
+};
+
 struct ViewRigOptions {
     std::uint32_t views = 12;
-    // Orbit: view i at azimuth 360 i / views degrees (view 0 on +Z, then towards +X), this many
-    // degrees above the horizontal plane.
-    float elevationDegrees = 30.0f;
-    // Random: views directions drawn uniformly on the sphere from `seed` instead of the orbit;
-    // the same seed gives the same views on every machine.
-    bool random = false;
+    CameraDistribution distribution = CameraDistribution::Orbit;
+    float elevationDegrees = 30.0f;  // Of the orbit.
+    // Seeds every draw: directions, jitter, distances and fields of view (and, in a batch, the
+    // lighting of BatchLighting.h). The same seed gives the same views on every machine.
     std::uint64_t seed = 0;
-    float distance = 1.5f;  // From the origin, in (normalised) world units.
-    float horizontalFovDegrees = kDefaultHorizontalFovDegrees;
+    // Each view's distance from the origin, in (normalised) world units, and its horizontal
+    // field of view: fixed, or drawn per view from the range.
+    ValueRange distance = 1.5f;
+    ValueRange horizontalFovDegrees = kDefaultHorizontalFovDegrees;
+    // Moves each view's direction by up to this many degrees in azimuth and in elevation
+    // (uniformly, from the seed; elevations stay within the poles). 0: none.
+    float jitterDegrees = 0.0f;
     bool normalize = true;  // False: the model as it is, cameras around the world origin.
+};
+
+// One view: where the camera is and how wide it sees.
+struct ViewCamera {
+    glm::mat4 cameraToWorld{1.0f};
+    float horizontalFovRadians = 0.0f;
+
+    bool operator==(const ViewCamera&) const = default;
 };
 
 // The camera-to-world matrix of a camera at `eye` looking at `target` with +Y up (-Z up when
 // looking straight up or down, as render::Camera::lookAt does).
 glm::mat4 lookAtCameraToWorld(const glm::vec3& eye, const glm::vec3& target);
 
-// The views' camera-to-world matrices, as the options ask.
-std::vector<glm::mat4> viewMatrices(const ViewRigOptions& options);
+// The views of the model named `modelName` (BatchInput::name), as the options ask; with an
+// empty name, the draws come from the seed alone.
+std::vector<ViewCamera> viewCameras(const ViewRigOptions& options, std::string_view modelName = {});
+
+// Their camera-to-world matrices.
+std::vector<glm::mat4> viewMatrices(const ViewRigOptions& options, std::string_view modelName = {});
 
 // The transform from the model's world into the normalised world: uniform scale and
 // translation putting `bounds` into the unit box centred at the origin (identity for empty or

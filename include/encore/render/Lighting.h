@@ -103,6 +103,9 @@ class SceneLighting {
 
     // Replaces the environment's contents (the same textures: bind groups stay valid).
     Result<void> loadEnvironment(const image::HdrImage& panorama);
+    // Lights with another environment: bind groups that bound the previous one must be made
+    // again (FrameUniforms::bindLighting).
+    void setEnvironment(std::shared_ptr<Environment> environment);
     Environment& environment() { return *mEnvironment; }
     const Environment& environment() const { return *mEnvironment; }
     // For another renderer to light with the same environment (RendererOptions::environment).

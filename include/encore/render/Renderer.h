@@ -191,6 +191,12 @@ class Renderer {
     const ToneMappingOptions& toneMapping() const { return mOptions.toneMapping; }
     // Recomputes the environment maps from `panorama` into the same textures.
     Result<void> loadEnvironment(const image::HdrImage& panorama);
+    // Lights with `environment` (already built; several renderers may share one; null is
+    // ignored) from the next prepare(), setStrategy() or releaseScene() on, or at once when no
+    // strategy is prepared: a prepared strategy holds the bind group that binds the environment,
+    // so it keeps the one it was prepared with. Switching between the preparation of two scenes
+    // (encore batch, one environment per model) costs one bind group and no recording.
+    void setEnvironment(std::shared_ptr<Environment> environment);
     // Rewrites a placed light (an index into SceneData::lightInstances of the prepared scene).
     Result<void> updateLight(std::size_t lightInstance,
                              const scene::Light& light,
@@ -252,6 +258,8 @@ class Renderer {
     Renderer() = default;
     Result<void> build(const RendererOptions& options);
     Result<void> createGpuAnimation();
+    // Makes mPendingEnvironment the lighting's environment, binding it in the frame bind group.
+    void applyPendingEnvironment();
     // Creates and prepares the strategy on the GPU scene, then finishes `outOfMemory` (opened
     // by the caller) and collects errors; `what` names it in errors.
     Result<void> prepareStrategy(StrategyKind kind,
@@ -283,7 +291,8 @@ class Renderer {
     RenderTarget mTarget;
     std::unique_ptr<shaders::ShaderLibrary> mShaders;
     std::unique_ptr<BindGroupLayouts> mLayouts;
-    std::unique_ptr<SceneLighting> mLighting;  // Before mFrame: its bind group binds these.
+    std::unique_ptr<SceneLighting> mLighting;          // Before mFrame: its bind group binds these.
+    std::shared_ptr<Environment> mPendingEnvironment;  // setEnvironment's, not yet bound.
     std::unique_ptr<FrameUniforms> mFrame;
     std::unique_ptr<ToneMapper> mToneMapper;  // HDR targets only.
     std::unique_ptr<EnvironmentBackground> mBackground;

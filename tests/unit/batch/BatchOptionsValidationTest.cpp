@@ -5,6 +5,7 @@
 #include <string>
 
 #include "batch/BatchOptionsValidation.h"
+#include "encore/image/HdrImage.h"
 
 namespace encore::batch {
 namespace {
@@ -74,6 +75,58 @@ TEST(BatchOptionsValidationTest, RejectsADistanceThatIsNotPositive) {
     }
     options.views.distance = 0.01f;
     EXPECT_TRUE(validateBatchOptions(options).ok());
+}
+
+TEST(BatchOptionsValidationTest, RangesNeedTheirMinimumFirstAndValidEnds) {
+    BatchOptions options;
+    options.views.distance = ValueRange(1.5f, 2.2f);
+    options.views.horizontalFovDegrees = ValueRange(30.0f, 60.0f);
+    EXPECT_TRUE(validateBatchOptions(options).ok());
+    options.views.distance = ValueRange(2.2f, 1.5f);
+    EXPECT_TRUE(rejected(options,
+                         "camera distance (2.2 to 1.5) must be positive, a range with "
+                         "its minimum first"));
+    options.views.distance = ValueRange(0.0f, 1.5f);
+    EXPECT_TRUE(rejected(options, "must be positive"));
+    options.views.distance = ValueRange(1.0f, std::numeric_limits<float>::infinity());
+    EXPECT_TRUE(rejected(options, "must be positive"));
+    options.views.distance = 1.5f;
+    options.views.horizontalFovDegrees = ValueRange(60.0f, 30.0f);
+    EXPECT_TRUE(rejected(options, "field of view (60 to 30 degrees) must lie in (0, 180)"));
+    options.views.horizontalFovDegrees = ValueRange(10.0f, 180.0f);
+    EXPECT_TRUE(rejected(options, "must lie in (0, 180)"));
+}
+
+TEST(BatchOptionsValidationTest, JitterLiesWithinHalfATurn) {
+    BatchOptions options;
+    for (float degrees : {-1.0f, 181.0f, std::numeric_limits<float>::quiet_NaN()}) {
+        options.views.jitterDegrees = degrees;
+        EXPECT_TRUE(rejected(options, "camera jitter")) << degrees;
+    }
+    options.views.jitterDegrees = 180.0f;
+    EXPECT_TRUE(validateBatchOptions(options).ok());
+}
+
+TEST(BatchOptionsValidationTest, EnvironmentRangesAndSources) {
+    BatchOptions options;
+    options.lighting.intensity = ValueRange(0.5f, 2.0f);
+    options.lighting.rotationDegrees = ValueRange(0.0f, 360.0f);
+    EXPECT_TRUE(validateBatchOptions(options).ok());
+    options.lighting.intensity = ValueRange(-1.0f, 2.0f);
+    EXPECT_TRUE(rejected(options, "environment intensity (-1 to 2) must be 0 or more"));
+    options.lighting.intensity = ValueRange(2.0f, 1.0f);
+    EXPECT_TRUE(rejected(options, "minimum first"));
+    options.lighting.intensity.reset();
+    options.lighting.rotationDegrees = ValueRange(90.0f, 10.0f);
+    EXPECT_TRUE(rejected(options, "environment rotation (90 to 10 degrees)"));
+    options.lighting.rotationDegrees = std::numeric_limits<float>::quiet_NaN();
+    EXPECT_TRUE(rejected(options, "must be finite"));
+    options.lighting.rotationDegrees.reset();
+    options.lighting.environmentDirectory = "skies";
+    EXPECT_TRUE(validateBatchOptions(options).ok());  // The folder is listed when the batch runs.
+    options.renderer.environmentImage =
+        std::make_shared<image::HdrImage>(image::makeUniformEnvironment(1.0f, 1.0f, 1.0f));
+    EXPECT_TRUE(rejected(options, "exclude each other"));
 }
 
 TEST(BatchOptionsValidationTest, LevelsOfDetailNeedANonNegativeErrorAndGpuCulling) {

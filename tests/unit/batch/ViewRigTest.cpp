@@ -75,7 +75,7 @@ TEST(ViewRigTest, StraightDownIsStillWellDefined) {
 
 TEST(ViewRigTest, RandomViewsLieOnTheSphereAndRepeatWithTheSeed) {
     ViewRigOptions options;
-    options.random = true;
+    options.distribution = CameraDistribution::Sphere;
     options.views = 2000;
     options.seed = 7;
     options.distance = 2.0f;
@@ -103,6 +103,100 @@ TEST(ViewRigTest, RandomViewsLieOnTheSphereAndRepeatWithTheSeed) {
     EXPECT_NE(viewMatrices(options), views);
 }
 
+TEST(ViewRigTest, UpperHemisphereViewsStayAboveTheHorizon) {
+    ViewRigOptions options;
+    options.distribution = CameraDistribution::UpperHemisphere;
+    options.views = 2000;
+    double meanHeight = 0.0;
+    for (const glm::mat4& view : viewMatrices(options, "model")) {
+        const glm::vec3 eye = position(view) / 1.5f;
+        EXPECT_GE(eye.y, 0.0f);
+        meanHeight += eye.y;
+    }
+    // Uniform on the hemisphere: the height is uniform in [0, 1].
+    EXPECT_NEAR(meanHeight / 2000.0, 0.5, 0.03);
+}
+
+// Each model draws views of its own from the seed and its name, whatever else is asked for:
+// the same name and seed give the same views, another name or seed others.
+TEST(ViewRigTest, RandomViewsDependOnTheSeedAndTheModelName) {
+    ViewRigOptions options;
+    options.distribution = CameraDistribution::Sphere;
+    options.views = 4;
+    options.seed = 3;
+    const auto a = viewCameras(options, "cars/a");
+    EXPECT_EQ(viewCameras(options, "cars/a"), a);
+    EXPECT_NE(viewCameras(options, "cars/b"), a);
+    // No name: the seed alone, as Renderer.render_views draws them.
+    EXPECT_NE(viewCameras(options, ""), a);
+    options.seed = 4;
+    EXPECT_NE(viewCameras(options, "cars/a"), a);
+    // Ranges draw from streams of their own: the directions stay.
+    options.seed = 3;
+    options.distance = ValueRange(1.5f, 2.2f);
+    options.horizontalFovDegrees = ValueRange(30.0f, 60.0f);
+    const auto ranged = viewCameras(options, "cars/a");
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        EXPECT_NEAR(glm::dot(forward(ranged[i].cameraToWorld), forward(a[i].cameraToWorld)), 1.0f,
+                    1e-6f);
+    }
+}
+
+TEST(ViewRigTest, DistanceAndFieldOfViewRangesAreDrawnPerView) {
+    ViewRigOptions options;
+    options.views = 500;
+    options.distance = ValueRange(1.5f, 2.2f);
+    options.horizontalFovDegrees = ValueRange(30.0f, 60.0f);
+    const auto views = viewCameras(options, "m");
+    float nearest = 10.0f, farthest = 0.0f, narrowest = 10.0f, widest = 0.0f;
+    for (const ViewCamera& view : views) {
+        expectRigid(view.cameraToWorld);
+        const float distance = glm::length(position(view.cameraToWorld));
+        nearest = std::min(nearest, distance);
+        farthest = std::max(farthest, distance);
+        narrowest = std::min(narrowest, view.horizontalFovRadians);
+        widest = std::max(widest, view.horizontalFovRadians);
+        // Still on the orbit, looking at the origin.
+        EXPECT_NEAR(std::asin(position(view.cameraToWorld).y / distance), glm::radians(30.0f),
+                    1e-4f);
+    }
+    EXPECT_GE(nearest, 1.5f - 1e-5f);
+    EXPECT_LE(farthest, 2.2f + 1e-5f);
+    EXPECT_LT(nearest, 1.55f);
+    EXPECT_GT(farthest, 2.15f);
+    EXPECT_GE(narrowest, glm::radians(30.0f) - 1e-6f);
+    EXPECT_LE(widest, glm::radians(60.0f) + 1e-6f);
+    EXPECT_GT(widest - narrowest, glm::radians(25.0f));
+    // Fixed values are exactly the value.
+    options.distance = 2.0f;
+    options.horizontalFovDegrees = 40.0f;
+    for (const ViewCamera& view : viewCameras(options, "m")) {
+        EXPECT_NEAR(glm::length(position(view.cameraToWorld)), 2.0f, 1e-5f);
+        EXPECT_EQ(view.horizontalFovRadians, glm::radians(40.0f));
+    }
+}
+
+TEST(ViewRigTest, JitterMovesOrbitViewsByAtMostItsAngle) {
+    ViewRigOptions options;
+    const auto orbit = viewMatrices(options, "m");
+    options.jitterDegrees = 10.0f;
+    const auto jittered = viewMatrices(options, "m");
+    ASSERT_EQ(jittered.size(), orbit.size());
+    bool moved = false;
+    for (std::size_t i = 0; i < orbit.size(); ++i) {
+        expectRigid(jittered[i]);
+        const glm::vec3 a = glm::normalize(position(orbit[i]));
+        const glm::vec3 b = glm::normalize(position(jittered[i]));
+        // Up to 10 degrees in each of azimuth and elevation: at most about 14 apart.
+        EXPECT_LE(std::acos(std::min(1.0f, glm::dot(a, b))), glm::radians(14.2f)) << i;
+        EXPECT_LE(std::abs(std::asin(b.y) - std::asin(a.y)), glm::radians(10.0f) + 1e-5f) << i;
+        moved = moved || glm::dot(a, b) < 0.9999f;
+        EXPECT_NEAR(glm::dot(forward(jittered[i]), -b), 1.0f, 1e-5f);
+    }
+    EXPECT_TRUE(moved);
+    EXPECT_EQ(viewMatrices(options, "m"), jittered);
+}
+
 TEST(ViewRigTest, NormalizationPutsTheBoundsInTheUnitBox) {
     scene::Bounds bounds;
     bounds.extend({1.0f, 2.0f, 3.0f});
@@ -124,7 +218,7 @@ TEST(ViewRigTest, RenderCameraSeesTheNormalisedModelAsTheTransformsSay) {
     const glm::mat4 n = normalization(bounds, true);
     ViewRigOptions options;
     const auto views = viewMatrices(options);
-    const float fov = glm::radians(options.horizontalFovDegrees);
+    const float fov = glm::radians(options.horizontalFovDegrees.min);
     const float aspect = 4.0f / 3.0f;
     for (const glm::mat4& cameraToWorld : views) {
         const render::Camera camera = renderCamera(cameraToWorld, n, fov, aspect);

@@ -1,0 +1,40 @@
+#pragma once
+
+// The keyword arguments of the Python module's render_views and batch that describe views and
+// ranges, turned into encore::batch options; bad values raise ValueError (pybind11's
+// value_error) with the message the command line would print.
+
+#include <pybind11/pybind11.h>
+
+#include <cstdint>
+#include <string>
+
+#include "encore/batch/Batch.h"
+
+namespace encore::python {
+
+namespace py = pybind11;
+
+// A number, or a (min, max) pair drawn from: what distance, fov and the environment's rotation
+// and intensity take. `name` names the keyword in the error.
+batch::ValueRange valueRange(const py::object& value, const char* name);
+
+// The view rig of the keyword arguments render_views and batch share.
+struct RigArguments {
+    std::uint32_t views = 12;
+    float elevation = 30.0f;
+    py::object distance;
+    py::object fov;  // None: batch::kDefaultHorizontalFovDegrees.
+    batch::CameraDistribution distribution = batch::CameraDistribution::Orbit;
+    std::uint64_t seed = 0;
+    bool normalize = true;
+    float jitter = 0.0f;
+};
+
+// "orbit", "sphere" or "upper-hemisphere".
+batch::CameraDistribution cameraDistribution(const std::string& name);
+
+// The rig, checked as runBatch checks it.
+batch::ViewRigOptions rigOptions(const RigArguments& arguments);
+
+}  // namespace encore::python

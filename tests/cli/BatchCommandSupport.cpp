@@ -1,0 +1,55 @@
+#include "BatchCommandSupport.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "CommandRunner.h"
+#include "TestPaths.h"
+
+namespace encore::test {
+
+namespace fs = std::filesystem;
+
+fs::path makeCollection(const std::string& name, int count, int objects) {
+    const fs::path dir = makeTempDir(name);
+    for (int i = 0; i < count; ++i) {
+        const fs::path model = i < 2 ? dir / ("set" + std::to_string(i)) / "model.glb"
+                                     : dir / "more" / ("scene" + std::to_string(i) + ".glb");
+        fs::create_directories(model.parent_path());
+        const CommandResult gen =
+            runEncore("gen --objects " + std::to_string(objects) + " --seed " +
+                      std::to_string(i + 1) + " -o " + quote(model.string()));
+        EXPECT_EQ(gen.exitCode, 0) << gen.err;
+    }
+    std::ofstream(dir / "broken.gltf") << "{\"asset\": ";
+    return dir;
+}
+
+std::vector<fs::path> filesUnder(const fs::path& dir, const std::string& extension) {
+    std::vector<fs::path> files;
+    for (const auto& entry : fs::recursive_directory_iterator(dir)) {
+        if (entry.is_regular_file() && entry.path().extension() == extension) {
+            files.push_back(entry.path());
+        }
+    }
+    return files;
+}
+
+std::vector<nlohmann::json> jsonLines(const fs::path& path) {
+    std::vector<nlohmann::json> lines;
+    std::ifstream file(path);
+    for (std::string line; std::getline(file, line);) {
+        lines.push_back(nlohmann::json::parse(line, nullptr, false));
+    }
+    return lines;
+}
+
+std::string batchArguments(const fs::path& input,
+                           const fs::path& output,
+                           const std::string& extra) {
+    return "-v batch " + quote(input.string()) + " -o " + quote(output.string()) + " " + extra;
+}
+
+}  // namespace encore::test

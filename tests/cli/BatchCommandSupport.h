@@ -1,0 +1,32 @@
+#pragma once
+
+// What the tests of `encore batch` share: generated collections, the command line, and reading
+// what it wrote.
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "TestFiles.h"  // readBytes
+
+namespace encore::test {
+
+// `count` generated scenes in sub-folders (the first two named set0/model.glb and
+// set1/model.glb, the others more/sceneN.glb) and a malformed broken.gltf.
+std::filesystem::path makeCollection(const std::string& name, int count, int objects);
+
+// The files under `dir` (recursively) whose extension is `extension` (".png").
+std::vector<std::filesystem::path> filesUnder(const std::filesystem::path& dir,
+                                              const std::string& extension);
+
+// One JSON value per line (failures.jsonl).
+std::vector<nlohmann::json> jsonLines(const std::filesystem::path& path);
+
+// "-v batch INPUT -o OUTPUT EXTRA", quoted.
+std::string batchArguments(const std::filesystem::path& input,
+                           const std::filesystem::path& output,
+                           const std::string& extra);
+
+}  // namespace encore::test

@@ -1,0 +1,18 @@
+#pragma once
+
+// The files an `encore batch` run wrote, for tests that compare two runs byte for byte: every
+// file but failures.jsonl, by its path relative to the output folder, metadata.json without its
+// "seconds" (the only part that differs from run to run).
+
+#include <filesystem>
+#include <map>
+#include <string>
+
+namespace encore::test {
+
+std::map<std::string, std::string> batchOutputFiles(const std::filesystem::path& folder);
+
+// metadata.json's text without its timings, as batchOutputFiles keeps it.
+std::string metadataWithoutTimings(const std::string& text);
+
+}  // namespace encore::test
