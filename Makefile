@@ -130,8 +130,8 @@ fuzz-replay: fuzz-build
 
 # The frame fuzzer (docs/fuzzing.md) of the sanitizer build, run long: FRAME_FUZZ_ITERATIONS
 # mutated seeds through load, prepare and one frame on lavapipe, from iteration FRAME_FUZZ_FIRST
-# with random seed FRAME_FUZZ_SEED (make test-sanitize runs 600 of them).
-FRAME_FUZZ_ITERATIONS ?= 3000
+# with random seed FRAME_FUZZ_SEED (make test-sanitize runs 1,000 of them).
+FRAME_FUZZ_ITERATIONS ?= 5000
 FRAME_FUZZ_FIRST ?= 0
 FRAME_FUZZ_SEED ?= 1
 FRAME_FUZZ_DIR = $(ASAN_BUILD)/tests/frame-fuzz
