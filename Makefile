@@ -36,8 +36,8 @@ define cmake_configure
 		|| (cat $(1)/configure.log; exit 1)
 endef
 
-.PHONY: all deps configure build demo test test-unit test-gpu test-sanitize bench-smoke clean \
-	fuzz-build fuzz fuzz-replay format format-check
+.PHONY: all deps configure build demo test test-unit test-gpu sanitize-configure test-sanitize \
+	bench-smoke clean fuzz-build fuzz fuzz-replay fuzz-frame format format-check
 
 all: build
 
@@ -74,14 +74,18 @@ test-gpu: build
 	@cd $(BUILD) && ctest --output-on-failure -j2 -L gpu
 
 # Unit, command-line (bad input) and the robustness GPU tests (device limits, device loss, fault
-# injection, soak: CTest label sanitize) under AddressSanitizer + UndefinedBehaviorSanitizer, with
-# LeakSanitizer on. Only those suites and the encore binary are built.
-test-sanitize: deps
+# injection, soak, a short run of the frame fuzzer: CTest label sanitize) under AddressSanitizer +
+# UndefinedBehaviorSanitizer, with LeakSanitizer on. Only those suites and the encore binary are
+# built.
+SANITIZE_ENV = ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
+	UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+sanitize-configure: deps
 	$(call cmake_configure,$(ASAN_BUILD),-DCMAKE_BUILD_TYPE=Debug -DENCORE_SANITIZE=ON \
 		'-DCMAKE_CXX_FLAGS_DEBUG=$(SANITIZE_FLAGS)')
+
+test-sanitize: sanitize-configure
 	@cmake --build $(ASAN_BUILD) -j$(JOBS) --target encore_sanitize_suites
-	@cd $(ASAN_BUILD) && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
-		UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+	@cd $(ASAN_BUILD) && $(SANITIZE_ENV) \
 		ctest --output-on-failure -j2 --timeout 900 -L 'unit|cli|sanitize'
 
 # libFuzzer targets of the loader (docs/fuzzing.md), built with clang in their own directory.
@@ -123,6 +127,23 @@ fuzz-replay: fuzz-build
 			-artifact_prefix=$(FUZZ_BUILD)/fuzz/findings/$$target- \
 			$(FUZZ_BUILD)/fuzz/replay/$$target $(FUZZ_BUILD)/fuzz/seeds || exit 1; \
 	done
+
+# The frame fuzzer (docs/fuzzing.md) of the sanitizer build, run long: FRAME_FUZZ_ITERATIONS
+# mutated seeds through load, prepare and one frame on lavapipe, from iteration FRAME_FUZZ_FIRST
+# with random seed FRAME_FUZZ_SEED (make test-sanitize runs 1,000 of them).
+FRAME_FUZZ_ITERATIONS ?= 5000
+FRAME_FUZZ_FIRST ?= 0
+FRAME_FUZZ_SEED ?= 1
+FRAME_FUZZ_DIR = $(ASAN_BUILD)/tests/frame-fuzz
+fuzz-frame: sanitize-configure
+	@cmake --build $(ASAN_BUILD) -j$(JOBS) --target encore_frame_fuzzer \
+		encore_fuzz_corpus_generator encore
+	@bash fuzz/make-corpus.sh $(FRAME_FUZZ_DIR)/seeds \
+		$(ASAN_BUILD)/tests/encore_fuzz_corpus_generator $(FUZZ_MODELS) \
+		$(ASAN_BUILD)/apps/encore/encore
+	@$(SANITIZE_ENV) $(ASAN_BUILD)/tests/encore_frame_fuzzer \
+		--iterations $(FRAME_FUZZ_ITERATIONS) --first $(FRAME_FUZZ_FIRST) \
+		--seed $(FRAME_FUZZ_SEED) --findings $(FRAME_FUZZ_DIR)/findings $(FRAME_FUZZ_DIR)/seeds
 
 clean:
 	rm -rf $(BUILD) $(ASAN_BUILD) $(OUT)

@@ -1,12 +1,13 @@
 #!/usr/bin/env bash
-# Assembles the fuzzing seed corpus in OUTPUT_DIR (under the fuzz build directory; it is never
-# committed): the documents and bad inputs of the generator (CorpusGenerator.cpp), scenes of
-# `encore gen` when an encore binary is given, and the small models of the shared model
-# directory (.gltf and .glb files under 200 kB; .gltf files whose buffers are external files
-# still exercise the JSON parser, since the targets resolve no external file), plus, when python3
-# is there, a self-contained copy of each .gltf whose buffers and images are external files
-# (embedded as data: uris, kept when under 200 kB): the only form of the Draco, meshopt and
-# quantized variants that the targets can load, and what encore_fuzz_numbers mutates.
+# Assembles the fuzzing seed corpus in OUTPUT_DIR (under the fuzz build directory, or under the
+# sanitizer build's for the frame fuzzer; it is never committed): the documents and bad inputs
+# of the generator (CorpusGenerator.cpp), scenes of `encore gen` when an encore binary is
+# given, and the small models of the shared model directory (.gltf and .glb files under 200 kB;
+# .gltf files whose buffers are external files still exercise the JSON parser, since the targets
+# resolve no external file), plus, when python3 is there, a self-contained copy of each .gltf
+# whose buffers and images are external files (embedded as data: uris, kept when under 200 kB):
+# the only form of the Draco, meshopt and quantized variants that the targets can load, and
+# what encore_fuzz_numbers and the frame fuzzer mutate.
 # Usage: fuzz/make-corpus.sh OUTPUT_DIR GENERATOR MODELS_DIR [ENCORE]
 set -euo pipefail
 out=$1 generator=$2 models=$3 encore=${4:-}
