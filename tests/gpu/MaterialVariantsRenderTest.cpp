@@ -5,8 +5,11 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
 #include "GpuTestSupport.h"
 #include "RenderTestSupport.h"
+#include "TestPaths.h"
 #include "VariantFixture.h"
 #include "encore/render/Renderer.h"
 #include "encore/scene/MaterialVariants.h"
@@ -36,8 +39,7 @@ std::vector<Choice> everyChoice() {
 
 // The strategies that shade glTF materials (the earlier ones draw every primitive alike).
 bool drawsMaterials(StrategyKind kind) {
-    return kind == StrategyKind::Materials || kind == StrategyKind::Bundles ||
-           cullsOnTheGpu(kind);
+    return kind == StrategyKind::Materials || kind == StrategyKind::Bundles || cullsOnTheGpu(kind);
 }
 
 test::Rgba encode(const glm::vec3& linear) {
@@ -152,6 +154,47 @@ TEST(MaterialVariantsRenderTest, AVariantThatDoesNotExistIsAnError) {
     EXPECT_EQ(missing.error().message,
               "Material variant 4 does not exist (the scene has 4 variants).");
     EXPECT_EQ(renderer->variant(), std::nullopt);
+}
+
+// The Khronos sample MaterialsVariantsShoe (three variants of one shoe), when ../shared/models
+// has it: each variant draws a picture of its own from the one upload.
+TEST(MaterialVariantsRenderTest, TheKhronosShoeDrawsEachVariant) {
+    const auto models = test::sharedModelsDir();
+    std::optional<std::filesystem::path> shoe;
+    for (const char* file : {"MaterialsVariantsShoe/glTF-Binary/MaterialsVariantsShoe.glb",
+                             "MaterialsVariantsShoe/glTF/MaterialsVariantsShoe.gltf"}) {
+        if (models && std::filesystem::exists(*models / file)) {
+            shoe = *models / file;
+            break;
+        }
+    }
+    if (!shoe) {
+        GTEST_SKIP() << "MaterialsVariantsShoe is not in ../shared/models";
+    }
+    ENCORE_REQUIRE_VULKAN(context);
+    auto scene = scene::loadScene(*shoe);
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+    ASSERT_GE(scene->variants.size(), 2u);
+    auto renderer = Renderer::create(*context, test::pixelTestOptions(kSize, kSize));
+    ASSERT_TRUE(renderer.ok());
+    ASSERT_TRUE(renderer->prepare(*scene, StrategyKind::Bundles).ok());
+    const std::uint64_t uploaded = renderer->uploadedBytes();
+    const Camera camera = Camera::framing(scene->bounds, 1.0f);
+    std::vector<image::ImageRgba8> images;
+    for (std::size_t v = 0; v < scene->variants.size(); ++v) {
+        SCOPED_TRACE(scene->variants[v]);
+        ASSERT_TRUE(renderer->selectVariant(scene::VariantId(v)).ok());
+        renderer->renderFrame(camera);
+        auto image = renderer->readImage();
+        ASSERT_TRUE(image.ok());
+        for (const image::ImageRgba8& other : images) {
+            EXPECT_GT(test::differingPixels(*image, other, 2), 50u);
+        }
+        images.push_back(std::move(*image));
+    }
+    EXPECT_EQ(renderer->sceneUploads(), 1u);
+    EXPECT_EQ(renderer->uploadedBytes(), uploaded);
+    EXPECT_TRUE(context->checkNoErrors("shoe").ok());
 }
 
 }  // namespace
