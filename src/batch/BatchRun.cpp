@@ -15,6 +15,7 @@
 #include "batch/DeviceLane.h"
 #include "batch/ModelLoader.h"
 #include "batch/ModelOutput.h"
+#include "batch/ModelSamples.h"
 #include "batch/ModelWriter.h"
 #include "core/Elapsed.h"
 #include "core/ThreadPool.h"
@@ -89,7 +90,7 @@ BatchProgress BatchRun::progress() const {
     progress.total = mInputs.size();
     progress.rendered = mCounters.rendered.load();
     progress.failed = mCounters.failed.load();
-    progress.skipped = mSkipped;
+    progress.skipped = mSkipped + mCounters.skipped.load();
     progress.views = mCounters.views.load();
     progress.seconds = secondsSince(mStart);
     return progress;
@@ -155,7 +156,6 @@ void BatchRun::runLanes() {
 }
 
 Result<BatchSummary> BatchRun::run() {
-    const ViewRigOptions& rig = mOptions.views;
     ENCORE_TRY(validateBatchOptions(mOptions));
     if (mDevices.empty()) {
         return makeError(ErrorCode::InvalidArgument, "A batch needs at least one device.");
@@ -177,7 +177,7 @@ Result<BatchSummary> BatchRun::run() {
 
     // Finished models are skipped before anything loads.
     for (const BatchInput& input : mInputs) {
-        if (modelFinished(modelFolder(mOptions.output, input.name), rig.views, mOptions.images)) {
+        if (samplesFinished(mOptions, input)) {
             ++mSkipped;
         } else {
             mPending.push_back(input);

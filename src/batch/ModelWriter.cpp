@@ -41,7 +41,7 @@ void ModelWriter::writeTransforms(ModelJob& job) {
         job.fail(mFailures, mCounters, "write", written.error());
         return;
     }
-    ++mCounters.rendered;
+    job.model->sampleWritten(mCounters);
 }
 
 void ModelWriter::writeViews(const std::shared_ptr<ModelJob>& job,
