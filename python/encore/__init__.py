@@ -23,7 +23,7 @@ def batch(input, output, **options):
     `input` is a folder, a list file or a model, or (path, name) pairs from discover_inputs.
     The keywords are those of Renderer.batch (views, random_views, seed, elevation, distance,
     fov, normalize, size, samples, jobs, memory_limit_mib, strict, normals, depth, top_light,
-    png_compression, lod_error) and `device` (Renderer's).
+    png_compression, lod_error, variant, variants) and `device` (Renderer's).
     Failed models are in OUTPUT/failures.jsonl. The GIL is released while it runs.
     """
     renderer = Renderer(samples=options.pop("samples", 4), device=options.pop("device", None))
