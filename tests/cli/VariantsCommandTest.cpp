@@ -150,8 +150,7 @@ TEST(VariantsCommandTest, BatchWritesOneVariantAndListsModelsWithoutIt) {
     const std::string failures = slurp(out / "failures.jsonl");
     EXPECT_NE(failures.find("plain.glb"), std::string::npos) << failures;
     EXPECT_NE(failures.find("\"stage\":\"load\""), std::string::npos) << failures;
-    EXPECT_NE(failures.find("has no material variant 'blue paint'"), std::string::npos)
-        << failures;
+    EXPECT_NE(failures.find("has no material variant 'blue paint'"), std::string::npos) << failures;
 
     const CommandResult both = runEncore("batch " + quote(models.string()) + " -o " +
                                          quote(out.string()) + " --variant 0 --variants all");

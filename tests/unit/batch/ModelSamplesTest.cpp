@@ -16,11 +16,11 @@ namespace {
 namespace fs = std::filesystem;
 
 TEST(ModelSamplesTest, VariantNamesBecomeSafeFolderNames) {
-    EXPECT_EQ(variantSampleNames("cars/shoe", std::vector<std::string>{"midnight", "beach ball",
-                                                                       "a/b", "", "x.y-z_1"}),
-              (std::vector<std::string>{"cars/shoe@midnight", "cars/shoe@beach_ball",
-                                        "cars/shoe@a_b", "cars/shoe@variant",
-                                        "cars/shoe@x.y-z_1"}));
+    EXPECT_EQ(
+        variantSampleNames(
+            "cars/shoe", std::vector<std::string>{"midnight", "beach ball", "a/b", "", "x.y-z_1"}),
+        (std::vector<std::string>{"cars/shoe@midnight", "cars/shoe@beach_ball", "cars/shoe@a_b",
+                                  "cars/shoe@variant", "cars/shoe@x.y-z_1"}));
     // Names that the rules make equal keep their index.
     EXPECT_EQ(variantSampleNames("m", std::vector<std::string>{"red", "r d", "r/d", "red"}),
               (std::vector<std::string>{"m@red-0", "m@r_d-1", "m@r_d-2", "m@red-3"}));
@@ -84,8 +84,7 @@ TEST(ModelSamplesTest, FinishedWhenEverySampleIs) {
 
     options.allVariants = true;
     EXPECT_FALSE(samplesFinished(options, input));  // The variants' folders are missing.
-    for (const char* name :
-         {"quads@green", "quads@blue_paint", "quads@glass", "quads@textured"}) {
+    for (const char* name : {"quads@green", "quads@blue_paint", "quads@glass", "quads@textured"}) {
         finish(options.output, name);
     }
     EXPECT_TRUE(samplesFinished(options, input));
