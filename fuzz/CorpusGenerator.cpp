@@ -233,6 +233,40 @@ GltfBuilder materials() {
     return builder;
 }
 
+// A 2x1 lossless WebP image (libwebp's WebPEncodeLosslessRGBA, one pixel half transparent).
+constexpr const char* kWebpUri =
+    "data:image/webp;base64,UklGRiAAAABXRUJQVlA4TBMAAAAvAQAAEA9QoPnf//8BhoOM6H8AAA==";
+
+// KHR_materials_variants on two primitives, and textures with EXT_texture_webp (a WebP image and
+// a PNG fallback) and KHR_texture_basisu (a KTX2 image never read).
+GltfBuilder variantsAndTextures() {
+    GltfBuilder builder;
+    const auto texture = builder.addTexture(kPngUri);
+    auto& json = builder.json();
+    json["images"].push_back({{"uri", kWebpUri}, {"mimeType", "image/webp"}});
+    json["images"].push_back({{"uri", "never-read.ktx2"}, {"mimeType", "image/ktx2"}});
+    json["textures"][texture]["extensions"] = {{"EXT_texture_webp", {{"source", 1}}},
+                                               {"KHR_texture_basisu", {{"source", 2}}}};
+    json["textures"].push_back({{"extensions", {{"EXT_texture_webp", {{"source", 1}}}}}});
+    const auto plain = builder.addMaterial({});
+    const auto textured = builder.addMaterial({.baseColorTexture = texture});
+    const auto blended = builder.addMaterial({.alphaMode = "BLEND", .baseColorTexture = 1u});
+    const auto positions = builder.addPositions({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+    const auto texcoords = builder.addTexcoords({{0, 0}, {1, 0}, {0, 1}});
+    std::vector<GltfBuilder::PrimitiveDesc> primitives(
+        2, {.attributes = {{"POSITION", positions}, {"TEXCOORD_0", texcoords}}, .material = plain});
+    builder.addScene({builder.addNode({.mesh = builder.addMesh(primitives)})});
+    auto& mesh = json["meshes"][0]["primitives"];
+    mesh[0]["extensions"]["KHR_materials_variants"]["mappings"] = {
+        {{"material", textured}, {"variants", {0, 2}}}, {{"material", blended}, {"variants", {1}}}};
+    mesh[1]["extensions"]["KHR_materials_variants"]["mappings"] = {
+        {{"material", blended}, {"variants", {2}}, {"name", "glass"}}};
+    json["extensions"]["KHR_materials_variants"]["variants"] = {
+        {{"name", "textured"}}, {{"name", "blended"}}, {{"name", "both"}}};
+    json["extensionsUsed"] = {"KHR_materials_variants", "EXT_texture_webp", "KHR_texture_basisu"};
+    return builder;
+}
+
 struct Document {
     std::string name;
     std::function<GltfBuilder()> build;
@@ -246,7 +280,8 @@ std::vector<Document> documents() {
             {"sparse", sparseAndZeroAccessors},
             {"scene-graph", sceneGraph},
             {"lights-cameras", lightsAndCameras},
-            {"materials", materials}};
+            {"materials", materials},
+            {"variants-textures", variantsAndTextures}};
 }
 
 // tests/cli/BadInputTest.cpp's inputs (those that are a file's contents).

@@ -36,6 +36,7 @@
 #include "encore/image/HdrImage.h"
 #include "encore/render/Renderer.h"
 #include "encore/render/VisibilityFeatures.h"
+#include "encore/scene/MaterialVariants.h"
 #include "encore/scene/SceneData.h"
 
 namespace py = pybind11;
@@ -80,6 +81,20 @@ std::size_t deviceFromEnvironment() {
 struct Scene {
     std::shared_ptr<const scene::SceneData> data;
 };
+
+// A `variant=` keyword: None, a variant's name, or its index, as text (scene::findVariant).
+std::string variantArgument(const py::object& variant) {
+    if (variant.is_none()) {
+        return {};
+    }
+    if (py::isinstance<py::int_>(variant) && !py::isinstance<py::bool_>(variant)) {
+        return std::to_string(variant.cast<long long>());
+    }
+    if (py::isinstance<py::str>(variant)) {
+        return variant.cast<std::string>();
+    }
+    throw py::type_error("variant must be None, a variant's name (str) or its index (int)");
+}
 
 // `size` is an int (square) or a (width, height) pair.
 std::pair<std::uint32_t, std::uint32_t> imageSize(const py::object& size) {
@@ -221,7 +236,8 @@ class Renderer {
                           bool normalize,
                           bool normals,
                           bool depth,
-                          const std::string& name) {
+                          const std::string& name,
+                          const py::object& variantName) {
         const auto [width, height] = imageSize(size);
         const batch::ViewRigOptions rig = rigOptions(
             {views, elevation, py::float_(distance),
@@ -229,12 +245,20 @@ class Renderer {
              random ? batch::CameraDistribution::Sphere : batch::CameraDistribution::Orbit, seed,
              normalize});
         const std::vector<batch::ViewCamera> cameraViews = batch::viewCameras(rig, name);
+        std::optional<scene::VariantId> variant;
+        if (const std::string chosen = variantArgument(variantName); !chosen.empty()) {
+            auto found = scene::resolveVariant(*scene.data, chosen);
+            if (!found) {
+                throw py::value_error(found.error().message);
+            }
+            variant = *found;
+        }
         Rendered rendered;
         {
             py::gil_scoped_release release;
             std::lock_guard lock(mMutex);  // Python threads may share a renderer.
-            rendered =
-                valueOrThrow(render(scene.data, cameraViews, rig, width, height, normals, depth));
+            rendered = valueOrThrow(
+                render(scene.data, variant, cameraViews, rig, width, height, normals, depth));
         }
         const auto rgbaArray = [&](const std::vector<image::ImageRgba8>& images) {
             py::array_t<std::uint8_t> pixels(
@@ -322,8 +346,20 @@ class Renderer {
                       const py::object& environmentRotation,
                       const py::object& environmentIntensity,
                       const std::string& layout,
-                      std::uint32_t blankThreshold) {
+                      std::uint32_t blankThreshold,
+                      const py::object& variant,
+                      const py::object& variants) {
         batch::BatchOptions options;
+        options.variant = variantArgument(variant);
+        if (!variants.is_none()) {
+            if (!py::isinstance<py::str>(variants) || variants.cast<std::string>() != "all") {
+                throw py::value_error("variants must be None or \"all\"");
+            }
+            if (!options.variant.empty()) {
+                throw py::value_error("give variant= or variants=\"all\", not both");
+            }
+            options.allVariants = true;
+        }
         if (!(lodError >= 0.0f)) {
             throw py::value_error("lod_error must be a number of pixels, 0 or more");
         }
@@ -455,6 +491,7 @@ class Renderer {
     };
 
     Result<Rendered> render(const std::shared_ptr<const scene::SceneData>& scene,
+                            std::optional<scene::VariantId> variant,
                             const std::vector<batch::ViewCamera>& views,
                             const batch::ViewRigOptions& rig,
                             std::uint32_t width,
@@ -482,6 +519,8 @@ class Renderer {
             ENCORE_TRY(mRenderer->prepare(*scene, render::StrategyKind::Bundles));
             mPrepared = scene;
         }
+        // Only material bindings change between variants: the prepared scene stays.
+        ENCORE_TRY(mRenderer->selectVariant(variant));
         Rendered rendered;
         ENCORE_TRY_ASSIGN(rendered.color,
                           batch::renderStrips(*mRenderer, scene->bounds, views, rig, layout));
@@ -530,11 +569,17 @@ PYBIND11_MODULE(_encore, module) {
     py::class_<Scene>(module, "Scene", "A loaded glTF model (renderer.load).")
         .def_property_readonly("path",
                                [](const Scene& scene) { return scene.data->sourcePath.string(); })
-        .def_property_readonly("bounds", [](const Scene& scene) {
-            const auto& bounds = scene.data->bounds;
-            return py::make_tuple(py::make_tuple(bounds.min.x, bounds.min.y, bounds.min.z),
-                                  py::make_tuple(bounds.max.x, bounds.max.y, bounds.max.z));
-        });
+        .def_property_readonly("bounds",
+                               [](const Scene& scene) {
+                                   const auto& bounds = scene.data->bounds;
+                                   return py::make_tuple(
+                                       py::make_tuple(bounds.min.x, bounds.min.y, bounds.min.z),
+                                       py::make_tuple(bounds.max.x, bounds.max.y, bounds.max.z));
+                               })
+        .def_property_readonly(
+            "variants", [](const Scene& scene) { return scene.data->variants; },
+            "The names of the model's KHR_materials_variants variants, by index (render_views' "
+            "and batch's variant=); empty without the extension.");
 
     py::class_<Renderer>(module, "Renderer",
                          "One GPU device (Vulkan) rendering models from a view rig.")
@@ -548,7 +593,7 @@ PYBIND11_MODULE(_encore, module) {
              py::arg("size") = 512, py::arg("elevation") = 30.0f, py::arg("distance") = 1.5f,
              py::arg("fov") = py::none(), py::arg("random") = false, py::arg("seed") = 0,
              py::arg("normalize") = true, py::arg("normals") = false, py::arg("depth") = false,
-             py::arg("name") = "",
+             py::arg("name") = "", py::arg("variant") = py::none(),
              "Renders `views` RGBA views (straight alpha, transparent background) of the scene "
              "normalised into a unit box, from an orbit `elevation` degrees above the horizon or "
              "(random=True) directions uniform on the sphere drawn from `seed` (and, as `encore "
@@ -561,34 +606,41 @@ PYBIND11_MODULE(_encore, module) {
              "views' alpha, and depth=True (after them) the distances along each camera's axis, "
              "float32 (N, H, W), 0 where less than half of a pixel is covered: the pixels of "
              "`encore batch --normals --depth`'s 000_normal.png and of 000_depth.png times its "
-             "depth_scale. The GIL is released while rendering.")
-        .def("batch", &Renderer::runBatch, py::arg("inputs"), py::arg("output"),
-             py::arg("views") = 12, py::arg("random_views") = 0, py::arg("seed") = 0,
-             py::arg("elevation") = 30.0f, py::arg("distance") = 1.5f, py::arg("fov") = py::none(),
-             py::arg("normalize") = true, py::arg("size") = 512, py::arg("samples") = py::none(),
-             py::arg("jobs") = 0, py::arg("memory_limit_mib") = 2048, py::arg("strict") = false,
-             py::arg("normals") = false, py::arg("depth") = false, py::arg("top_light") = 0.0f,
-             py::arg("png_compression") = "small", py::arg("failure_log") = true,
-             py::arg("renderers") = encore::batch::BatchOptions{}.renderers,
-             py::arg("lod_error") = 0.0f, py::arg("camera_distribution") = "orbit",
-             py::arg("camera_jitter") = 0.0f, py::arg("environment") = py::none(),
-             py::arg("environment_dir") = py::none(), py::arg("environment_rotation") = py::none(),
-             py::arg("environment_intensity") = py::none(), py::arg("layout") = "nerf",
-             py::arg("blank_threshold") = encore::batch::kDefaultBlankThreshold,
-             "Runs the job of `encore batch` on this renderer's device: `inputs` is what the "
-             "command takes (folder, list file, model) or (path, name) pairs from "
-             "discover_inputs. Returns the summary (models rendered, failed, skipped; views; "
-             "seconds; time per stage; failures). Failed models are also written to "
-             "OUTPUT/failures.jsonl unless failure_log=False. `samples` defaults to the "
-             "renderer's. lod_error > 0 draws each instance at the coarsest level of detail "
-             "whose error stays under that many pixels in the nearest view (`encore batch "
-             "--lod-error`). As the command's options: camera_distribution (\"orbit\", "
-             "\"sphere\", \"upper-hemisphere\"), camera_jitter (degrees), distance and fov (a "
-             "number or a (min, max) pair drawn per view), environment (an .hdr), environment_dir "
-             "(a folder of .hdr, one drawn per model), environment_rotation (degrees, a pair or "
-             "\"random\") and environment_intensity (a number or a pair) drawn per model, layout "
-             "(\"nerf\" or \"objaverse\": a .npy camera matrix per view) and blank_threshold "
-             "(pixels). The GIL is released while it runs.")
+             "depth_scale. variant= draws a KHR_materials_variants variant (its name or index, "
+             "scene.variants lists them; ValueError for one the model lacks) instead of the "
+             "default materials. The GIL is released while rendering.")
+        .def(
+            "batch", &Renderer::runBatch, py::arg("inputs"), py::arg("output"),
+            py::arg("views") = 12, py::arg("random_views") = 0, py::arg("seed") = 0,
+            py::arg("elevation") = 30.0f, py::arg("distance") = 1.5f, py::arg("fov") = py::none(),
+            py::arg("normalize") = true, py::arg("size") = 512, py::arg("samples") = py::none(),
+            py::arg("jobs") = 0, py::arg("memory_limit_mib") = 2048, py::arg("strict") = false,
+            py::arg("normals") = false, py::arg("depth") = false, py::arg("top_light") = 0.0f,
+            py::arg("png_compression") = "small", py::arg("failure_log") = true,
+            py::arg("renderers") = encore::batch::BatchOptions{}.renderers,
+            py::arg("lod_error") = 0.0f, py::arg("camera_distribution") = "orbit",
+            py::arg("camera_jitter") = 0.0f, py::arg("environment") = py::none(),
+            py::arg("environment_dir") = py::none(), py::arg("environment_rotation") = py::none(),
+            py::arg("environment_intensity") = py::none(), py::arg("layout") = "nerf",
+            py::arg("blank_threshold") = encore::batch::kDefaultBlankThreshold,
+            py::arg("variant") = py::none(), py::arg("variants") = py::none(),
+            "Runs the job of `encore batch` on this renderer's device: `inputs` is what the "
+            "command takes (folder, list file, model) or (path, name) pairs from "
+            "discover_inputs. Returns the summary (models rendered, failed, skipped; views; "
+            "seconds; time per stage; failures). Failed models are also written to "
+            "OUTPUT/failures.jsonl unless failure_log=False. `samples` defaults to the "
+            "renderer's. lod_error > 0 draws each instance at the coarsest level of detail "
+            "whose error stays under that many pixels in the nearest view (`encore batch "
+            "--lod-error`). As the command's options: camera_distribution (\"orbit\", "
+            "\"sphere\", \"upper-hemisphere\"), camera_jitter (degrees), distance and fov (a "
+            "number or a (min, max) pair drawn per view), environment (an .hdr), environment_dir "
+            "(a folder of .hdr, one drawn per model), environment_rotation (degrees, a pair or "
+            "\"random\") and environment_intensity (a number or a pair) drawn per model, layout "
+            "(\"nerf\" or \"objaverse\": a .npy camera matrix per view) and blank_threshold "
+            "(pixels). variant= (a name or index) draws every model in that KHR_materials_variants "
+            "variant into OUTPUT/<name>@<variant> (`encore batch --variant`); variants=\"all\" "
+            "also draws each model in every variant, each a sample of its own (`--variants all`). "
+            "The GIL is released while it runs.")
         .def_property_readonly("samples",
                                [](const Renderer& renderer) { return renderer.samples(); })
         .def_property_readonly("adapter", &Renderer::adapter)

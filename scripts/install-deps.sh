@@ -7,7 +7,8 @@
 # address is written here. Does nothing when every package is already installed.
 set -euo pipefail
 
-# libspng-dev and libjpeg62-turbo-dev decode PNG and JPEG textures (stb_image is slower);
+# libspng-dev and libjpeg62-turbo-dev decode PNG and JPEG textures (stb_image is slower),
+# libwebp-dev WebP ones (EXT_texture_webp);
 # libdeflate-dev compresses the PNGs Encore writes (faster than zlib, and smaller files).
 # clang and libclang-rt-14-dev (libFuzzer, sanitizer runtimes) build the fuzz targets.
 # libglfw3-dev opens `encore view`'s window; xvfb and xauth (xvfb-run) give its tests a display.
@@ -17,7 +18,7 @@ set -euo pipefail
 # (.clang-format's InsertBraces needs 16).
 bookworm_packages=(g++ make ninja-build ccache pkg-config libglm-dev libstb-dev libcli11-dev libgtest-dev
                    nlohmann-json3-dev libdraco-dev libmeshoptimizer-dev zlib1g-dev
-                   libspng-dev libjpeg62-turbo-dev libdeflate-dev
+                   libspng-dev libjpeg62-turbo-dev libwebp-dev libdeflate-dev
                    librsvg2-bin clang libclang-rt-14-dev clang-format-16 libglfw3-dev xvfb xauth
                    pybind11-dev python3-dev python3-numpy python3-pytest python3-dask
                    python3-distributed)

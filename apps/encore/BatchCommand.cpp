@@ -46,6 +46,8 @@ struct BatchCommandOptions {
     std::string strategy;  // Empty: batch::BatchOptions::strategy's default.
     float lodErrorPixels = 0.0f;
     bool strict = false;
+    std::string variant;   // --variant N|NAME: that KHR_materials_variants variant only.
+    std::string variants;  // --variants all: the default materials and every variant.
     bool normals = false;
     bool depth = false;
     float topLightLux = 0.0f;
@@ -232,6 +234,8 @@ int runBatch(const BatchCommandOptions& options, const GlobalOptions& global) {
     batchOptions.views.elevationDegrees = options.elevationDegrees;
     batchOptions.views.normalize = !options.noNormalize;
     batchOptions.strict = options.strict;
+    batchOptions.variant = options.variant;
+    batchOptions.allVariants = options.variants == "all";
     batchOptions.images.normals = options.normals;
     batchOptions.images.depth = options.depth;
     batchOptions.topLightLux = options.topLightLux;
@@ -443,6 +447,16 @@ void addBatchCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) 
         ->type_name("PIXELS");
     command->add_flag("--strict", options->strict,
                       "Treat loader warnings as errors (the model fails)");
+    auto* variant = command->add_option(
+        "--variant", options->variant,
+        "Draw every model in this KHR_materials_variants variant (index or name) into "
+        "OUT/<name>@<variant>; a model without it fails");
+    command
+        ->add_option("--variants", options->variants,
+                     "all: draw every model with its default materials into OUT/<name> and in "
+                     "each of its variants into OUT/<name>@<variant>, each a sample of its own")
+        ->check(CLI::IsMember({"all"}))
+        ->excludes(variant);
     command
         ->add_option("-j,--jobs", options->jobs,
                      "Threads for loading and encoding (default: all cores)")

@@ -1,6 +1,7 @@
 #include "ModelInfo.h"
 
 #include <algorithm>
+#include <iterator>
 
 namespace encore::app {
 
@@ -102,6 +103,26 @@ ModelSummary summarizeModel(const scene::SceneData& scene) {
             summary.materials.push_back({i, material.name, material.ignoredExtensions});
         }
     }
+    summary.variants = scene.variants;
+    for (std::size_t t = 0; t < scene.textures.size(); ++t) {
+        const scene::Texture& texture = scene.textures[t];
+        if (!texture.basisuImage) {
+            continue;
+        }
+        const std::size_t image = texture.basisuImage->index();
+        auto note = std::find_if(summary.basisuImages.begin(), summary.basisuImages.end(),
+                                 [&](const BasisuImageNote& n) { return n.index == image; });
+        if (note == summary.basisuImages.end()) {
+            summary.basisuImages.push_back(
+                {image, image < scene.images.size() ? scene.images[image].name : "", {}});
+            note = std::prev(summary.basisuImages.end());
+        }
+        note->textures.emplace_back(t, texture.image.valid()
+                                           ? std::optional<std::size_t>(texture.image.index())
+                                           : std::nullopt);
+    }
+    std::sort(summary.basisuImages.begin(), summary.basisuImages.end(),
+              [](const BasisuImageNote& a, const BasisuImageNote& b) { return a.index < b.index; });
     summary.warnings = scene.warnings;
     return summary;
 }
@@ -151,6 +172,25 @@ std::string formatModelSummary(const ModelSummary& summary) {
                     "\n";
         }
     }
+    if (!summary.variants.empty()) {
+        text += "material variants:\n";
+        for (std::size_t v = 0; v < summary.variants.size(); ++v) {
+            text += "  " + std::to_string(v) + ": " + summary.variants[v] + "\n";
+        }
+    }
+    if (!summary.basisuImages.empty()) {
+        text += "images that need KHR_texture_basisu (KTX2, not decoded: no transcoder):\n";
+        for (const BasisuImageNote& image : summary.basisuImages) {
+            std::string uses;
+            for (const auto& [texture, fallback] : image.textures) {
+                uses += (uses.empty() ? "" : "; ") + ("texture " + std::to_string(texture)) +
+                        (fallback ? " draws image " + std::to_string(*fallback) + " instead"
+                                  : " has no fallback (a default texture is drawn)");
+            }
+            text += "  image " + std::to_string(image.index) +
+                    (image.name.empty() ? "" : " ('" + image.name + "')") + ": " + uses + "\n";
+        }
+    }
     text += summary.warnings.empty() ? "warnings: none\n" : "warnings:\n";
     for (const std::string& warning : summary.warnings) {
         text += "  " + warning + "\n";
@@ -191,6 +231,18 @@ nlohmann::json modelSummaryJson(const ModelSummary& summary) {
             {{"index", material.index},
              {"name", material.name},
              {"ignoredExtensions", material.ignoredExtensions}});
+    }
+    json["variants"] = summary.variants;
+    json["basisuImages"] = nlohmann::json::array();
+    for (const BasisuImageNote& image : summary.basisuImages) {
+        nlohmann::json textures = nlohmann::json::array();
+        for (const auto& [texture, fallback] : image.textures) {
+            textures.push_back({{"texture", texture},
+                                {"fallbackImage",
+                                 fallback ? nlohmann::json(*fallback) : nlohmann::json(nullptr)}});
+        }
+        json["basisuImages"].push_back(
+            {{"image", image.index}, {"name", image.name}, {"textures", textures}});
     }
     json["warnings"] = summary.warnings;
     return json;

@@ -1,11 +1,14 @@
 #pragma once
 
 // The summary `encore info MODEL` prints: what the loader made of a model (counts, extensions
-// and whether Encore shades or ignores them, material extensions left out, warnings), computed
-// from SceneData alone so no GPU device is needed.
+// and whether Encore shades or ignores them, material extensions left out, material variants,
+// KTX2 images it cannot decode, warnings), computed from SceneData alone so no GPU device is
+// needed.
 
 #include <cstdint>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -50,11 +53,21 @@ struct MaterialNote {
     std::vector<std::string> ignoredExtensions;
 };
 
+// A KTX2 image of KHR_texture_basisu, which Encore cannot decode, and what draws instead.
+struct BasisuImageNote {
+    std::size_t index = 0;
+    std::string name;
+    // The textures naming it, each with the image it draws instead (nullopt: a default texture).
+    std::vector<std::pair<std::size_t, std::optional<std::size_t>>> textures;
+};
+
 struct ModelSummary {
     std::string file;
     ModelCounts counts;
     std::vector<ExtensionInfo> extensions;  // Used ones in the file's order, then required-only.
     std::vector<MaterialNote> materials;    // Only materials with ignored extensions.
+    std::vector<std::string> variants;      // KHR_materials_variants, by index.
+    std::vector<BasisuImageNote> basisuImages;
     std::vector<std::string> warnings;
 };
 

@@ -15,6 +15,7 @@
 #include "encore/gpu/Context.h"
 #include "encore/render/Renderer.h"
 #include "encore/scene/AnimationPlayer.h"
+#include "encore/scene/MaterialVariants.h"
 #include "encore/scene/SceneData.h"
 
 namespace encore::app {
@@ -36,6 +37,7 @@ struct RenderOptions {
     std::string animation;        // --animation N|NAME (all when empty).
     std::string frames;           // --frames START:END:STEP.
     std::string animate = "cpu";  // --animate cpu|gpu.
+    std::string variant;          // --variant N|NAME (KHR_materials_variants; default when empty).
     ShadingOptions shading;
     CameraOptions camera;
     render::CullingOptions culling;
@@ -158,6 +160,14 @@ int runRender(const RenderOptions& options, const GlobalOptions& global) {
     if (!scene) {
         return reportError(scene.error());
     }
+    std::optional<scene::VariantId> variant;
+    if (!options.variant.empty()) {
+        auto found = scene::resolveVariant(*scene, options.variant);
+        if (!found) {
+            return reportError(found.error());
+        }
+        variant = *found;
+    }
     auto context = createContext(global);
     if (!context) {
         return reportError(context.error());
@@ -176,6 +186,9 @@ int runRender(const RenderOptions& options, const GlobalOptions& global) {
     }
     if (auto prepared = renderer->prepare(*scene, strategy->kind, strategy->bundle); !prepared) {
         return reportError(prepared.error());
+    }
+    if (auto selected = renderer->selectVariant(variant); !selected) {
+        return reportError(selected.error());
     }
     if (!options.animation.empty()) {
         if (!scene::findAnimation(*scene, options.animation)) {
@@ -312,6 +325,9 @@ void addRenderCommand(CLI::App& app, const GlobalOptions& global, int& exitCode)
                      "Evaluate animation on the cpu (default) or the gpu (compute passes "
                      "writing the same buffers)")
         ->check(CLI::IsMember({"cpu", "gpu"}));
+    command->add_option("--variant", options->variant,
+                        "Draw the materials of this KHR_materials_variants variant: its index or "
+                        "its name (encore info lists them)");
     command->add_option("--frames", options->frames,
                         "Render an image sequence at times START:END:STEP (seconds) from one "
                         "recording; -o must hold a frame number conversion, e.g. "

@@ -8,6 +8,7 @@
 #include "CullingFlags.h"
 #include "ShadingOptions.h"
 #include "StrategyOptions.h"
+#include "encore/scene/MaterialVariants.h"
 #include "render/Animometer.h"
 #include "scene/SceneGenerator.h"
 #include "view/ViewScript.h"
@@ -31,6 +32,7 @@ struct ViewOptions {
     bool strict = false;
     std::string animation;
     std::string animate = "cpu";
+    std::string variant;
     std::string script;
     std::optional<std::uint32_t> frames;  // --frames N [--screenshot out.png]: then exit.
     std::string screenshot;
@@ -109,6 +111,17 @@ int runView(const ViewOptions& options, const GlobalOptions& global) {
             makeError(ErrorCode::InvalidArgument,
                       "'" + options.model + "' has no animation '" + options.animation + "'."));
     }
+    if (!options.variant.empty()) {
+        if (!scene) {
+            return reportError(makeError(ErrorCode::InvalidArgument,
+                                         "--variant needs a MODEL (a generated scene or the "
+                                         "Animometer has no material variants)."));
+        }
+        // Before the window opens: a bad name is a usage error, named with the variants.
+        if (auto found = scene::resolveVariant(*scene, options.variant); !found) {
+            return reportError(found.error());
+        }
+    }
 
     // The window first: without a display nothing else is worth starting.
     auto window = view::Window::create("encore view", options.width, options.height);
@@ -138,6 +151,7 @@ int runView(const ViewOptions& options, const GlobalOptions& global) {
         options.uncapped ? view::PresentPreference::Uncapped : view::PresentPreference::Vsync;
     viewer.overlay = !options.noOverlay;
     viewer.animation = options.animation;
+    viewer.variant = options.variant;
     const CameraOptions cameraOptions = options.camera;
     viewer.initialCamera = [cameraOptions](const scene::SceneData& data, float aspect) {
         return resolveCamera(cameraOptions, data, aspect);
@@ -198,6 +212,9 @@ void addViewCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) {
                       "Treat warnings (missing images, unsupported optional features) as errors");
     command->add_option("--animation", options->animation,
                         "Play only this animation: its index or its name");
+    command->add_option("--variant", options->variant,
+                        "Show this KHR_materials_variants variant first: its index or its name "
+                        "(key V cycles them)");
     command
         ->add_option("--animate", options->animate,
                      "Evaluate animation on the cpu (default) or the gpu")

@@ -501,3 +501,86 @@ def test_bad_dataset_keywords_raise_value_errors(renderer, tmp_path):
         with pytest.raises(ValueError):
             renderer.batch(models, str(tmp_path / "out"), views=1, size=8, **keywords)
     assert not (tmp_path / "out" / "m").exists()
+def write_variant_quad(path):
+    """A quad facing +Z, red, whose KHR_materials_variants variant "green" (index 0) maps it to
+    a green material; the one variant "blue paint" (index 1) maps it to blue."""
+    positions = struct.pack("<12f", -1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0)
+    normals = struct.pack("<12f", *([0, 0, 1] * 4))
+    indices = struct.pack("<6H", 0, 1, 2, 0, 2, 3) + b"\0\0"
+    data = positions + normals + indices
+    uri = "data:application/octet-stream;base64," + __import__("base64").b64encode(data).decode()
+
+    def material(r, g, b):
+        return {"pbrMetallicRoughness": {"baseColorFactor": [r, g, b, 1], "metallicFactor": 0},
+                "doubleSided": True}
+
+    document = {
+        "asset": {"version": "2.0"},
+        "extensionsUsed": ["KHR_materials_variants"],
+        "extensions": {"KHR_materials_variants": {
+            "variants": [{"name": "green"}, {"name": "blue paint"}]}},
+        "buffers": [{"uri": uri, "byteLength": len(data)}],
+        "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48},
+                        {"buffer": 0, "byteOffset": 48, "byteLength": 48},
+                        {"buffer": 0, "byteOffset": 96, "byteLength": 12}],
+        "accessors": [
+            {"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3",
+             "min": [-1, -1, 0], "max": [1, 1, 0]},
+            {"bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC3"},
+            {"bufferView": 2, "componentType": 5123, "count": 6, "type": "SCALAR"}],
+        "materials": [material(1, 0, 0), material(0, 1, 0), material(0, 0, 1)],
+        "meshes": [{"primitives": [{
+            "attributes": {"POSITION": 0, "NORMAL": 1}, "indices": 2, "material": 0,
+            "extensions": {"KHR_materials_variants": {"mappings": [
+                {"material": 1, "variants": [0]}, {"material": 2, "variants": [1]}]}}}]}],
+        "nodes": [{"mesh": 0}],
+        "scenes": [{"nodes": [0]}],
+        "scene": 0,
+    }
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(json.dumps(document))
+    return path
+
+
+def mean_color(images):
+    """The mean RGB of the opaque pixels."""
+    opaque = images[..., 3] == 255
+    return images[..., :3][opaque].astype(float).mean(axis=0)
+
+
+def test_render_views_draws_a_material_variant(renderer, tmp_path):
+    scene = renderer.load(str(write_variant_quad(tmp_path / "quad.gltf")))
+    assert scene.variants == ["green", "blue paint"]
+    default, _, _ = renderer.render_views(scene, views=2, size=32)
+    green, _, _ = renderer.render_views(scene, views=2, size=32, variant="green")
+    blue, _, _ = renderer.render_views(scene, views=2, size=32, variant=1)
+    again, _, _ = renderer.render_views(scene, views=2, size=32)
+    assert np.argmax(mean_color(default)) == 0
+    assert np.argmax(mean_color(green)) == 1
+    assert np.argmax(mean_color(blue)) == 2
+    assert np.array_equal(default, again), "variant=None is the default materials again"
+    with pytest.raises(ValueError, match=r"has no material variant 'red' \(its variants: "
+                                         r"0 'green', 1 'blue paint'"):
+        renderer.render_views(scene, views=1, size=16, variant="red")
+    with pytest.raises(TypeError):
+        renderer.render_views(scene, views=1, size=16, variant=1.5)
+
+
+def test_batch_renders_every_variant_as_a_sample(renderer, tmp_path):
+    write_variant_quad(tmp_path / "in" / "quad.gltf")
+    out = tmp_path / "out"
+    summary = renderer.batch(str(tmp_path / "in"), str(out), views=2, size=32, variants="all")
+    assert (summary["rendered"], summary["failed"], summary["views"]) == (1, 0, 6)
+    for sample in ("quad", "quad@green", "quad@blue_paint"):
+        assert (out / sample / "transforms.json").exists(), sample
+    one = renderer.batch(str(tmp_path / "in"), str(tmp_path / "one"), views=2, size=32,
+                         variant="blue paint")
+    assert one["rendered"] == 1
+    assert [p.name for p in (tmp_path / "one").iterdir() if p.is_dir()] == ["quad@blue_paint"]
+    # The same pixels as the sample of the batch with every variant.
+    assert (tmp_path / "one" / "quad@blue_paint" / "000.png").read_bytes() == \
+        (out / "quad@blue_paint" / "000.png").read_bytes()
+    with pytest.raises(ValueError):
+        renderer.batch(str(tmp_path / "in"), str(out), variants="some")
+    with pytest.raises(ValueError):
+        renderer.batch(str(tmp_path / "in"), str(out), variant="green", variants="all")

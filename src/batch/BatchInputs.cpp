@@ -153,6 +153,38 @@ std::vector<std::string> outputNames(std::span<const fs::path> paths, const fs::
     return names;
 }
 
+std::vector<std::string> variantSampleNames(const std::string& name,
+                                            std::span<const std::string> variants) {
+    std::vector<std::string> safe;
+    std::map<std::string, int> uses;
+    for (const std::string& variant : variants) {
+        std::string folder = variant;
+        for (char& c : folder) {
+            const unsigned char u = static_cast<unsigned char>(c);
+            if (!std::isalnum(u) || u >= 0x80) {
+                c = (c == '.' || c == '-' || c == '_') ? c : '_';
+            }
+        }
+        safe.push_back(folder.empty() ? "variant" : folder);
+        ++uses[safe.back()];
+    }
+    std::vector<std::string> names;
+    std::set<std::string> taken;
+    for (std::size_t v = 0; v < safe.size(); ++v) {
+        std::string sample = name + "@" + safe[v];
+        // Shared names get the index; so does one that an appended index made ("a-1" beside
+        // two variants named "a").
+        if (uses[safe[v]] > 1 || taken.contains(sample)) {
+            do {
+                sample += "-" + std::to_string(v);
+            } while (taken.contains(sample));
+        }
+        taken.insert(sample);
+        names.push_back(std::move(sample));
+    }
+    return names;
+}
+
 Result<std::vector<BatchInput>> discoverInputs(const fs::path& input) {
     std::error_code ec;
     const auto status = fs::status(input, ec);

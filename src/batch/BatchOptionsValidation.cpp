@@ -89,6 +89,11 @@ Result<void> validateBatchOptions(const BatchOptions& options) {
                              "which chooses the levels (not " +
                              render::strategyChoiceName(strategy) + ").");
     }
+    if (options.allVariants && !options.variant.empty()) {
+        return makeError(ErrorCode::InvalidArgument, "A batch renders one material variant ('" +
+                                                         options.variant +
+                                                         "') or all of them, not both.");
+    }
     if (options.renderers < 1 || options.renderers > kMaxRenderers) {
         return makeError(ErrorCode::InvalidArgument,
                          "A batch takes 1 to " + std::to_string(kMaxRenderers) +

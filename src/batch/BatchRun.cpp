@@ -16,6 +16,7 @@
 #include "batch/ModelLoader.h"
 #include "batch/ModelOutput.h"
 #include "batch/ModelPlan.h"
+#include "batch/ModelSamples.h"
 #include "batch/ModelWriter.h"
 #include "core/Elapsed.h"
 #include "core/ThreadPool.h"
@@ -90,7 +91,7 @@ BatchProgress BatchRun::progress() const {
     progress.total = mInputs.size();
     progress.rendered = mCounters.rendered.load();
     progress.failed = mCounters.failed.load();
-    progress.skipped = mSkipped;
+    progress.skipped = mSkipped + mCounters.skipped.load();
     progress.views = mCounters.views.load();
     progress.seconds = secondsSince(mStart);
     return progress;
@@ -178,7 +179,7 @@ Result<BatchSummary> BatchRun::run() {
 
     // Finished models are skipped before anything loads.
     for (const BatchInput& input : mInputs) {
-        if (modelFinished(modelFolder(mOptions.output, input.name), modelFileSet(mOptions))) {
+        if (samplesFinished(mOptions, input)) {
             ++mSkipped;
         } else {
             mPending.push_back(input);

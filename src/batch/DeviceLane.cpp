@@ -5,6 +5,7 @@
 #include <string>
 
 #include "batch/ModelOutput.h"
+#include "batch/ModelSamples.h"
 #include "core/Elapsed.h"
 #include "render/StagedImages.h"
 
@@ -214,16 +215,15 @@ void DeviceLane::renderDepth(const TargetViews& views, float unitsPerModelUnit, 
 }
 
 void DeviceLane::renderModel(LoadedModel& loaded) {
+    const BatchOptions& options = mShared.options;
     const BatchInput& input = mShared.pending[loaded.order];
-    auto job = std::make_shared<ModelJob>();
-    job->input = &input;
-    job->folder = modelFolder(mShared.options.output, input.name);
-    job->facts = std::move(loaded.facts);
-    job->times.load = loaded.seconds;
-    mShared.planner.plan(*job);
+    auto model = std::make_shared<ModelProgress>();
+    model->input = &input;
+    ModelFacts facts = loaded.facts;  // Each sample's metadata.json names them.
+    const double loadSeconds = loaded.seconds;
     // Fails the model before any renderer holds it: its bytes go back to the loader.
     const auto failBeforeUpload = [&](const char* stage, const Error& error) {
-        job->fail(mShared.failures, mShared.counters, stage, error);
+        model->fail(mShared.failures, mShared.counters, stage, error);
         mShared.loader.release(loaded.bytes);
     };
     if (!loaded.scene) {
@@ -234,9 +234,25 @@ void DeviceLane::renderModel(LoadedModel& loaded) {
         failBeforeUpload("upload", deviceNotRecreated());
         return;
     }
-    if (auto opened = openModelFolder(job->folder); !opened) {
-        failBeforeUpload("write", opened.error());
+    auto samples = modelSamples(options, input, loaded.scene->variants);
+    if (!samples) {
+        failBeforeUpload("load", samples.error());  // No such material variant.
         return;
+    }
+    // With every variant, a model resumes sample by sample.
+    std::erase_if(*samples, [&](const ModelSample& sample) {
+        return modelFinished(modelFolder(options.output, sample.name), modelFileSet(options));
+    });
+    if (samples->empty()) {
+        ++mShared.counters.skipped;
+        mShared.loader.release(loaded.bytes);
+        return;
+    }
+    for (const ModelSample& sample : *samples) {
+        if (auto opened = openModelFolder(modelFolder(options.output, sample.name)); !opened) {
+            failBeforeUpload("write", opened.error());
+            return;
+        }
     }
 
     // The pool copies the images into staging buffers while this thread waits for the
@@ -261,45 +277,85 @@ void DeviceLane::renderModel(LoadedModel& loaded) {
         return;
     }
 
-    if (mShared.options.topLightLux > 0.0f) {
-        addTopLight(*loaded.scene, mShared.options.topLightLux);
+    if (options.topLightLux > 0.0f) {
+        addTopLight(*loaded.scene, options.topLightLux);
     }
 
     // The renderer refers to the scene it prepared until the next prepare: keep that one alive
-    // until now, and this one until the renderer's next model.
+    // until now, and this one (where it lies now) until the renderer's next model.
     const auto uploadStart = Clock::now();
     RendererSlot& slot = mRenderers[slotIndex];
     render::Renderer& renderer = *slot.renderer;
-    const scene::SceneData& scene = *loaded.scene;
-    // The model's environment is bound by the prepare() below.
-    if (auto lit = mBatchRenderer.light(renderer, job->lighting); !lit) {
+    // Every sample is planned alike (views and lighting come from the seed and the model's
+    // name); the model's environment is bound by the prepare() below.
+    ModelJob plan;
+    plan.model = model;
+    mShared.planner.plan(plan);
+    if (auto lit = mBatchRenderer.light(renderer, plan.lighting); !lit) {
         failBeforeUpload("load", lit.error());
         return;
     }
+    auto held = std::make_unique<LoadedModel>(std::move(loaded));
+    const scene::SceneData& scene = *held->scene;
     auto prepared =
         renderer.prepare(scene, mShared.strategy.kind, mShared.strategy.bundle, staged.get());
     releasePrepared(slot);
-    slot.prepared = std::move(loaded);
+    slot.prepared = std::move(held);
     if (prepared) {
         prepared = mContext.checkNoErrors("Preparing '" + scene.sourcePath.string() + "'");
     }
     mStages.upload += secondsSince(uploadStart);
-    job->times.upload = secondsSince(uploadStart);
+    const double uploadSeconds = secondsSince(uploadStart);
     mStages.uploadParts += renderer.prepareTimes();
     if (!prepared) {
-        job->fail(mShared.failures, mShared.counters, "upload", prepared.error());
+        model->fail(mShared.failures, mShared.counters, "upload", prepared.error());
         mContext.takeErrors();
         recoverIfLost();
         return;
     }
 
+    // Every sample from this one upload: between them only the material bindings change.
+    model->remaining = std::uint32_t(samples->size());
+    const std::uint64_t device = mDevicesLost;
+    const auto renderStart = Clock::now();
+    double renderWaiting = 0.0;
+    for (const ModelSample& sample : *samples) {
+        auto job = std::make_shared<ModelJob>();
+        job->model = model;
+        job->variant = sample.variantName;
+        job->folder = modelFolder(options.output, sample.name);
+        job->facts = facts;
+        job->times.load = loadSeconds;
+        job->times.upload = uploadSeconds;
+        mShared.planner.plan(*job);
+        if (auto selected = renderer.selectVariant(sample.variant); !selected) {
+            job->fail(mShared.failures, mShared.counters, "render", selected.error());
+            break;
+        }
+        renderSample(job, slotIndex, scene, renderWaiting);
+        // A lost device took the renderer with it.
+        if (job->failed || device != mDevicesLost) {
+            break;
+        }
+    }
+    if (mTimestamps) {
+        mTimestamps->flush();  // Every pass of the model is submitted: its mips and views.
+    }
+    mStages.render += secondsSince(renderStart) - renderWaiting;
+}
+
+void DeviceLane::renderSample(const std::shared_ptr<ModelJob>& job,
+                              std::size_t slotIndex,
+                              const scene::SceneData& scene,
+                              double& renderWaiting) {
+    render::Renderer& renderer = *mRenderers[slotIndex].renderer;
+    const auto sampleStart = Clock::now();
+    const double waitingBefore = renderWaiting;
     const ViewRigOptions& rig = mShared.options.views;
     const auto viewCount = std::uint32_t(job->views.size());
     // And one that this thread holds until the model's times are set (ModelWriter::rendered).
     job->remaining = viewCount * mShared.options.images.perView() + 1;
     const glm::mat4 toUnitBox = normalization(scene.bounds, rig.normalize);
-    const auto renderStart = Clock::now();
-    double renderWaiting = 0.0;
     for (std::uint32_t first = 0; first < viewCount; first += mLayout.strips) {
         const std::uint32_t count = std::min<std::uint32_t>(mLayout.strips, viewCount - first);
         const std::vector<render::Camera> cameras =
@@ -324,11 +380,7 @@ void DeviceLane::renderModel(LoadedModel& loaded) {
         mContext.takeErrors();
         recoverIfLost();
     }
-    if (mTimestamps) {
-        mTimestamps->flush();  // Every pass of the model is submitted: its mips and views.
-    }
-    mStages.render += secondsSince(renderStart) - renderWaiting;
-    job->times.render = secondsSince(renderStart) - renderWaiting;
+    job->times.render = secondsSince(sampleStart) - (renderWaiting - waitingBefore);
     mShared.writer.rendered(job);
 }
 

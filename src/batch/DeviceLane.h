@@ -56,7 +56,8 @@ struct ChunkInFlight {
 // refers to that scene (and the loader's bytes behind it) until it prepares the next one.
 struct RendererSlot {
     render::Renderer* renderer = nullptr;  // Owned by the lane's BatchRenderer.
-    std::optional<LoadedModel> prepared;
+    // On the heap: the renderer holds the scene's address, which a move would leave behind.
+    std::unique_ptr<LoadedModel> prepared;
 };
 
 // The views of a model that one target holds: [first, first + count), drawn with `cameras`.
@@ -95,7 +96,14 @@ class DeviceLane {
     void collectRenderer(std::size_t slot);
     // Frees renderer `slot`'s scene and gives its bytes back to the loader.
     void releasePrepared(RendererSlot& slot);
+    // Uploads a model once and draws each of its samples (ModelSamples.h) from it.
     void renderModel(LoadedModel& loaded);
+    // Draws one sample's views with renderer `slotIndex` (which has the model prepared and the
+    // sample's variant selected) and hands them to the writer.
+    void renderSample(const std::shared_ptr<ModelJob>& job,
+                      std::size_t slotIndex,
+                      const scene::SceneData& scene,
+                      double& renderWaiting);
     // Takes the oldest read-back and hands its views to the pool.
     void collectOldest();
     void collectReady();

@@ -15,9 +15,9 @@ Result<ModelPlanner> ModelPlanner::create(const BatchOptions& options) {
 
 void ModelPlanner::plan(ModelJob& job) const {
     const BatchOptions& options = *mOptions;
-    job.views = viewCameras(options.views, job.input->name);
+    job.views = viewCameras(options.views, job.model->input->name);
     job.lighting = modelLighting(options.lighting, mEnvironments, options.renderer.lighting,
-                                 options.views.seed, job.input->name);
+                                 options.views.seed, job.model->input->name);
     // Only a transparent background leaves alpha to count coverage by.
     if (options.renderer.toneMapping.background == render::BackgroundKind::Transparent) {
         job.coveredPixels.assign(job.views.size(), 0);

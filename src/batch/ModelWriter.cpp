@@ -41,7 +41,7 @@ Result<void> openModelFolder(const fs::path& folder) {
 void ModelWriter::writeMetadata(ModelJob& job) {
     std::lock_guard lock(job.writtenMutex);  // The encode times.
     const nlohmann::json json =
-        metadataJson(*job.input, job.facts, job.times, std::uint32_t(job.views.size()),
+        metadataJson(*job.model->input, job.facts, job.times, std::uint32_t(job.views.size()),
                      job.coveredPixels, mOptions.blankThreshold);
     if (auto written = writeJson(job.folder / kMetadataFileName, json); !written) {
         job.fail(mFailures, mCounters, "write", written.error());
@@ -56,7 +56,7 @@ void ModelWriter::writeTransforms(ModelJob& job) {
         job.fail(mFailures, mCounters, "write", written.error());
         return;
     }
-    ++mCounters.rendered;
+    job.model->sampleWritten(mCounters);
 }
 
 Result<void> ModelWriter::writeCameraMatrices(ModelJob& job) {

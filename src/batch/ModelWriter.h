@@ -34,6 +34,8 @@ namespace encore::batch {
 struct SharedCounters {
     std::atomic<std::size_t> rendered{0};
     std::atomic<std::size_t> failed{0};
+    // Found finished only once loaded (each sample's folder; BatchRun skips the others first).
+    std::atomic<std::size_t> skipped{0};
     std::atomic<std::uint64_t> views{0};
     std::mutex mutex;  // Guards the sums below.
     double load = 0.0;
@@ -42,9 +44,36 @@ struct SharedCounters {
     double encodeCpu = 0.0;
 };
 
-// One model from its upload until its last file is written, shared by its encode tasks.
-struct ModelJob {
+// What the samples of one model share (one sample, or one per material variant with
+// BatchOptions::allVariants): the model counts as rendered once each of its samples is written,
+// as failed once, with its first failure.
+struct ModelProgress {
     const BatchInput* input = nullptr;
+    std::atomic<std::uint32_t> remaining{0};  // Samples not yet written.
+    std::atomic<bool> failed{false};
+
+    void fail(FailureLog& log,
+              SharedCounters& counters,
+              const std::string& stage,
+              const Error& error) {
+        if (!failed.exchange(true)) {
+            log.record(input->path, stage, error.message);
+            ++counters.failed;
+        }
+    }
+    // A sample's last file is written.
+    void sampleWritten(SharedCounters& counters) {
+        if (remaining.fetch_sub(1) == 1 && !failed) {
+            ++counters.rendered;
+        }
+    }
+};
+
+// One sample of a model (its views in one set of materials) from its upload until its last
+// file is written, shared by its encode tasks.
+struct ModelJob {
+    std::shared_ptr<ModelProgress> model;
+    std::string variant;  // The KHR_materials_variants variant drawn; empty: the default.
     std::filesystem::path folder;
     std::vector<ViewCamera> views;
     ModelLighting lighting;
@@ -62,14 +91,16 @@ struct ModelJob {
     std::mutex writtenMutex;
     std::vector<std::filesystem::path> written;
 
-    // Records the model's first failure; later ones (other views) add nothing.
+    // Records the sample's first failure as the model's (a variant's failure names it); later
+    // ones (other views) add nothing.
     void fail(FailureLog& log,
               SharedCounters& counters,
               const std::string& stage,
               const Error& error) {
         if (!failed.exchange(true)) {
-            log.record(input->path, stage, error.message);
-            ++counters.failed;
+            model->fail(
+                log, counters, stage,
+                variant.empty() ? error : error.withContext("Material variant '" + variant + "'"));
         }
     }
 };

@@ -85,6 +85,9 @@ Result<ImageRgba8> decodeImage(std::span<const std::uint8_t> encoded) {
     if (isJpeg(encoded)) {
         return decodeJpeg(encoded);
     }
+    if (isWebp(encoded)) {
+        return decodeWebp(encoded);
+    }
     return decodeWithStb(encoded);
 }
 

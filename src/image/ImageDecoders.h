@@ -2,8 +2,9 @@
 
 // The decoders behind decodeImage, one per library: PNG with libspng (its common case with
 // libdeflate's inflate), JPEG with libjpeg-turbo
-// (both faster than stb_image on the large textures that dominate loading), and stb_image for
-// what those two do not take (CMYK JPEGs, the other formats stb reads). Each reads the header,
+// (both faster than stb_image on the large textures that dominate loading), WebP with libwebp
+// (EXT_texture_webp), and stb_image for what those do not take (CMYK JPEGs, the other formats
+// stb reads). Each reads the header,
 // has checkDecodable approve the size, and only then allocates and decodes.
 
 #include <cstdint>
@@ -30,6 +31,7 @@ Result<void> checkDecodable(const ImageHeader& header);
 
 bool isPng(std::span<const std::uint8_t> encoded);
 bool isJpeg(std::span<const std::uint8_t> encoded);
+bool isWebp(std::span<const std::uint8_t> encoded);
 
 // A PNG's unsigned 32-bit numbers (chunk lengths, IHDR's sizes) are big-endian.
 inline std::uint32_t pngUint32(const std::uint8_t* bytes) {
@@ -59,6 +61,8 @@ Result<ImageRgba8> decodePng(std::span<const std::uint8_t> encoded);
 std::optional<ImageRgba8> decodePngWithLibdeflate(std::span<const std::uint8_t> encoded);
 // Four-channel (CMYK, YCCK) JPEGs, which libjpeg-turbo cannot convert to RGBA, go to stb_image.
 Result<ImageRgba8> decodeJpeg(std::span<const std::uint8_t> encoded);
+// Still WebP images, lossy or lossless (WebpDecoder.cpp); animated ones are refused.
+Result<ImageRgba8> decodeWebp(std::span<const std::uint8_t> encoded);
 Result<ImageRgba8> decodeWithStb(std::span<const std::uint8_t> encoded);
 
 }  // namespace encore::image

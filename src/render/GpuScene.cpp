@@ -99,6 +99,20 @@ Result<void> GpuScene::replaceBaseColorImage(scene::MaterialId material,
                                              *mSetup->layouts, material, image);
 }
 
+Result<void> GpuScene::selectVariant(std::optional<scene::VariantId> variant) {
+    if (variant && variant->index() >= mScene->variants.size()) {
+        return makeError(ErrorCode::InvalidArgument,
+                         "Material variant " + std::to_string(variant->value) +
+                             " does not exist (the scene has " +
+                             std::to_string(mScene->variants.size()) + " variants).");
+    }
+    if (variant != mVariant) {
+        mVariant = variant;
+        ++mVariantSwitches;
+    }
+    return {};
+}
+
 AnimationUploadStats GpuScene::writeAnimation(const scene::AnimationPlayer& player) {
     return mAnimation ? mAnimation->write(mSetup->queue, player) : AnimationUploadStats{};
 }

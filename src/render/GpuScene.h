@@ -8,7 +8,10 @@
 //
 // Edits go through the GPU scene and change data in buffers; replacing an image replaces a bind
 // group and bumps generation(): whatever recorded that bind group (a render bundle, a draw
-// grouping) records again before its next use.
+// grouping) records again before its next use. Selecting a material variant
+// (KHR_materials_variants) changes only which material each primitive draws (materialOf):
+// every material of the file is already uploaded, so it uploads nothing and bumps generation()
+// for the strategies to regroup.
 
 #include <cstdint>
 #include <memory>
@@ -52,8 +55,16 @@ class GpuScene {
     // Each scene instance's world matrix as last written (updateInstance), for strategies that
     // keep copies of their own (per-node uniforms).
     std::span<const glm::mat4> instanceWorlds() const { return mWorlds; }
-    // Incremented whenever a bind group that recordings may hold is replaced.
-    std::uint64_t generation() const { return mMaterials->generation(); }
+    // Incremented whenever a bind group that recordings may hold is replaced, and whenever the
+    // selected material variant changes.
+    std::uint64_t generation() const { return mMaterials->generation() + mVariantSwitches; }
+
+    // The material primitive `primitive` of `mesh` draws under the selected variant.
+    scene::MaterialId materialOf(scene::MeshId mesh, std::size_t primitive) const {
+        return mScene->meshes[mesh.index()].primitives[primitive].materialFor(mVariant);
+    }
+    // KHR_materials_variants: nullopt draws the default materials.
+    std::optional<scene::VariantId> variant() const { return mVariant; }
     // Geometry and texture bytes written to the GPU since creation (replaced images included).
     std::uint64_t uploadedBytes() const {
         return mGeometry.uploadedBytes() + mMaterials->uploadedBytes();
@@ -65,6 +76,9 @@ class GpuScene {
     // A new sRGB texture with its mip chain for `material`'s base colour; bumps generation().
     // A material without textures becomes textured (its draws need other pipelines).
     Result<void> replaceBaseColorImage(scene::MaterialId material, const scene::Image& image);
+    // Selects a material variant of SceneData::variants (nullopt: the default materials);
+    // bumps generation() when the selection changes. Errors name a variant that does not exist.
+    Result<void> selectVariant(std::optional<scene::VariantId> variant);
     // Uploads the joints and weights that the player's last evaluate() changed.
     AnimationUploadStats writeAnimation(const scene::AnimationPlayer& player);
 
@@ -81,6 +95,8 @@ class GpuScene {
     InstanceBuffer mInstances;
     std::optional<MaterialResources> mMaterials;  // Always set once create() returns.
     std::vector<glm::mat4> mWorlds;
+    std::optional<scene::VariantId> mVariant;
+    std::uint64_t mVariantSwitches = 0;
 };
 
 }  // namespace encore::render

@@ -108,6 +108,7 @@ Result<void> Renderer::recoverFromDeviceLoss() {
     mPendingEnvironment.reset();  // Built on the lost device.
     // The animation as it played: a rebuilt player would start at rest with every animation.
     const Playback playing = playback();
+    const std::optional<scene::VariantId> selectedVariant = variant();
     const std::optional<double> animationTime = mAnimationTime;
     mGpuAnimation.reset();
     mStrategy.reset();
@@ -131,6 +132,9 @@ Result<void> Renderer::recoverFromDeviceLoss() {
         return {};
     }
     ENCORE_TRY(prepare(*mScene, mKind, mBundle));
+    if (selectedVariant) {
+        ENCORE_TRY(selectVariant(selectedVariant));
+    }
     ENCORE_TRY(restorePlayback(playing));
     if (animationTime) {
         ENCORE_TRY(setAnimationTime(*animationTime));
@@ -323,6 +327,21 @@ Result<void> Renderer::replaceBaseColorImage(scene::MaterialId material,
     ENCORE_TRY(mGpuScene->replaceBaseColorImage(material, image));
     ENCORE_TRY(mStrategy->refresh());
     return mContext->checkNoErrors("Replacing a base colour image");
+}
+
+Result<void> Renderer::selectVariant(std::optional<scene::VariantId> variant) {
+    if (!mStrategy) {
+        return makeError(ErrorCode::InvalidArgument, "No scene is prepared.");
+    }
+    ENCORE_TRY(mGpuScene->selectVariant(variant));
+    // The draws regroup now (pipelines a variant needs are created here, not in a frame);
+    // bundles record again on their next frame.
+    ENCORE_TRY(mStrategy->refresh());
+    return mContext->checkNoErrors("Selecting a material variant");
+}
+
+std::optional<scene::VariantId> Renderer::variant() const {
+    return mGpuScene ? mGpuScene->variant() : std::nullopt;
 }
 
 void Renderer::setLighting(const LightingParameters& parameters) {

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <initializer_list>
+#include <set>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -17,6 +19,7 @@ constexpr std::array kSupportedExtensions = {
     std::string_view("KHR_mesh_quantization"),   std::string_view("KHR_draco_mesh_compression"),
     std::string_view("EXT_meshopt_compression"), std::string_view("EXT_mesh_gpu_instancing"),
     std::string_view("KHR_texture_transform"),   std::string_view("KHR_lights_punctual"),
+    std::string_view("KHR_materials_variants"),  std::string_view("EXT_texture_webp"),
 };
 
 std::optional<ComponentType> componentTypeFromGl(std::uint64_t gl) {
@@ -80,6 +83,58 @@ Result<std::vector<std::string>> readStringList(FieldReader& reader, std::string
         return reader.error();
     }
     return result;
+}
+
+// The object at root[key][name] ... along `path`, or nullptr where any step is missing or not an
+// object (a lenient read of a document not checked yet).
+const Json* findObject(const Json& root, std::initializer_list<std::string_view> path) {
+    const Json* value = &root;
+    for (std::string_view key : path) {
+        if (!value->is_object()) {
+            return nullptr;
+        }
+        const auto it = value->find(key);
+        if (it == value->end()) {
+            return nullptr;
+        }
+        value = &*it;
+    }
+    return value->is_object() ? value : nullptr;
+}
+
+// What a refusal of `extension` adds: for KHR_texture_basisu, why and which images need it.
+std::string unsupportedExtensionNote(const Json& root, const std::string& extension) {
+    if (extension != "KHR_texture_basisu") {
+        return {};
+    }
+    std::set<std::uint64_t> indices;
+    const auto textures = root.find("textures");
+    if (root.is_object() && textures != root.end() && textures->is_array()) {
+        for (const Json& texture : *textures) {
+            const Json* basisu = findObject(texture, {"extensions", "KHR_texture_basisu"});
+            const auto source = basisu ? basisu->find("source") : Json::const_iterator();
+            if (basisu && source != basisu->end()) {
+                if (const auto index = jsonToUint(*source)) {
+                    indices.insert(*index);
+                }
+            }
+        }
+    }
+    std::string images;
+    const auto imageList = root.find("images");
+    for (const std::uint64_t index : indices) {
+        images += (images.empty() ? "" : ", ") + ("image " + std::to_string(index));
+        if (imageList != root.end() && imageList->is_array() && index < imageList->size()) {
+            const Json& image = (*imageList)[index];
+            const auto uri = image.is_object() ? image.find("uri") : Json::const_iterator();
+            if (image.is_object() && uri != image.end() && uri->is_string() &&
+                !uri->get<std::string>().starts_with("data:")) {
+                images += " ('" + uri->get<std::string>() + "')";
+            }
+        }
+    }
+    return " (Basis Universal textures need a transcoder, which no Debian package provides)" +
+           (images.empty() ? std::string() : "; its KTX2 images need it: " + images);
 }
 
 Result<void> parseBuffers(const Json& root, GltfDocument& document) {
@@ -250,6 +305,9 @@ Result<void> parseMeshes(const Json& root, GltfDocument& document) {
                     }
                     primitive.targets.push_back(readAttributeMap(fields, target, "morph target"));
                 }
+            }
+            if (const Json* variants = extensionObject(fields, "KHR_materials_variants")) {
+                primitive.variantMappings = readVariantMappings(fields, *variants);
             }
             if (const Json* draco = extensionObject(fields, "KHR_draco_mesh_compression")) {
                 FieldReader dracoFields(*draco, fields.element() + " KHR_draco_mesh_compression");
@@ -437,9 +495,10 @@ Result<GltfDocument> parseDocument(const Json& root) {
     ENCORE_TRY_ASSIGN(document.extensionsRequired, readStringList(top, "extensionsRequired"));
     for (const std::string& extension : document.extensionsRequired) {
         if (!isSupportedExtension(extension)) {
-            return makeError(ErrorCode::Unsupported, "The asset requires the extension " +
-                                                         extension +
-                                                         ", which Encore does not support.");
+            return makeError(ErrorCode::Unsupported,
+                             "The asset requires the extension " + extension +
+                                 ", which Encore does not support" +
+                                 unsupportedExtensionNote(root, extension) + ".");
         }
     }
     document.scene = top.optionalIndex("scene");
@@ -455,6 +514,7 @@ Result<GltfDocument> parseDocument(const Json& root) {
     ENCORE_TRY(parseAnimations(root, document));
     ENCORE_TRY(parseLightsAndCameras(root, document));
     ENCORE_TRY(parseMaterialElements(root, document));
+    ENCORE_TRY_ASSIGN(document.variants, parseVariantNames(root));
     return document;
 }
 

@@ -82,13 +82,20 @@ struct GltfDracoCompression {
     AttributeMap attributes;  // Semantic → Draco unique attribute id.
 };
 
+// KHR_materials_variants: the material a primitive draws under `variants`.
+struct GltfVariantMapping {
+    std::uint32_t material = 0;
+    std::vector<std::uint32_t> variants;  // Indices into GltfDocument::variants; at least one.
+};
+
 struct GltfPrimitive {
     AttributeMap attributes;  // Semantic → accessor, in file order.
     std::optional<std::uint32_t> indices;
     std::optional<std::uint32_t> material;
     std::uint32_t mode = 4;
     std::optional<GltfDracoCompression> draco;
-    std::vector<AttributeMap> targets;  // Morph targets.
+    std::vector<AttributeMap> targets;                // Morph targets.
+    std::vector<GltfVariantMapping> variantMappings;  // KHR_materials_variants, as written.
 };
 
 struct GltfMesh {
@@ -195,6 +202,8 @@ std::vector<GltfMaterialTextureSlot> materialTextureSlots(const GltfMaterial& ma
 struct GltfTexture {
     std::optional<std::uint32_t> source;
     std::optional<std::uint32_t> sampler;
+    std::optional<std::uint32_t> webpSource;    // EXT_texture_webp: preferred to `source`.
+    std::optional<std::uint32_t> basisuSource;  // KHR_texture_basisu: never decoded.
 };
 
 struct GltfImage {
@@ -254,6 +263,7 @@ struct GltfDocument {
     std::vector<GltfAnimation> animations;
     std::vector<CameraData> cameras;
     std::vector<Light> lights;                       // KHR_lights_punctual.
+    std::vector<std::string> variants;               // KHR_materials_variants names.
     std::vector<std::vector<std::uint32_t>> scenes;  // Root nodes of each scene.
     std::optional<std::uint32_t> scene;
 };
@@ -274,6 +284,11 @@ Result<void> parseAnimations(const Json& root, GltfDocument& document);
 
 // Extensions Encore implements; a required extension outside this list is refused.
 bool isSupportedExtension(std::string_view name);
+
+// KHR_materials_variants (MaterialVariants.cpp): the root's variant names (empty without the
+// extension), and a primitive's mappings (errors recorded in `primitive`).
+Result<std::vector<std::string>> parseVariantNames(const Json& root);
+std::vector<GltfVariantMapping> readVariantMappings(FieldReader& primitive, const Json& extension);
 
 // Material extensions the loader reads; any other extension object on a material is ignored.
 inline constexpr std::array kShadedMaterialExtensions = {

@@ -1,8 +1,13 @@
 // Images are optional for drawing: a missing or undecodable one is a warning and the renderer
 // substitutes a default texture (an error only in strict mode). Without decoding, external files
-// are still checked for existence so that both modes report the same missing files.
+// are still checked for existence so that both modes report the same missing files. A texture
+// draws its EXT_texture_webp image when that decodes, else its core source; KTX2 images
+// (KHR_texture_basisu) are never decoded, and neither is a fallback no texture draws.
 
+#include <algorithm>
 #include <filesystem>
+#include <optional>
+#include <vector>
 
 #include "core/FileIO.h"
 #include "encore/image/ImageCodec.h"
@@ -53,28 +58,47 @@ Result<void> checkImageExists(const LoadContext& context, const GltfImage& image
     return {};
 }
 
-}  // namespace
+// "image 3 ('wood.png')", as messages name an image.
+std::string imageLabel(const GltfImage& source, std::size_t index) {
+    const bool external = source.uri && !isDataUri(*source.uri);
+    return "image " + std::to_string(index) + " ('" +
+           (external              ? *source.uri
+            : source.name.empty() ? "embedded"
+                                  : source.name) +
+           "')";
+}
 
-Result<void> loadImages(LoadContext& context) {
-    const auto& images = context.document.images;
-    context.scene.images.resize(images.size());
-    for (std::size_t i = 0; i < images.size(); ++i) {
-        const GltfImage& source = images[i];
-        Image& image = context.scene.images[i];
-        const bool external = source.uri && !isDataUri(*source.uri);
-        image.name = external ? *source.uri : "image " + std::to_string(i);
-        const std::string label = "image " + std::to_string(i) + " ('" +
-                                  (external              ? *source.uri
-                                   : source.name.empty() ? "embedded"
-                                                         : source.name) +
-                                  "')";
+// The reason of an error as a clause ending in a full stop.
+std::string reasonOf(const Error& problem) {
+    std::string reason = problem.message;
+    if (!reason.empty() && reason.back() != '.') {
+        reason += '.';
+    }
+    return reason;
+}
 
-        std::optional<Error> problem;
-        if (!context.options.decodeImages) {
-            if (auto exists = checkImageExists(context, source); !exists.ok()) {
+// Decodes (or, without decoding, checks) each image at most once and remembers the outcome.
+class ImageDecoder {
+  public:
+    explicit ImageDecoder(LoadContext& context)
+        : mContext(context),
+          mDone(context.document.images.size(), false),
+          mProblems(context.document.images.size()) {}
+
+    // Nothing when the image is usable; else why not.
+    const std::optional<Error>& load(std::size_t index) {
+        if (mDone[index]) {
+            return mProblems[index];
+        }
+        mDone[index] = true;
+        const GltfImage& source = mContext.document.images[index];
+        Image& image = mContext.scene.images[index];
+        std::optional<Error>& problem = mProblems[index];
+        if (!mContext.options.decodeImages) {
+            if (auto exists = checkImageExists(mContext, source); !exists.ok()) {
                 problem = exists.error();
             }
-        } else if (auto bytes = imageBytes(context, source, i); !bytes.ok()) {
+        } else if (auto bytes = imageBytes(mContext, source, index); !bytes.ok()) {
             problem = bytes.error();
         } else if (auto decoded = image::decodeImage(*bytes); !decoded.ok()) {
             problem = decoded.error();
@@ -83,12 +107,90 @@ Result<void> loadImages(LoadContext& context) {
             image.height = decoded->height;
             image.rgba8 = std::move(decoded->pixels);
         }
-        if (problem) {
-            std::string reason = problem->message;
-            if (!reason.empty() && reason.back() != '.') {
-                reason += '.';
+        return problem;
+    }
+
+  private:
+    LoadContext& mContext;
+    std::vector<bool> mDone;
+    std::vector<std::optional<Error>> mProblems;
+};
+
+// Each texture's drawn image: EXT_texture_webp's when it decodes, else the core source. A WebP
+// image that fails falls back with a warning, or is an error when the asset requires the
+// extension (there is then no fallback to trust).
+Result<void> chooseTextureImages(LoadContext& context, ImageDecoder& decoder) {
+    const GltfDocument& document = context.document;
+    const bool webpRequired =
+        std::find(document.extensionsRequired.begin(), document.extensionsRequired.end(),
+                  "EXT_texture_webp") != document.extensionsRequired.end();
+    context.textureImages.assign(document.textures.size(), std::nullopt);
+    for (std::size_t t = 0; t < document.textures.size(); ++t) {
+        const GltfTexture& texture = document.textures[t];
+        context.textureImages[t] = texture.source;
+        if (!texture.webpSource) {
+            continue;
+        }
+        const std::size_t webp = *texture.webpSource;
+        const std::optional<Error>& problem = decoder.load(webp);
+        if (!problem) {
+            context.textureImages[t] = texture.webpSource;
+            continue;
+        }
+        const std::string what = "texture " + std::to_string(t) + "'s EXT_texture_webp " +
+                                 imageLabel(document.images[webp], webp) + " cannot be read (" +
+                                 reasonOf(*problem) + ")";
+        if (webpRequired) {
+            return makeError(problem->code,
+                             what +
+                                 "; the asset requires EXT_texture_webp, so no fallback image "
+                                 "stands in for it.");
+        }
+        ENCORE_TRY(context.warn(
+            problem->code, what + (texture.source ? "; drawing its fallback source, image " +
+                                                        std::to_string(*texture.source) + "."
+                                                  : "; drawing it with a default texture (it has "
+                                                    "no fallback source).")));
+    }
+    return {};
+}
+
+}  // namespace
+
+Result<void> loadImages(LoadContext& context) {
+    const auto& images = context.document.images;
+    context.scene.images.resize(images.size());
+    for (std::size_t i = 0; i < images.size(); ++i) {
+        const GltfImage& source = images[i];
+        const bool external = source.uri && !isDataUri(*source.uri);
+        context.scene.images[i].name = external ? *source.uri : "image " + std::to_string(i);
+    }
+    ImageDecoder decoder(context);
+    ENCORE_TRY(chooseTextureImages(context, decoder));
+
+    // Decoded: the images textures draw, and those no texture refers to at all (as every image
+    // was before texture extensions: a caller may still use them). Not decoded: KTX2 images
+    // (KHR_texture_basisu) and fallbacks whose WebP image stood in for them.
+    std::vector<bool> referenced(images.size(), false);
+    std::vector<bool> drawn(images.size(), false);
+    for (std::size_t t = 0; t < context.document.textures.size(); ++t) {
+        const GltfTexture& texture = context.document.textures[t];
+        for (const auto& image : {texture.source, texture.webpSource, texture.basisuSource}) {
+            if (image) {
+                referenced[*image] = true;
             }
-            ENCORE_TRY(context.warn(problem->code, label + " cannot be read (" + reason +
+        }
+        if (const auto image = context.textureImages[t]) {
+            drawn[*image] = true;
+        }
+    }
+    for (std::size_t i = 0; i < images.size(); ++i) {
+        if (!drawn[i] && referenced[i]) {
+            continue;
+        }
+        if (const std::optional<Error>& problem = decoder.load(i)) {
+            ENCORE_TRY(context.warn(problem->code, imageLabel(images[i], i) + " cannot be read (" +
+                                                       reasonOf(*problem) +
                                                        "); drawing it with a default texture."));
         }
     }

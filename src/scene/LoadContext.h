@@ -48,6 +48,9 @@ struct LoadContext {
     std::map<std::pair<std::uint32_t, Semantic>, AccessorId> legalCopies;
     // Float32 copies of integer morph target accessors, by accessor, shared between primitives.
     std::map<AccessorId, AccessorId> morphCopies;
+    // The image each glTF texture draws, as loadImages chose it: EXT_texture_webp's image when
+    // it decodes, else the core source (nullopt: none).
+    std::vector<std::optional<std::uint32_t>> textureImages;
 
     // "accessor 3 (POSITION of mesh 0, primitive 1)" or "accessor 3".
     std::string accessorName(std::size_t index) const;
@@ -124,6 +127,12 @@ AccessorId gatherAccessor(SceneData& scene,
 // PrimitiveConverter.cpp ---------------------------------------------------------------------
 Result<void> convertMeshes(LoadContext& context);
 
+// MaterialVariants.cpp -----------------------------------------------------------------------
+// A primitive's KHR_materials_variants mappings (references already validated), sorted by
+// variant; `name` ("mesh 0, primitive 1") names it when a variant is mapped twice.
+Result<std::vector<VariantMapping>> convertVariantMappings(const GltfPrimitive& primitive,
+                                                           const std::string& name);
+
 // MaterialParser.cpp -------------------------------------------------------------------------
 // Fills scene.materials, textures and samplers (images are loaded separately).
 Result<void> convertMaterials(LoadContext& context);
@@ -131,6 +140,8 @@ Result<void> convertMaterials(LoadContext& context);
 MaterialId defaultMaterial(SceneData& scene);
 
 // ImageLoader.cpp ----------------------------------------------------------------------------
+// Decodes the images the textures draw (EXT_texture_webp's when it decodes, else the core
+// source; never KHR_texture_basisu's) and those no texture uses, and fills textureImages.
 Result<void> loadImages(LoadContext& context);
 
 // NodeHierarchy.cpp --------------------------------------------------------------------------

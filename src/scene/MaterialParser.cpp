@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <array>
+#include <utility>
 
 #include "scene/LoadContext.h"
 
@@ -280,6 +281,17 @@ Result<void> parseMaterialElements(const Json& root, GltfDocument& document) {
         GltfTexture texture;
         texture.source = reader.optionalIndex("source");
         texture.sampler = reader.optionalIndex("sampler");
+        // Alternative images: a WebP one Encore decodes, a KTX2 one it cannot.
+        for (auto [name, source] : {std::pair{"EXT_texture_webp", &texture.webpSource},
+                                    std::pair{"KHR_texture_basisu", &texture.basisuSource}}) {
+            if (const Json* extension = extensionObject(reader, name)) {
+                FieldReader fields(*extension, reader.element() + " " + name);
+                *source = fields.requiredIndex("source");
+                if (fields.failed()) {
+                    reader.fail(fields.error().code, fields.error().message);
+                }
+            }
+        }
         document.textures.push_back(texture);
     }));
     ENCORE_TRY(forEachElement(root, "images", "image", [&](FieldReader& reader, std::size_t) {
@@ -303,16 +315,22 @@ Result<void> parseMaterialElements(const Json& root, GltfDocument& document) {
 Result<void> convertMaterials(LoadContext& context) {
     const GltfDocument& document = context.document;
     SceneData& scene = context.scene;
+    scene.variants = document.variants;  // KHR_materials_variants; convertMeshes maps them.
     for (std::size_t i = 0; i < document.samplers.size(); ++i) {
         Sampler sampler;
         ENCORE_TRY_ASSIGN(sampler, toSampler(document.samplers[i], i));
         scene.samplers.push_back(sampler);
     }
     std::optional<SamplerId> defaultSampler;
-    for (const GltfTexture& source : document.textures) {
+    for (std::size_t t = 0; t < document.textures.size(); ++t) {
+        const GltfTexture& source = document.textures[t];
         Texture texture;
-        if (source.source) {
-            texture.image = ImageId(*source.source);
+        // loadImages chose between EXT_texture_webp's image and the core source.
+        if (const std::optional<std::uint32_t> drawn = context.textureImages[t]) {
+            texture.image = ImageId(*drawn);
+        }
+        if (source.basisuSource) {
+            texture.basisuImage = ImageId(*source.basisuSource);
         }
         if (source.sampler) {
             texture.sampler = SamplerId(*source.sampler);

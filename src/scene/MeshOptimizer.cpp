@@ -18,6 +18,17 @@
 namespace encore::scene {
 namespace {
 
+// Whether the primitive blends with its default material or any variant's.
+bool mayBlend(const SceneData& scene, const Primitive& primitive) {
+    const auto blends = [&scene](MaterialId material) {
+        return material.index() < scene.materials.size() &&
+               scene.materials[material.index()].alphaMode == AlphaMode::Blend;
+    };
+    return blends(primitive.material) ||
+           std::any_of(primitive.variantMaterials.begin(), primitive.variantMaterials.end(),
+                       [&](const VariantMapping& mapping) { return blends(mapping.material); });
+}
+
 constexpr std::uint64_t align4(std::uint64_t value) {
     return (value + 3) & ~std::uint64_t(3);
 }
@@ -419,10 +430,9 @@ Result<MeshOptimizerReport> optimizeMeshes(SceneData& scene, const MeshOptimizer
             }
             std::vector<std::uint32_t> indices = scene.readIndices(*primitive.indices);
             if (options.optimizeVertexOrder) {
-                // Blending depends on the order triangles are drawn in: keep it.
-                const bool blends =
-                    primitive.material.index() < scene.materials.size() &&
-                    scene.materials[primitive.material.index()].alphaMode == AlphaMode::Blend;
+                // Blending depends on the order triangles are drawn in: keep it (under any
+                // material variant).
+                const bool blends = mayBlend(scene, primitive);
                 if (!blends) {
                     orderForVertexCache(indices, primitive.vertexCount, options.vertexCacheOrder);
                 }

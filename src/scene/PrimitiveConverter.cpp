@@ -334,6 +334,7 @@ Result<Primitive> PrimitiveConverter::convert() {
     mResult.bounds = positionBounds(mScene, position);
     mResult.topology = topologyOf(mSource.mode);
     mResult.material = mSource.material ? MaterialId(*mSource.material) : defaultMaterial(mScene);
+    ENCORE_TRY_ASSIGN(mResult.variantMaterials, convertVariantMappings(mSource, mName));
 
     const bool triangles = mSource.mode >= kModeTriangles;
     auto vertexList = [&] {

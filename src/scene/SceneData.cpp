@@ -93,6 +93,17 @@ std::optional<AccessorId> Primitive::attribute(Semantic semantic) const {
     return std::nullopt;
 }
 
+MaterialId Primitive::materialFor(std::optional<VariantId> variant) const {
+    if (variant) {
+        for (const VariantMapping& mapping : variantMaterials) {
+            if (mapping.variant == *variant) {
+                return mapping.material;
+            }
+        }
+    }
+    return material;
+}
+
 std::span<const std::uint8_t> SceneData::accessorBytes(AccessorId id) const {
     // The loader validated every range; the checks here keep a hand-built SceneData from
     // turning into an out-of-bounds read.

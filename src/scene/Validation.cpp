@@ -103,6 +103,15 @@ Result<void> validateReferences(const GltfDocument& document) {
                 checker.check(name + " KHR_draco_mesh_compression", "bufferView",
                               primitive.draco->bufferView, views);
             }
+            for (std::size_t i = 0; i < primitive.variantMappings.size(); ++i) {
+                const GltfVariantMapping& mapping = primitive.variantMappings[i];
+                const std::string from =
+                    name + " KHR_materials_variants mapping " + std::to_string(i);
+                checker.check(from, "material", mapping.material, document.materials.size());
+                for (std::uint32_t variant : mapping.variants) {
+                    checker.check(from, "variant", variant, document.variants.size());
+                }
+            }
         }
     }
     for (std::size_t n = 0; n < document.nodes.size(); ++n) {
@@ -163,6 +172,10 @@ Result<void> validateReferences(const GltfDocument& document) {
     for (std::size_t t = 0; t < document.textures.size(); ++t) {
         const std::string name = "texture " + std::to_string(t);
         checker.check(name, "image", document.textures[t].source, document.images.size());
+        checker.check(name + " EXT_texture_webp", "image", document.textures[t].webpSource,
+                      document.images.size());
+        checker.check(name + " KHR_texture_basisu", "image", document.textures[t].basisuSource,
+                      document.images.size());
         checker.check(name, "sampler", document.textures[t].sampler, document.samplers.size());
     }
     for (std::size_t i = 0; i < document.images.size(); ++i) {

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "encore/scene/AnimationPlayer.h"
+#include "encore/scene/MaterialVariants.h"
 #include "view/ViewerState.h"
 
 namespace encore::view {
@@ -51,6 +52,11 @@ Result<std::unique_ptr<Viewer>> Viewer::create(gpu::Context& context,
         s.renderer->setGpuTimer(s.timer ? &*s.timer : nullptr);
         // The window's clock runs on: animations play round and round, not once.
         s.renderer->setPlaybackMode(scene::PlaybackMode::Loop);
+        if (!s.options.variant.empty()) {
+            ENCORE_TRY_ASSIGN(const scene::VariantId variant,
+                              scene::resolveVariant(*s.scene, s.options.variant));
+            s.variantIndex = int(variant.index());
+        }
         ENCORE_TRY(s.prepareScene());
         if (!s.options.animation.empty()) {
             if (auto found = scene::findAnimation(*s.scene, s.options.animation)) {
@@ -81,6 +87,9 @@ Result<void> Viewer::State::prepareScene() {
     // A new strategy starts from all animations; keep the one selected.
     if (animationIndex >= 0) {
         ENCORE_TRY(renderer->selectAnimation(std::to_string(animationIndex)));
+    }
+    if (variantIndex >= 0) {
+        ENCORE_TRY(renderer->selectVariant(scene::VariantId(std::size_t(variantIndex))));
     }
     if (frozenCulling) {
         renderer->setCullingCamera(camera());
@@ -213,6 +222,27 @@ Result<void> Viewer::State::cycleAnimation(int step) {
     return {};
 }
 
+Result<void> Viewer::State::cycleVariant(int step) {
+    if (!renderer || scene->variants.empty()) {
+        show("The scene has no material variants (KHR_materials_variants).");
+        return {};
+    }
+    const int count = int(scene->variants.size());
+    // -1 (the default materials), 0 .. count - 1, around.
+    variantIndex = (variantIndex + 1 + step + (count + 1)) % (count + 1) - 1;
+    // Only material bindings change: the GPU scene uploads nothing, bundles record again.
+    ENCORE_TRY(renderer->selectVariant(
+        variantIndex < 0 ? std::nullopt
+                         : std::optional(scene::VariantId(std::size_t(variantIndex)))));
+    if (variantIndex < 0) {
+        show("material variant: default");
+    } else {
+        show("material variant " + std::to_string(variantIndex) + ": " +
+             scene->variants[std::size_t(variantIndex)]);
+    }
+    return {};
+}
+
 void Viewer::State::drop(const std::string& path) {
     if (animometer) {
         show("The Animometer shows no files; run encore view on the file instead.", true);
@@ -227,11 +257,14 @@ void Viewer::State::drop(const std::string& path) {
     auto previous = std::move(scene);
     scene = std::make_unique<scene::SceneData>(std::move(*loaded));
     const int previousAnimation = animationIndex;
+    const int previousVariant = variantIndex;
     animationIndex = -1;
+    variantIndex = -1;
     if (auto prepared = prepareScene(); !prepared) {
         show(prepared.error().message, true);
         scene = std::move(previous);
         animationIndex = previousAnimation;
+        variantIndex = previousVariant;
         if (auto restored = prepareScene(); !restored) {
             show(restored.error().message, true);
         }

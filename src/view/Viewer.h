@@ -2,8 +2,8 @@
 
 // The interactive viewer (`encore view`): a window where a scene (or the Animometer) renders
 // live through any strategy, with orbit controls, live strategy and bundling switches, a frozen
-// culling frustum, animation controls, screenshots, dropped files and an overlay of frame times
-// and call counts. See the README's "Interactive viewer" for the controls.
+// culling frustum, animation and material variant controls, screenshots, dropped files and an
+// overlay of frame times and call counts. See the README's "Interactive viewer" for the controls.
 //
 // The renderer draws into its own target as it does headless; each frame view::Presenter copies
 // that image into the window's surface and view::Overlay draws over it in a pass of its own, so
@@ -38,6 +38,9 @@ struct ViewerOptions {
     PresentPreference present = PresentPreference::Vsync;
     bool overlay = true;
     std::string animation;  // The animation to play (index or name); all when empty.
+    // The KHR_materials_variants variant to show first (index or name); the default materials
+    // when empty. V and shift + V cycle through the variants.
+    std::string variant;
     // The camera for a scene and aspect before the user moves it: as `encore render` resolves
     // it, so that the window shows what `encore render` writes at the same size.
     std::function<Result<render::Camera>(const scene::SceneData&, float aspect)> initialCamera;

@@ -48,6 +48,8 @@ Result<void> Viewer::State::handleKey(int key, int modifiers) {
             return cycleAnimation(-1);
         case GLFW_KEY_RIGHT_BRACKET:
             return cycleAnimation(1);
+        case GLFW_KEY_V:
+            return cycleVariant(shift ? -1 : 1);
         case GLFW_KEY_S:
             screenshots.push_back({format("encore-view-%04d.png", ++screenshotCounter), shift});
             break;

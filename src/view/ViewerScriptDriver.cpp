@@ -36,6 +36,9 @@ std::string Viewer::State::statsLine() const {
         line += format(" sceneUploads=%llu uploadedBytes=%llu",
                        (unsigned long long)renderer->sceneUploads(),
                        (unsigned long long)renderer->uploadedBytes());
+        // The material variant drawn (KHR_materials_variants): its index, or "default".
+        line += " variant=" +
+                (variantIndex < 0 ? std::string("default") : std::to_string(variantIndex));
     }
     if (scene) {
         line += " scene=" + scene->sourcePath.string();

@@ -71,6 +71,7 @@ struct Viewer::State {
     double animationTime = 0.0;
     bool paused = false;
     int animationIndex = -1;  // -1: all animations.
+    int variantIndex = -1;    // KHR_materials_variants; -1: the default materials.
     bool overlayVisible = true;
     std::string message;  // Shown in the overlay (errors in red).
     bool messageIsError = false;
@@ -102,6 +103,7 @@ struct Viewer::State {
     Result<void> switchStrategy(render::StrategyKind kind, bool bundle);
     Result<void> toggleBundle();
     Result<void> cycleAnimation(int step);
+    Result<void> cycleVariant(int step);
     void drop(const std::string& path);
     void show(std::string text, bool error = false);
     // ViewerControls.cpp: what each key, button, drag and wheel turn does.

@@ -10,6 +10,7 @@
 #include "CommandRunner.h"
 #include "GltfBuilder.h"
 #include "TestPaths.h"
+#include "VariantFixture.h"
 
 namespace encore::test {
 namespace {
@@ -197,6 +198,72 @@ TEST(InfoCommandTest, MalformedModelIsAnError) {
     EXPECT_EQ(result.exitCode, 1);
     EXPECT_TRUE(contains(result.err, "error: " + path.string() + ": camera 0 perspective"))
         << result.err;
+}
+
+TEST(InfoCommandTest, ListsTheMaterialVariants) {
+    const auto dir = makeTempDir("info-variants");
+    const auto path = variantQuads().writeGlb(dir, "quads");
+    const auto text = runEncore("info " + quote(path.string()));
+    ASSERT_EQ(text.exitCode, 0) << text.err;
+    EXPECT_TRUE(contains(text.out, "  KHR_materials_variants: shaded\n")) << text.out;
+    EXPECT_TRUE(contains(text.out,
+                         "material variants:\n  0: green\n  1: blue paint\n  2: glass\n"
+                         "  3: textured\n"))
+        << text.out;
+    const auto asJson = runEncore("info --json " + quote(path.string()));
+    ASSERT_EQ(asJson.exitCode, 0) << asJson.err;
+    const json summary = json::parse(asJson.out);
+    EXPECT_EQ(summary["variants"], json({"green", "blue paint", "glass", "textured"}));
+    // Without variants: no list.
+    const auto plain = runEncore("info " + quote(writeShowcase(dir).string()));
+    EXPECT_FALSE(contains(plain.out, "material variants")) << plain.out;
+}
+
+// KHR_texture_basisu: optional, info names the KTX2 images and what draws instead; required, the
+// refusal names them.
+TEST(InfoCommandTest, NamesTheImagesThatNeedBasisu) {
+    const auto dir = makeTempDir("info-basisu");
+    GltfBuilder builder;
+    const auto positions = builder.addPositions({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+    const auto texture = builder.addTexture("fallback.png");
+    builder.json()["images"].push_back({{"uri", "wood.ktx2"}});
+    builder.json()["images"].push_back({{"uri", "stone.ktx2"}});
+    builder.json()["textures"][texture]["extensions"]["KHR_texture_basisu"] = {{"source", 1}};
+    builder.json()["textures"].push_back(
+        {{"extensions", {{"KHR_texture_basisu", {{"source", 2}}}}}});
+    const auto material = builder.addMaterial({.baseColorTexture = texture});
+    builder.json()["materials"][material]["emissiveTexture"] = {{"index", 1}};
+    const auto mesh =
+        builder.addMesh({.attributes = {{"POSITION", positions}}, .material = material});
+    builder.addScene({builder.addNode({.mesh = mesh})});
+    builder.json()["extensionsUsed"] = {"KHR_texture_basisu"};
+    std::ofstream(dir / "fallback.png", std::ios::binary) << "not decoded by info's check";
+    const auto path = builder.writeGltf(dir, "basisu");
+    const auto text = runEncore("info " + quote(path.string()));
+    ASSERT_EQ(text.exitCode, 0) << text.err;
+    EXPECT_TRUE(contains(text.out, "  KHR_texture_basisu: ignored\n")) << text.out;
+    EXPECT_TRUE(contains(text.out,
+                         "images that need KHR_texture_basisu (KTX2, not decoded: no transcoder):\n"
+                         "  image 1 ('wood.ktx2'): texture 0 draws image 0 instead\n"
+                         "  image 2 ('stone.ktx2'): texture 1 has no fallback (a default texture "
+                         "is drawn)\n"))
+        << text.out;
+    const json summary = json::parse(runEncore("info --json " + quote(path.string())).out);
+    ASSERT_EQ(summary["basisuImages"].size(), 2u);
+    EXPECT_EQ(summary["basisuImages"][0]["image"], 1);
+    EXPECT_EQ(summary["basisuImages"][0]["textures"][0]["fallbackImage"], 0);
+    EXPECT_TRUE(summary["basisuImages"][1]["textures"][0]["fallbackImage"].is_null());
+
+    builder.json()["extensionsRequired"] = {"KHR_texture_basisu"};
+    const auto required = runEncore("info " + quote(builder.writeGltf(dir, "required").string()));
+    EXPECT_EQ(required.exitCode, 1);
+    EXPECT_TRUE(contains(required.err,
+                         "required.gltf: The asset requires the extension "
+                         "KHR_texture_basisu, which Encore does not support"))
+        << required.err;
+    EXPECT_TRUE(contains(required.err,
+                         "its KTX2 images need it: image 1 ('wood.ktx2'), image 2 ('stone.ktx2')."))
+        << required.err;
 }
 
 }  // namespace

@@ -14,6 +14,7 @@
 
 #include "CommandRunner.h"
 #include "TestPaths.h"
+#include "VariantFixture.h"
 #include "encore/image/ImageCodec.h"
 
 namespace encore::test {
@@ -213,6 +214,68 @@ TEST(ViewCommandTest, SwitchingStrategiesUploadsTheSceneOnce) {
     EXPECT_EQ(field(stats.back(), "scene"), other.string());
     EXPECT_EQ(field(stats.back(), "sceneUploads"), "2");
     EXPECT_GT(std::stoull(field(stats.back(), "uploadedBytes")), std::stoull(uploaded));
+}
+
+// V cycles the material variants (KHR_materials_variants): each frame is the picture `encore
+// render --variant` writes, bundles record again, and nothing is uploaded again.
+TEST(ViewCommandTest, VCyclesTheMaterialVariantsWithoutUploading) {
+    if (!haveXvfb()) {
+        GTEST_SKIP() << "xvfb-run (package xvfb) is not installed: no virtual display";
+    }
+    const auto dir = makeTempDir("view-variants");
+    const auto model = variantQuads().writeGlb(dir, "quads");
+    std::ofstream script(dir / "session.txt");
+    script << "frames 1\nstats\n";
+    for (int i = 0; i < 5; ++i) {  // Every variant, then the default again.
+        script << "key v\nframes 1\nscreenshot "
+               << (dir / ("v" + std::to_string(i) + ".png")).string() << "\nstats\n";
+    }
+    script.close();
+    const auto result = runEncoreThrough(kXvfb, "view " + quote(model.string()) +
+                                                    " --width 96 --height 64 --variant green"
+                                                    " --script " +
+                                                    quote((dir / "session.txt").string()));
+    ASSERT_EQ(result.exitCode, 0) << result.err << result.out;
+    const auto stats = statsLines(result.out);
+    ASSERT_EQ(stats.size(), 6u) << result.out;
+    // --variant green first, then blue paint, glass, textured, the default, green.
+    const std::vector<std::string> expected = {"0", "1", "2", "3", "default", "0"};
+    const std::string uploaded = field(stats[0], "uploadedBytes");
+    for (std::size_t i = 0; i < stats.size(); ++i) {
+        SCOPED_TRACE(stats[i]);
+        EXPECT_EQ(field(stats[i], "variant"), expected[i]);
+        EXPECT_EQ(field(stats[i], "sceneUploads"), "1");
+        EXPECT_EQ(field(stats[i], "uploadedBytes"), uploaded);
+        EXPECT_EQ(field(stats[i], "error"), "");
+        // Every switch records again (the blended variant a second bundle for its draw).
+        if (i > 0) {
+            EXPECT_GT(std::stoull(field(stats[i], "bundlesRecorded")),
+                      std::stoull(field(stats[i - 1], "bundlesRecorded")));
+        }
+    }
+    for (int i = 0; i < 5; ++i) {
+        const std::string variant = expected[std::size_t(i + 1)];
+        const auto out = dir / ("r" + std::to_string(i) + ".png");
+        const auto render =
+            runEncore("render " + quote(model.string()) + " --width 96 --height 64 -o " +
+                      quote(out.string()) + (variant == "default" ? "" : " --variant " + variant));
+        ASSERT_EQ(render.exitCode, 0) << render.err;
+        EXPECT_EQ(differingPixels(readPng(dir / ("v" + std::to_string(i) + ".png")), readPng(out)),
+                  0u)
+            << "variant " << variant;
+    }
+}
+
+// A variant the file lacks is refused before any window opens.
+TEST(ViewCommandTest, AVariantTheFileLacksIsAUsageError) {
+    const auto dir = makeTempDir("view-bad-variant");
+    const auto model = variantQuads().writeGlb(dir, "quads");
+    const auto result =
+        runEncoreThrough("env -u DISPLAY", "view " + quote(model.string()) + " --variant chrome");
+    EXPECT_EQ(result.exitCode, 2) << result.err;
+    EXPECT_NE(result.err.find("has no material variant 'chrome' (its variants: 0 'green'"),
+              std::string::npos)
+        << result.err;
 }
 
 TEST(ViewCommandTest, TheAnimometerRunsDirectAndBundled) {

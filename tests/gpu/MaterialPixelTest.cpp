@@ -11,6 +11,7 @@
 #include "GltfBuilder.h"
 #include "GpuTestSupport.h"
 #include "RenderTestSupport.h"
+#include "TextureFixtures.h"
 #include "encore/render/Renderer.h"
 
 namespace encore::render {
@@ -139,6 +140,29 @@ TEST_F(MaterialPixelTest, BaseColourTexturesAreSampledAsSrgb) {
     // sRGB 188 is linear 0.5; sampled as linear data it would be 0.737.
     const double expected = 0.5 * lighting(kFacing);
     expectPixel(image, {0, 0, 0}, encode(glm::dvec3(expected)), "textured quad", 2);
+}
+
+// EXT_texture_webp: the WebP image (generated here with libwebp, lossless) is drawn, not the
+// fallback PNG beside it.
+TEST_F(MaterialPixelTest, WebpTexturesAreDrawnInsteadOfTheirFallback) {
+    ENCORE_REQUIRE_VULKAN(context);
+    test::GltfBuilder builder;
+    const std::uint32_t png = test::addEmbeddedImage(
+        builder, test::encodePngBytes(test::solidImage({255, 0, 0, 255})), "image/png");
+    const std::uint32_t webp = test::addEmbeddedImage(
+        builder, test::encodeWebpBytes(test::solidImage({188, 255, 0, 255}, 4, 4)), "image/webp");
+    builder.json()["textures"].push_back(
+        {{"source", png}, {"extensions", {{"EXT_texture_webp", {{"source", webp}}}}}});
+    builder.json()["extensionsUsed"] = {"EXT_texture_webp"};
+    test::GltfBuilder::MaterialDesc desc;
+    desc.baseColorTexture = 0;
+    const auto material = builder.addMaterial(desc);
+    const auto image =
+        render(builder, {addQuad(builder, {.material = material, .texcoords = true})});
+    EXPECT_TRUE(mScene.warnings.empty());
+    // sRGB 188 is linear 0.5.
+    expectPixel(image, {0, 0, 0}, encode(glm::dvec3(0.5, 1.0, 0.0) * lighting(kFacing)),
+                "WebP-textured quad", 2);
 }
 
 TEST_F(MaterialPixelTest, VertexColoursMultiplyTheBaseColour) {

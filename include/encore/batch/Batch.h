@@ -151,6 +151,15 @@ struct BatchOptions {
     float lodErrorPixels = 0.0f;
 
     bool strict = false;  // Loader warnings and blank views fail the model.
+    // KHR_materials_variants. A name or index: every model drawn in that variant only, into
+    // OUT/<name>@<variant> (variantSampleNames); a model without it fails at "load". Empty: the
+    // default materials, into OUT/<name>.
+    std::string variant;
+    // Every model drawn with its default materials into OUT/<name> and in each of its variants
+    // into OUT/<name>@<variant>, each a sample of its own (finished, resumed and written as a
+    // model is) from one upload: only the material bindings change between them. A model counts
+    // once in BatchProgress, rendered when all its samples are. Excludes `variant`.
+    bool allVariants = false;
     // Whether OUT/failures.jsonl is written (and emptied first). Off, the failures are only in
     // the summary: for callers that run several batches into one folder at once and write one
     // log of them all (encore.dask), where each run would empty the others' log.

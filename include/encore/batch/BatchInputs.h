@@ -9,6 +9,9 @@
 // without the extension ("cars/red/model"): the searched directory, or the deepest folder that
 // holds every listed file. Two files that differ only by their extension ("a.gltf", "a.glb")
 // keep it in their names ("a.gltf", "a.glb"), so no two models share an output folder.
+//
+// A model drawn in a KHR_materials_variants variant is a sample of its own, named
+// "<name>@<variant>" (variantSampleNames).
 
 #include <filesystem>
 #include <span>
@@ -41,5 +44,13 @@ Result<std::vector<BatchInput>> listedInputs(std::span<const std::filesystem::pa
 // Names for `paths` relative to `root`, as described above (paths must lie inside `root`).
 std::vector<std::string> outputNames(std::span<const std::filesystem::path> paths,
                                      const std::filesystem::path& root);
+
+// The output names of a model's samples in each of its material variants, by variant index:
+// "<name>@<variant>", the variant's name kept to letters, digits, '.', '-' and '_' (every other
+// character, '/' and spaces included, becomes '_'; an empty name becomes "variant"), and
+// "-<index>" appended where two variants of the model would otherwise share a name
+// ("shoe@midnight", "shoe@beach_ball", "shoe@red-2").
+std::vector<std::string> variantSampleNames(const std::string& name,
+                                            std::span<const std::string> variants);
 
 }  // namespace encore::batch

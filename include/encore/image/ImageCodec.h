@@ -40,8 +40,8 @@ struct ImageRgba8 {
     }
 };
 
-// Decodes PNG or JPEG bytes into RGBA8: grey, grey-alpha, palette and RGB images get their
-// colours expanded and alpha 255 (tRNS applied), 16-bit samples keep their high byte.
+// Decodes PNG, JPEG or (still) WebP bytes into RGBA8: grey, grey-alpha, palette and RGB images
+// get their colours expanded and alpha 255 (tRNS applied), 16-bit samples keep their high byte.
 Result<ImageRgba8> decodeImage(std::span<const std::uint8_t> encoded);
 
 // How hard PNG encoding works at compressing. Both filter every row with Up.

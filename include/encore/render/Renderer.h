@@ -31,6 +31,7 @@
 #include "encore/render/ToneMapper.h"
 #include "encore/render/VisibilityFeatures.h"  // What a context needs for the visibility strategy.
 #include "encore/scene/AnimationPlayer.h"
+#include "encore/scene/MaterialVariants.h"
 
 namespace encore::gpu {
 class OutOfMemoryScope;
@@ -182,6 +183,14 @@ class Renderer {
     // Replaces a material's base colour image (materials-based strategies); recorded bundles
     // that used the old texture are re-recorded before they execute again.
     Result<void> replaceBaseColorImage(scene::MaterialId material, const scene::Image& image);
+
+    // KHR_materials_variants: draws every primitive with the material `variant` maps it to
+    // (nullopt: the default materials; scene::resolveVariant finds one by name or index). Only
+    // material bindings change: nothing is uploaded again (sceneUploads() and uploadedBytes()
+    // stay), the strategy regroups its draws and bundles record again before the next frame.
+    // The selection holds until the next prepare() (it survives setStrategy and device loss).
+    Result<void> selectVariant(std::optional<scene::VariantId> variant);
+    std::optional<scene::VariantId> variant() const;
 
     // Lighting and tone mapping, through buffers and in-place texture writes: recorded bundles
     // stay valid (tests check bundlesRecorded).

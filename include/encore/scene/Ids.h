@@ -39,6 +39,8 @@ using LightId = Id<struct LightTag>;
 using CameraId = Id<struct CameraTag>;
 using SkinId = Id<struct SkinTag>;
 using AnimationId = Id<struct AnimationTag>;
+using VariantId =
+    Id<struct VariantTag>;  // KHR_materials_variants: an index into SceneData::variants.
 
 }  // namespace encore::scene
 

@@ -118,11 +118,21 @@ struct LevelOfDetail {
     float error = 0.0f;
 };
 
+// KHR_materials_variants: the material a primitive draws while `variant` is selected.
+struct VariantMapping {
+    VariantId variant;
+    MaterialId material;
+};
+
 struct Primitive {
     Topology topology = Topology::TriangleList;
     std::vector<VertexAttribute> attributes;  // Sorted by semantic; Position and Normal present.
     std::optional<AccessorId> indices;        // Uint16 or Uint32.
-    MaterialId material;                      // Always valid.
+    MaterialId material;  // Always valid: the material drawn when no variant is selected.
+    // KHR_materials_variants: the variants that map this primitive to another material, sorted
+    // by variant, each once (the loader refuses a variant mapped twice). Variants not listed
+    // draw `material`.
+    std::vector<VariantMapping> variantMaterials;
     std::uint32_t vertexCount = 0;
     Bounds bounds;  // Object-space box of the positions (without skinning or morphing).
     // Morph targets; every primitive of a mesh has the same number (Mesh::weights.size()).
@@ -139,6 +149,8 @@ struct Primitive {
     std::vector<LevelOfDetail> levels;
 
     std::optional<AccessorId> attribute(Semantic semantic) const;
+    // The material drawn while `variant` is selected (nullopt: none, the default materials).
+    MaterialId materialFor(std::optional<VariantId> variant) const;
 };
 
 struct Mesh {
@@ -242,8 +254,14 @@ struct Sampler {
 };
 
 struct Texture {
-    ImageId image;      // Invalid when the texture names no usable image.
+    // The image drawn: EXT_texture_webp's image when the texture has one and it decodes (or,
+    // without decoding, exists), else the core `source`. Invalid when the texture names no
+    // usable image.
+    ImageId image;
     SamplerId sampler;  // Always valid: a default sampler is appended when needed.
+    // KHR_texture_basisu's KTX2 image, which Encore cannot decode (no transcoder is packaged):
+    // the texture draws `image`, its fallback source, instead (a default texture without one).
+    std::optional<ImageId> basisuImage;
 };
 
 struct Image {
@@ -365,6 +383,9 @@ struct SceneData {
     std::vector<CameraInstance> cameraInstances;  // Depth-first by node.
     std::vector<Skin> skins;
     std::vector<Animation> animations;
+    // KHR_materials_variants: the names of the asset's material variants, in file order (a
+    // VariantId indexes it); empty without the extension. Primitive::variantMaterials maps them.
+    std::vector<std::string> variants;
     Bounds bounds;                            // World-space box of all instances.
     std::vector<std::string> extensionsUsed;  // As the file declares them.
     std::vector<std::string> extensionsRequired;

@@ -37,15 +37,20 @@ Result<void> GpuCullingStrategy::groupDraws() {
     const scene::SceneData& scene = mDraws.scene().data();
     const InstanceBuffer& instances = mDraws.scene().instances();
     const RenderSetup& setup = *mSetup;
-    // A regrouping (a material gained textures) keeps the culler and its draws, whose spheres
-    // may have moved since: each primitive keeps its draw index.
-    std::map<std::pair<const PrimitiveBindings*, std::uint32_t>, std::size_t> drawOf;
+    // A regrouping (a material gained textures, another material variant) keeps the culler and
+    // its draws, whose spheres may have moved since: each primitive keeps its draw index. Only
+    // when the opaque draws themselves changed (a variant that blends, or binds other vertex
+    // inputs) is the culler made again.
+    DrawIndices drawOf;
     for (const CulledPipeline& pipeline : mCulled) {
         for (const CulledMaterial& material : pipeline.materials) {
             for (const CulledPrimitive& primitive : material.primitives) {
                 drawOf[{primitive.bindings, primitive.firstInstance}] = primitive.draw;
             }
         }
+    }
+    if (mCullerCreated && !sameDraws(drawOf)) {
+        mCullerCreated = false;
     }
     mCulled.clear();
 
@@ -90,6 +95,21 @@ Result<void> GpuCullingStrategy::groupDraws() {
                                                  std::move(draws)));
     mCullerCreated = true;
     return {};
+}
+
+bool GpuCullingStrategy::sameDraws(const DrawIndices& drawOf) const {
+    std::size_t count = 0;
+    for (const MaterialDrawGroups::PipelineGroup& group : mDraws.opaque()) {
+        for (const MaterialDrawGroups::MaterialGroup& material : group.materials) {
+            for (const PrimitiveDraw& primitive : material.primitives) {
+                if (!drawOf.contains({primitive.bindings, primitive.instances.first})) {
+                    return false;
+                }
+                ++count;
+            }
+        }
+    }
+    return count == drawOf.size();
 }
 
 CulledDraw GpuCullingStrategy::culledDraw(const PrimitiveDraw& primitive) const {

@@ -1,5 +1,8 @@
 #pragma once
 
+#include <map>
+#include <utility>
+
 #include "encore/render/Strategy.h"
 #include "render/GpuCuller.h"
 #include "render/strategies/BundledFrame.h"
@@ -60,12 +63,16 @@ class GpuCullingStrategy final : public Strategy {
     };
 
     using PrimitiveDraw = MaterialDrawGroups::PrimitiveDraw;
+    // The culler's draws, by (bindings, first instance slot).
+    using DrawIndices = std::map<std::pair<const PrimitiveBindings*, std::uint32_t>, std::size_t>;
 
     // Groups the draws as `materials` does, each one an indirect draw of the culled variant.
     Result<void> groupDraws();
     // Every level's indirect draw of every culled primitive, with the arguments of `phase`.
     void encodeCulled(RenderEncoder& encoder, std::uint32_t phase) const;
     CulledDraw culledDraw(const PrimitiveDraw& primitive) const;
+    // Whether the opaque draws grouped now are exactly the culler's.
+    bool sameDraws(const DrawIndices& drawOf) const;
 
     bool mUseBundles;
     const RenderSetup* mSetup = nullptr;

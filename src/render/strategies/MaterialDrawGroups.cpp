@@ -33,7 +33,7 @@ shaders::ShaderVariantKey materialVariant(const scene::Primitive& primitive,
     return key;
 }
 
-// The attributes a variant reads, in the order GeometryBuffers binds them.
+// The attributes a shader variant reads, in the order GeometryBuffers binds them.
 std::vector<scene::Semantic> variantSemantics(const shaders::ShaderVariantKey& key) {
     std::vector<scene::Semantic> semantics = {scene::Semantic::Position, scene::Semantic::Normal};
     appendAnimationSemantics(key, semantics);
@@ -52,7 +52,43 @@ std::vector<scene::Semantic> variantSemantics(const shaders::ShaderVariantKey& k
     return semantics;
 }
 
+// The semantics as a set of bits, to tell the bindings of one primitive apart.
+std::uint32_t semanticBits(std::span<const scene::Semantic> semantics) {
+    std::uint32_t bits = 0;
+    for (const scene::Semantic semantic : semantics) {
+        bits |= 1u << std::uint32_t(semantic);
+    }
+    return bits;
+}
+
 }  // namespace
+
+Result<const PrimitiveBindings*> MaterialDrawGroups::bindingsFor(
+    std::size_t mesh,
+    std::size_t index,
+    std::span<const scene::Semantic> semantics) {
+    const std::uint32_t bits = semanticBits(semantics);
+    PrimitiveBinding& first = mPrimitiveBindings[mesh][index];
+    if (first.bindings && first.semantics == bits) {
+        return first.bindings;
+    }
+    // Another set of inputs for a primitive bound before (a material variant with a normal map
+    // reads TANGENT): rare, so kept apart from the first set.
+    const auto other = mOtherBindings.find({mesh, index, bits});
+    if (other != mOtherBindings.end()) {
+        return other->second;
+    }
+    const scene::Primitive& primitive = mScene->data().meshes[mesh].primitives[index];
+    ENCORE_TRY_ASSIGN(auto bindings, mScene->geometry().bind(primitive, semantics));
+    mBindings.push_back(std::make_unique<PrimitiveBindings>(std::move(bindings)));
+    const PrimitiveBindings* bound = mBindings.back().get();
+    if (!first.bindings) {
+        first = {bits, bound};
+    } else {
+        mOtherBindings.emplace(std::tuple{mesh, index, bits}, bound);
+    }
+    return bound;
+}
 
 Result<void> MaterialDrawGroups::prepare(const RenderSetup& setup,
                                          const GpuScene& scene,
@@ -63,10 +99,11 @@ Result<void> MaterialDrawGroups::prepare(const RenderSetup& setup,
     mFrameGroup = setup.frame->bindGroup();
     mPipelines = strategyPipelineCache(setup, mOwnPipelines);
     mBindings.clear();
+    mOtherBindings.clear();
     const scene::SceneData& data = scene.data();
     mPrimitiveBindings.assign(data.meshes.size(), {});
     for (std::size_t mesh = 0; mesh < data.meshes.size(); ++mesh) {
-        mPrimitiveBindings[mesh].assign(data.meshes[mesh].primitives.size(), nullptr);
+        mPrimitiveBindings[mesh].assign(data.meshes[mesh].primitives.size(), {});
     }
     const auto start = std::chrono::steady_clock::now();
     auto grouped = regroup();
@@ -101,20 +138,17 @@ Result<void> MaterialDrawGroups::regroup() {
                 continue;
             }
             const scene::Primitive& primitive = primitives[index];
-            const scene::Material& material = scene.materials[primitive.material.index()];
+            // The material of the selected KHR_materials_variants variant, if any.
+            const scene::MaterialId materialId = mScene->materialOf(scene::MeshId(mesh), index);
+            const scene::Material& material = scene.materials[materialId.index()];
             shaders::ShaderVariantKey variant =
-                materialVariant(primitive, material, materials.textured(primitive.material));
+                materialVariant(primitive, material, materials.textured(materialId));
             if (animation) {
                 animation->addVariantFlags(scene::MeshId(mesh), index, variant);
             }
-            // Vertex inputs do not depend on textures, so a regrouping keeps the bindings.
-            const PrimitiveBindings*& bound = mPrimitiveBindings[mesh][index];
-            if (!bound) {
-                ENCORE_TRY_ASSIGN(auto bindings,
-                                  mScene->geometry().bind(primitive, variantSemantics(variant)));
-                mBindings.push_back(std::make_unique<PrimitiveBindings>(std::move(bindings)));
-                bound = mBindings.back().get();
-            }
+            // A regrouping keeps the bindings of inputs bound before.
+            ENCORE_TRY_ASSIGN(const PrimitiveBindings* bound,
+                              bindingsFor(mesh, index, variantSemantics(variant)));
 
             PipelineKey key = meshPipelineKey(setup, *bound, variant);
             key.cullMode = material.doubleSided ? wgpu::CullMode::None : wgpu::CullMode::Back;
@@ -137,7 +171,7 @@ Result<void> MaterialDrawGroups::regroup() {
                                                      ? glm::vec3(world[3])
                                                      : primitive.bounds.transformed(world).center();
                         mBlended.push_back(
-                            {pipeline, primitive.material, bound, slot, center, variant, index});
+                            {pipeline, materialId, bound, slot, center, variant, index});
                     }
                     continue;
                 }
@@ -146,9 +180,9 @@ Result<void> MaterialDrawGroups::regroup() {
                     mOpaque.push_back({key, pipeline, {}});
                 }
                 auto [materialGroup, newMaterial] = materialGroupOf.try_emplace(
-                    {group->second, primitive.material}, mOpaque[group->second].materials.size());
+                    {group->second, materialId}, mOpaque[group->second].materials.size());
                 if (newMaterial) {
-                    mOpaque[group->second].materials.push_back({primitive.material, {}});
+                    mOpaque[group->second].materials.push_back({materialId, {}});
                 }
                 mOpaque[group->second].materials[materialGroup->second].primitives.push_back(
                     {bound, range, instances.instanceAt(range.first), index});

@@ -2,8 +2,10 @@
 
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <memory>
 #include <span>
+#include <tuple>
 #include <vector>
 
 #include "encore/render/RenderEncoder.h"
@@ -64,9 +66,11 @@ class MaterialDrawGroups {
                          const GpuScene& scene,
                          PrimitiveFilter filter = {});
     // Whether a bind group the groups depend on was replaced since they were made (a material
-    // that gained textures needs other pipelines).
+    // that gained textures needs other pipelines), or another material variant was selected.
     bool stale() const { return mGeneration != mScene->generation(); }
-    // Groups the draws again, keeping the vertex bindings (they do not depend on textures).
+    // Groups the draws again with the materials the GPU scene maps the primitives to now,
+    // keeping the vertex bindings made before (a variant may need other inputs: those are
+    // added).
     Result<void> regroup();
     // regroup() when stale(), else nothing.
     Result<void> refresh();
@@ -87,14 +91,28 @@ class MaterialDrawGroups {
     void bindMaterial(RenderEncoder& encoder, scene::MaterialId material) const;
 
   private:
+    // The bindings of a primitive for these inputs, made on first use.
+    Result<const PrimitiveBindings*> bindingsFor(std::size_t mesh,
+                                                 std::size_t index,
+                                                 std::span<const scene::Semantic> semantics);
+
+    // A primitive's first bindings and the semantics (as bits) they bind.
+    struct PrimitiveBinding {
+        std::uint32_t semantics = 0;
+        const PrimitiveBindings* bindings = nullptr;
+    };
+
     const RenderSetup* mSetup = nullptr;
     const GpuScene* mScene = nullptr;
     std::unique_ptr<PipelineCache> mOwnPipelines;
     PipelineCache* mPipelines = nullptr;  // mOwnPipelines or the renderer's kept cache.
     wgpu::BindGroup mFrameGroup;
     std::vector<std::unique_ptr<PrimitiveBindings>> mBindings;  // Stable addresses.
-    // [mesh][primitive] -> its entry of mBindings (null until grouped).
-    std::vector<std::vector<const PrimitiveBindings*>> mPrimitiveBindings;
+    // [mesh][primitive] -> its first entry of mBindings (null until grouped).
+    std::vector<std::vector<PrimitiveBinding>> mPrimitiveBindings;
+    // (mesh, primitive, semantics) -> the entries of mBindings for other inputs.
+    std::map<std::tuple<std::size_t, std::size_t, std::uint32_t>, const PrimitiveBindings*>
+        mOtherBindings;
     std::vector<PipelineGroup> mOpaque;
     std::vector<BlendedDraw> mBlended;
     std::uint64_t mGeneration = 0;

@@ -166,5 +166,13 @@ TEST(BatchOptionsValidationTest, DefaultStrategyFollowsLevelsOfDetail) {
     EXPECT_EQ(batchStrategy(options), StrategyChoice::of(StrategyKind::Naive, true));
 }
 
+TEST(BatchOptionsValidationTest, RejectsOneVariantTogetherWithAll) {
+    BatchOptions options;
+    options.variant = "beach";
+    EXPECT_TRUE(validateBatchOptions(options).ok());
+    options.allVariants = true;
+    EXPECT_TRUE(rejected(options, "one material variant ('beach') or all of them, not both"));
+}
+
 }  // namespace
 }  // namespace encore::batch

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "TestPaths.h"
+#include "TextureFixtures.h"
 #include "core/FileIO.h"
 #include "encore/image/ImageCodec.h"
 #include "image/ImageDecoders.h"
@@ -490,6 +491,46 @@ TEST(ImageDecodersTest, TruncatedJpegReturns) {
         } else {
             EXPECT_EQ(decoded.error().code, ErrorCode::InvalidFormat);
             EXPECT_NE(decoded.error().message.find("JPEG"), std::string::npos)
+                << decoded.error().message;
+        }
+    }
+}
+
+// WebP (EXT_texture_webp) through libwebp: a lossless image with varying colour and alpha
+// decodes to its exact pixels, and a WebP image is told from the other formats by its header.
+TEST(ImageDecodersTest, LosslessWebpDecodesExactly) {
+    ImageRgba8 source;
+    source.width = 37;
+    source.height = 11;
+    for (std::uint32_t y = 0; y < source.height; ++y) {
+        for (std::uint32_t x = 0; x < source.width; ++x) {
+            // Alpha 0 keeps its colour: libwebp's lossless encoder is exact by default.
+            source.pixels.insert(source.pixels.end(),
+                                 {std::uint8_t(x * 7), std::uint8_t(y * 23), std::uint8_t(x ^ y),
+                                  std::uint8_t(255 - x * 3)});
+        }
+    }
+    const Bytes webp = test::encodeWebpBytes(source, /*lossless=*/true);
+    ASSERT_TRUE(isWebp(webp));
+    EXPECT_FALSE(isPng(webp));
+    auto decoded = decodeImage(webp);
+    ASSERT_TRUE(decoded.ok()) << decoded.error().message;
+    EXPECT_EQ(decoded->width, source.width);
+    EXPECT_EQ(decoded->height, source.height);
+    EXPECT_EQ(decoded->pixels, source.pixels);
+}
+
+// Every prefix of a WebP file returns an error naming WebP, or the image of the declared size.
+TEST(ImageDecodersTest, TruncatedWebpReturns) {
+    const Bytes webp = test::encodeWebpBytes(test::solidImage({1, 2, 3, 255}, 16, 16), false);
+    for (std::size_t length = 12; length < webp.size(); length += 5) {
+        const Bytes truncated(webp.begin(), webp.begin() + std::ptrdiff_t(length));
+        auto decoded = decodeImage(truncated);
+        if (decoded.ok()) {
+            EXPECT_EQ(decoded->pixels.size(), 16u * 16u * 4u);
+        } else {
+            EXPECT_EQ(decoded.error().code, ErrorCode::InvalidFormat);
+            EXPECT_NE(decoded.error().message.find("WebP"), std::string::npos)
                 << decoded.error().message;
         }
     }

@@ -273,7 +273,7 @@ TEST(MaterialExtensionsTest, UnshadedExtensionsAreListedAndWarned) {
         materialJson(builder)["extensions"][name] = json::object();
     }
     useExtension(builder, "KHR_materials_clearcoat");
-    useExtension(builder, "EXT_texture_webp");
+    useExtension(builder, "KHR_texture_basisu");
     materialJson(builder)["extensions"]["KHR_materials_clearcoat"] = {{"clearcoatFactor", 1.0}};
     auto scene = loadGltf(builder);
     ASSERT_TRUE(scene.ok()) << scene.error().message;
@@ -283,7 +283,7 @@ TEST(MaterialExtensionsTest, UnshadedExtensionsAreListedAndWarned) {
     EXPECT_EQ(material.clearcoat->clearcoatFactor, 1.0f);
 
     std::vector<std::string> expectedIgnored = ignored;
-    expectedIgnored.push_back("EXT_texture_webp");
+    expectedIgnored.push_back("KHR_texture_basisu");
     EXPECT_EQ(scene->extensionsIgnored, expectedIgnored);
     ASSERT_EQ(scene->extensionsUsed.size(), ignored.size() + 2);
     ASSERT_EQ(scene->warnings.size(), expectedIgnored.size());
@@ -291,7 +291,7 @@ TEST(MaterialExtensionsTest, UnshadedExtensionsAreListedAndWarned) {
               "test.gltf: The asset uses KHR_materials_transmission, which Encore does not "
               "implement; materials are drawn without it.");
     EXPECT_EQ(scene->warnings.back(),
-              "test.gltf: The asset uses EXT_texture_webp, which Encore does not implement; the "
+              "test.gltf: The asset uses KHR_texture_basisu, which Encore does not implement; the "
               "asset is drawn without it.");
 }
 
