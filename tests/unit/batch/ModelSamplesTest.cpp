@@ -65,11 +65,15 @@ TEST(ModelSamplesTest, OneVariantAllOfThemOrNone) {
         << samples.error().message;
 }
 
+// Every file of a finished one-view sample (modelFiles: the view, metadata.json, transforms.json).
 void finish(const fs::path& output, const std::string& name) {
     const fs::path folder = modelFolder(output, name);
     fs::create_directories(folder);
-    std::ofstream(viewImagePath(folder, 0)) << "x";
-    std::ofstream(folder / kTransformsFileName) << "{}";
+    ModelFileSet files;
+    files.views = 1;
+    for (const fs::path& file : modelFiles(folder, files)) {
+        std::ofstream(file) << "x";
+    }
 }
 
 TEST(ModelSamplesTest, FinishedWhenEverySampleIs) {
