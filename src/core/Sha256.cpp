@@ -5,6 +5,7 @@
 #include <cstring>
 
 #if defined(__x86_64__)
+#include <cpuid.h>
 #include <immintrin.h>
 #endif
 
@@ -125,8 +126,19 @@ __attribute__((target("sha,sse4.1,ssse3"))) void compressShaExtensions(
 
 bool Sha256::cpuHasShaExtensions() {
 #if defined(__x86_64__)
-    static const bool has = __builtin_cpu_supports("sha") && __builtin_cpu_supports("sse4.1") &&
-                            __builtin_cpu_supports("ssse3");
+    // CPUID rather than __builtin_cpu_supports("sha"), which clang 14 (the fuzz build) lacks:
+    // leaf 7 EBX bit 29 is SHA, leaf 1 ECX bits 19 and 9 are SSE4.1 and SSSE3.
+    static const bool has = [] {
+        unsigned eax = 0, ebx = 0, ecx = 0, edx = 0;
+        if (!__get_cpuid(1, &eax, &ebx, &ecx, &edx)) {
+            return false;
+        }
+        const bool sse = (ecx & (1u << 19)) && (ecx & (1u << 9));
+        if (!__get_cpuid_count(7, 0, &eax, &ebx, &ecx, &edx)) {
+            return false;
+        }
+        return sse && (ebx & (1u << 29)) != 0;
+    }();
     return has;
 #else
     return false;
