@@ -3,21 +3,9 @@
 #include <algorithm>
 #include <iterator>
 
-namespace encore::app {
+#include "encore/render/RenderEncoder.h"
 
-std::uint64_t triangleCount(const scene::SceneData& scene, const scene::Primitive& primitive) {
-    const std::uint64_t count = primitive.indices
-                                    ? scene.accessors[primitive.indices->index()].count
-                                    : primitive.vertexCount;
-    switch (primitive.topology) {
-        case scene::Topology::TriangleList:
-            return count / 3;
-        case scene::Topology::TriangleStrip:
-            return count >= 3 ? count - 2 : 0;
-        default:
-            return 0;
-    }
-}
+namespace encore::app {
 
 namespace {
 
@@ -39,7 +27,7 @@ void summarizeLevels(const scene::SceneData& scene, ModelCounts& counts) {
                 const std::size_t level = std::min(k, primitive.levels.size());
                 counts.levelTriangles[k] +=
                     level == 0
-                        ? triangleCount(scene, primitive)
+                        ? render::triangleCount(scene, primitive)
                         : scene.accessors[primitive.levels[level - 1].indices.index()].count / 3;
             }
         }
@@ -58,7 +46,7 @@ ModelSummary summarizeModel(const scene::SceneData& scene) {
     std::vector<std::uint64_t> meshTriangles(scene.meshes.size(), 0);
     for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
         for (const scene::Primitive& primitive : scene.meshes[m].primitives) {
-            meshTriangles[m] += triangleCount(scene, primitive);
+            meshTriangles[m] += render::triangleCount(scene, primitive);
         }
         counts.triangles += meshTriangles[m];
     }

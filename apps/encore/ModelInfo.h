@@ -71,9 +71,6 @@ struct ModelSummary {
     std::vector<std::string> warnings;
 };
 
-// Triangles one primitive draws (0 for points and lines).
-std::uint64_t triangleCount(const scene::SceneData& scene, const scene::Primitive& primitive);
-
 ModelSummary summarizeModel(const scene::SceneData& scene);
 
 // The summary as lines of "key: value" text, ending with a newline.

@@ -2,25 +2,12 @@
 
 #include "core/FileIO.h"
 #include "core/Sha256.h"
+#include "encore/render/RenderEncoder.h"
 
 namespace encore::batch {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::uint64_t triangleCount(const scene::SceneData& scene, const scene::Primitive& primitive) {
-    const std::uint64_t count = primitive.indices
-                                    ? scene.accessors[primitive.indices->index()].count
-                                    : primitive.vertexCount;
-    switch (primitive.topology) {
-        case scene::Topology::TriangleList:
-            return count / 3;
-        case scene::Topology::TriangleStrip:
-            return count >= 3 ? count - 2 : 0;
-        default:
-            return 0;
-    }
-}
 
 // The reason in the loader's warning about image `index` ("<file>: image 3 ('a.png') cannot be
 // read (<reason>); drawing it with a default texture."), or a general one.
@@ -69,7 +56,7 @@ void describeModel(const scene::SceneData& scene, ModelFacts& facts) {
     facts.vertices = 0;
     for (const scene::Instance& instance : scene.instances) {
         for (const scene::Primitive& primitive : scene.meshes[instance.mesh.index()].primitives) {
-            facts.triangles += triangleCount(scene, primitive);
+            facts.triangles += render::triangleCount(scene, primitive);
             facts.vertices += primitive.vertexCount;
         }
     }

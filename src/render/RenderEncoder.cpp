@@ -30,6 +30,12 @@ std::uint64_t triangleCount(scene::Topology topology, std::uint64_t count) {
     }
 }
 
+std::uint64_t triangleCount(const scene::SceneData& scene, const scene::Primitive& primitive) {
+    return triangleCount(primitive.topology, primitive.indices
+                                                 ? scene.accessors[primitive.indices->index()].count
+                                                 : primitive.vertexCount);
+}
+
 // Each call goes to whichever encoder this wraps; the branch is negligible next to the call.
 #define ENCORE_FORWARD(call) \
     do {                     \
