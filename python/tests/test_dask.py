@@ -19,6 +19,7 @@ distributed = pytest.importorskip("distributed")
 
 import encore  # noqa: E402
 import encore.dask  # noqa: E402
+from batch_output import files_under  # noqa: E402
 
 OPTIONS = {"views": 3, "size": 64}
 
@@ -27,22 +28,6 @@ def generate(path, seed, objects=6):
     path.parent.mkdir(parents=True, exist_ok=True)
     subprocess.run([os.environ["ENCORE_BINARY"], "gen", "--objects", str(objects), "--seed",
                     str(seed), "-o", str(path)], check=True, capture_output=True)
-
-
-def files_under(folder):
-    """Every file below `folder` except failures.jsonl, by relative path, with its bytes;
-    metadata.json without its timings, which differ from run to run."""
-    files = {}
-    for path in sorted(folder.rglob("*")):
-        if not path.is_file() or path.name == "failures.jsonl":
-            continue
-        if path.name == "metadata.json":
-            metadata = json.loads(path.read_text())
-            del metadata["seconds"]
-            files[str(path.relative_to(folder))] = metadata
-        else:
-            files[str(path.relative_to(folder))] = path.read_bytes()
-    return files
 
 
 def read_failures(output):

@@ -20,6 +20,7 @@ import numpy as np
 import pytest
 
 import encore
+from batch_output import files_under
 
 
 def generate(path, objects=8, seed=1):
@@ -184,22 +185,6 @@ def test_batch_lists_failures_and_skips_finished_models(tmp_path):
         ("load", "broken.gltf")]
     again = encore.batch(str(tmp_path / "in"), str(out), views=3, size=32)
     assert (again["rendered"], again["failed"], again["skipped"]) == (0, 1, 2)
-
-
-def files_under(folder):
-    """Every file below `folder` except failures.jsonl, by relative path, with its bytes;
-    metadata.json without its timings, which differ from run to run."""
-    files = {}
-    for path in sorted(folder.rglob("*")):
-        if not path.is_file() or path.name == "failures.jsonl":
-            continue
-        if path.name == "metadata.json":
-            metadata = json.loads(path.read_text())
-            del metadata["seconds"]
-            files[str(path.relative_to(folder))] = metadata
-        else:
-            files[str(path.relative_to(folder))] = path.read_bytes()
-    return files
 
 
 def test_batch_reuses_its_renderer_across_calls_and_writes_the_commands_files(tmp_path):

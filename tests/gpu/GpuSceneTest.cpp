@@ -21,23 +21,6 @@ scene::SceneData texturedScene() {
     return test::generatedScene(generator);
 }
 
-struct Choice {
-    StrategyKind kind;
-    bool bundle;
-};
-
-// Every strategy, directly and from bundles.
-std::vector<Choice> everyChoice() {
-    std::vector<Choice> choices;
-    for (StrategyKind kind : allStrategies()) {
-        choices.push_back({kind, false});
-        if (!isBundledKind(kind)) {
-            choices.push_back({kind, true});
-        }
-    }
-    return choices;
-}
-
 TEST(GpuSceneTest, SwitchingThroughEveryStrategyUploadsNothingAgain) {
     ENCORE_REQUIRE_VULKAN(context);
     const scene::SceneData scene = texturedScene();
@@ -55,7 +38,7 @@ TEST(GpuSceneTest, SwitchingThroughEveryStrategyUploadsNothingAgain) {
     EXPECT_EQ(uploaded, gpuScene->uploadedBytes());
 
     const Camera camera = Camera::framing(scene.bounds, 1.0f);
-    for (const Choice& choice : everyChoice()) {
+    for (const StrategyChoice& choice : test::everyStrategyChoice()) {
         SCOPED_TRACE(std::string(strategyName(choice.kind)) + (choice.bundle ? "+bundle" : ""));
         auto switched = renderer->setStrategy(choice.kind, choice.bundle);
         ASSERT_TRUE(switched.ok()) << switched.error().message;

@@ -20,23 +20,6 @@ namespace {
 
 constexpr std::uint32_t kSize = 64;
 
-struct Choice {
-    StrategyKind kind;
-    bool bundle;
-};
-
-// Every strategy, directly and from bundles.
-std::vector<Choice> everyChoice() {
-    std::vector<Choice> choices;
-    for (StrategyKind kind : allStrategies()) {
-        choices.push_back({kind, false});
-        if (!isBundledKind(kind)) {
-            choices.push_back({kind, true});
-        }
-    }
-    return choices;
-}
-
 // The strategies that shade glTF materials (the earlier ones draw every primitive alike).
 bool drawsMaterials(StrategyKind kind) {
     return kind == StrategyKind::Materials || kind == StrategyKind::Bundles || cullsOnTheGpu(kind);
@@ -66,7 +49,7 @@ TEST(MaterialVariantsRenderTest, ASwitchChangesMaterialBindingsOnly) {
     ENCORE_REQUIRE_VULKAN(context);
     const scene::SceneData scene = loadQuads();
     ASSERT_EQ(scene.variants.size(), 4u);
-    for (const Choice& choice : everyChoice()) {
+    for (const StrategyChoice& choice : test::everyStrategyChoice()) {
         SCOPED_TRACE(std::string(strategyName(choice.kind)) + (choice.bundle ? "+bundle" : ""));
         auto renderer = Renderer::create(*context, test::pixelTestOptions(kSize, kSize));
         ASSERT_TRUE(renderer.ok());

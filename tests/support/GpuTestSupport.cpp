@@ -89,6 +89,17 @@ std::string strategyTestName(render::StrategyKind kind) {
     return name;
 }
 
+std::vector<render::StrategyChoice> everyStrategyChoice() {
+    std::vector<render::StrategyChoice> choices;
+    for (render::StrategyKind kind : render::allStrategies()) {
+        choices.push_back({kind, false});
+        if (!render::isBundledKind(kind)) {
+            choices.push_back({kind, true});
+        }
+    }
+    return choices;
+}
+
 std::string ModelVariant::testName() const {
     std::string name = model + "_" + variant;
     std::replace(name.begin(), name.end(), '-', '_');

@@ -37,6 +37,9 @@ Rgba pixelAt(const image::ImageRgba8& image, std::uint32_t x, std::uint32_t y);
 
 // A strategy's name as a GoogleTest parameter name ("gpu-culling" -> "gpu_culling").
 std::string strategyTestName(render::StrategyKind kind);
+
+// Every strategy, directly and (where it is not a bundled kind itself) from bundles.
+std::vector<render::StrategyChoice> everyStrategyChoice();
 std::string describe(const Rgba& color);
 
 // Largest per-channel difference.
