@@ -128,6 +128,7 @@ nlohmann::json toJson(const BenchReport& report) {
             {"bundleContents", toJson(result.bundleContents)},
             {"trianglesSubmitted", countsJson(result.trianglesSubmitted)},
             {"trianglesDrawn", countsJson(result.trianglesDrawn)},
+            {"trianglesCompute", countsJson(result.trianglesCompute)},
             {"gpuPassesMs",
              [&] {
                  nlohmann::json passes = nlohmann::json::object();
@@ -195,13 +196,19 @@ std::string toMarkdown(const BenchReport& report) {
         }
         const bool animated = results.front()->animationCpu.has_value();
         const bool triangles = !results.front()->trianglesSubmitted.empty();
+        bool computeRaster = false;
+        for (const BenchResult* result : results) {
+            computeRaster = computeRaster || !result->trianglesCompute.empty();
+        }
         out << "\n### " << label << " (" << results.front()->objects << " objects)\n\n"
             << "| strategy | CPU frame | encode | submit | GPU | vs naive | API calls | draws | "
                "bundle draws |"
             << (triangles ? " triangles submitted | triangles drawn |" : "")
+            << (triangles && computeRaster ? " of them in compute |" : "")
             << (animated ? " animation (share of CPU frame) | bytes written |" : "")
             << "\n|---|---:|---:|---:|---:|---:|---:|---:|---:|" << (triangles ? "---:|---:|" : "")
-            << (animated ? "---:|---:|" : "") << "\n";
+            << (triangles && computeRaster ? "---:|" : "") << (animated ? "---:|---:|" : "")
+            << "\n";
         for (const BenchResult* result : results) {
             out << "| " << result->strategy << " | " << milliseconds(result->cpu) << " | "
                 << milliseconds(result->encode) << " | " << milliseconds(result->submit) << " | "
@@ -214,6 +221,9 @@ std::string toMarkdown(const BenchReport& report) {
             if (triangles) {
                 out << " " << countRange(result->trianglesSubmitted) << " | "
                     << countRange(result->trianglesDrawn) << " |";
+                if (computeRaster) {
+                    out << " " << countRange(result->trianglesCompute) << " |";
+                }
             }
             if (animated && result->animationCpu) {
                 const double share = result->cpu.median > 0.0

@@ -186,12 +186,20 @@ Result<BenchResult> measure(gpu::Context& context,
     for (auto& [label, times] : passTimes) {
         result.gpuPasses[label] = render::Percentiles::of(std::move(times));
     }
-    auto drawn = renderer.takeDrawnTriangles();
+    auto drawn = renderer.takeTriangleHistory();
     renderer.setTriangleCounting(false);
     if (!drawn) {
         return drawn.error().withContext("Benchmarking " + result.strategy);
     }
-    result.trianglesDrawn = std::move(*drawn);
+    const auto gpuCounts =
+        renderer.strategy() ? renderer.strategy()->gpuTriangleCounts() : std::nullopt;
+    const bool computeRaster = gpuCounts && gpuCounts->computeOffset;
+    for (const render::DrawnTriangles& frame : *drawn) {
+        result.trianglesDrawn.push_back(frame.total());
+        if (computeRaster) {
+            result.trianglesCompute.push_back(frame.compute);
+        }
+    }
     if (animate) {
         result.animationCpu = render::Percentiles::of(std::move(animationTimes));
         result.animationWork = renderer.animationStats();

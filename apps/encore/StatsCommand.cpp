@@ -37,6 +37,8 @@ struct StrategyStats {
     std::uint64_t bundlesRecorded = 0;
     double encodeMilliseconds = 0.0;
     std::optional<render::AnimationFrameStats> animation;
+    // What the GPU decided to draw (GPU culling, the visibility buffer), by rasteriser.
+    std::optional<render::DrawnTriangles> gpuDrawn;
 };
 
 nlohmann::json toJson(const render::AnimationFrameStats& a) {
@@ -72,6 +74,10 @@ nlohmann::json toJson(const StrategyStats& stats) {
     if (stats.animation) {
         json["animation"] = toJson(*stats.animation);
     }
+    if (stats.gpuDrawn) {
+        json["gpuTriangles"] = {{"hardware", stats.gpuDrawn->hardware},
+                                {"compute", stats.gpuDrawn->compute}};
+    }
     return json;
 }
 
@@ -104,6 +110,23 @@ void printMarkdown(const std::string& model,
     std::printf(
         "\nPer frame; \"inside its bundles\" rows count the commands recorded once into "
         "the render bundles that the frame replays.\n");
+    bool gpuDrawn = false;
+    for (const auto& row : rows) {
+        gpuDrawn = gpuDrawn || row.gpuDrawn.has_value();
+    }
+    if (gpuDrawn) {
+        std::printf(
+            "\nTriangles the GPU decided to draw (culling on the GPU, the visibility buffer), "
+            "read back after the frame:\n\n| strategy | hardware rasteriser | compute "
+            "rasteriser |\n|---|---:|---:|\n");
+        for (const auto& row : rows) {
+            if (row.gpuDrawn) {
+                std::printf("| %s | %llu | %llu |\n", row.name.c_str(),
+                            (unsigned long long)row.gpuDrawn->hardware,
+                            (unsigned long long)row.gpuDrawn->compute);
+            }
+        }
+    }
     if (!rows.empty() && rows.front().animation &&
         rows.front().animation->evaluation == render::AnimationEvaluation::Gpu) {
         const render::AnimationFrameStats& a = *rows.front().animation;
@@ -166,7 +189,16 @@ int runStats(const StatsOptions& options, const GlobalOptions& global) {
             }
             stats.animation = renderer->animationStats();
         }
+        renderer->setTriangleCounting(true);
         const auto frame = renderer->renderFrame(camera);
+        auto history = renderer->takeTriangleHistory();
+        renderer->setTriangleCounting(false);
+        if (!history) {
+            return reportError(history.error());
+        }
+        if (!history->empty()) {
+            stats.gpuDrawn = history->back();
+        }
         stats.counters = frame.counters;
         stats.bundleContents = frame.bundleContents;
         stats.bundlesRecorded = renderer->strategy()->bundlesRecorded();

@@ -6,7 +6,6 @@
 
 #include "gpu/Readback.h"
 #include "gpu/TimedSubmit.h"
-#include "render/GpuCuller.h"
 #include "render/PassAttachments.h"
 #include "render/TriangleHistory.h"
 
@@ -51,7 +50,6 @@ FrameResult Renderer::renderPasses(std::span<const Camera> cameras,
         state.phase = DrawPhase::First;
     }
 
-    const GpuCuller* culler = mStrategy ? mStrategy->culler() : nullptr;
     auto encodeFrame = [&](const wgpu::CommandEncoder& commandEncoder) {
         if (mGpuAnimation && mGpuAnimationPending) {
             mGpuAnimation->encode(commandEncoder);  // Before anything that reads its results.
@@ -124,9 +122,10 @@ FrameResult Renderer::renderPasses(std::span<const Camera> cameras,
             }
         }
         // After the last pass: a two-phase frame counts in both culling passes.
-        if (mTriangleHistory && culler && culler->indirectArguments()) {
-            mTriangleHistory->record(commandEncoder, culler->indirectArguments(),
-                                     culler->drawnTrianglesOffset());
+        if (mTriangleHistory && mStrategy) {
+            if (auto counts = mStrategy->gpuTriangleCounts()) {
+                mTriangleHistory->record(commandEncoder, *counts);
+            }
         }
         if (mToneMapper) {
             // The GPU timer times the scene passes only, as benchmarks report them.
@@ -142,10 +141,10 @@ FrameResult Renderer::renderPasses(std::span<const Camera> cameras,
         result.bundleContents = mStrategy->bundleContents();
     }
     // Bundles and indirect draws replay per view; counters already sum the direct draws.
+    const auto gpuCounts = mStrategy ? mStrategy->gpuTriangleCounts() : std::nullopt;
     result.trianglesSubmitted =
-        result.counters.triangles +
-        cameras.size() *
-            (result.bundleContents.triangles + (culler ? submittedTriangles(culler->draws()) : 0));
+        result.counters.triangles + cameras.size() * (result.bundleContents.triangles +
+                                                      (gpuCounts ? gpuCounts->candidates : 0));
     return result;
 }
 
@@ -163,11 +162,21 @@ void Renderer::setTriangleCounting(bool on) {
     mTriangleHistory = on ? std::make_unique<TriangleHistory>(mContext->device()) : nullptr;
 }
 
-Result<std::vector<std::uint64_t>> Renderer::takeDrawnTriangles() {
+Result<std::vector<DrawnTriangles>> Renderer::takeTriangleHistory() {
     if (!mTriangleHistory) {
-        return std::vector<std::uint64_t>{};
+        return std::vector<DrawnTriangles>{};
     }
     return mTriangleHistory->take(*mContext);
+}
+
+Result<std::vector<std::uint64_t>> Renderer::takeDrawnTriangles() {
+    ENCORE_TRY_ASSIGN(auto history, takeTriangleHistory());
+    std::vector<std::uint64_t> totals;
+    totals.reserve(history.size());
+    for (const DrawnTriangles& frame : history) {
+        totals.push_back(frame.total());
+    }
+    return totals;
 }
 
 Result<std::vector<float>> Renderer::readHdrImage() {

@@ -1,5 +1,6 @@
 #include "encore/render/Strategy.h"
 
+#include "render/GpuCuller.h"
 #include "render/strategies/BundledStrategy.h"
 #include "render/strategies/BundlesStrategy.h"
 #include "render/strategies/GpuCullingStrategy.h"
@@ -11,6 +12,15 @@
 #include "render/strategies/VisibilityStrategy.h"
 
 namespace encore::render {
+
+std::optional<GpuTriangleCounts> Strategy::gpuTriangleCounts() const {
+    const GpuCuller* gpuCuller = culler();
+    if (!gpuCuller || !gpuCuller->indirectArguments()) {
+        return std::nullopt;
+    }
+    return GpuTriangleCounts{gpuCuller->indirectArguments(), gpuCuller->drawnTrianglesOffset(),
+                             std::nullopt, submittedTriangles(gpuCuller->draws())};
+}
 
 std::unique_ptr<Strategy> createStrategy(StrategyKind kind, bool bundle) {
     if (bundle) {

@@ -16,22 +16,28 @@ TriangleHistory::TriangleHistory(wgpu::Device device) : mDevice(std::move(device
 void TriangleHistory::addChunk() {
     mChunks.push_back(gpu::createBuffer(mDevice,
                                         wgpu::BufferUsage::CopyDst | wgpu::BufferUsage::CopySrc,
-                                        kFramesPerChunk * 4, "drawn triangles per frame"));
+                                        kFramesPerChunk * 8, "drawn triangles per frame"));
 }
 
 void TriangleHistory::record(const wgpu::CommandEncoder& commands,
-                             const wgpu::Buffer& source,
-                             std::uint64_t offset) {
+                             const GpuTriangleCounts& counts) {
     const std::uint64_t chunk = mFrames / kFramesPerChunk;
     if (chunk == mChunks.size()) {
         addChunk();
     }
-    commands.CopyBufferToBuffer(source, offset, mChunks[chunk], (mFrames % kFramesPerChunk) * 4, 4);
+    const std::uint64_t slot = (mFrames % kFramesPerChunk) * 8;
+    commands.CopyBufferToBuffer(counts.buffer, counts.hardwareOffset, mChunks[chunk], slot, 4);
+    if (counts.computeOffset) {
+        commands.CopyBufferToBuffer(counts.buffer, *counts.computeOffset, mChunks[chunk], slot + 4,
+                                    4);
+    } else {
+        commands.ClearBuffer(mChunks[chunk], slot + 4, 4);  // A reused chunk holds old counts.
+    }
     ++mFrames;
 }
 
-Result<std::vector<std::uint64_t>> TriangleHistory::take(gpu::Context& context) {
-    std::vector<std::uint64_t> values;
+Result<std::vector<DrawnTriangles>> TriangleHistory::take(gpu::Context& context) {
+    std::vector<DrawnTriangles> values;
     values.reserve(mFrames);
     for (std::size_t chunk = 0; chunk < mChunks.size(); ++chunk) {
         const std::uint64_t count =
@@ -39,14 +45,14 @@ Result<std::vector<std::uint64_t>> TriangleHistory::take(gpu::Context& context) 
         if (count == 0) {
             break;
         }
-        auto bytes = gpu::readBuffer(context, mChunks[chunk], 0, count * 4);
+        auto bytes = gpu::readBuffer(context, mChunks[chunk], 0, count * 8);
         if (!bytes) {
             return bytes.error().withContext("Reading the drawn-triangle counts back");
         }
         for (std::uint64_t frame = 0; frame < count; ++frame) {
-            std::uint32_t value;
-            std::memcpy(&value, bytes->data() + frame * 4, 4);
-            values.push_back(value);
+            std::uint32_t words[2];
+            std::memcpy(words, bytes->data() + frame * 8, 8);
+            values.push_back({words[0], words[1]});
         }
     }
     mChunks.resize(1);  // The first chunk serves the next history.

@@ -26,6 +26,7 @@ struct Counters {
     hardwareFirstInstance: u32,
     computeTriangles: atomic<u32>,  // Triangles the compute raster covered pixels of (or not).
     hardwareOverflow: atomic<u32>,  // Triangles the full hardware list could not take.
+    hardwareTriangles: atomic<u32>,  // Triangles the hardware list took.
 }
 
 @group(1) @binding(4) var<storage, read_write> units: array<vec2u>;
@@ -92,6 +93,7 @@ fn toHardware(id: u32) {
     let slot = atomicAdd(&counters.hardwareVertices, 3u) / 3u;
     if (slot < params.hardwareCapacity) {
         hardwareList[slot] = id;
+        atomicAdd(&counters.hardwareTriangles, 1u);
     } else {
         atomicAdd(&counters.hardwareOverflow, 1u);
     }

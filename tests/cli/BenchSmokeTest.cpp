@@ -104,15 +104,16 @@ TEST(BenchSmokeTest, FlythroughAndCityReportTrianglesPerFrame) {
     const auto dir = makeTempDir("bench-scenes");
     const auto run = runBench(dir,
                               "--scene flythrough,city --objects 200 --frames 3 --warmup 1 "
-                              "-s bundles -s gpu-culling-bundles --width 64 --height 64");
+                              "-s bundles -s gpu-culling-bundles -s visibility --width 64 "
+                              "--height 64");
     ASSERT_EQ(run.command.exitCode, 0) << run.command.err;
     ASSERT_FALSE(run.report.is_discarded());
     EXPECT_EQ(run.report["generated"]["scenes"], nlohmann::json({"flythrough", "city"}));
     const auto& results = run.report["results"];
-    ASSERT_EQ(results.size(), 4u);  // Two scenes, two strategies.
+    ASSERT_EQ(results.size(), 6u);  // Two scenes, three strategies.
     EXPECT_EQ(results[0]["scene"], "flythrough");
     EXPECT_EQ(results[0]["label"], "flythrough 200 objects");
-    EXPECT_EQ(results[2]["scene"], "city");
+    EXPECT_EQ(results[3]["scene"], "city");
     for (const auto& entry : results) {
         SCOPED_TRACE(entry["label"].get<std::string>() + " / " +
                      entry["strategy"].get<std::string>());
@@ -134,8 +135,21 @@ TEST(BenchSmokeTest, FlythroughAndCityReportTrianglesPerFrame) {
             EXPECT_LT(count.get<std::uint64_t>(), submitted[0].get<std::uint64_t>())
                 << "the camera inside the scene sees part of it";
         }
+        // Only the visibility buffer rasterises in compute: part of what it draws.
+        const auto& compute = entry["trianglesCompute"];
+        if (entry["strategy"] != "visibility") {
+            EXPECT_TRUE(compute.is_null());
+            continue;
+        }
+        ASSERT_EQ(compute.size(), 3u);
+        for (std::size_t frame = 0; frame < 3; ++frame) {
+            EXPECT_GT(compute[frame].get<std::uint64_t>(), 0u);
+            EXPECT_LE(compute[frame].get<std::uint64_t>(), drawn[frame].get<std::uint64_t>());
+        }
     }
-    EXPECT_NE(run.command.out.find("| triangles submitted | triangles drawn |"), std::string::npos)
+    EXPECT_NE(
+        run.command.out.find("| triangles submitted | triangles drawn | of them in compute |"),
+        std::string::npos)
         << run.command.out;
 }
 

@@ -109,6 +109,8 @@ struct BenchResult {
     // that do not cull on the GPU, which draw what they submit).
     std::vector<std::uint64_t> trianglesSubmitted;
     std::vector<std::uint64_t> trianglesDrawn;
+    // Of trianglesDrawn, those rasterised in compute (the visibility strategy; empty for others).
+    std::vector<std::uint64_t> trianglesCompute;
 };
 
 struct BenchReport {

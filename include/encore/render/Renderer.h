@@ -82,6 +82,13 @@ struct AnimationFrameStats {
     std::uint64_t bytesWritten = 0;
 };
 
+// What the GPU drew in one frame, by rasteriser (Renderer::takeTriangleHistory).
+struct DrawnTriangles {
+    std::uint64_t hardware = 0;  // Through the graphics pipeline.
+    std::uint64_t compute = 0;   // Rasterised in compute (the visibility strategy).
+    std::uint64_t total() const { return hardware + compute; }
+};
+
 struct FrameResult : FrameTiming {
     DrawCounters counters;        // Calls recorded into the frame's render pass(es).
     DrawCounters bundleContents;  // What the executed bundles contain (recorded once).
@@ -217,15 +224,18 @@ class Renderer {
     // to do without HDR.
     void toneMapScene();
 
-    // Triangle counting, for strategies with GPU culling: while on, every frame copies the count
-    // of triangles its culling pass let through (GpuCuller::drawnTrianglesOffset) into a history on
-    // the GPU, without waiting for anything; takeDrawnTriangles reads it back later, outside
-    // the frames being measured. Turning it on starts a new history; prepare() does too.
+    // Triangle counting, for strategies that decide on the GPU what to draw (GPU culling, the
+    // visibility buffer): while on, every frame copies the GPU's counts of what it drew
+    // (Strategy::gpuTriangleCounts) into a history on the GPU, without waiting for anything;
+    // takeTriangleHistory reads it back later, outside the frames being measured. Turning it on
+    // starts a new history; prepare() does too.
     void setTriangleCounting(bool on);
     bool triangleCounting() const { return mTriangleHistory != nullptr; }
-    // Waits for the GPU and returns one count per frame rendered since counting began (or
-    // since the last take, which starts a new history); empty when counting is off or the
-    // prepared strategy does not cull on the GPU.
+    // Waits for the GPU and returns one entry per frame rendered since counting began (or since
+    // the last take, which starts a new history); empty when counting is off or the prepared
+    // strategy does not decide on the GPU.
+    Result<std::vector<DrawnTriangles>> takeTriangleHistory();
+    // The same, as the total per frame.
     Result<std::vector<std::uint64_t>> takeDrawnTriangles();
 
     // Waits for the GPU and reads the final image back.

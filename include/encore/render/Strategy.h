@@ -59,6 +59,15 @@ struct FrameState {
 class GpuCuller;
 class GpuScene;
 
+// Where a strategy that decides on the GPU what to draw leaves the last frame's triangle counts:
+// u32 words of a CopySrc buffer, which Renderer::setTriangleCounting copies every frame.
+struct GpuTriangleCounts {
+    wgpu::Buffer buffer;
+    std::uint64_t hardwareOffset = 0;            // Triangles sent to the hardware rasteriser.
+    std::optional<std::uint64_t> computeOffset;  // Triangles rasterised in compute (visibility).
+    std::uint64_t candidates = 0;  // The triangles of a view it chooses among (CPU-known).
+};
+
 class Strategy {
   public:
     virtual ~Strategy() = default;
@@ -117,6 +126,8 @@ class Strategy {
     virtual std::uint64_t bundlesRecorded() const { return 0; }
     // The GPU culling state, for tests and tools; nullptr when the strategy does not cull.
     virtual const GpuCuller* culler() const { return nullptr; }
+    // The GPU's triangle counts of the last frame; by default the culler's (none without one).
+    virtual std::optional<GpuTriangleCounts> gpuTriangleCounts() const;
 };
 
 // With `bundle`, the strategy that draws `kind`'s frame from render bundles (see bundledKind).

@@ -26,6 +26,9 @@ class BundledStrategy final : public Strategy {
     DrawCounters bundleContents() const override { return mBundle.contents; }
     std::uint64_t bundlesRecorded() const override { return mRecordings; }
     const GpuCuller* culler() const override { return mRecorded->culler(); }
+    std::optional<GpuTriangleCounts> gpuTriangleCounts() const override {
+        return mRecorded->gpuTriangleCounts();
+    }
 
   private:
     std::unique_ptr<Strategy> mRecorded;

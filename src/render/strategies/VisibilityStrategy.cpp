@@ -36,8 +36,8 @@ constexpr std::uint64_t kBinStride = 256;  // visibility_bin_record.wgsl's recor
 constexpr std::uint64_t kCounterBytes = 64;
 // Byte offsets in visibility_raster.wgsl's Counters.
 constexpr std::uint64_t kHardwareArguments = 16;
-constexpr std::uint64_t kHardwareVertices = 16;
 constexpr std::uint64_t kComputeTriangles = 32;
+constexpr std::uint64_t kHardwareTriangles = 40;
 // The hardware list holds at most this many triangles (16 MiB); past it they are counted as an
 // overflow (visibility_raster.wgsl) rather than written.
 constexpr std::uint64_t kMaxHardwareTriangles = 4u << 20;
@@ -423,7 +423,14 @@ void VisibilityStrategy::encodeView(const wgpu::CommandEncoder& commands,
         pass.End();
     }
     commands.CopyBufferToBuffer(mCounters, kComputeTriangles, mTriangleCounts, view * 8, 4);
-    commands.CopyBufferToBuffer(mCounters, kHardwareVertices, mTriangleCounts, view * 8 + 4, 4);
+    commands.CopyBufferToBuffer(mCounters, kHardwareTriangles, mTriangleCounts, view * 8 + 4, 4);
+}
+
+std::optional<GpuTriangleCounts> VisibilityStrategy::gpuTriangleCounts() const {
+    if (!mTriangleCounts) {
+        return std::nullopt;
+    }
+    return GpuTriangleCounts{mTriangleCounts, 4, 0, mTables.triangleCount};
 }
 
 void VisibilityStrategy::encode(RenderEncoder& encoder, const FrameState& frame) const {

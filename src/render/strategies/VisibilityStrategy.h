@@ -36,10 +36,13 @@ class VisibilityStrategy final : public Strategy {
     }
 
     const VisibilityTables& tables() const { return mTables; }
-    // Per view of the last frame, two words: triangles rasterised in compute, then vertices
-    // drawn by the hardware path (3 per triangle). CopySrc usage, for read-back.
+    // Per view of the last frame, two words: triangles rasterised in compute, then triangles
+    // drawn by the hardware path. CopySrc usage, for read-back.
     const wgpu::Buffer& triangleCounts() const { return mTriangleCounts; }
     std::size_t lastViewCount() const { return mLastViewCount; }
+    // Those of the first view; MASK, BLEND, skinned and morphed geometry drawn directly is
+    // counted with the frame's direct draws (DrawCounters), not here.
+    std::optional<GpuTriangleCounts> gpuTriangleCounts() const override;
 
   private:
     Result<void> createPipelines();
