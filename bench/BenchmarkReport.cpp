@@ -89,7 +89,8 @@ nlohmann::json toJson(const BenchReport& report) {
         {"culling",
          {{"occlusion", report.options.culling.occlusion},
           {"levelsOfDetail", report.options.culling.levelsOfDetail},
-          {"lodErrorPixels", report.options.culling.lodErrorPixels}}},
+          {"lodErrorPixels", report.options.culling.lodErrorPixels},
+          {"computeRasterPixels", report.options.culling.computeRasterPixels}}},
         {"gpuWait", report.options.gpuWait == gpu::WaitMode::Spin && !report.options.callgrind
                         ? "spin"
                         : "block"},
@@ -165,6 +166,8 @@ std::string toMarkdown(const BenchReport& report) {
         << (report.options.culling.levelsOfDetail
                 ? "under " + format("%g", report.options.culling.lodErrorPixels) + " pixel(s)"
                 : std::string("off"))
+        << "; visibility: compute raster up to "
+        << format("%g", report.options.culling.computeRasterPixels) << " pixels"
         << (report.options.pathStep > 0.0f
                 ? "; flythrough and city cameras move " + format("%g", report.options.pathStep) +
                       " units per frame"

@@ -15,6 +15,13 @@ void addCullingOptions(CLI::App& command, render::CullingOptions& options) {
     command.add_flag("!--no-occlusion", options.occlusion,
                      "gpu-culling strategies: cull against the frustum only (no two-phase "
                      "occlusion culling)");
+    command
+        .add_option("--compute-raster-pixels", options.computeRasterPixels,
+                    "visibility strategy: rasterise in compute the triangles whose screen bounds "
+                    "span at most this many pixels each way, larger ones in hardware (0: all in "
+                    "hardware)")
+        ->check(CLI::Range(0.0f, 64.0f))
+        ->capture_default_str();
 }
 
 }  // namespace encore::app

@@ -9,7 +9,7 @@
 
 namespace encore::app {
 
-// --lod-error PIXELS, --no-lod, --no-occlusion.
+// --lod-error PIXELS, --no-lod, --no-occlusion, --compute-raster-pixels PIXELS.
 void addCullingOptions(CLI::App& command, render::CullingOptions& options);
 
 }  // namespace encore::app

@@ -4,6 +4,8 @@
 
 #include <cstring>
 #include <fstream>
+#include <map>
+#include <string>
 
 #include <nlohmann/json.hpp>
 
@@ -230,6 +232,35 @@ TEST(RenderCommandTest, StereoViewsFillBothHalves) {
         }
         EXPECT_GT(drawn, 100u) << "half " << half;
     }
+}
+
+// --compute-raster-pixels moves the visibility strategy's split between its rasterisers: at 0
+// every triangle goes to the hardware, at the maximum more go to compute than by default.
+TEST(BenchSmokeTest, ComputeRasterPixelsMovesTrianglesBetweenRasterisers) {
+    std::map<std::string, std::uint64_t> computeShare;
+    for (const std::string pixels : {"0", "16", "64"}) {
+        SCOPED_TRACE(pixels);
+        const auto dir = makeTempDir("bench-compute-pixels-" + pixels);
+        const auto run = runBench(dir,
+                                  "--scene city --objects 100 --frames 2 --warmup 1 -s visibility "
+                                  "--width 128 --height 128 --compute-raster-pixels " +
+                                      pixels);
+        ASSERT_EQ(run.command.exitCode, 0) << run.command.err;
+        ASSERT_FALSE(run.report.is_discarded());
+        EXPECT_EQ(run.report["culling"]["computeRasterPixels"], std::stof(pixels));
+        const auto& result = run.report["results"][0];
+        const auto drawn = result["trianglesDrawn"][0].get<std::uint64_t>();
+        const auto compute = result["trianglesCompute"][0].get<std::uint64_t>();
+        ASSERT_GT(drawn, 0u);
+        computeShare[pixels] = compute;
+        if (pixels == "0") {
+            EXPECT_EQ(compute, 0u);
+        }
+    }
+    EXPECT_LT(computeShare["0"], computeShare["16"]);
+    EXPECT_LT(computeShare["16"], computeShare["64"]);
+    const auto refused = runEncore("bench --scene city --compute-raster-pixels 65");
+    EXPECT_EQ(refused.exitCode, 2) << refused.err;
 }
 
 }  // namespace

@@ -17,8 +17,8 @@ namespace {
 TEST(StatsCommandTest, CountsTrianglesByRasteriserWhereTheGpuDecides) {
     const auto dir = makeTempDir("stats-rasterisers");
     const auto scene = dir / "scene.glb";
-    const auto generated = runEncore("gen --objects 40 --meshes 3 --materials 2 -o " +
-                                     quote(scene.string()));
+    const auto generated =
+        runEncore("gen --objects 40 --meshes 3 --materials 2 -o " + quote(scene.string()));
     ASSERT_EQ(generated.exitCode, 0) << generated.err;
     const auto result = runEncore("stats " + quote(scene.string()) +
                                   " -s bundles -s gpu-culling -s visibility -s visibility+bundle "
