@@ -90,7 +90,8 @@ nlohmann::json toJson(const BenchReport& report) {
          {{"occlusion", report.options.culling.occlusion},
           {"levelsOfDetail", report.options.culling.levelsOfDetail},
           {"lodErrorPixels", report.options.culling.lodErrorPixels},
-          {"computeRasterPixels", report.options.culling.computeRasterPixels}}},
+          {"computeRasterPixels", report.options.culling.computeRasterPixels},
+          {"workgroupRasterPixels", report.options.culling.workgroupRasterPixels}}},
         {"gpuWait", report.options.gpuWait == gpu::WaitMode::Spin && !report.options.callgrind
                         ? "spin"
                         : "block"},
@@ -167,7 +168,8 @@ std::string toMarkdown(const BenchReport& report) {
                 ? "under " + format("%g", report.options.culling.lodErrorPixels) + " pixel(s)"
                 : std::string("off"))
         << "; visibility: compute raster up to "
-        << format("%g", report.options.culling.computeRasterPixels) << " pixels"
+        << format("%g", report.options.culling.computeRasterPixels) << " pixels per thread, "
+        << format("%g", report.options.culling.workgroupRasterPixels) << " per workgroup"
         << (report.options.pathStep > 0.0f
                 ? "; flythrough and city cameras move " + format("%g", report.options.pathStep) +
                       " units per frame"

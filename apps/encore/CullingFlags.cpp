@@ -17,10 +17,16 @@ void addCullingOptions(CLI::App& command, render::CullingOptions& options) {
                      "occlusion culling)");
     command
         .add_option("--compute-raster-pixels", options.computeRasterPixels,
-                    "visibility strategy: rasterise in compute the triangles whose screen bounds "
-                    "span at most this many pixels each way, larger ones in hardware (0: all in "
-                    "hardware)")
+                    "visibility strategy: one compute thread rasterises each triangle whose "
+                    "screen bounds span at most this many pixels each way")
         ->check(CLI::Range(0.0f, 64.0f))
+        ->capture_default_str();
+    command
+        .add_option("--workgroup-raster-pixels", options.workgroupRasterPixels,
+                    "visibility strategy: a compute workgroup rasterises, in 8x8 tiles, each "
+                    "larger triangle up to this many pixels each way; larger ones go to the "
+                    "hardware (0 with --compute-raster-pixels 0: all in hardware)")
+        ->check(CLI::Range(0.0f, 112.0f))
         ->capture_default_str();
 }
 

@@ -9,7 +9,8 @@
 
 namespace encore::app {
 
-// --lod-error PIXELS, --no-lod, --no-occlusion, --compute-raster-pixels PIXELS.
+// --lod-error PIXELS, --no-lod, --no-occlusion, --compute-raster-pixels PIXELS,
+// --workgroup-raster-pixels PIXELS.
 void addCullingOptions(CLI::App& command, render::CullingOptions& options);
 
 }  // namespace encore::app

@@ -8,9 +8,11 @@ struct VisibilityParams {
     viewportY: u32,
     viewportWidth: u32,
     viewportHeight: u32,
-    // Triangles whose screen bounds are wider or taller than this go to the hardware.
+    // Triangles whose screen bounds span at most maxComputePixels each way are rasterised by one
+    // thread, up to maxWorkgroupPixels by a workgroup in tiles; larger ones by the hardware.
     maxComputePixels: f32,
     frustumTest: u32,  // 0 in multi-view frames, whose views each frame the whole scene.
     hardwareCapacity: u32,
     binCount: u32,
+    maxWorkgroupPixels: f32,
 }

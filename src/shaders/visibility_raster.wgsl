@@ -27,6 +27,7 @@ struct Counters {
     computeTriangles: atomic<u32>,  // Triangles the compute raster covered pixels of (or not).
     hardwareOverflow: atomic<u32>,  // Triangles the full hardware list could not take.
     hardwareTriangles: atomic<u32>,  // Triangles the hardware list took.
+    workgroupTriangles: atomic<u32>,  // Triangles listed for workgroupMain.
 }
 
 @group(1) @binding(4) var<storage, read_write> units: array<vec2u>;
@@ -36,6 +37,8 @@ struct Counters {
 // dispatchWorkgroupsIndirect arguments of rasterMain, written by argsMain (bound alone with the
 // counters: a buffer read as indirect arguments cannot be writable in the same dispatch).
 @group(1) @binding(8) var<storage, read_write> rasterArguments: vec3u;
+// Triangles (ids) too large for one thread, which workgroupMain covers.
+@group(1) @binding(9) var<storage, read_write> workgroupList: array<u32>;
 
 const kMaxGroups = 65535u;
 
@@ -79,11 +82,19 @@ fn cullMain(@builtin(workgroup_id) group: vec3u, @builtin(local_invocation_index
     }
 }
 
+fn dispatchSize(count: u32) -> vec3u {
+    return vec3u(min(count, kMaxGroups), max(1u, (count + kMaxGroups - 1u) / kMaxGroups), 1u);
+}
+
 @compute @workgroup_size(1)
 fn argsMain() {
-    let count = atomicLoad(&counters.unitCount);
-    rasterArguments = vec3u(min(count, kMaxGroups), max(1u, (count + kMaxGroups - 1u) / kMaxGroups),
-                            1u);
+    rasterArguments = dispatchSize(atomicLoad(&counters.unitCount));
+}
+
+@compute @workgroup_size(1)
+fn workgroupArgsMain() {
+    rasterArguments = dispatchSize(min(atomicLoad(&counters.workgroupTriangles),
+                                       arrayLength(&workgroupList)));
 }
 
 // Sub-pixel precision of the snapped vertices, as the hardware's (8 bits).
@@ -120,8 +131,38 @@ fn windowPosition(clip: vec4f) -> vec3f {
                  -ndc.y * halfHeight + (f32(params.viewportY) + halfHeight), ndc.z);
 }
 
-// Returns whether the compute raster drew the triangle (front-facing, on screen, not degenerate).
-fn rasterTriangle(id: u32, item: Item, transform: Transform, triangle: u32) -> bool {
+// Where prepareTriangle sends a triangle.
+const kRouteNone = 0u;       // Nothing to draw: outside, back-facing, degenerate, or handed on.
+const kRouteThread = 1u;     // Small: one thread covers its pixels.
+const kRouteWorkgroup = 2u;  // Larger: a workgroup covers its pixels in 8x8 tiles.
+
+// A triangle set up for the compute raster: vertices snapped to 1/256 pixel relative to its
+// first pixel, wound so that inside is positive, with the fill rule's biases.
+struct RasterTriangle {
+    route: u32,
+    first: vec2i,  // The pixels whose centres it may cover, inside the viewport.
+    last: vec2i,
+    v0: vec2i,
+    v1: vec2i,
+    v2: vec2i,
+    z: vec3f,
+    bias: vec3i,
+    inverseArea: f32,
+}
+
+fn facesTheCamera(c0: vec4f, c1: vec4f, c2: vec4f, item: Item) -> bool {
+    let det = determinant(mat3x3f(c0.xyw, c1.xyw, c2.xyw));
+    let front = (det > 0.0) != (item.mirrored != 0u);
+    return det != 0.0 && (front || field(item.record, kDoubleSided) != 0u);
+}
+
+// Clips, sizes and snaps triangle `triangle` of `item`. Triangles that cross the near or far
+// plane, or span more than the workgroup path takes, go to the hardware list here (when
+// `handOn`: the workgroup pass sets the same triangle up again and must not list it twice).
+fn prepareTriangle(id: u32, item: Item, transform: Transform, triangle: u32, handOn: bool)
+    -> RasterTriangle {
+    var t: RasterTriangle;
+    t.route = kRouteNone;
     let record = item.record;
     let c0 = clipPosition(worldPosition(record, transform, vertexIndex(record, triangle, 0u)));
     let c1 = clipPosition(worldPosition(record, transform, vertexIndex(record, triangle, 1u)));
@@ -133,86 +174,100 @@ fn rasterTriangle(id: u32, item: Item, transform: Transform, triangle: u32) -> b
     // Wholly outside one clip plane: nothing to draw anywhere.
     if (all(xs < -ws) || all(xs > ws) || all(ys < -ws) || all(ys > ws) || all(zs < vec3f(0.0)) ||
         all(zs > ws)) {
-        return false;
+        return t;
     }
-    let doubleSided = field(record, kDoubleSided) != 0u;
     if (any(zs < vec3f(0.0)) || any(zs > ws) || any(ws <= vec3f(0.0))) {
         // Crosses the near or far plane: the hardware clips. Facing from the homogeneous
         // determinant, which holds on either side of w = 0.
-        let det = determinant(mat3x3f(c0.xyw, c1.xyw, c2.xyw));
-        let front = (det > 0.0) != (item.mirrored != 0u);
-        if (det != 0.0 && (front || doubleSided)) {
+        if (handOn && facesTheCamera(c0, c1, c2, item)) {
             toHardware(id);
         }
-        return false;
+        return t;
     }
     let p0 = windowPosition(c0);
     let p1 = windowPosition(c1);
     let p2 = windowPosition(c2);
     let low = min(p0.xy, min(p1.xy, p2.xy));
     let high = max(p0.xy, max(p1.xy, p2.xy));
-    if (any(high - low > vec2f(params.maxComputePixels))) {
-        let det = determinant(mat3x3f(c0.xyw, c1.xyw, c2.xyw));
-        let front = (det > 0.0) != (item.mirrored != 0u);
-        if (det != 0.0 && (front || doubleSided)) {
+    let span = max(high.x - low.x, high.y - low.y);
+    if (span > max(params.maxComputePixels, params.maxWorkgroupPixels)) {
+        if (handOn && facesTheCamera(c0, c1, c2, item)) {
             toHardware(id);
         }
-        return false;
+        return t;
     }
     // Pixels whose centres may be covered (a pixel more each way: snapping moves vertices),
     // inside the viewport.
     let viewMin = vec2i(i32(params.viewportX), i32(params.viewportY));
     let viewMax = viewMin + vec2i(i32(params.viewportWidth), i32(params.viewportHeight)) - 1;
-    let first = max(vec2i(floor(low - 0.5)), viewMin);
-    let last = min(vec2i(ceil(high - 0.5)), viewMax);
-    if (any(last < first)) {
-        return false;
+    t.first = max(vec2i(floor(low - 0.5)), viewMin);
+    t.last = min(vec2i(ceil(high - 0.5)), viewMax);
+    if (any(t.last < t.first)) {
+        return t;
     }
     // Fixed point relative to the first pixel, so that products stay within 32 bits.
-    let origin = vec2f(first) * kSubpixels;
-    var v0 = vec2i(round(p0.xy * kSubpixels - origin));
-    var v1 = vec2i(round(p1.xy * kSubpixels - origin));
-    var v2 = vec2i(round(p2.xy * kSubpixels - origin));
-    var z0 = p0.z;
-    var z1 = p1.z;
-    var z2 = p2.z;
-    var area = edge(v0, v1, v2);
+    let origin = vec2f(t.first) * kSubpixels;
+    t.v0 = vec2i(round(p0.xy * kSubpixels - origin));
+    t.v1 = vec2i(round(p1.xy * kSubpixels - origin));
+    t.v2 = vec2i(round(p2.xy * kSubpixels - origin));
+    t.z = vec3f(p0.z, p1.z, p2.z);
+    var area = edge(t.v0, t.v1, t.v2);
     if (area == 0) {
-        return false;  // Degenerate once snapped: the hardware draws nothing either.
+        return t;  // Degenerate once snapped: the hardware draws nothing either.
     }
     // Counter-clockwise in normalised device coordinates (front for glTF) turns clockwise on the
     // y-down screen: area < 0. Mirrored instances face the other way.
     let front = (area < 0) != (item.mirrored != 0u);
-    if (!front && !doubleSided) {
-        return false;
+    if (!front && field(record, kDoubleSided) == 0u) {
+        return t;
     }
     if (area < 0) {
-        let swap = v1;
-        v1 = v2;
-        v2 = swap;
-        let swapZ = z1;
-        z1 = z2;
-        z2 = swapZ;
+        let swap = t.v1;
+        t.v1 = t.v2;
+        t.v2 = swap;
+        t.z = t.z.xzy;
         area = -area;
     }
-    let bias0 = topLeftBias(v1, v2);
-    let bias1 = topLeftBias(v2, v0);
-    let bias2 = topLeftBias(v0, v1);
-    let inverseArea = 1.0 / f32(area);
+    t.bias = vec3i(topLeftBias(t.v1, t.v2), topLeftBias(t.v2, t.v0), topLeftBias(t.v0, t.v1));
+    t.inverseArea = 1.0 / f32(area);
+    t.route = select(kRouteWorkgroup, kRouteThread, span <= params.maxComputePixels);
+    return t;
+}
+
+// Writes (depth, id) at `pixel` if its centre is inside the triangle under the top-left rule.
+fn coverPixel(t: RasterTriangle, id: u32, pixel: vec2i) {
     let half = i32(kSubpixels) / 2;
-    for (var y = first.y; y <= last.y; y++) {
-        for (var x = first.x; x <= last.x; x++) {
-            let p = (vec2i(x, y) - first) * i32(kSubpixels) + vec2i(half);
-            let e0 = edge(v1, v2, p);
-            let e1 = edge(v2, v0, p);
-            let e2 = edge(v0, v1, p);
-            if (e0 + bias0 < 0 || e1 + bias1 < 0 || e2 + bias2 < 0) {
-                continue;
-            }
-            let depth = clamp((f32(e0) * z0 + f32(e1) * z1 + f32(e2) * z2) * inverseArea, 0.0,
-                              1.0);
-            let pixel = u32(y) * params.targetWidth + u32(x);
-            atomicStoreMax(&visibility[pixel], vec2u(id, ~bitcast<u32>(depth)));
+    let p = (pixel - t.first) * i32(kSubpixels) + vec2i(half);
+    let e0 = edge(t.v1, t.v2, p);
+    let e1 = edge(t.v2, t.v0, p);
+    let e2 = edge(t.v0, t.v1, p);
+    if (e0 + t.bias.x < 0 || e1 + t.bias.y < 0 || e2 + t.bias.z < 0) {
+        return;
+    }
+    let depth = clamp(dot(vec3f(f32(e0), f32(e1), f32(e2)), t.z) * t.inverseArea, 0.0, 1.0);
+    let index = u32(pixel.y) * params.targetWidth + u32(pixel.x);
+    atomicStoreMax(&visibility[index], vec2u(id, ~bitcast<u32>(depth)));
+}
+
+// Returns whether the compute raster takes the triangle (front-facing, on screen, not
+// degenerate): small ones it covers here, larger ones it lists for workgroupMain.
+fn rasterTriangle(id: u32, item: Item, transform: Transform, triangle: u32) -> bool {
+    let t = prepareTriangle(id, item, transform, triangle, true);
+    if (t.route == kRouteWorkgroup) {
+        let slot = atomicAdd(&counters.workgroupTriangles, 1u);
+        if (slot < arrayLength(&workgroupList)) {
+            workgroupList[slot] = id;
+            return true;
+        }
+        toHardware(id);  // The list is full.
+        return false;
+    }
+    if (t.route != kRouteThread) {
+        return false;
+    }
+    for (var y = t.first.y; y <= t.last.y; y++) {
+        for (var x = t.first.x; x <= t.last.x; x++) {
+            coverPixel(t, id, vec2i(x, y));
         }
     }
     return true;
@@ -247,5 +302,34 @@ fn rasterMain(@builtin(workgroup_id) group: vec3u, @builtin(local_invocation_ind
     workgroupBarrier();
     if (lane == 0u) {
         atomicAdd(&counters.computeTriangles, atomicLoad(&rasterised));
+    }
+}
+
+var<workgroup> listed: u32;
+
+// One workgroup per listed triangle: its 64 threads walk the triangle's pixels in 8x8 tiles.
+@compute @workgroup_size(64)
+fn workgroupMain(@builtin(workgroup_id) group: vec3u,
+                 @builtin(local_invocation_index) lane: u32) {
+    let slot = group.y * kMaxGroups + group.x;
+    if (lane == 0u) {
+        listed = min(atomicLoad(&counters.workgroupTriangles), arrayLength(&workgroupList));
+    }
+    if (slot >= workgroupUniformLoad(&listed)) {
+        return;
+    }
+    let id = workgroupList[slot];
+    let unit = units[id / kUnitTriangles];
+    let item = loadItem(unit.x);
+    let t = prepareTriangle(id, item, instances[item.slot], unit.y + id % kUnitTriangles, false);
+    let size = t.last - t.first + 1;
+    let columns = (size.x + 7) / 8;
+    let tiles = columns * ((size.y + 7) / 8);
+    let offset = vec2i(i32(lane % 8u), i32(lane / 8u));
+    for (var tile = 0; tile < tiles; tile++) {
+        let pixel = t.first + vec2i(tile % columns, tile / columns) * 8 + offset;
+        if (all(pixel <= t.last)) {
+            coverPixel(t, id, pixel);
+        }
     }
 }

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <map>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -234,33 +235,38 @@ TEST(RenderCommandTest, StereoViewsFillBothHalves) {
     }
 }
 
-// --compute-raster-pixels moves the visibility strategy's split between its rasterisers: at 0
-// every triangle goes to the hardware, at the maximum more go to compute than by default.
-TEST(BenchSmokeTest, ComputeRasterPixelsMovesTrianglesBetweenRasterisers) {
-    std::map<std::string, std::uint64_t> computeShare;
-    for (const std::string pixels : {"0", "16", "64"}) {
-        SCOPED_TRACE(pixels);
-        const auto dir = makeTempDir("bench-compute-pixels-" + pixels);
-        const auto run = runBench(dir,
-                                  "--scene city --objects 100 --frames 2 --warmup 1 -s visibility "
-                                  "--width 128 --height 128 --compute-raster-pixels " +
-                                      pixels);
+// --compute-raster-pixels and --workgroup-raster-pixels move the visibility strategy's split
+// between its rasterisers: at 0 and 0 every triangle goes to the hardware; one thread per
+// triangle takes the small ones, workgroups then the larger ones.
+TEST(BenchSmokeTest, RasterThresholdsMoveTrianglesBetweenRasterisers) {
+    struct Split {
+        std::string thread, workgroup;
+    };
+    std::vector<std::uint64_t> computed;
+    for (const Split& split : {Split{"0", "0"}, Split{"16", "0"}, Split{"16", "112"}}) {
+        SCOPED_TRACE(split.thread + " / " + split.workgroup);
+        const auto dir = makeTempDir("bench-raster-" + split.thread + "-" + split.workgroup);
+        const auto run =
+            runBench(dir,
+                     "--scene city --objects 100 --frames 2 --warmup 1 -s visibility "
+                     "--width 128 --height 128 --compute-raster-pixels " +
+                         split.thread + " --workgroup-raster-pixels " + split.workgroup);
         ASSERT_EQ(run.command.exitCode, 0) << run.command.err;
         ASSERT_FALSE(run.report.is_discarded());
-        EXPECT_EQ(run.report["culling"]["computeRasterPixels"], std::stof(pixels));
+        EXPECT_EQ(run.report["culling"]["computeRasterPixels"], std::stof(split.thread));
+        EXPECT_EQ(run.report["culling"]["workgroupRasterPixels"], std::stof(split.workgroup));
         const auto& result = run.report["results"][0];
-        const auto drawn = result["trianglesDrawn"][0].get<std::uint64_t>();
-        const auto compute = result["trianglesCompute"][0].get<std::uint64_t>();
-        ASSERT_GT(drawn, 0u);
-        computeShare[pixels] = compute;
-        if (pixels == "0") {
-            EXPECT_EQ(compute, 0u);
-        }
+        ASSERT_GT(result["trianglesDrawn"][0].get<std::uint64_t>(), 0u);
+        computed.push_back(result["trianglesCompute"][0].get<std::uint64_t>());
     }
-    EXPECT_LT(computeShare["0"], computeShare["16"]);
-    EXPECT_LT(computeShare["16"], computeShare["64"]);
-    const auto refused = runEncore("bench --scene city --compute-raster-pixels 65");
-    EXPECT_EQ(refused.exitCode, 2) << refused.err;
+    ASSERT_EQ(computed.size(), 3u);
+    EXPECT_EQ(computed[0], 0u);
+    EXPECT_LT(computed[0], computed[1]);
+    EXPECT_LT(computed[1], computed[2]);
+    for (const char* refused : {"--compute-raster-pixels 65", "--workgroup-raster-pixels 113"}) {
+        const auto run = runEncore(std::string("bench --scene city ") + refused);
+        EXPECT_EQ(run.exitCode, 2) << refused << ": " << run.err;
+    }
 }
 
 }  // namespace

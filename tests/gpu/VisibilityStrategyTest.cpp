@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <set>
@@ -34,7 +35,8 @@ image::ImageRgba8 render(gpu::Context& context,
                          StrategyKind kind,
                          const Camera& camera,
                          DebugChannel channel,
-                         float computePixels = VisibilityStrategy::kDefaultComputePixels) {
+                         float computePixels = VisibilityStrategy::kDefaultComputePixels,
+                         float workgroupPixels = VisibilityStrategy::kMaxWorkgroupPixels) {
     RendererOptions options = test::pixelTestOptions(kWidth, kHeight, 1, channel);
     auto renderer = Renderer::create(context, options);
     EXPECT_TRUE(renderer.ok());
@@ -43,6 +45,7 @@ image::ImageRgba8 render(gpu::Context& context,
     }
     CullingOptions culling{.occlusion = true, .levelsOfDetail = false};
     culling.computeRasterPixels = computePixels;
+    culling.workgroupRasterPixels = workgroupPixels;
     renderer->setCullingOptions(culling);
     auto prepared = renderer->prepare(scene, kind);
     EXPECT_TRUE(prepared.ok()) << prepared.error().message;
@@ -238,9 +241,39 @@ TEST(VisibilityFillRuleTest, SubPixelDegenerateAndScreenEdgeTrianglesAsTheHardwa
     expectSameCoverage(*context, triangles(list), kFront, 6);
 }
 
-TEST(VisibilityFillRuleTest, NearPlaneAndLargeTrianglesGoToTheHardware) {
+// The triangle counts of the last frame of `scene`: rasterised in compute, drawn by hardware.
+std::array<std::uint32_t, 2> rasteriserCounts(gpu::Context& context,
+                                              const scene::SceneData& scene,
+                                              float workgroupPixels) {
+    auto renderer = Renderer::create(context, test::pixelTestOptions(kWidth, kHeight));
+    EXPECT_TRUE(renderer.ok());
+    if (!renderer.ok()) {
+        return {};
+    }
+    CullingOptions culling;
+    culling.workgroupRasterPixels = workgroupPixels;
+    renderer->setCullingOptions(culling);
+    EXPECT_TRUE(renderer->prepare(scene, StrategyKind::Visibility).ok());
+    renderer->renderFrame(kFront);
+    const auto* visibility = dynamic_cast<const VisibilityStrategy*>(renderer->strategy());
+    EXPECT_NE(visibility, nullptr);
+    if (!visibility) {
+        return {};
+    }
+    EXPECT_EQ(visibility->lastViewCount(), 1u);
+    auto counts = gpu::readBuffer(context, visibility->triangleCounts(), 0, 8);
+    EXPECT_TRUE(counts.ok());
+    std::array<std::uint32_t, 2> words{};
+    if (counts.ok()) {
+        std::memcpy(words.data(), counts->data(), 8);
+    }
+    return words;
+}
+
+TEST(VisibilityFillRuleTest, NearPlaneTrianglesGoToTheHardwareLargeOnesToWorkgroups) {
     ENCORE_REQUIRE_VULKAN(context);
-    // One triangle from behind the camera (z = 3) to the far side, one large on screen.
+    // One triangle from behind the camera (z = 3) to the far side, one large on screen (about
+    // 64 by 40 pixels), one small.
     const std::vector<std::array<glm::vec3, 3>> list = {
         {glm::vec3(-2, -2.5f, 5), glm::vec3(2, -2.5f, 5), glm::vec3(0, -1.0f, -4)},
         {glm::vec3(-3, 0, -1), glm::vec3(1, 0.5f, -1), glm::vec3(-1, 2.5f, -1)},
@@ -248,20 +281,35 @@ TEST(VisibilityFillRuleTest, NearPlaneAndLargeTrianglesGoToTheHardware) {
     };
     const auto scene = triangles(list);
     expectSameCoverage(*context, scene, kFront, 4);
+    // By default the large one goes to a workgroup; without workgroups, to the hardware.
+    EXPECT_EQ(rasteriserCounts(*context, scene, VisibilityStrategy::kMaxWorkgroupPixels),
+              (std::array<std::uint32_t, 2>{2, 1}));
+    EXPECT_EQ(rasteriserCounts(*context, scene, 0.0f), (std::array<std::uint32_t, 2>{1, 2}));
+    const auto hardware =
+        render(*context, scene, StrategyKind::Visibility, kFront, DebugChannel::BaseColor,
+               VisibilityStrategy::kDefaultComputePixels, 0.0f);
+    const auto workgroups =
+        render(*context, scene, StrategyKind::Visibility, kFront, DebugChannel::BaseColor);
+    EXPECT_EQ(test::differingPixels(hardware, workgroups, 1), 0u);
+}
 
-    auto renderer = Renderer::create(*context, test::pixelTestOptions(kWidth, kHeight));
-    ASSERT_TRUE(renderer.ok());
-    ASSERT_TRUE(renderer->prepare(scene, StrategyKind::Visibility).ok());
-    renderer->renderFrame(kFront);
-    const auto* visibility = dynamic_cast<const VisibilityStrategy*>(renderer->strategy());
-    ASSERT_NE(visibility, nullptr);
-    ASSERT_EQ(visibility->lastViewCount(), 1u);
-    auto counts = gpu::readBuffer(*context, visibility->triangleCounts(), 0, 8);
-    ASSERT_TRUE(counts.ok());
-    std::uint32_t words[2];
-    std::memcpy(words, counts->data(), 8);
-    EXPECT_EQ(words[0], 1u) << "triangles rasterised in compute";
-    EXPECT_EQ(words[1], 2u) << "triangles drawn by the hardware";
+TEST(VisibilityFillRuleTest, LargeQuadAndFanSharedEdgesAsTheHardware) {
+    ENCORE_REQUIRE_VULKAN(context);
+    // Between 16 and 112 pixels across: the workgroup path, in tiles that cross the edges.
+    const glm::vec3 a{-3.7f, -2.6f, 0}, b{-0.4f, -2.9f, 0}, c{-0.6f, 0.35f, 0}, d{-3.45f, 0.5f, 0};
+    std::vector<std::array<glm::vec3, 3>> list = {{a, b, c}, {a, c, d}};
+    // A fan of seven around an off-pixel centre, radius about 40 pixels.
+    const glm::vec3 centre{1.73f, 0.41f, 0.0f};
+    for (int i = 0; i < 7; ++i) {
+        const float a0 = float(i) * 0.897598f;
+        const float a1 = float(i + 1) * 0.897598f;
+        list.push_back({centre, centre + 2.45f * glm::vec3(std::cos(a0), std::sin(a0), 0),
+                        centre + 2.45f * glm::vec3(std::cos(a1), std::sin(a1), 0)});
+    }
+    const auto scene = triangles(list);
+    expectSameCoverage(*context, scene, kFront, 10);
+    EXPECT_EQ(rasteriserCounts(*context, scene, VisibilityStrategy::kMaxWorkgroupPixels),
+              (std::array<std::uint32_t, 2>{9, 0}));
 }
 
 TEST(VisibilityFallbackTest, MaskBlendAndSkinnedGeometryIsDrawn) {

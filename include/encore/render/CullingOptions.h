@@ -14,9 +14,12 @@ struct CullingOptions {
     // on the screen, stays under `lodErrorPixels` (level 0, the mesh as loaded, when off).
     bool levelsOfDetail = true;
     float lodErrorPixels = 1.0f;
-    // The visibility strategy: triangles whose screen bounds span at most this many pixels
-    // each way are rasterised in compute, larger ones by the hardware (at most 64).
+    // The visibility strategy: triangles whose screen bounds span at most computeRasterPixels
+    // each way are rasterised in compute by one thread (at most 64), those up to
+    // workgroupRasterPixels by a workgroup in 8x8 tiles (at most 112), larger ones by the
+    // hardware.
     float computeRasterPixels = 16.0f;
+    float workgroupRasterPixels = 112.0f;
 
     bool operator==(const CullingOptions&) const = default;
 };

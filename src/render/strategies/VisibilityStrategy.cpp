@@ -27,7 +27,8 @@ struct ViewParams {
     std::uint32_t frustumTest = 0;
     std::uint32_t hardwareCapacity = 0;
     std::uint32_t binCount = 0;
-    std::uint32_t padding[2] = {};
+    float maxWorkgroupPixels = 0.0f;
+    std::uint32_t padding = 0;
 };
 static_assert(sizeof(ViewParams) == 48);
 
@@ -99,6 +100,9 @@ Result<void> VisibilityStrategy::prepare(const RenderSetup& setup, const GpuScen
     mHardwareList =
         gpu::createBuffer(device, wgpu::BufferUsage::Storage, std::uint64_t(mHardwareCapacity) * 4,
                           "visibility hardware triangles");
+    mWorkgroupList =
+        gpu::createBuffer(device, wgpu::BufferUsage::Storage, std::uint64_t(mHardwareCapacity) * 4,
+                          "visibility workgroup triangles");
     mCounters = gpu::createBuffer(device,
                                   wgpu::BufferUsage::Storage | wgpu::BufferUsage::Indirect |
                                       wgpu::BufferUsage::CopyDst | wgpu::BufferUsage::CopySrc,
@@ -134,14 +138,17 @@ Result<void> VisibilityStrategy::createPipelines() {
         device, {LayoutEntry::uniform(0, kCompute | vertex | fragment, sizeof(FrameUniform))},
         "visibility frame");
     mArgumentsLayout = gpu::makeBindGroupLayout(
-        device, {LayoutEntry::storage(5, kCompute), LayoutEntry::storage(8, kCompute)},
+        device,
+        {LayoutEntry::storage(5, kCompute), LayoutEntry::storage(8, kCompute),
+         LayoutEntry::storage(9, kCompute)},
         "visibility raster arguments");
     mRasterLayout = gpu::makeBindGroupLayout(
         device,
         {params, LayoutEntry::readOnlyStorage(1, kCompute),
          LayoutEntry::readOnlyStorage(2, kCompute), LayoutEntry::readOnlyStorage(3, kCompute),
          LayoutEntry::storage(4, kCompute), LayoutEntry::storage(5, kCompute),
-         LayoutEntry::storage(6, kCompute), LayoutEntry::storage(7, kCompute)},
+         LayoutEntry::storage(6, kCompute), LayoutEntry::storage(7, kCompute),
+         LayoutEntry::storage(9, kCompute)},
         "visibility raster");
     mHardwareLayout = gpu::makeBindGroupLayout(
         device,
@@ -177,12 +184,16 @@ Result<void> VisibilityStrategy::createPipelines() {
     mCull = computePipeline(device, raster, "cullMain", {mFrameOnlyLayout, mRasterLayout});
     mRasterArgs = computePipeline(device, raster, "argsMain", {mFrameOnlyLayout, mArgumentsLayout});
     mRaster = computePipeline(device, raster, "rasterMain", {mFrameOnlyLayout, mRasterLayout});
+    mWorkgroupArgs =
+        computePipeline(device, raster, "workgroupArgsMain", {mFrameOnlyLayout, mArgumentsLayout});
+    mWorkgroupRaster =
+        computePipeline(device, raster, "workgroupMain", {mFrameOnlyLayout, mRasterLayout});
     mFrameOnlyGroup = gpu::makeBindGroup(device, mFrameOnlyLayout,
                                          {{0, mSetup->frame->buffer(), 0, sizeof(FrameUniform)}},
                                          "visibility frame");
-    mArgumentsGroup =
-        gpu::makeBindGroup(device, mArgumentsLayout, {{5, mCounters}, {8, mRasterArguments}},
-                           "visibility raster arguments");
+    mArgumentsGroup = gpu::makeBindGroup(
+        device, mArgumentsLayout, {{5, mCounters}, {8, mRasterArguments}, {9, mWorkgroupList}},
+        "visibility raster arguments");
 
     ENCORE_TRY_ASSIGN(auto bins, library.module("visibility_bins.wgsl"));
     mBinCount = computePipeline(device, bins, "countMain", {mBinLayout});
@@ -283,7 +294,8 @@ void VisibilityStrategy::ensureTarget(std::uint32_t width,
                                        {4, mUnits},
                                        {5, mCounters},
                                        {6, mHardwareList},
-                                       {7, mVisibility}},
+                                       {7, mVisibility},
+                                       {9, mWorkgroupList}},
                                       "visibility raster");
     mHardwareGroup = gpu::makeBindGroup(device, mHardwareLayout,
                                         {params,
@@ -331,6 +343,8 @@ void VisibilityStrategy::beforePass(const wgpu::CommandEncoder& commands, const 
         p.viewportWidth = viewWidth;
         p.viewportHeight = frame.targetHeight;
         p.maxComputePixels = std::clamp(frame.culling.computeRasterPixels, 0.0f, kMaxComputePixels);
+        p.maxWorkgroupPixels =
+            std::clamp(frame.culling.workgroupRasterPixels, 0.0f, kMaxWorkgroupPixels);
         p.frustumTest = views == 1 ? 1 : 0;
         p.hardwareCapacity = mHardwareCapacity;
         p.binCount = mTables.binCount;
@@ -371,6 +385,12 @@ void VisibilityStrategy::encodeView(const wgpu::CommandEncoder& commands,
         pass.SetBindGroup(1, mArgumentsGroup);
         pass.DispatchWorkgroups(1);
         pass.SetPipeline(mRaster);
+        pass.SetBindGroup(1, mRasterGroup, 1, &paramsOffset);
+        pass.DispatchWorkgroupsIndirect(mRasterArguments, 0);
+        pass.SetPipeline(mWorkgroupArgs);
+        pass.SetBindGroup(1, mArgumentsGroup);
+        pass.DispatchWorkgroups(1);
+        pass.SetPipeline(mWorkgroupRaster);
         pass.SetBindGroup(1, mRasterGroup, 1, &paramsOffset);
         pass.DispatchWorkgroupsIndirect(mRasterArguments, 0);
         pass.End();

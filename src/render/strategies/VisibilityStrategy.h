@@ -21,10 +21,13 @@ namespace encore::render {
 // Needs the AtomicVec2uMinMax feature; prepare() fails naming it otherwise.
 class VisibilityStrategy final : public Strategy {
   public:
-    // Bounds of the compute raster's triangle size (wider or taller goes to the hardware):
-    // the fixed-point edge functions stay within 32 bits up to kMaxComputePixels.
+    // Bounds of the compute raster's triangle sizes, pixels each way: one thread covers those
+    // up to computeRasterPixels, a workgroup in tiles those up to workgroupRasterPixels, the
+    // hardware larger ones. The fixed-point edge functions, relative to the triangle's first
+    // pixel, stay within 32 bits up to 112 pixels.
     static constexpr float kMaxComputePixels = 64.0f;
     static constexpr float kDefaultComputePixels = 16.0f;
+    static constexpr float kMaxWorkgroupPixels = 112.0f;
 
     StrategyKind kind() const override { return StrategyKind::Visibility; }
     Result<void> prepare(const RenderSetup& setup, const GpuScene& scene) override;
@@ -64,6 +67,7 @@ class VisibilityStrategy final : public Strategy {
     wgpu::Buffer mCounters;
     wgpu::Buffer mInitialCounters;
     wgpu::Buffer mHardwareList;
+    wgpu::Buffer mWorkgroupList;  // Triangles a workgroup covers (visibility_raster.wgsl).
     std::uint32_t mHardwareCapacity = 0;
     wgpu::Buffer mRasterArguments;
     wgpu::Buffer mBins;
@@ -92,6 +96,8 @@ class VisibilityStrategy final : public Strategy {
     wgpu::ComputePipeline mCull;
     wgpu::ComputePipeline mRasterArgs;
     wgpu::ComputePipeline mRaster;
+    wgpu::ComputePipeline mWorkgroupArgs;
+    wgpu::ComputePipeline mWorkgroupRaster;
     wgpu::RenderPipeline mHardware;
     wgpu::ComputePipeline mBinCount;
     wgpu::ComputePipeline mBinOffsets;
