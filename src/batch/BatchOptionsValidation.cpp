@@ -104,10 +104,17 @@ Result<void> validateBatchOptions(const BatchOptions& options) {
         return makeError(ErrorCode::InvalidArgument,
                          "An EXR depth format asks for depth images: add --depth (depth=True).");
     }
-    if (options.images.segmentation && strategy.kind == render::StrategyKind::Visibility) {
+    const bool meshMaterials = strategy.kind == render::StrategyKind::Materials ||
+                               strategy.kind == render::StrategyKind::Bundles ||
+                               strategy.kind == render::StrategyKind::GpuCulling ||
+                               strategy.kind == render::StrategyKind::GpuCullingBundles;
+    if ((options.images.albedo || options.images.material || options.images.segmentation) &&
+        !meshMaterials) {
         return makeError(ErrorCode::InvalidArgument,
-                         "The visibility strategy draws no segmentation ids: use another "
-                         "strategy.");
+                         "The albedo, material and segmentation passes need a strategy that "
+                         "draws glTF materials in its mesh shader (materials, bundles, "
+                         "gpu-culling, gpu-culling-bundles), not " +
+                             render::strategyChoiceName(strategy) + ".");
     }
     if (options.renderers < 1 || options.renderers > kMaxRenderers) {
         return makeError(ErrorCode::InvalidArgument,

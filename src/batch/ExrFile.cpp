@@ -38,8 +38,8 @@ class MemoryStream : public Imf::OStream {
 };
 
 Error exrError(const std::exception& error) {
-    return Error{ErrorCode::IoError, std::string("OpenEXR could not write the image: ") +
-                                         error.what()};
+    return Error{ErrorCode::IoError,
+                 std::string("OpenEXR could not write the image: ") + error.what()};
 }
 
 }  // namespace
@@ -48,8 +48,9 @@ Result<std::vector<std::uint8_t>> encodeExrDepth(std::span<const float> depth,
                                                  std::uint32_t width,
                                                  std::uint32_t height) {
     if (depth.size() != std::size_t(width) * height || width == 0 || height == 0) {
-        return makeError(ErrorCode::InvalidArgument, "An EXR depth image needs width x height "
-                                                     "values and at least one pixel.");
+        return makeError(ErrorCode::InvalidArgument,
+                         "An EXR depth image needs width x height "
+                         "values and at least one pixel.");
     }
     try {
         Imf::Header header{int(width), int(height)};
@@ -75,8 +76,9 @@ Result<std::vector<std::uint8_t>> encodeExrRgbaHalf(std::span<const float> rgba,
                                                     std::uint32_t width,
                                                     std::uint32_t height) {
     if (rgba.size() != std::size_t(width) * height * 4 || width == 0 || height == 0) {
-        return makeError(ErrorCode::InvalidArgument, "An EXR RGBA image needs width x height x 4 "
-                                                     "values and at least one pixel.");
+        return makeError(ErrorCode::InvalidArgument,
+                         "An EXR RGBA image needs width x height x 4 "
+                         "values and at least one pixel.");
     }
     std::vector<half> halves(rgba.size());
     for (std::size_t i = 0; i < rgba.size(); ++i) {

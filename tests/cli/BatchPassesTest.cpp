@@ -57,11 +57,11 @@ fs::path writeQuads(const fs::path& dir) {
         const auto indices = builder.addIndices<std::uint16_t>({0, 1, 2, 0, 2, 3});
         const auto material = builder.addMaterial(
             {.baseColor = quad.color, .metallic = quad.metallic, .roughness = quad.roughness});
-        const auto mesh = builder.addMesh(
-            {{{.attributes = {{"POSITION", positions}, {"NORMAL", normals}},
-               .indices = indices,
-               .material = material}}},
-            std::string(quad.name) + " mesh");
+        const auto mesh =
+            builder.addMesh({{{.attributes = {{"POSITION", positions}, {"NORMAL", normals}},
+                               .indices = indices,
+                               .material = material}}},
+                            std::string(quad.name) + " mesh");
         nodes.push_back(builder.addNode({.mesh = mesh, .name = quad.name}));
     }
     builder.addScene(nodes);
@@ -197,8 +197,8 @@ TEST(BatchPassesTest, SegmentationByMeshAndMaterialNamesThem) {
     const fs::path input = writeQuads(makeTempDir("batch-passes-by-input"));
     const fs::path output = makeTempDir("batch-passes-by-output");
     for (const char* by : {"mesh", "material"}) {
-        const CommandResult run = runEncore(batchArguments(
-            input, output / by, kView + "--segmentation --segmentation-by " + by));
+        const CommandResult run = runEncore(
+            batchArguments(input, output / by, kView + "--segmentation --segmentation-by " + by));
         ASSERT_EQ(run.exitCode, 0) << run.out << run.err;
         std::uint32_t width = 0;
         const auto ids = readGray16(output / by / "quads/000_segmentation.png", width);
@@ -218,8 +218,8 @@ TEST(BatchPassesTest, SegmentationByMeshAndMaterialNamesThem) {
 TEST(BatchPassesTest, HdrHoldsRadianceWhereThePngSaturates) {
     const fs::path input = writeQuads(makeTempDir("batch-passes-hdr-input"));
     const fs::path output = makeTempDir("batch-passes-hdr-output");
-    const CommandResult run = runEncore(batchArguments(
-        input, output, kView + "--hdr --tonemap none --environment-intensity 6"));
+    const CommandResult run = runEncore(
+        batchArguments(input, output, kView + "--hdr --tonemap none --environment-intensity 6"));
     ASSERT_EQ(run.exitCode, 0) << run.out << run.err;
     auto color = image::readImage(output / "quads/000.png");
     ASSERT_TRUE(color.ok());
@@ -233,9 +233,10 @@ TEST(BatchPassesTest, HdrHoldsRadianceWhereThePngSaturates) {
 TEST(BatchPassesTest, SameSeedWritesIdenticalPasses) {
     const fs::path input = writeQuads(makeTempDir("batch-passes-same-input"));
     const fs::path output = makeTempDir("batch-passes-same-output");
-    const std::string passes = "--random-views 2 --seed 5 --size 32 --samples 1 --quiet --normals "
-                               "--depth --depth-format exr --albedo --material --segmentation "
-                               "--hdr";
+    const std::string passes =
+        "--random-views 2 --seed 5 --size 32 --samples 1 --quiet --normals "
+        "--depth --depth-format exr --albedo --material --segmentation "
+        "--hdr";
     for (const char* run : {"a", "b"}) {
         const CommandResult result = runEncore(batchArguments(input, output / run, passes));
         ASSERT_EQ(result.exitCode, 0) << result.err;
@@ -254,7 +255,8 @@ TEST(BatchPassesTest, BadCombinationsAreUsageErrors) {
         {"--depth --depth-format tiff", "--depth-format"},
         {"--segmentation-by mesh --samples 1", "--segmentation-by requires --segmentation"},
         {"--segmentation --samples 1 --segmentation-by scene", "--segmentation-by"},
-        {"--segmentation --samples 1 -s visibility", "visibility strategy draws no segmentation"},
+        {"--segmentation --samples 1 -s visibility", "not visibility"},
+        {"--albedo -s naive", "need a strategy that draws glTF materials"},
     };
     for (const auto& [options, message] : cases) {
         const CommandResult result =
