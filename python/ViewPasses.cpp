@@ -106,15 +106,16 @@ ViewShading viewShading(const py::object& environment,
         char end = 0;
         if (background.size() != 7 ||
             std::sscanf(background.c_str(), "#%2x%2x%2x%c", &r, &g, &b, &end) != 3) {
-            throw py::value_error("background is transparent, env or a colour written #rrggbb "
-                                  "(not '" +
-                                  background + "').");
+            throw py::value_error(
+                "background is transparent, env or a colour written #rrggbb "
+                "(not '" +
+                background + "').");
         }
         shading.background = render::BackgroundKind::Color;
         // sRGB, as `encore render --background` reads it.
-        shading.backgroundColor = glm::vec3(image::srgbToLinear(r / 255.0),
-                                            image::srgbToLinear(g / 255.0),
-                                            image::srgbToLinear(b / 255.0));
+        shading.backgroundColor =
+            glm::vec3(image::srgbToLinear(r / 255.0), image::srgbToLinear(g / 255.0),
+                      image::srgbToLinear(b / 255.0));
     }
     return shading;
 }
@@ -157,9 +158,10 @@ Result<void> applyShading(render::Renderer& renderer,
                           const ViewShading& shading,
                           std::string& loaded) {
     if (shading.environment != loaded) {
-        ENCORE_TRY_ASSIGN(auto panorama, shading.environment.empty()
-                                             ? Result<image::HdrImage>(image::makeStudioEnvironment())
-                                             : image::readHdr(shading.environment));
+        ENCORE_TRY_ASSIGN(auto panorama,
+                          shading.environment.empty()
+                              ? Result<image::HdrImage>(image::makeStudioEnvironment())
+                              : image::readHdr(shading.environment));
         ENCORE_TRY(renderer.loadEnvironment(panorama));
         loaded = shading.environment;
     }

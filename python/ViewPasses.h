@@ -16,8 +16,8 @@
 
 #include "batch/ViewStrips.h"
 #include "encore/batch/ViewImages.h"
-#include "encore/render/Renderer.h"
 #include "encore/image/ImageCodec.h"
+#include "encore/render/Renderer.h"
 #include "encore/render/ToneMappingOptions.h"
 
 namespace encore::python {
