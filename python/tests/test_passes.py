@@ -137,8 +137,9 @@ def test_shading_keywords_change_the_rgba_but_not_the_albedo(renderer, quads):
     assert bright["hdr"][0, ROW, RIGHT, 1] > 1.0
     assert bright["hdr"][0, ROW, RIGHT, 1] == pytest.approx(
         6.0 * plain["hdr"][0, ROW, RIGHT, 1], rel=0.02)
-    dark = render(renderer, quads, passes=("rgba",), exposure=0.25)
+    dark = render(renderer, quads, passes=("rgba", "hdr"), exposure=0.25)
     assert dark["rgba"][0, ROW, RIGHT, :3].sum() < plain["rgba"][0, ROW, RIGHT, :3].sum()
+    assert np.array_equal(dark["hdr"], plain["hdr"]), "HDR is the radiance before exposure"
     grey = render(renderer, quads, passes=("rgba",), background="#808080", tone_mapping="none")
     assert list(grey["rgba"][0, ROW, GAP]) == [128, 128, 128, 255]
 
