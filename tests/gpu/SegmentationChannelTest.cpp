@@ -33,10 +33,10 @@ std::vector<std::uint8_t> twoQuads() {
         const auto normals = builder.addNormals(std::vector<glm::vec3>(4, {0.0f, 0.0f, 1.0f}));
         const auto indices = builder.addIndices<std::uint16_t>({0, 1, 2, 0, 2, 3});
         const auto material = builder.addMaterial({});
-        const auto mesh = builder.addMesh({.attributes = {{"POSITION", positions},
-                                                          {"NORMAL", normals}},
-                                           .indices = indices,
-                                           .material = material});
+        const auto mesh =
+            builder.addMesh({.attributes = {{"POSITION", positions}, {"NORMAL", normals}},
+                             .indices = indices,
+                             .material = material});
         nodes.push_back(builder.addNode({.mesh = mesh}));
     }
     builder.addScene(nodes);
@@ -86,8 +86,8 @@ TEST(SegmentationChannelTest, EveryPixelNamesTheNodeMeshOrMaterialThatDrewIt) {
         for (std::size_t i = 0; i < scene->instances.size(); ++i) {
             if (scene->instances[i].node.index() == 0) {
                 ASSERT_TRUE(renderer
-                                ->updateInstance(i, glm::translate(glm::mat4(1.0f),
-                                                                   glm::vec3(0.0f, 0.1f, 0.2f)))
+                                ->updateInstance(
+                                    i, glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.1f, 0.2f)))
                                 .ok());
             }
         }
