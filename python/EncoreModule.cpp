@@ -385,7 +385,10 @@ class Renderer {
                       const std::string& layout,
                       std::uint32_t blankThreshold,
                       const py::object& variant,
-                      const py::object& variants) {
+                      const py::object& variants,
+                      const py::object& passes,
+                      const std::string& segmentation,
+                      const std::string& depthFormat) {
         batch::BatchOptions options;
         options.variant = variantArgument(variant);
         if (!variants.is_none()) {
@@ -429,6 +432,7 @@ class Renderer {
         options.strict = strict;
         options.images.normals = normals;
         options.images.depth = depth;
+        applyBatchPasses(passes, segmentation, depthFormat, options.images);
         options.topLightLux = topLightLux;
         const auto compression = image::pngCompressionFromName(pngCompression);
         if (!compression) {
@@ -691,6 +695,8 @@ PYBIND11_MODULE(_encore, module) {
             py::arg("environment_intensity") = py::none(), py::arg("layout") = "nerf",
             py::arg("blank_threshold") = encore::batch::kDefaultBlankThreshold,
             py::arg("variant") = py::none(), py::arg("variants") = py::none(),
+            py::arg("passes") = py::none(), py::arg("segmentation_by") = "node",
+            py::arg("depth_format") = "png",
             "Runs the job of `encore batch` on this renderer's device: `inputs` is what the "
             "command takes (folder, list file, model) or (path, name) pairs from "
             "discover_inputs. Returns the summary (models rendered, failed, skipped; views; "
@@ -707,6 +713,9 @@ PYBIND11_MODULE(_encore, module) {
             "(pixels). variant= (a name or index) draws every model in that KHR_materials_variants "
             "variant into OUTPUT/<name>@<variant> (`encore batch --variant`); variants=\"all\" "
             "also draws each model in every variant, each a sample of its own (`--variants all`). "
+            "passes= names the images beside the colour ones as render_views does (\"normal\", "
+            "\"depth\", \"albedo\", \"material\", \"segmentation\", \"hdr\"; `--albedo` ...), "
+            "with segmentation_by (node, mesh, material) and depth_format (png, exr). "
             "The GIL is released while it runs.")
         .def_property_readonly("samples",
                                [](const Renderer& renderer) { return renderer.samples(); })

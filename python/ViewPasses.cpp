@@ -72,6 +72,44 @@ batch::SegmentationBy segmentationBy(const std::string& name) {
     throw py::value_error("segmentation_by is node, mesh or material (not '" + name + "').");
 }
 
+void applyBatchPasses(const py::object& passes,
+                      const std::string& segmentation,
+                      const std::string& depthFormat,
+                      batch::ExtraImages& images) {
+    images.segmentationBy = segmentationBy(segmentation);
+    if (depthFormat != "png" && depthFormat != "exr") {
+        throw py::value_error("depth_format is png or exr (not '" + depthFormat + "').");
+    }
+    images.depthFormat = depthFormat == "exr" ? batch::DepthFormat::Exr : batch::DepthFormat::Png;
+    if (passes.is_none()) {
+        return;
+    }
+    for (const batch::ViewImage kind : passKinds(passes)) {
+        switch (kind) {
+            case batch::ViewImage::Normal:
+                images.normals = true;
+                break;
+            case batch::ViewImage::Depth:
+                images.depth = true;
+                break;
+            case batch::ViewImage::Albedo:
+                images.albedo = true;
+                break;
+            case batch::ViewImage::Material:
+                images.material = true;
+                break;
+            case batch::ViewImage::Segmentation:
+                images.segmentation = true;
+                break;
+            case batch::ViewImage::Hdr:
+                images.hdr = true;
+                break;
+            case batch::ViewImage::Color:
+                break;
+        }
+    }
+}
+
 ViewShading viewShading(const py::object& environment,
                         float intensity,
                         float rotationDegrees,

@@ -30,6 +30,13 @@ std::vector<batch::ViewImage> passKinds(const py::object& passes);
 // "node", "mesh" or "material".
 batch::SegmentationBy segmentationBy(const std::string& name);
 
+// batch()'s passes= keyword (passKinds' names; "rgba" changes nothing), segmentation_by= and
+// depth_format= ("png" or "exr") set into `images`; None leaves them as they are.
+void applyBatchPasses(const py::object& passes,
+                      const std::string& segmentation,
+                      const std::string& depthFormat,
+                      batch::ExtraImages& images);
+
 // render's shading options as keywords.
 struct ViewShading {
     std::string environment;  // A Radiance .hdr; empty: the studio environment.

@@ -163,3 +163,25 @@ def test_bad_passes_raise_value_errors(renderer, quads, tmp_path):
     scene = multisampled.load(str(write_quads(tmp_path / "again.gltf")))
     with pytest.raises(ValueError, match="samples=1"):
         multisampled.render_views(scene, views=1, size=16, passes=("segmentation",))
+
+
+def test_batch_takes_the_passes_as_keywords(tmp_path):
+    (tmp_path / "in").mkdir()
+    write_quads(tmp_path / "in" / "quads.gltf")
+    summary = encore.batch(str(tmp_path / "in"), str(tmp_path / "out"), views=1, size=32,
+                           samples=1, passes=("albedo", "segmentation", "depth"),
+                           segmentation_by="material", depth_format="exr")
+    assert summary["rendered"] == 1 and summary["failed"] == 0
+    model = tmp_path / "out" / "quads"
+    assert sorted(path.name for path in model.iterdir()) == [
+        "000.png", "000_albedo.png", "000_depth.exr", "000_segmentation.png", "metadata.json",
+        "transforms.json"]
+    transforms = json.loads((model / "transforms.json").read_text())
+    assert transforms["segmentation_by"] == "material"
+    assert [entry["name"] for entry in transforms["segmentation_ids"]] == ["red", "white"]
+    with pytest.raises(ValueError, match="samples 1"):
+        encore.batch(str(tmp_path / "in"), str(tmp_path / "bad"), views=1, size=8, samples=4,
+                     passes=("segmentation",))
+    with pytest.raises(ValueError, match="depth_format"):
+        encore.batch(str(tmp_path / "in"), str(tmp_path / "bad"), views=1, size=8,
+                     depth_format="tiff")
