@@ -191,6 +191,29 @@ TEST(BatchPassesTest, EveryPassHoldsTheKnownValuesOfTwoQuads) {
     EXPECT_FALSE(fs::exists(model / "000_depth.png"));
 }
 
+// With 4 samples the edges are partly covered: the 8-bit passes keep the colour image's alpha
+// there too.
+TEST(BatchPassesTest, MultisampledPassesKeepTheColourAlpha) {
+    const fs::path input = writeQuads(makeTempDir("batch-passes-msaa-input"));
+    const fs::path output = makeTempDir("batch-passes-msaa-output");
+    const CommandResult run = runEncore(batchArguments(
+        input, output,
+        "--views 1 --elevation 20 --size 64 --samples 4 --quiet --albedo --material --normals"));
+    ASSERT_EQ(run.exitCode, 0) << run.out << run.err;
+    auto color = image::readImage(output / "quads/000.png");
+    ASSERT_TRUE(color.ok());
+    std::size_t partial = 0;
+    for (const char* pass : {"albedo", "material", "normal"}) {
+        auto image = image::readImage(output / "quads" / ("000_" + std::string(pass) + ".png"));
+        ASSERT_TRUE(image.ok()) << pass;
+        for (std::size_t i = 3; i < color->pixels.size(); i += 4) {
+            ASSERT_EQ(image->pixels[i], color->pixels[i]) << pass << " alpha at byte " << i;
+            partial += color->pixels[i] != 0 && color->pixels[i] != 255;
+        }
+    }
+    EXPECT_GT(partial, 0u) << "no partly covered edge pixel was compared";
+}
+
 // With the segmentation counting meshes or materials, the ids follow them (the nodes' order is
 // the same here) and transforms.json names them.
 TEST(BatchPassesTest, SegmentationByMeshAndMaterialNamesThem) {
