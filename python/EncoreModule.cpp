@@ -13,6 +13,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cstdlib>
 #include <cstring>
@@ -25,6 +26,7 @@
 #include <vector>
 
 #include "BatchArguments.h"
+#include "ViewPasses.h"
 #include "batch/BatchOptionsValidation.h"
 #include "batch/TransformsJson.h"
 #include "batch/ViewStrips.h"
@@ -225,20 +227,46 @@ class Renderer {
         return Scene{std::make_shared<const scene::SceneData>(std::move(*loaded))};
     }
 
-    py::tuple renderViews(const Scene& scene,
-                          std::uint32_t views,
-                          const py::object& size,
-                          float elevation,
-                          float distance,
-                          std::optional<float> fov,
-                          bool random,
-                          std::uint64_t seed,
-                          bool normalize,
-                          bool normals,
-                          bool depth,
-                          const std::string& name,
-                          const py::object& variantName) {
+    py::object renderViews(const Scene& scene,
+                           std::uint32_t views,
+                           const py::object& size,
+                           float elevation,
+                           float distance,
+                           std::optional<float> fov,
+                           bool random,
+                           std::uint64_t seed,
+                           bool normalize,
+                           bool normals,
+                           bool depth,
+                           const std::string& name,
+                           const py::object& variantName,
+                           const py::object& passes,
+                           const std::string& segmentation,
+                           const py::object& environment,
+                           float intensity,
+                           float rotation,
+                           float exposure,
+                           const std::string& toneMapping,
+                           const std::string& background) {
         const auto [width, height] = imageSize(size);
+        const ViewShading shading =
+            viewShading(environment, intensity, rotation, exposure, toneMapping, background);
+        std::vector<batch::ViewImage> kinds;
+        if (!passes.is_none()) {
+            if (normals || depth) {
+                throw py::value_error(
+                    "passes= replaces normals= and depth=: name \"normal\" and "
+                    "\"depth\" among the passes.");
+            }
+            kinds = passKinds(passes);
+            if (std::count(kinds.begin(), kinds.end(), batch::ViewImage::Segmentation) &&
+                mSamples != 1) {
+                throw py::value_error(
+                    "The segmentation pass needs Renderer(samples=1): "
+                    "multisampling would blend neighbouring objects' ids.");
+            }
+        }
+        const batch::SegmentationBy by = segmentationBy(segmentation);
         const batch::ViewRigOptions rig = rigOptions(
             {views, elevation, py::float_(distance),
              fov ? py::object(py::float_(*fov)) : py::none(),
@@ -257,8 +285,8 @@ class Renderer {
         {
             py::gil_scoped_release release;
             std::lock_guard lock(mMutex);  // Python threads may share a renderer.
-            rendered = valueOrThrow(
-                render(scene.data, variant, cameraViews, rig, width, height, normals, depth));
+            rendered = valueOrThrow(render(scene.data, variant, cameraViews, rig, width, height,
+                                           normals, depth, shading, kinds, by));
         }
         const auto rgbaArray = [&](const std::vector<image::ImageRgba8>& images) {
             py::array_t<std::uint8_t> pixels(
@@ -292,6 +320,15 @@ class Renderer {
                     c(view, row, column) = cameraToWorld[column][row];  // glm: [column][row]
                 }
             }
+        }
+        if (!passes.is_none()) {
+            py::dict arrays;
+            for (std::size_t i = 0; i < kinds.size(); ++i) {
+                arrays[passName(kinds[i])] = passArray(kinds[i], rendered.passes[i], width, height);
+            }
+            arrays["intrinsics"] = intrinsics;
+            arrays["cameras"] = cameras;
+            return arrays;
         }
         py::list result;
         result.append(pixels);
@@ -348,7 +385,10 @@ class Renderer {
                       const std::string& layout,
                       std::uint32_t blankThreshold,
                       const py::object& variant,
-                      const py::object& variants) {
+                      const py::object& variants,
+                      const py::object& passes,
+                      const std::string& segmentation,
+                      const std::string& depthFormat) {
         batch::BatchOptions options;
         options.variant = variantArgument(variant);
         if (!variants.is_none()) {
@@ -392,6 +432,7 @@ class Renderer {
         options.strict = strict;
         options.images.normals = normals;
         options.images.depth = depth;
+        applyBatchPasses(passes, segmentation, depthFormat, options.images);
         options.topLightLux = topLightLux;
         const auto compression = image::pngCompressionFromName(pngCompression);
         if (!compression) {
@@ -488,6 +529,7 @@ class Renderer {
         std::vector<image::ImageRgba8> color;
         std::vector<image::ImageRgba8> normals;
         std::vector<image::ImageGray16> depth;
+        std::vector<PassImages> passes;  // With passes=: one per pass asked for, in order.
     };
 
     Result<Rendered> render(const std::shared_ptr<const scene::SceneData>& scene,
@@ -497,7 +539,10 @@ class Renderer {
                             std::uint32_t width,
                             std::uint32_t height,
                             bool normals,
-                            bool depth) {
+                            bool depth,
+                            const ViewShading& shading,
+                            std::span<const batch::ViewImage> kinds,
+                            batch::SegmentationBy by) {
         const batch::StripLayout layout =
             batch::stripLayout(width, height, rig.views, mContext->limits());
         if (!mRenderer || mRenderer->target().width() != layout.targetWidth() ||
@@ -505,11 +550,13 @@ class Renderer {
             render::RendererOptions options;
             options.target = {layout.targetWidth(), layout.height, mSamples};
             options.toneMapping.background = render::BackgroundKind::Transparent;
+            options.target.hdr = true;  // Whatever the background: depth and HDR read it.
             options.keepPipelines = true;
             mRenderer.reset();
             ENCORE_TRY_ASSIGN(auto created, render::Renderer::create(*mContext, options));
             mRenderer = std::make_unique<render::Renderer>(std::move(created));
             mPrepared.reset();
+            mEnvironment.clear();  // A new renderer lights with the studio environment.
         }
         if (mPrepared != scene) {
             // The renderer refers to the scene it was given until the next prepare, even when
@@ -521,9 +568,18 @@ class Renderer {
         }
         // Only material bindings change between variants: the prepared scene stays.
         ENCORE_TRY(mRenderer->selectVariant(variant));
+        ENCORE_TRY(applyShading(*mRenderer, shading, mEnvironment));
         Rendered rendered;
-        ENCORE_TRY_ASSIGN(rendered.color,
-                          batch::renderStrips(*mRenderer, scene->bounds, views, rig, layout));
+        if (!kinds.empty()) {
+            ENCORE_TRY_ASSIGN(rendered.passes, renderPasses(*mRenderer, scene->bounds, views, rig,
+                                                            layout, kinds, by));
+        }
+        // With passes, the colour is its "rgba" pass.
+        const bool colorPass = kinds.empty();
+        if (colorPass) {
+            ENCORE_TRY_ASSIGN(rendered.color,
+                              batch::renderStrips(*mRenderer, scene->bounds, views, rig, layout));
+        }
         if (normals) {
             ENCORE_TRY_ASSIGN(rendered.normals,
                               batch::renderStrips(*mRenderer, scene->bounds, views, rig, layout,
@@ -543,6 +599,7 @@ class Renderer {
     std::unique_ptr<batch::BatchRenderer> mBatchRenderers;  // Kept by batch() between calls.
     std::shared_ptr<const scene::SceneData> mHeld;          // Last given to prepare().
     std::shared_ptr<const scene::SceneData> mPrepared;      // Prepared successfully.
+    std::string mEnvironment;  // The .hdr the renderer lights with; empty: the studio one.
     std::mutex mMutex;
 };
 
@@ -593,7 +650,11 @@ PYBIND11_MODULE(_encore, module) {
              py::arg("size") = 512, py::arg("elevation") = 30.0f, py::arg("distance") = 1.5f,
              py::arg("fov") = py::none(), py::arg("random") = false, py::arg("seed") = 0,
              py::arg("normalize") = true, py::arg("normals") = false, py::arg("depth") = false,
-             py::arg("name") = "", py::arg("variant") = py::none(),
+             py::arg("name") = "", py::arg("variant") = py::none(), py::arg("passes") = py::none(),
+             py::arg("segmentation_by") = "node", py::arg("environment") = py::none(),
+             py::arg("environment_intensity") = 1.0f, py::arg("environment_rotation") = 0.0f,
+             py::arg("exposure") = 1.0f, py::arg("tone_mapping") = "neutral",
+             py::arg("background") = "transparent",
              "Renders `views` RGBA views (straight alpha, transparent background) of the scene "
              "normalised into a unit box, from an orbit `elevation` degrees above the horizon or "
              "(random=True) directions uniform on the sphere drawn from `seed` (and, as `encore "
@@ -608,7 +669,17 @@ PYBIND11_MODULE(_encore, module) {
              "`encore batch --normals --depth`'s 000_normal.png and of 000_depth.png times its "
              "depth_scale. variant= draws a KHR_materials_variants variant (its name or index, "
              "scene.variants lists them; ValueError for one the model lacks) instead of the "
-             "default materials. The GIL is released while rendering.")
+             "default materials. passes=(\"rgba\", \"albedo\", \"normal\", \"material\", "
+             "\"segmentation\", \"depth\", \"hdr\") (any of them, in any order) returns a dict "
+             "instead: each pass's array (uint8 (N, H, W, 4) for rgba, albedo, normal and "
+             "material; depth float32 (N, H, W) along the camera axis, inf where empty; "
+             "segmentation uint16 (N, H, W), 1 + the node (segmentation_by=\"mesh\", "
+             "\"material\") index, needing samples=1; hdr float32 (N, H, W, 4), linear and "
+             "premultiplied) with \"intrinsics\" and \"cameras\", as `encore batch` writes "
+             "them (docs/batch.md#passes). Shading as `encore render`'s: environment (an .hdr "
+             "file), environment_intensity, environment_rotation (degrees), exposure, "
+             "tone_mapping (neutral, aces, none), background (transparent, env, #rrggbb). The GIL "
+             "is released while rendering.")
         .def(
             "batch", &Renderer::runBatch, py::arg("inputs"), py::arg("output"),
             py::arg("views") = 12, py::arg("random_views") = 0, py::arg("seed") = 0,
@@ -624,6 +695,8 @@ PYBIND11_MODULE(_encore, module) {
             py::arg("environment_intensity") = py::none(), py::arg("layout") = "nerf",
             py::arg("blank_threshold") = encore::batch::kDefaultBlankThreshold,
             py::arg("variant") = py::none(), py::arg("variants") = py::none(),
+            py::arg("passes") = py::none(), py::arg("segmentation_by") = "node",
+            py::arg("depth_format") = "png",
             "Runs the job of `encore batch` on this renderer's device: `inputs` is what the "
             "command takes (folder, list file, model) or (path, name) pairs from "
             "discover_inputs. Returns the summary (models rendered, failed, skipped; views; "
@@ -640,6 +713,9 @@ PYBIND11_MODULE(_encore, module) {
             "(pixels). variant= (a name or index) draws every model in that KHR_materials_variants "
             "variant into OUTPUT/<name>@<variant> (`encore batch --variant`); variants=\"all\" "
             "also draws each model in every variant, each a sample of its own (`--variants all`). "
+            "passes= names the images beside the colour ones as render_views does (\"normal\", "
+            "\"depth\", \"albedo\", \"material\", \"segmentation\", \"hdr\"; `--albedo` ...), "
+            "with segmentation_by (node, mesh, material) and depth_format (png, exr). "
             "The GIL is released while it runs.")
         .def_property_readonly("samples",
                                [](const Renderer& renderer) { return renderer.samples(); })

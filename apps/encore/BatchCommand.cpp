@@ -12,6 +12,7 @@
 #include <tuple>
 #include <vector>
 
+#include "BatchPassOptions.h"
 #include "Commands.h"
 #include "DeviceOptions.h"
 #include "ShadingOptions.h"
@@ -50,6 +51,7 @@ struct BatchCommandOptions {
     std::string variants;  // --variants all: the default materials and every variant.
     bool normals = false;
     bool depth = false;
+    BatchPassOptions passes;  // --albedo, --material, --segmentation, --depth-format, --hdr.
     float topLightLux = 0.0f;
     std::string pngCompression = "small";
     std::size_t jobs = 0;
@@ -238,6 +240,7 @@ int runBatch(const BatchCommandOptions& options, const GlobalOptions& global) {
     batchOptions.allVariants = options.variants == "all";
     batchOptions.images.normals = options.normals;
     batchOptions.images.depth = options.depth;
+    applyBatchPassOptions(options.passes, batchOptions.images);
     batchOptions.topLightLux = options.topLightLux;
     batchOptions.pngCompression = *image::pngCompressionFromName(options.pngCompression);
     batchOptions.jobs = options.jobs;
@@ -480,9 +483,10 @@ void addBatchCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) 
         ->type_name("all|N,M,...");
     command->add_flag("--normals", options->normals,
                       "Also write world-space normals per view (000_normal.png: n * 0.5 + 0.5)");
-    command->add_flag("--depth", options->depth,
-                      "Also write 16-bit depth per view (000_depth.png; depth_scale in "
-                      "transforms.json)");
+    auto* depth = command->add_flag("--depth", options->depth,
+                                    "Also write 16-bit depth per view (000_depth.png; depth_scale "
+                                    "in transforms.json)");
+    addBatchPassOptions(*command, options->passes, depth);
     command
         ->add_option("--top-light", options->topLightLux,
                      "Add a directional light shining straight down, this many lux (the dataset "

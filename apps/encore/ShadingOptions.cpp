@@ -29,7 +29,11 @@ const std::map<std::string, render::DebugChannel>& debugChannels() {
         {"roughness", render::DebugChannel::Roughness},
         {"occlusion", render::DebugChannel::Occlusion},
         {"emissive", render::DebugChannel::Emissive},
-        {"depth", render::DebugChannel::Depth}};
+        {"depth", render::DebugChannel::Depth},
+        {"material", render::DebugChannel::Material},
+        {"segment-node", render::DebugChannel::SegmentNode},
+        {"segment-mesh", render::DebugChannel::SegmentMesh},
+        {"segment-material", render::DebugChannel::SegmentMaterial}};
     return names;
 }
 

@@ -94,6 +94,28 @@ Result<void> validateBatchOptions(const BatchOptions& options) {
                                                          options.variant +
                                                          "') or all of them, not both.");
     }
+    if (options.images.segmentation && options.samples != 1) {
+        return makeError(ErrorCode::InvalidArgument,
+                         "Segmentation ids need --samples 1 (samples=1): multisampling would "
+                         "blend the ids of neighbouring objects at their edges (asked for " +
+                             std::to_string(options.samples) + " samples).");
+    }
+    if (options.images.depthFormat == DepthFormat::Exr && !options.images.depth) {
+        return makeError(ErrorCode::InvalidArgument,
+                         "An EXR depth format asks for depth images: add --depth (depth=True).");
+    }
+    const bool meshMaterials = strategy.kind == render::StrategyKind::Materials ||
+                               strategy.kind == render::StrategyKind::Bundles ||
+                               strategy.kind == render::StrategyKind::GpuCulling ||
+                               strategy.kind == render::StrategyKind::GpuCullingBundles;
+    if ((options.images.albedo || options.images.material || options.images.segmentation) &&
+        !meshMaterials) {
+        return makeError(ErrorCode::InvalidArgument,
+                         "The albedo, material and segmentation passes need a strategy that "
+                         "draws glTF materials in its mesh shader (materials, bundles, "
+                         "gpu-culling, gpu-culling-bundles), not " +
+                             render::strategyChoiceName(strategy) + ".");
+    }
     if (options.renderers < 1 || options.renderers > kMaxRenderers) {
         return makeError(ErrorCode::InvalidArgument,
                          "A batch takes 1 to " + std::to_string(kMaxRenderers) +

@@ -6,6 +6,7 @@
 
 #include "batch/ModelOutput.h"
 #include "batch/ModelSamples.h"
+#include "batch/PassImages.h"
 #include "core/Elapsed.h"
 #include "render/StagedImages.h"
 
@@ -49,8 +50,9 @@ Result<void> DeviceLane::createRenderers() {
         rendererOptions.culling.lodErrorPixels = options.lodErrorPixels;
     }
     rendererOptions.keepPipelines = true;  // Models share most pipelines: create each once.
-    // Normal images have a transparent background whatever the colour images have.
-    rendererOptions.target.hdr = options.images.normals || options.images.depth;
+    // Pass images have a transparent background whatever the colour images have; depth,
+    // segmentation and HDR images are read from the HDR target.
+    rendererOptions.target.hdr = options.images.perView() > 1;
     // collectRenderer makes sure the GPU is done with a renderer's scene before it prepares.
     rendererOptions.prepareWaitsForIdle = false;
     mRing = nullptr;
@@ -196,12 +198,17 @@ void DeviceLane::renderDebugChannel(const std::shared_ptr<ModelJob>& job,
     }
 }
 
-void DeviceLane::renderDepth(const TargetViews& views, float unitsPerModelUnit, double& waiting) {
+void DeviceLane::renderFloatPass(const TargetViews& views,
+                                 ViewImage kind,
+                                 float unitsPerModelUnit,
+                                 double& waiting) {
     const auto& [job, slot, cameras, first, count] = views;
     render::Renderer& renderer = *mRenderers[slot].renderer;
-    renderer.renderViews(cameras);
-    // The HDR target holds the depth itself (the channel writes it as colour); read back now,
-    // waiting, since depth images are the exception.
+    if (kind != ViewImage::Hdr) {
+        renderer.renderViews(cameras);  // The HDR image is the colour frame's, drawn already.
+    }
+    // The HDR target holds the values themselves (the channels write them as colour); read back
+    // now, waiting: float images are the exception.
     const auto start = Clock::now();
     auto wide = renderer.readHdrImage();
     mStages.gpu += secondsSince(start);
@@ -210,7 +217,7 @@ void DeviceLane::renderDepth(const TargetViews& views, float unitsPerModelUnit, 
         job->fail(mShared.failures, mShared.counters, "render", wide.error());
         return;
     }
-    mShared.writer.writeDepthViews(job, first, count, *wide, mLayout.targetWidth(),
+    mShared.writer.writeFloatViews(job, first, count, kind, *wide, mLayout.targetWidth(),
                                    unitsPerModelUnit);
 }
 
@@ -356,19 +363,34 @@ void DeviceLane::renderSample(const std::shared_ptr<ModelJob>& job,
     // And one that this thread holds until the model's times are set (ModelWriter::rendered).
     job->remaining = viewCount * mShared.options.images.perView() + 1;
     const glm::mat4 toUnitBox = normalization(scene.bounds, rig.normalize);
+    const ExtraImages& images = mShared.options.images;
+    const std::vector<ViewImage> passes = extraPasses(images);
+    if (images.segmentation) {
+        job->segmentation = segmentationNames(scene, images.segmentationBy);
+    }
     for (std::uint32_t first = 0; first < viewCount; first += mLayout.strips) {
         const std::uint32_t count = std::min<std::uint32_t>(mLayout.strips, viewCount - first);
         const std::vector<render::Camera> cameras =
             stripCameras(job->views, first, mLayout, toUnitBox);
         const TargetViews views{job, slotIndex, cameras, first, count};
         renderChunk(views, ViewImage::Color, renderWaiting);
-        if (mShared.options.images.normals && !job->failed) {
-            renderDebugChannel(job, renderer, render::DebugChannel::Normal,
-                               [&] { renderChunk(views, ViewImage::Normal, renderWaiting); });
+        // The HDR image is the colour frame's linear colour: read before another pass draws.
+        if (images.hdr && !job->failed) {
+            renderFloatPass(views, ViewImage::Hdr, toUnitBox[0][0], renderWaiting);
         }
-        if (mShared.options.images.depth && !job->failed) {
-            renderDebugChannel(job, renderer, render::DebugChannel::Depth,
-                               [&] { renderDepth(views, toUnitBox[0][0], renderWaiting); });
+        // Every other pass draws the views once more through its debug channel.
+        for (const ViewImage kind : passes) {
+            if (job->failed || kind == ViewImage::Hdr) {
+                continue;
+            }
+            const bool floats = kind == ViewImage::Depth || kind == ViewImage::Segmentation;
+            renderDebugChannel(job, renderer, passChannel(kind, images.segmentationBy), [&] {
+                if (floats) {
+                    renderFloatPass(views, kind, toUnitBox[0][0], renderWaiting);
+                } else {
+                    renderChunk(views, kind, renderWaiting);
+                }
+            });
         }
         if (job->failed) {
             break;

@@ -112,8 +112,12 @@ class DeviceLane {
                             render::Renderer& renderer,
                             render::DebugChannel channel,
                             const std::function<void()>& draw);
-    // Draws a target's views through the depth channel and reads them back now.
-    void renderDepth(const TargetViews& views, float unitsPerModelUnit, double& waiting);
+    // Draws a target's views (through the channel the caller selected) and reads them back now
+    // as floats: depth, segmentation; the HDR image reads the colour frame without drawing.
+    void renderFloatPass(const TargetViews& views,
+                         ViewImage kind,
+                         float unitsPerModelUnit,
+                         double& waiting);
     // Draws a target's views and starts reading them back; `waiting` adds the time spent
     // waiting for a free read-back slot.
     void renderChunk(const TargetViews& views, ViewImage kind, double& waiting);

@@ -10,8 +10,27 @@ fs::path modelFolder(const fs::path& output, const std::string& name) {
     return output / fs::path(name);
 }
 
-fs::path viewImagePath(const fs::path& folder, std::size_t index, ViewImage kind) {
-    return folder / (viewStem(index, kind) + ".png");
+fs::path viewImagePath(const fs::path& folder,
+                       std::size_t index,
+                       ViewImage kind,
+                       const ExtraImages& extras) {
+    return folder / (viewStem(index, kind) + viewExtension(kind, extras));
+}
+
+std::vector<ViewImage> extraPasses(const ExtraImages& extras) {
+    std::vector<ViewImage> passes;
+    const std::pair<bool, ViewImage> asked[] = {{extras.normals, ViewImage::Normal},
+                                                {extras.depth, ViewImage::Depth},
+                                                {extras.albedo, ViewImage::Albedo},
+                                                {extras.material, ViewImage::Material},
+                                                {extras.segmentation, ViewImage::Segmentation},
+                                                {extras.hdr, ViewImage::Hdr}};
+    for (const auto& [on, kind] : asked) {
+        if (on) {
+            passes.push_back(kind);
+        }
+    }
+    return passes;
 }
 
 ModelFileSet modelFileSet(const BatchOptions& options) {
@@ -26,11 +45,8 @@ std::vector<fs::path> modelFiles(const fs::path& folder, const ModelFileSet& set
     std::vector<fs::path> files;
     for (std::uint32_t view = 0; view < set.views; ++view) {
         files.push_back(viewImagePath(folder, view));
-        if (set.extras.normals) {
-            files.push_back(viewImagePath(folder, view, ViewImage::Normal));
-        }
-        if (set.extras.depth) {
-            files.push_back(viewImagePath(folder, view, ViewImage::Depth));
+        for (ViewImage kind : extraPasses(set.extras)) {
+            files.push_back(viewImagePath(folder, view, kind, set.extras));
         }
         if (set.cameraMatrices) {
             files.push_back(cameraMatrixPath(folder, view));

@@ -33,10 +33,15 @@ ModelFileSet modelFileSet(const BatchOptions& options);
 
 std::filesystem::path modelFolder(const std::filesystem::path& output, const std::string& name);
 
-// The image of view `index` in `folder`: "000.png", "000_normal.png", "000_depth.png", ...
+// The image of view `index` in `folder`: "000.png", "000_normal.png", "000_depth.png" (or
+// .exr, as `extras` says), ...
 std::filesystem::path viewImagePath(const std::filesystem::path& folder,
                                     std::size_t index,
-                                    ViewImage kind = ViewImage::Color);
+                                    ViewImage kind = ViewImage::Color,
+                                    const ExtraImages& extras = {});
+
+// The passes `extras` asks for, in the order a view's images are listed.
+std::vector<ViewImage> extraPasses(const ExtraImages& extras);
 
 // View `index`'s camera matrix in `folder`: "000.npy", ...
 std::filesystem::path cameraMatrixPath(const std::filesystem::path& folder, std::size_t index);

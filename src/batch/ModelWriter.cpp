@@ -3,6 +3,7 @@
 #include <chrono>
 #include <span>
 
+#include "batch/ExrFile.h"
 #include "batch/ModelOutput.h"
 #include "batch/NpyFile.h"
 #include "batch/ObjaverseCamera.h"
@@ -51,7 +52,7 @@ void ModelWriter::writeMetadata(ModelJob& job) {
 void ModelWriter::writeTransforms(ModelJob& job) {
     const nlohmann::json json =
         transformsJson(job.views, mOptions.width, mOptions.height, mOptions.images,
-                       depthScale(mOptions.views), &job.lighting);
+                       depthScale(mOptions.views), &job.lighting, job.segmentation);
     if (auto written = writeJson(job.folder / kTransformsFileName, json); !written) {
         job.fail(mFailures, mCounters, "write", written.error());
         return;
@@ -101,20 +102,37 @@ void ModelWriter::writeViews(const std::shared_ptr<ModelJob>& job,
     }
 }
 
-void ModelWriter::writeDepthViews(const std::shared_ptr<ModelJob>& job,
+void ModelWriter::writeFloatViews(const std::shared_ptr<ModelJob>& job,
                                   std::uint32_t first,
                                   std::uint32_t count,
+                                  ViewImage kind,
                                   std::span<const float> wide,
                                   std::uint32_t targetWidth,
                                   float unitsPerModelUnit) {
+    const std::uint32_t width = mOptions.width;
+    const std::uint32_t height = mOptions.height;
+    const auto compression = mOptions.pngCompression;
     for (std::uint32_t strip = 0; strip < count; ++strip) {
-        image::ImageGray16 depth =
-            depthStrip(wide, targetWidth, strip, mOptions.width, mOptions.height, unitsPerModelUnit,
-                       depthScale(mOptions.views));
-        writeImage(job, first + strip, ViewImage::Depth,
-                   [depth = std::move(depth), compression = mOptions.pngCompression] {
-                       return image::encodePng16(depth, compression);
-                   });
+        const FloatStrip pixels{wide, targetWidth, strip, width, height};
+        std::function<Result<std::vector<std::uint8_t>>()> encode;
+        if (kind == ViewImage::Hdr) {
+            encode = [rgba = hdrPixels(pixels), width, height] {
+                return encodeExrRgbaHalf(rgba, width, height);
+            };
+        } else if (kind == ViewImage::Segmentation) {
+            encode = [ids = segmentationIds(pixels), compression] {
+                return image::encodePng16(ids, compression);
+            };
+        } else if (mOptions.images.depthFormat == DepthFormat::Exr) {
+            encode = [depth = depthDistances(pixels, unitsPerModelUnit), width, height] {
+                return encodeExrDepth(depth, width, height);
+            };
+        } else {
+            encode = [depth = depthStrip(wide, targetWidth, strip, width, height, unitsPerModelUnit,
+                                         depthScale(mOptions.views)),
+                      compression] { return image::encodePng16(depth, compression); };
+        }
+        writeImage(job, first + strip, kind, std::move(encode));
     }
 }
 
@@ -143,7 +161,8 @@ void ModelWriter::encodeView(const std::shared_ptr<ModelJob>& job,
             job->times.encode += seconds;
         }
         writeImage(job, view, kind, [kind, image, compression = mOptions.pngCompression] {
-            if (kind == ViewImage::Normal) {
+            // Both are linear values that the sRGB output encoded.
+            if (kind == ViewImage::Normal || kind == ViewImage::Material) {
                 decodeNormalImage(*image);
             }
             return image::encodePng(*image, compression);
@@ -160,7 +179,7 @@ void ModelWriter::writeImage(const std::shared_ptr<ModelJob>& job,
         const double cpuStart = threadCpuSeconds();
         if (!job->failed) {
             auto png = encode();
-            const fs::path path = viewImagePath(job->folder, view, kind);
+            const fs::path path = viewImagePath(job->folder, view, kind, mOptions.images);
             Result<void> written = png ? writePartialFile(path, *png) : Result<void>(png.error());
             if (!written) {
                 job->fail(mFailures, mCounters, "write", written.error());

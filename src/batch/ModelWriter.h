@@ -20,6 +20,7 @@
 #include <glm/glm.hpp>
 
 #include "batch/ModelMetadata.h"
+#include "batch/PassImages.h"
 #include "core/ThreadPool.h"
 #include "encore/batch/Batch.h"
 #include "encore/batch/BatchInputs.h"
@@ -78,6 +79,8 @@ struct ModelJob {
     std::vector<ViewCamera> views;
     ModelLighting lighting;
     ModelFacts facts;  // From the loader.
+    // What the segmentation ids name (--segmentation), for transforms.json.
+    std::vector<SegmentationName> segmentation;
     // load, upload and render are set by the device thread before it lets the model finish
     // (ModelWriter::rendered); encode is summed by the pool under writtenMutex.
     ModelTimes times;
@@ -130,12 +133,13 @@ class ModelWriter {
     // written, the model finishes (on the pool). Once per job, after `remaining` was set to its
     // images plus one.
     void rendered(const std::shared_ptr<ModelJob>& job);
-    // Converts the views [first, first + count) of a target drawn through the depth channel
-    // (Renderer::readHdrImage, `targetWidth` wide) into 16-bit depth images on the calling
-    // thread, then encodes and writes them on the pool.
-    void writeDepthViews(const std::shared_ptr<ModelJob>& job,
+    // Converts the views [first, first + count) of a target read back as floats
+    // (Renderer::readHdrImage, `targetWidth` wide) into `kind`'s images (Depth, Segmentation,
+    // Hdr: PassImages.h) on the calling thread, then encodes and writes them on the pool.
+    void writeFloatViews(const std::shared_ptr<ModelJob>& job,
                          std::uint32_t first,
                          std::uint32_t count,
+                         ViewImage kind,
                          std::span<const float> wide,
                          std::uint32_t targetWidth,
                          float unitsPerModelUnit);

@@ -30,6 +30,23 @@ void addIntrinsics(nlohmann::json& json, const PinholeIntrinsics& intrinsics, fl
     json["h"] = std::uint32_t(intrinsics.height);
 }
 
+// Each pass's file, without extension as file_path has it: "normal_file_path": "./000_normal".
+void addPassPaths(nlohmann::json& frame, std::size_t index, const ExtraImages& extras) {
+    const std::pair<bool, ViewImage> passes[] = {{extras.normals, ViewImage::Normal},
+                                                 {extras.depth, ViewImage::Depth},
+                                                 {extras.albedo, ViewImage::Albedo},
+                                                 {extras.material, ViewImage::Material},
+                                                 {extras.segmentation, ViewImage::Segmentation},
+                                                 {extras.hdr, ViewImage::Hdr}};
+    for (const auto& [on, kind] : passes) {
+        if (on) {
+            const std::string stem = viewStem(index, kind);
+            const std::string pass = stem.substr(stem.find('_') + 1);
+            frame[pass + "_file_path"] = "./" + stem;
+        }
+    }
+}
+
 }  // namespace
 
 nlohmann::json transformsJson(std::span<const ViewCamera> views,
@@ -37,7 +54,8 @@ nlohmann::json transformsJson(std::span<const ViewCamera> views,
                               std::uint32_t height,
                               const ExtraImages& extras,
                               double depthScale,
-                              const ModelLighting* lighting) {
+                              const ModelLighting* lighting,
+                              std::span<const SegmentationName> segmentation) {
     nlohmann::json json;
     const bool sharedFov = std::all_of(views.begin(), views.end(), [&](const ViewCamera& view) {
         return view.horizontalFovRadians == views.front().horizontalFovRadians;
@@ -68,12 +86,7 @@ nlohmann::json transformsJson(std::span<const ViewCamera> views,
                                 {"transform_matrix", std::move(rows)}};
         const float fov = views[index].horizontalFovRadians;
         addIntrinsics(frame, intrinsicsFor(width, height, fov), fov);
-        if (extras.normals) {
-            frame["normal_file_path"] = "./" + viewStem(index, ViewImage::Normal);
-        }
-        if (extras.depth) {
-            frame["depth_file_path"] = "./" + viewStem(index, ViewImage::Depth);
-        }
+        addPassPaths(frame, index, extras);
         if (lighting) {
             frame["environment"] = lighting->environment;
             frame["rotation"] = double(lighting->rotationDegrees);
@@ -81,8 +94,19 @@ nlohmann::json transformsJson(std::span<const ViewCamera> views,
         }
         frames.push_back(std::move(frame));
     }
-    if (extras.depth) {
+    if (extras.depth && extras.depthFormat == DepthFormat::Png) {
         json["depth_scale"] = depthScale;
+    }
+    if (extras.depth && extras.depthFormat == DepthFormat::Exr) {
+        json["depth_format"] = "exr";
+    }
+    if (extras.segmentation) {
+        json["segmentation_by"] = segmentationByName(extras.segmentationBy);
+        nlohmann::json ids = nlohmann::json::array();
+        for (const SegmentationName& name : segmentation) {
+            ids.push_back({{"id", name.id}, {"name", name.name}});
+        }
+        json["segmentation_ids"] = std::move(ids);
     }
     json["frames"] = std::move(frames);
     return json;

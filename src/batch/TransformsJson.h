@@ -24,6 +24,7 @@
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
 
+#include "batch/PassImages.h"
 #include "encore/batch/BatchLighting.h"
 #include "encore/batch/ViewImages.h"
 #include "encore/batch/ViewRig.h"
@@ -44,15 +45,17 @@ PinholeIntrinsics intrinsicsFor(std::uint32_t width,
                                 std::uint32_t height,
                                 float horizontalFovRadians);
 
-// With `extras`, every frame also names its normal image ("normal_file_path": "./000_normal")
-// and its depth image ("depth_file_path": "./000_depth"); with depth, "depth_scale" says what
-// one unit of the 16-bit value is in world units.
+// With `extras`, every frame also names each pass's image ("normal_file_path": "./000_normal",
+// "depth_file_path", "albedo_file_path", ...); with 16-bit depth, "depth_scale" says what one
+// unit of the value is in world units, with EXR depth "depth_format" is "exr"; with
+// segmentation, "segmentation_by" and "segmentation_ids" (id and name, `segmentation`).
 // With `lighting`, every frame records it.
 nlohmann::json transformsJson(std::span<const ViewCamera> views,
                               std::uint32_t width,
                               std::uint32_t height,
                               const ExtraImages& extras = {},
                               double depthScale = 0.0,
-                              const ModelLighting* lighting = nullptr);
+                              const ModelLighting* lighting = nullptr,
+                              std::span<const SegmentationName> segmentation = {});
 
 }  // namespace encore::batch

@@ -12,10 +12,24 @@ std::string viewStem(std::size_t index, ViewImage kind) {
             return std::string(stem) + "_normal";
         case ViewImage::Depth:
             return std::string(stem) + "_depth";
+        case ViewImage::Albedo:
+            return std::string(stem) + "_albedo";
+        case ViewImage::Material:
+            return std::string(stem) + "_material";
+        case ViewImage::Segmentation:
+            return std::string(stem) + "_segmentation";
+        case ViewImage::Hdr:
+            return std::string(stem) + "_hdr";
         case ViewImage::Color:
             break;
     }
     return stem;
+}
+
+std::string viewExtension(ViewImage kind, const ExtraImages& extras) {
+    const bool exr = kind == ViewImage::Hdr ||
+                     (kind == ViewImage::Depth && extras.depthFormat == DepthFormat::Exr);
+    return exr ? ".exr" : ".png";
 }
 
 }  // namespace encore::batch

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "batch/PassImages.h"
 #include "core/Bytes.h"
 #include "image/Srgb.h"
 
@@ -174,10 +175,14 @@ Result<std::vector<image::ImageRgba8>> renderStrips(render::Renderer& renderer,
                                                     const ViewRigOptions& rig,
                                                     const StripLayout& layout,
                                                     ViewImage kind) {
-    if (kind == ViewImage::Depth) {
+    if (kind != ViewImage::Color && kind != ViewImage::Normal && kind != ViewImage::Albedo &&
+        kind != ViewImage::Material) {
         return makeError(ErrorCode::InvalidArgument,
-                         "Depth images are 16-bit: renderDepthStrips draws them.");
+                         "Depth, segmentation and HDR images are not 8-bit RGBA: "
+                         "renderDepthStrips and renderFloatStrips draw them.");
     }
+    // Normals and material values are linear, stored sRGB-encoded by the output.
+    const bool linear = kind == ViewImage::Normal || kind == ViewImage::Material;
     const auto drawTarget =
         [&](std::span<const render::Camera> cameras) -> Result<image::ImageRgba8> {
         Result<image::ImageRgba8> wide = makeError(ErrorCode::InvalidArgument, "Not drawn.");
@@ -185,8 +190,9 @@ Result<std::vector<image::ImageRgba8>> renderStrips(render::Renderer& renderer,
             renderer.renderViews(cameras);
             wide = renderer.readImage();
         };
-        if (kind == ViewImage::Normal) {
-            ENCORE_TRY(drawDebugChannel(renderer, render::DebugChannel::Normal, drawAndRead));
+        if (kind != ViewImage::Color) {
+            ENCORE_TRY(
+                drawDebugChannel(renderer, passChannel(kind, SegmentationBy::Node), drawAndRead));
         } else {
             drawAndRead();
         }
@@ -194,12 +200,52 @@ Result<std::vector<image::ImageRgba8>> renderStrips(render::Renderer& renderer,
     };
     const auto cutStrip = [&](const image::ImageRgba8& wide, std::uint32_t strip) {
         image::ImageRgba8 view = cropStrip(wide, strip, layout.width);
-        if (kind == ViewImage::Normal) {
+        if (linear) {
             decodeNormalImage(view);
         }
         return view;
     };
     return renderTargets<image::ImageRgba8>(bounds, views, rig, layout, drawTarget, cutStrip);
+}
+
+Result<std::vector<std::vector<float>>> renderFloatStrips(render::Renderer& renderer,
+                                                          const scene::Bounds& bounds,
+                                                          std::span<const ViewCamera> views,
+                                                          const ViewRigOptions& rig,
+                                                          const StripLayout& layout,
+                                                          ViewImage kind,
+                                                          SegmentationBy by) {
+    if (kind != ViewImage::Depth && kind != ViewImage::Hdr && kind != ViewImage::Segmentation) {
+        return makeError(ErrorCode::InvalidArgument,
+                         "Only depth, segmentation and HDR images are read back as floats.");
+    }
+    const auto drawTarget =
+        [&](std::span<const render::Camera> cameras) -> Result<std::vector<float>> {
+        Result<std::vector<float>> wide = makeError(ErrorCode::InvalidArgument, "Not drawn.");
+        auto drawAndRead = [&] {
+            renderer.renderViews(cameras);
+            wide = renderer.readHdrImage();
+        };
+        if (kind == ViewImage::Hdr) {
+            drawAndRead();  // The shaded frame's linear colour.
+        } else {
+            ENCORE_TRY(drawDebugChannel(renderer, passChannel(kind, by), drawAndRead));
+        }
+        return wide;
+    };
+    const float unitsPerModelUnit = normalization(bounds, rig.normalize)[0][0];
+    const auto cutStrip = [&](const std::vector<float>& wide, std::uint32_t strip) {
+        const FloatStrip pixels{wide, layout.targetWidth(), strip, layout.width, layout.height};
+        if (kind == ViewImage::Depth) {
+            return depthDistances(pixels, unitsPerModelUnit);
+        }
+        if (kind == ViewImage::Hdr) {
+            return hdrPixels(pixels);
+        }
+        const image::ImageGray16 ids = segmentationIds(pixels);
+        return std::vector<float>(ids.pixels.begin(), ids.pixels.end());
+    };
+    return renderTargets<std::vector<float>>(bounds, views, rig, layout, drawTarget, cutStrip);
 }
 
 Result<std::vector<image::ImageGray16>> renderDepthStrips(render::Renderer& renderer,

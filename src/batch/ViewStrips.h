@@ -92,9 +92,9 @@ image::ImageGray16 depthStrip(std::span<const float> wide,
 
 // Draws the views of the scene `renderer` has prepared (`views`, normalised by the scene's
 // bounds as `rig` says) and reads them back, waiting for each target: for callers
-// that render one model at a time (the Python module). `kind` is Color or Normal (the images
-// `encore batch` writes as 000.png and 000_normal.png). The renderer's target must be
-// layout.targetWidth() x layout.height.
+// that render one model at a time (the Python module). `kind` is Color, Normal, Albedo or
+// Material (the images `encore batch` writes as 000.png, 000_normal.png, ...). The renderer's
+// target must be layout.targetWidth() x layout.height.
 Result<std::vector<image::ImageRgba8>> renderStrips(render::Renderer& renderer,
                                                     const scene::Bounds& bounds,
                                                     std::span<const ViewCamera> views,
@@ -108,5 +108,15 @@ Result<std::vector<image::ImageGray16>> renderDepthStrips(render::Renderer& rend
                                                           std::span<const ViewCamera> views,
                                                           const ViewRigOptions& rig,
                                                           const StripLayout& layout);
+// The same views' Depth (distances, infinity where empty: the EXR depth), Hdr (RGBA linear
+// colour, premultiplied) or Segmentation images (ids as floats, counting `by`), one vector of
+// floats per view (PassImages.h).
+Result<std::vector<std::vector<float>>> renderFloatStrips(render::Renderer& renderer,
+                                                          const scene::Bounds& bounds,
+                                                          std::span<const ViewCamera> views,
+                                                          const ViewRigOptions& rig,
+                                                          const StripLayout& layout,
+                                                          ViewImage kind,
+                                                          SegmentationBy by = SegmentationBy::Node);
 
 }  // namespace encore::batch

@@ -90,7 +90,7 @@ void InstanceBuffer::update(const wgpu::Queue& queue,
                             const glm::mat4& world) const {
     const TransformUniform transform = makeTransformUniform(world);
     queue.WriteBuffer(mBuffer, std::uint64_t(mSlots[sceneInstance]) * sizeof(TransformUniform),
-                      &transform, sizeof(transform));
+                      &transform, kTransformMatricesSize);
 }
 
 }  // namespace encore::render

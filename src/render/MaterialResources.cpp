@@ -116,7 +116,8 @@ Result<MaterialResources> MaterialResources::create(const wgpu::Device& device,
         resources.mTextured.push_back(std::any_of(
             textures.begin(), textures.end(), [](std::size_t t) { return t != kDefaultTexture; }));
 
-        const MaterialUniform uniform = makeMaterialUniform(material);
+        MaterialUniform uniform = makeMaterialUniform(material);
+        uniform.flags[2] = std::uint32_t(i + 1);  // The segmentation id (DebugChannel).
         std::memcpy(uniformBytes.data() + i * resources.mUniformStride, &uniform, kUniformSize);
 
         resources.mBindGroups.push_back(resources.createBindGroup(
@@ -222,7 +223,8 @@ void MaterialResources::updateMaterial(const wgpu::Queue& queue,
                                        scene::MaterialId material,
                                        const scene::Material& values) {
     assert(material.index() < mBindGroups.size());
-    const MaterialUniform uniform = makeMaterialUniform(values);
+    MaterialUniform uniform = makeMaterialUniform(values);
+    uniform.flags[2] = std::uint32_t(material.index() + 1);
     queue.WriteBuffer(mUniforms, material.index() * mUniformStride, &uniform, kUniformSize);
 }
 

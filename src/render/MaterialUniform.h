@@ -44,7 +44,7 @@ struct MaterialUniform {
     float clearcoat[4];           // Factor, roughness factor, normal scale.
     float sheen[4];               // Colour factor, roughness factor.
     float specularGlossiness[4];  // Specular factor, glossiness factor.
-    std::uint32_t flags[4];       // ShadingModel, kMaterial* bits.
+    std::uint32_t flags[4];       // ShadingModel, kMaterial* bits, 1 + material index.
     TextureSlotUniform slots[kMaterialTextureSlotCount];  // Indexed by TextureSlot.
 };
 static_assert(sizeof(MaterialUniform) == 528);

@@ -23,10 +23,13 @@ NodeUniforms::NodeUniforms(const wgpu::Device& device,
         mBuffers.push_back(
             gpu::createBuffer(device, wgpu::BufferUsage::Uniform | wgpu::BufferUsage::CopyDst,
                               sizeof(TransformUniform), "node transform"));
-        // Edited since loading: the normal matrix is computed again.
-        const TransformUniform transform = worlds[i] == instance.world
-                                               ? makeTransformUniform(instance)
-                                               : makeTransformUniform(worlds[i]);
+        // Edited since loading: the normal matrix is computed again (the ids stay).
+        scene::Instance placed = instance;
+        if (worlds[i] != instance.world) {
+            placed.world = worlds[i];
+            placed.normalMatrix = normalMatrixOf(worlds[i]);
+        }
+        const TransformUniform transform = makeTransformUniform(placed);
         queue.WriteBuffer(mBuffers.back(), 0, &transform, sizeof(transform));
         mBindGroups.push_back(gpu::makeBindGroup(
             device, layouts.nodeUniform, {{0, mBuffers.back(), 0, sizeof(TransformUniform)}}));
@@ -55,7 +58,7 @@ void NodeUniforms::update(const wgpu::Queue& queue,
                           std::size_t sceneInstance,
                           const glm::mat4& world) const {
     const TransformUniform transform = makeTransformUniform(world);
-    queue.WriteBuffer(mBuffers[sceneInstance], 0, &transform, sizeof(transform));
+    queue.WriteBuffer(mBuffers[sceneInstance], 0, &transform, kTransformMatricesSize);
 }
 
 }  // namespace encore::render

@@ -63,5 +63,8 @@ fn nodeTransforms(@builtin(global_invocation_id) id: vec3u) {
     }
     let record = records[id.x];
     let world = worlds[record.node] * record.transform;
-    outputs[record.slot] = Transform(world, normalMatrixOf(world));
+    // The normal matrix's fourth column holds the instance's segmentation ids: kept.
+    var normal = normalMatrixOf(world);
+    normal[3] = outputs[record.slot].normal[3];
+    outputs[record.slot] = Transform(world, normal);
 }

@@ -24,7 +24,7 @@ struct Material {
     sheen: vec4f,               // rgb colour factor, a: roughness factor.
     specularGlossiness: vec4f,  // rgb specular factor, a: glossiness factor.
     // x: shading model (0 metallic-roughness, 1 specular-glossiness, 2 unlit);
-    // y: kMaterial* feature bits.
+    // y: kMaterial* feature bits; z: 1 + the material's index (segmentation).
     flags: vec4u,
     slots: array<TextureSlot, 12>,
 }

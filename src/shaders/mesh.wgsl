@@ -120,6 +120,8 @@ struct VertexOutput {
     @location(4) texcoord1: vec2f,
     // xyz: world tangent, w: bitangent sign (handedness, flipped for mirroring transforms).
     @location(5) tangent: vec4f,
+    // 1 + node index, 1 + mesh index: the segmentation ids (the normal matrix's 4th column).
+    @location(6) @interpolate(flat) ids: vec2f,
 }
 
 #if SKINNED
@@ -140,6 +142,7 @@ fn vertexMain(input: VertexInput) -> VertexOutput {
 #else
     var transform = node;
 #endif
+    let ids = transform.normal[3].xy;  // Before skinning replaces the transform.
     var position = input.position;
     var normal = input.normal;
 #if HAS_TANGENT
@@ -191,6 +194,7 @@ fn vertexMain(input: VertexInput) -> VertexOutput {
     let world = transform.world * vec4f(position, 1.0);
     output.position = frame.projection * frame.view * world;
     output.worldPosition = world.xyz;
+    output.ids = ids;
     output.normal = (transform.normal * vec4f(normal, 0.0)).xyz;
 #if HAS_TEXCOORD
     output.texcoord = input.texcoord;
@@ -218,6 +222,30 @@ fn vertexMain(input: VertexInput) -> VertexOutput {
     return output;
 }
 
+#if MATERIALS
+// The segmentation channels (DebugChannel::Segment*): the id split into R = id % 256 and
+// G = id / 256, exact in half floats; other channels pass `shaded` through.
+fn segmentationColor(shaded: vec4f, ids: vec2f) -> vec4f {
+    var id = 0.0;
+    switch (lighting.debugChannel) {
+        case 9u: {
+            id = ids.x;
+        }
+        case 10u: {
+            id = ids.y;
+        }
+        case 11u: {
+            id = f32(material.flags.z);
+        }
+        default: {
+            return shaded;
+        }
+    }
+    let high = floor(id / 256.0);
+    return vec4f(id - high * 256.0, high, 0.0, shaded.a);
+}
+#endif
+
 @fragment
 fn fragmentMain(input: VertexOutput, @builtin(front_facing) frontFacing: bool) -> @location(0) vec4f {
 #if MATERIALS
@@ -236,8 +264,9 @@ fn fragmentMain(input: VertexOutput, @builtin(front_facing) frontFacing: bool) -
         discard;
     }
 #endif
-    return displayColor(shadeSurface(input.worldPosition, input.normal, input.tangent, frontFacing,
-                                     baseColor, samples, positionDx, positionDy, uvDx, uvDy));
+    let shaded = shadeSurface(input.worldPosition, input.normal, input.tangent, frontFacing,
+                              baseColor, samples, positionDx, positionDy, uvDx, uvDy);
+    return displayColor(segmentationColor(shaded, input.ids));
 #else
     return displayColor(vec4f(shade(input.color.rgb, input.normal), 1.0));
 #endif

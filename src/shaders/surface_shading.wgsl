@@ -279,6 +279,9 @@ fn shadeSurface(worldPosition: vec3f, vertexNormal: vec3f, vertexTangent: vec4f,
         case 7u: {
             color = vec3f(-(frame.view * vec4f(worldPosition, 1.0)).z);
         }
+        case 8u: {
+            color = vec3f(occlusion, roughness, metallic);
+        }
         default: {
         }
     }

@@ -297,7 +297,13 @@ void expectGpuMatchesCpu(gpu::Context& context,
         std::vector<glm::mat4> worlds, normals;
         for (std::size_t i = 0; i < scene.instances.size(); ++i) {
             worlds.push_back(all[targets.slots[i]].world);
-            normals.push_back(all[targets.slots[i]].normal);
+            glm::mat4 normal = all[targets.slots[i]].normal;
+            // The fourth column carries the segmentation ids (1 + node, 1 + mesh), kept by the
+            // animation pass; the normal matrix is the rest.
+            EXPECT_EQ(normal[3].x, float(scene.instances[i].node.index() + 1)) << "instance " << i;
+            EXPECT_EQ(normal[3].y, float(scene.instances[i].mesh.index() + 1)) << "instance " << i;
+            normal[3].x = normal[3].y = 0.0f;
+            normals.push_back(normal);
         }
         expectMatrices(worlds, player.instanceWorlds(), "instance world matrix");
         expectMatrices(normals, player.instanceNormalMatrices(), "instance normal matrix");

@@ -31,7 +31,13 @@ enum class DebugChannel : std::uint32_t {
     Roughness,
     Occlusion,
     Emissive,
-    Depth,  // Distance in front of the camera along its axis (view-space -z), in world units.
+    Depth,     // Distance in front of the camera along its axis (view-space -z), in world units.
+    Material,  // glTF's packing: R occlusion, G roughness, B metallic.
+    // Segmentation ids, 1 + the index of the drawn node, mesh or material in SceneData (0:
+    // nothing drawn), split as R = id % 256, G = id / 256 so that half floats hold them exactly.
+    SegmentNode,
+    SegmentMesh,
+    SegmentMaterial,
 };
 
 struct LightingParameters {

@@ -174,5 +174,29 @@ TEST(BatchOptionsValidationTest, RejectsOneVariantTogetherWithAll) {
     EXPECT_TRUE(rejected(options, "one material variant ('beach') or all of them, not both"));
 }
 
+// Segmentation ids cannot be multisampled (edges would average two ids); albedo, material and
+// ids come from the mesh shader of the materials-based strategies; an EXR depth format needs
+// depth images.
+TEST(BatchOptionsValidationTest, RejectsPassesThatCannotBeDrawn) {
+    BatchOptions options;
+    options.images.segmentation = true;
+    EXPECT_TRUE(rejected(options, "Segmentation ids need --samples 1"));
+    options.samples = 1;
+    EXPECT_TRUE(validateBatchOptions(options).ok());
+    options.strategy = StrategyChoice::of(StrategyKind::Visibility, false);
+    EXPECT_TRUE(rejected(options, "draws glTF materials in its mesh shader"));
+    options.images = {.albedo = true};
+    options.strategy = StrategyChoice::of(StrategyKind::Naive, false);
+    EXPECT_TRUE(rejected(options, "not naive"));
+    options.strategy = StrategyChoice::of(StrategyKind::GpuCulling, false);
+    EXPECT_TRUE(validateBatchOptions(options).ok());
+
+    BatchOptions exr;
+    exr.images.depthFormat = DepthFormat::Exr;
+    EXPECT_TRUE(rejected(exr, "add --depth"));
+    exr.images.depth = true;
+    EXPECT_TRUE(validateBatchOptions(exr).ok());
+}
+
 }  // namespace
 }  // namespace encore::batch

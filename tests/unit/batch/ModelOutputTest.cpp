@@ -42,6 +42,29 @@ TEST(ModelOutputTest, NormalImagesBelongToTheModelWhenAskedFor) {
     EXPECT_FALSE(modelFinished(folder, {.views = 1, .extras = {.normals = true}}));
 }
 
+// Every pass is one more file per view, in the order extraPasses lists them; EXR depth and the
+// HDR image end in .exr.
+TEST(ModelOutputTest, EveryPassIsAFileOfTheModel) {
+    const fs::path folder = test::makeTempDir("model-output-passes");
+    const ExtraImages all{.normals = true,
+                          .depth = true,
+                          .albedo = true,
+                          .material = true,
+                          .segmentation = true,
+                          .hdr = true,
+                          .depthFormat = DepthFormat::Exr};
+    EXPECT_EQ(all.perView(), 7u);
+    EXPECT_EQ(
+        modelFiles(folder, {.views = 1, .extras = all}),
+        (std::vector<fs::path>{
+            folder / "000.png", folder / "000_normal.png", folder / "000_depth.exr",
+            folder / "000_albedo.png", folder / "000_material.png", folder / "000_segmentation.png",
+            folder / "000_hdr.exr", folder / "metadata.json", folder / "transforms.json"}));
+    EXPECT_EQ(viewImagePath(folder, 2, ViewImage::Depth), folder / "002_depth.png");
+    EXPECT_EQ(extraPasses({.albedo = true, .hdr = true}),
+              (std::vector<ViewImage>{ViewImage::Albedo, ViewImage::Hdr}));
+}
+
 TEST(ModelOutputTest, TheObjaverseLayoutAddsACameraMatrixPerView) {
     const fs::path folder = test::makeTempDir("model-output-objaverse");
     BatchOptions options;

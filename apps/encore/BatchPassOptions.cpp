@@ -1,0 +1,46 @@
+#include "BatchPassOptions.h"
+
+namespace encore::app {
+
+void addBatchPassOptions(CLI::App& command, BatchPassOptions& options, CLI::Option* depth) {
+    command.add_flag("--albedo", options.albedo,
+                     "Also write the base colour per view (000_albedo.png: texture x factor x "
+                     "vertex colour, sRGB)");
+    command.add_flag("--material", options.material,
+                     "Also write occlusion, roughness and metallic per view (000_material.png, "
+                     "linear R, G, B)");
+    auto* segmentation = command.add_flag(
+        "--segmentation", options.segmentation,
+        "Also write 16-bit ids per view (000_segmentation.png: 0 background, else 1 + the node "
+        "index; names in transforms.json); needs --samples 1");
+    command
+        .add_option("--segmentation-by", options.segmentationBy,
+                    "What a segmentation id counts: node, mesh or material")
+        ->check(CLI::IsMember({"node", "mesh", "material"}))
+        ->needs(segmentation)
+        ->capture_default_str();
+    command
+        .add_option("--depth-format", options.depthFormat,
+                    "png: 16-bit steps of depth_scale; exr: 32-bit float distances along the "
+                    "camera axis, infinity where empty (000_depth.exr)")
+        ->check(CLI::IsMember({"png", "exr"}))
+        ->needs(depth)
+        ->capture_default_str();
+    command.add_flag("--hdr", options.hdr,
+                     "Also write the linear colour before exposure and tone mapping per view "
+                     "(000_hdr.exr, half float, premultiplied alpha)");
+}
+
+void applyBatchPassOptions(const BatchPassOptions& options, batch::ExtraImages& images) {
+    images.albedo = options.albedo;
+    images.material = options.material;
+    images.segmentation = options.segmentation;
+    images.hdr = options.hdr;
+    images.segmentationBy = options.segmentationBy == "mesh"       ? batch::SegmentationBy::Mesh
+                            : options.segmentationBy == "material" ? batch::SegmentationBy::Material
+                                                                   : batch::SegmentationBy::Node;
+    images.depthFormat =
+        options.depthFormat == "exr" ? batch::DepthFormat::Exr : batch::DepthFormat::Png;
+}
+
+}  // namespace encore::app

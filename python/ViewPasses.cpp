@@ -1,0 +1,242 @@
+#include "ViewPasses.h"
+
+#include <glm/gtc/constants.hpp>
+
+#include "encore/image/HdrImage.h"
+#include "image/Srgb.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+
+namespace encore::python {
+namespace {
+
+const std::map<std::string, batch::ViewImage>& passNames() {
+    static const std::map<std::string, batch::ViewImage> names = {
+        {"rgba", batch::ViewImage::Color},
+        {"albedo", batch::ViewImage::Albedo},
+        {"normal", batch::ViewImage::Normal},
+        {"material", batch::ViewImage::Material},
+        {"segmentation", batch::ViewImage::Segmentation},
+        {"depth", batch::ViewImage::Depth},
+        {"hdr", batch::ViewImage::Hdr}};
+    return names;
+}
+
+}  // namespace
+
+const char* passName(batch::ViewImage kind) {
+    for (const auto& [name, value] : passNames()) {
+        if (value == kind) {
+            return name.c_str();
+        }
+    }
+    return "rgba";
+}
+
+std::vector<batch::ViewImage> passKinds(const py::object& passes) {
+    if (py::isinstance<py::str>(passes)) {
+        throw py::value_error("passes takes a sequence of names, such as (\"rgba\", \"depth\").");
+    }
+    std::vector<batch::ViewImage> kinds;
+    for (const py::handle item : passes) {
+        const std::string name = py::str(item);
+        const auto found = passNames().find(name);
+        if (found == passNames().end()) {
+            throw py::value_error("Unknown pass '" + name +
+                                  "' (known: rgba, albedo, normal, material, segmentation, "
+                                  "depth, hdr).");
+        }
+        if (std::find(kinds.begin(), kinds.end(), found->second) != kinds.end()) {
+            throw py::value_error("The pass '" + name + "' is asked for twice.");
+        }
+        kinds.push_back(found->second);
+    }
+    if (kinds.empty()) {
+        throw py::value_error("passes names no pass.");
+    }
+    return kinds;
+}
+
+batch::SegmentationBy segmentationBy(const std::string& name) {
+    if (name == "node") {
+        return batch::SegmentationBy::Node;
+    }
+    if (name == "mesh") {
+        return batch::SegmentationBy::Mesh;
+    }
+    if (name == "material") {
+        return batch::SegmentationBy::Material;
+    }
+    throw py::value_error("segmentation_by is node, mesh or material (not '" + name + "').");
+}
+
+void applyBatchPasses(const py::object& passes,
+                      const std::string& segmentation,
+                      const std::string& depthFormat,
+                      batch::ExtraImages& images) {
+    images.segmentationBy = segmentationBy(segmentation);
+    if (depthFormat != "png" && depthFormat != "exr") {
+        throw py::value_error("depth_format is png or exr (not '" + depthFormat + "').");
+    }
+    images.depthFormat = depthFormat == "exr" ? batch::DepthFormat::Exr : batch::DepthFormat::Png;
+    if (passes.is_none()) {
+        return;
+    }
+    for (const batch::ViewImage kind : passKinds(passes)) {
+        switch (kind) {
+            case batch::ViewImage::Normal:
+                images.normals = true;
+                break;
+            case batch::ViewImage::Depth:
+                images.depth = true;
+                break;
+            case batch::ViewImage::Albedo:
+                images.albedo = true;
+                break;
+            case batch::ViewImage::Material:
+                images.material = true;
+                break;
+            case batch::ViewImage::Segmentation:
+                images.segmentation = true;
+                break;
+            case batch::ViewImage::Hdr:
+                images.hdr = true;
+                break;
+            case batch::ViewImage::Color:
+                break;
+        }
+    }
+}
+
+ViewShading viewShading(const py::object& environment,
+                        float intensity,
+                        float rotationDegrees,
+                        float exposure,
+                        const std::string& toneMapping,
+                        const std::string& background) {
+    ViewShading shading;
+    if (!environment.is_none()) {
+        shading.environment = py::str(environment);
+    }
+    if (!(intensity >= 0.0f) || !(exposure > 0.0f)) {
+        throw py::value_error("environment_intensity must be 0 or more and exposure positive.");
+    }
+    shading.intensity = intensity;
+    shading.rotationDegrees = rotationDegrees;
+    shading.exposure = exposure;
+    if (toneMapping == "neutral") {
+        shading.toneMapping = render::ToneMapping::PbrNeutral;
+    } else if (toneMapping == "aces") {
+        shading.toneMapping = render::ToneMapping::AcesHill;
+    } else if (toneMapping == "none") {
+        shading.toneMapping = render::ToneMapping::None;
+    } else {
+        throw py::value_error("tone_mapping is neutral, aces or none (not '" + toneMapping + "').");
+    }
+    if (background == "transparent") {
+        shading.background = render::BackgroundKind::Transparent;
+    } else if (background == "env") {
+        shading.background = render::BackgroundKind::Environment;
+    } else {
+        unsigned r = 0, g = 0, b = 0;
+        char end = 0;
+        if (background.size() != 7 ||
+            std::sscanf(background.c_str(), "#%2x%2x%2x%c", &r, &g, &b, &end) != 3) {
+            throw py::value_error(
+                "background is transparent, env or a colour written #rrggbb "
+                "(not '" +
+                background + "').");
+        }
+        shading.background = render::BackgroundKind::Color;
+        // sRGB, as `encore render --background` reads it.
+        shading.backgroundColor =
+            glm::vec3(image::srgbToLinear(r / 255.0), image::srgbToLinear(g / 255.0),
+                      image::srgbToLinear(b / 255.0));
+    }
+    return shading;
+}
+
+py::array passArray(batch::ViewImage kind,
+                    const PassImages& images,
+                    std::uint32_t width,
+                    std::uint32_t height) {
+    const std::size_t h = height, w = width;
+    if (!images.rgba.empty() || images.floats.empty()) {
+        py::array_t<std::uint8_t> pixels({images.rgba.size(), h, w, std::size_t(4)});
+        std::uint8_t* out = pixels.mutable_data();
+        for (const image::ImageRgba8& image : images.rgba) {
+            std::memcpy(out, image.pixels.data(), image.pixels.size());
+            out += image.pixels.size();
+        }
+        return pixels;
+    }
+    const std::size_t views = images.floats.size();
+    if (kind == batch::ViewImage::Segmentation) {
+        py::array_t<std::uint16_t> ids({views, h, w});
+        std::uint16_t* out = ids.mutable_data();
+        for (const std::vector<float>& view : images.floats) {
+            out = std::transform(view.begin(), view.end(), out,
+                                 [](float id) { return std::uint16_t(id); });
+        }
+        return ids;
+    }
+    py::array_t<float> values = kind == batch::ViewImage::Hdr
+                                    ? py::array_t<float>({views, h, w, std::size_t(4)})
+                                    : py::array_t<float>({views, h, w});
+    float* out = values.mutable_data();
+    for (const std::vector<float>& view : images.floats) {
+        out = std::copy(view.begin(), view.end(), out);
+    }
+    return values;
+}
+
+Result<void> applyShading(render::Renderer& renderer,
+                          const ViewShading& shading,
+                          std::string& loaded) {
+    if (shading.environment != loaded) {
+        ENCORE_TRY_ASSIGN(auto panorama,
+                          shading.environment.empty()
+                              ? Result<image::HdrImage>(image::makeStudioEnvironment())
+                              : image::readHdr(shading.environment));
+        ENCORE_TRY(renderer.loadEnvironment(panorama));
+        loaded = shading.environment;
+    }
+    render::LightingParameters lighting = renderer.lighting().parameters();
+    lighting.environmentIntensity = shading.intensity;
+    lighting.environmentRotationRadians = glm::radians(shading.rotationDegrees);
+    lighting.debugChannel = render::DebugChannel::Shaded;
+    renderer.setLighting(lighting);
+    render::ToneMappingOptions toneMapping = renderer.toneMapping();
+    toneMapping.toneMapping = shading.toneMapping;
+    toneMapping.exposure = shading.exposure;
+    toneMapping.background = shading.background;
+    toneMapping.backgroundColor = shading.backgroundColor;
+    return renderer.setToneMapping(toneMapping);
+}
+
+Result<std::vector<PassImages>> renderPasses(render::Renderer& renderer,
+                                             const scene::Bounds& bounds,
+                                             std::span<const batch::ViewCamera> views,
+                                             const batch::ViewRigOptions& rig,
+                                             const batch::StripLayout& layout,
+                                             std::span<const batch::ViewImage> kinds,
+                                             batch::SegmentationBy by) {
+    std::vector<PassImages> passes;
+    for (const batch::ViewImage kind : kinds) {
+        PassImages images;
+        if (kind == batch::ViewImage::Depth || kind == batch::ViewImage::Hdr ||
+            kind == batch::ViewImage::Segmentation) {
+            ENCORE_TRY_ASSIGN(images.floats, batch::renderFloatStrips(renderer, bounds, views, rig,
+                                                                      layout, kind, by));
+        } else {
+            ENCORE_TRY_ASSIGN(images.rgba,
+                              batch::renderStrips(renderer, bounds, views, rig, layout, kind));
+        }
+        passes.push_back(std::move(images));
+    }
+    return passes;
+}
+
+}  // namespace encore::python

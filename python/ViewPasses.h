@@ -1,0 +1,90 @@
+#pragma once
+
+// render_views' passes and shading keywords (Renderer.render_views(..., passes=(...))): which
+// images a call draws, how they are lit and tone mapped, and the NumPy arrays they become.
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+
+#include <map>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "batch/ViewStrips.h"
+#include "encore/batch/ViewImages.h"
+#include "encore/image/ImageCodec.h"
+#include "encore/render/Renderer.h"
+#include "encore/render/ToneMappingOptions.h"
+
+namespace encore::python {
+
+namespace py = pybind11;
+
+// The names of `passes` ("rgba", "albedo", "normal", "material", "segmentation", "depth",
+// "hdr"), in the order given; ValueError for an unknown or repeated one.
+std::vector<batch::ViewImage> passKinds(const py::object& passes);
+// "node", "mesh" or "material".
+batch::SegmentationBy segmentationBy(const std::string& name);
+
+// batch()'s passes= keyword (passKinds' names; "rgba" changes nothing), segmentation_by= and
+// depth_format= ("png" or "exr") set into `images`; None leaves them as they are.
+void applyBatchPasses(const py::object& passes,
+                      const std::string& segmentation,
+                      const std::string& depthFormat,
+                      batch::ExtraImages& images);
+
+// render's shading options as keywords.
+struct ViewShading {
+    std::string environment;  // A Radiance .hdr; empty: the studio environment.
+    float intensity = 1.0f;
+    float rotationDegrees = 0.0f;
+    float exposure = 1.0f;
+    render::ToneMapping toneMapping = render::ToneMapping::PbrNeutral;
+    render::BackgroundKind background = render::BackgroundKind::Transparent;
+    glm::vec3 backgroundColor{0.0f};
+};
+// From the keywords; ValueError for a tone mapping or background it does not know.
+ViewShading viewShading(const py::object& environment,
+                        float intensity,
+                        float rotationDegrees,
+                        float exposure,
+                        const std::string& toneMapping,
+                        const std::string& background);
+
+// The images of one pass, all views: 8-bit RGBA ones or floats (depth, segmentation, HDR).
+struct PassImages {
+    std::vector<image::ImageRgba8> rgba;
+    std::vector<std::vector<float>> floats;
+};
+
+// The pass's NumPy array: uint8 (N, H, W, 4) for rgba, albedo, normal and material, float32
+// (N, H, W) for depth, uint16 (N, H, W) for segmentation, float32 (N, H, W, 4) for hdr.
+py::array passArray(batch::ViewImage kind,
+                    const PassImages& images,
+                    std::uint32_t width,
+                    std::uint32_t height);
+
+// Lights and tone maps `renderer` as `shading` says; `loaded` names the environment it holds
+// ("" for the studio one) and is updated when another is loaded.
+Result<void> applyShading(render::Renderer& renderer,
+                          const ViewShading& shading,
+                          std::string& loaded);
+
+// Draws `kinds` of the views (the scene `renderer` prepared, normalised by `bounds`), one
+// PassImages per kind, in order.
+Result<std::vector<PassImages>> renderPasses(render::Renderer& renderer,
+                                             const scene::Bounds& bounds,
+                                             std::span<const batch::ViewCamera> views,
+                                             const batch::ViewRigOptions& rig,
+                                             const batch::StripLayout& layout,
+                                             std::span<const batch::ViewImage> kinds,
+                                             batch::SegmentationBy by);
+
+// The name render_views uses for `kind`.
+const char* passName(batch::ViewImage kind);
+
+}  // namespace encore::python

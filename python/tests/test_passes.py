@@ -1,0 +1,187 @@
+"""Tests of Renderer.render_views(..., passes=...): every pass of `encore batch` as NumPy arrays,
+on two quads side by side whose values are known (docs/batch.md#passes).
+
+Run by CTest (python_passes_tests, label gpu) with PYTHONPATH pointing at the built module.
+"""
+
+import base64
+import json
+import math
+import struct
+
+import numpy as np
+import pytest
+
+import encore
+
+ALL = ("rgba", "albedo", "normal", "material", "segmentation", "depth", "hdr")
+# 64 x 64, one view on +Z at elevation 0: a pixel on each quad and one in the gap.
+LEFT, RIGHT, GAP, ROW = 18, 46, 32, 32
+
+
+def write_quads(path):
+    """Two quads facing +Z at z = 0 (x from -1 to -0.2 and 0.2 to 1), nodes "left" and
+    "right", each with its own mesh and material: red rough, white partly metallic."""
+    data = b""
+    views, accessors, meshes = [], [], []
+    for index, (x0, x1) in enumerate(((-1.0, -0.2), (0.2, 1.0))):
+        positions = struct.pack("<12f", x0, -0.5, 0, x1, -0.5, 0, x1, 0.5, 0, x0, 0.5, 0)
+        normals = struct.pack("<12f", *([0, 0, 1] * 4))
+        indices = struct.pack("<6H", 0, 1, 2, 0, 2, 3) + b"\0\0"
+        for chunk, target in ((positions, 34962), (normals, 34962), (indices, 34963)):
+            views.append({"buffer": 0, "byteOffset": len(data), "byteLength": len(chunk)})
+            data += chunk
+        first = len(accessors)
+        accessors += [
+            {"bufferView": first, "componentType": 5126, "count": 4, "type": "VEC3",
+             "min": [x0, -0.5, 0], "max": [x1, 0.5, 0]},
+            {"bufferView": first + 1, "componentType": 5126, "count": 4, "type": "VEC3"},
+            {"bufferView": first + 2, "componentType": 5123, "count": 6, "type": "SCALAR"}]
+        meshes.append({"name": ["left mesh", "right mesh"][index], "primitives": [{
+            "attributes": {"POSITION": first, "NORMAL": first + 1}, "indices": first + 2,
+            "material": index}]})
+    document = {
+        "asset": {"version": "2.0"},
+        "buffers": [{"uri": "data:application/octet-stream;base64," +
+                     base64.b64encode(data).decode(), "byteLength": len(data)}],
+        "bufferViews": views,
+        "accessors": accessors,
+        "materials": [
+            {"name": "red", "pbrMetallicRoughness": {
+                "baseColorFactor": [0.8, 0.2, 0.1, 1], "metallicFactor": 0,
+                "roughnessFactor": 0.6}},
+            {"name": "white", "pbrMetallicRoughness": {
+                "baseColorFactor": [1, 1, 1, 1], "metallicFactor": 0.25,
+                "roughnessFactor": 0.4}}],
+        "meshes": meshes,
+        "nodes": [{"name": "left", "mesh": 0}, {"name": "right", "mesh": 1}],
+        "scenes": [{"nodes": [0, 1]}],
+        "scene": 0,
+    }
+    path.write_text(json.dumps(document))
+    return path
+
+
+def srgb(linear):
+    encoded = 12.92 * linear if linear <= 0.0031308 else 1.055 * linear ** (1 / 2.4) - 0.055
+    return round(encoded * 255)
+
+
+@pytest.fixture(scope="module")
+def renderer():
+    renderer = encore.Renderer(samples=1)
+    assert "Vulkan" in renderer.adapter
+    return renderer
+
+
+@pytest.fixture
+def quads(renderer, tmp_path):
+    return renderer.load(str(write_quads(tmp_path / "quads.gltf")))
+
+
+def render(renderer, scene, **keywords):
+    return renderer.render_views(scene, views=1, size=64, elevation=0.0, **keywords)
+
+
+def test_every_pass_comes_back_as_an_array_of_known_values(renderer, quads):
+    result = render(renderer, quads, passes=ALL)
+    assert set(result) == set(ALL) | {"intrinsics", "cameras"}
+    rgba, albedo, material = result["rgba"], result["albedo"], result["material"]
+    assert rgba.shape == albedo.shape == material.shape == result["normal"].shape == (1, 64, 64, 4)
+    assert rgba.dtype == np.uint8
+    for name in ("albedo", "material", "normal"):
+        assert np.array_equal(result[name][..., 3], rgba[..., 3]), name + " has rgba's alpha"
+    assert list(albedo[0, ROW, LEFT, :3]) == pytest.approx([srgb(0.8), srgb(0.2), srgb(0.1)],
+                                                           abs=1)
+    assert list(material[0, ROW, RIGHT, :3]) == pytest.approx([255, 0.4 * 255, 0.25 * 255],
+                                                              abs=1)
+
+    segmentation = result["segmentation"]
+    assert segmentation.dtype == np.uint16 and segmentation.shape == (1, 64, 64)
+    assert segmentation[0, ROW, LEFT] == 1 and segmentation[0, ROW, RIGHT] == 2
+    assert segmentation[0, ROW, GAP] == 0
+    assert set(np.unique(segmentation)) == {0, 1, 2}
+
+    depth = result["depth"]
+    assert depth.dtype == np.float32 and depth.shape == (1, 64, 64)
+    assert depth[0, ROW, LEFT] == pytest.approx(1.5, abs=1e-4)
+    assert math.isinf(depth[0, ROW, GAP])
+
+    hdr = result["hdr"]
+    assert hdr.shape == (1, 64, 64, 4) and hdr.dtype == np.float32
+    assert hdr[0, ROW, LEFT, 3] == 1.0 and hdr[0, ROW, GAP, 3] == 0.0
+    assert result["cameras"].shape == (1, 4, 4)
+
+
+def test_passes_match_the_tuple_and_are_repeatable(renderer, quads):
+    images, intrinsics, cameras = render(renderer, quads)
+    result = render(renderer, quads, passes=("rgba", "depth"))
+    assert np.array_equal(result["rgba"], images)
+    assert np.array_equal(result["intrinsics"], intrinsics)
+    again = render(renderer, quads, passes=("depth", "rgba"))
+    assert np.array_equal(again["depth"], result["depth"])
+
+
+def test_segmentation_counts_meshes_or_materials(renderer, quads):
+    for by in ("mesh", "material"):
+        ids = render(renderer, quads, passes=("segmentation",), segmentation_by=by)["segmentation"]
+        assert ids[0, ROW, LEFT] == 1 and ids[0, ROW, RIGHT] == 2, by
+
+
+def test_shading_keywords_change_the_rgba_but_not_the_albedo(renderer, quads):
+    plain = render(renderer, quads, passes=("rgba", "albedo", "hdr"))
+    bright = render(renderer, quads, passes=("rgba", "albedo", "hdr"), environment_intensity=6.0,
+                    tone_mapping="none", exposure=1.0)
+    assert np.array_equal(plain["albedo"], bright["albedo"])
+    assert bright["rgba"][0, ROW, RIGHT, 1] == 255, "saturated without tone mapping"
+    assert bright["hdr"][0, ROW, RIGHT, 1] > 1.0
+    assert bright["hdr"][0, ROW, RIGHT, 1] == pytest.approx(
+        6.0 * plain["hdr"][0, ROW, RIGHT, 1], rel=0.02)
+    dark = render(renderer, quads, passes=("rgba", "hdr"), exposure=0.25)
+    assert dark["rgba"][0, ROW, RIGHT, :3].sum() < plain["rgba"][0, ROW, RIGHT, :3].sum()
+    assert np.array_equal(dark["hdr"], plain["hdr"]), "HDR is the radiance before exposure"
+    grey = render(renderer, quads, passes=("rgba",), background="#808080", tone_mapping="none")
+    assert list(grey["rgba"][0, ROW, GAP]) == [128, 128, 128, 255]
+
+
+def test_bad_passes_raise_value_errors(renderer, quads, tmp_path):
+    for passes, message in ((("rgba", "sky"), "Unknown pass 'sky'"),
+                            (("depth", "depth"), "asked for twice"),
+                            ((), "names no pass"),
+                            ("rgba", "sequence of names")):
+        with pytest.raises(ValueError, match=message):
+            render(renderer, quads, passes=passes)
+    with pytest.raises(ValueError, match="replaces normals"):
+        render(renderer, quads, passes=("rgba",), normals=True)
+    with pytest.raises(ValueError, match="segmentation_by"):
+        render(renderer, quads, passes=("segmentation",), segmentation_by="scene")
+    with pytest.raises(ValueError, match="tone_mapping"):
+        render(renderer, quads, passes=("rgba",), tone_mapping="filmic")
+    with pytest.raises(ValueError, match="background"):
+        render(renderer, quads, passes=("rgba",), background="blue")
+    multisampled = encore.Renderer(samples=4)
+    scene = multisampled.load(str(write_quads(tmp_path / "again.gltf")))
+    with pytest.raises(ValueError, match="samples=1"):
+        multisampled.render_views(scene, views=1, size=16, passes=("segmentation",))
+
+
+def test_batch_takes_the_passes_as_keywords(tmp_path):
+    (tmp_path / "in").mkdir()
+    write_quads(tmp_path / "in" / "quads.gltf")
+    summary = encore.batch(str(tmp_path / "in"), str(tmp_path / "out"), views=1, size=32,
+                           samples=1, passes=("albedo", "segmentation", "depth"),
+                           segmentation_by="material", depth_format="exr")
+    assert summary["rendered"] == 1 and summary["failed"] == 0
+    model = tmp_path / "out" / "quads"
+    assert sorted(path.name for path in model.iterdir()) == [
+        "000.png", "000_albedo.png", "000_depth.exr", "000_segmentation.png", "metadata.json",
+        "transforms.json"]
+    transforms = json.loads((model / "transforms.json").read_text())
+    assert transforms["segmentation_by"] == "material"
+    assert [entry["name"] for entry in transforms["segmentation_ids"]] == ["red", "white"]
+    with pytest.raises(ValueError, match="samples 1"):
+        encore.batch(str(tmp_path / "in"), str(tmp_path / "bad"), views=1, size=8, samples=4,
+                     passes=("segmentation",))
+    with pytest.raises(ValueError, match="depth_format"):
+        encore.batch(str(tmp_path / "in"), str(tmp_path / "bad"), views=1, size=8,
+                     depth_format="tiff")

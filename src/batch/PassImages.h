@@ -1,0 +1,59 @@
+#pragma once
+
+// The passes of a view read back as HDR floats (Renderer::readHdrImage: RGBA, the target's
+// width, premultiplied by coverage) and what the batch makes of them: EXR depth in the units of
+// transforms.json, HDR radiance, segmentation ids (docs/batch.md#passes). The 8-bit passes
+// (normal, albedo, material) go through the colour read-back instead (ViewStrips.h).
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "encore/batch/ViewImages.h"
+#include "encore/image/ImageCodec.h"
+#include "encore/render/Lighting.h"
+#include "encore/scene/SceneData.h"
+
+namespace encore::batch {
+
+// The debug channel that draws pass `kind` (Normal, Depth, Albedo, Material, Segmentation);
+// Shaded for the colour and HDR images, which come from the shaded frame.
+render::DebugChannel passChannel(ViewImage kind, SegmentationBy by);
+
+// Where strip `strip` of a wide float read-back lies.
+struct FloatStrip {
+    std::span<const float> wide;
+    std::uint32_t targetWidth = 0;
+    std::uint32_t strip = 0;
+    std::uint32_t width = 0;
+    std::uint32_t height = 0;
+
+    const float* texel(std::uint32_t x, std::uint32_t y) const {
+        return &wide[(std::size_t(y) * targetWidth + std::size_t(strip) * width + x) * 4];
+    }
+};
+
+// A strip drawn through the depth channel as distances along the camera axis in the units of
+// the cameras (the scene scaled by `unitsPerModelUnit`, the normalisation's scale), infinity
+// where less than half of the pixel is covered: the EXR depth.
+std::vector<float> depthDistances(const FloatStrip& strip, float unitsPerModelUnit);
+
+// A strip of the shaded frame's linear colour, RGBA premultiplied (as EXR stores it).
+std::vector<float> hdrPixels(const FloatStrip& strip);
+
+// A strip drawn through a segmentation channel: its ids, 0 where less than half of the pixel is
+// covered (the channel writes R = id % 256, G = id / 256, times coverage).
+image::ImageGray16 segmentationIds(const FloatStrip& strip);
+
+// What each id of a scene's segmentation names: id (1 + the index) and the node's, mesh's or
+// material's name (empty when unnamed); nodes only where they draw a mesh.
+struct SegmentationName {
+    std::uint32_t id = 0;
+    std::string name;
+};
+std::vector<SegmentationName> segmentationNames(const scene::SceneData& scene, SegmentationBy by);
+
+const char* segmentationByName(SegmentationBy by);
+
+}  // namespace encore::batch
