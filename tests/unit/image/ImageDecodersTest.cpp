@@ -22,6 +22,7 @@
 #include "TextureFixtures.h"
 #include "core/FileIO.h"
 #include "encore/image/ImageCodec.h"
+#include "image/FittedDecode.h"
 #include "image/ImageDecoders.h"
 
 namespace encore::image {
@@ -387,6 +388,36 @@ TEST(ImageDecodersTest, JpegIsCloseToStb) {
             ASSERT_EQ(decoded->pixels[i], 255);
         }
     }
+}
+
+// A baseline JPEG decodes at a fraction of its size when a limit asks for less (libjpeg's DCT
+// scaling), even one wider than Encore decodes whole; every format is then box-filtered to the
+// limit, keeping the aspect ratio, and reports the file's size.
+TEST(ImageDecodersTest, ImagesDecodeWithinAMaximumSize) {
+    const Bytes wide = encodeJpeg(20000, 200, false);
+    EXPECT_FALSE(decodeImage(wide).ok()) << "wider than kMaxImageDimension";
+    auto fitted = decodeImageWithin(wide, 4096, PixelEncoding::Srgb);
+    ASSERT_TRUE(fitted.ok()) << fitted.error().message;
+    EXPECT_EQ(fitted->source, (ImageSize{20000, 200}));
+    EXPECT_EQ(fitted->image.width, 4096u);
+    EXPECT_EQ(fitted->image.height, 41u);
+    ASSERT_EQ(fitted->image.pixels.size(), 4096u * 41 * 4);
+    // The left half's blue channel is 40, the right half's 220 (the gradients change slowly).
+    EXPECT_NEAR(fitted->image.pixels[(20 * 4096 + 100) * 4 + 2], 40, 6);
+    EXPECT_NEAR(fitted->image.pixels[(20 * 4096 + 4000) * 4 + 2], 220, 6);
+
+    const Bytes png = test::encodePngBytes(test::solidImage({10, 200, 30, 255}, 300, 600));
+    auto small = decodeImageWithin(png, 100, PixelEncoding::Linear);
+    ASSERT_TRUE(small.ok()) << small.error().message;
+    EXPECT_EQ(small->source, (ImageSize{300, 600}));
+    EXPECT_EQ(small->image.width, 50u);
+    EXPECT_EQ(small->image.height, 100u);
+    EXPECT_EQ(small->image.pixels[0], 10);
+    EXPECT_EQ(small->image.pixels[1], 200);
+    auto kept = decodeImageWithin(png, 0, PixelEncoding::Linear);
+    ASSERT_TRUE(kept.ok());
+    EXPECT_EQ(kept->image.width, 300u);
+    EXPECT_EQ(kept->source, (ImageSize{300, 600}));
 }
 
 // Greyscale JPEGs become grey RGBA; CMYK ones, which libjpeg-turbo cannot convert to RGBA, are
