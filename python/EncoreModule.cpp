@@ -348,8 +348,16 @@ class Renderer {
                       const std::string& layout,
                       std::uint32_t blankThreshold,
                       const py::object& variant,
-                      const py::object& variants) {
+                      const py::object& variants,
+                      double modelTimeout,
+                      std::uint32_t maxTextureSize,
+                      std::uint32_t shards,
+                      std::uint64_t shardSize) {
         batch::BatchOptions options;
+        options.shards = shards;
+        options.shardBytes = shardSize;
+        options.modelTimeoutSeconds = modelTimeout;  // Checked by validateBatchOptions.
+        options.maxTextureSize = maxTextureSize;
         options.variant = variantArgument(variant);
         if (!variants.is_none()) {
             if (!py::isinstance<py::str>(variants) || variants.cast<std::string>() != "all") {
@@ -624,6 +632,9 @@ PYBIND11_MODULE(_encore, module) {
             py::arg("environment_intensity") = py::none(), py::arg("layout") = "nerf",
             py::arg("blank_threshold") = encore::batch::kDefaultBlankThreshold,
             py::arg("variant") = py::none(), py::arg("variants") = py::none(),
+            py::arg("model_timeout") = 0.0,
+            py::arg("max_texture_size") = encore::batch::kDefaultMaxTextureSize,
+            py::arg("shards") = 0, py::arg("shard_size") = 0,
             "Runs the job of `encore batch` on this renderer's device: `inputs` is what the "
             "command takes (folder, list file, model) or (path, name) pairs from "
             "discover_inputs. Returns the summary (models rendered, failed, skipped; views; "
@@ -640,6 +651,11 @@ PYBIND11_MODULE(_encore, module) {
             "(pixels). variant= (a name or index) draws every model in that KHR_materials_variants "
             "variant into OUTPUT/<name>@<variant> (`encore batch --variant`); variants=\"all\" "
             "also draws each model in every variant, each a sample of its own (`--variants all`). "
+            "model_timeout (seconds, 0: none) abandons a model still loading or drawing after "
+            "that long (stage \"timeout\", `--model-timeout`); max_texture_size downscales "
+            "larger images while loading (`--max-texture-size`, 0: none). shards=N or "
+            "shard_size=BYTES writes WebDataset .tar shards instead of folders (`--shards`, "
+            "`--shard-size`). "
             "The GIL is released while it runs.")
         .def_property_readonly("samples",
                                [](const Renderer& renderer) { return renderer.samples(); })

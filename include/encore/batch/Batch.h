@@ -115,6 +115,10 @@ enum class OutputLayout {
                 // (ObjaverseCamera.h).
 };
 
+// BatchOptions::maxTextureSize: what GPUs sample fast and datasets' 512-pixel views never
+// resolve beyond.
+inline constexpr std::uint32_t kDefaultMaxTextureSize = 4096;
+
 // Fewer covered pixels than this make a view blank (BatchOptions::blankThreshold).
 inline constexpr std::uint32_t kDefaultBlankThreshold = 1;
 
@@ -128,6 +132,12 @@ struct BatchOptions {
     // `renderer`'s lighting.
     LightingVariation lighting;
     OutputLayout layout = OutputLayout::Nerf;
+    // WebDataset shards instead of a folder per model (ShardWriter.h): OUT/shard-000000.tar ...
+    // holding each sample's files as `<name>.000.png`, `<name>.transforms.json`, ... `shards`:
+    // about that many shards (each holds the models of the batch divided by it); `shardBytes`:
+    // a shard is finished once it holds that many bytes. 0 and 0: a folder per model.
+    std::uint32_t shards = 0;
+    std::uint64_t shardBytes = 0;
     // A view whose colour image has fewer pixels with non-zero alpha than this is blank: listed
     // in metadata.json's blankViews, and with `strict` the model fails (stage "blank"). Coverage
     // is counted with a transparent background only (the default); with another background no
@@ -151,6 +161,15 @@ struct BatchOptions {
     float lodErrorPixels = 0.0f;
 
     bool strict = false;  // Loader warnings and blank views fail the model.
+    // > 0: a model still loading, uploading or drawing after this many seconds of work on it
+    // (waiting in the queue between them does not count) is abandoned: a line in failures.jsonl
+    // with stage "timeout", and the batch goes on. A load is told to stop (its thread finishes
+    // at its loader's next check, its result dropped); views already on the GPU are read back
+    // and dropped. A GPU that hangs inside a draw is the driver's to reset (a device loss).
+    double modelTimeoutSeconds = 0.0;
+    // Images with a side longer than this are downscaled while loading (JPEGs decode at a
+    // fraction of their size), listed in metadata.json's imagesDownscaled. 0: kept as they are.
+    std::uint32_t maxTextureSize = kDefaultMaxTextureSize;
     // KHR_materials_variants. A name or index: every model drawn in that variant only, into
     // OUT/<name>@<variant> (variantSampleNames); a model without it fails at "load". Empty: the
     // default materials, into OUT/<name>.
