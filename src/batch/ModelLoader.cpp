@@ -47,9 +47,14 @@ void ModelLoader::startLoads() {
         const std::size_t order = mNextToStart++;
         ++mRunning;
         auto cancel = std::make_shared<std::atomic<bool>>(false);
-        mLoading.emplace(order, RunningLoad{Clock::now(), cancel});
+        mLoading.emplace(order, RunningLoad{std::nullopt, cancel});
         mPool->submit([this, order, cancel] {
             const auto start = Clock::now();
+            {
+                // The time limit counts from here, not from the wait in the pool's queue.
+                std::lock_guard lock(mMutex);
+                mLoading.at(order).start = start;
+            }
             const double cpuStart = threadCpuSeconds();
             LoadedModel loaded;
             loaded.order = order;
@@ -83,7 +88,8 @@ void ModelLoader::expireLoads() {
     const auto now = Clock::now();
     bool expired = false;
     for (auto it = mLoading.begin(); it != mLoading.end();) {
-        const double seconds = std::chrono::duration<double>(now - it->second.start).count();
+        const double seconds =
+            it->second.start ? std::chrono::duration<double>(now - *it->second.start).count() : 0.0;
         if (seconds < mTimeoutSeconds) {
             ++it;
             continue;
@@ -117,7 +123,12 @@ ModelLoader::Clock::duration ModelLoader::nextExpiry(Clock::duration longest) co
         std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(mTimeoutSeconds));
     Clock::time_point earliest = Clock::time_point::max();
     for (const auto& [order, load] : mLoading) {
-        earliest = std::min(earliest, load.start + limit);
+        if (load.start) {
+            earliest = std::min(earliest, *load.start + limit);
+        }
+    }
+    if (earliest == Clock::time_point::max()) {
+        return longest;  // None started yet.
     }
     // A little past it, so that the load has passed the limit when the taker wakes.
     const auto until = earliest - Clock::now() + std::chrono::milliseconds(1);

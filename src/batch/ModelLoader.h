@@ -78,7 +78,7 @@ class ModelLoader {
     using Clock = std::chrono::steady_clock;
     // A load on the pool, until it finishes or is abandoned.
     struct RunningLoad {
-        Clock::time_point start;
+        std::optional<Clock::time_point> start;     // Once a pool thread runs it.
         std::shared_ptr<std::atomic<bool>> cancel;  // Shared with its task.
     };
 

@@ -121,9 +121,9 @@ Result<std::unique_ptr<ShardWriter>> ShardWriter::open(const fs::path& output,
     std::error_code ec;
     fs::create_directories(writer->mStaging, ec);
     if (ec) {
-        return makeError(ErrorCode::IoError, "Cannot create the folder '" +
-                                                 writer->mStaging.string() + "' (" +
-                                                 ec.message() + ").");
+        return makeError(
+            ErrorCode::IoError,
+            "Cannot create the folder '" + writer->mStaging.string() + "' (" + ec.message() + ").");
     }
     std::vector<fs::path> partial;
     long last = -1;
@@ -169,8 +169,8 @@ Result<void> ShardWriter::startShard() {
     // ustar, with pax headers only for names longer than ustar's 100 bytes.
     archive_write_set_format_pax_restricted(mArchive);
     if (archive_write_open_filename(mArchive, partialPath(mCurrentPath).c_str()) != ARCHIVE_OK) {
-        Error error = archiveError(mArchive, "Cannot create the shard '" +
-                                                 partialPath(mCurrentPath).string() + "'");
+        Error error = archiveError(
+            mArchive, "Cannot create the shard '" + partialPath(mCurrentPath).string() + "'");
         archive_write_free(mArchive);
         mArchive = nullptr;
         return error;
@@ -205,8 +205,7 @@ Result<void> ShardWriter::add(const std::string& sampleName) {
     std::vector<std::pair<std::string, std::vector<std::uint8_t>>> files;
     for (const fs::path& file : sampleFiles(folder)) {
         ENCORE_TRY_ASSIGN(auto bytes, readFile(file));
-        files.emplace_back(shardKey(sampleName) + "." + file.filename().string(),
-                           std::move(bytes));
+        files.emplace_back(shardKey(sampleName) + "." + file.filename().string(), std::move(bytes));
     }
     std::lock_guard lock(mMutex);
     if (!mArchive) {

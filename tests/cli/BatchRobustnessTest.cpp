@@ -70,8 +70,7 @@ TEST(BatchRobustnessTest, AModelPastTheTimeLimitIsAbandonedAndTheBatchGoesOn) {
     ASSERT_EQ(failures.size(), 1u);
     EXPECT_EQ(failures[0]["stage"], "timeout");
     EXPECT_NE(failures[0]["file"].get<std::string>().find("slow.gltf"), std::string::npos);
-    EXPECT_NE(failures[0]["error"].get<std::string>().find("time limit (10 s)"),
-              std::string::npos)
+    EXPECT_NE(failures[0]["error"].get<std::string>().find("time limit (10 s)"), std::string::npos)
         << failures[0]["error"];
     for (const char* model : {"set0/model", "set1/model"}) {
         EXPECT_TRUE(fs::exists(output / model / "transforms.json")) << model;
@@ -102,8 +101,8 @@ TEST(BatchRobustnessTest, LargeTexturesAreDownscaledWhileLoadingAndRecorded) {
     EXPECT_EQ(image["height"], 128);
 
     // The default limit (4096) keeps it; a solid colour looks the same at either size.
-    const CommandResult kept =
-        runEncore(batchArguments(input, output / "kept", "--views 1 --size 32 --samples 1 --quiet"));
+    const CommandResult kept = runEncore(
+        batchArguments(input, output / "kept", "--views 1 --size 32 --samples 1 --quiet"));
     ASSERT_EQ(kept.exitCode, 0) << kept.err;
     EXPECT_TRUE(readJson(output / "kept" / "quad" / "metadata.json")["imagesDownscaled"].empty());
     EXPECT_EQ(readBytes(output / "kept" / "quad" / "000.png"),
@@ -123,7 +122,9 @@ TEST(BatchRobustnessTest, ALostDeviceIsCreatedAgainAndTheModelsInFlightAreDrawnA
     const CommandResult lost = runEncore(batchArguments(input, output / "lost", options));
     ::unsetenv("ENCORE_TEST_LOSE_DEVICE_AT_MODEL");
     EXPECT_EQ(lost.exitCode, 0) << lost.out << lost.err;
-    EXPECT_NE(lost.err.find("The GPU device was lost and created again; models in flight drawn again"), std::string::npos)
+    EXPECT_NE(
+        lost.err.find("The GPU device was lost and created again; models in flight drawn again"),
+        std::string::npos)
         << lost.err;
     EXPECT_NE(lost.out.find("4 rendered, 0 failed"), std::string::npos) << lost.out;
     EXPECT_TRUE(jsonLines(output / "lost" / "failures.jsonl").empty());

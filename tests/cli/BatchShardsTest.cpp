@@ -90,7 +90,8 @@ TEST(BatchShardsTest, ShardsHoldEverySampleUnderWebDatasetNames) {
     const fs::path input = makeCollection("batch-shards", 3, 4);
     fs::remove(input / "broken.gltf");
     const fs::path output = makeTempDir("batch-shards-output");
-    const std::string options = "--views 2 --size 32 --samples 1 --depth --layout objaverse --quiet";
+    const std::string options =
+        "--views 2 --size 32 --samples 1 --depth --layout objaverse --quiet";
     const CommandResult folders = runEncore(batchArguments(input, output / "folders", options));
     ASSERT_EQ(folders.exitCode, 0) << folders.err;
     const CommandResult sharded =
