@@ -79,6 +79,28 @@ TEST(BatchRobustnessTest, AModelPastTheTimeLimitIsAbandonedAndTheBatchGoesOn) {
     EXPECT_FALSE(fs::exists(output / "slow" / "transforms.json"));
 }
 
+// A millisecond is less than any model takes to load and upload: whichever stage notices (the
+// loader's watchdog or the device thread after the upload), every model fails as a timeout, no
+// file of theirs is left, and the process ends as usual.
+TEST(BatchRobustnessTest, ALimitShorterThanEveryModelFailsThemAllAsTimeouts) {
+    const fs::path input = makeCollection("batch-timeout-all", 3, 40);
+    fs::remove(input / "broken.gltf");
+    const fs::path output = makeTempDir("batch-timeout-all-output");
+    const CommandResult result = runEncore(batchArguments(
+        input, output, "--views 2 --size 32 --samples 1 --model-timeout 0.001 --quiet"));
+    EXPECT_EQ(result.exitCode, 1) << result.out << result.err;
+    EXPECT_NE(result.out.find("0 rendered, 3 failed"), std::string::npos) << result.out;
+    const auto failures = jsonLines(output / "failures.jsonl");
+    ASSERT_EQ(failures.size(), 3u);
+    for (const nlohmann::json& failure : failures) {
+        EXPECT_EQ(failure["stage"], "timeout") << failure;
+        EXPECT_NE(failure["error"].get<std::string>().find("(0.001 s"), std::string::npos)
+            << failure;
+    }
+    EXPECT_TRUE(filesUnder(output, ".png").empty());
+    EXPECT_TRUE(filesUnder(output, ".json").empty());
+}
+
 TEST(BatchRobustnessTest, LargeTexturesAreDownscaledWhileLoadingAndRecorded) {
     const fs::path input = makeTempDir("batch-max-texture");
     // Not a power of two, wider than high: the aspect ratio is kept.
