@@ -188,9 +188,16 @@ Result<void> ShardWriter::finishShard() {
     }
     archive_write_free(mArchive);
     mArchive = nullptr;
-    ENCORE_TRY(result);
     const fs::path shard[] = {mCurrentPath};
-    ENCORE_TRY(commitFiles(shard));  // Flushed, then renamed: finished exactly when named so.
+    if (result) {
+        result = commitFiles(shard);  // Flushed, then renamed: finished exactly when named so.
+    }
+    if (!result) {
+        std::error_code ec;
+        fs::remove(partialPath(mCurrentPath), ec);
+        mCurrentSamples.clear();  // Still staged, for the next run.
+        return result;
+    }
     for (const std::string& sample : mCurrentSamples) {
         mFinishedKeys.insert(shardKey(sample));
         removeSampleFolder(mStaging / fs::path(sample), mStaging);
@@ -198,6 +205,14 @@ Result<void> ShardWriter::finishShard() {
     mCurrentSamples.clear();
     ++mNextIndex;
     return {};
+}
+
+void ShardWriter::abandonShard() {
+    archive_write_free(mArchive);
+    mArchive = nullptr;
+    std::error_code ec;
+    fs::remove(partialPath(mCurrentPath), ec);
+    mCurrentSamples.clear();  // Still staged: the next run puts them into a shard.
 }
 
 Result<void> ShardWriter::add(const std::string& sampleName) {
@@ -223,8 +238,10 @@ Result<void> ShardWriter::add(const std::string& sampleName) {
             archive_write_data(mArchive, bytes.data(), bytes.size()) == la_ssize_t(bytes.size());
         archive_entry_free(entry);
         if (!written) {
-            return archiveError(mArchive, "Cannot write '" + name + "' to the shard '" +
-                                              partialPath(mCurrentPath).string() + "'");
+            Error error = archiveError(mArchive, "Cannot write '" + name + "' to the shard '" +
+                                                     partialPath(mCurrentPath).string() + "'");
+            abandonShard();
+            return error;
         }
         mCurrentBytes += kTarBlock + (bytes.size() + kTarBlock - 1) / kTarBlock * kTarBlock;
     }

@@ -65,6 +65,9 @@ class ShardWriter {
     ShardWriter() = default;
     Result<void> startShard();   // With mMutex held.
     Result<void> finishShard();  // With mMutex held.
+    // After a write error: drops the current shard; its samples stay in the staging folder, and
+    // the next run puts them into a shard (as after a kill).
+    void abandonShard();  // With mMutex held.
 
     std::filesystem::path mOutput;
     std::filesystem::path mStaging;

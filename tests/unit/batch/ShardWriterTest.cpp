@@ -42,10 +42,10 @@ TEST(ShardWriterTest, SamplesGoIntoShardsWholeAndTheirFoldersGoWithTheShard) {
     EXPECT_FALSE((*shards)->finished("b.glb"));
     auto members = tarMemberNames(output / "shard-000000.tar");
     ASSERT_TRUE(members.ok()) << members.error().message;
-    EXPECT_EQ(*members, (std::vector<std::string>{
-                            "a/one.000.png", "a/one.001.png", "a/one.metadata.json",
-                            "a/one.transforms.json", "a/two.000.png", "a/two.001.png",
-                            "a/two.metadata.json", "a/two.transforms.json"}));
+    EXPECT_EQ(*members,
+              (std::vector<std::string>{"a/one.000.png", "a/one.001.png", "a/one.metadata.json",
+                                        "a/one.transforms.json", "a/two.000.png", "a/two.001.png",
+                                        "a/two.metadata.json", "a/two.transforms.json"}));
 
     // Stopped here (as by SIGKILL): the next writer drops the partial shard, takes the finished
     // one's samples as finished and puts the staged sample into its first shard.
