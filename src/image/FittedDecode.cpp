@@ -39,6 +39,12 @@ Result<FittedDecode> decodeImageWithin(std::span<const std::uint8_t> encoded,
                                        std::uint32_t maxDimension,
                                        PixelEncoding encoding) {
     FittedDecode fitted;
+    if (maxDimension > 0 && isPng(encoded) && encoded.size() >= 25 &&
+        !checkDecodable(
+            {pngUint32(&encoded[16]), pngUint32(&encoded[20]), encoded[24] == 16 ? 16u : 8u})) {
+        // Too large to decode whole (IHDR's size, right after the signature): row by row.
+        return decodeLargePngWithin(encoded, maxDimension, encoding);
+    }
     if (maxDimension > 0 && isJpeg(encoded)) {
         ENCORE_TRY_ASSIGN(fitted.image, decodeJpeg(encoded, maxDimension));
         fitted.source = jpegSourceSize(encoded);

@@ -25,4 +25,11 @@ Result<FittedDecode> decodeImageWithin(std::span<const std::uint8_t> encoded,
                                        std::uint32_t maxDimension,
                                        PixelEncoding encoding);
 
+// A PNG larger than checkDecodable allows, decoded row by row and box-filtered to fit within
+// `maxDimension` as the rows come (PngRowDownscale.cpp): its memory is the result's. Interlaced
+// ones are refused (LimitExceeded).
+Result<FittedDecode> decodeLargePngWithin(std::span<const std::uint8_t> encoded,
+                                          std::uint32_t maxDimension,
+                                          PixelEncoding encoding);
+
 }  // namespace encore::image

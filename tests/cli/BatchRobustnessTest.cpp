@@ -124,6 +124,22 @@ TEST(BatchRobustnessTest, LargeTexturesAreDownscaledWhileLoadingAndRecorded) {
     EXPECT_EQ(image["width"], 256);
     EXPECT_EQ(image["height"], 128);
 
+    // Wider than Encore decodes whole (16384): decoded row by row, drawn, recorded.
+    ASSERT_TRUE(
+        writeFile(input / "long.png", encodePngBytes(solidImage({40, 200, 40, 255}, 20000, 40)))
+            .ok());
+    texturedQuad("long.png").writeGltf(input, "long");
+    const CommandResult longer = runEncore(batchArguments(
+        input, output / "long", "--views 1 --size 32 --samples 1 --max-texture-size 1000 --quiet"));
+    ASSERT_EQ(longer.exitCode, 0) << longer.out << longer.err;
+    const nlohmann::json strip = readJson(output / "long" / "long" / "metadata.json");
+    ASSERT_EQ(strip["imagesDownscaled"].size(), 1u) << strip.dump(2);
+    EXPECT_EQ(strip["imagesDownscaled"][0]["originalWidth"], 20000);
+    EXPECT_EQ(strip["imagesDownscaled"][0]["width"], 1000);
+    EXPECT_EQ(strip["imagesDownscaled"][0]["height"], 2);
+    EXPECT_TRUE(strip["imagesFailed"].empty()) << strip.dump(2);
+    fs::remove(input / "long.gltf");
+
     // The default limit (4096) keeps it; a solid colour looks the same at either size.
     const CommandResult kept = runEncore(
         batchArguments(input, output / "kept", "--views 1 --size 32 --samples 1 --quiet"));

@@ -442,9 +442,9 @@ struct LoadOptions {
     // renderer which selects levels earns back.
     bool buildLevelsOfDetail = true;
     // Images with a side longer than this are downscaled while they are decoded (JPEGs decode
-    // at a fraction of their size, then every format is box-filtered; Image::sourceWidth keeps
-    // the file's size), so one huge texture costs neither the memory nor the upload of its full
-    // size. 0: images keep their size.
+    // at a fraction of their size, PNGs too large to decode whole row by row, then every
+    // format is box-filtered; Image::sourceWidth keeps the file's size), so one huge texture
+    // costs neither the memory nor the upload of its full size. 0: images keep their size.
     std::uint32_t maxImageDimension = 0;
     // Set from another thread to abandon the load: it stops at its next check (between its
     // stages, images and meshes) and fails with LimitExceeded. For callers that give up on a

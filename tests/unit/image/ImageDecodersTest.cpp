@@ -414,6 +414,31 @@ TEST(ImageDecodersTest, ImagesDecodeWithinAMaximumSize) {
     EXPECT_EQ(small->image.height, 100u);
     EXPECT_EQ(small->image.pixels[0], 10);
     EXPECT_EQ(small->image.pixels[1], 200);
+    // Wider than Encore decodes whole: decoded row by row, each row box-filtered as it comes.
+    ImageRgba8 halves = test::solidImage({0, 0, 0, 255}, 20000, 100);
+    for (std::size_t pixel = 0; pixel < std::size_t(20000) * 100; ++pixel) {
+        if (pixel % 20000 >= 10000) {
+            std::fill_n(&halves.pixels[pixel * 4], 3, std::uint8_t(255));
+        }
+    }
+    const Bytes huge = test::encodePngBytes(halves);
+    EXPECT_FALSE(decodeImage(huge).ok()) << "wider than kMaxImageDimension";
+    auto rows = decodeImageWithin(huge, 1000, PixelEncoding::Linear);
+    ASSERT_TRUE(rows.ok()) << rows.error().message;
+    EXPECT_EQ(rows->source, (ImageSize{20000, 100}));
+    EXPECT_EQ(rows->image.width, 1000u);
+    EXPECT_EQ(rows->image.height, 5u);
+    for (std::uint32_t y = 0; y < 5; ++y) {
+        EXPECT_EQ(rows->image.pixels[(y * 1000 + 10) * 4], 0);
+        EXPECT_EQ(rows->image.pixels[(y * 1000 + 990) * 4 + 1], 255);
+        EXPECT_EQ(rows->image.pixels[(y * 1000 + 990) * 4 + 3], 255);
+    }
+    // sRGB colour is averaged in linear light: the column across the edge is half of each.
+    auto srgb = decodeImageWithin(huge, 2000, PixelEncoding::Srgb);
+    ASSERT_TRUE(srgb.ok());
+    EXPECT_EQ(srgb->image.pixels[999 * 4], 0);
+    EXPECT_EQ(srgb->image.pixels[1000 * 4], 255);
+
     auto kept = decodeImageWithin(png, 0, PixelEncoding::Linear);
     ASSERT_TRUE(kept.ok());
     EXPECT_EQ(kept->image.width, 300u);
