@@ -1,6 +1,6 @@
 // PNGs too large to decode whole, decoded row by row with libspng's progressive decoding and
-// box-filtered as the rows come (FittedDecode.h): memory for the result, one decoded row and two
-// rows of sums, whatever the PNG's size.
+// box-filtered as the rows come (FittedDecode.h): memory for the result, one decoded row and
+// three rows of sums, whatever the PNG's size.
 
 #include <spng.h>
 
@@ -43,10 +43,13 @@ class RowDownscaler {
           mTarget(target),
           mSrgb(encoding == PixelEncoding::Srgb),
           mRow(std::size_t(target.width) * 4),
-          mSums(std::size_t(target.width) * target.height * 4, 0.0) {
+          mSums(std::size_t(target.width) * 4 * 2, 0.0) {
         for (int i = 0; i < 256; ++i) {
             mToLinear[i] = mSrgb ? srgbToLinear(i / 255.0) : i / 255.0;
         }
+        mImage.width = target.width;
+        mImage.height = target.height;
+        mImage.pixels.resize(std::size_t(target.width) * target.height * 4);
     }
 
     void addRow(const std::uint8_t* rgba) {
@@ -57,29 +60,32 @@ class RowDownscaler {
             spread(x, across, mTarget.width, [&](std::uint32_t tx, double weight) {
                 for (int c = 0; c < 4; ++c) {
                     const std::uint8_t value = rgba[std::size_t(x) * 4 + c];
-                    mRow[std::size_t(tx) * 4 + c] += weight * (c < 3 ? mToLinear[value] : value / 255.0);
+                    mRow[std::size_t(tx) * 4 + c] +=
+                        weight * (c < 3 ? mToLinear[value] : value / 255.0);
                 }
             });
         }
-        // Down: into the one or two target rows this source row covers.
+        // Down: into the one or two target rows this source row covers (rows ty kept at
+        // ty % 2: every row above them is finished).
+        const std::uint32_t y = mNextRow++;
         const double down = double(mTarget.height) / mSource.height;
-        spread(mNextRow++, down, mTarget.height, [&](std::uint32_t ty, double weight) {
-            double* sums = &mSums[std::size_t(ty) * mTarget.width * 4];
+        spread(y, down, mTarget.height, [&](std::uint32_t ty, double weight) {
+            double* sums = rowSums(ty);
             for (std::size_t i = 0; i < mRow.size(); ++i) {
                 sums[i] += weight * mRow[i];
             }
         });
+        const double reached = (y + 1) * down;
+        while (mFinished < mTarget.height && mFinished + 1 <= reached + 1e-9) {
+            finishRow();
+        }
     }
 
-    ImageRgba8 finish() const {
-        ImageRgba8 image;
-        image.width = mTarget.width;
-        image.height = mTarget.height;
-        image.pixels.resize(mSums.size());
-        for (std::size_t i = 0; i < mSums.size(); ++i) {
-            image.pixels[i] = toByte(mSums[i], mSrgb && i % 4 != 3);
+    ImageRgba8 finish() {
+        while (mFinished < mTarget.height) {
+            finishRow();
         }
-        return image;
+        return std::move(mImage);
     }
 
   private:
@@ -98,14 +104,30 @@ class RowDownscaler {
         }
     }
 
+    double* rowSums(std::uint32_t targetRow) {
+        return &mSums[std::size_t(targetRow % 2) * mTarget.width * 4];
+    }
+
+    // Writes the next target row out of its sums and clears them for the row after the next.
+    void finishRow() {
+        double* sums = rowSums(mFinished);
+        std::uint8_t* out = &mImage.pixels[std::size_t(mFinished) * mTarget.width * 4];
+        for (std::size_t i = 0; i < std::size_t(mTarget.width) * 4; ++i) {
+            out[i] = toByte(sums[i], mSrgb && i % 4 != 3);
+            sums[i] = 0.0;
+        }
+        ++mFinished;
+    }
+
     ImageSize mSource;
     ImageSize mTarget;
     bool mSrgb;
     double mToLinear[256];
-    std::vector<double> mRow;
-    // The whole target's sums: the target is at most maxDimension squared.
-    std::vector<double> mSums;
+    std::vector<double> mRow;   // One source row filtered across.
+    std::vector<double> mSums;  // Two target rows being summed.
+    ImageRgba8 mImage;
     std::uint32_t mNextRow = 0;
+    std::uint32_t mFinished = 0;  // Target rows written to mImage.
 };
 
 }  // namespace
@@ -134,11 +156,11 @@ Result<FittedDecode> decodeLargePngWithin(std::span<const std::uint8_t> encoded,
     FittedDecode fitted;
     fitted.source = {ihdr.width, ihdr.height};
     if (ihdr.width > kMaxRowDecodedDimension || ihdr.height > kMaxRowDecodedDimension) {
-        return makeError(ErrorCode::LimitExceeded,
-                         "Image size " + std::to_string(ihdr.width) + "x" +
-                             std::to_string(ihdr.height) + " is outside 1.." +
-                             std::to_string(kMaxRowDecodedDimension) +
-                             " (the PNGs Encore decodes row by row).");
+        return makeError(ErrorCode::LimitExceeded, "Image size " + std::to_string(ihdr.width) +
+                                                       "x" + std::to_string(ihdr.height) +
+                                                       " is outside 1.." +
+                                                       std::to_string(kMaxRowDecodedDimension) +
+                                                       " (the PNGs Encore decodes row by row).");
     }
     const ImageSize target = fitWithin(fitted.source, maxDimension);
     ENCORE_TRY(checkDecodable({target.width, target.height, 8}));

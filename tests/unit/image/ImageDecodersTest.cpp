@@ -433,6 +433,16 @@ TEST(ImageDecodersTest, ImagesDecodeWithinAMaximumSize) {
         EXPECT_EQ(rows->image.pixels[(y * 1000 + 990) * 4 + 1], 255);
         EXPECT_EQ(rows->image.pixels[(y * 1000 + 990) * 4 + 3], 255);
     }
+    // Top half black, bottom half white: the middle row of five is their mean.
+    ImageRgba8 stacked = test::solidImage({0, 0, 0, 255}, 20000, 100);
+    std::fill(stacked.pixels.begin() + std::ptrdiff_t(20000) * 50 * 4, stacked.pixels.end(),
+              std::uint8_t(255));
+    auto rowsDown = decodeImageWithin(test::encodePngBytes(stacked), 1000, PixelEncoding::Linear);
+    ASSERT_TRUE(rowsDown.ok()) << rowsDown.error().message;
+    const int expectedRows[5] = {0, 0, 128, 255, 255};
+    for (std::uint32_t y = 0; y < 5; ++y) {
+        EXPECT_NEAR(rowsDown->image.pixels[(y * 1000 + 500) * 4], expectedRows[y], 1) << y;
+    }
     // sRGB colour is averaged in linear light: the column across the edge is half of each.
     auto srgb = decodeImageWithin(huge, 2000, PixelEncoding::Srgb);
     ASSERT_TRUE(srgb.ok());
