@@ -22,6 +22,11 @@
 // NumPy's 000.npy. Cameras and lighting may vary from view to view and model to model
 // (ViewRig.h, BatchLighting.h), drawn from the seed and the model's name: every frame of
 // transforms.json records its own intrinsics and lighting.
+//
+// Files that would stop it do not: a model past BatchOptions::modelTimeoutSeconds is abandoned
+// (stage "timeout"), images larger than maxTextureSize are downscaled while loading, and a device
+// lost mid-batch is created again, the models it had in flight drawn again once. With `shards`
+// or `shardBytes` the samples go into WebDataset .tar shards instead of folders (docs/batch.md).
 
 #include <atomic>
 #include <cstdint>
