@@ -310,8 +310,12 @@ void DeviceLane::renderModel(LoadedModel& loaded, bool retry) {
     // still draw the later ones with the others. Its own views must be read back first:
     // preparing frees its scene. (collectOldest counts the wait as the GPU's.)
     const std::size_t slotIndex = mModelsPrepared++ % mRenderers.size();
+    const auto collectStart = Clock::now();
     collectRenderer(slotIndex);
     collectReady();
+    if (mModelDeadline != Clock::time_point::max()) {
+        mModelDeadline += Clock::now() - collectStart;  // Other models' views: not its time.
+    }
     if (mRenderers.empty()) {
         // Collecting found the device lost and could not create it again.
         failBeforeUpload("upload", deviceNotRecreated());
