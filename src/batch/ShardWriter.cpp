@@ -67,15 +67,39 @@ std::vector<fs::path> sampleFiles(const fs::path& folder) {
     return files;
 }
 
-// Removes `folder` and then each parent up to `root` that is left empty.
-void removeSampleFolder(const fs::path& folder, const fs::path& root) {
+// Removes the files of a sample's folder, not the folders: another sample may lie in a folder
+// below it ("a" and "a/b"), and the device thread may be creating one beside it at any moment.
+// pruneEmptyFolders removes the folders once nothing is being written.
+void removeSampleFiles(const fs::path& folder) {
     std::error_code ec;
-    fs::remove_all(folder, ec);
-    for (fs::path parent = folder.parent_path(); parent != root && parent.has_relative_path();
-         parent = parent.parent_path()) {
-        if (!fs::is_empty(parent, ec) || ec || !fs::remove(parent, ec)) {
-            break;
+    std::vector<fs::path> files;
+    for (auto it = fs::directory_iterator(folder, ec); !ec && it != fs::directory_iterator();
+         it.increment(ec)) {
+        if (it->is_regular_file(ec)) {
+            files.push_back(it->path());
         }
+    }
+    for (const fs::path& file : files) {
+        fs::remove(file, ec);
+    }
+}
+
+// Removes the empty folders under `root`, deepest first, and `root` if it is left empty.
+void pruneEmptyFolders(const fs::path& root) {
+    std::error_code ec;
+    std::vector<fs::path> folders;
+    for (auto it = fs::recursive_directory_iterator(root, ec);
+         !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
+        if (it->is_directory(ec)) {
+            folders.push_back(it->path());
+        }
+    }
+    std::sort(folders.begin(), folders.end(), [](const fs::path& a, const fs::path& b) {
+        return a.native().size() > b.native().size();
+    });
+    folders.push_back(root);
+    for (const fs::path& folder : folders) {
+        fs::remove(folder, ec);  // Fails, leaving it, unless it is empty.
     }
 }
 
@@ -200,7 +224,7 @@ Result<void> ShardWriter::finishShard() {
     }
     for (const std::string& sample : mCurrentSamples) {
         mFinishedKeys.insert(shardKey(sample));
-        removeSampleFolder(mStaging / fs::path(sample), mStaging);
+        removeSampleFiles(mStaging / fs::path(sample));
     }
     mCurrentSamples.clear();
     ++mNextIndex;
@@ -254,21 +278,29 @@ Result<void> ShardWriter::add(const std::string& sampleName) {
 }
 
 Result<void> ShardWriter::addStaged() {
-    std::vector<std::string> staged;
+    std::set<std::string> staged;    // Whole: with a transforms.json.
+    std::set<std::string> leftover;  // Of samples in finished shards, whole or not.
     std::error_code ec;
     for (auto it = fs::recursive_directory_iterator(mStaging, ec);
          !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
-        if (it->path().filename() == kTransformsFileName && it->is_regular_file(ec)) {
-            staged.push_back(fs::relative(it->path().parent_path(), mStaging).generic_string());
-        }
-    }
-    std::sort(staged.begin(), staged.end());
-    for (const std::string& sample : staged) {
-        if (finished(sample)) {
-            // Its shard was renamed, the run killed before the folder was removed.
-            removeSampleFolder(mStaging / fs::path(sample), mStaging);
+        if (!it->is_regular_file(ec)) {
             continue;
         }
+        const std::string sample =
+            fs::relative(it->path().parent_path(), mStaging).generic_string();
+        if (finished(sample)) {
+            // Its shard was renamed, and the run killed while its folder was being removed.
+            leftover.insert(sample);
+        } else if (it->path().filename() == kTransformsFileName) {
+            staged.insert(sample);
+        }
+    }
+    for (const std::string& sample : leftover) {
+        removeSampleFiles(mStaging / fs::path(sample));
+    }
+    pruneEmptyFolders(mStaging);  // Nothing is being written yet.
+    fs::create_directories(mStaging, ec);
+    for (const std::string& sample : staged) {
         ENCORE_TRY(add(sample));
     }
     return {};
@@ -281,10 +313,7 @@ Result<void> ShardWriter::close() {
             ENCORE_TRY(finishShard());
         }
     }
-    std::error_code ec;
-    if (fs::is_empty(mStaging, ec) && !ec) {
-        fs::remove(mStaging, ec);
-    }
+    pruneEmptyFolders(mStaging);
     return {};
 }
 

@@ -10,10 +10,10 @@
 // OUT/.staging/<name>/; once the sample is finished there, add() appends its files to the
 // current shard, written as shard-N.tar.part through libarchive, which is flushed and renamed to
 // shard-N.tar once it holds enough samples (or bytes), or when the batch ends; only then are the
-// staged folders of its samples removed. So a run killed at any moment loses no finished sample
-// and leaves no partial one: the next run (open()) drops the partial shard, finds the samples of
-// the finished shards (their member names) finished, and appends the staged samples still
-// complete to its first shard before rendering the others.
+// staged files of its samples removed (their empty folders at the end). So a run killed at any
+// moment loses no finished sample and leaves no partial one: the next run (open()) drops the
+// partial shard, finds the samples of the finished shards (their member names) finished, and
+// appends the staged samples still complete to its first shard before rendering the others.
 
 #include <cstdint>
 #include <filesystem>
@@ -56,9 +56,10 @@ class ShardWriter {
     // transforms.json last) to the current shard. Any thread.
     Result<void> add(const std::string& sampleName);
     // Appends the samples a killed run left finished in the staging folder (those with a
-    // transforms.json).
+    // transforms.json), after removing what is left of samples a finished shard holds.
     Result<void> addStaged();
-    // Finishes the current shard (if it holds a sample) and removes the staging folder if empty.
+    // Finishes the current shard (if it holds a sample) and removes the staging folder's empty
+    // folders, and it if it is left empty.
     Result<void> close();
 
   private:

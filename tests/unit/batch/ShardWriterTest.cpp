@@ -33,10 +33,11 @@ TEST(ShardWriterTest, SamplesGoIntoShardsWholeAndTheirFoldersGoWithTheShard) {
         stage(**shards, name);
         ASSERT_TRUE((*shards)->add(name).ok());
     }
-    // The first shard is finished (two samples), their folders gone; the third is staged.
+    // The first shard is finished (two samples), their files gone; the third is staged.
     EXPECT_TRUE(fs::exists(output / "shard-000000.tar"));
     EXPECT_TRUE(fs::exists(output / "shard-000001.tar.part"));
-    EXPECT_FALSE(fs::exists((*shards)->stagingFolder() / "a"));
+    EXPECT_FALSE(fs::exists((*shards)->stagingFolder() / "a" / "one" / "000.png"));
+    EXPECT_FALSE(fs::exists((*shards)->stagingFolder() / "a" / "two" / "transforms.json"));
     EXPECT_TRUE(fs::exists((*shards)->stagingFolder() / "b.glb" / "transforms.json"));
     EXPECT_TRUE((*shards)->finished("a/two"));
     EXPECT_FALSE((*shards)->finished("b.glb"));
@@ -63,6 +64,30 @@ TEST(ShardWriterTest, SamplesGoIntoShardsWholeAndTheirFoldersGoWithTheShard) {
     EXPECT_EQ(*last, (std::vector<std::string>{"b_glb.000.png", "b_glb.001.png",
                                                "b_glb.metadata.json", "b_glb.transforms.json"}));
     EXPECT_TRUE((*resumed)->finished("b.glb"));
+}
+
+// Killed while a finished shard's samples were being removed: what is left of them goes, and a
+// sample in a folder below another's keeps its files when the other's are removed.
+TEST(ShardWriterTest, LeftoversOfFinishedSamplesGoAndNestedSamplesStay) {
+    const fs::path output = test::makeTempDir("shard-writer-leftovers");
+    {
+        auto shards = ShardWriter::open(output, 1, 0);
+        ASSERT_TRUE(shards.ok());
+        stage(**shards, "a");
+        stage(**shards, "a/b");
+        ASSERT_TRUE((*shards)->add("a").ok());  // A shard of its own, finished.
+        EXPECT_TRUE(fs::exists((*shards)->stagingFolder() / "a" / "b" / "000.png"));
+        std::ofstream((*shards)->stagingFolder() / "a" / "001.png") << "left by a kill";
+    }
+    auto resumed = ShardWriter::open(output, 1, 0);
+    ASSERT_TRUE(resumed.ok());
+    ASSERT_TRUE((*resumed)->addStaged().ok());  // "a/b", whole, into shard 1.
+    ASSERT_TRUE((*resumed)->close().ok());
+    EXPECT_FALSE(fs::exists((*resumed)->stagingFolder()));
+    auto members = tarMemberNames(output / "shard-000001.tar");
+    ASSERT_TRUE(members.ok());
+    EXPECT_EQ(members->size(), 4u);
+    EXPECT_EQ(members->front(), "a/b.000.png");
 }
 
 TEST(ShardWriterTest, AShardOfTheSizeAskedForIsFinished) {
