@@ -388,8 +388,16 @@ class Renderer {
                       const py::object& variants,
                       const py::object& passes,
                       const std::string& segmentation,
-                      const std::string& depthFormat) {
+                      const std::string& depthFormat,
+                      double modelTimeout,
+                      std::uint32_t maxTextureSize,
+                      std::uint32_t shards,
+                      std::uint64_t shardSize) {
         batch::BatchOptions options;
+        options.shards = shards;
+        options.shardBytes = shardSize;
+        options.modelTimeoutSeconds = modelTimeout;  // Checked by validateBatchOptions.
+        options.maxTextureSize = maxTextureSize;
         options.variant = variantArgument(variant);
         if (!variants.is_none()) {
             if (!py::isinstance<py::str>(variants) || variants.cast<std::string>() != "all") {
@@ -697,6 +705,9 @@ PYBIND11_MODULE(_encore, module) {
             py::arg("variant") = py::none(), py::arg("variants") = py::none(),
             py::arg("passes") = py::none(), py::arg("segmentation_by") = "node",
             py::arg("depth_format") = "png",
+            py::arg("model_timeout") = 0.0,
+            py::arg("max_texture_size") = encore::batch::kDefaultMaxTextureSize,
+            py::arg("shards") = 0, py::arg("shard_size") = 0,
             "Runs the job of `encore batch` on this renderer's device: `inputs` is what the "
             "command takes (folder, list file, model) or (path, name) pairs from "
             "discover_inputs. Returns the summary (models rendered, failed, skipped; views; "
@@ -716,6 +727,11 @@ PYBIND11_MODULE(_encore, module) {
             "passes= names the images beside the colour ones as render_views does (\"normal\", "
             "\"depth\", \"albedo\", \"material\", \"segmentation\", \"hdr\"; `--albedo` ...), "
             "with segmentation_by (node, mesh, material) and depth_format (png, exr). "
+            "model_timeout (seconds, 0: none) abandons a model still loading or drawing after "
+            "that long (stage \"timeout\", `--model-timeout`); max_texture_size downscales "
+            "larger images while loading (`--max-texture-size`, 0: none). shards=N or "
+            "shard_size=BYTES writes WebDataset .tar shards instead of folders (`--shards`, "
+            "`--shard-size`). "
             "The GIL is released while it runs.")
         .def_property_readonly("samples",
                                [](const Renderer& renderer) { return renderer.samples(); })

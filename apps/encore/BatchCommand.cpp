@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "BatchPassOptions.h"
+#include "ByteSize.h"
 #include "Commands.h"
 #include "DeviceOptions.h"
 #include "ShadingOptions.h"
@@ -47,8 +48,12 @@ struct BatchCommandOptions {
     std::string strategy;  // Empty: batch::BatchOptions::strategy's default.
     float lodErrorPixels = 0.0f;
     bool strict = false;
-    std::string variant;   // --variant N|NAME: that KHR_materials_variants variant only.
-    std::string variants;  // --variants all: the default materials and every variant.
+    double modelTimeoutSeconds = 0.0;  // 0: none.
+    std::uint32_t maxTextureSize = batch::kDefaultMaxTextureSize;
+    std::uint32_t shards = 0;
+    std::string shardSize;  // Empty: no limit.
+    std::string variant;    // --variant N|NAME: that KHR_materials_variants variant only.
+    std::string variants;   // --variants all: the default materials and every variant.
     bool normals = false;
     bool depth = false;
     BatchPassOptions passes;  // --albedo, --material, --segmentation, --depth-format, --hdr.
@@ -236,6 +241,16 @@ int runBatch(const BatchCommandOptions& options, const GlobalOptions& global) {
     batchOptions.views.elevationDegrees = options.elevationDegrees;
     batchOptions.views.normalize = !options.noNormalize;
     batchOptions.strict = options.strict;
+    batchOptions.modelTimeoutSeconds = options.modelTimeoutSeconds;
+    batchOptions.maxTextureSize = options.maxTextureSize;
+    batchOptions.shards = options.shards;
+    if (!options.shardSize.empty()) {
+        auto bytes = parseByteSize(options.shardSize, "--shard-size");
+        if (!bytes) {
+            return reportError(bytes.error());
+        }
+        batchOptions.shardBytes = *bytes;
+    }
     batchOptions.variant = options.variant;
     batchOptions.allVariants = options.variants == "all";
     batchOptions.images.normals = options.normals;
@@ -450,6 +465,18 @@ void addBatchCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) 
         ->type_name("PIXELS");
     command->add_flag("--strict", options->strict,
                       "Treat loader warnings as errors (the model fails)");
+    command
+        ->add_option("--model-timeout", options->modelTimeoutSeconds,
+                     "Abandon a model still loading or drawing after this many seconds of work "
+                     "on it (failures.jsonl stage timeout) and go on; default: no limit")
+        ->check(CLI::PositiveNumber)
+        ->type_name("SECONDS");
+    command
+        ->add_option("--max-texture-size", options->maxTextureSize,
+                     "Downscale larger images while loading (listed in metadata.json's "
+                     "imagesDownscaled); 0: keep every size")
+        ->capture_default_str()
+        ->type_name("PIXELS");
     auto* variant = command->add_option(
         "--variant", options->variant,
         "Draw every model in this KHR_materials_variants variant (index or name) into "
@@ -505,6 +532,17 @@ void addBatchCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) 
                      "per view, as the Objaverse-XL scripts write them")
         ->capture_default_str()
         ->check(CLI::IsMember({"nerf", "objaverse"}));
+    command
+        ->add_option("--shards", options->shards,
+                     "Write WebDataset .tar shards (OUT/shard-000000.tar ...: <name>.000.png, "
+                     "<name>.transforms.json, ...) instead of a folder per model, about this many")
+        ->check(CLI::Range(1u, 1000000u))
+        ->type_name("N");
+    command
+        ->add_option("--shard-size", options->shardSize,
+                     "Write WebDataset .tar shards, each finished once it holds this much (1GiB, "
+                     "500MB, ...)")
+        ->type_name("BYTES");
     command
         ->add_option("--blank-threshold", options->blankThreshold,
                      "A view covering fewer pixels is blank: listed in metadata.json (and a "

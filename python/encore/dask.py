@@ -138,7 +138,7 @@ def render_collection(client, inputs, output, *, chunk_size=8, retries=2, **opti
     random_views, seed, elevation, distance, fov, normalize, size, samples, jobs,
     memory_limit_mib, strict, normals, depth, top_light, png_compression, lod_error,
     camera_distribution, camera_jitter, environment, environment_dir, environment_rotation,
-    environment_intensity, layout, blank_threshold): what is drawn at random depends on the seed
+    environment_intensity, layout, blank_threshold, model_timeout, max_texture_size): what is drawn at random depends on the seed
     and each model's name only, so the tasks draw what one `encore batch` would.
 
     The summary has the models of the collection (`total`) and those rendered, failed and
@@ -151,6 +151,11 @@ def render_collection(client, inputs, output, *, chunk_size=8, retries=2, **opti
         raise ValueError("chunk_size must be at least 1")
     if "failure_log" in options:
         raise TypeError("render_collection writes failures.jsonl itself")
+    if options.get("shards") or options.get("shard_size"):
+        # Each task's batch numbers its shards from those in the folder: tasks running at once
+        # would write the same names.
+        raise ValueError("render_collection writes folders; shards are written by one batch "
+                         "(encore.batch or `encore batch --shards`)")
     start = time.monotonic()
     models = discover_inputs(inputs)
     output = os.path.abspath(output)

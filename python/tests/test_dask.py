@@ -187,5 +187,7 @@ def test_bad_options_fail_on_the_client(client, collection, tmp_path):
         encore.dask.render_collection(client, str(collection), str(tmp_path), chunk_size=0)
     with pytest.raises(TypeError):
         encore.dask.render_collection(client, str(collection), str(tmp_path), failure_log=True)
+    with pytest.raises(ValueError):  # Its tasks would number their shards alike.
+        encore.dask.render_collection(client, str(collection), str(tmp_path), shards=2)
     with pytest.raises(encore.Error):
         encore.dask.render_collection(client, str(tmp_path / "nothing"), str(tmp_path / "o"))

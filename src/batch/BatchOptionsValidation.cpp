@@ -116,6 +116,11 @@ Result<void> validateBatchOptions(const BatchOptions& options) {
                          "gpu-culling, gpu-culling-bundles), not " +
                              render::strategyChoiceName(strategy) + ".");
     }
+    if (!(options.modelTimeoutSeconds >= 0.0) || !std::isfinite(options.modelTimeoutSeconds)) {
+        return makeError(ErrorCode::InvalidArgument,
+                         "The model time limit must be a number of seconds, 0 for none (not " +
+                             std::to_string(options.modelTimeoutSeconds) + ").");
+    }
     if (options.renderers < 1 || options.renderers > kMaxRenderers) {
         return makeError(ErrorCode::InvalidArgument,
                          "A batch takes 1 to " + std::to_string(kMaxRenderers) +

@@ -18,6 +18,7 @@
 #include "batch/ModelPlan.h"
 #include "batch/ModelSamples.h"
 #include "batch/ModelWriter.h"
+#include "batch/ShardWriter.h"
 #include "core/Elapsed.h"
 #include "core/ThreadPool.h"
 #include "encore/batch/BatchRenderer.h"
@@ -58,6 +59,7 @@ class BatchRun {
              const BatchOptions& options)
         : mDevices(devices),
           mInputs(inputs),
+          mOutput(options.output),
           mOptions(options),
           mPool(options.jobs, kPoolNiceness) {}
 
@@ -76,7 +78,11 @@ class BatchRun {
     std::span<BatchRenderer* const> mDevices;
     std::span<const BatchInput> mInputs;
     std::vector<BatchInput> mPending;  // Not finished by an earlier run, in load order.
-    const BatchOptions& mOptions;
+    std::filesystem::path mOutput;     // The caller's BatchOptions::output.
+    // The caller's options; with shards, `output` is the staging folder the samples are written
+    // to before they go into a shard.
+    BatchOptions mOptions;
+    std::unique_ptr<ShardWriter> mShards;
     ThreadPool mPool;
     Clock::time_point mStart = Clock::now();
     std::optional<FailureLog> mFailures;
@@ -169,17 +175,28 @@ Result<BatchSummary> BatchRun::run() {
                                                  mOptions.output.string() + "' (" + ec.message() +
                                                  ").");
     }
+    if (mOptions.shards > 0 || mOptions.shardBytes > 0) {
+        const std::uint64_t samplesPerShard =
+            mOptions.shards > 0 ? (mInputs.size() + mOptions.shards - 1) / mOptions.shards : 0;
+        ENCORE_TRY_ASSIGN(mShards,
+                          ShardWriter::open(mOutput, samplesPerShard, mOptions.shardBytes));
+        ENCORE_TRY(mShards->addStaged());  // What a killed run left finished.
+        mOptions.output = mShards->stagingFolder();
+    }
     if (mOptions.writeFailureLog) {
-        ENCORE_TRY_ASSIGN(auto failures, FailureLog::create(mOptions.output / "failures.jsonl"));
+        ENCORE_TRY_ASSIGN(auto failures, FailureLog::create(mOutput / "failures.jsonl"));
         mFailures.emplace(std::move(failures));
     } else {
         mFailures.emplace(FailureLog::inMemory());
     }
-    ModelWriter writer(mPool, mOptions, *mFailures, mCounters);
+    ModelWriter writer(mPool, mOptions, *mFailures, mCounters, mShards.get());
 
-    // Finished models are skipped before anything loads.
+    // Finished models are skipped before anything loads (with variants, a model's samples in
+    // shards are only known once loaded: DeviceLane skips those).
+    const bool oneSample = mOptions.variant.empty() && !mOptions.allVariants;
     for (const BatchInput& input : mInputs) {
-        if (samplesFinished(mOptions, input)) {
+        if ((mShards && oneSample && mShards->finished(input.name)) ||
+            samplesFinished(mOptions, input)) {
             ++mSkipped;
         } else {
             mPending.push_back(input);
@@ -195,14 +212,18 @@ Result<BatchSummary> BatchRun::run() {
     // than a few views earn back.
     loadOptions.buildLevelsOfDetail = mOptions.lodErrorPixels > 0.0f;
     loadOptions.vertexCacheOrder = scene::VertexCacheOrder::Fast;
+    loadOptions.maxImageDimension = mOptions.maxTextureSize;
     // One load per pool thread keeps them busy; encode tasks queue between them. With several
     // devices, each takes whichever model has loaded: a slow load holds up none of the others.
     ModelLoader loader(
         mPool, mPending, loadOptions, mOptions.memoryLimitBytes, mPool.size(),
-        mDevices.size() == 1 ? ModelLoader::Order::InOrder : ModelLoader::Order::AsLoaded);
-    BatchShared shared{
-        mOptions, batchStrategy(mOptions), mPending, mPool, *mFailures, mCounters, writer, loader,
-        planner};
+        mDevices.size() == 1 ? ModelLoader::Order::InOrder : ModelLoader::Order::AsLoaded,
+        mOptions.modelTimeoutSeconds);
+    BatchShared shared{mOptions,   batchStrategy(mOptions),
+                       mPending,   mPool,
+                       *mFailures, mCounters,
+                       writer,     loader,
+                       planner,    mShards.get()};
     if (auto created = createLanes(shared); !created) {
         loader.finish();
         return created.error();
@@ -212,6 +233,9 @@ Result<BatchSummary> BatchRun::run() {
     runLanes();
     loader.finish();
     mPool.waitIdle();
+    if (mShards) {
+        ENCORE_TRY(mShards->close());  // The last shard, with fewer samples.
+    }
 
     BatchSummary summary;
     static_cast<BatchProgress&>(summary) = progress();

@@ -2,12 +2,15 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
+#include <cstdlib>
 #include <string>
 
 #include "batch/ModelOutput.h"
 #include "batch/ModelSamples.h"
 #include "batch/PassImages.h"
 #include "core/Elapsed.h"
+#include "core/Log.h"
 #include "render/StagedImages.h"
 
 namespace encore::batch {
@@ -23,6 +26,16 @@ Error lostWhileDrawing() {
 Error deviceNotRecreated() {
     return makeError(ErrorCode::DeviceError,
                      "The GPU device was lost and could not be created again.");
+}
+
+Error timedOut(const BatchInput& input, double limitSeconds, const char* what) {
+    char limit[32];
+    std::snprintf(limit, sizeof(limit), "%g", limitSeconds);
+    return makeError(ErrorCode::LimitExceeded, input.path.string() + ": " + what +
+                                                   " took longer than the model time limit (" +
+                                                   limit +
+                                                   " s with its load); the model was "
+                                                   "abandoned.");
 }
 
 // A directional light shining straight down, placed by no node.
@@ -98,7 +111,7 @@ void DeviceLane::collectOldest() {
     mChunks.pop_front();
     auto finished = mRing->takeOldestMapped();
     if (!finished) {
-        chunk.job->fail(mShared.failures, mShared.counters, "render", finished.error());
+        failJob(*chunk.job, "render", finished.error());
         recoverIfLost();
         return;
     }
@@ -148,7 +161,16 @@ void DeviceLane::recoverIfLost() {
     }
     ++mDevicesLost;
     finishTimestamps();
+    // The model being drawn was cut short too, whether or not a failure named it yet.
+    if (mCurrentModel && !mCurrentModel->retried && !mCurrentModel->failed) {
+        mCurrentModel->retry = true;
+    }
     for (RendererSlot& slot : mRenderers) {
+        if (slot.prepared && slot.model && slot.model->retry) {
+            // Drawn again on the new device (run()); its bytes stay held until then.
+            mRetries.push_back(std::move(*slot.prepared));
+            slot.prepared.reset();
+        }
         releasePrepared(slot);
     }
     mRenderers.clear();  // renderModel fails every later model's upload when none is left.
@@ -156,6 +178,11 @@ void DeviceLane::recoverIfLost() {
     mBatchRenderer.discard();  // Built on the lost device.
     if (auto recreated = mContext.recreateDevice(); recreated) {
         (void)createRenderers();
+        logInfo("The GPU device was lost and created again; models in flight drawn again: " +
+                std::to_string(mRetries.size()) + ".");
+    } else {
+        logWarning("The GPU device was lost and could not be created again (" +
+                   recreated.error().message + ").");
     }
 }
 
@@ -167,7 +194,7 @@ void DeviceLane::renderChunk(const TargetViews& views, ViewImage kind, double& w
         collectOldest();
         waiting += secondsSince(waitStart);
         if (device != mDevicesLost) {
-            job->fail(mShared.failures, mShared.counters, "render", lostWhileDrawing());
+            failJob(*job, "render", lostWhileDrawing());
             return;
         }
     }
@@ -180,7 +207,7 @@ void DeviceLane::renderChunk(const TargetViews& views, ViewImage kind, double& w
         mRing->enqueue(renderer.target().colorTexture(), mTimestamps ? &*mTimestamps : nullptr,
                        render::gpuStageIndex(render::GpuStage::ReadbackCopy));
     if (!enqueued) {
-        job->fail(mShared.failures, mShared.counters, "render", enqueued.error());
+        failJob(*job, "render", enqueued.error());
         return;
     }
     mChunks.push_back({job, slot, first, count, kind});
@@ -194,7 +221,7 @@ void DeviceLane::renderDebugChannel(const std::shared_ptr<ModelJob>& job,
     // After a device loss inside draw() the renderer is gone: nothing to switch back.
     const auto rendererAlive = [&] { return device == mDevicesLost; };
     if (auto drawn = drawDebugChannel(renderer, channel, draw, rendererAlive); !drawn) {
-        job->fail(mShared.failures, mShared.counters, "render", drawn.error());
+        failJob(*job, "render", drawn.error());
     }
 }
 
@@ -214,18 +241,19 @@ void DeviceLane::renderFloatPass(const TargetViews& views,
     mStages.gpu += secondsSince(start);
     waiting += secondsSince(start);
     if (!wide) {
-        job->fail(mShared.failures, mShared.counters, "render", wide.error());
+        failJob(*job, "render", wide.error());
         return;
     }
     mShared.writer.writeFloatViews(job, first, count, kind, *wide, mLayout.targetWidth(),
                                    unitsPerModelUnit);
 }
 
-void DeviceLane::renderModel(LoadedModel& loaded) {
+void DeviceLane::renderModel(LoadedModel& loaded, bool retry) {
     const BatchOptions& options = mShared.options;
     const BatchInput& input = mShared.pending[loaded.order];
     auto model = std::make_shared<ModelProgress>();
     model->input = &input;
+    model->retried = retry;
     ModelFacts facts = loaded.facts;  // Each sample's metadata.json names them.
     const double loadSeconds = loaded.seconds;
     // Fails the model before any renderer holds it: its bytes go back to the loader.
@@ -234,8 +262,15 @@ void DeviceLane::renderModel(LoadedModel& loaded) {
         mShared.loader.release(loaded.bytes);
     };
     if (!loaded.scene) {
-        failBeforeUpload("load", loaded.scene.error());
+        failBeforeUpload(loaded.timedOut ? "timeout" : "load", loaded.scene.error());
         return;
+    }
+    // The model's time limit counts its load and the work here, not its wait in between.
+    mModelDeadline = Clock::time_point::max();
+    if (options.modelTimeoutSeconds > 0.0) {
+        mModelDeadline = Clock::now() +
+                         std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(
+                             options.modelTimeoutSeconds - loaded.seconds));
     }
     if (mRenderers.empty()) {
         failBeforeUpload("upload", deviceNotRecreated());
@@ -248,7 +283,8 @@ void DeviceLane::renderModel(LoadedModel& loaded) {
     }
     // With every variant, a model resumes sample by sample.
     std::erase_if(*samples, [&](const ModelSample& sample) {
-        return modelFinished(modelFolder(options.output, sample.name), modelFileSet(options));
+        return (mShared.shards && mShared.shards->finished(sample.name)) ||
+               modelFinished(modelFolder(options.output, sample.name), modelFileSet(options));
     });
     if (samples->empty()) {
         ++mShared.counters.skipped;
@@ -264,27 +300,39 @@ void DeviceLane::renderModel(LoadedModel& loaded) {
 
     // The pool copies the images into staging buffers while this thread waits for the
     // renderer below: prepare then only records copies (StagedImages.h).
-    const auto stagingStart = Clock::now();
-    const std::unique_ptr<render::StagedImages> staged = render::StagedImages::stage(
-        mContext.device(), *loaded.scene, mContext.limits().maxTextureDimension2D,
-        [this](std::function<void()> copy) { mShared.pool.submitFirst(std::move(copy)); },
-        mStaging);
-    mStages.staging += secondsSince(stagingStart);
-    mStages.upload += secondsSince(stagingStart);
+    const auto stage = [&] {
+        const auto stagingStart = Clock::now();
+        auto staged = render::StagedImages::stage(
+            mContext.device(), *loaded.scene, mContext.limits().maxTextureDimension2D,
+            [this](std::function<void()> copy) { mShared.pool.submitFirst(std::move(copy)); },
+            mStaging);
+        mStages.staging += secondsSince(stagingStart);
+        mStages.upload += secondsSince(stagingStart);
+        return staged;
+    };
+    const std::uint64_t stagedOn = mDevicesLost;
+    std::unique_ptr<render::StagedImages> staged = stage();
 
     // The renderer that drew the oldest model in flight prepares this one, while the GPU may
     // still draw the later ones with the others. Its own views must be read back first:
     // preparing frees its scene. (collectOldest counts the wait as the GPU's.)
     const std::size_t slotIndex = mModelsPrepared++ % mRenderers.size();
+    const auto collectStart = Clock::now();
     collectRenderer(slotIndex);
     collectReady();
+    if (mModelDeadline != Clock::time_point::max()) {
+        mModelDeadline += Clock::now() - collectStart;  // Other models' views: not its time.
+    }
     if (mRenderers.empty()) {
         // Collecting found the device lost and could not create it again.
         failBeforeUpload("upload", deviceNotRecreated());
         return;
     }
+    if (stagedOn != mDevicesLost) {
+        staged = stage();  // Collecting found the device lost: stage on the new one.
+    }
 
-    if (options.topLightLux > 0.0f) {
+    if (options.topLightLux > 0.0f && !retry) {  // A retried scene has its light.
         addTopLight(*loaded.scene, options.topLightLux);
     }
 
@@ -308,6 +356,9 @@ void DeviceLane::renderModel(LoadedModel& loaded) {
         renderer.prepare(scene, mShared.strategy.kind, mShared.strategy.bundle, staged.get());
     releasePrepared(slot);
     slot.prepared = std::move(held);
+    slot.model = model;
+    mCurrentModel = model;
+    injectDeviceLossForTests();
     if (prepared) {
         prepared = mContext.checkNoErrors("Preparing '" + scene.sourcePath.string() + "'");
     }
@@ -315,9 +366,13 @@ void DeviceLane::renderModel(LoadedModel& loaded) {
     const double uploadSeconds = secondsSince(uploadStart);
     mStages.uploadParts += renderer.prepareTimes();
     if (!prepared) {
-        model->fail(mShared.failures, mShared.counters, "upload", prepared.error());
+        failModel(*model, "upload", prepared.error());
         mContext.takeErrors();
         recoverIfLost();
+        return;
+    }
+    if (Clock::now() > mModelDeadline) {
+        failModel(*model, "timeout", timedOut(input, options.modelTimeoutSeconds, "Uploading"));
         return;
     }
 
@@ -336,7 +391,7 @@ void DeviceLane::renderModel(LoadedModel& loaded) {
         job->times.upload = uploadSeconds;
         mShared.planner.plan(*job);
         if (auto selected = renderer.selectVariant(sample.variant); !selected) {
-            job->fail(mShared.failures, mShared.counters, "render", selected.error());
+            failJob(*job, "render", selected.error());
             break;
         }
         renderSample(job, slotIndex, scene, renderWaiting);
@@ -369,6 +424,12 @@ void DeviceLane::renderSample(const std::shared_ptr<ModelJob>& job,
         job->segmentation = segmentationNames(scene, images.segmentationBy);
     }
     for (std::uint32_t first = 0; first < viewCount; first += mLayout.strips) {
+        if (Clock::now() > mModelDeadline) {
+            // What is on the GPU already is read back and dropped (the job has failed).
+            failJob(*job, "timeout",
+                    timedOut(*job->model->input, mShared.options.modelTimeoutSeconds, "Drawing"));
+            break;
+        }
         const std::uint32_t count = std::min<std::uint32_t>(mLayout.strips, viewCount - first);
         const std::vector<render::Camera> cameras =
             stripCameras(job->views, first, mLayout, toUnitBox);
@@ -398,7 +459,7 @@ void DeviceLane::renderSample(const std::shared_ptr<ModelJob>& job,
     }
     if (auto clean = mContext.checkNoErrors("Rendering '" + scene.sourcePath.string() + "'");
         !clean) {
-        job->fail(mShared.failures, mShared.counters, "render", clean.error());
+        failJob(*job, "render", clean.error());
         mContext.takeErrors();
         recoverIfLost();
     }
@@ -412,6 +473,18 @@ void DeviceLane::run(const std::function<void()>& idle) {
         if (mShared.stopRequested()) {
             loader.stop();
             break;
+        }
+        if (!mRetries.empty()) {
+            // The pool may still hold tasks of the lost device's attempt at these models, which
+            // would remove the partial files of the new attempt: let them end first.
+            mShared.pool.waitIdle();
+            LoadedModel retry = std::move(mRetries.front());
+            mRetries.pop_front();
+            renderModel(retry, /*retry=*/true);
+            mCurrentModel.reset();
+            collectReady();
+            idle();
+            continue;
         }
         std::optional<LoadedModel> loaded = loader.tryTake();
         if (!loaded) {
@@ -433,11 +506,54 @@ void DeviceLane::run(const std::function<void()>& idle) {
             mShared.counters.loadCpu += loaded->cpuSeconds;
         }
         renderModel(*loaded);
+        mCurrentModel.reset();
         collectReady();
         idle();
     }
     while (!mChunks.empty()) {
         collectOldest();
+    }
+}
+
+void DeviceLane::failJob(ModelJob& job, const char* stage, const Error& error) {
+    if (retryAfterLoss(*job.model)) {
+        job.failed = true;  // Nothing of this attempt is written.
+        return;
+    }
+    job.fail(mShared.failures, mShared.counters, stage, error);
+}
+
+void DeviceLane::failModel(ModelProgress& model, const char* stage, const Error& error) {
+    if (!retryAfterLoss(model)) {
+        model.fail(mShared.failures, mShared.counters, stage, error);
+    }
+}
+
+bool DeviceLane::retryAfterLoss(ModelProgress& model) {
+    if (model.retry) {
+        return true;  // Already to be drawn again: this attempt's later failures add nothing.
+    }
+    if (model.retried || model.failed || !mContext.deviceLost()) {
+        return false;
+    }
+    model.retry = true;
+    return true;
+}
+
+void DeviceLane::injectDeviceLossForTests() {
+    // ENCORE_TEST_LOSE_DEVICE_AT_MODEL=K loses the device once, right after the K-th model
+    // (from 1) is uploaded, while earlier models' views may still be on the GPU: a driver reset
+    // in the middle of a batch.
+    static const long loseAt = [] {
+        const char* value = std::getenv("ENCORE_TEST_LOSE_DEVICE_AT_MODEL");
+        return value ? std::atol(value) : 0L;
+    }();
+    if (loseAt > 0 && mModelsPrepared == std::uint64_t(loseAt) && mDevicesLost == 0 &&
+        !mInjectedLoss) {
+        mInjectedLoss = true;
+        mContext.device().ForceLoss(wgpu::DeviceLostReason::Unknown,
+                                    "forced by ENCORE_TEST_LOSE_DEVICE_AT_MODEL");
+        mContext.instance().ProcessEvents();
     }
 }
 

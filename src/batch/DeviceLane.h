@@ -17,6 +17,7 @@
 #include "batch/ModelLoader.h"
 #include "batch/ModelPlan.h"
 #include "batch/ModelWriter.h"
+#include "batch/ShardWriter.h"
 #include "batch/ViewStrips.h"
 #include "core/ThreadPool.h"
 #include "encore/batch/Batch.h"
@@ -38,7 +39,8 @@ struct BatchShared {
     SharedCounters& counters;
     ModelWriter& writer;
     ModelLoader& loader;
-    const ModelPlanner& planner;  // Each model's views and lighting.
+    const ModelPlanner& planner;          // Each model's views and lighting.
+    const ShardWriter* shards = nullptr;  // BatchOptions::shards: samples finished in shards.
 
     bool stopRequested() const { return options.stop && options.stop->load(); }
 };
@@ -58,6 +60,7 @@ struct RendererSlot {
     render::Renderer* renderer = nullptr;  // Owned by the lane's BatchRenderer.
     // On the heap: the renderer holds the scene's address, which a move would leave behind.
     std::unique_ptr<LoadedModel> prepared;
+    std::shared_ptr<ModelProgress> model;  // Of `prepared`: whether to retry it after a loss.
 };
 
 // The views of a model that one target holds: [first, first + count), drawn with `cameras`.
@@ -96,8 +99,15 @@ class DeviceLane {
     void collectRenderer(std::size_t slot);
     // Frees renderer `slot`'s scene and gives its bytes back to the loader.
     void releasePrepared(RendererSlot& slot);
-    // Uploads a model once and draws each of its samples (ModelSamples.h) from it.
-    void renderModel(LoadedModel& loaded);
+    // Uploads a model once and draws each of its samples (ModelSamples.h) from it; `retry`: a
+    // second attempt after a device loss (a second loss fails it).
+    void renderModel(LoadedModel& loaded, bool retry = false);
+    // Fails a sample or a model, unless the device is lost and the model was not retried yet:
+    // it is then drawn again once the device is recreated (recoverIfLost keeps its scene).
+    void failJob(ModelJob& job, const char* stage, const Error& error);
+    void failModel(ModelProgress& model, const char* stage, const Error& error);
+    bool retryAfterLoss(ModelProgress& model);
+    void injectDeviceLossForTests();
     // Draws one sample's views with renderer `slotIndex` (which has the model prepared and the
     // sample's variant selected) and hands them to the writer.
     void renderSample(const std::shared_ptr<ModelJob>& job,
@@ -136,6 +146,9 @@ class DeviceLane {
     std::vector<RendererSlot> mRenderers;
     std::uint64_t mModelsPrepared = 0;  // Models handed to a renderer: picks the next one.
     std::uint64_t mViewsDrawn = 0;
+    // When the model being drawn passes BatchOptions::modelTimeoutSeconds (max: never).
+    std::chrono::steady_clock::time_point mModelDeadline =
+        std::chrono::steady_clock::time_point::max();
     // Device losses so far: a renderer used across a collectOldest() may have been replaced.
     std::uint64_t mDevicesLost = 0;
     gpu::TextureReadbackRing* mRing = nullptr;
@@ -147,6 +160,10 @@ class DeviceLane {
     // What the timestamps of the devices finished with measured (finishTimestamps).
     std::vector<gpu::StageTime> mGpuStageTotals;
     std::deque<ChunkInFlight> mChunks;  // In the ring's order.
+    // Models in flight when the device was lost, to draw again (once) on the new one.
+    std::deque<LoadedModel> mRetries;
+    std::shared_ptr<ModelProgress> mCurrentModel;  // Uploaded and being drawn by renderModel.
+    bool mInjectedLoss = false;
 };
 
 }  // namespace encore::batch

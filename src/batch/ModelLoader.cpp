@@ -1,6 +1,8 @@
 #include "batch/ModelLoader.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cstdio>
 
 #include "core/Elapsed.h"
 
@@ -22,13 +24,15 @@ ModelLoader::ModelLoader(ThreadPool& pool,
                          const scene::LoadOptions& options,
                          std::uint64_t memoryLimitBytes,
                          std::size_t ahead,
-                         Order order)
+                         Order order,
+                         double timeoutSeconds)
     : mPool(&pool),
       mInputs(inputs),
       mOptions(options),
       mMemoryLimit(memoryLimitBytes),
       mAhead(std::max<std::size_t>(ahead, 1)),
-      mOrder(order) {
+      mOrder(order),
+      mTimeoutSeconds(timeoutSeconds) {
     std::lock_guard lock(mMutex);
     startLoads();
 }
@@ -38,16 +42,25 @@ void ModelLoader::startLoads() {
     // limit may be passed by the loads running when it is reached. With nothing loaded or
     // loading ahead of the GPU thread, one load always starts, whatever the scene the GPU
     // thread holds: models larger than the limit still render, one at a time.
-    while (!mStopped && mNextToStart < mInputs.size() && mRunning < mAhead &&
-           (mBytesHeld < mMemoryLimit || (mReady.empty() && mRunning == 0))) {
+    while (!mStopped && mNextToStart < mInputs.size() && mLoading.size() < mAhead &&
+           (mBytesHeld < mMemoryLimit || (mReady.empty() && mLoading.empty()))) {
         const std::size_t order = mNextToStart++;
         ++mRunning;
-        mPool->submit([this, order] {
-            const auto start = std::chrono::steady_clock::now();
+        auto cancel = std::make_shared<std::atomic<bool>>(false);
+        mLoading.emplace(order, RunningLoad{std::nullopt, cancel});
+        mPool->submit([this, order, cancel] {
+            const auto start = Clock::now();
+            {
+                // The time limit counts from here, not from the wait in the pool's queue.
+                std::lock_guard lock(mMutex);
+                mLoading.at(order).start = start;
+            }
             const double cpuStart = threadCpuSeconds();
             LoadedModel loaded;
             loaded.order = order;
-            loaded.scene = loadModelFile(mInputs[order].path, mOptions, loaded.facts);
+            scene::LoadOptions options = mOptions;
+            options.cancel = cancel.get();
+            loaded.scene = loadModelFile(mInputs[order].path, options, loaded.facts);
             if (loaded.scene) {
                 loaded.bytes = sceneBytes(*loaded.scene);
             }
@@ -55,12 +68,71 @@ void ModelLoader::startLoads() {
             loaded.cpuSeconds = threadCpuSeconds() - cpuStart;
             std::lock_guard lock(mMutex);
             --mRunning;
+            if (mLoading.erase(order) == 0) {
+                // Abandoned at the time limit: its model was handed over as failed.
+                mLoaded.notify_all();
+                return;
+            }
             mBytesHeld += loaded.bytes;
             mReady.emplace(order, std::move(loaded));
             mLoaded.notify_all();
             startLoads();
         });
     }
+}
+
+void ModelLoader::expireLoads() {
+    if (mTimeoutSeconds <= 0.0) {
+        return;
+    }
+    const auto now = Clock::now();
+    bool expired = false;
+    for (auto it = mLoading.begin(); it != mLoading.end();) {
+        const double seconds =
+            it->second.start ? std::chrono::duration<double>(now - *it->second.start).count() : 0.0;
+        if (seconds < mTimeoutSeconds) {
+            ++it;
+            continue;
+        }
+        it->second.cancel->store(true, std::memory_order_relaxed);
+        char limit[32];
+        std::snprintf(limit, sizeof(limit), "%g", mTimeoutSeconds);
+        LoadedModel abandoned;
+        abandoned.order = it->first;
+        abandoned.timedOut = true;
+        abandoned.seconds = seconds;
+        abandoned.scene = makeError(ErrorCode::LimitExceeded,
+                                    mInputs[it->first].path.string() +
+                                        ": Loading took longer than the model time limit (" +
+                                        limit + " s); the model was abandoned.");
+        mReady.emplace(it->first, std::move(abandoned));
+        it = mLoading.erase(it);
+        expired = true;
+    }
+    if (expired) {
+        mLoaded.notify_all();
+        startLoads();
+    }
+}
+
+ModelLoader::Clock::duration ModelLoader::nextExpiry(Clock::duration longest) const {
+    if (mTimeoutSeconds <= 0.0 || mLoading.empty()) {
+        return longest;
+    }
+    const auto limit =
+        std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(mTimeoutSeconds));
+    Clock::time_point earliest = Clock::time_point::max();
+    for (const auto& [order, load] : mLoading) {
+        if (load.start) {
+            earliest = std::min(earliest, *load.start + limit);
+        }
+    }
+    if (earliest == Clock::time_point::max()) {
+        return longest;  // None started yet.
+    }
+    // A little past it, so that the load has passed the limit when the taker wakes.
+    const auto until = earliest - Clock::now() + std::chrono::milliseconds(1);
+    return std::min(longest, std::max(until, Clock::duration::zero()));
 }
 
 bool ModelLoader::nextLoaded() const {
@@ -74,11 +146,15 @@ bool ModelLoader::exhausted() {
 
 void ModelLoader::waitForNext(int milliseconds) {
     std::unique_lock lock(mMutex);
-    mLoaded.wait_for(lock, std::chrono::milliseconds(milliseconds),
-                     [this] { return mStopped || nextLoaded(); });
+    const auto deadline = Clock::now() + std::chrono::milliseconds(milliseconds);
+    while (!mStopped && !nextLoaded() && Clock::now() < deadline) {
+        mLoaded.wait_for(lock, nextExpiry(deadline - Clock::now()));
+        expireLoads();
+    }
 }
 
 std::optional<LoadedModel> ModelLoader::takeLoaded() {
+    expireLoads();
     if (mStopped || !nextLoaded()) {
         return std::nullopt;
     }
@@ -95,7 +171,10 @@ std::optional<LoadedModel> ModelLoader::tryTake() {
 
 std::optional<LoadedModel> ModelLoader::take() {
     std::unique_lock lock(mMutex);
-    mLoaded.wait(lock, [this] { return mStopped || mTaken >= mInputs.size() || nextLoaded(); });
+    while (!mStopped && mTaken < mInputs.size() && !nextLoaded()) {
+        mLoaded.wait_for(lock, nextExpiry(std::chrono::seconds(1)));
+        expireLoads();
+    }
     return takeLoaded();
 }
 
@@ -114,6 +193,9 @@ void ModelLoader::stop() {
 void ModelLoader::finish() {
     stop();
     std::unique_lock lock(mMutex);
+    for (auto& [order, load] : mLoading) {
+        load.cancel->store(true, std::memory_order_relaxed);  // Their results would be dropped.
+    }
     mLoaded.wait(lock, [this] { return mRunning == 0; });
     mReady.clear();
 }

@@ -3,7 +3,14 @@
 // Loads a batch's models on the thread pool ahead of the GPU thread, which takes them in order.
 // Loads start while fewer than `ahead` are running and the scenes loaded but not yet released
 // stay under the memory limit, so a collection of any size needs the memory of a few models.
+//
+// A load that runs past its time limit is abandoned: the next take hands its model over as failed
+// (LoadedModel::timedOut) and another load starts in its place. Its thread cannot be stopped
+// from outside; the load is told to cancel (scene::LoadOptions::cancel) and stops at its next
+// check, its result dropped, and finish() waits for it (the pool runs it to that check).
 
+#include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <cstdint>
 #include <map>
@@ -26,6 +33,7 @@ struct LoadedModel {
     Result<scene::SceneData> scene = makeError(ErrorCode::InvalidArgument, "Not loaded.");
     std::uint64_t bytes = 0;  // What the scene holds in memory (buffers and decoded images).
     ModelFacts facts;         // Its file's size and digest, and what the scene holds.
+    bool timedOut = false;    // Abandoned at the time limit: `scene` says so.
     double seconds = 0.0;
     double cpuSeconds = 0.0;  // The loading thread's CPU time.
 };
@@ -46,7 +54,8 @@ class ModelLoader {
                 const scene::LoadOptions& options,
                 std::uint64_t memoryLimitBytes,
                 std::size_t ahead,
-                Order order = Order::InOrder);
+                Order order = Order::InOrder,
+                double timeoutSeconds = 0.0);  // > 0: each load's time limit.
 
     // Whether every model was taken, or stop() was called.
     bool exhausted();
@@ -66,7 +75,18 @@ class ModelLoader {
     void finish();
 
   private:
+    using Clock = std::chrono::steady_clock;
+    // A load on the pool, until it finishes or is abandoned.
+    struct RunningLoad {
+        std::optional<Clock::time_point> start;     // Once a pool thread runs it.
+        std::shared_ptr<std::atomic<bool>> cancel;  // Shared with its task.
+    };
+
     void startLoads();  // Called with mMutex held.
+    // Abandons the loads past the time limit, handing them over as failed. With mMutex held.
+    void expireLoads();
+    // How long a waiting taker may sleep before a load may pass the limit (at most `longest`).
+    Clock::duration nextExpiry(Clock::duration longest) const;
     // Called with mMutex held.
     bool nextLoaded() const;
     std::optional<LoadedModel> takeLoaded();
@@ -77,6 +97,7 @@ class ModelLoader {
     std::uint64_t mMemoryLimit;
     std::size_t mAhead;
     Order mOrder;
+    double mTimeoutSeconds;
 
     std::mutex mMutex;
     std::condition_variable mLoaded;
@@ -84,7 +105,8 @@ class ModelLoader {
     std::size_t mNextToStart = 0;
     std::size_t mNextToTake = 0;  // InOrder: the next to take.
     std::size_t mTaken = 0;
-    std::size_t mRunning = 0;
+    std::map<std::size_t, RunningLoad> mLoading;  // By order; counts against `ahead`.
+    std::size_t mRunning = 0;  // Tasks on the pool, abandoned ones too: finish() waits for them.
     std::uint64_t mBytesHeld = 0;  // Loaded, not yet released.
     bool mStopped = false;
 };

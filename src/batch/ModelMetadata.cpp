@@ -80,6 +80,14 @@ void describeModel(const scene::SceneData& scene, ModelFacts& facts) {
                 {index, scene.images[index].name, imageProblem(scene, index)});
         }
     }
+    facts.imagesDownscaled.clear();
+    for (std::size_t index = 0; index < scene.images.size(); ++index) {
+        const scene::Image& image = scene.images[index];
+        if (image.downscaled()) {
+            facts.imagesDownscaled.push_back({index, image.name, image.sourceWidth,
+                                              image.sourceHeight, image.width, image.height});
+        }
+    }
     facts.extensionsUsed = scene.extensionsUsed;
     facts.extensionsRequired = scene.extensionsRequired;
     facts.extensionsIgnored = scene.extensionsIgnored;
@@ -120,6 +128,15 @@ nlohmann::json metadataJson(const BatchInput& input,
     for (const ModelFacts::FailedImage& image : facts.imagesFailed) {
         failed.push_back({{"index", image.index}, {"name", image.name}, {"error", image.error}});
     }
+    nlohmann::json downscaled = nlohmann::json::array();
+    for (const ModelFacts::DownscaledImage& image : facts.imagesDownscaled) {
+        downscaled.push_back({{"index", image.index},
+                              {"name", image.name},
+                              {"originalWidth", image.originalWidth},
+                              {"originalHeight", image.originalHeight},
+                              {"width", image.width},
+                              {"height", image.height}});
+    }
     nlohmann::json animations = nlohmann::json::array();
     for (const ModelFacts::AnimationFacts& animation : facts.animations) {
         animations.push_back({{"name", animation.name},
@@ -141,6 +158,7 @@ nlohmann::json metadataJson(const BatchInput& input,
     json["textures"] = facts.textures;
     json["images"] = facts.images;
     json["imagesFailed"] = std::move(failed);
+    json["imagesDownscaled"] = std::move(downscaled);
     json["lights"] = facts.lights;
     json["cameras"] = facts.cameras;
     json["skins"] = facts.skins;

@@ -51,6 +51,16 @@ struct ModelFacts {
     };
     // Images missing or undecodable: drawn with a default texture (failed with --strict).
     std::vector<FailedImage> imagesFailed;
+    // Images larger than BatchOptions::maxTextureSize, downscaled while loading.
+    struct DownscaledImage {
+        std::size_t index = 0;
+        std::string name;
+        std::uint32_t originalWidth = 0;  // As the file declares.
+        std::uint32_t originalHeight = 0;
+        std::uint32_t width = 0;  // As drawn.
+        std::uint32_t height = 0;
+    };
+    std::vector<DownscaledImage> imagesDownscaled;
     std::vector<std::string> extensionsUsed;
     std::vector<std::string> extensionsRequired;
     std::vector<std::string> extensionsIgnored;  // Used by the file, not implemented.

@@ -7,6 +7,7 @@
 #include "batch/ModelOutput.h"
 #include "batch/NpyFile.h"
 #include "batch/ObjaverseCamera.h"
+#include "batch/ShardWriter.h"
 #include "batch/TransformsJson.h"
 #include "batch/ViewStrips.h"
 #include "core/Elapsed.h"
@@ -56,6 +57,13 @@ void ModelWriter::writeTransforms(ModelJob& job) {
     if (auto written = writeJson(job.folder / kTransformsFileName, json); !written) {
         job.fail(mFailures, mCounters, "write", written.error());
         return;
+    }
+    if (mShards) {
+        const std::string sample = fs::relative(job.folder, mOptions.output).generic_string();
+        if (auto added = mShards->add(sample); !added) {
+            job.fail(mFailures, mCounters, "write", added.error());
+            return;
+        }
     }
     job.model->sampleWritten(mCounters);
 }

@@ -31,6 +31,8 @@
 
 namespace encore::batch {
 
+class ShardWriter;
+
 // Counters the pool's encode tasks and the GPU thread both update.
 struct SharedCounters {
     std::atomic<std::size_t> rendered{0};
@@ -52,6 +54,9 @@ struct ModelProgress {
     const BatchInput* input = nullptr;
     std::atomic<std::uint32_t> remaining{0};  // Samples not yet written.
     std::atomic<bool> failed{false};
+    // A device loss interrupted it: the device thread draws it again (DeviceLane::failJob).
+    bool retry = false;
+    bool retried = false;  // This is that second attempt.
 
     void fail(FailureLog& log,
               SharedCounters& counters,
@@ -116,11 +121,17 @@ Result<void> openModelFolder(const std::filesystem::path& folder);
 // failure goes to `failures`. Everything it is given must outlive the tasks it submits.
 class ModelWriter {
   public:
+    // With `shards`, each finished sample goes into a shard (ShardWriter.h) before it counts.
     ModelWriter(ThreadPool& pool,
                 const BatchOptions& options,
                 FailureLog& failures,
-                SharedCounters& counters)
-        : mPool(pool), mOptions(options), mFailures(failures), mCounters(counters) {}
+                SharedCounters& counters,
+                ShardWriter* shards = nullptr)
+        : mPool(pool),
+          mOptions(options),
+          mFailures(failures),
+          mCounters(counters),
+          mShards(shards) {}
 
     // Hands the views [first, first + count) of `job`, side by side in a read-back target, to
     // the pool; the ring has the buffer back once the last is cropped.
@@ -172,6 +183,7 @@ class ModelWriter {
     const BatchOptions& mOptions;
     FailureLog& mFailures;
     SharedCounters& mCounters;
+    ShardWriter* mShards;
 };
 
 }  // namespace encore::batch

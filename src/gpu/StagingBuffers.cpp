@@ -10,9 +10,12 @@ constexpr std::uint64_t kSmallestBuffer = std::uint64_t{1} << 20;
 }
 
 StagingBuffers::StagingBuffers(Context& context, std::uint64_t keptBytes)
-    : mContext(context), mKeptBytes(keptBytes) {}
+    : mContext(context), mDevice(context.device()), mKeptBytes(keptBytes) {}
 
 StagingBuffers::~StagingBuffers() {
+    if (mDevice.Get() != mContext.device().Get()) {
+        return;  // Destroyed with the lost device: its futures may no longer be waited for.
+    }
     for (const auto& remapping : mRemapping) {
         mContext.wait(remapping->future);
     }

@@ -48,6 +48,9 @@ class StagingBuffers {
     void collect();
 
     Context& mContext;
+    // The device the buffers belong to: after a device loss the context holds a new one, and
+    // the old one's mappings are neither waited for nor reused.
+    wgpu::Device mDevice;
     std::uint64_t mKeptBytes;
     std::uint64_t mBytes = 0;         // Of every buffer kept, mapped or mapping.
     std::vector<wgpu::Buffer> mFree;  // Mapped.

@@ -60,7 +60,11 @@ Result<ImageRgba8> decodePng(std::span<const std::uint8_t> encoded);
 // decodePng leaves to libspng.
 std::optional<ImageRgba8> decodePngWithLibdeflate(std::span<const std::uint8_t> encoded);
 // Four-channel (CMYK, YCCK) JPEGs, which libjpeg-turbo cannot convert to RGBA, go to stb_image.
-Result<ImageRgba8> decodeJpeg(std::span<const std::uint8_t> encoded);
+// With `maxDimension`, a baseline JPEG larger than it decodes at the smallest of 1/2, 1/4 and
+// 1/8 of its size that stays at least that large (libjpeg's DCT scaling), and the size limits
+// apply to what is decoded: a 16k texture then costs what a 4k one does.
+Result<ImageRgba8> decodeJpeg(std::span<const std::uint8_t> encoded,
+                              std::uint32_t maxDimension = 0);
 // Still WebP images, lossy or lossless (WebpDecoder.cpp); animated ones are refused.
 Result<ImageRgba8> decodeWebp(std::span<const std::uint8_t> encoded);
 Result<ImageRgba8> decodeWithStb(std::span<const std::uint8_t> encoded);

@@ -12,6 +12,7 @@
 
 #include <jpeglib.h>
 
+#include <algorithm>
 #include <csetjmp>
 #include <string>
 
@@ -95,6 +96,14 @@ bool decompressInto(Decompressor& jpeg, std::uint8_t* pixels) {
     return true;
 }
 
+bool calcOutputSize(Decompressor& jpeg) {
+    if (setjmp(jpeg.errors.jump)) {
+        return false;
+    }
+    jpeg_calc_output_dimensions(&jpeg.info);
+    return true;
+}
+
 Error jpegError(const char* what, const Decompressor& jpeg) {
     return makeError(ErrorCode::InvalidFormat,
                      std::string(what) + " (" + jpeg.errors.message + ").");
@@ -106,7 +115,7 @@ bool isJpeg(std::span<const std::uint8_t> encoded) {
     return encoded.size() >= 3 && encoded[0] == 0xff && encoded[1] == 0xd8 && encoded[2] == 0xff;
 }
 
-Result<ImageRgba8> decodeJpeg(std::span<const std::uint8_t> encoded) {
+Result<ImageRgba8> decodeJpeg(std::span<const std::uint8_t> encoded, std::uint32_t maxDimension) {
     Decompressor jpeg;
     if (!readHeader(jpeg, encoded)) {
         return jpegError("Image data is not a decodable JPEG", jpeg);
@@ -114,10 +123,31 @@ Result<ImageRgba8> decodeJpeg(std::span<const std::uint8_t> encoded) {
     if (jpeg.info.jpeg_color_space == JCS_CMYK || jpeg.info.jpeg_color_space == JCS_YCCK) {
         return decodeWithStb(encoded);
     }
-    ENCORE_TRY(checkDecodable({jpeg.info.image_width, jpeg.info.image_height, 8}));
+    const ImageHeader source{jpeg.info.image_width, jpeg.info.image_height, 8};
+    // A baseline JPEG decodes at 1/2, 1/4 or 1/8 of its size for the cost of that size (the
+    // IDCT skips the frequencies it drops): the largest of those still no smaller than the size
+    // wanted, which the box filter then reaches. A progressive one keeps every coefficient of
+    // the full size in memory whatever the scale: it must fit the limits as it is.
+    if (maxDimension > 0 && !jpeg_has_multiple_scans(&jpeg.info)) {
+        const std::uint32_t longest = std::max(source.width, source.height);
+        unsigned denominator = 1;
+        while (denominator < 8 && longest / (denominator * 2) >= maxDimension) {
+            denominator *= 2;
+        }
+        jpeg.info.scale_num = 1;
+        jpeg.info.scale_denom = denominator;
+        if (!calcOutputSize(jpeg)) {
+            return jpegError("JPEG decoding failed", jpeg);
+        }
+    } else {
+        ENCORE_TRY(checkDecodable(source));
+        jpeg.info.output_width = source.width;
+        jpeg.info.output_height = source.height;
+    }
+    ENCORE_TRY(checkDecodable({jpeg.info.output_width, jpeg.info.output_height, 8}));
     ImageRgba8 image;
-    image.width = jpeg.info.image_width;
-    image.height = jpeg.info.image_height;
+    image.width = jpeg.info.output_width;
+    image.height = jpeg.info.output_height;
     image.pixels.resize(std::size_t(image.width) * image.height * 4);
     if (!decompressInto(jpeg, image.pixels.data())) {
         return jpegError("JPEG decoding failed", jpeg);

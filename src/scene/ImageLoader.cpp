@@ -7,10 +7,12 @@
 #include <algorithm>
 #include <filesystem>
 #include <optional>
+#include <string_view>
 #include <vector>
 
 #include "core/FileIO.h"
 #include "encore/image/ImageCodec.h"
+#include "image/FittedDecode.h"
 #include "scene/LoadContext.h"
 
 namespace encore::scene {
@@ -77,13 +79,41 @@ std::string reasonOf(const Error& problem) {
     return reason;
 }
 
+// Which images a material samples as sRGB colour (base colour, emissive, specular and sheen
+// colour, the specular-glossiness diffuse and specular): a downscale averages those in linear
+// light, the others (normals, roughness) as they are.
+std::vector<bool> srgbImages(const GltfDocument& document) {
+    std::vector<bool> srgb(document.images.size(), false);
+    constexpr std::string_view kColorSlots[] = {
+        "baseColorTexture",  "emissiveTexture", "specularColorTexture",
+        "sheenColorTexture", "diffuseTexture",  "specularGlossinessTexture"};
+    for (const GltfMaterial& material : document.materials) {
+        for (const GltfMaterialTextureSlot& slot : materialTextureSlots(material)) {
+            const bool color = std::any_of(
+                std::begin(kColorSlots), std::end(kColorSlots),
+                [&](std::string_view name) { return std::string_view(slot.slot).ends_with(name); });
+            if (!color || slot.info->index >= document.textures.size()) {
+                continue;
+            }
+            const GltfTexture& texture = document.textures[slot.info->index];
+            for (const auto& image : {texture.source, texture.webpSource}) {
+                if (image && *image < srgb.size()) {
+                    srgb[*image] = true;
+                }
+            }
+        }
+    }
+    return srgb;
+}
+
 // Decodes (or, without decoding, checks) each image at most once and remembers the outcome.
 class ImageDecoder {
   public:
     explicit ImageDecoder(LoadContext& context)
         : mContext(context),
           mDone(context.document.images.size(), false),
-          mProblems(context.document.images.size()) {}
+          mProblems(context.document.images.size()),
+          mSrgb(srgbImages(context.document)) {}
 
     // Nothing when the image is usable; else why not.
     const std::optional<Error>& load(std::size_t index) {
@@ -100,12 +130,17 @@ class ImageDecoder {
             }
         } else if (auto bytes = imageBytes(mContext, source, index); !bytes.ok()) {
             problem = bytes.error();
-        } else if (auto decoded = image::decodeImage(*bytes); !decoded.ok()) {
+        } else if (auto decoded = image::decodeImageWithin(
+                       *bytes, mContext.options.maxImageDimension,
+                       mSrgb[index] ? image::PixelEncoding::Srgb : image::PixelEncoding::Linear);
+                   !decoded.ok()) {
             problem = decoded.error();
         } else {
-            image.width = decoded->width;
-            image.height = decoded->height;
-            image.rgba8 = std::move(decoded->pixels);
+            image.width = decoded->image.width;
+            image.height = decoded->image.height;
+            image.sourceWidth = decoded->source.width;
+            image.sourceHeight = decoded->source.height;
+            image.rgba8 = std::move(decoded->image.pixels);
         }
         return problem;
     }
@@ -114,6 +149,7 @@ class ImageDecoder {
     LoadContext& mContext;
     std::vector<bool> mDone;
     std::vector<std::optional<Error>> mProblems;
+    std::vector<bool> mSrgb;  // Downscaled averaging colour in linear light.
 };
 
 // Each texture's drawn image: EXT_texture_webp's when it decodes, else the core source. A WebP
@@ -131,6 +167,7 @@ Result<void> chooseTextureImages(LoadContext& context, ImageDecoder& decoder) {
         if (!texture.webpSource) {
             continue;
         }
+        ENCORE_TRY(context.checkCancelled());
         const std::size_t webp = *texture.webpSource;
         const std::optional<Error>& problem = decoder.load(webp);
         if (!problem) {
@@ -188,6 +225,7 @@ Result<void> loadImages(LoadContext& context) {
         if (!drawn[i] && referenced[i]) {
             continue;
         }
+        ENCORE_TRY(context.checkCancelled());  // Each image may take a while to decode.
         if (const std::optional<Error>& problem = decoder.load(i)) {
             ENCORE_TRY(context.warn(problem->code, imageLabel(images[i], i) + " cannot be read (" +
                                                        reasonOf(*problem) +

@@ -57,6 +57,8 @@ struct LoadContext {
     // Records "<displayName>: <message>" as a warning and logs it; in strict mode returns it as
     // an error with `code` instead.
     Result<void> warn(ErrorCode code, std::string message);
+    // Fails once LoadOptions::cancel is set: the stages check between their long steps.
+    Result<void> checkCancelled() const;
 };
 
 // GlbContainer.cpp ---------------------------------------------------------------------------

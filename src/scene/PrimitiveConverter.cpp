@@ -419,6 +419,7 @@ Result<void> convertMeshes(LoadContext& context) {
                                             " has no POSITION attribute; it is skipped."));
                 continue;
             }
+            ENCORE_TRY(context.checkCancelled());
             Primitive primitive;
             ENCORE_TRY_ASSIGN(primitive, PrimitiveConverter(context, m, p).convert());
             mesh.primitives.push_back(std::move(primitive));

@@ -112,20 +112,26 @@ Result<SceneData> load(std::span<const std::uint8_t> bytes, LoadContext& context
     ENCORE_TRY_ASSIGN(context.document, parseDocument(root));
     root = Json();  // The document holds everything needed; free the DOM early.
 
+    ENCORE_TRY(context.checkCancelled());
     ENCORE_TRY(validateReferences(context.document));
     ENCORE_TRY(recordExtensions(context));
     ENCORE_TRY(loadBuffers(context));
     ENCORE_TRY(buildBufferViews(context));
     ENCORE_TRY(decodeMeshoptViews(context));
     labelAccessorUses(context);
+    ENCORE_TRY(context.checkCancelled());
     ENCORE_TRY(decodeDracoPrimitives(context));
     ENCORE_TRY(resolveAccessors(context));
+    ENCORE_TRY(context.checkCancelled());
     ENCORE_TRY(loadImages(context));
     ENCORE_TRY(convertMaterials(context));
+    ENCORE_TRY(context.checkCancelled());
     ENCORE_TRY(convertMeshes(context));
+    ENCORE_TRY(context.checkCancelled());
     ENCORE_TRY(buildNodes(context));
     ENCORE_TRY(convertSkins(context));
     ENCORE_TRY(convertAnimations(context));
+    ENCORE_TRY(context.checkCancelled());
     // Last: it rewrites the index and vertex data every stage above has checked.
     MeshOptimizerOptions meshOptions;
     meshOptions.optimizeVertexOrder = context.options.optimizeMeshes;
@@ -152,6 +158,13 @@ Result<void> LoadContext::warn(ErrorCode code, std::string message) {
     std::string warning = displayName + ": " + message;
     logWarning(warning);
     scene.warnings.push_back(std::move(warning));
+    return {};
+}
+
+Result<void> LoadContext::checkCancelled() const {
+    if (options.cancel && options.cancel->load(std::memory_order_relaxed)) {
+        return makeError(ErrorCode::LimitExceeded, "Loading was cancelled (it took too long).");
+    }
     return {};
 }
 

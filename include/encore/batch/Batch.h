@@ -22,6 +22,11 @@
 // NumPy's 000.npy. Cameras and lighting may vary from view to view and model to model
 // (ViewRig.h, BatchLighting.h), drawn from the seed and the model's name: every frame of
 // transforms.json records its own intrinsics and lighting.
+//
+// Files that would stop it do not: a model past BatchOptions::modelTimeoutSeconds is abandoned
+// (stage "timeout"), images larger than maxTextureSize are downscaled while loading, and a device
+// lost mid-batch is created again, the models it had in flight drawn again once. With `shards`
+// or `shardBytes` the samples go into WebDataset .tar shards instead of folders (docs/batch.md).
 
 #include <atomic>
 #include <cstdint>
@@ -115,6 +120,10 @@ enum class OutputLayout {
                 // (ObjaverseCamera.h).
 };
 
+// BatchOptions::maxTextureSize: what GPUs sample fast and datasets' 512-pixel views never
+// resolve beyond.
+inline constexpr std::uint32_t kDefaultMaxTextureSize = 4096;
+
 // Fewer covered pixels than this make a view blank (BatchOptions::blankThreshold).
 inline constexpr std::uint32_t kDefaultBlankThreshold = 1;
 
@@ -128,6 +137,12 @@ struct BatchOptions {
     // `renderer`'s lighting.
     LightingVariation lighting;
     OutputLayout layout = OutputLayout::Nerf;
+    // WebDataset shards instead of a folder per model (ShardWriter.h): OUT/shard-000000.tar ...
+    // holding each sample's files as `<name>.000.png`, `<name>.transforms.json`, ... `shards`:
+    // about that many shards (each holds the models of the batch divided by it); `shardBytes`:
+    // a shard is finished once it holds that many bytes. 0 and 0: a folder per model.
+    std::uint32_t shards = 0;
+    std::uint64_t shardBytes = 0;
     // A view whose colour image has fewer pixels with non-zero alpha than this is blank: listed
     // in metadata.json's blankViews, and with `strict` the model fails (stage "blank"). Coverage
     // is counted with a transparent background only (the default); with another background no
@@ -151,6 +166,15 @@ struct BatchOptions {
     float lodErrorPixels = 0.0f;
 
     bool strict = false;  // Loader warnings and blank views fail the model.
+    // > 0: a model still loading, uploading or drawing after this many seconds of work on it
+    // (waiting in the queue between them does not count) is abandoned: a line in failures.jsonl
+    // with stage "timeout", and the batch goes on. A load is told to stop (its thread finishes
+    // at its loader's next check, its result dropped); views already on the GPU are read back
+    // and dropped. A GPU that hangs inside a draw is the driver's to reset (a device loss).
+    double modelTimeoutSeconds = 0.0;
+    // Images with a side longer than this are downscaled while loading (JPEGs decode at a
+    // fraction of their size), listed in metadata.json's imagesDownscaled. 0: kept as they are.
+    std::uint32_t maxTextureSize = kDefaultMaxTextureSize;
     // KHR_materials_variants. A name or index: every model drawn in that variant only, into
     // OUT/<name>@<variant> (variantSampleNames); a model without it fails at "load". Empty: the
     // default materials, into OUT/<name>.

@@ -27,6 +27,7 @@
 //    buffers that no primitive reads after that are emptied, so only accessors that primitives
 //    reference are guaranteed to lie inside their buffer.
 
+#include <atomic>
 #include <cstdint>
 #include <filesystem>
 #include <optional>
@@ -270,6 +271,12 @@ struct Image {
     std::uint32_t height = 0;
     std::vector<std::uint8_t> rgba8;  // Empty when the image is missing or undecodable
                                       // (the loader warned) or decoding was not requested.
+    // The size the file declares: larger than width x height when the loader downscaled the
+    // image to LoadOptions::maxImageDimension; 0 when it was not decoded from a file.
+    std::uint32_t sourceWidth = 0;
+    std::uint32_t sourceHeight = 0;
+
+    bool downscaled() const { return sourceWidth > width || sourceHeight > height; }
 };
 
 struct Node {
@@ -434,6 +441,15 @@ struct LoadOptions {
     // Builds Primitive::levels (MeshOptimizer.h). Costs load time and memory that only a
     // renderer which selects levels earns back.
     bool buildLevelsOfDetail = true;
+    // Images with a side longer than this are downscaled while they are decoded (JPEGs decode
+    // at a fraction of their size, PNGs too large to decode whole row by row, then every
+    // format is box-filtered; Image::sourceWidth keeps the file's size), so one huge texture
+    // costs neither the memory nor the upload of its full size. 0: images keep their size.
+    std::uint32_t maxImageDimension = 0;
+    // Set from another thread to abandon the load: it stops at its next check (between its
+    // stages, images and meshes) and fails with LimitExceeded. For callers that give up on a
+    // load that takes too long (encore batch --model-timeout).
+    const std::atomic<bool>* cancel = nullptr;
 };
 
 // Loads a .gltf or .glb file. Errors name the file and the offending element:
