@@ -69,6 +69,16 @@ constexpr std::array<TextureSlotInfo, kMaterialTextureSlotCount> kSlots = {{
     {TextureSlot::SheenRoughness, "sheenRoughnessTexture", kLinear, kLinear,
      &Sampled::extensions, false,
      &extensionTexture<&Material::sheen, &scene::SheenExtension::sheenRoughnessTexture>},
+    {TextureSlot::Iridescence, "iridescenceTexture", kLinear, kLinear, &Sampled::extensions,
+     false,
+     &extensionTexture<&Material::iridescence, &scene::IridescenceExtension::iridescenceTexture>},
+    {TextureSlot::IridescenceThickness, "iridescenceThicknessTexture", kLinear, kLinear,
+     &Sampled::extensions, false,
+     &extensionTexture<&Material::iridescence,
+                       &scene::IridescenceExtension::iridescenceThicknessTexture>},
+    // The direction is read in tangent space, as a normal map's.
+    {TextureSlot::Anisotropy, "anisotropyTexture", kLinear, kLinear, &Sampled::extensions, true,
+     &extensionTexture<&Material::anisotropy, &scene::AnisotropyExtension::anisotropyTexture>},
 }};
 // clang-format on
 
@@ -114,10 +124,12 @@ bool materialUsesTexcoord1(const scene::Material& material) {
     });
 }
 
-bool materialHasNormalMap(const scene::Material& material) {
-    return std::any_of(kSlots.begin(), kSlots.end(), [&material](const TextureSlotInfo& info) {
-        return info.normalMap && info.texture(material).has_value();
-    });
+bool materialUsesTangents(const scene::Material& material) {
+    // Anisotropy turns the tangent even without a direction texture.
+    return material.anisotropy.has_value() ||
+           std::any_of(kSlots.begin(), kSlots.end(), [&material](const TextureSlotInfo& info) {
+               return info.normalMap && info.texture(material).has_value();
+           });
 }
 
 }  // namespace encore::render

@@ -34,8 +34,11 @@ enum class TextureSlot : std::uint32_t {
     ClearcoatNormal,
     SheenColor,
     SheenRoughness,
+    Iridescence,
+    IridescenceThickness,
+    Anisotropy,
 };
-inline constexpr std::uint32_t kMaterialTextureSlotCount = 12;
+inline constexpr std::uint32_t kMaterialTextureSlotCount = 15;
 // The samplers a material binds (its sampler palette, SamplerPalette.h): the slots' textures
 // share them, each slot naming its entry in the uniform, so a new slot needs no sampler binding
 // (a shader stage may bind only 16 samplers; Dawn allows no more).
@@ -63,7 +66,7 @@ struct SampledTextures {
     bool normal = true;
     bool occlusion = true;
     bool emissive = true;
-    bool extensions = true;  // Specular, clearcoat and sheen slots.
+    bool extensions = true;  // Every extension's slots.
 
     static SampledTextures all() { return {}; }
     static SampledTextures baseColorOnly() { return {true, false, false, false, false, false}; }
@@ -82,7 +85,8 @@ struct TextureSlotInfo {
     ColorSpace specularGlossinessColorSpace;
     // The SampledTextures switch that uploads the slot's texture.
     bool SampledTextures::*sampled;
-    // A tangent-space normal map: a primitive drawn with it is worth binding TANGENT for.
+    // A tangent-space normal map or direction: a primitive drawn with it is worth binding
+    // TANGENT for.
     bool normalMap;
     // The texture reference the slot reads: an empty optional when the material, or the
     // extension owning the slot, has none. The reference lives in `material`.
@@ -101,7 +105,8 @@ ColorSpace slotColorSpace(const scene::Material& material, TextureSlot slot);
 
 // Whether the material reads TEXCOORD_1 in any slot (a shader variant).
 bool materialUsesTexcoord1(const scene::Material& material);
-// Whether the material has a normal map (base or clear coat): TANGENT is then worth binding.
-bool materialHasNormalMap(const scene::Material& material);
+// Whether the material's shading reads the tangent frame (a normal map, base or clear coat, or
+// KHR_materials_anisotropy): TANGENT is then worth binding.
+bool materialUsesTangents(const scene::Material& material);
 
 }  // namespace encore::render

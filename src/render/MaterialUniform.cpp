@@ -71,6 +71,21 @@ MaterialUniform makeMaterialUniform(const scene::Material& material,
                   sheen.sheenColorFactor.b, sheen.sheenRoughnessFactor);
         features |= kMaterialSheen;
     }
+    if (material.iridescence) {
+        const scene::IridescenceExtension& iridescence = *material.iridescence;
+        setVector(uniform.iridescence, iridescence.iridescenceFactor, iridescence.iridescenceIor,
+                  iridescence.iridescenceThicknessMinimum, iridescence.iridescenceThicknessMaximum);
+        features |= kMaterialIridescence;
+    }
+    if (material.anisotropy) {
+        const scene::AnisotropyExtension& anisotropy = *material.anisotropy;
+        setVector(uniform.anisotropy, std::cos(anisotropy.anisotropyRotation),
+                  std::sin(anisotropy.anisotropyRotation), anisotropy.anisotropyStrength, 0.0f);
+        features |= kMaterialAnisotropy;
+        if (anisotropy.anisotropyTexture) {
+            features |= kMaterialAnisotropyTexture;
+        }
+    }
     ShadingModel model = ShadingModel::MetallicRoughness;
     if (material.specularGlossiness) {
         const scene::SpecularGlossinessExtension& glossiness = *material.specularGlossiness;

@@ -35,6 +35,9 @@ inline constexpr std::uint32_t kMaterialClearcoatNormalMap = 2;
 inline constexpr std::uint32_t kMaterialClearcoat = 4;
 inline constexpr std::uint32_t kMaterialSheen = 8;
 inline constexpr std::uint32_t kMaterialSpecular = 16;
+inline constexpr std::uint32_t kMaterialIridescence = 32;
+inline constexpr std::uint32_t kMaterialAnisotropy = 64;
+inline constexpr std::uint32_t kMaterialAnisotropyTexture = 128;  // Its direction is textured.
 
 // The `Material` struct of material.wgsl, byte for byte.
 struct MaterialUniform {
@@ -46,10 +49,12 @@ struct MaterialUniform {
     float clearcoat[4];           // Factor, roughness factor, normal scale.
     float sheen[4];               // Colour factor, roughness factor.
     float specularGlossiness[4];  // Specular factor, glossiness factor.
+    float iridescence[4];         // Factor, film IOR, thickness minimum, maximum (nm).
+    float anisotropy[4];          // cos(rotation), sin(rotation), strength.
     std::uint32_t flags[4];       // ShadingModel, kMaterial* bits.
     TextureSlotUniform slots[kMaterialTextureSlotCount];  // Indexed by TextureSlot.
 };
-static_assert(sizeof(MaterialUniform) == 528);
+static_assert(sizeof(MaterialUniform) == 656);
 
 // Each texture slot's entry in its material's sampler palette (SamplerPalette::slotEntries).
 using SlotSamplerEntries = std::array<std::uint32_t, kMaterialTextureSlotCount>;

@@ -1,5 +1,5 @@
 // Group 2: one glTF material (MaterialResources in C++). The uniform holds every factor and,
-// for each of the twelve texture slots, the texCoord set, KHR_texture_transform and sampler;
+// for each of the fifteen texture slots, the texCoord set, KHR_texture_transform and sampler;
 // with MATERIAL_TEXTURES each slot has its own texture (a 1-pixel default when the material has
 // none: white, so that factors multiply through unchanged) and the material binds a palette of
 // four samplers (its glTF samplers, render/SamplerPalette.h) that the slots share: each slot's
@@ -27,10 +27,12 @@ struct Material {
     clearcoat: vec4f,           // factor, roughness factor, normal scale, unused.
     sheen: vec4f,               // rgb colour factor, a: roughness factor.
     specularGlossiness: vec4f,  // rgb specular factor, a: glossiness factor.
+    iridescence: vec4f,         // factor, film IOR, thickness minimum, maximum (nanometres).
+    anisotropy: vec4f,          // cos(rotation), sin(rotation), strength, unused.
     // x: shading model (0 metallic-roughness, 1 specular-glossiness, 2 unlit);
     // y: kMaterial* feature bits.
     flags: vec4u,
-    slots: array<TextureSlot, 12>,
+    slots: array<TextureSlot, 15>,
 }
 
 const kModelMetallicRoughness = 0u;
@@ -41,6 +43,9 @@ const kMaterialClearcoatNormalMap = 2u;
 const kMaterialClearcoat = 4u;
 const kMaterialSheen = 8u;
 const kMaterialSpecular = 16u;
+const kMaterialIridescence = 32u;
+const kMaterialAnisotropy = 64u;
+const kMaterialAnisotropyTexture = 128u;
 
 const kBaseColorSlot = 0u;
 const kMetallicRoughnessSlot = 1u;
@@ -54,6 +59,9 @@ const kClearcoatRoughnessSlot = 8u;
 const kClearcoatNormalSlot = 9u;
 const kSheenColorSlot = 10u;
 const kSheenRoughnessSlot = 11u;
+const kIridescenceSlot = 12u;
+const kIridescenceThicknessSlot = 13u;
+const kAnisotropySlot = 14u;
 
 @group(2) @binding(0) var<uniform> material: Material;
 #if MATERIAL_TEXTURES
@@ -73,6 +81,9 @@ const kSheenRoughnessSlot = 11u;
 @group(2) @binding(14) var clearcoatNormalTexture: texture_2d<f32>;
 @group(2) @binding(15) var sheenColorTexture: texture_2d<f32>;
 @group(2) @binding(16) var sheenRoughnessTexture: texture_2d<f32>;
+@group(2) @binding(17) var iridescenceTexture: texture_2d<f32>;
+@group(2) @binding(18) var iridescenceThicknessTexture: texture_2d<f32>;
+@group(2) @binding(19) var anisotropyTexture: texture_2d<f32>;
 #endif
 
 fn slotUv(slot: u32, uv0: vec2f, uv1: vec2f) -> vec2f {

@@ -16,6 +16,9 @@ struct MaterialSamples {
     clearcoatNormal: vec3f,
     sheenColor: vec3f,
     sheenRoughness: f32,
+    iridescence: f32,
+    iridescenceThickness: f32,
+    anisotropy: vec3f,
 }
 
 // d(uv)/dx and d(uv)/dy of TEXCOORD_0 and TEXCOORD_1 (unused without SAMPLE_GRADIENT).
@@ -73,6 +76,11 @@ fn sampleMaterial(uv0: vec2f, uv1: vec2f, gradients: UvGradients) -> MaterialSam
         sampleSlot(sheenColorTexture, kSheenColorSlot, uv0, uv1, gradients).rgb;
     samples.sheenRoughness =
         sampleSlot(sheenRoughnessTexture, kSheenRoughnessSlot, uv0, uv1, gradients).a;
+    samples.iridescence =
+        sampleSlot(iridescenceTexture, kIridescenceSlot, uv0, uv1, gradients).r;
+    samples.iridescenceThickness =
+        sampleSlot(iridescenceThicknessTexture, kIridescenceThicknessSlot, uv0, uv1, gradients).g;
+    samples.anisotropy = sampleSlot(anisotropyTexture, kAnisotropySlot, uv0, uv1, gradients).rgb;
 #else
     // No texture anywhere: every slot reads white, as the 1-pixel default would.
     samples.baseColor = vec4f(1.0);
@@ -87,6 +95,9 @@ fn sampleMaterial(uv0: vec2f, uv1: vec2f, gradients: UvGradients) -> MaterialSam
     samples.clearcoatNormal = vec3f(1.0);
     samples.sheenColor = vec3f(1.0);
     samples.sheenRoughness = 1.0;
+    samples.iridescence = 1.0;
+    samples.iridescenceThickness = 1.0;
+    samples.anisotropy = vec3f(1.0);
 #endif
     return samples;
 }

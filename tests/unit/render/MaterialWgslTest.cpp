@@ -195,6 +195,9 @@ TEST(MaterialWgslTest, FeatureBitsAndShadingModelsMatchTheCpp) {
         {"kMaterialClearcoat", kMaterialClearcoat},
         {"kMaterialSheen", kMaterialSheen},
         {"kMaterialSpecular", kMaterialSpecular},
+        {"kMaterialIridescence", kMaterialIridescence},
+        {"kMaterialAnisotropy", kMaterialAnisotropy},
+        {"kMaterialAnisotropyTexture", kMaterialAnisotropyTexture},
     };
     EXPECT_EQ(unsignedConstants("kMaterial"), features);
     std::uint32_t all = 0;
@@ -236,6 +239,8 @@ TEST(MaterialWgslTest, MaterialStructMatchesMaterialUniform) {
         {"clearcoat", {offsetof(MaterialUniform, clearcoat), "vec4f"}},
         {"sheen", {offsetof(MaterialUniform, sheen), "vec4f"}},
         {"specularGlossiness", {offsetof(MaterialUniform, specularGlossiness), "vec4f"}},
+        {"iridescence", {offsetof(MaterialUniform, iridescence), "vec4f"}},
+        {"anisotropy", {offsetof(MaterialUniform, anisotropy), "vec4f"}},
         {"flags", {offsetof(MaterialUniform, flags), "vec4u"}},
     };
     const std::vector<WgslField> fields = structFields(structBody(source, "Material"));
