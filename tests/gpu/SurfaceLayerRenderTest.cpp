@@ -106,8 +106,8 @@ Frame renderSquare(const SquareScene& desc, StrategyKind strategy = StrategyKind
         return {std::vector<float>(std::size_t(kSize) * kSize * 4)};
     }
     EXPECT_TRUE(renderer->prepare(*scene, strategy).ok());
-    renderer->renderFrame(Camera::lookAt({0, 0, 3}, {0, 0, 0}, glm::radians(70.0f), 1.0f,
-                                         0.1f, 10.0f));
+    renderer->renderFrame(
+        Camera::lookAt({0, 0, 3}, {0, 0, 0}, glm::radians(70.0f), 1.0f, 0.1f, 10.0f));
     auto hdr = renderer->readHdrImage();
     EXPECT_TRUE(hdr.ok());
     EXPECT_TRUE(context->checkNoErrors("rendering a square").ok());
@@ -126,8 +126,9 @@ float channelSpread(const glm::vec3& c) {
     return std::max({c.r, c.g, c.b}) - std::min({c.r, c.g, c.b});
 }
 
-const test::GltfBuilder::MaterialDesc kGreyMirror{
-    .baseColor = {0.5f, 0.5f, 0.5f, 1.0f}, .metallic = 1.0f, .roughness = 0.0f};
+const test::GltfBuilder::MaterialDesc kGreyMirror{.baseColor = {0.5f, 0.5f, 0.5f, 1.0f},
+                                                  .metallic = 1.0f,
+                                                  .roughness = 0.0f};
 
 // KHR_materials_iridescence on the grey metal mirror, thickness `maximum` nanometres unless
 // `edit` changes more.
