@@ -28,7 +28,7 @@ std::size_t paddedVertexBytes(const scene::SceneData& scene,
 float materialUniformChecksum(const scene::Material& material) {
     const render::MaterialUniform uniform = render::makeMaterialUniform(material);
     float sum = float(render::materialUsesTexcoord1(material)) +
-                float(render::materialHasNormalMap(material));
+                float(render::materialUsesTangents(material));
     for (std::uint32_t slot = 0; slot < render::kMaterialTextureSlotCount; ++slot) {
         sum += float(render::slotColorSpace(material, render::TextureSlot(slot)));
     }

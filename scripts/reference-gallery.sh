@@ -39,6 +39,9 @@ adapter=$(printf '%s\n' "$log" | sed -n 's/^adapter: //p' | head -1)
     echo
     printf '%s\n' "$log" | sed -n 's/^reference mean SSIM \(.*\)$/Mean SSIM \1./p'
     echo
+    echo "The mean covers the models of \`list.txt\`; the rows after them are the material-extension"
+    echo "models of \`list-extensions.txt\` whose extensions Encore shades."
+    echo
     echo "What remains is edge antialiasing (WebGL's canvas multisampling against WebGPU's 4x"
     echo "MSAA resolved before tone mapping), texture filtering, the sRGB transfer function"
     echo "against the reference's gamma 2.2 in the darkest tones, and sampling noise of the"

@@ -40,39 +40,45 @@ constexpr ColorSpace kLinear = ColorSpace::Linear;
 
 // clang-format off
 constexpr std::array<TextureSlotInfo, kMaterialTextureSlotCount> kSlots = {{
-    {TextureSlot::BaseColor, "baseColorSampler", "baseColorTexture", kSrgb, kSrgb,
-     &Sampled::baseColor, false, &coreTexture<&Material::baseColorTexture>},
+    {TextureSlot::BaseColor, "baseColorTexture", kSrgb, kSrgb, &Sampled::baseColor, false,
+     &coreTexture<&Material::baseColorTexture>},
     // The specular-glossiness texture holds an sRGB specular colour (alpha stays linear).
-    {TextureSlot::MetallicRoughness, "metallicRoughnessSampler", "metallicRoughnessTexture",
-     kLinear, kSrgb, &Sampled::metallicRoughness, false, &metallicRoughnessTexture},
-    {TextureSlot::Normal, "normalSampler", "normalTexture", kLinear, kLinear,
-     &Sampled::normal, true, &coreTexture<&Material::normalTexture>},
-    {TextureSlot::Occlusion, "occlusionSampler", "occlusionTexture", kLinear, kLinear,
-     &Sampled::occlusion, false, &coreTexture<&Material::occlusionTexture>},
-    {TextureSlot::Emissive, "emissiveSampler", "emissiveTexture", kSrgb, kSrgb,
-     &Sampled::emissive, false, &coreTexture<&Material::emissiveTexture>},
-    {TextureSlot::Specular, "specularSampler", "specularTexture", kLinear, kLinear,
-     &Sampled::extensions, false,
+    {TextureSlot::MetallicRoughness, "metallicRoughnessTexture", kLinear, kSrgb,
+     &Sampled::metallicRoughness, false, &metallicRoughnessTexture},
+    {TextureSlot::Normal, "normalTexture", kLinear, kLinear, &Sampled::normal, true,
+     &coreTexture<&Material::normalTexture>},
+    {TextureSlot::Occlusion, "occlusionTexture", kLinear, kLinear, &Sampled::occlusion, false,
+     &coreTexture<&Material::occlusionTexture>},
+    {TextureSlot::Emissive, "emissiveTexture", kSrgb, kSrgb, &Sampled::emissive, false,
+     &coreTexture<&Material::emissiveTexture>},
+    {TextureSlot::Specular, "specularTexture", kLinear, kLinear, &Sampled::extensions, false,
      &extensionTexture<&Material::specular, &scene::SpecularExtension::specularTexture>},
-    {TextureSlot::SpecularColor, "specularColorSampler", "specularColorTexture", kSrgb, kSrgb,
-     &Sampled::extensions, false,
+    {TextureSlot::SpecularColor, "specularColorTexture", kSrgb, kSrgb, &Sampled::extensions, false,
      &extensionTexture<&Material::specular, &scene::SpecularExtension::specularColorTexture>},
-    {TextureSlot::Clearcoat, "clearcoatSampler", "clearcoatTexture", kLinear, kLinear,
-     &Sampled::extensions, false,
+    {TextureSlot::Clearcoat, "clearcoatTexture", kLinear, kLinear, &Sampled::extensions, false,
      &extensionTexture<&Material::clearcoat, &scene::ClearcoatExtension::clearcoatTexture>},
-    {TextureSlot::ClearcoatRoughness, "clearcoatRoughnessSampler", "clearcoatRoughnessTexture",
-     kLinear, kLinear, &Sampled::extensions, false,
+    {TextureSlot::ClearcoatRoughness, "clearcoatRoughnessTexture", kLinear, kLinear,
+     &Sampled::extensions, false,
      &extensionTexture<&Material::clearcoat,
                        &scene::ClearcoatExtension::clearcoatRoughnessTexture>},
-    {TextureSlot::ClearcoatNormal, "clearcoatNormalSampler", "clearcoatNormalTexture", kLinear,
-     kLinear, &Sampled::extensions, true,
+    {TextureSlot::ClearcoatNormal, "clearcoatNormalTexture", kLinear, kLinear,
+     &Sampled::extensions, true,
      &extensionTexture<&Material::clearcoat, &scene::ClearcoatExtension::clearcoatNormalTexture>},
-    {TextureSlot::SheenColor, "sheenColorSampler", "sheenColorTexture", kSrgb, kSrgb,
-     &Sampled::extensions, false,
+    {TextureSlot::SheenColor, "sheenColorTexture", kSrgb, kSrgb, &Sampled::extensions, false,
      &extensionTexture<&Material::sheen, &scene::SheenExtension::sheenColorTexture>},
-    {TextureSlot::SheenRoughness, "sheenRoughnessSampler", "sheenRoughnessTexture", kLinear,
-     kLinear, &Sampled::extensions, false,
+    {TextureSlot::SheenRoughness, "sheenRoughnessTexture", kLinear, kLinear,
+     &Sampled::extensions, false,
      &extensionTexture<&Material::sheen, &scene::SheenExtension::sheenRoughnessTexture>},
+    {TextureSlot::Iridescence, "iridescenceTexture", kLinear, kLinear, &Sampled::extensions,
+     false,
+     &extensionTexture<&Material::iridescence, &scene::IridescenceExtension::iridescenceTexture>},
+    {TextureSlot::IridescenceThickness, "iridescenceThicknessTexture", kLinear, kLinear,
+     &Sampled::extensions, false,
+     &extensionTexture<&Material::iridescence,
+                       &scene::IridescenceExtension::iridescenceThicknessTexture>},
+    // The direction is read in tangent space, as a normal map's.
+    {TextureSlot::Anisotropy, "anisotropyTexture", kLinear, kLinear, &Sampled::extensions, true,
+     &extensionTexture<&Material::anisotropy, &scene::AnisotropyExtension::anisotropyTexture>},
 }};
 // clang-format on
 
@@ -118,10 +124,12 @@ bool materialUsesTexcoord1(const scene::Material& material) {
     });
 }
 
-bool materialHasNormalMap(const scene::Material& material) {
-    return std::any_of(kSlots.begin(), kSlots.end(), [&material](const TextureSlotInfo& info) {
-        return info.normalMap && info.texture(material).has_value();
-    });
+bool materialUsesTangents(const scene::Material& material) {
+    // Anisotropy turns the tangent even without a direction texture.
+    return material.anisotropy.has_value() ||
+           std::any_of(kSlots.begin(), kSlots.end(), [&material](const TextureSlotInfo& info) {
+               return info.normalMap && info.texture(material).has_value();
+           });
 }
 
 }  // namespace encore::render

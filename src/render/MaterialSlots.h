@@ -1,11 +1,11 @@
 #pragma once
 
 // The texture slots of a material, as one table (textureSlots()). Each row says, for one slot of
-// material.wgsl: the names of its sampler and texture variables, the colour space its texture
+// material.wgsl: the name of its texture variable, the colour space its texture
 // is sampled in, which SampledTextures switch uploads it, whether it is a normal map, and which
 // scene::Material field it reads. The slot's texture, its colour space, whether it is uploaded
 // and its uniform transform all come from this table rather than from switches over
-// TextureSlot, so a new slot is one enumerator, one row and two declarations in material.wgsl;
+// TextureSlot, so a new slot is one enumerator, one row and one declaration in material.wgsl;
 // tests/unit/render/MaterialWgslTest.cpp checks the table against material.wgsl. Every place
 // a new material extension touches: docs/adding-a-material-extension.md.
 //
@@ -34,14 +34,22 @@ enum class TextureSlot : std::uint32_t {
     ClearcoatNormal,
     SheenColor,
     SheenRoughness,
+    Iridescence,
+    IridescenceThickness,
+    Anisotropy,
 };
-inline constexpr std::uint32_t kMaterialTextureSlotCount = 12;
-// Group 2's bindings: 0 is the uniform, then a sampler and a texture per slot.
-constexpr std::uint32_t materialSamplerBinding(std::uint32_t slot) {
-    return 1 + 2 * slot;
+inline constexpr std::uint32_t kMaterialTextureSlotCount = 15;
+// The samplers a material binds (its sampler palette, SamplerPalette.h): the slots' textures
+// share them, each slot naming its entry in the uniform, so a new slot needs no sampler binding
+// (a shader stage may bind only 16 samplers; Dawn allows no more).
+inline constexpr std::uint32_t kMaterialSamplerCount = 4;
+// Group 2's bindings: 0 is the uniform, then the palette's samplers (material.wgsl's
+// materialSampler0..3), then a texture per slot.
+constexpr std::uint32_t materialSamplerBinding(std::uint32_t entry) {
+    return 1 + entry;
 }
 constexpr std::uint32_t materialTextureBinding(std::uint32_t slot) {
-    return 2 + 2 * slot;
+    return 1 + kMaterialSamplerCount + slot;
 }
 
 enum class ColorSpace : std::uint8_t {
@@ -58,7 +66,7 @@ struct SampledTextures {
     bool normal = true;
     bool occlusion = true;
     bool emissive = true;
-    bool extensions = true;  // Specular, clearcoat and sheen slots.
+    bool extensions = true;  // Every extension's slots.
 
     static SampledTextures all() { return {}; }
     static SampledTextures baseColorOnly() { return {true, false, false, false, false, false}; }
@@ -68,9 +76,7 @@ struct SampledTextures {
 // One row of the slot table.
 struct TextureSlotInfo {
     TextureSlot slot;
-    // material.wgsl's variables, at @group(2) @binding(materialSamplerBinding(slot)) and
-    // @binding(materialTextureBinding(slot)).
-    std::string_view samplerName;
+    // material.wgsl's texture variable, at @group(2) @binding(materialTextureBinding(slot)).
     std::string_view textureName;
     // The colour space of the slot's texture, and the one it has when the material uses
     // KHR_materials_pbrSpecularGlossiness (whose specular-glossiness texture, read through the
@@ -79,7 +85,8 @@ struct TextureSlotInfo {
     ColorSpace specularGlossinessColorSpace;
     // The SampledTextures switch that uploads the slot's texture.
     bool SampledTextures::*sampled;
-    // A tangent-space normal map: a primitive drawn with it is worth binding TANGENT for.
+    // A tangent-space normal map or direction: a primitive drawn with it is worth binding
+    // TANGENT for.
     bool normalMap;
     // The texture reference the slot reads: an empty optional when the material, or the
     // extension owning the slot, has none. The reference lives in `material`.
@@ -98,7 +105,8 @@ ColorSpace slotColorSpace(const scene::Material& material, TextureSlot slot);
 
 // Whether the material reads TEXCOORD_1 in any slot (a shader variant).
 bool materialUsesTexcoord1(const scene::Material& material);
-// Whether the material has a normal map (base or clear coat): TANGENT is then worth binding.
-bool materialHasNormalMap(const scene::Material& material);
+// Whether the material's shading reads the tangent frame (a normal map, base or clear coat, or
+// KHR_materials_anisotropy): TANGENT is then worth binding.
+bool materialUsesTangents(const scene::Material& material);
 
 }  // namespace encore::render

@@ -15,7 +15,8 @@ void setVector(float (&out)[4], float x, float y, float z, float w) {
 
 // KHR_texture_transform: Translation * Rotation * Scale, with Rotation = [cos sin; -sin cos]
 // (the extension's convention, not the usual one), as the two rows of a 2x3 matrix.
-TextureSlotUniform makeSlotUniform(const std::optional<scene::TextureRef>& texture) {
+TextureSlotUniform makeSlotUniform(const std::optional<scene::TextureRef>& texture,
+                                   std::uint32_t samplerEntry) {
     scene::TextureTransform transform;
     if (texture && texture->transform) {
         transform = *texture->transform;
@@ -25,13 +26,15 @@ TextureSlotUniform makeSlotUniform(const std::optional<scene::TextureRef>& textu
     TextureSlotUniform slot{};
     setVector(slot.row0, c * transform.scale.x, s * transform.scale.y, transform.offset.x,
               texture && texture->texCoord == 1 ? 1.0f : 0.0f);
-    setVector(slot.row1, -s * transform.scale.x, c * transform.scale.y, transform.offset.y, 0.0f);
+    setVector(slot.row1, -s * transform.scale.x, c * transform.scale.y, transform.offset.y,
+              float(samplerEntry));
     return slot;
 }
 
 }  // namespace
 
-MaterialUniform makeMaterialUniform(const scene::Material& material) {
+MaterialUniform makeMaterialUniform(const scene::Material& material,
+                                    const SlotSamplerEntries& samplerEntries) {
     MaterialUniform uniform{};
     const glm::vec4& base = material.baseColorFactor;
     setVector(uniform.baseColorFactor, base.r, base.g, base.b, base.a);
@@ -68,6 +71,21 @@ MaterialUniform makeMaterialUniform(const scene::Material& material) {
                   sheen.sheenColorFactor.b, sheen.sheenRoughnessFactor);
         features |= kMaterialSheen;
     }
+    if (material.iridescence) {
+        const scene::IridescenceExtension& iridescence = *material.iridescence;
+        setVector(uniform.iridescence, iridescence.iridescenceFactor, iridescence.iridescenceIor,
+                  iridescence.iridescenceThicknessMinimum, iridescence.iridescenceThicknessMaximum);
+        features |= kMaterialIridescence;
+    }
+    if (material.anisotropy) {
+        const scene::AnisotropyExtension& anisotropy = *material.anisotropy;
+        setVector(uniform.anisotropy, std::cos(anisotropy.anisotropyRotation),
+                  std::sin(anisotropy.anisotropyRotation), anisotropy.anisotropyStrength, 0.0f);
+        features |= kMaterialAnisotropy;
+        if (anisotropy.anisotropyTexture) {
+            features |= kMaterialAnisotropyTexture;
+        }
+    }
     ShadingModel model = ShadingModel::MetallicRoughness;
     if (material.specularGlossiness) {
         const scene::SpecularGlossinessExtension& glossiness = *material.specularGlossiness;
@@ -82,7 +100,8 @@ MaterialUniform makeMaterialUniform(const scene::Material& material) {
     uniform.flags[0] = std::uint32_t(model);
     uniform.flags[1] = features;
     for (const TextureSlotInfo& slot : textureSlots()) {
-        uniform.slots[std::uint32_t(slot.slot)] = makeSlotUniform(slot.texture(material));
+        const std::uint32_t index = std::uint32_t(slot.slot);
+        uniform.slots[index] = makeSlotUniform(slot.texture(material), samplerEntries[index]);
     }
     return uniform;
 }

@@ -113,7 +113,7 @@ std::optional<std::vector<std::uint32_t>> primitiveRecord(const GpuScene& scene,
         return std::nullopt;
     }
     record[kTriangleCount] = triangles;
-    const bool tangent = materialHasNormalMap(material) && !material.unlit &&
+    const bool tangent = materialUsesTangents(material) && !material.unlit &&
                          primitive.attribute(scene::Semantic::Tangent).has_value();
     record[kMaterial] = std::uint32_t(primitive.material.index());
     record[kBin] = std::uint32_t(primitive.material.index()) * 2 + (tangent ? 1 : 0);

@@ -165,6 +165,21 @@ struct GltfSpecularGlossiness {
     std::optional<GltfTextureInfo> specularGlossinessTexture;
 };
 
+struct GltfIridescence {
+    float iridescenceFactor = 0.0f;
+    std::optional<GltfTextureInfo> iridescenceTexture;
+    float iridescenceIor = 1.3f;
+    float iridescenceThicknessMinimum = 100.0f;
+    float iridescenceThicknessMaximum = 400.0f;
+    std::optional<GltfTextureInfo> iridescenceThicknessTexture;
+};
+
+struct GltfAnisotropy {
+    float anisotropyStrength = 0.0f;
+    float anisotropyRotation = 0.0f;
+    std::optional<GltfTextureInfo> anisotropyTexture;
+};
+
 struct GltfMaterial {
     std::string name;
     glm::vec4 baseColorFactor{1.0f};
@@ -186,6 +201,8 @@ struct GltfMaterial {
     std::optional<GltfClearcoat> clearcoat;
     std::optional<GltfSheen> sheen;
     std::optional<GltfSpecularGlossiness> specularGlossiness;
+    std::optional<GltfIridescence> iridescence;
+    std::optional<GltfAnisotropy> anisotropy;
     std::vector<std::string> ignoredExtensions;  // Extension objects Encore does not shade.
 };
 
@@ -299,6 +316,8 @@ inline constexpr std::array kShadedMaterialExtensions = {
     std::string_view("KHR_materials_clearcoat"),
     std::string_view("KHR_materials_sheen"),
     std::string_view("KHR_materials_pbrSpecularGlossiness"),
+    std::string_view("KHR_materials_iridescence"),
+    std::string_view("KHR_materials_anisotropy"),
 };
 
 }  // namespace encore::scene

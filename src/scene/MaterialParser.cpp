@@ -119,6 +119,50 @@ GltfSpecularGlossiness readSpecularGlossiness(FieldReader& fields) {
     return result;
 }
 
+// A factor that must lie in [minimum, maximum] (maximum < 0: no upper bound); an error names the
+// field and the value otherwise.
+float boundedNumber(FieldReader& fields,
+                    std::string_view key,
+                    double fallback,
+                    double minimum,
+                    double maximum) {
+    const double value = fields.number(key, fallback);
+    if (value < minimum || (maximum >= minimum && value > maximum)) {
+        const std::string range =
+            maximum >= minimum
+                ? "it must lie in [" + formatNumber(minimum) + ", " + formatNumber(maximum) + "]"
+                : "it must be at least " + formatNumber(minimum);
+        fields.fail(ErrorCode::InvalidFormat, fields.element() + " has an invalid " +
+                                                  std::string(key) + " (" + formatNumber(value) +
+                                                  "; " + range + ").");
+    }
+    return float(value);
+}
+
+GltfIridescence readIridescence(FieldReader& fields) {
+    GltfIridescence iridescence;
+    iridescence.iridescenceFactor = boundedNumber(fields, "iridescenceFactor", 0.0, 0.0, 1.0);
+    iridescence.iridescenceTexture =
+        readTextureInfo(fields, fields.object("iridescenceTexture"), "iridescenceTexture", {});
+    iridescence.iridescenceIor = boundedNumber(fields, "iridescenceIor", 1.3, 1.0, -1.0);
+    iridescence.iridescenceThicknessMinimum =
+        boundedNumber(fields, "iridescenceThicknessMinimum", 100.0, 0.0, -1.0);
+    iridescence.iridescenceThicknessMaximum =
+        boundedNumber(fields, "iridescenceThicknessMaximum", 400.0, 0.0, -1.0);
+    iridescence.iridescenceThicknessTexture = readTextureInfo(
+        fields, fields.object("iridescenceThicknessTexture"), "iridescenceThicknessTexture", {});
+    return iridescence;
+}
+
+GltfAnisotropy readAnisotropy(FieldReader& fields) {
+    GltfAnisotropy anisotropy;
+    anisotropy.anisotropyStrength = boundedNumber(fields, "anisotropyStrength", 0.0, 0.0, 1.0);
+    anisotropy.anisotropyRotation = float(fields.number("anisotropyRotation", 0.0));
+    anisotropy.anisotropyTexture =
+        readTextureInfo(fields, fields.object("anisotropyTexture"), "anisotropyTexture", {});
+    return anisotropy;
+}
+
 // Reads the material's extensions object into `material`; errors go to `reader`.
 void readMaterialExtensions(FieldReader& reader, GltfMaterial& material) {
     const Json* extensions = reader.object("extensions");
@@ -169,6 +213,10 @@ void readMaterialExtensions(FieldReader& reader, GltfMaterial& material) {
             material.sheen = readSheen(fields);
         } else if (name == "KHR_materials_pbrSpecularGlossiness") {
             material.specularGlossiness = readSpecularGlossiness(fields);
+        } else if (name == "KHR_materials_iridescence") {
+            material.iridescence = readIridescence(fields);
+        } else if (name == "KHR_materials_anisotropy") {
+            material.anisotropy = readAnisotropy(fields);
         }
         if (fields.failed()) {
             reader.fail(fields.error().code, fields.error().message);
@@ -408,6 +456,24 @@ Result<void> convertMaterials(LoadContext& context) {
                 .specularGlossinessTexture = toTextureRef(glossiness->specularGlossinessTexture),
             };
         }
+        if (const auto& iridescence = source.iridescence) {
+            material.iridescence = IridescenceExtension{
+                .iridescenceFactor = iridescence->iridescenceFactor,
+                .iridescenceTexture = toTextureRef(iridescence->iridescenceTexture),
+                .iridescenceIor = iridescence->iridescenceIor,
+                .iridescenceThicknessMinimum = iridescence->iridescenceThicknessMinimum,
+                .iridescenceThicknessMaximum = iridescence->iridescenceThicknessMaximum,
+                .iridescenceThicknessTexture =
+                    toTextureRef(iridescence->iridescenceThicknessTexture),
+            };
+        }
+        if (const auto& anisotropy = source.anisotropy) {
+            material.anisotropy = AnisotropyExtension{
+                .anisotropyStrength = anisotropy->anisotropyStrength,
+                .anisotropyRotation = anisotropy->anisotropyRotation,
+                .anisotropyTexture = toTextureRef(anisotropy->anisotropyTexture),
+            };
+        }
         material.ignoredExtensions = source.ignoredExtensions;
         scene.materials.push_back(std::move(material));
     }
@@ -439,6 +505,14 @@ std::vector<GltfMaterialTextureSlot> materialTextureSlots(const GltfMaterial& ma
     if (const auto& sheen = material.sheen) {
         add("KHR_materials_sheen sheenColorTexture", sheen->sheenColorTexture);
         add("KHR_materials_sheen sheenRoughnessTexture", sheen->sheenRoughnessTexture);
+    }
+    if (const auto& iridescence = material.iridescence) {
+        add("KHR_materials_iridescence iridescenceTexture", iridescence->iridescenceTexture);
+        add("KHR_materials_iridescence iridescenceThicknessTexture",
+            iridescence->iridescenceThicknessTexture);
+    }
+    if (const auto& anisotropy = material.anisotropy) {
+        add("KHR_materials_anisotropy anisotropyTexture", anisotropy->anisotropyTexture);
     }
     if (const auto& glossiness = material.specularGlossiness) {
         add("KHR_materials_pbrSpecularGlossiness diffuseTexture", glossiness->diffuseTexture);

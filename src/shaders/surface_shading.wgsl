@@ -2,6 +2,8 @@
 // and the visibility strategy's compute resolve (visibility_shade.wgsl): the tangent frame, the
 // lights and the material's extensions. Needs frame.wgsl, scene_lighting.wgsl, brdf.wgsl,
 // material.wgsl and material_samples.wgsl, and HAS_TANGENT as mesh.wgsl defines it.
+#include "iridescence.wgsl"
+#include "anisotropy.wgsl"
 
 struct SurfaceFrame {
     normal: vec3f,    // Shading normal (normal map applied).
@@ -172,17 +174,47 @@ fn shadeSurface(worldPosition: vec3f, vertexNormal: vec3f, vertexTangent: vec4f,
     let alphaRoughness = roughness * roughness;
     let occlusion = 1.0 + material.metallicRoughness.w * (occlusionSample - 1.0);
 
+    // KHR_materials_iridescence: the thin film's reflectance over the dielectric and over the
+    // metal replaces their Fresnel terms, by the film's factor (none where it has no thickness).
+    var iridescence = 0.0;
+    var iridescenceDielectric = vec3f(0.0);
+    var iridescenceMetal = vec3f(0.0);
+    if ((features & kMaterialIridescence) != 0u) {
+        let film = material.iridescence;
+        let thickness = mix(film.z, film.w, samples.iridescenceThickness);
+        iridescence = select(clamp(film.x * samples.iridescence, 0.0, 1.0), 0.0, thickness <= 0.0);
+        iridescenceDielectric = iridescenceFresnel(film.y, nDotV, thickness, f0Dielectric);
+        iridescenceMetal = iridescenceFresnel(film.y, nDotV, thickness, baseColor.rgb);
+    }
+    // KHR_materials_anisotropy: a direction in the tangent plane stretches the specular lobe.
+    let anisotropic = (features & kMaterialAnisotropy) != 0u;
+    var anisotropy = Anisotropy(surface.tangent, surface.bitangent, 0.0);
+    if (anisotropic) {
+        anisotropy = anisotropyAt(surface, samples.anisotropy,
+                                  (features & kMaterialAnisotropyTexture) != 0u);
+    }
+
     var color = vec3f(0.0);
     // Image-based light: split-sum specular, Lambertian irradiance; occlusion applies here only.
     let lut = brdfLutAt(nDotV, roughness);
     if (lighting.imageBasedLighting != 0u) {
         let diffuseLight = environmentIrradiance(n);
-        let specularLight = environmentSpecular(reflect(-v, n), roughness);
+        var reflectionNormal = n;
+        if (anisotropic) {
+            reflectionNormal = anisotropicBentNormal(n, v, roughness, anisotropy);
+        }
+        let specularLight = environmentSpecular(reflect(-v, reflectionNormal), roughness);
         let diffuse = diffuseLight * albedo;
         let dielectricFresnel = iblFresnel(f0Dielectric, specularWeight, roughness, nDotV, lut.rg);
         let metalFresnel = iblFresnel(baseColor.rgb, 1.0, roughness, nDotV, lut.rg);
-        let dielectric = mix(diffuse, specularLight, dielectricFresnel);
-        let metal = metalFresnel * specularLight;
+        var dielectric = mix(diffuse, specularLight, dielectricFresnel);
+        var metal = metalFresnel * specularLight;
+        if (iridescence > 0.0) {
+            dielectric = mix(dielectric,
+                             mixPerChannel(diffuse, specularLight, iridescenceDielectric),
+                             iridescence);
+            metal = mix(metal, specularLight * iridescenceMetal, iridescence);
+        }
         color += mix(dielectric, metal, metallic) * occlusion;
     }
     // Punctual lights.
@@ -198,11 +230,22 @@ fn shadeSurface(worldPosition: vec3f, vertexNormal: vec3f, vertexTangent: vec4f,
         let vDotH = clamp(dot(v, h), 0.0, 1.0);
         let incident = light.radiance * nDotL;
         let diffuse = incident * albedo / kPi;
-        let specular = incident * specularGgx(alphaRoughness, nDotL, nDotV, nDotH);
+        var lobe = specularGgx(alphaRoughness, nDotL, nDotV, nDotH);
+        if (anisotropic) {
+            lobe = specularGgxAnisotropic(alphaRoughness, anisotropy, n, v, l, h);
+        }
+        let specular = incident * lobe;
         let dielectricFresnel = fresnelSchlick(f0Dielectric * specularWeight,
                                                vec3f(specularWeight), vDotH);
         let metalFresnel = fresnelSchlick(baseColor.rgb, vec3f(1.0), vDotH);
-        color += mix(mix(diffuse, specular, dielectricFresnel), metalFresnel * specular, metallic);
+        var dielectric = mix(diffuse, specular, dielectricFresnel);
+        var metal = metalFresnel * specular;
+        if (iridescence > 0.0) {
+            dielectric = mix(dielectric, mixPerChannel(diffuse, specular, iridescenceDielectric),
+                             iridescence);
+            metal = mix(metal, specular * iridescenceMetal, iridescence);
+        }
+        color += mix(dielectric, metal, metallic);
     }
 
     // KHR_materials_sheen: a Charlie lobe on top, scaling the layers below by its albedo. The

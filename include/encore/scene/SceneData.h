@@ -203,6 +203,29 @@ struct SheenExtension {
     std::optional<TextureRef> sheenRoughnessTexture;  // Alpha channel.
 };
 
+// KHR_materials_iridescence: a thin film on the surface (soap bubbles, oil, anodised metal) whose
+// interference tints the specular reflection with the viewing angle. The film is
+// iridescenceThicknessMaximum nanometres thick, or with a thickness texture (green channel)
+// mix(minimum, maximum, texel).
+struct IridescenceExtension {
+    float iridescenceFactor = 0.0f;
+    std::optional<TextureRef> iridescenceTexture;  // Red channel.
+    float iridescenceIor = 1.3f;
+    float iridescenceThicknessMinimum = 100.0f;  // Nanometres.
+    float iridescenceThicknessMaximum = 400.0f;
+    std::optional<TextureRef> iridescenceThicknessTexture;  // Green channel.
+};
+
+// KHR_materials_anisotropy: the specular lobe stretched along a direction of the tangent plane
+// (brushed metal). The direction is the tangent turned by anisotropyRotation (radians,
+// counter-clockwise), or the texture's red-green direction turned by it; the texture's blue
+// channel scales the strength.
+struct AnisotropyExtension {
+    float anisotropyStrength = 0.0f;
+    float anisotropyRotation = 0.0f;
+    std::optional<TextureRef> anisotropyTexture;  // RG direction (linear, -1..1), B strength.
+};
+
 // KHR_materials_pbrSpecularGlossiness (archived, still common). When present the material is
 // shaded in the specular-glossiness model: baseColorFactor/baseColorTexture of Material hold
 // the diffuse factor and texture, and metallic-roughness values are ignored.
@@ -237,8 +260,10 @@ struct Material {
     std::optional<ClearcoatExtension> clearcoat;
     std::optional<SheenExtension> sheen;
     std::optional<SpecularGlossinessExtension> specularGlossiness;
+    std::optional<IridescenceExtension> iridescence;
+    std::optional<AnisotropyExtension> anisotropy;
     // Material extensions present in the file that Encore does not shade (transmission,
-    // volume, iridescence, anisotropy, dispersion, ...): the base material is drawn instead.
+    // volume, dispersion, ...): the base material is drawn instead.
     std::vector<std::string> ignoredExtensions;
 };
 

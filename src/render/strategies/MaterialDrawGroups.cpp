@@ -26,7 +26,7 @@ shaders::ShaderVariantKey materialVariant(const scene::Primitive& primitive,
     key.hasTexcoord = primitive.attribute(scene::Semantic::Texcoord0).has_value();
     key.hasColor = primitive.attribute(scene::Semantic::Color0).has_value();
     key.alphaMask = material.alphaMode == scene::AlphaMode::Mask;
-    key.hasTangent = materialHasNormalMap(material) && !material.unlit &&
+    key.hasTangent = materialUsesTangents(material) && !material.unlit &&
                      primitive.attribute(scene::Semantic::Tangent).has_value();
     key.hasTexcoord1 = materialUsesTexcoord1(material) &&
                        primitive.attribute(scene::Semantic::Texcoord1).has_value();

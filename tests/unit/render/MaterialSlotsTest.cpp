@@ -32,6 +32,9 @@ scene::Material everySlotTextured() {
                                                    .clearcoatNormalTexture = textureRef(9)};
     material.sheen = scene::SheenExtension{.sheenColorTexture = textureRef(10),
                                            .sheenRoughnessTexture = textureRef(11)};
+    material.iridescence = scene::IridescenceExtension{
+        .iridescenceTexture = textureRef(12), .iridescenceThicknessTexture = textureRef(13)};
+    material.anisotropy = scene::AnisotropyExtension{.anisotropyTexture = textureRef(14)};
     return material;
 }
 
@@ -42,9 +45,7 @@ TEST(MaterialSlotsTest, TheTableListsEverySlotInOrderWithNamesOfItsOwn) {
     for (std::uint32_t i = 0; i < slots.size(); ++i) {
         EXPECT_EQ(slots[i].slot, TextureSlot(i));
         EXPECT_EQ(&textureSlotInfo(TextureSlot(i)), &slots[i]);
-        EXPECT_TRUE(slots[i].samplerName.ends_with("Sampler")) << slots[i].samplerName;
         EXPECT_TRUE(slots[i].textureName.ends_with("Texture")) << slots[i].textureName;
-        EXPECT_TRUE(names.insert(slots[i].samplerName).second) << slots[i].samplerName;
         EXPECT_TRUE(names.insert(slots[i].textureName).second) << slots[i].textureName;
         EXPECT_NE(slots[i].texture, nullptr);
         EXPECT_NE(slots[i].sampled, nullptr);
@@ -71,6 +72,8 @@ TEST(MaterialSlotsTest, ExtensionSlotsAreEmptyWithoutTheirExtension) {
     material.specular.reset();
     material.clearcoat.reset();
     material.sheen.reset();
+    material.iridescence.reset();
+    material.anisotropy.reset();
     for (std::uint32_t i = 0; i < kMaterialTextureSlotCount; ++i) {
         EXPECT_EQ(slotTexture(material, TextureSlot(i)).has_value(), i < 5) << "slot " << i;
     }
@@ -121,18 +124,27 @@ TEST(MaterialSlotsTest, SampledTexturesSwitchTheirSlots) {
     }
 }
 
-TEST(MaterialSlotsTest, NormalMapsAreTheBaseAndClearcoatNormalTextures) {
+// Normal maps (base and clear coat) and anisotropy, with or without its direction texture, read
+// the tangent frame.
+TEST(MaterialSlotsTest, NormalMapsAndAnisotropyUseTangents) {
     scene::Material material;
-    EXPECT_FALSE(materialHasNormalMap(material));
+    EXPECT_FALSE(materialUsesTangents(material));
     material.occlusionTexture = textureRef(0);
     material.clearcoat = scene::ClearcoatExtension{.clearcoatTexture = textureRef(1)};
-    EXPECT_FALSE(materialHasNormalMap(material));
+    EXPECT_FALSE(materialUsesTangents(material));
     material.clearcoat->clearcoatNormalTexture = textureRef(2);
-    EXPECT_TRUE(materialHasNormalMap(material));
+    EXPECT_TRUE(materialUsesTangents(material));
     material.clearcoat.reset();
-    EXPECT_FALSE(materialHasNormalMap(material));
+    EXPECT_FALSE(materialUsesTangents(material));
     material.normalTexture = textureRef(3);
-    EXPECT_TRUE(materialHasNormalMap(material));
+    EXPECT_TRUE(materialUsesTangents(material));
+    material.normalTexture.reset();
+    material.iridescence = scene::IridescenceExtension{.iridescenceTexture = textureRef(4)};
+    EXPECT_FALSE(materialUsesTangents(material));
+    material.anisotropy = scene::AnisotropyExtension{.anisotropyStrength = 0.5f};
+    EXPECT_TRUE(materialUsesTangents(material));
+    material.anisotropy->anisotropyTexture = textureRef(5);
+    EXPECT_TRUE(materialUsesTangents(material));
 }
 
 }  // namespace

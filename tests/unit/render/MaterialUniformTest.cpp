@@ -206,5 +206,42 @@ TEST(MaterialUniformTest, TheSpecularGlossinessTextureFillsTheMetallicRoughnessS
     expectVector(slot.row1, 0.0f, 1.0f, 0.5f, 0.0f, "row1");
 }
 
+// Each slot's sampler palette entry (SamplerPalette.h) lands in row1[3].
+TEST(MaterialUniformTest, EachSlotCarriesItsSamplerPaletteEntry) {
+    scene::Material material;
+    material.baseColorTexture = textureRef(0);
+    material.emissiveTexture = textureRef(1);
+    SlotSamplerEntries entries{};
+    entries[std::uint32_t(TextureSlot::Emissive)] = 3;
+    entries[std::uint32_t(TextureSlot::Normal)] = 1;
+    const MaterialUniform uniform = makeMaterialUniform(material, entries);
+    for (std::uint32_t slot = 0; slot < kMaterialTextureSlotCount; ++slot) {
+        EXPECT_EQ(uniform.slots[slot].row1[3], float(entries[slot])) << "slot " << slot;
+    }
+}
+
+TEST(MaterialUniformTest, IridescenceAndAnisotropyFactorsAndBits) {
+    scene::Material material;
+    EXPECT_EQ(makeMaterialUniform(material).flags[1] &
+                  (kMaterialIridescence | kMaterialAnisotropy | kMaterialAnisotropyTexture),
+              0u);
+    material.iridescence = scene::IridescenceExtension{.iridescenceFactor = 0.5f,
+                                                       .iridescenceIor = 1.8f,
+                                                       .iridescenceThicknessMinimum = 200.0f,
+                                                       .iridescenceThicknessMaximum = 600.0f};
+    material.anisotropy = scene::AnisotropyExtension{
+        .anisotropyStrength = 0.25f, .anisotropyRotation = std::numbers::pi_v<float> / 2.0f};
+    MaterialUniform uniform = makeMaterialUniform(material);
+    expectVector(uniform.iridescence, 0.5f, 1.8f, 200.0f, 600.0f, "iridescence");
+    EXPECT_NEAR(uniform.anisotropy[0], 0.0f, 1e-6f);  // cos(pi / 2)
+    EXPECT_FLOAT_EQ(uniform.anisotropy[1], 1.0f);     // sin(pi / 2)
+    EXPECT_EQ(uniform.anisotropy[2], 0.25f);
+    EXPECT_EQ(uniform.flags[1], kMaterialIridescence | kMaterialAnisotropy);
+    material.anisotropy->anisotropyTexture = textureRef(0);
+    uniform = makeMaterialUniform(material);
+    EXPECT_EQ(uniform.flags[1],
+              kMaterialIridescence | kMaterialAnisotropy | kMaterialAnisotropyTexture);
+}
+
 }  // namespace
 }  // namespace encore::render
