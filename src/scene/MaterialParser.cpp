@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <array>
+#include <limits>
 #include <utility>
 
 #include "scene/LoadContext.h"
@@ -119,6 +120,61 @@ GltfSpecularGlossiness readSpecularGlossiness(FieldReader& fields) {
     return result;
 }
 
+// A factor that must lie in [minimum, maximum]; out of range: an error naming the field.
+float readBoundedFactor(FieldReader& fields,
+                        std::string_view key,
+                        double fallback,
+                        double minimum,
+                        double maximum,
+                        std::string_view rule) {
+    const double value = fields.number(key, fallback);
+    if (value < minimum || value > maximum) {
+        fields.fail(ErrorCode::InvalidFormat, fields.element() + " has an invalid " +
+                                                  std::string(key) + " (" + formatNumber(value) +
+                                                  "; it must be " + std::string(rule) + ").");
+    }
+    return float(value);
+}
+
+GltfTransmission readTransmission(FieldReader& fields) {
+    GltfTransmission transmission;
+    transmission.transmissionFactor =
+        readBoundedFactor(fields, "transmissionFactor", 0.0, 0.0, 1.0, "between 0 and 1");
+    transmission.transmissionTexture =
+        readTextureInfo(fields, fields.object("transmissionTexture"), "transmissionTexture", {});
+    return transmission;
+}
+
+GltfVolume readVolume(FieldReader& fields) {
+    constexpr double kLargest = std::numeric_limits<double>::max();
+    GltfVolume volume;
+    volume.thicknessFactor =
+        readBoundedFactor(fields, "thicknessFactor", 0.0, 0.0, kLargest, "at least 0");
+    volume.thicknessTexture =
+        readTextureInfo(fields, fields.object("thicknessTexture"), "thicknessTexture", {});
+    if (fields.has("attenuationDistance")) {
+        const double distance = fields.number("attenuationDistance", 0.0);
+        if (!(distance > 0.0)) {
+            fields.fail(ErrorCode::InvalidFormat,
+                        fields.element() + " has an invalid attenuationDistance (" +
+                            formatNumber(distance) + "; it must be greater than 0).");
+        }
+        volume.attenuationDistance = float(distance);
+    }
+    volume.attenuationColor = readVec3(fields, "attenuationColor", glm::vec3(1.0f));
+    for (int channel = 0; channel < 3; ++channel) {
+        const float value = volume.attenuationColor[channel];
+        if (value < 0.0f || value > 1.0f) {
+            fields.fail(ErrorCode::InvalidFormat,
+                        fields.element() + " has an invalid attenuationColor (component " +
+                            std::to_string(channel) + " is " + formatNumber(value) +
+                            "; each must be between 0 and 1).");
+            break;
+        }
+    }
+    return volume;
+}
+
 // Reads the material's extensions object into `material`; errors go to `reader`.
 void readMaterialExtensions(FieldReader& reader, GltfMaterial& material) {
     const Json* extensions = reader.object("extensions");
@@ -169,6 +225,13 @@ void readMaterialExtensions(FieldReader& reader, GltfMaterial& material) {
             material.sheen = readSheen(fields);
         } else if (name == "KHR_materials_pbrSpecularGlossiness") {
             material.specularGlossiness = readSpecularGlossiness(fields);
+        } else if (name == "KHR_materials_transmission") {
+            material.transmission = readTransmission(fields);
+        } else if (name == "KHR_materials_volume") {
+            material.volume = readVolume(fields);
+        } else if (name == "KHR_materials_dispersion") {
+            material.dispersion = readBoundedFactor(
+                fields, "dispersion", 0.0, 0.0, std::numeric_limits<double>::max(), "at least 0");
         }
         if (fields.failed()) {
             reader.fail(fields.error().code, fields.error().message);
@@ -408,6 +471,23 @@ Result<void> convertMaterials(LoadContext& context) {
                 .specularGlossinessTexture = toTextureRef(glossiness->specularGlossinessTexture),
             };
         }
+        if (const auto& transmission = source.transmission) {
+            material.transmission = TransmissionExtension{
+                .transmissionFactor = transmission->transmissionFactor,
+                .transmissionTexture = toTextureRef(transmission->transmissionTexture),
+            };
+        }
+        if (const auto& volume = source.volume) {
+            material.volume = VolumeExtension{
+                .thicknessFactor = volume->thicknessFactor,
+                .thicknessTexture = toTextureRef(volume->thicknessTexture),
+                .attenuationDistance = volume->attenuationDistance,
+                .attenuationColor = volume->attenuationColor,
+            };
+        }
+        if (source.dispersion) {
+            material.dispersion = DispersionExtension{.dispersion = *source.dispersion};
+        }
         material.ignoredExtensions = source.ignoredExtensions;
         scene.materials.push_back(std::move(material));
     }
@@ -444,6 +524,12 @@ std::vector<GltfMaterialTextureSlot> materialTextureSlots(const GltfMaterial& ma
         add("KHR_materials_pbrSpecularGlossiness diffuseTexture", glossiness->diffuseTexture);
         add("KHR_materials_pbrSpecularGlossiness specularGlossinessTexture",
             glossiness->specularGlossinessTexture);
+    }
+    if (const auto& transmission = material.transmission) {
+        add("KHR_materials_transmission transmissionTexture", transmission->transmissionTexture);
+    }
+    if (const auto& volume = material.volume) {
+        add("KHR_materials_volume thicknessTexture", volume->thicknessTexture);
     }
     return slots;
 }
