@@ -33,6 +33,10 @@ inline constexpr std::uint32_t kMaterialClearcoatNormalMap = 2;
 inline constexpr std::uint32_t kMaterialClearcoat = 4;
 inline constexpr std::uint32_t kMaterialSheen = 8;
 inline constexpr std::uint32_t kMaterialSpecular = 16;
+// KHR_materials_transmission (and volume, dispersion): bits well apart from those above, which
+// other extensions take next.
+inline constexpr std::uint32_t kMaterialTransmission = 1024;
+inline constexpr std::uint32_t kMaterialVolume = 2048;
 
 // The `Material` struct of material.wgsl, byte for byte.
 struct MaterialUniform {
@@ -44,10 +48,13 @@ struct MaterialUniform {
     float clearcoat[4];           // Factor, roughness factor, normal scale.
     float sheen[4];               // Colour factor, roughness factor.
     float specularGlossiness[4];  // Specular factor, glossiness factor.
-    std::uint32_t flags[4];       // ShadingModel, kMaterial* bits.
+    // Transmission factor, thickness factor, attenuation distance (0: none), dispersion.
+    float transmission[4];
+    float attenuationColor[4];  // KHR_materials_volume's attenuation colour.
+    std::uint32_t flags[4];     // ShadingModel, kMaterial* bits.
     TextureSlotUniform slots[kMaterialTextureSlotCount];  // Indexed by TextureSlot.
 };
-static_assert(sizeof(MaterialUniform) == 528);
+static_assert(sizeof(MaterialUniform) == 560);
 
 // The uniform contents of `material` (no GPU involved).
 MaterialUniform makeMaterialUniform(const scene::Material& material);

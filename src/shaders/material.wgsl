@@ -23,6 +23,10 @@ struct Material {
     clearcoat: vec4f,           // factor, roughness factor, normal scale, unused.
     sheen: vec4f,               // rgb colour factor, a: roughness factor.
     specularGlossiness: vec4f,  // rgb specular factor, a: glossiness factor.
+    // KHR_materials_transmission factor, KHR_materials_volume thickness factor and attenuation
+    // distance (0: none), KHR_materials_dispersion.
+    transmission: vec4f,
+    attenuationColor: vec4f,    // rgb: KHR_materials_volume's attenuation colour.
     // x: shading model (0 metallic-roughness, 1 specular-glossiness, 2 unlit);
     // y: kMaterial* feature bits.
     flags: vec4u,
@@ -37,6 +41,8 @@ const kMaterialClearcoatNormalMap = 2u;
 const kMaterialClearcoat = 4u;
 const kMaterialSheen = 8u;
 const kMaterialSpecular = 16u;
+const kMaterialTransmission = 1024u;
+const kMaterialVolume = 2048u;
 
 const kBaseColorSlot = 0u;
 const kMetallicRoughnessSlot = 1u;

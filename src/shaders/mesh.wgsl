@@ -120,6 +120,8 @@ struct VertexOutput {
     @location(4) texcoord1: vec2f,
     // xyz: world tangent, w: bitangent sign (handedness, flipped for mirroring transforms).
     @location(5) tangent: vec4f,
+    // Lengths of the world matrix's axes: KHR_materials_volume's thickness is in mesh units.
+    @location(6) modelScale: vec3f,
 }
 
 #if SKINNED
@@ -192,6 +194,8 @@ fn vertexMain(input: VertexInput) -> VertexOutput {
     output.position = frame.projection * frame.view * world;
     output.worldPosition = world.xyz;
     output.normal = (transform.normal * vec4f(normal, 0.0)).xyz;
+    output.modelScale = vec3f(length(transform.world[0].xyz), length(transform.world[1].xyz),
+                              length(transform.world[2].xyz));
 #if HAS_TEXCOORD
     output.texcoord = input.texcoord;
 #else
@@ -237,7 +241,8 @@ fn fragmentMain(input: VertexOutput, @builtin(front_facing) frontFacing: bool) -
     }
 #endif
     return displayColor(shadeSurface(input.worldPosition, input.normal, input.tangent, frontFacing,
-                                     baseColor, samples, positionDx, positionDy, uvDx, uvDy));
+                                     baseColor, samples, positionDx, positionDy, uvDx, uvDy,
+                                     input.modelScale));
 #else
     return displayColor(vec4f(shade(input.color.rgb, input.normal), 1.0));
 #endif

@@ -170,6 +170,8 @@ TEST(MaterialWgslTest, FeatureBitsAndShadingModelsMatchTheCpp) {
         {"kMaterialClearcoat", kMaterialClearcoat},
         {"kMaterialSheen", kMaterialSheen},
         {"kMaterialSpecular", kMaterialSpecular},
+        {"kMaterialTransmission", kMaterialTransmission},
+        {"kMaterialVolume", kMaterialVolume},
     };
     EXPECT_EQ(unsignedConstants("kMaterial"), features);
     std::uint32_t all = 0;
@@ -211,6 +213,8 @@ TEST(MaterialWgslTest, MaterialStructMatchesMaterialUniform) {
         {"clearcoat", {offsetof(MaterialUniform, clearcoat), "vec4f"}},
         {"sheen", {offsetof(MaterialUniform, sheen), "vec4f"}},
         {"specularGlossiness", {offsetof(MaterialUniform, specularGlossiness), "vec4f"}},
+        {"transmission", {offsetof(MaterialUniform, transmission), "vec4f"}},
+        {"attenuationColor", {offsetof(MaterialUniform, attenuationColor), "vec4f"}},
         {"flags", {offsetof(MaterialUniform, flags), "vec4u"}},
     };
     const std::vector<WgslField> fields = structFields(structBody(source, "Material"));
