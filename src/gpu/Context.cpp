@@ -187,7 +187,12 @@ Result<void> Context::acquireDevice() {
     deviceDescriptor.requiredFeatureCount = features.size();
     deviceDescriptor.requiredFeatures = features.data();
     // Dawn raises requested limits below WebGPU's defaults to the defaults; mLimits applies them.
-    const wgpu::Limits required = requiredLimits(options.limitOverrides);
+    wgpu::Limits adapterLimits{};
+    if (mAdapter.GetLimits(&adapterLimits) != wgpu::Status::Success) {
+        adapterLimits.maxSampledTexturesPerShaderStage =
+            DeviceLimits{}.maxSampledTexturesPerShaderStage;
+    }
+    const wgpu::Limits required = requiredLimits(options.limitOverrides, adapterLimits);
     deviceDescriptor.requiredLimits = &required;
     ErrorLog* errorLog = mErrors.get();
     deviceDescriptor.SetUncapturedErrorCallback(

@@ -31,6 +31,7 @@ DeviceLimits DeviceLimits::of(const wgpu::Device& device, const LimitOverrides& 
         limits.maxBufferSize = reported.maxBufferSize;
         limits.maxStorageBufferBindingSize = reported.maxStorageBufferBindingSize;
         limits.minUniformBufferOffsetAlignment = reported.minUniformBufferOffsetAlignment;
+        limits.maxSampledTexturesPerShaderStage = reported.maxSampledTexturesPerShaderStage;
     }
     if (overrides.maxTextureDimension2D) {
         limits.maxTextureDimension2D =
@@ -43,14 +44,24 @@ DeviceLimits DeviceLimits::of(const wgpu::Device& device, const LimitOverrides& 
         limits.maxStorageBufferBindingSize =
             std::min(limits.maxStorageBufferBindingSize, *overrides.maxStorageBufferBindingSize);
     }
+    if (overrides.maxSampledTexturesPerShaderStage) {
+        limits.maxSampledTexturesPerShaderStage = std::min(
+            limits.maxSampledTexturesPerShaderStage, *overrides.maxSampledTexturesPerShaderStage);
+    }
     // A binding never exceeds its buffer.
     limits.maxStorageBufferBindingSize =
         std::min(limits.maxStorageBufferBindingSize, limits.maxBufferSize);
     return limits;
 }
 
-wgpu::Limits requiredLimits(const LimitOverrides& overrides) {
+wgpu::Limits requiredLimits(const LimitOverrides& overrides, const wgpu::Limits& adapter) {
     wgpu::Limits limits{};
+    // Only as many as Encore may bind: a higher limit can cost binding memory on some backends.
+    limits.maxSampledTexturesPerShaderStage =
+        overrides.maxSampledTexturesPerShaderStage
+            ? *overrides.maxSampledTexturesPerShaderStage
+            : std::min(adapter.maxSampledTexturesPerShaderStage,
+                       kRequestedSampledTexturesPerShaderStage);
     if (overrides.maxTextureDimension2D) {
         limits.maxTextureDimension2D = *overrides.maxTextureDimension2D;
     }

@@ -38,11 +38,14 @@ BindGroupLayouts BindGroupLayouts::create(const wgpu::Device& device) {
          LayoutEntry::readOnlyStorage(1, kVertex, 4).withDynamicOffset()},
         "culled instances");
 
-    // Group 2: the material uniform, then a sampler and a texture per slot (material.wgsl).
+    // Group 2: the material uniform, its sampler palette, then a texture per slot
+    // (material.wgsl).
     std::vector<LayoutEntry> material = {
         LayoutEntry::uniform(0, kFragment, sizeof(MaterialUniform))};
+    for (std::uint32_t entry = 0; entry < kMaterialSamplerCount; ++entry) {
+        material.push_back(LayoutEntry::sampler(materialSamplerBinding(entry), kFragment));
+    }
     for (std::uint32_t slot = 0; slot < kMaterialTextureSlotCount; ++slot) {
-        material.push_back(LayoutEntry::sampler(materialSamplerBinding(slot), kFragment));
         material.push_back(LayoutEntry::texture(materialTextureBinding(slot), kFragment));
     }
     layouts.material = gpu::makeBindGroupLayout(device, material, "material");

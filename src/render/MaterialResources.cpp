@@ -14,15 +14,53 @@
 #include <utility>
 
 #include "core/Elapsed.h"
+#include "core/Log.h"
 #include "gpu/Upload.h"
 #include "render/MaterialResourcesBuilder.h"
 #include "render/MipmapGenerator.h"
+#include "render/SamplerPalette.h"
 
 namespace encore::render {
 
 namespace {
 
 constexpr std::uint64_t kUniformSize = sizeof(MaterialUniform);
+
+// The glTF sampler of the texture in `slot` of `material` ("the default sampler" for none).
+std::string slotSamplerName(const scene::SceneData& scene,
+                            const scene::Material& material,
+                            std::uint32_t slot) {
+    const std::optional<scene::TextureRef> ref = slotTexture(material, TextureSlot(slot));
+    const scene::SamplerId sampler = scene.textures[ref->texture.index()].sampler;
+    return sampler.valid() ? "sampler " + std::to_string(sampler.value) : "the default sampler";
+}
+
+// Names each slot that samples with another sampler than its own, and the one it uses.
+void warnApproximatedSamplers(
+    const scene::SceneData& scene,
+    scene::MaterialId id,
+    const std::array<std::optional<std::size_t>, kMaterialTextureSlotCount>& slotSamplers,
+    const SamplerPalette& palette) {
+    const scene::Material& material = scene.materials[id.index()];
+    std::string slots;
+    for (const TextureSlot slot : palette.approximated) {
+        const std::uint32_t entry = palette.slotEntries[std::uint32_t(slot)];
+        // The first slot that brought the entry into the palette names its sampler.
+        std::uint32_t owner = 0;
+        while (palette.slotEntries[owner] != entry || !slotSamplers[owner] ||
+               std::find(palette.approximated.begin(), palette.approximated.end(),
+                         TextureSlot(owner)) != palette.approximated.end()) {
+            ++owner;
+        }
+        slots += std::string(slots.empty() ? "" : ", ") +
+                 std::string(textureSlotInfo(slot).textureName) + " (" +
+                 slotSamplerName(scene, material, std::uint32_t(slot)) + ") samples with " +
+                 slotSamplerName(scene, material, owner);
+    }
+    logWarning(describeMaterial(id, material) + "'s textures use more distinct samplers than the " +
+               std::to_string(kMaterialSamplerCount) +
+               " a material binds; the nearest stand in: " + slots + ".");
+}
 
 }  // namespace
 
@@ -79,9 +117,8 @@ Result<MaterialResources> MaterialResources::create(const wgpu::Device& device,
         const scene::MaterialId id{i};
         const scene::Material& material = scene.materials[i];
         SlotIndices textures;
-        SlotIndices samplers;
         textures.fill(kDefaultTexture);
-        samplers.fill(defaultSampler);
+        std::array<std::optional<std::size_t>, kMaterialTextureSlotCount> samplers;
         for (const TextureSlotInfo& slot : textureSlots()) {
             const std::uint32_t slotIndex = std::uint32_t(slot.slot);
             const std::optional<scene::TextureRef>& ref = slot.texture(material);
@@ -107,16 +144,25 @@ Result<MaterialResources> MaterialResources::create(const wgpu::Device& device,
                                      std::to_string(scene.samplers.size()) + " samplers.");
             }
             textures[slotIndex] = uploaded;
-            if (texture.sampler.valid()) {
-                samplers[slotIndex] = resources.mSceneSamplers[texture.sampler.index()];
-            }
+            samplers[slotIndex] = texture.sampler.valid()
+                                      ? resources.mSceneSamplers[texture.sampler.index()]
+                                      : defaultSampler;
+        }
+        const SamplerPalette palette = makeSamplerPalette(samplers, builder.states, defaultSampler);
+        if (!palette.approximated.empty()) {
+            warnApproximatedSamplers(scene, id, samplers, palette);
+        }
+        std::array<std::size_t, kMaterialSamplerCount> bound;
+        for (std::size_t entry = 0; entry < bound.size(); ++entry) {
+            bound[entry] = palette.samplers[entry < palette.samplers.size() ? entry : 0];
         }
         resources.mMaterialTextures.push_back(textures);
-        resources.mMaterialSamplers.push_back(samplers);
+        resources.mMaterialPalettes.push_back(bound);
+        resources.mMaterialSamplerEntries.push_back(palette.slotEntries);
         resources.mTextured.push_back(std::any_of(
             textures.begin(), textures.end(), [](std::size_t t) { return t != kDefaultTexture; }));
 
-        const MaterialUniform uniform = makeMaterialUniform(material);
+        const MaterialUniform uniform = makeMaterialUniform(material, palette.slotEntries);
         std::memcpy(uniformBytes.data() + i * resources.mUniformStride, &uniform, kUniformSize);
 
         resources.mBindGroups.push_back(resources.createBindGroup(
@@ -135,7 +181,8 @@ wgpu::BindGroup MaterialResources::createBindGroup(const wgpu::Device& device,
                                                    const BindGroupLayouts& layouts,
                                                    std::size_t material,
                                                    const char* label) const {
-    std::array<wgpu::BindGroupEntry, 1 + 2 * kMaterialTextureSlotCount> entries{};
+    std::array<wgpu::BindGroupEntry, 1 + kMaterialSamplerCount + kMaterialTextureSlotCount>
+        entries{};
     entries[0].binding = 0;
     entries[0].buffer = mUniforms;
     entries[0].offset = material * mUniformStride;
@@ -148,11 +195,13 @@ wgpu::BindGroup MaterialResources::createBindGroup(const wgpu::Device& device,
         descriptor.entries = entries.data();
         return device.CreateBindGroup(&descriptor);
     }
+    for (std::uint32_t entry = 0; entry < kMaterialSamplerCount; ++entry) {
+        wgpu::BindGroupEntry& sampler = entries[materialSamplerBinding(entry)];
+        sampler.binding = materialSamplerBinding(entry);
+        sampler.sampler = mSamplers[mMaterialPalettes[material][entry]];
+    }
     for (std::uint32_t slot = 0; slot < kMaterialTextureSlotCount; ++slot) {
-        wgpu::BindGroupEntry& sampler = entries[1 + 2 * slot];
-        sampler.binding = materialSamplerBinding(slot);
-        sampler.sampler = mSamplers[mMaterialSamplers[material][slot]];
-        wgpu::BindGroupEntry& texture = entries[2 + 2 * slot];
+        wgpu::BindGroupEntry& texture = entries[materialTextureBinding(slot)];
         texture.binding = materialTextureBinding(slot);
         texture.textureView = mTextures[mMaterialTextures[material][slot]].CreateView();
     }
@@ -222,7 +271,8 @@ void MaterialResources::updateMaterial(const wgpu::Queue& queue,
                                        scene::MaterialId material,
                                        const scene::Material& values) {
     assert(material.index() < mBindGroups.size());
-    const MaterialUniform uniform = makeMaterialUniform(values);
+    const MaterialUniform uniform =
+        makeMaterialUniform(values, mMaterialSamplerEntries[material.index()]);
     queue.WriteBuffer(mUniforms, material.index() * mUniformStride, &uniform, kUniformSize);
 }
 

@@ -6,8 +6,10 @@
 //
 // A material has twelve texture slots (TextureSlot, one row each in the table of
 // MaterialSlots.h): the core metallic-roughness, normal, occlusion and emissive textures and
-// those of the extensions Encore shades. Each slot binds its own sampler and texture and has its
-// own texCoord set and KHR_texture_transform in the uniform (MaterialUniform.h). Textures: one
+// those of the extensions Encore shades. Each slot binds its own texture and has its own
+// texCoord set, KHR_texture_transform and sampler palette entry in the uniform
+// (MaterialUniform.h); the material binds a palette of up to four samplers (SamplerPalette.h)
+// that its slots share. Textures: one
 // per glTF image that a material references, in the colour space of its use (the table's: base
 // colour, emissive, specular colour, sheen colour and the specular-glossiness texture sRGB; the
 // rest linear); an image used both ways gets two textures. Every texture has its full mip
@@ -16,8 +18,10 @@
 // shader needs no variant for it (normal maps are switched by a flag).
 //
 // Samplers: one per distinct glTF sampler state (equal states share one), and the glTF default
-// (repeat, linear, linear mipmaps) for slots without a texture. A sampler that glTF declares
-// without mipmaps (minFilter NEAREST or LINEAR) only reads level 0.
+// (repeat, linear, linear mipmaps) for materials without a texture. A sampler that glTF
+// declares without mipmaps (minFilter NEAREST or LINEAR) only reads level 0. A material whose
+// textures use more than four distinct states samples the later slots with the nearest of the
+// first four, with a warning naming the material, the slots and the samplers.
 //
 // Uniforms: material i lives at i * uniformStride() in uniformBuffer(), as a MaterialUniform.
 // updateMaterial rewrites that range, so factors can change after render bundles are recorded
@@ -157,8 +161,10 @@ class MaterialResources {
     std::vector<wgpu::BindGroup> mBindGroups;  // Indexed by MaterialId.
     using SlotIndices = std::array<std::size_t, kMaterialTextureSlotCount>;
     std::vector<SlotIndices> mMaterialTextures;  // MaterialId -> slot -> index into mTextures.
-    std::vector<SlotIndices> mMaterialSamplers;  // MaterialId -> slot -> index into mSamplers.
-    std::vector<bool> mTextured;                 // MaterialId -> binds a texture.
+    // MaterialId -> palette entry -> index into mSamplers (unused entries repeat the first).
+    std::vector<std::array<std::size_t, kMaterialSamplerCount>> mMaterialPalettes;
+    std::vector<SlotSamplerEntries> mMaterialSamplerEntries;  // MaterialId -> slot -> entry.
+    std::vector<bool> mTextured;                              // MaterialId -> binds a texture.
     std::uint64_t mGeneration = 0;
     std::uint64_t mUploadedBytes = 0;
     TextureUploadTimes mUploadTimes;

@@ -178,6 +178,7 @@ std::size_t MaterialResources::Builder::addSampler(const scene::Sampler& sampler
     labelled.label = label.c_str();
     out.mSamplers.push_back(device.CreateSampler(&labelled));
     descriptors.push_back(wanted);
+    states.push_back(sampler);
     return out.mSamplers.size() - 1;
 }
 

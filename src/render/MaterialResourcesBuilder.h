@@ -32,6 +32,7 @@ struct MaterialResources::Builder {
     StagedImages* staged = nullptr;
     std::uint32_t maxDimension = 8192;
     std::vector<wgpu::SamplerDescriptor> descriptors;  // Parallel to out.mSamplers, unlabelled.
+    std::vector<scene::Sampler> states;  // Parallel to out.mSamplers: the first state of each.
 
     // Creates a texture with its full mip chain (levels past 0 left for the mip generator) and
     // writes level 0 from `pixels`, or copies it from `stagedPixels` when given.

@@ -1,11 +1,11 @@
 #pragma once
 
 // The texture slots of a material, as one table (textureSlots()). Each row says, for one slot of
-// material.wgsl: the names of its sampler and texture variables, the colour space its texture
+// material.wgsl: the name of its texture variable, the colour space its texture
 // is sampled in, which SampledTextures switch uploads it, whether it is a normal map, and which
 // scene::Material field it reads. The slot's texture, its colour space, whether it is uploaded
 // and its uniform transform all come from this table rather than from switches over
-// TextureSlot, so a new slot is one enumerator, one row and two declarations in material.wgsl;
+// TextureSlot, so a new slot is one enumerator, one row and one declaration in material.wgsl;
 // tests/unit/render/MaterialWgslTest.cpp checks the table against material.wgsl. Every place
 // a new material extension touches: docs/adding-a-material-extension.md.
 //
@@ -36,12 +36,17 @@ enum class TextureSlot : std::uint32_t {
     SheenRoughness,
 };
 inline constexpr std::uint32_t kMaterialTextureSlotCount = 12;
-// Group 2's bindings: 0 is the uniform, then a sampler and a texture per slot.
-constexpr std::uint32_t materialSamplerBinding(std::uint32_t slot) {
-    return 1 + 2 * slot;
+// The samplers a material binds (its sampler palette, SamplerPalette.h): the slots' textures
+// share them, each slot naming its entry in the uniform, so a new slot needs no sampler binding
+// (a shader stage may bind only 16 samplers; Dawn allows no more).
+inline constexpr std::uint32_t kMaterialSamplerCount = 4;
+// Group 2's bindings: 0 is the uniform, then the palette's samplers (material.wgsl's
+// materialSampler0..3), then a texture per slot.
+constexpr std::uint32_t materialSamplerBinding(std::uint32_t entry) {
+    return 1 + entry;
 }
 constexpr std::uint32_t materialTextureBinding(std::uint32_t slot) {
-    return 2 + 2 * slot;
+    return 1 + kMaterialSamplerCount + slot;
 }
 
 enum class ColorSpace : std::uint8_t {
@@ -68,9 +73,7 @@ struct SampledTextures {
 // One row of the slot table.
 struct TextureSlotInfo {
     TextureSlot slot;
-    // material.wgsl's variables, at @group(2) @binding(materialSamplerBinding(slot)) and
-    // @binding(materialTextureBinding(slot)).
-    std::string_view samplerName;
+    // material.wgsl's texture variable, at @group(2) @binding(materialTextureBinding(slot)).
     std::string_view textureName;
     // The colour space of the slot's texture, and the one it has when the material uses
     // KHR_materials_pbrSpecularGlossiness (whose specular-glossiness texture, read through the

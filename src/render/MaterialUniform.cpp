@@ -15,7 +15,8 @@ void setVector(float (&out)[4], float x, float y, float z, float w) {
 
 // KHR_texture_transform: Translation * Rotation * Scale, with Rotation = [cos sin; -sin cos]
 // (the extension's convention, not the usual one), as the two rows of a 2x3 matrix.
-TextureSlotUniform makeSlotUniform(const std::optional<scene::TextureRef>& texture) {
+TextureSlotUniform makeSlotUniform(const std::optional<scene::TextureRef>& texture,
+                                   std::uint32_t samplerEntry) {
     scene::TextureTransform transform;
     if (texture && texture->transform) {
         transform = *texture->transform;
@@ -25,13 +26,15 @@ TextureSlotUniform makeSlotUniform(const std::optional<scene::TextureRef>& textu
     TextureSlotUniform slot{};
     setVector(slot.row0, c * transform.scale.x, s * transform.scale.y, transform.offset.x,
               texture && texture->texCoord == 1 ? 1.0f : 0.0f);
-    setVector(slot.row1, -s * transform.scale.x, c * transform.scale.y, transform.offset.y, 0.0f);
+    setVector(slot.row1, -s * transform.scale.x, c * transform.scale.y, transform.offset.y,
+              float(samplerEntry));
     return slot;
 }
 
 }  // namespace
 
-MaterialUniform makeMaterialUniform(const scene::Material& material) {
+MaterialUniform makeMaterialUniform(const scene::Material& material,
+                                    const SlotSamplerEntries& samplerEntries) {
     MaterialUniform uniform{};
     const glm::vec4& base = material.baseColorFactor;
     setVector(uniform.baseColorFactor, base.r, base.g, base.b, base.a);
@@ -102,7 +105,8 @@ MaterialUniform makeMaterialUniform(const scene::Material& material) {
     uniform.flags[0] = std::uint32_t(model);
     uniform.flags[1] = features;
     for (const TextureSlotInfo& slot : textureSlots()) {
-        uniform.slots[std::uint32_t(slot.slot)] = makeSlotUniform(slot.texture(material));
+        const std::uint32_t index = std::uint32_t(slot.slot);
+        uniform.slots[index] = makeSlotUniform(slot.texture(material), samplerEntries[index]);
     }
     return uniform;
 }

@@ -2,10 +2,11 @@
 
 // The uniform half of a material: MaterialUniform is the `Material` struct of material.wgsl
 // byte for byte, and makeMaterialUniform packs a scene::Material into it (factors, shading
-// model, feature bits, and each texture slot's texCoord set and KHR_texture_transform).
+// model, feature bits, and each texture slot's texCoord set, KHR_texture_transform and sampler).
 // CPU-only: MaterialResources uploads the result; tests and fuzzers call it without a device.
 // tests/unit/render/MaterialWgslTest.cpp checks the layout and the constants against the WGSL.
 
+#include <array>
 #include <cstdint>
 
 #include "encore/scene/SceneData.h"
@@ -14,7 +15,8 @@
 namespace encore::render {
 
 // One slot's texture coordinates: the rows of its 2x3 KHR_texture_transform matrix; row0[3] is
-// 1 when the slot reads TEXCOORD_1.
+// 1 when the slot reads TEXCOORD_1; row1[3] is the entry of the material's sampler palette the
+// slot samples with (SamplerPalette.h; 0 to 3, a whole number).
 struct TextureSlotUniform {
     float row0[4];
     float row1[4];
@@ -56,7 +58,12 @@ struct MaterialUniform {
 };
 static_assert(sizeof(MaterialUniform) == 560);
 
-// The uniform contents of `material` (no GPU involved).
-MaterialUniform makeMaterialUniform(const scene::Material& material);
+// Each texture slot's entry in its material's sampler palette (SamplerPalette::slotEntries).
+using SlotSamplerEntries = std::array<std::uint32_t, kMaterialTextureSlotCount>;
+
+// The uniform contents of `material` whose slots sample with `samplerEntries` (no GPU
+// involved).
+MaterialUniform makeMaterialUniform(const scene::Material& material,
+                                    const SlotSamplerEntries& samplerEntries = {});
 
 }  // namespace encore::render

@@ -5,6 +5,7 @@
 #include "core/Elapsed.h"
 #include "encore/image/HdrImage.h"
 #include "gpu/OutOfMemoryScope.h"
+#include "render/BindingLimits.h"
 #include "render/GpuScene.h"
 #include "render/MipmapGenerator.h"
 #include "render/PipelineCache.h"
@@ -29,6 +30,7 @@ Result<void> Renderer::build(const RendererOptions& options) {
     gpu::Context& context = *mContext;
     Renderer& renderer = *this;
     renderer.mOptions = options;
+    ENCORE_TRY(checkBindingLimits(context.limits(), context.adapterDescription().name));
     // Straight alpha needs the coverage that only the HDR target keeps.
     renderer.mOptions.target.hdr =
         options.target.hdr || options.toneMapping.background == BackgroundKind::Transparent;

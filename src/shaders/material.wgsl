@@ -1,14 +1,18 @@
 // Group 2: one glTF material (MaterialResources in C++). The uniform holds every factor and,
-// for each of the twelve texture slots, the texCoord set and KHR_texture_transform; with
-// MATERIAL_TEXTURES each slot has its own sampler (the glTF sampler of its texture) and texture
-// (a 1-pixel default when the material has none: white, so that factors multiply through
-// unchanged). Materials with no texture at all bind the uniform only and read white.
+// for each of the twelve texture slots, the texCoord set, KHR_texture_transform and sampler;
+// with MATERIAL_TEXTURES each slot has its own texture (a 1-pixel default when the material has
+// none: white, so that factors multiply through unchanged) and the material binds a palette of
+// four samplers (its glTF samplers, render/SamplerPalette.h) that the slots share: each slot's
+// uniform names its entry, and slotSampler* pick it (one sampler per slot would pass the 16 a
+// shader stage may bind). Materials with no texture at all bind the uniform only and read
+// white.
 //
 // Written by hand to match C++: the slot table (render/MaterialSlots.h: names, bindings, slot
 // indices), MaterialUniform and the kMaterial*/kModel* values (render/MaterialUniform.h).
 // tests/unit/render/MaterialWgslTest.cpp fails when they disagree.
 
-// Rows of the slot's 2x3 texture transform applied to (u, v, 1); row0.w: 1 reads TEXCOORD_1.
+// Rows of the slot's 2x3 texture transform applied to (u, v, 1); row0.w: 1 reads TEXCOORD_1;
+// row1.w: the palette entry of the slot's sampler (0 to 3).
 struct TextureSlot {
     row0: vec4f,
     row1: vec4f,
@@ -59,30 +63,22 @@ const kSheenRoughnessSlot = 11u;
 
 @group(2) @binding(0) var<uniform> material: Material;
 #if MATERIAL_TEXTURES
-@group(2) @binding(1) var baseColorSampler: sampler;
-@group(2) @binding(2) var baseColorTexture: texture_2d<f32>;
-@group(2) @binding(3) var metallicRoughnessSampler: sampler;
-@group(2) @binding(4) var metallicRoughnessTexture: texture_2d<f32>;
-@group(2) @binding(5) var normalSampler: sampler;
-@group(2) @binding(6) var normalTexture: texture_2d<f32>;
-@group(2) @binding(7) var occlusionSampler: sampler;
+@group(2) @binding(1) var materialSampler0: sampler;
+@group(2) @binding(2) var materialSampler1: sampler;
+@group(2) @binding(3) var materialSampler2: sampler;
+@group(2) @binding(4) var materialSampler3: sampler;
+@group(2) @binding(5) var baseColorTexture: texture_2d<f32>;
+@group(2) @binding(6) var metallicRoughnessTexture: texture_2d<f32>;
+@group(2) @binding(7) var normalTexture: texture_2d<f32>;
 @group(2) @binding(8) var occlusionTexture: texture_2d<f32>;
-@group(2) @binding(9) var emissiveSampler: sampler;
-@group(2) @binding(10) var emissiveTexture: texture_2d<f32>;
-@group(2) @binding(11) var specularSampler: sampler;
-@group(2) @binding(12) var specularTexture: texture_2d<f32>;
-@group(2) @binding(13) var specularColorSampler: sampler;
-@group(2) @binding(14) var specularColorTexture: texture_2d<f32>;
-@group(2) @binding(15) var clearcoatSampler: sampler;
-@group(2) @binding(16) var clearcoatTexture: texture_2d<f32>;
-@group(2) @binding(17) var clearcoatRoughnessSampler: sampler;
-@group(2) @binding(18) var clearcoatRoughnessTexture: texture_2d<f32>;
-@group(2) @binding(19) var clearcoatNormalSampler: sampler;
-@group(2) @binding(20) var clearcoatNormalTexture: texture_2d<f32>;
-@group(2) @binding(21) var sheenColorSampler: sampler;
-@group(2) @binding(22) var sheenColorTexture: texture_2d<f32>;
-@group(2) @binding(23) var sheenRoughnessSampler: sampler;
-@group(2) @binding(24) var sheenRoughnessTexture: texture_2d<f32>;
+@group(2) @binding(9) var emissiveTexture: texture_2d<f32>;
+@group(2) @binding(10) var specularTexture: texture_2d<f32>;
+@group(2) @binding(11) var specularColorTexture: texture_2d<f32>;
+@group(2) @binding(12) var clearcoatTexture: texture_2d<f32>;
+@group(2) @binding(13) var clearcoatRoughnessTexture: texture_2d<f32>;
+@group(2) @binding(14) var clearcoatNormalTexture: texture_2d<f32>;
+@group(2) @binding(15) var sheenColorTexture: texture_2d<f32>;
+@group(2) @binding(16) var sheenRoughnessTexture: texture_2d<f32>;
 #endif
 
 fn slotUv(slot: u32, uv0: vec2f, uv1: vec2f) -> vec2f {
@@ -90,3 +86,35 @@ fn slotUv(slot: u32, uv0: vec2f, uv1: vec2f) -> vec2f {
     let uvw = vec3f(select(uv0, uv1, transform.row0.w > 0.5), 1.0);
     return vec2f(dot(transform.row0.xyz, uvw), dot(transform.row1.xyz, uvw));
 }
+
+// The palette entry the slot samples with: uniform control flow follows it, so textureSample
+// may be called under a switch on it.
+fn slotSamplerEntry(slot: u32) -> u32 {
+    return u32(material.slots[slot].row1.w);
+}
+
+#if MATERIAL_TEXTURES
+#if SAMPLE_GRADIENT
+// A slot's texture sampled through its palette entry, with explicit derivatives (compute
+// shaders, which have none).
+fn slotSampleGrad(slotTexture: texture_2d<f32>, slot: u32, uv: vec2f, dx: vec2f,
+                  dy: vec2f) -> vec4f {
+    switch slotSamplerEntry(slot) {
+        case 1u: { return textureSampleGrad(slotTexture, materialSampler1, uv, dx, dy); }
+        case 2u: { return textureSampleGrad(slotTexture, materialSampler2, uv, dx, dy); }
+        case 3u: { return textureSampleGrad(slotTexture, materialSampler3, uv, dx, dy); }
+        default: { return textureSampleGrad(slotTexture, materialSampler0, uv, dx, dy); }
+    }
+}
+#else
+// A slot's texture sampled through its palette entry, with implicit derivatives (fragment).
+fn slotSample(slotTexture: texture_2d<f32>, slot: u32, uv: vec2f) -> vec4f {
+    switch slotSamplerEntry(slot) {
+        case 1u: { return textureSample(slotTexture, materialSampler1, uv); }
+        case 2u: { return textureSample(slotTexture, materialSampler2, uv); }
+        case 3u: { return textureSample(slotTexture, materialSampler3, uv); }
+        default: { return textureSample(slotTexture, materialSampler0, uv); }
+    }
+}
+#endif
+#endif

@@ -34,14 +34,14 @@ fn slotUvGradient(slot: u32, d0: vec2f, d1: vec2f) -> vec2f {
     return vec2f(dot(transform.row0.xy, d), dot(transform.row1.xy, d));
 }
 
-fn sampleSlot(slotTexture: texture_2d<f32>, slotSampler: sampler, slot: u32, uv0: vec2f,
-              uv1: vec2f, gradients: UvGradients) -> vec4f {
+fn sampleSlot(slotTexture: texture_2d<f32>, slot: u32, uv0: vec2f, uv1: vec2f,
+              gradients: UvGradients) -> vec4f {
 #if SAMPLE_GRADIENT
-    return textureSampleGrad(slotTexture, slotSampler, slotUv(slot, uv0, uv1),
-                             slotUvGradient(slot, gradients.dx0, gradients.dx1),
-                             slotUvGradient(slot, gradients.dy0, gradients.dy1));
+    return slotSampleGrad(slotTexture, slot, slotUv(slot, uv0, uv1),
+                          slotUvGradient(slot, gradients.dx0, gradients.dx1),
+                          slotUvGradient(slot, gradients.dy0, gradients.dy1));
 #else
-    return textureSample(slotTexture, slotSampler, slotUv(slot, uv0, uv1));
+    return slotSample(slotTexture, slot, slotUv(slot, uv0, uv1));
 #endif
 }
 #endif
@@ -49,30 +49,30 @@ fn sampleSlot(slotTexture: texture_2d<f32>, slotSampler: sampler, slot: u32, uv0
 fn sampleMaterial(uv0: vec2f, uv1: vec2f, gradients: UvGradients) -> MaterialSamples {
     var samples: MaterialSamples;
 #if MATERIAL_TEXTURES
-    samples.baseColor = sampleSlot(baseColorTexture, baseColorSampler, kBaseColorSlot, uv0, uv1,
-                                   gradients);
-    samples.metallicRoughness = sampleSlot(metallicRoughnessTexture, metallicRoughnessSampler,
-                                           kMetallicRoughnessSlot, uv0, uv1, gradients);
-    samples.normal = sampleSlot(normalTexture, normalSampler, kNormalSlot, uv0, uv1,
-                                gradients).rgb;
-    samples.occlusion = sampleSlot(occlusionTexture, occlusionSampler, kOcclusionSlot, uv0, uv1,
-                                   gradients).r;
-    samples.emissive = sampleSlot(emissiveTexture, emissiveSampler, kEmissiveSlot, uv0, uv1,
-                                  gradients).rgb;
-    samples.specular = sampleSlot(specularTexture, specularSampler, kSpecularSlot, uv0, uv1,
-                                  gradients).a;
-    samples.specularColor = sampleSlot(specularColorTexture, specularColorSampler,
-                                       kSpecularColorSlot, uv0, uv1, gradients).rgb;
-    samples.clearcoat = sampleSlot(clearcoatTexture, clearcoatSampler, kClearcoatSlot, uv0, uv1,
-                                   gradients).r;
-    samples.clearcoatRoughness = sampleSlot(clearcoatRoughnessTexture, clearcoatRoughnessSampler,
-                                            kClearcoatRoughnessSlot, uv0, uv1, gradients).g;
-    samples.clearcoatNormal = sampleSlot(clearcoatNormalTexture, clearcoatNormalSampler,
-                                         kClearcoatNormalSlot, uv0, uv1, gradients).rgb;
-    samples.sheenColor = sampleSlot(sheenColorTexture, sheenColorSampler, kSheenColorSlot, uv0,
-                                    uv1, gradients).rgb;
-    samples.sheenRoughness = sampleSlot(sheenRoughnessTexture, sheenRoughnessSampler,
-                                        kSheenRoughnessSlot, uv0, uv1, gradients).a;
+    samples.baseColor =
+        sampleSlot(baseColorTexture, kBaseColorSlot, uv0, uv1, gradients);
+    samples.metallicRoughness =
+        sampleSlot(metallicRoughnessTexture, kMetallicRoughnessSlot, uv0, uv1, gradients);
+    samples.normal =
+        sampleSlot(normalTexture, kNormalSlot, uv0, uv1, gradients).rgb;
+    samples.occlusion =
+        sampleSlot(occlusionTexture, kOcclusionSlot, uv0, uv1, gradients).r;
+    samples.emissive =
+        sampleSlot(emissiveTexture, kEmissiveSlot, uv0, uv1, gradients).rgb;
+    samples.specular =
+        sampleSlot(specularTexture, kSpecularSlot, uv0, uv1, gradients).a;
+    samples.specularColor =
+        sampleSlot(specularColorTexture, kSpecularColorSlot, uv0, uv1, gradients).rgb;
+    samples.clearcoat =
+        sampleSlot(clearcoatTexture, kClearcoatSlot, uv0, uv1, gradients).r;
+    samples.clearcoatRoughness =
+        sampleSlot(clearcoatRoughnessTexture, kClearcoatRoughnessSlot, uv0, uv1, gradients).g;
+    samples.clearcoatNormal =
+        sampleSlot(clearcoatNormalTexture, kClearcoatNormalSlot, uv0, uv1, gradients).rgb;
+    samples.sheenColor =
+        sampleSlot(sheenColorTexture, kSheenColorSlot, uv0, uv1, gradients).rgb;
+    samples.sheenRoughness =
+        sampleSlot(sheenRoughnessTexture, kSheenRoughnessSlot, uv0, uv1, gradients).a;
 #else
     // No texture anywhere: every slot reads white, as the 1-pixel default would.
     samples.baseColor = vec4f(1.0);

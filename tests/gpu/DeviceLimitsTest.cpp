@@ -22,6 +22,7 @@
 #include "encore/render/Renderer.h"
 #include "gpu/OutOfMemoryScope.h"
 #include "gpu/Readback.h"
+#include "render/BindingLimits.h"
 #include "render/MaterialResources.h"
 #include "render/SceneLimits.h"
 #include "scene/SceneGenerator.h"
@@ -399,6 +400,56 @@ TEST(AnimationLimitsTest, GpuAnimationBeyondAStorageBindingIsRefused) {
     ASSERT_FALSE(refused.ok());
     EXPECT_NE(refused.error().message.find("1000 joints"), std::string::npos)
         << refused.error().message;
+}
+
+// The context asks for more sampled textures per shader stage than WebGPU's default 16 (the
+// material texture slots), as many as the adapter offers up to 48, and the device grants them.
+TEST(SampledTextureLimitTest, TheDeviceGrantsTheSampledTexturesItWasAskedFor) {
+    ENCORE_REQUIRE_VULKAN(context);
+    wgpu::Limits adapter{};
+    ASSERT_EQ(context->adapter().GetLimits(&adapter), wgpu::Status::Success);
+    wgpu::Limits granted{};
+    ASSERT_EQ(context->device().GetLimits(&granted), wgpu::Status::Success);
+    const std::uint32_t wanted = std::min(adapter.maxSampledTexturesPerShaderStage,
+                                          gpu::kRequestedSampledTexturesPerShaderStage);
+    EXPECT_GE(granted.maxSampledTexturesPerShaderStage, wanted);
+    EXPECT_EQ(context->limits().maxSampledTexturesPerShaderStage,
+              granted.maxSampledTexturesPerShaderStage);
+    EXPECT_GE(context->limits().maxSampledTexturesPerShaderStage, kStageSampledTextures);
+}
+
+// A device with fewer sampled textures per stage than the material pipelines bind is refused
+// when the renderer is made, with the numbers, rather than failing pipeline validation later.
+TEST(SampledTextureLimitTest, AnAdapterWithTooFewSampledTexturesIsAClearError) {
+    gpu::DeviceLimits limits;
+    limits.maxSampledTexturesPerShaderStage = kStageSampledTextures - 1;
+    auto refused = checkBindingLimits(limits, "tiny adapter");
+    ASSERT_FALSE(refused.ok());
+    EXPECT_EQ(refused.error().code, ErrorCode::LimitExceeded);
+    EXPECT_EQ(refused.error().message,
+              "The adapter 'tiny adapter' offers " + std::to_string(kStageSampledTextures - 1) +
+                  " sampled textures per shader stage (maxSampledTexturesPerShaderStage), fewer "
+                  "than the " +
+                  std::to_string(kStageSampledTextures) + " Encore's materials bind (" +
+                  std::to_string(kMaterialTextureSlotCount) +
+                  " texture slots and 1 for the environment).");
+    limits.maxSampledTexturesPerShaderStage = kStageSampledTextures;
+    EXPECT_TRUE(checkBindingLimits(limits, "tiny adapter").ok());
+
+    // Through the renderer: a context whose limit is overridden below the need.
+    gpu::ContextOptions options;
+    options.limitOverrides.maxSampledTexturesPerShaderStage = kStageSampledTextures - 1;
+    auto context = gpu::Context::create(options);
+    ASSERT_TRUE(context.ok()) << context.error().message;
+    RendererOptions rendererOptions = test::pixelTestOptions(kSize, kSize);
+    rendererOptions.environment = nullptr;  // The shared one lives on another device.
+    rendererOptions.environmentOptions = test::testEnvironmentOptions();
+    auto renderer = Renderer::create(*context, rendererOptions);
+    ASSERT_FALSE(renderer.ok());
+    EXPECT_EQ(renderer.error().code, ErrorCode::LimitExceeded);
+    EXPECT_NE(renderer.error().message.find("maxSampledTexturesPerShaderStage"), std::string::npos)
+        << renderer.error().message;
+    EXPECT_TRUE(context->checkNoErrors("the refused renderer").ok());
 }
 
 }  // namespace

@@ -25,7 +25,13 @@ struct LimitOverrides {
     std::optional<std::uint32_t> maxTextureDimension2D;
     std::optional<std::uint64_t> maxBufferSize;
     std::optional<std::uint64_t> maxStorageBufferBindingSize;
+    std::optional<std::uint32_t> maxSampledTexturesPerShaderStage;
 };
+
+// The most sampled textures per shader stage the context asks for (or the adapter's limit, when
+// lower): room for material texture slots beyond WebGPU's default of 16. Renderer::create
+// checks that the device offers as many as its pipelines bind (render/BindingLimits.h).
+inline constexpr std::uint32_t kRequestedSampledTexturesPerShaderStage = 48;
 
 struct DeviceLimits {
     // WebGPU's defaults, which every device offers at least.
@@ -33,13 +39,16 @@ struct DeviceLimits {
     std::uint64_t maxBufferSize = 268435456;
     std::uint64_t maxStorageBufferBindingSize = 134217728;
     std::uint32_t minUniformBufferOffsetAlignment = 256;
+    std::uint32_t maxSampledTexturesPerShaderStage = 16;
 
     // The limits `device` reports, tightened by `overrides`.
     static DeviceLimits of(const wgpu::Device& device, const LimitOverrides& overrides = {});
 };
 
-// wgpu::Limits asking for `overrides` (everything else undefined), for DeviceDescriptor.
-wgpu::Limits requiredLimits(const LimitOverrides& overrides);
+// wgpu::Limits for DeviceDescriptor: `overrides`, and maxSampledTexturesPerShaderStage raised
+// to kRequestedSampledTexturesPerShaderStage or `adapter`'s limit, whichever is lower (an
+// override wins); everything else undefined.
+wgpu::Limits requiredLimits(const LimitOverrides& overrides, const wgpu::Limits& adapter);
 
 // LimitExceeded when a buffer of `bytes` exceeds maxBufferSize, reading "<what>: a buffer of
 // <bytes> bytes, larger than the device's maxBufferSize (<limit> bytes)."; `what` names what

@@ -42,9 +42,7 @@ TEST(MaterialSlotsTest, TheTableListsEverySlotInOrderWithNamesOfItsOwn) {
     for (std::uint32_t i = 0; i < slots.size(); ++i) {
         EXPECT_EQ(slots[i].slot, TextureSlot(i));
         EXPECT_EQ(&textureSlotInfo(TextureSlot(i)), &slots[i]);
-        EXPECT_TRUE(slots[i].samplerName.ends_with("Sampler")) << slots[i].samplerName;
         EXPECT_TRUE(slots[i].textureName.ends_with("Texture")) << slots[i].textureName;
-        EXPECT_TRUE(names.insert(slots[i].samplerName).second) << slots[i].samplerName;
         EXPECT_TRUE(names.insert(slots[i].textureName).second) << slots[i].textureName;
         EXPECT_NE(slots[i].texture, nullptr);
         EXPECT_NE(slots[i].sampled, nullptr);

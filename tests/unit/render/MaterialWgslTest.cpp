@@ -119,30 +119,55 @@ std::map<std::string, WgslBinding> groupTwoBindings() {
     return bindings;
 }
 
-// Each slot of the table has its sampler and its texture at the bindings MaterialResources and
-// BindGroupLayouts use, and group 2 holds nothing else but the uniform.
+// Each slot of the table has its texture, and each entry of the sampler palette its sampler,
+// at the bindings MaterialResources and BindGroupLayouts use, and group 2 holds nothing else
+// but the uniform.
 TEST(MaterialWgslTest, EverySlotOfTheTableIsBoundUnderItsNames) {
     const auto bindings = groupTwoBindings();
     ASSERT_TRUE(bindings.contains("material"));
     EXPECT_EQ(bindings.at("material").binding, 0u);
     EXPECT_EQ(bindings.at("material").type, "Material");
+    for (std::uint32_t entry = 0; entry < kMaterialSamplerCount; ++entry) {
+        const std::string sampler = "materialSampler" + std::to_string(entry);
+        ASSERT_TRUE(bindings.contains(sampler)) << "material.wgsl does not bind " << sampler;
+        EXPECT_EQ(bindings.at(sampler).binding, materialSamplerBinding(entry)) << sampler;
+        EXPECT_EQ(bindings.at(sampler).type, "sampler") << sampler;
+    }
     for (const TextureSlotInfo& slot : textureSlots()) {
         const std::uint32_t index = std::uint32_t(slot.slot);
-        const std::string sampler(slot.samplerName);
         const std::string texture(slot.textureName);
-        ASSERT_TRUE(bindings.contains(sampler)) << "material.wgsl does not bind " << sampler;
         ASSERT_TRUE(bindings.contains(texture)) << "material.wgsl does not bind " << texture;
-        EXPECT_EQ(bindings.at(sampler).binding, materialSamplerBinding(index)) << sampler;
-        EXPECT_EQ(bindings.at(sampler).type, "sampler") << sampler;
         EXPECT_EQ(bindings.at(texture).binding, materialTextureBinding(index)) << texture;
         EXPECT_EQ(bindings.at(texture).type, "texture_2d<f32>") << texture;
     }
-    EXPECT_EQ(bindings.size(), 1 + 2 * kMaterialTextureSlotCount);
+    EXPECT_EQ(bindings.size(), 1 + kMaterialSamplerCount + kMaterialTextureSlotCount);
     std::vector<bool> used(bindings.size(), false);
     for (const auto& [name, binding] : bindings) {
         ASSERT_LT(binding.binding, used.size()) << name << " leaves a gap in the bindings";
         EXPECT_FALSE(used[binding.binding]) << name << " reuses binding " << binding.binding;
         used[binding.binding] = true;
+    }
+}
+
+// slotSample and slotSampleGrad switch over every palette entry: entry i samples through
+// materialSampler<i>, and an entry past the palette falls to materialSampler0.
+TEST(MaterialWgslTest, SlotSamplingSwitchesOverEveryPaletteEntry) {
+    const std::string source = materialWgsl();
+    for (const std::string function : {"slotSample", "slotSampleGrad"}) {
+        std::smatch match;
+        ASSERT_TRUE(std::regex_search(
+            source, match, std::regex("fn\\s+" + function + "\\s*\\(([\\s\\S]*?)\\n\\}")))
+            << "material.wgsl declares no " << function;
+        const std::string body = match[1];
+        for (std::uint32_t entry = 1; entry < kMaterialSamplerCount; ++entry) {
+            const std::regex sampleCase("case\\s+" + std::to_string(entry) +
+                                        "u\\s*:\\s*\\{[^}]*materialSampler" +
+                                        std::to_string(entry) + "\\b");
+            EXPECT_TRUE(std::regex_search(body, sampleCase)) << function << ", entry " << entry;
+        }
+        EXPECT_TRUE(
+            std::regex_search(body, std::regex("default\\s*:\\s*\\{[^}]*materialSampler0\\b")))
+            << function;
     }
 }
 
