@@ -69,6 +69,12 @@ constexpr std::array<TextureSlotInfo, kMaterialTextureSlotCount> kSlots = {{
     {TextureSlot::SheenRoughness, "sheenRoughnessTexture", kLinear, kLinear,
      &Sampled::extensions, false,
      &extensionTexture<&Material::sheen, &scene::SheenExtension::sheenRoughnessTexture>},
+    {TextureSlot::Transmission, "transmissionTexture", kLinear, kLinear, &Sampled::extensions,
+     false,
+     &extensionTexture<&Material::transmission,
+                       &scene::TransmissionExtension::transmissionTexture>},
+    {TextureSlot::Thickness, "thicknessTexture", kLinear, kLinear, &Sampled::extensions, false,
+     &extensionTexture<&Material::volume, &scene::VolumeExtension::thicknessTexture>},
 }};
 // clang-format on
 

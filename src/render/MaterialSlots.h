@@ -34,8 +34,10 @@ enum class TextureSlot : std::uint32_t {
     ClearcoatNormal,
     SheenColor,
     SheenRoughness,
+    Transmission,  // KHR_materials_transmission: red channel.
+    Thickness,     // KHR_materials_volume: green channel.
 };
-inline constexpr std::uint32_t kMaterialTextureSlotCount = 12;
+inline constexpr std::uint32_t kMaterialTextureSlotCount = 14;
 // The samplers a material binds (its sampler palette, SamplerPalette.h): the slots' textures
 // share them, each slot naming its entry in the uniform, so a new slot needs no sampler binding
 // (a shader stage may bind only 16 samplers; Dawn allows no more).
@@ -63,7 +65,7 @@ struct SampledTextures {
     bool normal = true;
     bool occlusion = true;
     bool emissive = true;
-    bool extensions = true;  // Specular, clearcoat and sheen slots.
+    bool extensions = true;  // Specular, clearcoat, sheen, transmission and thickness slots.
 
     static SampledTextures all() { return {}; }
     static SampledTextures baseColorOnly() { return {true, false, false, false, false, false}; }

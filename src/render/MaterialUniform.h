@@ -56,7 +56,7 @@ struct MaterialUniform {
     std::uint32_t flags[4];     // ShadingModel, kMaterial* bits.
     TextureSlotUniform slots[kMaterialTextureSlotCount];  // Indexed by TextureSlot.
 };
-static_assert(sizeof(MaterialUniform) == 560);
+static_assert(sizeof(MaterialUniform) == 624);
 
 // Each texture slot's entry in its material's sampler palette (SamplerPalette::slotEntries).
 using SlotSamplerEntries = std::array<std::uint32_t, kMaterialTextureSlotCount>;

@@ -68,9 +68,9 @@ void TransmissionPass::encodeCopy(const wgpu::CommandEncoder& commands,
     if (source.Get() != mSource) {
         // A new render target (resized): only this bind group follows it.
         mSource = source.Get();
-        mSourceGroup = gpu::makeBindGroup(mDevice, mLayout,
-                                          {{0, mSampler}, {1, source.CreateView()}},
-                                          "transmission copy source");
+        mSourceGroup =
+            gpu::makeBindGroup(mDevice, mLayout, {{0, mSampler}, {1, source.CreateView()}},
+                               "transmission copy source");
     }
     for (std::size_t level = 0; level < mLevels.size(); ++level) {
         wgpu::RenderPassColorAttachment attachment{};

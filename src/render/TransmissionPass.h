@@ -54,7 +54,7 @@ class TransmissionPass {
     wgpu::RenderPipeline mPipeline;
     wgpu::BindGroupLayout mLayout;
     wgpu::Sampler mSampler;
-    std::vector<wgpu::TextureView> mLevels;     // One view per mip level.
+    std::vector<wgpu::TextureView> mLevels;      // One view per mip level.
     std::vector<wgpu::BindGroup> mLevelSources;  // [i]: level i as the source of level i + 1.
     WGPUTexture mSource = nullptr;               // The texture mSourceGroup reads.
     wgpu::BindGroup mSourceGroup;

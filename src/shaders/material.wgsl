@@ -1,5 +1,5 @@
 // Group 2: one glTF material (MaterialResources in C++). The uniform holds every factor and,
-// for each of the twelve texture slots, the texCoord set, KHR_texture_transform and sampler;
+// for each of the fourteen texture slots, the texCoord set, KHR_texture_transform and sampler;
 // with MATERIAL_TEXTURES each slot has its own texture (a 1-pixel default when the material has
 // none: white, so that factors multiply through unchanged) and the material binds a palette of
 // four samplers (its glTF samplers, render/SamplerPalette.h) that the slots share: each slot's
@@ -34,7 +34,7 @@ struct Material {
     // x: shading model (0 metallic-roughness, 1 specular-glossiness, 2 unlit);
     // y: kMaterial* feature bits.
     flags: vec4u,
-    slots: array<TextureSlot, 12>,
+    slots: array<TextureSlot, 14>,
 }
 
 const kModelMetallicRoughness = 0u;
@@ -60,6 +60,8 @@ const kClearcoatRoughnessSlot = 8u;
 const kClearcoatNormalSlot = 9u;
 const kSheenColorSlot = 10u;
 const kSheenRoughnessSlot = 11u;
+const kTransmissionSlot = 12u;
+const kThicknessSlot = 13u;
 
 @group(2) @binding(0) var<uniform> material: Material;
 #if MATERIAL_TEXTURES
@@ -79,6 +81,8 @@ const kSheenRoughnessSlot = 11u;
 @group(2) @binding(14) var clearcoatNormalTexture: texture_2d<f32>;
 @group(2) @binding(15) var sheenColorTexture: texture_2d<f32>;
 @group(2) @binding(16) var sheenRoughnessTexture: texture_2d<f32>;
+@group(2) @binding(17) var transmissionTexture: texture_2d<f32>;
+@group(2) @binding(18) var thicknessTexture: texture_2d<f32>;
 #endif
 
 fn slotUv(slot: u32, uv0: vec2f, uv1: vec2f) -> vec2f {

@@ -16,6 +16,8 @@ struct MaterialSamples {
     clearcoatNormal: vec3f,
     sheenColor: vec3f,
     sheenRoughness: f32,
+    transmission: f32,
+    thickness: f32,
 }
 
 // d(uv)/dx and d(uv)/dy of TEXCOORD_0 and TEXCOORD_1 (unused without SAMPLE_GRADIENT).
@@ -73,6 +75,9 @@ fn sampleMaterial(uv0: vec2f, uv1: vec2f, gradients: UvGradients) -> MaterialSam
         sampleSlot(sheenColorTexture, kSheenColorSlot, uv0, uv1, gradients).rgb;
     samples.sheenRoughness =
         sampleSlot(sheenRoughnessTexture, kSheenRoughnessSlot, uv0, uv1, gradients).a;
+    samples.transmission =
+        sampleSlot(transmissionTexture, kTransmissionSlot, uv0, uv1, gradients).r;
+    samples.thickness = sampleSlot(thicknessTexture, kThicknessSlot, uv0, uv1, gradients).g;
 #else
     // No texture anywhere: every slot reads white, as the 1-pixel default would.
     samples.baseColor = vec4f(1.0);
@@ -87,6 +92,8 @@ fn sampleMaterial(uv0: vec2f, uv1: vec2f, gradients: UvGradients) -> MaterialSam
     samples.clearcoatNormal = vec3f(1.0);
     samples.sheenColor = vec3f(1.0);
     samples.sheenRoughness = 1.0;
+    samples.transmission = 1.0;
+    samples.thickness = 1.0;
 #endif
     return samples;
 }

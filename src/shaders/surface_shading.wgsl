@@ -180,8 +180,8 @@ fn shadeSurface(worldPosition: vec3f, vertexNormal: vec3f, vertexTangent: vec4f,
     let transmissive = (features & kMaterialTransmission) != 0u;
     var transmission: TransmissiveSurface;
     if (transmissive) {
-        transmission.factor = clamp(material.transmission.x, 0.0, 1.0);
-        transmission.thickness = material.transmission.y;
+        transmission.factor = clamp(material.transmission.x * samples.transmission, 0.0, 1.0);
+        transmission.thickness = material.transmission.y * samples.thickness;
         transmission.ior = ior;
         transmission.dispersion = material.transmission.w;
         transmission.attenuationDistance = material.transmission.z;

@@ -78,8 +78,8 @@ std::vector<std::uint32_t> addRedBlueTextures(test::GltfBuilder& builder,
 }
 
 nlohmann::json sampler(int wrapS, int magFilter, int minFilter) {
-    return {{"wrapS", wrapS}, {"wrapT", kRepeat}, {"magFilter", magFilter},
-            {"minFilter", minFilter}};
+    return {
+        {"wrapS", wrapS}, {"wrapT", kRepeat}, {"magFilter", magFilter}, {"minFilter", minFilter}};
 }
 
 // The emissive channel of a quad whose emissive texture (the fifth slot) has a fifth distinct
@@ -113,8 +113,8 @@ TEST_P(SamplerPaletteRenderTest, ASlotPastThePaletteSamplesWithTheNearestSampler
     auto scene = scene::loadSceneFromMemory(builder.toGlb(), {}, "palette.glb");
     ASSERT_TRUE(scene.ok()) << scene.error().message;
 
-    auto renderer = Renderer::create(
-        *context, test::pixelTestOptions(kSize, kSize, 1, DebugChannel::Emissive));
+    auto renderer =
+        Renderer::create(*context, test::pixelTestOptions(kSize, kSize, 1, DebugChannel::Emissive));
     ASSERT_TRUE(renderer.ok()) << renderer.error().message;
     WarningCapture capture;
     ASSERT_TRUE(renderer->prepare(*scene, GetParam()).ok());

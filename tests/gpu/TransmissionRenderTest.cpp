@@ -16,6 +16,7 @@
 #include "GltfBuilder.h"
 #include "GpuTestSupport.h"
 #include "RenderTestSupport.h"
+#include "encore/image/ImageCodec.h"
 #include "encore/render/Renderer.h"
 
 namespace encore::render {
@@ -29,7 +30,22 @@ struct GlassDesc {
     std::optional<nlohmann::json> volume;
     std::optional<nlohmann::json> dispersion;
     float roughness = 0.0f;
+    // 1-pixel textures (RGBA) for transmissionTexture and thicknessTexture.
+    std::optional<std::array<std::uint8_t, 4>> transmissionTexture;
+    std::optional<std::array<std::uint8_t, 4>> thicknessTexture;
 };
+
+// A 1x1 PNG embedded through a bufferView; returns the texture index.
+std::uint32_t addPixelTexture(test::GltfBuilder& builder, std::array<std::uint8_t, 4> rgba) {
+    image::ImageRgba8 pixel{1, 1, {rgba.begin(), rgba.end()}};
+    const auto png = image::encodePng(pixel);
+    EXPECT_TRUE(png.ok());
+    const std::uint32_t view = builder.addBufferView(*png);
+    auto& json = builder.json();
+    json["images"].push_back({{"bufferView", view}, {"mimeType", "image/png"}});
+    json["textures"].push_back({{"source", json["images"].size() - 1}});
+    return static_cast<std::uint32_t>(json["textures"].size() - 1);
+}
 
 // A quad from (left, bottom) to (right, top) at depth z.
 std::uint32_t addQuad(test::GltfBuilder& builder,
@@ -73,6 +89,15 @@ scene::SceneData glassScene(std::optional<GlassDesc> glass) {
         use("KHR_materials_transmission", glass->transmission);
         use("KHR_materials_volume", glass->volume);
         use("KHR_materials_dispersion", glass->dispersion);
+        auto& materialJson = builder.json()["materials"][material];
+        if (glass->transmissionTexture) {
+            materialJson["extensions"]["KHR_materials_transmission"]["transmissionTexture"] = {
+                {"index", addPixelTexture(builder, *glass->transmissionTexture)}};
+        }
+        if (glass->thicknessTexture) {
+            materialJson["extensions"]["KHR_materials_volume"]["thicknessTexture"] = {
+                {"index", addPixelTexture(builder, *glass->thicknessTexture)}};
+        }
         nodes.push_back(addQuad(builder, {-1.5f, -1.5f}, {1.5f, 1.5f}, 0.0f, material));
     }
     builder.addScene(nodes);
@@ -180,6 +205,29 @@ TEST(TransmissionRenderTest, VolumeAttenuationTintsWhatIsBehind) {
     EXPECT_NEAR(linear(lighter[0]), 0.8 * 0.5 * 0.96, 0.03) << test::describe(lighter);
 }
 
+TEST(TransmissionRenderTest, TransmissionAndThicknessTexturesScaleTheirFactors) {
+    ENCORE_REQUIRE_VULKAN(context);
+    // Red 0 in the transmission texture: nothing passes, the glass is an opaque black dielectric.
+    GlassDesc blocked;
+    blocked.transmissionTexture = std::array<std::uint8_t, 4>{0, 255, 255, 255};
+    const test::Rgba dark = pixel(render(glassScene(blocked)).image, kRedSide);
+    EXPECT_LE(dark[0], 2) << test::describe(dark);
+    // Red 128 (linear data, about 0.5): half of the background.
+    GlassDesc half;
+    half.transmissionTexture = std::array<std::uint8_t, 4>{128, 0, 0, 255};
+    const test::Rgba halfRed = pixel(render(glassScene(half)).image, kRedSide);
+    EXPECT_NEAR(linear(halfRed[0]), 0.8 * 0.96 * 128.0 / 255.0, 0.03) << test::describe(halfRed);
+
+    // Green 0 in the thickness texture: thin-walled, no absorption despite the volume.
+    GlassDesc thin;
+    thin.volume = nlohmann::json{{"thicknessFactor", 1.0},
+                                 {"attenuationDistance", 1.0},
+                                 {"attenuationColor", {0.25, 1.0, 0.5}}};
+    thin.thicknessTexture = std::array<std::uint8_t, 4>{255, 0, 255, 255};
+    const test::Rgba clear = pixel(render(glassScene(thin)).image, kRedSide);
+    EXPECT_NEAR(linear(clear[0]), 0.8 * 0.96, 0.03) << test::describe(clear);
+}
+
 // The contrast across the red/blue edge behind the glass, a few pixels to each side.
 double edgeContrast(const image::ImageRgba8& image) {
     const test::Rgba left = pixel(image, {-0.25f, 0.0f, 0.0f});
@@ -206,9 +254,8 @@ TEST(TransmissionRenderTest, ThickGlassRefractsAndDispersionSplitsTheChannels) {
     thick.volume = nlohmann::json{{"thicknessFactor", 2.0}};
     GlassDesc dispersive = thick;
     dispersive.dispersion = nlohmann::json{{"dispersion", 10.0}};
-    const Camera oblique =
-        Camera::lookAt({2.0f, 0.0f, 2.5f}, {0.0f, 0.0f, 0.0f}, glm::half_pi<float>(), 1.0f, 0.1f,
-                       10.0f);
+    const Camera oblique = Camera::lookAt({2.0f, 0.0f, 2.5f}, {0.0f, 0.0f, 0.0f},
+                                          glm::half_pi<float>(), 1.0f, 0.1f, 10.0f);
     auto renderFrom = [&](const GlassDesc& glass) {
         gpu::Context* context = test::vulkanContext();
         auto renderer = Renderer::create(*context, unlitOptions());
@@ -299,8 +346,8 @@ TEST(TransmissionRenderTest, MultisampledAndHdrTargetsShowTheBackgroundToo) {
         RendererOptions options = unlitOptions();
         options.target.sampleCount = 4;
         options.target.hdr = hdr;
-        const Rendered seen = render(glassScene(GlassDesc{}), {StrategyKind::Bundles, false},
-                                     options);
+        const Rendered seen =
+            render(glassScene(GlassDesc{}), {StrategyKind::Bundles, false}, options);
         const test::Rgba red = pixel(seen.image, kRedSide);
         EXPECT_NEAR(linear(red[0]), 0.8 * 0.96, 0.03) << test::describe(red);
         EXPECT_NEAR(linear(red[2]), 0.1 * 0.96, 0.02) << test::describe(red);

@@ -32,6 +32,8 @@ scene::Material everySlotTextured() {
                                                    .clearcoatNormalTexture = textureRef(9)};
     material.sheen = scene::SheenExtension{.sheenColorTexture = textureRef(10),
                                            .sheenRoughnessTexture = textureRef(11)};
+    material.transmission = scene::TransmissionExtension{.transmissionTexture = textureRef(12)};
+    material.volume = scene::VolumeExtension{.thicknessTexture = textureRef(13)};
     return material;
 }
 
@@ -69,6 +71,8 @@ TEST(MaterialSlotsTest, ExtensionSlotsAreEmptyWithoutTheirExtension) {
     material.specular.reset();
     material.clearcoat.reset();
     material.sheen.reset();
+    material.transmission.reset();
+    material.volume.reset();
     for (std::uint32_t i = 0; i < kMaterialTextureSlotCount; ++i) {
         EXPECT_EQ(slotTexture(material, TextureSlot(i)).has_value(), i < 5) << "slot " << i;
     }

@@ -29,8 +29,7 @@ constexpr auto kLinear = scene::Filter::Linear;
 constexpr auto kNearest = scene::Filter::Nearest;
 
 TEST(SamplerPaletteTest, SlotsSharingASamplerShareAnEntry) {
-    const std::vector<scene::Sampler> states = {scene::Sampler{},
-                                                sampler(kClamp, kClamp, kLinear)};
+    const std::vector<scene::Sampler> states = {scene::Sampler{}, sampler(kClamp, kClamp, kLinear)};
     SlotSamplers slots;
     slots[std::size_t(TextureSlot::BaseColor)] = 1;
     slots[std::size_t(TextureSlot::Normal)] = 0;
@@ -56,12 +55,12 @@ TEST(SamplerPaletteTest, AMaterialWithoutTexturesBindsTheFallback) {
 TEST(SamplerPaletteTest, SamplersPastThePaletteTakeTheNearestEntry) {
     static_assert(kMaterialSamplerCount == 4, "The test fills the palette with four states.");
     const std::vector<scene::Sampler> states = {
-        sampler(kRepeat, kRepeat, kLinear),    // 0
-        sampler(kClamp, kClamp, kLinear),      // 1
-        sampler(kMirror, kMirror, kLinear),    // 2
-        sampler(kRepeat, kClamp, kLinear),     // 3
-        sampler(kClamp, kClamp, kNearest),     // 4: nearest is 1 (filter differs).
-        sampler(kMirror, kMirror, kNearest),   // 5: nearest is 2.
+        sampler(kRepeat, kRepeat, kLinear),   // 0
+        sampler(kClamp, kClamp, kLinear),     // 1
+        sampler(kMirror, kMirror, kLinear),   // 2
+        sampler(kRepeat, kClamp, kLinear),    // 3
+        sampler(kClamp, kClamp, kNearest),    // 4: nearest is 1 (filter differs).
+        sampler(kMirror, kMirror, kNearest),  // 5: nearest is 2.
     };
     SlotSamplers slots;
     for (std::size_t i = 0; i < states.size(); ++i) {

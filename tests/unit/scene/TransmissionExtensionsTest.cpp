@@ -33,16 +33,16 @@ test::GltfBuilder builderWith(const json& extensions, bool required = false) {
 }
 
 TEST(TransmissionExtensionsTest, FactorsTexturesAndColourAreRead) {
-    auto builder = builderWith(
-        {{"KHR_materials_transmission",
-          {{"transmissionFactor", 0.75}, {"transmissionTexture", {{"index", 1}}}}},
-         {"KHR_materials_volume",
-          {{"thicknessFactor", 2.5},
-           {"thicknessTexture", {{"index", 0}, {"texCoord", 1}}},
-           {"attenuationDistance", 0.125},
-           {"attenuationColor", {0.25, 0.5, 1.0}}}},
-         {"KHR_materials_dispersion", {{"dispersion", 0.5}}}},
-        true);
+    auto builder =
+        builderWith({{"KHR_materials_transmission",
+                      {{"transmissionFactor", 0.75}, {"transmissionTexture", {{"index", 1}}}}},
+                     {"KHR_materials_volume",
+                      {{"thicknessFactor", 2.5},
+                       {"thicknessTexture", {{"index", 0}, {"texCoord", 1}}},
+                       {"attenuationDistance", 0.125},
+                       {"attenuationColor", {0.25, 0.5, 1.0}}}},
+                     {"KHR_materials_dispersion", {{"dispersion", 0.5}}}},
+                    true);
     auto scene = loadGltf(builder);
     ASSERT_TRUE(scene.ok()) << scene.error().message;
     const Material& material = scene->materials[0];
