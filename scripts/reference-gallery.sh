@@ -37,7 +37,8 @@ adapter=$(printf '%s\n' "$log" | sed -n 's/^adapter: //p' | head -1)
     printf '%s\n' "$log" | awk '/^reference [A-Za-z0-9]+ +SSIM [0-9]/ && $2 != "mean" {
         printf "| %s | %s | %s | ![%s](%s-compare.png) |\n", $2, $4, $8, $2, $2 }'
     echo
-    printf '%s\n' "$log" | sed -n 's/^reference mean SSIM \(.*\)$/Mean SSIM \1./p'
+    printf '%s\n' "$log" | sed -n 's/^reference mean SSIM \(.*\) over \(.*\)$/Mean SSIM \1 over \2 (those of `list.txt`;/p'
+    echo "the models of \`list-extensions.txt\` Encore shades follow them, held to 0.95 each)."
     echo
     echo "What remains is edge antialiasing (WebGL's canvas multisampling against WebGPU's 4x"
     echo "MSAA resolved before tone mapping), texture filtering, the sRGB transfer function"
