@@ -37,7 +37,8 @@ adapter=$(printf '%s\n' "$log" | sed -n 's/^adapter: //p' | head -1)
     printf '%s\n' "$log" | awk '/^reference [A-Za-z0-9]+ +SSIM [0-9]/ && $2 != "mean" {
         printf "| %s | %s | %s | ![%s](%s-compare.png) |\n", $2, $4, $8, $2, $2 }'
     echo
-    printf '%s\n' "$log" | sed -n 's/^reference mean SSIM \(.*\)$/Mean SSIM \1./p'
+    printf '%s\n' "$log" | sed -n 's/^reference mean SSIM \(.*\) over \(.*\)$/Mean SSIM \1 over \2 (those of `list.txt`;/p'
+    echo "the models of \`list-extensions.txt\` Encore shades follow them, held to 0.95 each)."
     echo
     echo "The mean covers the models of \`list.txt\`; the rows after them are the material-extension"
     echo "models of \`list-extensions.txt\` whose extensions Encore shades."

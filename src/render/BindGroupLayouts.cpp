@@ -16,14 +16,16 @@ BindGroupLayouts BindGroupLayouts::create(const wgpu::Device& device) {
     // Lighting and materials are also read by the visibility strategy's compute resolve.
     constexpr auto kFragment = wgpu::ShaderStage::Fragment | wgpu::ShaderStage::Compute;
     BindGroupLayouts layouts;
-    // Group 0: the camera, then how the scene is lit (scene_lighting.wgsl). Every pipeline uses
-    // this layout, so strategies without materials simply ignore bindings 1..4.
+    // Group 0: the camera, then how the scene is lit (scene_lighting.wgsl) and what lies behind
+    // transmissive surfaces (transmission.wgsl). Every pipeline uses this layout, so strategies
+    // without materials simply ignore bindings 1..5.
     layouts.frame = gpu::makeBindGroupLayout(
         device,
         {LayoutEntry::uniform(0, kVertex | kFragment, sizeof(FrameUniform)),
          LayoutEntry::uniform(1, kFragment, sizeof(LightingUniform)),
          LayoutEntry::readOnlyStorage(2, kFragment, sizeof(LightUniform)),
-         LayoutEntry::texture(3, kFragment), LayoutEntry::sampler(4, kFragment)},
+         LayoutEntry::texture(3, kFragment), LayoutEntry::sampler(4, kFragment),
+         LayoutEntry::texture(5, kFragment)},
         "frame");
     layouts.nodeUniform = gpu::makeBindGroupLayout(
         device, {LayoutEntry::uniform(0, kVertex, sizeof(TransformUniform))}, "node transform");

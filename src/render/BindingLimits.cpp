@@ -16,7 +16,8 @@ Result<void> checkBindingLimits(const gpu::DeviceLimits& limits, std::string_vie
             "the " +
             std::to_string(kStageSampledTextures) + " Encore's materials bind (" +
             std::to_string(kMaterialTextureSlotCount) + " texture slots and " +
-            std::to_string(kFrameSampledTextures) + " for the environment).");
+            std::to_string(kFrameSampledTextures) +
+            " for the environment and the transmission background).");
 }
 
 }  // namespace encore::render

@@ -14,8 +14,9 @@
 
 namespace encore::render {
 
-// Group 0 (scene_lighting.wgsl): the environment atlas and its sampler.
-inline constexpr std::uint32_t kFrameSampledTextures = 1;
+// Group 0: the environment atlas and its sampler (scene_lighting.wgsl), and the transmission
+// background read through that sampler (transmission.wgsl).
+inline constexpr std::uint32_t kFrameSampledTextures = 2;
 inline constexpr std::uint32_t kFrameSamplers = 1;
 
 inline constexpr std::uint32_t kStageSampledTextures =

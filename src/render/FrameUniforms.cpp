@@ -15,6 +15,13 @@ FrameUniforms::FrameUniforms(const wgpu::Device& device,
                              const SceneLighting& lighting) {
     mBuffer = gpu::createBuffer(device, wgpu::BufferUsage::Uniform | wgpu::BufferUsage::CopyDst,
                                 sizeof(FrameUniform), "frame uniforms");
+    wgpu::TextureDescriptor placeholder{};
+    placeholder.label = "no transmission background";
+    placeholder.size = {1, 1, 1};
+    placeholder.format = wgpu::TextureFormat::RGBA16Float;
+    placeholder.usage = wgpu::TextureUsage::TextureBinding;
+    mNoTransmission = device.CreateTexture(&placeholder).CreateView();
+    mTransmission = mNoTransmission;
     bindLighting(device, layouts, lighting);
 }
 
@@ -28,13 +35,34 @@ void FrameUniforms::bindLighting(const wgpu::Device& device,
                             {1, lighting.uniformBuffer(), 0, sizeof(LightingUniform)},
                             {2, lighting.lightBuffer(), 0, lighting.lightBuffer().GetSize()},
                             {3, environment.atlasView()},
-                            {4, environment.sampler()}},
+                            {4, environment.sampler()},
+                            {5, mTransmission}},
                            "frame");
 }
 
+void FrameUniforms::bindTransmission(const wgpu::Device& device,
+                                     const BindGroupLayouts& layouts,
+                                     const SceneLighting& lighting,
+                                     wgpu::TextureView background) {
+    wgpu::TextureView next = background ? std::move(background) : mNoTransmission;
+    if (next.Get() == mTransmission.Get()) {
+        return;  // Bundles recorded with the current bind group stay valid.
+    }
+    mTransmission = std::move(next);
+    bindLighting(device, layouts, lighting);
+}
+
 namespace {
-FrameUniform makeFrameUniform(const Camera& camera, float timeSeconds) {
+FrameUniform makeFrameUniform(const Camera& camera,
+                              float timeSeconds,
+                              std::size_t view = 0,
+                              std::size_t viewCount = 1) {
     FrameUniform uniform{};
+    const float width = 1.0f / float(viewCount);
+    uniform.viewRect[0] = float(view) * width;
+    uniform.viewRect[1] = 0.0f;
+    uniform.viewRect[2] = width;
+    uniform.viewRect[3] = 1.0f;
     std::memcpy(uniform.projection, glm::value_ptr(camera.projection), sizeof(uniform.projection));
     std::memcpy(uniform.view, glm::value_ptr(camera.view), sizeof(uniform.view));
     std::memcpy(uniform.cameraPosition, glm::value_ptr(camera.position),
@@ -62,7 +90,8 @@ void FrameUniforms::writeViews(const wgpu::Device& device,
     }
     std::vector<std::uint8_t> bytes(size, 0);
     for (std::size_t view = 0; view < cameras.size(); ++view) {
-        const FrameUniform uniform = makeFrameUniform(cameras[view], timeSeconds);
+        const FrameUniform uniform =
+            makeFrameUniform(cameras[view], timeSeconds, view, cameras.size());
         std::memcpy(bytes.data() + view * kViewStride, &uniform, sizeof(uniform));
     }
     queue.WriteBuffer(mViews, 0, bytes.data(), bytes.size());

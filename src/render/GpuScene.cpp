@@ -1,10 +1,12 @@
 #include "render/GpuScene.h"
 
+#include <algorithm>
 #include <chrono>
 #include <optional>
 #include <string>
 
 #include "core/Elapsed.h"
+#include "render/TransmissionPass.h"
 
 namespace encore::render {
 
@@ -46,6 +48,14 @@ Result<std::unique_ptr<GpuScene>> GpuScene::create(const RenderSetup& setup,
     times.textureWrites += upload.writes;
     times.mipmaps += upload.mipmaps;
     times.materialSubmit += upload.submit;
+    // Every material of the file counts, those of variants included: a variant switch then
+    // never needs a texture that is not there.
+    const bool transmissive = std::any_of(
+        scene.materials.begin(), scene.materials.end(),
+        [](const scene::Material& material) { return material.transmission.has_value(); });
+    if (transmissive) {
+        created->mTransmissionBackground = TransmissionPass::createBackground(setup.device);
+    }
     return created;
 }
 

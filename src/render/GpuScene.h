@@ -51,6 +51,10 @@ class GpuScene {
     const MaterialResources& materials() const { return *mMaterials; }
     // Null when the scene has neither skins nor morph targets.
     const AnimationBuffers* animation() const { return mAnimation.get(); }
+    // KHR_materials_transmission: the texture transmissive surfaces sample the scene behind
+    // them from (TransmissionPass.h); null when no material of the file has transmission, so
+    // that such scenes allocate and copy nothing.
+    const wgpu::Texture& transmissionBackground() const { return mTransmissionBackground; }
 
     // Each scene instance's world matrix as last written (updateInstance), for strategies that
     // keep copies of their own (per-node uniforms).
@@ -94,6 +98,7 @@ class GpuScene {
     GeometryBuffers mGeometry;
     InstanceBuffer mInstances;
     std::optional<MaterialResources> mMaterials;  // Always set once create() returns.
+    wgpu::Texture mTransmissionBackground;
     std::vector<glm::mat4> mWorlds;
     std::optional<scene::VariantId> mVariant;
     std::uint64_t mVariantSwitches = 0;

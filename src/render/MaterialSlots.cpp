@@ -79,6 +79,12 @@ constexpr std::array<TextureSlotInfo, kMaterialTextureSlotCount> kSlots = {{
     // The direction is read in tangent space, as a normal map's.
     {TextureSlot::Anisotropy, "anisotropyTexture", kLinear, kLinear, &Sampled::extensions, true,
      &extensionTexture<&Material::anisotropy, &scene::AnisotropyExtension::anisotropyTexture>},
+    {TextureSlot::Transmission, "transmissionTexture", kLinear, kLinear, &Sampled::extensions,
+     false,
+     &extensionTexture<&Material::transmission,
+                       &scene::TransmissionExtension::transmissionTexture>},
+    {TextureSlot::Thickness, "thicknessTexture", kLinear, kLinear, &Sampled::extensions, false,
+     &extensionTexture<&Material::volume, &scene::VolumeExtension::thicknessTexture>},
 }};
 // clang-format on
 

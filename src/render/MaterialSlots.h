@@ -37,8 +37,10 @@ enum class TextureSlot : std::uint32_t {
     Iridescence,
     IridescenceThickness,
     Anisotropy,
+    Transmission,  // KHR_materials_transmission: red channel.
+    Thickness,     // KHR_materials_volume: green channel.
 };
-inline constexpr std::uint32_t kMaterialTextureSlotCount = 15;
+inline constexpr std::uint32_t kMaterialTextureSlotCount = 17;
 // The samplers a material binds (its sampler palette, SamplerPalette.h): the slots' textures
 // share them, each slot naming its entry in the uniform, so a new slot needs no sampler binding
 // (a shader stage may bind only 16 samplers; Dawn allows no more).

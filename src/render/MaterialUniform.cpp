@@ -86,6 +86,26 @@ MaterialUniform makeMaterialUniform(const scene::Material& material,
             features |= kMaterialAnisotropyTexture;
         }
     }
+    setVector(uniform.attenuationColor, 1.0f, 1.0f, 1.0f, 0.0f);
+    if (material.transmission) {
+        // Volume and dispersion act only through transmission (the extensions say so).
+        float thickness = 0.0f;
+        float distance = 0.0f;
+        if (material.volume) {
+            const scene::VolumeExtension& volume = *material.volume;
+            thickness = volume.thicknessFactor;
+            distance =
+                std::isfinite(volume.attenuationDistance) ? volume.attenuationDistance : 0.0f;
+            setVector(uniform.attenuationColor, volume.attenuationColor.r,
+                      volume.attenuationColor.g, volume.attenuationColor.b, 0.0f);
+            features |= kMaterialVolume;
+        }
+        const float dispersion =
+            material.volume && material.dispersion ? material.dispersion->dispersion : 0.0f;
+        setVector(uniform.transmission, material.transmission->transmissionFactor, thickness,
+                  distance, dispersion);
+        features |= kMaterialTransmission;
+    }
     ShadingModel model = ShadingModel::MetallicRoughness;
     if (material.specularGlossiness) {
         const scene::SpecularGlossinessExtension& glossiness = *material.specularGlossiness;

@@ -38,6 +38,9 @@ inline constexpr std::uint32_t kMaterialSpecular = 16;
 inline constexpr std::uint32_t kMaterialIridescence = 32;
 inline constexpr std::uint32_t kMaterialAnisotropy = 64;
 inline constexpr std::uint32_t kMaterialAnisotropyTexture = 128;  // Its direction is textured.
+// KHR_materials_transmission (and volume, dispersion).
+inline constexpr std::uint32_t kMaterialTransmission = 1024;
+inline constexpr std::uint32_t kMaterialVolume = 2048;
 
 // The `Material` struct of material.wgsl, byte for byte.
 struct MaterialUniform {
@@ -51,10 +54,13 @@ struct MaterialUniform {
     float specularGlossiness[4];  // Specular factor, glossiness factor.
     float iridescence[4];         // Factor, film IOR, thickness minimum, maximum (nm).
     float anisotropy[4];          // cos(rotation), sin(rotation), strength.
+    // Transmission factor, thickness factor, attenuation distance (0: none), dispersion.
+    float transmission[4];
+    float attenuationColor[4];  // KHR_materials_volume's attenuation colour.
     std::uint32_t flags[4];       // ShadingModel, kMaterial* bits, 1 + material index.
     TextureSlotUniform slots[kMaterialTextureSlotCount];  // Indexed by TextureSlot.
 };
-static_assert(sizeof(MaterialUniform) == 656);
+static_assert(sizeof(MaterialUniform) == 752);
 
 // Each texture slot's entry in its material's sampler palette (SamplerPalette::slotEntries).
 using SlotSamplerEntries = std::array<std::uint32_t, kMaterialTextureSlotCount>;

@@ -49,6 +49,23 @@ PassAttachments passAttachments(const PassPlan& plan) {
         pass.depthLoadOp = wgpu::LoadOp::Load;
     }
 
+    if (plan.transmissionFollows) {
+        // The transmission pass draws on: keep everything (the resolve above feeds the copy).
+        pass.colorStoreOp = wgpu::StoreOp::Store;
+        pass.depthStoreOp = wgpu::StoreOp::Store;
+    }
+    if (plan.transmission) {
+        pass.colorLoadOp = wgpu::LoadOp::Load;
+        pass.depthLoadOp = wgpu::LoadOp::Load;
+        pass.colorStoreOp =
+            plan.multisampled && lastView ? wgpu::StoreOp::Discard : wgpu::StoreOp::Store;
+        pass.resolve = plan.multisampled && lastView;
+        pass.depthStoreOp = lastView ? wgpu::StoreOp::Discard : wgpu::StoreOp::Store;
+        pass.label = "encore transmission";
+        pass.timestampLabel = "transmission";
+        return pass;
+    }
+
     switch (plan.phase) {
         case DrawPhase::Whole:
             pass.label = "encore frame";

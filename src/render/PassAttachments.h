@@ -16,6 +16,10 @@
 //    culling). The first clears, keeps its colour unresolved and keeps its depth; the second
 //    loads both, resolves and discards as a single pass would.
 //
+// KHR_materials_transmission adds a pass per view after those (TransmissionPass.h): the passes
+// before it keep colour and depth for it (transmissionFollows), it loads both, and it resolves
+// and discards as the pass it follows would have (its own plan, `transmission`).
+//
 // The clear colour: with an HDR target, transparent black (alpha is coverage, 0 where nothing is
 // drawn, which the tone mapper composites over the background); otherwise the opaque background
 // colour, linear (the sRGB target encodes it).
@@ -37,6 +41,8 @@ struct PassPlan {
     bool multisampled = false;           // The target draws multisampled and resolves.
     bool hdr = false;                    // The target keeps linear HDR colour with coverage.
     glm::vec3 backgroundColor{0.0f};     // Linear; the clear colour without HDR.
+    bool transmissionFollows = false;    // A transmission pass draws into this one's result.
+    bool transmission = false;           // This is the transmission pass of `view`.
 };
 
 // What a pass does with the target's attachments. Plain values: the caller fills the wgpu

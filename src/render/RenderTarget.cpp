@@ -29,10 +29,11 @@ Result<RenderTarget> RenderTarget::create(const wgpu::Device& device,
     output.label = "render target output";
     output.size = {options.width, options.height, 1};
     output.format = kColorFormat;
-    output.usage = wgpu::TextureUsage::RenderAttachment | wgpu::TextureUsage::CopySrc;
+    // TextureBinding: the transmission pass copies the scene colour from it (without HDR).
+    output.usage = wgpu::TextureUsage::RenderAttachment | wgpu::TextureUsage::CopySrc |
+                   wgpu::TextureUsage::TextureBinding;
     constexpr wgpu::TextureFormat kBytesFormat = wgpu::TextureFormat::RGBA8Unorm;
     if (options.presentable) {
-        output.usage |= wgpu::TextureUsage::TextureBinding;
         output.viewFormatCount = 1;
         output.viewFormats = &kBytesFormat;
     }

@@ -10,6 +10,7 @@
 #include "render/MipmapGenerator.h"
 #include "render/PipelineCache.h"
 #include "render/SceneLimits.h"
+#include "render/TransmissionPass.h"
 #include "render/TriangleHistory.h"
 
 namespace encore::render {
@@ -114,6 +115,7 @@ Result<void> Renderer::recoverFromDeviceLoss() {
     const std::optional<double> animationTime = mAnimationTime;
     mGpuAnimation.reset();
     mStrategy.reset();
+    mTransmission.reset();
     mGpuScene.reset();
     mPlayer.reset();
     mBackground.reset();
@@ -194,7 +196,25 @@ Result<void> Renderer::prepare(const scene::SceneData& scene,
     }
     mGpuScene = std::move(*created);
     ++mSceneUploads;
+    if (auto transmission = prepareTransmission(); !transmission) {
+        ENCORE_TRY(outOfMemory.finish(what));
+        return transmission.error().withContext(what);
+    }
     return prepareStrategy(kind, bundle, what, outOfMemory);
+}
+
+Result<void> Renderer::prepareTransmission() {
+    const wgpu::Texture& background = mGpuScene->transmissionBackground();
+    // Before the strategy records: the frame bind group it sets binds the background.
+    mFrame->bindTransmission(mContext->device(), *mLayouts, *mLighting,
+                             background ? background.CreateView() : wgpu::TextureView());
+    mTransmission.reset();
+    if (background) {
+        ENCORE_TRY_ASSIGN(auto pass,
+                          TransmissionPass::create(mContext->device(), *mShaders, background));
+        mTransmission = std::make_unique<TransmissionPass>(std::move(pass));
+    }
+    return {};
 }
 
 Result<void> Renderer::setStrategy(StrategyKind kind, bool bundle) {
@@ -265,6 +285,10 @@ void Renderer::freeReleasedObjects() {
 }
 
 void Renderer::retireGpuScene() {
+    if (mTransmission) {
+        mTransmission.reset();
+        mFrame->bindTransmission(mContext->device(), *mLayouts, *mLighting, {});
+    }
     if (mGpuScene) {
         mRetiredUploadBytes += mGpuScene->uploadedBytes();
         mGpuScene.reset();

@@ -1,12 +1,14 @@
 // Renderer's frames: the frame uniforms, one render pass per view (or the two passes of a
-// two-phase frame) recorded by the strategy, tone mapping, timing and submission; then the
-// triangle counts of GPU culling and the image read back.
+// two-phase frame) recorded by the strategy, with transmissive surfaces the copy and one
+// transmission pass per view (TransmissionPass.h), tone mapping, timing and submission; then
+// the triangle counts of GPU culling and the image read back.
 
 #include "encore/render/Renderer.h"
 
 #include "gpu/Readback.h"
 #include "gpu/TimedSubmit.h"
 #include "render/PassAttachments.h"
+#include "render/TransmissionPass.h"
 #include "render/TriangleHistory.h"
 
 namespace encore::render {
@@ -50,6 +52,8 @@ FrameResult Renderer::renderPasses(std::span<const Camera> cameras,
         state.phase = DrawPhase::First;
     }
 
+    // Only scenes with transmissive surfaces pay for the copy and the extra passes.
+    const bool transmission = mTransmission && mStrategy && mStrategy->drawsTransmission();
     auto encodeFrame = [&](const wgpu::CommandEncoder& commandEncoder) {
         if (mGpuAnimation && mGpuAnimationPending) {
             mGpuAnimation->encode(commandEncoder);  // Before anything that reads its results.
@@ -61,7 +65,7 @@ FrameResult Renderer::renderPasses(std::span<const Camera> cameras,
         const std::uint32_t viewWidth = mTarget.width() / std::uint32_t(cameras.size());
         // One pass per view, or the two passes of a two-phase frame; what each loads, keeps and
         // resolves is passAttachments' decision (PassAttachments.h).
-        auto encodePass = [&](std::size_t view, DrawPhase phase) {
+        auto encodePass = [&](std::size_t view, DrawPhase phase, bool transmissionPass) {
             PassPlan plan;
             plan.view = view;
             plan.viewCount = cameras.size();
@@ -69,6 +73,9 @@ FrameResult Renderer::renderPasses(std::span<const Camera> cameras,
             plan.multisampled = mTarget.sampleCount() > 1;
             plan.hdr = mTarget.hdr();
             plan.backgroundColor = mOptions.toneMapping.backgroundColor;
+            plan.transmission = transmissionPass;
+            plan.transmissionFollows =
+                transmission && !transmissionPass && phase != DrawPhase::First;
             const PassAttachments attachments = passAttachments(plan);
             wgpu::RenderPassColorAttachment color = mTarget.colorAttachment(attachments.clearColor);
             color.loadOp = attachments.colorLoadOp;
@@ -85,8 +92,11 @@ FrameResult Renderer::renderPasses(std::span<const Camera> cameras,
             passDescriptor.colorAttachmentCount = 1;
             passDescriptor.colorAttachments = &color;
             passDescriptor.depthStencilAttachment = &depth;
+            // The transmission pass is timed by the GPU timer only (stage timestamps time one
+            // scene pass per view).
             passDescriptor.timestampWrites =
-                timestampWrites(GpuStage::Scene, attachments.timestampLabel);
+                transmissionPass ? (mTimer ? mTimer->nextPass(attachments.timestampLabel) : nullptr)
+                                 : timestampWrites(GpuStage::Scene, attachments.timestampLabel);
             wgpu::RenderPassEncoder pass = commandEncoder.BeginRenderPass(&passDescriptor);
             if (multiView) {
                 pass.SetViewport(float(view * viewWidth), 0.0f, float(viewWidth),
@@ -96,7 +106,7 @@ FrameResult Renderer::renderPasses(std::span<const Camera> cameras,
                 pass.SetScissorRect(view * viewWidth, 0, viewWidth, mTarget.height());
             }
             if (mOptions.toneMapping.background == BackgroundKind::Environment &&
-                phase != DrawPhase::Second) {
+                phase != DrawPhase::Second && !transmissionPass) {
                 mBackground->draw(pass, mFrame->bindGroup());
             }
             if (mStrategy) {
@@ -105,20 +115,36 @@ FrameResult Renderer::renderPasses(std::span<const Camera> cameras,
                 FrameState viewState = state;
                 viewState.camera = cameras[view];
                 viewState.phase = phase;
-                mStrategy->encode(encoder, viewState);
+                if (transmissionPass) {
+                    mStrategy->encodeTransmission(encoder, viewState);
+                } else {
+                    mStrategy->encode(encoder, viewState);
+                }
             }
             pass.End();
         };
         if (twoPhases) {
-            encodePass(0, DrawPhase::First);
+            encodePass(0, DrawPhase::First, false);
             mStrategy->betweenPhases(commandEncoder, state, mTarget.depthTexture());
-            encodePass(0, DrawPhase::Second);
+            encodePass(0, DrawPhase::Second, false);
         } else {
             for (std::size_t view = 0; view < cameras.size(); ++view) {
                 if (multiView) {
                     mFrame->selectView(commandEncoder, view);
                 }
-                encodePass(view, DrawPhase::Whole);
+                encodePass(view, DrawPhase::Whole, false);
+            }
+        }
+        if (transmission) {
+            // Everything but the transmissive surfaces is drawn (and resolved): copy it once for
+            // all views, then draw them over it view by view.
+            mTransmission->encodeCopy(commandEncoder, mTarget.sceneTexture(), mTimer);
+            ++result.transmissionCopies;
+            for (std::size_t view = 0; view < cameras.size(); ++view) {
+                if (multiView) {
+                    mFrame->selectView(commandEncoder, view);
+                }
+                encodePass(view, twoPhases ? DrawPhase::Second : DrawPhase::Whole, true);
             }
         }
         // After the last pass: a two-phase frame counts in both culling passes.

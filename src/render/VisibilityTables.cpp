@@ -95,7 +95,8 @@ std::optional<std::vector<std::uint32_t>> primitiveRecord(const GpuScene& scene,
     const scene::Primitive& primitive = data.meshes[mesh].primitives[index];
     const scene::Material& material = data.materials[primitive.material.index()];
     if (primitive.topology != scene::Topology::TriangleList ||
-        material.alphaMode != scene::AlphaMode::Opaque || animated(scene, mesh, index)) {
+        material.alphaMode != scene::AlphaMode::Opaque || material.transmission ||
+        animated(scene, mesh, index)) {
         return std::nullopt;
     }
     std::vector<std::uint32_t> record(VisibilityTables::kPrimitiveWords, 0);

@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <string>
 #include <utility>
@@ -180,6 +181,18 @@ struct GltfAnisotropy {
     std::optional<GltfTextureInfo> anisotropyTexture;
 };
 
+struct GltfTransmission {
+    float transmissionFactor = 0.0f;
+    std::optional<GltfTextureInfo> transmissionTexture;
+};
+
+struct GltfVolume {
+    float thicknessFactor = 0.0f;
+    std::optional<GltfTextureInfo> thicknessTexture;
+    float attenuationDistance = std::numeric_limits<float>::infinity();
+    glm::vec3 attenuationColor{1.0f};
+};
+
 struct GltfMaterial {
     std::string name;
     glm::vec4 baseColorFactor{1.0f};
@@ -203,6 +216,9 @@ struct GltfMaterial {
     std::optional<GltfSpecularGlossiness> specularGlossiness;
     std::optional<GltfIridescence> iridescence;
     std::optional<GltfAnisotropy> anisotropy;
+    std::optional<GltfTransmission> transmission;
+    std::optional<GltfVolume> volume;
+    std::optional<float> dispersion;
     std::vector<std::string> ignoredExtensions;  // Extension objects Encore does not shade.
 };
 
@@ -318,6 +334,9 @@ inline constexpr std::array kShadedMaterialExtensions = {
     std::string_view("KHR_materials_pbrSpecularGlossiness"),
     std::string_view("KHR_materials_iridescence"),
     std::string_view("KHR_materials_anisotropy"),
+    std::string_view("KHR_materials_transmission"),
+    std::string_view("KHR_materials_volume"),
+    std::string_view("KHR_materials_dispersion"),
 };
 
 }  // namespace encore::scene

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <array>
+#include <limits>
 #include <utility>
 
 #include "scene/LoadContext.h"
@@ -163,6 +164,44 @@ GltfAnisotropy readAnisotropy(FieldReader& fields) {
     return anisotropy;
 }
 
+GltfTransmission readTransmission(FieldReader& fields) {
+    GltfTransmission transmission;
+    transmission.transmissionFactor =
+        boundedNumber(fields, "transmissionFactor", 0.0, 0.0, 1.0);
+    transmission.transmissionTexture =
+        readTextureInfo(fields, fields.object("transmissionTexture"), "transmissionTexture", {});
+    return transmission;
+}
+
+GltfVolume readVolume(FieldReader& fields) {
+    GltfVolume volume;
+    volume.thicknessFactor =
+        boundedNumber(fields, "thicknessFactor", 0.0, 0.0, -1.0);
+    volume.thicknessTexture =
+        readTextureInfo(fields, fields.object("thicknessTexture"), "thicknessTexture", {});
+    if (fields.has("attenuationDistance")) {
+        const double distance = fields.number("attenuationDistance", 0.0);
+        if (!(distance > 0.0)) {
+            fields.fail(ErrorCode::InvalidFormat,
+                        fields.element() + " has an invalid attenuationDistance (" +
+                            formatNumber(distance) + "; it must be greater than 0).");
+        }
+        volume.attenuationDistance = float(distance);
+    }
+    volume.attenuationColor = readVec3(fields, "attenuationColor", glm::vec3(1.0f));
+    for (int channel = 0; channel < 3; ++channel) {
+        const float value = volume.attenuationColor[channel];
+        if (value < 0.0f || value > 1.0f) {
+            fields.fail(ErrorCode::InvalidFormat,
+                        fields.element() + " has an invalid attenuationColor (component " +
+                            std::to_string(channel) + " is " + formatNumber(value) +
+                            "; each must be between 0 and 1).");
+            break;
+        }
+    }
+    return volume;
+}
+
 // Reads the material's extensions object into `material`; errors go to `reader`.
 void readMaterialExtensions(FieldReader& reader, GltfMaterial& material) {
     const Json* extensions = reader.object("extensions");
@@ -217,6 +256,12 @@ void readMaterialExtensions(FieldReader& reader, GltfMaterial& material) {
             material.iridescence = readIridescence(fields);
         } else if (name == "KHR_materials_anisotropy") {
             material.anisotropy = readAnisotropy(fields);
+        } else if (name == "KHR_materials_transmission") {
+            material.transmission = readTransmission(fields);
+        } else if (name == "KHR_materials_volume") {
+            material.volume = readVolume(fields);
+        } else if (name == "KHR_materials_dispersion") {
+            material.dispersion = boundedNumber(fields, "dispersion", 0.0, 0.0, -1.0);
         }
         if (fields.failed()) {
             reader.fail(fields.error().code, fields.error().message);
@@ -474,6 +519,23 @@ Result<void> convertMaterials(LoadContext& context) {
                 .anisotropyTexture = toTextureRef(anisotropy->anisotropyTexture),
             };
         }
+        if (const auto& transmission = source.transmission) {
+            material.transmission = TransmissionExtension{
+                .transmissionFactor = transmission->transmissionFactor,
+                .transmissionTexture = toTextureRef(transmission->transmissionTexture),
+            };
+        }
+        if (const auto& volume = source.volume) {
+            material.volume = VolumeExtension{
+                .thicknessFactor = volume->thicknessFactor,
+                .thicknessTexture = toTextureRef(volume->thicknessTexture),
+                .attenuationDistance = volume->attenuationDistance,
+                .attenuationColor = volume->attenuationColor,
+            };
+        }
+        if (source.dispersion) {
+            material.dispersion = DispersionExtension{.dispersion = *source.dispersion};
+        }
         material.ignoredExtensions = source.ignoredExtensions;
         scene.materials.push_back(std::move(material));
     }
@@ -518,6 +580,12 @@ std::vector<GltfMaterialTextureSlot> materialTextureSlots(const GltfMaterial& ma
         add("KHR_materials_pbrSpecularGlossiness diffuseTexture", glossiness->diffuseTexture);
         add("KHR_materials_pbrSpecularGlossiness specularGlossinessTexture",
             glossiness->specularGlossinessTexture);
+    }
+    if (const auto& transmission = material.transmission) {
+        add("KHR_materials_transmission transmissionTexture", transmission->transmissionTexture);
+    }
+    if (const auto& volume = material.volume) {
+        add("KHR_materials_volume thicknessTexture", volume->thicknessTexture);
     }
     return slots;
 }

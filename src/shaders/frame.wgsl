@@ -5,5 +5,8 @@ struct Frame {
     view: mat4x4f,
     cameraPosition: vec3f,
     time: f32,
+    // Where this view lies in the render target, in texture coordinates: offset xy, size zw
+    // (several views side by side); the transmission pass's copy is read through it.
+    viewRect: vec4f,
 }
 @group(0) @binding(0) var<uniform> frame: Frame;

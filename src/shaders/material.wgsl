@@ -1,5 +1,5 @@
 // Group 2: one glTF material (MaterialResources in C++). The uniform holds every factor and,
-// for each of the fifteen texture slots, the texCoord set, KHR_texture_transform and sampler;
+// for each of the seventeen texture slots, the texCoord set, KHR_texture_transform and sampler;
 // with MATERIAL_TEXTURES each slot has its own texture (a 1-pixel default when the material has
 // none: white, so that factors multiply through unchanged) and the material binds a palette of
 // four samplers (its glTF samplers, render/SamplerPalette.h) that the slots share: each slot's
@@ -29,10 +29,14 @@ struct Material {
     specularGlossiness: vec4f,  // rgb specular factor, a: glossiness factor.
     iridescence: vec4f,         // factor, film IOR, thickness minimum, maximum (nanometres).
     anisotropy: vec4f,          // cos(rotation), sin(rotation), strength, unused.
+    // KHR_materials_transmission factor, KHR_materials_volume thickness factor and attenuation
+    // distance (0: none), KHR_materials_dispersion.
+    transmission: vec4f,
+    attenuationColor: vec4f,    // rgb: KHR_materials_volume's attenuation colour.
     // x: shading model (0 metallic-roughness, 1 specular-glossiness, 2 unlit);
     // y: kMaterial* feature bits; z: 1 + the material's index (segmentation).
     flags: vec4u,
-    slots: array<TextureSlot, 15>,
+    slots: array<TextureSlot, 17>,
 }
 
 const kModelMetallicRoughness = 0u;
@@ -46,6 +50,8 @@ const kMaterialSpecular = 16u;
 const kMaterialIridescence = 32u;
 const kMaterialAnisotropy = 64u;
 const kMaterialAnisotropyTexture = 128u;
+const kMaterialTransmission = 1024u;
+const kMaterialVolume = 2048u;
 
 const kBaseColorSlot = 0u;
 const kMetallicRoughnessSlot = 1u;
@@ -62,6 +68,8 @@ const kSheenRoughnessSlot = 11u;
 const kIridescenceSlot = 12u;
 const kIridescenceThicknessSlot = 13u;
 const kAnisotropySlot = 14u;
+const kTransmissionSlot = 15u;
+const kThicknessSlot = 16u;
 
 @group(2) @binding(0) var<uniform> material: Material;
 #if MATERIAL_TEXTURES
@@ -84,6 +92,8 @@ const kAnisotropySlot = 14u;
 @group(2) @binding(17) var iridescenceTexture: texture_2d<f32>;
 @group(2) @binding(18) var iridescenceThicknessTexture: texture_2d<f32>;
 @group(2) @binding(19) var anisotropyTexture: texture_2d<f32>;
+@group(2) @binding(20) var transmissionTexture: texture_2d<f32>;
+@group(2) @binding(21) var thicknessTexture: texture_2d<f32>;
 #endif
 
 fn slotUv(slot: u32, uv0: vec2f, uv1: vec2f) -> vec2f {

@@ -19,6 +19,8 @@ struct MaterialSamples {
     iridescence: f32,
     iridescenceThickness: f32,
     anisotropy: vec3f,
+    transmission: f32,
+    thickness: f32,
 }
 
 // d(uv)/dx and d(uv)/dy of TEXCOORD_0 and TEXCOORD_1 (unused without SAMPLE_GRADIENT).
@@ -81,6 +83,9 @@ fn sampleMaterial(uv0: vec2f, uv1: vec2f, gradients: UvGradients) -> MaterialSam
     samples.iridescenceThickness =
         sampleSlot(iridescenceThicknessTexture, kIridescenceThicknessSlot, uv0, uv1, gradients).g;
     samples.anisotropy = sampleSlot(anisotropyTexture, kAnisotropySlot, uv0, uv1, gradients).rgb;
+    samples.transmission =
+        sampleSlot(transmissionTexture, kTransmissionSlot, uv0, uv1, gradients).r;
+    samples.thickness = sampleSlot(thicknessTexture, kThicknessSlot, uv0, uv1, gradients).g;
 #else
     // No texture anywhere: every slot reads white, as the 1-pixel default would.
     samples.baseColor = vec4f(1.0);
@@ -98,6 +103,8 @@ fn sampleMaterial(uv0: vec2f, uv1: vec2f, gradients: UvGradients) -> MaterialSam
     samples.iridescence = 1.0;
     samples.iridescenceThickness = 1.0;
     samples.anisotropy = vec3f(1.0);
+    samples.transmission = 1.0;
+    samples.thickness = 1.0;
 #endif
     return samples;
 }

@@ -122,6 +122,8 @@ struct VertexOutput {
     @location(5) tangent: vec4f,
     // 1 + node index, 1 + mesh index: the segmentation ids (the normal matrix's 4th column).
     @location(6) @interpolate(flat) ids: vec2f,
+    // Lengths of the world matrix's axes: KHR_materials_volume's thickness is in mesh units.
+    @location(7) modelScale: vec3f,
 }
 
 #if SKINNED
@@ -196,6 +198,8 @@ fn vertexMain(input: VertexInput) -> VertexOutput {
     output.worldPosition = world.xyz;
     output.ids = ids;
     output.normal = (transform.normal * vec4f(normal, 0.0)).xyz;
+    output.modelScale = vec3f(length(transform.world[0].xyz), length(transform.world[1].xyz),
+                              length(transform.world[2].xyz));
 #if HAS_TEXCOORD
     output.texcoord = input.texcoord;
 #else
@@ -265,7 +269,8 @@ fn fragmentMain(input: VertexOutput, @builtin(front_facing) frontFacing: bool) -
     }
 #endif
     let shaded = shadeSurface(input.worldPosition, input.normal, input.tangent, frontFacing,
-                              baseColor, samples, positionDx, positionDy, uvDx, uvDy);
+                              baseColor, samples, positionDx, positionDy, uvDx, uvDy,
+                              input.modelScale);
     return displayColor(segmentationColor(shaded, input.ids));
 #else
     return displayColor(vec4f(shade(input.color.rgb, input.normal), 1.0));

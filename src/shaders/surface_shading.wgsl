@@ -5,6 +5,8 @@
 #include "iridescence.wgsl"
 #include "anisotropy.wgsl"
 
+#include "transmission.wgsl"
+
 struct SurfaceFrame {
     normal: vec3f,    // Shading normal (normal map applied).
     geometric: vec3f, // Interpolated vertex normal, facing the viewer's side.
@@ -110,10 +112,12 @@ fn environmentSpecular(direction: vec3f, roughness: f32) -> vec3f {
 
 // The linear colour and alpha of a surface point. baseColor: the material's factor times the
 // vertex colour and the base colour sample (alpha tested already, for MASK); samples: every
-// texture slot at the point; the derivatives: of the world position and TEXCOORD_0 per pixel.
+// texture slot at the point; the derivatives: of the world position and TEXCOORD_0 per pixel;
+// modelScale: the lengths of the world matrix's axes (a volume's thickness is in mesh units).
 fn shadeSurface(worldPosition: vec3f, vertexNormal: vec3f, vertexTangent: vec4f,
                 frontFacing: bool, baseColor: vec4f, samples: MaterialSamples,
-                positionDx: vec3f, positionDy: vec3f, uvDx: vec2f, uvDy: vec2f) -> vec4f {
+                positionDx: vec3f, positionDy: vec3f, uvDx: vec2f, uvDy: vec2f,
+                modelScale: vec3f) -> vec4f {
     let baseColorSample = samples.baseColor;
     let metallicRoughnessSample = samples.metallicRoughness;
     let normalSample = samples.normal;
@@ -193,6 +197,18 @@ fn shadeSurface(worldPosition: vec3f, vertexNormal: vec3f, vertexTangent: vec4f,
         anisotropy = anisotropyAt(surface, samples.anisotropy,
                                   (features & kMaterialAnisotropyTexture) != 0u);
     }
+    // KHR_materials_transmission: the diffuse layer gives way to light from behind.
+    let transmissive = (features & kMaterialTransmission) != 0u;
+    var transmission: TransmissiveSurface;
+    if (transmissive) {
+        transmission.factor = clamp(material.transmission.x * samples.transmission, 0.0, 1.0);
+        transmission.thickness = material.transmission.y * samples.thickness;
+        transmission.ior = ior;
+        transmission.dispersion = material.transmission.w;
+        transmission.attenuationDistance = material.transmission.z;
+        transmission.attenuationColor = material.attenuationColor.rgb;
+        transmission.modelScale = modelScale;
+    }
 
     var color = vec3f(0.0);
     // Image-based light: split-sum specular, Lambertian irradiance; occlusion applies here only.
@@ -204,7 +220,12 @@ fn shadeSurface(worldPosition: vec3f, vertexNormal: vec3f, vertexTangent: vec4f,
             reflectionNormal = anisotropicBentNormal(n, v, roughness, anisotropy);
         }
         let specularLight = environmentSpecular(reflect(-v, reflectionNormal), roughness);
-        let diffuse = diffuseLight * albedo;
+        var diffuse = diffuseLight * albedo;
+        if (transmissive) {
+            let refracted =
+                volumeRefraction(transmission, n, v, worldPosition, roughness, baseColor.rgb);
+            diffuse = mix(diffuse, refracted, transmission.factor);
+        }
         let dielectricFresnel = iblFresnel(f0Dielectric, specularWeight, roughness, nDotV, lut.rg);
         let metalFresnel = iblFresnel(baseColor.rgb, 1.0, roughness, nDotV, lut.rg);
         var dielectric = mix(diffuse, specularLight, dielectricFresnel);
@@ -216,6 +237,14 @@ fn shadeSurface(worldPosition: vec3f, vertexNormal: vec3f, vertexTangent: vec4f,
             metal = mix(metal, specularLight * iridescenceMetal, iridescence);
         }
         color += mix(dielectric, metal, metallic) * occlusion;
+    } else if (transmissive) {
+        // Light from behind is not the environment's: it passes without image-based lighting
+        // too (as the reference computes it whenever transmission is on), less what the
+        // surface reflects.
+        let refracted =
+            volumeRefraction(transmission, n, v, worldPosition, roughness, baseColor.rgb);
+        let dielectricFresnel = iblFresnel(f0Dielectric, specularWeight, roughness, nDotV, lut.rg);
+        color += (1.0 - metallic) * (1.0 - dielectricFresnel) * refracted * transmission.factor;
     }
     // Punctual lights.
     for (var i = 0u; i < lighting.lightCount; i++) {
@@ -223,13 +252,18 @@ fn shadeSurface(worldPosition: vec3f, vertexNormal: vec3f, vertexTangent: vec4f,
         let l = light.direction;
         let h = normalize(l + v);
         let nDotL = clamp(dot(n, l), 0.0, 1.0);
-        if (nDotL <= 0.0) {
-            continue;
+        if (nDotL <= 0.0 && !transmissive) {
+            continue;  // Light from behind reaches only transmissive surfaces.
         }
         let nDotH = clamp(dot(n, h), 0.0, 1.0);
         let vDotH = clamp(dot(v, h), 0.0, 1.0);
         let incident = light.radiance * nDotL;
-        let diffuse = incident * albedo / kPi;
+        var diffuse = incident * albedo / kPi;
+        if (transmissive) {
+            let through = punctualTransmission(transmission, lights[i], n, v, worldPosition,
+                                               alphaRoughness, baseColor.rgb);
+            diffuse = mix(diffuse, through, transmission.factor);
+        }
         var lobe = specularGgx(alphaRoughness, nDotL, nDotV, nDotH);
         if (anisotropic) {
             lobe = specularGgxAnisotropic(alphaRoughness, anisotropy, n, v, l, h);

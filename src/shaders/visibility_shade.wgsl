@@ -156,6 +156,7 @@ fn shadeMain(@builtin(workgroup_id) group: vec3u, @builtin(local_invocation_inde
     let samples = sampleMaterial(uv0, uv1, gradients);
     let baseColor = material.baseColorFactor * color * samples.baseColor;
     let result = shadeSurface(worldPosition, worldNormal, tangent, frontFacing, baseColor,
-                              samples, positionDx, positionDy, gradients.dx0, gradients.dy0);
+                              samples, positionDx, positionDy, gradients.dx0, gradients.dy0,
+                              vec3f(1.0));  // Transmissive materials are drawn in hardware.
     textureStore(shaded, pixel, displayColor(result));
 }

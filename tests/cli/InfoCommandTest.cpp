@@ -39,8 +39,8 @@ std::filesystem::path writeShowcase(const std::filesystem::path& dir) {
     root["materials"][0]["name"] = "glass";
     root["materials"][0]["extensions"] = {
         {"KHR_materials_pbrSpecularGlossiness", {{"glossinessFactor", 0.5}}},
-        {"KHR_materials_transmission", {{"transmissionFactor", 1.0}}}};
-    root["extensionsUsed"] = {"KHR_materials_pbrSpecularGlossiness", "KHR_materials_transmission",
+        {"VENDOR_materials_custom", {{"factor", 1.0}}}};
+    root["extensionsUsed"] = {"KHR_materials_pbrSpecularGlossiness", "VENDOR_materials_custom",
                               "KHR_lights_punctual"};
     root["extensionsRequired"] = {"KHR_materials_pbrSpecularGlossiness"};
     root["extensions"]["KHR_lights_punctual"]["lights"] = {{{"type", "spot"}}};
@@ -68,11 +68,11 @@ TEST(InfoCommandTest, PrintsTheModelSummary) {
              std::string("nodes: 4\n"),
              std::string("instances: 2\n"),
              std::string("  KHR_materials_pbrSpecularGlossiness: shaded, required\n"),
-             std::string("  KHR_materials_transmission: ignored\n"),
+             std::string("  VENDOR_materials_custom: ignored\n"),
              std::string("  KHR_lights_punctual: shaded\n"),
-             std::string("  material 0 ('glass'): KHR_materials_transmission\n"),
-             std::string("KHR_materials_transmission, which Encore does not implement; materials "
-                         "are drawn without it."),
+             std::string("  material 0 ('glass'): VENDOR_materials_custom\n"),
+             std::string("VENDOR_materials_custom, which Encore does not implement; the asset "
+                         "is drawn without it."),
          }) {
         EXPECT_TRUE(contains(out, line)) << "missing '" << line << "' in:\n" << out;
     }
@@ -103,16 +103,16 @@ TEST(InfoCommandTest, PrintsJson) {
         {{{"name", "KHR_materials_pbrSpecularGlossiness"},
           {"status", "shaded"},
           {"required", true}},
-         {{"name", "KHR_materials_transmission"}, {"status", "ignored"}, {"required", false}},
+         {{"name", "VENDOR_materials_custom"}, {"status", "ignored"}, {"required", false}},
          {{"name", "KHR_lights_punctual"}, {"status", "shaded"}, {"required", false}}});
     EXPECT_EQ(report["extensions"], expectedExtensions);
     ASSERT_EQ(report["materialsWithIgnoredExtensions"].size(), 1u);
     EXPECT_EQ(report["materialsWithIgnoredExtensions"][0]["index"], 0);
     EXPECT_EQ(report["materialsWithIgnoredExtensions"][0]["name"], "glass");
     EXPECT_EQ(report["materialsWithIgnoredExtensions"][0]["ignoredExtensions"],
-              json::array({"KHR_materials_transmission"}));
+              json::array({"VENDOR_materials_custom"}));
     ASSERT_EQ(report["warnings"].size(), 1u);
-    EXPECT_TRUE(contains(report["warnings"][0].get<std::string>(), "KHR_materials_transmission"));
+    EXPECT_TRUE(contains(report["warnings"][0].get<std::string>(), "VENDOR_materials_custom"));
 }
 
 TEST(InfoCommandTest, GeneratedScene) {

@@ -432,7 +432,7 @@ TEST(SampledTextureLimitTest, AnAdapterWithTooFewSampledTexturesIsAClearError) {
                   "than the " +
                   std::to_string(kStageSampledTextures) + " Encore's materials bind (" +
                   std::to_string(kMaterialTextureSlotCount) +
-                  " texture slots and 1 for the environment).");
+                  " texture slots and 2 for the environment and the transmission background).");
     limits.maxSampledTexturesPerShaderStage = kStageSampledTextures;
     EXPECT_TRUE(checkBindingLimits(limits, "tiny adapter").ok());
 

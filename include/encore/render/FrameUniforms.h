@@ -19,8 +19,9 @@ struct FrameUniform {
     float view[16];
     float cameraPosition[3];
     float time;
+    float viewRect[4];  // The view's part of the target in texture coordinates: x, y, w, h.
 };
-static_assert(sizeof(FrameUniform) == 144);
+static_assert(sizeof(FrameUniform) == 160);
 
 class FrameUniforms {
   public:
@@ -34,6 +35,13 @@ class FrameUniforms {
     void bindLighting(const wgpu::Device& device,
                       const BindGroupLayouts& layouts,
                       const SceneLighting& lighting);
+    // Binds `background` (binding 5: the transmission pass's copy of the scene behind
+    // transmissive surfaces; null: a 1-pixel black texture) and creates the bind group again,
+    // as bindLighting does. Called before a scene's strategy records anything.
+    void bindTransmission(const wgpu::Device& device,
+                          const BindGroupLayouts& layouts,
+                          const SceneLighting& lighting,
+                          wgpu::TextureView background);
 
     void update(const wgpu::Queue& queue, const Camera& camera, float timeSeconds) const;
 
@@ -54,6 +62,8 @@ class FrameUniforms {
     wgpu::Buffer mBuffer;
     wgpu::Buffer mViews;
     wgpu::BindGroup mBindGroup;
+    wgpu::TextureView mTransmission;  // What binding 5 binds (transmission.wgsl).
+    wgpu::TextureView mNoTransmission;
 };
 
 }  // namespace encore::render

@@ -96,11 +96,15 @@ struct FrameResult : FrameTiming {
     // executed and of its indirect draws at full instance counts (submittedTriangles), summed
     // over views. Culling decides how many of them are drawn (Renderer::takeDrawnTriangles).
     std::uint64_t trianglesSubmitted = 0;
+    // KHR_materials_transmission: copies of the scene made for transmissive surfaces (one per
+    // frame that has any; 0 in scenes without them, which pay for nothing).
+    std::uint32_t transmissionCopies = 0;
 };
 
 class GpuScene;
 class StagedImages;
 class TriangleHistory;
+class TransmissionPass;
 
 class Renderer {
   public:
@@ -301,6 +305,8 @@ class Renderer {
     // The timestamp writes of a pass of `stage`: the GPU timer's, else the stage timestamps'.
     const wgpu::PassTimestampWrites* timestampWrites(GpuStage stage,
                                                      std::string_view label = "pass");
+    // Binds the GPU scene's transmission background (or none) and makes the copy's pass.
+    Result<void> prepareTransmission();
     FrameResult renderPasses(std::span<const Camera> cameras,
                              float timeSeconds,
                              std::vector<RecordedCall>* trace);
@@ -320,6 +326,8 @@ class Renderer {
     std::unique_ptr<MipmapGenerator> mMipmaps;
     std::unique_ptr<scene::AnimationPlayer> mPlayer;
     std::unique_ptr<GpuScene> mGpuScene;  // Before mStrategy, which records from it.
+    // The copy for transmissive surfaces; only while the GPU scene has transmission.
+    std::unique_ptr<TransmissionPass> mTransmission;
     std::uint64_t mSceneUploads = 0;
     std::uint64_t mRetiredUploadBytes = 0;  // Of the GPU scenes freed since creation.
     AnimationFrameStats mAnimationStats;

@@ -109,6 +109,18 @@ class Strategy {
     // same code can record into a render bundle.
     virtual void encode(RenderEncoder& encoder, const FrameState& frame) const = 0;
 
+    // KHR_materials_transmission: whether encode() leaves out surfaces with transmission, for
+    // encodeTransmission() to draw in a pass of their own once the Renderer has copied the scene
+    // drawn so far (render/TransmissionPass.h). False (the default) when the scene has none, and
+    // in strategies that shade no materials (which draw every surface alike).
+    virtual bool drawsTransmission() const { return false; }
+    // Records the transmissive surfaces into the transmission pass of `frame`'s view (called
+    // only when drawsTransmission()); as encode(), it sets every piece of state it uses.
+    virtual void encodeTransmission(RenderEncoder& encoder, const FrameState& frame) const {
+        (void)encoder;
+        (void)frame;
+    }
+
     // Strategies that keep instance transforms of their own (the per-node uniforms of naive,
     // layouts and pipeline-cache) rewrite them: the GPU scene's are written already. Data in
     // buffers only, so recorded bundles stay valid.

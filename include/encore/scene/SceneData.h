@@ -30,6 +30,7 @@
 #include <atomic>
 #include <cstdint>
 #include <filesystem>
+#include <limits>
 #include <optional>
 #include <span>
 #include <string>
@@ -235,6 +236,30 @@ struct SpecularGlossinessExtension {
     std::optional<TextureRef> specularGlossinessTexture;  // RGB specular (sRGB), A glossiness.
 };
 
+// KHR_materials_transmission: light passing through a thin (or, with volume, thick) dielectric
+// surface, refracted and blurred by roughness; what lies behind comes from the transmission
+// pass's copy of the opaque scene.
+struct TransmissionExtension {
+    float transmissionFactor = 0.0f;
+    std::optional<TextureRef> transmissionTexture;  // Red channel.
+};
+
+// KHR_materials_volume: the surface bounds a volume of this thickness (in the mesh's own units,
+// scaled by the node's transform), absorbing along the refracted ray (Beer-Lambert): white
+// light turns attenuationColor after attenuationDistance.
+struct VolumeExtension {
+    float thicknessFactor = 0.0f;
+    std::optional<TextureRef> thicknessTexture;  // Green channel.
+    float attenuationDistance = std::numeric_limits<float>::infinity();
+    glm::vec3 attenuationColor{1.0f};
+};
+
+// KHR_materials_dispersion: the index of refraction spread per colour channel
+// (20 / Abbe number; 0: none).
+struct DispersionExtension {
+    float dispersion = 0.0f;
+};
+
 struct Material {
     std::string name;
     glm::vec4 baseColorFactor{1.0f};
@@ -262,8 +287,11 @@ struct Material {
     std::optional<SpecularGlossinessExtension> specularGlossiness;
     std::optional<IridescenceExtension> iridescence;
     std::optional<AnisotropyExtension> anisotropy;
-    // Material extensions present in the file that Encore does not shade (transmission,
-    // volume, dispersion, ...): the base material is drawn instead.
+    std::optional<TransmissionExtension> transmission;
+    std::optional<VolumeExtension> volume;  // Only with transmission (the extension says so).
+    std::optional<DispersionExtension> dispersion;
+    // Material extensions present in the file that Encore does not shade (iridescence,
+    // anisotropy, ...): the base material is drawn instead.
     std::vector<std::string> ignoredExtensions;
 };
 

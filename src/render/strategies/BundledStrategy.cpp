@@ -27,6 +27,13 @@ void BundledStrategy::beforePass(const wgpu::CommandEncoder& commands, const Fra
         mBundle = recordBundle(*mSetup, "encore " + std::string(strategyName(kind())) + " frame",
                                [&](RenderEncoder& encoder) { mRecorded->encode(encoder, frame); });
         ++mRecordings;
+        mTransmission = {};
+        if (mRecorded->drawsTransmission()) {
+            mTransmission = recordBundle(
+                *mSetup, "encore " + std::string(strategyName(kind())) + " transmission",
+                [&](RenderEncoder& encoder) { mRecorded->encodeTransmission(encoder, frame); });
+            ++mRecordings;
+        }
         mStale = false;
         mGeneration = mScene->generation();
     }
@@ -34,6 +41,10 @@ void BundledStrategy::beforePass(const wgpu::CommandEncoder& commands, const Fra
 
 void BundledStrategy::encode(RenderEncoder& encoder, const FrameState&) const {
     encoder.executeBundles(std::span(&mBundle.bundle, 1));
+}
+
+void BundledStrategy::encodeTransmission(RenderEncoder& encoder, const FrameState&) const {
+    encoder.executeBundles(std::span(&mTransmission.bundle, 1));
 }
 
 void BundledStrategy::instanceMoved(std::size_t instance, const glm::mat4& world) {

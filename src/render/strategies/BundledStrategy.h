@@ -21,9 +21,16 @@ class BundledStrategy final : public Strategy {
     Result<void> refresh() override;
     void beforePass(const wgpu::CommandEncoder& commands, const FrameState& frame) override;
     void encode(RenderEncoder& encoder, const FrameState& frame) const override;
+    // The wrapped strategy's transmissive surfaces, recorded into a second bundle with the first.
+    bool drawsTransmission() const override { return mRecorded->drawsTransmission(); }
+    void encodeTransmission(RenderEncoder& encoder, const FrameState& frame) const override;
     void instanceMoved(std::size_t instance, const glm::mat4& world) override;
     InstanceTransformTargets instanceTransformTargets() const override;
-    DrawCounters bundleContents() const override { return mBundle.contents; }
+    DrawCounters bundleContents() const override {
+        DrawCounters contents = mBundle.contents;
+        contents += mTransmission.contents;
+        return contents;
+    }
     std::uint64_t bundlesRecorded() const override { return mRecordings; }
     const GpuCuller* culler() const override { return mRecorded->culler(); }
     std::optional<GpuTriangleCounts> gpuTriangleCounts() const override {
@@ -35,6 +42,7 @@ class BundledStrategy final : public Strategy {
     const RenderSetup* mSetup = nullptr;
     const GpuScene* mScene = nullptr;
     RecordedBundle mBundle;
+    RecordedBundle mTransmission;  // Empty unless the wrapped strategy draws transmission.
     std::uint64_t mGeneration = 0;
     bool mStale = true;
     std::uint64_t mRecordings = 0;

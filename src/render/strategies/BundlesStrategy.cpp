@@ -5,6 +5,7 @@ namespace encore::render {
 Result<void> BundlesStrategy::prepare(const RenderSetup& setup, const GpuScene& scene) {
     mSetup = &setup;
     mBundles = BundledFrame();
+    mTransmission = BundledFrame();
     return mDraws.prepare(setup, scene);
 }
 
@@ -23,6 +24,19 @@ void BundlesStrategy::beforePass(const wgpu::CommandEncoder&, const FrameState& 
             mDraws.setSharedBindGroups(encoder);
             mDraws.encodeBlended(encoder, order);
         });
+    if (drawsTransmission()) {
+        mTransmission.update(
+            *mSetup, mDraws.scene().generation(), {},
+            [this](RenderEncoder& encoder) {
+                mDraws.setSharedBindGroups(encoder);
+                mDraws.encodeTransmissive(encoder);
+            },
+            [](RenderEncoder&, std::span<const std::uint32_t>) {});
+    }
+}
+
+void BundlesStrategy::encodeTransmission(RenderEncoder& encoder, const FrameState&) const {
+    mTransmission.execute(encoder);
 }
 
 void BundlesStrategy::encode(RenderEncoder& encoder, const FrameState&) const {

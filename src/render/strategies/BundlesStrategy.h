@@ -10,7 +10,8 @@ namespace encore::render {
 // executeBundles. The camera, transforms and material factors change through buffers, so the
 // opaque bundle is never re-recorded for them. Blended geometry lives in a second bundle that is
 // re-recorded only when the back-to-front order changes; both are re-recorded when a bind group
-// they reference is replaced (the GPU scene's generation changes).
+// they reference is replaced (the GPU scene's generation changes). Surfaces with
+// KHR_materials_transmission are a third bundle, replayed in the transmission pass.
 class BundlesStrategy final : public Strategy {
   public:
     StrategyKind kind() const override { return StrategyKind::Bundles; }
@@ -18,14 +19,24 @@ class BundlesStrategy final : public Strategy {
     Result<void> refresh() override;
     void beforePass(const wgpu::CommandEncoder& commands, const FrameState& frame) override;
     void encode(RenderEncoder& encoder, const FrameState& frame) const override;
+    bool drawsTransmission() const override { return !mDraws.transmissive().empty(); }
+    void encodeTransmission(RenderEncoder& encoder, const FrameState& frame) const override;
     InstanceTransformTargets instanceTransformTargets() const override;
-    DrawCounters bundleContents() const override { return mBundles.contents(); }
-    std::uint64_t bundlesRecorded() const override { return mBundles.recorded(); }
+    DrawCounters bundleContents() const override {
+        DrawCounters contents = mBundles.contents();
+        contents += mTransmission.contents();
+        return contents;
+    }
+    std::uint64_t bundlesRecorded() const override {
+        return mBundles.recorded() + mTransmission.recorded();
+    }
 
   private:
     const RenderSetup* mSetup = nullptr;
     MaterialDrawGroups mDraws;
     BundledFrame mBundles;
+    // The transmissive surfaces: one more bundle, recorded once like the opaque one.
+    BundledFrame mTransmission;
 };
 
 }  // namespace encore::render

@@ -12,6 +12,7 @@ Result<void> GpuCullingStrategy::prepare(const RenderSetup& setup, const GpuScen
     mSetup = &setup;
     mBundles = BundledFrame();
     mFirstPhaseBundle = BundledFrame();
+    mTransmission = BundledFrame();
     mCulled.clear();
     mCullerCreated = false;
     ENCORE_TRY(mDraws.prepare(setup, scene));
@@ -167,7 +168,25 @@ void GpuCullingStrategy::beforePass(const wgpu::CommandEncoder& commands, const 
                 mDraws.setSharedBindGroups(encoder);
                 mDraws.encodeBlended(encoder, order);
             });
+        if (drawsTransmission()) {
+            mTransmission.update(
+                *mSetup, mDraws.scene().generation(), {},
+                [this](RenderEncoder& encoder) {
+                    mDraws.setSharedBindGroups(encoder);
+                    mDraws.encodeTransmissive(encoder);
+                },
+                [](RenderEncoder&, std::span<const std::uint32_t>) {});
+        }
     }
+}
+
+void GpuCullingStrategy::encodeTransmission(RenderEncoder& encoder, const FrameState&) const {
+    if (mUseBundles) {
+        mTransmission.execute(encoder);
+        return;
+    }
+    mDraws.setSharedBindGroups(encoder);
+    mDraws.encodeTransmissive(encoder);
 }
 
 void GpuCullingStrategy::betweenPhases(const wgpu::CommandEncoder& commands,

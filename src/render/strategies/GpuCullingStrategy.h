@@ -34,13 +34,18 @@ class GpuCullingStrategy final : public Strategy {
                        const FrameState& frame,
                        const wgpu::Texture& depth) override;
     void encode(RenderEncoder& encoder, const FrameState& frame) const override;
+    // Transmissive surfaces are not culled: they are drawn as `materials` draws them (from a
+    // bundle of their own with bundles), after the copy.
+    bool drawsTransmission() const override { return !mDraws.transmissive().empty(); }
+    void encodeTransmission(RenderEncoder& encoder, const FrameState& frame) const override;
     DrawCounters bundleContents() const override {
         DrawCounters contents = mFirstPhaseBundle.contents();
         contents += mBundles.contents();
+        contents += mTransmission.contents();
         return contents;
     }
     std::uint64_t bundlesRecorded() const override {
-        return mFirstPhaseBundle.recorded() + mBundles.recorded();
+        return mFirstPhaseBundle.recorded() + mBundles.recorded() + mTransmission.recorded();
     }
     const GpuCuller* culler() const override { return &mCuller; }
 
@@ -82,6 +87,7 @@ class GpuCullingStrategy final : public Strategy {
     GpuCuller mCuller;
     BundledFrame mFirstPhaseBundle;  // Phase 1's draws.
     BundledFrame mBundles;           // Phase 2's draws, then the blended geometry.
+    BundledFrame mTransmission;      // The transmissive surfaces (transmission pass).
 };
 
 }  // namespace encore::render

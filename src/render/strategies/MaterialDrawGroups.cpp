@@ -124,10 +124,15 @@ Result<void> MaterialDrawGroups::regroup() {
     mGeneration = mScene->generation();
     mOpaque.clear();
     mBlended.clear();
+    mTransmissive.clear();
 
-    // Opaque groups in first-use order: pipeline -> material -> primitives.
-    std::unordered_map<PipelineKey, std::size_t, PipelineKeyHash> groupOfKey;
-    std::map<std::pair<std::size_t, scene::MaterialId>, std::size_t> materialGroupOf;
+    // Opaque (and transmissive) groups in first-use order: pipeline -> material -> primitives.
+    struct GroupIndex {
+        std::unordered_map<PipelineKey, std::size_t, PipelineKeyHash> groupOfKey;
+        std::map<std::pair<std::size_t, scene::MaterialId>, std::size_t> materialGroupOf;
+    };
+    GroupIndex opaqueIndex;
+    GroupIndex transmissiveIndex;
     for (std::size_t mesh = 0; mesh < scene.meshes.size(); ++mesh) {
         if (instances.meshRange(scene::MeshId(mesh)).count == 0) {
             continue;
@@ -161,7 +166,10 @@ Result<void> MaterialDrawGroups::regroup() {
                 }
                 key.frontFace = mirrored ? wgpu::FrontFace::CW : wgpu::FrontFace::CCW;
                 ENCORE_TRY_ASSIGN(auto pipeline, mPipelines->get(key));
-                if (key.blend) {
+                // KHR_materials_transmission: drawn in the transmission pass, after the copy of
+                // everything else (blended ones too, unsorted: they write no depth there).
+                const bool transmissive = material.transmission.has_value();
+                if (key.blend && !transmissive) {
                     for (std::uint32_t slot = range.first; slot < range.first + range.count;
                          ++slot) {
                         // Where the instance is now: edits before a regrouping count.
@@ -175,16 +183,18 @@ Result<void> MaterialDrawGroups::regroup() {
                     }
                     continue;
                 }
-                auto [group, inserted] = groupOfKey.try_emplace(key, mOpaque.size());
+                std::vector<PipelineGroup>& groups = transmissive ? mTransmissive : mOpaque;
+                GroupIndex& groupIndex = transmissive ? transmissiveIndex : opaqueIndex;
+                auto [group, inserted] = groupIndex.groupOfKey.try_emplace(key, groups.size());
                 if (inserted) {
-                    mOpaque.push_back({key, pipeline, {}});
+                    groups.push_back({key, pipeline, {}});
                 }
-                auto [materialGroup, newMaterial] = materialGroupOf.try_emplace(
-                    {group->second, materialId}, mOpaque[group->second].materials.size());
+                auto [materialGroup, newMaterial] = groupIndex.materialGroupOf.try_emplace(
+                    {group->second, materialId}, groups[group->second].materials.size());
                 if (newMaterial) {
-                    mOpaque[group->second].materials.push_back({materialId, {}});
+                    groups[group->second].materials.push_back({materialId, {}});
                 }
-                mOpaque[group->second].materials[materialGroup->second].primitives.push_back(
+                groups[group->second].materials[materialGroup->second].primitives.push_back(
                     {bound, range, instances.instanceAt(range.first), index});
             }
         }
@@ -198,7 +208,16 @@ void MaterialDrawGroups::setSharedBindGroups(RenderEncoder& encoder) const {
 }
 
 void MaterialDrawGroups::encodeOpaque(RenderEncoder& encoder) const {
-    for (const PipelineGroup& group : mOpaque) {
+    encodeGroups(encoder, mOpaque);
+}
+
+void MaterialDrawGroups::encodeTransmissive(RenderEncoder& encoder) const {
+    encodeGroups(encoder, mTransmissive);
+}
+
+void MaterialDrawGroups::encodeGroups(RenderEncoder& encoder,
+                                      std::span<const PipelineGroup> groups) const {
+    for (const PipelineGroup& group : groups) {
         encoder.setPipeline(group.pipeline);
         for (const MaterialGroup& material : group.materials) {
             bindMaterial(encoder, material.material);

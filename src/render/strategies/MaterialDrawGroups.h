@@ -18,7 +18,9 @@ namespace encore::render {
 
 // The draws of the case study's Part 5 (glTF materials), grouped for recording: opaque and
 // masked geometry pipeline -> material -> primitive, so each material's bind group is set once
-// per pipeline that uses it; blended geometry one draw per instance, back to front. The
+// per pipeline that uses it; blended geometry one draw per instance, back to front; materials
+// with KHR_materials_transmission grouped like opaque ones but apart, for the transmission
+// pass that follows the copy of everything else (render/TransmissionPass.h). The
 // strategies that draw materials (materials, bundles, gpu-culling) record from it; it owns the
 // pipelines it picks and the vertex bindings, never scene data.
 //
@@ -77,12 +79,16 @@ class MaterialDrawGroups {
 
     const std::vector<PipelineGroup>& opaque() const { return mOpaque; }
     const std::vector<BlendedDraw>& blended() const { return mBlended; }
+    // Primitives whose material has KHR_materials_transmission (any alpha mode).
+    const std::vector<PipelineGroup>& transmissive() const { return mTransmissive; }
     PipelineCache& pipelines() const { return *mPipelines; }
     const GpuScene& scene() const { return *mScene; }
 
     // Group 0 (frame) and group 1 (instance transforms).
     void setSharedBindGroups(RenderEncoder& encoder) const;
     void encodeOpaque(RenderEncoder& encoder) const;
+    // The transmissive groups, for the transmission pass (group 0 and 1 set as for opaque).
+    void encodeTransmissive(RenderEncoder& encoder) const;
     // Indices into blended(), back to front as seen from `cameraPosition`.
     std::vector<std::uint32_t> blendOrder(const glm::vec3& cameraPosition) const;
     // Blended draws in that order, skipping state that does not change between them.
@@ -91,6 +97,7 @@ class MaterialDrawGroups {
     void bindMaterial(RenderEncoder& encoder, scene::MaterialId material) const;
 
   private:
+    void encodeGroups(RenderEncoder& encoder, std::span<const PipelineGroup> groups) const;
     // The bindings of a primitive for these inputs, made on first use.
     Result<const PrimitiveBindings*> bindingsFor(std::size_t mesh,
                                                  std::size_t index,
@@ -115,6 +122,7 @@ class MaterialDrawGroups {
         mOtherBindings;
     std::vector<PipelineGroup> mOpaque;
     std::vector<BlendedDraw> mBlended;
+    std::vector<PipelineGroup> mTransmissive;
     std::uint64_t mGeneration = 0;
     PrimitiveFilter mFilter;
 };

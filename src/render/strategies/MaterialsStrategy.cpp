@@ -16,6 +16,11 @@ void MaterialsStrategy::encode(RenderEncoder& encoder, const FrameState& frame) 
     mDraws.encodeBlended(encoder, mDraws.blendOrder(frame.camera.position));
 }
 
+void MaterialsStrategy::encodeTransmission(RenderEncoder& encoder, const FrameState&) const {
+    mDraws.setSharedBindGroups(encoder);
+    mDraws.encodeTransmissive(encoder);
+}
+
 InstanceTransformTargets MaterialsStrategy::instanceTransformTargets() const {
     return mDraws.scene().instances().transformTargets();
 }

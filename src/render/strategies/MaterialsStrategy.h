@@ -17,6 +17,8 @@ class MaterialsStrategy final : public Strategy {
     Result<void> prepare(const RenderSetup& setup, const GpuScene& scene) override;
     Result<void> refresh() override;
     void encode(RenderEncoder& encoder, const FrameState& frame) const override;
+    bool drawsTransmission() const override { return !mDraws.transmissive().empty(); }
+    void encodeTransmission(RenderEncoder& encoder, const FrameState& frame) const override;
     InstanceTransformTargets instanceTransformTargets() const override;
 
   private:

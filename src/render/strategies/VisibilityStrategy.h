@@ -34,6 +34,14 @@ class VisibilityStrategy final : public Strategy {
     Result<void> refresh() override { return mDraws.refresh(); }
     void beforePass(const wgpu::CommandEncoder& commands, const FrameState& frame) override;
     void encode(RenderEncoder& encoder, const FrameState& frame) const override;
+    // Transmissive surfaces are left to the hardware path, as blended ones are, and drawn in
+    // the transmission pass.
+    bool drawsTransmission() const override { return !mDraws.transmissive().empty(); }
+    void encodeTransmission(RenderEncoder& encoder, const FrameState& frame) const override {
+        (void)frame;
+        mDraws.setSharedBindGroups(encoder);
+        mDraws.encodeTransmissive(encoder);
+    }
     InstanceTransformTargets instanceTransformTargets() const override {
         return mDraws.scene().instances().transformTargets();
     }

@@ -41,9 +41,8 @@ fs::path writeCountedModel(const fs::path& dir) {
     builder.addScene({builder.addNode({.mesh = quad}),
                       builder.addNode({.mesh = quad, .translation = glm::vec3(4, 0, 0)}),
                       builder.addNode({.mesh = mixed})});
-    builder.json()["extensionsUsed"] = {"KHR_materials_transmission"};
-    builder.json()["materials"][0]["extensions"] = {
-        {"KHR_materials_transmission", {{"transmissionFactor", 0.5}}}};
+    builder.json()["extensionsUsed"] = {"VENDOR_materials_custom"};
+    builder.json()["materials"][0]["extensions"] = {{"VENDOR_materials_custom", {{"factor", 0.5}}}};
     return builder.writeGlb(dir, "counted");
 }
 
@@ -73,8 +72,8 @@ TEST(ModelMetadataTest, CountsWhatIsDrawnAndWhatFailed) {
     EXPECT_EQ(facts.imagesFailed[0].name, "missing.png");
     EXPECT_NE(facts.imagesFailed[0].error.find("missing.png"), std::string::npos)
         << facts.imagesFailed[0].error;
-    EXPECT_EQ(facts.extensionsUsed, std::vector<std::string>{"KHR_materials_transmission"});
-    EXPECT_EQ(facts.extensionsIgnored, std::vector<std::string>{"KHR_materials_transmission"});
+    EXPECT_EQ(facts.extensionsUsed, std::vector<std::string>{"VENDOR_materials_custom"});
+    EXPECT_EQ(facts.extensionsIgnored, std::vector<std::string>{"VENDOR_materials_custom"});
     EXPECT_EQ(facts.warnings.size(), 2u);  // The image and the extension.
     EXPECT_EQ(facts.bounds.min, glm::vec3(-1.0f));
     EXPECT_EQ(facts.bounds.max, glm::vec3(5.0f, 2.0f, 3.0f));
@@ -87,7 +86,7 @@ TEST(ModelMetadataTest, CountsWhatIsDrawnAndWhatFailed) {
     EXPECT_EQ(json["sha256"], facts.sha256);
     EXPECT_EQ(json["triangles"], 6);
     EXPECT_EQ(json["imagesFailed"][0]["name"], "missing.png");
-    EXPECT_EQ(json["extensionsIgnored"][0], "KHR_materials_transmission");
+    EXPECT_EQ(json["extensionsIgnored"][0], "VENDOR_materials_custom");
     EXPECT_EQ(json["bounds"]["max"], nlohmann::json::parse("[5.0, 2.0, 3.0]"));
     EXPECT_EQ(json["views"], 4);
     EXPECT_TRUE(json["blankViews"].is_null()) << "coverage not counted";

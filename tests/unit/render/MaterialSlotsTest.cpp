@@ -35,6 +35,8 @@ scene::Material everySlotTextured() {
     material.iridescence = scene::IridescenceExtension{
         .iridescenceTexture = textureRef(12), .iridescenceThicknessTexture = textureRef(13)};
     material.anisotropy = scene::AnisotropyExtension{.anisotropyTexture = textureRef(14)};
+    material.transmission = scene::TransmissionExtension{.transmissionTexture = textureRef(15)};
+    material.volume = scene::VolumeExtension{.thicknessTexture = textureRef(16)};
     return material;
 }
 
@@ -74,6 +76,8 @@ TEST(MaterialSlotsTest, ExtensionSlotsAreEmptyWithoutTheirExtension) {
     material.sheen.reset();
     material.iridescence.reset();
     material.anisotropy.reset();
+    material.transmission.reset();
+    material.volume.reset();
     for (std::uint32_t i = 0; i < kMaterialTextureSlotCount; ++i) {
         EXPECT_EQ(slotTexture(material, TextureSlot(i)).has_value(), i < 5) << "slot " << i;
     }

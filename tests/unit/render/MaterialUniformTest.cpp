@@ -119,6 +119,39 @@ TEST(MaterialUniformTest, ExtensionsWriteTheirFactorsAndFeatureBits) {
     EXPECT_EQ(makeMaterialUniform(normalOnly).flags[1], kMaterialNormalMap);
 }
 
+TEST(MaterialUniformTest, TransmissionVolumeAndDispersionPackTogether) {
+    scene::Material material;
+    MaterialUniform uniform = makeMaterialUniform(material);
+    expectVector(uniform.transmission, 0.0f, 0.0f, 0.0f, 0.0f, "no transmission");
+    expectVector(uniform.attenuationColor, 1.0f, 1.0f, 1.0f, 0.0f, "no attenuation");
+    EXPECT_EQ(uniform.flags[1] & (kMaterialTransmission | kMaterialVolume), 0u);
+
+    // Volume and dispersion without transmission have nothing to act on.
+    material.volume = scene::VolumeExtension{.thicknessFactor = 2.0f};
+    material.dispersion = scene::DispersionExtension{.dispersion = 0.5f};
+    uniform = makeMaterialUniform(material);
+    expectVector(uniform.transmission, 0.0f, 0.0f, 0.0f, 0.0f, "volume alone");
+    EXPECT_EQ(uniform.flags[1], 0u);
+
+    material.transmission = scene::TransmissionExtension{.transmissionFactor = 0.75f};
+    uniform = makeMaterialUniform(material);
+    // An infinite attenuation distance (the default) is written as 0: no absorption.
+    expectVector(uniform.transmission, 0.75f, 2.0f, 0.0f, 0.5f, "transmission and volume");
+    EXPECT_EQ(uniform.flags[1], kMaterialTransmission | kMaterialVolume);
+
+    material.volume->attenuationDistance = 0.25f;
+    material.volume->attenuationColor = {0.1f, 0.2f, 0.3f};
+    uniform = makeMaterialUniform(material);
+    expectVector(uniform.transmission, 0.75f, 2.0f, 0.25f, 0.5f, "attenuation distance");
+    expectVector(uniform.attenuationColor, 0.1f, 0.2f, 0.3f, 0.0f, "attenuation colour");
+
+    // Dispersion needs a volume to spread through.
+    material.volume.reset();
+    uniform = makeMaterialUniform(material);
+    expectVector(uniform.transmission, 0.75f, 0.0f, 0.0f, 0.0f, "thin-walled");
+    EXPECT_EQ(uniform.flags[1], kMaterialTransmission);
+}
+
 TEST(MaterialUniformTest, ShadingModelFollowsSpecularGlossinessAndUnlit) {
     scene::Material glossy;
     glossy.specularGlossiness = scene::SpecularGlossinessExtension{

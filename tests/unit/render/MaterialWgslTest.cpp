@@ -198,6 +198,8 @@ TEST(MaterialWgslTest, FeatureBitsAndShadingModelsMatchTheCpp) {
         {"kMaterialIridescence", kMaterialIridescence},
         {"kMaterialAnisotropy", kMaterialAnisotropy},
         {"kMaterialAnisotropyTexture", kMaterialAnisotropyTexture},
+        {"kMaterialTransmission", kMaterialTransmission},
+        {"kMaterialVolume", kMaterialVolume},
     };
     EXPECT_EQ(unsignedConstants("kMaterial"), features);
     std::uint32_t all = 0;
@@ -241,6 +243,8 @@ TEST(MaterialWgslTest, MaterialStructMatchesMaterialUniform) {
         {"specularGlossiness", {offsetof(MaterialUniform, specularGlossiness), "vec4f"}},
         {"iridescence", {offsetof(MaterialUniform, iridescence), "vec4f"}},
         {"anisotropy", {offsetof(MaterialUniform, anisotropy), "vec4f"}},
+        {"transmission", {offsetof(MaterialUniform, transmission), "vec4f"}},
+        {"attenuationColor", {offsetof(MaterialUniform, attenuationColor), "vec4f"}},
         {"flags", {offsetof(MaterialUniform, flags), "vec4u"}},
     };
     const std::vector<WgslField> fields = structFields(structBody(source, "Material"));

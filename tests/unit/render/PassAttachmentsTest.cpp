@@ -145,5 +145,48 @@ TEST(PassAttachmentsTest, TwoPhasesClearToTheSameColourAsOnePass) {
     }
 }
 
+// KHR_materials_transmission: the scene pass keeps colour and depth (and still resolves, for the
+// copy), the transmission pass loads them and finishes as the scene pass would have.
+TEST(PassAttachmentsTest, TransmissionPassLoadsWhatTheScenePassKept) {
+    PassPlan scene = plan(0, 1, DrawPhase::Whole, true);
+    scene.transmissionFollows = true;
+    expectOps(passAttachments(scene),
+              {LoadOp::Clear, StoreOp::Store, true, LoadOp::Clear, StoreOp::Store});
+    PassPlan transmission = scene;
+    transmission.transmissionFollows = false;
+    transmission.transmission = true;
+    const PassAttachments pass = passAttachments(transmission);
+    expectOps(pass, {LoadOp::Load, StoreOp::Discard, true, LoadOp::Load, StoreOp::Discard});
+    EXPECT_EQ(std::string_view(pass.label), "encore transmission");
+    EXPECT_EQ(std::string_view(pass.timestampLabel), "transmission");
+
+    transmission.multisampled = false;
+    expectOps(passAttachments(transmission),
+              {LoadOp::Load, StoreOp::Store, false, LoadOp::Load, StoreOp::Discard});
+}
+
+TEST(PassAttachmentsTest, TransmissionPassesOfSeveralViewsResolveOnceAtTheEnd) {
+    PassPlan first = plan(0, 2, DrawPhase::Whole, true);
+    first.transmission = true;
+    expectOps(passAttachments(first),
+              {LoadOp::Load, StoreOp::Store, false, LoadOp::Load, StoreOp::Store});
+    PassPlan last = plan(1, 2, DrawPhase::Whole, true);
+    last.transmission = true;
+    expectOps(passAttachments(last),
+              {LoadOp::Load, StoreOp::Discard, true, LoadOp::Load, StoreOp::Discard});
+    // The last view's scene pass still resolves (the copy reads the result) and keeps depth.
+    PassPlan lastScene = plan(1, 2, DrawPhase::Whole, true);
+    lastScene.transmissionFollows = true;
+    expectOps(passAttachments(lastScene),
+              {LoadOp::Load, StoreOp::Store, true, LoadOp::Load, StoreOp::Store});
+}
+
+TEST(PassAttachmentsTest, SecondPhaseBeforeTransmissionKeepsItsDepth) {
+    PassPlan second = plan(0, 1, DrawPhase::Second, true);
+    second.transmissionFollows = true;
+    expectOps(passAttachments(second),
+              {LoadOp::Load, StoreOp::Store, true, LoadOp::Load, StoreOp::Store});
+}
+
 }  // namespace
 }  // namespace encore::render
