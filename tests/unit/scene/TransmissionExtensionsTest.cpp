@@ -101,7 +101,7 @@ TEST(TransmissionExtensionsTest, InvalidValuesNameTheMaterialAndField) {
         {"TransmissionAboveOne",
          {{"KHR_materials_transmission", {{"transmissionFactor", 1.5}}}},
          {"material 0 KHR_materials_transmission has an invalid transmissionFactor (1.5",
-          "between 0 and 1"}},
+          "it must lie in [0, 1]"}},
         {"TransmissionNegative",
          {{"KHR_materials_transmission", {{"transmissionFactor", -0.25}}}},
          {"transmissionFactor (-0.25"}},
