@@ -704,8 +704,7 @@ PYBIND11_MODULE(_encore, module) {
             py::arg("blank_threshold") = encore::batch::kDefaultBlankThreshold,
             py::arg("variant") = py::none(), py::arg("variants") = py::none(),
             py::arg("passes") = py::none(), py::arg("segmentation_by") = "node",
-            py::arg("depth_format") = "png",
-            py::arg("model_timeout") = 0.0,
+            py::arg("depth_format") = "png", py::arg("model_timeout") = 0.0,
             py::arg("max_texture_size") = encore::batch::kDefaultMaxTextureSize,
             py::arg("shards") = 0, py::arg("shard_size") = 0,
             "Runs the job of `encore batch` on this renderer's device: `inputs` is what the "

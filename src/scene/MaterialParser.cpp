@@ -166,8 +166,7 @@ GltfAnisotropy readAnisotropy(FieldReader& fields) {
 
 GltfTransmission readTransmission(FieldReader& fields) {
     GltfTransmission transmission;
-    transmission.transmissionFactor =
-        boundedNumber(fields, "transmissionFactor", 0.0, 0.0, 1.0);
+    transmission.transmissionFactor = boundedNumber(fields, "transmissionFactor", 0.0, 0.0, 1.0);
     transmission.transmissionTexture =
         readTextureInfo(fields, fields.object("transmissionTexture"), "transmissionTexture", {});
     return transmission;
@@ -175,8 +174,7 @@ GltfTransmission readTransmission(FieldReader& fields) {
 
 GltfVolume readVolume(FieldReader& fields) {
     GltfVolume volume;
-    volume.thicknessFactor =
-        boundedNumber(fields, "thicknessFactor", 0.0, 0.0, -1.0);
+    volume.thicknessFactor = boundedNumber(fields, "thicknessFactor", 0.0, 0.0, -1.0);
     volume.thicknessTexture =
         readTextureInfo(fields, fields.object("thicknessTexture"), "thicknessTexture", {});
     if (fields.has("attenuationDistance")) {
