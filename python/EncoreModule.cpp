@@ -204,9 +204,24 @@ py::dict summaryDict(const batch::BatchSummary& result) {
 
 class Renderer {
   public:
-    Renderer(std::uint32_t samples, std::optional<std::size_t> device) : mSamples(samples) {
+    Renderer(std::uint32_t samples,
+             std::optional<std::size_t> device,
+             const std::optional<std::string>& strategy)
+        : mSamples(samples) {
         if (samples != 1 && samples != 4) {
             throw py::value_error("samples must be 1 or 4");
+        }
+        if (strategy) {
+            mStrategy = render::strategyChoiceFromName(*strategy);
+            if (!mStrategy) {
+                std::string names;
+                for (render::StrategyKind kind : render::allStrategies()) {
+                    names += (names.empty() ? "" : ", ") + std::string(render::strategyName(kind));
+                }
+                throw py::value_error("strategy '" + *strategy +
+                                      "' is not one of Encore's strategies (" + names +
+                                      "; a direct one may take +bundle)");
+            }
         }
         gpu::ContextOptions options;
         options.adapterIndex = device ? *device : deviceFromEnvironment();
@@ -394,6 +409,7 @@ class Renderer {
                       std::uint32_t shards,
                       std::uint64_t shardSize) {
         batch::BatchOptions options;
+        options.strategy = mStrategy;
         options.shards = shards;
         options.shardBytes = shardSize;
         options.modelTimeoutSeconds = modelTimeout;  // Checked by validateBatchOptions.
@@ -490,6 +506,10 @@ class Renderer {
         return mBatchRenderers->counts();
     }
     std::uint32_t samples() const { return mSamples; }
+    // The strategy render_views and batch draw with: given, else each one's default.
+    std::optional<std::string> strategy() const {
+        return mStrategy ? std::optional(render::strategyChoiceName(*mStrategy)) : std::nullopt;
+    }
 
   private:
     // The environment keywords of batch(): one file, or a folder's files drawn per model, and
@@ -571,7 +591,9 @@ class Renderer {
             // preparing failed: hold it that long.
             mPrepared.reset();
             mHeld = scene;
-            ENCORE_TRY(mRenderer->prepare(*scene, render::StrategyKind::Bundles));
+            const render::StrategyChoice choice = mStrategy.value_or(
+                render::StrategyChoice::of(render::StrategyKind::Bundles, false));
+            ENCORE_TRY(mRenderer->prepare(*scene, choice.kind, choice.bundle));
             mPrepared = scene;
         }
         // Only material bindings change between variants: the prepared scene stays.
@@ -602,6 +624,7 @@ class Renderer {
     }
 
     std::uint32_t mSamples;
+    std::optional<render::StrategyChoice> mStrategy;
     std::unique_ptr<gpu::Context> mContext;
     std::unique_ptr<render::Renderer> mRenderer;            // After mContext: destroyed before it.
     std::unique_ptr<batch::BatchRenderer> mBatchRenderers;  // Kept by batch() between calls.
@@ -648,10 +671,14 @@ PYBIND11_MODULE(_encore, module) {
 
     py::class_<Renderer>(module, "Renderer",
                          "One GPU device (Vulkan) rendering models from a view rig.")
-        .def(py::init<std::uint32_t, std::optional<std::size_t>>(), py::arg("samples") = 4,
-             py::arg("device") = py::none(),
+        .def(py::init<std::uint32_t, std::optional<std::size_t>,
+                      const std::optional<std::string>&>(),
+             py::arg("samples") = 4, py::arg("device") = py::none(),
+             py::arg("strategy") = py::none(),
              "A renderer on adapter `device` of encore.adapters() (default: the ENCORE_DEVICE "
-             "environment variable, else 0, the adapter Dawn prefers).")
+             "environment variable, else 0, the adapter Dawn prefers), drawing with `strategy` "
+             "(a name of `encore --help`'s list, e.g. \"visibility\" or \"gpu-culling-bundles\"; "
+             "default: render_views draws with bundles, batch with its default).")
         .def("load", &Renderer::load, py::arg("path"),
              "Loads a .gltf or .glb file; raises encore.LoadError with the loader's message.")
         .def("render_views", &Renderer::renderViews, py::arg("scene"), py::arg("views") = 12,
@@ -735,6 +762,8 @@ PYBIND11_MODULE(_encore, module) {
         .def_property_readonly("samples",
                                [](const Renderer& renderer) { return renderer.samples(); })
         .def_property_readonly("adapter", &Renderer::adapter)
+        .def_property_readonly("strategy", &Renderer::strategy,
+                               "The strategy given to the constructor, or None.")
         .def_property_readonly("device", &Renderer::device,
                                "The index of the renderer's adapter in encore.adapters().")
         .def_property_readonly(
