@@ -25,13 +25,7 @@ void BundlesStrategy::beforePass(const wgpu::CommandEncoder&, const FrameState& 
             mDraws.encodeBlended(encoder, order);
         });
     if (drawsTransmission()) {
-        mTransmission.update(
-            *mSetup, mDraws.scene().generation(), {},
-            [this](RenderEncoder& encoder) {
-                mDraws.setSharedBindGroups(encoder);
-                mDraws.encodeTransmissive(encoder);
-            },
-            [](RenderEncoder&, std::span<const std::uint32_t>) {});
+        mDraws.updateTransmissionBundle(mTransmission, *mSetup);
     }
 }
 

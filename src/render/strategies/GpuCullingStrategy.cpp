@@ -169,13 +169,7 @@ void GpuCullingStrategy::beforePass(const wgpu::CommandEncoder& commands, const 
                 mDraws.encodeBlended(encoder, order);
             });
         if (drawsTransmission()) {
-            mTransmission.update(
-                *mSetup, mDraws.scene().generation(), {},
-                [this](RenderEncoder& encoder) {
-                    mDraws.setSharedBindGroups(encoder);
-                    mDraws.encodeTransmissive(encoder);
-                },
-                [](RenderEncoder&, std::span<const std::uint32_t>) {});
+            mDraws.updateTransmissionBundle(mTransmission, *mSetup);
         }
     }
 }

@@ -284,4 +284,15 @@ void MaterialDrawGroups::bindMaterial(RenderEncoder& encoder, scene::MaterialId 
     encoder.setBindGroup(2, mScene->materials().bindGroup(material));
 }
 
+void MaterialDrawGroups::updateTransmissionBundle(BundledFrame& bundle,
+                                                  const RenderSetup& setup) const {
+    bundle.update(
+        setup, scene().generation(), {},
+        [this](RenderEncoder& encoder) {
+            setSharedBindGroups(encoder);
+            encodeTransmissive(encoder);
+        },
+        [](RenderEncoder&, std::span<const std::uint32_t>) {});
+}
+
 }  // namespace encore::render

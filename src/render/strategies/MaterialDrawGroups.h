@@ -13,6 +13,7 @@
 #include "render/GpuScene.h"
 #include "render/PipelineCache.h"
 #include "render/VertexBindings.h"
+#include "render/strategies/BundledFrame.h"
 
 namespace encore::render {
 
@@ -89,6 +90,9 @@ class MaterialDrawGroups {
     void encodeOpaque(RenderEncoder& encoder) const;
     // The transmissive groups, for the transmission pass (group 0 and 1 set as for opaque).
     void encodeTransmissive(RenderEncoder& encoder) const;
+    // Records the transmissive surfaces into `bundle` for the transmission pass of the bundled
+    // strategies (again only when the scene's resources were replaced).
+    void updateTransmissionBundle(BundledFrame& bundle, const RenderSetup& setup) const;
     // Indices into blended(), back to front as seen from `cameraPosition`.
     std::vector<std::uint32_t> blendOrder(const glm::vec3& cameraPosition) const;
     // Blended draws in that order, skipping state that does not change between them.

@@ -15,18 +15,7 @@ namespace {
 using nlohmann::json;
 using testing::expectError;
 using testing::loadGltf;
-using testing::triangleBuilder;
-
-// A triangle whose primitive uses material 0 and `textures` textures without images (so no
-// missing-image warnings get in the way).
-test::GltfBuilder materialBuilder(int textures = 4) {
-    auto builder = triangleBuilder();
-    builder.json()["meshes"][0]["primitives"][0]["material"] = builder.addMaterial({});
-    for (int i = 0; i < textures; ++i) {
-        builder.json()["textures"].push_back(json::object());
-    }
-    return builder;
-}
+using testing::materialBuilder;
 
 json& materialJson(test::GltfBuilder& builder) {
     return builder.json()["materials"][0];

@@ -52,4 +52,15 @@ inline test::GltfBuilder triangleBuilder() {
     return builder;
 }
 
+// A triangle whose primitive uses material 0, and `textures` textures without images (so no
+// missing-image warnings get in the way): for material extension tests.
+inline test::GltfBuilder materialBuilder(int textures = 4) {
+    auto builder = triangleBuilder();
+    builder.json()["meshes"][0]["primitives"][0]["material"] = builder.addMaterial({});
+    for (int i = 0; i < textures; ++i) {
+        builder.json()["textures"].push_back(nlohmann::json::object());
+    }
+    return builder;
+}
+
 }  // namespace encore::scene::testing
