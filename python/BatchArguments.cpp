@@ -1,6 +1,8 @@
 #include "BatchArguments.h"
 
+#include "ModuleErrors.h"
 #include "batch/BatchOptionsValidation.h"
+#include "encore/batch/BatchInputs.h"
 
 namespace encore::python {
 
@@ -53,6 +55,81 @@ batch::ViewRigOptions rigOptions(const RigArguments& arguments) {
         throw py::value_error(valid.error().message);
     }
     return rig;
+}
+
+// A `variant=` keyword: None, a variant's name, or its index, as text (scene::findVariant).
+std::string variantArgument(const py::object& variant) {
+    if (variant.is_none()) {
+        return {};
+    }
+    if (py::isinstance<py::int_>(variant) && !py::isinstance<py::bool_>(variant)) {
+        return std::to_string(variant.cast<long long>());
+    }
+    if (py::isinstance<py::str>(variant)) {
+        return variant.cast<std::string>();
+    }
+    throw py::type_error("variant must be None, a variant's name (str) or its index (int)");
+}
+
+// `size` is an int (square) or a (width, height) pair.
+std::pair<std::uint32_t, std::uint32_t> imageSize(const py::object& size) {
+    long width = 0;
+    long height = 0;
+    if (py::isinstance<py::int_>(size)) {
+        width = height = size.cast<long>();
+    } else {
+        auto pair = size.cast<std::pair<long, long>>();
+        width = pair.first;
+        height = pair.second;
+    }
+    if (width < 1 || height < 1 || width > 8192 || height > 8192) {
+        throw py::value_error("size must be an int or a (width, height) pair, each from 1 to 8192");
+    }
+    return {std::uint32_t(width), std::uint32_t(height)};
+}
+
+// The models a batch renders: a folder, list file or model path (what `encore batch` takes) or
+// a sequence of (path, name) pairs (discover_inputs).
+std::vector<batch::BatchInput> batchInputs(const py::object& inputs) {
+    if (py::isinstance<py::str>(inputs) || py::hasattr(inputs, "__fspath__")) {
+        const std::string path = py::str(py::module_::import("os").attr("fspath")(inputs));
+        Result<std::vector<batch::BatchInput>> discovered =
+            makeError(ErrorCode::InvalidArgument, "");
+        {
+            py::gil_scoped_release release;
+            discovered = batch::discoverInputs(path);
+        }
+        return valueOrThrow(std::move(discovered));
+    }
+    std::vector<batch::BatchInput> listed;
+    for (const py::handle item : inputs) {
+        const auto [path, name] = item.cast<std::pair<std::string, std::string>>();
+        if (name.empty()) {
+            throw py::value_error("every input needs a non-empty output name");
+        }
+        listed.push_back({path, name});
+    }
+    return listed;
+}
+
+// discover_inputs: a folder, list file or model path, or a sequence of model paths.
+py::list discoverInputs(const py::object& input) {
+    std::vector<batch::BatchInput> inputs;
+    if (py::isinstance<py::str>(input) || py::hasattr(input, "__fspath__")) {
+        inputs = batchInputs(input);
+    } else {
+        std::vector<std::filesystem::path> paths;
+        for (const py::handle item : input) {
+            paths.emplace_back(
+                py::str(py::module_::import("os").attr("fspath")(item)).cast<std::string>());
+        }
+        inputs = valueOrThrow(batch::listedInputs(paths));
+    }
+    py::list pairs;
+    for (const batch::BatchInput& model : inputs) {
+        pairs.append(py::make_tuple(model.path.string(), model.name));
+    }
+    return pairs;
 }
 
 }  // namespace encore::python

@@ -8,8 +8,11 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "encore/batch/Batch.h"
+#include "encore/batch/BatchInputs.h"
 
 namespace encore::python {
 
@@ -36,5 +39,18 @@ batch::CameraDistribution cameraDistribution(const std::string& name);
 
 // The rig, checked as runBatch checks it.
 batch::ViewRigOptions rigOptions(const RigArguments& arguments);
+
+// A `variant=` keyword: None, a variant's name, or its index, as text (scene::findVariant).
+std::string variantArgument(const py::object& variant);
+
+// `size` is an int (square) or a (width, height) pair.
+std::pair<std::uint32_t, std::uint32_t> imageSize(const py::object& size);
+
+// The models a batch renders: a folder, list file or model path (what `encore batch` takes) or
+// a sequence of (path, name) pairs (discover_inputs).
+std::vector<batch::BatchInput> batchInputs(const py::object& inputs);
+
+// discover_inputs: a folder, list file or model path, or a sequence of model paths.
+py::list discoverInputs(const py::object& input);
 
 }  // namespace encore::python

@@ -1,0 +1,275 @@
+#include "Renderer.h"
+
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <cstring>
+#include <utility>
+
+#include "BatchArguments.h"
+#include "ModuleErrors.h"
+#include "batch/TransformsJson.h"
+#include "batch/ViewStrips.h"
+#include "encore/render/VisibilityFeatures.h"
+#include "encore/scene/MaterialVariants.h"
+
+namespace encore::python {
+namespace {
+
+// ENCORE_DEVICE, as `encore --device` reads it: how a Dask worker (encore.dask) is given its
+// GPU. Unset or empty: 0.
+std::size_t deviceFromEnvironment() {
+    const char* variable = std::getenv("ENCORE_DEVICE");
+    if (!variable || !*variable) {
+        return 0;
+    }
+    char* end = nullptr;
+    const unsigned long long index = std::strtoull(variable, &end, 10);
+    if (*end != '\0' || variable[0] == '-') {
+        throw py::value_error(std::string("ENCORE_DEVICE='") + variable +
+                              "' is not a device index (0, 1, ...: encore.adapters() lists them)");
+    }
+    return std::size_t(index);
+}
+
+}  // namespace
+
+Renderer::Renderer(std::uint32_t samples,
+         std::optional<std::size_t> device,
+         const std::optional<std::string>& strategy)
+    : mSamples(samples) {
+    if (samples != 1 && samples != 4) {
+        throw py::value_error("samples must be 1 or 4");
+    }
+    if (strategy) {
+        mStrategy = render::strategyChoiceFromName(*strategy);
+        if (!mStrategy) {
+            std::string names;
+            for (render::StrategyKind kind : render::allStrategies()) {
+                names += (names.empty() ? "" : ", ") + std::string(render::strategyName(kind));
+            }
+            throw py::value_error("strategy '" + *strategy +
+                                  "' is not one of Encore's strategies (" + names +
+                                  "; a direct one may take +bundle)");
+        }
+    }
+    gpu::ContextOptions options;
+    options.adapterIndex = device ? *device : deviceFromEnvironment();
+    render::requestVisibilityFeatures(options);
+    mContext = std::make_unique<gpu::Context>(valueOrThrow(gpu::Context::create(options)));
+    mBatchRenderers = std::make_unique<batch::BatchRenderer>(*mContext);
+}
+
+Scene Renderer::load(const std::string& path) {
+    Result<scene::SceneData> loaded = makeError(ErrorCode::InvalidArgument, "");
+    {
+        py::gil_scoped_release release;
+        loaded = scene::loadScene(path);
+    }
+    if (!loaded) {
+        throw LoadError(loaded.error().message);
+    }
+    return Scene{std::make_shared<const scene::SceneData>(std::move(*loaded))};
+}
+
+py::object Renderer::renderViews(const Scene& scene,
+                       std::uint32_t views,
+                       const py::object& size,
+                       float elevation,
+                       float distance,
+                       std::optional<float> fov,
+                       bool random,
+                       std::uint64_t seed,
+                       bool normalize,
+                       bool normals,
+                       bool depth,
+                       const std::string& name,
+                       const py::object& variantName,
+                       const py::object& passes,
+                       const std::string& segmentation,
+                       const py::object& environment,
+                       float intensity,
+                       float rotation,
+                       float exposure,
+                       const std::string& toneMapping,
+                       const std::string& background) {
+    const auto [width, height] = imageSize(size);
+    const ViewShading shading =
+        viewShading(environment, intensity, rotation, exposure, toneMapping, background);
+    std::vector<batch::ViewImage> kinds;
+    if (!passes.is_none()) {
+        if (normals || depth) {
+            throw py::value_error(
+                "passes= replaces normals= and depth=: name \"normal\" and "
+                "\"depth\" among the passes.");
+        }
+        kinds = passKinds(passes);
+        if (std::count(kinds.begin(), kinds.end(), batch::ViewImage::Segmentation) &&
+            mSamples != 1) {
+            throw py::value_error(
+                "The segmentation pass needs Renderer(samples=1): "
+                "multisampling would blend neighbouring objects' ids.");
+        }
+    }
+    const batch::SegmentationBy by = segmentationBy(segmentation);
+    const batch::ViewRigOptions rig = rigOptions(
+        {views, elevation, py::float_(distance),
+         fov ? py::object(py::float_(*fov)) : py::none(),
+         random ? batch::CameraDistribution::Sphere : batch::CameraDistribution::Orbit, seed,
+         normalize});
+    const std::vector<batch::ViewCamera> cameraViews = batch::viewCameras(rig, name);
+    std::optional<scene::VariantId> variant;
+    if (const std::string chosen = variantArgument(variantName); !chosen.empty()) {
+        auto found = scene::resolveVariant(*scene.data, chosen);
+        if (!found) {
+            throw py::value_error(found.error().message);
+        }
+        variant = *found;
+    }
+    Rendered rendered;
+    {
+        py::gil_scoped_release release;
+        std::lock_guard lock(mMutex);  // Python threads may share a renderer.
+        rendered = valueOrThrow(render(scene.data, variant, cameraViews, rig, width, height,
+                                       normals, depth, shading, kinds, by));
+    }
+    const auto rgbaArray = [&](const std::vector<image::ImageRgba8>& images) {
+        py::array_t<std::uint8_t> pixels(
+            {std::size_t(views), std::size_t(height), std::size_t(width), std::size_t(4)});
+        std::uint8_t* out = pixels.mutable_data();
+        for (const image::ImageRgba8& image : images) {
+            std::memcpy(out, image.pixels.data(), image.pixels.size());
+            out += image.pixels.size();
+        }
+        return pixels;
+    };
+    py::array_t<std::uint8_t> pixels = rgbaArray(rendered.color);
+    const batch::PinholeIntrinsics pinhole =
+        batch::intrinsicsFor(width, height, glm::radians(rig.horizontalFovDegrees.min));
+    py::array_t<double> intrinsics({3, 3});
+    auto k = intrinsics.mutable_unchecked<2>();
+    const double values[3][3] = {{pinhole.focalX, 0.0, pinhole.centerX},
+                                 {0.0, pinhole.focalY, pinhole.centerY},
+                                 {0.0, 0.0, 1.0}};
+    for (int row = 0; row < 3; ++row) {
+        for (int column = 0; column < 3; ++column) {
+            k(row, column) = values[row][column];
+        }
+    }
+    py::array_t<double> cameras({std::size_t(views), std::size_t(4), std::size_t(4)});
+    auto c = cameras.mutable_unchecked<3>();
+    for (std::size_t view = 0; view < cameraViews.size(); ++view) {
+        const glm::mat4& cameraToWorld = cameraViews[view].cameraToWorld;
+        for (int row = 0; row < 4; ++row) {
+            for (int column = 0; column < 4; ++column) {
+                c(view, row, column) = cameraToWorld[column][row];  // glm: [column][row]
+            }
+        }
+    }
+    if (!passes.is_none()) {
+        py::dict arrays;
+        for (std::size_t i = 0; i < kinds.size(); ++i) {
+            arrays[passName(kinds[i])] = passArray(kinds[i], rendered.passes[i], width, height);
+        }
+        arrays["intrinsics"] = intrinsics;
+        arrays["cameras"] = cameras;
+        return arrays;
+    }
+    py::list result;
+    result.append(pixels);
+    result.append(intrinsics);
+    result.append(cameras);
+    if (normals) {
+        result.append(rgbaArray(rendered.normals));
+    }
+    if (depth) {
+        // The 16-bit values of 000_depth.png times its depth_scale: distances along the
+        // camera axis in the cameras' units, 0 where the pixel is mostly empty.
+        const double scale = batch::depthScale(rig);
+        py::array_t<float> distances(
+            {std::size_t(views), std::size_t(height), std::size_t(width)});
+        float* out = distances.mutable_data();
+        for (const image::ImageGray16& image : rendered.depth) {
+            for (const std::uint16_t steps : image.pixels) {
+                *out++ = float(double(steps) * scale);
+            }
+        }
+        result.append(distances);
+    }
+    return py::tuple(result);
+}
+
+
+batch::BatchRendererCounts Renderer::batchCounts() {
+    // Without the GIL while waiting: a batch on another thread takes it to report progress.
+    py::gil_scoped_release release;
+    std::lock_guard lock(mMutex);
+    return mBatchRenderers->counts();
+}
+
+Result<Renderer::Rendered> Renderer::render(const std::shared_ptr<const scene::SceneData>& scene,
+                        std::optional<scene::VariantId> variant,
+                        const std::vector<batch::ViewCamera>& views,
+                        const batch::ViewRigOptions& rig,
+                        std::uint32_t width,
+                        std::uint32_t height,
+                        bool normals,
+                        bool depth,
+                        const ViewShading& shading,
+                        std::span<const batch::ViewImage> kinds,
+                        batch::SegmentationBy by) {
+    const batch::StripLayout layout =
+        batch::stripLayout(width, height, rig.views, mContext->limits());
+    if (!mRenderer || mRenderer->target().width() != layout.targetWidth() ||
+        mRenderer->target().height() != layout.height) {
+        render::RendererOptions options;
+        options.target = {layout.targetWidth(), layout.height, mSamples};
+        options.toneMapping.background = render::BackgroundKind::Transparent;
+        options.target.hdr = true;  // Whatever the background: depth and HDR read it.
+        options.keepPipelines = true;
+        mRenderer.reset();
+        ENCORE_TRY_ASSIGN(auto created, render::Renderer::create(*mContext, options));
+        mRenderer = std::make_unique<render::Renderer>(std::move(created));
+        mPrepared.reset();
+        mEnvironment.clear();  // A new renderer lights with the studio environment.
+    }
+    if (mPrepared != scene) {
+        // The renderer refers to the scene it was given until the next prepare, even when
+        // preparing failed: hold it that long.
+        mPrepared.reset();
+        mHeld = scene;
+        const render::StrategyChoice choice = mStrategy.value_or(
+            render::StrategyChoice::of(render::StrategyKind::Bundles, false));
+        ENCORE_TRY(mRenderer->prepare(*scene, choice.kind, choice.bundle));
+        mPrepared = scene;
+    }
+    // Only material bindings change between variants: the prepared scene stays.
+    ENCORE_TRY(mRenderer->selectVariant(variant));
+    ENCORE_TRY(applyShading(*mRenderer, shading, mEnvironment));
+    Rendered rendered;
+    if (!kinds.empty()) {
+        ENCORE_TRY_ASSIGN(rendered.passes, renderPasses(*mRenderer, scene->bounds, views, rig,
+                                                        layout, kinds, by));
+    }
+    // With passes, the colour is its "rgba" pass.
+    const bool colorPass = kinds.empty();
+    if (colorPass) {
+        ENCORE_TRY_ASSIGN(rendered.color,
+                          batch::renderStrips(*mRenderer, scene->bounds, views, rig, layout));
+    }
+    if (normals) {
+        ENCORE_TRY_ASSIGN(rendered.normals,
+                          batch::renderStrips(*mRenderer, scene->bounds, views, rig, layout,
+                                              batch::ViewImage::Normal));
+    }
+    if (depth) {
+        ENCORE_TRY_ASSIGN(rendered.depth, batch::renderDepthStrips(*mRenderer, scene->bounds,
+                                                                   views, rig, layout));
+    }
+    ENCORE_TRY(mContext->checkNoErrors("Rendering '" + scene->sourcePath.string() + "'"));
+    return rendered;
+}
+
+}  // namespace encore::python
