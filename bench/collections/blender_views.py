@@ -1,6 +1,7 @@
 """Renders one glTF model as the Objaverse rendering scripts do, for the collection benchmark.
 
     blender -b -P blender_views.py -- MODEL OUT_DIR eevee|cycles [VIEWS] [SIZE] [SAMPLES] [ONLY]
+        [PASSES]
 
 The scene is emptied, the model imported and scaled into a unit box centred at the origin, one
 large area light put above it, and VIEWS (12) cameras with a 35 mm lens on a 32 mm sensor
@@ -8,7 +9,11 @@ placed 1.5 units away on a circle 30 degrees above the horizon, as `encore batch
 (view 0 on glTF's +Z, then towards +X). Each view is written as OUT_DIR/000.png ... (RGBA,
 transparent film), SIZE (512) square, with SAMPLES (16) samples per pixel. ONLY, a
 comma-separated list of view indices ("0,3,6,9"), renders those views of the circle and no
-others (the contact sheet shows a few; at seconds per view, rendering the rest is wasted).
+others (the contact sheet shows a few; at seconds per view, rendering the rest is wasted; "all"
+renders every view). PASSES "all" also writes, through the compositor, what `encore batch
+--albedo --normals --depth --depth-format exr` writes beside each view: the diffuse colour pass
+(NNN_albedo.png), the normal pass (NNN_normal.exr) and the Z pass (NNN_depth.exr), the
+outputs the G-buffer Objaverse scripts take from Blender.
 """
 
 import math
@@ -28,8 +33,9 @@ model, out_dir, engine = arguments[:3]
 views = int(arguments[3]) if len(arguments) > 3 else 12
 size = int(arguments[4]) if len(arguments) > 4 else 512
 samples = int(arguments[5]) if len(arguments) > 5 else 16
-only = ([int(view) for view in arguments[6].split(",")] if len(arguments) > 6
-        else list(range(views)))
+only = ([int(view) for view in arguments[6].split(",")]
+        if len(arguments) > 6 and arguments[6] != "all" else list(range(views)))
+passes = len(arguments) > 7 and arguments[7] == "all"
 
 bpy.ops.wm.read_factory_settings(use_empty=True)
 scene = bpy.context.scene
@@ -92,6 +98,26 @@ track.target = target
 track.track_axis = "TRACK_NEGATIVE_Z"
 track.up_axis = "UP_Y"
 
+pass_outputs = []
+if passes:
+    layer = scene.view_layers[0]
+    layer.use_pass_normal = True
+    layer.use_pass_z = True
+    layer.use_pass_diffuse_color = True
+    scene.use_nodes = True
+    tree = scene.node_tree
+    layers = tree.nodes.get("Render Layers") or tree.nodes.new("CompositorNodeRLayers")
+    for socket, suffix, file_format in (("DiffCol", "albedo", "PNG"), ("Normal", "normal",
+                                                                         "OPEN_EXR"),
+                                        ("Depth", "depth", "OPEN_EXR")):
+        output = tree.nodes.new("CompositorNodeOutputFile")
+        output.base_path = out_dir
+        output.format.file_format = file_format
+        if file_format == "OPEN_EXR":
+            output.format.color_depth = "32"
+        tree.links.new(layers.outputs[socket], output.inputs[0])
+        pass_outputs.append((output, suffix))
+
 elevation = math.radians(30.0)
 for view in only:
     azimuth = 2.0 * math.pi * view / views
@@ -101,4 +127,7 @@ for view in only:
     z = math.cos(elevation) * math.cos(azimuth)
     camera.location = (1.5 * x, -1.5 * z, 1.5 * y)
     render.filepath = os.path.join(out_dir, f"{view:03}.png")
+    for output, suffix in pass_outputs:
+        # The File Output node appends the frame number to the slot's path.
+        output.file_slots[0].path = f"{view:03}_{suffix}_"
     bpy.ops.render.render(write_still=True)
