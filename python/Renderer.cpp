@@ -37,8 +37,8 @@ std::size_t deviceFromEnvironment() {
 }  // namespace
 
 Renderer::Renderer(std::uint32_t samples,
-         std::optional<std::size_t> device,
-         const std::optional<std::string>& strategy)
+                   std::optional<std::size_t> device,
+                   const std::optional<std::string>& strategy)
     : mSamples(samples) {
     if (samples != 1 && samples != 4) {
         throw py::value_error("samples must be 1 or 4");
@@ -75,26 +75,26 @@ Scene Renderer::load(const std::string& path) {
 }
 
 py::object Renderer::renderViews(const Scene& scene,
-                       std::uint32_t views,
-                       const py::object& size,
-                       float elevation,
-                       float distance,
-                       std::optional<float> fov,
-                       bool random,
-                       std::uint64_t seed,
-                       bool normalize,
-                       bool normals,
-                       bool depth,
-                       const std::string& name,
-                       const py::object& variantName,
-                       const py::object& passes,
-                       const std::string& segmentation,
-                       const py::object& environment,
-                       float intensity,
-                       float rotation,
-                       float exposure,
-                       const std::string& toneMapping,
-                       const std::string& background) {
+                                 std::uint32_t views,
+                                 const py::object& size,
+                                 float elevation,
+                                 float distance,
+                                 std::optional<float> fov,
+                                 bool random,
+                                 std::uint64_t seed,
+                                 bool normalize,
+                                 bool normals,
+                                 bool depth,
+                                 const std::string& name,
+                                 const py::object& variantName,
+                                 const py::object& passes,
+                                 const std::string& segmentation,
+                                 const py::object& environment,
+                                 float intensity,
+                                 float rotation,
+                                 float exposure,
+                                 const std::string& toneMapping,
+                                 const std::string& background) {
     const auto [width, height] = imageSize(size);
     const ViewShading shading =
         viewShading(environment, intensity, rotation, exposure, toneMapping, background);
@@ -115,8 +115,7 @@ py::object Renderer::renderViews(const Scene& scene,
     }
     const batch::SegmentationBy by = segmentationBy(segmentation);
     const batch::ViewRigOptions rig = rigOptions(
-        {views, elevation, py::float_(distance),
-         fov ? py::object(py::float_(*fov)) : py::none(),
+        {views, elevation, py::float_(distance), fov ? py::object(py::float_(*fov)) : py::none(),
          random ? batch::CameraDistribution::Sphere : batch::CameraDistribution::Orbit, seed,
          normalize});
     const std::vector<batch::ViewCamera> cameraViews = batch::viewCameras(rig, name);
@@ -188,8 +187,7 @@ py::object Renderer::renderViews(const Scene& scene,
         // The 16-bit values of 000_depth.png times its depth_scale: distances along the
         // camera axis in the cameras' units, 0 where the pixel is mostly empty.
         const double scale = batch::depthScale(rig);
-        py::array_t<float> distances(
-            {std::size_t(views), std::size_t(height), std::size_t(width)});
+        py::array_t<float> distances({std::size_t(views), std::size_t(height), std::size_t(width)});
         float* out = distances.mutable_data();
         for (const image::ImageGray16& image : rendered.depth) {
             for (const std::uint16_t steps : image.pixels) {
@@ -201,7 +199,6 @@ py::object Renderer::renderViews(const Scene& scene,
     return py::tuple(result);
 }
 
-
 batch::BatchRendererCounts Renderer::batchCounts() {
     // Without the GIL while waiting: a batch on another thread takes it to report progress.
     py::gil_scoped_release release;
@@ -210,16 +207,16 @@ batch::BatchRendererCounts Renderer::batchCounts() {
 }
 
 Result<Renderer::Rendered> Renderer::render(const std::shared_ptr<const scene::SceneData>& scene,
-                        std::optional<scene::VariantId> variant,
-                        const std::vector<batch::ViewCamera>& views,
-                        const batch::ViewRigOptions& rig,
-                        std::uint32_t width,
-                        std::uint32_t height,
-                        bool normals,
-                        bool depth,
-                        const ViewShading& shading,
-                        std::span<const batch::ViewImage> kinds,
-                        batch::SegmentationBy by) {
+                                            std::optional<scene::VariantId> variant,
+                                            const std::vector<batch::ViewCamera>& views,
+                                            const batch::ViewRigOptions& rig,
+                                            std::uint32_t width,
+                                            std::uint32_t height,
+                                            bool normals,
+                                            bool depth,
+                                            const ViewShading& shading,
+                                            std::span<const batch::ViewImage> kinds,
+                                            batch::SegmentationBy by) {
     const batch::StripLayout layout =
         batch::stripLayout(width, height, rig.views, mContext->limits());
     if (!mRenderer || mRenderer->target().width() != layout.targetWidth() ||
@@ -240,8 +237,8 @@ Result<Renderer::Rendered> Renderer::render(const std::shared_ptr<const scene::S
         // preparing failed: hold it that long.
         mPrepared.reset();
         mHeld = scene;
-        const render::StrategyChoice choice = mStrategy.value_or(
-            render::StrategyChoice::of(render::StrategyKind::Bundles, false));
+        const render::StrategyChoice choice =
+            mStrategy.value_or(render::StrategyChoice::of(render::StrategyKind::Bundles, false));
         ENCORE_TRY(mRenderer->prepare(*scene, choice.kind, choice.bundle));
         mPrepared = scene;
     }
@@ -250,8 +247,8 @@ Result<Renderer::Rendered> Renderer::render(const std::shared_ptr<const scene::S
     ENCORE_TRY(applyShading(*mRenderer, shading, mEnvironment));
     Rendered rendered;
     if (!kinds.empty()) {
-        ENCORE_TRY_ASSIGN(rendered.passes, renderPasses(*mRenderer, scene->bounds, views, rig,
-                                                        layout, kinds, by));
+        ENCORE_TRY_ASSIGN(rendered.passes,
+                          renderPasses(*mRenderer, scene->bounds, views, rig, layout, kinds, by));
     }
     // With passes, the colour is its "rgba" pass.
     const bool colorPass = kinds.empty();
@@ -265,8 +262,8 @@ Result<Renderer::Rendered> Renderer::render(const std::shared_ptr<const scene::S
                                               batch::ViewImage::Normal));
     }
     if (depth) {
-        ENCORE_TRY_ASSIGN(rendered.depth, batch::renderDepthStrips(*mRenderer, scene->bounds,
-                                                                   views, rig, layout));
+        ENCORE_TRY_ASSIGN(rendered.depth,
+                          batch::renderDepthStrips(*mRenderer, scene->bounds, views, rig, layout));
     }
     ENCORE_TRY(mContext->checkNoErrors("Rendering '" + scene->sourcePath.string() + "'"));
     return rendered;

@@ -2,7 +2,9 @@
 
 #include <array>
 #include <cstdio>
+#include <cstdlib>
 #include <mutex>
+#include <string>
 #include <string_view>
 
 #include "core/Log.h"
@@ -44,6 +46,21 @@ std::string errorTypeName(wgpu::ErrorType type) {
         default:
             return "error";
     }
+}
+
+// ENCORE_DAWN_TOGGLES, split at commas.
+std::vector<std::string> togglesFromEnvironment() {
+    std::vector<std::string> toggles;
+    const char* variable = std::getenv("ENCORE_DAWN_TOGGLES");
+    std::string_view rest = variable ? variable : "";
+    while (!rest.empty()) {
+        const std::size_t comma = rest.find(',');
+        if (const std::string_view name = rest.substr(0, comma); !name.empty()) {
+            toggles.emplace_back(name);
+        }
+        rest = comma == std::string_view::npos ? std::string_view() : rest.substr(comma + 1);
+    }
+    return toggles;
 }
 
 }  // namespace
@@ -171,15 +188,30 @@ Result<void> Context::acquireDevice() {
         }
     }
 
+    std::vector<const char*> enabledToggles;
+    // Features behind allow_unsafe_apis need it on the device as on the adapter request.
+    if (options.allowUnsafeApis) {
+        enabledToggles.push_back("allow_unsafe_apis");
+    }
+    // ENCORE_DAWN_TOGGLES=name,-name,...: Dawn device toggles turned on (or off), for measuring
+    // what Dawn's own work costs (e.g. skip_validation); never needed to render correctly.
+    const std::vector<std::string> extraToggles = togglesFromEnvironment();
+    for (const std::string& toggle : extraToggles) {
+        if (toggle.starts_with('-')) {
+            disabledToggles.push_back(toggle.c_str() + 1);
+        } else {
+            enabledToggles.push_back(toggle.c_str());
+        }
+    }
+    if (!extraToggles.empty()) {
+        logWarning("Dawn toggles from ENCORE_DAWN_TOGGLES: " +
+                   std::string(std::getenv("ENCORE_DAWN_TOGGLES")));
+    }
     wgpu::DawnTogglesDescriptor toggles;
     toggles.disabledToggleCount = disabledToggles.size();
     toggles.disabledToggles = disabledToggles.data();
-    // Features behind allow_unsafe_apis need it on the device as on the adapter request.
-    static constexpr const char* kUnsafeApis[] = {"allow_unsafe_apis"};
-    if (options.allowUnsafeApis) {
-        toggles.enabledToggleCount = 1;
-        toggles.enabledToggles = kUnsafeApis;
-    }
+    toggles.enabledToggleCount = enabledToggles.size();
+    toggles.enabledToggles = enabledToggles.data();
 
     wgpu::DeviceDescriptor deviceDescriptor{};
     deviceDescriptor.nextInChain = &toggles;
