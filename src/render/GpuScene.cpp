@@ -98,6 +98,19 @@ Result<void> GpuScene::checkMaterial(scene::MaterialId material) const {
 
 Result<void> GpuScene::updateMaterial(scene::MaterialId material, const scene::Material& value) {
     ENCORE_TRY(checkMaterial(material));
+    // These extensions choose the material's pipelines (and transmission its pass): an edit
+    // changes their factors, never whether they are there.
+    const scene::Material& prepared = data().materials[material.index()];
+    const auto differ = [](const auto& a, const auto& b) { return a.has_value() != b.has_value(); };
+    if (differ(prepared.iridescence, value.iridescence) ||
+        differ(prepared.anisotropy, value.anisotropy) ||
+        differ(prepared.transmission, value.transmission)) {
+        return makeError(ErrorCode::InvalidArgument,
+                         "Material " + std::to_string(material.value) +
+                             ": an edit cannot add or remove KHR_materials_iridescence, "
+                             "anisotropy or transmission (they choose its pipelines); load the "
+                             "scene with them instead.");
+    }
     mMaterials->updateMaterial(mSetup->queue, material, value);
     return {};
 }

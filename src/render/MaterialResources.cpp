@@ -164,6 +164,7 @@ Result<MaterialResources> MaterialResources::create(const wgpu::Device& device,
 
         MaterialUniform uniform = makeMaterialUniform(material, palette.slotEntries);
         uniform.flags[2] = std::uint32_t(i + 1);  // The segmentation id (DebugChannel).
+        uniform.flags[3] = resources.texturedSlots(i);
         std::memcpy(uniformBytes.data() + i * resources.mUniformStride, &uniform, kUniformSize);
 
         resources.mBindGroups.push_back(resources.createBindGroup(
@@ -245,6 +246,11 @@ Result<void> MaterialResources::replaceBaseColorImage(const wgpu::Device& device
     const std::size_t old = mMaterialTextures[material.index()][kBaseColor];
     mMaterialTextures[material.index()][kBaseColor] = *uploaded;
     mTextured[material.index()] = true;
+    const std::uint32_t slots = texturedSlots(material.index());
+    queue.WriteBuffer(mUniforms,
+                      material.index() * mUniformStride + offsetof(MaterialUniform, flags) +
+                          3 * sizeof(std::uint32_t),
+                      &slots, sizeof(slots));
     mBindGroups[material.index()] =
         createBindGroup(device, layouts, material.index(), "material (replaced texture)");
     ++mGeneration;
@@ -275,6 +281,7 @@ void MaterialResources::updateMaterial(const wgpu::Queue& queue,
     MaterialUniform uniform =
         makeMaterialUniform(values, mMaterialSamplerEntries[material.index()]);
     uniform.flags[2] = std::uint32_t(material.index() + 1);
+    uniform.flags[3] = texturedSlots(material.index());
     queue.WriteBuffer(mUniforms, material.index() * mUniformStride, &uniform, kUniformSize);
 }
 
@@ -295,6 +302,22 @@ const wgpu::Sampler& MaterialResources::sampler(scene::SamplerId sampler) const 
 bool MaterialResources::textured(scene::MaterialId material) const {
     assert(material.index() < mTextured.size());
     return mTextured[material.index()];
+}
+
+bool MaterialResources::samplesThroughPalette(scene::MaterialId material) const {
+    assert(material.index() < mMaterialSamplerEntries.size());
+    const SlotSamplerEntries& entries = mMaterialSamplerEntries[material.index()];
+    return std::any_of(entries.begin(), entries.end(), [](std::uint32_t e) { return e != 0; });
+}
+
+std::uint32_t MaterialResources::texturedSlots(std::size_t material) const {
+    std::uint32_t bits = 0;
+    for (std::size_t slot = 0; slot < kMaterialTextureSlotCount; ++slot) {
+        if (mMaterialTextures[material][slot] != kDefaultTexture) {
+            bits |= 1u << slot;
+        }
+    }
+    return bits;
 }
 
 bool MaterialResources::usesDefaultBaseColor(scene::MaterialId material) const {

@@ -91,6 +91,9 @@ class MaterialResources {
     // drawing it need the MATERIAL_TEXTURES variant. Changes only through
     // replaceBaseColorImage.
     bool textured(scene::MaterialId material) const;
+    // Whether a slot of the material samples through a palette entry other than the first
+    // (pipelines drawing it need the SAMPLER_PALETTE variant).
+    bool samplesThroughPalette(scene::MaterialId material) const;
 
     // Rewrites the uniform range of `material` from `values` (factors, texture transform,
     // alpha cutoff). Textures and samplers stay as created: changing which texture a material
@@ -169,6 +172,8 @@ class MaterialResources {
     std::uint64_t mUploadedBytes = 0;
     TextureUploadTimes mUploadTimes;
 
+    // Bits of the slots that bind an uploaded texture (MaterialUniform::flags[3]).
+    std::uint32_t texturedSlots(std::size_t material) const;
     wgpu::BindGroup createBindGroup(const wgpu::Device& device,
                                     const BindGroupLayouts& layouts,
                                     std::size_t material,

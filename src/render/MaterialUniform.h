@@ -57,7 +57,9 @@ struct MaterialUniform {
     // Transmission factor, thickness factor, attenuation distance (0: none), dispersion.
     float transmission[4];
     float attenuationColor[4];  // KHR_materials_volume's attenuation colour.
-    std::uint32_t flags[4];     // ShadingModel, kMaterial* bits, 1 + material index.
+    // ShadingModel, kMaterial* bits, 1 + material index, bits of the slots bound to a texture
+    // (MaterialResources sets the last two).
+    std::uint32_t flags[4];
     TextureSlotUniform slots[kMaterialTextureSlotCount];  // Indexed by TextureSlot.
 };
 static_assert(sizeof(MaterialUniform) == 752);

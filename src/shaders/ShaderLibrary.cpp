@@ -46,6 +46,12 @@ std::set<std::string, std::less<>> ShaderVariantKey::flags() const {
     if (morphed) {
         result.insert("MORPHED");
     }
+    if (materials && materialExtensions) {
+        result.insert("MATERIAL_EXTENSIONS");
+    }
+    if (materials && materialTextures && samplerPalette) {
+        result.insert("SAMPLER_PALETTE");
+    }
     if (animated()) {
         result.insert("ANIMATED");
     }
@@ -61,7 +67,7 @@ std::string ShaderVariantKey::describe() const {
 }
 
 std::size_t ShaderVariantKeyHash::operator()(const ShaderVariantKey& key) const noexcept {
-    static_assert(sizeof(ShaderVariantKey) == 12, "keep ShaderVariantKey padded and small");
+    static_assert(sizeof(ShaderVariantKey) == 16, "keep ShaderVariantKey padded and small");
     return std::hash<std::string_view>{}(
         std::string_view(reinterpret_cast<const char*>(&key), sizeof(key)));
 }

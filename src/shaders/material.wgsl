@@ -34,7 +34,8 @@ struct Material {
     transmission: vec4f,
     attenuationColor: vec4f,    // rgb: KHR_materials_volume's attenuation colour.
     // x: shading model (0 metallic-roughness, 1 specular-glossiness, 2 unlit);
-    // y: kMaterial* feature bits; z: 1 + the material's index (segmentation).
+    // y: kMaterial* feature bits; z: 1 + the material's index (segmentation); w: bit i set when
+    // slot i binds a texture of its own (the others read white without sampling).
     flags: vec4u,
     slots: array<TextureSlot, 17>,
 }
@@ -52,6 +53,15 @@ const kMaterialAnisotropy = 64u;
 const kMaterialAnisotropyTexture = 128u;
 const kMaterialTransmission = 1024u;
 const kMaterialVolume = 2048u;
+
+// The feature bits this pipeline shades: a variant without MATERIAL_EXTENSIONS (its materials
+// use none of them) masks their bits off, so the compiler drops their code as dead.
+#if MATERIAL_EXTENSIONS
+const kCompiledFeatures = 0xffffffffu;
+#else
+const kCompiledFeatures = ~(kMaterialIridescence | kMaterialAnisotropy |
+                            kMaterialAnisotropyTexture | kMaterialTransmission | kMaterialVolume);
+#endif
 
 const kBaseColorSlot = 0u;
 const kMetallicRoughnessSlot = 1u;
@@ -114,22 +124,30 @@ fn slotSamplerEntry(slot: u32) -> u32 {
 // shaders, which have none).
 fn slotSampleGrad(slotTexture: texture_2d<f32>, slot: u32, uv: vec2f, dx: vec2f,
                   dy: vec2f) -> vec4f {
+#if !SAMPLER_PALETTE
+    return textureSampleGrad(slotTexture, materialSampler0, uv, dx, dy);
+#else
     switch slotSamplerEntry(slot) {
         case 1u: { return textureSampleGrad(slotTexture, materialSampler1, uv, dx, dy); }
         case 2u: { return textureSampleGrad(slotTexture, materialSampler2, uv, dx, dy); }
         case 3u: { return textureSampleGrad(slotTexture, materialSampler3, uv, dx, dy); }
         default: { return textureSampleGrad(slotTexture, materialSampler0, uv, dx, dy); }
     }
+#endif
 }
 #else
 // A slot's texture sampled through its palette entry, with implicit derivatives (fragment).
 fn slotSample(slotTexture: texture_2d<f32>, slot: u32, uv: vec2f) -> vec4f {
+#if !SAMPLER_PALETTE
+    return textureSample(slotTexture, materialSampler0, uv);
+#else
     switch slotSamplerEntry(slot) {
         case 1u: { return textureSample(slotTexture, materialSampler1, uv); }
         case 2u: { return textureSample(slotTexture, materialSampler2, uv); }
         case 3u: { return textureSample(slotTexture, materialSampler3, uv); }
         default: { return textureSample(slotTexture, materialSampler0, uv); }
     }
+#endif
 }
 #endif
 #endif

@@ -41,6 +41,11 @@ fn slotUvGradient(slot: u32, d0: vec2f, d1: vec2f) -> vec2f {
 
 fn sampleSlot(slotTexture: texture_2d<f32>, slot: u32, uv0: vec2f, uv1: vec2f,
               gradients: UvGradients) -> vec4f {
+    // A slot without a texture of its own binds the 1-pixel white default: skip the fetch (a
+    // uniform branch), which a textured material's seventeen slots would otherwise all pay.
+    if ((material.flags.w & (1u << slot)) == 0u) {
+        return vec4f(1.0);
+    }
 #if SAMPLE_GRADIENT
     return slotSampleGrad(slotTexture, slot, slotUv(slot, uv0, uv1),
                           slotUvGradient(slot, gradients.dx0, gradients.dx1),
@@ -78,6 +83,7 @@ fn sampleMaterial(uv0: vec2f, uv1: vec2f, gradients: UvGradients) -> MaterialSam
         sampleSlot(sheenColorTexture, kSheenColorSlot, uv0, uv1, gradients).rgb;
     samples.sheenRoughness =
         sampleSlot(sheenRoughnessTexture, kSheenRoughnessSlot, uv0, uv1, gradients).a;
+#if MATERIAL_EXTENSIONS
     samples.iridescence =
         sampleSlot(iridescenceTexture, kIridescenceSlot, uv0, uv1, gradients).r;
     samples.iridescenceThickness =
@@ -86,6 +92,14 @@ fn sampleMaterial(uv0: vec2f, uv1: vec2f, gradients: UvGradients) -> MaterialSam
     samples.transmission =
         sampleSlot(transmissionTexture, kTransmissionSlot, uv0, uv1, gradients).r;
     samples.thickness = sampleSlot(thicknessTexture, kThicknessSlot, uv0, uv1, gradients).g;
+#else
+    // Their shading is compiled out (kCompiledFeatures): what they would read is never used.
+    samples.iridescence = 1.0;
+    samples.iridescenceThickness = 1.0;
+    samples.anisotropy = vec3f(1.0);
+    samples.transmission = 1.0;
+    samples.thickness = 1.0;
+#endif
 #else
     // No texture anywhere: every slot reads white, as the 1-pixel default would.
     samples.baseColor = vec4f(1.0);

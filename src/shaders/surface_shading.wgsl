@@ -133,7 +133,7 @@ fn shadeSurface(worldPosition: vec3f, vertexNormal: vec3f, vertexTangent: vec4f,
     // BLEND alpha is opacity; OPAQUE and MASK fragments are fully opaque once drawn (glTF).
     let alpha = select(1.0, baseColor.a, material.alpha.y > 0.5);
     let model = material.flags.x;
-    let features = material.flags.y;
+    let features = material.flags.y & kCompiledFeatures;
     let emissive = material.emissive.rgb * emissiveSample;
     if (model == kModelUnlit) {
         return vec4f(baseColor.rgb, alpha);

@@ -188,6 +188,12 @@ TEST(BundleTest, MaterialFactorChangesNeedNoReRecording) {
     EXPECT_EQ(dominantChannel(test::pixelAt(*image, x, y)), 1);
     EXPECT_EQ(renderer->strategy()->bundlesRecorded(), 1u);
     EXPECT_FALSE(renderer->updateMaterial(scene::MaterialId{7u}, green).ok());
+    // Adding an extension that chooses the pipelines is refused, naming it.
+    scene::Material iridescent = green;
+    iridescent.iridescence = scene::IridescenceExtension{};
+    auto refused = renderer->updateMaterial(scene::MaterialId{0u}, iridescent);
+    ASSERT_FALSE(refused.ok());
+    EXPECT_NE(refused.error().message.find("iridescence"), std::string::npos);
     EXPECT_TRUE(context->checkNoErrors("material factor").ok());
 }
 

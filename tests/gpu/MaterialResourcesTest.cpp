@@ -295,6 +295,48 @@ TEST(MaterialResourcesTest, UniformsHoldFactorsTransformAndCutoff) {
     EXPECT_TRUE(context->checkNoErrors("uniforms").ok());
 }
 
+// The uniform's last flag word names the slots bound to a texture of their own: the shaders
+// skip sampling the others (they would read the white default). A missing image binds the
+// default and is not named; a replaced base colour image is.
+TEST(MaterialResourcesTest, UniformsNameTheSlotsBoundToATexture) {
+    ENCORE_REQUIRE_VULKAN(context);
+    scene::SceneData scene;
+    scene::Image missing;
+    missing.name = "missing.png";
+    scene.images.push_back(missing);
+    scene.images.push_back(solidImage("present", 2, 2));
+    scene::Material broken;
+    broken.baseColorTexture = addTexture(scene, 0);
+    scene.materials.push_back(broken);
+    scene.materials.push_back(scene::Material{});
+    scene::Material textured;
+    textured.baseColorTexture = addTexture(scene, 1);
+    textured.emissiveTexture = addTexture(scene, 1);
+    scene.materials.push_back(textured);
+
+    Fixture fixture(*context);
+    auto resources = fixture.create(*context, scene);
+    ASSERT_TRUE(resources.ok()) << resources.error().message;
+    constexpr std::uint32_t kBaseColor = 1u << std::uint32_t(TextureSlot::BaseColor);
+    constexpr std::uint32_t kEmissive = 1u << std::uint32_t(TextureSlot::Emissive);
+    EXPECT_EQ(readUniform(*context, *resources, 0).flags[3], 0u);
+    EXPECT_EQ(readUniform(*context, *resources, 1).flags[3], 0u);
+    EXPECT_EQ(readUniform(*context, *resources, 2).flags[3], kBaseColor | kEmissive);
+    // One sampler state: no slot samples through another palette entry.
+    EXPECT_FALSE(resources->samplesThroughPalette(scene::MaterialId{2u}));
+
+    ASSERT_TRUE(resources
+                    ->replaceBaseColorImage(context->device(), context->queue(), fixture.shaders,
+                                            fixture.layouts, scene::MaterialId{1u},
+                                            solidImage("replacement", 2, 2))
+                    .ok());
+    EXPECT_EQ(readUniform(*context, *resources, 1).flags[3], kBaseColor);
+    // A material edit keeps the word.
+    resources->updateMaterial(context->queue(), scene::MaterialId{2u}, textured);
+    EXPECT_EQ(readUniform(*context, *resources, 2).flags[3], kBaseColor | kEmissive);
+    EXPECT_TRUE(context->checkNoErrors("slot bits").ok());
+}
+
 // Images beyond the device's maxTextureDimension2D are downscaled (DeviceLimitsTest checks the
 // warning and the pixels); inconsistent ones and dangling references are errors.
 TEST(MaterialResourcesTest, InconsistentImagesAreErrorsNamingTheImage) {

@@ -55,6 +55,27 @@ TEST(ShaderCompileTest, EveryMeshVariantCompiles) {
     }
 }
 
+// The material specialisations (MATERIAL_EXTENSIONS, SAMPLER_PALETTE) with and without
+// textures and tangents, as MaterialDrawGroups picks them.
+TEST(ShaderCompileTest, MaterialSpecialisationsCompile) {
+    ENCORE_REQUIRE_VULKAN(context);
+    ShaderLibrary library(context->device());
+    for (std::uint32_t bits = 0; bits < 16; ++bits) {
+        ShaderVariantKey key;
+        key.instanceSource = InstanceSource::VisibleList;
+        key.materials = true;
+        key.hasTexcoord = true;
+        key.materialExtensions = bits & 1;
+        key.samplerPalette = bits & 2;
+        key.materialTextures = bits & 4;
+        key.hasTangent = bits & 8;
+        auto module = library.meshModule(key);
+        ASSERT_TRUE(module.ok()) << module.error().message;
+        auto errors = context->checkNoErrors("compiling mesh.wgsl " + key.describe());
+        ASSERT_TRUE(errors.ok()) << errors.error().message;
+    }
+}
+
 // SKINNED, SKINNED_8 and MORPHED with every instance source, with and without materials (the
 // animation group moves from 3 to 2) and tangents (morphed tangents).
 TEST(ShaderCompileTest, AnimatedMeshVariantsCompile) {

@@ -41,7 +41,14 @@ struct ShaderVariantKey {
     bool skinned = false;
     bool skinned8 = false;
     bool morphed = false;
-    std::uint8_t padding = 0;  // Keeps the key free of implicit padding (hashed bytewise).
+    // The material uses iridescence, anisotropy or transmission (and volume, dispersion):
+    // MATERIAL_EXTENSIONS compiles their shading. Without it the code is left out, so frames
+    // of materials without them pay nothing for it (registers, occupancy: measured on the H100).
+    bool materialExtensions = false;
+    // The material's textures sample through more than one palette entry (SAMPLER_PALETTE);
+    // without it every slot samples with materialSampler0.
+    bool samplerPalette = false;
+    std::uint8_t padding[3] = {};  // Keeps the key free of implicit padding (hashed bytewise).
 
     bool animated() const { return skinned || morphed; }
 

@@ -13,14 +13,19 @@ namespace {
 
 // The variant a primitive and its material need: vertex inputs that exist and are read
 // (TEXCOORD_0, COLOR_0; TANGENT only under a normal map; TEXCOORD_1 only when a texture reads
-// it), MASK's discard, and whether the material binds textures at all. Everything else (which
-// slots have textures, extensions, unlit) is uniform data and 1-pixel default textures, so it
-// shares the variant.
+// it), MASK's discard, whether the material binds textures at all, samples them through more
+// than one sampler, and uses the costly extensions (iridescence, anisotropy, transmission).
+// Everything else (which slots have textures, clearcoat, sheen, unlit) is uniform data and
+// 1-pixel default textures, so it shares the variant.
 shaders::ShaderVariantKey materialVariant(const scene::Primitive& primitive,
                                           const scene::Material& material,
-                                          bool textured) {
+                                          const MaterialResources& resources,
+                                          scene::MaterialId materialId) {
     shaders::ShaderVariantKey key;
-    key.materialTextures = textured;
+    key.materialTextures = resources.textured(materialId);
+    key.samplerPalette = key.materialTextures && resources.samplesThroughPalette(materialId);
+    key.materialExtensions = material.iridescence.has_value() || material.anisotropy.has_value() ||
+                             material.transmission.has_value();
     key.instanceSource = shaders::InstanceSource::InstanceStorage;
     key.materials = true;
     key.hasTexcoord = primitive.attribute(scene::Semantic::Texcoord0).has_value();
@@ -147,7 +152,7 @@ Result<void> MaterialDrawGroups::regroup() {
             const scene::MaterialId materialId = mScene->materialOf(scene::MeshId(mesh), index);
             const scene::Material& material = scene.materials[materialId.index()];
             shaders::ShaderVariantKey variant =
-                materialVariant(primitive, material, materials.textured(materialId));
+                materialVariant(primitive, material, materials, materialId);
             if (animation) {
                 animation->addVariantFlags(scene::MeshId(mesh), index, variant);
             }

@@ -202,9 +202,11 @@ Result<void> VisibilityStrategy::createPipelines() {
 
     for (bool textured : {false, true}) {
         for (bool tangent : {false, true}) {
-            std::set<std::string, std::less<>> flags = {"SAMPLE_GRADIENT"};
+            // One shading pipeline serves every material of its bin kind: all features in.
+            std::set<std::string, std::less<>> flags = {"SAMPLE_GRADIENT", "MATERIAL_EXTENSIONS"};
             if (textured) {
                 flags.insert("MATERIAL_TEXTURES");
+                flags.insert("SAMPLER_PALETTE");
             }
             if (tangent) {
                 flags.insert("HAS_TANGENT");
