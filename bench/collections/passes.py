@@ -61,7 +61,9 @@ def run_blender(models, views, size, passes):
         for index, model in enumerate(models):
             out = os.path.join(output, str(index))
             os.makedirs(out)
-            subprocess.run(["xvfb-run", "-a", "blender", "-b", "-P",
+            # --python-exit-code: a failing script (e.g. no numpy for Blender's Python: run
+            # this with Debian's /usr/bin/python3) fails the run instead of writing nothing.
+            subprocess.run(["xvfb-run", "-a", "blender", "-b", "--python-exit-code", "1", "-P",
                             os.path.join(HERE, "blender_views.py"), "--", model, out, "eevee",
                             str(views), str(size), "16", "all", "all" if passes else "none"],
                            capture_output=True, text=True, check=True)
