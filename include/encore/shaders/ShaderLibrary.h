@@ -41,7 +41,11 @@ struct ShaderVariantKey {
     bool skinned = false;
     bool skinned8 = false;
     bool morphed = false;
-    std::uint8_t padding = 0;  // Keeps the key free of implicit padding (hashed bytewise).
+    // With materials: 0, or the four pass targets beside the colour (PASS_TARGETS, encore
+    // batch's passes in one render pass, render/PassTargets.h), their segmentation ids counting
+    // 1 nodes, 2 meshes, 3 materials. Also keeps the key free of implicit padding (hashed
+    // bytewise).
+    std::uint8_t passTargets = 0;
 
     bool animated() const { return skinned || morphed; }
 
