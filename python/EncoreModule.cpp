@@ -262,7 +262,8 @@ class Renderer {
                            float rotation,
                            float exposure,
                            const std::string& toneMapping,
-                           const std::string& background) {
+                           const std::string& background,
+                           bool passFrames) {
         const auto [width, height] = imageSize(size);
         const ViewShading shading =
             viewShading(environment, intensity, rotation, exposure, toneMapping, background);
@@ -301,7 +302,7 @@ class Renderer {
             py::gil_scoped_release release;
             std::lock_guard lock(mMutex);  // Python threads may share a renderer.
             rendered = valueOrThrow(render(scene.data, variant, cameraViews, rig, width, height,
-                                           normals, depth, shading, kinds, by));
+                                           normals, depth, shading, kinds, by, passFrames));
         }
         const auto rgbaArray = [&](const std::vector<image::ImageRgba8>& images) {
             py::array_t<std::uint8_t> pixels(
@@ -570,12 +571,26 @@ class Renderer {
                             bool depth,
                             const ViewShading& shading,
                             std::span<const batch::ViewImage> kinds,
-                            batch::SegmentationBy by) {
+                            batch::SegmentationBy by,
+                            bool passFrames) {
         const batch::StripLayout layout =
             batch::stripLayout(width, height, rig.views, mContext->limits());
+        const render::StrategyChoice choice =
+            mStrategy.value_or(render::StrategyChoice::of(render::StrategyKind::Bundles, false));
+        // The passes that share the colour's camera are drawn in its render pass, as `encore
+        // batch` draws them, unless pass_frames=True.
+        batch::ExtraImages images;
+        applyPassKinds(kinds, images);
+        images.drawing = passFrames ? batch::PassDrawing::Frames : batch::PassDrawing::Targets;
+        const render::PassTargets passTargets =
+            batch::drawsPassTargets(images, choice.kind, mContext->limits())
+                ? batch::passTargetsFor(by)
+                : render::PassTargets::None;
         if (!mRenderer || mRenderer->target().width() != layout.targetWidth() ||
-            mRenderer->target().height() != layout.height) {
+            mRenderer->target().height() != layout.height || mPassTargets != passTargets) {
             render::RendererOptions options;
+            options.passTargets = passTargets;
+            mPassTargets = passTargets;
             options.target = {layout.targetWidth(), layout.height, mSamples};
             options.toneMapping.background = render::BackgroundKind::Transparent;
             options.target.hdr = true;  // Whatever the background: depth and HDR read it.
@@ -591,8 +606,6 @@ class Renderer {
             // preparing failed: hold it that long.
             mPrepared.reset();
             mHeld = scene;
-            const render::StrategyChoice choice = mStrategy.value_or(
-                render::StrategyChoice::of(render::StrategyKind::Bundles, false));
             ENCORE_TRY(mRenderer->prepare(*scene, choice.kind, choice.bundle));
             mPrepared = scene;
         }
@@ -626,10 +639,11 @@ class Renderer {
     std::uint32_t mSamples;
     std::optional<render::StrategyChoice> mStrategy;
     std::unique_ptr<gpu::Context> mContext;
-    std::unique_ptr<render::Renderer> mRenderer;            // After mContext: destroyed before it.
-    std::unique_ptr<batch::BatchRenderer> mBatchRenderers;  // Kept by batch() between calls.
-    std::shared_ptr<const scene::SceneData> mHeld;          // Last given to prepare().
-    std::shared_ptr<const scene::SceneData> mPrepared;      // Prepared successfully.
+    std::unique_ptr<render::Renderer> mRenderer;  // After mContext: destroyed before it.
+    render::PassTargets mPassTargets = render::PassTargets::None;  // mRenderer's.
+    std::unique_ptr<batch::BatchRenderer> mBatchRenderers;         // Kept by batch() between calls.
+    std::shared_ptr<const scene::SceneData> mHeld;                 // Last given to prepare().
+    std::shared_ptr<const scene::SceneData> mPrepared;             // Prepared successfully.
     std::string mEnvironment;  // The .hdr the renderer lights with; empty: the studio one.
     std::mutex mMutex;
 };
@@ -689,7 +703,7 @@ PYBIND11_MODULE(_encore, module) {
              py::arg("segmentation_by") = "node", py::arg("environment") = py::none(),
              py::arg("environment_intensity") = 1.0f, py::arg("environment_rotation") = 0.0f,
              py::arg("exposure") = 1.0f, py::arg("tone_mapping") = "neutral",
-             py::arg("background") = "transparent",
+             py::arg("background") = "transparent", py::arg("pass_frames") = false,
              "Renders `views` RGBA views (straight alpha, transparent background) of the scene "
              "normalised into a unit box, from an orbit `elevation` degrees above the horizon or "
              "(random=True) directions uniform on the sphere drawn from `seed` (and, as `encore "
@@ -711,7 +725,9 @@ PYBIND11_MODULE(_encore, module) {
              "segmentation uint16 (N, H, W), 1 + the node (segmentation_by=\"mesh\", "
              "\"material\") index, needing samples=1; hdr float32 (N, H, W, 4), linear and "
              "premultiplied) with \"intrinsics\" and \"cameras\", as `encore batch` writes "
-             "them (docs/batch.md#passes). Shading as `encore render`'s: environment (an .hdr "
+             "them (docs/batch.md#passes); they are drawn in the colour's render pass, or with "
+             "pass_frames=True one frame per pass (the same values, slower). Shading as `encore "
+             "render`'s: environment (an .hdr "
              "file), environment_intensity, environment_rotation (degrees), exposure, "
              "tone_mapping (neutral, aces, none), background (transparent, env, #rrggbb). The GIL "
              "is released while rendering.")
