@@ -95,6 +95,14 @@ image::ImageGray16 segmentationIdsOfPassTarget(const FloatStrip& strip) {
 std::vector<float> halfStrip(const gpu::MappedReadback& wide,
                              std::uint32_t strip,
                              std::uint32_t width) {
+    // Every half's value, once: a lookup per texel channel (views of 512 x 512 have a million).
+    static const std::vector<float> kHalves = [] {
+        std::vector<float> values(65536);
+        for (std::uint32_t half = 0; half < values.size(); ++half) {
+            values[half] = gpu::halfToFloat(std::uint16_t(half));
+        }
+        return values;
+    }();
     std::vector<float> texels(std::size_t(width) * wide.height * 4);
     for (std::uint32_t y = 0; y < wide.height; ++y) {
         const std::uint8_t* row =
@@ -103,7 +111,7 @@ std::vector<float> halfStrip(const gpu::MappedReadback& wide,
         for (std::size_t i = 0; i < std::size_t(width) * 4; ++i) {
             std::uint16_t half;
             std::memcpy(&half, row + i * 2, 2);
-            out[i] = gpu::halfToFloat(half);
+            out[i] = kHalves[half];
         }
     }
     return texels;

@@ -32,8 +32,8 @@ Result<PassTargetTextures> PassTargetTextures::create(const wgpu::Device& device
         resolved.label = kTargetLabels[i];
         resolved.size = {target.width(), target.height(), 1};
         resolved.format = RenderTarget::kHdrFormat;
-        resolved.usage = wgpu::TextureUsage::RenderAttachment |
-                         wgpu::TextureUsage::TextureBinding | wgpu::TextureUsage::CopySrc;
+        resolved.usage = wgpu::TextureUsage::RenderAttachment | wgpu::TextureUsage::TextureBinding |
+                         wgpu::TextureUsage::CopySrc;
         pass.resolved = device.CreateTexture(&resolved);
         pass.resolvedView = pass.resolved.CreateView();
         if (target.sampleCount() > 1) {
