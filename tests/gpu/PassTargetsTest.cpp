@@ -10,6 +10,7 @@
 #include "encore/render/RenderSetup.h"
 #include "encore/render/Renderer.h"
 #include "gpu/Readback.h"
+#include "render/PipelineKey.h"
 
 namespace encore::render {
 namespace {
@@ -139,6 +140,22 @@ TEST(PassTargetsTest, PassImagesEqualTheDebugChannelsFrames) {
         // Variants, not more pipelines: each pipeline gains the targets.
         EXPECT_EQ(targets->setup().pipelinesCreated, frames->setup().pipelinesCreated);
     }
+}
+
+// Only the variant with pass targets has them: the flags without it, and its pipelines' colour
+// targets, are what they were.
+TEST(PassTargetsTest, OnlyThePassTargetVariantHasMoreColourTargets) {
+    shaders::ShaderVariantKey key;
+    key.materials = true;
+    EXPECT_EQ(sceneColorTargets(key), 1u);
+    EXPECT_EQ(key.flags().count("PASS_TARGETS"), 0u);
+    key.passTargets = 2;
+    EXPECT_EQ(sceneColorTargets(key), 5u);
+    EXPECT_EQ(key.flags().count("PASS_TARGETS"), 1u);
+    EXPECT_EQ(key.flags().count("SEGMENT_BY_MESH"), 1u);
+    key.materials = false;  // Vertex colours: no pass images to write.
+    EXPECT_EQ(sceneColorTargets(key), 1u);
+    EXPECT_EQ(key.flags().count("PASS_TARGETS"), 0u);
 }
 
 TEST(PassTargetsTest, StrategiesWithoutMaterialShadersAreRefused) {
