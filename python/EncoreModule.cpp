@@ -71,7 +71,7 @@ PYBIND11_MODULE(_encore, module) {
              py::arg("segmentation_by") = "node", py::arg("environment") = py::none(),
              py::arg("environment_intensity") = 1.0f, py::arg("environment_rotation") = 0.0f,
              py::arg("exposure") = 1.0f, py::arg("tone_mapping") = "neutral",
-             py::arg("background") = "transparent",
+             py::arg("background") = "transparent", py::arg("pass_frames") = false,
              "Renders `views` RGBA views (straight alpha, transparent background) of the scene "
              "normalised into a unit box, from an orbit `elevation` degrees above the horizon or "
              "(random=True) directions uniform on the sphere drawn from `seed` (and, as `encore "
@@ -93,7 +93,9 @@ PYBIND11_MODULE(_encore, module) {
              "segmentation uint16 (N, H, W), 1 + the node (segmentation_by=\"mesh\", "
              "\"material\") index, needing samples=1; hdr float32 (N, H, W, 4), linear and "
              "premultiplied) with \"intrinsics\" and \"cameras\", as `encore batch` writes "
-             "them (docs/batch.md#passes). Shading as `encore render`'s: environment (an .hdr "
+             "them (docs/batch.md#passes); they are drawn in the colour's render pass, or with "
+             "pass_frames=True one frame per pass (the same values, slower). Shading as `encore "
+             "render`'s: environment (an .hdr "
              "file), environment_intensity, environment_rotation (degrees), exposure, "
              "tone_mapping (neutral, aces, none), background (transparent, env, #rrggbb). The GIL "
              "is released while rendering.")

@@ -94,7 +94,8 @@ py::object Renderer::renderViews(const Scene& scene,
                                  float rotation,
                                  float exposure,
                                  const std::string& toneMapping,
-                                 const std::string& background) {
+                                 const std::string& background,
+                                 bool passFrames) {
     const auto [width, height] = imageSize(size);
     const ViewShading shading =
         viewShading(environment, intensity, rotation, exposure, toneMapping, background);
@@ -132,7 +133,7 @@ py::object Renderer::renderViews(const Scene& scene,
         py::gil_scoped_release release;
         std::lock_guard lock(mMutex);  // Python threads may share a renderer.
         rendered = valueOrThrow(render(scene.data, variant, cameraViews, rig, width, height,
-                                       normals, depth, shading, kinds, by));
+                                       normals, depth, shading, kinds, by, passFrames));
     }
     const auto rgbaArray = [&](const std::vector<image::ImageRgba8>& images) {
         py::array_t<std::uint8_t> pixels(
@@ -216,12 +217,26 @@ Result<Renderer::Rendered> Renderer::render(const std::shared_ptr<const scene::S
                                             bool depth,
                                             const ViewShading& shading,
                                             std::span<const batch::ViewImage> kinds,
-                                            batch::SegmentationBy by) {
+                                            batch::SegmentationBy by,
+                                            bool passFrames) {
     const batch::StripLayout layout =
         batch::stripLayout(width, height, rig.views, mContext->limits());
+    const render::StrategyChoice choice =
+        mStrategy.value_or(render::StrategyChoice::of(render::StrategyKind::Bundles, false));
+    // The passes that share the colour's camera are drawn in its render pass, as `encore
+    // batch` draws them, unless pass_frames=True.
+    batch::ExtraImages images;
+    applyPassKinds(kinds, images);
+    images.drawing = passFrames ? batch::PassDrawing::Frames : batch::PassDrawing::Targets;
+    const render::PassTargets passTargets =
+        batch::drawsPassTargets(images, choice.kind, mContext->limits())
+            ? batch::passTargetsFor(by)
+            : render::PassTargets::None;
     if (!mRenderer || mRenderer->target().width() != layout.targetWidth() ||
-        mRenderer->target().height() != layout.height) {
+        mRenderer->target().height() != layout.height || mPassTargets != passTargets) {
         render::RendererOptions options;
+        options.passTargets = passTargets;
+        mPassTargets = passTargets;
         options.target = {layout.targetWidth(), layout.height, mSamples};
         options.toneMapping.background = render::BackgroundKind::Transparent;
         options.target.hdr = true;  // Whatever the background: depth and HDR read it.
@@ -237,8 +252,6 @@ Result<Renderer::Rendered> Renderer::render(const std::shared_ptr<const scene::S
         // preparing failed: hold it that long.
         mPrepared.reset();
         mHeld = scene;
-        const render::StrategyChoice choice =
-            mStrategy.value_or(render::StrategyChoice::of(render::StrategyKind::Bundles, false));
         ENCORE_TRY(mRenderer->prepare(*scene, choice.kind, choice.bundle));
         mPrepared = scene;
     }

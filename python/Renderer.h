@@ -59,7 +59,8 @@ class Renderer {
                            float rotation,
                            float exposure,
                            const std::string& toneMapping,
-                           const std::string& background);
+                           const std::string& background,
+                           bool passFrames);
 
     // Runs the job of `encore batch` on this renderer's device.
     py::dict runBatch(const py::object& inputs,
@@ -137,15 +138,17 @@ class Renderer {
                             bool depth,
                             const ViewShading& shading,
                             std::span<const batch::ViewImage> kinds,
-                            batch::SegmentationBy by);
+                            batch::SegmentationBy by,
+                            bool passFrames);
 
     std::uint32_t mSamples;
     std::optional<render::StrategyChoice> mStrategy;
     std::unique_ptr<gpu::Context> mContext;
-    std::unique_ptr<render::Renderer> mRenderer;            // After mContext: destroyed before it.
-    std::unique_ptr<batch::BatchRenderer> mBatchRenderers;  // Kept by batch() between calls.
-    std::shared_ptr<const scene::SceneData> mHeld;          // Last given to prepare().
-    std::shared_ptr<const scene::SceneData> mPrepared;      // Prepared successfully.
+    std::unique_ptr<render::Renderer> mRenderer;  // After mContext: destroyed before it.
+    render::PassTargets mPassTargets = render::PassTargets::None;  // mRenderer's.
+    std::unique_ptr<batch::BatchRenderer> mBatchRenderers;         // Kept by batch() between calls.
+    std::shared_ptr<const scene::SceneData> mHeld;                 // Last given to prepare().
+    std::shared_ptr<const scene::SceneData> mPrepared;             // Prepared successfully.
     std::string mEnvironment;  // The .hdr the renderer lights with; empty: the studio one.
     std::mutex mMutex;
 };

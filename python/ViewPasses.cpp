@@ -2,12 +2,15 @@
 
 #include <glm/gtc/constants.hpp>
 
+#include "batch/PassImages.h"
 #include "encore/image/HdrImage.h"
+#include "gpu/Readback.h"
 #include "image/Srgb.h"
 
 #include <algorithm>
 #include <cstdio>
 #include <cstring>
+#include <optional>
 
 namespace encore::python {
 namespace {
@@ -84,7 +87,11 @@ void applyBatchPasses(const py::object& passes,
     if (passes.is_none()) {
         return;
     }
-    for (const batch::ViewImage kind : passKinds(passes)) {
+    applyPassKinds(passKinds(passes), images);
+}
+
+void applyPassKinds(std::span<const batch::ViewImage> kinds, batch::ExtraImages& images) {
+    for (const batch::ViewImage kind : kinds) {
         switch (kind) {
             case batch::ViewImage::Normal:
                 images.normals = true;
@@ -216,6 +223,78 @@ Result<void> applyShading(render::Renderer& renderer,
     return renderer.setToneMapping(toneMapping);
 }
 
+namespace {
+
+// renderPasses with the renderer's pass targets: one frame per target draws every pass, each
+// image then read from its own texture.
+Result<std::vector<PassImages>> renderPassTargets(render::Renderer& renderer,
+                                                  const scene::Bounds& bounds,
+                                                  std::span<const batch::ViewCamera> views,
+                                                  const batch::ViewRigOptions& rig,
+                                                  const batch::StripLayout& layout,
+                                                  std::span<const batch::ViewImage> kinds) {
+    const glm::mat4 toUnitBox = batch::normalization(bounds, rig.normalize);
+    const float unitsPerModelUnit = toUnitBox[0][0];
+    std::vector<PassImages> passes(kinds.size());
+    for (std::uint32_t first = 0; first < views.size(); first += layout.strips) {
+        const std::vector<render::Camera> cameras =
+            batch::stripCameras(views, first, layout, toUnitBox);
+        renderer.renderViews(cameras);
+        const std::uint32_t count =
+            std::min<std::uint32_t>(layout.strips, std::uint32_t(views.size()) - first);
+        std::optional<std::vector<float>> depthAndId;
+        for (std::size_t k = 0; k < kinds.size(); ++k) {
+            const batch::ViewImage kind = kinds[k];
+            if (kind == batch::ViewImage::Depth || kind == batch::ViewImage::Segmentation ||
+                kind == batch::ViewImage::Hdr) {
+                std::vector<float> hdr;
+                if (kind == batch::ViewImage::Hdr) {
+                    ENCORE_TRY_ASSIGN(hdr, renderer.readHdrImage());
+                } else if (!depthAndId) {
+                    ENCORE_TRY_ASSIGN(depthAndId,
+                                      gpu::readTextureRgba16Float(
+                                          renderer.context(),
+                                          renderer.passTexture(render::PassImage::DepthAndId)));
+                }
+                const std::vector<float>& wide = kind == batch::ViewImage::Hdr ? hdr : *depthAndId;
+                for (std::uint32_t strip = 0; strip < count; ++strip) {
+                    const batch::FloatStrip pixels{wide, layout.targetWidth(), strip, layout.width,
+                                                   layout.height};
+                    if (kind == batch::ViewImage::Hdr) {
+                        passes[k].floats.push_back(batch::hdrPixels(pixels));
+                    } else if (kind == batch::ViewImage::Depth) {
+                        passes[k].floats.push_back(
+                            batch::depthDistances(pixels, unitsPerModelUnit));
+                    } else {
+                        const image::ImageGray16 ids = batch::segmentationIdsOfPassTarget(pixels);
+                        passes[k].floats.emplace_back(ids.pixels.begin(), ids.pixels.end());
+                    }
+                }
+                continue;
+            }
+            image::ImageRgba8 wide;
+            if (kind == batch::ViewImage::Color) {
+                ENCORE_TRY_ASSIGN(wide, renderer.readImage());
+            } else {
+                ENCORE_TRY_ASSIGN(wide,
+                                  gpu::readTexture(renderer.context(),
+                                                   renderer.passTexture(batch::passImageOf(kind))));
+            }
+            for (std::uint32_t strip = 0; strip < count; ++strip) {
+                image::ImageRgba8 view = batch::cropStrip(wide, strip, layout.width);
+                // Linear values that the sRGB image encoded, as renderStrips decodes them.
+                if (kind == batch::ViewImage::Normal || kind == batch::ViewImage::Material) {
+                    batch::decodeNormalImage(view);
+                }
+                passes[k].rgba.push_back(std::move(view));
+            }
+        }
+    }
+    return passes;
+}
+
+}  // namespace
+
 Result<std::vector<PassImages>> renderPasses(render::Renderer& renderer,
                                              const scene::Bounds& bounds,
                                              std::span<const batch::ViewCamera> views,
@@ -223,6 +302,9 @@ Result<std::vector<PassImages>> renderPasses(render::Renderer& renderer,
                                              const batch::StripLayout& layout,
                                              std::span<const batch::ViewImage> kinds,
                                              batch::SegmentationBy by) {
+    if (renderer.passTexture(render::PassImage::DepthAndId)) {
+        return renderPassTargets(renderer, bounds, views, rig, layout, kinds);
+    }
     std::vector<PassImages> passes;
     for (const batch::ViewImage kind : kinds) {
         PassImages images;

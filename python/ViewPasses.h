@@ -37,6 +37,9 @@ void applyBatchPasses(const py::object& passes,
                       const std::string& depthFormat,
                       batch::ExtraImages& images);
 
+// Sets the passes `kinds` names in `images` (Color changes nothing).
+void applyPassKinds(std::span<const batch::ViewImage> kinds, batch::ExtraImages& images);
+
 // render's shading options as keywords.
 struct ViewShading {
     std::string environment;  // A Radiance .hdr; empty: the studio environment.
@@ -75,7 +78,8 @@ Result<void> applyShading(render::Renderer& renderer,
                           std::string& loaded);
 
 // Draws `kinds` of the views (the scene `renderer` prepared, normalised by `bounds`), one
-// PassImages per kind, in order.
+// PassImages per kind, in order: with the renderer's pass targets (RendererOptions::passTargets)
+// one frame per target for them all, else one frame per pass.
 Result<std::vector<PassImages>> renderPasses(render::Renderer& renderer,
                                              const scene::Bounds& bounds,
                                              std::span<const batch::ViewCamera> views,

@@ -355,9 +355,10 @@ int runBatch(const BatchCommandOptions& options, const GlobalOptions& global) {
                      : std::size_t(std::max(1u, std::thread::hardware_concurrency())));
     if (summary->devices.size() > 1 || global.verbose) {
         for (const batch::DeviceSummary& device : summary->devices) {
-            std::printf("device %zu (%s): %llu models, %llu views\n", device.device,
+            std::printf("device %zu (%s): %llu models, %llu views%s\n", device.device,
                         device.adapter.c_str(), static_cast<unsigned long long>(device.models),
-                        static_cast<unsigned long long>(device.views));
+                        static_cast<unsigned long long>(device.views),
+                        device.passTargets ? ", passes drawn in the colour pass" : "");
         }
     }
     if (global.verbose) {

@@ -29,6 +29,9 @@ void addBatchPassOptions(CLI::App& command, BatchPassOptions& options, CLI::Opti
     command.add_flag("--hdr", options.hdr,
                      "Also write the linear colour before exposure and tone mapping per view "
                      "(000_hdr.exr, half float, premultiplied alpha)");
+    command.add_flag("--pass-frames", options.passFrames,
+                     "Draw each pass as one more frame through a debug channel instead of in the "
+                     "colour frame's render pass (the same images, slower: for comparisons)");
 }
 
 void applyBatchPassOptions(const BatchPassOptions& options, batch::ExtraImages& images) {
@@ -36,6 +39,7 @@ void applyBatchPassOptions(const BatchPassOptions& options, batch::ExtraImages& 
     images.material = options.material;
     images.segmentation = options.segmentation;
     images.hdr = options.hdr;
+    images.drawing = options.passFrames ? batch::PassDrawing::Frames : batch::PassDrawing::Targets;
     images.segmentationBy = options.segmentationBy == "mesh"       ? batch::SegmentationBy::Mesh
                             : options.segmentationBy == "material" ? batch::SegmentationBy::Material
                                                                    : batch::SegmentationBy::Node;

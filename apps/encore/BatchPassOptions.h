@@ -1,7 +1,8 @@
 #pragma once
 
 // `encore batch`'s pass flags beyond --normals and --depth: --albedo, --material,
-// --segmentation [--segmentation-by], --depth-format, --hdr (docs/batch.md#passes).
+// --segmentation [--segmentation-by], --depth-format, --hdr, --pass-frames
+// (docs/batch.md#passes).
 
 #include <string>
 
@@ -16,6 +17,7 @@ struct BatchPassOptions {
     bool material = false;
     bool segmentation = false;
     bool hdr = false;
+    bool passFrames = false;  // --pass-frames: one frame per pass (PassDrawing::Frames).
     std::string segmentationBy = "node";
     std::string depthFormat = "png";
 };

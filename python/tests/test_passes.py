@@ -122,6 +122,19 @@ def test_passes_match_the_tuple_and_are_repeatable(renderer, quads):
     assert np.array_equal(again["depth"], result["depth"])
 
 
+def test_pass_targets_return_what_one_frame_per_pass_returns(renderer, quads):
+    """The passes drawn in the colour's render pass (the default) against pass_frames=True, the
+    earlier path of one frame per pass: the same arrays, element for element, with three views
+    in one target."""
+    keywords = dict(views=3, size=40, elevation=20.0, passes=ALL)
+    targets = renderer.render_views(quads, **keywords)
+    frames = renderer.render_views(quads, pass_frames=True, **keywords)
+    for name in ALL:
+        assert targets[name].dtype == frames[name].dtype, name
+        assert np.array_equal(targets[name], frames[name]), name
+    assert (targets["segmentation"] > 0).sum() > 100
+
+
 def test_segmentation_counts_meshes_or_materials(renderer, quads):
     for by in ("mesh", "material"):
         ids = render(renderer, quads, passes=("segmentation",), segmentation_by=by)["segmentation"]

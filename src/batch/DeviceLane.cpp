@@ -66,13 +66,22 @@ Result<void> DeviceLane::createRenderers() {
     // Pass images have a transparent background whatever the colour images have; depth,
     // segmentation and HDR images are read from the HDR target.
     rendererOptions.target.hdr = options.images.perView() > 1;
+    mPassTargets = drawsPassTargets(options.images, mShared.strategy.kind, mContext.limits());
+    rendererOptions.passTargets =
+        mPassTargets ? passTargetsFor(options.images.segmentationBy) : render::PassTargets::None;
+    // With pass targets every image of a target is one read: as many more slots.
+    const std::size_t readsPerTarget =
+        mPassTargets ? options.images.perView() -
+                           std::size_t(options.images.depth && options.images.segmentation)
+                     : 1;
     // collectRenderer makes sure the GPU is done with a renderer's scene before it prepares.
     rendererOptions.prepareWaitsForIdle = false;
     mRing = nullptr;
     mRenderers.clear();
     // The renderers of an earlier run when they were built from the same options; they light
     // with one environment.
-    ENCORE_TRY(mBatchRenderer.acquire(rendererOptions, options.readbackSlots, options.renderers));
+    ENCORE_TRY(mBatchRenderer.acquire(rendererOptions, options.readbackSlots * readsPerTarget,
+                                      options.renderers));
     for (std::size_t i = 0; i < mBatchRenderer.rendererCount(); ++i) {
         mRenderers.push_back({&mBatchRenderer.renderer(i), {}});
     }
@@ -121,7 +130,14 @@ void DeviceLane::collectOldest() {
         // The pool crops the strips straight out of the mapped buffer: the device thread copies
         // nothing, and the ring unmaps the buffer once the last strip is cropped.
         auto wide = std::make_shared<const gpu::MappedReadback>(std::move(*finished));
-        mShared.writer.writeViews(chunk.job, chunk.first, chunk.count, chunk.kind, std::move(wide));
+        if (!chunk.floatKinds.empty()) {
+            mShared.writer.writeMappedFloatViews(chunk.job, chunk.first, chunk.count,
+                                                 std::move(chunk.floatKinds), std::move(wide),
+                                                 chunk.unitsPerModelUnit);
+        } else {
+            mShared.writer.writeViews(chunk.job, chunk.first, chunk.count, chunk.kind,
+                                      std::move(wide));
+        }
     }
     mStages.readback += secondsSince(start);
 }
@@ -203,14 +219,68 @@ void DeviceLane::renderChunk(const TargetViews& views, ViewImage kind, double& w
     if (kind == ViewImage::Color) {
         mViewsDrawn += count;
     }
-    auto enqueued =
-        mRing->enqueue(renderer.target().colorTexture(), mTimestamps ? &*mTimestamps : nullptr,
-                       render::gpuStageIndex(render::GpuStage::ReadbackCopy));
-    if (!enqueued) {
-        failJob(*job, "render", enqueued.error());
-        return;
+    ChunkInFlight chunk{job, slot, first, count, kind};
+    enqueueReadback(views, renderer.target().colorTexture(), std::move(chunk), waiting);
+}
+
+bool DeviceLane::enqueueReadback(const TargetViews& views,
+                                 const wgpu::Texture& texture,
+                                 ChunkInFlight chunk,
+                                 double& waiting) {
+    if (mRing->full()) {
+        const auto waitStart = Clock::now();
+        const std::uint64_t device = mDevicesLost;
+        collectOldest();
+        waiting += secondsSince(waitStart);
+        if (device != mDevicesLost) {
+            failJob(*views.job, "render", lostWhileDrawing());
+            return false;
+        }
     }
-    mChunks.push_back({job, slot, first, count, kind});
+    auto enqueued = mRing->enqueue(texture, mTimestamps ? &*mTimestamps : nullptr,
+                                   render::gpuStageIndex(render::GpuStage::ReadbackCopy));
+    if (!enqueued) {
+        failJob(*views.job, "render", enqueued.error());
+        return false;
+    }
+    mChunks.push_back(std::move(chunk));
+    return true;
+}
+
+void DeviceLane::readPassTargets(const TargetViews& views,
+                                 float unitsPerModelUnit,
+                                 double& waiting) {
+    const auto& [job, slot, cameras, first, count] = views;
+    const ExtraImages& images = mShared.options.images;
+    std::vector<ViewImage> depthAndId;
+    for (const ViewImage kind : extraPasses(images)) {
+        if (job->failed) {
+            return;
+        }
+        // The renderer may be gone after a device loss inside an earlier enqueue.
+        const render::Renderer& renderer = *mRenderers[slot].renderer;
+        ChunkInFlight chunk{job, slot, first, count, kind};
+        chunk.unitsPerModelUnit = unitsPerModelUnit;
+        if (kind == ViewImage::Depth || kind == ViewImage::Segmentation) {
+            depthAndId.push_back(kind);  // One read for both, below.
+            continue;
+        }
+        if (kind == ViewImage::Hdr) {
+            chunk.floatKinds = {kind};
+            enqueueReadback(views, renderer.target().sceneTexture(), std::move(chunk), waiting);
+        } else {
+            enqueueReadback(views, renderer.passTexture(passImageOf(kind)), std::move(chunk),
+                            waiting);
+        }
+    }
+    if (!depthAndId.empty() && !job->failed) {
+        const render::Renderer& renderer = *mRenderers[slot].renderer;
+        ChunkInFlight chunk{job, slot, first, count, depthAndId.front()};
+        chunk.floatKinds = std::move(depthAndId);
+        chunk.unitsPerModelUnit = unitsPerModelUnit;
+        enqueueReadback(views, renderer.passTexture(render::PassImage::DepthAndId),
+                        std::move(chunk), waiting);
+    }
 }
 
 void DeviceLane::renderDebugChannel(const std::shared_ptr<ModelJob>& job,
@@ -435,6 +505,16 @@ void DeviceLane::renderSample(const std::shared_ptr<ModelJob>& job,
             stripCameras(job->views, first, mLayout, toUnitBox);
         const TargetViews views{job, slotIndex, cameras, first, count};
         renderChunk(views, ViewImage::Color, renderWaiting);
+        if (mPassTargets) {
+            // Every pass was drawn with the colour: read back, nothing more drawn.
+            if (!job->failed) {
+                readPassTargets(views, toUnitBox[0][0], renderWaiting);
+            }
+            if (job->failed) {
+                break;
+            }
+            continue;
+        }
         // The HDR image is the colour frame's linear colour: read before another pass draws.
         if (images.hdr && !job->failed) {
             renderFloatPass(views, ViewImage::Hdr, toUnitBox[0][0], renderWaiting);
@@ -580,6 +660,7 @@ DeviceSummary DeviceLane::summary() const {
     summary.device = mContext.adapterDescription().index;
     summary.models = mModelsPrepared;
     summary.views = mViewsDrawn;
+    summary.passTargets = mPassTargets;
     return summary;
 }
 

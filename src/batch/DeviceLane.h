@@ -52,6 +52,9 @@ struct ChunkInFlight {
     std::uint32_t first = 0;
     std::uint32_t count = 0;
     ViewImage kind = ViewImage::Color;
+    // A read of half floats (pass targets): the images made from it, and the scale of depths.
+    std::vector<ViewImage> floatKinds;
+    float unitsPerModelUnit = 1.0f;
 };
 
 // One of the renderers that take models in turn, and the scene it last prepared: the renderer
@@ -131,6 +134,15 @@ class DeviceLane {
     // Draws a target's views and starts reading them back; `waiting` adds the time spent
     // waiting for a free read-back slot.
     void renderChunk(const TargetViews& views, ViewImage kind, double& waiting);
+    // Starts reading `texture` back for `views` (the images `chunk` names), after a free slot
+    // if need be; false when that failed the job (a device lost meanwhile, a failed enqueue).
+    bool enqueueReadback(const TargetViews& views,
+                         const wgpu::Texture& texture,
+                         ChunkInFlight chunk,
+                         double& waiting);
+    // After renderChunk drew the colour frame with pass targets: reads back every pass image of
+    // its views through the ring (renderer.passTexture), the HDR image from the scene colour.
+    void readPassTargets(const TargetViews& views, float unitsPerModelUnit, double& waiting);
     // After a failure: a lost device is replaced, and the renderer with it.
     void recoverIfLost();
 
@@ -140,6 +152,9 @@ class DeviceLane {
     BatchShared& mShared;
     StageTimes mStages;  // The device thread's stages.
     StripLayout mLayout;
+    // The passes are drawn in the colour frame's render pass (drawsPassTargets), not one frame
+    // per pass.
+    bool mPassTargets = false;
     // Models go to the renderers in turn: while the GPU draws model k with one, the device
     // thread uploads model k + 1 with another (BatchOptions::renderers). No renderer is left
     // after a device loss that could not be recovered.

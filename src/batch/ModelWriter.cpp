@@ -117,31 +117,73 @@ void ModelWriter::writeFloatViews(const std::shared_ptr<ModelJob>& job,
                                   std::span<const float> wide,
                                   std::uint32_t targetWidth,
                                   float unitsPerModelUnit) {
-    const std::uint32_t width = mOptions.width;
-    const std::uint32_t height = mOptions.height;
-    const auto compression = mOptions.pngCompression;
     for (std::uint32_t strip = 0; strip < count; ++strip) {
-        const FloatStrip pixels{wide, targetWidth, strip, width, height};
-        std::function<Result<std::vector<std::uint8_t>>()> encode;
-        if (kind == ViewImage::Hdr) {
-            encode = [rgba = hdrPixels(pixels), width, height] {
-                return encodeExrRgbaHalf(rgba, width, height);
-            };
-        } else if (kind == ViewImage::Segmentation) {
-            encode = [ids = segmentationIds(pixels), compression] {
-                return image::encodePng16(ids, compression);
-            };
-        } else if (mOptions.images.depthFormat == DepthFormat::Exr) {
-            encode = [depth = depthDistances(pixels, unitsPerModelUnit), width, height] {
-                return encodeExrDepth(depth, width, height);
-            };
-        } else {
-            encode = [depth = depthStrip(wide, targetWidth, strip, width, height, unitsPerModelUnit,
-                                         depthScale(mOptions.views)),
-                      compression] { return image::encodePng16(depth, compression); };
-        }
-        writeImage(job, first + strip, kind, std::move(encode));
+        const FloatStrip pixels{wide, targetWidth, strip, mOptions.width, mOptions.height};
+        writeImage(job, first + strip, kind,
+                   floatEncoder(kind, pixels, unitsPerModelUnit, /*packedIds=*/false));
     }
+}
+
+void ModelWriter::writeMappedFloatViews(const std::shared_ptr<ModelJob>& job,
+                                        std::uint32_t first,
+                                        std::uint32_t count,
+                                        std::vector<ViewImage> kinds,
+                                        std::shared_ptr<const gpu::MappedReadback> wide,
+                                        float unitsPerModelUnit) {
+    for (std::uint32_t strip = 0; strip < count; ++strip) {
+        mPool.submitFirst(
+            [this, job, view = first + strip, kinds, wide, strip, unitsPerModelUnit]() mutable {
+                const auto start = Clock::now();
+                const double cpuStart = threadCpuSeconds();
+                const std::vector<float> texels = halfStrip(*wide, strip, mOptions.width);
+                wide.reset();  // The last strip lets the ring have its buffer back.
+                const FloatStrip pixels{texels, mOptions.width, 0, mOptions.width, mOptions.height};
+                std::vector<std::function<Result<std::vector<std::uint8_t>>()>> encoders;
+                for (const ViewImage kind : kinds) {
+                    encoders.push_back(floatEncoder(kind, pixels, unitsPerModelUnit, true));
+                }
+                const double seconds = secondsSince(start);
+                {
+                    std::lock_guard lock(mCounters.mutex);
+                    mCounters.encode += seconds;
+                    mCounters.encodeCpu += threadCpuSeconds() - cpuStart;
+                }
+                {
+                    std::lock_guard lock(job->writtenMutex);
+                    job->times.encode += seconds;
+                }
+                for (std::size_t i = 0; i < kinds.size(); ++i) {
+                    writeImage(job, view, kinds[i], std::move(encoders[i]));
+                }
+            });
+    }
+}
+
+std::function<Result<std::vector<std::uint8_t>>()> ModelWriter::floatEncoder(
+    ViewImage kind,
+    const FloatStrip& pixels,
+    float unitsPerModelUnit,
+    bool packedIds) const {
+    const std::uint32_t width = pixels.width;
+    const std::uint32_t height = pixels.height;
+    const auto compression = mOptions.pngCompression;
+    if (kind == ViewImage::Hdr) {
+        return [rgba = hdrPixels(pixels), width, height] {
+            return encodeExrRgbaHalf(rgba, width, height);
+        };
+    }
+    if (kind == ViewImage::Segmentation) {
+        return [ids = packedIds ? segmentationIdsOfPassTarget(pixels) : segmentationIds(pixels),
+                compression] { return image::encodePng16(ids, compression); };
+    }
+    if (mOptions.images.depthFormat == DepthFormat::Exr) {
+        return [depth = depthDistances(pixels, unitsPerModelUnit), width, height] {
+            return encodeExrDepth(depth, width, height);
+        };
+    }
+    return [depth = depthStrip(pixels.wide, pixels.targetWidth, pixels.strip, width, height,
+                               unitsPerModelUnit, depthScale(mOptions.views)),
+            compression] { return image::encodePng16(depth, compression); };
 }
 
 void ModelWriter::encodeView(const std::shared_ptr<ModelJob>& job,

@@ -155,7 +155,24 @@ class ModelWriter {
                          std::uint32_t targetWidth,
                          float unitsPerModelUnit);
 
+    // The same from a read through the ring (half floats, gpu::MappedReadback::bytesPerTexel
+    // 8), each strip converted on the pool, one image per kind in `kinds`: Hdr reads the scene
+    // colour (RGBA), Depth and Segmentation the pass target that holds depth, the id % 256, the
+    // id / 256 and coverage (render::PassImage::DepthAndId).
+    void writeMappedFloatViews(const std::shared_ptr<ModelJob>& job,
+                               std::uint32_t first,
+                               std::uint32_t count,
+                               std::vector<ViewImage> kinds,
+                               std::shared_ptr<const gpu::MappedReadback> wide,
+                               float unitsPerModelUnit);
+
   private:
+    // How a float image of `kind` is encoded from `pixels` (ids packed as in a DepthAndId pass
+    // target with `packedIds`, else as the segmentation channels write them).
+    std::function<Result<std::vector<std::uint8_t>>()> floatEncoder(ViewImage kind,
+                                                                    const FloatStrip& pixels,
+                                                                    float unitsPerModelUnit,
+                                                                    bool packedIds) const;
     // Crops strip `strip` of a read-back target on the pool, ahead of other tasks (the ring
     // waits for its buffer), then encodes it.
     void encodeView(const std::shared_ptr<ModelJob>& job,

@@ -2,7 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
+
+#include "gpu/Readback.h"
+#include "render/SceneColorTargets.h"
 
 namespace encore::batch {
 
@@ -72,6 +76,84 @@ image::ImageGray16 segmentationIds(const FloatStrip& strip) {
         }
     }
     return ids;
+}
+
+image::ImageGray16 segmentationIdsOfPassTarget(const FloatStrip& strip) {
+    std::vector<float> shifted(std::size_t(strip.width) * strip.height * 4);
+    for (std::uint32_t y = 0; y < strip.height; ++y) {
+        for (std::uint32_t x = 0; x < strip.width; ++x) {
+            const float* texel = strip.texel(x, y);
+            float* out = &shifted[(std::size_t(y) * strip.width + x) * 4];
+            out[0] = texel[1];
+            out[1] = texel[2];
+            out[3] = texel[3];
+        }
+    }
+    return segmentationIds(FloatStrip{shifted, strip.width, 0, strip.width, strip.height});
+}
+
+std::vector<float> halfStrip(const gpu::MappedReadback& wide,
+                             std::uint32_t strip,
+                             std::uint32_t width) {
+    // Every half's value, once: a lookup per texel channel (views of 512 x 512 have a million).
+    static const std::vector<float> kHalves = [] {
+        std::vector<float> values(65536);
+        for (std::uint32_t half = 0; half < values.size(); ++half) {
+            values[half] = gpu::halfToFloat(std::uint16_t(half));
+        }
+        return values;
+    }();
+    std::vector<float> texels(std::size_t(width) * wide.height * 4);
+    for (std::uint32_t y = 0; y < wide.height; ++y) {
+        const std::uint8_t* row =
+            wide.rows + std::size_t(y) * wide.bytesPerRow + std::size_t(strip) * width * 8;
+        float* out = &texels[std::size_t(y) * width * 4];
+        for (std::size_t i = 0; i < std::size_t(width) * 4; ++i) {
+            std::uint16_t half;
+            std::memcpy(&half, row + i * 2, 2);
+            out[i] = kHalves[half];
+        }
+    }
+    return texels;
+}
+
+bool drawsPassTargets(const ExtraImages& images,
+                      render::StrategyKind strategy,
+                      const gpu::DeviceLimits& limits) {
+    const bool passes =
+        images.normals || images.depth || images.albedo || images.material || images.segmentation;
+    const bool meshMaterials = strategy == render::StrategyKind::Materials ||
+                               strategy == render::StrategyKind::Bundles ||
+                               strategy == render::StrategyKind::GpuCulling ||
+                               strategy == render::StrategyKind::GpuCullingBundles;
+    return passes && images.drawing == PassDrawing::Targets && meshMaterials &&
+           limits.maxColorAttachmentBytesPerSample >= render::kPassTargetBytesPerSample;
+}
+
+render::PassTargets passTargetsFor(SegmentationBy by) {
+    switch (by) {
+        case SegmentationBy::Mesh:
+            return render::PassTargets::SegmentByMesh;
+        case SegmentationBy::Material:
+            return render::PassTargets::SegmentByMaterial;
+        case SegmentationBy::Node:
+            break;
+    }
+    return render::PassTargets::SegmentByNode;
+}
+
+render::PassImage passImageOf(ViewImage kind) {
+    switch (kind) {
+        case ViewImage::Normal:
+            return render::PassImage::Normal;
+        case ViewImage::Albedo:
+            return render::PassImage::Albedo;
+        case ViewImage::Material:
+            return render::PassImage::Material;
+        default:
+            break;
+    }
+    return render::PassImage::DepthAndId;
 }
 
 std::vector<SegmentationName> segmentationNames(const scene::SceneData& scene, SegmentationBy by) {

@@ -11,8 +11,11 @@
 #include <vector>
 
 #include "encore/batch/ViewImages.h"
+#include "encore/gpu/DeviceLimits.h"
+#include "encore/gpu/TextureReadbackRing.h"
 #include "encore/image/ImageCodec.h"
 #include "encore/render/Lighting.h"
+#include "encore/render/Renderer.h"
 #include "encore/scene/SceneData.h"
 
 namespace encore::batch {
@@ -45,6 +48,29 @@ std::vector<float> hdrPixels(const FloatStrip& strip);
 // A strip drawn through a segmentation channel: its ids, 0 where less than half of the pixel is
 // covered (the channel writes R = id % 256, G = id / 256, times coverage).
 image::ImageGray16 segmentationIds(const FloatStrip& strip);
+
+// The same from a pass target that holds depth, id % 256, id / 256 and coverage
+// (render::PassImage::DepthAndId): the same values, one channel further on.
+image::ImageGray16 segmentationIdsOfPassTarget(const FloatStrip& strip);
+
+// Strip `strip` (of `width` texels) of a ring read of half floats (bytesPerTexel 8) as RGBA
+// floats, rows packed.
+std::vector<float> halfStrip(const gpu::MappedReadback& wide,
+                             std::uint32_t strip,
+                             std::uint32_t width);
+
+// Whether a batch draws its passes as pass targets of the colour frame (one render pass,
+// render::RendererOptions::passTargets) rather than one frame per pass: when it has a pass
+// other than HDR, `drawing` is Targets, the strategy draws glTF materials in its mesh shader and
+// the device has the colour attachment bytes.
+bool drawsPassTargets(const ExtraImages& images,
+                      render::StrategyKind strategy,
+                      const gpu::DeviceLimits& limits);
+// The renderer's pass targets for a segmentation by `by`.
+render::PassTargets passTargetsFor(SegmentationBy by);
+// The pass image that holds `kind` (Normal, Albedo, Material; Depth and Segmentation share
+// DepthAndId).
+render::PassImage passImageOf(ViewImage kind);
 
 // What each id of a scene's segmentation names: id (1 + the index) and the node's, mesh's or
 // material's name (empty when unnamed); nodes only where they draw a mesh.

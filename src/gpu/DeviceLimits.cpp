@@ -32,6 +32,7 @@ DeviceLimits DeviceLimits::of(const wgpu::Device& device, const LimitOverrides& 
         limits.maxStorageBufferBindingSize = reported.maxStorageBufferBindingSize;
         limits.minUniformBufferOffsetAlignment = reported.minUniformBufferOffsetAlignment;
         limits.maxSampledTexturesPerShaderStage = reported.maxSampledTexturesPerShaderStage;
+        limits.maxColorAttachmentBytesPerSample = reported.maxColorAttachmentBytesPerSample;
     }
     if (overrides.maxTextureDimension2D) {
         limits.maxTextureDimension2D =
@@ -62,6 +63,9 @@ wgpu::Limits requiredLimits(const LimitOverrides& overrides, const wgpu::Limits&
             ? *overrides.maxSampledTexturesPerShaderStage
             : std::min(adapter.maxSampledTexturesPerShaderStage,
                        kRequestedSampledTexturesPerShaderStage);
+    limits.maxColorAttachmentBytesPerSample =
+        std::max(32u, std::min(adapter.maxColorAttachmentBytesPerSample,
+                               kRequestedColorAttachmentBytesPerSample));
     if (overrides.maxTextureDimension2D) {
         limits.maxTextureDimension2D = *overrides.maxTextureDimension2D;
     }

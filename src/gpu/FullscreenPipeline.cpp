@@ -1,17 +1,23 @@
 #include "gpu/FullscreenPipeline.h"
 
+#include <vector>
+
 namespace encore::gpu {
 
 wgpu::RenderPipeline makeFullscreenPipeline(const wgpu::Device& device,
                                             const FullscreenPipelineDescriptor& descriptor) {
-    wgpu::ColorTargetState color{};
-    color.format = descriptor.colorFormat;
-    color.blend = descriptor.blend ? &*descriptor.blend : nullptr;
+    std::vector<wgpu::ColorTargetState> colors(1 + descriptor.untouchedTargets);
+    colors[0].format = descriptor.colorFormat;
+    colors[0].blend = descriptor.blend ? &*descriptor.blend : nullptr;
+    for (std::size_t i = 1; i < colors.size(); ++i) {
+        colors[i].format = descriptor.colorFormat;
+        colors[i].writeMask = wgpu::ColorWriteMask::None;  // The shader has no output there.
+    }
     wgpu::FragmentState fragment{};
     fragment.module = descriptor.module;
     fragment.entryPoint = descriptor.fragmentEntryPoint;
-    fragment.targetCount = 1;
-    fragment.targets = &color;
+    fragment.targetCount = colors.size();
+    fragment.targets = colors.data();
     wgpu::DepthStencilState depth{};
     depth.format = descriptor.depthFormat;
     depth.depthWriteEnabled =

@@ -28,6 +28,9 @@ struct FullscreenPipelineDescriptor {
     // With a depth format: the fragment's frag_depth is written (always, untested).
     bool writesDepth = false;
     std::uint32_t sampleCount = 1;
+    // More colour targets of colorFormat after the first, which the pass has and the fragment
+    // shader does not write (a scene pass with pass targets, render/PassTargets.h).
+    std::uint32_t untouchedTargets = 0;
 };
 
 wgpu::RenderPipeline makeFullscreenPipeline(const wgpu::Device& device,

@@ -93,6 +93,8 @@ Result<std::vector<std::uint8_t>> readTexelRows(Context& context,
     return rows;
 }
 
+}  // namespace
+
 float halfToFloat(std::uint16_t half) {
     const std::uint32_t sign = (half >> 15) & 1;
     const std::uint32_t exponent = (half >> 10) & 0x1f;
@@ -107,8 +109,6 @@ float halfToFloat(std::uint16_t half) {
     }
     return sign ? -value : value;
 }
-
-}  // namespace
 
 void unpadRows(const std::uint8_t* padded,
                std::uint32_t rowBytes,

@@ -27,6 +27,9 @@ void unpadRows(const std::uint8_t* padded,
                std::uint32_t rows,
                std::uint8_t* packed);
 
+// An IEEE half float's value (RGBA16Float texels).
+float halfToFloat(std::uint16_t half);
+
 // Reads mip level 0 of a 2D texture with CopySrc usage. Supported formats: RGBA8Unorm(Srgb) and
 // BGRA8Unorm(Srgb); the result is RGBA either way (bytes as stored, no colour conversion).
 Result<image::ImageRgba8> readTexture(Context& context, const wgpu::Texture& texture);

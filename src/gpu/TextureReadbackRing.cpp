@@ -16,6 +16,7 @@ struct TextureReadbackRing::Slot {
     std::uint32_t width = 0;
     std::uint32_t height = 0;
     std::uint32_t paddedRowBytes = 0;
+    std::uint32_t bytesPerTexel = 4;
     // Set by the map callback, which runs inside Context::wait (WaitAnyOnly).
     bool mapped = false;
     std::string mapMessage;
@@ -79,10 +80,11 @@ Result<std::uint64_t> TextureReadbackRing::enqueue(const wgpu::Texture& texture,
                                                    StageTimestamps* timestamps,
                                                    std::uint32_t stage) {
     const wgpu::TextureFormat format = texture.GetFormat();
+    const bool halves = format == wgpu::TextureFormat::RGBA16Float;
     if (format != wgpu::TextureFormat::RGBA8Unorm &&
-        format != wgpu::TextureFormat::RGBA8UnormSrgb) {
+        format != wgpu::TextureFormat::RGBA8UnormSrgb && !halves) {
         return makeError(ErrorCode::InvalidArgument,
-                         "TextureReadbackRing reads RGBA8 textures only.");
+                         "TextureReadbackRing reads RGBA8 and RGBA16Float textures only.");
     }
     Slot* slot = full() ? nullptr : freeSlot();
     if (!slot) {
@@ -92,7 +94,8 @@ Result<std::uint64_t> TextureReadbackRing::enqueue(const wgpu::Texture& texture,
     }
     slot->width = texture.GetWidth();
     slot->height = texture.GetHeight();
-    slot->paddedRowBytes = paddedRowBytes(slot->width * 4);
+    slot->bytesPerTexel = halves ? 8 : 4;
+    slot->paddedRowBytes = paddedRowBytes(slot->width * slot->bytesPerTexel);
     const std::uint64_t size = std::uint64_t(slot->paddedRowBytes) * slot->height;
     if (size > mContext->limits().maxBufferSize) {
         return makeError(ErrorCode::LimitExceeded,
@@ -158,6 +161,7 @@ Result<MappedReadback> TextureReadbackRing::takeOldestMapped() {
     finished.width = slot->width;
     finished.height = slot->height;
     finished.bytesPerRow = slot->paddedRowBytes;
+    finished.bytesPerTexel = slot->bytesPerTexel;
     finished.rows = static_cast<const std::uint8_t*>(slot->buffer.GetConstMappedRange(0, size));
     slot->held = true;
     slot->released = false;
@@ -177,6 +181,11 @@ Result<MappedReadback> TextureReadbackRing::takeOldestMapped() {
 
 Result<FinishedReadback> TextureReadbackRing::takeOldest() {
     ENCORE_TRY_ASSIGN(auto mapped, takeOldestMapped());
+    if (mapped.bytesPerTexel != 4) {
+        return makeError(
+            ErrorCode::InvalidArgument,
+            "takeOldest returns RGBA8 images: take a float read with takeOldestMapped.");
+    }
     FinishedReadback finished;
     finished.ticket = mapped.ticket;
     finished.waitMilliseconds = mapped.waitMilliseconds;

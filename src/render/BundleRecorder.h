@@ -7,12 +7,14 @@
 
 #include <webgpu/webgpu_cpp.h>
 
+#include <array>
 #include <string>
 #include <utility>
 
 #include "encore/render/DrawCounters.h"
 #include "encore/render/RenderEncoder.h"
 #include "encore/render/RenderSetup.h"
+#include "render/SceneColorTargets.h"
 
 namespace encore::render {
 
@@ -28,8 +30,12 @@ RecordedBundle recordBundle(const RenderSetup& setup,
                             RecordFunction&& record) {
     wgpu::RenderBundleEncoderDescriptor descriptor{};
     descriptor.label = label.c_str();
-    descriptor.colorFormatCount = 1;
-    descriptor.colorFormats = &setup.colorFormat;
+    // A scene pass with pass targets has five colour targets of one format (PassTargets.h).
+    const std::array<wgpu::TextureFormat, kMaxSceneColorTargets> formats = {
+        setup.colorFormat, setup.colorFormat, setup.colorFormat, setup.colorFormat,
+        setup.colorFormat};
+    descriptor.colorFormatCount = setup.passTargets != 0 ? kMaxSceneColorTargets : 1;
+    descriptor.colorFormats = formats.data();
     descriptor.depthStencilFormat = setup.depthFormat;
     descriptor.sampleCount = setup.sampleCount;
     wgpu::RenderBundleEncoder bundleEncoder = setup.device.CreateRenderBundleEncoder(&descriptor);

@@ -1,6 +1,7 @@
 #include "render/PipelineKey.h"
 
 #include <algorithm>
+#include <array>
 #include <cassert>
 #include <cstring>
 #include <string_view>
@@ -8,6 +9,7 @@
 
 #include "encore/render/RenderSetup.h"
 #include "gpu/LayoutEntry.h"
+#include "render/SceneColorTargets.h"
 
 namespace encore::render {
 
@@ -43,6 +45,10 @@ void PipelineKey::sortLayouts() {
 std::size_t PipelineKeyHash::operator()(const PipelineKey& key) const noexcept {
     return std::hash<std::string_view>{}(
         std::string_view(reinterpret_cast<const char*>(&key), sizeof(key)));
+}
+
+std::uint32_t sceneColorTargets(const shaders::ShaderVariantKey& shader) {
+    return shader.materials && shader.passTargets != 0 ? kMaxSceneColorTargets : 1;
 }
 
 Result<wgpu::RenderPipeline> createMeshPipeline(const RenderSetup& setup,
@@ -93,14 +99,17 @@ Result<wgpu::RenderPipeline> createMeshPipeline(const RenderSetup& setup,
                    wgpu::BlendFactor::OneMinusSrcAlpha};
     blend.alpha = {wgpu::BlendOperation::Add, wgpu::BlendFactor::One,
                    wgpu::BlendFactor::OneMinusSrcAlpha};
-    wgpu::ColorTargetState colorTarget{};
-    colorTarget.format = key.colorFormat;
-    colorTarget.blend = key.blend ? &blend : nullptr;
+    // With pass targets, the pass images blend as the colour does (render/PassTargets.h).
+    std::array<wgpu::ColorTargetState, kMaxSceneColorTargets> colorTargets{};
+    for (wgpu::ColorTargetState& colorTarget : colorTargets) {
+        colorTarget.format = key.colorFormat;
+        colorTarget.blend = key.blend ? &blend : nullptr;
+    }
     wgpu::FragmentState fragment{};
     fragment.module = module;
     fragment.entryPoint = "fragmentMain";
-    fragment.targetCount = 1;
-    fragment.targets = &colorTarget;
+    fragment.targetCount = sceneColorTargets(key.shader);
+    fragment.targets = colorTargets.data();
 
     wgpu::DepthStencilState depth{};
     depth.format = key.depthFormat;

@@ -58,6 +58,10 @@ struct PipelineKeyHash {
     std::size_t operator()(const PipelineKey& key) const noexcept;
 };
 
+// The colour targets of a pipeline of `shader`: 1, or with pass targets the colour and the four
+// pass images (render/PassTargets.h).
+std::uint32_t sceneColorTargets(const shaders::ShaderVariantKey& shader);
+
 // Creates the mesh pipeline a key describes.
 Result<wgpu::RenderPipeline> createMeshPipeline(const RenderSetup& setup,
                                                 const PipelineKey& key,

@@ -8,12 +8,31 @@
 #include "render/BindingLimits.h"
 #include "render/GpuScene.h"
 #include "render/MipmapGenerator.h"
+#include "render/PassTargets.h"
 #include "render/PipelineCache.h"
 #include "render/SceneLimits.h"
 #include "render/TransmissionPass.h"
 #include "render/TriangleHistory.h"
 
 namespace encore::render {
+
+namespace {
+
+// Only the mesh shader that draws glTF materials writes the pass targets.
+Result<void> checkPassTargetStrategy(bool passTargets, StrategyKind kind) {
+    const bool meshMaterials = kind == StrategyKind::Materials || kind == StrategyKind::Bundles ||
+                               kind == StrategyKind::GpuCulling ||
+                               kind == StrategyKind::GpuCullingBundles;
+    if (!passTargets || meshMaterials) {
+        return {};
+    }
+    return makeError(ErrorCode::InvalidArgument,
+                     "Pass targets need a strategy that draws glTF materials in its mesh shader "
+                     "(materials, bundles, gpu-culling, gpu-culling-bundles), not " +
+                         std::string(strategyName(kind)) + ".");
+}
+
+}  // namespace
 
 Renderer::Renderer(Renderer&&) noexcept = default;
 Renderer& Renderer::operator=(Renderer&&) noexcept = default;
@@ -63,10 +82,24 @@ Result<void> Renderer::build(const RendererOptions& options) {
                                              renderer.mTarget, options.toneMapping));
         renderer.mToneMapper = std::make_unique<ToneMapper>(std::move(toneMapper));
     }
+    if (options.passTargets != PassTargets::None) {
+        if (context.limits().maxColorAttachmentBytesPerSample < kPassTargetBytesPerSample) {
+            return makeError(ErrorCode::LimitExceeded,
+                             "Pass targets need " + std::to_string(kPassTargetBytesPerSample) +
+                                 " colour attachment bytes per sample; the device has " +
+                                 std::to_string(context.limits().maxColorAttachmentBytesPerSample) +
+                                 ".");
+        }
+        ENCORE_TRY_ASSIGN(auto passTargets,
+                          PassTargetTextures::create(context.device(), context.queue(),
+                                                     *renderer.mShaders, renderer.mTarget));
+        renderer.mPassTargets = std::make_unique<PassTargetTextures>(std::move(passTargets));
+    }
     ENCORE_TRY_ASSIGN(auto background, EnvironmentBackground::create(
                                            context.device(), *renderer.mShaders,
                                            renderer.mLayouts->frame, renderer.mTarget.sceneFormat(),
-                                           RenderTarget::kDepthFormat, options.target.sampleCount));
+                                           RenderTarget::kDepthFormat, options.target.sampleCount,
+                                           renderer.mPassTargets ? kPassTargetCount : 0));
     renderer.mBackground = std::make_unique<EnvironmentBackground>(std::move(background));
 
     renderer.mSetup = std::make_unique<RenderSetup>();
@@ -79,6 +112,7 @@ Result<void> Renderer::build(const RendererOptions& options) {
     setup.colorFormat = renderer.mTarget.sceneFormat();
     setup.depthFormat = RenderTarget::kDepthFormat;
     setup.sampleCount = options.target.sampleCount;
+    setup.passTargets = passTargetsVariant(options.passTargets);
     setup.mappingBudget = context.mappingBudget();
     setup.limits = context.limits();
     if (options.keepPipelines) {
@@ -120,6 +154,7 @@ Result<void> Renderer::recoverFromDeviceLoss() {
     mPlayer.reset();
     mBackground.reset();
     mToneMapper.reset();
+    mPassTargets.reset();
     mFrame.reset();
     mLighting.reset();
     mKeptPipelines.reset();
@@ -161,6 +196,9 @@ Result<void> Renderer::prepare(const scene::SceneData& scene,
             return fits.error().withContext("Preparing '" + scene.sourcePath.string() +
                                             "' for GPU animation");
         }
+    }
+    if (auto drawn = checkPassTargetStrategy(mPassTargets != nullptr, kind); !drawn) {
+        return drawn.error().withContext(what);
     }
     PrepareTimes& times = mSetup->prepareTimes;
     times = {};
@@ -225,6 +263,9 @@ Result<void> Renderer::setStrategy(StrategyKind kind, bool bundle) {
                              std::string(strategyName(kind)) + (bundle ? " (bundled)" : "");
     if (auto fits = checkSceneWithinLimits(mSetup->limits, *mScene, kind); !fits) {
         return fits.error().withContext(what);
+    }
+    if (auto drawn = checkPassTargetStrategy(mPassTargets != nullptr, kind); !drawn) {
+        return drawn.error().withContext(what);
     }
     mSetup->prepareTimes = {};
     const auto start = std::chrono::steady_clock::now();
@@ -324,6 +365,12 @@ Result<void> Renderer::resize(std::uint32_t width, std::uint32_t height) {
     mOptions.target.height = height;
     if (mToneMapper) {
         mToneMapper->bindTarget(mContext->device(), mTarget);
+    }
+    if (mPassTargets) {
+        ENCORE_TRY_ASSIGN(
+            auto passTargets,
+            PassTargetTextures::create(mContext->device(), mContext->queue(), *mShaders, mTarget));
+        *mPassTargets = std::move(passTargets);
     }
     return mContext->checkNoErrors("Resizing the render target to " + std::to_string(width) + "x" +
                                    std::to_string(height));

@@ -8,6 +8,7 @@
 #include "gpu/Readback.h"
 #include "gpu/TimedSubmit.h"
 #include "render/PassAttachments.h"
+#include "render/PassTargets.h"
 #include "render/TransmissionPass.h"
 #include "render/TriangleHistory.h"
 
@@ -87,10 +88,15 @@ FrameResult Renderer::renderPasses(std::span<const Camera> cameras,
             depth.depthLoadOp = attachments.depthLoadOp;
             depth.depthStoreOp = attachments.depthStoreOp;
             depth.depthClearValue = attachments.depthClearValue;
+            // With pass targets, the pass images follow the colour (PassTargets.h).
+            std::vector<wgpu::RenderPassColorAttachment> colors = {color};
+            if (mPassTargets) {
+                mPassTargets->appendAttachments(color, colors);
+            }
             wgpu::RenderPassDescriptor passDescriptor{};
             passDescriptor.label = attachments.label;
-            passDescriptor.colorAttachmentCount = 1;
-            passDescriptor.colorAttachments = &color;
+            passDescriptor.colorAttachmentCount = colors.size();
+            passDescriptor.colorAttachments = colors.data();
             passDescriptor.depthStencilAttachment = &depth;
             // The transmission pass is timed by the GPU timer only (stage timestamps time one
             // scene pass per view).
@@ -158,6 +164,9 @@ FrameResult Renderer::renderPasses(std::span<const Camera> cameras,
             mToneMapper->encode(commandEncoder, mTarget,
                                 mTimer ? nullptr : timestampWrites(GpuStage::ToneMapping));
         }
+        if (mPassTargets) {
+            mPassTargets->encodeImages(commandEncoder);
+        }
     };
     const gpu::SubmitTiming timing = gpu::submitTimed(*mContext, mTimer, encodeFrame);
     result.encodeMilliseconds = timing.encodeMilliseconds;
@@ -210,6 +219,10 @@ Result<std::vector<float>> Renderer::readHdrImage() {
         return makeError(ErrorCode::InvalidArgument, "The render target has no HDR colour.");
     }
     return gpu::readTextureRgba16Float(*mContext, mTarget.sceneTexture());
+}
+
+wgpu::Texture Renderer::passTexture(PassImage image) const {
+    return mPassTargets ? mPassTargets->texture(image) : wgpu::Texture();
 }
 
 Result<image::ImageRgba8> Renderer::readImage() {

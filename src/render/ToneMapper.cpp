@@ -54,9 +54,13 @@ Result<ToneMapper> ToneMapper::create(const wgpu::Device& device,
 }
 
 void ToneMapper::bindTarget(const wgpu::Device& device, const RenderTarget& target) {
-    mBindGroup = gpu::makeBindGroup(
-        device, mLayout, {{0, mUniform, 0, sizeof(ToneMappingUniform)}, {1, target.sceneView()}},
-        "tone mapping");
+    bindSource(device, target.sceneView());
+}
+
+void ToneMapper::bindSource(const wgpu::Device& device, const wgpu::TextureView& source) {
+    mBindGroup = gpu::makeBindGroup(device, mLayout,
+                                    {{0, mUniform, 0, sizeof(ToneMappingUniform)}, {1, source}},
+                                    "tone mapping");
 }
 
 void ToneMapper::setOptions(const ToneMappingOptions& options) {
@@ -75,8 +79,14 @@ void ToneMapper::setOptions(const ToneMappingOptions& options) {
 void ToneMapper::encode(const wgpu::CommandEncoder& commands,
                         const RenderTarget& target,
                         const wgpu::PassTimestampWrites* timestamps) const {
+    encode(commands, target.outputView(), timestamps);
+}
+
+void ToneMapper::encode(const wgpu::CommandEncoder& commands,
+                        const wgpu::TextureView& output,
+                        const wgpu::PassTimestampWrites* timestamps) const {
     wgpu::RenderPassColorAttachment color{};
-    color.view = target.outputView();
+    color.view = output;
     color.loadOp = wgpu::LoadOp::Clear;
     color.storeOp = wgpu::StoreOp::Store;
     wgpu::RenderPassDescriptor descriptor{};
@@ -97,7 +107,8 @@ Result<EnvironmentBackground> EnvironmentBackground::create(
     const wgpu::BindGroupLayout& frameLayout,
     wgpu::TextureFormat colorFormat,
     wgpu::TextureFormat depthFormat,
-    std::uint32_t sampleCount) {
+    std::uint32_t sampleCount,
+    std::uint32_t passTargets) {
     ENCORE_TRY_ASSIGN(auto module, shaders.module("sky.wgsl"));
     EnvironmentBackground background;
     background.mPipeline = gpu::makeFullscreenPipeline(
@@ -106,7 +117,8 @@ Result<EnvironmentBackground> EnvironmentBackground::create(
                  .layout = gpu::makePipelineLayout(device, {frameLayout}),
                  .colorFormat = colorFormat,
                  .depthFormat = depthFormat,
-                 .sampleCount = sampleCount});
+                 .sampleCount = sampleCount,
+                 .untouchedTargets = passTargets});
     return background;
 }
 

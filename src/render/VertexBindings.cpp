@@ -304,6 +304,9 @@ PipelineKey meshPipelineKey(const RenderSetup& setup,
     key.depthFormat = setup.depthFormat;
     key.sampleCount = setup.sampleCount;
     key.shader = shader;
+    if (shader.materials) {
+        key.shader.passTargets = setup.passTargets;  // Frames without pass targets: 0.
+    }
     return key;
 }
 

@@ -55,6 +55,14 @@ std::set<std::string, std::less<>> ShaderVariantKey::flags() const {
     if (animated()) {
         result.insert("ANIMATED");
     }
+    if (materials && passTargets != 0) {
+        result.insert("PASS_TARGETS");
+        if (passTargets == 2) {
+            result.insert("SEGMENT_BY_MESH");
+        } else if (passTargets == 3) {
+            result.insert("SEGMENT_BY_MATERIAL");
+        }
+    }
     return result;
 }
 

@@ -21,6 +21,9 @@
 //   SKINNED_8         (with SKINNED) JOINTS_1/WEIGHTS_1 too: eight influences per vertex.
 //   MORPHED           the primitive has morph targets: position, normal and tangent deltas read
 //                     from a storage buffer by vertex_index, weighted by the instance's weights.
+//   PASS_TARGETS      (with MATERIALS) four more colour targets: normal, albedo, material, and
+//                     depth with the segmentation id of SEGMENT_BY_MESH, SEGMENT_BY_MATERIAL
+//                     or else the node (pass_targets.wgsl, render/PassTargets.h).
 //   ANIMATED          SKINNED or MORPHED: the animation group (render/AnimationBuffers.h) is
 //                     bound, as group 3 with MATERIALS and group 2 without (no material group).
 // The colour target is either the sRGB output, written with the display transform applied
@@ -34,6 +37,9 @@
 #include "brdf.wgsl"
 #include "material.wgsl"
 #include "material_samples.wgsl"
+#if PASS_TARGETS
+#include "pass_targets.wgsl"
+#endif
 #include "surface_shading.wgsl"
 #endif
 
@@ -250,8 +256,13 @@ fn segmentationColor(shaded: vec4f, ids: vec2f) -> vec4f {
 }
 #endif
 
+#if PASS_TARGETS
+@fragment
+fn fragmentMain(input: VertexOutput, @builtin(front_facing) frontFacing: bool) -> PassOutputs {
+#else
 @fragment
 fn fragmentMain(input: VertexOutput, @builtin(front_facing) frontFacing: bool) -> @location(0) vec4f {
+#endif
 #if MATERIALS
     // Every slot is sampled here, in uniform control flow (implicit derivatives), whether the
     // material has a texture there or binds the 1-pixel default.
@@ -271,7 +282,18 @@ fn fragmentMain(input: VertexOutput, @builtin(front_facing) frontFacing: bool) -
     let shaded = shadeSurface(input.worldPosition, input.normal, input.tangent, frontFacing,
                               baseColor, samples, positionDx, positionDy, uvDx, uvDy,
                               input.modelScale);
+#if PASS_TARGETS
+#if SEGMENT_BY_MATERIAL
+    let id = f32(material.flags.z);
+#elif SEGMENT_BY_MESH
+    let id = input.ids.y;
+#else
+    let id = input.ids.x;
+#endif
+    return passOutputs(displayColor(shaded), shaded.a, id);
+#else
     return displayColor(segmentationColor(shaded, input.ids));
+#endif
 #else
     return displayColor(vec4f(shade(input.color.rgb, input.normal), 1.0));
 #endif

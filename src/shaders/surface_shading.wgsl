@@ -334,6 +334,10 @@ fn shadeSurface(worldPosition: vec3f, vertexNormal: vec3f, vertexTangent: vec4f,
         color = color * (1.0 - coatFactor * coatFresnel) + coat * coatFactor;
     }
 
+#if PASS_TARGETS
+    surfacePasses = SurfacePasses(n * 0.5 + 0.5, baseColor.rgb, vec3f(occlusion, roughness, metallic),
+                                  -(frame.view * vec4f(worldPosition, 1.0)).z);
+#endif
     switch (lighting.debugChannel) {
         case 1u: {
             color = baseColor.rgb;

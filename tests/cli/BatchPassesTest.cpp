@@ -269,6 +269,49 @@ TEST(BatchPassesTest, SameSeedWritesIdenticalPasses) {
     EXPECT_TRUE(a == batchOutputFiles(output / "b")) << "the same seed wrote other bytes";
 }
 
+// The passes drawn in the colour frame's render pass (the default) write the bytes that one
+// frame per pass writes (--pass-frames): the shader computes the same values for both, and
+// blending and the resolve treat them alike. Three views in one target, 1 and 4 samples, and
+// some of the shared models (a blended, a textured and a normal-mapped one) where present.
+TEST(BatchPassesTest, PassTargetsWriteTheBytesOfOneFramePerPass) {
+    const fs::path input = makeTempDir("batch-pass-targets-input");
+    writeQuads(input);
+    if (const auto models = sharedModelsDir()) {
+        for (const char* name : {"AlphaBlendModeTest", "BoxTextured", "NormalTangentTest"}) {
+            const fs::path model = *models / name / "glTF-Binary" / (std::string(name) + ".glb");
+            if (fs::exists(model)) {
+                fs::copy_file(model, input / model.filename());
+            }
+        }
+    }
+    const fs::path output = makeTempDir("batch-pass-targets-output");
+    const std::string views = "--views 3 --size 40 --quiet --normals --depth --albedo --material ";
+    const std::pair<const char*, std::string> runs[] = {
+        {"one sample", views + "--samples 1 --segmentation --depth-format exr --hdr"},
+        {"four samples", views + "--samples 4"},
+    };
+    for (const auto& [label, options] : runs) {
+        SCOPED_TRACE(label);
+        for (const char* drawing : {"targets", "frames"}) {
+            const bool frames = drawing == std::string("frames");
+            const CommandResult run = runEncore(batchArguments(
+                input, output / label / drawing, options + (frames ? " --pass-frames" : "")));
+            ASSERT_EQ(run.exitCode, 0) << run.out << run.err;
+            // Each drawing as asked for (the device line of -v says which).
+            EXPECT_EQ(run.out.find("passes drawn in the colour pass") != std::string::npos, !frames)
+                << run.out;
+        }
+        const auto targets = batchOutputFiles(output / label / "targets");
+        const auto frames = batchOutputFiles(output / label / "frames");
+        EXPECT_GE(targets.size(), 3u * 5 + 2);
+        ASSERT_EQ(targets.size(), frames.size());
+        for (const auto& [file, bytes] : targets) {
+            ASSERT_TRUE(frames.count(file)) << file;
+            EXPECT_TRUE(bytes == frames.at(file)) << file << " differs between the two drawings";
+        }
+    }
+}
+
 TEST(BatchPassesTest, BadCombinationsAreUsageErrors) {
     const fs::path input = writeQuads(makeTempDir("batch-passes-bad-input"));
     const fs::path output = makeTempDir("batch-passes-bad-output");

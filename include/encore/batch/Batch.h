@@ -95,6 +95,9 @@ struct DeviceSummary {
     std::size_t device = 0;    // Its index (gpu::listAdapters).
     std::uint64_t models = 0;  // Models it uploaded (failed ones too).
     std::uint64_t views = 0;   // Views it drew.
+    // Its passes were drawn in the colour frame's render pass (PassDrawing::Targets), not one
+    // frame per pass.
+    bool passTargets = false;
 };
 
 struct BatchSummary : BatchProgress {

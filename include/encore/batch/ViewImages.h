@@ -25,6 +25,12 @@ enum class DepthFormat { Png, Exr };
 // What a segmentation id counts (encore batch --segmentation-by).
 enum class SegmentationBy { Node, Mesh, Material };
 
+// How the passes that share the colour frame's camera are drawn (docs/batch.md#passes).
+enum class PassDrawing {
+    Targets,  // In the colour frame's render pass, as more colour targets (the default).
+    Frames,   // One more frame per pass through a debug channel (--pass-frames: to compare).
+};
+
 // The images beside the colour ones (encore batch --normals, --depth, --albedo, ...).
 struct ExtraImages {
     bool normals = false;
@@ -35,6 +41,7 @@ struct ExtraImages {
     bool hdr = false;
     DepthFormat depthFormat = DepthFormat::Png;
     SegmentationBy segmentationBy = SegmentationBy::Node;
+    PassDrawing drawing = PassDrawing::Targets;
 
     std::uint32_t perView() const {
         return 1 + std::uint32_t(normals) + std::uint32_t(depth) + std::uint32_t(albedo) +

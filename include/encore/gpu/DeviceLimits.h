@@ -32,6 +32,9 @@ struct LimitOverrides {
 // lower): room for material texture slots beyond WebGPU's default of 16. Renderer::create
 // checks that the device offers as many as its pipelines bind (render/BindingLimits.h).
 inline constexpr std::uint32_t kRequestedSampledTexturesPerShaderStage = 48;
+// Colour attachment bytes per sample that devices ask for (where the adapter has them): a scene
+// pass with pass targets (RendererOptions::passTargets) writes five rgba16float targets, 40.
+inline constexpr std::uint32_t kRequestedColorAttachmentBytesPerSample = 64;
 
 struct DeviceLimits {
     // WebGPU's defaults, which every device offers at least.
@@ -40,6 +43,7 @@ struct DeviceLimits {
     std::uint64_t maxStorageBufferBindingSize = 134217728;
     std::uint32_t minUniformBufferOffsetAlignment = 256;
     std::uint32_t maxSampledTexturesPerShaderStage = 16;
+    std::uint32_t maxColorAttachmentBytesPerSample = 32;
 
     // The limits `device` reports, tightened by `overrides`.
     static DeviceLimits of(const wgpu::Device& device, const LimitOverrides& overrides = {});
@@ -47,7 +51,8 @@ struct DeviceLimits {
 
 // wgpu::Limits for DeviceDescriptor: `overrides`, and maxSampledTexturesPerShaderStage raised
 // to kRequestedSampledTexturesPerShaderStage or `adapter`'s limit, whichever is lower (an
-// override wins); everything else undefined.
+// override wins), maxColorAttachmentBytesPerSample likewise to
+// kRequestedColorAttachmentBytesPerSample; everything else undefined.
 wgpu::Limits requiredLimits(const LimitOverrides& overrides, const wgpu::Limits& adapter);
 
 // LimitExceeded when a buffer of `bytes` exceeds maxBufferSize, reading "<what>: a buffer of

@@ -41,6 +41,7 @@ struct MappedReadback {
     std::uint32_t width = 0;
     std::uint32_t height = 0;
     std::uint32_t bytesPerRow = 0;       // Between the starts of rows (gpu::paddedRowBytes).
+    std::uint32_t bytesPerTexel = 4;     // 4: RGBA8; 8: RGBA16Float (half floats).
     const std::uint8_t* rows = nullptr;  // RGBA, rows top to bottom, bytes as stored.
     double waitMilliseconds = 0.0;       // Blocked until the GPU had finished the copy.
     std::shared_ptr<const void> hold;    // Keeps the buffer mapped.
@@ -63,7 +64,8 @@ class TextureReadbackRing {
     // Whether the oldest read has finished on the GPU (takeOldest will not block).
     bool oldestReady() const;
 
-    // Submits a copy of mip level 0 of `texture` (RGBA8Unorm or RGBA8UnormSrgb, CopySrc) into
+    // Submits a copy of mip level 0 of `texture` (RGBA8Unorm, RGBA8UnormSrgb or RGBA16Float:
+    // the HDR and pass images of encore batch; CopySrc) into
     // a free slot and starts mapping it; when every slot not in flight is still held
     // (MappedReadback), waits for one to be let go. Fails when the ring is full or the
     // texture's rows do not fit the device's maxBufferSize. With `timestamps`, the copy is timed
@@ -72,7 +74,7 @@ class TextureReadbackRing {
                                   StageTimestamps* timestamps = nullptr,
                                   std::uint32_t stage = 0);
     // Waits for the oldest read and returns its image; its slot is free again. Fails with a
-    // DeviceError when mapping failed (a lost device).
+    // DeviceError when mapping failed (a lost device); RGBA8 reads only.
     Result<FinishedReadback> takeOldest();
     // The same, leaving the rows in the mapped buffer for the holders of the result to read.
     Result<MappedReadback> takeOldestMapped();

@@ -51,6 +51,10 @@ struct RenderSetup {
     wgpu::TextureFormat colorFormat = wgpu::TextureFormat::RGBA8UnormSrgb;
     wgpu::TextureFormat depthFormat = wgpu::TextureFormat::Depth32Float;
     std::uint32_t sampleCount = 1;
+    // ShaderVariantKey::passTargets of the mesh pipelines that draw glTF materials (0: none):
+    // with pass targets, every scene pass has four more colour targets of colorFormat
+    // (RendererOptions::passTargets, render/PassTargets.h).
+    std::uint8_t passTargets = 0;
     // gpu::Context::mappingBudget(): strategies that create a buffer and a bind group per node
     // refuse scenes that would exceed it rather than crash the driver.
     std::optional<std::uint64_t> mappingBudget;

@@ -39,6 +39,13 @@ class OutOfMemoryScope;
 
 namespace encore::render {
 
+// Pass images drawn in the colour frame's own render pass (encore batch's passes: normal,
+// albedo, material, depth and segmentation, docs/batch.md#passes), and what the segmentation
+// ids count.
+enum class PassTargets : std::uint8_t { None, SegmentByNode, SegmentByMesh, SegmentByMaterial };
+// The images of a frame drawn with pass targets (Renderer::passTexture).
+enum class PassImage { Normal, Albedo, Material, DepthAndId };
+
 struct RendererOptions {
     RenderTargetOptions target;
     ToneMappingOptions toneMapping;
@@ -64,6 +71,12 @@ struct RendererOptions {
     bool prepareWaitsForIdle = true;
     // Occlusion culling and levels of detail of the GPU-culling strategies.
     CullingOptions culling;
+    // Draws four more colour targets in every scene pass (passTexture): the normal, albedo,
+    // material and depth + segmentation id images, each as the matching debug channel's frame
+    // would draw it. Needs an HDR target, a strategy that draws glTF materials in its mesh
+    // shader (prepare() fails otherwise) and a device with maxColorAttachmentBytesPerSample of
+    // at least 40 (create() fails otherwise). None: the frames are drawn as they always were.
+    PassTargets passTargets = PassTargets::None;
 
     // Equal options build equal renderers. The environment and its image compare as pointers:
     // the same shared object, not equal contents.
@@ -105,6 +118,7 @@ class GpuScene;
 class StagedImages;
 class TriangleHistory;
 class TransmissionPass;
+class PassTargetTextures;
 
 class Renderer {
   public:
@@ -244,6 +258,12 @@ class Renderer {
 
     // Waits for the GPU and reads the final image back.
     Result<image::ImageRgba8> readImage();
+    // A pass image of the last frame (RendererOptions::passTargets; null without): Normal,
+    // Albedo and Material as RGBA8UnormSrgb (the debug channels' images: n * 0.5 + 0.5, the
+    // base colour, occlusion/roughness/metallic, straight alpha), DepthAndId as RGBA16Float
+    // (depth along the camera axis, id % 256, id / 256, coverage; premultiplied by coverage).
+    // CopySrc, for read-backs.
+    wgpu::Texture passTexture(PassImage image) const;
     // The frame's linear HDR colour before tone mapping (RGBA floats, alpha = coverage); for
     // tests of the shading itself (energy, furnace).
     Result<std::vector<float>> readHdrImage();
@@ -319,7 +339,8 @@ class Renderer {
     std::unique_ptr<SceneLighting> mLighting;          // Before mFrame: its bind group binds these.
     std::shared_ptr<Environment> mPendingEnvironment;  // setEnvironment's, not yet bound.
     std::unique_ptr<FrameUniforms> mFrame;
-    std::unique_ptr<ToneMapper> mToneMapper;  // HDR targets only.
+    std::unique_ptr<ToneMapper> mToneMapper;           // HDR targets only.
+    std::unique_ptr<PassTargetTextures> mPassTargets;  // RendererOptions::passTargets only.
     std::unique_ptr<EnvironmentBackground> mBackground;
     std::unique_ptr<RenderSetup> mSetup;  // Stable address: strategies keep pointers to it.
     std::unique_ptr<PipelineCache> mKeptPipelines;  // With RendererOptions::keepPipelines.

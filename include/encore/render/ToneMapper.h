@@ -28,12 +28,18 @@ class ToneMapper {
     void setOptions(const ToneMappingOptions& options);
     // Reads `target`'s scene colour from now on (a resized target; same formats).
     void bindTarget(const wgpu::Device& device, const RenderTarget& target);
+    // Reads `source` (an rgba16float view) from now on instead.
+    void bindSource(const wgpu::Device& device, const wgpu::TextureView& source);
     const ToneMappingOptions& options() const { return mOptions; }
 
     // Reads `target`'s resolved HDR scene colour, writes its output.
     // `timestamps`: the pass's timestamp writes, or nullptr (untimed).
     void encode(const wgpu::CommandEncoder& commands,
                 const RenderTarget& target,
+                const wgpu::PassTimestampWrites* timestamps = nullptr) const;
+    // The same into `output` (RenderTarget::kColorFormat).
+    void encode(const wgpu::CommandEncoder& commands,
+                const wgpu::TextureView& output,
                 const wgpu::PassTimestampWrites* timestamps = nullptr) const;
 
   private:
@@ -48,7 +54,9 @@ class ToneMapper {
 };
 
 // The environment behind the scene (sky.wgsl): drawn at the start of every scene pass, with
-// the frame bind group, so it follows each view's camera. Not counted as a strategy's call.
+// the frame bind group, so it follows each view's camera. With `passTargets`, the passes have
+// that many more colour targets of the same format, which the sky leaves as they are. Not counted
+// as a strategy's call.
 class EnvironmentBackground {
   public:
     static Result<EnvironmentBackground> create(const wgpu::Device& device,
@@ -56,7 +64,8 @@ class EnvironmentBackground {
                                                 const wgpu::BindGroupLayout& frameLayout,
                                                 wgpu::TextureFormat colorFormat,
                                                 wgpu::TextureFormat depthFormat,
-                                                std::uint32_t sampleCount);
+                                                std::uint32_t sampleCount,
+                                                std::uint32_t passTargets = 0);
 
     void draw(const wgpu::RenderPassEncoder& pass, const wgpu::BindGroup& frame) const;
 

@@ -48,7 +48,11 @@ struct ShaderVariantKey {
     // The material's textures sample through more than one palette entry (SAMPLER_PALETTE);
     // without it every slot samples with materialSampler0.
     bool samplerPalette = false;
-    std::uint8_t padding[3] = {};  // Keeps the key free of implicit padding (hashed bytewise).
+    // With materials: 0, or the four pass targets beside the colour (PASS_TARGETS, encore
+    // batch's passes in one render pass, render/PassTargets.h), their segmentation ids counting
+    // 1 nodes, 2 meshes, 3 materials.
+    std::uint8_t passTargets = 0;
+    std::uint8_t padding[2] = {};  // Keeps the key free of implicit padding (hashed bytewise).
 
     bool animated() const { return skinned || morphed; }
 

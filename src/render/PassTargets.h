@@ -1,0 +1,63 @@
+#pragma once
+
+// encore batch's passes drawn in the colour frame's own render pass (RendererOptions::
+// passTargets, docs/batch.md#passes): four colour targets beside the scene colour, written by
+// mesh.wgsl's PASS_TARGETS variant. Each holds what a debug channel's frame would hold in the
+// HDR target (the same format, blending and resolve, so the same values): the normal, the
+// albedo, the material values, and depth with the segmentation id split in two. The first three
+// are then converted to RGBA8 sRGB by the tone-mapping pass with tone mapping off, as the debug
+// channels' frames are, and every image is read back from its own texture.
+
+#include <webgpu/webgpu_cpp.h>
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "encore/core/Result.h"
+#include "encore/render/RenderTarget.h"
+#include "encore/render/Renderer.h"
+#include "encore/render/ToneMapper.h"
+#include "encore/shaders/ShaderLibrary.h"
+#include "render/SceneColorTargets.h"
+
+namespace encore::render {
+
+class PassTargetTextures {
+  public:
+    // For `target` (HDR, any sample count).
+    static Result<PassTargetTextures> create(const wgpu::Device& device,
+                                             const wgpu::Queue& queue,
+                                             shaders::ShaderLibrary& shaders,
+                                             const RenderTarget& target);
+
+    // Colour attachments 1..4 of a scene pass whose attachment 0 is `color`: they load, store
+    // and resolve as it does, and clear to transparent black (the debug channels' background).
+    void appendAttachments(const wgpu::RenderPassColorAttachment& color,
+                           std::vector<wgpu::RenderPassColorAttachment>& attachments) const;
+    // Converts the resolved normal, albedo and material targets to their RGBA8 images.
+    void encodeImages(const wgpu::CommandEncoder& commands) const;
+
+    // Normal, Albedo, Material: RGBA8 sRGB; DepthAndId: the resolved rgba16float target.
+    const wgpu::Texture& texture(PassImage image) const;
+
+  private:
+    PassTargetTextures() = default;
+
+    struct Target {
+        wgpu::Texture multisampled;  // Only with a multisampled target.
+        wgpu::TextureView multisampledView;
+        wgpu::Texture resolved;  // rgba16float.
+        wgpu::TextureView resolvedView;
+        wgpu::Texture image;  // RGBA8 sRGB (not for DepthAndId).
+        wgpu::TextureView imageView;
+    };
+    std::array<Target, kPassTargetCount> mTargets;
+    // One tone mapper per 8-bit image (each binds its own source), tone mapping off.
+    std::vector<ToneMapper> mConverters;
+};
+
+// ShaderVariantKey::passTargets for `targets` (0: none).
+std::uint8_t passTargetsVariant(PassTargets targets);
+
+}  // namespace encore::render
