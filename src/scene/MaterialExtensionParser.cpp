@@ -86,6 +86,23 @@ float boundedNumber(FieldReader& fields,
     return float(value);
 }
 
+// A linear RGB colour whose components must lie in [0, 1]; an error names the field, the
+// component and its value otherwise.
+glm::vec3 readUnitColor(FieldReader& fields, std::string_view key, glm::vec3 fallback) {
+    const glm::vec3 color = readVec3(fields, key, fallback);
+    for (int channel = 0; channel < 3; ++channel) {
+        const float value = color[channel];
+        if (value < 0.0f || value > 1.0f) {
+            fields.fail(ErrorCode::InvalidFormat,
+                        fields.element() + " has an invalid " + std::string(key) + " (component " +
+                            std::to_string(channel) + " is " + formatNumber(value) +
+                            "; each must be between 0 and 1).");
+            break;
+        }
+    }
+    return color;
+}
+
 GltfIridescence readIridescence(FieldReader& fields) {
     GltfIridescence iridescence;
     iridescence.iridescenceFactor = boundedNumber(fields, "iridescenceFactor", 0.0, 0.0, 1.0);
@@ -132,18 +149,22 @@ GltfVolume readVolume(FieldReader& fields) {
         }
         volume.attenuationDistance = float(distance);
     }
-    volume.attenuationColor = readVec3(fields, "attenuationColor", glm::vec3(1.0f));
-    for (int channel = 0; channel < 3; ++channel) {
-        const float value = volume.attenuationColor[channel];
-        if (value < 0.0f || value > 1.0f) {
-            fields.fail(ErrorCode::InvalidFormat,
-                        fields.element() + " has an invalid attenuationColor (component " +
-                            std::to_string(channel) + " is " + formatNumber(value) +
-                            "; each must be between 0 and 1).");
-            break;
-        }
-    }
+    volume.attenuationColor = readUnitColor(fields, "attenuationColor", glm::vec3(1.0f));
     return volume;
+}
+
+GltfDiffuseTransmission readDiffuseTransmission(FieldReader& fields) {
+    GltfDiffuseTransmission result;
+    result.diffuseTransmissionFactor =
+        boundedNumber(fields, "diffuseTransmissionFactor", 0.0, 0.0, 1.0);
+    result.diffuseTransmissionTexture = readTextureInfo(
+        fields, fields.object("diffuseTransmissionTexture"), "diffuseTransmissionTexture", {});
+    result.diffuseTransmissionColorFactor =
+        readUnitColor(fields, "diffuseTransmissionColorFactor", glm::vec3(1.0f));
+    result.diffuseTransmissionColorTexture =
+        readTextureInfo(fields, fields.object("diffuseTransmissionColorTexture"),
+                        "diffuseTransmissionColorTexture", {});
+    return result;
 }
 
 }  // namespace
@@ -207,6 +228,8 @@ void readMaterialExtensions(FieldReader& reader, GltfMaterial& material) {
             material.volume = readVolume(fields);
         } else if (name == "KHR_materials_dispersion") {
             material.dispersion = boundedNumber(fields, "dispersion", 0.0, 0.0, -1.0);
+        } else if (name == "KHR_materials_diffuse_transmission") {
+            material.diffuseTransmission = readDiffuseTransmission(fields);
         }
         if (fields.failed()) {
             reader.fail(fields.error().code, fields.error().message);
@@ -287,6 +310,15 @@ void convertMaterialExtensions(const GltfMaterial& source, Material& material) {
     if (source.dispersion) {
         material.dispersion = DispersionExtension{.dispersion = *source.dispersion};
     }
+    if (const auto& diffuse = source.diffuseTransmission) {
+        material.diffuseTransmission = DiffuseTransmissionExtension{
+            .diffuseTransmissionFactor = diffuse->diffuseTransmissionFactor,
+            .diffuseTransmissionTexture = toTextureRef(diffuse->diffuseTransmissionTexture),
+            .diffuseTransmissionColorFactor = diffuse->diffuseTransmissionColorFactor,
+            .diffuseTransmissionColorTexture =
+                toTextureRef(diffuse->diffuseTransmissionColorTexture),
+        };
+    }
 }
 
 void addExtensionTextureSlots(const GltfMaterial& material,
@@ -328,6 +360,12 @@ void addExtensionTextureSlots(const GltfMaterial& material,
     }
     if (const auto& volume = material.volume) {
         add("KHR_materials_volume thicknessTexture", volume->thicknessTexture);
+    }
+    if (const auto& diffuse = material.diffuseTransmission) {
+        add("KHR_materials_diffuse_transmission diffuseTransmissionTexture",
+            diffuse->diffuseTransmissionTexture);
+        add("KHR_materials_diffuse_transmission diffuseTransmissionColorTexture",
+            diffuse->diffuseTransmissionColorTexture);
     }
 }
 
