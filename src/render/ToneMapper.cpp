@@ -75,20 +75,8 @@ void ToneMapper::setOptions(const ToneMappingOptions& options) {
 void ToneMapper::encode(const wgpu::CommandEncoder& commands,
                         const RenderTarget& target,
                         const wgpu::PassTimestampWrites* timestamps) const {
-    wgpu::RenderPassColorAttachment color{};
-    color.view = target.outputView();
-    color.loadOp = wgpu::LoadOp::Clear;
-    color.storeOp = wgpu::StoreOp::Store;
-    wgpu::RenderPassDescriptor descriptor{};
-    descriptor.label = "encore tone mapping";
-    descriptor.colorAttachmentCount = 1;
-    descriptor.colorAttachments = &color;
-    descriptor.timestampWrites = timestamps;
-    wgpu::RenderPassEncoder pass = commands.BeginRenderPass(&descriptor);
-    pass.SetPipeline(mPipeline);
-    pass.SetBindGroup(0, mBindGroup);
-    pass.Draw(3);
-    pass.End();
+    gpu::encodeFullscreenPass(commands, target.outputView(), mPipeline, mBindGroup,
+                              "encore tone mapping", timestamps);
 }
 
 Result<EnvironmentBackground> EnvironmentBackground::create(
