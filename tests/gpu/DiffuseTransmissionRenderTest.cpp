@@ -251,12 +251,6 @@ TEST(DiffuseTransmissionRenderTest, VolumeAbsorbsOverItsThickness) {
     EXPECT_NEAR(thick.g / thin.g, 1.0f, 0.01f);
 }
 
-bool shadesMaterials(StrategyKind kind) {
-    return kind == StrategyKind::Materials || kind == StrategyKind::Bundles ||
-           kind == StrategyKind::GpuCulling || kind == StrategyKind::GpuCullingBundles ||
-           kind == StrategyKind::Visibility;
-}
-
 TEST(DiffuseTransmissionRenderTest, EveryMaterialStrategyShadesItAlike) {
     ENCORE_REQUIRE_VULKAN(context);
     const scene::SceneData scene =
@@ -265,7 +259,7 @@ TEST(DiffuseTransmissionRenderTest, EveryMaterialStrategyShadesItAlike) {
                   Lit::FromBehind);
     std::optional<image::ImageRgba8> expected;
     for (const StrategyChoice& choice : test::everyStrategyChoice()) {
-        if (!shadesMaterials(choice.kind)) {
+        if (!test::shadesMaterials(choice.kind)) {
             continue;  // Their frames shade no materials at all.
         }
         SCOPED_TRACE(std::string(strategyName(choice.kind)) + (choice.bundle ? "+bundle" : ""));

@@ -286,12 +286,6 @@ TEST(TransmissionRenderTest, ThickGlassRefractsAndDispersionSplitsTheChannels) {
     EXPECT_GT(dispersed, 5) << "dispersion moved the channels apart";
 }
 
-bool shadesMaterials(StrategyKind kind) {
-    return kind == StrategyKind::Materials || kind == StrategyKind::Bundles ||
-           kind == StrategyKind::GpuCulling || kind == StrategyKind::GpuCullingBundles ||
-           kind == StrategyKind::Visibility;
-}
-
 TEST(TransmissionRenderTest, EveryMaterialStrategyDrawsTheSameGlass) {
     ENCORE_REQUIRE_VULKAN(context);
     GlassDesc glass;
@@ -302,7 +296,7 @@ TEST(TransmissionRenderTest, EveryMaterialStrategyDrawsTheSameGlass) {
     const Rendered expected = render(scene);
     ASSERT_EQ(expected.image.width, kSize);
     for (const StrategyChoice& choice : test::everyStrategyChoice()) {
-        if (!shadesMaterials(choice.kind)) {
+        if (!test::shadesMaterials(choice.kind)) {
             continue;  // Their frames shade no materials at all (docs/materials.md).
         }
         SCOPED_TRACE(std::string(strategyName(choice.kind)) + (choice.bundle ? "+bundle" : ""));
