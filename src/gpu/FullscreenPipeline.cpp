@@ -37,4 +37,26 @@ wgpu::RenderPipeline makeFullscreenPipeline(const wgpu::Device& device,
     return device.CreateRenderPipeline(&pipeline);
 }
 
+void encodeFullscreenPass(const wgpu::CommandEncoder& encoder,
+                          const wgpu::TextureView& target,
+                          const wgpu::RenderPipeline& pipeline,
+                          const wgpu::BindGroup& bindGroup,
+                          wgpu::StringView label,
+                          const wgpu::PassTimestampWrites* timestamps) {
+    wgpu::RenderPassColorAttachment color{};
+    color.view = target;
+    color.loadOp = wgpu::LoadOp::Clear;
+    color.storeOp = wgpu::StoreOp::Store;
+    wgpu::RenderPassDescriptor descriptor{};
+    descriptor.label = label;
+    descriptor.colorAttachmentCount = 1;
+    descriptor.colorAttachments = &color;
+    descriptor.timestampWrites = timestamps;
+    wgpu::RenderPassEncoder pass = encoder.BeginRenderPass(&descriptor);
+    pass.SetPipeline(pipeline);
+    pass.SetBindGroup(0, bindGroup);
+    pass.Draw(3);
+    pass.End();
+}
+
 }  // namespace encore::gpu

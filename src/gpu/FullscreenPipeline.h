@@ -36,4 +36,14 @@ struct FullscreenPipelineDescriptor {
 wgpu::RenderPipeline makeFullscreenPipeline(const wgpu::Device& device,
                                             const FullscreenPipelineDescriptor& descriptor);
 
+// Records a render pass that draws `pipeline`'s triangle over all of `target` (one colour
+// attachment, no depth) with `bindGroup` as group 0. Every texel is drawn, so the target's
+// previous contents are cleared rather than loaded. `timestamps` may be null.
+void encodeFullscreenPass(const wgpu::CommandEncoder& encoder,
+                          const wgpu::TextureView& target,
+                          const wgpu::RenderPipeline& pipeline,
+                          const wgpu::BindGroup& bindGroup,
+                          wgpu::StringView label,
+                          const wgpu::PassTimestampWrites* timestamps = nullptr);
+
 }  // namespace encore::gpu

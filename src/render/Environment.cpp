@@ -14,7 +14,7 @@
 #include "core/Log.h"
 #include "gpu/BindingResource.h"
 #include "image/ImageResize.h"
-#include "render/MipmapGenerator.h"
+#include "render/MipChain.h"
 
 namespace encore::render {
 
@@ -241,15 +241,7 @@ Result<Environment> Environment::create(const wgpu::Device& device,
     pipelines->panoramaSampler = device.CreateSampler(&panoramaSampler);
     environment.mPipelines = std::move(pipelines);
 
-    wgpu::SamplerDescriptor sampler{};
-    sampler.label = "environment";
-    sampler.addressModeU = wgpu::AddressMode::ClampToEdge;
-    sampler.addressModeV = wgpu::AddressMode::ClampToEdge;
-    sampler.addressModeW = wgpu::AddressMode::ClampToEdge;
-    sampler.magFilter = wgpu::FilterMode::Linear;
-    sampler.minFilter = wgpu::FilterMode::Linear;
-    sampler.mipmapFilter = wgpu::MipmapFilterMode::Linear;
-    environment.mSampler = device.CreateSampler(&sampler);
+    environment.mSampler = makeLinearClampSampler(device, "environment");
 
     // The source has the specular cube's size so its level 0 is copied, not resampled, into
     // the mirror level.

@@ -104,11 +104,13 @@ Result<void> GpuScene::updateMaterial(scene::MaterialId material, const scene::M
     const auto differ = [](const auto& a, const auto& b) { return a.has_value() != b.has_value(); };
     if (differ(prepared.iridescence, value.iridescence) ||
         differ(prepared.anisotropy, value.anisotropy) ||
-        differ(prepared.transmission, value.transmission)) {
+        differ(prepared.transmission, value.transmission) ||
+        differ(prepared.diffuseTransmission, value.diffuseTransmission)) {
         return makeError(ErrorCode::InvalidArgument,
                          "Material " + std::to_string(material.value) +
                              ": an edit cannot add or remove KHR_materials_iridescence, "
-                             "anisotropy or transmission (they choose its pipelines); load the "
+                             "anisotropy, transmission or diffuse transmission (they choose its "
+                             "pipelines); load the "
                              "scene with them instead.");
     }
     mMaterials->updateMaterial(mSetup->queue, material, value);

@@ -85,6 +85,14 @@ constexpr std::array<TextureSlotInfo, kMaterialTextureSlotCount> kSlots = {{
                        &scene::TransmissionExtension::transmissionTexture>},
     {TextureSlot::Thickness, "thicknessTexture", kLinear, kLinear, &Sampled::extensions, false,
      &extensionTexture<&Material::volume, &scene::VolumeExtension::thicknessTexture>},
+    {TextureSlot::DiffuseTransmission, "diffuseTransmissionTexture", kLinear, kLinear,
+     &Sampled::extensions, false,
+     &extensionTexture<&Material::diffuseTransmission,
+                       &scene::DiffuseTransmissionExtension::diffuseTransmissionTexture>},
+    {TextureSlot::DiffuseTransmissionColor, "diffuseTransmissionColorTexture", kSrgb, kSrgb,
+     &Sampled::extensions, false,
+     &extensionTexture<&Material::diffuseTransmission,
+                       &scene::DiffuseTransmissionExtension::diffuseTransmissionColorTexture>},
 }};
 // clang-format on
 

@@ -37,10 +37,12 @@ enum class TextureSlot : std::uint32_t {
     Iridescence,
     IridescenceThickness,
     Anisotropy,
-    Transmission,  // KHR_materials_transmission: red channel.
-    Thickness,     // KHR_materials_volume: green channel.
+    Transmission,              // KHR_materials_transmission: red channel.
+    Thickness,                 // KHR_materials_volume: green channel.
+    DiffuseTransmission,       // KHR_materials_diffuse_transmission: alpha channel.
+    DiffuseTransmissionColor,  // KHR_materials_diffuse_transmission: RGB, sRGB.
 };
-inline constexpr std::uint32_t kMaterialTextureSlotCount = 17;
+inline constexpr std::uint32_t kMaterialTextureSlotCount = 19;
 // The samplers a material binds (its sampler palette, SamplerPalette.h): the slots' textures
 // share them, each slot naming its entry in the uniform, so a new slot needs no sampler binding
 // (a shader stage may bind only 16 samplers; Dawn allows no more).

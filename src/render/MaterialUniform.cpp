@@ -87,24 +87,33 @@ MaterialUniform makeMaterialUniform(const scene::Material& material,
         }
     }
     setVector(uniform.attenuationColor, 1.0f, 1.0f, 1.0f, 0.0f);
+    // KHR_materials_volume acts only through transmission or diffuse transmission (the
+    // extension says so), dispersion only through a transmissive volume.
+    float thickness = 0.0f;
+    float distance = 0.0f;
+    if (material.volume && (material.transmission || material.diffuseTransmission)) {
+        const scene::VolumeExtension& volume = *material.volume;
+        thickness = volume.thicknessFactor;
+        distance = std::isfinite(volume.attenuationDistance) ? volume.attenuationDistance : 0.0f;
+        setVector(uniform.attenuationColor, volume.attenuationColor.r, volume.attenuationColor.g,
+                  volume.attenuationColor.b, 0.0f);
+        features |= kMaterialVolume;
+    }
     if (material.transmission) {
-        // Volume and dispersion act only through transmission (the extensions say so).
-        float thickness = 0.0f;
-        float distance = 0.0f;
-        if (material.volume) {
-            const scene::VolumeExtension& volume = *material.volume;
-            thickness = volume.thicknessFactor;
-            distance =
-                std::isfinite(volume.attenuationDistance) ? volume.attenuationDistance : 0.0f;
-            setVector(uniform.attenuationColor, volume.attenuationColor.r,
-                      volume.attenuationColor.g, volume.attenuationColor.b, 0.0f);
-            features |= kMaterialVolume;
-        }
         const float dispersion =
             material.volume && material.dispersion ? material.dispersion->dispersion : 0.0f;
         setVector(uniform.transmission, material.transmission->transmissionFactor, thickness,
                   distance, dispersion);
         features |= kMaterialTransmission;
+    } else {
+        setVector(uniform.transmission, 0.0f, thickness, distance, 0.0f);
+    }
+    if (material.diffuseTransmission) {
+        const scene::DiffuseTransmissionExtension& diffuse = *material.diffuseTransmission;
+        setVector(uniform.diffuseTransmission, diffuse.diffuseTransmissionColorFactor.r,
+                  diffuse.diffuseTransmissionColorFactor.g,
+                  diffuse.diffuseTransmissionColorFactor.b, diffuse.diffuseTransmissionFactor);
+        features |= kMaterialDiffuseTransmission;
     }
     ShadingModel model = ShadingModel::MetallicRoughness;
     if (material.specularGlossiness) {

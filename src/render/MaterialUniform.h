@@ -41,6 +41,7 @@ inline constexpr std::uint32_t kMaterialAnisotropyTexture = 128;  // Its directi
 // KHR_materials_transmission (and volume, dispersion).
 inline constexpr std::uint32_t kMaterialTransmission = 1024;
 inline constexpr std::uint32_t kMaterialVolume = 2048;
+inline constexpr std::uint32_t kMaterialDiffuseTransmission = 4096;
 
 // The `Material` struct of material.wgsl, byte for byte.
 struct MaterialUniform {
@@ -54,15 +55,17 @@ struct MaterialUniform {
     float specularGlossiness[4];  // Specular factor, glossiness factor.
     float iridescence[4];         // Factor, film IOR, thickness minimum, maximum (nm).
     float anisotropy[4];          // cos(rotation), sin(rotation), strength.
-    // Transmission factor, thickness factor, attenuation distance (0: none), dispersion.
+    // Transmission factor, thickness factor, attenuation distance (0: none), dispersion. The
+    // volume's values are set with transmission or diffuse transmission (the volume's hosts).
     float transmission[4];
-    float attenuationColor[4];  // KHR_materials_volume's attenuation colour.
+    float attenuationColor[4];     // KHR_materials_volume's attenuation colour.
+    float diffuseTransmission[4];  // Colour factor, factor.
     // ShadingModel, kMaterial* bits, 1 + material index, bits of the slots bound to a texture
     // (MaterialResources sets the last two).
     std::uint32_t flags[4];
     TextureSlotUniform slots[kMaterialTextureSlotCount];  // Indexed by TextureSlot.
 };
-static_assert(sizeof(MaterialUniform) == 752);
+static_assert(sizeof(MaterialUniform) == 832);
 
 // Each texture slot's entry in its material's sampler palette (SamplerPalette::slotEntries).
 using SlotSamplerEntries = std::array<std::uint32_t, kMaterialTextureSlotCount>;

@@ -1,7 +1,5 @@
 #include "render/MipmapGenerator.h"
 
-#include <algorithm>
-#include <bit>
 #include <string>
 
 #include "gpu/BindingResource.h"
@@ -9,11 +7,6 @@
 #include "gpu/LayoutEntry.h"
 
 namespace encore::render {
-
-std::uint32_t fullMipLevelCount(std::uint32_t width, std::uint32_t height) {
-    const std::uint32_t largest = std::max(std::max(width, height), 1u);
-    return static_cast<std::uint32_t>(std::bit_width(largest));
-}
 
 Result<MipmapGenerator> MipmapGenerator::create(const wgpu::Device& device,
                                                 shaders::ShaderLibrary& shaders) {
@@ -25,19 +18,8 @@ Result<MipmapGenerator> MipmapGenerator::create(const wgpu::Device& device,
     generator.mDevice = device;
     generator.mModule = *module;
 
-    wgpu::SamplerDescriptor sampler{};
-    sampler.label = "mipmap downsample";
-    sampler.addressModeU = wgpu::AddressMode::ClampToEdge;
-    sampler.addressModeV = wgpu::AddressMode::ClampToEdge;
-    sampler.magFilter = wgpu::FilterMode::Linear;
-    sampler.minFilter = wgpu::FilterMode::Linear;
-    generator.mSampler = device.CreateSampler(&sampler);
-
-    generator.mLayout =
-        gpu::makeBindGroupLayout(device,
-                                 {gpu::LayoutEntry::sampler(0, wgpu::ShaderStage::Fragment),
-                                  gpu::LayoutEntry::texture(1, wgpu::ShaderStage::Fragment)},
-                                 "mipmap source");
+    generator.mSampler = makeLinearClampSampler(device, "mipmap downsample");
+    generator.mLayout = makeMipSourceLayout(device, "mipmap source");
     generator.mPipelineLayout = gpu::makePipelineLayout(device, {generator.mLayout}, "mipmap");
     return generator;
 }
@@ -76,35 +58,12 @@ Result<void> MipmapGenerator::generate(const wgpu::CommandEncoder& encoder,
     }
     const wgpu::RenderPipeline& downsample = pipeline(texture.GetFormat());
 
-    wgpu::TextureViewDescriptor viewDescriptor{};
-    viewDescriptor.dimension = wgpu::TextureViewDimension::e2D;
-    viewDescriptor.mipLevelCount = 1;
-    viewDescriptor.arrayLayerCount = 1;
-    viewDescriptor.baseMipLevel = 0;
-    wgpu::TextureView source = texture.CreateView(&viewDescriptor);
+    const std::vector<wgpu::TextureView> views = mipLevelViews(texture);
     for (std::uint32_t level = 1; level < levels; ++level) {
-        viewDescriptor.baseMipLevel = level;
-        wgpu::TextureView destination = texture.CreateView(&viewDescriptor);
-
-        const wgpu::BindGroup bindGroup =
-            gpu::makeBindGroup(mDevice, mLayout, {{0, mSampler}, {1, source}});
-
-        wgpu::RenderPassColorAttachment attachment{};
-        attachment.view = destination;
-        // Every texel of the level is overwritten, so its previous contents need no load.
-        attachment.loadOp = wgpu::LoadOp::Clear;
-        attachment.storeOp = wgpu::StoreOp::Store;
-        wgpu::RenderPassDescriptor passDescriptor{};
-        passDescriptor.label = "mipmap level";
-        passDescriptor.colorAttachmentCount = 1;
-        passDescriptor.colorAttachments = &attachment;
-        passDescriptor.timestampWrites = mTimestamps ? mTimestamps->pass(mStage) : nullptr;
-        wgpu::RenderPassEncoder pass = encoder.BeginRenderPass(&passDescriptor);
-        pass.SetPipeline(downsample);
-        pass.SetBindGroup(0, bindGroup);
-        pass.Draw(3);
-        pass.End();
-        source = destination;
+        const wgpu::BindGroup source =
+            gpu::makeBindGroup(mDevice, mLayout, {{0, mSampler}, {1, views[level - 1]}});
+        gpu::encodeFullscreenPass(encoder, views[level], downsample, source, "mipmap level",
+                                  mTimestamps ? mTimestamps->pass(mStage) : nullptr);
     }
     return {};
 }

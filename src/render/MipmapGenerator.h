@@ -10,17 +10,14 @@
 
 #include <webgpu/webgpu_cpp.h>
 
-#include <cstdint>
 #include <unordered_map>
 
 #include "encore/core/Result.h"
 #include "encore/gpu/StageTimestamps.h"
 #include "encore/shaders/ShaderLibrary.h"
+#include "render/MipChain.h"
 
 namespace encore::render {
-
-// floor(log2(max(width, height))) + 1: the level count of a full chain down to 1x1.
-std::uint32_t fullMipLevelCount(std::uint32_t width, std::uint32_t height);
 
 class MipmapGenerator {
   public:

@@ -85,20 +85,8 @@ void ToneMapper::encode(const wgpu::CommandEncoder& commands,
 void ToneMapper::encode(const wgpu::CommandEncoder& commands,
                         const wgpu::TextureView& output,
                         const wgpu::PassTimestampWrites* timestamps) const {
-    wgpu::RenderPassColorAttachment color{};
-    color.view = output;
-    color.loadOp = wgpu::LoadOp::Clear;
-    color.storeOp = wgpu::StoreOp::Store;
-    wgpu::RenderPassDescriptor descriptor{};
-    descriptor.label = "encore tone mapping";
-    descriptor.colorAttachmentCount = 1;
-    descriptor.colorAttachments = &color;
-    descriptor.timestampWrites = timestamps;
-    wgpu::RenderPassEncoder pass = commands.BeginRenderPass(&descriptor);
-    pass.SetPipeline(mPipeline);
-    pass.SetBindGroup(0, mBindGroup);
-    pass.Draw(3);
-    pass.End();
+    gpu::encodeFullscreenPass(commands, output, mPipeline, mBindGroup, "encore tone mapping",
+                              timestamps);
 }
 
 Result<EnvironmentBackground> EnvironmentBackground::create(

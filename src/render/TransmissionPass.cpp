@@ -3,7 +3,7 @@
 #include "gpu/BindingResource.h"
 #include "gpu/FullscreenPipeline.h"
 #include "gpu/LayoutEntry.h"
-#include "render/MipmapGenerator.h"
+#include "render/MipChain.h"
 
 namespace encore::render {
 
@@ -29,32 +29,15 @@ Result<TransmissionPass> TransmissionPass::create(const wgpu::Device& device,
     TransmissionPass pass;
     pass.mDevice = device;
     pass.mBackground = background;
-    wgpu::SamplerDescriptor sampler{};
-    sampler.label = "transmission copy";
-    sampler.addressModeU = wgpu::AddressMode::ClampToEdge;
-    sampler.addressModeV = wgpu::AddressMode::ClampToEdge;
-    sampler.magFilter = wgpu::FilterMode::Linear;
-    sampler.minFilter = wgpu::FilterMode::Linear;
-    pass.mSampler = device.CreateSampler(&sampler);
-    pass.mLayout =
-        gpu::makeBindGroupLayout(device,
-                                 {gpu::LayoutEntry::sampler(0, wgpu::ShaderStage::Fragment),
-                                  gpu::LayoutEntry::texture(1, wgpu::ShaderStage::Fragment)},
-                                 "transmission copy source");
+    pass.mSampler = makeLinearClampSampler(device, "transmission copy");
+    pass.mLayout = makeMipSourceLayout(device, "transmission copy source");
     pass.mPipeline = gpu::makeFullscreenPipeline(
         device, {.label = "transmission copy",
                  .module = *module,
                  .layout = gpu::makePipelineLayout(device, {pass.mLayout}, "transmission copy"),
                  .colorFormat = kFormat});
 
-    wgpu::TextureViewDescriptor level{};
-    level.dimension = wgpu::TextureViewDimension::e2D;
-    level.mipLevelCount = 1;
-    level.arrayLayerCount = 1;
-    for (std::uint32_t i = 0; i < background.GetMipLevelCount(); ++i) {
-        level.baseMipLevel = i;
-        pass.mLevels.push_back(background.CreateView(&level));
-    }
+    pass.mLevels = mipLevelViews(background);
     for (std::size_t i = 0; i + 1 < pass.mLevels.size(); ++i) {
         pass.mLevelSources.push_back(gpu::makeBindGroup(
             device, pass.mLayout, {{0, pass.mSampler}, {1, pass.mLevels[i]}}, "transmission mip"));
@@ -73,22 +56,10 @@ void TransmissionPass::encodeCopy(const wgpu::CommandEncoder& commands,
                                "transmission copy source");
     }
     for (std::size_t level = 0; level < mLevels.size(); ++level) {
-        wgpu::RenderPassColorAttachment attachment{};
-        attachment.view = mLevels[level];
-        attachment.loadOp = wgpu::LoadOp::Clear;  // Every texel is drawn.
-        attachment.storeOp = wgpu::StoreOp::Store;
-        wgpu::RenderPassDescriptor descriptor{};
-        descriptor.label = level == 0 ? "transmission copy" : "transmission mip level";
-        descriptor.colorAttachmentCount = 1;
-        descriptor.colorAttachments = &attachment;
-        descriptor.timestampWrites =
-            timer ? timer->nextPass(level == 0 ? "transmission copy" : "transmission mips")
-                  : nullptr;
-        wgpu::RenderPassEncoder pass = commands.BeginRenderPass(&descriptor);
-        pass.SetPipeline(mPipeline);
-        pass.SetBindGroup(0, level == 0 ? mSourceGroup : mLevelSources[level - 1]);
-        pass.Draw(3);
-        pass.End();
+        const char* label = level == 0 ? "transmission copy" : "transmission mips";
+        gpu::encodeFullscreenPass(commands, mLevels[level], mPipeline,
+                                  level == 0 ? mSourceGroup : mLevelSources[level - 1], label,
+                                  timer ? timer->nextPass(label) : nullptr);
     }
     ++mCopies;
 }

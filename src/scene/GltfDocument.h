@@ -193,6 +193,13 @@ struct GltfVolume {
     glm::vec3 attenuationColor{1.0f};
 };
 
+struct GltfDiffuseTransmission {
+    float diffuseTransmissionFactor = 0.0f;
+    std::optional<GltfTextureInfo> diffuseTransmissionTexture;
+    glm::vec3 diffuseTransmissionColorFactor{1.0f};
+    std::optional<GltfTextureInfo> diffuseTransmissionColorTexture;
+};
+
 struct GltfMaterial {
     std::string name;
     glm::vec4 baseColorFactor{1.0f};
@@ -219,6 +226,7 @@ struct GltfMaterial {
     std::optional<GltfTransmission> transmission;
     std::optional<GltfVolume> volume;
     std::optional<float> dispersion;
+    std::optional<GltfDiffuseTransmission> diffuseTransmission;
     std::vector<std::string> ignoredExtensions;  // Extension objects Encore does not shade.
 };
 
@@ -337,6 +345,7 @@ inline constexpr std::array kShadedMaterialExtensions = {
     std::string_view("KHR_materials_transmission"),
     std::string_view("KHR_materials_volume"),
     std::string_view("KHR_materials_dispersion"),
+    std::string_view("KHR_materials_diffuse_transmission"),
 };
 
 }  // namespace encore::scene

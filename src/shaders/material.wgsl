@@ -1,5 +1,5 @@
 // Group 2: one glTF material (MaterialResources in C++). The uniform holds every factor and,
-// for each of the seventeen texture slots, the texCoord set, KHR_texture_transform and sampler;
+// for each of the nineteen texture slots, the texCoord set, KHR_texture_transform and sampler;
 // with MATERIAL_TEXTURES each slot has its own texture (a 1-pixel default when the material has
 // none: white, so that factors multiply through unchanged) and the material binds a palette of
 // four samplers (its glTF samplers, render/SamplerPalette.h) that the slots share: each slot's
@@ -33,11 +33,13 @@ struct Material {
     // distance (0: none), KHR_materials_dispersion.
     transmission: vec4f,
     attenuationColor: vec4f,    // rgb: KHR_materials_volume's attenuation colour.
+    // KHR_materials_diffuse_transmission: rgb colour factor, a: factor.
+    diffuseTransmission: vec4f,
     // x: shading model (0 metallic-roughness, 1 specular-glossiness, 2 unlit);
     // y: kMaterial* feature bits; z: 1 + the material's index (segmentation); w: bit i set when
     // slot i binds a texture of its own (the others read white without sampling).
     flags: vec4u,
-    slots: array<TextureSlot, 17>,
+    slots: array<TextureSlot, 19>,
 }
 
 const kModelMetallicRoughness = 0u;
@@ -53,6 +55,7 @@ const kMaterialAnisotropy = 64u;
 const kMaterialAnisotropyTexture = 128u;
 const kMaterialTransmission = 1024u;
 const kMaterialVolume = 2048u;
+const kMaterialDiffuseTransmission = 4096u;
 
 // The feature bits this pipeline shades: a variant without MATERIAL_EXTENSIONS (its materials
 // use none of them) masks their bits off, so the compiler drops their code as dead.
@@ -60,7 +63,8 @@ const kMaterialVolume = 2048u;
 const kCompiledFeatures = 0xffffffffu;
 #else
 const kCompiledFeatures = ~(kMaterialIridescence | kMaterialAnisotropy |
-                            kMaterialAnisotropyTexture | kMaterialTransmission | kMaterialVolume);
+                            kMaterialAnisotropyTexture | kMaterialTransmission | kMaterialVolume |
+                            kMaterialDiffuseTransmission);
 #endif
 
 const kBaseColorSlot = 0u;
@@ -80,6 +84,8 @@ const kIridescenceThicknessSlot = 13u;
 const kAnisotropySlot = 14u;
 const kTransmissionSlot = 15u;
 const kThicknessSlot = 16u;
+const kDiffuseTransmissionSlot = 17u;
+const kDiffuseTransmissionColorSlot = 18u;
 
 @group(2) @binding(0) var<uniform> material: Material;
 #if MATERIAL_TEXTURES
@@ -104,6 +110,8 @@ const kThicknessSlot = 16u;
 @group(2) @binding(19) var anisotropyTexture: texture_2d<f32>;
 @group(2) @binding(20) var transmissionTexture: texture_2d<f32>;
 @group(2) @binding(21) var thicknessTexture: texture_2d<f32>;
+@group(2) @binding(22) var diffuseTransmissionTexture: texture_2d<f32>;
+@group(2) @binding(23) var diffuseTransmissionColorTexture: texture_2d<f32>;
 #endif
 
 fn slotUv(slot: u32, uv0: vec2f, uv1: vec2f) -> vec2f {

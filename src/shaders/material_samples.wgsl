@@ -21,6 +21,8 @@ struct MaterialSamples {
     anisotropy: vec3f,
     transmission: f32,
     thickness: f32,
+    diffuseTransmission: f32,
+    diffuseTransmissionColor: vec3f,
 }
 
 // d(uv)/dx and d(uv)/dy of TEXCOORD_0 and TEXCOORD_1 (unused without SAMPLE_GRADIENT).
@@ -92,6 +94,11 @@ fn sampleMaterial(uv0: vec2f, uv1: vec2f, gradients: UvGradients) -> MaterialSam
     samples.transmission =
         sampleSlot(transmissionTexture, kTransmissionSlot, uv0, uv1, gradients).r;
     samples.thickness = sampleSlot(thicknessTexture, kThicknessSlot, uv0, uv1, gradients).g;
+    samples.diffuseTransmission = sampleSlot(diffuseTransmissionTexture, kDiffuseTransmissionSlot,
+                                             uv0, uv1, gradients).a;
+    samples.diffuseTransmissionColor =
+        sampleSlot(diffuseTransmissionColorTexture, kDiffuseTransmissionColorSlot, uv0, uv1,
+                   gradients).rgb;
 #else
     // Their shading is compiled out (kCompiledFeatures): what they would read is never used.
     samples.iridescence = 1.0;
@@ -99,6 +106,8 @@ fn sampleMaterial(uv0: vec2f, uv1: vec2f, gradients: UvGradients) -> MaterialSam
     samples.anisotropy = vec3f(1.0);
     samples.transmission = 1.0;
     samples.thickness = 1.0;
+    samples.diffuseTransmission = 1.0;
+    samples.diffuseTransmissionColor = vec3f(1.0);
 #endif
 #else
     // No texture anywhere: every slot reads white, as the 1-pixel default would.
@@ -119,6 +128,8 @@ fn sampleMaterial(uv0: vec2f, uv1: vec2f, gradients: UvGradients) -> MaterialSam
     samples.anisotropy = vec3f(1.0);
     samples.transmission = 1.0;
     samples.thickness = 1.0;
+    samples.diffuseTransmission = 1.0;
+    samples.diffuseTransmissionColor = vec3f(1.0);
 #endif
     return samples;
 }

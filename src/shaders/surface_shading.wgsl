@@ -6,6 +6,7 @@
 #include "anisotropy.wgsl"
 
 #include "transmission.wgsl"
+#include "diffuse_transmission.wgsl"
 
 struct SurfaceFrame {
     normal: vec3f,    // Shading normal (normal map applied).
@@ -210,6 +211,13 @@ fn shadeSurface(worldPosition: vec3f, vertexNormal: vec3f, vertexTangent: vec4f,
         transmission.modelScale = modelScale;
     }
 
+    // KHR_materials_diffuse_transmission: the diffuse layer gives way to light from the far side.
+    let diffuselyTransmissive = (features & kMaterialDiffuseTransmission) != 0u;
+    var diffuseTransmission: DiffuseTransmission;
+    if (diffuselyTransmissive) {
+        diffuseTransmission = diffuseTransmissionAt(samples, modelScale);
+    }
+
     var color = vec3f(0.0);
     // Image-based light: split-sum specular, Lambertian irradiance; occlusion applies here only.
     let lut = brdfLutAt(nDotV, roughness);
@@ -221,6 +229,10 @@ fn shadeSurface(worldPosition: vec3f, vertexNormal: vec3f, vertexTangent: vec4f,
         }
         let specularLight = environmentSpecular(reflect(-v, reflectionNormal), roughness);
         var diffuse = diffuseLight * albedo;
+        if (diffuselyTransmissive) {
+            diffuse = mix(diffuse, diffuseTransmissionEnvironment(diffuseTransmission, n),
+                          diffuseTransmission.factor);
+        }
         if (transmissive) {
             let refracted =
                 volumeRefraction(transmission, n, v, worldPosition, roughness, baseColor.rgb);
@@ -252,13 +264,17 @@ fn shadeSurface(worldPosition: vec3f, vertexNormal: vec3f, vertexTangent: vec4f,
         let l = light.direction;
         let h = normalize(l + v);
         let nDotL = clamp(dot(n, l), 0.0, 1.0);
-        if (nDotL <= 0.0 && !transmissive) {
+        if (nDotL <= 0.0 && !transmissive && !diffuselyTransmissive) {
             continue;  // Light from behind reaches only transmissive surfaces.
         }
         let nDotH = clamp(dot(n, h), 0.0, 1.0);
         let vDotH = clamp(dot(v, h), 0.0, 1.0);
         let incident = light.radiance * nDotL;
         var diffuse = incident * albedo / kPi;
+        if (diffuselyTransmissive) {
+            let through = diffuseTransmissionPunctual(diffuseTransmission, light.radiance, n, l);
+            diffuse = mix(diffuse, through, diffuseTransmission.factor);
+        }
         if (transmissive) {
             let through = punctualTransmission(transmission, lights[i], n, v, worldPosition,
                                                alphaRoughness, baseColor.rgb);

@@ -29,19 +29,7 @@ void Presenter::encode(const wgpu::CommandEncoder& commands,
         mBindGroup = gpu::makeBindGroup(mDevice, mLayout, {{0, source}}, "present");
         mBoundSource = source;
     }
-    wgpu::RenderPassColorAttachment color{};
-    color.view = target;
-    color.loadOp = wgpu::LoadOp::Clear;
-    color.storeOp = wgpu::StoreOp::Store;
-    wgpu::RenderPassDescriptor descriptor{};
-    descriptor.label = "encore present";
-    descriptor.colorAttachmentCount = 1;
-    descriptor.colorAttachments = &color;
-    wgpu::RenderPassEncoder pass = commands.BeginRenderPass(&descriptor);
-    pass.SetPipeline(mPipeline);
-    pass.SetBindGroup(0, mBindGroup);
-    pass.Draw(3);
-    pass.End();
+    gpu::encodeFullscreenPass(commands, target, mPipeline, mBindGroup, "encore present");
 }
 
 }  // namespace encore::view

@@ -219,6 +219,29 @@ TEST(InfoCommandTest, ListsTheMaterialVariants) {
     EXPECT_FALSE(contains(plain.out, "material variants")) << plain.out;
 }
 
+// KHR_materials_diffuse_transmission is shaded: listed so, with no warning and no material
+// listed as ignoring it.
+TEST(InfoCommandTest, DiffuseTransmissionIsShaded) {
+    const auto dir = makeTempDir("info-diffuse-transmission");
+    GltfBuilder builder;
+    const auto positions = builder.addPositions({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+    const auto material = builder.addMaterial({});
+    const auto mesh =
+        builder.addMesh({.attributes = {{"POSITION", positions}}, .material = material});
+    builder.addScene({builder.addNode({.mesh = mesh})});
+    builder.json()["materials"][0]["extensions"]["KHR_materials_diffuse_transmission"] = {
+        {"diffuseTransmissionFactor", 0.5}};
+    builder.json()["extensionsUsed"] = {"KHR_materials_diffuse_transmission"};
+    const auto path = builder.writeGltf(dir, "leaf");
+    const auto result = runEncore("info " + quote(path.string()));
+    ASSERT_EQ(result.exitCode, 0) << result.err;
+    EXPECT_TRUE(contains(result.out, "  KHR_materials_diffuse_transmission: shaded\n"))
+        << result.out;
+    EXPECT_FALSE(contains(result.out, "ignored")) << result.out;
+    EXPECT_FALSE(contains(result.out, "does not implement")) << result.out;
+    EXPECT_FALSE(contains(result.err, "warning:")) << result.err;
+}
+
 // KHR_texture_basisu: optional, info names the KTX2 images and what draws instead; required, the
 // refusal names them.
 TEST(InfoCommandTest, NamesTheImagesThatNeedBasisu) {

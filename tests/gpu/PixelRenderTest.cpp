@@ -37,10 +37,6 @@ test::Rgba background() {
 
 using test::frontCamera;
 
-bool shadesMaterials(StrategyKind kind) {
-    return kind >= StrategyKind::Materials;
-}
-
 class PixelRenderTest : public ::testing::TestWithParam<StrategyKind> {
   protected:
     // Loads the builder's asset and renders it from the front camera.
@@ -70,7 +66,7 @@ class PixelRenderTest : public ::testing::TestWithParam<StrategyKind> {
 
     // A white surface with this normal, as the strategy under test draws it.
     test::Rgba lit(const glm::vec3& normal) const {
-        if (!shadesMaterials(GetParam())) {
+        if (!test::shadesMaterials(GetParam())) {
             return gray(litWhite(normal));
         }
         const glm::vec3 encoded = glm::normalize(normal) * 0.5f + 0.5f;

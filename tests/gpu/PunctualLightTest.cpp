@@ -31,12 +31,7 @@ struct LightDesc {
 // A 4x4 white, fully rough dielectric plane at z = 0 facing +Z, and one light.
 scene::SceneData litPlane(const LightDesc& light) {
     test::GltfBuilder builder;
-    const glm::vec3 facing(0, 0, 1);
-    test::GltfBuilder::PrimitiveDesc plane;
-    plane.attributes["POSITION"] =
-        builder.addPositions({{-2, -2, 0}, {2, -2, 0}, {2, 2, 0}, {-2, 2, 0}});
-    plane.attributes["NORMAL"] = builder.addNormals({facing, facing, facing, facing});
-    plane.indices = builder.addIndices<std::uint16_t>({0, 1, 2, 0, 2, 3});
+    test::GltfBuilder::PrimitiveDesc plane = builder.addFacingQuad({-2, -2}, {2, 2});
     plane.material = builder.addMaterial({.baseColor = glm::vec4(1.0f), .roughness = 1.0f});
     const std::uint32_t planeNode = builder.addNode({.mesh = builder.addMesh(plane)});
     nlohmann::json lightJson = {{"type", light.type}, {"intensity", light.intensity}};

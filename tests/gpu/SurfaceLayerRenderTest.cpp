@@ -72,13 +72,7 @@ struct SquareScene {
 Frame renderSquare(const SquareScene& desc, StrategyKind strategy = StrategyKind::Bundles) {
     gpu::Context* context = test::vulkanContext();
     test::GltfBuilder builder;
-    const glm::vec3 facing(0, 0, 1);
-    test::GltfBuilder::PrimitiveDesc square;
-    square.attributes["POSITION"] =
-        builder.addPositions({{-2, -2, 0}, {2, -2, 0}, {2, 2, 0}, {-2, 2, 0}});
-    square.attributes["NORMAL"] = builder.addNormals({facing, facing, facing, facing});
-    square.attributes["TEXCOORD_0"] = builder.addTexcoords({{0, 1}, {1, 1}, {1, 0}, {0, 0}});
-    square.indices = builder.addIndices<std::uint16_t>({0, 1, 2, 0, 2, 3});
+    test::GltfBuilder::PrimitiveDesc square = builder.addFacingQuad({-2, -2}, {2, 2});
     square.material = builder.addMaterial(desc.material);
     if (desc.edit) {
         desc.edit(builder, builder.json()["materials"][*square.material]);

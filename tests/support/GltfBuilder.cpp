@@ -163,6 +163,17 @@ std::uint32_t GltfBuilder::addColors(const std::vector<glm::vec4>& colors) {
     return addAccessor(flatten(colors), "VEC4");
 }
 
+GltfBuilder::PrimitiveDesc GltfBuilder::addFacingQuad(glm::vec2 min, glm::vec2 max, float z) {
+    const glm::vec3 facing(0.0f, 0.0f, 1.0f);
+    PrimitiveDesc quad;
+    quad.attributes["POSITION"] =
+        addPositions({{min.x, min.y, z}, {max.x, min.y, z}, {max.x, max.y, z}, {min.x, max.y, z}});
+    quad.attributes["NORMAL"] = addNormals({facing, facing, facing, facing});
+    quad.attributes["TEXCOORD_0"] = addTexcoords({{0, 1}, {1, 1}, {1, 0}, {0, 0}});
+    quad.indices = addIndices<std::uint16_t>({0, 1, 2, 0, 2, 3});
+    return quad;
+}
+
 std::uint32_t GltfBuilder::addMesh(const std::vector<PrimitiveDesc>& primitives,
                                    const std::string& name) {
     nlohmann::json mesh;

@@ -128,6 +128,9 @@ class GltfBuilder {
     std::uint32_t addNormals(const std::vector<glm::vec3>& normals);
     std::uint32_t addTexcoords(const std::vector<glm::vec2>& texcoords);
     std::uint32_t addColors(const std::vector<glm::vec4>& colors);
+    // A quad from `min` to `max` in x and y at depth `z`, facing +Z: POSITION, NORMAL, TEXCOORD_0
+    // (the whole texture, u along +x, v along -y) and two triangles; no material.
+    PrimitiveDesc addFacingQuad(glm::vec2 min, glm::vec2 max, float z = 0.0f);
     // SCALAR indices of the given integer type (uint8_t, uint16_t or uint32_t).
     template <typename T>
     std::uint32_t addIndices(const std::vector<T>& indices) {

@@ -45,6 +45,10 @@ std::string describe(const Rgba& color) {
            std::to_string(color[2]) + ", " + std::to_string(color[3]) + ")";
 }
 
+bool shadesMaterials(render::StrategyKind kind) {
+    return kind >= render::StrategyKind::Materials;  // StrategyKind lists them in this order.
+}
+
 int channelDistance(const Rgba& a, const Rgba& b) {
     int distance = 0;
     for (int c = 0; c < 4; ++c) {

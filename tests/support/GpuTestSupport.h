@@ -40,6 +40,9 @@ std::string strategyTestName(render::StrategyKind kind);
 
 // Every strategy, directly and (where it is not a bundled kind itself) from bundles.
 std::vector<render::StrategyChoice> everyStrategyChoice();
+// Whether the strategy's frames shade materials (from `materials` on; the earlier ones draw
+// their base colour unlit).
+bool shadesMaterials(render::StrategyKind kind);
 std::string describe(const Rgba& color);
 
 // Largest per-channel difference.

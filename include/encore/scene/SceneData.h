@@ -260,6 +260,17 @@ struct DispersionExtension {
     float dispersion = 0.0f;
 };
 
+// KHR_materials_diffuse_transmission: a share of the light that is not reflected specularly
+// passes through the surface diffusely (a Lambertian lobe on the far side), tinted by the
+// colour; thin leaves, paper, lamp shades. With KHR_materials_volume, it is absorbed over the
+// thickness.
+struct DiffuseTransmissionExtension {
+    float diffuseTransmissionFactor = 0.0f;
+    std::optional<TextureRef> diffuseTransmissionTexture;  // Alpha channel.
+    glm::vec3 diffuseTransmissionColorFactor{1.0f};
+    std::optional<TextureRef> diffuseTransmissionColorTexture;  // RGB, sRGB.
+};
+
 struct Material {
     std::string name;
     glm::vec4 baseColorFactor{1.0f};
@@ -288,10 +299,12 @@ struct Material {
     std::optional<IridescenceExtension> iridescence;
     std::optional<AnisotropyExtension> anisotropy;
     std::optional<TransmissionExtension> transmission;
-    std::optional<VolumeExtension> volume;  // Only with transmission (the extension says so).
+    // Only with transmission or diffuse transmission (the extension says so).
+    std::optional<VolumeExtension> volume;
     std::optional<DispersionExtension> dispersion;
-    // Material extensions present in the file that Encore does not shade (iridescence,
-    // anisotropy, ...): the base material is drawn instead.
+    std::optional<DiffuseTransmissionExtension> diffuseTransmission;
+    // Material extensions present in the file that Encore does not shade (vendor extensions,
+    // KHR_materials_volume_scatter, ...): the base material is drawn instead.
     std::vector<std::string> ignoredExtensions;
 };
 

@@ -41,7 +41,8 @@ struct ShaderVariantKey {
     bool skinned = false;
     bool skinned8 = false;
     bool morphed = false;
-    // The material uses iridescence, anisotropy or transmission (and volume, dispersion):
+    // The material uses iridescence, anisotropy, transmission (and volume, dispersion) or
+    // diffuse transmission:
     // MATERIAL_EXTENSIONS compiles their shading. Without it the code is left out, so frames
     // of materials without them pay nothing for it (registers, occupancy: measured on the H100).
     bool materialExtensions = false;

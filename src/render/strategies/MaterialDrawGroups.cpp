@@ -14,7 +14,8 @@ namespace {
 // The variant a primitive and its material need: vertex inputs that exist and are read
 // (TEXCOORD_0, COLOR_0; TANGENT only under a normal map; TEXCOORD_1 only when a texture reads
 // it), MASK's discard, whether the material binds textures at all, samples them through more
-// than one sampler, and uses the costly extensions (iridescence, anisotropy, transmission).
+// than one sampler, and uses the costly extensions (iridescence, anisotropy, transmission,
+// diffuse transmission).
 // Everything else (which slots have textures, clearcoat, sheen, unlit) is uniform data and
 // 1-pixel default textures, so it shares the variant.
 shaders::ShaderVariantKey materialVariant(const scene::Primitive& primitive,
@@ -25,7 +26,8 @@ shaders::ShaderVariantKey materialVariant(const scene::Primitive& primitive,
     key.materialTextures = resources.textured(materialId);
     key.samplerPalette = key.materialTextures && resources.samplesThroughPalette(materialId);
     key.materialExtensions = material.iridescence.has_value() || material.anisotropy.has_value() ||
-                             material.transmission.has_value();
+                             material.transmission.has_value() ||
+                             material.diffuseTransmission.has_value();
     key.instanceSource = shaders::InstanceSource::InstanceStorage;
     key.materials = true;
     key.hasTexcoord = primitive.attribute(scene::Semantic::Texcoord0).has_value();

@@ -37,6 +37,9 @@ scene::Material everySlotTextured() {
     material.anisotropy = scene::AnisotropyExtension{.anisotropyTexture = textureRef(14)};
     material.transmission = scene::TransmissionExtension{.transmissionTexture = textureRef(15)};
     material.volume = scene::VolumeExtension{.thicknessTexture = textureRef(16)};
+    material.diffuseTransmission =
+        scene::DiffuseTransmissionExtension{.diffuseTransmissionTexture = textureRef(17),
+                                            .diffuseTransmissionColorTexture = textureRef(18)};
     return material;
 }
 
@@ -78,6 +81,7 @@ TEST(MaterialSlotsTest, ExtensionSlotsAreEmptyWithoutTheirExtension) {
     material.anisotropy.reset();
     material.transmission.reset();
     material.volume.reset();
+    material.diffuseTransmission.reset();
     for (std::uint32_t i = 0; i < kMaterialTextureSlotCount; ++i) {
         EXPECT_EQ(slotTexture(material, TextureSlot(i)).has_value(), i < 5) << "slot " << i;
     }
@@ -95,7 +99,8 @@ TEST(MaterialSlotsTest, SpecularGlossinessReplacesTheMetallicRoughnessTexture) {
 TEST(MaterialSlotsTest, ColourDataIsSrgbAndTheSpecularGlossinessTextureToo) {
     scene::Material metallicRoughness;
     const std::set<TextureSlot> srgb = {TextureSlot::BaseColor, TextureSlot::Emissive,
-                                        TextureSlot::SpecularColor, TextureSlot::SheenColor};
+                                        TextureSlot::SpecularColor, TextureSlot::SheenColor,
+                                        TextureSlot::DiffuseTransmissionColor};
     for (std::uint32_t i = 0; i < kMaterialTextureSlotCount; ++i) {
         const TextureSlot slot = TextureSlot(i);
         EXPECT_EQ(slotColorSpace(metallicRoughness, slot),

@@ -152,6 +152,42 @@ TEST(MaterialUniformTest, TransmissionVolumeAndDispersionPackTogether) {
     EXPECT_EQ(uniform.flags[1], kMaterialTransmission);
 }
 
+TEST(MaterialUniformTest, DiffuseTransmissionPacksColourFactorAndVolume) {
+    scene::Material material;
+    MaterialUniform uniform = makeMaterialUniform(material);
+    expectVector(uniform.diffuseTransmission, 0.0f, 0.0f, 0.0f, 0.0f, "none");
+    EXPECT_EQ(uniform.flags[1] & kMaterialDiffuseTransmission, 0u);
+
+    material.diffuseTransmission = scene::DiffuseTransmissionExtension{
+        .diffuseTransmissionFactor = 0.75f, .diffuseTransmissionColorFactor = {1.0f, 0.5f, 0.25f}};
+    uniform = makeMaterialUniform(material);
+    expectVector(uniform.diffuseTransmission, 1.0f, 0.5f, 0.25f, 0.75f, "factors");
+    EXPECT_EQ(uniform.flags[1], kMaterialDiffuseTransmission);
+    expectVector(uniform.transmission, 0.0f, 0.0f, 0.0f, 0.0f, "no volume");
+
+    // A volume acts through diffuse transmission too (thickness and absorption), but
+    // transmission stays off and dispersion has nothing to spread.
+    material.volume = scene::VolumeExtension{.thicknessFactor = 2.0f,
+                                             .attenuationDistance = 0.5f,
+                                             .attenuationColor = {0.1f, 0.2f, 0.3f}};
+    material.dispersion = scene::DispersionExtension{.dispersion = 0.5f};
+    uniform = makeMaterialUniform(material);
+    expectVector(uniform.transmission, 0.0f, 2.0f, 0.5f, 0.0f, "volume");
+    expectVector(uniform.attenuationColor, 0.1f, 0.2f, 0.3f, 0.0f, "attenuation colour");
+    EXPECT_EQ(uniform.flags[1], kMaterialDiffuseTransmission | kMaterialVolume);
+
+    // Its textures are slots of their own, read through the palette like any other.
+    material.diffuseTransmission->diffuseTransmissionTexture = textureRef(0);
+    material.diffuseTransmission->diffuseTransmissionColorTexture = textureRef(1);
+    SlotSamplerEntries entries{};
+    entries[std::uint32_t(TextureSlot::DiffuseTransmissionColor)] = 2;
+    uniform = makeMaterialUniform(material, entries);
+    EXPECT_EQ(uniform.slots[std::uint32_t(TextureSlot::DiffuseTransmissionColor)].row1[3], 2.0f);
+    EXPECT_EQ(slotTexture(material, TextureSlot::DiffuseTransmission)->texture.value, 0u);
+    EXPECT_EQ(slotColorSpace(material, TextureSlot::DiffuseTransmission), ColorSpace::Linear);
+    EXPECT_EQ(slotColorSpace(material, TextureSlot::DiffuseTransmissionColor), ColorSpace::Srgb);
+}
+
 TEST(MaterialUniformTest, ShadingModelFollowsSpecularGlossinessAndUnlit) {
     scene::Material glossy;
     glossy.specularGlossiness = scene::SpecularGlossinessExtension{

@@ -200,6 +200,7 @@ TEST(MaterialWgslTest, FeatureBitsAndShadingModelsMatchTheCpp) {
         {"kMaterialAnisotropyTexture", kMaterialAnisotropyTexture},
         {"kMaterialTransmission", kMaterialTransmission},
         {"kMaterialVolume", kMaterialVolume},
+        {"kMaterialDiffuseTransmission", kMaterialDiffuseTransmission},
     };
     EXPECT_EQ(unsignedConstants("kMaterial"), features);
     std::uint32_t all = 0;
@@ -245,6 +246,7 @@ TEST(MaterialWgslTest, MaterialStructMatchesMaterialUniform) {
         {"anisotropy", {offsetof(MaterialUniform, anisotropy), "vec4f"}},
         {"transmission", {offsetof(MaterialUniform, transmission), "vec4f"}},
         {"attenuationColor", {offsetof(MaterialUniform, attenuationColor), "vec4f"}},
+        {"diffuseTransmission", {offsetof(MaterialUniform, diffuseTransmission), "vec4f"}},
         {"flags", {offsetof(MaterialUniform, flags), "vec4u"}},
     };
     const std::vector<WgslField> fields = structFields(structBody(source, "Material"));

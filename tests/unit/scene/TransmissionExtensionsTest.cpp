@@ -1,5 +1,6 @@
-// KHR_materials_transmission, KHR_materials_volume and KHR_materials_dispersion: parsing, the
-// defaults of empty extension objects, and the errors of invalid values.
+// KHR_materials_transmission, KHR_materials_volume, KHR_materials_dispersion and
+// KHR_materials_diffuse_transmission: parsing, the defaults of empty extension objects, and the
+// errors of invalid values.
 
 #include <gtest/gtest.h>
 
@@ -16,6 +17,8 @@ namespace {
 using nlohmann::json;
 using testing::loadGltf;
 using testing::triangleBuilder;
+
+constexpr const char* kDiffuse = "KHR_materials_diffuse_transmission";
 
 test::GltfBuilder builderWith(const json& extensions, bool required = false) {
     auto builder = triangleBuilder();
@@ -91,6 +94,64 @@ TEST(TransmissionExtensionsTest, AbsentExtensionsStayAbsent) {
     EXPECT_FALSE(scene->materials[0].dispersion);
 }
 
+TEST(TransmissionExtensionsTest, DiffuseTransmissionFactorsAndTexturesAreRead) {
+    auto builder =
+        builderWith({{kDiffuse,
+                      {{"diffuseTransmissionFactor", 0.75},
+                       {"diffuseTransmissionTexture", {{"index", 0}}},
+                       {"diffuseTransmissionColorFactor", {1.0, 0.5, 0.25}},
+                       {"diffuseTransmissionColorTexture",
+                        {{"index", 1},
+                         {"texCoord", 1},
+                         {"extensions", {{"KHR_texture_transform", {{"offset", {0.5, 0.0}}}}}}}}}}},
+                    true);
+    auto scene = loadGltf(builder);
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+    const Material& material = scene->materials[0];
+    ASSERT_TRUE(material.diffuseTransmission);
+    const DiffuseTransmissionExtension& diffuse = *material.diffuseTransmission;
+    EXPECT_EQ(diffuse.diffuseTransmissionFactor, 0.75f);
+    ASSERT_TRUE(diffuse.diffuseTransmissionTexture);
+    EXPECT_EQ(diffuse.diffuseTransmissionTexture->texture.value, 0u);
+    EXPECT_EQ(diffuse.diffuseTransmissionTexture->texCoord, 0u);
+    EXPECT_EQ(diffuse.diffuseTransmissionColorFactor, glm::vec3(1.0f, 0.5f, 0.25f));
+    ASSERT_TRUE(diffuse.diffuseTransmissionColorTexture);
+    EXPECT_EQ(diffuse.diffuseTransmissionColorTexture->texture.value, 1u);
+    EXPECT_EQ(diffuse.diffuseTransmissionColorTexture->texCoord, 1u);
+    ASSERT_TRUE(diffuse.diffuseTransmissionColorTexture->transform);
+    EXPECT_EQ(diffuse.diffuseTransmissionColorTexture->transform->offset, glm::vec2(0.5f, 0.0f));
+    EXPECT_FALSE(material.transmission);
+    // Shaded: a file that requires it loads, and nothing is reported as ignored.
+    EXPECT_TRUE(material.ignoredExtensions.empty());
+    EXPECT_TRUE(scene->extensionsIgnored.empty());
+    EXPECT_TRUE(scene->warnings.empty());
+}
+
+TEST(TransmissionExtensionsTest, DiffuseTransmissionDefaultsAndItsVolume) {
+    auto builder = builderWith({{kDiffuse, json::object()}});
+    builder.addMaterial({});  // Material 1: without the extension.
+    auto scene = loadGltf(builder);
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+    ASSERT_TRUE(scene->materials[0].diffuseTransmission);
+    const DiffuseTransmissionExtension& diffuse = *scene->materials[0].diffuseTransmission;
+    EXPECT_EQ(diffuse.diffuseTransmissionFactor, 0.0f);
+    EXPECT_FALSE(diffuse.diffuseTransmissionTexture);
+    EXPECT_EQ(diffuse.diffuseTransmissionColorFactor, glm::vec3(1.0f));
+    EXPECT_FALSE(diffuse.diffuseTransmissionColorTexture);
+    EXPECT_FALSE(scene->materials[1].diffuseTransmission);
+
+    // A volume may accompany diffuse transmission instead of transmission.
+    auto withVolume = builderWith(
+        {{kDiffuse, {{"diffuseTransmissionFactor", 1.0}}},
+         {"KHR_materials_volume", {{"thicknessFactor", 0.5}, {"attenuationColor", {0.5, 1, 1}}}}});
+    auto volumeScene = loadGltf(withVolume);
+    ASSERT_TRUE(volumeScene.ok()) << volumeScene.error().message;
+    const Material& material = volumeScene->materials[0];
+    ASSERT_TRUE(material.diffuseTransmission && material.volume);
+    EXPECT_EQ(material.volume->thicknessFactor, 0.5f);
+    EXPECT_TRUE(volumeScene->warnings.empty());
+}
+
 TEST(TransmissionExtensionsTest, InvalidValuesNameTheMaterialAndField) {
     struct Case {
         std::string name;
@@ -130,6 +191,34 @@ TEST(TransmissionExtensionsTest, InvalidValuesNameTheMaterialAndField) {
         {"TransmissionNotAnObject",
          {{"KHR_materials_transmission", 1}},
          {"material 0 has an invalid KHR_materials_transmission extension"}},
+        {"DiffuseTransmissionAboveOne",
+         {{kDiffuse, {{"diffuseTransmissionFactor", 1.5}}}},
+         {"material 0 KHR_materials_diffuse_transmission has an invalid "
+          "diffuseTransmissionFactor (1.5",
+          "it must lie in [0, 1]"}},
+        {"DiffuseTransmissionNegative",
+         {{kDiffuse, {{"diffuseTransmissionFactor", -0.5}}}},
+         {"diffuseTransmissionFactor (-0.5"}},
+        {"DiffuseTransmissionNotANumber",
+         {{kDiffuse, {{"diffuseTransmissionFactor", "half"}}}},
+         {"material 0 KHR_materials_diffuse_transmission", "'diffuseTransmissionFactor'"}},
+        {"DiffuseTransmissionColorOfTwo",
+         {{kDiffuse, {{"diffuseTransmissionColorFactor", {1, 1}}}}},
+         {"material 0 KHR_materials_diffuse_transmission", "'diffuseTransmissionColorFactor'"}},
+        {"DiffuseTransmissionColorAboveOne",
+         {{kDiffuse, {{"diffuseTransmissionColorFactor", {0.5, 0.5, 3}}}}},
+         {"has an invalid diffuseTransmissionColorFactor (component 2 is 3",
+          "each must be between 0 and 1"}},
+        {"DiffuseTransmissionTextureWithoutIndex",
+         {{kDiffuse, {{"diffuseTransmissionTexture", json::object()}}}},
+         {"material 0 KHR_materials_diffuse_transmission diffuseTransmissionTexture", "'index'"}},
+        {"DiffuseTransmissionColorTextureOutOfRange",
+         {{kDiffuse, {{"diffuseTransmissionColorTexture", {{"index", 9}}}}}},
+         {"material 0 KHR_materials_diffuse_transmission diffuseTransmissionColorTexture refers "
+          "to texture 9"}},
+        {"DiffuseTransmissionNotAnObject",
+         {{kDiffuse, 1}},
+         {"material 0 has an invalid KHR_materials_diffuse_transmission extension"}},
     };
     for (const Case& entry : cases) {
         SCOPED_TRACE(entry.name);
