@@ -46,14 +46,32 @@ std::uint32_t powerOfTwoAtLeast(std::uint32_t value) {
 Result<DepthPyramid> DepthPyramid::create(const wgpu::Device& device,
                                           shaders::ShaderLibrary& shaders,
                                           const wgpu::Texture& depth) {
+    return build(device, shaders, {depth, nullptr, depth.GetWidth(), depth.GetHeight()});
+}
+
+Result<DepthPyramid> DepthPyramid::createFromVisibility(const wgpu::Device& device,
+                                                        shaders::ShaderLibrary& shaders,
+                                                        const wgpu::Buffer& visibility,
+                                                        std::uint32_t width,
+                                                        std::uint32_t height) {
+    return build(device, shaders, {nullptr, visibility, width, height});
+}
+
+Result<DepthPyramid> DepthPyramid::build(const wgpu::Device& device,
+                                         shaders::ShaderLibrary& shaders,
+                                         const Source& source) {
     DepthPyramid pyramid;
-    pyramid.mDepth = depth;
-    const bool multisampled = depth.GetSampleCount() > 1;
-    ENCORE_TRY_ASSIGN(
-        auto module,
-        shaders.module("depth_pyramid.wgsl",
-                       multisampled ? std::set<std::string, std::less<>>{"MULTISAMPLED"}
-                                    : std::set<std::string, std::less<>>{}));
+    pyramid.mDepth = source.depth;
+    pyramid.mVisibility = source.visibility;
+    pyramid.mWidth = source.width;
+    pyramid.mHeight = source.height;
+    std::set<std::string, std::less<>> flags;
+    if (source.visibility) {
+        flags.insert("VISIBILITY_BUFFER");
+    } else if (source.depth.GetSampleCount() > 1) {
+        flags.insert("MULTISAMPLED");
+    }
+    ENCORE_TRY_ASSIGN(auto module, shaders.module("depth_pyramid.wgsl", flags));
     auto computePipeline = [&](const char* entryPoint) {
         wgpu::ComputePipelineDescriptor descriptor{};
         descriptor.label = entryPoint;
@@ -64,8 +82,8 @@ Result<DepthPyramid> DepthPyramid::create(const wgpu::Device& device,
     pyramid.mReduceDepth = computePipeline("reduceDepth");
     pyramid.mReduceLevels = computePipeline("reduceLevels");
 
-    const std::uint32_t depthWidth = depth.GetWidth();
-    const std::uint32_t depthHeight = depth.GetHeight();
+    const std::uint32_t depthWidth = source.width;
+    const std::uint32_t depthHeight = source.height;
     wgpu::TextureDescriptor descriptor{};
     descriptor.label = "depth pyramid";
     descriptor.size = {powerOfTwoAtLeast(levelSize(depthWidth, 0)),
@@ -91,7 +109,10 @@ Result<DepthPyramid> DepthPyramid::create(const wgpu::Device& device,
     const std::uint32_t dispatches =
         (pyramid.mLevelCount + kLevelsPerDispatch - 1) / kLevelsPerDispatch;
     std::vector<std::uint8_t> uniforms(dispatches * kUniformStride);
-    const wgpu::TextureView depthView = depth.CreateView();
+    // Level 0's source: the depth texture's view, or the visibility buffer.
+    const gpu::BindingResource depthSource =
+        source.visibility ? gpu::BindingResource(0, source.visibility)
+                          : gpu::BindingResource(0, source.depth.CreateView());
     for (std::uint32_t dispatch = 0; dispatch < dispatches; ++dispatch) {
         const std::uint32_t firstLevel = dispatch * kLevelsPerDispatch;
         const ReductionUniform uniform{
@@ -105,7 +126,7 @@ Result<DepthPyramid> DepthPyramid::create(const wgpu::Device& device,
     for (std::uint32_t dispatch = 0; dispatch < dispatches; ++dispatch) {
         const std::uint32_t firstLevel = dispatch * kLevelsPerDispatch;
         std::vector<gpu::BindingResource> resources = {
-            firstLevel == 0 ? gpu::BindingResource(0, depthView)
+            firstLevel == 0 ? depthSource
                             : gpu::BindingResource(1, levelView(pyramid.mPyramid, firstLevel - 1)),
             {2, pyramid.mUniforms, dispatch * kUniformStride, sizeof(ReductionUniform)}};
         for (std::uint32_t step = 0; step < kLevelsPerDispatch; ++step) {

@@ -12,8 +12,13 @@
 // A dispatch writes up to four levels (WebGPU's default limit of storage textures per stage):
 // each 16x16 workgroup reduces its tile of the first level, then halves it in workgroup memory
 // three times. Texels past a level's size hold 0, which the max ignores.
+//
+// VISIBILITY_BUFFER: level 0 reduces the visibility strategy's buffer instead of a depth texture
+// (one (id, ~depth bits) pair per pixel, row by row; 0 where nothing was drawn: depth 1).
 
-#if MULTISAMPLED
+#if VISIBILITY_BUFFER
+@group(0) @binding(0) var<storage, read> visibility: array<vec2u>;
+#elif MULTISAMPLED
 @group(0) @binding(0) var depth: texture_depth_multisampled_2d;
 #else
 @group(0) @binding(0) var depth: texture_depth_2d;
@@ -80,7 +85,10 @@ fn farthestDepthAt(pixel: vec2u) -> f32 {
     if (any(pixel >= reduction.depthSize)) {
         return 0.0;
     }
-#if MULTISAMPLED
+#if VISIBILITY_BUFFER
+    let nearest = visibility[pixel.y * reduction.depthSize.x + pixel.x].y;
+    return select(bitcast<f32>(~nearest), 1.0, nearest == 0u);
+#elif MULTISAMPLED
     var deepest = 0.0;
     for (var sample = 0u; sample < textureNumSamples(depth); sample++) {
         deepest = max(deepest, textureLoad(depth, pixel, i32(sample)));
