@@ -24,7 +24,10 @@ struct ReductionUniform {
     std::uint32_t depthSize[2];
     std::uint32_t firstLevel;
     std::uint32_t levelCount;
+    std::uint32_t samples;  // Entries per pixel of a visibility buffer.
+    std::uint32_t padding;
 };
+static_assert(sizeof(ReductionUniform) == 24);
 
 wgpu::TextureView levelView(const wgpu::Texture& texture, std::uint32_t level) {
     wgpu::TextureViewDescriptor descriptor{};
@@ -46,7 +49,7 @@ std::uint32_t powerOfTwoAtLeast(std::uint32_t value) {
 Result<DepthPyramid> DepthPyramid::create(const wgpu::Device& device,
                                           shaders::ShaderLibrary& shaders,
                                           const wgpu::Texture& depth) {
-    return build(device, shaders, {depth, nullptr, depth.GetWidth(), depth.GetHeight()});
+    return build(device, shaders, {depth, nullptr, depth.GetWidth(), depth.GetHeight(), 1});
 }
 
 Result<DepthPyramid> DepthPyramid::createFromVisibility(const wgpu::Device& device,
@@ -54,7 +57,11 @@ Result<DepthPyramid> DepthPyramid::createFromVisibility(const wgpu::Device& devi
                                                         const wgpu::Buffer& visibility,
                                                         std::uint32_t width,
                                                         std::uint32_t height) {
-    return build(device, shaders, {nullptr, visibility, width, height});
+    // One entry per pixel, or one per sample where the strategy keeps several.
+    const std::uint64_t pixelBytes = std::uint64_t(width) * height * 8;
+    const auto samples = std::uint32_t(
+        std::max<std::uint64_t>(pixelBytes == 0 ? 1 : visibility.GetSize() / pixelBytes, 1));
+    return build(device, shaders, {nullptr, visibility, width, height, samples});
 }
 
 Result<DepthPyramid> DepthPyramid::build(const wgpu::Device& device,
@@ -118,7 +125,9 @@ Result<DepthPyramid> DepthPyramid::build(const wgpu::Device& device,
         const ReductionUniform uniform{
             {depthWidth, depthHeight},
             firstLevel,
-            std::min(kLevelsPerDispatch, pyramid.mLevelCount - firstLevel)};
+            std::min(kLevelsPerDispatch, pyramid.mLevelCount - firstLevel),
+            source.samples,
+            0};
         std::memcpy(&uniforms[dispatch * kUniformStride], &uniform, sizeof(uniform));
     }
     pyramid.mUniforms = gpu::createBufferFrom<std::uint8_t>(device, wgpu::BufferUsage::Uniform,

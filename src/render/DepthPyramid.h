@@ -26,8 +26,9 @@ class DepthPyramid {
                                        shaders::ShaderLibrary& shaders,
                                        const wgpu::Texture& depth);
 
-    // From the visibility strategy's buffer (VisibilityStrategy): `width` x `height` pairs of
-    // u32, row by row, the high word ~depth bits, 0 where nothing was drawn (depth 1).
+    // From the visibility strategy's buffer (VisibilityStrategy): `width` x `height` pixels, row
+    // by row, each one or more (as many as the buffer's size holds) pairs of u32, the high word
+    // ~depth bits, 0 where nothing was drawn (depth 1); a texel keeps the farthest of them.
     static Result<DepthPyramid> createFromVisibility(const wgpu::Device& device,
                                                      shaders::ShaderLibrary& shaders,
                                                      const wgpu::Buffer& visibility,
@@ -65,6 +66,7 @@ class DepthPyramid {
         wgpu::Buffer visibility;
         std::uint32_t width = 0;
         std::uint32_t height = 0;
+        std::uint32_t samples = 1;  // Entries per pixel of the visibility buffer.
     };
     static Result<DepthPyramid> build(const wgpu::Device& device,
                                       shaders::ShaderLibrary& shaders,

@@ -14,7 +14,7 @@
 // three times. Texels past a level's size hold 0, which the max ignores.
 //
 // VISIBILITY_BUFFER: level 0 reduces the visibility strategy's buffer instead of a depth texture
-// (one (id, ~depth bits) pair per pixel, row by row; 0 where nothing was drawn: depth 1).
+// (`samples` (id, ~depth bits) pairs per pixel, row by row; 0 where nothing was drawn: depth 1).
 
 #if VISIBILITY_BUFFER
 @group(0) @binding(0) var<storage, read> visibility: array<vec2u>;
@@ -29,6 +29,7 @@ struct Reduction {
     depthSize: vec2u,
     firstLevel: u32,
     levelCount: u32,  // 1 to 4: the levels this dispatch writes, from firstLevel.
+    samples: u32,  // VISIBILITY_BUFFER: entries per pixel.
 }
 @group(0) @binding(2) var<uniform> reduction: Reduction;
 @group(0) @binding(3) var level0: texture_storage_2d<r32float, write>;
@@ -86,8 +87,13 @@ fn farthestDepthAt(pixel: vec2u) -> f32 {
         return 0.0;
     }
 #if VISIBILITY_BUFFER
-    let nearest = visibility[pixel.y * reduction.depthSize.x + pixel.x].y;
-    return select(bitcast<f32>(~nearest), 1.0, nearest == 0u);
+    let first = (pixel.y * reduction.depthSize.x + pixel.x) * reduction.samples;
+    var deepest = 0.0;
+    for (var sample = 0u; sample < reduction.samples; sample++) {
+        let nearest = visibility[first + sample].y;
+        deepest = max(deepest, select(bitcast<f32>(~nearest), 1.0, nearest == 0u));
+    }
+    return deepest;
 #elif MULTISAMPLED
     var deepest = 0.0;
     for (var sample = 0u; sample < textureNumSamples(depth); sample++) {

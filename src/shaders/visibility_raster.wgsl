@@ -1,7 +1,7 @@
 enable atomic_vec2u_min_max;
 
-// The visibility strategy's raster passes for one view (or one phase of it), after the cull
-// (visibility_cull.wgsl) has listed units:
+// The visibility strategy's raster passes, for one view (or one phase of it: visibility_cull.wgsl
+// lists the units):
 //   argsMain    one thread: the raster dispatch's size from this phase's unit count;
 //   rasterMain  one workgroup per unit, one thread per triangle at a time: clip, cull back
 //               faces, snap to 1/256 pixel and cover pixel centres with edge functions under the
@@ -11,6 +11,7 @@ enable atomic_vec2u_min_max;
 //               for the hardware pass (visibility_hardware.wgsl) instead.
 #include "frame.wgsl"
 #include "visibility_geometry.wgsl"
+
 #include "visibility_levels.wgsl"
 #include "visibility_counters.wgsl"
 
