@@ -1,7 +1,8 @@
 // The visibility strategy's culling (docs/visibility.md): with two-phase occlusion culling and
 // levels of detail on, fly-through and city frames look as gpu-culling-bundles draws them with the
 // same options and as the visibility strategy draws them without occlusion (nothing visible goes
-// missing); a wall hides the objects behind it, which stop being rasterised; an object that
+// missing); a wall, drawn in compute or by the hardware, hides the objects behind it, which stop
+// being rasterised (the triangle counts add both phases); an object that
 // comes out from behind the wall when the camera moves is drawn in that very frame; and levels of
 // detail list exactly the triangles GPU culling draws.
 
@@ -73,12 +74,6 @@ std::uint32_t listedTriangles(gpu::Context& context, const Renderer& renderer) {
                     VisibilityStrategy::kListedTrianglesOffset);
 }
 
-// Triangles the last frame rasterised: in compute plus in hardware.
-std::uint32_t rasterisedTriangles(gpu::Context& context, const Renderer& renderer) {
-    const auto& counts = visibilityOf(renderer).triangleCounts();
-    return readWord(context, counts, 0) + readWord(context, counts, 4);
-}
-
 // The bar against gpu-culling-bundles: SSIM >= 0.99, at most 0.5% of pixels more than 2
 // levels apart.
 void expectClose(const image::ImageRgba8& expected, const image::ImageRgba8& image) {
@@ -110,8 +105,7 @@ std::vector<Camera> walk(const scene::SceneData& scene, std::size_t frames) {
     for (std::size_t i = 0; i < frames; ++i) {
         const float t = 0.2f + 0.4f * float(i) / float(frames);
         const glm::vec3 eye{low.x - 1.0f + t * (high.x - low.x), center.y + 0.3f, center.z};
-        cameras.push_back(Camera::lookAt(eye,
-                                         eye + glm::vec3(10.0f, -1.0f, 3.0f - 1.5f * float(i)),
+        cameras.push_back(Camera::lookAt(eye, eye + glm::vec3(10.0f, -1.0f, 3.0f - 1.5f * float(i)),
                                          glm::radians(60.0f), aspect, 0.05f, 500.0f));
     }
     return cameras;
@@ -154,10 +148,11 @@ TEST_P(VisibilityOcclusionTest, WalkLooksLikeGpuCullingAndMissesNothing) {
     // those fewer than full detail.
     EXPECT_LT(listed, listedUnoccluded);
     EXPECT_LT(listedUnoccluded, listedFull);
-    std::printf("listed triangles over the walk: %llu with occlusion and levels of detail, %llu "
-                "without occlusion, %llu at full detail\n",
-                (unsigned long long)listed, (unsigned long long)listedUnoccluded,
-                (unsigned long long)listedFull);
+    std::printf(
+        "listed triangles over the walk: %llu with occlusion and levels of detail, %llu "
+        "without occlusion, %llu at full detail\n",
+        (unsigned long long)listed, (unsigned long long)listedUnoccluded,
+        (unsigned long long)listedFull);
     EXPECT_TRUE(context->checkNoErrors("visibility occlusion culling").ok());
 }
 
@@ -196,19 +191,20 @@ scene::SceneData wallScene() {
         for (std::uint32_t x = 0; x < kGridQuads; ++x) {
             const auto corner = std::uint16_t(y * (kGridQuads + 1) + x);
             const auto above = std::uint16_t(corner + kGridQuads + 1);
-            indices.insert(indices.end(), {corner, std::uint16_t(corner + 1),
-                                           std::uint16_t(above + 1), corner,
-                                           std::uint16_t(above + 1), above});
+            indices.insert(indices.end(),
+                           {corner, std::uint16_t(corner + 1), std::uint16_t(above + 1), corner,
+                            std::uint16_t(above + 1), above});
         }
     }
     const auto objectMaterial = builder.addMaterial({.baseColor = {0.9f, 0.2f, 0.1f, 1.0f}});
-    const auto object = builder.addMesh({.attributes = {{"POSITION", builder.addPositions(positions)}},
-                                         .indices = builder.addIndices(indices),
-                                         .material = objectMaterial});
-    std::vector<std::uint32_t> nodes = {builder.addNode(
-        {.mesh = builder.addMesh({.attributes = {{"POSITION", wallPositions}},
-                                  .indices = wallIndices,
-                                  .material = wallMaterial})})};
+    const auto object =
+        builder.addMesh({.attributes = {{"POSITION", builder.addPositions(positions)}},
+                         .indices = builder.addIndices(indices),
+                         .material = objectMaterial});
+    std::vector<std::uint32_t> nodes = {
+        builder.addNode({.mesh = builder.addMesh({.attributes = {{"POSITION", wallPositions}},
+                                                  .indices = wallIndices,
+                                                  .material = wallMaterial})})};
     for (std::uint32_t i = 0; i < kObjects; ++i) {
         const glm::vec3 at{-1.5f + float(i % 4), -1.2f + 0.8f * float(i / 4), -1.5f};
         nodes.push_back(builder.addNode({.mesh = object, .translation = at}));
@@ -221,35 +217,62 @@ scene::SceneData wallScene() {
 
 const float kAspect = float(kWidth) / float(kHeight);
 
-TEST(VisibilityWallTest, HiddenObjectsAreNotRasterised) {
+// The triangles the last frame rasterised: in compute, then in hardware.
+std::array<std::uint32_t, 2> rasteriserCounts(gpu::Context& context, const Renderer& renderer) {
+    const auto& counts = visibilityOf(renderer).triangleCounts();
+    return {readWord(context, counts, 0), readWord(context, counts, 4)};
+}
+
+// The wall drawn by a compute workgroup (64 x 48 pixels) or, without workgroups, by the hardware:
+// either way it is in the pyramid that phase 2 tests the objects against.
+class VisibilityWallTest : public ::testing::TestWithParam<float> {};
+
+TEST_P(VisibilityWallTest, HiddenObjectsAreNotRasterised) {
     ENCORE_REQUIRE_VULKAN(context);
     const auto scene = wallScene();
-    auto occluded = renderer(*context, scene, StrategyKind::Visibility,
-                             {.occlusion = true, .levelsOfDetail = false});
-    auto frustumOnly = renderer(*context, scene, StrategyKind::Visibility,
-                                {.occlusion = false, .levelsOfDetail = false});
+    const float workgroupPixels = GetParam();
+    const bool wallInHardware = workgroupPixels == 0.0f;
+    CullingOptions culling{.occlusion = true, .levelsOfDetail = false};
+    culling.workgroupRasterPixels = workgroupPixels;
+    auto occluded = renderer(*context, scene, StrategyKind::Visibility, culling);
+    culling.occlusion = false;
+    auto frustumOnly = renderer(*context, scene, StrategyKind::Visibility, culling);
     ASSERT_TRUE(occluded && frustumOnly);
     const Camera front = test::frontCamera(kAspect);
     const auto everything = frame(*frustumOnly, front);
     EXPECT_EQ(listedTriangles(*context, *frustumOnly), 2 + kObjects * kObjectTriangles);
-    const std::uint32_t allRasterised = rasterisedTriangles(*context, *frustumOnly);
-    EXPECT_GT(allRasterised, kObjects * kObjectTriangles / 2);
+    const auto all = rasteriserCounts(*context, *frustumOnly);
+    EXPECT_GT(all[0], kObjects * kObjectTriangles / 2);
+    EXPECT_EQ(all[1], wallInHardware ? 2u : 0u);
+    const std::array<std::uint32_t, 2> wallOnly =
+        wallInHardware ? std::array<std::uint32_t, 2>{0, 2} : std::array<std::uint32_t, 2>{2, 0};
     // The first frame knows nothing of the last: its second phase tests everything against an
     // empty pyramid. The second draws all that in phase 1 and finds the objects hidden; from the
-    // third on, phase 1 draws the wall and phase 2 rejects the objects.
+    // third on, phase 1 draws the wall and phase 2 rejects the objects. The counts add both
+    // phases.
     for (int i = 0; i < 4; ++i) {
         SCOPED_TRACE("frame " + std::to_string(i));
         const auto image = frame(*occluded, front);
         EXPECT_EQ(test::differingPixels(everything, image, 0), 0u);
-        if (i >= 2) {
+        if (i < 2) {
+            EXPECT_EQ(rasteriserCounts(*context, *occluded), all);
+        } else {
             EXPECT_EQ(listedTriangles(*context, *occluded), 2u);
-            EXPECT_EQ(rasterisedTriangles(*context, *occluded), 2u);
+            EXPECT_EQ(rasteriserCounts(*context, *occluded), wallOnly);
         }
     }
     EXPECT_TRUE(context->checkNoErrors("visibility wall").ok());
 }
 
-TEST(VisibilityWallTest, AnObjectComingOutFromBehindTheWallAppearsInThatFrame) {
+INSTANTIATE_TEST_SUITE_P(WallRasteriser,
+                         VisibilityWallTest,
+                         ::testing::Values(VisibilityStrategy::kMaxWorkgroupPixels, 0.0f),
+                         [](const auto& info) {
+                             return info.param == 0.0f ? std::string("hardware")
+                                                       : std::string("workgroup");
+                         });
+
+TEST(VisibilityDisocclusionTest, AnObjectComingOutFromBehindTheWallAppearsInThatFrame) {
     ENCORE_REQUIRE_VULKAN(context);
     const auto scene = wallScene();
     const Camera front = test::frontCamera(kAspect);
