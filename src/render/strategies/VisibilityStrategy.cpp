@@ -470,7 +470,8 @@ void VisibilityStrategy::encodeHardwareRaster(const wgpu::CommandEncoder& comman
                                               const FrameState& frame,
                                               std::uint32_t paramsOffset,
                                               std::uint32_t viewX,
-                                              std::uint32_t viewWidth) const {
+                                              std::uint32_t viewWidth,
+                                              const char* timerLabel) const {
     wgpu::RenderPassDepthStencilAttachment depth{};
     depth.view = mHardwareDepth.CreateView();
     depth.depthLoadOp = wgpu::LoadOp::Clear;
@@ -479,8 +480,7 @@ void VisibilityStrategy::encodeHardwareRaster(const wgpu::CommandEncoder& comman
     wgpu::RenderPassDescriptor descriptor{};
     descriptor.label = "visibility: hardware raster";
     descriptor.depthStencilAttachment = &depth;
-    descriptor.timestampWrites =
-        frame.timer ? frame.timer->nextPass("visibility hardware raster") : nullptr;
+    descriptor.timestampWrites = frame.timer ? frame.timer->nextPass(timerLabel) : nullptr;
     wgpu::RenderPassEncoder pass = commands.BeginRenderPass(&descriptor);
     pass.SetViewport(float(viewX), 0.0f, float(viewWidth), float(mHeight), 0.0f, 1.0f);
     pass.SetPipeline(mHardware);
@@ -522,7 +522,8 @@ void VisibilityStrategy::encodeView(const wgpu::CommandEncoder& commands,
         encodeRaster(pass, paramsOffset);
         pass.End();
     }
-    encodeHardwareRaster(commands, frame, paramsOffset, viewX, viewWidth);
+    encodeHardwareRaster(commands, frame, paramsOffset, viewX, viewWidth,
+                         "visibility hardware raster");
     if (mOcclusion) {
         // The rest of the frustum against the pyramid of what phase 1 drew (both rasters).
         wgpu::ComputePassDescriptor descriptor{};
@@ -538,7 +539,8 @@ void VisibilityStrategy::encodeView(const wgpu::CommandEncoder& commands,
         dispatchItems(pass, mCullSecond);
         encodeRaster(pass, paramsOffset);
         pass.End();
-        encodeHardwareRaster(commands, frame, paramsOffset, viewX, viewWidth);
+        encodeHardwareRaster(commands, frame, paramsOffset, viewX, viewWidth,
+                             "visibility hardware raster (second phase)");
     }
     {
         wgpu::ComputePassDescriptor descriptor{};

@@ -87,7 +87,8 @@ class VisibilityStrategy final : public Strategy {
                               const FrameState& frame,
                               std::uint32_t paramsOffset,
                               std::uint32_t viewX,
-                              std::uint32_t viewWidth) const;
+                              std::uint32_t viewWidth,
+                              const char* timerLabel) const;
     void writeCullUniform(const FrameState& frame, std::size_t views) const;
 
     const RenderSetup* mSetup = nullptr;
