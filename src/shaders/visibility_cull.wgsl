@@ -13,6 +13,7 @@
 #include "visibility_geometry.wgsl"
 #include "visibility_levels.wgsl"
 #include "visibility_counters.wgsl"
+#include "pyramid_occlusion.wgsl"
 
 // VisibilityStrategy.cpp's CullUniform: one per frame.
 struct Culling {
@@ -152,7 +153,7 @@ fn beginSecondPhase() {
 
 // Whether the pyramid proves the item hidden: the nearest depth of its box (the primitive's
 // bounds, moved by the world matrix) lies behind the farthest depth drawn anywhere over the
-// pixels the box covers (culling.wgsl's isOccluded, for the box's eight corners).
+// pixels the box covers (as culling.wgsl's isOccluded, for the box's eight corners).
 fn isOccluded(item: Item, world: mat4x4f) -> bool {
     let center = vec3At(item.record, kBoundsCenter);
     let extent = vec3At(item.record, kBoundsExtent);
@@ -177,26 +178,7 @@ fn isOccluded(item: Item, world: mat4x4f) -> bool {
         high = max(high, pixel);
         nearestDepth = min(nearestDepth, ndc.z);
     }
-    let lastPixel = viewport - vec2f(1.0);
-    low = clamp(low, vec2f(0.0), lastPixel);
-    high = clamp(high, vec2f(0.0), lastPixel);
-    // Level k's texels cover 2^(k+1) pixels a side (depth_pyramid.wgsl): at the level where that
-    // is at least the box's extent, the box overlaps at most 2x2 texels.
-    let extentPixels = max(high.x - low.x, high.y - low.y);
-    let level = min(u32(max(ceil(log2(max(extentPixels, 1.0))) - 1.0, 0.0)),
-                    textureNumLevels(depthPyramid) - 1u);
-    let texelPixels = 1u << (level + 1u);
-    let lastTexel = (vec2u(viewport) + vec2u(texelPixels - 1u)) / texelPixels - vec2u(1u);
-    let texelSize = f32(texelPixels);
-    let first = min(vec2u(low / texelSize), lastTexel);
-    let last = min(vec2u(high / texelSize), lastTexel);
-    var farthest = 0.0;
-    for (var y = first.y; y <= last.y; y++) {
-        for (var x = first.x; x <= last.x; x++) {
-            farthest = max(farthest, textureLoad(depthPyramid, vec2u(x, y), level).r);
-        }
-    }
-    return nearestDepth > farthest;
+    return pyramidHides(depthPyramid, viewport, low, high, nearestDepth);
 }
 
 @compute @workgroup_size(64)
