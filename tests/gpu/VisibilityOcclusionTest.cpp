@@ -4,11 +4,12 @@
 // missing); a wall, drawn in compute or by the hardware, hides the objects behind it, which stop
 // being rasterised (the triangle counts add both phases); an object that
 // comes out from behind the wall when the camera moves is drawn in that very frame; and levels of
-// detail list exactly the triangles GPU culling draws.
+// detail list exactly the triangles GPU culling draws, in frames of one view and of several.
 
 #include <gtest/gtest.h>
 
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 
@@ -339,6 +340,45 @@ TEST(VisibilityLevelsTest, LevelsListTheTrianglesGpuCullingDraws) {
         }
     }
     EXPECT_TRUE(context->checkNoErrors("visibility levels").ok());
+}
+
+// A multi-view frame: as GPU culling, no occlusion culling (each view frames the scene) and one
+// level per item for all views, chosen for the nearest; the pictures match.
+TEST(VisibilityLevelsTest, MultiViewFramesChooseLevelsAsGpuCulling) {
+    ENCORE_REQUIRE_VULKAN(context);
+    const auto scene = generated(scene::SceneLayout::Grid, 200);
+    const glm::vec3 center = scene.bounds.center();
+    const float radius = scene.bounds.radius();
+    const float aspect = float(kWidth / 4) / float(kHeight);
+    std::vector<Camera> cameras;
+    for (int view = 0; view < 4; ++view) {
+        const float angle = glm::radians(30.0f + 80.0f * float(view));
+        const float distance = radius * (1.2f + 0.6f * float(view));
+        const glm::vec3 eye = center + distance * glm::vec3(std::cos(angle), 0.5f, std::sin(angle));
+        cameras.push_back(
+            Camera::lookAt(eye, center, glm::radians(60.0f), aspect, 0.05f, 4.0f * distance));
+    }
+    const CullingOptions culling{.occlusion = true, .levelsOfDetail = true};
+    auto reference = renderer(*context, scene, StrategyKind::GpuCullingBundles, culling);
+    auto visibility = renderer(*context, scene, StrategyKind::Visibility, culling);
+    ASSERT_TRUE(reference && visibility);
+    for (int i = 0; i < 2; ++i) {
+        reference->renderViews(cameras);
+        visibility->renderViews(cameras);
+    }
+    auto expected = reference->readImage();
+    auto image = visibility->readImage();
+    ASSERT_TRUE(expected.ok() && image.ok());
+    expectClose(*expected, *image);
+    EXPECT_FALSE(visibilityOf(*visibility).lastFrameOccluded());
+    EXPECT_EQ(visibilityOf(*visibility).lastViewCount(), 4u);
+    // The counters hold the last view's cull, which lists what GPU culling's one cull draws.
+    const auto counts = reference->strategy()->gpuTriangleCounts();
+    ASSERT_TRUE(counts.has_value());
+    const std::uint32_t listed = listedTriangles(*context, *visibility);
+    EXPECT_EQ(listed, readWord(*context, counts->buffer, counts->hardwareOffset));
+    EXPECT_LT(listed, visibilityOf(*visibility).tables().triangleCount) << "all at level 0";
+    EXPECT_TRUE(context->checkNoErrors("visibility multi-view levels").ok());
 }
 
 }  // namespace
