@@ -114,6 +114,14 @@ Result<void> VisibilityStrategy::prepare(const RenderSetup& setup, const GpuScen
     }));
 
     mTableBuffer = gpu::createStorageBuffer(device, mTables.words, "visibility tables");
+    mCullUniform =
+        gpu::createBuffer(device, wgpu::BufferUsage::Uniform | wgpu::BufferUsage::CopyDst,
+                          sizeof(CullUniform), "visibility culling");
+    // Zero: nothing was visible before the first frame, whose second phase tests everything.
+    mItemVisibility = gpu::createBuffer(device, wgpu::BufferUsage::Storage,
+                                        std::max<std::uint64_t>(mTables.itemCount, 1) * 4,
+                                        "visibility of items last frame");
+    mPyramid = DepthPyramid();
     mUnits =
         gpu::createBuffer(device, wgpu::BufferUsage::Storage,
                           std::max<std::uint64_t>(mTables.unitCount, 1) * 8, "visibility units");
@@ -141,14 +149,6 @@ Result<void> VisibilityStrategy::prepare(const RenderSetup& setup, const GpuScen
         device,
         wgpu::BufferUsage::Storage | wgpu::BufferUsage::Indirect | wgpu::BufferUsage::CopyDst,
         std::uint64_t(mTables.binCount) * kBinStride, "visibility bins");
-    mCullUniform =
-        gpu::createBuffer(device, wgpu::BufferUsage::Uniform | wgpu::BufferUsage::CopyDst,
-                          sizeof(CullUniform), "visibility culling");
-    // Zero: nothing was visible before the first frame, whose second phase tests everything.
-    mItemVisibility = gpu::createBuffer(device, wgpu::BufferUsage::Storage,
-                                        std::max<std::uint64_t>(mTables.itemCount, 1) * 4,
-                                        "visibility of items last frame");
-    mPyramid = DepthPyramid();
     ENCORE_TRY(createPipelines());
     mWidth = 0;
     mHeight = 0;
