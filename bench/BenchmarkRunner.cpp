@@ -301,8 +301,8 @@ Result<BenchReport> runBenchmarks(gpu::Context& context,
                                       ? sceneLabel + ", animation on the " +
                                             std::string(render::animationEvaluationName(*animate))
                                       : sceneLabel;
-        // The GPU-culling strategies once more with frustum culling alone, when asked: the
-        // baseline that occlusion culling and levels of detail are measured against.
+        // The GPU-culling and visibility strategies once more with frustum culling alone, when
+        // asked: the baseline that occlusion culling and levels of detail are measured against.
         struct Measurement {
             render::StrategyChoice strategy;
             render::CullingOptions culling;
@@ -312,10 +312,13 @@ Result<BenchReport> runBenchmarks(gpu::Context& context,
         for (auto strategy : strategies) {
             measurements.push_back({strategy, options.culling, ""});
             const bool culls = strategy.kind == render::StrategyKind::GpuCulling ||
-                               strategy.kind == render::StrategyKind::GpuCullingBundles;
+                               strategy.kind == render::StrategyKind::GpuCullingBundles ||
+                               strategy.kind == render::StrategyKind::Visibility;
             if (culls && options.frustumBaseline) {
-                measurements.push_back(
-                    {strategy, {.occlusion = false, .levelsOfDetail = false}, " (frustum only)"});
+                render::CullingOptions frustumOnly = options.culling;  // Raster sizes kept.
+                frustumOnly.occlusion = false;
+                frustumOnly.levelsOfDetail = false;
+                measurements.push_back({strategy, frustumOnly, " (frustum only)"});
             }
         }
         for (const Measurement& measurement : measurements) {

@@ -461,7 +461,8 @@ void addBatchCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) 
         ->add_option("--lod-error", options->lodErrorPixels,
                      "Draw each instance at the coarsest level of detail whose simplification "
                      "error stays under this many pixels in the nearest view (levels are built "
-                     "at load; a gpu-culling strategy chooses them). Default: full detail")
+                     "at load; a gpu-culling strategy or visibility chooses them). Default: full "
+                     "detail")
         ->check(CLI::PositiveNumber)
         ->type_name("PIXELS");
     command->add_flag("--strict", options->strict,

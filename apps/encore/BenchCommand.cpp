@@ -178,9 +178,10 @@ void addBenchCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) 
             CLI::ignore_case));
     command->add_flag("--smoke", options->smoke, "A few frames of small scenes (CI)");
     addCullingOptions(*command, bench.culling);
-    command->add_flag("--frustum-baseline", bench.frustumBaseline,
-                      "Also measure each gpu-culling strategy with frustum culling alone (no "
-                      "occlusion culling, no levels of detail), in the same run");
+    command->add_flag(
+        "--frustum-baseline", bench.frustumBaseline,
+        "Also measure each gpu-culling and the visibility strategy with frustum culling "
+        "alone (no occlusion culling, no levels of detail), in the same run");
     command->callback([options, &global, &exitCode] { exitCode = runBench(*options, global); });
 }
 

@@ -5,16 +5,16 @@ namespace encore::app {
 void addCullingOptions(CLI::App& command, render::CullingOptions& options) {
     command
         .add_option("--lod-error", options.lodErrorPixels,
-                    "gpu-culling strategies: draw each instance at the coarsest level of detail "
-                    "whose simplification error, projected on the screen, stays under this many "
-                    "pixels")
+                    "gpu-culling and visibility strategies: draw each instance at the coarsest "
+                    "level of detail whose simplification error, projected on the screen, stays "
+                    "under this many pixels")
         ->check(CLI::PositiveNumber)
         ->capture_default_str();
     command.add_flag("!--no-lod", options.levelsOfDetail,
-                     "gpu-culling strategies: draw every instance at full detail");
+                     "gpu-culling and visibility strategies: draw every instance at full detail");
     command.add_flag("!--no-occlusion", options.occlusion,
-                     "gpu-culling strategies: cull against the frustum only (no two-phase "
-                     "occlusion culling)");
+                     "gpu-culling and visibility strategies: cull against the frustum only (no "
+                     "two-phase occlusion culling)");
     command
         .add_option("--compute-raster-pixels", options.computeRasterPixels,
                     "visibility strategy: one compute thread rasterises each triangle whose "

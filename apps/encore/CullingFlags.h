@@ -1,7 +1,7 @@
 #pragma once
 
 // Command-line options of GPU culling, shared by render, bench and view: occlusion culling
-// and levels of detail of the gpu-culling strategies (render::CullingOptions).
+// and levels of detail of the gpu-culling and visibility strategies (render::CullingOptions).
 
 #include <CLI/CLI.hpp>
 

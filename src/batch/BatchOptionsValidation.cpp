@@ -81,12 +81,14 @@ Result<void> validateBatchOptions(const BatchOptions& options) {
     ENCORE_TRY(checkCameras(rig));
     ENCORE_TRY(checkLighting(options));
     const render::StrategyChoice strategy = batchStrategy(options);
-    if (!(options.lodErrorPixels >= 0.0f) ||
-        (options.lodErrorPixels > 0.0f && !render::cullsOnTheGpu(strategy.kind))) {
+    // GPU culling and the visibility strategy's cull choose levels; the others draw level 0.
+    const bool choosesLevels =
+        render::cullsOnTheGpu(strategy.kind) || strategy.kind == render::StrategyKind::Visibility;
+    if (!(options.lodErrorPixels >= 0.0f) || (options.lodErrorPixels > 0.0f && !choosesLevels)) {
         return makeError(ErrorCode::InvalidArgument,
                          "Levels of detail (an error of " + std::to_string(options.lodErrorPixels) +
-                             " pixels) need a non-negative error and a gpu-culling strategy, "
-                             "which chooses the levels (not " +
+                             " pixels) need a non-negative error and a gpu-culling or the "
+                             "visibility strategy, which chooses the levels (not " +
                              render::strategyChoiceName(strategy) + ").");
     }
     if (options.allVariants && !options.variant.empty()) {

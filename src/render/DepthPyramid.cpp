@@ -24,7 +24,10 @@ struct ReductionUniform {
     std::uint32_t depthSize[2];
     std::uint32_t firstLevel;
     std::uint32_t levelCount;
+    std::uint32_t samples;  // Entries per pixel of a visibility buffer.
+    std::uint32_t padding;
 };
+static_assert(sizeof(ReductionUniform) == 24);
 
 wgpu::TextureView levelView(const wgpu::Texture& texture, std::uint32_t level) {
     wgpu::TextureViewDescriptor descriptor{};
@@ -46,14 +49,36 @@ std::uint32_t powerOfTwoAtLeast(std::uint32_t value) {
 Result<DepthPyramid> DepthPyramid::create(const wgpu::Device& device,
                                           shaders::ShaderLibrary& shaders,
                                           const wgpu::Texture& depth) {
+    return build(device, shaders, {depth, nullptr, depth.GetWidth(), depth.GetHeight(), 1});
+}
+
+Result<DepthPyramid> DepthPyramid::createFromVisibility(const wgpu::Device& device,
+                                                        shaders::ShaderLibrary& shaders,
+                                                        const wgpu::Buffer& visibility,
+                                                        std::uint32_t width,
+                                                        std::uint32_t height) {
+    // One entry per pixel, or one per sample where the strategy keeps several.
+    const std::uint64_t pixelBytes = std::uint64_t(width) * height * 8;
+    const auto samples = std::uint32_t(
+        std::max<std::uint64_t>(pixelBytes == 0 ? 1 : visibility.GetSize() / pixelBytes, 1));
+    return build(device, shaders, {nullptr, visibility, width, height, samples});
+}
+
+Result<DepthPyramid> DepthPyramid::build(const wgpu::Device& device,
+                                         shaders::ShaderLibrary& shaders,
+                                         const Source& source) {
     DepthPyramid pyramid;
-    pyramid.mDepth = depth;
-    const bool multisampled = depth.GetSampleCount() > 1;
-    ENCORE_TRY_ASSIGN(
-        auto module,
-        shaders.module("depth_pyramid.wgsl",
-                       multisampled ? std::set<std::string, std::less<>>{"MULTISAMPLED"}
-                                    : std::set<std::string, std::less<>>{}));
+    pyramid.mDepth = source.depth;
+    pyramid.mVisibility = source.visibility;
+    pyramid.mWidth = source.width;
+    pyramid.mHeight = source.height;
+    std::set<std::string, std::less<>> flags;
+    if (source.visibility) {
+        flags.insert("VISIBILITY_BUFFER");
+    } else if (source.depth.GetSampleCount() > 1) {
+        flags.insert("MULTISAMPLED");
+    }
+    ENCORE_TRY_ASSIGN(auto module, shaders.module("depth_pyramid.wgsl", flags));
     auto computePipeline = [&](const char* entryPoint) {
         wgpu::ComputePipelineDescriptor descriptor{};
         descriptor.label = entryPoint;
@@ -64,8 +89,8 @@ Result<DepthPyramid> DepthPyramid::create(const wgpu::Device& device,
     pyramid.mReduceDepth = computePipeline("reduceDepth");
     pyramid.mReduceLevels = computePipeline("reduceLevels");
 
-    const std::uint32_t depthWidth = depth.GetWidth();
-    const std::uint32_t depthHeight = depth.GetHeight();
+    const std::uint32_t depthWidth = source.width;
+    const std::uint32_t depthHeight = source.height;
     wgpu::TextureDescriptor descriptor{};
     descriptor.label = "depth pyramid";
     descriptor.size = {powerOfTwoAtLeast(levelSize(depthWidth, 0)),
@@ -91,13 +116,18 @@ Result<DepthPyramid> DepthPyramid::create(const wgpu::Device& device,
     const std::uint32_t dispatches =
         (pyramid.mLevelCount + kLevelsPerDispatch - 1) / kLevelsPerDispatch;
     std::vector<std::uint8_t> uniforms(dispatches * kUniformStride);
-    const wgpu::TextureView depthView = depth.CreateView();
+    // Level 0's source: the depth texture's view, or the visibility buffer.
+    const gpu::BindingResource depthSource =
+        source.visibility ? gpu::BindingResource(0, source.visibility)
+                          : gpu::BindingResource(0, source.depth.CreateView());
     for (std::uint32_t dispatch = 0; dispatch < dispatches; ++dispatch) {
         const std::uint32_t firstLevel = dispatch * kLevelsPerDispatch;
         const ReductionUniform uniform{
             {depthWidth, depthHeight},
             firstLevel,
-            std::min(kLevelsPerDispatch, pyramid.mLevelCount - firstLevel)};
+            std::min(kLevelsPerDispatch, pyramid.mLevelCount - firstLevel),
+            source.samples,
+            0};
         std::memcpy(&uniforms[dispatch * kUniformStride], &uniform, sizeof(uniform));
     }
     pyramid.mUniforms = gpu::createBufferFrom<std::uint8_t>(device, wgpu::BufferUsage::Uniform,
@@ -105,7 +135,7 @@ Result<DepthPyramid> DepthPyramid::create(const wgpu::Device& device,
     for (std::uint32_t dispatch = 0; dispatch < dispatches; ++dispatch) {
         const std::uint32_t firstLevel = dispatch * kLevelsPerDispatch;
         std::vector<gpu::BindingResource> resources = {
-            firstLevel == 0 ? gpu::BindingResource(0, depthView)
+            firstLevel == 0 ? depthSource
                             : gpu::BindingResource(1, levelView(pyramid.mPyramid, firstLevel - 1)),
             {2, pyramid.mUniforms, dispatch * kUniformStride, sizeof(ReductionUniform)}};
         for (std::uint32_t step = 0; step < kLevelsPerDispatch; ++step) {

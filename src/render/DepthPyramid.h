@@ -6,7 +6,7 @@
 // ceil(depth size / 2^(k+1)) texels a side in the top-left corner of a texture that is a power
 // of two a side, so that every texel reduces exactly 2x2 of the level below and one dispatch
 // can build four levels; there are at most eight (down to 1x1 for targets up to 512 pixels). Built
-// for one depth texture: a resized target needs a new pyramid.
+// for one depth texture (or one visibility buffer): a resized target needs a new pyramid.
 
 #include <webgpu/webgpu_cpp.h>
 
@@ -26,8 +26,20 @@ class DepthPyramid {
                                        shaders::ShaderLibrary& shaders,
                                        const wgpu::Texture& depth);
 
+    // From the visibility strategy's buffer (VisibilityStrategy): `width` x `height` pixels, row
+    // by row, each one or more (as many as the buffer's size holds) pairs of u32, the high word
+    // ~depth bits, 0 where nothing was drawn (depth 1); a texel keeps the farthest of them.
+    static Result<DepthPyramid> createFromVisibility(const wgpu::Device& device,
+                                                     shaders::ShaderLibrary& shaders,
+                                                     const wgpu::Buffer& visibility,
+                                                     std::uint32_t width,
+                                                     std::uint32_t height);
+
     bool builtFor(const wgpu::Texture& depth) const {
         return mDepth && mDepth.Get() == depth.Get();
+    }
+    bool builtFor(const wgpu::Buffer& visibility) const {
+        return mVisibility && mVisibility.Get() == visibility.Get();
     }
 
     // Dispatches the reductions into `pass`, four levels each (each dispatch its own usage
@@ -44,10 +56,22 @@ class DepthPyramid {
     const wgpu::TextureView& view() const { return mView; }
     const wgpu::Texture& texture() const { return mPyramid; }
     std::uint32_t levelCount() const { return mLevelCount; }
-    std::uint32_t depthWidth() const { return mDepth.GetWidth(); }
-    std::uint32_t depthHeight() const { return mDepth.GetHeight(); }
+    std::uint32_t depthWidth() const { return mWidth; }
+    std::uint32_t depthHeight() const { return mHeight; }
 
   private:
+    // What level 0 reduces: a depth texture or a visibility buffer.
+    struct Source {
+        wgpu::Texture depth;
+        wgpu::Buffer visibility;
+        std::uint32_t width = 0;
+        std::uint32_t height = 0;
+        std::uint32_t samples = 1;  // Entries per pixel of the visibility buffer.
+    };
+    static Result<DepthPyramid> build(const wgpu::Device& device,
+                                      shaders::ShaderLibrary& shaders,
+                                      const Source& source);
+
     // One dispatch: up to four levels from firstLevel.
     struct Reduction {
         wgpu::BindGroup bindGroup;
@@ -57,6 +81,9 @@ class DepthPyramid {
     };
 
     wgpu::Texture mDepth;
+    wgpu::Buffer mVisibility;
+    std::uint32_t mWidth = 0;
+    std::uint32_t mHeight = 0;
     wgpu::Texture mPyramid;
     wgpu::TextureView mView;
     wgpu::Buffer mUniforms;       // One Reduction uniform per dispatch.

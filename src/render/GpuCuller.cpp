@@ -12,6 +12,7 @@
 #include "gpu/BindingResource.h"
 #include "gpu/LayoutEntry.h"
 #include "gpu/Upload.h"
+#include "render/LodSelection.h"
 
 namespace encore::render {
 
@@ -262,46 +263,22 @@ void GpuCuller::encodeFirstPhase(const wgpu::Queue& queue,
     const glm::mat4 viewProjection = camera.projection * camera.view;
     CullingUniform uniform{};
     uniform.viewProjection = viewProjection;
-    // The projection's y scale maps a unit at distance one (orthographic: anywhere) to that many
-    // half-heights of the viewport.
-    float projectionScale = camera.projection[1][1];
     if (view.views.size() > 1) {
         // One cull serves every view, so it must keep what any of them sees. No frustum rejects
         // anything (views that frame the scene, as `render --views` and batch strips do, each
-        // see all of it anyway), and levels of detail are chosen for the nearest view. Past
-        // kMaxLodViews views, distances are measured from their centroid less the farthest
-        // view's distance from it: never more than the distance to any view.
+        // see all of it anyway), and levels of detail are chosen for the nearest view.
         uniform.planes.fill(glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
-        for (const Camera& each : view.views) {
-            projectionScale = std::max(projectionScale, each.projection[1][1]);
-        }
-        if (view.views.size() <= kMaxLodViews) {
-            for (const Camera& each : view.views) {
-                uniform.lodViews[uniform.lodViewCount++] = glm::vec4(each.position, 1.0f);
-            }
-        } else {
-            glm::vec3 centroid(0.0f);
-            for (const Camera& each : view.views) {
-                centroid += each.position / float(view.views.size());
-            }
-            for (const Camera& each : view.views) {
-                uniform.lodDistanceSlack =
-                    std::max(uniform.lodDistanceSlack, glm::distance(each.position, centroid));
-            }
-            uniform.lodViews[0] = glm::vec4(centroid, 1.0f);
-            uniform.lodViewCount = 1;
-        }
     } else {
         const Frustum frustum = Frustum::fromViewProjection(viewProjection);
         std::copy(frustum.planes.begin(), frustum.planes.end(), uniform.planes.begin());
-        uniform.lodViews[0] = glm::vec4(camera.position, 1.0f);
-        uniform.lodViewCount = 1;
     }
-    if (view.options.levelsOfDetail) {
-        uniform.lodPixelsPerUnit = projectionScale * float(view.targetHeight) * 0.5f;
-    }
-    uniform.lodThresholdPixels = view.options.lodErrorPixels;
-    uniform.orthographic = camera.projection[2][3] == 0.0f ? 1u : 0u;
+    const LodSelection lod = lodSelection(camera, view.views, view.targetHeight, view.options);
+    uniform.lodViews = lod.views;
+    uniform.lodViewCount = lod.viewCount;
+    uniform.lodPixelsPerUnit = lod.pixelsPerUnit;
+    uniform.lodThresholdPixels = lod.thresholdPixels;
+    uniform.orthographic = lod.orthographic;
+    uniform.lodDistanceSlack = lod.distanceSlack;
     uniform.occlusion = view.twoPhases ? 1u : 0u;
     uniform.viewport = glm::vec2(view.targetWidth, view.targetHeight);
     uniform.phaseArguments = mLevelDrawCount * 5;

@@ -36,6 +36,7 @@
 #include "render/DepthPyramid.h"
 #include "render/Frustum.h"
 #include "render/InstanceBuffer.h"
+#include "render/LodSelection.h"
 
 namespace encore::render {
 
@@ -83,7 +84,7 @@ class GpuCuller {
     static constexpr std::uint32_t kPhases = 2;
     // Views of a multi-view frame whose positions levels of detail are chosen from
     // (culling.wgsl's lodViews); a frame of more uses a bound around them.
-    static constexpr std::size_t kMaxLodViews = 16;
+    static constexpr std::size_t kMaxLodViews = LodSelection::kMaxViews;
 
     GpuCuller() = default;
     // `bounds` has one record per instance slot; `animation` (when not null) supplies the

@@ -99,7 +99,8 @@ std::optional<std::vector<std::uint32_t>> primitiveRecord(const GpuScene& scene,
         animated(scene, mesh, index)) {
         return std::nullopt;
     }
-    std::vector<std::uint32_t> record(VisibilityTables::kPrimitiveWords, 0);
+    // The fixed part and the mesh sphere (written by the caller).
+    std::vector<std::uint32_t> record(VisibilityTables::kFirstLevel, 0);
     std::uint32_t triangles = primitive.vertexCount / 3;
     if (primitive.indices) {
         const auto indices = attributeWords(scene, *primitive.indices, maxGeometryBytes);
@@ -160,7 +161,37 @@ std::optional<std::vector<std::uint32_t>> primitiveRecord(const GpuScene& scene,
         record[kBoundsCenter + i] = std::bit_cast<std::uint32_t>(center[i]);
         record[kBoundsExtent + i] = std::bit_cast<std::uint32_t>(extent[i]);
     }
+    // Coarser levels, while their indices lie where level 0's triangles can count to them.
+    if (primitive.indices) {
+        const std::uint32_t triangleBytes = record[kIndexSize] * 3;
+        for (const scene::LevelOfDetail& level : primitive.levels) {
+            const auto indices = attributeWords(scene, level.indices, maxGeometryBytes);
+            if (!indices || indices->offset < record[kIndexOffset] ||
+                (indices->offset - record[kIndexOffset]) % triangleBytes != 0) {
+                break;
+            }
+            const std::uint32_t levelTriangles = data.accessors[level.indices.index()].count / 3;
+            record.resize(VisibilityTables::kFirstLevel +
+                          (record[VisibilityTables::kLevelCount] + 1) *
+                              VisibilityTables::kLevelWords);
+            std::uint32_t* words = &record[record.size() - VisibilityTables::kLevelWords];
+            words[0] = (indices->offset - record[kIndexOffset]) / triangleBytes;
+            words[1] = levelTriangles;
+            words[2] = std::bit_cast<std::uint32_t>(level.error);
+            ++record[VisibilityTables::kLevelCount];
+        }
+    }
     return record;
+}
+
+// The sphere GPU culling bounds an instance of `mesh` by (CullingBounds, unskinned): around all
+// its primitives.
+glm::vec4 meshSphere(const scene::Mesh& mesh) {
+    scene::Bounds bounds;
+    for (const scene::Primitive& primitive : mesh.primitives) {
+        bounds.extend(primitive.bounds);
+    }
+    return bounds.empty() ? glm::vec4(0.0f) : glm::vec4(bounds.center(), bounds.radius());
 }
 
 }  // namespace
@@ -182,6 +213,11 @@ VisibilityTables buildVisibilityTables(const GpuScene& scene, std::uint64_t maxG
             auto record = primitiveRecord(scene, mesh, index, maxGeometryBytes);
             if (!record) {
                 continue;
+            }
+            const glm::vec4 sphere = meshSphere(data.meshes[mesh]);
+            for (int i = 0; i < 4; ++i) {
+                (*record)[VisibilityTables::kMeshSphere + i] =
+                    std::bit_cast<std::uint32_t>(sphere[i]);
             }
             tables.computePath[mesh][index] = true;
             recordOf[mesh][index] = std::int64_t(records.size());

@@ -6,6 +6,12 @@
 // list of items, one per (instance, such primitive), in instance-buffer order. Built once per
 // scene from the GpuScene; the strategy uploads `words`.
 //
+// Levels of detail (visibility_levels.wgsl): after its kPrimitiveWords, a record holds its
+// mesh's bounding sphere (as CullingBounds bounds an instance, so that levels are chosen as GPU
+// culling chooses them) and its coarser levels, each a range of triangles counted from level
+// 0's first index (the levels lie after level 0 in the same index data), its triangle count and
+// its error.
+//
 // The compute path takes opaque, static triangle lists whose data lies in the first shared
 // buffer within `maxGeometryBytes`; the rest (MASK and BLEND materials, skinned or morphed
 // primitives, other topologies, data elsewhere) is drawn by the hardware as `materials` draws
@@ -22,6 +28,11 @@ struct VisibilityTables {
     static constexpr std::uint32_t kItemWords = 4;        // visibility_geometry.wgsl's.
     static constexpr std::uint32_t kPrimitiveWords = 32;  // Likewise.
     static constexpr std::uint32_t kUnitTriangles = 256;  // Likewise.
+    // visibility_levels.wgsl's.
+    static constexpr std::uint32_t kLevelCount = 30;  // Coarser levels, in the fixed part.
+    static constexpr std::uint32_t kMeshSphere = 32;  // After the fixed part: 4 words.
+    static constexpr std::uint32_t kFirstLevel = 36;  // Then kLevelWords per coarser level.
+    static constexpr std::uint32_t kLevelWords = 3;   // First triangle, triangles, error bits.
 
     // Items (kItemWords each), then primitive records (kPrimitiveWords each).
     std::vector<std::uint32_t> words;

@@ -17,6 +17,8 @@
 // Without occlusion culling, cullFirstPhase takes every instance in the frustum and phase 2
 // stays empty.
 
+#include "pyramid_occlusion.wgsl"
+
 struct Culling {
     planes: array<vec4f, 6>,  // xyz: inward normal, w: distance; visible when dot >= -radius.
     viewProjection: mat4x4f,
@@ -273,27 +275,7 @@ fn isOccluded(bounds: InstanceBounds) -> bool {
         high = max(high, pixel);
         nearestDepth = min(nearestDepth, ndc.z);
     }
-    let lastPixel = culling.viewport - vec2f(1.0);
-    low = clamp(low, vec2f(0.0), lastPixel);
-    high = clamp(high, vec2f(0.0), lastPixel);
-    // Level k's texels cover 2^(k+1) pixels a side (depth_pyramid.wgsl): at the level where that
-    // is at least the box's extent, the box overlaps at most 2x2 texels (more where the box is
-    // larger than the last level's texels).
-    let extent = max(high.x - low.x, high.y - low.y);
-    let level = min(u32(max(ceil(log2(max(extent, 1.0))) - 1.0, 0.0)),
-                    textureNumLevels(depthPyramid) - 1u);
-    let texelPixels = 1u << (level + 1u);
-    let lastTexel = (vec2u(culling.viewport) + vec2u(texelPixels - 1u)) / texelPixels - vec2u(1u);
-    let texelSize = f32(texelPixels);
-    let first = min(vec2u(low / texelSize), lastTexel);
-    let last = min(vec2u(high / texelSize), lastTexel);
-    var farthest = 0.0;
-    for (var y = first.y; y <= last.y; y++) {
-        for (var x = first.x; x <= last.x; x++) {
-            farthest = max(farthest, textureLoad(depthPyramid, vec2u(x, y), level).r);
-        }
-    }
-    return nearestDepth > farthest;
+    return pyramidHides(depthPyramid, culling.viewport, low, high, nearestDepth);
 }
 
 @compute @workgroup_size(kWorkgroupSize)

@@ -12,8 +12,13 @@
 // A dispatch writes up to four levels (WebGPU's default limit of storage textures per stage):
 // each 16x16 workgroup reduces its tile of the first level, then halves it in workgroup memory
 // three times. Texels past a level's size hold 0, which the max ignores.
+//
+// VISIBILITY_BUFFER: level 0 reduces the visibility strategy's buffer instead of a depth texture
+// (`samples` (id, ~depth bits) pairs per pixel, row by row; 0 where nothing was drawn: depth 1).
 
-#if MULTISAMPLED
+#if VISIBILITY_BUFFER
+@group(0) @binding(0) var<storage, read> visibility: array<vec2u>;
+#elif MULTISAMPLED
 @group(0) @binding(0) var depth: texture_depth_multisampled_2d;
 #else
 @group(0) @binding(0) var depth: texture_depth_2d;
@@ -24,6 +29,7 @@ struct Reduction {
     depthSize: vec2u,
     firstLevel: u32,
     levelCount: u32,  // 1 to 4: the levels this dispatch writes, from firstLevel.
+    samples: u32,  // VISIBILITY_BUFFER: entries per pixel.
 }
 @group(0) @binding(2) var<uniform> reduction: Reduction;
 @group(0) @binding(3) var level0: texture_storage_2d<r32float, write>;
@@ -80,7 +86,15 @@ fn farthestDepthAt(pixel: vec2u) -> f32 {
     if (any(pixel >= reduction.depthSize)) {
         return 0.0;
     }
-#if MULTISAMPLED
+#if VISIBILITY_BUFFER
+    let first = (pixel.y * reduction.depthSize.x + pixel.x) * reduction.samples;
+    var deepest = 0.0;
+    for (var sample = 0u; sample < reduction.samples; sample++) {
+        let nearest = visibility[first + sample].y;
+        deepest = max(deepest, select(bitcast<f32>(~nearest), 1.0, nearest == 0u));
+    }
+    return deepest;
+#elif MULTISAMPLED
     var deepest = 0.0;
     for (var sample = 0u; sample < textureNumSamples(depth); sample++) {
         deepest = max(deepest, textureLoad(depth, pixel, i32(sample)));

@@ -1,9 +1,8 @@
 enable atomic_vec2u_min_max;
 
-// The visibility strategy's compute passes before shading, for one view:
-//   cullMain    one thread per item (instance x primitive): its bounds against the frustum; a
-//               visible item appends its units (256 triangles each) to the unit list;
-//   argsMain    one thread: the raster dispatch's size from the unit count;
+// The visibility strategy's raster passes, for one view (or one phase of it: visibility_cull.wgsl
+// lists the units):
+//   argsMain    one thread: the raster dispatch's size from this phase's unit count;
 //   rasterMain  one workgroup per unit, one thread per triangle at a time: clip, cull back
 //               faces, snap to 1/256 pixel and cover pixel centres with edge functions under the
 //               top-left rule, writing (depth, id) with a 64-bit atomic max of
@@ -13,22 +12,8 @@ enable atomic_vec2u_min_max;
 #include "frame.wgsl"
 #include "visibility_geometry.wgsl"
 
-struct Counters {
-    unitCount: atomic<u32>,
-    padding0: u32,
-    padding1: u32,
-    padding2: u32,
-    // drawIndirect arguments of the hardware pass (byte offset 16): 3 vertices per listed
-    // triangle.
-    hardwareVertices: atomic<u32>,
-    hardwareInstances: u32,
-    hardwareFirstVertex: u32,
-    hardwareFirstInstance: u32,
-    computeTriangles: atomic<u32>,  // Triangles the compute raster covered pixels of (or not).
-    hardwareOverflow: atomic<u32>,  // Triangles the full hardware list could not take.
-    hardwareTriangles: atomic<u32>,  // Triangles the hardware list took.
-    workgroupTriangles: atomic<u32>,  // Triangles listed for workgroupMain.
-}
+#include "visibility_levels.wgsl"
+#include "visibility_counters.wgsl"
 
 @group(1) @binding(4) var<storage, read_write> units: array<vec2u>;
 @group(1) @binding(5) var<storage, read_write> counters: Counters;
@@ -42,53 +27,13 @@ struct Counters {
 
 const kMaxGroups = 65535u;
 
-// Whether a sphere lies wholly outside one of the frustum's planes (WebGPU depth 0..w).
-fn outsideFrustum(center: vec3f, radius: f32) -> bool {
-    let m = frame.projection * frame.view;
-    let row0 = vec4f(m[0][0], m[1][0], m[2][0], m[3][0]);
-    let row1 = vec4f(m[0][1], m[1][1], m[2][1], m[3][1]);
-    let row2 = vec4f(m[0][2], m[1][2], m[2][2], m[3][2]);
-    let row3 = vec4f(m[0][3], m[1][3], m[2][3], m[3][3]);
-    let planes = array<vec4f, 6>(row3 + row0, row3 - row0, row3 + row1, row3 - row1, row2,
-                                 row3 - row2);
-    for (var i = 0u; i < 6u; i++) {
-        let plane = planes[i];
-        if (dot(plane.xyz, center) + plane.w < -radius * length(plane.xyz)) {
-            return true;
-        }
-    }
-    return false;
-}
-
-@compute @workgroup_size(64)
-fn cullMain(@builtin(workgroup_id) group: vec3u, @builtin(local_invocation_index) lane: u32) {
-    let index = (group.y * kMaxGroups + group.x) * 64u + lane;
-    if (index >= params.itemCount) {
-        return;
-    }
-    let item = loadItem(index);
-    if (params.frustumTest != 0u) {
-        let world = instances[item.slot].world;
-        let center = (world * vec4f(vec3At(item.record, kBoundsCenter), 1.0)).xyz;
-        let scale = max(length(world[0].xyz), max(length(world[1].xyz), length(world[2].xyz)));
-        let radius = length(vec3At(item.record, kBoundsExtent)) * scale;
-        if (outsideFrustum(center, radius)) {
-            return;
-        }
-    }
-    let first = atomicAdd(&counters.unitCount, item.unitCount);
-    for (var unit = 0u; unit < item.unitCount; unit++) {
-        units[first + unit] = vec2u(index, unit * kUnitTriangles);
-    }
-}
-
 fn dispatchSize(count: u32) -> vec3u {
     return vec3u(min(count, kMaxGroups), max(1u, (count + kMaxGroups - 1u) / kMaxGroups), 1u);
 }
 
 @compute @workgroup_size(1)
 fn argsMain() {
-    rasterArguments = dispatchSize(atomicLoad(&counters.unitCount));
+    rasterArguments = dispatchSize(atomicLoad(&counters.unitCount) - counters.firstUnit);
 }
 
 @compute @workgroup_size(1)
@@ -101,7 +46,7 @@ fn workgroupArgsMain() {
 const kSubpixels = 256.0;
 
 fn toHardware(id: u32) {
-    let slot = atomicAdd(&counters.hardwareVertices, 3u) / 3u;
+    let slot = (counters.hardwareFirstVertex + atomicAdd(&counters.hardwareVertices, 3u)) / 3u;
     if (slot < params.hardwareCapacity) {
         hardwareList[slot] = id;
         atomicAdd(&counters.hardwareTriangles, 1u);
@@ -274,26 +219,27 @@ fn rasterTriangle(id: u32, item: Item, transform: Transform, triangle: u32) -> b
 }
 
 var<workgroup> rasterised: atomic<u32>;
-var<workgroup> unitCount: u32;
+var<workgroup> phaseUnits: vec2u;  // This phase's first unit and the end of the list.
 
 @compute @workgroup_size(64)
 fn rasterMain(@builtin(workgroup_id) group: vec3u, @builtin(local_invocation_index) lane: u32) {
-    let unitIndex = group.y * kMaxGroups + group.x;
     if (lane == 0u) {
-        unitCount = atomicLoad(&counters.unitCount);
+        phaseUnits = vec2u(counters.firstUnit, atomicLoad(&counters.unitCount));
     }
-    if (unitIndex >= workgroupUniformLoad(&unitCount)) {
+    let range = workgroupUniformLoad(&phaseUnits);
+    let unitIndex = range.x + group.y * kMaxGroups + group.x;
+    if (unitIndex >= range.y) {
         return;
     }
     let unit = units[unitIndex];
     let item = loadItem(unit.x);
     let transform = instances[item.slot];
-    let triangleCount = field(item.record, kTriangleCount);
+    let end = levelEnd(item.record, unit.y);
     var count = 0u;
     for (var k = 0u; k < kUnitTriangles / 64u; k++) {
         let local = k * 64u + lane;
         let triangle = unit.y + local;
-        if (triangle < triangleCount &&
+        if (triangle < end &&
             rasterTriangle(unitIndex * kUnitTriangles + local, item, transform, triangle)) {
             count++;
         }

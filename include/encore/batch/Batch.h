@@ -162,10 +162,10 @@ struct BatchOptions {
     std::optional<render::StrategyChoice> strategy;
     // > 0: models load with levels of detail (scene::LoadOptions::buildLevelsOfDetail) and each
     // instance is drawn at the coarsest level whose simplification error, projected in the
-    // nearest view, stays under this many pixels. Needs a gpu-culling strategy, which chooses
-    // the levels. Building the levels costs load time (0.65 s of CPU for the ten shared models,
-    // most of it a sphere grid of a million triangles): it pays where the GPU draws more
-    // triangles than the views can show, as on lavapipe. 0: full detail (the default).
+    // nearest view, stays under this many pixels. Needs a gpu-culling strategy or visibility,
+    // whose cull chooses the levels. Building the levels costs load time (0.65 s of CPU for the ten
+    // shared models, most of it a sphere grid of a million triangles): it pays where the GPU draws
+    // more triangles than the views can show, as on lavapipe. 0: full detail (the default).
     float lodErrorPixels = 0.0f;
 
     bool strict = false;  // Loader warnings and blank views fail the model.

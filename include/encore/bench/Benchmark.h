@@ -41,10 +41,10 @@ std::string_view generatedSceneName(GeneratedScene scene);  // "grid", "flythrou
 std::optional<GeneratedScene> generatedSceneFromName(std::string_view name);
 
 struct BenchOptions {
-    // Occlusion culling and levels of detail of the gpu-culling strategies.
+    // Occlusion culling and levels of detail of the gpu-culling and visibility strategies.
     render::CullingOptions culling;
-    // Also measure each gpu-culling strategy with frustum culling alone ("<name> (frustum
-    // only)"), in the same run.
+    // Also measure each gpu-culling strategy and visibility with frustum culling alone ("<name>
+    // (frustum only)"), in the same run.
     bool frustumBaseline = false;
     std::vector<std::uint32_t> objectCounts;  // Generated scenes, each of `scenes`.
     std::vector<GeneratedScene> scenes;       // Empty: the grid.

@@ -1,6 +1,7 @@
 #include "render/strategies/VisibilityStrategy.h"
 
 #include <algorithm>
+#include <cstddef>
 #include <cstring>
 #include <set>
 #include <string>
@@ -10,6 +11,8 @@
 #include "gpu/FullscreenPipeline.h"
 #include "gpu/LayoutEntry.h"
 #include "gpu/Upload.h"
+#include "render/Frustum.h"
+#include "render/LodSelection.h"
 
 namespace encore::render {
 
@@ -31,6 +34,25 @@ struct ViewParams {
     std::uint32_t padding = 0;
 };
 static_assert(sizeof(ViewParams) == 48);
+
+// visibility_cull.wgsl's Culling, one per frame (a multi-view frame's views differ only in
+// their viewports: no frustum test, no occlusion, the levels of detail of GPU culling's one cull).
+struct CullUniform {
+    std::array<glm::vec4, 6> planes{};
+    glm::mat4 viewProjection{1.0f};
+    std::uint32_t lodViewCount = 0;
+    float lodPixelsPerUnit = 0.0f;
+    float lodThresholdPixels = 0.0f;
+    std::uint32_t orthographic = 0;
+    std::uint32_t occlusion = 0;
+    std::uint32_t frustumTest = 0;
+    float lodDistanceSlack = 0.0f;
+    std::uint32_t padding = 0;
+    std::array<glm::vec4, LodSelection::kMaxViews> lodViews{};
+};
+static_assert(offsetof(CullUniform, lodViewCount) == 160);
+static_assert(offsetof(CullUniform, lodViews) == 192);
+static_assert(sizeof(CullUniform) == 448);
 
 constexpr std::uint64_t kParamsStride = 256;
 constexpr std::uint64_t kBinStride = 256;  // visibility_bin_record.wgsl's record.
@@ -92,6 +114,14 @@ Result<void> VisibilityStrategy::prepare(const RenderSetup& setup, const GpuScen
     }));
 
     mTableBuffer = gpu::createStorageBuffer(device, mTables.words, "visibility tables");
+    mCullUniform =
+        gpu::createBuffer(device, wgpu::BufferUsage::Uniform | wgpu::BufferUsage::CopyDst,
+                          sizeof(CullUniform), "visibility culling");
+    // Zero: nothing was visible before the first frame, whose second phase tests everything.
+    mItemVisibility = gpu::createBuffer(device, wgpu::BufferUsage::Storage,
+                                        std::max<std::uint64_t>(mTables.itemCount, 1) * 4,
+                                        "visibility of items last frame");
+    mPyramid = DepthPyramid();
     mUnits =
         gpu::createBuffer(device, wgpu::BufferUsage::Storage,
                           std::max<std::uint64_t>(mTables.unitCount, 1) * 8, "visibility units");
@@ -137,6 +167,14 @@ Result<void> VisibilityStrategy::createPipelines() {
     mFrameOnlyLayout = gpu::makeBindGroupLayout(
         device, {LayoutEntry::uniform(0, kCompute | vertex | fragment, sizeof(FrameUniform))},
         "visibility frame");
+    mCullLayout = gpu::makeBindGroupLayout(
+        device,
+        {params, LayoutEntry::readOnlyStorage(2, kCompute),
+         LayoutEntry::readOnlyStorage(3, kCompute), LayoutEntry::storage(4, kCompute),
+         LayoutEntry::storage(5, kCompute), LayoutEntry::uniform(10, kCompute, sizeof(CullUniform)),
+         LayoutEntry::storage(11, kCompute),
+         LayoutEntry::texture(12, kCompute, wgpu::TextureSampleType::UnfilterableFloat)},
+        "visibility culling");
     mArgumentsLayout = gpu::makeBindGroupLayout(
         device,
         {LayoutEntry::storage(5, kCompute), LayoutEntry::storage(8, kCompute),
@@ -180,8 +218,12 @@ Result<void> VisibilityStrategy::createPipelines() {
 
     shaders::ShaderLibrary& library = *mSetup->shaders;
     const wgpu::BindGroupLayout frame = mSetup->layouts->frame;
+    ENCORE_TRY_ASSIGN(auto cull, library.module("visibility_cull.wgsl"));
+    mCullFirst = computePipeline(device, cull, "cullFirstPhase", {mFrameOnlyLayout, mCullLayout});
+    mBeginSecondPhase =
+        computePipeline(device, cull, "beginSecondPhase", {mFrameOnlyLayout, mCullLayout});
+    mCullSecond = computePipeline(device, cull, "cullSecondPhase", {mFrameOnlyLayout, mCullLayout});
     ENCORE_TRY_ASSIGN(auto raster, library.module("visibility_raster.wgsl"));
-    mCull = computePipeline(device, raster, "cullMain", {mFrameOnlyLayout, mRasterLayout});
     mRasterArgs = computePipeline(device, raster, "argsMain", {mFrameOnlyLayout, mArgumentsLayout});
     mRaster = computePipeline(device, raster, "rasterMain", {mFrameOnlyLayout, mRasterLayout});
     mWorkgroupArgs =
@@ -285,8 +327,24 @@ void VisibilityStrategy::ensureTarget(std::uint32_t width,
     texture.label = "visibility hardware depth";
     mHardwareDepth = device.CreateTexture(&texture);
 
+    auto pyramid =
+        DepthPyramid::createFromVisibility(device, *mSetup->shaders, mVisibility, width, height);
+    // The shader is embedded: a failure here is a bug, not an input error.
+    ENCORE_CHECK(pyramid.ok(), "the depth pyramid cannot be built: " + pyramid.error().message);
+    mPyramid = std::move(*pyramid);
+
     const wgpu::Buffer& instances = mScene->instances().buffer();
     const gpu::BindingResource params(0, mParams, 0, sizeof(ViewParams));
+    mCullGroup = gpu::makeBindGroup(device, mCullLayout,
+                                    {params,
+                                     {2, instances},
+                                     {3, mTableBuffer},
+                                     {4, mUnits},
+                                     {5, mCounters},
+                                     {10, mCullUniform},
+                                     {11, mItemVisibility},
+                                     {12, mPyramid.view()}},
+                                    "visibility culling");
     const gpu::BindingResource geometry(1, mGeometry, 0, mGeometryBytes);
     mRasterGroup = gpu::makeBindGroup(device, mRasterLayout,
                                       {params,
@@ -332,9 +390,13 @@ void VisibilityStrategy::beforePass(const wgpu::CommandEncoder& commands, const 
     const std::size_t views = std::max<std::size_t>(frame.views.size(), 1);
     ensureTarget(frame.targetWidth, frame.targetHeight, views);
     mLastViewCount = 0;
+    mOcclusion = false;
     if (mTables.itemCount == 0 || frame.targetWidth == 0 || frame.targetHeight == 0) {
         return;
     }
+    // As GPU culling: two phases in frames of one view, and not while a frozen culling camera
+    // sees another view than the one drawn.
+    mOcclusion = views == 1 && frame.culling.occlusion && !frame.cullingCamera;
     const std::uint32_t viewWidth = frame.targetWidth / std::uint32_t(views);
     std::vector<std::uint8_t> params(views * kParamsStride, 0);
     for (std::size_t view = 0; view < views; ++view) {
@@ -353,6 +415,7 @@ void VisibilityStrategy::beforePass(const wgpu::CommandEncoder& commands, const 
         std::memcpy(params.data() + view * kParamsStride, &p, sizeof(p));
     }
     mSetup->queue.WriteBuffer(mParams, 0, params.data(), params.size());
+    writeCullUniform(frame, views);
     commands.ClearBuffer(mVisibility);
     for (std::size_t view = 0; view < views; ++view) {
         if (views > 1) {
@@ -363,6 +426,72 @@ void VisibilityStrategy::beforePass(const wgpu::CommandEncoder& commands, const 
     mLastViewCount = views;
 }
 
+void VisibilityStrategy::writeCullUniform(const FrameState& frame, std::size_t views) const {
+    // What GpuCuller's first phase writes for the same frame: the culling camera's frustum and
+    // the levels of detail of one cull serving every view.
+    const Camera& camera = frame.cullingCamera.value_or(frame.camera);
+    CullUniform uniform;
+    uniform.viewProjection = camera.projection * camera.view;
+    if (views == 1) {
+        const Frustum frustum = Frustum::fromViewProjection(uniform.viewProjection);
+        std::copy(frustum.planes.begin(), frustum.planes.end(), uniform.planes.begin());
+        uniform.frustumTest = 1;
+    }
+    const LodSelection lod =
+        lodSelection(camera, frame.cullingCamera ? std::span<const Camera>() : frame.views,
+                     frame.targetHeight, frame.culling);
+    uniform.lodViews = lod.views;
+    uniform.lodViewCount = lod.viewCount;
+    uniform.lodPixelsPerUnit = lod.pixelsPerUnit;
+    uniform.lodThresholdPixels = lod.thresholdPixels;
+    uniform.orthographic = lod.orthographic;
+    uniform.lodDistanceSlack = lod.distanceSlack;
+    uniform.occlusion = mOcclusion ? 1 : 0;
+    mSetup->queue.WriteBuffer(mCullUniform, 0, &uniform, sizeof(uniform));
+}
+
+void VisibilityStrategy::encodeIndirectDispatch(const wgpu::ComputePassEncoder& pass,
+                                                const wgpu::ComputePipeline& arguments,
+                                                const wgpu::ComputePipeline& raster,
+                                                std::uint32_t paramsOffset) const {
+    pass.SetPipeline(arguments);
+    pass.SetBindGroup(1, mArgumentsGroup);
+    pass.DispatchWorkgroups(1);
+    pass.SetPipeline(raster);
+    pass.SetBindGroup(1, mRasterGroup, 1, &paramsOffset);
+    pass.DispatchWorkgroupsIndirect(mRasterArguments, 0);
+}
+
+void VisibilityStrategy::encodeRaster(const wgpu::ComputePassEncoder& pass,
+                                      std::uint32_t paramsOffset) const {
+    encodeIndirectDispatch(pass, mRasterArgs, mRaster, paramsOffset);
+    encodeIndirectDispatch(pass, mWorkgroupArgs, mWorkgroupRaster, paramsOffset);
+}
+
+void VisibilityStrategy::encodeHardwareRaster(const wgpu::CommandEncoder& commands,
+                                              const FrameState& frame,
+                                              std::uint32_t paramsOffset,
+                                              std::uint32_t viewX,
+                                              std::uint32_t viewWidth,
+                                              const char* timerLabel) const {
+    wgpu::RenderPassDepthStencilAttachment depth{};
+    depth.view = mHardwareDepth.CreateView();
+    depth.depthLoadOp = wgpu::LoadOp::Clear;
+    depth.depthStoreOp = wgpu::StoreOp::Discard;
+    depth.depthClearValue = 1.0f;
+    wgpu::RenderPassDescriptor descriptor{};
+    descriptor.label = "visibility: hardware raster";
+    descriptor.depthStencilAttachment = &depth;
+    descriptor.timestampWrites = frame.timer ? frame.timer->nextPass(timerLabel) : nullptr;
+    wgpu::RenderPassEncoder pass = commands.BeginRenderPass(&descriptor);
+    pass.SetViewport(float(viewX), 0.0f, float(viewWidth), float(mHeight), 0.0f, 1.0f);
+    pass.SetPipeline(mHardware);
+    pass.SetBindGroup(0, mFrameOnlyGroup);
+    pass.SetBindGroup(1, mHardwareGroup, 1, &paramsOffset);
+    pass.DrawIndirect(mCounters, kHardwareArguments);
+    pass.End();
+}
+
 void VisibilityStrategy::encodeView(const wgpu::CommandEncoder& commands,
                                     const FrameState& frame,
                                     std::size_t view,
@@ -370,51 +499,50 @@ void VisibilityStrategy::encodeView(const wgpu::CommandEncoder& commands,
                                     std::uint32_t viewWidth) {
     const std::uint32_t paramsOffset = std::uint32_t(view * kParamsStride);
     const wgpu::BindGroup& frameGroup = mSetup->frame->bindGroup();
+    const std::uint32_t itemGroups = groupsFor(mTables.itemCount, 64);
+    auto dispatchItems = [&](const wgpu::ComputePassEncoder& pass,
+                             const wgpu::ComputePipeline& cull) {
+        pass.SetPipeline(cull);
+        pass.DispatchWorkgroups(std::min(itemGroups, kMaxGroups),
+                                groupsFor(itemGroups, kMaxGroups));
+    };
+    auto bindCull = [&](const wgpu::ComputePassEncoder& pass) {
+        pass.SetBindGroup(0, mFrameOnlyGroup);
+        pass.SetBindGroup(1, mCullGroup, 1, &paramsOffset);
+    };
     commands.CopyBufferToBuffer(mInitialCounters, 0, mCounters, 0, kCounterBytes);
     commands.ClearBuffer(mBins);
     {
+        // Everything in the frustum, or (two phases) what of it was visible last frame.
         wgpu::ComputePassDescriptor descriptor{};
         descriptor.label = "visibility: culling and compute raster";
         descriptor.timestampWrites =
             frame.timer ? frame.timer->nextPass("visibility culling and raster") : nullptr;
         wgpu::ComputePassEncoder pass = commands.BeginComputePass(&descriptor);
-        pass.SetBindGroup(0, mFrameOnlyGroup);
-        pass.SetBindGroup(1, mRasterGroup, 1, &paramsOffset);
-        const std::uint32_t groups = groupsFor(mTables.itemCount, 64);
-        pass.SetPipeline(mCull);
-        pass.DispatchWorkgroups(std::min(groups, kMaxGroups), groupsFor(groups, kMaxGroups));
-        pass.SetPipeline(mRasterArgs);
-        pass.SetBindGroup(1, mArgumentsGroup);
-        pass.DispatchWorkgroups(1);
-        pass.SetPipeline(mRaster);
-        pass.SetBindGroup(1, mRasterGroup, 1, &paramsOffset);
-        pass.DispatchWorkgroupsIndirect(mRasterArguments, 0);
-        pass.SetPipeline(mWorkgroupArgs);
-        pass.SetBindGroup(1, mArgumentsGroup);
-        pass.DispatchWorkgroups(1);
-        pass.SetPipeline(mWorkgroupRaster);
-        pass.SetBindGroup(1, mRasterGroup, 1, &paramsOffset);
-        pass.DispatchWorkgroupsIndirect(mRasterArguments, 0);
+        bindCull(pass);
+        dispatchItems(pass, mCullFirst);
+        encodeRaster(pass, paramsOffset);
         pass.End();
     }
-    {
-        wgpu::RenderPassDepthStencilAttachment depth{};
-        depth.view = mHardwareDepth.CreateView();
-        depth.depthLoadOp = wgpu::LoadOp::Clear;
-        depth.depthStoreOp = wgpu::StoreOp::Discard;
-        depth.depthClearValue = 1.0f;
-        wgpu::RenderPassDescriptor descriptor{};
-        descriptor.label = "visibility: hardware raster";
-        descriptor.depthStencilAttachment = &depth;
+    encodeHardwareRaster(commands, frame, paramsOffset, viewX, viewWidth,
+                         "visibility hardware raster");
+    if (mOcclusion) {
+        // The rest of the frustum against the pyramid of what phase 1 drew (both rasters).
+        wgpu::ComputePassDescriptor descriptor{};
+        descriptor.label = "visibility: depth pyramid, second culling and raster";
         descriptor.timestampWrites =
-            frame.timer ? frame.timer->nextPass("visibility hardware raster") : nullptr;
-        wgpu::RenderPassEncoder pass = commands.BeginRenderPass(&descriptor);
-        pass.SetViewport(float(viewX), 0.0f, float(viewWidth), float(mHeight), 0.0f, 1.0f);
-        pass.SetPipeline(mHardware);
-        pass.SetBindGroup(0, mFrameOnlyGroup);
-        pass.SetBindGroup(1, mHardwareGroup, 1, &paramsOffset);
-        pass.DrawIndirect(mCounters, kHardwareArguments);
+            frame.timer ? frame.timer->nextPass("visibility occlusion culling and raster")
+                        : nullptr;
+        wgpu::ComputePassEncoder pass = commands.BeginComputePass(&descriptor);
+        mPyramid.encode(pass);
+        bindCull(pass);  // The pyramid's dispatches bound their own group 0.
+        pass.SetPipeline(mBeginSecondPhase);
+        pass.DispatchWorkgroups(1);
+        dispatchItems(pass, mCullSecond);
+        encodeRaster(pass, paramsOffset);
         pass.End();
+        encodeHardwareRaster(commands, frame, paramsOffset, viewX, viewWidth,
+                             "visibility hardware raster (second phase)");
     }
     {
         wgpu::ComputePassDescriptor descriptor{};

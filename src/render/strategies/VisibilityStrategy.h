@@ -4,21 +4,26 @@
 #include <cstdint>
 
 #include "encore/render/Strategy.h"
+#include "render/DepthPyramid.h"
 #include "render/VisibilityTables.h"
 #include "render/strategies/MaterialDrawGroups.h"
 
 namespace encore::render {
 
 // A visibility buffer rasterised in compute (docs/visibility.md). Before the frame's render
-// pass, for each view: a compute pass culls items (instance x primitive) against the frustum and
-// lists their units of 256 triangles; a compute raster writes each small triangle's
+// pass, for each view: a compute pass culls items (instance x primitive) against the frustum,
+// picks each one's level of detail as GPU culling does, and lists the level's units of 256
+// triangles; a compute raster writes each small triangle's
 // (depth, id) into a 64-bit-per-pixel storage buffer with atomicStoreMax; triangles that cross
 // the near or far plane or span more than maxComputePixels go to one indirect hardware draw whose
 // fragments do the same atomic; compute passes then sort the covered pixels into bins by
 // material and shade each bin (the PBR code of mesh.wgsl) into a colour texture. In the render
 // pass a fullscreen triangle copies colour and depth of covered pixels, and what the compute path
 // does not take (MASK, BLEND, skinned or morphed primitives) is drawn as `materials` draws it.
-// Needs the AtomicVec2uMinMax feature; prepare() fails naming it otherwise.
+// With occlusion culling (CullingOptions, frames of one view) the cull and raster run twice:
+// first the items visible last frame, then, against a depth pyramid of the visibility buffer,
+// the other items in the frustum that it does not hide (docs/visibility.md). Needs the
+// AtomicVec2uMinMax feature; prepare() fails naming it otherwise.
 class VisibilityStrategy final : public Strategy {
   public:
     // Bounds of the compute raster's triangle sizes, pixels each way: one thread covers those
@@ -51,6 +56,13 @@ class VisibilityStrategy final : public Strategy {
     // drawn by the hardware path. CopySrc usage, for read-back.
     const wgpu::Buffer& triangleCounts() const { return mTriangleCounts; }
     std::size_t lastViewCount() const { return mLastViewCount; }
+    // The last view's counters (visibility_counters.wgsl; CopySrc): at kListedTrianglesOffset,
+    // the triangles of the levels its cull listed (GPU culling's count of drawn triangles).
+    static constexpr std::uint64_t kListedTrianglesOffset = 8;
+    const wgpu::Buffer& counters() const { return mCounters; }
+    // Whether the last frame culled in two phases, and the pyramid it built (tests).
+    bool lastFrameOccluded() const { return mOcclusion; }
+    const DepthPyramid& depthPyramid() const { return mPyramid; }
     // Those of the first view; MASK, BLEND, skinned and morphed geometry drawn directly is
     // counted with the frame's direct draws (DrawCounters), not here.
     std::optional<GpuTriangleCounts> gpuTriangleCounts() const override;
@@ -63,6 +75,21 @@ class VisibilityStrategy final : public Strategy {
                     std::size_t view,
                     std::uint32_t viewX,
                     std::uint32_t viewWidth);
+    // The raster dispatches of the units listed so far in this phase: each raster's dispatch
+    // size written by its arguments pass, then the indirect dispatch.
+    void encodeRaster(const wgpu::ComputePassEncoder& pass, std::uint32_t paramsOffset) const;
+    void encodeIndirectDispatch(const wgpu::ComputePassEncoder& pass,
+                                const wgpu::ComputePipeline& arguments,
+                                const wgpu::ComputePipeline& raster,
+                                std::uint32_t paramsOffset) const;
+    // The hardware list of this phase, drawn into the visibility buffer.
+    void encodeHardwareRaster(const wgpu::CommandEncoder& commands,
+                              const FrameState& frame,
+                              std::uint32_t paramsOffset,
+                              std::uint32_t viewX,
+                              std::uint32_t viewWidth,
+                              const char* timerLabel) const;
+    void writeCullUniform(const FrameState& frame, std::size_t views) const;
 
     const RenderSetup* mSetup = nullptr;
     const GpuScene* mScene = nullptr;
@@ -79,7 +106,9 @@ class VisibilityStrategy final : public Strategy {
     std::uint32_t mHardwareCapacity = 0;
     wgpu::Buffer mRasterArguments;
     wgpu::Buffer mBins;
-    wgpu::Buffer mGeometry;  // The first shared geometry buffer, or a placeholder.
+    wgpu::Buffer mCullUniform;
+    wgpu::Buffer mItemVisibility;  // Per item: visible in the last two-phase frame.
+    wgpu::Buffer mGeometry;        // The first shared geometry buffer, or a placeholder.
     std::uint64_t mGeometryBytes = 0;
 
     // Target-sized resources, made on the first frame and when the size changes.
@@ -91,17 +120,22 @@ class VisibilityStrategy final : public Strategy {
     wgpu::Buffer mPixels;
     wgpu::Texture mShaded;
     wgpu::Texture mHardwareDepth;
+    DepthPyramid mPyramid;    // Of the visibility buffer's depth.
+    bool mOcclusion = false;  // This frame culls in two phases.
     wgpu::Buffer mTriangleCounts;
     std::size_t mLastViewCount = 0;
 
     wgpu::BindGroupLayout mFrameOnlyLayout;
+    wgpu::BindGroupLayout mCullLayout;
     wgpu::BindGroupLayout mArgumentsLayout;
     wgpu::BindGroupLayout mRasterLayout;
     wgpu::BindGroupLayout mHardwareLayout;
     wgpu::BindGroupLayout mBinLayout;
     wgpu::BindGroupLayout mShadeLayout;
     wgpu::BindGroupLayout mCompositeLayout;
-    wgpu::ComputePipeline mCull;
+    wgpu::ComputePipeline mCullFirst;
+    wgpu::ComputePipeline mBeginSecondPhase;
+    wgpu::ComputePipeline mCullSecond;
     wgpu::ComputePipeline mRasterArgs;
     wgpu::ComputePipeline mRaster;
     wgpu::ComputePipeline mWorkgroupArgs;
@@ -114,6 +148,7 @@ class VisibilityStrategy final : public Strategy {
     std::array<std::array<wgpu::ComputePipeline, 2>, 2> mShade;
     wgpu::RenderPipeline mComposite;
     wgpu::BindGroup mFrameOnlyGroup;
+    wgpu::BindGroup mCullGroup;
     wgpu::BindGroup mArgumentsGroup;
     wgpu::BindGroup mRasterGroup;
     wgpu::BindGroup mHardwareGroup;

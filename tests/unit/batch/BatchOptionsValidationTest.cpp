@@ -141,6 +141,8 @@ TEST(BatchOptionsValidationTest, LevelsOfDetailNeedANonNegativeErrorAndGpuCullin
     EXPECT_TRUE(validateBatchOptions(options).ok());
     options.strategy = StrategyChoice::of(StrategyKind::GpuCulling, false);
     EXPECT_TRUE(validateBatchOptions(options).ok());
+    options.strategy = StrategyChoice::of(StrategyKind::Visibility, false);
+    EXPECT_TRUE(validateBatchOptions(options).ok());
     // A strategy that draws everything cannot choose levels; the error names it.
     options.strategy = StrategyChoice::of(StrategyKind::Bundles, false);
     EXPECT_TRUE(rejected(options, "(not " + render::strategyChoiceName(*options.strategy) + ")"));

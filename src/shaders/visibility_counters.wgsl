@@ -1,0 +1,22 @@
+// The visibility strategy's counters for one view (VisibilityStrategy.cpp's byte offsets), reset
+// before each view. A view of two-phase occlusion culling runs its raster passes twice: the
+// second phase appends its units after the first's and draws its hardware list from where the
+// first one's ended (visibility_cull.wgsl's beginSecondPhase).
+struct Counters {
+    unitCount: atomic<u32>,
+    firstUnit: u32,  // This phase's first unit: rasterMain covers [firstUnit, unitCount).
+    // Triangles of the levels the cull listed (both phases; some may be back faces, outside
+    // the view or degenerate): what GPU culling's count of drawn triangles counts.
+    listedTriangles: atomic<u32>,
+    padding2: u32,
+    // drawIndirect arguments of the hardware pass (byte offset 16): 3 vertices per triangle that
+    // this phase listed, from hardwareFirstVertex.
+    hardwareVertices: atomic<u32>,
+    hardwareInstances: u32,
+    hardwareFirstVertex: u32,
+    hardwareFirstInstance: u32,
+    computeTriangles: atomic<u32>,  // Triangles the compute raster covered pixels of (or not).
+    hardwareOverflow: atomic<u32>,  // Triangles the full hardware list could not take.
+    hardwareTriangles: atomic<u32>,  // Triangles the hardware list took.
+    workgroupTriangles: atomic<u32>,  // Triangles listed for workgroupMain in this phase.
+}
