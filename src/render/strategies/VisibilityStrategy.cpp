@@ -28,7 +28,7 @@ struct ViewParams {
     std::uint32_t hardwareCapacity = 0;
     std::uint32_t binCount = 0;
     float maxWorkgroupPixels = 0.0f;
-    std::uint32_t padding = 0;
+    std::uint32_t samples = 1;
 };
 static_assert(sizeof(ViewParams) == 48);
 
@@ -71,6 +71,11 @@ Result<void> VisibilityStrategy::prepare(const RenderSetup& setup, const GpuScen
                          "(64-bit atomic min and max, WGSL atomic_vec2u_min_max), which this "
                          "device does not have; Dawn offers it only with its allow_unsafe_apis "
                          "toggle (render::requestVisibilityFeatures).");
+    }
+    if (setup.sampleCount != 1 && setup.sampleCount != 4) {
+        return makeError(ErrorCode::Unsupported,
+                         "The visibility strategy renders at 1 or 4 samples per pixel, not " +
+                             std::to_string(setup.sampleCount) + ".");
     }
     mSetup = &setup;
     mScene = &scene;
@@ -233,10 +238,15 @@ Result<void> VisibilityStrategy::createPipelines() {
     pipeline.primitive.topology = wgpu::PrimitiveTopology::TriangleList;
     pipeline.primitive.cullMode = wgpu::CullMode::None;  // Back faces were culled in compute.
     pipeline.depthStencil = &depth;
+    pipeline.multisample.count = mSetup->sampleCount;
     pipeline.fragment = &hardwareFragment;
     mHardware = device.CreateRenderPipeline(&pipeline);
 
-    ENCORE_TRY_ASSIGN(auto composite, library.module("visibility_composite.wgsl"));
+    std::set<std::string, std::less<>> compositeFlags;
+    if (mSetup->sampleCount > 1) {
+        compositeFlags.insert("MULTISAMPLED");
+    }
+    ENCORE_TRY_ASSIGN(auto composite, library.module("visibility_composite.wgsl", compositeFlags));
     gpu::FullscreenPipelineDescriptor compositeDescriptor;
     compositeDescriptor.label = "visibility composite";
     compositeDescriptor.module = composite;
@@ -267,19 +277,25 @@ void VisibilityStrategy::ensureTarget(std::uint32_t width,
     }
     mWidth = width;
     mHeight = height;
-    const std::uint64_t pixels = std::uint64_t(width) * height;
+    // An entry per sample: 8 bytes in the visibility buffer, 4 in the binned list, a texel of
+    // the shaded colour (2x2 per pixel at four samples, visibility_samples.wgsl).
+    const std::uint32_t samples = mSetup->sampleCount;
+    const std::uint64_t entries = std::uint64_t(width) * height * samples;
     mVisibility = gpu::createBuffer(device, wgpu::BufferUsage::Storage | wgpu::BufferUsage::CopyDst,
-                                    pixels * 8, "visibility buffer");
-    mPixels = gpu::createBuffer(device, wgpu::BufferUsage::Storage, pixels * 4,
+                                    entries * 8, "visibility buffer");
+    mPixels = gpu::createBuffer(device, wgpu::BufferUsage::Storage, entries * 4,
                                 "visibility binned pixels");
+    const std::uint32_t grid = samples == 4 ? 2 : 1;
     wgpu::TextureDescriptor texture{};
-    texture.size = {width, height, 1};
+    texture.size = {width * grid, height * grid, 1};
     texture.format = wgpu::TextureFormat::RGBA16Float;
     texture.usage = wgpu::TextureUsage::StorageBinding | wgpu::TextureUsage::TextureBinding;
     texture.label = "visibility shaded colour";
     mShaded = device.CreateTexture(&texture);
+    texture.size = {width, height, 1};
     texture.format = wgpu::TextureFormat::Depth32Float;
     texture.usage = wgpu::TextureUsage::RenderAttachment;
+    texture.sampleCount = samples;
     texture.label = "visibility hardware depth";
     mHardwareDepth = device.CreateTexture(&texture);
 
@@ -348,6 +364,7 @@ void VisibilityStrategy::beforePass(const wgpu::CommandEncoder& commands, const 
         p.frustumTest = views == 1 ? 1 : 0;
         p.hardwareCapacity = mHardwareCapacity;
         p.binCount = mTables.binCount;
+        p.samples = mSetup->sampleCount;
         std::memcpy(params.data() + view * kParamsStride, &p, sizeof(p));
     }
     mSetup->queue.WriteBuffer(mParams, 0, params.data(), params.size());
