@@ -45,15 +45,16 @@ fn pixelBins(id: vec3u) -> PixelBins {
     }
     result.first = ((id.y + params.viewportY) * params.targetWidth + id.x + params.viewportX) *
                    params.samples;
+    var ids = array<u32, 4>(kNoBin, kNoBin, kNoBin, kNoBin);  // Covered samples' triangles.
     for (var sample = 0u; sample < params.samples; sample++) {
         let key = visibility[result.first + sample];
         if (key.y == 0u) {
             continue;
         }
+        ids[sample] = key.x;
         var seen = false;
         for (var earlier = 0u; earlier < sample; earlier++) {
-            let other = visibility[result.first + earlier];
-            seen = seen || (other.y != 0u && other.x == key.x);
+            seen = seen || ids[earlier] == key.x;
         }
         if (!seen) {
             let unit = units[key.x / 256u];

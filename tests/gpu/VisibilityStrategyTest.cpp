@@ -20,6 +20,7 @@
 #include "GpuTestSupport.h"
 #include "RenderTestSupport.h"
 #include "encore/render/Renderer.h"
+#include "encore/render/VisibilityFeatures.h"
 #include "gpu/Readback.h"
 #include "image/ImageCompare.h"
 #include "render/strategies/VisibilityStrategy.h"
@@ -457,6 +458,45 @@ TEST(VisibilityFeatureTest, WithoutTheFeatureTheErrorNamesIt) {
     ASSERT_FALSE(prepared.ok());
     EXPECT_EQ(prepared.error().code, ErrorCode::Unsupported);
     EXPECT_NE(prepared.error().message.find("AtomicVec2uMinMax"), std::string::npos);
+}
+
+TEST(VisibilityLimitsTest, AVisibilityBufferPastTheBindingLimitIsAnError) {
+    ENCORE_REQUIRE_VULKAN(shared);
+    // 128x96 at 4 samples needs 393,216 bytes of visibility buffer, at 1 sample 98,304.
+    gpu::ContextOptions contextOptions;
+    requestVisibilityFeatures(contextOptions);
+    contextOptions.limitOverrides.maxStorageBufferBindingSize = 256 * 1024;
+    auto context = gpu::Context::create(contextOptions);
+    ASSERT_TRUE(context.ok());
+    const auto scene = triangles({{glm::vec3(-1, -1, 0), glm::vec3(1, -1, 0), glm::vec3(0, 1, 0)}});
+    for (std::uint32_t samples : kSampleCounts) {
+        SCOPED_TRACE(std::to_string(samples) + " samples");
+        RendererOptions options = test::pixelTestOptions(kWidth, kHeight, samples);
+        options.environment = nullptr;  // The shared one belongs to the other device.
+        auto renderer = Renderer::create(*context, options);
+        ASSERT_TRUE(renderer.ok());
+        auto prepared = renderer->prepare(scene, StrategyKind::Visibility);
+        if (samples == 1) {
+            ASSERT_TRUE(prepared.ok()) << prepared.error().message;
+            // Growing the target past the limit is refused the same way.
+            auto resized = renderer->resize(kWidth * 2, kHeight * 2);
+            ASSERT_FALSE(resized.ok());
+            EXPECT_NE(resized.error().message.find("maxStorageBufferBindingSize"),
+                      std::string::npos);
+            renderer->renderFrame(kFront);
+            auto image = renderer->readImage();
+            ASSERT_TRUE(image.ok());
+            EXPECT_EQ(image->width, kWidth);
+            EXPECT_GT(test::coveredFraction(*image, test::pixelAt(*image, 0, 0)), 0.01);
+        } else {
+            ASSERT_FALSE(prepared.ok());
+            EXPECT_EQ(prepared.error().code, ErrorCode::LimitExceeded);
+            EXPECT_NE(prepared.error().message.find("maxStorageBufferBindingSize"),
+                      std::string::npos)
+                << prepared.error().message;
+        }
+    }
+    EXPECT_TRUE(context->checkNoErrors("visibility limits").ok());
 }
 
 TEST(VisibilityFeatureTest, TheTestContextHasTheFeature) {

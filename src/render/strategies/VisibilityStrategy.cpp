@@ -5,6 +5,7 @@
 #include <set>
 #include <string>
 
+#include "encore/gpu/DeviceLimits.h"
 #include "encore/render/VisibilityFeatures.h"
 #include "gpu/BindingResource.h"
 #include "gpu/FullscreenPipeline.h"
@@ -128,6 +129,25 @@ Result<void> VisibilityStrategy::prepare(const RenderSetup& setup, const GpuScen
     mWidth = 0;
     mHeight = 0;
     mViewCapacity = 0;
+    return {};
+}
+
+Result<void> VisibilityStrategy::checkTarget(std::uint32_t width, std::uint32_t height) const {
+    const std::uint32_t samples = mSetup->sampleCount;
+    const std::string what = "The visibility strategy at " + std::to_string(width) + "x" +
+                             std::to_string(height) + " and " + std::to_string(samples) +
+                             (samples == 1 ? " sample" : " samples") +
+                             " (fewer samples or a smaller target fit)";
+    ENCORE_TRY(gpu::checkStorageBinding(mSetup->limits, std::uint64_t(width) * height * samples * 8,
+                                        what + ", its visibility buffer"));
+    const std::uint32_t grid = samples == 4 ? 2 : 1;
+    if (std::max(width, height) * grid > mSetup->limits.maxTextureDimension2D) {
+        return makeError(ErrorCode::LimitExceeded,
+                         what + ": its shaded colour texture is " + std::to_string(width * grid) +
+                             "x" + std::to_string(height * grid) +
+                             ", larger than the device's maxTextureDimension2D (" +
+                             std::to_string(mSetup->limits.maxTextureDimension2D) + ").");
+    }
     return {};
 }
 

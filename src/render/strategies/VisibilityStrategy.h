@@ -33,6 +33,10 @@ class VisibilityStrategy final : public Strategy {
     Result<void> prepare(const RenderSetup& setup, const GpuScene& scene) override;
     Result<void> refresh() override { return mDraws.refresh(); }
     void beforePass(const wgpu::CommandEncoder& commands, const FrameState& frame) override;
+    // The visibility buffer (8 bytes per sample) within maxStorageBufferBindingSize, the shaded
+    // colour (a texel per sample: twice the target's size each way at 4 samples) within
+    // maxTextureDimension2D.
+    Result<void> checkTarget(std::uint32_t width, std::uint32_t height) const override;
     void encode(RenderEncoder& encoder, const FrameState& frame) const override;
     // Transmissive surfaces are left to the hardware path, as blended ones are, and drawn in
     // the transmission pass.
