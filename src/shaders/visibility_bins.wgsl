@@ -45,16 +45,18 @@ fn pixelBins(id: vec3u) -> PixelBins {
     }
     result.first = ((id.y + params.viewportY) * params.targetWidth + id.x + params.viewportX) *
                    params.samples;
-    var ids = array<u32, 4>(kNoBin, kNoBin, kNoBin, kNoBin);  // Covered samples' triangles.
+    var ids = array<u32, 4>(0u, 0u, 0u, 0u);  // The triangles of the samples in `covered`.
+    var covered = 0u;
     for (var sample = 0u; sample < params.samples; sample++) {
         let key = visibility[result.first + sample];
         if (key.y == 0u) {
             continue;
         }
         ids[sample] = key.x;
+        covered |= 1u << sample;
         var seen = false;
         for (var earlier = 0u; earlier < sample; earlier++) {
-            seen = seen || ids[earlier] == key.x;
+            seen = seen || (((covered >> earlier) & 1u) != 0u && ids[earlier] == key.x);
         }
         if (!seen) {
             let unit = units[key.x / 256u];
