@@ -12,11 +12,12 @@ namespace encore::render {
 // A visibility buffer rasterised in compute (docs/visibility.md). Before the frame's render
 // pass, for each view: a compute pass culls items (instance x primitive) against the frustum and
 // lists their units of 256 triangles; a compute raster writes each small triangle's
-// (depth, id) into a 64-bit-per-pixel storage buffer with atomicStoreMax; triangles that cross
+// (depth, id) into a 64-bit-per-sample storage buffer with atomicStoreMax (one sample per pixel,
+// or four at the hardware's 4x positions when the target is multisampled); triangles that cross
 // the near or far plane or span more than maxComputePixels go to one indirect hardware draw whose
 // fragments do the same atomic; compute passes then sort the covered pixels into bins by
 // material and shade each bin (the PBR code of mesh.wgsl) into a colour texture. In the render
-// pass a fullscreen triangle copies colour and depth of covered pixels, and what the compute path
+// pass a fullscreen triangle copies colour and depth of covered samples, and what the compute path
 // does not take (MASK, BLEND, skinned or morphed primitives) is drawn as `materials` draws it.
 // Needs the AtomicVec2uMinMax feature; prepare() fails naming it otherwise.
 class VisibilityStrategy final : public Strategy {
