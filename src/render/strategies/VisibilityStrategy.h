@@ -12,8 +12,7 @@ namespace encore::render {
 // A visibility buffer rasterised in compute (docs/visibility.md). Before the frame's render
 // pass, for each view: a compute pass culls items (instance x primitive) against the frustum and
 // lists their units of 256 triangles; a compute raster writes each small triangle's
-// (depth, id) into a 64-bit-per-sample storage buffer with atomicStoreMax (one sample per pixel,
-// or four at the hardware's 4x positions when the target is multisampled); triangles that cross
+// (depth, id) into a 64-bit-per-pixel storage buffer with atomicStoreMax; triangles that cross
 // the near or far plane or span more than maxComputePixels go to one indirect hardware draw whose
 // fragments do the same atomic; compute passes then sort the covered pixels into bins by
 // material and shade each bin (the PBR code of mesh.wgsl) into a colour texture. In the render
@@ -34,9 +33,10 @@ class VisibilityStrategy final : public Strategy {
     Result<void> prepare(const RenderSetup& setup, const GpuScene& scene) override;
     Result<void> refresh() override { return mDraws.refresh(); }
     void beforePass(const wgpu::CommandEncoder& commands, const FrameState& frame) override;
-    // The visibility buffer (8 bytes per sample) within maxStorageBufferBindingSize, the shaded
-    // colour (a texel per sample: twice the target's size each way at 4 samples) within
-    // maxTextureDimension2D.
+    // A multisampled target has four visibility samples per pixel at the hardware's 4x
+    // positions (docs/visibility.md). The visibility buffer (8 bytes per sample) must fit
+    // maxStorageBufferBindingSize, the shaded colour (a texel per sample: twice the target's
+    // size each way at 4 samples) maxTextureDimension2D.
     Result<void> checkTarget(std::uint32_t width, std::uint32_t height) const override;
     void encode(RenderEncoder& encoder, const FrameState& frame) const override;
     // Transmissive surfaces are left to the hardware path, as blended ones are, and drawn in
