@@ -379,7 +379,7 @@ std::size_t blendedEdgePixels(const image::ImageRgba8& image, const glm::vec3& i
 
 TEST(VisibilityMultisampleTest, EdgesOfLargeTrianglesAreAntiAliased) {
     ENCORE_REQUIRE_VULKAN(context);
-    // About 64 by 40 pixels: the workgroup path; through the near plane: the hardware path.
+    // About 48 by 30 pixels: the workgroup path; through the near plane: the hardware path.
     const std::array<std::array<glm::vec3, 3>, 2> shapes = {{
         {glm::vec3(-3, -1.1f, -1), glm::vec3(1, -0.6f, -1), glm::vec3(-1, 1.4f, -1)},
         {glm::vec3(-2, -2.5f, 5), glm::vec3(2, -2.5f, 5), glm::vec3(0, -1.0f, -4)},
@@ -398,6 +398,45 @@ TEST(VisibilityMultisampleTest, EdgesOfLargeTrianglesAreAntiAliased) {
         expectSameCoverage(*context, scene, kFront, 3, 4);
     }
     EXPECT_TRUE(context->checkNoErrors("visibility multisampling").ok());
+}
+
+// At four samples a pixel's triangle is shaded once, whatever number of its samples it covers:
+// the shading bins hold one entry per pixel that a lone triangle touches (not one per sample).
+TEST(VisibilityMultisampleTest, EachTriangleOfAPixelIsShadedOnce) {
+    ENCORE_REQUIRE_VULKAN(context);
+    const auto scene =
+        triangles({{glm::vec3(-3, -1.1f, -1), glm::vec3(1, -0.6f, -1), glm::vec3(-1, 1.4f, -1)}});
+    for (std::uint32_t samples : kSampleCounts) {
+        SCOPED_TRACE(std::to_string(samples) + " samples");
+        auto renderer =
+            Renderer::create(*context, test::pixelTestOptions(kWidth, kHeight, samples));
+        ASSERT_TRUE(renderer.ok());
+        ASSERT_TRUE(renderer->prepare(scene, StrategyKind::Visibility).ok());
+        renderer->renderFrame(kFront);
+        auto image = renderer->readImage();
+        ASSERT_TRUE(image.ok());
+        const auto* visibility = dynamic_cast<const VisibilityStrategy*>(renderer->strategy());
+        ASSERT_NE(visibility, nullptr);
+        const std::uint32_t binCount = visibility->tables().binCount;
+        auto bins = gpu::readBuffer(*context, visibility->bins(), 0,
+                                    binCount * VisibilityStrategy::kBinRecordBytes);
+        ASSERT_TRUE(bins.ok());
+        std::uint64_t entries = 0;
+        for (std::uint32_t bin = 0; bin < binCount; ++bin) {
+            std::uint32_t count = 0;
+            std::memcpy(&count, bins->data() + bin * VisibilityStrategy::kBinRecordBytes, 4);
+            entries += count;
+        }
+        const auto background = test::pixelAt(*image, 0, 0);
+        std::uint64_t touched = 0;
+        for (std::uint32_t y = 0; y < image->height; ++y) {
+            for (std::uint32_t x = 0; x < image->width; ++x) {
+                touched += test::pixelAt(*image, x, y) != background;
+            }
+        }
+        EXPECT_GT(touched, 500u);
+        EXPECT_EQ(entries, touched);
+    }
 }
 
 TEST(VisibilityFallbackTest, MaskBlendAndSkinnedGeometryIsDrawn) {

@@ -35,6 +35,7 @@ static_assert(sizeof(ViewParams) == 48);
 
 constexpr std::uint64_t kParamsStride = 256;
 constexpr std::uint64_t kBinStride = 256;  // visibility_bin_record.wgsl's record.
+static_assert(kBinStride == VisibilityStrategy::kBinRecordBytes);
 constexpr std::uint64_t kCounterBytes = 64;
 // Byte offsets in visibility_raster.wgsl's Counters.
 constexpr std::uint64_t kHardwareArguments = 16;
@@ -121,10 +122,10 @@ Result<void> VisibilityStrategy::prepare(const RenderSetup& setup, const GpuScen
     mRasterArguments =
         gpu::createBuffer(device, wgpu::BufferUsage::Storage | wgpu::BufferUsage::Indirect, 16,
                           "visibility raster dispatch");
-    mBins = gpu::createBuffer(
-        device,
-        wgpu::BufferUsage::Storage | wgpu::BufferUsage::Indirect | wgpu::BufferUsage::CopyDst,
-        std::uint64_t(mTables.binCount) * kBinStride, "visibility bins");
+    mBins = gpu::createBuffer(device,
+                              wgpu::BufferUsage::Storage | wgpu::BufferUsage::Indirect |
+                                  wgpu::BufferUsage::CopyDst | wgpu::BufferUsage::CopySrc,
+                              std::uint64_t(mTables.binCount) * kBinStride, "visibility bins");
     ENCORE_TRY(createPipelines());
     mWidth = 0;
     mHeight = 0;

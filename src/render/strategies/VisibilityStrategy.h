@@ -38,6 +38,10 @@ class VisibilityStrategy final : public Strategy {
     // maxStorageBufferBindingSize, the shaded colour (a texel per sample: twice the target's
     // size each way at 4 samples) maxTextureDimension2D.
     Result<void> checkTarget(std::uint32_t width, std::uint32_t height) const override;
+    // The last view's shading bins (CopySrc, tables().binCount records of kBinRecordBytes, each
+    // starting with its count of entries shaded: one per covered pixel and distinct triangle).
+    static constexpr std::uint64_t kBinRecordBytes = 256;
+    const wgpu::Buffer& bins() const { return mBins; }
     void encode(RenderEncoder& encoder, const FrameState& frame) const override;
     // Transmissive surfaces are left to the hardware path, as blended ones are, and drawn in
     // the transmission pass.
