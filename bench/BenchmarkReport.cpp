@@ -97,7 +97,10 @@ nlohmann::json toJson(const BenchReport& report) {
                         : "block"},
         {"timestamps", report.timestamps},
         {"environmentMilliseconds", report.environmentMilliseconds},
-        {"target", {{"width", report.options.width}, {"height", report.options.height}}},
+        {"target",
+         {{"width", report.options.width},
+          {"height", report.options.height},
+          {"samples", report.options.samples}}},
         {"results", nlohmann::json::array()},
         {"skipped", report.skipped},
     };
@@ -152,7 +155,9 @@ std::string toMarkdown(const BenchReport& report) {
         << "Host CPU: " << report.cpu << " (" << report.cores << " threads)  \n"
         << "Frames: " << report.options.frames << " measured after "
         << (report.options.callgrind ? 0 : report.options.warmup) << " warm-up, "
-        << report.options.width << "x" << report.options.height << " target; the CPU "
+        << report.options.width << "x" << report.options.height << " target ("
+        << report.options.samples << (report.options.samples == 1 ? " sample" : " samples")
+        << " per pixel); the CPU "
         << (report.options.gpuWait == gpu::WaitMode::Spin && !report.options.callgrind ? "spins"
                                                                                        : "blocks")
         << " while it waits for the GPU after each frame; GPU time from timestamp queries: "

@@ -285,8 +285,9 @@ Result<BenchReport> runBenchmarks(gpu::Context& context,
             strategies.push_back({kind, false});
         }
     }
-    ENCORE_TRY_ASSIGN(auto renderer,
-                      render::Renderer::create(context, {{options.width, options.height, 1}}));
+    ENCORE_TRY_ASSIGN(
+        auto renderer,
+        render::Renderer::create(context, {{options.width, options.height, options.samples}}));
     renderer.setCullingOptions(options.culling);
     report.environmentMilliseconds = renderer.lighting().environment().lastBuildMilliseconds();
     auto timer = gpu::GpuTimer::create(context);

@@ -148,6 +148,9 @@ void addBenchCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) 
     command->add_option("--warmup", bench.warmup, "Warm-up frames")->capture_default_str();
     command->add_option("--width", bench.width, "Target width")->capture_default_str();
     command->add_option("--height", bench.height, "Target height")->capture_default_str();
+    command->add_option("--samples", bench.samples, "Multisampling: 1 or 4")
+        ->check(CLI::IsMember({1, 4}))
+        ->capture_default_str();
     command->add_option("--meshes", bench.meshes, "Distinct meshes of generated scenes")
         ->capture_default_str();
     command->add_option("--materials", bench.materials, "Materials of generated scenes")

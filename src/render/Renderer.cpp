@@ -298,6 +298,9 @@ Result<void> Renderer::prepareStrategy(StrategyKind kind,
     times.strategy = millisecondsSince(start);
     start = std::chrono::steady_clock::now();
     ENCORE_TRY(outOfMemory.finish(what));
+    if (prepared) {
+        prepared = strategy->checkTarget(mTarget.width(), mTarget.height());
+    }
     if (!prepared) {
         return prepared.error().withContext(what);
     }
@@ -357,6 +360,9 @@ void Renderer::releaseScene() {
 }
 
 Result<void> Renderer::resize(std::uint32_t width, std::uint32_t height) {
+    if (mStrategy) {
+        ENCORE_TRY(mStrategy->checkTarget(width, height));
+    }
     RenderTargetOptions options = mTarget.options();
     options.width = width;
     options.height = height;

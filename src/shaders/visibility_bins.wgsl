@@ -1,13 +1,13 @@
-// The visibility strategy's shading bins, for one view: every covered pixel sorted by the bin
-// of its triangle's primitive (material, and whether TANGENT is bound: the shader variants of
+// The visibility strategy's shading bins, for one view: every covered pixel (at several
+// samples, each distinct triangle of a pixel: its first sample) sorted by the bin of its
+// triangle's primitive (material, and whether TANGENT is bound: the shader variants of
 // the shading pass), so that each bin is shaded by one indirect dispatch with its material's
 // bind group.
-//   countMain    one thread per pixel of the viewport: counts its bin;
+//   countMain    one thread per pixel of the viewport: counts its bins;
 //   offsetsMain  one thread: each bin's first slot in the pixel list and its dispatch size;
-//   scatterMain  one thread per pixel: writes its index into its bin's slots.
+//   scatterMain  one thread per pixel: writes its entries into their bins' slots.
 #include "visibility_bin_record.wgsl"
 #include "visibility_params.wgsl"
-
 
 struct Bin {
     count: atomic<u32>,
@@ -27,26 +27,54 @@ struct Bin {
 @group(0) @binding(4) var<storage, read_write> bins: array<Bin>;
 @group(0) @binding(5) var<storage, read_write> pixels: array<u32>;
 
-// The pixel's index in the visibility buffer and its bin, or 0xffffffff where nothing covers it.
-fn pixelBin(id: vec3u) -> vec2u {
+const kNoBin = 0xffffffffu;
+
+// The shading bin of each sample of pixel `id` of the viewport (kNoBin: not covered, or the
+// triangle of an earlier sample of the pixel, which is shaded once) and the pixel's first entry
+// in the visibility buffer.
+struct PixelBins {
+    first: u32,
+    bins: array<u32, 4>,
+}
+
+fn pixelBins(id: vec3u) -> PixelBins {
+    var result: PixelBins;
+    result.bins = array<u32, 4>(kNoBin, kNoBin, kNoBin, kNoBin);
     if (id.x >= params.viewportWidth || id.y >= params.viewportHeight) {
-        return vec2u(0u, 0xffffffffu);
+        return result;
     }
-    let index = (id.y + params.viewportY) * params.targetWidth + id.x + params.viewportX;
-    let key = visibility[index];
-    if (key.y == 0u) {
-        return vec2u(index, 0xffffffffu);
+    result.first = ((id.y + params.viewportY) * params.targetWidth + id.x + params.viewportX) *
+                   params.samples;
+    var ids = array<u32, 4>(0u, 0u, 0u, 0u);  // The triangles of the samples in `covered`.
+    var covered = 0u;
+    for (var sample = 0u; sample < params.samples; sample++) {
+        let key = visibility[result.first + sample];
+        if (key.y == 0u) {
+            continue;
+        }
+        ids[sample] = key.x;
+        covered |= 1u << sample;
+        var seen = false;
+        for (var earlier = 0u; earlier < sample; earlier++) {
+            seen = seen || (((covered >> earlier) & 1u) != 0u && ids[earlier] == key.x);
+        }
+        if (!seen) {
+            let unit = units[key.x / 256u];
+            let record = tables[unit.x * 4u + 1u];
+            result.bins[sample] = tables[record + 4u];
+        }
     }
-    let unit = units[key.x / 256u];
-    let record = tables[unit.x * 4u + 1u];
-    return vec2u(index, tables[record + 4u]);
+    return result;
 }
 
 @compute @workgroup_size(8, 8)
 fn countMain(@builtin(global_invocation_id) id: vec3u) {
-    let bin = pixelBin(id);
-    if (bin.y != 0xffffffffu) {
-        atomicAdd(&bins[bin.y].count, 1u);
+    let pixel = pixelBins(id);
+    for (var sample = 0u; sample < params.samples; sample++) {
+        let bin = pixel.bins[sample];
+        if (bin != kNoBin) {
+            atomicAdd(&bins[bin].count, 1u);
+        }
     }
 }
 
@@ -64,11 +92,15 @@ fn offsetsMain() {
     }
 }
 
+// Lists each shaded sample's visibility-buffer entry (pixel * samples + sample) in its bin.
 @compute @workgroup_size(8, 8)
 fn scatterMain(@builtin(global_invocation_id) id: vec3u) {
-    let bin = pixelBin(id);
-    if (bin.y != 0xffffffffu) {
-        let slot = atomicAdd(&bins[bin.y].cursor, 1u);
-        pixels[bins[bin.y].first + slot] = bin.x;
+    let pixel = pixelBins(id);
+    for (var sample = 0u; sample < params.samples; sample++) {
+        let bin = pixel.bins[sample];
+        if (bin != kNoBin) {
+            let slot = atomicAdd(&bins[bin].cursor, 1u);
+            pixels[bins[bin].first + slot] = pixel.first + sample;
+        }
     }
 }

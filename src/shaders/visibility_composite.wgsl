@@ -1,7 +1,17 @@
 // The visibility strategy's last step, inside the frame's render pass: a fullscreen triangle
-// that copies each covered pixel's shaded colour into the target and its visibility-buffer depth
-// into the depth attachment (for the background, the hardware-drawn rest of the scene and
-// blended geometry after it); uncovered pixels are discarded.
+// that copies each covered sample's shaded colour into the target and its visibility-buffer
+// depth into the depth attachment (for the background, the hardware-drawn rest of the scene and
+// blended geometry after it); uncovered samples are discarded. It runs per sample
+// (sample_index): with MULTISAMPLED, each of a pixel's four samples takes the colour its
+// triangle was shaded with (at the first sample that triangle covers, visibility_bins.wgsl) and
+// its own depth, and the target's resolve averages them as it averages hardware-drawn samples.
+#include "visibility_samples.wgsl"
+
+#if MULTISAMPLED
+const kSamples = 4u;
+#else
+const kSamples = 1u;
+#endif
 
 @group(0) @binding(0) var<storage, read> visibility: array<vec2u>;
 @group(0) @binding(1) var shaded: texture_2d<f32>;
@@ -18,14 +28,25 @@ struct FragmentOutput {
 }
 
 @fragment
-fn fragmentMain(@builtin(position) position: vec4f) -> FragmentOutput {
+fn fragmentMain(@builtin(position) position: vec4f, @builtin(sample_index) sample: u32)
+    -> FragmentOutput {
     let pixel = vec2u(position.xy);
-    let key = visibility[pixel.y * textureDimensions(shaded).x + pixel.x];
+    let width = textureDimensions(shaded).x / shadedGrid(kSamples).x;
+    let first = (pixel.y * width + pixel.x) * kSamples;
+    let key = visibility[first + sample];
     if (key.y == 0u) {
         discard;
     }
+    var shadedAt = sample;
+    for (var earlier = 0u; earlier < sample; earlier++) {
+        let other = visibility[first + earlier];
+        if (other.y != 0u && other.x == key.x) {
+            shadedAt = earlier;
+            break;
+        }
+    }
     var output: FragmentOutput;
-    output.color = textureLoad(shaded, pixel, 0);
+    output.color = textureLoad(shaded, shadedTexel(pixel, kSamples, shadedAt), 0);
     output.depth = bitcast<f32>(~key.y);
     return output;
 }

@@ -3,7 +3,8 @@ enable atomic_vec2u_min_max;
 // The visibility strategy's hardware path, for one view: the triangles that the compute raster
 // listed (near- or far-plane crossings, large ones; back faces culled already), drawn with one
 // indirect draw, vertices pulled from the shared buffers as the compute raster pulls them, and
-// each fragment writing (depth, id) into the visibility buffer with the same 64-bit atomic.
+// each fragment (sample) writing (depth, id) into the visibility buffer with the same 64-bit
+// atomic.
 #include "frame.wgsl"
 #include "visibility_geometry.wgsl"
 
@@ -34,9 +35,12 @@ fn vertexMain(@builtin(vertex_index) vertex: u32) -> VertexOutput {
     return output;
 }
 
+// Runs per sample (sample_index) into a target of params.samples samples: the position and its
+// depth are the sample's, and each covered sample writes its own entry.
 @fragment
-fn fragmentMain(input: VertexOutput) {
+fn fragmentMain(input: VertexOutput, @builtin(sample_index) sample: u32) {
     let pixel = vec2u(input.position.xy);
     let depth = ~bitcast<u32>(clamp(input.position.z, 0.0, 1.0));
-    atomicStoreMax(&visibility[pixel.y * params.targetWidth + pixel.x], vec2u(input.id, depth));
+    let index = (pixel.y * params.targetWidth + pixel.x) * params.samples + sample;
+    atomicStoreMax(&visibility[index], vec2u(input.id, depth));
 }

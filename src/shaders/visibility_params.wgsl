@@ -15,4 +15,7 @@ struct VisibilityParams {
     hardwareCapacity: u32,
     binCount: u32,
     maxWorkgroupPixels: f32,
+    // Visibility samples per pixel (1, or 4 at the standard 4x positions): the visibility buffer
+    // holds `samples` entries per pixel, pixel-major (visibility_samples.wgsl).
+    samples: u32,
 }

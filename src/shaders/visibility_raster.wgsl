@@ -5,12 +5,14 @@ enable atomic_vec2u_min_max;
 //   argsMain    one thread: the raster dispatch's size from this phase's unit count;
 //   rasterMain  one workgroup per unit, one thread per triangle at a time: clip, cull back
 //               faces, snap to 1/256 pixel and cover pixel centres with edge functions under the
-//               top-left rule, writing (depth, id) with a 64-bit atomic max of
+//               top-left rule (at each of the pixel's samples, VisibilityParams.samples),
+//               writing (depth, id) with a 64-bit atomic max of
 //               (id, ~depth bits), so the nearest depth wins. Triangles that cross the near or
 //               far plane, or whose screen bounds exceed params.maxComputePixels, are listed
 //               for the hardware pass (visibility_hardware.wgsl) instead.
 #include "frame.wgsl"
 #include "visibility_geometry.wgsl"
+#include "visibility_samples.wgsl"
 
 #include "visibility_levels.wgsl"
 #include "visibility_counters.wgsl"
@@ -142,11 +144,17 @@ fn prepareTriangle(id: u32, item: Item, transform: Transform, triangle: u32, han
         return t;
     }
     // Pixels whose centres may be covered (a pixel more each way: snapping moves vertices),
-    // inside the viewport.
+    // inside the viewport. With several samples, anywhere from 1/16 to 15/16 of a pixel in:
+    // those whose squares the bounds touch and one more on the low side.
     let viewMin = vec2i(i32(params.viewportX), i32(params.viewportY));
     let viewMax = viewMin + vec2i(i32(params.viewportWidth), i32(params.viewportHeight)) - 1;
-    t.first = max(vec2i(floor(low - 0.5)), viewMin);
-    t.last = min(vec2i(ceil(high - 0.5)), viewMax);
+    if (params.samples == 1u) {
+        t.first = max(vec2i(floor(low - 0.5)), viewMin);
+        t.last = min(vec2i(ceil(high - 0.5)), viewMax);
+    } else {
+        t.first = max(vec2i(floor(low - 1.0)), viewMin);
+        t.last = min(vec2i(floor(high)), viewMax);
+    }
     if (any(t.last < t.first)) {
         return t;
     }
@@ -179,19 +187,22 @@ fn prepareTriangle(id: u32, item: Item, transform: Transform, triangle: u32, han
     return t;
 }
 
-// Writes (depth, id) at `pixel` if its centre is inside the triangle under the top-left rule.
+// Writes (depth, id) at each sample of `pixel` that is inside the triangle under the top-left
+// rule (its entry of the visibility buffer: pixel * samples + sample).
 fn coverPixel(t: RasterTriangle, id: u32, pixel: vec2i) {
-    let half = i32(kSubpixels) / 2;
-    let p = (pixel - t.first) * i32(kSubpixels) + vec2i(half);
-    let e0 = edge(t.v1, t.v2, p);
-    let e1 = edge(t.v2, t.v0, p);
-    let e2 = edge(t.v0, t.v1, p);
-    if (e0 + t.bias.x < 0 || e1 + t.bias.y < 0 || e2 + t.bias.z < 0) {
-        return;
+    let corner = (pixel - t.first) * i32(kSubpixels);
+    let index = (u32(pixel.y) * params.targetWidth + u32(pixel.x)) * params.samples;
+    for (var sample = 0u; sample < params.samples; sample++) {
+        let p = corner + samplePosition(params.samples, sample);
+        let e0 = edge(t.v1, t.v2, p);
+        let e1 = edge(t.v2, t.v0, p);
+        let e2 = edge(t.v0, t.v1, p);
+        if (e0 + t.bias.x >= 0 && e1 + t.bias.y >= 0 && e2 + t.bias.z >= 0) {
+            let depth =
+                clamp(dot(vec3f(f32(e0), f32(e1), f32(e2)), t.z) * t.inverseArea, 0.0, 1.0);
+            atomicStoreMax(&visibility[index + sample], vec2u(id, ~bitcast<u32>(depth)));
+        }
     }
-    let depth = clamp(dot(vec3f(f32(e0), f32(e1), f32(e2)), t.z) * t.inverseArea, 0.0, 1.0);
-    let index = u32(pixel.y) * params.targetWidth + u32(pixel.x);
-    atomicStoreMax(&visibility[index], vec2u(id, ~bitcast<u32>(depth)));
 }
 
 // Returns whether the compute raster takes the triangle (front-facing, on screen, not

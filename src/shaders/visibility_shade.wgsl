@@ -1,9 +1,12 @@
-// The visibility strategy's resolve: one thread per covered pixel of one shading bin (one
-// material; HAS_TANGENT as the bin says), dispatched indirectly per bin. It rebuilds the pixel's
-// triangle from the visibility buffer's id, its perspective-correct barycentrics at the pixel
-// centre and their screen-space derivatives (texture LOD, the tangent frame), interpolates what
-// mesh.wgsl's vertex shader outputs, and shades with the same code as mesh.wgsl's fragment
-// shader (surface_shading.wgsl), sampling with explicit gradients (SAMPLE_GRADIENT).
+// The visibility strategy's resolve: one thread per entry of one shading bin (one material;
+// HAS_TANGENT as the bin says), dispatched indirectly per bin: a covered pixel, or with several
+// samples each distinct triangle of a pixel (visibility_bins.wgsl), whose colour goes to the
+// texel of the first sample it covers. It rebuilds the triangle from the visibility buffer's
+// id, its perspective-correct barycentrics at the pixel centre (where multisampled hardware
+// shades too) and their screen-space derivatives (texture LOD, the tangent frame),
+// interpolates what mesh.wgsl's vertex shader outputs, and shades with the same code as
+// mesh.wgsl's fragment shader (surface_shading.wgsl), sampling with explicit gradients
+// (SAMPLE_GRADIENT).
 // Variants: MATERIAL_TEXTURES, HAS_TANGENT.
 #include "frame.wgsl"
 #include "scene_lighting.wgsl"
@@ -13,6 +16,7 @@
 #include "surface_shading.wgsl"
 #include "visibility_geometry.wgsl"
 #include "visibility_bin_record.wgsl"
+#include "visibility_samples.wgsl"
 
 struct Bin {
     count: u32,
@@ -69,9 +73,10 @@ fn shadeMain(@builtin(workgroup_id) group: vec3u, @builtin(local_invocation_inde
     if (i >= bin.count) {
         return;
     }
-    let pixelIndex = pixels[bin.first + i];
+    let entry = pixels[bin.first + i];
+    let pixelIndex = entry / params.samples;
     let pixel = vec2u(pixelIndex % params.targetWidth, pixelIndex / params.targetWidth);
-    let id = visibility[pixelIndex].x;
+    let id = visibility[entry].x;
     let unit = units[id / kUnitTriangles];
     let item = loadItem(unit.x);
     let record = item.record;
@@ -158,5 +163,6 @@ fn shadeMain(@builtin(workgroup_id) group: vec3u, @builtin(local_invocation_inde
     let result = shadeSurface(worldPosition, worldNormal, tangent, frontFacing, baseColor,
                               samples, positionDx, positionDy, gradients.dx0, gradients.dy0,
                               vec3f(1.0));  // Transmissive materials are drawn in hardware.
-    textureStore(shaded, pixel, displayColor(result));
+    textureStore(shaded, shadedTexel(pixel, params.samples, entry % params.samples),
+                 displayColor(result));
 }

@@ -269,5 +269,24 @@ TEST(BenchSmokeTest, RasterThresholdsMoveTrianglesBetweenRasterisers) {
     }
 }
 
+// `--samples 4` measures multisampled frames (the visibility strategy with four visibility
+// samples per pixel) and says so in the report; other counts are refused.
+TEST(BenchSmokeTest, MeasuresMultisampledFrames) {
+    const auto dir = makeTempDir("bench-samples");
+    const auto run = runBench(dir,
+                              "--objects 50 --frames 2 --warmup 1 -s visibility "
+                              "-s gpu-culling-bundles --width 64 --height 64 --samples 4");
+    ASSERT_EQ(run.command.exitCode, 0) << run.command.err;
+    ASSERT_FALSE(run.report.is_discarded());
+    EXPECT_EQ(run.report["target"]["samples"], 4);
+    const auto& results = run.report["results"];
+    ASSERT_EQ(results.size(), 2u);
+    EXPECT_EQ(results[0]["strategy"], "visibility");
+    EXPECT_GT(results[0]["trianglesCompute"][0].get<std::uint64_t>(), 0u);
+    EXPECT_NE(run.command.out.find("(4 samples per pixel)"), std::string::npos);
+    const auto refused = runEncore("bench --objects 50 --samples 2");
+    EXPECT_EQ(refused.exitCode, 2) << refused.err;
+}
+
 }  // namespace
 }  // namespace encore::test

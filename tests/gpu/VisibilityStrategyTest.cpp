@@ -1,7 +1,9 @@
-// The visibility strategy (docs/visibility.md) against gpu-culling-bundles at one sample:
-// generated scenes and the shared models look the same (SSIM >= 0.99, at most 0.5% of pixels
-// more than 2 levels apart); the compute raster covers what the hardware covers (a quad's
-// shared edge, a fan, sub-pixel and degenerate triangles, near-plane and screen-edge crossings);
+// The visibility strategy (docs/visibility.md) against gpu-culling-bundles at one sample and at
+// four: generated scenes and the shared models look the same (SSIM >= 0.99, at most 0.5% of
+// pixels more than 2 levels apart; at four samples SSIM >= 0.98, as the issue asks); the compute
+// raster covers what the hardware covers, sample for sample (a quad's shared edge, a fan,
+// sub-pixel and degenerate triangles, near-plane and screen-edge crossings), so that edges are
+// anti-aliased as the hardware's;
 // MASK, BLEND and skinned geometry is drawn; the triangle counts say where triangles went; and
 // a device without AtomicVec2uMinMax gets an error naming it.
 
@@ -18,6 +20,7 @@
 #include "GpuTestSupport.h"
 #include "RenderTestSupport.h"
 #include "encore/render/Renderer.h"
+#include "encore/render/VisibilityFeatures.h"
 #include "gpu/Readback.h"
 #include "image/ImageCompare.h"
 #include "render/strategies/VisibilityStrategy.h"
@@ -36,8 +39,9 @@ image::ImageRgba8 render(gpu::Context& context,
                          const Camera& camera,
                          DebugChannel channel,
                          float computePixels = VisibilityStrategy::kDefaultComputePixels,
-                         float workgroupPixels = VisibilityStrategy::kMaxWorkgroupPixels) {
-    RendererOptions options = test::pixelTestOptions(kWidth, kHeight, 1, channel);
+                         float workgroupPixels = VisibilityStrategy::kMaxWorkgroupPixels,
+                         std::uint32_t samples = 1) {
+    RendererOptions options = test::pixelTestOptions(kWidth, kHeight, samples, channel);
     auto renderer = Renderer::create(context, options);
     EXPECT_TRUE(renderer.ok());
     if (!renderer.ok()) {
@@ -56,14 +60,16 @@ image::ImageRgba8 render(gpu::Context& context,
 }
 
 // What the issue asks of the visibility strategy's pictures against gpu-culling-bundles: SSIM
-// >= 0.99 and at most 0.5% of pixels more than 2 levels apart (`maxDiffering` of them).
+// >= 0.99 (`minSsim`) and at most 0.5% of pixels more than 2 levels apart (`maxDiffering` of
+// them).
 void expectClose(const image::ImageRgba8& expected,
                  const image::ImageRgba8& image,
-                 double maxDiffering = 0.005) {
+                 double maxDiffering = 0.005,
+                 double minSsim = 0.99) {
     ASSERT_EQ(expected.width, image.width);
     const auto ssim = image::ssimLuminance(expected, image);
     ASSERT_TRUE(ssim.ok());
-    EXPECT_GE(*ssim, 0.99);
+    EXPECT_GE(*ssim, minSsim);
     const std::size_t pixels = std::size_t(image.width) * image.height;
     EXPECT_LE(double(test::differingPixels(expected, image, 2)), double(pixels) * maxDiffering);
 }
@@ -78,11 +84,17 @@ scene::SceneData generated(scene::SceneLayout layout, std::uint32_t objects) {
     return test::generatedScene(options);
 }
 
-class VisibilityGeneratedTest : public ::testing::TestWithParam<scene::SceneLayout> {};
+// Each generated layout or shared model at 1 sample and at 4 (`--samples 4`: the visibility
+// buffer's four samples against the hardware's 4x multisampling).
+constexpr std::array<std::uint32_t, 2> kSampleCounts = {1, 4};
+
+class VisibilityGeneratedTest
+    : public ::testing::TestWithParam<std::tuple<scene::SceneLayout, std::uint32_t>> {};
 
 TEST_P(VisibilityGeneratedTest, LooksLikeGpuCullingBundles) {
     ENCORE_REQUIRE_VULKAN(context);
-    const auto scene = generated(GetParam(), 300);
+    const auto [layout, samples] = GetParam();
+    const auto scene = generated(layout, 300);
     const glm::vec3 low = scene.bounds.min;
     const glm::vec3 high = scene.bounds.max;
     const glm::vec3 center = (low + high) * 0.5f;
@@ -96,10 +108,13 @@ TEST_P(VisibilityGeneratedTest, LooksLikeGpuCullingBundles) {
     }
     for (std::size_t i = 0; i < cameras.size(); ++i) {
         SCOPED_TRACE("camera " + std::to_string(i));
-        const auto expected = render(*context, scene, StrategyKind::GpuCullingBundles, cameras[i],
-                                     DebugChannel::Shaded);
-        const auto image =
-            render(*context, scene, StrategyKind::Visibility, cameras[i], DebugChannel::Shaded);
+        const auto expected =
+            render(*context, scene, StrategyKind::GpuCullingBundles, cameras[i],
+                   DebugChannel::Shaded, VisibilityStrategy::kDefaultComputePixels,
+                   VisibilityStrategy::kMaxWorkgroupPixels, samples);
+        const auto image = render(*context, scene, StrategyKind::Visibility, cameras[i],
+                                  DebugChannel::Shaded, VisibilityStrategy::kDefaultComputePixels,
+                                  VisibilityStrategy::kMaxWorkgroupPixels, samples);
         expectClose(expected, image);
         EXPECT_GT(test::coveredFraction(image, test::pixelAt(image, 0, 0)), 0.05);
     }
@@ -108,24 +123,29 @@ TEST_P(VisibilityGeneratedTest, LooksLikeGpuCullingBundles) {
 
 INSTANTIATE_TEST_SUITE_P(Layouts,
                          VisibilityGeneratedTest,
-                         ::testing::Values(scene::SceneLayout::Grid,
-                                           scene::SceneLayout::Lattice,
-                                           scene::SceneLayout::City),
+                         ::testing::Combine(::testing::Values(scene::SceneLayout::Grid,
+                                                              scene::SceneLayout::Lattice,
+                                                              scene::SceneLayout::City),
+                                            ::testing::ValuesIn(kSampleCounts)),
                          [](const auto& info) {
-                             switch (info.param) {
+                             // No structured binding: its comma would split the macro.
+                             const std::string suffix =
+                                 "_" + std::to_string(std::get<1>(info.param)) + "x";
+                             switch (std::get<0>(info.param)) {
                                  case scene::SceneLayout::Grid:
-                                     return std::string("grid");
+                                     return "grid" + suffix;
                                  case scene::SceneLayout::Lattice:
-                                     return std::string("lattice");
+                                     return "lattice" + suffix;
                                  default:
-                                     return std::string("city");
+                                     return "city" + suffix;
                              }
                          });
 
-class VisibilityModelTest : public ::testing::TestWithParam<test::ModelVariant> {};
+class VisibilityModelTest
+    : public ::testing::TestWithParam<std::tuple<test::ModelVariant, std::uint32_t>> {};
 
 TEST_P(VisibilityModelTest, LooksLikeGpuCullingBundles) {
-    const test::ModelVariant& model = GetParam();
+    const auto& [model, samples] = GetParam();
     if (model.path.empty()) {
         GTEST_SKIP() << "../shared/models is absent beside the clone: no sample model rendered";
     }
@@ -133,10 +153,12 @@ TEST_P(VisibilityModelTest, LooksLikeGpuCullingBundles) {
     auto scene = scene::loadScene(model.path);
     ASSERT_TRUE(scene.ok()) << scene.error().message;
     const Camera camera = Camera::framing(scene->bounds, float(kWidth) / float(kHeight));
-    const auto expected =
-        render(*context, *scene, StrategyKind::GpuCullingBundles, camera, DebugChannel::Shaded);
-    const auto image =
-        render(*context, *scene, StrategyKind::Visibility, camera, DebugChannel::Shaded);
+    const auto expected = render(*context, *scene, StrategyKind::GpuCullingBundles, camera,
+                                 DebugChannel::Shaded, VisibilityStrategy::kDefaultComputePixels,
+                                 VisibilityStrategy::kMaxWorkgroupPixels, samples);
+    const auto image = render(*context, *scene, StrategyKind::Visibility, camera,
+                              DebugChannel::Shaded, VisibilityStrategy::kDefaultComputePixels,
+                              VisibilityStrategy::kMaxWorkgroupPixels, samples);
     // Textures magnified across this small target (BoxTextured, TextureSettingsTest) differ in up
     // to 1.3% of pixels: the shading pass passes textureSampleGrad the quad's analytic
     // derivatives, and lavapipe's level of detail from implicit derivatives still differs from it
@@ -155,13 +177,19 @@ std::vector<test::ModelVariant> variants() {
 
 INSTANTIATE_TEST_SUITE_P(SharedModels,
                          VisibilityModelTest,
-                         ::testing::ValuesIn(variants()),
-                         [](const auto& info) { return info.param.testName(); });
+                         ::testing::Combine(::testing::ValuesIn(variants()),
+                                            ::testing::ValuesIn(kSampleCounts)),
+                         [](const auto& info) {
+                             return std::get<0>(info.param).testName() + "_" +
+                                    std::to_string(std::get<1>(info.param)) + "x";
+                         });
 
 // A mesh of `triangles` (positions, three per triangle) with one material per triangle, so that
-// a pixel's colour says which triangle covered it.
+// a pixel's colour says which triangle covered it; those from `firstWithMode` on have
+// `alphaMode`, the others are opaque.
 scene::SceneData triangles(const std::vector<std::array<glm::vec3, 3>>& list,
-                           const std::string& alphaMode = "OPAQUE") {
+                           const std::string& alphaMode = "OPAQUE",
+                           std::size_t firstWithMode = 0) {
     test::GltfBuilder builder;
     std::vector<test::GltfBuilder::PrimitiveDesc> primitives;
     for (std::size_t i = 0; i < list.size(); ++i) {
@@ -169,7 +197,7 @@ scene::SceneData triangles(const std::vector<std::array<glm::vec3, 3>>& list,
         const float hue = float(i + 1) / float(list.size() + 1);
         const auto material =
             builder.addMaterial({.baseColor = {hue, 1.0f - hue, std::fmod(hue * 7.0f, 1.0f), 1.0f},
-                                 .alphaMode = alphaMode,
+                                 .alphaMode = i >= firstWithMode ? alphaMode : "OPAQUE",
                                  .doubleSided = true});
         primitives.push_back({.attributes = {{"POSITION", positions}}, .material = material});
     }
@@ -181,15 +209,21 @@ scene::SceneData triangles(const std::vector<std::array<glm::vec3, 3>>& list,
 
 // The compute raster's pixels equal the hardware's, triangle for triangle (each has its own base
 // colour; the base colour channel has no shading differences, and the shaded colour's trip
-// through an rgba16float texture may round one level), for the shapes that test a fill rule.
+// through an rgba16float texture may round one level), for the shapes that test a fill rule. At
+// four samples the resolved pixels are equal only if every sample is covered as the hardware
+// covers it.
 void expectSameCoverage(gpu::Context& context,
                         const scene::SceneData& scene,
                         const Camera& camera,
-                        std::size_t minimumColors) {
-    const auto expected =
-        render(context, scene, StrategyKind::GpuCullingBundles, camera, DebugChannel::BaseColor);
-    const auto image =
-        render(context, scene, StrategyKind::Visibility, camera, DebugChannel::BaseColor);
+                        std::size_t minimumColors,
+                        std::uint32_t samples = 1) {
+    SCOPED_TRACE(std::to_string(samples) + " samples");
+    const auto expected = render(context, scene, StrategyKind::GpuCullingBundles, camera,
+                                 DebugChannel::BaseColor, VisibilityStrategy::kDefaultComputePixels,
+                                 VisibilityStrategy::kMaxWorkgroupPixels, samples);
+    const auto image = render(context, scene, StrategyKind::Visibility, camera,
+                              DebugChannel::BaseColor, VisibilityStrategy::kDefaultComputePixels,
+                              VisibilityStrategy::kMaxWorkgroupPixels, samples);
     EXPECT_EQ(test::differingPixels(expected, image, 1), 0u);
     std::set<std::uint32_t> colors;
     for (std::uint32_t y = 0; y < image.height; ++y) {
@@ -219,7 +253,9 @@ TEST(VisibilityFillRuleTest, QuadAndFanSharedEdgesAsTheHardware) {
         list.push_back({centre, centre + 0.43f * glm::vec3(std::cos(a0), std::sin(a0), 0),
                         centre + 0.43f * glm::vec3(std::cos(a1), std::sin(a1), 0)});
     }
-    expectSameCoverage(*context, triangles(list), kFront, 11);
+    for (std::uint32_t samples : kSampleCounts) {
+        expectSameCoverage(*context, triangles(list), kFront, 11, samples);
+    }
 }
 
 TEST(VisibilityFillRuleTest, SubPixelDegenerateAndScreenEdgeTrianglesAsTheHardware) {
@@ -238,7 +274,9 @@ TEST(VisibilityFillRuleTest, SubPixelDegenerateAndScreenEdgeTrianglesAsTheHardwa
         {glm::vec3(-4.3f, 2.5f, 0), glm::vec3(-3.6f, 2.4f, 0), glm::vec3(-3.9f, 3.3f, 0)});
     list.push_back(
         {glm::vec3(3.7f, -3.2f, 0), glm::vec3(4.3f, -2.7f, 0), glm::vec3(3.8f, -2.6f, 0)});
-    expectSameCoverage(*context, triangles(list), kFront, 6);
+    for (std::uint32_t samples : kSampleCounts) {
+        expectSameCoverage(*context, triangles(list), kFront, 6, samples);
+    }
 }
 
 // The triangle counts of the last frame of `scene`: rasterised in compute, drawn by hardware.
@@ -280,7 +318,9 @@ TEST(VisibilityFillRuleTest, NearPlaneTrianglesGoToTheHardwareLargeOnesToWorkgro
         {glm::vec3(2, 1, 0), glm::vec3(2.3f, 1, 0), glm::vec3(2, 1.3f, 0)},
     };
     const auto scene = triangles(list);
-    expectSameCoverage(*context, scene, kFront, 4);
+    for (std::uint32_t samples : kSampleCounts) {
+        expectSameCoverage(*context, scene, kFront, 4, samples);
+    }
     // By default the large one goes to a workgroup; without workgroups, to the hardware.
     EXPECT_EQ(rasteriserCounts(*context, scene, VisibilityStrategy::kMaxWorkgroupPixels),
               (std::array<std::uint32_t, 2>{2, 1}));
@@ -307,34 +347,139 @@ TEST(VisibilityFillRuleTest, LargeQuadAndFanSharedEdgesAsTheHardware) {
                         centre + 2.45f * glm::vec3(std::cos(a1), std::sin(a1), 0)});
     }
     const auto scene = triangles(list);
-    expectSameCoverage(*context, scene, kFront, 10);
+    for (std::uint32_t samples : kSampleCounts) {
+        expectSameCoverage(*context, scene, kFront, 10, samples);
+    }
     EXPECT_EQ(rasteriserCounts(*context, scene, VisibilityStrategy::kMaxWorkgroupPixels),
               (std::array<std::uint32_t, 2>{9, 0}));
 }
 
+// The pixels along the edges of `scene`'s one triangle that are neither the background nor the
+// triangle's colour (more than 2 levels from both): partly covered pixels, which a picture with
+// one visibility sample per pixel has none of.
+std::size_t blendedEdgePixels(const image::ImageRgba8& image, const glm::vec3& inside) {
+    const auto background = test::pixelAt(image, 0, 0);
+    const auto [x, y] = test::pixelOf(kFront, inside, image.width, image.height);
+    const auto fill = test::pixelAt(image, x, y);
+    std::size_t count = 0;
+    for (std::uint32_t row = 0; row < image.height; ++row) {
+        for (std::uint32_t column = 0; column < image.width; ++column) {
+            const auto pixel = test::pixelAt(image, column, row);
+            bool nearBackground = true;
+            bool nearFill = true;
+            for (int c = 0; c < 3; ++c) {
+                nearBackground = nearBackground && std::abs(pixel[c] - background[c]) <= 2;
+                nearFill = nearFill && std::abs(pixel[c] - fill[c]) <= 2;
+            }
+            count += !nearBackground && !nearFill;
+        }
+    }
+    return count;
+}
+
+TEST(VisibilityMultisampleTest, EdgesOfLargeTrianglesAreAntiAliased) {
+    ENCORE_REQUIRE_VULKAN(context);
+    // About 48 by 30 pixels: the workgroup path; through the near plane: the hardware path.
+    const std::array<std::array<glm::vec3, 3>, 2> shapes = {{
+        {glm::vec3(-3, -1.1f, -1), glm::vec3(1, -0.6f, -1), glm::vec3(-1, 1.4f, -1)},
+        {glm::vec3(-2, -2.5f, 5), glm::vec3(2, -2.5f, 5), glm::vec3(0, -1.0f, -4)},
+    }};
+    const std::array<glm::vec3, 2> inside = {glm::vec3(-1, 0, -1), glm::vec3(0, -1.4f, 0)};
+    for (std::size_t i = 0; i < shapes.size(); ++i) {
+        SCOPED_TRACE("triangle " + std::to_string(i));
+        const auto scene = triangles({shapes[i]});
+        const auto aliased =
+            render(*context, scene, StrategyKind::Visibility, kFront, DebugChannel::BaseColor);
+        EXPECT_EQ(blendedEdgePixels(aliased, inside[i]), 0u);
+        const auto image = render(
+            *context, scene, StrategyKind::Visibility, kFront, DebugChannel::BaseColor,
+            VisibilityStrategy::kDefaultComputePixels, VisibilityStrategy::kMaxWorkgroupPixels, 4);
+        EXPECT_GE(blendedEdgePixels(image, inside[i]), 60u);
+        expectSameCoverage(*context, scene, kFront, 3, 4);
+    }
+    EXPECT_TRUE(context->checkNoErrors("visibility multisampling").ok());
+}
+
+// At four samples a pixel's triangle is shaded once, whatever number of its samples it covers:
+// the shading bins hold one entry per pixel that a lone triangle touches (not one per sample).
+TEST(VisibilityMultisampleTest, EachTriangleOfAPixelIsShadedOnce) {
+    ENCORE_REQUIRE_VULKAN(context);
+    const auto scene =
+        triangles({{glm::vec3(-3, -1.1f, -1), glm::vec3(1, -0.6f, -1), glm::vec3(-1, 1.4f, -1)}});
+    for (std::uint32_t samples : kSampleCounts) {
+        SCOPED_TRACE(std::to_string(samples) + " samples");
+        auto renderer =
+            Renderer::create(*context, test::pixelTestOptions(kWidth, kHeight, samples));
+        ASSERT_TRUE(renderer.ok());
+        ASSERT_TRUE(renderer->prepare(scene, StrategyKind::Visibility).ok());
+        renderer->renderFrame(kFront);
+        auto image = renderer->readImage();
+        ASSERT_TRUE(image.ok());
+        const auto* visibility = dynamic_cast<const VisibilityStrategy*>(renderer->strategy());
+        ASSERT_NE(visibility, nullptr);
+        const std::uint32_t binCount = visibility->tables().binCount;
+        auto bins = gpu::readBuffer(*context, visibility->bins(), 0,
+                                    binCount * VisibilityStrategy::kBinRecordBytes);
+        ASSERT_TRUE(bins.ok());
+        std::uint64_t entries = 0;
+        for (std::uint32_t bin = 0; bin < binCount; ++bin) {
+            std::uint32_t count = 0;
+            std::memcpy(&count, bins->data() + bin * VisibilityStrategy::kBinRecordBytes, 4);
+            entries += count;
+        }
+        const auto background = test::pixelAt(*image, 0, 0);
+        std::uint64_t touched = 0;
+        for (std::uint32_t y = 0; y < image->height; ++y) {
+            for (std::uint32_t x = 0; x < image->width; ++x) {
+                touched += test::pixelAt(*image, x, y) != background;
+            }
+        }
+        EXPECT_GT(touched, 500u);
+        EXPECT_EQ(entries, touched);
+    }
+}
+
 TEST(VisibilityFallbackTest, MaskBlendAndSkinnedGeometryIsDrawn) {
     ENCORE_REQUIRE_VULKAN(context);
-    for (const char* mode : {"MASK", "BLEND"}) {
-        SCOPED_TRACE(mode);
-        const auto scene =
-            triangles({{glm::vec3(-1, -1, 0), glm::vec3(1, -1, 0), glm::vec3(0, 1, 0)}}, mode);
-        const auto expected = render(*context, scene, StrategyKind::GpuCullingBundles, kFront,
-                                     DebugChannel::BaseColor);
-        const auto image =
-            render(*context, scene, StrategyKind::Visibility, kFront, DebugChannel::BaseColor);
-        EXPECT_EQ(test::differingPixels(expected, image, 1), 0u);
-        EXPECT_GT(test::coveredFraction(image, test::pixelAt(image, 0, 0)), 0.01);
-    }
     auto glb = scene::generateCrowdGlb({.characters = 6});
     ASSERT_TRUE(glb.ok());
     auto crowd = scene::loadSceneFromMemory(*glb, {}, "crowd.glb");
     ASSERT_TRUE(crowd.ok());
     const Camera camera = Camera::framing(crowd->bounds, float(kWidth) / float(kHeight));
-    const auto expected =
-        render(*context, *crowd, StrategyKind::GpuCullingBundles, camera, DebugChannel::Shaded);
-    const auto image =
-        render(*context, *crowd, StrategyKind::Visibility, camera, DebugChannel::Shaded);
-    expectClose(expected, image);
+    for (std::uint32_t samples : kSampleCounts) {
+        SCOPED_TRACE(std::to_string(samples) + " samples");
+        const auto draw = [&](const scene::SceneData& scene, StrategyKind kind, const Camera& view,
+                              DebugChannel channel) {
+            return render(*context, scene, kind, view, channel,
+                          VisibilityStrategy::kDefaultComputePixels,
+                          VisibilityStrategy::kMaxWorkgroupPixels, samples);
+        };
+        for (const char* mode : {"MASK", "BLEND"}) {
+            SCOPED_TRACE(mode);
+            // Alone, and through an opaque triangle of the compute path (their intersection
+            // tested against the visibility buffer's depth, per sample at four samples).
+            const auto alone =
+                triangles({{glm::vec3(-1, -1, 0), glm::vec3(1, -1, 0), glm::vec3(0, 1, 0)}}, mode);
+            const auto crossing =
+                triangles({{glm::vec3(-0.5f, -0.6f, -0.3f), glm::vec3(0.5f, -0.5f, 0.3f),
+                            glm::vec3(0.1f, 0.5f, 0.0f)},
+                           {glm::vec3(-0.6f, -0.3f, 0.2f), glm::vec3(0.6f, -0.2f, 0.2f),
+                            glm::vec3(0.0f, 0.4f, -0.2f)}},
+                          mode, 1);
+            for (const auto* scene : {&alone, &crossing}) {
+                const auto expected =
+                    draw(*scene, StrategyKind::GpuCullingBundles, kFront, DebugChannel::BaseColor);
+                const auto image =
+                    draw(*scene, StrategyKind::Visibility, kFront, DebugChannel::BaseColor);
+                EXPECT_EQ(test::differingPixels(expected, image, 1), 0u);
+                EXPECT_GT(test::coveredFraction(image, test::pixelAt(image, 0, 0)), 0.003);
+            }
+        }
+        const auto expected =
+            draw(*crowd, StrategyKind::GpuCullingBundles, camera, DebugChannel::Shaded);
+        const auto image = draw(*crowd, StrategyKind::Visibility, camera, DebugChannel::Shaded);
+        expectClose(expected, image);
+    }
     EXPECT_TRUE(context->checkNoErrors("visibility fallbacks").ok());
 }
 
@@ -352,6 +497,45 @@ TEST(VisibilityFeatureTest, WithoutTheFeatureTheErrorNamesIt) {
     ASSERT_FALSE(prepared.ok());
     EXPECT_EQ(prepared.error().code, ErrorCode::Unsupported);
     EXPECT_NE(prepared.error().message.find("AtomicVec2uMinMax"), std::string::npos);
+}
+
+TEST(VisibilityLimitsTest, AVisibilityBufferPastTheBindingLimitIsAnError) {
+    ENCORE_REQUIRE_VULKAN(shared);
+    // 128x96 at 4 samples needs 393,216 bytes of visibility buffer, at 1 sample 98,304.
+    gpu::ContextOptions contextOptions;
+    requestVisibilityFeatures(contextOptions);
+    contextOptions.limitOverrides.maxStorageBufferBindingSize = 256 * 1024;
+    auto context = gpu::Context::create(contextOptions);
+    ASSERT_TRUE(context.ok());
+    const auto scene = triangles({{glm::vec3(-1, -1, 0), glm::vec3(1, -1, 0), glm::vec3(0, 1, 0)}});
+    for (std::uint32_t samples : kSampleCounts) {
+        SCOPED_TRACE(std::to_string(samples) + " samples");
+        RendererOptions options = test::pixelTestOptions(kWidth, kHeight, samples);
+        options.environment = nullptr;  // The shared one belongs to the other device.
+        auto renderer = Renderer::create(*context, options);
+        ASSERT_TRUE(renderer.ok());
+        auto prepared = renderer->prepare(scene, StrategyKind::Visibility);
+        if (samples == 1) {
+            ASSERT_TRUE(prepared.ok()) << prepared.error().message;
+            // Growing the target past the limit is refused the same way.
+            auto resized = renderer->resize(kWidth * 2, kHeight * 2);
+            ASSERT_FALSE(resized.ok());
+            EXPECT_NE(resized.error().message.find("maxStorageBufferBindingSize"),
+                      std::string::npos);
+            renderer->renderFrame(kFront);
+            auto image = renderer->readImage();
+            ASSERT_TRUE(image.ok());
+            EXPECT_EQ(image->width, kWidth);
+            EXPECT_GT(test::coveredFraction(*image, test::pixelAt(*image, 0, 0)), 0.01);
+        } else {
+            ASSERT_FALSE(prepared.ok());
+            EXPECT_EQ(prepared.error().code, ErrorCode::LimitExceeded);
+            EXPECT_NE(prepared.error().message.find("maxStorageBufferBindingSize"),
+                      std::string::npos)
+                << prepared.error().message;
+        }
+    }
+    EXPECT_TRUE(context->checkNoErrors("visibility limits").ok());
 }
 
 TEST(VisibilityFeatureTest, TheTestContextHasTheFeature) {

@@ -70,6 +70,7 @@ struct BenchOptions {
     std::uint32_t warmup = 10;
     std::uint32_t width = 512;
     std::uint32_t height = 512;
+    std::uint32_t samples = 1;  // Multisampling of the target: 1 or 4.
     // Repeatable instruction counts under valgrind: no warm-up frames, no GPU timer, and the
     // measured frames bracketed by CALLGRIND_START/STOP_INSTRUMENTATION (run valgrind with
     // --instr-atstart=no).

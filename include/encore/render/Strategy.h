@@ -132,6 +132,15 @@ class Strategy {
     // (GpuAnimation), which writes the animated ones there.
     virtual InstanceTransformTargets instanceTransformTargets() const = 0;
 
+    // Whether the strategy can draw into a target of `width` x `height` (after prepare()):
+    // strategies whose buffers grow with the target (visibility) say here, with an error naming
+    // the device limit, when they would exceed it. The Renderer asks on prepare and resize.
+    virtual Result<void> checkTarget(std::uint32_t width, std::uint32_t height) const {
+        (void)width;
+        (void)height;
+        return {};
+    }
+
     // What the strategy's render bundles contain (zero for strategies that record directly),
     // and how many bundles it has recorded since prepare().
     virtual DrawCounters bundleContents() const { return {}; }

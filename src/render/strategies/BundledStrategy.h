@@ -33,6 +33,9 @@ class BundledStrategy final : public Strategy {
     }
     std::uint64_t bundlesRecorded() const override { return mRecordings; }
     const GpuCuller* culler() const override { return mRecorded->culler(); }
+    Result<void> checkTarget(std::uint32_t width, std::uint32_t height) const override {
+        return mRecorded->checkTarget(width, height);
+    }
     std::optional<GpuTriangleCounts> gpuTriangleCounts() const override {
         return mRecorded->gpuTriangleCounts();
     }

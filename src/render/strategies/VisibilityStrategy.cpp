@@ -6,6 +6,7 @@
 #include <set>
 #include <string>
 
+#include "encore/gpu/DeviceLimits.h"
 #include "encore/render/VisibilityFeatures.h"
 #include "gpu/BindingResource.h"
 #include "gpu/FullscreenPipeline.h"
@@ -31,7 +32,7 @@ struct ViewParams {
     std::uint32_t hardwareCapacity = 0;
     std::uint32_t binCount = 0;
     float maxWorkgroupPixels = 0.0f;
-    std::uint32_t padding = 0;
+    std::uint32_t samples = 1;
 };
 static_assert(sizeof(ViewParams) == 48);
 
@@ -56,6 +57,7 @@ static_assert(sizeof(CullUniform) == 448);
 
 constexpr std::uint64_t kParamsStride = 256;
 constexpr std::uint64_t kBinStride = 256;  // visibility_bin_record.wgsl's record.
+static_assert(kBinStride == VisibilityStrategy::kBinRecordBytes);
 constexpr std::uint64_t kCounterBytes = 64;
 // Byte offsets in visibility_raster.wgsl's Counters.
 constexpr std::uint64_t kHardwareArguments = 16;
@@ -93,6 +95,11 @@ Result<void> VisibilityStrategy::prepare(const RenderSetup& setup, const GpuScen
                          "(64-bit atomic min and max, WGSL atomic_vec2u_min_max), which this "
                          "device does not have; Dawn offers it only with its allow_unsafe_apis "
                          "toggle (render::requestVisibilityFeatures).");
+    }
+    if (setup.sampleCount != 1 && setup.sampleCount != 4) {
+        return makeError(ErrorCode::Unsupported,
+                         "The visibility strategy renders at 1 or 4 samples per pixel, not " +
+                             std::to_string(setup.sampleCount) + ".");
     }
     mSetup = &setup;
     mScene = &scene;
@@ -145,14 +152,33 @@ Result<void> VisibilityStrategy::prepare(const RenderSetup& setup, const GpuScen
     mRasterArguments =
         gpu::createBuffer(device, wgpu::BufferUsage::Storage | wgpu::BufferUsage::Indirect, 16,
                           "visibility raster dispatch");
-    mBins = gpu::createBuffer(
-        device,
-        wgpu::BufferUsage::Storage | wgpu::BufferUsage::Indirect | wgpu::BufferUsage::CopyDst,
-        std::uint64_t(mTables.binCount) * kBinStride, "visibility bins");
+    mBins = gpu::createBuffer(device,
+                              wgpu::BufferUsage::Storage | wgpu::BufferUsage::Indirect |
+                                  wgpu::BufferUsage::CopyDst | wgpu::BufferUsage::CopySrc,
+                              std::uint64_t(mTables.binCount) * kBinStride, "visibility bins");
     ENCORE_TRY(createPipelines());
     mWidth = 0;
     mHeight = 0;
     mViewCapacity = 0;
+    return {};
+}
+
+Result<void> VisibilityStrategy::checkTarget(std::uint32_t width, std::uint32_t height) const {
+    const std::uint32_t samples = mSetup->sampleCount;
+    const std::string what = "The visibility strategy at " + std::to_string(width) + "x" +
+                             std::to_string(height) + " and " + std::to_string(samples) +
+                             (samples == 1 ? " sample" : " samples") +
+                             " (fewer samples or a smaller target fit)";
+    ENCORE_TRY(gpu::checkStorageBinding(mSetup->limits, std::uint64_t(width) * height * samples * 8,
+                                        what + ", its visibility buffer"));
+    const std::uint32_t grid = samples == 4 ? 2 : 1;
+    if (std::max(width, height) * grid > mSetup->limits.maxTextureDimension2D) {
+        return makeError(ErrorCode::LimitExceeded,
+                         what + ": its shaded colour texture is " + std::to_string(width * grid) +
+                             "x" + std::to_string(height * grid) +
+                             ", larger than the device's maxTextureDimension2D (" +
+                             std::to_string(mSetup->limits.maxTextureDimension2D) + ").");
+    }
     return {};
 }
 
@@ -277,10 +303,15 @@ Result<void> VisibilityStrategy::createPipelines() {
     pipeline.primitive.topology = wgpu::PrimitiveTopology::TriangleList;
     pipeline.primitive.cullMode = wgpu::CullMode::None;  // Back faces were culled in compute.
     pipeline.depthStencil = &depth;
+    pipeline.multisample.count = mSetup->sampleCount;
     pipeline.fragment = &hardwareFragment;
     mHardware = device.CreateRenderPipeline(&pipeline);
 
-    ENCORE_TRY_ASSIGN(auto composite, library.module("visibility_composite.wgsl"));
+    std::set<std::string, std::less<>> compositeFlags;
+    if (mSetup->sampleCount > 1) {
+        compositeFlags.insert("MULTISAMPLED");
+    }
+    ENCORE_TRY_ASSIGN(auto composite, library.module("visibility_composite.wgsl", compositeFlags));
     gpu::FullscreenPipelineDescriptor compositeDescriptor;
     compositeDescriptor.label = "visibility composite";
     compositeDescriptor.module = composite;
@@ -311,19 +342,25 @@ void VisibilityStrategy::ensureTarget(std::uint32_t width,
     }
     mWidth = width;
     mHeight = height;
-    const std::uint64_t pixels = std::uint64_t(width) * height;
+    // An entry per sample: 8 bytes in the visibility buffer, 4 in the binned list, a texel of
+    // the shaded colour (2x2 per pixel at four samples, visibility_samples.wgsl).
+    const std::uint32_t samples = mSetup->sampleCount;
+    const std::uint64_t entries = std::uint64_t(width) * height * samples;
     mVisibility = gpu::createBuffer(device, wgpu::BufferUsage::Storage | wgpu::BufferUsage::CopyDst,
-                                    pixels * 8, "visibility buffer");
-    mPixels = gpu::createBuffer(device, wgpu::BufferUsage::Storage, pixels * 4,
+                                    entries * 8, "visibility buffer");
+    mPixels = gpu::createBuffer(device, wgpu::BufferUsage::Storage, entries * 4,
                                 "visibility binned pixels");
+    const std::uint32_t grid = samples == 4 ? 2 : 1;
     wgpu::TextureDescriptor texture{};
-    texture.size = {width, height, 1};
+    texture.size = {width * grid, height * grid, 1};
     texture.format = wgpu::TextureFormat::RGBA16Float;
     texture.usage = wgpu::TextureUsage::StorageBinding | wgpu::TextureUsage::TextureBinding;
     texture.label = "visibility shaded colour";
     mShaded = device.CreateTexture(&texture);
+    texture.size = {width, height, 1};
     texture.format = wgpu::TextureFormat::Depth32Float;
     texture.usage = wgpu::TextureUsage::RenderAttachment;
+    texture.sampleCount = samples;
     texture.label = "visibility hardware depth";
     mHardwareDepth = device.CreateTexture(&texture);
 
@@ -412,6 +449,7 @@ void VisibilityStrategy::beforePass(const wgpu::CommandEncoder& commands, const 
         p.frustumTest = views == 1 ? 1 : 0;
         p.hardwareCapacity = mHardwareCapacity;
         p.binCount = mTables.binCount;
+        p.samples = mSetup->sampleCount;
         std::memcpy(params.data() + view * kParamsStride, &p, sizeof(p));
     }
     mSetup->queue.WriteBuffer(mParams, 0, params.data(), params.size());

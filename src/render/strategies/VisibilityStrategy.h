@@ -18,7 +18,7 @@ namespace encore::render {
 // the near or far plane or span more than maxComputePixels go to one indirect hardware draw whose
 // fragments do the same atomic; compute passes then sort the covered pixels into bins by
 // material and shade each bin (the PBR code of mesh.wgsl) into a colour texture. In the render
-// pass a fullscreen triangle copies colour and depth of covered pixels, and what the compute path
+// pass a fullscreen triangle copies colour and depth of covered samples, and what the compute path
 // does not take (MASK, BLEND, skinned or morphed primitives) is drawn as `materials` draws it.
 // With occlusion culling (CullingOptions, frames of one view) the cull and raster run twice:
 // first the items visible last frame, then, against a depth pyramid of the visibility buffer,
@@ -38,6 +38,15 @@ class VisibilityStrategy final : public Strategy {
     Result<void> prepare(const RenderSetup& setup, const GpuScene& scene) override;
     Result<void> refresh() override { return mDraws.refresh(); }
     void beforePass(const wgpu::CommandEncoder& commands, const FrameState& frame) override;
+    // A multisampled target has four visibility samples per pixel at the hardware's 4x
+    // positions (docs/visibility.md). The visibility buffer (8 bytes per sample) must fit
+    // maxStorageBufferBindingSize, the shaded colour (a texel per sample: twice the target's
+    // size each way at 4 samples) maxTextureDimension2D.
+    Result<void> checkTarget(std::uint32_t width, std::uint32_t height) const override;
+    // The last view's shading bins (CopySrc, tables().binCount records of kBinRecordBytes, each
+    // starting with its count of entries shaded: one per covered pixel and distinct triangle).
+    static constexpr std::uint64_t kBinRecordBytes = 256;
+    const wgpu::Buffer& bins() const { return mBins; }
     void encode(RenderEncoder& encoder, const FrameState& frame) const override;
     // Transmissive surfaces are left to the hardware path, as blended ones are, and drawn in
     // the transmission pass.
