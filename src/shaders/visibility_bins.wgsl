@@ -1,10 +1,9 @@
 // The visibility strategy's shading bins, for one view: every covered pixel (at several
 // samples, each distinct triangle of a pixel: its first sample) sorted by the bin of its
 // triangle's primitive (material, and whether TANGENT is bound: the shader variants of
-// the shading pass), so that each bin is shaded by one indirect dispatch with its material's
-// bind group.
+// the shading pass), so that each bin is shaded by one dispatch with its material's bind group.
 //   countMain    one thread per pixel of the viewport: counts its bins;
-//   offsetsMain  one thread: each bin's first slot in the pixel list and its dispatch size;
+//   offsetsMain  one thread: each bin's first slot in the pixel list;
 //   scatterMain  one thread per pixel: writes its entries into their bins' slots.
 #include "visibility_bin_record.wgsl"
 #include "visibility_params.wgsl"
@@ -13,10 +12,6 @@ struct Bin {
     count: atomic<u32>,
     cursor: atomic<u32>,
     first: u32,
-    // dispatchWorkgroupsIndirect arguments (byte offset 12).
-    x: u32,
-    y: u32,
-    z: u32,
     padding: array<u32, kBinPaddingWords>,
 }
 
@@ -84,10 +79,6 @@ fn offsetsMain() {
     for (var b = 0u; b < params.binCount; b++) {
         let count = atomicLoad(&bins[b].count);
         bins[b].first = first;
-        let groups = (count + 63u) / 64u;
-        bins[b].x = min(groups, 65535u);
-        bins[b].y = max(1u, (groups + 65534u) / 65535u);
-        bins[b].z = 1u;
         first += count;
     }
 }

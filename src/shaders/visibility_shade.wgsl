@@ -1,5 +1,6 @@
 // The visibility strategy's resolve: one thread per entry of one shading bin (one material;
-// HAS_TANGENT as the bin says), dispatched indirectly per bin: a covered pixel, or with several
+// HAS_TANGENT as the bin says), a fixed grid per bin striding over its entries: a covered pixel,
+// or with several
 // samples each distinct triangle of a pixel (visibility_bins.wgsl), whose colour goes to the
 // texel of the first sample it covers. It rebuilds the triangle from the visibility buffer's
 // id, its perspective-correct barycentrics at the pixel centre (where multisampled hardware
@@ -22,9 +23,6 @@ struct Bin {
     count: u32,
     cursor: u32,
     first: u32,
-    x: u32,
-    y: u32,
-    z: u32,
     padding: array<u32, kBinPaddingWords>,
 }
 
@@ -67,12 +65,18 @@ fn mix3(b: vec3f, a0: vec4f, a1: vec4f, a2: vec4f) -> vec4f {
     return a0 * b.x + a1 * b.y + a2 * b.z;
 }
 
+// A fixed grid of workgroups strides over the bin's entries: one direct dispatch per bin, as
+// the raster passes (visibility_raster.wgsl says why).
 @compute @workgroup_size(64)
-fn shadeMain(@builtin(workgroup_id) group: vec3u, @builtin(local_invocation_index) lane: u32) {
-    let i = (group.y * 65535u + group.x) * 64u + lane;
-    if (i >= bin.count) {
-        return;
+fn shadeMain(@builtin(workgroup_id) group: vec3u, @builtin(num_workgroups) groups: vec3u,
+             @builtin(local_invocation_index) lane: u32) {
+    for (var i = group.x * 64u + lane; i < bin.count; i += groups.x * 64u) {
+        shadeEntry(i);
     }
+}
+
+// Shades the bin's entry i: one visibility-buffer sample's triangle at its pixel.
+fn shadeEntry(i: u32) {
     let entry = pixels[bin.first + i];
     let pixelIndex = entry / params.samples;
     let pixel = vec2u(pixelIndex % params.targetWidth, pixelIndex / params.targetWidth);

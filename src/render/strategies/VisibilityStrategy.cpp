@@ -74,6 +74,21 @@ std::uint32_t groupsFor(std::uint64_t threads, std::uint32_t size) {
     return std::uint32_t((threads + size - 1) / size);
 }
 
+// How many 64-thread workgroups a striding grid may have: enough to fill a large GPU (an H100
+// holds 132 SMs x 32 such groups), few on a CPU adapter (lavapipe), where every empty group of
+// a bin's grid would cost time of its own.
+std::uint32_t persistentWorkgroups(const wgpu::Device& device) {
+    wgpu::AdapterInfo info{};
+    device.GetAdapterInfo(&info);
+    return info.adapterType == wgpu::AdapterType::CPU ? 32 : 4096;
+}
+
+// A grid for `work` items (units, triangles, entries of `perGroup` each), within the limit.
+std::uint32_t stridingGrid(std::uint64_t work, std::uint32_t perGroup, std::uint32_t limit) {
+    return std::clamp<std::uint32_t>(
+        std::uint32_t(std::min<std::uint64_t>(groupsFor(work, perGroup), limit)), 1, limit);
+}
+
 wgpu::ComputePipeline computePipeline(const wgpu::Device& device,
                                       const wgpu::ShaderModule& module,
                                       const char* entryPoint,
@@ -149,13 +164,13 @@ Result<void> VisibilityStrategy::prepare(const RenderSetup& setup, const GpuScen
     initial[5] = 1;
     mInitialCounters = gpu::createBufferFrom<std::uint32_t>(device, wgpu::BufferUsage::CopySrc,
                                                             initial, "visibility initial counters");
-    mRasterArguments =
-        gpu::createBuffer(device, wgpu::BufferUsage::Storage | wgpu::BufferUsage::Indirect, 16,
-                          "visibility raster dispatch");
-    mBins = gpu::createBuffer(device,
-                              wgpu::BufferUsage::Storage | wgpu::BufferUsage::Indirect |
-                                  wgpu::BufferUsage::CopyDst | wgpu::BufferUsage::CopySrc,
-                              std::uint64_t(mTables.binCount) * kBinStride, "visibility bins");
+    const std::uint32_t persistent = persistentWorkgroups(device);
+    mRasterGroups = stridingGrid(mTables.unitCount, 1, persistent);
+    mWorkgroupGroups = stridingGrid(mHardwareCapacity, 1, persistent);
+    mBins = gpu::createBuffer(
+        device,
+        wgpu::BufferUsage::Storage | wgpu::BufferUsage::CopyDst | wgpu::BufferUsage::CopySrc,
+        std::uint64_t(mTables.binCount) * kBinStride, "visibility bins");
     ENCORE_TRY(createPipelines());
     mWidth = 0;
     mHeight = 0;
@@ -201,11 +216,6 @@ Result<void> VisibilityStrategy::createPipelines() {
          LayoutEntry::storage(11, kCompute),
          LayoutEntry::texture(12, kCompute, wgpu::TextureSampleType::UnfilterableFloat)},
         "visibility culling");
-    mArgumentsLayout = gpu::makeBindGroupLayout(
-        device,
-        {LayoutEntry::storage(5, kCompute), LayoutEntry::storage(8, kCompute),
-         LayoutEntry::storage(9, kCompute)},
-        "visibility raster arguments");
     mRasterLayout = gpu::makeBindGroupLayout(
         device,
         {params, LayoutEntry::readOnlyStorage(1, kCompute),
@@ -250,18 +260,12 @@ Result<void> VisibilityStrategy::createPipelines() {
         computePipeline(device, cull, "beginSecondPhase", {mFrameOnlyLayout, mCullLayout});
     mCullSecond = computePipeline(device, cull, "cullSecondPhase", {mFrameOnlyLayout, mCullLayout});
     ENCORE_TRY_ASSIGN(auto raster, library.module("visibility_raster.wgsl"));
-    mRasterArgs = computePipeline(device, raster, "argsMain", {mFrameOnlyLayout, mArgumentsLayout});
     mRaster = computePipeline(device, raster, "rasterMain", {mFrameOnlyLayout, mRasterLayout});
-    mWorkgroupArgs =
-        computePipeline(device, raster, "workgroupArgsMain", {mFrameOnlyLayout, mArgumentsLayout});
     mWorkgroupRaster =
         computePipeline(device, raster, "workgroupMain", {mFrameOnlyLayout, mRasterLayout});
     mFrameOnlyGroup = gpu::makeBindGroup(device, mFrameOnlyLayout,
                                          {{0, mSetup->frame->buffer(), 0, sizeof(FrameUniform)}},
                                          "visibility frame");
-    mArgumentsGroup = gpu::makeBindGroup(
-        device, mArgumentsLayout, {{5, mCounters}, {8, mRasterArguments}, {9, mWorkgroupList}},
-        "visibility raster arguments");
 
     ENCORE_TRY_ASSIGN(auto bins, library.module("visibility_bins.wgsl"));
     mBinCount = computePipeline(device, bins, "countMain", {mBinLayout});
@@ -346,6 +350,7 @@ void VisibilityStrategy::ensureTarget(std::uint32_t width,
     // the shaded colour (2x2 per pixel at four samples, visibility_samples.wgsl).
     const std::uint32_t samples = mSetup->sampleCount;
     const std::uint64_t entries = std::uint64_t(width) * height * samples;
+    mShadeGroups = stridingGrid(entries, 64, persistentWorkgroups(device));
     mVisibility = gpu::createBuffer(device, wgpu::BufferUsage::Storage | wgpu::BufferUsage::CopyDst,
                                     entries * 8, "visibility buffer");
     mPixels = gpu::createBuffer(device, wgpu::BufferUsage::Storage, entries * 4,
@@ -488,22 +493,13 @@ void VisibilityStrategy::writeCullUniform(const FrameState& frame, std::size_t v
     mSetup->queue.WriteBuffer(mCullUniform, 0, &uniform, sizeof(uniform));
 }
 
-void VisibilityStrategy::encodeIndirectDispatch(const wgpu::ComputePassEncoder& pass,
-                                                const wgpu::ComputePipeline& arguments,
-                                                const wgpu::ComputePipeline& raster,
-                                                std::uint32_t paramsOffset) const {
-    pass.SetPipeline(arguments);
-    pass.SetBindGroup(1, mArgumentsGroup);
-    pass.DispatchWorkgroups(1);
-    pass.SetPipeline(raster);
-    pass.SetBindGroup(1, mRasterGroup, 1, &paramsOffset);
-    pass.DispatchWorkgroupsIndirect(mRasterArguments, 0);
-}
-
 void VisibilityStrategy::encodeRaster(const wgpu::ComputePassEncoder& pass,
                                       std::uint32_t paramsOffset) const {
-    encodeIndirectDispatch(pass, mRasterArgs, mRaster, paramsOffset);
-    encodeIndirectDispatch(pass, mWorkgroupArgs, mWorkgroupRaster, paramsOffset);
+    pass.SetBindGroup(1, mRasterGroup, 1, &paramsOffset);
+    pass.SetPipeline(mRaster);
+    pass.DispatchWorkgroups(mRasterGroups);
+    pass.SetPipeline(mWorkgroupRaster);
+    pass.DispatchWorkgroups(mWorkgroupGroups);
 }
 
 void VisibilityStrategy::encodeHardwareRaster(const wgpu::CommandEncoder& commands,
@@ -606,7 +602,7 @@ void VisibilityStrategy::encodeView(const wgpu::CommandEncoder& commands,
             const std::uint32_t offsets[] = {paramsOffset, std::uint32_t(bin * kBinStride)};
             pass.SetBindGroup(1, mShadeGroup, 2, offsets);
             pass.SetBindGroup(2, materials.bindGroup(material));
-            pass.DispatchWorkgroupsIndirect(mBins, bin * kBinStride + 12);
+            pass.DispatchWorkgroups(mShadeGroups);
         }
         pass.End();
     }

@@ -84,13 +84,9 @@ class VisibilityStrategy final : public Strategy {
                     std::size_t view,
                     std::uint32_t viewX,
                     std::uint32_t viewWidth);
-    // The raster dispatches of the units listed so far in this phase: each raster's dispatch
-    // size written by its arguments pass, then the indirect dispatch.
+    // The raster dispatches of the units listed so far in this phase: grids of a fixed size
+    // that stride over the lists (visibility_raster.wgsl says why not indirect dispatches).
     void encodeRaster(const wgpu::ComputePassEncoder& pass, std::uint32_t paramsOffset) const;
-    void encodeIndirectDispatch(const wgpu::ComputePassEncoder& pass,
-                                const wgpu::ComputePipeline& arguments,
-                                const wgpu::ComputePipeline& raster,
-                                std::uint32_t paramsOffset) const;
     // The hardware list of this phase, drawn into the visibility buffer.
     void encodeHardwareRaster(const wgpu::CommandEncoder& commands,
                               const FrameState& frame,
@@ -113,7 +109,12 @@ class VisibilityStrategy final : public Strategy {
     wgpu::Buffer mHardwareList;
     wgpu::Buffer mWorkgroupList;  // Triangles a workgroup covers (visibility_raster.wgsl).
     std::uint32_t mHardwareCapacity = 0;
-    wgpu::Buffer mRasterArguments;
+    // Workgroups of the striding grids: the raster's (at most the units), the workgroup
+    // raster's (at most the listed triangles) and each bin's shading (at most the samples of a
+    // view), each no more than persistentWorkgroups().
+    std::uint32_t mRasterGroups = 1;
+    std::uint32_t mWorkgroupGroups = 1;
+    std::uint32_t mShadeGroups = 1;
     wgpu::Buffer mBins;
     wgpu::Buffer mCullUniform;
     wgpu::Buffer mItemVisibility;  // Per item: visible in the last two-phase frame.
@@ -136,7 +137,6 @@ class VisibilityStrategy final : public Strategy {
 
     wgpu::BindGroupLayout mFrameOnlyLayout;
     wgpu::BindGroupLayout mCullLayout;
-    wgpu::BindGroupLayout mArgumentsLayout;
     wgpu::BindGroupLayout mRasterLayout;
     wgpu::BindGroupLayout mHardwareLayout;
     wgpu::BindGroupLayout mBinLayout;
@@ -145,9 +145,7 @@ class VisibilityStrategy final : public Strategy {
     wgpu::ComputePipeline mCullFirst;
     wgpu::ComputePipeline mBeginSecondPhase;
     wgpu::ComputePipeline mCullSecond;
-    wgpu::ComputePipeline mRasterArgs;
     wgpu::ComputePipeline mRaster;
-    wgpu::ComputePipeline mWorkgroupArgs;
     wgpu::ComputePipeline mWorkgroupRaster;
     wgpu::RenderPipeline mHardware;
     wgpu::ComputePipeline mBinCount;
@@ -158,7 +156,6 @@ class VisibilityStrategy final : public Strategy {
     wgpu::RenderPipeline mComposite;
     wgpu::BindGroup mFrameOnlyGroup;
     wgpu::BindGroup mCullGroup;
-    wgpu::BindGroup mArgumentsGroup;
     wgpu::BindGroup mRasterGroup;
     wgpu::BindGroup mHardwareGroup;
     wgpu::BindGroup mBinGroup;
