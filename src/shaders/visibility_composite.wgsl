@@ -14,7 +14,7 @@ const kSamples = 1u;
 #endif
 
 @group(0) @binding(0) var<storage, read> visibility: array<vec2u>;
-@group(0) @binding(1) var shaded: texture_2d<f32>;
+@group(0) @binding(1) var shaded: texture_2d_array<f32>;
 
 @vertex
 fn vertexMain(@builtin(vertex_index) vertex: u32) -> @builtin(position) vec4f {
@@ -31,7 +31,7 @@ struct FragmentOutput {
 fn fragmentMain(@builtin(position) position: vec4f, @builtin(sample_index) sample: u32)
     -> FragmentOutput {
     let pixel = vec2u(position.xy);
-    let width = textureDimensions(shaded).x / shadedGrid(kSamples).x;
+    let width = textureDimensions(shaded).x;
     let first = (pixel.y * width + pixel.x) * kSamples;
     let key = visibility[first + sample];
     if (key.y == 0u) {
@@ -46,7 +46,7 @@ fn fragmentMain(@builtin(position) position: vec4f, @builtin(sample_index) sampl
         }
     }
     var output: FragmentOutput;
-    output.color = textureLoad(shaded, shadedTexel(pixel, kSamples, shadedAt), 0);
+    output.color = textureLoad(shaded, pixel, shadedAt, 0);
     output.depth = bitcast<f32>(~key.y);
     return output;
 }

@@ -14,13 +14,5 @@ fn samplePosition(samples: u32, sample: u32) -> vec2i {
     return positions[sample & 3u];
 }
 
-// The shaded colour texture holds a block of texels per pixel, one per sample (2x2 at four
-// samples): its size stays within twice the target's.
-fn shadedGrid(samples: u32) -> vec2u {
-    return select(vec2u(1u), vec2u(2u), samples == 4u);
-}
-
-fn shadedTexel(pixel: vec2u, samples: u32, sample: u32) -> vec2u {
-    let grid = shadedGrid(samples);
-    return pixel * grid + vec2u(sample % grid.x, sample / grid.x);
-}
+// The shaded colour texture is an array of one layer per sample, each the target's size: a
+// wide multi-view target (encore batch's strips) stays within maxTextureDimension2D.

@@ -30,7 +30,7 @@ struct Bin {
 @group(1) @binding(5) var<storage, read> visibility: array<vec2u>;
 @group(1) @binding(6) var<storage, read> pixels: array<u32>;
 @group(1) @binding(7) var<storage, read> bin: Bin;
-@group(1) @binding(8) var shaded: texture_storage_2d<rgba16float, write>;
+@group(1) @binding(8) var shaded: texture_storage_2d_array<rgba16float, write>;
 
 // Barycentrics of the pixel centre and their change one pixel right and one pixel down.
 struct Barycentrics {
@@ -167,6 +167,6 @@ fn shadeEntry(i: u32) {
     let result = shadeSurface(worldPosition, worldNormal, tangent, frontFacing, baseColor,
                               samples, positionDx, positionDy, gradients.dx0, gradients.dy0,
                               vec3f(1.0));  // Transmissive materials are drawn in hardware.
-    textureStore(shaded, shadedTexel(pixel, params.samples, entry % params.samples),
+    textureStore(shaded, pixel, entry % params.samples,
                  displayColor(result));
 }

@@ -538,6 +538,30 @@ TEST(VisibilityLimitsTest, AVisibilityBufferPastTheBindingLimitIsAnError) {
     EXPECT_TRUE(context->checkNoErrors("visibility limits").ok());
 }
 
+// The shaded colour is a layer per sample of the target's size: a target more than half
+// maxTextureDimension2D wide (encore batch's strips of 12 views at 512 pixels) renders at four
+// samples. Its former 2x2 texels per pixel made such a target fail to prepare.
+TEST(VisibilityLimitsTest, AWideTargetRendersAtFourSamples) {
+    ENCORE_REQUIRE_VULKAN(shared);
+    gpu::ContextOptions contextOptions;
+    requestVisibilityFeatures(contextOptions);
+    contextOptions.limitOverrides.maxTextureDimension2D = kWidth + kWidth / 2;
+    auto context = gpu::Context::create(contextOptions);
+    ASSERT_TRUE(context.ok());
+    const auto scene = triangles({{glm::vec3(-1, -1, 0), glm::vec3(1, -1, 0), glm::vec3(0, 1, 0)}});
+    RendererOptions options = test::pixelTestOptions(kWidth, kHeight, 4);
+    options.environment = nullptr;  // The shared one belongs to the other device.
+    auto renderer = Renderer::create(*context, options);
+    ASSERT_TRUE(renderer.ok());
+    auto prepared = renderer->prepare(scene, StrategyKind::Visibility);
+    ASSERT_TRUE(prepared.ok()) << prepared.error().message;
+    renderer->renderFrame(kFront);
+    auto image = renderer->readImage();
+    ASSERT_TRUE(image.ok());
+    EXPECT_GT(test::coveredFraction(*image, test::pixelAt(*image, 0, 0)), 0.01);
+    EXPECT_TRUE(context->checkNoErrors("wide target").ok());
+}
+
 TEST(VisibilityFeatureTest, TheTestContextHasTheFeature) {
     ENCORE_REQUIRE_VULKAN(context);
     // Mesa >= 25 lavapipe (and the H100's driver) report it with allow_unsafe_apis.

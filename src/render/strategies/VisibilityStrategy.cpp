@@ -186,14 +186,6 @@ Result<void> VisibilityStrategy::checkTarget(std::uint32_t width, std::uint32_t 
                              " (fewer samples or a smaller target fit)";
     ENCORE_TRY(gpu::checkStorageBinding(mSetup->limits, std::uint64_t(width) * height * samples * 8,
                                         what + ", its visibility buffer"));
-    const std::uint32_t grid = samples == 4 ? 2 : 1;
-    if (std::max(width, height) * grid > mSetup->limits.maxTextureDimension2D) {
-        return makeError(ErrorCode::LimitExceeded,
-                         what + ": its shaded colour texture is " + std::to_string(width * grid) +
-                             "x" + std::to_string(height * grid) +
-                             ", larger than the device's maxTextureDimension2D (" +
-                             std::to_string(mSetup->limits.maxTextureDimension2D) + ").");
-    }
     return {};
 }
 
@@ -244,12 +236,15 @@ Result<void> VisibilityStrategy::createPipelines() {
          LayoutEntry::readOnlyStorage(4, kCompute), LayoutEntry::readOnlyStorage(5, kCompute),
          LayoutEntry::readOnlyStorage(6, kCompute),
          LayoutEntry::readOnlyStorage(7, kCompute, kBinStride).withDynamicOffset(),
-         LayoutEntry::storageTexture(8, kCompute, wgpu::TextureFormat::RGBA16Float)},
+         LayoutEntry::storageTexture(8, kCompute, wgpu::TextureFormat::RGBA16Float,
+                                     wgpu::StorageTextureAccess::WriteOnly,
+                                     wgpu::TextureViewDimension::e2DArray)},
         "visibility shading");
     mCompositeLayout = gpu::makeBindGroupLayout(
         device,
         {LayoutEntry::readOnlyStorage(0, fragment),
-         LayoutEntry::texture(1, fragment, wgpu::TextureSampleType::UnfilterableFloat)},
+         LayoutEntry::texture(1, fragment, wgpu::TextureSampleType::UnfilterableFloat,
+                              wgpu::TextureViewDimension::e2DArray)},
         "visibility composite");
 
     shaders::ShaderLibrary& library = *mSetup->shaders;
@@ -355,9 +350,8 @@ void VisibilityStrategy::ensureTarget(std::uint32_t width,
                                     entries * 8, "visibility buffer");
     mPixels = gpu::createBuffer(device, wgpu::BufferUsage::Storage, entries * 4,
                                 "visibility binned pixels");
-    const std::uint32_t grid = samples == 4 ? 2 : 1;
     wgpu::TextureDescriptor texture{};
-    texture.size = {width * grid, height * grid, 1};
+    texture.size = {width, height, samples};  // A layer per sample.
     texture.format = wgpu::TextureFormat::RGBA16Float;
     texture.usage = wgpu::TextureUsage::StorageBinding | wgpu::TextureUsage::TextureBinding;
     texture.label = "visibility shaded colour";
@@ -412,6 +406,9 @@ void VisibilityStrategy::ensureTarget(std::uint32_t width,
         device, mBinLayout,
         {params, {1, mTableBuffer}, {2, mUnits}, {3, mVisibility}, {4, mBins}, {5, mPixels}},
         "visibility bins");
+    wgpu::TextureViewDescriptor layers{};
+    layers.dimension = wgpu::TextureViewDimension::e2DArray;  // Even with one layer.
+    const wgpu::TextureView shadedLayers = mShaded.CreateView(&layers);
     mShadeGroup = gpu::makeBindGroup(device, mShadeLayout,
                                      {params,
                                       geometry,
@@ -421,11 +418,10 @@ void VisibilityStrategy::ensureTarget(std::uint32_t width,
                                       {5, mVisibility},
                                       {6, mPixels},
                                       {7, mBins, 0, kBinStride},
-                                      {8, mShaded.CreateView()}},
+                                      {8, shadedLayers}},
                                      "visibility shading");
-    mCompositeGroup =
-        gpu::makeBindGroup(device, mCompositeLayout, {{0, mVisibility}, {1, mShaded.CreateView()}},
-                           "visibility composite");
+    mCompositeGroup = gpu::makeBindGroup(
+        device, mCompositeLayout, {{0, mVisibility}, {1, shadedLayers}}, "visibility composite");
 }
 
 void VisibilityStrategy::beforePass(const wgpu::CommandEncoder& commands, const FrameState& frame) {
