@@ -255,7 +255,9 @@ def test_batch_renderers_take_the_range_of_the_command_line(tmp_path):
 
 
 def test_rendering_releases_the_gil(renderer, tmp_path):
-    scene = renderer.load(str(generate(tmp_path / "gil.glb", objects=30)))
+    # Enough objects that the views' count, capped for memory (2,000 views of 256x256 RGBA are
+    # 512 MB), still makes a call of 0.1 s on a fast runner (30 objects took 0.098 s there).
+    scene = renderer.load(str(generate(tmp_path / "gil.glb", objects=1000)))
     renderer.render_views(scene, views=1, size=256)  # Prepared and warm.
     warm_start = time.monotonic()
     renderer.render_views(scene, views=24, size=256)
