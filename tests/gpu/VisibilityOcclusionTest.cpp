@@ -18,6 +18,7 @@
 #include "GltfBuilder.h"
 #include "GpuTestSupport.h"
 #include "RenderTestSupport.h"
+#include "VisibilityTestSupport.h"
 #include "encore/render/Renderer.h"
 #include "gpu/Readback.h"
 #include "image/ImageCompare.h"
@@ -75,27 +76,6 @@ std::uint32_t listedTriangles(gpu::Context& context, const Renderer& renderer) {
                     VisibilityStrategy::kListedTrianglesOffset);
 }
 
-// The bar against gpu-culling-bundles: SSIM >= 0.99, at most 0.5% of pixels more than 2
-// levels apart.
-void expectClose(const image::ImageRgba8& expected, const image::ImageRgba8& image) {
-    ASSERT_EQ(expected.width, image.width);
-    const auto ssim = image::ssimLuminance(expected, image);
-    ASSERT_TRUE(ssim.ok());
-    EXPECT_GE(*ssim, 0.99);
-    const std::size_t pixels = std::size_t(image.width) * image.height;
-    EXPECT_LE(double(test::differingPixels(expected, image, 2)), double(pixels) * 0.005);
-}
-
-scene::SceneData generated(scene::SceneLayout layout, std::uint32_t objects) {
-    scene::GeneratorOptions options;
-    options.layout = layout;
-    options.objectCount = objects;
-    options.meshCount = 6;
-    options.materialCount = 4;
-    options.textures = true;
-    return test::generatedScene(options);
-}
-
 // Frames of a walk at object height through the scene, looking along it.
 std::vector<Camera> walk(const scene::SceneData& scene, std::size_t frames) {
     const glm::vec3 low = scene.bounds.min;
@@ -116,7 +96,7 @@ class VisibilityOcclusionTest : public ::testing::TestWithParam<scene::SceneLayo
 
 TEST_P(VisibilityOcclusionTest, WalkLooksLikeGpuCullingAndMissesNothing) {
     ENCORE_REQUIRE_VULKAN(context);
-    const auto scene = generated(GetParam(), 300);
+    const auto scene = test::generatedVisibilityScene(GetParam(), 300);
     const CullingOptions culled{.occlusion = true, .levelsOfDetail = true};
     const CullingOptions sameLevelsUnoccluded{.occlusion = false, .levelsOfDetail = true};
     const CullingOptions frustumOnly{.occlusion = false, .levelsOfDetail = false};
@@ -134,7 +114,7 @@ TEST_P(VisibilityOcclusionTest, WalkLooksLikeGpuCullingAndMissesNothing) {
         const auto expected = frame(*reference, cameras[i]);
         const auto image = frame(*visibility, cameras[i]);
         EXPECT_TRUE(visibilityOf(*visibility).lastFrameOccluded());
-        expectClose(expected, image);
+        test::expectVisibilityClose(expected, image);
         // The same levels without occlusion culling: the same pixels, so nothing visible was
         // culled (ties in depth between two items may resolve either way: a few pixels).
         const auto everything = frame(*unoccluded, cameras[i]);
@@ -315,7 +295,7 @@ TEST(VisibilityLevelsTest, LevelsListTheTrianglesGpuCullingDraws) {
     ENCORE_REQUIRE_VULKAN(context);
     for (auto layout : {scene::SceneLayout::Grid, scene::SceneLayout::Lattice}) {
         SCOPED_TRACE(layout == scene::SceneLayout::Grid ? "grid" : "lattice");
-        const auto scene = generated(layout, 200);
+        const auto scene = test::generatedVisibilityScene(layout, 200);
         const Camera framed = Camera::framing(scene.bounds, kAspect);
         const CullingOptions levels{.occlusion = false, .levelsOfDetail = true};
         const CullingOptions fullDetail{.occlusion = false, .levelsOfDetail = false};
@@ -330,7 +310,7 @@ TEST(VisibilityLevelsTest, LevelsListTheTrianglesGpuCullingDraws) {
             visibility->setCullingOptions(options);
             const auto expected = frame(*reference, framed);
             const auto image = frame(*visibility, framed);
-            expectClose(expected, image);
+            test::expectVisibilityClose(expected, image);
             const auto counts = reference->strategy()->gpuTriangleCounts();
             ASSERT_TRUE(counts.has_value());
             const std::uint32_t drawn = readWord(*context, counts->buffer, counts->hardwareOffset);
@@ -346,7 +326,7 @@ TEST(VisibilityLevelsTest, LevelsListTheTrianglesGpuCullingDraws) {
 // level per item for all views, chosen for the nearest; the pictures match.
 TEST(VisibilityLevelsTest, MultiViewFramesChooseLevelsAsGpuCulling) {
     ENCORE_REQUIRE_VULKAN(context);
-    const auto scene = generated(scene::SceneLayout::Grid, 200);
+    const auto scene = test::generatedVisibilityScene(scene::SceneLayout::Grid, 200);
     const glm::vec3 center = scene.bounds.center();
     const float radius = scene.bounds.radius();
     const float aspect = float(kWidth / 4) / float(kHeight);
@@ -369,7 +349,7 @@ TEST(VisibilityLevelsTest, MultiViewFramesChooseLevelsAsGpuCulling) {
     auto expected = reference->readImage();
     auto image = visibility->readImage();
     ASSERT_TRUE(expected.ok() && image.ok());
-    expectClose(*expected, *image);
+    test::expectVisibilityClose(*expected, *image);
     EXPECT_FALSE(visibilityOf(*visibility).lastFrameOccluded());
     EXPECT_EQ(visibilityOf(*visibility).lastViewCount(), 4u);
     // The counters hold the last view's cull, which lists what GPU culling's one cull draws.

@@ -19,6 +19,7 @@
 #include "GltfBuilder.h"
 #include "GpuTestSupport.h"
 #include "RenderTestSupport.h"
+#include "VisibilityTestSupport.h"
 #include "encore/render/Renderer.h"
 #include "encore/render/VisibilityFeatures.h"
 #include "gpu/Readback.h"
@@ -59,31 +60,6 @@ image::ImageRgba8 render(gpu::Context& context,
     return image.ok() ? std::move(*image) : image::ImageRgba8{};
 }
 
-// What the issue asks of the visibility strategy's pictures against gpu-culling-bundles: SSIM
-// >= 0.99 (`minSsim`) and at most 0.5% of pixels more than 2 levels apart (`maxDiffering` of
-// them).
-void expectClose(const image::ImageRgba8& expected,
-                 const image::ImageRgba8& image,
-                 double maxDiffering = 0.005,
-                 double minSsim = 0.99) {
-    ASSERT_EQ(expected.width, image.width);
-    const auto ssim = image::ssimLuminance(expected, image);
-    ASSERT_TRUE(ssim.ok());
-    EXPECT_GE(*ssim, minSsim);
-    const std::size_t pixels = std::size_t(image.width) * image.height;
-    EXPECT_LE(double(test::differingPixels(expected, image, 2)), double(pixels) * maxDiffering);
-}
-
-scene::SceneData generated(scene::SceneLayout layout, std::uint32_t objects) {
-    scene::GeneratorOptions options;
-    options.layout = layout;
-    options.objectCount = objects;
-    options.meshCount = 6;
-    options.materialCount = 4;
-    options.textures = true;
-    return test::generatedScene(options);
-}
-
 // Each generated layout or shared model at 1 sample and at 4 (`--samples 4`: the visibility
 // buffer's four samples against the hardware's 4x multisampling).
 constexpr std::array<std::uint32_t, 2> kSampleCounts = {1, 4};
@@ -94,7 +70,7 @@ class VisibilityGeneratedTest
 TEST_P(VisibilityGeneratedTest, LooksLikeGpuCullingBundles) {
     ENCORE_REQUIRE_VULKAN(context);
     const auto [layout, samples] = GetParam();
-    const auto scene = generated(layout, 300);
+    const auto scene = test::generatedVisibilityScene(layout, 300);
     const glm::vec3 low = scene.bounds.min;
     const glm::vec3 high = scene.bounds.max;
     const glm::vec3 center = (low + high) * 0.5f;
@@ -115,7 +91,7 @@ TEST_P(VisibilityGeneratedTest, LooksLikeGpuCullingBundles) {
         const auto image = render(*context, scene, StrategyKind::Visibility, cameras[i],
                                   DebugChannel::Shaded, VisibilityStrategy::kDefaultComputePixels,
                                   VisibilityStrategy::kMaxWorkgroupPixels, samples);
-        expectClose(expected, image);
+        test::expectVisibilityClose(expected, image);
         EXPECT_GT(test::coveredFraction(image, test::pixelAt(image, 0, 0)), 0.05);
     }
     EXPECT_TRUE(context->checkNoErrors("visibility strategy").ok());
@@ -163,7 +139,7 @@ TEST_P(VisibilityModelTest, LooksLikeGpuCullingBundles) {
     // to 1.3% of pixels: the shading pass passes textureSampleGrad the quad's analytic
     // derivatives, and lavapipe's level of detail from implicit derivatives still differs from it
     // along texel edges (SSIM stays above 0.99). Generated scenes meet 0.5%.
-    expectClose(expected, image, 0.015);
+    test::expectVisibilityClose(expected, image, 0.015);
     EXPECT_TRUE(context->checkNoErrors(model.path).ok());
 }
 
@@ -478,7 +454,7 @@ TEST(VisibilityFallbackTest, MaskBlendAndSkinnedGeometryIsDrawn) {
         const auto expected =
             draw(*crowd, StrategyKind::GpuCullingBundles, camera, DebugChannel::Shaded);
         const auto image = draw(*crowd, StrategyKind::Visibility, camera, DebugChannel::Shaded);
-        expectClose(expected, image);
+        test::expectVisibilityClose(expected, image);
     }
     EXPECT_TRUE(context->checkNoErrors("visibility fallbacks").ok());
 }
