@@ -29,8 +29,7 @@ inline void expectVisibilityClose(const image::ImageRgba8& expected,
 }
 
 // A generated scene of `objects` objects in `layout`: six meshes, four materials, textured.
-inline scene::SceneData generatedVisibilityScene(scene::SceneLayout layout,
-                                                 std::uint32_t objects) {
+inline scene::SceneData generatedVisibilityScene(scene::SceneLayout layout, std::uint32_t objects) {
     scene::GeneratorOptions options;
     options.layout = layout;
     options.objectCount = objects;
