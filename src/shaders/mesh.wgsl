@@ -117,19 +117,29 @@ struct VertexInput {
 #endif
 }
 
+// Only what the variant has crosses to the fragment stage: every interpolant costs the few SMs
+// that shade fragments on large GPUs (a constant one too; the fragment stage substitutes it).
 struct VertexOutput {
     @builtin(position) position: vec4f,
     @location(0) normal: vec3f,
     @location(1) texcoord: vec2f,
+#if HAS_COLOR
     @location(2) color: vec4f,
+#endif
     @location(3) worldPosition: vec3f,
+#if HAS_TEXCOORD1
     @location(4) texcoord1: vec2f,
+#endif
+#if HAS_TANGENT
     // xyz: world tangent, w: bitangent sign (handedness, flipped for mirroring transforms).
     @location(5) tangent: vec4f,
+#endif
     // 1 + node index, 1 + mesh index: the segmentation ids (the normal matrix's 4th column).
     @location(6) @interpolate(flat) ids: vec2f,
+#if MATERIAL_EXTENSIONS
     // Lengths of the world matrix's axes: KHR_materials_volume's thickness is in mesh units.
     @location(7) modelScale: vec3f,
+#endif
 }
 
 #if SKINNED
@@ -204,8 +214,10 @@ fn vertexMain(input: VertexInput) -> VertexOutput {
     output.worldPosition = world.xyz;
     output.ids = ids;
     output.normal = (transform.normal * vec4f(normal, 0.0)).xyz;
+#if MATERIAL_EXTENSIONS
     output.modelScale = vec3f(length(transform.world[0].xyz), length(transform.world[1].xyz),
                               length(transform.world[2].xyz));
+#endif
 #if HAS_TEXCOORD
     output.texcoord = input.texcoord;
 #else
@@ -213,21 +225,15 @@ fn vertexMain(input: VertexInput) -> VertexOutput {
 #endif
 #if HAS_TEXCOORD1
     output.texcoord1 = input.texcoord1;
-#else
-    output.texcoord1 = output.texcoord;
 #endif
 #if HAS_COLOR
     output.color = input.color;
-#else
-    output.color = vec4f(1.0);
 #endif
 #if HAS_TANGENT
     let linear = mat3x3f(transform.world[0].xyz, transform.world[1].xyz, transform.world[2].xyz);
     // A mirroring transform turns cross(N, T) around; the handedness must follow.
     let mirror = select(1.0, -1.0, determinant(linear) < 0.0);
     output.tangent = vec4f(linear * tangent, input.tangent.w * mirror);
-#else
-    output.tangent = vec4f(0.0);
 #endif
     return output;
 }
@@ -263,25 +269,45 @@ fn fragmentMain(input: VertexOutput, @builtin(front_facing) frontFacing: bool) -
 @fragment
 fn fragmentMain(input: VertexOutput, @builtin(front_facing) frontFacing: bool) -> @location(0) vec4f {
 #endif
+    // What the vertex stage leaves out (VertexOutput) has its constant here.
+#if HAS_COLOR
+    let vertexColor = input.color;
+#else
+    let vertexColor = vec4f(1.0);
+#endif
 #if MATERIALS
+#if HAS_TEXCOORD1
+    let uv1 = input.texcoord1;
+#else
+    let uv1 = input.texcoord;
+#endif
+#if HAS_TANGENT
+    let tangent = input.tangent;
+#else
+    let tangent = vec4f(0.0);
+#endif
+#if MATERIAL_EXTENSIONS
+    let modelScale = input.modelScale;
+#else
+    let modelScale = vec3f(1.0);  // Read only by the extensions' shading.
+#endif
     // Every slot is sampled here, in uniform control flow (implicit derivatives), whether the
     // material has a texture there or binds the 1-pixel default.
     let uv0 = input.texcoord;
-    let samples = sampleMaterial(uv0, input.texcoord1, UvGradients());
+    let samples = sampleMaterial(uv0, uv1, UvGradients());
     let positionDx = dpdx(input.worldPosition);
     let positionDy = dpdy(input.worldPosition);
     let uvDx = dpdx(uv0);
     let uvDy = dpdy(uv0);
 
-    let baseColor = material.baseColorFactor * input.color * samples.baseColor;
+    let baseColor = material.baseColorFactor * vertexColor * samples.baseColor;
 #if ALPHA_MASK
     if (baseColor.a < material.alpha.x) {
         discard;
     }
 #endif
-    let shaded = shadeSurface(input.worldPosition, input.normal, input.tangent, frontFacing,
-                              baseColor, samples, positionDx, positionDy, uvDx, uvDy,
-                              input.modelScale);
+    let shaded = shadeSurface(input.worldPosition, input.normal, tangent, frontFacing, baseColor,
+                              samples, positionDx, positionDy, uvDx, uvDy, modelScale);
 #if PASS_TARGETS
 #if SEGMENT_BY_MATERIAL
     let id = f32(material.flags.z);
@@ -295,6 +321,6 @@ fn fragmentMain(input: VertexOutput, @builtin(front_facing) frontFacing: bool) -
     return displayColor(segmentationColor(shaded, input.ids));
 #endif
 #else
-    return displayColor(vec4f(shade(input.color.rgb, input.normal), 1.0));
+    return displayColor(vec4f(shade(vertexColor.rgb, input.normal), 1.0));
 #endif
 }
