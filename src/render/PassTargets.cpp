@@ -59,11 +59,13 @@ Result<PassTargetTextures> PassTargetTextures::create(const wgpu::Device& device
     return textures;
 }
 
-void PassTargetTextures::appendAttachments(
+void PassTargetTextures::fillAttachments(
     const wgpu::RenderPassColorAttachment& color,
-    std::vector<wgpu::RenderPassColorAttachment>& attachments) const {
-    for (const Target& pass : mTargets) {
-        wgpu::RenderPassColorAttachment attachment = color;
+    std::span<wgpu::RenderPassColorAttachment, kPassTargetCount> attachments) const {
+    for (std::size_t i = 0; i < kPassTargetCount; ++i) {
+        const Target& pass = mTargets[i];
+        wgpu::RenderPassColorAttachment& attachment = attachments[i];
+        attachment = color;
         if (pass.multisampled) {
             attachment.view = pass.multisampledView;
             attachment.resolveTarget = color.resolveTarget ? pass.resolvedView : nullptr;
@@ -71,7 +73,6 @@ void PassTargetTextures::appendAttachments(
             attachment.view = pass.resolvedView;
         }
         attachment.clearValue = {0.0, 0.0, 0.0, 0.0};
-        attachments.push_back(attachment);
     }
 }
 

@@ -12,6 +12,7 @@
 
 #include <array>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "encore/core/Result.h"
@@ -31,10 +32,12 @@ class PassTargetTextures {
                                              shaders::ShaderLibrary& shaders,
                                              const RenderTarget& target);
 
-    // Colour attachments 1..4 of a scene pass whose attachment 0 is `color`: they load, store
-    // and resolve as it does, and clear to transparent black (the debug channels' background).
-    void appendAttachments(const wgpu::RenderPassColorAttachment& color,
-                           std::vector<wgpu::RenderPassColorAttachment>& attachments) const;
+    // Colour attachments 1..4 of a scene pass whose attachment 0 is `color`, written from
+    // `attachments[0]` on: they load, store and resolve as it does, and clear to transparent
+    // black (the debug channels' background).
+    void fillAttachments(
+        const wgpu::RenderPassColorAttachment& color,
+        std::span<wgpu::RenderPassColorAttachment, kPassTargetCount> attachments) const;
     // Converts the resolved normal, albedo and material targets to their RGBA8 images.
     void encodeImages(const wgpu::CommandEncoder& commands) const;
 

@@ -5,6 +5,9 @@
 
 #include "encore/render/Renderer.h"
 
+#include <array>
+#include <span>
+
 #include "gpu/Readback.h"
 #include "gpu/TimedSubmit.h"
 #include "render/PassAttachments.h"
@@ -89,13 +92,18 @@ FrameResult Renderer::renderPasses(std::span<const Camera> cameras,
             depth.depthStoreOp = attachments.depthStoreOp;
             depth.depthClearValue = attachments.depthClearValue;
             // With pass targets, the pass images follow the colour (PassTargets.h).
-            std::vector<wgpu::RenderPassColorAttachment> colors = {color};
+            // On the stack: a frame allocates nothing for its passes.
+            std::array<wgpu::RenderPassColorAttachment, 1 + kPassTargetCount> colors;
+            colors[0] = color;
+            std::size_t colorCount = 1;
             if (mPassTargets) {
-                mPassTargets->appendAttachments(color, colors);
+                mPassTargets->fillAttachments(color,
+                                              std::span(colors).subspan<1, kPassTargetCount>());
+                colorCount += kPassTargetCount;
             }
             wgpu::RenderPassDescriptor passDescriptor{};
             passDescriptor.label = attachments.label;
-            passDescriptor.colorAttachmentCount = colors.size();
+            passDescriptor.colorAttachmentCount = colorCount;
             passDescriptor.colorAttachments = colors.data();
             passDescriptor.depthStencilAttachment = &depth;
             // The transmission pass is timed by the GPU timer only (stage timestamps time one
