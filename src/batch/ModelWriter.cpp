@@ -173,8 +173,11 @@ std::function<Result<std::vector<std::uint8_t>>()> ModelWriter::floatEncoder(
         };
     }
     if (kind == ViewImage::Segmentation) {
-        return [ids = packedIds ? segmentationIdsOfPassTarget(pixels) : segmentationIds(pixels),
-                compression] { return image::encodePng16(ids, compression); };
+        // Flat regions of one id: runs are the matches there are, and Fast compresses them as
+        // small as Small in a ninth of the time (docs/benchmarks/2026-11-26-png-paeth-runs.md).
+        return [ids = packedIds ? segmentationIdsOfPassTarget(pixels) : segmentationIds(pixels)] {
+            return image::encodePng16(ids, image::PngCompression::Fast);
+        };
     }
     if (mOptions.images.depthFormat == DepthFormat::Exr) {
         return [depth = depthDistances(pixels, unitsPerModelUnit), width, height] {

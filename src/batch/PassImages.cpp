@@ -57,7 +57,11 @@ std::vector<float> hdrPixels(const FloatStrip& strip) {
     return rgba;
 }
 
-image::ImageGray16 segmentationIds(const FloatStrip& strip) {
+namespace {
+
+// The ids of a strip whose texels hold id % 256 in `lowChannel`, id / 256 in the next and the
+// coverage in the fourth, both ids times coverage.
+image::ImageGray16 idsFromChannels(const FloatStrip& strip, std::size_t lowChannel) {
     image::ImageGray16 ids;
     ids.width = strip.width;
     ids.height = strip.height;
@@ -69,8 +73,8 @@ image::ImageGray16 segmentationIds(const FloatStrip& strip) {
             if (!(coverage >= 0.5f)) {
                 continue;
             }
-            const long low = std::lround(texel[0] / coverage);
-            const long high = std::lround(texel[1] / coverage);
+            const long low = std::lround(texel[lowChannel] / coverage);
+            const long high = std::lround(texel[lowChannel + 1] / coverage);
             ids.pixels[std::size_t(y) * strip.width + x] =
                 std::uint16_t(std::clamp(high * 256 + low, 0l, 65535l));
         }
@@ -78,18 +82,14 @@ image::ImageGray16 segmentationIds(const FloatStrip& strip) {
     return ids;
 }
 
+}  // namespace
+
+image::ImageGray16 segmentationIds(const FloatStrip& strip) {
+    return idsFromChannels(strip, 0);
+}
+
 image::ImageGray16 segmentationIdsOfPassTarget(const FloatStrip& strip) {
-    std::vector<float> shifted(std::size_t(strip.width) * strip.height * 4);
-    for (std::uint32_t y = 0; y < strip.height; ++y) {
-        for (std::uint32_t x = 0; x < strip.width; ++x) {
-            const float* texel = strip.texel(x, y);
-            float* out = &shifted[(std::size_t(y) * strip.width + x) * 4];
-            out[0] = texel[1];
-            out[1] = texel[2];
-            out[3] = texel[3];
-        }
-    }
-    return segmentationIds(FloatStrip{shifted, strip.width, 0, strip.width, strip.height});
+    return idsFromChannels(strip, 1);
 }
 
 std::vector<float> halfStrip(const gpu::MappedReadback& wide,

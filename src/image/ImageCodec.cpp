@@ -4,6 +4,7 @@
 #include <stb_image.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <cstring>
 #include <memory>
 #include <string>
@@ -175,13 +176,74 @@ void filterUp(const std::uint8_t* samples,
     }
 }
 
+// Rows with the Paeth filter, each after its filter-type byte; `bytesPerPixel` apart are the
+// left neighbours (the row above the first is zero, as PNG defines it there).
+void filterPaeth(const std::uint8_t* samples,
+                 std::size_t rowBytes,
+                 std::uint32_t height,
+                 std::size_t bytesPerPixel,
+                 std::uint8_t* __restrict filtered) {
+    const auto predict = [](int left, int above, int aboveLeft) {
+        const int towardsLeft = std::abs(above - aboveLeft);
+        const int towardsAbove = std::abs(left - aboveLeft);
+        const int towardsAboveLeft = std::abs(left + above - 2 * aboveLeft);
+        if (towardsLeft <= towardsAbove && towardsLeft <= towardsAboveLeft) {
+            return left;
+        }
+        return towardsAbove <= towardsAboveLeft ? above : aboveLeft;
+    };
+    const std::vector<std::uint8_t> zeros(rowBytes, 0);
+    for (std::uint32_t y = 0; y < height; ++y) {
+        std::uint8_t* __restrict out = filtered + std::size_t(y) * (rowBytes + 1);
+        const std::uint8_t* __restrict row = samples + std::size_t(y) * rowBytes;
+        const std::uint8_t* __restrict above = y == 0 ? zeros.data() : row - rowBytes;
+        *out++ = 4;
+        std::size_t i = 0;
+        for (; i < std::min(bytesPerPixel, rowBytes); ++i) {
+            out[i] = std::uint8_t(row[i] - above[i]);  // No left neighbour: the predictor is above.
+        }
+        // Eight bytes at a time in 16-bit lanes (the predictor's sums need nine bits): -O2 does
+        // not vectorise loops, and byte by byte this filter cost as much as compressing.
+        using Bytes8 = std::uint8_t __attribute__((vector_size(8)));
+        using Shorts8 = std::int16_t __attribute__((vector_size(16)));
+        const auto magnitude = [](Shorts8 value) { return value < 0 ? -value : value; };
+        for (; i + 8 <= rowBytes; i += 8) {
+            Bytes8 current;
+            Bytes8 left;
+            Bytes8 up;
+            Bytes8 upLeft;
+            std::memcpy(&current, row + i, 8);
+            std::memcpy(&left, row + i - bytesPerPixel, 8);
+            std::memcpy(&up, above + i, 8);
+            std::memcpy(&upLeft, above + i - bytesPerPixel, 8);
+            const Shorts8 a = __builtin_convertvector(left, Shorts8);
+            const Shorts8 b = __builtin_convertvector(up, Shorts8);
+            const Shorts8 c = __builtin_convertvector(upLeft, Shorts8);
+            const Shorts8 towardsLeft = magnitude(b - c);
+            const Shorts8 towardsAbove = magnitude(a - c);
+            const Shorts8 towardsAboveLeft = magnitude(a + b - c - c);
+            const Shorts8 predicted =
+                ((towardsLeft <= towardsAbove) & (towardsLeft <= towardsAboveLeft))
+                    ? a
+                    : (towardsAbove <= towardsAboveLeft ? b : c);
+            const Bytes8 difference = current - __builtin_convertvector(predicted, Bytes8);
+            std::memcpy(out + i, &difference, 8);
+        }
+        for (; i < rowBytes; ++i) {
+            out[i] = std::uint8_t(
+                row[i] - predict(row[i - bytesPerPixel], above[i], above[i - bytesPerPixel]));
+        }
+    }
+}
+
 // A PNG of `samples` (rows top to bottom, each sample as PNG stores it: 16-bit ones big-endian).
-// Speed over size: every row gets the Up filter (of the five filters the cheapest to compute
-// that compresses rendered views as well as Paeth). PngCompression::Small compresses with
-// libdeflate at level 2: on rendered 512x512 views 2.6 ms for 66 KiB where zlib's fastest level
-// took 2.9 ms for 78 KiB (libdeflate's level 1 takes 2.9 ms too: its matcher pays for the long
-// runs of transparent black; docs/benchmarks/2026-11-24-lavapipe-batch-codecs.md).
-// PngCompression::Fast skips the match search: runLengthZlib.
+// Speed at about the size of zlib's default (docs/benchmarks/2026-11-26-png-paeth-runs.md):
+// PngCompression::Small filters 8-bit images with Paeth, after which runs of a repeated byte are
+// nearly all the matches deflate finds in a rendered view, so runLengthZlib (one Huffman-coded
+// block, no match search) compresses them as small as libdeflate's level 2 after Up (-1% to
+// +2%) in 50-70% of the time; 16-bit images (depth's smooth gradients, where longer matches pay:
+// 21% smaller) get Up and libdeflate at level 2. PngCompression::Fast filters everything with
+// Up (the cheapest filter) and compresses runs: fastest, and 15-30% larger for 8-bit views.
 Result<std::vector<std::uint8_t>> writePngStream(std::uint32_t width,
                                                  std::uint32_t height,
                                                  std::uint8_t bitDepth,
@@ -192,7 +254,8 @@ Result<std::vector<std::uint8_t>> writePngStream(std::uint32_t width,
     const auto outOfMemory = [] {
         return makeError(ErrorCode::IoError, "PNG encoding failed (out of memory).");
     };
-    const bool fast = compression == PngCompression::Fast;
+    const bool paeth = compression == PngCompression::Small && bitDepth == 8;
+    const bool fast = compression == PngCompression::Fast || paeth;
     const std::size_t rowBytes = samples.size() / height;
     const std::size_t filteredSize = (rowBytes + 1) * height;
     const ScratchBuffer::Use useFiltered(scratch.filtered);
@@ -204,7 +267,12 @@ Result<std::vector<std::uint8_t>> writePngStream(std::uint32_t width,
     if (!filtered || (!fast && !scratch.compressor)) {
         return outOfMemory();
     }
-    filterUp(samples.data(), rowBytes, height, filtered);
+    if (paeth) {
+        const std::size_t bytesPerPixel = color == PngColor::Rgba ? 4 : 1;
+        filterPaeth(samples.data(), rowBytes, height, bytesPerPixel, filtered);
+    } else {
+        filterUp(samples.data(), rowBytes, height, filtered);
+    }
     const std::size_t bound =
         fast ? runLengthZlibBound(filteredSize)
              : libdeflate_zlib_compress_bound(scratch.compressor.get(), filteredSize);
@@ -255,11 +323,10 @@ Result<std::vector<std::uint8_t>> encodePng(const ImageRgba8& image, PngCompress
 Result<std::vector<std::uint8_t>> encodePng16(const ImageGray16& image,
                                               PngCompression compression) {
     ENCORE_TRY(checkEncodable(image.width, image.height, image.pixels.size(), 1));
-    std::vector<std::uint8_t> samples;
-    samples.reserve(image.pixels.size() * 2);
-    for (const std::uint16_t value : image.pixels) {
-        samples.push_back(std::uint8_t(value >> 8));  // PNG stores 16-bit samples big-endian.
-        samples.push_back(std::uint8_t(value & 0xff));
+    std::vector<std::uint8_t> samples(image.pixels.size() * 2);
+    for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+        samples[2 * i] = std::uint8_t(image.pixels[i] >> 8);  // PNG stores 16-bit big-endian.
+        samples[2 * i + 1] = std::uint8_t(image.pixels[i] & 0xff);
     }
     return writePngStream(image.width, image.height, 16, PngColor::Gray, samples, compression);
 }

@@ -44,13 +44,15 @@ struct ImageRgba8 {
 // get their colours expanded and alpha 255 (tRNS applied), 16-bit samples keep their high byte.
 Result<ImageRgba8> decodeImage(std::span<const std::uint8_t> encoded);
 
-// How hard PNG encoding works at compressing. Both filter every row with Up.
+// How PNG encoding trades size for time (ImageCodec.cpp says how; on rendered 512x512 views,
+// docs/benchmarks/2026-11-26-png-paeth-runs.md).
 enum class PngCompression : std::uint8_t {
-    // libdeflate at level 2: 2.6 ms and 66 KiB for a typical 512x512 rendered view.
+    // 8-bit: the Paeth filter and runs of a repeated byte (RunLengthDeflate.h), as small as
+    // libdeflate's level 2 after Up; 16-bit: Up and libdeflate at level 2.
     Small,
-    // One Huffman-coded deflate block whose only matches are runs of a repeated byte
-    // (RunLengthDeflate.h): 1.1 ms and 76 KiB for the same views, for bulk rendering where
-    // encoding limits the throughput (docs/benchmarks/2026-11-24-lavapipe-batch-load.md).
+    // The Up filter and runs, for bulk rendering where encoding limits the throughput: about
+    // 30% less time than Small for 8-bit views 15-30% larger; 16-bit ids or depth half the
+    // time of Small (ids as small, depth nearly three times larger).
     Fast,
 };
 

@@ -2,6 +2,7 @@
 #include <zlib.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <string_view>
 
 #include "TestPaths.h"
@@ -257,6 +258,74 @@ TEST(ImageCodecTest, RunLengthZlibInflatesToItsData) {
         ASSERT_EQ(uncompress(inflated.data(), &size, stream.data(), uLong(stream.size())), Z_OK);
         ASSERT_EQ(size, data.size());
         EXPECT_TRUE(std::equal(data.begin(), data.end(), inflated.begin()));
+    }
+}
+
+// The IDAT data of `png` inflated: filter-type bytes and filtered rows.
+std::vector<std::uint8_t> inflatedRows(const std::vector<std::uint8_t>& png, std::size_t rawBytes) {
+    std::vector<std::uint8_t> idat;
+    for (std::size_t offset = 8; offset + 12 <= png.size();) {
+        const std::uint32_t length = std::uint32_t(png[offset]) << 24 |
+                                     std::uint32_t(png[offset + 1]) << 16 |
+                                     std::uint32_t(png[offset + 2]) << 8 | png[offset + 3];
+        if (std::string_view(reinterpret_cast<const char*>(&png[offset + 4]), 4) == "IDAT") {
+            idat.insert(idat.end(), &png[offset + 8], &png[offset + 8 + length]);
+        }
+        offset += 12 + length;
+    }
+    std::vector<std::uint8_t> raw(rawBytes);
+    uLongf size = uLongf(raw.size());
+    EXPECT_EQ(uncompress(raw.data(), &size, idat.data(), uLong(idat.size())), Z_OK);
+    return raw;
+}
+
+// PngCompression::Small filters 8-bit rows with Paeth: undone here as the PNG specification
+// writes it, every row gives back the pixels, for widths around the encoder's eight-byte steps
+// and samples at the extremes (the predictor's sums need nine bits).
+TEST(ImageCodecTest, SmallPngCompressionFiltersEightBitRowsWithPaeth) {
+    std::uint32_t seed = 99;
+    auto random = [&] {
+        seed = seed * 1664525u + 1013904223u;
+        return seed >> 24;
+    };
+    for (const std::uint32_t width : {1u, 2u, 3u, 7u, 37u, 130u}) {
+        SCOPED_TRACE(width);
+        const std::uint32_t height = 9;
+        ImageRgba8 image{width, height, std::vector<std::uint8_t>(width * height * 4)};
+        for (std::uint32_t y = 0; y < height; ++y) {
+            for (std::uint32_t x = 0; x < width; ++x) {
+                std::uint8_t* p = image.pixel(x, y);
+                p[0] = std::uint8_t(x * 7 + y * 3);  // Gradients.
+                p[1] = std::uint8_t(random());       // Noise.
+                p[2] = (x + y) % 3 == 0 ? 255 : 0;   // Extremes.
+                p[3] = std::uint8_t(y < 4 ? 255 : random() & 0x81);
+            }
+        }
+        auto png = encodePng(image, PngCompression::Small);
+        ASSERT_TRUE(png.ok()) << png.error().message;
+        const std::size_t rowBytes = width * 4;
+        expectStrictlyValidPng(*png, (rowBytes + 1) * height);
+        const std::vector<std::uint8_t> raw = inflatedRows(*png, (rowBytes + 1) * height);
+        std::vector<std::uint8_t> pixels(rowBytes * height);
+        for (std::uint32_t y = 0; y < height; ++y) {
+            ASSERT_EQ(raw[y * (rowBytes + 1)], 4) << "row " << y << " is not Paeth-filtered";
+            for (std::size_t i = 0; i < rowBytes; ++i) {
+                const int a = i >= 4 ? pixels[y * rowBytes + i - 4] : 0;
+                const int b = y > 0 ? pixels[(y - 1) * rowBytes + i] : 0;
+                const int c = i >= 4 && y > 0 ? pixels[(y - 1) * rowBytes + i - 4] : 0;
+                const int p = a + b - c;
+                const int pa = std::abs(p - a);
+                const int pb = std::abs(p - b);
+                const int pc = std::abs(p - c);
+                const int predicted = pa <= pb && pa <= pc ? a : (pb <= pc ? b : c);
+                pixels[y * rowBytes + i] =
+                    std::uint8_t(raw[y * (rowBytes + 1) + 1 + i] + predicted);
+            }
+        }
+        EXPECT_EQ(pixels, image.pixels);
+        auto decoded = decodeImage(*png);
+        ASSERT_TRUE(decoded.ok()) << decoded.error().message;
+        EXPECT_EQ(decoded->pixels, image.pixels);
     }
 }
 
