@@ -1,6 +1,7 @@
 #include "gpu/Readback.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <string>
@@ -96,18 +97,19 @@ Result<std::vector<std::uint8_t>> readTexelRows(Context& context,
 }  // namespace
 
 float halfToFloat(std::uint16_t half) {
-    const std::uint32_t sign = (half >> 15) & 1;
-    const std::uint32_t exponent = (half >> 10) & 0x1f;
-    const std::uint32_t mantissa = half & 0x3ff;
-    float value;
+    // By the bits: the exponent rebased from 15 to 127 and the mantissa widened (read-backs
+    // convert millions of texels; ldexp cost most of reading a pass target).
+    const std::uint32_t sign = std::uint32_t(half & 0x8000u) << 16;
+    const std::uint32_t exponent = (half >> 10) & 0x1fu;
+    const std::uint32_t mantissa = half & 0x3ffu;
     if (exponent == 0) {
-        value = std::ldexp(float(mantissa), -24);  // Subnormal.
-    } else if (exponent == 31) {
-        value = mantissa ? std::nanf("") : INFINITY;
-    } else {
-        value = std::ldexp(float(mantissa | 0x400), int(exponent) - 25);
+        const float value = float(mantissa) * 0x1p-24f;  // Zero or subnormal.
+        return sign ? -value : value;
     }
-    return sign ? -value : value;
+    const std::uint32_t bits = exponent == 0x1fu
+                                   ? sign | 0x7f800000u | (mantissa << 13)  // Infinity or NaN.
+                                   : sign | ((exponent + 112u) << 23) | (mantissa << 13);
+    return std::bit_cast<float>(bits);
 }
 
 void unpadRows(const std::uint8_t* padded,
