@@ -49,6 +49,8 @@ BindGroupLayouts BindGroupLayouts::create(const wgpu::Device& device) {
         material.push_back(LayoutEntry::texture(materialTextureBinding(slot), kFragment));
     }
     layouts.material = gpu::makeBindGroupLayout(device, material, "material");
+    material.resize(1 + kMaterialSamplerCount + kMaterialBaseTextureSlotCount);
+    layouts.materialBase = gpu::makeBindGroupLayout(device, material, "material (base slots)");
     layouts.materialUniformOnly = gpu::makeBindGroupLayout(
         device, {LayoutEntry::uniform(0, kFragment, sizeof(MaterialUniform))},
         "material (uniform only)");

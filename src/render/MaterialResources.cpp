@@ -112,7 +112,8 @@ Result<MaterialResources> MaterialResources::create(const wgpu::Device& device,
         wgpu::BufferUsage::Uniform | wgpu::BufferUsage::CopyDst | wgpu::BufferUsage::CopySrc,
         uniformBytes.size(), "material uniforms");
 
-    resources.mBindGroups.reserve(materialCount);
+    resources.mBindGroups.resize(materialCount);
+    resources.mBaseBindGroups.resize(materialCount);
     for (std::size_t i = 0; i < materialCount; ++i) {
         const scene::MaterialId id{i};
         const scene::Material& material = scene.materials[i];
@@ -161,14 +162,15 @@ Result<MaterialResources> MaterialResources::create(const wgpu::Device& device,
         resources.mMaterialSamplerEntries.push_back(palette.slotEntries);
         resources.mTextured.push_back(std::any_of(
             textures.begin(), textures.end(), [](std::size_t t) { return t != kDefaultTexture; }));
+        resources.mShadesExtensions.push_back(materialShadesExtensions(material));
 
         MaterialUniform uniform = makeMaterialUniform(material, palette.slotEntries);
         uniform.flags[2] = std::uint32_t(i + 1);  // The segmentation id (DebugChannel).
         uniform.flags[3] = resources.texturedSlots(i);
         std::memcpy(uniformBytes.data() + i * resources.mUniformStride, &uniform, kUniformSize);
 
-        resources.mBindGroups.push_back(resources.createBindGroup(
-            device, layouts, i, material.name.empty() ? "material" : material.name.c_str()));
+        resources.createBindGroups(device, layouts, i,
+                                   material.name.empty() ? "material" : material.name.c_str());
     }
     queue.WriteBuffer(resources.mUniforms, 0, uniformBytes.data(), uniformBytes.size());
 
@@ -179,10 +181,22 @@ Result<MaterialResources> MaterialResources::create(const wgpu::Device& device,
     return resources;
 }
 
+void MaterialResources::createBindGroups(const wgpu::Device& device,
+                                         const BindGroupLayouts& layouts,
+                                         std::size_t material,
+                                         const char* label) {
+    mBindGroups[material] = createBindGroup(device, layouts, material, label);
+    mBaseBindGroups[material] =
+        mTextured[material] && !mShadesExtensions[material]
+            ? createBindGroup(device, layouts, material, label, /*baseSlots=*/true)
+            : wgpu::BindGroup();
+}
+
 wgpu::BindGroup MaterialResources::createBindGroup(const wgpu::Device& device,
                                                    const BindGroupLayouts& layouts,
                                                    std::size_t material,
-                                                   const char* label) const {
+                                                   const char* label,
+                                                   bool baseSlots) const {
     std::array<wgpu::BindGroupEntry, 1 + kMaterialSamplerCount + kMaterialTextureSlotCount>
         entries{};
     entries[0].binding = 0;
@@ -202,13 +216,15 @@ wgpu::BindGroup MaterialResources::createBindGroup(const wgpu::Device& device,
         sampler.binding = materialSamplerBinding(entry);
         sampler.sampler = mSamplers[mMaterialPalettes[material][entry]];
     }
-    for (std::uint32_t slot = 0; slot < kMaterialTextureSlotCount; ++slot) {
+    const std::uint32_t slots =
+        baseSlots ? kMaterialBaseTextureSlotCount : kMaterialTextureSlotCount;
+    for (std::uint32_t slot = 0; slot < slots; ++slot) {
         wgpu::BindGroupEntry& texture = entries[materialTextureBinding(slot)];
         texture.binding = materialTextureBinding(slot);
         texture.textureView = mTextures[mMaterialTextures[material][slot]].CreateView();
     }
-    descriptor.layout = layouts.material;
-    descriptor.entryCount = entries.size();
+    descriptor.layout = baseSlots ? layouts.materialBase : layouts.material;
+    descriptor.entryCount = 1 + kMaterialSamplerCount + slots;
     descriptor.entries = entries.data();
     return device.CreateBindGroup(&descriptor);
 }
@@ -251,8 +267,7 @@ Result<void> MaterialResources::replaceBaseColorImage(const wgpu::Device& device
                       material.index() * mUniformStride + offsetof(MaterialUniform, flags) +
                           3 * sizeof(std::uint32_t),
                       &slots, sizeof(slots));
-    mBindGroups[material.index()] =
-        createBindGroup(device, layouts, material.index(), "material (replaced texture)");
+    createBindGroups(device, layouts, material.index(), "material (replaced texture)");
     ++mGeneration;
 
     const bool stillUsed =
@@ -272,6 +287,12 @@ Result<void> MaterialResources::replaceBaseColorImage(const wgpu::Device& device
 const wgpu::BindGroup& MaterialResources::bindGroup(scene::MaterialId material) const {
     assert(material.index() < mBindGroups.size());
     return mBindGroups[material.index()];
+}
+
+const wgpu::BindGroup& MaterialResources::drawBindGroup(scene::MaterialId material) const {
+    assert(material.index() < mBaseBindGroups.size());
+    const wgpu::BindGroup& base = mBaseBindGroups[material.index()];
+    return base ? base : mBindGroups[material.index()];
 }
 
 void MaterialResources::updateMaterial(const wgpu::Queue& queue,

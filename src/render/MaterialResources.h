@@ -83,10 +83,16 @@ class MaterialResources {
     MaterialResources(const MaterialResources&) = delete;
     MaterialResources& operator=(const MaterialResources&) = delete;
 
-    // The group 2 bind group of a material; `material` must be a valid index of the scene.
-    // Its layout is BindGroupLayouts::material when textured(material), else
-    // BindGroupLayouts::materialUniformOnly.
+    // The group 2 bind group of a material for pipelines compiled with every extension
+    // (MATERIAL_EXTENSIONS, as the visibility strategy's shading is); `material` must be a
+    // valid index of the scene. Its layout is BindGroupLayouts::material when
+    // textured(material), else BindGroupLayouts::materialUniformOnly.
     const wgpu::BindGroup& bindGroup(scene::MaterialId material) const;
+    // The group 2 bind group for the material's own pipelines, whose ShaderVariantKey follows
+    // the material (materialShadesExtensions): without the extensions' shading, a textured
+    // material binds only the base slots (BindGroupLayouts::materialBase); otherwise the same
+    // group as bindGroup.
+    const wgpu::BindGroup& drawBindGroup(scene::MaterialId material) const;
     // Whether the material binds a texture in any slot (an image that was uploaded); pipelines
     // drawing it need the MATERIAL_TEXTURES variant. Changes only through
     // replaceBaseColorImage.
@@ -162,6 +168,10 @@ class MaterialResources {
     wgpu::Buffer mUniforms;
     std::uint64_t mUniformStride = 256;
     std::vector<wgpu::BindGroup> mBindGroups;  // Indexed by MaterialId.
+    // Indexed by MaterialId: the base-slot group of a textured material without the
+    // extensions' shading, else null (drawBindGroup returns mBindGroups').
+    std::vector<wgpu::BindGroup> mBaseBindGroups;
+    std::vector<bool> mShadesExtensions;  // MaterialId -> materialShadesExtensions.
     using SlotIndices = std::array<std::size_t, kMaterialTextureSlotCount>;
     std::vector<SlotIndices> mMaterialTextures;  // MaterialId -> slot -> index into mTextures.
     // MaterialId -> palette entry -> index into mSamplers (unused entries repeat the first).
@@ -174,10 +184,17 @@ class MaterialResources {
 
     // Bits of the slots that bind an uploaded texture (MaterialUniform::flags[3]).
     std::uint32_t texturedSlots(std::size_t material) const;
+    // The material's group with every slot (`baseSlots` false) or the base slots only.
     wgpu::BindGroup createBindGroup(const wgpu::Device& device,
                                     const BindGroupLayouts& layouts,
                                     std::size_t material,
-                                    const char* label) const;
+                                    const char* label,
+                                    bool baseSlots = false) const;
+    // Creates or replaces both bind groups of `material` (mBindGroups, mBaseBindGroups).
+    void createBindGroups(const wgpu::Device& device,
+                          const BindGroupLayouts& layouts,
+                          std::size_t material,
+                          const char* label);
 };
 
 }  // namespace encore::render

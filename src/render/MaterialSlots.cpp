@@ -138,6 +138,11 @@ bool materialUsesTexcoord1(const scene::Material& material) {
     });
 }
 
+bool materialShadesExtensions(const scene::Material& material) {
+    return material.iridescence.has_value() || material.anisotropy.has_value() ||
+           material.transmission.has_value() || material.diffuseTransmission.has_value();
+}
+
 bool materialUsesTangents(const scene::Material& material) {
     // Anisotropy turns the tangent even without a direction texture.
     return material.anisotropy.has_value() ||

@@ -43,6 +43,10 @@ enum class TextureSlot : std::uint32_t {
     DiffuseTransmissionColor,  // KHR_materials_diffuse_transmission: RGB, sRGB.
 };
 inline constexpr std::uint32_t kMaterialTextureSlotCount = 19;
+// Slots before Iridescence: what a variant without MATERIAL_EXTENSIONS samples (and binds,
+// BindGroupLayouts::materialBase).
+inline constexpr std::uint32_t kMaterialBaseTextureSlotCount = 12;
+static_assert(std::uint32_t(TextureSlot::Iridescence) == kMaterialBaseTextureSlotCount);
 // The samplers a material binds (its sampler palette, SamplerPalette.h): the slots' textures
 // share them, each slot naming its entry in the uniform, so a new slot needs no sampler binding
 // (a shader stage may bind only 16 samplers; Dawn allows no more).
@@ -107,6 +111,10 @@ std::optional<scene::TextureRef> slotTexture(const scene::Material& material, Te
 // The colour space a slot's texture is sampled in for `material`.
 ColorSpace slotColorSpace(const scene::Material& material, TextureSlot slot);
 
+// Whether the material uses an extension that only the MATERIAL_EXTENSIONS variant shades
+// (iridescence, anisotropy, transmission with volume and dispersion, diffuse transmission):
+// its pipelines and its bind group's layout follow, and an edit may not change it.
+bool materialShadesExtensions(const scene::Material& material);
 // Whether the material reads TEXCOORD_1 in any slot (a shader variant).
 bool materialUsesTexcoord1(const scene::Material& material);
 // Whether the material's shading reads the tangent frame (a normal map, base or clear coat, or

@@ -69,8 +69,9 @@ Result<wgpu::RenderPipeline> createMeshPipeline(const RenderSetup& setup,
             break;
     }
     if (key.shader.materials) {
-        groups.push_back(key.shader.materialTextures ? setup.layouts->material
-                                                     : setup.layouts->materialUniformOnly);
+        groups.push_back(!key.shader.materialTextures    ? setup.layouts->materialUniformOnly
+                         : key.shader.materialExtensions ? setup.layouts->material
+                                                         : setup.layouts->materialBase);
     }
     if (key.shader.animated()) {
         groups.push_back(setup.layouts->animation);  // 3, or 2 without materials.

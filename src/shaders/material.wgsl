@@ -105,6 +105,7 @@ const kDiffuseTransmissionColorSlot = 18u;
 @group(2) @binding(14) var clearcoatNormalTexture: texture_2d<f32>;
 @group(2) @binding(15) var sheenColorTexture: texture_2d<f32>;
 @group(2) @binding(16) var sheenRoughnessTexture: texture_2d<f32>;
+#if MATERIAL_EXTENSIONS
 @group(2) @binding(17) var iridescenceTexture: texture_2d<f32>;
 @group(2) @binding(18) var iridescenceThicknessTexture: texture_2d<f32>;
 @group(2) @binding(19) var anisotropyTexture: texture_2d<f32>;
@@ -112,6 +113,7 @@ const kDiffuseTransmissionColorSlot = 18u;
 @group(2) @binding(21) var thicknessTexture: texture_2d<f32>;
 @group(2) @binding(22) var diffuseTransmissionTexture: texture_2d<f32>;
 @group(2) @binding(23) var diffuseTransmissionColorTexture: texture_2d<f32>;
+#endif
 #endif
 
 fn slotUv(slot: u32, uv0: vec2f, uv1: vec2f) -> vec2f {

@@ -193,6 +193,43 @@ TEST(MaterialResourcesTest, MissingImageBindsTheWhiteDefault) {
     EXPECT_TRUE(context->checkNoErrors("missing image").ok());
 }
 
+// A textured material whose shading needs none of the extensions binds only the base slots to
+// its own pipelines (fewer textures for Dawn to track per pass); the full group stays for
+// pipelines compiled with every extension. A material that becomes textured gets both.
+TEST(MaterialResourcesTest, MaterialsWithoutExtensionsDrawWithTheBaseSlots) {
+    ENCORE_REQUIRE_VULKAN(context);
+    scene::SceneData scene;
+    scene.images.push_back(solidImage("base", 2, 2));
+    scene.materials.push_back(scene::Material{});  // No texture.
+    scene::Material textured;
+    textured.baseColorTexture = addTexture(scene, 0);
+    scene.materials.push_back(textured);
+    scene::Material iridescent = textured;
+    iridescent.iridescence = scene::IridescenceExtension{};
+    iridescent.iridescence->iridescenceFactor = 1.0f;
+    scene.materials.push_back(iridescent);
+
+    Fixture fixture(*context);
+    auto resources = fixture.create(*context, scene);
+    ASSERT_TRUE(resources.ok()) << resources.error().message;
+    const auto same = [&](std::uint32_t material) {
+        const scene::MaterialId id{material};
+        EXPECT_NE(resources->bindGroup(id).Get(), nullptr);
+        EXPECT_NE(resources->drawBindGroup(id).Get(), nullptr);
+        return resources->bindGroup(id).Get() == resources->drawBindGroup(id).Get();
+    };
+    EXPECT_TRUE(same(0));
+    EXPECT_FALSE(same(1));
+    EXPECT_TRUE(same(2));
+    ASSERT_TRUE(resources
+                    ->replaceBaseColorImage(context->device(), context->queue(), fixture.shaders,
+                                            fixture.layouts, scene::MaterialId{0u},
+                                            solidImage("replacement", 2, 2))
+                    .ok());
+    EXPECT_FALSE(same(0));
+    EXPECT_TRUE(context->checkNoErrors("base slots").ok());
+}
+
 TEST(MaterialResourcesTest, EqualSamplerStatesShareOneSampler) {
     ENCORE_REQUIRE_VULKAN(context);
     scene::SceneData scene;

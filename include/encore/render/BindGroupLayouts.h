@@ -6,8 +6,9 @@
 //                 and their sampler; once per pass or bundle
 //   1  instances  one node's transform (uniform), all transforms (read-only storage), or all
 //                 transforms plus a draw's visible-instance list (GPU culling)
-//   2  material   material uniform, then a sampler and a texture per texture slot; materials
-//                 without any texture use materialUniformOnly (the uniform alone)
+//   2  material   material uniform, its samplers and a texture per texture slot; materials
+//                 without the extensions' shading bind only the base slots (materialBase),
+//                 materials without any texture the uniform alone (materialUniformOnly)
 //   3  animation  skinned or morphed primitives only (AnimationBuffers): a draw's animation
 //                 record (uniform, dynamic offset), joint matrices, morph weights, morph deltas
 //                 and per-instance joint/weight offsets (read-only storage). Strategies without
@@ -31,6 +32,9 @@ struct BindGroupLayouts {
     // GPU culling: all transforms plus one draw's visible list (dynamic offset).
     wgpu::BindGroupLayout culledInstances;
     wgpu::BindGroupLayout material;
+    // mesh.wgsl's MATERIAL_TEXTURES without MATERIAL_EXTENSIONS: the slots before the
+    // extensions' (fewer textures for Dawn to track in every pass that draws them).
+    wgpu::BindGroupLayout materialBase;
     wgpu::BindGroupLayout materialUniformOnly;  // mesh.wgsl without MATERIAL_TEXTURES.
     wgpu::BindGroupLayout animation;            // mesh.wgsl's ANIMATED variants.
 

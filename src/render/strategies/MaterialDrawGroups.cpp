@@ -25,9 +25,7 @@ shaders::ShaderVariantKey materialVariant(const scene::Primitive& primitive,
     shaders::ShaderVariantKey key;
     key.materialTextures = resources.textured(materialId);
     key.samplerPalette = key.materialTextures && resources.samplesThroughPalette(materialId);
-    key.materialExtensions = material.iridescence.has_value() || material.anisotropy.has_value() ||
-                             material.transmission.has_value() ||
-                             material.diffuseTransmission.has_value();
+    key.materialExtensions = materialShadesExtensions(material);
     key.instanceSource = shaders::InstanceSource::InstanceStorage;
     key.materials = true;
     key.hasTexcoord = primitive.attribute(scene::Semantic::Texcoord0).has_value();
@@ -288,7 +286,7 @@ void MaterialDrawGroups::encodeBlended(RenderEncoder& encoder,
 }
 
 void MaterialDrawGroups::bindMaterial(RenderEncoder& encoder, scene::MaterialId material) const {
-    encoder.setBindGroup(2, mScene->materials().bindGroup(material));
+    encoder.setBindGroup(2, mScene->materials().drawBindGroup(material));
 }
 
 void MaterialDrawGroups::updateTransmissionBundle(BundledFrame& bundle,
