@@ -15,13 +15,6 @@ FrameUniforms::FrameUniforms(const wgpu::Device& device,
                              const SceneLighting& lighting) {
     mBuffer = gpu::createBuffer(device, wgpu::BufferUsage::Uniform | wgpu::BufferUsage::CopyDst,
                                 sizeof(FrameUniform), "frame uniforms");
-    wgpu::TextureDescriptor placeholder{};
-    placeholder.label = "no transmission background";
-    placeholder.size = {1, 1, 1};
-    placeholder.format = wgpu::TextureFormat::RGBA16Float;
-    placeholder.usage = wgpu::TextureUsage::TextureBinding;
-    mNoTransmission = device.CreateTexture(&placeholder).CreateView();
-    mTransmission = mNoTransmission;
     bindLighting(device, layouts, lighting);
 }
 
@@ -36,7 +29,7 @@ void FrameUniforms::bindLighting(const wgpu::Device& device,
                             {2, lighting.lightBuffer(), 0, lighting.lightBuffer().GetSize()},
                             {3, environment.atlasView()},
                             {4, environment.sampler()},
-                            {5, mTransmission}},
+                            {5, mTransmission ? mTransmission : environment.atlasView()}},
                            "frame");
 }
 
@@ -44,11 +37,10 @@ void FrameUniforms::bindTransmission(const wgpu::Device& device,
                                      const BindGroupLayouts& layouts,
                                      const SceneLighting& lighting,
                                      wgpu::TextureView background) {
-    wgpu::TextureView next = background ? std::move(background) : mNoTransmission;
-    if (next.Get() == mTransmission.Get()) {
+    if (background.Get() == mTransmission.Get()) {
         return;  // Bundles recorded with the current bind group stay valid.
     }
-    mTransmission = std::move(next);
+    mTransmission = std::move(background);
     bindLighting(device, layouts, lighting);
 }
 

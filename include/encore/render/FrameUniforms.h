@@ -36,8 +36,10 @@ class FrameUniforms {
                       const BindGroupLayouts& layouts,
                       const SceneLighting& lighting);
     // Binds `background` (binding 5: the transmission pass's copy of the scene behind
-    // transmissive surfaces; null: a 1-pixel black texture) and creates the bind group again,
-    // as bindLighting does. Called before a scene's strategy records anything.
+    // transmissive surfaces) and creates the bind group again, as bindLighting does. Null: the
+    // environment atlas of binding 3 stands in (no shader without transmissive materials reads
+    // it, and a texture the group already binds adds nothing for Dawn to track per pass and
+    // submit). Called before a scene's strategy records anything.
     void bindTransmission(const wgpu::Device& device,
                           const BindGroupLayouts& layouts,
                           const SceneLighting& lighting,
@@ -62,8 +64,7 @@ class FrameUniforms {
     wgpu::Buffer mBuffer;
     wgpu::Buffer mViews;
     wgpu::BindGroup mBindGroup;
-    wgpu::TextureView mTransmission;  // What binding 5 binds (transmission.wgsl).
-    wgpu::TextureView mNoTransmission;
+    wgpu::TextureView mTransmission;  // Binding 5 (transmission.wgsl), or null.
 };
 
 }  // namespace encore::render
