@@ -33,7 +33,28 @@ struct Item {
     mirrored: u32,
 }
 
+#if VIEW_SLOTS
+// A pass over several views side by side (the shading pass): each view's parameters and frame
+// uniform in a 256-byte slot (VisibilityStrategy's view slots), the first of the views bound at
+// a dynamic offset; `params` and `frame` are set per pixel to the slot of the view it lies in.
+struct ViewSlot {
+    @size(64) params: VisibilityParams,
+    @size(192) frame: Frame,
+}
+const kSlotViews = 256u;  // 64 KiB, the uniform binding's limit.
+@group(1) @binding(0) var<uniform> viewSlots: array<ViewSlot, kSlotViews>;
+var<private> params: VisibilityParams;
+
+// Selects the slot of the view that `pixel` lies in.
+fn selectViewOf(pixel: vec2u) {
+    let first = viewSlots[0].params;
+    let slot = min((pixel.x - first.viewportX) / first.viewportWidth, kSlotViews - 1u);
+    params = viewSlots[slot].params;
+    frame = viewSlots[slot].frame;
+}
+#else
 @group(1) @binding(0) var<uniform> params: VisibilityParams;
+#endif
 @group(1) @binding(1) var<storage, read> geometry: array<u32>;
 @group(1) @binding(2) var<storage, read> instances: array<Transform>;
 @group(1) @binding(3) var<storage, read> tables: array<u32>;

@@ -51,11 +51,9 @@ std::vector<Camera> stripCameras(const scene::SceneData& scene) {
     std::vector<Camera> cameras;
     for (std::size_t view = 0; view < kViews; ++view) {
         const float angle = 2.1f * float(view);
-        const glm::vec3 eye =
-            center + distance * glm::vec3(std::cos(angle), 0.5f, std::sin(angle));
-        cameras.push_back(
-            Camera::lookAt(eye, center, glm::radians(45.0f), 1.0f, 0.05f * distance,
-                           4.0f * distance));
+        const glm::vec3 eye = center + distance * glm::vec3(std::cos(angle), 0.5f, std::sin(angle));
+        cameras.push_back(Camera::lookAt(eye, center, glm::radians(45.0f), 1.0f, 0.05f * distance,
+                                         4.0f * distance));
     }
     return cameras;
 }
@@ -156,8 +154,8 @@ std::map<std::string, std::string> runStrategy(gpu::Context& context,
 }
 
 image::ImageRgba8 decoded(const std::string& bytes) {
-    auto image = image::decodePng(std::span(reinterpret_cast<const std::uint8_t*>(bytes.data()),
-                                            bytes.size()));
+    auto image = image::decodePng(
+        std::span(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size()));
     EXPECT_TRUE(image.ok());
     return image.ok() ? std::move(*image) : image::ImageRgba8{};
 }
@@ -176,11 +174,10 @@ TEST(VisibilityBatchTest, StripsLookLikeTheDefaultStrategy) {
     for (const std::uint32_t samples : {4u, 1u}) {
         SCOPED_TRACE(testing::Message() << samples << " samples");
         const std::string suffix = std::to_string(samples);
-        const auto expected = runStrategy(*context, inputs, dir / ("default" + suffix), samples,
-                                          std::nullopt);
-        const auto drawn =
-            runStrategy(*context, inputs, dir / ("visibility" + suffix), samples,
-                        StrategyChoice::of(StrategyKind::Visibility, false));
+        const auto expected =
+            runStrategy(*context, inputs, dir / ("default" + suffix), samples, std::nullopt);
+        const auto drawn = runStrategy(*context, inputs, dir / ("visibility" + suffix), samples,
+                                       StrategyChoice::of(StrategyKind::Visibility, false));
         std::size_t compared = 0;
         for (const auto& [name, bytes] : expected) {
             if (name.size() < 4 || name.substr(name.size() - 4) != ".png") {

@@ -61,7 +61,8 @@ struct RenderSetup {
     std::optional<std::uint64_t> mappingBudget;
     // gpu::Context::limits(): what buffers and textures are sized against.
     gpu::DeviceLimits limits;
-    // Render pipelines created through this setup (createMeshPipeline), for stats.
+    // Render pipelines created through this setup (createMeshPipeline), and the visibility
+    // strategy's own (VisibilityPipelines), for stats.
     mutable std::uint64_t pipelinesCreated = 0;
     // The last Renderer::prepare's times; strategies add their parts.
     mutable PrepareTimes prepareTimes;

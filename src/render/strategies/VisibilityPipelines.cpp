@@ -7,6 +7,7 @@
 #include "gpu/FullscreenPipeline.h"
 #include "gpu/LayoutEntry.h"
 #include "gpu/Upload.h"
+#include "render/strategies/VisibilityTarget.h"
 
 namespace encore::render {
 
@@ -69,12 +70,13 @@ void createLayouts(const wgpu::Device& device, VisibilityPipelines& p) {
          LayoutEntry::readOnlyStorage(2, kCompute), LayoutEntry::readOnlyStorage(3, kCompute),
          LayoutEntry::storage(4, kCompute), LayoutEntry::storage(5, kCompute)},
         "visibility bins");
+    // The shading pass reads the slots of a group of views (VisibilityTarget).
     p.shadeLayout = gpu::makeBindGroupLayout(
         device,
-        {params, LayoutEntry::readOnlyStorage(1, kCompute),
-         LayoutEntry::readOnlyStorage(2, kCompute), LayoutEntry::readOnlyStorage(3, kCompute),
-         LayoutEntry::readOnlyStorage(4, kCompute), LayoutEntry::readOnlyStorage(5, kCompute),
-         LayoutEntry::readOnlyStorage(6, kCompute),
+        {LayoutEntry::uniform(0, kCompute, VisibilityTarget::kSlotBindingBytes).withDynamicOffset(),
+         LayoutEntry::readOnlyStorage(1, kCompute), LayoutEntry::readOnlyStorage(2, kCompute),
+         LayoutEntry::readOnlyStorage(3, kCompute), LayoutEntry::readOnlyStorage(4, kCompute),
+         LayoutEntry::readOnlyStorage(5, kCompute), LayoutEntry::readOnlyStorage(6, kCompute),
          LayoutEntry::readOnlyStorage(7, kCompute, kBinRecordBytes).withDynamicOffset(),
          LayoutEntry::storageTexture(8, kCompute, wgpu::TextureFormat::RGBA16Float,
                                      wgpu::StorageTextureAccess::WriteOnly,
@@ -160,7 +162,8 @@ Result<std::unique_ptr<VisibilityPipelines>> VisibilityPipelines::create(const R
     for (bool textured : {false, true}) {
         for (bool tangent : {false, true}) {
             // One shading pipeline serves every material of its bin kind: all features in.
-            std::set<std::string, std::less<>> flags = {"SAMPLE_GRADIENT", "MATERIAL_EXTENSIONS"};
+            std::set<std::string, std::less<>> flags = {"SAMPLE_GRADIENT", "MATERIAL_EXTENSIONS",
+                                                        "VIEW_SLOTS"};
             if (textured) {
                 flags.insert("MATERIAL_TEXTURES");
                 flags.insert("SAMPLER_PALETTE");
@@ -181,8 +184,8 @@ Result<std::unique_ptr<VisibilityPipelines>> VisibilityPipelines::create(const R
 
     std::array<std::uint32_t, kCounterBytes / 4> initial{};
     initial[5] = 1;  // The hardware draw's instance count.
-    p.initialCounters = gpu::createBufferFrom<std::uint32_t>(device, wgpu::BufferUsage::CopySrc,
-                                                             initial, "visibility initial counters");
+    p.initialCounters = gpu::createBufferFrom<std::uint32_t>(
+        device, wgpu::BufferUsage::CopySrc, initial, "visibility initial counters");
     return created;
 }
 

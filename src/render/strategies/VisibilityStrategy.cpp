@@ -87,6 +87,9 @@ Result<void> VisibilityStrategy::prepare(const RenderSetup& setup, const GpuScen
     }));
 
     mTableBuffer = gpu::createStorageBuffer(device, mTables.words, "visibility tables");
+    mCulledCounters =
+        gpu::createBuffer(device, wgpu::BufferUsage::CopySrc | wgpu::BufferUsage::CopyDst,
+                          kCounterBytes, "visibility counters after the cull");
     mCullUniform =
         gpu::createBuffer(device, wgpu::BufferUsage::Uniform | wgpu::BufferUsage::CopyDst,
                           sizeof(CullUniform), "visibility culling");
@@ -201,7 +204,7 @@ void VisibilityStrategy::createBindGroups() {
                                     {5, target.pixels}},
                                    "visibility bins");
     mShadeGroup = gpu::makeBindGroup(device, p.shadeLayout,
-                                     {params,
+                                     {{0, target.params, 0, VisibilityTarget::kSlotBindingBytes},
                                       geometry,
                                       {2, instances},
                                       {3, mTableBuffer},
@@ -228,33 +231,83 @@ void VisibilityStrategy::beforePass(const wgpu::CommandEncoder& commands, const 
     // sees another view than the one drawn.
     mOcclusion = views == 1 && frame.culling.occlusion && !frame.cullingCamera;
     const std::uint32_t viewWidth = frame.targetWidth / std::uint32_t(views);
-    std::vector<std::uint8_t> params(views * kParamsStride, 0);
+    // A slot per view, then one per group of views that bins and shading take at once.
+    const std::size_t groups = VisibilityTarget::groupsFor(views);
+    std::vector<std::uint8_t> params((views + groups) * kParamsStride, 0);
+    ViewParams p;
+    p.itemCount = mTables.itemCount;
+    p.targetWidth = frame.targetWidth;
+    p.viewportHeight = frame.targetHeight;
+    p.maxComputePixels = std::clamp(frame.culling.computeRasterPixels, 0.0f, kMaxComputePixels);
+    p.maxWorkgroupPixels =
+        std::clamp(frame.culling.workgroupRasterPixels, 0.0f, kMaxWorkgroupPixels);
+    p.frustumTest = views == 1 ? 1 : 0;
+    p.hardwareCapacity = mHardwareCapacity;
+    p.binCount = mTables.binCount;
+    p.samples = mSetup->sampleCount;
     for (std::size_t view = 0; view < views; ++view) {
-        ViewParams p;
-        p.itemCount = mTables.itemCount;
-        p.targetWidth = frame.targetWidth;
         p.viewportX = std::uint32_t(view) * viewWidth;
         p.viewportWidth = viewWidth;
-        p.viewportHeight = frame.targetHeight;
-        p.maxComputePixels = std::clamp(frame.culling.computeRasterPixels, 0.0f, kMaxComputePixels);
-        p.maxWorkgroupPixels =
-            std::clamp(frame.culling.workgroupRasterPixels, 0.0f, kMaxWorkgroupPixels);
-        p.frustumTest = views == 1 ? 1 : 0;
-        p.hardwareCapacity = mHardwareCapacity;
-        p.binCount = mTables.binCount;
-        p.samples = mSetup->sampleCount;
         std::memcpy(params.data() + view * kParamsStride, &p, sizeof(p));
+    }
+    for (std::size_t group = 0; group < groups; ++group) {
+        const std::size_t first = group * VisibilityTarget::kSlotViews;
+        p.viewportX = std::uint32_t(first) * viewWidth;
+        p.viewportWidth =
+            std::uint32_t(std::min(views - first, VisibilityTarget::kSlotViews)) * viewWidth;
+        std::memcpy(params.data() + (views + group) * kParamsStride, &p, sizeof(p));
     }
     mSetup->queue.WriteBuffer(mTarget->params, 0, params.data(), params.size());
     writeCullUniform(frame, views);
     commands.ClearBuffer(mTarget->visibility);
-    for (std::size_t view = 0; view < views; ++view) {
-        if (views > 1) {
-            mSetup->frame->selectView(commands, view);
+    // A multi-view frame's cull is the same for every view (no frustum test, no occlusion, the
+    // levels of one cull for all views): it runs once, and each view's raster starts from the
+    // counters it left.
+    const bool culledOnce = views > 1;
+    if (culledOnce) {
+        encodeCull(commands, frame);
+    }
+    for (std::size_t group = 0; group < groups; ++group) {
+        const std::size_t first = group * VisibilityTarget::kSlotViews;
+        const std::size_t last = std::min(views, first + VisibilityTarget::kSlotViews);
+        for (std::size_t view = first; view < last; ++view) {
+            if (views > 1) {
+                mSetup->frame->selectView(commands, view);
+            }
+            // The view's frame uniform into its slot, for the shading of the whole group.
+            commands.CopyBufferToBuffer(mSetup->frame->buffer(), 0, mTarget->params,
+                                        view * kParamsStride + VisibilityTarget::kSlotFrameOffset,
+                                        sizeof(FrameUniform));
+            encodeView(commands, frame, view, std::uint32_t(view) * viewWidth, viewWidth,
+                       culledOnce);
         }
-        encodeView(commands, frame, view, std::uint32_t(view) * viewWidth, viewWidth);
+        encodeShading(commands, frame, first, views + group,
+                      std::uint32_t(last - first) * viewWidth);
     }
     mLastViewCount = views;
+}
+
+void VisibilityStrategy::encodeCull(const wgpu::CommandEncoder& commands,
+                                    const FrameState& frame) const {
+    commands.CopyBufferToBuffer(mPipelines->initialCounters, 0, mCounters, 0, kCounterBytes);
+    wgpu::ComputePassDescriptor descriptor{};
+    descriptor.label = "visibility: culling";
+    descriptor.timestampWrites =
+        frame.timer ? frame.timer->nextPass("visibility culling") : nullptr;
+    wgpu::ComputePassEncoder pass = commands.BeginComputePass(&descriptor);
+    const std::uint32_t paramsOffset = 0;
+    pass.SetBindGroup(0, mPipelines->frameOnlyGroup);
+    pass.SetBindGroup(1, mCullGroup, 1, &paramsOffset);
+    dispatchItems(pass, mPipelines->cullFirst);
+    pass.End();
+    commands.CopyBufferToBuffer(mCounters, 0, mCulledCounters, 0, kCounterBytes);
+}
+
+void VisibilityStrategy::dispatchItems(const wgpu::ComputePassEncoder& pass,
+                                       const wgpu::ComputePipeline& cull) const {
+    const std::uint32_t itemGroups = groupsFor(mTables.itemCount, 64);
+    pass.SetPipeline(cull);
+    pass.DispatchWorkgroups(std::min(itemGroups, kMaxGroups), groupsFor(itemGroups, kMaxGroups));
 }
 
 void VisibilityStrategy::writeCullUniform(const FrameState& frame, std::size_t views) const {
@@ -318,31 +371,30 @@ void VisibilityStrategy::encodeView(const wgpu::CommandEncoder& commands,
                                     const FrameState& frame,
                                     std::size_t view,
                                     std::uint32_t viewX,
-                                    std::uint32_t viewWidth) {
+                                    std::uint32_t viewWidth,
+                                    bool culled) {
     const std::uint32_t paramsOffset = std::uint32_t(view * kParamsStride);
-    const wgpu::BindGroup& frameGroup = mSetup->frame->bindGroup();
-    const std::uint32_t itemGroups = groupsFor(mTables.itemCount, 64);
-    auto dispatchItems = [&](const wgpu::ComputePassEncoder& pass,
-                             const wgpu::ComputePipeline& cull) {
-        pass.SetPipeline(cull);
-        pass.DispatchWorkgroups(std::min(itemGroups, kMaxGroups),
-                                groupsFor(itemGroups, kMaxGroups));
-    };
     auto bindCull = [&](const wgpu::ComputePassEncoder& pass) {
         pass.SetBindGroup(0, mPipelines->frameOnlyGroup);
         pass.SetBindGroup(1, mCullGroup, 1, &paramsOffset);
     };
-    commands.CopyBufferToBuffer(mPipelines->initialCounters, 0, mCounters, 0, kCounterBytes);
-    commands.ClearBuffer(mBins);
+    const wgpu::Buffer& counters = culled ? mCulledCounters : mPipelines->initialCounters;
+    commands.CopyBufferToBuffer(counters, 0, mCounters, 0, kCounterBytes);
     {
         // Everything in the frustum, or (two phases) what of it was visible last frame.
         wgpu::ComputePassDescriptor descriptor{};
         descriptor.label = "visibility: culling and compute raster";
         descriptor.timestampWrites =
-            frame.timer ? frame.timer->nextPass("visibility culling and raster") : nullptr;
+            frame.timer ? frame.timer->nextPass(culled ? "visibility compute raster"
+                                                       : "visibility culling and raster")
+                        : nullptr;
         wgpu::ComputePassEncoder pass = commands.BeginComputePass(&descriptor);
-        bindCull(pass);
-        dispatchItems(pass, mPipelines->cullFirst);
+        if (!culled) {
+            bindCull(pass);
+            dispatchItems(pass, mPipelines->cullFirst);
+        } else {
+            pass.SetBindGroup(0, mPipelines->frameOnlyGroup);
+        }
         encodeRaster(pass, paramsOffset);
         pass.End();
     }
@@ -366,37 +418,45 @@ void VisibilityStrategy::encodeView(const wgpu::CommandEncoder& commands,
         encodeHardwareRaster(commands, frame, paramsOffset, viewX, viewWidth,
                              "visibility hardware raster (second phase)");
     }
-    {
-        wgpu::ComputePassDescriptor descriptor{};
-        descriptor.label = "visibility: binning and shading";
-        descriptor.timestampWrites =
-            frame.timer ? frame.timer->nextPass("visibility shading") : nullptr;
-        wgpu::ComputePassEncoder pass = commands.BeginComputePass(&descriptor);
-        pass.SetBindGroup(0, mBinGroup, 1, &paramsOffset);
-        const std::uint32_t columns = groupsFor(viewWidth, 8);
-        const std::uint32_t rows = groupsFor(mTarget->height, 8);
-        pass.SetPipeline(mPipelines->binCount);
-        pass.DispatchWorkgroups(columns, rows);
-        pass.SetPipeline(mPipelines->binOffsets);
-        pass.DispatchWorkgroups(1);
-        pass.SetPipeline(mPipelines->binScatter);
-        pass.DispatchWorkgroups(columns, rows);
-        pass.SetBindGroup(0, frameGroup);
-        const MaterialResources& materials = mScene->materials();
-        for (std::uint32_t bin : mTables.bins) {
-            const scene::MaterialId material(bin / 2);
-            const bool textured = materials.textured(material);
-            pass.SetPipeline(mPipelines->shade[textured][bin & 1]);
-            const std::uint32_t offsets[] = {paramsOffset, std::uint32_t(bin * kBinStride)};
-            pass.SetBindGroup(1, mShadeGroup, 2, offsets);
-            pass.SetBindGroup(2, materials.bindGroup(material));
-            pass.DispatchWorkgroups(mTarget->shadeGroups);
-        }
-        pass.End();
-    }
     commands.CopyBufferToBuffer(mCounters, kComputeTriangles, mTarget->triangleCounts, view * 8, 4);
     commands.CopyBufferToBuffer(mCounters, kHardwareTriangles, mTarget->triangleCounts,
                                 view * 8 + 4, 4);
+}
+
+void VisibilityStrategy::encodeShading(const wgpu::CommandEncoder& commands,
+                                       const FrameState& frame,
+                                       std::size_t firstView,
+                                       std::size_t binSlot,
+                                       std::uint32_t groupWidth) const {
+    commands.ClearBuffer(mBins);
+    wgpu::ComputePassDescriptor descriptor{};
+    descriptor.label = "visibility: binning and shading";
+    descriptor.timestampWrites =
+        frame.timer ? frame.timer->nextPass("visibility shading") : nullptr;
+    wgpu::ComputePassEncoder pass = commands.BeginComputePass(&descriptor);
+    const std::uint32_t binOffset = std::uint32_t(binSlot * kParamsStride);
+    pass.SetBindGroup(0, mBinGroup, 1, &binOffset);
+    const std::uint32_t columns = groupsFor(groupWidth, 8);
+    const std::uint32_t rows = groupsFor(mTarget->height, 8);
+    pass.SetPipeline(mPipelines->binCount);
+    pass.DispatchWorkgroups(columns, rows);
+    pass.SetPipeline(mPipelines->binOffsets);
+    pass.DispatchWorkgroups(1);
+    pass.SetPipeline(mPipelines->binScatter);
+    pass.DispatchWorkgroups(columns, rows);
+    pass.SetBindGroup(0, mSetup->frame->bindGroup());
+    const MaterialResources& materials = mScene->materials();
+    const std::uint32_t slotsOffset = std::uint32_t(firstView * kParamsStride);
+    for (std::uint32_t bin : mTables.bins) {
+        const scene::MaterialId material(bin / 2);
+        const bool textured = materials.textured(material);
+        pass.SetPipeline(mPipelines->shade[textured][bin & 1]);
+        const std::uint32_t offsets[] = {slotsOffset, std::uint32_t(bin * kBinStride)};
+        pass.SetBindGroup(1, mShadeGroup, 2, offsets);
+        pass.SetBindGroup(2, materials.bindGroup(material));
+        pass.DispatchWorkgroups(mTarget->shadeGroups);
+    }
+    pass.End();
 }
 
 std::optional<GpuTriangleCounts> VisibilityStrategy::gpuTriangleCounts() const {

@@ -46,7 +46,8 @@ class VisibilityStrategy final : public Strategy {
     // maxStorageBufferBindingSize, the shaded colour (a texel per sample: twice the target's
     // size each way at 4 samples) maxTextureDimension2D.
     Result<void> checkTarget(std::uint32_t width, std::uint32_t height) const override;
-    // The last view's shading bins (CopySrc, tables().binCount records of kBinRecordBytes, each
+    // The last group's shading bins (every view of a frame of up to VisibilityTarget::kSlotViews;
+    // CopySrc, tables().binCount records of kBinRecordBytes, each
     // starting with its count of entries shaded: one per covered pixel and distinct triangle).
     static constexpr std::uint64_t kBinRecordBytes = 256;
     const wgpu::Buffer& bins() const { return mBins; }
@@ -82,11 +83,26 @@ class VisibilityStrategy final : public Strategy {
   private:
     void ensureTarget(std::uint32_t width, std::uint32_t height, std::size_t views);
     void createBindGroups();
+    // A multi-view frame's one cull, before its views (each view's raster starts from the
+    // counters it leaves).
+    void encodeCull(const wgpu::CommandEncoder& commands, const FrameState& frame) const;
+    void dispatchItems(const wgpu::ComputePassEncoder& pass,
+                       const wgpu::ComputePipeline& cull) const;
+    // Culls (unless `culled`) and rasterises one view.
     void encodeView(const wgpu::CommandEncoder& commands,
                     const FrameState& frame,
                     std::size_t view,
                     std::uint32_t viewX,
-                    std::uint32_t viewWidth);
+                    std::uint32_t viewWidth,
+                    bool culled);
+    // Bins and shades the views from `firstView` (at most VisibilityTarget::kSlotViews of them,
+    // `groupWidth` pixels together) at once: their pixels binned with the parameters of slot
+    // `binSlot`, one shading dispatch per bin.
+    void encodeShading(const wgpu::CommandEncoder& commands,
+                       const FrameState& frame,
+                       std::size_t firstView,
+                       std::size_t binSlot,
+                       std::uint32_t groupWidth) const;
     // The raster dispatches of the units listed so far in this phase: grids of a fixed size
     // that stride over the lists (visibility_raster.wgsl says why not indirect dispatches).
     void encodeRaster(const wgpu::ComputePassEncoder& pass, std::uint32_t paramsOffset) const;
@@ -108,6 +124,7 @@ class VisibilityStrategy final : public Strategy {
     wgpu::Buffer mTableBuffer;
     wgpu::Buffer mUnits;
     wgpu::Buffer mCounters;
+    wgpu::Buffer mCulledCounters;  // After a multi-view frame's cull.
     wgpu::Buffer mHardwareList;
     wgpu::Buffer mWorkgroupList;  // Triangles a workgroup covers (visibility_raster.wgsl).
     std::uint32_t mHardwareCapacity = 0;

@@ -15,8 +15,10 @@ bool VisibilityTarget::ensure(const RenderSetup& setup,
     bool remade = false;
     if (views > viewCapacity) {
         viewCapacity = views;
+        // The shading's binding of kSlotViews slots from any group's first view fits.
         params = gpu::createBuffer(device, wgpu::BufferUsage::Uniform | wgpu::BufferUsage::CopyDst,
-                                   views * kParamsStride, "visibility view parameters");
+                                   (views + groupsFor(views)) * kParamsStride + kSlotBindingBytes,
+                                   "visibility view parameters");
         triangleCounts =
             gpu::createBuffer(device, wgpu::BufferUsage::CopyDst | wgpu::BufferUsage::CopySrc,
                               views * 8, "visibility triangle counts");
@@ -54,7 +56,8 @@ bool VisibilityTarget::ensure(const RenderSetup& setup,
     hardwareDepth = device.CreateTexture(&texture);
     hardwareDepthView = hardwareDepth.CreateView();
 
-    auto built = DepthPyramid::createFromVisibility(device, *setup.shaders, visibility, width, height);
+    auto built =
+        DepthPyramid::createFromVisibility(device, *setup.shaders, visibility, width, height);
     // The shader is embedded: a failure here is a bug, not an input error.
     ENCORE_CHECK(built.ok(), "the depth pyramid cannot be built: " + built.error().message);
     pyramid = std::move(*built);

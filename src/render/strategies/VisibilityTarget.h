@@ -18,8 +18,17 @@
 namespace encore::render {
 
 struct VisibilityTarget {
-    // One 256-byte slot of the view parameters per view (a dynamic uniform offset).
+    // The parameter slots: one per view (a dynamic uniform offset), its VisibilityViewParams
+    // and, from kSlotFrameOffset, the view's frame uniform (copied there while encoding), then
+    // one per group of views that binning and shading take at once, kSlotViews at most: as many
+    // as one uniform binding of kSlotBindingBytes holds (visibility_geometry.wgsl's viewSlots).
     static constexpr std::uint64_t kParamsStride = 256;
+    static constexpr std::uint64_t kSlotFrameOffset = 64;
+    static constexpr std::uint64_t kSlotBindingBytes = 65536;
+    static constexpr std::size_t kSlotViews = kSlotBindingBytes / kParamsStride;
+    static std::size_t groupsFor(std::size_t views) {
+        return (views + kSlotViews - 1) / kSlotViews;
+    }
 
     // Makes the resources for `width` x `height` (`views` side by side) where they are not
     // already; returns whether anything was made again (bind groups over it must be too).
@@ -34,7 +43,7 @@ struct VisibilityTarget {
     std::size_t viewCapacity = 0;
     // Workgroups of each bin's shading grid: at most the samples of the target.
     std::uint32_t shadeGroups = 1;
-    wgpu::Buffer params;          // VisibilityViewParams per view.
+    wgpu::Buffer params;          // The parameter slots, and a binding's worth past them.
     wgpu::Buffer triangleCounts;  // Per view: compute, hardware.
     wgpu::Buffer visibility;
     wgpu::Buffer pixels;
