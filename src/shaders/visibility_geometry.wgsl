@@ -44,13 +44,18 @@ struct ViewSlot {
 const kSlotViews = 256u;  // 64 KiB, the uniform binding's limit.
 @group(1) @binding(0) var<uniform> viewSlots: array<ViewSlot, kSlotViews>;
 var<private> params: VisibilityParams;
+var<private> selectedSlot = 0xffffffffu;
 
-// Selects the slot of the view that `pixel` lies in.
+// Selects the slot of the view that `pixel` lies in; copies it only when it changes (a thread's
+// entries mostly lie in one view: every one in frames of one view).
 fn selectViewOf(pixel: vec2u) {
-    let first = viewSlots[0].params;
-    let slot = min((pixel.x - first.viewportX) / first.viewportWidth, kSlotViews - 1u);
-    params = viewSlots[slot].params;
-    frame = viewSlots[slot].frame;
+    let slot = min((pixel.x - viewSlots[0].params.viewportX) / viewSlots[0].params.viewportWidth,
+                   kSlotViews - 1u);
+    if (slot != selectedSlot) {
+        selectedSlot = slot;
+        params = viewSlots[slot].params;
+        frame = viewSlots[slot].frame;
+    }
 }
 #else
 @group(1) @binding(0) var<uniform> params: VisibilityParams;

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -24,6 +25,7 @@
 #include "image/ImageDecoders.h"
 #include "render/strategies/VisibilityPipelines.h"
 #include "render/strategies/VisibilityStrategy.h"
+#include "render/strategies/VisibilityTarget.h"
 
 namespace encore::render {
 namespace {
@@ -116,6 +118,58 @@ TEST(VisibilityBatchTest, KeptPipelinesAreCreatedOnceAndDrawTheSamePictures) {
                   0u);
     }
     EXPECT_TRUE(context->checkNoErrors("kept visibility pipelines").ok());
+}
+
+// Binning and shading take up to VisibilityTarget::kSlotViews views at once; a frame of more
+// does them in groups. Each view of a frame of 260 (two groups) is pixel for pixel the same view
+// in a frame of 130 (one group).
+TEST(VisibilityBatchTest, FramesOfMoreViewsThanASlotBindingShadeInGroups) {
+    ENCORE_REQUIRE_VULKAN(context);
+    constexpr std::size_t kManyViews = 260;
+    static_assert(kManyViews > VisibilityTarget::kSlotViews);
+    constexpr std::uint32_t kWidth = 4;
+    constexpr std::uint32_t kHeight = 8;
+    const scene::SceneData scene = test::generatedScene(denseModel(3, 8));
+    const glm::vec3 center = scene.bounds.center();
+    const float distance = 0.9f * glm::length(scene.bounds.max - scene.bounds.min);
+    std::vector<Camera> cameras;
+    for (std::size_t view = 0; view < kManyViews; ++view) {
+        const float angle = 0.05f * float(view);
+        const glm::vec3 eye = center + distance * glm::vec3(std::cos(angle), 0.4f, std::sin(angle));
+        cameras.push_back(Camera::lookAt(eye, center, glm::radians(20.0f), float(kWidth) / kHeight,
+                                         0.05f * distance, 4.0f * distance));
+    }
+    auto render = [&](std::span<const Camera> views) {
+        auto renderer = Renderer::create(
+            *context, test::pixelTestOptions(kWidth * std::uint32_t(views.size()), kHeight));
+        EXPECT_TRUE(renderer.ok());
+        EXPECT_TRUE(renderer->prepare(scene, StrategyKind::Visibility).ok());
+        renderer->renderViews(views);
+        auto image = renderer->readImage();
+        EXPECT_TRUE(image.ok());
+        return std::move(*image);
+    };
+    const image::ImageRgba8 all = render(cameras);
+    const std::size_t half = kManyViews / 2;
+    const image::ImageRgba8 first = render(std::span(cameras).first(half));
+    const image::ImageRgba8 second = render(std::span(cameras).subspan(half));
+    std::size_t differing = 0;
+    std::size_t covered = 0;
+    const test::Rgba background = test::pixelAt(first, 0, 0) == test::pixelAt(second, 0, 0)
+                                      ? test::pixelAt(first, 0, 0)
+                                      : test::Rgba{};
+    for (std::uint32_t y = 0; y < kHeight; ++y) {
+        for (std::uint32_t x = 0; x < all.width; ++x) {
+            const std::uint32_t halfWidth = kWidth * std::uint32_t(half);
+            const test::Rgba expected = x < halfWidth ? test::pixelAt(first, x, y)
+                                                      : test::pixelAt(second, x - halfWidth, y);
+            differing += test::pixelAt(all, x, y) != expected;
+            covered += x >= kWidth * VisibilityTarget::kSlotViews && expected != background;
+        }
+    }
+    EXPECT_EQ(differing, 0u);
+    EXPECT_GT(covered, 0u) << "the second group's views show nothing";
+    EXPECT_TRUE(context->checkNoErrors("views in groups").ok());
 }
 
 // Writes a generated dense model as `path`.

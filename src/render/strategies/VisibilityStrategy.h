@@ -20,7 +20,9 @@ namespace encore::render {
 // (depth, id) into a 64-bit-per-pixel storage buffer with atomicStoreMax; triangles that cross
 // the near or far plane or span more than maxComputePixels go to one indirect hardware draw whose
 // fragments do the same atomic; compute passes then sort the covered pixels into bins by
-// material and shade each bin (the PBR code of mesh.wgsl) into a colour texture. In the render
+// material and shade each bin (the PBR code of mesh.wgsl) into a colour texture, once for all
+// the views of a frame (a multi-view frame also culls once: docs/visibility.md, "In batches").
+// In the render
 // pass a fullscreen triangle copies colour and depth of covered samples, and what the compute path
 // does not take (MASK, BLEND, skinned or morphed primitives) is drawn as `materials` draws it.
 // With occlusion culling (CullingOptions, frames of one view) the cull and raster run twice:
