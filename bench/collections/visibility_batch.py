@@ -56,6 +56,9 @@ def main():
     parser.add_argument("--samples", type=int, nargs="+", default=[4, 1])
     parser.add_argument("--repeats", type=int, default=2)
     parser.add_argument("--renderers", type=int, help="encore batch --renderers (default: its own)")
+    parser.add_argument("--light-copies", type=int, default=1,
+                        help="list the ten models this many times (folders of links: the "
+                             "issue's 1,000-file job is 100)")
     parser.add_argument("--json")
     arguments = parser.parse_args()
 
@@ -67,7 +70,20 @@ def main():
                         "--tessellation", str(arguments.tessellation), "--seed", str(seed), "-o",
                         path], capture_output=True, check=True)
         dense.append(path)
-    lists = {"dense": dense, "light": model_files(os.path.abspath(arguments.models))}
+    light = []
+    for copy in range(arguments.light_copies):
+        for model in model_files(os.path.abspath(arguments.models)):
+            if arguments.light_copies == 1:
+                light.append(model)
+                continue
+            # A link to the model's folder: a distinct path (a model of its own for the batch)
+            # whose .gltf finds its buffers and images beside it.
+            link = os.path.join(folder, "light%03d" % copy, os.path.basename(os.path.dirname(
+                os.path.dirname(model))))
+            os.makedirs(os.path.dirname(link), exist_ok=True)
+            os.symlink(os.path.dirname(model), link)
+            light.append(os.path.join(link, os.path.basename(model)))
+    lists = {"dense": dense, "light": light}
     listings = {}
     for name, files in lists.items():
         listings[name] = os.path.join(folder, name + ".txt")
