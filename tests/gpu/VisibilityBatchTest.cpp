@@ -7,11 +7,13 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <span>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "BatchOutput.h"
@@ -22,6 +24,7 @@
 #include "VisibilityTestSupport.h"
 #include "encore/batch/Batch.h"
 #include "encore/render/Renderer.h"
+#include "encore/render/VisibilityFeatures.h"
 #include "image/ImageDecoders.h"
 #include "render/strategies/VisibilityPipelines.h"
 #include "render/strategies/VisibilityStrategy.h"
@@ -170,6 +173,37 @@ TEST(VisibilityBatchTest, FramesOfMoreViewsThanASlotBindingShadeInGroups) {
     EXPECT_EQ(differing, 0u);
     EXPECT_GT(covered, 0u) << "the second group's views show nothing";
     EXPECT_TRUE(context->checkNoErrors("views in groups").ok());
+}
+
+// The kept objects belong to the device: a renderer rebuilt after a device loss makes them again
+// on the new one and draws the same strip.
+TEST(VisibilityBatchTest, KeptObjectsAreMadeAgainAfterADeviceLoss) {
+    ENCORE_REQUIRE_VULKAN(shared);
+    gpu::ContextOptions contextOptions;
+    requestVisibilityFeatures(contextOptions);
+    // An own context: losing the process-wide one would take the other tests with it.
+    auto context = gpu::Context::create(contextOptions);
+    ASSERT_TRUE(context.ok()) << context.error().message;
+    const scene::SceneData scene = test::generatedScene(denseModel(4, 8));
+    RendererOptions options = stripOptions(4, true);
+    options.environment = nullptr;  // The shared test environment lives on another device.
+    options.environmentOptions = test::testEnvironmentOptions();
+    auto renderer = Renderer::create(*context, options);
+    ASSERT_TRUE(renderer.ok()) << renderer.error().message;
+    ASSERT_TRUE(renderer->prepare(scene, StrategyKind::Visibility).ok());
+    const image::ImageRgba8 before = renderStrip(*renderer, scene);
+
+    context->device().ForceLoss(wgpu::DeviceLostReason::Unknown, "lost on purpose by a test");
+    for (int attempt = 0; attempt < 200 && !context->deviceLost(); ++attempt) {
+        context->instance().ProcessEvents();
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    ASSERT_TRUE(context->deviceLost());
+    auto recovered = renderer->recoverFromDeviceLoss();
+    ASSERT_TRUE(recovered.ok()) << recovered.error().message;
+    EXPECT_GE(renderer->setup().pipelinesCreated, VisibilityPipelines::kPipelineCount);
+    EXPECT_EQ(test::differingPixels(renderStrip(*renderer, scene), before), 0u);
+    EXPECT_TRUE(context->checkNoErrors("visibility after a device loss").ok());
 }
 
 // Writes a generated dense model as `path`.
