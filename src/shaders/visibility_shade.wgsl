@@ -79,11 +79,18 @@ fn shadeMain(@builtin(workgroup_id) group: vec3u, @builtin(num_workgroups) group
 // Shades the bin's entry i: one visibility-buffer sample's triangle at its pixel.
 fn shadeEntry(i: u32) {
     let entry = pixels[bin.first + i];
+#if VIEW_SLOTS
     // The samples and the target's width are the same in every view.
     let pixelIndex = entry / viewSlots[0].params.samples;
     let targetWidth = viewSlots[0].params.targetWidth;
+#else
+    let pixelIndex = entry / params.samples;  // One view's parameters (the strategy sets slots).
+    let targetWidth = params.targetWidth;
+#endif
     let pixel = vec2u(pixelIndex % targetWidth, pixelIndex / targetWidth);
+#if VIEW_SLOTS
     selectViewOf(pixel);
+#endif
     let id = visibility[entry].x;
     let unit = units[id / kUnitTriangles];
     let item = loadItem(unit.x);
