@@ -13,8 +13,11 @@ namespace encore::render {
 FrameUniforms::FrameUniforms(const wgpu::Device& device,
                              const BindGroupLayouts& layouts,
                              const SceneLighting& lighting) {
-    mBuffer = gpu::createBuffer(device, wgpu::BufferUsage::Uniform | wgpu::BufferUsage::CopyDst,
-                                sizeof(FrameUniform), "frame uniforms");
+    // CopySrc: the visibility strategy copies each view's into the slot its shading reads.
+    mBuffer = gpu::createBuffer(
+        device,
+        wgpu::BufferUsage::Uniform | wgpu::BufferUsage::CopyDst | wgpu::BufferUsage::CopySrc,
+        sizeof(FrameUniform), "frame uniforms");
     bindLighting(device, layouts, lighting);
 }
 

@@ -13,6 +13,7 @@
 #include "render/SceneLimits.h"
 #include "render/TransmissionPass.h"
 #include "render/TriangleHistory.h"
+#include "render/strategies/KeptStrategyObjects.h"
 
 namespace encore::render {
 
@@ -118,6 +119,8 @@ Result<void> Renderer::build(const RendererOptions& options) {
     if (options.keepPipelines) {
         renderer.mKeptPipelines = std::make_unique<PipelineCache>(setup);
         setup.keptPipelines = renderer.mKeptPipelines.get();
+        renderer.mKeptObjects = std::make_unique<KeptStrategyObjects>();
+        setup.keptObjects = renderer.mKeptObjects.get();
     }
     ENCORE_TRY_ASSIGN(auto mipmaps, MipmapGenerator::create(context.device(), *renderer.mShaders));
     renderer.mMipmaps = std::make_unique<MipmapGenerator>(std::move(mipmaps));
@@ -158,6 +161,7 @@ Result<void> Renderer::recoverFromDeviceLoss() {
     mFrame.reset();
     mLighting.reset();
     mKeptPipelines.reset();
+    mKeptObjects.reset();
     mMipmaps.reset();
     mSetup.reset();
     mLayouts.reset();

@@ -9,4 +9,9 @@ struct Frame {
     // (several views side by side); the transmission pass's copy is read through it.
     viewRect: vec4f,
 }
+#if VIEW_SLOTS
+// Set per pixel from the view it lies in (visibility_shade.wgsl shades several views at once).
+var<private> frame: Frame;
+#else
 @group(0) @binding(0) var<uniform> frame: Frame;
+#endif

@@ -33,7 +33,33 @@ struct Item {
     mirrored: u32,
 }
 
+#if VIEW_SLOTS
+// A pass over several views side by side (the shading pass): each view's parameters and frame
+// uniform in a 256-byte slot (VisibilityStrategy's view slots), the first of the views bound at
+// a dynamic offset; `params` and `frame` are set per pixel to the slot of the view it lies in.
+struct ViewSlot {
+    @size(64) params: VisibilityParams,
+    @size(192) frame: Frame,
+}
+const kSlotViews = 256u;  // 64 KiB, the uniform binding's limit.
+@group(1) @binding(0) var<uniform> viewSlots: array<ViewSlot, kSlotViews>;
+var<private> params: VisibilityParams;
+var<private> selectedSlot = 0xffffffffu;
+
+// Selects the slot of the view that `pixel` lies in; copies it only when it changes (a thread's
+// entries mostly lie in one view: every one in frames of one view).
+fn selectViewOf(pixel: vec2u) {
+    let slot = min((pixel.x - viewSlots[0].params.viewportX) / viewSlots[0].params.viewportWidth,
+                   kSlotViews - 1u);
+    if (slot != selectedSlot) {
+        selectedSlot = slot;
+        params = viewSlots[slot].params;
+        frame = viewSlots[slot].frame;
+    }
+}
+#else
 @group(1) @binding(0) var<uniform> params: VisibilityParams;
+#endif
 @group(1) @binding(1) var<storage, read> geometry: array<u32>;
 @group(1) @binding(2) var<storage, read> instances: array<Transform>;
 @group(1) @binding(3) var<storage, read> tables: array<u32>;

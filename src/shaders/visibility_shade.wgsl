@@ -1,8 +1,9 @@
 // The visibility strategy's resolve: one thread per entry of one shading bin (one material;
 // HAS_TANGENT as the bin says), a fixed grid per bin striding over its entries: a covered pixel,
-// or with several
-// samples each distinct triangle of a pixel (visibility_bins.wgsl), whose colour goes to the
-// texel of the first sample it covers. It rebuilds the triangle from the visibility buffer's
+// or with several samples each distinct triangle of a pixel (visibility_bins.wgsl), of any of
+// the views side by side that the bins cover (the view slots of visibility_geometry.wgsl, under
+// VIEW_SLOTS, which the strategy always sets), whose colour goes to the texel of the first
+// sample it covers. It rebuilds the triangle from the visibility buffer's
 // id, its perspective-correct barycentrics at the pixel centre (where multisampled hardware
 // shades too) and their screen-space derivatives (texture LOD, the tangent frame),
 // interpolates what mesh.wgsl's vertex shader outputs, and shades with the same code as
@@ -78,8 +79,18 @@ fn shadeMain(@builtin(workgroup_id) group: vec3u, @builtin(num_workgroups) group
 // Shades the bin's entry i: one visibility-buffer sample's triangle at its pixel.
 fn shadeEntry(i: u32) {
     let entry = pixels[bin.first + i];
-    let pixelIndex = entry / params.samples;
-    let pixel = vec2u(pixelIndex % params.targetWidth, pixelIndex / params.targetWidth);
+#if VIEW_SLOTS
+    // The samples and the target's width are the same in every view.
+    let pixelIndex = entry / viewSlots[0].params.samples;
+    let targetWidth = viewSlots[0].params.targetWidth;
+#else
+    let pixelIndex = entry / params.samples;  // One view's parameters (the strategy sets slots).
+    let targetWidth = params.targetWidth;
+#endif
+    let pixel = vec2u(pixelIndex % targetWidth, pixelIndex / targetWidth);
+#if VIEW_SLOTS
+    selectViewOf(pixel);
+#endif
     let id = visibility[entry].x;
     let unit = units[id / kUnitTriangles];
     let item = loadItem(unit.x);

@@ -16,6 +16,7 @@
 namespace encore::render {
 
 class MipmapGenerator;
+class KeptStrategyObjects;
 class PipelineCache;
 
 // Where Renderer::prepare's time went, in milliseconds: the GPU scene's parts (geometry,
@@ -60,13 +61,18 @@ struct RenderSetup {
     std::optional<std::uint64_t> mappingBudget;
     // gpu::Context::limits(): what buffers and textures are sized against.
     gpu::DeviceLimits limits;
-    // Render pipelines created through this setup (createMeshPipeline), for stats.
+    // Render pipelines created through this setup (createMeshPipeline), and the visibility
+    // strategy's own (VisibilityPipelines), for stats.
     mutable std::uint64_t pipelinesCreated = 0;
     // The last Renderer::prepare's times; strategies add their parts.
     mutable PrepareTimes prepareTimes;
     // Pipelines that outlive the prepared strategy (RendererOptions::keepPipelines), owned by
     // the Renderer; null: each strategy caches its own.
     PipelineCache* keptPipelines = nullptr;
+    // Strategies' scene-independent objects (the visibility strategy's pipelines and
+    // target-sized buffers) kept with the pipelines above, owned by the Renderer; null: each
+    // strategy makes its own.
+    KeptStrategyObjects* keptObjects = nullptr;
     // Fills textures' mip chains, owned by the Renderer so that its pipelines outlive each
     // scene; null: MaterialResources makes one per scene.
     MipmapGenerator* mipmaps = nullptr;

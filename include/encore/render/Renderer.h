@@ -58,8 +58,9 @@ struct RendererOptions {
     EnvironmentOptions environmentOptions;
     // Where animation is evaluated (setAnimationEvaluation changes it later).
     AnimationEvaluation animation = AnimationEvaluation::Cpu;
-    // Keep the render pipelines of the materials-based and instancing strategies from one
-    // prepare() to the next: a renderer that prepares many scenes in turn (encore batch) creates
+    // Keep the render pipelines of the materials-based and instancing strategies (and the
+    // visibility strategy's pipelines and target-sized buffers) from one prepare() to the
+    // next: a renderer that prepares many scenes in turn (encore batch) creates
     // each distinct pipeline once, which matters where creating one compiles shaders for
     // hundreds of milliseconds (lavapipe). Off by default, so that each prepare's
     // RenderSetup::pipelinesCreated counts what that strategy needs.
@@ -343,7 +344,8 @@ class Renderer {
     std::unique_ptr<PassTargetTextures> mPassTargets;  // RendererOptions::passTargets only.
     std::unique_ptr<EnvironmentBackground> mBackground;
     std::unique_ptr<RenderSetup> mSetup;  // Stable address: strategies keep pointers to it.
-    std::unique_ptr<PipelineCache> mKeptPipelines;  // With RendererOptions::keepPipelines.
+    std::unique_ptr<PipelineCache> mKeptPipelines;      // With RendererOptions::keepPipelines.
+    std::unique_ptr<KeptStrategyObjects> mKeptObjects;  // Likewise.
     std::unique_ptr<MipmapGenerator> mMipmaps;
     std::unique_ptr<scene::AnimationPlayer> mPlayer;
     std::unique_ptr<GpuScene> mGpuScene;  // Before mStrategy, which records from it.

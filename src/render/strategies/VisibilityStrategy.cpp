@@ -3,62 +3,27 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstring>
-#include <set>
 #include <string>
 
 #include "encore/gpu/DeviceLimits.h"
 #include "encore/render/VisibilityFeatures.h"
 #include "gpu/BindingResource.h"
-#include "gpu/FullscreenPipeline.h"
-#include "gpu/LayoutEntry.h"
 #include "gpu/Upload.h"
 #include "render/Frustum.h"
 #include "render/LodSelection.h"
+#include "render/strategies/KeptStrategyObjects.h"
 
 namespace encore::render {
 
 namespace {
 
-// visibility_params.wgsl's VisibilityParams, one per view at a 256-byte stride.
-struct ViewParams {
-    std::uint32_t itemCount = 0;
-    std::uint32_t targetWidth = 0;
-    std::uint32_t viewportX = 0;
-    std::uint32_t viewportY = 0;
-    std::uint32_t viewportWidth = 0;
-    std::uint32_t viewportHeight = 0;
-    float maxComputePixels = 0.0f;
-    std::uint32_t frustumTest = 0;
-    std::uint32_t hardwareCapacity = 0;
-    std::uint32_t binCount = 0;
-    float maxWorkgroupPixels = 0.0f;
-    std::uint32_t samples = 1;
-};
-static_assert(sizeof(ViewParams) == 48);
+using ViewParams = VisibilityViewParams;
+using CullUniform = VisibilityCullUniform;
 
-// visibility_cull.wgsl's Culling, one per frame (a multi-view frame's views differ only in
-// their viewports: no frustum test, no occlusion, the levels of detail of GPU culling's one cull).
-struct CullUniform {
-    std::array<glm::vec4, 6> planes{};
-    glm::mat4 viewProjection{1.0f};
-    std::uint32_t lodViewCount = 0;
-    float lodPixelsPerUnit = 0.0f;
-    float lodThresholdPixels = 0.0f;
-    std::uint32_t orthographic = 0;
-    std::uint32_t occlusion = 0;
-    std::uint32_t frustumTest = 0;
-    float lodDistanceSlack = 0.0f;
-    std::uint32_t padding = 0;
-    std::array<glm::vec4, LodSelection::kMaxViews> lodViews{};
-};
-static_assert(offsetof(CullUniform, lodViewCount) == 160);
-static_assert(offsetof(CullUniform, lodViews) == 192);
-static_assert(sizeof(CullUniform) == 448);
-
-constexpr std::uint64_t kParamsStride = 256;
+constexpr std::uint64_t kParamsStride = VisibilityTarget::kParamsStride;
 constexpr std::uint64_t kBinStride = 256;  // visibility_bin_record.wgsl's record.
 static_assert(kBinStride == VisibilityStrategy::kBinRecordBytes);
-constexpr std::uint64_t kCounterBytes = 64;
+constexpr std::uint64_t kCounterBytes = VisibilityPipelines::kCounterBytes;
 // Byte offsets in visibility_raster.wgsl's Counters.
 constexpr std::uint64_t kHardwareArguments = 16;
 constexpr std::uint64_t kComputeTriangles = 32;
@@ -67,8 +32,6 @@ constexpr std::uint64_t kHardwareTriangles = 40;
 // overflow (visibility_raster.wgsl) rather than written.
 constexpr std::uint64_t kMaxHardwareTriangles = 4u << 20;
 constexpr std::uint32_t kMaxGroups = 65535;
-
-constexpr auto kCompute = wgpu::ShaderStage::Compute;
 
 std::uint32_t groupsFor(std::uint64_t threads, std::uint32_t size) {
     return std::uint32_t((threads + size - 1) / size);
@@ -87,18 +50,6 @@ std::uint32_t persistentWorkgroups(const wgpu::Device& device) {
 std::uint32_t stridingGrid(std::uint64_t work, std::uint32_t perGroup, std::uint32_t limit) {
     return std::clamp<std::uint32_t>(
         std::uint32_t(std::min<std::uint64_t>(groupsFor(work, perGroup), limit)), 1, limit);
-}
-
-wgpu::ComputePipeline computePipeline(const wgpu::Device& device,
-                                      const wgpu::ShaderModule& module,
-                                      const char* entryPoint,
-                                      std::initializer_list<wgpu::BindGroupLayout> groups) {
-    wgpu::ComputePipelineDescriptor descriptor{};
-    descriptor.label = entryPoint;
-    descriptor.layout = gpu::makePipelineLayout(device, groups);
-    descriptor.compute.module = module;
-    descriptor.compute.entryPoint = entryPoint;
-    return device.CreateComputePipeline(&descriptor);
 }
 
 }  // namespace
@@ -136,6 +87,9 @@ Result<void> VisibilityStrategy::prepare(const RenderSetup& setup, const GpuScen
     }));
 
     mTableBuffer = gpu::createStorageBuffer(device, mTables.words, "visibility tables");
+    mCulledCounters =
+        gpu::createBuffer(device, wgpu::BufferUsage::CopySrc | wgpu::BufferUsage::CopyDst,
+                          kCounterBytes, "visibility counters after the cull");
     mCullUniform =
         gpu::createBuffer(device, wgpu::BufferUsage::Uniform | wgpu::BufferUsage::CopyDst,
                           sizeof(CullUniform), "visibility culling");
@@ -143,7 +97,6 @@ Result<void> VisibilityStrategy::prepare(const RenderSetup& setup, const GpuScen
     mItemVisibility = gpu::createBuffer(device, wgpu::BufferUsage::Storage,
                                         std::max<std::uint64_t>(mTables.itemCount, 1) * 4,
                                         "visibility of items last frame");
-    mPyramid = DepthPyramid();
     mUnits =
         gpu::createBuffer(device, wgpu::BufferUsage::Storage,
                           std::max<std::uint64_t>(mTables.unitCount, 1) * 8, "visibility units");
@@ -159,22 +112,29 @@ Result<void> VisibilityStrategy::prepare(const RenderSetup& setup, const GpuScen
                                   wgpu::BufferUsage::Storage | wgpu::BufferUsage::Indirect |
                                       wgpu::BufferUsage::CopyDst | wgpu::BufferUsage::CopySrc,
                                   kCounterBytes, "visibility counters");
-    // Unit count 0, hardware draw (0 vertices, 1 instance, 0, 0).
-    std::array<std::uint32_t, kCounterBytes / 4> initial{};
-    initial[5] = 1;
-    mInitialCounters = gpu::createBufferFrom<std::uint32_t>(device, wgpu::BufferUsage::CopySrc,
-                                                            initial, "visibility initial counters");
     const std::uint32_t persistent = persistentWorkgroups(device);
+    mPersistentGroups = persistent;
     mRasterGroups = stridingGrid(mTables.unitCount, 1, persistent);
     mWorkgroupGroups = stridingGrid(mHardwareCapacity, 1, persistent);
     mBins = gpu::createBuffer(
         device,
         wgpu::BufferUsage::Storage | wgpu::BufferUsage::CopyDst | wgpu::BufferUsage::CopySrc,
         std::uint64_t(mTables.binCount) * kBinStride, "visibility bins");
-    ENCORE_TRY(createPipelines());
-    mWidth = 0;
-    mHeight = 0;
-    mViewCapacity = 0;
+    if (setup.keptObjects) {
+        KeptStrategyObjects& kept = *setup.keptObjects;
+        if (!kept.visibilityPipelines) {
+            ENCORE_TRY_ASSIGN(kept.visibilityPipelines, VisibilityPipelines::create(setup));
+        }
+        mPipelines = kept.visibilityPipelines.get();
+        mTarget = &kept.visibilityTarget;
+    } else {
+        ENCORE_TRY_ASSIGN(mOwnPipelines, VisibilityPipelines::create(setup));
+        mOwnTarget = std::make_unique<VisibilityTarget>();
+        mPipelines = mOwnPipelines.get();
+        mTarget = mOwnTarget.get();
+    }
+    // Over this scene's buffers: made on the first frame.
+    mCullGroup = nullptr;
     return {};
 }
 
@@ -189,189 +149,22 @@ Result<void> VisibilityStrategy::checkTarget(std::uint32_t width, std::uint32_t 
     return {};
 }
 
-Result<void> VisibilityStrategy::createPipelines() {
-    using gpu::LayoutEntry;
-    const wgpu::Device& device = mSetup->device;
-    const auto vertex = wgpu::ShaderStage::Vertex;
-    const auto fragment = wgpu::ShaderStage::Fragment;
-    const auto params = LayoutEntry::uniform(0, kCompute, sizeof(ViewParams)).withDynamicOffset();
-    // The frame uniform alone (frame.wgsl's group 0) for the raster passes: the frame layout's
-    // lights would take one of the eight storage buffers a stage may bind.
-    mFrameOnlyLayout = gpu::makeBindGroupLayout(
-        device, {LayoutEntry::uniform(0, kCompute | vertex | fragment, sizeof(FrameUniform))},
-        "visibility frame");
-    mCullLayout = gpu::makeBindGroupLayout(
-        device,
-        {params, LayoutEntry::readOnlyStorage(2, kCompute),
-         LayoutEntry::readOnlyStorage(3, kCompute), LayoutEntry::storage(4, kCompute),
-         LayoutEntry::storage(5, kCompute), LayoutEntry::uniform(10, kCompute, sizeof(CullUniform)),
-         LayoutEntry::storage(11, kCompute),
-         LayoutEntry::texture(12, kCompute, wgpu::TextureSampleType::UnfilterableFloat)},
-        "visibility culling");
-    mRasterLayout = gpu::makeBindGroupLayout(
-        device,
-        {params, LayoutEntry::readOnlyStorage(1, kCompute),
-         LayoutEntry::readOnlyStorage(2, kCompute), LayoutEntry::readOnlyStorage(3, kCompute),
-         LayoutEntry::storage(4, kCompute), LayoutEntry::storage(5, kCompute),
-         LayoutEntry::storage(6, kCompute), LayoutEntry::storage(7, kCompute),
-         LayoutEntry::storage(9, kCompute)},
-        "visibility raster");
-    mHardwareLayout = gpu::makeBindGroupLayout(
-        device,
-        {LayoutEntry::uniform(0, vertex | fragment, sizeof(ViewParams)).withDynamicOffset(),
-         LayoutEntry::readOnlyStorage(1, vertex), LayoutEntry::readOnlyStorage(2, vertex),
-         LayoutEntry::readOnlyStorage(3, vertex), LayoutEntry::readOnlyStorage(4, vertex),
-         LayoutEntry::readOnlyStorage(5, vertex), LayoutEntry::storage(6, fragment)},
-        "visibility hardware");
-    mBinLayout = gpu::makeBindGroupLayout(
-        device,
-        {params, LayoutEntry::readOnlyStorage(1, kCompute),
-         LayoutEntry::readOnlyStorage(2, kCompute), LayoutEntry::readOnlyStorage(3, kCompute),
-         LayoutEntry::storage(4, kCompute), LayoutEntry::storage(5, kCompute)},
-        "visibility bins");
-    mShadeLayout = gpu::makeBindGroupLayout(
-        device,
-        {params, LayoutEntry::readOnlyStorage(1, kCompute),
-         LayoutEntry::readOnlyStorage(2, kCompute), LayoutEntry::readOnlyStorage(3, kCompute),
-         LayoutEntry::readOnlyStorage(4, kCompute), LayoutEntry::readOnlyStorage(5, kCompute),
-         LayoutEntry::readOnlyStorage(6, kCompute),
-         LayoutEntry::readOnlyStorage(7, kCompute, kBinStride).withDynamicOffset(),
-         LayoutEntry::storageTexture(8, kCompute, wgpu::TextureFormat::RGBA16Float,
-                                     wgpu::StorageTextureAccess::WriteOnly,
-                                     wgpu::TextureViewDimension::e2DArray)},
-        "visibility shading");
-    mCompositeLayout = gpu::makeBindGroupLayout(
-        device,
-        {LayoutEntry::readOnlyStorage(0, fragment),
-         LayoutEntry::texture(1, fragment, wgpu::TextureSampleType::UnfilterableFloat,
-                              wgpu::TextureViewDimension::e2DArray)},
-        "visibility composite");
-
-    shaders::ShaderLibrary& library = *mSetup->shaders;
-    const wgpu::BindGroupLayout frame = mSetup->layouts->frame;
-    ENCORE_TRY_ASSIGN(auto cull, library.module("visibility_cull.wgsl"));
-    mCullFirst = computePipeline(device, cull, "cullFirstPhase", {mFrameOnlyLayout, mCullLayout});
-    mBeginSecondPhase =
-        computePipeline(device, cull, "beginSecondPhase", {mFrameOnlyLayout, mCullLayout});
-    mCullSecond = computePipeline(device, cull, "cullSecondPhase", {mFrameOnlyLayout, mCullLayout});
-    ENCORE_TRY_ASSIGN(auto raster, library.module("visibility_raster.wgsl"));
-    mRaster = computePipeline(device, raster, "rasterMain", {mFrameOnlyLayout, mRasterLayout});
-    mWorkgroupRaster =
-        computePipeline(device, raster, "workgroupMain", {mFrameOnlyLayout, mRasterLayout});
-    mFrameOnlyGroup = gpu::makeBindGroup(device, mFrameOnlyLayout,
-                                         {{0, mSetup->frame->buffer(), 0, sizeof(FrameUniform)}},
-                                         "visibility frame");
-
-    ENCORE_TRY_ASSIGN(auto bins, library.module("visibility_bins.wgsl"));
-    mBinCount = computePipeline(device, bins, "countMain", {mBinLayout});
-    mBinOffsets = computePipeline(device, bins, "offsetsMain", {mBinLayout});
-    mBinScatter = computePipeline(device, bins, "scatterMain", {mBinLayout});
-
-    for (bool textured : {false, true}) {
-        for (bool tangent : {false, true}) {
-            // One shading pipeline serves every material of its bin kind: all features in.
-            std::set<std::string, std::less<>> flags = {"SAMPLE_GRADIENT", "MATERIAL_EXTENSIONS"};
-            if (textured) {
-                flags.insert("MATERIAL_TEXTURES");
-                flags.insert("SAMPLER_PALETTE");
-            }
-            if (tangent) {
-                flags.insert("HAS_TANGENT");
-            }
-            ENCORE_TRY_ASSIGN(auto shade, library.module("visibility_shade.wgsl", flags));
-            mShade[textured][tangent] = computePipeline(
-                device, shade, "shadeMain",
-                {frame, mShadeLayout,
-                 textured ? mSetup->layouts->material : mSetup->layouts->materialUniformOnly});
-        }
-    }
-
-    ENCORE_TRY_ASSIGN(auto hardware, library.module("visibility_hardware.wgsl"));
-    wgpu::DepthStencilState depth{};
-    depth.format = wgpu::TextureFormat::Depth32Float;
-    depth.depthWriteEnabled = wgpu::OptionalBool::True;
-    depth.depthCompare = wgpu::CompareFunction::Less;
-    wgpu::FragmentState hardwareFragment{};
-    hardwareFragment.module = hardware;
-    hardwareFragment.entryPoint = "fragmentMain";
-    wgpu::RenderPipelineDescriptor pipeline{};
-    pipeline.label = "visibility hardware";
-    pipeline.layout = gpu::makePipelineLayout(device, {mFrameOnlyLayout, mHardwareLayout});
-    pipeline.vertex.module = hardware;
-    pipeline.vertex.entryPoint = "vertexMain";
-    pipeline.primitive.topology = wgpu::PrimitiveTopology::TriangleList;
-    pipeline.primitive.cullMode = wgpu::CullMode::None;  // Back faces were culled in compute.
-    pipeline.depthStencil = &depth;
-    pipeline.multisample.count = mSetup->sampleCount;
-    pipeline.fragment = &hardwareFragment;
-    mHardware = device.CreateRenderPipeline(&pipeline);
-
-    std::set<std::string, std::less<>> compositeFlags;
-    if (mSetup->sampleCount > 1) {
-        compositeFlags.insert("MULTISAMPLED");
-    }
-    ENCORE_TRY_ASSIGN(auto composite, library.module("visibility_composite.wgsl", compositeFlags));
-    gpu::FullscreenPipelineDescriptor compositeDescriptor;
-    compositeDescriptor.label = "visibility composite";
-    compositeDescriptor.module = composite;
-    compositeDescriptor.layout = gpu::makePipelineLayout(device, {mCompositeLayout});
-    compositeDescriptor.colorFormat = mSetup->colorFormat;
-    compositeDescriptor.depthFormat = mSetup->depthFormat;
-    compositeDescriptor.writesDepth = true;
-    compositeDescriptor.sampleCount = mSetup->sampleCount;
-    mComposite = gpu::makeFullscreenPipeline(device, compositeDescriptor);
-    return {};
-}
-
 void VisibilityStrategy::ensureTarget(std::uint32_t width,
                                       std::uint32_t height,
                                       std::size_t views) {
+    const bool remade = mTarget->ensure(*mSetup, width, height, views, mPersistentGroups);
+    if (remade || !mCullGroup) {
+        createBindGroups();
+    }
+}
+
+void VisibilityStrategy::createBindGroups() {
     const wgpu::Device& device = mSetup->device;
-    if (views > mViewCapacity) {
-        mViewCapacity = views;
-        mParams = gpu::createBuffer(device, wgpu::BufferUsage::Uniform | wgpu::BufferUsage::CopyDst,
-                                    views * kParamsStride, "visibility view parameters");
-        mTriangleCounts =
-            gpu::createBuffer(device, wgpu::BufferUsage::CopyDst | wgpu::BufferUsage::CopySrc,
-                              views * 8, "visibility triangle counts");
-        mWidth = 0;  // The bind groups hold the parameters.
-    }
-    if (width == mWidth && height == mHeight) {
-        return;
-    }
-    mWidth = width;
-    mHeight = height;
-    // An entry per sample: 8 bytes in the visibility buffer, 4 in the binned list, a texel of
-    // the shaded colour (2x2 per pixel at four samples, visibility_samples.wgsl).
-    const std::uint32_t samples = mSetup->sampleCount;
-    const std::uint64_t entries = std::uint64_t(width) * height * samples;
-    mShadeGroups = stridingGrid(entries, 64, persistentWorkgroups(device));
-    mVisibility = gpu::createBuffer(device, wgpu::BufferUsage::Storage | wgpu::BufferUsage::CopyDst,
-                                    entries * 8, "visibility buffer");
-    mPixels = gpu::createBuffer(device, wgpu::BufferUsage::Storage, entries * 4,
-                                "visibility binned pixels");
-    wgpu::TextureDescriptor texture{};
-    texture.size = {width, height, samples};  // A layer per sample.
-    texture.format = wgpu::TextureFormat::RGBA16Float;
-    texture.usage = wgpu::TextureUsage::StorageBinding | wgpu::TextureUsage::TextureBinding;
-    texture.label = "visibility shaded colour";
-    mShaded = device.CreateTexture(&texture);
-    texture.size = {width, height, 1};
-    texture.format = wgpu::TextureFormat::Depth32Float;
-    texture.usage = wgpu::TextureUsage::RenderAttachment;
-    texture.sampleCount = samples;
-    texture.label = "visibility hardware depth";
-    mHardwareDepth = device.CreateTexture(&texture);
-
-    auto pyramid =
-        DepthPyramid::createFromVisibility(device, *mSetup->shaders, mVisibility, width, height);
-    // The shader is embedded: a failure here is a bug, not an input error.
-    ENCORE_CHECK(pyramid.ok(), "the depth pyramid cannot be built: " + pyramid.error().message);
-    mPyramid = std::move(*pyramid);
-
+    const VisibilityPipelines& p = *mPipelines;
+    const VisibilityTarget& target = *mTarget;
     const wgpu::Buffer& instances = mScene->instances().buffer();
-    const gpu::BindingResource params(0, mParams, 0, sizeof(ViewParams));
-    mCullGroup = gpu::makeBindGroup(device, mCullLayout,
+    const gpu::BindingResource params(0, target.params, 0, sizeof(ViewParams));
+    mCullGroup = gpu::makeBindGroup(device, p.cullLayout,
                                     {params,
                                      {2, instances},
                                      {3, mTableBuffer},
@@ -379,10 +172,10 @@ void VisibilityStrategy::ensureTarget(std::uint32_t width,
                                      {5, mCounters},
                                      {10, mCullUniform},
                                      {11, mItemVisibility},
-                                     {12, mPyramid.view()}},
+                                     {12, target.pyramid.view()}},
                                     "visibility culling");
     const gpu::BindingResource geometry(1, mGeometry, 0, mGeometryBytes);
-    mRasterGroup = gpu::makeBindGroup(device, mRasterLayout,
+    mRasterGroup = gpu::makeBindGroup(device, p.rasterLayout,
                                       {params,
                                        geometry,
                                        {2, instances},
@@ -390,38 +183,40 @@ void VisibilityStrategy::ensureTarget(std::uint32_t width,
                                        {4, mUnits},
                                        {5, mCounters},
                                        {6, mHardwareList},
-                                       {7, mVisibility},
+                                       {7, target.visibility},
                                        {9, mWorkgroupList}},
                                       "visibility raster");
-    mHardwareGroup = gpu::makeBindGroup(device, mHardwareLayout,
+    mHardwareGroup = gpu::makeBindGroup(device, p.hardwareLayout,
                                         {params,
                                          geometry,
                                          {2, instances},
                                          {3, mTableBuffer},
                                          {4, mUnits},
                                          {5, mHardwareList},
-                                         {6, mVisibility}},
+                                         {6, target.visibility}},
                                         "visibility hardware");
-    mBinGroup = gpu::makeBindGroup(
-        device, mBinLayout,
-        {params, {1, mTableBuffer}, {2, mUnits}, {3, mVisibility}, {4, mBins}, {5, mPixels}},
-        "visibility bins");
-    wgpu::TextureViewDescriptor layers{};
-    layers.dimension = wgpu::TextureViewDimension::e2DArray;  // Even with one layer.
-    const wgpu::TextureView shadedLayers = mShaded.CreateView(&layers);
-    mShadeGroup = gpu::makeBindGroup(device, mShadeLayout,
-                                     {params,
+    mBinGroup = gpu::makeBindGroup(device, p.binLayout,
+                                   {params,
+                                    {1, mTableBuffer},
+                                    {2, mUnits},
+                                    {3, target.visibility},
+                                    {4, mBins},
+                                    {5, target.pixels}},
+                                   "visibility bins");
+    mShadeGroup = gpu::makeBindGroup(device, p.shadeLayout,
+                                     {{0, target.params, 0, VisibilityTarget::kSlotBindingBytes},
                                       geometry,
                                       {2, instances},
                                       {3, mTableBuffer},
                                       {4, mUnits},
-                                      {5, mVisibility},
-                                      {6, mPixels},
+                                      {5, target.visibility},
+                                      {6, target.pixels},
                                       {7, mBins, 0, kBinStride},
-                                      {8, shadedLayers}},
+                                      {8, target.shadedLayers}},
                                      "visibility shading");
-    mCompositeGroup = gpu::makeBindGroup(
-        device, mCompositeLayout, {{0, mVisibility}, {1, shadedLayers}}, "visibility composite");
+    mCompositeGroup = gpu::makeBindGroup(device, p.compositeLayout,
+                                         {{0, target.visibility}, {1, target.shadedLayers}},
+                                         "visibility composite");
 }
 
 void VisibilityStrategy::beforePass(const wgpu::CommandEncoder& commands, const FrameState& frame) {
@@ -436,33 +231,83 @@ void VisibilityStrategy::beforePass(const wgpu::CommandEncoder& commands, const 
     // sees another view than the one drawn.
     mOcclusion = views == 1 && frame.culling.occlusion && !frame.cullingCamera;
     const std::uint32_t viewWidth = frame.targetWidth / std::uint32_t(views);
-    std::vector<std::uint8_t> params(views * kParamsStride, 0);
+    // A slot per view, then one per group of views that bins and shading take at once.
+    const std::size_t groups = VisibilityTarget::groupsFor(views);
+    std::vector<std::uint8_t> params((views + groups) * kParamsStride, 0);
+    ViewParams p;
+    p.itemCount = mTables.itemCount;
+    p.targetWidth = frame.targetWidth;
+    p.viewportHeight = frame.targetHeight;
+    p.maxComputePixels = std::clamp(frame.culling.computeRasterPixels, 0.0f, kMaxComputePixels);
+    p.maxWorkgroupPixels =
+        std::clamp(frame.culling.workgroupRasterPixels, 0.0f, kMaxWorkgroupPixels);
+    p.frustumTest = views == 1 ? 1 : 0;
+    p.hardwareCapacity = mHardwareCapacity;
+    p.binCount = mTables.binCount;
+    p.samples = mSetup->sampleCount;
     for (std::size_t view = 0; view < views; ++view) {
-        ViewParams p;
-        p.itemCount = mTables.itemCount;
-        p.targetWidth = frame.targetWidth;
         p.viewportX = std::uint32_t(view) * viewWidth;
         p.viewportWidth = viewWidth;
-        p.viewportHeight = frame.targetHeight;
-        p.maxComputePixels = std::clamp(frame.culling.computeRasterPixels, 0.0f, kMaxComputePixels);
-        p.maxWorkgroupPixels =
-            std::clamp(frame.culling.workgroupRasterPixels, 0.0f, kMaxWorkgroupPixels);
-        p.frustumTest = views == 1 ? 1 : 0;
-        p.hardwareCapacity = mHardwareCapacity;
-        p.binCount = mTables.binCount;
-        p.samples = mSetup->sampleCount;
         std::memcpy(params.data() + view * kParamsStride, &p, sizeof(p));
     }
-    mSetup->queue.WriteBuffer(mParams, 0, params.data(), params.size());
+    for (std::size_t group = 0; group < groups; ++group) {
+        const std::size_t first = group * VisibilityTarget::kSlotViews;
+        p.viewportX = std::uint32_t(first) * viewWidth;
+        p.viewportWidth =
+            std::uint32_t(std::min(views - first, VisibilityTarget::kSlotViews)) * viewWidth;
+        std::memcpy(params.data() + (views + group) * kParamsStride, &p, sizeof(p));
+    }
+    mSetup->queue.WriteBuffer(mTarget->params, 0, params.data(), params.size());
     writeCullUniform(frame, views);
-    commands.ClearBuffer(mVisibility);
-    for (std::size_t view = 0; view < views; ++view) {
-        if (views > 1) {
-            mSetup->frame->selectView(commands, view);
+    commands.ClearBuffer(mTarget->visibility);
+    // A multi-view frame's cull is the same for every view (no frustum test, no occlusion, the
+    // levels of one cull for all views): it runs once, and each view's raster starts from the
+    // counters it left.
+    const bool culledOnce = views > 1;
+    if (culledOnce) {
+        encodeCull(commands, frame);
+    }
+    for (std::size_t group = 0; group < groups; ++group) {
+        const std::size_t first = group * VisibilityTarget::kSlotViews;
+        const std::size_t last = std::min(views, first + VisibilityTarget::kSlotViews);
+        for (std::size_t view = first; view < last; ++view) {
+            if (views > 1) {
+                mSetup->frame->selectView(commands, view);
+            }
+            // The view's frame uniform into its slot, for the shading of the whole group.
+            commands.CopyBufferToBuffer(mSetup->frame->buffer(), 0, mTarget->params,
+                                        view * kParamsStride + VisibilityTarget::kSlotFrameOffset,
+                                        sizeof(FrameUniform));
+            encodeView(commands, frame, view, std::uint32_t(view) * viewWidth, viewWidth,
+                       culledOnce);
         }
-        encodeView(commands, frame, view, std::uint32_t(view) * viewWidth, viewWidth);
+        encodeShading(commands, frame, first, views + group,
+                      std::uint32_t(last - first) * viewWidth);
     }
     mLastViewCount = views;
+}
+
+void VisibilityStrategy::encodeCull(const wgpu::CommandEncoder& commands,
+                                    const FrameState& frame) const {
+    commands.CopyBufferToBuffer(mPipelines->initialCounters, 0, mCounters, 0, kCounterBytes);
+    wgpu::ComputePassDescriptor descriptor{};
+    descriptor.label = "visibility: culling";
+    descriptor.timestampWrites =
+        frame.timer ? frame.timer->nextPass("visibility culling") : nullptr;
+    wgpu::ComputePassEncoder pass = commands.BeginComputePass(&descriptor);
+    const std::uint32_t paramsOffset = 0;
+    pass.SetBindGroup(0, mPipelines->frameOnlyGroup);
+    pass.SetBindGroup(1, mCullGroup, 1, &paramsOffset);
+    dispatchItems(pass, mPipelines->cullFirst);
+    pass.End();
+    commands.CopyBufferToBuffer(mCounters, 0, mCulledCounters, 0, kCounterBytes);
+}
+
+void VisibilityStrategy::dispatchItems(const wgpu::ComputePassEncoder& pass,
+                                       const wgpu::ComputePipeline& cull) const {
+    const std::uint32_t itemGroups = groupsFor(mTables.itemCount, 64);
+    pass.SetPipeline(cull);
+    pass.DispatchWorkgroups(std::min(itemGroups, kMaxGroups), groupsFor(itemGroups, kMaxGroups));
 }
 
 void VisibilityStrategy::writeCullUniform(const FrameState& frame, std::size_t views) const {
@@ -492,9 +337,9 @@ void VisibilityStrategy::writeCullUniform(const FrameState& frame, std::size_t v
 void VisibilityStrategy::encodeRaster(const wgpu::ComputePassEncoder& pass,
                                       std::uint32_t paramsOffset) const {
     pass.SetBindGroup(1, mRasterGroup, 1, &paramsOffset);
-    pass.SetPipeline(mRaster);
+    pass.SetPipeline(mPipelines->raster);
     pass.DispatchWorkgroups(mRasterGroups);
-    pass.SetPipeline(mWorkgroupRaster);
+    pass.SetPipeline(mPipelines->workgroupRaster);
     pass.DispatchWorkgroups(mWorkgroupGroups);
 }
 
@@ -505,7 +350,7 @@ void VisibilityStrategy::encodeHardwareRaster(const wgpu::CommandEncoder& comman
                                               std::uint32_t viewWidth,
                                               const char* timerLabel) const {
     wgpu::RenderPassDepthStencilAttachment depth{};
-    depth.view = mHardwareDepth.CreateView();
+    depth.view = mTarget->hardwareDepthView;
     depth.depthLoadOp = wgpu::LoadOp::Clear;
     depth.depthStoreOp = wgpu::StoreOp::Discard;
     depth.depthClearValue = 1.0f;
@@ -514,9 +359,9 @@ void VisibilityStrategy::encodeHardwareRaster(const wgpu::CommandEncoder& comman
     descriptor.depthStencilAttachment = &depth;
     descriptor.timestampWrites = frame.timer ? frame.timer->nextPass(timerLabel) : nullptr;
     wgpu::RenderPassEncoder pass = commands.BeginRenderPass(&descriptor);
-    pass.SetViewport(float(viewX), 0.0f, float(viewWidth), float(mHeight), 0.0f, 1.0f);
-    pass.SetPipeline(mHardware);
-    pass.SetBindGroup(0, mFrameOnlyGroup);
+    pass.SetViewport(float(viewX), 0.0f, float(viewWidth), float(mTarget->height), 0.0f, 1.0f);
+    pass.SetPipeline(mPipelines->hardware);
+    pass.SetBindGroup(0, mPipelines->frameOnlyGroup);
     pass.SetBindGroup(1, mHardwareGroup, 1, &paramsOffset);
     pass.DrawIndirect(mCounters, kHardwareArguments);
     pass.End();
@@ -526,31 +371,30 @@ void VisibilityStrategy::encodeView(const wgpu::CommandEncoder& commands,
                                     const FrameState& frame,
                                     std::size_t view,
                                     std::uint32_t viewX,
-                                    std::uint32_t viewWidth) {
+                                    std::uint32_t viewWidth,
+                                    bool culled) {
     const std::uint32_t paramsOffset = std::uint32_t(view * kParamsStride);
-    const wgpu::BindGroup& frameGroup = mSetup->frame->bindGroup();
-    const std::uint32_t itemGroups = groupsFor(mTables.itemCount, 64);
-    auto dispatchItems = [&](const wgpu::ComputePassEncoder& pass,
-                             const wgpu::ComputePipeline& cull) {
-        pass.SetPipeline(cull);
-        pass.DispatchWorkgroups(std::min(itemGroups, kMaxGroups),
-                                groupsFor(itemGroups, kMaxGroups));
-    };
     auto bindCull = [&](const wgpu::ComputePassEncoder& pass) {
-        pass.SetBindGroup(0, mFrameOnlyGroup);
+        pass.SetBindGroup(0, mPipelines->frameOnlyGroup);
         pass.SetBindGroup(1, mCullGroup, 1, &paramsOffset);
     };
-    commands.CopyBufferToBuffer(mInitialCounters, 0, mCounters, 0, kCounterBytes);
-    commands.ClearBuffer(mBins);
+    const wgpu::Buffer& counters = culled ? mCulledCounters : mPipelines->initialCounters;
+    commands.CopyBufferToBuffer(counters, 0, mCounters, 0, kCounterBytes);
     {
         // Everything in the frustum, or (two phases) what of it was visible last frame.
         wgpu::ComputePassDescriptor descriptor{};
         descriptor.label = "visibility: culling and compute raster";
         descriptor.timestampWrites =
-            frame.timer ? frame.timer->nextPass("visibility culling and raster") : nullptr;
+            frame.timer ? frame.timer->nextPass(culled ? "visibility compute raster"
+                                                       : "visibility culling and raster")
+                        : nullptr;
         wgpu::ComputePassEncoder pass = commands.BeginComputePass(&descriptor);
-        bindCull(pass);
-        dispatchItems(pass, mCullFirst);
+        if (!culled) {
+            bindCull(pass);
+            dispatchItems(pass, mPipelines->cullFirst);
+        } else {
+            pass.SetBindGroup(0, mPipelines->frameOnlyGroup);
+        }
         encodeRaster(pass, paramsOffset);
         pass.End();
     }
@@ -564,58 +408,67 @@ void VisibilityStrategy::encodeView(const wgpu::CommandEncoder& commands,
             frame.timer ? frame.timer->nextPass("visibility occlusion culling and raster")
                         : nullptr;
         wgpu::ComputePassEncoder pass = commands.BeginComputePass(&descriptor);
-        mPyramid.encode(pass);
+        mTarget->pyramid.encode(pass);
         bindCull(pass);  // The pyramid's dispatches bound their own group 0.
-        pass.SetPipeline(mBeginSecondPhase);
+        pass.SetPipeline(mPipelines->beginSecondPhase);
         pass.DispatchWorkgroups(1);
-        dispatchItems(pass, mCullSecond);
+        dispatchItems(pass, mPipelines->cullSecond);
         encodeRaster(pass, paramsOffset);
         pass.End();
         encodeHardwareRaster(commands, frame, paramsOffset, viewX, viewWidth,
                              "visibility hardware raster (second phase)");
     }
-    {
-        wgpu::ComputePassDescriptor descriptor{};
-        descriptor.label = "visibility: binning and shading";
-        descriptor.timestampWrites =
-            frame.timer ? frame.timer->nextPass("visibility shading") : nullptr;
-        wgpu::ComputePassEncoder pass = commands.BeginComputePass(&descriptor);
-        pass.SetBindGroup(0, mBinGroup, 1, &paramsOffset);
-        const std::uint32_t columns = groupsFor(viewWidth, 8);
-        const std::uint32_t rows = groupsFor(mHeight, 8);
-        pass.SetPipeline(mBinCount);
-        pass.DispatchWorkgroups(columns, rows);
-        pass.SetPipeline(mBinOffsets);
-        pass.DispatchWorkgroups(1);
-        pass.SetPipeline(mBinScatter);
-        pass.DispatchWorkgroups(columns, rows);
-        pass.SetBindGroup(0, frameGroup);
-        const MaterialResources& materials = mScene->materials();
-        for (std::uint32_t bin : mTables.bins) {
-            const scene::MaterialId material(bin / 2);
-            const bool textured = materials.textured(material);
-            pass.SetPipeline(mShade[textured][bin & 1]);
-            const std::uint32_t offsets[] = {paramsOffset, std::uint32_t(bin * kBinStride)};
-            pass.SetBindGroup(1, mShadeGroup, 2, offsets);
-            pass.SetBindGroup(2, materials.bindGroup(material));
-            pass.DispatchWorkgroups(mShadeGroups);
-        }
-        pass.End();
+    commands.CopyBufferToBuffer(mCounters, kComputeTriangles, mTarget->triangleCounts, view * 8, 4);
+    commands.CopyBufferToBuffer(mCounters, kHardwareTriangles, mTarget->triangleCounts,
+                                view * 8 + 4, 4);
+}
+
+void VisibilityStrategy::encodeShading(const wgpu::CommandEncoder& commands,
+                                       const FrameState& frame,
+                                       std::size_t firstView,
+                                       std::size_t binSlot,
+                                       std::uint32_t groupWidth) const {
+    commands.ClearBuffer(mBins);
+    wgpu::ComputePassDescriptor descriptor{};
+    descriptor.label = "visibility: binning and shading";
+    descriptor.timestampWrites =
+        frame.timer ? frame.timer->nextPass("visibility shading") : nullptr;
+    wgpu::ComputePassEncoder pass = commands.BeginComputePass(&descriptor);
+    const std::uint32_t binOffset = std::uint32_t(binSlot * kParamsStride);
+    pass.SetBindGroup(0, mBinGroup, 1, &binOffset);
+    const std::uint32_t columns = groupsFor(groupWidth, 8);
+    const std::uint32_t rows = groupsFor(mTarget->height, 8);
+    pass.SetPipeline(mPipelines->binCount);
+    pass.DispatchWorkgroups(columns, rows);
+    pass.SetPipeline(mPipelines->binOffsets);
+    pass.DispatchWorkgroups(1);
+    pass.SetPipeline(mPipelines->binScatter);
+    pass.DispatchWorkgroups(columns, rows);
+    pass.SetBindGroup(0, mSetup->frame->bindGroup());
+    const MaterialResources& materials = mScene->materials();
+    const std::uint32_t slotsOffset = std::uint32_t(firstView * kParamsStride);
+    for (std::uint32_t bin : mTables.bins) {
+        const scene::MaterialId material(bin / 2);
+        const bool textured = materials.textured(material);
+        pass.SetPipeline(mPipelines->shade[textured][bin & 1]);
+        const std::uint32_t offsets[] = {slotsOffset, std::uint32_t(bin * kBinStride)};
+        pass.SetBindGroup(1, mShadeGroup, 2, offsets);
+        pass.SetBindGroup(2, materials.bindGroup(material));
+        pass.DispatchWorkgroups(mTarget->shadeGroups);
     }
-    commands.CopyBufferToBuffer(mCounters, kComputeTriangles, mTriangleCounts, view * 8, 4);
-    commands.CopyBufferToBuffer(mCounters, kHardwareTriangles, mTriangleCounts, view * 8 + 4, 4);
+    pass.End();
 }
 
 std::optional<GpuTriangleCounts> VisibilityStrategy::gpuTriangleCounts() const {
-    if (!mTriangleCounts) {
+    if (!mCullGroup) {  // No frame drawn yet: the kept counts are another scene's.
         return std::nullopt;
     }
-    return GpuTriangleCounts{mTriangleCounts, 4, 0, mTables.triangleCount};
+    return GpuTriangleCounts{mTarget->triangleCounts, 4, 0, mTables.triangleCount};
 }
 
 void VisibilityStrategy::encode(RenderEncoder& encoder, const FrameState& frame) const {
     if (mTables.itemCount > 0 && mCompositeGroup) {
-        encoder.setPipeline(mComposite);
+        encoder.setPipeline(mPipelines->composite);
         encoder.setBindGroup(0, mCompositeGroup);
         encoder.draw(3, 1, 0, 0, scene::Topology::TriangleList);
     }

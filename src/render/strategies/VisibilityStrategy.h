@@ -2,11 +2,14 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 
 #include "encore/render/Strategy.h"
 #include "render/DepthPyramid.h"
 #include "render/VisibilityTables.h"
 #include "render/strategies/MaterialDrawGroups.h"
+#include "render/strategies/VisibilityPipelines.h"
+#include "render/strategies/VisibilityTarget.h"
 
 namespace encore::render {
 
@@ -17,7 +20,9 @@ namespace encore::render {
 // (depth, id) into a 64-bit-per-pixel storage buffer with atomicStoreMax; triangles that cross
 // the near or far plane or span more than maxComputePixels go to one indirect hardware draw whose
 // fragments do the same atomic; compute passes then sort the covered pixels into bins by
-// material and shade each bin (the PBR code of mesh.wgsl) into a colour texture. In the render
+// material and shade each bin (the PBR code of mesh.wgsl) into a colour texture, once for all
+// the views of a frame (a multi-view frame also culls once: docs/visibility.md, "In batches").
+// In the render
 // pass a fullscreen triangle copies colour and depth of covered samples, and what the compute path
 // does not take (MASK, BLEND, skinned or morphed primitives) is drawn as `materials` draws it.
 // With occlusion culling (CullingOptions, frames of one view) the cull and raster run twice:
@@ -43,7 +48,8 @@ class VisibilityStrategy final : public Strategy {
     // maxStorageBufferBindingSize, the shaded colour (a texel per sample: twice the target's
     // size each way at 4 samples) maxTextureDimension2D.
     Result<void> checkTarget(std::uint32_t width, std::uint32_t height) const override;
-    // The last view's shading bins (CopySrc, tables().binCount records of kBinRecordBytes, each
+    // The last group's shading bins (every view of a frame of up to VisibilityTarget::kSlotViews;
+    // CopySrc, tables().binCount records of kBinRecordBytes, each
     // starting with its count of entries shaded: one per covered pixel and distinct triangle).
     static constexpr std::uint64_t kBinRecordBytes = 256;
     const wgpu::Buffer& bins() const { return mBins; }
@@ -63,7 +69,7 @@ class VisibilityStrategy final : public Strategy {
     const VisibilityTables& tables() const { return mTables; }
     // Per view of the last frame, two words: triangles rasterised in compute, then triangles
     // drawn by the hardware path. CopySrc usage, for read-back.
-    const wgpu::Buffer& triangleCounts() const { return mTriangleCounts; }
+    const wgpu::Buffer& triangleCounts() const { return mTarget->triangleCounts; }
     std::size_t lastViewCount() const { return mLastViewCount; }
     // The last view's counters (visibility_counters.wgsl; CopySrc): at kListedTrianglesOffset,
     // the triangles of the levels its cull listed (GPU culling's count of drawn triangles).
@@ -71,19 +77,34 @@ class VisibilityStrategy final : public Strategy {
     const wgpu::Buffer& counters() const { return mCounters; }
     // Whether the last frame culled in two phases, and the pyramid it built (tests).
     bool lastFrameOccluded() const { return mOcclusion; }
-    const DepthPyramid& depthPyramid() const { return mPyramid; }
+    const DepthPyramid& depthPyramid() const { return mTarget->pyramid; }
     // Those of the first view; MASK, BLEND, skinned and morphed geometry drawn directly is
     // counted with the frame's direct draws (DrawCounters), not here.
     std::optional<GpuTriangleCounts> gpuTriangleCounts() const override;
 
   private:
-    Result<void> createPipelines();
     void ensureTarget(std::uint32_t width, std::uint32_t height, std::size_t views);
+    void createBindGroups();
+    // A multi-view frame's one cull, before its views (each view's raster starts from the
+    // counters it leaves).
+    void encodeCull(const wgpu::CommandEncoder& commands, const FrameState& frame) const;
+    void dispatchItems(const wgpu::ComputePassEncoder& pass,
+                       const wgpu::ComputePipeline& cull) const;
+    // Culls (unless `culled`) and rasterises one view.
     void encodeView(const wgpu::CommandEncoder& commands,
                     const FrameState& frame,
                     std::size_t view,
                     std::uint32_t viewX,
-                    std::uint32_t viewWidth);
+                    std::uint32_t viewWidth,
+                    bool culled);
+    // Bins and shades the views from `firstView` (at most VisibilityTarget::kSlotViews of them,
+    // `groupWidth` pixels together) at once: their pixels binned with the parameters of slot
+    // `binSlot`, one shading dispatch per bin.
+    void encodeShading(const wgpu::CommandEncoder& commands,
+                       const FrameState& frame,
+                       std::size_t firstView,
+                       std::size_t binSlot,
+                       std::uint32_t groupWidth) const;
     // The raster dispatches of the units listed so far in this phase: grids of a fixed size
     // that stride over the lists (visibility_raster.wgsl says why not indirect dispatches).
     void encodeRaster(const wgpu::ComputePassEncoder& pass, std::uint32_t paramsOffset) const;
@@ -105,56 +126,33 @@ class VisibilityStrategy final : public Strategy {
     wgpu::Buffer mTableBuffer;
     wgpu::Buffer mUnits;
     wgpu::Buffer mCounters;
-    wgpu::Buffer mInitialCounters;
+    wgpu::Buffer mCulledCounters;  // After a multi-view frame's cull.
     wgpu::Buffer mHardwareList;
     wgpu::Buffer mWorkgroupList;  // Triangles a workgroup covers (visibility_raster.wgsl).
     std::uint32_t mHardwareCapacity = 0;
     // Workgroups of the striding grids: the raster's (at most the units), the workgroup
-    // raster's (at most the listed triangles) and each bin's shading (at most the samples of a
-    // view), each no more than persistentWorkgroups().
+    // raster's (at most the listed triangles); each bin's shading grid is the target's
+    // (VisibilityTarget::shadeGroups). None exceeds persistentWorkgroups().
     std::uint32_t mRasterGroups = 1;
     std::uint32_t mWorkgroupGroups = 1;
-    std::uint32_t mShadeGroups = 1;
+    std::uint32_t mPersistentGroups = 1;  // persistentWorkgroups() of the device.
     wgpu::Buffer mBins;
     wgpu::Buffer mCullUniform;
     wgpu::Buffer mItemVisibility;  // Per item: visible in the last two-phase frame.
     wgpu::Buffer mGeometry;        // The first shared geometry buffer, or a placeholder.
     std::uint64_t mGeometryBytes = 0;
 
-    // Target-sized resources, made on the first frame and when the size changes.
-    std::uint32_t mWidth = 0;
-    std::uint32_t mHeight = 0;
-    std::size_t mViewCapacity = 0;
-    wgpu::Buffer mParams;  // One 256-byte slot per view.
-    wgpu::Buffer mVisibility;
-    wgpu::Buffer mPixels;
-    wgpu::Texture mShaded;
-    wgpu::Texture mHardwareDepth;
-    DepthPyramid mPyramid;    // Of the visibility buffer's depth.
+    // Scene-independent pipelines and target-sized resources: the renderer's
+    // (RenderSetup::keptObjects), or else this strategy's own.
+    const VisibilityPipelines* mPipelines = nullptr;
+    std::unique_ptr<VisibilityPipelines> mOwnPipelines;
+    VisibilityTarget* mTarget = nullptr;
+    std::unique_ptr<VisibilityTarget> mOwnTarget;
     bool mOcclusion = false;  // This frame culls in two phases.
-    wgpu::Buffer mTriangleCounts;
     std::size_t mLastViewCount = 0;
 
-    wgpu::BindGroupLayout mFrameOnlyLayout;
-    wgpu::BindGroupLayout mCullLayout;
-    wgpu::BindGroupLayout mRasterLayout;
-    wgpu::BindGroupLayout mHardwareLayout;
-    wgpu::BindGroupLayout mBinLayout;
-    wgpu::BindGroupLayout mShadeLayout;
-    wgpu::BindGroupLayout mCompositeLayout;
-    wgpu::ComputePipeline mCullFirst;
-    wgpu::ComputePipeline mBeginSecondPhase;
-    wgpu::ComputePipeline mCullSecond;
-    wgpu::ComputePipeline mRaster;
-    wgpu::ComputePipeline mWorkgroupRaster;
-    wgpu::RenderPipeline mHardware;
-    wgpu::ComputePipeline mBinCount;
-    wgpu::ComputePipeline mBinOffsets;
-    wgpu::ComputePipeline mBinScatter;
-    // [textured][tangent].
-    std::array<std::array<wgpu::ComputePipeline, 2>, 2> mShade;
-    wgpu::RenderPipeline mComposite;
-    wgpu::BindGroup mFrameOnlyGroup;
+    // Over the scene's buffers and the target's: made on the first frame and whenever the
+    // target's resources are made again.
     wgpu::BindGroup mCullGroup;
     wgpu::BindGroup mRasterGroup;
     wgpu::BindGroup mHardwareGroup;

@@ -1,0 +1,21 @@
+#pragma once
+
+// What strategies keep from one Renderer::prepare to the next (RendererOptions::keepPipelines,
+// RenderSetup::keptObjects): GPU objects that depend on the renderer's setup and target, not on
+// the scene, made by the first strategy that needs them and reused by every later one. One
+// strategy is prepared at a time, so one holder serves them in turn.
+
+#include <memory>
+
+#include "render/strategies/VisibilityPipelines.h"
+#include "render/strategies/VisibilityTarget.h"
+
+namespace encore::render {
+
+class KeptStrategyObjects {
+  public:
+    std::unique_ptr<VisibilityPipelines> visibilityPipelines;
+    VisibilityTarget visibilityTarget;
+};
+
+}  // namespace encore::render

@@ -1,0 +1,192 @@
+#include "render/strategies/VisibilityPipelines.h"
+
+#include <set>
+#include <string>
+
+#include "gpu/BindingResource.h"
+#include "gpu/FullscreenPipeline.h"
+#include "gpu/LayoutEntry.h"
+#include "gpu/Upload.h"
+#include "render/strategies/VisibilityTarget.h"
+
+namespace encore::render {
+
+namespace {
+
+constexpr auto kCompute = wgpu::ShaderStage::Compute;
+constexpr std::uint64_t kBinRecordBytes = 256;  // visibility_bin_record.wgsl's record.
+
+wgpu::ComputePipeline computePipeline(const wgpu::Device& device,
+                                      const wgpu::ShaderModule& module,
+                                      const char* entryPoint,
+                                      std::initializer_list<wgpu::BindGroupLayout> groups) {
+    wgpu::ComputePipelineDescriptor descriptor{};
+    descriptor.label = entryPoint;
+    descriptor.layout = gpu::makePipelineLayout(device, groups);
+    descriptor.compute.module = module;
+    descriptor.compute.entryPoint = entryPoint;
+    return device.CreateComputePipeline(&descriptor);
+}
+
+void createLayouts(const wgpu::Device& device, VisibilityPipelines& p) {
+    using gpu::LayoutEntry;
+    const auto vertex = wgpu::ShaderStage::Vertex;
+    const auto fragment = wgpu::ShaderStage::Fragment;
+    const auto params =
+        LayoutEntry::uniform(0, kCompute, sizeof(VisibilityViewParams)).withDynamicOffset();
+    // The frame uniform alone (frame.wgsl's group 0) for the raster passes: the frame layout's
+    // lights would take one of the eight storage buffers a stage may bind.
+    p.frameOnlyLayout = gpu::makeBindGroupLayout(
+        device, {LayoutEntry::uniform(0, kCompute | vertex | fragment, sizeof(FrameUniform))},
+        "visibility frame");
+    p.cullLayout = gpu::makeBindGroupLayout(
+        device,
+        {params, LayoutEntry::readOnlyStorage(2, kCompute),
+         LayoutEntry::readOnlyStorage(3, kCompute), LayoutEntry::storage(4, kCompute),
+         LayoutEntry::storage(5, kCompute),
+         LayoutEntry::uniform(10, kCompute, sizeof(VisibilityCullUniform)),
+         LayoutEntry::storage(11, kCompute),
+         LayoutEntry::texture(12, kCompute, wgpu::TextureSampleType::UnfilterableFloat)},
+        "visibility culling");
+    p.rasterLayout = gpu::makeBindGroupLayout(
+        device,
+        {params, LayoutEntry::readOnlyStorage(1, kCompute),
+         LayoutEntry::readOnlyStorage(2, kCompute), LayoutEntry::readOnlyStorage(3, kCompute),
+         LayoutEntry::storage(4, kCompute), LayoutEntry::storage(5, kCompute),
+         LayoutEntry::storage(6, kCompute), LayoutEntry::storage(7, kCompute),
+         LayoutEntry::storage(9, kCompute)},
+        "visibility raster");
+    p.hardwareLayout = gpu::makeBindGroupLayout(
+        device,
+        {LayoutEntry::uniform(0, vertex | fragment, sizeof(VisibilityViewParams))
+             .withDynamicOffset(),
+         LayoutEntry::readOnlyStorage(1, vertex), LayoutEntry::readOnlyStorage(2, vertex),
+         LayoutEntry::readOnlyStorage(3, vertex), LayoutEntry::readOnlyStorage(4, vertex),
+         LayoutEntry::readOnlyStorage(5, vertex), LayoutEntry::storage(6, fragment)},
+        "visibility hardware");
+    p.binLayout = gpu::makeBindGroupLayout(
+        device,
+        {params, LayoutEntry::readOnlyStorage(1, kCompute),
+         LayoutEntry::readOnlyStorage(2, kCompute), LayoutEntry::readOnlyStorage(3, kCompute),
+         LayoutEntry::storage(4, kCompute), LayoutEntry::storage(5, kCompute)},
+        "visibility bins");
+    // The shading pass reads the slots of a group of views (VisibilityTarget).
+    p.shadeLayout = gpu::makeBindGroupLayout(
+        device,
+        {LayoutEntry::uniform(0, kCompute, VisibilityTarget::kSlotBindingBytes).withDynamicOffset(),
+         LayoutEntry::readOnlyStorage(1, kCompute), LayoutEntry::readOnlyStorage(2, kCompute),
+         LayoutEntry::readOnlyStorage(3, kCompute), LayoutEntry::readOnlyStorage(4, kCompute),
+         LayoutEntry::readOnlyStorage(5, kCompute), LayoutEntry::readOnlyStorage(6, kCompute),
+         LayoutEntry::readOnlyStorage(7, kCompute, kBinRecordBytes).withDynamicOffset(),
+         LayoutEntry::storageTexture(8, kCompute, wgpu::TextureFormat::RGBA16Float,
+                                     wgpu::StorageTextureAccess::WriteOnly,
+                                     wgpu::TextureViewDimension::e2DArray)},
+        "visibility shading");
+    p.compositeLayout = gpu::makeBindGroupLayout(
+        device,
+        {LayoutEntry::readOnlyStorage(0, fragment),
+         LayoutEntry::texture(1, fragment, wgpu::TextureSampleType::UnfilterableFloat,
+                              wgpu::TextureViewDimension::e2DArray)},
+        "visibility composite");
+}
+
+Result<wgpu::RenderPipeline> hardwarePipeline(const RenderSetup& setup,
+                                              const VisibilityPipelines& p) {
+    const wgpu::Device& device = setup.device;
+    ENCORE_TRY_ASSIGN(auto hardware, setup.shaders->module("visibility_hardware.wgsl"));
+    wgpu::DepthStencilState depth{};
+    depth.format = wgpu::TextureFormat::Depth32Float;
+    depth.depthWriteEnabled = wgpu::OptionalBool::True;
+    depth.depthCompare = wgpu::CompareFunction::Less;
+    wgpu::FragmentState fragment{};
+    fragment.module = hardware;
+    fragment.entryPoint = "fragmentMain";
+    wgpu::RenderPipelineDescriptor pipeline{};
+    pipeline.label = "visibility hardware";
+    pipeline.layout = gpu::makePipelineLayout(device, {p.frameOnlyLayout, p.hardwareLayout});
+    pipeline.vertex.module = hardware;
+    pipeline.vertex.entryPoint = "vertexMain";
+    pipeline.primitive.topology = wgpu::PrimitiveTopology::TriangleList;
+    pipeline.primitive.cullMode = wgpu::CullMode::None;  // Back faces were culled in compute.
+    pipeline.depthStencil = &depth;
+    pipeline.multisample.count = setup.sampleCount;
+    pipeline.fragment = &fragment;
+    return device.CreateRenderPipeline(&pipeline);
+}
+
+Result<wgpu::RenderPipeline> compositePipeline(const RenderSetup& setup,
+                                               const VisibilityPipelines& p) {
+    std::set<std::string, std::less<>> flags;
+    if (setup.sampleCount > 1) {
+        flags.insert("MULTISAMPLED");
+    }
+    ENCORE_TRY_ASSIGN(auto composite, setup.shaders->module("visibility_composite.wgsl", flags));
+    gpu::FullscreenPipelineDescriptor descriptor;
+    descriptor.label = "visibility composite";
+    descriptor.module = composite;
+    descriptor.layout = gpu::makePipelineLayout(setup.device, {p.compositeLayout});
+    descriptor.colorFormat = setup.colorFormat;
+    descriptor.depthFormat = setup.depthFormat;
+    descriptor.writesDepth = true;
+    descriptor.sampleCount = setup.sampleCount;
+    return gpu::makeFullscreenPipeline(setup.device, descriptor);
+}
+
+}  // namespace
+
+Result<std::unique_ptr<VisibilityPipelines>> VisibilityPipelines::create(const RenderSetup& setup) {
+    auto created = std::make_unique<VisibilityPipelines>();
+    VisibilityPipelines& p = *created;
+    const wgpu::Device& device = setup.device;
+    createLayouts(device, p);
+
+    shaders::ShaderLibrary& library = *setup.shaders;
+    ENCORE_TRY_ASSIGN(auto cull, library.module("visibility_cull.wgsl"));
+    const auto cullGroups = {p.frameOnlyLayout, p.cullLayout};
+    p.cullFirst = computePipeline(device, cull, "cullFirstPhase", cullGroups);
+    p.beginSecondPhase = computePipeline(device, cull, "beginSecondPhase", cullGroups);
+    p.cullSecond = computePipeline(device, cull, "cullSecondPhase", cullGroups);
+    ENCORE_TRY_ASSIGN(auto raster, library.module("visibility_raster.wgsl"));
+    p.raster = computePipeline(device, raster, "rasterMain", {p.frameOnlyLayout, p.rasterLayout});
+    p.workgroupRaster =
+        computePipeline(device, raster, "workgroupMain", {p.frameOnlyLayout, p.rasterLayout});
+    p.frameOnlyGroup = gpu::makeBindGroup(device, p.frameOnlyLayout,
+                                          {{0, setup.frame->buffer(), 0, sizeof(FrameUniform)}},
+                                          "visibility frame");
+
+    ENCORE_TRY_ASSIGN(auto bins, library.module("visibility_bins.wgsl"));
+    p.binCount = computePipeline(device, bins, "countMain", {p.binLayout});
+    p.binOffsets = computePipeline(device, bins, "offsetsMain", {p.binLayout});
+    p.binScatter = computePipeline(device, bins, "scatterMain", {p.binLayout});
+
+    for (bool textured : {false, true}) {
+        for (bool tangent : {false, true}) {
+            // One shading pipeline serves every material of its bin kind: all features in.
+            std::set<std::string, std::less<>> flags = {"SAMPLE_GRADIENT", "MATERIAL_EXTENSIONS",
+                                                        "VIEW_SLOTS"};
+            if (textured) {
+                flags.insert("MATERIAL_TEXTURES");
+                flags.insert("SAMPLER_PALETTE");
+            }
+            if (tangent) {
+                flags.insert("HAS_TANGENT");
+            }
+            ENCORE_TRY_ASSIGN(auto shade, library.module("visibility_shade.wgsl", flags));
+            p.shade[textured][tangent] = computePipeline(
+                device, shade, "shadeMain",
+                {setup.layouts->frame, p.shadeLayout,
+                 textured ? setup.layouts->material : setup.layouts->materialUniformOnly});
+        }
+    }
+    ENCORE_TRY_ASSIGN(p.hardware, hardwarePipeline(setup, p));
+    ENCORE_TRY_ASSIGN(p.composite, compositePipeline(setup, p));
+    setup.pipelinesCreated += kPipelineCount;
+
+    std::array<std::uint32_t, kCounterBytes / 4> initial{};
+    initial[5] = 1;  // The hardware draw's instance count.
+    p.initialCounters = gpu::createBufferFrom<std::uint32_t>(
+        device, wgpu::BufferUsage::CopySrc, initial, "visibility initial counters");
+    return created;
+}
+
+}  // namespace encore::render

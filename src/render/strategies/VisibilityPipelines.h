@@ -1,0 +1,96 @@
+#pragma once
+
+// The visibility strategy's model-independent GPU objects (docs/visibility.md): bind group
+// layouts, compute and render pipelines, the frame-only bind group and the counters' initial
+// values. They depend only on the renderer's setup (device, shader library, layouts, formats,
+// sample count, frame uniforms), so a renderer that prepares scene after scene (encore batch,
+// RendererOptions::keepPipelines) creates them once (KeptStrategyObjects) instead of compiling
+// some twenty pipelines per model.
+
+#include <webgpu/webgpu_cpp.h>
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+
+#include <glm/glm.hpp>
+
+#include "encore/core/Result.h"
+#include "encore/render/RenderSetup.h"
+#include "render/LodSelection.h"
+
+namespace encore::render {
+
+// visibility_params.wgsl's VisibilityParams, one per view at a 256-byte stride.
+struct VisibilityViewParams {
+    std::uint32_t itemCount = 0;
+    std::uint32_t targetWidth = 0;
+    std::uint32_t viewportX = 0;
+    std::uint32_t viewportY = 0;
+    std::uint32_t viewportWidth = 0;
+    std::uint32_t viewportHeight = 0;
+    float maxComputePixels = 0.0f;
+    std::uint32_t frustumTest = 0;
+    std::uint32_t hardwareCapacity = 0;
+    std::uint32_t binCount = 0;
+    float maxWorkgroupPixels = 0.0f;
+    std::uint32_t samples = 1;
+};
+static_assert(sizeof(VisibilityViewParams) == 48);
+
+// visibility_cull.wgsl's Culling, one per frame (a multi-view frame's views differ only in
+// their viewports: no frustum test, no occlusion, the levels of detail of GPU culling's one cull).
+struct VisibilityCullUniform {
+    std::array<glm::vec4, 6> planes{};
+    glm::mat4 viewProjection{1.0f};
+    std::uint32_t lodViewCount = 0;
+    float lodPixelsPerUnit = 0.0f;
+    float lodThresholdPixels = 0.0f;
+    std::uint32_t orthographic = 0;
+    std::uint32_t occlusion = 0;
+    std::uint32_t frustumTest = 0;
+    float lodDistanceSlack = 0.0f;
+    std::uint32_t padding = 0;
+    std::array<glm::vec4, LodSelection::kMaxViews> lodViews{};
+};
+static_assert(offsetof(VisibilityCullUniform, lodViewCount) == 160);
+static_assert(offsetof(VisibilityCullUniform, lodViews) == 192);
+static_assert(sizeof(VisibilityCullUniform) == 448);
+
+struct VisibilityPipelines {
+    // Bytes of visibility_counters.wgsl's Counters.
+    static constexpr std::uint64_t kCounterBytes = 64;
+    // The number of pipelines create() makes (counted in RenderSetup::pipelinesCreated).
+    static constexpr std::uint64_t kPipelineCount = 15;
+
+    // Fails only where an embedded shader does not compile (a bug, not an input error).
+    static Result<std::unique_ptr<VisibilityPipelines>> create(const RenderSetup& setup);
+
+    wgpu::BindGroupLayout frameOnlyLayout;
+    wgpu::BindGroupLayout cullLayout;
+    wgpu::BindGroupLayout rasterLayout;
+    wgpu::BindGroupLayout hardwareLayout;
+    wgpu::BindGroupLayout binLayout;
+    wgpu::BindGroupLayout shadeLayout;
+    wgpu::BindGroupLayout compositeLayout;
+    wgpu::ComputePipeline cullFirst;
+    wgpu::ComputePipeline beginSecondPhase;
+    wgpu::ComputePipeline cullSecond;
+    wgpu::ComputePipeline raster;
+    wgpu::ComputePipeline workgroupRaster;
+    wgpu::RenderPipeline hardware;
+    wgpu::ComputePipeline binCount;
+    wgpu::ComputePipeline binOffsets;
+    wgpu::ComputePipeline binScatter;
+    // [textured][tangent].
+    std::array<std::array<wgpu::ComputePipeline, 2>, 2> shade;
+    wgpu::RenderPipeline composite;
+    // The frame uniform alone (frame.wgsl's group 0) for the raster passes.
+    wgpu::BindGroup frameOnlyGroup;
+    // Unit count 0, hardware draw (0 vertices, 1 instance, 0, 0): copied over the counters
+    // before each view.
+    wgpu::Buffer initialCounters;
+};
+
+}  // namespace encore::render

@@ -1,0 +1,67 @@
+#include "render/strategies/VisibilityTarget.h"
+
+#include <algorithm>
+
+#include "gpu/Upload.h"
+
+namespace encore::render {
+
+bool VisibilityTarget::ensure(const RenderSetup& setup,
+                              std::uint32_t targetWidth,
+                              std::uint32_t targetHeight,
+                              std::size_t views,
+                              std::uint32_t maxGroups) {
+    const wgpu::Device& device = setup.device;
+    bool remade = false;
+    if (views > viewCapacity) {
+        viewCapacity = views;
+        // The shading's binding of kSlotViews slots from any group's first view fits.
+        params = gpu::createBuffer(device, wgpu::BufferUsage::Uniform | wgpu::BufferUsage::CopyDst,
+                                   (views + groupsFor(views)) * kParamsStride + kSlotBindingBytes,
+                                   "visibility view parameters");
+        triangleCounts =
+            gpu::createBuffer(device, wgpu::BufferUsage::CopyDst | wgpu::BufferUsage::CopySrc,
+                              views * 8, "visibility triangle counts");
+        remade = true;
+    }
+    if (targetWidth == width && targetHeight == height && visibility) {
+        return remade;
+    }
+    width = targetWidth;
+    height = targetHeight;
+    // An entry per sample: 8 bytes in the visibility buffer, 4 in the binned list, a texel of
+    // the shaded colour (a layer per sample, visibility_samples.wgsl).
+    const std::uint32_t samples = setup.sampleCount;
+    const std::uint64_t entries = std::uint64_t(width) * height * samples;
+    shadeGroups = std::clamp<std::uint32_t>(
+        std::uint32_t(std::min<std::uint64_t>((entries + 63) / 64, maxGroups)), 1, maxGroups);
+    visibility = gpu::createBuffer(device, wgpu::BufferUsage::Storage | wgpu::BufferUsage::CopyDst,
+                                   entries * 8, "visibility buffer");
+    pixels = gpu::createBuffer(device, wgpu::BufferUsage::Storage, entries * 4,
+                               "visibility binned pixels");
+    wgpu::TextureDescriptor texture{};
+    texture.size = {width, height, samples};  // A layer per sample.
+    texture.format = wgpu::TextureFormat::RGBA16Float;
+    texture.usage = wgpu::TextureUsage::StorageBinding | wgpu::TextureUsage::TextureBinding;
+    texture.label = "visibility shaded colour";
+    shaded = device.CreateTexture(&texture);
+    wgpu::TextureViewDescriptor layers{};
+    layers.dimension = wgpu::TextureViewDimension::e2DArray;  // Even with one layer.
+    shadedLayers = shaded.CreateView(&layers);
+    texture.size = {width, height, 1};
+    texture.format = wgpu::TextureFormat::Depth32Float;
+    texture.usage = wgpu::TextureUsage::RenderAttachment;
+    texture.sampleCount = samples;
+    texture.label = "visibility hardware depth";
+    hardwareDepth = device.CreateTexture(&texture);
+    hardwareDepthView = hardwareDepth.CreateView();
+
+    auto built =
+        DepthPyramid::createFromVisibility(device, *setup.shaders, visibility, width, height);
+    // The shader is embedded: a failure here is a bug, not an input error.
+    ENCORE_CHECK(built.ok(), "the depth pyramid cannot be built: " + built.error().message);
+    pyramid = std::move(*built);
+    return true;
+}
+
+}  // namespace encore::render

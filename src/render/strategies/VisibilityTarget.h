@@ -1,0 +1,57 @@
+#pragma once
+
+// The visibility strategy's target-sized resources (docs/visibility.md): the visibility buffer,
+// the binned pixel list, the shaded colour, the hardware path's depth, the depth pyramid, and the
+// per-view parameters and triangle counts. They depend on the target's size, its views and the
+// sample count only, so a renderer that prepares scene after scene at one size (encore batch)
+// keeps them (KeptStrategyObjects) rather than allocating, clearing and reducing hundreds of
+// megabytes, and building the pyramid's pipelines, for every model.
+
+#include <webgpu/webgpu_cpp.h>
+
+#include <cstddef>
+#include <cstdint>
+
+#include "encore/render/RenderSetup.h"
+#include "render/DepthPyramid.h"
+
+namespace encore::render {
+
+struct VisibilityTarget {
+    // The parameter slots: one per view (a dynamic uniform offset), its VisibilityViewParams
+    // and, from kSlotFrameOffset, the view's frame uniform (copied there while encoding), then
+    // one per group of views that binning and shading take at once, kSlotViews at most: as many
+    // as one uniform binding of kSlotBindingBytes holds (visibility_geometry.wgsl's viewSlots).
+    static constexpr std::uint64_t kParamsStride = 256;
+    static constexpr std::uint64_t kSlotFrameOffset = 64;
+    static constexpr std::uint64_t kSlotBindingBytes = 65536;
+    static constexpr std::size_t kSlotViews = kSlotBindingBytes / kParamsStride;
+    static std::size_t groupsFor(std::size_t views) {
+        return (views + kSlotViews - 1) / kSlotViews;
+    }
+
+    // Makes the resources for `width` x `height` (`views` side by side) where they are not
+    // already; returns whether anything was made again (bind groups over it must be too).
+    bool ensure(const RenderSetup& setup,
+                std::uint32_t width,
+                std::uint32_t height,
+                std::size_t views,
+                std::uint32_t maxGroups);
+
+    std::uint32_t width = 0;
+    std::uint32_t height = 0;
+    std::size_t viewCapacity = 0;
+    // Workgroups of each bin's shading grid: at most the samples of the target.
+    std::uint32_t shadeGroups = 1;
+    wgpu::Buffer params;          // The parameter slots, and a binding's worth past them.
+    wgpu::Buffer triangleCounts;  // Per view: compute, hardware.
+    wgpu::Buffer visibility;
+    wgpu::Buffer pixels;
+    wgpu::Texture shaded;
+    wgpu::TextureView shadedLayers;  // Every layer (one per sample), as an array.
+    wgpu::Texture hardwareDepth;
+    wgpu::TextureView hardwareDepthView;
+    DepthPyramid pyramid;  // Of the visibility buffer's depth.
+};
+
+}  // namespace encore::render
