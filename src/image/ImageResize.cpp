@@ -45,12 +45,6 @@ const std::array<float, 256>& srgbToLinearTable() {
     return table;
 }
 
-std::uint8_t linearToSrgb8(float linear) {
-    const double c = std::clamp(double(linear), 0.0, 1.0);
-    const double encoded = c <= 0.0031308 ? c * 12.92 : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055;
-    return static_cast<std::uint8_t>(std::lround(encoded * 255.0));
-}
-
 }  // namespace
 
 ImageSize fitWithin(ImageSize size, std::uint32_t maxDimension) {

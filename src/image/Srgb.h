@@ -3,6 +3,7 @@
 // The sRGB transfer function (IEC 61966-2-1).
 
 #include <cmath>
+#include <cstdint>
 
 namespace encore::image {
 
@@ -10,5 +11,11 @@ namespace encore::image {
 inline double srgbToLinear(double encoded) {
     return encoded <= 0.04045 ? encoded / 12.92 : std::pow((encoded + 0.055) / 1.055, 2.4);
 }
+
+// A linear value (clamped to 0..1) sRGB-encoded and rounded to 8 bits, by the formula (pow).
+std::uint8_t encodeSrgb8(float linear);
+// The same value without pow (a search over the 255 places where the result steps up, found
+// once): for images of millions of texels.
+std::uint8_t linearToSrgb8(float linear);
 
 }  // namespace encore::image

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "image/ImageResize.h"
+#include "image/Srgb.h"
 
 namespace encore::image {
 namespace {
@@ -97,6 +98,32 @@ TEST(ImageResizeTest, HdrPanoramasKeepTheirMeanRadiance) {
     EXPECT_NEAR(result[0], 0.25f * 0.9f + 100.0f * 0.1f, 1e-4f);
     EXPECT_NEAR(result[3], 0.25f * 0.9f + 100.0f * 0.1f, 1e-4f);
     EXPECT_NEAR(result[1], 0.25f, 1e-6f);
+}
+
+// The search that downscaling encodes sRGB with gives what the formula gives: at a million
+// values across 0..1 and beyond, and around every step of the result (the threshold float and
+// its neighbours).
+TEST(ImageResizeTest, Srgb8EncodingWithoutPowMatchesTheFormula) {
+    for (int i = -100000; i <= 1100000; ++i) {
+        const float linear = float(i) / 1000000.0f;
+        ASSERT_EQ(linearToSrgb8(linear), encodeSrgb8(linear)) << linear;
+    }
+    for (int k = 0; k < 255; ++k) {
+        // Where the formula steps from k to k + 1: bisect as the implementation does not.
+        float low = 0.0f;
+        float high = 1.0f;
+        for (int step = 0; step < 60; ++step) {
+            const float middle = (low + high) / 2;
+            (encodeSrgb8(middle) > k ? high : low) = middle;
+        }
+        for (float value : {std::nextafter(high, 0.0f), high, std::nextafter(high, 2.0f), low}) {
+            ASSERT_EQ(linearToSrgb8(value), encodeSrgb8(value)) << value << " near step " << k;
+        }
+    }
+    EXPECT_EQ(linearToSrgb8(-1.0f), 0);
+    EXPECT_EQ(linearToSrgb8(0.0f), 0);
+    EXPECT_EQ(linearToSrgb8(1.0f), 255);
+    EXPECT_EQ(linearToSrgb8(7.0f), 255);
 }
 
 }  // namespace
