@@ -22,7 +22,7 @@ const std::array<float, 255>& srgb8Thresholds() {
     static const std::array<float, 255> thresholds = [] {
         std::array<float, 255> values{};
         for (int k = 0; k < 255; ++k) {
-            std::uint32_t low = 0;                               // encodes to <= k
+            std::uint32_t low = 0;                                    // encodes to <= k
             std::uint32_t high = std::bit_cast<std::uint32_t>(1.0f);  // encodes to 255 > k
             while (high - low > 1) {
                 const std::uint32_t middle = low + (high - low) / 2;
@@ -52,6 +52,5 @@ std::uint8_t linearToSrgb8(float linear) {
     }
     return static_cast<std::uint8_t>(below);
 }
-
 
 }  // namespace encore::image
