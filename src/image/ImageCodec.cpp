@@ -255,16 +255,17 @@ Result<std::vector<std::uint8_t>> writePngStream(std::uint32_t width,
         return makeError(ErrorCode::IoError, "PNG encoding failed (out of memory).");
     };
     const bool paeth = compression == PngCompression::Small && bitDepth == 8;
-    const bool fast = compression == PngCompression::Fast || paeth;
+    const bool runs =
+        compression == PngCompression::Fast || paeth;  // runLengthZlib, else libdeflate.
     const std::size_t rowBytes = samples.size() / height;
     const std::size_t filteredSize = (rowBytes + 1) * height;
     const ScratchBuffer::Use useFiltered(scratch.filtered);
     const ScratchBuffer::Use useCompressed(scratch.compressed);
     std::uint8_t* filtered = scratch.filtered.reserve(filteredSize);
-    if (!fast && !scratch.compressor) {
+    if (!runs && !scratch.compressor) {
         scratch.compressor.reset(libdeflate_alloc_compressor(kCompressionLevel));
     }
-    if (!filtered || (!fast && !scratch.compressor)) {
+    if (!filtered || (!runs && !scratch.compressor)) {
         return outOfMemory();
     }
     if (paeth) {
@@ -274,14 +275,14 @@ Result<std::vector<std::uint8_t>> writePngStream(std::uint32_t width,
         filterUp(samples.data(), rowBytes, height, filtered);
     }
     const std::size_t bound =
-        fast ? runLengthZlibBound(filteredSize)
+        runs ? runLengthZlibBound(filteredSize)
              : libdeflate_zlib_compress_bound(scratch.compressor.get(), filteredSize);
     std::uint8_t* compressed = scratch.compressed.reserve(bound);
     if (!compressed) {
         return outOfMemory();
     }
     const std::size_t compressedSize =
-        fast ? runLengthZlib({filtered, filteredSize}, compressed)
+        runs ? runLengthZlib({filtered, filteredSize}, compressed)
              : libdeflate_zlib_compress(scratch.compressor.get(), filtered, filteredSize,
                                         compressed, bound);
     if (compressedSize == 0) {

@@ -28,7 +28,7 @@ struct SpngContextFree {
 std::uint8_t toByte(double value, bool srgb) {
     value = std::clamp(value, 0.0, 1.0);
     if (srgb) {
-        value = value <= 0.0031308 ? value * 12.92 : 1.055 * std::pow(value, 1.0 / 2.4) - 0.055;
+        value = linearToSrgb(value);
     }
     return static_cast<std::uint8_t>(std::lround(value * 255.0));
 }

@@ -8,8 +8,7 @@
 namespace encore::image {
 
 std::uint8_t encodeSrgb8(float linear) {
-    const double c = std::clamp(double(linear), 0.0, 1.0);
-    const double encoded = c <= 0.0031308 ? c * 12.92 : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055;
+    const double encoded = linearToSrgb(std::clamp(double(linear), 0.0, 1.0));
     return static_cast<std::uint8_t>(std::lround(encoded * 255.0));
 }
 
