@@ -58,6 +58,17 @@ fn sampleSlot(slotTexture: texture_2d<f32>, slot: u32, uv0: vec2f, uv1: vec2f,
 }
 #endif
 
+// The extensions' slots as the white 1-pixel default reads them.
+fn whiteExtensionSamples(samples: ptr<function, MaterialSamples>) {
+    (*samples).iridescence = 1.0;
+    (*samples).iridescenceThickness = 1.0;
+    (*samples).anisotropy = vec3f(1.0);
+    (*samples).transmission = 1.0;
+    (*samples).thickness = 1.0;
+    (*samples).diffuseTransmission = 1.0;
+    (*samples).diffuseTransmissionColor = vec3f(1.0);
+}
+
 fn sampleMaterial(uv0: vec2f, uv1: vec2f, gradients: UvGradients) -> MaterialSamples {
     var samples: MaterialSamples;
 #if MATERIAL_TEXTURES
@@ -101,13 +112,7 @@ fn sampleMaterial(uv0: vec2f, uv1: vec2f, gradients: UvGradients) -> MaterialSam
                    gradients).rgb;
 #else
     // Their shading is compiled out (kCompiledFeatures): what they would read is never used.
-    samples.iridescence = 1.0;
-    samples.iridescenceThickness = 1.0;
-    samples.anisotropy = vec3f(1.0);
-    samples.transmission = 1.0;
-    samples.thickness = 1.0;
-    samples.diffuseTransmission = 1.0;
-    samples.diffuseTransmissionColor = vec3f(1.0);
+    whiteExtensionSamples(&samples);
 #endif
 #else
     // No texture anywhere: every slot reads white, as the 1-pixel default would.
@@ -123,13 +128,7 @@ fn sampleMaterial(uv0: vec2f, uv1: vec2f, gradients: UvGradients) -> MaterialSam
     samples.clearcoatNormal = vec3f(1.0);
     samples.sheenColor = vec3f(1.0);
     samples.sheenRoughness = 1.0;
-    samples.iridescence = 1.0;
-    samples.iridescenceThickness = 1.0;
-    samples.anisotropy = vec3f(1.0);
-    samples.transmission = 1.0;
-    samples.thickness = 1.0;
-    samples.diffuseTransmission = 1.0;
-    samples.diffuseTransmissionColor = vec3f(1.0);
+    whiteExtensionSamples(&samples);
 #endif
     return samples;
 }
