@@ -67,6 +67,9 @@ Result<void> DeviceLane::createRenderers() {
     // segmentation and HDR images are read from the HDR target.
     rendererOptions.target.hdr = options.images.perView() > 1;
     mPassTargets = drawsPassTargets(options.images, mShared.strategy.kind, mContext.limits());
+    const bool pngRows =
+        filtersPngRowsOnGpu(options.pngFiltering, mContext.adapterDescription().adapterType);
+    rendererOptions.target.bytesViews = pngRows;
     rendererOptions.passTargets =
         mPassTargets ? passTargetsFor(options.images.segmentationBy) : render::PassTargets::None;
     // With pass targets every image of a target is one read: as many more slots.
@@ -78,10 +81,18 @@ Result<void> DeviceLane::createRenderers() {
     rendererOptions.prepareWaitsForIdle = false;
     mRing = nullptr;
     mRenderers.clear();
+    mPngRows.reset();
+    if (pngRows) {
+        ENCORE_TRY_ASSIGN(auto pass, PngRowsPass::create(mContext.device()));
+        mPngRows = std::move(pass);
+    }
+    // A read of PNG rows stays mapped until the pool has compressed its images, not only
+    // cropped them: twice the slots keep the device thread from waiting for them.
+    const std::size_t slotsPerRead = pngRows ? 2 : 1;
     // The renderers of an earlier run when they were built from the same options; they light
     // with one environment.
-    ENCORE_TRY(mBatchRenderer.acquire(rendererOptions, options.readbackSlots * readsPerTarget,
-                                      options.renderers));
+    ENCORE_TRY(mBatchRenderer.acquire(
+        rendererOptions, options.readbackSlots * readsPerTarget * slotsPerRead, options.renderers));
     for (std::size_t i = 0; i < mBatchRenderer.rendererCount(); ++i) {
         mRenderers.push_back({&mBatchRenderer.renderer(i), {}});
     }
@@ -130,7 +141,10 @@ void DeviceLane::collectOldest() {
         // The pool crops the strips straight out of the mapped buffer: the device thread copies
         // nothing, and the ring unmaps the buffer once the last strip is cropped.
         auto wide = std::make_shared<const gpu::MappedReadback>(std::move(*finished));
-        if (!chunk.floatKinds.empty()) {
+        if (chunk.pngRows) {
+            mShared.writer.writePngRowViews(chunk.job, chunk.first, chunk.count,
+                                            std::move(*chunk.pngRows), std::move(wide));
+        } else if (!chunk.floatKinds.empty()) {
             mShared.writer.writeMappedFloatViews(chunk.job, chunk.first, chunk.count,
                                                  std::move(chunk.floatKinds), std::move(wide),
                                                  chunk.unitsPerModelUnit);
@@ -204,15 +218,8 @@ void DeviceLane::recoverIfLost() {
 
 void DeviceLane::renderChunk(const TargetViews& views, ViewImage kind, double& waiting) {
     const auto& [job, slot, cameras, first, count] = views;
-    if (mRing->full()) {
-        const auto waitStart = Clock::now();
-        const std::uint64_t device = mDevicesLost;
-        collectOldest();
-        waiting += secondsSince(waitStart);
-        if (device != mDevicesLost) {
-            failJob(*job, "render", lostWhileDrawing());
-            return;
-        }
+    if (!waitForSlot(views, waiting)) {
+        return;
     }
     render::Renderer& renderer = *mRenderers[slot].renderer;
     renderer.renderViews(cameras);
@@ -220,22 +227,65 @@ void DeviceLane::renderChunk(const TargetViews& views, ViewImage kind, double& w
         mViewsDrawn += count;
     }
     ChunkInFlight chunk{job, slot, first, count, kind};
+    if (mPngRows) {
+        const PngRowsRequest request{kind, kind == ViewImage::Normal || kind == ViewImage::Material
+                                               ? PngRowsSource::LinearBytes
+                                               : PngRowsSource::Bytes};
+        enqueuePngRows(views, renderer.target().outputBytesView(), {&request, 1}, 1.0f,
+                       std::move(chunk), waiting);
+        return;
+    }
     enqueueReadback(views, renderer.target().colorTexture(), std::move(chunk), waiting);
+}
+
+bool DeviceLane::waitForSlot(const TargetViews& views, double& waiting) {
+    if (!mRing->full()) {
+        return true;
+    }
+    const auto waitStart = Clock::now();
+    const std::uint64_t device = mDevicesLost;
+    collectOldest();
+    waiting += secondsSince(waitStart);
+    if (device != mDevicesLost) {
+        failJob(*views.job, "render", lostWhileDrawing());
+        return false;
+    }
+    return true;
+}
+
+bool DeviceLane::enqueuePngRows(const TargetViews& views,
+                                const wgpu::TextureView& source,
+                                std::span<const PngRowsRequest> requests,
+                                float depthFactor,
+                                ChunkInFlight chunk,
+                                double& waiting) {
+    if (!waitForSlot(views, waiting)) {
+        return false;
+    }
+    PngRowsLayout layout = pngRowsLayout(mLayout.width, mLayout.height, views.count, requests,
+                                         mShared.options.pngCompression);
+    auto enqueued = mRing->enqueueCommands(
+        layout.size,
+        [&](const wgpu::CommandEncoder& encoder, const wgpu::Buffer& destination) {
+            mPngRows->record(mContext.queue(), encoder, source, layout, depthFactor, destination);
+        },
+        mTimestamps ? &*mTimestamps : nullptr,
+        render::gpuStageIndex(render::GpuStage::ReadbackCopy));
+    if (!enqueued) {
+        failJob(*views.job, "render", enqueued.error());
+        return false;
+    }
+    chunk.pngRows = std::move(layout);
+    mChunks.push_back(std::move(chunk));
+    return true;
 }
 
 bool DeviceLane::enqueueReadback(const TargetViews& views,
                                  const wgpu::Texture& texture,
                                  ChunkInFlight chunk,
                                  double& waiting) {
-    if (mRing->full()) {
-        const auto waitStart = Clock::now();
-        const std::uint64_t device = mDevicesLost;
-        collectOldest();
-        waiting += secondsSince(waitStart);
-        if (device != mDevicesLost) {
-            failJob(*views.job, "render", lostWhileDrawing());
-            return false;
-        }
+    if (!waitForSlot(views, waiting)) {
+        return false;
     }
     auto enqueued = mRing->enqueue(texture, mTimestamps ? &*mTimestamps : nullptr,
                                    render::gpuStageIndex(render::GpuStage::ReadbackCopy));
@@ -252,6 +302,8 @@ void DeviceLane::readPassTargets(const TargetViews& views,
                                  double& waiting) {
     const auto& [job, slot, cameras, first, count] = views;
     const ExtraImages& images = mShared.options.images;
+    // Depth as EXR and HDR are floats: those reads stay as they are.
+    const bool depthRows = mPngRows && !(images.depth && images.depthFormat == DepthFormat::Exr);
     std::vector<ViewImage> depthAndId;
     for (const ViewImage kind : extraPasses(images)) {
         if (job->failed) {
@@ -268,19 +320,38 @@ void DeviceLane::readPassTargets(const TargetViews& views,
         if (kind == ViewImage::Hdr) {
             chunk.floatKinds = {kind};
             enqueueReadback(views, renderer.target().sceneTexture(), std::move(chunk), waiting);
+        } else if (mPngRows) {
+            const PngRowsRequest request{kind, kind == ViewImage::Albedo
+                                                   ? PngRowsSource::Bytes
+                                                   : PngRowsSource::LinearBytes};
+            enqueuePngRows(views, renderer.passBytesView(passImageOf(kind)), {&request, 1}, 1.0f,
+                           std::move(chunk), waiting);
         } else {
             enqueueReadback(views, renderer.passTexture(passImageOf(kind)), std::move(chunk),
                             waiting);
         }
     }
-    if (!depthAndId.empty() && !job->failed) {
-        const render::Renderer& renderer = *mRenderers[slot].renderer;
-        ChunkInFlight chunk{job, slot, first, count, depthAndId.front()};
-        chunk.floatKinds = std::move(depthAndId);
-        chunk.unitsPerModelUnit = unitsPerModelUnit;
-        enqueueReadback(views, renderer.passTexture(render::PassImage::DepthAndId),
-                        std::move(chunk), waiting);
+    if (depthAndId.empty() || job->failed) {
+        return;
     }
+    const render::Renderer& renderer = *mRenderers[slot].renderer;
+    ChunkInFlight chunk{job, slot, first, count, depthAndId.front()};
+    chunk.unitsPerModelUnit = unitsPerModelUnit;
+    if (depthRows) {
+        std::vector<PngRowsRequest> requests;
+        for (const ViewImage kind : depthAndId) {
+            requests.push_back(
+                {kind, kind == ViewImage::Depth ? PngRowsSource::Depth : PngRowsSource::Ids});
+        }
+        const auto depthFactor =
+            float(double(unitsPerModelUnit) / depthScale(mShared.options.views));
+        enqueuePngRows(views, renderer.passBytesView(render::PassImage::DepthAndId), requests,
+                       depthFactor, std::move(chunk), waiting);
+        return;
+    }
+    chunk.floatKinds = std::move(depthAndId);
+    enqueueReadback(views, renderer.passTexture(render::PassImage::DepthAndId), std::move(chunk),
+                    waiting);
 }
 
 void DeviceLane::renderDebugChannel(const std::shared_ptr<ModelJob>& job,
@@ -661,6 +732,7 @@ DeviceSummary DeviceLane::summary() const {
     summary.models = mModelsPrepared;
     summary.views = mViewsDrawn;
     summary.passTargets = mPassTargets;
+    summary.pngRowsOnGpu = mPngRows.has_value();
     return summary;
 }
 

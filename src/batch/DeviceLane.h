@@ -17,6 +17,7 @@
 #include "batch/ModelLoader.h"
 #include "batch/ModelPlan.h"
 #include "batch/ModelWriter.h"
+#include "batch/PngRowsPass.h"
 #include "batch/ShardWriter.h"
 #include "batch/ViewStrips.h"
 #include "core/ThreadPool.h"
@@ -55,6 +56,8 @@ struct ChunkInFlight {
     // A read of half floats (pass targets): the images made from it, and the scale of depths.
     std::vector<ViewImage> floatKinds;
     float unitsPerModelUnit = 1.0f;
+    // A read of PNG rows filtered on the GPU (PngRowsPass): where its images lie.
+    std::optional<PngRowsLayout> pngRows;
 };
 
 // One of the renderers that take models in turn, and the scene it last prepared: the renderer
@@ -140,6 +143,17 @@ class DeviceLane {
                          const wgpu::Texture& texture,
                          ChunkInFlight chunk,
                          double& waiting);
+    // The same through the PNG rows pass: `source`'s views as the PNG rows of `requests`' images
+    // (mPngRows; `depthFactor` as PngRowsPass::record takes it).
+    bool enqueuePngRows(const TargetViews& views,
+                        const wgpu::TextureView& source,
+                        std::span<const PngRowsRequest> requests,
+                        float depthFactor,
+                        ChunkInFlight chunk,
+                        double& waiting);
+    // Waits for a free read-back slot if every one is in flight; false when a device loss
+    // meanwhile failed the job.
+    bool waitForSlot(const TargetViews& views, double& waiting);
     // After renderChunk drew the colour frame with pass targets: reads back every pass image of
     // its views through the ring (renderer.passTexture), the HDR image from the scene colour.
     void readPassTargets(const TargetViews& views, float unitsPerModelUnit, double& waiting);
@@ -155,6 +169,8 @@ class DeviceLane {
     // The passes are drawn in the colour frame's render pass (drawsPassTargets), not one frame
     // per pass.
     bool mPassTargets = false;
+    // Filters the PNG rows on the GPU (BatchOptions::pngFiltering); on the current device.
+    std::optional<PngRowsPass> mPngRows;
     // Models go to the renderers in turn: while the GPU draws model k with one, the device
     // thread uploads model k + 1 with another (BatchOptions::renderers). No renderer is left
     // after a device loss that could not be recovered.

@@ -78,17 +78,18 @@ Result<void> ModelWriter::writeCameraMatrices(ModelJob& job) {
     return {};
 }
 
-void ModelWriter::checkCoverage(ModelJob& job, std::uint32_t view, const image::ImageRgba8& image) {
-    const std::uint64_t covered = coveredPixels(image.pixels);
+void ModelWriter::checkCoverage(ModelJob& job,
+                                std::uint32_t view,
+                                std::uint64_t covered,
+                                std::uint64_t pixels) {
     job.coveredPixels[view] = covered;  // Each view's task writes its own element.
     if (mOptions.strict && covered < mOptions.blankThreshold) {
-        job.fail(
-            mFailures, mCounters, "blank",
-            makeError(ErrorCode::InvalidFormat,
-                      "View " + std::to_string(view) + " is blank: " + std::to_string(covered) +
-                          " of its " + std::to_string(std::uint64_t(image.width) * image.height) +
-                          " pixels are covered, fewer than the blank threshold (" +
-                          std::to_string(mOptions.blankThreshold) + ")."));
+        job.fail(mFailures, mCounters, "blank",
+                 makeError(ErrorCode::InvalidFormat,
+                           "View " + std::to_string(view) + " is blank: " +
+                               std::to_string(covered) + " of its " + std::to_string(pixels) +
+                               " pixels are covered, fewer than the blank threshold (" +
+                               std::to_string(mOptions.blankThreshold) + ")."));
     }
 }
 
@@ -159,6 +160,30 @@ void ModelWriter::writeMappedFloatViews(const std::shared_ptr<ModelJob>& job,
     }
 }
 
+void ModelWriter::writePngRowViews(const std::shared_ptr<ModelJob>& job,
+                                   std::uint32_t first,
+                                   std::uint32_t count,
+                                   PngRowsLayout layout,
+                                   std::shared_ptr<const gpu::MappedReadback> wide) {
+    const auto rows = std::make_shared<const PngRowsLayout>(std::move(layout));
+    for (std::uint32_t strip = 0; strip < count; ++strip) {
+        const std::uint32_t view = first + strip;
+        for (std::size_t i = 0; i < rows->images.size(); ++i) {
+            const PngRowsLayout::Image& image = rows->images[i];
+            if (image.kind == ViewImage::Color && !job->coveredPixels.empty()) {
+                checkCoverage(*job, view, rows->coveredPixels(wide->rows, strip),
+                              std::uint64_t(rows->width) * rows->height);
+            }
+            writeImage(job, view, image.kind, [rows, wide, i, strip] {
+                const PngRowsLayout::Image& image = rows->images[i];
+                return image::pngOfFilteredRows(rows->width, rows->height, image.bitDepth,
+                                                image.color, rows->rows(wide->rows, i, strip),
+                                                image.compression);
+            });
+        }
+    }
+}
+
 std::function<Result<std::vector<std::uint8_t>>()> ModelWriter::floatEncoder(
     ViewImage kind,
     const FloatStrip& pixels,
@@ -201,7 +226,8 @@ void ModelWriter::encodeView(const std::shared_ptr<ModelJob>& job,
             cropStrip(wide->rows, wide->bytesPerRow, wide->height, strip, mOptions.width));
         wide.reset();  // The last strip lets the ring have its buffer back.
         if (kind == ViewImage::Color && !job->coveredPixels.empty()) {
-            checkCoverage(*job, view, *image);
+            checkCoverage(*job, view, coveredPixels(image->pixels),
+                          std::uint64_t(image->width) * image->height);
         }
         const double seconds = secondsSince(start);
         {

@@ -21,6 +21,7 @@
 
 #include "batch/ModelMetadata.h"
 #include "batch/PassImages.h"
+#include "batch/PngRowsPass.h"
 #include "core/ThreadPool.h"
 #include "encore/batch/Batch.h"
 #include "encore/batch/BatchInputs.h"
@@ -165,6 +166,14 @@ class ModelWriter {
                                std::vector<ViewImage> kinds,
                                std::shared_ptr<const gpu::MappedReadback> wide,
                                float unitsPerModelUnit);
+    // The same for a read of PNG rows filtered on the GPU (PngRowsPass): each image of each
+    // view compressed straight from the mapped buffer, which the ring has back once the last
+    // is compressed.
+    void writePngRowViews(const std::shared_ptr<ModelJob>& job,
+                          std::uint32_t first,
+                          std::uint32_t count,
+                          PngRowsLayout layout,
+                          std::shared_ptr<const gpu::MappedReadback> wide);
 
   private:
     // How a float image of `kind` is encoded from `pixels` (ids packed as in a DepthAndId pass
@@ -182,7 +191,10 @@ class ModelWriter {
                     std::uint32_t strip);
     // Records how many pixels colour view `view` covers; with --strict, a blank view fails the
     // model (stage "blank").
-    void checkCoverage(ModelJob& job, std::uint32_t view, const image::ImageRgba8& image);
+    void checkCoverage(ModelJob& job,
+                       std::uint32_t view,
+                       std::uint64_t covered,
+                       std::uint64_t pixels);
     // Encodes one image of `job` on the pool and writes it; the last one completes the model.
     void writeImage(const std::shared_ptr<ModelJob>& job,
                     std::uint32_t view,

@@ -94,7 +94,7 @@ Result<void> drawDebugChannel(render::Renderer& renderer,
     return set;
 }
 
-void decodeNormalImage(image::ImageRgba8& image) {
+const std::array<std::uint8_t, 256>& srgbDecodedBytes() {
     static const std::array<std::uint8_t, 256> kLinear = [] {
         std::array<std::uint8_t, 256> table{};
         for (int value = 0; value < 256; ++value) {
@@ -102,9 +102,14 @@ void decodeNormalImage(image::ImageRgba8& image) {
         }
         return table;
     }();
+    return kLinear;
+}
+
+void decodeNormalImage(image::ImageRgba8& image) {
+    const std::array<std::uint8_t, 256>& linear = srgbDecodedBytes();
     for (std::size_t i = 0; i < image.pixels.size(); i += 4) {
         for (std::size_t channel = 0; channel < 3; ++channel) {
-            image.pixels[i + channel] = kLinear[image.pixels[i + channel]];
+            image.pixels[i + channel] = linear[image.pixels[i + channel]];
         }
     }
 }
@@ -124,6 +129,7 @@ image::ImageGray16 depthStrip(std::span<const float> wide,
     depth.width = width;
     depth.height = height;
     depth.pixels.resize(std::size_t(width) * height);
+    const auto stepsPerUnit = float(double(unitsPerModelUnit) / scale);
     for (std::uint32_t y = 0; y < height; ++y) {
         for (std::uint32_t x = 0; x < width; ++x) {
             const float* texel = &wide[(std::size_t(y) * targetWidth + strip * width + x) * 4];
@@ -133,9 +139,10 @@ image::ImageGray16 depthStrip(std::span<const float> wide,
             if (!(coverage >= 0.5f)) {
                 continue;  // 0: nothing there.
             }
-            const double units = double(texel[0] / coverage) * unitsPerModelUnit / scale;
+            // In floats, as png_rows.wgsl computes it on the GPU.
+            const float steps = texel[0] / coverage * stepsPerUnit;
             depth.pixels[std::size_t(y) * width + x] =
-                std::uint16_t(std::clamp(std::lround(units), 1l, 65535l));
+                std::uint16_t(std::clamp(std::lround(steps), 1l, 65535l));
         }
     }
     return depth;

@@ -4,6 +4,7 @@
 // strip per view: one frame and one read-back for many views. This says how many strips a
 // target holds, which cameras fill them, and how the read-back image is cut into views.
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <span>
@@ -73,6 +74,8 @@ Result<void> drawDebugChannel(render::Renderer& renderer,
 // 0.5 linearly. Decoding the 8-bit values is exact to within one level (the HDR target holds the
 // normal itself).
 void decodeNormalImage(image::ImageRgba8& image);
+// The table it decodes with: for each stored byte, the linear value's byte.
+const std::array<std::uint8_t, 256>& srgbDecodedBytes();
 
 // One step of a 16-bit depth image, in the units of the rig's cameras: the range covers twice
 // the (largest) camera distance (transforms.json's depth_scale).

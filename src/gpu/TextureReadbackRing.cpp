@@ -17,6 +17,7 @@ struct TextureReadbackRing::Slot {
     std::uint32_t height = 0;
     std::uint32_t paddedRowBytes = 0;
     std::uint32_t bytesPerTexel = 4;
+    std::uint64_t size = 0;  // Mapped.
     // Set by the map callback, which runs inside Context::wait (WaitAnyOnly).
     bool mapped = false;
     std::string mapMessage;
@@ -76,6 +77,49 @@ TextureReadbackRing::Slot* TextureReadbackRing::freeSlot() {
     }
 }
 
+Result<TextureReadbackRing::Slot*> TextureReadbackRing::slotFor(std::uint64_t size) {
+    Slot* slot = full() ? nullptr : freeSlot();
+    if (!slot) {
+        return makeError(ErrorCode::InvalidArgument, "Every read-back slot is in use (" +
+                                                         std::to_string(mSlots.size()) +
+                                                         "); take a finished read first.");
+    }
+    if (size > mContext->limits().maxBufferSize) {
+        return makeError(ErrorCode::LimitExceeded,
+                         "A read-back of " + std::to_string(size) +
+                             " bytes needs more than the device's maxBufferSize (" +
+                             std::to_string(mContext->limits().maxBufferSize) + " bytes).");
+    }
+    if (!slot->buffer || slot->buffer.GetSize() < size) {
+        wgpu::BufferDescriptor descriptor{};
+        descriptor.label = "read-back ring slot";
+        descriptor.size = size;
+        descriptor.usage = wgpu::BufferUsage::CopyDst | wgpu::BufferUsage::MapRead;
+        slot->buffer = mContext->device().CreateBuffer(&descriptor);
+    }
+    return slot;
+}
+
+std::uint64_t TextureReadbackRing::submitAndMap(Slot& slot,
+                                                const wgpu::CommandEncoder& encoder,
+                                                std::uint64_t size) {
+    wgpu::CommandBuffer commands = encoder.Finish();
+    mContext->queue().Submit(1, &commands);
+    slot.size = size;
+    slot.mapped = false;
+    slot.mapMessage.clear();
+    slot.ticket = mNextTicket++;
+    Slot* mapping = &slot;
+    slot.future =
+        slot.buffer.MapAsync(wgpu::MapMode::Read, 0, size, wgpu::CallbackMode::WaitAnyOnly,
+                             [mapping](wgpu::MapAsyncStatus status, wgpu::StringView message) {
+                                 mapping->mapped = status == wgpu::MapAsyncStatus::Success;
+                                 mapping->mapMessage = std::string(std::string_view(message));
+                             });
+    mInFlight.push_back(&slot);
+    return slot.ticket;
+}
+
 Result<std::uint64_t> TextureReadbackRing::enqueue(const wgpu::Texture& texture,
                                                    StageTimestamps* timestamps,
                                                    std::uint32_t stage) {
@@ -86,32 +130,28 @@ Result<std::uint64_t> TextureReadbackRing::enqueue(const wgpu::Texture& texture,
         return makeError(ErrorCode::InvalidArgument,
                          "TextureReadbackRing reads RGBA8 and RGBA16Float textures only.");
     }
-    Slot* slot = full() ? nullptr : freeSlot();
-    if (!slot) {
-        return makeError(ErrorCode::InvalidArgument, "Every read-back slot is in use (" +
-                                                         std::to_string(mSlots.size()) +
-                                                         "); take a finished read first.");
+    const std::uint32_t width = texture.GetWidth();
+    const std::uint32_t height = texture.GetHeight();
+    const std::uint32_t bytesPerTexel = halves ? 8 : 4;
+    const std::uint32_t rowBytes = paddedRowBytes(width * bytesPerTexel);
+    const std::uint64_t size = std::uint64_t(rowBytes) * height;
+    auto free = slotFor(size);
+    if (!free) {
+        if (free.error().code == ErrorCode::LimitExceeded) {
+            return makeError(ErrorCode::LimitExceeded,
+                             "Reading back a " + std::to_string(width) + "x" +
+                                 std::to_string(height) + " texture needs a buffer of " +
+                                 std::to_string(size) +
+                                 " bytes, more than the device's maxBufferSize (" +
+                                 std::to_string(mContext->limits().maxBufferSize) + " bytes).");
+        }
+        return free.error();
     }
-    slot->width = texture.GetWidth();
-    slot->height = texture.GetHeight();
-    slot->bytesPerTexel = halves ? 8 : 4;
-    slot->paddedRowBytes = paddedRowBytes(slot->width * slot->bytesPerTexel);
-    const std::uint64_t size = std::uint64_t(slot->paddedRowBytes) * slot->height;
-    if (size > mContext->limits().maxBufferSize) {
-        return makeError(ErrorCode::LimitExceeded,
-                         "Reading back a " + std::to_string(slot->width) + "x" +
-                             std::to_string(slot->height) + " texture needs a buffer of " +
-                             std::to_string(size) +
-                             " bytes, more than the device's maxBufferSize (" +
-                             std::to_string(mContext->limits().maxBufferSize) + " bytes).");
-    }
-    if (!slot->buffer || slot->buffer.GetSize() < size) {
-        wgpu::BufferDescriptor descriptor{};
-        descriptor.label = "read-back ring slot";
-        descriptor.size = size;
-        descriptor.usage = wgpu::BufferUsage::CopyDst | wgpu::BufferUsage::MapRead;
-        slot->buffer = mContext->device().CreateBuffer(&descriptor);
-    }
+    Slot* slot = *free;
+    slot->width = width;
+    slot->height = height;
+    slot->bytesPerTexel = bytesPerTexel;
+    slot->paddedRowBytes = rowBytes;
     wgpu::TexelCopyTextureInfo source{};
     source.texture = texture;
     wgpu::TexelCopyBufferInfo destination{};
@@ -126,20 +166,26 @@ Result<std::uint64_t> TextureReadbackRing::enqueue(const wgpu::Texture& texture,
     } else {
         encoder.CopyTextureToBuffer(&source, &destination, &extent);
     }
-    wgpu::CommandBuffer commands = encoder.Finish();
-    mContext->queue().Submit(1, &commands);
+    return submitAndMap(*slot, encoder, size);
+}
 
-    slot->mapped = false;
-    slot->mapMessage.clear();
-    slot->ticket = mNextTicket++;
-    slot->future =
-        slot->buffer.MapAsync(wgpu::MapMode::Read, 0, size, wgpu::CallbackMode::WaitAnyOnly,
-                              [slot](wgpu::MapAsyncStatus status, wgpu::StringView message) {
-                                  slot->mapped = status == wgpu::MapAsyncStatus::Success;
-                                  slot->mapMessage = std::string(std::string_view(message));
-                              });
-    mInFlight.push_back(slot);
-    return slot->ticket;
+Result<std::uint64_t> TextureReadbackRing::enqueueCommands(
+    std::uint64_t size,
+    const std::function<void(const wgpu::CommandEncoder&, const wgpu::Buffer&)>& record,
+    StageTimestamps* timestamps,
+    std::uint32_t stage) {
+    ENCORE_TRY_ASSIGN(Slot * slot, slotFor(size));
+    slot->width = 0;
+    slot->height = 0;
+    slot->bytesPerTexel = 0;
+    slot->paddedRowBytes = 0;
+    wgpu::CommandEncoder encoder = mContext->device().CreateCommandEncoder();
+    if (timestamps) {
+        timestamps->timeCommands(encoder, stage, [&] { record(encoder, slot->buffer); });
+    } else {
+        record(encoder, slot->buffer);
+    }
+    return submitAndMap(*slot, encoder, size);
 }
 
 Result<MappedReadback> TextureReadbackRing::takeOldestMapped() {
@@ -157,7 +203,8 @@ Result<MappedReadback> TextureReadbackRing::takeOldestMapped() {
         return makeError(ErrorCode::DeviceError,
                          "Mapping a read-back buffer failed (" + slot->mapMessage + ").");
     }
-    const std::uint64_t size = std::uint64_t(slot->paddedRowBytes) * slot->height;
+    const std::uint64_t size = slot->size;
+    finished.size = size;
     finished.width = slot->width;
     finished.height = slot->height;
     finished.bytesPerRow = slot->paddedRowBytes;

@@ -49,6 +49,12 @@ Result<PassTargetTextures> PassTargetTextures::create(const wgpu::Device& device
         wgpu::TextureDescriptor image = resolved;
         image.format = RenderTarget::kColorFormat;
         image.usage = wgpu::TextureUsage::RenderAttachment | wgpu::TextureUsage::CopySrc;
+        constexpr wgpu::TextureFormat kBytesFormat = wgpu::TextureFormat::RGBA8Unorm;
+        if (target.options().bytesViews) {
+            image.usage |= wgpu::TextureUsage::TextureBinding;
+            image.viewFormatCount = 1;
+            image.viewFormats = &kBytesFormat;
+        }
         pass.image = device.CreateTexture(&image);
         pass.imageView = pass.image.CreateView();
         ENCORE_TRY_ASSIGN(auto converter,
@@ -80,6 +86,17 @@ void PassTargetTextures::encodeImages(const wgpu::CommandEncoder& commands) cons
     for (std::size_t i = 0; i < mConverters.size(); ++i) {
         mConverters[i].encode(commands, mTargets[i].imageView);
     }
+}
+
+wgpu::TextureView PassTargetTextures::bytesView(PassImage image) const {
+    const Target& pass = mTargets[static_cast<std::size_t>(image)];
+    if (image == PassImage::DepthAndId) {
+        return pass.resolvedView;
+    }
+    wgpu::TextureViewDescriptor bytes{};
+    bytes.label = "pass image bytes";
+    bytes.format = wgpu::TextureFormat::RGBA8Unorm;
+    return pass.image.CreateView(&bytes);
 }
 
 const wgpu::Texture& PassTargetTextures::texture(PassImage image) const {

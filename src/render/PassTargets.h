@@ -43,6 +43,9 @@ class PassTargetTextures {
 
     // Normal, Albedo, Material: RGBA8 sRGB; DepthAndId: the resolved rgba16float target.
     const wgpu::Texture& texture(PassImage image) const;
+    // For a compute pass: the 8-bit images through an RGBA8Unorm view (the target's
+    // RenderTargetOptions::bytesViews), DepthAndId as it is.
+    wgpu::TextureView bytesView(PassImage image) const;
 
   private:
     PassTargetTextures() = default;

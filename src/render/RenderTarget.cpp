@@ -33,13 +33,14 @@ Result<RenderTarget> RenderTarget::create(const wgpu::Device& device,
     output.usage = wgpu::TextureUsage::RenderAttachment | wgpu::TextureUsage::CopySrc |
                    wgpu::TextureUsage::TextureBinding;
     constexpr wgpu::TextureFormat kBytesFormat = wgpu::TextureFormat::RGBA8Unorm;
-    if (options.presentable) {
+    const bool bytesView = options.presentable || options.bytesViews;
+    if (bytesView) {
         output.viewFormatCount = 1;
         output.viewFormats = &kBytesFormat;
     }
     target.mOutput = device.CreateTexture(&output);
     target.mOutputView = target.mOutput.CreateView();
-    if (options.presentable) {
+    if (bytesView) {
         wgpu::TextureViewDescriptor bytes{};
         bytes.label = "render target output bytes";
         bytes.format = kBytesFormat;

@@ -233,6 +233,10 @@ wgpu::Texture Renderer::passTexture(PassImage image) const {
     return mPassTargets ? mPassTargets->texture(image) : wgpu::Texture();
 }
 
+wgpu::TextureView Renderer::passBytesView(PassImage image) const {
+    return mPassTargets ? mPassTargets->bytesView(image) : wgpu::TextureView();
+}
+
 Result<image::ImageRgba8> Renderer::readImage() {
     auto image = gpu::readTexture(*mContext, mTarget.colorTexture());
     if (!image) {

@@ -98,6 +98,8 @@ struct DeviceSummary {
     // Its passes were drawn in the colour frame's render pass (PassDrawing::Targets), not one
     // frame per pass.
     bool passTargets = false;
+    // Its PNG rows were filtered on the GPU (BatchOptions::pngFiltering).
+    bool pngRowsOnGpu = false;
 };
 
 struct BatchSummary : BatchProgress {
@@ -121,6 +123,14 @@ enum class OutputLayout {
     Nerf,       // Nothing more: transforms.json describes the cameras.
     Objaverse,  // A 000.npy beside each 000.png: the camera as the Objaverse-XL scripts save it
                 // (ObjaverseCamera.h).
+};
+
+// Where the views' PNG rows are filtered and the passes' samples made from what the GPU drew
+// (BatchOptions::pngFiltering): the PNG files are the same either way (depth within one step).
+enum class PngFiltering {
+    Auto,  // On the GPU, unless the adapter is a CPU (lavapipe: its "GPU" is the pool's cores).
+    Gpu,   // A compute pass writes the rows ready to compress (PngRowsPass.h).
+    Cpu,   // The pool crops, converts and filters the read-back.
 };
 
 // BatchOptions::maxTextureSize: what GPUs sample fast and datasets' 512-pixel views never
@@ -201,6 +211,7 @@ struct BatchOptions {
     // Small: libdeflate's matches (the default). Fast: runs only, about 2.4 times faster for
     // files about 16% larger, for when encoding limits the batch (image::PngCompression).
     image::PngCompression pngCompression = image::PngCompression::Small;
+    PngFiltering pngFiltering = PngFiltering::Auto;
     std::size_t jobs = 0;  // Pool threads; 0: one per hardware thread.
     std::uint64_t memoryLimitBytes = std::uint64_t{2} << 30;  // Scenes loaded ahead, at most.
     // Read-backs in flight or still being cropped by the pool: one more than the default

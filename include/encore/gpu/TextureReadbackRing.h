@@ -15,6 +15,7 @@
 #include <condition_variable>
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <vector>
@@ -43,6 +44,7 @@ struct MappedReadback {
     std::uint32_t bytesPerRow = 0;       // Between the starts of rows (gpu::paddedRowBytes).
     std::uint32_t bytesPerTexel = 4;     // 4: RGBA8; 8: RGBA16Float (half floats).
     const std::uint8_t* rows = nullptr;  // RGBA, rows top to bottom, bytes as stored.
+    std::uint64_t size = 0;              // Bytes mapped from `rows` on.
     double waitMilliseconds = 0.0;       // Blocked until the GPU had finished the copy.
     std::shared_ptr<const void> hold;    // Keeps the buffer mapped.
 };
@@ -73,6 +75,15 @@ class TextureReadbackRing {
     Result<std::uint64_t> enqueue(const wgpu::Texture& texture,
                                   StageTimestamps* timestamps = nullptr,
                                   std::uint32_t stage = 0);
+    // The same for a read that GPU commands fill: `record` records into the encoder what writes
+    // `size` bytes of the slot's buffer (from 0; a multiple of 4), as a copy from a buffer a
+    // compute pass wrote (batch/PngRowsPass). The mapped read's `rows` are those bytes (its
+    // width, height and bytesPerRow 0).
+    Result<std::uint64_t> enqueueCommands(
+        std::uint64_t size,
+        const std::function<void(const wgpu::CommandEncoder&, const wgpu::Buffer&)>& record,
+        StageTimestamps* timestamps = nullptr,
+        std::uint32_t stage = 0);
     // Waits for the oldest read and returns its image; its slot is free again. Fails with a
     // DeviceError when mapping failed (a lost device); RGBA8 reads only.
     Result<FinishedReadback> takeOldest();
@@ -90,6 +101,11 @@ class TextureReadbackRing {
     // A slot neither in flight nor held, unmapped; waits for a holder to let go if need be.
     // Null when every slot is in flight.
     Slot* freeSlot();
+    // A free slot whose buffer holds at least `size` bytes, or why there is none.
+    Result<Slot*> slotFor(std::uint64_t size);
+    // Submits `encoder`'s commands, which fill the slot, and starts mapping its first `size`
+    // bytes.
+    std::uint64_t submitAndMap(Slot& slot, const wgpu::CommandEncoder& encoder, std::uint64_t size);
 
     Context* mContext;
     std::vector<std::shared_ptr<Slot>> mSlots;

@@ -24,6 +24,9 @@ struct RenderTargetOptions {
     // The output can also be sampled, through outputBytesView(): for a window that presents the
     // image (view::Presenter) by copying its bytes into the window's surface.
     bool presentable = false;
+    // The output and the pass images (PassTargets.h) can also be read as bytes by a compute
+    // pass, through RGBA8Unorm views: encore batch's PNG rows (batch/PngRowsPass).
+    bool bytesViews = false;
 
     bool operator==(const RenderTargetOptions&) const = default;
 };
@@ -52,7 +55,8 @@ class RenderTarget {
     const wgpu::Texture& sceneTexture() const { return mScene; }
     const wgpu::TextureView& sceneView() const { return mSceneView; }
     const wgpu::TextureView& outputView() const { return mOutputView; }
-    // The output's bytes as RGBA8Unorm (no sRGB decoding when sampled): presentable targets only.
+    // The output's bytes as RGBA8Unorm (no sRGB decoding when sampled): presentable targets and
+    // those with bytesViews only.
     const wgpu::TextureView& outputBytesView() const { return mOutputBytesView; }
     const RenderTargetOptions& options() const { return mOptions; }
     // Depth32Float with the colour's sample count; also TextureBinding (DepthPyramid reads it).

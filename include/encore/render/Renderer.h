@@ -265,6 +265,9 @@ class Renderer {
     // (depth along the camera axis, id % 256, id / 256, coverage; premultiplied by coverage).
     // CopySrc, for read-backs.
     wgpu::Texture passTexture(PassImage image) const;
+    // The same through a view that a compute pass reads the bytes by (RenderTargetOptions::
+    // bytesViews): RGBA8Unorm for the 8-bit images, DepthAndId as it is.
+    wgpu::TextureView passBytesView(PassImage image) const;
     // The frame's linear HDR colour before tone mapping (RGBA floats, alpha = coverage); for
     // tests of the shading itself (energy, furnace).
     Result<std::vector<float>> readHdrImage();
