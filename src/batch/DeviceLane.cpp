@@ -95,6 +95,8 @@ Result<void> DeviceLane::createRenderers() {
         rendererOptions, options.readbackSlots * readsPerTarget * slotsPerRead, options.renderers));
     for (std::size_t i = 0; i < mBatchRenderer.rendererCount(); ++i) {
         mRenderers.push_back({&mBatchRenderer.renderer(i), {}});
+        // While the loaders read the first models: the first prepare would wait for them.
+        ENCORE_TRY(mBatchRenderer.renderer(i).createKeptObjects(mShared.strategy.kind));
     }
     mRing = &mBatchRenderer.ring();
     mStaging = std::make_shared<gpu::StagingBuffers>(mContext);

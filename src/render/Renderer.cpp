@@ -4,6 +4,7 @@
 
 #include "core/Elapsed.h"
 #include "encore/image/HdrImage.h"
+#include "encore/render/VisibilityFeatures.h"
 #include "gpu/OutOfMemoryScope.h"
 #include "render/BindingLimits.h"
 #include "render/GpuScene.h"
@@ -285,6 +286,15 @@ Result<void> Renderer::setStrategy(StrategyKind kind, bool bundle) {
     }
     gpu::OutOfMemoryScope outOfMemory(*mContext);
     return prepareStrategy(kind, bundle, what, outOfMemory);
+}
+
+Result<void> Renderer::createKeptObjects(StrategyKind kind) {
+    if (!mKeptObjects || kind != StrategyKind::Visibility ||
+        !mContext->device().HasFeature(kVisibilityFeature) || mKeptObjects->visibilityPipelines) {
+        return {};
+    }
+    ENCORE_TRY_ASSIGN(mKeptObjects->visibilityPipelines, VisibilityPipelines::create(*mSetup));
+    return mContext->checkNoErrors("Creating the visibility strategy's pipelines");
 }
 
 Result<void> Renderer::prepareStrategy(StrategyKind kind,

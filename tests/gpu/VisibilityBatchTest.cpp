@@ -123,6 +123,30 @@ TEST(VisibilityBatchTest, KeptPipelinesAreCreatedOnceAndDrawTheSamePictures) {
     EXPECT_TRUE(context->checkNoErrors("kept visibility pipelines").ok());
 }
 
+// encore batch creates the kept pipelines while its loaders read the first models: the first
+// prepare then compiles none of the strategy's own, and draws what a fresh renderer draws.
+TEST(VisibilityBatchTest, KeptObjectsCreatedAheadSpareTheFirstPrepare) {
+    ENCORE_REQUIRE_VULKAN(context);
+    const scene::SceneData scene = test::generatedScene(denseModel(1, 12));
+    auto ahead = Renderer::create(*context, stripOptions(1, true));
+    ASSERT_TRUE(ahead.ok()) << ahead.error().message;
+    ASSERT_TRUE(ahead->createKeptObjects(StrategyKind::Bundles).ok());
+    EXPECT_EQ(ahead->setup().pipelinesCreated, 0u) << "other strategies keep nothing";
+    ASSERT_TRUE(ahead->createKeptObjects(StrategyKind::Visibility).ok());
+    EXPECT_EQ(ahead->setup().pipelinesCreated, VisibilityPipelines::kPipelineCount);
+    ASSERT_TRUE(ahead->createKeptObjects(StrategyKind::Visibility).ok());  // Once.
+    EXPECT_EQ(ahead->setup().pipelinesCreated, VisibilityPipelines::kPipelineCount);
+    ASSERT_TRUE(ahead->prepare(scene, StrategyKind::Visibility).ok());
+    EXPECT_LT(ahead->setup().pipelinesCreated, VisibilityPipelines::kPipelineCount);
+    const image::ImageRgba8 drawn = renderStrip(*ahead, scene);
+
+    auto plain = Renderer::create(*context, stripOptions(1, false));
+    ASSERT_TRUE(plain.ok()) << plain.error().message;
+    ASSERT_TRUE(plain->prepare(scene, StrategyKind::Visibility).ok());
+    EXPECT_EQ(test::differingPixels(drawn, renderStrip(*plain, scene)), 0u);
+    EXPECT_TRUE(context->checkNoErrors("kept objects created ahead").ok());
+}
+
 // Binning and shading take up to VisibilityTarget::kSlotViews views at once; a frame of more
 // does them in groups. Each view of a frame of 260 (two groups) is pixel for pixel the same view
 // in a frame of 130 (one group).

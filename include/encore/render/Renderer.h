@@ -130,6 +130,12 @@ class Renderer {
     Renderer& operator=(Renderer&&) noexcept;
     ~Renderer();
 
+    // With RendererOptions::keepPipelines: creates now what strategy `kind` keeps from one
+    // prepare to the next (the visibility strategy's pipelines), so that the first prepare does
+    // not wait for them; encore batch calls it while its loaders read the first models. Nothing
+    // for other strategies, or where the device lacks what `kind` needs (prepare says so).
+    Result<void> createKeptObjects(StrategyKind kind);
+
     // Prepares `scene` (which must outlive the renderer) for drawing with `kind`, replacing any
     // previous scene or strategy: uploads it into a new GPU scene (GpuScene) and prepares the
     // strategy on it; with `bundle`, the frame is drawn from render bundles (createStrategy).
