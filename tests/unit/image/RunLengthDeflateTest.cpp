@@ -129,40 +129,40 @@ TEST(RunLengthDeflateTest, StreamsAreUnchanged) {
         std::uint32_t crc;
     };
     const std::vector<Expected> expected = {
-        {18, 0x765f57c0u},
-        {19, 0xb564e898u},
-        {19, 0x816dee5cu},
-        {1038, 0x6eac1e97u},
-        {70068, 0x815193f2u},
-        {20, 0x20352d9au},
-        {21, 0xc66807edu},
-        {21, 0x6dc27127u},
-        {21, 0xaadd55a2u},
-        {21, 0x6587417bu},
-        {22, 0x9196af0eu},
-        {23, 0x702f8694u},
-        {24, 0xd484fc76u},
-        {23, 0x16c7ac72u},
-        {24, 0x71bd7b7bu},
-        {22, 0xa4768646u},
-        {23, 0x2538b148u},
-        {22, 0x6afae9d9u},
-        {23, 0xac23a855u},
-        {23, 0x1609412cu},
-        {23, 0x487baa54u},
-        {23, 0x69f07d7bu},
-        {24, 0xe324fe0bu},
-        {24, 0x39937a1cu},
-        {24, 0x95473ce3u},
-        {22, 0x446bf0d9u},
-        {23, 0x8cf1fb92u},
-        {23, 0x20a2dbc7u},
-        {24, 0x1ce703b5u},
-        {23, 0x1865bc20u},
-        {24, 0xbc06b609u},
-        {1281, 0x0a7d07e0u},
-        {14631, 0x3a7750f6u},
-        {100080, 0x87af95e9u},
+        {18, 0x765f57c0u},      // empty
+        {19, 0xb564e898u},      // one byte
+        {19, 0x816dee5cu},      // two equal bytes
+        {1038, 0x6eac1e97u},    // all zero
+        {70068, 0x815193f2u},   // no equal neighbours
+        {20, 0x20352d9au},      // run of 2 at the end
+        {21, 0xc66807edu},      // run of 2
+        {21, 0x6dc27127u},      // run of 3 at the end
+        {21, 0xaadd55a2u},      // run of 3
+        {21, 0x6587417bu},      // run of 4 at the end
+        {22, 0x9196af0eu},      // run of 4
+        {23, 0x702f8694u},      // run of 257 at the end
+        {24, 0xd484fc76u},      // run of 257
+        {23, 0x16c7ac72u},      // run of 258 at the end
+        {24, 0x71bd7b7bu},      // run of 258
+        {22, 0xa4768646u},      // run of 259 at the end
+        {23, 0x2538b148u},      // run of 259
+        {22, 0x6afae9d9u},      // run of 260 at the end
+        {23, 0xac23a855u},      // run of 260
+        {23, 0x1609412cu},      // run of 261 at the end
+        {23, 0x487baa54u},      // run of 261
+        {23, 0x69f07d7bu},      // run of 262 at the end
+        {24, 0xe324fe0bu},      // run of 262
+        {24, 0x39937a1cu},      // run of 516 at the end
+        {24, 0x95473ce3u},      // run of 516
+        {22, 0x446bf0d9u},      // run of 517 at the end
+        {23, 0x8cf1fb92u},      // run of 517
+        {23, 0x20a2dbc7u},      // run of 518 at the end
+        {24, 0x1ce703b5u},      // run of 518
+        {23, 0x1865bc20u},      // run of 519 at the end
+        {24, 0xbc06b609u},      // run of 519
+        {1281, 0x0a7d07e0u},    // runs 1 to 600
+        {14631, 0x3a7750f6u},   // filtered view
+        {100080, 0x87af95e9u},  // noise
     };
     const std::vector<Case> all = cases();
     ASSERT_EQ(expected.size(), all.size());
