@@ -1,7 +1,8 @@
 // A zlib stream of one dynamic-Huffman deflate block whose only matches are runs (distance 1):
-// no LZ77 search, so it costs a scan to count symbols and a scan to write them. On filtered
-// rendered views (long runs of transparent black, small residuals on the object) that is what
-// most of libdeflate's time went to find anyway.
+// no LZ77 search, so it costs a scan that splits the data into literals and runs and counts
+// their symbols, and a pass that writes their codes, reading only the literals again. On
+// filtered rendered views (long runs of transparent black, small residuals on the object) that
+// is what most of libdeflate's time went to find anyway.
 
 #include "image/RunLengthDeflate.h"
 
@@ -46,13 +47,57 @@ constexpr std::array<LengthCode, kMaxRun + 1> makeLengthCodes() {
 
 constexpr std::array<LengthCode, kMaxRun + 1> kLengthCodes = makeLengthCodes();
 
-// How many bytes from `at` on repeat the byte before it, up to kMaxRun.
-std::size_t runLength(const std::uint8_t* data, std::size_t at, std::size_t size) {
+// The first position from `at` (at least 1) on where a run starts: whose byte and the two
+// after it repeat the byte before it. Eight positions a step: a position starts a run where the
+// data XOR itself shifted by one byte is zero there and at the next two positions. Repeats
+// shorter than kMinRun stay literals without a branch of their own.
+std::size_t nextRun(const std::uint8_t* data, std::size_t at, std::size_t size) {
+    constexpr std::uint64_t kOnes = 0x0101010101010101ull;
+    for (; at + 10 <= size; at += 8) {
+        // Words in variables, not an array: GCC kept an array on the stack (10% slower).
+        const auto load = [&](std::size_t offset) {
+            std::uint64_t word;
+            std::memcpy(&word, data + at - 1 + offset, 8);
+            return word;
+        };
+        const std::uint64_t before = load(0);
+        const std::uint64_t first = load(1);
+        const std::uint64_t second = load(2);
+        const std::uint64_t third = load(3);
+        const std::uint64_t differ = (before ^ first) | (first ^ second) | (second ^ third);
+        // The lowest flagged byte is the first zero one (a borrow only runs upwards).
+        const std::uint64_t zeros = (differ - kOnes) & ~differ & (kOnes << 7);
+        if (zeros != 0) {
+            return at + std::size_t(__builtin_ctzll(zeros) / 8);
+        }
+    }
+    for (; at + 3 <= size; ++at) {
+        const std::uint8_t value = data[at - 1];
+        if (data[at] == value && data[at + 1] == value && data[at + 2] == value) {
+            return at;
+        }
+    }
+    return size;
+}
+
+// How many bytes from `at` on repeat the byte before it (no limit: runs are split later).
+std::size_t repeatLength(const std::uint8_t* data, std::size_t at, std::size_t size) {
     const std::uint8_t value = data[at - 1];
-    const std::size_t limit = std::min(size - at, std::size_t(kMaxRun));
+    const std::uint64_t pattern = 0x0101010101010101ull * value;
     std::size_t length = 0;
-    std::uint64_t pattern = 0x0101010101010101ull * value;
-    while (length + 8 <= limit) {
+    // Long runs (a view's background) 32 bytes a step.
+    const auto load = [&](std::size_t offset) {
+        std::uint64_t word;
+        std::memcpy(&word, data + at + length + offset, 8);
+        return word ^ pattern;
+    };
+    while (at + length + 32 <= size) {
+        if ((load(0) | load(8) | load(16) | load(24)) != 0) {
+            break;
+        }
+        length += 32;
+    }
+    while (at + length + 8 <= size) {
         std::uint64_t word;
         std::memcpy(&word, data + at + length, 8);
         const std::uint64_t differ = word ^ pattern;
@@ -61,31 +106,79 @@ std::size_t runLength(const std::uint8_t* data, std::size_t at, std::size_t size
         }
         length += 8;
     }
-    while (length < limit && data[at + length] == value) {
+    while (at + length < size && data[at + length] == value) {
         ++length;
     }
     return length;
 }
 
-// Calls literal(byte) and run(length) for the symbols of `data`, in order.
-template <typename Literal, typename Run>
-void tokenize(const std::uint8_t* data, std::size_t size, Literal literal, Run run) {
-    std::size_t at = 0;
-    while (at < size) {
-        literal(data[at]);
-        ++at;
-        if (at < size && data[at] == data[at - 1]) {
-            std::size_t length = runLength(data, at, size);
-            while (length >= kMinRun) {
-                run(length);
-                at += length;
-                if (at >= size || data[at] != data[at - 1]) {
-                    length = 0;
-                    break;
-                }
-                length = runLength(data, at, size);
-            }
+// The symbols of the data in order as stretches: `literals` bytes coded one by one (read again
+// from the data), then a run of `run` bytes (kMinRun..kMaxRun; 0: none) repeating the byte before.
+struct Stretch {
+    std::uint32_t literals;
+    std::uint32_t run;
+};
+
+// The stretches of one image, kept by the thread for the next (a 1 MiB view has a few
+// thousand; more than kKeptStretches, from a one-off large image, are freed after use), and the
+// frequency of each literal/length symbol.
+constexpr std::size_t kKeptStretches = std::size_t(1) << 20;
+struct Tokens {
+    std::vector<Stretch> stretches;
+    std::vector<std::uint32_t> frequencies;
+};
+
+// Splits `data` into stretches, as deflate's greedy matcher with only distance 1 would, and
+// counts each literal/length symbol: the first byte of a repeated byte's span is a literal, the
+// rest runs of at most kMaxRun, and what is left under kMinRun literals again.
+void tokenize(const std::uint8_t* data, std::size_t size, Tokens& tokens) {
+    tokens.stretches.clear();
+    tokens.frequencies.assign(kLiteralLengthSymbols, 0);
+    std::uint32_t* frequencies = tokens.frequencies.data();
+    // Literals counted in four tables: a repeated byte's increments do not wait on each other.
+    std::uint32_t literalCounts[4][256] = {};
+    std::size_t literalStart = 0;  // The first byte not yet in a stretch.
+    auto closeLiterals = [&](std::size_t end, std::uint32_t run) {
+        std::size_t i = literalStart;
+        for (; i + 4 <= end; i += 4) {
+            ++literalCounts[0][data[i]];
+            ++literalCounts[1][data[i + 1]];
+            ++literalCounts[2][data[i + 2]];
+            ++literalCounts[3][data[i + 3]];
         }
+        for (; i < end; ++i) {
+            ++literalCounts[0][data[i]];
+        }
+        std::size_t literals = end - literalStart;
+        for (; literals > UINT32_MAX; literals -= UINT32_MAX) {
+            tokens.stretches.push_back({UINT32_MAX, 0});
+        }
+        tokens.stretches.push_back({std::uint32_t(literals), run});
+        literalStart = end;
+    };
+    std::size_t at = 1;
+    while (at < size) {
+        at = nextRun(data, at, size);
+        if (at >= size) {
+            break;
+        }
+        std::size_t left = repeatLength(data, at, size);
+        while (left >= kMinRun) {
+            const std::size_t run = std::min(left, std::size_t(kMaxRun));
+            closeLiterals(at, std::uint32_t(run));
+            ++frequencies[kLengthCodes[run].symbol];
+            at += run;
+            literalStart = at;
+            left -= run;
+        }
+        at += left;  // Too short for a run: literals.
+    }
+    if (literalStart < size) {
+        closeLiterals(size, 0);
+    }
+    for (int byte = 0; byte < 256; ++byte) {
+        frequencies[byte] = literalCounts[0][byte] + literalCounts[1][byte] +
+                            literalCounts[2][byte] + literalCounts[3][byte];
     }
 }
 
@@ -199,28 +292,38 @@ std::vector<std::uint16_t> canonicalCodes(const std::vector<std::uint8_t>& lengt
     return codes;
 }
 
-// Writes into a buffer sized beforehand for the worst case (RunLengthDeflate's bound).
+// Writes into a buffer sized beforehand for the worst case (RunLengthDeflate's bound), eight
+// bytes at a time: each flush stores the whole bit buffer and moves on by its complete bytes,
+// which the bound's slack (over 500 bytes past any stream's end) leaves room for.
 class BitWriter {
   public:
     explicit BitWriter(std::uint8_t* out) : mOut(out) {}
 
-    void put(std::uint32_t value, int bits) {
+    // At most 64 bits in all since the last flush (which leaves up to 7).
+    void add(std::uint32_t value, int bits) {
         mBits |= std::uint64_t(value) << mCount;
         mCount += bits;
-        if (mCount >= 32) {
-            const std::uint32_t low = std::uint32_t(mBits);
-            std::memcpy(mOut, &low, 4);  // Little-endian: deflate's bit order.
-            mOut += 4;
-            mBits >>= 32;
-            mCount -= 32;
-        }
+    }
+    // A symbol from a code table: its bits under 1 << 24, their count above.
+    void add(std::uint32_t entry) { add(entry & 0xffffff, int(entry >> 24)); }
+
+    void flush() {
+        std::memcpy(mOut, &mBits, 8);  // Little-endian: deflate's bit order.
+        mOut += mCount >> 3;
+        mBits >>= mCount & ~7;
+        mCount &= 7;
     }
 
-    // Writes the last partial bytes; returns the end of the data.
+    void put(std::uint32_t value, int bits) {
+        add(value, bits);
+        flush();
+    }
+
+    // Writes the last partial byte; returns the end of the data.
     std::uint8_t* finish() {
-        for (; mCount > 0; mCount -= 8) {
+        flush();
+        if (mCount > 0) {
             *mOut++ = std::uint8_t(mBits);
-            mBits >>= 8;
         }
         return mOut;
     }
@@ -279,10 +382,9 @@ std::size_t runLengthZlibBound(std::size_t size) {
 }
 
 std::size_t runLengthZlib(std::span<const std::uint8_t> data, std::uint8_t* out) {
-    std::vector<std::uint32_t> frequencies(kLiteralLengthSymbols, 0);
-    tokenize(
-        data.data(), data.size(), [&](std::uint8_t byte) { ++frequencies[byte]; },
-        [&](std::size_t length) { ++frequencies[kLengthCodes[length].symbol]; });
+    thread_local Tokens tokens;
+    tokenize(data.data(), data.size(), tokens);
+    std::vector<std::uint32_t>& frequencies = tokens.frequencies;
     frequencies[kEndOfBlock] = 1;
     const std::vector<std::uint8_t> literalLengths = codeLengths(frequencies, 15);
     const std::vector<std::uint16_t> literalCodes = canonicalCodes(literalLengths);
@@ -332,20 +434,43 @@ std::size_t runLengthZlib(std::span<const std::uint8_t> data, std::uint8_t* out)
             writer.put(entry >> 8, kExtraBits[symbol]);
         }
     }
-    // The distance code is the single one-bit code 0.
-    tokenize(
-        data.data(), data.size(),
-        [&](std::uint8_t byte) { writer.put(literalCodes[byte], literalLengths[byte]); },
-        [&](std::size_t length) {
-            const LengthCode& code = kLengthCodes[length];
-            writer.put(literalCodes[code.symbol], literalLengths[code.symbol]);
-            if (code.extraBits > 0) {
-                writer.put(code.extraValue, code.extraBits);
-            }
-            writer.put(0, 1);
-        });
+    // Each symbol's code and bit count in one word; a run's length code, extra bits and the
+    // distance code (the single one-bit code 0) together.
+    std::array<std::uint32_t, 256> literalEntries;
+    for (int byte = 0; byte < 256; ++byte) {
+        literalEntries[byte] = std::uint32_t(literalLengths[byte]) << 24 | literalCodes[byte];
+    }
+    std::array<std::uint32_t, kMaxRun + 1> runEntries{};
+    for (int length = kMinRun; length <= kMaxRun; ++length) {
+        const LengthCode& code = kLengthCodes[length];
+        const int codeBits = literalLengths[code.symbol];
+        const int bits = codeBits + code.extraBits + 1;
+        runEntries[length] = std::uint32_t(bits) << 24 |
+                             std::uint32_t(code.extraValue) << codeBits | literalCodes[code.symbol];
+    }
+    const std::uint8_t* next = data.data();
+    for (const Stretch& stretch : tokens.stretches) {
+        const std::uint8_t* end = next + stretch.literals;
+        // At most 7 bits wait in the writer: three 15-bit codes fit before a flush, and after
+        // the last three, two more and a run's 21 bits.
+        for (; end - next >= 3; next += 3) {
+            writer.add(literalEntries[next[0]]);
+            writer.add(literalEntries[next[1]]);
+            writer.add(literalEntries[next[2]]);
+            writer.flush();
+        }
+        for (; next < end; ++next) {
+            writer.add(literalEntries[*next]);
+        }
+        writer.add(runEntries[stretch.run]);  // Nothing for 0.
+        writer.flush();
+        next += stretch.run;
+    }
     writer.put(literalCodes[kEndOfBlock], literalLengths[kEndOfBlock]);
     std::uint8_t* end = writer.finish();
+    if (tokens.stretches.capacity() > kKeptStretches) {
+        tokens.stretches = {};
+    }
     const std::uint32_t adler = libdeflate_adler32(1, data.data(), data.size());
     for (int shift = 24; shift >= 0; shift -= 8) {
         *end++ = std::uint8_t(adler >> shift);
