@@ -63,7 +63,10 @@ FrameResult Renderer::renderPasses(std::span<const Camera> cameras,
             mGpuAnimation->encode(commandEncoder);  // Before anything that reads its results.
             mGpuAnimationPending = false;
         }
-        if (mStrategy) {
+        if (mStrategy && mStageTimestamps) {
+            mStageTimestamps->timeCommands(commandEncoder, gpuStageIndex(GpuStage::BeforePasses),
+                                           [&] { mStrategy->beforePass(commandEncoder, state); });
+        } else if (mStrategy) {
             mStrategy->beforePass(commandEncoder, state);
         }
         const std::uint32_t viewWidth = mTarget.width() / std::uint32_t(cameras.size());
