@@ -39,7 +39,9 @@ fn vertexMain(@builtin(vertex_index) vertex: u32) -> VertexOutput {
 // depth are the sample's, and each covered sample writes its own entry.
 @fragment
 fn fragmentMain(input: VertexOutput, @builtin(sample_index) sample: u32) {
-    let pixel = vec2u(input.position.xy);
+    // The pass's attachment is the view's size, the view at its origin (VisibilityTarget's
+    // ensureHardwareDepth): the pixel in the strip is the view's offset further.
+    let pixel = vec2u(input.position.xy) + vec2u(params.viewportX, params.viewportY);
     let depth = ~bitcast<u32>(clamp(input.position.z, 0.0, 1.0));
     let index = (pixel.y * params.targetWidth + pixel.x) * params.samples + sample;
     atomicStoreMax(&visibility[index], vec2u(input.id, depth));

@@ -8,6 +8,7 @@
 
 #include <array>
 #include <chrono>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -25,6 +26,7 @@
 #include "encore/batch/Batch.h"
 #include "encore/render/Renderer.h"
 #include "encore/render/VisibilityFeatures.h"
+#include "gpu/Readback.h"
 #include "image/ImageDecoders.h"
 #include "render/strategies/VisibilityPipelines.h"
 #include "render/strategies/VisibilityStrategy.h"
@@ -121,6 +123,44 @@ TEST(VisibilityBatchTest, KeptPipelinesAreCreatedOnceAndDrawTheSamePictures) {
                   0u);
     }
     EXPECT_TRUE(context->checkNoErrors("kept visibility pipelines").ok());
+}
+
+// The hardware raster draws one view of a strip at a time into a depth attachment of one view's
+// size, its fragments shifted back to the view's place: with every triangle sent to the hardware
+// (no compute raster), each view of the strip is pixel for pixel what the compute raster draws.
+TEST(VisibilityBatchTest, HardwareRasterisedViewsLandInTheirPlaceInTheStrip) {
+    ENCORE_REQUIRE_VULKAN(context);
+    const scene::SceneData scene = test::generatedScene(denseModel(4, 6));
+    for (const std::uint32_t samples : {1u, 4u}) {
+        SCOPED_TRACE(testing::Message() << samples << " samples");
+        RendererOptions hardwareOnly = stripOptions(samples, false);
+        hardwareOnly.culling.computeRasterPixels = 0.0f;
+        hardwareOnly.culling.workgroupRasterPixels = 0.0f;
+        auto hardware = Renderer::create(*context, hardwareOnly);
+        ASSERT_TRUE(hardware.ok()) << hardware.error().message;
+        ASSERT_TRUE(hardware->prepare(scene, StrategyKind::Visibility).ok());
+        const image::ImageRgba8 drawn = renderStrip(*hardware, scene);
+        const auto* strategy = dynamic_cast<const VisibilityStrategy*>(hardware->strategy());
+        ASSERT_NE(strategy, nullptr);
+        auto counts = gpu::readBuffer(*context, strategy->triangleCounts(), 0, kViews * 8);
+        ASSERT_TRUE(counts.ok()) << counts.error().message;
+        for (std::size_t view = 0; view < kViews; ++view) {
+            std::uint32_t inCompute = 0;
+            std::uint32_t inHardware = 0;
+            std::memcpy(&inCompute, counts->data() + view * 8, 4);
+            std::memcpy(&inHardware, counts->data() + view * 8 + 4, 4);
+            EXPECT_EQ(inCompute, 0u) << "view " << view;
+            EXPECT_GT(inHardware, 0u) << "view " << view;
+        }
+
+        auto mixed = Renderer::create(*context, stripOptions(samples, false));
+        ASSERT_TRUE(mixed.ok()) << mixed.error().message;
+        ASSERT_TRUE(mixed->prepare(scene, StrategyKind::Visibility).ok());
+        const image::ImageRgba8 reference = renderStrip(*mixed, scene);
+        EXPECT_GT(test::coveredFraction(reference, test::pixelAt(reference, 0, 0)), 0.05);
+        EXPECT_EQ(test::differingPixels(drawn, reference), 0u);
+    }
+    EXPECT_TRUE(context->checkNoErrors("hardware-rasterised strips").ok());
 }
 
 // encore batch creates the kept pipelines while its loaders read the first models: the first

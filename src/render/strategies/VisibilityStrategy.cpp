@@ -231,6 +231,7 @@ void VisibilityStrategy::beforePass(const wgpu::CommandEncoder& commands, const 
     // sees another view than the one drawn.
     mOcclusion = views == 1 && frame.culling.occlusion && !frame.cullingCamera;
     const std::uint32_t viewWidth = frame.targetWidth / std::uint32_t(views);
+    mTarget->ensureHardwareDepth(*mSetup, viewWidth);
     // A slot per view, then one per group of views that bins and shading take at once.
     const std::size_t groups = VisibilityTarget::groupsFor(views);
     std::vector<std::uint8_t> params((views + groups) * kParamsStride, 0);
@@ -278,8 +279,7 @@ void VisibilityStrategy::beforePass(const wgpu::CommandEncoder& commands, const 
             commands.CopyBufferToBuffer(mSetup->frame->buffer(), 0, mTarget->params,
                                         view * kParamsStride + VisibilityTarget::kSlotFrameOffset,
                                         sizeof(FrameUniform));
-            encodeView(commands, frame, view, std::uint32_t(view) * viewWidth, viewWidth,
-                       culledOnce);
+            encodeView(commands, frame, view, viewWidth, culledOnce);
         }
         encodeShading(commands, frame, first, views + group,
                       std::uint32_t(last - first) * viewWidth);
@@ -346,7 +346,6 @@ void VisibilityStrategy::encodeRaster(const wgpu::ComputePassEncoder& pass,
 void VisibilityStrategy::encodeHardwareRaster(const wgpu::CommandEncoder& commands,
                                               const FrameState& frame,
                                               std::uint32_t paramsOffset,
-                                              std::uint32_t viewX,
                                               std::uint32_t viewWidth,
                                               const char* timerLabel) const {
     wgpu::RenderPassDepthStencilAttachment depth{};
@@ -359,7 +358,9 @@ void VisibilityStrategy::encodeHardwareRaster(const wgpu::CommandEncoder& comman
     descriptor.depthStencilAttachment = &depth;
     descriptor.timestampWrites = frame.timer ? frame.timer->nextPass(timerLabel) : nullptr;
     wgpu::RenderPassEncoder pass = commands.BeginRenderPass(&descriptor);
-    pass.SetViewport(float(viewX), 0.0f, float(viewWidth), float(mTarget->height), 0.0f, 1.0f);
+    // The attachment is one view's size: the view at the origin, its fragments shifted back to
+    // the view's place in the strip (visibility_hardware.wgsl).
+    pass.SetViewport(0.0f, 0.0f, float(viewWidth), float(mTarget->height), 0.0f, 1.0f);
     pass.SetPipeline(mPipelines->hardware);
     pass.SetBindGroup(0, mPipelines->frameOnlyGroup);
     pass.SetBindGroup(1, mHardwareGroup, 1, &paramsOffset);
@@ -370,7 +371,6 @@ void VisibilityStrategy::encodeHardwareRaster(const wgpu::CommandEncoder& comman
 void VisibilityStrategy::encodeView(const wgpu::CommandEncoder& commands,
                                     const FrameState& frame,
                                     std::size_t view,
-                                    std::uint32_t viewX,
                                     std::uint32_t viewWidth,
                                     bool culled) {
     const std::uint32_t paramsOffset = std::uint32_t(view * kParamsStride);
@@ -398,8 +398,7 @@ void VisibilityStrategy::encodeView(const wgpu::CommandEncoder& commands,
         encodeRaster(pass, paramsOffset);
         pass.End();
     }
-    encodeHardwareRaster(commands, frame, paramsOffset, viewX, viewWidth,
-                         "visibility hardware raster");
+    encodeHardwareRaster(commands, frame, paramsOffset, viewWidth, "visibility hardware raster");
     if (mOcclusion) {
         // The rest of the frustum against the pyramid of what phase 1 drew (both rasters).
         wgpu::ComputePassDescriptor descriptor{};
@@ -415,7 +414,7 @@ void VisibilityStrategy::encodeView(const wgpu::CommandEncoder& commands,
         dispatchItems(pass, mPipelines->cullSecond);
         encodeRaster(pass, paramsOffset);
         pass.End();
-        encodeHardwareRaster(commands, frame, paramsOffset, viewX, viewWidth,
+        encodeHardwareRaster(commands, frame, paramsOffset, viewWidth,
                              "visibility hardware raster (second phase)");
     }
     commands.CopyBufferToBuffer(mCounters, kComputeTriangles, mTarget->triangleCounts, view * 8, 4);

@@ -94,7 +94,6 @@ class VisibilityStrategy final : public Strategy {
     void encodeView(const wgpu::CommandEncoder& commands,
                     const FrameState& frame,
                     std::size_t view,
-                    std::uint32_t viewX,
                     std::uint32_t viewWidth,
                     bool culled);
     // Bins and shades the views from `firstView` (at most VisibilityTarget::kSlotViews of them,
@@ -108,11 +107,11 @@ class VisibilityStrategy final : public Strategy {
     // The raster dispatches of the units listed so far in this phase: grids of a fixed size
     // that stride over the lists (visibility_raster.wgsl says why not indirect dispatches).
     void encodeRaster(const wgpu::ComputePassEncoder& pass, std::uint32_t paramsOffset) const;
-    // The hardware list of this phase, drawn into the visibility buffer.
+    // The hardware list of this phase, drawn into the visibility buffer (the view of
+    // `paramsOffset`, `viewWidth` wide).
     void encodeHardwareRaster(const wgpu::CommandEncoder& commands,
                               const FrameState& frame,
                               std::uint32_t paramsOffset,
-                              std::uint32_t viewX,
                               std::uint32_t viewWidth,
                               const char* timerLabel) const;
     void writeCullUniform(const FrameState& frame, std::size_t views) const;

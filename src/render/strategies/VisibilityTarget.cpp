@@ -48,13 +48,8 @@ bool VisibilityTarget::ensure(const RenderSetup& setup,
     wgpu::TextureViewDescriptor layers{};
     layers.dimension = wgpu::TextureViewDimension::e2DArray;  // Even with one layer.
     shadedLayers = shaded.CreateView(&layers);
-    texture.size = {width, height, 1};
-    texture.format = wgpu::TextureFormat::Depth32Float;
-    texture.usage = wgpu::TextureUsage::RenderAttachment;
-    texture.sampleCount = samples;
-    texture.label = "visibility hardware depth";
-    hardwareDepth = device.CreateTexture(&texture);
-    hardwareDepthView = hardwareDepth.CreateView();
+    hardwareDepth = nullptr;  // Made at the views' size (ensureHardwareDepth).
+    hardwareDepthView = nullptr;
 
     auto built =
         DepthPyramid::createFromVisibility(device, *setup.shaders, visibility, width, height);
@@ -62,6 +57,21 @@ bool VisibilityTarget::ensure(const RenderSetup& setup,
     ENCORE_CHECK(built.ok(), "the depth pyramid cannot be built: " + built.error().message);
     pyramid = std::move(*built);
     return true;
+}
+
+void VisibilityTarget::ensureHardwareDepth(const RenderSetup& setup, std::uint32_t viewWidth) {
+    if (hardwareDepth && hardwareDepth.GetWidth() == viewWidth &&
+        hardwareDepth.GetHeight() == height) {
+        return;
+    }
+    wgpu::TextureDescriptor texture{};
+    texture.size = {std::max(viewWidth, 1u), std::max(height, 1u), 1};
+    texture.format = wgpu::TextureFormat::Depth32Float;
+    texture.usage = wgpu::TextureUsage::RenderAttachment;
+    texture.sampleCount = setup.sampleCount;
+    texture.label = "visibility hardware depth";
+    hardwareDepth = setup.device.CreateTexture(&texture);
+    hardwareDepthView = hardwareDepth.CreateView();
 }
 
 }  // namespace encore::render
