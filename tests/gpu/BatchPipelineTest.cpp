@@ -27,21 +27,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// A generated scene of `objects` objects (textured), written as `path`.
-void writeGeneratedScene(const fs::path& path, std::uint32_t objects, std::uint32_t seed) {
-    scene::GeneratorOptions generator;
-    generator.objectCount = objects;
-    generator.meshCount = 3;
-    generator.materialCount = 2;
-    generator.seed = seed;
-    generator.textures = true;
-    auto glb = scene::generateSceneGlb(generator);
-    ASSERT_TRUE(glb.ok()) << glb.error().message;
-    fs::create_directories(path.parent_path());
-    std::ofstream(path, std::ios::binary)
-        .write(reinterpret_cast<const char*>(glb->data()), std::streamsize(glb->size()));
-}
-
 BatchOptions smallBatch(const fs::path& output) {
     BatchOptions options;
     options.output = output;
@@ -67,7 +52,7 @@ std::vector<BatchInput> mixedCollection(const fs::path& dir) {
     }
     for (std::uint32_t seed = 1; seed <= 3; ++seed) {
         const fs::path path = dir / ("generated" + std::to_string(seed) + ".glb");
-        writeGeneratedScene(path, 4 + seed, seed);
+        test::writeGeneratedScene(path, 4 + seed, seed);
         inputs.insert(inputs.begin() + std::min<std::size_t>(inputs.size(), 2 * seed - 1),
                       {path, "generated" + std::to_string(seed)});
     }
@@ -129,8 +114,8 @@ TEST(BatchPipelineTest, ABadModelMidPipelineFailsAtItsStageWhileItsNeighboursRen
             fs::create_directories(path.parent_path());
             std::ofstream(path) << "glTF, but not really";
         } else {
-            writeGeneratedScene(path, std::string(name) == "too-large" ? 600 : 5,
-                                std::uint32_t(inputs.size() + 1));
+            test::writeGeneratedScene(path, std::string(name) == "too-large" ? 600 : 5,
+                                      std::uint32_t(inputs.size() + 1));
         }
         inputs.push_back({path, name});
     }
@@ -178,7 +163,7 @@ TEST(BatchPipelineTest, GpuTimestampsTimeEachStageAndChangeNoFile) {
     std::vector<BatchInput> inputs;
     for (std::uint32_t seed = 1; seed <= 3; ++seed) {
         const fs::path path = dir / "in" / ("m" + std::to_string(seed) + ".glb");
-        writeGeneratedScene(path, 4, seed);
+        test::writeGeneratedScene(path, 4, seed);
         inputs.push_back({path, "m" + std::to_string(seed)});
     }
     std::map<std::string, std::string> written[2];
@@ -223,7 +208,7 @@ TEST(BatchPipelineTest, RendererCountsOutsideTheRangeAreRefused) {
     ENCORE_REQUIRE_VULKAN(context);
     const fs::path dir = test::makeTempDir("batch-pipeline-renderers");
     const fs::path path = dir / "in" / "m.glb";
-    writeGeneratedScene(path, 2, 1);
+    test::writeGeneratedScene(path, 2, 1);
     const std::vector<BatchInput> inputs{{path, "m"}};
     for (const std::size_t renderers : {std::size_t{0}, kMaxRenderers + 1}) {
         BatchOptions options = smallBatch(dir / "out");

@@ -8,7 +8,6 @@
 #include <array>
 #include <cmath>
 #include <cstring>
-#include <fstream>
 #include <map>
 #include <random>
 #include <string>
@@ -24,7 +23,6 @@
 #include "encore/gpu/TextureReadbackRing.h"
 #include "gpu/Readback.h"
 #include "image/PngWriter.h"
-#include "scene/SceneGenerator.h"
 
 namespace encore::batch {
 namespace {
@@ -268,20 +266,6 @@ TEST(PngRowsTest, AutoFiltersOnTheGpuUnlessTheAdapterIsACpu) {
     EXPECT_FALSE(filtersPngRowsOnGpu(PngFiltering::Cpu, wgpu::AdapterType::DiscreteGPU));
 }
 
-void writeGeneratedScene(const fs::path& path, std::uint32_t objects, std::uint32_t seed) {
-    scene::GeneratorOptions generator;
-    generator.objectCount = objects;
-    generator.meshCount = 3;
-    generator.materialCount = 2;
-    generator.seed = seed;
-    generator.textures = true;
-    auto glb = scene::generateSceneGlb(generator);
-    ASSERT_TRUE(glb.ok()) << glb.error().message;
-    fs::create_directories(path.parent_path());
-    std::ofstream(path, std::ios::binary)
-        .write(reinterpret_cast<const char*>(glb->data()), std::streamsize(glb->size()));
-}
-
 std::vector<BatchInput> passCollection(const fs::path& dir) {
     std::vector<BatchInput> inputs;
     if (const auto models = test::sharedModelsDir()) {
@@ -294,7 +278,7 @@ std::vector<BatchInput> passCollection(const fs::path& dir) {
     }
     for (std::uint32_t seed = 1; seed <= 2; ++seed) {
         const fs::path path = dir / ("generated" + std::to_string(seed) + ".glb");
-        writeGeneratedScene(path, 5 + seed, seed);
+        test::writeGeneratedScene(path, 5 + seed, seed);
         inputs.push_back({path, "generated" + std::to_string(seed)});
     }
     return inputs;

@@ -145,4 +145,20 @@ scene::SceneData generatedScene(const scene::GeneratorOptions& options) {
     return scene.ok() ? std::move(*scene) : scene::SceneData{};
 }
 
+void writeGeneratedScene(const std::filesystem::path& path,
+                         std::uint32_t objects,
+                         std::uint32_t seed) {
+    scene::GeneratorOptions generator;
+    generator.objectCount = objects;
+    generator.meshCount = 3;
+    generator.materialCount = 2;
+    generator.seed = seed;
+    generator.textures = true;
+    auto glb = scene::generateSceneGlb(generator);
+    ASSERT_TRUE(glb.ok()) << glb.error().message;
+    std::filesystem::create_directories(path.parent_path());
+    std::ofstream(path, std::ios::binary)
+        .write(reinterpret_cast<const char*>(glb->data()), std::streamsize(glb->size()));
+}
+
 }  // namespace encore::test

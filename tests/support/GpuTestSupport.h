@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cstdint>
+#include <filesystem>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -71,6 +72,11 @@ std::vector<ModelVariant> sharedModelVariants();
 // A scene from the generator, loaded as `encore gen` output would be (a test failure, and an
 // empty scene, when it cannot be).
 scene::SceneData generatedScene(const scene::GeneratorOptions& options);
+// A generated scene of `objects` textured objects (3 meshes, 2 materials) written as `path`, as
+// `encore gen` writes it (a test failure when it cannot be).
+void writeGeneratedScene(const std::filesystem::path& path,
+                         std::uint32_t objects,
+                         std::uint32_t seed);
 // Lets GoogleTest print a variant by name instead of its bytes.
 void PrintTo(const ModelVariant& variant, std::ostream* out);
 
