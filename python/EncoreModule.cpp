@@ -117,7 +117,7 @@ PYBIND11_MODULE(_encore, module) {
             py::arg("passes") = py::none(), py::arg("segmentation_by") = "node",
             py::arg("depth_format") = "png", py::arg("model_timeout") = 0.0,
             py::arg("max_texture_size") = encore::batch::kDefaultMaxTextureSize,
-            py::arg("shards") = 0, py::arg("shard_size") = 0,
+            py::arg("shards") = 0, py::arg("shard_size") = 0, py::arg("png_filtering") = "auto",
             "Runs the job of `encore batch` on this renderer's device: `inputs` is what the "
             "command takes (folder, list file, model) or (path, name) pairs from "
             "discover_inputs. Returns the summary (models rendered, failed, skipped; views; "
@@ -141,7 +141,8 @@ PYBIND11_MODULE(_encore, module) {
             "that long (stage \"timeout\", `--model-timeout`); max_texture_size downscales "
             "larger images while loading (`--max-texture-size`, 0: none). shards=N or "
             "shard_size=BYTES writes WebDataset .tar shards instead of folders (`--shards`, "
-            "`--shard-size`). "
+            "`--shard-size`). png_filtering (auto, gpu, cpu): where the PNG rows are filtered "
+            "(`--png-filtering`; auto: the GPU unless the adapter is a CPU). "
             "The GIL is released while it runs.")
         .def_property_readonly("samples",
                                [](const Renderer& renderer) { return renderer.samples(); })

@@ -100,7 +100,8 @@ class Renderer {
                       double modelTimeout,
                       std::uint32_t maxTextureSize,
                       std::uint32_t shards,
-                      std::uint64_t shardSize);
+                      std::uint64_t shardSize,
+                      const std::string& pngFiltering);
 
     std::string adapter() const { return mContext->adapterDescription().summary(); }
     std::size_t device() const { return mContext->adapterDescription().index; }

@@ -101,7 +101,8 @@ py::dict Renderer::runBatch(const py::object& inputs,
                             double modelTimeout,
                             std::uint32_t maxTextureSize,
                             std::uint32_t shards,
-                            std::uint64_t shardSize) {
+                            std::uint64_t shardSize,
+                            const std::string& pngFiltering) {
     batch::BatchOptions options;
     options.strategy = mStrategy;
     options.shards = shards;
@@ -158,6 +159,13 @@ py::dict Renderer::runBatch(const py::object& inputs,
         throw py::value_error("png_compression must be \"small\" or \"fast\"");
     }
     options.pngCompression = *compression;
+    if (pngFiltering != "auto" && pngFiltering != "gpu" && pngFiltering != "cpu") {
+        // As `encore batch --png-filtering` takes it.
+        throw py::value_error("png_filtering must be \"auto\", \"gpu\" or \"cpu\"");
+    }
+    options.pngFiltering = pngFiltering == "gpu"   ? batch::PngFiltering::Gpu
+                           : pngFiltering == "cpu" ? batch::PngFiltering::Cpu
+                                                   : batch::PngFiltering::Auto;
     options.writeFailureLog = failureLog;
     if (auto valid = batch::validateBatchOptions(options); !valid) {
         throw py::value_error(valid.error().message);

@@ -198,3 +198,22 @@ def test_batch_takes_the_passes_as_keywords(tmp_path):
     with pytest.raises(ValueError, match="depth_format"):
         encore.batch(str(tmp_path / "in"), str(tmp_path / "bad"), views=1, size=8,
                      depth_format="tiff")
+
+
+def test_batch_png_filtering_on_the_gpu_writes_the_same_files(tmp_path):
+    (tmp_path / "in").mkdir()
+    write_quads(tmp_path / "in" / "quads.gltf")
+    keywords = dict(views=2, size=40, samples=1,
+                    passes=("albedo", "material", "segmentation", "depth"), normals=True)
+    written = {}
+    for where in ("cpu", "gpu"):
+        summary = encore.batch(str(tmp_path / "in"), str(tmp_path / where), png_filtering=where,
+                               **keywords)
+        assert summary["rendered"] == 1 and summary["failed"] == 0
+        model = tmp_path / where / "quads"
+        written[where] = {path.name: path.read_bytes() for path in model.glob("*.png")}
+    assert len(written["cpu"]) == 2 * 6
+    assert written["gpu"] == written["cpu"]
+    with pytest.raises(ValueError, match="png_filtering"):
+        encore.batch(str(tmp_path / "in"), str(tmp_path / "bad"), views=1, size=8,
+                     png_filtering="fpga")
