@@ -58,6 +58,10 @@ struct PngScratch {
     ScratchBuffer compressed{std::size_t(32) << 20};
 };
 
+Error outOfMemory() {
+    return makeError(ErrorCode::IoError, "PNG encoding failed (out of memory).");
+}
+
 PngScratch& threadScratch() {
     thread_local PngScratch scratch;
     return scratch;
@@ -193,19 +197,22 @@ Result<std::vector<std::uint8_t>> pngOfFilteredRows(std::uint32_t width,
                                                     std::span<const std::uint8_t> filtered,
                                                     PngCompression compression) {
     PngScratch& scratch = threadScratch();
-    const bool runs = compression == PngCompression::Fast || bitDepth == 8;
+    // After Paeth, and wherever Fast asks, runs are the matches there are.
+    const bool runs = compression == PngCompression::Fast ||
+                      pngRowFilter(bitDepth, compression) == PngRowFilter::Paeth;
     if (!runs && !scratch.compressor) {
         scratch.compressor.reset(libdeflate_alloc_compressor(kCompressionLevel));
+        if (!scratch.compressor) {
+            return outOfMemory();
+        }
     }
     const ScratchBuffer::Use useCompressed(scratch.compressed);
     const std::size_t bound =
         runs ? runLengthZlibBound(filtered.size())
-             : (scratch.compressor
-                    ? libdeflate_zlib_compress_bound(scratch.compressor.get(), filtered.size())
-                    : 0);
-    std::uint8_t* compressed = bound > 0 ? scratch.compressed.reserve(bound) : nullptr;
+             : libdeflate_zlib_compress_bound(scratch.compressor.get(), filtered.size());
+    std::uint8_t* compressed = scratch.compressed.reserve(bound);
     if (!compressed) {
-        return makeError(ErrorCode::IoError, "PNG encoding failed (out of memory).");
+        return outOfMemory();
     }
     const std::size_t compressedSize =
         runs ? runLengthZlib(filtered, compressed)
@@ -241,7 +248,7 @@ Result<std::vector<std::uint8_t>> pngOfSamples(std::uint32_t width,
     const ScratchBuffer::Use useFiltered(scratch.filtered);
     std::uint8_t* filtered = scratch.filtered.reserve(filteredSize);
     if (!filtered) {
-        return makeError(ErrorCode::IoError, "PNG encoding failed (out of memory).");
+        return outOfMemory();
     }
     filterPngRows(samples, height, pngBytesPerPixel(bitDepth, color),
                   pngRowFilter(bitDepth, compression), filtered);
