@@ -83,9 +83,7 @@ void DeviceLane::renderChunk(const TargetViews& views, ViewImage kind, double& w
     }
     ChunkInFlight chunk{job, slot, first, count, kind};
     if (mPngRows) {
-        const PngRowsRequest request{kind, kind == ViewImage::Normal || kind == ViewImage::Material
-                                               ? PngRowsSource::LinearBytes
-                                               : PngRowsSource::Bytes};
+        const PngRowsRequest request{kind, pngRowsSourceOf(kind)};
         enqueuePngRows(views, renderer.target().outputBytesView(), {&request, 1}, 1.0f,
                        std::move(chunk), waiting);
         return;
@@ -176,9 +174,7 @@ void DeviceLane::readPassTargets(const TargetViews& views,
             chunk.floatKinds = {kind};
             enqueueReadback(views, renderer.target().sceneTexture(), std::move(chunk), waiting);
         } else if (mPngRows) {
-            const PngRowsRequest request{kind, kind == ViewImage::Albedo
-                                                   ? PngRowsSource::Bytes
-                                                   : PngRowsSource::LinearBytes};
+            const PngRowsRequest request{kind, pngRowsSourceOf(kind)};
             enqueuePngRows(views, renderer.passBytesView(passImageOf(kind)), {&request, 1}, 1.0f,
                            std::move(chunk), waiting);
         } else {
@@ -195,11 +191,10 @@ void DeviceLane::readPassTargets(const TargetViews& views,
     if (depthRows) {
         std::vector<PngRowsRequest> requests;
         for (const ViewImage kind : depthAndId) {
-            requests.push_back(
-                {kind, kind == ViewImage::Depth ? PngRowsSource::Depth : PngRowsSource::Ids});
+            requests.push_back({kind, pngRowsSourceOf(kind)});
         }
-        const auto depthFactor =
-            float(double(unitsPerModelUnit) / depthScale(mShared.options.views));
+        const float depthFactor =
+            depthStepsPerUnit(unitsPerModelUnit, depthScale(mShared.options.views));
         enqueuePngRows(views, renderer.passBytesView(render::PassImage::DepthAndId), requests,
                        depthFactor, std::move(chunk), waiting);
         return;

@@ -198,10 +198,9 @@ std::function<Result<std::vector<std::uint8_t>>()> ModelWriter::floatEncoder(
         };
     }
     if (kind == ViewImage::Segmentation) {
-        // Flat regions of one id: runs are the matches there are, and Fast compresses them as
-        // small as Small in a ninth of the time (docs/benchmarks/2026-11-26-png-paeth-runs.md).
-        return [ids = packedIds ? segmentationIdsOfPassTarget(pixels) : segmentationIds(pixels)] {
-            return image::encodePng16(ids, image::PngCompression::Fast);
+        return [ids = packedIds ? segmentationIdsOfPassTarget(pixels) : segmentationIds(pixels),
+                compression = pngCompressionOf(kind, compression)] {
+            return image::encodePng16(ids, compression);
         };
     }
     if (mOptions.images.depthFormat == DepthFormat::Exr) {

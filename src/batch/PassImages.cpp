@@ -156,6 +156,10 @@ render::PassImage passImageOf(ViewImage kind) {
     return render::PassImage::DepthAndId;
 }
 
+image::PngCompression pngCompressionOf(ViewImage kind, image::PngCompression chosen) {
+    return kind == ViewImage::Segmentation ? image::PngCompression::Fast : chosen;
+}
+
 std::vector<SegmentationName> segmentationNames(const scene::SceneData& scene, SegmentationBy by) {
     std::vector<SegmentationName> names;
     switch (by) {

@@ -71,6 +71,10 @@ render::PassTargets passTargetsFor(SegmentationBy by);
 // The pass image that holds `kind` (Normal, Albedo, Material; Depth and Segmentation share
 // DepthAndId).
 render::PassImage passImageOf(ViewImage kind);
+// How an image of `kind` is compressed when the batch asks for `chosen`: segmentation ids always
+// Fast (flat regions of one id: runs are the matches there are, as small as Small in a ninth of
+// the time, docs/benchmarks/2026-11-26-png-paeth-runs.md).
+image::PngCompression pngCompressionOf(ViewImage kind, image::PngCompression chosen);
 
 // What each id of a scene's segmentation names: id (1 + the index) and the node's, mesh's or
 // material's name (empty when unnamed); nodes only where they draw a mesh.

@@ -4,6 +4,7 @@
 #include <array>
 #include <cstring>
 
+#include "batch/PassImages.h"
 #include "batch/ViewStrips.h"
 #include "encore/shaders/ShaderLibrary.h"
 #include "gpu/BindingResource.h"
@@ -64,6 +65,23 @@ std::uint32_t PngRowsLayout::coveredPixels(const std::uint8_t* readback, std::ui
     return count;
 }
 
+PngRowsSource pngRowsSourceOf(ViewImage kind) {
+    switch (kind) {
+        case ViewImage::Normal:
+        case ViewImage::Material:
+            return PngRowsSource::LinearBytes;
+        case ViewImage::Depth:
+            return PngRowsSource::Depth;
+        case ViewImage::Segmentation:
+            return PngRowsSource::Ids;
+        case ViewImage::Color:
+        case ViewImage::Albedo:
+        case ViewImage::Hdr:
+            break;
+    }
+    return PngRowsSource::Bytes;
+}
+
 PngRowsLayout pngRowsLayout(std::uint32_t width,
                             std::uint32_t height,
                             std::uint32_t views,
@@ -83,8 +101,7 @@ PngRowsLayout pngRowsLayout(std::uint32_t width,
             request.source == PngRowsSource::Depth || request.source == PngRowsSource::Ids;
         image.bitDepth = sixteenBits ? 16 : 8;
         image.color = sixteenBits ? image::PngColor::Gray : image::PngColor::Rgba;
-        image.compression =
-            request.kind == ViewImage::Segmentation ? image::PngCompression::Fast : compression;
+        image.compression = pngCompressionOf(request.kind, compression);
         image.rowsSize = image::filteredPngSize(width, height, image.bitDepth, image.color);
         image.viewStride = alignedToWords(image.rowsSize);
         image.offset = offset;

@@ -31,6 +31,10 @@ enum class PngRowsSource : std::uint32_t {
     Ids = 3,          // 16-bit segmentation ids from the same target.
 };
 
+// Where an image of `kind` takes its samples from (the colour and albedo as stored, normal and
+// material sRGB-decoded, depth and ids from the depth-and-id target), as the CPU path makes them.
+PngRowsSource pngRowsSourceOf(ViewImage kind);
+
 struct PngRowsRequest {
     ViewImage kind = ViewImage::Color;
     PngRowsSource source = PngRowsSource::Bytes;
@@ -63,8 +67,8 @@ struct PngRowsLayout {
     std::uint32_t coveredPixels(const std::uint8_t* readback, std::uint32_t view) const;
 };
 
-// The layout of `views` views of width x height with `requests`' images; `compression` for all
-// but segmentation ids, which are always compressed Fast (runs: ModelWriter::floatEncoder).
+// The layout of `views` views of width x height with `requests`' images, each compressed as
+// pngCompressionOf(kind, compression) says.
 PngRowsLayout pngRowsLayout(std::uint32_t width,
                             std::uint32_t height,
                             std::uint32_t views,

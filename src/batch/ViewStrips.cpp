@@ -118,6 +118,10 @@ double depthScale(const ViewRigOptions& rig) {
     return 2.0 * double(rig.distance.max) / 65535.0;
 }
 
+float depthStepsPerUnit(float unitsPerModelUnit, double scale) {
+    return float(double(unitsPerModelUnit) / scale);
+}
+
 image::ImageGray16 depthStrip(std::span<const float> wide,
                               std::uint32_t targetWidth,
                               std::uint32_t strip,
@@ -129,7 +133,7 @@ image::ImageGray16 depthStrip(std::span<const float> wide,
     depth.width = width;
     depth.height = height;
     depth.pixels.resize(std::size_t(width) * height);
-    const auto stepsPerUnit = float(double(unitsPerModelUnit) / scale);
+    const float stepsPerUnit = depthStepsPerUnit(unitsPerModelUnit, scale);
     for (std::uint32_t y = 0; y < height; ++y) {
         for (std::uint32_t x = 0; x < width; ++x) {
             const float* texel = &wide[(std::size_t(y) * targetWidth + strip * width + x) * 4];

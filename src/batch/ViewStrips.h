@@ -80,6 +80,9 @@ const std::array<std::uint8_t, 256>& srgbDecodedBytes();
 // One step of a 16-bit depth image, in the units of the rig's cameras: the range covers twice
 // the (largest) camera distance (transforms.json's depth_scale).
 double depthScale(const ViewRigOptions& rig);
+// Depth steps per unit of a depth target's depth (in model units before normalisation), as both
+// depthStrip and the GPU's PNG rows (PngRowsPass) multiply by it, in floats: the same steps.
+float depthStepsPerUnit(float unitsPerModelUnit, double scale);
 
 // Strip `strip` of a target drawn through the depth channel and read back as HDR floats
 // (Renderer::readHdrImage, RGBA, targetWidth wide): distances along the camera axis in steps of
