@@ -77,7 +77,8 @@ TextureReadbackRing::Slot* TextureReadbackRing::freeSlot() {
     }
 }
 
-Result<TextureReadbackRing::Slot*> TextureReadbackRing::slotFor(std::uint64_t size) {
+Result<TextureReadbackRing::Slot*> TextureReadbackRing::slotFor(std::uint64_t size,
+                                                                const std::string& what) {
     Slot* slot = full() ? nullptr : freeSlot();
     if (!slot) {
         return makeError(ErrorCode::InvalidArgument, "Every read-back slot is in use (" +
@@ -86,8 +87,8 @@ Result<TextureReadbackRing::Slot*> TextureReadbackRing::slotFor(std::uint64_t si
     }
     if (size > mContext->limits().maxBufferSize) {
         return makeError(ErrorCode::LimitExceeded,
-                         "A read-back of " + std::to_string(size) +
-                             " bytes needs more than the device's maxBufferSize (" +
+                         what + " needs a buffer of " + std::to_string(size) +
+                             " bytes, more than the device's maxBufferSize (" +
                              std::to_string(mContext->limits().maxBufferSize) + " bytes).");
     }
     if (!slot->buffer || slot->buffer.GetSize() < size) {
@@ -135,19 +136,8 @@ Result<std::uint64_t> TextureReadbackRing::enqueue(const wgpu::Texture& texture,
     const std::uint32_t bytesPerTexel = halves ? 8 : 4;
     const std::uint32_t rowBytes = paddedRowBytes(width * bytesPerTexel);
     const std::uint64_t size = std::uint64_t(rowBytes) * height;
-    auto free = slotFor(size);
-    if (!free) {
-        if (free.error().code == ErrorCode::LimitExceeded) {
-            return makeError(ErrorCode::LimitExceeded,
-                             "Reading back a " + std::to_string(width) + "x" +
-                                 std::to_string(height) + " texture needs a buffer of " +
-                                 std::to_string(size) +
-                                 " bytes, more than the device's maxBufferSize (" +
-                                 std::to_string(mContext->limits().maxBufferSize) + " bytes).");
-        }
-        return free.error();
-    }
-    Slot* slot = *free;
+    ENCORE_TRY_ASSIGN(Slot * slot, slotFor(size, "Reading back a " + std::to_string(width) + "x" +
+                                                     std::to_string(height) + " texture"));
     slot->width = width;
     slot->height = height;
     slot->bytesPerTexel = bytesPerTexel;
@@ -174,7 +164,7 @@ Result<std::uint64_t> TextureReadbackRing::enqueueCommands(
     const std::function<void(const wgpu::CommandEncoder&, const wgpu::Buffer&)>& record,
     StageTimestamps* timestamps,
     std::uint32_t stage) {
-    ENCORE_TRY_ASSIGN(Slot * slot, slotFor(size));
+    ENCORE_TRY_ASSIGN(Slot * slot, slotFor(size, "A read-back of GPU-written bytes"));
     slot->width = 0;
     slot->height = 0;
     slot->bytesPerTexel = 0;

@@ -18,6 +18,7 @@
 #include <functional>
 #include <memory>
 #include <mutex>
+#include <string>
 #include <vector>
 
 #include "encore/core/Result.h"
@@ -101,8 +102,9 @@ class TextureReadbackRing {
     // A slot neither in flight nor held, unmapped; waits for a holder to let go if need be.
     // Null when every slot is in flight.
     Slot* freeSlot();
-    // A free slot whose buffer holds at least `size` bytes, or why there is none.
-    Result<Slot*> slotFor(std::uint64_t size);
+    // A free slot whose buffer holds at least `size` bytes, or why there is none (`what` needs
+    // the bytes, for the message).
+    Result<Slot*> slotFor(std::uint64_t size, const std::string& what);
     // Submits `encoder`'s commands, which fill the slot, and starts mapping its first `size`
     // bytes.
     std::uint64_t submitAndMap(Slot& slot, const wgpu::CommandEncoder& encoder, std::uint64_t size);
