@@ -56,6 +56,12 @@ Result<PassTargetTextures> PassTargetTextures::create(const wgpu::Device& device
             image.viewFormats = &kBytesFormat;
         }
         pass.image = device.CreateTexture(&image);
+        if (target.options().bytesViews) {
+            wgpu::TextureViewDescriptor bytes{};
+            bytes.label = "pass image bytes";
+            bytes.format = kBytesFormat;
+            pass.bytesView = pass.image.CreateView(&bytes);
+        }
         pass.imageView = pass.image.CreateView();
         ENCORE_TRY_ASSIGN(auto converter,
                           ToneMapper::create(device, queue, shaders, target, identity));
@@ -88,15 +94,9 @@ void PassTargetTextures::encodeImages(const wgpu::CommandEncoder& commands) cons
     }
 }
 
-wgpu::TextureView PassTargetTextures::bytesView(PassImage image) const {
+const wgpu::TextureView& PassTargetTextures::bytesView(PassImage image) const {
     const Target& pass = mTargets[static_cast<std::size_t>(image)];
-    if (image == PassImage::DepthAndId) {
-        return pass.resolvedView;
-    }
-    wgpu::TextureViewDescriptor bytes{};
-    bytes.label = "pass image bytes";
-    bytes.format = wgpu::TextureFormat::RGBA8Unorm;
-    return pass.image.CreateView(&bytes);
+    return image == PassImage::DepthAndId ? pass.resolvedView : pass.bytesView;
 }
 
 const wgpu::Texture& PassTargetTextures::texture(PassImage image) const {

@@ -45,7 +45,7 @@ class PassTargetTextures {
     const wgpu::Texture& texture(PassImage image) const;
     // For a compute pass: the 8-bit images through an RGBA8Unorm view (the target's
     // RenderTargetOptions::bytesViews), DepthAndId as it is.
-    wgpu::TextureView bytesView(PassImage image) const;
+    const wgpu::TextureView& bytesView(PassImage image) const;
 
   private:
     PassTargetTextures() = default;
@@ -57,6 +57,7 @@ class PassTargetTextures {
         wgpu::TextureView resolvedView;
         wgpu::Texture image;  // RGBA8 sRGB (not for DepthAndId).
         wgpu::TextureView imageView;
+        wgpu::TextureView bytesView;  // RGBA8Unorm, with RenderTargetOptions::bytesViews.
     };
     std::array<Target, kPassTargetCount> mTargets;
     // One tone mapper per 8-bit image (each binds its own source), tone mapping off.
