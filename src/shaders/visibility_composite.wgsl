@@ -5,6 +5,10 @@
 // (sample_index): with MULTISAMPLED, each of a pixel's four samples takes the colour its
 // triangle was shaded with (at the first sample that triangle covers, visibility_bins.wgsl) and
 // its own depth, and the target's resolve averages them as it averages hardware-drawn samples.
+// When nothing is drawn after it (no MASK, BLEND, skinned or transmissive geometry: no later
+// depth test), pixelMain runs once per pixel instead, a quarter of the fragments at four
+// samples: it writes the mean colour of the covered samples to those samples only (sample_mask),
+// which the resolve averages to the same colour, and no depth.
 #include "visibility_samples.wgsl"
 
 #if MULTISAMPLED
@@ -48,5 +52,49 @@ fn fragmentMain(@builtin(position) position: vec4f, @builtin(sample_index) sampl
     var output: FragmentOutput;
     output.color = textureLoad(shaded, pixel, shadedAt, 0);
     output.depth = bitcast<f32>(~key.y);
+    return output;
+}
+
+struct PixelOutput {
+    @location(0) color: vec4f,
+    @builtin(sample_mask) covered: u32,
+}
+
+@fragment
+fn pixelMain(@builtin(position) position: vec4f) -> PixelOutput {
+    let pixel = vec2u(position.xy);
+    let width = textureDimensions(shaded).x;
+    let first = (pixel.y * width + pixel.x) * kSamples;
+    var keys: array<vec2u, kSamples>;
+    // Per sample: how many covered samples take the colour shaded there (its triangle's first).
+    var weights: array<f32, kSamples>;
+    var covered = 0u;
+    for (var sample = 0u; sample < kSamples; sample++) {
+        keys[sample] = visibility[first + sample];
+        if (keys[sample].y == 0u) {
+            continue;
+        }
+        covered |= 1u << sample;
+        var shadedAt = sample;
+        for (var earlier = 0u; earlier < sample; earlier++) {
+            if (keys[earlier].y != 0u && keys[earlier].x == keys[sample].x) {
+                shadedAt = earlier;
+                break;
+            }
+        }
+        weights[shadedAt] += 1.0;
+    }
+    if (covered == 0u) {
+        discard;
+    }
+    var sum = vec4f(0.0);
+    for (var sample = 0u; sample < kSamples; sample++) {
+        if (weights[sample] > 0.0) {
+            sum += weights[sample] * textureLoad(shaded, pixel, sample, 0);
+        }
+    }
+    var output: PixelOutput;
+    output.color = sum / f32(countOneBits(covered));
+    output.covered = covered;
     return output;
 }

@@ -415,6 +415,34 @@ TEST(VisibilityMultisampleTest, EachTriangleOfAPixelIsShadedOnce) {
     }
 }
 
+// With nothing drawn after it, the composite runs once per pixel and writes the mean colour of
+// the covered samples (no depth); with a MASK triangle in the scene (drawn after it, tested
+// against its depth), once per sample. Both resolve to the same picture; the last triangle, MASK
+// or not, lies behind the camera, so it adds no pixel of its own (triangles() colours each by
+// its place in the list: both lists have it).
+TEST(VisibilityMultisampleTest, PerPixelAndPerSampleCompositesResolveAlike) {
+    ENCORE_REQUIRE_VULKAN(context);
+    std::vector<std::array<glm::vec3, 3>> shapes = {
+        {glm::vec3(-3, -1.1f, -1), glm::vec3(1, -0.6f, -1), glm::vec3(-1, 1.4f, -1)},
+        {glm::vec3(-0.5f, -0.6f, -0.3f), glm::vec3(0.5f, -0.5f, 0.3f), glm::vec3(0.1f, 0.5f, 0.0f)},
+        {glm::vec3(-0.6f, -0.3f, 0.2f), glm::vec3(0.6f, -0.2f, 0.2f), glm::vec3(0.0f, 0.4f, -0.2f)},
+        {glm::vec3(-2, -2.5f, 5), glm::vec3(2, -2.5f, 5), glm::vec3(0, -1.0f, -4)},
+    };
+    shapes.push_back({glm::vec3(-1, -1, 50), glm::vec3(1, -1, 50), glm::vec3(0, 1, 50)});
+    for (DebugChannel channel : {DebugChannel::BaseColor, DebugChannel::Shaded}) {
+        const auto perPixel = render(*context, triangles(shapes), StrategyKind::Visibility, kFront,
+                                     channel, VisibilityStrategy::kDefaultComputePixels,
+                                     VisibilityStrategy::kMaxWorkgroupPixels, 4);
+        const auto perSample =
+            render(*context, triangles(shapes, "MASK", shapes.size() - 1), StrategyKind::Visibility,
+                   kFront, channel, VisibilityStrategy::kDefaultComputePixels,
+                   VisibilityStrategy::kMaxWorkgroupPixels, 4);
+        EXPECT_EQ(test::differingPixels(perSample, perPixel, 1), 0u);
+        EXPECT_GE(blendedEdgePixels(perPixel, glm::vec3(-1, 0, -1)), 60u);
+    }
+    EXPECT_TRUE(context->checkNoErrors("visibility composites").ok());
+}
+
 TEST(VisibilityFallbackTest, MaskBlendAndSkinnedGeometryIsDrawn) {
     ENCORE_REQUIRE_VULKAN(context);
     auto glb = scene::generateCrowdGlb({.characters = 6});

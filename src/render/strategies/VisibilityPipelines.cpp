@@ -115,7 +115,8 @@ Result<wgpu::RenderPipeline> hardwarePipeline(const RenderSetup& setup,
 }
 
 Result<wgpu::RenderPipeline> compositePipeline(const RenderSetup& setup,
-                                               const VisibilityPipelines& p) {
+                                               const VisibilityPipelines& p,
+                                               bool perPixel) {
     std::set<std::string, std::less<>> flags;
     if (setup.sampleCount > 1) {
         flags.insert("MULTISAMPLED");
@@ -124,10 +125,11 @@ Result<wgpu::RenderPipeline> compositePipeline(const RenderSetup& setup,
     gpu::FullscreenPipelineDescriptor descriptor;
     descriptor.label = "visibility composite";
     descriptor.module = composite;
+    descriptor.fragmentEntryPoint = perPixel ? "pixelMain" : "fragmentMain";
     descriptor.layout = gpu::makePipelineLayout(setup.device, {p.compositeLayout});
     descriptor.colorFormat = setup.colorFormat;
     descriptor.depthFormat = setup.depthFormat;
-    descriptor.writesDepth = true;
+    descriptor.writesDepth = !perPixel;
     descriptor.sampleCount = setup.sampleCount;
     return gpu::makeFullscreenPipeline(setup.device, descriptor);
 }
@@ -179,7 +181,8 @@ Result<std::unique_ptr<VisibilityPipelines>> VisibilityPipelines::create(const R
         }
     }
     ENCORE_TRY_ASSIGN(p.hardware, hardwarePipeline(setup, p));
-    ENCORE_TRY_ASSIGN(p.composite, compositePipeline(setup, p));
+    ENCORE_TRY_ASSIGN(p.composite, compositePipeline(setup, p, false));
+    ENCORE_TRY_ASSIGN(p.compositePixels, compositePipeline(setup, p, true));
     setup.pipelinesCreated += kPipelineCount;
 
     std::array<std::uint32_t, kCounterBytes / 4> initial{};

@@ -466,12 +466,15 @@ std::optional<GpuTriangleCounts> VisibilityStrategy::gpuTriangleCounts() const {
 }
 
 void VisibilityStrategy::encode(RenderEncoder& encoder, const FrameState& frame) const {
+    const bool drawsAfter =
+        !mDraws.opaque().empty() || !mDraws.blended().empty() || !mDraws.transmissive().empty();
     if (mTables.itemCount > 0 && mCompositeGroup) {
-        encoder.setPipeline(mPipelines->composite);
+        // Nothing depth-tests against the composite's depth unless something is drawn after it.
+        encoder.setPipeline(drawsAfter ? mPipelines->composite : mPipelines->compositePixels);
         encoder.setBindGroup(0, mCompositeGroup);
         encoder.draw(3, 1, 0, 0, scene::Topology::TriangleList);
     }
-    if (!mDraws.opaque().empty() || !mDraws.blended().empty()) {
+    if (drawsAfter) {
         mDraws.setSharedBindGroups(encoder);
         mDraws.encodeOpaque(encoder);
         mDraws.encodeBlended(encoder, mDraws.blendOrder(frame.camera.position));
