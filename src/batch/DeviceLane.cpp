@@ -11,6 +11,7 @@
 #include "batch/PassImages.h"
 #include "core/Elapsed.h"
 #include "core/Log.h"
+#include "render/StagedGeometry.h"
 #include "render/StagedImages.h"
 
 namespace encore::batch {
@@ -227,20 +228,30 @@ void DeviceLane::renderModel(LoadedModel& loaded, bool retry) {
         }
     }
 
-    // The pool copies the images into staging buffers while this thread waits for the
-    // renderer below: prepare then only records copies (StagedImages.h).
+    // The pool copies the images and the geometry into staging buffers while this thread
+    // waits for the renderer below: prepare then only records copies (StagedImages.h,
+    // StagedGeometry.h).
+    struct Staged {
+        std::unique_ptr<render::StagedImages> images;
+        std::unique_ptr<render::StagedGeometry> geometry;
+    };
     const auto stage = [&] {
         const auto stagingStart = Clock::now();
-        auto staged = render::StagedImages::stage(
-            mContext.device(), *loaded.scene, mContext.limits().maxTextureDimension2D,
-            [this](std::function<void()> copy) { mShared.pool.submitFirst(std::move(copy)); },
-            mStaging);
+        const auto run = [this](std::function<void()> copy) {
+            mShared.pool.submitFirst(std::move(copy));
+        };
+        Staged staged;
+        staged.images =
+            render::StagedImages::stage(mContext.device(), *loaded.scene,
+                                        mContext.limits().maxTextureDimension2D, run, mStaging);
+        staged.geometry = render::StagedGeometry::stage(
+            *loaded.scene, mContext.limits().maxBufferSize, run, mStaging);
         mStages.staging += secondsSince(stagingStart);
         mStages.upload += secondsSince(stagingStart);
         return staged;
     };
     const std::uint64_t stagedOn = mDevicesLost;
-    std::unique_ptr<render::StagedImages> staged = stage();
+    Staged staged = stage();
 
     // The renderer that drew the oldest model in flight prepares this one, while the GPU may
     // still draw the later ones with the others. Its own views must be read back first:
@@ -281,8 +292,8 @@ void DeviceLane::renderModel(LoadedModel& loaded, bool retry) {
     }
     auto held = std::make_unique<LoadedModel>(std::move(loaded));
     const scene::SceneData& scene = *held->scene;
-    auto prepared =
-        renderer.prepare(scene, mShared.strategy.kind, mShared.strategy.bundle, staged.get());
+    auto prepared = renderer.prepare(scene, mShared.strategy.kind, mShared.strategy.bundle,
+                                     {staged.images.get(), staged.geometry.get()});
     releasePrepared(slot);
     slot.prepared = std::move(held);
     slot.model = model;

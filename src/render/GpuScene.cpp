@@ -27,21 +27,21 @@ auto timed(double& milliseconds, Build&& build) {
 Result<std::unique_ptr<GpuScene>> GpuScene::create(const RenderSetup& setup,
                                                    const scene::SceneData& scene,
                                                    const scene::AnimationPlayer* player,
-                                                   StagedImages* staged) {
+                                                   const StagedUploads& staged) {
     std::optional<scene::AnimationPlayer> restPose;
     if (!player) {
         player = &restPose.emplace(scene);
     }
     // Buffers first, textures last: the buffers' staged copies then go with the one submit that
     // generates the mip chains instead of waiting for the next one (measured: 3% of the batch).
-    std::unique_ptr<GpuScene> created(new GpuScene(setup, scene, *player));
+    std::unique_ptr<GpuScene> created(new GpuScene(setup, scene, *player, staged.geometry));
     PrepareTimes& times = setup.prepareTimes;
     const auto start = std::chrono::steady_clock::now();
     ENCORE_TRY_ASSIGN(
         created->mMaterials,
         MaterialResources::create(setup.device, setup.queue, *setup.shaders, *setup.layouts, scene,
                                   SampledTextures::all(), setup.limits.maxTextureDimension2D,
-                                  setup.mipmaps, staged));
+                                  setup.mipmaps, staged.images));
     times.materials += millisecondsSince(start);
     const TextureUploadTimes& upload = created->mMaterials->uploadTimes();
     times.textureCreation += upload.creation;
@@ -61,13 +61,14 @@ Result<std::unique_ptr<GpuScene>> GpuScene::create(const RenderSetup& setup,
 
 GpuScene::GpuScene(const RenderSetup& setup,
                    const scene::SceneData& scene,
-                   const scene::AnimationPlayer& player)
+                   const scene::AnimationPlayer& player,
+                   StagedGeometry* stagedGeometry)
     : mSetup(&setup),
       mScene(&scene),
       mAnimation(
           AnimationBuffers::create(setup.device, setup.queue, *setup.layouts, scene, player)),
-      mGeometry(
-          timed(setup.prepareTimes.geometry, [&] { return GeometryBuffers(setup.device, scene); })),
+      mGeometry(timed(setup.prepareTimes.geometry,
+                      [&] { return GeometryBuffers(setup.device, scene, 0, stagedGeometry); })),
       mInstances(timed(setup.prepareTimes.instances,
                        [&] { return InstanceBuffer(setup.device, *setup.layouts, scene); })) {
     mWorlds.reserve(scene.instances.size());

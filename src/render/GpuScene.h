@@ -24,6 +24,7 @@
 #include "encore/core/Result.h"
 #include "encore/render/AnimationBuffers.h"
 #include "encore/render/RenderSetup.h"
+#include "encore/render/StagedUploads.h"
 #include "encore/scene/AnimationPlayer.h"
 #include "encore/scene/SceneData.h"
 #include "render/InstanceBuffer.h"
@@ -32,18 +33,16 @@
 
 namespace encore::render {
 
-class StagedImages;
-
 class GpuScene {
   public:
     // Uploads `scene` (which, like `setup`, must outlive the result), the animation buffers at
-    // `player`'s current pose (null: the rest pose). `staged`: the scene's images already in
-    // staging buffers (StagedImages.h), used during this call only. Adds its parts to
-    // setup.prepareTimes.
+    // `player`'s current pose (null: the rest pose). `staged`: the scene's images and geometry
+    // already in staging buffers (StagedUploads.h), used during this call only.
+    // Adds its parts to setup.prepareTimes.
     static Result<std::unique_ptr<GpuScene>> create(const RenderSetup& setup,
                                                     const scene::SceneData& scene,
                                                     const scene::AnimationPlayer* player = nullptr,
-                                                    StagedImages* staged = nullptr);
+                                                    const StagedUploads& staged = {});
 
     const scene::SceneData& data() const { return *mScene; }
     const GeometryBuffers& geometry() const { return mGeometry; }
@@ -89,7 +88,8 @@ class GpuScene {
   private:
     GpuScene(const RenderSetup& setup,
              const scene::SceneData& scene,
-             const scene::AnimationPlayer& player);
+             const scene::AnimationPlayer& player,
+             StagedGeometry* stagedGeometry);
     Result<void> checkMaterial(scene::MaterialId material) const;
 
     const RenderSetup* mSetup;

@@ -189,7 +189,7 @@ Result<void> Renderer::recoverFromDeviceLoss() {
 Result<void> Renderer::prepare(const scene::SceneData& scene,
                                StrategyKind kind,
                                bool bundle,
-                               StagedImages* staged) {
+                               const StagedUploads& staged) {
     const std::string what = "Preparing '" + scene.sourcePath.string() + "' for strategy " +
                              std::string(strategyName(kind)) + (bundle ? " (bundled)" : "");
     if (auto fits = checkSceneWithinLimits(mSetup->limits, scene, kind); !fits) {

@@ -9,13 +9,12 @@
 #include "encore/render/RenderSetup.h"
 #include "gpu/Upload.h"
 #include "render/GltfToWebGpu.h"
+#include "render/SharedGeometryLayout.h"
+#include "render/StagedGeometry.h"
 
 namespace encore::render {
 
 namespace {
-
-// WebGPU's limit on arrayStride (maxVertexBufferArrayStride).
-constexpr std::uint32_t kMaxArrayStride = 2048;
 
 struct BoundAttribute {
     scene::Semantic semantic;
@@ -44,16 +43,12 @@ std::vector<std::uint8_t> paddedVertexElements(const scene::SceneData& scene,
     return padded;
 }
 
-bool readsInPlace(const scene::Accessor& accessor) {
-    return accessor.byteStride % 4 == 0 && accessor.byteOffset % 4 == 0 &&
-           accessor.byteStride <= kMaxArrayStride && accessor.byteStride >= accessor.elementSize();
-}
-
 GeometryBuffers::GeometryBuffers(wgpu::Device device,
                                  const scene::SceneData& scene,
-                                 std::uint64_t maxSharedBufferBytes)
+                                 std::uint64_t maxSharedBufferBytes,
+                                 StagedGeometry* staged)
     : mDevice(std::move(device)), mScene(&scene) {
-    uploadViews(maxSharedBufferBytes);
+    uploadViews(maxSharedBufferBytes, staged);
     uploadRepackedAccessors();
 }
 
@@ -84,80 +79,60 @@ void GeometryBuffers::uploadRepackedAccessors() {
     }
 }
 
-void GeometryBuffers::uploadViews(std::uint64_t maxSharedBufferBytes) {
-    // Every view a primitive may read in place: those of in-place attributes and of indices.
-    std::vector<scene::BufferViewId> views;
-    auto add = [&](scene::AccessorId id, bool indices) {
-        if (id.index() >= mScene->accessors.size()) {
-            return;
-        }
-        const scene::Accessor& accessor = mScene->accessors[id.index()];
-        if (accessor.view.index() < mScene->bufferViews.size() &&
-            (indices || readsInPlace(accessor))) {
-            views.push_back(accessor.view);
-        }
-    };
-    for (const scene::Mesh& mesh : mScene->meshes) {
-        for (const scene::Primitive& primitive : mesh.primitives) {
-            for (const scene::VertexAttribute& attribute : primitive.attributes) {
-                add(attribute.accessor, false);
-            }
-            if (primitive.indices) {
-                add(*primitive.indices, true);
-            }
-        }
-    }
-    std::sort(views.begin(), views.end());
-    views.erase(std::unique(views.begin(), views.end()), views.end());
-
+void GeometryBuffers::uploadViews(std::uint64_t maxSharedBufferBytes, StagedGeometry* staged) {
     std::uint64_t maxBytes = maxSharedBufferBytes;
     if (maxBytes == 0) {
         wgpu::Limits limits{};
         mDevice.GetLimits(&limits);
         maxBytes = limits.maxBufferSize;
     }
-    // Where each view goes: views packed at 4-byte offsets into shared buffers of at most
-    // maxBytes each. Then each buffer is created mapped and the views are copied straight into
-    // it: gathering them into one vector first copied every byte twice on the device's thread
-    // (a tenth of `encore batch`'s upload time).
-    struct SharedBuffer {
-        std::uint64_t size = 0;
-        std::vector<scene::BufferViewId> views;
-    };
-    std::vector<SharedBuffer> layout;
-    for (scene::BufferViewId id : views) {
-        const scene::BufferView& view = mScene->bufferViews[id.index()];
-        std::uint64_t offset = layout.empty() ? 0 : (layout.back().size + 3) & ~std::uint64_t(3);
-        // A view larger than the device's limit on its own was refused before (SceneLimits).
-        if (layout.empty() || offset + view.byteLength > maxBytes) {
-            layout.emplace_back();
-            offset = 0;
-        }
-        layout.back().size = offset + view.byteLength;
-        layout.back().views.push_back(id);
-        mViews[id] = {{}, offset, view.byteLength};
+    const SharedGeometryLayout layout = sharedGeometryLayout(*mScene, maxBytes);
+    if (staged && staged->layout() != layout) {
+        staged = nullptr;  // Staged for another device's limit: upload here instead.
     }
-    for (const SharedBuffer& shared : layout) {
-        // Mapped at creation, so zeroed: the gaps between views read as zeros.
-        // Storage too: passes that fetch vertices themselves read the same bytes.
-        const wgpu::Buffer buffer = gpu::createBufferFilledBy(
-            mDevice,
-            wgpu::BufferUsage::Vertex | wgpu::BufferUsage::Index | wgpu::BufferUsage::Storage,
-            shared.size, "geometry " + std::to_string(mSharedBuffers.size()),
-            [&](std::uint8_t* mapped) {
-                for (scene::BufferViewId id : shared.views) {
-                    const scene::BufferView& view = mScene->bufferViews[id.index()];
-                    const auto& source = mScene->buffers[view.buffer.index()].bytes;
-                    // An empty buffer's data() is null: a zero-length view of it copies nothing.
-                    copyBytes(mapped + mViews[id].offset, source.data() + view.byteOffset,
-                              view.byteLength);
-                }
-            });
-        for (scene::BufferViewId id : shared.views) {
-            mViews[id].buffer = buffer;
+    // Storage too: passes that fetch vertices themselves read the same bytes; CopySrc for
+    // reading them back (tests compare the two uploads below).
+    const wgpu::BufferUsage usage = wgpu::BufferUsage::Vertex | wgpu::BufferUsage::Index |
+                                    wgpu::BufferUsage::Storage | wgpu::BufferUsage::CopySrc;
+    wgpu::CommandEncoder copies;
+    for (std::size_t index = 0; index < layout.buffers.size(); ++index) {
+        const SharedGeometryLayout::Buffer& shared = layout.buffers[index];
+        const std::string label = "geometry " + std::to_string(index);
+        const wgpu::Buffer source = staged ? staged->copySource(index) : nullptr;
+        wgpu::Buffer buffer;
+        if (source) {
+            // The staging buffer's bytes, gaps zeroed, over the whole (4-byte-rounded) buffer:
+            // Dawn then has nothing to clear.
+            buffer =
+                gpu::createBuffer(mDevice, usage | wgpu::BufferUsage::CopyDst, shared.size, label);
+            if (!copies) {
+                copies = mDevice.CreateCommandEncoder();
+            }
+            copies.CopyBufferToBuffer(source, 0, buffer, 0, buffer.GetSize());
+        } else {
+            // Mapped at creation, so zeroed: the gaps between views read as zeros. The views
+            // are copied straight into it: gathering them into one vector first copied every
+            // byte twice on the device's thread (a tenth of `encore batch`'s upload time).
+            buffer = gpu::createBufferFilledBy(
+                mDevice, usage, shared.size, label, [&](std::uint8_t* mapped) {
+                    for (const SharedGeometryLayout::View& view : shared.views) {
+                        const scene::BufferView& source = mScene->bufferViews[view.id.index()];
+                        const auto& bytes = mScene->buffers[source.buffer.index()].bytes;
+                        // An empty buffer's data() is null: a zero-length view copies nothing.
+                        copyBytes(mapped + view.offset, bytes.data() + source.byteOffset,
+                                  view.length);
+                    }
+                });
+        }
+        for (const SharedGeometryLayout::View& view : shared.views) {
+            mViews[view.id] = {buffer, view.offset, view.length};
         }
         mUploadedBytes += shared.size;
         mSharedBuffers.push_back(buffer);
+    }
+    if (copies) {
+        const wgpu::CommandBuffer commands = copies.Finish();
+        mDevice.GetQueue().Submit(1, &commands);
     }
 }
 

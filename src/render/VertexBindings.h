@@ -29,6 +29,8 @@
 
 namespace encore::render {
 
+class StagedGeometry;
+
 struct VertexBufferBinding {
     wgpu::Buffer buffer;
     std::uint64_t offset = 0;
@@ -62,10 +64,12 @@ class GeometryBuffers {
     // attributes that cannot be bound in place (all of them now, not on first bind: every
     // strategy binds from the same uploads). `maxSharedBufferBytes`: where a
     // shared buffer ends and the next begins; 0 (the default) takes the device's maxBufferSize
-    // (tests pass less to exercise the split).
+    // (tests pass less to exercise the split). `staged`: the shared buffers' bytes already in
+    // staging buffers (StagedGeometry.h), copied from there, used during this call only.
     GeometryBuffers(wgpu::Device device,
                     const scene::SceneData& scene,
-                    std::uint64_t maxSharedBufferBytes = 0);
+                    std::uint64_t maxSharedBufferBytes = 0,
+                    StagedGeometry* staged = nullptr);
 
     // Bindings of `primitive` for the attributes with these semantics (those the shader
     // variant consumes; absent ones are skipped).
@@ -96,7 +100,7 @@ class GeometryBuffers {
         std::uint64_t length = 0;
     };
     const ViewPlacement& viewPlacement(scene::BufferViewId view) const;
-    void uploadViews(std::uint64_t maxSharedBufferBytes);
+    void uploadViews(std::uint64_t maxSharedBufferBytes, StagedGeometry* staged);
     void uploadRepackedAccessors();
 
     wgpu::Device mDevice;

@@ -1,9 +1,17 @@
 #include <gtest/gtest.h>
 
+#include <cstring>
+#include <functional>
+#include <memory>
 #include <set>
+#include <thread>
 #include <vector>
 
 #include "GpuTestSupport.h"
+#include "gpu/Readback.h"
+#include "gpu/StagingBuffers.h"
+#include "render/SharedGeometryLayout.h"
+#include "render/StagedGeometry.h"
 #include "render/VertexBindings.h"
 #include "scene/SceneGenerator.h"
 
@@ -139,6 +147,98 @@ TEST(GeometryBuffersTest, IndexBindingsReachEveryLevelOfDetail) {
     }
     EXPECT_GT(levels, 0u);
     EXPECT_TRUE(context->checkNoErrors("geometry buffers, levels of detail").ok());
+}
+
+}  // namespace
+}  // namespace encore::render
+
+namespace encore::render {
+namespace {
+
+// The shared buffers' bytes, read back.
+std::vector<std::vector<std::uint8_t>> sharedBytes(gpu::Context& context,
+                                                   const GeometryBuffers& geometry) {
+    std::vector<std::vector<std::uint8_t>> all;
+    for (const wgpu::Buffer& buffer : geometry.sharedBuffers()) {
+        auto bytes = gpu::readBuffer(context, buffer, 0, buffer.GetSize());
+        EXPECT_TRUE(bytes.ok());
+        all.push_back(bytes.ok() ? std::move(*bytes) : std::vector<std::uint8_t>{});
+    }
+    return all;
+}
+
+// Geometry that other threads copied into staging buffers, in pieces that cross views, gaps and
+// buffers, uploads the same bytes as geometry mapped at creation; pieces no thread started are
+// copied by the uploading thread, and those still queued when the staging goes away do nothing.
+TEST(StagedGeometryTest, StagedBuffersHoldWhatMappedOnesHold) {
+    ENCORE_REQUIRE_VULKAN(context);
+    const scene::SceneData scene = generatedScene();
+    std::uint64_t largestView = 0;
+    const SharedGeometryLayout whole = sharedGeometryLayout(scene, ~std::uint64_t(0));
+    ASSERT_EQ(whole.buffers.size(), 1u);
+    for (const auto& view : whole.buffers[0].views) {
+        largestView = std::max(largestView, view.length);
+    }
+    const std::uint64_t limit = 2 * largestView + 8;  // Several shared buffers.
+    const SharedGeometryLayout layout = sharedGeometryLayout(scene, limit);
+    ASSERT_GT(layout.buffers.size(), 2u);
+    bool gap = false;  // Between views, or at a buffer's end: zeros in both uploads.
+    for (const SharedGeometryLayout::Buffer& buffer : layout.buffers) {
+        std::uint64_t end = 0;
+        for (const SharedGeometryLayout::View& view : buffer.views) {
+            gap = gap || view.offset > end;
+            end = view.offset + view.length;
+        }
+        gap = gap || buffer.size % 4 != 0;
+    }
+    EXPECT_TRUE(gap);
+    const GeometryBuffers mapped(context->device(), scene, limit);
+    const auto expected = sharedBytes(*context, mapped);
+
+    // Staging buffers that hold other bytes, as reused ones do: the gaps must be zeroed.
+    auto staging = std::make_shared<gpu::StagingBuffers>(*context);
+    std::vector<wgpu::Buffer> dirty;
+    for (std::size_t i = 0; i < layout.buffers.size(); ++i) {
+        dirty.push_back(staging->acquire(1));
+        std::memset(dirty.back().GetMappedRange(), 0xAB, dirty.back().GetSize());
+    }
+    for (wgpu::Buffer& buffer : dirty) {
+        staging->giveBack(std::move(buffer), true);
+    }
+    for (int round = 0; round < 2; ++round) {
+        SCOPED_TRACE("round " + std::to_string(round));
+        std::vector<std::function<void()>> queued;
+        auto staged = StagedGeometry::stage(
+            scene, limit, [&](std::function<void()> copy) { queued.push_back(std::move(copy)); },
+            staging, 1000);
+        EXPECT_EQ(staging->created(), layout.buffers.size());  // Reused, not created.
+        EXPECT_EQ(staged->layout(), layout);
+        ASSERT_GT(queued.size(), 2 * layout.buffers.size());
+        // Every other piece on a thread of its own; the rest left to the uploading thread.
+        std::vector<std::thread> threads;
+        for (std::size_t i = 0; i < queued.size(); i += 2) {
+            threads.emplace_back(queued[i]);
+        }
+        const GeometryBuffers copied(context->device(), scene, limit, staged.get());
+        for (std::thread& thread : threads) {
+            thread.join();
+        }
+        EXPECT_EQ(sharedBytes(*context, copied), expected);
+        staged.reset();
+        for (std::size_t i = 1; i < queued.size(); i += 2) {
+            queued[i]();  // Claimed: nothing happens.
+        }
+    }
+    // Staged but never uploaded: the pieces still queued do nothing once it is gone.
+    std::vector<std::function<void()>> queued;
+    auto unused = StagedGeometry::stage(
+        scene, limit, [&](std::function<void()> copy) { queued.push_back(std::move(copy)); },
+        staging, 1000);
+    unused.reset();
+    for (const auto& copy : queued) {
+        copy();
+    }
+    EXPECT_TRUE(context->checkNoErrors("staged geometry").ok());
 }
 
 }  // namespace

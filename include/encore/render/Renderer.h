@@ -27,6 +27,7 @@
 #include "encore/render/GpuStage.h"
 #include "encore/render/Lighting.h"
 #include "encore/render/RenderTarget.h"
+#include "encore/render/StagedUploads.h"
 #include "encore/render/Strategy.h"
 #include "encore/render/ToneMapper.h"
 #include "encore/render/VisibilityFeatures.h"  // What a context needs for the visibility strategy.
@@ -116,7 +117,6 @@ struct FrameResult : FrameTiming {
 };
 
 class GpuScene;
-class StagedImages;
 class TriangleHistory;
 class TransmissionPass;
 class PassTargetTextures;
@@ -139,13 +139,13 @@ class Renderer {
     // Prepares `scene` (which must outlive the renderer) for drawing with `kind`, replacing any
     // previous scene or strategy: uploads it into a new GPU scene (GpuScene) and prepares the
     // strategy on it; with `bundle`, the frame is drawn from render bundles (createStrategy).
-    // Fails on any WebGPU error raised while preparing. `staged`: the scene's images already
-    // copied into staging buffers (StagedImages.h; the GPU scene copies its textures from
-    // there), used during this call only.
+    // Fails on any WebGPU error raised while preparing. `staged`: the scene's images and
+    // geometry already copied into staging buffers (the GPU scene copies from there), used
+    // during this call only.
     Result<void> prepare(const scene::SceneData& scene,
                          StrategyKind kind,
                          bool bundle = false,
-                         StagedImages* staged = nullptr);
+                         const StagedUploads& staged = {});
     // Draws the prepared scene with another strategy: only the strategy's recording structures
     // are made again; the GPU scene, with every edit made through it, stays as it is.
     Result<void> setStrategy(StrategyKind kind, bool bundle = false);
