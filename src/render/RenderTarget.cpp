@@ -99,6 +99,16 @@ wgpu::RenderPassColorAttachment RenderTarget::colorAttachment(const wgpu::Color&
     return attachment;
 }
 
+wgpu::RenderPassColorAttachment RenderTarget::resolvedColorAttachment(
+    const wgpu::Color& clearColor) const {
+    wgpu::RenderPassColorAttachment attachment{};
+    attachment.view = mSceneView;
+    attachment.storeOp = wgpu::StoreOp::Store;
+    attachment.loadOp = wgpu::LoadOp::Clear;
+    attachment.clearValue = clearColor;
+    return attachment;
+}
+
 wgpu::RenderPassDepthStencilAttachment RenderTarget::depthAttachment() const {
     wgpu::RenderPassDepthStencilAttachment attachment{};
     attachment.view = mDepthView;

@@ -103,6 +103,13 @@ Result<void> Renderer::build(const RendererOptions& options) {
                                            RenderTarget::kDepthFormat, options.target.sampleCount,
                                            renderer.mPassTargets ? kPassTargetCount : 0));
     renderer.mBackground = std::make_unique<EnvironmentBackground>(std::move(background));
+    if (options.target.sampleCount > 1) {
+        ENCORE_TRY_ASSIGN(auto resolved,
+                          EnvironmentBackground::create(
+                              context.device(), *renderer.mShaders, renderer.mLayouts->frame,
+                              renderer.mTarget.sceneFormat(), wgpu::TextureFormat::Undefined, 1));
+        renderer.mResolvedBackground = std::make_unique<EnvironmentBackground>(std::move(resolved));
+    }
 
     renderer.mSetup = std::make_unique<RenderSetup>();
     RenderSetup& setup = *renderer.mSetup;
@@ -157,6 +164,7 @@ Result<void> Renderer::recoverFromDeviceLoss() {
     mGpuScene.reset();
     mPlayer.reset();
     mBackground.reset();
+    mResolvedBackground.reset();
     mToneMapper.reset();
     mPassTargets.reset();
     mFrame.reset();

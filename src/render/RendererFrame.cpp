@@ -58,6 +58,9 @@ FrameResult Renderer::renderPasses(std::span<const Camera> cameras,
 
     // Only scenes with transmissive surfaces pay for the copy and the extra passes.
     const bool transmission = mTransmission && mStrategy && mStrategy->drawsTransmission();
+    // Straight into the resolved texture at one sample (Strategy::composesResolved).
+    const bool resolvedPasses = mResolvedBackground && !twoPhases && !transmission &&
+                                !mPassTargets && mStrategy && mStrategy->composesResolved();
     auto encodeFrame = [&](const wgpu::CommandEncoder& commandEncoder) {
         if (mGpuAnimation && mGpuAnimationPending) {
             mGpuAnimation->encode(commandEncoder);  // Before anything that reads its results.
@@ -77,14 +80,16 @@ FrameResult Renderer::renderPasses(std::span<const Camera> cameras,
             plan.view = view;
             plan.viewCount = cameras.size();
             plan.phase = phase;
-            plan.multisampled = mTarget.sampleCount() > 1;
+            plan.multisampled = mTarget.sampleCount() > 1 && !resolvedPasses;
             plan.hdr = mTarget.hdr();
             plan.backgroundColor = mOptions.toneMapping.backgroundColor;
             plan.transmission = transmissionPass;
             plan.transmissionFollows =
                 transmission && !transmissionPass && phase != DrawPhase::First;
             const PassAttachments attachments = passAttachments(plan);
-            wgpu::RenderPassColorAttachment color = mTarget.colorAttachment(attachments.clearColor);
+            wgpu::RenderPassColorAttachment color =
+                resolvedPasses ? mTarget.resolvedColorAttachment(attachments.clearColor)
+                               : mTarget.colorAttachment(attachments.clearColor);
             color.loadOp = attachments.colorLoadOp;
             color.storeOp = attachments.colorStoreOp;
             if (!attachments.resolve) {
@@ -108,7 +113,7 @@ FrameResult Renderer::renderPasses(std::span<const Camera> cameras,
             passDescriptor.label = attachments.label;
             passDescriptor.colorAttachmentCount = colorCount;
             passDescriptor.colorAttachments = colors.data();
-            passDescriptor.depthStencilAttachment = &depth;
+            passDescriptor.depthStencilAttachment = resolvedPasses ? nullptr : &depth;
             // The transmission pass is timed by the GPU timer only (stage timestamps time one
             // scene pass per view).
             passDescriptor.timestampWrites =
@@ -124,7 +129,8 @@ FrameResult Renderer::renderPasses(std::span<const Camera> cameras,
             }
             if (mOptions.toneMapping.background == BackgroundKind::Environment &&
                 phase != DrawPhase::Second && !transmissionPass) {
-                mBackground->draw(pass, mFrame->bindGroup());
+                (resolvedPasses ? mResolvedBackground : mBackground)
+                    ->draw(pass, mFrame->bindGroup());
             }
             if (mStrategy) {
                 RenderEncoder encoder(pass, result.counters);
@@ -132,6 +138,7 @@ FrameResult Renderer::renderPasses(std::span<const Camera> cameras,
                 FrameState viewState = state;
                 viewState.camera = cameras[view];
                 viewState.phase = phase;
+                viewState.resolvedPass = resolvedPasses;
                 if (transmissionPass) {
                     mStrategy->encodeTransmission(encoder, viewState);
                 } else {

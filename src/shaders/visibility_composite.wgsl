@@ -7,8 +7,11 @@
 // its own depth, and the target's resolve averages them as it averages hardware-drawn samples.
 // When nothing is drawn after it (no MASK, BLEND, skinned or transmissive geometry: no later
 // depth test), pixelMain runs once per pixel instead, a quarter of the fragments at four
-// samples: it writes the mean colour of the covered samples to those samples only (sample_mask),
-// which the resolve averages to the same colour, and no depth.
+// samples, and writes no depth: the sum of the covered samples' colours over the sample count,
+// blended over the background (premultiplied: the compute path's surfaces are opaque, so its
+// alpha is the covered fraction). Every sample of the pixel then holds what the resolve would
+// average them to, which keeps the multisampled target compressed (on the H100 writing chosen
+// samples, sample_mask, cost three times a one-sample target's pass).
 #include "visibility_samples.wgsl"
 
 #if MULTISAMPLED
@@ -55,26 +58,21 @@ fn fragmentMain(@builtin(position) position: vec4f, @builtin(sample_index) sampl
     return output;
 }
 
-struct PixelOutput {
-    @location(0) color: vec4f,
-    @builtin(sample_mask) covered: u32,
-}
-
 @fragment
-fn pixelMain(@builtin(position) position: vec4f) -> PixelOutput {
+fn pixelMain(@builtin(position) position: vec4f) -> @location(0) vec4f {
     let pixel = vec2u(position.xy);
     let width = textureDimensions(shaded).x;
     let first = (pixel.y * width + pixel.x) * kSamples;
     var keys: array<vec2u, kSamples>;
     // Per sample: how many covered samples take the colour shaded there (its triangle's first).
     var weights: array<f32, kSamples>;
-    var covered = 0u;
+    var covered = false;
     for (var sample = 0u; sample < kSamples; sample++) {
         keys[sample] = visibility[first + sample];
         if (keys[sample].y == 0u) {
             continue;
         }
-        covered |= 1u << sample;
+        covered = true;
         var shadedAt = sample;
         for (var earlier = 0u; earlier < sample; earlier++) {
             if (keys[earlier].y != 0u && keys[earlier].x == keys[sample].x) {
@@ -84,7 +82,7 @@ fn pixelMain(@builtin(position) position: vec4f) -> PixelOutput {
         }
         weights[shadedAt] += 1.0;
     }
-    if (covered == 0u) {
+    if (!covered) {
         discard;
     }
     var sum = vec4f(0.0);
@@ -93,8 +91,5 @@ fn pixelMain(@builtin(position) position: vec4f) -> PixelOutput {
             sum += weights[sample] * textureLoad(shaded, pixel, sample, 0);
         }
     }
-    var output: PixelOutput;
-    output.color = sum / f32(countOneBits(covered));
-    output.covered = covered;
-    return output;
+    return sum / f32(kSamples);
 }

@@ -416,10 +416,11 @@ TEST(VisibilityMultisampleTest, EachTriangleOfAPixelIsShadedOnce) {
 }
 
 // With nothing drawn after it, the composite runs once per pixel and writes the mean colour of
-// the covered samples (no depth); with a MASK triangle in the scene (drawn after it, tested
-// against its depth), once per sample. Both resolve to the same picture; the last triangle, MASK
-// or not, lies behind the camera, so it adds no pixel of its own (triangles() colours each by
-// its place in the list: both lists have it).
+// the covered samples straight into the resolved texture (Strategy::composesResolved: no
+// multisampled pass); with a MASK triangle in the scene (drawn after it, tested against its
+// depth), once per sample into the multisampled target. Both resolve to the same picture; the last
+// triangle, MASK or not, lies behind the camera, so it adds no pixel of its own (triangles()
+// colours each by its place in the list: both lists have it).
 TEST(VisibilityMultisampleTest, PerPixelAndPerSampleCompositesResolveAlike) {
     ENCORE_REQUIRE_VULKAN(context);
     std::vector<std::array<glm::vec3, 3>> shapes = {
@@ -440,6 +441,14 @@ TEST(VisibilityMultisampleTest, PerPixelAndPerSampleCompositesResolveAlike) {
         EXPECT_EQ(test::differingPixels(perSample, perPixel, 1), 0u);
         EXPECT_GE(blendedEdgePixels(perPixel, glm::vec3(-1, 0, -1)), 60u);
     }
+    auto renderer = Renderer::create(*context, test::pixelTestOptions(kWidth, kHeight, 4));
+    ASSERT_TRUE(renderer.ok());
+    const auto opaque = triangles(shapes);
+    ASSERT_TRUE(renderer->prepare(opaque, StrategyKind::Visibility).ok());
+    EXPECT_TRUE(renderer->strategy()->composesResolved());
+    const auto masked = triangles(shapes, "MASK", shapes.size() - 1);
+    ASSERT_TRUE(renderer->prepare(masked, StrategyKind::Visibility).ok());
+    EXPECT_FALSE(renderer->strategy()->composesResolved());
     EXPECT_TRUE(context->checkNoErrors("visibility composites").ok());
 }
 

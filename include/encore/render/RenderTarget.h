@@ -64,6 +64,9 @@ class RenderTarget {
 
     // Attachments for a scene pass that clears colour to `clearColor` and depth to 1.
     wgpu::RenderPassColorAttachment colorAttachment(const wgpu::Color& clearColor) const;
+    // The resolved scene texture itself as the attachment (one sample, stored), for passes
+    // that draw it directly (Strategy::composesResolved).
+    wgpu::RenderPassColorAttachment resolvedColorAttachment(const wgpu::Color& clearColor) const;
     wgpu::RenderPassDepthStencilAttachment depthAttachment() const;
 
   private:

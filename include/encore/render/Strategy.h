@@ -54,6 +54,9 @@ struct FrameState {
     CullingOptions culling;
     std::uint32_t targetWidth = 0;  // The render target's size in pixels.
     std::uint32_t targetHeight = 0;
+    // This scene pass draws straight into the target's resolved texture at one sample, without
+    // depth (Strategy::composesResolved).
+    bool resolvedPass = false;
 };
 
 class GpuCuller;
@@ -108,6 +111,13 @@ class Strategy {
     // Records one frame's draws. Sets every piece of state it uses (group 0 included), so the
     // same code can record into a render bundle.
     virtual void encode(RenderEncoder& encoder, const FrameState& frame) const = 0;
+
+    // Whether, on a multisampled target, the scene passes need nothing but what encode() draws
+    // from the strategy's own per-sample data, already averaged per pixel: then the renderer
+    // draws them at one sample straight into the target's resolved texture, without depth
+    // (FrameState::resolvedPass), and skips the multisampled target, its clears and its resolve
+    // (on the H100's few graphics units those cost about four times a one-sample pass).
+    virtual bool composesResolved() const { return false; }
 
     // KHR_materials_transmission: whether encode() leaves out surfaces with transmission, for
     // encodeTransmission() to draw in a pass of their own once the Renderer has copied the scene

@@ -96,8 +96,11 @@ Result<wgpu::RenderPipeline> hardwarePipeline(const RenderSetup& setup,
     ENCORE_TRY_ASSIGN(auto hardware, setup.shaders->module("visibility_hardware.wgsl"));
     wgpu::DepthStencilState depth{};
     depth.format = wgpu::TextureFormat::Depth32Float;
-    depth.depthWriteEnabled = wgpu::OptionalBool::True;
-    depth.depthCompare = wgpu::CompareFunction::Less;
+    // No depth test: the fragment shader writes storage, so Vulkan tests depth only after it
+    // has run (the atomic happens either way), and the attachment, never written, is neither
+    // cleared nor stored per view (VisibilityStrategy::encodeHardwareRaster).
+    depth.depthWriteEnabled = wgpu::OptionalBool::False;
+    depth.depthCompare = wgpu::CompareFunction::Always;
     wgpu::FragmentState fragment{};
     fragment.module = hardware;
     fragment.entryPoint = "fragmentMain";
@@ -114,9 +117,12 @@ Result<wgpu::RenderPipeline> hardwarePipeline(const RenderSetup& setup,
     return device.CreateRenderPipeline(&pipeline);
 }
 
+// Per sample (with depth), or per pixel (blended, no depth) into the target's samples or, with
+// `resolved`, into its resolved texture (one sample, no depth attachment).
 Result<wgpu::RenderPipeline> compositePipeline(const RenderSetup& setup,
                                                const VisibilityPipelines& p,
-                                               bool perPixel) {
+                                               bool perPixel,
+                                               bool resolved = false) {
     std::set<std::string, std::less<>> flags;
     if (setup.sampleCount > 1) {
         flags.insert("MULTISAMPLED");
@@ -128,9 +134,16 @@ Result<wgpu::RenderPipeline> compositePipeline(const RenderSetup& setup,
     descriptor.fragmentEntryPoint = perPixel ? "pixelMain" : "fragmentMain";
     descriptor.layout = gpu::makePipelineLayout(setup.device, {p.compositeLayout});
     descriptor.colorFormat = setup.colorFormat;
-    descriptor.depthFormat = setup.depthFormat;
+    descriptor.depthFormat = resolved ? wgpu::TextureFormat::Undefined : setup.depthFormat;
     descriptor.writesDepth = !perPixel;
-    descriptor.sampleCount = setup.sampleCount;
+    if (perPixel) {
+        // Premultiplied over the background (visibility_composite.wgsl's pixelMain).
+        wgpu::BlendComponent over{};
+        over.srcFactor = wgpu::BlendFactor::One;
+        over.dstFactor = wgpu::BlendFactor::OneMinusSrcAlpha;
+        descriptor.blend = wgpu::BlendState{over, over};
+    }
+    descriptor.sampleCount = resolved ? 1 : setup.sampleCount;
     return gpu::makeFullscreenPipeline(setup.device, descriptor);
 }
 
@@ -183,6 +196,7 @@ Result<std::unique_ptr<VisibilityPipelines>> VisibilityPipelines::create(const R
     ENCORE_TRY_ASSIGN(p.hardware, hardwarePipeline(setup, p));
     ENCORE_TRY_ASSIGN(p.composite, compositePipeline(setup, p, false));
     ENCORE_TRY_ASSIGN(p.compositePixels, compositePipeline(setup, p, true));
+    ENCORE_TRY_ASSIGN(p.compositeResolved, compositePipeline(setup, p, true, true));
     setup.pipelinesCreated += kPipelineCount;
 
     std::array<std::uint32_t, kCounterBytes / 4> initial{};

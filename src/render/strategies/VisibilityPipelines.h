@@ -62,7 +62,7 @@ struct VisibilityPipelines {
     // Bytes of visibility_counters.wgsl's Counters.
     static constexpr std::uint64_t kCounterBytes = 64;
     // The number of pipelines create() makes (counted in RenderSetup::pipelinesCreated).
-    static constexpr std::uint64_t kPipelineCount = 16;
+    static constexpr std::uint64_t kPipelineCount = 17;
 
     // Fails only where an embedded shader does not compile (a bug, not an input error).
     static Result<std::unique_ptr<VisibilityPipelines>> create(const RenderSetup& setup);
@@ -86,9 +86,11 @@ struct VisibilityPipelines {
     // [textured][tangent].
     std::array<std::array<wgpu::ComputePipeline, 2>, 2> shade;
     // Per sample, writing each sample's depth; compositePixels per pixel without depth, for
-    // frames that draw nothing after it (visibility_composite.wgsl).
+    // frames that draw nothing after it (visibility_composite.wgsl); compositeResolved the same
+    // at one sample, for passes drawn into the resolved texture (Strategy::composesResolved).
     wgpu::RenderPipeline composite;
     wgpu::RenderPipeline compositePixels;
+    wgpu::RenderPipeline compositeResolved;
     // The frame uniform alone (frame.wgsl's group 0) for the raster passes.
     wgpu::BindGroup frameOnlyGroup;
     // Unit count 0, hardware draw (0 vertices, 1 instance, 0, 0): copied over the counters

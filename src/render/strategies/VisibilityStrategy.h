@@ -54,6 +54,11 @@ class VisibilityStrategy final : public Strategy {
     static constexpr std::uint64_t kBinRecordBytes = 256;
     const wgpu::Buffer& bins() const { return mBins; }
     void encode(RenderEncoder& encoder, const FrameState& frame) const override;
+    // At four samples, when nothing is drawn after the composite: it averages each pixel's
+    // samples itself (visibility_composite.wgsl's pixelMain).
+    bool composesResolved() const override {
+        return mSetup && mSetup->sampleCount > 1 && !drawsAfter();
+    }
     // Transmissive surfaces are left to the hardware path, as blended ones are, and drawn in
     // the transmission pass.
     bool drawsTransmission() const override { return !mDraws.transmissive().empty(); }
@@ -83,6 +88,12 @@ class VisibilityStrategy final : public Strategy {
     std::optional<GpuTriangleCounts> gpuTriangleCounts() const override;
 
   private:
+    // Whether the hardware draws anything after the composite (MASK, BLEND, skinned, morphed
+    // or transmissive geometry), which then depth-tests against each sample's depth.
+    bool drawsAfter() const {
+        return !mDraws.opaque().empty() || !mDraws.blended().empty() ||
+               !mDraws.transmissive().empty();
+    }
     void ensureTarget(std::uint32_t width, std::uint32_t height, std::size_t views);
     void createBindGroups();
     // A multi-view frame's one cull, before its views (each view's raster starts from the
