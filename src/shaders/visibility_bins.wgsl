@@ -62,14 +62,35 @@ fn pixelBins(id: vec3u) -> PixelBins {
     return result;
 }
 
+// Counted and reserved per workgroup first, then added to the bins once per workgroup and bin:
+// a global atomic per pixel on the few addresses of a frame's bins serialised in the GPU's L2
+// (on the H100 about the whole pass for a 1280x720 frame of one or two bins). Frames of more
+// bins than kLocalBins count each pixel globally.
+const kLocalBins = 64u;  // One per thread of a workgroup.
+var<workgroup> localCounts: array<atomic<u32>, kLocalBins>;
+var<workgroup> localFirst: array<u32, kLocalBins>;
+
 @compute @workgroup_size(8, 8)
-fn countMain(@builtin(global_invocation_id) id: vec3u) {
+fn countMain(@builtin(global_invocation_id) id: vec3u,
+             @builtin(local_invocation_index) local: u32) {
+    let grouped = params.binCount <= kLocalBins;
+    atomicStore(&localCounts[local], 0u);
+    workgroupBarrier();
     let pixel = pixelBins(id);
     for (var sample = 0u; sample < params.samples; sample++) {
         let bin = pixel.bins[sample];
         if (bin != kNoBin) {
-            atomicAdd(&bins[bin].count, 1u);
+            if (grouped) {
+                atomicAdd(&localCounts[bin], 1u);
+            } else {
+                atomicAdd(&bins[bin].count, 1u);
+            }
         }
+    }
+    workgroupBarrier();
+    let count = atomicLoad(&localCounts[local]);
+    if (grouped && count > 0u) {
+        atomicAdd(&bins[local].count, count);
     }
 }
 
@@ -83,15 +104,39 @@ fn offsetsMain() {
     }
 }
 
-// Lists each shaded sample's visibility-buffer entry (pixel * samples + sample) in its bin.
+// Lists each shaded sample's visibility-buffer entry (pixel * samples + sample) in its bin: the
+// workgroup's entries of a bin in one range reserved at once (as countMain counts them).
 @compute @workgroup_size(8, 8)
-fn scatterMain(@builtin(global_invocation_id) id: vec3u) {
+fn scatterMain(@builtin(global_invocation_id) id: vec3u,
+               @builtin(local_invocation_index) local: u32) {
+    let grouped = params.binCount <= kLocalBins;
+    atomicStore(&localCounts[local], 0u);
+    workgroupBarrier();
     let pixel = pixelBins(id);
+    var slots = array<u32, 4>(0u, 0u, 0u, 0u);
     for (var sample = 0u; sample < params.samples; sample++) {
         let bin = pixel.bins[sample];
         if (bin != kNoBin) {
-            let slot = atomicAdd(&bins[bin].cursor, 1u);
-            pixels[bins[bin].first + slot] = pixel.first + sample;
+            if (grouped) {
+                slots[sample] = atomicAdd(&localCounts[bin], 1u);
+            } else {
+                let slot = atomicAdd(&bins[bin].cursor, 1u);
+                pixels[bins[bin].first + slot] = pixel.first + sample;
+            }
+        }
+    }
+    workgroupBarrier();
+    let count = atomicLoad(&localCounts[local]);
+    if (grouped && count > 0u) {
+        localFirst[local] = bins[local].first + atomicAdd(&bins[local].cursor, count);
+    }
+    workgroupBarrier();
+    if (grouped) {
+        for (var sample = 0u; sample < params.samples; sample++) {
+            let bin = pixel.bins[sample];
+            if (bin != kNoBin) {
+                pixels[localFirst[bin] + slots[sample]] = pixel.first + sample;
+            }
         }
     }
 }
