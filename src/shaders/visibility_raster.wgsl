@@ -77,9 +77,10 @@ struct RasterTriangle {
     v0: vec2i,
     v1: vec2i,
     v2: vec2i,
-    z: vec3f,
+    // Depth at the first pixel's corner and its change per pixel in x and y: a plane through
+    // the vertices as projected, not as snapped, as the hardware interpolates depth.
+    depth: vec3f,
     bias: vec3i,
-    inverseArea: f32,
 }
 
 fn facesTheCamera(c0: vec4f, c1: vec4f, c2: vec4f, item: Item) -> bool {
@@ -148,7 +149,6 @@ fn prepareTriangle(id: u32, item: Item, transform: Transform, triangle: u32, han
     t.v0 = vec2i(round(p0.xy * kSubpixels - origin));
     t.v1 = vec2i(round(p1.xy * kSubpixels - origin));
     t.v2 = vec2i(round(p2.xy * kSubpixels - origin));
-    t.z = vec3f(p0.z, p1.z, p2.z);
     var area = edge(t.v0, t.v1, t.v2);
     if (area == 0) {
         return t;  // Degenerate once snapped: the hardware draws nothing either.
@@ -163,11 +163,21 @@ fn prepareTriangle(id: u32, item: Item, transform: Transform, triangle: u32, han
         let swap = t.v1;
         t.v1 = t.v2;
         t.v2 = swap;
-        t.z = t.z.xzy;
         area = -area;
     }
     t.bias = vec3i(topLeftBias(t.v1, t.v2), topLeftBias(t.v2, t.v0), topLeftBias(t.v0, t.v1));
-    t.inverseArea = 1.0 / f32(area);
+    let d1 = p1.xy - p0.xy;
+    let d2 = p2.xy - p0.xy;
+    let dz = vec2f(p1.z - p0.z, p2.z - p0.z);
+    let determinant = d1.x * d2.y - d2.x * d1.y;
+    // A sliver degenerate only before snapping: its nearest depth, flat.
+    var gradient = vec2f(0.0);
+    if (determinant != 0.0) {
+        gradient = vec2f(dz.x * d2.y - dz.y * d1.y, dz.y * d1.x - dz.x * d2.x) / determinant;
+    }
+    let start = select(min(p0.z, min(p1.z, p2.z)), p0.z + dot(gradient, vec2f(t.first) - p0.xy),
+                       determinant != 0.0);
+    t.depth = vec3f(start, gradient);
     t.route = select(kRouteWorkgroup, kRouteThread, span <= params.maxComputePixels);
     return t;
 }
@@ -183,8 +193,8 @@ fn coverPixel(t: RasterTriangle, id: u32, pixel: vec2i) {
         let e1 = edge(t.v2, t.v0, p);
         let e2 = edge(t.v0, t.v1, p);
         if (e0 + t.bias.x >= 0 && e1 + t.bias.y >= 0 && e2 + t.bias.z >= 0) {
-            let depth =
-                clamp(dot(vec3f(f32(e0), f32(e1), f32(e2)), t.z) * t.inverseArea, 0.0, 1.0);
+            let at = vec2f(p) / kSubpixels;  // The sample, in pixels from the first pixel.
+            let depth = clamp(t.depth.x + dot(t.depth.yz, at), 0.0, 1.0);
             atomicStoreMax(&visibility[index + sample], vec2u(id, ~bitcast<u32>(depth)));
         }
     }

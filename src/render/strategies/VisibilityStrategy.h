@@ -72,6 +72,9 @@ class VisibilityStrategy final : public Strategy {
     }
 
     const VisibilityTables& tables() const { return mTables; }
+    // The last frame's visibility buffer: per sample (pixel-major), the triangle's id and the
+    // complement of its depth's bits; zero where nothing was drawn (CopySrc, for tests).
+    const wgpu::Buffer& visibilityBuffer() const { return mTarget->visibility; }
     // Per view of the last frame, two words: triangles rasterised in compute, then triangles
     // drawn by the hardware path. CopySrc usage, for read-back.
     const wgpu::Buffer& triangleCounts() const { return mTarget->triangleCounts; }

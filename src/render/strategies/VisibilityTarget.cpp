@@ -35,8 +35,10 @@ bool VisibilityTarget::ensure(const RenderSetup& setup,
     const std::uint64_t entries = std::uint64_t(width) * height * samples;
     shadeGroups = std::clamp<std::uint32_t>(
         std::uint32_t(std::min<std::uint64_t>((entries + 63) / 64, maxGroups)), 1, maxGroups);
-    visibility = gpu::createBuffer(device, wgpu::BufferUsage::Storage | wgpu::BufferUsage::CopyDst,
-                                   entries * 8, "visibility buffer");
+    visibility = gpu::createBuffer(
+        device,
+        wgpu::BufferUsage::Storage | wgpu::BufferUsage::CopyDst | wgpu::BufferUsage::CopySrc,
+        entries * 8, "visibility buffer");
     pixels = gpu::createBuffer(device, wgpu::BufferUsage::Storage, entries * 4,
                                "visibility binned pixels");
     wgpu::TextureDescriptor texture{};
