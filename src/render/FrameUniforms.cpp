@@ -47,11 +47,10 @@ void FrameUniforms::bindTransmission(const wgpu::Device& device,
     bindLighting(device, layouts, lighting);
 }
 
-namespace {
-FrameUniform makeFrameUniform(const Camera& camera,
-                              float timeSeconds,
-                              std::size_t view = 0,
-                              std::size_t viewCount = 1) {
+FrameUniform frameUniformOf(const Camera& camera,
+                            float timeSeconds,
+                            std::size_t view,
+                            std::size_t viewCount) {
     FrameUniform uniform{};
     const float width = 1.0f / float(viewCount);
     uniform.viewRect[0] = float(view) * width;
@@ -65,12 +64,11 @@ FrameUniform makeFrameUniform(const Camera& camera,
     uniform.time = timeSeconds;
     return uniform;
 }
-}  // namespace
 
 void FrameUniforms::update(const wgpu::Queue& queue,
                            const Camera& camera,
                            float timeSeconds) const {
-    const FrameUniform uniform = makeFrameUniform(camera, timeSeconds);
+    const FrameUniform uniform = frameUniformOf(camera, timeSeconds);
     queue.WriteBuffer(mBuffer, 0, &uniform, sizeof(uniform));
 }
 
@@ -86,7 +84,7 @@ void FrameUniforms::writeViews(const wgpu::Device& device,
     std::vector<std::uint8_t> bytes(size, 0);
     for (std::size_t view = 0; view < cameras.size(); ++view) {
         const FrameUniform uniform =
-            makeFrameUniform(cameras[view], timeSeconds, view, cameras.size());
+            frameUniformOf(cameras[view], timeSeconds, view, cameras.size());
         std::memcpy(bytes.data() + view * kViewStride, &uniform, sizeof(uniform));
     }
     queue.WriteBuffer(mViews, 0, bytes.data(), bytes.size());

@@ -23,6 +23,13 @@ struct FrameUniform {
 };
 static_assert(sizeof(FrameUniform) == 160);
 
+// The frame uniform of `camera` as view `view` of `viewCount` side by side (what the frame's
+// group 0 holds while that view is drawn).
+FrameUniform frameUniformOf(const Camera& camera,
+                            float timeSeconds,
+                            std::size_t view = 0,
+                            std::size_t viewCount = 1);
+
 class FrameUniforms {
   public:
     FrameUniforms() = default;

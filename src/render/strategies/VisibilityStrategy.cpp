@@ -250,6 +250,12 @@ void VisibilityStrategy::beforePass(const wgpu::CommandEncoder& commands, const 
         p.viewportX = std::uint32_t(view) * viewWidth;
         p.viewportWidth = viewWidth;
         std::memcpy(params.data() + view * kParamsStride, &p, sizeof(p));
+        // The view's frame uniform (what the renderer writes for it), for the shading of the
+        // whole group: written with the slots rather than copied on the GPU view by view.
+        const FrameUniform uniform = frameUniformOf(
+            frame.views.empty() ? frame.camera : frame.views[view], frame.timeSeconds, view, views);
+        std::memcpy(params.data() + view * kParamsStride + VisibilityTarget::kSlotFrameOffset,
+                    &uniform, sizeof(uniform));
     }
     for (std::size_t group = 0; group < groups; ++group) {
         const std::size_t first = group * VisibilityTarget::kSlotViews;
@@ -273,12 +279,8 @@ void VisibilityStrategy::beforePass(const wgpu::CommandEncoder& commands, const 
         const std::size_t last = std::min(views, first + VisibilityTarget::kSlotViews);
         for (std::size_t view = first; view < last; ++view) {
             if (views > 1) {
-                mSetup->frame->selectView(commands, view);
+                mSetup->frame->selectView(commands, view);  // The raster's group 0.
             }
-            // The view's frame uniform into its slot, for the shading of the whole group.
-            commands.CopyBufferToBuffer(mSetup->frame->buffer(), 0, mTarget->params,
-                                        view * kParamsStride + VisibilityTarget::kSlotFrameOffset,
-                                        sizeof(FrameUniform));
             encodeView(commands, frame, view, viewWidth, culledOnce);
         }
         encodeShading(commands, frame, first, views + group,
