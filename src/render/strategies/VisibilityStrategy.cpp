@@ -184,7 +184,9 @@ void VisibilityStrategy::createBindGroups() {
                                        {5, mCounters},
                                        {6, mHardwareList},
                                        {7, target.visibility},
-                                       {9, mWorkgroupList}},
+                                       {9, mWorkgroupList},
+                                       {10, mCullUniform},
+                                       {12, target.pyramid.view()}},
                                       "visibility raster");
     mHardwareGroup = gpu::makeBindGroup(device, p.hardwareLayout,
                                         {params,
@@ -331,6 +333,7 @@ void VisibilityStrategy::writeCullUniform(const FrameState& frame, std::size_t v
     uniform.orthographic = lod.orthographic;
     uniform.lodDistanceSlack = lod.distanceSlack;
     uniform.occlusion = mOcclusion ? 1 : 0;
+    uniform.clusterCulling = frame.culling.clusterCulling ? 1 : 0;
     mSetup->queue.WriteBuffer(mCullUniform, 0, &uniform, sizeof(uniform));
 }
 

@@ -79,6 +79,9 @@ class VisibilityStrategy final : public Strategy {
     // The last view's counters (visibility_counters.wgsl; CopySrc): at kListedTrianglesOffset,
     // the triangles of the levels its cull listed (GPU culling's count of drawn triangles).
     static constexpr std::uint64_t kListedTrianglesOffset = 8;
+    // At kCulledTrianglesOffset, the triangles of the clusters the raster passes culled (listed,
+    // never rasterised: outside the frustum, facing away, or hidden in the second phase).
+    static constexpr std::uint64_t kCulledTrianglesOffset = 48;
     const wgpu::Buffer& counters() const { return mCounters; }
     // Whether the last frame culled in two phases, and the pyramid it built (tests).
     bool lastFrameOccluded() const { return mOcclusion; }
