@@ -149,6 +149,7 @@ struct PrimitiveWords {
     std::vector<std::uint32_t> record;
     std::vector<std::uint32_t> clusters;
     std::uint32_t mostClusters = 0;  // Of any level: the units an item of it may list.
+    std::uint32_t clusterCount = 0;  // Of every level.
 };
 
 // Appends a level's clusters to `words` and writes where they lie into `place` (2 words).
@@ -164,6 +165,7 @@ void placeClusters(PrimitiveWords& words,
     words.record[place] = before;
     words.record[place + 1] = added;
     words.mostClusters = std::max(words.mostClusters, added);
+    words.clusterCount += added;
 }
 
 // The primitive's record, or nullopt when the compute path cannot draw it.
@@ -290,6 +292,7 @@ VisibilityTables buildVisibilityTables(const GpuScene& scene, std::uint64_t maxG
     // Records first (their word offsets are known once the item count is).
     std::vector<std::vector<std::int64_t>> recordOf(data.meshes.size());
     std::vector<std::vector<std::uint32_t>> unitsOf(data.meshes.size());
+    std::vector<std::vector<std::uint32_t>> clustersOf(data.meshes.size());
     std::vector<std::uint32_t> records;
     std::vector<std::uint32_t> clusters;
     // Where each record's cluster words are (word offsets in `records`), to be moved once the
@@ -301,6 +304,7 @@ VisibilityTables buildVisibilityTables(const GpuScene& scene, std::uint64_t maxG
         tables.computePath[mesh].assign(count, false);
         recordOf[mesh].assign(count, -1);
         unitsOf[mesh].assign(count, 0);
+        clustersOf[mesh].assign(count, 0);
         for (std::size_t index = 0; index < count; ++index) {
             auto primitive = primitiveRecord(scene, mesh, index, maxGeometryBytes);
             if (!primitive) {
@@ -325,6 +329,7 @@ VisibilityTables buildVisibilityTables(const GpuScene& scene, std::uint64_t maxG
             tables.computePath[mesh][index] = true;
             recordOf[mesh][index] = std::int64_t(records.size());
             unitsOf[mesh][index] = primitive->mostClusters;
+            clustersOf[mesh][index] = primitive->clusterCount;
             records.insert(records.end(), record.begin(), record.end());
             clusters.insert(clusters.end(), primitive->clusters.begin(), primitive->clusters.end());
         }
@@ -341,9 +346,11 @@ VisibilityTables buildVisibilityTables(const GpuScene& scene, std::uint64_t maxG
                 continue;
             }
             const std::uint32_t triangles = records[record + kTriangleCount];
-            const std::uint32_t units = unitsOf[mesh][index];
-            items.insert(items.end(), {slot, std::uint32_t(record), units, mirrored ? 1u : 0u});
-            tables.unitCount += units;
+            items.insert(items.end(),
+                         {slot, std::uint32_t(record), std::uint32_t(tables.clusterVisibilityWords),
+                          mirrored ? 1u : 0u});
+            tables.unitCount += unitsOf[mesh][index];
+            tables.clusterVisibilityWords += clustersOf[mesh][index];
             tables.triangleCount += triangles;
             bins.insert(records[record + kBin]);
         }

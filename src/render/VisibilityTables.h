@@ -3,8 +3,9 @@
 // What the visibility strategy's shaders read about the scene (visibility_geometry.wgsl): a
 // record per primitive that the compute path draws (where its indices and attributes lie in the
 // GPU scene's first shared geometry buffer, their formats, material, shading bin, bounds) and a
-// list of items, one per (instance, such primitive), in instance-buffer order. Built once per
-// scene from the GpuScene; the strategy uploads `words`.
+// list of items, one per (instance, such primitive), in instance-buffer order (instance slot,
+// record, first word of its clusters' visibility, mirrored). Built once per scene from the
+// GpuScene; the strategy uploads `words`.
 //
 // Levels of detail (visibility_levels.wgsl): after its kPrimitiveWords, a record holds its
 // mesh's bounding sphere (as CullingBounds bounds an instance, so that levels are chosen as GPU
@@ -51,7 +52,10 @@ struct VisibilityTables {
     std::uint32_t itemCount = 0;
     // Units of all items (the most clusters of any level of each): the unit list's capacity.
     std::uint64_t unitCount = 0;
-    std::uint64_t clusterCount = 0;   // Cluster records (of every level of every primitive).
+    std::uint64_t clusterCount = 0;  // Cluster records (of every level of every primitive).
+    // A word per cluster of every level of each item, for the item's clusters' visibility last
+    // frame (visibility_raster.wgsl); an item's words start at its third word.
+    std::uint64_t clusterVisibilityWords = 0;
     std::uint64_t triangleCount = 0;  // Triangles of all items.
     // [mesh][primitive]: whether the compute path draws it (for every instance of the mesh).
     std::vector<std::vector<bool>> computePath;

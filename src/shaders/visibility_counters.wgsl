@@ -22,4 +22,12 @@ struct Counters {
     // Triangles of the clusters the raster passes culled (frustum, facing, occlusion; both
     // phases): listed, never rasterised.
     culledTriangles: atomic<u32>,
+    padding0: u32,
+    padding1: u32,
+    padding2: u32,
+    // Not a counter (the copies that reset the counters leave it; the storage bindings of a
+    // stage are few): at byte 64, a word per cluster of every level of each item
+    // (Item.clusterWords), bit 0 when it was visible in the last two-phase frame, bit 1 while
+    // this frame's first phase has taken it (rasterised or culled). visibility_raster.wgsl.
+    clusterVisibility: array<u32>,
 }

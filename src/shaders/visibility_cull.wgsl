@@ -7,7 +7,8 @@
 //   beginSecondPhase  the raster passes will take only what follows;
 //   cullSecondPhase   every item in the frustum is tested against the pyramid; the visible ones
 //                     that phase 1 did not list are listed now, and each item's visibility is
-//                     kept for the next frame.
+//                     kept for the next frame. With cluster culling, those phase 1 listed are
+//                     listed again, for the clusters it left (visibility_raster.wgsl).
 // Without it, cullFirstPhase lists every item in the frustum. Levels of detail are chosen as
 // culling.wgsl chooses them (same sphere, same metric, same thresholds: render/LodSelection.h).
 #include "frame.wgsl"
@@ -142,9 +143,15 @@ fn cullSecondPhase(@builtin(workgroup_id) group: vec3u,
     if (index < params.itemCount) {
         let item = loadItem(index);
         let world = instances[item.slot].world;
-        let visible = !outsideFrustum(item, world) && !isOccluded(item, world);
-        if (visible && itemVisibility[index] == 0u) {
+        let inFrustum = !outsideFrustum(item, world);
+        let listedFirst = inFrustum && itemVisibility[index] != 0u;  // By cullFirstPhase.
+        let visible = inFrustum && !isOccluded(item, world);
+        if (visible && !listedFirst) {
             triangles = append(index, item, world);
+        } else if (listedFirst && culling.clusterCulling != 0u) {
+            // Listed again (its triangles counted once): the raster tests the clusters that
+            // phase 1 left for this one, and keeps each one's visibility for the next frame.
+            _ = append(index, item, world);
         }
         itemVisibility[index] = select(0u, 1u, visible);
     }

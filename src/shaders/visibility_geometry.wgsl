@@ -26,12 +26,13 @@ const kUnitTriangles = 256u;
 const kItemWords = 4u;
 const kPrimitiveWords = 32u;
 
-// Item: instance slot, primitive record (word index), the most clusters of any of its levels,
-// 1 when mirrored.
+// Item: instance slot, primitive record (word index), its first word of the clusters'
+// visibility (visibility_raster.wgsl; a word per cluster of every level, in record order), 1
+// when mirrored.
 struct Item {
     slot: u32,
     record: u32,
-    unitCount: u32,
+    clusterWords: u32,
     mirrored: u32,
 }
 

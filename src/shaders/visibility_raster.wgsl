@@ -272,6 +272,40 @@ fn clusterCulled(cluster: u32, item: Item, world: mat4x4f, secondPhase: bool) ->
     return secondPhase && boxOccluded(center, vec3f(radius), world);
 }
 
+struct ClusterDecision {
+    take: bool,    // Rasterise its triangles.
+    culled: bool,  // Count them as culled (each listed triangle is taken or culled once).
+}
+
+// What the workgroup does with a cluster. With two-phase occlusion, the standard way per
+// cluster: phase 1 takes the clusters visible last frame (culling them by frustum and facing
+// only) and leaves the others; phase 2, which lists again the items of phase 1, tests each
+// cluster against the pyramid too, takes those phase 1 left that show, and keeps every
+// cluster's visibility for the next frame.
+fn decideCluster(cluster: u32, item: Item, world: mat4x4f, secondPhase: bool)
+    -> ClusterDecision {
+    if (culling.occlusion == 0u || culling.clusterCulling == 0u) {
+        let skip = clusterCulled(cluster, item, world, false);
+        return ClusterDecision(!skip, skip);
+    }
+    let word = item.clusterWords + (cluster - field(item.record, kLevelClusters)) / kClusterWords;
+    let state = counters.clusterVisibility[word];
+    if (!secondPhase) {
+        if ((state & 1u) == 0u) {
+            return ClusterDecision(false, false);  // Left for phase 2.
+        }
+        counters.clusterVisibility[word] = 3u;
+        let skip = clusterCulled(cluster, item, world, false);
+        return ClusterDecision(!skip, skip);
+    }
+    let skip = clusterCulled(cluster, item, world, true);
+    counters.clusterVisibility[word] = select(1u, 0u, skip);
+    if ((state & 2u) != 0u) {
+        return ClusterDecision(false, false);  // Phase 1 took it.
+    }
+    return ClusterDecision(!skip, skip);
+}
+
 var<workgroup> rasterised: atomic<u32>;
 // This phase's first unit, the end of the list, and 1 in the second phase.
 var<workgroup> phaseUnits: vec3u;
@@ -294,9 +328,9 @@ fn rasterMain(@builtin(workgroup_id) group: vec3u, @builtin(num_workgroups) grou
         let first = tables[unit.y + kClusterFirstTriangle];
         let triangles = tables[unit.y + kClusterTriangles];
         if (lane == 0u) {
-            let skip = clusterCulled(unit.y, item, transform.world, range.z != 0u);
-            clusterKept = select(1u, 0u, skip);
-            culled += select(0u, triangles, skip);
+            let decision = decideCluster(unit.y, item, transform.world, range.z != 0u);
+            clusterKept = select(0u, 1u, decision.take);
+            culled += select(0u, triangles, decision.culled);
         }
         if (workgroupUniformLoad(&clusterKept) == 0u) {
             continue;

@@ -152,7 +152,8 @@ class VisibilityStrategy final : public Strategy {
     wgpu::Buffer mBins;
     wgpu::Buffer mCullUniform;
     wgpu::Buffer mItemVisibility;  // Per item: visible in the last two-phase frame.
-    wgpu::Buffer mGeometry;        // The first shared geometry buffer, or a placeholder.
+
+    wgpu::Buffer mGeometry;  // The first shared geometry buffer, or a placeholder.
     std::uint64_t mGeometryBytes = 0;
 
     // Scene-independent pipelines and target-sized resources: the renderer's
