@@ -1,15 +1,17 @@
 // The visibility strategy's clusters (docs/visibility.md): each cluster of a listed item is
 // culled on its own, against the frustum, by its cone of normals and, in the second occlusion
 // phase, against the depth pyramid. A densely tessellated sphere seen whole, half outside the
-// view, mirrored, double-sided, and coming out from behind a wall: the raster passes set up
-// clearly fewer triangles than with cluster culling off (and, behind the wall, rasterise fewer),
-// and the picture is the same pixel for pixel.
+// view, mirrored, double-sided, orthographic, and coming out from behind a wall: the raster
+// passes set up clearly fewer triangles than with cluster culling off (and, behind the wall,
+// rasterise fewer), and the picture is the same pixel for pixel.
 
 #include <gtest/gtest.h>
 
 #include <array>
 #include <cmath>
 #include <cstring>
+
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "GltfBuilder.h"
 #include "GpuTestSupport.h"
@@ -170,7 +172,16 @@ struct Case {
     float cameraX;  // 0: the sphere in the middle; 4: its centre on the left edge.
     // At most this fraction of the listed triangles is fetched and set up.
     double maxFraction;
+    bool orthographic = false;  // 1.6 units high, from z = 3 along -z.
 };
+
+Camera caseCamera(const Case& c) {
+    if (!c.orthographic) {
+        return test::frontCamera(kAspect, c.cameraX);
+    }
+    const glm::mat4 world = glm::translate(glm::mat4(1.0f), glm::vec3(c.cameraX, 0.0f, 3.0f));
+    return Camera::orthographic(world, 1.6f * kAspect, 1.6f, 0.1f, 10.0f);
+}
 
 class VisibilityClusterTest : public ::testing::TestWithParam<Case> {};
 
@@ -183,7 +194,7 @@ TEST_P(VisibilityClusterTest, CullsClustersAndDrawsTheSamePicture) {
     auto culled = renderer(*context, scene, true);
     auto unculled = renderer(*context, scene, false);
     ASSERT_TRUE(culled && unculled);
-    const Camera camera = test::frontCamera(kAspect, c.cameraX);
+    const Camera camera = caseCamera(c);
     const Frame with = render(*context, *culled, camera);
     const Frame without = render(*context, *unculled, camera);
     EXPECT_EQ(test::differingPixels(without.image, with.image, 0), 0u);
@@ -206,12 +217,15 @@ TEST_P(VisibilityClusterTest, CullsClustersAndDrawsTheSamePicture) {
 INSTANTIATE_TEST_SUITE_P(
     Spheres,
     VisibilityClusterTest,
-    ::testing::Values(Case{"facing", {}, 0.0f, 0.6},
-                      Case{"half outside", {}, 4.0f, 0.5},
-                      Case{"mirrored", {.mirrored = true}, 0.0f, 0.6},
-                      Case{"mirrored half outside", {.mirrored = true}, 4.0f, 0.5},
-                      Case{"double-sided", {.doubleSided = true}, 0.0f, 1.0},
-                      Case{"double-sided half outside", {.doubleSided = true}, 4.0f, 0.75}),
+    ::testing::Values(
+        Case{"facing", {}, 0.0f, 0.6},
+        Case{"half outside", {}, 4.0f, 0.5},
+        Case{"mirrored", {.mirrored = true}, 0.0f, 0.6},
+        Case{"mirrored half outside", {.mirrored = true}, 4.0f, 0.5},
+        Case{"double-sided", {.doubleSided = true}, 0.0f, 1.0},
+        Case{"double-sided half outside", {.doubleSided = true}, 4.0f, 0.75},
+        Case{"orthographic", {}, 0.0f, 0.7, true},
+        Case{"orthographic mirrored half outside", {.mirrored = true}, 2.1f, 0.5, true}),
     [](const auto& info) {
         std::string name = info.param.name;
         for (char& ch : name) {

@@ -1,8 +1,8 @@
 // Clusters (meshlets) built at load (MeshOptimizer.h): reordering a level into clusters keeps
 // exactly its triangles, each with its corners in order; the clusters of every level cover each
 // of its triangles once, in runs of at most 256, each inside its cluster's sphere; the cone says
-// "facing away" only where every triangle of the cluster faces away; blending primitives and
-// loads without mesh optimisation get none.
+// "facing away" only where every triangle of the cluster faces away; blending primitives, loads
+// without mesh optimisation and with LoadOptions::buildClusters off get none.
 
 #include <gtest/gtest.h>
 
@@ -220,13 +220,22 @@ TEST(MeshOptimizerClustersTest, EveryLevelIsCoveredByItsClusters) {
                 byPosition(before->readIndices(*original.indices), originalPositions));
 }
 
-TEST(MeshOptimizerClustersTest, BlendingPrimitivesKeepTheirOrderWithoutClusters) {
+TEST(MeshOptimizerClustersTest, NoneForBlendingPrimitivesOrWhenTurnedOff) {
     auto scene = loadGlb(sphereModel("BLEND"));
     ASSERT_TRUE(scene.ok()) << scene.error().message;
     EXPECT_TRUE(scene->meshes[0].primitives[0].clusters.empty());
     auto opaque = loadGlb(sphereModel("OPAQUE"), {.optimizeMeshes = false});
     ASSERT_TRUE(opaque.ok());
     EXPECT_TRUE(opaque->meshes[0].primitives[0].clusters.empty());
+    for (const LevelOfDetail& level : opaque->meshes[0].primitives[0].levels) {
+        EXPECT_TRUE(level.clusters.empty());
+    }
+    LoadOptions noClusters;
+    noClusters.buildClusters = false;
+    opaque = loadGlb(sphereModel("OPAQUE"), noClusters);
+    ASSERT_TRUE(opaque.ok());
+    EXPECT_TRUE(opaque->meshes[0].primitives[0].clusters.empty());
+    EXPECT_FALSE(opaque->meshes[0].primitives[0].levels.empty());
     for (const LevelOfDetail& level : opaque->meshes[0].primitives[0].levels) {
         EXPECT_TRUE(level.clusters.empty());
     }
