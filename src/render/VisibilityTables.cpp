@@ -162,6 +162,9 @@ void placeClusters(PrimitiveWords& words,
     appendClusters(words.clusters, clusters, first, count);
     const std::uint32_t added =
         (std::uint32_t(words.clusters.size()) - before) / VisibilityTables::kClusterWords;
+    if (added == 1) {
+        words.clusters[before + 1] |= VisibilityTables::kClusterAlone;
+    }
     words.record[place] = before;
     words.record[place + 1] = added;
     words.mostClusters = std::max(words.mostClusters, added);

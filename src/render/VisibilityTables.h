@@ -45,7 +45,10 @@ struct VisibilityTables {
     // First triangle, triangles, error bits, first cluster (word index), clusters.
     static constexpr std::uint32_t kLevelWords = 5;
     static constexpr std::uint32_t kClusterWords = 13;  // visibility_geometry.wgsl's.
-    static constexpr float kNeverCulled = 1e30f;        // A cluster radius that culls nothing.
+    // In a cluster's triangle count: the only cluster of its level (its item is culled as a
+    // whole by the item tests, so the two occlusion phases need nothing per cluster for it).
+    static constexpr std::uint32_t kClusterAlone = 1u << 31;
+    static constexpr float kNeverCulled = 1e30f;  // A cluster radius that culls nothing.
 
     // Items (kItemWords each), then primitive records, then cluster records.
     std::vector<std::uint32_t> words;

@@ -8,7 +8,8 @@
 //   cullSecondPhase   every item in the frustum is tested against the pyramid; the visible ones
 //                     that phase 1 did not list are listed now, and each item's visibility is
 //                     kept for the next frame. With cluster culling, those phase 1 listed are
-//                     listed again, for the clusters it left (visibility_raster.wgsl).
+//                     listed again when their level has several clusters, for the clusters it
+//                     left (visibility_raster.wgsl).
 // Without it, cullFirstPhase lists every item in the frustum. Levels of detail are chosen as
 // culling.wgsl chooses them (same sphere, same metric, same thresholds: render/LodSelection.h).
 #include "frame.wgsl"
@@ -148,7 +149,8 @@ fn cullSecondPhase(@builtin(workgroup_id) group: vec3u,
         let visible = inFrustum && !isOccluded(item, world);
         if (visible && !listedFirst) {
             triangles = append(index, item, world);
-        } else if (listedFirst && culling.clusterCulling != 0u) {
+        } else if (listedFirst && culling.clusterCulling != 0u &&
+                   levelClusters(item.record, chooseLevel(item, world)).count > 1u) {
             // Listed again (its triangles counted once): the raster tests the clusters that
             // phase 1 left for this one, and keeps each one's visibility for the next frame.
             _ = append(index, item, world);

@@ -93,13 +93,14 @@ const kBoundsExtent = 27u;
 // without clusters, split into runs of 256 triangles) is culled by nothing, a cutoff above 1 by
 // no facing.
 const kClusterFirstTriangle = 0u;
-const kClusterTriangles = 1u;
+const kClusterTriangles = 1u;  // | kClusterAlone for the only cluster of its level.
 const kClusterCenter = 2u;
 const kClusterRadius = 5u;
 const kClusterConeApex = 6u;
 const kClusterConeAxis = 9u;
 const kClusterConeCutoff = 12u;
 const kClusterWords = 13u;
+const kClusterAlone = 0x80000000u;
 const kNeverCulled = 1e29;
 
 // The triangle of `unit` that visibility-buffer id `id` names.

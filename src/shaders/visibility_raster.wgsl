@@ -282,10 +282,12 @@ struct ClusterDecision {
 // only) and leaves the others; phase 2, which lists again the items of phase 1, tests each
 // cluster against the pyramid too, takes those phase 1 left that show, and keeps every
 // cluster's visibility for the next frame.
-fn decideCluster(cluster: u32, item: Item, world: mat4x4f, secondPhase: bool)
+// The only cluster of its level follows its item through the phases as before clusters (the
+// item tests decide; phase 2 does not list phase 1's items with one cluster again).
+fn decideCluster(cluster: u32, alone: bool, item: Item, world: mat4x4f, secondPhase: bool)
     -> ClusterDecision {
-    if (culling.occlusion == 0u || culling.clusterCulling == 0u) {
-        let skip = clusterCulled(cluster, item, world, false);
+    if (culling.occlusion == 0u || culling.clusterCulling == 0u || alone) {
+        let skip = clusterCulled(cluster, item, world, secondPhase);
         return ClusterDecision(!skip, skip);
     }
     let word = item.clusterWords + (cluster - field(item.record, kLevelClusters)) / kClusterWords;
@@ -326,9 +328,11 @@ fn rasterMain(@builtin(workgroup_id) group: vec3u, @builtin(num_workgroups) grou
         let item = loadItem(unit.x);
         let transform = instances[item.slot];
         let first = tables[unit.y + kClusterFirstTriangle];
-        let triangles = tables[unit.y + kClusterTriangles];
+        let trianglesWord = tables[unit.y + kClusterTriangles];
+        let triangles = trianglesWord & ~kClusterAlone;
         if (lane == 0u) {
-            let decision = decideCluster(unit.y, item, transform.world, range.z != 0u);
+            let alone = (trianglesWord & kClusterAlone) != 0u;
+            let decision = decideCluster(unit.y, alone, item, transform.world, range.z != 0u);
             clusterKept = select(0u, 1u, decision.take);
             culled += select(0u, triangles, decision.culled);
         }
