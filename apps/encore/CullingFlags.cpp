@@ -28,6 +28,9 @@ void addCullingOptions(CLI::App& command, render::CullingOptions& options) {
                     "hardware (0 with --compute-raster-pixels 0: all in hardware)")
         ->check(CLI::Range(0.0f, 112.0f))
         ->capture_default_str();
+    command.add_flag("!--no-cluster-culling", options.clusterCulling,
+                     "visibility strategy: rasterise every cluster of each drawn instance (no "
+                     "culling of clusters by frustum, facing and occlusion)");
 }
 
 }  // namespace encore::app

@@ -10,7 +10,7 @@
 namespace encore::app {
 
 // --lod-error PIXELS, --no-lod, --no-occlusion, --compute-raster-pixels PIXELS,
-// --workgroup-raster-pixels PIXELS.
+// --workgroup-raster-pixels PIXELS, --no-cluster-culling.
 void addCullingOptions(CLI::App& command, render::CullingOptions& options);
 
 }  // namespace encore::app

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
 #include <optional>
 #include <set>
 
@@ -86,11 +87,95 @@ bool animated(const GpuScene& scene, std::size_t mesh, std::size_t primitive) {
     return key.animated();
 }
 
+// Whether the loader's clusters cover the triangles [first, first + count) exactly, in order,
+// each within a unit, with finite bounds.
+bool coversLevel(const std::vector<scene::Cluster>& clusters,
+                 std::uint32_t first,
+                 std::uint32_t count) {
+    std::uint64_t next = first;
+    for (const scene::Cluster& cluster : clusters) {
+        const auto finite3 = [](const glm::vec3& v) {
+            return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+        };
+        const bool finite = std::isfinite(cluster.radius) && std::isfinite(cluster.coneCutoff) &&
+                            finite3(cluster.center) && finite3(cluster.coneApex) &&
+                            finite3(cluster.coneAxis);
+        if (cluster.firstTriangle != next || cluster.triangleCount == 0 ||
+            cluster.triangleCount > VisibilityTables::kUnitTriangles || !finite) {
+            return false;
+        }
+        next += cluster.triangleCount;
+    }
+    return !clusters.empty() && next == std::uint64_t(first) + count;
+}
+
+// The cluster records of a level of `count` triangles from `first`: the loader's clusters when
+// they cover it, else runs of kUnitTriangles that nothing culls.
+void appendClusters(std::vector<std::uint32_t>& words,
+                    const std::vector<scene::Cluster>& clusters,
+                    std::uint32_t first,
+                    std::uint32_t count) {
+    auto append = [&words](const scene::Cluster& cluster) {
+        const float values[] = {cluster.center.x,   cluster.center.y,   cluster.center.z,
+                                cluster.radius,     cluster.coneApex.x, cluster.coneApex.y,
+                                cluster.coneApex.z, cluster.coneAxis.x, cluster.coneAxis.y,
+                                cluster.coneAxis.z, cluster.coneCutoff};
+        words.push_back(cluster.firstTriangle);
+        words.push_back(cluster.triangleCount);
+        for (float value : values) {
+            words.push_back(std::bit_cast<std::uint32_t>(value));
+        }
+    };
+    static_assert(VisibilityTables::kClusterWords == 13);
+    if (coversLevel(clusters, first, count)) {
+        for (const scene::Cluster& cluster : clusters) {
+            append(cluster);
+        }
+        return;
+    }
+    for (std::uint32_t run = 0; run < count; run += VisibilityTables::kUnitTriangles) {
+        scene::Cluster cluster;
+        cluster.firstTriangle = first + run;
+        cluster.triangleCount = std::min(VisibilityTables::kUnitTriangles, count - run);
+        cluster.radius = VisibilityTables::kNeverCulled;
+        cluster.coneCutoff = 2.0f;
+        append(cluster);
+    }
+}
+
+// A primitive's record and the cluster records of its levels; the record's cluster words
+// count from the first of `clusters` (the caller moves them to the table's words).
+struct PrimitiveWords {
+    std::vector<std::uint32_t> record;
+    std::vector<std::uint32_t> clusters;
+    std::uint32_t mostClusters = 0;  // Of any level: the units an item of it may list.
+    std::uint32_t clusterCount = 0;  // Of every level.
+};
+
+// Appends a level's clusters to `words` and writes where they lie into `place` (2 words).
+void placeClusters(PrimitiveWords& words,
+                   std::uint32_t place,
+                   const std::vector<scene::Cluster>& clusters,
+                   std::uint32_t first,
+                   std::uint32_t count) {
+    const auto before = std::uint32_t(words.clusters.size());
+    appendClusters(words.clusters, clusters, first, count);
+    const std::uint32_t added =
+        (std::uint32_t(words.clusters.size()) - before) / VisibilityTables::kClusterWords;
+    if (added == 1) {
+        words.clusters[before + 1] |= VisibilityTables::kClusterAlone;
+    }
+    words.record[place] = before;
+    words.record[place + 1] = added;
+    words.mostClusters = std::max(words.mostClusters, added);
+    words.clusterCount += added;
+}
+
 // The primitive's record, or nullopt when the compute path cannot draw it.
-std::optional<std::vector<std::uint32_t>> primitiveRecord(const GpuScene& scene,
-                                                          std::size_t mesh,
-                                                          std::size_t index,
-                                                          std::uint64_t maxGeometryBytes) {
+std::optional<PrimitiveWords> primitiveRecord(const GpuScene& scene,
+                                              std::size_t mesh,
+                                              std::size_t index,
+                                              std::uint64_t maxGeometryBytes) {
     const scene::SceneData& data = scene.data();
     const scene::Primitive& primitive = data.meshes[mesh].primitives[index];
     const scene::Material& material = data.materials[primitive.material.index()];
@@ -161,27 +246,33 @@ std::optional<std::vector<std::uint32_t>> primitiveRecord(const GpuScene& scene,
         record[kBoundsCenter + i] = std::bit_cast<std::uint32_t>(center[i]);
         record[kBoundsExtent + i] = std::bit_cast<std::uint32_t>(extent[i]);
     }
+    PrimitiveWords words;
+    words.record = std::move(record);
+    std::vector<std::uint32_t>& fixed = words.record;
+    placeClusters(words, VisibilityTables::kLevelClusters, primitive.clusters, 0, triangles);
     // Coarser levels, while their indices lie where level 0's triangles can count to them.
     if (primitive.indices) {
-        const std::uint32_t triangleBytes = record[kIndexSize] * 3;
+        const std::uint32_t triangleBytes = fixed[kIndexSize] * 3;
         for (const scene::LevelOfDetail& level : primitive.levels) {
             const auto indices = attributeWords(scene, level.indices, maxGeometryBytes);
-            if (!indices || indices->offset < record[kIndexOffset] ||
-                (indices->offset - record[kIndexOffset]) % triangleBytes != 0) {
+            if (!indices || indices->offset < fixed[kIndexOffset] ||
+                (indices->offset - fixed[kIndexOffset]) % triangleBytes != 0) {
                 break;
             }
             const std::uint32_t levelTriangles = data.accessors[level.indices.index()].count / 3;
-            record.resize(VisibilityTables::kFirstLevel +
-                          (record[VisibilityTables::kLevelCount] + 1) *
-                              VisibilityTables::kLevelWords);
-            std::uint32_t* words = &record[record.size() - VisibilityTables::kLevelWords];
-            words[0] = (indices->offset - record[kIndexOffset]) / triangleBytes;
-            words[1] = levelTriangles;
-            words[2] = std::bit_cast<std::uint32_t>(level.error);
-            ++record[VisibilityTables::kLevelCount];
+            const std::uint32_t first = (indices->offset - fixed[kIndexOffset]) / triangleBytes;
+            const std::uint32_t base =
+                VisibilityTables::kFirstLevel +
+                fixed[VisibilityTables::kLevelCount] * VisibilityTables::kLevelWords;
+            fixed.resize(base + VisibilityTables::kLevelWords);
+            fixed[base] = first;
+            fixed[base + 1] = levelTriangles;
+            fixed[base + 2] = std::bit_cast<std::uint32_t>(level.error);
+            placeClusters(words, base + 3, level.clusters, first, levelTriangles);
+            ++fixed[VisibilityTables::kLevelCount];
         }
     }
-    return record;
+    return words;
 }
 
 // The sphere GPU culling bounds an instance of `mesh` by (CullingBounds, unskinned): around all
@@ -203,25 +294,47 @@ VisibilityTables buildVisibilityTables(const GpuScene& scene, std::uint64_t maxG
     tables.computePath.resize(data.meshes.size());
     // Records first (their word offsets are known once the item count is).
     std::vector<std::vector<std::int64_t>> recordOf(data.meshes.size());
+    std::vector<std::vector<std::uint32_t>> unitsOf(data.meshes.size());
+    std::vector<std::vector<std::uint32_t>> clustersOf(data.meshes.size());
     std::vector<std::uint32_t> records;
+    std::vector<std::uint32_t> clusters;
+    // Where each record's cluster words are (word offsets in `records`), to be moved once the
+    // clusters' place in the table is known.
+    std::vector<std::uint32_t> clusterPointers;
     std::set<std::uint32_t> bins;
     for (std::size_t mesh = 0; mesh < data.meshes.size(); ++mesh) {
         const std::size_t count = data.meshes[mesh].primitives.size();
         tables.computePath[mesh].assign(count, false);
         recordOf[mesh].assign(count, -1);
+        unitsOf[mesh].assign(count, 0);
+        clustersOf[mesh].assign(count, 0);
         for (std::size_t index = 0; index < count; ++index) {
-            auto record = primitiveRecord(scene, mesh, index, maxGeometryBytes);
-            if (!record) {
+            auto primitive = primitiveRecord(scene, mesh, index, maxGeometryBytes);
+            if (!primitive) {
                 continue;
             }
+            std::vector<std::uint32_t>& record = primitive->record;
             const glm::vec4 sphere = meshSphere(data.meshes[mesh]);
             for (int i = 0; i < 4; ++i) {
-                (*record)[VisibilityTables::kMeshSphere + i] =
-                    std::bit_cast<std::uint32_t>(sphere[i]);
+                record[VisibilityTables::kMeshSphere + i] = std::bit_cast<std::uint32_t>(sphere[i]);
+            }
+            // Cluster words counted from the start of all clusters.
+            const auto recordStart = std::uint32_t(records.size());
+            const auto clusterStart = std::uint32_t(clusters.size());
+            record[VisibilityTables::kLevelClusters] += clusterStart;
+            clusterPointers.push_back(recordStart + VisibilityTables::kLevelClusters);
+            for (std::uint32_t level = 0; level < record[VisibilityTables::kLevelCount]; ++level) {
+                const std::uint32_t place =
+                    VisibilityTables::kFirstLevel + level * VisibilityTables::kLevelWords + 3;
+                record[place] += clusterStart;
+                clusterPointers.push_back(recordStart + place);
             }
             tables.computePath[mesh][index] = true;
             recordOf[mesh][index] = std::int64_t(records.size());
-            records.insert(records.end(), record->begin(), record->end());
+            unitsOf[mesh][index] = primitive->mostClusters;
+            clustersOf[mesh][index] = primitive->clusterCount;
+            records.insert(records.end(), record.begin(), record.end());
+            clusters.insert(clusters.end(), primitive->clusters.begin(), primitive->clusters.end());
         }
     }
     const InstanceBuffer& instances = scene.instances();
@@ -236,10 +349,11 @@ VisibilityTables buildVisibilityTables(const GpuScene& scene, std::uint64_t maxG
                 continue;
             }
             const std::uint32_t triangles = records[record + kTriangleCount];
-            const std::uint32_t units = (triangles + VisibilityTables::kUnitTriangles - 1) /
-                                        VisibilityTables::kUnitTriangles;
-            items.insert(items.end(), {slot, std::uint32_t(record), units, mirrored ? 1u : 0u});
-            tables.unitCount += units;
+            items.insert(items.end(),
+                         {slot, std::uint32_t(record), std::uint32_t(tables.clusterVisibilityWords),
+                          mirrored ? 1u : 0u});
+            tables.unitCount += unitsOf[mesh][index];
+            tables.clusterVisibilityWords += clustersOf[mesh][index];
             tables.triangleCount += triangles;
             bins.insert(records[record + kBin]);
         }
@@ -250,8 +364,15 @@ VisibilityTables buildVisibilityTables(const GpuScene& scene, std::uint64_t maxG
     for (std::uint32_t item = 0; item < tables.itemCount; ++item) {
         items[item * VisibilityTables::kItemWords + 1] += recordBase;
     }
+    // Cluster words become word indices too, after the records.
+    const std::uint32_t clusterBase = recordBase + std::uint32_t(records.size());
+    for (std::uint32_t pointer : clusterPointers) {
+        records[pointer] += clusterBase;
+    }
+    tables.clusterCount = clusters.size() / VisibilityTables::kClusterWords;
     tables.words = std::move(items);
     tables.words.insert(tables.words.end(), records.begin(), records.end());
+    tables.words.insert(tables.words.end(), clusters.begin(), clusters.end());
     tables.bins.assign(bins.begin(), bins.end());
     return tables;
 }

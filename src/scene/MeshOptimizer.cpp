@@ -203,8 +203,91 @@ void renumberVertices(SceneData& scene,
 
 struct SimplifiedLevel {
     std::vector<std::uint32_t> indices;
-    float error = 0.0f;  // Object space.
+    float error = 0.0f;             // Object space.
+    std::vector<Cluster> clusters;  // First triangles counted from the level's own first.
 };
+
+// The positions of the primitive's vertices, or nothing when there are fewer than its vertex
+// count or some are not finite (meshoptimizer's quadrics and bounds turn those into garbage).
+std::vector<glm::vec4> finitePositions(const SceneData& scene, const Primitive& primitive) {
+    const auto positionAccessor = primitive.attribute(Semantic::Position);
+    if (!positionAccessor) {
+        return {};
+    }
+    std::vector<glm::vec4> positions = scene.readFloats(*positionAccessor);
+    if (positions.size() < primitive.vertexCount ||
+        !std::all_of(positions.begin(), positions.end(), [](const glm::vec4& p) {
+            return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
+        })) {
+        return {};
+    }
+    return positions;
+}
+
+// Clusters of at most Cluster::kMaxTriangles triangles (a workgroup's unit in the visibility
+// strategy, whose triangle ids are unit * 256 + triangle) over at most 128 vertices: meshlets
+// of about 200 triangles on a closed surface, small enough to cull a part of a large primitive,
+// large enough to fill the strategy's 64-thread workgroups four triangles each. The cone weight
+// trades a little compactness for normal cones narrow enough to cull back-facing clusters.
+constexpr std::size_t kClusterVertices = 128;
+constexpr float kClusterConeWeight = 0.25f;
+static_assert(Cluster::kMaxTriangles <= 512 && Cluster::kMaxTriangles % 4 == 0,
+              "meshopt_buildMeshlets' limits");
+
+}  // namespace
+
+// A meshlet's local triangles index its vertex list in the source's order, so each triangle
+// keeps its corners' order.
+std::vector<Cluster> orderIntoClusters(std::vector<std::uint32_t>& indices,
+                                       const std::vector<glm::vec4>& positions) {
+    if (indices.empty() || positions.empty()) {
+        return {};
+    }
+    const std::size_t vertexCount = positions.size();
+    const std::size_t bound =
+        meshopt_buildMeshletsBound(indices.size(), kClusterVertices, Cluster::kMaxTriangles);
+    std::vector<meshopt_Meshlet> meshlets(bound);
+    std::vector<unsigned int> meshletVertices(bound * kClusterVertices);
+    std::vector<unsigned char> meshletTriangles(bound * Cluster::kMaxTriangles * 3);
+    const float* xyz = &positions[0].x;
+    const std::size_t count =
+        meshopt_buildMeshlets(meshlets.data(), meshletVertices.data(), meshletTriangles.data(),
+                              indices.data(), indices.size(), xyz, vertexCount, sizeof(glm::vec4),
+                              kClusterVertices, Cluster::kMaxTriangles, kClusterConeWeight);
+    std::vector<std::uint32_t> ordered;
+    ordered.reserve(indices.size());
+    std::vector<Cluster> clusters;
+    clusters.reserve(count);
+    for (std::size_t m = 0; m < count; ++m) {
+        const meshopt_Meshlet& meshlet = meshlets[m];
+        if (meshlet.triangle_count == 0) {
+            continue;
+        }
+        Cluster cluster;
+        cluster.firstTriangle = static_cast<std::uint32_t>(ordered.size() / 3);
+        cluster.triangleCount = meshlet.triangle_count;
+        const unsigned int* local = &meshletVertices[meshlet.vertex_offset];
+        const unsigned char* corners = &meshletTriangles[meshlet.triangle_offset];
+        for (std::size_t i = 0; i < std::size_t(meshlet.triangle_count) * 3; ++i) {
+            ordered.push_back(local[corners[i]]);
+        }
+        const meshopt_Bounds bounds = meshopt_computeMeshletBounds(
+            local, corners, meshlet.triangle_count, xyz, vertexCount, sizeof(glm::vec4));
+        cluster.center = {bounds.center[0], bounds.center[1], bounds.center[2]};
+        cluster.radius = bounds.radius;
+        cluster.coneApex = {bounds.cone_apex[0], bounds.cone_apex[1], bounds.cone_apex[2]};
+        cluster.coneAxis = {bounds.cone_axis[0], bounds.cone_axis[1], bounds.cone_axis[2]};
+        cluster.coneCutoff = bounds.cone_cutoff;
+        clusters.push_back(cluster);
+    }
+    if (ordered.size() != indices.size()) {
+        return {};  // Some triangle left out (or repeated): keep the order the level had.
+    }
+    indices = std::move(ordered);
+    return clusters;
+}
+
+namespace {
 
 // In place. The FIFO variant models a 16-entry cache: smaller than today's GPUs keep, as
 // meshoptimizer advises, so that the order does not thrash a cache that holds fewer vertices
@@ -228,17 +311,10 @@ std::vector<SimplifiedLevel> simplifyChain(const SceneData& scene,
                                            const Primitive& primitive,
                                            const std::vector<std::uint32_t>& level0,
                                            const MeshOptimizerOptions& options,
-                                           bool lockBorders) {
-    const auto positionAccessor = primitive.attribute(Semantic::Position);
-    if (!positionAccessor) {
-        return {};
-    }
-    const std::vector<glm::vec4> positions = scene.readFloats(*positionAccessor);
-    // The simplifier's quadrics turn NaN or infinite positions into garbage levels.
-    if (positions.size() < primitive.vertexCount ||
-        !std::all_of(positions.begin(), positions.end(), [](const glm::vec4& p) {
-            return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
-        })) {
+                                           bool lockBorders,
+                                           bool clustered) {
+    const std::vector<glm::vec4> positions = finitePositions(scene, primitive);
+    if (positions.empty()) {
         return {};
     }
     const float* xyz = &positions[0].x;
@@ -266,25 +342,41 @@ std::vector<SimplifiedLevel> simplifyChain(const SceneData& scene,
         }
         simplified.resize(count);
         orderForVertexCache(simplified, primitive.vertexCount, options.vertexCacheOrder);
+        std::vector<Cluster> clusters;
+        if (clustered) {
+            clusters = orderIntoClusters(simplified, positions);
+        }
         spent += stepError;
-        levels.push_back({std::move(simplified), spent * scale});
+        levels.push_back({std::move(simplified), spent * scale, std::move(clusters)});
     }
     return levels;
 }
 
+// Clusters with their first triangles moved from their level's first to level 0's.
+std::vector<Cluster> shiftedClusters(std::vector<Cluster> clusters, std::uint64_t firstTriangle) {
+    for (Cluster& cluster : clusters) {
+        cluster.firstTriangle += static_cast<std::uint32_t>(firstTriangle);
+    }
+    return clusters;
+}
+
 // Writes level 0 and the levels into one new view, in the layout SceneData.h documents, and
-// points the primitive at it.
+// points the primitive at it (with the levels' clusters, counted from level 0's first index).
 void writeIndexLevels(SceneData& scene,
                       OutputBuffer& output,
                       Primitive& primitive,
                       const std::vector<std::uint32_t>& level0,
-                      const std::vector<SimplifiedLevel>& levels) {
+                      std::vector<Cluster> level0Clusters,
+                      std::vector<SimplifiedLevel>& levels) {
     const bool narrow = primitive.vertexCount <= kMaxUint16Vertices;
     const std::uint32_t indexSize = narrow ? 2 : 4;
     std::vector<std::uint64_t> offsets;
     std::uint64_t length = 0;
+    // Each level starts at a whole triangle from level 0's first index (a multiple of 12 bytes:
+    // 4-byte aligned as SceneData.h requires, and of 6 or 12 bytes per triangle), so that its
+    // triangles can be counted from level 0's as the visibility strategy counts them.
     auto place = [&](std::size_t count) {
-        offsets.push_back(align4(length));
+        offsets.push_back((length + 11) / 12 * 12);
         length = offsets.back() + count * indexSize;
     };
     place(level0.size());
@@ -314,9 +406,12 @@ void writeIndexLevels(SceneData& scene,
         return AccessorId(scene.accessors.size() - 1);
     };
     primitive.indices = append(level0, offsets[0]);
+    primitive.clusters = std::move(level0Clusters);
     primitive.levels.clear();
     for (std::size_t k = 0; k < levels.size(); ++k) {
-        primitive.levels.push_back({append(levels[k].indices, offsets[k + 1]), levels[k].error});
+        primitive.levels.push_back(
+            {append(levels[k].indices, offsets[k + 1]), levels[k].error,
+             shiftedClusters(std::move(levels[k].clusters), offsets[k + 1] / (indexSize * 3))});
     }
 }
 
@@ -342,7 +437,7 @@ Result<std::uint64_t> checkPrimitive(const SceneData& scene,
                              std::to_string(primitive.vertexCount) + ").");
     }
     // Level 0 plus levels that halve: fewer than twice level 0, plus alignment padding.
-    std::uint64_t bytes = 2 * (indices.size() * 4 + 4) + 64 * 4;
+    std::uint64_t bytes = 2 * (indices.size() * 4 + 4) + 64 * 12;
     for (AccessorId stream : vertexStreams(primitive)) {
         if (stream.index() < scene.accessors.size()) {
             const Accessor& accessor = scene.accessors[stream.index()];
@@ -429,12 +524,18 @@ Result<MeshOptimizerReport> optimizeMeshes(SceneData& scene, const MeshOptimizer
                 continue;
             }
             std::vector<std::uint32_t> indices = scene.readIndices(*primitive.indices);
+            // Blending depends on the order triangles are drawn in: keep it (under any material
+            // variant). Clusters reorder triangles, so they come with the vertex order.
+            const bool blends = mayBlend(scene, primitive);
+            const bool clustered = options.optimizeVertexOrder && options.buildClusters && !blends;
+            std::vector<Cluster> clusters;
             if (options.optimizeVertexOrder) {
-                // Blending depends on the order triangles are drawn in: keep it (under any
-                // material variant).
-                const bool blends = mayBlend(scene, primitive);
                 if (!blends) {
                     orderForVertexCache(indices, primitive.vertexCount, options.vertexCacheOrder);
+                }
+                if (clustered) {
+                    // Before the vertices are renumbered, so that they follow the final order.
+                    clusters = orderIntoClusters(indices, finitePositions(scene, primitive));
                 }
                 const bool renumber = streamsRenumberable(scene, primitive, readers);
                 if (renumber) {
@@ -449,10 +550,14 @@ Result<MeshOptimizerReport> optimizeMeshes(SceneData& scene, const MeshOptimizer
             std::vector<SimplifiedLevel> levels;
             if (options.buildLevelsOfDetail) {
                 const bool lockBorders = options.lockSharedBorders && mesh.primitives.size() > 1;
-                levels = simplifyChain(scene, primitive, indices, options, lockBorders);
+                levels = simplifyChain(scene, primitive, indices, options, lockBorders, clustered);
                 report.levelsBuilt += levels.size();
             }
-            writeIndexLevels(scene, output, primitive, indices, levels);
+            report.clustersBuilt += clusters.size();
+            for (const SimplifiedLevel& level : levels) {
+                report.clustersBuilt += level.clusters.size();
+            }
+            writeIndexLevels(scene, output, primitive, indices, std::move(clusters), levels);
         }
     }
     // Once every primitive reading a buffer has moved to new data, the buffer only holds memory

@@ -21,15 +21,22 @@
 //      * a primitive with a vertex stream that another primitive also reads keeps its vertex
 //        order (renumbering would break the other primitive) and only has its triangles
 //        reordered.
+//  - Clusters (buildClusters, with the vertex order, and not for blending primitives): the
+//    triangles of each level are grouped into meshlets of at most Cluster::kMaxTriangles
+//    triangles and 128 vertices (meshopt_buildMeshlets), each a run of consecutive triangles,
+//    with a bounding sphere and a cone of normals (meshopt_computeMeshletBounds) by which a
+//    renderer culls parts of a primitive (Primitive::clusters, LevelOfDetail::clusters). Only
+//    the order of the triangles changes: the same triangles, corners in the same order.
 //  - Levels of detail (buildLevelsOfDetail): meshopt_simplify halves the triangle count of the
 //    previous level again and again, each level within an error bound relative to the
 //    primitive's extent, until a level no longer reaches half of the previous triangle count or
 //    comes out empty. Levels reuse the primitive's vertices and are vertex-cache ordered too.
 //
 // Output: each processed primitive gets new index data (level 0 then its levels in one
-// bufferView, Primitive::levels describes the layout) and, when its vertices were renumbered,
-// new tightly packed vertex streams (stride rounded up to 4 bytes). All of it goes into one
-// buffer appended to the scene. The data the primitive used before stays where it was, unused
+// bufferView, Primitive::levels describes the layout; each level starts at a multiple of 12
+// bytes, a whole number of triangles from level 0's first index) and, when its vertices were
+// renumbered, new tightly packed vertex streams (stride rounded up to 4 bytes). All of it goes into
+// one buffer appended to the scene. The data the primitive used before stays where it was, unused
 // unless another primitive reads it; a buffer that primitives read before and none reads after
 // is emptied (Buffer::bytes cleared, its views and accessors left in place but read by no
 // primitive: SceneData::accessorBytes returns nothing for them).
@@ -44,6 +51,8 @@ struct MeshOptimizerOptions {
     // Which cache optimiser orders the triangles of level 0 and of every level of detail.
     VertexCacheOrder vertexCacheOrder = VertexCacheOrder::Thorough;
     bool buildLevelsOfDetail = true;
+    // Clusters of every level (with optimizeVertexOrder; see above).
+    bool buildClusters = true;
     // The largest deviation a level may have from the full-detail surface, relative to the
     // primitive's extent (meshoptimizer's target_error). The budget covers the whole chain:
     // level k is simplified from level k-1 and the steps' errors add up, so no level exceeds
@@ -67,6 +76,7 @@ struct MeshOptimizerReport {
     std::size_t primitivesReordered = 0;    // Triangles and vertices reordered.
     std::size_t primitivesIndicesOnly = 0;  // Triangles (or vertices) only, as explained above.
     std::size_t levelsBuilt = 0;            // Summed over primitives.
+    std::size_t clustersBuilt = 0;          // Of every level, summed over primitives.
     std::size_t buffersReleased = 0;        // Emptied: no primitive reads them any more.
 };
 
@@ -75,5 +85,14 @@ struct MeshOptimizerReport {
 // data would pass the loader's limit on materialised bytes; the scene is then unchanged.
 Result<MeshOptimizerReport> optimizeMeshes(SceneData& scene,
                                            const MeshOptimizerOptions& options = {});
+
+// Reorders the triangles of one level (`indices`, over `positions`: xyz of each vertex) so that
+// each cluster is a run of consecutive triangles (meshopt_buildMeshlets, at most
+// Cluster::kMaxTriangles triangles and 128 vertices each, their spheres and normal cones from
+// meshopt_computeMeshletBounds) and returns the clusters, their first triangles counted from the
+// level's first. The triangles stay the same, each with its corners in the same order. Returns
+// nothing, `indices` unchanged, for no triangles or no positions.
+std::vector<Cluster> orderIntoClusters(std::vector<std::uint32_t>& indices,
+                                       const std::vector<glm::vec4>& positions);
 
 }  // namespace encore::scene

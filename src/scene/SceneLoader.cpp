@@ -137,6 +137,7 @@ Result<SceneData> load(std::span<const std::uint8_t> bytes, LoadContext& context
     meshOptions.optimizeVertexOrder = context.options.optimizeMeshes;
     meshOptions.vertexCacheOrder = context.options.vertexCacheOrder;
     meshOptions.buildLevelsOfDetail = context.options.buildLevelsOfDetail;
+    meshOptions.buildClusters = context.options.buildClusters;
     ENCORE_TRY(optimizeMeshes(context.scene, meshOptions));
     return std::move(context.scene);
 }

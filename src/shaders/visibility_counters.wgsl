@@ -8,7 +8,7 @@ struct Counters {
     // Triangles of the levels the cull listed (both phases; some may be back faces, outside
     // the view or degenerate): what GPU culling's count of drawn triangles counts.
     listedTriangles: atomic<u32>,
-    padding2: u32,
+    secondPhase: u32,  // 1 from beginSecondPhase: the raster passes may read the pyramid.
     // drawIndirect arguments of the hardware pass (byte offset 16): 3 vertices per triangle that
     // this phase listed, from hardwareFirstVertex.
     hardwareVertices: atomic<u32>,
@@ -19,4 +19,15 @@ struct Counters {
     hardwareOverflow: atomic<u32>,  // Triangles the full hardware list could not take.
     hardwareTriangles: atomic<u32>,  // Triangles the hardware list took.
     workgroupTriangles: atomic<u32>,  // Triangles listed for workgroupMain in this phase.
+    // Triangles of the clusters the raster passes culled (frustum, facing, occlusion; both
+    // phases): listed, never rasterised.
+    culledTriangles: atomic<u32>,
+    padding0: u32,
+    padding1: u32,
+    padding2: u32,
+    // Not a counter (the copies that reset the counters leave it; the storage bindings of a
+    // stage are few): at byte 64, a word per cluster of every level of each item
+    // (Item.clusterWords), bit 0 when it was visible in the last two-phase frame, bit 1 while
+    // this frame's first phase has taken it (rasterised or culled). visibility_raster.wgsl.
+    clusterVisibility: array<u32>,
 }

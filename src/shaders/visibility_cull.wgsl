@@ -1,12 +1,15 @@
 // The visibility strategy's culling, for one view: one thread per item (instance x primitive)
-// lists the units (256 triangles each) of the item's chosen level of detail for the raster
-// passes (visibility_raster.wgsl). With two-phase occlusion culling (frames of one view):
+// lists the units (its clusters, up to 256 triangles each) of the item's chosen level of detail
+// for the raster passes (visibility_raster.wgsl), which cull each cluster on its own. With
+// two-phase occlusion culling (frames of one view):
 //   cullFirstPhase    items in the frustum that were visible last frame;
 //   (rasterised; depth_pyramid.wgsl reduces the visibility buffer's depth)
 //   beginSecondPhase  the raster passes will take only what follows;
 //   cullSecondPhase   every item in the frustum is tested against the pyramid; the visible ones
 //                     that phase 1 did not list are listed now, and each item's visibility is
-//                     kept for the next frame.
+//                     kept for the next frame. With cluster culling, those phase 1 listed are
+//                     listed again when their level has several clusters, for the clusters it
+//                     left (visibility_raster.wgsl).
 // Without it, cullFirstPhase lists every item in the frustum. Levels of detail are chosen as
 // culling.wgsl chooses them (same sphere, same metric, same thresholds: render/LodSelection.h).
 #include "frame.wgsl"
@@ -14,51 +17,20 @@
 #include "visibility_levels.wgsl"
 #include "visibility_counters.wgsl"
 #include "pyramid_occlusion.wgsl"
-
-// VisibilityStrategy.cpp's CullUniform: one per frame.
-struct Culling {
-    planes: array<vec4f, 6>,  // xyz: inward unit normal, w: distance.
-    viewProjection: mat4x4f,
-    lodViewCount: u32,
-    lodPixelsPerUnit: f32,  // 0: levels of detail off.
-    lodThresholdPixels: f32,
-    orthographic: u32,
-    occlusion: u32,  // 1: two phases; cullFirstPhase reads last frame's visibility.
-    frustumTest: u32,  // 0 in multi-view frames, whose views each frame the whole scene.
-    lodDistanceSlack: f32,
-    padding: u32,
-    lodViews: array<vec4f, 16>,
-}
+#include "visibility_culling.wgsl"
 
 @group(1) @binding(4) var<storage, read_write> units: array<vec2u>;
 @group(1) @binding(5) var<storage, read_write> counters: Counters;
-@group(1) @binding(10) var<uniform> culling: Culling;
 // Per item: 1 when it was visible in the last two-phase frame.
 @group(1) @binding(11) var<storage, read_write> itemVisibility: array<u32>;
-@group(1) @binding(12) var depthPyramid: texture_2d<f32>;  // cullSecondPhase only.
 
 const kMaxGroups = 65535u;
 
-fn largestAxisScale(m: mat4x4f) -> f32 {
-    return sqrt(max(max(dot(m[0].xyz, m[0].xyz), dot(m[1].xyz, m[1].xyz)),
-                    dot(m[2].xyz, m[2].xyz)));
-}
-
 // Whether the item's bounds lie wholly outside one of the frustum's planes.
 fn outsideFrustum(item: Item, world: mat4x4f) -> bool {
-    if (culling.frustumTest == 0u) {
-        return false;
-    }
     let center = (world * vec4f(vec3At(item.record, kBoundsCenter), 1.0)).xyz;
     let scale = max(length(world[0].xyz), max(length(world[1].xyz), length(world[2].xyz)));
-    let radius = length(vec3At(item.record, kBoundsExtent)) * scale;
-    for (var i = 0u; i < 6u; i++) {
-        let plane = culling.planes[i];
-        if (dot(plane.xyz, center) + plane.w < -radius) {
-            return true;
-        }
-    }
-    return false;
+    return sphereOutsideFrustum(center, length(vec3At(item.record, kBoundsExtent)) * scale);
 }
 
 // culling.wgsl's lodPixelsPerUnit and chooseLevel for the item's mesh sphere, in the same order
@@ -96,15 +68,15 @@ fn chooseLevel(item: Item, world: mat4x4f) -> u32 {
     return chosen;
 }
 
-// Lists the units of the item's chosen level; returns its triangles.
+// Lists the clusters of the item's chosen level as units; returns the level's triangles.
 fn append(index: u32, item: Item, world: mat4x4f) -> u32 {
-    let range = levelRange(item.record, chooseLevel(item, world));
-    let count = (range.count + kUnitTriangles - 1u) / kUnitTriangles;
-    let first = atomicAdd(&counters.unitCount, count);
-    for (var unit = 0u; unit < count; unit++) {
-        units[first + unit] = vec2u(index, range.first + unit * kUnitTriangles);
+    let level = chooseLevel(item, world);
+    let clusters = levelClusters(item.record, level);
+    let first = atomicAdd(&counters.unitCount, clusters.count);
+    for (var unit = 0u; unit < clusters.count; unit++) {
+        units[first + unit] = vec2u(index, clusters.first + unit * kClusterWords);
     }
-    return range.count;
+    return levelRange(item.record, level).count;
 }
 
 // The triangles a workgroup listed, added to the view's count once per workgroup.
@@ -146,6 +118,7 @@ fn cullFirstPhase(@builtin(workgroup_id) group: vec3u,
 @compute @workgroup_size(1)
 fn beginSecondPhase() {
     counters.firstUnit = atomicLoad(&counters.unitCount);
+    counters.secondPhase = 1u;
     counters.hardwareFirstVertex += atomicLoad(&counters.hardwareVertices);
     atomicStore(&counters.hardwareVertices, 0u);
     atomicStore(&counters.workgroupTriangles, 0u);
@@ -160,25 +133,7 @@ fn isOccluded(item: Item, world: mat4x4f) -> bool {
     if (any(extent >= vec3f(1e29))) {
         return false;  // No bounds: never culled.
     }
-    let viewport = vec2f(f32(params.viewportWidth), f32(params.viewportHeight));
-    var low = vec2f(3.4e38);
-    var high = vec2f(-3.4e38);
-    var nearestDepth = 1.0;
-    for (var corner = 0u; corner < 8u; corner++) {
-        let side = select(vec3f(-1.0), vec3f(1.0),
-                          vec3<bool>((corner & 1u) != 0u, (corner & 2u) != 0u,
-                                     (corner & 4u) != 0u));
-        let clip = culling.viewProjection * (world * vec4f(center + side * extent, 1.0));
-        if (clip.w <= 1e-6 || clip.z < 0.0) {
-            return false;  // The box reaches the near plane: it may cover the whole view.
-        }
-        let ndc = clip.xyz / clip.w;
-        let pixel = vec2f(ndc.x * 0.5 + 0.5, 0.5 - ndc.y * 0.5) * viewport;
-        low = min(low, pixel);
-        high = max(high, pixel);
-        nearestDepth = min(nearestDepth, ndc.z);
-    }
-    return pyramidHides(depthPyramid, viewport, low, high, nearestDepth);
+    return boxOccluded(center, extent, world);
 }
 
 @compute @workgroup_size(64)
@@ -189,9 +144,16 @@ fn cullSecondPhase(@builtin(workgroup_id) group: vec3u,
     if (index < params.itemCount) {
         let item = loadItem(index);
         let world = instances[item.slot].world;
-        let visible = !outsideFrustum(item, world) && !isOccluded(item, world);
-        if (visible && itemVisibility[index] == 0u) {
+        let inFrustum = !outsideFrustum(item, world);
+        let listedFirst = inFrustum && itemVisibility[index] != 0u;  // By cullFirstPhase.
+        let visible = inFrustum && !isOccluded(item, world);
+        if (visible && !listedFirst) {
             triangles = append(index, item, world);
+        } else if (listedFirst && culling.clusterCulling != 0u &&
+                   levelClusters(item.record, chooseLevel(item, world)).count > 1u) {
+            // Listed again (its triangles counted once): the raster tests the clusters that
+            // phase 1 left for this one, and keeps each one's visibility for the next frame.
+            _ = append(index, item, world);
         }
         itemVisibility[index] = select(0u, 1u, visible);
     }

@@ -3,8 +3,9 @@
 // in any glTF component type), the instance transforms, and the tables of primitives and items
 // (instance x primitive), all in group 1. Needs frame.wgsl.
 //
-// A visibility-buffer id is unit * 256 + triangle in the unit; a unit is up to 256 consecutive
-// triangles of one item, listed by the culling pass for this view.
+// A visibility-buffer id is unit * 256 + triangle in the unit; a unit is one cluster (up to 256
+// consecutive triangles) of one item, listed by the culling pass for this view: (item, word
+// index of the cluster's record).
 
 #include "visibility_params.wgsl"
 
@@ -25,11 +26,13 @@ const kUnitTriangles = 256u;
 const kItemWords = 4u;
 const kPrimitiveWords = 32u;
 
-// Item: instance slot, primitive record (word index), unit count, 1 when mirrored.
+// Item: instance slot, primitive record (word index), its first word of the clusters'
+// visibility (visibility_raster.wgsl; a word per cluster of every level, in record order), 1
+// when mirrored.
 struct Item {
     slot: u32,
     record: u32,
-    unitCount: u32,
+    clusterWords: u32,
     mirrored: u32,
 }
 
@@ -84,6 +87,26 @@ const kColor = 18u;
 const kTangent = 21u;
 const kBoundsCenter = 24u;
 const kBoundsExtent = 27u;
+
+// Cluster record fields (word offsets; VisibilityTables.h): its triangles, counted from level
+// 0's first index, and its bounds, object space. A radius of kNeverCulled or more (a primitive
+// without clusters, split into runs of 256 triangles) is culled by nothing, a cutoff above 1 by
+// no facing.
+const kClusterFirstTriangle = 0u;
+const kClusterTriangles = 1u;  // | kClusterAlone for the only cluster of its level.
+const kClusterCenter = 2u;
+const kClusterRadius = 5u;
+const kClusterConeApex = 6u;
+const kClusterConeAxis = 9u;
+const kClusterConeCutoff = 12u;
+const kClusterWords = 13u;
+const kClusterAlone = 0x80000000u;
+const kNeverCulled = 1e29;
+
+// The triangle of `unit` that visibility-buffer id `id` names.
+fn unitTriangle(unit: vec2u, id: u32) -> u32 {
+    return tables[unit.y + kClusterFirstTriangle] + id % kUnitTriangles;
+}
 
 fn field(record: u32, offset: u32) -> u32 {
     return tables[record + offset];

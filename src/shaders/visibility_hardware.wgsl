@@ -28,7 +28,7 @@ fn vertexMain(@builtin(vertex_index) vertex: u32) -> VertexOutput {
     let id = hardwareList[slot];
     let unit = units[id / kUnitTriangles];
     let item = loadItem(unit.x);
-    let triangle = unit.y + id % kUnitTriangles;
+    let triangle = unitTriangle(unit, id);
     let index = vertexIndex(item.record, triangle, vertex % 3u);
     output.position = clipPosition(worldPosition(item.record, instances[item.slot], index));
     output.id = id;

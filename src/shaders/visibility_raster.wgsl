@@ -2,8 +2,9 @@ enable atomic_vec2u_min_max;
 
 // The visibility strategy's raster passes, for one view (or one phase of it: visibility_cull.wgsl
 // lists the units):
-//   argsMain    one thread: the raster dispatch's size from this phase's unit count;
-//   rasterMain  one workgroup per unit, one thread per triangle at a time: clip, cull back
+//   rasterMain  one workgroup per unit (a cluster of an item): one thread culls the cluster
+//               (clusterCulled: frustum, facing, and in the second phase occlusion), then one
+//               thread per triangle at a time: clip, cull back
 //               faces, snap to 1/256 pixel and cover pixel centres with edge functions under the
 //               top-left rule (at each of the pixel's samples, VisibilityParams.samples),
 //               writing (depth, id) with a 64-bit atomic max of
@@ -16,6 +17,8 @@ enable atomic_vec2u_min_max;
 
 #include "visibility_levels.wgsl"
 #include "visibility_counters.wgsl"
+#include "pyramid_occlusion.wgsl"
+#include "visibility_culling.wgsl"
 
 @group(1) @binding(4) var<storage, read_write> units: array<vec2u>;
 @group(1) @binding(5) var<storage, read_write> counters: Counters;
@@ -224,27 +227,133 @@ fn rasterTriangle(id: u32, item: Item, transform: Transform, triangle: u32) -> b
     return true;
 }
 
+// A cluster whose cone says every triangle faces away from the camera is not culled unless the
+// view lies this far (in cosine) inside the cone: the raster snaps vertices to 1/256 pixel,
+// which may turn an almost edge-on triangle to face the camera.
+const kConeMargin = 0.01;
+
+// Whether every triangle of the cluster faces away from the view's camera, by its cone of
+// normals (meshopt_computeMeshletBounds' test), in object space. Whether a triangle faces the
+// camera is the sign of dot(its normal, camera - its corner), which moving both into object
+// space keeps, mirrored instances included (their winding flips with the matrix and their front
+// face with it, as the pipelines flip it). Double-sided materials never cull by facing.
+fn clusterFacesAway(cluster: u32, item: Item, world: mat4x4f) -> bool {
+    let cutoff = bitcast<f32>(tables[cluster + kClusterConeCutoff]);
+    if (!(cutoff < 1.0) || field(item.record, kDoubleSided) != 0u) {
+        return false;
+    }
+    // The inverse of the world matrix's linear part: its rows over the determinant.
+    let bc = cross(world[1].xyz, world[2].xyz);
+    let ca = cross(world[2].xyz, world[0].xyz);
+    let ab = cross(world[0].xyz, world[1].xyz);
+    let det = dot(world[0].xyz, bc);
+    if (!(abs(det) > 1e-20)) {
+        return false;
+    }
+    var toApex: vec3f;  // From the camera to the cone's apex (orthographic: the view direction).
+    if (frame.projection[3][3] != 0.0) {
+        let forward = -vec3f(frame.view[0][2], frame.view[1][2], frame.view[2][2]);
+        toApex = vec3f(dot(bc, forward), dot(ca, forward), dot(ab, forward)) / det;
+    } else {
+        let eye = frame.cameraPosition - world[3].xyz;
+        let objectEye = vec3f(dot(bc, eye), dot(ca, eye), dot(ab, eye)) / det;
+        toApex = vec3At(cluster, kClusterConeApex) - objectEye;
+    }
+    let distance = length(toApex);
+    return distance > 0.0 &&
+           dot(toApex / distance, vec3At(cluster, kClusterConeAxis)) >= cutoff + kConeMargin;
+}
+
+// Whether a cluster of `item` can be skipped: its sphere outside the frustum, every triangle
+// facing away, or (second occlusion phase) its sphere's box behind the depth pyramid.
+fn clusterCulled(cluster: u32, item: Item, world: mat4x4f, secondPhase: bool) -> bool {
+    let radius = bitcast<f32>(tables[cluster + kClusterRadius]);
+    if (culling.clusterCulling == 0u || !(radius < kNeverCulled)) {
+        return false;
+    }
+    let center = vec3At(cluster, kClusterCenter);
+    let worldCenter = (world * vec4f(center, 1.0)).xyz;
+    if (sphereOutsideFrustum(worldCenter, radius * largestAxisScale(world))) {
+        return true;
+    }
+    if (clusterFacesAway(cluster, item, world)) {
+        return true;
+    }
+    return secondPhase && boxOccluded(center, vec3f(radius), world);
+}
+
+struct ClusterDecision {
+    take: bool,    // Rasterise its triangles.
+    culled: bool,  // Count them as culled (each listed triangle is taken or culled once).
+}
+
+// What the workgroup does with a cluster. With two-phase occlusion, the standard way per
+// cluster: phase 1 takes the clusters visible last frame (culling them by frustum and facing
+// only) and leaves the others; phase 2, which lists again the items of phase 1, tests each
+// cluster against the pyramid too, takes those phase 1 left that show, and keeps every
+// cluster's visibility for the next frame.
+// The only cluster of its level follows its item through the phases as before clusters (the
+// item tests decide; phase 2 does not list phase 1's items with one cluster again).
+fn decideCluster(cluster: u32, alone: bool, item: Item, world: mat4x4f, secondPhase: bool)
+    -> ClusterDecision {
+    if (culling.occlusion == 0u || culling.clusterCulling == 0u || alone) {
+        let skip = clusterCulled(cluster, item, world, secondPhase);
+        return ClusterDecision(!skip, skip);
+    }
+    let word = item.clusterWords + (cluster - field(item.record, kLevelClusters)) / kClusterWords;
+    let state = counters.clusterVisibility[word];
+    if (!secondPhase) {
+        if ((state & 1u) == 0u) {
+            return ClusterDecision(false, false);  // Left for phase 2.
+        }
+        counters.clusterVisibility[word] = 3u;
+        let skip = clusterCulled(cluster, item, world, false);
+        return ClusterDecision(!skip, skip);
+    }
+    let skip = clusterCulled(cluster, item, world, true);
+    counters.clusterVisibility[word] = select(1u, 0u, skip);
+    if ((state & 2u) != 0u) {
+        return ClusterDecision(false, false);  // Phase 1 took it.
+    }
+    return ClusterDecision(!skip, skip);
+}
+
 var<workgroup> rasterised: atomic<u32>;
-var<workgroup> phaseUnits: vec2u;  // This phase's first unit and the end of the list.
+// This phase's first unit, the end of the list, and 1 in the second phase.
+var<workgroup> phaseUnits: vec3u;
+var<workgroup> clusterKept: u32;
 
 @compute @workgroup_size(64)
 fn rasterMain(@builtin(workgroup_id) group: vec3u, @builtin(num_workgroups) groups: vec3u,
               @builtin(local_invocation_index) lane: u32) {
     if (lane == 0u) {
-        phaseUnits = vec2u(counters.firstUnit, atomicLoad(&counters.unitCount));
+        phaseUnits =
+            vec3u(counters.firstUnit, atomicLoad(&counters.unitCount), counters.secondPhase);
     }
     let range = workgroupUniformLoad(&phaseUnits);
     var count = 0u;
+    var culled = 0u;  // Triangles of the clusters culled (lane 0).
     for (var unitIndex = range.x + group.x; unitIndex < range.y; unitIndex += groups.x) {
         let unit = units[unitIndex];
         let item = loadItem(unit.x);
         let transform = instances[item.slot];
-        let end = levelEnd(item.record, unit.y);
+        let first = tables[unit.y + kClusterFirstTriangle];
+        let trianglesWord = tables[unit.y + kClusterTriangles];
+        let triangles = trianglesWord & ~kClusterAlone;
+        if (lane == 0u) {
+            let alone = (trianglesWord & kClusterAlone) != 0u;
+            let decision = decideCluster(unit.y, alone, item, transform.world, range.z != 0u);
+            clusterKept = select(0u, 1u, decision.take);
+            culled += select(0u, triangles, decision.culled);
+        }
+        if (workgroupUniformLoad(&clusterKept) == 0u) {
+            continue;
+        }
         for (var k = 0u; k < kUnitTriangles / 64u; k++) {
             let local = k * 64u + lane;
-            let triangle = unit.y + local;
-            if (triangle < end &&
-                rasterTriangle(unitIndex * kUnitTriangles + local, item, transform, triangle)) {
+            if (local < triangles &&
+                rasterTriangle(unitIndex * kUnitTriangles + local, item, transform,
+                               first + local)) {
                 count++;
             }
         }
@@ -253,6 +362,9 @@ fn rasterMain(@builtin(workgroup_id) group: vec3u, @builtin(num_workgroups) grou
     workgroupBarrier();
     if (lane == 0u) {
         atomicAdd(&counters.computeTriangles, atomicLoad(&rasterised));
+        if (culled > 0u) {
+            atomicAdd(&counters.culledTriangles, culled);
+        }
     }
 }
 
@@ -276,7 +388,7 @@ fn coverListed(slot: u32, lane: u32) {
     let id = workgroupList[slot];
     let unit = units[id / kUnitTriangles];
     let item = loadItem(unit.x);
-    let t = prepareTriangle(id, item, instances[item.slot], unit.y + id % kUnitTriangles, false);
+    let t = prepareTriangle(id, item, instances[item.slot], unitTriangle(unit, id), false);
     let size = t.last - t.first + 1;
     let columns = (size.x + 7) / 8;
     let tiles = columns * ((size.y + 7) / 8);

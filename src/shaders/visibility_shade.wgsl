@@ -95,7 +95,7 @@ fn shadeEntry(i: u32) {
     let unit = units[id / kUnitTriangles];
     let item = loadItem(unit.x);
     let record = item.record;
-    let triangle = unit.y + id % kUnitTriangles;
+    let triangle = unitTriangle(unit, id);
     let transform = instances[item.slot];
     let i0 = vertexIndex(record, triangle, 0u);
     let i1 = vertexIndex(record, triangle, 1u);

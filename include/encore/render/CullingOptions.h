@@ -20,6 +20,11 @@ struct CullingOptions {
     // hardware.
     float computeRasterPixels = 16.0f;
     float workgroupRasterPixels = 112.0f;
+    // The visibility strategy: each cluster (meshlet) of a drawn item is culled on its own
+    // against the frustum, by its cone of normals (all its triangles facing away) and, in the
+    // second occlusion phase, against the depth pyramid. Off: every triangle of a listed item is
+    // rasterised (the same picture; for comparisons).
+    bool clusterCulling = true;
 
     bool operator==(const CullingOptions&) const = default;
 };

@@ -54,7 +54,9 @@ void createLayouts(const wgpu::Device& device, VisibilityPipelines& p) {
          LayoutEntry::readOnlyStorage(2, kCompute), LayoutEntry::readOnlyStorage(3, kCompute),
          LayoutEntry::storage(4, kCompute), LayoutEntry::storage(5, kCompute),
          LayoutEntry::storage(6, kCompute), LayoutEntry::storage(7, kCompute),
-         LayoutEntry::storage(9, kCompute)},
+         LayoutEntry::storage(9, kCompute),
+         LayoutEntry::uniform(10, kCompute, sizeof(VisibilityCullUniform)),
+         LayoutEntry::texture(12, kCompute, wgpu::TextureSampleType::UnfilterableFloat)},
         "visibility raster");
     p.hardwareLayout = gpu::makeBindGroupLayout(
         device,

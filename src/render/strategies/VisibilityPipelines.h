@@ -51,7 +51,7 @@ struct VisibilityCullUniform {
     std::uint32_t occlusion = 0;
     std::uint32_t frustumTest = 0;
     float lodDistanceSlack = 0.0f;
-    std::uint32_t padding = 0;
+    std::uint32_t clusterCulling = 0;
     std::array<glm::vec4, LodSelection::kMaxViews> lodViews{};
 };
 static_assert(offsetof(VisibilityCullUniform, lodViewCount) == 160);

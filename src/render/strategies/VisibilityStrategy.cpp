@@ -97,9 +97,11 @@ Result<void> VisibilityStrategy::prepare(const RenderSetup& setup, const GpuScen
     mItemVisibility = gpu::createBuffer(device, wgpu::BufferUsage::Storage,
                                         std::max<std::uint64_t>(mTables.itemCount, 1) * 4,
                                         "visibility of items last frame");
-    mUnits =
-        gpu::createBuffer(device, wgpu::BufferUsage::Storage,
-                          std::max<std::uint64_t>(mTables.unitCount, 1) * 8, "visibility units");
+    // Twice the units of all items: with occlusion, the second phase lists again the items of
+    // the first (visibility_cull.wgsl), whose clusters it tests for the next frame.
+    mUnits = gpu::createBuffer(device, wgpu::BufferUsage::Storage,
+                               std::max<std::uint64_t>(mTables.unitCount, 1) * 2 * 8,
+                               "visibility units");
     mHardwareCapacity =
         std::uint32_t(std::clamp<std::uint64_t>(mTables.triangleCount, 1, kMaxHardwareTriangles));
     mHardwareList =
@@ -108,10 +110,14 @@ Result<void> VisibilityStrategy::prepare(const RenderSetup& setup, const GpuScen
     mWorkgroupList =
         gpu::createBuffer(device, wgpu::BufferUsage::Storage, std::uint64_t(mHardwareCapacity) * 4,
                           "visibility workgroup triangles");
-    mCounters = gpu::createBuffer(device,
-                                  wgpu::BufferUsage::Storage | wgpu::BufferUsage::Indirect |
-                                      wgpu::BufferUsage::CopyDst | wgpu::BufferUsage::CopySrc,
-                                  kCounterBytes, "visibility counters");
+    // The counters, then the clusters' visibility (visibility_counters.wgsl), which the copies
+    // of kCounterBytes that reset the counters leave as they are (zero after prepare).
+    mCounters = gpu::createBuffer(
+        device,
+        wgpu::BufferUsage::Storage | wgpu::BufferUsage::Indirect | wgpu::BufferUsage::CopyDst |
+            wgpu::BufferUsage::CopySrc,
+        kCounterBytes + std::max<std::uint64_t>(mTables.clusterVisibilityWords, 1) * 4,
+        "visibility counters");
     const std::uint32_t persistent = persistentWorkgroups(device);
     mPersistentGroups = persistent;
     mRasterGroups = stridingGrid(mTables.unitCount, 1, persistent);
@@ -184,7 +190,9 @@ void VisibilityStrategy::createBindGroups() {
                                        {5, mCounters},
                                        {6, mHardwareList},
                                        {7, target.visibility},
-                                       {9, mWorkgroupList}},
+                                       {9, mWorkgroupList},
+                                       {10, mCullUniform},
+                                       {12, target.pyramid.view()}},
                                       "visibility raster");
     mHardwareGroup = gpu::makeBindGroup(device, p.hardwareLayout,
                                         {params,
@@ -333,6 +341,7 @@ void VisibilityStrategy::writeCullUniform(const FrameState& frame, std::size_t v
     uniform.orthographic = lod.orthographic;
     uniform.lodDistanceSlack = lod.distanceSlack;
     uniform.occlusion = mOcclusion ? 1 : 0;
+    uniform.clusterCulling = frame.culling.clusterCulling ? 1 : 0;
     mSetup->queue.WriteBuffer(mCullUniform, 0, &uniform, sizeof(uniform));
 }
 

@@ -82,6 +82,9 @@ class VisibilityStrategy final : public Strategy {
     // The last view's counters (visibility_counters.wgsl; CopySrc): at kListedTrianglesOffset,
     // the triangles of the levels its cull listed (GPU culling's count of drawn triangles).
     static constexpr std::uint64_t kListedTrianglesOffset = 8;
+    // At kCulledTrianglesOffset, the triangles of the clusters the raster passes culled (listed,
+    // never rasterised: outside the frustum, facing away, or hidden in the second phase).
+    static constexpr std::uint64_t kCulledTrianglesOffset = 48;
     const wgpu::Buffer& counters() const { return mCounters; }
     // Whether the last frame culled in two phases, and the pyramid it built (tests).
     bool lastFrameOccluded() const { return mOcclusion; }
@@ -152,7 +155,8 @@ class VisibilityStrategy final : public Strategy {
     wgpu::Buffer mBins;
     wgpu::Buffer mCullUniform;
     wgpu::Buffer mItemVisibility;  // Per item: visible in the last two-phase frame.
-    wgpu::Buffer mGeometry;        // The first shared geometry buffer, or a placeholder.
+
+    wgpu::Buffer mGeometry;  // The first shared geometry buffer, or a placeholder.
     std::uint64_t mGeometryBytes = 0;
 
     // Scene-independent pipelines and target-sized resources: the renderer's

@@ -1,0 +1,67 @@
+// What the visibility strategy culls by, shared by its cull (items, visibility_cull.wgsl) and its
+// raster passes (clusters, visibility_raster.wgsl): the frame's culling uniform, the depth
+// pyramid of the first occlusion phase, and the tests of a sphere or a box against them. Needs
+// visibility_geometry.wgsl and pyramid_occlusion.wgsl.
+
+// VisibilityStrategy.cpp's CullUniform: one per frame.
+struct Culling {
+    planes: array<vec4f, 6>,  // xyz: inward unit normal, w: distance.
+    viewProjection: mat4x4f,
+    lodViewCount: u32,
+    lodPixelsPerUnit: f32,  // 0: levels of detail off.
+    lodThresholdPixels: f32,
+    orthographic: u32,
+    occlusion: u32,  // 1: two phases; cullFirstPhase reads last frame's visibility.
+    frustumTest: u32,  // 0 in multi-view frames, whose views each frame the whole scene.
+    lodDistanceSlack: f32,
+    clusterCulling: u32,  // 1: the raster passes cull clusters (CullingOptions::clusterCulling).
+    lodViews: array<vec4f, 16>,
+}
+
+@group(1) @binding(10) var<uniform> culling: Culling;
+// Read in the second phase only (the first phase's pyramid is still last frame's).
+@group(1) @binding(12) var depthPyramid: texture_2d<f32>;
+
+fn largestAxisScale(m: mat4x4f) -> f32 {
+    return sqrt(max(max(dot(m[0].xyz, m[0].xyz), dot(m[1].xyz, m[1].xyz)),
+                    dot(m[2].xyz, m[2].xyz)));
+}
+
+// Whether a sphere (world space) lies wholly outside one of the frustum's planes.
+fn sphereOutsideFrustum(center: vec3f, radius: f32) -> bool {
+    if (culling.frustumTest == 0u) {
+        return false;
+    }
+    for (var i = 0u; i < 6u; i++) {
+        let plane = culling.planes[i];
+        if (dot(plane.xyz, center) + plane.w < -radius) {
+            return true;
+        }
+    }
+    return false;
+}
+
+// Whether the pyramid proves a box hidden (`center` and `extent` in object space, moved by
+// `world`): the nearest depth of its eight corners lies behind the farthest depth drawn anywhere
+// over the pixels the box covers (as culling.wgsl's isOccluded).
+fn boxOccluded(center: vec3f, extent: vec3f, world: mat4x4f) -> bool {
+    let viewport = vec2f(f32(params.viewportWidth), f32(params.viewportHeight));
+    var low = vec2f(3.4e38);
+    var high = vec2f(-3.4e38);
+    var nearestDepth = 1.0;
+    for (var corner = 0u; corner < 8u; corner++) {
+        let side = select(vec3f(-1.0), vec3f(1.0),
+                          vec3<bool>((corner & 1u) != 0u, (corner & 2u) != 0u,
+                                     (corner & 4u) != 0u));
+        let clip = culling.viewProjection * (world * vec4f(center + side * extent, 1.0));
+        if (clip.w <= 1e-6 || clip.z < 0.0) {
+            return false;  // The box reaches the near plane: it may cover the whole view.
+        }
+        let ndc = clip.xyz / clip.w;
+        let pixel = vec2f(ndc.x * 0.5 + 0.5, 0.5 - ndc.y * 0.5) * viewport;
+        low = min(low, pixel);
+        high = max(high, pixel);
+        nearestDepth = min(nearestDepth, ndc.z);
+    }
+    return pyramidHides(depthPyramid, viewport, low, high, nearestDepth);
+}
