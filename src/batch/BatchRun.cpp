@@ -212,6 +212,8 @@ Result<BatchSummary> BatchRun::run() {
     // than a few views earn back.
     loadOptions.buildLevelsOfDetail = mOptions.lodErrorPixels > 0.0f;
     loadOptions.vertexCacheOrder = scene::VertexCacheOrder::Fast;
+    // Clusters only for the strategy that culls them: they doubled a dense model's load.
+    loadOptions.buildClusters = batchStrategy(mOptions).kind == render::StrategyKind::Visibility;
     loadOptions.maxImageDimension = mOptions.maxTextureSize;
     // One load per pool thread keeps them busy; encode tasks queue between them. With several
     // devices, each takes whichever model has loaded: a slow load holds up none of the others.
