@@ -239,7 +239,8 @@ static_assert(Cluster::kMaxTriangles <= 512 && Cluster::kMaxTriangles % 4 == 0,
 // A meshlet's local triangles index its vertex list in the source's order, so each triangle
 // keeps its corners' order.
 std::vector<Cluster> orderIntoClusters(std::vector<std::uint32_t>& indices,
-                                       const std::vector<glm::vec4>& positions) {
+                                       const std::vector<glm::vec4>& positions,
+                                       bool scan) {
     if (indices.empty() || positions.empty()) {
         return {};
     }
@@ -251,9 +252,13 @@ std::vector<Cluster> orderIntoClusters(std::vector<std::uint32_t>& indices,
     std::vector<unsigned char> meshletTriangles(bound * Cluster::kMaxTriangles * 3);
     const float* xyz = &positions[0].x;
     const std::size_t count =
-        meshopt_buildMeshlets(meshlets.data(), meshletVertices.data(), meshletTriangles.data(),
-                              indices.data(), indices.size(), xyz, vertexCount, sizeof(glm::vec4),
-                              kClusterVertices, Cluster::kMaxTriangles, kClusterConeWeight);
+        scan ? meshopt_buildMeshletsScan(meshlets.data(), meshletVertices.data(),
+                                         meshletTriangles.data(), indices.data(), indices.size(),
+                                         vertexCount, kClusterVertices, Cluster::kMaxTriangles)
+             : meshopt_buildMeshlets(meshlets.data(), meshletVertices.data(),
+                                     meshletTriangles.data(), indices.data(), indices.size(), xyz,
+                                     vertexCount, sizeof(glm::vec4), kClusterVertices,
+                                     Cluster::kMaxTriangles, kClusterConeWeight);
     std::vector<std::uint32_t> ordered;
     ordered.reserve(indices.size());
     std::vector<Cluster> clusters;
@@ -344,7 +349,8 @@ std::vector<SimplifiedLevel> simplifyChain(const SceneData& scene,
         orderForVertexCache(simplified, primitive.vertexCount, options.vertexCacheOrder);
         std::vector<Cluster> clusters;
         if (clustered) {
-            clusters = orderIntoClusters(simplified, positions);
+            clusters = orderIntoClusters(simplified, positions,
+                                         options.vertexCacheOrder == VertexCacheOrder::Fast);
         }
         spent += stepError;
         levels.push_back({std::move(simplified), spent * scale, std::move(clusters)});
@@ -535,7 +541,9 @@ Result<MeshOptimizerReport> optimizeMeshes(SceneData& scene, const MeshOptimizer
                 }
                 if (clustered) {
                     // Before the vertices are renumbered, so that they follow the final order.
-                    clusters = orderIntoClusters(indices, finitePositions(scene, primitive));
+                    clusters =
+                        orderIntoClusters(indices, finitePositions(scene, primitive),
+                                          options.vertexCacheOrder == VertexCacheOrder::Fast);
                 }
                 const bool renumber = streamsRenumberable(scene, primitive, readers);
                 if (renumber) {

@@ -121,6 +121,21 @@ TEST(MeshOptimizerClustersTest, ReorderingKeepsEveryTriangleWithItsCorners) {
     EXPECT_EQ(unchanged, sphere.indices);
 }
 
+// Scanned clusters (fast loads) are runs of the triangles in their order: the same triangles in
+// the same order, covered exactly once, each cluster within its bounds.
+TEST(MeshOptimizerClustersTest, ScannedClustersKeepTheOrderAndCoverEveryTriangle) {
+    const Sphere sphere = uvSphere(48, 64);
+    const std::vector<glm::vec4> positions = homogeneous(sphere.positions);
+    std::vector<std::uint32_t> indices = sphere.indices;
+    const std::vector<Cluster> clusters = orderIntoClusters(indices, positions, true);
+    EXPECT_EQ(indices, sphere.indices);
+    const auto triangles = std::uint32_t(indices.size() / 3);
+    expectClustersCover(clusters, 0, triangles, indices, positions);
+    // The sphere's rows in their own order reach 128 vertices sooner than a vertex-cache order.
+    EXPECT_GE(clusters.size(), triangles / 256);
+    EXPECT_LE(clusters.size(), triangles / 32);
+}
+
 // A cluster is culled by its cone only when each of its triangles faces away from the eye:
 // tested from points around the sphere, against every triangle's own facing.
 TEST(MeshOptimizerClustersTest, ConesCullOnlyClustersFacingAway) {
