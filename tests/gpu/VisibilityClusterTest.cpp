@@ -16,6 +16,7 @@
 #include "GltfBuilder.h"
 #include "GpuTestSupport.h"
 #include "RenderTestSupport.h"
+#include "VisibilityTestSupport.h"
 #include "encore/render/Renderer.h"
 #include "gpu/Readback.h"
 #include "image/ImageCompare.h"
@@ -108,16 +109,6 @@ std::unique_ptr<Renderer> renderer(gpu::Context& context,
     return result;
 }
 
-std::uint32_t readWord(gpu::Context& context, const wgpu::Buffer& buffer, std::uint64_t offset) {
-    auto bytes = gpu::readBuffer(context, buffer, offset, 4);
-    EXPECT_TRUE(bytes.ok());
-    std::uint32_t word = 0;
-    if (bytes.ok()) {
-        std::memcpy(&word, bytes->data(), 4);
-    }
-    return word;
-}
-
 // What the last frame did: triangles listed, taken by the rasterisers (compute and hardware:
 // front-facing, in the view, not degenerate) and in culled clusters. The raster passes fetch
 // and set up the listed triangles less the culled ones.
@@ -145,12 +136,12 @@ Frame render(gpu::Context& context, Renderer& renderer, const Camera& camera) {
     const auto* strategy = dynamic_cast<const VisibilityStrategy*>(renderer.strategy());
     EXPECT_NE(strategy, nullptr);
     if (strategy) {
-        frame.work.listed =
-            readWord(context, strategy->counters(), VisibilityStrategy::kListedTrianglesOffset);
-        frame.work.culled =
-            readWord(context, strategy->counters(), VisibilityStrategy::kCulledTrianglesOffset);
-        frame.work.rasterised = readWord(context, strategy->triangleCounts(), 0) +
-                                readWord(context, strategy->triangleCounts(), 4);
+        frame.work.listed = test::readWord(context, strategy->counters(),
+                                           VisibilityStrategy::kListedTrianglesOffset);
+        frame.work.culled = test::readWord(context, strategy->counters(),
+                                           VisibilityStrategy::kCulledTrianglesOffset);
+        frame.work.rasterised = test::readWord(context, strategy->triangleCounts(), 0) +
+                                test::readWord(context, strategy->triangleCounts(), 4);
     }
     return frame;
 }

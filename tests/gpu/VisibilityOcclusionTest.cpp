@@ -60,20 +60,10 @@ const VisibilityStrategy& visibilityOf(const Renderer& renderer) {
     return *strategy;
 }
 
-std::uint32_t readWord(gpu::Context& context, const wgpu::Buffer& buffer, std::uint64_t offset) {
-    auto bytes = gpu::readBuffer(context, buffer, offset, 4);
-    EXPECT_TRUE(bytes.ok());
-    std::uint32_t word = 0;
-    if (bytes.ok()) {
-        std::memcpy(&word, bytes->data(), 4);
-    }
-    return word;
-}
-
 // The triangles the last frame's cull listed (the chosen levels of the items it kept).
 std::uint32_t listedTriangles(gpu::Context& context, const Renderer& renderer) {
-    return readWord(context, visibilityOf(renderer).counters(),
-                    VisibilityStrategy::kListedTrianglesOffset);
+    return test::readWord(context, visibilityOf(renderer).counters(),
+                          VisibilityStrategy::kListedTrianglesOffset);
 }
 
 // Frames of a walk at object height through the scene, looking along it.
@@ -201,7 +191,7 @@ const float kAspect = float(kWidth) / float(kHeight);
 // The triangles the last frame rasterised: in compute, then in hardware.
 std::array<std::uint32_t, 2> rasteriserCounts(gpu::Context& context, const Renderer& renderer) {
     const auto& counts = visibilityOf(renderer).triangleCounts();
-    return {readWord(context, counts, 0), readWord(context, counts, 4)};
+    return {test::readWord(context, counts, 0), test::readWord(context, counts, 4)};
 }
 
 // The wall drawn by a compute workgroup (64 x 48 pixels) or, without workgroups, by the hardware:
@@ -313,7 +303,8 @@ TEST(VisibilityLevelsTest, LevelsListTheTrianglesGpuCullingDraws) {
             test::expectVisibilityClose(expected, image);
             const auto counts = reference->strategy()->gpuTriangleCounts();
             ASSERT_TRUE(counts.has_value());
-            const std::uint32_t drawn = readWord(*context, counts->buffer, counts->hardwareOffset);
+            const std::uint32_t drawn =
+                test::readWord(*context, counts->buffer, counts->hardwareOffset);
             EXPECT_EQ(listedTriangles(*context, *visibility), drawn) << "error " << lodError;
             frame(*full, framed);
             EXPECT_LT(drawn, listedTriangles(*context, *full)) << "no coarser level chosen";
@@ -356,7 +347,7 @@ TEST(VisibilityLevelsTest, MultiViewFramesChooseLevelsAsGpuCulling) {
     const auto counts = reference->strategy()->gpuTriangleCounts();
     ASSERT_TRUE(counts.has_value());
     const std::uint32_t listed = listedTriangles(*context, *visibility);
-    EXPECT_EQ(listed, readWord(*context, counts->buffer, counts->hardwareOffset));
+    EXPECT_EQ(listed, test::readWord(*context, counts->buffer, counts->hardwareOffset));
     EXPECT_LT(listed, visibilityOf(*visibility).tables().triangleCount) << "all at level 0";
     EXPECT_TRUE(context->checkNoErrors("visibility multi-view levels").ok());
 }

@@ -6,8 +6,10 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <cstring>
 
 #include "RenderTestSupport.h"
+#include "gpu/Readback.h"
 #include "image/ImageCompare.h"
 #include "scene/SceneGenerator.h"
 
@@ -26,6 +28,19 @@ inline void expectVisibilityClose(const image::ImageRgba8& expected,
     EXPECT_GE(*ssim, minSsim);
     const std::size_t pixels = std::size_t(image.width) * image.height;
     EXPECT_LE(double(differingPixels(expected, image, 2)), double(pixels) * maxDiffering);
+}
+
+// The u32 at `offset` of `buffer` (CopySrc): the visibility strategy's counters.
+inline std::uint32_t readWord(gpu::Context& context,
+                              const wgpu::Buffer& buffer,
+                              std::uint64_t offset) {
+    auto bytes = gpu::readBuffer(context, buffer, offset, 4);
+    EXPECT_TRUE(bytes.ok());
+    std::uint32_t word = 0;
+    if (bytes.ok()) {
+        std::memcpy(&word, bytes->data(), 4);
+    }
+    return word;
 }
 
 // A generated scene of `objects` objects in `layout`: six meshes, four materials, textured.
