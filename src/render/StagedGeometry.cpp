@@ -59,33 +59,28 @@ std::unique_ptr<StagedGeometry> StagedGeometry::stage(const scene::SceneData& sc
             target.pieces.push_back(std::move(piece));
         }
         for (const auto& each : target.pieces) {
-            run([each, done = staged->mDone] { copy(*each, *done); });
+            run([each, finished = staged->mFinished] {
+                each->copy.run(*finished, [&] { copyParts(*each); });
+            });
         }
     }
     return staged;
 }
 
 StagedGeometry::~StagedGeometry() {
-    // Pieces not started are claimed here, so their tasks do nothing; running ones write into
-    // the buffers and read the scene: wait for them.
-    std::unique_lock lock(mDone->mutex);
+    // Pieces not started never run; running ones write into the buffers and read the scene:
+    // wait for them.
     for (const Staged& staged : mStaged) {
         for (const auto& piece : staged.pieces) {
-            if (piece->claimed.exchange(true)) {
-                mDone->copied.wait(lock, [&] { return piece->copied; });
-            }
+            piece->copy.cancel(*mFinished);
         }
     }
-    lock.unlock();
     for (Staged& staged : mStaged) {
         mBuffers->giveBack(std::move(staged.buffer), !staged.unmapped);
     }
 }
 
-void StagedGeometry::copy(Piece& piece, Done& done) {
-    if (piece.claimed.exchange(true)) {
-        return;
-    }
+void StagedGeometry::copyParts(const Piece& piece) {
     for (const Piece::Part& part : piece.parts) {
         if (part.source) {
             copyBytes(part.destination, part.source, part.length);
@@ -93,11 +88,6 @@ void StagedGeometry::copy(Piece& piece, Done& done) {
             std::memset(part.destination, 0, part.length);
         }
     }
-    {
-        std::lock_guard lock(done.mutex);
-        piece.copied = true;
-    }
-    done.copied.notify_all();
 }
 
 wgpu::Buffer StagedGeometry::copySource(std::size_t index) {
@@ -106,15 +96,11 @@ wgpu::Buffer StagedGeometry::copySource(std::size_t index) {
     }
     Staged& staged = mStaged[index];
     if (!staged.unmapped) {
-        for (const auto& piece : staged.pieces) {
-            copy(*piece, *mDone);  // Nothing when a worker has it.
+        for (const auto& piece : staged.pieces) {  // Nothing for those a worker has.
+            piece->copy.run(*mFinished, [&] { copyParts(*piece); });
         }
-        {
-            std::unique_lock lock(mDone->mutex);
-            mDone->copied.wait(lock, [&] {
-                return std::all_of(staged.pieces.begin(), staged.pieces.end(),
-                                   [](const auto& piece) { return piece->copied; });
-            });
+        for (const auto& piece : staged.pieces) {
+            piece->copy.wait(*mFinished);
         }
         staged.buffer.Unmap();
         staged.unmapped = true;

@@ -17,14 +17,12 @@
 
 #include <webgpu/webgpu_cpp.h>
 
-#include <atomic>
-#include <condition_variable>
 #include <cstdint>
 #include <functional>
 #include <memory>
-#include <mutex>
 #include <vector>
 
+#include "core/ClaimedTask.h"
 #include "encore/scene/SceneData.h"
 #include "gpu/StagingBuffers.h"
 #include "render/SharedGeometryLayout.h"
@@ -58,10 +56,6 @@ class StagedGeometry {
     std::uint64_t bytes() const { return mBytes; }
 
   private:
-    struct Done {
-        std::mutex mutex;
-        std::condition_variable copied;
-    };
     // One task's copies: bytes of views (source set) and zeros (source null) into a mapping.
     struct Piece {
         struct Part {
@@ -70,8 +64,7 @@ class StagedGeometry {
             std::uint64_t length = 0;
         };
         std::vector<Part> parts;
-        std::atomic<bool> claimed{false};  // A thread has taken the copy.
-        bool copied = false;               // Guarded by Done::mutex.
+        ClaimedTask copy;
     };
     struct Staged {
         wgpu::Buffer buffer;
@@ -79,11 +72,12 @@ class StagedGeometry {
         bool unmapped = false;
     };
     StagedGeometry() = default;
-    static void copy(Piece& piece, Done& done);
+    static void copyParts(const Piece& piece);
 
     SharedGeometryLayout mLayout;
     std::vector<Staged> mStaged;  // Per shared buffer.
-    std::shared_ptr<Done> mDone = std::make_shared<Done>();
+    // Shared with the copy tasks, which may run after this object is gone.
+    std::shared_ptr<ClaimedTask::Finished> mFinished = std::make_shared<ClaimedTask::Finished>();
     std::shared_ptr<gpu::StagingBuffers> mBuffers;
     std::uint64_t mBytes = 0;
 };

@@ -43,22 +43,22 @@ std::unique_ptr<StagedImages> StagedImages::stage(const wgpu::Device& device,
             continue;  // Out of memory: WriteTexture will try (and report) instead.
         }
         staged->mBytes += size;
-        run([image, done = staged->mDone] { copy(*image, *done); });
+        run([image, finished = staged->mFinished] {
+            image->copy.run(*finished, [&] { copyRows(*image); });
+        });
         staged->mImages[index] = std::move(image);
     }
     return staged;
 }
 
 StagedImages::~StagedImages() {
-    // Copies not started are claimed here, so their tasks do nothing; running ones write into
-    // the buffers and read the scene: wait for them.
-    std::unique_lock lock(mDone->mutex);
+    // Copies not started never run; running ones write into the buffers and read the scene:
+    // wait for them.
     for (const auto& image : mImages) {
-        if (image && image->claimed.exchange(true)) {
-            mDone->copied.wait(lock, [&] { return image->copied; });
+        if (image) {
+            image->copy.cancel(*mFinished);
         }
     }
-    lock.unlock();
     if (mBuffers) {
         for (const auto& image : mImages) {
             if (image) {
@@ -68,10 +68,7 @@ StagedImages::~StagedImages() {
     }
 }
 
-void StagedImages::copy(Image& image, Done& done) {
-    if (image.claimed.exchange(true)) {
-        return;
-    }
+void StagedImages::copyRows(const Image& image) {
     const scene::Image& source = *image.source;
     const std::uint32_t rowBytes = source.width * 4;
     if (rowBytes == image.bytesPerRow) {
@@ -82,11 +79,6 @@ void StagedImages::copy(Image& image, Done& done) {
                         source.rgba8.data() + std::size_t(y) * rowBytes, rowBytes);
         }
     }
-    {
-        std::lock_guard lock(done.mutex);
-        image.copied = true;
-    }
-    done.copied.notify_all();
 }
 
 std::optional<wgpu::TexelCopyBufferInfo> StagedImages::copySource(scene::ImageId id) {
@@ -95,11 +87,8 @@ std::optional<wgpu::TexelCopyBufferInfo> StagedImages::copySource(scene::ImageId
     }
     Image& image = *mImages[id.index()];
     if (!image.unmapped) {
-        copy(image, *mDone);  // Nothing when a worker has it.
-        {
-            std::unique_lock lock(mDone->mutex);
-            mDone->copied.wait(lock, [&] { return image.copied; });
-        }
+        image.copy.run(*mFinished, [&] { copyRows(image); });  // Nothing when a worker has it.
+        image.copy.wait(*mFinished);
         image.buffer.Unmap();
         image.unmapped = true;
     }

@@ -16,15 +16,13 @@
 
 #include <webgpu/webgpu_cpp.h>
 
-#include <atomic>
-#include <condition_variable>
 #include <cstdint>
 #include <functional>
 #include <memory>
-#include <mutex>
 #include <optional>
 #include <vector>
 
+#include "core/ClaimedTask.h"
 #include "encore/scene/SceneData.h"
 #include "gpu/StagingBuffers.h"
 
@@ -57,27 +55,20 @@ class StagedImages {
     std::uint64_t bytes() const { return mBytes; }
 
   private:
-    // What a copy task shares with this object: the tasks may run after it is gone (they then
-    // find their image claimed and do nothing).
-    struct Done {
-        std::mutex mutex;
-        std::condition_variable copied;
-    };
     struct Image {
         wgpu::Buffer buffer;
         std::uint8_t* mapped = nullptr;
         const scene::Image* source = nullptr;
         std::uint32_t bytesPerRow = 0;
-        std::atomic<bool> claimed{false};  // A thread has taken the copy.
-        bool copied = false;               // Guarded by Done::mutex.
-        bool unmapped = false;             // The device thread's only.
+        ClaimedTask copy;       // Of the rows into the mapping.
+        bool unmapped = false;  // The device thread's only.
     };
     StagedImages() = default;
-    // Copies the rows of `image` unless another thread has taken them.
-    static void copy(Image& image, Done& done);
+    static void copyRows(const Image& image);
 
     std::vector<std::shared_ptr<Image>> mImages;  // Indexed by ImageId; null: not staged.
-    std::shared_ptr<Done> mDone = std::make_shared<Done>();
+    // Shared with the copy tasks, which may run after this object is gone.
+    std::shared_ptr<ClaimedTask::Finished> mFinished = std::make_shared<ClaimedTask::Finished>();
     std::shared_ptr<gpu::StagingBuffers> mBuffers;
     std::uint64_t mBytes = 0;
 };
