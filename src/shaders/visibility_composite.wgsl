@@ -29,6 +29,18 @@ fn vertexMain(@builtin(vertex_index) vertex: u32) -> @builtin(position) vec4f {
     return vec4f(uv * 2.0 - 1.0, 0.0, 1.0);
 }
 
+// The sample whose shaded colour triangle `id`, covering `sample` of the pixel whose entries start
+// at `first`, takes: its first sample there (where visibility_bins.wgsl lists it).
+fn shadedSampleOf(first: u32, sample: u32, id: u32) -> u32 {
+    for (var earlier = 0u; earlier < sample; earlier++) {
+        let other = visibility[first + earlier];
+        if (other.y != 0u && other.x == id) {
+            return earlier;
+        }
+    }
+    return sample;
+}
+
 struct FragmentOutput {
     @location(0) color: vec4f,
     @builtin(frag_depth) depth: f32,
@@ -44,16 +56,8 @@ fn fragmentMain(@builtin(position) position: vec4f, @builtin(sample_index) sampl
     if (key.y == 0u) {
         discard;
     }
-    var shadedAt = sample;
-    for (var earlier = 0u; earlier < sample; earlier++) {
-        let other = visibility[first + earlier];
-        if (other.y != 0u && other.x == key.x) {
-            shadedAt = earlier;
-            break;
-        }
-    }
     var output: FragmentOutput;
-    output.color = textureLoad(shaded, pixel, shadedAt, 0);
+    output.color = textureLoad(shaded, pixel, shadedSampleOf(first, sample, key.x), 0);
     output.depth = bitcast<f32>(~key.y);
     return output;
 }
@@ -63,24 +67,15 @@ fn pixelMain(@builtin(position) position: vec4f) -> @location(0) vec4f {
     let pixel = vec2u(position.xy);
     let width = textureDimensions(shaded).x;
     let first = (pixel.y * width + pixel.x) * kSamples;
-    var keys: array<vec2u, kSamples>;
     // Per sample: how many covered samples take the colour shaded there (its triangle's first).
     var weights: array<f32, kSamples>;
     var covered = false;
     for (var sample = 0u; sample < kSamples; sample++) {
-        keys[sample] = visibility[first + sample];
-        if (keys[sample].y == 0u) {
-            continue;
+        let key = visibility[first + sample];
+        if (key.y != 0u) {
+            covered = true;
+            weights[shadedSampleOf(first, sample, key.x)] += 1.0;
         }
-        covered = true;
-        var shadedAt = sample;
-        for (var earlier = 0u; earlier < sample; earlier++) {
-            if (keys[earlier].y != 0u && keys[earlier].x == keys[sample].x) {
-                shadedAt = earlier;
-                break;
-            }
-        }
-        weights[shadedAt] += 1.0;
     }
     if (!covered) {
         discard;
