@@ -103,13 +103,6 @@ Result<void> Renderer::build(const RendererOptions& options) {
                                            RenderTarget::kDepthFormat, options.target.sampleCount,
                                            renderer.mPassTargets ? kPassTargetCount : 0));
     renderer.mBackground = std::make_unique<EnvironmentBackground>(std::move(background));
-    if (options.target.sampleCount > 1) {
-        ENCORE_TRY_ASSIGN(auto resolved,
-                          EnvironmentBackground::create(
-                              context.device(), *renderer.mShaders, renderer.mLayouts->frame,
-                              renderer.mTarget.sceneFormat(), wgpu::TextureFormat::Undefined, 1));
-        renderer.mResolvedBackground = std::make_unique<EnvironmentBackground>(std::move(resolved));
-    }
 
     renderer.mSetup = std::make_unique<RenderSetup>();
     RenderSetup& setup = *renderer.mSetup;
@@ -329,6 +322,15 @@ Result<void> Renderer::prepareStrategy(StrategyKind kind,
     ENCORE_TRY(mContext->checkNoErrors(what));
     times.checks = millisecondsSince(start);
     mStrategy = std::move(strategy);
+    if (mTarget.sampleCount() > 1 && !mResolvedBackground && mStrategy->composesResolved()) {
+        // Made by the first strategy that draws resolved passes (RendererFrame.cpp), not by
+        // every multisampled renderer.
+        ENCORE_TRY_ASSIGN(auto resolved,
+                          EnvironmentBackground::create(mContext->device(), *mShaders,
+                                                        mLayouts->frame, mTarget.sceneFormat(),
+                                                        wgpu::TextureFormat::Undefined, 1));
+        mResolvedBackground = std::make_unique<EnvironmentBackground>(std::move(resolved));
+    }
     if (mOptions.animation == AnimationEvaluation::Gpu && !mGpuAnimation) {
         ENCORE_TRY(createGpuAnimation());  // Once per GPU scene.
     } else if (mGpuAnimation) {

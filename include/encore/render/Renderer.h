@@ -352,8 +352,8 @@ class Renderer {
     std::unique_ptr<ToneMapper> mToneMapper;           // HDR targets only.
     std::unique_ptr<PassTargetTextures> mPassTargets;  // RendererOptions::passTargets only.
     std::unique_ptr<EnvironmentBackground> mBackground;
-    // At one sample without depth, for resolved passes (Strategy::composesResolved); only on
-    // multisampled targets.
+    // At one sample without depth, for resolved passes (Strategy::composesResolved): made on
+    // a multisampled target by the first strategy that draws them.
     std::unique_ptr<EnvironmentBackground> mResolvedBackground;
     std::unique_ptr<RenderSetup> mSetup;  // Stable address: strategies keep pointers to it.
     std::unique_ptr<PipelineCache> mKeptPipelines;      // With RendererOptions::keepPipelines.
