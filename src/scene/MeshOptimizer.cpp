@@ -233,6 +233,10 @@ constexpr std::size_t kClusterVertices = 128;
 constexpr float kClusterConeWeight = 0.25f;
 static_assert(Cluster::kMaxTriangles <= 512 && Cluster::kMaxTriangles % 4 == 0,
               "meshopt_buildMeshlets' limits");
+// meshopt_computeMeshletBounds multiplies coordinate differences: past this magnitude the
+// products overflow a float, and its assertion on the NaN that follows aborts the process (a
+// file found by encore_fuzz_load). Real assets lie far within it.
+constexpr float kMaxClusterCoordinate = 1e9f;
 
 }  // namespace
 
@@ -241,7 +245,11 @@ static_assert(Cluster::kMaxTriangles <= 512 && Cluster::kMaxTriangles % 4 == 0,
 std::vector<Cluster> orderIntoClusters(std::vector<std::uint32_t>& indices,
                                        const std::vector<glm::vec4>& positions,
                                        bool scan) {
-    if (indices.empty() || positions.empty()) {
+    const auto huge = [](const glm::vec4& p) {
+        return std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}) > kMaxClusterCoordinate;
+    };
+    if (indices.empty() || positions.empty() ||
+        std::any_of(positions.begin(), positions.end(), huge)) {
         return {};
     }
     const std::size_t vertexCount = positions.size();

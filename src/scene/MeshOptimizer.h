@@ -91,7 +91,8 @@ Result<MeshOptimizerReport> optimizeMeshes(SceneData& scene,
 // Cluster::kMaxTriangles triangles and 128 vertices each, their spheres and normal cones from
 // meshopt_computeMeshletBounds) and returns the clusters, their first triangles counted from the
 // level's first. The triangles stay the same, each with its corners in the same order. Returns
-// nothing, `indices` unchanged, for no triangles or no positions. `scan`: clusters of
+// nothing, `indices` unchanged, for no triangles, no positions, or positions past 1e9 in
+// magnitude (meshoptimizer's bounds would overflow there). `scan`: clusters of
 // consecutive triangles in the order they have (meshopt_buildMeshletsScan; with the
 // vertex-cache order, local enough), for VertexCacheOrder::Fast loads: on a dense generated model
 // the spatial builder tripled the load (on the H100's host 50 -> 330 ms per model), the scan

@@ -121,6 +121,22 @@ TEST(MeshOptimizerClustersTest, ReorderingKeepsEveryTriangleWithItsCorners) {
     EXPECT_EQ(unchanged, sphere.indices);
 }
 
+// Positions whose products overflow a float (a fuzzed file's) get no clusters rather than
+// meshoptimizer's assertion on the NaN bounds: the order stays, the load goes on.
+TEST(MeshOptimizerClustersTest, HugeCoordinatesGetNoClusters) {
+    const Sphere sphere = uvSphere(8, 12);
+    std::vector<glm::vec4> positions = homogeneous(sphere.positions);
+    positions[3].y = 3e37f;
+    for (const bool scan : {false, true}) {
+        std::vector<std::uint32_t> indices = sphere.indices;
+        EXPECT_TRUE(orderIntoClusters(indices, positions, scan).empty());
+        EXPECT_EQ(indices, sphere.indices);
+    }
+    positions[3].y = 1e8f;  // Large, within the bound: clustered.
+    std::vector<std::uint32_t> indices = sphere.indices;
+    EXPECT_FALSE(orderIntoClusters(indices, positions).empty());
+}
+
 // Scanned clusters (fast loads) are runs of the triangles in their order: the same triangles in
 // the same order, covered exactly once, each cluster within its bounds.
 TEST(MeshOptimizerClustersTest, ScannedClustersKeepTheOrderAndCoverEveryTriangle) {
