@@ -30,8 +30,9 @@ Result<RenderTarget> RenderTarget::create(const wgpu::Device& device,
     output.size = {options.width, options.height, 1};
     output.format = kColorFormat;
     // TextureBinding: the transmission pass copies the scene colour from it (without HDR).
+    // CopyDst: strategies that compose the frame in compute copy it in (Strategy::composeFrame).
     output.usage = wgpu::TextureUsage::RenderAttachment | wgpu::TextureUsage::CopySrc |
-                   wgpu::TextureUsage::TextureBinding;
+                   wgpu::TextureUsage::TextureBinding | wgpu::TextureUsage::CopyDst;
     constexpr wgpu::TextureFormat kBytesFormat = wgpu::TextureFormat::RGBA8Unorm;
     const bool bytesView = options.presentable || options.bytesViews;
     if (bytesView) {
@@ -53,7 +54,7 @@ Result<RenderTarget> RenderTarget::create(const wgpu::Device& device,
         scene.viewFormatCount = 0;
         scene.viewFormats = nullptr;
         scene.usage = wgpu::TextureUsage::RenderAttachment | wgpu::TextureUsage::TextureBinding |
-                      wgpu::TextureUsage::CopySrc;
+                      wgpu::TextureUsage::CopySrc | wgpu::TextureUsage::CopyDst;
         target.mScene = device.CreateTexture(&scene);
         target.mSceneView = target.mScene.CreateView();
     } else {

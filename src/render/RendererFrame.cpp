@@ -61,6 +61,10 @@ FrameResult Renderer::renderPasses(std::span<const Camera> cameras,
     // Straight into the resolved texture at one sample (Strategy::composesResolved).
     const bool resolvedPasses = mResolvedBackground && !twoPhases && !transmission &&
                                 !mPassTargets && mStrategy && mStrategy->composesResolved();
+    // Every pixel composed in compute (Strategy::composesFrame): no scene render pass at all.
+    const bool composedFrame = mStrategy && !twoPhases && !transmission && !mPassTargets &&
+                               mOptions.toneMapping.background != BackgroundKind::Environment &&
+                               mStrategy->composesFrame(state);
     auto encodeFrame = [&](const wgpu::CommandEncoder& commandEncoder) {
         if (mGpuAnimation && mGpuAnimationPending) {
             mGpuAnimation->encode(commandEncoder);  // Before anything that reads its results.
@@ -147,7 +151,19 @@ FrameResult Renderer::renderPasses(std::span<const Camera> cameras,
             }
             pass.End();
         };
-        if (twoPhases) {
+        if (composedFrame) {
+            PassPlan plan;
+            plan.viewCount = cameras.size();
+            plan.hdr = mTarget.hdr();
+            plan.backgroundColor = mOptions.toneMapping.backgroundColor;
+            const PassAttachments attachments = passAttachments(plan);
+            FrameComposition composition;
+            composition.texture = mTarget.sceneTexture();
+            composition.background = attachments.clearColor;
+            composition.timestampWrites =
+                timestampWrites(GpuStage::Scene, attachments.timestampLabel);
+            mStrategy->composeFrame(commandEncoder, state, composition);
+        } else if (twoPhases) {
             encodePass(0, DrawPhase::First, false);
             mStrategy->betweenPhases(commandEncoder, state, mTarget.depthTexture());
             encodePass(0, DrawPhase::Second, false);

@@ -1,4 +1,4 @@
-// The visibility strategy's last step, inside the frame's render pass: a fullscreen triangle
+// The visibility strategy's last step. Inside the frame's render pass: a fullscreen triangle
 // that copies each covered sample's shaded colour into the target and its visibility-buffer
 // depth into the depth attachment (for the background, the hardware-drawn rest of the scene and
 // blended geometry after it); uncovered samples are discarded. It runs per sample
@@ -12,6 +12,11 @@
 // alpha is the covered fraction). Every sample of the pixel then holds what the resolve would
 // average them to, which keeps the multisampled target compressed (on the H100 writing chosen
 // samples, sample_mask, cost three times a one-sample target's pass).
+// With a plain background colour, composeMain does pixelMain's work in compute instead, for
+// every pixel (uncovered ones take the background), into a buffer of the target's texels that
+// is then copied into the target (Strategy::composeFrame): no render pass at all, whose every
+// fragment costs the H100's few graphics units about 0.3 ns. HALF_OUTPUT: RGBA16Float texels
+// (HDR targets); otherwise RGBA8 bytes, sRGB-encoded as the sRGB target's hardware encodes.
 #include "visibility_samples.wgsl"
 
 #if MULTISAMPLED
@@ -62,23 +67,26 @@ fn fragmentMain(@builtin(position) position: vec4f, @builtin(sample_index) sampl
     return output;
 }
 
-@fragment
-fn pixelMain(@builtin(position) position: vec4f) -> @location(0) vec4f {
-    let pixel = vec2u(position.xy);
+// The covered samples of `pixel` averaged over the sample count: the sum of their colours (each
+// triangle's colour loaded once, weighted by the samples it covers) over kSamples, so that alpha
+// is the covered fraction (premultiplied). `covered`: whether any sample is.
+struct PixelColor {
+    color: vec4f,
+    covered: bool,
+}
+
+fn pixelColor(pixel: vec2u) -> PixelColor {
     let width = textureDimensions(shaded).x;
     let first = (pixel.y * width + pixel.x) * kSamples;
     // Per sample: how many covered samples take the colour shaded there (its triangle's first).
     var weights: array<f32, kSamples>;
-    var covered = false;
+    var result: PixelColor;
     for (var sample = 0u; sample < kSamples; sample++) {
         let key = visibility[first + sample];
         if (key.y != 0u) {
-            covered = true;
+            result.covered = true;
             weights[shadedSampleOf(first, sample, key.x)] += 1.0;
         }
-    }
-    if (!covered) {
-        discard;
     }
     var sum = vec4f(0.0);
     for (var sample = 0u; sample < kSamples; sample++) {
@@ -86,5 +94,47 @@ fn pixelMain(@builtin(position) position: vec4f) -> @location(0) vec4f {
             sum += weights[sample] * textureLoad(shaded, pixel, sample, 0);
         }
     }
-    return sum / f32(kSamples);
+    result.color = sum / f32(kSamples);
+    return result;
+}
+
+@fragment
+fn pixelMain(@builtin(position) position: vec4f) -> @location(0) vec4f {
+    let pixel = pixelColor(vec2u(position.xy));
+    if (!pixel.covered) {
+        discard;
+    }
+    return pixel.color;
+}
+
+struct Composition {
+    background: vec4f,  // Linear: the scene pass's clear colour.
+    size: vec2u,        // The target's, in pixels.
+    rowTexels: u32,     // The composed buffer's row pitch (rows of 256-byte multiples).
+}
+
+@group(0) @binding(2) var<storage, read_write> composed: array<u32>;
+@group(0) @binding(3) var<uniform> composition: Composition;
+
+// The sRGB transfer function, as an sRGB target encodes a linear colour it is given.
+fn srgbEncoded(linear: vec3f) -> vec3f {
+    let c = clamp(linear, vec3f(0.0), vec3f(1.0));
+    return select(1.055 * pow(c, vec3f(1.0 / 2.4)) - 0.055, 12.92 * c, c <= vec3f(0.0031308));
+}
+
+@compute @workgroup_size(8, 8)
+fn composeMain(@builtin(global_invocation_id) id: vec3u) {
+    if (any(id.xy >= composition.size)) {
+        return;
+    }
+    // pixelMain's colour blended premultiplied over the background, as its pipeline blends.
+    let pixel = pixelColor(id.xy);
+    let color = pixel.color + (1.0 - pixel.color.a) * composition.background;
+    let texel = id.y * composition.rowTexels + id.x;
+#if HALF_OUTPUT
+    composed[texel * 2u] = pack2x16float(color.rg);
+    composed[texel * 2u + 1u] = pack2x16float(color.ba);
+#else
+    composed[texel] = pack4x8unorm(vec4f(srgbEncoded(color.rgb), color.a));
+#endif
 }

@@ -77,14 +77,19 @@ TEST(ViewerHooksTest, ResizingKeepsTheRecordedBundlesAndRendersLikeANewTarget) {
     }
 }
 
+// With an environment background, drawn in the frame's render pass: with a plain colour the
+// visibility strategy composes its frame in compute and records no render pass to replay
+// (Strategy::composesFrame), while its bundled form still draws the composite from a bundle.
 TEST(ViewerHooksTest, EveryStrategyCanDrawItsFrameFromABundle) {
     ENCORE_REQUIRE_VULKAN(context);
     const scene::SceneData scene = generatedScene();
     const Camera camera = Camera::framing(scene.bounds, 1.0f);
+    RendererOptions withEnvironment = options(64, 64);
+    withEnvironment.toneMapping.background = BackgroundKind::Environment;
     for (StrategyKind kind : allStrategies()) {
         SCOPED_TRACE(strategyName(kind));
-        auto direct = Renderer::create(*context, options(64, 64));
-        auto bundled = Renderer::create(*context, options(64, 64));
+        auto direct = Renderer::create(*context, withEnvironment);
+        auto bundled = Renderer::create(*context, withEnvironment);
         ASSERT_TRUE(direct.ok() && bundled.ok());
         // A bundled kind (bundles, gpu-culling-bundles) is compared with its direct kind.
         ASSERT_TRUE(direct->prepare(scene, directKind(kind).value_or(kind)).ok());

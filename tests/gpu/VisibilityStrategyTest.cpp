@@ -421,15 +421,19 @@ TEST(VisibilityMultisampleTest, EachTriangleOfAPixelIsShadedOnce) {
 // depth), once per sample into the multisampled target. Both resolve to the same picture; the last
 // triangle, MASK or not, lies behind the camera, so it adds no pixel of its own (triangles()
 // colours each by its place in the list: both lists have it).
-TEST(VisibilityMultisampleTest, PerPixelAndPerSampleCompositesResolveAlike) {
-    ENCORE_REQUIRE_VULKAN(context);
-    std::vector<std::array<glm::vec3, 3>> shapes = {
+std::vector<std::array<glm::vec3, 3>> compositeShapes() {
+    return {
         {glm::vec3(-3, -1.1f, -1), glm::vec3(1, -0.6f, -1), glm::vec3(-1, 1.4f, -1)},
         {glm::vec3(-0.5f, -0.6f, -0.3f), glm::vec3(0.5f, -0.5f, 0.3f), glm::vec3(0.1f, 0.5f, 0.0f)},
         {glm::vec3(-0.6f, -0.3f, 0.2f), glm::vec3(0.6f, -0.2f, 0.2f), glm::vec3(0.0f, 0.4f, -0.2f)},
         {glm::vec3(-2, -2.5f, 5), glm::vec3(2, -2.5f, 5), glm::vec3(0, -1.0f, -4)},
+        {glm::vec3(-1, -1, 50), glm::vec3(1, -1, 50), glm::vec3(0, 1, 50)},  // Behind the camera.
     };
-    shapes.push_back({glm::vec3(-1, -1, 50), glm::vec3(1, -1, 50), glm::vec3(0, 1, 50)});
+}
+
+TEST(VisibilityMultisampleTest, PerPixelAndPerSampleCompositesResolveAlike) {
+    ENCORE_REQUIRE_VULKAN(context);
+    const auto shapes = compositeShapes();
     for (DebugChannel channel : {DebugChannel::BaseColor, DebugChannel::Shaded}) {
         const auto perPixel = render(*context, triangles(shapes), StrategyKind::Visibility, kFront,
                                      channel, VisibilityStrategy::kDefaultComputePixels,
@@ -450,6 +454,59 @@ TEST(VisibilityMultisampleTest, PerPixelAndPerSampleCompositesResolveAlike) {
     ASSERT_TRUE(renderer->prepare(masked, StrategyKind::Visibility).ok());
     EXPECT_FALSE(renderer->strategy()->composesResolved());
     EXPECT_TRUE(context->checkNoErrors("visibility composites").ok());
+}
+
+// With a plain background colour, nothing drawn after the composite and any sample count, the
+// frame is composed in compute and copied into the target (Strategy::composeFrame): the frame
+// records no draw. With an environment background, the render pass composes it (pixelMain).
+// Either way the picture is the per-sample composite's in the render pass (the MASK triangle
+// behind the camera selects it) within a level, into the sRGB output and into an HDR target
+// (a transparent background: alpha is the coverage the tone mapper keeps).
+TEST(VisibilityCompositionTest, ComposedInComputeAsInTheRenderPass) {
+    ENCORE_REQUIRE_VULKAN(context);
+    const auto shapes = compositeShapes();
+    for (std::uint32_t samples : kSampleCounts) {
+        for (BackgroundKind background :
+             {BackgroundKind::Color, BackgroundKind::Transparent, BackgroundKind::Environment}) {
+            SCOPED_TRACE(std::to_string(samples) + " samples, background " +
+                         std::to_string(int(background)));
+            RendererOptions options =
+                test::pixelTestOptions(kWidth, kHeight, samples, DebugChannel::Shaded);
+            options.toneMapping.background = background;
+            options.toneMapping.backgroundColor = glm::vec3(0.2f, 0.05f, 0.6f);
+            auto draw = [&](const scene::SceneData& scene, std::uint64_t& draws) {
+                auto renderer = Renderer::create(*context, options);
+                EXPECT_TRUE(renderer.ok());
+                if (!renderer.ok() || !renderer->prepare(scene, StrategyKind::Visibility).ok()) {
+                    ADD_FAILURE() << "no renderer";
+                    return image::ImageRgba8{};
+                }
+                draws = renderer->renderFrame(kFront).counters.draw;
+                auto image = renderer->readImage();
+                EXPECT_TRUE(image.ok());
+                return image.ok() ? std::move(*image) : image::ImageRgba8{};
+            };
+            std::uint64_t composedDraws = 0;
+            std::uint64_t perSampleDraws = 0;
+            const auto composed = draw(triangles(shapes), composedDraws);
+            const auto perSample =
+                draw(triangles(shapes, "MASK", shapes.size() - 1), perSampleDraws);
+            EXPECT_EQ(composedDraws, background == BackgroundKind::Environment ? 1u : 0u);
+            EXPECT_GE(perSampleDraws, 2u);  // The composite and the MASK triangle.
+            EXPECT_EQ(test::differingPixels(perSample, composed, 1), 0u);
+            if (background == BackgroundKind::Transparent) {
+                EXPECT_EQ(test::pixelAt(composed, 0, 0)[3], 0);  // Nothing covers the corner.
+            } else if (background == BackgroundKind::Color) {
+                const auto corner = test::pixelAt(composed, 0, 0);
+                EXPECT_NEAR(corner[0], 124, 1);  // 0.2 linear, sRGB-encoded.
+                EXPECT_NEAR(corner[2], 203, 1);  // 0.6.
+            }
+            if (samples > 1) {
+                EXPECT_GE(blendedEdgePixels(composed, glm::vec3(-1, 0, -1)), 60u);
+            }
+        }
+    }
+    EXPECT_TRUE(context->checkNoErrors("visibility composition").ok());
 }
 
 TEST(VisibilityFallbackTest, MaskBlendAndSkinnedGeometryIsDrawn) {

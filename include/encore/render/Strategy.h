@@ -59,6 +59,14 @@ struct FrameState {
     bool resolvedPass = false;
 };
 
+// Where a strategy that composes the frame in compute (Strategy::composesFrame) writes it.
+struct FrameComposition {
+    wgpu::Texture texture;  // One sample, CopyDst: RGBA8UnormSrgb, or RGBA16Float with HDR.
+    // What a pixel nothing covers holds: the scene pass's clear colour (linear).
+    wgpu::Color background{0.0, 0.0, 0.0, 0.0};
+    const wgpu::PassTimestampWrites* timestampWrites = nullptr;  // For the composing pass.
+};
+
 class GpuCuller;
 class GpuScene;
 
@@ -118,6 +126,24 @@ class Strategy {
     // (FrameState::resolvedPass), and skips the multisampled target, its clears and its resolve
     // (on the H100's few graphics units those cost about four times a one-sample pass).
     virtual bool composesResolved() const { return false; }
+
+    // Whether the strategy writes every pixel of the frame itself in compute (composeFrame),
+    // so that the renderer records no scene render pass at all. Asked only for frames the
+    // renderer could compose so: one phase, no transmission pass, no pass images, and a plain
+    // background colour (an environment is drawn by a render pass).
+    virtual bool composesFrame(const FrameState& frame) const {
+        (void)frame;
+        return false;
+    }
+    // Records the frame's composition after beforePass(): every pixel of `target.texture`
+    // (the target's one-sample scene texture) written, uncovered ones with `target.background`.
+    virtual void composeFrame(const wgpu::CommandEncoder& commands,
+                              const FrameState& frame,
+                              const FrameComposition& target) {
+        (void)commands;
+        (void)frame;
+        (void)target;
+    }
 
     // KHR_materials_transmission: whether encode() leaves out surfaces with transmission, for
     // encodeTransmission() to draw in a pass of their own once the Renderer has copied the scene

@@ -90,6 +90,14 @@ void createLayouts(const wgpu::Device& device, VisibilityPipelines& p) {
          LayoutEntry::texture(1, fragment, wgpu::TextureSampleType::UnfilterableFloat,
                               wgpu::TextureViewDimension::e2DArray)},
         "visibility composite");
+    p.composeLayout = gpu::makeBindGroupLayout(
+        device,
+        {LayoutEntry::readOnlyStorage(0, kCompute),
+         LayoutEntry::texture(1, kCompute, wgpu::TextureSampleType::UnfilterableFloat,
+                              wgpu::TextureViewDimension::e2DArray),
+         LayoutEntry::storage(2, kCompute),
+         LayoutEntry::uniform(3, kCompute, VisibilityTarget::kCompositionBytes)},
+        "visibility composition");
 }
 
 Result<wgpu::RenderPipeline> hardwarePipeline(const RenderSetup& setup,
@@ -199,6 +207,17 @@ Result<std::unique_ptr<VisibilityPipelines>> VisibilityPipelines::create(const R
     ENCORE_TRY_ASSIGN(p.composite, compositePipeline(setup, p, false));
     ENCORE_TRY_ASSIGN(p.compositePixels, compositePipeline(setup, p, true));
     ENCORE_TRY_ASSIGN(p.compositeResolved, compositePipeline(setup, p, true, true));
+    {
+        std::set<std::string, std::less<>> flags;
+        if (setup.sampleCount > 1) {
+            flags.insert("MULTISAMPLED");
+        }
+        if (setup.colorFormat == wgpu::TextureFormat::RGBA16Float) {
+            flags.insert("HALF_OUTPUT");
+        }
+        ENCORE_TRY_ASSIGN(auto compose, library.module("visibility_composite.wgsl", flags));
+        p.compose = computePipeline(device, compose, "composeMain", {p.composeLayout});
+    }
     setup.pipelinesCreated += kPipelineCount;
 
     std::array<std::uint32_t, kCounterBytes / 4> initial{};

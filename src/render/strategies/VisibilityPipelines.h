@@ -62,7 +62,7 @@ struct VisibilityPipelines {
     // Bytes of visibility_counters.wgsl's Counters.
     static constexpr std::uint64_t kCounterBytes = 64;
     // The number of pipelines create() makes (counted in RenderSetup::pipelinesCreated).
-    static constexpr std::uint64_t kPipelineCount = 17;
+    static constexpr std::uint64_t kPipelineCount = 18;
 
     // Fails only where an embedded shader does not compile (a bug, not an input error).
     static Result<std::unique_ptr<VisibilityPipelines>> create(const RenderSetup& setup);
@@ -74,6 +74,7 @@ struct VisibilityPipelines {
     wgpu::BindGroupLayout binLayout;
     wgpu::BindGroupLayout shadeLayout;
     wgpu::BindGroupLayout compositeLayout;
+    wgpu::BindGroupLayout composeLayout;
     wgpu::ComputePipeline cullFirst;
     wgpu::ComputePipeline beginSecondPhase;
     wgpu::ComputePipeline cullSecond;
@@ -91,6 +92,9 @@ struct VisibilityPipelines {
     wgpu::RenderPipeline composite;
     wgpu::RenderPipeline compositePixels;
     wgpu::RenderPipeline compositeResolved;
+    // compositePixels in compute, over every pixel, into a buffer of the target's texels
+    // (Strategy::composeFrame).
+    wgpu::ComputePipeline compose;
     // The frame uniform alone (frame.wgsl's group 0) for the raster passes.
     wgpu::BindGroup frameOnlyGroup;
     // Unit count 0, hardware draw (0 vertices, 1 instance, 0, 0): copied over the counters

@@ -225,6 +225,7 @@ void VisibilityStrategy::createBindGroups() {
     mCompositeGroup = gpu::makeBindGroup(device, p.compositeLayout,
                                          {{0, target.visibility}, {1, target.shadedLayers}},
                                          "visibility composite");
+    mComposeGroup = nullptr;  // Over the composed buffer, made again with it (composeFrame).
 }
 
 void VisibilityStrategy::beforePass(const wgpu::CommandEncoder& commands, const FrameState& frame) {
@@ -477,6 +478,59 @@ std::optional<GpuTriangleCounts> VisibilityStrategy::gpuTriangleCounts() const {
         return std::nullopt;
     }
     return GpuTriangleCounts{mTarget->triangleCounts, 4, 0, mTables.triangleCount};
+}
+
+bool VisibilityStrategy::composesFrame(const FrameState& frame) const {
+    return mTables.itemCount > 0 && !drawsAfter() && frame.targetWidth > 0 &&
+           frame.targetHeight > 0 &&
+           VisibilityTarget::composedRowBytes(*mSetup, frame.targetWidth) * frame.targetHeight <=
+               mSetup->limits.maxStorageBufferBindingSize;
+}
+
+void VisibilityStrategy::composeFrame(const wgpu::CommandEncoder& commands,
+                                      const FrameState& frame,
+                                      const FrameComposition& target) {
+    (void)frame;
+    if (mTarget->ensureComposed(*mSetup) || !mComposeGroup) {
+        mComposeGroup = gpu::makeBindGroup(mSetup->device, mPipelines->composeLayout,
+                                           {{0, mTarget->visibility},
+                                            {1, mTarget->shadedLayers},
+                                            {2, mTarget->composed},
+                                            {3, mTarget->composition}},
+                                           "visibility composition");
+        mComposition = {};  // A new uniform buffer holds nothing yet.
+    }
+    const std::uint64_t rowBytes = VisibilityTarget::composedRowBytes(*mSetup, mTarget->width);
+    const std::uint32_t texelBytes =
+        mSetup->colorFormat == wgpu::TextureFormat::RGBA16Float ? 8 : 4;
+    std::array<std::uint32_t, VisibilityTarget::kCompositionBytes / 4> composition{};
+    const std::array<float, 4> background = {float(target.background.r), float(target.background.g),
+                                             float(target.background.b),
+                                             float(target.background.a)};
+    std::memcpy(composition.data(), background.data(), sizeof(background));
+    composition[4] = mTarget->width;
+    composition[5] = mTarget->height;
+    composition[6] = std::uint32_t(rowBytes / texelBytes);
+    if (composition != mComposition) {
+        mSetup->queue.WriteBuffer(mTarget->composition, 0, composition.data(), sizeof(composition));
+        mComposition = composition;
+    }
+    wgpu::ComputePassDescriptor descriptor{};
+    descriptor.label = "visibility: composition";
+    descriptor.timestampWrites = target.timestampWrites;
+    wgpu::ComputePassEncoder pass = commands.BeginComputePass(&descriptor);
+    pass.SetPipeline(mPipelines->compose);
+    pass.SetBindGroup(0, mComposeGroup);
+    pass.DispatchWorkgroups(groupsFor(mTarget->width, 8), groupsFor(mTarget->height, 8));
+    pass.End();
+    wgpu::TexelCopyBufferInfo source{};
+    source.buffer = mTarget->composed;
+    source.layout.bytesPerRow = std::uint32_t(rowBytes);
+    source.layout.rowsPerImage = mTarget->height;
+    wgpu::TexelCopyTextureInfo destination{};
+    destination.texture = target.texture;
+    const wgpu::Extent3D size{mTarget->width, mTarget->height, 1};
+    commands.CopyBufferToTexture(&source, &destination, &size);
 }
 
 void VisibilityStrategy::encode(RenderEncoder& encoder, const FrameState& frame) const {

@@ -59,6 +59,14 @@ class VisibilityStrategy final : public Strategy {
     bool composesResolved() const override {
         return mSetup && mSetup->sampleCount > 1 && !drawsAfter();
     }
+    // With nothing drawn after the composite, its work is done in compute for every pixel and
+    // copied into the target (visibility_composite.wgsl's composeMain): no render pass, whose
+    // fragments the H100 runs on its few graphics units. Not where the composed buffer would
+    // exceed maxStorageBufferBindingSize.
+    bool composesFrame(const FrameState& frame) const override;
+    void composeFrame(const wgpu::CommandEncoder& commands,
+                      const FrameState& frame,
+                      const FrameComposition& target) override;
     // Transmissive surfaces are left to the hardware path, as blended ones are, and drawn in
     // the transmission pass.
     bool drawsTransmission() const override { return !mDraws.transmissive().empty(); }
@@ -176,6 +184,9 @@ class VisibilityStrategy final : public Strategy {
     wgpu::BindGroup mBinGroup;
     wgpu::BindGroup mShadeGroup;
     wgpu::BindGroup mCompositeGroup;
+    wgpu::BindGroup mComposeGroup;  // Made with the target's composed buffer.
+    // The Composition last written to the target's uniform (written again when it changes).
+    std::array<std::uint32_t, VisibilityTarget::kCompositionBytes / 4> mComposition{};
 };
 
 }  // namespace encore::render

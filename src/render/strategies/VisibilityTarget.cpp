@@ -52,12 +52,33 @@ bool VisibilityTarget::ensure(const RenderSetup& setup,
     shadedLayers = shaded.CreateView(&layers);
     hardwareDepth = nullptr;  // Made at the views' size (ensureHardwareDepth).
     hardwareDepthView = nullptr;
+    composed = nullptr;  // Made for frames composed in compute (ensureComposed).
 
     auto built =
         DepthPyramid::createFromVisibility(device, *setup.shaders, visibility, width, height);
     // The shader is embedded: a failure here is a bug, not an input error.
     ENCORE_CHECK(built.ok(), "the depth pyramid cannot be built: " + built.error().message);
     pyramid = std::move(*built);
+    return true;
+}
+
+std::uint64_t VisibilityTarget::composedRowBytes(const RenderSetup& setup, std::uint32_t width) {
+    const std::uint64_t texelBytes = setup.colorFormat == wgpu::TextureFormat::RGBA16Float ? 8 : 4;
+    return (width * texelBytes + 255) / 256 * 256;
+}
+
+bool VisibilityTarget::ensureComposed(const RenderSetup& setup) {
+    if (composed) {
+        return false;
+    }
+    composed =
+        gpu::createBuffer(setup.device, wgpu::BufferUsage::Storage | wgpu::BufferUsage::CopySrc,
+                          composedRowBytes(setup, width) * height, "visibility composed frame");
+    if (!composition) {
+        composition =
+            gpu::createBuffer(setup.device, wgpu::BufferUsage::Uniform | wgpu::BufferUsage::CopyDst,
+                              kCompositionBytes, "visibility composition");
+    }
     return true;
 }
 

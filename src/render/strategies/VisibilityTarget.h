@@ -43,6 +43,12 @@ struct VisibilityTarget {
     // per pass at 6144x512 and four samples).
     void ensureHardwareDepth(const RenderSetup& setup, std::uint32_t viewWidth);
 
+    // The composed frame (Strategy::composeFrame): a texel of the target's scene format per
+    // pixel (4 bytes, or 8 in RGBA16Float), rows padded to a copy's 256-byte pitch.
+    static std::uint64_t composedRowBytes(const RenderSetup& setup, std::uint32_t width);
+    // Bytes of visibility_composite.wgsl's Composition.
+    static constexpr std::uint64_t kCompositionBytes = 32;
+
     std::uint32_t width = 0;
     std::uint32_t height = 0;
     std::size_t viewCapacity = 0;
@@ -57,6 +63,13 @@ struct VisibilityTarget {
     wgpu::Texture hardwareDepth;     // One view's size (ensureHardwareDepth).
     wgpu::TextureView hardwareDepthView;
     DepthPyramid pyramid;  // Of the visibility buffer's depth.
+    // Made on the first composed frame (ensureComposed), with its Composition uniform.
+    wgpu::Buffer composed;
+    wgpu::Buffer composition;
+
+    // Makes the composed frame's buffer for the current size where it is not already; returns
+    // whether it was made (bind groups over it must be too).
+    bool ensureComposed(const RenderSetup& setup);
 };
 
 }  // namespace encore::render
