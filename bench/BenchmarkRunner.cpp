@@ -290,7 +290,8 @@ Result<BenchReport> runBenchmarks(gpu::Context& context,
         render::Renderer::create(context, {{options.width, options.height, options.samples}}));
     renderer.setCullingOptions(options.culling);
     report.environmentMilliseconds = renderer.lighting().environment().lastBuildMilliseconds();
-    auto timer = gpu::GpuTimer::create(context);
+    // Room for every pass of the visibility strategy's two phases, each step timed apart.
+    auto timer = gpu::GpuTimer::create(context, 16);
     report.timestamps = timer.has_value() && !options.callgrind && options.gpuTimer;
     gpu::GpuTimer* timerPointer = report.timestamps ? &*timer : nullptr;
 

@@ -54,6 +54,44 @@ std::uint32_t stridingGrid(std::uint64_t work, std::uint32_t perGroup, std::uint
 
 }  // namespace
 
+// The compute work of a raster phase or of the shading: one pass, or, under a GPU timer, a pass
+// per step, so that the timings say where the time goes (a step sets all its bindings itself).
+class VisibilityPhasePasses {
+  public:
+    VisibilityPhasePasses(const wgpu::CommandEncoder& commands,
+                          gpu::GpuTimer* timer,
+                          const char* label)
+        : mCommands(commands), mTimer(timer), mLabel(label) {}
+    ~VisibilityPhasePasses() {
+        if (mPass) {
+            mPass.End();
+        }
+    }
+    VisibilityPhasePasses(const VisibilityPhasePasses&) = delete;
+    VisibilityPhasePasses& operator=(const VisibilityPhasePasses&) = delete;
+
+    // The pass for the step named `timerLabel`.
+    const wgpu::ComputePassEncoder& step(const char* timerLabel) {
+        if (mPass && !mTimer) {
+            return mPass;
+        }
+        if (mPass) {
+            mPass.End();
+        }
+        wgpu::ComputePassDescriptor descriptor{};
+        descriptor.label = mLabel;
+        descriptor.timestampWrites = mTimer ? mTimer->nextPass(timerLabel) : nullptr;
+        mPass = mCommands.BeginComputePass(&descriptor);
+        return mPass;
+    }
+
+  private:
+    const wgpu::CommandEncoder& mCommands;
+    gpu::GpuTimer* mTimer;
+    const char* mLabel;
+    wgpu::ComputePassEncoder mPass;
+};
+
 Result<void> VisibilityStrategy::prepare(const RenderSetup& setup, const GpuScene& scene) {
     if (!setup.device.HasFeature(kVisibilityFeature)) {
         return makeError(ErrorCode::Unsupported,
@@ -346,13 +384,22 @@ void VisibilityStrategy::writeCullUniform(const FrameState& frame, std::size_t v
     mSetup->queue.WriteBuffer(mCullUniform, 0, &uniform, sizeof(uniform));
 }
 
-void VisibilityStrategy::encodeRaster(const wgpu::ComputePassEncoder& pass,
-                                      std::uint32_t paramsOffset) const {
-    pass.SetBindGroup(1, mRasterGroup, 1, &paramsOffset);
-    pass.SetPipeline(mPipelines->raster);
-    pass.DispatchWorkgroups(mRasterGroups);
-    pass.SetPipeline(mPipelines->workgroupRaster);
-    pass.DispatchWorkgroups(mWorkgroupGroups);
+void VisibilityStrategy::encodeRaster(VisibilityPhasePasses& passes,
+                                      std::uint32_t paramsOffset,
+                                      bool secondPhase) const {
+    auto dispatch = [&](const char* timerLabel, const wgpu::ComputePipeline& pipeline,
+                        std::uint32_t groups) {
+        const wgpu::ComputePassEncoder& pass = passes.step(timerLabel);
+        pass.SetBindGroup(0, mPipelines->frameOnlyGroup);
+        pass.SetBindGroup(1, mRasterGroup, 1, &paramsOffset);
+        pass.SetPipeline(pipeline);
+        pass.DispatchWorkgroups(groups);
+    };
+    dispatch(secondPhase ? "visibility compute raster (second phase)" : "visibility compute raster",
+             mPipelines->raster, mRasterGroups);
+    dispatch(
+        secondPhase ? "visibility workgroup raster (second phase)" : "visibility workgroup raster",
+        mPipelines->workgroupRaster, mWorkgroupGroups);
 }
 
 void VisibilityStrategy::encodeHardwareRaster(const wgpu::CommandEncoder& commands,
@@ -397,38 +444,29 @@ void VisibilityStrategy::encodeView(const wgpu::CommandEncoder& commands,
     commands.CopyBufferToBuffer(counters, 0, mCounters, 0, kCounterBytes);
     {
         // Everything in the frustum, or (two phases) what of it was visible last frame.
-        wgpu::ComputePassDescriptor descriptor{};
-        descriptor.label = "visibility: culling and compute raster";
-        descriptor.timestampWrites =
-            frame.timer ? frame.timer->nextPass(culled ? "visibility compute raster"
-                                                       : "visibility culling and raster")
-                        : nullptr;
-        wgpu::ComputePassEncoder pass = commands.BeginComputePass(&descriptor);
+        VisibilityPhasePasses passes(commands, frame.timer,
+                                     "visibility: culling and compute raster");
         if (!culled) {
+            const wgpu::ComputePassEncoder& pass = passes.step("visibility culling");
             bindCull(pass);
             dispatchItems(pass, mPipelines->cullFirst);
-        } else {
-            pass.SetBindGroup(0, mPipelines->frameOnlyGroup);
         }
-        encodeRaster(pass, paramsOffset);
-        pass.End();
+        encodeRaster(passes, paramsOffset, false);
     }
     encodeHardwareRaster(commands, frame, paramsOffset, viewWidth, "visibility hardware raster");
     if (mOcclusion) {
-        // The rest of the frustum against the pyramid of what phase 1 drew (both rasters).
-        wgpu::ComputePassDescriptor descriptor{};
-        descriptor.label = "visibility: depth pyramid, second culling and raster";
-        descriptor.timestampWrites =
-            frame.timer ? frame.timer->nextPass("visibility occlusion culling and raster")
-                        : nullptr;
-        wgpu::ComputePassEncoder pass = commands.BeginComputePass(&descriptor);
-        mTarget->pyramid.encode(pass);
-        bindCull(pass);  // The pyramid's dispatches bound their own group 0.
-        pass.SetPipeline(mPipelines->beginSecondPhase);
-        pass.DispatchWorkgroups(1);
-        dispatchItems(pass, mPipelines->cullSecond);
-        encodeRaster(pass, paramsOffset);
-        pass.End();
+        {
+            // The rest of the frustum against the pyramid of what phase 1 drew (both rasters).
+            VisibilityPhasePasses passes(commands, frame.timer,
+                                         "visibility: depth pyramid, second culling and raster");
+            mTarget->pyramid.encode(passes.step("visibility depth pyramid"));
+            const wgpu::ComputePassEncoder& pass = passes.step("visibility occlusion culling");
+            bindCull(pass);  // The pyramid's dispatches bound their own group 0.
+            pass.SetPipeline(mPipelines->beginSecondPhase);
+            pass.DispatchWorkgroups(1);
+            dispatchItems(pass, mPipelines->cullSecond);
+            encodeRaster(passes, paramsOffset, true);
+        }
         encodeHardwareRaster(commands, frame, paramsOffset, viewWidth,
                              "visibility hardware raster (second phase)");
     }
@@ -443,21 +481,19 @@ void VisibilityStrategy::encodeShading(const wgpu::CommandEncoder& commands,
                                        std::size_t binSlot,
                                        std::uint32_t groupWidth) const {
     commands.ClearBuffer(mBins);
-    wgpu::ComputePassDescriptor descriptor{};
-    descriptor.label = "visibility: binning and shading";
-    descriptor.timestampWrites =
-        frame.timer ? frame.timer->nextPass("visibility shading") : nullptr;
-    wgpu::ComputePassEncoder pass = commands.BeginComputePass(&descriptor);
+    VisibilityPhasePasses passes(commands, frame.timer, "visibility: binning and shading");
+    const wgpu::ComputePassEncoder& binning = passes.step("visibility binning");
     const std::uint32_t binOffset = std::uint32_t(binSlot * kParamsStride);
-    pass.SetBindGroup(0, mBinGroup, 1, &binOffset);
+    binning.SetBindGroup(0, mBinGroup, 1, &binOffset);
     const std::uint32_t columns = groupsFor(groupWidth, 8);
     const std::uint32_t rows = groupsFor(mTarget->height, 8);
-    pass.SetPipeline(mPipelines->binCount);
-    pass.DispatchWorkgroups(columns, rows);
-    pass.SetPipeline(mPipelines->binOffsets);
-    pass.DispatchWorkgroups(1);
-    pass.SetPipeline(mPipelines->binScatter);
-    pass.DispatchWorkgroups(columns, rows);
+    binning.SetPipeline(mPipelines->binCount);
+    binning.DispatchWorkgroups(columns, rows);
+    binning.SetPipeline(mPipelines->binOffsets);
+    binning.DispatchWorkgroups(1);
+    binning.SetPipeline(mPipelines->binScatter);
+    binning.DispatchWorkgroups(columns, rows);
+    const wgpu::ComputePassEncoder& pass = passes.step("visibility shading");
     pass.SetBindGroup(0, mSetup->frame->bindGroup());
     const MaterialResources& materials = mScene->materials();
     const std::uint32_t slotsOffset = std::uint32_t(firstView * kParamsStride);
@@ -470,7 +506,6 @@ void VisibilityStrategy::encodeShading(const wgpu::CommandEncoder& commands,
         pass.SetBindGroup(2, materials.bindGroup(material));
         pass.DispatchWorkgroups(mTarget->shadeGroups);
     }
-    pass.End();
 }
 
 std::optional<GpuTriangleCounts> VisibilityStrategy::gpuTriangleCounts() const {

@@ -13,6 +13,8 @@
 
 namespace encore::render {
 
+class VisibilityPhasePasses;
+
 // A visibility buffer rasterised in compute (docs/visibility.md). Before the frame's render
 // pass, for each view: a compute pass culls items (instance x primitive) against the frustum,
 // picks each one's level of detail as GPU culling does, and lists the level's units of 256
@@ -131,7 +133,10 @@ class VisibilityStrategy final : public Strategy {
                        std::uint32_t groupWidth) const;
     // The raster dispatches of the units listed so far in this phase: grids of a fixed size
     // that stride over the lists (visibility_raster.wgsl says why not indirect dispatches).
-    void encodeRaster(const wgpu::ComputePassEncoder& pass, std::uint32_t paramsOffset) const;
+    // Under a GPU timer, each dispatch in a pass of its own (VisibilityPhasePasses).
+    void encodeRaster(VisibilityPhasePasses& passes,
+                      std::uint32_t paramsOffset,
+                      bool secondPhase) const;
     // The hardware list of this phase, drawn into the visibility buffer (the view of
     // `paramsOffset`, `viewWidth` wide).
     void encodeHardwareRaster(const wgpu::CommandEncoder& commands,
