@@ -46,6 +46,8 @@ struct PrepareTimes {
 struct RenderSetup {
     wgpu::Device device;
     wgpu::Queue queue;
+    // The device's instance, which waits for asynchronous pipeline creation (VisibilityPipelines).
+    wgpu::Instance instance;
     shaders::ShaderLibrary* shaders = nullptr;
     const BindGroupLayouts* layouts = nullptr;
     const FrameUniforms* frame = nullptr;

@@ -1,7 +1,12 @@
 #include "render/strategies/VisibilityPipelines.h"
 
+#include <chrono>
+#include <deque>
+#include <optional>
 #include <set>
 #include <string>
+#include <thread>
+#include <vector>
 
 #include "gpu/BindingResource.h"
 #include "gpu/FullscreenPipeline.h"
@@ -27,6 +32,80 @@ wgpu::ComputePipeline computePipeline(const wgpu::Device& device,
     descriptor.compute.entryPoint = entryPoint;
     return device.CreateComputePipeline(&descriptor);
 }
+
+// Compute pipelines created side by side: Dawn compiles asynchronous pipelines on its worker
+// threads, so the four variants of the PBR shading shader, the bulk of the strategy's start in
+// a batch, no longer compile one after another.
+class AsyncComputePipelines {
+  public:
+    explicit AsyncComputePipelines(const RenderSetup& setup) : mSetup(setup) {}
+    // An early return (a shader that failed to build) still waits: the callbacks write here.
+    ~AsyncComputePipelines() {
+        if (!mWaited) {
+            (void)wait();
+        }
+    }
+    AsyncComputePipelines(const AsyncComputePipelines&) = delete;
+    AsyncComputePipelines& operator=(const AsyncComputePipelines&) = delete;
+
+    // Starts creating `target`, set when wait() returns.
+    void add(wgpu::ComputePipeline& target,
+             const wgpu::ShaderModule& module,
+             const char* entryPoint,
+             std::initializer_list<wgpu::BindGroupLayout> groups) {
+        wgpu::ComputePipelineDescriptor descriptor{};
+        descriptor.label = entryPoint;
+        descriptor.layout = gpu::makePipelineLayout(mSetup.device, groups);
+        descriptor.compute.module = module;
+        descriptor.compute.entryPoint = entryPoint;
+        auto& failure = mFailures.emplace_back();
+        mFutures.push_back(mSetup.device.CreateComputePipelineAsync(
+            &descriptor, wgpu::CallbackMode::WaitAnyOnly,
+            [&target, &failure, entryPoint](wgpu::CreatePipelineAsyncStatus status,
+                                            wgpu::ComputePipeline pipeline,
+                                            wgpu::StringView message) {
+                if (status == wgpu::CreatePipelineAsyncStatus::Success) {
+                    target = std::move(pipeline);
+                } else {
+                    failure = std::string(entryPoint) + ": " + std::string(message);
+                }
+            }));
+    }
+
+    // Waits for every pipeline; an error names the first that failed (a bug: the shaders are
+    // embedded).
+    Result<void> wait() {
+        // Every future, even after one failed: no callback may outlive this object.
+        mWaited = true;
+        bool waited = true;
+        for (const wgpu::Future& future : mFutures) {
+            wgpu::WaitStatus status = mSetup.instance.WaitAny(future, UINT64_MAX);
+            // Instances without TimedWaitAny refuse a timeout: poll them.
+            while (status == wgpu::WaitStatus::TimedOut) {
+                std::this_thread::sleep_for(std::chrono::microseconds(200));
+                status = mSetup.instance.WaitAny(future, 0);
+            }
+            waited = waited && status == wgpu::WaitStatus::Success;
+        }
+        if (!waited) {
+            return makeError(ErrorCode::DeviceError,
+                             "Waiting for the visibility strategy's pipelines failed.");
+        }
+        for (const std::string& failure : mFailures) {
+            if (!failure.empty()) {
+                return makeError(ErrorCode::ValidationError,
+                                 "A visibility pipeline could not be created: " + failure);
+            }
+        }
+        return {};
+    }
+
+  private:
+    const RenderSetup& mSetup;
+    std::vector<wgpu::Future> mFutures;
+    std::deque<std::string> mFailures;  // Stable addresses for the callbacks.
+    bool mWaited = false;
+};
 
 void createLayouts(const wgpu::Device& device, VisibilityPipelines& p) {
     using gpu::LayoutEntry;
@@ -166,24 +245,20 @@ Result<std::unique_ptr<VisibilityPipelines>> VisibilityPipelines::create(const R
     createLayouts(device, p);
 
     shaders::ShaderLibrary& library = *setup.shaders;
-    ENCORE_TRY_ASSIGN(auto cull, library.module("visibility_cull.wgsl"));
-    const auto cullGroups = {p.frameOnlyLayout, p.cullLayout};
-    p.cullFirst = computePipeline(device, cull, "cullFirstPhase", cullGroups);
-    p.beginSecondPhase = computePipeline(device, cull, "beginSecondPhase", cullGroups);
-    p.cullSecond = computePipeline(device, cull, "cullSecondPhase", cullGroups);
-    ENCORE_TRY_ASSIGN(auto raster, library.module("visibility_raster.wgsl"));
-    p.raster = computePipeline(device, raster, "rasterMain", {p.frameOnlyLayout, p.rasterLayout});
-    p.workgroupRaster =
-        computePipeline(device, raster, "workgroupMain", {p.frameOnlyLayout, p.rasterLayout});
-    p.frameOnlyGroup = gpu::makeBindGroup(device, p.frameOnlyLayout,
-                                          {{0, setup.frame->buffer(), 0, sizeof(FrameUniform)}},
-                                          "visibility frame");
-
-    ENCORE_TRY_ASSIGN(auto bins, library.module("visibility_bins.wgsl"));
-    p.binCount = computePipeline(device, bins, "countMain", {p.binLayout});
-    p.binOffsets = computePipeline(device, bins, "offsetsMain", {p.binLayout});
-    p.binScatter = computePipeline(device, bins, "scatterMain", {p.binLayout});
-
+    // Without an instance to wait with (setups made outside a Renderer), one after another.
+    std::optional<AsyncComputePipelines> async;
+    if (setup.instance) {
+        async.emplace(setup);
+    }
+    auto add = [&](wgpu::ComputePipeline& target, const wgpu::ShaderModule& module,
+                   const char* entryPoint, std::initializer_list<wgpu::BindGroupLayout> groups) {
+        if (async) {
+            async->add(target, module, entryPoint, groups);
+        } else {
+            target = computePipeline(device, module, entryPoint, groups);
+        }
+    };
+    // The shading pipelines first: they take longest.
     for (bool textured : {false, true}) {
         for (bool tangent : {false, true}) {
             // One shading pipeline serves every material of its bin kind: all features in.
@@ -197,16 +272,27 @@ Result<std::unique_ptr<VisibilityPipelines>> VisibilityPipelines::create(const R
                 flags.insert("HAS_TANGENT");
             }
             ENCORE_TRY_ASSIGN(auto shade, library.module("visibility_shade.wgsl", flags));
-            p.shade[textured][tangent] = computePipeline(
-                device, shade, "shadeMain",
+            add(p.shade[textured][tangent], shade, "shadeMain",
                 {setup.layouts->frame, p.shadeLayout,
                  textured ? setup.layouts->material : setup.layouts->materialUniformOnly});
         }
     }
-    ENCORE_TRY_ASSIGN(p.hardware, hardwarePipeline(setup, p));
-    ENCORE_TRY_ASSIGN(p.composite, compositePipeline(setup, p, false));
-    ENCORE_TRY_ASSIGN(p.compositePixels, compositePipeline(setup, p, true));
-    ENCORE_TRY_ASSIGN(p.compositeResolved, compositePipeline(setup, p, true, true));
+    ENCORE_TRY_ASSIGN(auto cull, library.module("visibility_cull.wgsl"));
+    const auto cullGroups = {p.frameOnlyLayout, p.cullLayout};
+    add(p.cullFirst, cull, "cullFirstPhase", cullGroups);
+    add(p.beginSecondPhase, cull, "beginSecondPhase", cullGroups);
+    add(p.cullSecond, cull, "cullSecondPhase", cullGroups);
+    ENCORE_TRY_ASSIGN(auto raster, library.module("visibility_raster.wgsl"));
+    add(p.raster, raster, "rasterMain", {p.frameOnlyLayout, p.rasterLayout});
+    add(p.workgroupRaster, raster, "workgroupMain", {p.frameOnlyLayout, p.rasterLayout});
+    p.frameOnlyGroup = gpu::makeBindGroup(device, p.frameOnlyLayout,
+                                          {{0, setup.frame->buffer(), 0, sizeof(FrameUniform)}},
+                                          "visibility frame");
+
+    ENCORE_TRY_ASSIGN(auto bins, library.module("visibility_bins.wgsl"));
+    add(p.binCount, bins, "countMain", {p.binLayout});
+    add(p.binOffsets, bins, "offsetsMain", {p.binLayout});
+    add(p.binScatter, bins, "scatterMain", {p.binLayout});
     {
         std::set<std::string, std::less<>> flags;
         if (setup.sampleCount > 1) {
@@ -216,7 +302,15 @@ Result<std::unique_ptr<VisibilityPipelines>> VisibilityPipelines::create(const R
             flags.insert("HALF_OUTPUT");
         }
         ENCORE_TRY_ASSIGN(auto compose, library.module("visibility_composite.wgsl", flags));
-        p.compose = computePipeline(device, compose, "composeMain", {p.composeLayout});
+        add(p.compose, compose, "composeMain", {p.composeLayout});
+    }
+    // The render pipelines meanwhile, on this thread.
+    ENCORE_TRY_ASSIGN(p.hardware, hardwarePipeline(setup, p));
+    ENCORE_TRY_ASSIGN(p.composite, compositePipeline(setup, p, false));
+    ENCORE_TRY_ASSIGN(p.compositePixels, compositePipeline(setup, p, true));
+    ENCORE_TRY_ASSIGN(p.compositeResolved, compositePipeline(setup, p, true, true));
+    if (async) {
+        ENCORE_TRY(async->wait());
     }
     setup.pipelinesCreated += kPipelineCount;
 
