@@ -18,7 +18,7 @@ struct CullingOptions {
     // each way are rasterised in compute by one thread (at most 64), those up to
     // workgroupRasterPixels by a workgroup in 8x8 tiles (at most 112), larger ones by the
     // hardware.
-    float computeRasterPixels = 16.0f;
+    float computeRasterPixels = 8.0f;
     float workgroupRasterPixels = 112.0f;
     // The visibility strategy: each cluster (meshlet) of a drawn item is culled on its own
     // against the frustum, by its cone of normals (all its triangles facing away) and, in the

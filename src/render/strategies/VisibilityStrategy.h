@@ -38,7 +38,7 @@ class VisibilityStrategy final : public Strategy {
     // hardware larger ones. The fixed-point edge functions, relative to the triangle's first
     // pixel, stay within 32 bits up to 112 pixels.
     static constexpr float kMaxComputePixels = 64.0f;
-    static constexpr float kDefaultComputePixels = 16.0f;
+    static constexpr float kDefaultComputePixels = 8.0f;
     static constexpr float kMaxWorkgroupPixels = 112.0f;
 
     StrategyKind kind() const override { return StrategyKind::Visibility; }
