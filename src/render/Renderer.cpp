@@ -108,7 +108,7 @@ Result<void> Renderer::build(const RendererOptions& options) {
     RenderSetup& setup = *renderer.mSetup;
     setup.device = context.device();
     setup.queue = context.queue();
-    setup.instance = context.instance();
+    setup.context = &context;
     setup.shaders = renderer.mShaders.get();
     setup.layouts = renderer.mLayouts.get();
     setup.frame = renderer.mFrame.get();

@@ -13,6 +13,10 @@
 #include "encore/render/FrameUniforms.h"
 #include "encore/shaders/ShaderLibrary.h"
 
+namespace encore::gpu {
+class Context;
+}
+
 namespace encore::render {
 
 class MipmapGenerator;
@@ -46,8 +50,9 @@ struct PrepareTimes {
 struct RenderSetup {
     wgpu::Device device;
     wgpu::Queue queue;
-    // The device's instance, which waits for asynchronous pipeline creation (VisibilityPipelines).
-    wgpu::Instance instance;
+    // The device's context, whose wait() waits for asynchronous pipeline creation
+    // (VisibilityPipelines); null in setups made outside a Renderer.
+    const gpu::Context* context = nullptr;
     shaders::ShaderLibrary* shaders = nullptr;
     const BindGroupLayouts* layouts = nullptr;
     const FrameUniforms* frame = nullptr;

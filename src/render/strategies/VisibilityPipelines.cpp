@@ -1,13 +1,12 @@
 #include "render/strategies/VisibilityPipelines.h"
 
-#include <chrono>
 #include <deque>
 #include <optional>
 #include <set>
 #include <string>
-#include <thread>
 #include <vector>
 
+#include "encore/gpu/Context.h"
 #include "gpu/BindingResource.h"
 #include "gpu/FullscreenPipeline.h"
 #include "gpu/LayoutEntry.h"
@@ -79,13 +78,7 @@ class AsyncComputePipelines {
         mWaited = true;
         bool waited = true;
         for (const wgpu::Future& future : mFutures) {
-            wgpu::WaitStatus status = mSetup.instance.WaitAny(future, UINT64_MAX);
-            // Instances without TimedWaitAny refuse a timeout: poll them.
-            while (status == wgpu::WaitStatus::TimedOut) {
-                std::this_thread::sleep_for(std::chrono::microseconds(200));
-                status = mSetup.instance.WaitAny(future, 0);
-            }
-            waited = waited && status == wgpu::WaitStatus::Success;
+            waited = mSetup.context->wait(future) && waited;
         }
         if (!waited) {
             return makeError(ErrorCode::DeviceError,
@@ -245,9 +238,9 @@ Result<std::unique_ptr<VisibilityPipelines>> VisibilityPipelines::create(const R
     createLayouts(device, p);
 
     shaders::ShaderLibrary& library = *setup.shaders;
-    // Without an instance to wait with (setups made outside a Renderer), one after another.
+    // Without a context to wait with (setups made outside a Renderer), one after another.
     std::optional<AsyncComputePipelines> async;
-    if (setup.instance) {
+    if (setup.context) {
         async.emplace(setup);
     }
     auto add = [&](wgpu::ComputePipeline& target, const wgpu::ShaderModule& module,
