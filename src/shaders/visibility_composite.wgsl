@@ -109,7 +109,6 @@ fn pixelMain(@builtin(position) position: vec4f) -> @location(0) vec4f {
 
 struct Composition {
     background: vec4f,  // Linear: the scene pass's clear colour.
-    size: vec2u,        // The target's, in pixels.
     rowTexels: u32,     // The composed buffer's row pitch (rows of 256-byte multiples).
 }
 
@@ -124,7 +123,7 @@ fn srgbEncoded(linear: vec3f) -> vec3f {
 
 @compute @workgroup_size(8, 8)
 fn composeMain(@builtin(global_invocation_id) id: vec3u) {
-    if (any(id.xy >= composition.size)) {
+    if (any(id.xy >= textureDimensions(shaded))) {  // The target's size.
         return;
     }
     // pixelMain's colour blended premultiplied over the background, as its pipeline blends.

@@ -526,29 +526,13 @@ void VisibilityStrategy::composeFrame(const wgpu::CommandEncoder& commands,
                                       const FrameState& frame,
                                       const FrameComposition& target) {
     (void)frame;
-    if (mTarget->ensureComposed(*mSetup) || !mComposeGroup) {
+    if (mTarget->ensureComposed(*mSetup, target.background) || !mComposeGroup) {
         mComposeGroup = gpu::makeBindGroup(mSetup->device, mPipelines->composeLayout,
                                            {{0, mTarget->visibility},
                                             {1, mTarget->shadedLayers},
                                             {2, mTarget->composed},
                                             {3, mTarget->composition}},
                                            "visibility composition");
-        mComposition = {};  // A new uniform buffer holds nothing yet.
-    }
-    const std::uint64_t rowBytes = VisibilityTarget::composedRowBytes(*mSetup, mTarget->width);
-    const std::uint32_t texelBytes =
-        mSetup->colorFormat == wgpu::TextureFormat::RGBA16Float ? 8 : 4;
-    std::array<std::uint32_t, VisibilityTarget::kCompositionBytes / 4> composition{};
-    const std::array<float, 4> background = {float(target.background.r), float(target.background.g),
-                                             float(target.background.b),
-                                             float(target.background.a)};
-    std::memcpy(composition.data(), background.data(), sizeof(background));
-    composition[4] = mTarget->width;
-    composition[5] = mTarget->height;
-    composition[6] = std::uint32_t(rowBytes / texelBytes);
-    if (composition != mComposition) {
-        mSetup->queue.WriteBuffer(mTarget->composition, 0, composition.data(), sizeof(composition));
-        mComposition = composition;
     }
     wgpu::ComputePassDescriptor descriptor{};
     descriptor.label = "visibility: composition";
@@ -560,7 +544,8 @@ void VisibilityStrategy::composeFrame(const wgpu::CommandEncoder& commands,
     pass.End();
     wgpu::TexelCopyBufferInfo source{};
     source.buffer = mTarget->composed;
-    source.layout.bytesPerRow = std::uint32_t(rowBytes);
+    source.layout.bytesPerRow =
+        std::uint32_t(VisibilityTarget::composedRowBytes(*mSetup, mTarget->width));
     source.layout.rowsPerImage = mTarget->height;
     wgpu::TexelCopyTextureInfo destination{};
     destination.texture = target.texture;

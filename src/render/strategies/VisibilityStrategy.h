@@ -190,8 +190,6 @@ class VisibilityStrategy final : public Strategy {
     wgpu::BindGroup mShadeGroup;
     wgpu::BindGroup mCompositeGroup;
     wgpu::BindGroup mComposeGroup;  // Made with the target's composed buffer.
-    // The Composition last written to the target's uniform (written again when it changes).
-    std::array<std::uint32_t, VisibilityTarget::kCompositionBytes / 4> mComposition{};
 };
 
 }  // namespace encore::render

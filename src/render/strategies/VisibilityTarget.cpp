@@ -1,6 +1,7 @@
 #include "render/strategies/VisibilityTarget.h"
 
 #include <algorithm>
+#include <cstring>
 
 #include "gpu/Upload.h"
 
@@ -62,24 +63,38 @@ bool VisibilityTarget::ensure(const RenderSetup& setup,
     return true;
 }
 
-std::uint64_t VisibilityTarget::composedRowBytes(const RenderSetup& setup, std::uint32_t width) {
-    const std::uint64_t texelBytes = setup.colorFormat == wgpu::TextureFormat::RGBA16Float ? 8 : 4;
-    return (width * texelBytes + 255) / 256 * 256;
+std::uint64_t VisibilityTarget::composedTexelBytes(const RenderSetup& setup) {
+    return setup.colorFormat == wgpu::TextureFormat::RGBA16Float ? 8 : 4;
 }
 
-bool VisibilityTarget::ensureComposed(const RenderSetup& setup) {
-    if (composed) {
-        return false;
+std::uint64_t VisibilityTarget::composedRowBytes(const RenderSetup& setup, std::uint32_t width) {
+    return (width * composedTexelBytes(setup) + 255) / 256 * 256;
+}
+
+bool VisibilityTarget::ensureComposed(const RenderSetup& setup, const wgpu::Color& background) {
+    const bool made = !composed;
+    if (made) {
+        composed =
+            gpu::createBuffer(setup.device, wgpu::BufferUsage::Storage | wgpu::BufferUsage::CopySrc,
+                              composedRowBytes(setup, width) * height, "visibility composed frame");
     }
-    composed =
-        gpu::createBuffer(setup.device, wgpu::BufferUsage::Storage | wgpu::BufferUsage::CopySrc,
-                          composedRowBytes(setup, width) * height, "visibility composed frame");
     if (!composition) {
         composition =
             gpu::createBuffer(setup.device, wgpu::BufferUsage::Uniform | wgpu::BufferUsage::CopyDst,
                               kCompositionBytes, "visibility composition");
+        compositionWords = {};
     }
-    return true;
+    // visibility_composite.wgsl's Composition: the background, then the row pitch in texels.
+    std::array<std::uint32_t, kCompositionBytes / 4> words{};
+    const std::array<float, 4> color = {float(background.r), float(background.g),
+                                        float(background.b), float(background.a)};
+    std::memcpy(words.data(), color.data(), sizeof(color));
+    words[4] = std::uint32_t(composedRowBytes(setup, width) / composedTexelBytes(setup));
+    if (words != compositionWords) {
+        setup.queue.WriteBuffer(composition, 0, words.data(), sizeof(words));
+        compositionWords = words;
+    }
+    return made;
 }
 
 void VisibilityTarget::ensureHardwareDepth(const RenderSetup& setup, std::uint32_t viewWidth) {

@@ -9,6 +9,7 @@
 
 #include <webgpu/webgpu_cpp.h>
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 
@@ -45,6 +46,7 @@ struct VisibilityTarget {
 
     // The composed frame (Strategy::composeFrame): a texel of the target's scene format per
     // pixel (4 bytes, or 8 in RGBA16Float), rows padded to a copy's 256-byte pitch.
+    static std::uint64_t composedTexelBytes(const RenderSetup& setup);
     static std::uint64_t composedRowBytes(const RenderSetup& setup, std::uint32_t width);
     // Bytes of visibility_composite.wgsl's Composition.
     static constexpr std::uint64_t kCompositionBytes = 32;
@@ -63,13 +65,16 @@ struct VisibilityTarget {
     wgpu::Texture hardwareDepth;     // One view's size (ensureHardwareDepth).
     wgpu::TextureView hardwareDepthView;
     DepthPyramid pyramid;  // Of the visibility buffer's depth.
-    // Made on the first composed frame (ensureComposed), with its Composition uniform.
+    // Made on the first composed frame (ensureComposed), with its Composition uniform and the
+    // words last written there.
     wgpu::Buffer composed;
     wgpu::Buffer composition;
+    std::array<std::uint32_t, kCompositionBytes / 4> compositionWords{};
 
-    // Makes the composed frame's buffer for the current size where it is not already; returns
-    // whether it was made (bind groups over it must be too).
-    bool ensureComposed(const RenderSetup& setup);
+    // Makes the composed frame's buffer for the current size where it is not already, and
+    // writes the Composition uniform (`background`, the row pitch) where it changed; returns
+    // whether the buffer was made (bind groups over it must be too).
+    bool ensureComposed(const RenderSetup& setup, const wgpu::Color& background);
 };
 
 }  // namespace encore::render
