@@ -9,6 +9,11 @@ namespace encore::bench {
 
 namespace {
 
+// The time the warm-up lasted at least (none without warm-up frames).
+double warmupSeconds(const BenchOptions& options) {
+    return options.callgrind || options.warmup == 0 ? 0.0 : options.warmupSeconds.value_or(0.0);
+}
+
 nlohmann::json percentilesJson(const render::Percentiles& p) {
     return {{"median", p.median}, {"p95", p.p95}};
 }
@@ -71,6 +76,7 @@ nlohmann::json toJson(const BenchReport& report) {
         {"host", {{"cpu", report.cpu}, {"cores", report.cores}}},
         {"frames", report.options.frames},
         {"warmup", report.options.callgrind ? 0 : report.options.warmup},
+        {"warmupSeconds", warmupSeconds(report.options)},
         {"callgrind", report.options.callgrind},
         {"generated",
          {{"meshes", report.options.meshes},
@@ -128,6 +134,7 @@ nlohmann::json toJson(const BenchReport& report) {
             {"encodeMs", percentilesJson(result.encode)},
             {"submitMs", percentilesJson(result.submit)},
             {"cpuMs", percentilesJson(result.cpu)},
+            {"warmupFrames", result.warmupFrames},
             {"gpuMs", result.gpu ? percentilesJson(*result.gpu) : nlohmann::json(nullptr)},
             {"frame", toJson(result.frame)},
             {"bundleContents", toJson(result.bundleContents)},
@@ -154,10 +161,10 @@ std::string toMarkdown(const BenchReport& report) {
         << "Dawn: " << report.dawnVersion << "  \n"
         << "Host CPU: " << report.cpu << " (" << report.cores << " threads)  \n"
         << "Frames: " << report.options.frames << " measured after "
-        << (report.options.callgrind ? 0 : report.options.warmup) << " warm-up, "
-        << report.options.width << "x" << report.options.height << " target ("
-        << report.options.samples << (report.options.samples == 1 ? " sample" : " samples")
-        << " per pixel); the CPU "
+        << (report.options.callgrind ? 0 : report.options.warmup) << " warm-up (at least "
+        << warmupSeconds(report.options) << " s), " << report.options.width << "x"
+        << report.options.height << " target (" << report.options.samples
+        << (report.options.samples == 1 ? " sample" : " samples") << " per pixel); the CPU "
         << (report.options.gpuWait == gpu::WaitMode::Spin && !report.options.callgrind ? "spins"
                                                                                        : "blocks")
         << " while it waits for the GPU after each frame; GPU time from timestamp queries: "

@@ -65,6 +65,17 @@ std::string cpuModel() {
     return "unknown CPU";
 }
 
+// Bounds a timed warm-up whose frames are slow (CPU adapters, huge scenes).
+constexpr std::uint32_t kMaxExtraWarmupFrames = 10000;
+
+double warmupDuration(const gpu::Context& context, const BenchOptions& options) {
+    if (options.warmupSeconds) {
+        return *options.warmupSeconds;
+    }
+    // A CPU renderer has no clocks to raise.
+    return context.adapterDescription().adapterType == wgpu::AdapterType::CPU ? 0.0 : 0.5;
+}
+
 // Renders warm-up plus measured frames one at a time (the CPU waits for the GPU between
 // frames, so one frame's CPU work never queues behind the last) and fills the timings.
 // `renderFrame(index)` renders one frame and returns its timing.
@@ -79,15 +90,25 @@ void measureFrames(gpu::Context& context,
     std::vector<double> cpu;
     std::vector<double> gpu;
     const std::uint32_t warmup = options.callgrind ? 0 : options.warmup;
-    for (std::uint32_t frame = 0; frame < warmup + options.frames; ++frame) {
-        if (frame == warmup) {
-            startInstructionCount(options.callgrind);
-        }
+    const auto warmupStart = std::chrono::steady_clock::now();
+    for (std::uint32_t frame = 0; frame < warmup; ++frame) {
+        renderFrame(frame);
+        context.waitForIdle();
+    }
+    // Then the last warm-up frame again until the warm-up time is over.
+    const double warmupMilliseconds = warmup > 0 ? warmupDuration(context, options) * 1000.0 : 0.0;
+    for (std::uint32_t extra = 0;
+         extra < kMaxExtraWarmupFrames && millisecondsSince(warmupStart) < warmupMilliseconds;
+         ++extra) {
+        renderFrame(warmup - 1);
+        context.waitForIdle();
+        ++result.warmupFrames;
+    }
+    result.warmupFrames += warmup;
+    startInstructionCount(options.callgrind);
+    for (std::uint32_t frame = warmup; frame < warmup + options.frames; ++frame) {
         const render::FrameTiming timing = renderFrame(frame);
         context.waitForIdle();
-        if (frame < warmup) {
-            continue;
-        }
         encode.push_back(timing.encodeMilliseconds);
         submit.push_back(timing.submitMilliseconds);
         cpu.push_back(timing.cpuMilliseconds());
@@ -270,6 +291,7 @@ Result<BenchReport> runBenchmarks(gpu::Context& context,
     report.cpu = cpuModel();
     report.cores = std::thread::hardware_concurrency();
     report.options = options;
+    report.options.warmupSeconds = warmupDuration(context, options);
     // Under callgrind a spinning wait would add a varying number of polls to the count.
     const gpu::WaitMode previousWait = context.waitMode();
     context.setWaitMode(options.callgrind ? gpu::WaitMode::Block : options.gpuWait);

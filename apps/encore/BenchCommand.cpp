@@ -146,6 +146,12 @@ void addBenchCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) 
                       "NAME+bundle): the bundling axis");
     command->add_option("--frames", bench.frames, "Measured frames")->capture_default_str();
     command->add_option("--warmup", bench.warmup, "Warm-up frames")->capture_default_str();
+    command
+        ->add_option("--warmup-time", bench.warmupSeconds,
+                     "Seconds the warm-up lasts at least, repeating its last frame (default: "
+                     "0.5 on a GPU, which raises its clocks only under load; 0 on a CPU "
+                     "adapter; none with --warmup 0)")
+        ->check(CLI::Range(0.0, 600.0));
     command->add_option("--width", bench.width, "Target width")->capture_default_str();
     command->add_option("--height", bench.height, "Target height")->capture_default_str();
     command->add_option("--samples", bench.samples, "Multisampling: 1 or 4")

@@ -280,6 +280,37 @@ TEST(BenchSmokeTest, RasterThresholdsMoveTrianglesBetweenRasterisers) {
     }
 }
 
+// A GPU lowers its clocks while the CPU builds a scene: `--warmup-time` repeats the last warm-up
+// frame until that long has passed. A CPU adapter (lavapipe here) has no clocks to raise, so by
+// default it renders the warm-up frames only; `--warmup 0` means none at all.
+TEST(BenchSmokeTest, WarmUpLastsAtLeastTheWarmUpTime) {
+    struct Case {
+        std::string flags;
+        double seconds;
+    };
+    std::vector<std::uint32_t> warmupFrames;
+    for (const Case& c : {Case{"--warmup 2", 0.0}, Case{"--warmup 2 --warmup-time 0.4", 0.4},
+                          Case{"--warmup 0 --warmup-time 0.4", 0.0}}) {
+        SCOPED_TRACE(c.flags);
+        const auto dir = makeTempDir("bench-warmup");
+        const auto run = runBench(dir,
+                                  "--objects 20 --frames 2 -s materials --width 32 "
+                                  "--height 32 " +
+                                      c.flags);
+        ASSERT_EQ(run.command.exitCode, 0) << run.command.err;
+        ASSERT_FALSE(run.report.is_discarded());
+        EXPECT_EQ(run.report["warmupSeconds"].get<double>(), c.seconds);
+        warmupFrames.push_back(run.report["results"][0]["warmupFrames"].get<std::uint32_t>());
+    }
+    ASSERT_EQ(warmupFrames.size(), 3u);
+    EXPECT_EQ(warmupFrames[0], 2u);
+    // A 32x32 frame of 20 objects takes milliseconds: 0.4 s is many more than two.
+    EXPECT_GT(warmupFrames[1], 4u);
+    EXPECT_EQ(warmupFrames[2], 0u);
+    const auto refused = runEncore("bench --objects 20 --warmup-time -1");
+    EXPECT_EQ(refused.exitCode, 2) << refused.err;
+}
+
 // `--samples 4` measures multisampled frames (the visibility strategy with four visibility
 // samples per pixel) and says so in the report; other counts are refused.
 TEST(BenchSmokeTest, MeasuresMultisampledFrames) {

@@ -68,6 +68,11 @@ struct BenchOptions {
     bool textures = true;
     std::uint32_t frames = 60;
     std::uint32_t warmup = 10;
+    // Warm-up lasts at least this long too (seconds; unset: 0.5 on a GPU, 0 on a CPU adapter).
+    // A GPU left idle while the CPU builds a scene drops its clocks (an H100 from 1,980 MHz to
+    // 345) and takes longer than a few fast frames to raise them again: frames measured before
+    // then run several times slower.
+    std::optional<double> warmupSeconds;
     std::uint32_t width = 512;
     std::uint32_t height = 512;
     std::uint32_t samples = 1;  // Multisampling of the target: 1 or 4.
@@ -98,6 +103,7 @@ struct BenchResult {
     render::Percentiles encode;
     render::Percentiles submit;
     render::Percentiles cpu;
+    std::uint32_t warmupFrames = 0;  // Rendered before the measured ones (the timed warm-up's too).
     std::optional<render::Percentiles> gpu;
     // GPU time per pass label (gpu::GpuTimer::lastPasses, same-label passes of a frame summed):
     // where `gpu` goes, e.g. the culling passes, the depth pyramid and the scene passes.
