@@ -179,6 +179,14 @@ fn loadAttribute(source: Attribute, vertex: u32, fallback: vec4f) -> vec4f {
     let normalized = ((source.format >> 16u) & 1u) != 0u;
     let size = componentSize(kind);
     let base = source.offset + vertex * source.stride;
+    if (kind == 6u && (base & 3u) == 0u) {
+        // Aligned 32-bit floats, what most positions, normals and coordinates are: whole words.
+        let word = base >> 2u;
+        for (var c = 0u; c < count; c++) {
+            result[c] = bitcast<f32>(geometry[word + c]);
+        }
+        return result;
+    }
     for (var c = 0u; c < count; c++) {
         result[c] = loadComponent(base + c * size, kind, normalized);
     }

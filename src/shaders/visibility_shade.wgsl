@@ -135,13 +135,16 @@ fn shadeEntry(i: u32) {
     let t0 = loadAttribute(uvs0, i0, vec4f(0.0));
     let t1 = loadAttribute(uvs0, i1, vec4f(0.0));
     let t2 = loadAttribute(uvs0, i2, vec4f(0.0));
-    var uvs1 = attributeAt(record, kTexcoord1);
-    if (uvs1.format == 0u) {
-        uvs1 = uvs0;  // mesh.wgsl: TEXCOORD_1 falls back to TEXCOORD_0.
+    // mesh.wgsl: TEXCOORD_1 falls back to TEXCOORD_0 (not loaded twice).
+    var s0 = t0;
+    var s1 = t1;
+    var s2 = t2;
+    let uvs1 = attributeAt(record, kTexcoord1);
+    if (uvs1.format != 0u) {
+        s0 = loadAttribute(uvs1, i0, vec4f(0.0));
+        s1 = loadAttribute(uvs1, i1, vec4f(0.0));
+        s2 = loadAttribute(uvs1, i2, vec4f(0.0));
     }
-    let s0 = loadAttribute(uvs1, i0, vec4f(0.0));
-    let s1 = loadAttribute(uvs1, i1, vec4f(0.0));
-    let s2 = loadAttribute(uvs1, i2, vec4f(0.0));
     let uv0 = mix3(b.value, t0, t1, t2).xy;
     let uv1 = mix3(b.value, s0, s1, s2).xy;
     var gradients: UvGradients;
