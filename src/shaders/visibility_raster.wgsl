@@ -12,7 +12,8 @@ enable atomic_vec2u_min_max;
 //                  exceed params.maxComputePixels are listed for workgroupMain; those that cross
 //                  the near or far plane, or exceed params.maxWorkgroupPixels, for the hardware
 //                  pass (visibility_hardware.wgsl).
-//   workgroupMain  a workgroup per listed triangle, covering its bounds in 8x8 tiles.
+//   workgroupMain  a workgroup per listed block of a triangle (up to kBlockPixels squared),
+//                  covering it in 8x8 tiles.
 #include "frame.wgsl"
 #include "visibility_geometry.wgsl"
 #include "visibility_samples.wgsl"
@@ -27,8 +28,13 @@ enable atomic_vec2u_min_max;
 @group(1) @binding(5) var<storage, read_write> counters: Counters;
 @group(1) @binding(6) var<storage, read_write> hardwareList: array<u32>;
 @group(1) @binding(7) var<storage, read_write> visibility: array<atomic<vec2u>>;
-// Triangles (ids) too large for one thread, which workgroupMain covers.
-@group(1) @binding(9) var<storage, read_write> workgroupList: array<u32>;
+// Blocks of triangles too large for one thread, which workgroupMain covers: (id, block), a
+// triangle's bounds split into blocks of kBlockPixels squared, so that no workgroup walks a
+// large triangle alone while the others have finished. kNoEntry marks a slot left empty.
+@group(1) @binding(9) var<storage, read_write> workgroupList: array<vec2u>;
+// Measured on the H100 (docs/visibility.md): blocks of 32 against 16, 64 and whole triangles.
+const kBlockPixels = 32;
+const kNoEntry = 0xffffffffu;
 
 // rasterMain and workgroupMain (and the shading pass) run as a fixed grid of workgroups that
 // strides over the work the cull listed: direct dispatches. An indirect dispatch sized by the
@@ -211,12 +217,21 @@ fn coverPixel(t: RasterTriangle, id: u32, pixel: vec2i) {
 fn rasterTriangle(id: u32, item: Item, transform: Transform, triangle: u32) -> bool {
     let t = prepareTriangle(id, item, transform, triangle, true);
     if (t.route == kRouteWorkgroup) {
-        let slot = atomicAdd(&counters.workgroupTriangles, 1u);
-        if (slot < arrayLength(&workgroupList)) {
-            workgroupList[slot] = id;
+        let blocks = (t.last - t.first + kBlockPixels) / kBlockPixels;
+        let count = u32(blocks.x * blocks.y);
+        let slot = atomicAdd(&counters.workgroupTriangles, count);
+        let capacity = arrayLength(&workgroupList);
+        if (slot <= capacity && count <= capacity - slot) {
+            for (var block = 0u; block < count; block++) {
+                workgroupList[slot + block] = vec2u(id, block);
+            }
             return true;
         }
-        toHardware(id);  // The list is full.
+        // The list is full: the hardware draws it, and what it reserved stays empty.
+        for (var empty = slot; empty < min(slot + count, capacity); empty++) {
+            workgroupList[empty] = vec2u(kNoEntry, 0u);
+        }
+        toHardware(id);
         return false;
     }
     if (t.route != kRouteThread) {
@@ -393,20 +408,31 @@ fn workgroupMain(@builtin(workgroup_id) group: vec3u, @builtin(num_workgroups) g
     }
 }
 
-// The listed triangle at `slot`, its pixels in 8x8 tiles, one per thread of the workgroup.
+// The listed block at `slot`: its triangle's pixels in that block, in 8x8 tiles, one per thread
+// of the workgroup.
 fn coverListed(slot: u32, lane: u32) {
-    let id = workgroupList[slot];
+    let entry = workgroupList[slot];
+    if (entry.x == kNoEntry) {
+        return;
+    }
+    let id = entry.x;
     let unit = units[id / kUnitTriangles];
     let item = loadItem(unit.x);
     let t = prepareTriangle(id, item, instances[item.slot], unitTriangle(unit, id), false);
+    if (t.route == kRouteNone) {
+        return;
+    }
     let size = t.last - t.first + 1;
-    let columns = (size.x + 7) / 8;
-    let tiles = columns * ((size.y + 7) / 8);
+    let blockColumns = (size.x + kBlockPixels - 1) / kBlockPixels;
+    let block = vec2i(i32(entry.y) % blockColumns, i32(entry.y) / blockColumns) * kBlockPixels;
+    let extent = min(size - block, vec2i(kBlockPixels));
+    let columns = (extent.x + 7) / 8;
+    let tiles = columns * ((extent.y + 7) / 8);
     let offset = vec2i(i32(lane % 8u), i32(lane / 8u));
     for (var tile = 0; tile < tiles; tile++) {
-        let pixel = t.first + vec2i(tile % columns, tile / columns) * 8 + offset;
-        if (all(pixel <= t.last)) {
-            coverPixel(t, id, pixel);
+        let inBlock = vec2i(tile % columns, tile / columns) * 8 + offset;
+        if (all(inBlock < extent)) {
+            coverPixel(t, id, t.first + block + inBlock);
         }
     }
 }

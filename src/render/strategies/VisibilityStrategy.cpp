@@ -31,6 +31,8 @@ constexpr std::uint64_t kHardwareTriangles = 40;
 // The hardware list holds at most this many triangles (16 MiB); past it they are counted as an
 // overflow (visibility_raster.wgsl) rather than written.
 constexpr std::uint64_t kMaxHardwareTriangles = 4u << 20;
+// Blocks of 32x32 pixels of the largest triangle the workgroup path takes (112 pixels across).
+constexpr std::uint64_t kWorkgroupBlocks = 16;
 constexpr std::uint32_t kMaxGroups = 65535;
 
 std::uint32_t groupsFor(std::uint64_t threads, std::uint32_t size) {
@@ -145,9 +147,12 @@ Result<void> VisibilityStrategy::prepare(const RenderSetup& setup, const GpuScen
     mHardwareList =
         gpu::createBuffer(device, wgpu::BufferUsage::Storage, std::uint64_t(mHardwareCapacity) * 4,
                           "visibility hardware triangles");
-    mWorkgroupList =
-        gpu::createBuffer(device, wgpu::BufferUsage::Storage, std::uint64_t(mHardwareCapacity) * 4,
-                          "visibility workgroup triangles");
+    // A triangle of the workgroup path lists up to kWorkgroupBlocks blocks
+    // (visibility_raster.wgsl); past the capacity the hardware draws it.
+    const std::uint64_t workgroupCapacity = std::clamp<std::uint64_t>(
+        mTables.triangleCount * kWorkgroupBlocks, 1, kMaxHardwareTriangles);
+    mWorkgroupList = gpu::createBuffer(device, wgpu::BufferUsage::Storage, workgroupCapacity * 8,
+                                       "visibility workgroup blocks");
     // The counters, then the clusters' visibility (visibility_counters.wgsl), which the copies
     // of kCounterBytes that reset the counters leave as they are (zero after prepare).
     mCounters = gpu::createBuffer(
@@ -159,7 +164,7 @@ Result<void> VisibilityStrategy::prepare(const RenderSetup& setup, const GpuScen
     const std::uint32_t persistent = persistentWorkgroups(device);
     mPersistentGroups = persistent;
     mRasterGroups = stridingGrid(mTables.unitCount, 1, persistent);
-    mWorkgroupGroups = stridingGrid(mHardwareCapacity, 1, persistent);
+    mWorkgroupGroups = stridingGrid(workgroupCapacity, 1, persistent);
     mBins = gpu::createBuffer(
         device,
         wgpu::BufferUsage::Storage | wgpu::BufferUsage::CopyDst | wgpu::BufferUsage::CopySrc,

@@ -157,7 +157,8 @@ class VisibilityStrategy final : public Strategy {
     wgpu::Buffer mCounters;
     wgpu::Buffer mCulledCounters;  // After a multi-view frame's cull.
     wgpu::Buffer mHardwareList;
-    wgpu::Buffer mWorkgroupList;  // Triangles a workgroup covers (visibility_raster.wgsl).
+    wgpu::Buffer
+        mWorkgroupList;  // Blocks of triangles a workgroup covers (visibility_raster.wgsl).
     std::uint32_t mHardwareCapacity = 0;
     // Workgroups of the striding grids: the raster's (at most the units), the workgroup
     // raster's (at most the listed triangles); each bin's shading grid is the target's
