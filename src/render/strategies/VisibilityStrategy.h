@@ -157,11 +157,10 @@ class VisibilityStrategy final : public Strategy {
     wgpu::Buffer mCounters;
     wgpu::Buffer mCulledCounters;  // After a multi-view frame's cull.
     wgpu::Buffer mHardwareList;
-    wgpu::Buffer
-        mWorkgroupList;  // Blocks of triangles a workgroup covers (visibility_raster.wgsl).
+    wgpu::Buffer mWorkgroupList;  // Triangles' blocks for workgroups (visibility_raster.wgsl).
     std::uint32_t mHardwareCapacity = 0;
     // Workgroups of the striding grids: the raster's (at most the units), the workgroup
-    // raster's (at most the listed triangles); each bin's shading grid is the target's
+    // raster's (at most the listed blocks); each bin's shading grid is the target's
     // (VisibilityTarget::shadeGroups). None exceeds persistentWorkgroups().
     std::uint32_t mRasterGroups = 1;
     std::uint32_t mWorkgroupGroups = 1;
