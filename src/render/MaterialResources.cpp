@@ -289,6 +289,11 @@ const wgpu::BindGroup& MaterialResources::bindGroup(scene::MaterialId material) 
     return mBindGroups[material.index()];
 }
 
+bool MaterialResources::shadesExtensions(scene::MaterialId material) const {
+    assert(material.index() < mShadesExtensions.size());
+    return mShadesExtensions[material.index()];
+}
+
 const wgpu::BindGroup& MaterialResources::drawBindGroup(scene::MaterialId material) const {
     assert(material.index() < mBaseBindGroups.size());
     const wgpu::BindGroup& base = mBaseBindGroups[material.index()];

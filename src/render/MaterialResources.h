@@ -84,7 +84,7 @@ class MaterialResources {
     MaterialResources& operator=(const MaterialResources&) = delete;
 
     // The group 2 bind group of a material for pipelines compiled with every extension
-    // (MATERIAL_EXTENSIONS, as the visibility strategy's shading is); `material` must be a
+    // (MATERIAL_EXTENSIONS, whatever the material uses); `material` must be a
     // valid index of the scene. Its layout is BindGroupLayouts::material when
     // textured(material), else BindGroupLayouts::materialUniformOnly.
     const wgpu::BindGroup& bindGroup(scene::MaterialId material) const;
@@ -97,6 +97,9 @@ class MaterialResources {
     // drawing it need the MATERIAL_TEXTURES variant. Changes only through
     // replaceBaseColorImage.
     bool textured(scene::MaterialId material) const;
+    // Whether the material's shading needs the MATERIAL_EXTENSIONS variant
+    // (materialShadesExtensions): drawBindGroup binds the whole group then, else the base slots.
+    bool shadesExtensions(scene::MaterialId material) const;
     // Whether a slot of the material samples through a palette entry other than the first
     // (pipelines drawing it need the SAMPLER_PALETTE variant).
     bool samplesThroughPalette(scene::MaterialId material) const;

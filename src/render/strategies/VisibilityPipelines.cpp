@@ -258,20 +258,28 @@ Result<std::unique_ptr<VisibilityPipelines>> VisibilityPipelines::create(const R
     // The shading pipelines first: they take longest.
     for (bool textured : {false, true}) {
         for (bool tangent : {false, true}) {
-            // One shading pipeline serves every material of its bin kind: all features in.
-            std::set<std::string, std::less<>> flags = {"SAMPLE_GRADIENT", "MATERIAL_EXTENSIONS",
-                                                        "VIEW_SLOTS"};
-            if (textured) {
-                flags.insert("MATERIAL_TEXTURES");
-                flags.insert("SAMPLER_PALETTE");
+            for (bool extensions : {false, true}) {
+                // One shading pipeline serves every material of its bin kind.
+                std::set<std::string, std::less<>> flags = {"SAMPLE_GRADIENT", "VIEW_SLOTS"};
+                if (extensions) {
+                    flags.insert("MATERIAL_EXTENSIONS");
+                }
+                if (textured) {
+                    flags.insert("MATERIAL_TEXTURES");
+                    flags.insert("SAMPLER_PALETTE");
+                }
+                if (tangent) {
+                    flags.insert("HAS_TANGENT");
+                }
+                ENCORE_TRY_ASSIGN(auto shade, library.module("visibility_shade.wgsl", flags));
+                // MaterialResources::drawBindGroup's layouts.
+                const wgpu::BindGroupLayout& material = !textured
+                                                            ? setup.layouts->materialUniformOnly
+                                                        : extensions ? setup.layouts->material
+                                                                     : setup.layouts->materialBase;
+                add(p.shade[textured][tangent][extensions], shade, "shadeMain",
+                    {setup.layouts->frame, p.shadeLayout, material});
             }
-            if (tangent) {
-                flags.insert("HAS_TANGENT");
-            }
-            ENCORE_TRY_ASSIGN(auto shade, library.module("visibility_shade.wgsl", flags));
-            add(p.shade[textured][tangent], shade, "shadeMain",
-                {setup.layouts->frame, p.shadeLayout,
-                 textured ? setup.layouts->material : setup.layouts->materialUniformOnly});
         }
     }
     ENCORE_TRY_ASSIGN(auto cull, library.module("visibility_cull.wgsl"));

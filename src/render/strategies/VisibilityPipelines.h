@@ -62,7 +62,7 @@ struct VisibilityPipelines {
     // Bytes of visibility_counters.wgsl's Counters.
     static constexpr std::uint64_t kCounterBytes = 64;
     // The number of pipelines create() makes (counted in RenderSetup::pipelinesCreated).
-    static constexpr std::uint64_t kPipelineCount = 18;
+    static constexpr std::uint64_t kPipelineCount = 22;
 
     // Fails only where an embedded shader does not compile (a bug, not an input error).
     static Result<std::unique_ptr<VisibilityPipelines>> create(const RenderSetup& setup);
@@ -84,8 +84,10 @@ struct VisibilityPipelines {
     wgpu::ComputePipeline binCount;
     wgpu::ComputePipeline binOffsets;
     wgpu::ComputePipeline binScatter;
-    // [textured][tangent].
-    std::array<std::array<wgpu::ComputePipeline, 2>, 2> shade;
+    // [textured][tangent][extensions]: without MATERIAL_EXTENSIONS for materials that use none
+    // (MaterialResources::shadesExtensions), which bind their base slots only: fewer registers,
+    // on the H100 a quarter off the shading pass.
+    std::array<std::array<std::array<wgpu::ComputePipeline, 2>, 2>, 2> shade;
     // Per sample, writing each sample's depth; compositePixels per pixel without depth, for
     // frames that draw nothing after it (visibility_composite.wgsl); compositeResolved the same
     // at one sample, for passes drawn into the resolved texture (Strategy::composesResolved).

@@ -505,10 +505,11 @@ void VisibilityStrategy::encodeShading(const wgpu::CommandEncoder& commands,
     for (std::uint32_t bin : mTables.bins) {
         const scene::MaterialId material(bin / 2);
         const bool textured = materials.textured(material);
-        pass.SetPipeline(mPipelines->shade[textured][bin & 1]);
+        pass.SetPipeline(
+            mPipelines->shade[textured][bin & 1][materials.shadesExtensions(material)]);
         const std::uint32_t offsets[] = {slotsOffset, std::uint32_t(bin * kBinStride)};
         pass.SetBindGroup(1, mShadeGroup, 2, offsets);
-        pass.SetBindGroup(2, materials.bindGroup(material));
+        pass.SetBindGroup(2, materials.drawBindGroup(material));
         pass.DispatchWorkgroups(mTarget->shadeGroups);
     }
 }
