@@ -58,11 +58,12 @@ FrameResult Renderer::renderPasses(std::span<const Camera> cameras,
 
     // Only scenes with transmissive surfaces pay for the copy and the extra passes.
     const bool transmission = mTransmission && mStrategy && mStrategy->drawsTransmission();
+    // One scene pass, of colour alone: what a strategy may compose some other way.
+    const bool singlePass = mStrategy && !twoPhases && !transmission && !mPassTargets;
     // Straight into the resolved texture at one sample (Strategy::composesResolved).
-    const bool resolvedPasses = mResolvedBackground && !twoPhases && !transmission &&
-                                !mPassTargets && mStrategy && mStrategy->composesResolved();
+    const bool resolvedPasses = singlePass && mResolvedBackground && mStrategy->composesResolved();
     // Every pixel composed in compute (Strategy::composesFrame): no scene render pass at all.
-    const bool composedFrame = mStrategy && !twoPhases && !transmission && !mPassTargets &&
+    const bool composedFrame = singlePass &&
                                mOptions.toneMapping.background != BackgroundKind::Environment &&
                                mStrategy->composesFrame(state);
     auto encodeFrame = [&](const wgpu::CommandEncoder& commandEncoder) {

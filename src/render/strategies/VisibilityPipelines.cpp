@@ -20,16 +20,27 @@ namespace {
 constexpr auto kCompute = wgpu::ShaderStage::Compute;
 constexpr std::uint64_t kBinRecordBytes = 256;  // visibility_bin_record.wgsl's record.
 
-wgpu::ComputePipeline computePipeline(const wgpu::Device& device,
-                                      const wgpu::ShaderModule& module,
-                                      const char* entryPoint,
-                                      std::initializer_list<wgpu::BindGroupLayout> groups) {
+// A compute pipeline of `entryPoint` over `groups`, labelled with the entry point.
+wgpu::ComputePipelineDescriptor computeDescriptor(
+    const wgpu::Device& device,
+    const wgpu::ShaderModule& module,
+    const char* entryPoint,
+    std::initializer_list<wgpu::BindGroupLayout> groups) {
     wgpu::ComputePipelineDescriptor descriptor{};
     descriptor.label = entryPoint;
     descriptor.layout = gpu::makePipelineLayout(device, groups);
     descriptor.compute.module = module;
     descriptor.compute.entryPoint = entryPoint;
-    return device.CreateComputePipeline(&descriptor);
+    return descriptor;
+}
+
+// visibility_composite.wgsl's flags for the target's sample count.
+std::set<std::string, std::less<>> compositeFlags(const RenderSetup& setup) {
+    std::set<std::string, std::less<>> flags;
+    if (setup.sampleCount > 1) {
+        flags.insert("MULTISAMPLED");
+    }
+    return flags;
 }
 
 // Compute pipelines created side by side: Dawn compiles asynchronous pipelines on its worker
@@ -52,11 +63,8 @@ class AsyncComputePipelines {
              const wgpu::ShaderModule& module,
              const char* entryPoint,
              std::initializer_list<wgpu::BindGroupLayout> groups) {
-        wgpu::ComputePipelineDescriptor descriptor{};
-        descriptor.label = entryPoint;
-        descriptor.layout = gpu::makePipelineLayout(mSetup.device, groups);
-        descriptor.compute.module = module;
-        descriptor.compute.entryPoint = entryPoint;
+        const wgpu::ComputePipelineDescriptor descriptor =
+            computeDescriptor(mSetup.device, module, entryPoint, groups);
         auto& failure = mFailures.emplace_back();
         mFutures.push_back(mSetup.device.CreateComputePipelineAsync(
             &descriptor, wgpu::CallbackMode::WaitAnyOnly,
@@ -205,11 +213,8 @@ Result<wgpu::RenderPipeline> compositePipeline(const RenderSetup& setup,
                                                const VisibilityPipelines& p,
                                                bool perPixel,
                                                bool resolved = false) {
-    std::set<std::string, std::less<>> flags;
-    if (setup.sampleCount > 1) {
-        flags.insert("MULTISAMPLED");
-    }
-    ENCORE_TRY_ASSIGN(auto composite, setup.shaders->module("visibility_composite.wgsl", flags));
+    ENCORE_TRY_ASSIGN(auto composite,
+                      setup.shaders->module("visibility_composite.wgsl", compositeFlags(setup)));
     gpu::FullscreenPipelineDescriptor descriptor;
     descriptor.label = "visibility composite";
     descriptor.module = composite;
@@ -252,7 +257,9 @@ Result<std::unique_ptr<VisibilityPipelines>> VisibilityPipelines::create(const R
         if (async) {
             async->add(target, module, entryPoint, groups);
         } else {
-            target = computePipeline(device, module, entryPoint, groups);
+            const wgpu::ComputePipelineDescriptor descriptor =
+                computeDescriptor(device, module, entryPoint, groups);
+            target = device.CreateComputePipeline(&descriptor);
         }
     };
     // The shading pipelines first: they take longest.
@@ -299,10 +306,7 @@ Result<std::unique_ptr<VisibilityPipelines>> VisibilityPipelines::create(const R
     add(p.binOffsets, bins, "offsetsMain", {p.binLayout});
     add(p.binScatter, bins, "scatterMain", {p.binLayout});
     {
-        std::set<std::string, std::less<>> flags;
-        if (setup.sampleCount > 1) {
-            flags.insert("MULTISAMPLED");
-        }
+        std::set<std::string, std::less<>> flags = compositeFlags(setup);
         if (setup.colorFormat == wgpu::TextureFormat::RGBA16Float) {
             flags.insert("HALF_OUTPUT");
         }

@@ -82,7 +82,6 @@ bool VisibilityTarget::ensureComposed(const RenderSetup& setup, const wgpu::Colo
         composition =
             gpu::createBuffer(setup.device, wgpu::BufferUsage::Uniform | wgpu::BufferUsage::CopyDst,
                               kCompositionBytes, "visibility composition");
-        compositionWords = {};
     }
     // visibility_composite.wgsl's Composition: the background, then the row pitch in texels.
     std::array<std::uint32_t, kCompositionBytes / 4> words{};
