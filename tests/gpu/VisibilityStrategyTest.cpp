@@ -4,8 +4,8 @@
 // raster covers what the hardware covers, sample for sample (a quad's shared edge, a fan,
 // sub-pixel and degenerate triangles, near-plane and screen-edge crossings), so that edges are
 // anti-aliased as the hardware's;
-// MASK, BLEND and skinned geometry is drawn; the triangle counts say where triangles went; and
-// a device without AtomicVec2uMinMax gets an error naming it.
+// MASK, BLEND and skinned geometry is drawn; the triangle counts say where triangles went.
+// VisibilityAttributeTest.cpp: attribute formats; VisibilityLimitsTest.cpp: device limits.
 
 #include <gtest/gtest.h>
 
@@ -20,9 +20,7 @@
 #include "GpuTestSupport.h"
 #include "RenderTestSupport.h"
 #include "VisibilityTestSupport.h"
-#include "encore/image/ImageCodec.h"
 #include "encore/render/Renderer.h"
-#include "encore/render/VisibilityFeatures.h"
 #include "gpu/Readback.h"
 #include "image/ImageCompare.h"
 #include "render/strategies/VisibilityStrategy.h"
@@ -32,34 +30,11 @@
 namespace encore::render {
 namespace {
 
-constexpr std::uint32_t kWidth = 128;
-constexpr std::uint32_t kHeight = 96;
+using test::render;
+using test::triangles;
 
-image::ImageRgba8 render(gpu::Context& context,
-                         const scene::SceneData& scene,
-                         StrategyKind kind,
-                         const Camera& camera,
-                         DebugChannel channel,
-                         float computePixels = VisibilityStrategy::kDefaultComputePixels,
-                         float workgroupPixels = VisibilityStrategy::kMaxWorkgroupPixels,
-                         std::uint32_t samples = 1) {
-    RendererOptions options = test::pixelTestOptions(kWidth, kHeight, samples, channel);
-    auto renderer = Renderer::create(context, options);
-    EXPECT_TRUE(renderer.ok());
-    if (!renderer.ok()) {
-        return {};
-    }
-    CullingOptions culling{.occlusion = true, .levelsOfDetail = false};
-    culling.computeRasterPixels = computePixels;
-    culling.workgroupRasterPixels = workgroupPixels;
-    renderer->setCullingOptions(culling);
-    auto prepared = renderer->prepare(scene, kind);
-    EXPECT_TRUE(prepared.ok()) << prepared.error().message;
-    renderer->renderFrame(camera);
-    auto image = renderer->readImage();
-    EXPECT_TRUE(image.ok()) << image.error().message;
-    return image.ok() ? std::move(*image) : image::ImageRgba8{};
-}
+constexpr std::uint32_t kWidth = test::kVisibilityWidth;
+constexpr std::uint32_t kHeight = test::kVisibilityHeight;
 
 // Each generated layout or shared model at 1 sample and at 4 (`--samples 4`: the visibility
 // buffer's four samples against the hardware's 4x multisampling).
@@ -160,29 +135,6 @@ INSTANTIATE_TEST_SUITE_P(SharedModels,
                              return std::get<0>(info.param).testName() + "_" +
                                     std::to_string(std::get<1>(info.param)) + "x";
                          });
-
-// A mesh of `triangles` (positions, three per triangle) with one material per triangle, so that
-// a pixel's colour says which triangle covered it; those from `firstWithMode` on have
-// `alphaMode`, the others are opaque.
-scene::SceneData triangles(const std::vector<std::array<glm::vec3, 3>>& list,
-                           const std::string& alphaMode = "OPAQUE",
-                           std::size_t firstWithMode = 0) {
-    test::GltfBuilder builder;
-    std::vector<test::GltfBuilder::PrimitiveDesc> primitives;
-    for (std::size_t i = 0; i < list.size(); ++i) {
-        const auto positions = builder.addPositions({list[i][0], list[i][1], list[i][2]});
-        const float hue = float(i + 1) / float(list.size() + 1);
-        const auto material =
-            builder.addMaterial({.baseColor = {hue, 1.0f - hue, std::fmod(hue * 7.0f, 1.0f), 1.0f},
-                                 .alphaMode = i >= firstWithMode ? alphaMode : "OPAQUE",
-                                 .doubleSided = true});
-        primitives.push_back({.attributes = {{"POSITION", positions}}, .material = material});
-    }
-    builder.addScene({builder.addNode({.mesh = builder.addMesh(primitives)})});
-    auto scene = scene::loadSceneFromMemory(builder.toGlb(), {}, "triangles.glb");
-    EXPECT_TRUE(scene.ok());
-    return scene.ok() ? std::move(*scene) : scene::SceneData{};
-}
 
 // The compute raster's pixels equal the hardware's, triangle for triangle (each has its own base
 // colour; the base colour channel has no shading differences, and the shaded colour's trip
@@ -552,162 +504,6 @@ TEST(VisibilityFallbackTest, MaskBlendAndSkinnedGeometryIsDrawn) {
         test::expectVisibilityClose(expected, image);
     }
     EXPECT_TRUE(context->checkNoErrors("visibility fallbacks").ok());
-}
-
-// Two quads whose attributes are normalized integers (KHR_mesh_quantization: 16-bit normals,
-// 16-bit and 8-bit texture coordinates, 8-bit colours), which the visibility passes decode
-// from the geometry buffer themselves (aligned 32-bit floats take a faster path): the base
-// colour (a red and blue texture times the vertex colours) and the normals as the hardware
-// reads them. The right quad samples through TEXCOORD_1, the left one has none (its fallback,
-// TEXCOORD_0).
-TEST(VisibilityAttributeTest, NormalizedIntegerAttributesAsTheHardwareReadsThem) {
-    ENCORE_REQUIRE_VULKAN(context);
-    test::GltfBuilder builder;
-    auto& json = builder.json();
-    json["extensionsUsed"] = {"KHR_mesh_quantization"};
-    json["extensionsRequired"] = {"KHR_mesh_quantization"};
-    const image::ImageRgba8 pixels{2, 1, {255, 0, 0, 255, 0, 0, 255, 255}};
-    const auto png = image::encodePng(pixels);
-    ASSERT_TRUE(png.ok());
-    json["images"].push_back(
-        {{"bufferView", builder.addBufferView(*png)}, {"mimeType", "image/png"}});
-    json["samplers"].push_back({{"magFilter", 9728}, {"minFilter", 9728}});
-    json["textures"].push_back({{"source", 0}, {"sampler", 0}});
-    const test::GltfBuilder::AccessorOptions normalized{.normalized = true};
-    std::vector<std::uint32_t> nodes;
-    for (int side = 0; side < 2; ++side) {
-        const float x0 = side == 0 ? -1.0f : 0.05f;
-        test::GltfBuilder::PrimitiveDesc quad;
-        quad.attributes["POSITION"] = builder.addPositions(
-            {{x0, -0.8f, 0}, {x0 + 0.95f, -0.8f, 0}, {x0 + 0.95f, 0.8f, 0}, {x0, 0.8f, 0}});
-        // Normals leaning four ways (int16, normalized: 32767 is 1).
-        quad.attributes["NORMAL"] = builder.addAccessor<std::int16_t>(
-            {-12000, -9000, 29000, 15000, -6000, 28000, 11000, 14000, 27000, -8000, 16000, 27500},
-            "VEC3", normalized);
-        const std::vector<std::uint16_t> across = {0, 0, 65535, 0, 65535, 65535, 0, 65535};
-        const std::vector<std::uint8_t> acrossBytes = {0, 0, 255, 0, 255, 255, 0, 255};
-        if (side == 0) {
-            quad.attributes["TEXCOORD_0"] = builder.addAccessor(across, "VEC2", normalized);
-        } else {
-            // TEXCOORD_0 the wrong way round: only TEXCOORD_1 draws red on the left.
-            quad.attributes["TEXCOORD_0"] = builder.addTexcoords({{1, 0}, {0, 0}, {0, 1}, {1, 1}});
-            quad.attributes["TEXCOORD_1"] = builder.addAccessor(acrossBytes, "VEC2", normalized);
-        }
-        quad.attributes["COLOR_0"] = builder.addAccessor<std::uint8_t>(
-            {255, 255, 255, 255, 128, 255, 64, 255, 255, 128, 255, 255, 32, 200, 255, 255}, "VEC4",
-            normalized);
-        quad.indices = builder.addIndices<std::uint16_t>({0, 1, 2, 0, 2, 3});
-        quad.material = builder.addMaterial({.baseColorTexture = 0});
-        json["materials"][side]["pbrMetallicRoughness"]["baseColorTexture"]["texCoord"] = side;
-        nodes.push_back(builder.addNode({.mesh = builder.addMesh(quad)}));
-    }
-    builder.addScene(nodes);
-    auto scene = scene::loadSceneFromMemory(builder.toGlb(), {}, "quantized.glb");
-    ASSERT_TRUE(scene.ok()) << scene.error().message;
-    for (DebugChannel channel : {DebugChannel::BaseColor, DebugChannel::Normal}) {
-        SCOPED_TRACE(int(channel));
-        const auto expected =
-            render(*context, *scene, StrategyKind::GpuCullingBundles, kFront, channel);
-        const auto image = render(*context, *scene, StrategyKind::Visibility, kFront, channel);
-        test::expectVisibilityClose(expected, image);
-        EXPECT_GT(test::coveredFraction(image, test::pixelAt(image, 0, 0)), 0.04);
-        if (channel == DebugChannel::BaseColor) {
-            // Each quad is red on its left half and blue on its right, through either set.
-            for (float x : {-0.75f, 0.3f}) {
-                const auto [px, py] = test::pixelOf(kFront, glm::vec3(x, 0, 0), kWidth, kHeight);
-                const test::Rgba left = test::pixelAt(image, px, py);
-                EXPECT_GT(left[0], 100);
-                EXPECT_LT(left[2], 30);
-            }
-        }
-    }
-    EXPECT_TRUE(context->checkNoErrors("visibility attributes").ok());
-}
-
-TEST(VisibilityFeatureTest, WithoutTheFeatureTheErrorNamesIt) {
-    ENCORE_REQUIRE_VULKAN(shared);
-    auto context = gpu::Context::create();  // No requestVisibilityFeatures.
-    ASSERT_TRUE(context.ok());
-    ASSERT_FALSE(context->hasFeature(wgpu::FeatureName::AtomicVec2uMinMax));
-    RendererOptions options = test::pixelTestOptions(kWidth, kHeight);
-    options.environment = nullptr;  // The shared one belongs to the other device.
-    auto renderer = Renderer::create(*context, options);
-    ASSERT_TRUE(renderer.ok());
-    const auto scene = triangles({{glm::vec3(0), glm::vec3(1, 0, 0), glm::vec3(0, 1, 0)}});
-    auto prepared = renderer->prepare(scene, StrategyKind::Visibility);
-    ASSERT_FALSE(prepared.ok());
-    EXPECT_EQ(prepared.error().code, ErrorCode::Unsupported);
-    EXPECT_NE(prepared.error().message.find("AtomicVec2uMinMax"), std::string::npos);
-}
-
-TEST(VisibilityLimitsTest, AVisibilityBufferPastTheBindingLimitIsAnError) {
-    ENCORE_REQUIRE_VULKAN(shared);
-    // 128x96 at 4 samples needs 393,216 bytes of visibility buffer, at 1 sample 98,304.
-    gpu::ContextOptions contextOptions;
-    requestVisibilityFeatures(contextOptions);
-    contextOptions.limitOverrides.maxStorageBufferBindingSize = 256 * 1024;
-    auto context = gpu::Context::create(contextOptions);
-    ASSERT_TRUE(context.ok());
-    const auto scene = triangles({{glm::vec3(-1, -1, 0), glm::vec3(1, -1, 0), glm::vec3(0, 1, 0)}});
-    for (std::uint32_t samples : kSampleCounts) {
-        SCOPED_TRACE(std::to_string(samples) + " samples");
-        RendererOptions options = test::pixelTestOptions(kWidth, kHeight, samples);
-        options.environment = nullptr;  // The shared one belongs to the other device.
-        auto renderer = Renderer::create(*context, options);
-        ASSERT_TRUE(renderer.ok());
-        auto prepared = renderer->prepare(scene, StrategyKind::Visibility);
-        if (samples == 1) {
-            ASSERT_TRUE(prepared.ok()) << prepared.error().message;
-            // Growing the target past the limit is refused the same way.
-            auto resized = renderer->resize(kWidth * 2, kHeight * 2);
-            ASSERT_FALSE(resized.ok());
-            EXPECT_NE(resized.error().message.find("maxStorageBufferBindingSize"),
-                      std::string::npos);
-            renderer->renderFrame(kFront);
-            auto image = renderer->readImage();
-            ASSERT_TRUE(image.ok());
-            EXPECT_EQ(image->width, kWidth);
-            EXPECT_GT(test::coveredFraction(*image, test::pixelAt(*image, 0, 0)), 0.01);
-        } else {
-            ASSERT_FALSE(prepared.ok());
-            EXPECT_EQ(prepared.error().code, ErrorCode::LimitExceeded);
-            EXPECT_NE(prepared.error().message.find("maxStorageBufferBindingSize"),
-                      std::string::npos)
-                << prepared.error().message;
-        }
-    }
-    EXPECT_TRUE(context->checkNoErrors("visibility limits").ok());
-}
-
-// The shaded colour is a layer per sample of the target's size: a target more than half
-// maxTextureDimension2D wide (encore batch's strips of 12 views at 512 pixels) renders at four
-// samples. Its former 2x2 texels per pixel made such a target fail to prepare.
-TEST(VisibilityLimitsTest, AWideTargetRendersAtFourSamples) {
-    ENCORE_REQUIRE_VULKAN(shared);
-    gpu::ContextOptions contextOptions;
-    requestVisibilityFeatures(contextOptions);
-    contextOptions.limitOverrides.maxTextureDimension2D = kWidth + kWidth / 2;
-    auto context = gpu::Context::create(contextOptions);
-    ASSERT_TRUE(context.ok());
-    const auto scene = triangles({{glm::vec3(-1, -1, 0), glm::vec3(1, -1, 0), glm::vec3(0, 1, 0)}});
-    RendererOptions options = test::pixelTestOptions(kWidth, kHeight, 4);
-    options.environment = nullptr;  // The shared one belongs to the other device.
-    auto renderer = Renderer::create(*context, options);
-    ASSERT_TRUE(renderer.ok());
-    auto prepared = renderer->prepare(scene, StrategyKind::Visibility);
-    ASSERT_TRUE(prepared.ok()) << prepared.error().message;
-    renderer->renderFrame(kFront);
-    auto image = renderer->readImage();
-    ASSERT_TRUE(image.ok());
-    EXPECT_GT(test::coveredFraction(*image, test::pixelAt(*image, 0, 0)), 0.01);
-    EXPECT_TRUE(context->checkNoErrors("wide target").ok());
-}
-
-TEST(VisibilityFeatureTest, TheTestContextHasTheFeature) {
-    ENCORE_REQUIRE_VULKAN(context);
-    // Mesa >= 25 lavapipe (and the H100's driver) report it with allow_unsafe_apis.
-    EXPECT_TRUE(context->hasFeature(wgpu::FeatureName::AtomicVec2uMinMax))
-        << context->adapterDescription().summary();
 }
 
 }  // namespace
