@@ -26,7 +26,7 @@ void addCullingOptions(CLI::App& command, render::CullingOptions& options) {
                     "visibility strategy: a compute workgroup rasterises, in 8x8 tiles, each "
                     "larger triangle up to this many pixels each way; larger ones go to the "
                     "hardware (0 with --compute-raster-pixels 0: all in hardware)")
-        ->check(CLI::Range(0.0f, 112.0f))
+        ->check(CLI::Range(0.0f, 8192.0f))
         ->capture_default_str();
     command.add_flag("!--no-cluster-culling", options.clusterCulling,
                      "visibility strategy: rasterise every cluster of each drawn instance (no "

@@ -59,6 +59,47 @@ fn edge(a: vec2i, b: vec2i, p: vec2i) -> i32 {
     return (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x);
 }
 
+// Up to this many pixels across, the fixed-point edge functions (relative to the triangle's
+// first pixel) stay within 32 bits; larger triangles evaluate them in 64 bits (wideEdge).
+const kNarrowPixels = 112.0;
+
+// A 64-bit two's complement integer as (low word, high word).
+fn negateWide(v: vec2u) -> vec2u {
+    let low = ~v.x + 1u;
+    return vec2u(low, ~v.y + select(0u, 1u, low == 0u));
+}
+
+// a * b exactly, for |a| and |b| below 2^24 (WGSL has no 64-bit integers).
+fn multiplyWide(a: i32, b: i32) -> vec2u {
+    let ua = u32(abs(a));
+    let ub = u32(abs(b));
+    let low = (ua & 0xffffu) * (ub & 0xffffu);
+    let middle = (ua & 0xffffu) * (ub >> 16u) + (ua >> 16u) * (ub & 0xffffu);  // Below 2^25.
+    let sum = low + (middle << 16u);
+    let product = vec2u(sum, (ua >> 16u) * (ub >> 16u) + (middle >> 16u) + select(0u, 1u, sum < low));
+    return select(product, negateWide(product), (a < 0) != (b < 0));
+}
+
+// edge() in 64 bits: vertices and samples within 2^22 of each other (kMaxWorkgroupPixels).
+fn wideEdge(a: vec2i, b: vec2i, p: vec2i) -> vec2u {
+    let plus = multiplyWide(b.x - a.x, p.y - a.y);
+    let minus = multiplyWide(b.y - a.y, p.x - a.x);
+    return vec2u(plus.x - minus.x, plus.y - minus.y - select(0u, 1u, plus.x < minus.x));
+}
+
+// The sign of a wide value: -1, 0 or 1.
+fn wideSign(v: vec2u) -> i32 {
+    if (i32(v.y) < 0) {
+        return -1;
+    }
+    return select(1, 0, v.x == 0u && v.y == 0u);
+}
+
+// Whether edge + bias >= 0 (bias -1 or 0), in 64 bits.
+fn wideInside(a: vec2i, b: vec2i, p: vec2i, bias: i32) -> bool {
+    return wideSign(wideEdge(a, b, p)) + bias >= 0;
+}
+
 // With the triangle wound so that inside is positive (clockwise on the y-down screen): top edges
 // run right along a row, left edges run up. Pixel centres on such an edge are inside, on the
 // other edges outside, so a pixel shared by two triangles belongs to one.
@@ -89,6 +130,7 @@ struct RasterTriangle {
     v0: vec2i,
     v1: vec2i,
     v2: vec2i,
+    wide: bool,  // Evaluated in 64 bits: over kNarrowPixels across.
     // Depth at the first pixel's corner and its change per pixel in x and y: a plane through
     // the vertices as projected, not as snapped, as the hardware interpolates depth.
     depth: vec3f,
@@ -156,12 +198,19 @@ fn prepareTriangle(id: u32, item: Item, transform: Transform, triangle: u32, han
     if (any(t.last < t.first)) {
         return t;
     }
-    // Fixed point relative to the first pixel, so that products stay within 32 bits.
+    // Fixed point relative to the first pixel, so that products stay within 32 bits up to
+    // kNarrowPixels across.
     let origin = vec2f(t.first) * kSubpixels;
     t.v0 = vec2i(round(p0.xy * kSubpixels - origin));
     t.v1 = vec2i(round(p1.xy * kSubpixels - origin));
     t.v2 = vec2i(round(p2.xy * kSubpixels - origin));
-    var area = edge(t.v0, t.v1, t.v2);
+    t.wide = span > kNarrowPixels;
+    var area: i32;
+    if (t.wide) {
+        area = wideSign(wideEdge(t.v0, t.v1, t.v2));
+    } else {
+        area = edge(t.v0, t.v1, t.v2);
+    }
     if (area == 0) {
         return t;  // Degenerate once snapped: the hardware draws nothing either.
     }
@@ -175,7 +224,6 @@ fn prepareTriangle(id: u32, item: Item, transform: Transform, triangle: u32, han
         let swap = t.v1;
         t.v1 = t.v2;
         t.v2 = swap;
-        area = -area;
     }
     t.bias = vec3i(topLeftBias(t.v1, t.v2), topLeftBias(t.v2, t.v0), topLeftBias(t.v0, t.v1));
     let d1 = p1.xy - p0.xy;
@@ -201,10 +249,15 @@ fn coverPixel(t: RasterTriangle, id: u32, pixel: vec2i) {
     let index = (u32(pixel.y) * params.targetWidth + u32(pixel.x)) * params.samples;
     for (var sample = 0u; sample < params.samples; sample++) {
         let p = corner + samplePosition(params.samples, sample);
-        let e0 = edge(t.v1, t.v2, p);
-        let e1 = edge(t.v2, t.v0, p);
-        let e2 = edge(t.v0, t.v1, p);
-        if (e0 + t.bias.x >= 0 && e1 + t.bias.y >= 0 && e2 + t.bias.z >= 0) {
+        var inside: bool;
+        if (t.wide) {
+            inside = wideInside(t.v1, t.v2, p, t.bias.x) && wideInside(t.v2, t.v0, p, t.bias.y) &&
+                     wideInside(t.v0, t.v1, p, t.bias.z);
+        } else {
+            inside = edge(t.v1, t.v2, p) + t.bias.x >= 0 && edge(t.v2, t.v0, p) + t.bias.y >= 0 &&
+                     edge(t.v0, t.v1, p) + t.bias.z >= 0;
+        }
+        if (inside) {
             let at = vec2f(p) / kSubpixels;  // The sample, in pixels from the first pixel.
             let depth = clamp(t.depth.x + dot(t.depth.yz, at), 0.0, 1.0);
             atomicStoreMax(&visibility[index + sample], vec2u(id, ~bitcast<u32>(depth)));

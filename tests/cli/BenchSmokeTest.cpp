@@ -274,7 +274,7 @@ TEST(BenchSmokeTest, RasterThresholdsMoveTrianglesBetweenRasterisers) {
     EXPECT_EQ(computed[0], 0u);
     EXPECT_LT(computed[0], computed[1]);
     EXPECT_LT(computed[1], computed[2]);
-    for (const char* refused : {"--compute-raster-pixels 65", "--workgroup-raster-pixels 113"}) {
+    for (const char* refused : {"--compute-raster-pixels 65", "--workgroup-raster-pixels 8193"}) {
         const auto run = runEncore(std::string("bench --scene city ") + refused);
         EXPECT_EQ(run.exitCode, 2) << refused << ": " << run.err;
     }

@@ -283,6 +283,31 @@ TEST(VisibilityFillRuleTest, LargeQuadAndFanSharedEdgesAsTheHardware) {
               (std::array<std::uint32_t, 2>{9, 0}));
 }
 
+TEST(VisibilityFillRuleTest, WideTrianglesSharedEdgesAsTheHardware) {
+    ENCORE_REQUIRE_VULKAN(context);
+    // Over 112 pixels across, where the edge functions take 64 bits: a quad on the left, corners
+    // far off screen and its diagonal across it, a fan of six behind (radius about 200 pixels).
+    const glm::vec3 a{-3.5f, -25, 0}, b{-0.5f, -24, 0}, c{-1.0f, 26, 0}, d{-30, 20, 0};
+    std::vector<std::array<glm::vec3, 3>> list = {{a, b, c}, {a, c, d}};
+    const glm::vec3 centre{2.23f, 0.41f, -1.0f};
+    for (int i = 0; i < 6; ++i) {
+        const float a0 = float(i) * 1.047198f + 0.3f;
+        const float a1 = float(i + 1) * 1.047198f + 0.3f;
+        list.push_back({centre, centre + 14.0f * glm::vec3(std::cos(a0), std::sin(a0), 0),
+                        centre + 14.0f * glm::vec3(std::cos(a1), std::sin(a1), 0)});
+    }
+    // A sliver over 8192 pixels across, in front of both: the hardware's.
+    list.push_back(
+        {glm::vec3(-600, -0.2f, 0.3f), glm::vec3(3.5f, 0.1f, 0.3f), glm::vec3(3.5f, -0.6f, 0.3f)});
+    const auto scene = triangles(list);
+    for (std::uint32_t samples : kSampleCounts) {
+        expectSameCoverage(*context, scene, kFront, 9, samples);
+    }
+    EXPECT_EQ(rasteriserCounts(*context, scene, VisibilityStrategy::kMaxWorkgroupPixels),
+              (std::array<std::uint32_t, 2>{8, 1}));
+    EXPECT_EQ(rasteriserCounts(*context, scene, 112.0f), (std::array<std::uint32_t, 2>{0, 9}));
+}
+
 // The pixels along the edges of `scene`'s one triangle that are neither the background nor the
 // triangle's colour (more than 2 levels from both): partly covered pixels, which a picture with
 // one visibility sample per pixel has none of.

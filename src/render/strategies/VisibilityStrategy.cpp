@@ -31,8 +31,10 @@ constexpr std::uint64_t kHardwareTriangles = 40;
 // The hardware list holds at most this many triangles (16 MiB); past it they are counted as an
 // overflow (visibility_raster.wgsl) rather than written.
 constexpr std::uint64_t kMaxHardwareTriangles = 4u << 20;
-// Blocks of 32x32 pixels of the largest triangle the workgroup path takes (112 pixels across).
+// Blocks of 32x32 pixels a triangle of the workgroup path lists: up to 16 up to 112 pixels
+// across, which most are; room for a few targets' worth of larger ones on top.
 constexpr std::uint64_t kWorkgroupBlocks = 16;
+constexpr std::uint64_t kLargeTriangleBlocks = 64 * 1024;
 constexpr std::uint32_t kMaxGroups = 65535;
 
 std::uint32_t groupsFor(std::uint64_t threads, std::uint32_t size) {
@@ -147,10 +149,10 @@ Result<void> VisibilityStrategy::prepare(const RenderSetup& setup, const GpuScen
     mHardwareList =
         gpu::createBuffer(device, wgpu::BufferUsage::Storage, std::uint64_t(mHardwareCapacity) * 4,
                           "visibility hardware triangles");
-    // A triangle of the workgroup path lists up to kWorkgroupBlocks blocks
-    // (visibility_raster.wgsl); past the capacity the hardware draws it.
+    // A triangle of the workgroup path lists its blocks (visibility_raster.wgsl); past the
+    // capacity the hardware draws it.
     const std::uint64_t workgroupCapacity = std::clamp<std::uint64_t>(
-        mTables.triangleCount * kWorkgroupBlocks, 1, kMaxHardwareTriangles);
+        mTables.triangleCount * kWorkgroupBlocks + kLargeTriangleBlocks, 1, kMaxHardwareTriangles);
     mWorkgroupList = gpu::createBuffer(device, wgpu::BufferUsage::Storage, workgroupCapacity * 8,
                                        "visibility workgroup blocks");
     // The counters, then the clusters' visibility (visibility_counters.wgsl), which the copies

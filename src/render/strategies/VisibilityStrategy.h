@@ -36,10 +36,11 @@ class VisibilityStrategy final : public Strategy {
     // Bounds of the compute raster's triangle sizes, pixels each way: one thread covers those
     // up to computeRasterPixels, a workgroup in tiles those up to workgroupRasterPixels, the
     // hardware larger ones. The fixed-point edge functions, relative to the triangle's first
-    // pixel, stay within 32 bits up to 112 pixels.
+    // pixel, stay within 32 bits up to 112 pixels and are evaluated in 64 bits beyond; at most
+    // 8192 pixels, within which the 64-bit products' factors stay below 2^24.
     static constexpr float kMaxComputePixels = 64.0f;
     static constexpr float kDefaultComputePixels = 8.0f;
-    static constexpr float kMaxWorkgroupPixels = 112.0f;
+    static constexpr float kMaxWorkgroupPixels = 8192.0f;
 
     StrategyKind kind() const override { return StrategyKind::Visibility; }
     Result<void> prepare(const RenderSetup& setup, const GpuScene& scene) override;
