@@ -134,6 +134,7 @@ struct RasterTriangle {
     // Depth at the first pixel's corner and its change per pixel in x and y: a plane through
     // the vertices as projected, not as snapped, as the hardware interpolates depth.
     depth: vec3f,
+    nearest: f32,  // The nearest depth of its vertices.
     bias: vec3i,
 }
 
@@ -198,6 +199,12 @@ fn prepareTriangle(id: u32, item: Item, transform: Transform, triangle: u32, han
     if (any(t.last < t.first)) {
         return t;
     }
+    t.nearest = min(p0.z, min(p1.z, p2.z));
+    // In the second phase, a triangle behind the farthest depth the first phase drew over its
+    // pixels would lose every sample's atomic: drawn by neither rasteriser, as a back face.
+    if (handOn && hiddenByFirstPhase(t.first, t.last, t.nearest)) {
+        return t;
+    }
     // Fixed point relative to the first pixel, so that products stay within 32 bits up to
     // kNarrowPixels across.
     let origin = vec2f(t.first) * kSubpixels;
@@ -240,6 +247,18 @@ fn prepareTriangle(id: u32, item: Item, transform: Transform, triangle: u32, han
     t.depth = vec3f(start, gradient);
     t.route = select(kRouteWorkgroup, kRouteThread, span <= params.maxComputePixels);
     return t;
+}
+
+// Whether, in the second occlusion phase, the first phase's depth pyramid hides something no
+// nearer than `nearest` over the pixels [first, last] (of the target: one view, at its origin).
+fn hiddenByFirstPhase(first: vec2i, last: vec2i, nearest: f32) -> bool {
+    if (counters.secondPhase == 0u) {
+        return false;
+    }
+    let viewport = vec2f(f32(params.viewportWidth), f32(params.viewportHeight));
+    let origin = vec2f(f32(params.viewportX), f32(params.viewportY));
+    return pyramidHides(depthPyramid, viewport, vec2f(first) - origin, vec2f(last) - origin,
+                        nearest);
 }
 
 // Writes (depth, id) at each sample of `pixel` that is inside the triangle under the top-left
@@ -479,6 +498,9 @@ fn coverListed(slot: u32, lane: u32) {
     let blockColumns = (size.x + kBlockPixels - 1) / kBlockPixels;
     let block = vec2i(i32(entry.y) % blockColumns, i32(entry.y) / blockColumns) * kBlockPixels;
     let extent = min(size - block, vec2i(kBlockPixels));
+    if (hiddenByFirstPhase(t.first + block, t.first + block + extent - 1, t.nearest)) {
+        return;
+    }
     let columns = (extent.x + 7) / 8;
     let tiles = columns * ((extent.y + 7) / 8);
     let offset = vec2i(i32(lane % 8u), i32(lane / 8u));
