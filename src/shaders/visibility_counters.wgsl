@@ -18,11 +18,11 @@ struct Counters {
     computeTriangles: atomic<u32>,  // Triangles the compute raster covered pixels of (or not).
     hardwareOverflow: atomic<u32>,  // Triangles the full hardware list could not take.
     hardwareTriangles: atomic<u32>,  // Triangles the hardware list took.
-    workgroupTriangles: atomic<u32>,  // Triangles listed for workgroupMain in this phase.
+    workgroupTriangles: atomic<u32>,  // Blocks listed for workgroupMain in this phase.
     // Triangles of the clusters the raster passes culled (frustum, facing, occlusion; both
     // phases): listed, never rasterised.
     culledTriangles: atomic<u32>,
-    padding0: u32,
+    workgroupRecords: atomic<u32>,  // Triangles set up for workgroupMain in this phase.
     padding1: u32,
     padding2: u32,
     // Not a counter (the copies that reset the counters leave it; the storage bindings of a

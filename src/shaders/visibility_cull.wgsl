@@ -122,6 +122,7 @@ fn beginSecondPhase() {
     counters.hardwareFirstVertex += atomicLoad(&counters.hardwareVertices);
     atomicStore(&counters.hardwareVertices, 0u);
     atomicStore(&counters.workgroupTriangles, 0u);
+    atomicStore(&counters.workgroupRecords, 0u);
 }
 
 // Whether the pyramid proves the item hidden: the nearest depth of its box (the primitive's

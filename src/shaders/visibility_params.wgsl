@@ -18,4 +18,8 @@ struct VisibilityParams {
     // Visibility samples per pixel (1, or 4 at the standard 4x positions): the visibility buffer
     // holds `samples` entries per pixel, pixel-major (visibility_samples.wgsl).
     samples: u32,
+    // The workgroup list: blocks in its first workgroupBlocks entries, then workgroupRecords
+    // triangle records (visibility_raster.wgsl).
+    workgroupBlocks: u32,
+    workgroupRecords: u32,
 }

@@ -28,10 +28,14 @@ enable atomic_vec2u_min_max;
 @group(1) @binding(5) var<storage, read_write> counters: Counters;
 @group(1) @binding(6) var<storage, read_write> hardwareList: array<u32>;
 @group(1) @binding(7) var<storage, read_write> visibility: array<atomic<vec2u>>;
-// Blocks of triangles too large for one thread, which workgroupMain covers: (id, block), a
-// triangle's bounds split into blocks of kBlockPixels squared, so that no workgroup walks a
-// large triangle alone while the others have finished. kNoEntry marks a slot left empty.
+// Triangles too large for one thread, which workgroupMain covers. In the first
+// params.workgroupBlocks entries their blocks, (record, block): a triangle's bounds split into
+// blocks of kBlockPixels squared, so that no workgroup walks a large triangle alone while the
+// others have finished; kNoEntry marks a slot left empty. Then params.workgroupRecords records
+// of kRecordEntries entries: each triangle as rasterMain set it up, which its blocks read
+// rather than setting it up again (on the H100 the setup per block was a third of the pass).
 @group(1) @binding(9) var<storage, read_write> workgroupList: array<vec2u>;
+const kRecordEntries = 8u;
 // Measured on the H100 (docs/visibility.md): blocks of 32 against 16, 64 and whole triangles.
 const kBlockPixels = 32;
 const kNoEntry = 0xffffffffu;
@@ -138,6 +142,11 @@ struct RasterTriangle {
     bias: vec3i,
 }
 
+// The fill rule's bias of each edge (wound so that inside is positive).
+fn triangleBias(t: RasterTriangle) -> vec3i {
+    return vec3i(topLeftBias(t.v1, t.v2), topLeftBias(t.v2, t.v0), topLeftBias(t.v0, t.v1));
+}
+
 fn facesTheCamera(c0: vec4f, c1: vec4f, c2: vec4f, item: Item) -> bool {
     let det = determinant(mat3x3f(c0.xyw, c1.xyw, c2.xyw));
     let front = (det > 0.0) != (item.mirrored != 0u);
@@ -145,10 +154,8 @@ fn facesTheCamera(c0: vec4f, c1: vec4f, c2: vec4f, item: Item) -> bool {
 }
 
 // Clips, sizes and snaps triangle `triangle` of `item`. Triangles that cross the near or far
-// plane, or span more than the workgroup path takes, go to the hardware list here (when
-// `handOn`: the workgroup pass sets the same triangle up again and must not list it twice).
-fn prepareTriangle(id: u32, item: Item, transform: Transform, triangle: u32, handOn: bool)
-    -> RasterTriangle {
+// plane, or span more than the workgroup path takes, go to the hardware list here.
+fn prepareTriangle(id: u32, item: Item, transform: Transform, triangle: u32) -> RasterTriangle {
     var t: RasterTriangle;
     t.route = kRouteNone;
     let record = item.record;
@@ -167,7 +174,7 @@ fn prepareTriangle(id: u32, item: Item, transform: Transform, triangle: u32, han
     if (any(zs < vec3f(0.0)) || any(zs > ws) || any(ws <= vec3f(0.0))) {
         // Crosses the near or far plane: the hardware clips. Facing from the homogeneous
         // determinant, which holds on either side of w = 0.
-        if (handOn && facesTheCamera(c0, c1, c2, item)) {
+        if (facesTheCamera(c0, c1, c2, item)) {
             toHardware(id);
         }
         return t;
@@ -179,7 +186,7 @@ fn prepareTriangle(id: u32, item: Item, transform: Transform, triangle: u32, han
     let high = max(p0.xy, max(p1.xy, p2.xy));
     let span = max(high.x - low.x, high.y - low.y);
     if (span > max(params.maxComputePixels, params.maxWorkgroupPixels)) {
-        if (handOn && facesTheCamera(c0, c1, c2, item)) {
+        if (facesTheCamera(c0, c1, c2, item)) {
             toHardware(id);
         }
         return t;
@@ -202,7 +209,7 @@ fn prepareTriangle(id: u32, item: Item, transform: Transform, triangle: u32, han
     t.nearest = min(p0.z, min(p1.z, p2.z));
     // In the second phase, a triangle behind the farthest depth the first phase drew over its
     // pixels would lose every sample's atomic: drawn by neither rasteriser, as a back face.
-    if (handOn && hiddenByFirstPhase(t.first, t.last, t.nearest)) {
+    if (hiddenByFirstPhase(t.first, t.last, t.nearest)) {
         return t;
     }
     // Fixed point relative to the first pixel, so that products stay within 32 bits up to
@@ -232,7 +239,7 @@ fn prepareTriangle(id: u32, item: Item, transform: Transform, triangle: u32, han
         t.v1 = t.v2;
         t.v2 = swap;
     }
-    t.bias = vec3i(topLeftBias(t.v1, t.v2), topLeftBias(t.v2, t.v0), topLeftBias(t.v0, t.v1));
+    t.bias = triangleBias(t);
     let d1 = p1.xy - p0.xy;
     let d2 = p2.xy - p0.xy;
     let dz = vec2f(p1.z - p0.z, p2.z - p0.z);
@@ -246,6 +253,41 @@ fn prepareTriangle(id: u32, item: Item, transform: Transform, triangle: u32, han
                        determinant != 0.0);
     t.depth = vec3f(start, gradient);
     t.route = select(kRouteWorkgroup, kRouteThread, span <= params.maxComputePixels);
+    return t;
+}
+
+// The triangle's record: what coverListed needs of prepareTriangle (the biases follow from the
+// vertices).
+fn storeRecord(record: u32, t: RasterTriangle, id: u32) {
+    let at = params.workgroupBlocks + record * kRecordEntries;
+    workgroupList[at] = vec2u(id, select(0u, 1u, t.wide));
+    workgroupList[at + 1u] = bitcast<vec2u>(t.first);
+    workgroupList[at + 2u] = bitcast<vec2u>(t.last);
+    workgroupList[at + 3u] = bitcast<vec2u>(t.v0);
+    workgroupList[at + 4u] = bitcast<vec2u>(t.v1);
+    workgroupList[at + 5u] = bitcast<vec2u>(t.v2);
+    workgroupList[at + 6u] = bitcast<vec2u>(t.depth.xy);
+    workgroupList[at + 7u] = bitcast<vec2u>(vec2f(t.depth.z, t.nearest));
+}
+
+// The record's triangle, and its id.
+fn loadRecord(record: u32, id: ptr<function, u32>) -> RasterTriangle {
+    let at = params.workgroupBlocks + record * kRecordEntries;
+    let head = workgroupList[at];
+    var t: RasterTriangle;
+    t.route = kRouteWorkgroup;
+    t.wide = head.y != 0u;
+    t.first = bitcast<vec2i>(workgroupList[at + 1u]);
+    t.last = bitcast<vec2i>(workgroupList[at + 2u]);
+    t.v0 = bitcast<vec2i>(workgroupList[at + 3u]);
+    t.v1 = bitcast<vec2i>(workgroupList[at + 4u]);
+    t.v2 = bitcast<vec2i>(workgroupList[at + 5u]);
+    let depth = bitcast<vec2f>(workgroupList[at + 6u]);
+    let rest = bitcast<vec2f>(workgroupList[at + 7u]);
+    t.depth = vec3f(depth, rest.x);
+    t.nearest = rest.y;
+    t.bias = triangleBias(t);
+    *id = head.x;
     return t;
 }
 
@@ -287,15 +329,18 @@ fn coverPixel(t: RasterTriangle, id: u32, pixel: vec2i) {
 // Returns whether the compute raster takes the triangle (front-facing, on screen, not
 // degenerate): small ones it covers here, larger ones it lists for workgroupMain.
 fn rasterTriangle(id: u32, item: Item, transform: Transform, triangle: u32) -> bool {
-    let t = prepareTriangle(id, item, transform, triangle, true);
+    let t = prepareTriangle(id, item, transform, triangle);
     if (t.route == kRouteWorkgroup) {
         let blocks = (t.last - t.first + kBlockPixels) / kBlockPixels;
         let count = u32(blocks.x * blocks.y);
+        let record = atomicAdd(&counters.workgroupRecords, 1u);
         let slot = atomicAdd(&counters.workgroupTriangles, count);
-        let capacity = arrayLength(&workgroupList);
-        if (slot <= capacity && count <= capacity - slot) {
+        let capacity = params.workgroupBlocks;
+        let listed = slot <= capacity && count <= capacity - slot;
+        if (listed && record < params.workgroupRecords) {
+            storeRecord(record, t, id);
             for (var block = 0u; block < count; block++) {
-                workgroupList[slot + block] = vec2u(id, block);
+                workgroupList[slot + block] = vec2u(record, block);
             }
             return true;
         }
@@ -472,7 +517,7 @@ var<workgroup> listed: u32;
 fn workgroupMain(@builtin(workgroup_id) group: vec3u, @builtin(num_workgroups) groups: vec3u,
                  @builtin(local_invocation_index) lane: u32) {
     if (lane == 0u) {
-        listed = min(atomicLoad(&counters.workgroupTriangles), arrayLength(&workgroupList));
+        listed = min(atomicLoad(&counters.workgroupTriangles), params.workgroupBlocks);
     }
     let count = workgroupUniformLoad(&listed);
     for (var slot = group.x; slot < count; slot += groups.x) {
@@ -487,13 +532,8 @@ fn coverListed(slot: u32, lane: u32) {
     if (entry.x == kNoEntry) {
         return;
     }
-    let id = entry.x;
-    let unit = units[id / kUnitTriangles];
-    let item = loadItem(unit.x);
-    let t = prepareTriangle(id, item, instances[item.slot], unitTriangle(unit, id), false);
-    if (t.route == kRouteNone) {
-        return;
-    }
+    var id: u32;
+    let t = loadRecord(entry.x, &id);
     let size = t.last - t.first + 1;
     let blockColumns = (size.x + kBlockPixels - 1) / kBlockPixels;
     let block = vec2i(i32(entry.y) % blockColumns, i32(entry.y) / blockColumns) * kBlockPixels;

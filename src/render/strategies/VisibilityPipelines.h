@@ -36,8 +36,12 @@ struct VisibilityViewParams {
     std::uint32_t binCount = 0;
     float maxWorkgroupPixels = 0.0f;
     std::uint32_t samples = 1;
+    // The workgroup list: blocks in its first workgroupBlocks entries, then workgroupRecords
+    // triangle records of kWorkgroupRecordEntries entries (visibility_raster.wgsl).
+    std::uint32_t workgroupBlocks = 0;
+    std::uint32_t workgroupRecords = 0;
 };
-static_assert(sizeof(VisibilityViewParams) == 48);
+static_assert(sizeof(VisibilityViewParams) == 56);
 
 // visibility_cull.wgsl's Culling, one per frame (a multi-view frame's views differ only in
 // their viewports: no frustum test, no occlusion, the levels of detail of GPU culling's one cull).

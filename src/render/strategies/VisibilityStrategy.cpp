@@ -35,6 +35,10 @@ constexpr std::uint64_t kMaxHardwareTriangles = 4u << 20;
 // across, which most are; room for a few targets' worth of larger ones on top.
 constexpr std::uint64_t kWorkgroupBlocks = 16;
 constexpr std::uint64_t kLargeTriangleBlocks = 64 * 1024;
+// Each triangle of the workgroup path is set up once, into a record of 8 entries (64 bytes) of
+// the workgroup list that its blocks read; at most this many per phase (32 MiB).
+constexpr std::uint64_t kWorkgroupRecordEntries = 8;
+constexpr std::uint64_t kMaxWorkgroupRecords = 512 * 1024;
 constexpr std::uint32_t kMaxGroups = 65535;
 
 std::uint32_t groupsFor(std::uint64_t threads, std::uint32_t size) {
@@ -149,12 +153,16 @@ Result<void> VisibilityStrategy::prepare(const RenderSetup& setup, const GpuScen
     mHardwareList =
         gpu::createBuffer(device, wgpu::BufferUsage::Storage, std::uint64_t(mHardwareCapacity) * 4,
                           "visibility hardware triangles");
-    // A triangle of the workgroup path lists its blocks (visibility_raster.wgsl); past the
-    // capacity the hardware draws it.
-    const std::uint64_t workgroupCapacity = std::clamp<std::uint64_t>(
-        mTables.triangleCount * kWorkgroupBlocks + kLargeTriangleBlocks, 1, kMaxHardwareTriangles);
-    mWorkgroupList = gpu::createBuffer(device, wgpu::BufferUsage::Storage, workgroupCapacity * 8,
-                                       "visibility workgroup blocks");
+    // A triangle of the workgroup path lists its record and its blocks (visibility_raster.wgsl);
+    // past either capacity the hardware draws it.
+    mWorkgroupBlocks = std::uint32_t(std::clamp<std::uint64_t>(
+        mTables.triangleCount * kWorkgroupBlocks + kLargeTriangleBlocks, 1, kMaxHardwareTriangles));
+    mWorkgroupRecords =
+        std::uint32_t(std::clamp<std::uint64_t>(mTables.triangleCount, 1, kMaxWorkgroupRecords));
+    mWorkgroupList =
+        gpu::createBuffer(device, wgpu::BufferUsage::Storage,
+                          (mWorkgroupBlocks + mWorkgroupRecords * kWorkgroupRecordEntries) * 8,
+                          "visibility workgroup blocks");
     // The counters, then the clusters' visibility (visibility_counters.wgsl), which the copies
     // of kCounterBytes that reset the counters leave as they are (zero after prepare).
     mCounters = gpu::createBuffer(
@@ -166,7 +174,7 @@ Result<void> VisibilityStrategy::prepare(const RenderSetup& setup, const GpuScen
     const std::uint32_t persistent = persistentWorkgroups(device);
     mPersistentGroups = persistent;
     mRasterGroups = stridingGrid(mTables.unitCount, 1, persistent);
-    mWorkgroupGroups = stridingGrid(workgroupCapacity, 1, persistent);
+    mWorkgroupGroups = stridingGrid(mWorkgroupBlocks, 1, persistent);
     mBins = gpu::createBuffer(
         device,
         wgpu::BufferUsage::Storage | wgpu::BufferUsage::CopyDst | wgpu::BufferUsage::CopySrc,
@@ -300,6 +308,8 @@ void VisibilityStrategy::beforePass(const wgpu::CommandEncoder& commands, const 
     p.hardwareCapacity = mHardwareCapacity;
     p.binCount = mTables.binCount;
     p.samples = mSetup->sampleCount;
+    p.workgroupBlocks = mWorkgroupBlocks;
+    p.workgroupRecords = mWorkgroupRecords;
     for (std::size_t view = 0; view < views; ++view) {
         p.viewportX = std::uint32_t(view) * viewWidth;
         p.viewportWidth = viewWidth;

@@ -159,6 +159,8 @@ class VisibilityStrategy final : public Strategy {
     wgpu::Buffer mCulledCounters;  // After a multi-view frame's cull.
     wgpu::Buffer mHardwareList;
     wgpu::Buffer mWorkgroupList;  // Triangles' blocks for workgroups (visibility_raster.wgsl).
+    std::uint32_t mWorkgroupBlocks = 0;   // Entries of blocks, then
+    std::uint32_t mWorkgroupRecords = 0;  // records of triangles set up.
     std::uint32_t mHardwareCapacity = 0;
     // Workgroups of the striding grids: the raster's (at most the units), the workgroup
     // raster's (at most the listed blocks); each bin's shading grid is the target's
