@@ -107,11 +107,13 @@ TEST(VisibilityBatchTest, KeptPipelinesAreCreatedOnceAndDrawTheSamePictures) {
             << "the target's resources were made again";
         EXPECT_EQ(strategy->lastViewCount(), kViews);
 
-        // Without keeping (the default), each prepare creates the strategy's pipelines.
+        // Without keeping (the default), each prepare creates the strategy's pipelines (the
+        // shading ones on first use).
         auto plain = Renderer::create(*context, stripOptions(samples, false));
         ASSERT_TRUE(plain.ok()) << plain.error().message;
         ASSERT_TRUE(plain->prepare(second, StrategyKind::Visibility).ok());
-        EXPECT_GE(plain->setup().pipelinesCreated, VisibilityPipelines::kPipelineCount);
+        EXPECT_EQ(plain->setup().pipelinesCreated,
+                  VisibilityPipelines::kPipelineCount - VisibilityPipelines::kShadingPipelineCount);
         const image::ImageRgba8 fresh = renderStrip(*plain, second);
         EXPECT_EQ(test::differingPixels(kept, fresh), 0u);
         EXPECT_GT(test::coveredFraction(fresh, test::pixelAt(fresh, 0, 0)), 0.05);
@@ -161,6 +163,42 @@ TEST(VisibilityBatchTest, HardwareRasterisedViewsLandInTheirPlaceInTheStrip) {
         EXPECT_EQ(test::differingPixels(drawn, reference), 0u);
     }
     EXPECT_TRUE(context->checkNoErrors("hardware-rasterised strips").ok());
+}
+
+// A renderer that makes its own pipelines makes the shading ones on first use, for the bin kinds
+// and the view mode its frames draw: frames of one view read their parameters from their
+// bindings, frames of several views copy them from their view's slot. Both draw what the kept
+// slots' pipelines draw.
+TEST(VisibilityBatchTest, ShadingPipelinesAreMadeForWhatFramesDraw) {
+    ENCORE_REQUIRE_VULKAN(context);
+    constexpr std::uint64_t kOthers =
+        VisibilityPipelines::kPipelineCount - VisibilityPipelines::kShadingPipelineCount;
+    const scene::SceneData scene = test::generatedScene(denseModel(1, 12));
+    auto plain = Renderer::create(*context, stripOptions(1, false));
+    auto kept = Renderer::create(*context, stripOptions(1, true));
+    ASSERT_TRUE(plain.ok() && kept.ok());
+    ASSERT_TRUE(plain->prepare(scene, StrategyKind::Visibility).ok());
+    EXPECT_EQ(plain->setup().pipelinesCreated, kOthers);
+    ASSERT_TRUE(kept->prepare(scene, StrategyKind::Visibility).ok());
+
+    const Camera camera = stripCameras(scene)[0];
+    plain->renderFrame(camera);
+    const std::uint64_t oneView = plain->setup().pipelinesCreated;
+    EXPECT_GT(oneView, kOthers);
+    EXPECT_LT(oneView, VisibilityPipelines::kPipelineCount) << "only the scene's bin kinds";
+    auto drawn = plain->readImage();
+    kept->renderFrame(camera);
+    auto keptDrawn = kept->readImage();
+    ASSERT_TRUE(drawn.ok() && keptDrawn.ok());
+    EXPECT_EQ(test::differingPixels(*drawn, *keptDrawn), 0u);
+    EXPECT_GT(test::coveredFraction(*drawn, test::pixelAt(*drawn, 0, 0)), 0.05);
+    plain->renderFrame(camera);
+    EXPECT_EQ(plain->setup().pipelinesCreated, oneView);
+
+    const image::ImageRgba8 strip = renderStrip(*plain, scene);
+    EXPECT_EQ(plain->setup().pipelinesCreated, oneView + (oneView - kOthers));
+    EXPECT_EQ(test::differingPixels(strip, renderStrip(*kept, scene)), 0u);
+    EXPECT_TRUE(context->checkNoErrors("shading pipelines on first use").ok());
 }
 
 // encore batch creates the kept pipelines while its loaders read the first models: the first

@@ -43,6 +43,39 @@ std::set<std::string, std::less<>> compositeFlags(const RenderSetup& setup) {
     return flags;
 }
 
+// The shading shader of a bin kind (VisibilityPipelines::shading): one pipeline serves every
+// material of its kind.
+Result<wgpu::ShaderModule> shadingModule(const RenderSetup& setup,
+                                         bool slots,
+                                         bool textured,
+                                         bool tangent,
+                                         bool extensions) {
+    std::set<std::string, std::less<>> flags = {"SAMPLE_GRADIENT"};
+    if (slots) {
+        flags.insert("VIEW_SLOTS");
+    }
+    if (extensions) {
+        flags.insert("MATERIAL_EXTENSIONS");
+    }
+    if (textured) {
+        flags.insert("MATERIAL_TEXTURES");
+        flags.insert("SAMPLER_PALETTE");
+    }
+    if (tangent) {
+        flags.insert("HAS_TANGENT");
+    }
+    return setup.shaders->module("visibility_shade.wgsl", flags);
+}
+
+// MaterialResources::drawBindGroup's layouts.
+const wgpu::BindGroupLayout& shadingMaterialLayout(const RenderSetup& setup,
+                                                   bool textured,
+                                                   bool extensions) {
+    return !textured    ? setup.layouts->materialUniformOnly
+           : extensions ? setup.layouts->material
+                        : setup.layouts->materialBase;
+}
+
 // Compute pipelines created side by side: Dawn compiles asynchronous pipelines on its worker
 // threads, so the four variants of the PBR shading shader, the bulk of the strategy's start in
 // a batch, no longer compile one after another.
@@ -262,32 +295,21 @@ Result<std::unique_ptr<VisibilityPipelines>> VisibilityPipelines::create(const R
             target = device.CreateComputePipeline(&descriptor);
         }
     };
-    // The shading pipelines first: they take longest.
-    for (bool textured : {false, true}) {
-        for (bool tangent : {false, true}) {
-            for (bool extensions : {false, true}) {
-                // One shading pipeline serves every material of its bin kind.
-                std::set<std::string, std::less<>> flags = {"SAMPLE_GRADIENT", "VIEW_SLOTS"};
-                if (extensions) {
-                    flags.insert("MATERIAL_EXTENSIONS");
+    // The shading pipelines first: they take longest. Where every prepare makes its own, they
+    // are made on first use (shading()): only the bin kinds and view mode a scene draws.
+    if (async) {
+        for (bool textured : {false, true}) {
+            for (bool tangent : {false, true}) {
+                for (bool extensions : {false, true}) {
+                    ENCORE_TRY_ASSIGN(auto shade,
+                                      shadingModule(setup, true, textured, tangent, extensions));
+                    add(p.shade[1][textured][tangent][extensions], shade, "shadeMain",
+                        {setup.layouts->frame, p.shadeLayout,
+                         shadingMaterialLayout(setup, textured, extensions)});
                 }
-                if (textured) {
-                    flags.insert("MATERIAL_TEXTURES");
-                    flags.insert("SAMPLER_PALETTE");
-                }
-                if (tangent) {
-                    flags.insert("HAS_TANGENT");
-                }
-                ENCORE_TRY_ASSIGN(auto shade, library.module("visibility_shade.wgsl", flags));
-                // MaterialResources::drawBindGroup's layouts.
-                const wgpu::BindGroupLayout& material = !textured
-                                                            ? setup.layouts->materialUniformOnly
-                                                        : extensions ? setup.layouts->material
-                                                                     : setup.layouts->materialBase;
-                add(p.shade[textured][tangent][extensions], shade, "shadeMain",
-                    {setup.layouts->frame, p.shadeLayout, material});
             }
         }
+        p.keptShading = true;
     }
     ENCORE_TRY_ASSIGN(auto cull, library.module("visibility_cull.wgsl"));
     const auto cullGroups = {p.frameOnlyLayout, p.cullLayout};
@@ -321,13 +343,36 @@ Result<std::unique_ptr<VisibilityPipelines>> VisibilityPipelines::create(const R
     if (async) {
         ENCORE_TRY(async->wait());
     }
-    setup.pipelinesCreated += kPipelineCount;
+    setup.pipelinesCreated +=
+        p.keptShading ? kPipelineCount : kPipelineCount - kShadingPipelineCount;
 
     std::array<std::uint32_t, kCounterBytes / 4> initial{};
     initial[5] = 1;  // The hardware draw's instance count.
     p.initialCounters = gpu::createBufferFrom<std::uint32_t>(
         device, wgpu::BufferUsage::CopySrc, initial, "visibility initial counters");
     return created;
+}
+
+const wgpu::ComputePipeline& VisibilityPipelines::shading(const RenderSetup& setup,
+                                                          bool slots,
+                                                          bool textured,
+                                                          bool tangent,
+                                                          bool extensions) {
+    // A renderer that keeps its pipelines made the slots' ones and draws every frame with them.
+    slots = slots || keptShading;
+    wgpu::ComputePipeline& pipeline = shade[slots][textured][tangent][extensions];
+    if (!pipeline) {
+        auto module = shadingModule(setup, slots, textured, tangent, extensions);
+        if (module.ok()) {
+            const wgpu::ComputePipelineDescriptor descriptor =
+                computeDescriptor(setup.device, *module, "shadeMain",
+                                  {setup.layouts->frame, shadeLayout,
+                                   shadingMaterialLayout(setup, textured, extensions)});
+            pipeline = setup.device.CreateComputePipeline(&descriptor);
+            ++setup.pipelinesCreated;
+        }
+    }
+    return pipeline;
 }
 
 }  // namespace encore::render

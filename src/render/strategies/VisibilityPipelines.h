@@ -65,11 +65,26 @@ static_assert(sizeof(VisibilityCullUniform) == 448);
 struct VisibilityPipelines {
     // Bytes of visibility_counters.wgsl's Counters.
     static constexpr std::uint64_t kCounterBytes = 64;
-    // The number of pipelines create() makes (counted in RenderSetup::pipelinesCreated).
-    static constexpr std::uint64_t kPipelineCount = 22;
+    // The pipelines create() makes (counted in RenderSetup::pipelinesCreated): the shading ones
+    // only where a renderer keeps them (RenderSetup::keptObjects: those of multi-view frames).
+    static constexpr std::uint64_t kShadingPipelineCount = 8;
+    static constexpr std::uint64_t kPipelineCount = 14 + kShadingPipelineCount;
 
     // Fails only where an embedded shader does not compile (a bug, not an input error).
     static Result<std::unique_ptr<VisibilityPipelines>> create(const RenderSetup& setup);
+
+    // The shading pipeline of a bin kind, made on first use unless create() made it (counted in
+    // setup.pipelinesCreated); null only where its shader does not compile (a bug). `slots`:
+    // for frames of several views, whose parameters and frame uniform each pixel copies from
+    // its view's slot (VIEW_SLOTS); frames of one view read them from their bindings, which on
+    // the H100 took the shading of a fly-through frame from 0.181 to 0.155 ms (the copies'
+    // registers). A renderer that keeps its pipelines (encore batch) draws frames of one view
+    // with the slots' pipelines too, so that it never compiles while drawing.
+    const wgpu::ComputePipeline& shading(const RenderSetup& setup,
+                                         bool slots,
+                                         bool textured,
+                                         bool tangent,
+                                         bool extensions);
 
     wgpu::BindGroupLayout frameOnlyLayout;
     wgpu::BindGroupLayout cullLayout;
@@ -88,10 +103,11 @@ struct VisibilityPipelines {
     wgpu::ComputePipeline binCount;
     wgpu::ComputePipeline binOffsets;
     wgpu::ComputePipeline binScatter;
-    // [textured][tangent][extensions]: without MATERIAL_EXTENSIONS for materials that use none
-    // (MaterialResources::shadesExtensions), which bind their base slots only: fewer registers,
-    // on the H100 a quarter off the shading pass.
-    std::array<std::array<std::array<wgpu::ComputePipeline, 2>, 2>, 2> shade;
+    // [slots][textured][tangent][extensions] (shading()): without MATERIAL_EXTENSIONS for
+    // materials that use none (MaterialResources::shadesExtensions), which bind their base slots
+    // only: fewer registers, on the H100 a quarter off the shading pass.
+    std::array<std::array<std::array<std::array<wgpu::ComputePipeline, 2>, 2>, 2>, 2> shade;
+    bool keptShading = false;  // create() made the slots' shading pipelines.
     // Per sample, writing each sample's depth; compositePixels per pixel without depth, for
     // frames that draw nothing after it (visibility_composite.wgsl); compositeResolved the same
     // at one sample, for passes drawn into the resolved texture (Strategy::composesResolved).

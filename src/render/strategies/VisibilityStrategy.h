@@ -126,9 +126,11 @@ class VisibilityStrategy final : public Strategy {
                     bool culled);
     // Bins and shades the views from `firstView` (at most VisibilityTarget::kSlotViews of them,
     // `groupWidth` pixels together) at once: their pixels binned with the parameters of slot
-    // `binSlot`, one shading dispatch per bin.
+    // `binSlot`, one shading dispatch per bin; `views`: the frame's (VisibilityPipelines::shading
+    // reads one view's parameters from their bindings).
     void encodeShading(const wgpu::CommandEncoder& commands,
                        const FrameState& frame,
+                       std::size_t views,
                        std::size_t firstView,
                        std::size_t binSlot,
                        std::uint32_t groupWidth) const;
@@ -177,7 +179,7 @@ class VisibilityStrategy final : public Strategy {
 
     // Scene-independent pipelines and target-sized resources: the renderer's
     // (RenderSetup::keptObjects), or else this strategy's own.
-    const VisibilityPipelines* mPipelines = nullptr;
+    VisibilityPipelines* mPipelines = nullptr;  // Makes shading pipelines on first use.
     std::unique_ptr<VisibilityPipelines> mOwnPipelines;
     VisibilityTarget* mTarget = nullptr;
     std::unique_ptr<VisibilityTarget> mOwnTarget;
