@@ -34,6 +34,16 @@ wgpu::ComputePipelineDescriptor computeDescriptor(
     return descriptor;
 }
 
+// computeDescriptor's pipeline, made on this thread.
+wgpu::ComputePipeline computePipeline(const wgpu::Device& device,
+                                      const wgpu::ShaderModule& module,
+                                      const char* entryPoint,
+                                      std::initializer_list<wgpu::BindGroupLayout> groups) {
+    const wgpu::ComputePipelineDescriptor descriptor =
+        computeDescriptor(device, module, entryPoint, groups);
+    return device.CreateComputePipeline(&descriptor);
+}
+
 // visibility_composite.wgsl's flags for the target's sample count.
 std::set<std::string, std::less<>> compositeFlags(const RenderSetup& setup) {
     std::set<std::string, std::less<>> flags;
@@ -290,9 +300,7 @@ Result<std::unique_ptr<VisibilityPipelines>> VisibilityPipelines::create(const R
         if (async) {
             async->add(target, module, entryPoint, groups);
         } else {
-            const wgpu::ComputePipelineDescriptor descriptor =
-                computeDescriptor(device, module, entryPoint, groups);
-            target = device.CreateComputePipeline(&descriptor);
+            target = computePipeline(device, module, entryPoint, groups);
         }
     };
     // The shading pipelines first: they take longest. Where every prepare makes its own, they
@@ -364,11 +372,9 @@ const wgpu::ComputePipeline& VisibilityPipelines::shading(const RenderSetup& set
     if (!pipeline) {
         auto module = shadingModule(setup, slots, textured, tangent, extensions);
         if (module.ok()) {
-            const wgpu::ComputePipelineDescriptor descriptor =
-                computeDescriptor(setup.device, *module, "shadeMain",
-                                  {setup.layouts->frame, shadeLayout,
-                                   shadingMaterialLayout(setup, textured, extensions)});
-            pipeline = setup.device.CreateComputePipeline(&descriptor);
+            pipeline = computePipeline(setup.device, *module, "shadeMain",
+                                       {setup.layouts->frame, shadeLayout,
+                                        shadingMaterialLayout(setup, textured, extensions)});
             ++setup.pipelinesCreated;
         }
     }
