@@ -127,6 +127,50 @@ TEST(VisibilityBatchTest, KeptPipelinesAreCreatedOnceAndDrawTheSamePictures) {
     EXPECT_TRUE(context->checkNoErrors("kept visibility pipelines").ok());
 }
 
+// The kept working buffers (units, triangle lists, bins) grow with the largest model so far and
+// serve every smaller one after it: what a larger model left in them changes no pixel of a
+// smaller one's picture.
+TEST(VisibilityBatchTest, KeptWorkBuffersGrowForLargerModelsOnly) {
+    ENCORE_REQUIRE_VULKAN(context);
+    const scene::SceneData small = test::generatedScene(denseModel(1, 4));
+    const scene::SceneData large = test::generatedScene(denseModel(2, 16));
+    auto keeping = Renderer::create(*context, stripOptions(1, true));
+    ASSERT_TRUE(keeping.ok()) << keeping.error().message;
+    auto plain = Renderer::create(*context, stripOptions(1, false));
+    ASSERT_TRUE(plain.ok()) << plain.error().message;
+    // Its bytes (handles of a buffer released and one made after it can be equal).
+    auto workgroupListBytes = [&]() -> std::uint64_t {
+        const auto* strategy = dynamic_cast<const VisibilityStrategy*>(keeping->strategy());
+        return strategy ? strategy->workBuffers().workgroupList.GetSize() : 0;
+    };
+    auto neededBytes = [&]() -> std::uint64_t {  // At least 8 per triangle (a block each).
+        const auto* strategy = dynamic_cast<const VisibilityStrategy*>(keeping->strategy());
+        return strategy ? std::uint64_t(strategy->tables().triangleCount) * 8 : 0;
+    };
+
+    ASSERT_TRUE(keeping->prepare(small, StrategyKind::Visibility).ok());
+    renderStrip(*keeping, small);
+    const std::uint64_t smallBytes = workgroupListBytes();
+    ASSERT_TRUE(keeping->prepare(large, StrategyKind::Visibility).ok());
+    const image::ImageRgba8 largeKept = renderStrip(*keeping, large);
+    const std::uint64_t largeBytes = workgroupListBytes();
+    EXPECT_GT(largeBytes, smallBytes) << "the larger model needs larger buffers";
+    EXPECT_GE(largeBytes, neededBytes());
+
+    ASSERT_TRUE(keeping->prepare(small, StrategyKind::Visibility).ok());
+    const image::ImageRgba8 smallKept = renderStrip(*keeping, small);
+    EXPECT_EQ(workgroupListBytes(), largeBytes) << "a smaller model makes none again";
+    EXPECT_GT(workgroupListBytes(), neededBytes());
+
+    ASSERT_TRUE(plain->prepare(small, StrategyKind::Visibility).ok());
+    const image::ImageRgba8 smallFresh = renderStrip(*plain, small);
+    EXPECT_GT(test::coveredFraction(smallFresh, test::pixelAt(smallFresh, 0, 0)), 0.05);
+    EXPECT_EQ(test::differingPixels(smallKept, smallFresh), 0u);
+    ASSERT_TRUE(plain->prepare(large, StrategyKind::Visibility).ok());
+    EXPECT_EQ(test::differingPixels(largeKept, renderStrip(*plain, large)), 0u);
+    EXPECT_TRUE(context->checkNoErrors("kept visibility work buffers").ok());
+}
+
 // The hardware raster draws one view of a strip at a time into a depth attachment of one view's
 // size, its fragments shifted back to the view's place: with every triangle sent to the hardware
 // (no compute raster), each view of the strip is pixel for pixel what the compute raster draws.

@@ -9,6 +9,7 @@
 
 #include "render/strategies/VisibilityPipelines.h"
 #include "render/strategies/VisibilityTarget.h"
+#include "render/strategies/VisibilityWorkBuffers.h"
 
 namespace encore::render {
 
@@ -16,6 +17,7 @@ class KeptStrategyObjects {
   public:
     std::unique_ptr<VisibilityPipelines> visibilityPipelines;
     VisibilityTarget visibilityTarget;
+    VisibilityWorkBuffers visibilityWork;  // Grown, never shrunk, with the scenes.
 };
 
 }  // namespace encore::render

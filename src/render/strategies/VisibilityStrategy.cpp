@@ -143,26 +143,21 @@ Result<void> VisibilityStrategy::prepare(const RenderSetup& setup, const GpuScen
     mItemVisibility = gpu::createBuffer(device, wgpu::BufferUsage::Storage,
                                         std::max<std::uint64_t>(mTables.itemCount, 1) * 4,
                                         "visibility of items last frame");
-    // Twice the units of all items: with occlusion, the second phase lists again the items of
-    // the first (visibility_cull.wgsl), whose clusters it tests for the next frame.
-    mUnits = gpu::createBuffer(device, wgpu::BufferUsage::Storage,
-                               std::max<std::uint64_t>(mTables.unitCount, 1) * 2 * 8,
-                               "visibility units");
     mHardwareCapacity =
         std::uint32_t(std::clamp<std::uint64_t>(mTables.triangleCount, 1, kMaxHardwareTriangles));
-    mHardwareList =
-        gpu::createBuffer(device, wgpu::BufferUsage::Storage, std::uint64_t(mHardwareCapacity) * 4,
-                          "visibility hardware triangles");
     // A triangle of the workgroup path lists its record and its blocks (visibility_raster.wgsl);
     // past either capacity the hardware draws it.
     mWorkgroupBlocks = std::uint32_t(std::clamp<std::uint64_t>(
         mTables.triangleCount * kWorkgroupBlocks + kLargeTriangleBlocks, 1, kMaxHardwareTriangles));
     mWorkgroupRecords =
         std::uint32_t(std::clamp<std::uint64_t>(mTables.triangleCount, 1, kMaxWorkgroupRecords));
-    mWorkgroupList =
-        gpu::createBuffer(device, wgpu::BufferUsage::Storage,
-                          (mWorkgroupBlocks + mWorkgroupRecords * kWorkgroupRecordEntries) * 8,
-                          "visibility workgroup blocks");
+    VisibilityWorkBuffers::Sizes sizes;
+    // Twice the units of all items: with occlusion, the second phase lists again the items of
+    // the first (visibility_cull.wgsl), whose clusters it tests for the next frame.
+    sizes.units = std::uint64_t(mTables.unitCount) * 2 * 8;
+    sizes.hardwareList = std::uint64_t(mHardwareCapacity) * 4;
+    sizes.workgroupList = (mWorkgroupBlocks + mWorkgroupRecords * kWorkgroupRecordEntries) * 8;
+    sizes.bins = std::uint64_t(mTables.binCount) * kBinStride;
     // The counters, then the clusters' visibility (visibility_counters.wgsl), which the copies
     // of kCounterBytes that reset the counters leave as they are (zero after prepare).
     mCounters = gpu::createBuffer(
@@ -175,10 +170,6 @@ Result<void> VisibilityStrategy::prepare(const RenderSetup& setup, const GpuScen
     mPersistentGroups = persistent;
     mRasterGroups = stridingGrid(mTables.unitCount, 1, persistent);
     mWorkgroupGroups = stridingGrid(mWorkgroupBlocks, 1, persistent);
-    mBins = gpu::createBuffer(
-        device,
-        wgpu::BufferUsage::Storage | wgpu::BufferUsage::CopyDst | wgpu::BufferUsage::CopySrc,
-        std::uint64_t(mTables.binCount) * kBinStride, "visibility bins");
     if (setup.keptObjects) {
         KeptStrategyObjects& kept = *setup.keptObjects;
         if (!kept.visibilityPipelines) {
@@ -186,12 +177,17 @@ Result<void> VisibilityStrategy::prepare(const RenderSetup& setup, const GpuScen
         }
         mPipelines = kept.visibilityPipelines.get();
         mTarget = &kept.visibilityTarget;
+        mWork = &kept.visibilityWork;
     } else {
         ENCORE_TRY_ASSIGN(mOwnPipelines, VisibilityPipelines::create(setup));
         mOwnTarget = std::make_unique<VisibilityTarget>();
+        mOwnWork = std::make_unique<VisibilityWorkBuffers>();
         mPipelines = mOwnPipelines.get();
         mTarget = mOwnTarget.get();
+        mWork = mOwnWork.get();
     }
+    mWork->ensure(device, sizes);
+    mBinBytes = sizes.bins;
     // Over this scene's buffers: made on the first frame.
     mCullGroup = nullptr;
     return {};
@@ -227,7 +223,7 @@ void VisibilityStrategy::createBindGroups() {
                                     {params,
                                      {2, instances},
                                      {3, mTableBuffer},
-                                     {4, mUnits},
+                                     {4, mWork->units},
                                      {5, mCounters},
                                      {10, mCullUniform},
                                      {11, mItemVisibility},
@@ -239,11 +235,11 @@ void VisibilityStrategy::createBindGroups() {
                                        geometry,
                                        {2, instances},
                                        {3, mTableBuffer},
-                                       {4, mUnits},
+                                       {4, mWork->units},
                                        {5, mCounters},
-                                       {6, mHardwareList},
+                                       {6, mWork->hardwareList},
                                        {7, target.visibility},
-                                       {9, mWorkgroupList},
+                                       {9, mWork->workgroupList},
                                        {10, mCullUniform},
                                        {12, target.pyramid.view()}},
                                       "visibility raster");
@@ -252,16 +248,16 @@ void VisibilityStrategy::createBindGroups() {
                                          geometry,
                                          {2, instances},
                                          {3, mTableBuffer},
-                                         {4, mUnits},
-                                         {5, mHardwareList},
+                                         {4, mWork->units},
+                                         {5, mWork->hardwareList},
                                          {6, target.visibility}},
                                         "visibility hardware");
     mBinGroup = gpu::makeBindGroup(device, p.binLayout,
                                    {params,
                                     {1, mTableBuffer},
-                                    {2, mUnits},
+                                    {2, mWork->units},
                                     {3, target.visibility},
-                                    {4, mBins},
+                                    {4, mWork->bins},
                                     {5, target.pixels}},
                                    "visibility bins");
     mShadeGroup = gpu::makeBindGroup(device, p.shadeLayout,
@@ -269,10 +265,10 @@ void VisibilityStrategy::createBindGroups() {
                                       geometry,
                                       {2, instances},
                                       {3, mTableBuffer},
-                                      {4, mUnits},
+                                      {4, mWork->units},
                                       {5, target.visibility},
                                       {6, target.pixels},
-                                      {7, mBins, 0, kBinStride},
+                                      {7, mWork->bins, 0, kBinStride},
                                       {8, target.shadedLayers}},
                                      "visibility shading");
     mCompositeGroup = gpu::makeBindGroup(device, p.compositeLayout,
@@ -498,7 +494,7 @@ void VisibilityStrategy::encodeShading(const wgpu::CommandEncoder& commands,
                                        std::size_t firstView,
                                        std::size_t binSlot,
                                        std::uint32_t groupWidth) const {
-    commands.ClearBuffer(mBins);
+    commands.ClearBuffer(mWork->bins, 0, mBinBytes);
     VisibilityPhasePasses passes(commands, frame.timer, "visibility: binning and shading");
     const wgpu::ComputePassEncoder& binning = passes.step("visibility binning");
     const std::uint32_t binOffset = std::uint32_t(binSlot * kParamsStride);

@@ -10,6 +10,7 @@
 #include "render/strategies/MaterialDrawGroups.h"
 #include "render/strategies/VisibilityPipelines.h"
 #include "render/strategies/VisibilityTarget.h"
+#include "render/strategies/VisibilityWorkBuffers.h"
 
 namespace encore::render {
 
@@ -55,7 +56,7 @@ class VisibilityStrategy final : public Strategy {
     // CopySrc, tables().binCount records of kBinRecordBytes, each
     // starting with its count of entries shaded: one per covered pixel and distinct triangle).
     static constexpr std::uint64_t kBinRecordBytes = 256;
-    const wgpu::Buffer& bins() const { return mBins; }
+    const wgpu::Buffer& bins() const { return mWork->bins; }
     void encode(RenderEncoder& encoder, const FrameState& frame) const override;
     // At four samples, when nothing is drawn after the composite: it averages each pixel's
     // samples itself (visibility_composite.wgsl's pixelMain).
@@ -100,6 +101,8 @@ class VisibilityStrategy final : public Strategy {
     // Whether the last frame culled in two phases, and the pyramid it built (tests).
     bool lastFrameOccluded() const { return mOcclusion; }
     const DepthPyramid& depthPyramid() const { return mTarget->pyramid; }
+    // The scene-sized working buffers (tests: kept ones are grown, never made smaller).
+    const VisibilityWorkBuffers& workBuffers() const { return *mWork; }
     // Those of the first view; MASK, BLEND, skinned and morphed geometry drawn directly is
     // counted with the frame's direct draws (DrawCounters), not here.
     std::optional<GpuTriangleCounts> gpuTriangleCounts() const override;
@@ -156,11 +159,8 @@ class VisibilityStrategy final : public Strategy {
 
     // Scene-sized buffers.
     wgpu::Buffer mTableBuffer;
-    wgpu::Buffer mUnits;
     wgpu::Buffer mCounters;
-    wgpu::Buffer mCulledCounters;  // After a multi-view frame's cull.
-    wgpu::Buffer mHardwareList;
-    wgpu::Buffer mWorkgroupList;  // Triangles' blocks for workgroups (visibility_raster.wgsl).
+    wgpu::Buffer mCulledCounters;         // After a multi-view frame's cull.
     std::uint32_t mWorkgroupBlocks = 0;   // Entries of blocks, then
     std::uint32_t mWorkgroupRecords = 0;  // records of triangles set up.
     std::uint32_t mHardwareCapacity = 0;
@@ -170,19 +170,21 @@ class VisibilityStrategy final : public Strategy {
     std::uint32_t mRasterGroups = 1;
     std::uint32_t mWorkgroupGroups = 1;
     std::uint32_t mPersistentGroups = 1;  // persistentWorkgroups() of the device.
-    wgpu::Buffer mBins;
+    std::uint64_t mBinBytes = 0;          // Of the work buffers' bins, this scene's.
     wgpu::Buffer mCullUniform;
     wgpu::Buffer mItemVisibility;  // Per item: visible in the last two-phase frame.
 
     wgpu::Buffer mGeometry;  // The first shared geometry buffer, or a placeholder.
     std::uint64_t mGeometryBytes = 0;
 
-    // Scene-independent pipelines and target-sized resources: the renderer's
-    // (RenderSetup::keptObjects), or else this strategy's own.
+    // Scene-independent pipelines, target-sized resources and the (grown) working buffers: the
+    // renderer's (RenderSetup::keptObjects), or else this strategy's own.
     VisibilityPipelines* mPipelines = nullptr;  // Makes shading pipelines on first use.
     std::unique_ptr<VisibilityPipelines> mOwnPipelines;
     VisibilityTarget* mTarget = nullptr;
     std::unique_ptr<VisibilityTarget> mOwnTarget;
+    VisibilityWorkBuffers* mWork = nullptr;
+    std::unique_ptr<VisibilityWorkBuffers> mOwnWork;
     bool mOcclusion = false;  // This frame culls in two phases.
     std::size_t mLastViewCount = 0;
 
