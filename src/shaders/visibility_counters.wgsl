@@ -16,8 +16,9 @@ struct Counters {
     hardwareFirstVertex: u32,
     hardwareFirstInstance: u32,
     computeTriangles: atomic<u32>,  // Triangles the compute raster covered pixels of (or not).
-    hardwareOverflow: atomic<u32>,  // Triangles the full hardware list could not take.
+    // Beside computeTriangles: one copy per view takes both (VisibilityStrategy::encodeView).
     hardwareTriangles: atomic<u32>,  // Triangles the hardware list took.
+    hardwareOverflow: atomic<u32>,  // Triangles the full hardware list could not take.
     workgroupTriangles: atomic<u32>,  // Blocks listed for workgroupMain in this phase.
     // Triangles of the clusters the raster passes culled (frustum, facing, occlusion; both
     // phases): listed, never rasterised.

@@ -26,8 +26,7 @@ static_assert(kBinStride == VisibilityStrategy::kBinRecordBytes);
 constexpr std::uint64_t kCounterBytes = VisibilityPipelines::kCounterBytes;
 // Byte offsets in visibility_raster.wgsl's Counters.
 constexpr std::uint64_t kHardwareArguments = 16;
-constexpr std::uint64_t kComputeTriangles = 32;
-constexpr std::uint64_t kHardwareTriangles = 40;
+constexpr std::uint64_t kComputeTriangles = 32;  // Then the hardware triangles' count.
 // The hardware list holds at most this many triangles (16 MiB); past it they are counted as an
 // overflow (visibility_raster.wgsl) rather than written.
 constexpr std::uint64_t kMaxHardwareTriangles = 4u << 20;
@@ -483,9 +482,7 @@ void VisibilityStrategy::encodeView(const wgpu::CommandEncoder& commands,
         encodeHardwareRaster(commands, frame, paramsOffset, viewWidth,
                              "visibility hardware raster (second phase)");
     }
-    commands.CopyBufferToBuffer(mCounters, kComputeTriangles, mTarget->triangleCounts, view * 8, 4);
-    commands.CopyBufferToBuffer(mCounters, kHardwareTriangles, mTarget->triangleCounts,
-                                view * 8 + 4, 4);
+    commands.CopyBufferToBuffer(mCounters, kComputeTriangles, mTarget->triangleCounts, view * 8, 8);
 }
 
 void VisibilityStrategy::encodeShading(const wgpu::CommandEncoder& commands,
