@@ -25,13 +25,21 @@ void TriangleHistory::record(const wgpu::CommandEncoder& commands,
     if (chunk == mChunks.size()) {
         addChunk();
     }
+    // A slot: the compute count, then the hardware count.
     const std::uint64_t slot = (mFrames % kFramesPerChunk) * 8;
-    commands.CopyBufferToBuffer(counts.buffer, counts.hardwareOffset, mChunks[chunk], slot, 4);
-    if (counts.computeOffset) {
-        commands.CopyBufferToBuffer(counts.buffer, *counts.computeOffset, mChunks[chunk], slot + 4,
-                                    4);
+    if (counts.computeOffset && *counts.computeOffset + 4 == counts.hardwareOffset) {
+        // The visibility strategy's two words: one copy (copies cost a frame more than their
+        // bytes: each ends a pass and orders the GPU's work around it).
+        commands.CopyBufferToBuffer(counts.buffer, *counts.computeOffset, mChunks[chunk], slot, 8);
     } else {
-        commands.ClearBuffer(mChunks[chunk], slot + 4, 4);  // A reused chunk holds old counts.
+        if (counts.computeOffset) {
+            commands.CopyBufferToBuffer(counts.buffer, *counts.computeOffset, mChunks[chunk], slot,
+                                        4);
+        } else {
+            commands.ClearBuffer(mChunks[chunk], slot, 4);  // A reused chunk holds old counts.
+        }
+        commands.CopyBufferToBuffer(counts.buffer, counts.hardwareOffset, mChunks[chunk], slot + 4,
+                                    4);
     }
     ++mFrames;
 }
@@ -52,7 +60,7 @@ Result<std::vector<DrawnTriangles>> TriangleHistory::take(gpu::Context& context)
         for (std::uint64_t frame = 0; frame < count; ++frame) {
             std::uint32_t words[2];
             std::memcpy(words, bytes->data() + frame * 8, 8);
-            values.push_back({words[0], words[1]});
+            values.push_back({words[1], words[0]});
         }
     }
     mChunks.resize(1);  // The first chunk serves the next history.

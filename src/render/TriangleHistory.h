@@ -5,8 +5,8 @@
 // for the visibility strategy, in compute) into the next slot of a history on the GPU, so that
 // no frame waits for a readback; take() reads the history back afterwards. The history grows
 // in chunks of kFramesPerChunk two-word slots and never moves what it holds, so a frame costs
-// at most two 4-byte copies; the first chunk exists from the start, so the first 512 frames
-// allocate nothing.
+// a copy (and a clear or a second copy where the two counts are not side by side); the first chunk
+// exists from the start, so the first 512 frames allocate nothing.
 
 #include <webgpu/webgpu_cpp.h>
 

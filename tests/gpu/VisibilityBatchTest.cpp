@@ -188,7 +188,8 @@ TEST(VisibilityBatchTest, HardwareRasterisedViewsLandInTheirPlaceInTheStrip) {
         const image::ImageRgba8 drawn = renderStrip(*hardware, scene);
         const auto* strategy = dynamic_cast<const VisibilityStrategy*>(hardware->strategy());
         ASSERT_NE(strategy, nullptr);
-        auto counts = gpu::readBuffer(*context, strategy->triangleCounts(), 0, kViews * 8);
+        ASSERT_EQ(strategy->rasterCountsOffset(1), 8u) << "a copy per view, side by side";
+        auto counts = gpu::readBuffer(*context, strategy->rasterCounts(), 0, kViews * 8);
         ASSERT_TRUE(counts.ok()) << counts.error().message;
         for (std::size_t view = 0; view < kViews; ++view) {
             std::uint32_t inCompute = 0;

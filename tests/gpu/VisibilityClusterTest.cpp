@@ -141,8 +141,9 @@ Frame render(gpu::Context& context, Renderer& renderer, const Camera& camera) {
                                            VisibilityStrategy::kListedTrianglesOffset);
         frame.work.culled = test::readWord(context, strategy->counters(),
                                            VisibilityStrategy::kCulledTrianglesOffset);
-        frame.work.rasterised = test::readWord(context, strategy->triangleCounts(), 0) +
-                                test::readWord(context, strategy->triangleCounts(), 4);
+        const std::uint64_t counts = strategy->rasterCountsOffset(0);
+        frame.work.rasterised = test::readWord(context, strategy->rasterCounts(), counts) +
+                                test::readWord(context, strategy->rasterCounts(), counts + 4);
     }
     return frame;
 }

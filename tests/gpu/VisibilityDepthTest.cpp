@@ -54,7 +54,8 @@ Drawn draw(gpu::Context& context,
     Drawn drawn;
     auto entries = gpu::readBuffer(context, strategy->visibilityBuffer(), 0,
                                    std::uint64_t(kWidth) * kHeight * 8);
-    auto counts = gpu::readBuffer(context, strategy->triangleCounts(), 0, 8);
+    auto counts =
+        gpu::readBuffer(context, strategy->rasterCounts(), strategy->rasterCountsOffset(0), 8);
     EXPECT_TRUE(entries.ok() && counts.ok());
     if (entries.ok() && counts.ok()) {
         drawn.entries = std::move(*entries);

@@ -190,8 +190,10 @@ const float kAspect = float(kWidth) / float(kHeight);
 
 // The triangles the last frame rasterised: in compute, then in hardware.
 std::array<std::uint32_t, 2> rasteriserCounts(gpu::Context& context, const Renderer& renderer) {
-    const auto& counts = visibilityOf(renderer).triangleCounts();
-    return {test::readWord(context, counts, 0), test::readWord(context, counts, 4)};
+    const VisibilityStrategy& strategy = visibilityOf(renderer);
+    const std::uint64_t offset = strategy.rasterCountsOffset(0);
+    return {test::readWord(context, strategy.rasterCounts(), offset),
+            test::readWord(context, strategy.rasterCounts(), offset + 4)};
 }
 
 // The wall drawn by a compute workgroup (64 x 48 pixels) or, without workgroups, by the hardware:

@@ -228,7 +228,8 @@ std::array<std::uint32_t, 2> rasteriserCounts(gpu::Context& context,
         return {};
     }
     EXPECT_EQ(visibility->lastViewCount(), 1u);
-    auto counts = gpu::readBuffer(context, visibility->triangleCounts(), 0, 8);
+    auto counts =
+        gpu::readBuffer(context, visibility->rasterCounts(), visibility->rasterCountsOffset(0), 8);
     EXPECT_TRUE(counts.ok());
     std::array<std::uint32_t, 2> words{};
     if (counts.ok()) {

@@ -482,7 +482,10 @@ void VisibilityStrategy::encodeView(const wgpu::CommandEncoder& commands,
         encodeHardwareRaster(commands, frame, paramsOffset, viewWidth,
                              "visibility hardware raster (second phase)");
     }
-    commands.CopyBufferToBuffer(mCounters, kComputeTriangles, mTarget->triangleCounts, view * 8, 8);
+    if (culled) {  // Frames of several views keep each one's counts; one view's stay put.
+        commands.CopyBufferToBuffer(mCounters, kComputeTriangles, mTarget->triangleCounts, view * 8,
+                                    8);
+    }
 }
 
 void VisibilityStrategy::encodeShading(const wgpu::CommandEncoder& commands,
@@ -528,7 +531,16 @@ std::optional<GpuTriangleCounts> VisibilityStrategy::gpuTriangleCounts() const {
     if (!mCullGroup) {  // No frame drawn yet: the kept counts are another scene's.
         return std::nullopt;
     }
-    return GpuTriangleCounts{mTarget->triangleCounts, 4, 0, mTables.triangleCount};
+    const std::uint64_t offset = rasterCountsOffset(0);
+    return GpuTriangleCounts{rasterCounts(), offset + 4, offset, mTables.triangleCount};
+}
+
+const wgpu::Buffer& VisibilityStrategy::rasterCounts() const {
+    return mLastViewCount > 1 ? mTarget->triangleCounts : mCounters;
+}
+
+std::uint64_t VisibilityStrategy::rasterCountsOffset(std::size_t view) const {
+    return mLastViewCount > 1 ? view * 8 : kComputeTriangles;
 }
 
 bool VisibilityStrategy::composesFrame(const FrameState& frame) const {

@@ -87,9 +87,12 @@ class VisibilityStrategy final : public Strategy {
     // The last frame's visibility buffer: per sample (pixel-major), the triangle's id and the
     // complement of its depth's bits; zero where nothing was drawn (CopySrc, for tests).
     const wgpu::Buffer& visibilityBuffer() const { return mTarget->visibility; }
-    // Per view of the last frame, two words: triangles rasterised in compute, then triangles
-    // drawn by the hardware path. CopySrc usage, for read-back.
-    const wgpu::Buffer& triangleCounts() const { return mTarget->triangleCounts; }
+    // Per view of the last frame, two words from rasterCountsOffset(view) of rasterCounts():
+    // triangles rasterised in compute, then triangles drawn by the hardware path (CopySrc, for
+    // read-back). A frame of one view leaves them in its counters, where the next frame resets
+    // them; a frame of several copies each view's out before the next view's raster.
+    const wgpu::Buffer& rasterCounts() const;
+    std::uint64_t rasterCountsOffset(std::size_t view) const;
     std::size_t lastViewCount() const { return mLastViewCount; }
     // The last view's counters (visibility_counters.wgsl; CopySrc): at kListedTrianglesOffset,
     // the triangles of the levels its cull listed (GPU culling's count of drawn triangles).
