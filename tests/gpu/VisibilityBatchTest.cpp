@@ -138,17 +138,14 @@ TEST(VisibilityBatchTest, KeptWorkBuffersGrowForLargerModelsOnly) {
     ASSERT_TRUE(keeping.ok()) << keeping.error().message;
     auto plain = Renderer::create(*context, stripOptions(1, false));
     ASSERT_TRUE(plain.ok()) << plain.error().message;
+    auto kept = [&] { return dynamic_cast<const VisibilityStrategy*>(keeping->strategy()); };
     // Its bytes (handles of a buffer released and one made after it can be equal).
-    auto workgroupListBytes = [&]() -> std::uint64_t {
-        const auto* strategy = dynamic_cast<const VisibilityStrategy*>(keeping->strategy());
-        return strategy ? strategy->workBuffers().workgroupList.GetSize() : 0;
-    };
-    auto neededBytes = [&]() -> std::uint64_t {  // At least 8 per triangle (a block each).
-        const auto* strategy = dynamic_cast<const VisibilityStrategy*>(keeping->strategy());
-        return strategy ? std::uint64_t(strategy->tables().triangleCount) * 8 : 0;
-    };
+    auto workgroupListBytes = [&] { return kept()->workBuffers().workgroupList.GetSize(); };
+    // At least 8 per triangle (a block each).
+    auto neededBytes = [&] { return std::uint64_t(kept()->tables().triangleCount) * 8; };
 
     ASSERT_TRUE(keeping->prepare(small, StrategyKind::Visibility).ok());
+    ASSERT_NE(kept(), nullptr);
     renderStrip(*keeping, small);
     const std::uint64_t smallBytes = workgroupListBytes();
     ASSERT_TRUE(keeping->prepare(large, StrategyKind::Visibility).ok());

@@ -12,6 +12,7 @@
 #include "render/Frustum.h"
 #include "render/LodSelection.h"
 #include "render/strategies/KeptStrategyObjects.h"
+#include "render/strategies/VisibilityPhasePasses.h"
 
 namespace encore::render {
 
@@ -60,44 +61,6 @@ std::uint32_t stridingGrid(std::uint64_t work, std::uint32_t perGroup, std::uint
 }
 
 }  // namespace
-
-// The compute work of a raster phase or of the shading: one pass, or, under a GPU timer, a pass
-// per step, so that the timings say where the time goes (a step sets all its bindings itself).
-class VisibilityPhasePasses {
-  public:
-    VisibilityPhasePasses(const wgpu::CommandEncoder& commands,
-                          gpu::GpuTimer* timer,
-                          const char* label)
-        : mCommands(commands), mTimer(timer), mLabel(label) {}
-    ~VisibilityPhasePasses() {
-        if (mPass) {
-            mPass.End();
-        }
-    }
-    VisibilityPhasePasses(const VisibilityPhasePasses&) = delete;
-    VisibilityPhasePasses& operator=(const VisibilityPhasePasses&) = delete;
-
-    // The pass for the step named `timerLabel`.
-    const wgpu::ComputePassEncoder& step(const char* timerLabel) {
-        if (mPass && !mTimer) {
-            return mPass;
-        }
-        if (mPass) {
-            mPass.End();
-        }
-        wgpu::ComputePassDescriptor descriptor{};
-        descriptor.label = mLabel;
-        descriptor.timestampWrites = mTimer ? mTimer->nextPass(timerLabel) : nullptr;
-        mPass = mCommands.BeginComputePass(&descriptor);
-        return mPass;
-    }
-
-  private:
-    const wgpu::CommandEncoder& mCommands;
-    gpu::GpuTimer* mTimer;
-    const char* mLabel;
-    wgpu::ComputePassEncoder mPass;
-};
 
 Result<void> VisibilityStrategy::prepare(const RenderSetup& setup, const GpuScene& scene) {
     if (!setup.device.HasFeature(kVisibilityFeature)) {
@@ -186,7 +149,6 @@ Result<void> VisibilityStrategy::prepare(const RenderSetup& setup, const GpuScen
         mWork = mOwnWork.get();
     }
     mWork->ensure(device, sizes);
-    mBinBytes = sizes.bins;
     // Over this scene's buffers: made on the first frame.
     mCullGroup = nullptr;
     return {};
@@ -494,7 +456,7 @@ void VisibilityStrategy::encodeShading(const wgpu::CommandEncoder& commands,
                                        std::size_t firstView,
                                        std::size_t binSlot,
                                        std::uint32_t groupWidth) const {
-    commands.ClearBuffer(mWork->bins, 0, mBinBytes);
+    commands.ClearBuffer(mWork->bins, 0, std::uint64_t(mTables.binCount) * kBinStride);
     VisibilityPhasePasses passes(commands, frame.timer, "visibility: binning and shading");
     const wgpu::ComputePassEncoder& binning = passes.step("visibility binning");
     const std::uint32_t binOffset = std::uint32_t(binSlot * kParamsStride);

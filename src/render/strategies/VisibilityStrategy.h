@@ -173,7 +173,6 @@ class VisibilityStrategy final : public Strategy {
     std::uint32_t mRasterGroups = 1;
     std::uint32_t mWorkgroupGroups = 1;
     std::uint32_t mPersistentGroups = 1;  // persistentWorkgroups() of the device.
-    std::uint64_t mBinBytes = 0;          // Of the work buffers' bins, this scene's.
     wgpu::Buffer mCullUniform;
     wgpu::Buffer mItemVisibility;  // Per item: visible in the last two-phase frame.
 

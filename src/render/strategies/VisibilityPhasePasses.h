@@ -1,0 +1,47 @@
+#pragma once
+
+#include <webgpu/webgpu_cpp.h>
+
+#include "encore/gpu/GpuTimer.h"
+
+namespace encore::render {
+
+// The compute work of a raster phase or of the shading: one pass, or, under a GPU timer, a pass
+// per step, so that the timings say where the time goes (a step sets all its bindings itself).
+class VisibilityPhasePasses {
+  public:
+    VisibilityPhasePasses(const wgpu::CommandEncoder& commands,
+                          gpu::GpuTimer* timer,
+                          const char* label)
+        : mCommands(commands), mTimer(timer), mLabel(label) {}
+    ~VisibilityPhasePasses() {
+        if (mPass) {
+            mPass.End();
+        }
+    }
+    VisibilityPhasePasses(const VisibilityPhasePasses&) = delete;
+    VisibilityPhasePasses& operator=(const VisibilityPhasePasses&) = delete;
+
+    // The pass for the step named `timerLabel`.
+    const wgpu::ComputePassEncoder& step(const char* timerLabel) {
+        if (mPass && !mTimer) {
+            return mPass;
+        }
+        if (mPass) {
+            mPass.End();
+        }
+        wgpu::ComputePassDescriptor descriptor{};
+        descriptor.label = mLabel;
+        descriptor.timestampWrites = mTimer ? mTimer->nextPass(timerLabel) : nullptr;
+        mPass = mCommands.BeginComputePass(&descriptor);
+        return mPass;
+    }
+
+  private:
+    const wgpu::CommandEncoder& mCommands;
+    gpu::GpuTimer* mTimer;
+    const char* mLabel;
+    wgpu::ComputePassEncoder mPass;
+};
+
+}  // namespace encore::render
