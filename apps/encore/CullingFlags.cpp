@@ -24,8 +24,10 @@ void addCullingOptions(CLI::App& command, render::CullingOptions& options) {
     command
         .add_option("--workgroup-raster-pixels", options.workgroupRasterPixels,
                     "visibility strategy: a compute workgroup rasterises, in 8x8 tiles, each "
-                    "larger triangle up to this many pixels each way; larger ones go to the "
-                    "hardware (0 with --compute-raster-pixels 0: all in hardware)")
+                    "larger triangle up to this many pixels each way; larger ones, and those "
+                    "crossing the near or far plane, go to the hardware, except at 8192 (the "
+                    "default), where compute clips them and no hardware raster pass runs (0 "
+                    "with --compute-raster-pixels 0: all in hardware)")
         ->check(CLI::Range(0.0f, 8192.0f))
         ->capture_default_str();
     command.add_flag("!--no-cluster-culling", options.clusterCulling,

@@ -1,10 +1,11 @@
 enable atomic_vec2u_min_max;
 
-// The visibility strategy's hardware path, for one view: the triangles that the compute raster
-// listed (near- or far-plane crossings, large ones; back faces culled already), drawn with one
-// indirect draw, vertices pulled from the shared buffers as the compute raster pulls them, and
-// each fragment (sample) writing (depth, id) into the visibility buffer with the same 64-bit
-// atomic.
+// The visibility strategy's hardware path, for one view, where the compute raster does not take
+// every triangle (VisibilityParams.computeTakesAll): the triangles it listed whole (near- or
+// far-plane crossings, large ones, those past its full lists; back faces culled already), drawn
+// with one indirect draw, vertices pulled from the shared buffers as the compute raster pulls
+// them, and each fragment (sample) writing (depth, id) into the visibility buffer with the same
+// 64-bit atomic.
 #include "frame.wgsl"
 #include "visibility_geometry.wgsl"
 

@@ -22,4 +22,8 @@ struct VisibilityParams {
     // triangle records (visibility_raster.wgsl).
     workgroupBlocks: u32,
     workgroupRecords: u32,
+    // 1 where maxWorkgroupPixels is at its largest: the compute raster takes every triangle,
+    // clipping those that cross the near or far plane or span more than it (workgroupMain), and
+    // the hardware pass is not drawn.
+    computeTakesAll: u32,
 }

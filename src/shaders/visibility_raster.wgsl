@@ -9,11 +9,14 @@ enable atomic_vec2u_min_max;
 //                  functions under the top-left rule (at each of the pixel's samples,
 //                  VisibilityParams.samples), writing (depth, id) with a 64-bit atomic max of
 //                  (id, ~depth bits), so the nearest depth wins. Triangles whose screen bounds
-//                  exceed params.maxComputePixels are listed for workgroupMain; those that cross
-//                  the near or far plane, or exceed params.maxWorkgroupPixels, for the hardware
-//                  pass (visibility_hardware.wgsl).
+//                  exceed params.maxComputePixels are listed for workgroupMain in blocks; those
+//                  that cross the near or far plane, or exceed params.maxWorkgroupPixels, or
+//                  find the block list full, are listed whole: for the hardware pass
+//                  (visibility_hardware.wgsl), or with params.computeTakesAll for workgroupMain.
 //   workgroupMain  a workgroup per listed block of a triangle (up to kBlockPixels squared),
-//                  covering it in 8x8 tiles.
+//                  covering it in 8x8 tiles; then, with params.computeTakesAll, a workgroup per
+//                  triangle listed whole, which it clips (near and far planes, a guard band)
+//                  and covers alone.
 #include "frame.wgsl"
 #include "visibility_geometry.wgsl"
 #include "visibility_samples.wgsl"
@@ -48,14 +51,21 @@ const kNoEntry = 0xffffffffu;
 // Sub-pixel precision of the snapped vertices, as the hardware's (8 bits).
 const kSubpixels = 256.0;
 
-fn toHardware(id: u32) {
+// Lists triangle `id` whole (the hardware list): for the hardware pass, or where the compute
+// raster takes every triangle, for workgroupMain to clip and cover. Returns whether the compute
+// raster took it.
+fn listWhole(id: u32) -> bool {
     let slot = (counters.hardwareFirstVertex + atomicAdd(&counters.hardwareVertices, 3u)) / 3u;
-    if (slot < params.hardwareCapacity) {
-        hardwareList[slot] = id;
-        atomicAdd(&counters.hardwareTriangles, 1u);
-    } else {
+    if (slot >= params.hardwareCapacity) {
         atomicAdd(&counters.hardwareOverflow, 1u);
+        return false;
     }
+    hardwareList[slot] = id;
+    if (params.computeTakesAll != 0u) {
+        return true;
+    }
+    atomicAdd(&counters.hardwareTriangles, 1u);
+    return false;
 }
 
 // The edge function of a -> b at p (twice the signed area), in fixed point.
@@ -124,6 +134,7 @@ fn windowPosition(clip: vec4f) -> vec3f {
 const kRouteNone = 0u;       // Nothing to draw: outside, back-facing, degenerate, or handed on.
 const kRouteThread = 1u;     // Small: one thread covers its pixels.
 const kRouteWorkgroup = 2u;  // Larger: a workgroup covers its pixels in 8x8 tiles.
+const kRouteWhole = 3u;      // Crossing the near or far plane, or too large: listed whole.
 
 // A triangle set up for the compute raster: vertices snapped to 1/256 pixel relative to its
 // first pixel, wound so that inside is positive, with the fill rule's biases.
@@ -153,15 +164,24 @@ fn facesTheCamera(c0: vec4f, c1: vec4f, c2: vec4f, item: Item) -> bool {
     return det != 0.0 && (front || field(item.record, kDoubleSided) != 0u);
 }
 
-// Clips, sizes and snaps triangle `triangle` of `item`. Triangles that cross the near or far
-// plane, or span more than the workgroup path takes, go to the hardware list here.
-fn prepareTriangle(id: u32, item: Item, transform: Transform, triangle: u32) -> RasterTriangle {
+// The clip positions of triangle `triangle` of `item`.
+fn clipTriangle(item: Item, transform: Transform, triangle: u32) -> array<vec4f, 3> {
+    let record = item.record;
+    return array<vec4f, 3>(
+        clipPosition(worldPosition(record, transform, vertexIndex(record, triangle, 0u))),
+        clipPosition(worldPosition(record, transform, vertexIndex(record, triangle, 1u))),
+        clipPosition(worldPosition(record, transform, vertexIndex(record, triangle, 2u))));
+}
+
+// Sizes and snaps triangle `triangle` of `item`. Triangles that cross the near or far plane, or
+// span more than the workgroup path takes, are routed to be listed whole (kRouteWhole).
+fn prepareTriangle(item: Item, transform: Transform, triangle: u32) -> RasterTriangle {
     var t: RasterTriangle;
     t.route = kRouteNone;
-    let record = item.record;
-    let c0 = clipPosition(worldPosition(record, transform, vertexIndex(record, triangle, 0u)));
-    let c1 = clipPosition(worldPosition(record, transform, vertexIndex(record, triangle, 1u)));
-    let c2 = clipPosition(worldPosition(record, transform, vertexIndex(record, triangle, 2u)));
+    let c = clipTriangle(item, transform, triangle);
+    let c0 = c[0];
+    let c1 = c[1];
+    let c2 = c[2];
     let xs = vec3f(c0.x, c1.x, c2.x);
     let ys = vec3f(c0.y, c1.y, c2.y);
     let zs = vec3f(c0.z, c1.z, c2.z);
@@ -172,22 +192,33 @@ fn prepareTriangle(id: u32, item: Item, transform: Transform, triangle: u32) -> 
         return t;
     }
     if (any(zs < vec3f(0.0)) || any(zs > ws) || any(ws <= vec3f(0.0))) {
-        // Crosses the near or far plane: the hardware clips. Facing from the homogeneous
+        // Crosses the near or far plane: to be clipped. Facing from the homogeneous
         // determinant, which holds on either side of w = 0.
         if (facesTheCamera(c0, c1, c2, item)) {
-            toHardware(id);
+            t.route = kRouteWhole;
         }
         return t;
     }
+    return prepareProjected(item, c0, c1, c2, false);
+}
+
+// Sizes and snaps a triangle of `item` in front of the near plane and behind the far one (clip
+// positions c0, c1, c2). Unless `clipped` (a piece of a clipped triangle, within the guard
+// band), one spanning more than the workgroup path takes is routed to be listed whole.
+fn prepareProjected(item: Item, c0: vec4f, c1: vec4f, c2: vec4f, clipped: bool)
+    -> RasterTriangle {
+    var t: RasterTriangle;
+    t.route = kRouteNone;
+    let record = item.record;
     let p0 = windowPosition(c0);
     let p1 = windowPosition(c1);
     let p2 = windowPosition(c2);
     let low = min(p0.xy, min(p1.xy, p2.xy));
     let high = max(p0.xy, max(p1.xy, p2.xy));
     let span = max(high.x - low.x, high.y - low.y);
-    if (span > max(params.maxComputePixels, params.maxWorkgroupPixels)) {
+    if (!clipped && span > max(params.maxComputePixels, params.maxWorkgroupPixels)) {
         if (facesTheCamera(c0, c1, c2, item)) {
-            toHardware(id);
+            t.route = kRouteWhole;
         }
         return t;
     }
@@ -329,7 +360,10 @@ fn coverPixel(t: RasterTriangle, id: u32, pixel: vec2i) {
 // Returns whether the compute raster takes the triangle (front-facing, on screen, not
 // degenerate): small ones it covers here, larger ones it lists for workgroupMain.
 fn rasterTriangle(id: u32, item: Item, transform: Transform, triangle: u32) -> bool {
-    let t = prepareTriangle(id, item, transform, triangle);
+    let t = prepareTriangle(item, transform, triangle);
+    if (t.route == kRouteWhole) {
+        return listWhole(id);
+    }
     if (t.route == kRouteWorkgroup) {
         let blocks = (t.last - t.first + kBlockPixels) / kBlockPixels;
         let count = u32(blocks.x * blocks.y);
@@ -344,12 +378,11 @@ fn rasterTriangle(id: u32, item: Item, transform: Transform, triangle: u32) -> b
             }
             return true;
         }
-        // The list is full: the hardware draws it, and what it reserved stays empty.
+        // The list is full: listed whole instead, and what it reserved stays empty.
         for (var empty = slot; empty < min(slot + count, capacity); empty++) {
             workgroupList[empty] = vec2u(kNoEntry, 0u);
         }
-        toHardware(id);
-        return false;
+        return listWhole(id);
     }
     if (t.route != kRouteThread) {
         return false;
@@ -510,18 +543,126 @@ fn rasterMain(@builtin(workgroup_id) group: vec3u, @builtin(num_workgroups) grou
     }
 }
 
-var<workgroup> listed: u32;
+// Blocks listed, then (params.computeTakesAll) this phase's first triangle listed whole and
+// their count.
+var<workgroup> listed: vec3u;
 
-// One workgroup per listed triangle: its 64 threads walk the triangle's pixels in 8x8 tiles.
+// One workgroup per listed block: its 64 threads walk the block's pixels in 8x8 tiles. Then one
+// per triangle listed whole, where the compute raster takes them.
 @compute @workgroup_size(64)
 fn workgroupMain(@builtin(workgroup_id) group: vec3u, @builtin(num_workgroups) groups: vec3u,
                  @builtin(local_invocation_index) lane: u32) {
     if (lane == 0u) {
-        listed = min(atomicLoad(&counters.workgroupTriangles), params.workgroupBlocks);
+        let first = counters.hardwareFirstVertex / 3u;
+        let end = min(first + atomicLoad(&counters.hardwareVertices) / 3u,
+                      params.hardwareCapacity);
+        let whole = select(0u, end - first, params.computeTakesAll != 0u && end > first);
+        listed = vec3u(min(atomicLoad(&counters.workgroupTriangles), params.workgroupBlocks),
+                       first, whole);
     }
     let count = workgroupUniformLoad(&listed);
-    for (var slot = group.x; slot < count; slot += groups.x) {
+    for (var slot = group.x; slot < count.x; slot += groups.x) {
         coverListed(slot, lane);
+    }
+    for (var slot = group.x; slot < count.z; slot += groups.x) {
+        coverWhole(hardwareList[count.y + slot], lane);
+    }
+}
+
+// The guard band that clipped triangles are cut to: this many pixels past each edge of the
+// viewport. Their pieces' vertices then lie within 2^22 (in 1/256 pixel) of the viewport's
+// pixels, as those of triangles up to kMaxWorkgroupPixels across that touch it (wideEdge).
+const kGuardPixels = 8192.0;
+
+// A convex polygon of clip positions: a triangle cut by the six planes of clipPolygon, each of
+// which adds at most one vertex.
+struct ClipPolygon {
+    count: u32,
+    v: array<vec4f, 9>,
+}
+
+// The signed distance of `v` from clip plane `plane` (positive inside): near, far, then the
+// guard band's left, right, bottom and top at `guard` (normalised device coordinates).
+fn planeDistance(v: vec4f, plane: u32, guard: vec2f) -> f32 {
+    switch plane {
+        case 0u: {
+            return v.z;
+        }
+        case 1u: {
+            return v.w - v.z;
+        }
+        case 2u: {
+            return v.x + guard.x * v.w;
+        }
+        case 3u: {
+            return guard.x * v.w - v.x;
+        }
+        case 4u: {
+            return v.y + guard.y * v.w;
+        }
+        default: {
+            return guard.y * v.w - v.y;
+        }
+    }
+}
+
+// The part of triangle (c0, c1, c2) inside the near and far planes and the guard band
+// (Sutherland-Hodgman, in homogeneous coordinates, so that vertices behind the camera clip as
+// the hardware clips them). Its fan from the first vertex covers it: pieces that share their
+// inner edges exactly, which the top-left rule covers once.
+fn clipPolygon(c0: vec4f, c1: vec4f, c2: vec4f) -> ClipPolygon {
+    let half = vec2f(f32(params.viewportWidth), f32(params.viewportHeight)) * 0.5;
+    let guard = (half + kGuardPixels) / half;
+    var polygon: ClipPolygon;
+    polygon.count = 3u;
+    polygon.v[0] = c0;
+    polygon.v[1] = c1;
+    polygon.v[2] = c2;
+    for (var plane = 0u; plane < 6u && polygon.count >= 3u; plane++) {
+        var cut: ClipPolygon;
+        cut.count = 0u;
+        for (var i = 0u; i < polygon.count; i++) {
+            let a = polygon.v[i];
+            let b = polygon.v[select(i + 1u, 0u, i + 1u == polygon.count)];
+            let da = planeDistance(a, plane, guard);
+            let db = planeDistance(b, plane, guard);
+            if (da >= 0.0) {
+                cut.v[cut.count] = a;
+                cut.count++;
+            }
+            if ((da >= 0.0) != (db >= 0.0)) {
+                cut.v[cut.count] = a + (b - a) * (da / (da - db));
+                cut.count++;
+            }
+        }
+        polygon = cut;
+    }
+    return polygon;
+}
+
+// Triangle `id`, listed whole: clipped, and each piece's pixels covered in 8x8 tiles by the
+// workgroup's 64 threads (a piece as large as the viewport is one workgroup's: the rare path of
+// triangles through the near or far plane and of full lists).
+fn coverWhole(id: u32, lane: u32) {
+    let unit = units[id / kUnitTriangles];
+    let item = loadItem(unit.x);
+    let c = clipTriangle(item, instances[item.slot], unitTriangle(unit, id));
+    let polygon = clipPolygon(c[0], c[1], c[2]);
+    let offset = vec2i(i32(lane % 8u), i32(lane / 8u));
+    for (var k = 2u; k < polygon.count; k++) {
+        let t = prepareProjected(item, polygon.v[0], polygon.v[k - 1u], polygon.v[k], true);
+        if (t.route == kRouteNone) {
+            continue;
+        }
+        let size = t.last - t.first + 1;
+        let columns = (size.x + 7) / 8;
+        let tiles = columns * ((size.y + 7) / 8);
+        for (var tile = 0; tile < tiles; tile++) {
+            let pixel = vec2i(tile % columns, tile / columns) * 8 + offset;
+            if (all(pixel < size)) {
+                coverPixel(t, id, t.first + pixel);
+            }
+        }
     }
 }
 

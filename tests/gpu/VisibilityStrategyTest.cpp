@@ -12,6 +12,7 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <optional>
 #include <set>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -140,12 +141,13 @@ INSTANTIATE_TEST_SUITE_P(SharedModels,
 // colour; the base colour channel has no shading differences, and the shaded colour's trip
 // through an rgba16float texture may round one level), for the shapes that test a fill rule. At
 // four samples the resolved pixels are equal only if every sample is covered as the hardware
-// covers it.
+// covers it. `tolerated`: pixels that may differ.
 void expectSameCoverage(gpu::Context& context,
                         const scene::SceneData& scene,
                         const Camera& camera,
                         std::size_t minimumColors,
-                        std::uint32_t samples = 1) {
+                        std::uint32_t samples = 1,
+                        std::size_t tolerated = 0) {
     SCOPED_TRACE(std::to_string(samples) + " samples");
     const auto expected = render(context, scene, StrategyKind::GpuCullingBundles, camera,
                                  DebugChannel::BaseColor, VisibilityStrategy::kDefaultComputePixels,
@@ -153,7 +155,7 @@ void expectSameCoverage(gpu::Context& context,
     const auto image = render(context, scene, StrategyKind::Visibility, camera,
                               DebugChannel::BaseColor, VisibilityStrategy::kDefaultComputePixels,
                               VisibilityStrategy::kMaxWorkgroupPixels, samples);
-    EXPECT_EQ(test::differingPixels(expected, image, 1), 0u);
+    EXPECT_LE(test::differingPixels(expected, image, 1), tolerated);
     std::set<std::uint32_t> colors;
     for (std::uint32_t y = 0; y < image.height; ++y) {
         for (std::uint32_t x = 0; x < image.width; ++x) {
@@ -208,11 +210,19 @@ TEST(VisibilityFillRuleTest, SubPixelDegenerateAndScreenEdgeTrianglesAsTheHardwa
     }
 }
 
-// The triangle counts of the last frame of `scene`: rasterised in compute, drawn by hardware.
-std::array<std::uint32_t, 2> rasteriserCounts(gpu::Context& context,
-                                              const scene::SceneData& scene,
-                                              float workgroupPixels) {
-    auto renderer = Renderer::create(context, test::pixelTestOptions(kWidth, kHeight));
+// A frame of `scene` (base colour) and its triangle counts: rasterised in compute, drawn by
+// hardware. `blocks`: the workgroup raster's block list holds at most that many.
+struct CountedFrame {
+    image::ImageRgba8 image;
+    std::array<std::uint32_t, 2> counts{};
+};
+
+CountedFrame countedFrame(gpu::Context& context,
+                          const scene::SceneData& scene,
+                          float workgroupPixels,
+                          std::optional<std::uint32_t> blocks = std::nullopt) {
+    auto renderer = Renderer::create(
+        context, test::pixelTestOptions(kWidth, kHeight, 1, DebugChannel::BaseColor));
     EXPECT_TRUE(renderer.ok());
     if (!renderer.ok()) {
         return {};
@@ -221,24 +231,40 @@ std::array<std::uint32_t, 2> rasteriserCounts(gpu::Context& context,
     culling.workgroupRasterPixels = workgroupPixels;
     renderer->setCullingOptions(culling);
     EXPECT_TRUE(renderer->prepare(scene, StrategyKind::Visibility).ok());
-    renderer->renderFrame(kFront);
-    const auto* visibility = dynamic_cast<const VisibilityStrategy*>(renderer->strategy());
+    // The renderer hands its strategy out const; this shrinks a list of it between frames.
+    auto* visibility = const_cast<VisibilityStrategy*>(
+        dynamic_cast<const VisibilityStrategy*>(renderer->strategy()));
     EXPECT_NE(visibility, nullptr);
     if (!visibility) {
         return {};
     }
+    if (blocks) {
+        visibility->limitWorkgroupBlocks(*blocks);
+    }
+    renderer->renderFrame(kFront);
     EXPECT_EQ(visibility->lastViewCount(), 1u);
+    CountedFrame frame;
     auto counts =
         gpu::readBuffer(context, visibility->rasterCounts(), visibility->rasterCountsOffset(0), 8);
     EXPECT_TRUE(counts.ok());
-    std::array<std::uint32_t, 2> words{};
     if (counts.ok()) {
-        std::memcpy(words.data(), counts->data(), 8);
+        std::memcpy(frame.counts.data(), counts->data(), 8);
     }
-    return words;
+    auto image = renderer->readImage();
+    EXPECT_TRUE(image.ok());
+    if (image.ok()) {
+        frame.image = std::move(*image);
+    }
+    return frame;
 }
 
-TEST(VisibilityFillRuleTest, NearPlaneTrianglesGoToTheHardwareLargeOnesToWorkgroups) {
+std::array<std::uint32_t, 2> rasteriserCounts(gpu::Context& context,
+                                              const scene::SceneData& scene,
+                                              float workgroupPixels) {
+    return countedFrame(context, scene, workgroupPixels).counts;
+}
+
+TEST(VisibilityFillRuleTest, NearPlaneTrianglesAreClippedLargeOnesGoToWorkgroups) {
     ENCORE_REQUIRE_VULKAN(context);
     // One triangle from behind the camera (z = 3) to the far side, one large on screen (about
     // 64 by 40 pixels), one small.
@@ -251,9 +277,12 @@ TEST(VisibilityFillRuleTest, NearPlaneTrianglesGoToTheHardwareLargeOnesToWorkgro
     for (std::uint32_t samples : kSampleCounts) {
         expectSameCoverage(*context, scene, kFront, 4, samples);
     }
-    // By default the large one goes to a workgroup; without workgroups, to the hardware.
+    // By default the compute raster takes all three (the first clipped by a workgroup); with
+    // workgroups up to 1024 pixels the first goes to the hardware; without workgroups, the
+    // large one too.
     EXPECT_EQ(rasteriserCounts(*context, scene, VisibilityStrategy::kMaxWorkgroupPixels),
-              (std::array<std::uint32_t, 2>{2, 1}));
+              (std::array<std::uint32_t, 2>{3, 0}));
+    EXPECT_EQ(rasteriserCounts(*context, scene, 1024.0f), (std::array<std::uint32_t, 2>{2, 1}));
     EXPECT_EQ(rasteriserCounts(*context, scene, 0.0f), (std::array<std::uint32_t, 2>{1, 2}));
     const auto hardware =
         render(*context, scene, StrategyKind::Visibility, kFront, DebugChannel::BaseColor,
@@ -284,6 +313,36 @@ TEST(VisibilityFillRuleTest, LargeQuadAndFanSharedEdgesAsTheHardware) {
               (std::array<std::uint32_t, 2>{9, 0}));
 }
 
+// Triangles that find the workgroup raster's block list full are listed whole: by default a
+// workgroup each covers them (clipped as those crossing the near plane), otherwise the hardware
+// draws them; either way the picture is the one drawn with room for every block.
+TEST(VisibilityFillRuleTest, TrianglesPastAFullBlockListAreDrawnWhole) {
+    ENCORE_REQUIRE_VULKAN(context);
+    // Nine triangles of 16 to 112 pixels: one to sixteen blocks each.
+    const glm::vec3 a{-3.7f, -2.6f, 0}, b{-0.4f, -2.9f, 0}, c{-0.6f, 0.35f, 0}, d{-3.45f, 0.5f, 0};
+    std::vector<std::array<glm::vec3, 3>> list = {{a, b, c}, {a, c, d}};
+    const glm::vec3 centre{1.73f, 0.41f, 0.0f};
+    for (int i = 0; i < 7; ++i) {
+        const float a0 = float(i) * 0.897598f;
+        const float a1 = float(i + 1) * 0.897598f;
+        list.push_back({centre, centre + 2.45f * glm::vec3(std::cos(a0), std::sin(a0), 0),
+                        centre + 2.45f * glm::vec3(std::cos(a1), std::sin(a1), 0)});
+    }
+    const auto scene = triangles(list);
+    const CountedFrame roomy =
+        countedFrame(*context, scene, VisibilityStrategy::kMaxWorkgroupPixels);
+    EXPECT_EQ(roomy.counts, (std::array<std::uint32_t, 2>{9, 0}));
+    const CountedFrame full =
+        countedFrame(*context, scene, VisibilityStrategy::kMaxWorkgroupPixels, 3);
+    EXPECT_EQ(full.counts, (std::array<std::uint32_t, 2>{9, 0}));
+    EXPECT_EQ(test::differingPixels(roomy.image, full.image, 0), 0u);
+    // Workgroups up to 1024 pixels: the hardware takes those the list has no room for.
+    const CountedFrame toHardware = countedFrame(*context, scene, 1024.0f, 3);
+    EXPECT_GT(toHardware.counts[1], 0u);
+    EXPECT_EQ(toHardware.counts[0] + toHardware.counts[1], 9u);
+    EXPECT_EQ(test::differingPixels(roomy.image, toHardware.image, 1), 0u);
+}
+
 TEST(VisibilityFillRuleTest, WideTrianglesSharedEdgesAsTheHardware) {
     ENCORE_REQUIRE_VULKAN(context);
     // Over 112 pixels across, where the edge functions take 64 bits: a quad on the left, corners
@@ -297,15 +356,18 @@ TEST(VisibilityFillRuleTest, WideTrianglesSharedEdgesAsTheHardware) {
         list.push_back({centre, centre + 14.0f * glm::vec3(std::cos(a0), std::sin(a0), 0),
                         centre + 14.0f * glm::vec3(std::cos(a1), std::sin(a1), 0)});
     }
-    // A sliver over 8192 pixels across, in front of both: the hardware's.
+    // A sliver over 8192 pixels across, in front of both, cut at the guard band (its far vertex
+    // 9,600 pixels off screen). Each rasteriser places a vertex that far with its own rounding
+    // (lavapipe cuts it at its own guard band): at four samples one pixel along the sliver's
+    // edges may differ, as it does where the compute raster leaves the vertex uncut.
     list.push_back(
         {glm::vec3(-600, -0.2f, 0.3f), glm::vec3(3.5f, 0.1f, 0.3f), glm::vec3(3.5f, -0.6f, 0.3f)});
     const auto scene = triangles(list);
     for (std::uint32_t samples : kSampleCounts) {
-        expectSameCoverage(*context, scene, kFront, 9, samples);
+        expectSameCoverage(*context, scene, kFront, 9, samples, samples > 1 ? 1 : 0);
     }
     EXPECT_EQ(rasteriserCounts(*context, scene, VisibilityStrategy::kMaxWorkgroupPixels),
-              (std::array<std::uint32_t, 2>{8, 1}));
+              (std::array<std::uint32_t, 2>{9, 0}));
     EXPECT_EQ(rasteriserCounts(*context, scene, 112.0f), (std::array<std::uint32_t, 2>{0, 9}));
 }
 

@@ -40,8 +40,10 @@ struct VisibilityViewParams {
     // triangle records of kWorkgroupRecordEntries entries (visibility_raster.wgsl).
     std::uint32_t workgroupBlocks = 0;
     std::uint32_t workgroupRecords = 0;
+    // 1: no triangle goes to the hardware pass (visibility_raster.wgsl's workgroupMain clips).
+    std::uint32_t computeTakesAll = 0;
 };
-static_assert(sizeof(VisibilityViewParams) == 56);
+static_assert(sizeof(VisibilityViewParams) == 60);
 
 // visibility_cull.wgsl's Culling, one per frame (a multi-view frame's views differ only in
 // their viewports: no frustum test, no occlusion, the levels of detail of GPU culling's one cull).

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <memory>
@@ -42,6 +43,13 @@ class VisibilityStrategy final : public Strategy {
     static constexpr float kMaxComputePixels = 64.0f;
     static constexpr float kDefaultComputePixels = 8.0f;
     static constexpr float kMaxWorkgroupPixels = 8192.0f;
+    // At the largest workgroupRasterPixels (the default) the compute raster takes every
+    // triangle: those crossing the near or far plane, or spanning more than it, or that find the
+    // workgroup raster's lists full, are clipped and covered by a workgroup each, and the
+    // hardware raster pass is not encoded (fewer passes: the CPU frame).
+    static bool computeTakesAll(const CullingOptions& culling) {
+        return culling.workgroupRasterPixels >= kMaxWorkgroupPixels;
+    }
 
     StrategyKind kind() const override { return StrategyKind::Visibility; }
     Result<void> prepare(const RenderSetup& setup, const GpuScene& scene) override;
@@ -106,6 +114,11 @@ class VisibilityStrategy final : public Strategy {
     const DepthPyramid& depthPyramid() const { return mTarget->pyramid; }
     // The scene-sized working buffers (tests: kept ones are grown, never made smaller).
     const VisibilityWorkBuffers& workBuffers() const { return *mWork; }
+    // Makes the workgroup raster's block list hold at most `blocks` entries until the next
+    // prepare (tests: a full list, whose triangles are listed whole).
+    void limitWorkgroupBlocks(std::uint32_t blocks) {
+        mWorkgroupBlocks = std::min(mWorkgroupBlocks, std::max(blocks, 1u));
+    }
     // Those of the first view; MASK, BLEND, skinned and morphed geometry drawn directly is
     // counted with the frame's direct draws (DrawCounters), not here.
     std::optional<GpuTriangleCounts> gpuTriangleCounts() const override;
