@@ -14,9 +14,9 @@ enable atomic_vec2u_min_max;
 //                  find the block list full, are listed whole: for the hardware pass
 //                  (visibility_hardware.wgsl), or with params.computeTakesAll for workgroupMain.
 //   workgroupMain  a workgroup per listed block of a triangle (up to kBlockPixels squared),
-//                  covering it in 8x8 tiles; then, with params.computeTakesAll, a workgroup per
-//                  triangle listed whole, which it clips (near and far planes, a guard band)
-//                  and covers alone.
+//                  covering it in 8x8 tiles; then, with params.computeTakesAll, kWholeParts
+//                  workgroups per triangle listed whole, which each clip (near and far planes,
+//                  a guard band) and cover a share of its tiles.
 #include "frame.wgsl"
 #include "visibility_geometry.wgsl"
 #include "visibility_samples.wgsl"
@@ -547,8 +547,8 @@ fn rasterMain(@builtin(workgroup_id) group: vec3u, @builtin(num_workgroups) grou
 // their count.
 var<workgroup> listed: vec3u;
 
-// One workgroup per listed block: its 64 threads walk the block's pixels in 8x8 tiles. Then one
-// per triangle listed whole, where the compute raster takes them.
+// One workgroup per listed block: its 64 threads walk the block's pixels in 8x8 tiles. Then
+// kWholeParts per triangle listed whole, where the compute raster takes them.
 @compute @workgroup_size(64)
 fn workgroupMain(@builtin(workgroup_id) group: vec3u, @builtin(num_workgroups) groups: vec3u,
                  @builtin(local_invocation_index) lane: u32) {
@@ -564,10 +564,15 @@ fn workgroupMain(@builtin(workgroup_id) group: vec3u, @builtin(num_workgroups) g
     for (var slot = group.x; slot < count.x; slot += groups.x) {
         coverListed(slot, lane);
     }
-    for (var slot = group.x; slot < count.z; slot += groups.x) {
-        coverWhole(hardwareList[count.y + slot], lane);
+    for (var slot = group.x; slot < count.z * kWholeParts; slot += groups.x) {
+        coverWhole(hardwareList[count.y + slot / kWholeParts], slot % kWholeParts, lane);
     }
 }
+
+// Workgroups that share each triangle listed whole, its tiles dealt out among them: a piece as
+// large as the screen (a floor through the near plane) is not one workgroup's alone. Each sets
+// the triangle up (clips it) on its own: triangles listed whole are few.
+const kWholeParts = 16u;
 
 // The guard band that clipped triangles are cut to: this many pixels past each edge of the
 // viewport. Their pieces' vertices then lie within 2^22 (in 1/256 pixel) of the viewport's
@@ -640,10 +645,10 @@ fn clipPolygon(c0: vec4f, c1: vec4f, c2: vec4f) -> ClipPolygon {
     return polygon;
 }
 
-// Triangle `id`, listed whole: clipped, and each piece's pixels covered in 8x8 tiles by the
-// workgroup's 64 threads (a piece as large as the viewport is one workgroup's: the rare path of
-// triangles through the near or far plane and of full lists).
-fn coverWhole(id: u32, lane: u32) {
+// Part `part` of triangle `id`, listed whole: clipped, and every kWholeParts-th 8x8 tile of each
+// piece from the part's covered by the workgroup's 64 threads (the rare path of triangles
+// through the near or far plane, over kMaxWorkgroupPixels, or past full lists).
+fn coverWhole(id: u32, part: u32, lane: u32) {
     let unit = units[id / kUnitTriangles];
     let item = loadItem(unit.x);
     let c = clipTriangle(item, instances[item.slot], unitTriangle(unit, id));
@@ -657,7 +662,7 @@ fn coverWhole(id: u32, lane: u32) {
         let size = t.last - t.first + 1;
         let columns = (size.x + 7) / 8;
         let tiles = columns * ((size.y + 7) / 8);
-        for (var tile = 0; tile < tiles; tile++) {
+        for (var tile = i32(part); tile < tiles; tile += i32(kWholeParts)) {
             let pixel = vec2i(tile % columns, tile / columns) * 8 + offset;
             if (all(pixel < size)) {
                 coverPixel(t, id, t.first + pixel);
