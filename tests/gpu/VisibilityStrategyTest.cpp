@@ -292,12 +292,12 @@ TEST(VisibilityFillRuleTest, NearPlaneTrianglesAreClippedLargeOnesGoToWorkgroups
     EXPECT_EQ(test::differingPixels(hardware, workgroups, 1), 0u);
 }
 
-TEST(VisibilityFillRuleTest, LargeQuadAndFanSharedEdgesAsTheHardware) {
-    ENCORE_REQUIRE_VULKAN(context);
-    // Between 16 and 112 pixels across: the workgroup path, in tiles that cross the edges.
+// Nine triangles between 16 and 112 pixels across (one to sixteen blocks each): the workgroup
+// path, in tiles that cross the edges. A quad, and a fan of seven around an off-pixel centre,
+// radius about 40 pixels.
+scene::SceneData largeQuadAndFan() {
     const glm::vec3 a{-3.7f, -2.6f, 0}, b{-0.4f, -2.9f, 0}, c{-0.6f, 0.35f, 0}, d{-3.45f, 0.5f, 0};
     std::vector<std::array<glm::vec3, 3>> list = {{a, b, c}, {a, c, d}};
-    // A fan of seven around an off-pixel centre, radius about 40 pixels.
     const glm::vec3 centre{1.73f, 0.41f, 0.0f};
     for (int i = 0; i < 7; ++i) {
         const float a0 = float(i) * 0.897598f;
@@ -305,7 +305,12 @@ TEST(VisibilityFillRuleTest, LargeQuadAndFanSharedEdgesAsTheHardware) {
         list.push_back({centre, centre + 2.45f * glm::vec3(std::cos(a0), std::sin(a0), 0),
                         centre + 2.45f * glm::vec3(std::cos(a1), std::sin(a1), 0)});
     }
-    const auto scene = triangles(list);
+    return triangles(list);
+}
+
+TEST(VisibilityFillRuleTest, LargeQuadAndFanSharedEdgesAsTheHardware) {
+    ENCORE_REQUIRE_VULKAN(context);
+    const auto scene = largeQuadAndFan();
     for (std::uint32_t samples : kSampleCounts) {
         expectSameCoverage(*context, scene, kFront, 10, samples);
     }
@@ -313,22 +318,12 @@ TEST(VisibilityFillRuleTest, LargeQuadAndFanSharedEdgesAsTheHardware) {
               (std::array<std::uint32_t, 2>{9, 0}));
 }
 
-// Triangles that find the workgroup raster's block list full are listed whole: by default a
-// workgroup each covers them (clipped as those crossing the near plane), otherwise the hardware
+// Triangles that find the workgroup raster's block list full are listed whole: by default
+// workgroups cover them whole (clipped as those crossing the near plane), otherwise the hardware
 // draws them; either way the picture is the one drawn with room for every block.
 TEST(VisibilityFillRuleTest, TrianglesPastAFullBlockListAreDrawnWhole) {
     ENCORE_REQUIRE_VULKAN(context);
-    // Nine triangles of 16 to 112 pixels: one to sixteen blocks each.
-    const glm::vec3 a{-3.7f, -2.6f, 0}, b{-0.4f, -2.9f, 0}, c{-0.6f, 0.35f, 0}, d{-3.45f, 0.5f, 0};
-    std::vector<std::array<glm::vec3, 3>> list = {{a, b, c}, {a, c, d}};
-    const glm::vec3 centre{1.73f, 0.41f, 0.0f};
-    for (int i = 0; i < 7; ++i) {
-        const float a0 = float(i) * 0.897598f;
-        const float a1 = float(i + 1) * 0.897598f;
-        list.push_back({centre, centre + 2.45f * glm::vec3(std::cos(a0), std::sin(a0), 0),
-                        centre + 2.45f * glm::vec3(std::cos(a1), std::sin(a1), 0)});
-    }
-    const auto scene = triangles(list);
+    const auto scene = largeQuadAndFan();
     const CountedFrame roomy =
         countedFrame(*context, scene, VisibilityStrategy::kMaxWorkgroupPixels);
     EXPECT_EQ(roomy.counts, (std::array<std::uint32_t, 2>{9, 0}));
