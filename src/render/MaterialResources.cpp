@@ -100,14 +100,13 @@ Result<MaterialResources> MaterialResources::create(const wgpu::Device& device,
             builder.addSampler(scene.samplers[i], "sampler " + std::to_string(i)));
     }
 
-    // The table stride, a multiple of every uniform binding offset alignment WebGPU allows (at
-    // most 256), so each material's range is also a binding of its own.
-    static_assert(kUniformSize <= kTableStride && kTableStride % 256 == 0);
-    resources.mUniformStride = kTableStride;
+    // Align each material's range to what a uniform binding offset needs (256 by default).
+    const std::uint64_t alignment =
+        std::max<std::uint64_t>(limits.minUniformBufferOffsetAlignment, 4);
+    resources.mUniformStride = (kUniformSize + alignment - 1) / alignment * alignment;
     const std::size_t materialCount = scene.materials.size();
-    const std::size_t tables =
-        (std::max<std::size_t>(materialCount, 1) + kTableMaterials - 1) / kTableMaterials;
-    std::vector<std::uint8_t> uniformBytes(resources.mUniformStride * kTableMaterials * tables);
+    std::vector<std::uint8_t> uniformBytes(resources.mUniformStride *
+                                           std::max<std::size_t>(materialCount, 1));
     resources.mUniforms = gpu::createBuffer(
         device,
         wgpu::BufferUsage::Uniform | wgpu::BufferUsage::CopyDst | wgpu::BufferUsage::CopySrc,
@@ -191,50 +190,6 @@ void MaterialResources::createBindGroups(const wgpu::Device& device,
         mTextured[material] && !mShadesExtensions[material]
             ? createBindGroup(device, layouts, material, label, /*baseSlots=*/true)
             : wgpu::BindGroup();
-}
-
-bool MaterialResources::sameTextures(scene::MaterialId a, scene::MaterialId b) const {
-    assert(a.index() < mMaterialTextures.size() && b.index() < mMaterialTextures.size());
-    return mMaterialTextures[a.index()] == mMaterialTextures[b.index()] &&
-           mMaterialPalettes[a.index()] == mMaterialPalettes[b.index()];
-}
-
-wgpu::BindGroup MaterialResources::createTableBindGroup(const wgpu::Device& device,
-                                                        const wgpu::BindGroupLayout& layout,
-                                                        scene::MaterialId material,
-                                                        std::uint32_t table,
-                                                        bool textures,
-                                                        bool allSlots,
-                                                        const char* label) const {
-    assert(material.index() < mMaterialTextures.size());
-    std::array<wgpu::BindGroupEntry, 1 + kMaterialSamplerCount + kMaterialTextureSlotCount>
-        entries{};
-    entries[0].binding = 0;
-    entries[0].buffer = mUniforms;
-    entries[0].offset = std::uint64_t(table) * kTableMaterials * kTableStride;
-    entries[0].size = kTableMaterials * kTableStride;
-    std::uint32_t count = 1;
-    if (textures) {
-        for (std::uint32_t entry = 0; entry < kMaterialSamplerCount; ++entry) {
-            wgpu::BindGroupEntry& sampler = entries[materialSamplerBinding(entry)];
-            sampler.binding = materialSamplerBinding(entry);
-            sampler.sampler = mSamplers[mMaterialPalettes[material.index()][entry]];
-        }
-        const std::uint32_t slots =
-            allSlots ? kMaterialTextureSlotCount : kMaterialBaseTextureSlotCount;
-        for (std::uint32_t slot = 0; slot < slots; ++slot) {
-            wgpu::BindGroupEntry& texture = entries[materialTextureBinding(slot)];
-            texture.binding = materialTextureBinding(slot);
-            texture.textureView = mTextures[mMaterialTextures[material.index()][slot]].CreateView();
-        }
-        count += kMaterialSamplerCount + slots;
-    }
-    wgpu::BindGroupDescriptor descriptor{};
-    descriptor.label = label;
-    descriptor.layout = layout;
-    descriptor.entryCount = count;
-    descriptor.entries = entries.data();
-    return device.CreateBindGroup(&descriptor);
 }
 
 wgpu::BindGroup MaterialResources::createBindGroup(const wgpu::Device& device,

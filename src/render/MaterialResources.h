@@ -25,10 +25,7 @@
 //
 // Uniforms: material i lives at i * uniformStride() in uniformBuffer(), as a MaterialUniform.
 // updateMaterial rewrites that range, so factors can change after render bundles are recorded
-// without re-creating any bind group. The buffer holds whole tables of kTableMaterials (a
-// uniform binding of 64 KiB at the fixed stride): the visibility strategy's shading reads a
-// pixel's material from its table (material.wgsl's MATERIAL_TABLE), so that materials sharing
-// their textures shade in one dispatch (createTableBindGroup).
+// without re-creating any bind group.
 
 #include <webgpu/webgpu_cpp.h>
 
@@ -153,25 +150,6 @@ class MaterialResources {
     // The buffer behind every material's binding 0 (Uniform | CopyDst | CopySrc usage).
     const wgpu::Buffer& uniformBuffer() const { return mUniforms; }
     std::uint64_t uniformStride() const { return mUniformStride; }
-
-    // Materials per table, and the stride between them (material.wgsl's MaterialTableEntry):
-    // one table is 64 KiB, WebGPU's default maxUniformBufferBindingSize.
-    static constexpr std::uint32_t kTableMaterials = 64;
-    static constexpr std::uint64_t kTableStride = 1024;
-    // Whether two textured materials bind the same textures and samplers in every slot (a
-    // bind group of one serves the other under MATERIAL_TABLE).
-    bool sameTextures(scene::MaterialId a, scene::MaterialId b) const;
-    // A group 2 bind group for shaders compiled with MATERIAL_TABLE: at binding 0 the table of
-    // materials [table * kTableMaterials, +kTableMaterials), then `material`'s samplers and
-    // textures, of every slot (`allSlots`) or the base ones, unless `layout` binds the table
-    // alone (an untextured material's layout).
-    wgpu::BindGroup createTableBindGroup(const wgpu::Device& device,
-                                         const wgpu::BindGroupLayout& layout,
-                                         scene::MaterialId material,
-                                         std::uint32_t table,
-                                         bool textures,
-                                         bool allSlots,
-                                         const char* label) const;
 
   private:
     static constexpr std::size_t kDefaultTexture = 0;

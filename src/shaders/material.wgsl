@@ -87,19 +87,7 @@ const kThicknessSlot = 16u;
 const kDiffuseTransmissionSlot = 17u;
 const kDiffuseTransmissionColorSlot = 18u;
 
-#if MATERIAL_TABLE
-// The visibility shading's materials: a table of 64 (MaterialResources::kTableMaterials, at
-// its kTableStride), of which each pixel's is copied into `material` before it is shaded, so
-// that the materials that share a bind group's textures shade in one dispatch.
-struct MaterialTableEntry {
-    @size(1024) material: Material,
-}
-const kTableMaterials = 64u;
-@group(2) @binding(0) var<uniform> materialTable: array<MaterialTableEntry, kTableMaterials>;
-var<private> material: Material;
-#else
 @group(2) @binding(0) var<uniform> material: Material;
-#endif
 #if MATERIAL_TEXTURES
 @group(2) @binding(1) var materialSampler0: sampler;
 @group(2) @binding(2) var materialSampler1: sampler;

@@ -44,8 +44,7 @@ fn slotUvGradient(slot: u32, d0: vec2f, d1: vec2f) -> vec2f {
 fn sampleSlot(slotTexture: texture_2d<f32>, slot: u32, uv0: vec2f, uv1: vec2f,
               gradients: UvGradients) -> vec4f {
     // A slot without a texture of its own binds the 1-pixel white default: skip the fetch (a
-    // branch, uniform but in the visibility shading), which a textured material's seventeen
-    // slots would otherwise all pay.
+    // uniform branch), which a textured material's seventeen slots would otherwise all pay.
     if ((material.flags.w & (1u << slot)) == 0u) {
         return vec4f(1.0);
     }

@@ -1,8 +1,7 @@
 // The visibility strategy's shading bins, for one view: every covered pixel (at several
 // samples, each distinct triangle of a pixel: its first sample) sorted by the bin of its
-// triangle's primitive (the group of materials that share a bind group, and whether TANGENT is
-// bound: the shader variants of the shading pass), so that each bin is shaded by one dispatch
-// with its group's bind group.
+// triangle's primitive (material, and whether TANGENT is bound: the shader variants of
+// the shading pass), so that each bin is shaded by one dispatch with its material's bind group.
 //   countMain    one thread per pixel of the viewport: counts its bins;
 //   offsetsMain  one thread: each bin's first slot in the pixel list;
 //   scatterMain  one thread per pixel: writes its entries into their bins' slots.
@@ -22,9 +21,6 @@ struct Bin {
 @group(0) @binding(3) var<storage, read> visibility: array<vec2u>;
 @group(0) @binding(4) var<storage, read_write> bins: array<Bin>;
 @group(0) @binding(5) var<storage, read_write> pixels: array<u32>;
-// A primitive record's bin (material * 2 + 1 with TANGENT) -> its shading bin (the material's
-// group * 2 + the same bit: VisibilityShadingGroups).
-@group(0) @binding(6) var<storage, read> shadingBins: array<u32>;
 
 const kNoBin = 0xffffffffu;
 
@@ -60,7 +56,7 @@ fn pixelBins(id: vec3u) -> PixelBins {
         if (!seen) {
             let unit = units[key.x / 256u];
             let record = tables[unit.x * 4u + 1u];
-            result.bins[sample] = shadingBins[tables[record + 4u]];
+            result.bins[sample] = tables[record + 4u];
         }
     }
     return result;

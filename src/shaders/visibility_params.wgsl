@@ -26,7 +26,4 @@ struct VisibilityParams {
     // clipping those that cross the near or far plane or span more than it (workgroupMain), and
     // the hardware pass is not drawn.
     computeTakesAll: u32,
-    // 1 where the frame has one shading bin: shadeMain shades every pixel of the target without
-    // binning.
-    shadeAllPixels: u32,
 }

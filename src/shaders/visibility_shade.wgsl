@@ -9,10 +9,7 @@
 // interpolates what mesh.wgsl's vertex shader outputs, and shades with the same code as
 // mesh.wgsl's fragment shader (surface_shading.wgsl), sampling with explicit gradients
 // (SAMPLE_GRADIENT).
-// Variants: MATERIAL_TEXTURES, HAS_TANGENT; always MATERIAL_TABLE: a bin is a group of materials
-// that share a bind group's textures (VisibilityShadingGroups), each pixel's material read from
-// the table. A frame of one bin (params.shadeAllPixels) is not binned: the grid strides over
-// every pixel of the target instead.
+// Variants: MATERIAL_TEXTURES, HAS_TANGENT.
 #include "frame.wgsl"
 #include "scene_lighting.wgsl"
 #include "brdf.wgsl"
@@ -74,47 +71,14 @@ fn mix3(b: vec3f, a0: vec4f, a1: vec4f, a2: vec4f) -> vec4f {
 @compute @workgroup_size(64)
 fn shadeMain(@builtin(workgroup_id) group: vec3u, @builtin(num_workgroups) groups: vec3u,
              @builtin(local_invocation_index) lane: u32) {
-#if VIEW_SLOTS
-    let first = viewSlots[0].params;  // What every view of the frame shares.
-#else
-    let first = params;
-#endif
-    if (first.shadeAllPixels != 0u) {
-        let pixelCount = first.targetWidth * first.viewportHeight;
-        for (var i = group.x * 64u + lane; i < pixelCount; i += groups.x * 64u) {
-            shadePixel(i, first.samples);
-        }
-        return;
-    }
     for (var i = group.x * 64u + lane; i < bin.count; i += groups.x * 64u) {
-        shadeEntry(pixels[bin.first + i]);
+        shadeEntry(i);
     }
 }
 
-// Shades each distinct triangle of target pixel `pixel` once, at the first of its `samples`
-// that it covers (the entries visibility_bins.wgsl would have listed).
-fn shadePixel(pixel: u32, samples: u32) {
-    var ids = array<u32, 4>(0u, 0u, 0u, 0u);
-    var covered = 0u;
-    for (var sample = 0u; sample < samples; sample++) {
-        let key = visibility[pixel * samples + sample];
-        if (key.y == 0u) {
-            continue;
-        }
-        var seen = false;
-        for (var earlier = 0u; earlier < sample; earlier++) {
-            seen = seen || (((covered >> earlier) & 1u) != 0u && ids[earlier] == key.x);
-        }
-        ids[sample] = key.x;
-        covered |= 1u << sample;
-        if (!seen) {
-            shadeEntry(pixel * samples + sample);
-        }
-    }
-}
-
-// Shades visibility-buffer entry `entry` (pixel * samples + sample): its triangle at its pixel.
-fn shadeEntry(entry: u32) {
+// Shades the bin's entry i: one visibility-buffer sample's triangle at its pixel.
+fn shadeEntry(i: u32) {
+    let entry = pixels[bin.first + i];
 #if VIEW_SLOTS
     // The samples and the target's width are the same in every view.
     let pixelIndex = entry / viewSlots[0].params.samples;
@@ -131,7 +95,6 @@ fn shadeEntry(entry: u32) {
     let unit = units[id / kUnitTriangles];
     let item = loadItem(unit.x);
     let record = item.record;
-    material = materialTable[field(record, kMaterial) % kTableMaterials].material;
     let triangle = unitTriangle(unit, id);
     let transform = instances[item.slot];
     let i0 = vertexIndex(record, triangle, 0u);

@@ -412,106 +412,12 @@ TEST(VisibilityMultisampleTest, EdgesOfLargeTrianglesAreAntiAliased) {
     EXPECT_TRUE(context->checkNoErrors("visibility multisampling").ok());
 }
 
-// Gives material `material` of `scene` a white 2x2 base colour texture of its own: a shading
-// group apart from the untextured materials' (VisibilityShadingGroups).
-void textureMaterial(scene::SceneData& scene, std::size_t material) {
-    scene::Image image;
-    image.name = "white";
-    image.width = 2;
-    image.height = 2;
-    image.rgba8.assign(16, 255);
-    scene.images.push_back(std::move(image));
-    scene.samplers.emplace_back();
-    scene.textures.push_back(
-        {scene::ImageId{scene.images.size() - 1}, scene::SamplerId{scene.samplers.size() - 1}});
-    scene.materials[material].baseColorTexture =
-        scene::TextureRef{scene::TextureId{scene.textures.size() - 1}};
-}
-
-// A frame of `scene` (base colour) drawn by `kind` after the base colour images of `replaced`
-// replaced each with a 2x2 image of its colour; `shadingBins`: the visibility strategy's count.
-image::ImageRgba8 withReplacedImages(
-    gpu::Context& context,
-    const scene::SceneData& scene,
-    StrategyKind kind,
-    const std::vector<std::pair<std::size_t, test::Rgba>>& replaced,
-    std::size_t* shadingBins = nullptr) {
-    auto renderer = Renderer::create(
-        context, test::pixelTestOptions(kWidth, kHeight, 1, DebugChannel::BaseColor));
-    EXPECT_TRUE(renderer.ok());
-    if (!renderer.ok()) {
-        return {};
-    }
-    EXPECT_TRUE(renderer->prepare(scene, kind).ok());
-    for (const auto& [material, color] : replaced) {
-        scene::Image image;
-        image.width = 2;
-        image.height = 2;
-        for (int texel = 0; texel < 4; ++texel) {
-            image.rgba8.insert(image.rgba8.end(), color.begin(), color.end());
-        }
-        EXPECT_TRUE(renderer->replaceBaseColorImage(scene::MaterialId{material}, image).ok());
-    }
-    renderer->renderFrame(kFront);
-    if (shadingBins) {
-        const auto* visibility = dynamic_cast<const VisibilityStrategy*>(renderer->strategy());
-        EXPECT_NE(visibility, nullptr);
-        *shadingBins = visibility ? visibility->shadingBinCount() : 0;
-    }
-    auto image = renderer->readImage();
-    EXPECT_TRUE(image.ok());
-    return image.ok() ? std::move(*image) : image::ImageRgba8{};
-}
-
-// Materials regroup for the shading when a texture is replaced: three untextured materials
-// shade in one unbinned dispatch; one given a texture takes the others into its group (still
-// one); a second with another texture makes two groups, binned. Each frame as
-// gpu-culling-bundles draws it after the same replacements.
-TEST(VisibilityShadingGroupsTest, AReplacedImageRegroupsTheMaterials) {
-    ENCORE_REQUIRE_VULKAN(context);
-    const auto scene =
-        triangles({{glm::vec3(-3.5f, -2, 0), glm::vec3(-1, -2, 0), glm::vec3(-2.2f, 2, 0)},
-                   {glm::vec3(-0.8f, -2, 0), glm::vec3(1.6f, -2, 0), glm::vec3(0.4f, 2, 0)},
-                   {glm::vec3(1.8f, -2, 0), glm::vec3(3.8f, -2, 0), glm::vec3(2.8f, 2, 0)}});
-    const std::vector<std::vector<std::pair<std::size_t, test::Rgba>>> steps = {
-        {}, {{1, {255, 0, 0, 255}}}, {{1, {255, 0, 0, 255}}, {2, {0, 0, 255, 255}}}};
-    const std::size_t binsOfStep[] = {1, 1, 2};
-    std::set<std::uint32_t> previous;
-    for (std::size_t step = 0; step < steps.size(); ++step) {
-        const auto& replaced = steps[step];
-        SCOPED_TRACE(std::to_string(replaced.size()) + " replaced");
-        const auto expected =
-            withReplacedImages(*context, scene, StrategyKind::GpuCullingBundles, replaced);
-        std::size_t bins = 0;
-        const auto image =
-            withReplacedImages(*context, scene, StrategyKind::Visibility, replaced, &bins);
-        EXPECT_EQ(bins, binsOfStep[step]);
-        EXPECT_EQ(test::differingPixels(expected, image, 1), 0u);
-        std::set<std::uint32_t> colors;
-        for (std::uint32_t y = 0; y < image.height; ++y) {
-            for (std::uint32_t x = 0; x < image.width; ++x) {
-                std::uint32_t value;
-                std::memcpy(&value, image.pixel(x, y), 4);
-                colors.insert(value);
-            }
-        }
-        EXPECT_GE(colors.size(), 4u);  // Three triangles and the background.
-        EXPECT_NE(colors, previous);   // Each replacement shows.
-        previous = colors;
-    }
-}
-
 // At four samples a pixel's triangle is shaded once, whatever number of its samples it covers:
 // the shading bins hold one entry per pixel that a lone triangle touches (not one per sample).
-// A triangle behind the camera with a texture of its own makes a second shading bin, so that
-// the frame is binned (with one bin it would shade every pixel unbinned).
 TEST(VisibilityMultisampleTest, EachTriangleOfAPixelIsShadedOnce) {
     ENCORE_REQUIRE_VULKAN(context);
-    auto scene =
-        triangles({{glm::vec3(-3, -1.1f, -1), glm::vec3(1, -0.6f, -1), glm::vec3(-1, 1.4f, -1)},
-                   {glm::vec3(-1, -1, 50), glm::vec3(1, -1, 50), glm::vec3(0, 1, 50)}});
-    textureMaterial(scene, 0);
-    textureMaterial(scene, 1);
+    const auto scene =
+        triangles({{glm::vec3(-3, -1.1f, -1), glm::vec3(1, -0.6f, -1), glm::vec3(-1, 1.4f, -1)}});
     for (std::uint32_t samples : kSampleCounts) {
         SCOPED_TRACE(std::to_string(samples) + " samples");
         auto renderer =

@@ -11,8 +11,6 @@
 #include "gpu/FullscreenPipeline.h"
 #include "gpu/LayoutEntry.h"
 #include "gpu/Upload.h"
-#include "render/MaterialResources.h"
-#include "render/MaterialSlots.h"
 #include "render/strategies/VisibilityTarget.h"
 
 namespace encore::render {
@@ -62,7 +60,7 @@ Result<wgpu::ShaderModule> shadingModule(const RenderSetup& setup,
                                          bool textured,
                                          bool tangent,
                                          bool extensions) {
-    std::set<std::string, std::less<>> flags = {"SAMPLE_GRADIENT", "MATERIAL_TABLE"};
+    std::set<std::string, std::less<>> flags = {"SAMPLE_GRADIENT"};
     if (slots) {
         flags.insert("VIEW_SLOTS");
     }
@@ -79,14 +77,14 @@ Result<wgpu::ShaderModule> shadingModule(const RenderSetup& setup,
     return setup.shaders->module("visibility_shade.wgsl", flags);
 }
 
-}  // namespace
-
-const wgpu::BindGroupLayout& VisibilityPipelines::materialTableLayout(bool textured,
-                                                                      bool extensions) const {
-    return materialTableLayouts[!textured ? 0 : extensions ? 2 : 1];
+// MaterialResources::drawBindGroup's layouts.
+const wgpu::BindGroupLayout& shadingMaterialLayout(const RenderSetup& setup,
+                                                   bool textured,
+                                                   bool extensions) {
+    return !textured    ? setup.layouts->materialUniformOnly
+           : extensions ? setup.layouts->material
+                        : setup.layouts->materialBase;
 }
-
-namespace {
 
 // Compute pipelines created side by side: Dawn compiles asynchronous pipelines on its worker
 // threads, so the four variants of the PBR shading shader, the bulk of the strategy's start in
@@ -195,26 +193,8 @@ void createLayouts(const wgpu::Device& device, VisibilityPipelines& p) {
         device,
         {params, LayoutEntry::readOnlyStorage(1, kCompute),
          LayoutEntry::readOnlyStorage(2, kCompute), LayoutEntry::readOnlyStorage(3, kCompute),
-         LayoutEntry::storage(4, kCompute), LayoutEntry::storage(5, kCompute),
-         LayoutEntry::readOnlyStorage(6, kCompute)},
+         LayoutEntry::storage(4, kCompute), LayoutEntry::storage(5, kCompute)},
         "visibility bins");
-    // material.wgsl's group 2 under MATERIAL_TABLE: the table, its sampler palette, then a
-    // texture per slot (base slots, or all).
-    std::vector<LayoutEntry> material = {LayoutEntry::uniform(
-        0, kCompute, MaterialResources::kTableMaterials * MaterialResources::kTableStride)};
-    p.materialTableLayouts[0] =
-        gpu::makeBindGroupLayout(device, material, "visibility material table");
-    for (std::uint32_t entry = 0; entry < kMaterialSamplerCount; ++entry) {
-        material.push_back(LayoutEntry::sampler(materialSamplerBinding(entry), kCompute));
-    }
-    for (std::uint32_t slot = 0; slot < kMaterialTextureSlotCount; ++slot) {
-        material.push_back(LayoutEntry::texture(materialTextureBinding(slot), kCompute));
-    }
-    p.materialTableLayouts[2] =
-        gpu::makeBindGroupLayout(device, material, "visibility material table, every slot");
-    material.resize(1 + kMaterialSamplerCount + kMaterialBaseTextureSlotCount);
-    p.materialTableLayouts[1] =
-        gpu::makeBindGroupLayout(device, material, "visibility material table, base slots");
     // The shading pass reads the slots of a group of views (VisibilityTarget).
     p.shadeLayout = gpu::makeBindGroupLayout(
         device,
@@ -333,7 +313,7 @@ Result<std::unique_ptr<VisibilityPipelines>> VisibilityPipelines::create(const R
                                       shadingModule(setup, true, textured, tangent, extensions));
                     add(p.shade[1][textured][tangent][extensions], shade, "shadeMain",
                         {setup.layouts->frame, p.shadeLayout,
-                         p.materialTableLayout(textured, extensions)});
+                         shadingMaterialLayout(setup, textured, extensions)});
                 }
             }
         }
@@ -392,9 +372,9 @@ const wgpu::ComputePipeline& VisibilityPipelines::shading(const RenderSetup& set
     if (!pipeline) {
         auto module = shadingModule(setup, slots, textured, tangent, extensions);
         if (module.ok()) {
-            pipeline = computePipeline(
-                setup.device, *module, "shadeMain",
-                {setup.layouts->frame, shadeLayout, materialTableLayout(textured, extensions)});
+            pipeline = computePipeline(setup.device, *module, "shadeMain",
+                                       {setup.layouts->frame, shadeLayout,
+                                        shadingMaterialLayout(setup, textured, extensions)});
             ++setup.pipelinesCreated;
         }
     }

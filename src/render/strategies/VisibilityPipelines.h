@@ -42,11 +42,8 @@ struct VisibilityViewParams {
     std::uint32_t workgroupRecords = 0;
     // 1: no triangle goes to the hardware pass (visibility_raster.wgsl's workgroupMain clips).
     std::uint32_t computeTakesAll = 0;
-    // 1: the frame has one shading bin, which shades every pixel of the target without binning
-    // (visibility_shade.wgsl's shadeMain).
-    std::uint32_t shadeAllPixels = 0;
 };
-static_assert(sizeof(VisibilityViewParams) == 64);
+static_assert(sizeof(VisibilityViewParams) == 60);
 
 // visibility_cull.wgsl's Culling, one per frame (a multi-view frame's views differ only in
 // their viewports: no frustum test, no occlusion, the levels of detail of GPU culling's one cull).
@@ -90,8 +87,6 @@ struct VisibilityPipelines {
                                          bool textured,
                                          bool tangent,
                                          bool extensions);
-    // The group 2 layout of the shading pipelines of a bin kind (materialTableLayouts).
-    const wgpu::BindGroupLayout& materialTableLayout(bool textured, bool extensions) const;
 
     wgpu::BindGroupLayout frameOnlyLayout;
     wgpu::BindGroupLayout cullLayout;
@@ -99,9 +94,6 @@ struct VisibilityPipelines {
     wgpu::BindGroupLayout hardwareLayout;
     wgpu::BindGroupLayout binLayout;
     wgpu::BindGroupLayout shadeLayout;
-    // The shading's group 2 (material.wgsl under MATERIAL_TABLE): [0] the table alone
-    // (untextured bins), [1] with the base slots' textures, [2] with every slot's.
-    std::array<wgpu::BindGroupLayout, 3> materialTableLayouts;
     wgpu::BindGroupLayout compositeLayout;
     wgpu::BindGroupLayout composeLayout;
     wgpu::ComputePipeline cullFirst;

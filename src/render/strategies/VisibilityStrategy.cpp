@@ -149,32 +149,9 @@ Result<void> VisibilityStrategy::prepare(const RenderSetup& setup, const GpuScen
         mWork = mOwnWork.get();
     }
     mWork->ensure(device, sizes);
-    mShadingBinMap = gpu::createBuffer(
-        device, wgpu::BufferUsage::Storage | wgpu::BufferUsage::CopyDst,
-        std::uint64_t(mTables.binCount) * 4, "visibility shading bins of the materials");
-    groupMaterials();
     // Over this scene's buffers: made on the first frame.
     mCullGroup = nullptr;
     return {};
-}
-
-Result<void> VisibilityStrategy::refresh() {
-    if (mPipelines) {
-        groupMaterials();  // A replaced texture may part or join materials.
-    }
-    return mDraws.refresh();
-}
-
-void VisibilityStrategy::groupMaterials() {
-    mShadingGroups.build(mSetup->device, mScene->materials(), *mPipelines);
-    const std::vector<std::uint32_t>& map = mShadingGroups.shadingBins();
-    mSetup->queue.WriteBuffer(mShadingBinMap, 0, map.data(),
-                              std::min<std::uint64_t>(map.size(), mTables.binCount) * 4);
-    std::set<std::uint32_t> bins;
-    for (std::uint32_t bin : mTables.bins) {
-        bins.insert(map[bin]);
-    }
-    mShadingBins.assign(bins.begin(), bins.end());
 }
 
 Result<void> VisibilityStrategy::checkTarget(std::uint32_t width, std::uint32_t height) const {
@@ -242,8 +219,7 @@ void VisibilityStrategy::createBindGroups() {
                                     {2, mWork->units},
                                     {3, target.visibility},
                                     {4, mWork->bins},
-                                    {5, target.pixels},
-                                    {6, mShadingBinMap}},
+                                    {5, target.pixels}},
                                    "visibility bins");
     mShadeGroup = gpu::makeBindGroup(device, p.shadeLayout,
                                      {{0, target.params, 0, VisibilityTarget::kSlotBindingBytes},
@@ -286,7 +262,6 @@ void VisibilityStrategy::beforePass(const wgpu::CommandEncoder& commands, const 
     p.maxWorkgroupPixels =
         std::clamp(frame.culling.workgroupRasterPixels, 0.0f, kMaxWorkgroupPixels);
     p.computeTakesAll = computeTakesAll(frame.culling) ? 1 : 0;
-    p.shadeAllPixels = shadesAllPixels(views) ? 1 : 0;
     p.frustumTest = views == 1 ? 1 : 0;
     p.hardwareCapacity = mHardwareCapacity;
     p.binCount = mTables.binCount;
@@ -485,42 +460,37 @@ void VisibilityStrategy::encodeShading(const wgpu::CommandEncoder& commands,
                                        std::size_t firstView,
                                        std::size_t binSlot,
                                        std::uint32_t groupWidth) const {
-    const bool binned = !shadesAllPixels(views);
+    commands.ClearBuffer(mWork->bins, 0, std::uint64_t(mTables.binCount) * kBinStride);
     VisibilityPhasePasses passes(commands, frame.timer, "visibility: binning and shading");
-    if (binned) {
-        commands.ClearBuffer(mWork->bins, 0, std::uint64_t(mTables.binCount) * kBinStride);
-        const wgpu::ComputePassEncoder& binning = passes.step("visibility binning");
-        const std::uint32_t binOffset = std::uint32_t(binSlot * kParamsStride);
-        binning.SetBindGroup(0, mBinGroup, 1, &binOffset);
-        const std::uint32_t columns = groupsFor(groupWidth, 8);
-        const std::uint32_t rows = groupsFor(mTarget->height, 8);
-        binning.SetPipeline(mPipelines->binCount);
-        binning.DispatchWorkgroups(columns, rows);
-        binning.SetPipeline(mPipelines->binOffsets);
-        binning.DispatchWorkgroups(1);
-        binning.SetPipeline(mPipelines->binScatter);
-        binning.DispatchWorkgroups(columns, rows);
-    }
+    const wgpu::ComputePassEncoder& binning = passes.step("visibility binning");
+    const std::uint32_t binOffset = std::uint32_t(binSlot * kParamsStride);
+    binning.SetBindGroup(0, mBinGroup, 1, &binOffset);
+    const std::uint32_t columns = groupsFor(groupWidth, 8);
+    const std::uint32_t rows = groupsFor(mTarget->height, 8);
+    binning.SetPipeline(mPipelines->binCount);
+    binning.DispatchWorkgroups(columns, rows);
+    binning.SetPipeline(mPipelines->binOffsets);
+    binning.DispatchWorkgroups(1);
+    binning.SetPipeline(mPipelines->binScatter);
+    binning.DispatchWorkgroups(columns, rows);
     const wgpu::ComputePassEncoder& pass = passes.step("visibility shading");
     pass.SetBindGroup(0, mSetup->frame->bindGroup());
+    const MaterialResources& materials = mScene->materials();
     const std::uint32_t slotsOffset = std::uint32_t(firstView * kParamsStride);
-    for (std::uint32_t bin : mShadingBins) {
-        const VisibilityShadingGroup& group = mShadingGroups.groupOf(bin);
+    for (std::uint32_t bin : mTables.bins) {
+        const scene::MaterialId material(bin / 2);
+        const bool textured = materials.textured(material);
         const wgpu::ComputePipeline& shading = mPipelines->shading(
-            *mSetup, views > 1, group.textured, (bin & 1) != 0, group.extensions);
+            *mSetup, views > 1, textured, (bin & 1) != 0, materials.shadesExtensions(material));
         if (!shading) {
             continue;  // An embedded shader that does not compile: a bug the tests show.
         }
         pass.SetPipeline(shading);
         const std::uint32_t offsets[] = {slotsOffset, std::uint32_t(bin * kBinStride)};
         pass.SetBindGroup(1, mShadeGroup, 2, offsets);
-        pass.SetBindGroup(2, group.bindGroup);
+        pass.SetBindGroup(2, materials.drawBindGroup(material));
         pass.DispatchWorkgroups(mTarget->shadeGroups);
     }
-}
-
-bool VisibilityStrategy::shadesAllPixels(std::size_t views) const {
-    return mShadingBins.size() == 1 && VisibilityTarget::groupsFor(views) == 1;
 }
 
 std::optional<GpuTriangleCounts> VisibilityStrategy::gpuTriangleCounts() const {

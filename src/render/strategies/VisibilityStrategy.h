@@ -10,7 +10,6 @@
 #include "render/VisibilityTables.h"
 #include "render/strategies/MaterialDrawGroups.h"
 #include "render/strategies/VisibilityPipelines.h"
-#include "render/strategies/VisibilityShadingGroups.h"
 #include "render/strategies/VisibilityTarget.h"
 #include "render/strategies/VisibilityWorkBuffers.h"
 
@@ -54,8 +53,7 @@ class VisibilityStrategy final : public Strategy {
 
     StrategyKind kind() const override { return StrategyKind::Visibility; }
     Result<void> prepare(const RenderSetup& setup, const GpuScene& scene) override;
-    // Groups the materials again for the shading (a replaced texture), and refreshes the draws.
-    Result<void> refresh() override;
+    Result<void> refresh() override { return mDraws.refresh(); }
     void beforePass(const wgpu::CommandEncoder& commands, const FrameState& frame) override;
     // A multisampled target has four visibility samples per pixel at the hardware's 4x
     // positions (docs/visibility.md). The visibility buffer (8 bytes per sample) must fit
@@ -116,9 +114,6 @@ class VisibilityStrategy final : public Strategy {
     const DepthPyramid& depthPyramid() const { return mTarget->pyramid; }
     // The scene-sized working buffers (tests: kept ones are grown, never made smaller).
     const VisibilityWorkBuffers& workBuffers() const { return *mWork; }
-    // The shading bins the scene's items use (VisibilityShadingGroups; tests): one shades every
-    // pixel unbinned.
-    std::size_t shadingBinCount() const { return mShadingBins.size(); }
     // Makes the workgroup raster's block list hold at most `blocks` entries until the next
     // prepare (tests: a full list, whose triangles are listed whole).
     void limitWorkgroupBlocks(std::uint32_t blocks) {
@@ -172,21 +167,11 @@ class VisibilityStrategy final : public Strategy {
                               std::uint32_t viewWidth,
                               const char* timerLabel) const;
     void writeCullUniform(const FrameState& frame, std::size_t views) const;
-    // Builds mShadingGroups, writes mShadingBinMap and lists mShadingBins.
-    void groupMaterials();
-    // Whether frames of `views` shade every pixel in one dispatch, unbinned: one shading bin,
-    // and one group of views.
-    bool shadesAllPixels(std::size_t views) const;
 
     const RenderSetup* mSetup = nullptr;
     const GpuScene* mScene = nullptr;
     MaterialDrawGroups mDraws;  // What the compute path does not draw.
     VisibilityTables mTables;
-    // The materials grouped for the shading, the map from the records' bins to its bins (the
-    // binning's), and the shading bins the scene's items use.
-    VisibilityShadingGroups mShadingGroups;
-    wgpu::Buffer mShadingBinMap;
-    std::vector<std::uint32_t> mShadingBins;
 
     // Scene-sized buffers.
     wgpu::Buffer mTableBuffer;

@@ -7,7 +7,6 @@
 #include <string>
 #include <vector>
 
-#include "render/MaterialResources.h"
 #include "render/MaterialSlots.h"
 #include "render/MaterialUniform.h"
 #include "shaders/EmbeddedFiles.h"
@@ -124,15 +123,10 @@ std::map<std::string, WgslBinding> groupTwoBindings() {
 // at the bindings MaterialResources and BindGroupLayouts use, and group 2 holds nothing else
 // but the uniform.
 TEST(MaterialWgslTest, EverySlotOfTheTableIsBoundUnderItsNames) {
-    auto bindings = groupTwoBindings();
+    const auto bindings = groupTwoBindings();
     ASSERT_TRUE(bindings.contains("material"));
     EXPECT_EQ(bindings.at("material").binding, 0u);
     EXPECT_EQ(bindings.at("material").type, "Material");
-    // Under MATERIAL_TABLE the same binding holds the visibility shading's table instead.
-    ASSERT_TRUE(bindings.contains("materialTable"));
-    EXPECT_EQ(bindings.at("materialTable").binding, 0u);
-    EXPECT_TRUE(bindings.at("materialTable").type.starts_with("array<MaterialTableEntry"));
-    bindings.erase("materialTable");
     for (std::uint32_t entry = 0; entry < kMaterialSamplerCount; ++entry) {
         const std::string sampler = "materialSampler" + std::to_string(entry);
         ASSERT_TRUE(bindings.contains(sampler)) << "material.wgsl does not bind " << sampler;
@@ -276,22 +270,6 @@ TEST(MaterialWgslTest, MaterialStructMatchesMaterialUniform) {
     const std::size_t slotCount = std::stoul(array[1]);
     EXPECT_EQ(slotCount, kMaterialTextureSlotCount);
     EXPECT_EQ(sizeof(MaterialUniform), offset + slotCount * slotFields.size() * 16);
-}
-
-// The visibility shading's table (MATERIAL_TABLE) strides and counts as MaterialResources fills
-// the uniform buffer.
-TEST(MaterialWgslTest, TheMaterialTableIsLaidOutAsTheUniformBuffer) {
-    const std::string source = materialWgsl();
-    std::smatch match;
-    ASSERT_TRUE(std::regex_search(
-        source, match,
-        std::regex(
-            R"(struct\s+MaterialTableEntry\s*\{\s*@size\((\d+)\)\s*material\s*:\s*Material)")));
-    EXPECT_EQ(std::stoul(match[1]), MaterialResources::kTableStride);
-    EXPECT_GE(MaterialResources::kTableStride, sizeof(MaterialUniform));
-    ASSERT_TRUE(
-        std::regex_search(source, match, std::regex(R"(const\s+kTableMaterials\s*=\s*(\d+)u)")));
-    EXPECT_EQ(std::stoul(match[1]), MaterialResources::kTableMaterials);
 }
 
 }  // namespace
