@@ -207,6 +207,46 @@ TEST(VisibilityBatchTest, HardwareRasterisedViewsLandInTheirPlaceInTheStrip) {
     EXPECT_TRUE(context->checkNoErrors("hardware-rasterised strips").ok());
 }
 
+// Triangles listed whole (here: past a block list cut to three entries, with every triangle
+// over a pixel across sent to the workgroup raster) are clipped and covered by workgroups view
+// by view of a strip, each in its view's place: pixel for pixel the strip drawn with room for
+// every block, at one sample and at four.
+TEST(VisibilityBatchTest, TrianglesListedWholeLandInTheirPlaceInTheStrip) {
+    ENCORE_REQUIRE_VULKAN(context);
+    const scene::SceneData scene = test::generatedScene(denseModel(5, 6));
+    for (const std::uint32_t samples : {1u, 4u}) {
+        SCOPED_TRACE(testing::Message() << samples << " samples");
+        RendererOptions options = stripOptions(samples, false);
+        options.culling.computeRasterPixels = 1.0f;
+        auto roomy = Renderer::create(*context, options);
+        ASSERT_TRUE(roomy.ok()) << roomy.error().message;
+        ASSERT_TRUE(roomy->prepare(scene, StrategyKind::Visibility).ok());
+        const image::ImageRgba8 reference = renderStrip(*roomy, scene);
+        EXPECT_GT(test::coveredFraction(reference, test::pixelAt(reference, 0, 0)), 0.05);
+
+        auto full = Renderer::create(*context, options);
+        ASSERT_TRUE(full.ok()) << full.error().message;
+        ASSERT_TRUE(full->prepare(scene, StrategyKind::Visibility).ok());
+        // The renderer hands its strategy out const; this shrinks a list of it.
+        auto* strategy = const_cast<VisibilityStrategy*>(
+            dynamic_cast<const VisibilityStrategy*>(full->strategy()));
+        ASSERT_NE(strategy, nullptr);
+        strategy->limitWorkgroupBlocks(3);
+        EXPECT_EQ(test::differingPixels(renderStrip(*full, scene), reference), 0u);
+        auto counts = gpu::readBuffer(*context, strategy->rasterCounts(), 0, kViews * 8);
+        ASSERT_TRUE(counts.ok()) << counts.error().message;
+        for (std::size_t view = 0; view < kViews; ++view) {
+            std::uint32_t inHardware = 1;
+            std::memcpy(&inHardware, counts->data() + view * 8 + 4, 4);
+            EXPECT_EQ(inHardware, 0u) << "view " << view;
+        }
+        // The last view's list of triangles listed whole: three vertices per entry
+        // (visibility_counters.wgsl's hardwareVertices, at byte 16).
+        EXPECT_GT(test::readWord(*context, strategy->counters(), 16), 3u);
+    }
+    EXPECT_TRUE(context->checkNoErrors("strips past a full block list").ok());
+}
+
 // A renderer that makes its own pipelines makes the shading ones on first use, for the bin kinds
 // and the view mode its frames draw: frames of one view read their parameters from their
 // bindings, frames of several views copy them from their view's slot. Both draw what the kept
