@@ -653,20 +653,27 @@ fn coverWhole(id: u32, part: u32, lane: u32) {
     let item = loadItem(unit.x);
     let c = clipTriangle(item, instances[item.slot], unitTriangle(unit, id));
     let polygon = clipPolygon(c[0], c[1], c[2]);
-    let offset = vec2i(i32(lane % 8u), i32(lane / 8u));
     for (var k = 2u; k < polygon.count; k++) {
         let t = prepareProjected(item, polygon.v[0], polygon.v[k - 1u], polygon.v[k], true);
         if (t.route == kRouteNone) {
             continue;
         }
-        let size = t.last - t.first + 1;
-        let columns = (size.x + 7) / 8;
-        let tiles = columns * ((size.y + 7) / 8);
-        for (var tile = i32(part); tile < tiles; tile += i32(kWholeParts)) {
-            let pixel = vec2i(tile % columns, tile / columns) * 8 + offset;
-            if (all(pixel < size)) {
-                coverPixel(t, id, t.first + pixel);
-            }
+        coverTiles(t, id, t.first, t.last - t.first + 1, lane, part, kWholeParts);
+    }
+}
+
+// The pixels of triangle `t` in the `extent` from `origin`, in 8x8 tiles a thread of the
+// workgroup per pixel: tiles `first`, first + stride, ... (a block's all, or a share of a
+// triangle listed whole).
+fn coverTiles(t: RasterTriangle, id: u32, origin: vec2i, extent: vec2i, lane: u32, first: u32,
+              stride: u32) {
+    let columns = (extent.x + 7) / 8;
+    let tiles = columns * ((extent.y + 7) / 8);
+    let offset = vec2i(i32(lane % 8u), i32(lane / 8u));
+    for (var tile = i32(first); tile < tiles; tile += i32(stride)) {
+        let pixel = vec2i(tile % columns, tile / columns) * 8 + offset;
+        if (all(pixel < extent)) {
+            coverPixel(t, id, origin + pixel);
         }
     }
 }
@@ -687,13 +694,5 @@ fn coverListed(slot: u32, lane: u32) {
     if (hiddenByFirstPhase(t.first + block, t.first + block + extent - 1, t.nearest)) {
         return;
     }
-    let columns = (extent.x + 7) / 8;
-    let tiles = columns * ((extent.y + 7) / 8);
-    let offset = vec2i(i32(lane % 8u), i32(lane / 8u));
-    for (var tile = 0; tile < tiles; tile++) {
-        let inBlock = vec2i(tile % columns, tile / columns) * 8 + offset;
-        if (all(inBlock < extent)) {
-            coverPixel(t, id, t.first + block + inBlock);
-        }
-    }
+    coverTiles(t, id, t.first + block, extent, lane, 0u, 1u);
 }

@@ -250,7 +250,9 @@ void VisibilityStrategy::beforePass(const wgpu::CommandEncoder& commands, const 
     // sees another view than the one drawn.
     mOcclusion = views == 1 && frame.culling.occlusion && !frame.cullingCamera;
     const std::uint32_t viewWidth = frame.targetWidth / std::uint32_t(views);
-    mTarget->ensureHardwareDepth(*mSetup, viewWidth);
+    if (!computeTakesAll(frame.culling)) {
+        mTarget->ensureHardwareDepth(*mSetup, viewWidth);  // The hardware raster's attachment.
+    }
     // A slot per view, then one per group of views that bins and shading take at once.
     const std::size_t groups = VisibilityTarget::groupsFor(views);
     std::vector<std::uint8_t> params((views + groups) * kParamsStride, 0);

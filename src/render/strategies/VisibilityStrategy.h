@@ -45,8 +45,9 @@ class VisibilityStrategy final : public Strategy {
     static constexpr float kMaxWorkgroupPixels = 8192.0f;
     // At the largest workgroupRasterPixels (the default) the compute raster takes every
     // triangle: those crossing the near or far plane, or spanning more than it, or that find the
-    // workgroup raster's lists full, are clipped and covered by a workgroup each, and the
-    // hardware raster pass is not encoded (fewer passes: the CPU frame).
+    // workgroup raster's lists full, are clipped and covered by sixteen workgroups each, and the
+    // hardware raster pass is not encoded, nor its depth attachment made (fewer passes: the CPU
+    // frame).
     static bool computeTakesAll(const CullingOptions& culling) {
         return culling.workgroupRasterPixels >= kMaxWorkgroupPixels;
     }
