@@ -26,6 +26,8 @@ enable atomic_vec2u_min_max;
 #include "pyramid_occlusion.wgsl"
 #include "visibility_culling.wgsl"
 #include "visibility_batch.wgsl"
+#include "visibility_edges.wgsl"
+#include "visibility_clip.wgsl"
 
 @group(1) @binding(4) var<storage, read_write> units: array<vec2u>;
 @group(1) @binding(5) var<storage, read_write> counters: Counters;
@@ -66,60 +68,6 @@ fn listWhole(id: u32) -> bool {
     }
     atomicAdd(&counters.hardwareTriangles, 1u);
     return false;
-}
-
-// The edge function of a -> b at p (twice the signed area), in fixed point.
-fn edge(a: vec2i, b: vec2i, p: vec2i) -> i32 {
-    return (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x);
-}
-
-// Up to this many pixels across, the fixed-point edge functions (relative to the triangle's
-// first pixel) stay within 32 bits; larger triangles evaluate them in 64 bits (wideEdge).
-const kNarrowPixels = 112.0;
-
-// A 64-bit two's complement integer as (low word, high word).
-fn negateWide(v: vec2u) -> vec2u {
-    let low = ~v.x + 1u;
-    return vec2u(low, ~v.y + select(0u, 1u, low == 0u));
-}
-
-// a * b exactly, for |a| and |b| below 2^24 (WGSL has no 64-bit integers).
-fn multiplyWide(a: i32, b: i32) -> vec2u {
-    let ua = u32(abs(a));
-    let ub = u32(abs(b));
-    let low = (ua & 0xffffu) * (ub & 0xffffu);
-    let middle = (ua & 0xffffu) * (ub >> 16u) + (ua >> 16u) * (ub & 0xffffu);  // Below 2^25.
-    let sum = low + (middle << 16u);
-    let product = vec2u(sum, (ua >> 16u) * (ub >> 16u) + (middle >> 16u) + select(0u, 1u, sum < low));
-    return select(product, negateWide(product), (a < 0) != (b < 0));
-}
-
-// edge() in 64 bits: vertices and samples within 2^22 of each other (kMaxWorkgroupPixels).
-fn wideEdge(a: vec2i, b: vec2i, p: vec2i) -> vec2u {
-    let plus = multiplyWide(b.x - a.x, p.y - a.y);
-    let minus = multiplyWide(b.y - a.y, p.x - a.x);
-    return vec2u(plus.x - minus.x, plus.y - minus.y - select(0u, 1u, plus.x < minus.x));
-}
-
-// The sign of a wide value: -1, 0 or 1.
-fn wideSign(v: vec2u) -> i32 {
-    if (i32(v.y) < 0) {
-        return -1;
-    }
-    return select(1, 0, v.x == 0u && v.y == 0u);
-}
-
-// Whether edge + bias >= 0 (bias -1 or 0), in 64 bits.
-fn wideInside(a: vec2i, b: vec2i, p: vec2i, bias: i32) -> bool {
-    return wideSign(wideEdge(a, b, p)) + bias >= 0;
-}
-
-// With the triangle wound so that inside is positive (clockwise on the y-down screen): top edges
-// run right along a row, left edges run up. Pixel centres on such an edge are inside, on the
-// other edges outside, so a pixel shared by two triangles belongs to one.
-fn topLeftBias(a: vec2i, b: vec2i) -> i32 {
-    let d = b - a;
-    return select(-1, 0, (d.y == 0 && d.x > 0) || d.y < 0);
 }
 
 fn windowPosition(clip: vec4f) -> vec3f {
@@ -574,77 +522,6 @@ fn workgroupMain(@builtin(workgroup_id) group: vec3u, @builtin(num_workgroups) g
 // the triangle up (clips it) on its own: triangles listed whole are few.
 const kWholeParts = 16u;
 
-// The guard band that clipped triangles are cut to: this many pixels past each edge of the
-// viewport. Their pieces' vertices then lie within 2^22 (in 1/256 pixel) of the viewport's
-// pixels, as those of triangles up to kMaxWorkgroupPixels across that touch it (wideEdge).
-const kGuardPixels = 8192.0;
-
-// A convex polygon of clip positions: a triangle cut by the six planes of clipPolygon, each of
-// which adds at most one vertex.
-struct ClipPolygon {
-    count: u32,
-    v: array<vec4f, 9>,
-}
-
-// The signed distance of `v` from clip plane `plane` (positive inside): near, far, then the
-// guard band's left, right, bottom and top at `guard` (normalised device coordinates).
-fn planeDistance(v: vec4f, plane: u32, guard: vec2f) -> f32 {
-    switch plane {
-        case 0u: {
-            return v.z;
-        }
-        case 1u: {
-            return v.w - v.z;
-        }
-        case 2u: {
-            return v.x + guard.x * v.w;
-        }
-        case 3u: {
-            return guard.x * v.w - v.x;
-        }
-        case 4u: {
-            return v.y + guard.y * v.w;
-        }
-        default: {
-            return guard.y * v.w - v.y;
-        }
-    }
-}
-
-// The part of triangle (c0, c1, c2) inside the near and far planes and the guard band
-// (Sutherland-Hodgman, in homogeneous coordinates, so that vertices behind the camera clip as
-// the hardware clips them). Its fan from the first vertex covers it: pieces that share their
-// inner edges exactly, which the top-left rule covers once.
-fn clipPolygon(c0: vec4f, c1: vec4f, c2: vec4f) -> ClipPolygon {
-    let half = vec2f(f32(params.viewportWidth), f32(params.viewportHeight)) * 0.5;
-    let guard = (half + kGuardPixels) / half;
-    var polygon: ClipPolygon;
-    polygon.count = 3u;
-    polygon.v[0] = c0;
-    polygon.v[1] = c1;
-    polygon.v[2] = c2;
-    for (var plane = 0u; plane < 6u && polygon.count >= 3u; plane++) {
-        var cut: ClipPolygon;
-        cut.count = 0u;
-        for (var i = 0u; i < polygon.count; i++) {
-            let a = polygon.v[i];
-            let b = polygon.v[select(i + 1u, 0u, i + 1u == polygon.count)];
-            let da = planeDistance(a, plane, guard);
-            let db = planeDistance(b, plane, guard);
-            if (da >= 0.0) {
-                cut.v[cut.count] = a;
-                cut.count++;
-            }
-            if ((da >= 0.0) != (db >= 0.0)) {
-                cut.v[cut.count] = a + (b - a) * (da / (da - db));
-                cut.count++;
-            }
-        }
-        polygon = cut;
-    }
-    return polygon;
-}
-
 // Part `part` of triangle `id`, listed whole: clipped, and every kWholeParts-th 8x8 tile of each
 // piece from the part's covered by the workgroup's 64 threads (the rare path of triangles
 // through the near or far plane, over kMaxWorkgroupPixels, or past full lists).
@@ -652,7 +529,8 @@ fn coverWhole(id: u32, part: u32, lane: u32) {
     let unit = units[id / kUnitTriangles];
     let item = loadItem(unit.x);
     let c = clipTriangle(item, instances[item.slot], unitTriangle(unit, id));
-    let polygon = clipPolygon(c[0], c[1], c[2]);
+    let polygon = clipPolygon(c[0], c[1], c[2],
+                              vec2f(f32(params.viewportWidth), f32(params.viewportHeight)));
     for (var k = 2u; k < polygon.count; k++) {
         let t = prepareProjected(item, polygon.v[0], polygon.v[k - 1u], polygon.v[k], true);
         if (t.route == kRouteNone) {
