@@ -169,11 +169,10 @@ fn shadeEntry(i: u32) {
     tangent = vec4f(linear * vertexTangent.xyz, vertexTangent.w * select(1.0, -1.0, mirrored));
 #endif
     // Counter-clockwise in normalised device coordinates faces the viewer, unless the instance
-    // mirrors (its pipelines take the other front face).
-    let n0 = c0.xy / c0.w;
-    let n1 = c1.xy / c1.w;
-    let n2 = c2.xy / c2.w;
-    let counterClockwise = determinant(mat2x2f(n1 - n0, n2 - n0)) > 0.0;
+    // mirrors (its pipelines take the other front face). Decided by the homogeneous determinant
+    // (visibility_raster.wgsl's facesTheCamera): past a vertex behind the camera the projected
+    // corners flip, the winding of the part in view does not.
+    let counterClockwise = determinant(mat3x3f(c0.xyw, c1.xyw, c2.xyw)) > 0.0;
     let frontFacing = counterClockwise != mirrored;
 
     let samples = sampleMaterial(uv0, uv1, gradients);

@@ -284,6 +284,19 @@ TEST(VisibilityFillRuleTest, NearPlaneTrianglesAreClippedLargeOnesGoToWorkgroups
               (std::array<std::uint32_t, 2>{3, 0}));
     EXPECT_EQ(rasteriserCounts(*context, scene, 1024.0f), (std::array<std::uint32_t, 2>{2, 1}));
     EXPECT_EQ(rasteriserCounts(*context, scene, 0.0f), (std::array<std::uint32_t, 2>{1, 2}));
+    // Shaded as the hardware shades it: a floor through the near plane, its diagonal too, whose
+    // first triangle has one corner behind the camera. Its normal faces the way the part in view
+    // winds, which the projected corners reverse (double-sided materials flip the normal of
+    // back faces).
+    const glm::vec3 a{-2.13f, -2.41f, -4.07f}, b{1.87f, -2.53f, -3.91f}, c{2.21f, -1.12f, 5.13f},
+        d{-1.79f, -0.97f, 4.89f};
+    const auto floor = triangles({{a, b, c}, {a, c, d}});
+    const auto normals =
+        render(*context, floor, StrategyKind::GpuCullingBundles, kFront, DebugChannel::Normal);
+    EXPECT_GT(test::coveredFraction(normals, test::pixelAt(normals, 0, 0)), 0.05);
+    const auto visibilityNormals =
+        render(*context, floor, StrategyKind::Visibility, kFront, DebugChannel::Normal);
+    EXPECT_EQ(test::differingPixels(normals, visibilityNormals, 2), 0u);
     const auto hardware =
         render(*context, scene, StrategyKind::Visibility, kFront, DebugChannel::BaseColor,
                VisibilityStrategy::kDefaultComputePixels, 0.0f);
