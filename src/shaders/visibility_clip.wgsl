@@ -64,7 +64,12 @@ fn clipPolygon(c0: vec4f, c1: vec4f, c2: vec4f, viewport: vec2f) -> ClipPolygon 
                 cut.count++;
             }
             if ((da >= 0.0) != (db >= 0.0)) {
-                cut.v[cut.count] = a + (b - a) * (da / (da - db));
+                // From the vertex inside, as the hardware's clipper interpolates: the same edge
+                // whichever way round the polygon meets it.
+                let inside = select(b, a, da >= 0.0);
+                let outside = select(a, b, da >= 0.0);
+                let din = max(da, db);
+                cut.v[cut.count] = inside + (outside - inside) * (din / (din - min(da, db)));
                 cut.count++;
             }
         }
