@@ -1,17 +1,21 @@
-// The visibility strategy's shading bins, for one view: every covered pixel (at several
-// samples, each distinct triangle of a pixel: its first sample) sorted by the bin of its
-// triangle's primitive (material, and whether TANGENT is bound: the shader variants of
-// the shading pass), so that each bin is shaded by one dispatch with its material's bind group.
-//   countMain    one thread per pixel of the viewport: counts its bins;
-//   offsetsMain  one thread: each bin's first slot in the pixel list;
-//   scatterMain  one thread per pixel: writes its entries into their bins' slots.
+// The visibility strategy's shading bins, for one group of views: each 8x8 tile of pixels is
+// listed in every bin (material, and whether TANGENT is bound: the shader variants of the
+// shading pass) that the triangle of one of its samples falls in, so that each bin is shaded by
+// one dispatch with its material's bind group, a workgroup per listed tile (visibility_shade.wgsl
+// shades the tile's samples of that bin, each distinct triangle of a pixel once).
+// One dispatch lists a round of up to kRoundBins bins, from VisibilityParams.firstBin: each bin
+// of the round has room for every tile of the group in one buffer, so a tile is listed with one
+// atomic per bin it holds and no count, prefix sum or second pass (on the H100 those three
+// dispatches over every pixel took 0.043 ms of a 1280x720 frame). Scenes of more bins bin and
+// shade round after round.
 #include "visibility_bin_record.wgsl"
 #include "visibility_params.wgsl"
+#include "visibility_pixel.wgsl"
 
 struct Bin {
-    count: atomic<u32>,
-    cursor: atomic<u32>,
-    first: u32,
+    count: atomic<u32>,  // Tiles listed.
+    id: u32,             // The bin's index (for the shading, which binds one record).
+    first: u32,          // Its first tile in the list.
     padding: array<u32, kBinPaddingWords>,
 }
 
@@ -20,123 +24,61 @@ struct Bin {
 @group(0) @binding(2) var<storage, read> units: array<vec2u>;
 @group(0) @binding(3) var<storage, read> visibility: array<vec2u>;
 @group(0) @binding(4) var<storage, read_write> bins: array<Bin>;
-@group(0) @binding(5) var<storage, read_write> pixels: array<u32>;
+// Per bin of the round, tiles as (tile column | tile row << 16) of the target.
+@group(0) @binding(5) var<storage, read_write> tiles: array<u32>;
 
 const kNoBin = 0xffffffffu;
 
 // The shading bin of each sample of pixel `id` of the viewport (kNoBin: not covered, or the
-// triangle of an earlier sample of the pixel, which is shaded once) and the pixel's first entry
-// in the visibility buffer.
-struct PixelBins {
-    first: u32,
-    bins: array<u32, 4>,
-}
-
-fn pixelBins(id: vec3u) -> PixelBins {
-    var result: PixelBins;
-    result.bins = array<u32, 4>(kNoBin, kNoBin, kNoBin, kNoBin);
+// triangle of an earlier sample of the pixel, which is shaded once).
+fn pixelBins(id: vec3u) -> array<u32, 4> {
+    var result = array<u32, 4>(kNoBin, kNoBin, kNoBin, kNoBin);
     if (id.x >= params.viewportWidth || id.y >= params.viewportHeight) {
         return result;
     }
-    result.first = ((id.y + params.viewportY) * params.targetWidth + id.x + params.viewportX) *
-                   params.samples;
-    var ids = array<u32, 4>(0u, 0u, 0u, 0u);  // The triangles of the samples in `covered`.
-    var covered = 0u;
+    let first = ((id.y + params.viewportY) * params.targetWidth + id.x + params.viewportX) *
+                params.samples;
+    let taken = distinctSamples(first, params.samples);
     for (var sample = 0u; sample < params.samples; sample++) {
-        let key = visibility[result.first + sample];
-        if (key.y == 0u) {
-            continue;
-        }
-        ids[sample] = key.x;
-        covered |= 1u << sample;
-        var seen = false;
-        for (var earlier = 0u; earlier < sample; earlier++) {
-            seen = seen || (((covered >> earlier) & 1u) != 0u && ids[earlier] == key.x);
-        }
-        if (!seen) {
-            let unit = units[key.x / 256u];
+        if ((taken.mask & (1u << sample)) != 0u) {
+            let unit = units[taken.ids[sample] / 256u];
             let record = tables[unit.x * 4u + 1u];
-            result.bins[sample] = tables[record + 4u];
+            result[sample] = tables[record + 4u];
         }
     }
     return result;
 }
 
-// Counted and reserved per workgroup first, then added to the bins once per workgroup and bin:
-// a global atomic per pixel on the few addresses of a frame's bins serialised in the GPU's L2
-// (on the H100 about the whole pass for a 1280x720 frame of one or two bins). Frames of more
-// bins than kLocalBins count each pixel globally.
-const kLocalBins = 64u;  // One per thread of a workgroup.
-var<workgroup> localCounts: array<atomic<u32>, kLocalBins>;
-var<workgroup> localFirst: array<u32, kLocalBins>;
+// The bins of the round a workgroup's tile has listed itself in, a bit each.
+var<workgroup> listed: array<atomic<u32>, kRoundBins / 32u>;
 
 @compute @workgroup_size(8, 8)
-fn countMain(@builtin(global_invocation_id) id: vec3u,
-             @builtin(local_invocation_index) local: u32) {
-    let grouped = params.binCount <= kLocalBins;
-    atomicStore(&localCounts[local], 0u);
+fn binMain(@builtin(global_invocation_id) id: vec3u,
+           @builtin(workgroup_id) group: vec3u,
+           @builtin(local_invocation_index) local: u32) {
+    if (local < kRoundBins / 32u) {
+        atomicStore(&listed[local], 0u);
+    }
     workgroupBarrier();
-    let pixel = pixelBins(id);
+    let sampleBins = pixelBins(id);
+    // The group's viewport starts on a tile (its views from a multiple of kSlotViews).
+    let tile = (params.viewportX / 8u + group.x) | ((params.viewportY / 8u + group.y) << 16u);
+    let tilesPerBin = ((params.viewportWidth + 7u) / 8u) * ((params.viewportHeight + 7u) / 8u);
     for (var sample = 0u; sample < params.samples; sample++) {
-        let bin = pixel.bins[sample];
-        if (bin != kNoBin) {
-            if (grouped) {
-                atomicAdd(&localCounts[bin], 1u);
-            } else {
-                atomicAdd(&bins[bin].count, 1u);
-            }
+        let bin = sampleBins[sample];
+        if (bin == kNoBin || bin < params.firstBin || bin - params.firstBin >= kRoundBins) {
+            continue;
         }
-    }
-    workgroupBarrier();
-    let count = atomicLoad(&localCounts[local]);
-    if (grouped && count > 0u) {
-        atomicAdd(&bins[local].count, count);
-    }
-}
-
-@compute @workgroup_size(1)
-fn offsetsMain() {
-    var first = 0u;
-    for (var b = 0u; b < params.binCount; b++) {
-        let count = atomicLoad(&bins[b].count);
-        bins[b].first = first;
-        first += count;
-    }
-}
-
-// Lists each shaded sample's visibility-buffer entry (pixel * samples + sample) in its bin: the
-// workgroup's entries of a bin in one range reserved at once (as countMain counts them).
-@compute @workgroup_size(8, 8)
-fn scatterMain(@builtin(global_invocation_id) id: vec3u,
-               @builtin(local_invocation_index) local: u32) {
-    let grouped = params.binCount <= kLocalBins;
-    atomicStore(&localCounts[local], 0u);
-    workgroupBarrier();
-    let pixel = pixelBins(id);
-    var slots = array<u32, 4>(0u, 0u, 0u, 0u);
-    for (var sample = 0u; sample < params.samples; sample++) {
-        let bin = pixel.bins[sample];
-        if (bin != kNoBin) {
-            if (grouped) {
-                slots[sample] = atomicAdd(&localCounts[bin], 1u);
-            } else {
-                let slot = atomicAdd(&bins[bin].cursor, 1u);
-                pixels[bins[bin].first + slot] = pixel.first + sample;
+        let inRound = bin - params.firstBin;
+        let bit = 1u << (inRound % 32u);
+        if ((atomicOr(&listed[inRound / 32u], bit) & bit) == 0u) {
+            let first = inRound * tilesPerBin;
+            let slot = atomicAdd(&bins[bin].count, 1u);
+            if (slot == 0u) {
+                bins[bin].id = bin;
+                bins[bin].first = first;
             }
-        }
-    }
-    workgroupBarrier();
-    let count = atomicLoad(&localCounts[local]);
-    if (grouped && count > 0u) {
-        localFirst[local] = bins[local].first + atomicAdd(&bins[local].cursor, count);
-    }
-    workgroupBarrier();
-    if (grouped) {
-        for (var sample = 0u; sample < params.samples; sample++) {
-            let bin = pixel.bins[sample];
-            if (bin != kNoBin) {
-                pixels[localFirst[bin] + slots[sample]] = pixel.first + sample;
-            }
+            tiles[first + slot] = tile;
         }
     }
 }

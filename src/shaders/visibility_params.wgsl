@@ -13,7 +13,8 @@ struct VisibilityParams {
     maxComputePixels: f32,
     frustumTest: u32,  // 0 in multi-view frames, whose views each frame the whole scene.
     hardwareCapacity: u32,
-    binCount: u32,
+    // The binning's first bin (visibility_bins.wgsl): each dispatch lists kRoundBins from it.
+    firstBin: u32,
     maxWorkgroupPixels: f32,
     // Visibility samples per pixel (1, or 4 at the standard 4x positions): the visibility buffer
     // holds `samples` entries per pixel, pixel-major (visibility_samples.wgsl).

@@ -1,9 +1,10 @@
-// The visibility strategy's resolve: one thread per entry of one shading bin (one material;
-// HAS_TANGENT as the bin says), a fixed grid per bin striding over its entries: a covered pixel,
-// or with several samples each distinct triangle of a pixel (visibility_bins.wgsl), of any of
-// the views side by side that the bins cover (the view slots of visibility_geometry.wgsl, under
-// VIEW_SLOTS, which the strategy always sets), whose colour goes to the texel of the first
-// sample it covers. It rebuilds the triangle from the visibility buffer's
+// The visibility strategy's resolve: one dispatch per shading bin (one material; HAS_TANGENT as
+// the bin says), a fixed grid of workgroups striding over the bin's 8x8 tiles
+// (visibility_bins.wgsl), a thread per pixel of the tile, of any of the views side by side that
+// the bins cover (the view slots of visibility_geometry.wgsl, under VIEW_SLOTS, which the
+// strategy always sets). A thread shades each sample of its pixel whose triangle is in the bin
+// and covers no earlier sample of the pixel (with several samples, each distinct triangle of a
+// pixel once), into the texel of that sample. It rebuilds the triangle from the visibility buffer's
 // id, its perspective-correct barycentrics at the pixel centre (where multisampled hardware
 // shades too) and their screen-space derivatives (texture LOD, the tangent frame),
 // interpolates what mesh.wgsl's vertex shader outputs, and shades with the same code as
@@ -19,17 +20,18 @@
 #include "visibility_geometry.wgsl"
 #include "visibility_bin_record.wgsl"
 #include "visibility_samples.wgsl"
+#include "visibility_pixel.wgsl"
 
 struct Bin {
-    count: u32,
-    cursor: u32,
+    count: u32,  // Tiles.
+    id: u32,
     first: u32,
     padding: array<u32, kBinPaddingWords>,
 }
 
 @group(1) @binding(4) var<storage, read> units: array<vec2u>;
 @group(1) @binding(5) var<storage, read> visibility: array<vec2u>;
-@group(1) @binding(6) var<storage, read> pixels: array<u32>;
+@group(1) @binding(6) var<storage, read> tiles: array<u32>;
 @group(1) @binding(7) var<storage, read> bin: Bin;
 @group(1) @binding(8) var shaded: texture_storage_2d_array<rgba16float, write>;
 
@@ -66,35 +68,46 @@ fn mix3(b: vec3f, a0: vec4f, a1: vec4f, a2: vec4f) -> vec4f {
     return a0 * b.x + a1 * b.y + a2 * b.z;
 }
 
-// A fixed grid of workgroups strides over the bin's entries: one direct dispatch per bin, as
-// the raster passes (visibility_raster.wgsl says why).
+// A fixed grid of workgroups strides over the bin's tiles: one direct dispatch per bin, as the
+// raster passes (visibility_raster.wgsl says why).
 @compute @workgroup_size(64)
 fn shadeMain(@builtin(workgroup_id) group: vec3u, @builtin(num_workgroups) groups: vec3u,
              @builtin(local_invocation_index) lane: u32) {
-    for (var i = group.x * 64u + lane; i < bin.count; i += groups.x * 64u) {
-        shadeEntry(i);
+#if VIEW_SLOTS
+    // The samples, the target's width and the height are the same in every view.
+    let samples = viewSlots[0].params.samples;
+    let size = vec2u(viewSlots[0].params.targetWidth, viewSlots[0].params.viewportHeight);
+#else
+    let samples = params.samples;  // One view's parameters (the strategy sets slots).
+    let size = vec2u(params.targetWidth, params.viewportHeight);
+#endif
+    let offset = vec2u(lane % 8u, lane / 8u);
+    for (var i = group.x; i < bin.count; i += groups.x) {
+        let tile = tiles[bin.first + i];
+        let pixel = vec2u(tile & 0xffffu, tile >> 16u) * 8u + offset;
+        if (any(pixel >= size)) {
+            continue;
+        }
+        let taken = distinctSamples((pixel.y * size.x + pixel.x) * samples, samples);
+        for (var sample = 0u; sample < samples; sample++) {
+            if ((taken.mask & (1u << sample)) != 0u) {
+                shadeSample(pixel, sample, taken.ids[sample]);
+            }
+        }
     }
 }
 
-// Shades the bin's entry i: one visibility-buffer sample's triangle at its pixel.
-fn shadeEntry(i: u32) {
-    let entry = pixels[bin.first + i];
-#if VIEW_SLOTS
-    // The samples and the target's width are the same in every view.
-    let pixelIndex = entry / viewSlots[0].params.samples;
-    let targetWidth = viewSlots[0].params.targetWidth;
-#else
-    let pixelIndex = entry / params.samples;  // One view's parameters (the strategy sets slots).
-    let targetWidth = params.targetWidth;
-#endif
-    let pixel = vec2u(pixelIndex % targetWidth, pixelIndex / targetWidth);
+// Shades `sample` of `pixel` with triangle `id` where that triangle is in the bin.
+fn shadeSample(pixel: vec2u, sample: u32, id: u32) {
 #if VIEW_SLOTS
     selectViewOf(pixel);
 #endif
-    let id = visibility[entry].x;
     let unit = units[id / kUnitTriangles];
     let item = loadItem(unit.x);
     let record = item.record;
+    if (tables[record + kBin] != bin.id) {
+        return;  // Another bin's, which a dispatch of its own shades.
+    }
     let triangle = unitTriangle(unit, id);
     let transform = instances[item.slot];
     let i0 = vertexIndex(record, triangle, 0u);
@@ -180,6 +193,5 @@ fn shadeEntry(i: u32) {
     let result = shadeSurface(worldPosition, worldNormal, tangent, frontFacing, baseColor,
                               samples, positionDx, positionDy, gradients.dx0, gradients.dy0,
                               vec3f(1.0));  // Transmissive materials are drawn in hardware.
-    textureStore(shaded, pixel, entry % params.samples,
-                 displayColor(result));
+    textureStore(shaded, pixel, sample, displayColor(result));
 }

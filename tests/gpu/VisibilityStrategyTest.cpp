@@ -25,6 +25,7 @@
 #include "gpu/Readback.h"
 #include "image/ImageCompare.h"
 #include "render/strategies/VisibilityStrategy.h"
+#include "render/strategies/VisibilityTarget.h"
 #include "scene/CrowdGenerator.h"
 #include "scene/SceneGenerator.h"
 
@@ -93,6 +94,35 @@ INSTANTIATE_TEST_SUITE_P(Layouts,
                                      return "city" + suffix;
                              }
                          });
+
+// A binning dispatch lists the tiles of kRoundBins bins (VisibilityTarget): a scene of 70
+// meshes of a material each (140 bins: three rounds, each listed and shaded in turn) looks as GPU
+// culling draws it, every material's pixels shaded (a round left out would leave its bins'
+// pixels unshaded).
+TEST(VisibilityBinningTest, ScenesOfMoreBinsThanOneRoundShadeEveryBin) {
+    ENCORE_REQUIRE_VULKAN(context);
+    scene::GeneratorOptions options;
+    options.objectCount = 300;
+    options.meshCount = 70;  // Mesh i has material i.
+    options.materialCount = 70;
+    options.textures = true;
+    const auto scene = test::generatedScene(options);
+    ASSERT_GT(2 * scene.materials.size(), 2 * std::size_t(VisibilityTarget::kRoundBins));
+    const Camera camera = Camera::framing(scene.bounds, float(kWidth) / float(kHeight));
+    for (std::uint32_t samples : kSampleCounts) {
+        SCOPED_TRACE(std::to_string(samples) + " samples");
+        const auto expected =
+            render(*context, scene, StrategyKind::GpuCullingBundles, camera, DebugChannel::Shaded,
+                   VisibilityStrategy::kDefaultComputePixels,
+                   VisibilityStrategy::kMaxWorkgroupPixels, samples);
+        const auto image = render(*context, scene, StrategyKind::Visibility, camera,
+                                  DebugChannel::Shaded, VisibilityStrategy::kDefaultComputePixels,
+                                  VisibilityStrategy::kMaxWorkgroupPixels, samples);
+        test::expectVisibilityClose(expected, image);
+        EXPECT_GT(test::coveredFraction(image, test::pixelAt(image, 0, 0)), 0.05);
+    }
+    EXPECT_TRUE(context->checkNoErrors("visibility bins in rounds").ok());
+}
 
 class VisibilityModelTest
     : public ::testing::TestWithParam<std::tuple<test::ModelVariant, std::uint32_t>> {};
@@ -426,7 +456,8 @@ TEST(VisibilityMultisampleTest, EdgesOfLargeTrianglesAreAntiAliased) {
 }
 
 // At four samples a pixel's triangle is shaded once, whatever number of its samples it covers:
-// the shading bins hold one entry per pixel that a lone triangle touches (not one per sample).
+// into the layer of the first sample it covers, the pixel's other layers left as they were (zero
+// on the first frame). Its bin lists each 8x8 tile the triangle touches once.
 TEST(VisibilityMultisampleTest, EachTriangleOfAPixelIsShadedOnce) {
     ENCORE_REQUIRE_VULKAN(context);
     const auto scene =
@@ -446,21 +477,42 @@ TEST(VisibilityMultisampleTest, EachTriangleOfAPixelIsShadedOnce) {
         auto bins = gpu::readBuffer(*context, visibility->bins(), 0,
                                     binCount * VisibilityStrategy::kBinRecordBytes);
         ASSERT_TRUE(bins.ok());
-        std::uint64_t entries = 0;
+        std::uint64_t tilesListed = 0;
         for (std::uint32_t bin = 0; bin < binCount; ++bin) {
             std::uint32_t count = 0;
             std::memcpy(&count, bins->data() + bin * VisibilityStrategy::kBinRecordBytes, 4);
-            entries += count;
+            tilesListed += count;
+        }
+        std::vector<std::vector<float>> layers;
+        for (std::uint32_t layer = 0; layer < samples; ++layer) {
+            auto texels =
+                gpu::readTextureRgba16Float(*context, visibility->shadedColour(), 0, layer);
+            ASSERT_TRUE(texels.ok());
+            layers.push_back(std::move(*texels));
         }
         const auto background = test::pixelAt(*image, 0, 0);
         std::uint64_t touched = 0;
+        std::set<std::pair<std::uint32_t, std::uint32_t>> tiles;
+        std::uint64_t shadedOnce = 0;
+        std::uint64_t shadedTexels = 0;
         for (std::uint32_t y = 0; y < image->height; ++y) {
             for (std::uint32_t x = 0; x < image->width; ++x) {
-                touched += test::pixelAt(*image, x, y) != background;
+                std::uint32_t shaded = 0;
+                for (const std::vector<float>& layer : layers) {
+                    shaded += layer[(std::size_t(y) * image->width + x) * 4 + 3] != 0.0f;
+                }
+                shadedTexels += shaded;
+                if (test::pixelAt(*image, x, y) != background) {
+                    ++touched;
+                    tiles.insert({x / 8, y / 8});
+                    shadedOnce += shaded == 1;
+                }
             }
         }
         EXPECT_GT(touched, 500u);
-        EXPECT_EQ(entries, touched);
+        EXPECT_EQ(shadedOnce, touched);
+        EXPECT_EQ(shadedTexels, touched);
+        EXPECT_EQ(tilesListed, tiles.size());
     }
 }
 

@@ -332,9 +332,7 @@ Result<std::unique_ptr<VisibilityPipelines>> VisibilityPipelines::create(const R
                                           "visibility frame");
 
     ENCORE_TRY_ASSIGN(auto bins, library.module("visibility_bins.wgsl"));
-    add(p.binCount, bins, "countMain", {p.binLayout});
-    add(p.binOffsets, bins, "offsetsMain", {p.binLayout});
-    add(p.binScatter, bins, "scatterMain", {p.binLayout});
+    add(p.binTiles, bins, "binMain", {p.binLayout});
     {
         std::set<std::string, std::less<>> flags = compositeFlags(setup);
         if (setup.colorFormat == wgpu::TextureFormat::RGBA16Float) {

@@ -33,7 +33,8 @@ struct VisibilityViewParams {
     float maxComputePixels = 0.0f;
     std::uint32_t frustumTest = 0;
     std::uint32_t hardwareCapacity = 0;
-    std::uint32_t binCount = 0;
+    // The binning's first bin: each dispatch lists VisibilityTarget::kRoundBins from it.
+    std::uint32_t firstBin = 0;
     float maxWorkgroupPixels = 0.0f;
     std::uint32_t samples = 1;
     // The workgroup list: blocks in its first workgroupBlocks entries, then workgroupRecords
@@ -102,9 +103,7 @@ struct VisibilityPipelines {
     wgpu::ComputePipeline raster;
     wgpu::ComputePipeline workgroupRaster;
     wgpu::RenderPipeline hardware;
-    wgpu::ComputePipeline binCount;
-    wgpu::ComputePipeline binOffsets;
-    wgpu::ComputePipeline binScatter;
+    wgpu::ComputePipeline binTiles;
     // [slots][textured][tangent][extensions] (shading()): without MATERIAL_EXTENSIONS for
     // materials that use none (MaterialResources::shadesExtensions), which bind their base slots
     // only: fewer registers, on the H100 a quarter off the shading pass.

@@ -168,7 +168,8 @@ Result<void> VisibilityStrategy::checkTarget(std::uint32_t width, std::uint32_t 
 void VisibilityStrategy::ensureTarget(std::uint32_t width,
                                       std::uint32_t height,
                                       std::size_t views) {
-    const bool remade = mTarget->ensure(*mSetup, width, height, views, mPersistentGroups);
+    const bool remade =
+        mTarget->ensure(*mSetup, width, height, views, mTables.binCount, mPersistentGroups);
     if (remade || !mCullGroup) {
         createBindGroups();
     }
@@ -219,7 +220,7 @@ void VisibilityStrategy::createBindGroups() {
                                     {2, mWork->units},
                                     {3, target.visibility},
                                     {4, mWork->bins},
-                                    {5, target.pixels}},
+                                    {5, target.tiles}},
                                    "visibility bins");
     mShadeGroup = gpu::makeBindGroup(device, p.shadeLayout,
                                      {{0, target.params, 0, VisibilityTarget::kSlotBindingBytes},
@@ -228,7 +229,7 @@ void VisibilityStrategy::createBindGroups() {
                                       {3, mTableBuffer},
                                       {4, mWork->units},
                                       {5, target.visibility},
-                                      {6, target.pixels},
+                                      {6, target.tiles},
                                       {7, mWork->bins, 0, kBinStride},
                                       {8, target.shadedLayers}},
                                      "visibility shading");
@@ -253,9 +254,12 @@ void VisibilityStrategy::beforePass(const wgpu::CommandEncoder& commands, const 
     if (!computeTakesAll(frame.culling)) {
         mTarget->ensureHardwareDepth(*mSetup, viewWidth);  // The hardware raster's attachment.
     }
-    // A slot per view, then one per group of views that bins and shading take at once.
+    // A slot per view, then one per round of bins of each group of views that bins and shading
+    // take at once.
     const std::size_t groups = VisibilityTarget::groupsFor(views);
-    std::vector<std::uint8_t> params((views + groups) * kParamsStride, 0);
+    const std::uint32_t rounds = VisibilityTarget::roundsFor(mTables.binCount);
+    std::vector<std::uint8_t> params(
+        VisibilityTarget::slotsFor(views, mTables.binCount) * kParamsStride, 0);
     ViewParams p;
     p.itemCount = mTables.itemCount;
     p.targetWidth = frame.targetWidth;
@@ -266,7 +270,6 @@ void VisibilityStrategy::beforePass(const wgpu::CommandEncoder& commands, const 
     p.computeTakesAll = computeTakesAll(frame.culling) ? 1 : 0;
     p.frustumTest = views == 1 ? 1 : 0;
     p.hardwareCapacity = mHardwareCapacity;
-    p.binCount = mTables.binCount;
     p.samples = mSetup->sampleCount;
     p.workgroupBlocks = mWorkgroupBlocks;
     p.workgroupRecords = mWorkgroupRecords;
@@ -286,7 +289,11 @@ void VisibilityStrategy::beforePass(const wgpu::CommandEncoder& commands, const 
         p.viewportX = std::uint32_t(first) * viewWidth;
         p.viewportWidth =
             std::uint32_t(std::min(views - first, VisibilityTarget::kSlotViews)) * viewWidth;
-        std::memcpy(params.data() + (views + group) * kParamsStride, &p, sizeof(p));
+        for (std::uint32_t round = 0; round < rounds; ++round) {
+            p.firstBin = round * VisibilityTarget::kRoundBins;
+            std::memcpy(params.data() + (views + group * rounds + round) * kParamsStride, &p,
+                        sizeof(p));
+        }
     }
     mSetup->queue.WriteBuffer(mTarget->params, 0, params.data(), params.size());
     writeCullUniform(frame, views);
@@ -307,7 +314,7 @@ void VisibilityStrategy::beforePass(const wgpu::CommandEncoder& commands, const 
             }
             encodeView(commands, frame, view, viewWidth, culledOnce);
         }
-        encodeShading(commands, frame, views, first, views + group,
+        encodeShading(commands, frame, views, first, views + group * rounds,
                       std::uint32_t(last - first) * viewWidth);
     }
     mLastViewCount = views;
@@ -460,38 +467,41 @@ void VisibilityStrategy::encodeShading(const wgpu::CommandEncoder& commands,
                                        const FrameState& frame,
                                        std::size_t views,
                                        std::size_t firstView,
-                                       std::size_t binSlot,
+                                       std::size_t firstBinSlot,
                                        std::uint32_t groupWidth) const {
     commands.ClearBuffer(mWork->bins, 0, std::uint64_t(mTables.binCount) * kBinStride);
     VisibilityPhasePasses passes(commands, frame.timer, "visibility: binning and shading");
-    const wgpu::ComputePassEncoder& binning = passes.step("visibility binning");
-    const std::uint32_t binOffset = std::uint32_t(binSlot * kParamsStride);
-    binning.SetBindGroup(0, mBinGroup, 1, &binOffset);
-    const std::uint32_t columns = groupsFor(groupWidth, 8);
-    const std::uint32_t rows = groupsFor(mTarget->height, 8);
-    binning.SetPipeline(mPipelines->binCount);
-    binning.DispatchWorkgroups(columns, rows);
-    binning.SetPipeline(mPipelines->binOffsets);
-    binning.DispatchWorkgroups(1);
-    binning.SetPipeline(mPipelines->binScatter);
-    binning.DispatchWorkgroups(columns, rows);
-    const wgpu::ComputePassEncoder& pass = passes.step("visibility shading");
-    pass.SetBindGroup(0, mSetup->frame->bindGroup());
     const MaterialResources& materials = mScene->materials();
     const std::uint32_t slotsOffset = std::uint32_t(firstView * kParamsStride);
-    for (std::uint32_t bin : mTables.bins) {
-        const scene::MaterialId material(bin / 2);
-        const bool textured = materials.textured(material);
-        const wgpu::ComputePipeline& shading = mPipelines->shading(
-            *mSetup, views > 1, textured, (bin & 1) != 0, materials.shadesExtensions(material));
-        if (!shading) {
-            continue;  // An embedded shader that does not compile: a bug the tests show.
+    const std::uint32_t columns = groupsFor(groupWidth, 8);
+    const std::uint32_t rows = groupsFor(mTarget->height, 8);
+    // Round after round of kRoundBins (one, unless the scene has more): its tiles listed, then
+    // its bins shaded, a dispatch each (mTables.bins is in order).
+    for (auto bin = mTables.bins.begin(); bin != mTables.bins.end();) {
+        const std::uint32_t round = *bin / VisibilityTarget::kRoundBins;
+        const std::uint32_t roundEnd = (round + 1) * VisibilityTarget::kRoundBins;
+        const wgpu::ComputePassEncoder& binning = passes.step("visibility binning");
+        const std::uint32_t binOffset = std::uint32_t((firstBinSlot + round) * kParamsStride);
+        binning.SetBindGroup(0, mBinGroup, 1, &binOffset);
+        binning.SetPipeline(mPipelines->binTiles);
+        binning.DispatchWorkgroups(columns, rows);
+        const wgpu::ComputePassEncoder& pass = passes.step("visibility shading");
+        pass.SetBindGroup(0, mSetup->frame->bindGroup());
+        for (; bin != mTables.bins.end() && *bin < roundEnd; ++bin) {
+            const scene::MaterialId material(*bin / 2);
+            const bool textured = materials.textured(material);
+            const wgpu::ComputePipeline& shading =
+                mPipelines->shading(*mSetup, views > 1, textured, (*bin & 1) != 0,
+                                    materials.shadesExtensions(material));
+            if (!shading) {
+                continue;  // An embedded shader that does not compile: a bug the tests show.
+            }
+            pass.SetPipeline(shading);
+            const std::uint32_t offsets[] = {slotsOffset, std::uint32_t(*bin * kBinStride)};
+            pass.SetBindGroup(1, mShadeGroup, 2, offsets);
+            pass.SetBindGroup(2, materials.drawBindGroup(material));
+            pass.DispatchWorkgroups(mTarget->shadeGroups);
         }
-        pass.SetPipeline(shading);
-        const std::uint32_t offsets[] = {slotsOffset, std::uint32_t(bin * kBinStride)};
-        pass.SetBindGroup(1, mShadeGroup, 2, offsets);
-        pass.SetBindGroup(2, materials.drawBindGroup(material));
-        pass.DispatchWorkgroups(mTarget->shadeGroups);
     }
 }
 

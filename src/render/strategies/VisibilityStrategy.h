@@ -62,10 +62,13 @@ class VisibilityStrategy final : public Strategy {
     // size each way at 4 samples) maxTextureDimension2D.
     Result<void> checkTarget(std::uint32_t width, std::uint32_t height) const override;
     // The last group's shading bins (every view of a frame of up to VisibilityTarget::kSlotViews;
-    // CopySrc, tables().binCount records of kBinRecordBytes, each
-    // starting with its count of entries shaded: one per covered pixel and distinct triangle).
+    // CopySrc, tables().binCount records of kBinRecordBytes, each starting with its count of
+    // 8x8 tiles listed: one per tile where a sample's triangle is in the bin).
     static constexpr std::uint64_t kBinRecordBytes = 256;
     const wgpu::Buffer& bins() const { return mWork->bins; }
+    // The last frame's shaded colour: RGBA16Float, a layer per sample, each distinct triangle of
+    // a pixel in the layer of the first sample it covers (CopySrc, for tests).
+    const wgpu::Texture& shadedColour() const { return mTarget->shaded; }
     void encode(RenderEncoder& encoder, const FrameState& frame) const override;
     // At four samples, when nothing is drawn after the composite: it averages each pixel's
     // samples itself (visibility_composite.wgsl's pixelMain).
@@ -145,14 +148,15 @@ class VisibilityStrategy final : public Strategy {
                     std::uint32_t viewWidth,
                     bool culled);
     // Bins and shades the views from `firstView` (at most VisibilityTarget::kSlotViews of them,
-    // `groupWidth` pixels together) at once: their pixels binned with the parameters of slot
-    // `binSlot`, one shading dispatch per bin; `views`: the frame's (VisibilityPipelines::shading
-    // reads one view's parameters from their bindings).
+    // `groupWidth` pixels together) at once: their tiles binned round by round with the
+    // parameters of the slots from `firstBinSlot` (one per round of kRoundBins), one shading
+    // dispatch per bin; `views`: the frame's (VisibilityPipelines::shading reads one view's
+    // parameters from their bindings).
     void encodeShading(const wgpu::CommandEncoder& commands,
                        const FrameState& frame,
                        std::size_t views,
                        std::size_t firstView,
-                       std::size_t binSlot,
+                       std::size_t firstBinSlot,
                        std::uint32_t groupWidth) const;
     // The raster dispatches of the units listed so far in this phase: grids of a fixed size
     // that stride over the lists (visibility_raster.wgsl says why not indirect dispatches).

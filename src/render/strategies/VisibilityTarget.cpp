@@ -11,41 +11,57 @@ bool VisibilityTarget::ensure(const RenderSetup& setup,
                               std::uint32_t targetWidth,
                               std::uint32_t targetHeight,
                               std::size_t views,
+                              std::uint32_t bins,
                               std::uint32_t maxGroups) {
     const wgpu::Device& device = setup.device;
     bool remade = false;
     if (views > viewCapacity) {
         viewCapacity = views;
-        // The shading's binding of kSlotViews slots from any group's first view fits.
-        params = gpu::createBuffer(device, wgpu::BufferUsage::Uniform | wgpu::BufferUsage::CopyDst,
-                                   (views + groupsFor(views)) * kParamsStride + kSlotBindingBytes,
-                                   "visibility view parameters");
         triangleCounts =
             gpu::createBuffer(device, wgpu::BufferUsage::CopyDst | wgpu::BufferUsage::CopySrc,
                               views * 8, "visibility triangle counts");
         remade = true;
     }
-    if (targetWidth == width && targetHeight == height && visibility) {
+    const std::size_t slots = slotsFor(views, bins);
+    if (slots > slotCapacity) {
+        slotCapacity = slots;
+        // The shading's binding of kSlotViews slots from any group's first view fits.
+        params = gpu::createBuffer(device, wgpu::BufferUsage::Uniform | wgpu::BufferUsage::CopyDst,
+                                   slots * kParamsStride + kSlotBindingBytes,
+                                   "visibility view parameters");
+        remade = true;
+    }
+    const std::uint32_t roundBins = std::clamp<std::uint32_t>(bins, 1, kRoundBins);
+    const bool resized = targetWidth != width || targetHeight != height || !visibility;
+    const std::uint64_t targetTiles =
+        std::uint64_t((targetWidth + 7) / 8) * ((targetHeight + 7) / 8);
+    if (resized || roundBins > tileBins) {
+        tileBins = std::max(roundBins, resized ? 0u : tileBins);
+        tiles = gpu::createBuffer(device, wgpu::BufferUsage::Storage,
+                                  std::max<std::uint64_t>(targetTiles * tileBins, 1) * 4,
+                                  "visibility binned tiles");
+        remade = true;
+    }
+    if (!resized) {
         return remade;
     }
     width = targetWidth;
     height = targetHeight;
-    // An entry per sample: 8 bytes in the visibility buffer, 4 in the binned list, a texel of
-    // the shaded colour (a layer per sample, visibility_samples.wgsl).
+    // An entry per sample: 8 bytes in the visibility buffer, a texel of the shaded colour (a
+    // layer per sample, visibility_samples.wgsl).
     const std::uint32_t samples = setup.sampleCount;
     const std::uint64_t entries = std::uint64_t(width) * height * samples;
     shadeGroups = std::clamp<std::uint32_t>(
-        std::uint32_t(std::min<std::uint64_t>((entries + 63) / 64, maxGroups)), 1, maxGroups);
+        std::uint32_t(std::min<std::uint64_t>(targetTiles, maxGroups)), 1, maxGroups);
     visibility = gpu::createBuffer(
         device,
         wgpu::BufferUsage::Storage | wgpu::BufferUsage::CopyDst | wgpu::BufferUsage::CopySrc,
         entries * 8, "visibility buffer");
-    pixels = gpu::createBuffer(device, wgpu::BufferUsage::Storage, entries * 4,
-                               "visibility binned pixels");
     wgpu::TextureDescriptor texture{};
     texture.size = {width, height, samples};  // A layer per sample.
     texture.format = wgpu::TextureFormat::RGBA16Float;
-    texture.usage = wgpu::TextureUsage::StorageBinding | wgpu::TextureUsage::TextureBinding;
+    texture.usage = wgpu::TextureUsage::StorageBinding | wgpu::TextureUsage::TextureBinding |
+                    wgpu::TextureUsage::CopySrc;  // For tests (VisibilityStrategy::shadedColour).
     texture.label = "visibility shaded colour";
     shaded = device.CreateTexture(&texture);
     wgpu::TextureViewDescriptor layers{};

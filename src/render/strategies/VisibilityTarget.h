@@ -30,13 +30,26 @@ struct VisibilityTarget {
     static std::size_t groupsFor(std::size_t views) {
         return (views + kSlotViews - 1) / kSlotViews;
     }
+    // Bins that one binning dispatch lists (visibility_bin_record.wgsl's kRoundBins): the tile
+    // list has room for every tile of a group of views in each; scenes of more bins bin and
+    // shade in rounds, each group of views with a parameter slot per round.
+    static constexpr std::uint32_t kRoundBins = 64;
+    static std::uint32_t roundsFor(std::uint32_t bins) {
+        return std::max<std::uint32_t>((bins + kRoundBins - 1) / kRoundBins, 1);
+    }
+    // The parameter slots of a frame: one per view, then one per round of each group of views.
+    static std::size_t slotsFor(std::size_t views, std::uint32_t bins) {
+        return views + groupsFor(views) * roundsFor(bins);
+    }
 
-    // Makes the resources for `width` x `height` (`views` side by side) where they are not
-    // already; returns whether anything was made again (bind groups over it must be too).
+    // Makes the resources for `width` x `height` (`views` side by side, a scene of `bins`
+    // shading bins) where they are not already; returns whether anything was made again (bind
+    // groups over it must be too).
     bool ensure(const RenderSetup& setup,
                 std::uint32_t width,
                 std::uint32_t height,
                 std::size_t views,
+                std::uint32_t bins,
                 std::uint32_t maxGroups);
     // The hardware raster's depth attachment at one view's size: its pass draws one view (its
     // viewport at the origin; the fragments add the view's offset), and clearing a whole strip
@@ -54,12 +67,15 @@ struct VisibilityTarget {
     std::uint32_t width = 0;
     std::uint32_t height = 0;
     std::size_t viewCapacity = 0;
-    // Workgroups of each bin's shading grid: at most the samples of the target.
+    std::size_t slotCapacity = 0;
+    std::uint32_t tileBins = 0;  // Bins the tile list has room for.
+    // Workgroups of each bin's shading grid: at most the tiles of the target.
     std::uint32_t shadeGroups = 1;
     wgpu::Buffer params;          // The parameter slots, and a binding's worth past them.
     wgpu::Buffer triangleCounts;  // Per view: compute, hardware.
     wgpu::Buffer visibility;
-    wgpu::Buffer pixels;
+    // Per bin of a binning round, room for every 8x8 tile of the target (visibility_bins.wgsl).
+    wgpu::Buffer tiles;
     wgpu::Texture shaded;
     wgpu::TextureView shadedLayers;  // Every layer (one per sample), as an array.
     wgpu::Texture hardwareDepth;     // One view's size (ensureHardwareDepth).
