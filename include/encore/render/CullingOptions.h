@@ -17,8 +17,9 @@ struct CullingOptions {
     // The visibility strategy: triangles whose screen bounds span at most computeRasterPixels
     // each way are rasterised in compute by one thread (at most 64), those up to
     // workgroupRasterPixels by a workgroup in 8x8 tiles (at most 8192), larger ones by the
-    // hardware, as do triangles crossing the near or far plane.
-    float computeRasterPixels = 8.0f;
+    // hardware, as do triangles crossing the near or far plane. 6 measured fastest on the H100
+    // (docs/visibility-performance.md).
+    float computeRasterPixels = 6.0f;
     float workgroupRasterPixels = 8192.0f;
     // The visibility strategy: each cluster (meshlet) of a drawn item is culled on its own
     // against the frustum, by its cone of normals (all its triangles facing away) and, in the

@@ -41,7 +41,7 @@ class VisibilityStrategy final : public Strategy {
     // pixel, stay within 32 bits up to 112 pixels and are evaluated in 64 bits beyond; at most
     // 8192 pixels, within which the 64-bit products' factors stay below 2^24.
     static constexpr float kMaxComputePixels = 64.0f;
-    static constexpr float kDefaultComputePixels = 8.0f;
+    static constexpr float kDefaultComputePixels = CullingOptions{}.computeRasterPixels;
     static constexpr float kMaxWorkgroupPixels = 8192.0f;
     // At the largest workgroupRasterPixels (the default) the compute raster takes every
     // triangle: those crossing the near or far plane, or spanning more than it, or that find the
