@@ -6,6 +6,7 @@
 #include "encore/render/Renderer.h"
 
 #include <array>
+#include <optional>
 #include <span>
 
 #include "gpu/Readback.h"
@@ -66,6 +67,15 @@ FrameResult Renderer::renderPasses(std::span<const Camera> cameras,
     const bool composedFrame = singlePass &&
                                mOptions.toneMapping.background != BackgroundKind::Environment &&
                                mStrategy->composesFrame(state);
+    std::optional<PassAttachments> composedAttachments;
+    if (composedFrame) {
+        PassPlan plan;
+        plan.viewCount = cameras.size();
+        plan.hdr = mTarget.hdr();
+        plan.backgroundColor = mOptions.toneMapping.backgroundColor;
+        composedAttachments = passAttachments(plan);
+        state.composedBackground = composedAttachments->clearColor;
+    }
     auto encodeFrame = [&](const wgpu::CommandEncoder& commandEncoder) {
         if (mGpuAnimation && mGpuAnimationPending) {
             mGpuAnimation->encode(commandEncoder);  // Before anything that reads its results.
@@ -152,17 +162,12 @@ FrameResult Renderer::renderPasses(std::span<const Camera> cameras,
             }
             pass.End();
         };
-        if (composedFrame) {
-            PassPlan plan;
-            plan.viewCount = cameras.size();
-            plan.hdr = mTarget.hdr();
-            plan.backgroundColor = mOptions.toneMapping.backgroundColor;
-            const PassAttachments attachments = passAttachments(plan);
+        if (composedAttachments) {
             FrameComposition composition;
             composition.texture = mTarget.sceneTexture();
-            composition.background = attachments.clearColor;
+            composition.background = composedAttachments->clearColor;
             composition.timestampWrites =
-                timestampWrites(GpuStage::Scene, attachments.timestampLabel);
+                timestampWrites(GpuStage::Scene, composedAttachments->timestampLabel);
             mStrategy->composeFrame(commandEncoder, state, composition);
         } else if (twoPhases) {
             encodePass(0, DrawPhase::First, false);

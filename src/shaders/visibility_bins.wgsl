@@ -8,6 +8,8 @@
 // atomic per bin it holds and no count, prefix sum or second pass (on the H100 those three
 // dispatches over every pixel took 0.043 ms of a 1280x720 frame). Scenes of more bins bin and
 // shade round after round.
+// COMPOSED (frames composed in compute at one sample): uncovered pixels take the background in
+// the composed frame, whose covered ones the shading writes (visibility_composed.wgsl).
 #include "visibility_bin_record.wgsl"
 #include "visibility_params.wgsl"
 #include "visibility_pixel.wgsl"
@@ -26,6 +28,11 @@ struct Bin {
 @group(0) @binding(4) var<storage, read_write> bins: array<Bin>;
 // Per bin of the round, tiles as (tile column | tile row << 16) of the target.
 @group(0) @binding(5) var<storage, read_write> tiles: array<u32>;
+#if COMPOSED
+#include "visibility_composed.wgsl"
+@group(0) @binding(6) var<storage, read_write> composed: array<u32>;
+@group(0) @binding(7) var<uniform> composition: Composition;
+#endif
 
 const kNoBin = 0xffffffffu;
 
@@ -81,4 +88,11 @@ fn binMain(@builtin(global_invocation_id) id: vec3u,
             tiles[first + slot] = tile;
         }
     }
+#if COMPOSED
+    // One sample: a pixel without a bin is uncovered. Written by the first round only.
+    if (params.firstBin == 0u && all(id.xy < vec2u(params.viewportWidth, params.viewportHeight)) &&
+        sampleBins[0] == kNoBin) {
+        storeComposed(id.xy + vec2u(params.viewportX, params.viewportY), vec4f(0.0));
+    }
+#endif
 }

@@ -14,10 +14,12 @@
 // samples, sample_mask, cost three times a one-sample target's pass).
 // With a plain background colour, composeMain does pixelMain's work in compute instead, for
 // every pixel (uncovered ones take the background), into a buffer of the target's texels that
-// is then copied into the target (Strategy::composeFrame): no render pass at all, whose every
-// fragment costs the H100's few graphics units about 0.3 ns. HALF_OUTPUT: RGBA16Float texels
-// (HDR targets); otherwise RGBA8 bytes, sRGB-encoded as the sRGB target's hardware encodes.
+// is then copied into the target (Strategy::composeFrame, visibility_composed.wgsl): no render
+// pass at all, whose every fragment costs the H100's few graphics units about 0.3 ns. At one
+// sample the shading and the binning write that buffer themselves (COMPOSED in
+// visibility_shade.wgsl and visibility_bins.wgsl), and composeMain does not run.
 #include "visibility_samples.wgsl"
+#include "visibility_composed.wgsl"
 
 #if MULTISAMPLED
 const kSamples = 4u;
@@ -107,19 +109,8 @@ fn pixelMain(@builtin(position) position: vec4f) -> @location(0) vec4f {
     return pixel.color;
 }
 
-struct Composition {
-    background: vec4f,  // Linear: the scene pass's clear colour.
-    rowTexels: u32,     // The composed buffer's row pitch (rows of 256-byte multiples).
-}
-
 @group(0) @binding(2) var<storage, read_write> composed: array<u32>;
 @group(0) @binding(3) var<uniform> composition: Composition;
-
-// The sRGB transfer function, as an sRGB target encodes a linear colour it is given.
-fn srgbEncoded(linear: vec3f) -> vec3f {
-    let c = clamp(linear, vec3f(0.0), vec3f(1.0));
-    return select(1.055 * pow(c, vec3f(1.0 / 2.4)) - 0.055, 12.92 * c, c <= vec3f(0.0031308));
-}
 
 @compute @workgroup_size(8, 8)
 fn composeMain(@builtin(global_invocation_id) id: vec3u) {
@@ -127,13 +118,5 @@ fn composeMain(@builtin(global_invocation_id) id: vec3u) {
         return;
     }
     // pixelMain's colour blended premultiplied over the background, as its pipeline blends.
-    let pixel = pixelColor(id.xy);
-    let color = pixel.color + (1.0 - pixel.color.a) * composition.background;
-    let texel = id.y * composition.rowTexels + id.x;
-#if HALF_OUTPUT
-    composed[texel * 2u] = pack2x16float(color.rg);
-    composed[texel * 2u + 1u] = pack2x16float(color.ba);
-#else
-    composed[texel] = pack4x8unorm(vec4f(srgbEncoded(color.rgb), color.a));
-#endif
+    storeComposed(id.xy, pixelColor(id.xy).color);
 }

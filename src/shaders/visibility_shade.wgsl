@@ -9,8 +9,9 @@
 // shades too) and their screen-space derivatives (texture LOD, the tangent frame),
 // interpolates what mesh.wgsl's vertex shader outputs, and shades with the same code as
 // mesh.wgsl's fragment shader (surface_shading.wgsl), sampling with explicit gradients
-// (SAMPLE_GRADIENT).
-// Variants: MATERIAL_TEXTURES, HAS_TANGENT.
+// (SAMPLE_GRADIENT). COMPOSED (frames composed in compute at one sample): the colour goes
+// straight into the composed frame (visibility_composed.wgsl), not to the shaded texture.
+// Variants: MATERIAL_TEXTURES, HAS_TANGENT, COMPOSED (HALF_OUTPUT).
 #include "frame.wgsl"
 #include "scene_lighting.wgsl"
 #include "brdf.wgsl"
@@ -18,22 +19,27 @@
 #include "material_samples.wgsl"
 #include "surface_shading.wgsl"
 #include "visibility_geometry.wgsl"
-#include "visibility_bin_record.wgsl"
 #include "visibility_samples.wgsl"
 #include "visibility_pixel.wgsl"
 
+// The start of the bin's record (visibility_bins.wgsl's Bin), read as a uniform.
 struct Bin {
     count: u32,  // Tiles.
     id: u32,
     first: u32,
-    padding: array<u32, kBinPaddingWords>,
 }
 
 @group(1) @binding(4) var<storage, read> units: array<vec2u>;
 @group(1) @binding(5) var<storage, read> visibility: array<vec2u>;
 @group(1) @binding(6) var<storage, read> tiles: array<u32>;
-@group(1) @binding(7) var<storage, read> bin: Bin;
+@group(1) @binding(7) var<uniform> bin: Bin;
+#if COMPOSED
+#include "visibility_composed.wgsl"
+@group(1) @binding(8) var<storage, read_write> composed: array<u32>;
+@group(1) @binding(9) var<uniform> composition: Composition;
+#else
 @group(1) @binding(8) var shaded: texture_storage_2d_array<rgba16float, write>;
+#endif
 
 // Barycentrics of the pixel centre and their change one pixel right and one pixel down.
 struct Barycentrics {
@@ -193,5 +199,9 @@ fn shadeSample(pixel: vec2u, sample: u32, id: u32) {
     let result = shadeSurface(worldPosition, worldNormal, tangent, frontFacing, baseColor,
                               samples, positionDx, positionDy, gradients.dx0, gradients.dy0,
                               vec3f(1.0));  // Transmissive materials are drawn in hardware.
+#if COMPOSED
+    storeComposed(pixel, displayColor(result));  // One sample: the pixel's colour.
+#else
     textureStore(shaded, pixel, sample, displayColor(result));
+#endif
 }

@@ -114,7 +114,10 @@ TEST(DisplayMappingTest, ShadersMapAsTheHdrPassDoes) {
     ENCORE_REQUIRE_VULKAN(context);
     const scene::SceneData scene = litScene(true);
     for (BackgroundKind background : {BackgroundKind::Color, BackgroundKind::Environment}) {
-        for (StrategyKind kind : {StrategyKind::Bundles, StrategyKind::PipelineCache}) {
+        // Visibility: at one sample with a plain background it shades into the composed frame
+        // (8-bit sRGB or, HDR, half floats); over an environment through its composite.
+        for (StrategyKind kind :
+             {StrategyKind::Bundles, StrategyKind::PipelineCache, StrategyKind::Visibility}) {
             const image::ImageRgba8 direct = render(scene, options(false, background), kind);
             const image::ImageRgba8 viaPass = render(scene, options(true, background), kind);
             ASSERT_EQ(direct.pixels.size(), viaPass.pixels.size());

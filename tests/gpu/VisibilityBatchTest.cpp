@@ -91,7 +91,8 @@ TEST(VisibilityBatchTest, KeptPipelinesAreCreatedOnceAndDrawTheSamePictures) {
         auto keeping = Renderer::create(*context, stripOptions(samples, true));
         ASSERT_TRUE(keeping.ok()) << keeping.error().message;
         ASSERT_TRUE(keeping->prepare(first, StrategyKind::Visibility).ok());
-        EXPECT_GE(keeping->setup().pipelinesCreated, VisibilityPipelines::kPipelineCount);
+        EXPECT_EQ(keeping->setup().pipelinesCreated,
+                  VisibilityPipelines::createdPipelines(samples, true));
         renderStrip(*keeping, first);
         const auto* strategy = dynamic_cast<const VisibilityStrategy*>(keeping->strategy());
         ASSERT_NE(strategy, nullptr);
@@ -113,7 +114,7 @@ TEST(VisibilityBatchTest, KeptPipelinesAreCreatedOnceAndDrawTheSamePictures) {
         ASSERT_TRUE(plain.ok()) << plain.error().message;
         ASSERT_TRUE(plain->prepare(second, StrategyKind::Visibility).ok());
         EXPECT_EQ(plain->setup().pipelinesCreated,
-                  VisibilityPipelines::kPipelineCount - VisibilityPipelines::kShadingPipelineCount);
+                  VisibilityPipelines::createdPipelines(samples, false));
         const image::ImageRgba8 fresh = renderStrip(*plain, second);
         EXPECT_EQ(test::differingPixels(kept, fresh), 0u);
         EXPECT_GT(test::coveredFraction(fresh, test::pixelAt(fresh, 0, 0)), 0.05);
@@ -253,8 +254,7 @@ TEST(VisibilityBatchTest, TrianglesListedWholeLandInTheirPlaceInTheStrip) {
 // slots' pipelines draw.
 TEST(VisibilityBatchTest, ShadingPipelinesAreMadeForWhatFramesDraw) {
     ENCORE_REQUIRE_VULKAN(context);
-    constexpr std::uint64_t kOthers =
-        VisibilityPipelines::kPipelineCount - VisibilityPipelines::kShadingPipelineCount;
+    constexpr std::uint64_t kOthers = VisibilityPipelines::createdPipelines(1, false);
     const scene::SceneData scene = test::generatedScene(denseModel(1, 12));
     auto plain = Renderer::create(*context, stripOptions(1, false));
     auto kept = Renderer::create(*context, stripOptions(1, true));
@@ -267,7 +267,8 @@ TEST(VisibilityBatchTest, ShadingPipelinesAreMadeForWhatFramesDraw) {
     plain->renderFrame(camera);
     const std::uint64_t oneView = plain->setup().pipelinesCreated;
     EXPECT_GT(oneView, kOthers);
-    EXPECT_LT(oneView, VisibilityPipelines::kPipelineCount) << "only the scene's bin kinds";
+    EXPECT_LT(oneView, VisibilityPipelines::createdPipelines(1, true))
+        << "only the scene's bin kinds";
     auto drawn = plain->readImage();
     kept->renderFrame(camera);
     auto keptDrawn = kept->readImage();
@@ -293,11 +294,11 @@ TEST(VisibilityBatchTest, KeptObjectsCreatedAheadSpareTheFirstPrepare) {
     ASSERT_TRUE(ahead->createKeptObjects(StrategyKind::Bundles).ok());
     EXPECT_EQ(ahead->setup().pipelinesCreated, 0u) << "other strategies keep nothing";
     ASSERT_TRUE(ahead->createKeptObjects(StrategyKind::Visibility).ok());
-    EXPECT_EQ(ahead->setup().pipelinesCreated, VisibilityPipelines::kPipelineCount);
+    EXPECT_EQ(ahead->setup().pipelinesCreated, VisibilityPipelines::createdPipelines(1, true));
     ASSERT_TRUE(ahead->createKeptObjects(StrategyKind::Visibility).ok());  // Once.
-    EXPECT_EQ(ahead->setup().pipelinesCreated, VisibilityPipelines::kPipelineCount);
+    EXPECT_EQ(ahead->setup().pipelinesCreated, VisibilityPipelines::createdPipelines(1, true));
     ASSERT_TRUE(ahead->prepare(scene, StrategyKind::Visibility).ok());
-    EXPECT_LT(ahead->setup().pipelinesCreated, VisibilityPipelines::kPipelineCount);
+    EXPECT_LT(ahead->setup().pipelinesCreated, VisibilityPipelines::createdPipelines(1, true));
     const image::ImageRgba8 drawn = renderStrip(*ahead, scene);
 
     auto plain = Renderer::create(*context, stripOptions(1, false));
@@ -385,7 +386,7 @@ TEST(VisibilityBatchTest, KeptObjectsAreMadeAgainAfterADeviceLoss) {
     ASSERT_TRUE(context->deviceLost());
     auto recovered = renderer->recoverFromDeviceLoss();
     ASSERT_TRUE(recovered.ok()) << recovered.error().message;
-    EXPECT_GE(renderer->setup().pipelinesCreated, VisibilityPipelines::kPipelineCount);
+    EXPECT_GE(renderer->setup().pipelinesCreated, VisibilityPipelines::createdPipelines(4, true));
     EXPECT_EQ(test::differingPixels(renderStrip(*renderer, scene), before), 0u);
     EXPECT_TRUE(context->checkNoErrors("visibility after a device loss").ok());
 }

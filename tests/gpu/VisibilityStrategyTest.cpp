@@ -457,7 +457,8 @@ TEST(VisibilityMultisampleTest, EdgesOfLargeTrianglesAreAntiAliased) {
 
 // At four samples a pixel's triangle is shaded once, whatever number of its samples it covers:
 // into the layer of the first sample it covers, the pixel's other layers left as they were (zero
-// on the first frame). Its bin lists each 8x8 tile the triangle touches once.
+// on the first frame). Its bin lists each 8x8 tile the triangle touches once, at one sample
+// too (which shades into the composed frame, not the layers: VisibilityComposedTest).
 TEST(VisibilityMultisampleTest, EachTriangleOfAPixelIsShadedOnce) {
     ENCORE_REQUIRE_VULKAN(context);
     const auto scene =
@@ -484,7 +485,7 @@ TEST(VisibilityMultisampleTest, EachTriangleOfAPixelIsShadedOnce) {
             tilesListed += count;
         }
         std::vector<std::vector<float>> layers;
-        for (std::uint32_t layer = 0; layer < samples; ++layer) {
+        for (std::uint32_t layer = 0; samples > 1 && layer < samples; ++layer) {
             auto texels =
                 gpu::readTextureRgba16Float(*context, visibility->shadedColour(), 0, layer);
             ASSERT_TRUE(texels.ok());
@@ -510,10 +511,86 @@ TEST(VisibilityMultisampleTest, EachTriangleOfAPixelIsShadedOnce) {
             }
         }
         EXPECT_GT(touched, 500u);
-        EXPECT_EQ(shadedOnce, touched);
-        EXPECT_EQ(shadedTexels, touched);
+        if (samples > 1) {
+            EXPECT_EQ(shadedOnce, touched);
+            EXPECT_EQ(shadedTexels, touched);
+        }
         EXPECT_EQ(tilesListed, tiles.size());
     }
+}
+
+// At one sample a frame composed in compute (a plain background) is shaded into place, its
+// uncovered pixels written by the binning (no composition pass): its covered pixels are those
+// the render-pass composite draws over an environment (the shaded texture's half floats round
+// a level at most), and the others hold the background exactly. Its shaded texture stays
+// unwritten (zero on the first frame), which the composite's frame fills.
+TEST(VisibilityComposedTest, ShadedIntoPlaceAsTheCompositeDrawsIt) {
+    ENCORE_REQUIRE_VULKAN(context);
+    const auto scene = test::generatedVisibilityScene(scene::SceneLayout::Grid, 200);
+    const Camera camera = Camera::framing(scene.bounds, float(kWidth) / float(kHeight));
+    auto frame = [&](BackgroundKind background, std::vector<std::uint8_t>* visibility,
+                     std::size_t* shadedTexels) {
+        RendererOptions options = test::pixelTestOptions(kWidth, kHeight, 1);
+        options.toneMapping.background = background;
+        auto renderer = Renderer::create(*context, options);
+        EXPECT_TRUE(renderer.ok());
+        EXPECT_TRUE(renderer->prepare(scene, StrategyKind::Visibility).ok());
+        renderer->renderFrame(camera);
+        if (visibility) {
+            const auto* strategy = dynamic_cast<const VisibilityStrategy*>(renderer->strategy());
+            auto bytes = gpu::readBuffer(*context, strategy->visibilityBuffer(), 0,
+                                         std::uint64_t(kWidth) * kHeight * 8);
+            EXPECT_TRUE(bytes.ok());
+            *visibility = bytes.ok() ? std::move(*bytes) : std::vector<std::uint8_t>{};
+        }
+        const auto* strategy = dynamic_cast<const VisibilityStrategy*>(renderer->strategy());
+        auto texels = gpu::readTextureRgba16Float(*context, strategy->shadedColour(), 0, 0);
+        EXPECT_TRUE(texels.ok());
+        *shadedTexels = 0;
+        for (std::size_t i = 3; texels.ok() && i < texels->size(); i += 4) {
+            *shadedTexels += (*texels)[i] != 0.0f;
+        }
+        auto image = renderer->readImage();
+        EXPECT_TRUE(image.ok());
+        return image.ok() ? std::move(*image) : image::ImageRgba8{};
+    };
+    std::vector<std::uint8_t> visibility;
+    std::size_t composedTexels = 0;
+    std::size_t drawnTexels = 0;
+    const image::ImageRgba8 composed = frame(BackgroundKind::Color, &visibility, &composedTexels);
+    const image::ImageRgba8 drawn = frame(BackgroundKind::Environment, nullptr, &drawnTexels);
+    EXPECT_EQ(composedTexels, 0u);
+    ASSERT_EQ(visibility.size(), std::size_t(kWidth) * kHeight * 8);
+    ASSERT_EQ(composed.pixels.size(), drawn.pixels.size());
+    // The background: a pixel of the composed frame that nothing covers.
+    std::optional<std::array<std::uint8_t, 4>> background;
+    std::size_t covered = 0;
+    std::size_t apart = 0;
+    std::size_t otherBackground = 0;
+    for (std::uint32_t y = 0; y < kHeight; ++y) {
+        for (std::uint32_t x = 0; x < kWidth; ++x) {
+            const std::size_t pixel = std::size_t(y) * kWidth + x;
+            std::uint32_t depthWord = 0;
+            std::memcpy(&depthWord, visibility.data() + pixel * 8 + 4, 4);
+            const auto color = test::pixelAt(composed, x, y);
+            if (depthWord == 0) {
+                background = background.value_or(color);
+                otherBackground += color != *background;
+                continue;
+            }
+            ++covered;
+            const auto expected = test::pixelAt(drawn, x, y);
+            for (int c = 0; c < 4; ++c) {
+                apart += std::abs(int(color[c]) - int(expected[c])) > 1;
+            }
+        }
+    }
+    EXPECT_GT(covered, std::size_t(kWidth) * kHeight / 20);
+    EXPECT_EQ(drawnTexels, covered);
+    ASSERT_TRUE(background.has_value());
+    EXPECT_EQ(otherBackground, 0u);
+    EXPECT_EQ(apart, 0u);
+    EXPECT_TRUE(context->checkNoErrors("visibility shaded into place").ok());
 }
 
 // With nothing drawn after it, the composite runs once per pixel and writes the mean colour of

@@ -57,6 +57,9 @@ struct FrameState {
     // This scene pass draws straight into the target's resolved texture at one sample, without
     // depth (Strategy::composesResolved).
     bool resolvedPass = false;
+    // Set when the renderer composes this frame through Strategy::composeFrame: the background
+    // it will pass there (FrameComposition::background), known to beforePass already.
+    std::optional<wgpu::Color> composedBackground;
 };
 
 // Where a strategy that composes the frame in compute (Strategy::composesFrame) writes it.

@@ -18,7 +18,8 @@ namespace encore::render {
 namespace {
 
 constexpr auto kCompute = wgpu::ShaderStage::Compute;
-constexpr std::uint64_t kBinRecordBytes = 256;  // visibility_bin_record.wgsl's record.
+// The start of a bin's record (visibility_bin_record.wgsl), as visibility_shade.wgsl reads it.
+constexpr std::uint64_t kBinUniformBytes = 16;
 
 // A compute pipeline of `entryPoint` over `groups`, labelled with the entry point.
 wgpu::ComputePipelineDescriptor computeDescriptor(
@@ -53,14 +54,27 @@ std::set<std::string, std::less<>> compositeFlags(const RenderSetup& setup) {
     return flags;
 }
 
+// The shaders that write the frame composed in compute (visibility_composed.wgsl).
+std::set<std::string, std::less<>> composedFlags(const RenderSetup& setup) {
+    std::set<std::string, std::less<>> flags = {"COMPOSED"};
+    if (setup.colorFormat == wgpu::TextureFormat::RGBA16Float) {
+        flags.insert("HALF_OUTPUT");
+    }
+    return flags;
+}
+
 // The shading shader of a bin kind (VisibilityPipelines::shading): one pipeline serves every
 // material of its kind.
 Result<wgpu::ShaderModule> shadingModule(const RenderSetup& setup,
                                          bool slots,
                                          bool textured,
                                          bool tangent,
-                                         bool extensions) {
+                                         bool extensions,
+                                         bool composed) {
     std::set<std::string, std::less<>> flags = {"SAMPLE_GRADIENT"};
+    if (composed) {
+        flags.merge(composedFlags(setup));
+    }
     if (slots) {
         flags.insert("VIEW_SLOTS");
     }
@@ -189,24 +203,42 @@ void createLayouts(const wgpu::Device& device, VisibilityPipelines& p) {
          LayoutEntry::readOnlyStorage(3, vertex), LayoutEntry::readOnlyStorage(4, vertex),
          LayoutEntry::readOnlyStorage(5, vertex), LayoutEntry::storage(6, fragment)},
         "visibility hardware");
-    p.binLayout = gpu::makeBindGroupLayout(
-        device,
-        {params, LayoutEntry::readOnlyStorage(1, kCompute),
-         LayoutEntry::readOnlyStorage(2, kCompute), LayoutEntry::readOnlyStorage(3, kCompute),
-         LayoutEntry::storage(4, kCompute), LayoutEntry::storage(5, kCompute)},
-        "visibility bins");
-    // The shading pass reads the slots of a group of views (VisibilityTarget).
-    p.shadeLayout = gpu::makeBindGroupLayout(
-        device,
-        {LayoutEntry::uniform(0, kCompute, VisibilityTarget::kSlotBindingBytes).withDynamicOffset(),
-         LayoutEntry::readOnlyStorage(1, kCompute), LayoutEntry::readOnlyStorage(2, kCompute),
-         LayoutEntry::readOnlyStorage(3, kCompute), LayoutEntry::readOnlyStorage(4, kCompute),
-         LayoutEntry::readOnlyStorage(5, kCompute), LayoutEntry::readOnlyStorage(6, kCompute),
-         LayoutEntry::readOnlyStorage(7, kCompute, kBinRecordBytes).withDynamicOffset(),
-         LayoutEntry::storageTexture(8, kCompute, wgpu::TextureFormat::RGBA16Float,
-                                     wgpu::StorageTextureAccess::WriteOnly,
-                                     wgpu::TextureViewDimension::e2DArray)},
-        "visibility shading");
+    // The composed frame and its Composition (visibility_composed.wgsl), at `binding` on.
+    const auto composed = [](std::uint32_t binding) {
+        return std::array{
+            LayoutEntry::storage(binding, kCompute),
+            LayoutEntry::uniform(binding + 1, kCompute, VisibilityTarget::kCompositionBytes)};
+    };
+    std::vector<LayoutEntry> bins = {params,
+                                     LayoutEntry::readOnlyStorage(1, kCompute),
+                                     LayoutEntry::readOnlyStorage(2, kCompute),
+                                     LayoutEntry::readOnlyStorage(3, kCompute),
+                                     LayoutEntry::storage(4, kCompute),
+                                     LayoutEntry::storage(5, kCompute)};
+    p.binLayout = gpu::makeBindGroupLayout(device, bins, "visibility bins");
+    const auto binsComposed = composed(6);
+    bins.insert(bins.end(), binsComposed.begin(), binsComposed.end());
+    p.binComposedLayout = gpu::makeBindGroupLayout(device, bins, "visibility bins, composed");
+    // The shading pass reads the slots of a group of views (VisibilityTarget); the bin's record
+    // as a uniform, which leaves the composed frame one of the eight storage buffers.
+    std::vector<LayoutEntry> shade = {
+        LayoutEntry::uniform(0, kCompute, VisibilityTarget::kSlotBindingBytes).withDynamicOffset(),
+        LayoutEntry::readOnlyStorage(1, kCompute),
+        LayoutEntry::readOnlyStorage(2, kCompute),
+        LayoutEntry::readOnlyStorage(3, kCompute),
+        LayoutEntry::readOnlyStorage(4, kCompute),
+        LayoutEntry::readOnlyStorage(5, kCompute),
+        LayoutEntry::readOnlyStorage(6, kCompute),
+        LayoutEntry::uniform(7, kCompute, kBinUniformBytes).withDynamicOffset()};
+    std::vector<LayoutEntry> shadeComposed = shade;
+    shade.push_back(LayoutEntry::storageTexture(8, kCompute, wgpu::TextureFormat::RGBA16Float,
+                                                wgpu::StorageTextureAccess::WriteOnly,
+                                                wgpu::TextureViewDimension::e2DArray));
+    p.shadeLayout = gpu::makeBindGroupLayout(device, shade, "visibility shading");
+    const auto shadingComposed = composed(8);
+    shadeComposed.insert(shadeComposed.end(), shadingComposed.begin(), shadingComposed.end());
+    p.shadeComposedLayout =
+        gpu::makeBindGroupLayout(device, shadeComposed, "visibility shading, composed");
     p.compositeLayout = gpu::makeBindGroupLayout(
         device,
         {LayoutEntry::readOnlyStorage(0, fragment),
@@ -295,8 +327,10 @@ Result<std::unique_ptr<VisibilityPipelines>> VisibilityPipelines::create(const R
     if (setup.context && setup.keptObjects) {
         async.emplace(setup);
     }
+    std::uint64_t made = 0;
     auto add = [&](wgpu::ComputePipeline& target, const wgpu::ShaderModule& module,
                    const char* entryPoint, std::initializer_list<wgpu::BindGroupLayout> groups) {
+        ++made;
         if (async) {
             async->add(target, module, entryPoint, groups);
         } else {
@@ -304,16 +338,22 @@ Result<std::unique_ptr<VisibilityPipelines>> VisibilityPipelines::create(const R
         }
     };
     // The shading pipelines first: they take longest. Where every prepare makes its own, they
-    // are made on first use (shading()): only the bin kinds and view mode a scene draws.
+    // are made on first use (shading()): only the bin kinds and view mode a scene draws. At one
+    // sample, frames composed in compute shade into the composed frame (composed variants).
     if (async) {
-        for (bool textured : {false, true}) {
-            for (bool tangent : {false, true}) {
-                for (bool extensions : {false, true}) {
-                    ENCORE_TRY_ASSIGN(auto shade,
-                                      shadingModule(setup, true, textured, tangent, extensions));
-                    add(p.shade[1][textured][tangent][extensions], shade, "shadeMain",
-                        {setup.layouts->frame, p.shadeLayout,
-                         shadingMaterialLayout(setup, textured, extensions)});
+        for (bool composed : {false, true}) {
+            if (composed && setup.sampleCount != 1) {
+                continue;
+            }
+            for (bool textured : {false, true}) {
+                for (bool tangent : {false, true}) {
+                    for (bool extensions : {false, true}) {
+                        ENCORE_TRY_ASSIGN(auto shade, shadingModule(setup, true, textured, tangent,
+                                                                    extensions, composed));
+                        add(p.shade[composed][1][textured][tangent][extensions], shade, "shadeMain",
+                            {setup.layouts->frame, composed ? p.shadeComposedLayout : p.shadeLayout,
+                             shadingMaterialLayout(setup, textured, extensions)});
+                    }
                 }
             }
         }
@@ -333,6 +373,11 @@ Result<std::unique_ptr<VisibilityPipelines>> VisibilityPipelines::create(const R
 
     ENCORE_TRY_ASSIGN(auto bins, library.module("visibility_bins.wgsl"));
     add(p.binTiles, bins, "binMain", {p.binLayout});
+    if (setup.sampleCount == 1) {
+        ENCORE_TRY_ASSIGN(auto binsComposed,
+                          library.module("visibility_bins.wgsl", composedFlags(setup)));
+        add(p.binTilesComposed, binsComposed, "binMain", {p.binComposedLayout});
+    }
     {
         std::set<std::string, std::less<>> flags = compositeFlags(setup);
         if (setup.colorFormat == wgpu::TextureFormat::RGBA16Float) {
@@ -349,8 +394,9 @@ Result<std::unique_ptr<VisibilityPipelines>> VisibilityPipelines::create(const R
     if (async) {
         ENCORE_TRY(async->wait());
     }
-    setup.pipelinesCreated +=
-        p.keptShading ? kPipelineCount : kPipelineCount - kShadingPipelineCount;
+    ENCORE_CHECK(made + kRenderPipelineCount == createdPipelines(setup.sampleCount, p.keptShading),
+                 "VisibilityPipelines::createdPipelines disagrees with create()");
+    setup.pipelinesCreated += made + kRenderPipelineCount;
 
     std::array<std::uint32_t, kCounterBytes / 4> initial{};
     initial[5] = 1;  // The hardware draw's instance count.
@@ -363,16 +409,18 @@ const wgpu::ComputePipeline& VisibilityPipelines::shading(const RenderSetup& set
                                                           bool slots,
                                                           bool textured,
                                                           bool tangent,
-                                                          bool extensions) {
+                                                          bool extensions,
+                                                          bool composed) {
     // A renderer that keeps its pipelines made the slots' ones and draws every frame with them.
     slots = slots || keptShading;
-    wgpu::ComputePipeline& pipeline = shade[slots][textured][tangent][extensions];
+    wgpu::ComputePipeline& pipeline = shade[composed][slots][textured][tangent][extensions];
     if (!pipeline) {
-        auto module = shadingModule(setup, slots, textured, tangent, extensions);
+        auto module = shadingModule(setup, slots, textured, tangent, extensions, composed);
         if (module.ok()) {
-            pipeline = computePipeline(setup.device, *module, "shadeMain",
-                                       {setup.layouts->frame, shadeLayout,
-                                        shadingMaterialLayout(setup, textured, extensions)});
+            pipeline =
+                computePipeline(setup.device, *module, "shadeMain",
+                                {setup.layouts->frame, composed ? shadeComposedLayout : shadeLayout,
+                                 shadingMaterialLayout(setup, textured, extensions)});
             ++setup.pipelinesCreated;
         }
     }

@@ -68,10 +68,18 @@ static_assert(sizeof(VisibilityCullUniform) == 448);
 struct VisibilityPipelines {
     // Bytes of visibility_counters.wgsl's Counters.
     static constexpr std::uint64_t kCounterBytes = 64;
-    // The pipelines create() makes (counted in RenderSetup::pipelinesCreated): the shading ones
-    // only where a renderer keeps them (RenderSetup::keptObjects: those of multi-view frames).
-    static constexpr std::uint64_t kShadingPipelineCount = 8;
-    static constexpr std::uint64_t kPipelineCount = 14 + kShadingPipelineCount;
+    // The pipelines create() makes (counted in RenderSetup::pipelinesCreated) for a setup of
+    // `sampleCount` samples: the shading ones only where a renderer keeps them (`kept`,
+    // RenderSetup::keptObjects: those of multi-view frames, and at one sample their composed
+    // variants too). The binning's composed variant at one sample.
+    static constexpr std::uint64_t kRenderPipelineCount = 4;
+    static constexpr std::uint64_t kShadingVariants = 8;  // Textured, tangent, extensions.
+    static constexpr std::uint64_t createdPipelines(std::uint32_t sampleCount, bool kept) {
+        const std::uint64_t composed = sampleCount == 1 ? 1 : 0;
+        // Culling 3, raster 2, binning 1 (+ composed), composition 1.
+        const std::uint64_t compute = 7 + composed;
+        return compute + kRenderPipelineCount + (kept ? kShadingVariants * (1 + composed) : 0);
+    }
 
     // Fails only where an embedded shader does not compile (a bug, not an input error).
     static Result<std::unique_ptr<VisibilityPipelines>> create(const RenderSetup& setup);
@@ -83,18 +91,23 @@ struct VisibilityPipelines {
     // the H100 took the shading of a fly-through frame from 0.181 to 0.155 ms (the copies'
     // registers). A renderer that keeps its pipelines (encore batch) draws frames of one view
     // with the slots' pipelines too, so that it never compiles while drawing.
+    // `composed`: at one sample, for frames composed in compute, writing the composed frame
+    // (visibility_composed.wgsl) rather than the shaded texture.
     const wgpu::ComputePipeline& shading(const RenderSetup& setup,
                                          bool slots,
                                          bool textured,
                                          bool tangent,
-                                         bool extensions);
+                                         bool extensions,
+                                         bool composed);
 
     wgpu::BindGroupLayout frameOnlyLayout;
     wgpu::BindGroupLayout cullLayout;
     wgpu::BindGroupLayout rasterLayout;
     wgpu::BindGroupLayout hardwareLayout;
     wgpu::BindGroupLayout binLayout;
+    wgpu::BindGroupLayout binComposedLayout;  // With the composed frame (one sample).
     wgpu::BindGroupLayout shadeLayout;
+    wgpu::BindGroupLayout shadeComposedLayout;
     wgpu::BindGroupLayout compositeLayout;
     wgpu::BindGroupLayout composeLayout;
     wgpu::ComputePipeline cullFirst;
@@ -104,10 +117,14 @@ struct VisibilityPipelines {
     wgpu::ComputePipeline workgroupRaster;
     wgpu::RenderPipeline hardware;
     wgpu::ComputePipeline binTiles;
-    // [slots][textured][tangent][extensions] (shading()): without MATERIAL_EXTENSIONS for
-    // materials that use none (MaterialResources::shadesExtensions), which bind their base slots
-    // only: fewer registers, on the H100 a quarter off the shading pass.
-    std::array<std::array<std::array<std::array<wgpu::ComputePipeline, 2>, 2>, 2>, 2> shade;
+    // At one sample, for frames composed in compute: uncovered pixels take the background.
+    wgpu::ComputePipeline binTilesComposed;
+    // [composed][slots][textured][tangent][extensions] (shading()): without MATERIAL_EXTENSIONS
+    // for materials that use none (MaterialResources::shadesExtensions), which bind their base
+    // slots only: fewer registers, on the H100 a quarter off the shading pass.
+    template <typename T>
+    using Pair = std::array<T, 2>;
+    Pair<Pair<Pair<Pair<Pair<wgpu::ComputePipeline>>>>> shade;
     bool keptShading = false;  // create() made the slots' shading pipelines.
     // Per sample, writing each sample's depth; compositePixels per pixel without depth, for
     // frames that draw nothing after it (visibility_composite.wgsl); compositeResolved the same

@@ -4,8 +4,10 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <vector>
 
 #include "encore/render/Strategy.h"
+#include "gpu/BindingResource.h"
 #include "render/DepthPyramid.h"
 #include "render/VisibilityTables.h"
 #include "render/strategies/MaterialDrawGroups.h"
@@ -136,6 +138,11 @@ class VisibilityStrategy final : public Strategy {
     }
     void ensureTarget(std::uint32_t width, std::uint32_t height, std::size_t views);
     void createBindGroups();
+    // The binning's and the shading's resources shared by their groups, composed or not.
+    std::vector<gpu::BindingResource> binResources() const;
+    std::vector<gpu::BindingResource> shadeResources() const;
+    // The target's composed buffer for `background`, and the groups over it.
+    void ensureComposedShading(const wgpu::Color& background);
     // A multi-view frame's one cull, before its views (each view's raster starts from the
     // counters it leaves).
     void encodeCull(const wgpu::CommandEncoder& commands, const FrameState& frame) const;
@@ -217,6 +224,11 @@ class VisibilityStrategy final : public Strategy {
     wgpu::BindGroup mShadeGroup;
     wgpu::BindGroup mCompositeGroup;
     wgpu::BindGroup mComposeGroup;  // Made with the target's composed buffer.
+    // This frame shades into the composed frame (one sample, composed in compute), through
+    // these groups (made with the composed buffer).
+    bool mComposedShading = false;
+    wgpu::BindGroup mBinComposedGroup;
+    wgpu::BindGroup mShadeComposedGroup;
 };
 
 }  // namespace encore::render

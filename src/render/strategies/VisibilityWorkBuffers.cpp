@@ -28,10 +28,10 @@ void VisibilityWorkBuffers::ensure(const wgpu::Device& device, const Sizes& size
                  "visibility hardware triangles");
     ensureBuffer(device, workgroupList, sizes.workgroupList, wgpu::BufferUsage::Storage,
                  "visibility workgroup blocks");
-    ensureBuffer(
-        device, bins, sizes.bins,
-        wgpu::BufferUsage::Storage | wgpu::BufferUsage::CopyDst | wgpu::BufferUsage::CopySrc,
-        "visibility bins");
+    ensureBuffer(device, bins, sizes.bins,
+                 wgpu::BufferUsage::Storage | wgpu::BufferUsage::Uniform |
+                     wgpu::BufferUsage::CopyDst | wgpu::BufferUsage::CopySrc,
+                 "visibility bins");
 }
 
 }  // namespace encore::render
