@@ -1,11 +1,12 @@
 #pragma once
 
 // The visibility strategy's target-sized resources (docs/visibility.md): the visibility buffer,
-// the binned pixel list, the shaded colour, the hardware path's depth, the depth pyramid, and the
-// per-view parameters and triangle counts. They depend on the target's size, its views and the
-// sample count only, so a renderer that prepares scene after scene at one size (encore batch)
-// keeps them (KeptStrategyObjects) rather than allocating, clearing and reducing hundreds of
-// megabytes, and building the pyramid's pipelines, for every model.
+// the binned tiles, the shaded colour, the hardware path's depth, the depth pyramid, and the
+// per-view parameters and triangle counts. They depend on the target's size, its views, the
+// sample count and (growing only) the scene's shading bins, so a renderer that prepares scene
+// after scene at one size (encore batch) keeps them (KeptStrategyObjects) rather than
+// allocating, clearing and reducing hundreds of megabytes, and building the pyramid's
+// pipelines, for every model.
 
 #include <webgpu/webgpu_cpp.h>
 
