@@ -89,8 +89,9 @@ fn binMain(@builtin(global_invocation_id) id: vec3u,
         }
     }
 #if COMPOSED
-    // One sample: a pixel without a bin is uncovered. Written by the first round only.
-    if (params.firstBin == 0u && all(id.xy < vec2u(params.viewportWidth, params.viewportHeight)) &&
+    // One sample: a pixel without a bin is uncovered. Every round writes it (the same value):
+    // rounds without a bin the scene uses are not dispatched, the first among them.
+    if (all(id.xy < vec2u(params.viewportWidth, params.viewportHeight)) &&
         sampleBins[0] == kNoBin) {
         storeComposed(id.xy + vec2u(params.viewportX, params.viewportY), vec4f(0.0));
     }
