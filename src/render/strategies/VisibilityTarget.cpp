@@ -33,8 +33,7 @@ bool VisibilityTarget::ensure(const RenderSetup& setup,
     }
     const std::uint32_t roundBins = std::clamp<std::uint32_t>(bins, 1, kRoundBins);
     const bool resized = targetWidth != width || targetHeight != height || !visibility;
-    const std::uint64_t targetTiles =
-        std::uint64_t((targetWidth + 7) / 8) * ((targetHeight + 7) / 8);
+    const std::uint64_t targetTiles = std::uint64_t(tilesFor(targetWidth)) * tilesFor(targetHeight);
     if (resized || roundBins > tileBins) {
         tileBins = std::max(roundBins, resized ? 0u : tileBins);
         tiles = gpu::createBuffer(device, wgpu::BufferUsage::Storage,

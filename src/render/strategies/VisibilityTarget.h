@@ -31,6 +31,9 @@ struct VisibilityTarget {
     static std::size_t groupsFor(std::size_t views) {
         return (views + kSlotViews - 1) / kSlotViews;
     }
+    // The 8x8 tiles across `pixels` (the binning's and the shading's unit, and the compute
+    // composition's workgroups).
+    static std::uint32_t tilesFor(std::uint32_t pixels) { return (pixels + 7) / 8; }
     // Bins that one binning dispatch lists (visibility_bin_record.wgsl's kRoundBins): the tile
     // list has room for every tile of a group of views in each; scenes of more bins bin and
     // shade in rounds, each group of views with a parameter slot per round.

@@ -1,0 +1,216 @@
+// The visibility strategy's binning and shading (docs/visibility.md, steps 4 and 5): each
+// distinct triangle of a pixel shaded once and each touched tile listed once; scenes of more bins
+// than one binning dispatch lists, shaded round by round; frames of one sample shaded straight
+// into the composed frame. VisibilityStrategyTest.cpp: pictures against gpu-culling-bundles, the
+// fill rule and the composites.
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdlib>
+#include <cstring>
+#include <optional>
+#include <set>
+#include <utility>
+#include <vector>
+
+#include "GpuTestSupport.h"
+#include "RenderTestSupport.h"
+#include "VisibilityTestSupport.h"
+#include "encore/render/Renderer.h"
+#include "gpu/Readback.h"
+#include "render/strategies/VisibilityStrategy.h"
+#include "render/strategies/VisibilityTarget.h"
+#include "scene/SceneGenerator.h"
+
+namespace encore::render {
+namespace {
+
+using test::render;
+using test::triangles;
+
+constexpr std::uint32_t kWidth = test::kVisibilityWidth;
+constexpr std::uint32_t kHeight = test::kVisibilityHeight;
+constexpr std::array<std::uint32_t, 2> kSampleCounts = {1, 4};
+const Camera kFront = test::frontCamera(float(kWidth) / float(kHeight));
+
+// A binning dispatch lists the tiles of kRoundBins bins (VisibilityTarget): a scene of 70
+// meshes of a material each (140 bins: three rounds, each listed and shaded in turn) looks as GPU
+// culling draws it, every material's pixels shaded (a round left out would leave its bins'
+// pixels unshaded). So does the same scene drawn with materials 40 to 69 only, whose first
+// round lists nothing and is skipped (at one sample a later round writes the background).
+TEST(VisibilityBinningTest, ScenesOfMoreBinsThanOneRoundShadeEveryBin) {
+    ENCORE_REQUIRE_VULKAN(context);
+    scene::GeneratorOptions options;
+    options.objectCount = 300;
+    options.meshCount = 70;  // Mesh i has material i.
+    options.materialCount = 70;
+    options.textures = true;
+    auto everyMaterial = test::generatedScene(options);
+    ASSERT_GT(2 * everyMaterial.materials.size(), 2 * std::size_t(VisibilityTarget::kRoundBins));
+    auto laterMaterials = everyMaterial;
+    for (scene::Mesh& mesh : laterMaterials.meshes) {
+        for (scene::Primitive& primitive : mesh.primitives) {
+            primitive.material = scene::MaterialId(40 + primitive.material.index() % 30);
+        }
+    }
+    const Camera camera = Camera::framing(everyMaterial.bounds, float(kWidth) / float(kHeight));
+    for (const auto* scene : {&everyMaterial, &laterMaterials}) {
+        for (std::uint32_t samples : kSampleCounts) {
+            SCOPED_TRACE(std::to_string(samples) + " samples, " +
+                         (scene == &everyMaterial ? "every material" : "materials 40 to 69"));
+            const auto expected =
+                render(*context, *scene, StrategyKind::GpuCullingBundles, camera,
+                       DebugChannel::Shaded, VisibilityStrategy::kDefaultComputePixels,
+                       VisibilityStrategy::kMaxWorkgroupPixels, samples);
+            const auto image =
+                render(*context, *scene, StrategyKind::Visibility, camera, DebugChannel::Shaded,
+                       VisibilityStrategy::kDefaultComputePixels,
+                       VisibilityStrategy::kMaxWorkgroupPixels, samples);
+            test::expectVisibilityClose(expected, image);
+            EXPECT_GT(test::coveredFraction(image, test::pixelAt(image, 0, 0)), 0.05);
+        }
+    }
+    EXPECT_TRUE(context->checkNoErrors("visibility bins in rounds").ok());
+}
+
+// At four samples a pixel's triangle is shaded once, whatever number of its samples it covers:
+// into the layer of the first sample it covers, the pixel's other layers left as they were (zero
+// on the first frame). Its bin lists each 8x8 tile the triangle touches once, at one sample
+// too (which shades into the composed frame, not the layers: VisibilityComposedTest).
+TEST(VisibilityMultisampleTest, EachTriangleOfAPixelIsShadedOnce) {
+    ENCORE_REQUIRE_VULKAN(context);
+    const auto scene =
+        triangles({{glm::vec3(-3, -1.1f, -1), glm::vec3(1, -0.6f, -1), glm::vec3(-1, 1.4f, -1)}});
+    for (std::uint32_t samples : kSampleCounts) {
+        SCOPED_TRACE(std::to_string(samples) + " samples");
+        auto renderer =
+            Renderer::create(*context, test::pixelTestOptions(kWidth, kHeight, samples));
+        ASSERT_TRUE(renderer.ok());
+        ASSERT_TRUE(renderer->prepare(scene, StrategyKind::Visibility).ok());
+        renderer->renderFrame(kFront);
+        auto image = renderer->readImage();
+        ASSERT_TRUE(image.ok());
+        const auto* visibility = dynamic_cast<const VisibilityStrategy*>(renderer->strategy());
+        ASSERT_NE(visibility, nullptr);
+        const std::uint32_t binCount = visibility->tables().binCount;
+        auto bins = gpu::readBuffer(*context, visibility->bins(), 0,
+                                    binCount * VisibilityStrategy::kBinRecordBytes);
+        ASSERT_TRUE(bins.ok());
+        std::uint64_t tilesListed = 0;
+        for (std::uint32_t bin = 0; bin < binCount; ++bin) {
+            std::uint32_t count = 0;
+            std::memcpy(&count, bins->data() + bin * VisibilityStrategy::kBinRecordBytes, 4);
+            tilesListed += count;
+        }
+        std::vector<std::vector<float>> layers;
+        for (std::uint32_t layer = 0; samples > 1 && layer < samples; ++layer) {
+            auto texels =
+                gpu::readTextureRgba16Float(*context, visibility->shadedColour(), 0, layer);
+            ASSERT_TRUE(texels.ok());
+            layers.push_back(std::move(*texels));
+        }
+        const auto background = test::pixelAt(*image, 0, 0);
+        std::uint64_t touched = 0;
+        std::set<std::pair<std::uint32_t, std::uint32_t>> tiles;
+        std::uint64_t shadedOnce = 0;
+        std::uint64_t shadedTexels = 0;
+        for (std::uint32_t y = 0; y < image->height; ++y) {
+            for (std::uint32_t x = 0; x < image->width; ++x) {
+                std::uint32_t shaded = 0;
+                for (const std::vector<float>& layer : layers) {
+                    shaded += layer[(std::size_t(y) * image->width + x) * 4 + 3] != 0.0f;
+                }
+                shadedTexels += shaded;
+                if (test::pixelAt(*image, x, y) != background) {
+                    ++touched;
+                    tiles.insert({x / 8, y / 8});
+                    shadedOnce += shaded == 1;
+                }
+            }
+        }
+        EXPECT_GT(touched, 500u);
+        if (samples > 1) {
+            EXPECT_EQ(shadedOnce, touched);
+            EXPECT_EQ(shadedTexels, touched);
+        }
+        EXPECT_EQ(tilesListed, tiles.size());
+    }
+}
+
+// At one sample a frame composed in compute (a plain background) is shaded into place, its
+// uncovered pixels written by the binning (no composition pass): its covered pixels are those
+// the render-pass composite draws over an environment (the shaded texture's half floats round
+// a level at most), and the others hold the background exactly. Its shaded texture stays
+// unwritten (zero on the first frame), which the composite's frame fills.
+TEST(VisibilityComposedTest, ShadedIntoPlaceAsTheCompositeDrawsIt) {
+    ENCORE_REQUIRE_VULKAN(context);
+    const auto scene = test::generatedVisibilityScene(scene::SceneLayout::Grid, 200);
+    const Camera camera = Camera::framing(scene.bounds, float(kWidth) / float(kHeight));
+    auto frame = [&](BackgroundKind background, std::vector<std::uint8_t>* visibility,
+                     std::size_t* shadedTexels) {
+        RendererOptions options = test::pixelTestOptions(kWidth, kHeight, 1);
+        options.toneMapping.background = background;
+        auto renderer = Renderer::create(*context, options);
+        EXPECT_TRUE(renderer.ok());
+        EXPECT_TRUE(renderer->prepare(scene, StrategyKind::Visibility).ok());
+        renderer->renderFrame(camera);
+        if (visibility) {
+            const auto* strategy = dynamic_cast<const VisibilityStrategy*>(renderer->strategy());
+            auto bytes = gpu::readBuffer(*context, strategy->visibilityBuffer(), 0,
+                                         std::uint64_t(kWidth) * kHeight * 8);
+            EXPECT_TRUE(bytes.ok());
+            *visibility = bytes.ok() ? std::move(*bytes) : std::vector<std::uint8_t>{};
+        }
+        const auto* strategy = dynamic_cast<const VisibilityStrategy*>(renderer->strategy());
+        auto texels = gpu::readTextureRgba16Float(*context, strategy->shadedColour(), 0, 0);
+        EXPECT_TRUE(texels.ok());
+        *shadedTexels = 0;
+        for (std::size_t i = 3; texels.ok() && i < texels->size(); i += 4) {
+            *shadedTexels += (*texels)[i] != 0.0f;
+        }
+        auto image = renderer->readImage();
+        EXPECT_TRUE(image.ok());
+        return image.ok() ? std::move(*image) : image::ImageRgba8{};
+    };
+    std::vector<std::uint8_t> visibility;
+    std::size_t composedTexels = 0;
+    std::size_t drawnTexels = 0;
+    const image::ImageRgba8 composed = frame(BackgroundKind::Color, &visibility, &composedTexels);
+    const image::ImageRgba8 drawn = frame(BackgroundKind::Environment, nullptr, &drawnTexels);
+    EXPECT_EQ(composedTexels, 0u);
+    ASSERT_EQ(visibility.size(), std::size_t(kWidth) * kHeight * 8);
+    ASSERT_EQ(composed.pixels.size(), drawn.pixels.size());
+    // The background: a pixel of the composed frame that nothing covers.
+    std::optional<std::array<std::uint8_t, 4>> background;
+    std::size_t covered = 0;
+    std::size_t apart = 0;
+    std::size_t otherBackground = 0;
+    for (std::uint32_t y = 0; y < kHeight; ++y) {
+        for (std::uint32_t x = 0; x < kWidth; ++x) {
+            const std::size_t pixel = std::size_t(y) * kWidth + x;
+            std::uint32_t depthWord = 0;
+            std::memcpy(&depthWord, visibility.data() + pixel * 8 + 4, 4);
+            const auto color = test::pixelAt(composed, x, y);
+            if (depthWord == 0) {
+                background = background.value_or(color);
+                otherBackground += color != *background;
+                continue;
+            }
+            ++covered;
+            const auto expected = test::pixelAt(drawn, x, y);
+            for (int c = 0; c < 4; ++c) {
+                apart += std::abs(int(color[c]) - int(expected[c])) > 1;
+            }
+        }
+    }
+    EXPECT_GT(covered, std::size_t(kWidth) * kHeight / 20);
+    EXPECT_EQ(drawnTexels, covered);
+    ASSERT_TRUE(background.has_value());
+    EXPECT_EQ(otherBackground, 0u);
+    EXPECT_EQ(apart, 0u);
+    EXPECT_TRUE(context->checkNoErrors("visibility shaded into place").ok());
+}
+
+}  // namespace
+}  // namespace encore::render
