@@ -71,7 +71,8 @@ void VisibilityStrategy::encodeShading(const wgpu::CommandEncoder& commands,
         const std::uint32_t round = *bin / VisibilityTarget::kRoundBins;
         const std::uint32_t roundEnd = (round + 1) * VisibilityTarget::kRoundBins;
         const wgpu::ComputePassEncoder& binning = passes.step("visibility binning");
-        const std::uint32_t binOffset = std::uint32_t((firstBinSlot + round) * VisibilityTarget::kParamsStride);
+        const std::uint32_t binOffset =
+            std::uint32_t((firstBinSlot + round) * VisibilityTarget::kParamsStride);
         binning.SetBindGroup(0, mComposedShading ? mBinComposedGroup : mBinGroup, 1, &binOffset);
         binning.SetPipeline(mComposedShading ? mPipelines->binTilesComposed : mPipelines->binTiles);
         binning.DispatchWorkgroups(columns, rows);
