@@ -128,9 +128,16 @@ double asDouble(const Json& value) {
     return value.is_number() ? value.get<double>() : 0.0;
 }
 
+// The integer part of a number, or 0 past 2^62: twice it, or it plus a few, must still fit in
+// an int64_t (a signed overflow here is undefined behaviour, which UBSan stops the fuzzer on).
+std::int64_t integerPart(double value) {
+    constexpr double kLimit = 4611686018427387904.0;  // 2^62
+    return std::isfinite(value) && std::fabs(value) < kLimit ? std::int64_t(value) : 0;
+}
+
 Json boundaryValue(const Json& original, const std::vector<Site>& all, Random& random) {
     const double v = asDouble(original);
-    const std::int64_t i = std::isfinite(v) && std::fabs(v) < 9e18 ? std::int64_t(v) : 0;
+    const std::int64_t i = integerPart(v);
     auto pick = [&](std::size_t n) { return std::size_t(random() % n); };
     switch (pick(24)) {
         case 0:
@@ -184,9 +191,7 @@ Json boundaryValue(const Json& original, const std::vector<Site>& all, Random& r
         default: {
             // Another number of the document, as is or a little off: the count of another
             // accessor, the length of a view, a buffer's size.
-            const double other = asDouble(*all[pick(all.size())].value);
-            const std::int64_t j =
-                std::isfinite(other) && std::fabs(other) < 9e18 ? std::int64_t(other) : 0;
+            const std::int64_t j = integerPart(asDouble(*all[pick(all.size())].value));
             static constexpr std::int64_t deltas[] = {0, 1, -1, 4, -4};
             return j + deltas[pick(std::size(deltas))];
         }
