@@ -102,6 +102,7 @@ nlohmann::json toJson(const BenchReport& report) {
                         ? "spin"
                         : "block"},
         {"timestamps", report.timestamps},
+        {"gpuSteps", report.timestamps && report.options.gpuSteps},
         {"environmentMilliseconds", report.environmentMilliseconds},
         {"target",
          {{"width", report.options.width},
@@ -168,7 +169,10 @@ std::string toMarkdown(const BenchReport& report) {
         << (report.options.gpuWait == gpu::WaitMode::Spin && !report.options.callgrind ? "spins"
                                                                                        : "blocks")
         << " while it waits for the GPU after each frame; GPU time from timestamp queries: "
-        << (report.timestamps ? "yes" : "n/a") << "  \n"
+        << (report.timestamps ? (report.options.gpuSteps ? "yes, each step a pass of its own"
+                                                         : "yes, passes as the frame runs them")
+                              : "n/a")
+        << "  \n"
         << "Image-based lighting maps built in " << report.environmentMilliseconds
         << " ms (default studio environment)  \n"
         << "Generated scenes: " << report.options.meshes << " meshes, " << report.options.materials

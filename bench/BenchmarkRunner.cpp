@@ -312,10 +312,14 @@ Result<BenchReport> runBenchmarks(gpu::Context& context,
         render::Renderer::create(context, {{options.width, options.height, options.samples}}));
     renderer.setCullingOptions(options.culling);
     report.environmentMilliseconds = renderer.lighting().environment().lastBuildMilliseconds();
-    // Room for every pass of the visibility strategy's two phases, each step timed apart.
+    // Room for every pass of the visibility strategy's two phases, even with each step timed
+    // apart (--gpu-steps).
     auto timer = gpu::GpuTimer::create(context, 16);
     report.timestamps = timer.has_value() && !options.callgrind && options.gpuTimer;
     gpu::GpuTimer* timerPointer = report.timestamps ? &*timer : nullptr;
+    if (timerPointer) {
+        timerPointer->setStepDetail(options.gpuSteps);
+    }
 
     auto runScene = [&](const scene::SceneData& scene, const std::string& kind,
                         const std::string& sceneLabel,

@@ -176,6 +176,10 @@ void addBenchCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) 
     command->add_flag("--gpu-timer,!--no-gpu-timer", bench.gpuTimer,
                       "Timestamp queries around every pass (default: on); without them GPU "
                       "time is n/a and the CPU frame is what an application pays");
+    command->add_flag("--gpu-steps", bench.gpuSteps,
+                      "Time each step of a pass of several (the visibility strategy's culling, "
+                      "rasters, pyramid, binning, shading) as a pass of its own, to see where "
+                      "the time goes; the boundaries add to the frame's GPU time");
     command
         ->add_option("--gpu-wait", bench.gpuWait,
                      "How the CPU waits for the GPU after each frame: spin (the core stays "

@@ -167,6 +167,39 @@ TEST(BenchSmokeTest, FlythroughAndCityReportTrianglesPerFrame) {
         << run.command.out;
 }
 
+// Under the GPU timer the visibility strategy's phases are timed as the frame runs them, one
+// pass each; --gpu-steps times each step (culling, rasters, pyramid, binning, shading) apart.
+TEST(BenchSmokeTest, VisibilityPassesAsTheyRunOrStepByStep) {
+    const auto dir = makeTempDir("bench-steps");
+    const std::string args =
+        "--scene city --objects 200 --frames 2 --warmup 1 -s visibility --width 64 --height 64";
+    const auto phases = runBench(dir, args);
+    ASSERT_EQ(phases.command.exitCode, 0) << phases.command.err;
+    if (phases.report["timestamps"] != true) {
+        GTEST_SKIP() << "The adapter has no timestamp queries.";
+    }
+    const auto steps = runBench(dir, args + " --gpu-steps");
+    ASSERT_EQ(steps.command.exitCode, 0) << steps.command.err;
+    EXPECT_EQ(phases.report["gpuSteps"], false);
+    EXPECT_EQ(steps.report["gpuSteps"], true);
+    const auto& asRun = phases.report["results"][0]["gpuPassesMs"];
+    const auto& apart = steps.report["results"][0]["gpuPassesMs"];
+    for (const char* phase : {"visibility: culling and compute raster",
+                              "visibility: depth pyramid, second culling and raster",
+                              "visibility: binning and shading"}) {
+        EXPECT_TRUE(asRun.contains(phase)) << phase << " in " << asRun.dump();
+        EXPECT_FALSE(apart.contains(phase)) << phase << " in " << apart.dump();
+    }
+    for (const char* step :
+         {"visibility compute raster", "visibility workgroup raster", "visibility depth pyramid",
+          "visibility occlusion culling", "visibility compute raster (second phase)",
+          "visibility binning", "visibility shading"}) {
+        EXPECT_TRUE(apart.contains(step)) << step << " in " << apart.dump();
+        EXPECT_FALSE(asRun.contains(step)) << step << " in " << asRun.dump();
+    }
+    EXPECT_LT(asRun.size(), apart.size());
+}
+
 // The culling options reach the report, --frustum-baseline adds a frustum-only measurement of
 // each culling strategy, and per-pass GPU times name the culling passes when timestamps exist.
 TEST(BenchSmokeTest, CullingOptionsAndTheFrustumBaseline) {

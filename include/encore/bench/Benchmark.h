@@ -83,6 +83,9 @@ struct BenchOptions {
     // Timestamp queries around every pass (GPU time per frame and per pass). Off, the CPU frame
     // is what an application pays, without the queries' commands, which grow with the passes.
     bool gpuTimer = true;
+    // Under the GPU timer, each step of a pass of several (the visibility strategy's phases) as
+    // a timed pass of its own: where the time goes, at the cost of the boundaries it adds.
+    bool gpuSteps = false;
     // How the CPU waits for the GPU after each frame (and for the frame's timestamps). A
     // blocking wait lets the core sleep for as long as the GPU frame lasts; spinning keeps it
     // awake, so the next frame's CPU work does not depend on how long the GPU took.

@@ -6,8 +6,9 @@
 
 namespace encore::render {
 
-// The compute work of a raster phase or of the shading: one pass, or, under a GPU timer, a pass
-// per step, so that the timings say where the time goes (a step sets all its bindings itself).
+// The compute work of a raster phase or of the shading: one pass (timed as one under a GPU
+// timer), or, where the timer asks for step detail, a timed pass per step, so that the timings
+// say where the time goes (a step sets all its bindings itself).
 class VisibilityPhasePasses {
   public:
     VisibilityPhasePasses(const wgpu::CommandEncoder& commands,
@@ -24,7 +25,8 @@ class VisibilityPhasePasses {
 
     // The pass for the step named `timerLabel`.
     const wgpu::ComputePassEncoder& step(const char* timerLabel) {
-        if (mPass && !mTimer) {
+        const bool steps = mTimer && mTimer->stepDetail();
+        if (mPass && !steps) {
             return mPass;
         }
         if (mPass) {
@@ -32,7 +34,8 @@ class VisibilityPhasePasses {
         }
         wgpu::ComputePassDescriptor descriptor{};
         descriptor.label = mLabel;
-        descriptor.timestampWrites = mTimer ? mTimer->nextPass(timerLabel) : nullptr;
+        descriptor.timestampWrites =
+            mTimer ? mTimer->nextPass(steps ? timerLabel : mLabel) : nullptr;
         mPass = mCommands.BeginComputePass(&descriptor);
         return mPass;
     }
