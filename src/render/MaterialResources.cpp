@@ -9,8 +9,10 @@
 #include <cassert>
 #include <chrono>
 #include <cstring>
+#include <map>
 #include <optional>
 #include <string>
+#include <tuple>
 #include <utility>
 
 #include "core/Elapsed.h"
@@ -269,6 +271,7 @@ Result<void> MaterialResources::replaceBaseColorImage(const wgpu::Device& device
                       &slots, sizeof(slots));
     createBindGroups(device, layouts, material.index(), "material (replaced texture)");
     ++mGeneration;
+    ++mUniformGeneration;
 
     const bool stillUsed =
         old == kDefaultTexture ||
@@ -309,6 +312,24 @@ void MaterialResources::updateMaterial(const wgpu::Queue& queue,
     uniform.flags[2] = std::uint32_t(material.index() + 1);
     uniform.flags[3] = texturedSlots(material.index());
     queue.WriteBuffer(mUniforms, material.index() * mUniformStride, &uniform, kUniformSize);
+    ++mUniformGeneration;
+}
+
+std::vector<std::uint32_t> MaterialResources::sharedBindingLeaders() const {
+    // What a material's bind groups bind besides its uniform (createBindGroup).
+    using Bindings =
+        std::tuple<bool, bool, std::array<std::size_t, kMaterialSamplerCount>, SlotIndices>;
+    std::map<Bindings, std::uint32_t> leaders;
+    std::vector<std::uint32_t> result(mBindGroups.size());
+    for (std::size_t material = 0; material < mBindGroups.size(); ++material) {
+        Bindings bindings{mTextured[material], mShadesExtensions[material], {}, {}};
+        if (mTextured[material]) {
+            std::get<2>(bindings) = mMaterialPalettes[material];
+            std::get<3>(bindings) = mMaterialTextures[material];
+        }
+        result[material] = leaders.emplace(bindings, std::uint32_t(material)).first->second;
+    }
+    return result;
 }
 
 const wgpu::Texture* MaterialResources::texture(scene::ImageId image, ColorSpace space) const {

@@ -131,6 +131,16 @@ class MaterialResources {
     std::uint64_t uploadedBytes() const { return mUploadedBytes; }
     // Incremented whenever a bind group is replaced.
     std::uint64_t generation() const { return mGeneration; }
+    // Incremented whenever a material's uniform range is rewritten (updateMaterial,
+    // replaceBaseColorImage): copies of the uniforms made before are stale.
+    std::uint64_t uniformGeneration() const { return mUniformGeneration; }
+
+    // For each material, the first material whose bind group binds the same textures and
+    // samplers under the same variants (textured, shadesExtensions): one bind group then
+    // serves both, given each one's uniform from elsewhere (the visibility strategy's shading
+    // bins, MaterialBins.h). Untextured materials bind their uniform alone: those of one
+    // variant all share.
+    std::vector<std::uint32_t> sharedBindingLeaders() const;
 
     std::size_t materialCount() const { return mBindGroups.size(); }
     // GPU textures created, the default one included.
@@ -182,6 +192,7 @@ class MaterialResources {
     std::vector<SlotSamplerEntries> mMaterialSamplerEntries;  // MaterialId -> slot -> entry.
     std::vector<bool> mTextured;                              // MaterialId -> binds a texture.
     std::uint64_t mGeneration = 0;
+    std::uint64_t mUniformGeneration = 0;
     std::uint64_t mUploadedBytes = 0;
     TextureUploadTimes mUploadTimes;
 

@@ -203,6 +203,7 @@ std::optional<PrimitiveWords> primitiveRecord(const GpuScene& scene,
     const bool tangent = materialUsesTangents(material) && !material.unlit &&
                          primitive.attribute(scene::Semantic::Tangent).has_value();
     record[kMaterial] = std::uint32_t(primitive.material.index());
+    // Its own bin until assignShadingBins groups the materials (bit 0 stays the variant).
     record[kBin] = std::uint32_t(primitive.material.index()) * 2 + (tangent ? 1 : 0);
     record[kDoubleSided] = material.doubleSided ? 1 : 0;
     // Attributes as mesh.wgsl's variant reads them: TEXCOORD_1 only where a texture reads it,
@@ -301,7 +302,7 @@ VisibilityTables buildVisibilityTables(const GpuScene& scene, std::uint64_t maxG
     // Where each record's cluster words are (word offsets in `records`), to be moved once the
     // clusters' place in the table is known.
     std::vector<std::uint32_t> clusterPointers;
-    std::set<std::uint32_t> bins;
+    std::set<std::int64_t> usedRecords;
     for (std::size_t mesh = 0; mesh < data.meshes.size(); ++mesh) {
         const std::size_t count = data.meshes[mesh].primitives.size();
         tables.computePath[mesh].assign(count, false);
@@ -355,7 +356,7 @@ VisibilityTables buildVisibilityTables(const GpuScene& scene, std::uint64_t maxG
             tables.unitCount += unitsOf[mesh][index];
             tables.clusterVisibilityWords += clustersOf[mesh][index];
             tables.triangleCount += triangles;
-            bins.insert(records[record + kBin]);
+            usedRecords.insert(record);
         }
     }
     tables.itemCount = std::uint32_t(items.size() / VisibilityTables::kItemWords);
@@ -373,8 +374,30 @@ VisibilityTables buildVisibilityTables(const GpuScene& scene, std::uint64_t maxG
     tables.words = std::move(items);
     tables.words.insert(tables.words.end(), records.begin(), records.end());
     tables.words.insert(tables.words.end(), clusters.begin(), clusters.end());
-    tables.bins.assign(bins.begin(), bins.end());
+    for (const std::int64_t record : usedRecords) {
+        tables.usedRecords.push_back(recordBase + std::uint32_t(record));
+    }
+    assignShadingBins(tables, MaterialBins(scene.materials()));
     return tables;
+}
+
+std::vector<std::uint32_t> assignShadingBins(VisibilityTables& tables, MaterialBins materialBins) {
+    std::vector<std::uint32_t> changed;
+    std::set<std::uint32_t> bins;
+    for (const std::uint32_t record : tables.usedRecords) {
+        std::uint32_t& word = tables.words[record + kBin];
+        const bool tangent = (word & 1) != 0;
+        const std::uint32_t assigned =
+            materialBins.binWord(tables.words[record + kMaterial], tangent);
+        if (assigned != word) {
+            word = assigned;
+            changed.push_back(record + kBin);
+        }
+        bins.insert(assigned & MaterialBins::kBinMask);
+    }
+    tables.bins.assign(bins.begin(), bins.end());
+    tables.materialBins = std::move(materialBins);
+    return changed;
 }
 
 }  // namespace encore::render

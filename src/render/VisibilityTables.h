@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "render/GpuScene.h"
+#include "render/MaterialBins.h"
 
 namespace encore::render {
 
@@ -62,11 +63,20 @@ struct VisibilityTables {
     std::uint64_t triangleCount = 0;  // Triangles of all items.
     // [mesh][primitive]: whether the compute path draws it (for every instance of the mesh).
     std::vector<std::vector<bool>> computePath;
-    // The shading bins (material * 2 + 1 with a bound TANGENT) that some item uses, ascending.
+    // The shading bins (MaterialBins.h: leader * 2 + 1 with a bound TANGENT) that some item
+    // uses, ascending.
     std::vector<std::uint32_t> bins;
     std::uint32_t binCount = 0;  // 2 * materials: the bin table's size.
+    // The grouping of the materials that the records' bin words follow, and the word index of
+    // each primitive record some item uses.
+    MaterialBins materialBins;
+    std::vector<std::uint32_t> usedRecords;
 };
 
 VisibilityTables buildVisibilityTables(const GpuScene& scene, std::uint64_t maxGeometryBytes);
+
+// Rewrites each used record's bin word after `materialBins` (a material's textures replaced
+// regroup them) and the bins in use; returns the word indices it changed.
+std::vector<std::uint32_t> assignShadingBins(VisibilityTables& tables, MaterialBins materialBins);
 
 }  // namespace encore::render

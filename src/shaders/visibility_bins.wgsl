@@ -50,7 +50,7 @@ fn pixelBins(id: vec3u) -> array<u32, 4> {
         if ((taken.mask & (1u << sample)) != 0u) {
             let unit = units[taken.ids[sample] / 256u];
             let record = tables[unit.x * 4u + 1u];
-            result[sample] = tables[record + 4u];
+            result[sample] = tables[record + 4u] & 0xffffu;  // The bin, not the slot.
         }
     }
     return result;

@@ -77,7 +77,9 @@ const kIndexOffset = 0u;   // Byte offset of index 0, or of nothing when not ind
 const kIndexSize = 1u;     // 0 (not indexed), 2 or 4.
 const kTriangleCount = 2u;
 const kMaterial = 3u;
-const kBin = 4u;           // Shading bin: material * 2 + 1 with a bound TANGENT.
+// Shading bin (render/MaterialBins.h: its block's first material * 2 + 1 with a bound TANGENT)
+// in the low 16 bits, the material's slot in the bin's block above.
+const kBin = 4u;
 const kDoubleSided = 5u;
 const kPosition = 6u;
 const kNormal = 9u;

@@ -11,6 +11,9 @@
 // mesh.wgsl's fragment shader (surface_shading.wgsl), sampling with explicit gradients
 // (SAMPLE_GRADIENT). COMPOSED (frames composed in compute at one sample): the colour goes
 // straight into the composed frame (visibility_composed.wgsl), not to the shaded texture.
+// Materials binning the same textures and samplers share a bin (render/MaterialBins.h): each
+// pixel's material comes from the bin's table (MATERIAL_TABLE in material.wgsl), the textures
+// from the bind group of the bin's first material.
 // Variants: MATERIAL_TEXTURES, HAS_TANGENT, COMPOSED (HALF_OUTPUT).
 #include "frame.wgsl"
 #include "scene_lighting.wgsl"
@@ -33,6 +36,12 @@ struct Bin {
 @group(1) @binding(5) var<storage, read> visibility: array<vec2u>;
 @group(1) @binding(6) var<storage, read> tiles: array<u32>;
 @group(1) @binding(7) var<uniform> bin: Bin;
+// The bin's materials (render/MaterialBins.h): copies of their uniforms, a slot each, in the
+// block the strategy binds for the bin; a record's bin word names the slot.
+struct MaterialSlot {
+    @size(1024) material: Material,  // MaterialBins::kSlotBytes.
+}
+@group(1) @binding(10) var<uniform> binMaterials: array<MaterialSlot, 64>;  // kBinMaterials.
 #if COMPOSED
 #include "visibility_composed.wgsl"
 @group(1) @binding(8) var<storage, read_write> composed: array<u32>;
@@ -111,9 +120,11 @@ fn shadeSample(pixel: vec2u, sample: u32, id: u32) {
     let unit = units[id / kUnitTriangles];
     let item = loadItem(unit.x);
     let record = item.record;
-    if (tables[record + kBin] != bin.id) {
+    let binWord = tables[record + kBin];
+    if ((binWord & 0xffffu) != bin.id) {
         return;  // Another bin's, which a dispatch of its own shades.
     }
+    material = binMaterials[binWord >> 16u].material;
     let triangle = unitTriangle(unit, id);
     let transform = instances[item.slot];
     let i0 = vertexIndex(record, triangle, 0u);

@@ -1,8 +1,8 @@
 // The visibility strategy's binning and shading (docs/visibility.md, steps 4 and 5): each
 // distinct triangle of a pixel shaded once and each touched tile listed once; scenes of more bins
-// than one binning dispatch lists, shaded round by round; frames of one sample shaded straight
-// into the composed frame. VisibilityStrategyTest.cpp: pictures against gpu-culling-bundles, the
-// fill rule and the composites.
+// than one binning dispatch lists, shaded round by round; materials of the same textures sharing
+// a bin; frames of one sample shaded straight into the composed frame. VisibilityStrategyTest.cpp:
+// pictures against gpu-culling-bundles, the fill rule and the composites.
 
 #include <gtest/gtest.h>
 
@@ -19,6 +19,7 @@
 #include "VisibilityTestSupport.h"
 #include "encore/render/Renderer.h"
 #include "gpu/Readback.h"
+#include "render/MaterialBins.h"
 #include "render/strategies/VisibilityStrategy.h"
 #include "render/strategies/VisibilityTarget.h"
 #include "scene/SceneGenerator.h"
@@ -34,11 +35,41 @@ constexpr std::uint32_t kHeight = test::kVisibilityHeight;
 constexpr std::array<std::uint32_t, 2> kSampleCounts = {1, 4};
 const Camera kFront = test::frontCamera(float(kWidth) / float(kHeight));
 
+// A 2x2 image of one colour.
+scene::Image plainImage(std::uint8_t red, std::uint8_t green, std::uint8_t blue) {
+    scene::Image image;
+    image.name = "plain";
+    image.width = 2;
+    image.height = 2;
+    for (int texel = 0; texel < 4; ++texel) {
+        image.rgba8.insert(image.rgba8.end(), {red, green, blue, 255});
+    }
+    return image;
+}
+
+// Gives every material a base colour texture of its own, so that no two share a shading bin
+// (render/MaterialBins.h).
+void giveEachMaterialATexture(scene::SceneData& scene) {
+    if (scene.samplers.empty()) {
+        scene.samplers.emplace_back();
+    }
+    for (std::size_t material = 0; material < scene.materials.size(); ++material) {
+        scene.images.push_back(plainImage(std::uint8_t(60 + material * 2), 200, 255));
+        scene::Texture texture;
+        texture.image = scene::ImageId(std::uint32_t(scene.images.size() - 1));
+        texture.sampler = scene::SamplerId(0u);
+        scene.textures.push_back(texture);
+        scene.materials[material].baseColorTexture =
+            scene::TextureRef{scene::TextureId(std::uint32_t(scene.textures.size() - 1))};
+    }
+}
+
 // A binning dispatch lists the tiles of kRoundBins bins (VisibilityTarget): a scene of 70
-// meshes of a material each (140 bins: three rounds, each listed and shaded in turn) looks as GPU
-// culling draws it, every material's pixels shaded (a round left out would leave its bins'
-// pixels unshaded). So does the same scene drawn with materials 40 to 69 only, whose first
-// round lists nothing and is skipped (at one sample a later round writes the background).
+// meshes of a material each, every material binding a texture of its own (140 bins: three
+// rounds, each listed and shaded in turn) looks as GPU culling draws it, every material's pixels
+// shaded (a round left out would leave its bins' pixels unshaded). So does the same scene drawn
+// with materials 40 to 69 only, whose first round lists nothing and is skipped (at one sample a
+// later round writes the background).
 TEST(VisibilityBinningTest, ScenesOfMoreBinsThanOneRoundShadeEveryBin) {
     ENCORE_REQUIRE_VULKAN(context);
     scene::GeneratorOptions options;
@@ -47,6 +78,7 @@ TEST(VisibilityBinningTest, ScenesOfMoreBinsThanOneRoundShadeEveryBin) {
     options.materialCount = 70;
     options.textures = true;
     auto everyMaterial = test::generatedScene(options);
+    giveEachMaterialATexture(everyMaterial);
     ASSERT_GT(2 * everyMaterial.materials.size(), 2 * std::size_t(VisibilityTarget::kRoundBins));
     auto laterMaterials = everyMaterial;
     for (scene::Mesh& mesh : laterMaterials.meshes) {
@@ -72,6 +104,86 @@ TEST(VisibilityBinningTest, ScenesOfMoreBinsThanOneRoundShadeEveryBin) {
         }
     }
     EXPECT_TRUE(context->checkNoErrors("visibility bins in rounds").ok());
+}
+
+// Materials that bind the same textures and samplers share a shading bin, and untextured ones
+// join them, each pixel's factors from the bin's table (render/MaterialBins.h): six generated
+// materials, three untextured and three binding the generator's two textures, shade in one bin
+// (material 1's) as GPU culling draws them; after an edit of one's factors (copied into the
+// table again); and after another's base colour texture is replaced by one of its own, which
+// takes it out into a bin of its own.
+TEST(VisibilityBinningTest, MaterialsBindingTheSameTexturesShareABin) {
+    ENCORE_REQUIRE_VULKAN(context);
+    scene::GeneratorOptions options;
+    options.objectCount = 150;
+    options.meshCount = 6;  // Mesh i has material i.
+    options.materialCount = 6;
+    options.textures = true;  // Materials 1, 3 and 5.
+    const auto scene = test::generatedScene(options);
+    const Camera camera = Camera::framing(scene.bounds, float(kWidth) / float(kHeight));
+    auto prepared = [&](StrategyKind kind) {
+        auto renderer = Renderer::create(*context, test::pixelTestOptions(kWidth, kHeight, 1));
+        EXPECT_TRUE(renderer.ok());
+        EXPECT_TRUE(renderer->prepare(scene, kind).ok());
+        return std::move(*renderer);
+    };
+    Renderer visibility = prepared(StrategyKind::Visibility);
+    Renderer expected = prepared(StrategyKind::GpuCullingBundles);
+    auto compare = [&](const char* what) {
+        SCOPED_TRACE(what);
+        expected.renderFrame(camera);
+        visibility.renderFrame(camera);
+        auto wanted = expected.readImage();
+        auto image = visibility.readImage();
+        ASSERT_TRUE(wanted.ok() && image.ok());
+        test::expectVisibilityClose(*wanted, *image);
+    };
+    const auto* strategy = dynamic_cast<const VisibilityStrategy*>(visibility.strategy());
+    ASSERT_NE(strategy, nullptr);
+    EXPECT_EQ(strategy->tables().bins, (std::vector<std::uint32_t>{2}));
+    compare("as prepared");
+
+    scene::Material edited = scene.materials[2];
+    edited.baseColorFactor = glm::vec4(0.9f, 0.1f, 0.6f, 1.0f);
+    ASSERT_TRUE(visibility.updateMaterial(scene::MaterialId(2u), edited).ok());
+    ASSERT_TRUE(expected.updateMaterial(scene::MaterialId(2u), edited).ok());
+    compare("material 2 edited");
+
+    const scene::Image own = plainImage(40, 220, 90);
+    ASSERT_TRUE(visibility.replaceBaseColorImage(scene::MaterialId(3u), own).ok());
+    ASSERT_TRUE(expected.replaceBaseColorImage(scene::MaterialId(3u), own).ok());
+    EXPECT_EQ(strategy->tables().bins, (std::vector<std::uint32_t>{2, 6}));
+    compare("material 3's texture replaced");
+    EXPECT_TRUE(context->checkNoErrors("visibility bins of shared bindings").ok());
+}
+
+// A bin's block holds MaterialBins::kBinMaterials materials: 70 untextured materials (one class)
+// shade in two bins, materials 0-63 and 64-69, the second block's slots read at its own offset,
+// as GPU culling draws them.
+TEST(VisibilityBinningTest, FullBlocksOpenAnotherBin) {
+    ENCORE_REQUIRE_VULKAN(context);
+    scene::GeneratorOptions options;
+    options.objectCount = 300;
+    options.meshCount = 70;  // Mesh i has material i.
+    options.materialCount = 70;
+    options.textures = false;
+    const auto scene = test::generatedScene(options);
+    const Camera camera = Camera::framing(scene.bounds, float(kWidth) / float(kHeight));
+    auto renderer = Renderer::create(*context, test::pixelTestOptions(kWidth, kHeight, 1));
+    ASSERT_TRUE(renderer.ok());
+    ASSERT_TRUE(renderer->prepare(scene, StrategyKind::Visibility).ok());
+    const auto* strategy = dynamic_cast<const VisibilityStrategy*>(renderer->strategy());
+    ASSERT_NE(strategy, nullptr);
+    EXPECT_EQ(strategy->tables().bins,
+              (std::vector<std::uint32_t>{0, 2 * MaterialBins::kBinMaterials}));
+    const auto expected = render(*context, scene, StrategyKind::GpuCullingBundles, camera,
+                                 DebugChannel::Shaded, VisibilityStrategy::kDefaultComputePixels,
+                                 VisibilityStrategy::kMaxWorkgroupPixels, 1);
+    const auto image = render(*context, scene, StrategyKind::Visibility, camera,
+                              DebugChannel::Shaded, VisibilityStrategy::kDefaultComputePixels,
+                              VisibilityStrategy::kMaxWorkgroupPixels, 1);
+    test::expectVisibilityClose(expected, image);
+    EXPECT_TRUE(context->checkNoErrors("visibility bins of full blocks").ok());
 }
 
 // At four samples a pixel's triangle is shaded once, whatever number of its samples it covers:

@@ -11,6 +11,7 @@
 #include "gpu/FullscreenPipeline.h"
 #include "gpu/LayoutEntry.h"
 #include "gpu/Upload.h"
+#include "render/MaterialBins.h"
 #include "render/strategies/VisibilityTarget.h"
 
 namespace encore::render {
@@ -71,7 +72,7 @@ Result<wgpu::ShaderModule> shadingModule(const RenderSetup& setup,
                                          bool tangent,
                                          bool extensions,
                                          bool composed) {
-    std::set<std::string, std::less<>> flags = {"SAMPLE_GRADIENT"};
+    std::set<std::string, std::less<>> flags = {"SAMPLE_GRADIENT", "MATERIAL_TABLE"};
     if (composed) {
         flags.merge(composedFlags(setup));
     }
@@ -229,7 +230,8 @@ void createLayouts(const wgpu::Device& device, VisibilityPipelines& p) {
         LayoutEntry::readOnlyStorage(4, kCompute),
         LayoutEntry::readOnlyStorage(5, kCompute),
         LayoutEntry::readOnlyStorage(6, kCompute),
-        LayoutEntry::uniform(7, kCompute, kBinUniformBytes).withDynamicOffset()};
+        LayoutEntry::uniform(7, kCompute, kBinUniformBytes).withDynamicOffset(),
+        LayoutEntry::uniform(10, kCompute, MaterialBins::kBlockBytes).withDynamicOffset()};
     std::vector<LayoutEntry> shadeComposed = shade;
     shade.push_back(LayoutEntry::storageTexture(8, kCompute, wgpu::TextureFormat::RGBA16Float,
                                                 wgpu::StorageTextureAccess::WriteOnly,

@@ -1,6 +1,7 @@
 // The visibility strategy's steps after the raster (docs/visibility.md, steps 4 and 5, and the
-// frame's composition): tiles binned per shading bin, each bin shaded by a dispatch of its own,
-// and the frame composed in compute or shaded into place.
+// frame's composition): tiles binned per shading bin, each bin shaded by a dispatch of its own
+// (its materials' uniforms from the material table), and the frame composed in compute or
+// shaded into place.
 
 #include "render/strategies/VisibilityStrategy.h"
 
@@ -8,6 +9,7 @@
 #include <vector>
 
 #include "gpu/BindingResource.h"
+#include "render/MaterialBins.h"
 #include "render/MaterialResources.h"
 #include "render/strategies/VisibilityPhasePasses.h"
 
@@ -32,7 +34,37 @@ std::vector<gpu::BindingResource> VisibilityStrategy::shadeResources() const {
             {4, mWork->units},
             {5, target.visibility},
             {6, target.tiles},
-            {7, mWork->bins, 0, kBinRecordBytes}};
+            {7, mWork->bins, 0, kBinRecordBytes},
+            {10, mMaterialTable, 0, MaterialBins::kBlockBytes}};
+}
+
+void VisibilityStrategy::copyMaterialTable(const wgpu::CommandEncoder& commands) {
+    const MaterialResources& materials = mScene->materials();
+    if (mCopiedMaterials == materials.uniformGeneration()) {
+        return;
+    }
+    const MaterialBins& bins = mTables.materialBins;
+    for (std::uint32_t material = 0; material < bins.materialCount(); ++material) {
+        commands.CopyBufferToBuffer(materials.uniformBuffer(), material * materials.uniformStride(),
+                                    mMaterialTable, bins.slotOffset(material),
+                                    sizeof(MaterialUniform));
+    }
+    mCopiedMaterials = materials.uniformGeneration();
+}
+
+Result<void> VisibilityStrategy::refresh() {
+    ENCORE_TRY(mDraws.refresh());
+    MaterialBins regrouped(mScene->materials());
+    if (regrouped == mTables.materialBins) {
+        return {};
+    }
+    // A material's textures were replaced: it leaves (or joins) the bins of others. Each bin
+    // word changed goes to the GPU's tables; the uniforms move to their new slots.
+    for (const std::uint32_t word : assignShadingBins(mTables, std::move(regrouped))) {
+        mSetup->queue.WriteBuffer(mTableBuffer, std::uint64_t(word) * 4, &mTables.words[word], 4);
+    }
+    mCopiedMaterials.reset();
+    return {};
 }
 
 void VisibilityStrategy::ensureComposedShading(const wgpu::Color& background) {
@@ -88,8 +120,9 @@ void VisibilityStrategy::encodeShading(const wgpu::CommandEncoder& commands,
                 continue;  // An embedded shader that does not compile: a bug the tests show.
             }
             pass.SetPipeline(shading);
-            const std::uint32_t offsets[] = {slotsOffset, std::uint32_t(*bin * kBinRecordBytes)};
-            pass.SetBindGroup(1, mComposedShading ? mShadeComposedGroup : mShadeGroup, 2, offsets);
+            const std::uint32_t offsets[] = {slotsOffset, std::uint32_t(*bin * kBinRecordBytes),
+                                             mTables.materialBins.blockOffset(*bin)};
+            pass.SetBindGroup(1, mComposedShading ? mShadeComposedGroup : mShadeGroup, 3, offsets);
             pass.SetBindGroup(2, materials.drawBindGroup(material));
             pass.DispatchWorkgroups(mTarget->shadeGroups);
         }

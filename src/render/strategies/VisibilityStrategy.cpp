@@ -92,7 +92,13 @@ Result<void> VisibilityStrategy::prepare(const RenderSetup& setup, const GpuScen
         return !mTables.computePath[mesh.index()][primitive];
     }));
 
-    mTableBuffer = gpu::createStorageBuffer(device, mTables.words, "visibility tables");
+    // CopyDst: refresh() rewrites the bin words of records whose materials regrouped.
+    mTableBuffer = gpu::createStorageBuffer(device, mTables.words, "visibility tables",
+                                            wgpu::BufferUsage::CopyDst);
+    mMaterialTable = gpu::createBuffer(
+        device, wgpu::BufferUsage::Uniform | wgpu::BufferUsage::CopyDst,
+        mTables.materialBins.tableBytes(), "visibility materials of the shading bins");
+    mCopiedMaterials.reset();
     mCulledCounters =
         gpu::createBuffer(device, wgpu::BufferUsage::CopySrc | wgpu::BufferUsage::CopyDst,
                           kCounterBytes, "visibility counters after the cull");
@@ -240,6 +246,7 @@ void VisibilityStrategy::beforePass(const wgpu::CommandEncoder& commands, const 
     if (mTables.itemCount == 0 || frame.targetWidth == 0 || frame.targetHeight == 0) {
         return;
     }
+    copyMaterialTable(commands);
     // As GPU culling: two phases in frames of one view, and not while a frozen culling camera
     // sees another view than the one drawn.
     mOcclusion = views == 1 && frame.culling.occlusion && !frame.cullingCamera;

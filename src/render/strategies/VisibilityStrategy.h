@@ -4,6 +4,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "encore/render/Strategy.h"
@@ -56,7 +57,8 @@ class VisibilityStrategy final : public Strategy {
 
     StrategyKind kind() const override { return StrategyKind::Visibility; }
     Result<void> prepare(const RenderSetup& setup, const GpuScene& scene) override;
-    Result<void> refresh() override { return mDraws.refresh(); }
+    // Also regroups the shading bins when a material's textures changed (MaterialBins.h).
+    Result<void> refresh() override;
     void beforePass(const wgpu::CommandEncoder& commands, const FrameState& frame) override;
     // A multisampled target has four visibility samples per pixel at the hardware's 4x
     // positions (docs/visibility.md). The visibility buffer (8 bytes per sample) must fit
@@ -178,6 +180,8 @@ class VisibilityStrategy final : public Strategy {
                               std::uint32_t paramsOffset,
                               std::uint32_t viewWidth,
                               const char* timerLabel) const;
+    // Copies the materials' uniforms into mMaterialTable where they changed since the last copy.
+    void copyMaterialTable(const wgpu::CommandEncoder& commands);
     void writeCullUniform(const FrameState& frame, std::size_t views) const;
 
     const RenderSetup* mSetup = nullptr;
@@ -187,6 +191,10 @@ class VisibilityStrategy final : public Strategy {
 
     // Scene-sized buffers.
     wgpu::Buffer mTableBuffer;
+    // The materials' uniforms in their shading bins' blocks (MaterialBins.h), copied from the
+    // materials' buffer when it changes (mCopiedMaterials: its uniformGeneration then).
+    wgpu::Buffer mMaterialTable;
+    std::optional<std::uint64_t> mCopiedMaterials;
     wgpu::Buffer mCounters;
     wgpu::Buffer mCulledCounters;         // After a multi-view frame's cull.
     std::uint32_t mWorkgroupBlocks = 0;   // Entries of blocks, then
