@@ -9,6 +9,7 @@
 #include "GltfBuilder.h"
 #include "GpuTestSupport.h"
 #include "RenderTestSupport.h"
+#include "TextureFixtures.h"
 #include "encore/render/Renderer.h"
 #include "render/BundleRecorder.h"
 #include "render/GpuScene.h"
@@ -207,14 +208,7 @@ TEST(BundleTest, ReplacedTextureReRecordsTheBundle) {
     ASSERT_TRUE(renderer->prepare(scene, StrategyKind::Bundles).ok());
     const Camera camera = frontCamera();
     auto solid = [](std::uint8_t r, std::uint8_t g, std::uint8_t b) {
-        scene::Image image;
-        image.name = "solid";
-        image.width = 2;
-        image.height = 2;
-        for (int i = 0; i < 4; ++i) {
-            image.rgba8.insert(image.rgba8.end(), {r, g, b, 255});
-        }
-        return image;
+        return test::solidSceneImage({r, g, b, 255});
     };
     ASSERT_TRUE(renderer->replaceBaseColorImage(scene::MaterialId{0u}, solid(255, 0, 0)).ok());
     renderer->renderFrame(camera);

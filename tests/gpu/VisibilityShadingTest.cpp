@@ -16,6 +16,7 @@
 
 #include "GpuTestSupport.h"
 #include "RenderTestSupport.h"
+#include "TextureFixtures.h"
 #include "VisibilityTestSupport.h"
 #include "encore/render/Renderer.h"
 #include "gpu/Readback.h"
@@ -35,16 +36,20 @@ constexpr std::uint32_t kHeight = test::kVisibilityHeight;
 constexpr std::array<std::uint32_t, 2> kSampleCounts = {1, 4};
 const Camera kFront = test::frontCamera(float(kWidth) / float(kHeight));
 
-// A 2x2 image of one colour.
-scene::Image plainImage(std::uint8_t red, std::uint8_t green, std::uint8_t blue) {
-    scene::Image image;
-    image.name = "plain";
-    image.width = 2;
-    image.height = 2;
-    for (int texel = 0; texel < 4; ++texel) {
-        image.rgba8.insert(image.rgba8.end(), {red, green, blue, 255});
-    }
-    return image;
+// The visibility strategy's picture of `scene` against GPU culling's (shaded, default limits).
+void expectLooksLikeGpuCulling(gpu::Context& context,
+                               const scene::SceneData& scene,
+                               const Camera& camera,
+                               std::uint32_t samples) {
+    auto draw = [&](StrategyKind kind) {
+        return render(context, scene, kind, camera, DebugChannel::Shaded,
+                      VisibilityStrategy::kDefaultComputePixels,
+                      VisibilityStrategy::kMaxWorkgroupPixels, samples);
+    };
+    const auto expected = draw(StrategyKind::GpuCullingBundles);
+    const auto image = draw(StrategyKind::Visibility);
+    test::expectVisibilityClose(expected, image);
+    EXPECT_GT(test::coveredFraction(image, test::pixelAt(image, 0, 0)), 0.05);
 }
 
 // Gives every material a base colour texture of its own, so that no two share a shading bin
@@ -54,7 +59,8 @@ void giveEachMaterialATexture(scene::SceneData& scene) {
         scene.samplers.emplace_back();
     }
     for (std::size_t material = 0; material < scene.materials.size(); ++material) {
-        scene.images.push_back(plainImage(std::uint8_t(60 + material * 2), 200, 255));
+        scene.images.push_back(
+            test::solidSceneImage({std::uint8_t(60 + material * 2), 200, 255, 255}));
         scene::Texture texture;
         texture.image = scene::ImageId(std::uint32_t(scene.images.size() - 1));
         texture.sampler = scene::SamplerId(0u);
@@ -91,16 +97,7 @@ TEST(VisibilityBinningTest, ScenesOfMoreBinsThanOneRoundShadeEveryBin) {
         for (std::uint32_t samples : kSampleCounts) {
             SCOPED_TRACE(std::to_string(samples) + " samples, " +
                          (scene == &everyMaterial ? "every material" : "materials 40 to 69"));
-            const auto expected =
-                render(*context, *scene, StrategyKind::GpuCullingBundles, camera,
-                       DebugChannel::Shaded, VisibilityStrategy::kDefaultComputePixels,
-                       VisibilityStrategy::kMaxWorkgroupPixels, samples);
-            const auto image =
-                render(*context, *scene, StrategyKind::Visibility, camera, DebugChannel::Shaded,
-                       VisibilityStrategy::kDefaultComputePixels,
-                       VisibilityStrategy::kMaxWorkgroupPixels, samples);
-            test::expectVisibilityClose(expected, image);
-            EXPECT_GT(test::coveredFraction(image, test::pixelAt(image, 0, 0)), 0.05);
+            expectLooksLikeGpuCulling(*context, *scene, camera, samples);
         }
     }
     EXPECT_TRUE(context->checkNoErrors("visibility bins in rounds").ok());
@@ -149,7 +146,7 @@ TEST(VisibilityBinningTest, MaterialsBindingTheSameTexturesShareABin) {
     ASSERT_TRUE(expected.updateMaterial(scene::MaterialId(2u), edited).ok());
     compare("material 2 edited");
 
-    const scene::Image own = plainImage(40, 220, 90);
+    const scene::Image own = test::solidSceneImage({40, 220, 90, 255});
     ASSERT_TRUE(visibility.replaceBaseColorImage(scene::MaterialId(3u), own).ok());
     ASSERT_TRUE(expected.replaceBaseColorImage(scene::MaterialId(3u), own).ok());
     EXPECT_EQ(strategy->tables().bins, (std::vector<std::uint32_t>{2, 6}));
@@ -176,13 +173,7 @@ TEST(VisibilityBinningTest, FullBlocksOpenAnotherBin) {
     ASSERT_NE(strategy, nullptr);
     EXPECT_EQ(strategy->tables().bins,
               (std::vector<std::uint32_t>{0, 2 * MaterialBins::kBinMaterials}));
-    const auto expected = render(*context, scene, StrategyKind::GpuCullingBundles, camera,
-                                 DebugChannel::Shaded, VisibilityStrategy::kDefaultComputePixels,
-                                 VisibilityStrategy::kMaxWorkgroupPixels, 1);
-    const auto image = render(*context, scene, StrategyKind::Visibility, camera,
-                              DebugChannel::Shaded, VisibilityStrategy::kDefaultComputePixels,
-                              VisibilityStrategy::kMaxWorkgroupPixels, 1);
-    test::expectVisibilityClose(expected, image);
+    expectLooksLikeGpuCulling(*context, scene, camera, 1);
     EXPECT_TRUE(context->checkNoErrors("visibility bins of full blocks").ok());
 }
 

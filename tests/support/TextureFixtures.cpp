@@ -18,6 +18,18 @@ image::ImageRgba8 solidImage(std::array<std::uint8_t, 4> rgba,
     return image;
 }
 
+scene::Image solidSceneImage(std::array<std::uint8_t, 4> rgba,
+                             std::uint32_t width,
+                             std::uint32_t height,
+                             const std::string& name) {
+    scene::Image image;
+    image.name = name;
+    image.width = width;
+    image.height = height;
+    image.rgba8 = solidImage(rgba, width, height).pixels;
+    return image;
+}
+
 std::vector<std::uint8_t> encodePngBytes(const image::ImageRgba8& image) {
     auto png = image::encodePng(image);
     EXPECT_TRUE(png.ok());

@@ -11,6 +11,7 @@
 
 #include "GltfBuilder.h"
 #include "encore/image/ImageCodec.h"
+#include "encore/scene/SceneData.h"
 
 namespace encore::test {
 
@@ -18,6 +19,13 @@ namespace encore::test {
 image::ImageRgba8 solidImage(std::array<std::uint8_t, 4> rgba,
                              std::uint32_t width = 1,
                              std::uint32_t height = 1);
+
+// The same as a decoded scene image (for Renderer::replaceBaseColorImage, or a SceneData's
+// images), named `name`.
+scene::Image solidSceneImage(std::array<std::uint8_t, 4> rgba,
+                             std::uint32_t width = 2,
+                             std::uint32_t height = 2,
+                             const std::string& name = "solid");
 
 std::vector<std::uint8_t> encodePngBytes(const image::ImageRgba8& image);
 // libwebp: lossless (WebPEncodeLosslessRGBA, exact pixels) or lossy at `quality` (0-100).
