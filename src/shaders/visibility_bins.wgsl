@@ -11,6 +11,7 @@
 // COMPOSED (frames composed in compute at one sample): uncovered pixels take the background in
 // the composed frame, whose covered ones the shading writes (visibility_composed.wgsl).
 #include "visibility_bin_record.wgsl"
+#include "visibility_layout.wgsl"
 #include "visibility_params.wgsl"
 #include "visibility_pixel.wgsl"
 
@@ -48,9 +49,9 @@ fn pixelBins(id: vec3u) -> array<u32, 4> {
     let taken = distinctSamples(first, params.samples);
     for (var sample = 0u; sample < params.samples; sample++) {
         if ((taken.mask & (1u << sample)) != 0u) {
-            let unit = units[taken.ids[sample] / 256u];
-            let record = tables[unit.x * 4u + 1u];
-            result[sample] = tables[record + 4u] & 0xffffu;  // The bin, not the slot.
+            let unit = units[taken.ids[sample] / kUnitTriangles];
+            let record = tables[unit.x * kItemWords + kItemRecord];
+            result[sample] = tables[record + kBin] & kBinMask;  // The bin, not the slot.
         }
     }
     return result;

@@ -8,6 +8,7 @@
 // index of the cluster's record).
 
 #include "visibility_params.wgsl"
+#include "visibility_layout.wgsl"
 
 struct Transform {
     world: mat4x4f,
@@ -21,10 +22,6 @@ struct Attribute {
     stride: u32,
     format: u32,
 }
-
-const kUnitTriangles = 256u;
-const kItemWords = 4u;
-const kPrimitiveWords = 32u;
 
 // Item: instance slot, primitive record (word index), its first word of the clusters'
 // visibility (visibility_raster.wgsl; a word per cluster of every level, in record order), 1
@@ -71,24 +68,6 @@ fn loadItem(index: u32) -> Item {
     let base = index * kItemWords;
     return Item(tables[base], tables[base + 1u], tables[base + 2u], tables[base + 3u]);
 }
-
-// Primitive record fields (word offsets).
-const kIndexOffset = 0u;   // Byte offset of index 0, or of nothing when not indexed.
-const kIndexSize = 1u;     // 0 (not indexed), 2 or 4.
-const kTriangleCount = 2u;
-const kMaterial = 3u;
-// Shading bin (render/MaterialBins.h: its block's first material * 2 + 1 with a bound TANGENT)
-// in the low 16 bits, the material's slot in the bin's block above.
-const kBin = 4u;
-const kDoubleSided = 5u;
-const kPosition = 6u;
-const kNormal = 9u;
-const kTexcoord0 = 12u;
-const kTexcoord1 = 15u;
-const kColor = 18u;
-const kTangent = 21u;
-const kBoundsCenter = 24u;
-const kBoundsExtent = 27u;
 
 // Cluster record fields (word offsets; VisibilityTables.h): its triangles, counted from level
 // 0's first index, and its bounds, object space. A radius of kNeverCulled or more (a primitive

@@ -121,7 +121,7 @@ fn shadeSample(pixel: vec2u, sample: u32, id: u32) {
     let item = loadItem(unit.x);
     let record = item.record;
     let binWord = tables[record + kBin];
-    if ((binWord & 0xffffu) != bin.id) {
+    if ((binWord & kBinMask) != bin.id) {
         return;  // Another bin's, which a dispatch of its own shades.
     }
     material = binMaterials[binWord >> 16u].material;
