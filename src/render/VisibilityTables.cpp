@@ -178,7 +178,9 @@ std::optional<PrimitiveWords> primitiveRecord(const GpuScene& scene,
                                               std::uint64_t maxGeometryBytes) {
     const scene::SceneData& data = scene.data();
     const scene::Primitive& primitive = data.meshes[mesh].primitives[index];
-    const scene::Material& material = data.materials[primitive.material.index()];
+    // The material of the selected variant (KHR_materials_variants).
+    const scene::MaterialId materialId = scene.materialOf(scene::MeshId(mesh), index);
+    const scene::Material& material = data.materials[materialId.index()];
     if (primitive.topology != scene::Topology::TriangleList ||
         material.alphaMode != scene::AlphaMode::Opaque || material.transmission ||
         animated(scene, mesh, index)) {
@@ -202,9 +204,9 @@ std::optional<PrimitiveWords> primitiveRecord(const GpuScene& scene,
     record[kTriangleCount] = triangles;
     const bool tangent = materialUsesTangents(material) && !material.unlit &&
                          primitive.attribute(scene::Semantic::Tangent).has_value();
-    record[kMaterial] = std::uint32_t(primitive.material.index());
+    record[kMaterial] = std::uint32_t(materialId.index());
     // Its own bin until assignShadingBins groups the materials (bit 0 stays the variant).
-    record[kBin] = std::uint32_t(primitive.material.index()) * 2 + (tangent ? 1 : 0);
+    record[kBin] = std::uint32_t(materialId.index()) * 2 + (tangent ? 1 : 0);
     record[kDoubleSided] = material.doubleSided ? 1 : 0;
     // Attributes as mesh.wgsl's variant reads them: TEXCOORD_1 only where a texture reads it,
     // TANGENT only under a normal map.

@@ -22,7 +22,8 @@ constexpr std::uint32_t kSize = 64;
 
 // The strategies that shade glTF materials (the earlier ones draw every primitive alike).
 bool drawsMaterials(StrategyKind kind) {
-    return kind == StrategyKind::Materials || kind == StrategyKind::Bundles || cullsOnTheGpu(kind);
+    return kind == StrategyKind::Materials || kind == StrategyKind::Bundles ||
+           cullsOnTheGpu(kind) || kind == StrategyKind::Visibility;
 }
 
 test::Rgba encode(const glm::vec3& linear) {

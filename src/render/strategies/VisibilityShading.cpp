@@ -52,21 +52,6 @@ void VisibilityStrategy::copyMaterialTable(const wgpu::CommandEncoder& commands)
     mCopiedMaterials = materials.uniformGeneration();
 }
 
-Result<void> VisibilityStrategy::refresh() {
-    ENCORE_TRY(mDraws.refresh());
-    MaterialBins regrouped(mScene->materials());
-    if (regrouped == mTables.materialBins) {
-        return {};
-    }
-    // A material's textures were replaced: it leaves (or joins) the bins of others. Each bin
-    // word changed goes to the GPU's tables; the uniforms move to their new slots.
-    for (const std::uint32_t word : assignShadingBins(mTables, std::move(regrouped))) {
-        mSetup->queue.WriteBuffer(mTableBuffer, std::uint64_t(word) * 4, &mTables.words[word], 4);
-    }
-    mCopiedMaterials.reset();
-    return {};
-}
-
 void VisibilityStrategy::ensureComposedShading(const wgpu::Color& background) {
     if (!mTarget->ensureComposed(*mSetup, background) && mBinComposedGroup) {
         return;

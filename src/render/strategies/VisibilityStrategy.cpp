@@ -87,7 +87,31 @@ Result<void> VisibilityStrategy::prepare(const RenderSetup& setup, const GpuScen
         mGeometryBytes =
             std::min(mGeometry.GetSize(), setup.limits.maxStorageBufferBindingSize) & ~3ull;
     }
+    if (setup.keptObjects) {
+        KeptStrategyObjects& kept = *setup.keptObjects;
+        if (!kept.visibilityPipelines) {
+            ENCORE_TRY_ASSIGN(kept.visibilityPipelines, VisibilityPipelines::create(setup));
+        }
+        mPipelines = kept.visibilityPipelines.get();
+        mTarget = &kept.visibilityTarget;
+        mWork = &kept.visibilityWork;
+    } else {
+        ENCORE_TRY_ASSIGN(mOwnPipelines, VisibilityPipelines::create(setup));
+        mOwnTarget = std::make_unique<VisibilityTarget>();
+        mOwnWork = std::make_unique<VisibilityWorkBuffers>();
+        mPipelines = mOwnPipelines.get();
+        mTarget = mOwnTarget.get();
+        mWork = mOwnWork.get();
+    }
+    return prepareScene();
+}
+
+Result<void> VisibilityStrategy::prepareScene() {
+    const RenderSetup& setup = *mSetup;
+    const GpuScene& scene = *mScene;
+    const wgpu::Device& device = setup.device;
     mTables = buildVisibilityTables(scene, mGeometryBytes);
+    mTablesVariant = scene.variant();
     ENCORE_TRY(mDraws.prepare(setup, scene, [this](scene::MeshId mesh, std::size_t primitive) {
         return !mTables.computePath[mesh.index()][primitive];
     }));
@@ -136,22 +160,6 @@ Result<void> VisibilityStrategy::prepare(const RenderSetup& setup, const GpuScen
     mPersistentGroups = persistent;
     mRasterGroups = stridingGrid(mTables.unitCount, 1, persistent);
     mWorkgroupGroups = stridingGrid(mWorkgroupBlocks, 1, persistent);
-    if (setup.keptObjects) {
-        KeptStrategyObjects& kept = *setup.keptObjects;
-        if (!kept.visibilityPipelines) {
-            ENCORE_TRY_ASSIGN(kept.visibilityPipelines, VisibilityPipelines::create(setup));
-        }
-        mPipelines = kept.visibilityPipelines.get();
-        mTarget = &kept.visibilityTarget;
-        mWork = &kept.visibilityWork;
-    } else {
-        ENCORE_TRY_ASSIGN(mOwnPipelines, VisibilityPipelines::create(setup));
-        mOwnTarget = std::make_unique<VisibilityTarget>();
-        mOwnWork = std::make_unique<VisibilityWorkBuffers>();
-        mPipelines = mOwnPipelines.get();
-        mTarget = mOwnTarget.get();
-        mWork = mOwnWork.get();
-    }
     mWork->ensure(device, sizes);
     // Over this scene's buffers: made on the first frame.
     mCullGroup = nullptr;
@@ -166,6 +174,26 @@ Result<void> VisibilityStrategy::checkTarget(std::uint32_t width, std::uint32_t 
                              " (fewer samples or a smaller target fit)";
     ENCORE_TRY(gpu::checkStorageBinding(mSetup->limits, std::uint64_t(width) * height * samples * 8,
                                         what + ", its visibility buffer"));
+    return {};
+}
+
+Result<void> VisibilityStrategy::refresh() {
+    if (mTablesVariant != mScene->variant()) {
+        // Other materials: other records (bins, attributes read, tangents) and, where a variant
+        // blends, other draws for the hardware path.
+        return prepareScene();
+    }
+    ENCORE_TRY(mDraws.refresh());
+    MaterialBins regrouped(mScene->materials());
+    if (regrouped == mTables.materialBins) {
+        return {};
+    }
+    // A material's textures were replaced: it leaves (or joins) the bins of others. Each bin
+    // word changed goes to the GPU's tables; the uniforms move to their new slots.
+    for (const std::uint32_t word : assignShadingBins(mTables, std::move(regrouped))) {
+        mSetup->queue.WriteBuffer(mTableBuffer, std::uint64_t(word) * 4, &mTables.words[word], 4);
+    }
+    mCopiedMaterials.reset();
     return {};
 }
 

@@ -57,7 +57,9 @@ class VisibilityStrategy final : public Strategy {
 
     StrategyKind kind() const override { return StrategyKind::Visibility; }
     Result<void> prepare(const RenderSetup& setup, const GpuScene& scene) override;
-    // Also regroups the shading bins when a material's textures changed (MaterialBins.h).
+    // Builds the tables again when another material variant is selected (the records follow
+    // GpuScene::materialOf); regroups the shading bins when a material's textures changed
+    // (MaterialBins.h).
     Result<void> refresh() override;
     void beforePass(const wgpu::CommandEncoder& commands, const FrameState& frame) override;
     // A multisampled target has four visibility samples per pixel at the hardware's 4x
@@ -180,6 +182,9 @@ class VisibilityStrategy final : public Strategy {
                               std::uint32_t paramsOffset,
                               std::uint32_t viewWidth,
                               const char* timerLabel) const;
+    // The tables, the draws the compute path leaves and the scene-sized buffers, for the
+    // selected material variant.
+    Result<void> prepareScene();
     // Copies the materials' uniforms into mMaterialTable where they changed since the last copy.
     void copyMaterialTable(const wgpu::CommandEncoder& commands);
     void writeCullUniform(const FrameState& frame, std::size_t views) const;
@@ -188,6 +193,7 @@ class VisibilityStrategy final : public Strategy {
     const GpuScene* mScene = nullptr;
     MaterialDrawGroups mDraws;  // What the compute path does not draw.
     VisibilityTables mTables;
+    std::optional<scene::VariantId> mTablesVariant;  // The variant mTables was built for.
 
     // Scene-sized buffers.
     wgpu::Buffer mTableBuffer;
