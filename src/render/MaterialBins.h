@@ -11,7 +11,7 @@
 // kSlotBytes each), at the slot its primitive record names.
 //
 // A bin is leader * 2 + 1 with a bound TANGENT (the variant), `leader` the first material of
-// its block; a record's bin word is the bin in its low 16 bits and the slot above.
+// its block; a record's bin word is the bin in its low kSlotShift bits and the slot above.
 
 #include <cstdint>
 #include <vector>
@@ -26,8 +26,9 @@ class MaterialBins {
     static constexpr std::uint64_t kSlotBytes = 1024;   // A MaterialUniform, padded.
     // The uniform binding of a block: kBinMaterials slots (WebGPU's 64 KiB default).
     static constexpr std::uint64_t kBlockBytes = kBinMaterials * kSlotBytes;
-    static constexpr std::uint32_t kBinMask = 0xffff;
-    static constexpr std::uint32_t kSlotShift = 16;
+    // A bin word: the bin in its low 26 bits (scenes of up to 2^25 materials), the slot above.
+    static constexpr std::uint32_t kSlotShift = 26;
+    static constexpr std::uint32_t kBinMask = (1u << kSlotShift) - 1;
 
     MaterialBins() = default;
     // Groups the materials by what they bind, in order, kBinMaterials to a block.

@@ -13,9 +13,10 @@ const kIndexSize = 1u;     // 0 (not indexed), 2 or 4.
 const kTriangleCount = 2u;
 const kMaterial = 3u;
 // Shading bin (render/MaterialBins.h: its block's first material * 2 + 1 with a bound TANGENT)
-// in the low 16 bits (kBinMask), the material's slot in the bin's block above.
+// in the low 26 bits (kBinMask), the material's slot in the bin's block above (kBinSlotShift).
 const kBin = 4u;
-const kBinMask = 0xffffu;
+const kBinSlotShift = 26u;
+const kBinMask = (1u << kBinSlotShift) - 1u;
 const kDoubleSided = 5u;
 const kPosition = 6u;
 const kNormal = 9u;

@@ -124,7 +124,7 @@ fn shadeSample(pixel: vec2u, sample: u32, id: u32) {
     if ((binWord & kBinMask) != bin.id) {
         return;  // Another bin's, which a dispatch of its own shades.
     }
-    material = binMaterials[binWord >> 16u].material;
+    material = binMaterials[binWord >> kBinSlotShift].material;
     let triangle = unitTriangle(unit, id);
     let transform = instances[item.slot];
     let i0 = vertexIndex(record, triangle, 0u);
