@@ -87,13 +87,8 @@ const kThicknessSlot = 16u;
 const kDiffuseTransmissionSlot = 17u;
 const kDiffuseTransmissionColorSlot = 18u;
 
-#if MATERIAL_TABLE
-// The visibility strategy's shading: a bin's materials share their bind group's textures and
-// samplers, each pixel's own factors copied in from a table (visibility_shade.wgsl).
-var<private> material: Material;
-#else
-@group(2) @binding(0) var<uniform> material: Material;
-#endif
+// `material`, which the functions here read, is the including shader's: mesh.wgsl's group 2
+// uniform, or the visibility shading's copy of each pixel's material from its bin's table.
 #if MATERIAL_TEXTURES
 @group(2) @binding(1) var materialSampler0: sampler;
 @group(2) @binding(2) var materialSampler1: sampler;

@@ -12,7 +12,7 @@
 // (SAMPLE_GRADIENT). COMPOSED (frames composed in compute at one sample): the colour goes
 // straight into the composed frame (visibility_composed.wgsl), not to the shaded texture.
 // Materials binning the same textures and samplers share a bin (render/MaterialBins.h): each
-// pixel's material comes from the bin's table (MATERIAL_TABLE in material.wgsl), the textures
+// pixel's material comes from the bin's table (`material`, a private copy), the textures
 // from the bind group of the bin's first material.
 // Variants: MATERIAL_TEXTURES, HAS_TANGENT, COMPOSED (HALF_OUTPUT).
 #include "frame.wgsl"
@@ -42,6 +42,8 @@ struct MaterialSlot {
     @size(1024) material: Material,  // MaterialBins::kSlotBytes.
 }
 @group(1) @binding(10) var<uniform> binMaterials: array<MaterialSlot, 64>;  // kBinMaterials.
+// The pixel's material, which material.wgsl's functions read.
+var<private> material: Material;
 #if COMPOSED
 #include "visibility_composed.wgsl"
 @group(1) @binding(8) var<storage, read_write> composed: array<u32>;

@@ -72,7 +72,7 @@ Result<wgpu::ShaderModule> shadingModule(const RenderSetup& setup,
                                          bool tangent,
                                          bool extensions,
                                          bool composed) {
-    std::set<std::string, std::less<>> flags = {"SAMPLE_GRADIENT", "MATERIAL_TABLE"};
+    std::set<std::string, std::less<>> flags = {"SAMPLE_GRADIENT"};
     if (composed) {
         flags.merge(composedFlags(setup));
     }
