@@ -87,8 +87,8 @@ const kThicknessSlot = 16u;
 const kDiffuseTransmissionSlot = 17u;
 const kDiffuseTransmissionColorSlot = 18u;
 
-// `material`, which the functions here read, is the including shader's: mesh.wgsl's group 2
-// uniform, or the visibility shading's copy of each pixel's material from its bin's table.
+// `material`, which the functions here read, is the including shader's: the group 2 uniform
+// of material_uniform.wgsl (mesh.wgsl), or the visibility shading's per-pixel copy.
 #if MATERIAL_TEXTURES
 @group(2) @binding(1) var materialSampler0: sampler;
 @group(2) @binding(2) var materialSampler1: sampler;

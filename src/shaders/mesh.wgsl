@@ -36,7 +36,7 @@
 #if MATERIALS
 #include "brdf.wgsl"
 #include "material.wgsl"
-@group(2) @binding(0) var<uniform> material: Material;
+#include "material_uniform.wgsl"
 #include "material_samples.wgsl"
 #if PASS_TARGETS
 #include "pass_targets.wgsl"

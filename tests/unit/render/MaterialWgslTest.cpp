@@ -103,9 +103,12 @@ struct WgslBinding {
     std::string type;
 };
 
-// Every `@group(2) @binding(N) var NAME: TYPE`, by name.
+// Every `@group(2) @binding(N) var NAME: TYPE` of material.wgsl and of material_uniform.wgsl
+// (the uniform, which the visibility shading replaces), by name.
 std::map<std::string, WgslBinding> groupTwoBindings() {
-    const std::string source = materialWgsl();
+    const std::string source =
+        materialWgsl() +
+        std::regex_replace(embeddedWgsl("material_uniform.wgsl"), std::regex("//[^\n]*"), "");
     std::map<std::string, WgslBinding> bindings;
     const std::regex declaration(
         R"(@group\((\d+)\)\s*@binding\((\d+)\)\s*var(?:<\w+>)?\s+(\w+)\s*:\s*([\w<>]+))");
