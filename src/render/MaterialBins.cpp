@@ -44,7 +44,8 @@ MaterialBins::MaterialBins(const MaterialResources& materials) {
     mLeader.resize(count);
     mSlot.resize(count);
     mBlock.resize(count);
-    std::uint32_t slots = 0;  // Blocks follow each other, as many slots as they have materials.
+    // Blocks follow each other, as many slots as they have materials: a slot per material.
+    std::uint32_t slots = 0;
     for (const auto& [leader, members] : classes) {
         for (std::size_t first = 0; first < members.size(); first += kBinMaterials) {
             const std::size_t end = std::min<std::size_t>(members.size(), first + kBinMaterials);
@@ -56,7 +57,6 @@ MaterialBins::MaterialBins(const MaterialResources& materials) {
             slots += std::uint32_t(end - first);
         }
     }
-    mTableSlots = slots;
 }
 
 std::uint32_t MaterialBins::binWord(std::uint32_t material, bool tangent) const {
@@ -75,8 +75,8 @@ std::uint64_t MaterialBins::slotOffset(std::uint32_t material) const {
 }
 
 std::uint64_t MaterialBins::tableBytes() const {
-    // Room for a whole block's binding from the last block's start.
-    return std::uint64_t(mTableSlots) * kSlotBytes + kBlockBytes;
+    // A slot per material, and room for a whole block's binding from the last block's start.
+    return std::uint64_t(materialCount()) * kSlotBytes + kBlockBytes;
 }
 
 }  // namespace encore::render

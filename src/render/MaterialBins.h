@@ -52,7 +52,6 @@ class MaterialBins {
     std::vector<std::uint32_t> mLeader;  // Material -> the first material of its block.
     std::vector<std::uint32_t> mSlot;    // Material -> its slot in the block.
     std::vector<std::uint32_t> mBlock;   // Material -> its block's first slot in the table.
-    std::uint32_t mTableSlots = 0;
 };
 
 }  // namespace encore::render

@@ -382,9 +382,7 @@ Result<std::unique_ptr<VisibilityPipelines>> VisibilityPipelines::create(const R
     }
     {
         std::set<std::string, std::less<>> flags = compositeFlags(setup);
-        if (setup.colorFormat == wgpu::TextureFormat::RGBA16Float) {
-            flags.insert("HALF_OUTPUT");
-        }
+        flags.merge(composedFlags(setup));  // composeMain writes the composed frame.
         ENCORE_TRY_ASSIGN(auto compose, library.module("visibility_composite.wgsl", flags));
         add(p.compose, compose, "composeMain", {p.composeLayout});
     }
