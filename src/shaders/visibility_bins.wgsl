@@ -7,7 +7,8 @@
 // of the round has room for every tile of the group in one buffer, so a tile is listed with one
 // atomic per bin it holds and no count, prefix sum or second pass (on the H100 those three
 // dispatches over every pixel took 0.043 ms of a 1280x720 frame). Scenes of more bins bin and
-// shade round after round.
+// shade round after round. Scenes of one bin are not binned: their shading takes every tile
+// (visibility_shade.wgsl's everyTile).
 // COMPOSED (frames composed in compute at one sample): uncovered pixels take the background in
 // the composed frame, whose covered ones the shading writes (visibility_composed.wgsl).
 #include "visibility_bin_record.wgsl"
@@ -19,6 +20,7 @@ struct Bin {
     count: atomic<u32>,  // Tiles listed.
     id: u32,             // The bin's index (for the shading, which binds one record).
     first: u32,          // Its first tile in the list.
+    everyTile: u32,      // 0: the binning clears the record (visibility_shade.wgsl's Bin).
     padding: array<u32, kBinPaddingWords>,
 }
 

@@ -168,7 +168,9 @@ TEST(BenchSmokeTest, FlythroughAndCityReportTrianglesPerFrame) {
 }
 
 // Under the GPU timer the visibility strategy's phases are timed as the frame runs them, one
-// pass each; --gpu-steps times each step (culling, rasters, pyramid, binning, shading) apart.
+// pass each; --gpu-steps times each step (culling, rasters, pyramid, binning, shading) apart. The
+// city's four materials share one shading bin, which is not binned; seventy meshes of as many
+// untextured materials fill two bins (MaterialBins::kBinMaterials each), whose tiles are.
 TEST(BenchSmokeTest, VisibilityPassesAsTheyRunOrStepByStep) {
     const auto dir = makeTempDir("bench-steps");
     const std::string args =
@@ -190,14 +192,21 @@ TEST(BenchSmokeTest, VisibilityPassesAsTheyRunOrStepByStep) {
         EXPECT_TRUE(asRun.contains(phase)) << phase << " in " << asRun.dump();
         EXPECT_FALSE(apart.contains(phase)) << phase << " in " << apart.dump();
     }
-    for (const char* step :
-         {"visibility compute raster", "visibility workgroup raster", "visibility depth pyramid",
-          "visibility occlusion culling", "visibility compute raster (second phase)",
-          "visibility binning", "visibility shading"}) {
+    for (const char* step : {"visibility compute raster", "visibility workgroup raster",
+                             "visibility depth pyramid", "visibility occlusion culling",
+                             "visibility compute raster (second phase)", "visibility shading"}) {
         EXPECT_TRUE(apart.contains(step)) << step << " in " << apart.dump();
         EXPECT_FALSE(asRun.contains(step)) << step << " in " << asRun.dump();
     }
     EXPECT_LT(asRun.size(), apart.size());
+    EXPECT_FALSE(apart.contains("visibility binning")) << apart.dump();
+
+    const auto twoBins =
+        runBench(dir, args + " --gpu-steps --meshes 70 --materials 70 --no-textures");
+    ASSERT_EQ(twoBins.command.exitCode, 0) << twoBins.command.err;
+    const auto& binned = twoBins.report["results"][0]["gpuPassesMs"];
+    EXPECT_TRUE(binned.contains("visibility binning")) << binned.dump();
+    EXPECT_TRUE(binned.contains("visibility shading")) << binned.dump();
 }
 
 // The culling options reach the report, --frustum-baseline adds a frustum-only measurement of

@@ -179,73 +179,89 @@ TEST(VisibilityBinningTest, FullBlocksOpenAnotherBin) {
 
 // At four samples a pixel's triangle is shaded once, whatever number of its samples it covers:
 // into the layer of the first sample it covers, the pixel's other layers left as they were (zero
-// on the first frame). Its bin lists each 8x8 tile the triangle touches once, at one sample
-// too (which shades into the composed frame, not the layers: VisibilityComposedTest).
+// on the first frame). Where the scene has two shading bins (a second triangle behind the
+// camera, iridescent: a shader variant of its own), the triangle's bin lists each 8x8 tile it
+// touches once, at one sample too (which shades into the composed frame, not the layers:
+// VisibilityComposedTest); a scene of one bin is not binned (its record says every tile).
 TEST(VisibilityMultisampleTest, EachTriangleOfAPixelIsShadedOnce) {
     ENCORE_REQUIRE_VULKAN(context);
-    const auto scene =
-        triangles({{glm::vec3(-3, -1.1f, -1), glm::vec3(1, -0.6f, -1), glm::vec3(-1, 1.4f, -1)}});
+    const std::array<glm::vec3, 3> seen{glm::vec3(-3, -1.1f, -1), glm::vec3(1, -0.6f, -1),
+                                        glm::vec3(-1, 1.4f, -1)};
+    const std::array<glm::vec3, 3> behind{glm::vec3(-1, 0, 5), glm::vec3(1, 0, 5),
+                                          glm::vec3(0, 1, 5)};
+    scene::SceneData twoBins = triangles({seen, behind});
+    ASSERT_EQ(twoBins.materials.size(), 2u);
+    twoBins.materials[1].iridescence = scene::IridescenceExtension{.iridescenceFactor = 1.0f};
+    const scene::SceneData oneBin = triangles({seen});
     for (std::uint32_t samples : kSampleCounts) {
-        SCOPED_TRACE(std::to_string(samples) + " samples");
-        auto renderer =
-            Renderer::create(*context, test::pixelTestOptions(kWidth, kHeight, samples));
-        ASSERT_TRUE(renderer.ok());
-        ASSERT_TRUE(renderer->prepare(scene, StrategyKind::Visibility).ok());
-        renderer->renderFrame(kFront);
-        auto image = renderer->readImage();
-        ASSERT_TRUE(image.ok());
-        const auto* visibility = dynamic_cast<const VisibilityStrategy*>(renderer->strategy());
-        ASSERT_NE(visibility, nullptr);
-        const std::uint32_t binCount = visibility->tables().binCount;
-        auto bins = gpu::readBuffer(*context, visibility->bins(), 0,
-                                    binCount * VisibilityStrategy::kBinRecordBytes);
-        ASSERT_TRUE(bins.ok());
-        std::uint64_t tilesListed = 0;
-        for (std::uint32_t bin = 0; bin < binCount; ++bin) {
-            std::uint32_t count = 0;
-            std::memcpy(&count, bins->data() + bin * VisibilityStrategy::kBinRecordBytes, 4);
-            tilesListed += count;
-        }
-        std::vector<std::vector<float>> layers;
-        for (std::uint32_t layer = 0; samples > 1 && layer < samples; ++layer) {
-            auto texels =
-                gpu::readTextureRgba16Float(*context, visibility->shadedColour(), 0, layer);
-            ASSERT_TRUE(texels.ok());
-            layers.push_back(std::move(*texels));
-        }
-        const auto background = test::pixelAt(*image, 0, 0);
-        std::uint64_t touched = 0;
-        std::set<std::pair<std::uint32_t, std::uint32_t>> tiles;
-        std::uint64_t shadedOnce = 0;
-        std::uint64_t shadedTexels = 0;
-        for (std::uint32_t y = 0; y < image->height; ++y) {
-            for (std::uint32_t x = 0; x < image->width; ++x) {
-                std::uint32_t shaded = 0;
-                for (const std::vector<float>& layer : layers) {
-                    shaded += layer[(std::size_t(y) * image->width + x) * 4 + 3] != 0.0f;
-                }
-                shadedTexels += shaded;
-                if (test::pixelAt(*image, x, y) != background) {
-                    ++touched;
-                    tiles.insert({x / 8, y / 8});
-                    shadedOnce += shaded == 1;
+        for (const bool binned : {false, true}) {
+            SCOPED_TRACE(std::to_string(samples) + " samples, " + (binned ? "binned" : "one bin"));
+            auto renderer =
+                Renderer::create(*context, test::pixelTestOptions(kWidth, kHeight, samples));
+            ASSERT_TRUE(renderer.ok());
+            ASSERT_TRUE(
+                renderer->prepare(binned ? twoBins : oneBin, StrategyKind::Visibility).ok());
+            renderer->renderFrame(kFront);
+            auto image = renderer->readImage();
+            ASSERT_TRUE(image.ok());
+            const auto* visibility = dynamic_cast<const VisibilityStrategy*>(renderer->strategy());
+            ASSERT_NE(visibility, nullptr);
+            EXPECT_EQ(visibility->tables().bins.size(), binned ? 2u : 1u);
+            const std::uint32_t binCount = visibility->tables().binCount;
+            auto bins = gpu::readBuffer(*context, visibility->bins(), 0,
+                                        binCount * VisibilityStrategy::kBinRecordBytes);
+            ASSERT_TRUE(bins.ok());
+            std::uint64_t tilesListed = 0;
+            std::uint32_t everyTile = 0;
+            for (std::uint32_t bin = 0; bin < binCount; ++bin) {
+                std::array<std::uint32_t, 4> record{};
+                std::memcpy(record.data(), bins->data() + bin * VisibilityStrategy::kBinRecordBytes,
+                            sizeof(record));
+                tilesListed += record[0];
+                everyTile += record[3];
+            }
+            EXPECT_EQ(everyTile, binned ? 0u : 1u);
+            std::vector<std::vector<float>> layers;
+            for (std::uint32_t layer = 0; samples > 1 && layer < samples; ++layer) {
+                auto texels =
+                    gpu::readTextureRgba16Float(*context, visibility->shadedColour(), 0, layer);
+                ASSERT_TRUE(texels.ok());
+                layers.push_back(std::move(*texels));
+            }
+            const auto background = test::pixelAt(*image, 0, 0);
+            std::uint64_t touched = 0;
+            std::set<std::pair<std::uint32_t, std::uint32_t>> tiles;
+            std::uint64_t shadedOnce = 0;
+            std::uint64_t shadedTexels = 0;
+            for (std::uint32_t y = 0; y < image->height; ++y) {
+                for (std::uint32_t x = 0; x < image->width; ++x) {
+                    std::uint32_t shaded = 0;
+                    for (const std::vector<float>& layer : layers) {
+                        shaded += layer[(std::size_t(y) * image->width + x) * 4 + 3] != 0.0f;
+                    }
+                    shadedTexels += shaded;
+                    if (test::pixelAt(*image, x, y) != background) {
+                        ++touched;
+                        tiles.insert({x / 8, y / 8});
+                        shadedOnce += shaded == 1;
+                    }
                 }
             }
+            EXPECT_GT(touched, 500u);
+            if (samples > 1) {
+                EXPECT_EQ(shadedOnce, touched);
+                EXPECT_EQ(shadedTexels, touched);
+            }
+            EXPECT_EQ(tilesListed, binned ? tiles.size() : 0u);
         }
-        EXPECT_GT(touched, 500u);
-        if (samples > 1) {
-            EXPECT_EQ(shadedOnce, touched);
-            EXPECT_EQ(shadedTexels, touched);
-        }
-        EXPECT_EQ(tilesListed, tiles.size());
     }
 }
 
 // At one sample a frame composed in compute (a plain background) is shaded into place, its
-// uncovered pixels written by the binning (no composition pass): its covered pixels are those
-// the render-pass composite draws over an environment (the shaded texture's half floats round
-// a level at most), and the others hold the background exactly. Its shaded texture stays
-// unwritten (zero on the first frame), which the composite's frame fills.
+// uncovered pixels written by the shading of its one bin (no binning, no composition pass): its
+// covered pixels are those the render-pass composite draws over an environment (the shaded
+// texture's half floats round a level at most), and the others hold the background exactly. Its
+// shaded texture stays unwritten (zero on the first frame), which the composite's frame fills.
 TEST(VisibilityComposedTest, ShadedIntoPlaceAsTheCompositeDrawsIt) {
     ENCORE_REQUIRE_VULKAN(context);
     const auto scene = test::generatedVisibilityScene(scene::SceneLayout::Grid, 200);

@@ -5,6 +5,7 @@
 
 #include "render/strategies/VisibilityStrategy.h"
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -76,10 +77,16 @@ void VisibilityStrategy::encodeShading(const wgpu::CommandEncoder& commands,
                                        std::size_t firstView,
                                        std::size_t firstBinSlot,
                                        std::uint32_t groupWidth) const {
-    commands.ClearBuffer(mWork->bins, 0, std::uint64_t(mTables.binCount) * kBinRecordBytes);
     VisibilityPhasePasses passes(commands, frame.timer, "visibility: binning and shading");
-    const MaterialResources& materials = mScene->materials();
     const std::uint32_t slotsOffset = std::uint32_t(firstView * VisibilityTarget::kParamsStride);
+    if (shadesEveryTile()) {
+        // The bin's record, written by beforePass, says so: no binning.
+        const wgpu::ComputePassEncoder& pass = passes.step("visibility shading");
+        pass.SetBindGroup(0, mSetup->frame->bindGroup());
+        shadeBin(pass, mTables.bins.front(), views, slotsOffset);
+        return;
+    }
+    commands.ClearBuffer(mWork->bins, 0, std::uint64_t(mTables.binCount) * kBinRecordBytes);
     const std::uint32_t columns = VisibilityTarget::tilesFor(groupWidth);
     const std::uint32_t rows = VisibilityTarget::tilesFor(mTarget->height);
     // Round after round of kRoundBins (one, unless the scene has more): its tiles listed, then
@@ -96,22 +103,37 @@ void VisibilityStrategy::encodeShading(const wgpu::CommandEncoder& commands,
         const wgpu::ComputePassEncoder& pass = passes.step("visibility shading");
         pass.SetBindGroup(0, mSetup->frame->bindGroup());
         for (; bin != mTables.bins.end() && *bin < roundEnd; ++bin) {
-            const scene::MaterialId material(*bin / 2);
-            const bool textured = materials.textured(material);
-            const wgpu::ComputePipeline& shading =
-                mPipelines->shading(*mSetup, views > 1, textured, (*bin & 1) != 0,
-                                    materials.shadesExtensions(material), mComposedShading);
-            if (!shading) {
-                continue;  // An embedded shader that does not compile: a bug the tests show.
-            }
-            pass.SetPipeline(shading);
-            const std::uint32_t offsets[] = {slotsOffset, std::uint32_t(*bin * kBinRecordBytes),
-                                             mTables.materialBins.blockOffset(*bin)};
-            pass.SetBindGroup(1, mComposedShading ? mShadeComposedGroup : mShadeGroup, 3, offsets);
-            pass.SetBindGroup(2, materials.drawBindGroup(material));
-            pass.DispatchWorkgroups(mTarget->shadeGroups);
+            shadeBin(pass, *bin, views, slotsOffset);
         }
     }
+}
+
+void VisibilityStrategy::shadeBin(const wgpu::ComputePassEncoder& pass,
+                                  std::uint32_t bin,
+                                  std::size_t views,
+                                  std::uint32_t slotsOffset) const {
+    const MaterialResources& materials = mScene->materials();
+    const scene::MaterialId material(bin / 2);
+    const wgpu::ComputePipeline& shading =
+        mPipelines->shading(*mSetup, views > 1, materials.textured(material), (bin & 1) != 0,
+                            materials.shadesExtensions(material), mComposedShading);
+    if (!shading) {
+        return;  // An embedded shader that does not compile: a bug the tests show.
+    }
+    pass.SetPipeline(shading);
+    const std::uint32_t offsets[] = {slotsOffset, std::uint32_t(bin * kBinRecordBytes),
+                                     mTables.materialBins.blockOffset(bin)};
+    pass.SetBindGroup(1, mComposedShading ? mShadeComposedGroup : mShadeGroup, 3, offsets);
+    pass.SetBindGroup(2, materials.drawBindGroup(material));
+    pass.DispatchWorkgroups(mTarget->shadeGroups);
+}
+
+void VisibilityStrategy::writeEveryTileRecord() const {
+    // visibility_shade.wgsl's Bin: no tile listed, the bin's id, every tile.
+    const std::uint32_t bin = mTables.bins.front();
+    const std::array<std::uint32_t, 4> record{0, bin, 0, 1};
+    mSetup->queue.WriteBuffer(mWork->bins, std::uint64_t(bin) * kBinRecordBytes, record.data(),
+                              sizeof(record));
 }
 
 bool VisibilityStrategy::composesFrame(const FrameState& frame) const {

@@ -169,6 +169,15 @@ class VisibilityStrategy final : public Strategy {
                        std::size_t firstView,
                        std::size_t firstBinSlot,
                        std::uint32_t groupWidth) const;
+    // A scene of one shading bin is not binned: its dispatch shades every tile, as the bin's
+    // record says (written each frame, since a frame of more bins clears the records).
+    bool shadesEveryTile() const { return mTables.bins.size() == 1; }
+    void writeEveryTileRecord() const;
+    // The shading dispatch of `bin`, its view slots from `slotsOffset`.
+    void shadeBin(const wgpu::ComputePassEncoder& pass,
+                  std::uint32_t bin,
+                  std::size_t views,
+                  std::uint32_t slotsOffset) const;
     // The raster dispatches of the units listed so far in this phase: grids of a fixed size
     // that stride over the lists (visibility_raster.wgsl says why not indirect dispatches).
     // Under a GPU timer, each dispatch in a pass of its own (VisibilityPhasePasses).
