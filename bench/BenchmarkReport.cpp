@@ -137,6 +137,8 @@ nlohmann::json toJson(const BenchReport& report) {
             {"cpuMs", percentilesJson(result.cpu)},
             {"warmupFrames", result.warmupFrames},
             {"gpuMs", result.gpu ? percentilesJson(*result.gpu) : nlohmann::json(nullptr)},
+            {"gpuSpanMs",
+             result.gpuSpan ? percentilesJson(*result.gpuSpan) : nlohmann::json(nullptr)},
             {"frame", toJson(result.frame)},
             {"bundleContents", toJson(result.bundleContents)},
             {"trianglesSubmitted", countsJson(result.trianglesSubmitted)},

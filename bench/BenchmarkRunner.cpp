@@ -168,6 +168,7 @@ Result<BenchResult> measure(gpu::Context& context,
     Result<void> animated;
     std::vector<double> animationTimes;
     std::map<std::string, std::vector<double>> passTimes;
+    std::vector<double> spanTimes;
     measureFrames(context, options, result.strategy, result, [&](std::uint32_t frame) {
         double animationMilliseconds = 0.0;
         if (animate) {
@@ -197,6 +198,9 @@ Result<BenchResult> measure(gpu::Context& context,
                 for (const auto& [label, milliseconds] : frameTimes) {
                     passTimes[label].push_back(milliseconds);
                 }
+                if (const std::optional<double> span = timer->lastSpan()) {
+                    spanTimes.push_back(*span);
+                }
             }
         }
         render::FrameTiming timing(rendered);
@@ -206,6 +210,9 @@ Result<BenchResult> measure(gpu::Context& context,
     ENCORE_TRY(animated);
     for (auto& [label, times] : passTimes) {
         result.gpuPasses[label] = render::Percentiles::of(std::move(times));
+    }
+    if (!spanTimes.empty()) {
+        result.gpuSpan = render::Percentiles::of(std::move(spanTimes));
     }
     auto drawn = renderer.takeTriangleHistory();
     renderer.setTriangleCounting(false);

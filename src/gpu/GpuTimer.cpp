@@ -11,7 +11,7 @@ std::optional<GpuTimer> GpuTimer::create(const Context& context, std::uint32_t m
     }
     GpuTimer timer;
     timer.mMaxPasses = std::clamp<std::uint32_t>(maxPasses, 1, std::size(timer.mWrites));
-    const std::uint32_t queryCount = timer.mMaxPasses * 2;
+    const std::uint32_t queryCount = timer.mMaxPasses * 2 + 1;  // And the frame's end.
     wgpu::QuerySetDescriptor queries{};
     queries.label = "pass timestamps";
     queries.type = wgpu::QueryType::Timestamp;
@@ -47,8 +47,17 @@ void GpuTimer::resolve(const wgpu::CommandEncoder& commands) {
     if (mPasses == 0) {
         return;
     }
-    commands.ResolveQuerySet(mQueries, 0, mPasses * 2, mResolved, 0);
-    commands.CopyBufferToBuffer(mResolved, 0, mStaging, 0, std::uint64_t(mPasses) * 16);
+    // The frame's end, after the last pass's: the end of an empty pass, which waits for every
+    // command before it (a transfer after the last pass too).
+    wgpu::PassTimestampWrites end{};
+    end.querySet = mQueries;
+    end.endOfPassWriteIndex = mPasses * 2;
+    wgpu::ComputePassDescriptor marker{};
+    marker.label = "frame end timestamp";
+    marker.timestampWrites = &end;
+    commands.BeginComputePass(&marker).End();
+    commands.ResolveQuerySet(mQueries, 0, mPasses * 2 + 1, mResolved, 0);
+    commands.CopyBufferToBuffer(mResolved, 0, mStaging, 0, std::uint64_t(mPasses) * 16 + 8);
     mResolvedThisFrame = true;
 }
 
@@ -56,11 +65,12 @@ std::optional<double> GpuTimer::read(Context& context) {
     const std::uint32_t passes = mPasses;
     mPasses = 0;
     mLastPasses.clear();
+    mLastSpan.reset();
     if (!mResolvedThisFrame || passes == 0) {
         return std::nullopt;
     }
     mResolvedThisFrame = false;
-    const std::uint64_t size = std::uint64_t(passes) * 16;
+    const std::uint64_t size = std::uint64_t(passes) * 16 + 8;
     bool mapped = false;
     context.wait(mStaging.MapAsync(wgpu::MapMode::Read, 0, size, wgpu::CallbackMode::WaitAnyOnly,
                                    [&](wgpu::MapAsyncStatus status, wgpu::StringView) {
@@ -78,6 +88,9 @@ std::optional<double> GpuTimer::read(Context& context) {
         nanoseconds += passNanoseconds;
         mLastPasses.push_back({std::string(mLabels[pass]), passNanoseconds / 1e6});
     }
+    const std::uint64_t first = ticks[0];
+    const std::uint64_t last = ticks[passes * 2];
+    mLastSpan = last > first ? double(last - first) / 1e6 : 0.0;
     mStaging.Unmap();
     return nanoseconds / 1e6;
 }

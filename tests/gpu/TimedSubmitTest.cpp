@@ -42,7 +42,7 @@ TEST(TimedSubmitTest, SubmitsWhatTheCallbackEncodes) {
 }
 
 // With a timer, the passes given its timestamp writes are timed and read back by the time
-// submitTimed returns; a submission without timed passes has no GPU time.
+// submitTimed returns, with the frame's span; a submission without timed passes has no GPU time.
 TEST(TimedSubmitTest, TimesThePassesOfItsTimer) {
     ContextOptions options;
     options.timestamps = true;
@@ -66,6 +66,25 @@ TEST(TimedSubmitTest, TimesThePassesOfItsTimer) {
     EXPECT_GE(*timed.gpuMilliseconds, 0.0);
     ASSERT_EQ(timer->lastPasses().size(), 1u);
     EXPECT_EQ(timer->lastPasses()[0].label, "empty pass");
+
+    ASSERT_TRUE(timer->lastSpan());
+    EXPECT_GE(*timer->lastSpan(), *timed.gpuMilliseconds);
+
+    // The span runs to the end of the frame's commands: a 64 MiB clear after the timed pass is
+    // in it, not in the sum of the passes.
+    const wgpu::Buffer large = createBuffer(context->device(), wgpu::BufferUsage::CopyDst,
+                                            std::uint64_t(64) << 20, "cleared after the pass");
+    const SubmitTiming cleared =
+        submitTimed(*context, &*timer, [&](const wgpu::CommandEncoder& encoder) {
+            wgpu::ComputePassDescriptor descriptor{};
+            descriptor.timestampWrites = timer->nextPass("empty pass");
+            encoder.BeginComputePass(&descriptor).End();
+            encoder.ClearBuffer(large);
+        });
+    ASSERT_TRUE(cleared.gpuMilliseconds);
+    ASSERT_TRUE(timer->lastSpan());
+    EXPECT_GT(*timer->lastSpan(), *cleared.gpuMilliseconds + 0.1)
+        << "a 64 MiB clear took no time between the pass and the frame's end";
 
     const SubmitTiming untimed =
         submitTimed(*context, &*timer,

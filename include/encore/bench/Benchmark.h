@@ -108,6 +108,9 @@ struct BenchResult {
     render::Percentiles cpu;
     std::uint32_t warmupFrames = 0;  // Rendered before the measured ones (the timed warm-up's too).
     std::optional<render::Percentiles> gpu;
+    // From the frame's first pass's beginning to its last pass's end (gpu::GpuTimer::lastSpan):
+    // with the transfers between passes, which `gpu` (the sum of the passes) leaves out.
+    std::optional<render::Percentiles> gpuSpan;
     // GPU time per pass label (gpu::GpuTimer::lastPasses, same-label passes of a frame summed):
     // where `gpu` goes, e.g. the culling passes, the depth pyramid and the scene passes.
     std::map<std::string, render::Percentiles> gpuPasses;

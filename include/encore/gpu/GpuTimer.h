@@ -26,7 +26,8 @@ class GpuTimer {
     // read() (a string literal: nothing is copied while the frame is encoded).
     const wgpu::PassTimestampWrites* nextPass(std::string_view label = "pass");
 
-    // Resolves this frame's queries; call on the frame's command encoder after its last pass.
+    // Resolves this frame's queries; call on the frame's command encoder after its last command
+    // (the span ends there).
     void resolve(const wgpu::CommandEncoder& commands);
 
     // After the frame's submit: waits for the results and returns the summed pass time in
@@ -47,6 +48,11 @@ class GpuTimer {
         double milliseconds = 0.0;
     };
     const std::vector<TimedPass>& lastPasses() const { return mLastPasses; }
+    // The last read() frame's span, in milliseconds: from the first pass's beginning to the end
+    // of the frame's commands (resolve() ends an empty pass there, whose timestamp waits for
+    // everything before it). Unlike the sum, it counts the transfers before, between and after
+    // the passes (clears, copies) and the GPU's idle gaps between them.
+    std::optional<double> lastSpan() const { return mLastSpan; }
 
   private:
     wgpu::QuerySet mQueries;
@@ -55,6 +61,7 @@ class GpuTimer {
     wgpu::PassTimestampWrites mWrites[16];
     std::string_view mLabels[16];
     std::vector<TimedPass> mLastPasses;
+    std::optional<double> mLastSpan;
     std::uint32_t mMaxPasses = 0;
     std::uint32_t mPasses = 0;
     bool mResolvedThisFrame = false;
