@@ -177,6 +177,8 @@ void createLayouts(const wgpu::Device& device, VisibilityPipelines& p) {
     p.frameOnlyLayout = gpu::makeBindGroupLayout(
         device, {LayoutEntry::uniform(0, kCompute | vertex | fragment, sizeof(FrameUniform))},
         "visibility frame");
+    p.clearLayout =
+        gpu::makeBindGroupLayout(device, {LayoutEntry::storage(0, kCompute)}, "visibility clear");
     p.cullLayout = gpu::makeBindGroupLayout(
         device,
         {params, LayoutEntry::readOnlyStorage(2, kCompute),
@@ -361,6 +363,8 @@ Result<std::unique_ptr<VisibilityPipelines>> VisibilityPipelines::create(const R
         }
         p.keptShading = true;
     }
+    ENCORE_TRY_ASSIGN(auto clear, library.module("visibility_clear.wgsl"));
+    add(p.clear, clear, "clearMain", {p.clearLayout});
     ENCORE_TRY_ASSIGN(auto cull, library.module("visibility_cull.wgsl"));
     const auto cullGroups = {p.frameOnlyLayout, p.cullLayout};
     add(p.cullFirst, cull, "cullFirstPhase", cullGroups);

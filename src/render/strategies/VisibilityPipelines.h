@@ -76,8 +76,8 @@ struct VisibilityPipelines {
     static constexpr std::uint64_t kShadingVariants = 8;  // Textured, tangent, extensions.
     static constexpr std::uint64_t createdPipelines(std::uint32_t sampleCount, bool kept) {
         const std::uint64_t composed = sampleCount == 1 ? 1 : 0;
-        // Culling 3, raster 2, binning 1 (+ composed), composition 1.
-        const std::uint64_t compute = 7 + composed;
+        // Clear 1, culling 3, raster 2, binning 1 (+ composed), composition 1.
+        const std::uint64_t compute = 8 + composed;
         return compute + kRenderPipelineCount + (kept ? kShadingVariants * (1 + composed) : 0);
     }
 
@@ -101,6 +101,7 @@ struct VisibilityPipelines {
                                          bool composed);
 
     wgpu::BindGroupLayout frameOnlyLayout;
+    wgpu::BindGroupLayout clearLayout;
     wgpu::BindGroupLayout cullLayout;
     wgpu::BindGroupLayout rasterLayout;
     wgpu::BindGroupLayout hardwareLayout;
@@ -110,6 +111,8 @@ struct VisibilityPipelines {
     wgpu::BindGroupLayout shadeComposedLayout;
     wgpu::BindGroupLayout compositeLayout;
     wgpu::BindGroupLayout composeLayout;
+    // The visibility buffer cleared in the frame's first compute pass (visibility_clear.wgsl).
+    wgpu::ComputePipeline clear;
     wgpu::ComputePipeline cullFirst;
     wgpu::ComputePipeline beginSecondPhase;
     wgpu::ComputePipeline cullSecond;

@@ -213,6 +213,8 @@ void VisibilityStrategy::createBindGroups() {
     const VisibilityTarget& target = *mTarget;
     const wgpu::Buffer& instances = mScene->instances().buffer();
     const gpu::BindingResource params(0, target.params, 0, sizeof(ViewParams));
+    mClearGroup =
+        gpu::makeBindGroup(device, p.clearLayout, {{0, target.visibility}}, "visibility clear");
     mCullGroup = gpu::makeBindGroup(device, p.cullLayout,
                                     {params,
                                      {2, instances},
@@ -329,7 +331,6 @@ void VisibilityStrategy::beforePass(const wgpu::CommandEncoder& commands, const 
     }
     mSetup->queue.WriteBuffer(mTarget->params, 0, params.data(), params.size());
     writeCullUniform(frame, views);
-    commands.ClearBuffer(mTarget->visibility);
     // A multi-view frame's cull is the same for every view (no frustum test, no occlusion, the
     // levels of one cull for all views): it runs once, and each view's raster starts from the
     // counters it left.
@@ -360,12 +361,21 @@ void VisibilityStrategy::encodeCull(const wgpu::CommandEncoder& commands,
     descriptor.timestampWrites =
         frame.timer ? frame.timer->nextPass("visibility culling") : nullptr;
     wgpu::ComputePassEncoder pass = commands.BeginComputePass(&descriptor);
+    dispatchClear(pass);
     const std::uint32_t paramsOffset = 0;
     pass.SetBindGroup(0, mPipelines->frameOnlyGroup);
     pass.SetBindGroup(1, mCullGroup, 1, &paramsOffset);
     dispatchItems(pass, mPipelines->cullFirst);
     pass.End();
     commands.CopyBufferToBuffer(mCounters, 0, mCulledCounters, 0, kCounterBytes);
+}
+
+void VisibilityStrategy::dispatchClear(const wgpu::ComputePassEncoder& pass) const {
+    const std::uint64_t entries = mTarget->visibility.GetSize() / 8;
+    pass.SetPipeline(mPipelines->clear);
+    pass.SetBindGroup(0, mClearGroup);
+    pass.DispatchWorkgroups(
+        std::uint32_t(std::min<std::uint64_t>((entries + 255) / 256, kMaxGroups)));
 }
 
 void VisibilityStrategy::dispatchItems(const wgpu::ComputePassEncoder& pass,
@@ -466,7 +476,9 @@ void VisibilityStrategy::encodeView(const wgpu::CommandEncoder& commands,
         VisibilityPhasePasses passes(commands, frame.timer,
                                      "visibility: culling and compute raster");
         if (!culled) {
+            // The frame's first pass (one view): the clear runs beside the culling.
             const wgpu::ComputePassEncoder& pass = passes.step("visibility culling");
+            dispatchClear(pass);
             bindCull(pass);
             dispatchItems(pass, mPipelines->cullFirst);
         }

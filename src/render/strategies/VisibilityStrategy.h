@@ -152,6 +152,8 @@ class VisibilityStrategy final : public Strategy {
     void encodeCull(const wgpu::CommandEncoder& commands, const FrameState& frame) const;
     void dispatchItems(const wgpu::ComputePassEncoder& pass,
                        const wgpu::ComputePipeline& cull) const;
+    // The visibility buffer cleared, at the start of the frame's first compute pass.
+    void dispatchClear(const wgpu::ComputePassEncoder& pass) const;
     // Culls (unless `culled`) and rasterises one view.
     void encodeView(const wgpu::CommandEncoder& commands,
                     const FrameState& frame,
@@ -240,6 +242,7 @@ class VisibilityStrategy final : public Strategy {
 
     // Over the scene's buffers and the target's: made on the first frame and whenever the
     // target's resources are made again.
+    wgpu::BindGroup mClearGroup;
     wgpu::BindGroup mCullGroup;
     wgpu::BindGroup mRasterGroup;
     wgpu::BindGroup mHardwareGroup;
