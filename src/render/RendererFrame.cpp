@@ -52,6 +52,7 @@ FrameResult Renderer::renderPasses(std::span<const Camera> cameras,
     state.culling = mOptions.culling;
     state.targetWidth = mTarget.width();
     state.targetHeight = mTarget.height();
+    state.transformsAnimated = mGpuAnimation && mGpuAnimationPending;
     const bool twoPhases = !multiView && mStrategy && mStrategy->drawsInTwoPhases(state);
     if (twoPhases) {
         state.phase = DrawPhase::First;

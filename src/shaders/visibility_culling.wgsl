@@ -15,6 +15,8 @@ struct Culling {
     frustumTest: u32,  // 0 in multi-view frames, whose views each frame the whole scene.
     lodDistanceSlack: f32,
     clusterCulling: u32,  // 1: the raster passes cull clusters (CullingOptions::clusterCulling).
+    // 1: the frustum tests read each item's world sphere (visibility_cull.wgsl's worldSpheres).
+    worldSpheres: u32,
     lodViews: array<vec4f, 16>,
 }
 

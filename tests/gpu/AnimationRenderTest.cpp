@@ -284,6 +284,40 @@ TEST(AnimationRenderTest, GpuCullingFollowsAnimationAcrossTheFrustumEdge) {
     }
 }
 
+// The visibility strategy tests items against the frustum by world spheres while transforms
+// hold still: after a still frame (its spheres computed), the animation moving the quads across
+// the frustum's edge, evaluated on the CPU or the GPU, draws each frame as `materials` does.
+TEST(AnimationRenderTest, VisibilityFollowsAnimationAcrossTheFrustumEdge) {
+    ENCORE_REQUIRE_VULKAN(context);
+    const auto scene = crossingScene();
+    const std::vector<double> times = {0.0, 0.25, 0.5, 0.75, 1.0};
+    const auto reference = renderAt(scene, StrategyKind::Materials, times);
+    for (AnimationEvaluation evaluation : {AnimationEvaluation::Cpu, AnimationEvaluation::Gpu}) {
+        SCOPED_TRACE(evaluation == AnimationEvaluation::Cpu ? "CPU evaluation" : "GPU evaluation");
+        RendererOptions options = test::pixelTestOptions(kSize, kSize);
+        options.animation = evaluation;
+        auto renderer = Renderer::create(*context, options);
+        ASSERT_TRUE(renderer.ok());
+        ASSERT_TRUE(renderer->prepare(scene, StrategyKind::Visibility).ok());
+        for (std::size_t i = 0; i < times.size(); ++i) {
+            ASSERT_TRUE(renderer->setAnimationTime(times[i]).ok());
+            for (const char* frame : {"the animated frame", "a still frame after it"}) {
+                SCOPED_TRACE("t = " + std::to_string(times[i]) + ", " + frame);
+                renderer->renderFrame(frontCamera());
+                auto image = renderer->readImage();
+                ASSERT_TRUE(image.ok()) << image.error().message;
+                const std::size_t pixels = std::size_t(image->width) * image->height;
+                EXPECT_LE(double(test::differingPixels(*image, reference[i], 2)),
+                          0.005 * double(pixels));
+                EXPECT_EQ(
+                    test::coveredFraction(*image, test::pixelAt(*image, 0, 0)) > 0.0,
+                    test::coveredFraction(reference[i], test::pixelAt(reference[i], 0, 0)) > 0.0);
+            }
+        }
+        EXPECT_TRUE(context->checkNoErrors("visibility animated across the frustum").ok());
+    }
+}
+
 // 100 animated frames replay the bundles recorded once; every frame equals `materials`.
 TEST(AnimationRenderTest, BundlesStayRecordedWhileAnimating) {
     ENCORE_REQUIRE_VULKAN(context);

@@ -281,6 +281,61 @@ TEST(VisibilityDisocclusionTest, AnObjectComingOutFromBehindTheWallAppearsInThat
     EXPECT_TRUE(context->checkNoErrors("visibility disocclusion").ok());
 }
 
+// Frames of one view test items against the frustum by world spheres, computed once the
+// transforms hold still: an instance moved from behind the camera to just in front of it shows
+// in that frame (tested by its matrix) and in the frames after (the spheres computed again), one
+// moved far away goes, each frame as GPU culling draws it.
+TEST(VisibilityWorldSpheresTest, MovedInstancesAreCulledWhereTheyAreNow) {
+    ENCORE_REQUIRE_VULKAN(context);
+    const auto scene = test::generatedVisibilityScene(scene::SceneLayout::Grid, 200);
+    const Camera camera = walk(scene, 1)[0];
+    const CullingOptions culling{.occlusion = true, .levelsOfDetail = false};
+    auto visibility = renderer(*context, scene, StrategyKind::Visibility, culling);
+    auto reference = renderer(*context, scene, StrategyKind::GpuCullingBundles, culling);
+    ASSERT_TRUE(visibility && reference);
+    auto compare = [&](const char* what) {
+        SCOPED_TRACE(what);
+        const auto expected = frame(*reference, camera);
+        const auto image = frame(*visibility, camera);
+        test::expectVisibilityClose(expected, image);
+        return image;
+    };
+    compare("first frame");
+    const auto still = compare("spheres in use");
+    // The instance farthest behind the camera, and the one nearest in front of it.
+    const glm::vec3 eye = camera.position;
+    const glm::vec3 forward =
+        -glm::normalize(glm::vec3(camera.view[0][2], camera.view[1][2], camera.view[2][2]));
+    std::size_t behind = 0;
+    std::size_t nearest = 0;
+    float behindDepth = 0.0f;
+    float nearestDepth = 3.4e38f;
+    for (std::size_t i = 0; i < scene.instances.size(); ++i) {
+        const float depth = glm::dot(glm::vec3(scene.instances[i].world[3]) - eye, forward);
+        if (depth < behindDepth) {
+            behindDepth = depth;
+            behind = i;
+        }
+        if (depth > 0.5f && depth < nearestDepth) {
+            nearestDepth = depth;
+            nearest = i;
+        }
+    }
+    ASSERT_LT(behindDepth, -1.0f) << "the walk's camera should leave instances behind it";
+    const glm::mat4 inFront = glm::translate(glm::mat4(1.0f), eye + forward * 1.5f);
+    const glm::mat4 farAway = glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 1000.0f, 0.0f));
+    for (Renderer* moved : {visibility.get(), reference.get()}) {
+        ASSERT_TRUE(moved->updateInstance(behind, inFront).ok());
+        ASSERT_TRUE(moved->updateInstance(nearest, farAway).ok());
+    }
+    const auto after = compare("the frame of the move");
+    EXPECT_GT(test::differingPixels(still, after, 2), std::size_t(kWidth * kHeight / 20))
+        << "the instance moved in front of the camera should cover much of the view";
+    compare("spheres computed again");
+    compare("spheres in use again");
+    EXPECT_TRUE(context->checkNoErrors("visibility world spheres").ok());
+}
+
 // With everything in view (the scene framed) and occlusion off, the cull lists exactly the
 // triangles GPU culling draws: the same level for every instance.
 TEST(VisibilityLevelsTest, LevelsListTheTrianglesGpuCullingDraws) {

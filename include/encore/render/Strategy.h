@@ -60,6 +60,9 @@ struct FrameState {
     // Set when the renderer composes this frame through Strategy::composeFrame: the background
     // it will pass there (FrameComposition::background), known to beforePass already.
     std::optional<wgpu::Color> composedBackground;
+    // GPU-evaluated animation writes instance transforms before this frame's passes (CPU
+    // animation and edits say so through Strategy::instanceMoved).
+    bool transformsAnimated = false;
 };
 
 // Where a strategy that composes the frame in compute (Strategy::composesFrame) writes it.

@@ -186,7 +186,8 @@ void createLayouts(const wgpu::Device& device, VisibilityPipelines& p) {
          LayoutEntry::storage(5, kCompute),
          LayoutEntry::uniform(10, kCompute, sizeof(VisibilityCullUniform)),
          LayoutEntry::storage(11, kCompute),
-         LayoutEntry::texture(12, kCompute, wgpu::TextureSampleType::UnfilterableFloat)},
+         LayoutEntry::texture(12, kCompute, wgpu::TextureSampleType::UnfilterableFloat),
+         LayoutEntry::storage(13, kCompute)},
         "visibility culling");
     p.rasterLayout = gpu::makeBindGroupLayout(
         device,
@@ -367,6 +368,7 @@ Result<std::unique_ptr<VisibilityPipelines>> VisibilityPipelines::create(const R
     add(p.clear, clear, "clearMain", {p.clearLayout});
     ENCORE_TRY_ASSIGN(auto cull, library.module("visibility_cull.wgsl"));
     const auto cullGroups = {p.frameOnlyLayout, p.cullLayout};
+    add(p.worldSpheres, cull, "worldSphereMain", cullGroups);
     add(p.cullFirst, cull, "cullFirstPhase", cullGroups);
     add(p.beginSecondPhase, cull, "beginSecondPhase", cullGroups);
     add(p.cullSecond, cull, "cullSecondPhase", cullGroups);

@@ -59,11 +59,13 @@ struct VisibilityCullUniform {
     std::uint32_t frustumTest = 0;
     float lodDistanceSlack = 0.0f;
     std::uint32_t clusterCulling = 0;
+    std::uint32_t worldSpheres = 0;
+    std::array<std::uint32_t, 3> padding{};  // WGSL aligns lodViews to 16 bytes.
     std::array<glm::vec4, LodSelection::kMaxViews> lodViews{};
 };
 static_assert(offsetof(VisibilityCullUniform, lodViewCount) == 160);
-static_assert(offsetof(VisibilityCullUniform, lodViews) == 192);
-static_assert(sizeof(VisibilityCullUniform) == 448);
+static_assert(offsetof(VisibilityCullUniform, lodViews) == 208);
+static_assert(sizeof(VisibilityCullUniform) == 464);
 
 struct VisibilityPipelines {
     // Bytes of visibility_counters.wgsl's Counters.
@@ -76,8 +78,8 @@ struct VisibilityPipelines {
     static constexpr std::uint64_t kShadingVariants = 8;  // Textured, tangent, extensions.
     static constexpr std::uint64_t createdPipelines(std::uint32_t sampleCount, bool kept) {
         const std::uint64_t composed = sampleCount == 1 ? 1 : 0;
-        // Clear 1, culling 3, raster 2, binning 1 (+ composed), composition 1.
-        const std::uint64_t compute = 8 + composed;
+        // Clear 1, spheres 1, culling 3, raster 2, binning 1 (+ composed), composition 1.
+        const std::uint64_t compute = 9 + composed;
         return compute + kRenderPipelineCount + (kept ? kShadingVariants * (1 + composed) : 0);
     }
 
@@ -113,6 +115,7 @@ struct VisibilityPipelines {
     wgpu::BindGroupLayout composeLayout;
     // The visibility buffer cleared in the frame's first compute pass (visibility_clear.wgsl).
     wgpu::ComputePipeline clear;
+    wgpu::ComputePipeline worldSpheres;  // Each item's world sphere (visibility_cull.wgsl).
     wgpu::ComputePipeline cullFirst;
     wgpu::ComputePipeline beginSecondPhase;
     wgpu::ComputePipeline cullSecond;

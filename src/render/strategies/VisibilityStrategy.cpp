@@ -133,6 +133,10 @@ Result<void> VisibilityStrategy::prepareScene() {
     mItemVisibility = gpu::createBuffer(device, wgpu::BufferUsage::Storage,
                                         std::max<std::uint64_t>(mTables.itemCount, 1) * 4,
                                         "visibility of items last frame");
+    mWorldSpheres = gpu::createBuffer(device, wgpu::BufferUsage::Storage,
+                                      std::max<std::uint64_t>(mTables.itemCount, 1) * 16,
+                                      "visibility world spheres of items");
+    mSpheresCurrent = false;
     mHardwareCapacity =
         std::uint32_t(std::clamp<std::uint64_t>(mTables.triangleCount, 1, kMaxHardwareTriangles));
     // A triangle of the workgroup path lists its record and its blocks (visibility_raster.wgsl);
@@ -223,6 +227,7 @@ void VisibilityStrategy::createBindGroups() {
                                      {5, mCounters},
                                      {10, mCullUniform},
                                      {11, mItemVisibility},
+                                     {13, mWorldSpheres},
                                      {12, target.pyramid.view()}},
                                     "visibility culling");
     const gpu::BindingResource geometry(1, mGeometry, 0, mGeometryBytes);
@@ -284,6 +289,14 @@ void VisibilityStrategy::beforePass(const wgpu::CommandEncoder& commands, const 
     // As GPU culling: two phases in frames of one view, and not while a frozen culling camera
     // sees another view than the one drawn.
     mOcclusion = views == 1 && frame.culling.occlusion && !frame.cullingCamera;
+    // Frames of one view test items against the frustum by their world spheres while the
+    // transforms hold still: computed in the first static frame, kept until one moves (a frame
+    // that moves transforms tests with the matrices, so animation pays nothing for them).
+    const bool moved = mTransformsMoved || frame.transformsAnimated;
+    mTransformsMoved = false;
+    mSpheresCurrent = mSpheresCurrent && !moved;
+    mComputeSpheres = views == 1 && !moved && !mSpheresCurrent;
+    mSpheresCurrent = mSpheresCurrent || mComputeSpheres;
     const std::uint32_t viewWidth = frame.targetWidth / std::uint32_t(views);
     if (!computeTakesAll(frame.culling)) {
         mTarget->ensureHardwareDepth(*mSetup, viewWidth);  // The hardware raster's attachment.
@@ -407,6 +420,7 @@ void VisibilityStrategy::writeCullUniform(const FrameState& frame, std::size_t v
     uniform.lodDistanceSlack = lod.distanceSlack;
     uniform.occlusion = mOcclusion ? 1 : 0;
     uniform.clusterCulling = frame.culling.clusterCulling ? 1 : 0;
+    uniform.worldSpheres = views == 1 && mSpheresCurrent ? 1 : 0;
     mSetup->queue.WriteBuffer(mCullUniform, 0, &uniform, sizeof(uniform));
 }
 
@@ -480,6 +494,9 @@ void VisibilityStrategy::encodeView(const wgpu::CommandEncoder& commands,
             const wgpu::ComputePassEncoder& pass = passes.step("visibility culling");
             dispatchClear(pass);
             bindCull(pass);
+            if (mComputeSpheres) {
+                dispatchItems(pass, mPipelines->worldSpheres);
+            }
             dispatchItems(pass, mPipelines->cullFirst);
         }
         encodeRaster(passes, paramsOffset, false);

@@ -62,6 +62,12 @@ class VisibilityStrategy final : public Strategy {
     // (MaterialBins.h).
     Result<void> refresh() override;
     void beforePass(const wgpu::CommandEncoder& commands, const FrameState& frame) override;
+    // The items' world spheres are stale (the next frame tests with the matrices).
+    void instanceMoved(std::size_t instance, const glm::mat4& world) override {
+        (void)instance;
+        (void)world;
+        mTransformsMoved = true;
+    }
     // A multisampled target has four visibility samples per pixel at the hardware's 4x
     // positions (docs/visibility.md). The visibility buffer (8 bytes per sample) must fit
     // maxStorageBufferBindingSize, the shaded colour (a texel per sample: twice the target's
@@ -225,6 +231,12 @@ class VisibilityStrategy final : public Strategy {
     std::uint32_t mPersistentGroups = 1;  // persistentWorkgroups() of the device.
     wgpu::Buffer mCullUniform;
     wgpu::Buffer mItemVisibility;  // Per item: visible in the last two-phase frame.
+    // Per item, its bounds' world sphere (visibility_cull.wgsl), current while mSpheresCurrent;
+    // mTransformsMoved: an instance moved since the last frame (instanceMoved).
+    wgpu::Buffer mWorldSpheres;
+    bool mSpheresCurrent = false;
+    bool mComputeSpheres = false;  // This frame computes them, in its first pass.
+    bool mTransformsMoved = false;
 
     wgpu::Buffer mGeometry;  // The first shared geometry buffer, or a placeholder.
     std::uint64_t mGeometryBytes = 0;
