@@ -147,16 +147,30 @@ void VisibilityStrategy::composeFrame(const wgpu::CommandEncoder& commands,
                                       const FrameState& frame,
                                       const FrameComposition& target) {
     (void)frame;
+    // Timed, the composition runs to the end of its copy into the target (a transfer, outside
+    // any pass): from its pass's beginning, or where frames are shaded into place from the end of
+    // an empty pass after the shading, to the end of an empty pass after the copy.
+    const wgpu::PassTimestampWrites* timed = target.timestampWrites;
+    wgpu::PassTimestampWrites begins{};
+    wgpu::PassTimestampWrites ends{};
+    if (timed) {
+        begins.querySet = timed->querySet;
+        ends.querySet = timed->querySet;
+        ends.endOfPassWriteIndex = timed->endOfPassWriteIndex;
+    }
     wgpu::ComputePassDescriptor descriptor{};
     descriptor.label = "visibility: composition";
-    descriptor.timestampWrites = target.timestampWrites;
+    descriptor.timestampWrites = timed ? &begins : nullptr;
     if (mComposedShading) {
-        // Shaded into place (beforePass): only the copy is left. A timed frame still closes the
-        // pass its timer counts on, with nothing in it.
-        if (target.timestampWrites) {
+        // Shaded into place (beforePass): only the copy is left.
+        if (timed) {
+            begins.endOfPassWriteIndex = timed->beginningOfPassWriteIndex;
             commands.BeginComputePass(&descriptor).End();
         }
     } else {
+        if (timed) {
+            begins.beginningOfPassWriteIndex = timed->beginningOfPassWriteIndex;
+        }
         if (mTarget->ensureComposed(*mSetup, target.background) || !mComposeGroup) {
             mComposeGroup = gpu::makeBindGroup(mSetup->device, mPipelines->composeLayout,
                                                {{0, mTarget->visibility},
@@ -181,6 +195,12 @@ void VisibilityStrategy::composeFrame(const wgpu::CommandEncoder& commands,
     destination.texture = target.texture;
     const wgpu::Extent3D size{mTarget->width, mTarget->height, 1};
     commands.CopyBufferToTexture(&source, &destination, &size);
+    if (timed) {
+        wgpu::ComputePassDescriptor end{};
+        end.label = "visibility: composition copied";
+        end.timestampWrites = &ends;
+        commands.BeginComputePass(&end).End();
+    }
 }
 
 }  // namespace encore::render
