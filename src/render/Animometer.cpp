@@ -133,8 +133,7 @@ Result<AnimometerScene> AnimometerScene::create(gpu::Context& context,
     AnimometerScene scene;
     scene.mContext = &context;
     scene.mOptions = options;
-    auto target = RenderTarget::create(
-        device, {options.width, options.height, 1, false, options.presentable});
+    auto target = RenderTarget::create(device, {options.width, options.height, 1, false});
     if (!target) {
         return target.error().withContext("Creating the animometer");
     }

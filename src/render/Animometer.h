@@ -49,8 +49,7 @@ struct AnimometerOptions {
     bool dynamicOffsets = false;
     std::uint32_t width = 512;
     std::uint32_t height = 512;
-    std::uint32_t seed = 1;    // Same seed, same triangles, whatever the mode.
-    bool presentable = false;  // RenderTargetOptions::presentable (a window shows the target).
+    std::uint32_t seed = 1;  // Same seed, same triangles, whatever the mode.
 };
 
 inline constexpr std::uint32_t kMaxAnimometerTriangles = 1000000;

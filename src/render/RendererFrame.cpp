@@ -76,6 +76,7 @@ FrameResult Renderer::renderPasses(std::span<const Camera> cameras,
         plan.backgroundColor = mOptions.toneMapping.backgroundColor;
         composedAttachments = passAttachments(plan);
         state.composedBackground = composedAttachments->clearColor;
+        state.composedView = mTarget.sceneStorageView();
     }
     auto encodeFrame = [&](const wgpu::CommandEncoder& commandEncoder) {
         if (mGpuAnimation && mGpuAnimationPending) {
@@ -165,7 +166,7 @@ FrameResult Renderer::renderPasses(std::span<const Camera> cameras,
         };
         if (composedAttachments) {
             FrameComposition composition;
-            composition.texture = mTarget.sceneTexture();
+            composition.view = mTarget.sceneStorageView();
             composition.background = composedAttachments->clearColor;
             composition.timestampWrites =
                 timestampWrites(GpuStage::Scene, composedAttachments->timestampLabel);

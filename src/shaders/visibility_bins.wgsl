@@ -33,7 +33,7 @@ struct Bin {
 @group(0) @binding(5) var<storage, read_write> tiles: array<u32>;
 #if COMPOSED
 #include "visibility_composed.wgsl"
-@group(0) @binding(6) var<storage, read_write> composed: array<u32>;
+@group(0) @binding(6) var composedFrame: ComposedFrame;
 @group(0) @binding(7) var<uniform> composition: Composition;
 #endif
 

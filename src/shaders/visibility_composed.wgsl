@@ -1,12 +1,18 @@
-// The frame composed in compute (Strategy::composeFrame): a texel of the target's format per
-// pixel in the includer's `composed` buffer, rows of `composition.rowTexels`, copied into the
-// target afterwards. HALF_OUTPUT: RGBA16Float texels (HDR targets); otherwise RGBA8 bytes,
-// sRGB-encoded as the sRGB target's hardware encodes.
+// The frame composed in compute (Strategy::composeFrame): the target's scene colour written by
+// the includer through `composedFrame`, a write-only storage view of the target
+// (RenderTarget::sceneStorageView): no copy afterwards. HALF_OUTPUT: RGBA16Float (HDR
+// targets); otherwise the RGBA8 bytes of the target's sRGB texture, encoded here as its sRGB
+// views encode what a render pass draws.
 
 struct Composition {
     background: vec4f,  // Linear: the scene pass's clear colour.
-    rowTexels: u32,     // The composed buffer's row pitch (rows of 256-byte multiples).
 }
+
+#if HALF_OUTPUT
+alias ComposedFrame = texture_storage_2d<rgba16float, write>;
+#else
+alias ComposedFrame = texture_storage_2d<rgba8unorm, write>;
+#endif
 
 // The sRGB transfer function, as an sRGB target encodes a linear colour it is given.
 fn srgbEncoded(linear: vec3f) -> vec3f {
@@ -14,15 +20,13 @@ fn srgbEncoded(linear: vec3f) -> vec3f {
     return select(1.055 * pow(c, vec3f(1.0 / 2.4)) - 0.055, 12.92 * c, c <= vec3f(0.0031308));
 }
 
-// `color` (premultiplied) blended over the background into the texel of `pixel`, as the
+// `color` (premultiplied) blended over the background into `pixel` of the target, as the
 // render-pass composite's pipeline blends it.
 fn storeComposed(pixel: vec2u, color: vec4f) {
     let blended = color + (1.0 - color.a) * composition.background;
-    let texel = pixel.y * composition.rowTexels + pixel.x;
 #if HALF_OUTPUT
-    composed[texel * 2u] = pack2x16float(blended.rg);
-    composed[texel * 2u + 1u] = pack2x16float(blended.ba);
+    textureStore(composedFrame, pixel, blended);
 #else
-    composed[texel] = pack4x8unorm(vec4f(srgbEncoded(blended.rgb), blended.a));
+    textureStore(composedFrame, pixel, vec4f(srgbEncoded(blended.rgb), blended.a));
 #endif
 }

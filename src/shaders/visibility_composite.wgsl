@@ -13,10 +13,10 @@
 // average them to, which keeps the multisampled target compressed (on the H100 writing chosen
 // samples, sample_mask, cost three times a one-sample target's pass).
 // With a plain background colour, composeMain does pixelMain's work in compute instead, for
-// every pixel (uncovered ones take the background), into a buffer of the target's texels that
-// is then copied into the target (Strategy::composeFrame, visibility_composed.wgsl): no render
-// pass at all, whose every fragment costs the H100's few graphics units about 0.3 ns. At one
-// sample the shading and the binning write that buffer themselves (COMPOSED in
+// every pixel (uncovered ones take the background), straight into the target through a storage
+// view (Strategy::composeFrame, visibility_composed.wgsl): no render pass at all, whose every
+// fragment costs the H100's few graphics units about 0.3 ns. At one sample the shading and the
+// binning write the target themselves (COMPOSED in
 // visibility_shade.wgsl and visibility_bins.wgsl), and composeMain does not run.
 #include "visibility_samples.wgsl"
 #include "visibility_composed.wgsl"
@@ -109,7 +109,7 @@ fn pixelMain(@builtin(position) position: vec4f) -> @location(0) vec4f {
     return pixel.color;
 }
 
-@group(0) @binding(2) var<storage, read_write> composed: array<u32>;
+@group(0) @binding(2) var composedFrame: ComposedFrame;
 @group(0) @binding(3) var<uniform> composition: Composition;
 
 @compute @workgroup_size(8, 8)

@@ -51,7 +51,7 @@ struct MaterialSlot {
 var<private> material: Material;
 #if COMPOSED
 #include "visibility_composed.wgsl"
-@group(1) @binding(8) var<storage, read_write> composed: array<u32>;
+@group(1) @binding(8) var composedFrame: ComposedFrame;
 @group(1) @binding(9) var<uniform> composition: Composition;
 #else
 @group(1) @binding(8) var shaded: texture_storage_2d_array<rgba16float, write>;

@@ -47,7 +47,6 @@ Result<std::unique_ptr<Viewer>> Viewer::create(gpu::Context& context,
         render::RendererOptions rendererOptions = s.options.renderer;
         rendererOptions.target.width = s.width;
         rendererOptions.target.height = s.height;
-        rendererOptions.target.presentable = true;
         ENCORE_TRY_ASSIGN(s.renderer, render::Renderer::create(context, rendererOptions));
         s.renderer->setGpuTimer(s.timer ? &*s.timer : nullptr);
         // The window's clock runs on: animations play round and round, not once.
@@ -74,7 +73,6 @@ Result<void> Viewer::State::createAnimometer(bool bundleDraws) {
     animometerOptions.bundle = bundleDraws;
     animometerOptions.width = width;
     animometerOptions.height = height;
-    animometerOptions.presentable = true;
     animometer.reset();
     ENCORE_TRY_ASSIGN(animometer,
                       render::AnimometerScene::create(*context, *shaders, animometerOptions));

@@ -21,10 +21,7 @@ struct RenderTargetOptions {
     std::uint32_t height = 720;
     std::uint32_t sampleCount = 1;  // 1 or 4.
     bool hdr = false;
-    // The output can also be sampled, through outputBytesView(): for a window that presents the
-    // image (view::Presenter) by copying its bytes into the window's surface.
-    bool presentable = false;
-    // The output and the pass images (PassTargets.h) can also be read as bytes by a compute
+    // The pass images (PassTargets.h) can also be read as bytes by a compute
     // pass, through RGBA8Unorm views: encore batch's PNG rows (batch/PngRowsPass).
     bool bytesViews = false;
 
@@ -34,6 +31,8 @@ struct RenderTargetOptions {
 class RenderTarget {
   public:
     static constexpr wgpu::TextureFormat kColorFormat = wgpu::TextureFormat::RGBA8UnormSrgb;
+    // The output texture's own format: kColorFormat's bytes, without sRGB encoding.
+    static constexpr wgpu::TextureFormat kBytesFormat = wgpu::TextureFormat::RGBA8Unorm;
     static constexpr wgpu::TextureFormat kHdrFormat = wgpu::TextureFormat::RGBA16Float;
     static constexpr wgpu::TextureFormat kDepthFormat = wgpu::TextureFormat::Depth32Float;
 
@@ -49,14 +48,17 @@ class RenderTarget {
     // The format scene pipelines render into: kHdrFormat, or kColorFormat without HDR.
     wgpu::TextureFormat sceneFormat() const { return mOptions.hdr ? kHdrFormat : kColorFormat; }
 
-    // The single-sampled texture that holds the final image (kColorFormat, CopySrc).
+    // The single-sampled texture that holds the final image: kBytesFormat, drawn through
+    // kColorFormat views (outputView), CopySrc.
     const wgpu::Texture& colorTexture() const { return mOutput; }
     // The resolved scene colour (the output itself without HDR; TextureBinding with HDR).
     const wgpu::Texture& sceneTexture() const { return mScene; }
     const wgpu::TextureView& sceneView() const { return mSceneView; }
+    // The scene colour as a write-only storage texture for compute (Strategy::composeFrame):
+    // kBytesFormat (a shader encodes sRGB itself), or kHdrFormat with HDR.
+    const wgpu::TextureView& sceneStorageView() const { return mSceneStorageView; }
     const wgpu::TextureView& outputView() const { return mOutputView; }
-    // The output's bytes as RGBA8Unorm (no sRGB decoding when sampled): presentable targets and
-    // those with bytesViews only.
+    // The output's bytes as RGBA8Unorm (no sRGB decoding when sampled).
     const wgpu::TextureView& outputBytesView() const { return mOutputBytesView; }
     const RenderTargetOptions& options() const { return mOptions; }
     // Depth32Float with the colour's sample count; also TextureBinding (DepthPyramid reads it).
@@ -76,6 +78,7 @@ class RenderTarget {
     wgpu::Texture mOutput;
     wgpu::Texture mDepth;
     wgpu::TextureView mSceneView;
+    wgpu::TextureView mSceneStorageView;
     wgpu::TextureView mMultisampledSceneView;
     wgpu::TextureView mOutputView;
     wgpu::TextureView mOutputBytesView;

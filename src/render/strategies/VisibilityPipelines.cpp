@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "encore/gpu/Context.h"
+#include "encore/render/RenderTarget.h"
 #include "gpu/BindingResource.h"
 #include "gpu/FullscreenPipeline.h"
 #include "gpu/LayoutEntry.h"
@@ -166,7 +167,9 @@ class AsyncComputePipelines {
     bool mWaited = false;
 };
 
-void createLayouts(const wgpu::Device& device, VisibilityPipelines& p) {
+void createLayouts(const wgpu::Device& device,
+                   wgpu::TextureFormat colorFormat,
+                   VisibilityPipelines& p) {
     using gpu::LayoutEntry;
     const auto vertex = wgpu::ShaderStage::Vertex;
     const auto fragment = wgpu::ShaderStage::Fragment;
@@ -207,10 +210,14 @@ void createLayouts(const wgpu::Device& device, VisibilityPipelines& p) {
          LayoutEntry::readOnlyStorage(3, vertex), LayoutEntry::readOnlyStorage(4, vertex),
          LayoutEntry::readOnlyStorage(5, vertex), LayoutEntry::storage(6, fragment)},
         "visibility hardware");
-    // The composed frame and its Composition (visibility_composed.wgsl), at `binding` on.
-    const auto composed = [](std::uint32_t binding) {
+    // The composed frame (the target's scene colour as a storage texture) and its Composition
+    // (visibility_composed.wgsl), at `binding` on.
+    const wgpu::TextureFormat composedFormat = colorFormat == wgpu::TextureFormat::RGBA16Float
+                                                   ? wgpu::TextureFormat::RGBA16Float
+                                                   : RenderTarget::kBytesFormat;
+    const auto composed = [composedFormat](std::uint32_t binding) {
         return std::array{
-            LayoutEntry::storage(binding, kCompute),
+            LayoutEntry::storageTexture(binding, kCompute, composedFormat),
             LayoutEntry::uniform(binding + 1, kCompute, VisibilityTarget::kCompositionBytes)};
     };
     std::vector<LayoutEntry> bins = {params,
@@ -255,8 +262,7 @@ void createLayouts(const wgpu::Device& device, VisibilityPipelines& p) {
         {LayoutEntry::readOnlyStorage(0, kCompute),
          LayoutEntry::texture(1, kCompute, wgpu::TextureSampleType::UnfilterableFloat,
                               wgpu::TextureViewDimension::e2DArray),
-         LayoutEntry::storage(2, kCompute),
-         LayoutEntry::uniform(3, kCompute, VisibilityTarget::kCompositionBytes)},
+         composed(2)[0], composed(2)[1]},
         "visibility composition");
 }
 
@@ -320,7 +326,7 @@ Result<std::unique_ptr<VisibilityPipelines>> VisibilityPipelines::create(const R
     auto created = std::make_unique<VisibilityPipelines>();
     VisibilityPipelines& p = *created;
     const wgpu::Device& device = setup.device;
-    createLayouts(device, p);
+    createLayouts(device, setup.colorFormat, p);
 
     shaders::ShaderLibrary& library = *setup.shaders;
     // Side by side where a renderer keeps them for scene after scene (encore batch, whose start

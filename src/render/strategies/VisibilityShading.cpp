@@ -53,19 +53,20 @@ void VisibilityStrategy::copyMaterialTable(const wgpu::CommandEncoder& commands)
     mCopiedMaterials = materials.uniformGeneration();
 }
 
-void VisibilityStrategy::ensureComposedShading(const wgpu::Color& background) {
-    if (!mTarget->ensureComposed(*mSetup, background) && mBinComposedGroup) {
+void VisibilityStrategy::ensureComposedShading(const wgpu::TextureView& view,
+                                               const wgpu::Color& background) {
+    if (!mTarget->ensureComposed(*mSetup, view, background) && mBinComposedGroup) {
         return;
     }
     const wgpu::Device& device = mSetup->device;
     const VisibilityTarget& target = *mTarget;
     std::vector<gpu::BindingResource> bins = binResources();
-    bins.emplace_back(6, target.composed);
+    bins.emplace_back(6, target.composedView);
     bins.emplace_back(7, target.composition);
     mBinComposedGroup = gpu::makeBindGroup(device, mPipelines->binComposedLayout, bins,
                                            "visibility bins, composed");
     std::vector<gpu::BindingResource> shading = shadeResources();
-    shading.emplace_back(8, target.composed);
+    shading.emplace_back(8, target.composedView);
     shading.emplace_back(9, target.composition);
     mShadeComposedGroup = gpu::makeBindGroup(device, mPipelines->shadeComposedLayout, shading,
                                              "visibility shading, composed");
@@ -138,69 +139,38 @@ void VisibilityStrategy::writeEveryTileRecord() const {
 
 bool VisibilityStrategy::composesFrame(const FrameState& frame) const {
     return mTables.itemCount > 0 && !drawsAfter() && frame.targetWidth > 0 &&
-           frame.targetHeight > 0 &&
-           VisibilityTarget::composedRowBytes(*mSetup, frame.targetWidth) * frame.targetHeight <=
-               mSetup->limits.maxStorageBufferBindingSize;
+           frame.targetHeight > 0;
 }
 
 void VisibilityStrategy::composeFrame(const wgpu::CommandEncoder& commands,
                                       const FrameState& frame,
                                       const FrameComposition& target) {
     (void)frame;
-    // Timed, the composition runs to the end of its copy into the target (a transfer, outside
-    // any pass): from its pass's beginning, or where frames are shaded into place from the end of
-    // an empty pass after the shading, to the end of an empty pass after the copy.
-    const wgpu::PassTimestampWrites* timed = target.timestampWrites;
-    wgpu::PassTimestampWrites begins{};
-    wgpu::PassTimestampWrites ends{};
-    if (timed) {
-        begins.querySet = timed->querySet;
-        ends.querySet = timed->querySet;
-        ends.endOfPassWriteIndex = timed->endOfPassWriteIndex;
-    }
     wgpu::ComputePassDescriptor descriptor{};
     descriptor.label = "visibility: composition";
-    descriptor.timestampWrites = timed ? &begins : nullptr;
+    descriptor.timestampWrites = target.timestampWrites;
     if (mComposedShading) {
-        // Shaded into place (beforePass): only the copy is left.
-        if (timed) {
-            begins.endOfPassWriteIndex = timed->beginningOfPassWriteIndex;
+        // Shaded into place (beforePass): nothing is left. A timed frame still closes the pass
+        // its timer counts on, with nothing in it.
+        if (target.timestampWrites) {
             commands.BeginComputePass(&descriptor).End();
         }
-    } else {
-        if (timed) {
-            begins.beginningOfPassWriteIndex = timed->beginningOfPassWriteIndex;
-        }
-        if (mTarget->ensureComposed(*mSetup, target.background) || !mComposeGroup) {
-            mComposeGroup = gpu::makeBindGroup(mSetup->device, mPipelines->composeLayout,
-                                               {{0, mTarget->visibility},
-                                                {1, mTarget->shadedLayers},
-                                                {2, mTarget->composed},
-                                                {3, mTarget->composition}},
-                                               "visibility composition");
-        }
-        wgpu::ComputePassEncoder pass = commands.BeginComputePass(&descriptor);
-        pass.SetPipeline(mPipelines->compose);
-        pass.SetBindGroup(0, mComposeGroup);
-        pass.DispatchWorkgroups(VisibilityTarget::tilesFor(mTarget->width),
-                                VisibilityTarget::tilesFor(mTarget->height));
-        pass.End();
+        return;
     }
-    wgpu::TexelCopyBufferInfo source{};
-    source.buffer = mTarget->composed;
-    source.layout.bytesPerRow =
-        std::uint32_t(VisibilityTarget::composedRowBytes(*mSetup, mTarget->width));
-    source.layout.rowsPerImage = mTarget->height;
-    wgpu::TexelCopyTextureInfo destination{};
-    destination.texture = target.texture;
-    const wgpu::Extent3D size{mTarget->width, mTarget->height, 1};
-    commands.CopyBufferToTexture(&source, &destination, &size);
-    if (timed) {
-        wgpu::ComputePassDescriptor end{};
-        end.label = "visibility: composition copied";
-        end.timestampWrites = &ends;
-        commands.BeginComputePass(&end).End();
+    if (mTarget->ensureComposed(*mSetup, target.view, target.background) || !mComposeGroup) {
+        mComposeGroup = gpu::makeBindGroup(mSetup->device, mPipelines->composeLayout,
+                                           {{0, mTarget->visibility},
+                                            {1, mTarget->shadedLayers},
+                                            {2, target.view},
+                                            {3, mTarget->composition}},
+                                           "visibility composition");
     }
+    wgpu::ComputePassEncoder pass = commands.BeginComputePass(&descriptor);
+    pass.SetPipeline(mPipelines->compose);
+    pass.SetBindGroup(0, mComposeGroup);
+    pass.DispatchWorkgroups(VisibilityTarget::tilesFor(mTarget->width),
+                            VisibilityTarget::tilesFor(mTarget->height));
+    pass.End();
 }
 
 }  // namespace encore::render

@@ -261,7 +261,7 @@ void VisibilityStrategy::createBindGroups() {
     mCompositeGroup = gpu::makeBindGroup(device, p.compositeLayout,
                                          {{0, target.visibility}, {1, target.shadedLayers}},
                                          "visibility composite");
-    // Over the composed buffer, made again with it (composeFrame, ensureComposedShading).
+    // Over the composed frame's view, made again with it (composeFrame, ensureComposedShading).
     mComposeGroup = nullptr;
     mBinComposedGroup = nullptr;
     mShadeComposedGroup = nullptr;
@@ -275,7 +275,7 @@ void VisibilityStrategy::beforePass(const wgpu::CommandEncoder& commands, const 
     // H100 0.018 ms of a 1280x720 frame).
     mComposedShading = frame.composedBackground.has_value() && mSetup->sampleCount == 1;
     if (mComposedShading) {
-        ensureComposedShading(*frame.composedBackground);
+        ensureComposedShading(frame.composedView, *frame.composedBackground);
     }
     mLastViewCount = 0;
     mOcclusion = false;

@@ -87,10 +87,9 @@ class VisibilityStrategy final : public Strategy {
     bool composesResolved() const override {
         return mSetup && mSetup->sampleCount > 1 && !drawsAfter();
     }
-    // With nothing drawn after the composite, its work is done in compute for every pixel and
-    // copied into the target (visibility_composite.wgsl's composeMain): no render pass, whose
-    // fragments the H100 runs on its few graphics units. Not where the composed buffer would
-    // exceed maxStorageBufferBindingSize.
+    // With nothing drawn after the composite, its work is done in compute for every pixel,
+    // straight into the target through a storage view (visibility_composite.wgsl's
+    // composeMain): no render pass, whose fragments the H100 runs on its few graphics units.
     bool composesFrame(const FrameState& frame) const override;
     void composeFrame(const wgpu::CommandEncoder& commands,
                       const FrameState& frame,
@@ -151,8 +150,8 @@ class VisibilityStrategy final : public Strategy {
     // The binning's and the shading's resources shared by their groups, composed or not.
     std::vector<gpu::BindingResource> binResources() const;
     std::vector<gpu::BindingResource> shadeResources() const;
-    // The target's composed buffer for `background`, and the groups over it.
-    void ensureComposedShading(const wgpu::Color& background);
+    // The frame's view of the target for `background`, and the groups over it.
+    void ensureComposedShading(const wgpu::TextureView& view, const wgpu::Color& background);
     // A multi-view frame's one cull, before its views (each view's raster starts from the
     // counters it leaves).
     void encodeCull(const wgpu::CommandEncoder& commands, const FrameState& frame) const;
@@ -261,9 +260,9 @@ class VisibilityStrategy final : public Strategy {
     wgpu::BindGroup mBinGroup;
     wgpu::BindGroup mShadeGroup;
     wgpu::BindGroup mCompositeGroup;
-    wgpu::BindGroup mComposeGroup;  // Made with the target's composed buffer.
+    wgpu::BindGroup mComposeGroup;  // Made with the target's view (FrameComposition::view).
     // This frame shades into the composed frame (one sample, composed in compute), through
-    // these groups (made with the composed buffer).
+    // these groups (made with the target's view).
     bool mComposedShading = false;
     wgpu::BindGroup mBinComposedGroup;
     wgpu::BindGroup mShadeComposedGroup;

@@ -68,7 +68,6 @@ bool VisibilityTarget::ensure(const RenderSetup& setup,
     shadedLayers = shaded.CreateView(&layers);
     hardwareDepth = nullptr;  // Made at the views' size (ensureHardwareDepth).
     hardwareDepthView = nullptr;
-    composed = nullptr;  // Made for frames composed in compute (ensureComposed).
 
     auto built =
         DepthPyramid::createFromVisibility(device, *setup.shaders, visibility, width, height);
@@ -78,37 +77,26 @@ bool VisibilityTarget::ensure(const RenderSetup& setup,
     return true;
 }
 
-std::uint64_t VisibilityTarget::composedTexelBytes(const RenderSetup& setup) {
-    return setup.colorFormat == wgpu::TextureFormat::RGBA16Float ? 8 : 4;
-}
-
-std::uint64_t VisibilityTarget::composedRowBytes(const RenderSetup& setup, std::uint32_t width) {
-    return (width * composedTexelBytes(setup) + 255) / 256 * 256;
-}
-
-bool VisibilityTarget::ensureComposed(const RenderSetup& setup, const wgpu::Color& background) {
-    const bool made = !composed;
-    if (made) {
-        composed =
-            gpu::createBuffer(setup.device, wgpu::BufferUsage::Storage | wgpu::BufferUsage::CopySrc,
-                              composedRowBytes(setup, width) * height, "visibility composed frame");
-    }
+bool VisibilityTarget::ensureComposed(const RenderSetup& setup,
+                                      const wgpu::TextureView& view,
+                                      const wgpu::Color& background) {
+    const bool changed = view.Get() != composedView.Get();
+    composedView = view;
     if (!composition) {
         composition =
             gpu::createBuffer(setup.device, wgpu::BufferUsage::Uniform | wgpu::BufferUsage::CopyDst,
                               kCompositionBytes, "visibility composition");
     }
-    // visibility_composite.wgsl's Composition: the background, then the row pitch in texels.
+    // visibility_composed.wgsl's Composition: the background.
     std::array<std::uint32_t, kCompositionBytes / 4> words{};
     const std::array<float, 4> color = {float(background.r), float(background.g),
                                         float(background.b), float(background.a)};
     std::memcpy(words.data(), color.data(), sizeof(color));
-    words[4] = std::uint32_t(composedRowBytes(setup, width) / composedTexelBytes(setup));
     if (words != compositionWords) {
         setup.queue.WriteBuffer(composition, 0, words.data(), sizeof(words));
         compositionWords = words;
     }
-    return made;
+    return changed;
 }
 
 void VisibilityTarget::ensureHardwareDepth(const RenderSetup& setup, std::uint32_t viewWidth) {

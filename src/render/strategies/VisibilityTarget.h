@@ -61,11 +61,6 @@ struct VisibilityTarget {
     // per pass at 6144x512 and four samples).
     void ensureHardwareDepth(const RenderSetup& setup, std::uint32_t viewWidth);
 
-    // The composed frame (Strategy::composeFrame): a texel of the target's scene format per
-    // pixel (4 bytes, or 8 in RGBA16Float), rows padded to a copy's 256-byte pitch.
-    static std::uint64_t composedTexelBytes(const RenderSetup& setup);
-    static std::uint64_t composedRowBytes(const RenderSetup& setup, std::uint32_t width);
-    // Bytes of visibility_composite.wgsl's Composition.
     static constexpr std::uint64_t kCompositionBytes = 32;
 
     std::uint32_t width = 0;
@@ -85,16 +80,18 @@ struct VisibilityTarget {
     wgpu::Texture hardwareDepth;     // One view's size (ensureHardwareDepth).
     wgpu::TextureView hardwareDepthView;
     DepthPyramid pyramid;  // Of the visibility buffer's depth.
-    // Made on the first composed frame (ensureComposed), with its Composition uniform and the
-    // words last written there.
-    wgpu::Buffer composed;
+    // The composed frame's view of the target (Strategy::composeFrame), its Composition
+    // uniform and the words last written there (ensureComposed).
+    wgpu::TextureView composedView;
     wgpu::Buffer composition;
     std::array<std::uint32_t, kCompositionBytes / 4> compositionWords{};
 
-    // Makes the composed frame's buffer for the current size where it is not already, and
-    // writes the Composition uniform (`background`, the row pitch) where it changed; returns
-    // whether the buffer was made (bind groups over it must be too).
-    bool ensureComposed(const RenderSetup& setup, const wgpu::Color& background);
+    // Takes the frame's view of the target (FrameState::composedView), and writes the
+    // Composition uniform (`background`) where it changed; returns whether the view is another
+    // than the last frame's (bind groups over it must be made again).
+    bool ensureComposed(const RenderSetup& setup,
+                        const wgpu::TextureView& view,
+                        const wgpu::Color& background);
 };
 
 }  // namespace encore::render
