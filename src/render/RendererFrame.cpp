@@ -186,7 +186,7 @@ FrameResult Renderer::renderPasses(std::span<const Camera> cameras,
         if (transmission) {
             // Everything but the transmissive surfaces is drawn (and resolved): copy it once for
             // all views, then draw them over it view by view.
-            mTransmission->encodeCopy(commandEncoder, mTarget.sceneTexture(), mTimer);
+            mTransmission->encodeCopy(commandEncoder, mTarget.sceneView(), mTimer);
             ++result.transmissionCopies;
             for (std::size_t view = 0; view < cameras.size(); ++view) {
                 if (multiView) {

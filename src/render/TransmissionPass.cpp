@@ -46,14 +46,13 @@ Result<TransmissionPass> TransmissionPass::create(const wgpu::Device& device,
 }
 
 void TransmissionPass::encodeCopy(const wgpu::CommandEncoder& commands,
-                                  const wgpu::Texture& source,
+                                  const wgpu::TextureView& source,
                                   gpu::GpuTimer* timer) {
     if (source.Get() != mSource) {
         // A new render target (resized): only this bind group follows it.
         mSource = source.Get();
-        mSourceGroup =
-            gpu::makeBindGroup(mDevice, mLayout, {{0, mSampler}, {1, source.CreateView()}},
-                               "transmission copy source");
+        mSourceGroup = gpu::makeBindGroup(mDevice, mLayout, {{0, mSampler}, {1, source}},
+                                          "transmission copy source");
     }
     for (std::size_t level = 0; level < mLevels.size(); ++level) {
         const char* label = level == 0 ? "transmission copy" : "transmission mips";

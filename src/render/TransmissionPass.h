@@ -39,10 +39,11 @@ class TransmissionPass {
 
     const wgpu::Texture& background() const { return mBackground; }
 
-    // Records the copy of `source` (the target's resolved scene colour, TextureBinding) into
-    // the background and its mip chain. `timer` (may be null) times the passes.
+    // Records the copy of `source` (a view of the target's resolved scene colour, sampled with
+    // its sRGB decoding: RenderTarget::sceneView) into the background and its mip chain.
+    // `timer` (may be null) times the passes.
     void encodeCopy(const wgpu::CommandEncoder& commands,
-                    const wgpu::Texture& source,
+                    const wgpu::TextureView& source,
                     gpu::GpuTimer* timer);
 
     // Copies recorded so far (tests count that scenes without transmission make none).
@@ -56,7 +57,7 @@ class TransmissionPass {
     wgpu::Sampler mSampler;
     std::vector<wgpu::TextureView> mLevels;      // One view per mip level.
     std::vector<wgpu::BindGroup> mLevelSources;  // [i]: level i as the source of level i + 1.
-    WGPUTexture mSource = nullptr;               // The texture mSourceGroup reads.
+    WGPUTextureView mSource = nullptr;           // The view mSourceGroup reads.
     wgpu::BindGroup mSourceGroup;
     std::uint64_t mCopies = 0;
 };
