@@ -166,7 +166,6 @@ FrameResult Renderer::renderPasses(std::span<const Camera> cameras,
         };
         if (composedAttachments) {
             FrameComposition composition;
-            composition.view = mTarget.sceneStorageView();
             composition.background = composedAttachments->clearColor;
             composition.timestampWrites =
                 timestampWrites(GpuStage::Scene, composedAttachments->timestampLabel);

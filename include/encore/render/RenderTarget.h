@@ -21,8 +21,8 @@ struct RenderTargetOptions {
     std::uint32_t height = 720;
     std::uint32_t sampleCount = 1;  // 1 or 4.
     bool hdr = false;
-    // The pass images (PassTargets.h) can also be read as bytes by a compute
-    // pass, through RGBA8Unorm views: encore batch's PNG rows (batch/PngRowsPass).
+    // The pass images (PassTargets.h) can also be read as bytes by a compute pass, through
+    // RGBA8Unorm views: encore batch's PNG rows (batch/PngRowsPass).
     bool bytesViews = false;
 
     bool operator==(const RenderTargetOptions&) const = default;

@@ -58,7 +58,10 @@ struct FrameState {
     // depth (Strategy::composesResolved).
     bool resolvedPass = false;
     // Set when the renderer composes this frame through Strategy::composeFrame: the background
-    // and the view it will pass there (FrameComposition), known to beforePass already.
+    // it will pass there (FrameComposition::background), known to beforePass already, and the
+    // view of the target that the composition writes: its one-sample scene colour as a
+    // write-only storage texture (RenderTarget::sceneStorageView), RGBA8Unorm holding
+    // sRGB-encoded bytes, or RGBA16Float with HDR.
     std::optional<wgpu::Color> composedBackground;
     wgpu::TextureView composedView;
     // GPU-evaluated animation writes instance transforms before this frame's passes (CPU
@@ -68,10 +71,6 @@ struct FrameState {
 
 // Where a strategy that composes the frame in compute (Strategy::composesFrame) writes it.
 struct FrameComposition {
-    // The target's one-sample scene colour as a write-only storage texture
-    // (RenderTarget::sceneStorageView): RGBA8Unorm holding sRGB-encoded bytes, or RGBA16Float
-    // with HDR.
-    wgpu::TextureView view;
     // What a pixel nothing covers holds: the scene pass's clear colour (linear).
     wgpu::Color background{0.0, 0.0, 0.0, 0.0};
     const wgpu::PassTimestampWrites* timestampWrites = nullptr;  // For the composing pass.
@@ -145,8 +144,8 @@ class Strategy {
         (void)frame;
         return false;
     }
-    // Records the frame's composition after beforePass(): every pixel of `target.view` (the
-    // target's one-sample scene colour) written, uncovered ones with `target.background`.
+    // Records the frame's composition after beforePass(): every pixel of `frame.composedView`
+    // (the target's one-sample scene colour) written, uncovered ones with `target.background`.
     virtual void composeFrame(const wgpu::CommandEncoder& commands,
                               const FrameState& frame,
                               const FrameComposition& target) {

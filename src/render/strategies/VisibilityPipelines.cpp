@@ -257,13 +257,13 @@ void createLayouts(const wgpu::Device& device,
          LayoutEntry::texture(1, fragment, wgpu::TextureSampleType::UnfilterableFloat,
                               wgpu::TextureViewDimension::e2DArray)},
         "visibility composite");
-    p.composeLayout = gpu::makeBindGroupLayout(
-        device,
-        {LayoutEntry::readOnlyStorage(0, kCompute),
-         LayoutEntry::texture(1, kCompute, wgpu::TextureSampleType::UnfilterableFloat,
-                              wgpu::TextureViewDimension::e2DArray),
-         composed(2)[0], composed(2)[1]},
-        "visibility composition");
+    std::vector<LayoutEntry> compose = {
+        LayoutEntry::readOnlyStorage(0, kCompute),
+        LayoutEntry::texture(1, kCompute, wgpu::TextureSampleType::UnfilterableFloat,
+                             wgpu::TextureViewDimension::e2DArray)};
+    const auto composeComposed = composed(2);
+    compose.insert(compose.end(), composeComposed.begin(), composeComposed.end());
+    p.composeLayout = gpu::makeBindGroupLayout(device, compose, "visibility composition");
 }
 
 Result<wgpu::RenderPipeline> hardwarePipeline(const RenderSetup& setup,

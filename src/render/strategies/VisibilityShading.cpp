@@ -145,7 +145,6 @@ bool VisibilityStrategy::composesFrame(const FrameState& frame) const {
 void VisibilityStrategy::composeFrame(const wgpu::CommandEncoder& commands,
                                       const FrameState& frame,
                                       const FrameComposition& target) {
-    (void)frame;
     wgpu::ComputePassDescriptor descriptor{};
     descriptor.label = "visibility: composition";
     descriptor.timestampWrites = target.timestampWrites;
@@ -157,11 +156,11 @@ void VisibilityStrategy::composeFrame(const wgpu::CommandEncoder& commands,
         }
         return;
     }
-    if (mTarget->ensureComposed(*mSetup, target.view, target.background) || !mComposeGroup) {
+    if (mTarget->ensureComposed(*mSetup, frame.composedView, target.background) || !mComposeGroup) {
         mComposeGroup = gpu::makeBindGroup(mSetup->device, mPipelines->composeLayout,
                                            {{0, mTarget->visibility},
                                             {1, mTarget->shadedLayers},
-                                            {2, target.view},
+                                            {2, frame.composedView},
                                             {3, mTarget->composition}},
                                            "visibility composition");
     }

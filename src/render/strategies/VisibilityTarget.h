@@ -61,7 +61,8 @@ struct VisibilityTarget {
     // per pass at 6144x512 and four samples).
     void ensureHardwareDepth(const RenderSetup& setup, std::uint32_t viewWidth);
 
-    static constexpr std::uint64_t kCompositionBytes = 32;
+    // Bytes of visibility_composed.wgsl's Composition: the background.
+    static constexpr std::uint64_t kCompositionBytes = 16;
 
     std::uint32_t width = 0;
     std::uint32_t height = 0;
