@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "encore/image/HdrImage.h"
+#include "gpu/ResourcePool.h"
 
 namespace encore::batch {
 
@@ -16,6 +17,7 @@ void BatchRenderer::discard() {
     // The ring first: it waits for reads of the renderer's target still in flight.
     mRing.reset();
     mRenderers.clear();
+    mResources.reset();  // After the renderers, whose scenes give their resources back to it.
     mRendererOptions.reset();
     mEnvironment.reset();
     mRenderersEnvironment.reset();
@@ -127,6 +129,7 @@ Result<void> BatchRenderer::acquire(const render::RendererOptions& options,
     mRing.reset();
     mRenderers.clear();
     mRendererOptions.reset();
+    mResources = std::make_unique<gpu::ResourcePool>(mContext.device());
     ENCORE_TRY_ASSIGN(auto environment, environmentFor(options));
     render::RendererOptions built = options;
     built.environment = environment;
@@ -137,6 +140,7 @@ Result<void> BatchRenderer::acquire(const render::RendererOptions& options,
             return renderer.error();
         }
         mRenderers.push_back(std::move(*renderer));
+        mRenderers.back().setResourcePool(mResources.get());
     }
     mRenderersEnvironment = environment;
     mRendererOptions = options;

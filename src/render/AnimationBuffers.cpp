@@ -5,6 +5,7 @@
 
 #include "encore/render/RenderEncoder.h"
 #include "gpu/BindingResource.h"
+#include "gpu/ResourcePool.h"
 #include "gpu/Upload.h"
 #include "render/InstanceBuffer.h"
 #include "render/ShadingSemantics.h"
@@ -66,12 +67,19 @@ void appendAnimationSemantics(const shaders::ShaderVariantKey& key,
     }
 }
 
+void AnimationBuffers::giveBackTo(gpu::ResourcePool& pool) {
+    mBindGroup = nullptr;
+    for (wgpu::Buffer* buffer : {&mDraws, &mJoints, &mWeights, &mDeltas, &mInstanceOffsets}) {
+        pool.giveBack(std::move(*buffer));
+    }
+}
+
 std::unique_ptr<AnimationBuffers> AnimationBuffers::create(const wgpu::Device& device,
                                                            const wgpu::Queue& queue,
                                                            const BindGroupLayouts& layouts,
                                                            const scene::SceneData& scene,
-                                                           const scene::AnimationPlayer& player) {
-    (void)queue;
+                                                           const scene::AnimationPlayer& player,
+                                                           gpu::ResourcePool* pool) {
     auto result = std::unique_ptr<AnimationBuffers>(new AnimationBuffers());
     AnimationBuffers& buffers = *result;
 
@@ -162,9 +170,24 @@ std::unique_ptr<AnimationBuffers> AnimationBuffers::create(const wgpu::Device& d
     if (records.empty()) {
         records.resize(kDrawStride, 0);  // No instance draws an animated mesh; bind something.
     }
+    // Mapped at creation, or written into a kept buffer when a pool gives one.
+    const auto upload = [&](wgpu::BufferUsage usage, std::span<const std::uint8_t> bytes,
+                            const char* label) {
+        return pool ? pool->bufferWithData(queue, usage, bytes, label)
+                    : gpu::createBufferWithData(device, usage, bytes, label);
+    };
+    // A storage buffer of `values`; one zeroed element when there are none (as
+    // gpu::createStorageBuffer: WebGPU binds no empty buffer).
+    const auto storage = [&]<typename T>(std::span<const T> values, wgpu::BufferUsage extra,
+                                         const char* label) {
+        const T zero{};
+        const std::span<const T> bound = values.empty() ? std::span<const T>(&zero, 1) : values;
+        return upload(wgpu::BufferUsage::Storage | extra,
+                      {reinterpret_cast<const std::uint8_t*>(bound.data()), bound.size_bytes()},
+                      label);
+    };
     buffers.mDraws =
-        gpu::createBufferWithData(device, wgpu::BufferUsage::Uniform | wgpu::BufferUsage::CopyDst,
-                                  records, "animation draws");
+        upload(wgpu::BufferUsage::Uniform | wgpu::BufferUsage::CopyDst, records, "animation draws");
 
     // Per instance slot: joint and weight offsets (kNone where the instance has none).
     const std::vector<std::uint32_t> slots = instanceSlots(scene);
@@ -176,17 +199,17 @@ std::unique_ptr<AnimationBuffers> AnimationBuffers::create(const wgpu::Device& d
     }
     constexpr wgpu::BufferUsage kWritable = wgpu::BufferUsage::CopyDst;
     buffers.mInstanceOffsets =
-        gpu::createStorageBuffer(device, offsets, "instance animation", kWritable);
+        storage(std::span<const glm::uvec2>(offsets), kWritable, "instance animation");
 
     const auto joints = player.jointMatrices();
     buffers.mJointScratch.resize(joints.size());
     packJoints(joints, player.jointNormalMatrices(), 0, joints.size(), buffers.mJointScratch);
-    buffers.mJoints = gpu::createStorageBuffer(device, buffers.mJointScratch, "joint matrices",
-                                               kWritable | wgpu::BufferUsage::CopySrc);
+    buffers.mJoints = storage(std::span<const TransformUniform>(buffers.mJointScratch),
+                              kWritable | wgpu::BufferUsage::CopySrc, "joint matrices");
     const auto weights = player.morphWeights();
-    buffers.mWeights = gpu::createStorageBuffer(device, weights, "morph weights",
-                                                kWritable | wgpu::BufferUsage::CopySrc);
-    buffers.mDeltas = gpu::createStorageBuffer(device, deltas, "morph deltas", kWritable);
+    buffers.mWeights = storage(std::span<const float>(weights.data(), weights.size()),
+                               kWritable | wgpu::BufferUsage::CopySrc, "morph weights");
+    buffers.mDeltas = storage(std::span<const glm::vec4>(deltas), kWritable, "morph deltas");
 
     buffers.mBindGroup =
         gpu::makeBindGroup(device, layouts.animation,

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/Elapsed.h"
+#include "gpu/ResourcePool.h"
 #include "render/TransmissionPass.h"
 
 namespace encore::render {
@@ -41,7 +42,7 @@ Result<std::unique_ptr<GpuScene>> GpuScene::create(const RenderSetup& setup,
         created->mMaterials,
         MaterialResources::create(setup.device, setup.queue, *setup.shaders, *setup.layouts, scene,
                                   SampledTextures::all(), setup.limits.maxTextureDimension2D,
-                                  setup.mipmaps, staged.images));
+                                  setup.mipmaps, staged.images, setup.resources));
     times.materials += millisecondsSince(start);
     const TextureUploadTimes& upload = created->mMaterials->uploadTimes();
     times.textureCreation += upload.creation;
@@ -65,15 +66,38 @@ GpuScene::GpuScene(const RenderSetup& setup,
                    StagedGeometry* stagedGeometry)
     : mSetup(&setup),
       mScene(&scene),
-      mAnimation(
-          AnimationBuffers::create(setup.device, setup.queue, *setup.layouts, scene, player)),
+      mAnimation(AnimationBuffers::create(setup.device,
+                                          setup.queue,
+                                          *setup.layouts,
+                                          scene,
+                                          player,
+                                          setup.resources)),
       mGeometry(timed(setup.prepareTimes.geometry,
-                      [&] { return GeometryBuffers(setup.device, scene, 0, stagedGeometry); })),
-      mInstances(timed(setup.prepareTimes.instances,
-                       [&] { return InstanceBuffer(setup.device, *setup.layouts, scene); })) {
+                      [&] {
+                          return GeometryBuffers(setup.device, scene, 0, stagedGeometry,
+                                                 setup.resources);
+                      })),
+      mInstances(timed(setup.prepareTimes.instances, [&] {
+          return InstanceBuffer(setup.device, *setup.layouts, scene, setup.resources);
+      })) {
     mWorlds.reserve(scene.instances.size());
     for (const scene::Instance& instance : scene.instances) {
         mWorlds.push_back(instance.world);
+    }
+}
+
+GpuScene::~GpuScene() {
+    gpu::ResourcePool* pool = mSetup->resources;
+    if (!pool) {
+        return;
+    }
+    mGeometry.giveBackTo(*pool);
+    mInstances.giveBackTo(*pool);
+    if (mAnimation) {
+        mAnimation->giveBackTo(*pool);
+    }
+    if (mMaterials) {
+        mMaterials->giveBackTo(*pool);
     }
 }
 

@@ -44,6 +44,11 @@ class GpuScene {
                                                     const scene::AnimationPlayer* player = nullptr,
                                                     const StagedUploads& staged = {});
 
+    // Gives its buffers and textures back to RenderSetup::resources, when set.
+    ~GpuScene();
+    GpuScene(const GpuScene&) = delete;
+    GpuScene& operator=(const GpuScene&) = delete;
+
     const scene::SceneData& data() const { return *mScene; }
     const GeometryBuffers& geometry() const { return mGeometry; }
     const InstanceBuffer& instances() const { return mInstances; }

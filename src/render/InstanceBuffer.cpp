@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "gpu/BindingResource.h"
+#include "gpu/ResourcePool.h"
 #include "gpu/Upload.h"
 #include "render/TransformData.h"
 
@@ -46,7 +47,8 @@ std::vector<std::uint32_t> instanceSlots(const scene::SceneData& scene) {
 
 InstanceBuffer::InstanceBuffer(const wgpu::Device& device,
                                const BindGroupLayouts& layouts,
-                               const scene::SceneData& scene) {
+                               const scene::SceneData& scene,
+                               gpu::ResourcePool* pool) {
     const std::size_t meshCount = scene.meshes.size();
     std::vector<std::uint8_t> mirrored;
     const std::vector<std::uint32_t> counts = countInstances(scene, mirrored);
@@ -67,13 +69,25 @@ InstanceBuffer::InstanceBuffer(const wgpu::Device& device,
         mInstances[slot] = i;
         transforms[slot] = makeTransformUniform(scene.instances[i]);
     }
-    mBuffer = gpu::createBufferFrom<TransformUniform>(
-        device,
-        wgpu::BufferUsage::Storage | wgpu::BufferUsage::CopyDst | wgpu::BufferUsage::CopySrc,
-        transforms, "instance transforms");
+    const wgpu::BufferUsage usage =
+        wgpu::BufferUsage::Storage | wgpu::BufferUsage::CopyDst | wgpu::BufferUsage::CopySrc;
+    if (pool) {
+        // A kept buffer is written through the queue: mapping at creation needs a new one.
+        const std::uint64_t bytes = transforms.size() * sizeof(TransformUniform);
+        mBuffer = pool->buffer(usage, bytes, "instance transforms");
+        device.GetQueue().WriteBuffer(mBuffer, 0, transforms.data(), bytes);
+    } else {
+        mBuffer = gpu::createBufferFrom<TransformUniform>(device, usage, transforms,
+                                                          "instance transforms");
+    }
 
     mBindGroup = gpu::makeBindGroup(device, layouts.instanceStorage,
                                     {{0, mBuffer, 0, mBuffer.GetSize()}}, "instance transforms");
+}
+
+void InstanceBuffer::giveBackTo(gpu::ResourcePool& pool) {
+    mBindGroup = nullptr;
+    pool.giveBack(std::move(mBuffer));
 }
 
 InstanceRange InstanceBuffer::meshRange(scene::MeshId mesh) const {

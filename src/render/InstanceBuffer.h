@@ -15,6 +15,10 @@
 #include "encore/render/InstanceTransformTargets.h"
 #include "encore/scene/SceneData.h"
 
+namespace encore::gpu {
+class ResourcePool;
+}
+
 namespace encore::render {
 
 struct InstanceRange {
@@ -25,9 +29,13 @@ struct InstanceRange {
 class InstanceBuffer {
   public:
     InstanceBuffer() = default;
+    // `pool`: where the buffer comes from (gpu/ResourcePool.h); null: created.
     InstanceBuffer(const wgpu::Device& device,
                    const BindGroupLayouts& layouts,
-                   const scene::SceneData& scene);
+                   const scene::SceneData& scene,
+                   gpu::ResourcePool* pool = nullptr);
+    // Hands the buffer to `pool` (the scene is being released: nothing binds it again).
+    void giveBackTo(gpu::ResourcePool& pool);
 
     const wgpu::BindGroup& bindGroup() const { return mBindGroup; }
     const wgpu::Buffer& buffer() const { return mBuffer; }

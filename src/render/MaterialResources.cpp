@@ -17,6 +17,7 @@
 
 #include "core/Elapsed.h"
 #include "core/Log.h"
+#include "gpu/ResourcePool.h"
 #include "gpu/Upload.h"
 #include "render/MaterialResourcesBuilder.h"
 #include "render/MipmapGenerator.h"
@@ -74,7 +75,8 @@ Result<MaterialResources> MaterialResources::create(const wgpu::Device& device,
                                                     const SampledTextures& sampled,
                                                     std::uint32_t maxTextureDimension,
                                                     MipmapGenerator* mipmaps,
-                                                    StagedImages* staged) {
+                                                    StagedImages* staged,
+                                                    gpu::ResourcePool* pool) {
     std::optional<MipmapGenerator> ownMipmaps;
     if (!mipmaps) {
         ENCORE_TRY_ASSIGN(auto created, MipmapGenerator::create(device, shaders));
@@ -86,7 +88,7 @@ Result<MaterialResources> MaterialResources::create(const wgpu::Device& device,
     MaterialResources resources;
     resources.mImageTextures.resize(scene.images.size());
     Builder builder{device, queue, scene, resources, *mipmaps, device.CreateCommandEncoder(),
-                    staged};
+                    staged, pool};
     builder.maxDimension = maxTextureDimension != 0
                                ? std::min(maxTextureDimension, limits.maxTextureDimension2D)
                                : limits.maxTextureDimension2D;
@@ -109,10 +111,11 @@ Result<MaterialResources> MaterialResources::create(const wgpu::Device& device,
     const std::size_t materialCount = scene.materials.size();
     std::vector<std::uint8_t> uniformBytes(resources.mUniformStride *
                                            std::max<std::size_t>(materialCount, 1));
-    resources.mUniforms = gpu::createBuffer(
-        device,
-        wgpu::BufferUsage::Uniform | wgpu::BufferUsage::CopyDst | wgpu::BufferUsage::CopySrc,
-        uniformBytes.size(), "material uniforms");
+    const wgpu::BufferUsage uniformUsage =
+        wgpu::BufferUsage::Uniform | wgpu::BufferUsage::CopyDst | wgpu::BufferUsage::CopySrc;
+    resources.mUniforms =
+        pool ? pool->buffer(uniformUsage, uniformBytes.size(), "material uniforms")
+             : gpu::createBuffer(device, uniformUsage, uniformBytes.size(), "material uniforms");
 
     resources.mBindGroups.resize(materialCount);
     resources.mBaseBindGroups.resize(materialCount);
@@ -181,6 +184,16 @@ Result<MaterialResources> MaterialResources::create(const wgpu::Device& device,
     queue.Submit(1, &commands);
     resources.mUploadTimes.submit += millisecondsSince(submitStart);
     return resources;
+}
+
+void MaterialResources::giveBackTo(gpu::ResourcePool& pool) {
+    mBindGroups.clear();
+    mBaseBindGroups.clear();
+    for (wgpu::Texture& texture : mTextures) {
+        pool.giveBack(std::move(texture));
+    }
+    mTextures.clear();
+    pool.giveBack(std::move(mUniforms));
 }
 
 void MaterialResources::createBindGroups(const wgpu::Device& device,

@@ -41,6 +41,10 @@
 #include "render/MaterialSlots.h"
 #include "render/MaterialUniform.h"
 
+namespace encore::gpu {
+class ResourcePool;
+}
+
 namespace encore::render {
 
 class MipmapGenerator;
@@ -67,7 +71,8 @@ class MaterialResources {
     // errors surface through the device's error callback. `mipmaps` is a generator kept from
     // one scene to the next (RenderSetup::mipmaps, so its pipelines are created once); null:
     // one made for this call. `staged`: the scene's images already in staging buffers
-    // (StagedImages.h), copied from there rather than written through the queue.
+    // (StagedImages.h), copied from there rather than written through the queue. `pool`: where
+    // the textures and the uniform buffer come from (gpu/ResourcePool.h); null: created.
     static Result<MaterialResources> create(const wgpu::Device& device,
                                             const wgpu::Queue& queue,
                                             shaders::ShaderLibrary& shaders,
@@ -76,7 +81,12 @@ class MaterialResources {
                                             const SampledTextures& sampled = {},
                                             std::uint32_t maxTextureDimension = 0,
                                             MipmapGenerator* mipmaps = nullptr,
-                                            StagedImages* staged = nullptr);
+                                            StagedImages* staged = nullptr,
+                                            gpu::ResourcePool* pool = nullptr);
+
+    // Hands the textures and the uniform buffer to `pool` (the scene is being released: no
+    // bind group of this object is used again).
+    void giveBackTo(gpu::ResourcePool& pool);
 
     MaterialResources(MaterialResources&&) noexcept = default;
     MaterialResources& operator=(MaterialResources&&) noexcept = default;

@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "core/Elapsed.h"
+#include "gpu/ResourcePool.h"
 #include "render/FittedImage.h"
 #include "render/GltfToWebGpu.h"
 #include "render/MipmapGenerator.h"
@@ -70,7 +71,7 @@ std::size_t MaterialResources::Builder::addTexture(const std::string& label,
     descriptor.format = format;
     descriptor.mipLevelCount = fullMipLevelCount(width, height);
     auto start = std::chrono::steady_clock::now();
-    wgpu::Texture texture = device.CreateTexture(&descriptor);
+    wgpu::Texture texture = pool ? pool->texture(descriptor) : device.CreateTexture(&descriptor);
     out.mUploadTimes.creation += millisecondsSince(start);
     start = std::chrono::steady_clock::now();
 

@@ -30,6 +30,7 @@ struct MaterialResources::Builder {
     MipmapGenerator& mipmaps;
     wgpu::CommandEncoder encoder;
     StagedImages* staged = nullptr;
+    gpu::ResourcePool* pool = nullptr;  // Where textures come from; null: created.
     std::uint32_t maxDimension = 8192;
     std::vector<wgpu::SamplerDescriptor> descriptors;  // Parallel to out.mSamplers, unlabelled.
     std::vector<scene::Sampler> states;  // Parallel to out.mSamplers: the first state of each.

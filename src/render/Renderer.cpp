@@ -138,6 +138,10 @@ void Renderer::setStageTimestamps(gpu::StageTimestamps* timestamps) {
     }
 }
 
+void Renderer::setResourcePool(gpu::ResourcePool* pool) {
+    mSetup->resources = pool;
+}
+
 Result<void> Renderer::recoverFromDeviceLoss() {
     // Everything is rebuilt from what the CPU holds: the options as they are now, the
     // environment's panorama, the scene data and the strategy kind.
@@ -155,6 +159,7 @@ Result<void> Renderer::recoverFromDeviceLoss() {
     mGpuAnimation.reset();
     mStrategy.reset();
     mTransmission.reset();
+    mSetup->resources = nullptr;  // Its pool holds the lost device's objects: keep none.
     mGpuScene.reset();
     mPlayer.reset();
     mBackground.reset();

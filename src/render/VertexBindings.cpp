@@ -7,6 +7,7 @@
 #include "core/Bytes.h"
 #include "encore/render/RenderEncoder.h"
 #include "encore/render/RenderSetup.h"
+#include "gpu/ResourcePool.h"
 #include "gpu/Upload.h"
 #include "render/GltfToWebGpu.h"
 #include "render/SharedGeometryLayout.h"
@@ -46,10 +47,19 @@ std::vector<std::uint8_t> paddedVertexElements(const scene::SceneData& scene,
 GeometryBuffers::GeometryBuffers(wgpu::Device device,
                                  const scene::SceneData& scene,
                                  std::uint64_t maxSharedBufferBytes,
-                                 StagedGeometry* staged)
+                                 StagedGeometry* staged,
+                                 gpu::ResourcePool* pool)
     : mDevice(std::move(device)), mScene(&scene) {
-    uploadViews(maxSharedBufferBytes, staged);
+    uploadViews(maxSharedBufferBytes, staged, pool);
     uploadRepackedAccessors();
+}
+
+void GeometryBuffers::giveBackTo(gpu::ResourcePool& pool) {
+    for (wgpu::Buffer& buffer : mSharedBuffers) {
+        pool.giveBack(std::move(buffer));
+    }
+    mSharedBuffers.clear();
+    mViews.clear();
 }
 
 void GeometryBuffers::uploadRepackedAccessors() {
@@ -79,7 +89,9 @@ void GeometryBuffers::uploadRepackedAccessors() {
     }
 }
 
-void GeometryBuffers::uploadViews(std::uint64_t maxSharedBufferBytes, StagedGeometry* staged) {
+void GeometryBuffers::uploadViews(std::uint64_t maxSharedBufferBytes,
+                                  StagedGeometry* staged,
+                                  gpu::ResourcePool* pool) {
     std::uint64_t maxBytes = maxSharedBufferBytes;
     if (maxBytes == 0) {
         wgpu::Limits limits{};
@@ -103,12 +115,23 @@ void GeometryBuffers::uploadViews(std::uint64_t maxSharedBufferBytes, StagedGeom
         if (source) {
             // The staging buffer's bytes, gaps zeroed, over the whole (4-byte-rounded) buffer:
             // Dawn then has nothing to clear.
-            buffer =
-                gpu::createBuffer(mDevice, usage | wgpu::BufferUsage::CopyDst, shared.size, label);
+            buffer = pool ? pool->buffer(usage | wgpu::BufferUsage::CopyDst, shared.size, label)
+                          : gpu::createBuffer(mDevice, usage | wgpu::BufferUsage::CopyDst,
+                                              shared.size, label);
             if (!copies) {
                 copies = mDevice.CreateCommandEncoder();
             }
             copies.CopyBufferToBuffer(source, 0, buffer, 0, buffer.GetSize());
+        } else if (pool) {
+            // A kept buffer is written through the queue: the views gathered, the gaps zeroed.
+            buffer = pool->buffer(usage | wgpu::BufferUsage::CopyDst, shared.size, label);
+            std::vector<std::uint8_t> bytes(buffer.GetSize(), 0);
+            for (const SharedGeometryLayout::View& view : shared.views) {
+                const scene::BufferView& source = mScene->bufferViews[view.id.index()];
+                const auto& data = mScene->buffers[source.buffer.index()].bytes;
+                copyBytes(bytes.data() + view.offset, data.data() + source.byteOffset, view.length);
+            }
+            mDevice.GetQueue().WriteBuffer(buffer, 0, bytes.data(), bytes.size());
         } else {
             // Mapped at creation, so zeroed: the gaps between views read as zeros. The views
             // are copied straight into it: gathering them into one vector first copied every

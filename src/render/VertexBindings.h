@@ -27,6 +27,10 @@
 #include "encore/scene/SceneData.h"
 #include "render/PipelineKey.h"
 
+namespace encore::gpu {
+class ResourcePool;
+}
+
 namespace encore::render {
 
 class StagedGeometry;
@@ -66,10 +70,14 @@ class GeometryBuffers {
     // shared buffer ends and the next begins; 0 (the default) takes the device's maxBufferSize
     // (tests pass less to exercise the split). `staged`: the shared buffers' bytes already in
     // staging buffers (StagedGeometry.h), copied from there, used during this call only.
+    // `pool`: where the shared buffers of a staged upload come from (gpu/ResourcePool.h).
     GeometryBuffers(wgpu::Device device,
                     const scene::SceneData& scene,
                     std::uint64_t maxSharedBufferBytes = 0,
-                    StagedGeometry* staged = nullptr);
+                    StagedGeometry* staged = nullptr,
+                    gpu::ResourcePool* pool = nullptr);
+    // Hands the shared buffers to `pool` (the scene is being released: nothing binds them again).
+    void giveBackTo(gpu::ResourcePool& pool);
 
     // Bindings of `primitive` for the attributes with these semantics (those the shader
     // variant consumes; absent ones are skipped).
@@ -100,7 +108,9 @@ class GeometryBuffers {
         std::uint64_t length = 0;
     };
     const ViewPlacement& viewPlacement(scene::BufferViewId view) const;
-    void uploadViews(std::uint64_t maxSharedBufferBytes, StagedGeometry* staged);
+    void uploadViews(std::uint64_t maxSharedBufferBytes,
+                     StagedGeometry* staged,
+                     gpu::ResourcePool* pool);
     void uploadRepackedAccessors();
 
     wgpu::Device mDevice;

@@ -2,7 +2,8 @@
 
 // What a batch builds on its device before it renders a model, kept for the batches after it:
 // the renderer (render target, image-based light, the pipelines it keeps from one model to the
-// next) and the ring of read-back buffers.
+// next), the ring of read-back buffers, and the pool of buffers and textures the models' scenes
+// reuse.
 //
 // runBatch builds these once per call. A caller that runs many batches on one device in turn
 // (encore.Renderer.batch, called once per Dask task on a worker) keeps one BatchRenderer and
@@ -31,6 +32,10 @@
 #include "encore/render/Environment.h"
 #include "encore/render/Renderer.h"
 #include "encore/shaders/ShaderLibrary.h"
+
+namespace encore::gpu {
+class ResourcePool;
+}
 
 namespace encore::batch {
 
@@ -113,6 +118,9 @@ class BatchRenderer {
     // What mEnvironment was computed from.
     std::shared_ptr<const image::HdrImage> mEnvironmentImage;
     render::EnvironmentOptions mEnvironmentOptions;
+    // The buffers and textures the renderers' scenes take and give back, so that a model in
+    // steady state creates none (gpu/ResourcePool.h). Before mRenderers: it outlives their scenes.
+    std::unique_ptr<gpu::ResourcePool> mResources;
     std::vector<render::Renderer> mRenderers;
     std::optional<render::RendererOptions> mRendererOptions;  // As acquire() was given them.
     std::size_t mReadbackSlots = 0;

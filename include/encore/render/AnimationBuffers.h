@@ -19,12 +19,17 @@
 
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "encore/render/BindGroupLayouts.h"
 #include "encore/scene/AnimationPlayer.h"
 #include "encore/scene/SceneData.h"
 #include "encore/shaders/ShaderLibrary.h"
+
+namespace encore::gpu {
+class ResourcePool;
+}
 
 namespace encore::render {
 
@@ -40,12 +45,15 @@ struct AnimationUploadStats {
 class AnimationBuffers {
   public:
     // Null when the scene has neither skinned nor morphed primitives. Uploads the player's
-    // current pose.
+    // current pose. `pool`: where the buffers come from (RenderSetup::resources); null: created.
     static std::unique_ptr<AnimationBuffers> create(const wgpu::Device& device,
                                                     const wgpu::Queue& queue,
                                                     const BindGroupLayouts& layouts,
                                                     const scene::SceneData& scene,
-                                                    const scene::AnimationPlayer& player);
+                                                    const scene::AnimationPlayer& player,
+                                                    gpu::ResourcePool* pool = nullptr);
+    // Hands the buffers to `pool` (the scene is being released: nothing binds them again).
+    void giveBackTo(gpu::ResourcePool& pool);
 
     // Sets the SKINNED, SKINNED_8 and MORPHED flags that primitive `primitive` of `mesh` needs.
     void addVariantFlags(scene::MeshId mesh,

@@ -15,7 +15,8 @@
 
 namespace encore::gpu {
 class Context;
-}
+class ResourcePool;
+}  // namespace encore::gpu
 
 namespace encore::render {
 
@@ -83,6 +84,10 @@ struct RenderSetup {
     // Fills textures' mip chains, owned by the Renderer so that its pipelines outlive each
     // scene; null: MaterialResources makes one per scene.
     MipmapGenerator* mipmaps = nullptr;
+    // Buffers and textures kept from one scene to the next (a batch's lane, gpu/ResourcePool.h):
+    // the GPU scene takes its textures, geometry, instance and material buffers from it and gives
+    // them back when it is released; null: created for each scene and released with it.
+    gpu::ResourcePool* resources = nullptr;
 };
 
 }  // namespace encore::render

@@ -36,7 +36,8 @@
 
 namespace encore::gpu {
 class OutOfMemoryScope;
-}
+class ResourcePool;
+}  // namespace encore::gpu
 
 namespace encore::render {
 
@@ -286,6 +287,10 @@ class Renderer {
     // tone-mapping passes of frames. nullptr: untimed. The caller flushes. A GPU timer set with
     // setGpuTimer takes the frame's passes instead.
     void setStageTimestamps(gpu::StageTimestamps* timestamps);
+    // Takes later scenes' buffers and textures from `pool` and gives them back when they are
+    // released (RenderSetup::resources); the pool must outlive this renderer's scenes and belong
+    // to its device. nullptr: each scene creates and releases its own.
+    void setResourcePool(gpu::ResourcePool* pool);
 
     // After the device was lost (gpu::Context::deviceLost()): asks the context for a new
     // device and rebuilds every GPU resource from CPU data — the options as last set, the
