@@ -364,6 +364,15 @@ int runBatch(const BatchCommandOptions& options, const GlobalOptions& global) {
                         static_cast<unsigned long long>(device.views),
                         device.passTargets ? ", passes drawn in the colour pass" : "",
                         device.pngRowsOnGpu ? ", PNG rows filtered on the GPU" : "");
+            if (global.verbose) {
+                std::printf(
+                    "device %zu created: %llu GPU objects, %.1f MiB mappable, by %llu of its "
+                    "%llu models\n",
+                    device.device, static_cast<unsigned long long>(device.gpuObjectsCreated),
+                    double(device.gpuBytesMapped) / double(1 << 20),
+                    static_cast<unsigned long long>(device.modelsCreatingGpuObjects),
+                    static_cast<unsigned long long>(device.models));
+            }
         }
     }
     if (global.verbose) {

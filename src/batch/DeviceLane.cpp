@@ -178,7 +178,52 @@ void DeviceLane::renderDebugChannel(const std::shared_ptr<ModelJob>& job,
     }
 }
 
-void DeviceLane::renderModel(LoadedModel& loaded, bool retry) {
+DeviceLane::StagedModel DeviceLane::stageModel(const scene::SceneData& scene) {
+    const auto stagingStart = Clock::now();
+    const auto run = [this](std::function<void()> copy) {
+        mShared.stagingCopies.submit(std::move(copy));
+    };
+    StagedModel staged;
+    staged.devicesLost = mDevicesLost;
+    staged.images = render::StagedImages::stage(
+        mContext.device(), scene, mContext.limits().maxTextureDimension2D, run, mStaging);
+    staged.geometry =
+        render::StagedGeometry::stage(scene, mContext.limits().maxBufferSize, run, mStaging);
+    mStages.staging += secondsSince(stagingStart);
+    mStages.upload += secondsSince(stagingStart);
+    return staged;
+}
+
+void DeviceLane::countLoad(const LoadedModel& loaded) {
+    std::lock_guard lock(mShared.counters.mutex);
+    mShared.counters.load += loaded.seconds;
+    mShared.counters.loadCpu += loaded.cpuSeconds;
+}
+
+void DeviceLane::stageAhead() {
+    if (mAhead || mRenderers.empty() || mShared.stopRequested()) {
+        return;
+    }
+    std::optional<LoadedModel> next = mShared.loader.tryTake();
+    if (!next) {
+        return;
+    }
+    countLoad(*next);
+    StagedModel staged;
+    if (next->scene) {
+        staged = stageModel(*next->scene);
+    }
+    mAhead = ModelAhead{std::move(*next), std::move(staged)};
+}
+
+void DeviceLane::releaseAhead() {
+    if (mAhead) {
+        mShared.loader.release(mAhead->loaded.bytes);  // Not rendered: a later run resumes it.
+        mAhead.reset();
+    }
+}
+
+void DeviceLane::renderModel(LoadedModel& loaded, bool retry, StagedModel* ahead) {
     const BatchOptions& options = mShared.options;
     const BatchInput& input = mShared.pending[loaded.order];
     auto model = std::make_shared<ModelProgress>();
@@ -228,30 +273,13 @@ void DeviceLane::renderModel(LoadedModel& loaded, bool retry) {
         }
     }
 
-    // The pool copies the images and the geometry into staging buffers while this thread
-    // waits for the renderer below: prepare then only records copies (StagedImages.h,
-    // StagedGeometry.h).
-    struct Staged {
-        std::unique_ptr<render::StagedImages> images;
-        std::unique_ptr<render::StagedGeometry> geometry;
-    };
-    const auto stage = [&] {
-        const auto stagingStart = Clock::now();
-        const auto run = [this](std::function<void()> copy) {
-            mShared.pool.submitFirst(std::move(copy));
-        };
-        Staged staged;
-        staged.images =
-            render::StagedImages::stage(mContext.device(), *loaded.scene,
-                                        mContext.limits().maxTextureDimension2D, run, mStaging);
-        staged.geometry = render::StagedGeometry::stage(
-            *loaded.scene, mContext.limits().maxBufferSize, run, mStaging);
-        mStages.staging += secondsSince(stagingStart);
-        mStages.upload += secondsSince(stagingStart);
-        return staged;
-    };
-    const std::uint64_t stagedOn = mDevicesLost;
-    Staged staged = stage();
+    // The staging threads copy the images and the geometry into staging buffers while this thread
+    // waits for the renderer below: prepare then only records copies. Staged as the previous
+    // model uploaded when it was taken then (stageAhead).
+    StagedModel staged =
+        ahead && ahead->devicesLost == mDevicesLost ? std::move(*ahead) : stageModel(*loaded.scene);
+    // The next model's copies run while this one waits for its renderer and uploads.
+    stageAhead();
 
     // The renderer that drew the oldest model in flight prepares this one, while the GPU may
     // still draw the later ones with the others. Its own views must be read back first:
@@ -268,8 +296,8 @@ void DeviceLane::renderModel(LoadedModel& loaded, bool retry) {
         failBeforeUpload("upload", deviceNotRecreated());
         return;
     }
-    if (stagedOn != mDevicesLost) {
-        staged = stage();  // Collecting found the device lost: stage on the new one.
+    if (staged.devicesLost != mDevicesLost) {
+        staged = stageModel(*loaded.scene);  // Collecting found the device lost: stage anew.
     }
 
     if (options.topLightLux > 0.0f && !retry) {  // A retried scene has its light.
@@ -414,14 +442,22 @@ void DeviceLane::renderSample(const std::shared_ptr<ModelJob>& job,
         recoverIfLost();
     }
     job->times.render = secondsSince(sampleStart) - (renderWaiting - waitingBefore);
+    const gpu::CreationCounts created = gpu::threadCreationCounts();
+    const gpu::CreationCounts sampleCreated = created - mCreatedMark;
+    mCreatedMark = created;
+    job->created = {sampleCreated.objects(), sampleCreated.bytesMapped};
+    mModelsCreating += sampleCreated.objects() > 0 || sampleCreated.bytesMapped > 0;
     mShared.writer.rendered(job);
 }
 
 void DeviceLane::run(const std::function<void()>& idle) {
     ModelLoader& loader = mShared.loader;
+    const gpu::CreationCounts runStart = gpu::threadCreationCounts();
+    mCreatedMark = runStart;
     while (true) {
         if (mShared.stopRequested()) {
             loader.stop();
+            releaseAhead();
             break;
         }
         if (!mRetries.empty()) {
@@ -431,6 +467,15 @@ void DeviceLane::run(const std::function<void()>& idle) {
             LoadedModel retry = std::move(mRetries.front());
             mRetries.pop_front();
             renderModel(retry, /*retry=*/true);
+            mCurrentModel.reset();
+            collectReady();
+            idle();
+            continue;
+        }
+        if (mAhead) {
+            ModelAhead ahead = std::move(*mAhead);
+            mAhead.reset();
+            renderModel(ahead.loaded, /*retry=*/false, &ahead.staged);
             mCurrentModel.reset();
             collectReady();
             idle();
@@ -450,11 +495,7 @@ void DeviceLane::run(const std::function<void()>& idle) {
             idle();
             continue;
         }
-        {
-            std::lock_guard lock(mShared.counters.mutex);
-            mShared.counters.load += loaded->seconds;
-            mShared.counters.loadCpu += loaded->cpuSeconds;
-        }
+        countLoad(*loaded);
         renderModel(*loaded);
         mCurrentModel.reset();
         collectReady();
@@ -463,6 +504,7 @@ void DeviceLane::run(const std::function<void()>& idle) {
     while (!mChunks.empty()) {
         collectOldest();
     }
+    mCreatedInRun = gpu::threadCreationCounts() - runStart;
 }
 
 void DeviceLane::failJob(ModelJob& job, const char* stage, const Error& error) {
@@ -532,6 +574,9 @@ DeviceSummary DeviceLane::summary() const {
     summary.views = mViewsDrawn;
     summary.passTargets = mPassTargets;
     summary.pngRowsOnGpu = mPngRows.has_value();
+    summary.gpuObjectsCreated = mCreatedInRun.objects();
+    summary.gpuBytesMapped = mCreatedInRun.bytesMapped;
+    summary.modelsCreatingGpuObjects = mModelsCreating;
     return summary;
 }
 

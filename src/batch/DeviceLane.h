@@ -26,7 +26,10 @@
 #include "encore/batch/FailureLog.h"
 #include "encore/gpu/StageTimestamps.h"
 #include "encore/gpu/TextureReadbackRing.h"
+#include "gpu/CreationCounts.h"
 #include "gpu/StagingBuffers.h"
+#include "render/StagedGeometry.h"
+#include "render/StagedImages.h"
 
 namespace encore::batch {
 
@@ -36,6 +39,9 @@ struct BatchShared {
     render::StrategyChoice strategy;      // BatchOptions::strategy, or its default.
     std::span<const BatchInput> pending;  // Not finished by an earlier run, in load order.
     ThreadPool& pool;
+    // Copies models' images and geometry into staging buffers for the device threads, beside
+    // the pool (whose threads may all be loading or encoding).
+    ThreadPool& stagingCopies;
     FailureLog& failures;
     SharedCounters& counters;
     ModelWriter& writer;
@@ -105,9 +111,31 @@ class DeviceLane {
     void collectRenderer(std::size_t slot);
     // Frees renderer `slot`'s scene and gives its bytes back to the loader.
     void releasePrepared(RendererSlot& slot);
+    // A model's images and geometry on their way into staging buffers (render/StagedImages.h,
+    // render/StagedGeometry.h), for the device mDevicesLost counted when they were staged.
+    struct StagedModel {
+        std::unique_ptr<render::StagedImages> images;
+        std::unique_ptr<render::StagedGeometry> geometry;
+        std::uint64_t devicesLost = 0;
+    };
+    // The model taken from the loader while the one before it uploads, its staging started.
+    struct ModelAhead {
+        LoadedModel loaded;
+        StagedModel staged;
+    };
+    // Hands `scene`'s copies into staging buffers to the staging threads.
+    StagedModel stageModel(const scene::SceneData& scene);
+    // Takes the next model from the loader, when one has loaded and none is ahead yet, and
+    // starts its staging (mAhead): its copies then run while the current model uploads.
+    void stageAhead();
+    // Gives the model ahead back to the loader unrendered (the batch stops).
+    void releaseAhead();
+    // Adds a taken model's load times to the counters.
+    void countLoad(const LoadedModel& loaded);
     // Uploads a model once and draws each of its samples (ModelSamples.h) from it; `retry`: a
-    // second attempt after a device loss (a second loss fails it).
-    void renderModel(LoadedModel& loaded, bool retry = false);
+    // second attempt after a device loss (a second loss fails it); `ahead`: its staging when
+    // stageAhead started it.
+    void renderModel(LoadedModel& loaded, bool retry = false, StagedModel* ahead = nullptr);
     // Fails a sample or a model, unless the device is lost and the model was not retried yet:
     // it is then drawn again once the device is recreated (recoverIfLost keeps its scene).
     void failJob(ModelJob& job, const char* stage, const Error& error);
@@ -193,7 +221,13 @@ class DeviceLane {
     std::deque<ChunkInFlight> mChunks;  // In the ring's order.
     // Models in flight when the device was lost, to draw again (once) on the new one.
     std::deque<LoadedModel> mRetries;
+    std::optional<ModelAhead> mAhead;
     std::shared_ptr<ModelProgress> mCurrentModel;  // Uploaded and being drawn by renderModel.
+    // What this thread created in the driver: over run(), and up to the last sample handed to
+    // the writer (the next sample's `created` starts there).
+    gpu::CreationCounts mCreatedInRun;
+    gpu::CreationCounts mCreatedMark;
+    std::uint64_t mModelsCreating = 0;  // Samples, strictly: one per model without variants.
     bool mInjectedLoss = false;
 };
 

@@ -123,7 +123,8 @@ nlohmann::json metadataJson(const BatchInput& input,
                             const ModelTimes& times,
                             std::uint32_t views,
                             std::span<const std::uint64_t> coveredPixels,
-                            std::uint32_t blankThreshold) {
+                            std::uint32_t blankThreshold,
+                            const ModelGpuCreations& created) {
     nlohmann::json failed = nlohmann::json::array();
     for (const ModelFacts::FailedImage& image : facts.imagesFailed) {
         failed.push_back({{"index", image.index}, {"name", image.name}, {"error", image.error}});
@@ -183,6 +184,8 @@ nlohmann::json metadataJson(const BatchInput& input,
                        {"upload", times.upload},
                        {"render", times.render},
                        {"encode", times.encode}};
+    json["gpu"] = {{"objectsCreated", created.objectsCreated},
+                   {"bytesMapped", created.bytesMapped}};
     return json;
 }
 

@@ -85,6 +85,14 @@ struct ModelTimes {
     double encode = 0.0;
 };
 
+// What the device thread created in the driver for the model (gpu::CreationCounts): GPU objects
+// that hold memory (buffers, textures, query sets) and bytes of mappable buffers. Zero once the
+// lane's pools and renderers have what the models need (issue 48).
+struct ModelGpuCreations {
+    std::uint64_t objectsCreated = 0;
+    std::uint64_t bytesMapped = 0;
+};
+
 // Loads `path` as scene::loadScene does, with the same errors, and fills `facts` with its size
 // and SHA-256 (when it could be read) and, once loaded, describeModel's counts.
 Result<scene::SceneData> loadModelFile(const std::filesystem::path& path,
@@ -101,14 +109,15 @@ std::uint64_t coveredPixels(std::span<const std::uint8_t> pixels);
 std::vector<std::uint32_t> blankViews(std::span<const std::uint64_t> coveredPixels,
                                       std::uint32_t threshold);
 
-// The contents of metadata.json. `coveredPixels` has one count per view, or is empty when the
-// views' coverage was not counted (a background that is not transparent): blankViews is then
-// null.
+// The contents of metadata.json (`gpu`: `created`). `coveredPixels` has one count per view, or is
+// empty when the views' coverage was not counted (a background that is not transparent): blankViews
+// is then null.
 nlohmann::json metadataJson(const BatchInput& input,
                             const ModelFacts& facts,
                             const ModelTimes& times,
                             std::uint32_t views,
                             std::span<const std::uint64_t> coveredPixels,
-                            std::uint32_t blankThreshold);
+                            std::uint32_t blankThreshold,
+                            const ModelGpuCreations& created = {});
 
 }  // namespace encore::batch

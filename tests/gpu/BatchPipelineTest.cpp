@@ -14,6 +14,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "BatchOutput.h"
 #include "GpuTestSupport.h"
 #include "RenderTestSupport.h"
@@ -95,6 +97,51 @@ TEST(BatchPipelineTest, OverlappedModelsWriteTheSameFilesAsSequentialOnes) {
         }
     }
     EXPECT_TRUE(context->checkNoErrors("the batches").ok());
+}
+
+// The lane's pools (gpu/ResourcePool.h): a model whose kinds of textures and buffers earlier
+// models left behind creates no GPU object and maps no fresh memory, as metadata.json's `gpu`
+// records, and the files are those of the first time (BatchPipelineTest above: the same as with
+// one renderer, whose pool is reused in another order).
+TEST(BatchPipelineTest, ModelsInSteadyStateCreateNoGpuObjects) {
+    ENCORE_REQUIRE_VULKAN(context);
+    const fs::path dir = test::makeTempDir("batch-pipeline-created");
+    const std::vector<BatchInput> kinds = mixedCollection(dir);
+    std::vector<BatchInput> inputs;
+    for (const char* round : {"first-", "second-", "third-"}) {
+        for (const BatchInput& kind : kinds) {
+            inputs.push_back({kind.path, round + kind.name});
+        }
+    }
+    BatchOptions options = smallBatch(dir / "out");
+    options.renderer.environment = test::testEnvironment();
+    auto summary = runBatch(*context, inputs, options);
+    ASSERT_TRUE(summary.ok()) << summary.error().message;
+    EXPECT_EQ(summary->rendered, inputs.size());
+    ASSERT_EQ(summary->devices.size(), 1u);
+    const DeviceSummary& device = summary->devices.front();
+    EXPECT_GT(device.gpuObjectsCreated, 0u);  // The first models fill the pools.
+    EXPECT_GT(device.modelsCreatingGpuObjects, 0u);
+    EXPECT_LE(device.modelsCreatingGpuObjects, 2 * kinds.size());
+
+    std::uint64_t createdByFirst = 0;
+    for (const BatchInput& kind : kinds) {
+        for (const char* round : {"first-", "third-"}) {
+            std::ifstream file(options.output / (round + kind.name) / "metadata.json");
+            const nlohmann::json metadata = nlohmann::json::parse(file, nullptr, false);
+            ASSERT_TRUE(metadata.is_object()) << round << kind.name;
+            const std::uint64_t objects = metadata["gpu"]["objectsCreated"].get<std::uint64_t>();
+            const std::uint64_t mapped = metadata["gpu"]["bytesMapped"].get<std::uint64_t>();
+            if (std::string(round) == "first-") {
+                createdByFirst += objects;
+                continue;
+            }
+            EXPECT_EQ(objects, 0u) << kind.name << ", third time";
+            EXPECT_EQ(mapped, 0u) << kind.name << ", third time";
+        }
+    }
+    EXPECT_GT(createdByFirst, 0u);
+    EXPECT_TRUE(context->checkNoErrors("steady-state batch").ok());
 }
 
 // A device whose storage bindings hold 64 KiB: a scene of 600 instances loads but cannot be

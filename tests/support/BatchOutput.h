@@ -2,7 +2,8 @@
 
 // The files an `encore batch` run wrote, for tests that compare two runs byte for byte: every
 // file but failures.jsonl, by its path relative to the output folder, metadata.json without its
-// "seconds" (the only part that differs from run to run).
+// "seconds" and "gpu" (the parts that differ from run to run: times, and what the device thread
+// created, which depends on what earlier models left in the pools).
 
 #include <filesystem>
 #include <map>
@@ -12,7 +13,7 @@ namespace encore::test {
 
 std::map<std::string, std::string> batchOutputFiles(const std::filesystem::path& folder);
 
-// metadata.json's text without its timings, as batchOutputFiles keeps it.
+// metadata.json's text without its timings and creation counts, as batchOutputFiles keeps it.
 std::string metadataWithoutTimings(const std::string& text);
 
 }  // namespace encore::test

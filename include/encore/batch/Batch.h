@@ -100,6 +100,12 @@ struct DeviceSummary {
     bool passTargets = false;
     // Its PNG rows were filtered on the GPU (BatchOptions::pngFiltering).
     bool pngRowsOnGpu = false;
+    // What its thread created in the driver (metadata.json's `gpu`, summed): GPU objects that
+    // hold memory and bytes of mappable buffers, over the run (its renderers and pools too), and
+    // how many models created any.
+    std::uint64_t gpuObjectsCreated = 0;
+    std::uint64_t gpuBytesMapped = 0;
+    std::uint64_t modelsCreatingGpuObjects = 0;
 };
 
 struct BatchSummary : BatchProgress {
