@@ -9,8 +9,7 @@
 // The linker renames Encore's calls to the three functions to __wrap_NAME and the originals to
 // __real_NAME (src/gpu/CMakeLists.txt).
 extern "C" {
-WGPUBuffer __real_wgpuDeviceCreateBuffer(WGPUDevice device,
-                                         const WGPUBufferDescriptor* descriptor);
+WGPUBuffer __real_wgpuDeviceCreateBuffer(WGPUDevice device, const WGPUBufferDescriptor* descriptor);
 WGPUTexture __real_wgpuDeviceCreateTexture(WGPUDevice device,
                                            const WGPUTextureDescriptor* descriptor);
 WGPUQuerySet __real_wgpuDeviceCreateQuerySet(WGPUDevice device,

@@ -10,9 +10,9 @@ namespace {
 
 bool sameTexture(const wgpu::Texture& texture, const wgpu::TextureDescriptor& descriptor) {
     // An undefined dimension is 2D.
-    const wgpu::TextureDimension dimension = descriptor.dimension == wgpu::TextureDimension::Undefined
-                                                 ? wgpu::TextureDimension::e2D
-                                                 : descriptor.dimension;
+    const wgpu::TextureDimension dimension =
+        descriptor.dimension == wgpu::TextureDimension::Undefined ? wgpu::TextureDimension::e2D
+                                                                  : descriptor.dimension;
     return texture.GetFormat() == descriptor.format && texture.GetDimension() == dimension &&
            texture.GetWidth() == descriptor.size.width &&
            texture.GetHeight() == descriptor.size.height &&

@@ -27,8 +27,7 @@ namespace encore::gpu {
 
 class ResourcePool {
   public:
-    explicit ResourcePool(wgpu::Device device,
-                          std::uint64_t keptBytes = std::uint64_t{1} << 30);
+    explicit ResourcePool(wgpu::Device device, std::uint64_t keptBytes = std::uint64_t{1} << 30);
 
     // A texture as `descriptor` describes (its label names a new one): a kept one when one
     // matches, else created. Its contents are undefined: the caller writes every level it reads.
