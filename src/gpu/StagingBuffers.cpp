@@ -26,7 +26,7 @@ void StagingBuffers::collect() {
     // submits: stop at the first still pending.
     while (!mRemapping.empty() && mContext.wait(mRemapping.front()->future, 0)) {
         Remapping& done = *mRemapping.front();
-        if (done.mapped) {
+        if (*done.mapped) {
             mFree.push_back(std::move(done.buffer));
         } else {
             mBytes -= done.buffer.GetSize();  // A lost device: let it go.
@@ -69,12 +69,11 @@ void StagingBuffers::giveBack(wgpu::Buffer buffer, bool mapped) {
         return;
     }
     auto remapping = std::make_unique<Remapping>();
-    Remapping* target = remapping.get();
     remapping->buffer = std::move(buffer);
-    remapping->future = target->buffer.MapAsync(
-        wgpu::MapMode::Write, 0, target->buffer.GetSize(), wgpu::CallbackMode::WaitAnyOnly,
-        [target](wgpu::MapAsyncStatus status, wgpu::StringView) {
-            target->mapped = status == wgpu::MapAsyncStatus::Success;
+    remapping->future = remapping->buffer.MapAsync(
+        wgpu::MapMode::Write, 0, remapping->buffer.GetSize(), wgpu::CallbackMode::WaitAnyOnly,
+        [mapped = remapping->mapped](wgpu::MapAsyncStatus status, wgpu::StringView) {
+            *mapped = status == wgpu::MapAsyncStatus::Success;
         });
     mRemapping.push_back(std::move(remapping));
 }

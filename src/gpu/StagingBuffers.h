@@ -42,7 +42,10 @@ class StagingBuffers {
     struct Remapping {
         wgpu::Buffer buffer;
         wgpu::Future future;
-        bool mapped = false;  // Set by the callback, which runs inside Context::wait.
+        // Set by the callback, which runs inside Context::wait, or when the instance drops the
+        // lost device's pending mappings: shared with it, since after a device loss this object
+        // may be gone by then (its destructor waits for no mapping of a lost device).
+        std::shared_ptr<bool> mapped = std::make_shared<bool>(false);
     };
     // Moves the buffers whose mapping finished to the free list.
     void collect();
