@@ -94,7 +94,8 @@ class GpuScene {
     GpuScene(const RenderSetup& setup,
              const scene::SceneData& scene,
              const scene::AnimationPlayer& player,
-             StagedGeometry* stagedGeometry);
+             StagedGeometry* stagedGeometry,
+             const wgpu::CommandEncoder& uploads);
     Result<void> checkMaterial(scene::MaterialId material) const;
 
     const RenderSetup* mSetup;

@@ -76,7 +76,8 @@ Result<MaterialResources> MaterialResources::create(const wgpu::Device& device,
                                                     std::uint32_t maxTextureDimension,
                                                     MipmapGenerator* mipmaps,
                                                     StagedImages* staged,
-                                                    gpu::ResourcePool* pool) {
+                                                    gpu::ResourcePool* pool,
+                                                    wgpu::CommandEncoder uploads) {
     std::optional<MipmapGenerator> ownMipmaps;
     if (!mipmaps) {
         ENCORE_TRY_ASSIGN(auto created, MipmapGenerator::create(device, shaders));
@@ -87,8 +88,9 @@ Result<MaterialResources> MaterialResources::create(const wgpu::Device& device,
 
     MaterialResources resources;
     resources.mImageTextures.resize(scene.images.size());
-    Builder builder{device, queue, scene, resources, *mipmaps, device.CreateCommandEncoder(),
-                    staged, pool};
+    Builder builder{device,    queue,    scene,
+                    resources, *mipmaps, uploads ? uploads : device.CreateCommandEncoder(),
+                    staged,    pool};
     builder.maxDimension = maxTextureDimension != 0
                                ? std::min(maxTextureDimension, limits.maxTextureDimension2D)
                                : limits.maxTextureDimension2D;
@@ -179,10 +181,12 @@ Result<MaterialResources> MaterialResources::create(const wgpu::Device& device,
     }
     queue.WriteBuffer(resources.mUniforms, 0, uniformBytes.data(), uniformBytes.size());
 
-    const auto submitStart = std::chrono::steady_clock::now();
-    wgpu::CommandBuffer commands = builder.encoder.Finish();
-    queue.Submit(1, &commands);
-    resources.mUploadTimes.submit += millisecondsSince(submitStart);
+    if (!uploads) {
+        const auto submitStart = std::chrono::steady_clock::now();
+        wgpu::CommandBuffer commands = builder.encoder.Finish();
+        queue.Submit(1, &commands);
+        resources.mUploadTimes.submit += millisecondsSince(submitStart);
+    }
     return resources;
 }
 

@@ -73,6 +73,8 @@ class MaterialResources {
     // one made for this call. `staged`: the scene's images already in staging buffers
     // (StagedImages.h), copied from there rather than written through the queue. `pool`: where
     // the textures and the uniform buffer come from (gpu/ResourcePool.h); null: created.
+    // `uploads`: the encoder the copies and mip passes are recorded into, which the caller
+    // submits (one submit for a whole scene); null: recorded and submitted here.
     static Result<MaterialResources> create(const wgpu::Device& device,
                                             const wgpu::Queue& queue,
                                             shaders::ShaderLibrary& shaders,
@@ -82,7 +84,8 @@ class MaterialResources {
                                             std::uint32_t maxTextureDimension = 0,
                                             MipmapGenerator* mipmaps = nullptr,
                                             StagedImages* staged = nullptr,
-                                            gpu::ResourcePool* pool = nullptr);
+                                            gpu::ResourcePool* pool = nullptr,
+                                            wgpu::CommandEncoder uploads = nullptr);
 
     // Hands the textures and the uniform buffer to `pool` (the scene is being released: no
     // bind group of this object is used again).

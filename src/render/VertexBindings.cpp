@@ -48,9 +48,10 @@ GeometryBuffers::GeometryBuffers(wgpu::Device device,
                                  const scene::SceneData& scene,
                                  std::uint64_t maxSharedBufferBytes,
                                  StagedGeometry* staged,
-                                 gpu::ResourcePool* pool)
+                                 gpu::ResourcePool* pool,
+                                 wgpu::CommandEncoder uploads)
     : mDevice(std::move(device)), mScene(&scene) {
-    uploadViews(maxSharedBufferBytes, staged, pool);
+    uploadViews(maxSharedBufferBytes, staged, pool, std::move(uploads));
     uploadRepackedAccessors();
 }
 
@@ -91,7 +92,8 @@ void GeometryBuffers::uploadRepackedAccessors() {
 
 void GeometryBuffers::uploadViews(std::uint64_t maxSharedBufferBytes,
                                   StagedGeometry* staged,
-                                  gpu::ResourcePool* pool) {
+                                  gpu::ResourcePool* pool,
+                                  wgpu::CommandEncoder uploads) {
     std::uint64_t maxBytes = maxSharedBufferBytes;
     if (maxBytes == 0) {
         wgpu::Limits limits{};
@@ -106,7 +108,7 @@ void GeometryBuffers::uploadViews(std::uint64_t maxSharedBufferBytes,
     // reading them back (tests compare the two uploads below).
     const wgpu::BufferUsage usage = wgpu::BufferUsage::Vertex | wgpu::BufferUsage::Index |
                                     wgpu::BufferUsage::Storage | wgpu::BufferUsage::CopySrc;
-    wgpu::CommandEncoder copies;
+    wgpu::CommandEncoder copies = uploads;
     for (std::size_t index = 0; index < layout.buffers.size(); ++index) {
         const SharedGeometryLayout::Buffer& shared = layout.buffers[index];
         const std::string label = "geometry " + std::to_string(index);
@@ -153,7 +155,7 @@ void GeometryBuffers::uploadViews(std::uint64_t maxSharedBufferBytes,
         mUploadedBytes += shared.size;
         mSharedBuffers.push_back(buffer);
     }
-    if (copies) {
+    if (copies && !uploads) {
         const wgpu::CommandBuffer commands = copies.Finish();
         mDevice.GetQueue().Submit(1, &commands);
     }

@@ -70,12 +70,14 @@ class GeometryBuffers {
     // shared buffer ends and the next begins; 0 (the default) takes the device's maxBufferSize
     // (tests pass less to exercise the split). `staged`: the shared buffers' bytes already in
     // staging buffers (StagedGeometry.h), copied from there, used during this call only.
-    // `pool`: where the shared buffers of a staged upload come from (gpu/ResourcePool.h).
+    // `pool`: where the shared buffers come from (gpu/ResourcePool.h). `uploads`: the encoder
+    // the staged copies are recorded into, which the caller submits; null: submitted here.
     GeometryBuffers(wgpu::Device device,
                     const scene::SceneData& scene,
                     std::uint64_t maxSharedBufferBytes = 0,
                     StagedGeometry* staged = nullptr,
-                    gpu::ResourcePool* pool = nullptr);
+                    gpu::ResourcePool* pool = nullptr,
+                    wgpu::CommandEncoder uploads = nullptr);
     // Hands the shared buffers to `pool` (the scene is being released: nothing binds them again).
     void giveBackTo(gpu::ResourcePool& pool);
 
@@ -110,7 +112,8 @@ class GeometryBuffers {
     const ViewPlacement& viewPlacement(scene::BufferViewId view) const;
     void uploadViews(std::uint64_t maxSharedBufferBytes,
                      StagedGeometry* staged,
-                     gpu::ResourcePool* pool);
+                     gpu::ResourcePool* pool,
+                     wgpu::CommandEncoder uploads);
     void uploadRepackedAccessors();
 
     wgpu::Device mDevice;
