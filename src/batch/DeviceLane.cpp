@@ -11,6 +11,7 @@
 #include "batch/PassImages.h"
 #include "core/Elapsed.h"
 #include "core/Log.h"
+#include "gpu/Readback.h"
 #include "render/StagedGeometry.h"
 #include "render/StagedImages.h"
 
@@ -95,6 +96,11 @@ Result<void> DeviceLane::createRenderers() {
         ENCORE_TRY(mBatchRenderer.renderer(i).createKeptObjects(mShared.strategy.kind));
     }
     mRing = &mBatchRenderer.ring();
+    // Every slot sized for a target's read now: a slot first used late (more reads in flight
+    // than before) then creates nothing.
+    const std::uint32_t bytesPerTexel = rendererOptions.target.hdr ? 8 : 4;
+    mRing->reserve(std::uint64_t(gpu::paddedRowBytes(mLayout.targetWidth() * bytesPerTexel)) *
+                   mLayout.height);
     mStaging = std::make_shared<gpu::StagingBuffers>(mContext);
     mTimestamps.reset();
     if (options.gpuTimestamps) {

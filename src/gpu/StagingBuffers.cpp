@@ -35,8 +35,7 @@ void StagingBuffers::collect() {
     }
 }
 
-wgpu::Buffer StagingBuffers::acquire(std::uint64_t size) {
-    collect();
+wgpu::Buffer StagingBuffers::takeFree(std::uint64_t size) {
     // The smallest kept buffer that is large enough.
     auto best = mFree.end();
     for (auto it = mFree.begin(); it != mFree.end(); ++it) {
@@ -44,11 +43,36 @@ wgpu::Buffer StagingBuffers::acquire(std::uint64_t size) {
             best = it;
         }
     }
-    if (best != mFree.end()) {
-        wgpu::Buffer buffer = std::move(*best);
-        mFree.erase(best);
-        mBytes -= buffer.GetSize();
-        return buffer;
+    if (best == mFree.end()) {
+        return {};
+    }
+    wgpu::Buffer buffer = std::move(*best);
+    mFree.erase(best);
+    mBytes -= buffer.GetSize();
+    return buffer;
+}
+
+wgpu::Buffer StagingBuffers::acquire(std::uint64_t size) {
+    collect();
+    if (wgpu::Buffer free = takeFree(size)) {
+        return free;
+    }
+    // A buffer being mapped again is free once the GPU is past the copy out of it, which was
+    // submitted: waiting for it waits for the GPU, as a device thread ahead of the GPU does
+    // anyway, and a batch in steady state then creates no buffer however the GPU keeps pace.
+    const bool deviceAlive = mDevice.Get() == mContext.device().Get();
+    for (auto it = mRemapping.begin(); deviceAlive && it != mRemapping.end(); ++it) {
+        if ((*it)->buffer.GetSize() < size) {
+            continue;
+        }
+        std::unique_ptr<Remapping> remapping = std::move(*it);
+        mRemapping.erase(it);
+        mContext.wait(remapping->future);
+        mBytes -= remapping->buffer.GetSize();
+        if (*remapping->mapped) {
+            return std::move(remapping->buffer);
+        }
+        break;  // A lost device: create one on the new device.
     }
     wgpu::BufferDescriptor descriptor{};
     descriptor.label = "staging";

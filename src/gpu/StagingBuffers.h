@@ -29,8 +29,9 @@ class StagingBuffers {
     StagingBuffers& operator=(const StagingBuffers&) = delete;
 
     // A buffer of at least `size` bytes, mapped for writing over its whole size: a kept one
-    // whose mapping has finished, else a new one (its size rounded up to a power of two of at
-    // least 1 MiB, so that it serves later sizes too).
+    // whose mapping has finished, else a kept one once its mapping finishes (waiting for the
+    // GPU to pass the copy out of it), else a new one (its size rounded up to a power of two of
+    // at least 1 MiB, so that it serves later sizes too).
     wgpu::Buffer acquire(std::uint64_t size);
     // Takes back a buffer from acquire(): mapped still (nothing was copied from it), or unmapped
     // with the copies out of it submitted, in which case it is mapped again for a later acquire.
@@ -49,6 +50,8 @@ class StagingBuffers {
     };
     // Moves the buffers whose mapping finished to the free list.
     void collect();
+    // The smallest free buffer of at least `size` bytes, taken off the list; null when none.
+    wgpu::Buffer takeFree(std::uint64_t size);
 
     Context& mContext;
     // The device the buffers belong to: after a device loss the context holds a new one, and

@@ -77,6 +77,20 @@ TextureReadbackRing::Slot* TextureReadbackRing::freeSlot() {
     }
 }
 
+void TextureReadbackRing::reserve(std::uint64_t bytes) {
+    bytes =
+        std::min<std::uint64_t>((bytes + 3) & ~std::uint64_t{3}, mContext->limits().maxBufferSize);
+    for (const auto& slot : mSlots) {
+        if (!slot->buffer || slot->buffer.GetSize() < bytes) {
+            wgpu::BufferDescriptor descriptor{};
+            descriptor.label = "read-back ring slot";
+            descriptor.size = bytes;
+            descriptor.usage = wgpu::BufferUsage::CopyDst | wgpu::BufferUsage::MapRead;
+            slot->buffer = mContext->device().CreateBuffer(&descriptor);
+        }
+    }
+}
+
 Result<TextureReadbackRing::Slot*> TextureReadbackRing::slotFor(std::uint64_t size,
                                                                 const std::string& what) {
     Slot* slot = full() ? nullptr : freeSlot();

@@ -63,6 +63,10 @@ class TextureReadbackRing {
 
     // Every slot holds a read not yet taken: take one before enqueueing another.
     bool full() const { return mInFlight.size() == mSlots.size(); }
+    // Gives every slot a buffer of at least `bytes` now, so that reads of up to that size create
+    // none later, however many are in flight at once (a batch's steady state creates no GPU
+    // object). Call with no read in flight.
+    void reserve(std::uint64_t bytes);
     bool empty() const { return mInFlight.empty(); }
     // Whether the oldest read has finished on the GPU (takeOldest will not block).
     bool oldestReady() const;
