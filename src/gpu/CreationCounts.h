@@ -29,13 +29,6 @@ struct CreationCounts {
         return {buffers - earlier.buffers, textures - earlier.textures,
                 querySets - earlier.querySets, bytesMapped - earlier.bytesMapped};
     }
-    CreationCounts& operator+=(const CreationCounts& other) {
-        buffers += other.buffers;
-        textures += other.textures;
-        querySets += other.querySets;
-        bytesMapped += other.bytesMapped;
-        return *this;
-    }
 };
 
 // Everything the calling thread has created so far.

@@ -77,17 +77,27 @@ TextureReadbackRing::Slot* TextureReadbackRing::freeSlot() {
     }
 }
 
+namespace {
+
+// Replaces a slot's buffer by one of `bytes` when it has none that large.
+void growSlotBuffer(wgpu::Buffer& buffer, const wgpu::Device& device, std::uint64_t bytes) {
+    if (buffer && buffer.GetSize() >= bytes) {
+        return;
+    }
+    wgpu::BufferDescriptor descriptor{};
+    descriptor.label = "read-back ring slot";
+    descriptor.size = bytes;
+    descriptor.usage = wgpu::BufferUsage::CopyDst | wgpu::BufferUsage::MapRead;
+    buffer = device.CreateBuffer(&descriptor);
+}
+
+}  // namespace
+
 void TextureReadbackRing::reserve(std::uint64_t bytes) {
     bytes =
         std::min<std::uint64_t>((bytes + 3) & ~std::uint64_t{3}, mContext->limits().maxBufferSize);
     for (const auto& slot : mSlots) {
-        if (!slot->buffer || slot->buffer.GetSize() < bytes) {
-            wgpu::BufferDescriptor descriptor{};
-            descriptor.label = "read-back ring slot";
-            descriptor.size = bytes;
-            descriptor.usage = wgpu::BufferUsage::CopyDst | wgpu::BufferUsage::MapRead;
-            slot->buffer = mContext->device().CreateBuffer(&descriptor);
-        }
+        growSlotBuffer(slot->buffer, mContext->device(), bytes);
     }
 }
 
@@ -105,13 +115,7 @@ Result<TextureReadbackRing::Slot*> TextureReadbackRing::slotFor(std::uint64_t si
                              " bytes, more than the device's maxBufferSize (" +
                              std::to_string(mContext->limits().maxBufferSize) + " bytes).");
     }
-    if (!slot->buffer || slot->buffer.GetSize() < size) {
-        wgpu::BufferDescriptor descriptor{};
-        descriptor.label = "read-back ring slot";
-        descriptor.size = size;
-        descriptor.usage = wgpu::BufferUsage::CopyDst | wgpu::BufferUsage::MapRead;
-        slot->buffer = mContext->device().CreateBuffer(&descriptor);
-    }
+    growSlotBuffer(slot->buffer, mContext->device(), size);
     return slot;
 }
 

@@ -73,9 +73,10 @@ InstanceBuffer::InstanceBuffer(const wgpu::Device& device,
         wgpu::BufferUsage::Storage | wgpu::BufferUsage::CopyDst | wgpu::BufferUsage::CopySrc;
     if (pool) {
         // A kept buffer is written through the queue: mapping at creation needs a new one.
-        const std::uint64_t bytes = transforms.size() * sizeof(TransformUniform);
-        mBuffer = pool->buffer(usage, bytes, "instance transforms");
-        device.GetQueue().WriteBuffer(mBuffer, 0, transforms.data(), bytes);
+        mBuffer = pool->bufferWithData(device.GetQueue(), usage,
+                                       {reinterpret_cast<const std::uint8_t*>(transforms.data()),
+                                        transforms.size() * sizeof(TransformUniform)},
+                                       "instance transforms");
     } else {
         mBuffer = gpu::createBufferFrom<TransformUniform>(device, usage, transforms,
                                                           "instance transforms");

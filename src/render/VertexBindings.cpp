@@ -126,14 +126,14 @@ void GeometryBuffers::uploadViews(std::uint64_t maxSharedBufferBytes,
             copies.CopyBufferToBuffer(source, 0, buffer, 0, buffer.GetSize());
         } else if (pool) {
             // A kept buffer is written through the queue: the views gathered, the gaps zeroed.
-            buffer = pool->buffer(usage | wgpu::BufferUsage::CopyDst, shared.size, label);
-            std::vector<std::uint8_t> bytes(buffer.GetSize(), 0);
+            std::vector<std::uint8_t> bytes(shared.size, 0);
             for (const SharedGeometryLayout::View& view : shared.views) {
                 const scene::BufferView& source = mScene->bufferViews[view.id.index()];
                 const auto& data = mScene->buffers[source.buffer.index()].bytes;
                 copyBytes(bytes.data() + view.offset, data.data() + source.byteOffset, view.length);
             }
-            mDevice.GetQueue().WriteBuffer(buffer, 0, bytes.data(), bytes.size());
+            buffer = pool->bufferWithData(mDevice.GetQueue(), usage | wgpu::BufferUsage::CopyDst,
+                                          bytes, label);
         } else {
             // Mapped at creation, so zeroed: the gaps between views read as zeros. The views
             // are copied straight into it: gathering them into one vector first copied every
