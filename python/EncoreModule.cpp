@@ -60,7 +60,8 @@ PYBIND11_MODULE(_encore, module) {
              "A renderer on adapter `device` of encore.adapters() (default: the ENCORE_DEVICE "
              "environment variable, else 0, the adapter Dawn prefers), drawing with `strategy` "
              "(a name of `encore --help`'s list, e.g. \"visibility\" or \"gpu-culling-bundles\"; "
-             "default: render_views draws with bundles, batch with its default).")
+             "default or \"auto\": render_views draws with bundles, batch chooses per model "
+             "as `encore batch --strategy auto` does).")
         .def("load", &Renderer::load, py::arg("path"),
              "Loads a .gltf or .glb file; raises encore.LoadError with the loader's message.")
         .def("render_views", &Renderer::renderViews, py::arg("scene"), py::arg("views") = 12,

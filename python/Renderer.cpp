@@ -43,7 +43,7 @@ Renderer::Renderer(std::uint32_t samples,
     if (samples != 1 && samples != 4) {
         throw py::value_error("samples must be 1 or 4");
     }
-    if (strategy) {
+    if (strategy && *strategy != "auto") {
         mStrategy = render::strategyChoiceFromName(*strategy);
         if (!mStrategy) {
             std::string names;
@@ -52,7 +52,7 @@ Renderer::Renderer(std::uint32_t samples,
             }
             throw py::value_error("strategy '" + *strategy +
                                   "' is not one of Encore's strategies (" + names +
-                                  "; a direct one may take +bundle)");
+                                  "; a direct one may take +bundle; or auto)");
         }
     }
     gpu::ContextOptions options;

@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <thread>
 #include <tuple>
@@ -46,6 +47,7 @@ struct BatchCommandOptions {
     std::string layout = "nerf";
     std::uint32_t blankThreshold = batch::kDefaultBlankThreshold;
     std::string strategy;  // Empty: batch::BatchOptions::strategy's default.
+    std::optional<std::uint64_t> visibilityFromTriangles;  // Unset: auto's default.
     float lodErrorPixels = 0.0f;
     bool strict = false;
     double modelTimeoutSeconds = 0.0;  // 0: none.
@@ -227,13 +229,14 @@ int runBatch(const BatchCommandOptions& options, const GlobalOptions& global) {
         return reportError(size.error());
     }
     std::tie(batchOptions.width, batchOptions.height) = *size;
-    if (!options.strategy.empty()) {
+    if (!options.strategy.empty() && options.strategy != "auto") {
         auto strategy = parseStrategyChoice(options.strategy, false);
         if (!strategy) {
             return reportError(strategy.error());
         }
         batchOptions.strategy = *strategy;
     }
+    batchOptions.visibilityFromTriangles = options.visibilityFromTriangles;
     batchOptions.lodErrorPixels = options.lodErrorPixels;
     batchOptions.output = options.output;
     batchOptions.samples = options.samples;
@@ -469,8 +472,19 @@ void addBatchCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) 
         ->capture_default_str()
         ->check(CLI::IsMember({1, 4}));
     command->add_option("-s,--strategy", options->strategy,
-                        "Rendering strategy (default: bundles; gpu-culling-bundles with "
-                        "--lod-error)");
+                        "Rendering strategy, or auto (the default): per model, visibility "
+                        "on a GPU for models of at least " +
+                            std::to_string(batch::kAutoVisibilityTriangles) +
+                            " triangles, else bundles (gpu-culling-bundles with --lod-error); "
+                            "bundles on a CPU and with extra images; metadata.json names the "
+                            "choice");
+    command
+        ->add_option("--visibility-from-triangles", options->visibilityFromTriangles,
+                     "With --strategy auto: the triangles (summed over the instances) from which "
+                     "a model is drawn with visibility, on any adapter that has the feature (a "
+                     "CPU too). Default: " +
+                         std::to_string(batch::kAutoVisibilityTriangles) + " on a GPU")
+        ->type_name("N");
     command
         ->add_option("--lod-error", options->lodErrorPixels,
                      "Draw each instance at the coarsest level of detail whose simplification "

@@ -91,6 +91,14 @@ Result<void> validateBatchOptions(const BatchOptions& options) {
                              "visibility strategy, which chooses the levels (not " +
                              render::strategyChoiceName(strategy) + ").");
     }
+    if (options.strategy && options.visibilityFromTriangles) {
+        return makeError(
+            ErrorCode::InvalidArgument,
+            "A triangle count from which models are drawn with visibility (" +
+                std::to_string(*options.visibilityFromTriangles) +
+                ") applies to the automatic choice only, not to an explicit strategy (" +
+                render::strategyChoiceName(*options.strategy) + ").");
+    }
     if (options.allVariants && !options.variant.empty()) {
         return makeError(ErrorCode::InvalidArgument, "A batch renders one material variant ('" +
                                                          options.variant +

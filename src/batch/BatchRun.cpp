@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "batch/BatchOptionsValidation.h"
+#include "batch/BatchStrategy.h"
 #include "batch/DeviceLane.h"
 #include "batch/ModelLoader.h"
 #include "batch/ModelOutput.h"
@@ -222,8 +223,15 @@ Result<BatchSummary> BatchRun::run() {
     // than a few views earn back.
     loadOptions.buildLevelsOfDetail = mOptions.lodErrorPixels > 0.0f;
     loadOptions.vertexCacheOrder = scene::VertexCacheOrder::Fast;
-    // Clusters only for the strategy that culls them: they doubled a dense model's load.
-    loadOptions.buildClusters = batchStrategy(mOptions).kind == render::StrategyKind::Visibility;
+    std::vector<gpu::Context*> contexts;
+    for (BatchRenderer* device : mDevices) {
+        contexts.push_back(&device->context());
+    }
+    const BatchStrategy strategy = batchStrategyFor(mOptions, contexts);
+    // Clusters only for the models the strategy that culls them draws: they doubled a dense
+    // model's load.
+    loadOptions.buildClusters = strategy.buildsClusters();
+    loadOptions.clustersFromTriangles = strategy.clustersFromTriangles();
     loadOptions.maxImageDimension = mOptions.maxTextureSize;
     // One load per pool thread keeps them busy; encode tasks queue between them. With several
     // devices, each takes whichever model has loaded: a slow load holds up none of the others.
@@ -231,12 +239,8 @@ Result<BatchSummary> BatchRun::run() {
         mPool, mPending, loadOptions, mOptions.memoryLimitBytes, mPool.size(),
         mDevices.size() == 1 ? ModelLoader::Order::InOrder : ModelLoader::Order::AsLoaded,
         mOptions.modelTimeoutSeconds);
-    BatchShared shared{mOptions,       batchStrategy(mOptions),
-                       mPending,       mPool,
-                       mStagingCopies, *mFailures,
-                       mCounters,      writer,
-                       loader,         planner,
-                       mShards.get()};
+    BatchShared shared{mOptions,  strategy, mPending, mPool,   mStagingCopies, *mFailures,
+                       mCounters, writer,   loader,   planner, mShards.get()};
     if (auto created = createLanes(shared); !created) {
         loader.finish();
         return created.error();

@@ -63,7 +63,7 @@ Result<void> DeviceLane::createRenderers() {
     // Pass images have a transparent background whatever the colour images have; depth,
     // segmentation and HDR images are read from the HDR target.
     rendererOptions.target.hdr = options.images.perView() > 1;
-    mPassTargets = drawsPassTargets(options.images, mShared.strategy.kind, mContext.limits());
+    mPassTargets = drawsPassTargets(options.images, mShared.strategy.base.kind, mContext.limits());
     const bool pngRows =
         filtersPngRowsOnGpu(options.pngFiltering, mContext.adapterDescription().adapterType);
     rendererOptions.target.bytesViews = pngRows;
@@ -93,7 +93,11 @@ Result<void> DeviceLane::createRenderers() {
     for (std::size_t i = 0; i < mBatchRenderer.rendererCount(); ++i) {
         mRenderers.push_back({&mBatchRenderer.renderer(i), {}});
         // While the loaders read the first models: the first prepare would wait for them.
-        ENCORE_TRY(mBatchRenderer.renderer(i).createKeptObjects(mShared.strategy.kind));
+        ENCORE_TRY(mBatchRenderer.renderer(i).createKeptObjects(mShared.strategy.base.kind));
+        if (mShared.strategy.mayChooseVisibility()) {
+            ENCORE_TRY(
+                mBatchRenderer.renderer(i).createKeptObjects(render::StrategyKind::Visibility));
+        }
     }
     mRing = &mBatchRenderer.ring();
     // Every slot sized for a target's read now: a slot first used late (more reads in flight
@@ -326,7 +330,8 @@ void DeviceLane::renderModel(LoadedModel& loaded, bool retry, StagedModel* ahead
     }
     auto held = std::make_unique<LoadedModel>(std::move(loaded));
     const scene::SceneData& scene = *held->scene;
-    auto prepared = renderer.prepare(scene, mShared.strategy.kind, mShared.strategy.bundle,
+    const render::StrategyChoice strategy = mShared.strategy.forModel(facts.triangles);
+    auto prepared = renderer.prepare(scene, strategy.kind, strategy.bundle,
                                      {staged.images.get(), staged.geometry.get()});
     releasePrepared(slot);
     slot.prepared = std::move(held);
@@ -361,6 +366,7 @@ void DeviceLane::renderModel(LoadedModel& loaded, bool retry, StagedModel* ahead
         job->variant = sample.variantName;
         job->folder = modelFolder(options.output, sample.name);
         job->facts = facts;
+        job->drawing.strategy = render::strategyChoiceName(strategy);
         job->times.load = loadSeconds;
         job->times.upload = uploadSeconds;
         mShared.planner.plan(*job);
@@ -451,7 +457,8 @@ void DeviceLane::renderSample(const std::shared_ptr<ModelJob>& job,
     const gpu::CreationCounts created = gpu::threadCreationCounts();
     const gpu::CreationCounts sampleCreated = created - mCreatedMark;
     mCreatedMark = created;
-    job->created = {sampleCreated.objects(), sampleCreated.bytesMapped};
+    job->drawing.objectsCreated = sampleCreated.objects();
+    job->drawing.bytesMapped = sampleCreated.bytesMapped;
     mModelsCreating += sampleCreated.objects() > 0 || sampleCreated.bytesMapped > 0;
     mShared.writer.rendered(job);
 }

@@ -14,6 +14,7 @@
 #include <span>
 #include <vector>
 
+#include "batch/BatchStrategy.h"
 #include "batch/ModelLoader.h"
 #include "batch/ModelPlan.h"
 #include "batch/ModelWriter.h"
@@ -36,7 +37,7 @@ namespace encore::batch {
 // What every lane of a batch uses; owned by the batch's run, which outlives its lanes.
 struct BatchShared {
     const BatchOptions& options;
-    render::StrategyChoice strategy;      // BatchOptions::strategy, or its default.
+    BatchStrategy strategy;               // BatchOptions::strategy, or auto's per model.
     std::span<const BatchInput> pending;  // Not finished by an earlier run, in load order.
     ThreadPool& pool;
     // Copies models' images and geometry into staging buffers for the device threads, beside

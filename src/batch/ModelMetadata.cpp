@@ -2,7 +2,6 @@
 
 #include "core/FileIO.h"
 #include "core/Sha256.h"
-#include "encore/render/RenderEncoder.h"
 
 namespace encore::batch {
 namespace {
@@ -52,11 +51,10 @@ Result<scene::SceneData> loadModelFile(const fs::path& path,
 }
 
 void describeModel(const scene::SceneData& scene, ModelFacts& facts) {
-    facts.triangles = 0;
+    facts.triangles = scene.drawnTriangleCount();
     facts.vertices = 0;
     for (const scene::Instance& instance : scene.instances) {
         for (const scene::Primitive& primitive : scene.meshes[instance.mesh.index()].primitives) {
-            facts.triangles += render::triangleCount(scene, primitive);
             facts.vertices += primitive.vertexCount;
         }
     }
@@ -124,7 +122,7 @@ nlohmann::json metadataJson(const BatchInput& input,
                             std::uint32_t views,
                             std::span<const std::uint64_t> coveredPixels,
                             std::uint32_t blankThreshold,
-                            const ModelGpuCreations& created) {
+                            const ModelDrawing& drawing) {
     nlohmann::json failed = nlohmann::json::array();
     for (const ModelFacts::FailedImage& image : facts.imagesFailed) {
         failed.push_back({{"index", image.index}, {"name", image.name}, {"error", image.error}});
@@ -184,8 +182,9 @@ nlohmann::json metadataJson(const BatchInput& input,
                        {"upload", times.upload},
                        {"render", times.render},
                        {"encode", times.encode}};
-    json["gpu"] = {{"objectsCreated", created.objectsCreated},
-                   {"bytesMapped", created.bytesMapped}};
+    json["strategy"] = drawing.strategy;
+    json["gpu"] = {{"objectsCreated", drawing.objectsCreated},
+                   {"bytesMapped", drawing.bytesMapped}};
     return json;
 }
 

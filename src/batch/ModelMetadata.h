@@ -85,10 +85,12 @@ struct ModelTimes {
     double encode = 0.0;
 };
 
-// What the device thread created in the driver for the model (gpu::CreationCounts): GPU objects
-// that hold memory (buffers, textures, query sets) and bytes of mappable buffers. Zero once the
+// How the device thread drew the model: the strategy (BatchOptions::strategy, or auto's choice
+// for it) and what it created in the driver for the model (gpu::CreationCounts): GPU objects
+// that hold memory (buffers, textures, query sets) and bytes of mappable buffers, zero once the
 // lane's pools and renderers have what the models need (issue 48).
-struct ModelGpuCreations {
+struct ModelDrawing {
+    std::string strategy;
     std::uint64_t objectsCreated = 0;
     std::uint64_t bytesMapped = 0;
 };
@@ -109,15 +111,15 @@ std::uint64_t coveredPixels(std::span<const std::uint8_t> pixels);
 std::vector<std::uint32_t> blankViews(std::span<const std::uint64_t> coveredPixels,
                                       std::uint32_t threshold);
 
-// The contents of metadata.json (`gpu`: `created`). `coveredPixels` has one count per view, or is
-// empty when the views' coverage was not counted (a background that is not transparent): blankViews
-// is then null.
+// The contents of metadata.json (`strategy` and `gpu` from `drawing`). `coveredPixels` has one
+// count per view, or is empty when the views' coverage was not counted (a background that is not
+// transparent): blankViews is then null.
 nlohmann::json metadataJson(const BatchInput& input,
                             const ModelFacts& facts,
                             const ModelTimes& times,
                             std::uint32_t views,
                             std::span<const std::uint64_t> coveredPixels,
                             std::uint32_t blankThreshold,
-                            const ModelGpuCreations& created = {});
+                            const ModelDrawing& drawing = {});
 
 }  // namespace encore::batch

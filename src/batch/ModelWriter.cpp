@@ -44,7 +44,7 @@ void ModelWriter::writeMetadata(ModelJob& job) {
     std::lock_guard lock(job.writtenMutex);  // The encode times.
     const nlohmann::json json =
         metadataJson(*job.model->input, job.facts, job.times, std::uint32_t(job.views.size()),
-                     job.coveredPixels, mOptions.blankThreshold, job.created);
+                     job.coveredPixels, mOptions.blankThreshold, job.drawing);
     if (auto written = writeJson(job.folder / kMetadataFileName, json); !written) {
         job.fail(mFailures, mCounters, "write", written.error());
     }

@@ -90,7 +90,7 @@ struct ModelJob {
     // load, upload and render are set by the device thread before it lets the model finish
     // (ModelWriter::rendered); encode is summed by the pool under writtenMutex.
     ModelTimes times;
-    ModelGpuCreations created;  // Set by the device thread with the times.
+    ModelDrawing drawing;  // Set by the device thread.
     // Covered pixels of each colour view, counted by the task that encodes it; empty when not
     // counted (ModelPlanner).
     std::vector<std::uint64_t> coveredPixels;

@@ -19,23 +19,6 @@ DrawCounters& DrawCounters::operator+=(const DrawCounters& other) {
     return *this;
 }
 
-std::uint64_t triangleCount(scene::Topology topology, std::uint64_t count) {
-    switch (topology) {
-        case scene::Topology::TriangleList:
-            return count / 3;
-        case scene::Topology::TriangleStrip:
-            return count >= 3 ? count - 2 : 0;
-        default:
-            return 0;
-    }
-}
-
-std::uint64_t triangleCount(const scene::SceneData& scene, const scene::Primitive& primitive) {
-    return triangleCount(primitive.topology, primitive.indices
-                                                 ? scene.accessors[primitive.indices->index()].count
-                                                 : primitive.vertexCount);
-}
-
 // Each call goes to whichever encoder this wraps; the branch is negligible next to the call.
 #define ENCORE_FORWARD(call) \
     do {                     \

@@ -201,4 +201,31 @@ std::size_t SceneData::primitiveCount() const {
     return count;
 }
 
+std::uint64_t SceneData::drawnTriangleCount() const {
+    std::uint64_t triangles = 0;
+    for (const Instance& instance : instances) {
+        for (const Primitive& primitive : meshes[instance.mesh.index()].primitives) {
+            triangles += triangleCount(*this, primitive);
+        }
+    }
+    return triangles;
+}
+
+std::uint64_t triangleCount(Topology topology, std::uint64_t count) {
+    switch (topology) {
+        case Topology::TriangleList:
+            return count / 3;
+        case Topology::TriangleStrip:
+            return count >= 3 ? count - 2 : 0;
+        default:
+            return 0;
+    }
+}
+
+std::uint64_t triangleCount(const SceneData& scene, const Primitive& primitive) {
+    return triangleCount(primitive.topology, primitive.indices
+                                                 ? scene.accessors[primitive.indices->index()].count
+                                                 : primitive.vertexCount);
+}
+
 }  // namespace encore::scene

@@ -137,7 +137,9 @@ Result<SceneData> load(std::span<const std::uint8_t> bytes, LoadContext& context
     meshOptions.optimizeVertexOrder = context.options.optimizeMeshes;
     meshOptions.vertexCacheOrder = context.options.vertexCacheOrder;
     meshOptions.buildLevelsOfDetail = context.options.buildLevelsOfDetail;
-    meshOptions.buildClusters = context.options.buildClusters;
+    meshOptions.buildClusters =
+        context.options.buildClusters &&
+        context.scene.drawnTriangleCount() >= context.options.clustersFromTriangles;
     ENCORE_TRY(optimizeMeshes(context.scene, meshOptions));
     return std::move(context.scene);
 }

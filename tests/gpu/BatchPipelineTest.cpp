@@ -10,6 +10,7 @@
 #include <chrono>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -142,6 +143,79 @@ TEST(BatchPipelineTest, ModelsInSteadyStateCreateNoGpuObjects) {
     }
     EXPECT_GT(createdByFirst, 0u);
     EXPECT_TRUE(context->checkNoErrors("steady-state batch").ok());
+}
+
+std::string metadataString(const fs::path& folder, const char* key) {
+    std::ifstream file(folder / "metadata.json");
+    const nlohmann::json metadata = nlohmann::json::parse(file, nullptr, false);
+    return metadata.is_object() && metadata.contains(key) ? metadata[key].dump() : "";
+}
+
+// --strategy auto (BatchOptions::strategy unset): bundles for every model on lavapipe, a CPU;
+// with a triangle line, visibility for the models from it and bundles below, each model's files
+// those of the strategy it got when it draws every model, and metadata.json naming it.
+TEST(BatchPipelineTest, AutoDrawsTheModelsFromItsLineWithVisibility) {
+    ENCORE_REQUIRE_VULKAN(context);
+    if (!context->device().HasFeature(wgpu::FeatureName::AtomicVec2uMinMax)) {
+        GTEST_SKIP() << "The device has no AtomicVec2uMinMax (the visibility strategy's).";
+    }
+    const fs::path dir = test::makeTempDir("batch-pipeline-auto");
+    std::vector<BatchInput> inputs;
+    for (const std::uint32_t objects : {2u, 9u, 3u, 12u}) {
+        const std::string name = "objects" + std::to_string(objects);
+        test::writeGeneratedScene(dir / (name + ".glb"), objects, objects);
+        inputs.push_back({dir / (name + ".glb"), name});
+    }
+    const auto run = [&](const std::string& folder, std::optional<render::StrategyChoice> strategy,
+                         std::optional<std::uint64_t> line) {
+        BatchOptions options = smallBatch(dir / folder);
+        options.renderer.environment = test::testEnvironment();
+        options.strategy = strategy;
+        options.visibilityFromTriangles = line;
+        auto summary = runBatch(*context, inputs, options);
+        EXPECT_TRUE(summary.ok()) << summary.error().message;
+        if (summary.ok()) {
+            EXPECT_EQ(summary->rendered, inputs.size()) << folder;
+        }
+        return test::batchOutputFiles(options.output);
+    };
+    const auto bundles =
+        run("bundles", render::StrategyChoice::of(render::StrategyKind::Bundles, false), {});
+    const auto visibility =
+        run("visibility", render::StrategyChoice::of(render::StrategyKind::Visibility, false), {});
+    const auto automatic = run("auto", std::nullopt, std::nullopt);
+    std::map<std::string, std::uint64_t> triangles;
+    for (const BatchInput& input : inputs) {
+        EXPECT_EQ(metadataString(dir / "auto" / input.name, "strategy"), "\"bundles\"");
+        EXPECT_EQ(metadataString(dir / "visibility" / input.name, "strategy"), "\"visibility\"");
+        triangles[input.name] = std::stoull(metadataString(dir / "auto" / input.name, "triangles"));
+    }
+    EXPECT_EQ(automatic, bundles);  // On a CPU adapter, without a line.
+    // The line at the third model's triangles: it and the larger one by visibility.
+    const std::uint64_t line = triangles["objects9"];
+    ASSERT_GT(line, triangles["objects3"]);
+    ASSERT_GT(triangles["objects12"], line);
+    const auto mixed = run("mixed", std::nullopt, line);
+    ASSERT_EQ(mixed.size(), bundles.size());
+    for (const auto& [name, bytes] : mixed) {
+        const std::string model = name.substr(0, name.find('/'));
+        const bool byVisibility = triangles[model] >= line;
+        if (name.ends_with("metadata.json")) {
+            EXPECT_EQ(metadataString(dir / "mixed" / model, "strategy"),
+                      byVisibility ? "\"visibility\"" : "\"bundles\"");
+            continue;
+        }
+        const auto& expected = byVisibility ? visibility : bundles;
+        EXPECT_TRUE(expected.at(name) == bytes)
+            << name << " differs from the " << (byVisibility ? "visibility" : "bundles")
+            << " run's";
+    }
+    // The strategies' pictures differ: the comparison above tells them apart.
+    const auto differs = [&](const auto& entry) {
+        return entry.first.ends_with(".png") && bundles.at(entry.first) != entry.second;
+    };
+    EXPECT_TRUE(std::any_of(visibility.begin(), visibility.end(), differs));
+    EXPECT_TRUE(context->checkNoErrors("automatic strategies").ok());
 }
 
 // A device whose storage bindings hold 64 KiB: a scene of 600 instances loads but cannot be

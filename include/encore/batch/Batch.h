@@ -143,6 +143,12 @@ enum class PngFiltering {
 // resolve beyond.
 inline constexpr std::uint32_t kDefaultMaxTextureSize = 4096;
 
+// BatchOptions::visibilityFromTriangles's default. On one H200 at four samples, generated models
+// of 104,000 to 1.59 M triangles were drawn 1.4x to 3.4x faster by the visibility strategy; the
+// ten shared models as a whole 1.37x faster with the three above 100,000 triangles drawn by it,
+// 1.33x with only the largest (1.04 M), slower with all ten (docs/batch.md, Strategies).
+inline constexpr std::uint64_t kAutoVisibilityTriangles = 100'000;
+
 // Fewer covered pixels than this make a view blank (BatchOptions::blankThreshold).
 inline constexpr std::uint32_t kDefaultBlankThreshold = 1;
 
@@ -173,9 +179,16 @@ struct BatchOptions {
         options.toneMapping.background = render::BackgroundKind::Transparent;
         return options;
     }();
-    // Unset: bundles, as `encore render` draws, or gpu-culling-bundles with levels of detail
-    // (lodErrorPixels > 0), which chooses the levels.
+    // Unset (`--strategy auto`): chosen per model, recorded in its metadata.json: visibility
+    // (compute raster) for a model that draws at least `visibilityFromTriangles` triangles on a
+    // GPU, else bundles, as `encore render` draws, or gpu-culling-bundles with levels of detail
+    // (lodErrorPixels > 0), which chooses the levels. Bundles only on a CPU adapter (lavapipe),
+    // on a device without the visibility feature, and with extra images (normals, depth, ...).
     std::optional<render::StrategyChoice> strategy;
+    // With `strategy` unset: the triangles (at full detail, summed over the model's instances)
+    // from which a model is drawn with the visibility strategy. Unset: kAutoVisibilityTriangles
+    // on GPUs, never on a CPU adapter; set, on any adapter with the feature.
+    std::optional<std::uint64_t> visibilityFromTriangles;
     // > 0: models load with levels of detail (scene::LoadOptions::buildLevelsOfDetail) and each
     // instance is drawn at the coarsest level whose simplification error, projected in the
     // nearest view, stays under this many pixels. Needs a gpu-culling strategy or visibility,

@@ -86,9 +86,6 @@ class RenderEncoder {
     std::vector<RecordedCall>* mTrace = nullptr;
 };
 
-// Triangles drawn by `count` vertices or indices of a topology (0 for points and lines).
-std::uint64_t triangleCount(scene::Topology topology, std::uint64_t count);
-// The triangles a primitive of `scene` draws: its index count, or its vertex count without one.
-std::uint64_t triangleCount(const scene::SceneData& scene, const scene::Primitive& primitive);
+using scene::triangleCount;  // The counters count what the scene's primitives draw.
 
 }  // namespace encore::render

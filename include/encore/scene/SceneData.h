@@ -506,7 +506,15 @@ struct SceneData {
     std::vector<glm::vec4> readFloats(AccessorId accessor) const;
 
     std::size_t primitiveCount() const;  // Summed over meshes.
+    // Triangles the instances draw at full detail, summed over them (a mesh placed twice counts
+    // twice): what a rasteriser faces per view.
+    std::uint64_t drawnTriangleCount() const;
 };
+
+// Triangles drawn by `count` vertices or indices of a topology (0 for points and lines).
+std::uint64_t triangleCount(Topology topology, std::uint64_t count);
+// The triangles a primitive of `scene` draws: its index count, or its vertex count without one.
+std::uint64_t triangleCount(const SceneData& scene, const Primitive& primitive);
 
 // How LoadOptions::optimizeMeshes orders triangles for the post-transform vertex cache
 // (MeshOptimizer.h).
@@ -538,6 +546,10 @@ struct LoadOptions {
     // the clusters are scanned in the vertex-cache order instead, at no measurable cost) that
     // only that strategy earns back.
     bool buildClusters = true;
+    // With buildClusters: only for a scene that draws at least this many triangles
+    // (SceneData::drawnTriangleCount), as encore batch draws only those with the visibility
+    // strategy by default (batch::BatchOptions::strategy). 0: for every scene.
+    std::uint64_t clustersFromTriangles = 0;
     // Images with a side longer than this are downscaled while they are decoded (JPEGs decode
     // at a fraction of their size, PNGs too large to decode whole row by row, then every
     // format is box-filtered; Image::sourceWidth keeps the file's size), so one huge texture

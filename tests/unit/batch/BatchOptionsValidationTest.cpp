@@ -168,6 +168,14 @@ TEST(BatchOptionsValidationTest, DefaultStrategyFollowsLevelsOfDetail) {
     EXPECT_EQ(batchStrategy(options), StrategyChoice::of(StrategyKind::Naive, true));
 }
 
+TEST(BatchOptionsValidationTest, RejectsAVisibilityLineBesideAnExplicitStrategy) {
+    BatchOptions options;
+    options.visibilityFromTriangles = 5000;
+    EXPECT_TRUE(validateBatchOptions(options).ok());
+    options.strategy = StrategyChoice::of(StrategyKind::Bundles, false);
+    EXPECT_TRUE(rejected(options, "(5000) applies to the automatic choice only"));
+}
+
 TEST(BatchOptionsValidationTest, RejectsOneVariantTogetherWithAll) {
     BatchOptions options;
     options.variant = "beach";

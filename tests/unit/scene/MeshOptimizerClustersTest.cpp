@@ -2,7 +2,8 @@
 // exactly its triangles, each with its corners in order; the clusters of every level cover each
 // of its triangles once, in runs of at most 256, each inside its cluster's sphere; the cone says
 // "facing away" only where every triangle of the cluster faces away; blending primitives, loads
-// without mesh optimisation and with LoadOptions::buildClusters off get none.
+// without mesh optimisation and with LoadOptions::buildClusters off get none, and so do scenes
+// drawing fewer triangles than LoadOptions::clustersFromTriangles.
 
 #include <gtest/gtest.h>
 
@@ -269,6 +270,24 @@ TEST(MeshOptimizerClustersTest, NoneForBlendingPrimitivesOrWhenTurnedOff) {
     EXPECT_FALSE(opaque->meshes[0].primitives[0].levels.empty());
     for (const LevelOfDetail& level : opaque->meshes[0].primitives[0].levels) {
         EXPECT_TRUE(level.clusters.empty());
+    }
+}
+
+TEST(MeshOptimizerClustersTest, OnlyScenesFromTheTriangleLineGetThem) {
+    auto scene = loadGlb(sphereModel("OPAQUE"));
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+    const std::uint64_t triangles = scene->drawnTriangleCount();
+    ASSERT_GT(triangles, 0u);
+    EXPECT_EQ(triangles, triangleCount(*scene, scene->meshes[0].primitives[0]));
+    ASSERT_FALSE(scene->meshes[0].primitives[0].clusters.empty());
+    for (const std::uint64_t line : {triangles - 1, triangles, triangles + 1}) {
+        LoadOptions options;
+        options.clustersFromTriangles = line;
+        auto loaded = loadGlb(sphereModel("OPAQUE"), options);
+        ASSERT_TRUE(loaded.ok()) << loaded.error().message;
+        EXPECT_EQ(loaded->meshes[0].primitives[0].clusters.empty(), line > triangles) << line;
+        // The same triangles either way.
+        EXPECT_EQ(loaded->drawnTriangleCount(), triangles);
     }
 }
 

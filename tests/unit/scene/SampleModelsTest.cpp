@@ -17,19 +17,6 @@ struct Counts {
     std::uint64_t vertices = 0;
 };
 
-std::uint64_t triangleCount(const SceneData& scene, const Primitive& primitive) {
-    const std::uint64_t elements = primitive.indices
-                                       ? scene.accessors[primitive.indices->index()].count
-                                       : primitive.vertexCount;
-    if (primitive.topology == Topology::TriangleList) {
-        return elements / 3;
-    }
-    if (primitive.topology == Topology::TriangleStrip) {
-        return elements >= 3 ? elements - 2 : 0;
-    }
-    return 0;
-}
-
 // Checks the loader's promises on one loaded scene and counts its geometry.
 Counts checkScene(const SceneData& scene, const std::string& label) {
     Counts counts;
