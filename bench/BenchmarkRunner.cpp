@@ -456,7 +456,9 @@ Result<BenchReport> runBenchmarks(gpu::Context& context,
         }
     }
     for (const auto& model : options.models) {
-        ENCORE_TRY_ASSIGN(auto scene, scene::loadScene(model));
+        scene::LoadOptions loadOptions;
+        loadOptions.allowUrisOutside = options.allowUrisOutside;
+        ENCORE_TRY_ASSIGN(auto scene, scene::loadScene(model, loadOptions));
         ENCORE_TRY(runAnimated(scene, "model", model.filename().string(), options.animate));
     }
     return report;

@@ -60,10 +60,12 @@ PYBIND11_MODULE(_encore, module) {
              "A renderer on adapter `device` of encore.adapters() (default: the ENCORE_DEVICE "
              "environment variable, else 0, the adapter Dawn prefers), drawing with `strategy` "
              "(a name of `encore --help`'s list, e.g. \"visibility\" or \"gpu-culling-bundles\"; "
-             "default or \"auto\": render_views draws with bundles, batch chooses per model "
-             "as `encore batch --strategy auto` does).")
-        .def("load", &Renderer::load, py::arg("path"),
-             "Loads a .gltf or .glb file; raises encore.LoadError with the loader's message.")
+             "default: bundles for both; \"auto\": render_views draws with bundles, batch "
+             "chooses per model as `encore batch --strategy auto` does).")
+        .def("load", &Renderer::load, py::arg("path"), py::arg("allow_uris_outside") = false,
+             "Loads a .gltf or .glb file; raises encore.LoadError with the loader's message. "
+             "Its buffers and images are read only from inside its folder unless "
+             "allow_uris_outside=True (trusted files only: docs/batch.md).")
         .def("render_views", &Renderer::renderViews, py::arg("scene"), py::arg("views") = 12,
              py::arg("size") = 512, py::arg("elevation") = 30.0f, py::arg("distance") = 1.5f,
              py::arg("fov") = py::none(), py::arg("random") = false, py::arg("seed") = 0,
@@ -116,9 +118,11 @@ PYBIND11_MODULE(_encore, module) {
             py::arg("blank_threshold") = encore::batch::kDefaultBlankThreshold,
             py::arg("variant") = py::none(), py::arg("variants") = py::none(),
             py::arg("passes") = py::none(), py::arg("segmentation_by") = "node",
-            py::arg("depth_format") = "png", py::arg("model_timeout") = 0.0,
+            py::arg("depth_format") = "png",
+            py::arg("model_timeout") = encore::batch::kDefaultModelTimeoutSeconds,
             py::arg("max_texture_size") = encore::batch::kDefaultMaxTextureSize,
             py::arg("shards") = 0, py::arg("shard_size") = 0, py::arg("png_filtering") = "auto",
+            py::arg("allow_uris_outside") = false,
             "Runs the job of `encore batch` on this renderer's device: `inputs` is what the "
             "command takes (folder, list file, model) or (path, name) pairs from "
             "discover_inputs. Returns the summary (models rendered, failed, skipped; views; "
@@ -138,12 +142,15 @@ PYBIND11_MODULE(_encore, module) {
             "passes= names the images beside the colour ones as render_views does (\"normal\", "
             "\"depth\", \"albedo\", \"material\", \"segmentation\", \"hdr\"; `--albedo` ...), "
             "with segmentation_by (node, mesh, material) and depth_format (png, exr). "
-            "model_timeout (seconds, 0: none) abandons a model still loading or drawing after "
+            "model_timeout (seconds, default 600, 0: none) abandons a model still loading or "
+            "drawing after "
             "that long (stage \"timeout\", `--model-timeout`); max_texture_size downscales "
             "larger images while loading (`--max-texture-size`, 0: none). shards=N or "
             "shard_size=BYTES writes WebDataset .tar shards instead of folders (`--shards`, "
             "`--shard-size`). png_filtering (auto, gpu, cpu): where the PNG rows are filtered "
             "(`--png-filtering`; auto: the GPU unless the adapter is a CPU). "
+            "allow_uris_outside=True lets models read files outside their folders "
+            "(`--allow-uris-outside`; trusted trees only). "
             "The GIL is released while it runs.")
         .def_property_readonly("samples",
                                [](const Renderer& renderer) { return renderer.samples(); })

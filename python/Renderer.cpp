@@ -43,7 +43,8 @@ Renderer::Renderer(std::uint32_t samples,
     if (samples != 1 && samples != 4) {
         throw py::value_error("samples must be 1 or 4");
     }
-    if (strategy && *strategy != "auto") {
+    mAutoStrategy = strategy && *strategy == "auto";
+    if (strategy && !mAutoStrategy) {
         mStrategy = render::strategyChoiceFromName(*strategy);
         if (!mStrategy) {
             std::string names;
@@ -62,11 +63,13 @@ Renderer::Renderer(std::uint32_t samples,
     mBatchRenderers = std::make_unique<batch::BatchRenderer>(*mContext);
 }
 
-Scene Renderer::load(const std::string& path) {
+Scene Renderer::load(const std::string& path, bool allowUrisOutside) {
     Result<scene::SceneData> loaded = makeError(ErrorCode::InvalidArgument, "");
     {
         py::gil_scoped_release release;
-        loaded = scene::loadScene(path);
+        scene::LoadOptions options;
+        options.allowUrisOutside = allowUrisOutside;
+        loaded = scene::loadScene(path, options);
     }
     if (!loaded) {
         throw LoadError(loaded.error().message);

@@ -37,7 +37,7 @@ class Renderer {
              std::optional<std::size_t> device,
              const std::optional<std::string>& strategy);
 
-    Scene load(const std::string& path);
+    Scene load(const std::string& path, bool allowUrisOutside);
 
     py::object renderViews(const Scene& scene,
                            std::uint32_t views,
@@ -101,7 +101,8 @@ class Renderer {
                       std::uint32_t maxTextureSize,
                       std::uint32_t shards,
                       std::uint64_t shardSize,
-                      const std::string& pngFiltering);
+                      const std::string& pngFiltering,
+                      bool allowUrisOutside);
 
     std::string adapter() const { return mContext->adapterDescription().summary(); }
     std::size_t device() const { return mContext->adapterDescription().index; }
@@ -109,7 +110,9 @@ class Renderer {
     std::uint32_t samples() const { return mSamples; }
     // The strategy render_views and batch draw with: given, else each one's default.
     std::optional<std::string> strategy() const {
-        return mStrategy ? std::optional(render::strategyChoiceName(*mStrategy)) : std::nullopt;
+        return mAutoStrategy ? std::optional<std::string>("auto")
+               : mStrategy   ? std::optional(render::strategyChoiceName(*mStrategy))
+                             : std::nullopt;
     }
 
   private:
@@ -144,6 +147,7 @@ class Renderer {
 
     std::uint32_t mSamples;
     std::optional<render::StrategyChoice> mStrategy;
+    bool mAutoStrategy = false;  // strategy="auto": batch chooses per model, render_views bundles.
     std::unique_ptr<gpu::Context> mContext;
     std::unique_ptr<render::Renderer> mRenderer;  // After mContext: destroyed before it.
     render::PassTargets mPassTargets = render::PassTargets::None;  // mRenderer's.

@@ -46,6 +46,7 @@ py::dict summaryDict(const batch::BatchSummary& result) {
     dict["views"] = result.views;
     dict["seconds"] = result.seconds;
     dict["interrupted"] = result.interrupted;
+    dict["loads_left_behind"] = result.loadsLeftBehind;
     dict["stages"] = stages;
     dict["failures"] = failures;
     py::list devices;
@@ -102,9 +103,11 @@ py::dict Renderer::runBatch(const py::object& inputs,
                             std::uint32_t maxTextureSize,
                             std::uint32_t shards,
                             std::uint64_t shardSize,
-                            const std::string& pngFiltering) {
+                            const std::string& pngFiltering,
+                            bool allowUrisOutside) {
     batch::BatchOptions options;
     options.strategy = mStrategy;
+    options.chooseStrategyPerModel = mAutoStrategy;
     options.shards = shards;
     options.shardBytes = shardSize;
     options.modelTimeoutSeconds = modelTimeout;  // Checked by validateBatchOptions.
@@ -149,6 +152,7 @@ py::dict Renderer::runBatch(const py::object& inputs,
     options.jobs = jobs;
     options.memoryLimitBytes = memoryLimitMiB << 20;
     options.strict = strict;
+    options.allowUrisOutside = allowUrisOutside;
     options.images.normals = normals;
     options.images.depth = depth;
     applyBatchPasses(passes, segmentation, depthFormat, options.images);

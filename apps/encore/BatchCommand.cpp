@@ -50,7 +50,7 @@ struct BatchCommandOptions {
     std::optional<std::uint64_t> visibilityFromTriangles;  // Unset: auto's default.
     float lodErrorPixels = 0.0f;
     bool strict = false;
-    double modelTimeoutSeconds = 0.0;  // 0: none.
+    double modelTimeoutSeconds = batch::kDefaultModelTimeoutSeconds;  // 0: none.
     std::uint32_t maxTextureSize = batch::kDefaultMaxTextureSize;
     std::uint32_t shards = 0;
     std::string shardSize;  // Empty: no limit.
@@ -229,6 +229,7 @@ int runBatch(const BatchCommandOptions& options, const GlobalOptions& global) {
         return reportError(size.error());
     }
     std::tie(batchOptions.width, batchOptions.height) = *size;
+    batchOptions.chooseStrategyPerModel = options.strategy == "auto";
     if (!options.strategy.empty() && options.strategy != "auto") {
         auto strategy = parseStrategyChoice(options.strategy, false);
         if (!strategy) {
@@ -245,6 +246,7 @@ int runBatch(const BatchCommandOptions& options, const GlobalOptions& global) {
     batchOptions.views.elevationDegrees = options.elevationDegrees;
     batchOptions.views.normalize = !options.noNormalize;
     batchOptions.strict = options.strict;
+    batchOptions.allowUrisOutside = global.allowUrisOutside;
     batchOptions.modelTimeoutSeconds = options.modelTimeoutSeconds;
     batchOptions.maxTextureSize = options.maxTextureSize;
     batchOptions.shards = options.shards;
@@ -350,6 +352,12 @@ int runBatch(const BatchCommandOptions& options, const GlobalOptions& global) {
         summary->rendered, summary->failed, summary->skipped, summary->total,
         static_cast<unsigned long long>(summary->views), summary->seconds, viewsPerSecond,
         summary->interrupted ? "; interrupted, run again to resume" : "");
+    if (summary->loadsLeftBehind > 0) {
+        std::fprintf(stderr,
+                     "warning: %zu model loads did not stop when cancelled (a file stuck in the "
+                     "kernel, such as one on a hung mount); their threads were left behind\n",
+                     summary->loadsLeftBehind);
+    }
     const batch::StageTimes& stages = summary->stages;
     std::printf(
         "stages (s): load+decode %.2f (cpu %.2f), upload %.2f (staging %.2f), render %.2f, gpu "
@@ -472,8 +480,9 @@ void addBatchCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) 
         ->capture_default_str()
         ->check(CLI::IsMember({1, 4}));
     command->add_option("-s,--strategy", options->strategy,
-                        "Rendering strategy, or auto (the default): per model, visibility "
-                        "on a GPU for models of at least " +
+                        "Rendering strategy (default: bundles; gpu-culling-bundles with "
+                        "--lod-error), or auto: per model, visibility on a GPU for models of at "
+                        "least " +
                             std::to_string(batch::kAutoVisibilityTriangles) +
                             " triangles, else bundles (gpu-culling-bundles with --lod-error); "
                             "bundles on a CPU and with extra images; metadata.json names the "
@@ -498,8 +507,9 @@ void addBatchCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) 
     command
         ->add_option("--model-timeout", options->modelTimeoutSeconds,
                      "Abandon a model still loading or drawing after this many seconds of work "
-                     "on it (failures.jsonl stage timeout) and go on; default: no limit")
-        ->check(CLI::PositiveNumber)
+                     "on it (failures.jsonl stage timeout) and go on; 0: no limit")
+        ->capture_default_str()
+        ->check(CLI::NonNegativeNumber)
         ->type_name("SECONDS");
     command
         ->add_option("--max-texture-size", options->maxTextureSize,

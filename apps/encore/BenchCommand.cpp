@@ -40,6 +40,7 @@ int runBench(BenchCommandOptions options, const GlobalOptions& global) {
         return reportError(strategies.error());
     }
     options.bench.strategies = std::move(*strategies);
+    options.bench.allowUrisOutside = global.allowUrisOutside;
     if (options.smoke) {
         // A quick run that keeps the benchmark code path exercised in CI.
         options.bench.objectCounts = {100, 1000};

@@ -31,6 +31,9 @@ enum ExitCode : int {
 struct GlobalOptions {
     bool verbose = false;
     bool allowNullBackend = false;
+    // --allow-uris-outside: models may read files outside their folder
+    // (scene::LoadOptions::allowUrisOutside).
+    bool allowUrisOutside = false;
     // --device N: the adapter of `encore info`'s list to render on; unset: ENCORE_DEVICE when
     // the environment sets it, otherwise 0 (the adapter Dawn prefers).
     std::optional<std::size_t> device;
@@ -44,7 +47,10 @@ Result<std::size_t> chosenDevice(const GlobalOptions& global);
 int reportError(const Error& error);
 
 // Loads a model and prints its warnings ("warning: ...").
-Result<scene::SceneData> loadModel(const std::string& path, const scene::LoadOptions& options);
+// With the global options' uri confinement.
+Result<scene::SceneData> loadModel(const std::string& path,
+                                   scene::LoadOptions options,
+                                   const GlobalOptions& global);
 
 // Creates the GPU context the global options ask for (on their device); prints the adapter with
 // --verbose. `device` overrides the global choice (encore batch --devices).

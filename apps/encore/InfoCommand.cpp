@@ -60,10 +60,12 @@ int printAdapters(const GlobalOptions& global, bool json) {
     return kExitOk;
 }
 
-int printModel(const InfoOptions& options) {
+int printModel(const InfoOptions& options, const GlobalOptions& global) {
     // Warnings are part of the summary, so the model is loaded without loadModel, which would
     // also print them to stderr.
-    auto scene = scene::loadScene(options.model);
+    scene::LoadOptions loadOptions;
+    loadOptions.allowUrisOutside = global.allowUrisOutside;
+    auto scene = scene::loadScene(options.model, loadOptions);
     if (!scene) {
         return reportError(scene.error());
     }
@@ -87,8 +89,8 @@ void addInfoCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) {
                         "A .gltf or .glb file: print its counts, extensions and warnings");
     command->add_flag("--json", options->json, "Print a JSON object instead of text");
     command->callback([&global, &exitCode, options] {
-        exitCode =
-            options->model.empty() ? printAdapters(global, options->json) : printModel(*options);
+        exitCode = options->model.empty() ? printAdapters(global, options->json)
+                                          : printModel(*options, global);
     });
 }
 

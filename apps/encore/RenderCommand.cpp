@@ -156,7 +156,7 @@ int runRender(const RenderOptions& options, const GlobalOptions& global) {
     }
     scene::LoadOptions loadOptions;
     loadOptions.strict = options.strict;
-    auto scene = loadModel(options.model, loadOptions);
+    auto scene = loadModel(options.model, loadOptions, global);
     if (!scene) {
         return reportError(scene.error());
     }

@@ -26,7 +26,10 @@ int reportError(const Error& error) {
     }
 }
 
-Result<scene::SceneData> loadModel(const std::string& path, const scene::LoadOptions& options) {
+Result<scene::SceneData> loadModel(const std::string& path,
+                                   scene::LoadOptions options,
+                                   const GlobalOptions& global) {
+    options.allowUrisOutside = global.allowUrisOutside;
     auto scene = scene::loadScene(path, options);
     if (scene) {
         for (const auto& warning : scene->warnings) {

@@ -152,7 +152,7 @@ int runStats(const StatsOptions& options, const GlobalOptions& global) {
     if (!choices) {
         return reportError(choices.error());
     }
-    auto scene = loadModel(options.model, {});
+    auto scene = loadModel(options.model, {}, global);
     if (!scene) {
         return reportError(scene.error());
     }

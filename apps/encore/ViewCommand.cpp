@@ -87,7 +87,7 @@ int runView(const ViewOptions& options, const GlobalOptions& global) {
     loadOptions.strict = options.strict;
     std::unique_ptr<scene::SceneData> scene;
     if (!options.model.empty()) {
-        auto loaded = loadModel(options.model, loadOptions);
+        auto loaded = loadModel(options.model, loadOptions, global);
         if (!loaded) {
             return reportError(loaded.error());
         }
@@ -156,8 +156,8 @@ int runView(const ViewOptions& options, const GlobalOptions& global) {
     viewer.initialCamera = [cameraOptions](const scene::SceneData& data, float aspect) {
         return resolveCamera(cameraOptions, data, aspect);
     };
-    viewer.loadScene = [loadOptions](const std::string& path) {
-        return loadModel(path, loadOptions);
+    viewer.loadScene = [loadOptions, &global](const std::string& path) {
+        return loadModel(path, loadOptions, global);
     };
     viewer.report = [](const std::string& line) {
         std::printf("%s\n", line.c_str());

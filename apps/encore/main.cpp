@@ -33,6 +33,9 @@ int main(int argc, char** argv) {
     app.add_flag("-v,--verbose", global.verbose, "Print the adapter and per-frame details");
     app.add_flag("--allow-null-backend", global.allowNullBackend,
                  "Accept Dawn's Null backend (validation only: images stay blank)");
+    app.add_flag("--allow-uris-outside", global.allowUrisOutside,
+                 "Let models read buffers and images outside their own folder (absolute paths, "
+                 "'..', links that lead out): for trusted local trees only");
     app.add_option("--device", global.device,
                    "The adapter to render on, by its index in `encore info` (default: "
                    "$ENCORE_DEVICE, else 0, the adapter Dawn prefers)")

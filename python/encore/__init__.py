@@ -25,8 +25,8 @@ def batch(input, output, **options):
     fov, normalize, size, samples, jobs, memory_limit_mib, strict, normals, depth, top_light,
     png_compression, lod_error, camera_distribution, camera_jitter, environment,
     environment_dir, environment_rotation, environment_intensity, layout, blank_threshold,
-    variant, variants, model_timeout, max_texture_size, shards, shard_size, png_filtering) and
-    `device` (Renderer's).
+    variant, variants, model_timeout, max_texture_size, shards, shard_size, png_filtering,
+    allow_uris_outside) and `device` (Renderer's).
     Failed models are in OUTPUT/failures.jsonl. The GIL is released while it runs.
     """
     renderer = Renderer(samples=options.pop("samples", 4), device=options.pop("device", None))

@@ -139,7 +139,7 @@ def render_collection(client, inputs, output, *, chunk_size=8, retries=2, **opti
     memory_limit_mib, strict, normals, depth, top_light, png_compression, lod_error,
     camera_distribution, camera_jitter, environment, environment_dir, environment_rotation,
     environment_intensity, layout, blank_threshold, model_timeout, max_texture_size,
-    png_filtering): what is drawn at random depends on the seed
+    png_filtering, allow_uris_outside): what is drawn at random depends on the seed
     and each model's name only, so the tasks draw what one `encore batch` would.
 
     The summary has the models of the collection (`total`) and those rendered, failed and

@@ -300,7 +300,7 @@ def test_a_renderer_draws_with_the_strategy_it_is_given(tmp_path):
     assert summary["rendered"] == 1 and summary["failed"] == 0
     assert len(list((tmp_path / "out" / "scene").glob("*.png"))) == 2
     assert encore.Renderer(strategy="naive+bundle").strategy == "naive+bundle"
-    assert encore.Renderer(strategy="auto").strategy is None  # The batch's choice per model.
+    assert encore.Renderer(strategy="auto").strategy == "auto"  # The batch's choice per model.
     with pytest.raises(ValueError, match="'fastest' is not one of Encore's strategies"):
         encore.Renderer(strategy="fastest")
 

@@ -91,13 +91,18 @@ Result<void> validateBatchOptions(const BatchOptions& options) {
                              "visibility strategy, which chooses the levels (not " +
                              render::strategyChoiceName(strategy) + ").");
     }
-    if (options.strategy && options.visibilityFromTriangles) {
-        return makeError(
-            ErrorCode::InvalidArgument,
-            "A triangle count from which models are drawn with visibility (" +
-                std::to_string(*options.visibilityFromTriangles) +
-                ") applies to the automatic choice only, not to an explicit strategy (" +
-                render::strategyChoiceName(*options.strategy) + ").");
+    if (options.strategy && options.chooseStrategyPerModel) {
+        return makeError(ErrorCode::InvalidArgument,
+                         "A batch chooses each model's strategy (auto) or draws them all with one "
+                         "(" +
+                             render::strategyChoiceName(*options.strategy) + "), not both.");
+    }
+    if (!options.chooseStrategyPerModel && options.visibilityFromTriangles) {
+        return makeError(ErrorCode::InvalidArgument,
+                         "A triangle count from which models are drawn with visibility (" +
+                             std::to_string(*options.visibilityFromTriangles) +
+                             ") applies to the automatic choice only (--strategy auto), not to " +
+                             render::strategyChoiceName(batchStrategy(options)) + ".");
     }
     if (options.allVariants && !options.variant.empty()) {
         return makeError(ErrorCode::InvalidArgument, "A batch renders one material variant ('" +

@@ -68,7 +68,8 @@ class BatchRun {
           mInputs(inputs),
           mOutput(options.output),
           mOptions(options),
-          mPool(options.jobs, kPoolNiceness),
+          mPoolOwner(std::make_unique<ThreadPool>(options.jobs, kPoolNiceness)),
+          mPool(*mPoolOwner),
           mStagingCopies(std::max<std::size_t>(devices.size(), 1) * kStagingThreadsPerDevice) {}
 
     Result<BatchSummary> run();
@@ -91,7 +92,10 @@ class BatchRun {
     // to before they go into a shard.
     BatchOptions mOptions;
     std::unique_ptr<ShardWriter> mShards;
-    ThreadPool mPool;
+    // The loading and encoding threads. Left to the process when a load is stuck in the kernel
+    // (ModelLoader::finish): destroying it would wait for that load for ever.
+    std::unique_ptr<ThreadPool> mPoolOwner;
+    ThreadPool& mPool;
     ThreadPool mStagingCopies;  // Shared by the lanes (BatchShared::stagingCopies).
     Clock::time_point mStart = Clock::now();
     std::optional<FailureLog> mFailures;
@@ -216,6 +220,10 @@ Result<BatchSummary> BatchRun::run() {
     planner.groupByEnvironment(mPending);  // Each environment file's maps computed once.
     scene::LoadOptions loadOptions;
     loadOptions.strict = mOptions.strict;
+    loadOptions.allowUrisOutside = mOptions.allowUrisOutside;
+    // A model larger than everything the batch may hold loaded fails instead of taking the
+    // machine's memory.
+    loadOptions.maxModelBytes = mOptions.memoryLimitBytes;
     // Levels of detail only when asked for: they cost load time and memory that only GPUs
     // drawing more than the CPU loads earn back (BatchOptions::lodErrorPixels). The vertex-cache
     // order is kept, but made by the fast FIFO optimiser: the thorough one took a third of the
@@ -248,8 +256,11 @@ Result<BatchSummary> BatchRun::run() {
 
     reportProgress(true);
     runLanes();
-    loader.finish();
-    mPool.waitIdle();
+    const std::size_t stuckLoads = loader.finish();
+    mPool.waitIdle(stuckLoads);
+    if (stuckLoads > 0) {
+        ThreadPool::abandon(std::move(mPoolOwner));
+    }
     if (mShards) {
         ENCORE_TRY(mShards->close());  // The last shard, with fewer samples.
     }
@@ -257,6 +268,7 @@ Result<BatchSummary> BatchRun::run() {
     BatchSummary summary;
     static_cast<BatchProgress&>(summary) = progress();
     summary.interrupted = shared.stopRequested();
+    summary.loadsLeftBehind = stuckLoads;
     for (const std::unique_ptr<DeviceLane>& lane : mLanes) {
         lane->finish();
         addStages(summary.stages, lane->stages());

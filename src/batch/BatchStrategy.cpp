@@ -23,7 +23,7 @@ std::uint64_t BatchStrategy::clustersFromTriangles() const {
 BatchStrategy batchStrategyFor(const BatchOptions& options,
                                std::span<gpu::Context* const> devices) {
     BatchStrategy strategy{batchStrategy(options)};
-    if (options.strategy) {
+    if (options.strategy || !options.chooseStrategyPerModel) {
         return strategy;
     }
     // Normals, depth and the other passes are drawn by the mesh strategies' pass targets.

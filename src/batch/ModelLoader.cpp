@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
+#include <thread>
 
 #include "core/Elapsed.h"
 
@@ -18,6 +20,23 @@ std::uint64_t sceneBytes(const scene::SceneData& scene) {
     }
     return bytes;
 }
+
+namespace {
+
+// ENCORE_TEST_STALL_LOAD=TEXT: the load of a model whose path contains TEXT never returns and
+// checks nothing, as a read stuck in the kernel (a hung network mount) would; for the tests of
+// ModelLoader::finish's abandonment.
+void stallForTests(const std::filesystem::path& path) {
+    const char* text = std::getenv("ENCORE_TEST_STALL_LOAD");
+    if (text == nullptr || *text == '\0' || path.string().find(text) == std::string::npos) {
+        return;
+    }
+    while (true) {
+        std::this_thread::sleep_for(std::chrono::hours(1));
+    }
+}
+
+}  // namespace
 
 ModelLoader::ModelLoader(ThreadPool& pool,
                          std::span<const BatchInput> inputs,
@@ -48,24 +67,34 @@ void ModelLoader::startLoads() {
         ++mRunning;
         auto cancel = std::make_shared<std::atomic<bool>>(false);
         mLoading.emplace(order, RunningLoad{std::nullopt, cancel});
-        mPool->submit([this, order, cancel] {
+        mPool->submit([this, order, cancel, path = mInputs[order].path, presence = mPresence] {
+            LoadedModel loaded;
+            scene::LoadOptions options;
             const auto start = Clock::now();
             {
+                std::lock_guard present(presence->mutex);
+                if (presence->gone) {
+                    return;  // Queued when the loader finished: nothing to load for.
+                }
                 // The time limit counts from here, not from the wait in the pool's queue.
                 std::lock_guard lock(mMutex);
                 mLoading.at(order).start = start;
+                options = mOptions;
             }
             const double cpuStart = threadCpuSeconds();
-            LoadedModel loaded;
             loaded.order = order;
-            scene::LoadOptions options = mOptions;
             options.cancel = cancel.get();
-            loaded.scene = loadModelFile(mInputs[order].path, options, loaded.facts);
+            stallForTests(path);
+            loaded.scene = loadModelFile(path, options, loaded.facts);
             if (loaded.scene) {
                 loaded.bytes = sceneBytes(*loaded.scene);
             }
             loaded.seconds = secondsSince(start);
             loaded.cpuSeconds = threadCpuSeconds() - cpuStart;
+            std::lock_guard present(presence->mutex);
+            if (presence->gone) {
+                return;  // Abandoned in the kernel by a loader that is gone since.
+            }
             std::lock_guard lock(mMutex);
             --mRunning;
             if (mLoading.erase(order) == 0) {
@@ -190,14 +219,21 @@ void ModelLoader::stop() {
     mLoaded.notify_all();
 }
 
-void ModelLoader::finish() {
+std::size_t ModelLoader::finish() {
     stop();
     std::unique_lock lock(mMutex);
     for (auto& [order, load] : mLoading) {
         load.cancel->store(true, std::memory_order_relaxed);  // Their results would be dropped.
     }
-    mLoaded.wait(lock, [this] { return mRunning == 0; });
+    mLoaded.wait_for(lock, std::chrono::duration<double>(kStuckLoadGraceSeconds),
+                     [this] { return mRunning == 0; });
     mReady.clear();
+    return mRunning;
+}
+
+ModelLoader::~ModelLoader() {
+    std::lock_guard present(mPresence->mutex);
+    mPresence->gone = true;
 }
 
 }  // namespace encore::batch

@@ -44,7 +44,8 @@ std::uint64_t sceneBytes(const scene::SceneData& scene);
 class ModelLoader {
   public:
     // Loads `inputs` (which must outlive the loader) in their order. Call finish() before the
-    // loader goes away.
+    // loader goes away. A load stuck in the kernel (a read from a hung network mount) may
+    // outlive it: its task then drops its result without touching the loader.
     // InOrder: models are taken in the order of `inputs`. AsLoaded: whichever has loaded, the
     // earliest first, so that one slow load holds up none of several takers (device threads).
     enum class Order { InOrder, AsLoaded };
@@ -71,8 +72,14 @@ class ModelLoader {
     void release(std::uint64_t bytes);
     // Starts no more loads.
     void stop();
-    // Waits for the loads still running (their results are dropped).
-    void finish();
+    // Cancels the loads still running and waits for them (their results are dropped), up to
+    // kStuckLoadGraceSeconds: a cancelled load stops at its next check, one that has not by then
+    // is stuck where no check comes (in the kernel) and is abandoned to its thread. Returns the
+    // loads abandoned so: the pool's threads that run them may never come back.
+    std::size_t finish();
+    ~ModelLoader();
+
+    static constexpr double kStuckLoadGraceSeconds = 5.0;
 
   private:
     using Clock = std::chrono::steady_clock;
@@ -80,6 +87,13 @@ class ModelLoader {
     struct RunningLoad {
         std::optional<Clock::time_point> start;     // Once a pool thread runs it.
         std::shared_ptr<std::atomic<bool>> cancel;  // Shared with its task.
+    };
+
+    // What a load's task shares with the loader: set when the loader is gone, so that a task
+    // that comes back from a stuck read (or starts after finish) drops its model.
+    struct Presence {
+        std::mutex mutex;
+        bool gone = false;
     };
 
     void startLoads();  // Called with mMutex held.
@@ -109,6 +123,7 @@ class ModelLoader {
     std::size_t mRunning = 0;  // Tasks on the pool, abandoned ones too: finish() waits for them.
     std::uint64_t mBytesHeld = 0;  // Loaded, not yet released.
     bool mStopped = false;
+    std::shared_ptr<Presence> mPresence = std::make_shared<Presence>();
 };
 
 }  // namespace encore::batch

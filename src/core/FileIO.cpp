@@ -7,6 +7,7 @@
 #include <string>
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 namespace encore {
@@ -23,39 +24,80 @@ std::string quoted(const std::filesystem::path& path) {
 
 }  // namespace
 
+namespace {
+
+// What a path that is not a regular file is, for messages.
+std::string fileKind(const std::filesystem::file_status& status) {
+    using std::filesystem::file_type;
+    switch (status.type()) {
+        case file_type::directory:
+            return "a directory";
+        case file_type::fifo:
+            return "a FIFO";
+        case file_type::socket:
+            return "a socket";
+        case file_type::character:
+        case file_type::block:
+            return "a device";
+        default:
+            return "not a regular file";
+    }
+}
+
+struct DescriptorCloser {
+    int descriptor = -1;
+    ~DescriptorCloser() {
+        if (descriptor >= 0) {
+            ::close(descriptor);
+        }
+    }
+};
+
+}  // namespace
+
 Result<std::vector<std::uint8_t>> readFile(const std::filesystem::path& path) {
     std::error_code ec;
     const auto status = std::filesystem::status(path, ec);
     if (ec || !std::filesystem::exists(status)) {
         return makeError(ErrorCode::FileNotFound, "File " + quoted(path) + " does not exist.");
     }
-    if (std::filesystem::is_directory(status)) {
-        return makeError(ErrorCode::FileUnreadable,
-                         "File " + quoted(path) + " is a directory, not a file.");
+    // Only regular files: opening a FIFO blocks until a writer comes, a device may never end.
+    const auto notRegular = [&](const std::filesystem::file_status& found) {
+        return makeError(ErrorCode::FileUnreadable, "File " + quoted(path) + " is " +
+                                                        fileKind(found) + ", not a regular file.");
+    };
+    if (!std::filesystem::is_regular_file(status)) {
+        return notRegular(status);
     }
-    FileHandle file(std::fopen(path.c_str(), "rb"));
-    if (!file) {
+    // Non-blocking, in case the path became a FIFO since: then open returns at once and fstat
+    // says what it is.
+    DescriptorCloser file{::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC)};
+    if (file.descriptor < 0) {
         return makeError(ErrorCode::FileUnreadable, "File " + quoted(path) + " cannot be opened (" +
                                                         std::strerror(errno) + ").");
     }
-    if (std::fseek(file.get(), 0, SEEK_END) != 0) {
-        return makeError(ErrorCode::FileUnreadable, "File " + quoted(path) + " is not seekable.");
+    struct stat opened {};
+    if (::fstat(file.descriptor, &opened) != 0 || !S_ISREG(opened.st_mode)) {
+        return notRegular(std::filesystem::status(path, ec));
     }
-    const long size = std::ftell(file.get());
-    if (size < 0) {
-        return makeError(ErrorCode::FileUnreadable,
-                         "File " + quoted(path) + " has no readable size.");
-    }
-    if (static_cast<std::uint64_t>(size) > kMaxFileBytes) {
+    const auto size = static_cast<std::uint64_t>(opened.st_size);
+    if (size > kMaxFileBytes) {
         return makeError(ErrorCode::LimitExceeded, "File " + quoted(path) + " is too large (" +
                                                        std::to_string(size) + " bytes, limit " +
                                                        std::to_string(kMaxFileBytes) + ").");
     }
-    std::rewind(file.get());
     std::vector<std::uint8_t> bytes(static_cast<std::size_t>(size));
-    if (!bytes.empty() && std::fread(bytes.data(), 1, bytes.size(), file.get()) != bytes.size()) {
-        return makeError(ErrorCode::FileUnreadable,
-                         "File " + quoted(path) + " could not be read completely.");
+    std::size_t done = 0;
+    while (done < bytes.size()) {
+        const ssize_t read = ::read(file.descriptor, bytes.data() + done, bytes.size() - done);
+        if (read < 0 && errno == EINTR) {
+            continue;
+        }
+        if (read <= 0) {
+            return makeError(ErrorCode::FileUnreadable,
+                             "File " + quoted(path) + " could not be read completely.");
+        }
+        done += static_cast<std::size_t>(read);
     }
     return bytes;
 }

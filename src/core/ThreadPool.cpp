@@ -37,6 +37,14 @@ ThreadPool::~ThreadPool() {
     }
 }
 
+void ThreadPool::abandon(std::unique_ptr<ThreadPool> pool) {
+    static std::mutex mutex;
+    // Reachable from here until the process ends, and never destroyed (not even at exit).
+    static auto* abandoned = new std::vector<std::unique_ptr<ThreadPool>>();
+    std::lock_guard lock(mutex);
+    abandoned->push_back(std::move(pool));
+}
+
 void ThreadPool::submit(std::function<void()> task) {
     {
         std::lock_guard lock(mMutex);
@@ -53,9 +61,9 @@ void ThreadPool::submitFirst(std::function<void()> task) {
     mWake.notify_one();
 }
 
-void ThreadPool::waitIdle() {
+void ThreadPool::waitIdle(std::size_t abandoned) {
     std::unique_lock lock(mMutex);
-    mIdle.wait(lock, [this] { return mTasks.empty() && mRunning == 0; });
+    mIdle.wait(lock, [&] { return mTasks.empty() && mRunning <= abandoned; });
 }
 
 void ThreadPool::work() {
@@ -73,8 +81,8 @@ void ThreadPool::work() {
         task = nullptr;  // Release what the task captured before reporting idle.
         lock.lock();
         --mRunning;
-        if (mTasks.empty() && mRunning == 0) {
-            mIdle.notify_all();
+        if (mTasks.empty()) {
+            mIdle.notify_all();  // waitIdle may leave abandoned tasks running.
         }
     }
 }

@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <deque>
 #include <functional>
+#include <memory>
 #include <mutex>
 #include <thread>
 #include <vector>
@@ -31,9 +32,14 @@ class ThreadPool {
     // Queues `task` ahead of every task not yet started: for work that another thread is about
     // to wait for.
     void submitFirst(std::function<void()> task);
-    // Blocks until every submitted task has finished.
-    void waitIdle();
+    // Blocks until every submitted task has finished but `abandoned` (tasks known never to come
+    // back, such as a read stuck in the kernel: the caller no longer waits for them).
+    void waitIdle(std::size_t abandoned = 0);
     std::size_t size() const { return mWorkers.size(); }
+    // Keeps `pool` for the rest of the process, never destroyed: for a pool that runs a task
+    // which never comes back (its destructor would wait for it for ever). The abandoned task and
+    // what it captured stay; its idle threads sleep.
+    static void abandon(std::unique_ptr<ThreadPool> pool);
 
   private:
     void work();

@@ -22,7 +22,7 @@ Result<std::vector<std::uint8_t>> imageBytes(const LoadContext& context,
                                              const GltfImage& image,
                                              std::size_t index) {
     if (image.uri) {
-        return readUri(*image.uri, context.baseDirectory);
+        return readUri(*image.uri, context.uriScope());
     }
     if (image.bufferView) {
         const SceneData& scene = context.scene;
@@ -48,7 +48,7 @@ Result<void> checkImageExists(const LoadContext& context, const GltfImage& image
         return {};
     }
     std::filesystem::path path;
-    ENCORE_TRY_ASSIGN(path, resolveUriPath(*image.uri, context.baseDirectory));
+    ENCORE_TRY_ASSIGN(path, resolveUriPath(*image.uri, context.uriScope()));
     std::error_code ec;
     if (!std::filesystem::exists(path, ec)) {
         return makeError(ErrorCode::FileNotFound, "File '" + path.string() + "' does not exist.");
@@ -204,6 +204,7 @@ Result<void> loadImages(LoadContext& context) {
     }
     ImageDecoder decoder(context);
     ENCORE_TRY(chooseTextureImages(context, decoder));
+    ENCORE_TRY(context.checkModelBytes("decoding the textures' WebP images"));
 
     // Decoded: the images textures draw, and those no texture refers to at all (as every image
     // was before texture extensions: a caller may still use them). Not decoded: KTX2 images
@@ -231,6 +232,7 @@ Result<void> loadImages(LoadContext& context) {
                                                        reasonOf(*problem) +
                                                        "); drawing it with a default texture."));
         }
+        ENCORE_TRY(context.checkModelBytes("decoding " + imageLabel(images[i], i)));
     }
     return {};
 }

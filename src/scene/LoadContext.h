@@ -26,6 +26,14 @@ inline constexpr std::uint64_t kMaxMaterializedBytes = std::uint64_t{1} << 30;
 // dracoRemaps key for the indices Draco decoded for a primitive that declares no indices accessor.
 inline constexpr std::uint32_t kDracoIndicesKey = 0xFFFFFFFFu;
 
+// Where a model's external uris may lead: inside `folder` (the model file's), after
+// percent-decoding, `.`/`..` and symbolic links are resolved, unless `allowOutside`
+// (LoadOptions::allowUrisOutside).
+struct UriScope {
+    std::filesystem::path folder;
+    bool allowOutside = false;
+};
+
 struct LoadContext {
     std::string displayName;
     std::filesystem::path baseDirectory;
@@ -59,6 +67,10 @@ struct LoadContext {
     Result<void> warn(ErrorCode code, std::string message);
     // Fails once LoadOptions::cancel is set: the stages check between their long steps.
     Result<void> checkCancelled() const;
+    UriScope uriScope() const { return {baseDirectory, options.allowUrisOutside}; }
+    // Fails once the scene's buffers and decoded images hold more than
+    // LoadOptions::maxModelBytes, naming `stage`.
+    Result<void> checkModelBytes(std::string_view stage) const;
 };
 
 // GlbContainer.cpp ---------------------------------------------------------------------------
@@ -75,12 +87,12 @@ std::string percentDecode(std::string_view text);
 bool isDataUri(std::string_view uri);
 // base64 or percent-encoded payload of a data: uri.
 Result<std::vector<std::uint8_t>> decodeDataUri(std::string_view uri);
-// The file a relative uri names; an error for uris with a scheme other than data: (http: ...).
-Result<std::filesystem::path> resolveUriPath(std::string_view uri,
-                                             const std::filesystem::path& baseDirectory);
-// Reads a data: uri or the file a relative uri names.
-Result<std::vector<std::uint8_t>> readUri(std::string_view uri,
-                                          const std::filesystem::path& baseDirectory);
+// The file a relative uri names; an error for uris with a scheme other than data: (http: ...),
+// and for files outside the scope's folder (absolute paths, `..` escapes, symbolic links that
+// lead out).
+Result<std::filesystem::path> resolveUriPath(std::string_view uri, const UriScope& scope);
+// Reads a data: uri or the regular file a relative uri names (no FIFOs, devices, sockets).
+Result<std::vector<std::uint8_t>> readUri(std::string_view uri, const UriScope& scope);
 // Fills scene.buffers: GLB BIN chunk, data: uris, external files; meshopt fallbacks stay empty.
 Result<void> loadBuffers(LoadContext& context);
 

@@ -18,13 +18,25 @@ namespace {
 // nlohmann's parser and destructor iterate, copying or printing a value recurses once per level.
 constexpr std::size_t kMaxJsonDepth = 512;
 
-// The deepest nesting of arrays and objects in `text` (brackets inside strings do not count),
-// stopping early once it passes kMaxJsonDepth.
-std::size_t jsonNestingDepth(std::span<const std::uint8_t> text) {
+// More values than this are refused before parsing: the parsed document takes about 50 bytes
+// a value, so a few hundred megabytes of `[0,0,...]` would take gigabytes; a glTF asset keeps
+// its bulk data in buffers, and the largest scene graphs hold a few million values.
+constexpr std::size_t kMaxJsonValues = 10'000'000;
+
+struct JsonShape {
+    std::size_t deepest = 0;  // Nesting of arrays and objects.
+    std::size_t values = 0;   // About: commas and openings, outside strings.
+};
+
+// The shape of `text` (brackets and commas inside strings do not count), stopping early once it
+// passes kMaxJsonDepth or kMaxJsonValues.
+JsonShape jsonShape(std::span<const std::uint8_t> text) {
     std::size_t depth = 0;
     std::size_t deepest = 0;
+    std::size_t values = 0;
     bool inString = false;
-    for (std::size_t i = 0; i < text.size() && deepest <= kMaxJsonDepth; ++i) {
+    for (std::size_t i = 0; i < text.size() && deepest <= kMaxJsonDepth && values <= kMaxJsonValues;
+         ++i) {
         const std::uint8_t c = text[i];
         if (inString) {
             if (c == '\\') {
@@ -36,11 +48,46 @@ std::size_t jsonNestingDepth(std::span<const std::uint8_t> text) {
             inString = true;
         } else if (c == '[' || c == '{') {
             deepest = std::max(deepest, ++depth);
+            ++values;
         } else if ((c == ']' || c == '}') && depth > 0) {
             --depth;
+        } else if (c == ',') {
+            ++values;
         }
     }
-    return deepest;
+    return {deepest, values};
+}
+
+// More elements of one kind than this (nodes, meshes, accessors, ...; primitives summed over the
+// meshes) are refused before the scene is built: each costs the loader a few hundred bytes, and
+// the largest assets hold a few hundred thousand nodes.
+constexpr std::size_t kMaxElementsOfAKind = 1'000'000;
+
+Result<void> checkElementCounts(const Json& root) {
+    const auto refuse = [](std::size_t count, const std::string& kind) {
+        return makeError(ErrorCode::LimitExceeded, "The glTF holds " + std::to_string(count) + " " +
+                                                       kind + ", more than Encore's limit of " +
+                                                       std::to_string(kMaxElementsOfAKind) + ".");
+    };
+    if (!root.is_object()) {
+        return {};  // parseDocument says what is wrong with it.
+    }
+    for (const auto& [kind, elements] : root.items()) {
+        if (elements.is_array() && elements.size() > kMaxElementsOfAKind) {
+            return refuse(elements.size(), kind);
+        }
+    }
+    std::size_t primitives = 0;
+    if (const auto meshes = root.find("meshes"); meshes != root.end() && meshes->is_array()) {
+        for (const Json& mesh : *meshes) {
+            const auto found = mesh.is_object() ? mesh.find("primitives") : mesh.end();
+            primitives += found != mesh.end() && found->is_array() ? found->size() : 0;
+        }
+    }
+    if (primitives > kMaxElementsOfAKind) {
+        return refuse(primitives, "primitives");
+    }
+    return {};
 }
 
 Result<Json> parseJson(std::span<const std::uint8_t> text) {
@@ -56,11 +103,18 @@ Result<Json> parseJson(std::span<const std::uint8_t> text) {
         return makeError(ErrorCode::InvalidFormat,
                          "The file is empty (0 bytes of glTF JSON); it holds no asset.");
     }
-    if (const std::size_t depth = jsonNestingDepth(text); depth > kMaxJsonDepth) {
+    const JsonShape shape = jsonShape(text);
+    if (shape.deepest > kMaxJsonDepth) {
         return makeError(ErrorCode::LimitExceeded,
                          "The glTF JSON nests arrays and objects more than " +
                              std::to_string(kMaxJsonDepth) +
                              " levels deep; Encore refuses it (no glTF asset needs that depth).");
+    }
+    if (shape.values > kMaxJsonValues) {
+        return makeError(ErrorCode::LimitExceeded,
+                         "The glTF JSON holds more than " + std::to_string(kMaxJsonValues) +
+                             " values; Encore refuses it before parsing (glTF keeps bulk data in "
+                             "buffers, not in its JSON).");
     }
     try {
         return Json::parse(text.begin(), text.end());
@@ -109,6 +163,7 @@ Result<SceneData> load(std::span<const std::uint8_t> bytes, LoadContext& context
     }
     Json root;
     ENCORE_TRY_ASSIGN(root, parseJson(jsonText));
+    ENCORE_TRY(checkElementCounts(root));
     ENCORE_TRY_ASSIGN(context.document, parseDocument(root));
     root = Json();  // The document holds everything needed; free the DOM early.
 
@@ -116,12 +171,14 @@ Result<SceneData> load(std::span<const std::uint8_t> bytes, LoadContext& context
     ENCORE_TRY(validateReferences(context.document));
     ENCORE_TRY(recordExtensions(context));
     ENCORE_TRY(loadBuffers(context));
+    ENCORE_TRY(context.checkModelBytes("reading its buffers"));
     ENCORE_TRY(buildBufferViews(context));
     ENCORE_TRY(decodeMeshoptViews(context));
     labelAccessorUses(context);
     ENCORE_TRY(context.checkCancelled());
     ENCORE_TRY(decodeDracoPrimitives(context));
     ENCORE_TRY(resolveAccessors(context));
+    ENCORE_TRY(context.checkModelBytes("decoding its compressed and sparse data"));
     ENCORE_TRY(context.checkCancelled());
     ENCORE_TRY(loadImages(context));
     ENCORE_TRY(convertMaterials(context));
@@ -162,6 +219,26 @@ Result<void> LoadContext::warn(ErrorCode code, std::string message) {
     logWarning(warning);
     scene.warnings.push_back(std::move(warning));
     return {};
+}
+
+Result<void> LoadContext::checkModelBytes(std::string_view stage) const {
+    if (options.maxModelBytes == 0) {
+        return {};
+    }
+    std::uint64_t bytes = 0;
+    for (const Buffer& buffer : scene.buffers) {
+        bytes += buffer.bytes.size();
+    }
+    for (const Image& image : scene.images) {
+        bytes += image.rgba8.size();
+    }
+    if (bytes <= options.maxModelBytes) {
+        return {};
+    }
+    return makeError(ErrorCode::LimitExceeded,
+                     "The model holds " + std::to_string(bytes) + " bytes of buffers and decoded " +
+                         "images after " + std::string(stage) + ", more than its limit of " +
+                         std::to_string(options.maxModelBytes) + " bytes (--memory-limit).");
 }
 
 Result<void> LoadContext::checkCancelled() const {

@@ -3,6 +3,8 @@
 // is nothing but the bytes behind its uri (or the GLB BIN chunk).
 
 #include <array>
+#include <filesystem>
+#include <iterator>
 
 #include "core/FileIO.h"
 #include "scene/LoadContext.h"
@@ -118,8 +120,58 @@ Result<std::vector<std::uint8_t>> decodeDataUri(std::string_view uri) {
     return std::vector<std::uint8_t>(decoded.begin(), decoded.end());
 }
 
-Result<std::filesystem::path> resolveUriPath(std::string_view uri,
-                                             const std::filesystem::path& baseDirectory) {
+namespace {
+
+// Whether `path` is `folder` or lies under it, both absolute and normal.
+bool isWithin(const std::filesystem::path& path, const std::filesystem::path& folder) {
+    auto inner = path.begin();
+    for (auto outer = folder.begin(); outer != folder.end(); ++outer, ++inner) {
+        if (outer->empty() && std::next(outer) == folder.end()) {
+            break;  // The empty last element of a folder written with a trailing '/'.
+        }
+        if (inner == path.end() || *inner != *outer) {
+            return false;
+        }
+    }
+    return true;
+}
+
+// `decoded` (relative to the scope's folder) with every link of its existing part followed, or
+// an error when it leads out of the folder.
+Result<void> checkInside(const std::string& uri,
+                         const std::filesystem::path& decoded,
+                         const UriScope& scope) {
+    namespace fs = std::filesystem;
+    const auto outside = [&](const fs::path& folder) {
+        return makeError(ErrorCode::FileUnreadable,
+                         "\"" + shortUri(uri) + "\" is outside the model's folder ('" +
+                             folder.string() +
+                             "'); only files inside it are read (--allow-uris-outside reads "
+                             "others).");
+    };
+    std::error_code ec;
+    const fs::path folder =
+        fs::weakly_canonical(scope.folder.empty() ? fs::path(".") : scope.folder, ec);
+    if (ec) {
+        return makeError(ErrorCode::FileUnreadable, "The model's folder '" + scope.folder.string() +
+                                                        "' cannot be resolved (" + ec.message() +
+                                                        ").");
+    }
+    if (decoded.has_root_path()) {
+        return outside(folder);
+    }
+    // Links are followed as far as the path exists, `..` resolved after them (a link to a
+    // folder outside, then `..`, stays outside).
+    const fs::path resolved = fs::weakly_canonical(folder / decoded, ec);
+    if (ec || !isWithin(resolved, folder)) {
+        return outside(folder);
+    }
+    return {};
+}
+
+}  // namespace
+
+Result<std::filesystem::path> resolveUriPath(std::string_view uri, const UriScope& scope) {
     const std::size_t colon = uri.find(':');
     const std::size_t slash = uri.find('/');
     // "scheme:" before any '/' is a uri scheme (http:, file:), not a relative path.
@@ -134,16 +186,19 @@ Result<std::filesystem::path> resolveUriPath(std::string_view uri,
     if (const auto query = decoded.find_first_of("?#"); query != std::string::npos) {
         decoded.resize(query);
     }
-    return baseDirectory / std::filesystem::path(decoded);
+    const std::filesystem::path relative(decoded);
+    if (!scope.allowOutside) {
+        ENCORE_TRY(checkInside(decoded, relative, scope));
+    }
+    return scope.folder / relative;
 }
 
-Result<std::vector<std::uint8_t>> readUri(std::string_view uri,
-                                          const std::filesystem::path& baseDirectory) {
+Result<std::vector<std::uint8_t>> readUri(std::string_view uri, const UriScope& scope) {
     if (isDataUri(uri)) {
         return decodeDataUri(uri);
     }
     std::filesystem::path path;
-    ENCORE_TRY_ASSIGN(path, resolveUriPath(uri, baseDirectory));
+    ENCORE_TRY_ASSIGN(path, resolveUriPath(uri, scope));
     return readFile(path);
 }
 
@@ -168,7 +223,7 @@ Result<void> loadBuffers(LoadContext& context) {
             }
         } else {
             buffer.name = isDataUri(*source.uri) ? "data: uri of " + element : *source.uri;
-            auto bytes = readUri(*source.uri, context.baseDirectory);
+            auto bytes = readUri(*source.uri, context.uriScope());
             if (!bytes.ok()) {
                 if (source.meshoptFallback) {
                     continue;  // A fallback need not exist when the decoder is present.

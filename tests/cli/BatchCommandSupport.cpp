@@ -27,6 +27,21 @@ fs::path makeCollection(const std::string& name, int count, int objects) {
     return dir;
 }
 
+GltfBuilder texturedQuad(const std::string& imageUri) {
+    GltfBuilder builder;
+    const std::uint32_t positions =
+        builder.addPositions({{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}});
+    const std::uint32_t texcoords = builder.addTexcoords({{0, 1}, {1, 1}, {1, 0}, {0, 0}});
+    const std::uint32_t indices = builder.addIndices(std::vector<std::uint16_t>{0, 1, 2, 0, 2, 3});
+    GltfBuilder::MaterialDesc material;
+    material.baseColorTexture = builder.addTexture(imageUri);
+    const std::uint32_t materialIndex = builder.addMaterial(material);
+    const std::uint32_t mesh = builder.addMesh(
+        {{{"POSITION", positions}, {"TEXCOORD_0", texcoords}}, indices, materialIndex, {}});
+    builder.addScene({builder.addNode({.mesh = mesh})});
+    return builder;
+}
+
 std::vector<fs::path> filesUnder(const fs::path& dir, const std::string& extension) {
     std::vector<fs::path> files;
     for (const auto& entry : fs::recursive_directory_iterator(dir)) {

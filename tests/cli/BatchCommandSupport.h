@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "GltfBuilder.h"
 #include "TestFiles.h"  // readBytes
 
 namespace encore::test {
@@ -23,6 +24,9 @@ std::vector<std::filesystem::path> filesUnder(const std::filesystem::path& dir,
 
 // One JSON value per line (failures.jsonl).
 std::vector<nlohmann::json> jsonLines(const std::filesystem::path& path);
+
+// A square of two triangles facing +Z, its base colour from the image at `imageUri`.
+GltfBuilder texturedQuad(const std::string& imageUri);
 
 // "-v batch INPUT -o OUTPUT EXTRA", quoted.
 std::string batchArguments(const std::filesystem::path& input,

@@ -25,22 +25,6 @@ nlohmann::json readJson(const fs::path& path) {
     return nlohmann::json::parse(readBytes(path), nullptr, false);
 }
 
-// A square of two triangles facing +Z, its base colour from the image at `imageUri`.
-GltfBuilder texturedQuad(const std::string& imageUri) {
-    GltfBuilder builder;
-    const std::uint32_t positions =
-        builder.addPositions({{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}});
-    const std::uint32_t texcoords = builder.addTexcoords({{0, 1}, {1, 1}, {1, 0}, {0, 0}});
-    const std::uint32_t indices = builder.addIndices(std::vector<std::uint16_t>{0, 1, 2, 0, 2, 3});
-    GltfBuilder::MaterialDesc material;
-    material.baseColorTexture = builder.addTexture(imageUri);
-    const std::uint32_t materialIndex = builder.addMaterial(material);
-    const std::uint32_t mesh = builder.addMesh(
-        {{{"POSITION", positions}, {"TEXCOORD_0", texcoords}}, indices, materialIndex, {}});
-    builder.addScene({builder.addNode({.mesh = mesh})});
-    return builder;
-}
-
 // A file whose load takes minutes: thousands of image entries, each the same 2048x2048 PNG
 // decoded (and downscaled) again, 16 ms of CPU each on the 2-core VM (200 of them: 3.2 s of CPU,
 // 10 s at load 10), so 5000 take about 80 s of CPU, eight times the limit of the test below.

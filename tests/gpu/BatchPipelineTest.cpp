@@ -151,9 +151,9 @@ std::string metadataString(const fs::path& folder, const char* key) {
     return metadata.is_object() && metadata.contains(key) ? metadata[key].dump() : "";
 }
 
-// --strategy auto (BatchOptions::strategy unset): bundles for every model on lavapipe, a CPU;
-// with a triangle line, visibility for the models from it and bundles below, each model's files
-// those of the strategy it got when it draws every model, and metadata.json naming it.
+// --strategy auto (BatchOptions::chooseStrategyPerModel): bundles for every model on lavapipe, a
+// CPU; with a triangle line, visibility for the models from it and bundles below, each model's
+// files those of the strategy it got when it draws every model, and metadata.json naming it.
 TEST(BatchPipelineTest, AutoDrawsTheModelsFromItsLineWithVisibility) {
     ENCORE_REQUIRE_VULKAN(context);
     if (!context->device().HasFeature(wgpu::FeatureName::AtomicVec2uMinMax)) {
@@ -171,6 +171,7 @@ TEST(BatchPipelineTest, AutoDrawsTheModelsFromItsLineWithVisibility) {
         BatchOptions options = smallBatch(dir / folder);
         options.renderer.environment = test::testEnvironment();
         options.strategy = strategy;
+        options.chooseStrategyPerModel = !strategy;
         options.visibilityFromTriangles = line;
         auto summary = runBatch(*context, inputs, options);
         EXPECT_TRUE(summary.ok()) << summary.error().message;

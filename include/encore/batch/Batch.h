@@ -23,8 +23,10 @@
 // (ViewRig.h, BatchLighting.h), drawn from the seed and the model's name: every frame of
 // transforms.json records its own intrinsics and lighting.
 //
-// Files that would stop it do not: a model past BatchOptions::modelTimeoutSeconds is abandoned
-// (stage "timeout"), images larger than maxTextureSize are downscaled while loading, and a device
+// Files that would stop it do not: a model reads only files inside its folder (allowUrisOutside),
+// a model past BatchOptions::modelTimeoutSeconds is abandoned (stage "timeout"), one holding more
+// than memoryLimitBytes decoded fails, images larger than maxTextureSize are downscaled while
+// loading, and a device
 // lost mid-batch is created again, the models it had in flight drawn again once. With `shards`
 // or `shardBytes` the samples go into WebDataset .tar shards instead of folders (docs/batch.md).
 
@@ -110,6 +112,9 @@ struct DeviceSummary {
 
 struct BatchSummary : BatchProgress {
     bool interrupted = false;  // BatchOptions::stop was set: models were left unrendered.
+    // Loads that did not stop when cancelled (stuck in the kernel: a hung mount), left to their
+    // threads when the batch ended; their models failed as timeouts or were left unrendered.
+    std::size_t loadsLeftBehind = 0;
     // The device threads' stages are summed over the devices (with several, the sums may exceed
     // the wall time).
     StageTimes stages;
@@ -149,6 +154,10 @@ inline constexpr std::uint32_t kDefaultMaxTextureSize = 4096;
 // 1.33x with only the largest (1.04 M), slower with all ten (docs/batch.md, Strategies).
 inline constexpr std::uint64_t kAutoVisibilityTriangles = 100'000;
 
+// BatchOptions::modelTimeoutSeconds's default: far above what a model takes (the first model's
+// upload compiles the pipelines: seconds on lavapipe), so that no file holds a batch for ever.
+inline constexpr double kDefaultModelTimeoutSeconds = 600.0;
+
 // Fewer covered pixels than this make a view blank (BatchOptions::blankThreshold).
 inline constexpr std::uint32_t kDefaultBlankThreshold = 1;
 
@@ -179,15 +188,20 @@ struct BatchOptions {
         options.toneMapping.background = render::BackgroundKind::Transparent;
         return options;
     }();
-    // Unset (`--strategy auto`): chosen per model, recorded in its metadata.json: visibility
-    // (compute raster) for a model that draws at least `visibilityFromTriangles` triangles on a
-    // GPU, else bundles, as `encore render` draws, or gpu-culling-bundles with levels of detail
-    // (lodErrorPixels > 0), which chooses the levels. Bundles only on a CPU adapter (lavapipe),
-    // on a device without the visibility feature, and with extra images (normals, depth, ...).
+    // Unset: bundles, as `encore render` draws, or gpu-culling-bundles with levels of detail
+    // (lodErrorPixels > 0), which chooses the levels; unless chooseStrategyPerModel.
     std::optional<render::StrategyChoice> strategy;
-    // With `strategy` unset: the triangles (at full detail, summed over the model's instances)
-    // from which a model is drawn with the visibility strategy. Unset: kAutoVisibilityTriangles
-    // on GPUs, never on a CPU adapter; set, on any adapter with the feature.
+    // `--strategy auto`: with `strategy` unset, each model's strategy is chosen from what it holds
+    // and recorded in its metadata.json: visibility (compute raster) for a model that draws at
+    // least `visibilityFromTriangles` triangles on a GPU, else the default above. The default
+    // only on a CPU adapter (lavapipe), on a device without the visibility feature, and with
+    // extra images (normals, depth, ...). Not the default: the visibility strategy's pictures
+    // are not yet the same byte for byte from run to run (docs/batch.md, Strategies).
+    bool chooseStrategyPerModel = false;
+    // With chooseStrategyPerModel: the triangles (at full detail, summed over the model's
+    // instances) from which a model is drawn with the visibility strategy. Unset:
+    // kAutoVisibilityTriangles on GPUs, never on a CPU adapter; set, on any adapter with the
+    // feature.
     std::optional<std::uint64_t> visibilityFromTriangles;
     // > 0: models load with levels of detail (scene::LoadOptions::buildLevelsOfDetail) and each
     // instance is drawn at the coarsest level whose simplification error, projected in the
@@ -198,12 +212,16 @@ struct BatchOptions {
     float lodErrorPixels = 0.0f;
 
     bool strict = false;  // Loader warnings and blank views fail the model.
+    // Models may read buffers and images outside their own folder
+    // (scene::LoadOptions::allowUrisOutside): for trusted local trees only.
+    bool allowUrisOutside = false;
     // > 0: a model still loading, uploading or drawing after this many seconds of work on it
     // (waiting in the queue between them does not count) is abandoned: a line in failures.jsonl
     // with stage "timeout", and the batch goes on. A load is told to stop (its thread finishes
-    // at its loader's next check, its result dropped); views already on the GPU are read back
-    // and dropped. A GPU that hangs inside a draw is the driver's to reset (a device loss).
-    double modelTimeoutSeconds = 0.0;
+    // at its loader's next check, its result dropped; a thread stuck in the kernel is left
+    // behind when the batch ends); views already on the GPU are read back and dropped. A GPU
+    // that hangs inside a draw is the driver's to reset (a device loss). 0: no limit.
+    double modelTimeoutSeconds = kDefaultModelTimeoutSeconds;
     // Images with a side longer than this are downscaled while loading (JPEGs decode at a
     // fraction of their size), listed in metadata.json's imagesDownscaled. 0: kept as they are.
     std::uint32_t maxTextureSize = kDefaultMaxTextureSize;

@@ -51,7 +51,8 @@ struct BenchOptions {
     // How far the camera of the fly-through and the city moves per frame, in scene units; 0:
     // once round its loop over the measured frames (render::CameraPath::camera).
     float pathStep = 0.0f;
-    std::vector<std::filesystem::path> models;       // glTF files.
+    std::vector<std::filesystem::path> models;  // glTF files.
+    bool allowUrisOutside = false;  // The models may read outside their folders (LoadOptions).
     std::vector<std::uint32_t> animometerTriangles;  // Animometer scenes (direct and bundle).
     std::vector<std::uint32_t> crowdCharacters;      // Animated crowds (scene::generateCrowdGlb).
     // Animate every frame (setAnimationTime, timed as part of encoding) with each of these

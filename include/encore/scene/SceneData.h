@@ -555,6 +555,17 @@ struct LoadOptions {
     // format is box-filtered; Image::sourceWidth keeps the file's size), so one huge texture
     // costs neither the memory nor the upload of its full size. 0: images keep their size.
     std::uint32_t maxImageDimension = 0;
+    // External uris (buffers, images) resolve only inside the folder that holds the model file
+    // (after percent-decoding, `.`/`..` and symbolic links): an absolute path, a `..` escape or a
+    // link that leads out is refused (the buffer fails the model, the image is drawn as missing),
+    // so that a model from an untrusted collection cannot read other local files. True: any
+    // file the uri names (trusted local trees; encore --allow-uris-outside).
+    bool allowUrisOutside = false;
+    // > 0: the bytes the model holds decoded (its buffers, decompressed and materialised data and
+    // decoded images) may not pass this; the load fails with LimitExceeded at the stage that
+    // passes it. Checked as they grow, so a file cannot make the loader take the machine's
+    // memory (encore batch sets its --memory-limit). 0: no limit.
+    std::uint64_t maxModelBytes = 0;
     // Set from another thread to abandon the load: it stops at its next check (between its
     // stages, images and meshes) and fails with LimitExceeded. For callers that give up on a
     // load that takes too long (encore batch --model-timeout).

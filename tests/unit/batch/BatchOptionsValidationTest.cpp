@@ -168,12 +168,18 @@ TEST(BatchOptionsValidationTest, DefaultStrategyFollowsLevelsOfDetail) {
     EXPECT_EQ(batchStrategy(options), StrategyChoice::of(StrategyKind::Naive, true));
 }
 
-TEST(BatchOptionsValidationTest, RejectsAVisibilityLineBesideAnExplicitStrategy) {
+TEST(BatchOptionsValidationTest, RejectsAVisibilityLineWithoutTheAutomaticChoice) {
     BatchOptions options;
     options.visibilityFromTriangles = 5000;
+    EXPECT_TRUE(rejected(options,
+                         "(5000) applies to the automatic choice only (--strategy auto), "
+                         "not to bundles"));
+    options.chooseStrategyPerModel = true;
     EXPECT_TRUE(validateBatchOptions(options).ok());
     options.strategy = StrategyChoice::of(StrategyKind::Bundles, false);
-    EXPECT_TRUE(rejected(options, "(5000) applies to the automatic choice only"));
+    EXPECT_TRUE(rejected(options,
+                         "chooses each model's strategy (auto) or draws them all with one "
+                         "(bundles), not both"));
 }
 
 TEST(BatchOptionsValidationTest, RejectsOneVariantTogetherWithAll) {

@@ -1,5 +1,9 @@
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
+#include <filesystem>
+
 #include "TestPaths.h"
 #include "core/FileIO.h"
 
@@ -20,6 +24,27 @@ TEST(FileIOTest, MissingFileNamesThePath) {
     ASSERT_FALSE(read.ok());
     EXPECT_EQ(read.error().code, ErrorCode::FileNotFound);
     EXPECT_NE(read.error().message.find("/nonexistent/encore/file.glb"), std::string::npos);
+}
+
+// A FIFO would block open() until a writer comes (a batch that never ends); a device may never
+// end. Both are refused at once, naming what they are.
+TEST(FileIOTest, OnlyRegularFilesAreRead) {
+    auto dir = test::makeTempDir("fileio-fifo");
+    ASSERT_EQ(::mkfifo((dir / "pipe.bin").c_str(), 0600), 0);
+    auto read = readFile(dir / "pipe.bin");
+    ASSERT_FALSE(read.ok());
+    EXPECT_EQ(read.error().code, ErrorCode::FileUnreadable);
+    EXPECT_NE(read.error().message.find("is a FIFO, not a regular file"), std::string::npos)
+        << read.error().message;
+    read = readFile("/dev/zero");
+    ASSERT_FALSE(read.ok());
+    EXPECT_NE(read.error().message.find("is a device"), std::string::npos) << read.error().message;
+    // A link to a regular file is read.
+    ASSERT_TRUE(writeFile(dir / "a.bin", std::vector<std::uint8_t>{7, 8}).ok());
+    std::filesystem::create_symlink(dir / "a.bin", dir / "link.bin");
+    read = readFile(dir / "link.bin");
+    ASSERT_TRUE(read.ok()) << read.error().message;
+    EXPECT_EQ(read->size(), 2u);
 }
 
 TEST(FileIOTest, DirectoryIsRefused) {
