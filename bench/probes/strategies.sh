@@ -6,7 +6,8 @@
 # visibility; auto for the batch's per-model choice), SWEEP=1 adds generated models of 100,000 to
 # 800,000 triangles (200 files each, one round), LIGHT_S1=0 and BENCH=0 leave out the light
 # models at one sample and the single-model GPU times, DENSE=0 the dense models; THRESHOLDS="N .."
-# adds auto with --visibility-from-triangles N on the light models. Run on the device machine as
+# adds auto with --visibility-from-triangles N on the light models; SAMPLES=1 draws the light
+# rounds at one sample. Run on the device machine as
 #   bash bench/probes/strategies.sh CARRY
 # CARRY as for pools.sh (pack.tar.xz, models/, encore-next.xz: the build under test).
 set -uo pipefail
@@ -41,7 +42,7 @@ E batch $W/w.txt -o $W/o2 --quiet --strategy visibility > /dev/null 2>&1; rm -rf
 strategies=${STRATEGIES:-bundles visibility}
 for r in $(seq 1 $ROUNDS); do
   for s in $strategies; do
-    run "light s4 $s r$r" $W/all.txt --strategy $s
+    run "light s${SAMPLES:-4} $s r$r" $W/all.txt --strategy $s --samples ${SAMPLES:-4}
     [ $r = 1 ] && { rm -rf $W/keep-$s; mv $W/o $W/keep-$s; }
   done
 done
