@@ -533,7 +533,8 @@ void addBatchCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) 
         ->check(CLI::Range(1, 1024));
     command
         ->add_option("--memory-limit", options->memoryLimitMiB,
-                     "MiB of models loaded ahead of the GPU, at most")
+                     "MiB the models hold decoded at once (loaded ahead of the GPU or loading), "
+                     "at most; a model alone past it fails")
         ->capture_default_str()
         ->check(CLI::Range(1, 1 << 24));
     command

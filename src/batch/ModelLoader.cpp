@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "core/Elapsed.h"
+#include "scene/LoadBudget.h"
 
 namespace encore::batch {
 
@@ -37,6 +38,66 @@ void stallForTests(const std::filesystem::path& path) {
 }
 
 }  // namespace
+
+// One load's view of the loader's memory limit: what it holds counts beside the scenes loaded
+// ahead and the other loads; past the limit it waits, unless it is the oldest load running (so
+// that one always goes on, and the load a taker waits for is never held), or the loader stops.
+class ModelLoader::Budget final : public scene::LoadBudget {
+  public:
+    Budget(ModelLoader& loader,
+           std::shared_ptr<Presence> presence,
+           std::size_t order,
+           const std::atomic<bool>& cancel)
+        : mLoader(loader), mPresence(std::move(presence)), mOrder(order), mCancel(cancel) {}
+
+    Result<void> holding(std::uint64_t bytes) override {
+        std::unique_lock<std::mutex> lock;
+        {
+            // Not held while waiting: the other loads' tasks take it to finish.
+            std::lock_guard present(mPresence->mutex);
+            if (mPresence->gone) {
+                return {};  // A load abandoned to the kernel that came back: nothing to share.
+            }
+            lock = std::unique_lock(mLoader.mMutex);
+            if (mLoader.mStopped) {
+                return {};  // finish() may destroy the loader once its grace ends.
+            }
+        }
+        bool waited = false;
+        while (true) {
+            const auto found = mLoader.mLoading.find(mOrder);
+            if (found == mLoader.mLoading.end()) {
+                return {};  // Abandoned at the time limit: it stops at its next check.
+            }
+            found->second.bytes = bytes;
+            std::uint64_t total = mLoader.mBytesHeld;
+            const RunningLoad* oldest = nullptr;
+            for (const auto& [order, load] : mLoader.mLoading) {
+                total += load.bytes;
+                if (!oldest && load.start) {
+                    oldest = &load;
+                }
+            }
+            mLoader.mPeakBytes = std::max(mLoader.mPeakBytes, total);
+            if (total <= mLoader.mMemoryLimit || oldest == &found->second || mLoader.mStopped ||
+                mCancel.load(std::memory_order_relaxed)) {
+                return {};
+            }
+            if (!waited) {
+                ++mLoader.mBudgetWaits;
+                waited = true;
+            }
+            // Woken as loads finish and scenes are released; the timeout rechecks the cancel.
+            mLoader.mLoaded.wait_for(lock, std::chrono::milliseconds(50));
+        }
+    }
+
+  private:
+    ModelLoader& mLoader;
+    std::shared_ptr<Presence> mPresence;
+    std::size_t mOrder;
+    const std::atomic<bool>& mCancel;
+};
 
 ModelLoader::ModelLoader(ThreadPool& pool,
                          std::span<const BatchInput> inputs,
@@ -84,6 +145,8 @@ void ModelLoader::startLoads() {
             const double cpuStart = threadCpuSeconds();
             loaded.order = order;
             options.cancel = cancel.get();
+            Budget budget(*this, presence, order, *cancel);
+            options.budget = &budget;
             stallForTests(path);
             loaded.scene = loadModelFile(path, options, loaded.facts);
             if (loaded.scene) {
@@ -210,7 +273,18 @@ std::optional<LoadedModel> ModelLoader::take() {
 void ModelLoader::release(std::uint64_t bytes) {
     std::lock_guard lock(mMutex);
     mBytesHeld -= std::min(bytes, mBytesHeld);
+    mLoaded.notify_all();  // Loads waiting for room.
     startLoads();
+}
+
+std::uint64_t ModelLoader::peakBytes() {
+    std::lock_guard lock(mMutex);
+    return mPeakBytes;
+}
+
+std::size_t ModelLoader::budgetWaits() {
+    std::lock_guard lock(mMutex);
+    return mBudgetWaits;
 }
 
 void ModelLoader::stop() {

@@ -70,6 +70,11 @@ class ModelLoader {
     void waitForNext(int milliseconds);
     // The GPU thread is done with a scene of `bytes`: more loads may start.
     void release(std::uint64_t bytes);
+    // The most the scenes held and the loads in progress held decoded at once, as the loads
+    // reported it, and how many times a load waited for room. The limit is shared: a load whose
+    // bytes would pass it waits, unless it is the oldest running (which always goes on).
+    std::uint64_t peakBytes();
+    std::size_t budgetWaits();
     // Starts no more loads.
     void stop();
     // Cancels the loads still running and waits for them (their results are dropped), up to
@@ -87,7 +92,9 @@ class ModelLoader {
     struct RunningLoad {
         std::optional<Clock::time_point> start;     // Once a pool thread runs it.
         std::shared_ptr<std::atomic<bool>> cancel;  // Shared with its task.
+        std::uint64_t bytes = 0;                    // Decoded so far (its LoadBudget's last word).
     };
+    class Budget;  // The memory limit, as the loads see it (scene::LoadBudget).
 
     // What a load's task shares with the loader: set when the loader is gone, so that a task
     // that comes back from a stuck read (or starts after finish) drops its model.
@@ -122,6 +129,8 @@ class ModelLoader {
     std::map<std::size_t, RunningLoad> mLoading;  // By order; counts against `ahead`.
     std::size_t mRunning = 0;  // Tasks on the pool, abandoned ones too: finish() waits for them.
     std::uint64_t mBytesHeld = 0;  // Loaded, not yet released.
+    std::uint64_t mPeakBytes = 0;
+    std::size_t mBudgetWaits = 0;
     bool mStopped = false;
     std::shared_ptr<Presence> mPresence = std::make_shared<Presence>();
 };

@@ -69,7 +69,7 @@ struct LoadContext {
     Result<void> checkCancelled() const;
     UriScope uriScope() const { return {baseDirectory, options.allowUrisOutside}; }
     // Fails once the scene's buffers and decoded images hold more than
-    // LoadOptions::maxModelBytes, naming `stage`.
+    // LoadOptions::maxModelBytes, naming `stage`; else tells LoadOptions::budget what they hold.
     Result<void> checkModelBytes(std::string_view stage) const;
 };
 

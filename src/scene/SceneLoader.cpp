@@ -8,6 +8,7 @@
 
 #include "core/FileIO.h"
 #include "core/Log.h"
+#include "scene/LoadBudget.h"
 #include "scene/LoadContext.h"
 #include "scene/MeshOptimizer.h"
 
@@ -222,7 +223,7 @@ Result<void> LoadContext::warn(ErrorCode code, std::string message) {
 }
 
 Result<void> LoadContext::checkModelBytes(std::string_view stage) const {
-    if (options.maxModelBytes == 0) {
+    if (options.maxModelBytes == 0 && options.budget == nullptr) {
         return {};
     }
     std::uint64_t bytes = 0;
@@ -232,8 +233,8 @@ Result<void> LoadContext::checkModelBytes(std::string_view stage) const {
     for (const Image& image : scene.images) {
         bytes += image.rgba8.size();
     }
-    if (bytes <= options.maxModelBytes) {
-        return {};
+    if (options.maxModelBytes == 0 || bytes <= options.maxModelBytes) {
+        return options.budget ? options.budget->holding(bytes) : Result<void>{};
     }
     return makeError(ErrorCode::LimitExceeded,
                      "The model holds " + std::to_string(bytes) + " bytes of buffers and decoded " +

@@ -250,7 +250,9 @@ struct BatchOptions {
     image::PngCompression pngCompression = image::PngCompression::Small;
     PngFiltering pngFiltering = PngFiltering::Auto;
     std::size_t jobs = 0;  // Pool threads; 0: one per hardware thread.
-    std::uint64_t memoryLimitBytes = std::uint64_t{2} << 30;  // Scenes loaded ahead, at most.
+    // Bytes the models hold decoded at once, at most: the scenes loaded ahead and the loads in
+    // progress (a load past it waits unless it is the oldest); a model alone past it fails.
+    std::uint64_t memoryLimitBytes = std::uint64_t{2} << 30;
     // Read-backs in flight or still being cropped by the pool: one more than the default
     // renderers, so that a read whose strips are being cropped does not hold up the next.
     std::size_t readbackSlots = kDefaultRenderers + 1;

@@ -529,6 +529,8 @@ enum class VertexCacheOrder : std::uint8_t {
     Fast,
 };
 
+class LoadBudget;  // src/scene/LoadBudget.h: what encore batch shares between its loads.
+
 struct LoadOptions {
     bool decodeImages = true;  // False skips image decoding (images keep their names only).
     bool strict = false;       // Warnings (missing images, unsupported optional features)
@@ -566,6 +568,9 @@ struct LoadOptions {
     // passes it. Checked as they grow, so a file cannot make the loader take the machine's
     // memory (encore batch sets its --memory-limit). 0: no limit.
     std::uint64_t maxModelBytes = 0;
+    // Told what the model holds decoded at each of those checks, and may hold the load there
+    // until loads running beside it leave room (src/scene/LoadBudget.h). Null: none.
+    LoadBudget* budget = nullptr;
     // Set from another thread to abandon the load: it stops at its next check (between its
     // stages, images and meshes) and fails with LimitExceeded. For callers that give up on a
     // load that takes too long (encore batch --model-timeout).

@@ -4,7 +4,9 @@
 #include <chrono>
 #include <future>
 
+#include "GltfBuilder.h"
 #include "TestPaths.h"
+#include "TextureFixtures.h"
 #include "batch/ModelLoader.h"
 #include "core/FileIO.h"
 #include "scene/SceneGenerator.h"
@@ -40,6 +42,49 @@ std::optional<LoadedModel> takeWithin(ModelLoader& loader) {
         std::abort();  // The async task would block the test's exit.
     }
     return taken.get();
+}
+
+// Models whose bytes are their images: `images` entries of one 128x128 PNG (64 KiB decoded each).
+std::vector<BatchInput> imageModels(const std::string& name, int count, int images) {
+    const fs::path dir = test::makeTempDir(name);
+    EXPECT_TRUE(writeFile(dir / "tile.png",
+                          test::encodePngBytes(test::solidImage({10, 20, 30, 255}, 128, 128)))
+                    .ok());
+    std::vector<BatchInput> inputs;
+    for (int i = 0; i < count; ++i) {
+        test::GltfBuilder builder;
+        const auto positions = builder.addPositions({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+        builder.addScene({builder.addNode({.mesh = builder.addMesh({{{"POSITION", positions}}})})});
+        for (int image = 0; image < images; ++image) {
+            builder.json()["images"].push_back({{"uri", "tile.png"}});
+        }
+        const std::string model = "m" + std::to_string(i);
+        inputs.push_back({builder.writeGltf(dir, model), model});
+    }
+    return inputs;
+}
+
+// The limit is shared by the scenes loaded ahead and the loads in progress: eight threads loading
+// models of 512 KiB against a limit of 1 MiB wait for room instead of holding 4 MiB at once. The
+// oldest load running always goes on and the scenes loaded ahead of it wait to be taken in
+// order, so the most held at any check stays within twice the limit and an image per thread.
+TEST(ModelLoaderTest, LoadsInProgressShareTheMemoryLimit) {
+    constexpr std::uint64_t kImageBytes = 128 * 128 * 4;
+    const auto inputs = imageModels("model-loader-budget", 16, 8);
+    constexpr std::uint64_t kLimit = std::uint64_t{1} << 20;
+    ThreadPool pool(8);
+    ModelLoader loader(pool, inputs, {}, kLimit, 8);
+    for (std::size_t i = 0; i < inputs.size(); ++i) {
+        auto loaded = takeWithin(loader);
+        ASSERT_TRUE(loaded);
+        ASSERT_TRUE(loaded->scene.ok()) << loaded->scene.error().message;
+        EXPECT_GE(loaded->bytes, 8 * kImageBytes);
+        loader.release(loaded->bytes);
+    }
+    EXPECT_EQ(loader.finish(), 0u);
+    EXPECT_GT(loader.budgetWaits(), 0u);
+    EXPECT_GT(loader.peakBytes(), kLimit / 2);
+    EXPECT_LE(loader.peakBytes(), 2 * kLimit + 8 * (kImageBytes + 1024));
 }
 
 TEST(ModelLoaderTest, LoadsInOrderAndReportsFailuresAsResults) {
