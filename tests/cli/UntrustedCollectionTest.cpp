@@ -5,7 +5,7 @@
 // its named error, the process stays under its memory, and the good models' files are byte for
 // byte those of a run without the hostile ones. A load stuck where no check comes (in the
 // kernel, stood in for by ENCORE_TEST_STALL_LOAD) ends the batch at the model time limit and at
-// SIGTERM all the same.
+// SIGTERM and SIGINT all the same.
 
 #include <gtest/gtest.h>
 
@@ -227,7 +227,7 @@ TEST(UntrustedCollectionTest, TrustedTreesMayReadOutsideTheirFolder) {
 
 // A load that never returns and checks nothing, as a read stuck on a hung mount would: the model
 // time limit fails it and the batch ends (the thread left behind), as SIGTERM does.
-TEST(UntrustedCollectionTest, AStuckLoadEndsAtTheTimeLimitAndAtSigterm) {
+TEST(UntrustedCollectionTest, AStuckLoadEndsAtTheTimeLimitAndAtSignals) {
     const fs::path input = makeCollection("untrusted-stuck", 2, 4);
     fs::remove(input / "broken.gltf");
     fs::create_directories(input / "stalled");
@@ -253,6 +253,14 @@ TEST(UntrustedCollectionTest, AStuckLoadEndsAtTheTimeLimitAndAtSigterm) {
     result = runEncoreThrough(
         "ENCORE_TEST_STALL_LOAD=stalled timeout --preserve-status -k 30 -s TERM 5",
         batchArguments(input, output / "signal", "--views 1 --size 16 --model-timeout 0"));
+    seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    EXPECT_EQ(result.exitCode, 130) << result.out << result.err;
+    EXPECT_LT(seconds, 30.0);
+    // SIGINT (Ctrl-C) the same way, into a folder of its own.
+    start = std::chrono::steady_clock::now();
+    result = runEncoreThrough(
+        "ENCORE_TEST_STALL_LOAD=stalled timeout --preserve-status -k 30 -s INT 5",
+        batchArguments(input, output / "interrupt", "--views 1 --size 16 --model-timeout 0"));
     seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     EXPECT_EQ(result.exitCode, 130) << result.out << result.err;
     EXPECT_LT(seconds, 30.0);
