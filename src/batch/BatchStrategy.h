@@ -3,9 +3,9 @@
 // Which strategy draws each model of a batch. An explicit BatchOptions::strategy, or its default,
 // draws them all. With BatchOptions::chooseStrategyPerModel (`--strategy auto`), a model that
 // draws many triangles goes to the visibility strategy, the others to bundles
-// (gpu-culling-bundles with levels of detail): on
-// the H200, whose graphics pipeline runs on few units, a dense model of 1.59 M triangles per
-// view took 22.5 ms of GPU with bundles and 4.5 with visibility (3.4x the views per second),
+// (gpu-culling-bundles with levels of detail): on the H200, whose graphics pipeline runs on few
+// units, a dense model of 1.59 M triangles per view took 22.5 ms of GPU with bundles and 4.5 with
+// visibility (3.4x the views per second),
 // while the smallest shared models lost more on the CPU (clusters at load, longer recording)
 // than they gained on the GPU (docs/batch.md, Strategies).
 
@@ -39,8 +39,8 @@ struct BatchStrategy {
 };
 
 // BatchOptions::strategy, or with chooseStrategyPerModel auto's choice for the batch's devices:
-// visibility from
-// BatchOptions::visibilityFromTriangles (kAutoVisibilityTriangles unless set) where every device
+// visibility from BatchOptions::visibilityFromTriangles (kAutoVisibilityTriangles unless set)
+// where every device
 // has the visibility feature, is not a CPU (lavapipe rasterises in compute 4.5x slower than it
 // draws bundles) and no extra pass needs the mesh strategies' pass targets; never otherwise.
 BatchStrategy batchStrategyFor(const BatchOptions& options, std::span<gpu::Context* const> devices);

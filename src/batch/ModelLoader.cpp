@@ -11,17 +11,6 @@
 
 namespace encore::batch {
 
-std::uint64_t sceneBytes(const scene::SceneData& scene) {
-    std::uint64_t bytes = 0;
-    for (const scene::Buffer& buffer : scene.buffers) {
-        bytes += buffer.bytes.size();
-    }
-    for (const scene::Image& image : scene.images) {
-        bytes += image.rgba8.size();
-    }
-    return bytes;
-}
-
 namespace {
 
 // ENCORE_TEST_STALL_LOAD=TEXT: the load of a model whose path contains TEXT never returns and
@@ -150,7 +139,7 @@ void ModelLoader::startLoads() {
             stallForTests(path);
             loaded.scene = loadModelFile(path, options, loaded.facts);
             if (loaded.scene) {
-                loaded.bytes = sceneBytes(*loaded.scene);
+                loaded.bytes = scene::decodedBytes(*loaded.scene);
             }
             loaded.seconds = secondsSince(start);
             loaded.cpuSeconds = threadCpuSeconds() - cpuStart;

@@ -31,15 +31,12 @@ namespace encore::batch {
 struct LoadedModel {
     std::size_t order = 0;  // Position in the load order.
     Result<scene::SceneData> scene = makeError(ErrorCode::InvalidArgument, "Not loaded.");
-    std::uint64_t bytes = 0;  // What the scene holds in memory (buffers and decoded images).
+    std::uint64_t bytes = 0;  // What the scene holds in memory (scene::decodedBytes).
     ModelFacts facts;         // Its file's size and digest, and what the scene holds.
     bool timedOut = false;    // Abandoned at the time limit: `scene` says so.
     double seconds = 0.0;
     double cpuSeconds = 0.0;  // The loading thread's CPU time.
 };
-
-// The bytes a loaded scene holds: its buffers and decoded images.
-std::uint64_t sceneBytes(const scene::SceneData& scene);
 
 class ModelLoader {
   public:

@@ -22,10 +22,6 @@ std::string quoted(const std::filesystem::path& path) {
     return "'" + path.string() + "'";
 }
 
-}  // namespace
-
-namespace {
-
 // What a path that is not a regular file is, for messages.
 std::string fileKind(const std::filesystem::file_status& status) {
     using std::filesystem::file_type;

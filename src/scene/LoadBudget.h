@@ -9,8 +9,23 @@
 #include <cstdint>
 
 #include "encore/core/Result.h"
+#include "encore/scene/SceneData.h"
 
 namespace encore::scene {
+
+// The bytes a scene holds decoded, as a budget counts them (and LoadOptions::maxModelBytes
+// bounds them): its buffers, decompressed and materialised data among them, and its decoded
+// images.
+inline std::uint64_t decodedBytes(const SceneData& scene) {
+    std::uint64_t bytes = 0;
+    for (const Buffer& buffer : scene.buffers) {
+        bytes += buffer.bytes.size();
+    }
+    for (const Image& image : scene.images) {
+        bytes += image.rgba8.size();
+    }
+    return bytes;
+}
 
 class LoadBudget {
   public:

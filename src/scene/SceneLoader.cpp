@@ -226,13 +226,7 @@ Result<void> LoadContext::checkModelBytes(std::string_view stage) const {
     if (options.maxModelBytes == 0 && options.budget == nullptr) {
         return {};
     }
-    std::uint64_t bytes = 0;
-    for (const Buffer& buffer : scene.buffers) {
-        bytes += buffer.bytes.size();
-    }
-    for (const Image& image : scene.images) {
-        bytes += image.rgba8.size();
-    }
+    const std::uint64_t bytes = decodedBytes(scene);
     if (options.maxModelBytes == 0 || bytes <= options.maxModelBytes) {
         return options.budget ? options.budget->holding(bytes) : Result<void>{};
     }

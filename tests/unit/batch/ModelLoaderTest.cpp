@@ -9,6 +9,7 @@
 #include "TextureFixtures.h"
 #include "batch/ModelLoader.h"
 #include "core/FileIO.h"
+#include "scene/LoadBudget.h"
 #include "scene/SceneGenerator.h"
 
 namespace encore::batch {
@@ -97,7 +98,7 @@ TEST(ModelLoaderTest, LoadsInOrderAndReportsFailuresAsResults) {
         EXPECT_EQ(loaded->order, i);
         ASSERT_TRUE(loaded->scene.ok()) << loaded->scene.error().message;
         EXPECT_GT(loaded->bytes, 0u);
-        EXPECT_EQ(loaded->bytes, sceneBytes(*loaded->scene));
+        EXPECT_EQ(loaded->bytes, scene::decodedBytes(*loaded->scene));
         loader.release(loaded->bytes);
     }
     auto absent = takeWithin(loader);
