@@ -379,6 +379,22 @@ VisibilityTables buildVisibilityTables(const GpuScene& scene, std::uint64_t maxG
     for (const std::int64_t record : usedRecords) {
         tables.usedRecords.push_back(recordBase + std::uint32_t(record));
     }
+    if (tables.clusterVisibilityWords <= VisibilityTables::kMaxStableUnits) {
+        tables.unitTable.reserve(tables.clusterVisibilityWords * 2);
+        for (std::uint32_t item = 0; item < tables.itemCount; ++item) {
+            const std::uint32_t* words = &tables.words[item * VisibilityTables::kItemWords];
+            const std::uint64_t end = item + 1 < tables.itemCount
+                                          ? words[VisibilityTables::kItemWords + 2]
+                                          : tables.clusterVisibilityWords;
+            const std::uint32_t firstCluster =
+                tables.words[words[1] + VisibilityTables::kLevelClusters];
+            for (std::uint64_t unit = words[2]; unit < end; ++unit) {
+                tables.unitTable.push_back(item);
+                tables.unitTable.push_back(firstCluster + std::uint32_t(unit - words[2]) *
+                                                              VisibilityTables::kClusterWords);
+            }
+        }
+    }
     assignShadingBins(tables, MaterialBins(scene.materials()));
     return tables;
 }

@@ -57,6 +57,13 @@ struct VisibilityTables {
     // Units of all items (the most clusters of any level of each): the unit list's capacity.
     std::uint64_t unitCount = 0;
     std::uint64_t clusterCount = 0;  // Cluster records (of every level of every primitive).
+    // Per cluster of every level of each item, in Item.clusterWords order: (item, word index of
+    // its cluster record). A visibility-buffer id counts its unit by this index, not by the
+    // cull's order of listing, so that a depth tie between coplanar triangles (the larger id
+    // wins) goes the same way every run: the strategy's files are reproducible. Empty when the
+    // ids would not fit 32 bits (kMaxStableUnits): units are then counted in listed order.
+    std::vector<std::uint32_t> unitTable;
+    static constexpr std::uint64_t kMaxStableUnits = (std::uint64_t(1) << 32) / kUnitTriangles;
     // A word per cluster of every level of each item, for the item's clusters' visibility last
     // frame (visibility_raster.wgsl); an item's words start at its third word.
     std::uint64_t clusterVisibilityWords = 0;

@@ -94,7 +94,8 @@ fn append(index: u32, item: Item, world: mat4x4f) -> u32 {
     let clusters = levelClusters(item.record, level);
     let first = atomicAdd(&counters.unitCount, clusters.count);
     for (var unit = 0u; unit < clusters.count; unit++) {
-        units[first + unit] = vec2u(index, clusters.first + unit * kClusterWords);
+        units[culling.unitListBase + first + unit] =
+            vec2u(index, clusters.first + unit * kClusterWords);
     }
     return levelRange(item.record, level).count;
 }

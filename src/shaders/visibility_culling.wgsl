@@ -17,6 +17,10 @@ struct Culling {
     clusterCulling: u32,  // 1: the raster passes cull clusters (CullingOptions::clusterCulling).
     // 1: the frustum tests read each item's world sphere (visibility_cull.wgsl's worldSpheres).
     worldSpheres: u32,
+    // The units buffer's first entry of the cull's list: after the scene's unit table (entry
+    // k: the unit that ids k * 256 ... name, VisibilityTables::unitTable), or 0 without one,
+    // when ids count the listed units.
+    unitListBase: u32,
     lodViews: array<vec4f, 16>,
 }
 

@@ -4,8 +4,10 @@
 // (instance x primitive), all in group 1. Needs frame.wgsl.
 //
 // A visibility-buffer id is unit * 256 + triangle in the unit; a unit is one cluster (up to 256
-// consecutive triangles) of one item, listed by the culling pass for this view: (item, word
-// index of the cluster's record).
+// consecutive triangles) of one item: (item, word index of the cluster's record), entry
+// id / 256 of the units buffer. That entry is the scene's unit table's, written once per scene
+// (VisibilityTables::unitTable: the same id for a triangle every run), or where the table does
+// not fit, the culling pass's list for this view (visibility_raster.wgsl's unitId).
 
 #include "visibility_params.wgsl"
 #include "visibility_layout.wgsl"

@@ -434,6 +434,16 @@ fn decideCluster(cluster: u32, alone: bool, item: Item, world: mat4x4f, secondPh
     return ClusterDecision(!skip, skip);
 }
 
+// The number a listed unit's ids count it by: its entry of the scene's unit table, the same
+// whatever order the cull listed it in (so depth ties go the same way every run), or without
+// the table its place in the list.
+fn unitId(listed: u32, unit: vec2u, item: Item) -> u32 {
+    if (culling.unitListBase == 0u) {
+        return listed;
+    }
+    return item.clusterWords + (unit.y - field(item.record, kLevelClusters)) / kClusterWords;
+}
+
 var<workgroup> rasterised: atomic<u32>;
 // This phase's first unit, the end of the list, and 1 in the second phase.
 var<workgroup> phaseUnits: vec3u;
@@ -456,7 +466,7 @@ fn rasterMain(@builtin(workgroup_id) group: vec3u, @builtin(num_workgroups) grou
          firstUnit += groups.x * batch) {
         var kept = 0u;
         if (lane < min(batch, range.y - firstUnit)) {
-            let unit = units[firstUnit + lane];
+            let unit = units[culling.unitListBase + firstUnit + lane];
             let item = loadItem(unit.x);
             let trianglesWord = tables[unit.y + kClusterTriangles];
             let triangles = trianglesWord & ~kClusterAlone;
@@ -471,10 +481,11 @@ fn rasterMain(@builtin(workgroup_id) group: vec3u, @builtin(num_workgroups) grou
         for (var slot = lane; slot < slots; slot += 64u) {
             entry = batchEntry(slot, entry);
             let unitIndex = firstUnit + entry;
-            let unit = units[unitIndex];
+            let unit = units[culling.unitListBase + unitIndex];
             let item = loadItem(unit.x);
             let local = slot - batchStart(entry);
-            if (rasterTriangle(unitIndex * kUnitTriangles + local, item, instances[item.slot],
+            let id = unitId(unitIndex, unit, item) * kUnitTriangles + local;
+            if (rasterTriangle(id, item, instances[item.slot],
                                tables[unit.y + kClusterFirstTriangle] + local)) {
                 count++;
             }

@@ -7,9 +7,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <string>
 #include <vector>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -19,6 +22,7 @@
 #include "VisibilityTestSupport.h"
 #include "encore/render/Renderer.h"
 #include "gpu/Readback.h"
+#include "render/VisibilityTables.h"
 #include "render/strategies/VisibilityStrategy.h"
 
 namespace encore::render {
@@ -123,6 +127,78 @@ TEST(VisibilityDepthTest, ComputeDepthIsTheHardwareDepth) {
         }
     }
     EXPECT_TRUE(context->checkNoErrors("visibility depth").ok());
+}
+
+// Two copies of one triangle tie in depth at every pixel, and the visibility buffer keeps the
+// larger id. An id counts its unit by the scene's unit table (item order), not by the order the
+// cull listed it in, which two-phase occlusion turns around here and which a GPU's atomic appends
+// change between runs: the later item wins in every frame, through either rasteriser, so the
+// strategy's files are reproducible. Item 0 holds the triangle alone; item 1 holds a far
+// triangle, then the same one (its second: id unit * 256 + 1). The first frame sees only the far
+// triangle, so the second frame's first phase lists item 1 and its second phase item 0 after it
+// (counted in listed order, item 0's ids were the larger: it won).
+TEST(VisibilityDepthTest, CoplanarTiesGoToTheLaterItemWhateverTheListOrder) {
+    ENCORE_REQUIRE_VULKAN(context);
+    const std::array<glm::vec3, 3> shared{
+        glm::vec3(-0.5f, -0.5f, 0.0f), glm::vec3(0.5f, -0.5f, 0.0f), glm::vec3(0.0f, 0.5f, 0.0f)};
+    const std::array<glm::vec3, 3> far{glm::vec3(-4.5f, -0.5f, 0.0f), glm::vec3(-3.5f, -0.5f, 0.0f),
+                                       glm::vec3(-4.0f, 0.5f, 0.0f)};
+    test::GltfBuilder builder;
+    const auto material = builder.addMaterial({.baseColor = {0.8f, 0.4f, 0.2f, 1.0f}});
+    const auto alone = builder.addPositions({shared[0], shared[1], shared[2]});
+    const auto after =
+        builder.addPositions({far[0], far[1], far[2], shared[0], shared[1], shared[2]});
+    builder.addScene({builder.addNode(
+        {.mesh = builder.addMesh({{.attributes = {{"POSITION", alone}}, .material = material},
+                                  {.attributes = {{"POSITION", after}}, .material = material}})})});
+    auto scene = scene::loadSceneFromMemory(builder.toGlb(), {}, "ties.glb");
+    ASSERT_TRUE(scene.ok());
+    const float aspect = float(kWidth) / float(kHeight);
+    const Camera seesFar =
+        Camera::lookAt(glm::vec3(-4.0f, 0.0f, 1.2f), glm::vec3(-4.0f, 0.0f, 0.0f),
+                       glm::radians(60.0f), aspect, 0.1f, 10.0f);
+    const Camera seesShared = Camera::lookAt(glm::vec3(0.3f, 0.2f, 1.2f), glm::vec3(0.0f),
+                                             glm::radians(60.0f), aspect, 0.1f, 10.0f);
+    // Item 1's unit is the table's second (item 0 has one cluster): its triangles' ids.
+    constexpr std::uint32_t kFarTriangle = 1 * VisibilityTables::kUnitTriangles;
+    constexpr std::uint32_t kSharedTriangle = kFarTriangle + 1;
+    struct Frame {
+        Camera camera;
+        std::uint32_t expectedId;
+    };
+    const std::array<Frame, 3> frames{Frame{seesFar, kFarTriangle},
+                                      Frame{seesShared, kSharedTriangle},
+                                      Frame{seesShared, kSharedTriangle}};
+    for (const float pixels : {0.0f, VisibilityStrategy::kMaxWorkgroupPixels}) {
+        SCOPED_TRACE("compute raster to " + std::to_string(pixels) + " pixels");
+        auto renderer = Renderer::create(*context, test::pixelTestOptions(kWidth, kHeight, 1));
+        ASSERT_TRUE(renderer.ok());
+        CullingOptions culling{.occlusion = true, .levelsOfDetail = false};
+        culling.computeRasterPixels = std::min(pixels, VisibilityStrategy::kDefaultComputePixels);
+        culling.workgroupRasterPixels = pixels;
+        renderer->setCullingOptions(culling);
+        ASSERT_TRUE(renderer->prepare(*scene, StrategyKind::Visibility).ok());
+        for (const Frame& frame : frames) {
+            renderer->renderFrame(frame.camera);
+            const auto* strategy = dynamic_cast<const VisibilityStrategy*>(renderer->strategy());
+            auto entries = gpu::readBuffer(*context, strategy->visibilityBuffer(), 0,
+                                           std::uint64_t(kWidth) * kHeight * 8);
+            ASSERT_TRUE(entries.ok());
+            std::size_t pixelsCovered = 0;
+            std::size_t otherWinners = 0;
+            for (std::size_t pixel = 0; pixel < std::size_t(kWidth) * kHeight; ++pixel) {
+                if (covered(*entries, pixel)) {
+                    ++pixelsCovered;
+                    std::uint32_t id = 0;
+                    std::memcpy(&id, entries->data() + pixel * 8, 4);
+                    otherWinners += id != frame.expectedId;
+                }
+            }
+            EXPECT_GT(pixelsCovered, std::size_t(kWidth) * kHeight / 8);
+            EXPECT_EQ(otherWinners, 0u);
+        }
+    }
+    EXPECT_TRUE(context->checkNoErrors("visibility ties").ok());
 }
 
 }  // namespace

@@ -60,7 +60,11 @@ struct VisibilityCullUniform {
     float lodDistanceSlack = 0.0f;
     std::uint32_t clusterCulling = 0;
     std::uint32_t worldSpheres = 0;
-    std::array<std::uint32_t, 3> padding{};  // WGSL aligns lodViews to 16 bytes.
+    // Where the cull's list of units starts in the units buffer: after the scene's unit table
+    // (VisibilityTables::unitTable), which the ids count units by; 0 without one (ids count
+    // listed units).
+    std::uint32_t unitListBase = 0;
+    std::array<std::uint32_t, 2> padding{};  // WGSL aligns lodViews to 16 bytes.
     std::array<glm::vec4, LodSelection::kMaxViews> lodViews{};
 };
 static_assert(offsetof(VisibilityCullUniform, lodViewCount) == 160);

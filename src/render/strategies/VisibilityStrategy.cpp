@@ -146,9 +146,11 @@ Result<void> VisibilityStrategy::prepareScene() {
     mWorkgroupRecords =
         std::uint32_t(std::clamp<std::uint64_t>(mTables.triangleCount, 1, kMaxWorkgroupRecords));
     VisibilityWorkBuffers::Sizes sizes;
-    // Twice the units of all items: with occlusion, the second phase lists again the items of
-    // the first (visibility_cull.wgsl), whose clusters it tests for the next frame.
-    sizes.units = std::uint64_t(mTables.unitCount) * 2 * 8;
+    // The scene's unit table, then the list: twice the units of all items (with occlusion, the
+    // second phase lists again the items of the first, whose clusters it tests for the next
+    // frame: visibility_cull.wgsl).
+    mUnitListBase = std::uint32_t(mTables.unitTable.size() / 2);
+    sizes.units = (mUnitListBase + std::uint64_t(mTables.unitCount) * 2) * 8;
     sizes.hardwareList = std::uint64_t(mHardwareCapacity) * 4;
     sizes.workgroupList = (mWorkgroupBlocks + mWorkgroupRecords * kWorkgroupRecordEntries) * 8;
     sizes.bins = std::uint64_t(mTables.binCount) * kBinRecordBytes;
@@ -165,6 +167,10 @@ Result<void> VisibilityStrategy::prepareScene() {
     mRasterGroups = stridingGrid(mTables.unitCount, 1, persistent);
     mWorkgroupGroups = stridingGrid(mWorkgroupBlocks, 1, persistent);
     mWork->ensure(device, sizes);
+    if (!mTables.unitTable.empty()) {
+        mSetup->queue.WriteBuffer(mWork->units, 0, mTables.unitTable.data(),
+                                  mTables.unitTable.size() * 4);
+    }
     // Over this scene's buffers: made on the first frame.
     mCullGroup = nullptr;
     return {};
@@ -421,6 +427,7 @@ void VisibilityStrategy::writeCullUniform(const FrameState& frame, std::size_t v
     uniform.occlusion = mOcclusion ? 1 : 0;
     uniform.clusterCulling = frame.culling.clusterCulling ? 1 : 0;
     uniform.worldSpheres = views == 1 && mSpheresCurrent ? 1 : 0;
+    uniform.unitListBase = mUnitListBase;
     mSetup->queue.WriteBuffer(mCullUniform, 0, &uniform, sizeof(uniform));
 }
 

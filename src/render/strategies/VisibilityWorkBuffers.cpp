@@ -23,7 +23,8 @@ void ensureBuffer(const wgpu::Device& device,
 }  // namespace
 
 void VisibilityWorkBuffers::ensure(const wgpu::Device& device, const Sizes& sizes) {
-    ensureBuffer(device, units, sizes.units, wgpu::BufferUsage::Storage, "visibility units");
+    ensureBuffer(device, units, sizes.units,
+                 wgpu::BufferUsage::Storage | wgpu::BufferUsage::CopyDst, "visibility units");
     ensureBuffer(device, hardwareList, sizes.hardwareList, wgpu::BufferUsage::Storage,
                  "visibility hardware triangles");
     ensureBuffer(device, workgroupList, sizes.workgroupList, wgpu::BufferUsage::Storage,

@@ -2,10 +2,12 @@
 
 // The visibility strategy's scene-sized working buffers: the culled units, the hardware path's
 // triangle list, the workgroup raster's blocks and records, and the shading bins. Every frame
-// writes them before it reads them, so no scene's contents matter to the next: a renderer that
-// prepares scene after scene (encore batch) keeps them (KeptStrategyObjects) and makes one
-// again only when a scene needs more. On the H100 making and freeing them (tens of megabytes,
-// a dedicated allocation each) cost about 3 ms of the device thread per dense model.
+// writes them before it reads them (the unit table at the start of the units buffer,
+// VisibilityTables::unitTable, when its scene is prepared), so no scene's contents matter to
+// the next: a renderer that prepares scene after scene (encore batch) keeps them
+// (KeptStrategyObjects) and makes one again only when a scene needs more. On the H100 making and
+// freeing them (tens of megabytes, a dedicated allocation each) cost about 3 ms of the device
+// thread per dense model.
 
 #include <webgpu/webgpu_cpp.h>
 
