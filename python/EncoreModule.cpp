@@ -60,8 +60,8 @@ PYBIND11_MODULE(_encore, module) {
              "A renderer on adapter `device` of encore.adapters() (default: the ENCORE_DEVICE "
              "environment variable, else 0, the adapter Dawn prefers), drawing with `strategy` "
              "(a name of `encore --help`'s list, e.g. \"visibility\" or \"gpu-culling-bundles\"; "
-             "default: bundles for both; \"auto\": render_views draws with bundles, batch "
-             "chooses per model as `encore batch --strategy auto` does).")
+             "default or \"auto\": render_views draws with bundles, batch chooses per model "
+             "as `encore batch` does by default).")
         .def("load", &Renderer::load, py::arg("path"), py::arg("allow_uris_outside") = false,
              "Loads a .gltf or .glb file; raises encore.LoadError with the loader's message. "
              "Its buffers and images are read only from inside its folder unless "

@@ -107,7 +107,7 @@ py::dict Renderer::runBatch(const py::object& inputs,
                             bool allowUrisOutside) {
     batch::BatchOptions options;
     options.strategy = mStrategy;
-    options.chooseStrategyPerModel = mAutoStrategy;
+    options.chooseStrategyPerModel = !mStrategy;  // "auto" or none given.
     options.shards = shards;
     options.shardBytes = shardSize;
     options.modelTimeoutSeconds = modelTimeout;  // Checked by validateBatchOptions.

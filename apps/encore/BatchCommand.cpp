@@ -229,7 +229,6 @@ int runBatch(const BatchCommandOptions& options, const GlobalOptions& global) {
         return reportError(size.error());
     }
     std::tie(batchOptions.width, batchOptions.height) = *size;
-    batchOptions.chooseStrategyPerModel = options.strategy == "auto";
     if (!options.strategy.empty() && options.strategy != "auto") {
         auto strategy = parseStrategyChoice(options.strategy, false);
         if (!strategy) {
@@ -480,19 +479,21 @@ void addBatchCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) 
         ->capture_default_str()
         ->check(CLI::IsMember({1, 4}));
     command->add_option("-s,--strategy", options->strategy,
-                        "Rendering strategy (default: bundles; gpu-culling-bundles with "
-                        "--lod-error), or auto: per model, visibility on a GPU for models of at "
-                        "least " +
-                            std::to_string(batch::kAutoVisibilityTriangles) +
-                            " triangles, else bundles (gpu-culling-bundles with --lod-error); "
-                            "bundles on a CPU and with extra images; metadata.json names the "
-                            "choice");
+                        "Rendering strategy of every model, or auto (the default): per model, "
+                        "visibility on a GPU for models of at least " +
+                            std::to_string(batch::kAutoVisibilityTriangles) + " triangles (" +
+                            std::to_string(batch::kAutoVisibilityTrianglesOneSample) +
+                            " at --samples 1), else bundles (gpu-culling-bundles with "
+                            "--lod-error); bundles on a CPU and with extra images; metadata.json "
+                            "names the choice");
     command
         ->add_option("--visibility-from-triangles", options->visibilityFromTriangles,
                      "With --strategy auto: the triangles (summed over the instances) from which "
                      "a model is drawn with visibility, on any adapter that has the feature (a "
                      "CPU too). Default: " +
-                         std::to_string(batch::kAutoVisibilityTriangles) + " on a GPU")
+                         std::to_string(batch::kAutoVisibilityTriangles) + " on a GPU (" +
+                         std::to_string(batch::kAutoVisibilityTrianglesOneSample) +
+                         " at --samples 1)")
         ->type_name("N");
     command
         ->add_option("--lod-error", options->lodErrorPixels,

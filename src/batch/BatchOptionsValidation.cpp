@@ -91,13 +91,7 @@ Result<void> validateBatchOptions(const BatchOptions& options) {
                              "visibility strategy, which chooses the levels (not " +
                              render::strategyChoiceName(strategy) + ").");
     }
-    if (options.strategy && options.chooseStrategyPerModel) {
-        return makeError(ErrorCode::InvalidArgument,
-                         "A batch chooses each model's strategy (auto) or draws them all with one "
-                         "(" +
-                             render::strategyChoiceName(*options.strategy) + "), not both.");
-    }
-    if (!options.chooseStrategyPerModel && options.visibilityFromTriangles) {
+    if ((options.strategy || !options.chooseStrategyPerModel) && options.visibilityFromTriangles) {
         return makeError(ErrorCode::InvalidArgument,
                          "A triangle count from which models are drawn with visibility (" +
                              std::to_string(*options.visibilityFromTriangles) +

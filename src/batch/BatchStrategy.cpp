@@ -41,7 +41,7 @@ BatchStrategy batchStrategyFor(const BatchOptions& options,
         }
     }
     strategy.visibilityFromTriangles =
-        options.visibilityFromTriangles.value_or(kAutoVisibilityTriangles);
+        options.visibilityFromTriangles.value_or(autoVisibilityTriangles(options.samples));
     return strategy;
 }
 

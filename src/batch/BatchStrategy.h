@@ -1,7 +1,7 @@
 #pragma once
 
-// Which strategy draws each model of a batch. An explicit BatchOptions::strategy, or its default,
-// draws them all. With BatchOptions::chooseStrategyPerModel (`--strategy auto`), a model that
+// Which strategy draws each model of a batch. An explicit BatchOptions::strategy draws them all.
+// With BatchOptions::chooseStrategyPerModel (`--strategy auto`, the default), a model that
 // draws many triangles goes to the visibility strategy, the others to bundles
 // (gpu-culling-bundles with levels of detail): on the H200, whose graphics pipeline runs on few
 // units, a dense model of 1.59 M triangles per view took 22.5 ms of GPU with bundles and 4.5 with
@@ -38,11 +38,11 @@ struct BatchStrategy {
     std::uint64_t clustersFromTriangles() const;
 };
 
-// BatchOptions::strategy, or with chooseStrategyPerModel auto's choice for the batch's devices:
-// visibility from BatchOptions::visibilityFromTriangles (kAutoVisibilityTriangles unless set)
-// where every device
-// has the visibility feature, is not a CPU (lavapipe rasterises in compute 4.5x slower than it
-// draws bundles) and no extra pass needs the mesh strategies' pass targets; never otherwise.
+// BatchOptions::strategy, or with chooseStrategyPerModel (the default) auto's choice for the
+// batch's devices: visibility from BatchOptions::visibilityFromTriangles
+// (autoVisibilityTriangles(samples) unless set) where every device has the visibility feature,
+// is not a CPU (lavapipe rasterises in compute 4.5x slower than it draws bundles) and no extra
+// pass needs the mesh strategies' pass targets; never otherwise.
 BatchStrategy batchStrategyFor(const BatchOptions& options, std::span<gpu::Context* const> devices);
 
 }  // namespace encore::batch

@@ -148,11 +148,19 @@ enum class PngFiltering {
 // resolve beyond.
 inline constexpr std::uint32_t kDefaultMaxTextureSize = 4096;
 
-// BatchOptions::visibilityFromTriangles's default. On one H200 at four samples, generated models
-// of 104,000 to 1.59 M triangles were drawn 1.4x to 3.4x faster by the visibility strategy; the
+// BatchOptions::visibilityFromTriangles's default at four samples. On one H200, generated models
+// of 104,000 to 1.59 M triangles were drawn 1.2x to 3.4x faster by the visibility strategy; the
 // ten shared models as a whole 1.37x faster with the three above 100,000 triangles drawn by it,
 // 1.33x with only the largest (1.04 M), slower with all ten (docs/batch.md, Strategies).
 inline constexpr std::uint64_t kAutoVisibilityTriangles = 100'000;
+// Its default at one sample, where the graphics pipeline's raster costs a quarter as much and
+// the batch waits on its loaders' CPU, which a model's clusters add to: on one H200 visibility
+// was 0.71x bundles at 104,000 triangles, 1.02x at 404,000, 1.44x at 802,000, 1.96x at 1.59 M.
+inline constexpr std::uint64_t kAutoVisibilityTrianglesOneSample = 500'000;
+// The line for `samples` (1 or 4).
+constexpr std::uint64_t autoVisibilityTriangles(std::uint32_t samples) {
+    return samples == 1 ? kAutoVisibilityTrianglesOneSample : kAutoVisibilityTriangles;
+}
 
 // BatchOptions::modelTimeoutSeconds's default: far above what a model takes (the first model's
 // upload compiles the pipelines: seconds on lavapipe), so that no file holds a batch for ever.
@@ -188,20 +196,21 @@ struct BatchOptions {
         options.toneMapping.background = render::BackgroundKind::Transparent;
         return options;
     }();
-    // Unset: bundles, as `encore render` draws, or gpu-culling-bundles with levels of detail
-    // (lodErrorPixels > 0), which chooses the levels; unless chooseStrategyPerModel.
+    // Every model drawn with this strategy. Unset: chosen per model (chooseStrategyPerModel),
+    // else bundles, as `encore render` draws, or gpu-culling-bundles with levels of detail
+    // (lodErrorPixels > 0), which chooses the levels.
     std::optional<render::StrategyChoice> strategy;
-    // `--strategy auto`: with `strategy` unset, each model's strategy is chosen from what it holds
-    // and recorded in its metadata.json: visibility (compute raster) for a model that draws at
-    // least `visibilityFromTriangles` triangles on a GPU, else the default above. The default
-    // only on a CPU adapter (lavapipe), on a device without the visibility feature, and with
-    // extra images (normals, depth, ...). Not the default: the visibility strategy's pictures
-    // are not yet the same byte for byte from run to run (docs/batch.md, Strategies).
-    bool chooseStrategyPerModel = false;
+    // `--strategy auto`, the default: with `strategy` unset, each model's strategy is chosen from
+    // what it holds and recorded in its metadata.json: visibility (compute raster) for a model
+    // that draws at least `visibilityFromTriangles` triangles on a GPU, else the default above,
+    // which draws every model on a CPU adapter (lavapipe), on a device without the visibility
+    // feature, and with extra images (normals, depth, ...). Both strategies' files are the same
+    // byte for byte from run to run (docs/batch.md, Strategies). False: the default above.
+    bool chooseStrategyPerModel = true;
     // With chooseStrategyPerModel: the triangles (at full detail, summed over the model's
     // instances) from which a model is drawn with the visibility strategy. Unset:
-    // kAutoVisibilityTriangles on GPUs, never on a CPU adapter; set, on any adapter with the
-    // feature.
+    // autoVisibilityTriangles(samples) on GPUs, never on a CPU adapter; set, on any adapter with
+    // the feature.
     std::optional<std::uint64_t> visibilityFromTriangles;
     // > 0: models load with levels of detail (scene::LoadOptions::buildLevelsOfDetail) and each
     // instance is drawn at the coarsest level whose simplification error, projected in the

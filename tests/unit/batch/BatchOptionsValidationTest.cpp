@@ -168,18 +168,26 @@ TEST(BatchOptionsValidationTest, DefaultStrategyFollowsLevelsOfDetail) {
     EXPECT_EQ(batchStrategy(options), StrategyChoice::of(StrategyKind::Naive, true));
 }
 
-TEST(BatchOptionsValidationTest, RejectsAVisibilityLineWithoutTheAutomaticChoice) {
+TEST(BatchOptionsValidationTest, AVisibilityLineNeedsTheAutomaticChoice) {
     BatchOptions options;
+    EXPECT_TRUE(options.chooseStrategyPerModel);  // The default.
     options.visibilityFromTriangles = 5000;
-    EXPECT_TRUE(rejected(options,
-                         "(5000) applies to the automatic choice only (--strategy auto), "
-                         "not to bundles"));
-    options.chooseStrategyPerModel = true;
     EXPECT_TRUE(validateBatchOptions(options).ok());
     options.strategy = StrategyChoice::of(StrategyKind::Bundles, false);
     EXPECT_TRUE(rejected(options,
-                         "chooses each model's strategy (auto) or draws them all with one "
-                         "(bundles), not both"));
+                         "(5000) applies to the automatic choice only (--strategy auto), "
+                         "not to bundles"));
+    options.strategy.reset();
+    options.chooseStrategyPerModel = false;
+    EXPECT_TRUE(rejected(options,
+                         "(5000) applies to the automatic choice only (--strategy auto), "
+                         "not to bundles"));
+}
+
+TEST(BatchOptionsValidationTest, AutoLineFollowsTheSampleCount) {
+    EXPECT_EQ(autoVisibilityTriangles(4), kAutoVisibilityTriangles);
+    EXPECT_EQ(autoVisibilityTriangles(1), kAutoVisibilityTrianglesOneSample);
+    EXPECT_GT(kAutoVisibilityTrianglesOneSample, kAutoVisibilityTriangles);
 }
 
 TEST(BatchOptionsValidationTest, RejectsOneVariantTogetherWithAll) {
