@@ -20,18 +20,7 @@ batch::ValueRange valueRange(const py::object& value, const char* name) {
 }
 
 batch::CameraDistribution cameraDistribution(const std::string& name) {
-    if (name == "orbit") {
-        return batch::CameraDistribution::Orbit;
-    }
-    if (name == "sphere") {
-        return batch::CameraDistribution::Sphere;
-    }
-    if (name == "upper-hemisphere") {
-        return batch::CameraDistribution::UpperHemisphere;
-    }
-    throw py::value_error(
-        "camera_distribution must be \"orbit\", \"sphere\" or "
-        "\"upper-hemisphere\"");
+    return named(batch::cameraDistributionNames(), name, "camera_distribution");
 }
 
 batch::ViewRigOptions rigOptions(const RigArguments& arguments) {

@@ -11,12 +11,24 @@
 #include <utility>
 #include <vector>
 
+#include "batch/OptionNames.h"
 #include "encore/batch/Batch.h"
 #include "encore/batch/BatchInputs.h"
 
 namespace encore::python {
 
 namespace py = pybind11;
+
+// The value `name` names in `table` (batch/OptionNames.h, the command line's too), or ValueError
+// naming `keyword` and the names it takes.
+template <class Enum>
+Enum named(batch::NameTable<Enum> table, const std::string& name, const char* keyword) {
+    auto value = batch::parseNamed(table, name, keyword);
+    if (!value) {
+        throw py::value_error(value.error().message);
+    }
+    return *value;
+}
 
 // A number, or a (min, max) pair drawn from: what distance, fov and the environment's rotation
 // and intensity take. `name` names the keyword in the error.

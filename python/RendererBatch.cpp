@@ -143,11 +143,7 @@ py::dict Renderer::runBatch(const py::object& inputs,
          seed, normalize, jitter});
     applyLighting(options, environment, environmentDirectory, environmentRotation,
                   environmentIntensity);
-    if (layout != "nerf" && layout != "objaverse") {
-        throw py::value_error("layout must be \"nerf\" or \"objaverse\"");
-    }
-    options.layout =
-        layout == "objaverse" ? batch::OutputLayout::Objaverse : batch::OutputLayout::Nerf;
+    options.layout = named(batch::outputLayoutNames(), layout, "layout");
     options.blankThreshold = blankThreshold;
     options.jobs = jobs;
     options.memoryLimitBytes = memoryLimitMiB << 20;
@@ -163,13 +159,7 @@ py::dict Renderer::runBatch(const py::object& inputs,
         throw py::value_error("png_compression must be \"small\" or \"fast\"");
     }
     options.pngCompression = *compression;
-    if (pngFiltering != "auto" && pngFiltering != "gpu" && pngFiltering != "cpu") {
-        // As `encore batch --png-filtering` takes it.
-        throw py::value_error("png_filtering must be \"auto\", \"gpu\" or \"cpu\"");
-    }
-    options.pngFiltering = pngFiltering == "gpu"   ? batch::PngFiltering::Gpu
-                           : pngFiltering == "cpu" ? batch::PngFiltering::Cpu
-                                                   : batch::PngFiltering::Auto;
+    options.pngFiltering = named(batch::pngFilteringNames(), pngFiltering, "png_filtering");
     options.writeFailureLog = failureLog;
     if (auto valid = batch::validateBatchOptions(options); !valid) {
         throw py::value_error(valid.error().message);

@@ -2,6 +2,7 @@
 
 #include <glm/gtc/constants.hpp>
 
+#include "BatchArguments.h"
 #include "batch/PassImages.h"
 #include "encore/image/HdrImage.h"
 #include "gpu/Readback.h"
@@ -63,16 +64,7 @@ std::vector<batch::ViewImage> passKinds(const py::object& passes) {
 }
 
 batch::SegmentationBy segmentationBy(const std::string& name) {
-    if (name == "node") {
-        return batch::SegmentationBy::Node;
-    }
-    if (name == "mesh") {
-        return batch::SegmentationBy::Mesh;
-    }
-    if (name == "material") {
-        return batch::SegmentationBy::Material;
-    }
-    throw py::value_error("segmentation_by is node, mesh or material (not '" + name + "').");
+    return named(batch::segmentationByNames(), name, "segmentation_by");
 }
 
 void applyBatchPasses(const py::object& passes,
@@ -80,10 +72,7 @@ void applyBatchPasses(const py::object& passes,
                       const std::string& depthFormat,
                       batch::ExtraImages& images) {
     images.segmentationBy = segmentationBy(segmentation);
-    if (depthFormat != "png" && depthFormat != "exr") {
-        throw py::value_error("depth_format is png or exr (not '" + depthFormat + "').");
-    }
-    images.depthFormat = depthFormat == "exr" ? batch::DepthFormat::Exr : batch::DepthFormat::Png;
+    images.depthFormat = named(batch::depthFormatNames(), depthFormat, "depth_format");
     if (passes.is_none()) {
         return;
     }

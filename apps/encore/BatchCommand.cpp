@@ -20,6 +20,7 @@
 #include "ShadingOptions.h"
 #include "StrategyOptions.h"
 #include "batch/BatchOptionsValidation.h"
+#include "batch/OptionNames.h"
 #include "encore/batch/Batch.h"
 #include "encore/render/GpuStage.h"
 
@@ -121,13 +122,11 @@ Result<batch::ValueRange> parseRange(const std::string& text, const std::string&
 Result<void> applyVariations(const BatchCommandOptions& options,
                              batch::BatchOptions& batchOptions) {
     batch::ViewRigOptions& views = batchOptions.views;
-    if (options.randomViews > 0) {
-        views.distribution = batch::CameraDistribution::Sphere;
-    } else if (options.cameraDistribution == "sphere") {
-        views.distribution = batch::CameraDistribution::Sphere;
-    } else if (options.cameraDistribution == "upper-hemisphere") {
-        views.distribution = batch::CameraDistribution::UpperHemisphere;
-    }
+    // The names were checked by the parser (CLI::IsMember over the same tables).
+    views.distribution =
+        options.randomViews > 0
+            ? batch::CameraDistribution::Sphere
+            : *batch::valueNamed(batch::cameraDistributionNames(), options.cameraDistribution);
     ENCORE_TRY_ASSIGN(views.distance, parseRange(options.distance, "--distance"));
     if (!options.fovDegrees.empty()) {
         ENCORE_TRY_ASSIGN(views.horizontalFovDegrees, parseRange(options.fovDegrees, "--fov"));
@@ -147,8 +146,7 @@ Result<void> applyVariations(const BatchCommandOptions& options,
         ENCORE_TRY_ASSIGN(lighting.intensity,
                           parseRange(options.environmentIntensity, "--environment-intensity"));
     }
-    batchOptions.layout =
-        options.layout == "objaverse" ? batch::OutputLayout::Objaverse : batch::OutputLayout::Nerf;
+    batchOptions.layout = *batch::valueNamed(batch::outputLayoutNames(), options.layout);
     batchOptions.blankThreshold = options.blankThreshold;
     return {};
 }
@@ -263,9 +261,8 @@ int runBatch(const BatchCommandOptions& options, const GlobalOptions& global) {
     applyBatchPassOptions(options.passes, batchOptions.images);
     batchOptions.topLightLux = options.topLightLux;
     batchOptions.pngCompression = *image::pngCompressionFromName(options.pngCompression);
-    batchOptions.pngFiltering = options.pngFiltering == "gpu"   ? batch::PngFiltering::Gpu
-                                : options.pngFiltering == "cpu" ? batch::PngFiltering::Cpu
-                                                                : batch::PngFiltering::Auto;
+    batchOptions.pngFiltering =
+        *batch::valueNamed(batch::pngFilteringNames(), options.pngFiltering);
     batchOptions.jobs = options.jobs;
     batchOptions.memoryLimitBytes = options.memoryLimitMiB << 20;
     batchOptions.renderers = options.renderers;
@@ -440,7 +437,7 @@ void addBatchCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) 
                      "Where the views look from: orbit (evenly around, --elevation high), sphere "
                      "or upper-hemisphere (drawn uniformly, per model, from --seed)")
         ->capture_default_str()
-        ->check(CLI::IsMember({"orbit", "sphere", "upper-hemisphere"}))
+        ->check(CLI::IsMember(batch::namesOf(batch::cameraDistributionNames())))
         ->excludes(random);
     command
         ->add_option("--seed", options->seed,
@@ -574,14 +571,14 @@ void addBatchCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) 
                      "Where the PNG rows are filtered and the passes' samples made: gpu (a "
                      "compute pass; the pool only compresses), cpu, or auto: the GPU unless the "
                      "adapter is a CPU (lavapipe). The files are the same either way")
-        ->check(CLI::IsMember({"auto", "gpu", "cpu"}))
+        ->check(CLI::IsMember(batch::namesOf(batch::pngFilteringNames())))
         ->capture_default_str();
     command
         ->add_option("--layout", options->layout,
                      "nerf: images and transforms.json; objaverse: also a 000.npy camera matrix "
                      "per view, as the Objaverse-XL scripts write them")
         ->capture_default_str()
-        ->check(CLI::IsMember({"nerf", "objaverse"}));
+        ->check(CLI::IsMember(batch::namesOf(batch::outputLayoutNames())));
     command
         ->add_option("--shards", options->shards,
                      "Write WebDataset .tar shards (OUT/shard-000000.tar ...: <name>.000.png, "

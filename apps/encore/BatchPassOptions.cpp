@@ -1,5 +1,7 @@
 #include "BatchPassOptions.h"
 
+#include "batch/OptionNames.h"
+
 namespace encore::app {
 
 void addBatchPassOptions(CLI::App& command, BatchPassOptions& options, CLI::Option* depth) {
@@ -16,14 +18,14 @@ void addBatchPassOptions(CLI::App& command, BatchPassOptions& options, CLI::Opti
     command
         .add_option("--segmentation-by", options.segmentationBy,
                     "What a segmentation id counts: node, mesh or material")
-        ->check(CLI::IsMember({"node", "mesh", "material"}))
+        ->check(CLI::IsMember(batch::namesOf(batch::segmentationByNames())))
         ->needs(segmentation)
         ->capture_default_str();
     command
         .add_option("--depth-format", options.depthFormat,
                     "png: 16-bit steps of depth_scale; exr: 32-bit float distances along the "
                     "camera axis, infinity where empty (000_depth.exr)")
-        ->check(CLI::IsMember({"png", "exr"}))
+        ->check(CLI::IsMember(batch::namesOf(batch::depthFormatNames())))
         ->needs(depth)
         ->capture_default_str();
     command.add_flag("--hdr", options.hdr,
@@ -40,11 +42,10 @@ void applyBatchPassOptions(const BatchPassOptions& options, batch::ExtraImages& 
     images.segmentation = options.segmentation;
     images.hdr = options.hdr;
     images.drawing = options.passFrames ? batch::PassDrawing::Frames : batch::PassDrawing::Targets;
-    images.segmentationBy = options.segmentationBy == "mesh"       ? batch::SegmentationBy::Mesh
-                            : options.segmentationBy == "material" ? batch::SegmentationBy::Material
-                                                                   : batch::SegmentationBy::Node;
-    images.depthFormat =
-        options.depthFormat == "exr" ? batch::DepthFormat::Exr : batch::DepthFormat::Png;
+    // The names were checked by the parser (CLI::IsMember over the same tables).
+    images.segmentationBy =
+        *batch::valueNamed(batch::segmentationByNames(), options.segmentationBy);
+    images.depthFormat = *batch::valueNamed(batch::depthFormatNames(), options.depthFormat);
 }
 
 }  // namespace encore::app

@@ -184,16 +184,4 @@ std::vector<SegmentationName> segmentationNames(const scene::SceneData& scene, S
     return names;
 }
 
-const char* segmentationByName(SegmentationBy by) {
-    switch (by) {
-        case SegmentationBy::Mesh:
-            return "mesh";
-        case SegmentationBy::Material:
-            return "material";
-        case SegmentationBy::Node:
-            break;
-    }
-    return "node";
-}
-
 }  // namespace encore::batch

@@ -84,6 +84,4 @@ struct SegmentationName {
 };
 std::vector<SegmentationName> segmentationNames(const scene::SceneData& scene, SegmentationBy by);
 
-const char* segmentationByName(SegmentationBy by);
-
 }  // namespace encore::batch

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "batch/OptionNames.h"
+
 namespace encore::batch {
 
 PinholeIntrinsics intrinsicsFor(std::uint32_t width,
@@ -101,7 +103,7 @@ nlohmann::json transformsJson(std::span<const ViewCamera> views,
         json["depth_format"] = "exr";
     }
     if (extras.segmentation) {
-        json["segmentation_by"] = segmentationByName(extras.segmentationBy);
+        json["segmentation_by"] = std::string(nameOf(segmentationByNames(), extras.segmentationBy));
         nlohmann::json ids = nlohmann::json::array();
         for (const SegmentationName& name : segmentation) {
             ids.push_back({{"id", name.id}, {"name", name.name}});
