@@ -233,12 +233,13 @@ TEST(UntrustedCollectionTest, AStuckLoadEndsAtTheTimeLimitAndAtSignals) {
     fs::create_directories(input / "stalled");
     fs::copy_file(input / "set0" / "model.glb", input / "stalled" / "model.glb");
     const fs::path output = makeTempDir("untrusted-stuck-output");
-    // Ten seconds: far more than the small models take on a busy 2-core machine (their first
-    // upload compiles the pipelines).
+    // Twenty seconds: far more than the small models take on a busy 2-core machine (their first
+    // upload compiles the pipelines; with ten, two lavapipe tests beside this one once made a
+    // good model time out too).
     auto start = std::chrono::steady_clock::now();
     CommandResult result = runEncoreThrough(
         "ENCORE_TEST_STALL_LOAD=stalled timeout -k 10 120",
-        batchArguments(input, output / "timeout", "--views 1 --size 16 --model-timeout 10"));
+        batchArguments(input, output / "timeout", "--views 1 --size 16 --model-timeout 20"));
     double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     EXPECT_EQ(result.exitCode, 1) << result.out << result.err;
