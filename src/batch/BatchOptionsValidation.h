@@ -18,12 +18,11 @@ render::StrategyChoice batchStrategy(const BatchOptions& options);
 // not positive or a range of them with its maximum first, a jitter outside [0, 180] degrees; a
 // negative environment intensity, a range of intensities or rotations with its maximum first (or
 // not finite), an environment folder beside an environment of the renderer options; a negative
-// level-of-detail error, or a positive one with a strategy that does not
-// cull on the GPU (batchStrategy); visibilityFromTriangles beside an explicit strategy or without
-// chooseStrategyPerModel;
-// segmentation with multisampling; albedo, material or segmentation with a strategy that does not
-// draw glTF materials in its mesh shader; an EXR depth format without depth; a renderer count
-// outside 1..kMaxRenderers. Checks nothing on disk or on the device.
+// level-of-detail error, or a positive one with a strategy that does not cull on the GPU
+// (batchStrategy); visibilityFromTriangles beside an explicit strategy or without
+// chooseStrategyPerModel; segmentation with multisampling; albedo, material or segmentation with
+// a strategy that does not draw glTF materials in its mesh shader; an EXR depth format without
+// depth; a renderer count outside 1..kMaxRenderers. Checks nothing on disk or on the device.
 Result<void> validateBatchOptions(const BatchOptions& options);
 
 }  // namespace encore::batch

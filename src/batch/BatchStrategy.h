@@ -5,9 +5,8 @@
 // draws many triangles goes to the visibility strategy, the others to bundles
 // (gpu-culling-bundles with levels of detail): on the H200, whose graphics pipeline runs on few
 // units, a dense model of 1.59 M triangles per view took 22.5 ms of GPU with bundles and 4.5 with
-// visibility (3.4x the views per second),
-// while the smallest shared models lost more on the CPU (clusters at load, longer recording)
-// than they gained on the GPU (docs/batch.md, Strategies).
+// visibility (3.4x the views per second), while the smallest shared models lost more on the CPU
+// (clusters at load, longer recording) than they gained on the GPU (docs/batch.md, Strategies).
 
 #include <cstdint>
 #include <limits>

@@ -64,6 +64,8 @@ struct VisibilityTables {
     // ids would not fit 32 bits (kMaxStableUnits): units are then counted in listed order.
     std::vector<std::uint32_t> unitTable;
     static constexpr std::uint64_t kMaxStableUnits = (std::uint64_t(1) << 32) / kUnitTriangles;
+    // The units buffer's entry where the cull's list starts: after the unit table.
+    std::uint32_t unitListBase() const { return std::uint32_t(unitTable.size() / 2); }
     // A word per cluster of every level of each item, for the item's clusters' visibility last
     // frame (visibility_raster.wgsl); an item's words start at its third word.
     std::uint64_t clusterVisibilityWords = 0;

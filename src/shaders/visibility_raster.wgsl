@@ -403,6 +403,12 @@ struct ClusterDecision {
     culled: bool,  // Count them as culled (each listed triangle is taken or culled once).
 }
 
+// The cluster's index among its item's clusters of every level (record order), counted from the
+// item's first: its word of the clusters' visibility and its entry of the scene's unit table.
+fn itemCluster(cluster: u32, item: Item) -> u32 {
+    return item.clusterWords + (cluster - field(item.record, kLevelClusters)) / kClusterWords;
+}
+
 // What the workgroup does with a cluster. With two-phase occlusion, the standard way per
 // cluster: phase 1 takes the clusters visible last frame (culling them by frustum and facing
 // only) and leaves the others; phase 2, which lists again the items of phase 1, tests each
@@ -416,7 +422,7 @@ fn decideCluster(cluster: u32, alone: bool, item: Item, world: mat4x4f, secondPh
         let skip = clusterCulled(cluster, item, world, secondPhase);
         return ClusterDecision(!skip, skip);
     }
-    let word = item.clusterWords + (cluster - field(item.record, kLevelClusters)) / kClusterWords;
+    let word = itemCluster(cluster, item);
     let state = counters.clusterVisibility[word];
     if (!secondPhase) {
         if ((state & 1u) == 0u) {
@@ -441,7 +447,7 @@ fn unitId(listed: u32, unit: vec2u, item: Item) -> u32 {
     if (culling.unitListBase == 0u) {
         return listed;
     }
-    return item.clusterWords + (unit.y - field(item.record, kLevelClusters)) / kClusterWords;
+    return itemCluster(unit.y, item);
 }
 
 var<workgroup> rasterised: atomic<u32>;

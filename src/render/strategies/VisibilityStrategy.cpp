@@ -149,8 +149,7 @@ Result<void> VisibilityStrategy::prepareScene() {
     // The scene's unit table, then the list: twice the units of all items (with occlusion, the
     // second phase lists again the items of the first, whose clusters it tests for the next
     // frame: visibility_cull.wgsl).
-    mUnitListBase = std::uint32_t(mTables.unitTable.size() / 2);
-    sizes.units = (mUnitListBase + std::uint64_t(mTables.unitCount) * 2) * 8;
+    sizes.units = (mTables.unitListBase() + std::uint64_t(mTables.unitCount) * 2) * 8;
     sizes.hardwareList = std::uint64_t(mHardwareCapacity) * 4;
     sizes.workgroupList = (mWorkgroupBlocks + mWorkgroupRecords * kWorkgroupRecordEntries) * 8;
     sizes.bins = std::uint64_t(mTables.binCount) * kBinRecordBytes;
@@ -427,7 +426,7 @@ void VisibilityStrategy::writeCullUniform(const FrameState& frame, std::size_t v
     uniform.occlusion = mOcclusion ? 1 : 0;
     uniform.clusterCulling = frame.culling.clusterCulling ? 1 : 0;
     uniform.worldSpheres = views == 1 && mSpheresCurrent ? 1 : 0;
-    uniform.unitListBase = mUnitListBase;
+    uniform.unitListBase = mTables.unitListBase();
     mSetup->queue.WriteBuffer(mCullUniform, 0, &uniform, sizeof(uniform));
 }
 

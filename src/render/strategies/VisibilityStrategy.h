@@ -222,8 +222,6 @@ class VisibilityStrategy final : public Strategy {
     std::uint32_t mWorkgroupBlocks = 0;   // Entries of blocks, then
     std::uint32_t mWorkgroupRecords = 0;  // records of triangles set up.
     std::uint32_t mHardwareCapacity = 0;
-    // The cull's list's first entry in the units buffer: after the scene's unit table.
-    std::uint32_t mUnitListBase = 0;
     // Workgroups of the striding grids: the raster's (at most the units), the workgroup
     // raster's (at most the listed blocks); each bin's shading grid is the target's
     // (VisibilityTarget::shadeGroups). None exceeds persistentWorkgroups().
