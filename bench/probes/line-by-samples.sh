@@ -32,15 +32,7 @@ for r in $(seq 1 ${ROUNDS:-2}); do
 done
 [ "${SWEEP:-1}" = 1 ] || exit 0
 for t in 64 128 181 256; do
-  mkdir -p $W/sweep$t
-  for i in $(seq 1 40); do
-    E gen --objects 24 --meshes 4 --tessellation $t --seed $i -o $W/sweep$t/m$i.glb > /dev/null 2>&1 &
-    if (( i % 8 == 0 )); then wait; fi
-  done; wait
-  for k in 1 2 3 4 5; do
-    mkdir -p $W/sweep$t-$k; for i in $(seq 1 40); do ln -s $W/sweep$t/m$i.glb $W/sweep$t-$k/; done
-  done
-  ls $W/sweep$t-*/m*.glb > $W/sweep$t.txt
+  probe_generated $W sweep$t $t 5
   for s in 1 4; do
     for st in bundles visibility; do
       run "tessellation $t s$s $st" $W/sweep$t.txt --strategy $st --samples $s

@@ -18,3 +18,19 @@ probe_inputs() {
   done
   ls "$1"/in/*/*.glb "$1"/in/*/Avocado/Avocado.gltf | sort > "$1/all.txt"
 }
+
+# probe_generated WORK NAME TESSELLATION COPIES: 40 models of `encore gen --objects 24 --meshes 4
+# --tessellation TESSELLATION` (seeds 1-40, made through the caller's E) in WORK/NAME, linked into
+# COPIES folders WORK/NAME-1 ...; the 40 x COPIES links listed in WORK/NAME.txt.
+probe_generated() {
+  local i k
+  mkdir -p "$1/$2"
+  for i in $(seq 1 40); do
+    E gen --objects 24 --meshes 4 --tessellation "$3" --seed $i -o "$1/$2/m$i.glb" > /dev/null 2>&1 &
+    if (( i % 8 == 0 )); then wait; fi
+  done; wait
+  for k in $(seq 1 "$4"); do
+    mkdir -p "$1/$2-$k"; for i in $(seq 1 40); do ln -sf "$1/$2/m$i.glb" "$1/$2-$k/"; done
+  done
+  ls "$1/$2"-*/m*.glb > "$1/$2.txt"
+}

@@ -15,6 +15,7 @@ probe_unpack $W "$C"
 xz -dc "$C/encore-prev.xz" > $W/pack/bin/encore-prev
 A() { bash $W/pack/run.sh encore-prev "$@"; }
 B() { bash $W/pack/run.sh encore-new "$@"; }
+E() { B "$@"; }  # probe_generated's.
 echo "== machine: $(nproc) cores"; nvidia-smi -L | head -1; B info 2>&1 | head -1
 probe_inputs $W "$C" 1
 head -300 $W/all.txt > $W/w.txt
@@ -53,15 +54,7 @@ for r in $(seq 1 ${ROUNDS:-3}); do
   for b in A B; do run "speed light s4 auto $b r$r" $b $W/all.txt --strategy auto; done
 done
 [ "${DENSE:-1}" = 1 ] || exit 0
-mkdir -p $W/dense
-for i in $(seq 1 40); do
-  B gen --objects 24 --meshes 4 --tessellation 256 --seed $i -o $W/dense/m$i.glb > /dev/null 2>&1 &
-  if (( i % 8 == 0 )); then wait; fi
-done; wait
-for k in $(seq -w 1 25); do
-  mkdir -p $W/dense$k; for i in $(seq 1 40); do ln -s $W/dense/m$i.glb $W/dense$k/m$i.glb; done
-done
-ls $W/dense*/m*.glb > $W/dense.txt
+probe_generated $W dense 256 25  # 1,000 dense files.
 for r in $(seq 1 ${ROUNDS:-3}); do
   for b in A B; do run "speed dense s4 visibility $b r$r" $b $W/dense.txt --strategy visibility; done
 done

@@ -20,15 +20,7 @@ E() { bash $W/pack/run.sh encore-new "$@"; }
 ROUNDS=${ROUNDS:-3}
 echo "== machine: $(nproc) cores"; nvidia-smi -L | head -1; E info 2>&1 | head -2
 probe_inputs $W "$C" 1
-mkdir -p $W/dense
-for i in $(seq 1 40); do
-  E gen --objects 24 --meshes 4 --tessellation 256 --seed $i -o $W/dense/m$i.glb > /dev/null 2>&1 &
-  if (( i % 8 == 0 )); then wait; fi
-done; wait
-for k in $(seq -w 1 25); do
-  mkdir -p $W/dense$k; for i in $(seq 1 40); do ln -s $W/dense/m$i.glb $W/dense$k/m$i.glb; done
-done
-ls $W/dense*/m*.glb > $W/dense.txt
+probe_generated $W dense 256 25  # 1,000 dense files.
 
 run() {  # label, list, options...
   local label=$1 list=$2; shift 2; rm -rf $W/o
@@ -74,15 +66,7 @@ for r in $(seq 1 $ROUNDS); do
 done
 if [ "${SWEEP:-0}" = 1 ]; then
   for t in 64 96 128 181; do
-    mkdir -p $W/sweep$t
-    for i in $(seq 1 40); do
-      E gen --objects 24 --meshes 4 --tessellation $t --seed $i -o $W/sweep$t/m$i.glb > /dev/null 2>&1 &
-      if (( i % 8 == 0 )); then wait; fi
-    done; wait
-    for k in 1 2 3 4 5; do
-      mkdir -p $W/sweep$t-$k; for i in $(seq 1 40); do ln -s $W/sweep$t/m$i.glb $W/sweep$t-$k/; done
-    done
-    ls $W/sweep$t-*/m*.glb > $W/sweep$t.txt
+    probe_generated $W sweep$t $t 5
     for s in bundles visibility; do
       run "tessellation $t s4 $s" $W/sweep$t.txt --strategy $s
       [ $s = visibility ] && grep -ho '"triangles": *[0-9]*' $W/o/sweep$t-1/m1/metadata.json
