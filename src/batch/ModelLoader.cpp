@@ -29,8 +29,11 @@ void stallForTests(const std::filesystem::path& path) {
 }  // namespace
 
 // One load's view of the loader's memory limit: what it holds counts beside the scenes loaded
-// ahead and the other loads; past the limit it waits, unless it is the oldest load running (so
-// that one always goes on, and the load a taker waits for is never held), or the loader stops.
+// ahead and the other loads; past the limit it waits, unless the loader stops or it is the oldest
+// load running while no scene waits to be taken (the load a taker waits for is never held).
+// Scenes loaded ahead and not yet taken hold back even the oldest: otherwise, with a taker busy
+// elsewhere, each load in turn became the oldest, went on and joined them, to the limit times
+// the loads running.
 class ModelLoader::Budget final : public scene::LoadBudget {
   public:
     Budget(ModelLoader& loader,
@@ -68,7 +71,8 @@ class ModelLoader::Budget final : public scene::LoadBudget {
                 }
             }
             mLoader.mPeakBytes = std::max(mLoader.mPeakBytes, total);
-            if (total <= mLoader.mMemoryLimit || oldest == &found->second || mLoader.mStopped ||
+            const bool awaited = oldest == &found->second && !mLoader.nextLoaded();
+            if (total <= mLoader.mMemoryLimit || awaited || mLoader.mStopped ||
                 mCancel.load(std::memory_order_relaxed)) {
                 return {};
             }

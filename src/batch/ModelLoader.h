@@ -69,7 +69,7 @@ class ModelLoader {
     void release(std::uint64_t bytes);
     // The most the scenes held and the loads in progress held decoded at once, as the loads
     // reported it, and how many times a load waited for room. The limit is shared: a load whose
-    // bytes would pass it waits, unless it is the oldest running (which always goes on).
+    // bytes would pass it waits, unless it is the oldest running and no scene waits to be taken.
     std::uint64_t peakBytes();
     std::size_t budgetWaits();
     // Starts no more loads.
