@@ -33,7 +33,9 @@ void stallForTests(const std::filesystem::path& path) {
 // load running while no scene waits to be taken (the load a taker waits for is never held).
 // Scenes loaded ahead and not yet taken hold back even the oldest: otherwise, with a taker busy
 // elsewhere, each load in turn became the oldest, went on and joined them, to the limit times
-// the loads running.
+// the loads running. A load never takes the pool's last thread into a wait: a taker that waits
+// for the pool's other work (a batch's device thread for its encodes, to free a read-back slot)
+// before it takes the next scene would otherwise wait for ever.
 class ModelLoader::Budget final : public scene::LoadBudget {
   public:
     Budget(ModelLoader& loader,
@@ -59,6 +61,7 @@ class ModelLoader::Budget final : public scene::LoadBudget {
         while (true) {
             const auto found = mLoader.mLoading.find(mOrder);
             if (found == mLoader.mLoading.end()) {
+                mLoader.mLoadsWaiting -= waited ? 1 : 0;
                 return {};  // Abandoned at the time limit: it stops at its next check.
             }
             found->second.bytes = bytes;
@@ -72,12 +75,17 @@ class ModelLoader::Budget final : public scene::LoadBudget {
             }
             mLoader.mPeakBytes = std::max(mLoader.mPeakBytes, total);
             const bool awaited = oldest == &found->second && !mLoader.nextLoaded();
-            if (total <= mLoader.mMemoryLimit || awaited || mLoader.mStopped ||
+            // The last of the pool's threads not waiting here goes on: the pool's other tasks
+            // (the batch's encodes, which the taker may be waiting for) need one.
+            const bool lastThread = !waited && mLoader.mLoadsWaiting + 1 >= mLoader.mPool->size();
+            if (total <= mLoader.mMemoryLimit || awaited || lastThread || mLoader.mStopped ||
                 mCancel.load(std::memory_order_relaxed)) {
+                mLoader.mLoadsWaiting -= waited ? 1 : 0;
                 return {};
             }
             if (!waited) {
                 ++mLoader.mBudgetWaits;
+                ++mLoader.mLoadsWaiting;
                 waited = true;
             }
             // Woken as loads finish and scenes are released; the timeout rechecks the cancel.

@@ -128,6 +128,7 @@ class ModelLoader {
     std::uint64_t mBytesHeld = 0;  // Loaded, not yet released.
     std::uint64_t mPeakBytes = 0;
     std::size_t mBudgetWaits = 0;
+    std::size_t mLoadsWaiting = 0;  // Loads waiting in Budget::holding now.
     bool mStopped = false;
     std::shared_ptr<Presence> mPresence = std::make_shared<Presence>();
 };

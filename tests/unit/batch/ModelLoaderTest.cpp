@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <future>
+#include <thread>
 
 #include "GltfBuilder.h"
 #include "TestPaths.h"
@@ -86,6 +87,35 @@ TEST(ModelLoaderTest, LoadsInProgressShareTheMemoryLimit) {
     EXPECT_GT(loader.budgetWaits(), 0u);
     EXPECT_GT(loader.peakBytes(), kLimit / 2);
     EXPECT_LE(loader.peakBytes(), 2 * kLimit + 8 * (kImageBytes + 1024));
+}
+
+// Loads waiting for memory leave one of the pool's threads to its other tasks: two loads of
+// 512 KiB on a pool of two threads, with two scenes loaded ahead against a limit of 1.25 MiB,
+// would both wait for the taker, and a taker that waits for the pool (as a batch's device thread
+// waits for its encodes) before it releases a scene would wait for ever.
+TEST(ModelLoaderTest, LoadsWaitingForMemoryLeaveAThreadToThePool) {
+    constexpr std::uint64_t kModelBytes = 8 * 128 * 128 * 4;
+    const auto inputs = imageModels("model-loader-free-thread", 6, 8);
+    std::promise<void> ran;  // Outlives the pool, which may run the task late.
+    ThreadPool pool(2);
+    ModelLoader loader(pool, inputs, {}, kModelBytes * 5 / 2, 2);
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+    while (loader.budgetWaits() == 0 && std::chrono::steady_clock::now() < deadline) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    ASSERT_GT(loader.budgetWaits(), 0u);
+    auto held = takeWithin(loader);
+    ASSERT_TRUE(held && held->scene.ok());
+    pool.submit([&ran] { ran.set_value(); });
+    EXPECT_EQ(ran.get_future().wait_for(std::chrono::seconds(20)), std::future_status::ready)
+        << "every pool thread waits for memory";
+    loader.release(held->bytes);
+    for (std::size_t i = 1; i < inputs.size(); ++i) {
+        auto loaded = takeWithin(loader);
+        ASSERT_TRUE(loaded && loaded->scene.ok());
+        loader.release(loaded->bytes);
+    }
+    EXPECT_EQ(loader.finish(), 0u);
 }
 
 TEST(ModelLoaderTest, LoadsInOrderAndReportsFailuresAsResults) {
