@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "encore/core/ReusedBlocks.h"
 #include "encore/render/GpuStage.h"
 
 namespace encore::app {
@@ -108,6 +109,12 @@ void printBatchSummary(const batch::BatchSummary& summary, std::size_t threads, 
         }
     }
     if (verbose) {
+        const ReusedBlockCounts blocks = reusedBlockCounts();
+        std::printf("image blocks: %llu taken, %llu created (%.1f MiB), %.1f MiB kept for reuse\n",
+                    static_cast<unsigned long long>(blocks.taken),
+                    static_cast<unsigned long long>(blocks.created),
+                    double(blocks.createdBytes) / double(1 << 20),
+                    double(blocks.keptBytes) / double(1 << 20));
         const render::PrepareTimes& parts = stages.uploadParts;
         const double sceneOther = parts.scene - parts.geometry - parts.instances - parts.materials;
         const double strategyOther = parts.strategy - parts.draws;

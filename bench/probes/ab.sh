@@ -22,9 +22,12 @@ A batch $W/w.txt -o $W/o --quiet "$@" > /dev/null 2>&1
 B batch $W/w.txt -o $W/o2 --quiet "$@" > /dev/null 2>&1; rm -rf $W/o $W/o2
 run() {  # label, binary, options...
   local label=$1 bin=$2; shift 2; rm -rf $W/o
-  $bin -v batch $W/all.txt -o $W/o --quiet "$@" > $W/log.txt 2>&1
+  local TIMEFORMAT="process: %R s, %U s user, %S s system"
+  { time $bin -v batch $W/all.txt -o $W/o --quiet "$@" > $W/log.txt 2>&1; } 2>> $W/log.txt
   echo "== $label: $(grep -E 'views in' $W/log.txt | sed 's/.*views in/views in/')"
-  grep -E "^stages|^gpu|^error|^warning" $W/log.txt | sed "s/ (load and encode summed.*//" | head -4
+  grep -E "^stages|^gpu|^image blocks|^error|^warning" $W/log.txt |
+    sed "s/ (load and encode summed.*//" | head -5
+  tail -1 $W/log.txt
 }
 for r in $(seq 1 $ROUNDS); do
   run "A (before) r$r" A "$@"; [ $r = 1 ] && mv $W/o $W/keep-a

@@ -144,7 +144,7 @@ Result<image::ImageRgba8> readTextureLevel(Context& context,
     image::ImageRgba8 image;
     image.width = std::max(texture.GetWidth() >> level, 1u);
     image.height = std::max(texture.GetHeight() >> level, 1u);
-    image.pixels = std::move(rows);
+    image.pixels.assign(rows.begin(), rows.end());
     if (isBgra(format)) {
         for (std::size_t i = 0; i < image.pixels.size(); i += 4) {
             std::swap(image.pixels[i], image.pixels[i + 2]);

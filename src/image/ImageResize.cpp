@@ -60,10 +60,10 @@ ImageSize fitWithin(ImageSize size, std::uint32_t maxDimension) {
     return {side(size.width), side(size.height)};
 }
 
-std::vector<std::uint8_t> downscaleRgba8(std::span<const std::uint8_t> pixels,
-                                         ImageSize source,
-                                         ImageSize target,
-                                         PixelEncoding encoding) {
+ReusedBytes downscaleRgba8(std::span<const std::uint8_t> pixels,
+                           ImageSize source,
+                           ImageSize target,
+                           PixelEncoding encoding) {
     assert(pixels.size() == std::size_t(source.width) * source.height * 4);
     assert(target.width >= 1 && target.height >= 1);
     assert(target.width <= source.width && target.height <= source.height);
@@ -72,7 +72,7 @@ std::vector<std::uint8_t> downscaleRgba8(std::span<const std::uint8_t> pixels,
     const std::array<float, 256>& toLinear = srgbToLinearTable();
     const bool srgb = encoding == PixelEncoding::Srgb;
 
-    std::vector<std::uint8_t> result(std::size_t(target.width) * target.height * 4);
+    ReusedBytes result(std::size_t(target.width) * target.height * 4);  // Every byte written.
     std::vector<float> accumulated(std::size_t(target.width) * 4);
     for (std::uint32_t y = 0; y < target.height; ++y) {
         std::fill(accumulated.begin(), accumulated.end(), 0.0f);

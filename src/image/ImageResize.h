@@ -10,6 +10,8 @@
 #include <span>
 #include <vector>
 
+#include "encore/core/ReusedBlocks.h"
+
 namespace encore::image {
 
 struct ImageSize {
@@ -30,10 +32,10 @@ enum class PixelEncoding : std::uint8_t {
 // Box-filters `pixels` (source.width * source.height * 4 bytes, rows top to bottom) down to
 // `target`, whose sides must be no larger than the source's and at least 1. Memory beyond the
 // result is one row of the target.
-std::vector<std::uint8_t> downscaleRgba8(std::span<const std::uint8_t> pixels,
-                                         ImageSize source,
-                                         ImageSize target,
-                                         PixelEncoding encoding);
+ReusedBytes downscaleRgba8(std::span<const std::uint8_t> pixels,
+                           ImageSize source,
+                           ImageSize target,
+                           PixelEncoding encoding);
 
 // The same filter for linear RGB floats (HDR panoramas): width * height * 3 floats.
 std::vector<float> downscaleRgbFloat(std::span<const float> pixels,

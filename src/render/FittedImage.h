@@ -16,7 +16,7 @@ namespace encore::render {
 struct FittedImage {
     image::ImageSize size;
     const std::uint8_t* source = nullptr;  // The original pixels, when they fit.
-    std::vector<std::uint8_t> downscaled;  // Otherwise the copy.
+    ReusedBytes downscaled;                // Otherwise the copy.
 
     const std::uint8_t* pixels() const { return downscaled.empty() ? source : downscaled.data(); }
 };

@@ -213,7 +213,7 @@ constexpr std::uint32_t kTextureSize = 64;
 // Eight by eight squares of white and light grey: the material's factor gives the hue.
 image::ImageRgba8 checkerImage() {
     image::ImageRgba8 image{kTextureSize, kTextureSize,
-                            std::vector<std::uint8_t>(kTextureSize * kTextureSize * 4)};
+                            ReusedBytes(kTextureSize * kTextureSize * 4)};
     for (std::uint32_t y = 0; y < kTextureSize; ++y) {
         for (std::uint32_t x = 0; x < kTextureSize; ++x) {
             const bool light = ((x / 8) + (y / 8)) % 2 == 0;
@@ -229,7 +229,7 @@ image::ImageRgba8 checkerImage() {
 // green roughness (a ramp from 0.25 to 1 along v, times the factor).
 image::ImageRgba8 metallicRoughnessImage() {
     image::ImageRgba8 image{kTextureSize, kTextureSize,
-                            std::vector<std::uint8_t>(kTextureSize * kTextureSize * 4)};
+                            ReusedBytes(kTextureSize * kTextureSize * 4)};
     for (std::uint32_t y = 0; y < kTextureSize; ++y) {
         for (std::uint32_t x = 0; x < kTextureSize; ++x) {
             std::uint8_t* p = image.pixel(x, y);

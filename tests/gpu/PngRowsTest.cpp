@@ -10,6 +10,7 @@
 #include <cstring>
 #include <map>
 #include <random>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -96,7 +97,7 @@ std::vector<std::uint8_t> stripSamples(const std::vector<std::uint8_t>& wide,
     return samples;
 }
 
-std::vector<std::uint8_t> cpuRows(const std::vector<std::uint8_t>& samples,
+std::vector<std::uint8_t> cpuRows(std::span<const std::uint8_t> samples,
                                   std::uint32_t width,
                                   std::uint32_t height,
                                   std::uint8_t bitDepth,
@@ -158,7 +159,7 @@ TEST(PngRowsTest, ColourRowsAreTheCpuFiltersBytesAndCountCoveredPixels) {
                 << "colour, view " << view;
 
             // The normal image: R, G and B through decodeNormalImage's table first.
-            image::ImageRgba8 normal{kWidth, kHeight, samples};
+            image::ImageRgba8 normal{kWidth, kHeight, ReusedBytes(samples.begin(), samples.end())};
             decodeNormalImage(normal);
             const std::vector<std::uint8_t> expectedNormal =
                 cpuRows(normal.pixels, kWidth, kHeight, 8, image::PngColor::Rgba, compression);

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "encore/core/Result.h"
+#include "encore/core/ReusedBlocks.h"
 
 namespace encore::image {
 
@@ -32,7 +33,8 @@ inline constexpr std::uint64_t kMaxDecodedImageBytes = 256ull << 20;
 struct ImageRgba8 {
     std::uint32_t width = 0;
     std::uint32_t height = 0;
-    std::vector<std::uint8_t> pixels;  // width * height * 4 bytes, rows top to bottom.
+    // width * height * 4 bytes, rows top to bottom; decoders write them into reused blocks.
+    ReusedBytes pixels;
 
     std::uint8_t* pixel(std::uint32_t x, std::uint32_t y) { return &pixels[(y * width + x) * 4]; }
     const std::uint8_t* pixel(std::uint32_t x, std::uint32_t y) const {

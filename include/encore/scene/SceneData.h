@@ -41,6 +41,7 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "encore/core/Result.h"
+#include "encore/core/ReusedBlocks.h"
 #include "encore/scene/Animation.h"
 #include "encore/scene/Bounds.h"
 #include "encore/scene/Ids.h"
@@ -360,8 +361,8 @@ struct Image {
     std::string name;  // uri, or "image N" for embedded ones.
     std::uint32_t width = 0;
     std::uint32_t height = 0;
-    std::vector<std::uint8_t> rgba8;  // Empty when the image is missing or undecodable
-                                      // (the loader warned) or decoding was not requested.
+    ReusedBytes rgba8;  // Empty when the image is missing or undecodable (the loader warned) or
+                        // decoding was not requested.
     // The size the file declares: larger than width x height when the loader downscaled the
     // image to LoadOptions::maxImageDimension; 0 when it was not decoded from a file.
     std::uint32_t sourceWidth = 0;

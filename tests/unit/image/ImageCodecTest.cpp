@@ -55,7 +55,7 @@ void expectStrictlyValidPng(const std::vector<std::uint8_t>& png, std::size_t ra
 // A view as `encore batch` writes them: an object on a transparent background, with smooth
 // shading and noise. Its PNG decodes to the same pixels, and the 16-bit greyscale form too.
 TEST(ImageCodecTest, RenderedViewRoundTripsExactly) {
-    ImageRgba8 image{300, 200, std::vector<std::uint8_t>(300 * 200 * 4, 0)};
+    ImageRgba8 image{300, 200, ReusedBytes(300 * 200 * 4, 0)};
     std::uint32_t noise = 12345;
     for (std::uint32_t y = 40; y < 170; ++y) {
         for (std::uint32_t x = 60; x < 250; ++x) {
@@ -89,6 +89,29 @@ TEST(ImageCodecTest, RenderedViewRoundTripsExactly) {
     for (std::uint32_t i = 0; i < 300 * 200; ++i) {
         ASSERT_EQ(depthDecoded->pixels[i * 4], depth.pixels[i] >> 8) << i;  // The high byte.
     }
+}
+
+// A decoded image's memory serves the next image of its size once freed: a batch decodes the
+// same sizes model after model without asking the kernel for fresh pages.
+TEST(ImageCodecTest, DecodingAgainReusesTheFreedImagesMemory) {
+    ImageRgba8 image{512, 512, ReusedBytes(512 * 512 * 4, 0)};
+    for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+        image.pixels[i] = static_cast<std::uint8_t>(i * 7 % 251);
+    }
+    const auto encoded = encodePng(image);
+    ASSERT_TRUE(encoded.ok());
+    const std::uint8_t* first = nullptr;
+    {
+        auto decoded = decodeImage(*encoded);
+        ASSERT_TRUE(decoded.ok());
+        first = decoded->pixels.data();
+    }
+    const ReusedBlockCounts before = reusedBlockCounts();
+    auto again = decodeImage(*encoded);
+    ASSERT_TRUE(again.ok());
+    EXPECT_EQ(again->pixels.data(), first);
+    EXPECT_EQ(reusedBlockCounts().created, before.created);
+    EXPECT_EQ(again->pixels, image.pixels);
 }
 
 TEST(ImageCodecTest, GarbageIsAnError) {
@@ -131,7 +154,7 @@ TEST(ImageCodecTest, SixteenBitImagesAreLimitedByDecodedBytes) {
 // A chunk declaring more bytes than the file holds is refused before stb_image sizes a buffer
 // from it (the loader fuzzer found an IDAT declaring 1.4 GB in a 42 kB file: a 2 GiB realloc).
 TEST(ImageCodecTest, ChunkLongerThanTheFileIsRefused) {
-    ImageRgba8 image{4, 4, std::vector<std::uint8_t>(4 * 4 * 4, 200)};
+    ImageRgba8 image{4, 4, ReusedBytes(4 * 4 * 4, 200)};
     auto encoded = encodePng(image);
     ASSERT_TRUE(encoded.ok());
     std::vector<std::uint8_t> png = *encoded;
@@ -180,7 +203,7 @@ TEST(ImageCodecTest, Gray16RoundTripsThroughADecoder) {
 // every time, and each PNG is strictly valid and decodes to its own pixels.
 TEST(ImageCodecTest, EncodingsInTurnOnOneThreadAreIndependent) {
     auto pattern = [](std::uint32_t width, std::uint32_t height, std::uint32_t seed) {
-        ImageRgba8 image{width, height, std::vector<std::uint8_t>(std::size_t(width) * height * 4)};
+        ImageRgba8 image{width, height, ReusedBytes(std::size_t(width) * height * 4, 0)};
         for (std::size_t i = 0; i < image.pixels.size(); ++i) {
             seed = seed * 1664525u + 1013904223u;
             image.pixels[i] = (i / 4) % 7 == 0 ? std::uint8_t(seed >> 24) : std::uint8_t(i / 64);
@@ -291,7 +314,7 @@ TEST(ImageCodecTest, SmallPngCompressionFiltersEightBitRowsWithPaeth) {
     for (const std::uint32_t width : {1u, 2u, 3u, 7u, 37u, 130u}) {
         SCOPED_TRACE(width);
         const std::uint32_t height = 9;
-        ImageRgba8 image{width, height, std::vector<std::uint8_t>(width * height * 4)};
+        ImageRgba8 image{width, height, ReusedBytes(width * height * 4, 0)};
         for (std::uint32_t y = 0; y < height; ++y) {
             for (std::uint32_t x = 0; x < width; ++x) {
                 std::uint8_t* p = image.pixel(x, y);
@@ -331,7 +354,7 @@ TEST(ImageCodecTest, SmallPngCompressionFiltersEightBitRowsWithPaeth) {
 
 // PngCompression::Fast gives strictly valid PNGs of the same pixels.
 TEST(ImageCodecTest, FastPngCompressionKeepsThePixels) {
-    ImageRgba8 image{300, 200, std::vector<std::uint8_t>(300 * 200 * 4, 0)};
+    ImageRgba8 image{300, 200, ReusedBytes(300 * 200 * 4, 0)};
     for (std::uint32_t y = 40; y < 170; ++y) {
         for (std::uint32_t x = 60; x < 250; ++x) {
             std::uint8_t* p = image.pixel(x, y);

@@ -15,6 +15,7 @@
 #include <cstdlib>
 #include <memory>
 #include <random>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -361,7 +362,7 @@ Bytes encodeJpeg(std::uint32_t width,
     return jpeg;
 }
 
-int maxDifference(const Bytes& a, const Bytes& b) {
+int maxDifference(std::span<const std::uint8_t> a, std::span<const std::uint8_t> b) {
     int difference = 0;
     for (std::size_t i = 0; i < std::min(a.size(), b.size()); ++i) {
         difference = std::max(difference, std::abs(int(a[i]) - int(b[i])));
