@@ -1,8 +1,10 @@
+#include <time.h>
 #include <unistd.h>
 
 #include <atomic>
 #include <cmath>
 #include <csignal>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -72,12 +74,28 @@ struct BatchCommandOptions {
 };
 
 // Set by SIGINT and SIGTERM: the batch starts no more models, writes the views in flight and
-// returns. A second signal stops the process at once (the handler puts the default back).
+// returns. A second signal stops the process at once, unless it came with the first: timeout(1)
+// signals its child and then the child's process group, so the batch gets each signal twice
+// within microseconds, and the second used to kill it (exit 143) when a thread had taken the
+// first in between.
 std::atomic<bool> gStopRequested{false};
+std::atomic<std::int64_t> gStopRequestedNs{0};
+constexpr std::int64_t kSameStopRequestNs = 200'000'000;
+static_assert(std::atomic<std::int64_t>::is_always_lock_free);
 
 extern "C" void requestStop(int signal) {
-    gStopRequested = true;
+    timespec now{};
+    clock_gettime(CLOCK_MONOTONIC, &now);  // Async-signal-safe, as are the lock-free atomics.
+    const std::int64_t ns = std::int64_t(now.tv_sec) * 1'000'000'000 + now.tv_nsec;
+    if (!gStopRequested.exchange(true)) {
+        gStopRequestedNs = ns;
+        return;
+    }
+    if (ns - gStopRequestedNs < kSameStopRequestNs) {
+        return;
+    }
     std::signal(signal, SIG_DFL);
+    std::raise(signal);
 }
 
 Result<std::pair<std::uint32_t, std::uint32_t>> parseSize(const std::string& text) {
@@ -274,6 +292,7 @@ int runBatch(const BatchCommandOptions& options, const GlobalOptions& global) {
         std::fprintf(stderr, terminal ? "\r%s\033[K" : "%s\n", line.c_str());
     };
     gStopRequested = false;
+    gStopRequestedNs = 0;
     batchOptions.stop = &gStopRequested;
     auto previousInt = std::signal(SIGINT, requestStop);
     auto previousTerm = std::signal(SIGTERM, requestStop);
