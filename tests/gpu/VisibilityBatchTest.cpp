@@ -26,7 +26,9 @@
 #include "encore/batch/Batch.h"
 #include "encore/render/Renderer.h"
 #include "encore/render/VisibilityFeatures.h"
+#include "gpu/CreationCounts.h"
 #include "gpu/Readback.h"
+#include "gpu/ResourcePool.h"
 #include "image/ImageDecoders.h"
 #include "render/strategies/VisibilityPipelines.h"
 #include "render/strategies/VisibilityStrategy.h"
@@ -126,6 +128,34 @@ TEST(VisibilityBatchTest, KeptPipelinesAreCreatedOnceAndDrawTheSamePictures) {
                   0u);
     }
     EXPECT_TRUE(context->checkNoErrors("kept visibility pipelines").ok());
+}
+
+// In a batch the scene-sized buffers come from the lane's pool: a model drawn again after
+// another creates no GPU object, and draws what it drew the first time.
+TEST(VisibilityBatchTest, PooledSceneBuffersAreReusedAndDrawTheSamePictures) {
+    ENCORE_REQUIRE_VULKAN(context);
+    const scene::SceneData first = test::generatedScene(denseModel(1, 12));
+    const scene::SceneData second = test::generatedScene(denseModel(2, 12));
+    gpu::ResourcePool pool(context->device());  // Outlives the renderer's scenes.
+    auto renderer = Renderer::create(*context, stripOptions(4, true));
+    ASSERT_TRUE(renderer.ok()) << renderer.error().message;
+    renderer->setResourcePool(&pool);
+    ASSERT_TRUE(renderer->prepare(first, StrategyKind::Visibility).ok());
+    const image::ImageRgba8 drawnFirst = renderStrip(*renderer, first);
+    ASSERT_TRUE(renderer->prepare(second, StrategyKind::Visibility).ok());
+    renderStrip(*renderer, second);
+
+    const gpu::CreationCounts before = gpu::threadCreationCounts();
+    const std::uint64_t reused = pool.reused();
+    auto prepared = renderer->prepare(first, StrategyKind::Visibility);
+    ASSERT_TRUE(prepared.ok()) << prepared.error().message;
+    renderer->renderViews(stripCameras(first));
+    EXPECT_EQ((gpu::threadCreationCounts() - before).objects(), 0u);  // Not the test's read.
+    const image::ImageRgba8 drawnAgain = renderStrip(*renderer, first);
+    EXPECT_GE(pool.reused() - reused, 7u);  // The strategy's seven, besides the scene's.
+    EXPECT_EQ(test::differingPixels(drawnAgain, drawnFirst), 0u);
+    EXPECT_GT(test::coveredFraction(drawnAgain, test::pixelAt(drawnAgain, 0, 0)), 0.05);
+    EXPECT_TRUE(context->checkNoErrors("visibility in pooled buffers").ok());
 }
 
 // The kept working buffers (units, triangle lists, bins) grow with the largest model so far and

@@ -3,11 +3,14 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstring>
+#include <span>
 #include <string>
+#include <vector>
 
 #include "encore/gpu/DeviceLimits.h"
 #include "encore/render/VisibilityFeatures.h"
 #include "gpu/BindingResource.h"
+#include "gpu/ResourcePool.h"
 #include "gpu/Upload.h"
 #include "render/Frustum.h"
 #include "render/LodSelection.h"
@@ -116,26 +119,31 @@ Result<void> VisibilityStrategy::prepareScene() {
         return !mTables.computePath[mesh.index()][primitive];
     }));
 
+    // From the lane's pool in a batch: a model then creates no buffer once the pool holds those
+    // of its sizes (issue 48). CopyDst on each: the pool keeps only what can be written again.
+    giveBackSceneBuffers();  // Those of the tables before, when a variant's replace them.
     // CopyDst: refresh() rewrites the bin words of records whose materials regrouped.
-    mTableBuffer = gpu::createStorageBuffer(device, mTables.words, "visibility tables",
-                                            wgpu::BufferUsage::CopyDst);
-    mMaterialTable = gpu::createBuffer(
-        device, wgpu::BufferUsage::Uniform | wgpu::BufferUsage::CopyDst,
-        mTables.materialBins.tableBytes(), "visibility materials of the shading bins");
+    const std::uint32_t noWord = 0;
+    const std::span<const std::uint32_t> words =
+        mTables.words.empty() ? std::span<const std::uint32_t>(&noWord, 1)
+                              : std::span<const std::uint32_t>(mTables.words);
+    mTableBuffer = sceneBuffer(wgpu::BufferUsage::Storage | wgpu::BufferUsage::CopyDst,
+                               std::as_bytes(words), "visibility tables");
+    mMaterialTable =
+        sceneBuffer(wgpu::BufferUsage::Uniform | wgpu::BufferUsage::CopyDst,
+                    mTables.materialBins.tableBytes(), "visibility materials of the shading bins");
     mCopiedMaterials.reset();
-    mCulledCounters =
-        gpu::createBuffer(device, wgpu::BufferUsage::CopySrc | wgpu::BufferUsage::CopyDst,
-                          kCounterBytes, "visibility counters after the cull");
-    mCullUniform =
-        gpu::createBuffer(device, wgpu::BufferUsage::Uniform | wgpu::BufferUsage::CopyDst,
-                          sizeof(CullUniform), "visibility culling");
+    mCulledCounters = sceneBuffer(wgpu::BufferUsage::CopySrc | wgpu::BufferUsage::CopyDst,
+                                  kCounterBytes, "visibility counters after the cull");
+    mCullUniform = sceneBuffer(wgpu::BufferUsage::Uniform | wgpu::BufferUsage::CopyDst,
+                               sizeof(CullUniform), "visibility culling");
     // Zero: nothing was visible before the first frame, whose second phase tests everything.
-    mItemVisibility = gpu::createBuffer(device, wgpu::BufferUsage::Storage,
-                                        std::max<std::uint64_t>(mTables.itemCount, 1) * 4,
-                                        "visibility of items last frame");
-    mWorldSpheres = gpu::createBuffer(device, wgpu::BufferUsage::Storage,
-                                      std::max<std::uint64_t>(mTables.itemCount, 1) * 16,
-                                      "visibility world spheres of items");
+    mItemVisibility = sceneBuffer(wgpu::BufferUsage::Storage | wgpu::BufferUsage::CopyDst,
+                                  std::max<std::uint64_t>(mTables.itemCount, 1) * 4,
+                                  "visibility of items last frame");
+    mWorldSpheres = sceneBuffer(wgpu::BufferUsage::Storage | wgpu::BufferUsage::CopyDst,
+                                std::max<std::uint64_t>(mTables.itemCount, 1) * 16,
+                                "visibility world spheres of items");
     mSpheresCurrent = false;
     mHardwareCapacity =
         std::uint32_t(std::clamp<std::uint64_t>(mTables.triangleCount, 1, kMaxHardwareTriangles));
@@ -155,12 +163,11 @@ Result<void> VisibilityStrategy::prepareScene() {
     sizes.bins = std::uint64_t(mTables.binCount) * kBinRecordBytes;
     // The counters, then the clusters' visibility (visibility_counters.wgsl), which the copies
     // of kCounterBytes that reset the counters leave as they are (zero after prepare).
-    mCounters = gpu::createBuffer(
-        device,
-        wgpu::BufferUsage::Storage | wgpu::BufferUsage::Indirect | wgpu::BufferUsage::CopyDst |
-            wgpu::BufferUsage::CopySrc,
-        kCounterBytes + std::max<std::uint64_t>(mTables.clusterVisibilityWords, 1) * 4,
-        "visibility counters");
+    mCounters =
+        sceneBuffer(wgpu::BufferUsage::Storage | wgpu::BufferUsage::Indirect |
+                        wgpu::BufferUsage::CopyDst | wgpu::BufferUsage::CopySrc,
+                    kCounterBytes + std::max<std::uint64_t>(mTables.clusterVisibilityWords, 1) * 4,
+                    "visibility counters");
     const std::uint32_t persistent = persistentWorkgroups(device);
     mPersistentGroups = persistent;
     mRasterGroups = stridingGrid(mTables.unitCount, 1, persistent);
@@ -184,6 +191,43 @@ Result<void> VisibilityStrategy::checkTarget(std::uint32_t width, std::uint32_t 
     ENCORE_TRY(gpu::checkStorageBinding(mSetup->limits, std::uint64_t(width) * height * samples * 8,
                                         what + ", its visibility buffer"));
     return {};
+}
+
+VisibilityStrategy::~VisibilityStrategy() {
+    giveBackSceneBuffers();
+}
+
+wgpu::Buffer VisibilityStrategy::sceneBuffer(wgpu::BufferUsage usage,
+                                             std::span<const std::byte> bytes,
+                                             const char* label) const {
+    const std::span<const std::uint8_t> data(reinterpret_cast<const std::uint8_t*>(bytes.data()),
+                                             bytes.size());
+    if (gpu::ResourcePool* pool = mSetup->resources) {
+        return pool->bufferWithData(mSetup->queue, usage, data, label);
+    }
+    return gpu::createBufferWithData(mSetup->device, usage, data, label);
+}
+
+wgpu::Buffer VisibilityStrategy::sceneBuffer(wgpu::BufferUsage usage,
+                                             std::uint64_t size,
+                                             const char* label) const {
+    if (gpu::ResourcePool* pool = mSetup->resources) {
+        // A kept buffer holds its last scene's values; a created one is zeroed: so is this.
+        const std::vector<std::uint8_t> zeros(size, 0);
+        return pool->bufferWithData(mSetup->queue, usage, zeros, label);
+    }
+    return gpu::createBuffer(mSetup->device, usage, size, label);
+}
+
+void VisibilityStrategy::giveBackSceneBuffers() {
+    gpu::ResourcePool* pool = mSetup ? mSetup->resources : nullptr;
+    for (wgpu::Buffer* buffer : {&mTableBuffer, &mMaterialTable, &mCounters, &mCulledCounters,
+                                 &mCullUniform, &mItemVisibility, &mWorldSpheres}) {
+        if (pool && *buffer) {
+            pool->giveBack(std::move(*buffer));
+        }
+        *buffer = nullptr;
+    }
 }
 
 Result<void> VisibilityStrategy::refresh() {

@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "encore/render/Strategy.h"
@@ -54,6 +56,9 @@ class VisibilityStrategy final : public Strategy {
     static bool computeTakesAll(const CullingOptions& culling) {
         return culling.workgroupRasterPixels >= kMaxWorkgroupPixels;
     }
+
+    // Gives the scene-sized buffers back to the lane's pool (RenderSetup::resources).
+    ~VisibilityStrategy() override;
 
     StrategyKind kind() const override { return StrategyKind::Visibility; }
     Result<void> prepare(const RenderSetup& setup, const GpuScene& scene) override;
@@ -203,6 +208,13 @@ class VisibilityStrategy final : public Strategy {
     Result<void> prepareScene();
     // Copies the materials' uniforms into mMaterialTable where they changed since the last copy.
     void copyMaterialTable(const wgpu::CommandEncoder& commands);
+    // A scene-sized buffer holding `bytes`, or zeroed: from RenderSetup::resources when there is
+    // a pool (in a batch), else created.
+    wgpu::Buffer sceneBuffer(wgpu::BufferUsage usage,
+                             std::span<const std::byte> bytes,
+                             const char* label) const;
+    wgpu::Buffer sceneBuffer(wgpu::BufferUsage usage, std::uint64_t size, const char* label) const;
+    void giveBackSceneBuffers();  // Nulls them; to the pool when there is one.
     void writeCullUniform(const FrameState& frame, std::size_t views) const;
 
     const RenderSetup* mSetup = nullptr;
