@@ -389,14 +389,15 @@ void addBatchCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) 
                         "visibility on a GPU for models of at least " +
                             std::to_string(batch::kAutoVisibilityTriangles) + " triangles (" +
                             std::to_string(batch::kAutoVisibilityTrianglesOneSample) +
-                            " at --samples 1), else bundles (gpu-culling-bundles with "
-                            "--lod-error); bundles on a CPU and with extra images; metadata.json "
-                            "names the choice");
+                            " at --samples 1) and, at --samples 4, for those of only opaque, "
+                            "static triangles whatever their size, else bundles "
+                            "(gpu-culling-bundles with --lod-error); bundles on a CPU and with "
+                            "extra images; metadata.json names the choice");
     command
         ->add_option("--visibility-from-triangles", options->visibilityFromTriangles,
                      "With --strategy auto: the triangles (summed over the instances) from which "
                      "a model is drawn with visibility, on any adapter that has the feature (a "
-                     "CPU too). Default: " +
+                     "CPU too), replacing auto's rule for opaque, static models. Default: " +
                          std::to_string(batch::kAutoVisibilityTriangles) + " on a GPU (" +
                          std::to_string(batch::kAutoVisibilityTrianglesOneSample) +
                          " at --samples 1)")

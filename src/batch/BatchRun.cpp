@@ -240,6 +240,7 @@ Result<BatchSummary> BatchRun::run() {
     // model's load.
     loadOptions.buildClusters = strategy.buildsClusters();
     loadOptions.clustersFromTriangles = strategy.clustersFromTriangles();
+    loadOptions.clustersForOpaqueStatic = strategy.visibilityForOpaqueStatic;
     loadOptions.maxImageDimension = mOptions.maxTextureSize;
     // One load per pool thread keeps them busy; encode tasks queue between them. With several
     // devices, each takes whichever model has loaded: a slow load holds up none of the others.

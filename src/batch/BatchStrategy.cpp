@@ -6,8 +6,9 @@
 
 namespace encore::batch {
 
-render::StrategyChoice BatchStrategy::forModel(std::uint64_t drawnTriangles) const {
-    return drawnTriangles >= visibilityFromTriangles
+render::StrategyChoice BatchStrategy::forModel(std::uint64_t drawnTriangles,
+                                               bool opaqueStatic) const {
+    return drawnTriangles >= visibilityFromTriangles || (visibilityForOpaqueStatic && opaqueStatic)
                ? render::StrategyChoice::of(render::StrategyKind::Visibility, false)
                : base;
 }
@@ -42,6 +43,8 @@ BatchStrategy batchStrategyFor(const BatchOptions& options,
     }
     strategy.visibilityFromTriangles =
         options.visibilityFromTriangles.value_or(autoVisibilityTriangles(options.samples));
+    strategy.visibilityForOpaqueStatic =
+        !options.visibilityFromTriangles && options.samples > 1 && kAutoVisibilityOpaqueStatic;
     return strategy;
 }
 

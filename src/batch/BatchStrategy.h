@@ -28,18 +28,23 @@ struct BatchStrategy {
     // Models drawing at least this many triangles (SceneData::drawnTriangleCount) are drawn with
     // the visibility strategy instead of `base`; kNever: none is.
     std::uint64_t visibilityFromTriangles = kNever;
+    // And models of any size that draw only opaque, static triangles
+    // (SceneData::drawsOnlyOpaqueStaticTriangles): auto's rule at four samples on a GPU.
+    bool visibilityForOpaqueStatic = false;
 
-    render::StrategyChoice forModel(std::uint64_t drawnTriangles) const;
+    render::StrategyChoice forModel(std::uint64_t drawnTriangles, bool opaqueStatic) const;
     bool mayChooseVisibility() const { return visibilityFromTriangles != kNever; }
-    // Whether models are loaded with clusters (scene::LoadOptions::buildClusters), and from how
-    // many triangles (clustersFromTriangles): exactly those the visibility strategy draws.
+    // Whether models are loaded with clusters (scene::LoadOptions::buildClusters), from how
+    // many triangles (clustersFromTriangles) and whether for opaque, static ones of any size:
+    // exactly those the visibility strategy draws.
     bool buildsClusters() const;
     std::uint64_t clustersFromTriangles() const;
 };
 
 // BatchOptions::strategy, or with chooseStrategyPerModel (the default) auto's choice for the
 // batch's devices: visibility from BatchOptions::visibilityFromTriangles
-// (autoVisibilityTriangles(samples) unless set) where every device has the visibility feature,
+// (autoVisibilityTriangles(samples) unless set; at four samples also the models that draw only
+// opaque, static triangles, unless it is set) where every device has the visibility feature,
 // is not a CPU (lavapipe rasterises in compute 4.5x slower than it draws bundles) and no extra
 // pass needs the mesh strategies' pass targets; never otherwise.
 BatchStrategy batchStrategyFor(const BatchOptions& options, std::span<gpu::Context* const> devices);

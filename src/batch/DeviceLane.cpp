@@ -330,7 +330,8 @@ void DeviceLane::renderModel(LoadedModel& loaded, bool retry, StagedModel* ahead
     }
     auto held = std::make_unique<LoadedModel>(std::move(loaded));
     const scene::SceneData& scene = *held->scene;
-    const render::StrategyChoice strategy = mShared.strategy.forModel(facts.triangles);
+    const render::StrategyChoice strategy =
+        mShared.strategy.forModel(facts.triangles, scene.drawsOnlyOpaqueStaticTriangles());
     auto prepared = renderer.prepare(scene, strategy.kind, strategy.bundle,
                                      {staged.images.get(), staged.geometry.get()});
     releasePrepared(slot);

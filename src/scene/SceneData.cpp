@@ -211,6 +211,22 @@ std::uint64_t SceneData::drawnTriangleCount() const {
     return triangles;
 }
 
+bool SceneData::drawsOnlyOpaqueStaticTriangles() const {
+    for (const Instance& instance : instances) {
+        if (nodes[instance.node.index()].skin) {
+            return false;
+        }
+        for (const Primitive& primitive : meshes[instance.mesh.index()].primitives) {
+            const Material& material = materials[primitive.material.index()];
+            if (primitive.topology != Topology::TriangleList || !primitive.targets.empty() ||
+                material.alphaMode != AlphaMode::Opaque || material.transmission) {
+                return false;
+            }
+        }
+    }
+    return !instances.empty();
+}
+
 std::uint64_t triangleCount(Topology topology, std::uint64_t count) {
     switch (topology) {
         case Topology::TriangleList:

@@ -197,7 +197,9 @@ Result<SceneData> load(std::span<const std::uint8_t> bytes, LoadContext& context
     meshOptions.buildLevelsOfDetail = context.options.buildLevelsOfDetail;
     meshOptions.buildClusters =
         context.options.buildClusters &&
-        context.scene.drawnTriangleCount() >= context.options.clustersFromTriangles;
+        (context.scene.drawnTriangleCount() >= context.options.clustersFromTriangles ||
+         (context.options.clustersForOpaqueStatic &&
+          context.scene.drawsOnlyOpaqueStaticTriangles()));
     ENCORE_TRY(optimizeMeshes(context.scene, meshOptions));
     return std::move(context.scene);
 }

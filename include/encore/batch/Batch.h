@@ -157,6 +157,13 @@ inline constexpr std::uint64_t kAutoVisibilityTriangles = 100'000;
 // the batch waits on its loaders' CPU, which a model's clusters add to: on one H200 visibility
 // was 0.71x bundles at 104,000 triangles, 1.02x at 404,000, 1.44x at 802,000, 1.96x at 1.59 M.
 inline constexpr std::uint64_t kAutoVisibilityTrianglesOneSample = 500'000;
+// At four samples auto also draws with visibility each model whose primitives its compute raster
+// takes all of (opaque, static triangle lists: scene::SceneData::drawsOnlyOpaqueStaticTriangles),
+// whatever its size: on one H200 that took 0.4-0.9x the GPU time of bundles for each such model of
+// the ten shared ones, while a model with blended or masked parts (drawn by the graphics pipeline
+// beside the compute raster) took 1.5x (docs/benchmarks/2026-11-29-h200-decode-floor.md). An
+// explicit BatchOptions::visibilityFromTriangles replaces this rule.
+inline constexpr bool kAutoVisibilityOpaqueStatic = true;
 // The line for `samples` (1 or 4).
 constexpr std::uint64_t autoVisibilityTriangles(std::uint32_t samples) {
     return samples == 1 ? kAutoVisibilityTrianglesOneSample : kAutoVisibilityTriangles;

@@ -510,6 +510,11 @@ struct SceneData {
     // Triangles the instances draw at full detail, summed over them (a mesh placed twice counts
     // twice): what a rasteriser faces per view.
     std::uint64_t drawnTriangleCount() const;
+    // Whether every primitive drawn is a triangle list with an opaque material (alphaMode OPAQUE,
+    // no transmission) and no animation of its vertices (no skin on its node, no morph targets),
+    // in the default materials; false for a scene that draws nothing. The visibility strategy's
+    // compute raster takes all of such a scene; it draws the rest with the graphics pipeline.
+    bool drawsOnlyOpaqueStaticTriangles() const;
 };
 
 // Triangles drawn by `count` vertices or indices of a topology (0 for points and lines).
@@ -553,6 +558,10 @@ struct LoadOptions {
     // (SceneData::drawnTriangleCount), as encore batch draws only those with the visibility
     // strategy by default (batch::BatchOptions::strategy). 0: for every scene.
     std::uint64_t clustersFromTriangles = 0;
+    // With buildClusters: also for a scene of any size that draws only opaque, static triangles
+    // (SceneData::drawsOnlyOpaqueStaticTriangles), which encore batch draws with the visibility
+    // strategy at four samples by default.
+    bool clustersForOpaqueStatic = false;
     // Images with a side longer than this are downscaled while they are decoded (JPEGs decode
     // at a fraction of their size, PNGs too large to decode whole row by row, then every
     // format is box-filtered; Image::sourceWidth keeps the file's size), so one huge texture

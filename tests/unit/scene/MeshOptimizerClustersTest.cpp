@@ -13,6 +13,7 @@
 #include <cstring>
 #include <numeric>
 #include <random>
+#include <string>
 
 #include "SceneTestUtils.h"
 #include "scene/MeshOptimizer.h"
@@ -288,6 +289,28 @@ TEST(MeshOptimizerClustersTest, OnlyScenesFromTheTriangleLineGetThem) {
         EXPECT_EQ(loaded->meshes[0].primitives[0].clusters.empty(), line > triangles) << line;
         // The same triangles either way.
         EXPECT_EQ(loaded->drawnTriangleCount(), triangles);
+    }
+}
+
+// A scene of only opaque, static triangles gets them below the line when the loader is asked
+// (LoadOptions::clustersForOpaqueStatic: encore batch draws those with visibility at 4x); one
+// that blends or masks does not.
+TEST(MeshOptimizerClustersTest, OpaqueStaticScenesGetThemBelowTheLineWhenAsked) {
+    for (const std::string mode : {"OPAQUE", "BLEND", "MASK"}) {
+        SCOPED_TRACE(mode);
+        auto plain = loadGlb(sphereModel(mode));
+        ASSERT_TRUE(plain.ok()) << plain.error().message;
+        const bool opaque = mode == "OPAQUE";
+        EXPECT_EQ(plain->drawsOnlyOpaqueStaticTriangles(), opaque);
+        LoadOptions options;
+        options.clustersFromTriangles = plain->drawnTriangleCount() + 1;
+        auto belowTheLine = loadGlb(sphereModel(mode), options);
+        ASSERT_TRUE(belowTheLine.ok());
+        EXPECT_TRUE(belowTheLine->meshes[0].primitives[0].clusters.empty());
+        options.clustersForOpaqueStatic = true;
+        auto asked = loadGlb(sphereModel(mode), options);
+        ASSERT_TRUE(asked.ok());
+        EXPECT_EQ(asked->meshes[0].primitives[0].clusters.empty(), !opaque);
     }
 }
 
