@@ -159,7 +159,7 @@ inline constexpr std::uint64_t kAutoVisibilityTriangles = 100'000;
 inline constexpr std::uint64_t kAutoVisibilityTrianglesOneSample = 500'000;
 // At four samples auto also draws with visibility each model whose primitives its compute raster
 // takes all of (opaque, static triangle lists: scene::SceneData::drawsOnlyOpaqueStaticTriangles),
-// whatever its size: on one H200 that took 0.4-0.9x the GPU time of bundles for each such model of
+// whatever its size: on one H200 that took 0.2-0.9x the GPU time of bundles for each such model of
 // the ten shared ones, while a model with blended or masked parts (drawn by the graphics pipeline
 // beside the compute raster) took 1.5x (docs/benchmarks/2026-11-29-h200-decode-floor.md). An
 // explicit BatchOptions::visibilityFromTriangles replaces this rule.
