@@ -16,12 +16,13 @@ set -euo pipefail
 # pybind11-dev, python3-dev, python3-numpy and python3-pytest build and test the Python module;
 # python3-distributed (Dask's distributed scheduler, with python3-dask) runs encore.dask.
 # ninja-build and ccache keep the build short (docs/ci.md); clang-format-16 checks the style
-# (.clang-format's InsertBraces needs 16).
+# (.clang-format's InsertBraces needs 16); pngquant reduces docs/reference's sheets
+# (scripts/reference-gallery.sh).
 bookworm_packages=(g++ make ninja-build ccache pkg-config libglm-dev libstb-dev libcli11-dev libgtest-dev
                    nlohmann-json3-dev libdraco-dev libmeshoptimizer-dev zlib1g-dev
                    libspng-dev libjpeg62-turbo-dev libwebp-dev libdeflate-dev
                    libopenexr-dev libarchive-dev
-                   librsvg2-bin clang libclang-rt-14-dev clang-format-16 libglfw3-dev xvfb xauth
+                   librsvg2-bin pngquant clang libclang-rt-14-dev clang-format-16 libglfw3-dev xvfb xauth
                    pybind11-dev python3-dev python3-numpy python3-pytest python3-dask
                    python3-distributed)
 # Dawn's CMake package declares C++ module file sets, which need CMake >= 3.28.

@@ -1,15 +1,23 @@
 #!/usr/bin/env bash
 # Renders every model of ../shared/reference under the reference's conditions, compares it with
 # the Khronos Sample Renderer's picture (the reference comparison test) and rewrites
-# docs/reference: Encore's images, Encore | reference | difference sheets and README.md with
-# the numbers. Usage: scripts/reference-gallery.sh [BUILD_DIR]
+# docs/reference: the Encore | reference | difference sheets (reduced to 256 colours with
+# pngquant, to keep docs/ small) and README.md with the numbers. Encore's own images, which the
+# test writes beside the sheets, are left out. Usage: scripts/reference-gallery.sh [BUILD_DIR]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${1:-build}
 out=docs/reference
+command -v pngquant >/dev/null || { echo "reference-gallery.sh: needs pngquant (apt-get install pngquant)" >&2; exit 1; }
 mkdir -p "$out"
 export XDG_RUNTIME_DIR=${XDG_RUNTIME_DIR:-/tmp}
-log=$(ENCORE_REFERENCE_OUTPUT="$out" "$build/tests/gpu/encore_reference_tests" --gtest_color=no 2>&1)
+images=$(mktemp -d)
+trap 'rm -rf "$images"' EXIT
+log=$(ENCORE_REFERENCE_OUTPUT="$images" "$build/tests/gpu/encore_reference_tests" --gtest_color=no 2>&1)
+for sheet in "$images"/*-compare.png; do
+    [ -e "$sheet" ] || continue
+    pngquant --strip --speed 1 --force --output "$out/${sheet##*/}" -- "$sheet"
+done
 adapter=$(printf '%s\n' "$log" | sed -n 's/^adapter: //p' | head -1)
 {
     echo "# Encore against the Khronos glTF Sample Renderer"
@@ -41,7 +49,8 @@ adapter=$(printf '%s\n' "$log" | sed -n 's/^adapter: //p' | head -1)
     echo "the models of \`list-extensions.txt\` Encore shades follow them, held to 0.95 each)."
     echo
     echo "The mean covers the models of \`list.txt\`; the rows after them are the material-extension"
-    echo "models of \`list-extensions.txt\` whose extensions Encore shades."
+    echo "models of \`list-extensions.txt\` whose extensions Encore shades. The numbers are the test's,"
+    echo "on the full pictures; the sheets shown here are reduced to 256 colours (pngquant)."
     echo
     echo "What remains is edge antialiasing (WebGL's canvas multisampling against WebGPU's 4x"
     echo "MSAA resolved before tone mapping), texture filtering, the sRGB transfer function"
