@@ -19,10 +19,6 @@ batch::ValueRange valueRange(const py::object& value, const char* name) {
     throw py::value_error(std::string(name) + " must be a number or a (min, max) pair");
 }
 
-batch::CameraDistribution cameraDistribution(const std::string& name) {
-    return named(batch::cameraDistributionNames(), name, "camera_distribution");
-}
-
 batch::ViewRigOptions rigOptions(const RigArguments& arguments) {
     if (arguments.views < 1) {
         throw py::value_error("views must be at least 1");

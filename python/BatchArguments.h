@@ -1,8 +1,9 @@
 #pragma once
 
-// The keyword arguments of the Python module's render_views and batch that describe views and
-// ranges, turned into encore::batch options; bad values raise ValueError (pybind11's
-// value_error) with the message the command line would print.
+// The keyword arguments of the Python module's render_views that describe views and ranges,
+// and the inputs of batch and discover_inputs, turned into encore::batch values; bad values raise
+// ValueError (pybind11's value_error) with the message the command line would print. (batch()'s
+// options are BatchKeywords.h's.)
 
 #include <pybind11/pybind11.h>
 
@@ -45,9 +46,6 @@ struct RigArguments {
     bool normalize = true;
     float jitter = 0.0f;
 };
-
-// "orbit", "sphere" or "upper-hemisphere".
-batch::CameraDistribution cameraDistribution(const std::string& name);
 
 // The rig, checked as runBatch checks it.
 batch::ViewRigOptions rigOptions(const RigArguments& arguments);

@@ -13,11 +13,54 @@
 #include <pybind11/stl.h>
 
 #include "BatchArguments.h"
+#include "BatchKeywords.h"
 #include "ModuleErrors.h"
 #include "Renderer.h"
+#include "batch/BatchOptionTable.h"
 #include "encore/gpu/Context.h"
 
 namespace py = pybind11;
+
+namespace {
+
+// Renderer.batch's docstring: its keywords from the batch's description of its options.
+const std::string& batchDocstring() {
+    static const std::string text =
+        "batch(inputs, output, **options)\n\n"
+        "Runs the job of `encore batch` on this renderer's device: `inputs` is what the command "
+        "takes (folder, list file, model) or (path, name) pairs from discover_inputs. Returns the "
+        "summary (models rendered, failed, skipped; views; seconds; time per stage; failures). "
+        "The options are `encore batch`'s, as keywords (docs/batch.md#options); None leaves an "
+        "option at its default; samples defaults to the renderer's and the strategy is the "
+        "renderer's. An unknown keyword raises TypeError naming the nearest one, a value an "
+        "option does not take ValueError. The GIL is released while it runs.\n\n"
+        "Keyword options:\n" +
+        encore::batch::batchOptionsDocstring() + encore::python::batchKeywordsDocstring();
+    return text;
+}
+
+// encore.batch_options(): the description of every option batch() takes.
+py::list batchOptions() {
+    py::list list;
+    for (const encore::batch::BatchOptionDescription& option :
+         encore::batch::batchOptionDescriptions()) {
+        if (!option.python) {
+            continue;
+        }
+        py::dict entry;
+        entry["keyword"] = option.pythonKeyword();
+        entry["command_line"] =
+            option.commandLine ? py::object(py::str("--" + option.name)) : py::object(py::none());
+        entry["default"] = option.defaultValue.empty() ? py::object(py::none())
+                                                       : py::object(py::str(option.defaultValue));
+        entry["choices"] = option.choices;
+        entry["help"] = option.help;
+        list.append(entry);
+    }
+    return list;
+}
+
+}  // namespace
 
 PYBIND11_MODULE(_encore, module) {
     using namespace encore::python;
@@ -102,56 +145,8 @@ PYBIND11_MODULE(_encore, module) {
              "file), environment_intensity, environment_rotation (degrees), exposure, "
              "tone_mapping (neutral, aces, none), background (transparent, env, #rrggbb). The GIL "
              "is released while rendering.")
-        .def(
-            "batch", &Renderer::runBatch, py::arg("inputs"), py::arg("output"),
-            py::arg("views") = 12, py::arg("random_views") = 0, py::arg("seed") = 0,
-            py::arg("elevation") = 30.0f, py::arg("distance") = 1.5f, py::arg("fov") = py::none(),
-            py::arg("normalize") = true, py::arg("size") = 512, py::arg("samples") = py::none(),
-            py::arg("jobs") = 0, py::arg("memory_limit_mib") = 2048, py::arg("strict") = false,
-            py::arg("normals") = false, py::arg("depth") = false, py::arg("top_light") = 0.0f,
-            py::arg("png_compression") = "small", py::arg("failure_log") = true,
-            py::arg("renderers") = encore::batch::BatchOptions{}.renderers,
-            py::arg("lod_error") = 0.0f, py::arg("camera_distribution") = "orbit",
-            py::arg("camera_jitter") = 0.0f, py::arg("environment") = py::none(),
-            py::arg("environment_dir") = py::none(), py::arg("environment_rotation") = py::none(),
-            py::arg("environment_intensity") = py::none(), py::arg("layout") = "nerf",
-            py::arg("blank_threshold") = encore::batch::kDefaultBlankThreshold,
-            py::arg("variant") = py::none(), py::arg("variants") = py::none(),
-            py::arg("passes") = py::none(), py::arg("segmentation_by") = "node",
-            py::arg("depth_format") = "png",
-            py::arg("model_timeout") = encore::batch::kDefaultModelTimeoutSeconds,
-            py::arg("max_texture_size") = encore::batch::kDefaultMaxTextureSize,
-            py::arg("shards") = 0, py::arg("shard_size") = 0, py::arg("png_filtering") = "auto",
-            py::arg("allow_uris_outside") = false,
-            "Runs the job of `encore batch` on this renderer's device: `inputs` is what the "
-            "command takes (folder, list file, model) or (path, name) pairs from "
-            "discover_inputs. Returns the summary (models rendered, failed, skipped; views; "
-            "seconds; time per stage; failures). Failed models are also written to "
-            "OUTPUT/failures.jsonl unless failure_log=False. `samples` defaults to the "
-            "renderer's. lod_error > 0 draws each instance at the coarsest level of detail "
-            "whose error stays under that many pixels in the nearest view (`encore batch "
-            "--lod-error`). As the command's options: camera_distribution (\"orbit\", "
-            "\"sphere\", \"upper-hemisphere\"), camera_jitter (degrees), distance and fov (a "
-            "number or a (min, max) pair drawn per view), environment (an .hdr), environment_dir "
-            "(a folder of .hdr, one drawn per model), environment_rotation (degrees, a pair or "
-            "\"random\") and environment_intensity (a number or a pair) drawn per model, layout "
-            "(\"nerf\" or \"objaverse\": a .npy camera matrix per view) and blank_threshold "
-            "(pixels). variant= (a name or index) draws every model in that KHR_materials_variants "
-            "variant into OUTPUT/<name>@<variant> (`encore batch --variant`); variants=\"all\" "
-            "also draws each model in every variant, each a sample of its own (`--variants all`). "
-            "passes= names the images beside the colour ones as render_views does (\"normal\", "
-            "\"depth\", \"albedo\", \"material\", \"segmentation\", \"hdr\"; `--albedo` ...), "
-            "with segmentation_by (node, mesh, material) and depth_format (png, exr). "
-            "model_timeout (seconds, default 600, 0: none) abandons a model still loading or "
-            "drawing after "
-            "that long (stage \"timeout\", `--model-timeout`); max_texture_size downscales "
-            "larger images while loading (`--max-texture-size`, 0: none). shards=N or "
-            "shard_size=BYTES writes WebDataset .tar shards instead of folders (`--shards`, "
-            "`--shard-size`). png_filtering (auto, gpu, cpu): where the PNG rows are filtered "
-            "(`--png-filtering`; auto: the GPU unless the adapter is a CPU). "
-            "allow_uris_outside=True lets models read files outside their folders "
-            "(`--allow-uris-outside`; trusted trees only). "
-            "The GIL is released while it runs.")
+        .def("batch", &Renderer::runBatch, py::arg("inputs"), py::arg("output"),
+             batchDocstring().c_str())
         .def_property_readonly("samples",
                                [](const Renderer& renderer) { return renderer.samples(); })
         .def_property_readonly("adapter", &Renderer::adapter)
@@ -188,6 +183,11 @@ PYBIND11_MODULE(_encore, module) {
         },
         "The GPU adapters, as `encore info` lists them: dicts of index, name, type ('discrete "
         "GPU', 'CPU', ...), backend, driver and summary. Renderer(device=index) picks one.");
+    module.def("batch_options", &batchOptions,
+               "The options Renderer.batch and encore.batch take, as dicts of keyword, "
+               "command_line (`encore batch`'s name, or None), default (as the command line "
+               "writes it, or None), choices and help: the description `encore batch --help` and "
+               "docs/batch.md are made from.");
     module.def("discover_inputs", &discoverInputs, py::arg("input"),
                "The models `encore batch INPUT` renders, as (path, output name) pairs: INPUT is a "
                "folder (searched recursively), a list file (one path per line, or a JSON array), "

@@ -65,44 +65,7 @@ class Renderer {
     // Runs the job of `encore batch` on this renderer's device.
     py::dict runBatch(const py::object& inputs,
                       const std::string& output,
-                      std::uint32_t views,
-                      std::uint32_t randomViews,
-                      std::uint64_t seed,
-                      float elevation,
-                      const py::object& distance,
-                      const py::object& fov,
-                      bool normalize,
-                      const py::object& size,
-                      std::optional<std::uint32_t> samples,
-                      std::size_t jobs,
-                      std::uint64_t memoryLimitMiB,
-                      bool strict,
-                      bool normals,
-                      bool depth,
-                      float topLightLux,
-                      const std::string& pngCompression,
-                      bool failureLog,
-                      std::uint32_t renderers,
-                      float lodError,
-                      const std::string& distribution,
-                      float jitter,
-                      const std::optional<std::string>& environment,
-                      const std::optional<std::string>& environmentDirectory,
-                      const py::object& environmentRotation,
-                      const py::object& environmentIntensity,
-                      const std::string& layout,
-                      std::uint32_t blankThreshold,
-                      const py::object& variant,
-                      const py::object& variants,
-                      const py::object& passes,
-                      const std::string& segmentation,
-                      const std::string& depthFormat,
-                      double modelTimeout,
-                      std::uint32_t maxTextureSize,
-                      std::uint32_t shards,
-                      std::uint64_t shardSize,
-                      const std::string& pngFiltering,
-                      bool allowUrisOutside);
+                      const py::kwargs& keywords);
 
     std::string adapter() const { return mContext->adapterDescription().summary(); }
     std::size_t device() const { return mContext->adapterDescription().index; }
@@ -116,14 +79,6 @@ class Renderer {
     }
 
   private:
-    // The environment keywords of batch(): one file, or a folder's files drawn per model, and
-    // the rotation ("random", degrees or a (min, max) pair) and intensity drawn per model.
-    static void applyLighting(batch::BatchOptions& options,
-                              const std::optional<std::string>& environment,
-                              const std::optional<std::string>& directory,
-                              const py::object& rotation,
-                              const py::object& intensity);
-
     // A model's views, and its normal and depth images when asked for.
     struct Rendered {
         std::vector<image::ImageRgba8> color;

@@ -3,40 +3,18 @@
 #include <glm/gtc/constants.hpp>
 
 #include "BatchArguments.h"
+#include "batch/OptionValues.h"
 #include "batch/PassImages.h"
 #include "encore/image/HdrImage.h"
 #include "gpu/Readback.h"
-#include "image/Srgb.h"
 
 #include <algorithm>
-#include <cstdio>
 #include <cstring>
 #include <optional>
 
 namespace encore::python {
-namespace {
-
-const std::map<std::string, batch::ViewImage>& passNames() {
-    static const std::map<std::string, batch::ViewImage> names = {
-        {"rgba", batch::ViewImage::Color},
-        {"albedo", batch::ViewImage::Albedo},
-        {"normal", batch::ViewImage::Normal},
-        {"material", batch::ViewImage::Material},
-        {"segmentation", batch::ViewImage::Segmentation},
-        {"depth", batch::ViewImage::Depth},
-        {"hdr", batch::ViewImage::Hdr}};
-    return names;
-}
-
-}  // namespace
-
 const char* passName(batch::ViewImage kind) {
-    for (const auto& [name, value] : passNames()) {
-        if (value == kind) {
-            return name.c_str();
-        }
-    }
-    return "rgba";
+    return batch::nameOf(batch::passNames(), kind).data();  // The table's names end in a NUL.
 }
 
 std::vector<batch::ViewImage> passKinds(const py::object& passes) {
@@ -46,16 +24,15 @@ std::vector<batch::ViewImage> passKinds(const py::object& passes) {
     std::vector<batch::ViewImage> kinds;
     for (const py::handle item : passes) {
         const std::string name = py::str(item);
-        const auto found = passNames().find(name);
-        if (found == passNames().end()) {
-            throw py::value_error("Unknown pass '" + name +
-                                  "' (known: rgba, albedo, normal, material, segmentation, "
-                                  "depth, hdr).");
+        const auto found = batch::valueNamed(batch::passNames(), name);
+        if (!found) {
+            throw py::value_error("Unknown pass '" + name + "' (known: " +
+                                  batch::nameList(batch::namesOf(batch::passNames())) + ").");
         }
-        if (std::find(kinds.begin(), kinds.end(), found->second) != kinds.end()) {
+        if (std::find(kinds.begin(), kinds.end(), *found) != kinds.end()) {
             throw py::value_error("The pass '" + name + "' is asked for twice.");
         }
-        kinds.push_back(found->second);
+        kinds.push_back(*found);
     }
     if (kinds.empty()) {
         throw py::value_error("passes names no pass.");
@@ -65,18 +42,6 @@ std::vector<batch::ViewImage> passKinds(const py::object& passes) {
 
 batch::SegmentationBy segmentationBy(const std::string& name) {
     return named(batch::segmentationByNames(), name, "segmentation_by");
-}
-
-void applyBatchPasses(const py::object& passes,
-                      const std::string& segmentation,
-                      const std::string& depthFormat,
-                      batch::ExtraImages& images) {
-    images.segmentationBy = segmentationBy(segmentation);
-    images.depthFormat = named(batch::depthFormatNames(), depthFormat, "depth_format");
-    if (passes.is_none()) {
-        return;
-    }
-    applyPassKinds(passKinds(passes), images);
 }
 
 void applyPassKinds(std::span<const batch::ViewImage> kinds, batch::ExtraImages& images) {
@@ -122,35 +87,13 @@ ViewShading viewShading(const py::object& environment,
     shading.intensity = intensity;
     shading.rotationDegrees = rotationDegrees;
     shading.exposure = exposure;
-    if (toneMapping == "neutral") {
-        shading.toneMapping = render::ToneMapping::PbrNeutral;
-    } else if (toneMapping == "aces") {
-        shading.toneMapping = render::ToneMapping::AcesHill;
-    } else if (toneMapping == "none") {
-        shading.toneMapping = render::ToneMapping::None;
-    } else {
-        throw py::value_error("tone_mapping is neutral, aces or none (not '" + toneMapping + "').");
+    shading.toneMapping = named(batch::toneMappingNames(), toneMapping, "tone_mapping");
+    render::ToneMappingOptions parsed;
+    if (auto valid = batch::parseBackground(background, "background", parsed); !valid) {
+        throw py::value_error(valid.error().message);
     }
-    if (background == "transparent") {
-        shading.background = render::BackgroundKind::Transparent;
-    } else if (background == "env") {
-        shading.background = render::BackgroundKind::Environment;
-    } else {
-        unsigned r = 0, g = 0, b = 0;
-        char end = 0;
-        if (background.size() != 7 ||
-            std::sscanf(background.c_str(), "#%2x%2x%2x%c", &r, &g, &b, &end) != 3) {
-            throw py::value_error(
-                "background is transparent, env or a colour written #rrggbb "
-                "(not '" +
-                background + "').");
-        }
-        shading.background = render::BackgroundKind::Color;
-        // sRGB, as `encore render --background` reads it.
-        shading.backgroundColor =
-            glm::vec3(image::srgbToLinear(r / 255.0), image::srgbToLinear(g / 255.0),
-                      image::srgbToLinear(b / 255.0));
-    }
+    shading.background = parsed.background;
+    shading.backgroundColor = parsed.backgroundColor;
     return shading;
 }
 

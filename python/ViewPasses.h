@@ -30,13 +30,6 @@ std::vector<batch::ViewImage> passKinds(const py::object& passes);
 // "node", "mesh" or "material".
 batch::SegmentationBy segmentationBy(const std::string& name);
 
-// batch()'s passes= keyword (passKinds' names; "rgba" changes nothing), segmentation_by= and
-// depth_format= ("png" or "exr") set into `images`; None leaves them as they are.
-void applyBatchPasses(const py::object& passes,
-                      const std::string& segmentation,
-                      const std::string& depthFormat,
-                      batch::ExtraImages& images);
-
 // Sets the passes `kinds` names in `images` (Color changes nothing).
 void applyPassKinds(std::span<const batch::ViewImage> kinds, batch::ExtraImages& images);
 

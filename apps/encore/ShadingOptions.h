@@ -24,9 +24,8 @@ struct ShadingOptions {
     std::string debugChannel = "none";
 };
 
-// `environmentLevels` false leaves out --environment-intensity and --environment-rotation, for a
-// command that takes them in forms of its own (batch: ranges and `random`).
-void addShadingOptions(CLI::App& command, ShadingOptions& options, bool environmentLevels = true);
+// (`encore batch` takes these from the batch's description of its options, with ranges.)
+void addShadingOptions(CLI::App& command, ShadingOptions& options);
 
 // Fills the lighting, tone mapping and environment of `renderer` options; loads the
 // environment file (errors name it).

@@ -8,9 +8,11 @@
 encore.dask spreads a collection over a Dask cluster (it imports distributed when imported).
 """
 
-from ._encore import Error, LoadError, Renderer, Scene, adapters, discover_inputs
+from ._encore import (Error, LoadError, Renderer, Scene, adapters, batch_options,
+                      discover_inputs)
 
-__all__ = ["Error", "LoadError", "Renderer", "Scene", "adapters", "batch", "discover_inputs"]
+__all__ = ["Error", "LoadError", "Renderer", "Scene", "adapters", "batch", "batch_options",
+           "discover_inputs"]
 
 for _public in (Error, LoadError, Renderer, Scene):
     _public.__module__ = __name__  # Tracebacks and reprs name encore.Error, not encore._encore.
@@ -21,12 +23,8 @@ def batch(input, output, **options):
     summary (models rendered, failed, skipped; views; seconds; time per stage; failures).
 
     `input` is a folder, a list file or a model, or (path, name) pairs from discover_inputs.
-    The keywords are those of Renderer.batch (views, random_views, seed, elevation, distance,
-    fov, normalize, size, samples, jobs, memory_limit_mib, strict, normals, depth, top_light,
-    png_compression, lod_error, camera_distribution, camera_jitter, environment,
-    environment_dir, environment_rotation, environment_intensity, layout, blank_threshold,
-    variant, variants, model_timeout, max_texture_size, shards, shard_size, png_filtering,
-    allow_uris_outside) and `device` (Renderer's).
+    The keywords are those of Renderer.batch (`encore batch`'s options: encore.batch_options()
+    lists them, docs/batch.md#options describes them) and `device` (Renderer's).
     Failed models are in OUTPUT/failures.jsonl. The GIL is released while it runs.
     """
     renderer = Renderer(samples=options.pop("samples", 4), device=options.pop("device", None))

@@ -134,13 +134,10 @@ def render_collection(client, inputs, output, *, chunk_size=8, retries=2, **opti
     `inputs` is what encore.discover_inputs takes: a folder, a list file, a model, or a
     sequence of model paths; paths must name the same files on every worker. `chunk_size`
     models make one task; a task that raises (a device that cannot be created) runs again up
-    to `retries` times. The other keywords are those of encore.Renderer.batch (views,
-    random_views, seed, elevation, distance, fov, normalize, size, samples, jobs,
-    memory_limit_mib, strict, normals, depth, top_light, png_compression, lod_error,
-    camera_distribution, camera_jitter, environment, environment_dir, environment_rotation,
-    environment_intensity, layout, blank_threshold, model_timeout, max_texture_size,
-    png_filtering, allow_uris_outside): what is drawn at random depends on the seed
-    and each model's name only, so the tasks draw what one `encore batch` would.
+    to `retries` times. The other keywords are those of encore.Renderer.batch (`encore
+    batch`'s options, as encore.batch_options() lists them; not failure_log, shards or
+    shard_size): what is drawn at random depends on the seed and each model's name only, so the
+    tasks draw what one `encore batch` would.
 
     The summary has the models of the collection (`total`) and those rendered, failed and
     skipped (finished by an earlier run, or by a task's attempt on a worker that then died),

@@ -29,6 +29,39 @@ constexpr std::array<NamedValue<DepthFormat>, 2> kDepthFormats{{
     {"png", DepthFormat::Png},
     {"exr", DepthFormat::Exr},
 }};
+// Python's passes=, and what the arrays of render_views' dict are called.
+constexpr std::array<NamedValue<ViewImage>, 7> kPasses{{
+    {"rgba", ViewImage::Color},
+    {"albedo", ViewImage::Albedo},
+    {"normal", ViewImage::Normal},
+    {"material", ViewImage::Material},
+    {"segmentation", ViewImage::Segmentation},
+    {"depth", ViewImage::Depth},
+    {"hdr", ViewImage::Hdr},
+}};
+constexpr std::array<NamedValue<image::PngCompression>, 2> kPngCompressions{{
+    {"small", image::PngCompression::Small},
+    {"fast", image::PngCompression::Fast},
+}};
+constexpr std::array<NamedValue<render::ToneMapping>, 3> kToneMappings{{
+    {"neutral", render::ToneMapping::PbrNeutral},
+    {"aces", render::ToneMapping::AcesHill},
+    {"none", render::ToneMapping::None},
+}};
+constexpr std::array<NamedValue<render::DebugChannel>, 12> kDebugChannels{{
+    {"none", render::DebugChannel::Shaded},
+    {"base-color", render::DebugChannel::BaseColor},
+    {"normal", render::DebugChannel::Normal},
+    {"metallic", render::DebugChannel::Metallic},
+    {"roughness", render::DebugChannel::Roughness},
+    {"occlusion", render::DebugChannel::Occlusion},
+    {"emissive", render::DebugChannel::Emissive},
+    {"depth", render::DebugChannel::Depth},
+    {"material", render::DebugChannel::Material},
+    {"segment-node", render::DebugChannel::SegmentNode},
+    {"segment-mesh", render::DebugChannel::SegmentMesh},
+    {"segment-material", render::DebugChannel::SegmentMaterial},
+}};
 
 }  // namespace
 
@@ -46,6 +79,18 @@ NameTable<SegmentationBy> segmentationByNames() {
 }
 NameTable<DepthFormat> depthFormatNames() {
     return kDepthFormats;
+}
+NameTable<ViewImage> passNames() {
+    return kPasses;
+}
+NameTable<image::PngCompression> pngCompressionNames() {
+    return kPngCompressions;
+}
+NameTable<render::ToneMapping> toneMappingNames() {
+    return kToneMappings;
+}
+NameTable<render::DebugChannel> debugChannelNames() {
+    return kDebugChannels;
 }
 
 std::string nameList(const std::vector<std::string>& names) {

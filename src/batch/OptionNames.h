@@ -1,8 +1,9 @@
 #pragma once
 
 // The names that `encore batch` and Python's batch() give the values of the batch's
-// enumerations: one table per enumeration, which both fronts parse and list, so that a value is
-// named once (as render::strategyFromName names the strategies).
+// enumerations (and of the renderer's that its options set: tone mapping, debug channels): one
+// table per enumeration, which every front parses and lists, so that a value is named once (as
+// render::strategyFromName names the strategies).
 
 #include <optional>
 #include <span>
@@ -14,6 +15,9 @@
 #include "encore/batch/ViewImages.h"
 #include "encore/batch/ViewRig.h"
 #include "encore/core/Result.h"
+#include "encore/image/ImageCodec.h"
+#include "encore/render/Lighting.h"
+#include "encore/render/ToneMappingOptions.h"
 
 namespace encore::batch {
 
@@ -31,6 +35,10 @@ NameTable<OutputLayout> outputLayoutNames();              // nerf, objaverse
 NameTable<PngFiltering> pngFilteringNames();              // auto, gpu, cpu
 NameTable<SegmentationBy> segmentationByNames();          // node, mesh, material
 NameTable<DepthFormat> depthFormatNames();                // png, exr
+NameTable<image::PngCompression> pngCompressionNames();   // small, fast
+NameTable<ViewImage> passNames();  // rgba, albedo, normal, material, segmentation, depth, hdr
+NameTable<render::ToneMapping> toneMappingNames();    // neutral, aces, none
+NameTable<render::DebugChannel> debugChannelNames();  // none, base-color, normal, ...
 
 template <class Enum>
 std::optional<Enum> valueNamed(NameTable<Enum> table, std::string_view name) {

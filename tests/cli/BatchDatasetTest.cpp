@@ -203,7 +203,7 @@ TEST(BatchDatasetTest, BadValuesAreUsageErrors) {
     const std::string folder = quote(dataset.environments.string());
     const std::vector<std::pair<std::string, std::string>> cases = {
         {"--distance 2:1", "camera distance (2 to 1)"},
-        {"--distance far", "--distance takes a number or a range MIN:MAX ('far')"},
+        {"--distance far", "--distance takes a number or a range MIN:MAX (not 'far')"},
         {"--distance 0", "must be positive"},
         {"--fov 0:40", "field of view (0 to 40 degrees) must lie in (0, 180)"},
         {"--fov 30:", "--fov takes a number or a range"},

@@ -32,6 +32,12 @@ TEST(OptionNamesTest, EveryNameGivesItsValueAndBack) {
     expectRoundTrip(pngFilteringNames());
     expectRoundTrip(segmentationByNames());
     expectRoundTrip(depthFormatNames());
+    expectRoundTrip(passNames());
+    expectRoundTrip(pngCompressionNames());
+    expectRoundTrip(toneMappingNames());
+    expectRoundTrip(debugChannelNames());
+    EXPECT_EQ(nameOf(passNames(), ViewImage::Color), "rgba");
+    EXPECT_EQ(valueNamed(debugChannelNames(), "base-color"), render::DebugChannel::BaseColor);
     EXPECT_EQ(valueNamed(cameraDistributionNames(), "upper-hemisphere"),
               CameraDistribution::UpperHemisphere);
     EXPECT_EQ(nameOf(segmentationByNames(), SegmentationBy::Material), "material");
