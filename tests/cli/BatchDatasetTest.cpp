@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
+
 #include <cmath>
 #include <fstream>
 #include <set>
@@ -129,8 +131,11 @@ TEST(BatchDatasetTest, FixedLightingIsRecordedToo) {
 TEST(BatchDatasetTest, ObjaverseLayoutWritesNumpyCameraMatricesAndMetadata) {
     const Dataset dataset = makeDataset("batch-dataset-objaverse");
     const fs::path output = makeTempDir("batch-dataset-objaverse-output");
+    const auto start = std::chrono::steady_clock::now();
     const CommandResult run = runEncore(batchArguments(
         dataset.input, output, "--views 2 --size 16 --samples 1 --layout objaverse --quiet"));
+    const double wallSeconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     ASSERT_EQ(run.exitCode, 0) << run.out << run.err;
     const fs::path model = output / "set0" / "model";
     for (const char* matrix : {"000.npy", "001.npy"}) {
@@ -146,9 +151,14 @@ TEST(BatchDatasetTest, ObjaverseLayoutWritesNumpyCameraMatricesAndMetadata) {
     EXPECT_EQ(metadata["instances"], 4);
     EXPECT_GT(metadata["triangles"].get<int>(), 4);
     EXPECT_EQ(metadata["name"], "set0/model");
+    // The model's stages took time, and no more than the whole run.
+    double stages = 0.0;
     for (const char* stage : {"load", "upload", "render", "encode"}) {
-        EXPECT_GE(metadata["seconds"][stage].get<double>(), 0.0) << stage;
+        stages += metadata["seconds"][stage].get<double>();
+        EXPECT_LE(metadata["seconds"][stage].get<double>(), wallSeconds) << stage;
     }
+    EXPECT_GT(metadata["seconds"]["load"].get<double>(), 0.0);
+    EXPECT_LE(stages, wallSeconds);
     // The default layout writes none, and a rerun with the layout needs them.
     const CommandResult nerf =
         runEncore(batchArguments(dataset.input, output / "nerf", "--views 2 --size 16 --quiet"));

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
+
 #include <cstring>
 #include <vector>
 
@@ -23,14 +25,18 @@ TEST(TimedSubmitTest, SubmitsWhatTheCallbackEncodes) {
         createBuffer(context->device(), wgpu::BufferUsage::CopyDst | wgpu::BufferUsage::CopySrc,
                      values.size() * 4, "timed submit copy");
     int calls = 0;
+    const auto start = std::chrono::steady_clock::now();
     const SubmitTiming timing =
         submitTimed(*context, nullptr, [&](const wgpu::CommandEncoder& encoder) {
             ++calls;
             encoder.CopyBufferToBuffer(source, 0, copy, 0, values.size() * 4);
         });
+    const double wall =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     EXPECT_EQ(calls, 1);
-    EXPECT_GE(timing.encodeMilliseconds, 0.0);
-    EXPECT_GE(timing.submitMilliseconds, 0.0);
+    // The parts lie within the call: encoding, then the submit.
+    EXPECT_LE(timing.encodeMilliseconds + timing.submitMilliseconds, wall);
+    EXPECT_GT(timing.encodeMilliseconds + timing.submitMilliseconds, 0.0);
     EXPECT_FALSE(timing.gpuMilliseconds) << "no timer, no GPU time";
 
     auto bytes = readBuffer(*context, copy, 0, values.size() * 4);
@@ -63,7 +69,6 @@ TEST(TimedSubmitTest, TimesThePassesOfItsTimer) {
             encoder.BeginComputePass(&descriptor).End();
         });
     ASSERT_TRUE(timed.gpuMilliseconds);
-    EXPECT_GE(*timed.gpuMilliseconds, 0.0);
     ASSERT_EQ(timer->lastPasses().size(), 1u);
     EXPECT_EQ(timer->lastPasses()[0].label, "empty pass");
 
@@ -83,7 +88,7 @@ TEST(TimedSubmitTest, TimesThePassesOfItsTimer) {
         });
     ASSERT_TRUE(cleared.gpuMilliseconds);
     ASSERT_TRUE(timer->lastSpan());
-    EXPECT_GT(*timer->lastSpan(), *cleared.gpuMilliseconds + 0.1)
+    EXPECT_GT(*timer->lastSpan(), *cleared.gpuMilliseconds)
         << "a 64 MiB clear took no time between the pass and the frame's end";
 
     const SubmitTiming untimed =
