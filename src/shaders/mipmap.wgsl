@@ -6,6 +6,8 @@
 // the view decodes to linear before filtering and the sRGB attachment encodes again, so the
 // average is taken in linear space.
 
+#include "fullscreen_triangle.wgsl"
+
 @group(0) @binding(0) var sourceSampler: sampler;
 @group(0) @binding(1) var sourceLevel: texture_2d<f32>;
 
@@ -16,9 +18,8 @@ struct VertexOutput {
 
 @vertex
 fn vertexMain(@builtin(vertex_index) index: u32) -> VertexOutput {
-    // Vertices (0,0), (2,0), (0,2) in uv: a triangle twice the size of the viewport whose
-    // visible part is the unit square, with v growing downwards like texture rows.
-    let uv = vec2f(f32((index << 1u) & 2u), f32(index & 2u));
+    // v grows downwards, like texture rows.
+    let uv = fullscreenUv(index);
     var output: VertexOutput;
     output.position = vec4f(uv.x * 2.0 - 1.0, 1.0 - uv.y * 2.0, 0.0, 1.0);
     output.uv = uv;

@@ -2,6 +2,7 @@
 // in each scene pass with depth testing off. The view ray comes from the frame's camera, so the
 // same pipeline serves every view of a multi-view frame.
 #include "frame.wgsl"
+#include "fullscreen_triangle.wgsl"
 #include "scene_lighting.wgsl"
 
 struct SkyOutput {
@@ -11,7 +12,7 @@ struct SkyOutput {
 
 @vertex
 fn vertexMain(@builtin(vertex_index) index: u32) -> SkyOutput {
-    let uv = vec2f(f32((index << 1u) & 2u), f32(index & 2u));
+    let uv = fullscreenUv(index);
     var output: SkyOutput;
     output.ndc = uv * 2.0 - 1.0;
     output.position = vec4f(output.ndc, 1.0, 1.0);

@@ -14,6 +14,7 @@ struct ToneMapping {
     backgroundColor: vec4f,
 }
 
+#include "fullscreen_triangle.wgsl"
 #include "tone_map.wgsl"
 
 @group(0) @binding(0) var<uniform> toneMapping: ToneMapping;
@@ -21,9 +22,7 @@ struct ToneMapping {
 
 @vertex
 fn vertexMain(@builtin(vertex_index) index: u32) -> @builtin(position) vec4f {
-    // One triangle covering the viewport.
-    let uv = vec2f(f32((index << 1u) & 2u), f32(index & 2u));
-    return vec4f(uv * 2.0 - 1.0, 0.0, 1.0);
+    return fullscreenPosition(index);
 }
 
 @fragment

@@ -20,6 +20,7 @@
 // visibility_shade.wgsl and visibility_bins.wgsl), and composeMain does not run.
 #include "visibility_samples.wgsl"
 #include "visibility_composed.wgsl"
+#include "fullscreen_triangle.wgsl"
 
 #if MULTISAMPLED
 const kSamples = 4u;
@@ -32,8 +33,7 @@ const kSamples = 1u;
 
 @vertex
 fn vertexMain(@builtin(vertex_index) vertex: u32) -> @builtin(position) vec4f {
-    let uv = vec2f(f32((vertex << 1u) & 2u), f32(vertex & 2u));
-    return vec4f(uv * 2.0 - 1.0, 0.0, 1.0);
+    return fullscreenPosition(vertex);
 }
 
 // The sample whose shaded colour triangle `id`, covering `sample` of the pixel whose entries start
