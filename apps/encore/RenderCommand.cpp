@@ -4,7 +4,9 @@
 #include <cstdio>
 #include <cstdlib>
 #include <optional>
+#include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "CameraOptions.h"
@@ -126,102 +128,82 @@ Result<std::string> framePath(const std::string& pattern, std::size_t index) {
     return pattern.substr(0, percent) + number + pattern.substr(end + 1);
 }
 
-int runRender(const RenderOptions& options, const GlobalOptions& global) {
-    const auto strategy = parseStrategyChoice(options.strategy, options.bundle);
-    if (!strategy) {
-        return reportError(strategy.error());
-    }
-    // Animation times: none (the rest pose), --time, or every frame of --frames.
+// Animation times: none (the rest pose), --time, or every frame of --frames.
+Result<std::vector<double>> animationTimes(const RenderOptions& options) {
     std::vector<double> times;
-    const bool sequence = !options.frames.empty();
-    if (sequence) {
+    if (!options.frames.empty()) {
         if (options.time) {
-            return reportError(
-                makeError(ErrorCode::InvalidArgument, "--time and --frames cannot be combined."));
+            return makeError(ErrorCode::InvalidArgument, "--time and --frames cannot be combined.");
         }
-        auto parsed = parseFrames(options.frames);
-        if (!parsed) {
-            return reportError(parsed.error());
-        }
-        times = std::move(*parsed);
-        if (auto path = framePath(options.output, 0); !path) {
-            return reportError(path.error());
-        }
+        ENCORE_TRY_ASSIGN(times, parseFrames(options.frames));
+        ENCORE_TRY(framePath(options.output, 0));
     } else if (options.time) {
         if (!std::isfinite(*options.time)) {
-            return reportError(makeError(ErrorCode::InvalidArgument,
-                                         "--time must be a finite number of seconds."));
+            return makeError(ErrorCode::InvalidArgument,
+                             "--time must be a finite number of seconds.");
         }
         times.push_back(*options.time);
     }
-    scene::LoadOptions loadOptions;
-    loadOptions.strict = options.strict;
-    auto scene = loadModel(options.model, loadOptions, global);
-    if (!scene) {
-        return reportError(scene.error());
-    }
+    return times;
+}
+
+// A renderer with `scene` prepared, in the variant and animation the options name.
+Result<render::Renderer> preparedRenderer(gpu::Context& context,
+                                          const RenderOptions& options,
+                                          const scene::SceneData& scene,
+                                          const render::StrategyChoice& strategy) {
     std::optional<scene::VariantId> variant;
     if (!options.variant.empty()) {
-        auto found = scene::resolveVariant(*scene, options.variant);
-        if (!found) {
-            return reportError(found.error());
-        }
-        variant = *found;
+        ENCORE_TRY_ASSIGN(variant, scene::resolveVariant(scene, options.variant));
     }
-    auto context = createContext(global);
-    if (!context) {
-        return reportError(context.error());
-    }
-
     render::RendererOptions rendererOptions;
     rendererOptions.target = {options.width, options.height, options.samples};
     rendererOptions.animation = *render::animationEvaluationFromName(options.animate);
     rendererOptions.culling = options.culling;
-    if (auto shading = applyShadingOptions(options.shading, rendererOptions); !shading) {
-        return reportError(shading.error());
-    }
-    auto renderer = render::Renderer::create(*context, rendererOptions);
-    if (!renderer) {
-        return reportError(renderer.error());
-    }
-    if (auto prepared = renderer->prepare(*scene, strategy->kind, strategy->bundle); !prepared) {
-        return reportError(prepared.error());
-    }
-    if (auto selected = renderer->selectVariant(variant); !selected) {
-        return reportError(selected.error());
-    }
+    ENCORE_TRY(applyShadingOptions(options.shading, rendererOptions));
+    ENCORE_TRY_ASSIGN(auto renderer, render::Renderer::create(context, rendererOptions));
+    ENCORE_TRY(renderer.prepare(scene, strategy.kind, strategy.bundle));
+    ENCORE_TRY(renderer.selectVariant(variant));
     if (!options.animation.empty()) {
-        if (!scene::findAnimation(*scene, options.animation)) {
-            return reportError(makeError(
-                ErrorCode::InvalidArgument,
-                "'" + options.model + "' has no animation '" + options.animation + "' (it has " +
-                    std::to_string(scene->animations.size()) + "; give a name or an index)."));
+        if (!scene::findAnimation(scene, options.animation)) {
+            return makeError(ErrorCode::InvalidArgument,
+                             "'" + options.model + "' has no animation '" + options.animation +
+                                 "' (it has " + std::to_string(scene.animations.size()) +
+                                 "; give a name or an index).");
         }
-        if (auto selected = renderer->selectAnimation(options.animation); !selected) {
-            return reportError(selected.error());
-        }
+        ENCORE_TRY(renderer.selectAnimation(options.animation));
     }
-    injectFaultsForTests(*context);
+    return renderer;
+}
+
+// The frame's cameras: --views framing the scene side by side, or the one camera asked for.
+Result<std::vector<render::Camera>> frameCameras(const RenderOptions& options,
+                                                 const scene::SceneData& scene,
+                                                 const render::Renderer& renderer) {
     // With several views each strip keeps the proportions of width / views by height.
-    const float aspect = renderer->target().aspect() / float(options.views);
-    std::vector<render::Camera> cameras;
+    const float aspect = renderer.target().aspect() / float(options.views);
     const bool explicitCamera = !options.camera.camera.empty() || options.camera.position;
     if (options.views > 1 && explicitCamera) {
-        return reportError(makeError(ErrorCode::InvalidArgument,
-                                     "--views frames the scene itself; it cannot be combined "
-                                     "with --camera or --camera-position."));
+        return makeError(ErrorCode::InvalidArgument,
+                         "--views frames the scene itself; it cannot be combined with --camera "
+                         "or --camera-position.");
     }
     if (options.views > 1) {
-        cameras = viewCameras(scene->bounds, aspect, options.yawDegrees, options.views);
-    } else {
-        CameraOptions cameraOptions = options.camera;
-        cameraOptions.yawDegrees = options.yawDegrees;
-        auto camera = resolveCamera(cameraOptions, *scene, aspect);
-        if (!camera) {
-            return reportError(camera.error());
-        }
-        cameras.push_back(*camera);
+        return viewCameras(scene.bounds, aspect, options.yawDegrees, options.views);
     }
+    CameraOptions cameraOptions = options.camera;
+    cameraOptions.yawDegrees = options.yawDegrees;
+    ENCORE_TRY_ASSIGN(auto camera, resolveCamera(cameraOptions, scene, aspect));
+    return std::vector<render::Camera>{camera};
+}
+
+// Draws and writes a frame per animation time (one for none): the last frame's result and the
+// paths written.
+Result<std::pair<render::FrameResult, std::vector<std::string>>> renderFrames(
+    render::Renderer& renderer,
+    const RenderOptions& options,
+    std::span<const render::Camera> cameras,
+    const std::vector<double>& times) {
     // One prepared renderer (bundle strategies: one recording) for every frame; animation
     // changes only buffer contents.
     render::FrameResult frame;
@@ -229,34 +211,33 @@ int runRender(const RenderOptions& options, const GlobalOptions& global) {
     const std::size_t frameCount = std::max<std::size_t>(times.size(), 1);
     for (std::size_t index = 0; index < frameCount; ++index) {
         if (!times.empty()) {
-            if (auto animated = renderer->setAnimationTime(times[index]); !animated) {
-                return reportError(animated.error());
-            }
+            ENCORE_TRY(renderer.setAnimationTime(times[index]));
         }
-        frame = renderer->renderViews(cameras);
-        auto image = renderer->readImage();
-        if (!image) {
-            return reportError(image.error());
-        }
+        frame = renderer.renderViews(cameras);
+        ENCORE_TRY_ASSIGN(auto image, renderer.readImage());
         std::string path = options.output;
-        if (sequence) {
+        if (!options.frames.empty()) {
             path = *framePath(options.output, index);
         }
-        if (auto saved = image::writePng(path, *image); !saved) {
-            return reportError(saved.error());
-        }
+        ENCORE_TRY(image::writePng(path, image));
         written.push_back(std::move(path));
     }
-    if (global.verbose && !times.empty() &&
-        renderer->animationEvaluation() == render::AnimationEvaluation::Gpu) {
-        const render::AnimationFrameStats& animation = renderer->animationStats();
+    return std::pair{frame, std::move(written)};
+}
+
+// -v: what the last frame did.
+void printFrameDetails(const render::Renderer& renderer,
+                       const render::FrameResult& frame,
+                       const render::StrategyChoice& strategy,
+                       bool animated) {
+    const render::AnimationFrameStats& animation = renderer.animationStats();
+    if (animated && renderer.animationEvaluation() == render::AnimationEvaluation::Gpu) {
         std::fprintf(stderr,
                      "animation on the GPU (last frame): %u compute dispatches, %u buffer copies, "
                      "%llu bytes written\n",
                      animation.gpu.dispatches, animation.gpu.copies,
                      static_cast<unsigned long long>(animation.bytesWritten));
-    } else if (global.verbose && !times.empty()) {
-        const render::AnimationFrameStats& animation = renderer->animationStats();
+    } else if (animated) {
         std::fprintf(stderr,
                      "animation (last frame): %u channels evaluated, %u instances, %u joints, "
                      "%u morph weights, %llu bytes written\n",
@@ -264,21 +245,62 @@ int runRender(const RenderOptions& options, const GlobalOptions& global) {
                      animation.upload.jointsWritten, animation.upload.weightsWritten,
                      static_cast<unsigned long long>(animation.bytesWritten));
     }
-    if (global.verbose) {
-        std::fprintf(stderr,
-                     "strategy %s: %llu draws and %llu executeBundles in the frame, %llu draws in "
-                     "bundles, %llu triangles, encode %.3f ms\n",
-                     render::strategyChoiceName(*strategy).c_str(),
-                     static_cast<unsigned long long>(frame.counters.drawCalls()),
-                     static_cast<unsigned long long>(frame.counters.executeBundles),
-                     static_cast<unsigned long long>(frame.bundleContents.drawCalls()),
-                     static_cast<unsigned long long>(frame.counters.triangles +
-                                                     frame.bundleContents.triangles),
-                     frame.encodeMilliseconds);
-        std::fprintf(stderr, "environment: image-based lighting maps built in %.0f ms\n",
-                     renderer->lighting().environment().lastBuildMilliseconds());
+    std::fprintf(
+        stderr,
+        "strategy %s: %llu draws and %llu executeBundles in the frame, %llu draws in "
+        "bundles, %llu triangles, encode %.3f ms\n",
+        render::strategyChoiceName(strategy).c_str(),
+        static_cast<unsigned long long>(frame.counters.drawCalls()),
+        static_cast<unsigned long long>(frame.counters.executeBundles),
+        static_cast<unsigned long long>(frame.bundleContents.drawCalls()),
+        static_cast<unsigned long long>(frame.counters.triangles + frame.bundleContents.triangles),
+        frame.encodeMilliseconds);
+    std::fprintf(stderr, "environment: image-based lighting maps built in %.0f ms\n",
+                 renderer.lighting().environment().lastBuildMilliseconds());
+}
+
+int runRender(const RenderOptions& options, const GlobalOptions& global) {
+    const auto strategy = parseStrategyChoice(options.strategy, options.bundle);
+    if (!strategy) {
+        return reportError(strategy.error());
     }
-    for (const std::string& path : written) {
+    const auto times = animationTimes(options);
+    if (!times) {
+        return reportError(times.error());
+    }
+    scene::LoadOptions loadOptions;
+    loadOptions.strict = options.strict;
+    auto scene = loadModel(options.model, loadOptions, global);
+    if (!scene) {
+        return reportError(scene.error());
+    }
+    if (!options.variant.empty()) {
+        // A variant the model lacks is bad input before any device starts.
+        if (auto found = scene::resolveVariant(*scene, options.variant); !found) {
+            return reportError(found.error());
+        }
+    }
+    auto context = createContext(global);
+    if (!context) {
+        return reportError(context.error());
+    }
+    auto renderer = preparedRenderer(*context, options, *scene, *strategy);
+    if (!renderer) {
+        return reportError(renderer.error());
+    }
+    injectFaultsForTests(*context);
+    const auto cameras = frameCameras(options, *scene, *renderer);
+    if (!cameras) {
+        return reportError(cameras.error());
+    }
+    const auto frames = renderFrames(*renderer, options, *cameras, *times);
+    if (!frames) {
+        return reportError(frames.error());
+    }
+    if (global.verbose) {
+        printFrameDetails(*renderer, frames->first, *strategy, !times->empty());
+    }
+    for (const std::string& path : frames->second) {
         std::printf("%s\n", path.c_str());
     }
     return kExitOk;

@@ -173,14 +173,12 @@ std::string strategyNames() {
     return names;
 }
 
-// The options of a batch, in the order they are applied: an option that overrides another
-// (random-views over views) comes after it.
-std::vector<Description> describeOptions() {
-    constexpr std::uint32_t kMaxViews = 10'000;
-    constexpr std::uint64_t kAll = std::numeric_limits<std::uint64_t>::max();
-    constexpr std::uint64_t kAll32 = std::numeric_limits<std::uint32_t>::max();
-    std::vector<Entry> entries;
-    // Cameras.
+constexpr std::uint32_t kMaxViews = 10'000;
+constexpr std::uint64_t kAll = std::numeric_limits<std::uint64_t>::max();
+constexpr std::uint64_t kAll32 = std::numeric_limits<std::uint32_t>::max();
+
+// Where the views look from.
+void addCameraOptions(std::vector<Entry>& entries) {
     entries.push_back(
         wholeNumber("views", "N", "12", "Views per model on an orbit", 1, kMaxViews,
                     [](BatchOptions& o, std::uint64_t n) { o.views.views = std::uint32_t(n); }));
@@ -228,7 +226,10 @@ std::vector<Description> describeOptions() {
                            "centred at the origin)",
                            [](BatchOptions& o, bool on) { o.views.normalize = !on; })
                           .keyword("normalize", /*negated=*/true));
-    // Images.
+}
+
+// The images' size and samples.
+void addImageOptions(std::vector<Entry>& entries) {
     entries.push_back(
         text("size", OptionForm::ImageSize, "W|WxH", "Image size W or WxH in pixels",
              [](BatchOptions& o, std::string_view value, std::string_view shown) -> Result<void> {
@@ -254,7 +255,10 @@ std::vector<Description> describeOptions() {
         };
         entries.push_back(std::move(samples));
     }
-    // Strategies.
+}
+
+// How the models are drawn.
+void addStrategyOptions(std::vector<Entry>& entries) {
     entries.push_back(
         text("strategy", OptionForm::Text, "NAME",
              "Rendering strategy of every model, or auto (the default): per model, visibility on "
@@ -300,7 +304,10 @@ std::vector<Description> describeOptions() {
                              "visibility chooses them). Default: full detail",
                              0.0f, kNoLimit,
                              [](BatchOptions& o, float v) { o.lodErrorPixels = v; }));
-    // Robustness.
+}
+
+// What a bad or hostile file may do.
+void addRobustnessOptions(std::vector<Entry>& entries) {
     entries.push_back(flag("strict", "Treat loader warnings as errors (the model fails)",
                            [](BatchOptions& o, bool on) { o.strict = on; }));
     entries.push_back(number("model-timeout", "SECONDS", "600",
@@ -319,7 +326,10 @@ std::vector<Description> describeOptions() {
                            "only",
                            [](BatchOptions& o, bool on) { o.allowUrisOutside = on; })
                           .commandLineGlobal());
-    // Materials.
+}
+
+// KHR_materials_variants.
+void addMaterialOptions(std::vector<Entry>& entries) {
     entries.push_back(
         text("variant", OptionForm::Text, "N|NAME",
              "Draw every model in this KHR_materials_variants variant (index or "
@@ -348,7 +358,10 @@ std::vector<Description> describeOptions() {
         variants.description.choices = {"all"};
         entries.push_back(std::move(variants));
     }
-    // The pipeline.
+}
+
+// Threads, memory and renderers.
+void addPipelineOptions(std::vector<Entry>& entries) {
     entries.push_back(wholeNumber("jobs", "N", "",
                                   "Threads for loading and encoding (default or 0: all cores)", 0,
                                   1024, [](BatchOptions& o, std::uint64_t n) { o.jobs = n; })
@@ -365,7 +378,10 @@ std::vector<Description> describeOptions() {
                                   "draws the others (1: one after the other)",
                                   1, kMaxRenderers,
                                   [](BatchOptions& o, std::uint64_t n) { o.renderers = n; }));
-    // Passes.
+}
+
+// The images beside the colour ones.
+void addPassOptions(std::vector<Entry>& entries) {
     entries.push_back(flag("normals",
                            "Also write world-space normals per view (000_normal.png: n * 0.5 + "
                            "0.5)",
@@ -410,7 +426,10 @@ std::vector<Description> describeOptions() {
                            [](BatchOptions& o, bool on) {
                                o.images.drawing = on ? PassDrawing::Frames : PassDrawing::Targets;
                            }));
-    // Output.
+}
+
+// What is written, and how.
+void addOutputOptions(std::vector<Entry>& entries) {
     entries.push_back(number("top-light", "LUX", "",
                              "Add a directional light shining straight down, this many lux (the "
                              "dataset scripts' light from above)",
@@ -458,7 +477,10 @@ std::vector<Description> describeOptions() {
                            [](BatchOptions& o, bool on) { o.writeFailureLog = on; })
                           .pythonOnly());
     entries.back().description.defaultValue = "true";
-    // Shading.
+}
+
+// Lighting, tone mapping and background.
+void addShadingOptions(std::vector<Entry>& entries) {
     entries.push_back(
         text("environment", OptionForm::Text, "FILE",
              "Equirectangular Radiance .hdr for image-based lighting (default: a "
@@ -527,7 +549,21 @@ std::vector<Description> describeOptions() {
             nameList(namesOf(debugChannelNames())),
         debugChannelNames(),
         [](BatchOptions& o, render::DebugChannel c) { o.renderer.lighting.debugChannel = c; }));
+}
 
+// The options of a batch, in the order they are applied: an option that overrides another
+// (random-views over views) comes after it.
+std::vector<Description> describeOptions() {
+    std::vector<Entry> entries;
+    addCameraOptions(entries);
+    addImageOptions(entries);
+    addStrategyOptions(entries);
+    addRobustnessOptions(entries);
+    addMaterialOptions(entries);
+    addPipelineOptions(entries);
+    addPassOptions(entries);
+    addOutputOptions(entries);
+    addShadingOptions(entries);
     std::vector<Description> descriptions;
     for (Entry& entry : entries) {
         descriptions.push_back(std::move(entry.description));

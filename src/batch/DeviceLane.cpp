@@ -233,22 +233,20 @@ void DeviceLane::releaseAhead() {
     }
 }
 
-void DeviceLane::renderModel(LoadedModel& loaded, bool retry, StagedModel* ahead) {
+void DeviceLane::failBeforeUpload(ModelProgress& model,
+                                  const LoadedModel& loaded,
+                                  const char* stage,
+                                  const Error& error) {
+    model.fail(mShared.failures, mShared.counters, stage, error);
+    mShared.loader.release(loaded.bytes);
+}
+
+std::optional<std::vector<ModelSample>> DeviceLane::samplesToRender(const LoadedModel& loaded,
+                                                                    ModelProgress& model) {
     const BatchOptions& options = mShared.options;
-    const BatchInput& input = mShared.pending[loaded.order];
-    auto model = std::make_shared<ModelProgress>();
-    model->input = &input;
-    model->retried = retry;
-    ModelFacts facts = loaded.facts;  // Each sample's metadata.json names them.
-    const double loadSeconds = loaded.seconds;
-    // Fails the model before any renderer holds it: its bytes go back to the loader.
-    const auto failBeforeUpload = [&](const char* stage, const Error& error) {
-        model->fail(mShared.failures, mShared.counters, stage, error);
-        mShared.loader.release(loaded.bytes);
-    };
     if (!loaded.scene) {
-        failBeforeUpload(loaded.timedOut ? "timeout" : "load", loaded.scene.error());
-        return;
+        failBeforeUpload(model, loaded, loaded.timedOut ? "timeout" : "load", loaded.scene.error());
+        return std::nullopt;
     }
     // The model's time limit counts its load and the work here, not its wait in between.
     mModelDeadline = Clock::time_point::max();
@@ -258,13 +256,13 @@ void DeviceLane::renderModel(LoadedModel& loaded, bool retry, StagedModel* ahead
                              options.modelTimeoutSeconds - loaded.seconds));
     }
     if (mRenderers.empty()) {
-        failBeforeUpload("upload", deviceNotRecreated());
-        return;
+        failBeforeUpload(model, loaded, "upload", deviceNotRecreated());
+        return std::nullopt;
     }
-    auto samples = modelSamples(options, input, loaded.scene->variants);
+    auto samples = modelSamples(options, *model.input, loaded.scene->variants);
     if (!samples) {
-        failBeforeUpload("load", samples.error());  // No such material variant.
-        return;
+        failBeforeUpload(model, loaded, "load", samples.error());  // No such material variant.
+        return std::nullopt;
     }
     // With every variant, a model resumes sample by sample.
     std::erase_if(*samples, [&](const ModelSample& sample) {
@@ -274,23 +272,20 @@ void DeviceLane::renderModel(LoadedModel& loaded, bool retry, StagedModel* ahead
     if (samples->empty()) {
         ++mShared.counters.skipped;
         mShared.loader.release(loaded.bytes);
-        return;
+        return std::nullopt;
     }
     for (const ModelSample& sample : *samples) {
         if (auto opened = openModelFolder(modelFolder(options.output, sample.name)); !opened) {
-            failBeforeUpload("write", opened.error());
-            return;
+            failBeforeUpload(model, loaded, "write", opened.error());
+            return std::nullopt;
         }
     }
+    return std::move(*samples);
+}
 
-    // The staging threads copy the images and the geometry into staging buffers while this thread
-    // waits for the renderer below: prepare then only records copies. Staged as the previous
-    // model uploaded when it was taken then (stageAhead).
-    StagedModel staged =
-        ahead && ahead->devicesLost == mDevicesLost ? std::move(*ahead) : stageModel(*loaded.scene);
-    // The next model's copies run while this one waits for its renderer and uploads.
-    stageAhead();
-
+std::optional<std::size_t> DeviceLane::freeRenderer(const LoadedModel& loaded,
+                                                    ModelProgress& model,
+                                                    StagedModel& staged) {
     // The renderer that drew the oldest model in flight prepares this one, while the GPU may
     // still draw the later ones with the others. Its own views must be read back first:
     // preparing frees its scene. (collectOldest counts the wait as the GPU's.)
@@ -303,17 +298,21 @@ void DeviceLane::renderModel(LoadedModel& loaded, bool retry, StagedModel* ahead
     }
     if (mRenderers.empty()) {
         // Collecting found the device lost and could not create it again.
-        failBeforeUpload("upload", deviceNotRecreated());
-        return;
+        failBeforeUpload(model, loaded, "upload", deviceNotRecreated());
+        return std::nullopt;
     }
     if (staged.devicesLost != mDevicesLost) {
         staged = stageModel(*loaded.scene);  // Collecting found the device lost: stage anew.
     }
+    return slotIndex;
+}
 
-    if (options.topLightLux > 0.0f && !retry) {  // A retried scene has its light.
-        addTopLight(*loaded.scene, options.topLightLux);
-    }
-
+std::optional<render::StrategyChoice> DeviceLane::uploadModel(
+    std::size_t slotIndex,
+    std::unique_ptr<LoadedModel> held,
+    const std::shared_ptr<ModelProgress>& model,
+    const StagedModel& staged,
+    const ModelFacts& facts) {
     // The renderer refers to the scene it prepared until the next prepare: keep that one alive
     // until now, and this one (where it lies now) until the renderer's next model.
     const auto uploadStart = Clock::now();
@@ -325,10 +324,9 @@ void DeviceLane::renderModel(LoadedModel& loaded, bool retry, StagedModel* ahead
     plan.model = model;
     mShared.planner.plan(plan);
     if (auto lit = mBatchRenderer.light(renderer, plan.lighting); !lit) {
-        failBeforeUpload("load", lit.error());
-        return;
+        failBeforeUpload(*model, *held, "load", lit.error());
+        return std::nullopt;
     }
-    auto held = std::make_unique<LoadedModel>(std::move(loaded));
     const scene::SceneData& scene = *held->scene;
     const render::StrategyChoice strategy =
         mShared.strategy.forModel(facts.triangles, scene.drawsOnlyOpaqueStaticTriangles());
@@ -343,33 +341,42 @@ void DeviceLane::renderModel(LoadedModel& loaded, bool retry, StagedModel* ahead
         prepared = mContext.checkNoErrors("Preparing '" + scene.sourcePath.string() + "'");
     }
     mStages.upload += secondsSince(uploadStart);
-    const double uploadSeconds = secondsSince(uploadStart);
     mStages.uploadParts += renderer.prepareTimes();
     if (!prepared) {
         failModel(*model, "upload", prepared.error());
         mContext.takeErrors();
         recoverIfLost();
-        return;
+        return std::nullopt;
     }
     if (Clock::now() > mModelDeadline) {
-        failModel(*model, "timeout", timedOut(input, options.modelTimeoutSeconds, "Uploading"));
-        return;
+        failModel(*model, "timeout",
+                  timedOut(*model->input, mShared.options.modelTimeoutSeconds, "Uploading"));
+        return std::nullopt;
     }
+    return strategy;
+}
 
-    // Every sample from this one upload: between them only the material bindings change.
-    model->remaining = std::uint32_t(samples->size());
+void DeviceLane::renderSamples(std::size_t slotIndex,
+                               const std::shared_ptr<ModelProgress>& model,
+                               const std::vector<ModelSample>& samples,
+                               const ModelFacts& facts,
+                               const render::StrategyChoice& strategy,
+                               const ModelTimes& times) {
+    render::Renderer& renderer = *mRenderers[slotIndex].renderer;
+    const scene::SceneData& scene = *mRenderers[slotIndex].prepared->scene;
+    model->remaining = std::uint32_t(samples.size());
     const std::uint64_t device = mDevicesLost;
     const auto renderStart = Clock::now();
     double renderWaiting = 0.0;
-    for (const ModelSample& sample : *samples) {
+    for (const ModelSample& sample : samples) {
         auto job = std::make_shared<ModelJob>();
         job->model = model;
         job->variant = sample.variantName;
-        job->folder = modelFolder(options.output, sample.name);
+        job->folder = modelFolder(mShared.options.output, sample.name);
         job->facts = facts;
         job->drawing.strategy = render::strategyChoiceName(strategy);
-        job->times.load = loadSeconds;
-        job->times.upload = uploadSeconds;
+        job->times.load = times.load;
+        job->times.upload = times.upload;
         mShared.planner.plan(*job);
         if (auto selected = renderer.selectVariant(sample.variant); !selected) {
             failJob(*job, "render", selected.error());
@@ -385,6 +392,41 @@ void DeviceLane::renderModel(LoadedModel& loaded, bool retry, StagedModel* ahead
         mTimestamps->flush();  // Every pass of the model is submitted: its mips and views.
     }
     mStages.render += secondsSince(renderStart) - renderWaiting;
+}
+
+void DeviceLane::renderModel(LoadedModel& loaded, bool retry, StagedModel* ahead) {
+    auto model = std::make_shared<ModelProgress>();
+    model->input = &mShared.pending[loaded.order];
+    model->retried = retry;
+    const std::optional<std::vector<ModelSample>> samples = samplesToRender(loaded, *model);
+    if (!samples) {
+        return;
+    }
+    // The staging threads copy the images and the geometry into staging buffers while this thread
+    // waits for the renderer below: prepare then only records copies. Staged as the previous
+    // model uploaded when it was taken then (stageAhead).
+    StagedModel staged =
+        ahead && ahead->devicesLost == mDevicesLost ? std::move(*ahead) : stageModel(*loaded.scene);
+    // The next model's copies run while this one waits for its renderer and uploads.
+    stageAhead();
+    const std::optional<std::size_t> slotIndex = freeRenderer(loaded, *model, staged);
+    if (!slotIndex) {
+        return;
+    }
+    if (mShared.options.topLightLux > 0.0f && !retry) {  // A retried scene has its light.
+        addTopLight(*loaded.scene, mShared.options.topLightLux);
+    }
+    const ModelFacts facts = loaded.facts;  // Each sample's metadata.json names them.
+    ModelTimes times;
+    times.load = loaded.seconds;
+    const auto uploadStart = Clock::now();
+    const std::optional<render::StrategyChoice> strategy = uploadModel(
+        *slotIndex, std::make_unique<LoadedModel>(std::move(loaded)), model, staged, facts);
+    times.upload = secondsSince(uploadStart);
+    if (strategy) {
+        // Every sample from this one upload: between them only the material bindings change.
+        renderSamples(*slotIndex, model, *samples, facts, *strategy, times);
+    }
 }
 
 void DeviceLane::renderSample(const std::shared_ptr<ModelJob>& job,

@@ -17,6 +17,7 @@
 #include "batch/BatchStrategy.h"
 #include "batch/ModelLoader.h"
 #include "batch/ModelPlan.h"
+#include "batch/ModelSamples.h"
 #include "batch/ModelWriter.h"
 #include "batch/PngRowsPass.h"
 #include "batch/ShardWriter.h"
@@ -137,6 +138,34 @@ class DeviceLane {
     // second attempt after a device loss (a second loss fails it); `ahead`: its staging when
     // stageAhead started it.
     void renderModel(LoadedModel& loaded, bool retry = false, StagedModel* ahead = nullptr);
+    // renderModel's steps. The samples of the model still to draw, its folders opened; none
+    // when it failed (listed) or every sample is finished (skipped).
+    std::optional<std::vector<ModelSample>> samplesToRender(const LoadedModel& loaded,
+                                                            ModelProgress& model);
+    // The renderer slot to prepare the model with, once its last model's views are read back;
+    // none when the device is lost for good (the model failed).
+    std::optional<std::size_t> freeRenderer(const LoadedModel& loaded,
+                                            ModelProgress& model,
+                                            StagedModel& staged);
+    // Lights and prepares the model on the slot's renderer (which then holds `held`): the
+    // strategy it was prepared with, or none when it failed.
+    std::optional<render::StrategyChoice> uploadModel(std::size_t slotIndex,
+                                                      std::unique_ptr<LoadedModel> held,
+                                                      const std::shared_ptr<ModelProgress>& model,
+                                                      const StagedModel& staged,
+                                                      const ModelFacts& facts);
+    // Draws every sample from the one upload: between them only the material bindings change.
+    void renderSamples(std::size_t slotIndex,
+                       const std::shared_ptr<ModelProgress>& model,
+                       const std::vector<ModelSample>& samples,
+                       const ModelFacts& facts,
+                       const render::StrategyChoice& strategy,
+                       const ModelTimes& times);
+    // Fails a model before any renderer holds it: its bytes go back to the loader.
+    void failBeforeUpload(ModelProgress& model,
+                          const LoadedModel& loaded,
+                          const char* stage,
+                          const Error& error);
     // Fails a sample or a model, unless the device is lost and the model was not retried yet:
     // it is then drawn again once the device is recreated (recoverIfLost keeps its scene).
     void failJob(ModelJob& job, const char* stage, const Error& error);
