@@ -60,25 +60,8 @@ py::list batchOptions() {
     return list;
 }
 
-}  // namespace
-
-PYBIND11_MODULE(_encore, module) {
+void bindScene(py::module_& module) {
     using namespace encore::python;
-    module.doc() = "Encore: glTF 2.0 rendering with WebGPU (Dawn), for datasets of rendered views.";
-    static py::exception<EncoreError> error(module, "Error", PyExc_RuntimeError);
-    static py::exception<LoadError> loadError(module, "LoadError", error.ptr());
-    py::register_exception_translator([](std::exception_ptr pointer) {
-        try {
-            if (pointer) {
-                std::rethrow_exception(pointer);
-            }
-        } catch (const LoadError& caught) {
-            PyErr_SetString(loadError.ptr(), caught.what());
-        } catch (const EncoreError& caught) {
-            PyErr_SetString(error.ptr(), caught.what());
-        }
-    });
-
     py::class_<Scene>(module, "Scene", "A loaded glTF model (renderer.load).")
         .def_property_readonly("path",
                                [](const Scene& scene) { return scene.data->sourcePath.string(); })
@@ -93,7 +76,10 @@ PYBIND11_MODULE(_encore, module) {
             "variants", [](const Scene& scene) { return scene.data->variants; },
             "The names of the model's KHR_materials_variants variants, by index (render_views' "
             "and batch's variant=); empty without the extension.");
+}
 
+void bindRenderer(py::module_& module) {
+    using namespace encore::python;
     py::class_<Renderer>(module, "Renderer",
                          "One GPU device (Vulkan) rendering models from a view rig.")
         .def(py::init<std::uint32_t, std::optional<std::size_t>,
@@ -163,7 +149,10 @@ PYBIND11_MODULE(_encore, module) {
             "batch_environments_created",
             [](Renderer& renderer) { return renderer.batchCounts().environments; },
             "How many times batch() computed the environment maps: once for every call so far.");
+}
 
+void bindFunctions(py::module_& module) {
+    using namespace encore::python;
     module.def(
         "adapters",
         [] {
@@ -193,4 +182,28 @@ PYBIND11_MODULE(_encore, module) {
                "folder (searched recursively), a list file (one path per line, or a JSON array), "
                "a model, or a sequence of model paths (named relative to the deepest folder that "
                "holds them all).");
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_encore, module) {
+    using namespace encore::python;
+    module.doc() = "Encore: glTF 2.0 rendering with WebGPU (Dawn), for datasets of rendered views.";
+    static py::exception<EncoreError> error(module, "Error", PyExc_RuntimeError);
+    static py::exception<LoadError> loadError(module, "LoadError", error.ptr());
+    py::register_exception_translator([](std::exception_ptr pointer) {
+        try {
+            if (pointer) {
+                std::rethrow_exception(pointer);
+            }
+        } catch (const LoadError& caught) {
+            PyErr_SetString(loadError.ptr(), caught.what());
+        } catch (const EncoreError& caught) {
+            PyErr_SetString(error.ptr(), caught.what());
+        }
+    });
+
+    bindScene(module);
+    bindRenderer(module);
+    bindFunctions(module);
 }

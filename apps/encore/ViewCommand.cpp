@@ -41,106 +41,90 @@ struct ViewOptions {
     render::CullingOptions culling;
 };
 
-int runView(const ViewOptions& options, const GlobalOptions& global) {
+// The options that exclude each other, and the script they make: --script's file, or --frames
+// (and --screenshot) as one.
+Result<std::optional<std::vector<view::ScriptStep>>> viewScript(const ViewOptions& options) {
     const int sources = int(!options.model.empty()) + int(options.objects.has_value()) +
                         int(options.animometer.has_value());
     if (sources != 1) {
-        return reportError(makeError(ErrorCode::InvalidArgument,
-                                     "encore view shows one thing: a MODEL, --objects N or "
-                                     "--animometer N."));
-    }
-    const auto strategy = parseStrategyChoice(options.strategy, options.bundle);
-    if (!strategy) {
-        return reportError(strategy.error());
+        return makeError(ErrorCode::InvalidArgument,
+                         "encore view shows one thing: a MODEL, --objects N or --animometer N.");
     }
     if (!options.screenshot.empty() && !options.frames) {
-        return reportError(makeError(ErrorCode::InvalidArgument,
-                                     "--screenshot needs --frames N (how many frames to show "
-                                     "before it is taken)."));
+        return makeError(ErrorCode::InvalidArgument,
+                         "--screenshot needs --frames N (how many frames to show before it is "
+                         "taken).");
     }
     if (options.frames && !options.script.empty()) {
-        return reportError(
-            makeError(ErrorCode::InvalidArgument, "--frames and --script cannot be combined."));
+        return makeError(ErrorCode::InvalidArgument, "--frames and --script cannot be combined.");
     }
-    view::ViewerOptions viewer;
     if (!options.script.empty()) {
-        auto script = view::loadViewScript(options.script);
-        if (!script) {
-            return reportError(script.error());
-        }
-        viewer.script = std::move(*script);
-    } else if (options.frames) {
-        viewer.script.emplace();
-        view::ScriptStep frames;
-        frames.command = view::ScriptCommand::Frames;
-        frames.count = *options.frames;
-        viewer.script->push_back(frames);
-        if (!options.screenshot.empty()) {
-            view::ScriptStep screenshot;
-            screenshot.command = view::ScriptCommand::Screenshot;
-            screenshot.path = options.screenshot;
-            viewer.script->push_back(screenshot);
-        }
+        ENCORE_TRY_ASSIGN(auto script, view::loadViewScript(options.script));
+        return std::optional<std::vector<view::ScriptStep>>(std::move(script));
     }
+    if (!options.frames) {
+        return std::optional<std::vector<view::ScriptStep>>();
+    }
+    std::vector<view::ScriptStep> steps;
+    view::ScriptStep frames;
+    frames.command = view::ScriptCommand::Frames;
+    frames.count = *options.frames;
+    steps.push_back(frames);
+    if (!options.screenshot.empty()) {
+        view::ScriptStep screenshot;
+        screenshot.command = view::ScriptCommand::Screenshot;
+        screenshot.path = options.screenshot;
+        steps.push_back(screenshot);
+    }
+    return std::optional<std::vector<view::ScriptStep>>(std::move(steps));
+}
 
-    scene::LoadOptions loadOptions;
-    loadOptions.strict = options.strict;
+// The model, or a generated scene (none for the Animometer), checked against --animation and
+// --variant before the window opens: a bad name is a usage error, named with what there is.
+Result<std::unique_ptr<scene::SceneData>> viewedScene(const ViewOptions& options,
+                                                      const scene::LoadOptions& loadOptions,
+                                                      const GlobalOptions& global) {
     std::unique_ptr<scene::SceneData> scene;
     if (!options.model.empty()) {
-        auto loaded = loadModel(options.model, loadOptions, global);
-        if (!loaded) {
-            return reportError(loaded.error());
-        }
-        scene = std::make_unique<scene::SceneData>(std::move(*loaded));
+        ENCORE_TRY_ASSIGN(auto loaded, loadModel(options.model, loadOptions, global));
+        scene = std::make_unique<scene::SceneData>(std::move(loaded));
     } else if (options.objects) {
         scene::GeneratorOptions generator;
         generator.objectCount = *options.objects;
-        auto glb = scene::generateSceneGlb(generator);
-        if (!glb) {
-            return reportError(glb.error());
-        }
-        auto loaded = scene::loadSceneFromMemory(
-            *glb, {}, "generated " + std::to_string(*options.objects) + " objects");
-        if (!loaded) {
-            return reportError(loaded.error());
-        }
-        scene = std::make_unique<scene::SceneData>(std::move(*loaded));
+        ENCORE_TRY_ASSIGN(auto glb, scene::generateSceneGlb(generator));
+        ENCORE_TRY_ASSIGN(
+            auto loaded,
+            scene::loadSceneFromMemory(
+                glb, {}, "generated " + std::to_string(*options.objects) + " objects"));
+        scene = std::make_unique<scene::SceneData>(std::move(loaded));
     }
     if (scene && !options.animation.empty() && !scene::findAnimation(*scene, options.animation)) {
-        return reportError(
-            makeError(ErrorCode::InvalidArgument,
-                      "'" + options.model + "' has no animation '" + options.animation + "'."));
+        return makeError(ErrorCode::InvalidArgument,
+                         "'" + options.model + "' has no animation '" + options.animation + "'.");
     }
     if (!options.variant.empty()) {
         if (!scene) {
-            return reportError(makeError(ErrorCode::InvalidArgument,
-                                         "--variant needs a MODEL (a generated scene or the "
-                                         "Animometer has no material variants)."));
+            return makeError(ErrorCode::InvalidArgument,
+                             "--variant needs a MODEL (a generated scene or the Animometer has no "
+                             "material variants).");
         }
-        // Before the window opens: a bad name is a usage error, named with the variants.
-        if (auto found = scene::resolveVariant(*scene, options.variant); !found) {
-            return reportError(found.error());
-        }
+        ENCORE_TRY(scene::resolveVariant(*scene, options.variant));
     }
+    return scene;
+}
 
-    // The window first: without a display nothing else is worth starting.
-    auto window = view::Window::create("encore view", options.width, options.height);
-    if (!window) {
-        return reportError(window.error());
-    }
-    auto context = createContext(global, /*timestamps=*/true);
-    if (!context) {
-        return reportError(context.error());
-    }
-
+// The viewer's options from the command's (the script set before).
+Result<void> fillViewerOptions(const ViewOptions& options,
+                               const scene::LoadOptions& loadOptions,
+                               const GlobalOptions& global,
+                               const render::StrategyChoice& strategy,
+                               view::ViewerOptions& viewer) {
     viewer.renderer.target = {options.width, options.height, options.samples};
     viewer.renderer.animation = *render::animationEvaluationFromName(options.animate);
     viewer.renderer.culling = options.culling;
-    if (auto shading = applyShadingOptions(options.shading, viewer.renderer); !shading) {
-        return reportError(shading.error());
-    }
-    viewer.strategy = strategy->kind;
-    viewer.bundle = strategy->bundle;
+    ENCORE_TRY(applyShadingOptions(options.shading, viewer.renderer));
+    viewer.strategy = strategy.kind;
+    viewer.bundle = strategy.bundle;
     if (options.animometer) {
         render::AnimometerOptions animometer;
         animometer.triangles = *options.animometer;
@@ -163,10 +147,42 @@ int runView(const ViewOptions& options, const GlobalOptions& global) {
         std::printf("%s\n", line.c_str());
         std::fflush(stdout);
     };
+    return {};
+}
+
+int runView(const ViewOptions& options, const GlobalOptions& global) {
+    auto script = viewScript(options);
+    if (!script) {
+        return reportError(script.error());
+    }
+    const auto strategy = parseStrategyChoice(options.strategy, options.bundle);
+    if (!strategy) {
+        return reportError(strategy.error());
+    }
+    scene::LoadOptions loadOptions;
+    loadOptions.strict = options.strict;
+    auto scene = viewedScene(options, loadOptions, global);
+    if (!scene) {
+        return reportError(scene.error());
+    }
+    // The window first: without a display nothing else is worth starting.
+    auto window = view::Window::create("encore view", options.width, options.height);
+    if (!window) {
+        return reportError(window.error());
+    }
+    auto context = createContext(global, /*timestamps=*/true);
+    if (!context) {
+        return reportError(context.error());
+    }
+    view::ViewerOptions viewer;
+    viewer.script = std::move(*script);
+    if (auto filled = fillViewerOptions(options, loadOptions, global, *strategy, viewer); !filled) {
+        return reportError(filled.error());
+    }
     if (!viewer.script) {
         std::fprintf(stderr, "adapter: %s\n", context->adapterDescription().summary().c_str());
     }
-    auto created = view::Viewer::create(*context, *window, std::move(scene), std::move(viewer));
+    auto created = view::Viewer::create(*context, *window, std::move(*scene), std::move(viewer));
     if (!created) {
         return reportError(created.error());
     }
