@@ -148,6 +148,65 @@ std::vector<std::size_t> adaptersLike(std::span<const AdapterDescription> adapte
     return like;
 }
 
+namespace {
+
+// The error of an adapter index past the machine's adapters, listing them.
+Error noSuchAdapter(std::size_t index, const std::vector<AdapterDescription>& descriptions) {
+    std::string names;
+    for (const AdapterDescription& adapter : descriptions) {
+        names +=
+            (names.empty() ? "" : "; ") + std::to_string(adapter.index) + ": " + adapter.summary();
+    }
+    const std::size_t count = descriptions.size();
+    return makeError(ErrorCode::NoAdapter, "there is no device " + std::to_string(index) +
+                                               ": this machine has " + std::to_string(count) +
+                                               " adapter" + (count == 1 ? "" : "s") + " (" + names +
+                                               "); `encore info` lists them.");
+}
+
+// What a device is asked for: its features, and the Dawn toggles turned on and off (the names
+// of ENCORE_DAWN_TOGGLES point into `environmentToggles`).
+struct DeviceRequest {
+    std::vector<wgpu::FeatureName> features;
+    std::vector<std::string> environmentToggles;
+    std::vector<const char*> enabledToggles;
+    std::vector<const char*> disabledToggles;
+};
+
+void fillDeviceRequest(DeviceRequest& request,
+                       const ContextOptions& options,
+                       const wgpu::Adapter& adapter) {
+    if (options.timestamps && adapter.HasFeature(wgpu::FeatureName::TimestampQuery)) {
+        request.features.push_back(wgpu::FeatureName::TimestampQuery);
+        request.disabledToggles.push_back("timestamp_quantization");
+    }
+    for (auto feature : options.optionalFeatures) {
+        if (adapter.HasFeature(feature)) {
+            request.features.push_back(feature);
+        }
+    }
+    // Features behind allow_unsafe_apis need it on the device as on the adapter request.
+    if (options.allowUnsafeApis) {
+        request.enabledToggles.push_back("allow_unsafe_apis");
+    }
+    // ENCORE_DAWN_TOGGLES=name,-name,...: Dawn device toggles turned on (or off), for measuring
+    // what Dawn's own work costs (e.g. skip_validation); never needed to render correctly.
+    request.environmentToggles = togglesFromEnvironment();
+    for (const std::string& toggle : request.environmentToggles) {
+        if (toggle.starts_with('-')) {
+            request.disabledToggles.push_back(toggle.c_str() + 1);
+        } else {
+            request.enabledToggles.push_back(toggle.c_str());
+        }
+    }
+    if (!request.environmentToggles.empty()) {
+        logWarning("Dawn toggles from ENCORE_DAWN_TOGGLES: " +
+                   std::string(std::getenv("ENCORE_DAWN_TOGGLES")));
+    }
+}
+
+}  // namespace
+
 // Takes adapter ContextOptions::adapterIndex of a new instance and requests a device on it.
 // Used at creation and again after a device loss (a WebGPU adapter hands out one device, so
 // recovery asks for a new adapter too).
@@ -159,65 +218,26 @@ Result<void> Context::acquireDevice() {
     ENCORE_TRY_ASSIGN(auto enumerated,
                       enumerateAdapters(options.allowNullBackend, options.allowUnsafeApis));
     if (options.adapterIndex >= enumerated.adapters.size()) {
-        std::string names;
-        for (const AdapterDescription& adapter : enumerated.descriptions) {
-            names += (names.empty() ? "" : "; ") + std::to_string(adapter.index) + ": " +
-                     adapter.summary();
-        }
-        const std::size_t count = enumerated.adapters.size();
-        return makeError(ErrorCode::NoAdapter, "there is no device " +
-                                                   std::to_string(options.adapterIndex) +
-                                                   ": this machine has " + std::to_string(count) +
-                                                   " adapter" + (count == 1 ? "" : "s") + " (" +
-                                                   names + "); `encore info` lists them.");
+        return noSuchAdapter(options.adapterIndex, enumerated.descriptions);
     }
     mInstance = std::move(enumerated.instance);
     mAdapter = std::move(enumerated.adapters[options.adapterIndex]);
     mAdapterDescription = std::move(enumerated.descriptions[options.adapterIndex]);
     const AdapterDescription& description = mAdapterDescription;
 
-    std::vector<wgpu::FeatureName> features;
-    std::vector<const char*> disabledToggles;
-    if (options.timestamps && mAdapter.HasFeature(wgpu::FeatureName::TimestampQuery)) {
-        features.push_back(wgpu::FeatureName::TimestampQuery);
-        disabledToggles.push_back("timestamp_quantization");
-    }
-    for (auto feature : options.optionalFeatures) {
-        if (mAdapter.HasFeature(feature)) {
-            features.push_back(feature);
-        }
-    }
-
-    std::vector<const char*> enabledToggles;
-    // Features behind allow_unsafe_apis need it on the device as on the adapter request.
-    if (options.allowUnsafeApis) {
-        enabledToggles.push_back("allow_unsafe_apis");
-    }
-    // ENCORE_DAWN_TOGGLES=name,-name,...: Dawn device toggles turned on (or off), for measuring
-    // what Dawn's own work costs (e.g. skip_validation); never needed to render correctly.
-    const std::vector<std::string> extraToggles = togglesFromEnvironment();
-    for (const std::string& toggle : extraToggles) {
-        if (toggle.starts_with('-')) {
-            disabledToggles.push_back(toggle.c_str() + 1);
-        } else {
-            enabledToggles.push_back(toggle.c_str());
-        }
-    }
-    if (!extraToggles.empty()) {
-        logWarning("Dawn toggles from ENCORE_DAWN_TOGGLES: " +
-                   std::string(std::getenv("ENCORE_DAWN_TOGGLES")));
-    }
+    DeviceRequest request;
+    fillDeviceRequest(request, options, mAdapter);
     wgpu::DawnTogglesDescriptor toggles;
-    toggles.disabledToggleCount = disabledToggles.size();
-    toggles.disabledToggles = disabledToggles.data();
-    toggles.enabledToggleCount = enabledToggles.size();
-    toggles.enabledToggles = enabledToggles.data();
+    toggles.disabledToggleCount = request.disabledToggles.size();
+    toggles.disabledToggles = request.disabledToggles.data();
+    toggles.enabledToggleCount = request.enabledToggles.size();
+    toggles.enabledToggles = request.enabledToggles.data();
 
     wgpu::DeviceDescriptor deviceDescriptor{};
     deviceDescriptor.nextInChain = &toggles;
     deviceDescriptor.label = "encore device";
-    deviceDescriptor.requiredFeatureCount = features.size();
-    deviceDescriptor.requiredFeatures = features.data();
+    deviceDescriptor.requiredFeatureCount = request.features.size();
+    deviceDescriptor.requiredFeatures = request.features.data();
     // Dawn raises requested limits below WebGPU's defaults to the defaults; mLimits applies them.
     wgpu::Limits adapterLimits{};
     if (mAdapter.GetLimits(&adapterLimits) != wgpu::Status::Success) {

@@ -206,32 +206,50 @@ void AnimationPlayer::evaluate(double seconds) {
     mStats = {};
     mChangedInstances.clear();
     mChangedSkins.clear();
-
     for (const AnimationId id : mSelection) {
         const Animation& animation = scene.animations[id.index()];
         mAnimationTimes[id.index()] = static_cast<float>(
             playbackTime(seconds + double(animation.timeOffset), animation.end, mMode));
     }
-
     // Start from the rest pose: nodes the selection drives, and nodes it stopped driving.
-    auto resetToRest = [&](std::uint32_t n) {
-        const Node& node = scene.nodes[n];
-        mPendingTranslation[n] = node.translation;
-        mPendingRotation[n] = node.rotation;
-        mPendingScale[n] = node.scale;
-        if (const std::uint32_t offset = mNodeWeightOffset[n];
-            offset != InstanceAnimationRange::kNone) {
-            std::copy_n(mRestWeights.begin() + offset, node.weights.size(),
-                        mPendingWeights.begin() + offset);
-        }
-    };
     for (const std::uint32_t n : mRestoreNodes) {
         resetToRest(n);
     }
     for (const std::uint32_t n : mAnimatedNodes) {
         resetToRest(n);
     }
+    sampleChannels();
+    for (const std::uint32_t n : mRestoreNodes) {
+        commitPose(n);
+    }
+    for (const std::uint32_t n : mAnimatedNodes) {
+        commitPose(n);
+    }
+    mRestoreNodes.clear();
+    updateWorlds();
+    collectChangedInstances();
+    updateSkins(mFirst);
+    for (const std::uint32_t n : mOrder) {
+        mLocalChanged[n] = 0;
+        mWorldChanged[n] = 0;
+        mWeightsChanged[n] = 0;
+    }
+    mFirst = false;
+}
 
+void AnimationPlayer::resetToRest(std::uint32_t n) {
+    const Node& node = mScene->nodes[n];
+    mPendingTranslation[n] = node.translation;
+    mPendingRotation[n] = node.rotation;
+    mPendingScale[n] = node.scale;
+    if (const std::uint32_t offset = mNodeWeightOffset[n];
+        offset != InstanceAnimationRange::kNone) {
+        std::copy_n(mRestWeights.begin() + offset, node.weights.size(),
+                    mPendingWeights.begin() + offset);
+    }
+}
+
+void AnimationPlayer::sampleChannels() {
     for (ActiveChannel& channel : mChannels) {
         const float time = mAnimationTimes[channel.animation];
         SamplerCursor& cursor = mCursors[channel.cursor];
@@ -252,50 +270,46 @@ void AnimationPlayer::evaluate(double seconds) {
                 break;
             }
             case AnimationPath::Weights:
-                sampleAnimation(*channel.sampler, time, false, cursor,
-                                std::span<float>(mPendingWeights)
-                                    .subspan(mNodeWeightOffset[n], scene.nodes[n].weights.size()));
+                sampleAnimation(
+                    *channel.sampler, time, false, cursor,
+                    std::span<float>(mPendingWeights)
+                        .subspan(mNodeWeightOffset[n], mScene->nodes[n].weights.size()));
                 break;
         }
         ++mStats.channelsEvaluated;
     }
+}
 
-    // Compare with the current pose: only real changes move matrices.
-    auto commit = [&](std::uint32_t n) {
-        if (mPendingTranslation[n] != mTranslation[n] || mPendingRotation[n] != mRotation[n] ||
-            mPendingScale[n] != mScale[n]) {
-            mTranslation[n] = mPendingTranslation[n];
-            mRotation[n] = mPendingRotation[n];
-            mScale[n] = mPendingScale[n];
+// Compares with the current pose: only real changes move matrices.
+void AnimationPlayer::commitPose(std::uint32_t n) {
+    if (mPendingTranslation[n] != mTranslation[n] || mPendingRotation[n] != mRotation[n] ||
+        mPendingScale[n] != mScale[n]) {
+        mTranslation[n] = mPendingTranslation[n];
+        mRotation[n] = mPendingRotation[n];
+        mScale[n] = mPendingScale[n];
+        if (!mLocalChanged[n]) {
+            mLocalChanged[n] = 1;
+            ++mStats.nodesChanged;
+        }
+    }
+    if (const std::uint32_t offset = mNodeWeightOffset[n];
+        offset != InstanceAnimationRange::kNone) {
+        const std::size_t count = mScene->nodes[n].weights.size();
+        if (!std::equal(mPendingWeights.begin() + offset, mPendingWeights.begin() + offset + count,
+                        mWeights.begin() + offset)) {
+            std::copy_n(mPendingWeights.begin() + offset, count, mWeights.begin() + offset);
+            mWeightsChanged[n] = 1;
             if (!mLocalChanged[n]) {
-                mLocalChanged[n] = 1;
                 ++mStats.nodesChanged;
             }
         }
-        if (const std::uint32_t offset = mNodeWeightOffset[n];
-            offset != InstanceAnimationRange::kNone) {
-            const std::size_t count = scene.nodes[n].weights.size();
-            if (!std::equal(mPendingWeights.begin() + offset,
-                            mPendingWeights.begin() + offset + count, mWeights.begin() + offset)) {
-                std::copy_n(mPendingWeights.begin() + offset, count, mWeights.begin() + offset);
-                mWeightsChanged[n] = 1;
-                if (!mLocalChanged[n]) {
-                    ++mStats.nodesChanged;
-                }
-            }
-        }
-    };
-    for (const std::uint32_t n : mRestoreNodes) {
-        commit(n);
     }
-    for (const std::uint32_t n : mAnimatedNodes) {
-        commit(n);
-    }
-    mRestoreNodes.clear();
+}
 
-    // World matrices, parents first; a node whose parent moved moves too.
+// World matrices, parents first; a node whose parent moved moves too.
+void AnimationPlayer::updateWorlds() {
     for (const std::uint32_t n : mOrder) {
-        const Node& node = scene.nodes[n];
+        const Node& node = mScene->nodes[n];
         const bool parentChanged = node.parent.valid() && mWorldChanged[node.parent.index()];
         if (!mLocalChanged[n] && !parentChanged && !mFirst) {
             continue;
@@ -310,7 +324,10 @@ void AnimationPlayer::evaluate(double seconds) {
         mWorldChanged[n] = 1;
         ++mStats.worldsUpdated;
     }
+}
 
+void AnimationPlayer::collectChangedInstances() {
+    const SceneData& scene = *mScene;
     for (std::size_t i = 0; i < scene.instances.size(); ++i) {
         const Instance& instance = scene.instances[i];
         const std::size_t n = instance.node.index();
@@ -324,15 +341,6 @@ void AnimationPlayer::evaluate(double seconds) {
         }
     }
     mStats.instancesChanged = static_cast<std::uint32_t>(mChangedInstances.size());
-
-    updateSkins(mFirst);
-
-    for (const std::uint32_t n : mOrder) {
-        mLocalChanged[n] = 0;
-        mWorldChanged[n] = 0;
-        mWeightsChanged[n] = 0;
-    }
-    mFirst = false;
 }
 
 void AnimationPlayer::updateSkins(bool all) {

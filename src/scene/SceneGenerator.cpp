@@ -408,7 +408,9 @@ CityLayout cityLayout(const GeneratorOptions& options) {
     return city;
 }
 
-Result<std::vector<std::uint8_t>> generateSceneGlb(const GeneratorOptions& options) {
+namespace {
+
+Result<void> checkGeneratorOptions(const GeneratorOptions& options) {
     auto outOfRange = [](const char* what, std::uint32_t value, std::uint32_t max) {
         return makeError(ErrorCode::InvalidArgument,
                          std::string("The number of ") + what + " (" + std::to_string(value) +
@@ -428,31 +430,28 @@ Result<std::vector<std::uint8_t>> generateSceneGlb(const GeneratorOptions& optio
                                                          std::to_string(options.tessellation) +
                                                          ") must be between 3 and 256 segments.");
     }
+    return {};
+}
 
-    json document = {{"asset", {{"version", "2.0"}, {"generator", "encore gen"}}},
-                     {"scene", 0},
-                     {"buffers", json::array()},
-                     {"bufferViews", json::array()},
-                     {"accessors", json::array()},
-                     {"meshes", json::array()},
-                     {"materials", json::array()},
-                     {"nodes", json::array()}};
-    GlbBinaryChunk binary;
-    if (options.textures) {
-        ENCORE_TRY_ASSIGN(auto checker, image::encodePng(checkerImage()));
-        ENCORE_TRY_ASSIGN(auto metallicRoughness, image::encodePng(metallicRoughnessImage()));
-        document["images"] = json::array();
-        binary.addPng(document, checker);
-        binary.addPng(document, metallicRoughness);
-        constexpr int kLinear = 9729;
-        constexpr int kLinearMipmapLinear = 9987;
-        constexpr int kRepeat = 10497;
-        document["samplers"] = {{{"magFilter", kLinear},
-                                 {"minFilter", kLinearMipmapLinear},
-                                 {"wrapS", kRepeat},
-                                 {"wrapT", kRepeat}}};
-        document["textures"] = {{{"source", 0}, {"sampler", 0}}, {{"source", 1}, {"sampler", 0}}};
-    }
+// The checker and metallic-roughness images, their sampler and two textures.
+Result<void> addTextures(json& document, GlbBinaryChunk& binary) {
+    ENCORE_TRY_ASSIGN(auto checker, image::encodePng(checkerImage()));
+    ENCORE_TRY_ASSIGN(auto metallicRoughness, image::encodePng(metallicRoughnessImage()));
+    document["images"] = json::array();
+    binary.addPng(document, checker);
+    binary.addPng(document, metallicRoughness);
+    constexpr int kLinear = 9729;
+    constexpr int kLinearMipmapLinear = 9987;
+    constexpr int kRepeat = 10497;
+    document["samplers"] = {{{"magFilter", kLinear},
+                             {"minFilter", kLinearMipmapLinear},
+                             {"wrapS", kRepeat},
+                             {"wrapT", kRepeat}}};
+    document["textures"] = {{{"source", 0}, {"sampler", 0}}, {{"source", 1}, {"sampler", 0}}};
+    return {};
+}
+
+void addMaterials(json& document, const GeneratorOptions& options) {
     for (std::uint32_t i = 0; i < options.materialCount; ++i) {
         const glm::vec3 color = paletteColor(i, options.materialCount);
         // Every third material (from the second) is a metal and roughness runs from 0.2 to 0.9
@@ -476,6 +475,12 @@ Result<std::vector<std::uint8_t>> generateSceneGlb(const GeneratorOptions& optio
         }
         document["materials"].push_back(std::move(material));
     }
+}
+
+// The meshes' primitives; returns each mesh's lowest y (the city layout stands them on it).
+std::vector<float> addMeshes(json& document,
+                             GlbBinaryChunk& binary,
+                             const GeneratorOptions& options) {
     constexpr int kFloat = 5126;
     constexpr int kUnsignedShort = 5123;
     constexpr int kUnsignedInt = 5125;
@@ -512,6 +517,27 @@ Result<std::vector<std::uint8_t>> generateSceneGlb(const GeneratorOptions& optio
                                          {"material", i % options.materialCount}}}}});
     }
 
+    return meshBottoms;
+}
+
+}  // namespace
+
+Result<std::vector<std::uint8_t>> generateSceneGlb(const GeneratorOptions& options) {
+    ENCORE_TRY(checkGeneratorOptions(options));
+    json document = {{"asset", {{"version", "2.0"}, {"generator", "encore gen"}}},
+                     {"scene", 0},
+                     {"buffers", json::array()},
+                     {"bufferViews", json::array()},
+                     {"accessors", json::array()},
+                     {"meshes", json::array()},
+                     {"materials", json::array()},
+                     {"nodes", json::array()}};
+    GlbBinaryChunk binary;
+    if (options.textures) {
+        ENCORE_TRY(addTextures(document, binary));
+    }
+    addMaterials(document, options);
+    const std::vector<float> meshBottoms = addMeshes(document, binary, options);
     std::mt19937 random(options.seed);
     switch (options.layout) {
         case SceneLayout::Grid:

@@ -57,8 +57,10 @@ std::optional<std::uint64_t> mulAdd(std::uint64_t a, std::uint64_t b, std::uint6
     return sum;
 }
 
-Result<void> validateReferences(const GltfDocument& document) {
-    ReferenceChecker checker;
+namespace {
+
+// Buffer views' buffers and accessors' views.
+void checkDataReferences(const GltfDocument& document, ReferenceChecker& checker) {
     const std::size_t buffers = document.buffers.size();
     const std::size_t views = document.bufferViews.size();
     const std::size_t accessors = document.accessors.size();
@@ -82,6 +84,12 @@ Result<void> validateReferences(const GltfDocument& document) {
                           views);
         }
     }
+}
+
+// Primitives' accessors, materials, compressed views and variant mappings.
+void checkMeshReferences(const GltfDocument& document, ReferenceChecker& checker) {
+    const std::size_t views = document.bufferViews.size();
+    const std::size_t accessors = document.accessors.size();
     for (std::size_t m = 0; m < document.meshes.size(); ++m) {
         const auto& primitives = document.meshes[m].primitives;
         for (std::size_t p = 0; p < primitives.size(); ++p) {
@@ -114,6 +122,11 @@ Result<void> validateReferences(const GltfDocument& document) {
             }
         }
     }
+}
+
+// The node tree's references, skins', animations' and scenes'.
+void checkNodeReferences(const GltfDocument& document, ReferenceChecker& checker) {
+    const std::size_t accessors = document.accessors.size();
     for (std::size_t n = 0; n < document.nodes.size(); ++n) {
         const auto& node = document.nodes[n];
         const std::string name = "node " + std::to_string(n);
@@ -161,6 +174,11 @@ Result<void> validateReferences(const GltfDocument& document) {
         }
     }
     checker.check("The asset's 'scene' property", "scene", document.scene, document.scenes.size());
+}
+
+// Materials' textures, textures' images and samplers, images' views.
+void checkMaterialReferences(const GltfDocument& document, ReferenceChecker& checker) {
+    const std::size_t views = document.bufferViews.size();
     for (std::size_t m = 0; m < document.materials.size(); ++m) {
         const auto& material = document.materials[m];
         const std::string name = "material " + std::to_string(m);
@@ -182,6 +200,16 @@ Result<void> validateReferences(const GltfDocument& document) {
         checker.check("image " + std::to_string(i), "bufferView", document.images[i].bufferView,
                       views);
     }
+}
+
+}  // namespace
+
+Result<void> validateReferences(const GltfDocument& document) {
+    ReferenceChecker checker;
+    checkDataReferences(document, checker);
+    checkMeshReferences(document, checker);
+    checkNodeReferences(document, checker);
+    checkMaterialReferences(document, checker);
     return checker.result();
 }
 

@@ -128,6 +128,14 @@ class AnimationPlayer {
     };
 
     void rebuildChannels();
+    // evaluate()'s steps: a node's pending pose back to its rest pose; the selected channels
+    // sampled into the pending poses; a node's pending pose made current where it differs; the
+    // world matrices of the nodes that moved; the instances whose matrices or weights changed.
+    void resetToRest(std::uint32_t node);
+    void sampleChannels();
+    void commitPose(std::uint32_t node);
+    void updateWorlds();
+    void collectChangedInstances();
     void updateSkins(bool all);
 
     const SceneData* mScene;
