@@ -37,7 +37,7 @@ define cmake_configure
 endef
 
 .PHONY: all deps configure build demo test test-unit test-gpu sanitize-configure test-sanitize \
-	bench-smoke clean fuzz-build fuzz fuzz-replay fuzz-frame format format-check
+	bench-smoke install clean fuzz-build fuzz fuzz-replay fuzz-frame format format-check
 
 all: build
 
@@ -59,6 +59,23 @@ demo: build
 
 test: build
 	@cd $(BUILD) && ctest --output-on-failure -j2 --timeout 900
+
+# The Python package encore, installed with pip (pyproject.toml: scikit-build-core, offline) into
+# the active virtual environment, or INSTALL_PYTHON's; one made with
+# `/usr/bin/python3 -m venv --system-site-packages DIR` sees Debian's scikit-build-core and numpy.
+# The build folder (WHEEL_BUILD) lies beside $(BUILD) and is kept: ccache serves `make build`'s
+# objects (the same compiler, c++, and flags) and a second install rebuilds only what changed.
+WHEEL_BUILD ?= $(BUILD)-wheel
+INSTALL_PYTHON ?= $(if $(VIRTUAL_ENV),$(VIRTUAL_ENV)/bin/python)
+install: deps
+	@if [ -z "$(INSTALL_PYTHON)" ]; then \
+		echo "make install: no virtual environment; make one and activate it, or name its python:"; \
+		echo "  /usr/bin/python3 -m venv --system-site-packages ~/venv && make install INSTALL_PYTHON=~/venv/bin/python"; \
+		exit 1; fi
+	@mkdir -p $(WHEEL_BUILD)
+	@CXX="$${CXX:-c++}" flock $(WHEEL_BUILD)/.pip.lock $(INSTALL_PYTHON) -m pip install \
+		--no-build-isolation --disable-pip-version-check \
+		--config-settings=build-dir=$(abspath $(WHEEL_BUILD)) .
 
 # .clang-format on every tracked C++ source (CI checks it; `make format` applies it).
 format-check:
@@ -146,4 +163,4 @@ fuzz-frame: sanitize-configure
 		--seed $(FRAME_FUZZ_SEED) --findings $(FRAME_FUZZ_DIR)/findings $(FRAME_FUZZ_DIR)/seeds
 
 clean:
-	rm -rf $(BUILD) $(ASAN_BUILD) $(OUT)
+	rm -rf $(BUILD) $(ASAN_BUILD) $(WHEEL_BUILD) $(OUT)

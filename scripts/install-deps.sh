@@ -14,7 +14,9 @@ set -euo pipefail
 # clang and libclang-rt-14-dev (libFuzzer, sanitizer runtimes) build the fuzz targets.
 # libglfw3-dev opens `encore view`'s window; xvfb and xauth (xvfb-run) give its tests a display.
 # pybind11-dev, python3-dev, python3-numpy and python3-pytest build and test the Python module;
-# python3-distributed (Dask's distributed scheduler, with python3-dask) runs encore.dask.
+# python3-distributed (Dask's distributed scheduler, with python3-dask) runs encore.dask;
+# python3-pip and python3-venv install it with pip (pyproject.toml) into a venv, as
+# python/tests/install-test.sh does.
 # ninja-build and ccache keep the build short (docs/ci.md); clang-format-16 checks the style
 # (.clang-format's InsertBraces needs 16); pngquant reduces docs/reference's sheets
 # (scripts/reference-gallery.sh).
@@ -24,9 +26,10 @@ bookworm_packages=(g++ make ninja-build ccache pkg-config libglm-dev libstb-dev 
                    libopenexr-dev libarchive-dev
                    librsvg2-bin pngquant clang libclang-rt-14-dev clang-format-16 libglfw3-dev xvfb xauth
                    pybind11-dev python3-dev python3-numpy python3-pytest python3-dask
-                   python3-distributed)
+                   python3-distributed python3-pip python3-venv)
 # Dawn's CMake package declares C++ module file sets, which need CMake >= 3.28.
-backports_packages=(mesa-vulkan-drivers cmake)
+# python3-scikit-build-core (0.11; bookworm has none) builds the wheel of pyproject.toml.
+backports_packages=(mesa-vulkan-drivers cmake python3-scikit-build-core)
 sid_packages=(libwebgpu-dawn-dev)
 
 all=("${bookworm_packages[@]}" "${backports_packages[@]}" "${sid_packages[@]}")
