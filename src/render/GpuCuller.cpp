@@ -73,6 +73,133 @@ Result<void> checkCullingBuffers(const gpu::DeviceLimits& limits,
     return {};
 }
 
+// Records: per draw (firstLevel, levelCount, 0, 0), then per level draw (visibleBase,
+// argumentsOffset, triangles, error bits).
+struct CullingRecords {
+    std::vector<glm::uvec4> primitives;
+    std::vector<glm::uvec4> levels;
+    std::vector<std::uint32_t> firstLevel;   // Per draw: its first level draw.
+    std::vector<std::uint32_t> visibleBase;  // Per level draw: its list's first entry.
+    // Entries of one phase's lists. 64 bits until checked: thousands of primitives of a million
+    // instances pass 2^32 entries.
+    std::uint64_t phaseVisible = 0;
+    std::uint32_t largestList = 1;  // Entries of the longest list.
+};
+
+CullingRecords cullingRecords(std::span<const CulledDraw> draws) {
+    CullingRecords records;
+    std::uint64_t nextBase = 0;
+    for (const CulledDraw& draw : draws) {
+        const auto firstLevel = static_cast<std::uint32_t>(records.levels.size());
+        records.firstLevel.push_back(firstLevel);
+        records.primitives.push_back({firstLevel, draw.levelCount(), 0, 0});
+        const std::uint32_t capacity = std::max(draw.instances.count, 1u);
+        records.largestList = std::max(records.largestList, capacity);
+        for (std::uint32_t level = 0; level < draw.levelCount(); ++level) {
+            const std::uint32_t elements =
+                level == 0 ? draw.elementCount : draw.coarserLevels[level - 1].indexCount;
+            const float error = level == 0 ? 0.0f : draw.coarserLevels[level - 1].error;
+            const auto levelDraw = static_cast<std::uint32_t>(records.levels.size());
+            records.visibleBase.push_back(static_cast<std::uint32_t>(nextBase));
+            records.levels.push_back({static_cast<std::uint32_t>(nextBase), levelDraw * 5,
+                                      trianglesOf(draw, elements),
+                                      std::bit_cast<std::uint32_t>(error)});
+            nextBase += (std::uint64_t(capacity) + kVisibleAlignmentEntries - 1) /
+                        kVisibleAlignmentEntries * kVisibleAlignmentEntries;
+        }
+    }
+    records.phaseVisible = nextBase;
+    return records;
+}
+
+// Arguments: instanceCount starts at 0; the first cull pass fills it. drawIndexedIndirect
+// reads five words (count, instances, first index, base vertex, first instance),
+// drawIndirect the first four; one record layout serves both. The last word counts the
+// triangles drawn (GpuCuller::drawnTrianglesOffset).
+std::vector<std::uint32_t> argumentRecords(std::span<const CulledDraw> draws) {
+    std::vector<std::uint32_t> arguments;
+    for (std::uint32_t phase = 0; phase < GpuCuller::kPhases; ++phase) {
+        for (const CulledDraw& draw : draws) {
+            arguments.insert(arguments.end(), {draw.elementCount, 0, 0, 0, 0});
+            for (const DrawLevel& level : draw.coarserLevels) {
+                arguments.insert(arguments.end(), {level.indexCount, 0, level.firstIndex, 0, 0});
+            }
+        }
+    }
+    arguments.push_back(0);
+    return arguments;
+}
+
+// Each slot lists the culled draws of its instance range, contiguous in the primitive
+// records; slots whose mesh has no culled draw (all its primitives blended) list none. Returns
+// the primitive records in that order and sets each slot's firstDraw and drawCount.
+std::vector<glm::uvec4> primitiveRecordsBySlot(std::span<const CulledDraw> draws,
+                                               std::span<const glm::uvec4> primitiveRecords,
+                                               std::span<SlotBounds> slots) {
+    std::map<std::uint32_t, std::vector<std::uint32_t>> drawsOfRange;  // By first slot.
+    for (std::uint32_t i = 0; i < draws.size(); ++i) {
+        drawsOfRange[draws[i].instances.first].push_back(i);
+    }
+    std::vector<glm::uvec4> records;
+    for (const auto& [firstSlot, drawIndices] : drawsOfRange) {
+        const auto firstDraw = static_cast<std::uint32_t>(records.size());
+        for (std::uint32_t draw : drawIndices) {
+            records.push_back(primitiveRecords[draw]);
+        }
+        const InstanceRange range = draws[drawIndices.front()].instances;
+        for (std::uint32_t slot = range.first; slot < range.first + range.count; ++slot) {
+            slots[slot].firstDraw = firstDraw;
+            slots[slot].drawCount = static_cast<std::uint32_t>(drawIndices.size());
+        }
+    }
+    return records;
+}
+
+struct CullingPipelines {
+    wgpu::BindGroupLayout cullLayout;
+    wgpu::BindGroupLayout pyramidLayout;
+    wgpu::ComputePipeline reset;
+    wgpu::ComputePipeline cullFirst;
+    wgpu::ComputePipeline cullSecond;
+};
+
+Result<CullingPipelines> createCullingPipelines(const wgpu::Device& device,
+                                                shaders::ShaderLibrary& shaders) {
+    ENCORE_TRY_ASSIGN(auto module, shaders.module("culling.wgsl"));
+    // Explicit layouts, shared by the entry points: layouts derived from each shader entry point
+    // would be distinct and their bind groups incompatible. The second phase adds the pyramid.
+    constexpr auto kCompute = wgpu::ShaderStage::Compute;
+    using gpu::LayoutEntry;
+    CullingPipelines pipelines;
+    pipelines.cullLayout = gpu::makeBindGroupLayout(
+        device,
+        {LayoutEntry::uniform(0, kCompute), LayoutEntry::readOnlyStorage(1, kCompute),
+         LayoutEntry::readOnlyStorage(2, kCompute), LayoutEntry::readOnlyStorage(3, kCompute),
+         LayoutEntry::readOnlyStorage(4, kCompute), LayoutEntry::storage(5, kCompute),
+         LayoutEntry::storage(6, kCompute), LayoutEntry::readOnlyStorage(7, kCompute),
+         LayoutEntry::readOnlyStorage(8, kCompute)},
+        "culling");
+    pipelines.pyramidLayout = gpu::makeBindGroupLayout(
+        device, {LayoutEntry::texture(0, kCompute, wgpu::TextureSampleType::UnfilterableFloat)},
+        "culling depth pyramid");
+
+    auto computePipeline = [&](const char* entryPoint, bool withPyramid) {
+        wgpu::ComputePipelineDescriptor descriptor{};
+        descriptor.label = entryPoint;
+        descriptor.layout =
+            withPyramid
+                ? gpu::makePipelineLayout(device, {pipelines.cullLayout, pipelines.pyramidLayout})
+                : gpu::makePipelineLayout(device, {pipelines.cullLayout});
+        descriptor.compute.module = module;
+        descriptor.compute.entryPoint = entryPoint;
+        return device.CreateComputePipeline(&descriptor);
+    };
+    pipelines.reset = computePipeline("resetCounts", false);
+    pipelines.cullFirst = computePipeline("cullFirstPhase", false);
+    pipelines.cullSecond = computePipeline("cullSecondPhase", true);
+    return pipelines;
+}
+
 }  // namespace
 
 Result<GpuCuller> GpuCuller::create(const RenderSetup& setup,
@@ -90,98 +217,69 @@ Result<GpuCuller> GpuCuller::create(const RenderSetup& setup,
     }
     const wgpu::Device& device = setup.device;
 
-    // Records: per draw (firstLevel, levelCount, 0, 0), then per level draw (visibleBase,
-    // argumentsOffset, triangles, error bits).
-    std::vector<glm::uvec4> primitiveRecords;
-    std::vector<glm::uvec4> levelRecords;
-    // 64 bits until checked: thousands of primitives of a million instances pass 2^32 entries.
-    std::uint64_t nextBase = 0;
-    std::uint32_t largestList = 1;
-    for (const CulledDraw& draw : culler.mDraws) {
-        const auto firstLevel = static_cast<std::uint32_t>(levelRecords.size());
-        culler.mFirstLevel.push_back(firstLevel);
-        primitiveRecords.push_back({firstLevel, draw.levelCount(), 0, 0});
-        const std::uint32_t capacity = std::max(draw.instances.count, 1u);
-        largestList = std::max(largestList, capacity);
-        for (std::uint32_t level = 0; level < draw.levelCount(); ++level) {
-            const std::uint32_t elements =
-                level == 0 ? draw.elementCount : draw.coarserLevels[level - 1].indexCount;
-            const float error = level == 0 ? 0.0f : draw.coarserLevels[level - 1].error;
-            const auto levelDraw = static_cast<std::uint32_t>(levelRecords.size());
-            culler.mVisibleBase.push_back(static_cast<std::uint32_t>(nextBase));
-            levelRecords.push_back({static_cast<std::uint32_t>(nextBase), levelDraw * 5,
-                                    trianglesOf(draw, elements),
-                                    std::bit_cast<std::uint32_t>(error)});
-            nextBase += (std::uint64_t(capacity) + kVisibleAlignmentEntries - 1) /
-                        kVisibleAlignmentEntries * kVisibleAlignmentEntries;
-        }
-    }
-    culler.mLevelDrawCount = static_cast<std::uint32_t>(levelRecords.size());
-
-    const std::uint64_t listBytes = std::uint64_t(largestList) * 4;
+    CullingRecords records = cullingRecords(culler.mDraws);
+    culler.mFirstLevel = std::move(records.firstLevel);
+    culler.mVisibleBase = std::move(records.visibleBase);
+    culler.mLevelDrawCount = static_cast<std::uint32_t>(records.levels.size());
+    const std::uint64_t listBytes = std::uint64_t(records.largestList) * 4;
     // Phase 2's lists follow phase 1's; the slots' visibility follows both. The draw bind group
     // binds listBytes from any list's start; the last list's binding ends within the
     // visibility words, since no list is longer than there are slots.
-    const std::uint64_t phaseVisible = nextBase;
+    const std::uint64_t phaseVisible = records.phaseVisible;
     const std::uint64_t visibilityBase = phaseVisible * kPhases;
     const std::uint64_t visibleBytes = (visibilityBase + culler.mSlotCount) * 4;
     ENCORE_TRY(
-        checkCullingBuffers(setup.limits, levelRecords.size(), culler.mSlotCount, visibleBytes));
+        checkCullingBuffers(setup.limits, records.levels.size(), culler.mSlotCount, visibleBytes));
+    ENCORE_TRY(
+        gpu::checkStorageBinding(setup.limits, culler.mBounds.shapes.size() * sizeof(glm::vec4),
+                                 "The joint spheres and morph extents of the culling bounds"));
     culler.mPhaseVisible = static_cast<std::uint32_t>(phaseVisible);
 
-    // Arguments: instanceCount starts at 0; the first cull pass fills it. drawIndexedIndirect
-    // reads five words (count, instances, first index, base vertex, first instance),
-    // drawIndirect the first four; one record layout serves both.
-    std::vector<std::uint32_t> arguments;
-    for (std::uint32_t phase = 0; phase < kPhases; ++phase) {
-        for (const CulledDraw& draw : culler.mDraws) {
-            arguments.insert(arguments.end(), {draw.elementCount, 0, 0, 0, 0});
-            for (const DrawLevel& level : draw.coarserLevels) {
-                arguments.insert(arguments.end(), {level.indexCount, 0, level.firstIndex, 0, 0});
-            }
-        }
-    }
-    culler.mTrianglesDrawnWord = static_cast<std::uint32_t>(arguments.size());
-    arguments.push_back(0);
+    const std::vector<std::uint32_t> arguments = argumentRecords(culler.mDraws);
+    culler.mTrianglesDrawnWord = static_cast<std::uint32_t>(arguments.size() - 1);
     culler.mArguments = gpu::createStorageBuffer(
         device, arguments, "indirect arguments (all draws)",
         wgpu::BufferUsage::Indirect | wgpu::BufferUsage::CopySrc | wgpu::BufferUsage::CopyDst);
     culler.mVisible = gpu::createBuffer(device, wgpu::BufferUsage::Storage, visibleBytes,
                                         "visible instance lists and visibility");
-
-    // Each slot lists the culled draws of its instance range, contiguous in the primitive
-    // records; slots whose mesh has no culled draw (all its primitives blended) list none.
-    std::map<std::uint32_t, std::vector<std::uint32_t>> drawsOfRange;  // By first slot.
-    for (std::uint32_t i = 0; i < culler.mDraws.size(); ++i) {
-        drawsOfRange[culler.mDraws[i].instances.first].push_back(i);
-    }
-    std::vector<glm::uvec4> records;
-    std::vector<SlotBounds>& slots = culler.mBounds.slots;
-    for (const auto& [firstSlot, drawIndices] : drawsOfRange) {
-        const auto firstDraw = static_cast<std::uint32_t>(records.size());
-        for (std::uint32_t draw : drawIndices) {
-            records.push_back(primitiveRecords[draw]);
-        }
-        const InstanceRange range = culler.mDraws[drawIndices.front()].instances;
-        for (std::uint32_t slot = range.first; slot < range.first + range.count; ++slot) {
-            slots[slot].firstDraw = firstDraw;
-            slots[slot].drawCount = static_cast<std::uint32_t>(drawIndices.size());
-        }
-    }
-    culler.mLevelBase = static_cast<std::uint32_t>(records.size());
-    records.insert(records.end(), levelRecords.begin(), levelRecords.end());
-
     // Written whole before every first-phase cull (encodeFirstPhase).
     culler.mUniform =
         gpu::createBuffer(device, wgpu::BufferUsage::Uniform | wgpu::BufferUsage::CopyDst,
                           sizeof(CullingUniform), "culling uniform");
+
+    std::vector<glm::uvec4> drawRecords =
+        primitiveRecordsBySlot(culler.mDraws, records.primitives, culler.mBounds.slots);
+    culler.mLevelBase = static_cast<std::uint32_t>(drawRecords.size());
+    drawRecords.insert(drawRecords.end(), records.levels.begin(), records.levels.end());
+
+    ENCORE_TRY_ASSIGN(const CullingPipelines pipelines,
+                      createCullingPipelines(device, *setup.shaders));
+    culler.mPyramidLayout = pipelines.pyramidLayout;
+    culler.mReset = pipelines.reset;
+    culler.mCullFirst = pipelines.cullFirst;
+    culler.mCullSecond = pipelines.cullSecond;
+    culler.bindCulling(pipelines.cullLayout, instances, animation, drawRecords,
+                       arguments.size() * 4);
+    culler.mDrawBindGroup =
+        gpu::makeBindGroup(device, setup.layouts->culledInstances,
+                           {{0, instances.buffer(), 0, instances.buffer().GetSize()},
+                            {1, culler.mVisible, 0, listBytes}},
+                           "culled instances");
+    return culler;
+}
+
+void GpuCuller::bindCulling(const wgpu::BindGroupLayout& cullLayout,
+                            const InstanceBuffer& instances,
+                            const AnimationBuffers* animation,
+                            std::span<const glm::uvec4> drawRecords,
+                            std::uint64_t argumentBytes) {
+    const wgpu::Device& device = mSetup->device;
+    const std::vector<SlotBounds>& slots = mBounds.slots;
     const auto slotBuffer = gpu::createStorageBuffer(device, slots, "culling bounds");
-    ENCORE_TRY(
-        gpu::checkStorageBinding(setup.limits, culler.mBounds.shapes.size() * sizeof(glm::vec4),
-                                 "The joint spheres and morph extents of the culling bounds"));
     const auto shapeBuffer =
-        gpu::createStorageBuffer(device, culler.mBounds.shapes, "culling joint spheres");
-    const auto recordBuffer = gpu::createStorageBuffer(device, records, "culled draws and levels");
+        gpu::createStorageBuffer(device, mBounds.shapes, "culling joint spheres");
+    const auto recordBuffer =
+        gpu::createStorageBuffer(device, drawRecords, "culled draws and levels");
     // A scene without skins or morph targets binds placeholders its records never index.
     wgpu::Buffer joints, weights;
     if (animation) {
@@ -192,56 +290,17 @@ Result<GpuCuller> GpuCuller::create(const RenderSetup& setup,
                                    "no joints");
         weights = gpu::createBuffer(device, wgpu::BufferUsage::Storage, 16, "no morph weights");
     }
-
-    ENCORE_TRY_ASSIGN(auto module, setup.shaders->module("culling.wgsl"));
-    // Explicit layouts, shared by the entry points: layouts derived from each shader entry point
-    // would be distinct and their bind groups incompatible. The second phase adds the pyramid.
-    constexpr auto kCompute = wgpu::ShaderStage::Compute;
-    using gpu::LayoutEntry;
-    const wgpu::BindGroupLayout cullLayout = gpu::makeBindGroupLayout(
-        device,
-        {LayoutEntry::uniform(0, kCompute), LayoutEntry::readOnlyStorage(1, kCompute),
-         LayoutEntry::readOnlyStorage(2, kCompute), LayoutEntry::readOnlyStorage(3, kCompute),
-         LayoutEntry::readOnlyStorage(4, kCompute), LayoutEntry::storage(5, kCompute),
-         LayoutEntry::storage(6, kCompute), LayoutEntry::readOnlyStorage(7, kCompute),
-         LayoutEntry::readOnlyStorage(8, kCompute)},
-        "culling");
-    culler.mPyramidLayout = gpu::makeBindGroupLayout(
-        device, {LayoutEntry::texture(0, kCompute, wgpu::TextureSampleType::UnfilterableFloat)},
-        "culling depth pyramid");
-
-    auto computePipeline = [&](const char* entryPoint, bool withPyramid) {
-        wgpu::ComputePipelineDescriptor descriptor{};
-        descriptor.label = entryPoint;
-        descriptor.layout =
-            withPyramid ? gpu::makePipelineLayout(device, {cullLayout, culler.mPyramidLayout})
-                        : gpu::makePipelineLayout(device, {cullLayout});
-        descriptor.compute.module = module;
-        descriptor.compute.entryPoint = entryPoint;
-        return device.CreateComputePipeline(&descriptor);
-    };
-    culler.mReset = computePipeline("resetCounts", false);
-    culler.mCullFirst = computePipeline("cullFirstPhase", false);
-    culler.mCullSecond = computePipeline("cullSecondPhase", true);
-
-    culler.mCullBindGroup =
-        gpu::makeBindGroup(device, cullLayout,
-                           {{0, culler.mUniform, 0, sizeof(CullingUniform)},
-                            {1, slotBuffer, 0, slots.size() * sizeof(SlotBounds)},
-                            {2, instances.buffer(), 0, instances.buffer().GetSize()},
-                            {3, shapeBuffer, 0, shapeBuffer.GetSize()},
-                            {4, recordBuffer, 0, records.size() * sizeof(glm::uvec4)},
-                            {5, culler.mArguments, 0, arguments.size() * 4},
-                            {6, culler.mVisible, 0, culler.mVisible.GetSize()},
-                            {7, joints, 0, joints.GetSize()},
-                            {8, weights, 0, weights.GetSize()}},
-                           "culling");
-    culler.mDrawBindGroup =
-        gpu::makeBindGroup(device, setup.layouts->culledInstances,
-                           {{0, instances.buffer(), 0, instances.buffer().GetSize()},
-                            {1, culler.mVisible, 0, listBytes}},
-                           "culled instances");
-    return culler;
+    mCullBindGroup = gpu::makeBindGroup(device, cullLayout,
+                                        {{0, mUniform, 0, sizeof(CullingUniform)},
+                                         {1, slotBuffer, 0, slots.size() * sizeof(SlotBounds)},
+                                         {2, instances.buffer(), 0, instances.buffer().GetSize()},
+                                         {3, shapeBuffer, 0, shapeBuffer.GetSize()},
+                                         {4, recordBuffer, 0, drawRecords.size_bytes()},
+                                         {5, mArguments, 0, argumentBytes},
+                                         {6, mVisible, 0, mVisible.GetSize()},
+                                         {7, joints, 0, joints.GetSize()},
+                                         {8, weights, 0, weights.GetSize()}},
+                                        "culling");
 }
 
 std::uint64_t submittedTriangles(std::span<const CulledDraw> draws) {

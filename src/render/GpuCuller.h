@@ -135,6 +135,15 @@ class GpuCuller {
     const DepthPyramid& depthPyramid() const { return mPyramid; }
 
   private:
+    // Creates the culling pass's bind group (culling.wgsl's group 0) with the buffers only it
+    // binds: the slots' bounds, their joint spheres and morph extents, the draw and level
+    // records.
+    void bindCulling(const wgpu::BindGroupLayout& cullLayout,
+                     const InstanceBuffer& instances,
+                     const AnimationBuffers* animation,
+                     std::span<const glm::uvec4> drawRecords,
+                     std::uint64_t argumentBytes);
+
     RenderSetup const* mSetup = nullptr;
     std::vector<CulledDraw> mDraws;
     CullingBounds mBounds;
