@@ -35,6 +35,21 @@ const wgpu::PassTimestampWrites* Renderer::timestampWrites(GpuStage stage, std::
     return mStageTimestamps ? mStageTimestamps->pass(gpuStageIndex(stage)) : nullptr;
 }
 
+// What one frame draws and how, decided before anything is recorded.
+struct Renderer::FramePlan {
+    std::span<const Camera> cameras;
+    FrameState state;
+    bool multiView = false;
+    bool twoPhases = false;
+    // Only scenes with transmissive surfaces pay for the copy and the extra passes.
+    bool transmission = false;
+    // Straight into the resolved texture at one sample (Strategy::composesResolved).
+    bool resolvedPasses = false;
+    // Every pixel composed in compute (Strategy::composesFrame): no scene render pass at all.
+    std::optional<PassAttachments> composedAttachments;
+    std::vector<RecordedCall>* trace = nullptr;
+};
+
 FrameResult Renderer::renderPasses(std::span<const Camera> cameras,
                                    float timeSeconds,
                                    std::vector<RecordedCall>* trace) {
@@ -42,174 +57,16 @@ FrameResult Renderer::renderPasses(std::span<const Camera> cameras,
     if (cameras.empty()) {
         return result;
     }
-    const bool multiView = cameras.size() > 1;
-    if (multiView) {
+    if (cameras.size() > 1) {
         mFrame->writeViews(mContext->device(), mContext->queue(), cameras, timeSeconds);
     } else {
         mFrame->update(mContext->queue(), cameras[0], timeSeconds);
     }
-    FrameState state{cameras[0], cameras, timeSeconds, mTimer, mCullingCamera};
-    state.culling = mOptions.culling;
-    state.targetWidth = mTarget.width();
-    state.targetHeight = mTarget.height();
-    state.transformsAnimated = mGpuAnimation && mGpuAnimationPending;
-    const bool twoPhases = !multiView && mStrategy && mStrategy->drawsInTwoPhases(state);
-    if (twoPhases) {
-        state.phase = DrawPhase::First;
-    }
-
-    // Only scenes with transmissive surfaces pay for the copy and the extra passes.
-    const bool transmission = mTransmission && mStrategy && mStrategy->drawsTransmission();
-    // One scene pass, of colour alone: what a strategy may compose some other way.
-    const bool singlePass = mStrategy && !twoPhases && !transmission && !mPassTargets;
-    // Straight into the resolved texture at one sample (Strategy::composesResolved).
-    const bool resolvedPasses = singlePass && mResolvedBackground && mStrategy->composesResolved();
-    // Every pixel composed in compute (Strategy::composesFrame): no scene render pass at all.
-    const bool composedFrame = singlePass &&
-                               mOptions.toneMapping.background != BackgroundKind::Environment &&
-                               mStrategy->composesFrame(state);
-    std::optional<PassAttachments> composedAttachments;
-    if (composedFrame) {
-        PassPlan plan;
-        plan.viewCount = cameras.size();
-        plan.hdr = mTarget.hdr();
-        plan.backgroundColor = mOptions.toneMapping.backgroundColor;
-        composedAttachments = passAttachments(plan);
-        state.composedBackground = composedAttachments->clearColor;
-        state.composedView = mTarget.sceneStorageView();
-    }
-    auto encodeFrame = [&](const wgpu::CommandEncoder& commandEncoder) {
-        if (mGpuAnimation && mGpuAnimationPending) {
-            mGpuAnimation->encode(commandEncoder);  // Before anything that reads its results.
-            mGpuAnimationPending = false;
-        }
-        if (mStrategy && mStageTimestamps) {
-            mStageTimestamps->timeCommands(commandEncoder, gpuStageIndex(GpuStage::BeforePasses),
-                                           [&] { mStrategy->beforePass(commandEncoder, state); });
-        } else if (mStrategy) {
-            mStrategy->beforePass(commandEncoder, state);
-        }
-        const std::uint32_t viewWidth = mTarget.width() / std::uint32_t(cameras.size());
-        // One pass per view, or the two passes of a two-phase frame; what each loads, keeps and
-        // resolves is passAttachments' decision (PassAttachments.h).
-        auto encodePass = [&](std::size_t view, DrawPhase phase, bool transmissionPass) {
-            PassPlan plan;
-            plan.view = view;
-            plan.viewCount = cameras.size();
-            plan.phase = phase;
-            plan.multisampled = mTarget.sampleCount() > 1 && !resolvedPasses;
-            plan.hdr = mTarget.hdr();
-            plan.backgroundColor = mOptions.toneMapping.backgroundColor;
-            plan.transmission = transmissionPass;
-            plan.transmissionFollows =
-                transmission && !transmissionPass && phase != DrawPhase::First;
-            const PassAttachments attachments = passAttachments(plan);
-            wgpu::RenderPassColorAttachment color =
-                resolvedPasses ? mTarget.resolvedColorAttachment(attachments.clearColor)
-                               : mTarget.colorAttachment(attachments.clearColor);
-            color.loadOp = attachments.colorLoadOp;
-            color.storeOp = attachments.colorStoreOp;
-            if (!attachments.resolve) {
-                color.resolveTarget = nullptr;
-            }
-            wgpu::RenderPassDepthStencilAttachment depth = mTarget.depthAttachment();
-            depth.depthLoadOp = attachments.depthLoadOp;
-            depth.depthStoreOp = attachments.depthStoreOp;
-            depth.depthClearValue = attachments.depthClearValue;
-            // With pass targets, the pass images follow the colour (PassTargets.h).
-            // On the stack: a frame allocates nothing for its passes.
-            std::array<wgpu::RenderPassColorAttachment, 1 + kPassTargetCount> colors;
-            colors[0] = color;
-            std::size_t colorCount = 1;
-            if (mPassTargets) {
-                mPassTargets->fillAttachments(color,
-                                              std::span(colors).subspan<1, kPassTargetCount>());
-                colorCount += kPassTargetCount;
-            }
-            wgpu::RenderPassDescriptor passDescriptor{};
-            passDescriptor.label = attachments.label;
-            passDescriptor.colorAttachmentCount = colorCount;
-            passDescriptor.colorAttachments = colors.data();
-            passDescriptor.depthStencilAttachment = resolvedPasses ? nullptr : &depth;
-            // The transmission pass is timed by the GPU timer only (stage timestamps time one
-            // scene pass per view).
-            passDescriptor.timestampWrites =
-                transmissionPass ? (mTimer ? mTimer->nextPass(attachments.timestampLabel) : nullptr)
-                                 : timestampWrites(GpuStage::Scene, attachments.timestampLabel);
-            wgpu::RenderPassEncoder pass = commandEncoder.BeginRenderPass(&passDescriptor);
-            if (multiView) {
-                pass.SetViewport(float(view * viewWidth), 0.0f, float(viewWidth),
-                                 float(mTarget.height()), 0.0f, 1.0f);
-                // Clipping keeps a view's fragments inside its viewport already; the scissor makes
-                // sure no rounding reaches the neighbouring strips, whose colour and depth persist.
-                pass.SetScissorRect(view * viewWidth, 0, viewWidth, mTarget.height());
-            }
-            if (mOptions.toneMapping.background == BackgroundKind::Environment &&
-                phase != DrawPhase::Second && !transmissionPass) {
-                (resolvedPasses ? mResolvedBackground : mBackground)
-                    ->draw(pass, mFrame->bindGroup());
-            }
-            if (mStrategy) {
-                RenderEncoder encoder(pass, result.counters);
-                encoder.setTrace(trace);
-                FrameState viewState = state;
-                viewState.camera = cameras[view];
-                viewState.phase = phase;
-                viewState.resolvedPass = resolvedPasses;
-                if (transmissionPass) {
-                    mStrategy->encodeTransmission(encoder, viewState);
-                } else {
-                    mStrategy->encode(encoder, viewState);
-                }
-            }
-            pass.End();
-        };
-        if (composedAttachments) {
-            FrameComposition composition;
-            composition.background = composedAttachments->clearColor;
-            composition.timestampWrites =
-                timestampWrites(GpuStage::Scene, composedAttachments->timestampLabel);
-            mStrategy->composeFrame(commandEncoder, state, composition);
-        } else if (twoPhases) {
-            encodePass(0, DrawPhase::First, false);
-            mStrategy->betweenPhases(commandEncoder, state, mTarget.depthTexture());
-            encodePass(0, DrawPhase::Second, false);
-        } else {
-            for (std::size_t view = 0; view < cameras.size(); ++view) {
-                if (multiView) {
-                    mFrame->selectView(commandEncoder, view);
-                }
-                encodePass(view, DrawPhase::Whole, false);
-            }
-        }
-        if (transmission) {
-            // Everything but the transmissive surfaces is drawn (and resolved): copy it once for
-            // all views, then draw them over it view by view.
-            mTransmission->encodeCopy(commandEncoder, mTarget.sceneView(), mTimer);
-            ++result.transmissionCopies;
-            for (std::size_t view = 0; view < cameras.size(); ++view) {
-                if (multiView) {
-                    mFrame->selectView(commandEncoder, view);
-                }
-                encodePass(view, twoPhases ? DrawPhase::Second : DrawPhase::Whole, true);
-            }
-        }
-        // After the last pass: a two-phase frame counts in both culling passes.
-        if (mTriangleHistory && mStrategy) {
-            if (auto counts = mStrategy->gpuTriangleCounts()) {
-                mTriangleHistory->record(commandEncoder, *counts);
-            }
-        }
-        if (mToneMapper) {
-            // The GPU timer times the scene passes only, as benchmarks report them.
-            mToneMapper->encode(commandEncoder, mTarget,
-                                mTimer ? nullptr : timestampWrites(GpuStage::ToneMapping));
-        }
-        if (mPassTargets) {
-            mPassTargets->encodeImages(commandEncoder);
-        }
-    };
-    const gpu::SubmitTiming timing = gpu::submitTimed(*mContext, mTimer, encodeFrame);
+    const FramePlan plan = planFrame(cameras, timeSeconds, trace);
+    const gpu::SubmitTiming timing =
+        gpu::submitTimed(*mContext, mTimer, [&](const wgpu::CommandEncoder& commandEncoder) {
+            encodeFrame(commandEncoder, plan, result);
+        });
     result.encodeMilliseconds = timing.encodeMilliseconds;
     result.submitMilliseconds = timing.submitMilliseconds;
     result.gpuMilliseconds = timing.gpuMilliseconds;
@@ -222,6 +79,203 @@ FrameResult Renderer::renderPasses(std::span<const Camera> cameras,
         result.counters.triangles + cameras.size() * (result.bundleContents.triangles +
                                                       (gpuCounts ? gpuCounts->candidates : 0));
     return result;
+}
+
+Renderer::FramePlan Renderer::planFrame(std::span<const Camera> cameras,
+                                        float timeSeconds,
+                                        std::vector<RecordedCall>* trace) const {
+    FramePlan plan;
+    plan.cameras = cameras;
+    plan.trace = trace;
+    plan.multiView = cameras.size() > 1;
+    FrameState& state = plan.state;
+    state = FrameState{cameras[0], cameras, timeSeconds, mTimer, mCullingCamera};
+    state.culling = mOptions.culling;
+    state.targetWidth = mTarget.width();
+    state.targetHeight = mTarget.height();
+    state.transformsAnimated = mGpuAnimation && mGpuAnimationPending;
+    plan.twoPhases = !plan.multiView && mStrategy && mStrategy->drawsInTwoPhases(state);
+    if (plan.twoPhases) {
+        state.phase = DrawPhase::First;
+    }
+
+    plan.transmission = mTransmission && mStrategy && mStrategy->drawsTransmission();
+    // One scene pass, of colour alone: what a strategy may compose some other way.
+    const bool singlePass = mStrategy && !plan.twoPhases && !plan.transmission && !mPassTargets;
+    plan.resolvedPasses = singlePass && mResolvedBackground && mStrategy->composesResolved();
+    const bool composedFrame = singlePass &&
+                               mOptions.toneMapping.background != BackgroundKind::Environment &&
+                               mStrategy->composesFrame(state);
+    if (composedFrame) {
+        PassPlan composedPass;
+        composedPass.viewCount = cameras.size();
+        composedPass.hdr = mTarget.hdr();
+        composedPass.backgroundColor = mOptions.toneMapping.backgroundColor;
+        plan.composedAttachments = passAttachments(composedPass);
+        state.composedBackground = plan.composedAttachments->clearColor;
+        state.composedView = mTarget.sceneStorageView();
+    }
+    return plan;
+}
+
+void Renderer::encodeFrame(const wgpu::CommandEncoder& commandEncoder,
+                           const FramePlan& plan,
+                           FrameResult& result) {
+    if (mGpuAnimation && mGpuAnimationPending) {
+        mGpuAnimation->encode(commandEncoder);  // Before anything that reads its results.
+        mGpuAnimationPending = false;
+    }
+    if (mStrategy && mStageTimestamps) {
+        mStageTimestamps->timeCommands(commandEncoder, gpuStageIndex(GpuStage::BeforePasses),
+                                       [&] { mStrategy->beforePass(commandEncoder, plan.state); });
+    } else if (mStrategy) {
+        mStrategy->beforePass(commandEncoder, plan.state);
+    }
+    encodeScenePasses(commandEncoder, plan, result);
+    if (plan.transmission) {
+        encodeTransmissionPasses(commandEncoder, plan, result);
+    }
+    // After the last pass: a two-phase frame counts in both culling passes.
+    if (mTriangleHistory && mStrategy) {
+        if (auto counts = mStrategy->gpuTriangleCounts()) {
+            mTriangleHistory->record(commandEncoder, *counts);
+        }
+    }
+    if (mToneMapper) {
+        // The GPU timer times the scene passes only, as benchmarks report them.
+        mToneMapper->encode(commandEncoder, mTarget,
+                            mTimer ? nullptr : timestampWrites(GpuStage::ToneMapping));
+    }
+    if (mPassTargets) {
+        mPassTargets->encodeImages(commandEncoder);
+    }
+}
+
+void Renderer::encodeScenePasses(const wgpu::CommandEncoder& commandEncoder,
+                                 const FramePlan& plan,
+                                 FrameResult& result) {
+    if (plan.composedAttachments) {
+        FrameComposition composition;
+        composition.background = plan.composedAttachments->clearColor;
+        composition.timestampWrites =
+            timestampWrites(GpuStage::Scene, plan.composedAttachments->timestampLabel);
+        mStrategy->composeFrame(commandEncoder, plan.state, composition);
+    } else if (plan.twoPhases) {
+        encodeScenePass(commandEncoder, plan, 0, DrawPhase::First, false, result);
+        mStrategy->betweenPhases(commandEncoder, plan.state, mTarget.depthTexture());
+        encodeScenePass(commandEncoder, plan, 0, DrawPhase::Second, false, result);
+    } else {
+        for (std::size_t view = 0; view < plan.cameras.size(); ++view) {
+            if (plan.multiView) {
+                mFrame->selectView(commandEncoder, view);
+            }
+            encodeScenePass(commandEncoder, plan, view, DrawPhase::Whole, false, result);
+        }
+    }
+}
+
+void Renderer::encodeTransmissionPasses(const wgpu::CommandEncoder& commandEncoder,
+                                        const FramePlan& plan,
+                                        FrameResult& result) {
+    // Everything but the transmissive surfaces is drawn (and resolved): copy it once for
+    // all views, then draw them over it view by view.
+    mTransmission->encodeCopy(commandEncoder, mTarget.sceneView(), mTimer);
+    ++result.transmissionCopies;
+    for (std::size_t view = 0; view < plan.cameras.size(); ++view) {
+        if (plan.multiView) {
+            mFrame->selectView(commandEncoder, view);
+        }
+        encodeScenePass(commandEncoder, plan, view,
+                        plan.twoPhases ? DrawPhase::Second : DrawPhase::Whole, true, result);
+    }
+}
+
+// One pass per view, or the two passes of a two-phase frame; what each loads, keeps and
+// resolves is passAttachments' decision (PassAttachments.h).
+void Renderer::encodeScenePass(const wgpu::CommandEncoder& commandEncoder,
+                               const FramePlan& plan,
+                               std::size_t view,
+                               DrawPhase phase,
+                               bool transmissionPass,
+                               FrameResult& result) {
+    PassPlan passPlan;
+    passPlan.view = view;
+    passPlan.viewCount = plan.cameras.size();
+    passPlan.phase = phase;
+    passPlan.multisampled = mTarget.sampleCount() > 1 && !plan.resolvedPasses;
+    passPlan.hdr = mTarget.hdr();
+    passPlan.backgroundColor = mOptions.toneMapping.backgroundColor;
+    passPlan.transmission = transmissionPass;
+    passPlan.transmissionFollows =
+        plan.transmission && !transmissionPass && phase != DrawPhase::First;
+    const PassAttachments attachments = passAttachments(passPlan);
+    wgpu::RenderPassColorAttachment color =
+        plan.resolvedPasses ? mTarget.resolvedColorAttachment(attachments.clearColor)
+                            : mTarget.colorAttachment(attachments.clearColor);
+    color.loadOp = attachments.colorLoadOp;
+    color.storeOp = attachments.colorStoreOp;
+    if (!attachments.resolve) {
+        color.resolveTarget = nullptr;
+    }
+    wgpu::RenderPassDepthStencilAttachment depth = mTarget.depthAttachment();
+    depth.depthLoadOp = attachments.depthLoadOp;
+    depth.depthStoreOp = attachments.depthStoreOp;
+    depth.depthClearValue = attachments.depthClearValue;
+    // With pass targets, the pass images follow the colour (PassTargets.h).
+    // On the stack: a frame allocates nothing for its passes.
+    std::array<wgpu::RenderPassColorAttachment, 1 + kPassTargetCount> colors;
+    colors[0] = color;
+    std::size_t colorCount = 1;
+    if (mPassTargets) {
+        mPassTargets->fillAttachments(color, std::span(colors).subspan<1, kPassTargetCount>());
+        colorCount += kPassTargetCount;
+    }
+    wgpu::RenderPassDescriptor passDescriptor{};
+    passDescriptor.label = attachments.label;
+    passDescriptor.colorAttachmentCount = colorCount;
+    passDescriptor.colorAttachments = colors.data();
+    passDescriptor.depthStencilAttachment = plan.resolvedPasses ? nullptr : &depth;
+    // The transmission pass is timed by the GPU timer only (stage timestamps time one
+    // scene pass per view).
+    passDescriptor.timestampWrites =
+        transmissionPass ? (mTimer ? mTimer->nextPass(attachments.timestampLabel) : nullptr)
+                         : timestampWrites(GpuStage::Scene, attachments.timestampLabel);
+    wgpu::RenderPassEncoder pass = commandEncoder.BeginRenderPass(&passDescriptor);
+    drawView(pass, plan, view, phase, transmissionPass, result);
+    pass.End();
+}
+
+void Renderer::drawView(const wgpu::RenderPassEncoder& pass,
+                        const FramePlan& plan,
+                        std::size_t view,
+                        DrawPhase phase,
+                        bool transmissionPass,
+                        FrameResult& result) {
+    if (plan.multiView) {
+        const std::uint32_t viewWidth = mTarget.width() / std::uint32_t(plan.cameras.size());
+        pass.SetViewport(float(view * viewWidth), 0.0f, float(viewWidth), float(mTarget.height()),
+                         0.0f, 1.0f);
+        // Clipping keeps a view's fragments inside its viewport already; the scissor makes
+        // sure no rounding reaches the neighbouring strips, whose colour and depth persist.
+        pass.SetScissorRect(view * viewWidth, 0, viewWidth, mTarget.height());
+    }
+    if (mOptions.toneMapping.background == BackgroundKind::Environment &&
+        phase != DrawPhase::Second && !transmissionPass) {
+        (plan.resolvedPasses ? mResolvedBackground : mBackground)->draw(pass, mFrame->bindGroup());
+    }
+    if (mStrategy) {
+        RenderEncoder encoder(pass, result.counters);
+        encoder.setTrace(plan.trace);
+        FrameState viewState = plan.state;
+        viewState.camera = plan.cameras[view];
+        viewState.phase = phase;
+        viewState.resolvedPass = plan.resolvedPasses;
+        if (transmissionPass) {
+            mStrategy->encodeTransmission(encoder, viewState);
+        } else {
+            mStrategy->encode(encoder, viewState);
+        }
+    }
 }
 
 void Renderer::toneMapScene() {

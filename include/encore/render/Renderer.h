@@ -345,6 +345,36 @@ class Renderer {
     FrameResult renderPasses(std::span<const Camera> cameras,
                              float timeSeconds,
                              std::vector<RecordedCall>* trace);
+    // The steps of renderPasses (RendererFrame.cpp): which passes the frame takes, then what
+    // its command encoder records: the compute work before the passes, the scene passes (or the
+    // strategy's composition), the transmission copy and passes, tone mapping and pass images.
+    struct FramePlan;
+    FramePlan planFrame(std::span<const Camera> cameras,
+                        float timeSeconds,
+                        std::vector<RecordedCall>* trace) const;
+    void encodeFrame(const wgpu::CommandEncoder& commandEncoder,
+                     const FramePlan& plan,
+                     FrameResult& result);
+    void encodeScenePasses(const wgpu::CommandEncoder& commandEncoder,
+                           const FramePlan& plan,
+                           FrameResult& result);
+    void encodeTransmissionPasses(const wgpu::CommandEncoder& commandEncoder,
+                                  const FramePlan& plan,
+                                  FrameResult& result);
+    // One render pass of `view` in `phase`: its attachments, then drawView.
+    void encodeScenePass(const wgpu::CommandEncoder& commandEncoder,
+                         const FramePlan& plan,
+                         std::size_t view,
+                         DrawPhase phase,
+                         bool transmissionPass,
+                         FrameResult& result);
+    // The view's viewport, the environment background and the strategy's draws.
+    void drawView(const wgpu::RenderPassEncoder& pass,
+                  const FramePlan& plan,
+                  std::size_t view,
+                  DrawPhase phase,
+                  bool transmissionPass,
+                  FrameResult& result);
 
     gpu::Context* mContext = nullptr;
     RendererOptions mOptions;
