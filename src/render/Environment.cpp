@@ -181,6 +181,116 @@ Result<void> checkOptions(const EnvironmentOptions& options, const wgpu::Limits&
     return {};
 }
 
+Result<void> checkPanorama(const image::HdrImage& panorama) {
+    if (panorama.width == 0 || panorama.height == 0 ||
+        panorama.rgb.size() != std::size_t(panorama.width) * panorama.height * 3) {
+        return makeError(ErrorCode::InvalidArgument,
+                         "The environment panorama is empty or inconsistent (" +
+                             sizeText(panorama.width, panorama.height) + ", " +
+                             std::to_string(panorama.rgb.size()) + " floats).");
+    }
+    return {};
+}
+
+// Larger than a texture can be: box-filtered down (ImageResize.h), as material images are.
+// Empty when `original` fits within `largest`.
+image::HdrImage downscaledToFit(const image::HdrImage& original, std::uint32_t largest) {
+    image::HdrImage downscaled;
+    const image::ImageSize fitted = image::fitWithin({original.width, original.height}, largest);
+    if (fitted.width != original.width || fitted.height != original.height) {
+        downscaled = {
+            fitted.width, fitted.height,
+            image::downscaleRgbFloat(original.rgb, {original.width, original.height}, fitted)};
+        logWarning("The environment panorama is " + sizeText(original.width, original.height) +
+                   ", larger than the device's maxTextureDimension2D (" + std::to_string(largest) +
+                   "); downscaled to " + sizeText(fitted.width, fitted.height) + ".");
+    }
+    return downscaled;
+}
+
+// rgba32float is not filterable in core WebGPU; half floats are, and keep 11 bits of
+// mantissa, more than RGBE's 8.
+std::vector<std::uint16_t> halfRgba(const image::HdrImage& panorama) {
+    std::vector<std::uint16_t> halves(std::size_t(panorama.width) * panorama.height * 4);
+    for (std::size_t i = 0, j = 0; i < panorama.rgb.size(); i += 3, j += 4) {
+        halves[j] = toHalf(panorama.rgb[i]);
+        halves[j + 1] = toHalf(panorama.rgb[i + 1]);
+        halves[j + 2] = toHalf(panorama.rgb[i + 2]);
+        halves[j + 3] = toHalf(1.0f);
+    }
+    return halves;
+}
+
+// The specular levels' faces (from level 1), then the irradiance faces, then the LUT.
+std::vector<CubeParams> cubeParams(const EnvironmentOptions& options,
+                                   std::uint32_t sourceSize,
+                                   std::uint32_t sourceLevels) {
+    const float texelSolidAngle =
+        4.0f * std::numbers::pi_v<float> / (6.0f * float(sourceSize) * float(sourceSize));
+    std::vector<CubeParams> params;
+    for (std::uint32_t level = 1; level < options.specularLevels; ++level) {
+        for (std::uint32_t face = 0; face < kCubeFaces; ++face) {
+            params.push_back({face, options.specularSamples,
+                              float(level) / float(options.specularLevels - 1), texelSolidAngle,
+                              float(sourceLevels - 1)});
+        }
+    }
+    for (std::uint32_t face = 0; face < kCubeFaces; ++face) {
+        params.push_back(
+            {face, options.irradianceSamples, 0.0f, texelSolidAngle, float(sourceLevels - 1)});
+    }
+    params.push_back({0, kLutSamples});
+    return params;
+}
+
+// The atlas regions: the specular levels, the irradiance, the table.
+std::vector<PackParams> packParams(const EnvironmentOptions& options,
+                                   const EnvironmentAtlasLayout& atlas) {
+    std::vector<PackParams> packs;
+    for (std::uint32_t level = 0; level < options.specularLevels; ++level) {
+        const AtlasRegion& region = atlas.specular[level];
+        packs.push_back({{region.x, region.y}, region.size, float(level)});
+    }
+    packs.push_back({{atlas.irradiance.x, atlas.irradiance.y}, atlas.irradiance.size, 0.0f});
+    packs.push_back({{atlas.brdf.x, atlas.brdf.y}, atlas.brdf.size, 0.0f});
+    return packs;
+}
+
+// Pops the two error scopes build() pushed (their errors come back as one value), then waits
+// for the GPU.
+Result<void> popErrorScopesAndWait(const wgpu::Device& device, const wgpu::Queue& queue) {
+    const wgpu::Instance instance = device.GetAdapter().GetInstance();
+    std::string errors;
+    bool outOfMemory = false;
+    auto collect = [&errors, &outOfMemory](wgpu::PopErrorScopeStatus, wgpu::ErrorType type,
+                                           wgpu::StringView message) {
+        outOfMemory |= type == wgpu::ErrorType::OutOfMemory;
+        if (type != wgpu::ErrorType::NoError) {
+            errors += (errors.empty() ? "" : "; ") + std::string(std::string_view(message));
+        }
+    };
+    const bool popped =
+        waitFor(instance, device.PopErrorScope(wgpu::CallbackMode::WaitAnyOnly, collect)) &&
+        waitFor(instance, device.PopErrorScope(wgpu::CallbackMode::WaitAnyOnly, collect));
+    // The build time includes the GPU's work: wait until it has finished.
+    bool done = false;
+    const bool waited = waitFor(
+        instance,
+        queue.OnSubmittedWorkDone(wgpu::CallbackMode::WaitAnyOnly,
+                                  [&done](wgpu::QueueWorkDoneStatus status, wgpu::StringView) {
+                                      done = status == wgpu::QueueWorkDoneStatus::Success;
+                                  }));
+    if (!errors.empty()) {
+        return makeError(outOfMemory ? ErrorCode::OutOfMemory : ErrorCode::ValidationError,
+                         "Computing the environment maps failed (" + errors + ").");
+    }
+    if (!popped || !waited || !done) {
+        return makeError(ErrorCode::DeviceError,
+                         "Waiting for the environment maps failed (the device may be lost).");
+    }
+    return {};
+}
+
 }  // namespace
 
 struct Environment::Pipelines {
@@ -289,45 +399,39 @@ Result<void> Environment::load(const image::HdrImage& panorama) {
     return {};
 }
 
+// The uniform slots of one build's dispatches (kSlotStride apart), and where each kind starts:
+// the specular levels' faces, the irradiance faces, the LUT, then the atlas regions.
+struct Environment::ParameterSlots {
+    wgpu::Buffer buffer;
+    std::uint32_t firstIrradiance = 0;
+    std::uint32_t lut = 0;
+    std::uint32_t firstPack = 0;
+    std::vector<PackParams> packs;  // Per atlas region, from slot firstPack.
+};
+
 Result<void> Environment::build(const image::HdrImage& original, bool withLut) {
     wgpu::Limits limits{};
     mDevice.GetLimits(&limits);
-    if (original.width == 0 || original.height == 0 ||
-        original.rgb.size() != std::size_t(original.width) * original.height * 3) {
-        return makeError(ErrorCode::InvalidArgument,
-                         "The environment panorama is empty or inconsistent (" +
-                             sizeText(original.width, original.height) + ", " +
-                             std::to_string(original.rgb.size()) + " floats).");
-    }
-    // Larger than a texture can be: box-filtered down (ImageResize.h), as material images are.
-    image::HdrImage downscaled;
-    const image::ImageSize fitted =
-        image::fitWithin({original.width, original.height}, limits.maxTextureDimension2D);
-    if (fitted.width != original.width || fitted.height != original.height) {
-        downscaled = {
-            fitted.width, fitted.height,
-            image::downscaleRgbFloat(original.rgb, {original.width, original.height}, fitted)};
-        logWarning("The environment panorama is " + sizeText(original.width, original.height) +
-                   ", larger than the device's maxTextureDimension2D (" +
-                   std::to_string(limits.maxTextureDimension2D) + "); downscaled to " +
-                   sizeText(fitted.width, fitted.height) + ".");
-    }
+    ENCORE_TRY(checkPanorama(original));
+    const image::HdrImage downscaled = downscaledToFit(original, limits.maxTextureDimension2D);
     const image::HdrImage& panorama = downscaled.rgb.empty() ? original : downscaled;
-    const Pipelines& pipelines = *mPipelines;
     // Everything below is validated in one scope so a mistake comes back as a value rather
     // than only through the device's uncaptured-error callback.
     mDevice.PushErrorScope(wgpu::ErrorFilter::OutOfMemory);
     mDevice.PushErrorScope(wgpu::ErrorFilter::Validation);
 
-    // rgba32float is not filterable in core WebGPU; half floats are, and keep 11 bits of
-    // mantissa, more than RGBE's 8.
-    std::vector<std::uint16_t> halves(std::size_t(panorama.width) * panorama.height * 4);
-    for (std::size_t i = 0, j = 0; i < panorama.rgb.size(); i += 3, j += 4) {
-        halves[j] = toHalf(panorama.rgb[i]);
-        halves[j + 1] = toHalf(panorama.rgb[i + 1]);
-        halves[j + 2] = toHalf(panorama.rgb[i + 2]);
-        halves[j + 3] = toHalf(1.0f);
-    }
+    const wgpu::Texture panoramaTexture = uploadPanorama(panorama);
+    const ParameterSlots slots = writeParameters();
+    const wgpu::CommandEncoder encoder = mDevice.CreateCommandEncoder();
+    encodeMaps(encoder, panoramaTexture, slots, withLut);
+    encodeAtlas(encoder, slots, withLut);
+    const wgpu::CommandBuffer commands = encoder.Finish();
+    mQueue.Submit(1, &commands);
+    return popErrorScopesAndWait(mDevice, mQueue);
+}
+
+wgpu::Texture Environment::uploadPanorama(const image::HdrImage& panorama) const {
+    const std::vector<std::uint16_t> halves = halfRgba(panorama);
     wgpu::TextureDescriptor panoramaDescriptor{};
     panoramaDescriptor.label = "environment panorama";
     panoramaDescriptor.size = {panorama.width, panorama.height, 1};
@@ -342,53 +446,42 @@ Result<void> Environment::build(const image::HdrImage& original, bool withLut) {
     const wgpu::Extent3D panoramaExtent{panorama.width, panorama.height, 1};
     mQueue.WriteTexture(&destination, halves.data(), halves.size() * sizeof(std::uint16_t), &layout,
                         &panoramaExtent);
+    return panoramaTexture;
+}
 
+Environment::ParameterSlots Environment::writeParameters() const {
     // Parameters of every dispatch that takes them, one uniform slot each.
-    const std::uint32_t sourceLevels = mSource.GetMipLevelCount();
-    const std::uint32_t sourceSize = mSource.GetWidth();
-    const float texelSolidAngle =
-        4.0f * std::numbers::pi_v<float> / (6.0f * float(sourceSize) * float(sourceSize));
-    std::vector<CubeParams> slots;
-    for (std::uint32_t level = 1; level < mOptions.specularLevels; ++level) {
-        for (std::uint32_t face = 0; face < kCubeFaces; ++face) {
-            slots.push_back({face, mOptions.specularSamples,
-                             float(level) / float(mOptions.specularLevels - 1), texelSolidAngle,
-                             float(sourceLevels - 1)});
-        }
+    ParameterSlots slots;
+    const std::vector<CubeParams> cubes =
+        cubeParams(mOptions, mSource.GetWidth(), mSource.GetMipLevelCount());
+    slots.firstIrradiance = (mOptions.specularLevels - 1) * kCubeFaces;
+    slots.lut = slots.firstIrradiance + kCubeFaces;
+    slots.packs = packParams(mOptions, mAtlasLayout);
+    slots.firstPack = static_cast<std::uint32_t>(cubes.size());
+    std::vector<std::uint8_t> slotBytes((cubes.size() + slots.packs.size()) * kSlotStride);
+    for (std::size_t i = 0; i < cubes.size(); ++i) {
+        std::memcpy(&slotBytes[i * kSlotStride], &cubes[i], sizeof(CubeParams));
     }
-    const auto firstIrradianceSlot = static_cast<std::uint32_t>(slots.size());
-    for (std::uint32_t face = 0; face < kCubeFaces; ++face) {
-        slots.push_back(
-            {face, mOptions.irradianceSamples, 0.0f, texelSolidAngle, float(sourceLevels - 1)});
-    }
-    const auto lutSlot = static_cast<std::uint32_t>(slots.size());
-    slots.push_back({0, kLutSamples});
-    // Then the atlas regions: the specular levels, the irradiance, the table.
-    std::vector<PackParams> packs;
-    for (std::uint32_t level = 0; level < mOptions.specularLevels; ++level) {
-        const AtlasRegion& region = mAtlasLayout.specular[level];
-        packs.push_back({{region.x, region.y}, region.size, float(level)});
-    }
-    packs.push_back({{mAtlasLayout.irradiance.x, mAtlasLayout.irradiance.y},
-                     mAtlasLayout.irradiance.size,
-                     0.0f});
-    packs.push_back({{mAtlasLayout.brdf.x, mAtlasLayout.brdf.y}, mAtlasLayout.brdf.size, 0.0f});
-    const auto firstPackSlot = static_cast<std::uint32_t>(slots.size());
-    std::vector<std::uint8_t> slotBytes((slots.size() + packs.size()) * kSlotStride);
-    for (std::size_t i = 0; i < slots.size(); ++i) {
-        std::memcpy(&slotBytes[i * kSlotStride], &slots[i], sizeof(CubeParams));
-    }
-    for (std::size_t i = 0; i < packs.size(); ++i) {
-        std::memcpy(&slotBytes[(firstPackSlot + i) * kSlotStride], &packs[i], sizeof(PackParams));
+    for (std::size_t i = 0; i < slots.packs.size(); ++i) {
+        std::memcpy(&slotBytes[(slots.firstPack + i) * kSlotStride], &slots.packs[i],
+                    sizeof(PackParams));
     }
     wgpu::BufferDescriptor slotDescriptor{};
     slotDescriptor.label = "environment parameters";
     slotDescriptor.size = slotBytes.size();
     slotDescriptor.usage = wgpu::BufferUsage::Uniform | wgpu::BufferUsage::CopyDst;
-    const wgpu::Buffer slotBuffer = mDevice.CreateBuffer(&slotDescriptor);
-    mQueue.WriteBuffer(slotBuffer, 0, slotBytes.data(), slotBytes.size());
+    slots.buffer = mDevice.CreateBuffer(&slotDescriptor);
+    mQueue.WriteBuffer(slots.buffer, 0, slotBytes.data(), slotBytes.size());
+    return slots;
+}
 
-    const wgpu::CommandEncoder encoder = mDevice.CreateCommandEncoder();
+void Environment::encodeMaps(const wgpu::CommandEncoder& encoder,
+                             const wgpu::Texture& panoramaTexture,
+                             const ParameterSlots& slots,
+                             bool withLut) const {
+    const Pipelines& pipelines = *mPipelines;
+    const std::uint32_t sourceLevels = mSource.GetMipLevelCount();
+    const std::uint32_t sourceSize = mSource.GetWidth();
     wgpu::ComputePassDescriptor passDescriptor{};
     passDescriptor.label = "environment";
     const wgpu::ComputePassEncoder pass = encoder.BeginComputePass(&passDescriptor);
@@ -421,7 +514,7 @@ Result<void> Environment::build(const image::HdrImage& original, bool withLut) {
                                            {{0, mSourceView},
                                             {1, mSampler},
                                             {2, target},
-                                            slotResource(3, slotBuffer, slot)}));
+                                            slotResource(3, slots.buffer, slot)}));
             pass.DispatchWorkgroups(groups(size), groups(size), 1);
         }
     }
@@ -429,11 +522,12 @@ Result<void> Environment::build(const image::HdrImage& original, bool withLut) {
     pass.SetPipeline(pipelines.irradiance);
     const wgpu::TextureView irradianceTarget = levelView(mIrradiance, 0);
     for (std::uint32_t face = 0; face < kCubeFaces; ++face) {
-        pass.SetBindGroup(0, bindGroup(mDevice, pipelines.irradiance,
-                                       {{0, mSourceView},
-                                        {1, mSampler},
-                                        {2, irradianceTarget},
-                                        slotResource(3, slotBuffer, firstIrradianceSlot + face)}));
+        pass.SetBindGroup(0,
+                          bindGroup(mDevice, pipelines.irradiance,
+                                    {{0, mSourceView},
+                                     {1, mSampler},
+                                     {2, irradianceTarget},
+                                     slotResource(3, slots.buffer, slots.firstIrradiance + face)}));
         const std::uint32_t size = mOptions.irradianceSize;
         pass.DispatchWorkgroups(groups(size), groups(size), 1);
     }
@@ -441,12 +535,18 @@ Result<void> Environment::build(const image::HdrImage& original, bool withLut) {
     if (withLut) {
         pass.SetPipeline(pipelines.lut);
         pass.SetBindGroup(0, bindGroup(mDevice, pipelines.lut,
-                                       {{0, mLutView}, slotResource(1, slotBuffer, lutSlot)}));
+                                       {{0, mLutView}, slotResource(1, slots.buffer, slots.lut)}));
         pass.DispatchWorkgroups(groups(mOptions.lutSize), groups(mOptions.lutSize), 1);
     }
     pass.End();
+}
 
+void Environment::encodeAtlas(const wgpu::CommandEncoder& encoder,
+                              const ParameterSlots& slots,
+                              bool withLut) const {
+    const Pipelines& pipelines = *mPipelines;
     // Roughness 0 is a mirror: the specular cube's level 0 is the source's.
+    const std::uint32_t sourceSize = mSource.GetWidth();
     wgpu::TexelCopyTextureInfo copySource{};
     copySource.texture = mSource;
     wgpu::TexelCopyTextureInfo copyDestination{};
@@ -455,65 +555,32 @@ Result<void> Environment::build(const image::HdrImage& original, bool withLut) {
     encoder.CopyTextureToTexture(&copySource, &copyDestination, &faces);
 
     // Everything the frame samples, into the atlas (after the copy: level 0 is packed too).
+    wgpu::ComputePassDescriptor passDescriptor{};
     passDescriptor.label = "environment atlas";
     const wgpu::ComputePassEncoder packPass = encoder.BeginComputePass(&passDescriptor);
     packPass.SetPipeline(pipelines.packCube);
     for (std::uint32_t i = 0; i < mOptions.specularLevels + 1; ++i) {
         const bool irradiance = i == mOptions.specularLevels;
-        const std::uint32_t span = packs[i].size + 2;
+        const std::uint32_t span = slots.packs[i].size + 2;
         packPass.SetBindGroup(
             0, bindGroup(mDevice, pipelines.packCube,
                          {{0, irradiance ? mIrradianceView : mSpecularView},
                           {1, mSampler},
                           {2, mAtlasView},
-                          slotResource<PackParams>(3, slotBuffer, firstPackSlot + i)}));
+                          slotResource<PackParams>(3, slots.buffer, slots.firstPack + i)}));
         packPass.DispatchWorkgroups(groups(3 * span), groups(2 * span), 1);
     }
     if (withLut) {
         packPass.SetPipeline(pipelines.packTable);
-        const std::uint32_t slot = firstPackSlot + mOptions.specularLevels + 1;
+        const std::uint32_t slot = slots.firstPack + mOptions.specularLevels + 1;
         packPass.SetBindGroup(0, bindGroup(mDevice, pipelines.packTable,
                                            {{2, mAtlasView},
-                                            slotResource<PackParams>(3, slotBuffer, slot),
+                                            slotResource<PackParams>(3, slots.buffer, slot),
                                             {4, mLutView}}));
         const std::uint32_t size = mAtlasLayout.brdf.size + 2;
         packPass.DispatchWorkgroups(groups(size), groups(size), 1);
     }
     packPass.End();
-
-    const wgpu::CommandBuffer commands = encoder.Finish();
-    mQueue.Submit(1, &commands);
-
-    const wgpu::Instance instance = mDevice.GetAdapter().GetInstance();
-    std::string errors;
-    bool outOfMemory = false;
-    auto collect = [&errors, &outOfMemory](wgpu::PopErrorScopeStatus, wgpu::ErrorType type,
-                                           wgpu::StringView message) {
-        outOfMemory |= type == wgpu::ErrorType::OutOfMemory;
-        if (type != wgpu::ErrorType::NoError) {
-            errors += (errors.empty() ? "" : "; ") + std::string(std::string_view(message));
-        }
-    };
-    const bool popped =
-        waitFor(instance, mDevice.PopErrorScope(wgpu::CallbackMode::WaitAnyOnly, collect)) &&
-        waitFor(instance, mDevice.PopErrorScope(wgpu::CallbackMode::WaitAnyOnly, collect));
-    // The build time includes the GPU's work: wait until it has finished.
-    bool done = false;
-    const bool waited = waitFor(
-        instance,
-        mQueue.OnSubmittedWorkDone(wgpu::CallbackMode::WaitAnyOnly,
-                                   [&done](wgpu::QueueWorkDoneStatus status, wgpu::StringView) {
-                                       done = status == wgpu::QueueWorkDoneStatus::Success;
-                                   }));
-    if (!errors.empty()) {
-        return makeError(outOfMemory ? ErrorCode::OutOfMemory : ErrorCode::ValidationError,
-                         "Computing the environment maps failed (" + errors + ").");
-    }
-    if (!popped || !waited || !done) {
-        return makeError(ErrorCode::DeviceError,
-                         "Waiting for the environment maps failed (the device may be lost).");
-    }
-    return {};
 }
 
 }  // namespace encore::render

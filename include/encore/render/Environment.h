@@ -90,7 +90,20 @@ class Environment {
   private:
     Environment() = default;
     struct Pipelines;
+    struct ParameterSlots;
     Result<void> build(const image::HdrImage& panorama, bool withLut);
+    // The steps of build(): the panorama as a half-float texture; the dispatches' parameters;
+    // the compute pass that fills the source, specular and irradiance cubes and the LUT; the
+    // mirror level's copy and the pass that packs them all into the atlas.
+    wgpu::Texture uploadPanorama(const image::HdrImage& panorama) const;
+    ParameterSlots writeParameters() const;
+    void encodeMaps(const wgpu::CommandEncoder& encoder,
+                    const wgpu::Texture& panoramaTexture,
+                    const ParameterSlots& slots,
+                    bool withLut) const;
+    void encodeAtlas(const wgpu::CommandEncoder& encoder,
+                     const ParameterSlots& slots,
+                     bool withLut) const;
 
     wgpu::Device mDevice;
     wgpu::Queue mQueue;
