@@ -234,40 +234,10 @@ Result<void> checkSizes(const gpu::DeviceLimits& limits,
     return {};
 }
 
-}  // namespace
-
-Result<void> GpuAnimation::checkLimits(const gpu::DeviceLimits& limits,
-                                       const scene::SceneData& scene) {
-    return checkSizes(limits, scene,
-                      layoutSamplers(scene).keyframes.size() + restWeightFloats(scene));
-}
-
-Result<std::unique_ptr<GpuAnimation>> GpuAnimation::create(
-    const wgpu::Device& device,
-    const wgpu::Queue& queue,
-    shaders::ShaderLibrary& shaders,
-    const gpu::DeviceLimits& limits,
-    const scene::SceneData& scene,
-    const AnimationBuffers* animation,
-    const InstanceTransformTargets& instances) {
-    if (scene.animations.empty()) {
-        return std::unique_ptr<GpuAnimation>();
-    }
-    // Keyframes: every distinct run of sampler times and values, then the rest weights of
-    // animated nodes. Animations: their clock, offset and duration.
-    SamplerLayout layout = layoutSamplers(scene);
-    ENCORE_TRY(checkSizes(limits, scene, layout.keyframes.size() + restWeightFloats(scene)));
-    auto result = std::unique_ptr<GpuAnimation>(new GpuAnimation());
-    GpuAnimation& gpu = *result;
-    gpu.mScene = &scene;
-    const std::size_t nodeCount = scene.nodes.size();
-
-    KeyframeStore& keyframes = layout.keyframes;
-    gpu.mSamplerOffsets = std::move(layout.firstSampler);
-    std::vector<std::uint32_t> clockOf;
-    gpu.mClockEnds = animationClocks(scene, clockOf);
-    std::vector<AnimationRecord> animationRecords;
-    std::vector<std::uint8_t> animated(nodeCount, 0);
+// Per animation: its clock, its time offset and its duration.
+std::vector<AnimationRecord> animationRecords(const scene::SceneData& scene,
+                                              std::span<const std::uint32_t> clockOf) {
+    std::vector<AnimationRecord> records;
     for (std::size_t a = 0; a < scene.animations.size(); ++a) {
         const scene::Animation& anim = scene.animations[a];
         const auto wrapped =
@@ -275,15 +245,30 @@ Result<std::unique_ptr<GpuAnimation>> GpuAnimation::create(
         // Rounding can carry a tiny negative offset up to `end` itself: that is 0 (and an
         // animation lasting 0 never wraps).
         const float wrappedOffset = anim.end > 0.0f && wrapped < anim.end ? wrapped : 0.0f;
-        animationRecords.push_back({clockOf[a], anim.timeOffset, wrappedOffset, anim.end});
-        for (const scene::AnimationChannel& channel : anim.channels) {
+        records.push_back({clockOf[a], anim.timeOffset, wrappedOffset, anim.end});
+    }
+    return records;
+}
+
+// Per node: 1 where some animation's channel drives it.
+std::vector<std::uint8_t> animatedNodes(const scene::SceneData& scene) {
+    std::vector<std::uint8_t> animated(scene.nodes.size(), 0);
+    for (const scene::Animation& animation : scene.animations) {
+        for (const scene::AnimationChannel& channel : animation.channels) {
             animated[channel.node.index()] = 1;
         }
     }
+    return animated;
+}
 
+// Pass 1's records, one per animated node in node order: its rest pose and where its morph
+// weights go. Their rest weights are appended to `keyframes`.
+std::vector<NodeRecord> animatedNodeRecords(const scene::SceneData& scene,
+                                            std::span<const std::uint8_t> animated,
+                                            KeyframeStore& keyframes) {
     const std::vector<std::uint32_t> weightOffset = weightOffsets(scene);
-    std::vector<NodeRecord> nodeRecords;
-    for (std::size_t n = 0; n < nodeCount; ++n) {
+    std::vector<NodeRecord> records;
+    for (std::size_t n = 0; n < scene.nodes.size(); ++n) {
         if (!animated[n]) {
             continue;
         }
@@ -298,13 +283,19 @@ Result<std::unique_ptr<GpuAnimation>> GpuAnimation::create(
         record.weightOffset = weightOffset[n];
         record.weightCount = static_cast<std::uint32_t>(node.weights.size());
         record.restWeights = keyframes.append(node.weights);
-        nodeRecords.push_back(record);
-        gpu.mAnimatedNodes.push_back(static_cast<std::uint32_t>(n));
+        records.push_back(record);
     }
+    return records;
+}
 
-    // Nodes at or below an animated node, grouped by depth (the loader guarantees a forest).
+// Nodes at or below an animated node, grouped by depth (the loader guarantees a forest); also
+// given as a flag per node (1: it moves).
+std::vector<std::vector<WorldRecord>> movingNodesByDepth(const scene::SceneData& scene,
+                                                         std::span<const std::uint8_t> animated,
+                                                         std::vector<std::uint8_t>& moves) {
+    const std::size_t nodeCount = scene.nodes.size();
     std::vector<std::vector<WorldRecord>> levels;
-    std::vector<std::uint8_t> moves(nodeCount, 0);
+    moves.assign(nodeCount, 0);
     std::vector<std::pair<std::uint32_t, std::uint32_t>> stack;  // (node, depth)
     for (std::size_t root = 0; root < nodeCount; ++root) {
         if (scene.nodes[root].parent.valid()) {
@@ -329,19 +320,38 @@ Result<std::unique_ptr<GpuAnimation>> GpuAnimation::create(
             }
         }
     }
-    std::vector<WorldRecord> worldRecords;
-    std::vector<glm::uvec4> levelRanges;
-    for (const auto& level : levels) {
+    return levels;
+}
+
+// Pass 2's records: the moving nodes level after level, parents first.
+struct WorldLevels {
+    std::vector<WorldRecord> records;
+    std::vector<glm::uvec4> ranges;   // Per non-empty level: (first record, count, 0, 0).
+    std::vector<std::uint8_t> moves;  // Per node: 1 at or below an animated node.
+};
+
+WorldLevels worldLevels(const scene::SceneData& scene, std::span<const std::uint8_t> animated) {
+    WorldLevels world;
+    for (const auto& level : movingNodesByDepth(scene, animated, world.moves)) {
         if (level.empty()) {
             continue;
         }
-        levelRanges.emplace_back(worldRecords.size(), level.size(), 0, 0);
-        worldRecords.insert(worldRecords.end(), level.begin(), level.end());
-        gpu.mLevelCounts.push_back(static_cast<std::uint32_t>(level.size()));
+        world.ranges.emplace_back(world.records.size(), level.size(), 0, 0);
+        world.records.insert(world.records.end(), level.begin(), level.end());
     }
+    return world;
+}
 
-    // Instances whose node moves, and joints whose node moves.
-    std::vector<TransformRecord> instanceRecords;
+// Pass 3's instance records: the instances whose node moves, and which scene instances they are.
+struct MovedInstances {
+    std::vector<TransformRecord> records;
+    std::vector<std::uint32_t> sceneInstances;
+};
+
+MovedInstances movedInstances(const scene::SceneData& scene,
+                              std::span<const std::uint8_t> moves,
+                              std::span<const std::uint32_t> slots) {
+    MovedInstances moved;
     for (std::size_t i = 0; i < scene.instances.size(); ++i) {
         const scene::Instance& instance = scene.instances[i];
         if (!moves[instance.node.index()]) {
@@ -349,89 +359,204 @@ Result<std::unique_ptr<GpuAnimation>> GpuAnimation::create(
         }
         TransformRecord record{};
         record.node = static_cast<std::uint32_t>(instance.node.index());
-        record.slot = instances.slots[i];
+        record.slot = slots[i];
         record.transform = instance.instanceTransform;
-        instanceRecords.push_back(record);
-        gpu.mInstances.push_back(static_cast<std::uint32_t>(i));
-        gpu.mInstanceSlots.push_back(record.slot);
+        moved.records.push_back(record);
+        moved.sceneInstances.push_back(static_cast<std::uint32_t>(i));
     }
-    std::vector<TransformRecord> jointRecords;
+    return moved;
+}
+
+// Pass 3's joint records: the joints whose node moves, each at its index among every skin's
+// joints.
+std::vector<TransformRecord> movedJoints(const scene::SceneData& scene,
+                                         std::span<const std::uint8_t> moves) {
+    std::vector<TransformRecord> records;
     std::uint32_t jointIndex = 0;
     for (const scene::Skin& skin : scene.skins) {
         for (std::size_t j = 0; j < skin.joints.size(); ++j, ++jointIndex) {
-            if (!moves[skin.joints[j].index()] || !animation) {
+            if (!moves[skin.joints[j].index()]) {
                 continue;
             }
             TransformRecord record{};
             record.node = static_cast<std::uint32_t>(skin.joints[j].index());
             record.slot = jointIndex;
             record.transform = skin.inverseBindMatrices[j];
-            jointRecords.push_back(record);
+            records.push_back(record);
         }
     }
+    return records;
+}
 
-    // Buffers.
+}  // namespace
+
+Result<void> GpuAnimation::checkLimits(const gpu::DeviceLimits& limits,
+                                       const scene::SceneData& scene) {
+    return checkSizes(limits, scene,
+                      layoutSamplers(scene).keyframes.size() + restWeightFloats(scene));
+}
+
+// The tables the passes read, built on the CPU from the scene alone.
+struct GpuAnimation::Tables {
+    // Every distinct run of sampler times and values, then the rest weights of animated nodes.
+    KeyframeStore keyframes;
+    std::vector<SamplerRecord> samplers;
+    std::vector<AnimationRecord> animations;  // Their clock, offset and duration.
+    std::vector<NodeRecord> nodes;            // Pass 1: one per animated node.
+    WorldLevels world;                        // Pass 2.
+    MovedInstances instances;                 // Pass 3.
+    std::vector<TransformRecord> joints;      // Pass 3.
+};
+
+Result<std::unique_ptr<GpuAnimation>> GpuAnimation::create(
+    const wgpu::Device& device,
+    const wgpu::Queue& queue,
+    shaders::ShaderLibrary& shaders,
+    const gpu::DeviceLimits& limits,
+    const scene::SceneData& scene,
+    const AnimationBuffers* animation,
+    const InstanceTransformTargets& instances) {
+    if (scene.animations.empty()) {
+        return std::unique_ptr<GpuAnimation>();
+    }
+    SamplerLayout layout = layoutSamplers(scene);
+    ENCORE_TRY(checkSizes(limits, scene, layout.keyframes.size() + restWeightFloats(scene)));
+    auto result = std::unique_ptr<GpuAnimation>(new GpuAnimation());
+    GpuAnimation& gpu = *result;
+    gpu.mScene = &scene;
+    gpu.mSamplerOffsets = std::move(layout.firstSampler);
+    std::vector<std::uint32_t> clockOf;
+    gpu.mClockEnds = animationClocks(scene, clockOf);
+
+    Tables tables;
+    tables.keyframes = std::move(layout.keyframes);
+    tables.samplers = std::move(layout.samplers);
+    tables.animations = animationRecords(scene, clockOf);
+    const std::vector<std::uint8_t> animated = animatedNodes(scene);
+    tables.nodes = animatedNodeRecords(scene, animated, tables.keyframes);
+    tables.world = worldLevels(scene, animated);
+    tables.instances = movedInstances(scene, tables.world.moves, instances.slots);
+    if (animation) {  // Joint matrices go to AnimationBuffers' joint buffer: none without.
+        tables.joints = movedJoints(scene, tables.world.moves);
+    }
+    gpu.keepIndices(tables);
+    gpu.countStats(tables);
+
+    gpu.createNodeMatrices(device, scene);
+    ENCORE_TRY(gpu.createPipelines(device, shaders));
+    gpu.bindSampling(device, tables, animation);
+    gpu.bindWorldLevels(device, limits, tables);
+    gpu.bindTransforms(device, tables, animation, instances);
+
+    std::vector<scene::AnimationId> all;
+    for (std::size_t a = 0; a < scene.animations.size(); ++a) {
+        all.push_back(scene::AnimationId(a));
+    }
+    gpu.select(queue, all);
+    return result;
+}
+
+void GpuAnimation::keepIndices(const Tables& tables) {
+    for (const NodeRecord& record : tables.nodes) {
+        mAnimatedNodes.push_back(record.node);
+    }
+    for (const glm::uvec4& range : tables.world.ranges) {
+        mLevelCounts.push_back(range.y);
+    }
+    mInstances = tables.instances.sceneInstances;
+    for (const TransformRecord& record : tables.instances.records) {
+        mInstanceSlots.push_back(record.slot);
+    }
+    mInstanceRecords = static_cast<std::uint32_t>(tables.instances.records.size());
+    mJointRecords = static_cast<std::uint32_t>(tables.joints.size());
+}
+
+void GpuAnimation::countStats(const Tables& tables) {
+    GpuAnimationStats& stats = mStats;
+    stats.animatedNodes = static_cast<std::uint32_t>(tables.nodes.size());
+    stats.worldNodes = static_cast<std::uint32_t>(tables.world.records.size());
+    stats.levels = static_cast<std::uint32_t>(tables.world.ranges.size());
+    stats.instances = mInstanceRecords;
+    stats.joints = mJointRecords;
+    stats.dispatches = (stats.animatedNodes ? 1 : 0) + stats.levels + (stats.instances ? 1 : 0) +
+                       (stats.joints ? 1 : 0);
+    stats.copies = static_cast<std::uint32_t>(mCopyTargets.size());
+    stats.bytesPerFrame = mClockEnds.size() * sizeof(float);
+    stats.clocks = static_cast<std::uint32_t>(mClockEnds.size());
+    stats.keyframeBytes = tables.keyframes.size() * sizeof(float);
+}
+
+void GpuAnimation::createNodeMatrices(const wgpu::Device& device, const scene::SceneData& scene) {
+    const std::size_t nodeCount = scene.nodes.size();
     std::vector<glm::mat4> restLocals(nodeCount), restWorlds(nodeCount);
     for (std::size_t n = 0; n < nodeCount; ++n) {
         restLocals[n] = scene.nodes[n].local;
         restWorlds[n] = scene.nodes[n].world;
     }
     const auto readable = wgpu::BufferUsage::CopySrc | wgpu::BufferUsage::CopyDst;
-    gpu.mLocals =
-        createStorageBuffer(device, std::move(restLocals), "animated node locals", readable);
-    gpu.mWorlds =
-        createStorageBuffer(device, std::move(restWorlds), "animated node worlds", readable);
-    const std::uint64_t storedKeyframes = keyframes.size();
-    std::vector<float> keyframeFloats = keyframes.take();
-    if (keyframeFloats.empty()) {
-        keyframeFloats.push_back(0.0f);  // No zero-sized bindings.
-    }
-    const wgpu::Buffer keyframeBuffer =
-        createStorageBuffer(device, std::move(keyframeFloats), "keyframes");
-    const wgpu::Buffer samplerBuffer =
-        createStorageBuffer(device, std::move(layout.samplers), "samplers");
-    const wgpu::Buffer animationBuffer =
-        createStorageBuffer(device, std::move(animationRecords), "animation clocks");
-    const wgpu::Buffer nodeBuffer = createStorageBuffer(device, nodeRecords, "animated nodes");
-    gpu.mClockTimes.assign(1 + gpu.mClockEnds.size(), 0.0f);
-    gpu.mClocks = createStorageBuffer(device, gpu.mClockTimes, "animation clock times",
-                                      wgpu::BufferUsage::CopyDst);
-    gpu.mNodeChannels =
-        createStorageBuffer(device, std::vector<glm::uvec4>(nodeRecords.size(), glm::uvec4(kNone)),
-                            "animated node channels", wgpu::BufferUsage::CopyDst);
-    const wgpu::Buffer worldBuffer = createStorageBuffer(device, worldRecords, "world levels");
-    const wgpu::Buffer instanceBuffer =
-        createStorageBuffer(device, instanceRecords, "animated instance records");
-    const wgpu::Buffer jointBuffer =
-        createStorageBuffer(device, jointRecords, "animated joint records");
-    wgpu::Buffer weights = animation ? animation->weightBuffer() : wgpu::Buffer();
-    if (!weights) {
-        weights = createStorageBuffer(device, std::vector<float>(1, 0.0f), "no morph weights");
-    }
-    gpu.mInstanceOutput = instances.storage;
-    const wgpu::Buffer instanceOutput = instances.storage;
+    mLocals = createStorageBuffer(device, std::move(restLocals), "animated node locals", readable);
+    mWorlds = createStorageBuffer(device, std::move(restWorlds), "animated node worlds", readable);
+}
 
-    // Pipelines (layouts derived from each shader) and bind groups.
+// The pipelines of the three passes, each with the layout WebGPU derives from its shader.
+Result<void> GpuAnimation::createPipelines(const wgpu::Device& device,
+                                           shaders::ShaderLibrary& shaders) {
     auto sample = makePipeline(device, shaders, "animation_sample.wgsl", "sampleNodes");
     auto world = makePipeline(device, shaders, "animation_world.wgsl", "worldMatrices");
     auto transform = makePipeline(device, shaders, "animation_transforms.wgsl", "nodeTransforms");
     if (!sample || !world || !transform) {
         return !sample ? sample.error() : !world ? world.error() : transform.error();
     }
-    gpu.mSample = *sample;
-    gpu.mWorld = *world;
-    gpu.mTransform = *transform;
-    gpu.mSampleGroup = pipelineBindGroup(device, gpu.mSample,
-                                         {{0, keyframeBuffer},
-                                          {1, samplerBuffer},
-                                          {2, gpu.mClocks},
-                                          {3, nodeBuffer},
-                                          {4, gpu.mNodeChannels},
-                                          {5, gpu.mLocals},
-                                          {6, weights},
-                                          {7, animationBuffer}},
-                                         "animation sampling");
+    mSample = *sample;
+    mWorld = *world;
+    mTransform = *transform;
+    return {};
+}
 
+// Pass 1 reads the keyframes (taken from `tables`), samplers, clocks and node records, and
+// writes the node locals and the morph weights.
+void GpuAnimation::bindSampling(const wgpu::Device& device,
+                                Tables& tables,
+                                const AnimationBuffers* animation) {
+    std::vector<float> keyframeFloats = tables.keyframes.take();
+    if (keyframeFloats.empty()) {
+        keyframeFloats.push_back(0.0f);  // No zero-sized bindings.
+    }
+    const wgpu::Buffer keyframeBuffer =
+        createStorageBuffer(device, std::move(keyframeFloats), "keyframes");
+    const wgpu::Buffer samplerBuffer =
+        createStorageBuffer(device, std::move(tables.samplers), "samplers");
+    const wgpu::Buffer animationBuffer =
+        createStorageBuffer(device, std::move(tables.animations), "animation clocks");
+    const wgpu::Buffer nodeBuffer = createStorageBuffer(device, tables.nodes, "animated nodes");
+    mClockTimes.assign(1 + mClockEnds.size(), 0.0f);
+    mClocks = createStorageBuffer(device, mClockTimes, "animation clock times",
+                                  wgpu::BufferUsage::CopyDst);
+    mNodeChannels =
+        createStorageBuffer(device, std::vector<glm::uvec4>(tables.nodes.size(), glm::uvec4(kNone)),
+                            "animated node channels", wgpu::BufferUsage::CopyDst);
+    wgpu::Buffer weights = animation ? animation->weightBuffer() : wgpu::Buffer();
+    if (!weights) {
+        weights = createStorageBuffer(device, std::vector<float>(1, 0.0f), "no morph weights");
+    }
+    mSampleGroup = pipelineBindGroup(device, mSample,
+                                     {{0, keyframeBuffer},
+                                      {1, samplerBuffer},
+                                      {2, mClocks},
+                                      {3, nodeBuffer},
+                                      {4, mNodeChannels},
+                                      {5, mLocals},
+                                      {6, weights},
+                                      {7, animationBuffer}},
+                                     "animation sampling");
+}
+
+// Pass 2 dispatches once per level, each with its range of the world records at a uniform
+// offset.
+void GpuAnimation::bindWorldLevels(const wgpu::Device& device,
+                                   const gpu::DeviceLimits& limits,
+                                   const Tables& tables) {
+    const std::vector<glm::uvec4>& levelRanges = tables.world.ranges;
     const std::uint64_t levelStride =
         std::max<std::uint64_t>(limits.minUniformBufferOffsetAlignment, sizeof(glm::uvec4));
     std::vector<std::uint8_t> levelBytes(std::max<std::size_t>(1, levelRanges.size()) * levelStride,
@@ -442,47 +567,40 @@ Result<std::unique_ptr<GpuAnimation>> GpuAnimation::create(
     const wgpu::Buffer levelBuffer =
         gpu::createBufferWithData(device, wgpu::BufferUsage::Uniform | wgpu::BufferUsage::CopyDst,
                                   levelBytes, "world levels ranges");
+    const wgpu::Buffer worldBuffer =
+        createStorageBuffer(device, tables.world.records, "world levels");
     for (std::size_t l = 0; l < levelRanges.size(); ++l) {
-        gpu.mLevelGroups.push_back(
-            pipelineBindGroup(device, gpu.mWorld,
+        mLevelGroups.push_back(
+            pipelineBindGroup(device, mWorld,
                               {{0, levelBuffer, l * levelStride, sizeof(glm::uvec4)},
                                {1, worldBuffer},
-                               {2, gpu.mLocals},
-                               {3, gpu.mWorlds}},
+                               {2, mLocals},
+                               {3, mWorlds}},
                               "world level"));
     }
-    if (!instanceRecords.empty()) {
-        gpu.mInstanceGroup = pipelineBindGroup(
-            device, gpu.mTransform, {{0, instanceBuffer}, {1, gpu.mWorlds}, {2, instanceOutput}},
+}
+
+// Pass 3 writes the moved instances' transforms into the GPU scene's instance transforms and
+// the moved joints' matrices into AnimationBuffers' joint buffer.
+void GpuAnimation::bindTransforms(const wgpu::Device& device,
+                                  const Tables& tables,
+                                  const AnimationBuffers* animation,
+                                  const InstanceTransformTargets& instances) {
+    const wgpu::Buffer instanceBuffer =
+        createStorageBuffer(device, tables.instances.records, "animated instance records");
+    const wgpu::Buffer jointBuffer =
+        createStorageBuffer(device, tables.joints, "animated joint records");
+    mInstanceOutput = instances.storage;
+    if (!tables.instances.records.empty()) {
+        mInstanceGroup = pipelineBindGroup(
+            device, mTransform, {{0, instanceBuffer}, {1, mWorlds}, {2, mInstanceOutput}},
             "animated instances");
     }
-    if (!jointRecords.empty()) {
-        gpu.mJointGroup = pipelineBindGroup(
-            device, gpu.mTransform,
-            {{0, jointBuffer}, {1, gpu.mWorlds}, {2, animation->jointBuffer()}}, "animated joints");
+    if (!tables.joints.empty()) {
+        mJointGroup = pipelineBindGroup(
+            device, mTransform, {{0, jointBuffer}, {1, mWorlds}, {2, animation->jointBuffer()}},
+            "animated joints");
     }
-
-    gpu.mInstanceRecords = static_cast<std::uint32_t>(instanceRecords.size());
-    gpu.mJointRecords = static_cast<std::uint32_t>(jointRecords.size());
-    GpuAnimationStats& stats = gpu.mStats;
-    stats.animatedNodes = static_cast<std::uint32_t>(nodeRecords.size());
-    stats.worldNodes = static_cast<std::uint32_t>(worldRecords.size());
-    stats.levels = static_cast<std::uint32_t>(levelRanges.size());
-    stats.instances = gpu.mInstanceRecords;
-    stats.joints = gpu.mJointRecords;
-    stats.dispatches = (stats.animatedNodes ? 1 : 0) + stats.levels + (stats.instances ? 1 : 0) +
-                       (stats.joints ? 1 : 0);
-    stats.copies = static_cast<std::uint32_t>(gpu.mCopyTargets.size());
-    stats.bytesPerFrame = gpu.mClockEnds.size() * sizeof(float);
-    stats.clocks = static_cast<std::uint32_t>(gpu.mClockEnds.size());
-    stats.keyframeBytes = storedKeyframes * sizeof(float);
-
-    std::vector<scene::AnimationId> all;
-    for (std::size_t a = 0; a < scene.animations.size(); ++a) {
-        all.push_back(scene::AnimationId(a));
-    }
-    gpu.select(queue, all);
-    return result;
 }
 
 void GpuAnimation::select(const wgpu::Queue& queue, std::span<const scene::AnimationId> selection) {

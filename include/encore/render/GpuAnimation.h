@@ -110,6 +110,24 @@ class GpuAnimation {
 
   private:
     GpuAnimation() = default;
+    struct Tables;  // What the passes read, built from the scene (GpuAnimation.cpp).
+    // Keeps what select(), encode() and copyInstancesTo() index.
+    void keepIndices(const Tables& tables);
+    void countStats(const Tables& tables);
+    // Every node's local and world matrices, at rest.
+    void createNodeMatrices(const wgpu::Device& device, const scene::SceneData& scene);
+    Result<void> createPipelines(const wgpu::Device& device, shaders::ShaderLibrary& shaders);
+    // The bind group(s) of each pass, with the buffers only that pass binds.
+    void bindSampling(const wgpu::Device& device,
+                      Tables& tables,
+                      const AnimationBuffers* animation);
+    void bindWorldLevels(const wgpu::Device& device,
+                         const gpu::DeviceLimits& limits,
+                         const Tables& tables);
+    void bindTransforms(const wgpu::Device& device,
+                        const Tables& tables,
+                        const AnimationBuffers* animation,
+                        const InstanceTransformTargets& instances);
 
     const scene::SceneData* mScene = nullptr;
     std::vector<std::uint32_t> mAnimatedNodes;   // Node index per pass-1 thread.
