@@ -111,4 +111,15 @@ void ResourcePool::keep(Kept kept) {
     }
 }
 
+wgpu::Buffer bufferWithData(ResourcePool* pool,
+                            const wgpu::Device& device,
+                            const wgpu::Queue& queue,
+                            wgpu::BufferUsage usage,
+                            std::span<const std::uint8_t> bytes,
+                            const std::string& label) {
+    // A kept buffer is written through the queue: mapping at creation needs a new one.
+    return pool ? pool->bufferWithData(queue, usage, bytes, label)
+                : createBufferWithData(device, usage, bytes, label);
+}
+
 }  // namespace encore::gpu

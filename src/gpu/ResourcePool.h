@@ -72,4 +72,14 @@ class ResourcePool {
     std::uint64_t mCreated = 0;
 };
 
+// A buffer holding `bytes` (zero-padded to a multiple of 4): from `pool` and written through
+// `queue` when there is a pool, else created mapped (createBufferWithData). `usage` must include
+// CopyDst when a pool is given.
+wgpu::Buffer bufferWithData(ResourcePool* pool,
+                            const wgpu::Device& device,
+                            const wgpu::Queue& queue,
+                            wgpu::BufferUsage usage,
+                            std::span<const std::uint8_t> bytes,
+                            const std::string& label);
+
 }  // namespace encore::gpu

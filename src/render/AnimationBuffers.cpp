@@ -184,8 +184,7 @@ struct BufferSource {
     wgpu::Buffer upload(wgpu::BufferUsage usage,
                         std::span<const std::uint8_t> bytes,
                         const char* label) const {
-        return pool ? pool->bufferWithData(queue, usage, bytes, label)
-                    : gpu::createBufferWithData(device, usage, bytes, label);
+        return gpu::bufferWithData(pool, device, queue, usage, bytes, label);
     }
 
     // A storage buffer of `values`; one zeroed element when there are none (as

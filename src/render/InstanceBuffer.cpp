@@ -71,16 +71,10 @@ InstanceBuffer::InstanceBuffer(const wgpu::Device& device,
     }
     const wgpu::BufferUsage usage =
         wgpu::BufferUsage::Storage | wgpu::BufferUsage::CopyDst | wgpu::BufferUsage::CopySrc;
-    if (pool) {
-        // A kept buffer is written through the queue: mapping at creation needs a new one.
-        mBuffer = pool->bufferWithData(device.GetQueue(), usage,
-                                       {reinterpret_cast<const std::uint8_t*>(transforms.data()),
-                                        transforms.size() * sizeof(TransformUniform)},
-                                       "instance transforms");
-    } else {
-        mBuffer = gpu::createBufferFrom<TransformUniform>(device, usage, transforms,
-                                                          "instance transforms");
-    }
+    mBuffer = gpu::bufferWithData(pool, device, device.GetQueue(), usage,
+                                  {reinterpret_cast<const std::uint8_t*>(transforms.data()),
+                                   transforms.size() * sizeof(TransformUniform)},
+                                  "instance transforms");
 
     mBindGroup = gpu::makeBindGroup(device, layouts.instanceStorage,
                                     {{0, mBuffer, 0, mBuffer.GetSize()}}, "instance transforms");

@@ -202,10 +202,8 @@ wgpu::Buffer VisibilityStrategy::sceneBuffer(wgpu::BufferUsage usage,
                                              const char* label) const {
     const std::span<const std::uint8_t> data(reinterpret_cast<const std::uint8_t*>(bytes.data()),
                                              bytes.size());
-    if (gpu::ResourcePool* pool = mSetup->resources) {
-        return pool->bufferWithData(mSetup->queue, usage, data, label);
-    }
-    return gpu::createBufferWithData(mSetup->device, usage, data, label);
+    return gpu::bufferWithData(mSetup->resources, mSetup->device, mSetup->queue, usage, data,
+                               label);
 }
 
 wgpu::Buffer VisibilityStrategy::sceneBuffer(wgpu::BufferUsage usage,
