@@ -29,6 +29,10 @@ std::optional<std::filesystem::path> sharedReferenceDir() {
     return std::nullopt;
 }
 
+std::filesystem::path sourceDir() {
+    return ENCORE_SOURCE_DIR;
+}
+
 std::filesystem::path makeTempDir(const std::string& name) {
     auto dir = std::filesystem::temp_directory_path() /
                ("encore-test-" + std::to_string(::getpid()) + "-" + name);

@@ -186,8 +186,7 @@ TEST(BatchOptionTableTest, TheNearestNameIsOfferedForATypo) {
 }
 
 TEST(BatchOptionTableTest, DocsTableIsTheDescription) {
-    const std::filesystem::path docs =
-        std::filesystem::path(__FILE__).parent_path() / "../../../docs/batch.md";
+    const std::filesystem::path docs = test::sourceDir() / "docs" / "batch.md";
     std::ifstream file(docs);
     ASSERT_TRUE(file) << docs;
     std::stringstream text;
