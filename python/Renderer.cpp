@@ -12,8 +12,8 @@
 #include "ModuleErrors.h"
 #include "batch/TransformsJson.h"
 #include "batch/ViewStrips.h"
-#include "encore/render/VisibilityFeatures.h"
 #include "encore/scene/MaterialVariants.h"
+#include "render/VisibilityFeatures.h"
 
 namespace encore::python {
 namespace {

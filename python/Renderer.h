@@ -15,8 +15,8 @@
 #include <vector>
 
 #include "ViewPasses.h"
+#include "batch/BatchRenderer.h"
 #include "encore/batch/Batch.h"
-#include "encore/batch/BatchRenderer.h"
 #include "encore/batch/ViewRig.h"
 #include "encore/gpu/Context.h"
 #include "encore/render/Renderer.h"

@@ -13,6 +13,7 @@
 #include "Renderer.h"
 #include "batch/BatchOptionTable.h"
 #include "batch/BatchOptionsValidation.h"
+#include "batch/BatchRenderer.h"
 #include "encore/batch/Batch.h"
 #include "encore/batch/BatchInputs.h"
 

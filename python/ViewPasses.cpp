@@ -142,7 +142,7 @@ Result<void> applyShading(render::Renderer& renderer,
         ENCORE_TRY(renderer.loadEnvironment(panorama));
         loaded = shading.environment;
     }
-    render::LightingParameters lighting = renderer.lighting().parameters();
+    render::LightingParameters lighting = renderer.lighting();
     lighting.environmentIntensity = shading.intensity;
     lighting.environmentRotationRadians = glm::radians(shading.rotationDegrees);
     lighting.debugChannel = render::DebugChannel::Shaded;

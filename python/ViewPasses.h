@@ -18,7 +18,7 @@
 #include "encore/batch/ViewImages.h"
 #include "encore/image/ImageCodec.h"
 #include "encore/render/Renderer.h"
-#include "encore/render/ToneMappingOptions.h"
+#include "encore/render/RendererOptions.h"
 
 namespace encore::python {
 

@@ -17,20 +17,20 @@ import sys
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 INCLUDE = ROOT / "include"
 
-# Loading, the Renderer, the device, results, batch rendering, benchmarks and image I/O.
+# Loading, the Renderer, the device, results, batch rendering and image I/O.
 API_ROOTS = [
     "encore/scene/SceneData.h",  # loadScene, loadSceneFromMemory, SceneData
     "encore/render/Renderer.h",
     "encore/gpu/Context.h",
     "encore/core/Result.h",
     "encore/batch/Batch.h",
-    "encore/bench/Benchmark.h",
-    "encore/bench/BenchmarkReportReader.h",
     "encore/image/ImageCodec.h",
     "encore/image/HdrImage.h",
 ]
 
 INCLUDE_LINE = re.compile(r'^\s*#\s*include\s+"(encore/[^"]+)"', re.MULTILINE)
+# Any quoted include: an API header may include only API headers (a user's compiler sees no src/).
+QUOTED_INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.MULTILINE)
 
 
 def closure(roots):
@@ -61,7 +61,16 @@ def main():
     for header in extra:
         print(f"error: include/{header} is outside the API: move it beside its sources in src/",
               file=sys.stderr)
-    return 1 if missing or extra else 0
+    internal = sorted(
+        (header, included)
+        for header in api
+        for included in QUOTED_INCLUDE.findall((INCLUDE / header).read_text())
+        if not included.startswith("encore/")
+    )
+    for header, included in internal:
+        print(f"error: include/{header} includes \"{included}\", which is not an API header",
+              file=sys.stderr)
+    return 1 if missing or extra or internal else 0
 
 
 if __name__ == "__main__":

@@ -20,6 +20,7 @@
 #include "Commands.h"
 #include "DeviceOptions.h"
 #include "batch/BatchOptionsValidation.h"
+#include "batch/BatchRenderer.h"
 #include "encore/batch/Batch.h"
 
 namespace encore::app {

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "encore/core/ReusedBlocks.h"
-#include "encore/render/GpuStage.h"
+#include "render/GpuStage.h"
 
 namespace encore::app {
 

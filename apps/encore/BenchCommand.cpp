@@ -9,9 +9,9 @@
 #include "Commands.h"
 #include "CullingFlags.h"
 #include "StrategyOptions.h"
+#include "bench/Benchmark.h"
 #include "core/Elapsed.h"
 #include "core/FileIO.h"
-#include "encore/bench/Benchmark.h"
 
 namespace encore::app {
 

@@ -5,7 +5,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "encore/render/CullingOptions.h"
+#include "encore/render/RendererOptions.h"
 
 namespace encore::app {
 

@@ -7,8 +7,8 @@
 #include <string>
 
 #include "Commands.h"
-#include "ModelInfo.h"
 #include "encore/gpu/Context.h"
+#include "scene/ModelInfo.h"
 
 namespace encore::app {
 namespace {
@@ -69,11 +69,11 @@ int printModel(const InfoOptions& options, const GlobalOptions& global) {
     if (!scene) {
         return reportError(scene.error());
     }
-    const ModelSummary summary = summarizeModel(*scene);
+    const scene::ModelSummary summary = scene::summarizeModel(*scene);
     if (options.json) {
-        std::printf("%s\n", modelSummaryJson(summary).dump(2).c_str());
+        std::printf("%s\n", scene::modelSummaryJson(summary).dump(2).c_str());
     } else {
-        std::printf("%s", formatModelSummary(summary).c_str());
+        std::printf("%s", scene::formatModelSummary(summary).c_str());
     }
     return kExitOk;
 }

@@ -6,9 +6,9 @@
 #include <vector>
 
 #include "Commands.h"
-#include "PlotWriter.h"
+#include "bench/BenchmarkReportReader.h"
+#include "bench/PlotWriter.h"
 #include "core/FileIO.h"
-#include "encore/bench/BenchmarkReportReader.h"
 
 namespace encore::app {
 
@@ -42,7 +42,7 @@ void convertToPng(const std::string& svgPath) {
 }  // namespace
 
 int writePlot(const nlohmann::json& report, const std::string& path) {
-    auto svg = plotScalingSvg(report);
+    auto svg = bench::plotScalingSvg(report);
     if (!svg) {
         return reportError(svg.error());
     }

@@ -256,7 +256,7 @@ void printFrameDetails(const render::Renderer& renderer,
         static_cast<unsigned long long>(frame.counters.triangles + frame.bundleContents.triangles),
         frame.encodeMilliseconds);
     std::fprintf(stderr, "environment: image-based lighting maps built in %.0f ms\n",
-                 renderer.lighting().environment().lastBuildMilliseconds());
+                 renderer.stats().environmentBuildMilliseconds);
 }
 
 int runRender(const RenderOptions& options, const GlobalOptions& global) {

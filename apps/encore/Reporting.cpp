@@ -3,7 +3,7 @@
 
 #include "Commands.h"
 #include "DeviceOptions.h"
-#include "encore/render/VisibilityFeatures.h"
+#include "render/VisibilityFeatures.h"
 
 namespace encore::app {
 

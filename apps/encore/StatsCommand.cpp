@@ -9,7 +9,7 @@
 
 #include "Commands.h"
 #include "StrategyOptions.h"
-#include "encore/bench/Benchmark.h"
+#include "bench/Benchmark.h"
 #include "encore/gpu/Context.h"
 #include "encore/render/Renderer.h"
 #include "encore/scene/SceneData.h"
@@ -175,7 +175,7 @@ int runStats(const StatsOptions& options, const GlobalOptions& global) {
         }
         StrategyStats stats;
         stats.name = render::strategyChoiceName(choice);
-        stats.pipelinesCreated = renderer->setup().pipelinesCreated;
+        stats.pipelinesCreated = renderer->stats().pipelinesCreated;
         if (options.time) {
             if (!std::isfinite(*options.time)) {
                 return reportError(makeError(ErrorCode::InvalidArgument,
@@ -201,7 +201,7 @@ int runStats(const StatsOptions& options, const GlobalOptions& global) {
         }
         stats.counters = frame.counters;
         stats.bundleContents = frame.bundleContents;
-        stats.bundlesRecorded = renderer->strategy()->bundlesRecorded();
+        stats.bundlesRecorded = renderer->stats().bundlesRecorded;
         stats.encodeMilliseconds = frame.encodeMilliseconds;
         if (auto image = renderer->readImage(); !image) {
             return reportError(image.error());

@@ -1,9 +1,10 @@
-#include "encore/batch/BatchRenderer.h"
+#include "batch/BatchRenderer.h"
 
 #include <algorithm>
 
 #include "encore/image/HdrImage.h"
 #include "gpu/ResourcePool.h"
+#include "render/RendererCore.h"
 
 namespace encore::batch {
 
@@ -107,7 +108,7 @@ Result<void> BatchRenderer::light(render::Renderer& renderer, const ModelLightin
                                                               : render::EnvironmentOptions{}));
     }
     renderer.setEnvironment(std::move(environment));
-    render::LightingParameters parameters = renderer.lighting().parameters();
+    render::LightingParameters parameters = renderer.lighting();
     parameters.environmentRotationRadians = lighting.rotationRadians;
     parameters.environmentIntensity = lighting.intensity;
     renderer.setLighting(parameters);
@@ -140,7 +141,7 @@ Result<void> BatchRenderer::acquire(const render::RendererOptions& options,
             return renderer.error();
         }
         mRenderers.push_back(std::move(*renderer));
-        mRenderers.back().setResourcePool(mResources.get());
+        internals(mRenderers.back()).setResourcePool(mResources.get());
     }
     mRenderersEnvironment = environment;
     mRendererOptions = options;

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "batch/BatchOptionsValidation.h"
+#include "batch/BatchRenderer.h"
 #include "batch/BatchStrategy.h"
 #include "batch/DeviceLane.h"
 #include "batch/ModelLoader.h"
@@ -23,7 +24,6 @@
 #include "core/Elapsed.h"
 #include "core/ProcessMemory.h"
 #include "core/ThreadPool.h"
-#include "encore/batch/BatchRenderer.h"
 #include "encore/batch/FailureLog.h"
 
 namespace encore::batch {

@@ -12,6 +12,7 @@
 #include "core/Elapsed.h"
 #include "core/Log.h"
 #include "gpu/Readback.h"
+#include "render/RendererCore.h"
 #include "render/StagedGeometry.h"
 #include "render/StagedImages.h"
 
@@ -111,14 +112,15 @@ Result<void> DeviceLane::createRenderers() {
         mTimestamps = gpu::StageTimestamps::create(mContext, render::kGpuStageCount);
     }
     for (RendererSlot& slot : mRenderers) {
-        slot.renderer->setStageTimestamps(mTimestamps ? &*mTimestamps : nullptr);
+        internals(*slot.renderer).setStageTimestamps(mTimestamps ? &*mTimestamps : nullptr);
     }
     return {};
 }
 
 void DeviceLane::finishTimestamps() {
     for (RendererSlot& slot : mRenderers) {
-        slot.renderer->setStageTimestamps(nullptr);  // The renderers may outlive this run.
+        internals(*slot.renderer)
+            .setStageTimestamps(nullptr);  // The renderers may outlive this run.
     }
     if (!mTimestamps) {
         return;
@@ -330,8 +332,8 @@ std::optional<render::StrategyChoice> DeviceLane::uploadModel(
     const scene::SceneData& scene = *held->scene;
     const render::StrategyChoice strategy =
         mShared.strategy.forModel(facts.triangles, scene.drawsOnlyOpaqueStaticTriangles());
-    auto prepared = renderer.prepare(scene, strategy.kind, strategy.bundle,
-                                     {staged.images.get(), staged.geometry.get()});
+    auto prepared = internals(renderer).prepare(scene, strategy.kind, strategy.bundle,
+                                                {staged.images.get(), staged.geometry.get()});
     releasePrepared(slot);
     slot.prepared = std::move(held);
     slot.model = model;
@@ -341,7 +343,7 @@ std::optional<render::StrategyChoice> DeviceLane::uploadModel(
         prepared = mContext.checkNoErrors("Preparing '" + scene.sourcePath.string() + "'");
     }
     mStages.upload += secondsSince(uploadStart);
-    mStages.uploadParts += renderer.prepareTimes();
+    mStages.uploadParts += internals(renderer).prepareTimes();
     if (!prepared) {
         failModel(*model, "upload", prepared.error());
         mContext.takeErrors();

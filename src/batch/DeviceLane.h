@@ -14,6 +14,7 @@
 #include <span>
 #include <vector>
 
+#include "batch/BatchRenderer.h"
 #include "batch/BatchStrategy.h"
 #include "batch/ModelLoader.h"
 #include "batch/ModelPlan.h"
@@ -24,12 +25,11 @@
 #include "batch/ViewStrips.h"
 #include "core/ThreadPool.h"
 #include "encore/batch/Batch.h"
-#include "encore/batch/BatchRenderer.h"
 #include "encore/batch/FailureLog.h"
 #include "encore/gpu/StageTimestamps.h"
-#include "encore/gpu/TextureReadbackRing.h"
 #include "gpu/CreationCounts.h"
 #include "gpu/StagingBuffers.h"
+#include "gpu/TextureReadbackRing.h"
 #include "render/StagedGeometry.h"
 #include "render/StagedImages.h"
 

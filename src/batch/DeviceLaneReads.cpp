@@ -10,6 +10,7 @@
 #include "batch/ModelOutput.h"
 #include "batch/PassImages.h"
 #include "core/Elapsed.h"
+#include "render/GpuStage.h"
 
 namespace encore::batch {
 namespace {

@@ -28,7 +28,7 @@
 #include "encore/batch/FailureLog.h"
 #include "encore/batch/ViewImages.h"
 #include "encore/core/Result.h"
-#include "encore/gpu/TextureReadbackRing.h"
+#include "gpu/TextureReadbackRing.h"
 
 namespace encore::batch {
 

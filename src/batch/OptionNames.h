@@ -16,8 +16,8 @@
 #include "encore/batch/ViewRig.h"
 #include "encore/core/Result.h"
 #include "encore/image/ImageCodec.h"
-#include "encore/render/Lighting.h"
-#include "encore/render/ToneMappingOptions.h"
+#include "encore/render/RendererOptions.h"
+#include "render/Lighting.h"
 
 namespace encore::batch {
 

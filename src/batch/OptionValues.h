@@ -14,7 +14,7 @@
 
 #include "encore/batch/ValueRange.h"
 #include "encore/core/Result.h"
-#include "encore/render/ToneMappingOptions.h"
+#include "encore/render/RendererOptions.h"
 
 namespace encore::batch {
 

@@ -12,11 +12,11 @@
 
 #include "encore/batch/ViewImages.h"
 #include "encore/gpu/DeviceLimits.h"
-#include "encore/gpu/TextureReadbackRing.h"
 #include "encore/image/ImageCodec.h"
-#include "encore/render/Lighting.h"
 #include "encore/render/Renderer.h"
 #include "encore/scene/SceneData.h"
+#include "gpu/TextureReadbackRing.h"
+#include "render/Lighting.h"
 
 namespace encore::batch {
 

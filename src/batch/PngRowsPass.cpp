@@ -6,9 +6,9 @@
 
 #include "batch/PassImages.h"
 #include "batch/ViewStrips.h"
-#include "encore/shaders/ShaderLibrary.h"
 #include "gpu/BindingResource.h"
 #include "gpu/Upload.h"
+#include "shaders/ShaderLibrary.h"
 
 namespace encore::batch {
 namespace {

@@ -73,7 +73,7 @@ Result<void> drawDebugChannel(render::Renderer& renderer,
                               render::DebugChannel channel,
                               const std::function<void()>& draw,
                               const std::function<bool()>& rendererAlive) {
-    const render::LightingParameters shaded = renderer.lighting().parameters();
+    const render::LightingParameters shaded = renderer.lighting();
     const render::ToneMappingOptions mapped = renderer.toneMapping();
     render::LightingParameters debug = shaded;
     debug.debugChannel = channel;

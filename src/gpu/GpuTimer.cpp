@@ -1,4 +1,4 @@
-#include "encore/gpu/GpuTimer.h"
+#include "gpu/GpuTimer.h"
 
 #include <algorithm>
 #include <vector>

@@ -1,4 +1,4 @@
-#include "encore/gpu/TextureReadbackRing.h"
+#include "gpu/TextureReadbackRing.h"
 
 #include <algorithm>
 #include <chrono>

@@ -10,7 +10,7 @@
 #include <optional>
 
 #include "encore/gpu/Context.h"
-#include "encore/gpu/GpuTimer.h"
+#include "gpu/GpuTimer.h"
 
 namespace encore::gpu {
 

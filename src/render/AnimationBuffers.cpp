@@ -1,13 +1,13 @@
-#include "encore/render/AnimationBuffers.h"
+#include "render/AnimationBuffers.h"
 
 #include <algorithm>
 #include <cstring>
 
-#include "encore/render/RenderEncoder.h"
 #include "gpu/BindingResource.h"
 #include "gpu/ResourcePool.h"
 #include "gpu/Upload.h"
 #include "render/InstanceBuffer.h"
+#include "render/RenderEncoder.h"
 #include "render/ShadingSemantics.h"
 
 namespace encore::render {

@@ -29,13 +29,12 @@
 
 #include "encore/core/Result.h"
 #include "encore/gpu/Context.h"
-#include "encore/gpu/GpuTimer.h"
 #include "encore/image/ImageCodec.h"
-#include "encore/render/DrawCounters.h"
-#include "encore/render/FrameTimer.h"
-#include "encore/render/RenderEncoder.h"
 #include "encore/render/RenderTarget.h"
-#include "encore/shaders/ShaderLibrary.h"
+#include "encore/render/RendererStats.h"
+#include "gpu/GpuTimer.h"
+#include "render/RenderEncoder.h"
+#include "shaders/ShaderLibrary.h"
 
 namespace encore::render {
 

@@ -1,11 +1,11 @@
-#include "encore/render/BindGroupLayouts.h"
+#include "render/BindGroupLayouts.h"
 
-#include "encore/render/FrameUniforms.h"
+#include "render/FrameUniforms.h"
 
 #include <vector>
 
-#include "encore/render/Lighting.h"
 #include "gpu/LayoutEntry.h"
+#include "render/Lighting.h"
 #include "render/MaterialResources.h"
 
 namespace encore::render {

@@ -11,9 +11,9 @@
 #include <string>
 #include <utility>
 
-#include "encore/render/DrawCounters.h"
-#include "encore/render/RenderEncoder.h"
-#include "encore/render/RenderSetup.h"
+#include "encore/render/RendererStats.h"
+#include "render/RenderEncoder.h"
+#include "render/RenderSetup.h"
 #include "render/SceneColorTargets.h"
 
 namespace encore::render {

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <optional>
 
-#include "encore/render/AnimationBuffers.h"
+#include "render/AnimationBuffers.h"
 
 namespace encore::render {
 

@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "encore/core/Result.h"
-#include "encore/shaders/ShaderLibrary.h"
+#include "shaders/ShaderLibrary.h"
 
 namespace encore::render {
 

@@ -1,4 +1,4 @@
-#include "encore/render/Environment.h"
+#include "render/Environment.h"
 
 #include <algorithm>
 #include <bit>

@@ -1,4 +1,4 @@
-#include "encore/render/EnvironmentAtlas.h"
+#include "render/EnvironmentAtlas.h"
 
 #include <algorithm>
 

@@ -1,4 +1,4 @@
-#include "encore/render/FrameTimer.h"
+#include "encore/render/RendererStats.h"
 
 #include <algorithm>
 #include <cmath>

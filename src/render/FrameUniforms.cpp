@@ -1,4 +1,4 @@
-#include "encore/render/FrameUniforms.h"
+#include "render/FrameUniforms.h"
 
 #include <cstring>
 #include <vector>

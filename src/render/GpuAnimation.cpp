@@ -2,7 +2,7 @@
 // SceneData alone, in the same orders AnimationPlayer uses (node weights node after node, joints
 // skin after skin), so that the passes write where the CPU path writes.
 
-#include "encore/render/GpuAnimation.h"
+#include "render/GpuAnimation.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,10 +10,10 @@
 #include <string>
 #include <unordered_map>
 
-#include "encore/render/AnimationBuffers.h"
-#include "encore/render/BindGroupLayouts.h"
 #include "gpu/BindingResource.h"
 #include "gpu/Upload.h"
+#include "render/AnimationBuffers.h"
+#include "render/BindGroupLayouts.h"
 #include "render/KeyframeStore.h"
 
 namespace encore::render {

@@ -7,12 +7,12 @@
 #include <map>
 #include <numeric>
 
-#include "encore/render/AnimationBuffers.h"
-#include "encore/render/RenderEncoder.h"
 #include "gpu/BindingResource.h"
 #include "gpu/LayoutEntry.h"
 #include "gpu/Upload.h"
+#include "render/AnimationBuffers.h"
 #include "render/LodSelection.h"
+#include "render/RenderEncoder.h"
 
 namespace encore::render {
 

@@ -27,16 +27,16 @@
 #include <vector>
 
 #include "encore/core/Result.h"
-#include "encore/gpu/GpuTimer.h"
-#include "encore/render/AnimationBuffers.h"
 #include "encore/render/Camera.h"
-#include "encore/render/CullingOptions.h"
-#include "encore/render/RenderSetup.h"
+#include "encore/render/RendererOptions.h"
+#include "gpu/GpuTimer.h"
+#include "render/AnimationBuffers.h"
 #include "render/CullingBounds.h"
 #include "render/DepthPyramid.h"
 #include "render/Frustum.h"
 #include "render/InstanceBuffer.h"
 #include "render/LodSelection.h"
+#include "render/RenderSetup.h"
 
 namespace encore::render {
 

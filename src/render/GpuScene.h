@@ -22,13 +22,13 @@
 #include <glm/mat4x4.hpp>
 
 #include "encore/core/Result.h"
-#include "encore/render/AnimationBuffers.h"
-#include "encore/render/RenderSetup.h"
-#include "encore/render/StagedUploads.h"
 #include "encore/scene/AnimationPlayer.h"
 #include "encore/scene/SceneData.h"
+#include "render/AnimationBuffers.h"
 #include "render/InstanceBuffer.h"
 #include "render/MaterialResources.h"
+#include "render/RenderSetup.h"
+#include "render/StagedUploads.h"
 #include "render/VertexBindings.h"
 
 namespace encore::render {

@@ -11,9 +11,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "encore/render/BindGroupLayouts.h"
-#include "encore/render/InstanceTransformTargets.h"
 #include "encore/scene/SceneData.h"
+#include "render/BindGroupLayouts.h"
+#include "render/InstanceTransformTargets.h"
 
 namespace encore::gpu {
 class ResourcePool;

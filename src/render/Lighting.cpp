@@ -1,4 +1,4 @@
-#include "encore/render/Lighting.h"
+#include "render/Lighting.h"
 
 #include <algorithm>
 #include <cmath>

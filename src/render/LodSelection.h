@@ -13,7 +13,7 @@
 #include <glm/vec4.hpp>
 
 #include "encore/render/Camera.h"
-#include "encore/render/CullingOptions.h"
+#include "encore/render/RendererOptions.h"
 
 namespace encore::render {
 

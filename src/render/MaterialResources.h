@@ -35,11 +35,11 @@
 #include <vector>
 
 #include "encore/core/Result.h"
-#include "encore/render/BindGroupLayouts.h"
 #include "encore/scene/SceneData.h"
-#include "encore/shaders/ShaderLibrary.h"
+#include "render/BindGroupLayouts.h"
 #include "render/MaterialSlots.h"
 #include "render/MaterialUniform.h"
+#include "shaders/ShaderLibrary.h"
 
 namespace encore::gpu {
 class ResourcePool;

@@ -14,8 +14,8 @@
 
 #include "encore/core/Result.h"
 #include "encore/gpu/StageTimestamps.h"
-#include "encore/shaders/ShaderLibrary.h"
 #include "render/MipChain.h"
+#include "shaders/ShaderLibrary.h"
 
 namespace encore::render {
 

@@ -12,9 +12,9 @@
 
 #include "encore/core/Result.h"
 
-#include "encore/render/BindGroupLayouts.h"
-#include "encore/render/InstanceTransformTargets.h"
 #include "encore/scene/SceneData.h"
+#include "render/BindGroupLayouts.h"
+#include "render/InstanceTransformTargets.h"
 
 namespace encore::render {
 

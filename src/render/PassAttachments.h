@@ -29,7 +29,7 @@
 #include <cstddef>
 #include <glm/vec3.hpp>
 
-#include "encore/render/Strategy.h"
+#include "render/Strategy.h"
 
 namespace encore::render {
 

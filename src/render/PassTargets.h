@@ -18,9 +18,9 @@
 #include "encore/core/Result.h"
 #include "encore/render/RenderTarget.h"
 #include "encore/render/Renderer.h"
-#include "encore/render/ToneMapper.h"
-#include "encore/shaders/ShaderLibrary.h"
 #include "render/SceneColorTargets.h"
+#include "render/ToneMapper.h"
+#include "shaders/ShaderLibrary.h"
 
 namespace encore::render {
 

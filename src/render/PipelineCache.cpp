@@ -2,7 +2,7 @@
 
 #include <string>
 
-#include "encore/render/RenderSetup.h"
+#include "render/RenderSetup.h"
 
 namespace encore::render {
 

@@ -7,8 +7,8 @@
 #include <string_view>
 #include <vector>
 
-#include "encore/render/RenderSetup.h"
 #include "gpu/LayoutEntry.h"
+#include "render/RenderSetup.h"
 #include "render/SceneColorTargets.h"
 
 namespace encore::render {

@@ -11,7 +11,7 @@
 #include <type_traits>
 
 #include "encore/core/Result.h"
-#include "encore/shaders/ShaderLibrary.h"
+#include "shaders/ShaderLibrary.h"
 
 namespace encore::render {
 

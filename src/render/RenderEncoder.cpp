@@ -1,4 +1,4 @@
-#include "encore/render/RenderEncoder.h"
+#include "render/RenderEncoder.h"
 
 #include <cassert>
 

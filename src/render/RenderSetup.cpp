@@ -1,4 +1,4 @@
-#include "encore/render/RenderSetup.h"
+#include "render/RenderSetup.h"
 
 namespace encore::render {
 

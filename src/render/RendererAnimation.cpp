@@ -1,15 +1,16 @@
-// Renderer's animation: CPU evaluation through the player and instance updates, or GPU
+// RendererCore's animation: CPU evaluation through the player and instance updates, or GPU
 // evaluation (GpuAnimation) whose compute passes the next frame records; switching between the
-// two, and what of the playback survives a new player (Renderer.h states the contract).
+// two, and what of the playback survives a new player (encore/render/Renderer.h states the
+// contract).
 
-#include "encore/render/Renderer.h"
+#include "render/RendererCore.h"
 
 #include "gpu/OutOfMemoryScope.h"
 #include "render/GpuScene.h"
 
 namespace encore::render {
 
-Result<void> Renderer::createGpuAnimation() {
+Result<void> RendererCore::createGpuAnimation() {
     mGpuAnimation.reset();
     mGpuAnimationPending = false;
     if (!mGpuScene || !mScene) {
@@ -35,7 +36,7 @@ Result<void> Renderer::createGpuAnimation() {
     return {};
 }
 
-Result<void> Renderer::setAnimationEvaluation(AnimationEvaluation evaluation) {
+Result<void> RendererCore::setAnimationEvaluation(AnimationEvaluation evaluation) {
     if (evaluation == mOptions.animation) {
         return {};
     }
@@ -60,7 +61,7 @@ Result<void> Renderer::setAnimationEvaluation(AnimationEvaluation evaluation) {
     return restorePlayback(playing);
 }
 
-Result<void> Renderer::selectAnimation(std::string_view nameOrIndex) {
+Result<void> RendererCore::selectAnimation(std::string_view nameOrIndex) {
     if (!mPlayer) {
         return makeError(ErrorCode::InvalidArgument, "No scene is prepared.");
     }
@@ -75,7 +76,7 @@ Result<void> Renderer::selectAnimation(std::string_view nameOrIndex) {
     return {};
 }
 
-Result<void> Renderer::setAnimationTime(double seconds) {
+Result<void> RendererCore::setAnimationTime(double seconds) {
     if (!mStrategy || !mPlayer) {
         return makeError(ErrorCode::InvalidArgument, "No scene is prepared.");
     }
@@ -108,21 +109,21 @@ Result<void> Renderer::setAnimationTime(double seconds) {
     return {};
 }
 
-void Renderer::setPlaybackMode(scene::PlaybackMode mode) {
+void RendererCore::setPlaybackMode(scene::PlaybackMode mode) {
     mPlaybackMode = mode;
     if (mPlayer) {
         mPlayer->setMode(mode);
     }
 }
 
-Renderer::Playback Renderer::playback() const {
+RendererCore::Playback RendererCore::playback() const {
     if (!mPlayer) {
         return {};
     }
     return {{mPlayer->selection().begin(), mPlayer->selection().end()}, mPlayer->mode()};
 }
 
-Result<void> Renderer::restorePlayback(const Playback& playback) {
+Result<void> RendererCore::restorePlayback(const Playback& playback) {
     mPlayer->setMode(playback.mode);
     ENCORE_TRY(mPlayer->select(playback.selection));
     if (mGpuAnimation) {
@@ -131,7 +132,7 @@ Result<void> Renderer::restorePlayback(const Playback& playback) {
     return {};
 }
 
-const AnimationBuffers* Renderer::animationBuffers() const {
+const AnimationBuffers* RendererCore::animationBuffers() const {
     return mGpuScene ? mGpuScene->animation() : nullptr;
 }
 

@@ -1,9 +1,9 @@
-// Renderer's frames: the frame uniforms, one render pass per view (or the two passes of a
+// RendererCore's frames: the frame uniforms, one render pass per view (or the two passes of a
 // two-phase frame) recorded by the strategy, with transmissive surfaces the copy and one
 // transmission pass per view (TransmissionPass.h), tone mapping, timing and submission; then
 // the triangle counts of GPU culling and the image read back.
 
-#include "encore/render/Renderer.h"
+#include "render/RendererCore.h"
 
 #include <array>
 #include <optional>
@@ -18,17 +18,18 @@
 
 namespace encore::render {
 
-FrameResult Renderer::renderFrame(const Camera& camera,
-                                  float timeSeconds,
-                                  std::vector<RecordedCall>* trace) {
+FrameResult RendererCore::renderFrame(const Camera& camera,
+                                      float timeSeconds,
+                                      std::vector<RecordedCall>* trace) {
     return renderPasses(std::span(&camera, 1), timeSeconds, trace);
 }
 
-FrameResult Renderer::renderViews(std::span<const Camera> cameras, float timeSeconds) {
+FrameResult RendererCore::renderViews(std::span<const Camera> cameras, float timeSeconds) {
     return renderPasses(cameras, timeSeconds, nullptr);
 }
 
-const wgpu::PassTimestampWrites* Renderer::timestampWrites(GpuStage stage, std::string_view label) {
+const wgpu::PassTimestampWrites* RendererCore::timestampWrites(GpuStage stage,
+                                                               std::string_view label) {
     if (mTimer) {
         return mTimer->nextPass(label);
     }
@@ -36,7 +37,7 @@ const wgpu::PassTimestampWrites* Renderer::timestampWrites(GpuStage stage, std::
 }
 
 // What one frame draws and how, decided before anything is recorded.
-struct Renderer::FramePlan {
+struct RendererCore::FramePlan {
     std::span<const Camera> cameras;
     FrameState state;
     bool multiView = false;
@@ -50,9 +51,9 @@ struct Renderer::FramePlan {
     std::vector<RecordedCall>* trace = nullptr;
 };
 
-FrameResult Renderer::renderPasses(std::span<const Camera> cameras,
-                                   float timeSeconds,
-                                   std::vector<RecordedCall>* trace) {
+FrameResult RendererCore::renderPasses(std::span<const Camera> cameras,
+                                       float timeSeconds,
+                                       std::vector<RecordedCall>* trace) {
     FrameResult result;
     if (cameras.empty()) {
         return result;
@@ -81,9 +82,9 @@ FrameResult Renderer::renderPasses(std::span<const Camera> cameras,
     return result;
 }
 
-Renderer::FramePlan Renderer::planFrame(std::span<const Camera> cameras,
-                                        float timeSeconds,
-                                        std::vector<RecordedCall>* trace) const {
+RendererCore::FramePlan RendererCore::planFrame(std::span<const Camera> cameras,
+                                                float timeSeconds,
+                                                std::vector<RecordedCall>* trace) const {
     FramePlan plan;
     plan.cameras = cameras;
     plan.trace = trace;
@@ -118,9 +119,9 @@ Renderer::FramePlan Renderer::planFrame(std::span<const Camera> cameras,
     return plan;
 }
 
-void Renderer::encodeFrame(const wgpu::CommandEncoder& commandEncoder,
-                           const FramePlan& plan,
-                           FrameResult& result) {
+void RendererCore::encodeFrame(const wgpu::CommandEncoder& commandEncoder,
+                               const FramePlan& plan,
+                               FrameResult& result) {
     if (mGpuAnimation && mGpuAnimationPending) {
         mGpuAnimation->encode(commandEncoder);  // Before anything that reads its results.
         mGpuAnimationPending = false;
@@ -151,9 +152,9 @@ void Renderer::encodeFrame(const wgpu::CommandEncoder& commandEncoder,
     }
 }
 
-void Renderer::encodeScenePasses(const wgpu::CommandEncoder& commandEncoder,
-                                 const FramePlan& plan,
-                                 FrameResult& result) {
+void RendererCore::encodeScenePasses(const wgpu::CommandEncoder& commandEncoder,
+                                     const FramePlan& plan,
+                                     FrameResult& result) {
     if (plan.composedAttachments) {
         FrameComposition composition;
         composition.background = plan.composedAttachments->clearColor;
@@ -174,9 +175,9 @@ void Renderer::encodeScenePasses(const wgpu::CommandEncoder& commandEncoder,
     }
 }
 
-void Renderer::encodeTransmissionPasses(const wgpu::CommandEncoder& commandEncoder,
-                                        const FramePlan& plan,
-                                        FrameResult& result) {
+void RendererCore::encodeTransmissionPasses(const wgpu::CommandEncoder& commandEncoder,
+                                            const FramePlan& plan,
+                                            FrameResult& result) {
     // Everything but the transmissive surfaces is drawn (and resolved): copy it once for
     // all views, then draw them over it view by view.
     mTransmission->encodeCopy(commandEncoder, mTarget.sceneView(), mTimer);
@@ -192,12 +193,12 @@ void Renderer::encodeTransmissionPasses(const wgpu::CommandEncoder& commandEncod
 
 // One pass per view, or the two passes of a two-phase frame; what each loads, keeps and
 // resolves is passAttachments' decision (PassAttachments.h).
-void Renderer::encodeScenePass(const wgpu::CommandEncoder& commandEncoder,
-                               const FramePlan& plan,
-                               std::size_t view,
-                               DrawPhase phase,
-                               bool transmissionPass,
-                               FrameResult& result) {
+void RendererCore::encodeScenePass(const wgpu::CommandEncoder& commandEncoder,
+                                   const FramePlan& plan,
+                                   std::size_t view,
+                                   DrawPhase phase,
+                                   bool transmissionPass,
+                                   FrameResult& result) {
     PassPlan passPlan;
     passPlan.view = view;
     passPlan.viewCount = plan.cameras.size();
@@ -245,12 +246,12 @@ void Renderer::encodeScenePass(const wgpu::CommandEncoder& commandEncoder,
     pass.End();
 }
 
-void Renderer::drawView(const wgpu::RenderPassEncoder& pass,
-                        const FramePlan& plan,
-                        std::size_t view,
-                        DrawPhase phase,
-                        bool transmissionPass,
-                        FrameResult& result) {
+void RendererCore::drawView(const wgpu::RenderPassEncoder& pass,
+                            const FramePlan& plan,
+                            std::size_t view,
+                            DrawPhase phase,
+                            bool transmissionPass,
+                            FrameResult& result) {
     if (plan.multiView) {
         const std::uint32_t viewWidth = mTarget.width() / std::uint32_t(plan.cameras.size());
         pass.SetViewport(float(view * viewWidth), 0.0f, float(viewWidth), float(mTarget.height()),
@@ -278,7 +279,7 @@ void Renderer::drawView(const wgpu::RenderPassEncoder& pass,
     }
 }
 
-void Renderer::toneMapScene() {
+void RendererCore::toneMapScene() {
     if (!mToneMapper) {
         return;
     }
@@ -288,18 +289,18 @@ void Renderer::toneMapScene() {
     mContext->queue().Submit(1, &buffer);
 }
 
-void Renderer::setTriangleCounting(bool on) {
+void RendererCore::setTriangleCounting(bool on) {
     mTriangleHistory = on ? std::make_unique<TriangleHistory>(mContext->device()) : nullptr;
 }
 
-Result<std::vector<DrawnTriangles>> Renderer::takeTriangleHistory() {
+Result<std::vector<DrawnTriangles>> RendererCore::takeTriangleHistory() {
     if (!mTriangleHistory) {
         return std::vector<DrawnTriangles>{};
     }
     return mTriangleHistory->take(*mContext);
 }
 
-Result<std::vector<std::uint64_t>> Renderer::takeDrawnTriangles() {
+Result<std::vector<std::uint64_t>> RendererCore::takeDrawnTriangles() {
     ENCORE_TRY_ASSIGN(auto history, takeTriangleHistory());
     std::vector<std::uint64_t> totals;
     totals.reserve(history.size());
@@ -309,22 +310,22 @@ Result<std::vector<std::uint64_t>> Renderer::takeDrawnTriangles() {
     return totals;
 }
 
-Result<std::vector<float>> Renderer::readHdrImage() {
+Result<std::vector<float>> RendererCore::readHdrImage() {
     if (!mTarget.hdr()) {
         return makeError(ErrorCode::InvalidArgument, "The render target has no HDR colour.");
     }
     return gpu::readTextureRgba16Float(*mContext, mTarget.sceneTexture());
 }
 
-wgpu::Texture Renderer::passTexture(PassImage image) const {
+wgpu::Texture RendererCore::passTexture(PassImage image) const {
     return mPassTargets ? mPassTargets->texture(image) : wgpu::Texture();
 }
 
-wgpu::TextureView Renderer::passBytesView(PassImage image) const {
+wgpu::TextureView RendererCore::passBytesView(PassImage image) const {
     return mPassTargets ? mPassTargets->bytesView(image) : wgpu::TextureView();
 }
 
-Result<image::ImageRgba8> Renderer::readImage() {
+Result<image::ImageRgba8> RendererCore::readImage() {
     auto image = gpu::readTexture(*mContext, mTarget.colorTexture());
     if (!image) {
         // A lost device fails the read back; say so rather than how mapping failed.

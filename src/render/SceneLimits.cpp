@@ -4,8 +4,8 @@
 #include <set>
 #include <string>
 
-#include "encore/render/BindGroupLayouts.h"
-#include "encore/render/Lighting.h"
+#include "render/BindGroupLayouts.h"
+#include "render/Lighting.h"
 #include "render/MaterialResources.h"
 
 namespace encore::render {

@@ -1,4 +1,4 @@
-#include "encore/render/Strategy.h"
+#include "render/Strategy.h"
 
 #include "render/GpuCuller.h"
 #include "render/strategies/BundledStrategy.h"

@@ -1,4 +1,4 @@
-#include "encore/render/ToneMapper.h"
+#include "render/ToneMapper.h"
 
 #include <cmath>
 

@@ -1,7 +1,7 @@
 #pragma once
 
-#include "encore/render/BindGroupLayouts.h"
 #include "encore/scene/SceneData.h"
+#include "render/BindGroupLayouts.h"
 
 namespace encore::render {
 

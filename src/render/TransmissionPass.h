@@ -19,8 +19,8 @@
 #include <vector>
 
 #include "encore/core/Result.h"
-#include "encore/gpu/GpuTimer.h"
-#include "encore/shaders/ShaderLibrary.h"
+#include "gpu/GpuTimer.h"
+#include "shaders/ShaderLibrary.h"
 
 namespace encore::render {
 

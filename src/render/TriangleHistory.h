@@ -16,7 +16,7 @@
 #include "encore/core/Result.h"
 #include "encore/gpu/Context.h"
 #include "encore/render/Renderer.h"
-#include "encore/render/Strategy.h"
+#include "render/Strategy.h"
 
 namespace encore::render {
 

@@ -5,11 +5,11 @@
 #include <string>
 
 #include "core/Bytes.h"
-#include "encore/render/RenderEncoder.h"
-#include "encore/render/RenderSetup.h"
 #include "gpu/ResourcePool.h"
 #include "gpu/Upload.h"
 #include "render/GltfToWebGpu.h"
+#include "render/RenderEncoder.h"
+#include "render/RenderSetup.h"
 #include "render/SharedGeometryLayout.h"
 #include "render/StagedGeometry.h"
 

@@ -1,4 +1,4 @@
-#include "encore/render/VisibilityFeatures.h"
+#include "render/VisibilityFeatures.h"
 
 #include <algorithm>
 

@@ -1,4 +1,4 @@
-#include "encore/shaders/ShaderLibrary.h"
+#include "shaders/ShaderLibrary.h"
 
 #include <cstring>
 #include <functional>

@@ -17,7 +17,7 @@
 #include <glm/glm.hpp>
 
 #include "encore/core/Result.h"
-#include "encore/shaders/ShaderLibrary.h"
+#include "shaders/ShaderLibrary.h"
 
 namespace encore::view {
 

@@ -10,7 +10,7 @@
 #include <webgpu/webgpu_cpp.h>
 
 #include "encore/core/Result.h"
-#include "encore/shaders/ShaderLibrary.h"
+#include "shaders/ShaderLibrary.h"
 
 namespace encore::view {
 

@@ -4,6 +4,7 @@
 
 #include "encore/scene/AnimationPlayer.h"
 #include "encore/scene/MaterialVariants.h"
+#include "render/RendererCore.h"
 #include "view/ViewerState.h"
 
 namespace encore::view {
@@ -48,7 +49,7 @@ Result<std::unique_ptr<Viewer>> Viewer::create(gpu::Context& context,
         rendererOptions.target.width = s.width;
         rendererOptions.target.height = s.height;
         ENCORE_TRY_ASSIGN(s.renderer, render::Renderer::create(context, rendererOptions));
-        s.renderer->setGpuTimer(s.timer ? &*s.timer : nullptr);
+        internals(*s.renderer).setGpuTimer(s.timer ? &*s.timer : nullptr);
         // The window's clock runs on: animations play round and round, not once.
         s.renderer->setPlaybackMode(scene::PlaybackMode::Loop);
         if (!s.options.variant.empty()) {

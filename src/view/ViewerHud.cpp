@@ -89,8 +89,7 @@ void Viewer::State::buildOverlay() {
                             lastFrame.submitMilliseconds),
                      kCpuColor});
     lines.push_back({"GPU " + gpu, kGpuColor});
-    const std::uint64_t bundlesRecorded = renderer && renderer->strategy()
-                                              ? renderer->strategy()->bundlesRecorded()
+    const std::uint64_t bundlesRecorded = renderer ? renderer->stats().bundlesRecorded
                                           : animometer && options.animometer->bundle ? 1
                                                                                      : 0;
     lines.push_back({format("draws %llu  executeBundles %llu  draws in bundles %llu",

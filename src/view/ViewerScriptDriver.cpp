@@ -19,8 +19,7 @@ std::string Viewer::State::statsLine() const {
     std::string label = strategyLabel();
     std::replace(label.begin(), label.end(), ' ', '_');
     std::string line = "stats strategy=" + label;
-    const std::uint64_t bundlesRecorded = renderer && renderer->strategy()
-                                              ? renderer->strategy()->bundlesRecorded()
+    const std::uint64_t bundlesRecorded = renderer ? renderer->stats().bundlesRecorded
                                           : animometer && options.animometer->bundle ? 1
                                                                                      : 0;
     line += format(
@@ -34,8 +33,8 @@ std::string Viewer::State::statsLine() const {
         // GPU scenes built and bytes uploaded since the viewer opened: a switch of strategy
         // changes neither.
         line += format(" sceneUploads=%llu uploadedBytes=%llu",
-                       (unsigned long long)renderer->sceneUploads(),
-                       (unsigned long long)renderer->uploadedBytes());
+                       (unsigned long long)renderer->stats().sceneUploads,
+                       (unsigned long long)renderer->stats().uploadedBytes);
         // The material variant drawn (KHR_materials_variants): its index, or "default".
         line += " variant=" +
                 (variantIndex < 0 ? std::string("default") : std::to_string(variantIndex));

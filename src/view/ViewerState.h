@@ -14,8 +14,8 @@
 #include <string>
 #include <vector>
 
-#include "encore/gpu/GpuTimer.h"
-#include "encore/shaders/ShaderLibrary.h"
+#include "gpu/GpuTimer.h"
+#include "shaders/ShaderLibrary.h"
 #include "view/OrbitCamera.h"
 #include "view/Overlay.h"
 #include "view/Presenter.h"

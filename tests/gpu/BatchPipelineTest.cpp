@@ -23,6 +23,7 @@
 #include "TestFiles.h"
 #include "TestPaths.h"
 #include "encore/batch/Batch.h"
+#include "render/GpuStage.h"
 #include "scene/SceneGenerator.h"
 
 namespace encore::batch {

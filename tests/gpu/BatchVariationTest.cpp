@@ -21,6 +21,7 @@
 #include "HdrFiles.h"
 #include "RenderTestSupport.h"
 #include "TestPaths.h"
+#include "batch/BatchRenderer.h"
 #include "batch/ObjaverseCamera.h"
 #include "core/FileIO.h"
 #include "core/Sha256.h"

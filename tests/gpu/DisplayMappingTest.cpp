@@ -14,6 +14,7 @@
 #include "RenderTestSupport.h"
 #include "encore/render/Renderer.h"
 #include "encore/scene/SceneData.h"
+#include "render/RendererCore.h"
 
 namespace encore::render {
 namespace {
@@ -159,7 +160,7 @@ TEST(DisplayMappingTest, TexturelessMaterialsBindTheUniformOnly) {
         ASSERT_TRUE(renderer.ok());
         ASSERT_TRUE(renderer->prepare(scene, StrategyKind::Materials).ok());
         // One variant for the texture-less metal; the textured plastic needs a second.
-        EXPECT_EQ(renderer->setup().pipelinesCreated, withTexture ? 2u : 1u);
+        EXPECT_EQ(internals(*renderer).setup().pipelinesCreated, withTexture ? 2u : 1u);
         renderer->renderFrame(test::frontCamera());
         ASSERT_TRUE(renderer->readImage().ok());
         EXPECT_TRUE(context->checkNoErrors("texture-less materials").ok());
@@ -184,7 +185,7 @@ TEST(DisplayMappingTest, TexturelessMaterialGainsATexture) {
         renderer->renderFrame(test::frontCamera());
         auto before = renderer->readImage();
         ASSERT_TRUE(before.ok());
-        const std::uint64_t recorded = renderer->strategy()->bundlesRecorded();
+        const std::uint64_t recorded = internals(*renderer).strategy()->bundlesRecorded();
         // The plastic (material 1) turns red; the metal keeps its colour.
         ASSERT_TRUE(renderer->replaceBaseColorImage(scene::MaterialId{1u}, red).ok());
         renderer->renderFrame(test::frontCamera());
@@ -201,7 +202,7 @@ TEST(DisplayMappingTest, TexturelessMaterialGainsATexture) {
         EXPECT_EQ(test::pixelAt(*after, metalX, metalY), test::pixelAt(*before, metalX, metalY))
             << strategyName(kind);
         if (recorded > 0) {
-            EXPECT_EQ(renderer->strategy()->bundlesRecorded(),
+            EXPECT_EQ(internals(*renderer).strategy()->bundlesRecorded(),
                       recorded + test::bundlesPerRecording(kind))
                 << strategyName(kind);
         }

@@ -14,9 +14,9 @@
 
 #include "GpuTestSupport.h"
 #include "encore/image/HdrImage.h"
-#include "encore/render/Environment.h"
-#include "encore/render/Lighting.h"
 #include "gpu/Readback.h"
+#include "render/Environment.h"
+#include "render/Lighting.h"
 #include "shaders/EmbeddedFiles.h"
 #include "shaders/ShaderComposer.h"
 

@@ -20,6 +20,7 @@
 #include "TestPaths.h"
 #include "encore/render/Renderer.h"
 #include "gpu/Readback.h"
+#include "render/RendererCore.h"
 #include "scene/CrowdGenerator.h"
 
 namespace encore::render {
@@ -253,10 +254,11 @@ void expectGpuMatchesCpu(gpu::Context& context,
     auto prepared = renderer->prepare(scene, StrategyKind::Instancing);
     ASSERT_TRUE(prepared.ok()) << prepared.error().message;
     ASSERT_TRUE(renderer->selectAnimation(animation).ok());
-    const GpuAnimation* gpu = renderer->gpuAnimation();
+    const GpuAnimation* gpu = internals(*renderer).gpuAnimation();
     ASSERT_NE(gpu, nullptr);
-    const AnimationBuffers* buffers = renderer->animationBuffers();
-    const InstanceTransformTargets targets = renderer->strategy()->instanceTransformTargets();
+    const AnimationBuffers* buffers = internals(*renderer).animationBuffers();
+    const InstanceTransformTargets targets =
+        internals(*renderer).strategy()->instanceTransformTargets();
 
     scene::AnimationPlayer player(scene);
     player.setMode(mode);
@@ -331,10 +333,10 @@ TEST(GpuAnimationTest, ReportsItsSize) {
     auto renderer = Renderer::create(*context, options);
     ASSERT_TRUE(renderer.ok());
     ASSERT_TRUE(renderer->prepare(scene, StrategyKind::Bundles).ok());
-    EXPECT_EQ(renderer->gpuAnimation(), nullptr);
+    EXPECT_EQ(internals(*renderer).gpuAnimation(), nullptr);
     ASSERT_TRUE(renderer->setAnimationEvaluation(AnimationEvaluation::Gpu).ok());
-    ASSERT_NE(renderer->gpuAnimation(), nullptr);
-    const GpuAnimationStats& stats = renderer->gpuAnimation()->stats();
+    ASSERT_NE(internals(*renderer).gpuAnimation(), nullptr);
+    const GpuAnimationStats& stats = internals(*renderer).gpuAnimation()->stats();
     EXPECT_EQ(stats.animatedNodes, 10u);  // 8 joints, the rigid node, the morphed node.
     EXPECT_EQ(stats.levels, 9u);          // joint0 (depth 1) .. joint7, the rigid node at 5.
     EXPECT_EQ(stats.joints, 8u);
@@ -406,7 +408,7 @@ TEST(GpuAnimationTest, BundlesStayRecordedOverManyGpuFrames) {
         ASSERT_TRUE(gpu->prepare(scene, kind).ok());
         ASSERT_TRUE(cpu->prepare(scene, kind).ok());
         gpu->renderFrame(frontCamera());
-        const std::uint64_t recorded = gpu->strategy()->bundlesRecorded();
+        const std::uint64_t recorded = internals(*gpu).strategy()->bundlesRecorded();
         for (int frame = 0; frame < 120; ++frame) {
             const double t = frame / 100.0;
             ASSERT_TRUE(gpu->setAnimationTime(t).ok());
@@ -420,7 +422,7 @@ TEST(GpuAnimationTest, BundlesStayRecordedOverManyGpuFrames) {
                 EXPECT_EQ(test::differingPixels(*a, *b, 0), 0u) << "frame " << frame;
             }
         }
-        EXPECT_EQ(gpu->strategy()->bundlesRecorded(), recorded);
+        EXPECT_EQ(internals(*gpu).strategy()->bundlesRecorded(), recorded);
         auto errors = context->checkNoErrors("GPU animation with bundles");
         EXPECT_TRUE(errors.ok()) << errors.error().message;
     }
@@ -500,8 +502,8 @@ TEST(GpuAnimationTest, ACrowdSharesItsKeyframesAndOneClock) {
         ASSERT_TRUE(renderer.ok());
         renderer->setPlaybackMode(scene::PlaybackMode::Loop);
         ASSERT_TRUE(renderer->prepare(*crowd, StrategyKind::GpuCullingBundles).ok());
-        ASSERT_NE(renderer->gpuAnimation(), nullptr);
-        sizes.push_back(renderer->gpuAnimation()->stats());
+        ASSERT_NE(internals(*renderer).gpuAnimation(), nullptr);
+        sizes.push_back(internals(*renderer).gpuAnimation()->stats());
         ASSERT_TRUE(renderer->setAnimationTime(0.5).ok());
         ASSERT_TRUE(renderer->setAnimationTime(12.25).ok());
         EXPECT_EQ(renderer->animationStats().bytesWritten, sizeof(float)) << characters;

@@ -7,6 +7,7 @@
 #include "RenderTestSupport.h"
 #include "encore/render/Renderer.h"
 #include "render/GpuScene.h"
+#include "render/RendererCore.h"
 #include "scene/SceneGenerator.h"
 
 namespace encore::render {
@@ -26,12 +27,12 @@ TEST(GpuSceneTest, SwitchingThroughEveryStrategyUploadsNothingAgain) {
     const scene::SceneData scene = texturedScene();
     auto renderer = Renderer::create(*context, test::pixelTestOptions(48, 48));
     ASSERT_TRUE(renderer.ok());
-    EXPECT_EQ(renderer->sceneUploads(), 0u);
+    EXPECT_EQ(internals(*renderer).sceneUploads(), 0u);
     ASSERT_TRUE(renderer->prepare(scene, StrategyKind::Naive).ok());
-    const GpuScene* gpuScene = renderer->gpuScene();
+    const GpuScene* gpuScene = internals(*renderer).gpuScene();
     ASSERT_NE(gpuScene, nullptr);
-    EXPECT_EQ(renderer->sceneUploads(), 1u);
-    const std::uint64_t uploaded = renderer->uploadedBytes();
+    EXPECT_EQ(internals(*renderer).sceneUploads(), 1u);
+    const std::uint64_t uploaded = internals(*renderer).uploadedBytes();
     // Geometry and the textures' first levels, at least.
     EXPECT_GT(gpuScene->geometry().uploadedBytes(), 0u);
     EXPECT_GT(gpuScene->materials().uploadedBytes(), 0u);
@@ -42,21 +43,21 @@ TEST(GpuSceneTest, SwitchingThroughEveryStrategyUploadsNothingAgain) {
         SCOPED_TRACE(std::string(strategyName(choice.kind)) + (choice.bundle ? "+bundle" : ""));
         auto switched = renderer->setStrategy(choice.kind, choice.bundle);
         ASSERT_TRUE(switched.ok()) << switched.error().message;
-        EXPECT_EQ(renderer->strategy()->kind(),
+        EXPECT_EQ(internals(*renderer).strategy()->kind(),
                   choice.bundle ? bundledKind(choice.kind).value_or(choice.kind) : choice.kind);
         renderer->renderFrame(camera);
         auto image = renderer->readImage();
         ASSERT_TRUE(image.ok()) << image.error().message;
         EXPECT_GT(test::coveredFraction(*image, test::pixelAt(*image, 0, 0)), 0.05);
-        EXPECT_EQ(renderer->gpuScene(), gpuScene);
-        EXPECT_EQ(renderer->sceneUploads(), 1u);
-        EXPECT_EQ(renderer->uploadedBytes(), uploaded);
+        EXPECT_EQ(internals(*renderer).gpuScene(), gpuScene);
+        EXPECT_EQ(internals(*renderer).sceneUploads(), 1u);
+        EXPECT_EQ(internals(*renderer).uploadedBytes(), uploaded);
     }
 
     // A new scene is a new upload; the bytes add up.
     ASSERT_TRUE(renderer->prepare(scene, StrategyKind::Bundles).ok());
-    EXPECT_EQ(renderer->sceneUploads(), 2u);
-    EXPECT_EQ(renderer->uploadedBytes(), 2 * uploaded);
+    EXPECT_EQ(internals(*renderer).sceneUploads(), 2u);
+    EXPECT_EQ(internals(*renderer).uploadedBytes(), 2 * uploaded);
 }
 
 // The frame a fresh renderer draws of `scene` with `kind`, for comparison.
@@ -123,7 +124,7 @@ TEST(GpuSceneTest, AReplacedImageRegroupsTheDrawsOfEveryLaterStrategy) {
     auto renderer = Renderer::create(*context, test::pixelTestOptions(48, 48));
     ASSERT_TRUE(renderer.ok());
     ASSERT_TRUE(renderer->prepare(scene, StrategyKind::Naive).ok());
-    const std::uint64_t generation = renderer->gpuScene()->generation();
+    const std::uint64_t generation = internals(*renderer).gpuScene()->generation();
     scene::Image red;
     red.width = 2;
     red.height = 2;
@@ -133,8 +134,8 @@ TEST(GpuSceneTest, AReplacedImageRegroupsTheDrawsOfEveryLaterStrategy) {
     }
     // Naive draws no materials, yet the GPU scene takes the edit for the strategies that do.
     ASSERT_TRUE(renderer->replaceBaseColorImage(scene::MaterialId{0u}, red).ok());
-    EXPECT_GT(renderer->gpuScene()->generation(), generation);
-    EXPECT_TRUE(renderer->gpuScene()->materials().textured(scene::MaterialId{0u}));
+    EXPECT_GT(internals(*renderer).gpuScene()->generation(), generation);
+    EXPECT_TRUE(internals(*renderer).gpuScene()->materials().textured(scene::MaterialId{0u}));
     for (StrategyKind kind : {StrategyKind::Materials, StrategyKind::Bundles}) {
         SCOPED_TRACE(strategyName(kind));
         ASSERT_TRUE(renderer->setStrategy(kind).ok());

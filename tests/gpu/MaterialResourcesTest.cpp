@@ -5,8 +5,8 @@
 #include <numbers>
 
 #include "GpuTestSupport.h"
-#include "encore/render/BindGroupLayouts.h"
 #include "gpu/Readback.h"
+#include "render/BindGroupLayouts.h"
 #include "render/MaterialResources.h"
 
 namespace encore::render {

@@ -14,6 +14,7 @@
 #include "encore/render/Renderer.h"
 #include "encore/scene/MaterialVariants.h"
 #include "render/GpuScene.h"
+#include "render/RendererCore.h"
 
 namespace encore::render {
 namespace {
@@ -55,15 +56,15 @@ TEST(MaterialVariantsRenderTest, ASwitchChangesMaterialBindingsOnly) {
         auto renderer = Renderer::create(*context, test::pixelTestOptions(kSize, kSize));
         ASSERT_TRUE(renderer.ok());
         ASSERT_TRUE(renderer->prepare(scene, choice.kind, choice.bundle).ok());
-        const GpuScene* gpuScene = renderer->gpuScene();
-        const std::uint64_t uploaded = renderer->uploadedBytes();
+        const GpuScene* gpuScene = internals(*renderer).gpuScene();
+        const std::uint64_t uploaded = internals(*renderer).uploadedBytes();
         EXPECT_GT(uploaded, 0u);
         std::optional<image::ImageRgba8> first;
         int selected = -1;
         // Every variant, back to the default, and a variant straight after the default.
         for (int variant : {-1, 0, 1, 2, 3, -1, 2, 2}) {
             SCOPED_TRACE("variant " + std::to_string(variant));
-            const std::uint64_t recorded = renderer->strategy()->bundlesRecorded();
+            const std::uint64_t recorded = internals(*renderer).strategy()->bundlesRecorded();
             ASSERT_TRUE(renderer->selectVariant(variantOf(variant)).ok());
             EXPECT_EQ(renderer->variant(), variantOf(variant));
             renderer->renderFrame(test::frontCamera());
@@ -83,15 +84,15 @@ TEST(MaterialVariantsRenderTest, ASwitchChangesMaterialBindingsOnly) {
                 EXPECT_EQ(test::differingPixels(*image, *first), 0u);
             }
             // Nothing uploaded again, whatever the strategy.
-            EXPECT_EQ(renderer->gpuScene(), gpuScene);
-            EXPECT_EQ(renderer->sceneUploads(), 1u);
-            EXPECT_EQ(renderer->uploadedBytes(), uploaded);
+            EXPECT_EQ(internals(*renderer).gpuScene(), gpuScene);
+            EXPECT_EQ(internals(*renderer).sceneUploads(), 1u);
+            EXPECT_EQ(internals(*renderer).uploadedBytes(), uploaded);
             // Bundles record again after a switch, and only then.
             if (renderer->bundled()) {
                 if (variant != selected || recorded == 0) {
-                    EXPECT_GT(renderer->strategy()->bundlesRecorded(), recorded);
+                    EXPECT_GT(internals(*renderer).strategy()->bundlesRecorded(), recorded);
                 } else {
-                    EXPECT_EQ(renderer->strategy()->bundlesRecorded(), recorded);
+                    EXPECT_EQ(internals(*renderer).strategy()->bundlesRecorded(), recorded);
                 }
             }
             selected = variant;
@@ -117,7 +118,7 @@ TEST(MaterialVariantsRenderTest, TheSelectionSurvivesASwitchOfStrategy) {
                                         encode(test::kLeftQuadColors[2])),
                   1);
     }
-    EXPECT_EQ(renderer->sceneUploads(), 1u);
+    EXPECT_EQ(internals(*renderer).sceneUploads(), 1u);
     // A new scene starts from the default materials.
     ASSERT_TRUE(renderer->prepare(scene, StrategyKind::Bundles).ok());
     EXPECT_EQ(renderer->variant(), std::nullopt);
@@ -162,7 +163,7 @@ TEST(MaterialVariantsRenderTest, TheKhronosShoeDrawsEachVariant) {
     auto renderer = Renderer::create(*context, test::pixelTestOptions(kSize, kSize));
     ASSERT_TRUE(renderer.ok());
     ASSERT_TRUE(renderer->prepare(*scene, StrategyKind::Bundles).ok());
-    const std::uint64_t uploaded = renderer->uploadedBytes();
+    const std::uint64_t uploaded = internals(*renderer).uploadedBytes();
     const Camera camera = Camera::framing(scene->bounds, 1.0f);
     std::vector<image::ImageRgba8> images;
     for (std::size_t v = 0; v < scene->variants.size(); ++v) {
@@ -176,8 +177,8 @@ TEST(MaterialVariantsRenderTest, TheKhronosShoeDrawsEachVariant) {
         }
         images.push_back(std::move(*image));
     }
-    EXPECT_EQ(renderer->sceneUploads(), 1u);
-    EXPECT_EQ(renderer->uploadedBytes(), uploaded);
+    EXPECT_EQ(internals(*renderer).sceneUploads(), 1u);
+    EXPECT_EQ(internals(*renderer).uploadedBytes(), uploaded);
     EXPECT_TRUE(context->checkNoErrors("shoe").ok());
 }
 

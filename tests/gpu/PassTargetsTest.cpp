@@ -7,10 +7,11 @@
 #include "GltfBuilder.h"
 #include "GpuTestSupport.h"
 #include "RenderTestSupport.h"
-#include "encore/render/RenderSetup.h"
 #include "encore/render/Renderer.h"
 #include "gpu/Readback.h"
 #include "render/PipelineKey.h"
+#include "render/RenderSetup.h"
+#include "render/RendererCore.h"
 
 namespace encore::render {
 namespace {
@@ -79,7 +80,7 @@ TEST(PassTargetsTest, PassImagesEqualTheDebugChannelsFrames) {
         ASSERT_TRUE(frames.ok()) << frames.error().message;
         ASSERT_TRUE(frames->prepare(*scene, StrategyKind::Bundles).ok());
         EXPECT_FALSE(frames->passTexture(PassImage::Normal));
-        EXPECT_EQ(frames->setup().passTargets, 0);
+        EXPECT_EQ(internals(*frames).setup().passTargets, 0);
         frames->renderFrame(kCamera);
         auto color = frames->readImage();
         ASSERT_TRUE(color.ok());
@@ -88,7 +89,7 @@ TEST(PassTargetsTest, PassImagesEqualTheDebugChannelsFrames) {
         identity.exposure = 1.0f;
         ASSERT_TRUE(frames->setToneMapping(identity).ok());
         const auto channel = [&](DebugChannel debug) {
-            LightingParameters lighting = frames->lighting().parameters();
+            LightingParameters lighting = frames->lighting();
             lighting.debugChannel = debug;
             frames->setLighting(lighting);
             frames->renderFrame(kCamera);
@@ -138,7 +139,8 @@ TEST(PassTargetsTest, PassImagesEqualTheDebugChannelsFrames) {
         }
         EXPECT_GT(covered, std::size_t(kSize) * kSize / 4) << "the quads were drawn";
         // Variants, not more pipelines: each pipeline gains the targets.
-        EXPECT_EQ(targets->setup().pipelinesCreated, frames->setup().pipelinesCreated);
+        EXPECT_EQ(internals(*targets).setup().pipelinesCreated,
+                  internals(*frames).setup().pipelinesCreated);
     }
 }
 

@@ -21,8 +21,8 @@
 #include "batch/PngRowsPass.h"
 #include "batch/ViewStrips.h"
 #include "encore/batch/Batch.h"
-#include "encore/gpu/TextureReadbackRing.h"
 #include "gpu/Readback.h"
+#include "gpu/TextureReadbackRing.h"
 #include "image/PngWriter.h"
 
 namespace encore::batch {

@@ -15,6 +15,7 @@
 #include "gpu/CreationCounts.h"
 #include "gpu/ResourcePool.h"
 #include "gpu/Upload.h"
+#include "render/RendererCore.h"
 
 namespace encore::gpu {
 namespace {
@@ -158,7 +159,7 @@ TEST(ResourcePoolTest, SceneInKeptResourcesDrawsTheSamePixelsAsInNewOnes) {
     ResourcePool pool(context->device());  // Before the renderer: it outlives its scenes.
     auto pooled = render::Renderer::create(*context, test::pixelTestOptions(32, 32));
     ASSERT_TRUE(pooled.ok()) << pooled.error().message;
-    pooled->setResourcePool(&pool);
+    internals(*pooled).setResourcePool(&pool);
     draw(*pooled, red);
     // Green goes into red's texture, geometry, instance and material buffers.
     CreationCounts created;

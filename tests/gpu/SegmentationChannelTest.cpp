@@ -63,7 +63,7 @@ TEST(SegmentationChannelTest, EveryPixelNamesTheNodeMeshOrMaterialThatDrewIt) {
         ASSERT_TRUE(renderer.ok());
         ASSERT_TRUE(renderer->prepare(*scene, kind).ok());
         const auto draw = [&](DebugChannel channel) {
-            LightingParameters lighting = renderer->lighting().parameters();
+            LightingParameters lighting = renderer->lighting();
             lighting.debugChannel = channel;
             renderer->setLighting(lighting);
             renderer->renderFrame(camera);

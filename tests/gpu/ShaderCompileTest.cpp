@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "GpuTestSupport.h"
-#include "encore/shaders/ShaderLibrary.h"
 #include "shaders/EmbeddedFiles.h"
+#include "shaders/ShaderLibrary.h"
 
 namespace encore::shaders {
 namespace {

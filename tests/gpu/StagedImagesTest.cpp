@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "GpuTestSupport.h"
-#include "encore/render/BindGroupLayouts.h"
 #include "gpu/Readback.h"
+#include "render/BindGroupLayouts.h"
 #include "render/MaterialResources.h"
 #include "render/StagedImages.h"
 

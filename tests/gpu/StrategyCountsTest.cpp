@@ -12,6 +12,7 @@
 #include "core/FileIO.h"
 #include "encore/render/Renderer.h"
 #include "render/GpuScene.h"
+#include "render/RendererCore.h"
 #include "scene/SceneGenerator.h"
 
 namespace encore::render {
@@ -135,9 +136,10 @@ Frame renderWith(Renderer& renderer, const scene::SceneData& scene, StrategyKind
     Frame frame;
     auto prepared = renderer.prepare(scene, kind);
     EXPECT_TRUE(prepared.ok()) << prepared.error().message;
-    frame.pipelinesCreated = renderer.setup().pipelinesCreated;
-    frame.counters =
-        renderer.renderFrame(Camera::framing(scene.bounds, 1.0f), 0.0f, &frame.trace).counters;
+    frame.pipelinesCreated = internals(renderer).setup().pipelinesCreated;
+    frame.counters = internals(renderer)
+                         .renderFrame(Camera::framing(scene.bounds, 1.0f), 0.0f, &frame.trace)
+                         .counters;
     auto image = renderer.readImage();
     EXPECT_TRUE(image.ok()) << image.error().message;
     return frame;
@@ -357,7 +359,7 @@ TEST(StrategyLimitsTest, PerNodeStrategiesRefuseScenesBeyondTheMappingBudget) {
     ASSERT_TRUE(scene.ok());
     auto renderer = Renderer::create(*context, test::pixelTestOptions(32, 32));
     ASSERT_TRUE(renderer.ok());
-    RenderSetup tight = renderer->setup();
+    RenderSetup tight = internals(*renderer).setup();
     tight.mappingBudget = 60;  // Room for 30 nodes at two mappings each.
     auto gpuScene = GpuScene::create(tight, *scene);
     ASSERT_TRUE(gpuScene.ok());

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "GpuTestSupport.h"
-#include "encore/gpu/GpuTimer.h"
+#include "gpu/GpuTimer.h"
 #include "gpu/Readback.h"
 #include "gpu/TimedSubmit.h"
 #include "gpu/Upload.h"

@@ -18,6 +18,7 @@
 #include "RenderTestSupport.h"
 #include "encore/image/ImageCodec.h"
 #include "encore/render/Renderer.h"
+#include "render/RendererCore.h"
 
 namespace encore::render {
 namespace {
@@ -145,7 +146,8 @@ Rendered render(const scene::SceneData& scene,
     if (image) {
         result.image = std::move(*image);
     }
-    result.bundlesRecorded = renderer->strategy() ? renderer->strategy()->bundlesRecorded() : 0;
+    result.bundlesRecorded =
+        internals(*renderer).strategy() ? internals(*renderer).strategy()->bundlesRecorded() : 0;
     return result;
 }
 

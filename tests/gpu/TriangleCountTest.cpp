@@ -12,6 +12,7 @@
 #include "encore/render/Renderer.h"
 #include "render/CameraPath.h"
 #include "render/GpuCuller.h"
+#include "render/RendererCore.h"
 #include "scene/SceneGenerator.h"
 
 namespace encore::render {
@@ -68,7 +69,7 @@ TEST_P(TriangleCountTest, AllInViewNoneInViewAndHalfBehindTheCamera) {
     renderer->setCullingOptions(
         {.occlusion = false, .levelsOfDetail = false});  // Frustum culling: exact expectations.
     ASSERT_TRUE(renderer->prepare(scene, GetParam()).ok());
-    const GpuCuller* culler = renderer->strategy()->culler();
+    const GpuCuller* culler = internals(*renderer).strategy()->culler();
     ASSERT_NE(culler, nullptr);
     const std::uint64_t total = sceneTriangles(scene);
     EXPECT_EQ(submittedTriangles(culler->draws()), total);

@@ -7,6 +7,7 @@
 #include "GpuTestSupport.h"
 #include "RenderTestSupport.h"
 #include "encore/render/Renderer.h"
+#include "render/RendererCore.h"
 #include "scene/SceneGenerator.h"
 
 namespace encore::render {
@@ -58,7 +59,7 @@ TEST(ViewerHooksTest, ResizingKeepsTheRecordedBundlesAndRendersLikeANewTarget) {
         ASSERT_TRUE(renderer->prepare(scene, c.kind, c.bundle).ok());
         renderer->renderFrame(Camera::framing(scene.bounds, 64.0f / 48.0f));
         ASSERT_TRUE(renderer->readImage().ok());
-        const std::uint64_t recorded = renderer->strategy()->bundlesRecorded();
+        const std::uint64_t recorded = internals(*renderer).strategy()->bundlesRecorded();
         EXPECT_GE(recorded, 1u);
 
         ASSERT_TRUE(renderer->resize(96, 80).ok());
@@ -67,7 +68,7 @@ TEST(ViewerHooksTest, ResizingKeepsTheRecordedBundlesAndRendersLikeANewTarget) {
         const FrameResult frame = renderer->renderFrame(Camera::framing(scene.bounds, 1.2f));
         auto resized = renderer->readImage();
         ASSERT_TRUE(resized.ok()) << resized.error().message;
-        EXPECT_EQ(renderer->strategy()->bundlesRecorded(), recorded);
+        EXPECT_EQ(internals(*renderer).strategy()->bundlesRecorded(), recorded);
         EXPECT_EQ(frame.counters.executeBundles, test::bundlesPerRecording(c.kind));
         const image::ImageRgba8 fresh = render(scene, c.kind, c.bundle, 96, 80);
         ASSERT_EQ(resized->width, fresh.width);
@@ -95,7 +96,7 @@ TEST(ViewerHooksTest, EveryStrategyCanDrawItsFrameFromABundle) {
         ASSERT_TRUE(direct->prepare(scene, directKind(kind).value_or(kind)).ok());
         ASSERT_TRUE(bundled->prepare(scene, kind, true).ok());
         EXPECT_TRUE(bundled->bundled());
-        EXPECT_EQ(bundled->strategy()->kind(), bundledKind(kind).value_or(kind));
+        EXPECT_EQ(internals(*bundled).strategy()->kind(), bundledKind(kind).value_or(kind));
         const FrameResult directFrame = direct->renderFrame(camera);
         FrameResult bundledFrame;
         for (int frame = 0; frame < 3; ++frame) {
@@ -106,9 +107,10 @@ TEST(ViewerHooksTest, EveryStrategyCanDrawItsFrameFromABundle) {
         ASSERT_TRUE(directImage.ok() && bundledImage.ok());
         EXPECT_EQ(test::differingPixels(*directImage, *bundledImage), 0u);
         EXPECT_EQ(bundledFrame.counters.drawCalls(), 0u);
-        const StrategyKind recordedKind = bundled->strategy()->kind();
+        const StrategyKind recordedKind = internals(*bundled).strategy()->kind();
         EXPECT_EQ(bundledFrame.counters.executeBundles, test::bundlesPerRecording(recordedKind));
-        EXPECT_EQ(bundled->strategy()->bundlesRecorded(), test::bundlesPerRecording(recordedKind));
+        EXPECT_EQ(internals(*bundled).strategy()->bundlesRecorded(),
+                  test::bundlesPerRecording(recordedKind));
         EXPECT_EQ(bundledFrame.bundleContents.drawCalls(), directFrame.counters.drawCalls());
     }
 }
@@ -136,7 +138,7 @@ TEST(ViewerHooksTest, AFrozenCullingFrustumCullsWhatItDoesNotSee) {
     auto visible = renderer->readImage();
     ASSERT_TRUE(visible.ok());
     EXPECT_GT(test::coveredFraction(*visible, background), 0.02);
-    EXPECT_EQ(renderer->strategy()->bundlesRecorded(),
+    EXPECT_EQ(internals(*renderer).strategy()->bundlesRecorded(),
               test::bundlesPerRecording(StrategyKind::GpuCullingBundles));
 }
 

@@ -25,11 +25,12 @@
 #include "VisibilityTestSupport.h"
 #include "encore/batch/Batch.h"
 #include "encore/render/Renderer.h"
-#include "encore/render/VisibilityFeatures.h"
 #include "gpu/CreationCounts.h"
 #include "gpu/Readback.h"
 #include "gpu/ResourcePool.h"
 #include "image/ImageDecoders.h"
+#include "render/RendererCore.h"
+#include "render/VisibilityFeatures.h"
 #include "render/strategies/VisibilityPipelines.h"
 #include "render/strategies/VisibilityStrategy.h"
 #include "render/strategies/VisibilityTarget.h"
@@ -93,18 +94,19 @@ TEST(VisibilityBatchTest, KeptPipelinesAreCreatedOnceAndDrawTheSamePictures) {
         auto keeping = Renderer::create(*context, stripOptions(samples, true));
         ASSERT_TRUE(keeping.ok()) << keeping.error().message;
         ASSERT_TRUE(keeping->prepare(first, StrategyKind::Visibility).ok());
-        EXPECT_EQ(keeping->setup().pipelinesCreated,
+        EXPECT_EQ(internals(*keeping).setup().pipelinesCreated,
                   VisibilityPipelines::createdPipelines(samples, true));
         renderStrip(*keeping, first);
-        const auto* strategy = dynamic_cast<const VisibilityStrategy*>(keeping->strategy());
+        const auto* strategy =
+            dynamic_cast<const VisibilityStrategy*>(internals(*keeping).strategy());
         ASSERT_NE(strategy, nullptr);
         const WGPUTexture firstPyramid = strategy->depthPyramid().texture().Get();
 
         auto prepared = keeping->prepare(second, StrategyKind::Visibility);
         ASSERT_TRUE(prepared.ok()) << prepared.error().message;
-        EXPECT_EQ(keeping->setup().pipelinesCreated, 0u);
+        EXPECT_EQ(internals(*keeping).setup().pipelinesCreated, 0u);
         const image::ImageRgba8 kept = renderStrip(*keeping, second);
-        strategy = dynamic_cast<const VisibilityStrategy*>(keeping->strategy());
+        strategy = dynamic_cast<const VisibilityStrategy*>(internals(*keeping).strategy());
         ASSERT_NE(strategy, nullptr);
         EXPECT_EQ(strategy->depthPyramid().texture().Get(), firstPyramid)
             << "the target's resources were made again";
@@ -115,7 +117,7 @@ TEST(VisibilityBatchTest, KeptPipelinesAreCreatedOnceAndDrawTheSamePictures) {
         auto plain = Renderer::create(*context, stripOptions(samples, false));
         ASSERT_TRUE(plain.ok()) << plain.error().message;
         ASSERT_TRUE(plain->prepare(second, StrategyKind::Visibility).ok());
-        EXPECT_EQ(plain->setup().pipelinesCreated,
+        EXPECT_EQ(internals(*plain).setup().pipelinesCreated,
                   VisibilityPipelines::createdPipelines(samples, false));
         const image::ImageRgba8 fresh = renderStrip(*plain, second);
         EXPECT_EQ(test::differingPixels(kept, fresh), 0u);
@@ -139,7 +141,7 @@ TEST(VisibilityBatchTest, PooledSceneBuffersAreReusedAndDrawTheSamePictures) {
     gpu::ResourcePool pool(context->device());  // Outlives the renderer's scenes.
     auto renderer = Renderer::create(*context, stripOptions(4, true));
     ASSERT_TRUE(renderer.ok()) << renderer.error().message;
-    renderer->setResourcePool(&pool);
+    internals(*renderer).setResourcePool(&pool);
     ASSERT_TRUE(renderer->prepare(first, StrategyKind::Visibility).ok());
     const image::ImageRgba8 drawnFirst = renderStrip(*renderer, first);
     ASSERT_TRUE(renderer->prepare(second, StrategyKind::Visibility).ok());
@@ -169,7 +171,9 @@ TEST(VisibilityBatchTest, KeptWorkBuffersGrowForLargerModelsOnly) {
     ASSERT_TRUE(keeping.ok()) << keeping.error().message;
     auto plain = Renderer::create(*context, stripOptions(1, false));
     ASSERT_TRUE(plain.ok()) << plain.error().message;
-    auto kept = [&] { return dynamic_cast<const VisibilityStrategy*>(keeping->strategy()); };
+    auto kept = [&] {
+        return dynamic_cast<const VisibilityStrategy*>(internals(*keeping).strategy());
+    };
     // Its bytes (handles of a buffer released and one made after it can be equal).
     auto workgroupListBytes = [&] { return kept()->workBuffers().workgroupList.GetSize(); };
     // At least 8 per triangle (a block each).
@@ -214,7 +218,8 @@ TEST(VisibilityBatchTest, HardwareRasterisedViewsLandInTheirPlaceInTheStrip) {
         ASSERT_TRUE(hardware.ok()) << hardware.error().message;
         ASSERT_TRUE(hardware->prepare(scene, StrategyKind::Visibility).ok());
         const image::ImageRgba8 drawn = renderStrip(*hardware, scene);
-        const auto* strategy = dynamic_cast<const VisibilityStrategy*>(hardware->strategy());
+        const auto* strategy =
+            dynamic_cast<const VisibilityStrategy*>(internals(*hardware).strategy());
         ASSERT_NE(strategy, nullptr);
         ASSERT_EQ(strategy->rasterCountsOffset(1), 8u) << "a copy per view, side by side";
         auto counts = gpu::readBuffer(*context, strategy->rasterCounts(), 0, kViews * 8);
@@ -260,7 +265,7 @@ TEST(VisibilityBatchTest, TrianglesListedWholeLandInTheirPlaceInTheStrip) {
         ASSERT_TRUE(full->prepare(scene, StrategyKind::Visibility).ok());
         // The renderer hands its strategy out const; this shrinks a list of it.
         auto* strategy = const_cast<VisibilityStrategy*>(
-            dynamic_cast<const VisibilityStrategy*>(full->strategy()));
+            dynamic_cast<const VisibilityStrategy*>(internals(*full).strategy()));
         ASSERT_NE(strategy, nullptr);
         strategy->limitWorkgroupBlocks(3);
         EXPECT_EQ(test::differingPixels(renderStrip(*full, scene), reference), 0u);
@@ -290,12 +295,12 @@ TEST(VisibilityBatchTest, ShadingPipelinesAreMadeForWhatFramesDraw) {
     auto kept = Renderer::create(*context, stripOptions(1, true));
     ASSERT_TRUE(plain.ok() && kept.ok());
     ASSERT_TRUE(plain->prepare(scene, StrategyKind::Visibility).ok());
-    EXPECT_EQ(plain->setup().pipelinesCreated, kOthers);
+    EXPECT_EQ(internals(*plain).setup().pipelinesCreated, kOthers);
     ASSERT_TRUE(kept->prepare(scene, StrategyKind::Visibility).ok());
 
     const Camera camera = stripCameras(scene)[0];
     plain->renderFrame(camera);
-    const std::uint64_t oneView = plain->setup().pipelinesCreated;
+    const std::uint64_t oneView = internals(*plain).setup().pipelinesCreated;
     EXPECT_GT(oneView, kOthers);
     EXPECT_LT(oneView, VisibilityPipelines::createdPipelines(1, true))
         << "only the scene's bin kinds";
@@ -306,10 +311,10 @@ TEST(VisibilityBatchTest, ShadingPipelinesAreMadeForWhatFramesDraw) {
     EXPECT_EQ(test::differingPixels(*drawn, *keptDrawn), 0u);
     EXPECT_GT(test::coveredFraction(*drawn, test::pixelAt(*drawn, 0, 0)), 0.05);
     plain->renderFrame(camera);
-    EXPECT_EQ(plain->setup().pipelinesCreated, oneView);
+    EXPECT_EQ(internals(*plain).setup().pipelinesCreated, oneView);
 
     const image::ImageRgba8 strip = renderStrip(*plain, scene);
-    EXPECT_EQ(plain->setup().pipelinesCreated, oneView + (oneView - kOthers));
+    EXPECT_EQ(internals(*plain).setup().pipelinesCreated, oneView + (oneView - kOthers));
     EXPECT_EQ(test::differingPixels(strip, renderStrip(*kept, scene)), 0u);
     EXPECT_TRUE(context->checkNoErrors("shading pipelines on first use").ok());
 }
@@ -322,13 +327,16 @@ TEST(VisibilityBatchTest, KeptObjectsCreatedAheadSpareTheFirstPrepare) {
     auto ahead = Renderer::create(*context, stripOptions(1, true));
     ASSERT_TRUE(ahead.ok()) << ahead.error().message;
     ASSERT_TRUE(ahead->createKeptObjects(StrategyKind::Bundles).ok());
-    EXPECT_EQ(ahead->setup().pipelinesCreated, 0u) << "other strategies keep nothing";
+    EXPECT_EQ(internals(*ahead).setup().pipelinesCreated, 0u) << "other strategies keep nothing";
     ASSERT_TRUE(ahead->createKeptObjects(StrategyKind::Visibility).ok());
-    EXPECT_EQ(ahead->setup().pipelinesCreated, VisibilityPipelines::createdPipelines(1, true));
+    EXPECT_EQ(internals(*ahead).setup().pipelinesCreated,
+              VisibilityPipelines::createdPipelines(1, true));
     ASSERT_TRUE(ahead->createKeptObjects(StrategyKind::Visibility).ok());  // Once.
-    EXPECT_EQ(ahead->setup().pipelinesCreated, VisibilityPipelines::createdPipelines(1, true));
+    EXPECT_EQ(internals(*ahead).setup().pipelinesCreated,
+              VisibilityPipelines::createdPipelines(1, true));
     ASSERT_TRUE(ahead->prepare(scene, StrategyKind::Visibility).ok());
-    EXPECT_LT(ahead->setup().pipelinesCreated, VisibilityPipelines::createdPipelines(1, true));
+    EXPECT_LT(internals(*ahead).setup().pipelinesCreated,
+              VisibilityPipelines::createdPipelines(1, true));
     const image::ImageRgba8 drawn = renderStrip(*ahead, scene);
 
     auto plain = Renderer::create(*context, stripOptions(1, false));
@@ -416,7 +424,8 @@ TEST(VisibilityBatchTest, KeptObjectsAreMadeAgainAfterADeviceLoss) {
     ASSERT_TRUE(context->deviceLost());
     auto recovered = renderer->recoverFromDeviceLoss();
     ASSERT_TRUE(recovered.ok()) << recovered.error().message;
-    EXPECT_GE(renderer->setup().pipelinesCreated, VisibilityPipelines::createdPipelines(4, true));
+    EXPECT_GE(internals(*renderer).setup().pipelinesCreated,
+              VisibilityPipelines::createdPipelines(4, true));
     EXPECT_EQ(test::differingPixels(renderStrip(*renderer, scene), before), 0u);
     EXPECT_TRUE(context->checkNoErrors("visibility after a device loss").ok());
 }

@@ -21,6 +21,7 @@
 #include "encore/render/Renderer.h"
 #include "gpu/Readback.h"
 #include "image/ImageCompare.h"
+#include "render/RendererCore.h"
 #include "render/strategies/VisibilityStrategy.h"
 
 namespace encore::render {
@@ -134,7 +135,7 @@ Frame render(gpu::Context& context, Renderer& renderer, const Camera& camera) {
     if (image.ok()) {
         frame.image = std::move(*image);
     }
-    const auto* strategy = dynamic_cast<const VisibilityStrategy*>(renderer.strategy());
+    const auto* strategy = dynamic_cast<const VisibilityStrategy*>(internals(renderer).strategy());
     EXPECT_NE(strategy, nullptr);
     if (strategy) {
         frame.work.listed = test::readWord(context, strategy->counters(),

@@ -22,6 +22,7 @@
 #include "VisibilityTestSupport.h"
 #include "encore/render/Renderer.h"
 #include "gpu/Readback.h"
+#include "render/RendererCore.h"
 #include "render/VisibilityTables.h"
 #include "render/strategies/VisibilityStrategy.h"
 
@@ -54,7 +55,7 @@ Drawn draw(gpu::Context& context,
     renderer->setCullingOptions(culling);
     EXPECT_TRUE(renderer->prepare(scene, StrategyKind::Visibility).ok());
     renderer->renderFrame(camera);
-    const auto* strategy = dynamic_cast<const VisibilityStrategy*>(renderer->strategy());
+    const auto* strategy = dynamic_cast<const VisibilityStrategy*>(internals(*renderer).strategy());
     Drawn drawn;
     auto entries = gpu::readBuffer(context, strategy->visibilityBuffer(), 0,
                                    std::uint64_t(kWidth) * kHeight * 8);
@@ -180,7 +181,8 @@ TEST(VisibilityDepthTest, CoplanarTiesGoToTheLaterItemWhateverTheListOrder) {
         ASSERT_TRUE(renderer->prepare(*scene, StrategyKind::Visibility).ok());
         for (const Frame& frame : frames) {
             renderer->renderFrame(frame.camera);
-            const auto* strategy = dynamic_cast<const VisibilityStrategy*>(renderer->strategy());
+            const auto* strategy =
+                dynamic_cast<const VisibilityStrategy*>(internals(*renderer).strategy());
             auto entries = gpu::readBuffer(*context, strategy->visibilityBuffer(), 0,
                                            std::uint64_t(kWidth) * kHeight * 8);
             ASSERT_TRUE(entries.ok());

@@ -11,7 +11,7 @@
 #include "RenderTestSupport.h"
 #include "VisibilityTestSupport.h"
 #include "encore/render/Renderer.h"
-#include "encore/render/VisibilityFeatures.h"
+#include "render/VisibilityFeatures.h"
 
 namespace encore::render {
 namespace {

@@ -22,6 +22,7 @@
 #include "encore/render/Renderer.h"
 #include "gpu/Readback.h"
 #include "image/ImageCompare.h"
+#include "render/RendererCore.h"
 #include "render/strategies/VisibilityStrategy.h"
 #include "scene/SceneGenerator.h"
 
@@ -55,7 +56,7 @@ image::ImageRgba8 frame(Renderer& renderer, const Camera& camera) {
 }
 
 const VisibilityStrategy& visibilityOf(const Renderer& renderer) {
-    const auto* strategy = dynamic_cast<const VisibilityStrategy*>(renderer.strategy());
+    const auto* strategy = dynamic_cast<const VisibilityStrategy*>(internals(renderer).strategy());
     EXPECT_NE(strategy, nullptr);
     return *strategy;
 }
@@ -358,7 +359,7 @@ TEST(VisibilityLevelsTest, LevelsListTheTrianglesGpuCullingDraws) {
             const auto expected = frame(*reference, framed);
             const auto image = frame(*visibility, framed);
             test::expectVisibilityClose(expected, image);
-            const auto counts = reference->strategy()->gpuTriangleCounts();
+            const auto counts = internals(*reference).strategy()->gpuTriangleCounts();
             ASSERT_TRUE(counts.has_value());
             const std::uint32_t drawn =
                 test::readWord(*context, counts->buffer, counts->hardwareOffset);
@@ -401,7 +402,7 @@ TEST(VisibilityLevelsTest, MultiViewFramesChooseLevelsAsGpuCulling) {
     EXPECT_FALSE(visibilityOf(*visibility).lastFrameOccluded());
     EXPECT_EQ(visibilityOf(*visibility).lastViewCount(), 4u);
     // The counters hold the last view's cull, which lists what GPU culling's one cull draws.
-    const auto counts = reference->strategy()->gpuTriangleCounts();
+    const auto counts = internals(*reference).strategy()->gpuTriangleCounts();
     ASSERT_TRUE(counts.has_value());
     const std::uint32_t listed = listedTriangles(*context, *visibility);
     EXPECT_EQ(listed, test::readWord(*context, counts->buffer, counts->hardwareOffset));

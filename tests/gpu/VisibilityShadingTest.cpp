@@ -21,6 +21,7 @@
 #include "encore/render/Renderer.h"
 #include "gpu/Readback.h"
 #include "render/MaterialBins.h"
+#include "render/RendererCore.h"
 #include "render/strategies/VisibilityStrategy.h"
 #include "render/strategies/VisibilityTarget.h"
 #include "scene/SceneGenerator.h"
@@ -135,7 +136,8 @@ TEST(VisibilityBinningTest, MaterialsBindingTheSameTexturesShareABin) {
         ASSERT_TRUE(wanted.ok() && image.ok());
         test::expectVisibilityClose(*wanted, *image);
     };
-    const auto* strategy = dynamic_cast<const VisibilityStrategy*>(visibility.strategy());
+    const auto* strategy =
+        dynamic_cast<const VisibilityStrategy*>(internals(visibility).strategy());
     ASSERT_NE(strategy, nullptr);
     EXPECT_EQ(strategy->tables().bins, (std::vector<std::uint32_t>{2}));
     compare("as prepared");
@@ -169,7 +171,7 @@ TEST(VisibilityBinningTest, FullBlocksOpenAnotherBin) {
     auto renderer = Renderer::create(*context, test::pixelTestOptions(kWidth, kHeight, 1));
     ASSERT_TRUE(renderer.ok());
     ASSERT_TRUE(renderer->prepare(scene, StrategyKind::Visibility).ok());
-    const auto* strategy = dynamic_cast<const VisibilityStrategy*>(renderer->strategy());
+    const auto* strategy = dynamic_cast<const VisibilityStrategy*>(internals(*renderer).strategy());
     ASSERT_NE(strategy, nullptr);
     EXPECT_EQ(strategy->tables().bins,
               (std::vector<std::uint32_t>{0, 2 * MaterialBins::kBinMaterials}));
@@ -204,7 +206,8 @@ TEST(VisibilityMultisampleTest, EachTriangleOfAPixelIsShadedOnce) {
             renderer->renderFrame(kFront);
             auto image = renderer->readImage();
             ASSERT_TRUE(image.ok());
-            const auto* visibility = dynamic_cast<const VisibilityStrategy*>(renderer->strategy());
+            const auto* visibility =
+                dynamic_cast<const VisibilityStrategy*>(internals(*renderer).strategy());
             ASSERT_NE(visibility, nullptr);
             EXPECT_EQ(visibility->tables().bins.size(), binned ? 2u : 1u);
             const std::uint32_t binCount = visibility->tables().binCount;
@@ -275,13 +278,15 @@ TEST(VisibilityComposedTest, ShadedIntoPlaceAsTheCompositeDrawsIt) {
         EXPECT_TRUE(renderer->prepare(scene, StrategyKind::Visibility).ok());
         renderer->renderFrame(camera);
         if (visibility) {
-            const auto* strategy = dynamic_cast<const VisibilityStrategy*>(renderer->strategy());
+            const auto* strategy =
+                dynamic_cast<const VisibilityStrategy*>(internals(*renderer).strategy());
             auto bytes = gpu::readBuffer(*context, strategy->visibilityBuffer(), 0,
                                          std::uint64_t(kWidth) * kHeight * 8);
             EXPECT_TRUE(bytes.ok());
             *visibility = bytes.ok() ? std::move(*bytes) : std::vector<std::uint8_t>{};
         }
-        const auto* strategy = dynamic_cast<const VisibilityStrategy*>(renderer->strategy());
+        const auto* strategy =
+            dynamic_cast<const VisibilityStrategy*>(internals(*renderer).strategy());
         auto texels = gpu::readTextureRgba16Float(*context, strategy->shadedColour(), 0, 0);
         EXPECT_TRUE(texels.ok());
         *shadedTexels = 0;

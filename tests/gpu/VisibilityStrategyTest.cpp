@@ -24,6 +24,7 @@
 #include "encore/render/Renderer.h"
 #include "gpu/Readback.h"
 #include "image/ImageCompare.h"
+#include "render/RendererCore.h"
 #include "render/strategies/VisibilityStrategy.h"
 #include "render/strategies/VisibilityTarget.h"
 #include "scene/CrowdGenerator.h"
@@ -234,7 +235,7 @@ CountedFrame countedFrame(gpu::Context& context,
     EXPECT_TRUE(renderer->prepare(scene, StrategyKind::Visibility).ok());
     // The renderer hands its strategy out const; this shrinks a list of it between frames.
     auto* visibility = const_cast<VisibilityStrategy*>(
-        dynamic_cast<const VisibilityStrategy*>(renderer->strategy()));
+        dynamic_cast<const VisibilityStrategy*>(internals(*renderer).strategy()));
     EXPECT_NE(visibility, nullptr);
     if (!visibility) {
         return {};
@@ -460,10 +461,10 @@ TEST(VisibilityMultisampleTest, PerPixelAndPerSampleCompositesResolveAlike) {
     ASSERT_TRUE(renderer.ok());
     const auto opaque = triangles(shapes);
     ASSERT_TRUE(renderer->prepare(opaque, StrategyKind::Visibility).ok());
-    EXPECT_TRUE(renderer->strategy()->composesResolved());
+    EXPECT_TRUE(internals(*renderer).strategy()->composesResolved());
     const auto masked = triangles(shapes, "MASK", shapes.size() - 1);
     ASSERT_TRUE(renderer->prepare(masked, StrategyKind::Visibility).ok());
-    EXPECT_FALSE(renderer->strategy()->composesResolved());
+    EXPECT_FALSE(internals(*renderer).strategy()->composesResolved());
     EXPECT_TRUE(context->checkNoErrors("visibility composites").ok());
 }
 

@@ -10,7 +10,7 @@
 
 #include "TestPaths.h"
 #include "core/Log.h"
-#include "encore/render/VisibilityFeatures.h"
+#include "render/VisibilityFeatures.h"
 
 namespace encore::test {
 

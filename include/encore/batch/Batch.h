@@ -41,7 +41,6 @@
 
 #include "encore/batch/BatchInputs.h"
 #include "encore/batch/BatchLighting.h"
-#include "encore/batch/BatchRenderer.h"
 #include "encore/batch/FailureLog.h"
 #include "encore/batch/ViewImages.h"
 #include "encore/batch/ViewRig.h"
@@ -52,6 +51,10 @@
 #include "encore/render/Renderer.h"
 
 namespace encore::batch {
+
+// Renderers kept on one device from one run to the next (src/batch/BatchRenderer.h): the
+// command line and the Python module keep them; the overloads below that take them serve those.
+class BatchRenderer;
 
 // Where the time went, in seconds. Load and encode run on the pool: their times add up the
 // threads' work (they may exceed the wall time). The others are the device thread's and add up
@@ -295,7 +298,7 @@ Result<BatchSummary> runBatch(gpu::Context& context,
                               std::span<const BatchInput> inputs,
                               const BatchOptions& options);
 // The same on the device of `renderers`, with the renderer it kept from an earlier run when the
-// options allow (BatchRenderer.h); what this run builds is kept in it for the next. The images
+// options allow; what this run builds is kept in it for the next. The images
 // are the same either way.
 Result<BatchSummary> runBatch(BatchRenderer& renderers,
                               std::span<const BatchInput> inputs,

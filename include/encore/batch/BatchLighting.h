@@ -15,7 +15,7 @@
 
 #include "encore/batch/ValueRange.h"
 #include "encore/core/Result.h"
-#include "encore/render/Lighting.h"
+#include "encore/render/RendererOptions.h"
 
 namespace encore::batch {
 

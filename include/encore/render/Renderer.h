@@ -1,126 +1,45 @@
 #pragma once
 
-// Renderer draws a SceneData with one strategy into an offscreen RenderTarget. It owns what all
-// strategies share (shader library, bind group layouts, frame uniforms, the scene's lighting and
-// environment, tone mapping), the prepared scene on the GPU (GpuScene) and the strategy itself. A
-// frame renders the scene into the target's sRGB output, the shaders applying the display transform
-// as they shade; with an HDR target (RenderTargetOptions::hdr, or a transparent background) it
-// renders linear HDR and a tone-mapping pass writes the output.
+// Renderer draws a SceneData with one strategy into an offscreen RenderTarget: the face of
+// Encore's rendering. It is created on a gpu::Context with RendererOptions, prepares a scene for
+// a strategy (StrategyKind), then renders frames from cameras and reads them back. Every change
+// after prepare() (instances, materials, lighting, tone mapping, animation, variants, culling)
+// goes through buffers, so the strategy's recorded bundles stay valid. RendererStats says what it
+// did; FrameResult what each frame recorded and how long it took.
+//
+// What it holds (the strategy, the GPU scene, pipelines and bind groups) is internal to the
+// library (src/render/RendererCore.h).
 
+#include <webgpu/webgpu_cpp.h>
+
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <span>
-#include <string>
 #include <string_view>
 #include <vector>
 
 #include "encore/core/Result.h"
 #include "encore/gpu/Context.h"
-#include "encore/gpu/StageTimestamps.h"
 #include "encore/image/HdrImage.h"
 #include "encore/image/ImageCodec.h"
-#include "encore/render/AnimationBuffers.h"
 #include "encore/render/Camera.h"
-#include "encore/render/DrawCounters.h"
-#include "encore/render/FrameTimer.h"
-#include "encore/render/GpuAnimation.h"
-#include "encore/render/GpuStage.h"
-#include "encore/render/Lighting.h"
 #include "encore/render/RenderTarget.h"
-#include "encore/render/StagedUploads.h"
-#include "encore/render/Strategy.h"
-#include "encore/render/ToneMapper.h"
-#include "encore/render/VisibilityFeatures.h"  // What a context needs for the visibility strategy.
+#include "encore/render/RendererOptions.h"
+#include "encore/render/RendererStats.h"
+#include "encore/render/StrategyKind.h"
 #include "encore/scene/AnimationPlayer.h"
-#include "encore/scene/MaterialVariants.h"
-
-namespace encore::gpu {
-class OutOfMemoryScope;
-class ResourcePool;
-}  // namespace encore::gpu
+#include "encore/scene/MaterialVariants.h"  // resolveVariant, for selectVariant
+#include "encore/scene/SceneData.h"
 
 namespace encore::render {
 
-// Pass images drawn in the colour frame's own render pass (encore batch's passes: normal,
-// albedo, material, depth and segmentation, docs/batch.md#passes), and what the segmentation
-// ids count.
-enum class PassTargets : std::uint8_t { None, SegmentByNode, SegmentByMesh, SegmentByMaterial };
-// The images of a frame drawn with pass targets (Renderer::passTexture).
-enum class PassImage { Normal, Albedo, Material, DepthAndId };
+class RendererCore;
 
-struct RendererOptions {
-    RenderTargetOptions target;
-    ToneMappingOptions toneMapping;
-    LightingParameters lighting;
-    // The image-based light; several renderers may share one. Null: the renderer builds one
-    // from `environmentImage`, or from the default studio (image::makeStudioEnvironment),
-    // with `environmentOptions`.
-    std::shared_ptr<Environment> environment;
-    std::shared_ptr<const image::HdrImage> environmentImage;
-    EnvironmentOptions environmentOptions;
-    // Where animation is evaluated (setAnimationEvaluation changes it later).
-    AnimationEvaluation animation = AnimationEvaluation::Cpu;
-    // Keep the render pipelines of the materials-based and instancing strategies (and the
-    // visibility strategy's pipelines and target-sized buffers) from one prepare() to the
-    // next: a renderer that prepares many scenes in turn (encore batch) creates
-    // each distinct pipeline once, which matters where creating one compiles shaders for
-    // hundreds of milliseconds (lavapipe). Off by default, so that each prepare's
-    // RenderSetup::pipelinesCreated counts what that strategy needs.
-    bool keepPipelines = false;
-    // Whether prepare() waits for the GPU to finish everything submitted before it frees the
-    // previous scene, so that peak memory stays one scene's worth. Off, the caller makes sure the
-    // GPU is done with this renderer's previous scene (encore batch reads its views back first),
-    // and prepare() never blocks on work that other renderers of the device submitted.
-    bool prepareWaitsForIdle = true;
-    // Occlusion culling and levels of detail of the GPU-culling strategies.
-    CullingOptions culling;
-    // Draws four more colour targets in every scene pass (passTexture): the normal, albedo,
-    // material and depth + segmentation id images, each as the matching debug channel's frame
-    // would draw it. Needs an HDR target, a strategy that draws glTF materials in its mesh
-    // shader (prepare() fails otherwise) and a device with maxColorAttachmentBytesPerSample of
-    // at least 40 (create() fails otherwise). None: the frames are drawn as they always were.
-    PassTargets passTargets = PassTargets::None;
-
-    // Equal options build equal renderers. The environment and its image compare as pointers:
-    // the same shared object, not equal contents.
-    bool operator==(const RendererOptions&) const = default;
-};
-
-// A frame's timing (gpuMilliseconds only with a GPU timer set) and what it recorded.
-// What one setAnimationTime() did: the player's work and what it uploaded.
-struct AnimationFrameStats {
-    AnimationEvaluation evaluation = AnimationEvaluation::Cpu;
-    scene::AnimationStats player;  // CPU evaluation only.
-    GpuAnimationStats gpu;         // GPU evaluation only: its size and per-frame dispatches.
-    AnimationUploadStats upload;   // Joint matrices and morph weights.
-    std::uint32_t instancesWritten = 0;
-    // Instance transforms, joints and weights together (GPU: the animation times).
-    std::uint64_t bytesWritten = 0;
-};
-
-// What the GPU drew in one frame, by rasteriser (Renderer::takeTriangleHistory).
-struct DrawnTriangles {
-    std::uint64_t hardware = 0;  // Through the graphics pipeline.
-    std::uint64_t compute = 0;   // Rasterised in compute (the visibility strategy).
-    std::uint64_t total() const { return hardware + compute; }
-};
-
-struct FrameResult : FrameTiming {
-    DrawCounters counters;        // Calls recorded into the frame's render pass(es).
-    DrawCounters bundleContents;  // What the executed bundles contain (recorded once).
-    // What the frame's draws could draw: the triangles of its direct draws, of the bundles it
-    // executed and of its indirect draws at full instance counts (submittedTriangles), summed
-    // over views. Culling decides how many of them are drawn (Renderer::takeDrawnTriangles).
-    std::uint64_t trianglesSubmitted = 0;
-    // KHR_materials_transmission: copies of the scene made for transmissive surfaces (one per
-    // frame that has any; 0 in scenes without them, which pay for nothing).
-    std::uint32_t transmissionCopies = 0;
-};
-
-class GpuScene;
-class TriangleHistory;
-class TransmissionPass;
-class PassTargetTextures;
+// Asks `options` for the device features the visibility strategy uses where the adapter has
+// them (64-bit atomic min/max in storage buffers); without them that strategy's prepare() fails
+// and every other strategy renders as before.
+void requestVisibilityFeatures(gpu::ContextOptions& options);
 
 class Renderer {
   public:
@@ -133,84 +52,66 @@ class Renderer {
 
     // With RendererOptions::keepPipelines: creates now what strategy `kind` keeps from one
     // prepare to the next (the visibility strategy's pipelines), so that the first prepare does
-    // not wait for them; encore batch calls it while its loaders read the first models. Nothing
-    // for other strategies, or where the device lacks what `kind` needs (prepare says so).
+    // not wait for them. Nothing for other strategies, or where the device lacks what `kind`
+    // needs (prepare says so).
     Result<void> createKeptObjects(StrategyKind kind);
 
-    // Prepares `scene` (which must outlive the renderer) for drawing with `kind`, replacing any
-    // previous scene or strategy: uploads it into a new GPU scene (GpuScene) and prepares the
-    // strategy on it; with `bundle`, the frame is drawn from render bundles (createStrategy).
-    // Fails on any WebGPU error raised while preparing. `staged`: the scene's images and
-    // geometry already copied into staging buffers (the GPU scene copies from there), used
-    // during this call only.
-    Result<void> prepare(const scene::SceneData& scene,
-                         StrategyKind kind,
-                         bool bundle = false,
-                         const StagedUploads& staged = {});
+    // Prepares `scene` (which must outlive the renderer, or the next prepare()/releaseScene())
+    // for drawing with `kind`, replacing any previous scene or strategy; with `bundle`, the frame
+    // is drawn from render bundles. Fails on any WebGPU error raised while preparing.
+    Result<void> prepare(const scene::SceneData& scene, StrategyKind kind, bool bundle = false);
     // Draws the prepared scene with another strategy: only the strategy's recording structures
-    // are made again; the GPU scene, with every edit made through it, stays as it is.
+    // are made again; the scene on the GPU, with every edit made through it, stays as it is.
     Result<void> setStrategy(StrategyKind kind, bool bundle = false);
-    // Forgets the prepared scene and frees what was made for it (the strategy's buffers,
-    // textures and bundles, the animation), keeping what serves any scene (target, environment,
-    // kept pipelines). For a renderer kept after the scene it prepared is gone (encore batch
-    // between two runs): it no longer refers to that scene. Frames then draw nothing but the
-    // background until the next prepare().
+    // Forgets the prepared scene and frees what was made for it, keeping what serves any scene
+    // (target, environment, kept pipelines). Frames then draw only the background until the next
+    // prepare().
     void releaseScene();
     // Whether the prepared strategy draws from render bundles (a bundled kind, or `bundle`).
-    bool bundled() const { return mBundle || isBundledKind(mKind); }
-    const scene::SceneData* scene() const { return mScene; }
+    bool bundled() const;
+    const scene::SceneData* scene() const;
 
     // GPU culling tests against `camera` instead of the frame's camera from now on (nullopt:
     // the frame's camera again): a frozen frustum that can be watched from outside.
-    void setCullingCamera(std::optional<Camera> camera) { mCullingCamera = camera; }
-    const std::optional<Camera>& cullingCamera() const { return mCullingCamera; }
+    void setCullingCamera(std::optional<Camera> camera);
+    const std::optional<Camera>& cullingCamera() const;
     // Occlusion culling and levels of detail of the GPU-culling strategies, from the next frame.
-    void setCullingOptions(const CullingOptions& culling) { mOptions.culling = culling; }
-    const CullingOptions& cullingOptions() const { return mOptions.culling; }
+    void setCullingOptions(const CullingOptions& culling);
+    const CullingOptions& cullingOptions() const;
 
-    // Updates the frame uniforms, records and submits one frame. With `trace`, every recorded
-    // call is also appended there (tests).
-    FrameResult renderFrame(const Camera& camera,
-                            float timeSeconds = 0.0f,
-                            std::vector<RecordedCall>* trace = nullptr);
-
+    // Updates the frame uniforms, records and submits one frame.
+    FrameResult renderFrame(const Camera& camera, float timeSeconds = 0.0f);
     // Renders the same scene from several cameras side by side, each view a vertical strip of
     // the target (cameras should use the strip's aspect). Bundle strategies replay one bundle
     // per view; only the camera buffer changes between views.
     FrameResult renderViews(std::span<const Camera> cameras, float timeSeconds = 0.0f);
 
-    // Gives the target a new size, keeping its formats and sample count: the depth, multisample
-    // and output textures are created again, while the prepared strategy (its pipelines and
-    // recorded bundles, which depend on formats and sample count only) stays as it is.
+    // Gives the target a new size, keeping its formats and sample count; the prepared strategy
+    // (pipelines and recorded bundles) stays as it is.
     Result<void> resize(std::uint32_t width, std::uint32_t height);
 
     // Dynamic content, through buffers (bundles stay valid). `instance` indexes
     // SceneData::instances; the world matrix replaces that instance's.
     Result<void> updateInstance(std::size_t instance, const glm::mat4& world);
 
-    // Animation, evaluated on the CPU (scene::AnimationPlayer) and uploaded through buffers:
-    // changed instance transforms through the strategy's updateInstance, joint matrices and
-    // morph weights into the shared AnimationBuffers that skinned and morphed variants read.
-    // Every animation is selected after prepare(); selectAnimation picks one by index or name
-    // (scene::findAnimation), or all again with an empty string.
-    //
-    // With AnimationEvaluation::Gpu, setAnimationTime only writes the animations' local times;
-    // the next frame's command buffer starts with GpuAnimation's compute passes, which write the
-    // same buffers (so animationPlayer() keeps the rest pose). Switching evaluation keeps the
-    // prepared scene and strategy; the next setAnimationTime renders the same pose either way.
+    // Animation, evaluated on the CPU (scene::AnimationPlayer) or on the GPU
+    // (AnimationEvaluation::Gpu: compute passes at the start of the next frame), written into
+    // the same buffers either way. Every animation is selected after prepare(); selectAnimation
+    // picks one by index or name (scene::findAnimation), or all again with an empty string.
+    // Switching evaluation keeps the prepared scene and strategy; the next setAnimationTime
+    // renders the same pose either way.
     Result<void> setAnimationEvaluation(AnimationEvaluation evaluation);
-    AnimationEvaluation animationEvaluation() const { return mOptions.animation; }
-    const GpuAnimation* gpuAnimation() const { return mGpuAnimation.get(); }
+    AnimationEvaluation animationEvaluation() const;
     Result<void> selectAnimation(std::string_view nameOrIndex);
     Result<void> setAnimationTime(double seconds);
-    // Times past an animation's end: held at its last pose (Clamp, the default, as `encore render
-    // --time` wants) or wrapped around its duration (Loop: the viewer, benchmarks). Kept across
-    // prepare() and device loss.
+    // Times past an animation's end: held at its last pose (Clamp, the default) or wrapped
+    // around its duration (Loop). Kept across prepare() and device loss.
     void setPlaybackMode(scene::PlaybackMode mode);
-    scene::PlaybackMode playbackMode() const { return mPlaybackMode; }
-    const AnimationFrameStats& animationStats() const { return mAnimationStats; }
-    const scene::AnimationPlayer* animationPlayer() const { return mPlayer.get(); }
-    const AnimationBuffers* animationBuffers() const;
+    scene::PlaybackMode playbackMode() const;
+    // What the last setAnimationTime() did.
+    const AnimationFrameStats& animationStats() const;
+    // The CPU evaluation's player (at the rest pose under GPU evaluation); null before prepare().
+    const scene::AnimationPlayer* animationPlayer() const;
 
     Result<void> updateMaterial(scene::MaterialId material, const scene::Material& value);
     // Replaces a material's base colour image (materials-based strategies); recorded bundles
@@ -219,31 +120,29 @@ class Renderer {
 
     // KHR_materials_variants: draws every primitive with the material `variant` maps it to
     // (nullopt: the default materials; scene::resolveVariant finds one by name or index). Only
-    // material bindings change: nothing is uploaded again (sceneUploads() and uploadedBytes()
-    // stay), the strategy regroups its draws and bundles record again before the next frame.
-    // The selection holds until the next prepare() (it survives setStrategy and device loss).
+    // material bindings change: nothing is uploaded again. Holds until the next prepare().
     Result<void> selectVariant(std::optional<scene::VariantId> variant);
     std::optional<scene::VariantId> variant() const;
 
     // Lighting and tone mapping, through buffers and in-place texture writes: recorded bundles
-    // stay valid (tests check bundlesRecorded).
+    // stay valid.
     void setLighting(const LightingParameters& parameters);
+    const LightingParameters& lighting() const;
     // Fails when asking for a transparent background on a target without HDR.
     Result<void> setToneMapping(const ToneMappingOptions& options);
-    const ToneMappingOptions& toneMapping() const { return mOptions.toneMapping; }
+    const ToneMappingOptions& toneMapping() const;
     // Recomputes the environment maps from `panorama` into the same textures.
     Result<void> loadEnvironment(const image::HdrImage& panorama);
-    // Lights with `environment` (already built; several renderers may share one; null is
-    // ignored) from the next prepare(), setStrategy() or releaseScene() on, or at once when no
-    // strategy is prepared: a prepared strategy holds the bind group that binds the environment,
-    // so it keeps the one it was prepared with. Switching between the preparation of two scenes
-    // (encore batch, one environment per model) costs one bind group and no recording.
+    // The image-based light, to share with another renderer (RendererOptions::environment or
+    // setEnvironment): several renderers may light with one.
+    std::shared_ptr<Environment> environment() const;
+    // Lights with `environment` (null is ignored) from the next prepare(), setStrategy() or
+    // releaseScene() on, or at once when no strategy is prepared.
     void setEnvironment(std::shared_ptr<Environment> environment);
     // Rewrites a placed light (an index into SceneData::lightInstances of the prepared scene).
     Result<void> updateLight(std::size_t lightInstance,
                              const scene::Light& light,
                              const scene::LightInstance& placed);
-    const SceneLighting& lighting() const { return *mLighting; }
 
     // Tone maps the target's HDR scene colour into its output now: for callers that record
     // their own passes into target().colorAttachment() (renderFrame does this itself). Nothing
@@ -251,168 +150,46 @@ class Renderer {
     void toneMapScene();
 
     // Triangle counting, for strategies that decide on the GPU what to draw (GPU culling, the
-    // visibility buffer): while on, every frame copies the GPU's counts of what it drew
-    // (Strategy::gpuTriangleCounts) into a history on the GPU, without waiting for anything;
-    // takeTriangleHistory reads it back later, outside the frames being measured. Turning it on
-    // starts a new history; prepare() does too.
+    // visibility buffer): while on, every frame copies the GPU's counts of what it drew into a
+    // history on the GPU, without waiting; takeTriangleHistory waits for the GPU and returns
+    // one entry per frame since counting began or since the last take (empty when counting is
+    // off or the strategy does not decide on the GPU). Turning it on, or prepare(), starts a new
+    // history.
     void setTriangleCounting(bool on);
-    bool triangleCounting() const { return mTriangleHistory != nullptr; }
-    // Waits for the GPU and returns one entry per frame rendered since counting began (or since
-    // the last take, which starts a new history); empty when counting is off or the prepared
-    // strategy does not decide on the GPU.
+    bool triangleCounting() const;
     Result<std::vector<DrawnTriangles>> takeTriangleHistory();
     // The same, as the total per frame.
     Result<std::vector<std::uint64_t>> takeDrawnTriangles();
 
     // Waits for the GPU and reads the final image back.
     Result<image::ImageRgba8> readImage();
-    // A pass image of the last frame (RendererOptions::passTargets; null without): Normal,
-    // Albedo and Material as RGBA8UnormSrgb (the debug channels' images: n * 0.5 + 0.5, the
-    // base colour, occlusion/roughness/metallic, straight alpha), DepthAndId as RGBA16Float
-    // (depth along the camera axis, id % 256, id / 256, coverage; premultiplied by coverage).
-    // CopySrc, for read-backs.
-    wgpu::Texture passTexture(PassImage image) const;
-    // The same through a view that a compute pass reads the bytes by (RenderTargetOptions::
-    // bytesViews): RGBA8Unorm for the 8-bit images, DepthAndId as it is.
-    wgpu::TextureView passBytesView(PassImage image) const;
-    // The frame's linear HDR colour before tone mapping (RGBA floats, alpha = coverage); for
-    // tests of the shading itself (energy, furnace).
+    // The frame's linear HDR colour before tone mapping (RGBA floats, alpha = coverage).
     Result<std::vector<float>> readHdrImage();
-
-    // Times every pass of later frames with `timer` (nullptr: untimed); each frame then waits
-    // for its timestamps and reports them in FrameResult::gpuMilliseconds.
-    void setGpuTimer(gpu::GpuTimer* timer) { mTimer = timer; }
-    // Adds the GPU time of later work to `timestamps` by GpuStage (its stage count at least
-    // kGpuStageCount), without waiting for it: the mip generation of prepare(), the scene and
-    // tone-mapping passes of frames. nullptr: untimed. The caller flushes. A GPU timer set with
-    // setGpuTimer takes the frame's passes instead.
-    void setStageTimestamps(gpu::StageTimestamps* timestamps);
-    // Takes later scenes' buffers and textures from `pool` and gives them back when they are
-    // released (RenderSetup::resources); the pool must outlive this renderer's scenes and belong
-    // to its device. nullptr: each scene creates and releases its own.
-    void setResourcePool(gpu::ResourcePool* pool);
+    // A pass image of the last frame (RendererOptions::passTargets; null without): Normal,
+    // Albedo and Material as RGBA8UnormSrgb (n * 0.5 + 0.5, the base colour,
+    // occlusion/roughness/metallic, straight alpha), DepthAndId as RGBA16Float (depth along the
+    // camera axis, id % 256, id / 256, coverage; premultiplied by coverage). CopySrc.
+    wgpu::Texture passTexture(PassImage image) const;
+    // The same through a view that a compute pass reads the bytes by
+    // (RenderTargetOptions::bytesViews): RGBA8Unorm for the 8-bit images, DepthAndId as it is.
+    wgpu::TextureView passBytesView(PassImage image) const;
 
     // After the device was lost (gpu::Context::deviceLost()): asks the context for a new
-    // device and rebuilds every GPU resource from CPU data — the options as last set, the
-    // environment's panorama, the prepared scene (as loaded: edits made through update*
-    // since prepare() are not replayed), the strategy, and the animation's selection, playback
-    // mode and last time. Frames render again afterwards, as they were before the loss.
+    // device and rebuilds every GPU resource from CPU data (options, environment, the prepared
+    // scene as loaded, strategy, animation selection, playback and time).
     Result<void> recoverFromDeviceLoss();
 
-    const RenderTarget& target() const { return mTarget; }
-    const RenderSetup& setup() const { return *mSetup; }
-    // Where the last prepare()'s time went.
-    const PrepareTimes& prepareTimes() const { return mSetup->prepareTimes; }
-    const Strategy* strategy() const { return mStrategy.get(); }
-    // The prepared scene on the GPU; null before prepare() and after releaseScene().
-    const GpuScene* gpuScene() const { return mGpuScene.get(); }
-    // How many GPU scenes this renderer built (prepare() and device recovery, never a switch of
-    // strategy), and the geometry and texture bytes they uploaded, edits included.
-    std::uint64_t sceneUploads() const { return mSceneUploads; }
-    std::uint64_t uploadedBytes() const;
-    gpu::Context& context() { return *mContext; }
+    const RenderTarget& target() const;
+    RendererStats stats() const;
+    gpu::Context& context();
 
   private:
-    Renderer() = default;
-    Result<void> build(const RendererOptions& options);
-    Result<void> createGpuAnimation();
-    // Makes mPendingEnvironment the lighting's environment, binding it in the frame bind group.
-    void applyPendingEnvironment();
-    // Creates and prepares the strategy on the GPU scene, then finishes `outOfMemory` (opened
-    // by the caller) and collects errors; `what` names it in errors.
-    Result<void> prepareStrategy(StrategyKind kind,
-                                 bool bundle,
-                                 const std::string& what,
-                                 gpu::OutOfMemoryScope& outOfMemory);
-    // Frees the GPU scene, counting what it uploaded.
-    void retireGpuScene();
-    // Lets Dawn free what was released (waiting for the GPU first, by default).
-    void freeReleasedObjects();
-    // What of the player outlives a new player (a device loss, a switch of evaluation): which
-    // animations play and how. restorePlayback applies it to the current player and the GPU
-    // evaluation.
-    struct Playback {
-        std::vector<scene::AnimationId> selection;
-        scene::PlaybackMode mode{};
-    };
-    Playback playback() const;
-    Result<void> restorePlayback(const Playback& playback);
-    // The timestamp writes of a pass of `stage`: the GPU timer's, else the stage timestamps'.
-    const wgpu::PassTimestampWrites* timestampWrites(GpuStage stage,
-                                                     std::string_view label = "pass");
-    // Binds the GPU scene's transmission background (or none) and makes the copy's pass.
-    Result<void> prepareTransmission();
-    FrameResult renderPasses(std::span<const Camera> cameras,
-                             float timeSeconds,
-                             std::vector<RecordedCall>* trace);
-    // The steps of renderPasses (RendererFrame.cpp): which passes the frame takes, then what
-    // its command encoder records: the compute work before the passes, the scene passes (or the
-    // strategy's composition), the transmission copy and passes, tone mapping and pass images.
-    struct FramePlan;
-    FramePlan planFrame(std::span<const Camera> cameras,
-                        float timeSeconds,
-                        std::vector<RecordedCall>* trace) const;
-    void encodeFrame(const wgpu::CommandEncoder& commandEncoder,
-                     const FramePlan& plan,
-                     FrameResult& result);
-    void encodeScenePasses(const wgpu::CommandEncoder& commandEncoder,
-                           const FramePlan& plan,
-                           FrameResult& result);
-    void encodeTransmissionPasses(const wgpu::CommandEncoder& commandEncoder,
-                                  const FramePlan& plan,
-                                  FrameResult& result);
-    // One render pass of `view` in `phase`: its attachments, then drawView.
-    void encodeScenePass(const wgpu::CommandEncoder& commandEncoder,
-                         const FramePlan& plan,
-                         std::size_t view,
-                         DrawPhase phase,
-                         bool transmissionPass,
-                         FrameResult& result);
-    // The view's viewport, the environment background and the strategy's draws.
-    void drawView(const wgpu::RenderPassEncoder& pass,
-                  const FramePlan& plan,
-                  std::size_t view,
-                  DrawPhase phase,
-                  bool transmissionPass,
-                  FrameResult& result);
+    friend RendererCore& internals(Renderer& renderer);
+    friend const RendererCore& internals(const Renderer& renderer);
 
-    gpu::Context* mContext = nullptr;
-    RendererOptions mOptions;
-    RenderTarget mTarget;
-    std::unique_ptr<shaders::ShaderLibrary> mShaders;
-    std::unique_ptr<BindGroupLayouts> mLayouts;
-    std::unique_ptr<SceneLighting> mLighting;          // Before mFrame: its bind group binds these.
-    std::shared_ptr<Environment> mPendingEnvironment;  // setEnvironment's, not yet bound.
-    std::unique_ptr<FrameUniforms> mFrame;
-    std::unique_ptr<ToneMapper> mToneMapper;           // HDR targets only.
-    std::unique_ptr<PassTargetTextures> mPassTargets;  // RendererOptions::passTargets only.
-    std::unique_ptr<EnvironmentBackground> mBackground;
-    // At one sample without depth, for resolved passes (Strategy::composesResolved): made on
-    // a multisampled target by the first strategy that draws them.
-    std::unique_ptr<EnvironmentBackground> mResolvedBackground;
-    std::unique_ptr<RenderSetup> mSetup;  // Stable address: strategies keep pointers to it.
-    std::unique_ptr<PipelineCache> mKeptPipelines;      // With RendererOptions::keepPipelines.
-    std::unique_ptr<KeptStrategyObjects> mKeptObjects;  // Likewise.
-    std::unique_ptr<MipmapGenerator> mMipmaps;
-    std::unique_ptr<scene::AnimationPlayer> mPlayer;
-    std::unique_ptr<GpuScene> mGpuScene;  // Before mStrategy, which records from it.
-    // The copy for transmissive surfaces; only while the GPU scene has transmission.
-    std::unique_ptr<TransmissionPass> mTransmission;
-    std::uint64_t mSceneUploads = 0;
-    std::uint64_t mRetiredUploadBytes = 0;  // Of the GPU scenes freed since creation.
-    AnimationFrameStats mAnimationStats;
-    std::optional<double> mAnimationTime;  // The last setAnimationTime() since prepare().
-    scene::PlaybackMode mPlaybackMode = scene::PlaybackMode::Clamp;
-    std::unique_ptr<Strategy> mStrategy;
-    std::unique_ptr<GpuAnimation> mGpuAnimation;  // After mStrategy: writes its buffers.
-    bool mGpuAnimationPending = false;  // Time set since the last frame encoded the passes.
-    gpu::GpuTimer* mTimer = nullptr;
-    gpu::StageTimestamps* mStageTimestamps = nullptr;
-    const scene::SceneData* mScene = nullptr;
-    StrategyKind mKind = StrategyKind::Bundles;
-    bool mBundle = false;
-    std::optional<Camera> mCullingCamera;
-    std::unique_ptr<TriangleHistory> mTriangleHistory;  // While counting.
+    Renderer() = default;
+
+    std::unique_ptr<RendererCore> mCore;
 };
 
 }  // namespace encore::render

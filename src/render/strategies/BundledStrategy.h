@@ -2,8 +2,8 @@
 
 #include <memory>
 
-#include "encore/render/Strategy.h"
 #include "render/BundleRecorder.h"
+#include "render/Strategy.h"
 
 namespace encore::render {
 

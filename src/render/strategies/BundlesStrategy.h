@@ -1,6 +1,6 @@
 #pragma once
 
-#include "encore/render/Strategy.h"
+#include "render/Strategy.h"
 #include "render/strategies/BundledFrame.h"
 #include "render/strategies/MaterialDrawGroups.h"
 

@@ -3,8 +3,8 @@
 #include <map>
 #include <utility>
 
-#include "encore/render/Strategy.h"
 #include "render/GpuCuller.h"
+#include "render/Strategy.h"
 #include "render/strategies/BundledFrame.h"
 #include "render/strategies/MaterialDrawGroups.h"
 

@@ -3,10 +3,10 @@
 #include <memory>
 #include <vector>
 
-#include "encore/render/Strategy.h"
 #include "render/GpuScene.h"
 #include "render/InstanceBuffer.h"
 #include "render/PipelineCache.h"
+#include "render/Strategy.h"
 #include "render/VertexBindings.h"
 
 namespace encore::render {

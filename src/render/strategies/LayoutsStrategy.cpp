@@ -2,7 +2,7 @@
 
 #include <string>
 
-#include "encore/render/AnimationBuffers.h"
+#include "render/AnimationBuffers.h"
 #include "render/PipelineKey.h"
 
 namespace encore::render {

@@ -8,10 +8,10 @@
 #include <tuple>
 #include <vector>
 
-#include "encore/render/RenderEncoder.h"
-#include "encore/render/RenderSetup.h"
 #include "render/GpuScene.h"
 #include "render/PipelineCache.h"
+#include "render/RenderEncoder.h"
+#include "render/RenderSetup.h"
 #include "render/VertexBindings.h"
 #include "render/strategies/BundledFrame.h"
 

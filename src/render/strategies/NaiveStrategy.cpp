@@ -3,8 +3,8 @@
 #include <map>
 #include <string>
 
-#include "encore/render/AnimationBuffers.h"
 #include "gpu/Upload.h"
+#include "render/AnimationBuffers.h"
 #include "render/GltfToWebGpu.h"
 #include "render/PipelineKey.h"
 #include "render/VertexBindings.h"

@@ -2,10 +2,10 @@
 
 #include <vector>
 
-#include "encore/render/AnimationBuffers.h"
-#include "encore/render/Strategy.h"
+#include "render/AnimationBuffers.h"
 #include "render/GpuScene.h"
 #include "render/NodeUniforms.h"
+#include "render/Strategy.h"
 #include "render/VertexBindings.h"
 
 namespace encore::render {

@@ -2,7 +2,7 @@
 
 #include <unordered_map>
 
-#include "encore/render/AnimationBuffers.h"
+#include "render/AnimationBuffers.h"
 
 namespace encore::render {
 

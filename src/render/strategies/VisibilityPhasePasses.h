@@ -2,7 +2,7 @@
 
 #include <webgpu/webgpu_cpp.h>
 
-#include "encore/gpu/GpuTimer.h"
+#include "gpu/GpuTimer.h"
 
 namespace encore::render {
 

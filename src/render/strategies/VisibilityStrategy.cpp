@@ -8,12 +8,12 @@
 #include <vector>
 
 #include "encore/gpu/DeviceLimits.h"
-#include "encore/render/VisibilityFeatures.h"
 #include "gpu/BindingResource.h"
 #include "gpu/ResourcePool.h"
 #include "gpu/Upload.h"
 #include "render/Frustum.h"
 #include "render/LodSelection.h"
+#include "render/VisibilityFeatures.h"
 #include "render/strategies/KeptStrategyObjects.h"
 #include "render/strategies/VisibilityPhasePasses.h"
 

@@ -9,9 +9,9 @@
 #include <span>
 #include <vector>
 
-#include "encore/render/Strategy.h"
 #include "gpu/BindingResource.h"
 #include "render/DepthPyramid.h"
+#include "render/Strategy.h"
 #include "render/VisibilityTables.h"
 #include "render/strategies/MaterialDrawGroups.h"
 #include "render/strategies/VisibilityPipelines.h"

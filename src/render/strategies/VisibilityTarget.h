@@ -14,8 +14,8 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "encore/render/RenderSetup.h"
 #include "render/DepthPyramid.h"
+#include "render/RenderSetup.h"
 
 namespace encore::render {
 

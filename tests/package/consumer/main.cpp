@@ -13,9 +13,9 @@
 #include <fstream>
 #include <string>
 
+#include "bench/Benchmark.h"
+#include "bench/BenchmarkReportReader.h"
 #include "encore/batch/Batch.h"
-#include "encore/bench/Benchmark.h"
-#include "encore/bench/BenchmarkReportReader.h"
 #include "encore/core/Result.h"
 #include "encore/gpu/Context.h"
 #include "encore/image/HdrImage.h"

@@ -10,11 +10,11 @@
 #include <utility>
 #include <vector>
 
-#include "PlotWriter.h"
 #include "TestPaths.h"
-#include "encore/bench/BenchmarkReportReader.h"
+#include "bench/BenchmarkReportReader.h"
+#include "bench/PlotWriter.h"
 
-namespace encore::app {
+namespace encore::bench {
 namespace {
 
 using bench::mergeReports;  // `encore plot` merges reports before plotting them.
@@ -509,4 +509,4 @@ TEST(PlotWriterTest, MergingReportsOfDifferentAdaptersIsAnError) {
 }
 
 }  // namespace
-}  // namespace encore::app
+}  // namespace encore::bench

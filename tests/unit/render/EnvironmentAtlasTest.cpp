@@ -4,7 +4,7 @@
 #include <tuple>
 #include <vector>
 
-#include "encore/render/EnvironmentAtlas.h"
+#include "render/EnvironmentAtlas.h"
 
 namespace encore::render {
 namespace {

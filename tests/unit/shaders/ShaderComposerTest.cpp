@@ -3,9 +3,9 @@
 #include <map>
 #include <regex>
 
-#include "encore/shaders/ShaderLibrary.h"
 #include "shaders/EmbeddedFiles.h"
 #include "shaders/ShaderComposer.h"
+#include "shaders/ShaderLibrary.h"
 #include "shaders/VertexLocations.h"
 
 namespace encore::shaders {

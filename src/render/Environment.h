@@ -26,24 +26,11 @@
 
 #include "encore/core/Result.h"
 #include "encore/image/HdrImage.h"
-#include "encore/render/EnvironmentAtlas.h"
-#include "encore/shaders/ShaderLibrary.h"
+#include "encore/render/RendererOptions.h"
+#include "render/EnvironmentAtlas.h"
+#include "shaders/ShaderLibrary.h"
 
 namespace encore::render {
-
-struct EnvironmentOptions {
-    std::uint32_t specularSize = 256;  // Level 0 of the specular cube, per face.
-    std::uint32_t specularLevels = 5;  // Roughness 0, 0.25, 0.5, 0.75, 1; at most 8.
-    std::uint32_t irradianceSize = 32;
-    std::uint32_t lutSize = 128;
-    // Samples per texel. Each sample reads the source mip that matches its footprint (filtered
-    // importance sampling), so these few give smooth maps; the defaults build in about a second
-    // on lavapipe.
-    std::uint32_t specularSamples = 256;    // GGX importance samples.
-    std::uint32_t irradianceSamples = 512;  // Cosine-weighted samples.
-
-    bool operator==(const EnvironmentOptions&) const = default;
-};
 
 class Environment {
   public:

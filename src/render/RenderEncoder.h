@@ -10,7 +10,7 @@
 #include <span>
 #include <vector>
 
-#include "encore/render/DrawCounters.h"
+#include "encore/render/RendererStats.h"
 #include "encore/scene/SceneData.h"
 
 namespace encore::render {

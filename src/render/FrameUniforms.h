@@ -8,9 +8,9 @@
 
 #include <span>
 
-#include "encore/render/BindGroupLayouts.h"
 #include "encore/render/Camera.h"
-#include "encore/render/Lighting.h"
+#include "render/BindGroupLayouts.h"
+#include "render/Lighting.h"
 
 namespace encore::render {
 

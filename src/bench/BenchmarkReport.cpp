@@ -3,7 +3,7 @@
 #include <map>
 #include <sstream>
 
-#include "encore/bench/Benchmark.h"
+#include "bench/Benchmark.h"
 
 namespace encore::bench {
 

@@ -19,14 +19,14 @@
 #include <glm/mat4x4.hpp>
 
 #include "encore/core/Result.h"
-#include "encore/gpu/GpuTimer.h"
 #include "encore/render/Camera.h"
-#include "encore/render/CullingOptions.h"
-#include "encore/render/InstanceTransformTargets.h"
-#include "encore/render/RenderEncoder.h"
-#include "encore/render/RenderSetup.h"
+#include "encore/render/RendererOptions.h"
 #include "encore/render/StrategyKind.h"
 #include "encore/scene/SceneData.h"
+#include "gpu/GpuTimer.h"
+#include "render/InstanceTransformTargets.h"
+#include "render/RenderEncoder.h"
+#include "render/RenderSetup.h"
 
 namespace encore::render {
 

@@ -9,9 +9,10 @@
 #include <optional>
 
 #include "encore/gpu/DeviceLimits.h"
-#include "encore/render/BindGroupLayouts.h"
-#include "encore/render/FrameUniforms.h"
-#include "encore/shaders/ShaderLibrary.h"
+#include "encore/render/RendererStats.h"
+#include "render/BindGroupLayouts.h"
+#include "render/FrameUniforms.h"
+#include "shaders/ShaderLibrary.h"
 
 namespace encore::gpu {
 class Context;
@@ -23,29 +24,6 @@ namespace encore::render {
 class MipmapGenerator;
 class KeptStrategyObjects;
 class PipelineCache;
-
-// Where Renderer::prepare's time went, in milliseconds: the GPU scene's parts (geometry,
-// instances, materials), then the strategy's (draws, for the materials-based strategies; other
-// strategies' work counts only in `strategy`).
-struct PrepareTimes {
-    double release = 0.0;    // Freeing the previous scene (waiting for the GPU first, by default).
-    double animation = 0.0;  // Lights and the animation player.
-    double scene = 0.0;      // Building the GPU scene: the three parts below, animation buffers.
-    double strategy = 0.0;   // Strategy::prepare, `draws` included.
-    double geometry = 0.0;   // Vertex and index data, uploaded into the shared buffers.
-    double instances = 0.0;  // Instance transforms and their bind group.
-    double materials = 0.0;  // Textures (upload and mipmaps), samplers, material bind groups.
-    // The textures' part of `materials` (MaterialResources::uploadTimes).
-    double textureCreation = 0.0;
-    double textureWrites = 0.0;
-    double mipmaps = 0.0;
-    double materialSubmit = 0.0;
-    double draws = 0.0;   // Grouping the draws: pipelines (found or created), vertex bindings.
-    double checks = 0.0;  // Collecting errors (out-of-memory scope, validation errors).
-
-    double total() const { return release + animation + scene + strategy + checks; }
-    PrepareTimes& operator+=(const PrepareTimes& other);
-};
 
 // What a strategy's pipelines and bind groups must be compatible with.
 struct RenderSetup {

@@ -15,40 +15,11 @@
 #include <vector>
 
 #include "encore/core/Result.h"
-#include "encore/render/Environment.h"
-#include "encore/render/ToneMappingOptions.h"
+#include "encore/render/RendererOptions.h"
 #include "encore/scene/SceneData.h"
+#include "render/Environment.h"
 
 namespace encore::render {
-
-// What the mesh shader outputs: the shaded colour, or one input of the shading (a debug view;
-// tone mapping "none" then shows the value itself).
-enum class DebugChannel : std::uint32_t {
-    Shaded,
-    BaseColor,
-    Normal,  // Shading normal, world space, mapped to 0..1.
-    Metallic,
-    Roughness,
-    Occlusion,
-    Emissive,
-    Depth,     // Distance in front of the camera along its axis (view-space -z), in world units.
-    Material,  // glTF's packing: R occlusion, G roughness, B metallic.
-    // Segmentation ids, 1 + the index of the drawn node, mesh or material in SceneData (0:
-    // nothing drawn), split as R = id % 256, G = id / 256 so that half floats hold them exactly.
-    SegmentNode,
-    SegmentMesh,
-    SegmentMaterial,
-};
-
-struct LightingParameters {
-    float environmentIntensity = 1.0f;
-    float environmentRotationRadians = 0.0f;  // About +Y, counter-clockwise seen from above.
-    bool imageBasedLighting = true;
-    bool punctualLights = true;  // The file's KHR_lights_punctual lights.
-    DebugChannel debugChannel = DebugChannel::Shaded;
-
-    bool operator==(const LightingParameters&) const = default;
-};
 
 // struct Lighting of scene_lighting.wgsl, byte for byte.
 struct LightingUniform {

@@ -1,4 +1,4 @@
-#include "PlotWriter.h"
+#include "bench/PlotWriter.h"
 
 #include <nlohmann/json.hpp>
 
@@ -9,10 +9,10 @@
 #include <string_view>
 #include <vector>
 
-#include "SvgBuilder.h"
-#include "encore/bench/BenchmarkReportReader.h"
+#include "bench/BenchmarkReportReader.h"
+#include "bench/SvgBuilder.h"
 
-namespace encore::app {
+namespace encore::bench {
 namespace {
 
 using bench::ScalingPoint;
@@ -338,4 +338,4 @@ Result<std::string> plotScalingSvg(const json& report) {
     return std::move(svg.out);
 }
 
-}  // namespace encore::app
+}  // namespace encore::bench

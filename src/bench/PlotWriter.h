@@ -11,7 +11,7 @@
 
 #include "encore/core/Result.h"
 
-namespace encore::app {
+namespace encore::bench {
 
 // Renders the scaling curves of a benchmark report as a self-contained SVG document (about
 // 900×560 px, 1320 px wide with three panels; no external fonts, scripts or images).
@@ -44,4 +44,4 @@ namespace encore::app {
 // when a triangle count array holds a non-number, or when no result is plottable at all.
 Result<std::string> plotScalingSvg(const nlohmann::json& report);
 
-}  // namespace encore::app
+}  // namespace encore::bench

@@ -22,10 +22,11 @@
 #include <span>
 #include <vector>
 
-#include "encore/render/BindGroupLayouts.h"
+#include "encore/render/RendererStats.h"
 #include "encore/scene/AnimationPlayer.h"
 #include "encore/scene/SceneData.h"
-#include "encore/shaders/ShaderLibrary.h"
+#include "render/BindGroupLayouts.h"
+#include "shaders/ShaderLibrary.h"
 
 namespace encore::gpu {
 class ResourcePool;
@@ -34,13 +35,6 @@ class ResourcePool;
 namespace encore::render {
 
 class RenderEncoder;
-
-// What one AnimationBuffers::write() uploaded.
-struct AnimationUploadStats {
-    std::uint32_t jointsWritten = 0;
-    std::uint32_t weightsWritten = 0;
-    std::uint64_t bytesWritten = 0;
-};
 
 class AnimationBuffers {
   public:

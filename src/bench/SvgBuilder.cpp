@@ -1,9 +1,9 @@
-#include "SvgBuilder.h"
+#include "bench/SvgBuilder.h"
 
 #include <array>
 #include <charconv>
 
-namespace encore::app {
+namespace encore::bench {
 
 // Fixed notation through to_chars, because printf-style formatting follows the process locale
 // and a decimal comma would corrupt the SVG.
@@ -67,4 +67,4 @@ void SvgBuilder::beginGroup(std::string_view colour, std::string_view extra) {
     out += "<g" + std::string(extra) + " stroke=\"" + paint + "\" fill=\"" + paint + "\">\n";
 }
 
-}  // namespace encore::app
+}  // namespace encore::bench

@@ -18,10 +18,8 @@
 
 #include "encore/core/Result.h"
 #include "encore/gpu/Context.h"
-#include "encore/render/DrawCounters.h"
-#include "encore/render/FrameTimer.h"
-#include "encore/render/GpuAnimation.h"
 #include "encore/render/Renderer.h"
+#include "encore/render/RendererStats.h"
 #include "encore/render/StrategyKind.h"
 
 namespace encore::bench {

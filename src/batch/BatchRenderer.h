@@ -28,10 +28,10 @@
 #include "encore/batch/BatchLighting.h"
 #include "encore/core/Result.h"
 #include "encore/gpu/Context.h"
-#include "encore/gpu/TextureReadbackRing.h"
-#include "encore/render/Environment.h"
 #include "encore/render/Renderer.h"
-#include "encore/shaders/ShaderLibrary.h"
+#include "gpu/TextureReadbackRing.h"
+#include "render/Environment.h"
+#include "shaders/ShaderLibrary.h"
 
 namespace encore::gpu {
 class ResourcePool;

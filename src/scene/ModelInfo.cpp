@@ -1,11 +1,9 @@
-#include "ModelInfo.h"
+#include "scene/ModelInfo.h"
 
 #include <algorithm>
 #include <iterator>
 
-#include "encore/render/RenderEncoder.h"
-
-namespace encore::app {
+namespace encore::scene {
 
 namespace {
 
@@ -27,7 +25,7 @@ void summarizeLevels(const scene::SceneData& scene, ModelCounts& counts) {
                 const std::size_t level = std::min(k, primitive.levels.size());
                 counts.levelTriangles[k] +=
                     level == 0
-                        ? render::triangleCount(scene, primitive)
+                        ? triangleCount(scene, primitive)
                         : scene.accessors[primitive.levels[level - 1].indices.index()].count / 3;
             }
         }
@@ -46,7 +44,7 @@ ModelSummary summarizeModel(const scene::SceneData& scene) {
     std::vector<std::uint64_t> meshTriangles(scene.meshes.size(), 0);
     for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
         for (const scene::Primitive& primitive : scene.meshes[m].primitives) {
-            meshTriangles[m] += render::triangleCount(scene, primitive);
+            meshTriangles[m] += triangleCount(scene, primitive);
         }
         counts.triangles += meshTriangles[m];
     }
@@ -236,4 +234,4 @@ nlohmann::json modelSummaryJson(const ModelSummary& summary) {
     return json;
 }
 
-}  // namespace encore::app
+}  // namespace encore::scene

@@ -12,8 +12,8 @@
 
 #include "encore/core/Result.h"
 #include "encore/render/RenderTarget.h"
-#include "encore/render/ToneMappingOptions.h"
-#include "encore/shaders/ShaderLibrary.h"
+#include "encore/render/RendererOptions.h"
+#include "shaders/ShaderLibrary.h"
 
 namespace encore::render {
 

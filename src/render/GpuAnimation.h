@@ -32,41 +32,15 @@
 
 #include "encore/core/Result.h"
 #include "encore/gpu/DeviceLimits.h"
-#include "encore/render/InstanceTransformTargets.h"
+#include "encore/render/RendererStats.h"
 #include "encore/scene/AnimationPlayer.h"
 #include "encore/scene/SceneData.h"
-#include "encore/shaders/ShaderLibrary.h"
+#include "render/InstanceTransformTargets.h"
+#include "shaders/ShaderLibrary.h"
 
 namespace encore::render {
 
 class AnimationBuffers;
-
-// Where animation is evaluated.
-enum class AnimationEvaluation : std::uint8_t {
-    Cpu,  // scene::AnimationPlayer; changed transforms, joints and weights written by the CPU.
-    Gpu,  // GpuAnimation: compute passes over keyframes uploaded once.
-};
-
-std::string_view animationEvaluationName(AnimationEvaluation evaluation);
-std::optional<AnimationEvaluation> animationEvaluationFromName(std::string_view name);
-
-// The size of the GPU evaluation, fixed when it is created.
-struct GpuAnimationStats {
-    std::uint32_t animatedNodes = 0;  // Nodes some animation drives (pass 1 threads).
-    std::uint32_t worldNodes = 0;     // Nodes at or below them (pass 2 threads).
-    std::uint32_t levels = 0;         // Depth levels among those: pass 2 dispatches.
-    std::uint32_t instances = 0;      // Instances whose transform they move.
-    std::uint32_t joints = 0;         // Joint matrices of all skins.
-    std::uint32_t dispatches = 0;     // Per frame.
-    std::uint32_t copies = 0;         // Per frame (node-uniform strategies).
-    std::uint64_t bytesPerFrame = 0;  // What the CPU writes per frame (clock times).
-    // Clocks: one per distinct animation duration. Animations that share one (a crowd's
-    // characters, each with its own extras.encoreTimeOffset) cost the CPU one float per frame.
-    std::uint32_t clocks = 0;
-    // Key times and values stored, each distinct run once however many samplers use it (with the
-    // rest weights of animated nodes).
-    std::uint64_t keyframeBytes = 0;
-};
 
 class GpuAnimation {
   public:

@@ -1,4 +1,4 @@
-#include "encore/bench/BenchmarkReportReader.h"
+#include "bench/BenchmarkReportReader.h"
 
 #include <algorithm>
 #include <optional>

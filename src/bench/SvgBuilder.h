@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-namespace encore::app {
+namespace encore::bench {
 
 // `value` in fixed notation with `precision` decimals, "-0.0" printed as "0.0": the same bytes
 // on every machine.
@@ -34,4 +34,4 @@ struct SvgBuilder {
     void beginGroup(std::string_view colour, std::string_view extra = {});
 };
 
-}  // namespace encore::app
+}  // namespace encore::bench

@@ -11,12 +11,13 @@
 #define ENCORE_HAS_CALLGRIND 0
 #endif
 
+#include "bench/Benchmark.h"
 #include "core/Elapsed.h"
-#include "encore/bench/Benchmark.h"
-#include "encore/gpu/GpuTimer.h"
 #include "encore/render/Renderer.h"
+#include "gpu/GpuTimer.h"
 #include "render/Animometer.h"
 #include "render/CameraPath.h"
+#include "render/RendererCore.h"
 #include "scene/CrowdGenerator.h"
 #include "scene/SceneGenerator.h"
 
@@ -161,7 +162,7 @@ Result<BenchResult> measure(gpu::Context& context,
     BenchResult result;
     result.strategy = render::strategyChoiceName(choice);
     result.objects = scene.instances.size();
-    renderer.setGpuTimer(options.callgrind ? nullptr : timer);
+    internals(renderer).setGpuTimer(options.callgrind ? nullptr : timer);
     if (animate) {
         result.animation = std::string(render::animationEvaluationName(*animate));
     }
@@ -219,8 +220,9 @@ Result<BenchResult> measure(gpu::Context& context,
     if (!drawn) {
         return drawn.error().withContext("Benchmarking " + result.strategy);
     }
-    const auto gpuCounts =
-        renderer.strategy() ? renderer.strategy()->gpuTriangleCounts() : std::nullopt;
+    const auto gpuCounts = internals(renderer).strategy()
+                               ? internals(renderer).strategy()->gpuTriangleCounts()
+                               : std::nullopt;
     const bool computeRaster = gpuCounts && gpuCounts->computeOffset;
     for (const render::DrawnTriangles& frame : *drawn) {
         result.trianglesDrawn.push_back(frame.total());
@@ -232,7 +234,7 @@ Result<BenchResult> measure(gpu::Context& context,
         result.animationCpu = render::Percentiles::of(std::move(animationTimes));
         result.animationWork = renderer.animationStats();
     }
-    renderer.setGpuTimer(nullptr);
+    internals(renderer).setGpuTimer(nullptr);
     ENCORE_TRY(context.checkNoErrors("Benchmarking " + result.strategy));
     return result;
 }
@@ -318,7 +320,7 @@ Result<BenchReport> runBenchmarks(gpu::Context& context,
         auto renderer,
         render::Renderer::create(context, {{options.width, options.height, options.samples}}));
     renderer.setCullingOptions(options.culling);
-    report.environmentMilliseconds = renderer.lighting().environment().lastBuildMilliseconds();
+    report.environmentMilliseconds = renderer.stats().environmentBuildMilliseconds;
     // Room for every pass of the visibility strategy's two phases, even with each step timed
     // apart (--gpu-steps).
     auto timer = gpu::GpuTimer::create(context, 16);

@@ -15,7 +15,7 @@
 
 #include "encore/scene/SceneData.h"
 
-namespace encore::app {
+namespace encore::scene {
 
 struct ModelCounts {
     std::size_t meshes = 0;
@@ -71,7 +71,7 @@ struct ModelSummary {
     std::vector<std::string> warnings;
 };
 
-ModelSummary summarizeModel(const scene::SceneData& scene);
+ModelSummary summarizeModel(const SceneData& scene);
 
 // The summary as lines of "key: value" text, ending with a newline.
 std::string formatModelSummary(const ModelSummary& summary);
@@ -79,4 +79,4 @@ std::string formatModelSummary(const ModelSummary& summary);
 // The same content as a JSON object (counts as integers, extensions as objects).
 nlohmann::json modelSummaryJson(const ModelSummary& summary);
 
-}  // namespace encore::app
+}  // namespace encore::scene
