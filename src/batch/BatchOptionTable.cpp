@@ -4,6 +4,7 @@
 #include <limits>
 #include <memory>
 
+#include "batch/OptionEntries.h"
 #include "batch/OptionNames.h"
 #include "batch/OptionValues.h"
 #include "encore/batch/BatchLighting.h"
@@ -14,156 +15,7 @@ namespace encore::batch {
 
 namespace {
 
-using Description = BatchOptionDescription;
-constexpr float kNoLimit = std::numeric_limits<float>::max();
-
-// An entry, made by the builders below and finished by the setters' chain.
-struct Entry {
-    Description description;
-
-    Entry&& excluding(std::vector<std::string> names) && {
-        description.excludes = std::move(names);
-        return std::move(*this);
-    }
-    Entry&& needing(std::vector<std::string> names) && {
-        description.needs = std::move(names);
-        return std::move(*this);
-    }
-    Entry&& shortName(char letter) && {
-        description.shortName = letter;
-        return std::move(*this);
-    }
-    Entry&& keyword(std::string name, bool negated = false) && {
-        description.keyword = std::move(name);
-        description.keywordNegated = negated;
-        return std::move(*this);
-    }
-    Entry&& commandLineOnly() && {
-        description.python = false;
-        return std::move(*this);
-    }
-    Entry&& pythonOnly() && {
-        description.commandLine = false;
-        return std::move(*this);
-    }
-    Entry&& commandLineGlobal() && {
-        description.commandLineGlobal = true;
-        return std::move(*this);
-    }
-};
-
-Entry flag(std::string name, std::string help, std::function<void(BatchOptions&, bool)> set) {
-    Description d;
-    d.name = std::move(name);
-    d.form = OptionForm::Flag;
-    d.help = std::move(help);
-    d.apply = [set](BatchOptions& options, std::string_view value,
-                    std::string_view shown) -> Result<void> {
-        ENCORE_TRY_ASSIGN(const bool on, parseFlag(value, shown));
-        set(options, on);
-        return Result<void>{};
-    };
-    return {std::move(d)};
-}
-
-Entry wholeNumber(std::string name,
-                  std::string valueName,
-                  std::string defaultValue,
-                  std::string help,
-                  std::uint64_t min,
-                  std::uint64_t max,
-                  std::function<void(BatchOptions&, std::uint64_t)> set) {
-    Description d;
-    d.name = std::move(name);
-    d.form = OptionForm::WholeNumber;
-    d.valueName = std::move(valueName);
-    d.defaultValue = std::move(defaultValue);
-    d.help = std::move(help);
-    d.apply = [set, min, max](BatchOptions& options, std::string_view value,
-                              std::string_view shown) -> Result<void> {
-        ENCORE_TRY_ASSIGN(const std::uint64_t number, parseWholeNumber(value, shown, min, max));
-        set(options, number);
-        return Result<void>{};
-    };
-    return {std::move(d)};
-}
-
-Entry number(std::string name,
-             std::string valueName,
-             std::string defaultValue,
-             std::string help,
-             float min,
-             float max,
-             std::function<void(BatchOptions&, float)> set) {
-    Description d;
-    d.name = std::move(name);
-    d.form = OptionForm::Number;
-    d.valueName = std::move(valueName);
-    d.defaultValue = std::move(defaultValue);
-    d.help = std::move(help);
-    d.apply = [set, min, max](BatchOptions& options, std::string_view value,
-                              std::string_view shown) -> Result<void> {
-        ENCORE_TRY_ASSIGN(const float parsed, parseNumber(value, shown, min, max));
-        set(options, parsed);
-        return Result<void>{};
-    };
-    return {std::move(d)};
-}
-
-Entry range(std::string name,
-            std::string valueName,
-            std::string defaultValue,
-            std::string help,
-            std::function<void(BatchOptions&, ValueRange)> set) {
-    Description d;
-    d.name = std::move(name);
-    d.form = OptionForm::Range;
-    d.valueName = std::move(valueName);
-    d.defaultValue = std::move(defaultValue);
-    d.help = std::move(help);
-    d.apply = [set](BatchOptions& options, std::string_view value,
-                    std::string_view shown) -> Result<void> {
-        ENCORE_TRY_ASSIGN(const ValueRange parsed, parseRange(value, shown));
-        set(options, parsed);
-        return Result<void>{};
-    };
-    return {std::move(d)};
-}
-
-template <class Enum>
-Entry named(std::string name,
-            std::string defaultValue,
-            std::string help,
-            NameTable<Enum> table,
-            std::function<void(BatchOptions&, Enum)> set) {
-    Description d;
-    d.name = std::move(name);
-    d.form = OptionForm::Text;
-    d.defaultValue = std::move(defaultValue);
-    d.help = std::move(help);
-    d.choices = namesOf(table);
-    d.apply = [set, table](BatchOptions& options, std::string_view value,
-                           std::string_view shown) -> Result<void> {
-        ENCORE_TRY_ASSIGN(const Enum parsed, parseNamed(table, value, shown));
-        set(options, parsed);
-        return Result<void>{};
-    };
-    return {std::move(d)};
-}
-
-Entry text(std::string name,
-           OptionForm form,
-           std::string valueName,
-           std::string help,
-           std::function<Result<void>(BatchOptions&, std::string_view, std::string_view)> apply) {
-    Description d;
-    d.name = std::move(name);
-    d.form = form;
-    d.valueName = std::move(valueName);
-    d.help = std::move(help);
-    d.apply = std::move(apply);
-    return {std::move(d)};
-}
+using namespace optiontable;
 
 std::string strategyNames() {
     std::string names = "auto";
@@ -171,61 +23,6 @@ std::string strategyNames() {
         names += ", " + std::string(render::strategyName(kind));
     }
     return names;
-}
-
-constexpr std::uint32_t kMaxViews = 10'000;
-constexpr std::uint64_t kAll = std::numeric_limits<std::uint64_t>::max();
-constexpr std::uint64_t kAll32 = std::numeric_limits<std::uint32_t>::max();
-
-// Where the views look from.
-void addCameraOptions(std::vector<Entry>& entries) {
-    entries.push_back(
-        wholeNumber("views", "N", "12", "Views per model on an orbit", 1, kMaxViews,
-                    [](BatchOptions& o, std::uint64_t n) { o.views.views = std::uint32_t(n); }));
-    entries.push_back(wholeNumber("random-views", "N", "",
-                                  "Views per model drawn uniformly on the sphere instead of the "
-                                  "orbit",
-                                  1, kMaxViews,
-                                  [](BatchOptions& o, std::uint64_t n) {
-                                      o.views.views = std::uint32_t(n);
-                                      o.views.distribution = CameraDistribution::Sphere;
-                                  })
-                          .excluding({"camera-distribution", "elevation"}));
-    entries.push_back(named<CameraDistribution>(
-                          "camera-distribution", "orbit",
-                          "Where the views look from: orbit (evenly around, --elevation high), "
-                          "sphere or upper-hemisphere (drawn uniformly, per model, from --seed)",
-                          cameraDistributionNames(),
-                          [](BatchOptions& o, CameraDistribution d) { o.views.distribution = d; })
-                          .excluding({"random-views"}));
-    entries.push_back(wholeNumber(
-        "seed", "N", "0",
-        "Seeds everything drawn at random (directions, jitter, ranges, environments), with each "
-        "model's name: the same pictures for the same seed",
-        0, kAll, [](BatchOptions& o, std::uint64_t n) { o.views.seed = n; }));
-    entries.push_back(number("elevation", "DEG", "30", "Orbit height above the horizon (degrees)",
-                             -90.0f, 90.0f,
-                             [](BatchOptions& o, float v) { o.views.elevationDegrees = v; })
-                          .excluding({"random-views"}));
-    entries.push_back(range("distance", "D|MIN:MAX", "1.5",
-                            "Camera distance from the centre (unit-box units unless "
-                            "--no-normalize), or MIN:MAX: drawn per view",
-                            [](BatchOptions& o, ValueRange r) { o.views.distance = r; }));
-    entries.push_back(
-        range("fov", "DEG|MIN:MAX", "",
-              "Horizontal field of view in degrees, or MIN:MAX: drawn per view "
-              "(default: a 35 mm lens on a 32 mm sensor)",
-              [](BatchOptions& o, ValueRange r) { o.views.horizontalFovDegrees = r; }));
-    entries.push_back(number("camera-jitter", "DEG", "",
-                             "Move each view's direction by up to this many degrees in azimuth "
-                             "and elevation (drawn from --seed)",
-                             0.0f, 180.0f,
-                             [](BatchOptions& o, float v) { o.views.jitterDegrees = v; }));
-    entries.push_back(flag("no-normalize",
-                           "Keep the model's size and position (default: scale into a unit box "
-                           "centred at the origin)",
-                           [](BatchOptions& o, bool on) { o.views.normalize = !on; })
-                          .keyword("normalize", /*negated=*/true));
 }
 
 // The images' size and samples.
