@@ -116,6 +116,22 @@ std::string valueText(const batch::BatchOptionDescription& option, const py::han
                 wrongType(keyword, "an int or a str such as \"1GiB\"");
             }
             return value.cast<std::string>();
+        case OptionForm::NumberList: {
+            if (isNumber(value)) {
+                return numberText(value);
+            }
+            if (!py::isinstance<py::tuple>(value) && !py::isinstance<py::list>(value)) {
+                wrongType(keyword, "a sequence of numbers");
+            }
+            std::string text;
+            for (const py::handle item : py::reinterpret_borrow<py::sequence>(value)) {
+                if (!isNumber(item)) {
+                    wrongType(keyword, "a sequence of numbers");
+                }
+                text += (text.empty() ? "" : ",") + numberText(item);
+            }
+            return text;
+        }
         case OptionForm::Text:
             if (option.name == "variant" && isInteger(value)) {
                 return py::str(value);  // A variant's index.

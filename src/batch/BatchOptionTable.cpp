@@ -401,6 +401,8 @@ std::string valueDescription(const Description& option, OptionFront front) {
             return "int or (width, height)";
         case OptionForm::ByteSize:
             return "int or str";
+        case OptionForm::NumberList:
+            return "sequence of floats";
         case OptionForm::Text:
             return option.name == "variant" ? "str or int" : "str";
     }
@@ -417,6 +419,8 @@ std::string pythonDefault(const Description& option) {
         case OptionForm::Range:
         case OptionForm::ImageSize:
             return option.defaultValue.empty() ? "None" : option.defaultValue;
+        case OptionForm::NumberList:
+            return option.defaultValue.empty() ? "None" : "[" + option.defaultValue + "]";
         case OptionForm::ByteSize:
         case OptionForm::Text:
             return option.defaultValue.empty() ? "None" : "\"" + option.defaultValue + "\"";

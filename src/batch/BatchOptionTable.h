@@ -31,6 +31,7 @@ enum class OptionForm {
     Range,        // A number or MIN:MAX, drawn from (Python: a number or a (min, max) pair).
     ImageSize,    // W or WxH (Python: an int or a (width, height) pair).
     ByteSize,     // 1GiB, 500MB, 1000000 (Python: an int or such a str).
+    NumberList,   // A,B,... (Python: a sequence of numbers).
     Text,         // A name or a path (Python: a str or an os.PathLike; variant also an int).
 };
 

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace encore::batch {
 namespace {
@@ -22,6 +23,49 @@ bool ordered(const ValueRange& range) {
     return range.min <= range.max && std::isfinite(range.min) && std::isfinite(range.max);
 }
 
+// The lists of --azimuths, --elevations and --distances: values in range, and the lists of
+// several values of one length.
+Result<void> checkLists(const ViewRigOptions& rig) {
+    const struct {
+        const char* name;
+        const std::vector<float>& values;
+        float min;
+        float max;
+    } lists[] = {{"azimuths", rig.azimuthsDegrees, -360.0f, 360.0f},
+                 {"elevations", rig.elevationsDegrees, -90.0f, 90.0f},
+                 {"distances", rig.distances, 0.0f, 1e30f}};
+    std::size_t length = 1;
+    const char* lengthFrom = nullptr;
+    for (const auto& list : lists) {
+        for (const float value : list.values) {
+            const bool inRange = list.min == 0.0f ? value > 0.0f : value >= list.min;
+            if (!(inRange && value <= list.max)) {
+                std::ostringstream text;
+                text << "The camera " << list.name << " must lie in "
+                     << (list.min == 0.0f ? "(0, " : "[") << list.min << ", " << list.max
+                     << "] (not " << value << ").";
+                if (list.min == 0.0f) {
+                    text.str("");
+                    text << "The camera distances must be positive (not " << value << ").";
+                }
+                return makeError(ErrorCode::InvalidArgument, text.str());
+            }
+        }
+        if (list.values.size() > 1) {
+            if (lengthFrom && list.values.size() != length) {
+                return makeError(ErrorCode::InvalidArgument,
+                                 std::string("The camera ") + lengthFrom + " and " + list.name +
+                                     " lists differ in length (" + std::to_string(length) +
+                                     " and " + std::to_string(list.values.size()) +
+                                     "): each holds one value per view, or one for all.");
+            }
+            length = list.values.size();
+            lengthFrom = list.name;
+        }
+    }
+    return {};
+}
+
 Result<void> checkCameras(const ViewRigOptions& rig) {
     const ValueRange& fov = rig.horizontalFovDegrees;
     if (!(ordered(fov) && fov.min > 0.0f && fov.max < 180.0f)) {
@@ -33,6 +77,18 @@ Result<void> checkCameras(const ViewRigOptions& rig) {
         return makeError(ErrorCode::InvalidArgument,
                          "The camera distance (" + rangeText(rig.distance) +
                              ") must be positive, a range with its minimum first.");
+    }
+    if (!(ordered(rig.elevationDegrees) && rig.elevationDegrees.min >= -90.0f &&
+          rig.elevationDegrees.max <= 90.0f)) {
+        return makeError(ErrorCode::InvalidArgument,
+                         "The elevation (" + rangeText(rig.elevationDegrees) +
+                             " degrees) must lie in [-90, 90], a range with its minimum first.");
+    }
+    ENCORE_TRY(checkLists(rig));
+    if (rig.projection == Projection::Orthographic && !(rig.orthoScale > 0.0f)) {
+        return makeError(
+            ErrorCode::InvalidArgument,
+            "The orthographic scale (" + rangeText(rig.orthoScale) + ") must be positive.");
     }
     if (!(rig.jitterDegrees >= 0.0f && rig.jitterDegrees <= 180.0f)) {
         return makeError(ErrorCode::InvalidArgument, "The camera jitter (" +
@@ -74,7 +130,7 @@ render::StrategyChoice batchStrategy(const BatchOptions& options) {
 
 Result<void> validateBatchOptions(const BatchOptions& options) {
     const ViewRigOptions& rig = options.views;
-    if (options.width == 0 || options.height == 0 || rig.views == 0) {
+    if (options.width == 0 || options.height == 0 || viewCount(rig) == 0) {
         return makeError(ErrorCode::InvalidArgument,
                          "A batch needs at least one view of at least one pixel.");
     }

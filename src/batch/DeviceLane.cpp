@@ -53,7 +53,8 @@ void addTopLight(scene::SceneData& scene, float lux) {
 
 Result<void> DeviceLane::createRenderers() {
     const BatchOptions& options = mShared.options;
-    mLayout = stripLayout(options.width, options.height, options.views.views, mContext.limits());
+    mLayout =
+        stripLayout(options.width, options.height, viewCount(options.views), mContext.limits());
     render::RendererOptions rendererOptions = options.renderer;
     rendererOptions.target = {mLayout.targetWidth(), mLayout.height, options.samples};
     rendererOptions.culling.levelsOfDetail = options.lodErrorPixels > 0.0f;

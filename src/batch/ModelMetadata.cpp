@@ -122,7 +122,8 @@ nlohmann::json metadataJson(const BatchInput& input,
                             std::uint32_t views,
                             std::span<const std::uint64_t> coveredPixels,
                             std::uint32_t blankThreshold,
-                            const ModelDrawing& drawing) {
+                            const ModelDrawing& drawing,
+                            const nlohmann::json& camera) {
     nlohmann::json failed = nlohmann::json::array();
     for (const ModelFacts::FailedImage& image : facts.imagesFailed) {
         failed.push_back({{"index", image.index}, {"name", image.name}, {"error", image.error}});
@@ -185,6 +186,9 @@ nlohmann::json metadataJson(const BatchInput& input,
     json["strategy"] = drawing.strategy;
     json["gpu"] = {{"objectsCreated", drawing.objectsCreated},
                    {"bytesMapped", drawing.bytesMapped}};
+    if (!camera.is_null()) {
+        json["camera"] = camera;
+    }
     return json;
 }
 

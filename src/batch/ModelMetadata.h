@@ -111,15 +111,17 @@ std::uint64_t coveredPixels(std::span<const std::uint8_t> pixels);
 std::vector<std::uint32_t> blankViews(std::span<const std::uint64_t> coveredPixels,
                                       std::uint32_t threshold);
 
-// The contents of metadata.json (`strategy` and `gpu` from `drawing`). `coveredPixels` has one
-// count per view, or is empty when the views' coverage was not counted (a background that is not
-// transparent): blankViews is then null.
+// The contents of metadata.json (`strategy` and `gpu` from `drawing`; `camera`, when not null,
+// as "camera": how the views project and the axes their written matrices are in). `coveredPixels`
+// has one count per view, or is empty when the views' coverage was not counted (a background that
+// is not transparent): blankViews is then null.
 nlohmann::json metadataJson(const BatchInput& input,
                             const ModelFacts& facts,
                             const ModelTimes& times,
                             std::uint32_t views,
                             std::span<const std::uint64_t> coveredPixels,
                             std::uint32_t blankThreshold,
-                            const ModelDrawing& drawing = {});
+                            const ModelDrawing& drawing = {},
+                            const nlohmann::json& camera = nullptr);
 
 }  // namespace encore::batch

@@ -34,7 +34,7 @@ std::vector<ViewImage> extraPasses(const ExtraImages& extras) {
 }
 
 ModelFileSet modelFileSet(const BatchOptions& options) {
-    return {options.views.views, options.images, options.layout == OutputLayout::Objaverse};
+    return {viewCount(options.views), options.images, options.layout == OutputLayout::Objaverse};
 }
 
 fs::path cameraMatrixPath(const fs::path& folder, std::size_t index) {

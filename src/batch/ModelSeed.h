@@ -23,6 +23,7 @@ enum class RandomStream : std::uint64_t {
     Distance,
     FieldOfView,
     Lighting,
+    Elevation,  // An orbit's elevation drawn from a range.
 };
 
 std::mt19937_64 randomStream(std::uint64_t modelSeed, RandomStream stream);

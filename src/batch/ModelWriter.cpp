@@ -7,6 +7,7 @@
 #include "batch/ModelOutput.h"
 #include "batch/NpyFile.h"
 #include "batch/ObjaverseCamera.h"
+#include "batch/OptionNames.h"
 #include "batch/ShardWriter.h"
 #include "batch/TransformsJson.h"
 #include "batch/ViewStrips.h"
@@ -40,11 +41,26 @@ Result<void> openModelFolder(const fs::path& folder) {
     return {};
 }
 
+namespace {
+
+// metadata.json's "camera": how the views project.
+nlohmann::json cameraMetadata(const BatchOptions& options) {
+    const ViewRigOptions& rig = options.views;
+    nlohmann::json camera;
+    camera["projection"] = std::string(nameOf(projectionNames(), rig.projection));
+    if (rig.projection == Projection::Orthographic) {
+        camera["orthoScale"] = double(rig.orthoScale);
+    }
+    return camera;
+}
+
+}  // namespace
+
 void ModelWriter::writeMetadata(ModelJob& job) {
     std::lock_guard lock(job.writtenMutex);  // The encode times.
-    const nlohmann::json json =
-        metadataJson(*job.model->input, job.facts, job.times, std::uint32_t(job.views.size()),
-                     job.coveredPixels, mOptions.blankThreshold, job.drawing);
+    const nlohmann::json json = metadataJson(
+        *job.model->input, job.facts, job.times, std::uint32_t(job.views.size()), job.coveredPixels,
+        mOptions.blankThreshold, job.drawing, cameraMetadata(mOptions));
     if (auto written = writeJson(job.folder / kMetadataFileName, json); !written) {
         job.fail(mFailures, mCounters, "write", written.error());
     }

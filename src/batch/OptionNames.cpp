@@ -6,10 +6,16 @@ namespace encore::batch {
 
 namespace {
 
-constexpr std::array<NamedValue<CameraDistribution>, 3> kCameraDistributions{{
+constexpr std::array<NamedValue<CameraDistribution>, 5> kCameraDistributions{{
     {"orbit", CameraDistribution::Orbit},
     {"sphere", CameraDistribution::Sphere},
     {"upper-hemisphere", CameraDistribution::UpperHemisphere},
+    {"hammersley", CameraDistribution::Hammersley},
+    {"fibonacci", CameraDistribution::Fibonacci},
+}};
+constexpr std::array<NamedValue<Projection>, 2> kProjections{{
+    {"perspective", Projection::Perspective},
+    {"orthographic", Projection::Orthographic},
 }};
 constexpr std::array<NamedValue<OutputLayout>, 2> kOutputLayouts{{
     {"nerf", OutputLayout::Nerf},
@@ -67,6 +73,10 @@ constexpr std::array<NamedValue<render::DebugChannel>, 12> kDebugChannels{{
 
 NameTable<CameraDistribution> cameraDistributionNames() {
     return kCameraDistributions;
+}
+
+NameTable<Projection> projectionNames() {
+    return kProjections;
 }
 NameTable<OutputLayout> outputLayoutNames() {
     return kOutputLayouts;

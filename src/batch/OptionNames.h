@@ -30,7 +30,8 @@ struct NamedValue {
 template <class Enum>
 using NameTable = std::span<const NamedValue<Enum>>;
 
-NameTable<CameraDistribution> cameraDistributionNames();  // orbit, sphere, upper-hemisphere
+NameTable<CameraDistribution> cameraDistributionNames();  // orbit, sphere, ..., fibonacci
+NameTable<Projection> projectionNames();                  // perspective, orthographic
 NameTable<OutputLayout> outputLayoutNames();              // nerf, objaverse
 NameTable<PngFiltering> pngFilteringNames();              // auto, gpu, cpu
 NameTable<SegmentationBy> segmentationByNames();          // node, mesh, material

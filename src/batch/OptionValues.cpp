@@ -85,6 +85,33 @@ Result<ValueRange> parseRange(std::string_view text, std::string_view shown) {
     return range;
 }
 
+Result<std::vector<float>> parseNumberList(std::string_view text,
+                                           std::string_view shown,
+                                           std::size_t maxCount) {
+    std::vector<float> values;
+    std::size_t start = 0;
+    while (true) {
+        const std::size_t comma = text.find(',', start);
+        const std::string_view item = text.substr(
+            start, comma == std::string_view::npos ? std::string_view::npos : comma - start);
+        float value = 0.0f;
+        if (!finiteNumber(item, value)) {
+            return invalid(shown,
+                           "numbers separated by commas, A,B,... ('" + std::string(item) +
+                               "' is not a number)",
+                           text);
+        }
+        values.push_back(value);
+        if (values.size() > maxCount) {
+            return invalid(shown, "at most " + std::to_string(maxCount) + " numbers", text);
+        }
+        if (comma == std::string_view::npos) {
+            return values;
+        }
+        start = comma + 1;
+    }
+}
+
 Result<std::pair<std::uint32_t, std::uint32_t>> parseImageSize(std::string_view text,
                                                                std::string_view shown) {
     const std::size_t x = text.find('x');

@@ -33,6 +33,11 @@ Result<float> parseNumber(std::string_view text, std::string_view shown, float m
 // "X" or "MIN:MAX", each a finite number.
 Result<ValueRange> parseRange(std::string_view text, std::string_view shown);
 
+// "A,B,...": finite numbers separated by commas, at least one and at most `maxCount`.
+Result<std::vector<float>> parseNumberList(std::string_view text,
+                                           std::string_view shown,
+                                           std::size_t maxCount);
+
 // "W" or "WxH" in pixels, each from 1 to 8192.
 Result<std::pair<std::uint32_t, std::uint32_t>> parseImageSize(std::string_view text,
                                                                std::string_view shown);

@@ -22,6 +22,20 @@ PinholeIntrinsics intrinsicsFor(std::uint32_t width,
 
 namespace {
 
+// An orthographic view has no focal length: its span, and the image's size and centre.
+void addOrthographic(nlohmann::json& json,
+                     std::uint32_t width,
+                     std::uint32_t height,
+                     float orthoScale) {
+    const PinholeIntrinsics centre = intrinsicsFor(width, height, 1.0f);
+    json["projection"] = "orthographic";
+    json["ortho_scale"] = double(orthoScale);
+    json["cx"] = centre.centerX;
+    json["cy"] = centre.centerY;
+    json["w"] = width;
+    json["h"] = height;
+}
+
 void addIntrinsics(nlohmann::json& json, const PinholeIntrinsics& intrinsics, float fovRadians) {
     json["camera_angle_x"] = double(fovRadians);
     json["fl_x"] = intrinsics.focalX;
@@ -60,9 +74,13 @@ nlohmann::json transformsJson(std::span<const ViewCamera> views,
                               std::span<const SegmentationName> segmentation) {
     nlohmann::json json;
     const bool sharedFov = std::all_of(views.begin(), views.end(), [&](const ViewCamera& view) {
-        return view.horizontalFovRadians == views.front().horizontalFovRadians;
+        return view.horizontalFovRadians == views.front().horizontalFovRadians &&
+               view.projection == views.front().projection &&
+               view.orthoScale == views.front().orthoScale;
     });
-    if (!views.empty() && sharedFov) {
+    if (!views.empty() && sharedFov && views.front().projection == Projection::Orthographic) {
+        addOrthographic(json, width, height, views.front().orthoScale);
+    } else if (!views.empty() && sharedFov) {
         const float fov = views.front().horizontalFovRadians;
         addIntrinsics(json, intrinsicsFor(width, height, fov), fov);
     } else {
@@ -75,8 +93,8 @@ nlohmann::json transformsJson(std::span<const ViewCamera> views,
     }
     nlohmann::json frames = nlohmann::json::array();
     for (std::size_t index = 0; index < views.size(); ++index) {
-        const glm::mat4& cameraToWorld = views[index].cameraToWorld;
         nlohmann::json rows = nlohmann::json::array();
+        const glm::mat4& cameraToWorld = views[index].cameraToWorld;
         for (int row = 0; row < 4; ++row) {
             nlohmann::json values = nlohmann::json::array();
             for (int column = 0; column < 4; ++column) {
@@ -86,8 +104,12 @@ nlohmann::json transformsJson(std::span<const ViewCamera> views,
         }
         nlohmann::json frame = {{"file_path", "./" + viewStem(index)},
                                 {"transform_matrix", std::move(rows)}};
-        const float fov = views[index].horizontalFovRadians;
-        addIntrinsics(frame, intrinsicsFor(width, height, fov), fov);
+        if (views[index].projection == Projection::Orthographic) {
+            addOrthographic(frame, width, height, views[index].orthoScale);
+        } else {
+            const float fov = views[index].horizontalFovRadians;
+            addIntrinsics(frame, intrinsicsFor(width, height, fov), fov);
+        }
         addPassPaths(frame, index, extras);
         if (lighting) {
             frame["environment"] = lighting->environment;

@@ -49,7 +49,9 @@ PinholeIntrinsics intrinsicsFor(std::uint32_t width,
 // "depth_file_path", "albedo_file_path", ...); with 16-bit depth, "depth_scale" says what one
 // unit of the value is in world units, with EXR depth "depth_format" is "exr"; with
 // segmentation, "segmentation_by" and "segmentation_ids" (id and name, `segmentation`).
-// With `lighting`, every frame records it.
+// With `lighting`, every frame records it. An orthographic frame has no
+// camera_angle_x or focal lengths: "projection": "orthographic" and "ortho_scale" (what the view
+// spans across the image's larger side, in the normalised world) instead.
 nlohmann::json transformsJson(std::span<const ViewCamera> views,
                               std::uint32_t width,
                               std::uint32_t height,

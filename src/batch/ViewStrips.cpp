@@ -39,8 +39,7 @@ std::vector<render::Camera> stripCameras(std::span<const ViewCamera> views,
     std::vector<render::Camera> cameras;
     for (std::uint32_t strip = 0; strip < layout.strips; ++strip) {
         const ViewCamera& view = views[std::min<std::size_t>(first + strip, last)];
-        cameras.push_back(
-            renderCamera(view.cameraToWorld, normalization, view.horizontalFovRadians, aspect));
+        cameras.push_back(renderCamera(view, normalization, aspect));
     }
     return cameras;
 }
@@ -115,7 +114,7 @@ void decodeNormalImage(image::ImageRgba8& image) {
 }
 
 double depthScale(const ViewRigOptions& rig) {
-    return 2.0 * double(rig.distance.max) / 65535.0;
+    return 2.0 * double(farthestDistance(rig)) / 65535.0;
 }
 
 float depthStepsPerUnit(float unitsPerModelUnit, double scale) {

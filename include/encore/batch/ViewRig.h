@@ -30,19 +30,62 @@ namespace encore::batch {
 
 inline constexpr float kDefaultHorizontalFovDegrees = 49.134343f;  // 2 atan(16 / 35)
 
-// Where the views' directions come from.
+// Where the views' directions come from. Azimuths are measured in the glTF frame from +Z (the
+// side a glTF model faces) towards +X; elevations above the horizontal plane, towards +Y.
 enum class CameraDistribution {
     // View i at azimuth 360 i / views degrees (view 0 on +Z, then towards +X), elevationDegrees
     // above the horizontal plane.
     Orbit,
     Sphere,           // Uniform on the sphere, drawn from the seed.
     UpperHemisphere,  // Uniform on the half above the horizontal plane (+Y), from the seed.
+    // The Hammersley point set on the sphere as TRELLIS's dataset_toolkits/render.py places its
+    // views (sphere_hammersley_sequence): view i at height 2 (i + u) / views - 1 and azimuth
+    // 360 (radicalInverse2(i) + v) degrees + 90 (TRELLIS's yaw is measured from Blender's +X,
+    // which is 90 degrees from glTF's +Z), with the offsets u and v in [0, 1) drawn per model from
+    // the seed. Low-discrepancy: evenly covered at any count.
+    Hammersley,
+    // The Fibonacci (golden-angle) spiral: view i at height 1 - (2 i + 1) / views and azimuth
+    // i times the golden angle (180 (3 - sqrt 5) degrees). Evenly covered, nothing drawn.
+    Fibonacci,
 };
+
+// What the renders project with.
+enum class Projection {
+    Perspective,  // A pinhole camera of horizontalFovDegrees.
+    // Parallel rays: the view spans orthoScale units of the normalised world across the larger
+    // side of the image (Blender's ortho_scale), orthoScale times height / width across a
+    // narrower height.
+    Orthographic,
+};
+
+// One view: where the camera is and how wide it sees.
+struct ViewCamera {
+    glm::mat4 cameraToWorld{1.0f};
+    float horizontalFovRadians = 0.0f;  // Perspective.
+    Projection projection = Projection::Perspective;
+    float orthoScale = 0.0f;  // Orthographic: Projection's span, in normalised units.
+
+    bool operator==(const ViewCamera&) const = default;
+};
+
+// The view's span across the larger side of the image (--ortho-scale) unless told otherwise:
+// the unit box's diagonal (1.73) fits from any direction.
+inline constexpr float kDefaultOrthoScale = 1.75f;
 
 struct ViewRigOptions {
     std::uint32_t views = 12;
     CameraDistribution distribution = CameraDistribution::Orbit;
-    float elevationDegrees = 30.0f;  // Of the orbit.
+    // Of the orbit: fixed, or drawn per view from the range.
+    ValueRange elevationDegrees = 30.0f;
+    // Fixed directions (--azimuths, --elevations), which replace `distribution`: view i at
+    // azimuthsDegrees[i] and elevationsDegrees[i]; azimuths alone take elevationDegrees,
+    // elevations alone are spread evenly in azimuth (360 i / views). Each view's distance
+    // (--distances) the same way, replacing `distance`. A list of one value applies to every
+    // view; lists of several values all have one length, which is the number of views (replacing
+    // `views`; validateBatchOptions checks it).
+    std::vector<float> azimuthsDegrees;
+    std::vector<float> elevationsDegrees;
+    std::vector<float> distances;
     // Seeds every draw: directions, jitter, distances and fields of view (and, in a batch, the
     // lighting of BatchLighting.h). The same seed gives the same views on every machine.
     std::uint64_t seed = 0;
@@ -53,16 +96,21 @@ struct ViewRigOptions {
     // Moves each view's direction by up to this many degrees in azimuth and in elevation
     // (uniformly, from the seed; elevations stay within the poles). 0: none.
     float jitterDegrees = 0.0f;
+    // The distance counts in half-heights of the view at the origin, as MVDream's renders draw
+    // theirs (threestudio's relative_radius): the camera stands at distance / tan(vertical
+    // field of view / 2), so the object keeps its size in the picture whatever the field of view.
+    bool distanceRelativeToFov = false;
     bool normalize = true;  // False: the model as it is, cameras around the world origin.
+    Projection projection = Projection::Perspective;
+    float orthoScale = kDefaultOrthoScale;
 };
 
-// One view: where the camera is and how wide it sees.
-struct ViewCamera {
-    glm::mat4 cameraToWorld{1.0f};
-    float horizontalFovRadians = 0.0f;
+// The number of views the options make (`views`, or the lists' length).
+std::uint32_t viewCount(const ViewRigOptions& options);
 
-    bool operator==(const ViewCamera&) const = default;
-};
+// The farthest a camera may stand from the origin (the largest distance the options give), in
+// the rig's units: what 16-bit depth is scaled by (ViewStrips.h, depthScale).
+float farthestDistance(const ViewRigOptions& options);
 
 // The camera-to-world matrix of a camera at `eye` looking at `target` with +Y up (-Z up when
 // looking straight up or down, as render::Camera::lookAt does).
@@ -83,6 +131,10 @@ glm::mat4 normalization(const scene::Bounds& bounds, bool normalize);
 // The vertical field of view for a horizontal one at `aspect` (width / height), in radians.
 float verticalFov(float horizontalFovRadians, float aspect);
 
+// An orthographic view's half-width and half-height (glTF's xmag and ymag) for `orthoScale`
+// across the larger side of an image of `aspect` (width / height).
+glm::vec2 orthographicHalfExtent(float orthoScale, float aspect);
+
 // The render camera for one view: `cameraToWorld` (in the normalised world) taken back into
 // the model's world through the inverse of `normalization` (a uniform scale and translation),
 // so the picture is the one of the normalised model. Perspective with an infinite far plane and
@@ -91,5 +143,9 @@ render::Camera renderCamera(const glm::mat4& cameraToWorld,
                             const glm::mat4& normalization,
                             float horizontalFovRadians,
                             float aspect);
+// The same for any view: perspective as above; orthographic with its span (orthoScale in the
+// normalised world) and clip distances from 1/100 of the camera's distance to the origin out to
+// 100 times it.
+render::Camera renderCamera(const ViewCamera& view, const glm::mat4& normalization, float aspect);
 
 }  // namespace encore::batch

@@ -45,22 +45,25 @@ Result<BatchOptions> applied(std::vector<std::pair<std::string, std::string>> va
 std::string fingerprint(const BatchOptions& o) {
     std::ostringstream s;
     s << o.width << 'x' << o.height << ' ' << o.samples << ' ' << o.views.views << ' '
-      << int(o.views.distribution) << ' ' << o.views.elevationDegrees << ' ' << o.views.seed << ' '
-      << o.views.distance.min << ':' << o.views.distance.max << ' '
-      << o.views.horizontalFovDegrees.min << ' ' << o.views.jitterDegrees << ' '
-      << o.views.normalize << ' ' << o.strategy.has_value() << o.chooseStrategyPerModel << ' '
-      << o.visibilityFromTriangles.has_value() << ' ' << o.lodErrorPixels << ' ' << o.strict << ' '
-      << o.modelTimeoutSeconds << ' ' << o.maxTextureSize << ' ' << o.allowUrisOutside << ' '
-      << o.variant << o.allVariants << ' ' << o.jobs << ' ' << o.memoryLimitBytes << ' '
-      << o.renderers << ' ' << o.images.perView() << int(o.images.segmentationBy)
-      << int(o.images.depthFormat) << int(o.images.drawing) << ' ' << o.topLightLux << ' '
-      << int(o.pngCompression) << int(o.pngFiltering) << int(o.layout) << ' ' << o.shards << ' '
-      << o.shardBytes << ' ' << o.blankThreshold << ' ' << o.writeFailureLog << ' '
-      << bool(o.renderer.environmentImage) << o.lighting.environmentDirectory << ' '
-      << o.lighting.rotationDegrees.has_value() << o.lighting.intensity.has_value() << ' '
-      << int(o.renderer.toneMapping.toneMapping) << ' ' << o.renderer.toneMapping.exposure << ' '
-      << int(o.renderer.toneMapping.background) << ' ' << o.renderer.lighting.imageBasedLighting
-      << o.renderer.lighting.punctualLights << ' ' << int(o.renderer.lighting.debugChannel);
+      << int(o.views.distribution) << ' ' << o.views.elevationDegrees.min << ':'
+      << o.views.elevationDegrees.max << ' ' << o.views.seed << ' ' << o.views.distance.min << ':'
+      << o.views.distance.max << ' ' << o.views.horizontalFovDegrees.min << ' '
+      << o.views.jitterDegrees << ' ' << o.views.normalize << ' ' << o.strategy.has_value()
+      << o.chooseStrategyPerModel << ' ' << o.visibilityFromTriangles.has_value() << ' '
+      << o.lodErrorPixels << ' ' << o.strict << ' ' << o.modelTimeoutSeconds << ' '
+      << o.maxTextureSize << ' ' << o.allowUrisOutside << ' ' << o.variant << o.allVariants << ' '
+      << o.jobs << ' ' << o.memoryLimitBytes << ' ' << o.renderers << ' ' << o.images.perView()
+      << int(o.images.segmentationBy) << int(o.images.depthFormat) << int(o.images.drawing) << ' '
+      << o.topLightLux << ' ' << int(o.pngCompression) << int(o.pngFiltering) << int(o.layout)
+      << ' ' << o.shards << ' ' << o.shardBytes << ' ' << o.blankThreshold << ' '
+      << o.writeFailureLog << ' ' << bool(o.renderer.environmentImage)
+      << o.lighting.environmentDirectory << ' ' << o.lighting.rotationDegrees.has_value()
+      << o.lighting.intensity.has_value() << ' ' << int(o.renderer.toneMapping.toneMapping) << ' '
+      << o.renderer.toneMapping.exposure << ' ' << int(o.renderer.toneMapping.background) << ' '
+      << o.renderer.lighting.imageBasedLighting << o.renderer.lighting.punctualLights << ' '
+      << int(o.renderer.lighting.debugChannel) << ' ' << o.views.azimuthsDegrees.size()
+      << o.views.elevationsDegrees.size() << o.views.distances.size() << ' '
+      << int(o.views.projection) << o.views.orthoScale << o.views.distanceRelativeToFov;
     return s.str();
 }
 
@@ -149,7 +152,8 @@ TEST(BatchOptionTableTest, BadValuesNameTheOptionAsTheFrontSpellsIt) {
     EXPECT_EQ(message({{"memory-limit", "0"}}, OptionFront::Python).substr(0, 22),
               "memory_limit_mib takes");
     EXPECT_EQ(message({{"camera-distribution", "cube"}}, OptionFront::Python),
-              "camera_distribution takes orbit, sphere or upper-hemisphere (not 'cube').");
+              "camera_distribution takes orbit, sphere, upper-hemisphere, hammersley or fibonacci "
+              "(not 'cube').");
     EXPECT_EQ(message({{"samples", "2"}}, OptionFront::CommandLine),
               "--samples takes 1 or 4 (not '2').");
     EXPECT_EQ(message({{"size", "0x5"}}, OptionFront::CommandLine),

@@ -48,7 +48,8 @@ TEST(OptionNamesTest, AWrongNameNamesTheOptionAndWhatItTakes) {
     ASSERT_FALSE(parsed.ok());
     EXPECT_EQ(parsed.error().code, ErrorCode::InvalidArgument);
     EXPECT_EQ(parsed.error().message,
-              "camera_distribution takes orbit, sphere or upper-hemisphere (not 'cube').");
+              "camera_distribution takes orbit, sphere, upper-hemisphere, hammersley or fibonacci "
+              "(not 'cube').");
     EXPECT_EQ(*parseNamed(depthFormatNames(), "exr", "--depth-format"), DepthFormat::Exr);
     EXPECT_EQ(nameList({"a"}), "a");
     EXPECT_EQ(nameList({"a", "b"}), "a or b");
