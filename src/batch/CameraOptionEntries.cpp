@@ -6,6 +6,7 @@
 #include "batch/OptionEntries.h"
 #include "batch/OptionNames.h"
 #include "batch/OptionValues.h"
+#include "batch/PoseFile.h"
 
 namespace encore::batch::optiontable {
 
@@ -125,11 +126,37 @@ void addLensOptions(std::vector<Entry>& entries) {
                           .keyword("normalize", /*negated=*/true));
 }
 
+// The axes written cameras are in, and cameras given (read in those axes, so after them).
+void addPoseOptions(std::vector<Entry>& entries) {
+    entries.push_back(named<CameraConvention>(
+        "camera-convention", "",
+        "The axes of every written camera (transforms.json, .npy) and of --poses files without "
+        "their own: opengl (NeRF's), opencv or blender (+Z up world); recorded in "
+        "transforms.json and metadata.json. Default: transforms.json in opengl, .npy in blender",
+        cameraConventionNames(),
+        [](BatchOptions& o, CameraConvention c) { o.cameraConvention = c; }));
+    entries.push_back(
+        text("poses", OptionForm::Text, "FILE",
+             "Render exactly these cameras, in the unit box: a transforms.json (as encore "
+             "writes it), a .npy stack of 3x4 or 4x4 matrices, or a JSON list (docs/batch.md, "
+             "Poses)",
+             [](BatchOptions& o, std::string_view value, std::string_view shown) -> Result<void> {
+                 ENCORE_TRY_ASSIGN(o.views.poses, readPoseFile(std::string(value), shown,
+                                                               o.cameraConvention, o.views));
+                 o.views.posesFile = std::string(value);
+                 return Result<void>{};
+             })
+            .excluding({"views", "random-views", "camera-distribution", "elevation", "azimuths",
+                        "elevations", "distance", "distances", "camera-jitter",
+                        "distance-relative-to-fov"}));
+}
+
 }  // namespace
 
 void addCameraOptions(std::vector<Entry>& entries) {
     addDirectionOptions(entries);
     addLensOptions(entries);
+    addPoseOptions(entries);
 }
 
 }  // namespace encore::batch::optiontable

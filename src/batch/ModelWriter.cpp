@@ -3,6 +3,7 @@
 #include <chrono>
 #include <span>
 
+#include "batch/CameraConvention.h"
 #include "batch/ExrFile.h"
 #include "batch/ModelOutput.h"
 #include "batch/NpyFile.h"
@@ -43,7 +44,8 @@ Result<void> openModelFolder(const fs::path& folder) {
 
 namespace {
 
-// metadata.json's "camera": how the views project.
+// metadata.json's "camera": the projection, the axes of each written camera file, and where the
+// cameras came from (a pose file).
 nlohmann::json cameraMetadata(const BatchOptions& options) {
     const ViewRigOptions& rig = options.views;
     nlohmann::json camera;
@@ -51,6 +53,15 @@ nlohmann::json cameraMetadata(const BatchOptions& options) {
     if (rig.projection == Projection::Orthographic) {
         camera["orthoScale"] = double(rig.orthoScale);
     }
+    camera["convention"] = {
+        {"transforms",
+         std::string(nameOf(cameraConventionNames(),
+                            options.cameraConvention.value_or(CameraConvention::OpenGl)))}};
+    if (options.layout == OutputLayout::Objaverse) {
+        camera["convention"]["npy"] = std::string(nameOf(
+            cameraConventionNames(), options.cameraConvention.value_or(CameraConvention::Blender)));
+    }
+    camera["poses"] = rig.poses.empty() ? nlohmann::json(nullptr) : nlohmann::json(rig.posesFile);
     return camera;
 }
 
@@ -69,7 +80,8 @@ void ModelWriter::writeMetadata(ModelJob& job) {
 void ModelWriter::writeTransforms(ModelJob& job) {
     const nlohmann::json json =
         transformsJson(job.views, mOptions.width, mOptions.height, mOptions.images,
-                       depthScale(mOptions.views), &job.lighting, job.segmentation);
+                       depthScale(mOptions.views), &job.lighting, job.segmentation,
+                       mOptions.cameraConvention.value_or(CameraConvention::OpenGl));
     if (auto written = writeJson(job.folder / kTransformsFileName, json); !written) {
         job.fail(mFailures, mCounters, "write", written.error());
         return;
@@ -86,7 +98,9 @@ void ModelWriter::writeTransforms(ModelJob& job) {
 
 Result<void> ModelWriter::writeCameraMatrices(ModelJob& job) {
     for (std::size_t view = 0; view < job.views.size(); ++view) {
-        const std::array<double, 12> matrix = objaverseCameraMatrix(job.views[view].cameraToWorld);
+        const std::array<double, 12> matrix =
+            worldToCameraRows(job.views[view].cameraToWorld,
+                              mOptions.cameraConvention.value_or(CameraConvention::Blender));
         const fs::path path = cameraMatrixPath(job.folder, view);
         ENCORE_TRY(writePartialFile(path, npyFloat64(matrix, 3, 4)));
         job.written.push_back(path);

@@ -17,6 +17,11 @@ constexpr std::array<NamedValue<Projection>, 2> kProjections{{
     {"perspective", Projection::Perspective},
     {"orthographic", Projection::Orthographic},
 }};
+constexpr std::array<NamedValue<CameraConvention>, 3> kCameraConventions{{
+    {"opengl", CameraConvention::OpenGl},
+    {"opencv", CameraConvention::OpenCv},
+    {"blender", CameraConvention::Blender},
+}};
 constexpr std::array<NamedValue<OutputLayout>, 2> kOutputLayouts{{
     {"nerf", OutputLayout::Nerf},
     {"objaverse", OutputLayout::Objaverse},
@@ -77,6 +82,10 @@ NameTable<CameraDistribution> cameraDistributionNames() {
 
 NameTable<Projection> projectionNames() {
     return kProjections;
+}
+
+NameTable<CameraConvention> cameraConventionNames() {
+    return kCameraConventions;
 }
 NameTable<OutputLayout> outputLayoutNames() {
     return kOutputLayouts;

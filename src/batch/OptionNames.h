@@ -32,6 +32,7 @@ using NameTable = std::span<const NamedValue<Enum>>;
 
 NameTable<CameraDistribution> cameraDistributionNames();  // orbit, sphere, ..., fibonacci
 NameTable<Projection> projectionNames();                  // perspective, orthographic
+NameTable<CameraConvention> cameraConventionNames();      // opengl, opencv, blender
 NameTable<OutputLayout> outputLayoutNames();              // nerf, objaverse
 NameTable<PngFiltering> pngFilteringNames();              // auto, gpu, cpu
 NameTable<SegmentationBy> segmentationByNames();          // node, mesh, material

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "batch/CameraConvention.h"
 #include "batch/OptionNames.h"
 
 namespace encore::batch {
@@ -71,8 +72,10 @@ nlohmann::json transformsJson(std::span<const ViewCamera> views,
                               const ExtraImages& extras,
                               double depthScale,
                               const ModelLighting* lighting,
-                              std::span<const SegmentationName> segmentation) {
+                              std::span<const SegmentationName> segmentation,
+                              CameraConvention convention) {
     nlohmann::json json;
+    json["camera_convention"] = std::string(nameOf(cameraConventionNames(), convention));
     const bool sharedFov = std::all_of(views.begin(), views.end(), [&](const ViewCamera& view) {
         return view.horizontalFovRadians == views.front().horizontalFovRadians &&
                view.projection == views.front().projection &&
@@ -94,13 +97,26 @@ nlohmann::json transformsJson(std::span<const ViewCamera> views,
     nlohmann::json frames = nlohmann::json::array();
     for (std::size_t index = 0; index < views.size(); ++index) {
         nlohmann::json rows = nlohmann::json::array();
-        const glm::mat4& cameraToWorld = views[index].cameraToWorld;
-        for (int row = 0; row < 4; ++row) {
-            nlohmann::json values = nlohmann::json::array();
-            for (int column = 0; column < 4; ++column) {
-                values.push_back(double(cameraToWorld[column][row]));  // glm: [column][row]
+        if (convention == CameraConvention::OpenGl) {
+            // The matrix as the renderer holds it, each float written exactly.
+            const glm::mat4& cameraToWorld = views[index].cameraToWorld;
+            for (int row = 0; row < 4; ++row) {
+                nlohmann::json values = nlohmann::json::array();
+                for (int column = 0; column < 4; ++column) {
+                    values.push_back(double(cameraToWorld[column][row]));  // glm: [column][row]
+                }
+                rows.push_back(std::move(values));
             }
-            rows.push_back(std::move(values));
+        } else {
+            const glm::dmat4 cameraToWorld =
+                cameraToWorldIn(views[index].cameraToWorld, convention);
+            for (int row = 0; row < 4; ++row) {
+                nlohmann::json values = nlohmann::json::array();
+                for (int column = 0; column < 4; ++column) {
+                    values.push_back(cameraToWorld[column][row]);
+                }
+                rows.push_back(std::move(values));
+            }
         }
         nlohmann::json frame = {{"file_path", "./" + viewStem(index)},
                                 {"transform_matrix", std::move(rows)}};

@@ -49,7 +49,8 @@ PinholeIntrinsics intrinsicsFor(std::uint32_t width,
 // "depth_file_path", "albedo_file_path", ...); with 16-bit depth, "depth_scale" says what one
 // unit of the value is in world units, with EXR depth "depth_format" is "exr"; with
 // segmentation, "segmentation_by" and "segmentation_ids" (id and name, `segmentation`).
-// With `lighting`, every frame records it. An orthographic frame has no
+// With `lighting`, every frame records it. "camera_convention" names the axes the matrices are
+// in (CameraConvention.h: opengl, NeRF's, unless asked otherwise). An orthographic frame has no
 // camera_angle_x or focal lengths: "projection": "orthographic" and "ortho_scale" (what the view
 // spans across the image's larger side, in the normalised world) instead.
 nlohmann::json transformsJson(std::span<const ViewCamera> views,
@@ -58,6 +59,7 @@ nlohmann::json transformsJson(std::span<const ViewCamera> views,
                               const ExtraImages& extras = {},
                               double depthScale = 0.0,
                               const ModelLighting* lighting = nullptr,
-                              std::span<const SegmentationName> segmentation = {});
+                              std::span<const SegmentationName> segmentation = {},
+                              CameraConvention convention = CameraConvention::OpenGl);
 
 }  // namespace encore::batch

@@ -126,6 +126,9 @@ glm::mat4 lookAtCameraToWorld(const glm::vec3& eye, const glm::vec3& target) {
 }
 
 std::uint32_t viewCount(const ViewRigOptions& options) {
+    if (!options.poses.empty()) {
+        return std::uint32_t(options.poses.size());
+    }
     // The longest list, when one holds several values; else `views`.
     const std::size_t listed =
         std::max({options.azimuthsDegrees.size(), options.elevationsDegrees.size(),
@@ -134,6 +137,13 @@ std::uint32_t viewCount(const ViewRigOptions& options) {
 }
 
 float farthestDistance(const ViewRigOptions& options) {
+    if (!options.poses.empty()) {
+        float farthest = 0.0f;
+        for (const ViewCamera& pose : options.poses) {
+            farthest = std::max(farthest, glm::length(glm::vec3(pose.cameraToWorld[3])));
+        }
+        return farthest > 0.0f ? farthest : 1.0f;
+    }
     float farthest = options.distances.empty()
                          ? options.distance.max
                          : *std::max_element(options.distances.begin(), options.distances.end());
@@ -146,6 +156,9 @@ float farthestDistance(const ViewRigOptions& options) {
 }
 
 std::vector<ViewCamera> viewCameras(const ViewRigOptions& options, std::string_view modelName) {
+    if (!options.poses.empty()) {
+        return options.poses;
+    }
     const std::uint64_t seed = modelSeed(options.seed, modelName);
     std::mt19937_64 directions = randomStream(seed, RandomStream::Directions);
     std::mt19937_64 jitter = randomStream(seed, RandomStream::Jitter);

@@ -1,6 +1,7 @@
 // The cameras of issue 50 rendered: an orthographic view of a unit cube draws parallel edges (its
 // silhouette a square of the size --ortho-scale says, a side seen at an angle a band of one
-// height).
+// height), and a batch rendered again from the transforms.json it wrote (--poses) writes the
+// same bytes, in every camera convention.
 
 #include <gtest/gtest.h>
 
@@ -10,13 +11,16 @@
 #include <string>
 #include <vector>
 
+#include "BatchOutput.h"
 #include "GltfBuilder.h"
 #include "GpuTestSupport.h"
 #include "RenderTestSupport.h"
 #include "TestPaths.h"
+#include "batch/PoseFile.h"
 #include "core/FileIO.h"
 #include "encore/batch/Batch.h"
 #include "encore/image/ImageCodec.h"
+#include "scene/SceneGenerator.h"
 
 namespace encore::batch {
 namespace {
@@ -133,6 +137,81 @@ TEST(BatchCamerasTest, AnOrthographicCubeHasParallelEdges) {
         std::ifstream(options.output / "cube" / "metadata.json"), nullptr, false);
     EXPECT_EQ(metadata["camera"]["projection"], "orthographic");
     EXPECT_EQ(metadata["camera"]["orthoScale"], 2.0);
+}
+
+// `count` generated scenes m1, m2, ... under `dir`.
+std::vector<BatchInput> generatedModels(const fs::path& dir, std::uint32_t count) {
+    std::vector<BatchInput> inputs;
+    fs::create_directories(dir);
+    for (std::uint32_t seed = 1; seed <= count; ++seed) {
+        scene::GeneratorOptions generator;
+        generator.objectCount = 3;
+        generator.meshCount = 2;
+        generator.materialCount = 2;
+        generator.seed = seed;
+        auto glb = scene::generateSceneGlb(generator);
+        EXPECT_TRUE(glb.ok());
+        const fs::path path = dir / ("m" + std::to_string(seed) + ".glb");
+        std::ofstream(path, std::ios::binary)
+            .write(reinterpret_cast<const char*>(glb->data()), std::streamsize(glb->size()));
+        inputs.push_back({path, "m" + std::to_string(seed)});
+    }
+    return inputs;
+}
+
+// Render, read the transforms.json written back as --poses, render again: the same files (the
+// poses' metadata says where they came from), in each convention and projection.
+TEST(BatchCamerasTest, PosesRoundTripToTheSameBytes) {
+    ENCORE_REQUIRE_VULKAN(context);
+    const fs::path dir = test::makeTempDir("batch-cameras-poses");
+    const std::vector<BatchInput> inputs = generatedModels(dir / "in", 1);
+    struct Case {
+        std::optional<CameraConvention> convention;
+        Projection projection;
+    };
+    const Case cases[] = {{std::nullopt, Projection::Perspective},
+                          {CameraConvention::OpenCv, Projection::Perspective},
+                          {CameraConvention::Blender, Projection::Orthographic}};
+    int index = 0;
+    for (const Case& c : cases) {
+        const std::string name = std::to_string(index++);
+        BatchOptions first = tinyBatch(dir / ("first" + name));
+        first.views.views = 3;
+        first.views.distribution = CameraDistribution::Sphere;
+        first.views.distance = ValueRange(1.5f, 2.2f);
+        first.views.horizontalFovDegrees = ValueRange(30.0f, 60.0f);
+        first.views.projection = c.projection;
+        first.cameraConvention = c.convention;
+        first.layout = OutputLayout::Objaverse;
+        auto summary = runBatch(*context, inputs, first);
+        ASSERT_TRUE(summary.ok()) << summary.error().message;
+        ASSERT_EQ(summary->rendered, 1u);
+
+        BatchOptions second = tinyBatch(dir / ("second" + name));
+        second.cameraConvention = c.convention;
+        second.layout = OutputLayout::Objaverse;
+        const fs::path written = first.output / "m1" / "transforms.json";
+        auto poses = readPoseFile(written, "--poses", c.convention, second.views);
+        ASSERT_TRUE(poses.ok()) << poses.error().message;
+        second.views.poses = *poses;
+        second.views.posesFile = written.string();
+        second.views.projection = c.projection;  // The depth scale's and metadata's.
+        summary = runBatch(*context, inputs, second);
+        ASSERT_TRUE(summary.ok()) << summary.error().message;
+
+        auto firstFiles = test::batchOutputFiles(first.output);
+        auto secondFiles = test::batchOutputFiles(second.output);
+        ASSERT_EQ(firstFiles.size(), secondFiles.size());
+        for (const auto& [file, bytes] : firstFiles) {
+            if (file.ends_with("metadata.json")) {
+                continue;  // It names where the cameras came from.
+            }
+            EXPECT_TRUE(bytes == secondFiles[file]) << "case " << name << ": " << file;
+        }
+        const nlohmann::json metadata = nlohmann::json::parse(
+            std::ifstream(second.output / "m1" / "metadata.json"), nullptr, false);
+        EXPECT_EQ(metadata["camera"]["poses"], written.string());
+    }
 }
 
 }  // namespace

@@ -189,6 +189,11 @@ struct BatchOptions {
     // `renderer`'s lighting.
     LightingVariation lighting;
     OutputLayout layout = OutputLayout::Nerf;
+    // The axes of every written camera (transforms.json's transform_matrix, the .npy matrices),
+    // recorded in transforms.json and metadata.json. Unset: each file's own, as before:
+    // transforms.json in OpenGL's (NeRF's), the .npy matrices in Blender's (the Objaverse
+    // scripts').
+    std::optional<CameraConvention> cameraConvention;
     // WebDataset shards instead of a folder per model (ShardWriter.h): OUT/shard-000000.tar ...
     // holding each sample's files as `<name>.000.png`, `<name>.transforms.json`, ... `shards`:
     // about that many shards (each holds the models of the batch divided by it); `shardBytes`:

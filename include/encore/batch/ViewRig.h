@@ -17,6 +17,7 @@
 // its own, the same ones whatever order the models are rendered in.
 
 #include <cstdint>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -68,6 +69,19 @@ struct ViewCamera {
     bool operator==(const ViewCamera&) const = default;
 };
 
+// The axes a written camera is expressed in (--camera-convention). Encore's own are OpenGL's.
+enum class CameraConvention {
+    // The glTF world (+Y up); the camera looks along its -Z axis, +Y up, +X right (NeRF's
+    // transforms.json, nerfstudio, instant-ngp).
+    OpenGl,
+    // The glTF world; the camera looks along +Z, +Y down, +X right (OpenCV, COLMAP, G-Objaverse's
+    // camera files).
+    OpenCv,
+    // Blender's world (+Z up: glTF's (x, y, z) is Blender's (x, -z, y), as its glTF importer
+    // turns it) and Blender's camera axes, which are OpenGL's (the Objaverse scripts' matrices).
+    Blender,
+};
+
 // The view's span across the larger side of the image (--ortho-scale) unless told otherwise:
 // the unit box's diagonal (1.73) fits from any direction.
 inline constexpr float kDefaultOrthoScale = 1.75f;
@@ -103,9 +117,13 @@ struct ViewRigOptions {
     bool normalize = true;  // False: the model as it is, cameras around the world origin.
     Projection projection = Projection::Perspective;
     float orthoScale = kDefaultOrthoScale;
+    // Cameras given as they are (--poses, PoseFile.h): when not empty, the views are these, and
+    // every option above that places or shapes a camera is ignored.
+    std::vector<ViewCamera> poses;
+    std::string posesFile;  // Where they came from, as given (metadata.json records it).
 };
 
-// The number of views the options make (`views`, or the lists' length).
+// The number of views the options make (`views`, the lists' length, or the poses').
 std::uint32_t viewCount(const ViewRigOptions& options);
 
 // The farthest a camera may stand from the origin (the largest distance the options give), in

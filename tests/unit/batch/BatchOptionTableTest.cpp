@@ -62,8 +62,9 @@ std::string fingerprint(const BatchOptions& o) {
       << o.renderer.toneMapping.exposure << ' ' << int(o.renderer.toneMapping.background) << ' '
       << o.renderer.lighting.imageBasedLighting << o.renderer.lighting.punctualLights << ' '
       << int(o.renderer.lighting.debugChannel) << ' ' << o.views.azimuthsDegrees.size()
-      << o.views.elevationsDegrees.size() << o.views.distances.size() << ' '
-      << int(o.views.projection) << o.views.orthoScale << o.views.distanceRelativeToFov;
+      << o.views.elevationsDegrees.size() << o.views.distances.size() << o.views.poses.size() << ' '
+      << int(o.views.projection) << o.views.orthoScale << o.views.distanceRelativeToFov << ' '
+      << o.cameraConvention.has_value();
     return s.str();
 }
 

@@ -1,0 +1,32 @@
+#pragma once
+
+// A view's camera (camera-to-world in OpenGL's axes and the glTF world, ViewRig.h) expressed in
+// another convention (CameraConvention), and back: what every written camera and every camera
+// read from a --poses file goes through.
+//
+//   opengl   the matrix itself;
+//   opencv   the camera's Y and Z axes negated (it looks along +Z with +Y down), the world kept;
+//   blender  the world turned as Blender's glTF importer turns it, glTF's (x, y, z) becoming
+//            (x, -z, y); Blender's camera axes are OpenGL's.
+
+#include <array>
+
+#include <glm/glm.hpp>
+
+#include "encore/batch/ViewRig.h"
+
+namespace encore::batch {
+
+// Camera-to-world in `convention`.
+glm::dmat4 cameraToWorldIn(const glm::mat4& cameraToWorld, CameraConvention convention);
+
+// The OpenGL, glTF-world camera-to-world of `cameraToWorld` given in `convention`.
+glm::dmat4 cameraToWorldFrom(const glm::dmat4& cameraToWorld, CameraConvention convention);
+
+// The world-to-camera matrix [R | T] in `convention` (the .npy files' 3x4): row-major, the first
+// row's four values, then the second's and the third's. In the Blender convention it is the
+// matrix the Objaverse-XL rendering script saves (ObjaverseCamera.h).
+std::array<double, 12> worldToCameraRows(const glm::mat4& cameraToWorld,
+                                         CameraConvention convention);
+
+}  // namespace encore::batch
