@@ -1,6 +1,9 @@
 #include "BatchOptionsCli.h"
 
+#include <cstdio>
 #include <vector>
+
+#include "batch/BatchPresets.h"
 
 namespace encore::app {
 
@@ -33,20 +36,31 @@ void BatchOptionsCli::addTo(CLI::App& command) {
         if (!description.defaultValue.empty()) {
             entry.option->default_str(description.defaultValue);
         }
+        if (description.name == "preset") {
+            entry.option->type_name("{" + [&] {
+                std::string list;
+                for (const std::string& choice : description.choices) {
+                    list += choice + ",";
+                }
+                return list;
+            }() + "list}");
+            // `--preset list` prints the presets and their sources, as --help prints the
+            // options: a validator runs before CLI11 asks for the input and output.
+            entry.option->each([](const std::string& value) {
+                if (value == "list") {
+                    std::fputs(batch::presetListing().c_str(), stdout);
+                    throw CLI::Success();
+                }
+            });
+        }
     }
-    // What each option excludes and needs, for --help and CLI11's checks.
+    // What each option excludes, for --help and CLI11's checks. What an option needs is checked
+    // by applyBatchOptions, which also counts the options a --preset gives.
     for (Entry& entry : mEntries) {
         for (const std::string& name : entry.description->excludes) {
             for (Entry& other : mEntries) {
                 if (other.description->name == name) {
                     entry.option->excludes(other.option);
-                }
-            }
-        }
-        for (const std::string& name : entry.description->needs) {
-            for (Entry& other : mEntries) {
-                if (other.description->name == name) {
-                    entry.option->needs(other.option);
                 }
             }
         }

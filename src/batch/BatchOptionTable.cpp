@@ -4,6 +4,7 @@
 #include <limits>
 #include <memory>
 
+#include "batch/BatchPresets.h"
 #include "batch/OptionEntries.h"
 #include "batch/OptionNames.h"
 #include "batch/OptionValues.h"
@@ -352,6 +353,19 @@ void addShadingOptions(std::vector<Entry>& entries) {
 // (random-views over views) comes after it.
 std::vector<Description> describeOptions() {
     std::vector<Entry> entries;
+    {
+        Entry preset = text(
+            "preset", OptionForm::Text, "NAME",
+            "Start from a published pipeline's options (docs/batch.md, Presets); an option given "
+            "beside it replaces the preset's value. `encore batch --preset list` prints them with "
+            "their sources",
+            [](BatchOptions& o, std::string_view value, std::string_view) -> Result<void> {
+                o.preset = std::string(value);  // Its options were applied with the others.
+                return Result<void>{};
+            });
+        preset.description.choices = presetNames();
+        entries.push_back(std::move(preset));
+    }
     addCameraOptions(entries);
     addImageOptions(entries);
     addStrategyOptions(entries);
@@ -468,9 +482,61 @@ std::vector<std::string> batchOptionNames(OptionFront front) {
     return names;
 }
 
+namespace {
+
+// `given` with the options of the preset it names (--preset) before them, less those that an
+// option given replaces or excludes.
+Result<std::vector<GivenOption>> withPreset(std::span<const GivenOption> given, OptionFront front) {
+    std::vector<GivenOption> merged;
+    const auto presetGiven = std::find_if(given.begin(), given.end(), [](const GivenOption& g) {
+        return g.option->name == "preset";
+    });
+    if (presetGiven == given.end()) {
+        merged.assign(given.begin(), given.end());
+        return merged;
+    }
+    const BatchPreset* preset = findPreset(presetGiven->value);
+    if (!preset) {
+        const std::string nearest = nearestName(presetGiven->value, presetNames());
+        return makeError(ErrorCode::InvalidArgument,
+                         presetGiven->option->shownName(front) + " takes " +
+                             nameList(presetNames()) + " (not '" + presetGiven->value + "'" +
+                             (nearest.empty() ? "" : "; did you mean " + nearest + "?") +
+                             "); list prints them with their sources.");
+    }
+    for (const PresetValue& value : preset->values) {
+        const Description* option = findBatchOption(value.option, OptionFront::CommandLine);
+        if (!option) {
+            continue;  // BatchPresetsTest checks that every preset names real options.
+        }
+        // An option given explicitly replaces the preset's value, and drops the preset's
+        // options that it excludes or that exclude it.
+        const bool overridden =
+            std::any_of(given.begin(), given.end(), [&](const GivenOption& entry) {
+                if (entry.option == option) {
+                    return true;
+                }
+                const auto& excludes = entry.option->excludes;
+                return givenOn(entry) &&
+                       (std::find(excludes.begin(), excludes.end(), option->name) !=
+                            excludes.end() ||
+                        std::find(option->excludes.begin(), option->excludes.end(),
+                                  entry.option->name) != option->excludes.end());
+            });
+        if (!overridden) {
+            merged.push_back({option, value.value});
+        }
+    }
+    merged.insert(merged.end(), given.begin(), given.end());
+    return merged;
+}
+
+}  // namespace
+
 Result<void> applyBatchOptions(BatchOptions& options,
-                               std::span<const GivenOption> given,
+                               std::span<const GivenOption> explicitly,
                                OptionFront front) {
+    ENCORE_TRY_ASSIGN(const std::vector<GivenOption> given, withPreset(explicitly, front));
     for (const GivenOption& entry : given) {
         if (!givenOn(entry)) {
             continue;
@@ -487,7 +553,7 @@ Result<void> applyBatchOptions(BatchOptions& options,
             if (!findGiven(given, needed)) {
                 return makeError(
                     ErrorCode::InvalidArgument,
-                    option.shownName(front) + " needs " +
+                    option.shownName(front) + " requires " +
                         findBatchOption(needed, OptionFront::CommandLine)->shownName(front) + ".");
             }
         }

@@ -45,7 +45,7 @@ Result<void> openModelFolder(const fs::path& folder) {
 namespace {
 
 // metadata.json's "camera": the projection, the axes of each written camera file, and where the
-// cameras came from (a pose file).
+// cameras came from (a preset, a pose file).
 nlohmann::json cameraMetadata(const BatchOptions& options) {
     const ViewRigOptions& rig = options.views;
     nlohmann::json camera;
@@ -62,6 +62,8 @@ nlohmann::json cameraMetadata(const BatchOptions& options) {
             cameraConventionNames(), options.cameraConvention.value_or(CameraConvention::Blender)));
     }
     camera["poses"] = rig.poses.empty() ? nlohmann::json(nullptr) : nlohmann::json(rig.posesFile);
+    camera["preset"] =
+        options.preset.empty() ? nlohmann::json(nullptr) : nlohmann::json(options.preset);
     return camera;
 }
 

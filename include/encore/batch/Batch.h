@@ -194,6 +194,9 @@ struct BatchOptions {
     // transforms.json in OpenGL's (NeRF's), the .npy matrices in Blender's (the Objaverse
     // scripts').
     std::optional<CameraConvention> cameraConvention;
+    // The preset (BatchPresets.h) the options started from, recorded in metadata.json; empty:
+    // none.
+    std::string preset;
     // WebDataset shards instead of a folder per model (ShardWriter.h): OUT/shard-000000.tar ...
     // holding each sample's files as `<name>.000.png`, `<name>.transforms.json`, ... `shards`:
     // about that many shards (each holds the models of the batch divided by it); `shardBytes`:

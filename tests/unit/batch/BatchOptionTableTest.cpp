@@ -64,7 +64,7 @@ std::string fingerprint(const BatchOptions& o) {
       << int(o.renderer.lighting.debugChannel) << ' ' << o.views.azimuthsDegrees.size()
       << o.views.elevationsDegrees.size() << o.views.distances.size() << o.views.poses.size() << ' '
       << int(o.views.projection) << o.views.orthoScale << o.views.distanceRelativeToFov << ' '
-      << o.cameraConvention.has_value();
+      << o.cameraConvention.has_value() << o.preset;
     return s.str();
 }
 
@@ -172,10 +172,10 @@ TEST(BatchOptionTableTest, BadValuesNameTheOptionAsTheFrontSpellsIt) {
     EXPECT_EQ(message({{"random-views", "3"}, {"elevation", "10"}}, OptionFront::Python),
               "random_views and elevation exclude each other.");
     EXPECT_EQ(message({{"segmentation-by", "mesh"}}, OptionFront::CommandLine),
-              "--segmentation-by needs --segmentation.");
+              "--segmentation-by requires --segmentation.");
     // A flag given off does not count as given.
     EXPECT_EQ(message({{"depth", "false"}, {"depth-format", "exr"}}, OptionFront::Python),
-              "depth_format needs depth.");
+              "depth_format requires depth.");
     EXPECT_NE(message({{"environment-dir", "/no/such/folder"}}, OptionFront::CommandLine)
                   .find("is not a folder"),
               std::string::npos);
