@@ -6,7 +6,9 @@
 // axis, +Y up, +X right), the convention of NeRF's transforms.json. The world is the model's
 // glTF frame (+Y up), normalised by default into a unit box: the model is scaled so that its
 // largest side is 1 and centred at the origin, as the Objaverse rendering scripts do. Every
-// camera looks at the origin.
+// camera the rig places looks at the origin; cameras given (`poses`) look where they were
+// written to. Written cameras may be expressed in other axes (CameraConvention), and read back
+// from them.
 //
 // The defaults follow those scripts: 12 views on a circle 30 degrees above the horizon, 1.5
 // units from the centre, with a 35 mm lens on a 32 mm wide sensor (a horizontal field of view
