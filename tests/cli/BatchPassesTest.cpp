@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <fstream>
 #include <memory>
 #include <string>
 #include <vector>
@@ -327,6 +328,35 @@ TEST(BatchPassesTest, BadCombinationsAreUsageErrors) {
     for (const auto& [options, message] : cases) {
         const CommandResult result =
             runEncore(batchArguments(input, output, "--views 1 --size 8 --quiet " + options));
+        EXPECT_EQ(result.exitCode, 2) << options << ": " << result.err;
+        EXPECT_NE(result.err.find(message), std::string::npos) << options << ": " << result.err;
+    }
+    EXPECT_TRUE(filesUnder(output, ".png").empty());
+}
+
+// Issue 50's camera options: a bad preset, list or pose file is a usage error (exit 2) that names
+// the option or file and the problem, before anything renders.
+TEST(BatchPassesTest, BadCamerasAreUsageErrors) {
+    const fs::path input = writeQuads(makeTempDir("batch-cameras-bad-input"));
+    const fs::path output = makeTempDir("batch-cameras-bad-output");
+    const fs::path dir = makeTempDir("batch-cameras-bad-poses");
+    std::ofstream(dir / "broken.json") << "{\"frames\": [";
+    std::ofstream(dir / "sheared.json") << "[[[1,1,0,0],[0,1,0,0],[0,0,1,2],[0,0,0,1]]]";
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {"--preset zero124", "--preset takes zero123, zero123plus"},
+        {"--azimuths 0,x", "--azimuths takes numbers separated by commas"},
+        {"--azimuths 0,90 --elevations 1,2,3", "lists differ in length (2 and 3)"},
+        {"--elevations 100", "elevations must lie in [-90, 90] (not 100)"},
+        {"--ortho-scale 2", "--ortho-scale requires --projection"},
+        {"--poses " + (dir / "missing.json").string(), "--poses '"},
+        {"--poses " + (dir / "broken.json").string(), "broken.json': not valid JSON"},
+        {"--poses " + (dir / "sheared.json").string(),
+         "sheared.json': camera 0: the matrix is not a rigid camera pose"},
+        {"--camera-convention directx", "--camera-convention"},
+    };
+    for (const auto& [options, message] : cases) {
+        const CommandResult result =
+            runEncore(batchArguments(input, output, "--size 8 --quiet " + options));
         EXPECT_EQ(result.exitCode, 2) << options << ": " << result.err;
         EXPECT_NE(result.err.find(message), std::string::npos) << options << ": " << result.err;
     }
