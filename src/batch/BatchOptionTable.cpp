@@ -248,7 +248,8 @@ void addOutputOptions(std::vector<Entry>& entries) {
     entries.push_back(named<OutputLayout>(
         "layout", "nerf",
         "nerf: images and transforms.json; objaverse: also a 000.npy camera matrix per view, as "
-        "the Objaverse-XL scripts write them",
+        "the Objaverse-XL scripts write them; gobjaverse: also a 000.json camera per view, as "
+        "G-Objaverse's (origin, x, y, z, x_fov, y_fov)",
         outputLayoutNames(), [](BatchOptions& o, OutputLayout l) { o.layout = l; }));
     entries.push_back(wholeNumber(
         "shards", "N", "",

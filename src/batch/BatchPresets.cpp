@@ -158,11 +158,14 @@ std::vector<BatchPreset> describePresets() {
           {"depth", "true", std::string(kGobjaverseReadme) + " (00000_nd.exr)"},
           {"depth-format", "exr", std::string(kGobjaverseReadme) + " (00000_nd.exr)"},
           {"camera-convention", "opencv",
-           std::string(kReal3dObjaverse) + " (reads the camera files as OpenCV camera-to-world)"}},
-         "G-Objaverse writes a camera JSON per view (x, y, z, origin, x_fov, y_fov) and normals "
-         "with depth in one EXR; Encore writes the same cameras in transforms.json (OpenCV axes) "
-         "and separate normal (8-bit PNG, world space) and depth (EXR) files, and its material "
-         "pass holds occlusion beside roughness and metallic. The field of view is Blender's "
+           std::string(kReal3dObjaverse) + " (reads the camera files as OpenCV camera-to-world)"},
+          {"layout", "gobjaverse",
+           std::string(kGobjaverseReadme) +
+               " (00000/00000.json: camera information; its fields as Real3D reads them)"}},
+         "G-Objaverse puts each view in a folder of its own (00000/00000.png) and normals with "
+         "depth in one EXR; Encore writes the views side by side (000.png, 000.json) and "
+         "separate normal (8-bit PNG, world space) and depth (EXR) files, and its material pass "
+         "holds occlusion beside roughness and metallic. The field of view is Blender's "
          "default, which the public reproductions of the layout use (0.7 rad rounded)."});
     presets.push_back(
         {"trellis",

@@ -59,4 +59,26 @@ std::array<double, 12> worldToCameraRows(const glm::mat4& cameraToWorld,
     return rows;
 }
 
+nlohmann::json cameraFileJson(const ViewCamera& view,
+                              CameraConvention convention,
+                              std::uint32_t width,
+                              std::uint32_t height) {
+    const glm::dmat4 cameraToWorld = cameraToWorldIn(view.cameraToWorld, convention);
+    const auto column = [&](int index) {
+        return nlohmann::json::array(
+            {cameraToWorld[index].x, cameraToWorld[index].y, cameraToWorld[index].z});
+    };
+    nlohmann::json json = {
+        {"origin", column(3)}, {"x", column(0)}, {"y", column(1)}, {"z", column(2)}};
+    if (view.projection == Projection::Orthographic) {
+        json["projection"] = "orthographic";
+        json["ortho_scale"] = double(view.orthoScale);
+    } else {
+        const float aspect = float(width) / float(height);
+        json["x_fov"] = double(view.horizontalFovRadians);
+        json["y_fov"] = double(verticalFov(view.horizontalFovRadians, aspect));
+    }
+    return json;
+}
+
 }  // namespace encore::batch

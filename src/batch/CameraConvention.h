@@ -10,8 +10,10 @@
 //            (x, -z, y); Blender's camera axes are OpenGL's.
 
 #include <array>
+#include <cstdint>
 
 #include <glm/glm.hpp>
+#include <nlohmann/json.hpp>
 
 #include "encore/batch/ViewRig.h"
 
@@ -28,5 +30,15 @@ glm::dmat4 cameraToWorldFrom(const glm::dmat4& cameraToWorld, CameraConvention c
 // matrix the Objaverse-XL rendering script saves (ObjaverseCamera.h).
 std::array<double, 12> worldToCameraRows(const glm::mat4& cameraToWorld,
                                          CameraConvention convention);
+
+// A view's camera file as G-Objaverse writes one per view (--layout gobjaverse): "origin" (the
+// camera's position), "x", "y", "z" (its axes in the world: the columns of camera-to-world) in
+// `convention`, and "x_fov", "y_fov" (radians) for an image of `width` x `height`; an
+// orthographic view has "projection": "orthographic" and "ortho_scale" instead of the fields of
+// view.
+nlohmann::json cameraFileJson(const ViewCamera& view,
+                              CameraConvention convention,
+                              std::uint32_t width,
+                              std::uint32_t height);
 
 }  // namespace encore::batch

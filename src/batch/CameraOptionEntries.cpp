@@ -130,9 +130,10 @@ void addLensOptions(std::vector<Entry>& entries) {
 void addPoseOptions(std::vector<Entry>& entries) {
     entries.push_back(named<CameraConvention>(
         "camera-convention", "",
-        "The axes of every written camera (transforms.json, .npy) and of --poses files without "
-        "their own: opengl (NeRF's), opencv or blender (+Z up world); recorded in "
-        "transforms.json and metadata.json. Default: transforms.json in opengl, .npy in blender",
+        "The axes of every written camera (transforms.json, .npy, camera files) and of --poses "
+        "files without their own: opengl (NeRF's), opencv or blender (+Z up world); recorded in "
+        "transforms.json and metadata.json. Default: transforms.json in opengl, .npy in "
+        "blender, camera files in opencv",
         cameraConventionNames(),
         [](BatchOptions& o, CameraConvention c) { o.cameraConvention = c; }));
     entries.push_back(

@@ -34,11 +34,16 @@ std::vector<ViewImage> extraPasses(const ExtraImages& extras) {
 }
 
 ModelFileSet modelFileSet(const BatchOptions& options) {
-    return {viewCount(options.views), options.images, options.layout == OutputLayout::Objaverse};
+    return {viewCount(options.views), options.images, options.layout == OutputLayout::Objaverse,
+            options.layout == OutputLayout::Gobjaverse};
 }
 
 fs::path cameraMatrixPath(const fs::path& folder, std::size_t index) {
     return folder / (viewStem(index) + ".npy");
+}
+
+fs::path cameraFilePath(const fs::path& folder, std::size_t index) {
+    return folder / (viewStem(index) + ".json");
 }
 
 std::vector<fs::path> modelFiles(const fs::path& folder, const ModelFileSet& set) {
@@ -50,6 +55,9 @@ std::vector<fs::path> modelFiles(const fs::path& folder, const ModelFileSet& set
         }
         if (set.cameraMatrices) {
             files.push_back(cameraMatrixPath(folder, view));
+        }
+        if (set.cameraFiles) {
+            files.push_back(cameraFilePath(folder, view));
         }
     }
     files.push_back(folder / kMetadataFileName);

@@ -27,6 +27,7 @@ struct ModelFileSet {
     std::uint32_t views = 0;
     ExtraImages extras;
     bool cameraMatrices = false;  // 000.npy ... (OutputLayout::Objaverse).
+    bool cameraFiles = false;     // 000.json ... (OutputLayout::Gobjaverse).
 };
 
 ModelFileSet modelFileSet(const BatchOptions& options);
@@ -46,7 +47,10 @@ std::vector<ViewImage> extraPasses(const ExtraImages& extras);
 // View `index`'s camera matrix in `folder`: "000.npy", ...
 std::filesystem::path cameraMatrixPath(const std::filesystem::path& folder, std::size_t index);
 
-// Every file a finished model has: per view its images (and camera matrix), then metadata.json
+// View `index`'s camera file in `folder`: "000.json", ...
+std::filesystem::path cameraFilePath(const std::filesystem::path& folder, std::size_t index);
+
+// Every file a finished model has: per view its images (and camera file), then metadata.json
 // and transforms.json.
 std::vector<std::filesystem::path> modelFiles(const std::filesystem::path& folder,
                                               const ModelFileSet& files);

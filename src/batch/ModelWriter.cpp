@@ -61,6 +61,10 @@ nlohmann::json cameraMetadata(const BatchOptions& options) {
         camera["convention"]["npy"] = std::string(nameOf(
             cameraConventionNames(), options.cameraConvention.value_or(CameraConvention::Blender)));
     }
+    if (options.layout == OutputLayout::Gobjaverse) {
+        camera["convention"]["cameraFiles"] = std::string(nameOf(
+            cameraConventionNames(), options.cameraConvention.value_or(CameraConvention::OpenCv)));
+    }
     camera["poses"] = rig.poses.empty() ? nlohmann::json(nullptr) : nlohmann::json(rig.posesFile);
     camera["preset"] =
         options.preset.empty() ? nlohmann::json(nullptr) : nlohmann::json(options.preset);
@@ -105,6 +109,20 @@ Result<void> ModelWriter::writeCameraMatrices(ModelJob& job) {
                               mOptions.cameraConvention.value_or(CameraConvention::Blender));
         const fs::path path = cameraMatrixPath(job.folder, view);
         ENCORE_TRY(writePartialFile(path, npyFloat64(matrix, 3, 4)));
+        job.written.push_back(path);
+    }
+    return {};
+}
+
+Result<void> ModelWriter::writeCameraFiles(ModelJob& job) {
+    const CameraConvention convention =
+        mOptions.cameraConvention.value_or(CameraConvention::OpenCv);
+    for (std::size_t view = 0; view < job.views.size(); ++view) {
+        const std::string text =
+            cameraFileJson(job.views[view], convention, mOptions.width, mOptions.height).dump(2);
+        const fs::path path = cameraFilePath(job.folder, view);
+        ENCORE_TRY(writePartialFile(
+            path, std::span(reinterpret_cast<const std::uint8_t*>(text.data()), text.size())));
         job.written.push_back(path);
     }
     return {};
@@ -321,6 +339,11 @@ void ModelWriter::writeImage(const std::shared_ptr<ModelJob>& job,
 void ModelWriter::finishImages(ModelJob& job) {
     if (!job.failed && mOptions.layout == OutputLayout::Objaverse) {
         if (auto written = writeCameraMatrices(job); !written) {
+            job.fail(mFailures, mCounters, "write", written.error());
+        }
+    }
+    if (!job.failed && mOptions.layout == OutputLayout::Gobjaverse) {
+        if (auto written = writeCameraFiles(job); !written) {
             job.fail(mFailures, mCounters, "write", written.error());
         }
     }

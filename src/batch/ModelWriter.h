@@ -206,6 +206,8 @@ class ModelWriter {
     // transforms.json.
     void finishImages(ModelJob& job);
     Result<void> writeCameraMatrices(ModelJob& job);
+    // The camera files (OutputLayout::Gobjaverse), the same way.
+    Result<void> writeCameraFiles(ModelJob& job);
     void writeMetadata(ModelJob& job);
     void writeTransforms(ModelJob& job);
 

@@ -22,9 +22,10 @@ constexpr std::array<NamedValue<CameraConvention>, 3> kCameraConventions{{
     {"opencv", CameraConvention::OpenCv},
     {"blender", CameraConvention::Blender},
 }};
-constexpr std::array<NamedValue<OutputLayout>, 2> kOutputLayouts{{
+constexpr std::array<NamedValue<OutputLayout>, 3> kOutputLayouts{{
     {"nerf", OutputLayout::Nerf},
     {"objaverse", OutputLayout::Objaverse},
+    {"gobjaverse", OutputLayout::Gobjaverse},
 }};
 constexpr std::array<NamedValue<PngFiltering>, 3> kPngFilterings{{
     {"auto", PngFiltering::Auto},

@@ -33,7 +33,7 @@ using NameTable = std::span<const NamedValue<Enum>>;
 NameTable<CameraDistribution> cameraDistributionNames();  // orbit, sphere, ..., fibonacci
 NameTable<Projection> projectionNames();                  // perspective, orthographic
 NameTable<CameraConvention> cameraConventionNames();      // opengl, opencv, blender
-NameTable<OutputLayout> outputLayoutNames();              // nerf, objaverse
+NameTable<OutputLayout> outputLayoutNames();              // nerf, objaverse, gobjaverse
 NameTable<PngFiltering> pngFilteringNames();              // auto, gpu, cpu
 NameTable<SegmentationBy> segmentationByNames();          // node, mesh, material
 NameTable<DepthFormat> depthFormatNames();                // png, exr

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -116,6 +117,7 @@ TEST(BatchCamerasTest, AnOrthographicCubeHasParallelEdges) {
     BatchOptions perspective = tinyBatch(dir / "perspective");
     perspective.views.azimuthsDegrees = {30.0f};
     perspective.views.elevationsDegrees = {0.0f};
+    perspective.layout = OutputLayout::Gobjaverse;  // And a camera file per view.
     summary = runBatch(*context, std::span(&cube, 1), perspective);
     ASSERT_TRUE(summary.ok()) << summary.error().message;
     const std::vector<std::uint32_t> heights =
@@ -126,6 +128,21 @@ TEST(BatchCamerasTest, AnOrthographicCubeHasParallelEdges) {
         });
     EXPECT_GT(*std::max_element(heights.begin(), heights.end()), *lowest + 2u);
     (void)highest;
+    const nlohmann::json cameraFile = nlohmann::json::parse(
+        std::ifstream(perspective.output / "cube" / "000.json"), nullptr, false);
+    ASSERT_TRUE(cameraFile.is_object());
+    EXPECT_NEAR(cameraFile["x_fov"].get<double>(), glm::radians(kDefaultHorizontalFovDegrees),
+                1e-6);
+    EXPECT_NEAR(cameraFile["origin"][0].get<double>(), 1.5 * std::sin(glm::radians(30.0)), 1e-5);
+    EXPECT_NEAR(cameraFile["z"][0].get<double>(), -std::sin(glm::radians(30.0)), 1e-5);
+    // The camera files are part of a finished model: a rerun skips it, one fewer renders it.
+    summary = runBatch(*context, std::span(&cube, 1), perspective);
+    ASSERT_TRUE(summary.ok());
+    EXPECT_EQ(summary->skipped, 1u);
+    fs::remove(perspective.output / "cube" / "000.json");
+    summary = runBatch(*context, std::span(&cube, 1), perspective);
+    ASSERT_TRUE(summary.ok());
+    EXPECT_EQ(summary->rendered, 1u);
 
     const nlohmann::json transforms = nlohmann::json::parse(
         std::ifstream(options.output / "cube" / "transforms.json"), nullptr, false);

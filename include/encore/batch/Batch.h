@@ -137,6 +137,10 @@ enum class OutputLayout {
     Nerf,       // Nothing more: transforms.json describes the cameras.
     Objaverse,  // A 000.npy beside each 000.png: the camera as the Objaverse-XL scripts save it
                 // (ObjaverseCamera.h).
+    // A 000.json beside each 000.png: the camera as G-Objaverse's files hold it (origin, the
+    // camera's x, y and z axes in the world, x_fov and y_fov in radians; CameraConvention.h,
+    // cameraFileJson), in OpenCV's axes unless BatchOptions::cameraConvention says otherwise.
+    Gobjaverse,
 };
 
 // Where the views' PNG rows are filtered and the passes' samples made from what the GPU drew
@@ -189,10 +193,10 @@ struct BatchOptions {
     // `renderer`'s lighting.
     LightingVariation lighting;
     OutputLayout layout = OutputLayout::Nerf;
-    // The axes of every written camera (transforms.json's transform_matrix, the .npy matrices),
-    // recorded in transforms.json and metadata.json. Unset: each file's own, as before:
+    // The axes of every written camera (transforms.json's transform_matrix, the .npy matrices,
+    // the camera files), recorded in transforms.json and metadata.json. Unset: each file's own:
     // transforms.json in OpenGL's (NeRF's), the .npy matrices in Blender's (the Objaverse
-    // scripts').
+    // scripts'), the camera files in OpenCV's (G-Objaverse's).
     std::optional<CameraConvention> cameraConvention;
     // The preset (BatchPresets.h) the options started from, recorded in metadata.json; empty:
     // none.

@@ -162,6 +162,7 @@ TEST(BatchPresetsTest, GObjaverse) {
                 o.images.depth);
     EXPECT_EQ(o.images.depthFormat, DepthFormat::Exr);
     EXPECT_EQ(o.cameraConvention, CameraConvention::OpenCv);
+    EXPECT_EQ(o.layout, OutputLayout::Gobjaverse);
 }
 
 TEST(BatchPresetsTest, Trellis) {

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "batch/CameraConvention.h"
 #include "batch/ObjaverseCamera.h"
 #include "encore/batch/ViewRig.h"
@@ -62,6 +64,27 @@ TEST(CameraConventionTest, BlenderRowsAreTheObjaverseMatrix) {
     EXPECT_NEAR(rows[11], glm::length(glm::vec3(view[3])), 1e-6);
     EXPECT_NEAR(rows[3], 0.0, 1e-6);
     EXPECT_NEAR(rows[7], 0.0, 1e-6);
+}
+
+// G-Objaverse's camera file: the camera's position and axes (OpenCV's: +Z towards the model, +Y
+// down) and both fields of view.
+TEST(CameraConventionTest, CameraFilesHoldTheAxesAndFieldsOfView) {
+    ViewCamera view;
+    view.cameraToWorld = kFront;
+    view.horizontalFovRadians = 0.6911f;
+    const nlohmann::json file = cameraFileJson(view, CameraConvention::OpenCv, 512, 256);
+    EXPECT_EQ(file["origin"], nlohmann::json::array({0.0, 0.0, 2.0}));
+    EXPECT_EQ(file["x"], nlohmann::json::array({1.0, 0.0, 0.0}));
+    EXPECT_EQ(file["y"], nlohmann::json::array({0.0, -1.0, 0.0}));
+    EXPECT_EQ(file["z"], nlohmann::json::array({0.0, 0.0, -1.0}));
+    EXPECT_NEAR(file["x_fov"].get<double>(), 0.6911, 1e-6);
+    EXPECT_NEAR(file["y_fov"].get<double>(), 2.0 * std::atan(std::tan(0.6911 / 2.0) / 2.0), 1e-6);
+    view.projection = Projection::Orthographic;
+    view.orthoScale = 1.35f;
+    const nlohmann::json orthographic = cameraFileJson(view, CameraConvention::OpenGl, 64, 64);
+    EXPECT_EQ(orthographic["projection"], "orthographic");
+    EXPECT_FALSE(orthographic.contains("x_fov"));
+    EXPECT_EQ(orthographic["z"], nlohmann::json::array({0.0, 0.0, 1.0}));
 }
 
 }  // namespace
