@@ -23,31 +23,31 @@ bool ordered(const ValueRange& range) {
     return range.min <= range.max && std::isfinite(range.min) && std::isfinite(range.max);
 }
 
-// The lists of --azimuths, --elevations and --distances: values in range, and the lists of
-// several values of one length.
+// The lists of --azimuths, --elevations and --distances: values in range (distances positive),
+// and the lists of several values of one length.
 Result<void> checkLists(const ViewRigOptions& rig) {
     const struct {
         const char* name;
         const std::vector<float>& values;
-        float min;
-        float max;
-    } lists[] = {{"azimuths", rig.azimuthsDegrees, -360.0f, 360.0f},
-                 {"elevations", rig.elevationsDegrees, -90.0f, 90.0f},
-                 {"distances", rig.distances, 0.0f, 1e30f}};
+        float limit;  // |value| <= limit; 0: positive.
+    } lists[] = {{"azimuths", rig.azimuthsDegrees, 360.0f},
+                 {"elevations", rig.elevationsDegrees, 90.0f},
+                 {"distances", rig.distances, 0.0f}};
     std::size_t length = 1;
     const char* lengthFrom = nullptr;
     for (const auto& list : lists) {
         for (const float value : list.values) {
-            const bool inRange = list.min == 0.0f ? value > 0.0f : value >= list.min;
-            if (!(inRange && value <= list.max)) {
+            const bool valid = list.limit > 0.0f ? std::abs(value) <= list.limit
+                                                 : value > 0.0f && std::isfinite(value);
+            if (!valid) {
                 std::ostringstream text;
-                text << "The camera " << list.name << " must lie in "
-                     << (list.min == 0.0f ? "(0, " : "[") << list.min << ", " << list.max
-                     << "] (not " << value << ").";
-                if (list.min == 0.0f) {
-                    text.str("");
-                    text << "The camera distances must be positive (not " << value << ").";
+                text << "The camera " << list.name << " must ";
+                if (list.limit > 0.0f) {
+                    text << "lie in [" << -list.limit << ", " << list.limit << "]";
+                } else {
+                    text << "be positive";
                 }
+                text << " (not " << value << ").";
                 return makeError(ErrorCode::InvalidArgument, text.str());
             }
         }
