@@ -14,6 +14,7 @@ constexpr const char* kZero123Script =
 constexpr const char* kObjaverseXlScript =
     "https://github.com/allenai/objaverse-xl/blob/main/scripts/rendering/blender_script.py";
 constexpr const char* kZero123PlusReadme = "https://github.com/SUDO-AI-3D/zero123plus";
+constexpr const char* kInstantMeshIssue5 = "https://github.com/TencentARC/InstantMesh/issues/5";
 constexpr const char* kInstantMeshCameras =
     "https://github.com/TencentARC/InstantMesh/blob/main/src/utils/camera_util.py";
 constexpr const char* kInstantMeshIssue13 = "https://github.com/TencentARC/InstantMesh/issues/13";
@@ -93,16 +94,15 @@ std::vector<BatchPreset> describePresets() {
            std::string(kZero123PlusReadme) +
                " (README, camera poses: azimuths relative to the input view)"},
           {"elevations", "20,-10,20,-10,20,-10",
-           std::string(kZero123PlusReadme) + " (README, camera poses: v1.2; v1.1 used 30,-20)"},
+           std::string(kInstantMeshIssue5) +
+               " (quoting Zero123++'s README: v1.2 elevations 20, -10; v1.1's 30, -20)"},
           {"fov", "30",
-           std::string(kZero123PlusReadme) +
-               " (README: v1.2 field of view 30 degrees; issue 68 gives v1.1's as Zero123's)"},
+           std::string(kInstantMeshIssue5) +
+               " (quoting Zero123++'s README: v1.2 field of view 30 degrees)"},
           {"distance", "2",
            std::string(kInstantMeshCameras) +
                " (get_zero123plus_input_cameras: radius 4.0 for a model in [-1, 1], 2.0 in the "
-               "unit box)"},
-          {"size", "320",
-           std::string(kZero123PlusReadme) + " (README: six 320 x 320 views tiled in one image)"}},
+               "unit box)"}},
          "Azimuth 0 is the input view: the model's front (+Z) here. Zero123++ publishes no "
          "camera distance; InstantMesh's reconstruction of its views uses the one above."});
     presets.push_back(
