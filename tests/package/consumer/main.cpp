@@ -13,8 +13,6 @@
 #include <fstream>
 #include <string>
 
-#include "bench/Benchmark.h"
-#include "bench/BenchmarkReportReader.h"
 #include "encore/batch/Batch.h"
 #include "encore/core/Result.h"
 #include "encore/gpu/Context.h"
