@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "BatchOutput.h"
+#include "GeneratedModels.h"
 #include "GltfBuilder.h"
 #include "GpuTestSupport.h"
 #include "RenderTestSupport.h"
@@ -156,32 +157,12 @@ TEST(BatchCamerasTest, AnOrthographicCubeHasParallelEdges) {
     EXPECT_EQ(metadata["camera"]["orthoScale"], 2.0);
 }
 
-// `count` generated scenes m1, m2, ... under `dir`.
-std::vector<BatchInput> generatedModels(const fs::path& dir, std::uint32_t count) {
-    std::vector<BatchInput> inputs;
-    fs::create_directories(dir);
-    for (std::uint32_t seed = 1; seed <= count; ++seed) {
-        scene::GeneratorOptions generator;
-        generator.objectCount = 3;
-        generator.meshCount = 2;
-        generator.materialCount = 2;
-        generator.seed = seed;
-        auto glb = scene::generateSceneGlb(generator);
-        EXPECT_TRUE(glb.ok());
-        const fs::path path = dir / ("m" + std::to_string(seed) + ".glb");
-        std::ofstream(path, std::ios::binary)
-            .write(reinterpret_cast<const char*>(glb->data()), std::streamsize(glb->size()));
-        inputs.push_back({path, "m" + std::to_string(seed)});
-    }
-    return inputs;
-}
-
 // Render, read the transforms.json written back as --poses, render again: the same files (the
 // poses' metadata says where they came from), in each convention and projection.
 TEST(BatchCamerasTest, PosesRoundTripToTheSameBytes) {
     ENCORE_REQUIRE_VULKAN(context);
     const fs::path dir = test::makeTempDir("batch-cameras-poses");
-    const std::vector<BatchInput> inputs = generatedModels(dir / "in", 1);
+    const std::vector<BatchInput> inputs = test::writeGeneratedModels(dir / "in", 1);
     struct Case {
         std::optional<CameraConvention> convention;
         Projection projection;

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "BatchOutput.h"
+#include "GeneratedModels.h"
 #include "GltfBuilder.h"
 #include "GpuTestSupport.h"
 #include "HdrFiles.h"
@@ -43,26 +44,6 @@ std::string readBytes(const fs::path& path) {
 
 nlohmann::json readJson(const fs::path& path) {
     return nlohmann::json::parse(readBytes(path), nullptr, false);
-}
-
-// `count` generated scenes m1, m2, ... under `dir`.
-std::vector<BatchInput> generatedModels(const fs::path& dir, std::uint32_t count) {
-    std::vector<BatchInput> inputs;
-    for (std::uint32_t seed = 1; seed <= count; ++seed) {
-        scene::GeneratorOptions generator;
-        generator.objectCount = 3;
-        generator.meshCount = 2;
-        generator.materialCount = 2;
-        generator.seed = seed;
-        auto glb = scene::generateSceneGlb(generator);
-        EXPECT_TRUE(glb.ok());
-        const fs::path path = dir / ("m" + std::to_string(seed) + ".glb");
-        fs::create_directories(dir);
-        std::ofstream(path, std::ios::binary)
-            .write(reinterpret_cast<const char*>(glb->data()), std::streamsize(glb->size()));
-        inputs.push_back({path, "m" + std::to_string(seed)});
-    }
-    return inputs;
 }
 
 // Red, green and blue skies over grey ground.
@@ -104,7 +85,7 @@ std::map<std::string, std::string> imagesOf(const fs::path& folder) {
 TEST(BatchVariationTest, EachModelIsLitByItsDrawnEnvironmentAsAFixedOneWouldLightIt) {
     ENCORE_REQUIRE_VULKAN(context);
     const fs::path dir = test::makeTempDir("batch-variation-environments");
-    const std::vector<BatchInput> inputs = generatedModels(dir / "in", 6);
+    const std::vector<BatchInput> inputs = test::writeGeneratedModels(dir / "in", 6);
     const fs::path environments = environmentFolder(dir / "skies");
 
     std::map<std::string, std::string> written[2];
@@ -171,7 +152,7 @@ TEST(BatchVariationTest, EachModelIsLitByItsDrawnEnvironmentAsAFixedOneWouldLigh
 TEST(BatchVariationTest, ModelsAreGroupedByEnvironmentSoEachFileIsBuiltOnce) {
     ENCORE_REQUIRE_VULKAN(context);
     const fs::path dir = test::makeTempDir("batch-variation-grouped");
-    const std::vector<BatchInput> inputs = generatedModels(dir / "in", 16);
+    const std::vector<BatchInput> inputs = test::writeGeneratedModels(dir / "in", 16);
     const fs::path skies = dir / "skies";
     fs::create_directories(skies);
     const std::size_t files = kEnvironmentCacheSize + 4;
@@ -211,7 +192,7 @@ TEST(BatchVariationTest, ModelsAreGroupedByEnvironmentSoEachFileIsBuiltOnce) {
 TEST(BatchVariationTest, TheSeedAndTheNamesDecideEveryDrawWhateverTheOrder) {
     ENCORE_REQUIRE_VULKAN(context);
     const fs::path dir = test::makeTempDir("batch-variation-seed");
-    const std::vector<BatchInput> inputs = generatedModels(dir / "in", 4);
+    const std::vector<BatchInput> inputs = test::writeGeneratedModels(dir / "in", 4);
     const fs::path environments = environmentFolder(dir / "skies");
     const auto varied = [&](const fs::path& output, std::uint64_t seed) {
         BatchOptions options = smallBatch(output);
@@ -348,7 +329,7 @@ std::array<double, 12> readCameraMatrix(const fs::path& path) {
 TEST(BatchVariationTest, ObjaverseLayoutWritesACameraMatrixPerView) {
     ENCORE_REQUIRE_VULKAN(context);
     const fs::path dir = test::makeTempDir("batch-variation-objaverse");
-    std::vector<BatchInput> inputs = generatedModels(dir / "in", 1);
+    std::vector<BatchInput> inputs = test::writeGeneratedModels(dir / "in", 1);
     const auto models = test::sharedModelsDir();
     const fs::path box =
         models ? *models / "BoxTextured" / "glTF-Binary" / "BoxTextured.glb" : fs::path();
@@ -405,7 +386,7 @@ TEST(BatchVariationTest, ObjaverseLayoutWritesACameraMatrixPerView) {
 TEST(BatchVariationTest, ABadEnvironmentFolderIsRefused) {
     ENCORE_REQUIRE_VULKAN(context);
     const fs::path dir = test::makeTempDir("batch-variation-bad-folder");
-    const std::vector<BatchInput> inputs = generatedModels(dir / "in", 1);
+    const std::vector<BatchInput> inputs = test::writeGeneratedModels(dir / "in", 1);
     BatchOptions options = smallBatch(dir / "out");
     options.lighting.environmentDirectory = dir / "in";  // Models, no .hdr.
     auto summary = runBatch(*context, inputs, options);
