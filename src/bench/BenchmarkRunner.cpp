@@ -220,9 +220,8 @@ Result<BenchResult> measure(gpu::Context& context,
     if (!drawn) {
         return drawn.error().withContext("Benchmarking " + result.strategy);
     }
-    const auto gpuCounts = internals(renderer).strategy()
-                               ? internals(renderer).strategy()->gpuTriangleCounts()
-                               : std::nullopt;
+    const render::Strategy* strategy = internals(renderer).strategy();
+    const auto gpuCounts = strategy ? strategy->gpuTriangleCounts() : std::nullopt;
     const bool computeRaster = gpuCounts && gpuCounts->computeOffset;
     for (const render::DrawnTriangles& frame : *drawn) {
         result.trianglesDrawn.push_back(frame.total());

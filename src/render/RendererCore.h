@@ -86,7 +86,6 @@ class RendererCore {
     void releaseScene();
     // Whether the prepared strategy draws from render bundles (a bundled kind, or `bundle`).
     bool bundled() const { return mBundle || isBundledKind(mKind); }
-    StrategyKind kind() const { return mKind; }
     RendererStats stats() const;
     const scene::SceneData* scene() const { return mScene; }
 

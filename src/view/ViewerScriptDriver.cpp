@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <optional>
 #include <thread>
 
 #include "view/ViewerState.h"
@@ -19,7 +20,9 @@ std::string Viewer::State::statsLine() const {
     std::string label = strategyLabel();
     std::replace(label.begin(), label.end(), ' ', '_');
     std::string line = "stats strategy=" + label;
-    const std::uint64_t bundlesRecorded = renderer ? renderer->stats().bundlesRecorded
+    const std::optional<render::RendererStats> stats =
+        renderer ? std::optional(renderer->stats()) : std::nullopt;
+    const std::uint64_t bundlesRecorded = stats ? stats->bundlesRecorded
                                           : animometer && options.animometer->bundle ? 1
                                                                                      : 0;
     line += format(
@@ -32,9 +35,9 @@ std::string Viewer::State::statsLine() const {
     if (renderer) {
         // GPU scenes built and bytes uploaded since the viewer opened: a switch of strategy
         // changes neither.
-        line += format(" sceneUploads=%llu uploadedBytes=%llu",
-                       (unsigned long long)renderer->stats().sceneUploads,
-                       (unsigned long long)renderer->stats().uploadedBytes);
+        line +=
+            format(" sceneUploads=%llu uploadedBytes=%llu", (unsigned long long)stats->sceneUploads,
+                   (unsigned long long)stats->uploadedBytes);
         // The material variant drawn (KHR_materials_variants): its index, or "default".
         line += " variant=" +
                 (variantIndex < 0 ? std::string("default") : std::to_string(variantIndex));
