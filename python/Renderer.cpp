@@ -12,7 +12,7 @@
 #include "ModuleErrors.h"
 #include "batch/TransformsJson.h"
 #include "batch/ViewStrips.h"
-#include "encore/scene/MaterialVariants.h"
+#include "encore/scene/SceneData.h"
 #include "render/VisibilityFeatures.h"
 
 namespace encore::python {

@@ -23,7 +23,7 @@ std::string duration(double seconds) {
 }
 
 // "gpu (s, timestamps): mipmaps 1.23 (1.2 ms per model, 33 passes per model), ..."
-void printGpuStages(const std::vector<gpu::StageTime>& stages, std::size_t models) {
+void printGpuStages(const std::vector<batch::GpuStageTime>& stages, std::size_t models) {
     if (stages.empty()) {
         std::printf("gpu: no timestamps (the device has no timestamp queries)\n");
         return;
@@ -34,7 +34,7 @@ void printGpuStages(const std::vector<gpu::StageTime>& stages, std::size_t model
     line += "):";
     double total = 0.0;
     for (std::size_t stage = 0; stage < stages.size(); ++stage) {
-        const gpu::StageTime& time = stages[stage];
+        const batch::GpuStageTime& time = stages[stage];
         char part[160];
         std::snprintf(part, sizeof(part), "%s %s %.2f (%.2f ms, %.1f)", stage == 0 ? "" : ",",
                       std::string(render::kGpuStageNames[stage]).c_str(),

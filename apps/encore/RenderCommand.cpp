@@ -17,7 +17,6 @@
 #include "encore/gpu/Context.h"
 #include "encore/render/Renderer.h"
 #include "encore/scene/AnimationPlayer.h"
-#include "encore/scene/MaterialVariants.h"
 #include "encore/scene/SceneData.h"
 
 namespace encore::app {

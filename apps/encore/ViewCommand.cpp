@@ -8,7 +8,7 @@
 #include "CullingFlags.h"
 #include "ShadingOptions.h"
 #include "StrategyOptions.h"
-#include "encore/scene/MaterialVariants.h"
+#include "encore/scene/SceneData.h"
 #include "render/Animometer.h"
 #include "scene/SceneGenerator.h"
 #include "view/ViewScript.h"

@@ -15,6 +15,7 @@
 #include "batch/BatchRenderer.h"
 #include "batch/BatchStrategy.h"
 #include "batch/DeviceLane.h"
+#include "batch/FailureLog.h"
 #include "batch/ModelLoader.h"
 #include "batch/ModelOutput.h"
 #include "batch/ModelPlan.h"
@@ -24,7 +25,6 @@
 #include "core/Elapsed.h"
 #include "core/ProcessMemory.h"
 #include "core/ThreadPool.h"
-#include "encore/batch/FailureLog.h"
 
 namespace encore::batch {
 namespace {

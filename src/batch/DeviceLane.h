@@ -16,6 +16,7 @@
 
 #include "batch/BatchRenderer.h"
 #include "batch/BatchStrategy.h"
+#include "batch/FailureLog.h"
 #include "batch/ModelLoader.h"
 #include "batch/ModelPlan.h"
 #include "batch/ModelSamples.h"
@@ -25,9 +26,8 @@
 #include "batch/ViewStrips.h"
 #include "core/ThreadPool.h"
 #include "encore/batch/Batch.h"
-#include "encore/batch/FailureLog.h"
-#include "encore/gpu/StageTimestamps.h"
 #include "gpu/CreationCounts.h"
+#include "gpu/StageTimestamps.h"
 #include "gpu/StagingBuffers.h"
 #include "gpu/TextureReadbackRing.h"
 #include "render/StagedGeometry.h"
@@ -247,7 +247,7 @@ class DeviceLane {
     // With BatchOptions::gpuTimestamps: on the current device, flushed after every model.
     std::optional<gpu::StageTimestamps> mTimestamps;
     // What the timestamps of the devices finished with measured (finishTimestamps).
-    std::vector<gpu::StageTime> mGpuStageTotals;
+    std::vector<GpuStageTime> mGpuStageTotals;
     std::deque<ChunkInFlight> mChunks;  // In the ring's order.
     // Models in flight when the device was lost, to draw again (once) on the new one.
     std::deque<LoadedModel> mRetries;

@@ -1,4 +1,4 @@
-#include "encore/batch/FailureLog.h"
+#include "batch/FailureLog.h"
 
 #include <cerrno>
 #include <cstring>

@@ -1,7 +1,7 @@
 #include "batch/ModelSamples.h"
 
 #include "batch/ModelOutput.h"
-#include "encore/scene/MaterialVariants.h"
+#include "encore/scene/SceneData.h"
 
 namespace encore::batch {
 

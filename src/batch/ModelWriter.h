@@ -19,13 +19,13 @@
 
 #include <glm/glm.hpp>
 
+#include "batch/FailureLog.h"
 #include "batch/ModelMetadata.h"
 #include "batch/PassImages.h"
 #include "batch/PngRowsPass.h"
 #include "core/ThreadPool.h"
 #include "encore/batch/Batch.h"
 #include "encore/batch/BatchInputs.h"
-#include "encore/batch/FailureLog.h"
 #include "encore/batch/ViewImages.h"
 #include "encore/core/Result.h"
 #include "gpu/TextureReadbackRing.h"

@@ -14,7 +14,7 @@
 #include "batch/BatchOptionTable.h"
 #include "batch/OptionNames.h"
 #include "encore/batch/Batch.h"
-#include "encore/batch/ValueRange.h"
+#include "encore/batch/ViewRig.h"
 #include "encore/core/Result.h"
 
 namespace encore::batch::optiontable {

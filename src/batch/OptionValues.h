@@ -12,7 +12,7 @@
 
 #include <glm/vec3.hpp>
 
-#include "encore/batch/ValueRange.h"
+#include "encore/batch/ViewRig.h"
 #include "encore/core/Result.h"
 #include "encore/render/RendererOptions.h"
 

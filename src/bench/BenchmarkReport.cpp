@@ -157,8 +157,10 @@ nlohmann::json toJson(const BenchReport& report) {
     return json;
 }
 
-std::string toMarkdown(const BenchReport& report) {
-    std::ostringstream out;
+namespace {
+
+// The run's settings: adapter, frames, target, scenes and culling options.
+void writeMarkdownHeader(std::ostringstream& out, const BenchReport& report) {
     out << "Date: " << report.date << "  \n"
         << "Adapter: " << report.adapter.summary() << "  \n"
         << "Dawn: " << report.dawnVersion << "  \n"
@@ -199,6 +201,87 @@ std::string toMarkdown(const BenchReport& report) {
            "frame, median (min–max): submitted = what the recorded draws could draw, drawn = "
            "what GPU culling let through (- for strategies without it: they draw what they "
            "submit).\n";
+}
+
+// One scene's table: a row per strategy.
+void writeSceneTable(std::ostringstream& out,
+                     const std::string& label,
+                     const std::vector<const BenchResult*>& results) {
+    double naive = 0.0;
+    for (const BenchResult* result : results) {
+        if (result->strategy == "naive") {
+            naive = result->cpu.median;
+        }
+    }
+    const bool animated = results.front()->animationCpu.has_value();
+    const bool triangles = !results.front()->trianglesSubmitted.empty();
+    bool computeRaster = false;
+    for (const BenchResult* result : results) {
+        computeRaster = computeRaster || !result->trianglesCompute.empty();
+    }
+    out << "\n### " << label << " (" << results.front()->objects << " objects)\n\n"
+        << "| strategy | CPU frame | encode | submit | GPU | vs naive | API calls | draws | "
+           "bundle draws |"
+        << (triangles ? " triangles submitted | triangles drawn |" : "")
+        << (triangles && computeRaster ? " of them in compute |" : "")
+        << (animated ? " animation (share of CPU frame) | bytes written |" : "")
+        << "\n|---|---:|---:|---:|---:|---:|---:|---:|---:|" << (triangles ? "---:|---:|" : "")
+        << (triangles && computeRaster ? "---:|" : "") << (animated ? "---:|---:|" : "") << "\n";
+    for (const BenchResult* result : results) {
+        out << "| " << result->strategy << " | " << milliseconds(result->cpu) << " | "
+            << milliseconds(result->encode) << " | " << milliseconds(result->submit) << " | "
+            << (result->gpu ? milliseconds(*result->gpu) : std::string("n/a")) << " | "
+            << (naive > 0.0 && result->cpu.median > 0.0
+                    ? format("%.1fx", naive / result->cpu.median)
+                    : std::string("-"))
+            << " | " << result->frame.apiCalls() << " | " << result->frame.drawCalls() << " | "
+            << result->bundleContents.drawCalls() << " |";
+        if (triangles) {
+            out << " " << countRange(result->trianglesSubmitted) << " | "
+                << countRange(result->trianglesDrawn) << " |";
+            if (computeRaster) {
+                out << " " << countRange(result->trianglesCompute) << " |";
+            }
+        }
+        if (animated && result->animationCpu) {
+            const double share = result->cpu.median > 0.0
+                                     ? 100.0 * result->animationCpu->median / result->cpu.median
+                                     : 0.0;
+            out << " " << milliseconds(*result->animationCpu) << " (" << format("%.0f%%", share)
+                << ") | " << result->animationWork.bytesWritten << " |";
+        }
+        out << "\n";
+    }
+}
+
+// Where the GPU time of strategies with more than one kind of pass goes.
+void writeGpuPasses(std::ostringstream& out, const std::vector<const BenchResult*>& results) {
+    bool passes = false;
+    for (const BenchResult* result : results) {
+        passes = passes || result->gpuPasses.size() > 1;
+    }
+    if (passes) {
+        out << "\nGPU time per pass, median (p95):\n\n";
+        for (const BenchResult* result : results) {
+            if (result->gpuPasses.size() <= 1) {
+                continue;
+            }
+            out << "- " << result->strategy << ":";
+            const char* separator = " ";
+            for (const auto& [passLabel, times] : result->gpuPasses) {
+                out << separator << passLabel << " " << milliseconds(times);
+                separator = ", ";
+            }
+            out << "\n";
+        }
+    }
+}
+
+}  // namespace
+
+std::string toMarkdown(const BenchReport& report) {
+    std::ostringstream out;
+    writeMarkdownHeader(out, report);
 
     // Results grouped by scene label, in report order.
     std::vector<std::string> labels;
@@ -210,73 +293,8 @@ std::string toMarkdown(const BenchReport& report) {
         byLabel[result.label].push_back(&result);
     }
     for (const auto& label : labels) {
-        const auto& results = byLabel[label];
-        double naive = 0.0;
-        for (const BenchResult* result : results) {
-            if (result->strategy == "naive") {
-                naive = result->cpu.median;
-            }
-        }
-        const bool animated = results.front()->animationCpu.has_value();
-        const bool triangles = !results.front()->trianglesSubmitted.empty();
-        bool computeRaster = false;
-        for (const BenchResult* result : results) {
-            computeRaster = computeRaster || !result->trianglesCompute.empty();
-        }
-        out << "\n### " << label << " (" << results.front()->objects << " objects)\n\n"
-            << "| strategy | CPU frame | encode | submit | GPU | vs naive | API calls | draws | "
-               "bundle draws |"
-            << (triangles ? " triangles submitted | triangles drawn |" : "")
-            << (triangles && computeRaster ? " of them in compute |" : "")
-            << (animated ? " animation (share of CPU frame) | bytes written |" : "")
-            << "\n|---|---:|---:|---:|---:|---:|---:|---:|---:|" << (triangles ? "---:|---:|" : "")
-            << (triangles && computeRaster ? "---:|" : "") << (animated ? "---:|---:|" : "")
-            << "\n";
-        for (const BenchResult* result : results) {
-            out << "| " << result->strategy << " | " << milliseconds(result->cpu) << " | "
-                << milliseconds(result->encode) << " | " << milliseconds(result->submit) << " | "
-                << (result->gpu ? milliseconds(*result->gpu) : std::string("n/a")) << " | "
-                << (naive > 0.0 && result->cpu.median > 0.0
-                        ? format("%.1fx", naive / result->cpu.median)
-                        : std::string("-"))
-                << " | " << result->frame.apiCalls() << " | " << result->frame.drawCalls() << " | "
-                << result->bundleContents.drawCalls() << " |";
-            if (triangles) {
-                out << " " << countRange(result->trianglesSubmitted) << " | "
-                    << countRange(result->trianglesDrawn) << " |";
-                if (computeRaster) {
-                    out << " " << countRange(result->trianglesCompute) << " |";
-                }
-            }
-            if (animated && result->animationCpu) {
-                const double share = result->cpu.median > 0.0
-                                         ? 100.0 * result->animationCpu->median / result->cpu.median
-                                         : 0.0;
-                out << " " << milliseconds(*result->animationCpu) << " (" << format("%.0f%%", share)
-                    << ") | " << result->animationWork.bytesWritten << " |";
-            }
-            out << "\n";
-        }
-        // Where the GPU time of strategies with more than one kind of pass goes.
-        bool passes = false;
-        for (const BenchResult* result : results) {
-            passes = passes || result->gpuPasses.size() > 1;
-        }
-        if (passes) {
-            out << "\nGPU time per pass, median (p95):\n\n";
-            for (const BenchResult* result : results) {
-                if (result->gpuPasses.size() <= 1) {
-                    continue;
-                }
-                out << "- " << result->strategy << ":";
-                const char* separator = " ";
-                for (const auto& [passLabel, times] : result->gpuPasses) {
-                    out << separator << passLabel << " " << milliseconds(times);
-                    separator = ", ";
-                }
-                out << "\n";
-            }
-        }
+        writeSceneTable(out, label, byLabel[label]);
+        writeGpuPasses(out, byLabel[label]);
     }
     if (!report.skipped.empty()) {
         out << "\nNot measured on this adapter:\n\n";

@@ -1,4 +1,4 @@
-#include "encore/gpu/StageTimestamps.h"
+#include "gpu/StageTimestamps.h"
 
 namespace encore::gpu {
 

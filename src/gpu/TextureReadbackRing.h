@@ -23,8 +23,8 @@
 
 #include "encore/core/Result.h"
 #include "encore/gpu/Context.h"
-#include "encore/gpu/StageTimestamps.h"
 #include "encore/image/ImageCodec.h"
+#include "gpu/StageTimestamps.h"
 
 namespace encore::gpu {
 

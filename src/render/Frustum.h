@@ -4,7 +4,7 @@
 
 #include <glm/glm.hpp>
 
-#include "encore/scene/Bounds.h"
+#include "encore/scene/SceneData.h"
 
 namespace encore::render {
 

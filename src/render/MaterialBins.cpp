@@ -4,7 +4,7 @@
 #include <cassert>
 #include <map>
 
-#include "encore/scene/Ids.h"
+#include "encore/scene/SceneData.h"
 #include "render/MaterialResources.h"
 
 namespace encore::render {

@@ -13,7 +13,7 @@
 #include <unordered_map>
 
 #include "encore/core/Result.h"
-#include "encore/gpu/StageTimestamps.h"
+#include "gpu/StageTimestamps.h"
 #include "render/MipChain.h"
 #include "shaders/ShaderLibrary.h"
 

@@ -21,7 +21,6 @@
 
 #include "encore/core/Result.h"
 #include "encore/gpu/Context.h"
-#include "encore/gpu/StageTimestamps.h"
 #include "encore/image/HdrImage.h"
 #include "encore/image/ImageCodec.h"
 #include "encore/render/Camera.h"
@@ -30,6 +29,7 @@
 #include "encore/render/RendererOptions.h"
 #include "encore/render/RendererStats.h"
 #include "encore/scene/AnimationPlayer.h"
+#include "gpu/StageTimestamps.h"
 #include "render/AnimationBuffers.h"
 #include "render/GpuAnimation.h"
 #include "render/GpuStage.h"

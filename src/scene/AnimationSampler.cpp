@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "encore/scene/Animation.h"
+#include "encore/scene/SceneData.h"
 
 namespace encore::scene {
 namespace {

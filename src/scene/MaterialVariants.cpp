@@ -2,7 +2,7 @@
 // variant by name or index. The names are read the same way by the loader and by
 // readVariantNames, which looks at a file's JSON alone.
 
-#include "encore/scene/MaterialVariants.h"
+#include "encore/scene/SceneData.h"
 
 #include <algorithm>
 #include <charconv>

@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "encore/scene/AnimationPlayer.h"
-#include "encore/scene/MaterialVariants.h"
+#include "encore/scene/SceneData.h"
 #include "render/RendererCore.h"
 #include "view/ViewerState.h"
 

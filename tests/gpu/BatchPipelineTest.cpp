@@ -308,7 +308,7 @@ TEST(BatchPipelineTest, GpuTimestampsTimeEachStageAndChangeNoFile) {
         }
         ASSERT_EQ(summary->stages.gpuStages.size(), render::kGpuStageCount);
         for (std::uint32_t stage = 0; stage < render::kGpuStageCount; ++stage) {
-            const gpu::StageTime& time = summary->stages.gpuStages[stage];
+            const batch::GpuStageTime& time = summary->stages.gpuStages[stage];
             EXPECT_GT(time.timed, 0u) << render::kGpuStageNames[stage];
             EXPECT_EQ(time.untimed, 0u) << render::kGpuStageNames[stage];
             // Ticks converted to milliseconds: no stage of GPU work outlasts the whole batch.

@@ -12,7 +12,7 @@
 #include "TestPaths.h"
 #include "VariantFixture.h"
 #include "encore/render/Renderer.h"
-#include "encore/scene/MaterialVariants.h"
+#include "encore/scene/SceneData.h"
 #include "render/GpuScene.h"
 #include "render/RendererCore.h"
 

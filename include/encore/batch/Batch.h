@@ -15,7 +15,7 @@
 //
 // Nothing is lost and nothing half-written (ModelOutput.h): finished models are skipped, so a
 // run stopped at any moment resumes where it stopped. Bad input never stops the batch: a model
-// that fails is listed in OUT/failures.jsonl (FailureLog.h) and the batch goes on.
+// that fails is listed in OUT/failures.jsonl (Failure below) and the batch goes on.
 //
 // Each model also gets OUT/<name>/metadata.json (what the file holds, its SHA-256, the views
 // that came out blank, timings), and with OutputLayout::Objaverse a camera matrix per view as
@@ -41,12 +41,10 @@
 
 #include "encore/batch/BatchInputs.h"
 #include "encore/batch/BatchLighting.h"
-#include "encore/batch/FailureLog.h"
 #include "encore/batch/ViewImages.h"
 #include "encore/batch/ViewRig.h"
 #include "encore/core/Result.h"
 #include "encore/gpu/Context.h"
-#include "encore/gpu/StageTimestamps.h"
 #include "encore/image/ImageCodec.h"
 #include "encore/render/Renderer.h"
 
@@ -59,6 +57,21 @@ class BatchRenderer;
 // Where the time went, in seconds. Load and encode run on the pool: their times add up the
 // threads' work (they may exceed the wall time). The others are the device thread's and add up
 // to at most the wall time; the GPU works beside them, so its own time is not among them.
+// A model that failed, as failures.jsonl lists it: the file, the stage (load, render, write ...)
+// and the error.
+struct Failure {
+    std::filesystem::path file;
+    std::string stage;
+    std::string error;
+};
+
+// The GPU's time in one stage, summed over the batch's timed passes or commands.
+struct GpuStageTime {
+    double milliseconds = 0.0;
+    std::uint64_t timed = 0;    // Passes (or command ranges) counted.
+    std::uint64_t untimed = 0;  // Left untimed because the query set was full before a flush.
+};
+
 struct StageTimes {
     double load = 0.0;  // Parsing the file and decoding its images.
     // Renderer::prepare (buffers, textures, pipelines, bundles) and, before it, creating the
@@ -80,7 +93,7 @@ struct StageTimes {
     render::PrepareTimes uploadParts;
     // The GPU's own time by render::GpuStage, from timestamps (BatchOptions::gpuTimestamps);
     // empty when not asked for or the device has no timestamp queries.
-    std::vector<gpu::StageTime> gpuStages;
+    std::vector<GpuStageTime> gpuStages;
 };
 
 struct BatchProgress {

@@ -13,7 +13,7 @@
 #include <string_view>
 #include <vector>
 
-#include "encore/batch/ValueRange.h"
+#include "encore/batch/ViewRig.h"
 #include "encore/core/Result.h"
 #include "encore/render/RendererOptions.h"
 

@@ -29,7 +29,6 @@
 #include "encore/render/RendererStats.h"
 #include "encore/render/StrategyKind.h"
 #include "encore/scene/AnimationPlayer.h"
-#include "encore/scene/MaterialVariants.h"  // resolveVariant, for selectVariant
 #include "encore/scene/SceneData.h"
 
 namespace encore::render {

@@ -29,12 +29,17 @@
 //    reference are guaranteed to lie inside their buffer.
 
 #include <atomic>
+#include <cmath>
+#include <compare>
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <limits>
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -42,11 +47,159 @@
 
 #include "encore/core/Result.h"
 #include "encore/core/ReusedBlocks.h"
-#include "encore/scene/Animation.h"
-#include "encore/scene/Bounds.h"
-#include "encore/scene/Ids.h"
+
+// Strong index types for cross-references inside SceneData. An id is an index into the
+// matching vector of SceneData; distinct types keep a MeshId from being used as a MaterialId.
 
 namespace encore::scene {
+
+template <typename Tag>
+struct Id {
+    static constexpr std::uint32_t kInvalid = std::numeric_limits<std::uint32_t>::max();
+
+    std::uint32_t value = kInvalid;
+
+    constexpr Id() = default;
+    constexpr explicit Id(std::uint32_t index) : value(index) {}
+    constexpr explicit Id(std::size_t index) : value(static_cast<std::uint32_t>(index)) {}
+
+    constexpr bool valid() const { return value != kInvalid; }
+    constexpr std::size_t index() const { return value; }
+    constexpr auto operator<=>(const Id&) const = default;
+};
+
+using BufferId = Id<struct BufferTag>;
+using BufferViewId = Id<struct BufferViewTag>;
+using AccessorId = Id<struct AccessorTag>;
+using MeshId = Id<struct MeshTag>;
+using MaterialId = Id<struct MaterialTag>;
+using TextureId = Id<struct TextureTag>;
+using SamplerId = Id<struct SamplerTag>;
+using ImageId = Id<struct ImageTag>;
+using NodeId = Id<struct NodeTag>;
+using LightId = Id<struct LightTag>;
+using CameraId = Id<struct CameraTag>;
+using SkinId = Id<struct SkinTag>;
+using AnimationId = Id<struct AnimationTag>;
+using VariantId =
+    Id<struct VariantTag>;  // KHR_materials_variants: an index into SceneData::variants.
+
+}  // namespace encore::scene
+
+template <typename Tag>
+struct std::hash<encore::scene::Id<Tag>> {
+    std::size_t operator()(const encore::scene::Id<Tag>& id) const noexcept {
+        return std::hash<std::uint32_t>{}(id.value);
+    }
+};
+
+namespace encore::scene {
+
+// An axis-aligned box; empty until a point is added. Points with a NaN or infinite coordinate
+// are ignored, so a box is either empty or finite.
+struct Bounds {
+    glm::vec3 min{std::numeric_limits<float>::infinity()};
+    glm::vec3 max{-std::numeric_limits<float>::infinity()};
+
+    bool empty() const { return min.x > max.x || min.y > max.y || min.z > max.z; }
+    void extend(const glm::vec3& point) {
+        if (!std::isfinite(point.x) || !std::isfinite(point.y) || !std::isfinite(point.z)) {
+            return;
+        }
+        min = glm::min(min, point);
+        max = glm::max(max, point);
+    }
+    void extend(const Bounds& other) {
+        if (!other.empty()) {
+            extend(other.min);
+            extend(other.max);
+        }
+    }
+    glm::vec3 center() const { return (min + max) * 0.5f; }
+    // Radius of the sphere around center() that encloses the box.
+    float radius() const { return empty() ? 0.0f : glm::length(max - min) * 0.5f; }
+
+    // The box enclosing this box's eight corners after an affine transform.
+    Bounds transformed(const glm::mat4& transform) const {
+        Bounds result;
+        if (empty()) {
+            return result;
+        }
+        for (int corner = 0; corner < 8; ++corner) {
+            const glm::vec3 point((corner & 1) ? max.x : min.x, (corner & 2) ? max.y : min.y,
+                                  (corner & 4) ? max.z : min.z);
+            result.extend(glm::vec3(transform * glm::vec4(point, 1.0f)));
+        }
+        return result;
+    }
+};
+
+// glTF animations as the loader hands them out, and the interpolation of one sampler.
+//
+// The loader decodes every sampler once: key times become floats (checked finite and strictly
+// increasing) and output values floats, normalised integers mapped as glTF says
+// (max(c / 127, -1) for signed bytes, c / 65535 for unsigned shorts...). Channels name the node
+// and the property they drive; a sampler's element width (`components`) always matches the path
+// of every channel that uses it: 3 for translation and scale, 4 for rotation (x, y, z, w) and the
+// number of morph targets of the node's mesh for weights. AnimationPlayer.h plays them.
+
+enum class AnimationPath : std::uint8_t { Translation, Rotation, Scale, Weights };
+
+enum class Interpolation : std::uint8_t {
+    Step,         // The value of the key at or before t.
+    Linear,       // Linear; rotations use shortest-path spherical interpolation.
+    CubicSpline,  // Cubic Hermite with the file's tangents (scaled by the key interval).
+};
+
+std::string_view animationPathName(AnimationPath path);  // "translation"...
+std::string_view interpolationName(Interpolation mode);  // "STEP", "LINEAR", "CUBICSPLINE"
+
+struct AnimationSampler {
+    Interpolation interpolation = Interpolation::Linear;
+    std::vector<float> times;  // Seconds; at least one, finite, strictly increasing.
+    // Per key: `components` floats (STEP, LINEAR), or in-tangent, value, out-tangent, each
+    // `components` floats (CUBICSPLINE), as glTF stores them.
+    std::vector<float> values;
+    std::uint32_t components = 0;
+};
+
+struct AnimationChannel {
+    std::uint32_t sampler = 0;  // Index into Animation::samplers.
+    NodeId node;                // Always valid.
+    AnimationPath path = AnimationPath::Translation;
+};
+
+struct Animation {
+    std::string name;
+    std::vector<AnimationSampler> samplers;
+    // Channels whose target the loader cannot drive (no node, an unknown path, weights of a node
+    // without morph targets) are left out, with a warning where glTF calls them invalid.
+    std::vector<AnimationChannel> channels;
+    // Seconds added to the playback time before this animation is sampled (and wrapped, when
+    // looping): glTF has no such property, so Encore reads it from the animation's
+    // `extras.encoreTimeOffset`. Many copies of one animated model can then share its keyframes
+    // (same accessors) and still play out of step; viewers that ignore it play them in step.
+    float timeOffset = 0.0f;
+    float start = 0.0f;  // First key time over the channels' samplers (0 without channels).
+    float end = 0.0f;    // Last key time: the animation's duration as players report it.
+};
+
+// Where a sampler was last evaluated; lets sequential evaluation skip the binary search.
+// One cursor per (player, sampler); any value is valid (it is only a hint).
+struct SamplerCursor {
+    std::uint32_t key = 0;
+};
+
+// Evaluates `sampler` at `time` seconds into `out` (sampler.components floats; `out` must hold
+// that many). Times before the first key give the first value, after the last key the last
+// value. With `quaternion` (rotation channels, components == 4) LINEAR is a shortest-path slerp
+// and the result of every mode is normalised (a zero quaternion becomes the identity). Never
+// allocates.
+void sampleAnimation(const AnimationSampler& sampler,
+                     float time,
+                     bool quaternion,
+                     SamplerCursor& cursor,
+                     std::span<float> out);
 
 enum class ComponentType : std::uint8_t { Int8, Uint8, Int16, Uint16, Uint32, Float32 };
 
@@ -598,5 +751,31 @@ Result<SceneData> loadSceneFromMemory(std::span<const std::uint8_t> bytes,
                                       const std::filesystem::path& baseDirectory,
                                       const std::string& displayName,
                                       const LoadOptions& options = {});
+
+// KHR_materials_variants: a file names material variants ("midnight", "beach") and each
+// primitive maps some of them to other materials (SceneData::variants,
+// Primitive::variantMaterials). Selecting a variant (render::Renderer::selectVariant) changes
+// which material each primitive draws, nothing else. These find a variant by name or index and
+// read a file's variant names without loading it.
+
+// The variant `nameOrIndex` names among `variants`: an exact name first, else a decimal index.
+std::optional<VariantId> findVariant(std::span<const std::string> variants,
+                                     std::string_view nameOrIndex);
+std::optional<VariantId> findVariant(const SceneData& scene, std::string_view nameOrIndex);
+
+// findVariant, or an InvalidArgument error that names `file` and lists the variants it has:
+// "'shoe.glb' has no material variant 'red' (its variants: 0 'midnight', 1 'beach')."
+Result<VariantId> resolveVariant(std::span<const std::string> variants,
+                                 std::string_view nameOrIndex,
+                                 const std::string& file);
+Result<VariantId> resolveVariant(const SceneData& scene, std::string_view nameOrIndex);
+
+// "0 'midnight', 1 'beach'", or "none".
+std::string describeVariants(std::span<const std::string> variants);
+
+// The variant names a .gltf or .glb declares, read from its JSON alone (not a .glb's binary
+// chunk, not the buffers): what encore batch reads to know a model's samples before loading it.
+// Errors name the file; a file that loads has the same names in SceneData::variants.
+Result<std::vector<std::string>> readVariantNames(const std::filesystem::path& path);
 
 }  // namespace encore::scene

@@ -4,7 +4,7 @@
 #include <sstream>
 
 #include "TestPaths.h"
-#include "encore/batch/FailureLog.h"
+#include "batch/FailureLog.h"
 
 namespace encore::batch {
 namespace {

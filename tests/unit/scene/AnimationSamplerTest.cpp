@@ -7,7 +7,7 @@
 
 #include <glm/glm.hpp>
 
-#include "encore/scene/Animation.h"
+#include "encore/scene/SceneData.h"
 
 namespace encore::scene {
 namespace {

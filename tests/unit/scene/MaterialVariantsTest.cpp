@@ -11,7 +11,7 @@
 #include "SceneTestUtils.h"
 #include "TestPaths.h"
 #include "VariantFixture.h"
-#include "encore/scene/MaterialVariants.h"
+#include "encore/scene/SceneData.h"
 
 namespace encore::scene {
 namespace {

@@ -16,15 +16,10 @@
 #include <string>
 #include <vector>
 
+#include "encore/batch/Batch.h"  // Failure
 #include "encore/core/Result.h"
 
 namespace encore::batch {
-
-struct Failure {
-    std::filesystem::path file;
-    std::string stage;
-    std::string error;
-};
 
 class FailureLog {
   public:
