@@ -11,6 +11,7 @@ set -euo pipefail
 # libwebp-dev WebP ones (EXT_texture_webp);
 # libdeflate-dev compresses the PNGs Encore writes (faster than zlib, and smaller files);
 # libopenexr-dev writes EXR depth and HDR passes, libarchive-dev WebDataset .tar shards.
+# libembree-dev builds the ray tracer's bounding volume hierarchies (rtcBuildBVH).
 # clang and libclang-rt-14-dev (libFuzzer, sanitizer runtimes) build the fuzz targets.
 # libglfw3-dev opens `encore view`'s window; xvfb and xauth (xvfb-run) give its tests a display.
 # pybind11-dev, python3-dev, python3-numpy and python3-pytest build and test the Python module;
@@ -23,7 +24,7 @@ set -euo pipefail
 bookworm_packages=(g++ make ninja-build ccache pkg-config libglm-dev libstb-dev libcli11-dev libgtest-dev
                    nlohmann-json3-dev libdraco-dev libmeshoptimizer-dev zlib1g-dev
                    libspng-dev libjpeg62-turbo-dev libwebp-dev libdeflate-dev
-                   libopenexr-dev libarchive-dev
+                   libopenexr-dev libarchive-dev libembree-dev
                    librsvg2-bin pngquant clang libclang-rt-14-dev clang-format-16 libglfw3-dev xvfb xauth
                    pybind11-dev python3-dev python3-numpy python3-pytest python3-dask
                    python3-distributed python3-pip python3-venv)
