@@ -200,6 +200,38 @@ def test_batch_takes_the_passes_as_keywords(tmp_path):
                      depth_format="tiff")
 
 
+def test_batch_takes_the_pass_conventions_as_keywords(tmp_path):
+    """docs/batch.md#conventions: the keywords come from the option table, as the flags do."""
+    (tmp_path / "in").mkdir()
+    write_quads(tmp_path / "in" / "quads.gltf")
+    summary = encore.batch(str(tmp_path / "in"), str(tmp_path / "out"), views=1, size=32,
+                           samples=1, elevation=0, passes=("depth", "normal"),
+                           depth_format="exr", depth_kind="ray", depth_unit="model",
+                           normal_space="camera", normal_kind="geometric", normal_format="exr",
+                           camera_convention="opencv", coordinates=True,
+                           coordinates_format="exr", point_cloud=50)
+    assert summary["rendered"] == 1 and summary["failed"] == 0
+    model = tmp_path / "out" / "quads"
+    assert sorted(path.name for path in model.iterdir()) == [
+        "000.png", "000_coordinates.exr", "000_depth.exr", "000_normal.exr", "metadata.json",
+        "points.ply", "transforms.json"]
+    assert b"element vertex 50\n" in (model / "points.ply").read_bytes()[:400]
+    transforms = json.loads((model / "transforms.json").read_text())
+    assert (transforms["depth_kind"], transforms["depth_unit"]) == ("ray", "model")
+    assert (transforms["normal_space"], transforms["normal_kind"],
+            transforms["normal_format"]) == ("camera", "geometric", "exr")
+    metadata = json.loads((model / "metadata.json").read_text())
+    assert metadata["passes"] == {
+        "depth": {"kind": "ray", "unit": "model", "format": "exr"},
+        "normal": {"space": "camera", "kind": "geometric", "format": "exr"}}
+    with pytest.raises(ValueError, match="normal_format"):
+        encore.batch(str(tmp_path / "in"), str(tmp_path / "bad"), views=1, size=8,
+                     normals=True, normal_format="tiff")
+    with pytest.raises(ValueError, match="depth_kind"):
+        encore.batch(str(tmp_path / "in"), str(tmp_path / "bad"), views=1, size=8,
+                     depth=True, depth_kind="far")
+
+
 def test_batch_png_filtering_on_the_gpu_writes_the_same_files(tmp_path):
     (tmp_path / "in").mkdir()
     write_quads(tmp_path / "in" / "quads.gltf")

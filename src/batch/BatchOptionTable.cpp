@@ -213,10 +213,18 @@ void addPassOptions(std::vector<Entry>& entries) {
                            depthFormatNames(),
                            [](BatchOptions& o, DepthFormat f) { o.images.depthFormat = f; })
             .needing({"depth"}));
+    addPassConventionOptions(entries);
     entries.push_back(flag("hdr",
                            "Also write the linear colour before exposure and tone mapping per "
                            "view (000_hdr.exr, half float, premultiplied alpha)",
                            [](BatchOptions& o, bool on) { o.images.hdr = on; }));
+    entries.push_back(wholeNumber(
+        "point-cloud", "N", "",
+        "Also write OUT/<name>/points.ply: N points drawn uniformly by area from the model's "
+        "surface in the normalised frame, with normals and base colours (binary little-endian "
+        "PLY), drawn from --seed and the model's name",
+        1, 100'000'000,
+        [](BatchOptions& o, std::uint64_t n) { o.pointCloudPoints = std::uint32_t(n); }));
     entries.push_back(flag("pass-frames",
                            "Draw each pass as one more frame through a debug channel instead of "
                            "in the colour frame's render pass (the same images, slower: for "

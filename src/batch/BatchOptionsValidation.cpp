@@ -173,10 +173,14 @@ Result<void> validateBatchOptions(const BatchOptions& options) {
                                strategy.kind == render::StrategyKind::Bundles ||
                                strategy.kind == render::StrategyKind::GpuCulling ||
                                strategy.kind == render::StrategyKind::GpuCullingBundles;
-    if ((options.images.albedo || options.images.material || options.images.segmentation) &&
+    // Geometric normals and positions are debug channels of the glTF materials' shading too.
+    if ((options.images.albedo || options.images.material || options.images.segmentation ||
+         options.images.coordinates ||
+         (options.images.normals && options.images.normalKind == NormalKind::Geometric)) &&
         !meshMaterials) {
         return makeError(ErrorCode::InvalidArgument,
-                         "The albedo, material and segmentation passes need a strategy that "
+                         "The albedo, material, segmentation and coordinates passes and geometric "
+                         "normals need a strategy that "
                          "draws glTF materials in its mesh shader (materials, bundles, "
                          "gpu-culling, gpu-culling-bundles), not " +
                              render::strategyChoiceName(strategy) + ".");

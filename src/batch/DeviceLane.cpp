@@ -8,7 +8,9 @@
 
 #include "batch/ModelOutput.h"
 #include "batch/ModelSamples.h"
+#include "batch/ModelSeed.h"
 #include "batch/PassImages.h"
+#include "batch/PointCloud.h"
 #include "core/Elapsed.h"
 #include "core/Log.h"
 #include "gpu/Readback.h"
@@ -442,9 +444,20 @@ void DeviceLane::renderSample(const std::shared_ptr<ModelJob>& job,
     const ViewRigOptions& rig = mShared.options.views;
     const auto viewCount = std::uint32_t(job->views.size());
     // And one that this thread holds until the model's times are set (ModelWriter::rendered).
-    job->remaining = viewCount * mShared.options.images.perView() + 1;
+    const std::uint32_t points = mShared.options.pointCloudPoints;
+    job->remaining = viewCount * mShared.options.images.perView() + 1 + std::uint32_t(points > 0);
     const glm::mat4 toUnitBox = normalization(scene.bounds, rig.normalize);
+    job->normalization = toUnitBox;
     const ExtraImages& images = mShared.options.images;
+    if (points > 0) {
+        // Drawn here, where the scene is (cheap beside the views: one pass over the triangles);
+        // encoded and written on the pool.
+        auto cloud = std::make_shared<const std::vector<SurfacePoint>>(samplePointCloud(
+            scene, toUnitBox, points, modelSeed(rig.seed, job->model->input->name)));
+        mShared.writer.writeModelFile(
+            job, kPointCloudFileName,
+            [cloud]() -> Result<std::vector<std::uint8_t>> { return encodePly(*cloud); });
+    }
     const std::vector<ViewImage> passes = extraPasses(images);
     if (images.segmentation) {
         job->segmentation = segmentationNames(scene, images.segmentationBy);
@@ -480,8 +493,14 @@ void DeviceLane::renderSample(const std::shared_ptr<ModelJob>& job,
             if (job->failed || kind == ViewImage::Hdr) {
                 continue;
             }
-            const bool floats = kind == ViewImage::Depth || kind == ViewImage::Segmentation;
-            renderDebugChannel(job, renderer, passChannel(kind, images.segmentationBy), [&] {
+            const bool floats = kind == ViewImage::Depth || kind == ViewImage::Segmentation ||
+                                kind == ViewImage::Coordinates ||
+                                (kind == ViewImage::Normal && images.normalsAsFloats());
+            const render::DebugChannel channel =
+                kind == ViewImage::Normal && images.normalKind == NormalKind::Geometric
+                    ? render::DebugChannel::GeometricNormal
+                    : passChannel(kind, images.segmentationBy);
+            renderDebugChannel(job, renderer, channel, [&] {
                 if (floats) {
                     renderFloatPass(views, kind, toUnitBox[0][0], renderWaiting);
                 } else {

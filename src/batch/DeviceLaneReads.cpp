@@ -156,8 +156,10 @@ void DeviceLane::readPassTargets(const TargetViews& views,
                                  double& waiting) {
     const auto& [job, slot, cameras, first, count] = views;
     const ExtraImages& images = mShared.options.images;
-    // Depth as EXR and HDR are floats: those reads stay as they are.
-    const bool depthRows = mPngRows && !(images.depth && images.depthFormat == DepthFormat::Exr);
+    // Depth as EXR and HDR are floats: those reads stay as they are; so does depth along rays,
+    // whose factor varies per pixel (DepthConventions.h).
+    const bool depthRows = mPngRows && !(images.depth && (images.depthFormat == DepthFormat::Exr ||
+                                                          images.depthKind == DepthKind::Ray));
     std::vector<ViewImage> depthAndId;
     for (const ViewImage kind : extraPasses(images)) {
         if (job->failed) {

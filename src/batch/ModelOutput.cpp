@@ -1,6 +1,7 @@
 #include "batch/ModelOutput.h"
 
 #include "batch/ModelMetadata.h"
+#include "batch/PointCloud.h"
 
 namespace encore::batch {
 
@@ -24,7 +25,8 @@ std::vector<ViewImage> extraPasses(const ExtraImages& extras) {
                                                 {extras.albedo, ViewImage::Albedo},
                                                 {extras.material, ViewImage::Material},
                                                 {extras.segmentation, ViewImage::Segmentation},
-                                                {extras.hdr, ViewImage::Hdr}};
+                                                {extras.hdr, ViewImage::Hdr},
+                                                {extras.coordinates, ViewImage::Coordinates}};
     for (const auto& [on, kind] : asked) {
         if (on) {
             passes.push_back(kind);
@@ -35,7 +37,7 @@ std::vector<ViewImage> extraPasses(const ExtraImages& extras) {
 
 ModelFileSet modelFileSet(const BatchOptions& options) {
     return {viewCount(options.views), options.images, options.layout == OutputLayout::Objaverse,
-            options.layout == OutputLayout::Gobjaverse};
+            options.layout == OutputLayout::Gobjaverse, options.pointCloudPoints > 0};
 }
 
 fs::path cameraMatrixPath(const fs::path& folder, std::size_t index) {
@@ -59,6 +61,9 @@ std::vector<fs::path> modelFiles(const fs::path& folder, const ModelFileSet& set
         if (set.cameraFiles) {
             files.push_back(cameraFilePath(folder, view));
         }
+    }
+    if (set.pointCloud) {
+        files.push_back(folder / kPointCloudFileName);
     }
     files.push_back(folder / kMetadataFileName);
     files.push_back(folder / kTransformsFileName);

@@ -28,6 +28,7 @@ struct ModelFileSet {
     ExtraImages extras;
     bool cameraMatrices = false;  // 000.npy ... (OutputLayout::Objaverse).
     bool cameraFiles = false;     // 000.json ... (OutputLayout::Gobjaverse).
+    bool pointCloud = false;      // points.ply (BatchOptions::pointCloudPoints).
 };
 
 ModelFileSet modelFileSet(const BatchOptions& options);

@@ -23,7 +23,8 @@ enum class RandomStream : std::uint64_t {
     Distance,
     FieldOfView,
     Lighting,
-    Elevation,  // An orbit's elevation drawn from a range.
+    Elevation,   // An orbit's elevation drawn from a range.
+    PointCloud,  // The surface points of --point-cloud.
 };
 
 std::mt19937_64 randomStream(std::uint64_t modelSeed, RandomStream stream);

@@ -4,11 +4,15 @@
 #include <span>
 
 #include "batch/CameraConvention.h"
+#include "batch/DepthConventions.h"
 #include "batch/ExrFile.h"
 #include "batch/ModelOutput.h"
+#include "batch/NormalConventions.h"
 #include "batch/NpyFile.h"
 #include "batch/ObjaverseCamera.h"
+#include "batch/ObjectCoordinates.h"
 #include "batch/OptionNames.h"
+#include "batch/PointCloud.h"
 #include "batch/ShardWriter.h"
 #include "batch/TransformsJson.h"
 #include "batch/ViewStrips.h"
@@ -71,23 +75,62 @@ nlohmann::json cameraMetadata(const BatchOptions& options) {
     return camera;
 }
 
+// metadata.json's "passes": what each extra pass's values mean (docs/batch.md#conventions), for
+// the passes written.
+nlohmann::json passMetadata(const ExtraImages& images) {
+    nlohmann::json passes = nlohmann::json::object();
+    if (images.depth) {
+        passes["depth"] = {{"kind", std::string(nameOf(depthKindNames(), images.depthKind))},
+                           {"unit", std::string(nameOf(depthUnitNames(), images.depthUnit))},
+                           {"format", std::string(nameOf(depthFormatNames(), images.depthFormat))}};
+    }
+    if (images.normals) {
+        passes["normal"] = {
+            {"space", std::string(nameOf(normalSpaceNames(), images.normalSpace))},
+            {"kind", std::string(nameOf(normalKindNames(), images.normalKind))},
+            {"format", std::string(nameOf(normalFormatNames(), images.normalFormat))}};
+    }
+    if (images.coordinates) {
+        passes["coordinates"] = {
+            {"space", "normalized box in [0, 1]^3"},
+            {"format", std::string(nameOf(coordinatesFormatNames(), images.coordinatesFormat))}};
+    }
+    return passes;
+}
+
 }  // namespace
 
 void ModelWriter::writeMetadata(ModelJob& job) {
     std::lock_guard lock(job.writtenMutex);  // The encode times.
-    const nlohmann::json json = metadataJson(
+    nlohmann::json json = metadataJson(
         *job.model->input, job.facts, job.times, std::uint32_t(job.views.size()), job.coveredPixels,
         mOptions.blankThreshold, job.drawing, cameraMetadata(mOptions));
+    if (nlohmann::json passes = passMetadata(mOptions.images); !passes.empty()) {
+        json["passes"] = std::move(passes);
+    }
+    if (mOptions.pointCloudPoints > 0) {
+        json["pointCloud"] = {{"file", kPointCloudFileName},
+                              {"points", mOptions.pointCloudPoints},
+                              {"format", "binary_little_endian"},
+                              {"frame", "normalized"}};
+    }
     if (auto written = writeJson(job.folder / kMetadataFileName, json); !written) {
         job.fail(mFailures, mCounters, "write", written.error());
     }
 }
 
 void ModelWriter::writeTransforms(ModelJob& job) {
-    const nlohmann::json json =
-        transformsJson(job.views, mOptions.width, mOptions.height, mOptions.images,
-                       depthScale(mOptions.views), &job.lighting, job.segmentation,
-                       mOptions.cameraConvention.value_or(CameraConvention::OpenGl));
+    // With --depth-unit model a PNG holds the normalised steps; its scale says what they are in
+    // the model's units.
+    const double scale = mOptions.images.depthUnit == DepthUnit::Model
+                             ? depthScale(mOptions.views) / double(job.normalization[0][0])
+                             : depthScale(mOptions.views);
+    nlohmann::json json = transformsJson(
+        job.views, mOptions.width, mOptions.height, mOptions.images, scale, &job.lighting,
+        job.segmentation, mOptions.cameraConvention.value_or(CameraConvention::OpenGl));
+    if (mOptions.pointCloudPoints > 0) {
+        json["point_cloud_path"] = std::string("./") + kPointCloudFileName;
+    }
     if (auto written = writeJson(job.folder / kTransformsFileName, json); !written) {
         job.fail(mFailures, mCounters, "write", written.error());
         return;
@@ -171,7 +214,8 @@ void ModelWriter::writeFloatViews(const std::shared_ptr<ModelJob>& job,
     for (std::uint32_t strip = 0; strip < count; ++strip) {
         const FloatStrip pixels{wide, targetWidth, strip, mOptions.width, mOptions.height};
         writeImage(job, first + strip, kind,
-                   floatEncoder(kind, pixels, unitsPerModelUnit, /*packedIds=*/false));
+                   floatEncoder(kind, pixels, unitsPerModelUnit, /*packedIds=*/false,
+                                job->views[first + strip], job->normalization));
     }
 }
 
@@ -191,7 +235,8 @@ void ModelWriter::writeMappedFloatViews(const std::shared_ptr<ModelJob>& job,
                 const FloatStrip pixels{texels, mOptions.width, 0, mOptions.width, mOptions.height};
                 std::vector<std::function<Result<std::vector<std::uint8_t>>()>> encoders;
                 for (const ViewImage kind : kinds) {
-                    encoders.push_back(floatEncoder(kind, pixels, unitsPerModelUnit, true));
+                    encoders.push_back(floatEncoder(kind, pixels, unitsPerModelUnit, true,
+                                                    job->views[view], job->normalization));
                 }
                 const double seconds = secondsSince(start);
                 {
@@ -238,7 +283,9 @@ std::function<Result<std::vector<std::uint8_t>>()> ModelWriter::floatEncoder(
     ViewImage kind,
     const FloatStrip& pixels,
     float unitsPerModelUnit,
-    bool packedIds) const {
+    bool packedIds,
+    const ViewCamera& view,
+    const glm::mat4& normalization) const {
     const std::uint32_t width = pixels.width;
     const std::uint32_t height = pixels.height;
     const auto compression = mOptions.pngCompression;
@@ -253,10 +300,37 @@ std::function<Result<std::vector<std::uint8_t>>()> ModelWriter::floatEncoder(
             return image::encodePng16(ids, compression);
         };
     }
-    if (mOptions.images.depthFormat == DepthFormat::Exr) {
-        return [depth = depthDistances(pixels, unitsPerModelUnit), width, height] {
-            return encodeExrDepth(depth, width, height);
+    const ExtraImages& images = mOptions.images;
+    if (kind == ViewImage::Coordinates) {
+        return [coordinates = objectCoordinates(pixels, normalization), width, height,
+                format = images.coordinatesFormat, compression] {
+            return encodeCoordinates(coordinates, width, height, format, compression);
         };
+    }
+    if (kind == ViewImage::Normal) {
+        const glm::dmat3 rotation = normalRotation(
+            view, images.normalSpace, mOptions.cameraConvention.value_or(CameraConvention::OpenGl));
+        return
+            [normals = normalVectors(pixels, rotation), width, height, format = images.normalFormat,
+             compression] { return encodeNormals(normals, width, height, format, compression); };
+    }
+    if (images.depthFormat == DepthFormat::Exr || images.depthKind == DepthKind::Ray) {
+        // With --depth-unit model a PNG keeps the normalised steps (its depth_scale is the
+        // model's, TransformsJson): only EXR values change unit.
+        const bool exr = images.depthFormat == DepthFormat::Exr;
+        std::vector<float> depth =
+            depthDistances(pixels, exr ? depthUnitsPerModelUnit(images.depthUnit, unitsPerModelUnit)
+                                       : unitsPerModelUnit);
+        if (images.depthKind == DepthKind::Ray) {
+            depthAlongRays(depth, view, width, height);
+        }
+        if (exr) {
+            return [depth = std::move(depth), width, height] {
+                return encodeExrDepth(depth, width, height);
+            };
+        }
+        return [steps = depthStepsOf(depth, width, height, depthScale(mOptions.views)),
+                compression] { return image::encodePng16(steps, compression); };
     }
     return [depth = depthStrip(pixels.wide, pixels.targetWidth, pixels.strip, width, height,
                                unitsPerModelUnit, depthScale(mOptions.views)),
@@ -302,12 +376,25 @@ void ModelWriter::writeImage(const std::shared_ptr<ModelJob>& job,
                              std::uint32_t view,
                              ViewImage kind,
                              std::function<Result<std::vector<std::uint8_t>>()> encode) {
-    mPool.submit([this, job, view, kind, encode = std::move(encode)] {
+    writeFile(job, viewImagePath(job->folder, view, kind, mOptions.images),
+              kind == ViewImage::Color, std::move(encode));
+}
+
+void ModelWriter::writeModelFile(const std::shared_ptr<ModelJob>& job,
+                                 const std::string& name,
+                                 std::function<Result<std::vector<std::uint8_t>>()> encode) {
+    writeFile(job, job->folder / name, /*colorView=*/false, std::move(encode));
+}
+
+void ModelWriter::writeFile(const std::shared_ptr<ModelJob>& job,
+                            fs::path path,
+                            bool colorView,
+                            std::function<Result<std::vector<std::uint8_t>>()> encode) {
+    mPool.submit([this, job, path = std::move(path), colorView, encode = std::move(encode)] {
         const auto start = Clock::now();
         const double cpuStart = threadCpuSeconds();
         if (!job->failed) {
             auto png = encode();
-            const fs::path path = viewImagePath(job->folder, view, kind, mOptions.images);
             Result<void> written = png ? writePartialFile(path, *png) : Result<void>(png.error());
             if (!written) {
                 job->fail(mFailures, mCounters, "write", written.error());
@@ -315,7 +402,7 @@ void ModelWriter::writeImage(const std::shared_ptr<ModelJob>& job,
                 std::lock_guard lock(job->writtenMutex);
                 job->written.push_back(path);
             }
-            if (written && kind == ViewImage::Color) {
+            if (written && colorView) {
                 ++mCounters.views;
             }
         }

@@ -84,6 +84,9 @@ struct ModelJob {
     std::filesystem::path folder;
     std::vector<ViewCamera> views;
     ModelLighting lighting;
+    // The model's normalisation (ViewRig.h), set by the device thread: its scale is the depth's
+    // unit with --depth-unit model, the box it fills the object coordinates' (--coordinates).
+    glm::mat4 normalization{1.0f};
     ModelFacts facts;  // From the loader.
     // What the segmentation ids name (--segmentation), for transforms.json.
     std::vector<SegmentationName> segmentation;
@@ -176,13 +179,23 @@ class ModelWriter {
                           PngRowsLayout layout,
                           std::shared_ptr<const gpu::MappedReadback> wide);
 
+    // Encodes a file of the model that is not a view's (points.ply) on the pool and writes it
+    // into its folder as `name`, renamed with the images; it counts among `remaining`.
+    void writeModelFile(const std::shared_ptr<ModelJob>& job,
+                        const std::string& name,
+                        std::function<Result<std::vector<std::uint8_t>>()> encode);
+
   private:
-    // How a float image of `kind` is encoded from `pixels` (ids packed as in a DepthAndId pass
-    // target with `packedIds`, else as the segmentation channels write them).
-    std::function<Result<std::vector<std::uint8_t>>()> floatEncoder(ViewImage kind,
-                                                                    const FloatStrip& pixels,
-                                                                    float unitsPerModelUnit,
-                                                                    bool packedIds) const;
+    // How a float image of `kind` is encoded from `pixels` of `view` (ids packed as in a
+    // DepthAndId pass target with `packedIds`, else as the segmentation channels write them) of
+    // a model normalised by `normalization`.
+    std::function<Result<std::vector<std::uint8_t>>()> floatEncoder(
+        ViewImage kind,
+        const FloatStrip& pixels,
+        float unitsPerModelUnit,
+        bool packedIds,
+        const ViewCamera& view,
+        const glm::mat4& normalization) const;
     // Crops strip `strip` of a read-back target on the pool, ahead of other tasks (the ring
     // waits for its buffer), then encodes it.
     void encodeView(const std::shared_ptr<ModelJob>& job,
@@ -201,6 +214,11 @@ class ModelWriter {
                     std::uint32_t view,
                     ViewImage kind,
                     std::function<Result<std::vector<std::uint8_t>>()> encode);
+    // The same for any file at `path`; `colorView` counts it as a view written.
+    void writeFile(const std::shared_ptr<ModelJob>& job,
+                   std::filesystem::path path,
+                   bool colorView,
+                   std::function<Result<std::vector<std::uint8_t>>()> encode);
     // Writes the camera matrices (OutputLayout::Objaverse), flushes and renames them with the
     // model's images (or removes them all if it failed), then writes metadata.json and
     // transforms.json.

@@ -107,6 +107,7 @@ Entry named(std::string name,
 }
 
 // The groups, each in the order its options are applied.
-void addCameraOptions(std::vector<Entry>& entries);  // CameraOptionEntries.cpp
+void addCameraOptions(std::vector<Entry>& entries);          // CameraOptionEntries.cpp
+void addPassConventionOptions(std::vector<Entry>& entries);  // PassConventionEntries.cpp
 
 }  // namespace encore::batch::optiontable

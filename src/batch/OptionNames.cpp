@@ -41,6 +41,31 @@ constexpr std::array<NamedValue<DepthFormat>, 2> kDepthFormats{{
     {"png", DepthFormat::Png},
     {"exr", DepthFormat::Exr},
 }};
+constexpr std::array<NamedValue<DepthKind>, 2> kDepthKinds{{
+    {"z", DepthKind::Z},
+    {"ray", DepthKind::Ray},
+}};
+constexpr std::array<NamedValue<DepthUnit>, 2> kDepthUnits{{
+    {"normalized", DepthUnit::Normalized},
+    {"model", DepthUnit::Model},
+}};
+constexpr std::array<NamedValue<NormalSpace>, 2> kNormalSpaces{{
+    {"world", NormalSpace::World},
+    {"camera", NormalSpace::Camera},
+}};
+constexpr std::array<NamedValue<NormalKind>, 2> kNormalKinds{{
+    {"shading", NormalKind::Shading},
+    {"geometric", NormalKind::Geometric},
+}};
+constexpr std::array<NamedValue<NormalFormat>, 3> kNormalFormats{{
+    {"png8", NormalFormat::Png8},
+    {"png16", NormalFormat::Png16},
+    {"exr", NormalFormat::Exr},
+}};
+constexpr std::array<NamedValue<CoordinatesFormat>, 2> kCoordinatesFormats{{
+    {"png16", CoordinatesFormat::Png16},
+    {"exr", CoordinatesFormat::Exr},
+}};
 // Python's passes=, and what the arrays of render_views' dict are called.
 constexpr std::array<NamedValue<ViewImage>, 7> kPasses{{
     {"rgba", ViewImage::Color},
@@ -60,7 +85,7 @@ constexpr std::array<NamedValue<render::ToneMapping>, 3> kToneMappings{{
     {"aces", render::ToneMapping::AcesHill},
     {"none", render::ToneMapping::None},
 }};
-constexpr std::array<NamedValue<render::DebugChannel>, 12> kDebugChannels{{
+constexpr std::array<NamedValue<render::DebugChannel>, 14> kDebugChannels{{
     {"none", render::DebugChannel::Shaded},
     {"base-color", render::DebugChannel::BaseColor},
     {"normal", render::DebugChannel::Normal},
@@ -73,6 +98,8 @@ constexpr std::array<NamedValue<render::DebugChannel>, 12> kDebugChannels{{
     {"segment-node", render::DebugChannel::SegmentNode},
     {"segment-mesh", render::DebugChannel::SegmentMesh},
     {"segment-material", render::DebugChannel::SegmentMaterial},
+    {"geometric-normal", render::DebugChannel::GeometricNormal},
+    {"position", render::DebugChannel::Position},
 }};
 
 }  // namespace
@@ -99,6 +126,24 @@ NameTable<SegmentationBy> segmentationByNames() {
 }
 NameTable<DepthFormat> depthFormatNames() {
     return kDepthFormats;
+}
+NameTable<DepthKind> depthKindNames() {
+    return kDepthKinds;
+}
+NameTable<DepthUnit> depthUnitNames() {
+    return kDepthUnits;
+}
+NameTable<NormalSpace> normalSpaceNames() {
+    return kNormalSpaces;
+}
+NameTable<NormalKind> normalKindNames() {
+    return kNormalKinds;
+}
+NameTable<NormalFormat> normalFormatNames() {
+    return kNormalFormats;
+}
+NameTable<CoordinatesFormat> coordinatesFormatNames() {
+    return kCoordinatesFormats;
 }
 NameTable<ViewImage> passNames() {
     return kPasses;

@@ -37,6 +37,12 @@ NameTable<OutputLayout> outputLayoutNames();              // nerf, objaverse, go
 NameTable<PngFiltering> pngFilteringNames();              // auto, gpu, cpu
 NameTable<SegmentationBy> segmentationByNames();          // node, mesh, material
 NameTable<DepthFormat> depthFormatNames();                // png, exr
+NameTable<DepthKind> depthKindNames();                    // z, ray
+NameTable<DepthUnit> depthUnitNames();                    // normalized, model
+NameTable<NormalSpace> normalSpaceNames();                // world, camera
+NameTable<NormalKind> normalKindNames();                  // shading, geometric
+NameTable<NormalFormat> normalFormatNames();              // png8, png16, exr
+NameTable<CoordinatesFormat> coordinatesFormatNames();    // png16, exr
 NameTable<image::PngCompression> pngCompressionNames();   // small, fast
 NameTable<ViewImage> passNames();  // rgba, albedo, normal, material, segmentation, depth, hdr
 NameTable<render::ToneMapping> toneMappingNames();    // neutral, aces, none

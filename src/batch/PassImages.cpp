@@ -24,6 +24,8 @@ render::DebugChannel passChannel(ViewImage kind, SegmentationBy by) {
             return by == SegmentationBy::Mesh       ? render::DebugChannel::SegmentMesh
                    : by == SegmentationBy::Material ? render::DebugChannel::SegmentMaterial
                                                     : render::DebugChannel::SegmentNode;
+        case ViewImage::Coordinates:
+            return render::DebugChannel::Position;
         case ViewImage::Color:
         case ViewImage::Hdr:
             break;
@@ -126,7 +128,11 @@ bool drawsPassTargets(const ExtraImages& images,
                                strategy == render::StrategyKind::Bundles ||
                                strategy == render::StrategyKind::GpuCulling ||
                                strategy == render::StrategyKind::GpuCullingBundles;
-    return passes && images.drawing == PassDrawing::Targets && meshMaterials &&
+    // Normals in another convention and object coordinates are read as floats from a frame of
+    // their own (the pass target's normal is converted to 8 bits on the GPU, and holds the
+    // shading normal only; no target holds positions).
+    return passes && !images.normalsAsFloats() && !images.coordinates &&
+           images.drawing == PassDrawing::Targets && meshMaterials &&
            limits.maxColorAttachmentBytesPerSample >= render::kPassTargetBytesPerSample;
 }
 

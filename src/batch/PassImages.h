@@ -20,8 +20,9 @@
 
 namespace encore::batch {
 
-// The debug channel that draws pass `kind` (Normal, Depth, Albedo, Material, Segmentation);
-// Shaded for the colour and HDR images, which come from the shaded frame.
+// The debug channel that draws pass `kind` (Normal, Depth, Albedo, Material, Segmentation,
+// Coordinates: the position); Shaded for the colour and HDR images, which come from the shaded
+// frame.
 render::DebugChannel passChannel(ViewImage kind, SegmentationBy by);
 
 // Where strip `strip` of a wide float read-back lies.
@@ -62,7 +63,8 @@ std::vector<float> halfStrip(const gpu::MappedReadback& wide,
 // Whether a batch draws its passes as pass targets of the colour frame (one render pass,
 // render::RendererOptions::passTargets) rather than one frame per pass: when it has a pass
 // other than HDR, `drawing` is Targets, the strategy draws glTF materials in its mesh shader and
-// the device has the colour attachment bytes.
+// the device has the colour attachment bytes, and normals are not asked for in another
+// convention (ExtraImages::normalsAsFloats).
 bool drawsPassTargets(const ExtraImages& images,
                       render::StrategyKind strategy,
                       const gpu::DeviceLimits& limits);

@@ -77,6 +77,7 @@ PngRowsSource pngRowsSourceOf(ViewImage kind) {
         case ViewImage::Color:
         case ViewImage::Albedo:
         case ViewImage::Hdr:
+        case ViewImage::Coordinates:
             break;
     }
     return PngRowsSource::Bytes;

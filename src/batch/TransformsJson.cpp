@@ -54,7 +54,8 @@ void addPassPaths(nlohmann::json& frame, std::size_t index, const ExtraImages& e
                                                  {extras.albedo, ViewImage::Albedo},
                                                  {extras.material, ViewImage::Material},
                                                  {extras.segmentation, ViewImage::Segmentation},
-                                                 {extras.hdr, ViewImage::Hdr}};
+                                                 {extras.hdr, ViewImage::Hdr},
+                                                 {extras.coordinates, ViewImage::Coordinates}};
     for (const auto& [on, kind] : passes) {
         if (on) {
             const std::string stem = viewStem(index, kind);
@@ -65,6 +66,25 @@ void addPassPaths(nlohmann::json& frame, std::size_t index, const ExtraImages& e
 }
 
 }  // namespace
+
+void addPassConventions(nlohmann::json& json, const ExtraImages& extras) {
+    // Only where one differs from the default, so that files written with the defaults are the
+    // ones written before the options existed; metadata.json records every pass's conventions.
+    if (extras.depth &&
+        (extras.depthKind != DepthKind::Z || extras.depthUnit != DepthUnit::Normalized)) {
+        json["depth_kind"] = std::string(nameOf(depthKindNames(), extras.depthKind));
+        json["depth_unit"] = std::string(nameOf(depthUnitNames(), extras.depthUnit));
+    }
+    if (extras.normalsAsFloats()) {
+        json["normal_space"] = std::string(nameOf(normalSpaceNames(), extras.normalSpace));
+        json["normal_kind"] = std::string(nameOf(normalKindNames(), extras.normalKind));
+        json["normal_format"] = std::string(nameOf(normalFormatNames(), extras.normalFormat));
+    }
+    if (extras.coordinates) {
+        json["coordinates_format"] =
+            std::string(nameOf(coordinatesFormatNames(), extras.coordinatesFormat));
+    }
+}
 
 nlohmann::json transformsJson(std::span<const ViewCamera> views,
                               std::uint32_t width,
@@ -140,6 +160,7 @@ nlohmann::json transformsJson(std::span<const ViewCamera> views,
     if (extras.depth && extras.depthFormat == DepthFormat::Exr) {
         json["depth_format"] = "exr";
     }
+    addPassConventions(json, extras);
     if (extras.segmentation) {
         json["segmentation_by"] = std::string(nameOf(segmentationByNames(), extras.segmentationBy));
         nlohmann::json ids = nlohmann::json::array();

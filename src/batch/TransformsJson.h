@@ -53,6 +53,12 @@ PinholeIntrinsics intrinsicsFor(std::uint32_t width,
 // in (CameraConvention.h: opengl, NeRF's, unless asked otherwise). An orthographic frame has no
 // camera_angle_x or focal lengths: "projection": "orthographic" and "ortho_scale" (what the view
 // spans across the image's larger side, in the normalised world) instead.
+// What the passes' values mean when a convention differs from the default
+// (docs/batch.md#conventions): "depth_kind" and "depth_unit" with --depth, "normal_space",
+// "normal_kind" and "normal_format" with --normals; nothing when all are the defaults.
+// "coordinates_format" with --coordinates.
+void addPassConventions(nlohmann::json& json, const ExtraImages& extras);
+
 nlohmann::json transformsJson(std::span<const ViewCamera> views,
                               std::uint32_t width,
                               std::uint32_t height,

@@ -20,6 +20,8 @@ std::string viewStem(std::size_t index, ViewImage kind) {
             return std::string(stem) + "_segmentation";
         case ViewImage::Hdr:
             return std::string(stem) + "_hdr";
+        case ViewImage::Coordinates:
+            return std::string(stem) + "_coordinates";
         case ViewImage::Color:
             break;
     }
@@ -27,8 +29,11 @@ std::string viewStem(std::size_t index, ViewImage kind) {
 }
 
 std::string viewExtension(ViewImage kind, const ExtraImages& extras) {
-    const bool exr = kind == ViewImage::Hdr ||
-                     (kind == ViewImage::Depth && extras.depthFormat == DepthFormat::Exr);
+    const bool exr =
+        kind == ViewImage::Hdr ||
+        (kind == ViewImage::Depth && extras.depthFormat == DepthFormat::Exr) ||
+        (kind == ViewImage::Normal && extras.normalFormat == NormalFormat::Exr) ||
+        (kind == ViewImage::Coordinates && extras.coordinatesFormat == CoordinatesFormat::Exr);
     return exr ? ".exr" : ".png";
 }
 

@@ -379,6 +379,19 @@ fn shadeSurface(worldPosition: vec3f, vertexNormal: vec3f, vertexTangent: vec4f,
         case 8u: {
             color = vec3f(occlusion, roughness, metallic);
         }
+        case 12u: {
+            // The triangle's plane, from the position's screen derivatives (flat across the
+            // triangle), turned toward the viewer as the shading normal is.
+            let face = cross(positionDx, positionDy);
+            var ng = surface.geometric;
+            if (dot(face, face) > 1e-20) {
+                ng = normalize(face);
+            }
+            color = select(-ng, ng, dot(ng, v) >= 0.0) * 0.5 + 0.5;
+        }
+        case 13u: {
+            color = worldPosition;
+        }
         default: {
         }
     }

@@ -286,6 +286,10 @@ struct BatchOptions {
     // ("000_depth.png", its scale in transforms.json): one more frame per view and image,
     // through the renderer's normal and depth debug channels without tone mapping.
     ExtraImages images;
+    // > 0: also write OUT/<name>/points.ply, this many points drawn uniformly by area from the
+    // model's triangles in the normalised frame, with normals and base colours (PointCloud.h),
+    // drawn from views.seed and the model's name. 0: none.
+    std::uint32_t pointCloudPoints = 0;
     // Lux of a directional light shining straight down (-Y) added to every model beside the
     // environment, as the dataset scripts light objects from above; 0: none.
     float topLightLux = 0.0f;

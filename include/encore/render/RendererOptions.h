@@ -85,6 +85,10 @@ enum class DebugChannel : std::uint32_t {
     SegmentNode,
     SegmentMesh,
     SegmentMaterial,
+    // The triangle's own normal (from the derivatives of its position, facing the viewer), world
+    // space, mapped to 0..1: no vertex normals' smoothing, no normal map.
+    GeometricNormal,
+    Position,  // The surface's world-space position itself, in world units (not mapped).
 };
 
 struct LightingParameters {
