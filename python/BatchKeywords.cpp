@@ -29,6 +29,8 @@ const char* passOption(batch::ViewImage kind) {
             return "segmentation";
         case batch::ViewImage::Hdr:
             return "hdr";
+        case batch::ViewImage::Coordinates:
+            return "coordinates";
     }
     return "";
 }

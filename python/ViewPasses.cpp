@@ -65,6 +65,7 @@ void applyPassKinds(std::span<const batch::ViewImage> kinds, batch::ExtraImages&
             case batch::ViewImage::Hdr:
                 images.hdr = true;
                 break;
+            case batch::ViewImage::Coordinates:  // A batch pass only: passes= has no name for it.
             case batch::ViewImage::Color:
                 break;
         }

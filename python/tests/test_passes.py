@@ -223,7 +223,9 @@ def test_batch_takes_the_pass_conventions_as_keywords(tmp_path):
     metadata = json.loads((model / "metadata.json").read_text())
     assert metadata["passes"] == {
         "depth": {"kind": "ray", "unit": "model", "format": "exr"},
-        "normal": {"space": "camera", "kind": "geometric", "format": "exr"}}
+        "normal": {"space": "camera", "kind": "geometric", "format": "exr"},
+        "coordinates": {"space": "normalized box in [0, 1]^3", "format": "exr"}}
+    assert metadata["pointCloud"]["points"] == 50
     with pytest.raises(ValueError, match="normal_format"):
         encore.batch(str(tmp_path / "in"), str(tmp_path / "bad"), views=1, size=8,
                      normals=True, normal_format="tiff")
