@@ -115,6 +115,17 @@ fn environmentSpecular(direction: vec3f, roughness: f32) -> vec3f {
 // vertex colour and the base colour sample (alpha tested already, for MASK); samples: every
 // texture slot at the point; the derivatives: of the world position and TEXCOORD_0 per pixel;
 // modelScale: the lengths of the world matrix's axes (a volume's thickness is in mesh units).
+// The triangle's own normal from the position's screen derivatives (flat across the triangle):
+// framebuffer y runs down, so cross(dy, dx) faces the viewer whatever the winding
+// (DebugChannel::GeometricNormal). `fallback` where the triangle has no area on screen.
+fn faceNormal(positionDx: vec3f, positionDy: vec3f, fallback: vec3f) -> vec3f {
+    let face = cross(positionDy, positionDx);
+    if (dot(face, face) > 1e-20) {
+        return normalize(face);
+    }
+    return fallback;
+}
+
 fn shadeSurface(worldPosition: vec3f, vertexNormal: vec3f, vertexTangent: vec4f,
                 frontFacing: bool, baseColor: vec4f, samples: MaterialSamples,
                 positionDx: vec3f, positionDy: vec3f, uvDx: vec2f, uvDy: vec2f,
@@ -137,6 +148,18 @@ fn shadeSurface(worldPosition: vec3f, vertexNormal: vec3f, vertexTangent: vec4f,
     let features = material.flags.y & kCompiledFeatures;
     let emissive = material.emissive.rgb * emissiveSample;
     if (model == kModelUnlit) {
+        // The geometric channels hold the surface's geometry whatever its shading.
+        switch (lighting.debugChannel) {
+            case 12u: {
+                return vec4f(faceNormal(positionDx, positionDy, normalize(vertexNormal)) * 0.5 + 0.5,
+                             alpha);
+            }
+            case 13u: {
+                return vec4f(worldPosition, alpha);
+            }
+            default: {
+            }
+        }
         return vec4f(baseColor.rgb, alpha);
     }
 
@@ -380,14 +403,7 @@ fn shadeSurface(worldPosition: vec3f, vertexNormal: vec3f, vertexTangent: vec4f,
             color = vec3f(occlusion, roughness, metallic);
         }
         case 12u: {
-            // The triangle's plane, from the position's screen derivatives (flat across the
-            // triangle), turned toward the viewer as the shading normal is.
-            let face = cross(positionDx, positionDy);
-            var ng = surface.geometric;
-            if (dot(face, face) > 1e-20) {
-                ng = normalize(face);
-            }
-            color = select(-ng, ng, dot(ng, v) >= 0.0) * 0.5 + 0.5;
+            color = faceNormal(positionDx, positionDy, surface.geometric) * 0.5 + 0.5;
         }
         case 13u: {
             color = worldPosition;

@@ -33,8 +33,8 @@ namespace fs = std::filesystem;
 
 // A square from -1 to 1 in x and y at z = 0 (normalised to half that: 0.5 normalised units per
 // model unit), its vertex normals all `vertexNormal`, so that the shading normal is
-// `vertexNormal` and the triangles' own is +Z.
-fs::path writeSquare(const fs::path& dir, glm::vec3 vertexNormal) {
+// `vertexNormal` and the triangles' own is +Z; `unlit`: KHR_materials_unlit.
+fs::path writeSquare(const fs::path& dir, glm::vec3 vertexNormal, bool unlit = false) {
     GltfBuilder builder;
     const auto positions = builder.addPositions(
         {{-1.0f, -1.0f, 0.0f}, {1.0f, -1.0f, 0.0f}, {1.0f, 1.0f, 0.0f}, {-1.0f, 1.0f, 0.0f}});
@@ -48,6 +48,11 @@ fs::path writeSquare(const fs::path& dir, glm::vec3 vertexNormal) {
                            .material = material}}},
                         "square");
     builder.addScene({builder.addNode({.mesh = mesh, .name = "square"})});
+    if (unlit) {
+        builder.json()["materials"][0]["extensions"]["KHR_materials_unlit"] =
+            nlohmann::json::object();
+        builder.json()["extensionsUsed"] = {"KHR_materials_unlit"};
+    }
     fs::create_directories(dir);
     return builder.writeGlb(dir, "square");
 }
@@ -246,6 +251,16 @@ TEST(BatchConventionsTest, GeometricNormalsIgnoreTheVertexNormals) {
     EXPECT_EQ(transforms["normal_format"], "exr");
     EXPECT_EQ(transforms["frames"][0]["normal_file_path"], "./000_normal");
     EXPECT_FALSE(fs::exists(output / "geometric/square/000_normal.png"));
+
+    // An unlit surface has a geometry too.
+    const fs::path unlit =
+        writeSquare(makeTempDir("conventions-geometric-unlit-input"), {0.6, 0, 0.8}, true);
+    const CommandResult run = runEncore(batchArguments(
+        unlit, output / "unlit", kClose + "--normals --normal-format exr --normal-kind geometric"));
+    ASSERT_EQ(run.exitCode, 0) << run.out << run.err;
+    const fs::path unlitNormal = output / "unlit/square/000_normal.exr";
+    EXPECT_NEAR(readExrChannel(unlitNormal, "R")[centre], 0.0f, 2e-3f);
+    EXPECT_NEAR(readExrChannel(unlitNormal, "B")[centre], 1.0f, 2e-3f);
 }
 
 TEST(BatchConventionsTest, ObjectCoordinatesAreThePositionsInTheNormalisedBox) {
@@ -284,6 +299,18 @@ TEST(BatchConventionsTest, ObjectCoordinatesAreThePositionsInTheNormalisedBox) {
             }
         }
     }
+
+    // An unlit surface has its coordinates too (not its colour).
+    const fs::path unlit =
+        writeSquare(makeTempDir("conventions-coordinates-unlit-input"), {0, 0, 1}, true);
+    const CommandResult run =
+        runEncore(batchArguments(unlit, output / "unlit", kClose + "--coordinates"));
+    ASSERT_EQ(run.exitCode, 0) << run.out << run.err;
+    const auto unlitPng = readPngSamples(output / "unlit/square/000_coordinates.png", header);
+    const std::size_t centre = ((kSize / 2) * kSize + kSize / 2) * 4;
+    EXPECT_NEAR(unlitPng[centre] / 65535.0, 0.5 + 0.6 * 0.5 / focal, 2e-3);
+    EXPECT_NEAR(unlitPng[centre + 1] / 65535.0, 0.5 - 0.6 * 0.5 / focal, 2e-3);
+    EXPECT_NEAR(unlitPng[centre + 2] / 65535.0, 0.5, 2e-3);
 }
 
 TEST(BatchConventionsTest, BadConventionsAreUsageErrors) {
