@@ -221,7 +221,8 @@ Result<BenchResult> measure(gpu::Context& context,
         return drawn.error().withContext("Benchmarking " + result.strategy);
     }
     const render::Strategy* strategy = internals(renderer).strategy();
-    const auto gpuCounts = strategy ? strategy->gpuTriangleCounts() : std::nullopt;
+    const auto gpuCounts = strategy ? strategy->report().gpuTriangleCounts
+                                    : std::optional<render::GpuTriangleCounts>{};
     const bool computeRaster = gpuCounts && gpuCounts->computeOffset;
     for (const render::DrawnTriangles& frame : *drawn) {
         result.trianglesDrawn.push_back(frame.total());

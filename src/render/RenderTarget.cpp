@@ -27,7 +27,7 @@ Result<RenderTarget> RenderTarget::create(const wgpu::Device& device,
 
     // The output holds RGBA8 bytes (kBytesFormat) that passes draw through an sRGB view
     // (kColorFormat): an sRGB format cannot be a storage texture, which strategies composing the
-    // frame in compute write (Strategy::composeFrame, through sceneStorageView(): on the H100 a
+    // frame in compute write (FramePasses::composeFrame, through sceneStorageView(): on the H100 a
     // copy from a buffer into the texture took 0.044 ms of a 1280x720 frame).
     wgpu::TextureDescriptor output{};
     output.label = "render target output";

@@ -6,6 +6,7 @@
 #include "encore/image/HdrImage.h"
 #include "gpu/OutOfMemoryScope.h"
 #include "render/BindingLimits.h"
+#include "render/FramePasses.h"
 #include "render/GpuScene.h"
 #include "render/MipmapGenerator.h"
 #include "render/PassTargets.h"
@@ -32,6 +33,12 @@ Result<void> checkPassTargetStrategy(bool passTargets, StrategyKind kind) {
                      "Pass targets need a strategy that draws glTF materials in its mesh shader "
                      "(materials, bundles, gpu-culling, gpu-culling-bundles), not " +
                          std::string(strategyName(kind)) + ".");
+}
+
+// Only strategies whose passes grow with the target can outgrow it (FramePasses::checkTarget).
+Result<void> checkTarget(const Strategy& strategy, std::uint32_t width, std::uint32_t height) {
+    const FramePasses* passes = strategy.framePasses();
+    return passes ? passes->checkTarget(width, height) : Result<void>{};
 }
 
 }  // namespace
@@ -320,7 +327,7 @@ Result<void> RendererCore::prepareStrategy(StrategyKind kind,
     start = std::chrono::steady_clock::now();
     ENCORE_TRY(outOfMemory.finish(what));
     if (prepared) {
-        prepared = strategy->checkTarget(mTarget.width(), mTarget.height());
+        prepared = checkTarget(*strategy, mTarget.width(), mTarget.height());
     }
     if (!prepared) {
         return prepared.error().withContext(what);
@@ -328,7 +335,8 @@ Result<void> RendererCore::prepareStrategy(StrategyKind kind,
     ENCORE_TRY(mContext->checkNoErrors(what));
     times.checks = millisecondsSince(start);
     mStrategy = std::move(strategy);
-    if (mTarget.sampleCount() > 1 && !mResolvedBackground && mStrategy->composesResolved()) {
+    const FramePasses* passes = mStrategy->framePasses();
+    if (mTarget.sampleCount() > 1 && !mResolvedBackground && passes && passes->composesResolved()) {
         // Made by the first strategy that draws resolved passes (RendererFrame.cpp), not by
         // every multisampled renderer.
         ENCORE_TRY_ASSIGN(auto resolved,
@@ -378,7 +386,7 @@ RendererStats RendererCore::stats() const {
     stats.strategy = mKind;
     stats.bundled = bundled();
     stats.pipelinesCreated = mSetup->pipelinesCreated;
-    stats.bundlesRecorded = mStrategy ? mStrategy->bundlesRecorded() : 0;
+    stats.bundlesRecorded = mStrategy ? mStrategy->report().bundlesRecorded : 0;
     stats.sceneUploads = mSceneUploads;
     stats.uploadedBytes = uploadedBytes();
     stats.prepare = mSetup->prepareTimes;
@@ -404,7 +412,7 @@ void RendererCore::releaseScene() {
 
 Result<void> RendererCore::resize(std::uint32_t width, std::uint32_t height) {
     if (mStrategy) {
-        ENCORE_TRY(mStrategy->checkTarget(width, height));
+        ENCORE_TRY(checkTarget(*mStrategy, width, height));
     }
     RenderTargetOptions options = mTarget.options();
     options.width = width;

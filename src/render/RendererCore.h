@@ -182,7 +182,7 @@ class RendererCore {
 
     // Triangle counting, for strategies that decide on the GPU what to draw (GPU culling, the
     // visibility buffer): while on, every frame copies the GPU's counts of what it drew
-    // (Strategy::gpuTriangleCounts) into a history on the GPU, without waiting for anything;
+    // (StrategyReport::gpuTriangleCounts) into a history on the GPU, without waiting for anything;
     // takeTriangleHistory reads it back later, outside the frames being measured. Turning it on
     // starts a new history; prepare() does too.
     void setTriangleCounting(bool on);
@@ -317,7 +317,7 @@ class RendererCore {
     std::unique_ptr<ToneMapper> mToneMapper;           // HDR targets only.
     std::unique_ptr<PassTargetTextures> mPassTargets;  // RendererOptions::passTargets only.
     std::unique_ptr<EnvironmentBackground> mBackground;
-    // At one sample without depth, for resolved passes (Strategy::composesResolved): made on
+    // At one sample without depth, for resolved passes (FramePasses::composesResolved): made on
     // a multisampled target by the first strategy that draws them.
     std::unique_ptr<EnvironmentBackground> mResolvedBackground;
     std::unique_ptr<RenderSetup> mSetup;  // Stable address: strategies keep pointers to it.

@@ -11,6 +11,7 @@
 
 #include "gpu/Readback.h"
 #include "gpu/TimedSubmit.h"
+#include "render/FramePasses.h"
 #include "render/PassAttachments.h"
 #include "render/PassTargets.h"
 #include "render/TransmissionPass.h"
@@ -44,9 +45,9 @@ struct RendererCore::FramePlan {
     bool twoPhases = false;
     // Only scenes with transmissive surfaces pay for the copy and the extra passes.
     bool transmission = false;
-    // Straight into the resolved texture at one sample (Strategy::composesResolved).
+    // Straight into the resolved texture at one sample (FramePasses::composesResolved).
     bool resolvedPasses = false;
-    // Every pixel composed in compute (Strategy::composesFrame): no scene render pass at all.
+    // Every pixel composed in compute (FramePasses::composesFrame): no scene render pass at all.
     std::optional<PassAttachments> composedAttachments;
     std::vector<RecordedCall>* trace = nullptr;
 };
@@ -71,11 +72,10 @@ FrameResult RendererCore::renderPasses(std::span<const Camera> cameras,
     result.encodeMilliseconds = timing.encodeMilliseconds;
     result.submitMilliseconds = timing.submitMilliseconds;
     result.gpuMilliseconds = timing.gpuMilliseconds;
-    if (mStrategy) {
-        result.bundleContents = mStrategy->bundleContents();
-    }
+    const StrategyReport report = mStrategy ? mStrategy->report() : StrategyReport{};
+    result.bundleContents = report.bundleContents;
     // Bundles and indirect draws replay per view; counters already sum the direct draws.
-    const auto gpuCounts = mStrategy ? mStrategy->gpuTriangleCounts() : std::nullopt;
+    const auto& gpuCounts = report.gpuTriangleCounts;
     result.trianglesSubmitted =
         result.counters.triangles + cameras.size() * (result.bundleContents.triangles +
                                                       (gpuCounts ? gpuCounts->candidates : 0));
@@ -95,18 +95,19 @@ RendererCore::FramePlan RendererCore::planFrame(std::span<const Camera> cameras,
     state.targetWidth = mTarget.width();
     state.targetHeight = mTarget.height();
     state.transformsAnimated = mGpuAnimation && mGpuAnimationPending;
-    plan.twoPhases = !plan.multiView && mStrategy && mStrategy->drawsInTwoPhases(state);
+    FramePasses* passes = mStrategy ? mStrategy->framePasses() : nullptr;
+    plan.twoPhases = !plan.multiView && passes && passes->drawsInTwoPhases(state);
     if (plan.twoPhases) {
         state.phase = DrawPhase::First;
     }
 
-    plan.transmission = mTransmission && mStrategy && mStrategy->drawsTransmission();
+    plan.transmission = mTransmission && passes && passes->drawsTransmission();
     // One scene pass, of colour alone: what a strategy may compose some other way.
     const bool singlePass = mStrategy && !plan.twoPhases && !plan.transmission && !mPassTargets;
-    plan.resolvedPasses = singlePass && mResolvedBackground && mStrategy->composesResolved();
-    const bool composedFrame = singlePass &&
+    plan.resolvedPasses = singlePass && passes && mResolvedBackground && passes->composesResolved();
+    const bool composedFrame = singlePass && passes &&
                                mOptions.toneMapping.background != BackgroundKind::Environment &&
-                               mStrategy->composesFrame(state);
+                               passes->composesFrame(state);
     if (composedFrame) {
         PassPlan composedPass;
         composedPass.viewCount = cameras.size();
@@ -138,7 +139,7 @@ void RendererCore::encodeFrame(const wgpu::CommandEncoder& commandEncoder,
     }
     // After the last pass: a two-phase frame counts in both culling passes.
     if (mTriangleHistory && mStrategy) {
-        if (auto counts = mStrategy->gpuTriangleCounts()) {
+        if (auto counts = mStrategy->report().gpuTriangleCounts) {
             mTriangleHistory->record(commandEncoder, *counts);
         }
     }
@@ -160,10 +161,10 @@ void RendererCore::encodeScenePasses(const wgpu::CommandEncoder& commandEncoder,
         composition.background = plan.composedAttachments->clearColor;
         composition.timestampWrites =
             timestampWrites(GpuStage::Scene, plan.composedAttachments->timestampLabel);
-        mStrategy->composeFrame(commandEncoder, plan.state, composition);
+        mStrategy->framePasses()->composeFrame(commandEncoder, plan.state, composition);
     } else if (plan.twoPhases) {
         encodeScenePass(commandEncoder, plan, 0, DrawPhase::First, false, result);
-        mStrategy->betweenPhases(commandEncoder, plan.state, mTarget.depthTexture());
+        mStrategy->framePasses()->betweenPhases(commandEncoder, plan.state, mTarget.depthTexture());
         encodeScenePass(commandEncoder, plan, 0, DrawPhase::Second, false, result);
     } else {
         for (std::size_t view = 0; view < plan.cameras.size(); ++view) {
@@ -272,7 +273,7 @@ void RendererCore::drawView(const wgpu::RenderPassEncoder& pass,
         viewState.phase = phase;
         viewState.resolvedPass = plan.resolvedPasses;
         if (transmissionPass) {
-            mStrategy->encodeTransmission(encoder, viewState);
+            mStrategy->framePasses()->encodeTransmission(encoder, viewState);
         } else {
             mStrategy->encode(encoder, viewState);
         }

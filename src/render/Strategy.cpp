@@ -13,13 +13,12 @@
 
 namespace encore::render {
 
-std::optional<GpuTriangleCounts> Strategy::gpuTriangleCounts() const {
-    const GpuCuller* gpuCuller = culler();
-    if (!gpuCuller || !gpuCuller->indirectArguments()) {
+std::optional<GpuTriangleCounts> gpuTriangleCountsOf(const GpuCuller& culler) {
+    if (!culler.indirectArguments()) {
         return std::nullopt;
     }
-    return GpuTriangleCounts{gpuCuller->indirectArguments(), gpuCuller->drawnTrianglesOffset(),
-                             std::nullopt, submittedTriangles(gpuCuller->draws())};
+    return GpuTriangleCounts{culler.indirectArguments(), culler.drawnTrianglesOffset(),
+                             std::nullopt, submittedTriangles(culler.draws())};
 }
 
 std::unique_ptr<Strategy> createStrategy(StrategyKind kind, bool bundle) {

@@ -55,9 +55,9 @@ struct FrameState {
     std::uint32_t targetWidth = 0;  // The render target's size in pixels.
     std::uint32_t targetHeight = 0;
     // This scene pass draws straight into the target's resolved texture at one sample, without
-    // depth (Strategy::composesResolved).
+    // depth (FramePasses::composesResolved).
     bool resolvedPass = false;
-    // Set when the renderer composes this frame through Strategy::composeFrame: the background
+    // Set when the renderer composes this frame through FramePasses::composeFrame: the background
     // it will pass there (FrameComposition::background), known to beforePass already, and the
     // view of the target that the composition writes: its one-sample scene colour as a
     // write-only storage texture (RenderTarget::sceneStorageView), RGBA8Unorm holding
@@ -67,13 +67,6 @@ struct FrameState {
     // GPU-evaluated animation writes instance transforms before this frame's passes (CPU
     // animation and edits say so through Strategy::instanceMoved).
     bool transformsAnimated = false;
-};
-
-// Where a strategy that composes the frame in compute (Strategy::composesFrame) writes it.
-struct FrameComposition {
-    // What a pixel nothing covers holds: the scene pass's clear colour (linear).
-    wgpu::Color background{0.0, 0.0, 0.0, 0.0};
-    const wgpu::PassTimestampWrites* timestampWrites = nullptr;  // For the composing pass.
 };
 
 class GpuCuller;
@@ -87,6 +80,23 @@ struct GpuTriangleCounts {
     std::optional<std::uint64_t> computeOffset;  // Triangles rasterised in compute (visibility).
     std::uint64_t candidates = 0;  // The triangles of a view it chooses among (CPU-known).
 };
+
+// What a strategy tells about itself, for stats, tests and tools.
+struct StrategyReport {
+    // What its render bundles contain (zero for strategies that record directly), and how many
+    // bundles it has recorded since prepare().
+    DrawCounters bundleContents;
+    std::uint64_t bundlesRecorded = 0;
+    // The GPU culling state; nullptr when the strategy does not cull with GpuCuller.
+    const GpuCuller* culler = nullptr;
+    // The GPU's triangle counts of the last frame; none when the GPU chooses nothing.
+    std::optional<GpuTriangleCounts> gpuTriangleCounts;
+};
+
+// The last frame's triangle counts of `culler` (none before it has culled).
+std::optional<GpuTriangleCounts> gpuTriangleCountsOf(const GpuCuller& culler);
+
+class FramePasses;
 
 class Strategy {
   public:
@@ -109,62 +119,9 @@ class Strategy {
         (void)frame;
     }
 
-    // Whether this frame (of one view) is drawn in two passes: beforePass, encode() with
-    // DrawPhase::First, betweenPhases() with the first pass's depth, encode() with
-    // DrawPhase::Second. Asked before beforePass; false: one pass, DrawPhase::Whole.
-    virtual bool drawsInTwoPhases(const FrameState& frame) const {
-        (void)frame;
-        return false;
-    }
-    // Between the two passes of a two-phase frame: GPU work that reads the first pass's depth.
-    virtual void betweenPhases(const wgpu::CommandEncoder& commands,
-                               const FrameState& frame,
-                               const wgpu::Texture& depth) {
-        (void)commands;
-        (void)frame;
-        (void)depth;
-    }
-
     // Records one frame's draws. Sets every piece of state it uses (group 0 included), so the
     // same code can record into a render bundle.
     virtual void encode(RenderEncoder& encoder, const FrameState& frame) const = 0;
-
-    // Whether, on a multisampled target, the scene passes need nothing but what encode() draws
-    // from the strategy's own per-sample data, already averaged per pixel: then the renderer
-    // draws them at one sample straight into the target's resolved texture, without depth
-    // (FrameState::resolvedPass), and skips the multisampled target, its clears and its resolve
-    // (on the H100's few graphics units those cost about four times a one-sample pass).
-    virtual bool composesResolved() const { return false; }
-
-    // Whether the strategy writes every pixel of the frame itself in compute (composeFrame),
-    // so that the renderer records no scene render pass at all. Asked only for frames the
-    // renderer could compose so: one phase, no transmission pass, no pass images, and a plain
-    // background colour (an environment is drawn by a render pass).
-    virtual bool composesFrame(const FrameState& frame) const {
-        (void)frame;
-        return false;
-    }
-    // Records the frame's composition after beforePass(): every pixel of `frame.composedView`
-    // (the target's one-sample scene colour) written, uncovered ones with `target.background`.
-    virtual void composeFrame(const wgpu::CommandEncoder& commands,
-                              const FrameState& frame,
-                              const FrameComposition& target) {
-        (void)commands;
-        (void)frame;
-        (void)target;
-    }
-
-    // KHR_materials_transmission: whether encode() leaves out surfaces with transmission, for
-    // encodeTransmission() to draw in a pass of their own once the Renderer has copied the scene
-    // drawn so far (render/TransmissionPass.h). False (the default) when the scene has none, and
-    // in strategies that shade no materials (which draw every surface alike).
-    virtual bool drawsTransmission() const { return false; }
-    // Records the transmissive surfaces into the transmission pass of `frame`'s view (called
-    // only when drawsTransmission()); as encode(), it sets every piece of state it uses.
-    virtual void encodeTransmission(RenderEncoder& encoder, const FrameState& frame) const {
-        (void)encoder;
-        (void)frame;
-    }
 
     // Strategies that keep instance transforms of their own (the per-node uniforms of naive,
     // layouts and pipeline-cache) rewrite them: the GPU scene's are written already. Data in
@@ -177,23 +134,14 @@ class Strategy {
     // (GpuAnimation), which writes the animated ones there.
     virtual InstanceTransformTargets instanceTransformTargets() const = 0;
 
-    // Whether the strategy can draw into a target of `width` x `height` (after prepare()):
-    // strategies whose buffers grow with the target (visibility) say here, with an error naming
-    // the device limit, when they would exceed it. The Renderer asks on prepare and resize.
-    virtual Result<void> checkTarget(std::uint32_t width, std::uint32_t height) const {
-        (void)width;
-        (void)height;
-        return {};
-    }
+    // Bundles, culling state and GPU triangle counts (StrategyReport); nothing by default.
+    virtual StrategyReport report() const { return {}; }
 
-    // What the strategy's render bundles contain (zero for strategies that record directly),
-    // and how many bundles it has recorded since prepare().
-    virtual DrawCounters bundleContents() const { return {}; }
-    virtual std::uint64_t bundlesRecorded() const { return 0; }
-    // The GPU culling state, for tests and tools; nullptr when the strategy does not cull.
-    virtual const GpuCuller* culler() const { return nullptr; }
-    // The GPU's triangle counts of the last frame; by default the culler's (none without one).
-    virtual std::optional<GpuTriangleCounts> gpuTriangleCounts() const;
+    // The passes of a frame beyond encode()'s one scene pass (FramePasses.h: two phases,
+    // transmission, composition in compute), for the strategies that draw some; nullptr (the
+    // default) for those that draw one pass.
+    virtual FramePasses* framePasses() { return nullptr; }
+    const FramePasses* framePasses() const { return const_cast<Strategy*>(this)->framePasses(); }
 };
 
 // With `bundle`, the strategy that draws `kind`'s frame from render bundles (see bundledKind).

@@ -1,4 +1,4 @@
-// The frame composed in compute (Strategy::composeFrame): the target's scene colour written by
+// The frame composed in compute (FramePasses::composeFrame): the target's scene colour written by
 // the includer through `composedFrame`, a write-only storage view of the target
 // (RenderTarget::sceneStorageView): no copy afterwards. HALF_OUTPUT: RGBA16Float (HDR
 // targets); otherwise the RGBA8 bytes of the target's sRGB texture, encoded here as its sRGB

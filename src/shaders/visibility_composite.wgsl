@@ -14,7 +14,7 @@
 // samples, sample_mask, cost three times a one-sample target's pass).
 // With a plain background colour, composeMain does pixelMain's work in compute instead, for
 // every pixel (uncovered ones take the background), straight into the target through a storage
-// view (Strategy::composeFrame, visibility_composed.wgsl): no render pass at all, whose every
+// view (FramePasses::composeFrame, visibility_composed.wgsl): no render pass at all, whose every
 // fragment costs the H100's few graphics units about 0.3 ns. At one sample the shading and the
 // binning write the target themselves (COMPOSED in
 // visibility_shade.wgsl and visibility_bins.wgsl), and composeMain does not run.

@@ -265,7 +265,7 @@ TEST(AnimationRenderTest, GpuCullingFollowsAnimationAcrossTheFrustumEdge) {
                 auto image = renderer->readImage();
                 ASSERT_TRUE(image.ok()) << image.error().message;
                 EXPECT_EQ(test::differingPixels(*image, reference[i], 0), 0u);
-                const GpuCuller& culler = *internals(*renderer).strategy()->culler();
+                const GpuCuller& culler = *internals(*renderer).strategy()->report().culler;
                 const auto counts = test::culledInstanceCounts(*context, culler);
                 std::vector<std::uint32_t> visibleOfMesh(3, 0);
                 for (std::size_t draw = 0; draw < counts.size(); ++draw) {
@@ -276,10 +276,10 @@ TEST(AnimationRenderTest, GpuCullingFollowsAnimationAcrossTheFrustumEdge) {
                 }
                 EXPECT_EQ(visibleOfMesh, expected[i]);
                 if (i == 0) {
-                    recorded = internals(*renderer).strategy()->bundlesRecorded();
+                    recorded = internals(*renderer).strategy()->report().bundlesRecorded;
                 }
             }
-            EXPECT_EQ(internals(*renderer).strategy()->bundlesRecorded(), recorded);
+            EXPECT_EQ(internals(*renderer).strategy()->report().bundlesRecorded, recorded);
             EXPECT_TRUE(context->checkNoErrors("animated culling").ok());
         }
     }
@@ -333,7 +333,7 @@ TEST(AnimationRenderTest, BundlesStayRecordedWhileAnimating) {
             ASSERT_TRUE(bundled->prepare(*animated, kind).ok());
             ASSERT_TRUE(direct->prepare(*animated, StrategyKind::Materials).ok());
             bundled->renderFrame(frontCamera());
-            const std::uint64_t recorded = internals(*bundled).strategy()->bundlesRecorded();
+            const std::uint64_t recorded = internals(*bundled).strategy()->report().bundlesRecorded;
             for (int frame = 0; frame < 100; ++frame) {
                 const double t = frame / 99.0;
                 ASSERT_TRUE(bundled->setAnimationTime(t).ok());
@@ -347,7 +347,7 @@ TEST(AnimationRenderTest, BundlesStayRecordedWhileAnimating) {
                     EXPECT_EQ(test::differingPixels(*a, *b, 0), 0u) << "frame " << frame;
                 }
             }
-            EXPECT_EQ(internals(*bundled).strategy()->bundlesRecorded(), recorded);
+            EXPECT_EQ(internals(*bundled).strategy()->report().bundlesRecorded, recorded);
             auto errors = context->checkNoErrors("animating bundles");
             EXPECT_TRUE(errors.ok()) << errors.error().message;
         }

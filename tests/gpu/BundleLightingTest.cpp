@@ -102,7 +102,7 @@ class BundleLightingTest : public ::testing::TestWithParam<StrategyKind> {
         mRenderer = std::make_unique<Renderer>(std::move(*renderer));
         ASSERT_TRUE(mRenderer->prepare(mScene, GetParam()).ok());
         mFirst = frame(*mRenderer);
-        mRecorded = internals(*mRenderer).strategy()->bundlesRecorded();
+        mRecorded = internals(*mRenderer).strategy()->report().bundlesRecorded;
         ASSERT_EQ(mRecorded, test::bundlesPerRecording(GetParam()));
     }
 
@@ -116,7 +116,7 @@ class BundleLightingTest : public ::testing::TestWithParam<StrategyKind> {
             test::differingPixels(freshFrame(freshScene ? *freshScene : mScene, fresh), changed, 1),
             0u)
             << what;
-        EXPECT_EQ(internals(*mRenderer).strategy()->bundlesRecorded(), mRecorded) << what;
+        EXPECT_EQ(internals(*mRenderer).strategy()->report().bundlesRecorded, mRecorded) << what;
         EXPECT_TRUE(test::vulkanContext()->checkNoErrors(what).ok());
     }
 

@@ -151,7 +151,7 @@ TEST(BundleTest, CameraAndTransformChangesNeedNoReRecording) {
     ASSERT_TRUE(renderer->prepare(scene, StrategyKind::Bundles).ok());
     renderer->renderFrame(frontCamera());
     ASSERT_TRUE(renderer->readImage().ok());
-    EXPECT_EQ(internals(*renderer).strategy()->bundlesRecorded(), 1u);
+    EXPECT_EQ(internals(*renderer).strategy()->report().bundlesRecorded, 1u);
 
     const glm::mat4 moved = glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.8f, -0.5f));
     const Camera secondCamera = frontCamera(1.0f, 0.3f);
@@ -159,7 +159,7 @@ TEST(BundleTest, CameraAndTransformChangesNeedNoReRecording) {
     const auto frame = renderer->renderFrame(secondCamera);
     auto second = renderer->readImage();
     ASSERT_TRUE(second.ok());
-    EXPECT_EQ(internals(*renderer).strategy()->bundlesRecorded(), 1u)
+    EXPECT_EQ(internals(*renderer).strategy()->report().bundlesRecorded, 1u)
         << "the bundle was re-recorded";
     EXPECT_EQ(frame.counters.executeBundles, 1u);
     EXPECT_EQ(frame.counters.drawCalls(), 0u);  // Every draw comes from the bundle.
@@ -189,7 +189,7 @@ TEST(BundleTest, MaterialFactorChangesNeedNoReRecording) {
     ASSERT_TRUE(image.ok());
     const auto [x, y] = pixelOf(camera, {0, 0, 0});
     EXPECT_EQ(dominantChannel(test::pixelAt(*image, x, y)), 1);
-    EXPECT_EQ(internals(*renderer).strategy()->bundlesRecorded(), 1u);
+    EXPECT_EQ(internals(*renderer).strategy()->report().bundlesRecorded, 1u);
     EXPECT_FALSE(renderer->updateMaterial(scene::MaterialId{7u}, green).ok());
     // Adding an extension that chooses the pipelines is refused, naming it.
     scene::Material iridescent = green;
@@ -215,13 +215,13 @@ TEST(BundleTest, ReplacedTextureReRecordsTheBundle) {
     ASSERT_TRUE(renderer->replaceBaseColorImage(scene::MaterialId{0u}, solid(255, 0, 0)).ok());
     renderer->renderFrame(camera);
     ASSERT_TRUE(renderer->readImage().ok());
-    const auto recordedBefore = internals(*renderer).strategy()->bundlesRecorded();
+    const auto recordedBefore = internals(*renderer).strategy()->report().bundlesRecorded;
 
     ASSERT_TRUE(renderer->replaceBaseColorImage(scene::MaterialId{0u}, solid(0, 0, 255)).ok());
     renderer->renderFrame(camera);
     auto image = renderer->readImage();
     ASSERT_TRUE(image.ok()) << image.error().message;  // A stale bundle fails here.
-    EXPECT_EQ(internals(*renderer).strategy()->bundlesRecorded(), recordedBefore + 1);
+    EXPECT_EQ(internals(*renderer).strategy()->report().bundlesRecorded, recordedBefore + 1);
     const auto [x, y] = pixelOf(camera, {0, 0, 0});
     EXPECT_EQ(dominantChannel(test::pixelAt(*image, x, y)), 2);
     EXPECT_TRUE(context->checkNoErrors("replaced texture").ok());
@@ -239,7 +239,7 @@ TEST(BundleTest, TwoViewsReplayOneBundle) {
     auto both = stereo->readImage();
     ASSERT_TRUE(both.ok()) << both.error().message;
     EXPECT_EQ(frame.counters.executeBundles, 2u);  // One replay per view.
-    EXPECT_EQ(internals(*stereo).strategy()->bundlesRecorded(), 1u);
+    EXPECT_EQ(internals(*stereo).strategy()->report().bundlesRecorded, 1u);
 
     for (int view = 0; view < 2; ++view) {
         const auto single = renderOnce(scene, StrategyKind::Materials, cameras[view]);

@@ -185,7 +185,7 @@ TEST(DisplayMappingTest, TexturelessMaterialGainsATexture) {
         renderer->renderFrame(test::frontCamera());
         auto before = renderer->readImage();
         ASSERT_TRUE(before.ok());
-        const std::uint64_t recorded = internals(*renderer).strategy()->bundlesRecorded();
+        const std::uint64_t recorded = internals(*renderer).strategy()->report().bundlesRecorded;
         // The plastic (material 1) turns red; the metal keeps its colour.
         ASSERT_TRUE(renderer->replaceBaseColorImage(scene::MaterialId{1u}, red).ok());
         renderer->renderFrame(test::frontCamera());
@@ -202,7 +202,7 @@ TEST(DisplayMappingTest, TexturelessMaterialGainsATexture) {
         EXPECT_EQ(test::pixelAt(*after, metalX, metalY), test::pixelAt(*before, metalX, metalY))
             << strategyName(kind);
         if (recorded > 0) {
-            EXPECT_EQ(internals(*renderer).strategy()->bundlesRecorded(),
+            EXPECT_EQ(internals(*renderer).strategy()->report().bundlesRecorded,
                       recorded + test::bundlesPerRecording(kind))
                 << strategyName(kind);
         }

@@ -408,7 +408,7 @@ TEST(GpuAnimationTest, BundlesStayRecordedOverManyGpuFrames) {
         ASSERT_TRUE(gpu->prepare(scene, kind).ok());
         ASSERT_TRUE(cpu->prepare(scene, kind).ok());
         gpu->renderFrame(frontCamera());
-        const std::uint64_t recorded = internals(*gpu).strategy()->bundlesRecorded();
+        const std::uint64_t recorded = internals(*gpu).strategy()->report().bundlesRecorded;
         for (int frame = 0; frame < 120; ++frame) {
             const double t = frame / 100.0;
             ASSERT_TRUE(gpu->setAnimationTime(t).ok());
@@ -422,7 +422,7 @@ TEST(GpuAnimationTest, BundlesStayRecordedOverManyGpuFrames) {
                 EXPECT_EQ(test::differingPixels(*a, *b, 0), 0u) << "frame " << frame;
             }
         }
-        EXPECT_EQ(internals(*gpu).strategy()->bundlesRecorded(), recorded);
+        EXPECT_EQ(internals(*gpu).strategy()->report().bundlesRecorded, recorded);
         auto errors = context->checkNoErrors("GPU animation with bundles");
         EXPECT_TRUE(errors.ok()) << errors.error().message;
     }

@@ -105,7 +105,7 @@ TEST_P(GpuCullingTest, VisibleCountsEqualACpuFrustumTestAndTheImageEqualsUnculle
     EXPECT_EQ(test::differingPixels(unculled, culled), 0u);
     EXPECT_GT(test::coveredFraction(culled, test::pixelAt(culled, 0, kSize - 1)), 0.01);
 
-    const GpuCuller* culler = internals(*renderer).strategy()->culler();
+    const GpuCuller* culler = internals(*renderer).strategy()->report().culler;
     ASSERT_NE(culler, nullptr);
     const auto gpuCounts = test::culledInstanceCounts(*context, *culler);
     const auto cpuCounts = cpuInstanceCounts(*culler, camera, scene);
@@ -130,7 +130,7 @@ TEST_P(GpuCullingTest, WholeSceneInViewDrawsEverything) {
     EXPECT_EQ(test::differingPixels(unculled, culled), 0u);
     std::uint64_t visible = 0;
     for (auto count :
-         test::culledInstanceCounts(*context, *internals(*renderer).strategy()->culler())) {
+         test::culledInstanceCounts(*context, *internals(*renderer).strategy()->report().culler)) {
         visible += count;
     }
     EXPECT_EQ(visible, scene.instances.size());
@@ -146,7 +146,7 @@ TEST_P(GpuCullingTest, NothingVisibleDrawsNothingAndStaysValid) {
     const auto image = render(*renderer, scene, GetParam(), away);
     EXPECT_EQ(test::coveredFraction(image, test::pixelAt(image, 0, 0)), 0.0);
     for (auto count :
-         test::culledInstanceCounts(*context, *internals(*renderer).strategy()->culler())) {
+         test::culledInstanceCounts(*context, *internals(*renderer).strategy()->report().culler)) {
         EXPECT_EQ(count, 0u);
     }
     EXPECT_TRUE(context->checkNoErrors("nothing visible").ok());
@@ -161,7 +161,7 @@ TEST_P(GpuCullingTest, MovedInstancesAreCulledWhereTheyAreNow) {
     ASSERT_TRUE(renderer.ok());
     const Camera camera = Camera::framing(scene.bounds, 1.0f);
     render(*renderer, scene, GetParam(), camera);
-    const auto recorded = internals(*renderer).strategy()->bundlesRecorded();
+    const auto recorded = internals(*renderer).strategy()->report().bundlesRecorded;
     const glm::mat4 farAway = glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 1000.0f, 0.0f));
     for (std::size_t instance = 0; instance < 10; ++instance) {
         ASSERT_TRUE(renderer->updateInstance(instance, farAway).ok());
@@ -170,11 +170,11 @@ TEST_P(GpuCullingTest, MovedInstancesAreCulledWhereTheyAreNow) {
     ASSERT_TRUE(renderer->readImage().ok());
     std::uint64_t visible = 0;
     for (auto count :
-         test::culledInstanceCounts(*context, *internals(*renderer).strategy()->culler())) {
+         test::culledInstanceCounts(*context, *internals(*renderer).strategy()->report().culler)) {
         visible += count;
     }
     EXPECT_EQ(visible, scene.instances.size() - 10);
-    EXPECT_EQ(internals(*renderer).strategy()->bundlesRecorded(), recorded);
+    EXPECT_EQ(internals(*renderer).strategy()->report().bundlesRecorded, recorded);
 }
 
 // A frame of several views (`render --views`, batch strips) culls once for all of them: it must
@@ -233,7 +233,7 @@ TEST(GpuCullingTrapTest, NonZeroFirstInstanceVanishesWithoutTheFeature) {
     ASSERT_TRUE(renderer.ok());
     const Camera camera = Camera::framing(scene.bounds, 1.0f);
     const auto full = render(*renderer, scene, StrategyKind::GpuCulling, camera);
-    const GpuCuller* culler = internals(*renderer).strategy()->culler();
+    const GpuCuller* culler = internals(*renderer).strategy()->report().culler;
     ASSERT_NE(culler, nullptr);
     // Set firstInstance of every draw to 1 (the reset only rewrites instanceCount).
     for (std::size_t draw = 0; draw < culler->draws().size(); ++draw) {

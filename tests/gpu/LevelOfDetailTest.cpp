@@ -102,12 +102,12 @@ TEST(LevelOfDetailTest, TheFlythroughKeepsItsLookWithFewerTriangles) {
         auto ssim = image::ssimLuminance(expected, image);
         ASSERT_TRUE(ssim.ok());
         EXPECT_GE(*ssim, 0.98) << "frame " << frame;
-        coarser += coarserInstances(*context, *internals(*detailed).strategy()->culler());
+        coarser += coarserInstances(*context, *internals(*detailed).strategy()->report().culler);
         if (frame == 0) {
-            recorded = internals(*detailed).strategy()->bundlesRecorded();
+            recorded = internals(*detailed).strategy()->report().bundlesRecorded;
         }
     }
-    EXPECT_EQ(internals(*detailed).strategy()->bundlesRecorded(), recorded);
+    EXPECT_EQ(internals(*detailed).strategy()->report().bundlesRecorded, recorded);
     EXPECT_GT(coarser, 0u) << "distant instances should be drawn at coarser levels";
     const auto fullTriangles = full->takeDrawnTriangles();
     const auto lodTriangles = detailed->takeDrawnTriangles();
@@ -135,7 +135,7 @@ TEST(LevelOfDetailTest, ATinyThresholdDrawsFullDetail) {
     full->renderFrame(camera);
     tiny->renderFrame(camera);
     EXPECT_EQ(test::differingPixels(readImage(*full), readImage(*tiny), 0), 0u);
-    EXPECT_EQ(coarserInstances(*context, *internals(*tiny).strategy()->culler()), 0u);
+    EXPECT_EQ(coarserInstances(*context, *internals(*tiny).strategy()->report().culler), 0u);
 }
 
 // Instances drawn at level 0 of primitives that have coarser levels, over both phases.
@@ -186,8 +186,9 @@ TEST(LevelOfDetailTest, AMultiViewFrameChoosesLevelsForItsNearestView) {
     auto finestFor = [&](std::span<const Camera> views) -> std::uint64_t {
         auto renderer = renderedViews(*context, scene, views, kWidth);
         EXPECT_TRUE(renderer.ok()) << renderer.error().message;
-        return renderer.ok() ? finestInstances(*context, *internals(*renderer).strategy()->culler())
-                             : 0;
+        return renderer.ok()
+                   ? finestInstances(*context, *internals(*renderer).strategy()->report().culler)
+                   : 0;
     };
     const std::uint64_t farOnly = finestFor({&far, 1});
     const std::uint64_t nearOnly = finestFor({&near, 1});
@@ -216,7 +217,7 @@ TEST(LevelOfDetailTest, AnOrbitOfViewsStillDrawsDistantInstancesCoarser) {
     }
     auto renderer = renderedViews(*context, scene, orbit, kHeight);
     ASSERT_TRUE(renderer.ok()) << renderer.error().message;
-    const GpuCuller& culler = *internals(*renderer).strategy()->culler();
+    const GpuCuller& culler = *internals(*renderer).strategy()->report().culler;
     EXPECT_GT(coarserInstances(*context, culler), 0u);
     EXPECT_GT(finestInstances(*context, culler), 0u) << "instances near a view keep full detail";
     EXPECT_TRUE(context->checkNoErrors("orbit levels of detail").ok());

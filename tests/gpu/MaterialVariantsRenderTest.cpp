@@ -64,7 +64,8 @@ TEST(MaterialVariantsRenderTest, ASwitchChangesMaterialBindingsOnly) {
         // Every variant, back to the default, and a variant straight after the default.
         for (int variant : {-1, 0, 1, 2, 3, -1, 2, 2}) {
             SCOPED_TRACE("variant " + std::to_string(variant));
-            const std::uint64_t recorded = internals(*renderer).strategy()->bundlesRecorded();
+            const std::uint64_t recorded =
+                internals(*renderer).strategy()->report().bundlesRecorded;
             ASSERT_TRUE(renderer->selectVariant(variantOf(variant)).ok());
             EXPECT_EQ(renderer->variant(), variantOf(variant));
             renderer->renderFrame(test::frontCamera());
@@ -90,9 +91,9 @@ TEST(MaterialVariantsRenderTest, ASwitchChangesMaterialBindingsOnly) {
             // Bundles record again after a switch, and only then.
             if (renderer->bundled()) {
                 if (variant != selected || recorded == 0) {
-                    EXPECT_GT(internals(*renderer).strategy()->bundlesRecorded(), recorded);
+                    EXPECT_GT(internals(*renderer).strategy()->report().bundlesRecorded, recorded);
                 } else {
-                    EXPECT_EQ(internals(*renderer).strategy()->bundlesRecorded(), recorded);
+                    EXPECT_EQ(internals(*renderer).strategy()->report().bundlesRecorded, recorded);
                 }
             }
             selected = variant;

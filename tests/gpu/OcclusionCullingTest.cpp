@@ -108,18 +108,18 @@ TEST_P(OcclusionCullingTest, EveryFrameOfAWalkEqualsTheUnculledFrameAndHidesInst
         const auto image = readImage(*culled);
         EXPECT_EQ(test::differingPixels(expected, image, 0), 0u) << "frame " << frame;
         EXPECT_GT(test::coveredFraction(image, test::pixelAt(image, 0, 0)), 0.2);
-        const std::uint64_t drawn =
-            sum(test::culledInstanceCounts(*context, *internals(*culled).strategy()->culler()));
-        const std::uint64_t inFrustum = sum(
-            test::culledInstanceCounts(*context, *internals(*frustumOnly).strategy()->culler()));
+        const std::uint64_t drawn = sum(
+            test::culledInstanceCounts(*context, *internals(*culled).strategy()->report().culler));
+        const std::uint64_t inFrustum = sum(test::culledInstanceCounts(
+            *context, *internals(*frustumOnly).strategy()->report().culler));
         EXPECT_LE(drawn, inFrustum) << "frame " << frame;
         hiddenFrames += 5 * drawn < 4 * inFrustum;
         if (frame == 0) {
-            recorded = internals(*culled).strategy()->bundlesRecorded();
+            recorded = internals(*culled).strategy()->report().bundlesRecorded;
         }
     }
     EXPECT_GE(hiddenFrames, 3u) << "the nearest objects should hide a fifth of the grid in view";
-    EXPECT_EQ(internals(*culled).strategy()->bundlesRecorded(), recorded);
+    EXPECT_EQ(internals(*culled).strategy()->report().bundlesRecorded, recorded);
     EXPECT_TRUE(context->checkNoErrors("occlusion culling").ok());
 }
 
@@ -215,7 +215,7 @@ TEST(OcclusionCullingPhasesTest, AStillCameraDrawsEverythingInPhaseOneFromTheSec
     auto renderer = Renderer::create(*context, test::pixelTestOptions(kWidth, kHeight));
     ASSERT_TRUE(renderer.ok());
     ASSERT_TRUE(renderer->prepare(scene, StrategyKind::GpuCullingBundles).ok());
-    const GpuCuller& culler = *internals(*renderer).strategy()->culler();
+    const GpuCuller& culler = *internals(*renderer).strategy()->report().culler;
     renderer->renderFrame(camera);
     ASSERT_TRUE(renderer->readImage().ok());
     const std::uint64_t first = phaseCount(*context, culler, 1);
@@ -259,7 +259,7 @@ TEST(DepthPyramidTest, EachTexelHoldsTheFarthestDepthOfItsFootprint) {
     renderer->renderFrame(walk(scene, 6)[1]);
     renderer->renderFrame(walk(scene, 6)[1]);
     ASSERT_TRUE(renderer->readImage().ok());
-    const DepthPyramid& pyramid = internals(*renderer).strategy()->culler()->depthPyramid();
+    const DepthPyramid& pyramid = internals(*renderer).strategy()->report().culler->depthPyramid();
     ASSERT_TRUE(pyramid.builtFor(renderer->target().depthTexture()));
     const std::uint32_t textureWidth = pyramid.texture().GetWidth();
     std::vector<std::vector<float>> levels;

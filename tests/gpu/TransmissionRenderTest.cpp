@@ -146,8 +146,9 @@ Rendered render(const scene::SceneData& scene,
     if (image) {
         result.image = std::move(*image);
     }
-    result.bundlesRecorded =
-        internals(*renderer).strategy() ? internals(*renderer).strategy()->bundlesRecorded() : 0;
+    result.bundlesRecorded = internals(*renderer).strategy()
+                                 ? internals(*renderer).strategy()->report().bundlesRecorded
+                                 : 0;
     return result;
 }
 

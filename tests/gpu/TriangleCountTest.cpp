@@ -69,7 +69,7 @@ TEST_P(TriangleCountTest, AllInViewNoneInViewAndHalfBehindTheCamera) {
     renderer->setCullingOptions(
         {.occlusion = false, .levelsOfDetail = false});  // Frustum culling: exact expectations.
     ASSERT_TRUE(renderer->prepare(scene, GetParam()).ok());
-    const GpuCuller* culler = internals(*renderer).strategy()->culler();
+    const GpuCuller* culler = internals(*renderer).strategy()->report().culler;
     ASSERT_NE(culler, nullptr);
     const std::uint64_t total = sceneTriangles(scene);
     EXPECT_EQ(submittedTriangles(culler->draws()), total);

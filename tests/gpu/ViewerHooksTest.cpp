@@ -59,7 +59,7 @@ TEST(ViewerHooksTest, ResizingKeepsTheRecordedBundlesAndRendersLikeANewTarget) {
         ASSERT_TRUE(renderer->prepare(scene, c.kind, c.bundle).ok());
         renderer->renderFrame(Camera::framing(scene.bounds, 64.0f / 48.0f));
         ASSERT_TRUE(renderer->readImage().ok());
-        const std::uint64_t recorded = internals(*renderer).strategy()->bundlesRecorded();
+        const std::uint64_t recorded = internals(*renderer).strategy()->report().bundlesRecorded;
         EXPECT_GE(recorded, 1u);
 
         ASSERT_TRUE(renderer->resize(96, 80).ok());
@@ -68,7 +68,7 @@ TEST(ViewerHooksTest, ResizingKeepsTheRecordedBundlesAndRendersLikeANewTarget) {
         const FrameResult frame = renderer->renderFrame(Camera::framing(scene.bounds, 1.2f));
         auto resized = renderer->readImage();
         ASSERT_TRUE(resized.ok()) << resized.error().message;
-        EXPECT_EQ(internals(*renderer).strategy()->bundlesRecorded(), recorded);
+        EXPECT_EQ(internals(*renderer).strategy()->report().bundlesRecorded, recorded);
         EXPECT_EQ(frame.counters.executeBundles, test::bundlesPerRecording(c.kind));
         const image::ImageRgba8 fresh = render(scene, c.kind, c.bundle, 96, 80);
         ASSERT_EQ(resized->width, fresh.width);
@@ -80,7 +80,7 @@ TEST(ViewerHooksTest, ResizingKeepsTheRecordedBundlesAndRendersLikeANewTarget) {
 
 // With an environment background, drawn in the frame's render pass: with a plain colour the
 // visibility strategy composes its frame in compute and records no render pass to replay
-// (Strategy::composesFrame), while its bundled form still draws the composite from a bundle.
+// (FramePasses::composesFrame), while its bundled form still draws the composite from a bundle.
 TEST(ViewerHooksTest, EveryStrategyCanDrawItsFrameFromABundle) {
     ENCORE_REQUIRE_VULKAN(context);
     const scene::SceneData scene = generatedScene();
@@ -109,7 +109,7 @@ TEST(ViewerHooksTest, EveryStrategyCanDrawItsFrameFromABundle) {
         EXPECT_EQ(bundledFrame.counters.drawCalls(), 0u);
         const StrategyKind recordedKind = internals(*bundled).strategy()->kind();
         EXPECT_EQ(bundledFrame.counters.executeBundles, test::bundlesPerRecording(recordedKind));
-        EXPECT_EQ(internals(*bundled).strategy()->bundlesRecorded(),
+        EXPECT_EQ(internals(*bundled).strategy()->report().bundlesRecorded,
                   test::bundlesPerRecording(recordedKind));
         EXPECT_EQ(bundledFrame.bundleContents.drawCalls(), directFrame.counters.drawCalls());
     }
@@ -138,7 +138,7 @@ TEST(ViewerHooksTest, AFrozenCullingFrustumCullsWhatItDoesNotSee) {
     auto visible = renderer->readImage();
     ASSERT_TRUE(visible.ok());
     EXPECT_GT(test::coveredFraction(*visible, background), 0.02);
-    EXPECT_EQ(internals(*renderer).strategy()->bundlesRecorded(),
+    EXPECT_EQ(internals(*renderer).strategy()->report().bundlesRecorded,
               test::bundlesPerRecording(StrategyKind::GpuCullingBundles));
 }
 

@@ -359,7 +359,7 @@ TEST(VisibilityLevelsTest, LevelsListTheTrianglesGpuCullingDraws) {
             const auto expected = frame(*reference, framed);
             const auto image = frame(*visibility, framed);
             test::expectVisibilityClose(expected, image);
-            const auto counts = internals(*reference).strategy()->gpuTriangleCounts();
+            const auto counts = internals(*reference).strategy()->report().gpuTriangleCounts;
             ASSERT_TRUE(counts.has_value());
             const std::uint32_t drawn =
                 test::readWord(*context, counts->buffer, counts->hardwareOffset);
@@ -402,7 +402,7 @@ TEST(VisibilityLevelsTest, MultiViewFramesChooseLevelsAsGpuCulling) {
     EXPECT_FALSE(visibilityOf(*visibility).lastFrameOccluded());
     EXPECT_EQ(visibilityOf(*visibility).lastViewCount(), 4u);
     // The counters hold the last view's cull, which lists what GPU culling's one cull draws.
-    const auto counts = internals(*reference).strategy()->gpuTriangleCounts();
+    const auto counts = internals(*reference).strategy()->report().gpuTriangleCounts;
     ASSERT_TRUE(counts.has_value());
     const std::uint32_t listed = listedTriangles(*context, *visibility);
     EXPECT_EQ(listed, test::readWord(*context, counts->buffer, counts->hardwareOffset));

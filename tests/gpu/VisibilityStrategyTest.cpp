@@ -428,7 +428,7 @@ TEST(VisibilityMultisampleTest, EdgesOfLargeTrianglesAreAntiAliased) {
 }
 
 // With nothing drawn after it, the composite runs once per pixel and writes the mean colour of
-// the covered samples straight into the resolved texture (Strategy::composesResolved: no
+// the covered samples straight into the resolved texture (FramePasses::composesResolved: no
 // multisampled pass); with a MASK triangle in the scene (drawn after it, tested against its
 // depth), once per sample into the multisampled target. Both resolve to the same picture; the last
 // triangle, MASK or not, lies behind the camera, so it adds no pixel of its own (triangles()
@@ -461,15 +461,15 @@ TEST(VisibilityMultisampleTest, PerPixelAndPerSampleCompositesResolveAlike) {
     ASSERT_TRUE(renderer.ok());
     const auto opaque = triangles(shapes);
     ASSERT_TRUE(renderer->prepare(opaque, StrategyKind::Visibility).ok());
-    EXPECT_TRUE(internals(*renderer).strategy()->composesResolved());
+    EXPECT_TRUE(internals(*renderer).strategy()->framePasses()->composesResolved());
     const auto masked = triangles(shapes, "MASK", shapes.size() - 1);
     ASSERT_TRUE(renderer->prepare(masked, StrategyKind::Visibility).ok());
-    EXPECT_FALSE(internals(*renderer).strategy()->composesResolved());
+    EXPECT_FALSE(internals(*renderer).strategy()->framePasses()->composesResolved());
     EXPECT_TRUE(context->checkNoErrors("visibility composites").ok());
 }
 
 // With a plain background colour, nothing drawn after the composite and any sample count, the
-// frame is composed in compute and copied into the target (Strategy::composeFrame): the frame
+// frame is composed in compute and copied into the target (FramePasses::composeFrame): the frame
 // records no draw. With an environment background, the render pass composes it (pixelMain).
 // Either way the picture is the per-sample composite's in the render pass (the MASK triangle
 // behind the camera selects it) within a level, into the sRGB output and into an HDR target

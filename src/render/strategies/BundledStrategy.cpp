@@ -28,10 +28,12 @@ void BundledStrategy::beforePass(const wgpu::CommandEncoder& commands, const Fra
                                [&](RenderEncoder& encoder) { mRecorded->encode(encoder, frame); });
         ++mRecordings;
         mTransmission = {};
-        if (mRecorded->drawsTransmission()) {
+        if (drawsTransmission()) {
             mTransmission = recordBundle(
                 *mSetup, "encore " + std::string(strategyName(kind())) + " transmission",
-                [&](RenderEncoder& encoder) { mRecorded->encodeTransmission(encoder, frame); });
+                [&](RenderEncoder& encoder) {
+                    mRecorded->framePasses()->encodeTransmission(encoder, frame);
+                });
             ++mRecordings;
         }
         mStale = false;
@@ -41,6 +43,11 @@ void BundledStrategy::beforePass(const wgpu::CommandEncoder& commands, const Fra
 
 void BundledStrategy::encode(RenderEncoder& encoder, const FrameState&) const {
     encoder.executeBundles(std::span(&mBundle.bundle, 1));
+}
+
+bool BundledStrategy::drawsTransmission() const {
+    const FramePasses* passes = mRecorded->framePasses();
+    return passes && passes->drawsTransmission();
 }
 
 void BundledStrategy::encodeTransmission(RenderEncoder& encoder, const FrameState&) const {
@@ -53,6 +60,19 @@ void BundledStrategy::instanceMoved(std::size_t instance, const glm::mat4& world
 
 InstanceTransformTargets BundledStrategy::instanceTransformTargets() const {
     return mRecorded->instanceTransformTargets();
+}
+
+StrategyReport BundledStrategy::report() const {
+    StrategyReport report = mRecorded->report();
+    report.bundleContents = mBundle.contents;
+    report.bundleContents += mTransmission.contents;
+    report.bundlesRecorded = mRecordings;
+    return report;
+}
+
+Result<void> BundledStrategy::checkTarget(std::uint32_t width, std::uint32_t height) const {
+    const FramePasses* passes = mRecorded->framePasses();
+    return passes ? passes->checkTarget(width, height) : Result<void>{};
 }
 
 }  // namespace encore::render

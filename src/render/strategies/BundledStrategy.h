@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "render/BundleRecorder.h"
+#include "render/FramePasses.h"
 #include "render/Strategy.h"
 
 namespace encore::render {
@@ -12,7 +13,7 @@ namespace encore::render {
 // bundling axis for the strategies that have no bundled form of their own. The wrapped strategy
 // reads transforms from buffers (node uniforms, the GPU scene's instances), so updates leave the
 // bundle valid; a replaced bind group of the GPU scene records it again.
-class BundledStrategy final : public Strategy {
+class BundledStrategy final : public Strategy, public FramePasses {
   public:
     explicit BundledStrategy(std::unique_ptr<Strategy> recorded);
 
@@ -21,24 +22,17 @@ class BundledStrategy final : public Strategy {
     Result<void> refresh() override;
     void beforePass(const wgpu::CommandEncoder& commands, const FrameState& frame) override;
     void encode(RenderEncoder& encoder, const FrameState& frame) const override;
-    // The wrapped strategy's transmissive surfaces, recorded into a second bundle with the first.
-    bool drawsTransmission() const override { return mRecorded->drawsTransmission(); }
-    void encodeTransmission(RenderEncoder& encoder, const FrameState& frame) const override;
     void instanceMoved(std::size_t instance, const glm::mat4& world) override;
     InstanceTransformTargets instanceTransformTargets() const override;
-    DrawCounters bundleContents() const override {
-        DrawCounters contents = mBundle.contents;
-        contents += mTransmission.contents;
-        return contents;
-    }
-    std::uint64_t bundlesRecorded() const override { return mRecordings; }
-    const GpuCuller* culler() const override { return mRecorded->culler(); }
-    Result<void> checkTarget(std::uint32_t width, std::uint32_t height) const override {
-        return mRecorded->checkTarget(width, height);
-    }
-    std::optional<GpuTriangleCounts> gpuTriangleCounts() const override {
-        return mRecorded->gpuTriangleCounts();
-    }
+    // The wrapped strategy's, with this strategy's bundles.
+    StrategyReport report() const override;
+    // Of the wrapped strategy's other passes, the bundled frame draws transmission alone (its
+    // transmissive surfaces, recorded into a second bundle with the first), and checks the
+    // target as it does.
+    FramePasses* framePasses() override { return this; }
+    bool drawsTransmission() const override;
+    void encodeTransmission(RenderEncoder& encoder, const FrameState& frame) const override;
+    Result<void> checkTarget(std::uint32_t width, std::uint32_t height) const override;
 
   private:
     std::unique_ptr<Strategy> mRecorded;

@@ -1,5 +1,6 @@
 #pragma once
 
+#include "render/FramePasses.h"
 #include "render/Strategy.h"
 #include "render/strategies/BundledFrame.h"
 #include "render/strategies/MaterialDrawGroups.h"
@@ -12,24 +13,25 @@ namespace encore::render {
 // re-recorded only when the back-to-front order changes; both are re-recorded when a bind group
 // they reference is replaced (the GPU scene's generation changes). Surfaces with
 // KHR_materials_transmission are a third bundle, replayed in the transmission pass.
-class BundlesStrategy final : public Strategy {
+class BundlesStrategy final : public Strategy, public FramePasses {
   public:
     StrategyKind kind() const override { return StrategyKind::Bundles; }
     Result<void> prepare(const RenderSetup& setup, const GpuScene& scene) override;
     Result<void> refresh() override;
     void beforePass(const wgpu::CommandEncoder& commands, const FrameState& frame) override;
     void encode(RenderEncoder& encoder, const FrameState& frame) const override;
+    InstanceTransformTargets instanceTransformTargets() const override;
+    StrategyReport report() const override {
+        StrategyReport report;
+        report.bundleContents = mBundles.contents();
+        report.bundleContents += mTransmission.contents();
+        report.bundlesRecorded = mBundles.recorded() + mTransmission.recorded();
+        return report;
+    }
+
+    FramePasses* framePasses() override { return this; }
     bool drawsTransmission() const override { return !mDraws.transmissive().empty(); }
     void encodeTransmission(RenderEncoder& encoder, const FrameState& frame) const override;
-    InstanceTransformTargets instanceTransformTargets() const override;
-    DrawCounters bundleContents() const override {
-        DrawCounters contents = mBundles.contents();
-        contents += mTransmission.contents();
-        return contents;
-    }
-    std::uint64_t bundlesRecorded() const override {
-        return mBundles.recorded() + mTransmission.recorded();
-    }
 
   private:
     const RenderSetup* mSetup = nullptr;

@@ -138,6 +138,18 @@ CulledDraw GpuCullingStrategy::culledDraw(const PrimitiveDraw& primitive) const 
     return draw;
 }
 
+StrategyReport GpuCullingStrategy::report() const {
+    StrategyReport report;
+    report.bundleContents = mFirstPhaseBundle.contents();
+    report.bundleContents += mBundles.contents();
+    report.bundleContents += mTransmission.contents();
+    report.bundlesRecorded =
+        mFirstPhaseBundle.recorded() + mBundles.recorded() + mTransmission.recorded();
+    report.culler = &mCuller;
+    report.gpuTriangleCounts = gpuTriangleCountsOf(mCuller);
+    return report;
+}
+
 bool GpuCullingStrategy::drawsInTwoPhases(const FrameState& frame) const {
     // A frozen culling camera sees another view than the depth drawn: frustum culling only.
     return frame.culling.occlusion && !frame.cullingCamera;

@@ -3,6 +3,7 @@
 #include <map>
 #include <utility>
 
+#include "render/FramePasses.h"
 #include "render/GpuCuller.h"
 #include "render/Strategy.h"
 #include "render/strategies/BundledFrame.h"
@@ -18,7 +19,7 @@ namespace encore::render {
 // frame, or, with bundles, once into two render bundles (one per phase) whose draw sequence
 // never changes (only the GPU-written counts do). Blended geometry is drawn as in `materials`,
 // back to front, unculled, after both phases.
-class GpuCullingStrategy final : public Strategy {
+class GpuCullingStrategy final : public Strategy, public FramePasses {
   public:
     explicit GpuCullingStrategy(bool useBundles) : mUseBundles(useBundles) {}
 
@@ -28,26 +29,19 @@ class GpuCullingStrategy final : public Strategy {
     Result<void> prepare(const RenderSetup& setup, const GpuScene& scene) override;
     Result<void> refresh() override;
     InstanceTransformTargets instanceTransformTargets() const override;
-    bool drawsInTwoPhases(const FrameState& frame) const override;
     void beforePass(const wgpu::CommandEncoder& commands, const FrameState& frame) override;
+    void encode(RenderEncoder& encoder, const FrameState& frame) const override;
+    StrategyReport report() const override;
+
+    FramePasses* framePasses() override { return this; }
+    bool drawsInTwoPhases(const FrameState& frame) const override;
     void betweenPhases(const wgpu::CommandEncoder& commands,
                        const FrameState& frame,
                        const wgpu::Texture& depth) override;
-    void encode(RenderEncoder& encoder, const FrameState& frame) const override;
     // Transmissive surfaces are not culled: they are drawn as `materials` draws them (from a
     // bundle of their own with bundles), after the copy.
     bool drawsTransmission() const override { return !mDraws.transmissive().empty(); }
     void encodeTransmission(RenderEncoder& encoder, const FrameState& frame) const override;
-    DrawCounters bundleContents() const override {
-        DrawCounters contents = mFirstPhaseBundle.contents();
-        contents += mBundles.contents();
-        contents += mTransmission.contents();
-        return contents;
-    }
-    std::uint64_t bundlesRecorded() const override {
-        return mFirstPhaseBundle.recorded() + mBundles.recorded() + mTransmission.recorded();
-    }
-    const GpuCuller* culler() const override { return &mCuller; }
 
   private:
     struct CulledPrimitive {

@@ -1,5 +1,6 @@
 #pragma once
 
+#include "render/FramePasses.h"
 #include "render/Strategy.h"
 #include "render/strategies/MaterialDrawGroups.h"
 
@@ -11,15 +12,17 @@ namespace encore::render {
 // is drawn pipeline -> material -> primitive, so each material's bind group is set once per
 // pipeline that uses it; blended geometry follows, one draw per instance, back to front
 // (MaterialDrawGroups), recorded directly every frame.
-class MaterialsStrategy final : public Strategy {
+class MaterialsStrategy final : public Strategy, public FramePasses {
   public:
     StrategyKind kind() const override { return StrategyKind::Materials; }
     Result<void> prepare(const RenderSetup& setup, const GpuScene& scene) override;
     Result<void> refresh() override;
     void encode(RenderEncoder& encoder, const FrameState& frame) const override;
+    InstanceTransformTargets instanceTransformTargets() const override;
+
+    FramePasses* framePasses() override { return this; }
     bool drawsTransmission() const override { return !mDraws.transmissive().empty(); }
     void encodeTransmission(RenderEncoder& encoder, const FrameState& frame) const override;
-    InstanceTransformTargets instanceTransformTargets() const override;
 
   private:
     MaterialDrawGroups mDraws;

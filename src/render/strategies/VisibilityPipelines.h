@@ -138,12 +138,12 @@ struct VisibilityPipelines {
     bool keptShading = false;  // create() made the slots' shading pipelines.
     // Per sample, writing each sample's depth; compositePixels per pixel without depth, for
     // frames that draw nothing after it (visibility_composite.wgsl); compositeResolved the same
-    // at one sample, for passes drawn into the resolved texture (Strategy::composesResolved).
+    // at one sample, for passes drawn into the resolved texture (FramePasses::composesResolved).
     wgpu::RenderPipeline composite;
     wgpu::RenderPipeline compositePixels;
     wgpu::RenderPipeline compositeResolved;
     // compositePixels in compute, over every pixel, into a buffer of the target's texels
-    // (Strategy::composeFrame).
+    // (FramePasses::composeFrame).
     wgpu::ComputePipeline compose;
     // The frame uniform alone (frame.wgsl's group 0) for the raster passes.
     wgpu::BindGroup frameOnlyGroup;

@@ -572,12 +572,14 @@ void VisibilityStrategy::encodeView(const wgpu::CommandEncoder& commands,
     }
 }
 
-std::optional<GpuTriangleCounts> VisibilityStrategy::gpuTriangleCounts() const {
-    if (!mCullGroup) {  // No frame drawn yet: the kept counts are another scene's.
-        return std::nullopt;
+StrategyReport VisibilityStrategy::report() const {
+    StrategyReport report;
+    if (mCullGroup) {  // Before the first frame the kept counts are another scene's.
+        const std::uint64_t offset = rasterCountsOffset(0);
+        report.gpuTriangleCounts =
+            GpuTriangleCounts{rasterCounts(), offset + 4, offset, mTables.triangleCount};
     }
-    const std::uint64_t offset = rasterCountsOffset(0);
-    return GpuTriangleCounts{rasterCounts(), offset + 4, offset, mTables.triangleCount};
+    return report;
 }
 
 const wgpu::Buffer& VisibilityStrategy::rasterCounts() const {

@@ -11,6 +11,7 @@
 
 #include "gpu/BindingResource.h"
 #include "render/DepthPyramid.h"
+#include "render/FramePasses.h"
 #include "render/Strategy.h"
 #include "render/VisibilityTables.h"
 #include "render/strategies/MaterialDrawGroups.h"
@@ -38,7 +39,7 @@ class VisibilityPhasePasses;
 // first the items visible last frame, then, against a depth pyramid of the visibility buffer,
 // the other items in the frustum that it does not hide (docs/visibility.md). Needs the
 // AtomicVec2uMinMax feature; prepare() fails naming it otherwise.
-class VisibilityStrategy final : public Strategy {
+class VisibilityStrategy final : public Strategy, public FramePasses {
   public:
     // Bounds of the compute raster's triangle sizes, pixels each way: one thread covers those
     // up to computeRasterPixels, a workgroup in tiles those up to workgroupRasterPixels, the
@@ -73,11 +74,6 @@ class VisibilityStrategy final : public Strategy {
         (void)world;
         mTransformsMoved = true;
     }
-    // A multisampled target has four visibility samples per pixel at the hardware's 4x
-    // positions (docs/visibility.md). The visibility buffer (8 bytes per sample) must fit
-    // maxStorageBufferBindingSize, the shaded colour (a texel per sample: twice the target's
-    // size each way at 4 samples) maxTextureDimension2D.
-    Result<void> checkTarget(std::uint32_t width, std::uint32_t height) const override;
     // The last group's shading bins (every view of a frame of up to VisibilityTarget::kSlotViews;
     // CopySrc, tables().binCount records of kBinRecordBytes, each starting with its count of
     // 8x8 tiles listed: one per tile where a sample's triangle is in the bin).
@@ -87,6 +83,15 @@ class VisibilityStrategy final : public Strategy {
     // a pixel in the layer of the first sample it covers (CopySrc, for tests).
     const wgpu::Texture& shadedColour() const { return mTarget->shaded; }
     void encode(RenderEncoder& encoder, const FrameState& frame) const override;
+    InstanceTransformTargets instanceTransformTargets() const override {
+        return mDraws.scene().instances().transformTargets();
+    }
+
+    // Those of the first view; MASK, BLEND, skinned and morphed geometry drawn directly is
+    // counted with the frame's direct draws (DrawCounters), not here.
+    StrategyReport report() const override;
+
+    FramePasses* framePasses() override { return this; }
     // At four samples, when nothing is drawn after the composite: it averages each pixel's
     // samples itself (visibility_composite.wgsl's pixelMain).
     bool composesResolved() const override {
@@ -107,9 +112,11 @@ class VisibilityStrategy final : public Strategy {
         mDraws.setSharedBindGroups(encoder);
         mDraws.encodeTransmissive(encoder);
     }
-    InstanceTransformTargets instanceTransformTargets() const override {
-        return mDraws.scene().instances().transformTargets();
-    }
+    // A multisampled target has four visibility samples per pixel at the hardware's 4x
+    // positions (docs/visibility.md). The visibility buffer (8 bytes per sample) must fit
+    // maxStorageBufferBindingSize, the shaded colour (a texel per sample: twice the target's
+    // size each way at 4 samples) maxTextureDimension2D.
+    Result<void> checkTarget(std::uint32_t width, std::uint32_t height) const override;
 
     const VisibilityTables& tables() const { return mTables; }
     // The last frame's visibility buffer: per sample (pixel-major), the triangle's id and the
@@ -139,9 +146,6 @@ class VisibilityStrategy final : public Strategy {
     void limitWorkgroupBlocks(std::uint32_t blocks) {
         mWorkgroupBlocks = std::min(mWorkgroupBlocks, std::max(blocks, 1u));
     }
-    // Those of the first view; MASK, BLEND, skinned and morphed geometry drawn directly is
-    // counted with the frame's direct draws (DrawCounters), not here.
-    std::optional<GpuTriangleCounts> gpuTriangleCounts() const override;
 
   private:
     // Whether the hardware draws anything after the composite (MASK, BLEND, skinned, morphed

@@ -81,7 +81,7 @@ struct VisibilityTarget {
     wgpu::Texture hardwareDepth;     // One view's size (ensureHardwareDepth).
     wgpu::TextureView hardwareDepthView;
     DepthPyramid pyramid;  // Of the visibility buffer's depth.
-    // The composed frame's view of the target (Strategy::composeFrame), its Composition
+    // The composed frame's view of the target (FramePasses::composeFrame), its Composition
     // uniform and the words last written there (ensureComposed).
     wgpu::TextureView composedView;
     wgpu::Buffer composition;
