@@ -13,7 +13,7 @@
 #include "batch/TransformsJson.h"
 #include "batch/ViewStrips.h"
 #include "encore/scene/SceneData.h"
-#include "render/VisibilityFeatures.h"
+#include "render/visibility/VisibilityFeatures.h"
 
 namespace encore::python {
 namespace {

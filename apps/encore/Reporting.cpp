@@ -3,7 +3,7 @@
 
 #include "Commands.h"
 #include "DeviceOptions.h"
-#include "render/VisibilityFeatures.h"
+#include "render/visibility/VisibilityFeatures.h"
 
 namespace encore::app {
 

@@ -4,7 +4,7 @@
 
 #include "encore/image/HdrImage.h"
 #include "gpu/ResourcePool.h"
-#include "render/RendererCore.h"
+#include "render/renderer/RendererCore.h"
 
 namespace encore::batch {
 

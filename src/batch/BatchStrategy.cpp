@@ -2,7 +2,7 @@
 
 #include "batch/BatchOptionsValidation.h"
 #include "encore/gpu/Context.h"
-#include "render/VisibilityFeatures.h"
+#include "render/visibility/VisibilityFeatures.h"
 
 namespace encore::batch {
 

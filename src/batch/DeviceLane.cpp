@@ -14,9 +14,9 @@
 #include "core/Elapsed.h"
 #include "core/Log.h"
 #include "gpu/Readback.h"
-#include "render/RendererCore.h"
 #include "render/StagedGeometry.h"
 #include "render/StagedImages.h"
+#include "render/renderer/RendererCore.h"
 
 namespace encore::batch {
 namespace {

@@ -17,7 +17,7 @@
 #include "gpu/GpuTimer.h"
 #include "render/Animometer.h"
 #include "render/CameraPath.h"
-#include "render/RendererCore.h"
+#include "render/renderer/RendererCore.h"
 #include "scene/CrowdGenerator.h"
 #include "scene/SceneGenerator.h"
 

@@ -93,9 +93,6 @@ struct StrategyReport {
     std::optional<GpuTriangleCounts> gpuTriangleCounts;
 };
 
-// The last frame's triangle counts of `culler` (none before it has culled).
-std::optional<GpuTriangleCounts> gpuTriangleCountsOf(const GpuCuller& culler);
-
 class FramePasses;
 
 class Strategy {
@@ -143,8 +140,5 @@ class Strategy {
     virtual FramePasses* framePasses() { return nullptr; }
     const FramePasses* framePasses() const { return const_cast<Strategy*>(this)->framePasses(); }
 };
-
-// With `bundle`, the strategy that draws `kind`'s frame from render bundles (see bundledKind).
-std::unique_ptr<Strategy> createStrategy(StrategyKind kind, bool bundle = false);
 
 }  // namespace encore::render

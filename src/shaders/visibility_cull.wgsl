@@ -11,7 +11,8 @@
 //                     listed again when their level has several clusters, for the clusters it
 //                     left (visibility_raster.wgsl).
 // Without it, cullFirstPhase lists every item in the frustum. Levels of detail are chosen as
-// culling.wgsl chooses them (same sphere, same metric, same thresholds: render/LodSelection.h).
+// culling.wgsl chooses them (same sphere, same metric, same thresholds:
+// render/culling/LodSelection.h).
 #include "frame.wgsl"
 #include "visibility_geometry.wgsl"
 #include "visibility_levels.wgsl"

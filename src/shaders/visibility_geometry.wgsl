@@ -1,7 +1,7 @@
-// What every pass of the visibility strategy reads (render/VisibilityTables.h writes it): the
-// view's parameters, the GPU scene's shared geometry buffer (vertices and indices pulled here,
-// in any glTF component type), the instance transforms, and the tables of primitives and items
-// (instance x primitive), all in group 1. Needs frame.wgsl.
+// What every pass of the visibility strategy reads (render/visibility/VisibilityTables.h writes
+// it): the view's parameters, the GPU scene's shared geometry buffer (vertices and indices pulled
+// here, in any glTF component type), the instance transforms, and the tables of primitives and
+// items (instance x primitive), all in group 1. Needs frame.wgsl.
 //
 // A visibility-buffer id is unit * 256 + triangle in the unit; a unit is one cluster (up to 256
 // consecutive triangles) of one item: (item, word index of the cluster's record), entry

@@ -1,5 +1,5 @@
-// The words of render/VisibilityTables.h that the visibility strategy's passes read: items and
-// primitive records, and how a visibility-buffer id names its unit. Bindings apart
+// The words of render/visibility/VisibilityTables.h that the visibility strategy's passes read:
+// items and primitive records, and how a visibility-buffer id names its unit. Bindings apart
 // (visibility_geometry.wgsl binds the tables; the binning binds its own).
 
 const kUnitTriangles = 256u;
@@ -12,8 +12,9 @@ const kIndexOffset = 0u;   // Byte offset of index 0, or of nothing when not ind
 const kIndexSize = 1u;     // 0 (not indexed), 2 or 4.
 const kTriangleCount = 2u;
 const kMaterial = 3u;
-// Shading bin (render/MaterialBins.h: its block's first material * 2 + 1 with a bound TANGENT)
-// in the low 26 bits (kBinMask), the material's slot in the bin's block above (kBinSlotShift).
+// Shading bin (render/visibility/MaterialBins.h: its block's first material * 2 + 1 with a bound
+// TANGENT) in the low 26 bits (kBinMask), the material's slot in the bin's block above
+// (kBinSlotShift).
 const kBin = 4u;
 const kBinSlotShift = 26u;
 const kBinMask = (1u << kBinSlotShift) - 1u;

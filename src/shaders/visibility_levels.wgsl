@@ -1,9 +1,9 @@
 // Levels of detail and clusters in the visibility strategy's primitive records
-// (render/VisibilityTables.h): after the fixed words, the mesh's bounding sphere (levels are
-// chosen as GPU culling chooses them, from the instance's sphere), level 0's clusters, then per
+// (render/visibility/VisibilityTables.h): after the fixed words, the mesh's bounding sphere (levels
+// are chosen as GPU culling chooses them, from the instance's sphere), level 0's clusters, then per
 // coarser level its first triangle counted from level 0's first index, its triangle count, its
-// error and its clusters. A cluster's triangles are counted the same way, so every pass fetches
-// a coarser level's triangles as level 0's. Needs visibility_geometry.wgsl.
+// error and its clusters. A cluster's triangles are counted the same way, so every pass fetches a
+// coarser level's triangles as level 0's. Needs visibility_geometry.wgsl.
 
 const kLevelCount = 30u;     // Coarser levels.
 const kMeshSphere = 32u;     // xyz centre, w radius, object space.

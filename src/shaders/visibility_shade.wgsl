@@ -1,20 +1,19 @@
-// The visibility strategy's resolve: one dispatch per shading bin (one material; HAS_TANGENT as
-// the bin says), a fixed grid of workgroups striding over the bin's 8x8 tiles
-// (visibility_bins.wgsl), or over every tile where the scene has one bin (not binned), a thread
-// per pixel of the tile, of any of the views side by side that
-// the bins cover (the view slots of visibility_geometry.wgsl, under VIEW_SLOTS, which the
-// strategy always sets). A thread shades each sample of its pixel whose triangle is in the bin
-// and covers no earlier sample of the pixel (with several samples, each distinct triangle of a
-// pixel once), into the texel of that sample. It rebuilds the triangle from the visibility buffer's
-// id, its perspective-correct barycentrics at the pixel centre (where multisampled hardware
-// shades too) and their screen-space derivatives (texture LOD, the tangent frame),
-// interpolates what mesh.wgsl's vertex shader outputs, and shades with the same code as
+// The visibility strategy's resolve: one dispatch per shading bin (one material; HAS_TANGENT as the
+// bin says), a fixed grid of workgroups striding over the bin's 8x8 tiles (visibility_bins.wgsl),
+// or over every tile where the scene has one bin (not binned), a thread per pixel of the tile, of
+// any of the views side by side that the bins cover (the view slots of visibility_geometry.wgsl,
+// under VIEW_SLOTS, which the strategy always sets). A thread shades each sample of its pixel whose
+// triangle is in the bin and covers no earlier sample of the pixel (with several samples, each
+// distinct triangle of a pixel once), into the texel of that sample. It rebuilds the triangle from
+// the visibility buffer's id, its perspective-correct barycentrics at the pixel centre (where
+// multisampled hardware shades too) and their screen-space derivatives (texture LOD, the tangent
+// frame), interpolates what mesh.wgsl's vertex shader outputs, and shades with the same code as
 // mesh.wgsl's fragment shader (surface_shading.wgsl), sampling with explicit gradients
-// (SAMPLE_GRADIENT). COMPOSED (frames composed in compute at one sample): the colour goes
-// straight into the composed frame (visibility_composed.wgsl), not to the shaded texture.
-// Materials binning the same textures and samplers share a bin (render/MaterialBins.h): each
-// pixel's material comes from the bin's table (`material`, a private copy), the textures
-// from the bind group of the bin's first material.
+// (SAMPLE_GRADIENT). COMPOSED (frames composed in compute at one sample): the colour goes straight
+// into the composed frame (visibility_composed.wgsl), not to the shaded texture. Materials binning
+// the same textures and samplers share a bin (render/visibility/MaterialBins.h): each pixel's
+// material comes from the bin's table (`material`, a private copy), the textures from the bind
+// group of the bin's first material.
 // Variants: MATERIAL_TEXTURES, HAS_TANGENT, COMPOSED (HALF_OUTPUT).
 #include "frame.wgsl"
 #include "scene_lighting.wgsl"
@@ -41,8 +40,8 @@ struct Bin {
 @group(1) @binding(5) var<storage, read> visibility: array<vec2u>;
 @group(1) @binding(6) var<storage, read> tiles: array<u32>;
 @group(1) @binding(7) var<uniform> bin: Bin;
-// The bin's materials (render/MaterialBins.h): copies of their uniforms, a slot each, in the
-// block the strategy binds for the bin; a record's bin word names the slot.
+// The bin's materials (render/visibility/MaterialBins.h): copies of their uniforms, a slot each,
+// in the block the strategy binds for the bin; a record's bin word names the slot.
 struct MaterialSlot {
     @size(1024) material: Material,  // MaterialBins::kSlotBytes.
 }

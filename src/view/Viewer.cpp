@@ -4,7 +4,7 @@
 
 #include "encore/scene/AnimationPlayer.h"
 #include "encore/scene/SceneData.h"
-#include "render/RendererCore.h"
+#include "render/renderer/RendererCore.h"
 #include "view/ViewerState.h"
 
 namespace encore::view {

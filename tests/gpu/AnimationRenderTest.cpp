@@ -15,9 +15,9 @@
 #include "RenderTestSupport.h"
 #include "TestPaths.h"
 #include "encore/render/Renderer.h"
-#include "render/GpuCuller.h"
 #include "render/InstanceBuffer.h"
-#include "render/RendererCore.h"
+#include "render/culling/GpuCuller.h"
+#include "render/renderer/RendererCore.h"
 
 namespace encore::render {
 namespace {

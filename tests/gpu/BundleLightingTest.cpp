@@ -13,7 +13,7 @@
 #include "RenderTestSupport.h"
 #include "encore/image/HdrImage.h"
 #include "encore/render/Renderer.h"
-#include "render/RendererCore.h"
+#include "render/renderer/RendererCore.h"
 
 namespace encore::render {
 namespace {

@@ -13,7 +13,8 @@
 #include "encore/render/Renderer.h"
 #include "render/BundleRecorder.h"
 #include "render/GpuScene.h"
-#include "render/RendererCore.h"
+#include "render/renderer/CreateStrategy.h"
+#include "render/renderer/RendererCore.h"
 
 namespace encore::render {
 namespace {

@@ -22,9 +22,9 @@
 #include "gpu/OutOfMemoryScope.h"
 #include "gpu/Readback.h"
 #include "render/BindingLimits.h"
-#include "render/GpuAnimation.h"
 #include "render/MaterialResources.h"
 #include "render/SceneLimits.h"
+#include "render/animation/GpuAnimation.h"
 #include "scene/SceneGenerator.h"
 
 namespace encore::render {

@@ -14,7 +14,7 @@
 #include "RenderTestSupport.h"
 #include "encore/render/Renderer.h"
 #include "encore/scene/SceneData.h"
-#include "render/RendererCore.h"
+#include "render/renderer/RendererCore.h"
 
 namespace encore::render {
 namespace {

@@ -20,7 +20,7 @@
 #include "TestPaths.h"
 #include "encore/render/Renderer.h"
 #include "gpu/Readback.h"
-#include "render/RendererCore.h"
+#include "render/renderer/RendererCore.h"
 #include "scene/CrowdGenerator.h"
 
 namespace encore::render {

@@ -7,7 +7,7 @@
 #include "RenderTestSupport.h"
 #include "encore/render/Renderer.h"
 #include "render/GpuScene.h"
-#include "render/RendererCore.h"
+#include "render/renderer/RendererCore.h"
 #include "scene/SceneGenerator.h"
 
 namespace encore::render {

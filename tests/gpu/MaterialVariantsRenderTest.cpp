@@ -14,7 +14,7 @@
 #include "encore/render/Renderer.h"
 #include "encore/scene/SceneData.h"
 #include "render/GpuScene.h"
-#include "render/RendererCore.h"
+#include "render/renderer/RendererCore.h"
 
 namespace encore::render {
 namespace {

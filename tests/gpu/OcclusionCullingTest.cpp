@@ -16,8 +16,8 @@
 #include "encore/render/Renderer.h"
 #include "gpu/Readback.h"
 #include "render/CameraPath.h"
-#include "render/GpuCuller.h"
-#include "render/RendererCore.h"
+#include "render/culling/GpuCuller.h"
+#include "render/renderer/RendererCore.h"
 #include "scene/SceneGenerator.h"
 
 namespace encore::render {

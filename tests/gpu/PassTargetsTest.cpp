@@ -11,7 +11,7 @@
 #include "gpu/Readback.h"
 #include "render/PipelineKey.h"
 #include "render/RenderSetup.h"
-#include "render/RendererCore.h"
+#include "render/renderer/RendererCore.h"
 
 namespace encore::render {
 namespace {

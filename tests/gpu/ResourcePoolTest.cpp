@@ -15,7 +15,7 @@
 #include "gpu/CreationCounts.h"
 #include "gpu/ResourcePool.h"
 #include "gpu/Upload.h"
-#include "render/RendererCore.h"
+#include "render/renderer/RendererCore.h"
 
 namespace encore::gpu {
 namespace {

@@ -12,7 +12,8 @@
 #include "core/FileIO.h"
 #include "encore/render/Renderer.h"
 #include "render/GpuScene.h"
-#include "render/RendererCore.h"
+#include "render/renderer/CreateStrategy.h"
+#include "render/renderer/RendererCore.h"
 #include "scene/SceneGenerator.h"
 
 namespace encore::render {

@@ -18,7 +18,7 @@
 #include "RenderTestSupport.h"
 #include "encore/image/ImageCodec.h"
 #include "encore/render/Renderer.h"
-#include "render/RendererCore.h"
+#include "render/renderer/RendererCore.h"
 
 namespace encore::render {
 namespace {

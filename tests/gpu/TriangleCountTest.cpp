@@ -11,8 +11,8 @@
 #include "RenderTestSupport.h"
 #include "encore/render/Renderer.h"
 #include "render/CameraPath.h"
-#include "render/GpuCuller.h"
-#include "render/RendererCore.h"
+#include "render/culling/GpuCuller.h"
+#include "render/renderer/RendererCore.h"
 #include "scene/SceneGenerator.h"
 
 namespace encore::render {

@@ -29,11 +29,11 @@
 #include "gpu/Readback.h"
 #include "gpu/ResourcePool.h"
 #include "image/ImageDecoders.h"
-#include "render/RendererCore.h"
-#include "render/VisibilityFeatures.h"
-#include "render/strategies/VisibilityPipelines.h"
-#include "render/strategies/VisibilityStrategy.h"
-#include "render/strategies/VisibilityTarget.h"
+#include "render/renderer/RendererCore.h"
+#include "render/visibility/VisibilityFeatures.h"
+#include "render/visibility/VisibilityPipelines.h"
+#include "render/visibility/VisibilityStrategy.h"
+#include "render/visibility/VisibilityTarget.h"
 
 namespace encore::render {
 namespace {

@@ -21,8 +21,8 @@
 #include "encore/render/Renderer.h"
 #include "gpu/Readback.h"
 #include "image/ImageCompare.h"
-#include "render/RendererCore.h"
-#include "render/strategies/VisibilityStrategy.h"
+#include "render/renderer/RendererCore.h"
+#include "render/visibility/VisibilityStrategy.h"
 
 namespace encore::render {
 namespace {

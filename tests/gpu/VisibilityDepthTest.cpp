@@ -22,9 +22,9 @@
 #include "VisibilityTestSupport.h"
 #include "encore/render/Renderer.h"
 #include "gpu/Readback.h"
-#include "render/RendererCore.h"
-#include "render/VisibilityTables.h"
-#include "render/strategies/VisibilityStrategy.h"
+#include "render/renderer/RendererCore.h"
+#include "render/visibility/VisibilityStrategy.h"
+#include "render/visibility/VisibilityTables.h"
 
 namespace encore::render {
 namespace {

@@ -11,7 +11,7 @@
 #include "RenderTestSupport.h"
 #include "VisibilityTestSupport.h"
 #include "encore/render/Renderer.h"
-#include "render/VisibilityFeatures.h"
+#include "render/visibility/VisibilityFeatures.h"
 
 namespace encore::render {
 namespace {

@@ -20,10 +20,10 @@
 #include "VisibilityTestSupport.h"
 #include "encore/render/Renderer.h"
 #include "gpu/Readback.h"
-#include "render/MaterialBins.h"
-#include "render/RendererCore.h"
-#include "render/strategies/VisibilityStrategy.h"
-#include "render/strategies/VisibilityTarget.h"
+#include "render/renderer/RendererCore.h"
+#include "render/visibility/MaterialBins.h"
+#include "render/visibility/VisibilityStrategy.h"
+#include "render/visibility/VisibilityTarget.h"
 #include "scene/SceneGenerator.h"
 
 namespace encore::render {
@@ -54,7 +54,7 @@ void expectLooksLikeGpuCulling(gpu::Context& context,
 }
 
 // Gives every material a base colour texture of its own, so that no two share a shading bin
-// (render/MaterialBins.h).
+// (render/visibility/MaterialBins.h).
 void giveEachMaterialATexture(scene::SceneData& scene) {
     if (scene.samplers.empty()) {
         scene.samplers.emplace_back();
@@ -105,9 +105,9 @@ TEST(VisibilityBinningTest, ScenesOfMoreBinsThanOneRoundShadeEveryBin) {
 }
 
 // Materials that bind the same textures and samplers share a shading bin, and untextured ones
-// join them, each pixel's factors from the bin's table (render/MaterialBins.h): six generated
-// materials, three untextured and three binding the generator's two textures, shade in one bin
-// (material 1's) as GPU culling draws them; after an edit of one's factors (copied into the
+// join them, each pixel's factors from the bin's table (render/visibility/MaterialBins.h): six
+// generated materials, three untextured and three binding the generator's two textures, shade in
+// one bin (material 1's) as GPU culling draws them; after an edit of one's factors (copied into the
 // table again); and after another's base colour texture is replaced by one of its own, which
 // takes it out into a bin of its own.
 TEST(VisibilityBinningTest, MaterialsBindingTheSameTexturesShareABin) {

@@ -24,9 +24,9 @@
 #include "encore/render/Renderer.h"
 #include "gpu/Readback.h"
 #include "image/ImageCompare.h"
-#include "render/RendererCore.h"
-#include "render/strategies/VisibilityStrategy.h"
-#include "render/strategies/VisibilityTarget.h"
+#include "render/renderer/RendererCore.h"
+#include "render/visibility/VisibilityStrategy.h"
+#include "render/visibility/VisibilityTarget.h"
 #include "scene/CrowdGenerator.h"
 #include "scene/SceneGenerator.h"
 

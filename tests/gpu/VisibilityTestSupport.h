@@ -19,7 +19,7 @@
 #include "encore/render/Renderer.h"
 #include "gpu/Readback.h"
 #include "image/ImageCompare.h"
-#include "render/strategies/VisibilityStrategy.h"
+#include "render/visibility/VisibilityStrategy.h"
 #include "scene/SceneGenerator.h"
 
 namespace encore::test {

@@ -10,7 +10,7 @@
 
 #include "TestPaths.h"
 #include "core/Log.h"
-#include "render/VisibilityFeatures.h"
+#include "render/visibility/VisibilityFeatures.h"
 
 namespace encore::test {
 

@@ -13,7 +13,7 @@
 
 #include "encore/render/Camera.h"
 #include "encore/render/Renderer.h"
-#include "render/GpuCuller.h"
+#include "render/culling/GpuCuller.h"
 
 namespace encore::test {
 

@@ -8,7 +8,7 @@
 // did; FrameResult what each frame recorded and how long it took.
 //
 // What it holds (the strategy, the GPU scene, pipelines and bind groups) is internal to the
-// library (src/render/RendererCore.h).
+// library (src/render/renderer/RendererCore.h).
 
 #include <webgpu/webgpu_cpp.h>
 

@@ -8,6 +8,19 @@
 
 namespace encore::render {
 
+namespace {
+
+// The last frame's triangle counts of `culler` (none before it has culled).
+std::optional<GpuTriangleCounts> gpuTriangleCountsOf(const GpuCuller& culler) {
+    if (!culler.indirectArguments()) {
+        return std::nullopt;
+    }
+    return GpuTriangleCounts{culler.indirectArguments(), culler.drawnTrianglesOffset(),
+                             std::nullopt, submittedTriangles(culler.draws())};
+}
+
+}  // namespace
+
 Result<void> GpuCullingStrategy::prepare(const RenderSetup& setup, const GpuScene& scene) {
     mSetup = &setup;
     mBundles = BundledFrame();

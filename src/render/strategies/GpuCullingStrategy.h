@@ -4,8 +4,8 @@
 #include <utility>
 
 #include "render/FramePasses.h"
-#include "render/GpuCuller.h"
 #include "render/Strategy.h"
+#include "render/culling/GpuCuller.h"
 #include "render/strategies/BundledFrame.h"
 #include "render/strategies/MaterialDrawGroups.h"
 

@@ -9,7 +9,7 @@
 #include <cmath>
 
 #include "encore/scene/SceneData.h"
-#include "render/Frustum.h"
+#include "render/culling/Frustum.h"
 
 namespace encore::render {
 namespace {

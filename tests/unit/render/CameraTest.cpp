@@ -14,7 +14,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "encore/scene/SceneData.h"
-#include "render/Frustum.h"
+#include "render/culling/Frustum.h"
 
 namespace encore::render {
 namespace {

@@ -1,6 +1,5 @@
-#include "render/Strategy.h"
+#include "render/renderer/CreateStrategy.h"
 
-#include "render/GpuCuller.h"
 #include "render/strategies/BundledStrategy.h"
 #include "render/strategies/BundlesStrategy.h"
 #include "render/strategies/GpuCullingStrategy.h"
@@ -9,17 +8,9 @@
 #include "render/strategies/MaterialsStrategy.h"
 #include "render/strategies/NaiveStrategy.h"
 #include "render/strategies/PipelineCacheStrategy.h"
-#include "render/strategies/VisibilityStrategy.h"
+#include "render/visibility/VisibilityStrategy.h"
 
 namespace encore::render {
-
-std::optional<GpuTriangleCounts> gpuTriangleCountsOf(const GpuCuller& culler) {
-    if (!culler.indirectArguments()) {
-        return std::nullopt;
-    }
-    return GpuTriangleCounts{culler.indirectArguments(), culler.drawnTrianglesOffset(),
-                             std::nullopt, submittedTriangles(culler.draws())};
-}
 
 std::unique_ptr<Strategy> createStrategy(StrategyKind kind, bool bundle) {
     if (bundle) {

@@ -1,4 +1,4 @@
-#include "render/strategies/VisibilityWorkBuffers.h"
+#include "render/visibility/VisibilityWorkBuffers.h"
 
 #include <algorithm>
 

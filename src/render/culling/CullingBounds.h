@@ -21,7 +21,7 @@
 #include <glm/glm.hpp>
 
 #include "encore/scene/SceneData.h"
-#include "render/Frustum.h"
+#include "render/culling/Frustum.h"
 
 namespace encore::render {
 

@@ -1,4 +1,4 @@
-#include "render/strategies/VisibilityStrategy.h"
+#include "render/visibility/VisibilityStrategy.h"
 
 #include <algorithm>
 #include <cstddef>
@@ -11,11 +11,11 @@
 #include "gpu/BindingResource.h"
 #include "gpu/ResourcePool.h"
 #include "gpu/Upload.h"
-#include "render/Frustum.h"
-#include "render/LodSelection.h"
-#include "render/VisibilityFeatures.h"
-#include "render/strategies/KeptStrategyObjects.h"
-#include "render/strategies/VisibilityPhasePasses.h"
+#include "render/culling/Frustum.h"
+#include "render/culling/LodSelection.h"
+#include "render/visibility/KeptStrategyObjects.h"
+#include "render/visibility/VisibilityFeatures.h"
+#include "render/visibility/VisibilityPhasePasses.h"
 
 namespace encore::render {
 

@@ -10,14 +10,14 @@
 #include <vector>
 
 #include "gpu/BindingResource.h"
-#include "render/DepthPyramid.h"
 #include "render/FramePasses.h"
 #include "render/Strategy.h"
-#include "render/VisibilityTables.h"
+#include "render/culling/DepthPyramid.h"
 #include "render/strategies/MaterialDrawGroups.h"
-#include "render/strategies/VisibilityPipelines.h"
-#include "render/strategies/VisibilityTarget.h"
-#include "render/strategies/VisibilityWorkBuffers.h"
+#include "render/visibility/VisibilityPipelines.h"
+#include "render/visibility/VisibilityTables.h"
+#include "render/visibility/VisibilityTarget.h"
+#include "render/visibility/VisibilityWorkBuffers.h"
 
 namespace encore::render {
 

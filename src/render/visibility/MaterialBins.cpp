@@ -1,4 +1,4 @@
-#include "render/MaterialBins.h"
+#include "render/visibility/MaterialBins.h"
 
 #include <algorithm>
 #include <cassert>

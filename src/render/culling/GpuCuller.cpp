@@ -1,4 +1,4 @@
-#include "render/GpuCuller.h"
+#include "render/culling/GpuCuller.h"
 
 #include <algorithm>
 #include <array>
@@ -11,8 +11,8 @@
 #include "gpu/LayoutEntry.h"
 #include "gpu/Upload.h"
 #include "render/AnimationBuffers.h"
-#include "render/LodSelection.h"
 #include "render/RenderEncoder.h"
+#include "render/culling/LodSelection.h"
 
 namespace encore::render {
 

@@ -31,12 +31,12 @@
 #include "encore/render/RendererOptions.h"
 #include "gpu/GpuTimer.h"
 #include "render/AnimationBuffers.h"
-#include "render/CullingBounds.h"
-#include "render/DepthPyramid.h"
-#include "render/Frustum.h"
 #include "render/InstanceBuffer.h"
-#include "render/LodSelection.h"
 #include "render/RenderSetup.h"
+#include "render/culling/CullingBounds.h"
+#include "render/culling/DepthPyramid.h"
+#include "render/culling/Frustum.h"
+#include "render/culling/LodSelection.h"
 
 namespace encore::render {
 

@@ -3,7 +3,7 @@
 // two, and what of the playback survives a new player (encore/render/Renderer.h states the
 // contract).
 
-#include "render/RendererCore.h"
+#include "render/renderer/RendererCore.h"
 
 #include "gpu/OutOfMemoryScope.h"
 #include "render/GpuScene.h"

@@ -2,7 +2,7 @@
 
 #include "encore/render/Renderer.h"
 
-#include "render/RendererCore.h"
+#include "render/renderer/RendererCore.h"
 
 namespace encore::render {
 

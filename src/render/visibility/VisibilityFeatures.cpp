@@ -1,4 +1,4 @@
-#include "render/VisibilityFeatures.h"
+#include "render/visibility/VisibilityFeatures.h"
 
 #include <algorithm>
 

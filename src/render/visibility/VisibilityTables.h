@@ -30,7 +30,7 @@
 #include <vector>
 
 #include "render/GpuScene.h"
-#include "render/MaterialBins.h"
+#include "render/visibility/MaterialBins.h"
 
 namespace encore::render {
 

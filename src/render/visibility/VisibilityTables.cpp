@@ -1,4 +1,4 @@
-#include "render/VisibilityTables.h"
+#include "render/visibility/VisibilityTables.h"
 
 #include <algorithm>
 #include <bit>

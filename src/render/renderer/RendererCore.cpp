@@ -1,4 +1,4 @@
-#include "render/RendererCore.h"
+#include "render/renderer/RendererCore.h"
 
 #include <chrono>
 
@@ -14,8 +14,9 @@
 #include "render/SceneLimits.h"
 #include "render/TransmissionPass.h"
 #include "render/TriangleHistory.h"
-#include "render/VisibilityFeatures.h"
-#include "render/strategies/KeptStrategyObjects.h"
+#include "render/renderer/CreateStrategy.h"
+#include "render/visibility/KeptStrategyObjects.h"
+#include "render/visibility/VisibilityFeatures.h"
 
 namespace encore::render {
 

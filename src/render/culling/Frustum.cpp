@@ -1,4 +1,4 @@
-#include "render/Frustum.h"
+#include "render/culling/Frustum.h"
 
 #include <algorithm>
 

@@ -1,4 +1,4 @@
-#include "render/DepthPyramid.h"
+#include "render/culling/DepthPyramid.h"
 
 #include <algorithm>
 #include <bit>

@@ -2,7 +2,7 @@
 // SceneData alone, in the same orders AnimationPlayer uses (node weights node after node, joints
 // skin after skin), so that the passes write where the CPU path writes.
 
-#include "render/GpuAnimation.h"
+#include "render/animation/GpuAnimation.h"
 
 #include <algorithm>
 #include <cmath>
@@ -14,7 +14,7 @@
 #include "gpu/Upload.h"
 #include "render/AnimationBuffers.h"
 #include "render/BindGroupLayouts.h"
-#include "render/KeyframeStore.h"
+#include "render/animation/KeyframeStore.h"
 
 namespace encore::render {
 

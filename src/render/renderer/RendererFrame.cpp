@@ -3,7 +3,7 @@
 // transmission pass per view (TransmissionPass.h), tone mapping, timing and submission; then
 // the triangle counts of GPU culling and the image read back.
 
-#include "render/RendererCore.h"
+#include "render/renderer/RendererCore.h"
 
 #include <array>
 #include <optional>

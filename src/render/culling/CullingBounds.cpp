@@ -1,4 +1,4 @@
-#include "render/CullingBounds.h"
+#include "render/culling/CullingBounds.h"
 
 #include <algorithm>
 #include <cmath>

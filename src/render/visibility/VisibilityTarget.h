@@ -14,8 +14,8 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "render/DepthPyramid.h"
 #include "render/RenderSetup.h"
+#include "render/culling/DepthPyramid.h"
 
 namespace encore::render {
 

@@ -7,9 +7,9 @@
 
 #include <memory>
 
-#include "render/strategies/VisibilityPipelines.h"
-#include "render/strategies/VisibilityTarget.h"
-#include "render/strategies/VisibilityWorkBuffers.h"
+#include "render/visibility/VisibilityPipelines.h"
+#include "render/visibility/VisibilityTarget.h"
+#include "render/visibility/VisibilityWorkBuffers.h"
 
 namespace encore::render {
 

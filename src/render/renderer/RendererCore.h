@@ -31,12 +31,12 @@
 #include "encore/scene/AnimationPlayer.h"
 #include "gpu/StageTimestamps.h"
 #include "render/AnimationBuffers.h"
-#include "render/GpuAnimation.h"
 #include "render/GpuStage.h"
 #include "render/Lighting.h"
 #include "render/StagedUploads.h"
 #include "render/Strategy.h"
 #include "render/ToneMapper.h"
+#include "render/animation/GpuAnimation.h"
 
 namespace encore::gpu {
 class OutOfMemoryScope;

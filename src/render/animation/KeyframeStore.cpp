@@ -1,4 +1,4 @@
-#include "render/KeyframeStore.h"
+#include "render/animation/KeyframeStore.h"
 
 #include <cstring>
 #include <functional>

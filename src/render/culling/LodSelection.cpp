@@ -1,4 +1,4 @@
-#include "render/LodSelection.h"
+#include "render/culling/LodSelection.h"
 
 #include <algorithm>
 

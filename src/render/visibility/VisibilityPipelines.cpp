@@ -1,4 +1,4 @@
-#include "render/strategies/VisibilityPipelines.h"
+#include "render/visibility/VisibilityPipelines.h"
 
 #include <deque>
 #include <optional>
@@ -12,8 +12,8 @@
 #include "gpu/FullscreenPipeline.h"
 #include "gpu/LayoutEntry.h"
 #include "gpu/Upload.h"
-#include "render/MaterialBins.h"
-#include "render/strategies/VisibilityTarget.h"
+#include "render/visibility/MaterialBins.h"
+#include "render/visibility/VisibilityTarget.h"
 
 namespace encore::render {
 

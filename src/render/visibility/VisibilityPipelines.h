@@ -17,8 +17,8 @@
 #include <glm/glm.hpp>
 
 #include "encore/core/Result.h"
-#include "render/LodSelection.h"
 #include "render/RenderSetup.h"
+#include "render/culling/LodSelection.h"
 
 namespace encore::render {
 

@@ -3,16 +3,16 @@
 // (its materials' uniforms from the material table), and the frame composed in compute or
 // shaded into place.
 
-#include "render/strategies/VisibilityStrategy.h"
+#include "render/visibility/VisibilityStrategy.h"
 
 #include <array>
 #include <cstdint>
 #include <vector>
 
 #include "gpu/BindingResource.h"
-#include "render/MaterialBins.h"
 #include "render/MaterialResources.h"
-#include "render/strategies/VisibilityPhasePasses.h"
+#include "render/visibility/MaterialBins.h"
+#include "render/visibility/VisibilityPhasePasses.h"
 
 namespace encore::render {
 

@@ -1,4 +1,4 @@
-#include "render/strategies/VisibilityTarget.h"
+#include "render/visibility/VisibilityTarget.h"
 
 #include <algorithm>
 #include <cstring>
