@@ -41,6 +41,7 @@
 namespace encore::render {
 
 class AnimationBuffers;
+struct AnimationTables;
 
 class GpuAnimation {
   public:
@@ -84,22 +85,21 @@ class GpuAnimation {
 
   private:
     GpuAnimation() = default;
-    struct Tables;  // What the passes read, built from the scene (GpuAnimation.cpp).
     // Keeps what select(), encode() and copyInstancesTo() index.
-    void keepIndices(const Tables& tables);
-    void countStats(const Tables& tables);
+    void keepIndices(const AnimationTables& tables);
+    void countStats(const AnimationTables& tables);
     // Every node's local and world matrices, at rest.
     void createNodeMatrices(const wgpu::Device& device, const scene::SceneData& scene);
     Result<void> createPipelines(const wgpu::Device& device, shaders::ShaderLibrary& shaders);
     // The bind group(s) of each pass, with the buffers only that pass binds.
     void bindSampling(const wgpu::Device& device,
-                      Tables& tables,
+                      AnimationTables& tables,
                       const AnimationBuffers* animation);
     void bindWorldLevels(const wgpu::Device& device,
                          const gpu::DeviceLimits& limits,
-                         const Tables& tables);
+                         const AnimationTables& tables);
     void bindTransforms(const wgpu::Device& device,
-                        const Tables& tables,
+                        const AnimationTables& tables,
                         const AnimationBuffers* animation,
                         const InstanceTransformTargets& instances);
 
