@@ -17,34 +17,8 @@
 // Without occlusion culling, cullFirstPhase takes every instance in the frustum and phase 2
 // stays empty.
 
+#include "culling_view.wgsl"
 #include "pyramid_occlusion.wgsl"
-
-struct Culling {
-    planes: array<vec4f, 6>,  // xyz: inward normal, w: distance; visible when dot >= -radius.
-    viewProjection: mat4x4f,
-    lodViewCount: u32,       // Entries of lodViews.
-    // Pixels that one unit at distance one covers (orthographic: at any distance); 0: levels of
-    // detail off.
-    lodPixelsPerUnit: f32,
-    lodThresholdPixels: f32,
-    orthographic: u32,
-    occlusion: u32,          // 1: two phases (cullFirstPhase reads last frame's visibility).
-    viewport: vec2f,         // The depth target's size in pixels.
-    phaseArguments: u32,     // Words from a draw's phase 1 arguments to its phase 2 arguments.
-    phaseVisible: u32,       // Entries from a draw's phase 1 list to its phase 2 list.
-    // Where `indirectArguments` keeps the frame's count of triangles drawn (after all records),
-    // and where `visibleInstances` keeps last frame's visibility, one word per slot (after all
-    // lists): WebGPU's default limit is 8 storage buffers per stage, and these make 10 otherwise.
-    trianglesDrawnWord: u32,
-    visibilityBase: u32,
-    levelBase: u32,          // Index of the first level record in `records`.
-    // Subtracted from the distance to the nearest of lodViews: a frame of more views than
-    // lodViews holds measures from their centroid, less the farthest view's distance from it.
-    lodDistanceSlack: f32,
-    // xyz: where the frame's views are (render::GpuCuller::kMaxLodViews); levels of detail are
-    // chosen for the nearest.
-    lodViews: array<vec4f, 16>,
-}
 
 // One instance slot (render::SlotBounds).
 struct SlotBounds {
@@ -175,17 +149,7 @@ fn inFrustum(bounds: InstanceBounds) -> bool {
 // Pixels that one object-space unit of the instance covers at its nearest point (0: levels of
 // detail off); the same for every primitive of the instance.
 fn lodPixelsPerUnit(bounds: InstanceBounds) -> f32 {
-    var pixelsPerUnit = culling.lodPixelsPerUnit * bounds.scale;
-    if (culling.orthographic == 0u) {
-        var nearest = 3.4e38;
-        for (var view = 0u; view < culling.lodViewCount; view++) {
-            let position = culling.lodViews[view].xyz;
-            nearest = min(nearest,
-                          distance(clamp(position, bounds.boxMin, bounds.boxMax), position));
-        }
-        pixelsPerUnit /= max(nearest - culling.lodDistanceSlack, 1e-6);
-    }
-    return pixelsPerUnit;
+    return lodPixelsPerUnitAt(bounds.boxMin, bounds.boxMax, bounds.scale);
 }
 
 // The coarsest level whose error, projected at `pixelsPerUnit`, stays under the threshold

@@ -54,8 +54,8 @@ fn outsideFrustum(index: u32) -> bool {
     return sphereOutsideFrustum(sphere.xyz, sphere.w);
 }
 
-// culling.wgsl's lodPixelsPerUnit and chooseLevel for the item's mesh sphere, in the same order
-// (so the same rounding): the coarsest level whose projected error stays under the threshold.
+// culling.wgsl's chooseLevel for the item's mesh sphere, by the same lodPixelsPerUnitAt
+// (culling_view.wgsl): the coarsest level whose projected error stays under the threshold.
 fn chooseLevel(item: Item, world: mat4x4f) -> u32 {
     let levelCount = field(item.record, kLevelCount) + 1u;
     if (levelCount <= 1u || culling.lodPixelsPerUnit <= 0.0) {
@@ -70,15 +70,7 @@ fn chooseLevel(item: Item, world: mat4x4f) -> u32 {
     let radius = sphere.w * scale;
     let boxMin = center - vec3f(radius);
     let boxMax = center + vec3f(radius);
-    var pixelsPerUnit = culling.lodPixelsPerUnit * scale;
-    if (culling.orthographic == 0u) {
-        var nearest = 3.4e38;
-        for (var view = 0u; view < culling.lodViewCount; view++) {
-            let position = culling.lodViews[view].xyz;
-            nearest = min(nearest, distance(clamp(position, boxMin, boxMax), position));
-        }
-        pixelsPerUnit /= max(nearest - culling.lodDistanceSlack, 1e-6);
-    }
+    let pixelsPerUnit = lodPixelsPerUnitAt(boxMin, boxMax, scale);
     var chosen = 0u;
     for (var level = 1u; level < levelCount; level++) {
         if (levelError(item.record, level) * pixelsPerUnit > culling.lodThresholdPixels) {

@@ -3,26 +3,7 @@
 // pyramid of the first occlusion phase, and the tests of a sphere or a box against them. Needs
 // visibility_geometry.wgsl and pyramid_occlusion.wgsl.
 
-// VisibilityStrategy.cpp's CullUniform: one per frame.
-struct Culling {
-    planes: array<vec4f, 6>,  // xyz: inward unit normal, w: distance.
-    viewProjection: mat4x4f,
-    lodViewCount: u32,
-    lodPixelsPerUnit: f32,  // 0: levels of detail off.
-    lodThresholdPixels: f32,
-    orthographic: u32,
-    occlusion: u32,  // 1: two phases; cullFirstPhase reads last frame's visibility.
-    frustumTest: u32,  // 0 in multi-view frames, whose views each frame the whole scene.
-    lodDistanceSlack: f32,
-    clusterCulling: u32,  // 1: the raster passes cull clusters (CullingOptions::clusterCulling).
-    // 1: the frustum tests read each item's world sphere (visibility_cull.wgsl's worldSpheres).
-    worldSpheres: u32,
-    // The units buffer's first entry of the cull's list: after the scene's unit table (entry
-    // k: the unit that ids k * 256 ... name, VisibilityTables::unitTable), or 0 without one,
-    // when ids count the listed units.
-    unitListBase: u32,
-    lodViews: array<vec4f, 16>,
-}
+#include "culling_view.wgsl"
 
 @group(1) @binding(10) var<uniform> culling: Culling;
 // Read in the second phase only (the first phase's pyramid is still last frame's).

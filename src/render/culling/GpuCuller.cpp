@@ -12,6 +12,7 @@
 #include "gpu/Upload.h"
 #include "render/AnimationBuffers.h"
 #include "render/RenderEncoder.h"
+#include "render/culling/CullingUniform.h"
 #include "render/culling/LodSelection.h"
 
 namespace encore::render {
@@ -20,30 +21,6 @@ namespace {
 
 constexpr std::uint32_t kWorkgroupSize = 64;            // culling.wgsl's kWorkgroupSize.
 constexpr std::uint32_t kVisibleAlignmentEntries = 64;  // 256 bytes: storage offset alignment.
-
-// culling.wgsl's Culling uniform.
-struct CullingUniform {
-    std::array<glm::vec4, 6> planes;
-    glm::mat4 viewProjection;
-    std::uint32_t lodViewCount = 0;
-    float lodPixelsPerUnit = 0.0f;
-    float lodThresholdPixels = 0.0f;
-    std::uint32_t orthographic = 0;
-    std::uint32_t occlusion = 0;
-    std::uint32_t padding0 = 0;  // The viewport is 8-byte aligned.
-    glm::vec2 viewport;
-    std::uint32_t phaseArguments = 0;
-    std::uint32_t phaseVisible = 0;
-    std::uint32_t trianglesDrawnWord = 0;
-    std::uint32_t visibilityBase = 0;
-    std::uint32_t levelBase = 0;
-    float lodDistanceSlack = 0.0f;
-    std::uint32_t padding1[2] = {};  // The array is 16-byte aligned.
-    std::array<glm::vec4, GpuCuller::kMaxLodViews> lodViews;
-};
-static_assert(offsetof(CullingUniform, viewport) == 184);
-static_assert(offsetof(CullingUniform, lodViews) == 224);
-static_assert(sizeof(CullingUniform) == 480);
 
 // The triangles one instance of a draw of `elementCount` indices (or vertices) draws.
 std::uint32_t trianglesOf(const CulledDraw& draw, std::uint32_t elementCount) {
@@ -320,24 +297,12 @@ void GpuCuller::encodeFirstPhase(const wgpu::Queue& queue,
     }
     const Camera& camera = view.camera;
     const glm::mat4 viewProjection = camera.projection * camera.view;
-    CullingUniform uniform{};
-    uniform.viewProjection = viewProjection;
-    if (view.views.size() > 1) {
-        // One cull serves every view, so it must keep what any of them sees. No frustum rejects
-        // anything (views that frame the scene, as `render --views` and batch strips do, each
-        // see all of it anyway), and levels of detail are chosen for the nearest view.
-        uniform.planes.fill(glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
-    } else {
-        const Frustum frustum = Frustum::fromViewProjection(viewProjection);
-        std::copy(frustum.planes.begin(), frustum.planes.end(), uniform.planes.begin());
-    }
-    const LodSelection lod = lodSelection(camera, view.views, view.targetHeight, view.options);
-    uniform.lodViews = lod.views;
-    uniform.lodViewCount = lod.viewCount;
-    uniform.lodPixelsPerUnit = lod.pixelsPerUnit;
-    uniform.lodThresholdPixels = lod.thresholdPixels;
-    uniform.orthographic = lod.orthographic;
-    uniform.lodDistanceSlack = lod.distanceSlack;
+    CullingUniform uniform;
+    // One cull of several views serves every view, so it must keep what any of them sees. No
+    // frustum rejects anything (views that frame the scene, as `render --views` and batch strips
+    // do, each see all of it anyway), and levels of detail are chosen for the nearest view.
+    fillCullingView(uniform, viewProjection, view.views.size() <= 1,
+                    lodSelection(camera, view.views, view.targetHeight, view.options));
     uniform.occlusion = view.twoPhases ? 1u : 0u;
     uniform.viewport = glm::vec2(view.targetWidth, view.targetHeight);
     uniform.phaseArguments = mLevelDrawCount * 5;

@@ -11,7 +11,7 @@
 #include <span>
 #include <vector>
 
-#include "render/culling/Frustum.h"
+#include "render/culling/CullingUniform.h"
 #include "render/culling/LodSelection.h"
 #include "render/visibility/VisibilityPhasePasses.h"
 
@@ -20,7 +20,6 @@ namespace encore::render {
 namespace {
 
 using ViewParams = VisibilityViewParams;
-using CullUniform = VisibilityCullUniform;
 
 constexpr std::uint64_t kParamsStride = VisibilityTarget::kParamsStride;
 constexpr std::uint64_t kCounterBytes = VisibilityPipelines::kCounterBytes;
@@ -170,22 +169,11 @@ void VisibilityStrategy::writeCullUniform(const FrameState& frame, std::size_t v
     // What GpuCuller's first phase writes for the same frame: the culling camera's frustum and
     // the levels of detail of one cull serving every view.
     const Camera& camera = frame.cullingCamera.value_or(frame.camera);
-    CullUniform uniform;
-    uniform.viewProjection = camera.projection * camera.view;
-    if (views == 1) {
-        const Frustum frustum = Frustum::fromViewProjection(uniform.viewProjection);
-        std::copy(frustum.planes.begin(), frustum.planes.end(), uniform.planes.begin());
-        uniform.frustumTest = 1;
-    }
-    const LodSelection lod =
+    CullingUniform uniform;
+    fillCullingView(
+        uniform, camera.projection * camera.view, views == 1,
         lodSelection(camera, frame.cullingCamera ? std::span<const Camera>() : frame.views,
-                     frame.targetHeight, frame.culling);
-    uniform.lodViews = lod.views;
-    uniform.lodViewCount = lod.viewCount;
-    uniform.lodPixelsPerUnit = lod.pixelsPerUnit;
-    uniform.lodThresholdPixels = lod.thresholdPixels;
-    uniform.orthographic = lod.orthographic;
-    uniform.lodDistanceSlack = lod.distanceSlack;
+                     frame.targetHeight, frame.culling));
     uniform.occlusion = mOcclusion ? 1 : 0;
     uniform.clusterCulling = frame.culling.clusterCulling ? 1 : 0;
     uniform.worldSpheres = views == 1 && mSpheresCurrent ? 1 : 0;

@@ -12,6 +12,7 @@
 #include "gpu/FullscreenPipeline.h"
 #include "gpu/LayoutEntry.h"
 #include "gpu/Upload.h"
+#include "render/culling/CullingUniform.h"
 #include "render/visibility/MaterialBins.h"
 #include "render/visibility/VisibilityTarget.h"
 
@@ -187,7 +188,7 @@ void createLayouts(const wgpu::Device& device,
         {params, LayoutEntry::readOnlyStorage(2, kCompute),
          LayoutEntry::readOnlyStorage(3, kCompute), LayoutEntry::storage(4, kCompute),
          LayoutEntry::storage(5, kCompute),
-         LayoutEntry::uniform(10, kCompute, sizeof(VisibilityCullUniform)),
+         LayoutEntry::uniform(10, kCompute, sizeof(CullingUniform)),
          LayoutEntry::storage(11, kCompute),
          LayoutEntry::texture(12, kCompute, wgpu::TextureSampleType::UnfilterableFloat),
          LayoutEntry::storage(13, kCompute)},
@@ -199,7 +200,7 @@ void createLayouts(const wgpu::Device& device,
          LayoutEntry::storage(4, kCompute), LayoutEntry::storage(5, kCompute),
          LayoutEntry::storage(6, kCompute), LayoutEntry::storage(7, kCompute),
          LayoutEntry::storage(9, kCompute),
-         LayoutEntry::uniform(10, kCompute, sizeof(VisibilityCullUniform)),
+         LayoutEntry::uniform(10, kCompute, sizeof(CullingUniform)),
          LayoutEntry::texture(12, kCompute, wgpu::TextureSampleType::UnfilterableFloat)},
         "visibility raster");
     p.hardwareLayout = gpu::makeBindGroupLayout(

@@ -18,7 +18,6 @@
 
 #include "encore/core/Result.h"
 #include "render/RenderSetup.h"
-#include "render/culling/LodSelection.h"
 
 namespace encore::render {
 
@@ -45,31 +44,6 @@ struct VisibilityViewParams {
     std::uint32_t computeTakesAll = 0;
 };
 static_assert(sizeof(VisibilityViewParams) == 60);
-
-// visibility_cull.wgsl's Culling, one per frame (a multi-view frame's views differ only in
-// their viewports: no frustum test, no occlusion, the levels of detail of GPU culling's one cull).
-struct VisibilityCullUniform {
-    std::array<glm::vec4, 6> planes{};
-    glm::mat4 viewProjection{1.0f};
-    std::uint32_t lodViewCount = 0;
-    float lodPixelsPerUnit = 0.0f;
-    float lodThresholdPixels = 0.0f;
-    std::uint32_t orthographic = 0;
-    std::uint32_t occlusion = 0;
-    std::uint32_t frustumTest = 0;
-    float lodDistanceSlack = 0.0f;
-    std::uint32_t clusterCulling = 0;
-    std::uint32_t worldSpheres = 0;
-    // Where the cull's list of units starts in the units buffer: after the scene's unit table
-    // (VisibilityTables::unitTable), which the ids count units by; 0 without one (ids count
-    // listed units).
-    std::uint32_t unitListBase = 0;
-    std::array<std::uint32_t, 2> padding{};  // WGSL aligns lodViews to 16 bytes.
-    std::array<glm::vec4, LodSelection::kMaxViews> lodViews{};
-};
-static_assert(offsetof(VisibilityCullUniform, lodViewCount) == 160);
-static_assert(offsetof(VisibilityCullUniform, lodViews) == 208);
-static_assert(sizeof(VisibilityCullUniform) == 464);
 
 struct VisibilityPipelines {
     // Bytes of visibility_counters.wgsl's Counters.

@@ -10,6 +10,7 @@
 #include "gpu/BindingResource.h"
 #include "gpu/ResourcePool.h"
 #include "gpu/Upload.h"
+#include "render/culling/CullingUniform.h"
 #include "render/visibility/KeptStrategyObjects.h"
 #include "render/visibility/VisibilityFeatures.h"
 
@@ -18,7 +19,6 @@ namespace encore::render {
 namespace {
 
 using ViewParams = VisibilityViewParams;
-using CullUniform = VisibilityCullUniform;
 
 constexpr std::uint64_t kCounterBytes = VisibilityPipelines::kCounterBytes;
 // The hardware list holds at most this many triangles (16 MiB); past it they are counted as an
@@ -123,7 +123,7 @@ Result<void> VisibilityStrategy::prepareScene() {
     mCulledCounters = sceneBuffer(wgpu::BufferUsage::CopySrc | wgpu::BufferUsage::CopyDst,
                                   kCounterBytes, "visibility counters after the cull");
     mCullUniform = sceneBuffer(wgpu::BufferUsage::Uniform | wgpu::BufferUsage::CopyDst,
-                               sizeof(CullUniform), "visibility culling");
+                               sizeof(CullingUniform), "visibility culling");
     // Zero: nothing was visible before the first frame, whose second phase tests everything.
     mItemVisibility = sceneBuffer(wgpu::BufferUsage::Storage | wgpu::BufferUsage::CopyDst,
                                   std::max<std::uint64_t>(mTables.itemCount, 1) * 4,
