@@ -8,6 +8,7 @@
 
 #include "batch/ModelSeed.h"
 #include "image/Srgb.h"
+#include "scene/TriangleCorners.h"
 
 namespace encore::batch {
 namespace {
@@ -51,34 +52,6 @@ glm::vec4 textureAt(const Triangle& triangle, glm::vec2 uv) {
             float(image::srgbToLinear(texel[2] / 255.0)), texel[3] / 255.0f};
 }
 
-// The vertex indices of a primitive's triangles, three per triangle; none for points and lines.
-std::vector<std::uint32_t> triangleCorners(const scene::SceneData& scene,
-                                           const scene::Primitive& primitive) {
-    std::vector<std::uint32_t> indices;
-    if (primitive.indices) {
-        indices = scene.readIndices(*primitive.indices);
-    } else {
-        indices.resize(primitive.vertexCount);
-        for (std::uint32_t i = 0; i < primitive.vertexCount; ++i) {
-            indices[i] = i;
-        }
-    }
-    if (primitive.topology == scene::Topology::TriangleList) {
-        indices.resize(indices.size() / 3 * 3);
-        return indices;
-    }
-    std::vector<std::uint32_t> corners;
-    if (primitive.topology == scene::Topology::TriangleStrip) {
-        for (std::size_t i = 2; i < indices.size(); ++i) {
-            // Every other triangle of a strip is wound the other way round.
-            const bool odd = i % 2 == 1;
-            corners.insert(corners.end(),
-                           {indices[i - 2], indices[odd ? i : i - 1], indices[odd ? i - 1 : i]});
-        }
-    }
-    return corners;
-}
-
 std::vector<Triangle> sceneTriangles(const scene::SceneData& scene,
                                      const glm::mat4& normalization) {
     std::vector<Triangle> triangles;
@@ -86,7 +59,7 @@ std::vector<Triangle> sceneTriangles(const scene::SceneData& scene,
         const glm::mat4 toFrame = normalization * instance.world;
         const glm::mat3 normalMatrix(instance.normalMatrix);
         for (const scene::Primitive& primitive : scene.meshes[instance.mesh.index()].primitives) {
-            const std::vector<std::uint32_t> corners = triangleCorners(scene, primitive);
+            const std::vector<std::uint32_t> corners = scene::triangleCorners(scene, primitive);
             const auto position = primitive.attribute(scene::Semantic::Position);
             if (corners.empty() || !position) {
                 continue;

@@ -85,6 +85,24 @@ fn intersectTriangle(origin: vec3f, direction: vec3f, triangle: TraceTriangle, t
     return vec3f(t, u, v);
 }
 
+// Pushes the children at `first` whose boxes the ray enters (entry distances `near` and `far`,
+// -1 for a miss), the nearer last so that it is visited first.
+fn pushChildren(stack: ptr<function, array<u32, kTraceStackSize>>, size: ptr<function, u32>,
+                first: u32, near: f32, far: f32) {
+    if (near >= 0.0 && far >= 0.0) {
+        let firstNearer = near <= far;
+        (*stack)[*size] = select(first, first + 1u, firstNearer);
+        (*stack)[*size + 1u] = select(first + 1u, first, firstNearer);
+        *size += 2u;
+    } else if (near >= 0.0) {
+        (*stack)[*size] = first;
+        *size += 1u;
+    } else if (far >= 0.0) {
+        (*stack)[*size] = first + 1u;
+        *size += 1u;
+    }
+}
+
 // The primitive's triangles from `root`, in object space: shortens hit.t and sets its triangle
 // and barycentric coordinates when one is nearer.
 fn traceMesh(root: u32, origin: vec3f, direction: vec3f, tMin: f32, hit: ptr<function, TraceHit>)
@@ -112,20 +130,9 @@ fn traceMesh(root: u32, origin: vec3f, direction: vec3f, tMin: f32, hit: ptr<fun
             }
             continue;
         }
-        let near = boxEntry(meshNodes[node.first], origin, inverse, tMin, (*hit).t);
-        let far = boxEntry(meshNodes[node.first + 1u], origin, inverse, tMin, (*hit).t);
-        if (near >= 0.0 && far >= 0.0) {
-            let firstNearer = near <= far;
-            stack[size] = select(node.first, node.first + 1u, firstNearer);
-            stack[size + 1u] = select(node.first + 1u, node.first, firstNearer);
-            size += 2u;
-        } else if (near >= 0.0) {
-            stack[size] = node.first;
-            size += 1u;
-        } else if (far >= 0.0) {
-            stack[size] = node.first + 1u;
-            size += 1u;
-        }
+        pushChildren(&stack, &size, node.first,
+                     boxEntry(meshNodes[node.first], origin, inverse, tMin, (*hit).t),
+                     boxEntry(meshNodes[node.first + 1u], origin, inverse, tMin, (*hit).t));
     }
     return found;
 }
@@ -160,20 +167,9 @@ fn closestHit(origin: vec3f, direction: vec3f, tMin: f32, tMax: f32) -> TraceHit
             }
             continue;
         }
-        let near = boxEntry(objectNodes[node.first], origin, inverse, tMin, hit.t);
-        let far = boxEntry(objectNodes[node.first + 1u], origin, inverse, tMin, hit.t);
-        if (near >= 0.0 && far >= 0.0) {
-            let firstNearer = near <= far;
-            stack[size] = select(node.first, node.first + 1u, firstNearer);
-            stack[size + 1u] = select(node.first + 1u, node.first, firstNearer);
-            size += 2u;
-        } else if (near >= 0.0) {
-            stack[size] = node.first;
-            size += 1u;
-        } else if (far >= 0.0) {
-            stack[size] = node.first + 1u;
-            size += 1u;
-        }
+        pushChildren(&stack, &size, node.first,
+                     boxEntry(objectNodes[node.first], origin, inverse, tMin, hit.t),
+                     boxEntry(objectNodes[node.first + 1u], origin, inverse, tMin, hit.t));
     }
     return hit;
 }

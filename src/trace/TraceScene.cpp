@@ -1,8 +1,9 @@
 #include "trace/TraceScene.h"
 
-#include <array>
 #include <cmath>
 #include <optional>
+
+#include "scene/TriangleCorners.h"
 
 namespace encore::trace {
 namespace {
@@ -13,34 +14,6 @@ bool finite(const glm::vec4& v) {
 
 bool finite(const glm::vec3& v) {
     return finite(glm::vec4(v, 0.0f));
-}
-
-// The triangles of a triangle list or strip as vertex indices, strips unrolled with every
-// other triangle's first two corners swapped so that all keep the strip's winding.
-std::vector<std::array<std::uint32_t, 3>> triangleCorners(const scene::SceneData& scene,
-                                                          const scene::Primitive& primitive) {
-    std::vector<std::uint32_t> indices;
-    if (primitive.indices) {
-        indices = scene.readIndices(*primitive.indices);
-    } else {
-        indices.resize(primitive.vertexCount);
-        for (std::uint32_t i = 0; i < primitive.vertexCount; ++i) {
-            indices[i] = i;
-        }
-    }
-    std::vector<std::array<std::uint32_t, 3>> corners;
-    if (primitive.topology == scene::Topology::TriangleList) {
-        corners.reserve(indices.size() / 3);
-        for (std::size_t i = 0; i + 2 < indices.size(); i += 3) {
-            corners.push_back({indices[i], indices[i + 1], indices[i + 2]});
-        }
-    } else if (primitive.topology == scene::Topology::TriangleStrip) {
-        for (std::size_t i = 0; i + 2 < indices.size(); ++i) {
-            corners.push_back(i % 2 == 0 ? std::array{indices[i], indices[i + 1], indices[i + 2]}
-                                         : std::array{indices[i + 1], indices[i], indices[i + 2]});
-        }
-    }
-    return corners;
 }
 
 // Appends a primitive's hierarchy and triangles; its root's index, or none when it has no
@@ -55,14 +28,14 @@ Result<std::optional<std::uint32_t>> addPrimitive(const scene::SceneData& scene,
         return std::optional<std::uint32_t>();
     }
     const std::vector<glm::vec4> positions = scene.readFloats(*position);
-    const std::vector<std::array<std::uint32_t, 3>> corners = triangleCorners(scene, primitive);
-    std::vector<TraceTriangle> triangles(corners.size());
-    std::vector<scene::Bounds> boxes(corners.size());
-    for (std::size_t t = 0; t < corners.size(); ++t) {
+    const std::vector<std::uint32_t> corners = scene::triangleCorners(scene, primitive);
+    std::vector<TraceTriangle> triangles(corners.size() / 3);
+    std::vector<scene::Bounds> boxes(triangles.size());
+    for (std::size_t t = 0; t < triangles.size(); ++t) {
         TraceTriangle& triangle = triangles[t];
-        triangle.a = glm::vec3(positions[corners[t][0]]);
-        triangle.b = glm::vec3(positions[corners[t][1]]);
-        triangle.c = glm::vec3(positions[corners[t][2]]);
+        triangle.a = glm::vec3(positions[corners[3 * t]]);
+        triangle.b = glm::vec3(positions[corners[3 * t + 1]]);
+        triangle.c = glm::vec3(positions[corners[3 * t + 2]]);
         triangle.index = std::uint32_t(t);
         // A triangle with a non-finite corner is left out: it cannot be intersected reliably.
         if (finite(triangle.a) && finite(triangle.b) && finite(triangle.c)) {
