@@ -70,9 +70,12 @@ PoseLists gobjaversePoses() {
     return lists;
 }
 
-std::vector<BatchPreset> describePresets() {
-    const std::string zero123Fov = "49.1343";  // 2 atan(16 / 35): a 35 mm lens, 32 mm sensor.
-    std::vector<BatchPreset> presets;
+// 2 atan(16 / 35): a 35 mm lens on a 32 mm sensor, as Zero-1-to-3 and Objaverse-XL render.
+constexpr const char* kZero123Fov = "49.1343";
+
+// The presets of image-to-3D pipelines: Zero-1-to-3, Zero123++, InstantMesh, Wonder3D.
+void addViewSynthesisPresets(std::vector<BatchPreset>& presets) {
+    const std::string zero123Fov = kZero123Fov;
     presets.push_back(
         {"zero123",
          "Zero-1-to-3's Objaverse renders: 12 random views on a sphere shell, a 35 mm lens",
@@ -135,6 +138,11 @@ std::vector<BatchPreset> describePresets() {
          "in world space (--normal-space is not there yet); Wonder3D scales the bounding box's "
          "diagonal to 1, Encore its largest side, so its objects look up to 1.7 times smaller "
          "than these."});
+}
+
+// The presets of datasets and text-to-3D pipelines: G-Objaverse, TRELLIS, MVDream, Objaverse-XL.
+void addDatasetPresets(std::vector<BatchPreset>& presets) {
+    const std::string zero123Fov = kZero123Fov;
     const PoseLists gobjaverse = gobjaversePoses();
     presets.push_back(
         {"gobjaverse",
@@ -203,6 +211,12 @@ std::vector<BatchPreset> describePresets() {
            std::string(kObjaverseXlScript) + " (get_3x4_RT_matrix_from_blender, np.save)"}},
          "The script's random area lights are not drawn; metadata.json holds Encore's facts, "
          "not the script's."});
+}
+
+std::vector<BatchPreset> describePresets() {
+    std::vector<BatchPreset> presets;
+    addViewSynthesisPresets(presets);
+    addDatasetPresets(presets);
     return presets;
 }
 
