@@ -67,6 +67,35 @@ void warnApproximatedSamplers(
 
 }  // namespace
 
+namespace {
+
+// The materials' uniforms: one range per material, each aligned to what a uniform binding
+// offset needs (256 by default), and the buffer they go to.
+struct UniformStorage {
+    std::uint64_t stride = 0;
+    std::vector<std::uint8_t> bytes;
+    wgpu::Buffer buffer;
+};
+
+UniformStorage uniformStorage(const wgpu::Device& device,
+                              const wgpu::Limits& limits,
+                              std::size_t materialCount,
+                              gpu::ResourcePool* pool) {
+    UniformStorage storage;
+    const std::uint64_t alignment =
+        std::max<std::uint64_t>(limits.minUniformBufferOffsetAlignment, 4);
+    storage.stride = (kUniformSize + alignment - 1) / alignment * alignment;
+    storage.bytes.resize(storage.stride * std::max<std::size_t>(materialCount, 1));
+    const wgpu::BufferUsage usage =
+        wgpu::BufferUsage::Uniform | wgpu::BufferUsage::CopyDst | wgpu::BufferUsage::CopySrc;
+    storage.buffer =
+        pool ? pool->buffer(usage, storage.bytes.size(), "material uniforms")
+             : gpu::createBuffer(device, usage, storage.bytes.size(), "material uniforms");
+    return storage;
+}
+
+}  // namespace
+
 Result<MaterialResources> MaterialResources::create(const wgpu::Device& device,
                                                     const wgpu::Queue& queue,
                                                     shaders::ShaderLibrary& shaders,
@@ -106,18 +135,11 @@ Result<MaterialResources> MaterialResources::create(const wgpu::Device& device,
             builder.addSampler(scene.samplers[i], "sampler " + std::to_string(i)));
     }
 
-    // Align each material's range to what a uniform binding offset needs (256 by default).
-    const std::uint64_t alignment =
-        std::max<std::uint64_t>(limits.minUniformBufferOffsetAlignment, 4);
-    resources.mUniformStride = (kUniformSize + alignment - 1) / alignment * alignment;
     const std::size_t materialCount = scene.materials.size();
-    std::vector<std::uint8_t> uniformBytes(resources.mUniformStride *
-                                           std::max<std::size_t>(materialCount, 1));
-    const wgpu::BufferUsage uniformUsage =
-        wgpu::BufferUsage::Uniform | wgpu::BufferUsage::CopyDst | wgpu::BufferUsage::CopySrc;
-    resources.mUniforms =
-        pool ? pool->buffer(uniformUsage, uniformBytes.size(), "material uniforms")
-             : gpu::createBuffer(device, uniformUsage, uniformBytes.size(), "material uniforms");
+    UniformStorage storage = uniformStorage(device, limits, materialCount, pool);
+    resources.mUniformStride = storage.stride;
+    resources.mUniforms = std::move(storage.buffer);
+    std::vector<std::uint8_t> uniformBytes = std::move(storage.bytes);
 
     resources.mBindGroups.resize(materialCount);
     resources.mBaseBindGroups.resize(materialCount);
