@@ -27,29 +27,15 @@ glm::dmat3 normalRotation(const ViewCamera& view, NormalSpace space, CameraConve
 }
 
 std::vector<float> normalVectors(const FloatStrip& strip, const glm::dmat3& rotation) {
-    std::vector<float> normals(std::size_t(strip.width) * strip.height * 4, 0.0f);
-    for (std::uint32_t y = 0; y < strip.height; ++y) {
-        for (std::uint32_t x = 0; x < strip.width; ++x) {
-            const float* texel = strip.texel(x, y);
-            const float coverage = texel[3];
-            if (!(coverage > 0.0f)) {
-                continue;
-            }
-            const glm::dvec3 mapped = glm::dvec3(texel[0], texel[1], texel[2]) / double(coverage);
-            glm::dvec3 n = mapped * 2.0 - 1.0;
-            const double length = glm::length(n);
-            if (!(length > 1e-6)) {
-                continue;
-            }
-            n = rotation * (n / length);
-            float* out = &normals[(std::size_t(y) * strip.width + x) * 4];
-            out[0] = float(n.x);
-            out[1] = float(n.y);
-            out[2] = float(n.z);
-            out[3] = std::min(coverage, 1.0f);
+    return coveredTexels(strip, [&](const float* texel, float coverage) {
+        const glm::dvec3 mapped = glm::dvec3(texel[0], texel[1], texel[2]) / double(coverage);
+        const glm::dvec3 n = mapped * 2.0 - 1.0;
+        const double length = glm::length(n);
+        if (!(length > 1e-6)) {
+            return std::optional<glm::vec3>();
         }
-    }
-    return normals;
+        return std::optional<glm::vec3>(rotation * (n / length));
+    });
 }
 
 Result<std::vector<std::uint8_t>> encodeNormals(const std::vector<float>& normals,

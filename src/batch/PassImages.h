@@ -5,10 +5,14 @@
 // transforms.json, HDR radiance, segmentation ids (docs/batch.md#passes). The 8-bit passes
 // (normal, albedo, material) go through the colour read-back instead (ViewStrips.h).
 
+#include <algorithm>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
+
+#include <glm/glm.hpp>
 
 #include "encore/batch/ViewImages.h"
 #include "encore/gpu/DeviceLimits.h"
@@ -37,6 +41,34 @@ struct FloatStrip {
         return &wide[(std::size_t(y) * targetWidth + std::size_t(strip) * width + x) * 4];
     }
 };
+
+// A strip of three values per texel drawn over an empty background (so that edges hold the
+// covered samples' values times their coverage, in alpha): `map(texel, coverage)` turns each
+// texel with some coverage into the value to keep, or none to leave it empty; kept texels get
+// the coverage (at most 1) as alpha, the others 0 in every channel.
+template <typename Map>
+std::vector<float> coveredTexels(const FloatStrip& strip, Map&& map) {
+    std::vector<float> values(std::size_t(strip.width) * strip.height * 4, 0.0f);
+    for (std::uint32_t y = 0; y < strip.height; ++y) {
+        for (std::uint32_t x = 0; x < strip.width; ++x) {
+            const float* texel = strip.texel(x, y);
+            const float coverage = texel[3];
+            if (!(coverage > 0.0f)) {
+                continue;
+            }
+            const std::optional<glm::vec3> value = map(texel, coverage);
+            if (!value) {
+                continue;
+            }
+            float* out = &values[(std::size_t(y) * strip.width + x) * 4];
+            out[0] = value->x;
+            out[1] = value->y;
+            out[2] = value->z;
+            out[3] = std::min(coverage, 1.0f);
+        }
+    }
+    return values;
+}
 
 // A strip drawn through the depth channel as distances along the camera axis in the units of
 // the cameras (the scene scaled by `unitsPerModelUnit`, the normalisation's scale), infinity
