@@ -67,4 +67,16 @@ std::string batchArguments(const fs::path& input,
     return "-v batch " + quote(input.string()) + " -o " + quote(output.string()) + " " + extra;
 }
 
+void expectUsageErrors(const fs::path& input,
+                       const fs::path& output,
+                       const std::string& common,
+                       const std::vector<std::pair<std::string, std::string>>& cases) {
+    for (const auto& [options, message] : cases) {
+        const CommandResult result = runEncore(batchArguments(input, output, common + options));
+        EXPECT_EQ(result.exitCode, 2) << options << ": " << result.err;
+        EXPECT_NE(result.err.find(message), std::string::npos) << options << ": " << result.err;
+    }
+    EXPECT_TRUE(filesUnder(output, ".png").empty());
+}
+
 }  // namespace encore::test

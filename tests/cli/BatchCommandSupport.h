@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -32,5 +33,13 @@ GltfBuilder texturedQuad(const std::string& imageUri);
 std::string batchArguments(const std::filesystem::path& input,
                            const std::filesystem::path& output,
                            const std::string& extra);
+
+// Runs `encore batch` on `input` once per case, with `common` and the case's options (first):
+// each must be a usage error (exit 2) whose message contains the case's text (second), and no
+// run may write an image.
+void expectUsageErrors(const std::filesystem::path& input,
+                       const std::filesystem::path& output,
+                       const std::string& common,
+                       const std::vector<std::pair<std::string, std::string>>& cases);
 
 }  // namespace encore::test

@@ -325,13 +325,7 @@ TEST(BatchPassesTest, BadCombinationsAreUsageErrors) {
         {"--segmentation --samples 1 -s visibility", "not visibility"},
         {"--albedo -s naive", "need a strategy that draws glTF materials"},
     };
-    for (const auto& [options, message] : cases) {
-        const CommandResult result =
-            runEncore(batchArguments(input, output, "--views 1 --size 8 --quiet " + options));
-        EXPECT_EQ(result.exitCode, 2) << options << ": " << result.err;
-        EXPECT_NE(result.err.find(message), std::string::npos) << options << ": " << result.err;
-    }
-    EXPECT_TRUE(filesUnder(output, ".png").empty());
+    expectUsageErrors(input, output, "--views 1 --size 8 --quiet ", cases);
 }
 
 // Issue 50's camera options: a bad preset, list or pose file is a usage error (exit 2) that names
@@ -354,13 +348,7 @@ TEST(BatchPassesTest, BadCamerasAreUsageErrors) {
          "sheared.json': camera 0: the matrix is not a rigid camera pose"},
         {"--camera-convention directx", "--camera-convention"},
     };
-    for (const auto& [options, message] : cases) {
-        const CommandResult result =
-            runEncore(batchArguments(input, output, "--size 8 --quiet " + options));
-        EXPECT_EQ(result.exitCode, 2) << options << ": " << result.err;
-        EXPECT_NE(result.err.find(message), std::string::npos) << options << ": " << result.err;
-    }
-    EXPECT_TRUE(filesUnder(output, ".png").empty());
+    expectUsageErrors(input, output, "--size 8 --quiet ", cases);
 }
 
 }  // namespace
