@@ -1,8 +1,9 @@
 #pragma once
 
 // The builders of BatchOptionTable's entries, shared by the files that describe a group of
-// options each (BatchOptionTable.cpp, CameraOptionEntries.cpp): an entry is made by one builder
-// per form of value and finished by the setters' chain (`.excluding({...}).keyword(...)`).
+// options each (BatchOptionTable.cpp and the *OptionEntries.cpp, PassConventionEntries.cpp
+// beside it): an entry is made by one builder per form of value and finished by the setters' chain
+// (`.excluding({...}).keyword(...)`).
 
 #include <cstdint>
 #include <functional>
@@ -109,5 +110,6 @@ Entry named(std::string name,
 // The groups, each in the order its options are applied.
 void addCameraOptions(std::vector<Entry>& entries);          // CameraOptionEntries.cpp
 void addPassConventionOptions(std::vector<Entry>& entries);  // PassConventionEntries.cpp
+void addShadingOptions(std::vector<Entry>& entries);         // ShadingOptionEntries.cpp
 
 }  // namespace encore::batch::optiontable
