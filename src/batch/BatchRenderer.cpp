@@ -4,6 +4,7 @@
 
 #include "encore/image/HdrImage.h"
 #include "gpu/ResourcePool.h"
+#include "gpu/StagingBuffers.h"
 #include "render/renderer/RendererCore.h"
 
 namespace encore::batch {
@@ -17,6 +18,8 @@ BatchRenderer::~BatchRenderer() {
 void BatchRenderer::discard() {
     // The ring first: it waits for reads of the renderer's target still in flight.
     mRing.reset();
+    mStaging.reset();  // Waits for its pending mappings.
+    mPngRows.reset();
     mRenderers.clear();
     mResources.reset();  // After the renderers, whose scenes give their resources back to it.
     mRendererOptions.reset();
@@ -113,6 +116,21 @@ Result<void> BatchRenderer::light(render::Renderer& renderer, const ModelLightin
     parameters.environmentIntensity = lighting.intensity;
     renderer.setLighting(parameters);
     return {};
+}
+
+const std::shared_ptr<gpu::StagingBuffers>& BatchRenderer::staging() {
+    if (!mStaging) {
+        mStaging = std::make_shared<gpu::StagingBuffers>(mContext);
+    }
+    return mStaging;
+}
+
+Result<PngRowsPass*> BatchRenderer::pngRowsPass() {
+    if (!mPngRows) {
+        ENCORE_TRY_ASSIGN(auto pass, PngRowsPass::create(mContext.device()));
+        mPngRows.emplace(std::move(pass));
+    }
+    return &*mPngRows;
 }
 
 Result<void> BatchRenderer::acquire(const render::RendererOptions& options,

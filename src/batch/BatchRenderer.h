@@ -2,8 +2,8 @@
 
 // What a batch builds on its device before it renders a model, kept for the batches after it:
 // the renderer (render target, image-based light, the pipelines it keeps from one model to the
-// next), the ring of read-back buffers, and the pool of buffers and textures the models' scenes
-// reuse.
+// next), the ring of read-back buffers, the pool of buffers and textures the models' scenes
+// reuse, the staging buffers uploads go through and the PNG rows' compute pass.
 //
 // runBatch builds these once per call. A caller that runs many batches on one device in turn
 // (encore.Renderer.batch, called once per Dask task on a worker) keeps one BatchRenderer and
@@ -25,6 +25,7 @@
 #include <optional>
 #include <vector>
 
+#include "batch/PngRowsPass.h"
 #include "encore/batch/BatchLighting.h"
 #include "encore/core/Result.h"
 #include "encore/gpu/Context.h"
@@ -35,7 +36,8 @@
 
 namespace encore::gpu {
 class ResourcePool;
-}
+class StagingBuffers;
+}  // namespace encore::gpu
 
 namespace encore::batch {
 
@@ -72,6 +74,13 @@ class BatchRenderer {
     render::Renderer& renderer(std::size_t index = 0) { return mRenderers[index]; }
     std::size_t rendererCount() const { return mRenderers.size(); }
     gpu::TextureReadbackRing& ring() { return *mRing; }
+    // The staging buffers of the models' uploads, whatever the options, after acquire(). Kept
+    // from batch to batch: made anew, their first mappings cost the first models of each batch
+    // (and a Dask task's batch is a few models).
+    const std::shared_ptr<gpu::StagingBuffers>& staging();
+    // The pass that filters PNG rows on the GPU (PngRowsPass.h), after acquire(): compiled by
+    // the first batch that asks for it and kept.
+    Result<PngRowsPass*> pngRowsPass();
     bool ready() const { return !mRenderers.empty(); }
 
     // The environment maps of the Radiance .hdr `file` with `options`: computed on the first
@@ -126,6 +135,8 @@ class BatchRenderer {
     std::size_t mReadbackSlots = 0;
     // After mRenderers: destroyed first, it waits for reads of the renderers' targets.
     std::unique_ptr<gpu::TextureReadbackRing> mRing;
+    std::shared_ptr<gpu::StagingBuffers> mStaging;
+    std::optional<PngRowsPass> mPngRows;
 };
 
 }  // namespace encore::batch

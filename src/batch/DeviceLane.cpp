@@ -80,11 +80,7 @@ Result<void> DeviceLane::createRenderers() {
     rendererOptions.prepareWaitsForIdle = false;
     mRing = nullptr;
     mRenderers.clear();
-    mPngRows.reset();
-    if (pngRows) {
-        ENCORE_TRY_ASSIGN(auto pass, PngRowsPass::create(mContext.device()));
-        mPngRows = std::move(pass);
-    }
+    mPngRows = nullptr;
     // A read of PNG rows stays mapped until the pool has compressed its images, not only
     // cropped them: twice the slots keep the device thread from waiting for them.
     const std::size_t slotsPerRead = pngRows ? 2 : 1;
@@ -107,7 +103,10 @@ Result<void> DeviceLane::createRenderers() {
     const std::uint32_t bytesPerTexel = rendererOptions.target.hdr ? 8 : 4;
     mRing->reserve(std::uint64_t(gpu::paddedRowBytes(mLayout.targetWidth() * bytesPerTexel)) *
                    mLayout.height);
-    mStaging = std::make_shared<gpu::StagingBuffers>(mContext);
+    mStaging = mBatchRenderer.staging();
+    if (pngRows) {
+        ENCORE_TRY_ASSIGN(mPngRows, mBatchRenderer.pngRowsPass());
+    }
     mTimestamps.reset();
     if (options.gpuTimestamps) {
         mTimestamps = gpu::StageTimestamps::create(mContext, render::kGpuStageCount);
@@ -564,7 +563,7 @@ DeviceSummary DeviceLane::summary() const {
     summary.models = mModelsPrepared;
     summary.views = mViewsDrawn;
     summary.passTargets = mPassTargets;
-    summary.pngRowsOnGpu = mPngRows.has_value();
+    summary.pngRowsOnGpu = mPngRows != nullptr;
     summary.gpuObjectsCreated = mCreatedInRun.objects();
     summary.gpuBytesMapped = mCreatedInRun.bytesMapped;
     summary.modelsCreatingGpuObjects = mModelsCreating;

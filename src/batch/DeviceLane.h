@@ -227,8 +227,8 @@ class DeviceLane {
     // The passes are drawn in the colour frame's render pass (drawsPassTargets), not one frame
     // per pass.
     bool mPassTargets = false;
-    // Filters the PNG rows on the GPU (BatchOptions::pngFiltering); on the current device.
-    std::optional<PngRowsPass> mPngRows;
+    // Filters the PNG rows on the GPU (BatchOptions::pngFiltering); the batch renderer's.
+    PngRowsPass* mPngRows = nullptr;
     // Models go to the renderers in turn: while the GPU draws model k with one, the device
     // thread uploads model k + 1 with another (BatchOptions::renderers). No renderer is left
     // after a device loss that could not be recovered.
@@ -241,8 +241,8 @@ class DeviceLane {
     // Device losses so far: a renderer used across a collectOldest() may have been replaced.
     std::uint64_t mDevicesLost = 0;
     gpu::TextureReadbackRing* mRing = nullptr;
-    // The staging buffers of the models' images, on the current device, reused from model to
-    // model.
+    // The staging buffers of the models' images: the batch renderer's, reused from model to
+    // model and from batch to batch.
     std::shared_ptr<gpu::StagingBuffers> mStaging;
     // With BatchOptions::gpuTimestamps: on the current device, flushed after every model.
     std::optional<gpu::StageTimestamps> mTimestamps;

@@ -22,6 +22,7 @@
 #include "RenderTestSupport.h"
 #include "TestFiles.h"
 #include "TestPaths.h"
+#include "batch/BatchRenderer.h"
 #include "encore/batch/Batch.h"
 #include "render/GpuStage.h"
 #include "scene/SceneGenerator.h"
@@ -144,6 +145,42 @@ TEST(BatchPipelineTest, ModelsInSteadyStateCreateNoGpuObjects) {
     }
     EXPECT_GT(createdByFirst, 0u);
     EXPECT_TRUE(context->checkNoErrors("steady-state batch").ok());
+}
+
+// A caller that runs many short batches on one device (encore.dask: a batch per task) keeps its
+// BatchRenderer: the batches after the first start with its pools, staging buffers and passes,
+// so their models create no GPU object and map no fresh memory either.
+TEST(BatchPipelineTest, BatchesAfterTheFirstOnKeptRenderersCreateNoGpuObjects) {
+    ENCORE_REQUIRE_VULKAN(context);
+    const fs::path dir = test::makeTempDir("batch-pipeline-kept");
+    const std::vector<BatchInput> kinds = mixedCollection(dir);
+    BatchRenderer renderers(*context);
+    BatchOptions options = smallBatch(dir / "out");
+    options.renderer.environment = test::testEnvironment();
+    for (const char* round : {"first-", "second-", "third-"}) {
+        std::vector<BatchInput> inputs;
+        for (const BatchInput& kind : kinds) {
+            inputs.push_back({kind.path, round + kind.name});
+        }
+        auto summary = runBatch(renderers, inputs, options);
+        ASSERT_TRUE(summary.ok()) << summary.error().message;
+        ASSERT_EQ(summary->rendered, inputs.size()) << round;
+        const DeviceSummary& device = summary->devices.front();
+        if (std::string(round) == "third-") {
+            EXPECT_EQ(device.gpuObjectsCreated, 0u);
+            EXPECT_EQ(device.modelsCreatingGpuObjects, 0u);
+            for (const BatchInput& input : inputs) {
+                std::ifstream file(options.output / input.name / "metadata.json");
+                const nlohmann::json metadata = nlohmann::json::parse(file, nullptr, false);
+                ASSERT_TRUE(metadata.is_object()) << input.name;
+                EXPECT_EQ(metadata["gpu"]["bytesMapped"].get<std::uint64_t>(), 0u) << input.name;
+            }
+        } else if (std::string(round) == "first-") {
+            EXPECT_GT(device.gpuObjectsCreated, 0u);
+        }
+    }
+    EXPECT_EQ(renderers.counts().renderers, 1u);
+    EXPECT_TRUE(context->checkNoErrors("batches on kept renderers").ok());
 }
 
 std::string metadataString(const fs::path& folder, const char* key) {
