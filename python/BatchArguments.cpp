@@ -4,6 +4,8 @@
 #include "batch/BatchOptionsValidation.h"
 #include "encore/batch/BatchInputs.h"
 
+#include <filesystem>
+
 namespace encore::python {
 
 batch::ValueRange valueRange(const py::object& value, const char* name) {
@@ -86,30 +88,41 @@ std::vector<batch::BatchInput> batchInputs(const py::object& inputs) {
         }
         return valueOrThrow(std::move(discovered));
     }
+    const py::object fspath = py::module_::import("os").attr("fspath");
+    const auto isPath = [](const py::handle item) {
+        return py::isinstance<py::str>(item) || py::hasattr(item, "__fspath__");
+    };
+    std::vector<std::filesystem::path> paths;
     std::vector<batch::BatchInput> listed;
     for (const py::handle item : inputs) {
-        const auto [path, name] = item.cast<std::pair<std::string, std::string>>();
+        if (isPath(item)) {
+            paths.emplace_back(py::str(fspath(item)).cast<std::string>());
+            continue;
+        }
+        if (!py::isinstance<py::sequence>(item) || py::len(item) != 2 ||
+            !isPath(item[py::int_(0)]) || !py::isinstance<py::str>(item[py::int_(1)])) {
+            throw py::type_error(
+                "inputs takes a folder, a list file or a model path, a sequence of model paths, "
+                "or (path, name) pairs from encore.discover_inputs; not an item " +
+                py::repr(item).cast<std::string>());
+        }
+        const std::string name = py::str(item[py::int_(1)]);
         if (name.empty()) {
             throw py::value_error("every input needs a non-empty output name");
         }
-        listed.push_back({path, name});
+        listed.push_back({py::str(fspath(item[py::int_(0)])).cast<std::string>(), name});
     }
-    return listed;
+    if (!paths.empty() && !listed.empty()) {
+        throw py::type_error(
+            "inputs takes model paths or (path, name) pairs, not both in one sequence");
+    }
+    // Named as discover_inputs names them: relative to the deepest folder holding them all.
+    return paths.empty() ? listed : valueOrThrow(batch::listedInputs(paths));
 }
 
 // discover_inputs: a folder, list file or model path, or a sequence of model paths.
 py::list discoverInputs(const py::object& input) {
-    std::vector<batch::BatchInput> inputs;
-    if (py::isinstance<py::str>(input) || py::hasattr(input, "__fspath__")) {
-        inputs = batchInputs(input);
-    } else {
-        std::vector<std::filesystem::path> paths;
-        for (const py::handle item : input) {
-            paths.emplace_back(
-                py::str(py::module_::import("os").attr("fspath")(item)).cast<std::string>());
-        }
-        inputs = valueOrThrow(batch::listedInputs(paths));
-    }
+    const std::vector<batch::BatchInput> inputs = batchInputs(input);
     py::list pairs;
     for (const batch::BatchInput& model : inputs) {
         pairs.append(py::make_tuple(model.path.string(), model.name));

@@ -391,6 +391,24 @@ def test_discover_inputs_names_a_list_of_paths_from_their_common_folder(tmp_path
         encore.discover_inputs(str(tmp_path / "nothing"))
 
 
+def test_renderer_batch_takes_a_list_of_model_paths(renderer, tmp_path):
+    paths = [tmp_path / "in" / "a" / "model.glb", tmp_path / "in" / "b" / "model.glb"]
+    for seed, path in enumerate(paths, start=4):
+        generate(path, seed=seed)
+    out = tmp_path / "out"
+    summary = renderer.batch([str(paths[0]), paths[1]], str(out), views=1, size=16,
+                             failure_log=False)
+    assert (summary["rendered"], summary["failed"]) == (2, 0)
+    # Named as discover_inputs names the same list.
+    assert [name for _, name in encore.discover_inputs(paths)] == ["a/model", "b/model"]
+    assert (out / "a" / "model" / "000.png").is_file()
+    assert (out / "b" / "model" / "000.png").is_file()
+    with pytest.raises(TypeError, match="not both"):
+        renderer.batch([str(paths[0]), (str(paths[1]), "b")], str(out / "mixed"))
+    with pytest.raises(TypeError, match="not an item 7"):
+        renderer.batch([7], str(out / "bad"))
+
+
 def test_keyboard_interrupt_stops_the_batch_cleanly_and_a_rerun_resumes(tmp_path):
     for index in range(8):
         generate(tmp_path / "in" / f"m{index}.glb", objects=30, seed=index + 1)
