@@ -9,10 +9,11 @@ A worker renders on the GPU its ENCORE_DEVICE environment variable names (an ind
 encore.adapters(); unset: 0). gpu_cluster() starts one worker per GPU with that variable set;
 on a cluster of machines, start one `dask worker` per GPU the same way (docs/batch.md).
 
-The models are split into chunks of `chunk_size`, one task each. Every worker process keeps one
-encore.Renderer (one GPU device), created by the first task that runs there and reused by every
-task after it; its batch renderer (environment maps, pipelines) is likewise built by the first
-task and kept (Renderer.batch keeps it between calls with the same size and samples). Each task
+The models are split into chunks of `chunk_size`, one task each. A worker runs
+`tasks_per_gpu` tasks at once (gpu_cluster's, 2 by default), each on an encore.Renderer (a GPU
+device) of its own, created by the first task that needs it and reused by the tasks after it;
+its batch renderer (environment maps, pipelines, pools, staging buffers) is likewise built once
+and kept (Renderer.batch keeps it between calls with the same size and samples). Each task
 renders its chunk as `encore batch` does, into the same output folder: that
 folder must be the same path on every worker (shared storage). The files are those a single
 `encore batch` writes, byte for byte.
@@ -23,6 +24,7 @@ or written twice. Failures come back with the tasks' results; the client writes
 OUTPUT/failures.jsonl once, after the last task.
 """
 
+import contextlib
 import json
 import os
 import threading
@@ -39,21 +41,30 @@ _STAGES = ("load", "upload", "render", "gpu", "readback", "encode", "load_cpu", 
 
 
 class _WorkerRenderers:
-    """The renderers of this process, one per sample count: a device costs far more to create
-    than most models take to render, so tasks share them."""
+    """The renderers of this process, each checked out by one task at a time: a device costs far
+    more to create than most models take to render, so tasks share them. A worker running two
+    tasks at once (gpu_cluster's tasks_per_gpu) gets two renderers, two devices on its GPU: one
+    task's batch fills and drains (its first loads, its last encodes) while the other's renders."""
 
     def __init__(self):
         self._lock = threading.Lock()
-        self._renderers = {}
+        self._idle = {}  # samples -> renderers no task holds
         self.created = 0
 
-    def get(self, samples):
+    @contextlib.contextmanager
+    def checkout(self, samples):
         with self._lock:
-            renderer = self._renderers.get(samples)
-            if renderer is None:
-                renderer = self._renderers[samples] = Renderer(samples=samples)
+            idle = self._idle.setdefault(samples, [])
+            renderer = idle.pop() if idle else None
+        if renderer is None:
+            renderer = Renderer(samples=samples)
+            with self._lock:
                 self.created += 1
-            return renderer
+        try:
+            yield renderer
+        finally:
+            with self._lock:
+                self._idle[samples].append(renderer)
 
 
 _worker_renderers = _WorkerRenderers()
@@ -62,10 +73,10 @@ _worker_renderers = _WorkerRenderers()
 def _render_chunk(models, output, options):
     """One task: the chunk's models on this worker's renderer. Runs on a worker."""
     options = dict(options)
-    renderer = _worker_renderers.get(options.pop("samples", 4))
-    summary = renderer.batch(models, output, failure_log=False, **options)
+    with _worker_renderers.checkout(options.pop("samples", 4)) as renderer:
+        summary = renderer.batch(models, output, failure_log=False, **options)
+        summary["device"] = renderer.device
     summary["worker"] = distributed.get_worker().address
-    summary["device"] = renderer.device
     return summary
 
 
@@ -91,15 +102,20 @@ def gpu_devices(devices="all"):
     return devices
 
 
-def gpu_cluster(devices="all", **scheduler_options):
+def gpu_cluster(devices="all", tasks_per_gpu=2, **scheduler_options):
     """A cluster of this machine with one worker process per GPU: distributed's SpecCluster (the
-    class LocalCluster is made of) whose workers are Nannies with one thread each and
-    ENCORE_DEVICE set to their GPU (gpu_devices(devices)). The keywords go to the scheduler
-    (dashboard_address, ...). Use it as LocalCluster: Client(gpu_cluster()), and close it."""
+    class LocalCluster is made of) whose workers are Nannies with `tasks_per_gpu` threads each
+    and ENCORE_DEVICE set to their GPU (gpu_devices(devices)). A worker runs that many tasks at
+    once, each on a renderer of its own on the worker's GPU, so that the GPU renders one task's
+    models while another task's batch starts or ends (one task at a time left each GPU idle
+    between tasks). The other keywords go to the scheduler (dashboard_address, ...). Use it as
+    LocalCluster: Client(gpu_cluster()), and close it."""
+    if tasks_per_gpu < 1:
+        raise ValueError("tasks_per_gpu must be at least 1")
     workers = {
         f"gpu{device}-{position}": {
             "cls": distributed.Nanny,
-            "options": {"nthreads": 1, "env": {"ENCORE_DEVICE": str(device)}},
+            "options": {"nthreads": tasks_per_gpu, "env": {"ENCORE_DEVICE": str(device)}},
         }
         for position, device in enumerate(gpu_devices(devices))
     }
@@ -127,14 +143,15 @@ def _write_failures(output, models, failures):
     return list(by_file.values())
 
 
-def render_collection(client, inputs, output, *, chunk_size=8, retries=2, **options):
+def render_collection(client, inputs, output, *, chunk_size=32, retries=2, **options):
     """Renders `inputs` on the workers of `client` (a distributed.Client) into `output`, as
     `encore batch INPUTS -o OUTPUT` does, and returns the summary of the whole collection.
 
     `inputs` is what encore.discover_inputs takes: a folder, a list file, a model, or a
     sequence of model paths; paths must name the same files on every worker. `chunk_size`
-    models make one task; a task that raises (a device that cannot be created) runs again up
-    to `retries` times. The other keywords are those of encore.Renderer.batch (`encore
+    models make one task (each task's batch starts and drains its pipeline: on two H200s chunks
+    of 8 ran at half the views/s of chunks of 32, docs/batch.md); a task that raises (a device
+    that cannot be created) runs again up to `retries` times. The other keywords are those of encore.Renderer.batch (`encore
     batch`'s options, as encore.batch_options() lists them; not failure_log, shards or
     shard_size): what is drawn at random depends on the seed and each model's name only, so the
     tasks draw what one `encore batch` would.

@@ -107,7 +107,7 @@ def test_output_equals_the_batch_command_and_reruns_skip(client, collection, tmp
     assert len(read_failures(output)) == 2
 
 
-def test_each_worker_keeps_one_renderer(client, collection, tmp_path):
+def test_each_worker_keeps_its_renderers(client, collection, tmp_path):
     summary = encore.dask.render_collection(client, [str(collection / "a" / "m0.glb"),
                                                      str(collection / "a" / "m1.glb"),
                                                      str(collection / "a" / "m2.glb"),
@@ -118,15 +118,29 @@ def test_each_worker_keeps_one_renderer(client, collection, tmp_path):
     assert (tmp_path / "out" / "a" / "m2" / "transforms.json").is_file()
     assert (tmp_path / "out" / "d" / "transforms.json").is_file()
     assert sum(summary["workers"].values()) == 4
+    # At most one renderer per task a worker runs at once (gpu_cluster's tasks_per_gpu, 2), kept
+    # for the tasks after it.
     created = client.run(lambda: encore.dask._worker_renderers.created)
-    assert all(count <= 1 for count in created.values()), created
-    assert sum(created.values()) == len(summary["workers"])
-    # Every task so far had the same options: each worker built its batch renderer (the
+    assert all(count <= 2 for count in created.values()), created
+    assert sum(created.values()) >= len(summary["workers"])
+    # Every task so far had the same options: each renderer built its batch renderer (the
     # environment maps, the pipelines) once, in its first task, not once per task.
     built = client.run(lambda: [(renderer.batch_renderers_created,
                                  renderer.batch_environments_created)
-                                for renderer in encore.dask._worker_renderers._renderers.values()])
-    assert all(counts == [(1, 1)] for counts in built.values() if counts), built
+                                for renderers in encore.dask._worker_renderers._idle.values()
+                                for renderer in renderers])
+    assert sum(len(counts) for counts in built.values()) == sum(created.values())
+    assert all(counts == (1, 1) for every in built.values() for counts in every), built
+
+
+def test_gpu_cluster_runs_tasks_per_gpu_at_once():
+    with pytest.raises(ValueError, match="tasks_per_gpu"):
+        encore.dask.gpu_cluster(devices=[0], tasks_per_gpu=0)
+    cluster = encore.dask.gpu_cluster(devices=[0], tasks_per_gpu=3)
+    try:
+        assert [spec["options"]["nthreads"] for spec in cluster.worker_spec.values()] == [3]
+    finally:
+        cluster.close()
 
 
 def test_killing_a_worker_mid_run_still_renders_every_model(client, tmp_path):
