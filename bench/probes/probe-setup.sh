@@ -34,3 +34,24 @@ probe_generated() {
   done
   ls "$1/$2"-*/m*.glb > "$1/$2.txt"
 }
+
+# probe_python WORK CARRY: CARRY's python.tar.xz (bench/probes/pack-python.sh) into WORK/python
+# and a function PY that runs its Python through the encore pack's loader (probe_unpack first).
+# Worker processes that multiprocessing spawns start through WORK/python/bin/python-packed, the
+# same command as a script: set it with multiprocessing.set_executable (ENCORE_PYTHON names it).
+probe_python() {
+  tar -C "$1" -xJf "$2/python.tar.xz"
+  local w; w=$(cd "$1" && pwd)
+  bash "$w/pack/run.sh" encore-new info > /dev/null 2>&1 || true  # unpacks the GL dispatch libraries
+  cat > "$w/python/bin/python-packed" <<SCRIPT
+#!/usr/bin/env bash
+export PYTHONHOME=$w/python PYTHONPATH=$w/python/lib/python3/dist-packages
+export VK_DRIVER_FILES=\${VK_DRIVER_FILES:-/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json}
+export XDG_RUNTIME_DIR=\${XDG_RUNTIME_DIR:-/tmp} ENCORE_PYTHON=$w/python/bin/python-packed
+exec $w/pack/lib/ld-linux-x86-64.so.2 --library-path $w/pack/lib:$w/python/so:/usr/local/nvidia/lib64 \\
+  $w/python/bin/python3.11 "\$@"
+SCRIPT
+  chmod +x "$w/python/bin/python-packed"
+  PROBE_PYTHON=$w/python/bin/python-packed
+  PY() { "$PROBE_PYTHON" "$@"; }
+}
