@@ -9,6 +9,7 @@ wgpu::RenderPipeline makeFullscreenPipeline(const wgpu::Device& device,
     std::vector<wgpu::ColorTargetState> colors(1 + descriptor.untouchedTargets);
     colors[0].format = descriptor.colorFormat;
     colors[0].blend = descriptor.blend ? &*descriptor.blend : nullptr;
+    colors[0].writeMask = descriptor.writeMask;
     for (std::size_t i = 1; i < colors.size(); ++i) {
         colors[i].format = descriptor.colorFormat;
         colors[i].writeMask = wgpu::ColorWriteMask::None;  // The shader has no output there.
@@ -42,10 +43,11 @@ void encodeFullscreenPass(const wgpu::CommandEncoder& encoder,
                           const wgpu::RenderPipeline& pipeline,
                           const wgpu::BindGroup& bindGroup,
                           wgpu::StringView label,
-                          const wgpu::PassTimestampWrites* timestamps) {
+                          const wgpu::PassTimestampWrites* timestamps,
+                          bool load) {
     wgpu::RenderPassColorAttachment color{};
     color.view = target;
-    color.loadOp = wgpu::LoadOp::Clear;
+    color.loadOp = load ? wgpu::LoadOp::Load : wgpu::LoadOp::Clear;
     color.storeOp = wgpu::StoreOp::Store;
     wgpu::RenderPassDescriptor descriptor{};
     descriptor.label = label;

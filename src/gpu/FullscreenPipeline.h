@@ -22,6 +22,8 @@ struct FullscreenPipelineDescriptor {
     wgpu::TextureFormat colorFormat = wgpu::TextureFormat::Undefined;
     // Without one, the fragment's colour replaces the target's.
     std::optional<wgpu::BlendState> blend;
+    // The channels written; the others keep the target's values.
+    wgpu::ColorWriteMask writeMask = wgpu::ColorWriteMask::All;
     // For a pass that has a depth attachment (and samples): the triangle neither tests nor
     // writes depth. Undefined: a pass without depth.
     wgpu::TextureFormat depthFormat = wgpu::TextureFormat::Undefined;
@@ -38,12 +40,14 @@ wgpu::RenderPipeline makeFullscreenPipeline(const wgpu::Device& device,
 
 // Records a render pass that draws `pipeline`'s triangle over all of `target` (one colour
 // attachment, no depth) with `bindGroup` as group 0. Every texel is drawn, so the target's
-// previous contents are cleared rather than loaded. `timestamps` may be null.
+// previous contents are cleared rather than loaded, unless `load` (a pipeline that blends with
+// them or writes some channels only). `timestamps` may be null.
 void encodeFullscreenPass(const wgpu::CommandEncoder& encoder,
                           const wgpu::TextureView& target,
                           const wgpu::RenderPipeline& pipeline,
                           const wgpu::BindGroup& bindGroup,
                           wgpu::StringView label,
-                          const wgpu::PassTimestampWrites* timestamps = nullptr);
+                          const wgpu::PassTimestampWrites* timestamps = nullptr,
+                          bool load = false);
 
 }  // namespace encore::gpu

@@ -26,6 +26,7 @@ Result<PassTargetTextures> PassTargetTextures::create(const wgpu::Device& device
     identity.toneMapping = ToneMapping::None;
     identity.exposure = 1.0f;
     identity.background = BackgroundKind::Transparent;
+    const bool exactIds = target.options().exactIds && target.sampleCount() > 1;
     for (std::uint32_t i = 0; i < kPassTargetCount; ++i) {
         Target& pass = textures.mTargets[i];
         wgpu::TextureDescriptor resolved{};
@@ -40,10 +41,19 @@ Result<PassTargetTextures> PassTargetTextures::create(const wgpu::Device& device
             wgpu::TextureDescriptor multisampled = resolved;
             multisampled.sampleCount = target.sampleCount();
             multisampled.usage = wgpu::TextureUsage::RenderAttachment;
+            if (exactIds && i + 1 == kPassTargetCount) {
+                multisampled.usage |= wgpu::TextureUsage::TextureBinding;  // SampleIdPass.
+            }
             pass.multisampled = device.CreateTexture(&multisampled);
             pass.multisampledView = pass.multisampled.CreateView();
         }
         if (i + 1 == kPassTargetCount) {
+            if (exactIds) {
+                ENCORE_TRY_ASSIGN(auto ids,
+                                  SampleIdPass::create(device, shaders, IdChannels::GreenBlue));
+                ids.bindSource(device, pass.multisampledView);
+                textures.mIds = std::move(ids);
+            }
             break;  // Depth and ids are read back as they are.
         }
         wgpu::TextureDescriptor image = resolved;
@@ -86,9 +96,16 @@ void PassTargetTextures::fillAttachments(
         }
         attachment.clearValue = {0.0, 0.0, 0.0, 0.0};
     }
+    if (mIds) {
+        // Whatever the pass resolves, encodeImages reads the samples after the last one.
+        attachments[kPassTargetCount - 1].storeOp = wgpu::StoreOp::Store;
+    }
 }
 
 void PassTargetTextures::encodeImages(const wgpu::CommandEncoder& commands) const {
+    if (mIds) {
+        mIds->encode(commands, mTargets[kPassTargetCount - 1].resolvedView);
+    }
     for (std::size_t i = 0; i < mConverters.size(); ++i) {
         mConverters[i].encode(commands, mTargets[i].imageView);
     }

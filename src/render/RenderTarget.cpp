@@ -74,6 +74,9 @@ Result<RenderTarget> RenderTarget::create(const wgpu::Device& device,
         multisampled.format = target.sceneFormat();
         multisampled.sampleCount = options.sampleCount;
         multisampled.usage = wgpu::TextureUsage::RenderAttachment;
+        if (options.exactIds && options.hdr) {
+            multisampled.usage |= wgpu::TextureUsage::TextureBinding;  // SampleIdPass reads it.
+        }
         target.mMultisampledScene = device.CreateTexture(&multisampled);
         target.mMultisampledSceneView = target.mMultisampledScene.CreateView();
     }

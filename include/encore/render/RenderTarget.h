@@ -24,6 +24,11 @@ struct RenderTargetOptions {
     // The pass images (PassTargets.h) can also be read as bytes by a compute pass, through
     // RGBA8Unorm views: encore batch's PNG rows (batch/PngRowsPass).
     bool bytesViews = false;
+    // Segmentation ids exact at 4 samples (encore batch --segmentation): the multisampled HDR
+    // scene colour and DepthAndId pass target are also TextureBinding, and the frames that draw
+    // ids (the segmentation channels, pass targets) take them from one sample of each pixel, not
+    // from the resolve's average (render/SampleIdPass.h). Nothing changes at one sample.
+    bool exactIds = false;
 
     bool operator==(const RenderTargetOptions&) const = default;
 };
@@ -57,6 +62,8 @@ class RenderTarget {
     // The scene colour as a write-only storage texture for compute (Strategy::composeFrame):
     // kBytesFormat (a shader encodes sRGB itself), or kHdrFormat with HDR.
     const wgpu::TextureView& sceneStorageView() const { return mSceneStorageView; }
+    // The multisampled scene colour (null at one sample); TextureBinding with exactIds.
+    const wgpu::TextureView& multisampledSceneView() const { return mMultisampledSceneView; }
     const wgpu::TextureView& outputView() const { return mOutputView; }
     // The output's bytes as RGBA8Unorm (no sRGB decoding when sampled).
     const wgpu::TextureView& outputBytesView() const { return mOutputBytesView; }

@@ -11,6 +11,7 @@
 #include "render/MipmapGenerator.h"
 #include "render/PassTargets.h"
 #include "render/PipelineCache.h"
+#include "render/SampleIdPass.h"
 #include "render/SceneLimits.h"
 #include "render/TransmissionPass.h"
 #include "render/TriangleHistory.h"
@@ -91,6 +92,13 @@ Result<void> RendererCore::build(const RendererOptions& options) {
                           ToneMapper::create(context.device(), context.queue(), *renderer.mShaders,
                                              renderer.mTarget, options.toneMapping));
         renderer.mToneMapper = std::make_unique<ToneMapper>(std::move(toneMapper));
+    }
+    if (renderer.mTarget.options().exactIds && renderer.mTarget.hdr() &&
+        renderer.mTarget.sampleCount() > 1) {
+        ENCORE_TRY_ASSIGN(auto ids, SampleIdPass::create(context.device(), *renderer.mShaders,
+                                                         IdChannels::RedGreen));
+        ids.bindSource(context.device(), renderer.mTarget.multisampledSceneView());
+        renderer.mSceneIds = std::make_unique<SampleIdPass>(std::move(ids));
     }
     if (options.passTargets != PassTargets::None) {
         if (context.limits().maxColorAttachmentBytesPerSample < kPassTargetBytesPerSample) {
@@ -423,6 +431,9 @@ Result<void> RendererCore::resize(std::uint32_t width, std::uint32_t height) {
     mOptions.target.height = height;
     if (mToneMapper) {
         mToneMapper->bindTarget(mContext->device(), mTarget);
+    }
+    if (mSceneIds) {
+        mSceneIds->bindSource(mContext->device(), mTarget.multisampledSceneView());
     }
     if (mPassTargets) {
         ENCORE_TRY_ASSIGN(

@@ -49,6 +49,7 @@ class GpuScene;
 class TriangleHistory;
 class TransmissionPass;
 class PassTargetTextures;
+class SampleIdPass;
 
 class RendererCore {
   public:
@@ -316,6 +317,9 @@ class RendererCore {
     std::unique_ptr<FrameUniforms> mFrame;
     std::unique_ptr<ToneMapper> mToneMapper;           // HDR targets only.
     std::unique_ptr<PassTargetTextures> mPassTargets;  // RendererOptions::passTargets only.
+    // The ids of frames drawn through a segmentation channel: multisampled HDR targets with
+    // RenderTargetOptions::exactIds only.
+    std::unique_ptr<SampleIdPass> mSceneIds;
     std::unique_ptr<EnvironmentBackground> mBackground;
     // At one sample without depth, for resolved passes (FramePasses::composesResolved): made on
     // a multisampled target by the first strategy that draws them.

@@ -14,6 +14,7 @@
 #include "render/FramePasses.h"
 #include "render/PassAttachments.h"
 #include "render/PassTargets.h"
+#include "render/SampleIdPass.h"
 #include "render/TransmissionPass.h"
 #include "render/TriangleHistory.h"
 
@@ -49,8 +50,19 @@ struct RendererCore::FramePlan {
     bool resolvedPasses = false;
     // Every pixel composed in compute (FramePasses::composesFrame): no scene render pass at all.
     std::optional<PassAttachments> composedAttachments;
+    // Segmentation ids from sample 0 (SampleIdPass): the multisampled colour is stored.
+    bool sampleIds = false;
     std::vector<RecordedCall>* trace = nullptr;
 };
+
+namespace {
+
+bool drawsIds(DebugChannel channel) {
+    return channel == DebugChannel::SegmentNode || channel == DebugChannel::SegmentMesh ||
+           channel == DebugChannel::SegmentMaterial;
+}
+
+}  // namespace
 
 FrameResult RendererCore::renderPasses(std::span<const Camera> cameras,
                                        float timeSeconds,
@@ -117,6 +129,8 @@ RendererCore::FramePlan RendererCore::planFrame(std::span<const Camera> cameras,
         state.composedBackground = plan.composedAttachments->clearColor;
         state.composedView = mTarget.sceneStorageView();
     }
+    plan.sampleIds = mSceneIds && !plan.resolvedPasses && !plan.composedAttachments &&
+                     drawsIds(mLighting->parameters().debugChannel);
     return plan;
 }
 
@@ -136,6 +150,9 @@ void RendererCore::encodeFrame(const wgpu::CommandEncoder& commandEncoder,
     encodeScenePasses(commandEncoder, plan, result);
     if (plan.transmission) {
         encodeTransmissionPasses(commandEncoder, plan, result);
+    }
+    if (plan.sampleIds) {
+        mSceneIds->encode(commandEncoder, mTarget.sceneView());  // Before tone mapping reads it.
     }
     // After the last pass: a two-phase frame counts in both culling passes.
     if (mTriangleHistory && mStrategy) {
@@ -218,6 +235,9 @@ void RendererCore::encodeScenePass(const wgpu::CommandEncoder& commandEncoder,
     color.storeOp = attachments.colorStoreOp;
     if (!attachments.resolve) {
         color.resolveTarget = nullptr;
+    }
+    if (plan.sampleIds) {
+        color.storeOp = wgpu::StoreOp::Store;  // The id pass reads the samples after the last.
     }
     wgpu::RenderPassDepthStencilAttachment depth = mTarget.depthAttachment();
     depth.depthLoadOp = attachments.depthLoadOp;
