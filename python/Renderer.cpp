@@ -110,12 +110,6 @@ py::object Renderer::renderViews(const Scene& scene,
                 "\"depth\" among the passes.");
         }
         kinds = passKinds(passes);
-        if (std::count(kinds.begin(), kinds.end(), batch::ViewImage::Segmentation) &&
-            mSamples != 1) {
-            throw py::value_error(
-                "The segmentation pass needs Renderer(samples=1): "
-                "multisampling would blend neighbouring objects' ids.");
-        }
     }
     const batch::SegmentationBy by = segmentationBy(segmentation);
     const batch::ViewRigOptions rig = rigOptions(
@@ -235,12 +229,16 @@ Result<Renderer::Rendered> Renderer::render(const std::shared_ptr<const scene::S
         batch::drawsPassTargets(images, choice.kind, mContext->limits())
             ? batch::passTargetsFor(by)
             : render::PassTargets::None;
+    // Ids from one sample of each pixel, the colour antialiased (render/SampleIdPass.h).
+    const bool exactIds = images.segmentation && mSamples > 1;
     if (!mRenderer || mRenderer->target().width() != layout.targetWidth() ||
-        mRenderer->target().height() != layout.height || mPassTargets != passTargets) {
+        mRenderer->target().height() != layout.height || mPassTargets != passTargets ||
+        mRenderer->target().options().exactIds != exactIds) {
         render::RendererOptions options;
         options.passTargets = passTargets;
         mPassTargets = passTargets;
         options.target = {layout.targetWidth(), layout.height, mSamples};
+        options.target.exactIds = exactIds;
         options.toneMapping.background = render::BackgroundKind::Transparent;
         options.target.hdr = true;  // Whatever the background: depth and HDR read it.
         options.keepPipelines = true;

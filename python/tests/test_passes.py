@@ -172,10 +172,77 @@ def test_bad_passes_raise_value_errors(renderer, quads, tmp_path):
         render(renderer, quads, passes=("rgba",), tone_mapping="filmic")
     with pytest.raises(ValueError, match="background"):
         render(renderer, quads, passes=("rgba",), background="blue")
-    multisampled = encore.Renderer(samples=4)
-    scene = multisampled.load(str(write_quads(tmp_path / "again.gltf")))
-    with pytest.raises(ValueError, match="samples=1"):
-        multisampled.render_views(scene, views=1, size=16, passes=("segmentation",))
+
+
+def write_cut_square(path):
+    """A square facing +Z cut along a slanted line into a triangle (node 0: id 1) and the rest
+    (node 3: id 4); nodes 1 and 2 draw nothing, so an average of the ids (2, 3) is no drawn id."""
+    pieces = (([(-0.8, -0.8), (0.8, -0.8), (0.8, 0.3)], [0, 1, 2]),
+              ([(-0.8, -0.8), (0.8, 0.3), (0.8, 0.8), (-0.8, 0.8)], [0, 1, 2, 0, 2, 3]))
+    data = b""
+    views, accessors, meshes = [], [], []
+    for index, (corners, triangles) in enumerate(pieces):
+        positions = b"".join(struct.pack("<3f", x, y, 0) for x, y in corners)
+        normals = struct.pack("<3f", 0, 0, 1) * len(corners)
+        indices = struct.pack(f"<{len(triangles)}H", *triangles)
+        for chunk in (positions, normals, indices):
+            views.append({"buffer": 0, "byteOffset": len(data), "byteLength": len(chunk)})
+            data += chunk + b"\0" * (-len(chunk) % 4)
+        first = len(accessors)
+        accessors += [
+            {"bufferView": first, "componentType": 5126, "count": len(corners), "type": "VEC3",
+             "min": [min(x for x, _ in corners), min(y for _, y in corners), 0],
+             "max": [max(x for x, _ in corners), max(y for _, y in corners), 0]},
+            {"bufferView": first + 1, "componentType": 5126, "count": len(corners),
+             "type": "VEC3"},
+            {"bufferView": first + 2, "componentType": 5123, "count": 3 * (len(corners) - 2),
+             "type": "SCALAR"}]
+        meshes.append({"primitives": [{
+            "attributes": {"POSITION": first, "NORMAL": first + 1}, "indices": first + 2,
+            "material": index}]})
+    document = {
+        "asset": {"version": "2.0"},
+        "buffers": [{"uri": "data:application/octet-stream;base64," +
+                     base64.b64encode(data).decode(), "byteLength": len(data)}],
+        "bufferViews": views,
+        "accessors": accessors,
+        "materials": [{"pbrMetallicRoughness": {"baseColorFactor": [0.9, 0.1, 0.1, 1]}},
+                      {"pbrMetallicRoughness": {"baseColorFactor": [0.1, 0.2, 0.9, 1]}}],
+        "meshes": meshes,
+        "nodes": [{"mesh": 0}, {}, {}, {"mesh": 1}],
+        "scenes": [{"nodes": [0, 1, 2, 3]}],
+        "scene": 0,
+    }
+    path.write_text(json.dumps(document))
+    return path
+
+
+def test_segmentation_at_four_samples_holds_drawn_ids(tmp_path):
+    """Issue 50: at samples=4 every id is one that was drawn (one sample's), the same as at
+    samples=1 except along edges, in both drawings, while the colour is antialiased."""
+    path = str(write_cut_square(tmp_path / "cut.gltf"))
+    results = {}
+    for samples in (1, 4):
+        renderer = encore.Renderer(samples=samples)
+        scene = renderer.load(path)
+        for frames in (False, True):
+            results[samples, frames] = render(renderer, scene, passes=("rgba", "segmentation"),
+                                              pass_frames=frames)
+    one = results[1, False]["segmentation"][0]
+    four = results[4, False]["segmentation"][0]
+    assert np.array_equal(results[1, True]["segmentation"][0], one)
+    assert np.array_equal(results[4, True]["segmentation"][0], four), "pass_frames differs"
+    assert set(np.unique(four)) == {0, 1, 4}
+    # The ids at 1 sample within one pixel of each: where the two counts differ, an edge.
+    padded = np.pad(one.astype(np.int32), 1, mode="edge")
+    shifted = [padded[1 + dy:65 + dy, 1 + dx:65 + dx] for dy in (-1, 0, 1) for dx in (-1, 0, 1)]
+    edge = np.any([s != one for s in shifted], axis=0)
+    assert np.all(edge[four != one]), "ids differ away from edges"
+    cut = np.any([s == 1 for s in shifted], axis=0) & np.any([s == 4 for s in shifted], axis=0)
+    assert cut.sum() > 32, "the cut between ids 1 and 4 crosses the image"
+    alpha = {samples: results[samples, False]["rgba"][0, ..., 3] for samples in (1, 4)}
+    assert set(np.unique(alpha[1])) <= {0, 255}
+    assert ((alpha[4] > 0) & (alpha[4] < 255)).sum() > 32, "the colour is antialiased"
 
 
 def test_batch_takes_the_passes_as_keywords(tmp_path):
@@ -192,9 +259,11 @@ def test_batch_takes_the_passes_as_keywords(tmp_path):
     transforms = json.loads((model / "transforms.json").read_text())
     assert transforms["segmentation_by"] == "material"
     assert [entry["name"] for entry in transforms["segmentation_ids"]] == ["red", "white"]
-    with pytest.raises(ValueError, match="samples 1"):
-        encore.batch(str(tmp_path / "in"), str(tmp_path / "bad"), views=1, size=8, samples=4,
-                     passes=("segmentation",))
+    # Segmentation at 4 samples too (test_segmentation_at_four_samples_holds_drawn_ids).
+    summary = encore.batch(str(tmp_path / "in"), str(tmp_path / "four"), views=1, size=32,
+                           samples=4, passes=("segmentation",))
+    assert summary["rendered"] == 1 and summary["failed"] == 0
+    assert (tmp_path / "four" / "quads" / "000_segmentation.png").exists()
     with pytest.raises(ValueError, match="depth_format"):
         encore.batch(str(tmp_path / "in"), str(tmp_path / "bad"), views=1, size=8,
                      depth_format="tiff")

@@ -198,7 +198,8 @@ void addPassOptions(std::vector<Entry>& entries) {
                            [](BatchOptions& o, bool on) { o.images.material = on; }));
     entries.push_back(flag("segmentation",
                            "Also write 16-bit ids per view (000_segmentation.png: 0 background, "
-                           "else 1 + the node index; names in transforms.json); needs --samples 1",
+                           "else 1 + the node index; names in transforms.json); at 4 samples each "
+                           "pixel's id is one sample's, exact, while the colour is antialiased",
                            [](BatchOptions& o, bool on) { o.images.segmentation = on; }));
     entries.push_back(named<SegmentationBy>(
                           "segmentation-by", "node",

@@ -159,12 +159,6 @@ Result<void> validateBatchOptions(const BatchOptions& options) {
                                                          options.variant +
                                                          "') or all of them, not both.");
     }
-    if (options.images.segmentation && options.samples != 1) {
-        return makeError(ErrorCode::InvalidArgument,
-                         "Segmentation ids need --samples 1 (samples=1): multisampling would "
-                         "blend the ids of neighbouring objects at their edges (asked for " +
-                             std::to_string(options.samples) + " samples).");
-    }
     if (options.images.depthFormat == DepthFormat::Exr && !options.images.depth) {
         return makeError(ErrorCode::InvalidArgument,
                          "An EXR depth format asks for depth images: add --depth (depth=True).");

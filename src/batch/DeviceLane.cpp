@@ -65,6 +65,8 @@ Result<void> DeviceLane::createRenderers() {
     // Pass images have a transparent background whatever the colour images have; depth,
     // segmentation and HDR images are read from the HDR target.
     rendererOptions.target.hdr = options.images.perView() > 1;
+    // Ids from one sample of each pixel, the colour antialiased (render/SampleIdPass.h).
+    rendererOptions.target.exactIds = options.images.segmentation && options.samples > 1;
     mPassTargets = drawsPassTargets(options.images, mShared.strategy.base.kind, mContext.limits());
     const bool pngRows =
         filtersPngRowsOnGpu(options.pngFiltering, mContext.adapterDescription().adapterType);

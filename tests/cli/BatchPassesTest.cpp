@@ -11,11 +11,13 @@
 #include <half.h>
 #include <spng.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -289,7 +291,7 @@ TEST(BatchPassesTest, PassTargetsWriteTheBytesOfOneFramePerPass) {
     const std::string views = "--views 3 --size 40 --quiet --normals --depth --albedo --material ";
     const std::pair<const char*, std::string> runs[] = {
         {"one sample", views + "--samples 1 --segmentation --depth-format exr --hdr"},
-        {"four samples", views + "--samples 4"},
+        {"four samples", views + "--samples 4 --segmentation"},
     };
     for (const auto& [label, options] : runs) {
         SCOPED_TRACE(label);
@@ -313,11 +315,91 @@ TEST(BatchPassesTest, PassTargetsWriteTheBytesOfOneFramePerPass) {
     }
 }
 
+// A square facing +Z cut along a slanted line into a triangle (node 0: id 1) and the rest (node
+// 3: id 4); nodes 1 and 2 draw nothing, so an average of the two ids (2, 3) is no drawn id.
+fs::path writeCutSquare(const fs::path& dir) {
+    GltfBuilder builder;
+    const auto piece = [&](std::vector<glm::vec3> corners, std::vector<std::uint16_t> triangles,
+                           glm::vec4 color) {
+        const auto normals =
+            builder.addNormals(std::vector<glm::vec3>(corners.size(), {0.0f, 0.0f, 1.0f}));
+        const auto positions = builder.addPositions(corners);
+        const auto indices = builder.addIndices<std::uint16_t>(triangles);
+        const auto material = builder.addMaterial({.baseColor = color});
+        return builder.addMesh({.attributes = {{"POSITION", positions}, {"NORMAL", normals}},
+                                .indices = indices,
+                                .material = material});
+    };
+    const auto below = piece({{-1.0f, -1.0f, 0.0f}, {1.0f, -1.0f, 0.0f}, {1.0f, 0.4f, 0.0f}},
+                             {0, 1, 2}, {0.9f, 0.1f, 0.1f, 1.0f});
+    const auto above =
+        piece({{-1.0f, -1.0f, 0.0f}, {1.0f, 0.4f, 0.0f}, {1.0f, 1.0f, 0.0f}, {-1.0f, 1.0f, 0.0f}},
+              {0, 1, 2, 0, 2, 3}, {0.1f, 0.2f, 0.9f, 1.0f});
+    std::vector<std::uint32_t> nodes;
+    nodes.push_back(builder.addNode({.mesh = below, .name = "below"}));
+    nodes.push_back(builder.addNode({.name = "empty"}));
+    nodes.push_back(builder.addNode({.name = "empty too"}));
+    nodes.push_back(builder.addNode({.mesh = above, .name = "above"}));
+    builder.addScene(nodes);
+    fs::create_directories(dir);
+    return builder.writeGlb(dir, "cut");
+}
+
+// Issue 50: at 4 samples (the default) the ids stay exact while the colour is antialiased: every
+// pixel holds an id that was drawn (one sample's), never the average of the two pieces' ids
+// along the cut; the ids at 1 sample differ only at edges; both drawings write the same ids.
+TEST(BatchPassesTest, SegmentationAtFourSamplesHoldsDrawnIds) {
+    const fs::path input = writeCutSquare(makeTempDir("batch-exact-ids-input"));
+    const fs::path output = makeTempDir("batch-exact-ids-output");
+    const std::string view = "--views 1 --elevation 0 --size 64 --quiet --segmentation ";
+    for (const char* run : {"one", "targets", "frames"}) {
+        const std::string samples = run == std::string("one") ? "--samples 1" : "--samples 4";
+        const std::string frames = run == std::string("frames") ? " --pass-frames" : "";
+        const CommandResult result =
+            runEncore(batchArguments(input, output / run, view + samples + frames));
+        ASSERT_EQ(result.exitCode, 0) << result.out << result.err;
+    }
+    std::uint32_t width = 0;
+    const auto one = readGray16(output / "one/cut/000_segmentation.png", width);
+    const auto four = readGray16(output / "targets/cut/000_segmentation.png", width);
+    ASSERT_EQ(width, 64u);
+    ASSERT_EQ(one.size(), 64u * 64u);
+    ASSERT_EQ(four.size(), one.size());
+    EXPECT_TRUE(four == readGray16(output / "frames/cut/000_segmentation.png", width))
+        << "--pass-frames wrote other ids";
+    std::size_t cut = 0;
+    for (std::uint32_t y = 0; y < 64; ++y) {
+        for (std::uint32_t x = 0; x < 64; ++x) {
+            const std::uint16_t id = four[y * 64 + x];
+            ASSERT_TRUE(id == 0 || id == 1 || id == 4) << id << " at " << x << "," << y;
+            // The ids at 1 sample within one pixel.
+            std::set<std::uint16_t> around;
+            for (std::uint32_t ny = y ? y - 1 : 0; ny <= std::min(y + 1, 63u); ++ny) {
+                for (std::uint32_t nx = x ? x - 1 : 0; nx <= std::min(x + 1, 63u); ++nx) {
+                    around.insert(one[ny * 64 + nx]);
+                }
+            }
+            cut += around.count(1) && around.count(4);
+            if (id != one[y * 64 + x]) {
+                EXPECT_GT(around.size(), 1u) << "not an edge pixel: " << x << "," << y;
+            }
+        }
+    }
+    EXPECT_GT(cut, 32u) << "the cut between ids 1 and 4 crosses the image";
+    // The colour is antialiased at 4 samples: partly covered edge pixels.
+    auto color = image::readImage(output / "targets/cut/000.png");
+    ASSERT_TRUE(color.ok());
+    std::size_t partial = 0;
+    for (std::size_t i = 3; i < color->pixels.size(); i += 4) {
+        partial += color->pixels[i] != 0 && color->pixels[i] != 255;
+    }
+    EXPECT_GT(partial, 32u);
+}
+
 TEST(BatchPassesTest, BadCombinationsAreUsageErrors) {
     const fs::path input = writeQuads(makeTempDir("batch-passes-bad-input"));
     const fs::path output = makeTempDir("batch-passes-bad-output");
     const std::vector<std::pair<std::string, std::string>> cases = {
-        {"--segmentation --samples 4", "Segmentation ids need --samples 1"},
         {"--depth-format exr", "--depth-format requires --depth"},
         {"--depth --depth-format tiff", "--depth-format"},
         {"--segmentation-by mesh --samples 1", "--segmentation-by requires --segmentation"},

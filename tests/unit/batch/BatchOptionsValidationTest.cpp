@@ -198,13 +198,14 @@ TEST(BatchOptionsValidationTest, RejectsOneVariantTogetherWithAll) {
     EXPECT_TRUE(rejected(options, "one material variant ('beach') or all of them, not both"));
 }
 
-// Segmentation ids cannot be multisampled (edges would average two ids); albedo, material and
-// ids come from the mesh shader of the materials-based strategies; an EXR depth format needs
-// depth images.
+// Segmentation ids are drawn at either sample count (one sample's id per pixel at 4); albedo,
+// material and ids come from the mesh shader of the materials-based strategies; an EXR depth
+// format needs depth images.
 TEST(BatchOptionsValidationTest, RejectsPassesThatCannotBeDrawn) {
     BatchOptions options;
     options.images.segmentation = true;
-    EXPECT_TRUE(rejected(options, "Segmentation ids need --samples 1"));
+    ASSERT_EQ(options.samples, 4u);
+    EXPECT_TRUE(validateBatchOptions(options).ok());
     options.samples = 1;
     EXPECT_TRUE(validateBatchOptions(options).ok());
     options.strategy = StrategyChoice::of(StrategyKind::Visibility, false);
