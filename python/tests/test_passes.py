@@ -303,10 +303,12 @@ def test_batch_takes_the_pass_conventions_as_keywords(tmp_path):
                      depth=True, depth_kind="far")
 
 
-def test_batch_png_filtering_on_the_gpu_writes_the_same_files(tmp_path):
+@pytest.mark.parametrize("samples", (1, 4))
+def test_batch_png_filtering_on_the_gpu_writes_the_same_files(tmp_path, samples):
+    """At 4 samples the GPU's PNG rows read the ids that the sample-0 pass wrote."""
     (tmp_path / "in").mkdir()
     write_quads(tmp_path / "in" / "quads.gltf")
-    keywords = dict(views=2, size=40, samples=1,
+    keywords = dict(views=2, size=40, samples=samples,
                     passes=("albedo", "material", "segmentation", "depth"), normals=True)
     written = {}
     for where in ("cpu", "gpu"):
