@@ -37,6 +37,17 @@ void depthAlongRays(std::span<float> depth,
     }
 }
 
+std::vector<float> depthOfKind(const FloatStrip& strip,
+                               DepthKind kind,
+                               float unitsPerModelUnit,
+                               const ViewCamera& view) {
+    std::vector<float> depth = depthDistances(strip, unitsPerModelUnit);
+    if (kind == DepthKind::Ray) {
+        depthAlongRays(depth, view, strip.width, strip.height);
+    }
+    return depth;
+}
+
 float depthUnitsPerModelUnit(DepthUnit unit, float unitsPerModelUnit) {
     return unit == DepthUnit::Model ? 1.0f : unitsPerModelUnit;
 }

@@ -6,7 +6,9 @@
 
 #include <cstdint>
 #include <span>
+#include <vector>
 
+#include "batch/PassImages.h"
 #include "encore/batch/ViewImages.h"
 #include "encore/batch/ViewRig.h"
 #include "encore/image/ImageCodec.h"
@@ -29,6 +31,15 @@ void depthAlongRays(std::span<float> depth,
                     const ViewCamera& view,
                     std::uint32_t width,
                     std::uint32_t height);
+
+// A strip drawn through the depth channel as depth of `kind` seen by `view`, in the units the
+// scene is scaled to by `unitsPerModelUnit` (depthUnitsPerModelUnit, or the normalisation's
+// scale for a 16-bit PNG's steps), infinity where less than half of the pixel is covered: what
+// an EXR depth holds, and what `encore batch` writes and render_views returns share.
+std::vector<float> depthOfKind(const FloatStrip& strip,
+                               DepthKind kind,
+                               float unitsPerModelUnit,
+                               const ViewCamera& view);
 
 // The factor from the model's units to the depth's unit: the normalisation's scale
 // (`unitsPerModelUnit`) for Normalized, 1 for Model.

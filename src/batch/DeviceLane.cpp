@@ -452,10 +452,7 @@ void DeviceLane::renderSample(const std::shared_ptr<ModelJob>& job,
             const bool floats = kind == ViewImage::Depth || kind == ViewImage::Segmentation ||
                                 kind == ViewImage::Coordinates ||
                                 (kind == ViewImage::Normal && images.normalsAsFloats());
-            const render::DebugChannel channel =
-                kind == ViewImage::Normal && images.normalKind == NormalKind::Geometric
-                    ? render::DebugChannel::GeometricNormal
-                    : passChannel(kind, images.segmentationBy);
+            const render::DebugChannel channel = passChannel(kind, images);
             renderDebugChannel(job, renderer, channel, [&] {
                 if (floats) {
                     renderFloatPass(views, kind, toUnitBox[0][0], renderWaiting);

@@ -318,12 +318,10 @@ std::function<Result<std::vector<std::uint8_t>>()> ModelWriter::floatEncoder(
         // With --depth-unit model a PNG keeps the normalised steps (its depth_scale is the
         // model's, TransformsJson): only EXR values change unit.
         const bool exr = images.depthFormat == DepthFormat::Exr;
-        std::vector<float> depth =
-            depthDistances(pixels, exr ? depthUnitsPerModelUnit(images.depthUnit, unitsPerModelUnit)
-                                       : unitsPerModelUnit);
-        if (images.depthKind == DepthKind::Ray) {
-            depthAlongRays(depth, view, width, height);
-        }
+        std::vector<float> depth = depthOfKind(
+            pixels, images.depthKind,
+            exr ? depthUnitsPerModelUnit(images.depthUnit, unitsPerModelUnit) : unitsPerModelUnit,
+            view);
         if (exr) {
             return [depth = std::move(depth), width, height] {
                 return encodeExrDepth(depth, width, height);

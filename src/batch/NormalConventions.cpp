@@ -38,14 +38,7 @@ std::vector<float> normalVectors(const FloatStrip& strip, const glm::dmat3& rota
     });
 }
 
-Result<std::vector<std::uint8_t>> encodeNormals(const std::vector<float>& normals,
-                                                std::uint32_t width,
-                                                std::uint32_t height,
-                                                NormalFormat format,
-                                                image::PngCompression compression) {
-    if (format == NormalFormat::Exr) {
-        return encodeExrRgbaHalf(normals, width, height);
-    }
+std::vector<float> mappedNormals(const std::vector<float>& normals) {
     std::vector<float> mapped(normals.size(), 0.0f);
     for (std::size_t i = 0; i < normals.size(); i += 4) {
         if (normals[i + 3] == 0.0f) {
@@ -56,8 +49,19 @@ Result<std::vector<std::uint8_t>> encodeNormals(const std::vector<float>& normal
         }
         mapped[i + 3] = normals[i + 3];
     }
-    return encodeRgbaPng(mapped, width, height, format == NormalFormat::Png16 ? 16 : 8,
-                         compression);
+    return mapped;
+}
+
+Result<std::vector<std::uint8_t>> encodeNormals(const std::vector<float>& normals,
+                                                std::uint32_t width,
+                                                std::uint32_t height,
+                                                NormalFormat format,
+                                                image::PngCompression compression) {
+    if (format == NormalFormat::Exr) {
+        return encodeExrRgbaHalf(normals, width, height);
+    }
+    return encodeRgbaPng(mappedNormals(normals), width, height,
+                         format == NormalFormat::Png16 ? 16 : 8, compression);
 }
 
 }  // namespace encore::batch

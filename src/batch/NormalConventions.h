@@ -28,6 +28,10 @@ glm::dmat3 normalRotation(const ViewCamera& view, NormalSpace space, CameraConve
 // 0 where nothing is drawn.
 std::vector<float> normalVectors(const FloatStrip& strip, const glm::dmat3& rotation);
 
+// `normals` (normalVectors) as a PNG stores them: n * 0.5 + 0.5 and the coverage, 0 in every
+// channel where nothing is drawn.
+std::vector<float> mappedNormals(const std::vector<float>& normals);
+
 // The encoded image of `normals` (normalVectors, width x height) in `format`: PNG RGBA of n * 0.5
 // + 0.5 with the coverage as alpha, in 8 or 16 bits, or half-float EXR of n and the coverage.
 Result<std::vector<std::uint8_t>> encodeNormals(const std::vector<float>& normals,

@@ -67,7 +67,7 @@ constexpr std::array<NamedValue<CoordinatesFormat>, 2> kCoordinatesFormats{{
     {"exr", CoordinatesFormat::Exr},
 }};
 // Python's passes=, and what the arrays of render_views' dict are called.
-constexpr std::array<NamedValue<ViewImage>, 7> kPasses{{
+constexpr std::array<NamedValue<ViewImage>, 8> kPasses{{
     {"rgba", ViewImage::Color},
     {"albedo", ViewImage::Albedo},
     {"normal", ViewImage::Normal},
@@ -75,6 +75,7 @@ constexpr std::array<NamedValue<ViewImage>, 7> kPasses{{
     {"segmentation", ViewImage::Segmentation},
     {"depth", ViewImage::Depth},
     {"hdr", ViewImage::Hdr},
+    {"coordinates", ViewImage::Coordinates},
 }};
 constexpr std::array<NamedValue<image::PngCompression>, 2> kPngCompressions{{
     {"small", image::PngCompression::Small},

@@ -44,7 +44,7 @@ NameTable<NormalKind> normalKindNames();                  // shading, geometric
 NameTable<NormalFormat> normalFormatNames();              // png8, png16, exr
 NameTable<CoordinatesFormat> coordinatesFormatNames();    // png16, exr
 NameTable<image::PngCompression> pngCompressionNames();   // small, fast
-NameTable<ViewImage> passNames();  // rgba, albedo, normal, material, segmentation, depth, hdr
+NameTable<ViewImage> passNames();                     // rgba, albedo, ..., depth, hdr, coordinates
 NameTable<render::ToneMapping> toneMappingNames();    // neutral, aces, none
 NameTable<render::DebugChannel> debugChannelNames();  // none, base-color, normal, ...
 

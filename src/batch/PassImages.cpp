@@ -33,6 +33,13 @@ render::DebugChannel passChannel(ViewImage kind, SegmentationBy by) {
     return render::DebugChannel::Shaded;
 }
 
+render::DebugChannel passChannel(ViewImage kind, const ExtraImages& images) {
+    if (kind == ViewImage::Normal && images.normalKind == NormalKind::Geometric) {
+        return render::DebugChannel::GeometricNormal;
+    }
+    return passChannel(kind, images.segmentationBy);
+}
+
 std::vector<float> depthDistances(const FloatStrip& strip, float unitsPerModelUnit) {
     std::vector<float> depth(std::size_t(strip.width) * strip.height,
                              std::numeric_limits<float>::infinity());

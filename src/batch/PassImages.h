@@ -28,6 +28,9 @@ namespace encore::batch {
 // Coordinates: the position); Shaded for the colour and HDR images, which come from the shaded
 // frame.
 render::DebugChannel passChannel(ViewImage kind, SegmentationBy by);
+// The same as `images` asks for the pass: the geometric normal's channel for
+// NormalKind::Geometric, segmentation by images.segmentationBy.
+render::DebugChannel passChannel(ViewImage kind, const ExtraImages& images);
 
 // Where strip `strip` of a wide float read-back lies.
 struct FloatStrip {

@@ -12,6 +12,10 @@
 
 namespace encore::batch {
 
+// `value` clamped to [0, 1] and rounded to the nearest of 2^bitDepth - 1 steps: the sample
+// encodeRgbaPng stores (and render_views returns as an integer array).
+std::uint32_t pngSample(float value, std::uint8_t bitDepth);
+
 // `rgba` holds width x height x 4 floats, row after row; each is clamped to [0, 1] and rounded
 // to the nearest of 2^bitDepth - 1 steps. `bitDepth` is 8 or 16.
 Result<std::vector<std::uint8_t>> encodeRgbaPng(std::span<const float> rgba,

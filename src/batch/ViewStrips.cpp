@@ -153,9 +153,9 @@ image::ImageGray16 depthStrip(std::span<const float> wide,
 
 namespace {
 
-// The per-target loop of renderStrips and renderDepthStrips: `drawTarget(cameras)` draws one
-// target's views and reads it back (a Result of the wide image), `cutStrip(wide, strip)` makes
-// the image of one of its strips.
+// The per-target loop of the render*Strips: `drawTarget(cameras)` draws one target's views and
+// reads it back (a Result of the wide image), `cutStrip(wide, strip, view)` makes the image of
+// one of its strips, view `view` of `views`.
 template <typename Image, typename DrawTarget, typename CutStrip>
 Result<std::vector<Image>> renderTargets(const scene::Bounds& bounds,
                                          std::span<const ViewCamera> views,
@@ -171,7 +171,7 @@ Result<std::vector<Image>> renderTargets(const scene::Bounds& bounds,
         const std::uint32_t count =
             std::min<std::uint32_t>(layout.strips, std::uint32_t(views.size()) - first);
         for (std::uint32_t strip = 0; strip < count; ++strip) {
-            images.push_back(cutStrip(wide, strip));
+            images.push_back(cutStrip(wide, strip, first + strip));
         }
     }
     return images;
@@ -208,7 +208,7 @@ Result<std::vector<image::ImageRgba8>> renderStrips(render::Renderer& renderer,
         }
         return wide;
     };
-    const auto cutStrip = [&](const image::ImageRgba8& wide, std::uint32_t strip) {
+    const auto cutStrip = [&](const image::ImageRgba8& wide, std::uint32_t strip, std::uint32_t) {
         image::ImageRgba8 view = cropStrip(wide, strip, layout.width);
         if (linear) {
             decodeNormalImage(view);
@@ -244,7 +244,7 @@ Result<std::vector<std::vector<float>>> renderFloatStrips(render::Renderer& rend
         return wide;
     };
     const float unitsPerModelUnit = normalization(bounds, rig.normalize)[0][0];
-    const auto cutStrip = [&](const std::vector<float>& wide, std::uint32_t strip) {
+    const auto cutStrip = [&](const std::vector<float>& wide, std::uint32_t strip, std::uint32_t) {
         const FloatStrip pixels{wide, layout.targetWidth(), strip, layout.width, layout.height};
         if (kind == ViewImage::Depth) {
             return depthDistances(pixels, unitsPerModelUnit);
@@ -254,6 +254,31 @@ Result<std::vector<std::vector<float>>> renderFloatStrips(render::Renderer& rend
         }
         const image::ImageGray16 ids = segmentationIds(pixels);
         return std::vector<float>(ids.pixels.begin(), ids.pixels.end());
+    };
+    return renderTargets<std::vector<float>>(bounds, views, rig, layout, drawTarget, cutStrip);
+}
+
+Result<std::vector<std::vector<float>>> renderChannelStrips(
+    render::Renderer& renderer,
+    const scene::Bounds& bounds,
+    std::span<const ViewCamera> views,
+    const ViewRigOptions& rig,
+    const StripLayout& layout,
+    render::DebugChannel channel,
+    const std::function<std::vector<float>(const FloatStrip&, std::uint32_t)>& values) {
+    const auto drawTarget =
+        [&](std::span<const render::Camera> cameras) -> Result<std::vector<float>> {
+        Result<std::vector<float>> wide = makeError(ErrorCode::InvalidArgument, "Not drawn.");
+        ENCORE_TRY(drawDebugChannel(renderer, channel, [&] {
+            renderer.renderViews(cameras);
+            wide = renderer.readHdrImage();
+        }));
+        return wide;
+    };
+    const auto cutStrip = [&](const std::vector<float>& wide, std::uint32_t strip,
+                              std::uint32_t view) {
+        return values(FloatStrip{wide, layout.targetWidth(), strip, layout.width, layout.height},
+                      view);
     };
     return renderTargets<std::vector<float>>(bounds, views, rig, layout, drawTarget, cutStrip);
 }
@@ -274,7 +299,7 @@ Result<std::vector<image::ImageGray16>> renderDepthStrips(render::Renderer& rend
     };
     const float unitsPerModelUnit = normalization(bounds, rig.normalize)[0][0];
     const double scale = depthScale(rig);
-    const auto cutStrip = [&](const std::vector<float>& wide, std::uint32_t strip) {
+    const auto cutStrip = [&](const std::vector<float>& wide, std::uint32_t strip, std::uint32_t) {
         return depthStrip(wide, layout.targetWidth(), strip, layout.width, layout.height,
                           unitsPerModelUnit, scale);
     };

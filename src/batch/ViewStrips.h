@@ -12,6 +12,7 @@
 
 #include <glm/glm.hpp>
 
+#include "batch/PassImages.h"
 #include "encore/batch/ViewImages.h"
 #include "encore/batch/ViewRig.h"
 #include "encore/core/Result.h"
@@ -124,5 +125,17 @@ Result<std::vector<std::vector<float>>> renderFloatStrips(render::Renderer& rend
                                                           const StripLayout& layout,
                                                           ViewImage kind,
                                                           SegmentationBy by = SegmentationBy::Node);
+// The same views drawn through `channel` and read back as floats (RGBA, premultiplied by
+// coverage), each view's strip turned by `values(strip, view)` (`view` its index in `views`)
+// into the floats kept for it: the passes whose values follow a convention (normals in another
+// space, depth along rays, object coordinates) convert them with the batch's functions.
+Result<std::vector<std::vector<float>>> renderChannelStrips(
+    render::Renderer& renderer,
+    const scene::Bounds& bounds,
+    std::span<const ViewCamera> views,
+    const ViewRigOptions& rig,
+    const StripLayout& layout,
+    render::DebugChannel channel,
+    const std::function<std::vector<float>(const FloatStrip&, std::uint32_t)>& values);
 
 }  // namespace encore::batch

@@ -12,6 +12,8 @@
 #include "batch/DepthConventions.h"
 #include "batch/NormalConventions.h"
 #include "batch/ObjectCoordinates.h"
+#include "batch/PassImages.h"
+#include "batch/RgbaPng.h"
 #include "batch/TransformsJson.h"
 
 namespace encore::batch {
@@ -91,6 +93,40 @@ TEST(PassConventionsTest, NormalsAndCoordinatesUndoTheCoverage) {
     EXPECT_EQ(coordinates[3], 1.0f);
     EXPECT_EQ(coordinates[4], 0.0f);
     EXPECT_EQ(coordinates[7], 0.0f);
+}
+
+TEST(PassConventionsTest, DepthOfAKindFromTheDepthChannel) {
+    // Pixel (0, 0) of a 4 x 4 view at 90 degrees: depth 4 model units at half coverage; (1, 0)
+    // a third covered (empty); the rest nothing.
+    std::vector<float> texels(4 * 4 * 4, 0.0f);
+    texels[0] = 2.0f;
+    texels[3] = 0.5f;
+    texels[4] = 1.0f;
+    texels[7] = 1.0f / 3.0f;
+    const FloatStrip strip{texels, 4, 0, 4, 4};
+    const ViewCamera view = frontCamera();
+    const std::vector<float> z = depthOfKind(strip, DepthKind::Z, 0.5f, view);
+    EXPECT_EQ(z[0], 2.0f);
+    EXPECT_TRUE(std::isinf(z[1]));
+    const std::vector<float> ray = depthOfKind(strip, DepthKind::Ray, 0.5f, view);
+    EXPECT_NEAR(ray[0], 2.0 * std::sqrt(1.0 + 2.0 * 0.75 * 0.75), 1e-6);
+    EXPECT_TRUE(std::isinf(ray[1]));
+}
+
+TEST(PassConventionsTest, NormalsAsAPngStoresThem) {
+    const std::vector<float> normals = {0.0f, -1.0f, 1.0f, 0.5f, 0.3f, 0.3f, 0.3f, 0.0f};
+    const std::vector<float> mapped = mappedNormals(normals);
+    EXPECT_EQ(mapped, (std::vector<float>{0.5f, 0.0f, 1.0f, 0.5f, 0.0f, 0.0f, 0.0f, 0.0f}));
+    EXPECT_EQ(pngSample(0.5f, 8), 128u);
+    EXPECT_EQ(pngSample(0.5f, 16), 32768u);
+    EXPECT_EQ(pngSample(1.5f, 16), 65535u);
+    EXPECT_EQ(pngSample(-0.5f, 8), 0u);
+    ExtraImages images;
+    images.normalKind = NormalKind::Geometric;
+    EXPECT_EQ(passChannel(ViewImage::Normal, images), render::DebugChannel::GeometricNormal);
+    EXPECT_EQ(passChannel(ViewImage::Depth, images), render::DebugChannel::Depth);
+    images.segmentationBy = SegmentationBy::Mesh;
+    EXPECT_EQ(passChannel(ViewImage::Segmentation, images), render::DebugChannel::SegmentMesh);
 }
 
 }  // namespace
