@@ -21,6 +21,35 @@ batch::ValueRange valueRange(const py::object& value, const char* name) {
     throw py::value_error(std::string(name) + " must be a number or a (min, max) pair");
 }
 
+namespace {
+
+// A sequence of numbers, or one number (None: empty), for the list keyword `name`.
+std::vector<float> numberList(const py::object& values, const char* name) {
+    if (values.is_none()) {
+        return {};
+    }
+    if (py::isinstance<py::float_>(values) || py::isinstance<py::int_>(values)) {
+        return {values.cast<float>()};  // One value for every view, as batch() takes it.
+    }
+    if (py::isinstance<py::str>(values) || !py::isinstance<py::sequence>(values)) {
+        throw py::value_error(std::string(name) + " must be None or a sequence of numbers");
+    }
+    std::vector<float> numbers;
+    for (const py::handle value : values) {
+        try {
+            numbers.push_back(value.cast<float>());  // NumPy's numbers too.
+        } catch (const py::cast_error&) {
+            throw py::value_error(std::string(name) + " must be None or a sequence of numbers");
+        }
+    }
+    if (numbers.empty()) {
+        throw py::value_error(std::string(name) + " names no value: give None or some numbers");
+    }
+    return numbers;
+}
+
+}  // namespace
+
 batch::ViewRigOptions rigOptions(const RigArguments& arguments) {
     if (arguments.views < 1) {
         throw py::value_error("views must be at least 1");
@@ -36,6 +65,11 @@ batch::ViewRigOptions rigOptions(const RigArguments& arguments) {
     rig.seed = arguments.seed;
     rig.normalize = arguments.normalize;
     rig.jitterDegrees = arguments.jitter;
+    rig.projection = arguments.projection;
+    rig.orthoScale = arguments.orthoScale;
+    rig.azimuthsDegrees = numberList(arguments.azimuths, "azimuths");
+    rig.elevationsDegrees = numberList(arguments.elevations, "elevations");
+    rig.distances = numberList(arguments.distances, "distances");
     batch::BatchOptions checked;
     checked.views = rig;
     if (auto valid = batch::validateBatchOptions(checked); !valid) {

@@ -45,6 +45,13 @@ struct RigArguments {
     std::uint64_t seed = 0;
     bool normalize = true;
     float jitter = 0.0f;
+    batch::Projection projection = batch::Projection::Perspective;
+    float orthoScale = batch::kDefaultOrthoScale;
+    // Each view's (or, one value, every view's) azimuth, elevation and distance: None, a number
+    // or a sequence of numbers, as --azimuths, --elevations and --distances take them.
+    py::object azimuths = py::none();
+    py::object elevations = py::none();
+    py::object distances = py::none();
 };
 
 // The rig, checked as runBatch checks it.

@@ -189,7 +189,8 @@ std::vector<batch::GivenOption> givenBatchOptions(const py::kwargs& keywords) {
 
 std::string batchKeywordsDocstring() {
     return "passes (a sequence of \"rgba\", \"albedo\", \"normal\", \"material\", "
-           "\"segmentation\", \"depth\", \"hdr\", default None): the images beside the colour "
+           "\"segmentation\", \"depth\", \"hdr\", \"coordinates\", default None): the images "
+           "beside the colour "
            "ones, as render_views names them (the same as albedo=True, normals=True, ...).\n";
 }
 

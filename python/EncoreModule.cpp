@@ -17,6 +17,7 @@
 #include "ModuleErrors.h"
 #include "Renderer.h"
 #include "batch/BatchOptionTable.h"
+#include "encore/batch/ViewRig.h"
 #include "encore/gpu/Context.h"
 
 namespace py = pybind11;
@@ -104,13 +105,20 @@ void bindRenderer(py::module_& module) {
              py::arg("environment_intensity") = 1.0f, py::arg("environment_rotation") = 0.0f,
              py::arg("exposure") = 1.0f, py::arg("tone_mapping") = "neutral",
              py::arg("background") = "transparent", py::arg("pass_frames") = false,
+             py::arg("depth_kind") = "z", py::arg("depth_unit") = "normalized",
+             py::arg("normal_space") = "world", py::arg("normal_kind") = "shading",
+             py::arg("normal_format") = "png8", py::arg("camera_convention") = "opengl",
+             py::arg("camera_distribution") = py::none(), py::arg("projection") = "perspective",
+             py::arg("ortho_scale") = encore::batch::kDefaultOrthoScale,
+             py::arg("azimuths") = py::none(), py::arg("elevations") = py::none(),
+             py::arg("distances") = py::none(),
              "Renders `views` RGBA views (straight alpha, transparent background) of the scene "
              "normalised into a unit box, from an orbit `elevation` degrees above the horizon or "
              "(random=True) directions uniform on the sphere drawn from `seed` (and, as `encore "
              "batch` "
              "draws them, the model's output `name`). Returns (images "
              "uint8 (N, H, W, 4), intrinsics float64 (3, 3) in pixels, camera-to-world float64 "
-             "(N, 4, 4) with OpenGL camera axes), as `encore batch` writes them. `fov` is "
+             "(N, 4, 4) in camera_convention's axes), as `encore batch` writes them. `fov` is "
              "horizontal, in degrees (default: a 35 mm lens on a 32 mm sensor). normals=True "
              "appends the world-space normals, uint8 (N, H, W, 4) as n * 0.5 + 0.5 with the "
              "views' alpha, and depth=True (after them) the distances along each camera's axis, "
@@ -119,15 +127,28 @@ void bindRenderer(py::module_& module) {
              "depth_scale. variant= draws a KHR_materials_variants variant (its name or index, "
              "scene.variants lists them; ValueError for one the model lacks) instead of the "
              "default materials. passes=(\"rgba\", \"albedo\", \"normal\", \"material\", "
-             "\"segmentation\", \"depth\", \"hdr\") (any of them, in any order) returns a dict "
-             "instead: each pass's array (uint8 (N, H, W, 4) for rgba, albedo, normal and "
-             "material; depth float32 (N, H, W) along the camera axis, inf where empty; "
+             "\"segmentation\", \"depth\", \"hdr\", \"coordinates\") (any of them, in any "
+             "order) returns a dict instead: each pass's array (uint8 (N, H, W, 4) for rgba, "
+             "albedo, normal and material; depth float32 (N, H, W), inf where empty; "
              "segmentation uint16 (N, H, W), 1 + the node (segmentation_by=\"mesh\", "
-             "\"material\") index, exact at any sample count (one sample of each pixel); hdr "
-             "float32 (N, H, W, 4), linear and premultiplied) with \"intrinsics\" and "
-             "\"cameras\", as `encore batch` writes them (docs/batch.md#passes); they are "
-             "drawn in the colour's render pass, or with pass_frames=True one frame per pass "
-             "(the same values, slower). Shading as `encore render`'s: environment (an .hdr "
+             "\"material\") index, exact at any sample count (one sample of each pixel); hdr float32 (N, H, W, 4), linear and "
+             "premultiplied; coordinates float32 (N, H, W, 4), each pixel's position in the "
+             "normalised box moved into [0, 1]^3 with the coverage as alpha, 0 where empty) with "
+             "\"intrinsics\" and \"cameras\", as `encore batch` writes "
+             "them (docs/batch.md#passes); they are drawn in the colour's render pass, or with "
+             "pass_frames=True one frame per pass (the same values, slower). The passes' "
+             "conventions are `encore batch`'s (docs/batch.md#conventions) and need passes=: "
+             "depth_kind (z: along the camera's axis, ray: along the pixel's ray), depth_unit "
+             "(normalized, model), normal_space (world, camera: the axes of camera_convention's "
+             "cameras), normal_kind (shading, geometric) and normal_format (png8: uint8 n * 0.5 "
+             "+ 0.5, png16: uint16, exr: float32 n; the coverage as alpha). camera_convention "
+             "(opengl, opencv, blender) gives the returned cameras in transforms.json's axes. "
+             "The views as `encore batch` places them: camera_distribution (orbit, sphere, "
+             "upper-hemisphere, hammersley, fibonacci; random=True is sphere), azimuths, "
+             "elevations and distances (sequences of one value per view, or one for all, "
+             "replacing `views`), projection (perspective, orthographic: the intrinsics then "
+             "hold pixels per unit in place of focal lengths) and ortho_scale. Shading as `encore "
+             "render`'s: environment (an .hdr "
              "file), environment_intensity, environment_rotation (degrees), exposure, "
              "tone_mapping (neutral, aces, none), background (transparent, env, #rrggbb). The GIL "
              "is released while rendering.")

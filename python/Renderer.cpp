@@ -10,6 +10,8 @@
 
 #include "BatchArguments.h"
 #include "ModuleErrors.h"
+#include "batch/CameraConvention.h"
+#include "batch/OptionNames.h"
 #include "batch/TransformsJson.h"
 #include "batch/ViewStrips.h"
 #include "encore/scene/SceneData.h"
@@ -98,7 +100,19 @@ py::object Renderer::renderViews(const Scene& scene,
                                  float exposure,
                                  const std::string& toneMapping,
                                  const std::string& background,
-                                 bool passFrames) {
+                                 bool passFrames,
+                                 const std::string& depthKind,
+                                 const std::string& depthUnit,
+                                 const std::string& normalSpace,
+                                 const std::string& normalKind,
+                                 const std::string& normalFormat,
+                                 const std::string& cameraConvention,
+                                 const std::optional<std::string>& distribution,
+                                 const std::string& projection,
+                                 float orthoScale,
+                                 const py::object& azimuths,
+                                 const py::object& elevations,
+                                 const py::object& distances) {
     const auto [width, height] = imageSize(size);
     const ViewShading shading =
         viewShading(environment, intensity, rotation, exposure, toneMapping, background);
@@ -112,11 +126,39 @@ py::object Renderer::renderViews(const Scene& scene,
         kinds = passKinds(passes);
     }
     const batch::SegmentationBy by = segmentationBy(segmentation);
-    const batch::ViewRigOptions rig = rigOptions(
-        {views, elevation, py::float_(distance), fov ? py::object(py::float_(*fov)) : py::none(),
-         random ? batch::CameraDistribution::Sphere : batch::CameraDistribution::Orbit, seed,
-         normalize});
+    const PassConventions conventions = passConventions(depthKind, depthUnit, normalSpace,
+                                                        normalKind, normalFormat, cameraConvention);
+    PassConventions cameraOnly;
+    cameraOnly.camera = conventions.camera;
+    if (passes.is_none() && !(conventions == cameraOnly)) {
+        throw py::value_error(
+            "depth_kind, depth_unit, normal_space, normal_kind and normal_format apply to "
+            "passes=: name \"depth\" or \"normal\" among the passes.");
+    }
+    if (random && distribution) {
+        throw py::value_error(
+            "random=True draws the views on the sphere: give it or camera_distribution, not "
+            "both.");
+    }
+    RigArguments arguments;
+    arguments.views = views;
+    arguments.elevation = elevation;
+    arguments.distance = py::float_(distance);
+    arguments.fov = fov ? py::object(py::float_(*fov)) : py::none();
+    arguments.distribution =
+        distribution ? named(batch::cameraDistributionNames(), *distribution, "camera_distribution")
+        : random     ? batch::CameraDistribution::Sphere
+                     : batch::CameraDistribution::Orbit;
+    arguments.seed = seed;
+    arguments.normalize = normalize;
+    arguments.projection = named(batch::projectionNames(), projection, "projection");
+    arguments.orthoScale = orthoScale;
+    arguments.azimuths = azimuths;
+    arguments.elevations = elevations;
+    arguments.distances = distances;
+    const batch::ViewRigOptions rig = rigOptions(arguments);
     const std::vector<batch::ViewCamera> cameraViews = batch::viewCameras(rig, name);
+    const std::size_t viewCount = cameraViews.size();  // The lists' length, if they give one.
     std::optional<scene::VariantId> variant;
     if (const std::string chosen = variantArgument(variantName); !chosen.empty()) {
         auto found = scene::resolveVariant(*scene.data, chosen);
@@ -129,12 +171,13 @@ py::object Renderer::renderViews(const Scene& scene,
     {
         py::gil_scoped_release release;
         std::lock_guard lock(mMutex);  // Python threads may share a renderer.
-        rendered = valueOrThrow(render(scene.data, variant, cameraViews, rig, width, height,
-                                       normals, depth, shading, kinds, by, passFrames));
+        rendered =
+            valueOrThrow(render(scene.data, variant, cameraViews, rig, width, height, normals,
+                                depth, shading, kinds, by, conventions, passFrames));
     }
     const auto rgbaArray = [&](const std::vector<image::ImageRgba8>& images) {
         py::array_t<std::uint8_t> pixels(
-            {std::size_t(views), std::size_t(height), std::size_t(width), std::size_t(4)});
+            {viewCount, std::size_t(height), std::size_t(width), std::size_t(4)});
         std::uint8_t* out = pixels.mutable_data();
         for (const image::ImageRgba8& image : images) {
             std::memcpy(out, image.pixels.data(), image.pixels.size());
@@ -143,8 +186,15 @@ py::object Renderer::renderViews(const Scene& scene,
         return pixels;
     };
     py::array_t<std::uint8_t> pixels = rgbaArray(rendered.color);
-    const batch::PinholeIntrinsics pinhole =
+    batch::PinholeIntrinsics pinhole =
         batch::intrinsicsFor(width, height, glm::radians(rig.horizontalFovDegrees.min));
+    if (rig.projection == batch::Projection::Orthographic) {
+        // Pixels per unit of the normalised world in place of the focal lengths: the same matrix
+        // takes a point's camera x and y (OpenCV's axes) to its pixel, without the division.
+        const glm::vec2 half = batch::orthographicHalfExtent(rig.orthoScale, float(width) / height);
+        pinhole.focalX = 0.5 * double(width) / double(half.x);
+        pinhole.focalY = 0.5 * double(height) / double(half.y);
+    }
     py::array_t<double> intrinsics({3, 3});
     auto k = intrinsics.mutable_unchecked<2>();
     const double values[3][3] = {{pinhole.focalX, 0.0, pinhole.centerX},
@@ -155,10 +205,12 @@ py::object Renderer::renderViews(const Scene& scene,
             k(row, column) = values[row][column];
         }
     }
-    py::array_t<double> cameras({std::size_t(views), std::size_t(4), std::size_t(4)});
+    py::array_t<double> cameras({viewCount, std::size_t(4), std::size_t(4)});
     auto c = cameras.mutable_unchecked<3>();
     for (std::size_t view = 0; view < cameraViews.size(); ++view) {
-        const glm::mat4& cameraToWorld = cameraViews[view].cameraToWorld;
+        // As transforms.json writes them (OpenGL: the matrix itself).
+        const glm::dmat4 cameraToWorld =
+            batch::cameraToWorldIn(cameraViews[view].cameraToWorld, conventions.camera);
         for (int row = 0; row < 4; ++row) {
             for (int column = 0; column < 4; ++column) {
                 c(view, row, column) = cameraToWorld[column][row];  // glm: [column][row]
@@ -168,7 +220,8 @@ py::object Renderer::renderViews(const Scene& scene,
     if (!passes.is_none()) {
         py::dict arrays;
         for (std::size_t i = 0; i < kinds.size(); ++i) {
-            arrays[passName(kinds[i])] = passArray(kinds[i], rendered.passes[i], width, height);
+            arrays[passName(kinds[i])] =
+                passArray(kinds[i], rendered.passes[i], width, height, conventions.normalFormat);
         }
         arrays["intrinsics"] = intrinsics;
         arrays["cameras"] = cameras;
@@ -185,14 +238,14 @@ py::object Renderer::renderViews(const Scene& scene,
         // The 16-bit values of 000_depth.png times its depth_scale: distances along the
         // camera axis in the cameras' units, 0 where the pixel is mostly empty.
         const double scale = batch::depthScale(rig);
-        py::array_t<float> distances({std::size_t(views), std::size_t(height), std::size_t(width)});
-        float* out = distances.mutable_data();
+        py::array_t<float> depthArray({viewCount, std::size_t(height), std::size_t(width)});
+        float* out = depthArray.mutable_data();
         for (const image::ImageGray16& image : rendered.depth) {
             for (const std::uint16_t steps : image.pixels) {
                 *out++ = float(double(steps) * scale);
             }
         }
-        result.append(distances);
+        result.append(depthArray);
     }
     return py::tuple(result);
 }
@@ -215,15 +268,16 @@ Result<Renderer::Rendered> Renderer::render(const std::shared_ptr<const scene::S
                                             const ViewShading& shading,
                                             std::span<const batch::ViewImage> kinds,
                                             batch::SegmentationBy by,
+                                            const PassConventions& conventions,
                                             bool passFrames) {
     const batch::StripLayout layout =
-        batch::stripLayout(width, height, rig.views, mContext->limits());
+        batch::stripLayout(width, height, std::uint32_t(views.size()), mContext->limits());
     const render::StrategyChoice choice =
         mStrategy.value_or(render::StrategyChoice::of(render::StrategyKind::Bundles, false));
     // The passes that share the colour's camera are drawn in its render pass, as `encore
     // batch` draws them, unless pass_frames=True.
     batch::ExtraImages images;
-    applyPassKinds(kinds, images);
+    applyPassKinds(kinds, conventions, images);
     images.drawing = passFrames ? batch::PassDrawing::Frames : batch::PassDrawing::Targets;
     const render::PassTargets passTargets =
         batch::drawsPassTargets(images, choice.kind, mContext->limits())
@@ -261,8 +315,8 @@ Result<Renderer::Rendered> Renderer::render(const std::shared_ptr<const scene::S
     ENCORE_TRY(applyShading(*mRenderer, shading, mEnvironment));
     Rendered rendered;
     if (!kinds.empty()) {
-        ENCORE_TRY_ASSIGN(rendered.passes,
-                          renderPasses(*mRenderer, scene->bounds, views, rig, layout, kinds, by));
+        ENCORE_TRY_ASSIGN(rendered.passes, renderPasses(*mRenderer, scene->bounds, views, rig,
+                                                        layout, kinds, by, conventions));
     }
     // With passes, the colour is its "rgba" pass.
     const bool colorPass = kinds.empty();

@@ -60,7 +60,19 @@ class Renderer {
                            float exposure,
                            const std::string& toneMapping,
                            const std::string& background,
-                           bool passFrames);
+                           bool passFrames,
+                           const std::string& depthKind,
+                           const std::string& depthUnit,
+                           const std::string& normalSpace,
+                           const std::string& normalKind,
+                           const std::string& normalFormat,
+                           const std::string& cameraConvention,
+                           const std::optional<std::string>& distribution,
+                           const std::string& projection,
+                           float orthoScale,
+                           const py::object& azimuths,
+                           const py::object& elevations,
+                           const py::object& distances);
 
     // Runs the job of `encore batch` on this renderer's device.
     py::dict runBatch(const py::object& inputs,
@@ -98,6 +110,7 @@ class Renderer {
                             const ViewShading& shading,
                             std::span<const batch::ViewImage> kinds,
                             batch::SegmentationBy by,
+                            const PassConventions& conventions,
                             bool passFrames);
 
     std::uint32_t mSamples;

@@ -3,8 +3,12 @@
 #include <glm/gtc/constants.hpp>
 
 #include "BatchArguments.h"
+#include "batch/DepthConventions.h"
+#include "batch/NormalConventions.h"
+#include "batch/ObjectCoordinates.h"
 #include "batch/OptionValues.h"
 #include "batch/PassImages.h"
+#include "batch/RgbaPng.h"
 #include "encore/image/HdrImage.h"
 #include "gpu/Readback.h"
 
@@ -44,7 +48,31 @@ batch::SegmentationBy segmentationBy(const std::string& name) {
     return named(batch::segmentationByNames(), name, "segmentation_by");
 }
 
-void applyPassKinds(std::span<const batch::ViewImage> kinds, batch::ExtraImages& images) {
+PassConventions passConventions(const std::string& depthKind,
+                                const std::string& depthUnit,
+                                const std::string& normalSpace,
+                                const std::string& normalKind,
+                                const std::string& normalFormat,
+                                const std::string& cameraConvention) {
+    PassConventions conventions;
+    conventions.depthKind = named(batch::depthKindNames(), depthKind, "depth_kind");
+    conventions.depthUnit = named(batch::depthUnitNames(), depthUnit, "depth_unit");
+    conventions.normalSpace = named(batch::normalSpaceNames(), normalSpace, "normal_space");
+    conventions.normalKind = named(batch::normalKindNames(), normalKind, "normal_kind");
+    conventions.normalFormat = named(batch::normalFormatNames(), normalFormat, "normal_format");
+    conventions.camera =
+        named(batch::cameraConventionNames(), cameraConvention, "camera_convention");
+    return conventions;
+}
+
+void applyPassKinds(std::span<const batch::ViewImage> kinds,
+                    const PassConventions& conventions,
+                    batch::ExtraImages& images) {
+    images.depthKind = conventions.depthKind;
+    images.depthUnit = conventions.depthUnit;
+    images.normalSpace = conventions.normalSpace;
+    images.normalKind = conventions.normalKind;
+    images.normalFormat = conventions.normalFormat;
     for (const batch::ViewImage kind : kinds) {
         switch (kind) {
             case batch::ViewImage::Normal:
@@ -65,7 +93,9 @@ void applyPassKinds(std::span<const batch::ViewImage> kinds, batch::ExtraImages&
             case batch::ViewImage::Hdr:
                 images.hdr = true;
                 break;
-            case batch::ViewImage::Coordinates:  // A batch pass only: passes= has no name for it.
+            case batch::ViewImage::Coordinates:
+                images.coordinates = true;
+                break;
             case batch::ViewImage::Color:
                 break;
         }
@@ -98,10 +128,48 @@ ViewShading viewShading(const py::object& environment,
     return shading;
 }
 
+namespace {
+
+// Normals read as floats (normalVectors), as `format` stores them.
+py::array normalArray(const PassImages& images,
+                      std::uint32_t width,
+                      std::uint32_t height,
+                      batch::NormalFormat format) {
+    const std::vector<std::size_t> shape{images.floats.size(), height, width, 4};
+    if (format == batch::NormalFormat::Exr) {
+        py::array_t<float> values(shape);
+        float* out = values.mutable_data();
+        for (const std::vector<float>& view : images.floats) {
+            out = std::copy(view.begin(), view.end(), out);
+        }
+        return values;
+    }
+    // The samples of the PNG the batch writes (RgbaPng.h).
+    const auto samples = [&]<typename Sample>(Sample* out) {
+        const std::uint8_t bits = format == batch::NormalFormat::Png16 ? 16 : 8;
+        for (const std::vector<float>& view : images.floats) {
+            for (const float value : batch::mappedNormals(view)) {
+                *out++ = Sample(batch::pngSample(value, bits));
+            }
+        }
+    };
+    if (format == batch::NormalFormat::Png16) {
+        py::array_t<std::uint16_t> values(shape);
+        samples(values.mutable_data());
+        return values;
+    }
+    py::array_t<std::uint8_t> values(shape);
+    samples(values.mutable_data());
+    return values;
+}
+
+}  // namespace
+
 py::array passArray(batch::ViewImage kind,
                     const PassImages& images,
                     std::uint32_t width,
-                    std::uint32_t height) {
+                    std::uint32_t height,
+                    batch::NormalFormat normalFormat) {
     const std::size_t h = height, w = width;
     if (!images.rgba.empty() || images.floats.empty()) {
         py::array_t<std::uint8_t> pixels({images.rgba.size(), h, w, std::size_t(4)});
@@ -111,6 +179,9 @@ py::array passArray(batch::ViewImage kind,
             out += image.pixels.size();
         }
         return pixels;
+    }
+    if (kind == batch::ViewImage::Normal) {
+        return normalArray(images, width, height, normalFormat);
     }
     const std::size_t views = images.floats.size();
     if (kind == batch::ViewImage::Segmentation) {
@@ -122,9 +193,9 @@ py::array passArray(batch::ViewImage kind,
         }
         return ids;
     }
-    py::array_t<float> values = kind == batch::ViewImage::Hdr
-                                    ? py::array_t<float>({views, h, w, std::size_t(4)})
-                                    : py::array_t<float>({views, h, w});
+    const bool rgba = kind == batch::ViewImage::Hdr || kind == batch::ViewImage::Coordinates;
+    py::array_t<float> values = rgba ? py::array_t<float>({views, h, w, std::size_t(4)})
+                                     : py::array_t<float>({views, h, w});
     float* out = values.mutable_data();
     for (const std::vector<float>& view : images.floats) {
         out = std::copy(view.begin(), view.end(), out);
@@ -165,7 +236,8 @@ Result<std::vector<PassImages>> renderPassTargets(render::Renderer& renderer,
                                                   std::span<const batch::ViewCamera> views,
                                                   const batch::ViewRigOptions& rig,
                                                   const batch::StripLayout& layout,
-                                                  std::span<const batch::ViewImage> kinds) {
+                                                  std::span<const batch::ViewImage> kinds,
+                                                  const PassConventions& conventions) {
     const glm::mat4 toUnitBox = batch::normalization(bounds, rig.normalize);
     const float unitsPerModelUnit = toUnitBox[0][0];
     std::vector<PassImages> passes(kinds.size());
@@ -196,8 +268,10 @@ Result<std::vector<PassImages>> renderPassTargets(render::Renderer& renderer,
                     if (kind == batch::ViewImage::Hdr) {
                         passes[k].floats.push_back(batch::hdrPixels(pixels));
                     } else if (kind == batch::ViewImage::Depth) {
-                        passes[k].floats.push_back(
-                            batch::depthDistances(pixels, unitsPerModelUnit));
+                        passes[k].floats.push_back(batch::depthOfKind(
+                            pixels, conventions.depthKind,
+                            batch::depthUnitsPerModelUnit(conventions.depthUnit, unitsPerModelUnit),
+                            views[first + strip]));
                     } else {
                         const image::ImageGray16 ids = batch::segmentationIdsOfPassTarget(pixels);
                         passes[k].floats.emplace_back(ids.pixels.begin(), ids.pixels.end());
@@ -234,15 +308,41 @@ Result<std::vector<PassImages>> renderPasses(render::Renderer& renderer,
                                              const batch::ViewRigOptions& rig,
                                              const batch::StripLayout& layout,
                                              std::span<const batch::ViewImage> kinds,
-                                             batch::SegmentationBy by) {
+                                             batch::SegmentationBy by,
+                                             const PassConventions& conventions) {
     if (renderer.passTexture(render::PassImage::DepthAndId)) {
-        return renderPassTargets(renderer, bounds, views, rig, layout, kinds);
+        return renderPassTargets(renderer, bounds, views, rig, layout, kinds, conventions);
     }
+    batch::ExtraImages extras;
+    applyPassKinds(kinds, conventions, extras);
+    const glm::mat4 toUnitBox = batch::normalization(bounds, rig.normalize);
+    // What the batch's writer makes of a float read-back of view `view` (ModelWriter's
+    // floatEncoder, before encoding).
+    const auto values = [&](batch::ViewImage kind) {
+        return [&, kind](const batch::FloatStrip& pixels, std::uint32_t view) {
+            if (kind == batch::ViewImage::Depth) {
+                return batch::depthOfKind(
+                    pixels, conventions.depthKind,
+                    batch::depthUnitsPerModelUnit(conventions.depthUnit, toUnitBox[0][0]),
+                    views[view]);
+            }
+            if (kind == batch::ViewImage::Normal) {
+                return batch::normalVectors(
+                    pixels, batch::normalRotation(views[view], conventions.normalSpace,
+                                                  conventions.camera));
+            }
+            return batch::objectCoordinates(pixels, toUnitBox);
+        };
+    };
     std::vector<PassImages> passes;
     for (const batch::ViewImage kind : kinds) {
         PassImages images;
-        if (kind == batch::ViewImage::Depth || kind == batch::ViewImage::Hdr ||
-            kind == batch::ViewImage::Segmentation) {
+        if (kind == batch::ViewImage::Depth || kind == batch::ViewImage::Coordinates ||
+            (kind == batch::ViewImage::Normal && extras.normalsAsFloats())) {
+            ENCORE_TRY_ASSIGN(images.floats, batch::renderChannelStrips(
+                                                 renderer, bounds, views, rig, layout,
+                                                 batch::passChannel(kind, extras), values(kind)));
+        } else if (kind == batch::ViewImage::Hdr || kind == batch::ViewImage::Segmentation) {
             ENCORE_TRY_ASSIGN(images.floats, batch::renderFloatStrips(renderer, bounds, views, rig,
                                                                       layout, kind, by));
         } else {

@@ -25,13 +25,35 @@ namespace encore::python {
 namespace py = pybind11;
 
 // The names of `passes` ("rgba", "albedo", "normal", "material", "segmentation", "depth",
-// "hdr"), in the order given; ValueError for an unknown or repeated one.
+// "hdr", "coordinates"), in the order given; ValueError for an unknown or repeated one.
 std::vector<batch::ViewImage> passKinds(const py::object& passes);
 // "node", "mesh" or "material".
 batch::SegmentationBy segmentationBy(const std::string& name);
 
-// Sets the passes `kinds` names in `images` (Color changes nothing).
-void applyPassKinds(std::span<const batch::ViewImage> kinds, batch::ExtraImages& images);
+// What the passes' values mean (docs/batch.md#conventions): `encore batch`'s conventions that
+// apply to arrays, and the axes of the returned cameras.
+struct PassConventions {
+    batch::DepthKind depthKind = batch::DepthKind::Z;
+    batch::DepthUnit depthUnit = batch::DepthUnit::Normalized;
+    batch::NormalSpace normalSpace = batch::NormalSpace::World;
+    batch::NormalKind normalKind = batch::NormalKind::Shading;
+    batch::NormalFormat normalFormat = batch::NormalFormat::Png8;
+    batch::CameraConvention camera = batch::CameraConvention::OpenGl;
+
+    bool operator==(const PassConventions&) const = default;
+};
+// From the keywords; ValueError naming the keyword and its values for a value it does not know.
+PassConventions passConventions(const std::string& depthKind,
+                                const std::string& depthUnit,
+                                const std::string& normalSpace,
+                                const std::string& normalKind,
+                                const std::string& normalFormat,
+                                const std::string& cameraConvention);
+
+// Sets the passes `kinds` names in `images` (Color changes nothing), and their conventions.
+void applyPassKinds(std::span<const batch::ViewImage> kinds,
+                    const PassConventions& conventions,
+                    batch::ExtraImages& images);
 
 // render's shading options as keywords.
 struct ViewShading {
@@ -51,18 +73,22 @@ ViewShading viewShading(const py::object& environment,
                         const std::string& toneMapping,
                         const std::string& background);
 
-// The images of one pass, all views: 8-bit RGBA ones or floats (depth, segmentation, HDR).
+// The images of one pass, all views: 8-bit RGBA ones or floats (depth, segmentation, HDR,
+// coordinates, normals in a convention but the default).
 struct PassImages {
     std::vector<image::ImageRgba8> rgba;
     std::vector<std::vector<float>> floats;
 };
 
 // The pass's NumPy array: uint8 (N, H, W, 4) for rgba, albedo, normal and material, float32
-// (N, H, W) for depth, uint16 (N, H, W) for segmentation, float32 (N, H, W, 4) for hdr.
+// (N, H, W) for depth, uint16 (N, H, W) for segmentation, float32 (N, H, W, 4) for hdr and
+// coordinates; normals read as floats as `normalFormat` stores them (uint8 or uint16 n * 0.5 +
+// 0.5, or float32 n), each with the coverage as alpha.
 py::array passArray(batch::ViewImage kind,
                     const PassImages& images,
                     std::uint32_t width,
-                    std::uint32_t height);
+                    std::uint32_t height,
+                    batch::NormalFormat normalFormat);
 
 // Lights and tone maps `renderer` as `shading` says; `loaded` names the environment it holds
 // ("" for the studio one) and is updated when another is loaded.
@@ -72,14 +98,16 @@ Result<void> applyShading(render::Renderer& renderer,
 
 // Draws `kinds` of the views (the scene `renderer` prepared, normalised by `bounds`), one
 // PassImages per kind, in order: with the renderer's pass targets (RendererOptions::passTargets)
-// one frame per target for them all, else one frame per pass.
+// one frame per target for them all, else one frame per pass. Depth and normals follow
+// `conventions` as `encore batch` writes them.
 Result<std::vector<PassImages>> renderPasses(render::Renderer& renderer,
                                              const scene::Bounds& bounds,
                                              std::span<const batch::ViewCamera> views,
                                              const batch::ViewRigOptions& rig,
                                              const batch::StripLayout& layout,
                                              std::span<const batch::ViewImage> kinds,
-                                             batch::SegmentationBy by);
+                                             batch::SegmentationBy by,
+                                             const PassConventions& conventions);
 
 // The name render_views uses for `kind`.
 const char* passName(batch::ViewImage kind);
