@@ -107,11 +107,11 @@ void bindRenderer(py::module_& module) {
              py::arg("background") = "transparent", py::arg("pass_frames") = false,
              py::arg("depth_kind") = "z", py::arg("depth_unit") = "normalized",
              py::arg("normal_space") = "world", py::arg("normal_kind") = "shading",
-             py::arg("normal_format") = "png8", py::arg("camera_convention") = "opengl",
+             py::arg("normal_format") = "png8", py::arg("camera_convention") = py::none(),
              py::arg("camera_distribution") = py::none(), py::arg("projection") = "perspective",
              py::arg("ortho_scale") = encore::batch::kDefaultOrthoScale,
              py::arg("azimuths") = py::none(), py::arg("elevations") = py::none(),
-             py::arg("distances") = py::none(),
+             py::arg("distances") = py::none(), py::arg("poses") = py::none(),
              "Renders `views` RGBA views (straight alpha, transparent background) of the scene "
              "normalised into a unit box, from an orbit `elevation` degrees above the horizon or "
              "(random=True) directions uniform on the sphere drawn from `seed` (and, as `encore "
@@ -142,12 +142,15 @@ void bindRenderer(py::module_& module) {
              "(normalized, model), normal_space (world, camera: the axes of camera_convention's "
              "cameras), normal_kind (shading, geometric) and normal_format (png8: uint8 n * 0.5 "
              "+ 0.5, png16: uint16, exr: float32 n; the coverage as alpha). camera_convention "
-             "(opengl, opencv, blender) gives the returned cameras in transforms.json's axes. "
+             "(opengl, opencv, blender; default opengl) gives the returned cameras in "
+             "transforms.json's axes. "
              "The views as `encore batch` places them: camera_distribution (orbit, sphere, "
              "upper-hemisphere, hammersley, fibonacci; random=True is sphere), azimuths, "
              "elevations and distances (sequences of one value per view, or one for all, "
              "replacing `views`), projection (perspective, orthographic: the intrinsics then "
-             "hold pixels per unit in place of focal lengths) and ortho_scale. Shading as `encore "
+             "hold pixels per unit in place of focal lengths) and ortho_scale; or poses, a file of "
+             "cameras as `encore batch --poses` reads it (transforms.json, a JSON list, .npy; "
+             "in camera_convention's axes when given). Shading as `encore "
              "render`'s: environment (an .hdr "
              "file), environment_intensity, environment_rotation (degrees), exposure, "
              "tone_mapping (neutral, aces, none), background (transparent, env, #rrggbb). The GIL "

@@ -12,6 +12,7 @@
 #include "ModuleErrors.h"
 #include "batch/CameraConvention.h"
 #include "batch/OptionNames.h"
+#include "batch/PoseFile.h"
 #include "batch/TransformsJson.h"
 #include "batch/ViewStrips.h"
 #include "encore/scene/SceneData.h"
@@ -106,13 +107,14 @@ py::object Renderer::renderViews(const Scene& scene,
                                  const std::string& normalSpace,
                                  const std::string& normalKind,
                                  const std::string& normalFormat,
-                                 const std::string& cameraConvention,
+                                 const std::optional<std::string>& cameraConvention,
                                  const std::optional<std::string>& distribution,
                                  const std::string& projection,
                                  float orthoScale,
                                  const py::object& azimuths,
                                  const py::object& elevations,
-                                 const py::object& distances) {
+                                 const py::object& distances,
+                                 const py::object& poses) {
     const auto [width, height] = imageSize(size);
     const ViewShading shading =
         viewShading(environment, intensity, rotation, exposure, toneMapping, background);
@@ -156,7 +158,26 @@ py::object Renderer::renderViews(const Scene& scene,
     arguments.azimuths = azimuths;
     arguments.elevations = elevations;
     arguments.distances = distances;
-    const batch::ViewRigOptions rig = rigOptions(arguments);
+    batch::ViewRigOptions rig = rigOptions(arguments);
+    if (!poses.is_none()) {
+        if (random || distribution || !azimuths.is_none() || !elevations.is_none() ||
+            !distances.is_none()) {
+            throw py::value_error(
+                "poses= gives the cameras: random, camera_distribution, azimuths, elevations "
+                "and distances place other ones.");
+        }
+        const std::string path = py::str(py::module_::import("os").attr("fspath")(poses));
+        // Read in camera_convention's axes when given, else in the file's own or its form's
+        // default, as `encore batch --poses` reads it.
+        const std::optional<batch::CameraConvention> axes =
+            cameraConvention ? std::optional(conventions.camera) : std::nullopt;
+        auto read = batch::readPoseFile(path, "poses", axes, rig);
+        if (!read) {
+            throw py::value_error(read.error().message);
+        }
+        rig.poses = std::move(*read);
+        rig.posesFile = path;
+    }
     const std::vector<batch::ViewCamera> cameraViews = batch::viewCameras(rig, name);
     const std::size_t viewCount = cameraViews.size();  // The lists' length, if they give one.
     std::optional<scene::VariantId> variant;
@@ -186,12 +207,15 @@ py::object Renderer::renderViews(const Scene& scene,
         return pixels;
     };
     py::array_t<std::uint8_t> pixels = rgbaArray(rendered.color);
+    // The first view's (a pose file's may differ from the rig's).
+    const batch::ViewCamera& first = cameraViews.front();
     batch::PinholeIntrinsics pinhole =
-        batch::intrinsicsFor(width, height, glm::radians(rig.horizontalFovDegrees.min));
-    if (rig.projection == batch::Projection::Orthographic) {
+        batch::intrinsicsFor(width, height, first.horizontalFovRadians);
+    if (first.projection == batch::Projection::Orthographic) {
         // Pixels per unit of the normalised world in place of the focal lengths: the same matrix
         // takes a point's camera x and y (OpenCV's axes) to its pixel, without the division.
-        const glm::vec2 half = batch::orthographicHalfExtent(rig.orthoScale, float(width) / height);
+        const glm::vec2 half =
+            batch::orthographicHalfExtent(first.orthoScale, float(width) / height);
         pinhole.focalX = 0.5 * double(width) / double(half.x);
         pinhole.focalY = 0.5 * double(height) / double(half.y);
     }

@@ -66,13 +66,14 @@ class Renderer {
                            const std::string& normalSpace,
                            const std::string& normalKind,
                            const std::string& normalFormat,
-                           const std::string& cameraConvention,
+                           const std::optional<std::string>& cameraConvention,
                            const std::optional<std::string>& distribution,
                            const std::string& projection,
                            float orthoScale,
                            const py::object& azimuths,
                            const py::object& elevations,
-                           const py::object& distances);
+                           const py::object& distances,
+                           const py::object& poses);
 
     // Runs the job of `encore batch` on this renderer's device.
     py::dict runBatch(const py::object& inputs,

@@ -53,15 +53,17 @@ PassConventions passConventions(const std::string& depthKind,
                                 const std::string& normalSpace,
                                 const std::string& normalKind,
                                 const std::string& normalFormat,
-                                const std::string& cameraConvention) {
+                                const std::optional<std::string>& cameraConvention) {
     PassConventions conventions;
     conventions.depthKind = named(batch::depthKindNames(), depthKind, "depth_kind");
     conventions.depthUnit = named(batch::depthUnitNames(), depthUnit, "depth_unit");
     conventions.normalSpace = named(batch::normalSpaceNames(), normalSpace, "normal_space");
     conventions.normalKind = named(batch::normalKindNames(), normalKind, "normal_kind");
     conventions.normalFormat = named(batch::normalFormatNames(), normalFormat, "normal_format");
-    conventions.camera =
-        named(batch::cameraConventionNames(), cameraConvention, "camera_convention");
+    if (cameraConvention) {
+        conventions.camera =
+            named(batch::cameraConventionNames(), *cameraConvention, "camera_convention");
+    }
     return conventions;
 }
 

@@ -42,13 +42,14 @@ struct PassConventions {
 
     bool operator==(const PassConventions&) const = default;
 };
-// From the keywords; ValueError naming the keyword and its values for a value it does not know.
+// From the keywords (no camera convention: OpenGL's); ValueError naming the keyword and its
+// values for a value it does not know.
 PassConventions passConventions(const std::string& depthKind,
                                 const std::string& depthUnit,
                                 const std::string& normalSpace,
                                 const std::string& normalKind,
                                 const std::string& normalFormat,
-                                const std::string& cameraConvention);
+                                const std::optional<std::string>& cameraConvention);
 
 // Sets the passes `kinds` names in `images` (Color changes nothing), and their conventions.
 void applyPassKinds(std::span<const batch::ViewImage> kinds,

@@ -162,6 +162,25 @@ def test_orthographic_views_have_parallel_rays(renderer, quads):
     assert np.isfinite(z["depth"][0, ROW, 20]) and np.isinf(z["depth"][0, ROW, 30])
 
 
+def test_poses_render_the_cameras_of_a_file(renderer, quads, tmp_path):
+    """Cameras written in a convention and read back in it draw the same pictures."""
+    placed = dict(size=32, azimuths=[0.0, 90.0, 200.0], elevations=[10.0, -20.0, 45.0])
+    for convention in ("opengl", "opencv", "blender"):
+        images, intrinsics, cameras = renderer.render_views(quads, camera_convention=convention,
+                                                            **placed)
+        poses = tmp_path / f"{convention}.json"
+        poses.write_text(json.dumps(cameras.tolist()))
+        again, again_intrinsics, again_cameras = renderer.render_views(
+            quads, size=32, poses=poses, camera_convention=convention)
+        assert np.allclose(again_cameras, cameras, atol=1e-6), convention
+        assert np.array_equal(again_intrinsics, intrinsics)
+        assert np.array_equal(again, images), convention
+    with pytest.raises(ValueError, match="poses= gives the cameras"):
+        renderer.render_views(quads, size=32, poses=poses, azimuths=[0.0])
+    with pytest.raises(ValueError, match="missing.json"):
+        renderer.render_views(quads, size=32, poses=tmp_path / "missing.json")
+
+
 def test_camera_distribution_places_the_batch_views(renderer, quads):
     def cameras(**keywords):
         return renderer.render_views(quads, views=3, size=16, **keywords)[2]
