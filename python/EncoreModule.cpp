@@ -112,6 +112,7 @@ void bindRenderer(py::module_& module) {
              py::arg("ortho_scale") = encore::batch::kDefaultOrthoScale,
              py::arg("azimuths") = py::none(), py::arg("elevations") = py::none(),
              py::arg("distances") = py::none(), py::arg("poses") = py::none(),
+             py::arg("point_cloud") = 0,
              "Renders `views` RGBA views (straight alpha, transparent background) of the scene "
              "normalised into a unit box, from an orbit `elevation` degrees above the horizon or "
              "(random=True) directions uniform on the sphere drawn from `seed` (and, as `encore "
@@ -150,7 +151,10 @@ void bindRenderer(py::module_& module) {
              "replacing `views`), projection (perspective, orthographic: the intrinsics then "
              "hold pixels per unit in place of focal lengths) and ortho_scale; or poses, a file of "
              "cameras as `encore batch --poses` reads it (transforms.json, a JSON list, .npy; "
-             "in camera_convention's axes when given). Shading as `encore "
+             "in camera_convention's axes when given). point_cloud=P (with passes=) adds "
+             "\"point_cloud\": the points of `encore batch --point-cloud P`'s points.ply for "
+             "the model of output `name`, a dict of positions and normals float32 (P, 3) in the "
+             "normalised frame and colors uint8 (P, 4), sRGB. Shading as `encore "
              "render`'s: environment (an .hdr "
              "file), environment_intensity, environment_rotation (degrees), exposure, "
              "tone_mapping (neutral, aces, none), background (transparent, env, #rrggbb). The GIL "

@@ -11,7 +11,9 @@
 #include "BatchArguments.h"
 #include "ModuleErrors.h"
 #include "batch/CameraConvention.h"
+#include "batch/ModelSeed.h"
 #include "batch/OptionNames.h"
+#include "batch/PointCloud.h"
 #include "batch/PoseFile.h"
 #include "batch/TransformsJson.h"
 #include "batch/ViewStrips.h"
@@ -35,6 +37,37 @@ std::size_t deviceFromEnvironment() {
                               "' is not a device index (0, 1, ...: encore.adapters() lists them)");
     }
     return std::size_t(index);
+}
+
+// The points `encore batch --point-cloud` writes to points.ply for the model named `name`: a
+// dict of positions and normals, float32 (P, 3), and colours, uint8 (P, 4).
+py::dict pointCloudArrays(const scene::SceneData& scene,
+                          const batch::ViewRigOptions& rig,
+                          const std::string& name,
+                          std::uint32_t count) {
+    const std::vector<batch::SurfacePoint> points =
+        batch::samplePointCloud(scene, batch::normalization(scene.bounds, rig.normalize), count,
+                                batch::modelSeed(rig.seed, name));
+    py::array_t<float> positions({points.size(), std::size_t(3)});
+    py::array_t<float> normals({points.size(), std::size_t(3)});
+    py::array_t<std::uint8_t> colors({points.size(), std::size_t(4)});
+    float* position = positions.mutable_data();
+    float* normal = normals.mutable_data();
+    std::uint8_t* color = colors.mutable_data();
+    for (const batch::SurfacePoint& point : points) {
+        for (int i = 0; i < 3; ++i) {
+            *position++ = point.position[i];
+            *normal++ = point.normal[i];
+        }
+        for (int i = 0; i < 4; ++i) {
+            *color++ = point.color[i];
+        }
+    }
+    py::dict cloud;
+    cloud["positions"] = positions;
+    cloud["normals"] = normals;
+    cloud["colors"] = colors;
+    return cloud;
 }
 
 }  // namespace
@@ -72,6 +105,9 @@ Scene Renderer::load(const std::string& path, bool allowUrisOutside) {
         py::gil_scoped_release release;
         scene::LoadOptions options;
         options.allowUrisOutside = allowUrisOutside;
+        // The triangles in the order `encore batch` loads them (BatchRun): the same pictures
+        // either way, and the same points drawn for point_cloud, which follow that order.
+        options.vertexCacheOrder = scene::VertexCacheOrder::Fast;
         loaded = scene::loadScene(path, options);
     }
     if (!loaded) {
@@ -114,7 +150,8 @@ py::object Renderer::renderViews(const Scene& scene,
                                  const py::object& azimuths,
                                  const py::object& elevations,
                                  const py::object& distances,
-                                 const py::object& poses) {
+                                 const py::object& poses,
+                                 std::uint32_t pointCloud) {
     const auto [width, height] = imageSize(size);
     const ViewShading shading =
         viewShading(environment, intensity, rotation, exposure, toneMapping, background);
@@ -136,6 +173,9 @@ py::object Renderer::renderViews(const Scene& scene,
         throw py::value_error(
             "depth_kind, depth_unit, normal_space, normal_kind and normal_format apply to "
             "passes=: name \"depth\" or \"normal\" among the passes.");
+    }
+    if (passes.is_none() && pointCloud > 0) {
+        throw py::value_error("point_cloud returns its points in passes='s dict: name passes.");
     }
     if (random && distribution) {
         throw py::value_error(
@@ -249,6 +289,9 @@ py::object Renderer::renderViews(const Scene& scene,
         }
         arrays["intrinsics"] = intrinsics;
         arrays["cameras"] = cameras;
+        if (pointCloud > 0) {
+            arrays["point_cloud"] = pointCloudArrays(*scene.data, rig, name, pointCloud);
+        }
         return arrays;
     }
     py::list result;

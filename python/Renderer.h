@@ -73,7 +73,8 @@ class Renderer {
                            const py::object& azimuths,
                            const py::object& elevations,
                            const py::object& distances,
-                           const py::object& poses);
+                           const py::object& poses,
+                           std::uint32_t pointCloud);
 
     // Runs the job of `encore batch` on this renderer's device.
     py::dict runBatch(const py::object& inputs,

@@ -181,6 +181,36 @@ def test_poses_render_the_cameras_of_a_file(renderer, quads, tmp_path):
         renderer.render_views(quads, size=32, poses=tmp_path / "missing.json")
 
 
+def read_ply(path):
+    """points.ply's vertices: positions and normals (P, 3) and colours (P, 4)."""
+    data = path.read_bytes()
+    end = data.index(b"end_header\n") + len(b"end_header\n")
+    vertex = np.dtype([("position", "<f4", 3), ("normal", "<f4", 3), ("color", "u1", 4)])
+    vertices = np.frombuffer(data[end:], vertex)
+    return vertices["position"], vertices["normal"], vertices["color"]
+
+
+def test_point_cloud_is_the_batch_points_file(renderer, quads, tmp_path):
+    folder = tmp_path / "in"
+    folder.mkdir()
+    write_quads(folder / "quads.gltf")
+    summary = renderer.batch(str(folder), str(tmp_path / "out"), views=1, size=16, seed=3,
+                             point_cloud=200)
+    assert summary["rendered"] == 1 and summary["failed"] == 0
+    positions, normals, colors = read_ply(tmp_path / "out" / "quads" / "points.ply")
+    # The batch draws the points from the seed and the model's output name.
+    cloud = renderer.render_views(quads, views=1, size=16, seed=3, name="quads",
+                                  passes=("rgba",), point_cloud=200)["point_cloud"]
+    assert cloud["positions"].shape == (200, 3) and cloud["colors"].dtype == np.uint8
+    assert np.array_equal(cloud["positions"], positions)
+    assert np.array_equal(cloud["normals"], normals)
+    assert np.array_equal(cloud["colors"], colors)
+    # On the quads: z = 0 in the unit box, facing +Z.
+    assert np.abs(positions[:, 2]).max() < 1e-6 and (normals[:, 2] > 0.999).all()
+    with pytest.raises(ValueError, match="point_cloud"):
+        renderer.render_views(quads, views=1, size=16, point_cloud=10)
+
+
 def test_camera_distribution_places_the_batch_views(renderer, quads):
     def cameras(**keywords):
         return renderer.render_views(quads, views=3, size=16, **keywords)[2]
