@@ -175,7 +175,8 @@ py::object Renderer::renderViews(const Scene& scene,
             "passes=: name \"depth\" or \"normal\" among the passes.");
     }
     if (passes.is_none() && pointCloud > 0) {
-        throw py::value_error("point_cloud returns its points in passes='s dict: name passes.");
+        throw py::value_error(
+            "point_cloud returns its points in the dict of passes=: give passes too.");
     }
     if (random && distribution) {
         throw py::value_error(
