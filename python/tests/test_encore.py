@@ -14,13 +14,12 @@ import struct
 import subprocess
 import threading
 import time
-import zlib
 
 import numpy as np
 import pytest
 
 import encore
-from batch_output import files_under
+from batch_output import files_under, read_png
 
 
 def generate(path, objects=8, seed=1):
@@ -75,49 +74,6 @@ def test_render_views_matches_the_batch_command(renderer, tmp_path):
                                           random=True, seed=9, name="scene")
     expected = np.array([frame["transform_matrix"] for frame in transforms["frames"]])
     assert np.allclose(cameras, expected, atol=1e-6)
-
-
-def read_png(path):
-    """The pixels of an 8-bit RGBA or 16-bit greyscale PNG (what `encore batch` writes), as
-    uint8 (H, W, 4) or uint16 (H, W). Small images only: the filters are undone in Python."""
-    data = path.read_bytes()
-    position, compressed = 8, b""
-    while position < len(data):
-        length, kind = struct.unpack(">I4s", data[position:position + 8])
-        body = data[position + 8:position + 8 + length]
-        if kind == b"IHDR":
-            width, height, depth, colour = struct.unpack(">IIBB", body[:10])
-        elif kind == b"IDAT":
-            compressed += body
-        position += 12 + length
-    assert (depth, colour) in ((8, 6), (16, 0)), (depth, colour)
-    step = 4 if colour == 6 else 2  # Bytes per pixel, what the filters look back.
-    stride = width * step
-    raw = zlib.decompress(compressed)
-    rows, previous = [], bytearray(stride)
-    for y in range(height):
-        kind = raw[y * (stride + 1)]
-        row = bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
-        for x in range(stride):
-            left = row[x - step] if x >= step else 0
-            up = previous[x]
-            corner = previous[x - step] if x >= step else 0
-            if kind == 1:
-                row[x] = (row[x] + left) & 0xFF
-            elif kind == 2:
-                row[x] = (row[x] + up) & 0xFF
-            elif kind == 3:
-                row[x] = (row[x] + ((left + up) >> 1)) & 0xFF
-            elif kind == 4:
-                estimate = left + up - corner
-                nearest = min((abs(estimate - left), 0, left), (abs(estimate - up), 1, up),
-                              (abs(estimate - corner), 2, corner))
-                row[x] = (row[x] + nearest[2]) & 0xFF
-        rows.append(bytes(row))
-        previous = row
-    if colour == 6:
-        return np.frombuffer(b"".join(rows), np.uint8).reshape(height, width, 4)
-    return np.frombuffer(b"".join(rows), ">u2").reshape(height, width).astype(np.uint16)
 
 
 def test_render_views_returns_the_batch_commands_normals_and_depth(renderer, tmp_path):

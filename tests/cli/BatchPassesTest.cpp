@@ -24,6 +24,7 @@
 #include "BatchCommandSupport.h"
 #include "BatchOutput.h"
 #include "CommandRunner.h"
+#include "GeneratedModels.h"
 #include "GltfBuilder.h"
 #include "TestPaths.h"
 #include "core/FileIO.h"
@@ -315,34 +316,13 @@ TEST(BatchPassesTest, PassTargetsWriteTheBytesOfOneFramePerPass) {
     }
 }
 
-// A square facing +Z cut along a slanted line into a triangle (node 0: id 1) and the rest (node
-// 3: id 4); nodes 1 and 2 draw nothing, so an average of the two ids (2, 3) is no drawn id.
+// The cut square (GeneratedModels.h) as cut.glb in `dir`.
 fs::path writeCutSquare(const fs::path& dir) {
-    GltfBuilder builder;
-    const auto piece = [&](std::vector<glm::vec3> corners, std::vector<std::uint16_t> triangles,
-                           glm::vec4 color) {
-        const auto normals =
-            builder.addNormals(std::vector<glm::vec3>(corners.size(), {0.0f, 0.0f, 1.0f}));
-        const auto positions = builder.addPositions(corners);
-        const auto indices = builder.addIndices<std::uint16_t>(triangles);
-        const auto material = builder.addMaterial({.baseColor = color});
-        return builder.addMesh({.attributes = {{"POSITION", positions}, {"NORMAL", normals}},
-                                .indices = indices,
-                                .material = material});
-    };
-    const auto below = piece({{-1.0f, -1.0f, 0.0f}, {1.0f, -1.0f, 0.0f}, {1.0f, 0.4f, 0.0f}},
-                             {0, 1, 2}, {0.9f, 0.1f, 0.1f, 1.0f});
-    const auto above =
-        piece({{-1.0f, -1.0f, 0.0f}, {1.0f, 0.4f, 0.0f}, {1.0f, 1.0f, 0.0f}, {-1.0f, 1.0f, 0.0f}},
-              {0, 1, 2, 0, 2, 3}, {0.1f, 0.2f, 0.9f, 1.0f});
-    std::vector<std::uint32_t> nodes;
-    nodes.push_back(builder.addNode({.mesh = below, .name = "below"}));
-    nodes.push_back(builder.addNode({.name = "empty"}));
-    nodes.push_back(builder.addNode({.name = "empty too"}));
-    nodes.push_back(builder.addNode({.mesh = above, .name = "above"}));
-    builder.addScene(nodes);
     fs::create_directories(dir);
-    return builder.writeGlb(dir, "cut");
+    const std::vector<std::uint8_t> glb = cutSquareGlb(1.0f, 0.4f);
+    std::ofstream(dir / "cut.glb", std::ios::binary)
+        .write(reinterpret_cast<const char*>(glb.data()), std::streamsize(glb.size()));
+    return dir / "cut.glb";
 }
 
 // Issue 50: at 4 samples (the default) the ids stay exact while the colour is antialiased: every

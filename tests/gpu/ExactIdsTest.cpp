@@ -9,7 +9,7 @@
 #include <cmath>
 #include <set>
 
-#include "GltfBuilder.h"
+#include "GeneratedModels.h"
 #include "GpuTestSupport.h"
 #include "RenderTestSupport.h"
 #include "encore/render/Renderer.h"
@@ -22,36 +22,6 @@ constexpr std::uint32_t kSize = 48;
 constexpr StrategyKind kStrategies[] = {StrategyKind::Materials, StrategyKind::Bundles,
                                         StrategyKind::GpuCulling, StrategyKind::GpuCullingBundles};
 const Camera kCamera = Camera::lookAt({0.0f, 0.0f, 3.0f}, {0, 0, 0}, 0.8f, 1.0f, 0.1f, 10.0f);
-
-// A square facing +Z cut along a slanted line into a triangle (node 0: id 1) and the rest (node
-// 3: id 4); nodes 1 and 2 draw nothing. The cut crosses many pixels partly, and an average of 1
-// and 4 (2, 3) is no drawn id.
-std::vector<std::uint8_t> cutSquare() {
-    test::GltfBuilder builder;
-    const auto piece = [&](std::vector<glm::vec3> corners, std::vector<std::uint16_t> triangles,
-                           glm::vec4 color) {
-        const auto normals =
-            builder.addNormals(std::vector<glm::vec3>(corners.size(), {0.0f, 0.0f, 1.0f}));
-        const auto positions = builder.addPositions(corners);
-        const auto indices = builder.addIndices<std::uint16_t>(triangles);
-        const auto material = builder.addMaterial({.baseColor = color});
-        return builder.addMesh({.attributes = {{"POSITION", positions}, {"NORMAL", normals}},
-                                .indices = indices,
-                                .material = material});
-    };
-    const auto below = piece({{-0.8f, -0.8f, 0.0f}, {0.8f, -0.8f, 0.0f}, {0.8f, 0.3f, 0.0f}},
-                             {0, 1, 2}, {0.9f, 0.1f, 0.1f, 1.0f});
-    const auto above =
-        piece({{-0.8f, -0.8f, 0.0f}, {0.8f, 0.3f, 0.0f}, {0.8f, 0.8f, 0.0f}, {-0.8f, 0.8f, 0.0f}},
-              {0, 1, 2, 0, 2, 3}, {0.1f, 0.2f, 0.9f, 1.0f});
-    std::vector<std::uint32_t> nodes;
-    nodes.push_back(builder.addNode({.mesh = below}));
-    nodes.push_back(builder.addNode({}));
-    nodes.push_back(builder.addNode({}));
-    nodes.push_back(builder.addNode({.mesh = above}));
-    builder.addScene(nodes);
-    return builder.toGlb();
-}
 
 struct Frame {
     std::vector<std::uint32_t> ids;
@@ -133,7 +103,7 @@ std::set<std::uint32_t> neighbourhood(const std::vector<std::uint32_t>& ids,
 
 TEST(ExactIdsTest, FourSamplesGiveTheIdsOfOneSampleAndAntialiasedColour) {
     ENCORE_REQUIRE_VULKAN(context);
-    auto scene = scene::loadSceneFromMemory(cutSquare(), {}, "cut.glb");
+    auto scene = scene::loadSceneFromMemory(test::cutSquareGlb(0.8f, 0.3f), {}, "cut.glb");
     ASSERT_TRUE(scene.ok()) << scene.error().message;
     const std::set<std::uint32_t> drawn = {0, 1, 4};
     for (const bool passTargets : {false, true}) {
