@@ -84,11 +84,6 @@ fn resetCounts(@builtin(global_invocation_id) id: vec3u) {
     atomicStore(&indirectArguments[arguments + culling.phaseArguments], 0u);
 }
 
-fn largestAxisScale(m: mat4x4f) -> f32 {
-    return sqrt(max(max(dot(m[0].xyz, m[0].xyz), dot(m[1].xyz, m[1].xyz)),
-                    dot(m[2].xyz, m[2].xyz)));
-}
-
 // Where an instance is this frame: per frustum plane, how far inside the farthest of its spheres
 // reaches (negative: all outside), and the world-space box around the spheres.
 struct InstanceBounds {
@@ -103,8 +98,7 @@ fn extend(bounds: ptr<function, InstanceBounds>, transform: mat4x4f, sphere: vec
     let center = (transform * vec4f(sphere.xyz, 1.0)).xyz;
     let radius = (sphere.w + growth) * scale;
     for (var i = 0u; i < 6u; i++) {
-        let plane = culling.planes[i];
-        (*bounds).reach[i] = max((*bounds).reach[i], dot(plane.xyz, center) + plane.w + radius);
+        (*bounds).reach[i] = max((*bounds).reach[i], sphereReach(i, center, radius));
     }
     (*bounds).boxMin = min((*bounds).boxMin, center - vec3f(radius));
     (*bounds).boxMax = max((*bounds).boxMax, center + vec3f(radius));

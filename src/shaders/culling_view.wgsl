@@ -1,7 +1,7 @@
 // What GPU culling (culling.wgsl) and the visibility strategy's cull (visibility_culling.wgsl)
-// share: the frame's culling uniform (render/culling/CullingUniform.h, one struct for both) and
-// the pixels per unit that levels of detail are chosen by (render/culling/LodSelection.h). The
-// includer binds `culling`.
+// share: the frame's culling uniform (render/culling/CullingUniform.h, one struct for both), the
+// test of a sphere against the frustum's planes, and the pixels per unit that levels of detail
+// are chosen by (render/culling/LodSelection.h). The includer binds `culling`.
 
 struct Culling {
     planes: array<vec4f, 6>,  // xyz: inward unit normal, w: distance; visible when dot >= -radius.
@@ -38,6 +38,18 @@ struct Culling {
     // xyz: where the frame's views are (render::LodSelection::kMaxViews); levels of detail are
     // chosen for the nearest.
     lodViews: array<vec4f, 16>,
+}
+
+fn largestAxisScale(m: mat4x4f) -> f32 {
+    return sqrt(max(max(dot(m[0].xyz, m[0].xyz), dot(m[1].xyz, m[1].xyz)),
+                    dot(m[2].xyz, m[2].xyz)));
+}
+
+// How far a world-space sphere reaches inside the frustum's plane `plane` (negative: it lies
+// wholly outside it).
+fn sphereReach(plane: u32, center: vec3f, radius: f32) -> f32 {
+    let inward = culling.planes[plane];
+    return dot(inward.xyz, center) + inward.w + radius;
 }
 
 // Pixels that one object-space unit covers at the point of the world-space box [boxMin, boxMax]

@@ -9,19 +9,14 @@
 // Read in the second phase only (the first phase's pyramid is still last frame's).
 @group(1) @binding(12) var depthPyramid: texture_2d<f32>;
 
-fn largestAxisScale(m: mat4x4f) -> f32 {
-    return sqrt(max(max(dot(m[0].xyz, m[0].xyz), dot(m[1].xyz, m[1].xyz)),
-                    dot(m[2].xyz, m[2].xyz)));
-}
-
 // Whether a sphere (world space) lies wholly outside one of the frustum's planes.
 fn sphereOutsideFrustum(center: vec3f, radius: f32) -> bool {
     if (culling.frustumTest == 0u) {
         return false;
     }
     for (var i = 0u; i < 6u; i++) {
-        let plane = culling.planes[i];
-        if (dot(plane.xyz, center) + plane.w < -radius) {
+        // The sign of the rounded sum is the exact sum's: the same test as distance < -radius.
+        if (sphereReach(i, center, radius) < 0.0) {
             return true;
         }
     }
