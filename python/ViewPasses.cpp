@@ -165,6 +165,17 @@ py::array normalArray(const PassImages& images,
     return values;
 }
 
+// A depth read-back as the EXR depth of the batch holds it, in the conventions' kind and unit:
+// what both drawings of the passes return.
+std::vector<float> depthValues(const batch::FloatStrip& pixels,
+                               const PassConventions& conventions,
+                               float unitsPerModelUnit,
+                               const batch::ViewCamera& view) {
+    return batch::depthOfKind(
+        pixels, conventions.depthKind,
+        batch::depthUnitsPerModelUnit(conventions.depthUnit, unitsPerModelUnit), view);
+}
+
 }  // namespace
 
 py::array passArray(batch::ViewImage kind,
@@ -270,10 +281,8 @@ Result<std::vector<PassImages>> renderPassTargets(render::Renderer& renderer,
                     if (kind == batch::ViewImage::Hdr) {
                         passes[k].floats.push_back(batch::hdrPixels(pixels));
                     } else if (kind == batch::ViewImage::Depth) {
-                        passes[k].floats.push_back(batch::depthOfKind(
-                            pixels, conventions.depthKind,
-                            batch::depthUnitsPerModelUnit(conventions.depthUnit, unitsPerModelUnit),
-                            views[first + strip]));
+                        passes[k].floats.push_back(depthValues(
+                            pixels, conventions, unitsPerModelUnit, views[first + strip]));
                     } else {
                         const image::ImageGray16 ids = batch::segmentationIdsOfPassTarget(pixels);
                         passes[k].floats.emplace_back(ids.pixels.begin(), ids.pixels.end());
@@ -323,10 +332,7 @@ Result<std::vector<PassImages>> renderPasses(render::Renderer& renderer,
     const auto values = [&](batch::ViewImage kind) {
         return [&, kind](const batch::FloatStrip& pixels, std::uint32_t view) {
             if (kind == batch::ViewImage::Depth) {
-                return batch::depthOfKind(
-                    pixels, conventions.depthKind,
-                    batch::depthUnitsPerModelUnit(conventions.depthUnit, toUnitBox[0][0]),
-                    views[view]);
+                return depthValues(pixels, conventions, toUnitBox[0][0], views[view]);
             }
             if (kind == batch::ViewImage::Normal) {
                 return batch::normalVectors(

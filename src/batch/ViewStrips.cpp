@@ -177,6 +177,19 @@ Result<std::vector<Image>> renderTargets(const scene::Bounds& bounds,
     return images;
 }
 
+// Draws `cameras` through `channel` and reads the HDR target back: the floats of the passes that
+// a debug channel draws (depth, segmentation, the conventions' normals and coordinates).
+Result<std::vector<float>> drawChannelFloats(render::Renderer& renderer,
+                                             render::DebugChannel channel,
+                                             std::span<const render::Camera> cameras) {
+    Result<std::vector<float>> wide = makeError(ErrorCode::InvalidArgument, "Not drawn.");
+    ENCORE_TRY(drawDebugChannel(renderer, channel, [&] {
+        renderer.renderViews(cameras);
+        wide = renderer.readHdrImage();
+    }));
+    return wide;
+}
+
 }  // namespace
 
 Result<std::vector<image::ImageRgba8>> renderStrips(render::Renderer& renderer,
@@ -225,30 +238,21 @@ Result<std::vector<std::vector<float>>> renderFloatStrips(render::Renderer& rend
                                                           const StripLayout& layout,
                                                           ViewImage kind,
                                                           SegmentationBy by) {
-    if (kind != ViewImage::Depth && kind != ViewImage::Hdr && kind != ViewImage::Segmentation) {
+    if (kind != ViewImage::Hdr && kind != ViewImage::Segmentation) {
         return makeError(ErrorCode::InvalidArgument,
-                         "Only depth, segmentation and HDR images are read back as floats.");
+                         "Only segmentation and HDR images are read back as floats here: "
+                         "renderChannelStrips draws depth in its conventions.");
     }
     const auto drawTarget =
         [&](std::span<const render::Camera> cameras) -> Result<std::vector<float>> {
-        Result<std::vector<float>> wide = makeError(ErrorCode::InvalidArgument, "Not drawn.");
-        auto drawAndRead = [&] {
-            renderer.renderViews(cameras);
-            wide = renderer.readHdrImage();
-        };
-        if (kind == ViewImage::Hdr) {
-            drawAndRead();  // The shaded frame's linear colour.
-        } else {
-            ENCORE_TRY(drawDebugChannel(renderer, passChannel(kind, by), drawAndRead));
+        if (kind != ViewImage::Hdr) {
+            return drawChannelFloats(renderer, passChannel(kind, by), cameras);
         }
-        return wide;
+        renderer.renderViews(cameras);  // The shaded frame's linear colour.
+        return renderer.readHdrImage();
     };
-    const float unitsPerModelUnit = normalization(bounds, rig.normalize)[0][0];
     const auto cutStrip = [&](const std::vector<float>& wide, std::uint32_t strip, std::uint32_t) {
         const FloatStrip pixels{wide, layout.targetWidth(), strip, layout.width, layout.height};
-        if (kind == ViewImage::Depth) {
-            return depthDistances(pixels, unitsPerModelUnit);
-        }
         if (kind == ViewImage::Hdr) {
             return hdrPixels(pixels);
         }
@@ -266,14 +270,8 @@ Result<std::vector<std::vector<float>>> renderChannelStrips(
     const StripLayout& layout,
     render::DebugChannel channel,
     const std::function<std::vector<float>(const FloatStrip&, std::uint32_t)>& values) {
-    const auto drawTarget =
-        [&](std::span<const render::Camera> cameras) -> Result<std::vector<float>> {
-        Result<std::vector<float>> wide = makeError(ErrorCode::InvalidArgument, "Not drawn.");
-        ENCORE_TRY(drawDebugChannel(renderer, channel, [&] {
-            renderer.renderViews(cameras);
-            wide = renderer.readHdrImage();
-        }));
-        return wide;
+    const auto drawTarget = [&](std::span<const render::Camera> cameras) {
+        return drawChannelFloats(renderer, channel, cameras);
     };
     const auto cutStrip = [&](const std::vector<float>& wide, std::uint32_t strip,
                               std::uint32_t view) {
@@ -288,14 +286,8 @@ Result<std::vector<image::ImageGray16>> renderDepthStrips(render::Renderer& rend
                                                           std::span<const ViewCamera> views,
                                                           const ViewRigOptions& rig,
                                                           const StripLayout& layout) {
-    const auto drawTarget =
-        [&](std::span<const render::Camera> cameras) -> Result<std::vector<float>> {
-        Result<std::vector<float>> wide = makeError(ErrorCode::InvalidArgument, "Not drawn.");
-        ENCORE_TRY(drawDebugChannel(renderer, render::DebugChannel::Depth, [&] {
-            renderer.renderViews(cameras);
-            wide = renderer.readHdrImage();
-        }));
-        return wide;
+    const auto drawTarget = [&](std::span<const render::Camera> cameras) {
+        return drawChannelFloats(renderer, render::DebugChannel::Depth, cameras);
     };
     const float unitsPerModelUnit = normalization(bounds, rig.normalize)[0][0];
     const double scale = depthScale(rig);

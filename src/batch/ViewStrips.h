@@ -115,9 +115,9 @@ Result<std::vector<image::ImageGray16>> renderDepthStrips(render::Renderer& rend
                                                           std::span<const ViewCamera> views,
                                                           const ViewRigOptions& rig,
                                                           const StripLayout& layout);
-// The same views' Depth (distances, infinity where empty: the EXR depth), Hdr (RGBA linear
-// colour, premultiplied) or Segmentation images (ids as floats, counting `by`), one vector of
-// floats per view (PassImages.h).
+// The same views' Hdr (RGBA linear colour, premultiplied) or Segmentation images (ids as floats,
+// counting `by`), one vector of floats per view (PassImages.h). Depth: renderChannelStrips with
+// depthOfKind.
 Result<std::vector<std::vector<float>>> renderFloatStrips(render::Renderer& renderer,
                                                           const scene::Bounds& bounds,
                                                           std::span<const ViewCamera> views,

@@ -181,6 +181,7 @@ Result<void> RendererCore::recoverFromDeviceLoss() {
     mBackground.reset();
     mResolvedBackground.reset();
     mToneMapper.reset();
+    mSceneIds.reset();
     mPassTargets.reset();
     mFrame.reset();
     mLighting.reset();
