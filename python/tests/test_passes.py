@@ -19,47 +19,65 @@ ALL = ("rgba", "albedo", "normal", "material", "segmentation", "depth", "hdr")
 LEFT, RIGHT, GAP, ROW = 18, 46, 32, 32
 
 
-def write_quads(path):
-    """Two quads facing +Z at z = 0 (x from -1 to -0.2 and 0.2 to 1), nodes "left" and
-    "right", each with its own mesh and material: red rough, white partly metallic."""
+def write_flat_pieces(path, pieces, materials, nodes):
+    """A glTF of flat polygons facing +Z at z = 0: `pieces` are (corners (x, y), triangles,
+    mesh name or None), mesh i drawn with material i; `materials` and `nodes` as glTF writes
+    them, every node in the scene."""
     data = b""
     views, accessors, meshes = [], [], []
-    for index, (x0, x1) in enumerate(((-1.0, -0.2), (0.2, 1.0))):
-        positions = struct.pack("<12f", x0, -0.5, 0, x1, -0.5, 0, x1, 0.5, 0, x0, 0.5, 0)
-        normals = struct.pack("<12f", *([0, 0, 1] * 4))
-        indices = struct.pack("<6H", 0, 1, 2, 0, 2, 3) + b"\0\0"
-        for chunk, target in ((positions, 34962), (normals, 34962), (indices, 34963)):
+    for index, (corners, triangles, name) in enumerate(pieces):
+        positions = b"".join(struct.pack("<3f", x, y, 0) for x, y in corners)
+        normals = struct.pack("<3f", 0, 0, 1) * len(corners)
+        indices = struct.pack(f"<{len(triangles)}H", *triangles)
+        for chunk in (positions, normals, indices):
             views.append({"buffer": 0, "byteOffset": len(data), "byteLength": len(chunk)})
-            data += chunk
+            data += chunk + b"\0" * (-len(chunk) % 4)
         first = len(accessors)
         accessors += [
-            {"bufferView": first, "componentType": 5126, "count": 4, "type": "VEC3",
-             "min": [x0, -0.5, 0], "max": [x1, 0.5, 0]},
-            {"bufferView": first + 1, "componentType": 5126, "count": 4, "type": "VEC3"},
-            {"bufferView": first + 2, "componentType": 5123, "count": 6, "type": "SCALAR"}]
-        meshes.append({"name": ["left mesh", "right mesh"][index], "primitives": [{
+            {"bufferView": first, "componentType": 5126, "count": len(corners), "type": "VEC3",
+             "min": [min(x for x, _ in corners), min(y for _, y in corners), 0],
+             "max": [max(x for x, _ in corners), max(y for _, y in corners), 0]},
+            {"bufferView": first + 1, "componentType": 5126, "count": len(corners),
+             "type": "VEC3"},
+            {"bufferView": first + 2, "componentType": 5123, "count": len(triangles),
+             "type": "SCALAR"}]
+        mesh = {"primitives": [{
             "attributes": {"POSITION": first, "NORMAL": first + 1}, "indices": first + 2,
-            "material": index}]})
+            "material": index}]}
+        if name:
+            mesh["name"] = name
+        meshes.append(mesh)
     document = {
         "asset": {"version": "2.0"},
         "buffers": [{"uri": "data:application/octet-stream;base64," +
                      base64.b64encode(data).decode(), "byteLength": len(data)}],
         "bufferViews": views,
         "accessors": accessors,
-        "materials": [
-            {"name": "red", "pbrMetallicRoughness": {
-                "baseColorFactor": [0.8, 0.2, 0.1, 1], "metallicFactor": 0,
-                "roughnessFactor": 0.6}},
-            {"name": "white", "pbrMetallicRoughness": {
-                "baseColorFactor": [1, 1, 1, 1], "metallicFactor": 0.25,
-                "roughnessFactor": 0.4}}],
+        "materials": materials,
         "meshes": meshes,
-        "nodes": [{"name": "left", "mesh": 0}, {"name": "right", "mesh": 1}],
-        "scenes": [{"nodes": [0, 1]}],
+        "nodes": nodes,
+        "scenes": [{"nodes": list(range(len(nodes)))}],
         "scene": 0,
     }
     path.write_text(json.dumps(document))
     return path
+
+
+def write_quads(path):
+    """Two quads facing +Z at z = 0 (x from -1 to -0.2 and 0.2 to 1), nodes "left" and
+    "right", each with its own mesh and material: red rough, white partly metallic."""
+    quad = [0, 1, 2, 0, 2, 3]
+    return write_flat_pieces(
+        path,
+        [([(x0, -0.5), (x1, -0.5), (x1, 0.5), (x0, 0.5)], quad, name)
+         for x0, x1, name in ((-1.0, -0.2, "left mesh"), (0.2, 1.0, "right mesh"))],
+        [{"name": "red", "pbrMetallicRoughness": {
+            "baseColorFactor": [0.8, 0.2, 0.1, 1], "metallicFactor": 0,
+            "roughnessFactor": 0.6}},
+         {"name": "white", "pbrMetallicRoughness": {
+             "baseColorFactor": [1, 1, 1, 1], "metallicFactor": 0.25,
+             "roughnessFactor": 0.4}}],
+        [{"name": "left", "mesh": 0}, {"name": "right", "mesh": 1}])
 
 
 def srgb(linear):
@@ -177,44 +195,13 @@ def test_bad_passes_raise_value_errors(renderer, quads, tmp_path):
 def write_cut_square(path):
     """A square facing +Z cut along a slanted line into a triangle (node 0: id 1) and the rest
     (node 3: id 4); nodes 1 and 2 draw nothing, so an average of the ids (2, 3) is no drawn id."""
-    pieces = (([(-0.8, -0.8), (0.8, -0.8), (0.8, 0.3)], [0, 1, 2]),
-              ([(-0.8, -0.8), (0.8, 0.3), (0.8, 0.8), (-0.8, 0.8)], [0, 1, 2, 0, 2, 3]))
-    data = b""
-    views, accessors, meshes = [], [], []
-    for index, (corners, triangles) in enumerate(pieces):
-        positions = b"".join(struct.pack("<3f", x, y, 0) for x, y in corners)
-        normals = struct.pack("<3f", 0, 0, 1) * len(corners)
-        indices = struct.pack(f"<{len(triangles)}H", *triangles)
-        for chunk in (positions, normals, indices):
-            views.append({"buffer": 0, "byteOffset": len(data), "byteLength": len(chunk)})
-            data += chunk + b"\0" * (-len(chunk) % 4)
-        first = len(accessors)
-        accessors += [
-            {"bufferView": first, "componentType": 5126, "count": len(corners), "type": "VEC3",
-             "min": [min(x for x, _ in corners), min(y for _, y in corners), 0],
-             "max": [max(x for x, _ in corners), max(y for _, y in corners), 0]},
-            {"bufferView": first + 1, "componentType": 5126, "count": len(corners),
-             "type": "VEC3"},
-            {"bufferView": first + 2, "componentType": 5123, "count": 3 * (len(corners) - 2),
-             "type": "SCALAR"}]
-        meshes.append({"primitives": [{
-            "attributes": {"POSITION": first, "NORMAL": first + 1}, "indices": first + 2,
-            "material": index}]})
-    document = {
-        "asset": {"version": "2.0"},
-        "buffers": [{"uri": "data:application/octet-stream;base64," +
-                     base64.b64encode(data).decode(), "byteLength": len(data)}],
-        "bufferViews": views,
-        "accessors": accessors,
-        "materials": [{"pbrMetallicRoughness": {"baseColorFactor": [0.9, 0.1, 0.1, 1]}},
-                      {"pbrMetallicRoughness": {"baseColorFactor": [0.1, 0.2, 0.9, 1]}}],
-        "meshes": meshes,
-        "nodes": [{"mesh": 0}, {}, {}, {"mesh": 1}],
-        "scenes": [{"nodes": [0, 1, 2, 3]}],
-        "scene": 0,
-    }
-    path.write_text(json.dumps(document))
-    return path
+    return write_flat_pieces(
+        path,
+        [([(-0.8, -0.8), (0.8, -0.8), (0.8, 0.3)], [0, 1, 2], None),
+         ([(-0.8, -0.8), (0.8, 0.3), (0.8, 0.8), (-0.8, 0.8)], [0, 1, 2, 0, 2, 3], None)],
+        [{"pbrMetallicRoughness": {"baseColorFactor": [0.9, 0.1, 0.1, 1]}},
+         {"pbrMetallicRoughness": {"baseColorFactor": [0.1, 0.2, 0.9, 1]}}],
+        [{"mesh": 0}, {}, {}, {"mesh": 1}])
 
 
 def test_segmentation_at_four_samples_holds_drawn_ids(tmp_path):
